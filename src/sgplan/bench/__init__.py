@@ -1,0 +1,1 @@
+"""Evaluation: sweeps, executors, tables and figures."""

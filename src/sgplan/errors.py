@@ -1,0 +1,76 @@
+"""The sgplan exception family.
+
+Every error a user can cause (bad files, bad formulas, unreachable goals, a misbehaving LLM) is raised as
+a subclass of :class:`SgplanError`. Its message is one or two sentences that name the file, field or
+entity at fault and, where there is one, what to do about it. The CLI prints ``str(error)`` and exits
+with code 2; it never shows a traceback for these.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+
+class SgplanError(Exception):
+    """Base class of every error sgplan raises on purpose."""
+
+
+class SceneError(SgplanError):
+    """A scene (building, floors, rooms, objects, maps) is missing, malformed or inconsistent.
+
+    Parameters
+    ----------
+    message:
+        What is wrong, naming the entity or field.
+    path:
+        The file the problem was found in, if any; it is prefixed to the message.
+    """
+
+    def __init__(self, message: str, path: str | Path | None = None) -> None:
+        self.path = Path(path) if path is not None else None
+        super().__init__(f"{self.path}: {message}" if self.path is not None else message)
+
+
+class FormulaError(SgplanError):
+    """An LTL formula (infix, prefix string or LLM token list) cannot be parsed or is unsupported.
+
+    ``position`` is the 0-based token index (token lists) or character offset (strings) of the fault,
+    or ``None`` when the fault is the input as a whole (e.g. empty input).
+    """
+
+    def __init__(self, message: str, position: int | None = None) -> None:
+        self.position = position
+        super().__init__(message)
+
+
+class AutomatonError(SgplanError):
+    """An automaton cannot be built (too large) or read (HOA syntax, unsupported acceptance)."""
+
+    def __init__(self, message: str, path: str | Path | None = None) -> None:
+        self.path = Path(path) if path is not None else None
+        super().__init__(f"{self.path}: {message}" if self.path is not None else message)
+
+
+class MissionError(SgplanError):
+    """A mission (folder, propositions, guidance) is malformed or does not fit the scene."""
+
+    def __init__(self, message: str, path: str | Path | None = None) -> None:
+        self.path = Path(path) if path is not None else None
+        super().__init__(f"{self.path}: {message}" if self.path is not None else message)
+
+
+class PlanningError(SgplanError):
+    """Planning cannot start or cannot succeed.
+
+    ``status`` is the machine-readable outcome reported in JSON results: ``"invalid-start"`` (the start
+    cell is not free, or its label already violates the mission) or ``"infeasible"`` (no path satisfies
+    the mission), or ``"error"`` for anything else.
+    """
+
+    def __init__(self, message: str, status: str = "error") -> None:
+        self.status = status
+        super().__init__(message)
+
+
+class LLMError(SgplanError):
+    """The language-model backend failed (network, protocol, cache miss in replay mode, bad replies)."""

@@ -1,0 +1,1 @@
+"""LLM layer: chat client and cache, prompts, grounding, translation, guidance, offline backends."""

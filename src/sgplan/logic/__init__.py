@@ -1,0 +1,1 @@
+"""Logic: LTL syntax, checks, LTLf -> DFA, HOA, automaton utilities, equivalence."""

@@ -1,0 +1,1 @@
+"""Planning: the hierarchical domain, heuristics, AMRA*, compiled kernels, the path checker."""

@@ -1,0 +1,23 @@
+"""Shared fixtures: the Gibson data folder (tests needing it skip cleanly when it is absent)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from hypothesis import settings
+
+from sgplan.datasets import find_gibson_root
+
+# Property tests run a bounded number of examples so the suite stays well inside CI's budget.
+settings.register_profile("ci", max_examples=60, deadline=None)
+settings.register_profile("dev", max_examples=30, deadline=None)
+settings.load_profile("ci")
+
+
+@pytest.fixture(scope="session")
+def gibson_root() -> Path:
+    root = find_gibson_root()
+    if root is None:
+        pytest.skip("Gibson data not found (set SGPLAN_GIBSON_DIR or place ../shared beside the repo)")
+    return root
