@@ -1,0 +1,327 @@
+"""A mission: its text, grounded text, formula, automaton, propositions and LLM guidance; folder I/O.
+
+The mission folder is the authors' layout (reference-algorithm.md §1.4)::
+
+    NL_instructions.txt       the mission in natural language
+    NL_instructions_uuid.txt  the same with room_<uuid> / object_<uuid> references
+    GPT_LTL_formula.txt       the prefix token list, Python repr
+    Spot_LTL_formula.txt      LBT prefix string over p1..pN
+    ap_dict.txt               action token -> pK
+    ap_desc.yaml              pK -> {type: kEnterRoom|kReachObject, uuid, reach_distance}
+    automaton.aut             HOA automaton over p1..pN
+    building_desc.yaml        the attribute hierarchy given to the LLM (prompt text)
+    llm_heuristic.yaml        guidance {room_uuid: {q: [calls]}}
+
+Only ``automaton.aut`` and ``ap_desc.yaml`` are required to plan; the rest is read when present.
+"""
+
+from __future__ import annotations
+
+import ast
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import yaml
+
+from sgplan.errors import FormulaError, MissionError, SgplanError
+from sgplan.logic import (
+    Automaton,
+    Formula,
+    atoms,
+    ltlf_to_dfa,
+    number_aps,
+    read_hoa,
+    parse_infix,
+    parse_prefix,
+    parse_tokens,
+    to_prefix,
+    to_tokens,
+    write_hoa,
+)
+from sgplan.scene.labels import Proposition, label_raster
+from sgplan.scene.model import Building
+
+Guidance = Mapping[Any, Mapping[Any, Sequence[str]]]
+"""LLM guidance: ``{room_uuid: {automaton state: ["move(a, b)" | "reach(r, o)", ...]}}``."""
+
+_AP_TYPES = {"kEnterRoom": "enter", "kReachObject": "reach"}
+
+
+@dataclass(eq=False)
+class Mission:
+    """A mission ready to plan.
+
+    ``propositions`` maps every proposition name of ``automaton.aps`` (e.g. ``p1`` in the authors'
+    folders, or the action token ``enter(room_2)`` itself) to what it means in the scene.
+    """
+
+    automaton: Automaton
+    propositions: dict[str, Proposition]
+    formula: Formula | None = None
+    text: str | None = None
+    grounded_text: str | None = None
+    guidance: Guidance | None = None
+    source: Path | None = None
+    notes: list[str] = field(default_factory=list)
+    """Non-fatal remarks found while loading (e.g. unused propositions)."""
+
+    def __post_init__(self) -> None:
+        missing = [ap for ap in self.automaton.aps if ap not in self.propositions]
+        if missing:
+            raise MissionError(
+                f"the automaton's propositions {', '.join(missing)} have no meaning (enter/reach) given",
+                self.source,
+            )
+
+    @property
+    def ordered_propositions(self) -> list[Proposition]:
+        """The propositions in label-bit order (``automaton.aps``)."""
+        return [self.propositions[ap] for ap in self.automaton.aps]
+
+    @property
+    def descriptions(self) -> dict[str, str]:
+        """Proposition name -> action token, e.g. ``{"p1": "enter(room_2)"}``."""
+        return {ap: self.propositions[ap].name for ap in self.automaton.aps}
+
+    def check_scene(self, building: Building) -> None:
+        """Raise :class:`MissionError` naming every proposition whose room/object the building lacks."""
+        bad = [
+            f"{ap} = {p.name}"
+            for ap, p in self.propositions.items()
+            if ap in self.automaton.aps
+            and not (building.has_room(p.uuid) if p.kind == "enter" else building.has_object(p.uuid))
+        ]
+        if bad:
+            raise MissionError(
+                f"mission propositions name entities that building {building.name!r} does not have: "
+                f"{'; '.join(bad)}",
+                self.source,
+            )
+
+    def labels(self, building: Building, reach_radius_m: float | None = None) -> np.ndarray:
+        """``(floors, rows, cols)`` label bitmasks in the automaton's proposition order."""
+        self.check_scene(building)
+        return label_raster(building, self.ordered_propositions, reach_radius_m)
+
+
+# -- building missions -------------------------------------------------------------------------------
+
+
+def parse_formula(text: str | Sequence[str], known: set[str] | None = None) -> Formula:
+    """Parse a formula given as an LLM token list (or its repr), Spot infix, or LBT prefix.
+
+    A string starting with ``[`` is a token list; otherwise infix is tried, then prefix (a text valid
+    in both reads the same way in both, since binary operators cannot be placed alike).
+    """
+    if not isinstance(text, str) or text.lstrip().startswith("["):
+        return parse_tokens(text, known=known)
+    try:
+        return parse_infix(text)
+    except FormulaError as infix_error:
+        try:
+            return parse_prefix(text)
+        except FormulaError:
+            raise infix_error from None
+
+
+def mission_from_formula(
+    formula: Formula | str | Sequence[str],
+    propositions: Mapping[str, Proposition] | None = None,
+    *,
+    text: str | None = None,
+    grounded_text: str | None = None,
+    guidance: Guidance | None = None,
+) -> Mission:
+    """A mission whose automaton is the minimal DFA of ``formula`` (LTLf).
+
+    Proposition names are either action tokens (``enter(room_2)``, then ``propositions`` may be
+    omitted) or names given a meaning by ``propositions`` (e.g. ``p1`` from an ap_desc.yaml).
+    At most one ``enter(room)`` proposition holds at a cell, so those labels are pruned.
+    """
+    if not isinstance(formula, Formula):
+        formula = parse_formula(formula)
+    meaning = dict(propositions or {})
+    for name in atoms(formula):
+        if name not in meaning:
+            try:
+                meaning[name] = Proposition.parse(name)
+            except FormulaError:
+                raise MissionError(
+                    f"proposition {name!r} is neither enter(room_<uuid>) / reach(object_<uuid>) nor given a "
+                    "meaning (pass an ap_desc.yaml with --aps)"
+                ) from None
+    aps = tuple(atoms(formula))
+    rooms = [ap for ap in aps if meaning[ap].kind == "enter"]
+    automaton = ltlf_to_dfa(formula, aps=aps, exclusive=[rooms] if len(rooms) > 1 else ())
+    return Mission(
+        automaton=automaton,
+        propositions={ap: meaning[ap] for ap in aps},
+        formula=formula,
+        text=text,
+        grounded_text=grounded_text,
+        guidance=guidance,
+    )
+
+
+# -- reading the authors' folder ---------------------------------------------------------------------
+
+
+def _read_text(path: Path) -> str | None:
+    try:
+        return path.read_text(encoding="utf-8").strip() if path.is_file() else None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise MissionError(f"cannot read: {exc}", path) from None
+
+
+def _read_yaml(path: Path) -> Any:
+    try:
+        return yaml.load(path.read_text(encoding="utf-8"), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
+    except (OSError, UnicodeDecodeError) as exc:
+        raise MissionError(f"cannot read: {exc}", path) from None
+    except yaml.YAMLError as exc:
+        raise MissionError(f"not valid YAML: {str(exc).splitlines()[0]}", path) from None
+
+
+def read_ap_desc(path: str | Path) -> dict[str, Proposition]:
+    """Read an ``ap_desc.yaml``: ``pK -> {type, uuid, reach_distance}`` (-1 = the global reach radius).
+
+    ``kNA`` entries (always false in the authors' code) are skipped; an automaton that uses one then
+    fails with a message naming it.
+    """
+    path = Path(path)
+    doc = _read_yaml(path)
+    if not isinstance(doc, dict):
+        raise MissionError("expected a mapping of proposition name -> {type, uuid}", path)
+    meaning: dict[str, Proposition] = {}
+    for name, entry in doc.items():
+        if not isinstance(entry, dict) or "type" not in entry:
+            raise MissionError(f"proposition {name!r}: expected a mapping with 'type' and 'uuid'", path)
+        kind = _AP_TYPES.get(entry["type"])
+        if entry["type"] == "kNA":
+            continue
+        if kind is None:
+            raise MissionError(
+                f"proposition {name!r}: unknown type {entry['type']!r} (use kEnterRoom or kReachObject)", path
+            )
+        try:
+            uuid = int(entry["uuid"])
+            radius = float(entry.get("reach_distance", -1.0))
+            meaning[str(name)] = Proposition(kind, uuid, radius if kind == "reach" and radius > 0 else None)
+        except (KeyError, TypeError, ValueError) as exc:
+            raise MissionError(f"proposition {name!r}: bad or missing field ({exc})", path) from None
+        except SgplanError as exc:
+            raise MissionError(f"proposition {name!r}: {exc}", path) from None
+    return meaning
+
+
+def read_guidance(path: str | Path) -> Guidance:
+    """Read an ``llm_heuristic.yaml``. Only its outer shape is checked here; the planner skips (and
+    counts) calls it cannot use."""
+    path = Path(path)
+    doc = _read_yaml(path)
+    if doc is None:
+        return {}
+    if not isinstance(doc, dict) or not all(isinstance(v, dict) or v is None for v in doc.values()):
+        raise MissionError("expected {room_uuid: {automaton state: [calls]}}", path)
+    return {room: (states or {}) for room, states in doc.items()}
+
+
+def load_mission_folder(path: str | Path, profile: str = "ltlf", guidance: bool = True) -> Mission:
+    """Load a mission folder in the authors' layout (see the module docstring).
+
+    ``profile`` says how the HOA automaton's missing edges are read: ``"ltlf"`` (reject) or
+    ``"authors"`` (keep the state). With ``guidance=False`` llm_heuristic.yaml is not read.
+    """
+    folder = Path(path)
+    if not folder.is_dir():
+        raise MissionError("mission folder does not exist", folder)
+    hoa_path, ap_path = folder / "automaton.aut", folder / "ap_desc.yaml"
+    for required in (hoa_path, ap_path):
+        if not required.is_file():
+            raise MissionError(f"missing {required.name}: a mission folder needs automaton.aut and ap_desc.yaml", folder)
+    automaton = read_hoa(hoa_path, profile)  # type: ignore[arg-type]
+    meaning = read_ap_desc(ap_path)
+    missing = [ap for ap in automaton.aps if ap not in meaning]
+    if missing:
+        raise MissionError(f"automaton.aut uses {', '.join(missing)}, which ap_desc.yaml does not define", folder)
+
+    formula = None
+    tokens_text = _read_text(folder / "GPT_LTL_formula.txt")
+    ap_dict_text = _read_text(folder / "ap_dict.txt")
+    if tokens_text:
+        try:
+            ap_names = number_aps(tokens_text) if not ap_dict_text else _literal_dict(ap_dict_text, folder)
+            formula = parse_tokens(tokens_text, ap_names=ap_names)
+        except FormulaError as exc:
+            raise MissionError(f"GPT_LTL_formula.txt: {exc}", folder) from None
+
+    heuristic = folder / "llm_heuristic.yaml"
+    unused = sorted(set(meaning) - set(automaton.aps))
+    return Mission(
+        automaton=automaton,
+        propositions=meaning,
+        formula=formula,
+        text=_read_text(folder / "NL_instructions.txt"),
+        grounded_text=_read_text(folder / "NL_instructions_uuid.txt"),
+        guidance=read_guidance(heuristic) if guidance and heuristic.is_file() else None,
+        source=folder,
+        notes=[f"ap_desc.yaml defines {', '.join(unused)}, which the automaton does not use"] if unused else [],
+    )
+
+
+def _literal_dict(text: str, folder: Path) -> dict[str, str]:
+    try:
+        value = ast.literal_eval(text)
+    except (ValueError, SyntaxError):
+        raise MissionError("ap_dict.txt is not a Python dict literal", folder) from None
+    if not isinstance(value, dict):
+        raise MissionError("ap_dict.txt is not a dict", folder)
+    return {str(k): str(v) for k, v in value.items()}
+
+
+# -- writing the authors' folder ---------------------------------------------------------------------
+
+
+def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str | None = None) -> Path:
+    """Write ``mission`` in the authors' layout under ``path`` (created if needed); returns the folder.
+
+    Propositions are renamed p1..pN by first appearance in the token list, as the authors do, so the
+    folder loads back with :func:`load_mission_folder` to an equivalent mission.
+    """
+    folder = Path(path)
+    folder.mkdir(parents=True, exist_ok=True)
+    actions = mission.descriptions
+    if mission.formula is not None:
+        tokens = to_tokens(mission.formula, ap_tokens=actions)
+        p_names = number_aps(tokens)
+        (folder / "GPT_LTL_formula.txt").write_text(repr(tokens) + "\n", encoding="utf-8")
+        (folder / "ap_dict.txt").write_text(repr(p_names) + "\n", encoding="utf-8")
+        (folder / "Spot_LTL_formula.txt").write_text(
+            to_prefix(parse_tokens(tokens, ap_names=p_names)) + "\n", encoding="utf-8"
+        )
+    else:
+        p_names = {token: f"p{k + 1}" for k, token in enumerate(dict.fromkeys(actions.values()))}
+    renamed = replace(mission.automaton, aps=tuple(p_names[actions[ap]] for ap in mission.automaton.aps))
+    write_hoa(renamed, folder / "automaton.aut")
+    ap_desc = {}
+    for ap in mission.automaton.aps:
+        prop = mission.propositions[ap]
+        entry: dict[str, Any] = {"type": "kEnterRoom" if prop.kind == "enter" else "kReachObject", "uuid": prop.uuid}
+        if prop.kind == "reach":
+            entry["reach_distance"] = float(prop.reach_radius_m) if prop.reach_radius_m else -1.0
+        ap_desc[p_names[prop.name]] = entry
+    (folder / "ap_desc.yaml").write_text(yaml.safe_dump(ap_desc, sort_keys=True), encoding="utf-8")
+    for name, value in (
+        ("NL_instructions.txt", mission.text),
+        ("NL_instructions_uuid.txt", mission.grounded_text),
+        ("building_desc.yaml", hierarchy_text),
+    ):
+        if value is not None:
+            (folder / name).write_text(value.rstrip("\n") + "\n", encoding="utf-8")
+    if mission.guidance is not None:
+        plain = {int(r): {int(q): list(calls) for q, calls in states.items()} for r, states in mission.guidance.items()}
+        (folder / "llm_heuristic.yaml").write_text(yaml.safe_dump(plain, sort_keys=True), encoding="utf-8")
+    return folder
