@@ -140,6 +140,29 @@ class Floor:
     def shape(self) -> tuple[int, int]:
         return (int(self.cat_map.shape[0]), int(self.cat_map.shape[1]))
 
+    @property
+    def has_maps(self) -> bool:
+        """False for a floor read from a source without rasters (a raw 3D Scene Graph ``.npz``).
+
+        Such a floor has ``(0, 0)`` rasters, ``origin_m = (0, 0)``, ``resolution_m = (0, 0)``,
+        ``ground_z_m = nan`` and no stairs; its rooms and objects have ``(0, 0)`` grid boxes and no doors.
+        """
+        return self.cat_map.size > 0
+
+    def undeclared_map_ids(self) -> tuple[list[int], list[int]]:
+        """Ids stored in the rasters that the floor does not declare: ``(object ids, room ids)``.
+
+        The cat map may hold the ids of this floor's objects; the room map those of this floor's rooms
+        and of the staircase arriving from below (drawn on both floors). Both lists are empty for a
+        consistent floor.
+        """
+        objects = {o for room in self.rooms.values() for o in room.objects}
+        rooms = set(self.rooms) | ({self.down_stairs.room_id} if self.down_stairs is not None else set())
+        return (
+            [i for i in _positive_values(self.cat_map) if i not in objects],
+            [i for i in _positive_values(self.room_map) if i not in rooms],
+        )
+
     def cell_to_xy(self, cell: Cell) -> tuple[float, float]:
         """Metric centre ``(x, y)`` of a cell."""
         return (
@@ -153,6 +176,12 @@ class Floor:
             int(np.floor((x_m - self.origin_m[0]) / self.resolution_m[0])),
             int(np.floor((y_m - self.origin_m[1]) / self.resolution_m[1])),
         )
+
+
+def _positive_values(raster: np.ndarray) -> list[int]:
+    """The distinct values > 0 of an integer raster, ascending (a histogram: maps are ~0.6 M cells)."""
+    positive = raster[raster > 0]
+    return np.flatnonzero(np.bincount(positive)).tolist() if positive.size else []
 
 
 @dataclass(eq=False)
@@ -177,16 +206,37 @@ class Building:
         self._index()
 
     def _index(self) -> None:
-        """(Re)build the look-up tables; call after mutating rooms or objects."""
+        """(Re)build the look-up tables; call after mutating rooms or objects.
+
+        Raises :class:`SceneError` if floors are not indexed ``0..n-1`` in order, if two rooms (or two
+        objects) share an id, or if two nodes of any type share a uuid: every look-up must be unambiguous.
+        """
         self._rooms_by_id: dict[int, Room] = {}
         self._rooms_by_uuid: dict[int, Room] = {}
         self._objects_by_id: dict[int, SceneObject] = {}
         self._objects_by_uuid: dict[int, SceneObject] = {}
-        for floor in self.floors:
+        uuid_owner: dict[int, str] = {self.uuid: f"building {self.name!r}"}
+
+        def claim(uuid: int, owner: str) -> None:
+            if uuid in uuid_owner:
+                raise SceneError(f"building {self.name!r}: {owner} and {uuid_owner[uuid]} share uuid {uuid}")
+            uuid_owner[uuid] = owner
+
+        for position, floor in enumerate(self.floors):
+            if floor.index != position:
+                message = f"building {self.name!r}: floor at position {position} has index {floor.index}"
+                raise SceneError(message)
+            claim(floor.uuid, f"floor {floor.index}")
             for room in floor.rooms.values():
+                if room.id in self._rooms_by_id:
+                    raise SceneError(f"building {self.name!r}: two rooms have id {room.id}")
+                claim(room.uuid, f"room {room.id}")
                 self._rooms_by_id[room.id] = room
                 self._rooms_by_uuid[room.uuid] = room
                 for obj in room.objects.values():
+                    if obj.id in self._objects_by_id:
+                        raise SceneError(f"building {self.name!r}: two objects have id {obj.id}")
+                    claim(obj.uuid, f"object {obj.id}")
                     self._objects_by_id[obj.id] = obj
                     self._objects_by_uuid[obj.uuid] = obj
 

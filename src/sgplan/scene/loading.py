@@ -1,0 +1,39 @@
+"""One entry point for reading a scene in any supported format: :func:`load_scene`."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from sgplan.errors import SceneError
+from sgplan.scene.authors import is_authors_scene, load_authors_scene
+from sgplan.scene.gibson_npz import is_gibson_npz, load_gibson_npz
+from sgplan.scene.model import Building
+from sgplan.scene.native import is_native_scene, read_native_scene
+
+
+def load_scene(path: str | Path) -> Building:
+    """Load the scene at ``path``, whichever format it is in.
+
+    - a folder with ``building.yaml`` (or that file): the authors' scene, with rasters;
+    - a folder with ``scene.json`` (or a ``.json`` file): sgplan's native format;
+    - a ``.npz`` file: a raw 3D Scene Graph (graph only, ``Floor.has_maps`` False).
+
+    Raises
+    ------
+    SceneError
+        The path does not exist or is none of these, or the loader of its format rejects it.
+    """
+    path = Path(path).expanduser()
+    if not path.exists():
+        raise SceneError("scene path does not exist", path)
+    if is_authors_scene(path):
+        return load_authors_scene(path)
+    if is_native_scene(path):
+        return read_native_scene(path)
+    if is_gibson_npz(path):
+        return load_gibson_npz(path)
+    raise SceneError(
+        "not a scene: expected a folder holding building.yaml (authors' format) or scene.json (sgplan's "
+        "format), or a raw 3DSceneGraph_<name>.npz file",
+        path,
+    )
