@@ -4,6 +4,9 @@ Cells are ``(floor, row, col)`` in arrays of shape ``(floors, rows, cols)``; see
 :mod:`sgplan.scene.model` for the axis conventions. Moves are 8-connected with Euclidean step cost in
 metres (``res_x``, ``res_y`` or ``hypot(res_x, res_y)``); a stairs move joins the two portal cells of a
 :class:`StairsLink` at its cost.
+
+:func:`build_occupancy_grid` builds the grid exactly as the authors' planner does
+(reference-algorithm.md §2); :mod:`sgplan.scene.distances` computes exact shortest distances over it.
 """
 
 from __future__ import annotations
@@ -11,8 +14,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import ndimage
 
-from sgplan.scene.model import Cell
+from sgplan.errors import SceneError
+from sgplan.scene.footprint import FootprintVariant, footprint_kernel, inflate
+from sgplan.scene.model import Building, CatCode, Cell
 
 
 @dataclass(frozen=True)
@@ -86,3 +92,135 @@ class OccupancyGrid:
             self.origin_m[1] + (cell[1] + 0.5) * self.resolution_m[1],
             float(self.floor_z_m[floor]),
         )
+
+
+def floor_heights_m(building: Building) -> np.ndarray:
+    """Metric height of every floor in the authors' 3-D frame (reference-algorithm.md §2.1), metres.
+
+    ``z_k = ground_z_0 + k * fh`` with ``fh`` the smallest gap between consecutive floors' ``ground_z``
+    (2.0 m for a one-floor building). Using the smallest gap keeps straight-line distances between
+    floors below every real stairs cost, so 3-D Euclidean heuristics stay admissible.
+    """
+    ground = np.array([floor.ground_z_m for floor in building.floors], dtype=np.float64)
+    gap = float(np.min(np.diff(ground))) if len(ground) > 1 else 2.0
+    return ground[0] + gap * np.arange(len(ground), dtype=np.float64)
+
+
+def stairs_links(building: Building) -> tuple[StairsLink, ...]:
+    """One :class:`StairsLink` per pair of consecutive floors joined by stairs, costs as given.
+
+    Floor ``k``'s up stairs must meet floor ``k+1``'s down stairs with the same cost; a pair whose cost
+    is infinite has no usable stairs and gets no link (as in the authors' planner).
+
+    Raises
+    ------
+    SceneError
+        if only one end of a staircase exists, or the two ends disagree on the cost.
+    """
+    links = []
+    for lower, upper in zip(building.floors, building.floors[1:]):
+        up, down = lower.up_stairs, upper.down_stairs
+        if up is None and down is None:
+            continue
+        if up is None or down is None:
+            missing, present = (f"floor {lower.index} up", f"floor {upper.index} down")
+            if up is not None:
+                missing, present = present, missing
+            raise SceneError(
+                f"building {building.name!r}: {present} stairs exist but {missing} stairs are missing; "
+                "both ends of a staircase need a portal"
+            )
+        if not np.isclose(up.cost_m, down.cost_m, rtol=1e-9, atol=1e-9) and not (
+            np.isinf(up.cost_m) and np.isinf(down.cost_m)
+        ):
+            raise SceneError(
+                f"building {building.name!r}: stairs cost between floors {lower.index} and {upper.index} "
+                f"differs by direction (up {up.cost_m} m, down {down.cost_m} m)"
+            )
+        if np.isfinite(up.cost_m):
+            links.append(
+                StairsLink(
+                    lower_floor=lower.index,
+                    lower_cell=(int(up.portal[0]), int(up.portal[1])),
+                    upper_cell=(int(down.portal[0]), int(down.portal[1])),
+                    cost_m=float(up.cost_m),
+                )
+            )
+    return tuple(links)
+
+
+def build_occupancy_grid(
+    building: Building,
+    robot_radius_m: float,
+    footprint: FootprintVariant = "app",
+) -> OccupancyGrid:
+    """The occupancy grid of ``building`` for a robot of ``robot_radius_m`` metres, as the authors build it.
+
+    Per floor (reference-algorithm.md §2.2): obstacles are all non-GROUND cells; with a radius > 0 the
+    obstacles other than stairs are inflated with the authors' footprint kernel (``footprint`` selects the
+    app's or the unit tests' vertex set, see :mod:`sgplan.scene.footprint`) and the stairs are put back;
+    a cell is traversable iff it is free and its room id is > 0. Every stairs portal is then forced
+    traversable. The kernel is quantised in floor 0's frame, as in the authors' code.
+
+    Raises
+    ------
+    SceneError
+        for a building without rasters, a negative or non-finite radius, a portal outside the grid, or
+        inconsistent stairs.
+    """
+    if not all(floor.has_maps for floor in building.floors):
+        raise SceneError(
+            f"building {building.name!r} has no maps (read from a raw 3D Scene Graph .npz?); an occupancy "
+            "grid needs a scene with category and room maps (the authors' folder or sgplan's format)"
+        )
+    if not np.isfinite(robot_radius_m) or robot_radius_m < 0:
+        raise SceneError(f"robot radius must be a non-negative number of metres, got {robot_radius_m}")
+    floor0 = building.floors[0]
+    kernel = (
+        footprint_kernel(robot_radius_m, floor0.origin_m, floor0.resolution_m, footprint)
+        if robot_radius_m > 0
+        else None
+    )
+    shape = (building.num_floors, *building.grid_shape)
+    traversable = np.empty(shape, dtype=bool)
+    room_map = np.empty(shape, dtype=np.int16)
+    for floor in building.floors:
+        cat = floor.cat_map
+        obstacles = cat != CatCode.GROUND
+        if kernel is not None:
+            stairs = (cat == CatCode.STAIRS_UP) | (cat == CatCode.STAIRS_DOWN)
+            obstacles = inflate(obstacles & ~stairs, kernel) | stairs
+        traversable[floor.index] = ~obstacles & (floor.room_map > 0)
+        room_map[floor.index] = floor.room_map
+    links = stairs_links(building)
+    for link in links:
+        for floor_index, cell in ((link.lower_floor, link.lower_cell), (link.upper_floor, link.upper_cell)):
+            if not (0 <= cell[0] < shape[1] and 0 <= cell[1] < shape[2]):
+                raise SceneError(
+                    f"building {building.name!r}: stairs portal {cell} of floor {floor_index} lies outside "
+                    f"the {shape[1]}x{shape[2]} grid"
+                )
+            traversable[floor_index, cell[0], cell[1]] = True
+    return OccupancyGrid(
+        traversable=traversable,
+        room_map=room_map,
+        resolution_m=(float(floor0.resolution_m[0]), float(floor0.resolution_m[1])),
+        origin_m=(float(floor0.origin_m[0]), float(floor0.origin_m[1])),
+        floor_z_m=floor_heights_m(building),
+        stairs=links,
+        robot_radius_m=float(robot_radius_m),
+    )
+
+
+def component_sizes(grid: OccupancyGrid) -> list[np.ndarray]:
+    """Per floor, the sizes (cells, descending) of the 8-connected components of traversable cells.
+
+    Stairs are not followed: this describes each floor on its own.
+    """
+    eight = np.ones((3, 3), dtype=bool)
+    sizes = []
+    for layer in grid.traversable:
+        labels, count = ndimage.label(layer, structure=eight)
+        counts = np.bincount(labels.ravel(), minlength=count + 1)[1:]
+        sizes.append(np.sort(counts)[::-1])
+    return sizes
