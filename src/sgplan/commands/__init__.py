@@ -2,4 +2,6 @@
 
 from __future__ import annotations
 
-REGISTRY: list = []
+from sgplan.commands import demo, inspect
+
+REGISTRY = [demo.register, inspect.register]

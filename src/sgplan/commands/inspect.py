@@ -1,0 +1,36 @@
+"""``sgplan inspect SCENE``: print a scene's summary and optionally draw its floors."""
+
+from __future__ import annotations
+
+import argparse
+
+from sgplan.commands.common import add_scene_arguments, load_scene_arg, say
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("inspect", help="summarise a scene (floors, rooms, objects, grid, portals)")
+    add_scene_arguments(parser, positional=True)
+    parser.add_argument("--robot-radius", type=float, default=None, metavar="M",
+                        help="robot radius in metres for the free-cell counts (default: the scene's, else 0)")
+    parser.add_argument("--draw", metavar="DIR", default=None, help="write one PNG per floor into DIR")
+    parser.add_argument("--no-objects", action="store_true", help="leave the object lists out")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from sgplan.scene.draw import draw_building
+    from sgplan.scene.grid import build_occupancy_grid
+    from sgplan.scene.summary import summarize, summary_lines
+
+    building = load_scene_arg(args.scene, args.data)
+    has_maps = all(floor.has_maps for floor in building.floors)
+    radius = args.robot_radius if args.robot_radius is not None else (building.robot_radius_m or 0.0)
+    grid = build_occupancy_grid(building, radius) if has_maps else None
+    print("\n".join(summary_lines(summarize(building, grid), objects=not args.no_objects)))
+    if args.draw:
+        if not has_maps:
+            say("no maps in this scene (raw .npz): nothing to draw")
+            return 0
+        for path in draw_building(building, args.draw, grid=grid):
+            say(f"wrote {path}")
+    return 0
