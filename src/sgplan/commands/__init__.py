@@ -2,6 +2,6 @@
 
 from __future__ import annotations
 
-from sgplan.commands import demo, inspect
+from sgplan.commands import demo, inspect, plan
 
-REGISTRY = [demo.register, inspect.register]
+REGISTRY = [demo.register, inspect.register, plan.register]

@@ -1,0 +1,134 @@
+"""``sgplan plan``: plan an optimal path for a mission over a scene with AMRA*."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import time
+from pathlib import Path
+from typing import Any
+
+from sgplan.commands.common import add_scene_arguments, load_scene_arg, say
+from sgplan.errors import MissionError, PlanningError, SgplanError
+
+
+def _start_cell(text: str) -> tuple[int, int, int]:
+    try:
+        row, col, floor = (int(v) for v in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected ROW,COL,FLOOR (grid cells), got {text!r}") from None
+    return (row, col, floor)
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    from sgplan.planning.amra import SETUPS
+
+    parser = sub.add_parser("plan", help="plan an optimal path for a mission (AMRA*)")
+    add_scene_arguments(parser)
+    what = parser.add_mutually_exclusive_group(required=True)
+    what.add_argument("--mission-dir", metavar="DIR", help="mission folder (automaton.aut, ap_desc.yaml, llm_heuristic.yaml)")
+    what.add_argument("--formula", metavar="F", help="LTL formula: token list, Spot infix or LBT prefix")
+    parser.add_argument("--aps", metavar="FILE", help="ap_desc.yaml giving the formula's proposition names a meaning")
+    parser.add_argument("--guidance", metavar="FILE", help="llm_heuristic.yaml to use instead of the mission's")
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--start", type=_start_cell, metavar="ROW,COL,FLOOR", help="start cell")
+    where.add_argument("--start-index", type=int, metavar="K", help="start at the scene's initial position K")
+    parser.add_argument("--setup", default="ALL", help=f"planner setup: {', '.join(SETUPS)} (default ALL)")
+    parser.add_argument("--profile", choices=("ltlf", "authors"), default="ltlf",
+                        help="semantics: ltlf (default; start label read, missing automaton edges reject) or "
+                             "authors (the authors' C++: start label not read, missing edges keep the state)")
+    parser.add_argument("--robot-radius", type=float, metavar="M", help="robot radius (default: the scene's)")
+    parser.add_argument("--reach-radius", type=float, metavar="M", help="object reach radius (default: the scene's)")
+    parser.add_argument("--time-limit", type=float, metavar="S", help="search time budget in seconds")
+    parser.add_argument("--max-expansions", type=int, metavar="N", help="search expansion budget")
+    parser.add_argument("--json", metavar="OUT", help="write the result as JSON")
+    parser.add_argument("--draw", metavar="DIR", help="write one PNG per floor with the path")
+    parser.add_argument("--verify", action="store_true", help="check the path with the independent checker")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    t_start = time.perf_counter()
+    record: dict[str, Any] = {"status": "error", "profile": args.profile, "setup": args.setup}
+    try:
+        status = _plan(args, record, t_start)
+    except SgplanError as error:
+        record.update(status=getattr(error, "status", "error"), message=str(error))
+        _write_json(args.json, record)
+        raise
+    _write_json(args.json, record)
+    return status
+
+
+def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> int:
+    from sgplan.mission import load_mission_folder, mission_from_formula, read_ap_desc, read_guidance
+    from sgplan.pipeline import make_problem, resolve_start
+    from sgplan.planning.amra import plan
+
+    building = load_scene_arg(args.scene, args.data)
+    if args.mission_dir:
+        mission = load_mission_folder(args.mission_dir, profile=args.profile)
+    else:
+        mission = mission_from_formula(args.formula, read_ap_desc(args.aps) if args.aps else None)
+    if args.guidance:
+        mission.guidance = read_guidance(args.guidance)
+    for note in mission.notes:
+        say(f"note: {note}")
+    start = resolve_start(building, args.start, args.start_index)
+    prepared = make_problem(building, mission, start, profile=args.profile,
+                            robot_radius_m=args.robot_radius, reach_radius_m=args.reach_radius)
+    load_s = time.perf_counter() - t_start
+    say(f"scene {building.name}: start {start}, robot radius {prepared.radii.robot_m} m ({prepared.radii.robot_from}), "
+        f"reach {prepared.radii.reach_m} m ({prepared.radii.reach_from}), profile {args.profile}, "
+        f"{mission.automaton.num_states} automaton states")
+
+    def progress(it: Any) -> None:
+        say(f"  (w1, w2) = ({it.w1:g}, {it.w2:g})  cost {it.cost_m:.4f} m  bound x{it.bound:g}  "
+            f"{it.time_s:.3f} s  {sum(it.expansions):,} expansions")
+
+    result = plan(prepared.problem, args.setup, time_limit_s=args.time_limit,
+                  max_expansions=args.max_expansions, callback=progress)
+    record.update(
+        status=result.status, setup=result.setup, cost=result.cost_m if math.isfinite(result.cost_m) else None,
+        queues=list(result.queues),
+        iterations=[{"w1": it.w1, "w2": it.w2, "cost": it.cost_m, "bound": it.bound, "time_s": it.time_s,
+                     "expansions": list(it.expansions)} for it in result.iterations],
+        path=result.path.tolist() if result.path is not None else None,
+        start=list(start), radii={"robot_m": prepared.radii.robot_m, "reach_m": prepared.radii.reach_m},
+        timings={"load_s": load_s, "precompute_s": result.precompute_s, "search_s": result.search_s,
+                 "wall_s": time.perf_counter() - t_start},
+    )
+    if result.path is None:
+        raise PlanningError(f"no path found within the budget ({result.status})", status=result.status)
+    print(f"{result.status}: cost {result.cost_m:.4f} m over {len(result.path)} cells "
+          f"(setup {result.setup}, {len(result.iterations)} iterations, search {result.search_s:.3f} s, "
+          f"precompute {result.precompute_s:.3f} s)")
+    if args.verify:
+        from sgplan.planning.checker import check_path
+
+        check = check_path(result.path, prepared.problem.grid, prepared.problem.labels, mission.automaton, args.profile)
+        record["verified"] = check.valid
+        if not check.valid:
+            raise PlanningError("the path failed the independent check: " + "; ".join(check.problems))
+        if abs(check.cost_m - result.cost_m) > 1e-6:
+            raise PlanningError(f"the checker recomputes cost {check.cost_m:.6f} m, the planner said {result.cost_m:.6f} m")
+        print(f"verified: the path is legal, collision-free and accepted; cost {check.cost_m:.4f} m")
+    if args.draw:
+        from sgplan.scene.draw import draw_building
+
+        cells = [tuple(int(v) for v in row[:3]) for row in result.path]
+        for png in draw_building(building, args.draw, grid=prepared.problem.grid, path=cells, stem="plan_floor"):
+            say(f"wrote {png}")
+    return 0
+
+
+def _write_json(target: str | None, record: dict[str, Any]) -> None:
+    if not target:
+        return
+    path = Path(target)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps(record, indent=1) + "\n", encoding="utf-8")
+    except OSError as error:
+        raise MissionError(f"cannot write the JSON result: {error.strerror}", path) from None

@@ -1,0 +1,100 @@
+"""Joining the parts: scene + mission + start -> a planning problem, with the scene's defaults.
+
+These helpers hold the choices every front end (CLI, demo, benchmarks) must make the same way: which
+robot and reach radii apply, which start cell is meant, and how the grid and labels are built.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+from sgplan.errors import PlanningError
+from sgplan.mission import Mission
+from sgplan.planning.problem import PlanningProblem
+from sgplan.scene.grid import build_occupancy_grid
+from sgplan.scene.model import Building
+
+DEFAULT_REACH_RADIUS_M = 0.6
+"""The authors' app default, used when neither the user nor the scene gives a reach radius."""
+
+
+@dataclass(frozen=True)
+class Radii:
+    """Robot and reach radii in metres, and where each came from (for messages and records)."""
+
+    robot_m: float
+    reach_m: float
+    robot_from: str
+    reach_from: str
+
+
+def resolve_radii(building: Building, robot_m: float | None = None, reach_m: float | None = None) -> Radii:
+    """The radii to plan with: given values, else the scene's (radius_config.bash), else 0 / 0.6 m.
+
+    Raises :class:`PlanningError` for negative radii or a reach radius below the robot radius (a robot
+    could then never reach an object it cannot touch; the authors' app refuses it too).
+    """
+    robot, robot_from = (robot_m, "given") if robot_m is not None else (
+        (building.robot_radius_m, "scene") if building.robot_radius_m is not None else (0.0, "default")
+    )
+    reach, reach_from = (reach_m, "given") if reach_m is not None else (
+        (building.reach_radius_m, "scene") if building.reach_radius_m is not None else (DEFAULT_REACH_RADIUS_M, "default")
+    )
+    if robot < 0 or reach <= 0:
+        raise PlanningError(f"radii must be robot >= 0 and reach > 0 metres, got robot {robot}, reach {reach}")
+    if reach < robot:
+        raise PlanningError(f"reach radius {reach} m is smaller than the robot radius {robot} m; give a larger --reach-radius")
+    return Radii(float(robot), float(reach), robot_from, reach_from)
+
+
+def resolve_start(building: Building, start: tuple[int, int, int] | None = None, index: int | None = None) -> tuple[int, int, int]:
+    """The start cell ``(row, col, floor)``: given, or the scene's initial cell number ``index``
+    (initial_positions.yaml), or its first one."""
+    if start is not None:
+        return (int(start[0]), int(start[1]), int(start[2]))
+    cells = building.initial_cells
+    if not cells:
+        raise PlanningError(f"scene {building.name!r} has no initial positions: give a start cell (row, col, floor)")
+    k = 0 if index is None else index
+    if not 0 <= k < len(cells):
+        raise PlanningError(f"start index {k} is out of range: scene {building.name!r} has {len(cells)} initial positions")
+    return cells[k]
+
+
+@dataclass(frozen=True)
+class PreparedProblem:
+    """A problem with the radii it was built for and the seconds spent building grid and labels."""
+
+    problem: PlanningProblem
+    radii: Radii
+    build_s: float
+
+
+def make_problem(
+    building: Building,
+    mission: Mission,
+    start: tuple[int, int, int],
+    *,
+    profile: str = "ltlf",
+    robot_radius_m: float | None = None,
+    reach_radius_m: float | None = None,
+    use_guidance: bool = True,
+) -> PreparedProblem:
+    """Build the occupancy grid and the label raster, and assemble a :class:`PlanningProblem`."""
+    t0 = time.perf_counter()
+    radii = resolve_radii(building, robot_radius_m, reach_radius_m)
+    grid = build_occupancy_grid(building, radii.robot_m)
+    labels = mission.labels(building, radii.reach_m)
+    problem = PlanningProblem(
+        building=building,
+        grid=grid,
+        labels=labels,
+        automaton=mission.automaton,
+        start=start,
+        profile=profile,
+        guidance=mission.guidance if use_guidance else None,
+        reach_radius_m=radii.reach_m,
+        ap_descriptions=mission.descriptions,
+    )
+    return PreparedProblem(problem, radii, time.perf_counter() - t0)
