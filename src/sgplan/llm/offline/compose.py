@@ -1,0 +1,75 @@
+"""From parsed goals to LTL: tasks, sequences of steps, and the formulas they stand for.
+
+A :class:`Task` is one goal over a set of alternatives (``any``: one of them) or of obligations
+(``all``: each of them, in any order); each member is a state formula such as ``reach(object_21)`` or
+``reach(object_21) & enter(room_10)``. A *step* is a list of tasks done in any order; a mission sentence
+is a sequence of steps, each finished before the next one's tasks count.
+
+The sequence ``s_1, ..., s_n`` becomes, from the last step backwards, ``R_n = AND_t goal(t, None)`` and
+``R_k = AND_{t in s_k} goal(t, R_{k+1})`` with ``goal(any, R) = F(OR members & avoid & R)`` and
+``goal(all, R) = AND_m F(m & avoid & R)``. For an ``all`` task this says "every member is done, and the
+rest of the sequence happens after it"; the rest then happens after the last of them, which is what
+"do all of these, then ..." means (``F(a & F c) & F(b & F c)`` holds iff ``c`` follows both ``a`` and
+``b``). ``avoid`` are the local negations of the task ("visit the bathroom and avoid the sink" ->
+``F(enter(bathroom) & !reach(sink))``, the convention of the authors' missions).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Literal
+
+from sgplan.logic.formula import And, Eventually, Formula, Or
+
+
+@dataclass
+class Task:
+    """One goal: ``any`` of ``members`` or ``all`` of them, each with the local negations ``avoid``."""
+
+    mode: Literal["any", "all"]
+    members: list[Formula]
+    avoid: list[Formula] = field(default_factory=list)
+
+
+Step = list[Task]
+
+
+def conj(parts: Sequence[Formula]) -> Formula:
+    """The conjunction of ``parts`` (flattening nested conjunctions, dropping duplicates); one part as is."""
+    flat: list[Formula] = []
+    for p in parts:
+        for q in p.args if isinstance(p, And) else (p,):
+            if q not in flat:
+                flat.append(q)
+    if not flat:
+        raise ValueError("empty conjunction")
+    return flat[0] if len(flat) == 1 else And(tuple(flat))
+
+
+def disj(parts: Sequence[Formula]) -> Formula:
+    """The disjunction of ``parts`` (flattened, without duplicates); one part as is."""
+    flat: list[Formula] = []
+    for p in parts:
+        for q in p.args if isinstance(p, Or) else (p,):
+            if q not in flat:
+                flat.append(q)
+    if not flat:
+        raise ValueError("empty disjunction")
+    return flat[0] if len(flat) == 1 else Or(tuple(flat))
+
+
+def task_formulas(task: Task, rest: Formula | None) -> list[Formula]:
+    """The conjuncts that say ``task`` is done and ``rest`` (the later steps) happens afterwards."""
+    extra = task.avoid + ([rest] if rest is not None else [])
+    if task.mode == "any":
+        return [Eventually(conj([disj(task.members), *extra]))]
+    return [Eventually(conj([m, *extra])) for m in task.members]
+
+
+def sequence_formula(steps: Sequence[Step]) -> Formula | None:
+    """The formula of a sequence of steps (see the module docstring); ``None`` if there is no task."""
+    rest: Formula | None = None
+    for step in reversed([s for s in steps if s]):
+        rest = conj([f for task in step for f in task_formulas(task, rest)])
+    return rest

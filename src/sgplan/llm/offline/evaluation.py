@@ -1,0 +1,132 @@
+"""Scoring a mission translator on a set of missions with gold formulas, by automaton equivalence.
+
+The set is a YAML file (format in tests/llm/data/pattern_missions.yaml): per mission a scene, a text and
+either a gold formula (infix, with the shorthand ``r2`` = ``"enter(room_2)"``, ``o27`` =
+``"reach(object_27)"``) or the fragment of the error the translator must raise. A translation is right
+when its LTLf automaton accepts exactly the gold's words among the words with at most one room per cell
+(the only ones a robot can produce), or when it raises the expected error.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Literal, Protocol
+
+import yaml
+
+from sgplan.errors import MissionError, SgplanError
+from sgplan.logic import atoms, difference_word, ltlf_to_dfa, parse_infix
+from sgplan.logic.formula import Formula
+from sgplan.scene.model import Building
+
+Outcome = Literal["right", "refused", "wrong"]
+
+_SHORTHAND = re.compile(r"\b([ro])(\d+)\b")
+
+
+class Translator(Protocol):
+    """What is scored: a named backend turning text into a formula for a building."""
+
+    name: str
+
+    def translate(self, text: str, building: Building) -> object: ...
+
+
+@dataclass(frozen=True)
+class EvalMission:
+    """One mission of the set; exactly one of ``gold`` and ``expect_error`` is set."""
+
+    id: str
+    scene: str
+    text: str
+    gold: Formula | None
+    expect_error: str | None
+    must_pass: bool
+    paper: bool
+    note: str
+
+
+@dataclass(frozen=True)
+class EvalResult:
+    """How a translator did on one mission: ``right``, ``refused`` (a MissionError where a formula was
+    expected) or ``wrong`` (a formula not equivalent to the gold, or the wrong error or none);
+    ``detail`` says what happened (the error, or a word on which translation and gold disagree)."""
+
+    mission: EvalMission
+    outcome: Outcome
+    detail: str
+
+
+def expand_shorthand(text: str) -> str:
+    """``F(r2 & o27)`` -> ``F("enter(room_2)" & "reach(object_27)")``."""
+    return _SHORTHAND.sub(
+        lambda m: f'"enter(room_{m.group(2)})"' if m.group(1) == "r" else f'"reach(object_{m.group(2)})"', text
+    )
+
+
+def load_mission_set(path: str | Path) -> list[EvalMission]:
+    """Read the evaluation set; :class:`MissionError` naming the file and mission on a malformed entry."""
+    path = Path(path)
+    data = yaml.safe_load(path.read_text(encoding="utf-8"))
+    if not isinstance(data, dict) or not isinstance(data.get("missions"), list):
+        raise MissionError("expected a mapping with a 'missions' list", path)
+    out = []
+    for k, entry in enumerate(data["missions"]):
+        if not isinstance(entry, dict) or not {"id", "scene", "text"} <= entry.keys():
+            raise MissionError(f"mission {k} needs id, scene and text", path)
+        if ("gold" in entry) == ("expect_error" in entry):
+            raise MissionError(f"mission {entry['id']!r} needs exactly one of gold and expect_error", path)
+        try:
+            gold = parse_infix(expand_shorthand(str(entry["gold"]))) if "gold" in entry else None
+        except SgplanError as exc:
+            raise MissionError(f"mission {entry['id']!r}: gold formula: {exc}", path) from None
+        out.append(EvalMission(str(entry["id"]), str(entry["scene"]), str(entry["text"]), gold,
+                               entry.get("expect_error"), bool(entry.get("must_pass", False)),
+                               bool(entry.get("paper", False)), str(entry.get("note", ""))))
+    return out
+
+
+def same_language(a: Formula, b: Formula) -> tuple[bool, str]:
+    """Whether ``a`` and ``b`` accept the same finite words with at most one room per letter; if not, a
+    shortest word on which they differ, as text."""
+    union = list(dict.fromkeys(atoms(a) + atoms(b)))
+    rooms = [p for p in union if p.startswith("enter(")]
+    dfa_a = ltlf_to_dfa(a, aps=union, exclusive=[rooms])
+    dfa_b = ltlf_to_dfa(b, aps=union, exclusive=[rooms])
+    word = difference_word(dfa_a, dfa_b)
+    if word is None:
+        return True, ""
+    shown = " ".join("{" + ", ".join(sorted(letter)) + "}" for letter in word) or "the empty word"
+    return False, f"they differ on {shown}"
+
+
+def evaluate(
+    translator: Translator, missions: Iterable[EvalMission], building_of: Callable[[str], Building]
+) -> list[EvalResult]:
+    """Translate every mission with ``translator`` and classify the outcome (see :class:`EvalResult`).
+
+    ``translator.translate`` must return an object with a ``formula`` attribute. Errors other than
+    :class:`MissionError` propagate: they are bugs, not refusals.
+    """
+    results = []
+    for m in missions:
+        building = building_of(m.scene)
+        try:
+            formula = translator.translate(m.text, building).formula  # type: ignore[attr-defined]
+        except MissionError as exc:
+            message = str(exc)
+            if m.expect_error is not None:
+                ok = m.expect_error in message
+                results.append(EvalResult(m, "right" if ok else "wrong", message))
+            else:
+                results.append(EvalResult(m, "refused", message))
+            continue
+        if m.gold is None:
+            results.append(EvalResult(m, "wrong", f"expected an error containing {m.expect_error!r}, got {formula}"))
+            continue
+        same, why = same_language(formula, m.gold)
+        results.append(EvalResult(m, "right" if same else "wrong", f"got {formula}" + ("" if same else f"; {why}")))
+    return results

@@ -1,0 +1,761 @@
+"""The controlled-English grammar: mission sentences -> grounded noun phrases -> an LTL formula.
+
+The grammar is documented for users in docs/offline.md. In short, a mission is a list of sentences; each
+sentence is a sequence of steps joined by ``then`` / ``after that`` / ``finally`` / ``X after Y`` /
+``X before Y``; a step is one or more actions (``visit the kitchen and water the plant``); an action is
+verb words followed by a list of noun phrases; negations (``always avoid``, ``never``, ``don't``,
+``avoid``, ``without``, ``stay away from``), ``until``, conditions (``if ... , ...``, ``... if ...``,
+``... only if ...``) and sentence prefixes (``After visiting X, ...``, ``Only after ...``, ``In the
+kitchen, ...``) wrap them. Noun phrases are grounded as they are read (:class:`NounPhrase`), so pronouns
+(``it``, ``them``) and room context ("go to the dining room and sit on one of the chairs": the chairs of
+that dining room) use what came before.
+
+Anything the grammar does not understand raises :class:`~sgplan.errors.MissionError` naming the phrase;
+it never guesses.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal
+
+from sgplan.errors import MissionError
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline.compose import Step, Task, conj, disj, sequence_formula
+from sgplan.llm.offline.names import Entity, Head, SceneVocabulary
+from sgplan.llm.offline.text import Tok, sentences, tokenize
+from sgplan.logic.formula import Always, And, Atom, Eventually, Formula, Implies, Not, Until
+
+Mode = Literal["the", "any", "all"]
+Role = Literal["goal", "avoid", "condition", "qualifier"]
+
+_DETERMINERS = frozenset("the a an any all every each both either this that these those some".split())
+_SEQ_WORDS = (("and", "then"), ("then",), ("after", "that"), ("afterwards",), ("afterward",), ("next",),
+              ("finally",), ("subsequently",), ("after", "which"), ("followed", "by"), ("later",),
+              ("and", "finally"), ("lastly",))
+_NEG_STARTS = (("always", "avoid"), ("always", "stay", "away", "from"), ("always", "keep", "away", "from"),
+               ("always", "stay", "out", "of"), ("always", "keep", "out", "of"), ("never",),
+               ("do", "not"), ("does", "not"), ("must", "not"), ("should", "not"), ("can", "not"),
+               ("cannot",), ("may", "not"), ("will", "not"), ("not",), ("avoid",), ("avoiding",),
+               ("stay", "away", "from"), ("keep", "away", "from"), ("stay", "out", "of"),
+               ("keep", "out", "of"), ("without",), ("while", "avoiding"), ("always", "do", "not"),
+               ("and", "avoid"), ("but", "avoid"), ("but", "never"), ("and", "never"), ("but", "do", "not"),
+               ("and", "do", "not"), ("but", "not"), ("no",))
+_GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can", "cannot", "may", "will", "no",
+                         "stay", "keep"})
+"""A negation with one of these words holds for the whole mission (G !x); 'avoid' and 'without' after an
+action only constrain the moment that action is done (F(x & !y)), as in the authors' missions."""
+_QUAL_IN = ("in", "inside", "within", "of", "from")
+_QUAL_CONTAINS = (("with",), ("having",), ("containing",), ("that", "has"), ("that", "have"),
+                  ("which", "has"), ("which", "have"), ("that", "contains"), ("which", "contains"),
+                  ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"))
+_QUAL_NEXT = (("next", "to"), ("adjacent", "to"), ("beside",), ("near",), ("connected", "to"), ("by",),
+              ("off",), ("close", "to"), ("joined", "to"), ("linked", "to"))
+_QUAL_EXCEPT = (("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
+                ("excluding",), ("besides",))
+_PARTICLES = frozenset("on off up down out over".split())
+_SUBJECT_FILLERS = frozenset("you we i the robot it ever have has had do does did are is were was already "
+                             "been also first".split())
+_CONDITION_WORDS = ("if", "when", "once", "in case")
+_STRUCTURAL = (
+    frozenset(w for table in (_SEQ_WORDS, _NEG_STARTS, _QUAL_CONTAINS, _QUAL_NEXT, _QUAL_EXCEPT,
+                              lx.ORDER_MODIFIERS) for seq in table for w in seq)
+    | frozenset(_QUAL_IN) | frozenset(w for c in _CONDITION_WORDS for w in c.split()) | _DETERMINERS
+    | frozenset(lx.FLOOR_WORDS) | frozenset(lx.FLOOR_ORDINALS) | frozenset(lx.FLOOR_NAMED)
+    | frozenset(lx.FLOOR_TOP) | frozenset(lx.NUMBER_WORDS) | frozenset(lx.PRONOUNS)
+    | frozenset(lx.GENERIC_ROOM_WORDS) | frozenset({"whenever", "only", "than", "zero", "ever"})
+) - lx.POSITIVE_VERBS - {"first", "also", "please", "eventually", "finally"}
+"""Words with a role in the grammar: in the verb slot they signal a sentence that was not understood."""
+
+
+@dataclass
+class NounPhrase:
+    """A grounded noun phrase: the text and span it came from and the entities it denotes.
+
+    ``mode``: ``the`` (exactly one entity), ``any`` (one of them will do), ``all`` (each of them).
+    ``room_scoped``: the objects were located through a room (``the sink in the kitchen``, ``the
+    kitchen's sink``, or the room of the same step), so reaching them also requires being in that room.
+    """
+
+    phrase: str
+    start: int
+    end: int
+    entities: list[Entity]
+    mode: Mode
+    room_scoped: bool
+    role: Role
+
+
+@dataclass
+class Clause:
+    """What one sentence body says: a sequence of steps and global constraints."""
+
+    steps: list[Step] = field(default_factory=lambda: [[]])
+    constraints: list[Formula] = field(default_factory=list)
+
+    def formula(self) -> Formula | None:
+        goal = sequence_formula(self.steps)
+        parts = ([goal] if goal is not None else []) + self.constraints
+        return conj(parts) if parts else None
+
+
+def member_formula(entity: Entity, room_scoped: bool) -> Formula:
+    """The state formula of being at ``entity`` (in its room too, for a room-scoped object)."""
+    atom = Atom(entity.action)
+    if entity.kind == "object" and room_scoped:
+        return conj([atom, Atom(f"enter({entity.room_key})")])
+    return atom
+
+
+class MissionParser:
+    """Parses one mission text against one scene; see :func:`parse_mission`."""
+
+    def __init__(self, text: str, vocabulary: SceneVocabulary) -> None:
+        self.text = text
+        self.vocab = vocabulary
+        self.references: list[NounPhrase] = []
+        self.toks: list[Tok] = []
+        self.i = 0
+        self.sentence_scope: list[Entity] = []
+
+    # -- token helpers --------------------------------------------------------------------------------
+    def word(self, k: int = 0) -> str:
+        j = self.i + k
+        return self.toks[j].text if 0 <= j < len(self.toks) else ""
+
+    def words(self) -> list[str]:
+        return [t.text for t in self.toks]
+
+    def at(self, *seq: str, k: int = 0) -> bool:
+        return all(self.word(k + n) == w for n, w in enumerate(seq))
+
+    def at_any(self, options: tuple[tuple[str, ...], ...], k: int = 0) -> tuple[str, ...] | None:
+        for seq in sorted(options, key=len, reverse=True):
+            if self.at(*seq, k=k):
+                return seq
+        return None
+
+    def done(self) -> bool:
+        return self.i >= len(self.toks)
+
+    def span_text(self, start: int, end: int) -> str:
+        return self.text[start:end]
+
+    def here(self) -> str:
+        """The rest of the sentence, for error messages."""
+        if self.done():
+            return "the end of the sentence"
+        tail = self.toks[self.i : self.i + 6]
+        return f"'{self.span_text(tail[0].start, tail[-1].end)}'"
+
+    def fail(self, message: str) -> MissionError:
+        return MissionError(f"{message}; rephrase the mission (see docs/offline.md for the understood English)")
+
+    # -- the mission ------------------------------------------------------------------------------------
+    def parse(self) -> Formula:
+        parts: list[Clause | Formula] = []
+        for sentence in sentences(tokenize(self.text)):
+            self.toks, self.i, self.sentence_scope = sentence, 0, []
+            continues = self.skip_fillers(sequence_too=True)
+            result = self.sentence()
+            if continues and parts and isinstance(parts[-1], Clause) and isinstance(result, Clause):
+                parts[-1].steps.extend(result.steps)
+                parts[-1].constraints.extend(result.constraints)
+            else:
+                parts.append(result)
+        formulas = [p.formula() if isinstance(p, Clause) else p for p in parts]
+        present = [f for f in formulas if f is not None]
+        if not present:
+            raise self.fail("the mission names no room or object to visit or avoid")
+        return conj(present)
+
+    def skip_fillers(self, sequence_too: bool = False) -> bool:
+        """Skip words without meaning at a clause start; True if a sequencing word ('then', ...) was seen."""
+        seen_sequence = False
+        while not self.done():
+            seq = self.at_any(_SEQ_WORDS) if sequence_too else None
+            if seq is not None:
+                self.i += len(seq)
+                seen_sequence = True
+            elif self.word() == "," or (self.word() in lx.FILLERS and self.word() not in ("do", "and", "then", "next")):
+                self.i += 1
+            elif self.at_any(lx.TIME_FILLERS) is not None:
+                self.i += len(self.at_any(lx.TIME_FILLERS) or ())
+            else:
+                break
+        return seen_sequence
+
+    def sentence(self) -> Clause | Formula:
+        if self.at("whenever") or self.at("every", "time"):
+            raise self.fail("'whenever' is not understood (say 'if you visit X, ...' for a one-off condition)")
+        cond_word = next((w for w in _CONDITION_WORDS if self.at(*w.split())), None)
+        if cond_word is not None:
+            self.i += len(cond_word.split())
+            condition = self.condition()
+            self.expect_comma_or_then()
+            body = self.body()
+            return Implies(condition, self.require(body, "after the condition"))
+        if self.at("only", "after"):
+            self.i += 2
+            before = self.prefix_clause()
+            body = self.body()
+            return self.only_after(before, body)
+        if self.word() in ("after", "once"):
+            self.i += 1
+            before = self.prefix_clause()
+            body = self.body()
+            body.steps[:0] = before.steps
+            return self.postfix_condition(body)
+        if self.word() == "before":
+            self.i += 1
+            after = self.prefix_clause()
+            body = self.body()
+            body.steps.extend(after.steps)
+            return self.postfix_condition(body)
+        if self.word() in ("in", "inside", "within") and self.np_starts(1):
+            save, known = self.i, len(self.references)
+            self.i += 1
+            scope = self.noun_phrase("qualifier")
+            if self.word() == "," and all(e.kind == "room" for e in scope.entities):
+                self.i += 1
+                self.sentence_scope = scope.entities
+            else:  # not "In <room>, ...": read it again as part of the sentence
+                del self.references[known:]
+                self.i = save
+        return self.postfix_condition(self.body())
+
+    def postfix_condition(self, body: Clause) -> Clause | Formula:
+        if self.done():
+            return body
+        if self.at("only", "if"):
+            self.i += 2
+            condition = self.condition()
+            self.expect_end()
+            return Implies(self.require(body, "before 'only if'"), condition)
+        cond_word = next((w for w in _CONDITION_WORDS if self.at(*w.split())), None)
+        if cond_word is not None:
+            self.i += len(cond_word.split())
+            condition = self.condition()
+            self.expect_end()
+            return Implies(condition, self.require(body, f"before '{cond_word}'"))
+        raise self.fail(f"cannot understand {self.here()}")
+
+    def require(self, clause: Clause, where: str) -> Formula:
+        f = clause.formula()
+        if f is None:
+            raise self.fail(f"nothing to do {where}")
+        return f
+
+    def expect_comma_or_then(self) -> None:
+        if self.word() == ",":
+            self.i += 1
+        if self.word() == "then":
+            self.i += 1
+
+    def expect_end(self) -> None:
+        self.skip_fillers()
+        if not self.done():
+            raise self.fail(f"cannot understand {self.here()}")
+
+    def only_after(self, before: Clause, body: Clause) -> Formula:
+        """``Only after X, visit Y``: Y is visited, and not before X is (``!Y U X`` for each part of X)."""
+        prior = [t for step in before.steps for t in step]
+        goals = [t for step in body.steps for t in step]
+        if not prior or not goals or len([s for s in body.steps if s]) > 1:
+            raise self.fail("'only after X, ...' needs one condition and one step after the comma")
+        parts: list[Formula] = [f for t in goals for f in _goal_eventually(t)]
+        forbidden = conj([Not(m) for t in goals for m in t.members])
+        for t in prior:
+            if t.mode == "any":
+                parts.append(Until(forbidden, disj(t.members)))
+            else:
+                parts.extend(Until(forbidden, m) for m in t.members)
+        return conj(parts + body.constraints)
+
+    def prefix_clause(self) -> Clause:
+        """The clause of ``After visiting X,`` / ``Before going to Y,`` up to the comma."""
+        self.skip_subject()
+        steps = self.action()
+        self.expect_comma_or_then()
+        return Clause(steps=steps)
+
+    def condition(self) -> Formula:
+        """``if you go to the kitchen``: the formula that the condition happened (F ...)."""
+        self.skip_subject()
+        if self.word() in ("not", "never"):
+            raise self.fail("negative conditions ('if you do not ...') are not understood")
+        steps = self.action()
+        f = sequence_formula(steps)
+        if f is None:
+            raise self.fail("the condition names no room or object")
+        return f
+
+    def skip_subject(self) -> None:
+        while self.word() in _SUBJECT_FILLERS and not self.np_starts():
+            self.i += 1
+
+    # -- sentence bodies -----------------------------------------------------------------------------
+    def body(self) -> Clause:
+        clause = Clause()
+        while not self.done():
+            if self.at("only", "if") or any(self.at(*w.split()) for w in _CONDITION_WORDS):
+                break
+            if self.skip_fillers(sequence_too=True):
+                if clause.steps[-1]:
+                    clause.steps.append([])
+                continue
+            if self.done():
+                break
+            neg = self.at_any(_NEG_STARTS)
+            if neg is not None:
+                self.negation(neg, clause)
+            elif self.word() == "after" and not self.at("after", "that"):
+                self.i += 1
+                self.skip_subject()
+                clause.steps[-1:-1] = [t for t in self.action() if t]
+            elif self.word() == "before":
+                self.i += 1
+                self.skip_subject()
+                clause.steps.extend(self.action())
+                clause.steps.append([])
+            elif self.word() in ("and", "but", "or", "while", "as"):
+                if self.word() == "or":
+                    raise self.fail(f"'or' between actions is not understood at {self.here()} "
+                                    "(say 'visit A or B' with one verb)")
+                self.i += 1
+            else:
+                if self.word() in lx.REFUSED_VERBS:
+                    raise self.fail(f"cannot understand {lx.REFUSED_VERBS[self.word()]}")
+                steps = self.action(step_rooms=self.step_rooms(clause.steps[-1]))
+                clause.steps[-1].extend(steps[0])
+                if len(steps) > 1:
+                    clause.steps.extend(steps[1:])
+        return clause
+
+    def step_rooms(self, step: Step) -> list[Entity]:
+        """Rooms the current step sends the robot to: context for the objects named next."""
+        keys = [a.name[len("enter("):-1] for t in step for m in t.members
+                for a in (m.args if isinstance(m, And) else (m,))
+                if isinstance(a, Atom) and a.name.startswith("enter(")]
+        return [self.vocab.by_key[k] for k in dict.fromkeys(keys)] + self.sentence_scope
+
+    def negation(self, marker: tuple[str, ...], clause: Clause) -> None:
+        """``always avoid X`` / ``never enter X`` (global: G !X), ``avoid X`` after an action (local),
+        ``don't enter X until Y`` (``!X U Y``)."""
+        self.i += len(marker)
+        has_goal = any(clause.steps)
+        is_global = bool(_GLOBAL_NEG & set(marker)) or not has_goal
+        self.verb_words()
+        rooms = self.step_rooms(clause.steps[-1]) if not is_global else self.sentence_scope
+        nps = self.noun_phrase_list("avoid", rooms)
+        forbidden = conj([Not(Atom(e.action)) for np in nps for e in np.entities])
+        self.skip_particles()
+        if self.word() in ("until", "before"):
+            self.i += 1
+            self.skip_subject()
+            steps = self.action()
+            tasks = [t for s in steps for t in s]
+            if len(tasks) != 1:
+                raise self.fail("'... until X' needs one goal X")
+            t = tasks[0]
+            targets = [disj(t.members)] if t.mode == "any" else t.members
+            clause.constraints.extend(Until(forbidden, m) for m in targets)
+        elif is_global:
+            clause.constraints.append(Always(forbidden))
+        else:
+            target = [t for s in clause.steps for t in s][-1]
+            target.avoid.extend(forbidden.args if isinstance(forbidden, And) else [forbidden])
+
+    # -- actions -------------------------------------------------------------------------------------
+    def verb_words(self) -> list[str]:
+        """Words before the noun phrase: the verb, whatever it is, unless it is refused or a word of the
+        grammar itself (``always``, ``floor``, ``next`` ... out of place are errors, not verbs)."""
+        seen: list[str] = []
+        while not self.done() and not self.np_starts() and self.word() not in (",", "and", "or", "then",
+                                                                              "if", "until", "before",
+                                                                              "after", "when", "without"):
+            w = self.word()
+            if w in lx.REFUSED_VERBS:
+                raise self.fail(f"cannot understand {lx.REFUSED_VERBS[w]}")
+            if self.at_any(_NEG_STARTS) is not None:
+                break
+            if w not in lx.POSITIVE_VERBS and (w in _STRUCTURAL or not w.isalpha()):
+                raise self.fail(f"cannot understand '{w}' in {self.here()}")
+            seen.append(w)
+            self.i += 1
+        return seen
+
+    def action(self, step_rooms: list[Entity] | None = None) -> list[Step]:
+        """Verb words and noun phrases -> one or more steps (``put X in Y``, ordered lists give more)."""
+        verbs = self.verb_words()
+        if not self.np_starts():
+            what = f"after '{' '.join(verbs)}'" if verbs else "here"
+            raise self.fail(f"expected a room or object {what}, found {self.here()}")
+        scope = list(step_rooms or []) or self.sentence_scope
+        carry = bool(set(verbs) & lx.CARRY_VERBS)
+        nps = self.noun_phrase_list("goal", scope, "object" if carry else None)
+        ordered = self.at_any(lx.ORDER_MODIFIERS)
+        if ordered:
+            self.i += len(ordered)
+        pronoun_only = all(np.phrase.lower() in lx.PRONOUNS for np in nps)
+        # "put it in Y": the object is already in hand, the goal is Y, after what came before.
+        steps: list[Step] = [[]] if carry and pronoun_only else self.tasks_of(nps, ordered is not None)
+        self.skip_particles()
+        if carry and self.word() in ("in", "into", "on", "onto", "to", "inside") and self.np_starts(1):
+            self.i += 1
+            dest = self.noun_phrase_list("goal", [])
+            steps.extend(self.tasks_of(dest, False))
+        self.skip_particles()
+        if self.word() == "to" and not self.np_starts(1):
+            self.i += 1  # purpose clause: "... to turn them off"
+            purpose_verbs = self.verb_words()
+            if self.np_starts():
+                purpose = self.noun_phrase_list("goal", list(scope))
+                if not all(np.phrase.lower() in lx.PRONOUNS for np in purpose):
+                    steps[-1].extend(self.tasks_of(purpose, False)[0])
+                self.skip_particles()
+            elif not purpose_verbs:
+                raise self.fail(f"cannot understand {self.here()}")
+        if self.at_any(lx.TIME_FILLERS):
+            self.i += len(self.at_any(lx.TIME_FILLERS) or ())
+        return steps or [[]]
+
+    def skip_particles(self) -> None:
+        if self.word() in _PARTICLES and (self.word(1) in ("", ",", "and", "then", "to") or self.at_any(_NEG_STARTS, k=1)):
+            self.i += 1
+
+    def tasks_of(self, nps: list[NounPhrase], ordered: bool) -> list[Step]:
+        tasks = []
+        for np in nps:
+            members = [member_formula(e, np.room_scoped) for e in np.entities]
+            tasks.append(Task("any" if np.mode == "any" else "all", members))
+        if ordered and len(tasks) > 1:
+            return [[t] for t in tasks]
+        return [tasks]
+
+    # -- noun phrases ---------------------------------------------------------------------------------
+    def np_starts(self, k: int = 0) -> bool:
+        w = self.word(k)
+        if not w:
+            return False
+        if w.startswith(("room_", "object_")) or w in lx.PRONOUNS:
+            return w != "it" or self.word(k + 1) not in ("is", "was")
+        if w in _DETERMINERS:
+            return not (w == "some" and self.word(k + 1) == "point") and not (w == "that" and self.word(k + 1) in ("order",))
+        if w in lx.NUMBER_WORDS or w.isdigit():
+            return w != "one" or self.word(k + 1) == "of" or self.vocab.match_head(self.words(), self.i + k + 1) is not None
+        return self.vocab.match_head(self.words(), self.i + k) is not None
+
+    def noun_phrase_list(self, role: Role, scope: list[Entity], pronoun_kind: str | None = None) -> list[NounPhrase]:
+        """``A, B and C`` (each) or ``A or B`` / ``either A or B`` (one of them, as one phrase)."""
+        either = self.word() == "either" and self.word(1) in _DETERMINERS | {"of"} and self.word(1) != "of"
+        if either or (self.word() == "both" and self.word(1) in _DETERMINERS):
+            self.i += 1
+        nps = [self.noun_phrase(role, scope, None, pronoun_kind)]
+        joiners: set[str] = set()
+        while True:
+            if self.word() == "," and self.word(1) in ("and", "or") and self.np_starts(2):
+                joiners.add(self.word(1))
+                self.i += 2
+            elif self.word() == "," and self.np_starts(1) and not self.at_any(_NEG_STARTS, k=1):
+                self.i += 1
+            elif self.word() in ("and", "or") and self.np_starts(1):
+                joiners.add(self.word())
+                self.i += 1
+            elif self.at("as", "well", "as") and self.np_starts(3):
+                joiners.add("and")
+                self.i += 3
+            else:
+                break
+            nps.append(self.noun_phrase(role, scope))
+        if joiners == {"and", "or"}:
+            raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)}' mixes 'and' and 'or'; split it into two sentences")
+        if "or" in joiners or either:
+            if any(np.mode == "all" and len(np.entities) > 1 for np in nps):
+                raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)}' joins a group with 'or'; say 'any of ...'")
+            merged = NounPhrase(self.span_text(nps[0].start, nps[-1].end), nps[0].start, nps[-1].end,
+                                [e for np in nps for e in np.entities], "any",
+                                all(np.room_scoped for np in nps), role)
+            if len({np.room_scoped for np in nps}) > 1:
+                raise self.fail(f"'{merged.phrase}' mixes objects located by room with others; split it")
+            return [merged]
+        return nps
+
+    def noun_phrase(self, role: Role, scope: list[Entity] | None = None, one_head: Head | None = None,
+                    pronoun_kind: str | None = None) -> NounPhrase:
+        """One noun phrase, grounded; ``one_head`` is what ``the one`` means, ``pronoun_kind`` what an ``it``
+        here must denote (objects, after ``put`` / ``bring``)."""
+        first = self.toks[self.i] if not self.done() else None
+        if first is None:
+            raise self.fail("expected a room or object at the end of the sentence")
+        w = self.word()
+        if w in lx.PRONOUNS:
+            self.i += 1
+            ref = self.antecedent(w, pronoun_kind)
+            pronoun_mode: Mode = "all" if w in ("them", "they") else ref.mode
+            np = NounPhrase(self.span_text(first.start, first.end), first.start, first.end, list(ref.entities),
+                            pronoun_mode, ref.room_scoped, role)
+            return self.record(np)
+        mode, count = self.quantifier()
+        if self.word().startswith(("room_", "object_")):
+            key = self.word()
+            if key not in self.vocab.by_key:
+                raise self.fail(f"'{key}' is not a room or object of this scene")
+            entities = [self.vocab.by_key[key]]
+            head = Head(entities[0].kind, frozenset({entities[0].category}), False, 1)
+            self.i += 1
+            mode = "the"
+        else:
+            head = self.head(one_head)
+            entities = self.vocab.of_head(head)
+            if mode is None:
+                mode = "all" if head.plural else "the"
+            elif mode == "the" and head.plural:
+                mode = "all"
+        room_scoped = False
+        while True:
+            if self.word() == "'s" and head.kind == "room":
+                self.i += 1
+                container = entities
+                head = self.head(None)
+                if head.kind != "object":
+                    raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}': only objects belong to a room")
+                entities = self.vocab.inside(self.vocab.of_head(head), container)
+                mode = "all" if head.plural else "the"
+                room_scoped = True
+                continue
+            floor = self.floor_qualifier()
+            if floor is not None:
+                entities = self.vocab.on_floor(entities, floor)
+                continue
+            if (self.word() in _QUAL_IN and self.np_starts(1) and not self.at_any(lx.ORDER_MODIFIERS)
+                    and not self.at_any(lx.TIME_FILLERS)):
+                self.i += 1
+                inner = self.noun_phrase("qualifier")
+                if head.kind != "object" or any(e.kind != "room" for e in inner.entities):
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <object> in the <room>' "
+                                    f"(rooms are not inside rooms, objects not inside objects)")
+                entities = self.vocab.inside(entities, inner.entities)
+                inner.entities = [r for r in inner.entities if any(e.room_key == r.key for e in entities)]
+                room_scoped = True
+                continue
+            contains = self.at_any(_QUAL_CONTAINS)
+            if contains and self.np_starts(len(contains)):
+                self.i += len(contains)
+                n = self.count_word()
+                inner = self.noun_phrase("qualifier")
+                if head.kind != "room" or any(e.kind != "object" for e in inner.entities):
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> with the <object>'")
+                entities = self.vocab.containing(entities, inner.entities, n)
+                inner.entities = [o for o in inner.entities if any(o.room_key == r.key for r in entities)]
+                continue
+            nxt = self.at_any(_QUAL_NEXT)
+            if nxt and self.np_starts(len(nxt)):
+                self.i += len(nxt)
+                inner = self.noun_phrase("qualifier")
+                if head.kind != "room" or any(e.kind != "room" for e in inner.entities):
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': 'next to' relates rooms only")
+                entities = self.vocab.next_to(entities, inner.entities)
+                inner.entities = [r for r in inner.entities
+                                  if any(r.key in self.vocab.adjacent.get(e.key, ()) for e in entities)]
+                continue
+            comma = 1 if self.word() == "," else 0
+            exc = self.at_any(_QUAL_EXCEPT, k=comma)
+            if exc and self.np_starts(comma + len(exc)):
+                self.i += comma + len(exc)
+                excluded = self.except_list(head)
+                keys = {e.key for np in excluded for e in np.entities}
+                entities = [e for e in entities if e.key not in keys]
+                continue
+            break
+        if role != "qualifier" and scope and head.kind == "object" and not room_scoped:
+            scoped = self.vocab.inside(entities, scope)
+            if scoped:
+                entities, room_scoped = scoped, True
+        last = self.toks[self.i - 1]
+        np = NounPhrase(self.span_text(first.start, last.end), first.start, last.end, entities, mode, room_scoped, role)
+        self.check(np, head, count)
+        return self.record(np)
+
+    def except_list(self, head: Head) -> list[NounPhrase]:
+        out = [self.noun_phrase("qualifier", None, head)]
+        while self.word() in ("and", "or", ",") and self.np_starts(1):
+            self.i += 1
+            out.append(self.noun_phrase("qualifier", None, head))
+        return out
+
+    def record(self, np: NounPhrase) -> NounPhrase:
+        self.references.append(np)
+        return np
+
+    def antecedent(self, pronoun: str, kind: str | None = None) -> NounPhrase:
+        """The phrase a pronoun refers to: the last one mentioned (by position) that agrees in number.
+
+        ``it`` takes a phrase denoting one entity, ``them``/``they`` one denoting several, so in "go to the
+        bedroom with the TV and turn it on" *it* is the TV, and in "take both bowls in the kitchen and put
+        them in the fridge" *them* are the bowls.
+        """
+        plural = pronoun in ("them", "they")
+        for np in sorted(self.references, key=lambda r: r.start, reverse=True):
+            is_plural = np.mode == "all" and len(np.entities) > 1
+            if is_plural == plural and np.phrase.lower() not in lx.PRONOUNS and (
+                kind is None or all(e.kind == kind for e in np.entities)
+            ):
+                return np
+        raise self.fail(f"'{pronoun}' does not refer to any {'group of ' if plural else ''}room or object named before it")
+
+    def quantifier(self) -> tuple[Mode | None, int | None]:
+        """Determiners -> (mode, required count); ``None`` mode = decided by the head's number."""
+        w = self.word()
+        mode: Mode | None = None
+        count: int | None = None
+        if w in ("one", "any", "either") and self.word(1) == "of":
+            self.i += 2
+            mode = "any"
+        elif w in ("a", "an", "any", "some", "either"):
+            self.i += 1
+            mode = "any"
+        elif w in ("all", "every", "each", "both"):
+            self.i += 1
+            mode, count = "all", (2 if w == "both" else None)
+            if self.word() == "of":
+                self.i += 1
+        elif w in ("the", "this", "that", "these", "those"):
+            self.i += 1
+            mode = "the"
+        if self.word() in ("the", "these", "those") and mode is not None:
+            self.i += 1
+        n = self.count_word() if self.np_starts(1) or self.vocab.match_head(self.words(), self.i + 1) else None
+        if n is not None:
+            if mode in (None, "any"):
+                raise self.fail(f"'{self.word(-1)} ...': choosing a number of them is not understood; "
+                                f"say 'any of the ...' or 'all the ...'")
+            mode, count = "all", n
+        return mode, count
+
+    def count_word(self) -> int | None:
+        w = self.word()
+        if w in lx.NUMBER_WORDS and (w != "one" or self.word(1) != "of"):
+            self.i += 1
+            return lx.NUMBER_WORDS[w]
+        if w.isdigit():
+            self.i += 1
+            return int(w)
+        return None
+
+    def head(self, one_head: Head | None) -> Head:
+        w = self.word()
+        if w in lx.ANAPHORIC_ONE:
+            if one_head is None:
+                raise self.fail(f"'{w}' does not refer to a kind of room or object named just before")
+            self.i += 1
+            return Head(one_head.kind, one_head.categories, w == "ones", 1)
+        if w in lx.REFUSED_VERBS:
+            raise self.fail(f"cannot understand {lx.REFUSED_VERBS[w]}")
+        if w in lx.FLOOR_ORDINALS or w in lx.FLOOR_NAMED or w in lx.FLOOR_TOP:
+            raise self.fail(f"ordinals like '{w}' are only understood for floors ('the bathroom on the {w} floor')")
+        head = self.vocab.match_head(self.words(), self.i)
+        if head is None and self.done():
+            raise self.fail(f"expected a room or object after '{self.toks[self.i - 1].text}' at the end of the sentence")
+        if head is None:
+            unknown = self.word()
+            raise self.fail(
+                f"no room or object of this scene is called '{unknown}' (rooms: "
+                f"{', '.join(self.vocab.category_names('room'))}; objects: "
+                f"{', '.join(self.vocab.category_names('object'))})"
+            )
+        self.i += head.words
+        return head
+
+    def floor_qualifier(self) -> int | None:
+        """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> 1, 1, 0."""
+        if self.word() not in ("on", "in", "at", "of", "from", "upstairs", "downstairs"):
+            return None
+        if self.word() in ("upstairs", "downstairs"):
+            raise self.fail(f"'{self.word()}' is not understood; say which floor ('on floor 1')")
+        k = 1
+        if self.word(k) == "the":
+            k += 1
+        w, nxt = self.word(k), self.word(k + 1)
+        floor: int | None = None
+        if w in lx.FLOOR_WORDS and (nxt.isdigit() or nxt in lx.NUMBER_WORDS or nxt == "zero"):
+            floor = 0 if nxt == "zero" else int(nxt) if nxt.isdigit() else lx.NUMBER_WORDS[nxt]
+            k += 2
+        elif nxt in lx.FLOOR_WORDS and (w in lx.FLOOR_ORDINALS or w in lx.FLOOR_NAMED or w in lx.FLOOR_TOP):
+            floor = lx.FLOOR_ORDINALS.get(w, lx.FLOOR_NAMED.get(w, self.vocab.num_floors - 1))
+            k += 2
+        if floor is None:
+            return None
+        if not 0 <= floor < self.vocab.num_floors:
+            phrase = " ".join(self.words()[self.i + 1 : self.i + k])
+            raise self.fail(f"'{phrase}': the building {self.vocab.building_name!r} has floors 0 to "
+                            f"{self.vocab.num_floors - 1} (floor 0 is the lowest; 'the first floor' is floor 0)")
+        self.i += k
+        return floor
+
+    # -- grounding checks -----------------------------------------------------------------------------
+    def check(self, np: NounPhrase, head: Head, count: int | None) -> None:
+        if np.role == "qualifier":
+            if not np.entities:
+                raise self.fail(f"'{np.phrase}' matches no {head.kind} of this scene{self.existing(head)}")
+            return
+        if not np.entities:
+            raise self.fail(f"'{np.phrase}' matches no {head.kind}{self.existing(head)}")
+        if count is not None and len(np.entities) != count:
+            listing = ", ".join(e.describe() for e in np.entities)
+            raise self.fail(f"'{np.phrase}' should be {count} {head.kind}s but matches {len(np.entities)}: {listing}")
+        if np.mode == "the" and len(np.entities) > 1:
+            listing = ", ".join(
+                f"{e.key} (floor {e.floor})" if e.kind == "room" else f"{e.key} (in {e.room_key}, floor {e.floor})"
+                for e in np.entities
+            )
+            raise MissionError(
+                f"'{np.phrase}' matches {len(np.entities)} {head.kind}s: {listing}; {self.hint(np)}"
+            )
+
+    def existing(self, head: Head) -> str:
+        found = self.vocab.of_head(head)
+        if not found:
+            return ""
+        listing = ", ".join(e.describe() for e in found[:8]) + (", ..." if len(found) > 8 else "")
+        return f" (this scene has: {listing})"
+
+    def hint(self, np: NounPhrase) -> str:
+        """How to single one entity out: by floor, by a room, by contents or neighbours, or by quantifier."""
+        ents = np.entities
+        word = ents[0].category
+        if len({e.floor for e in ents}) == len(ents):
+            return f"say which floor (e.g. 'the {word} on floor {ents[0].floor}')"
+        if ents[0].kind == "object":
+            if len({e.room_key for e in ents}) == len(ents):
+                room = self.vocab.by_key[ents[0].room_key]
+                return f"say which room it is in (e.g. 'the {word} in the {room.category} on floor {room.floor}')"
+        else:
+            for e in ents:
+                own = {o.category for o in self.vocab.entities if o.kind == "object" and o.room_key == e.key}
+                others = {o.category for o in self.vocab.entities
+                          if o.kind == "object" and o.room_key != e.key and o.room_key in {x.key for x in ents}}
+                unique = sorted(own - others)
+                if unique:
+                    return f"say what it contains (e.g. 'the {word} with the {unique[0]}')"
+        return f"say 'any {word}' or 'every {word}', or name it by its ID (e.g. {ents[0].key})"
+
+
+def _goal_eventually(task: Task) -> list[Formula]:
+    if task.mode == "any":
+        return [Eventually(disj(task.members))]
+    return [Eventually(m) for m in task.members]
+
+
+def parse_mission(text: str, vocabulary: SceneVocabulary) -> tuple[Formula, list[NounPhrase]]:
+    """Parse and ground ``text``; the formula and every noun phrase read, in text order.
+
+    Raises
+    ------
+    MissionError
+        a phrase that is not understood, a reference that matches nothing, or a definite reference
+        ("the bathroom") that matches several entities; the message names the phrase and the candidates.
+    """
+    parser = MissionParser(text, vocabulary)
+    formula = parser.parse()
+    return formula, sorted(parser.references, key=lambda np: np.start)

@@ -1,0 +1,165 @@
+"""The fixed vocabulary of the controlled English understood by the offline pattern translator.
+
+Only words listed here (plus the room and object names of the scene, see :mod:`.names`) carry meaning.
+Words in a verb slot that are not listed are accepted as verbs ("vacuum", "flush"), because whatever the
+verb, the goal is the same: be in the room, or within reach of the object. Words that would change the
+meaning of a mission in ways the translator does not model (``leave``, ``skip``, ...) are refused with an
+error instead of being read as ordinary verbs.
+"""
+
+from __future__ import annotations
+
+import re
+
+# Category synonyms: a word or phrase users say -> the scene categories it may denote (underscores of the
+# Gibson categories are spaces here). A synonym only applies to categories the scene actually has.
+SYNONYMS: dict[str, tuple[str, ...]] = {
+    "fridge": ("refrigerator",),
+    "icebox": ("refrigerator",),
+    "television": ("tv",),
+    "tv set": ("tv",),
+    "telly": ("tv",),
+    "sofa": ("couch",),
+    "settee": ("couch",),
+    "plant": ("potted plant",),
+    "houseplant": ("potted plant",),
+    "flower pot": ("potted plant",),
+    "table": ("dining table", "coffee table", "table"),
+    "basin": ("sink",),
+    "washbasin": ("sink",),
+    "stove": ("oven",),
+    "cooker": ("oven",),
+    "teddy": ("teddy bear",),
+    "seat": ("chair",),
+    "mug": ("cup",),
+    "computer": ("laptop", "keyboard"),
+    "hall": ("corridor",),
+    "hallway": ("corridor",),
+    "passage": ("corridor",),
+    "lounge": ("living room",),
+    "sitting room": ("living room",),
+    "family room": ("living room",),
+    "restroom": ("bathroom",),
+    "washroom": ("bathroom",),
+    "stairs": ("staircase",),
+    "stairway": ("staircase",),
+    "stairwell": ("staircase",),
+    "office": ("home office",),
+    "study": ("home office",),
+    "entrance": ("lobby",),
+    "foyer": ("lobby",),
+    "entrance hall": ("lobby",),
+    "laundry room": ("utility room",),
+}
+
+IRREGULAR_PLURALS: dict[str, str] = {"shelf": "shelves", "knife": "knives", "person": "people", "stairs": "stairs"}
+
+GENERIC_ROOM_WORDS = ("room", "rooms", "place", "places", "area", "areas")
+"""Heads meaning 'any room' ("every room on floor 0", "the room with two TVs")."""
+
+ANAPHORIC_ONE = ("one", "ones")
+"""``the one on floor 0`` / ``the ones with a bed``: the category of the noun phrase being restricted."""
+
+PRONOUNS = ("it", "them", "they", "its")
+
+ARTICLES_SINGULAR = ("the", "this", "that")
+INDEFINITE = ("a", "an", "any", "some", "either")
+UNIVERSAL = ("all", "every", "each", "both")
+
+NUMBER_WORDS = {
+    "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9,
+    "ten": 10,
+}
+FLOOR_ORDINALS = {
+    "first": 0, "1st": 0, "second": 1, "2nd": 1, "third": 2, "3rd": 2, "fourth": 3, "4th": 3,
+    "fifth": 4, "5th": 4,
+}
+"""``the first floor`` is the lowest floor (index 0): ordinals count floors from the lowest, US style."""
+FLOOR_NAMED = {"ground": 0, "bottom": 0, "lowest": 0, "basement": 0}
+FLOOR_TOP = ("top", "highest", "upper", "uppermost")
+
+FLOOR_WORDS = ("floor", "level", "storey", "story")
+
+POSITIVE_VERBS = frozenset(
+    """visit visits visiting visited enter enters entering entered go goes going went walk walks walking
+    head heads heading move moves moving get gets getting come coming reach reaches reaching reached take
+    takes taking took grab grabbing pick picking water watering watered clean cleaning cleaned vacuum
+    vacuuming sit sitting touch touching touched open opening opened wash washing washed check checking
+    find finding inspect inspecting look looking make making use using flush flushing turn turning switch
+    switching fetch fetching collect collecting drive navigate navigating run running travel traveling
+    travelling proceed pass passing through arrive arriving stop by at to into in on onto inside
+    dust dusting wipe wiping tidy tidying feed put putting place placing drop dropping bring bringing carry
+    carrying deliver delivering return returning explore exploring see seeing pet mop mopping scrub
+    scrubbing fill filling close closing empty emptying sweep sweeping play playing cook cooking
+    lie lying rest resting sleep sleeping shower showering bathe use off up down out over
+    """.split()
+)
+"""Verb-slot words known to mean "go to / interact with" the noun phrase that follows."""
+
+CARRY_VERBS = frozenset("put putting place placing drop dropping bring bringing carry carrying deliver delivering".split())
+"""``put X in Y`` / ``bring X to Y``: the goal is Y (after X when X is a new noun phrase)."""
+
+REFUSED_VERBS: dict[str, str] = {
+    "leave": "'leave' (the translator cannot express leaving a place; say where to go instead)",
+    "exit": "'exit' (say which room to go to instead)",
+    "skip": "'skip' (use 'avoid' or 'never enter' to forbid a place)",
+    "ignore": "'ignore' (use 'avoid' or 'never enter' to forbid a place)",
+    "bypass": "'bypass' (use 'avoid' to forbid a place)",
+    "dodge": "'dodge' (use 'avoid' to forbid a place)",
+    "evade": "'evade' (use 'avoid' to forbid a place)",
+    "escape": "'escape' (say which room to go to instead)",
+    "forget": "'forget'",
+    "miss": "'miss'",
+    "remain": "'remain' (the translator cannot express staying in a place)",
+    "wait": "'wait' (the translator cannot express waiting)",
+    "repeat": "'repeat' (the translator cannot express repeated visits)",
+    "twice": "'twice' (the translator cannot express repeated visits)",
+    "unless": "'unless' (rephrase with 'if')",
+    "except": "'except' here (put 'except ...' right after the noun phrase it restricts)",
+    "previous": "'previous' (name the rooms or objects again instead of referring back to them)",
+    "same": "'the same ...' (name the room or object again instead of referring back to it)",
+    "other": "'other' (name the room or object explicitly)",
+    "last": "'last' (name the room or object explicitly)",
+    "most": "'most'",
+    "least": "'least'",
+    "nearest": "'nearest' (distances are not known to the translator; name the room or object)",
+    "closest": "'closest' (distances are not known to the translator; name the room or object)",
+    "farthest": "'farthest'",
+    "only": "'only' here ('only if' and 'only after' are understood)",
+}
+"""Words that would silently change the meaning if read as ordinary words: refused with a reason."""
+
+FILLERS = frozenset(
+    """please also then eventually first firstly secondly thirdly lastly finally afterwards later next
+    at some point sometime you should must need needs to have has had be been is are was were can could
+    would will shall robot and moreover additionally furthermore too as well go ahead kindly do again
+    """.split()
+)
+"""Words that carry no meaning for the formula wherever they appear between clauses."""
+
+ORDER_MODIFIERS = (
+    ("one", "after", "the", "other"), ("one", "after", "another"), ("in", "that", "order"),
+    ("in", "this", "order"), ("in", "order"), ("in", "sequence"), ("sequentially",), ("one", "by", "one"),
+    ("in", "turn"), ("consecutively",), ("successively",),
+)
+"""Said after a list: its items are done one after the other (in the order written, for explicit lists)."""
+
+TIME_FILLERS = (("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("eventually",), ("later",),
+                ("in", "any", "order"), ("in", "whatever", "order"))
+"""Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order)."""
+
+
+def plural(word: str) -> str:
+    """English plural of the last word of a (multi-word) name: ``potted plant`` -> ``potted plants``."""
+    head, _, last = word.rpartition(" ")
+    if last in IRREGULAR_PLURALS:
+        out = IRREGULAR_PLURALS[last]
+    elif last in ("tv", "pc"):
+        out = last + "s"
+    elif re.search(r"(s|x|z|ch|sh)$", last):
+        out = last + "es"
+    elif re.search(r"[^aeiou]y$", last):
+        out = last[:-1] + "ies"
+    else:
+        out = last + "s"
+    return f"{head} {out}" if head else out

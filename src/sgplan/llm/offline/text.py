@@ -1,0 +1,66 @@
+"""Tokens of a mission text, with their character spans, split into sentences.
+
+Text is lower-cased; contractions are expanded (``don't`` -> ``do not``), a possessive ``'s`` becomes
+its own token, and list markers (``1)``, ``(2)``, ``3.`` at the start of an item) end a sentence like
+``.``, ``;``, ``!``, ``?`` and ``:`` do. Entity IDs (``room_2``, ``object_27``) stay single tokens, so
+already-grounded text is understood too.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+_WORD = re.compile(r"(?:room|object)_\d+|\d+(?:st|nd|rd|th)?|[a-z]+(?:'[a-z]+)?|'s\b|[,.;:!?()]")
+_NEGATED = {"don": "do", "doesn": "does", "didn": "did", "can": "can", "won": "will", "mustn": "must",
+            "shouldn": "should", "isn": "is", "aren": "are", "haven": "have", "hasn": "has", "wouldn": "would",
+            "couldn": "could", "shan": "shall", "mayn": "may"}
+SENTENCE_END = frozenset(".;:!?")
+
+
+@dataclass(frozen=True)
+class Tok:
+    """One word (lower case) and the character span ``[start, end)`` it came from."""
+
+    text: str
+    start: int
+    end: int
+
+
+def tokenize(text: str) -> list[Tok]:
+    """Words and punctuation of ``text`` with contractions expanded (see the module docstring)."""
+    out: list[Tok] = []
+    lowered = text.lower().replace("\u2019", "'")
+    for m in _WORD.finditer(lowered):
+        word, start, end = m.group(0), m.start(), m.end()
+        if word.endswith("n't"):
+            stem = word[:-3]
+            out += [Tok(_NEGATED.get(stem + "n", stem), start, end), Tok("not", start, end)]
+        elif word.endswith("'s") and len(word) > 2:
+            out += [Tok(word[:-2], start, end - 2), Tok("'s", end - 2, end)]
+        elif "'" in word:
+            out.append(Tok(word.split("'")[0], start, end))  # you're, we'll: the suffix adds nothing
+        else:
+            out.append(Tok(word, start, end))
+    return out
+
+
+def sentences(tokens: list[Tok]) -> list[list[Tok]]:
+    """Split at sentence punctuation and list markers; empty sentences are dropped."""
+    parts: list[list[Tok]] = [[]]
+    i = 0
+    while i < len(tokens):
+        tok = tokens[i]
+        nxt = tokens[i + 1].text if i + 1 < len(tokens) else ""
+        at_item_start = not parts[-1] or parts[-1][-1].text == "("
+        if tok.text in SENTENCE_END:
+            parts.append([])
+        elif tok.text.isdigit() and nxt == ")" or (tok.text.isdigit() and nxt == "." and at_item_start):
+            if parts[-1] and parts[-1][-1].text == "(":
+                parts[-1].pop()
+            parts.append([])
+            i += 1  # the ')' or '.'
+        else:
+            parts[-1].append(tok)
+        i += 1
+    return [p for p in parts if p]
