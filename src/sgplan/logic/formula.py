@@ -1,0 +1,201 @@
+"""The LTL formula syntax tree: immutable, hashable values.
+
+Nodes are frozen dataclasses, so two formulas built the same way are equal and hash alike, and
+formulas can be dictionary keys (the LTLf -> DFA construction relies on that). The tree keeps the
+structure it was written with (``a & (b & c)`` stays nested); :mod:`sgplan.logic.normal` builds the
+flattened negation normal form used for automata.
+
+Semantics (finite traces, see docs/logic.md): ``Next`` is the *strong* next (false at the last cell of a
+path); ``WeakNext`` is its dual (true at the last cell) and appears mainly as the negation-normal form of
+``!X``. ``Eventually``/``Always``/``Until``/``Release`` are the usual finite-trace operators.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Iterator
+
+
+class Formula:
+    """Base class of every formula node. Supports ``~f``, ``f & g``, ``f | g`` as shorthands."""
+
+    __slots__ = ()
+
+    def children(self) -> tuple[Formula, ...]:
+        """The direct sub-formulas, left to right."""
+        return ()
+
+    def __invert__(self) -> Formula:
+        return Not(self)
+
+    def __and__(self, other: Formula) -> Formula:
+        return And((self, other))
+
+    def __or__(self, other: Formula) -> Formula:
+        return Or((self, other))
+
+    def __str__(self) -> str:
+        from sgplan.logic.infix import to_infix
+
+        return to_infix(self)
+
+
+def _cached_hash(node: object, *parts: object) -> None:
+    # Formulas are hashed over and over while building automata; hashing a deep tree each time would
+    # make that quadratic, so every node stores its hash once.
+    object.__setattr__(node, "_hash", hash((type(node).__name__, *parts)))
+
+
+@dataclass(frozen=True, eq=True)
+class Const(Formula):
+    """``true`` or ``false``."""
+
+    value: bool
+    _hash: int = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        _cached_hash(self, self.value)
+
+    def __hash__(self) -> int:
+        return self._hash
+
+
+TRUE = Const(True)
+FALSE = Const(False)
+
+
+@dataclass(frozen=True, eq=True)
+class Atom(Formula):
+    """An atomic proposition, e.g. ``p1`` or ``enter(room_2)``."""
+
+    name: str
+    _hash: int = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        _cached_hash(self, self.name)
+
+    def __hash__(self) -> int:
+        return self._hash
+
+
+@dataclass(frozen=True, eq=True)
+class _Unary(Formula):
+    arg: Formula
+    _hash: int = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        _cached_hash(self, self.arg._hash)  # type: ignore[attr-defined]
+
+    def __hash__(self) -> int:
+        return self._hash
+
+    def children(self) -> tuple[Formula, ...]:
+        return (self.arg,)
+
+
+@dataclass(frozen=True, eq=True)
+class _Binary(Formula):
+    left: Formula
+    right: Formula
+    _hash: int = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        _cached_hash(self, self.left._hash, self.right._hash)  # type: ignore[attr-defined]
+
+    def __hash__(self) -> int:
+        return self._hash
+
+    def children(self) -> tuple[Formula, ...]:
+        return (self.left, self.right)
+
+
+@dataclass(frozen=True, eq=True)
+class _Nary(Formula):
+    args: tuple[Formula, ...]
+    _hash: int = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        if len(self.args) < 2:
+            raise ValueError(f"{type(self).__name__} needs at least 2 operands, got {len(self.args)}")
+        _cached_hash(self, tuple(a._hash for a in self.args))  # type: ignore[attr-defined]
+
+    def __hash__(self) -> int:
+        return self._hash
+
+    def children(self) -> tuple[Formula, ...]:
+        return self.args
+
+
+class Not(_Unary):
+    """Negation ``!f``."""
+
+
+class Next(_Unary):
+    """Strong next ``X f``: there is a next cell and ``f`` holds from it (false at the last cell)."""
+
+
+class WeakNext(_Unary):
+    """Weak next: if there is a next cell, ``f`` holds from it (true at the last cell); ``!X!f``."""
+
+
+class Eventually(_Unary):
+    """``F f``: ``f`` holds at some cell from now on (now included)."""
+
+
+class Always(_Unary):
+    """``G f``: ``f`` holds at every cell from now on, up to the end of the path."""
+
+
+class Implies(_Binary):
+    """``f -> g``."""
+
+
+class Equiv(_Binary):
+    """``f <-> g``."""
+
+
+class Until(_Binary):
+    """``f U g``: ``g`` holds at some cell from now on, and ``f`` at every cell before it."""
+
+
+class Release(_Binary):
+    """``f R g``: ``g`` holds up to and including the first cell where ``f`` holds, or to the end."""
+
+
+class And(_Nary):
+    """Conjunction of two or more formulas."""
+
+
+class Or(_Nary):
+    """Disjunction of two or more formulas."""
+
+
+TEMPORAL = (Next, WeakNext, Eventually, Always, Until, Release)
+
+
+def walk(formula: Formula) -> Iterator[Formula]:
+    """Every node of ``formula`` in pre-order (root first, children left to right)."""
+    stack = [formula]
+    while stack:
+        node = stack.pop()
+        yield node
+        stack.extend(reversed(node.children()))
+
+
+def atoms(formula: Formula) -> tuple[str, ...]:
+    """Proposition names in order of first appearance (pre-order), without repetition."""
+    seen: dict[str, None] = {}
+    for node in walk(formula):
+        if isinstance(node, Atom):
+            seen.setdefault(node.name, None)
+    return tuple(seen)
+
+
+def is_temporal(formula: Formula) -> bool:
+    """Whether ``formula`` contains a temporal operator (X, weak X, F, G, U, R) anywhere."""
+    return any(isinstance(node, TEMPORAL) for node in walk(formula))
+
+
+def size(formula: Formula) -> int:
+    """Number of nodes."""
+    return sum(1 for _ in walk(formula))

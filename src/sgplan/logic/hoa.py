@@ -1,0 +1,331 @@
+"""Reading and writing the HOA automaton format for what Spot emits (no Spot needed).
+
+Supported: one automaton per file, one initial state, ``AP:`` line (label bit ``i`` = ``i``-th AP),
+Büchi acceptance ``Acceptance: 1 Inf(0)``, explicit edge labels over AP indices
+with ``t f ! & | ( )``, and acceptance mark 0 on states (``State: 3 {0}``) or on self-loops
+(transition-based marks as Spot may emit them). Anything else (aliases, implicit labels, state labels,
+universal branching, other acceptance conditions) is refused with a precise :class:`AutomatonError`.
+
+Read as a finite automaton, a state is accepting iff it carries mark 0 (or a self-loop with mark 0).
+Two profiles say what a missing edge means:
+
+``"ltlf"`` (default)
+    a missing edge goes to a rejecting sink (added as the last state). Overlapping edges with different
+    targets are an error (the automaton must be deterministic).
+``"authors"``
+    the authors' C++ rule (reference-algorithm.md §1.5): self-loops are ignored, the next state is the
+    target of the non-self-loop edge containing the label, and a label with no such edge keeps the state.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Literal
+
+import numpy as np
+
+from sgplan.errors import AutomatonError
+from sgplan.logic.automaton import Automaton
+from sgplan.logic.labels import format_cover, label_cover
+
+Profile = Literal["ltlf", "authors"]
+
+_TOKEN = re.compile(
+    r"""(?P<space>\s+|/\*.*?\*/)
+    | (?P<string>"(?:[^"\\]|\\.)*")
+    | (?P<marker>--BODY--|--END--|--ABORT--)
+    | (?P<header>[A-Za-z_][A-Za-z0-9_-]*:)
+    | (?P<alias>@[A-Za-z0-9_-]+)
+    | (?P<int>\d+)
+    | (?P<ident>[A-Za-z_][A-Za-z0-9_-]*)
+    | (?P<punct>[!&|()\[\]{}])""",
+    re.VERBOSE | re.DOTALL,
+)
+
+
+class _Tokens:
+    """HOA tokens with line numbers; ``error`` builds an AutomatonError naming the line."""
+
+    def __init__(self, text: str, path: Path | None) -> None:
+        self.path = path
+        self.lines = text.splitlines()
+        self.items: list[tuple[str, str, int]] = []
+        pos, line = 0, 1
+        while pos < len(text):
+            m = _TOKEN.match(text, pos)
+            if m is None:
+                raise AutomatonError(f"line {line}: unexpected character {text[pos]!r}", path)
+            if m.lastgroup != "space":
+                self.items.append((m.lastgroup, m.group(), line))
+            line += m.group().count("\n")
+            pos = m.end()
+        self.items.append(("eof", "end of file", line))
+        self.i = 0
+
+    def peek(self) -> tuple[str, str, int]:
+        return self.items[self.i]
+
+    def take(self) -> tuple[str, str, int]:
+        item = self.items[self.i]
+        if item[0] != "eof":
+            self.i += 1
+        return item
+
+    def error(self, message: str, item: tuple[str, str, int] | None = None) -> AutomatonError:
+        kind, value, line = item or self.peek()
+        return AutomatonError(f"line {line}: {message}", self.path)
+
+    def expect(self, kind: str, what: str) -> str:
+        item = self.take()
+        if item[0] != kind:
+            raise self.error(f"expected {what}, found {item[1]!r}", item)
+        return item[1]
+
+
+def _parse_label(tokens: _Tokens, num_aps: int, labels: np.ndarray) -> np.ndarray:
+    """A label expression ``0&!1 | t`` as the bool array of the labels it contains (up to ``]``)."""
+
+    def disjunction() -> np.ndarray:
+        value = conjunction()
+        while tokens.peek()[1] == "|":
+            tokens.take()
+            value = value | conjunction()
+        return value
+
+    def conjunction() -> np.ndarray:
+        value = negation()
+        while tokens.peek()[1] == "&":
+            tokens.take()
+            value = value & negation()
+        return value
+
+    def negation() -> np.ndarray:
+        item = tokens.take()
+        kind, text, _ = item
+        if text == "!":
+            return ~negation()
+        if text == "(":
+            value = disjunction()
+            if tokens.take()[1] != ")":
+                raise tokens.error("unbalanced parenthesis in an edge label", item)
+            return value
+        if kind == "int":
+            index = int(text)
+            if index >= num_aps:
+                raise tokens.error(f"edge label uses AP {index} but the AP: line declares {num_aps}", item)
+            return (labels >> index & 1).astype(bool)
+        if kind == "ident" and text in ("t", "f"):
+            return np.full(labels.size, text == "t")
+        if kind == "alias":
+            raise tokens.error(f"alias {text} is not supported; write labels over AP indices", item)
+        raise tokens.error(f"expected an AP index, t, f, ! or ( in an edge label, found {text!r}", item)
+
+    value = disjunction()
+    if tokens.take()[1] != "]":
+        raise tokens.error("an edge label must end with ]")
+    return value
+
+
+def _parse_marks(tokens: _Tokens) -> set[int]:
+    marks: set[int] = set()
+    if tokens.peek()[1] != "{":
+        return marks
+    tokens.take()
+    while tokens.peek()[1] != "}":
+        item = tokens.take()
+        if item[0] != "int":
+            raise tokens.error(f"expected an acceptance mark number, found {item[1]!r}", item)
+        if int(item[1]) != 0:
+            raise tokens.error(
+                f"acceptance mark {item[1]} is not declared (Buchi acceptance has mark 0 only)", item
+            )
+        marks.add(0)
+    tokens.take()
+    return marks
+
+
+def parse_hoa(text: str, profile: Profile = "ltlf", path: str | Path | None = None) -> Automaton:
+    """Read an automaton from HOA text; see the module docstring for what is supported.
+
+    Parameters
+    ----------
+    text:
+        the HOA text (only the first automaton is read).
+    profile:
+        ``"ltlf"`` (missing edge -> rejecting sink) or ``"authors"`` (missing edge keeps the state).
+    path:
+        the file the text came from, named in error messages.
+
+    Raises
+    ------
+    AutomatonError
+        syntax errors (with the line), unsupported features or acceptance, nondeterminism.
+    """
+    if profile not in ("ltlf", "authors"):
+        raise AutomatonError(f"unknown automaton profile {profile!r}; use 'ltlf' or 'authors'", path)
+    source = Path(path) if path is not None else None
+    tokens = _Tokens(text, source)
+    header = tokens.take()
+    if header[1] != "HOA:":
+        raise tokens.error(f"expected 'HOA: v1' at the start, found {header[1]!r}", header)
+    tokens.expect("ident", "the version v1")
+    num_states: int | None = None
+    initial: int | None = None
+    aps: list[str] | None = None
+    while True:
+        item = tokens.take()
+        kind, name, _ = item
+        if kind == "marker" and name == "--BODY--":
+            break
+        if kind != "header":
+            raise tokens.error(f"expected a header line or --BODY--, found {name!r}", item)
+        if name == "States:":
+            num_states = int(tokens.expect("int", "the number of states"))
+        elif name == "Start:":
+            if initial is not None:
+                raise tokens.error("several Start: lines (several initial states) are not supported", item)
+            initial = int(tokens.expect("int", "the initial state"))
+            if tokens.peek()[1] == "&":
+                raise tokens.error("a conjunction of initial states (alternation) is not supported", item)
+        elif name == "AP:":
+            count = int(tokens.expect("int", "the number of APs"))
+            aps = [tokens.expect("string", f"{count} quoted AP names")[1:-1] for _ in range(count)]
+            if len(set(aps)) != count:
+                raise tokens.error(f"the AP: line names a proposition twice: {aps}", item)
+        elif name == "Acceptance:":
+            acceptance = []
+            while tokens.peek()[0] not in ("header", "marker", "eof"):
+                acceptance.append(tokens.take()[1])
+            if "".join(acceptance) != "1Inf(0)":
+                written = tokens.lines[item[2] - 1].split("Acceptance:", 1)[-1].strip()
+                raise tokens.error(
+                    f"acceptance '{written}' is not supported; sgplan reads Buchi automata "
+                    f"('Acceptance: 1 Inf(0)', accepting states marked {{0}})",
+                    item,
+                )
+        elif name in ("Alias:", "controllable-AP:"):
+            raise tokens.error(f"header {name} is not supported", item)
+        else:  # name:, tool:, acc-name:, properties:, and unknown headers carry no semantics we need
+            while tokens.peek()[0] not in ("header", "marker", "eof"):
+                tokens.take()
+    if aps is None:
+        aps = []
+    if initial is None:
+        raise tokens.error("the header has no Start: line")
+    labels = np.arange(1 << len(aps), dtype=np.int64)
+    edges: list[tuple[int, np.ndarray, int, set[int], tuple[str, str, int]]] = []
+    state_marks: dict[int, set[int]] = {}
+    declared: set[int] = set()
+    while True:
+        item = tokens.take()
+        if item[1] == "--END--":
+            break
+        if item[1] != "State:":
+            raise tokens.error(f"expected 'State:' or '--END--', found {item[1]!r}", item)
+        if tokens.peek()[1] == "[":
+            raise tokens.error("state labels are not supported; label the edges", item)
+        state = int(tokens.expect("int", "a state number"))
+        if state in declared:
+            raise tokens.error(f"state {state} is declared twice", item)
+        declared.add(state)
+        if tokens.peek()[0] == "string":
+            tokens.take()
+        state_marks[state] = _parse_marks(tokens)
+        while tokens.peek()[1] not in ("State:", "--END--") and tokens.peek()[0] != "eof":
+            edge = tokens.take()
+            if edge[1] != "[":
+                raise tokens.error(f"expected an edge '[label] target', found {edge[1]!r} (implicit labels "
+                                   f"are not supported)", edge)
+            members = _parse_label(tokens, len(aps), labels)
+            target = int(tokens.expect("int", "the edge's target state"))
+            if tokens.peek()[1] == "&":
+                raise tokens.error("universal branching (target1&target2) is not supported", edge)
+            edges.append((state, members, target, _parse_marks(tokens), edge))
+        if tokens.peek()[0] == "eof":
+            raise tokens.error("the body ends without --END--")
+    n = num_states if num_states is not None else max(declared | {e[2] for e in edges} | {initial}) + 1
+    for value, what in [(initial, "Start:")] + [(e[2], "an edge target") for e in edges] + \
+            [(s, "State:") for s in declared]:
+        if not 0 <= value < n:
+            raise AutomatonError(f"{what} names state {value} but the automaton has {n} states (0..{n - 1})",
+                                 source)
+    accepting = np.zeros(n, bool)
+    for state, marks in state_marks.items():
+        accepting[state] |= 0 in marks
+    for state, _, target, marks, edge in edges:
+        if 0 in marks:
+            if target != state:
+                raise tokens.error("an acceptance mark on an edge between different states is not supported",
+                                   edge)
+            accepting[state] = True
+    if profile == "authors":
+        table = np.repeat(np.arange(n, dtype=np.int32)[:, None], labels.size, axis=1)
+        assigned = np.zeros((n, labels.size), bool)
+        edges = [e for e in edges if e[0] != e[2]]
+    else:
+        table = np.full((n, labels.size), -1, np.int32)
+        assigned = np.zeros((n, labels.size), bool)
+    for state, members, target, _, edge in edges:
+        clash = members & assigned[state] & (table[state] != target)
+        if clash.any():
+            label = int(np.flatnonzero(clash)[0])
+            raise tokens.error(
+                f"state {state} has two edges for label {label} (to {table[state, label]} and {target}); "
+                f"only deterministic automata are supported",
+                edge,
+            )
+        table[state, members] = target
+        assigned[state] |= members
+    return Automaton.from_partial(tuple(aps), table, initial, accepting)
+
+
+def read_hoa(path: str | Path, profile: Profile = "ltlf") -> Automaton:
+    """Read a HOA file; see :func:`parse_hoa`.
+
+    Raises
+    ------
+    AutomatonError
+        the file cannot be read or is not a supported HOA automaton (the message names the file).
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise AutomatonError(f"cannot read the automaton file: {exc}", path) from None
+    return parse_hoa(text, profile, path)
+
+
+def _quote(name: str) -> str:
+    return '"' + name.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def write_hoa(automaton: Automaton, path: str | Path | None = None, name: str | None = None) -> str:
+    """The HOA text of a complete DFA (state-based Buchi marks on accepting states); also written to
+    ``path`` if given. Reading it back with either profile gives the same language.
+    """
+    a = automaton
+    index_names = [str(i) for i in range(len(a.aps))]
+    lines = ["HOA: v1"]
+    if name is not None:
+        lines.append(f"name: {_quote(name)}")
+    lines += [
+        f"States: {a.num_states}",
+        f"Start: {a.initial}",
+        f"AP: {len(a.aps)}" + "".join(" " + _quote(p) for p in a.aps),
+        "acc-name: Buchi",
+        "Acceptance: 1 Inf(0)",
+        "properties: trans-labels explicit-labels state-acc deterministic complete",
+        "--BODY--",
+    ]
+    for q in range(a.num_states):
+        lines.append(f"State: {q}" + (" {0}" if a.accepting[q] else ""))
+        row = a.table[q]
+        for target in np.unique(row):
+            cubes = label_cover(row == target)
+            lines.append(f"[{format_cover(cubes, index_names)}] {target}")
+    lines.append("--END--")
+    text = "\n".join(lines) + "\n"
+    if path is not None:
+        Path(path).write_text(text, encoding="utf-8")
+    return text

@@ -1,0 +1,331 @@
+"""LTLf -> minimal complete DFA, by formula progression vectorised over labels.
+
+Construction (docs/logic.md has the semantics):
+
+1. The formula is put in negation normal form (:func:`sgplan.logic.normal.nnf`) and split into its
+   top-level conjuncts.
+2. Each conjunct is turned into a DFA by progression. A state is a pair ``(psi, b)``: ``psi`` is what
+   the rest of the word must satisfy if it continues, ``b`` whether the word read so far already
+   satisfies the formula if it ends here. Reading label ``a`` in ``(psi, _)`` leads to
+   ``(delta(psi, a), lam(psi, a))`` with, for NNF formulas,
+
+   ===================  ==================================  ================
+   psi                  delta(psi, a)                       lam(psi, a)
+   ===================  ==================================  ================
+   p / !p               true or false by ``a``              p in a / not
+   f & g, f | g         delta(f) & delta(g), ...            lam(f) and ...
+   X f (strong)         f                                   false
+   weak X f             f                                   true
+   F f                  delta(f) | F f                      lam(f)
+   G f                  delta(f) & G f                      lam(f)
+   f U g                delta(g) | (delta(f) & f U g)       lam(g)
+   f R g                delta(g) & (delta(f) | f R g)       lam(g)
+   ===================  ==================================  ================
+
+   ``psi`` is kept as the unique minimal DNF over the formula's literals and temporal sub-formulas
+   (see :class:`_Progression`), so finitely many states arise. ``delta``/``lam`` are computed once per
+   temporal sub-formula as arrays over all labels.
+   The initial state is ``(phi, False)``: the empty word satisfies no formula.
+3. The conjuncts' minimal DFAs are multiplied pairwise (vectorised) and minimised after each step.
+
+Labels that the ``exclusive`` groups rule out (two propositions of one group true together) lead to the
+rejecting sink ``(false, False)``; the DFA is minimal for the language restricted to possible labels.
+"""
+
+from __future__ import annotations
+
+from typing import Collection, Sequence
+
+import numpy as np
+
+from sgplan.errors import AutomatonError, FormulaError
+from sgplan.logic.automaton import Automaton
+from sgplan.logic.formula import (
+    Always,
+    And,
+    Atom,
+    Const,
+    Eventually,
+    Formula,
+    Next,
+    Not,
+    Or,
+    Release,
+    Until,
+    WeakNext,
+    atoms,
+)
+from sgplan.logic.infix import to_infix
+from sgplan.logic.minimize import minimize, product
+from sgplan.logic.normal import nnf
+
+DEFAULT_MAX_ENTRIES = 1_000_000
+"""Default limit on ``num_states * 2**len(aps)`` (dense table entries, 4 bytes each)."""
+
+
+def possible_labels(aps: Sequence[str], exclusive: Collection[Collection[str]] = ()) -> np.ndarray:
+    """``(2**len(aps),)`` bool: labels with at most one true proposition of each ``exclusive`` group.
+
+    Group members that are not in ``aps`` are ignored.
+    """
+    labels = np.arange(1 << len(aps), dtype=np.int64)
+    ok = np.ones(labels.size, bool)
+    index = {name: i for i, name in enumerate(aps)}
+    for group in exclusive:
+        mask = sum(1 << index[p] for p in set(group) if p in index)
+        within = labels & mask
+        ok &= (within & (within - 1)) == 0  # at most one bit set
+    return ok
+
+
+Term = frozenset  # of element ids: a conjunction
+Dnf = frozenset  # of Terms: a disjunction, kept as an antichain (no term contains another)
+
+
+class _Progression:
+    """Progression over a fixed array of (possible) labels, with memoisation.
+
+    A progression state is a positive Boolean combination of *elements* -- literals and temporal
+    sub-formulas (``X``, weak ``X``, ``F``, ``G``, ``U``, ``R`` nodes) of the NNF formula -- kept as its
+    unique minimal DNF: a set of terms (sets of element ids) none of which contains another, with
+    contradictory terms (``p`` and ``!p``) dropped. Positive Boolean functions have exactly one such form,
+    and the elements come from the formula's finite closure, so finitely many states exist.
+    """
+
+    def __init__(self, aps: Sequence[str], labels: np.ndarray) -> None:
+        self.bit = {name: i for i, name in enumerate(aps)}
+        self.labels = labels
+        self.elements: list[Formula] = []
+        self.element_ids: dict[Formula, int] = {}
+        self.complement: dict[int, int] = {}
+        self.dnfs: list[Dnf] = []
+        self.dnf_ids: dict[Dnf, int] = {}
+        self.memo: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # element id -> (delta dnf ids, lam)
+        self.state_memo: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # dnf id -> (delta dnf ids, lam)
+        self.combined: dict[tuple, int] = {}
+        self.false_id = self.intern_dnf(frozenset())
+        self.true_id = self.intern_dnf(frozenset([frozenset()]))
+
+    def element(self, f: Formula) -> int:
+        eid = self.element_ids.get(f)
+        if eid is None:
+            eid = self.element_ids[f] = len(self.elements)
+            self.elements.append(f)
+            if isinstance(f, (Atom, Not)):
+                other = self.element_ids.get(f.arg if isinstance(f, Not) else Not(f))
+                if other is not None:
+                    self.complement[eid], self.complement[other] = other, eid
+        return eid
+
+    def intern_dnf(self, dnf: Dnf) -> int:
+        did = self.dnf_ids.get(dnf)
+        if did is None:
+            did = self.dnf_ids[dnf] = len(self.dnfs)
+            self.dnfs.append(dnf)
+        return did
+
+    def _minimal(self, terms: set[Term]) -> Dnf:
+        consistent = [t for t in terms if not any(self.complement.get(e) in t for e in t)]
+        consistent.sort(key=len)
+        kept: list[Term] = []
+        for t in consistent:
+            if not any(k <= t for k in kept):
+                kept.append(t)
+        return frozenset(kept)
+
+    def dnf_and(self, dnfs: list[Dnf]) -> Dnf:
+        terms: set[Term] = {frozenset()}
+        for dnf in dnfs:
+            terms = {a | b for a in terms for b in dnf}
+        return self._minimal(terms)
+
+    def dnf_or(self, dnfs: list[Dnf]) -> Dnf:
+        return self._minimal(set().union(*dnfs))
+
+    def to_dnf(self, f: Formula) -> Dnf:
+        """The DNF of an NNF formula over its elements."""
+        if isinstance(f, Const):
+            return self.dnfs[self.true_id if f.value else self.false_id]
+        if isinstance(f, And):
+            return self.dnf_and([self.to_dnf(a) for a in f.args])
+        if isinstance(f, Or):
+            return self.dnf_or([self.to_dnf(a) for a in f.args])
+        return frozenset([frozenset([self.element(f)])])
+
+    def const(self, dnf: Dnf) -> np.ndarray:
+        return np.full(self.labels.size, self.intern_dnf(dnf), np.int64)
+
+    def junction(self, conj: bool, parts: list[np.ndarray]) -> np.ndarray:
+        """Per label, the id of the ``&`` (``conj``) or ``|`` of the parts' DNFs."""
+        if len(parts) == 1:
+            return parts[0]
+        columns, inverse = np.unique(np.stack(parts), axis=1, return_inverse=True)
+        out = np.empty(columns.shape[1], np.int64)
+        for k in range(columns.shape[1]):
+            key = (conj, *columns[:, k].tolist())
+            did = self.combined.get(key)
+            if did is None:
+                operands = [self.dnfs[i] for i in key[1:]]
+                did = self.intern_dnf(self.dnf_and(operands) if conj else self.dnf_or(operands))
+                self.combined[key] = did
+            out[k] = did
+        return out[inverse.ravel()]
+
+    def step(self, f: Formula) -> tuple[np.ndarray, np.ndarray]:
+        """``(delta DNF ids, lam)`` of an NNF formula for every label."""
+        n = self.labels.size
+        if isinstance(f, Const):
+            return self.const(self.to_dnf(f)), np.full(n, f.value)
+        if isinstance(f, (And, Or)):
+            steps = [self.step(a) for a in f.args]
+            conj = isinstance(f, And)
+            lams = np.stack([s[1] for s in steps])
+            return self.junction(conj, [s[0] for s in steps]), lams.all(0) if conj else lams.any(0)
+        eid = self.element(f)
+        cached = self.memo.get(eid)
+        if cached is not None:
+            return cached
+        if isinstance(f, (Atom, Not)):
+            name = f.name if isinstance(f, Atom) else f.arg.name  # NNF: Not only wraps atoms
+            holds = (self.labels >> self.bit[name] & 1).astype(bool)
+            if isinstance(f, Not):
+                holds = ~holds
+            result = np.where(holds, self.true_id, self.false_id), holds
+        elif isinstance(f, (Next, WeakNext)):
+            result = self.const(self.to_dnf(f.arg)), np.full(n, isinstance(f, WeakNext))
+        elif isinstance(f, (Eventually, Always)):
+            delta, lam = self.step(f.arg)
+            result = self.junction(isinstance(f, Always), [delta, self.const(self.to_dnf(f))]), lam
+        elif isinstance(f, (Until, Release)):
+            d_left, _ = self.step(f.left)
+            d_right, lam = self.step(f.right)
+            strong = isinstance(f, Until)
+            inner = self.junction(strong, [d_left, self.const(self.to_dnf(f))])
+            result = self.junction(not strong, [d_right, inner]), lam
+        else:
+            raise TypeError(f"not a negation-normal-form node: {f!r}")
+        self.memo[eid] = result
+        return result
+
+    def step_state(self, did: int) -> tuple[np.ndarray, np.ndarray]:
+        """``(delta DNF ids, lam)`` of the state ``dnfs[did]`` for every label."""
+        cached = self.state_memo.get(did)
+        if cached is None:
+            n = self.labels.size
+            term_steps = []
+            for term in self.dnfs[did]:
+                steps = [self.step(self.elements[e]) for e in sorted(term)]
+                if not steps:
+                    term_steps.append((np.full(n, self.true_id, np.int64), np.ones(n, bool)))
+                    continue
+                lam = np.logical_and.reduce([s[1] for s in steps])
+                term_steps.append((self.junction(True, [s[0] for s in steps]), lam))
+            if not term_steps:
+                cached = np.full(n, self.false_id, np.int64), np.zeros(n, bool)
+            else:
+                lam = np.logical_or.reduce([s[1] for s in term_steps])
+                cached = self.junction(False, [s[0] for s in term_steps]), lam
+            self.state_memo[did] = cached
+        return cached
+
+
+def _too_big(formula: Formula, states: int, num_labels: int, max_entries: int, how: str) -> AutomatonError:
+    return AutomatonError(
+        f"the automaton of {to_infix(formula)} would need {how} {states:,} states x {num_labels:,} labels "
+        f"= {states * num_labels:,} table entries, more than max_entries={max_entries:,}; simplify the "
+        f"mission (fewer unordered goals or propositions) or raise max_entries"
+    )
+
+
+def _conjunct_dfa(
+    phi: Formula, prog: _Progression, possible: np.ndarray, aps: tuple[str, ...], max_entries: int,
+    original: Formula,
+) -> Automaton:
+    num_labels = possible.size
+    state_of: dict[int, int] = {}  # key 2 * formula id + acceptance bit -> state index
+    keys: list[int] = []
+
+    def state(key: int) -> int:
+        index = state_of.get(key)
+        if index is None:
+            index = state_of[key] = len(keys)
+            keys.append(key)
+            if len(keys) * num_labels > max_entries:
+                raise _too_big(original, len(keys), num_labels, max_entries, "more than")
+        return index
+
+    sink = 2 * prog.false_id
+    state(2 * prog.intern_dnf(prog.to_dnf(phi)))
+    rows: list[np.ndarray] = []
+    while len(rows) < len(keys):
+        delta, lam = prog.step_state(keys[len(rows)] >> 1)
+        targets = 2 * delta + lam
+        unique, inverse = np.unique(targets, return_inverse=True)
+        row = np.full(num_labels, state(sink) if not possible.all() else 0, np.int32)
+        row[possible] = np.array([state(int(k)) for k in unique], np.int32)[inverse.ravel()]
+        rows.append(row)
+    accepting = np.array([k & 1 for k in keys], bool)
+    return minimize(Automaton(aps, np.stack(rows), 0, accepting))
+
+
+def ltlf_to_dfa(
+    formula: Formula,
+    aps: Sequence[str] | None = None,
+    exclusive: Collection[Collection[str]] = (),
+    max_entries: int = DEFAULT_MAX_ENTRIES,
+) -> Automaton:
+    """The minimal complete DFA accepting exactly the finite words that satisfy ``formula`` (LTLf).
+
+    Parameters
+    ----------
+    formula:
+        any formula; ``X`` is the strong next.
+    aps:
+        the proposition order of the labels (a superset of the formula's propositions); default: the
+        formula's propositions in order of first appearance.
+    exclusive:
+        groups of propositions of which at most one holds at a time (e.g. all ``enter(room_*)``);
+        labels violating a group go to the rejecting sink.
+    max_entries:
+        refuse (early) automata whose table would exceed ``num_states * 2**len(aps)`` entries.
+
+    Returns
+    -------
+    Automaton
+        minimal, canonical numbering (initial state 0); the empty word is rejected.
+
+    Raises
+    ------
+    FormulaError
+        a proposition of the formula is missing from ``aps``.
+    AutomatonError
+        the automaton would exceed ``max_entries``; the message gives the predicted size.
+
+    Example
+    -------
+    >>> from sgplan.logic import parse_infix
+    >>> ltlf_to_dfa(parse_infix("F(p1 & F p2) & G !p3")).num_states
+    4
+    """
+    used = atoms(formula)
+    aps = used if aps is None else tuple(aps)
+    missing = [p for p in used if p not in aps]
+    if missing:
+        raise FormulaError(
+            f"proposition {missing[0]!r} of the formula is not among the automaton's {list(aps)}"
+        )
+    num_labels = 1 << len(aps)
+    if num_labels > max_entries:
+        raise _too_big(formula, 1, num_labels, max_entries, "at least")
+    possible = possible_labels(aps, exclusive)
+    prog = _Progression(aps, np.flatnonzero(possible))
+    normal = nnf(formula)
+    conjuncts = list(normal.args) if isinstance(normal, And) else [normal]
+    parts = [_conjunct_dfa(c, prog, possible, tuple(aps), max_entries, formula) for c in conjuncts]
+    result = parts[0]
+    for k, part in enumerate(parts[1:], start=1):
+        if result.num_states * part.num_states * num_labels > max_entries:
+            predicted = result.num_states * int(np.prod([p.num_states for p in parts[k:]], dtype=np.float64))
+            raise _too_big(formula, predicted, num_labels, max_entries, "up to")
+        result = product(result, part, np.logical_and)
+    return result

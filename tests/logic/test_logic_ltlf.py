@@ -1,0 +1,138 @@
+"""LTLf -> DFA: agreement with the textbook evaluator, pruning, size guard, speed."""
+
+from __future__ import annotations
+
+import random
+import time
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from sgplan.errors import AutomatonError, FormulaError
+from sgplan.logic import (
+    Atom,
+    Next,
+    equivalent,
+    ltlf_to_dfa,
+    minimize,
+    parse_infix,
+    parse_prefix,
+    possible_labels,
+)
+from tests.logic.oracle import formulas, holds, random_formula, random_words, run_words
+
+APS = ("p0", "p1", "p2", "p3", "p4")
+WORDS_PER_LENGTH = 500
+MAX_LENGTH = 10
+LARGER_FORMULAS = 300
+
+
+@settings(max_examples=500, deadline=None)
+@given(formula=formulas(APS, max_leaves=10), seed=st.integers(0, 2**32 - 1))
+def test_dfa_agrees_with_the_textbook_semantics(formula, seed):
+    check_against_oracle(formula, np.random.default_rng(seed))
+
+
+def check_against_oracle(formula, rng: np.random.Generator) -> None:
+    dfa = ltlf_to_dfa(formula, aps=APS)
+    for length in range(MAX_LENGTH + 1):
+        count = 1 if length == 0 else WORDS_PER_LENGTH
+        words = random_words(rng, len(APS), count, length)
+        expected = holds(formula, words, APS)
+        got = run_words(dfa, words)
+        bad = np.flatnonzero(expected != got)
+        assert bad.size == 0, f"{formula}: word {words[bad[0]].tolist()} expected {expected[bad[0]]}"
+
+
+def test_dfa_agrees_with_the_textbook_semantics_on_larger_formulas():
+    """Seeded formulas of depth <= 5 (hypothesis favours small ones); up to ~40 DFA states."""
+    rng = random.Random(7)
+    words_rng = np.random.default_rng(7)
+    for _ in range(LARGER_FORMULAS):
+        check_against_oracle(random_formula(rng, APS, depth=5), words_rng)
+
+
+@settings(max_examples=60, deadline=None)
+@given(formula=formulas(APS, max_leaves=6))
+def test_dfa_is_minimal_and_canonical(formula):
+    dfa = ltlf_to_dfa(formula, aps=APS)
+    again = minimize(dfa)
+    assert again.num_states == dfa.num_states
+    assert np.array_equal(again.table, dfa.table) and again.initial == dfa.initial == 0
+    # Every state is reachable and no two states are equivalent (Moore's fixpoint is the identity).
+    assert dfa.reachable_states().all()
+
+
+def test_empty_word_is_rejected_even_by_valid_formulas():
+    for text in ("true", "G p0", "p0 | !p0", "G !p0"):
+        dfa = ltlf_to_dfa(parse_infix(text))
+        assert not dfa.accepting[dfa.initial], text
+
+
+def test_strong_next_is_false_at_the_last_cell():
+    dfa = ltlf_to_dfa(Next(Atom("p")))
+    assert not dfa.accepts([1])
+    assert dfa.accepts([0, 1])
+    weak = ltlf_to_dfa(parse_infix("!X !p"))
+    assert weak.accepts([0]) and weak.accepts([0, 1]) and not weak.accepts([0, 0])
+
+
+def test_small_known_automata():
+    # F(p1 & F p2) & G !p3: waiting, p1 seen, done, violated.
+    dfa = ltlf_to_dfa(parse_infix("F(p1 & F p2) & G !p3"))
+    assert dfa.num_states == 4
+    assert dfa.accepts([dfa.label_of(["p1"]), dfa.label_of(["p2"])])
+    assert dfa.accepts([dfa.label_of(["p1", "p2"])])
+    assert not dfa.accepts([dfa.label_of(["p1"]), dfa.label_of(["p2", "p3"])])
+    assert not dfa.accepts([dfa.label_of(["p2"]), dfa.label_of(["p1"])])
+
+
+def test_exclusive_groups_send_impossible_labels_to_a_sink():
+    rooms = ["r1", "r2", "r3"]
+    formula = parse_infix("F(r1 & F(r2 & F r3))")
+    pruned = ltlf_to_dfa(formula, exclusive=[rooms])
+    possible = possible_labels(pruned.aps, [rooms])
+    assert possible.tolist() == [True, True, True, False, True, False, False, False]
+    sinks = pruned.sink_states()
+    assert sinks[pruned.table[:, ~possible]].all()
+    # On possible labels the pruned DFA agrees with the unpruned one.
+    full = ltlf_to_dfa(formula)
+    rng = np.random.default_rng(0)
+    words = rng.choice(np.flatnonzero(possible), size=(500, 6))
+    assert np.array_equal(run_words(full, words), run_words(pruned, words))
+
+
+def test_twelve_unordered_goals_are_refused_early_with_the_predicted_size():
+    goals = " & ".join(f"F p{i}" for i in range(12))
+    start = time.perf_counter()
+    with pytest.raises(AutomatonError, match=r"4,096 states x 4,096 labels = 16,777,216 table entries"):
+        ltlf_to_dfa(parse_infix(goals))
+    assert time.perf_counter() - start < 2.0
+    # The limit is configurable: five goals need 32 states x 32 labels.
+    assert ltlf_to_dfa(parse_infix(" & ".join(f"F p{i}" for i in range(5))), max_entries=1024).num_states == 32
+    with pytest.raises(AutomatonError, match="max_entries=1,023"):
+        ltlf_to_dfa(parse_infix(" & ".join(f"F p{i}" for i in range(5))), max_entries=1023)
+
+
+def test_nested_formula_exploration_is_bounded():
+    with pytest.raises(AutomatonError, match="more than"):
+        ltlf_to_dfa(parse_infix("F(p1 & F(p2 & F(p3 & F p4)))"), max_entries=40)
+
+
+def test_collierville_5_builds_well_under_a_second():
+    formula = parse_prefix("& & F & p1 F & p2 F p3 & F & p4 p5 F & p6 p7 i p8 F p9")
+    start = time.perf_counter()
+    dfa = ltlf_to_dfa(formula)
+    assert time.perf_counter() - start < 0.5
+    assert dfa.num_states == 33 and len(dfa.aps) == 9
+
+
+def test_aps_order_and_superset():
+    formula = parse_infix("F(b & F a)")
+    assert ltlf_to_dfa(formula).aps == ("b", "a")
+    wide = ltlf_to_dfa(formula, aps=["a", "x", "b"])
+    assert wide.aps == ("a", "x", "b") and equivalent(wide, formula)
+    with pytest.raises(FormulaError, match="proposition 'b' of the formula is not among"):
+        ltlf_to_dfa(formula, aps=["a"])
