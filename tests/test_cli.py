@@ -42,3 +42,53 @@ def test_bad_scene_folder_names_the_file(tmp_path: Path, capsys: pytest.CaptureF
     assert main(["inspect", str(tmp_path)]) == 2
     err = capsys.readouterr().err
     assert "building.yaml" in err and "Traceback" not in err
+
+
+def test_demo_runs_end_to_end_offline(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    import json
+
+    assert main(["demo", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "offline-pattern" in out and "offline-symbolic" in out and "not LLMs" in out
+    record = json.loads((tmp_path / "run.json").read_text())
+    assert record["verified"] and record["plan"]["status"] == "optimal"
+    assert {row[2] for row in record["plan"]["path"]} == {0, 1}  # the mission needs both floors
+    assert "G(" in record["mission"]["formula"]  # the "always avoid" part
+    assert (tmp_path / "plan_floor_1.png").is_file() and (tmp_path / "mission" / "automaton.aut").is_file()
+
+
+DEMO_FORMULA = 'F("enter(room_5)" & F "reach(object_28)") & G !"enter(room_6)"'
+
+
+def test_plan_formula_on_demo_writes_verified_json(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    import json
+
+    out = tmp_path / "r.json"
+    assert main(["plan", "--scene", "demo", "--formula", DEMO_FORMULA, "--setup", "NO-LLM", "--verify",
+                 "--json", str(out), "--draw", str(tmp_path)]) == 0
+    record = json.loads(out.read_text())
+    assert record["status"] == "optimal" and record["verified"] and record["cost"] > 0
+    assert record["iterations"][-1]["w1"] == 1 and len(record["iterations"][-1]["expansions"]) == 5
+    assert set(record["timings"]) >= {"load_s", "precompute_s", "search_s"}
+    assert len(record["path"][0]) == 4 and (tmp_path / "plan_floor_0.png").is_file()
+
+
+def test_plan_reports_invalid_start_and_infeasible(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    import json
+
+    out = tmp_path / "r.json"
+    assert main(["plan", "--scene", "demo", "--formula", DEMO_FORMULA, "--start", "0,0,0", "--json", str(out)]) == 2
+    assert json.loads(out.read_text())["status"] == "invalid-start"
+    assert "start" in capsys.readouterr().err
+    # the bathroom is reachable only through the corridor, which the mission forbids
+    blocked = 'F "enter(room_5)" & G !"enter(room_2)"'
+    assert main(["plan", "--scene", "demo", "--formula", blocked, "--start-index", "1", "--json", str(out)]) == 2
+    assert json.loads(out.read_text())["status"] == "infeasible"
+
+
+@pytest.mark.gibson
+def test_plan_gibson_mission_folder_authors_profile(gibson_root: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    folder = gibson_root / "Benevolence" / "missions" / "1"
+    assert main(["plan", "--scene", str(gibson_root / "Benevolence"), "--mission-dir", str(folder),
+                 "--start-index", "0", "--profile", "authors", "--verify"]) == 0
+    assert "cost 18.8181 m" in capsys.readouterr().out  # reference-algorithm.md §11, stay column

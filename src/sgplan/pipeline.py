@@ -6,11 +6,14 @@ robot and reach radii apply, which start cell is meant, and how the grid and lab
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
+from typing import Any
 
 from sgplan.errors import PlanningError
 from sgplan.mission import Mission
+from sgplan.planning.amra import PlanResult
 from sgplan.planning.problem import PlanningProblem
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.model import Building
@@ -98,3 +101,34 @@ def make_problem(
         ap_descriptions=mission.descriptions,
     )
     return PreparedProblem(problem, radii, time.perf_counter() - t0)
+
+
+def add_offline_guidance(mission: Mission, building: Building) -> str:
+    """Give ``mission`` guidance from the offline symbolic guide (not an LLM); returns its backend name.
+
+    Used when a setup needs guidance that the mission does not carry, so LLM-guided setups still run.
+    """
+    from sgplan.llm.offline import SymbolicGuide
+
+    guide = SymbolicGuide()
+    mission.guidance = guide.guide(building, mission.automaton, mission.descriptions)
+    return guide.name
+
+
+def result_record(result: PlanResult) -> dict[str, Any]:
+    """The JSON-ready record of a plan result: status, setup, profile, cost (metres, ``None`` without a
+    path), queues, iterations, path rows ``[row, col, floor, q]`` and search timings."""
+    return {
+        "status": result.status,
+        "setup": result.setup,
+        "profile": result.profile,
+        "cost": result.cost_m if math.isfinite(result.cost_m) else None,
+        "queues": list(result.queues),
+        "iterations": [
+            {"w1": it.w1, "w2": it.w2, "cost": it.cost_m, "bound": it.bound, "time_s": it.time_s,
+             "expansions": list(it.expansions)}
+            for it in result.iterations
+        ],
+        "path": result.path.tolist() if result.path is not None else None,
+        "timings": {"precompute_s": result.precompute_s, "search_s": result.search_s},
+    }

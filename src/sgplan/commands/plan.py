@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import time
 from pathlib import Path
 from typing import Any
@@ -63,8 +62,8 @@ def run(args: argparse.Namespace) -> int:
 
 def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> int:
     from sgplan.mission import load_mission_folder, mission_from_formula, read_ap_desc, read_guidance
-    from sgplan.pipeline import make_problem, resolve_start
-    from sgplan.planning.amra import plan
+    from sgplan.pipeline import add_offline_guidance, make_problem, resolve_start, result_record
+    from sgplan.planning.amra import get_setup, plan
 
     building = load_scene_arg(args.scene, args.data)
     if args.mission_dir:
@@ -75,6 +74,9 @@ def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> i
         mission.guidance = read_guidance(args.guidance)
     for note in mission.notes:
         say(f"note: {note}")
+    if get_setup(args.setup).uses_llm and mission.guidance is None:
+        say(f"note: setup {args.setup} needs guidance and the mission has none: using the "
+            f"{add_offline_guidance(mission, building)} guide (not an LLM)")
     start = resolve_start(building, args.start, args.start_index)
     prepared = make_problem(building, mission, start, profile=args.profile,
                             robot_radius_m=args.robot_radius, reach_radius_m=args.reach_radius)
@@ -89,16 +91,9 @@ def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> i
 
     result = plan(prepared.problem, args.setup, time_limit_s=args.time_limit,
                   max_expansions=args.max_expansions, callback=progress)
-    record.update(
-        status=result.status, setup=result.setup, cost=result.cost_m if math.isfinite(result.cost_m) else None,
-        queues=list(result.queues),
-        iterations=[{"w1": it.w1, "w2": it.w2, "cost": it.cost_m, "bound": it.bound, "time_s": it.time_s,
-                     "expansions": list(it.expansions)} for it in result.iterations],
-        path=result.path.tolist() if result.path is not None else None,
-        start=list(start), radii={"robot_m": prepared.radii.robot_m, "reach_m": prepared.radii.reach_m},
-        timings={"load_s": load_s, "precompute_s": result.precompute_s, "search_s": result.search_s,
-                 "wall_s": time.perf_counter() - t_start},
-    )
+    record.update(result_record(result))
+    record.update(start=list(start), radii={"robot_m": prepared.radii.robot_m, "reach_m": prepared.radii.reach_m})
+    record["timings"].update(load_s=load_s, wall_s=time.perf_counter() - t_start)
     if result.path is None:
         raise PlanningError(f"no path found within the budget ({result.status})", status=result.status)
     print(f"{result.status}: cost {result.cost_m:.4f} m over {len(result.path)} cells "
