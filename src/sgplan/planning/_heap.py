@@ -1,0 +1,75 @@
+"""Binary min-heaps on plain arrays, for numba-compiled searches.
+
+An entry is ``(key, tie, value)``: entries are ordered by ``key`` ascending and, on equal keys, by
+``tie`` DESCENDING (the searches pass ``g`` as tie, so among equal ``f`` the deeper state comes first,
+which shortens weighted searches without touching their bounds). Heaps are lazy: callers push a new
+entry when a value improves and skip stale entries when they pop; nothing is ever removed or re-keyed
+in place. Capacity is the caller's business (``heap_grow``), so the hot push stays branch-free.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+
+@njit(cache=True, inline="always")
+def _before(key_a, tie_a, key_b, tie_b):
+    return key_a < key_b or (key_a == key_b and tie_a > tie_b)
+
+
+@njit(cache=True)
+def heap_push(keys, ties, values, size, key, tie, value):
+    """Insert one entry; the arrays must have room for ``size + 1`` entries. Returns the new size."""
+    i = size
+    while i > 0:
+        parent = (i - 1) >> 1
+        if not _before(key, tie, keys[parent], ties[parent]):
+            break
+        keys[i] = keys[parent]
+        ties[i] = ties[parent]
+        values[i] = values[parent]
+        i = parent
+    keys[i] = key
+    ties[i] = tie
+    values[i] = value
+    return size + 1
+
+
+@njit(cache=True)
+def heap_pop(keys, ties, values, size):
+    """Remove the top entry (read it from index 0 first). Returns the new size."""
+    size -= 1
+    if size <= 0:
+        return 0
+    key, tie, value = keys[size], ties[size], values[size]
+    i = 0
+    while True:
+        child = 2 * i + 1
+        if child >= size:
+            break
+        if child + 1 < size and _before(keys[child + 1], ties[child + 1], keys[child], ties[child]):
+            child += 1
+        if not _before(keys[child], ties[child], key, tie):
+            break
+        keys[i] = keys[child]
+        ties[i] = ties[child]
+        values[i] = values[child]
+        i = child
+    keys[i] = key
+    ties[i] = tie
+    values[i] = value
+    return size
+
+
+@njit(cache=True)
+def heap_grow(keys, ties, values, size):
+    """Copies of the three arrays with twice the capacity (the first ``size`` entries kept)."""
+    cap = max(2 * keys.shape[0], 16)
+    new_keys = np.empty(cap, dtype=keys.dtype)
+    new_ties = np.empty(cap, dtype=ties.dtype)
+    new_values = np.empty(cap, dtype=values.dtype)
+    new_keys[:size] = keys[:size]
+    new_ties[:size] = ties[:size]
+    new_values[:size] = values[:size]
+    return new_keys, new_ties, new_values

@@ -1,0 +1,348 @@
+"""AMRA* over the hierarchical domain: setups, weight schedule, budgets, results (the Python driver).
+
+The compiled loop is in :mod:`sgplan.planning._search`; this module owns the iteration schedule
+(weights (10, 20) halving to (1, 1), reference-algorithm.md §6), the queue layout of each setup (§7.2),
+time/expansion budgets, per-iteration records and path recovery.
+
+Goal tracking (departing from the authors' inert test, §12.9): every generated state whose automaton
+state is accepting is a goal; the best one's g is compared with ``w2 * min key(anchor)`` after every
+expansion, which keeps the w1*w2 bound of each iteration and makes the (1, 1) iteration exactly optimal
+(the anchor heuristic h_LTL is consistent). Any number of accepting states is supported.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from sgplan.errors import PlanningError
+from sgplan.planning import _search
+from sgplan.planning._memory import sparse_zeros
+from sgplan.planning._search import ACT_MAP, BUDGET, EXHAUSTED, GROW, SearchState
+from sgplan.planning.domain import PlanningDomain, _infeasible_reason
+from sgplan.planning.problem import PlanningProblem
+
+LEVEL_NAMES = ("anchor", "occupancy", "object", "room", "floor")
+LTL, LLM = 0, 1
+
+
+@dataclass(frozen=True)
+class Setup:
+    """A planner configuration: the highest level used and the (level, heuristic) queues, anchor first."""
+
+    name: str
+    max_level: int
+    queues: tuple[tuple[int, int], ...]
+
+    @property
+    def uses_llm(self) -> bool:
+        return any(h == LLM for _, h in self.queues)
+
+    @property
+    def queue_names(self) -> tuple[str, ...]:
+        return tuple(f"{'LTL' if h == LTL else 'LLM'}/{LEVEL_NAMES[level]}" for level, h in self.queues)
+
+
+_LTL_ALL = tuple((level, LTL) for level in range(5))
+SETUPS: dict[str, Setup] = {
+    "ALL": Setup("ALL", 4, _LTL_ALL + tuple((level, LLM) for level in range(1, 5))),
+    "NO-LLM": Setup("NO-LLM", 4, _LTL_ALL),
+    "A*": Setup("A*", 1, ((0, LTL), (1, LTL))),
+    "OCC": Setup("OCC", 4, _LTL_ALL + ((1, LLM),)),
+    "OBJ": Setup("OBJ", 4, _LTL_ALL + ((2, LLM),)),
+    "ROOM": Setup("ROOM", 4, _LTL_ALL + ((3, LLM),)),
+    "FLR": Setup("FLR", 4, _LTL_ALL + ((4, LLM),)),
+}
+"""The paper's setups (reference-algorithm.md §7.2)."""
+_ALIASES = {"NO_LLM": "NO-LLM", "NOLLM": "NO-LLM", "ASTAR": "A*", "A_STAR": "A*", "A-STAR": "A*"}
+
+
+def get_setup(name: str) -> Setup:
+    """The setup called ``name`` (case-insensitive; ``NO_LLM`` / ``A_STAR`` also accepted)."""
+    key = str(name).strip().upper()
+    key = _ALIASES.get(key, key)
+    if key not in SETUPS:
+        raise PlanningError(f"unknown setup {name!r}; use one of {', '.join(SETUPS)}")
+    return SETUPS[key]
+
+
+@dataclass(frozen=True)
+class IterationRecord:
+    """One AMRA* iteration: weights, solution cost (metres), suboptimality bound w1*w2, cumulative search
+    seconds at its end, and cumulative expansions per queue (``PlanResult.queues`` order)."""
+
+    w1: float
+    w2: float
+    cost_m: float
+    bound: float
+    time_s: float
+    expansions: tuple[int, ...]
+
+
+@dataclass(eq=False)
+class PlanResult:
+    """Outcome of :func:`plan`.
+
+    Attributes
+    ----------
+    status:
+        ``"optimal"`` (the (1, 1) iteration finished: ``cost_m`` is the exact optimum) or ``"timeout"``
+        (a budget ran out: the best path so far, or none).
+    cost_m:
+        cost of ``path`` in metres (``inf`` without a path).
+    path:
+        ``(n, 4)`` int64 ``[row, col, floor, q]`` of every cell, start first; ``q`` is the automaton state
+        after the cell's label was read (the start's per the profile). ``None`` without a path.
+    iterations:
+        one :class:`IterationRecord` per finished iteration.
+    precompute_s, search_s:
+        seconds to build the domain (once per problem), and of search (including lazily built actions).
+    """
+
+    status: str
+    setup: str
+    profile: str
+    cost_m: float
+    path: np.ndarray | None
+    iterations: list[IterationRecord]
+    queues: tuple[str, ...]
+    precompute_s: float
+    search_s: float
+
+    @property
+    def expansions(self) -> int:
+        return int(sum(self.iterations[-1].expansions)) if self.iterations else 0
+
+
+IterationCallback = Callable[[IterationRecord], None]
+
+
+def plan(
+    problem: PlanningProblem,
+    setup: str = "ALL",
+    *,
+    time_limit_s: float | None = None,
+    max_expansions: int | None = None,
+    callback: IterationCallback | None = None,
+    weights: tuple[float, float] = (10.0, 20.0),
+    final_weights: tuple[float, float] = (1.0, 1.0),
+    decay: float = 0.5,
+    prebuild_actions: bool = True,
+) -> PlanResult:
+    """Plan an optimal path for ``problem`` with AMRA* in configuration ``setup``.
+
+    Parameters
+    ----------
+    problem:
+        the planning problem; its domain is built on first use and reused by later calls.
+    setup:
+        a name of :data:`SETUPS` (ALL, NO-LLM, A*, OCC, OBJ, ROOM, FLR).
+    time_limit_s, max_expansions:
+        budgets for the search (seconds of search, total expansions); when one runs out the result has
+        status ``"timeout"`` and the best path found so far.
+    callback:
+        called with each :class:`IterationRecord` as soon as its iteration finishes.
+    weights, final_weights, decay:
+        the schedule: (w1, w2) start at ``weights`` and are multiplied by ``decay`` (floored at
+        ``final_weights``) after each iteration; the iteration run at ``final_weights`` is the last.
+    prebuild_actions:
+        build every composite action map before the search clock starts (the authors' accounting, and
+        a first path within milliseconds); ``False`` builds them lazily inside the search, which saves
+        1-3 s of precomputation on large scenes when only the optimum matters.
+
+    Raises
+    ------
+    PlanningError
+        ``status="invalid-start"`` / ``"infeasible"`` (see :func:`sgplan.planning.domain.build_domain`;
+        ``"infeasible"`` also when the search proves that no path exists), or ``status="error"`` for a bad
+        setup or a setup that needs LLM guidance the problem does not carry.
+    """
+    spec = get_setup(setup)
+    domain = problem.domain
+    if spec.uses_llm and domain.llm is None:
+        raise PlanningError(f"setup {spec.name} needs LLM guidance; give the problem guidance or use NO-LLM")
+    if not (0 < decay < 1) or min(final_weights) < 1 or weights[0] < final_weights[0] or weights[1] < final_weights[1]:
+        raise PlanningError(f"bad weight schedule {weights} -> {final_weights} with decay {decay}")
+
+    if prebuild_actions:
+        domain.build_actions()
+    q_level = np.array([level for level, _ in spec.queues], dtype=np.int32)
+    q_htype = np.array([h for _, h in spec.queues], dtype=np.int32)
+    acts = domain.kactions
+    max_succ = int(10 + np.diff(acts.room_obj_ptr).max(initial=0) + np.diff(acts.room_room_ptr).max(initial=0) + 2)
+    warm_s = _warm_up(domain, q_level, q_htype, spec.max_level, max_succ)
+    result = PlanResult(
+        status="optimal", setup=spec.name, profile=problem.profile, cost_m=float("inf"), path=None,
+        iterations=[], queues=spec.queue_names, precompute_s=domain.precompute_s + warm_s, search_s=0.0,
+    )
+    if domain.accepting[domain.q_start]:
+        result.cost_m = 0.0
+        result.path = _path_rows(domain, np.array([domain.start_cell]))
+        result.iterations.append(IterationRecord(*weights, 0.0, weights[0] * weights[1], 0.0, (0,) * len(spec.queues)))
+        return result
+
+    state = _new_state(domain, len(spec.queues))
+    chunk = 4096
+    w1, w2 = float(weights[0]), float(weights[1])
+    iteration = 0
+    expansions = 0
+    while True:
+        iteration += 1
+        state = _reserve(state, int(state.hsize[0] + state.iscal[2]) + max_succ)
+        t0 = time.perf_counter()
+        _search.start_iteration(domain.kgraph, domain.klogic, state, q_level, q_htype, w1, w2, iteration)
+        result.search_s += time.perf_counter() - t0
+        while True:
+            budget = chunk if max_expansions is None else max(0, min(chunk, max_expansions - expansions))
+            t0 = time.perf_counter()
+            code, done = _search.improve_path(
+                domain.kgraph, domain.kactions, domain.kmaps, domain.klogic, state, q_level, q_htype,
+                spec.max_level, budget, max_succ,
+            )
+            result.search_s += time.perf_counter() - t0
+            expansions += int(done)
+            if code == GROW:
+                state = _reserve(state, 2 * state.hkey.shape[1])
+                continue
+            if code != BUDGET:
+                break
+            over_time = time_limit_s is not None and result.search_s >= time_limit_s
+            if over_time or (max_expansions is not None and expansions >= max_expansions):
+                result.status = "timeout"
+                break
+        if result.status == "timeout":
+            break
+        if code == EXHAUSTED:
+            raise PlanningError(
+                _infeasible_reason(
+                    problem, domain.label_masks[domain.cell_label],
+                    np.isfinite(domain.graph.distances(np.array([domain.start_cell]))), domain.q_start,
+                ) + " (proved by exhaustive search)",
+                status="infeasible",
+            )
+        record = IterationRecord(
+            w1, w2, float(state.fscal[0]), w1 * w2, result.search_s, tuple(int(x) for x in state.expansions)
+        )
+        result.iterations.append(record)
+        if callback is not None:
+            callback(record)
+        if w1 <= final_weights[0] and w2 <= final_weights[1]:
+            break
+        w1, w2 = max(w1 * decay, final_weights[0]), max(w2 * decay, final_weights[1])
+
+    if np.isfinite(state.fscal[0]):
+        cells = _recover_cells(domain, state, int(state.iscal[0]))
+        result.path = _path_rows(domain, cells)
+        result.cost_m = path_cost(domain, cells)
+    return result
+
+
+def _warm_up(domain: PlanningDomain, q_level: np.ndarray, q_htype: np.ndarray, max_level: int, max_succ: int) -> float:
+    """Load (or compile) the search kernels on an empty search, so that no JIT time counts as search."""
+    t0 = time.perf_counter()
+    scratch = _new_state(domain, len(q_level))
+    scratch.iscal[2] = 0
+    _search.start_iteration(domain.kgraph, domain.klogic, scratch, q_level, q_htype, 1.0, 1.0, 1)
+    _search.improve_path(
+        domain.kgraph, domain.kactions, domain.kmaps, domain.klogic, scratch, q_level, q_htype, max_level, 0, max_succ
+    )
+    return time.perf_counter() - t0
+
+
+def _new_state(domain: PlanningDomain, num_queues: int) -> SearchState:
+    """Fresh search memory with the start state in INCONS (so the first iteration opens it)."""
+    num_states = domain.graph.num_cells * domain.num_states
+    capacity = 1 << 14
+    state = SearchState(
+        g=sparse_zeros(num_states, np.float64),
+        parent=sparse_zeros(num_states, np.int64),
+        action=sparse_zeros(num_states, np.int32),
+        seen=sparse_zeros(num_states, np.uint8),
+        closed=sparse_zeros(num_states, np.uint8),
+        epoch=sparse_zeros(num_states, np.int32),
+        hkey=np.empty((num_queues, capacity), dtype=np.float64),
+        hg=np.empty((num_queues, capacity), dtype=np.float64),
+        hstate=np.empty((num_queues, capacity), dtype=np.int64),
+        hsize=np.zeros(num_queues, dtype=np.int64),
+        incons=np.empty(capacity, dtype=np.int64),
+        fscal=np.array([np.inf, 1.0, 1.0]),
+        iscal=np.array([-1, 1, 1, 0], dtype=np.int64),
+        expansions=np.zeros(num_queues, dtype=np.int64),
+    )
+    start = domain.start_cell * domain.num_states + domain.q_start
+    state.seen[start] = 1
+    state.parent[start] = -1
+    state.incons[0] = start
+    return state
+
+
+def _reserve(state: SearchState, capacity: int) -> SearchState:
+    """``state`` with heaps and INCONS able to hold at least ``capacity`` entries each (doubling)."""
+    new = state.hkey.shape[1]
+    while new < capacity:
+        new *= 2
+    if new != state.hkey.shape[1]:
+        size = int(state.hsize.max(initial=0))
+        grown = {}
+        for name in ("hkey", "hg", "hstate"):
+            old = getattr(state, name)
+            arr = np.empty((old.shape[0], new), dtype=old.dtype)
+            arr[:, :size] = old[:, :size]
+            grown[name] = arr
+        state = state._replace(**grown)
+    if state.incons.shape[0] < capacity:
+        incons = np.empty(max(capacity, 2 * state.incons.shape[0]), dtype=np.int64)
+        incons[: state.iscal[2]] = state.incons[: state.iscal[2]]
+        state = state._replace(incons=incons)
+    return state
+
+
+def _recover_cells(domain: PlanningDomain, state: SearchState, goal: int) -> np.ndarray:
+    """Cell indices of the path to ``goal``, composite actions replayed cell by cell."""
+    num_q = domain.num_states
+    chain = [goal]
+    while state.parent[chain[-1]] >= 0:
+        chain.append(int(state.parent[chain[-1]]))
+        if len(chain) > state.g.shape[0]:
+            raise PlanningError("internal error: the parent pointers form a cycle")
+    chain.reverse()
+    cells = [chain[0] // num_q]
+    for child in chain[1:]:
+        code = int(state.action[child])
+        if code < ACT_MAP:
+            cells.append(child // num_q)
+        else:
+            cells += domain.action_cells(code - ACT_MAP, cells[-1], child // num_q)
+    return np.array(cells, dtype=np.int64)
+
+
+def _path_rows(domain: PlanningDomain, cells: np.ndarray) -> np.ndarray:
+    """``(n, 4)`` ``[row, col, floor, q]`` rows for a cell sequence, q replayed from q_start."""
+    graph = domain.graph
+    states = np.empty(len(cells), dtype=np.int64)
+    q = domain.q_start
+    states[0] = q
+    labels = domain.cell_label[cells]
+    for i in range(1, len(cells)):
+        q = int(domain.trans[q, labels[i]])
+        states[i] = q
+    return np.stack([graph.cell_row[cells], graph.cell_col[cells], graph.cell_floor[cells], states], axis=1).astype(
+        np.int64
+    )
+
+
+def path_cost(domain: PlanningDomain, cells: np.ndarray) -> float:
+    """Metres of a cell sequence: Euclidean steps on a floor plus stairs costs between floors."""
+    graph = domain.graph
+    a, b = cells[:-1], cells[1:]
+    same = graph.cell_floor[a] == graph.cell_floor[b]
+    res_x, res_y = (graph.step_cost[1], graph.step_cost[3])
+    steps = np.hypot((graph.cell_row[b] - graph.cell_row[a])[same] * res_x, (graph.cell_col[b] - graph.cell_col[a])[same] * res_y)
+    total = float(steps.sum())
+    for u, v in zip(a[~same], b[~same]):
+        j = np.flatnonzero((graph.stairs_from == u) & (graph.stairs_to == v))
+        total += float(graph.stairs_cost[j[0]])
+    return total

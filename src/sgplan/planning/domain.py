@@ -1,0 +1,446 @@
+"""The hierarchical planning domain of one problem: cells, labels, automaton, composite actions, heuristics.
+
+Levels (reference-algorithm.md §3, SYSTEM.md §3.7): 1 occupancy (8-connected steps and stairs),
+2 object (from a cell where some object is within reach: go to the reach region of another object of the
+same room), 3 room (from a cell of a non-staircase room: go through the door cells into a connected
+non-staircase room), 4 floor (from any cell: walk to this floor's stairs portal and take the stairs).
+The anchor (level 0) is the union. A state belongs to level 2 iff its cell lies in an object's reach
+region, and to levels 1, 3, 4 and the anchor always (every traversable cell is in a room).
+
+Every composite action follows an EXACT shortest path over the same cells (multi-source Dijkstra from the
+action's target cells, built lazily inside the search the first time the action is needed) and advances
+the automaton over every cell of that path after the current one. So each composite action is exactly a
+sequence of occupancy moves, and the optimum over the product graph is unchanged by adding them. If the
+automaton accepts part-way along the path, the action stops there (a shorter sequence of moves).
+"""
+
+from __future__ import annotations
+
+import time
+from collections import namedtuple
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import ndimage
+
+from sgplan.errors import PlanningError
+from sgplan.planning._memory import sparse_zeros
+from sgplan.planning.cells import CellGraph, build_cell_graph
+from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
+from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic
+from sgplan.planning.problem import PlanningProblem
+from sgplan.scene.model import CatCode
+
+# Arrays handed to the compiled search, grouped by role (numba accepts named tuples of arrays).
+KernelGraph = namedtuple(
+    "KernelGraph",
+    "nbr step_cost stairs_first stairs_from stairs_to stairs_cost floor_offset cell_floor cell_label "
+    "cell_room cell_xyz in_object_region",
+)
+KernelActions = namedtuple(
+    "KernelActions",
+    "room_obj_ptr room_obj_map room_room_ptr room_room_map floor_up_map floor_down_map map_floor "
+    "map_src_ptr map_src map_stop_room map_stop_count map_exit_cell map_exit_cost",
+)
+KernelMaps = namedtuple("KernelMaps", "done dist pred run order")
+KernelLogic = namedtuple("KernelLogic", "trans accepting dead idempotent hmap q_row llm_sum llm_target llm_valid")
+
+MAP_OBJECT, MAP_ROOM, MAP_FLOOR_UP, MAP_FLOOR_DOWN = 0, 1, 2, 3
+
+
+@dataclass(frozen=True)
+class ActionMap:
+    """One composite action family: shortest paths from anywhere on ``floor`` to ``target`` cells.
+
+    ``kind`` is one of MAP_OBJECT / MAP_ROOM / MAP_FLOOR_UP / MAP_FLOOR_DOWN; ``entity`` the object uuid,
+    the ``(room uuid, neighbour room uuid)`` pair, or the floor index.
+    """
+
+    kind: int
+    entity: object
+    floor: int
+
+
+@dataclass(eq=False)
+class PlanningDomain:
+    """Precomputed, search-ready data of a :class:`PlanningProblem`.
+
+    Attributes
+    ----------
+    graph:
+        the cell graph.
+    cell_label:
+        ``(N,)`` compact label id per cell; ``label_masks[id]`` is the proposition bitmask.
+    trans:
+        ``(Q, L)`` next automaton state per compact label.
+    start_cell, q_start:
+        the start product state (q_start per the profile).
+    ltl, llm:
+        heuristics (``llm`` built only when the problem carries guidance).
+    maps:
+        the composite action families, indexed like the kernel's map arrays.
+    precompute_s:
+        seconds spent building this domain, including :meth:`build_actions` once it ran.
+    """
+
+    graph: CellGraph
+    cell_label: np.ndarray
+    label_masks: np.ndarray
+    trans: np.ndarray
+    accepting: np.ndarray
+    start_cell: int
+    q_start: int
+    ltl: LtlHeuristic
+    llm: LlmHeuristic | None
+    room_uuids: list[int]
+    maps: list[ActionMap]
+    kgraph: KernelGraph
+    kactions: KernelActions
+    kmaps: KernelMaps
+    klogic: KernelLogic
+    precompute_s: float
+
+    @property
+    def num_states(self) -> int:
+        return int(self.trans.shape[0])
+
+    def action_cells(self, k: int, start: int, end: int) -> list[int]:
+        """The cells (after ``start``, up to ``end`` inclusive) of composite action family ``k`` taken from
+        cell ``start`` and ending at ``end``: the stored shortest path, plus the stairs for floor actions.
+
+        Raises
+        ------
+        PlanningError
+            if the action's path from ``start`` does not pass through ``end`` (an internal error).
+        """
+        lo = int(self.graph.floor_offset[self.kactions.map_floor[k]])
+        pred = self.kmaps.pred[k]
+        cells = []
+        x = start
+        while x != end:
+            p = int(pred[x - lo]) if 0 <= x - lo < pred.shape[0] else 0
+            x = p - 2 + lo if p > 1 else int(self.kactions.map_exit_cell[k]) if p == 1 else -1
+            if x < 0 or len(cells) > pred.shape[0]:
+                raise PlanningError(f"internal error: action {self.maps[k]} from cell {start} misses cell {end}")
+            cells.append(x)
+        return cells
+
+    def build_actions(self) -> float:
+        """Build every composite action map now instead of lazily during search; returns the seconds
+        spent (also added to ``precompute_s``). Costs 1-3 s on the Gibson scenes; afterwards the first
+        path comes after a handful of expansions, as in the authors' planner whose maps are prebuilt."""
+        from sgplan.planning._search import build_all_maps
+
+        t0 = time.perf_counter()
+        build_all_maps(self.kgraph, self.kactions, self.kmaps)
+        spent = time.perf_counter() - t0
+        self.precompute_s += spent
+        return spent
+
+
+def build_domain(problem: PlanningProblem) -> PlanningDomain:
+    """Validate the start and precompute everything the search needs except the action maps.
+
+    Raises
+    ------
+    PlanningError
+        ``status="invalid-start"``: the start is outside the grid or not traversable (with why), or its
+        label sends the automaton to a state from which nothing is accepted.
+        ``status="infeasible"``: no path from the start can satisfy the mission (with which propositions
+        or which automaton progress cannot be reached).
+    """
+    t0 = time.perf_counter()
+    graph = build_cell_graph(problem.grid)
+    start_cell = _check_start(problem, graph)
+    automaton = problem.automaton
+
+    masks = graph.gather(problem.labels).astype(np.int64)
+    if masks.size and (masks.min() < 0 or masks.max() >= automaton.num_labels):
+        raise PlanningError(
+            f"label raster holds bitmask {int(masks.max())} but the automaton has only "
+            f"{len(automaton.aps)} propositions ({', '.join(automaton.aps)})"
+        )
+    label_masks, cell_label = np.unique(masks, return_inverse=True)
+    cell_label = cell_label.astype(np.int32)
+    trans = np.ascontiguousarray(automaton.table[:, label_masks], dtype=np.int32)
+    accepting = np.asarray(automaton.accepting, dtype=bool)
+    dead = _dead_states(np.asarray(automaton.table), accepting)
+
+    start_mask = int(masks[start_cell])
+    if problem.profile == "ltlf":
+        q_start = int(automaton.table[automaton.initial, start_mask])
+        if dead[q_start]:
+            true_aps = [problem.ap_name(i) for i in range(len(automaton.aps)) if start_mask >> i & 1]
+            raise PlanningError(
+                f"start {problem.start} violates the mission: with {_listing(true_aps)} true there the "
+                "automaton can no longer accept; start elsewhere",
+                status="invalid-start",
+            )
+    else:
+        q_start = int(automaton.initial)
+    if dead[q_start]:
+        raise PlanningError("the mission automaton accepts no word at all", status="infeasible")
+
+    reachable = np.isfinite(graph.distances(np.array([start_cell])))
+    ltl = build_ltl_heuristic(graph, cell_label, trans, accepting, q_start, reachable)
+    if not accepting[q_start] and not np.isfinite(ltl.value(start_cell, q_start)):
+        raise PlanningError(_infeasible_reason(problem, masks, reachable, q_start), status="infeasible")
+
+    rooms = list(problem.building.rooms())
+    room_uuids = [room.uuid for room in rooms]
+    room_lut = np.full(max([room.id for room in rooms], default=0) + 2, -1, dtype=np.int32)
+    for i, room in enumerate(rooms):
+        room_lut[room.id] = i
+    room_ids = graph.gather(problem.grid.room_map).astype(np.int64)
+    cell_room = np.where((room_ids > 0) & (room_ids < len(room_lut) - 1), room_lut[np.clip(room_ids, 0, None)], -1)
+    cell_room = cell_room.astype(np.int32)
+
+    maps, kactions, in_region = _action_maps(problem, graph, rooms, cell_room)
+    n_max = int(np.diff(graph.floor_offset).max()) if graph.num_cells else 0
+    kmaps = KernelMaps(
+        done=np.zeros(len(maps), dtype=np.uint8),
+        dist=sparse_zeros((len(maps), n_max), np.float64),
+        pred=sparse_zeros((len(maps), n_max), np.int32),
+        run=sparse_zeros((len(maps), n_max), np.int32),
+        order=np.zeros(n_max, dtype=np.int32),
+    )
+
+    llm = (
+        build_llm_heuristic(problem.guidance, problem.building, room_uuids, automaton.num_states)
+        if problem.guidance is not None
+        else None
+    )
+    empty = build_llm_heuristic({}, problem.building, room_uuids, automaton.num_states)
+    guide = llm if llm is not None else empty
+    idempotent = bool(np.all(trans[trans, np.arange(trans.shape[1])[None, :]] == trans))
+    klogic = KernelLogic(
+        trans=trans,
+        accepting=accepting,
+        dead=dead,
+        idempotent=np.array([idempotent]),
+        hmap=ltl.hmap,
+        q_row=ltl.q_row,
+        llm_sum=guide.leg_sum,
+        llm_target=guide.target,
+        llm_valid=guide.has_target,
+    )
+    kgraph = KernelGraph(
+        nbr=graph.nbr,
+        step_cost=graph.step_cost,
+        stairs_first=graph.stairs_first,
+        stairs_from=graph.stairs_from,
+        stairs_to=graph.stairs_to,
+        stairs_cost=graph.stairs_cost,
+        floor_offset=graph.floor_offset,
+        cell_floor=graph.cell_floor,
+        cell_label=cell_label,
+        cell_room=cell_room,
+        cell_xyz=graph.cell_xyz,
+        in_object_region=in_region,
+    )
+    return PlanningDomain(
+        graph=graph,
+        cell_label=cell_label,
+        label_masks=label_masks,
+        trans=trans,
+        accepting=accepting,
+        start_cell=start_cell,
+        q_start=q_start,
+        ltl=ltl,
+        llm=llm,
+        room_uuids=room_uuids,
+        maps=maps,
+        kgraph=kgraph,
+        kactions=kactions,
+        kmaps=kmaps,
+        klogic=klogic,
+        precompute_s=time.perf_counter() - t0,
+    )
+
+
+def _listing(items: list[str]) -> str:
+    return ", ".join(items) if items else "no proposition"
+
+
+def _dead_states(table: np.ndarray, accepting: np.ndarray) -> np.ndarray:
+    """``(Q,)`` bool: states from which no label sequence reaches an accepting state."""
+    alive = accepting.copy()
+    while True:
+        grown = alive | alive[table].any(axis=1)
+        if (grown == alive).all():
+            return ~alive
+        alive = grown
+
+
+def _check_start(problem: PlanningProblem, graph: CellGraph) -> int:
+    """The start's cell index, or PlanningError(status="invalid-start") saying why it cannot be used."""
+    row, col, floor = problem.start
+    floors, rows, cols = graph.shape
+    where = f"start (row {row}, col {col}, floor {floor})"
+    if not (0 <= floor < floors and 0 <= row < rows and 0 <= col < cols):
+        raise PlanningError(
+            f"{where} lies outside the grid ({floors} floors of {rows} x {cols} cells)", status="invalid-start"
+        )
+    cell = graph.cell_id(row, col, floor)
+    if cell >= 0:
+        return cell
+    room_id = int(problem.grid.room_map[floor, row, col])
+    cat = problem.building.floors[floor].cat_map if floor < problem.building.num_floors else None
+    if room_id <= 0:
+        why = "lies in no room"
+    elif cat is not None and cat.shape == (rows, cols) and cat[row, col] != CatCode.GROUND:
+        value = int(cat[row, col])
+        what = CatCode(value).name.lower() if value <= 0 else f"object id {value}"
+        why = f"is not free ground ({what})"
+    else:
+        why = "is inside the inflated obstacle region" + _clearance(problem, cat, row, col)
+    raise PlanningError(f"{where} {why}; choose a free cell", status="invalid-start")
+
+
+def _clearance(problem: PlanningProblem, cat: np.ndarray | None, row: int, col: int) -> str:
+    """`` (nearest obstacle X m away, robot radius R m)`` from the category map, when available."""
+    radius = problem.grid.robot_radius_m
+    if cat is None or radius <= 0:
+        return ""
+    res_x, res_y = problem.grid.resolution_m
+    pad_r, pad_c = int(np.ceil(radius / res_x)) + 2, int(np.ceil(radius / res_y)) + 2
+    r0, c0 = max(row - pad_r, 0), max(col - pad_c, 0)
+    window = cat[r0 : row + pad_r + 1, c0 : col + pad_c + 1]
+    blocked = (window != CatCode.GROUND) & (window != CatCode.STAIRS_UP) & (window != CatCode.STAIRS_DOWN)
+    rr, cc = np.nonzero(blocked)
+    if rr.size == 0:
+        return f" (robot radius {radius:g} m)"
+    nearest = float(np.min(np.hypot((rr + r0 - row) * res_x, (cc + c0 - col) * res_y)))
+    return f": the nearest obstacle is {nearest:.3f} m away, less than the robot radius {radius:g} m"
+
+
+def _infeasible_reason(problem: PlanningProblem, masks: np.ndarray, reachable: np.ndarray, q_start: int) -> str:
+    """Which propositions can never hold on a reachable cell, or which automaton progress is blocked."""
+    seen = np.bitwise_or.reduce(masks[reachable]) if reachable.any() else 0
+    missing = [problem.ap_name(i) for i in range(len(problem.automaton.aps)) if not seen >> i & 1]
+    where = f"no path from start {problem.start} satisfies the mission"
+    if missing:
+        return f"{where}: {_listing(missing)} never holds on a cell reachable from the start"
+    return (
+        f"{where}: every proposition holds somewhere reachable, but no order of visits leads the automaton "
+        f"from state {q_start} to acceptance (a required place is reachable only through a forbidden one, "
+        "or two required propositions never hold together)"
+    )
+
+
+def _action_maps(
+    problem: PlanningProblem, graph: CellGraph, rooms: list, cell_room: np.ndarray
+) -> tuple[list[ActionMap], KernelActions, np.ndarray]:
+    """The composite action families and their per-room / per-floor tables for the kernel."""
+    building, grid = problem.building, problem.grid
+    floors = graph.shape[0]
+    room_index = {room.id: i for i, room in enumerate(rooms)}
+    room_cells = np.bincount(cell_room[cell_room >= 0], minlength=len(rooms))
+    in_region = np.zeros(graph.num_cells, dtype=np.bool_)
+
+    maps: list[ActionMap] = []
+    sources: list[np.ndarray] = []
+    stop_room: list[int] = []
+    exit_cell: list[int] = []
+    exit_cost: list[float] = []
+    room_obj: list[list[int]] = [[] for _ in rooms]
+    room_room: list[list[int]] = [[] for _ in rooms]
+
+    def add(action: ActionMap, cells: np.ndarray, stop: int, exit_to: int = -1, cost: float = 0.0) -> int:
+        maps.append(action)
+        sources.append(cells.astype(np.int64))
+        stop_room.append(stop)
+        exit_cell.append(exit_to)
+        exit_cost.append(cost)
+        return len(maps) - 1
+
+    for r, room in enumerate(rooms):
+        if room.floor >= floors:
+            continue
+        stop = -1 if room.is_staircase else r
+        for obj in room.objects.values():
+            cells = _reach_region(problem, graph, room, obj)
+            if cells.size:
+                in_region[cells] = True
+                room_obj[r].append(add(ActionMap(MAP_OBJECT, obj.uuid, room.floor), cells, stop))
+        if room.is_staircase:
+            continue
+        for other_id in room.connected_room_ids:
+            other = room_index.get(other_id)
+            doors = room.door_cells.get(other_id)
+            if other is None or rooms[other].is_staircase or doors is None or len(doors) == 0:
+                continue
+            ids = _cell_ids(graph, room.floor, np.asarray(doors, dtype=np.int64).reshape(-1, 2))
+            if ids.size:
+                room_room[r].append(add(ActionMap(MAP_ROOM, (room.uuid, rooms[other].uuid), room.floor), ids, r))
+
+    floor_up = np.full(floors, -1, dtype=np.int32)
+    floor_down = np.full(floors, -1, dtype=np.int32)
+    for link in grid.stairs:
+        low = graph.cell_id(link.lower_cell[0], link.lower_cell[1], link.lower_floor)
+        up = graph.cell_id(link.upper_cell[0], link.upper_cell[1], link.upper_floor)
+        if low < 0 or up < 0:
+            continue
+        floor_up[link.lower_floor] = add(
+            ActionMap(MAP_FLOOR_UP, link.lower_floor, link.lower_floor), np.array([low]), -1, up, link.cost_m
+        )
+        floor_down[link.upper_floor] = add(
+            ActionMap(MAP_FLOOR_DOWN, link.upper_floor, link.upper_floor), np.array([up]), -1, low, link.cost_m
+        )
+
+    def csr(lists: list[list[int]]) -> tuple[np.ndarray, np.ndarray]:
+        ptr = np.zeros(len(lists) + 1, dtype=np.int64)
+        ptr[1:] = np.cumsum([len(x) for x in lists])
+        flat = np.array([m for x in lists for m in x], dtype=np.int32)
+        return ptr, flat
+
+    obj_ptr, obj_map = csr(room_obj)
+    room_ptr, room_map = csr(room_room)
+    src_ptr = np.zeros(len(maps) + 1, dtype=np.int64)
+    src_ptr[1:] = np.cumsum([len(s) for s in sources])
+    stop = np.array(stop_room, dtype=np.int32)
+    kactions = KernelActions(
+        room_obj_ptr=obj_ptr,
+        room_obj_map=obj_map,
+        room_room_ptr=room_ptr,
+        room_room_map=room_map,
+        floor_up_map=floor_up,
+        floor_down_map=floor_down,
+        map_floor=np.array([m.floor for m in maps], dtype=np.int32),
+        map_src_ptr=src_ptr,
+        map_src=np.concatenate(sources) if sources else np.zeros(0, dtype=np.int64),
+        map_stop_room=stop,
+        map_stop_count=np.array([room_cells[s] if s >= 0 else 0 for s in stop], dtype=np.int64),
+        map_exit_cell=np.array(exit_cell, dtype=np.int64),
+        map_exit_cost=np.array(exit_cost, dtype=np.float64),
+    )
+    return maps, kactions, in_region
+
+
+def _cell_ids(graph: CellGraph, floor: int, cells: np.ndarray) -> np.ndarray:
+    """Sorted unique cell indices of the traversable ``(row, col)`` cells among ``cells`` on ``floor``."""
+    _, rows, cols = graph.shape
+    inside = (cells[:, 0] >= 0) & (cells[:, 0] < rows) & (cells[:, 1] >= 0) & (cells[:, 1] < cols)
+    ids = graph.index[(floor * rows + cells[inside, 0]) * cols + cells[inside, 1]]
+    return np.unique(ids[ids >= 0]).astype(np.int64)
+
+
+def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj) -> np.ndarray:
+    """Cell indices of ``room`` from which ``obj`` is within the reach radius (Euclidean, metres, to the
+    nearest footprint cell). Empty if the object has no footprint on its floor's category map."""
+    floor = problem.building.floors[room.floor]
+    if not floor.has_maps:
+        return np.zeros(0, dtype=np.int64)
+    res = problem.grid.resolution_m
+    rows, cols = floor.shape
+    pad = (int(np.ceil(problem.reach_radius_m / res[0])) + 1, int(np.ceil(problem.reach_radius_m / res[1])) + 1)
+    r0, c0 = max(obj.grid_min[0] - pad[0], 0), max(obj.grid_min[1] - pad[1], 0)
+    r1, c1 = min(obj.grid_max[0] + pad[0] + 1, rows), min(obj.grid_max[1] + pad[1] + 1, cols)
+    footprint = floor.cat_map[r0:r1, c0:c1] == obj.id
+    if not footprint.any():
+        return np.zeros(0, dtype=np.int64)
+    near = ndimage.distance_transform_edt(~footprint, sampling=res) <= problem.reach_radius_m
+    near &= floor.room_map[r0:r1, c0:c1] == room.id
+    rr, cc = np.nonzero(near)
+    ids = graph.index[(room.floor * rows + rr + r0) * cols + cc + c0]
+    return ids[ids >= 0].astype(np.int64)

@@ -1,0 +1,163 @@
+"""h_LTL: a consistent lower bound on the cost to finish the mission from a product state (cell, q).
+
+The paper's construction (eq. for g(l, q)) with an exact metric: ``d_l(cell)`` is the exact shortest-path
+distance over the search graph (steps and stairs, stairs at their own cost) from the cell to the region
+of cells labelled ``l``; ``c(l, l')`` the smallest ``d_l'`` over the cells of ``l``. Then
+
+    G(l, q) = 0                                                        if q is accepting
+    G(l, q) = min over l' with T(q, l') != q of  c(l, l') + G(l', T(q, l'))    otherwise
+    h(cell, q) = min over l' with T(q, l') != q of  d_l'(cell) + G(l', T(q, l'))
+
+(accepting q: 0; no way to acceptance: inf). Consistency on every move (cell, q) -> (cell', q'), cost w:
+if q' = q, ``d_l'(cell) <= w + d_l'(cell')`` (triangle inequality of an exact graph distance); if
+q' != q, the label l* of cell' leaves q, so ``h(cell, q) <= d_l*(cell) + G(l*, q') <= w + G(l*, q')`` and
+``G(l*, q') <= h(cell', q')`` because ``d_l''(cell') >= c(l*, l'')``. Composite actions are sequences of
+moves, so the bound chains. The maps are float64, so the only slack is float rounding (~1e-15 m).
+``h = inf`` proves that no accepting path exists, so the search may drop such states.
+
+Only automaton states reachable from the start state are tabulated (one float64 map over the cells each).
+"""
+
+from __future__ import annotations
+
+import heapq
+from dataclasses import dataclass
+
+import numpy as np
+
+from sgplan.planning.cells import CellGraph
+
+
+@dataclass(eq=False)
+class LtlHeuristic:
+    """Tabulated h_LTL.
+
+    Attributes
+    ----------
+    q_row:
+        ``(Q,)`` int32: the row of ``hmap`` for state q, -1 if q has no map (accepting: h = 0; not
+        reachable from the start state or without a way to acceptance: h = inf).
+    hmap:
+        ``(rows, N)`` float64 metres.
+    accepting:
+        ``(Q,)`` bool.
+    leaving_labels:
+        compact label ids that leave at least one tabulated state (those whose regions were measured).
+    """
+
+    q_row: np.ndarray
+    hmap: np.ndarray
+    accepting: np.ndarray
+    leaving_labels: np.ndarray
+
+    def value(self, cell: int, q: int) -> float:
+        """h at product state (cell index, q), metres."""
+        if self.accepting[q]:
+            return 0.0
+        row = int(self.q_row[q])
+        return float(self.hmap[row, cell]) if row >= 0 else float("inf")
+
+
+def reachable_states(trans: np.ndarray, q_start: int) -> np.ndarray:
+    """``(Q,)`` bool: states reachable from ``q_start`` in the (compact-label) transition table."""
+    seen = np.zeros(trans.shape[0], dtype=bool)
+    seen[q_start] = True
+    frontier = [q_start]
+    while frontier:
+        nxt = np.unique(trans[frontier].ravel())
+        nxt = nxt[~seen[nxt]]
+        seen[nxt] = True
+        frontier = list(nxt)
+    return seen
+
+
+def build_ltl_heuristic(
+    graph: CellGraph,
+    cell_label: np.ndarray,
+    trans: np.ndarray,
+    accepting: np.ndarray,
+    q_start: int,
+    reachable: np.ndarray | None = None,
+) -> LtlHeuristic:
+    """Tabulate h_LTL for the states reachable from ``q_start``.
+
+    Parameters
+    ----------
+    graph:
+        the cell graph searched.
+    cell_label:
+        ``(N,)`` compact label id of every cell (every id ``0 .. L-1`` occurs).
+    trans:
+        ``(Q, L)`` next state per compact label.
+    accepting:
+        ``(Q,)`` bool.
+    q_start:
+        the automaton state at the start cell.
+    reachable:
+        optional ``(N,)`` bool, the cells reachable from the start: label regions are restricted to them
+        (the search never leaves them), which tightens h and makes it ``inf`` when a needed label occurs
+        only elsewhere.
+    """
+    num_states, num_labels = trans.shape
+    accepting = np.asarray(accepting, dtype=bool)
+    states = np.flatnonzero(reachable_states(trans, q_start) & ~accepting)
+    leaves = trans[states] != states[:, None]
+    needed = np.flatnonzero(leaves.any(axis=0))
+
+    # Exact distance to each needed label region, and region-to-region lower bounds.
+    cells = np.flatnonzero(reachable) if reachable is not None else np.arange(graph.num_cells)
+    cells = cells[np.argsort(cell_label[cells], kind="stable")]
+    counts = np.bincount(cell_label[cells], minlength=num_labels)
+    starts = np.concatenate([[0], np.cumsum(counts)])
+    dist = np.empty((len(needed), graph.num_cells), dtype=np.float64)
+    for i, label in enumerate(needed):
+        dist[i] = graph.distances(cells[starts[label] : starts[label + 1]])
+    nonempty = np.flatnonzero(counts > 0)
+    slot = np.full(num_labels, -1)
+    slot[nonempty] = np.arange(len(nonempty))
+    present = np.flatnonzero(counts[needed] > 0)
+    region_cost = np.full((len(needed), len(needed)), np.inf)
+    for j in range(len(needed)):
+        if present.size:
+            per_label = np.minimum.reduceat(dist[j][cells], starts[nonempty])
+            region_cost[present, j] = per_label[slot[needed[present]]]
+    to_go = _backward_costs(trans, accepting, needed, region_cost)
+
+    q_row = np.full(num_states, -1, dtype=np.int32)
+    rows = []
+    for q in states:
+        h = np.full(graph.num_cells, np.inf)
+        for i, label in enumerate(needed):
+            nq = trans[q, label]
+            if nq != q and np.isfinite(to_go[i, nq]):
+                np.minimum(h, dist[i] + to_go[i, nq], out=h)
+        if np.isfinite(h).any():
+            q_row[q] = len(rows)
+            rows.append(h)
+    hmap = np.stack(rows) if rows else np.zeros((0, graph.num_cells))
+    return LtlHeuristic(q_row=q_row, hmap=hmap, accepting=accepting, leaving_labels=needed)
+
+
+def _backward_costs(
+    trans: np.ndarray, accepting: np.ndarray, needed: np.ndarray, region_cost: np.ndarray
+) -> np.ndarray:
+    """``G[i, q]`` of the module docstring for ``l = needed[i]``: Dijkstra backwards over (label, state)."""
+    num_states = trans.shape[0]
+    to_go = np.full((len(needed), num_states), np.inf)
+    to_go[:, accepting] = 0.0
+    heap = [(0.0, i, int(q)) for q in np.flatnonzero(accepting) for i in range(len(needed))]
+    heapq.heapify(heap)
+    all_states = np.arange(num_states)
+    while heap:
+        value, i, q = heapq.heappop(heap)
+        if value > to_go[i, q]:
+            continue
+        # States p that leave for q on label needed[i]: G(l, p) <= c(l, needed[i]) + G(needed[i], q).
+        preds = np.flatnonzero((trans[:, needed[i]] == q) & (all_states != q) & ~accepting)
+        for p in preds:
+            candidate = region_cost[:, i] + value
+            better = np.flatnonzero(candidate < to_go[:, p])
+            to_go[better, p] = candidate[better]
+            for j in better:
+                heapq.heappush(heap, (float(candidate[j]), int(j), int(p)))
+    return to_go

@@ -1,0 +1,92 @@
+"""A planning problem: scene, grid, labels, automaton, start, semantics profile, optional LLM guidance."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from sgplan.errors import PlanningError
+from sgplan.logic.automaton import Automaton
+from sgplan.scene.grid import OccupancyGrid
+from sgplan.scene.model import Building
+
+if TYPE_CHECKING:
+    from sgplan.planning.domain import PlanningDomain
+
+PROFILES = ("ltlf", "authors")
+"""``ltlf``: the start cell's label is read (q_start = T(initial, label(start))); ``authors``: it is not
+(q_start = initial), as in the authors' planner. Missing-edge behaviour is the automaton table's."""
+
+
+@dataclass(eq=False)
+class PlanningProblem:
+    """Everything one planning query needs.
+
+    Attributes
+    ----------
+    building:
+        the scene graph (rooms, objects, door cells); used by the object/room levels and h_LLM.
+    grid:
+        the occupancy grid the path moves on.
+    labels:
+        ``(floors, rows, cols)`` integer bitmasks; bit ``i`` = ``automaton.aps[i]`` holds at the cell.
+    automaton:
+        the mission DFA (complete table).
+    start:
+        ``(row, col, floor)`` start cell.
+    profile:
+        ``"ltlf"`` (default) or ``"authors"``, see :data:`PROFILES`.
+    guidance:
+        optional LLM guidance ``{room_uuid: {q: [call strings]}}`` (llm_heuristic.yaml content).
+    reach_radius_m:
+        radius (metres) defining the object level's "object reached" regions.
+    ap_descriptions:
+        optional names for messages, e.g. ``{"p1": "enter(room_2)"}``.
+    """
+
+    building: Building
+    grid: OccupancyGrid
+    labels: np.ndarray
+    automaton: Automaton
+    start: tuple[int, int, int]
+    profile: str = "ltlf"
+    guidance: Mapping | None = None
+    reach_radius_m: float = 0.6
+    ap_descriptions: Mapping[str, str] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if self.profile not in PROFILES:
+            raise PlanningError(f"unknown semantics profile {self.profile!r}; use one of {', '.join(PROFILES)}")
+        if tuple(self.labels.shape) != tuple(self.grid.shape):
+            raise PlanningError(
+                f"label raster has shape {tuple(self.labels.shape)}, the grid {tuple(self.grid.shape)} "
+                "(floors, rows, cols); build both from the same building"
+            )
+        if not np.issubdtype(self.labels.dtype, np.integer):
+            raise PlanningError(f"label raster must hold integer bitmasks, got dtype {self.labels.dtype}")
+        if not (np.isfinite(self.reach_radius_m) and self.reach_radius_m > 0):
+            raise PlanningError(f"reach radius must be a positive number of metres, got {self.reach_radius_m}")
+        self.start = tuple(int(v) for v in self.start)  # type: ignore[assignment]
+
+    def ap_name(self, index: int) -> str:
+        """Readable name of the automaton's proposition ``index``."""
+        ap = self.automaton.aps[index]
+        described = self.ap_descriptions.get(ap)
+        return f"{ap} ({described})" if described and described != ap else ap
+
+    @cached_property
+    def domain(self) -> PlanningDomain:
+        """The precomputed planning domain (built on first use, then shared by every plan call).
+
+        Raises
+        ------
+        PlanningError
+            ``status="invalid-start"`` or ``status="infeasible"``, see :func:`build_domain`.
+        """
+        from sgplan.planning.domain import build_domain
+
+        return build_domain(self)

@@ -1,0 +1,138 @@
+"""The planning domain: start validation, infeasibility reasons, cell graph, composite actions."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from sgplan.errors import PlanningError
+from sgplan.planning import PlanningProblem
+from sgplan.planning._search import ACT_MAP, successors
+from sgplan.planning.amra import path_cost
+from sgplan.planning.domain import MAP_FLOOR_DOWN, MAP_FLOOR_UP
+from sgplan.scene.distances import grid_distances
+from sgplan.scene.grid import StairsLink
+from sgplan.scene.model import CatCode
+
+from .instances import RES, automaton, marks, open_building, open_grid, random_problem
+
+
+def _problem(start, formula="F p0", floors=1, stairs=(), grid=None, building=None, **kw) -> PlanningProblem:
+    building = building or open_building(floors)
+    grid = grid or open_grid(building, stairs)
+    labels = marks(grid.shape, {0: [(2, 10, 0)], 1: [(0, 0, 0)]})
+    return PlanningProblem(building, grid, labels, automaton(formula, ("p0", "p1")), start, **kw)
+
+
+def _status(problem: PlanningProblem) -> PlanningError:
+    with pytest.raises(PlanningError) as info:
+        problem.domain  # noqa: B018 - building the domain validates
+    return info.value
+
+
+def test_start_outside_grid() -> None:
+    error = _status(_problem((9, 0, 0)))
+    assert error.status == "invalid-start" and "outside the grid" in str(error)
+
+
+def test_start_in_inflated_region_names_clearance() -> None:
+    building = open_building()
+    building.floors[0].cat_map[0, 5] = CatCode.WALL
+    grid = open_grid(building)
+    grid = type(grid)(**{**grid.__dict__, "robot_radius_m": 0.25})
+    grid.traversable[0, 0:3, 3:8] = False  # the wall at (0, 5) inflated by 0.25 m
+    error = _status(_problem((1, 5, 0), grid=grid, building=building))
+    assert error.status == "invalid-start"
+    assert "0.100 m away" in str(error) and "robot radius 0.25 m" in str(error)
+    error = _status(_problem((0, 5, 0), grid=grid, building=building))
+    assert "not free ground (wall)" in str(error)
+
+
+def test_start_label_leading_to_sink_names_propositions() -> None:
+    error = _status(_problem((0, 0, 0), formula="G !p1 & F p0", ap_descriptions={"p1": "enter(room_7)"}))
+    assert error.status == "invalid-start" and "p1 (enter(room_7))" in str(error)
+    assert _problem((0, 0, 0), formula="G !p1 & F p0", profile="authors").domain.q_start == 0
+
+
+def test_unreachable_proposition_is_infeasible() -> None:
+    building = open_building(2)
+    problem = PlanningProblem(
+        building, open_grid(building), marks((2, 5, 12), {0: [(2, 10, 1)]}), automaton("F p0", ("p0",)), (2, 0, 0)
+    )
+    error = _status(problem)
+    assert error.status == "infeasible" and "p0 never holds on a cell reachable" in str(error)
+
+
+def test_bad_inputs() -> None:
+    with pytest.raises(PlanningError, match="profile"):
+        _problem((2, 0, 0), profile="strict")
+    building = open_building()
+    with pytest.raises(PlanningError, match="shape"):
+        PlanningProblem(building, open_grid(building), np.zeros((1, 2, 2), np.uint32), automaton("F p0", ("p0",)), (0, 0, 0))
+    labels = np.full((1, 5, 12), 4, np.uint32)
+    error = _status(PlanningProblem(building, open_grid(building), labels, automaton("F p0", ("p0",)), (0, 0, 0)))
+    assert "bitmask 4" in str(error)
+
+
+def test_cell_graph_distances_match_scene_dijkstra() -> None:
+    problem = random_problem(23)
+    graph = problem.domain.graph
+    source = problem.domain.start_cell
+    ours = graph.distances(np.array([source]))
+    theirs = grid_distances(problem.grid, [problem.start])
+    floor, row, col = graph.cell_floor, graph.cell_row, graph.cell_col
+    assert np.allclose(ours, theirs[floor, row, col], rtol=0, atol=1e-9, equal_nan=False)
+
+
+def test_floor_actions_take_the_stairs() -> None:
+    link = StairsLink(lower_floor=0, lower_cell=(2, 6), upper_cell=(2, 6), cost_m=4.0)
+    problem = _problem((2, 0, 0), floors=2, stairs=(link,))
+    domain = problem.domain
+    kinds = {m.kind for m in domain.maps}
+    assert {MAP_FLOOR_UP, MAP_FLOOR_DOWN} <= kinds
+    edges = _edges(domain, domain.start_cell, domain.q_start, level=4)
+    ((end, _, cost, code),) = edges
+    assert domain.graph.cell_floor[end] == 1 and cost == pytest.approx(6 * RES + 4.0)
+    cells = domain.action_cells(code - ACT_MAP, domain.start_cell, end)
+    assert len(cells) == 7 and domain.graph.cell_floor[cells[-1]] == 1
+
+
+def _edges(domain, cell, q, level=0, max_level=4):
+    n_buf = 64
+    out = (np.empty(n_buf, np.int64), np.empty(n_buf, np.int64), np.empty(n_buf), np.empty(n_buf, np.int32))
+    n = successors(domain.kgraph, domain.kactions, domain.kmaps, domain.klogic, cell, q, level, max_level, *out)
+    return [(int(out[0][i]), int(out[1][i]), float(out[2][i]), int(out[3][i])) for i in range(n)]
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.integers(0, 2**31 - 1))
+def test_composite_actions_are_exact_move_sequences(seed: int) -> None:
+    """Every composite action replays as legal moves whose cost is the action's cost, the automaton run
+    over them gives the action's q, and (when not cut short by acceptance) it is a shortest path."""
+    problem = random_problem(seed, guidance="none")
+    try:
+        domain = problem.domain
+    except PlanningError:
+        return
+    rng = np.random.default_rng(seed)
+    graph = domain.graph
+    for cell in rng.integers(graph.num_cells, size=30):
+        q = int(rng.integers(domain.num_states))
+        for end, nq, cost, code in _edges(domain, int(cell), q):
+            if code < ACT_MAP:
+                continue
+            k = code - ACT_MAP
+            cells = np.array([cell, *domain.action_cells(k, int(cell), end)])
+            assert path_cost(domain, cells) == pytest.approx(cost, abs=1e-9)
+            steps = np.abs(np.diff(np.stack([graph.cell_row[cells], graph.cell_col[cells]]), axis=1)).max(axis=0)
+            same_floor = np.diff(graph.cell_floor[cells]) == 0
+            assert np.all(steps[same_floor] == 1)
+            run = q
+            for c in cells[1:]:
+                run = int(domain.trans[run, domain.cell_label[c]])
+            assert run == nq
+            if not domain.accepting[nq] and domain.maps[k].kind not in (MAP_FLOOR_UP, MAP_FLOOR_DOWN):
+                sources = domain.kactions.map_src[domain.kactions.map_src_ptr[k] : domain.kactions.map_src_ptr[k + 1]]
+                assert cost == pytest.approx(graph.distances(sources)[cell], abs=1e-9)
