@@ -1,8 +1,7 @@
-"""Load one shipped Gibson mission (authors' folder format) as a :class:`PlanningProblem`.
+"""The shipped Gibson missions as planning problems, and their reference optima.
 
-A small test/benchmark helper: scene folder + missions/<k>/{automaton.aut, ap_desc.yaml,
-llm_heuristic.yaml} + radius_config.bash + initial_positions.yaml. The product's own mission loader
-lives with the CLI; this keeps the planner's tests independent of it.
+Built with the product's own loaders (:func:`sgplan.mission.load_mission_folder`,
+:func:`sgplan.pipeline.make_problem`); used by the tests and benchmarks/planning_gibson.py.
 """
 
 from __future__ import annotations
@@ -10,15 +9,11 @@ from __future__ import annotations
 from functools import lru_cache
 from pathlib import Path
 
-import yaml
-
-from sgplan.logic.hoa import read_hoa
+from sgplan.mission import load_mission_folder
+from sgplan.pipeline import make_problem
 from sgplan.planning import PlanningProblem
 from sgplan.scene.authors import load_authors_scene
-from sgplan.scene.grid import build_occupancy_grid
-from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building
-from sgplan.scene.grid import OccupancyGrid
 
 # Optimal costs (m) under the authors profile, reference-algorithm.md §11 "stay" column; None = no path.
 STAY_COSTS: dict[tuple[str, int], tuple[float | None, ...]] = {
@@ -36,37 +31,12 @@ STAY_COSTS: dict[tuple[str, int], tuple[float | None, ...]] = {
 
 
 @lru_cache(maxsize=4)
-def scene(root: Path, name: str) -> tuple[Building, OccupancyGrid]:
-    """The building and its occupancy grid at the scene's own robot radius."""
-    building = load_authors_scene(root / name)
-    return building, build_occupancy_grid(building, building.robot_radius_m or 0.0)
+def scene(root: Path, name: str) -> Building:
+    return load_authors_scene(root / name)
 
 
 def load_case(root: Path, name: str, mission: int, start_index: int, profile: str = "authors") -> PlanningProblem:
     """The planning problem of ``name`` mission ``mission`` from initial position ``start_index``."""
-    building, grid = scene(root, name)
-    folder = root / name / "missions" / str(mission)
-    automaton = read_hoa(folder / "automaton.aut", profile=profile)
-    desc = yaml.safe_load((folder / "ap_desc.yaml").read_text())
-    reach = building.reach_radius_m or 0.6
-    props = []
-    for ap in automaton.aps:
-        entry = desc[ap]
-        if entry["type"] == "kEnterRoom":
-            props.append(Proposition("enter", int(entry["uuid"])))
-        else:
-            radius = float(entry.get("reach_distance", -1.0))
-            props.append(Proposition("reach", int(entry["uuid"]), radius if radius > 0 else None))
-    labels = label_raster(building, props, reach)
-    guidance = yaml.safe_load((folder / "llm_heuristic.yaml").read_text())
-    return PlanningProblem(
-        building=building,
-        grid=grid,
-        labels=labels,
-        automaton=automaton,
-        start=tuple(building.initial_cells[start_index]),
-        profile=profile,
-        guidance=guidance,
-        reach_radius_m=reach,
-        ap_descriptions={ap: p.name for ap, p in zip(automaton.aps, props)},
-    )
+    building = scene(root, name)
+    loaded = load_mission_folder(root / name / "missions" / str(mission), profile=profile)
+    return make_problem(building, loaded, building.initial_cells[start_index], profile=profile).problem

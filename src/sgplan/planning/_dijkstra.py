@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from sgplan.planning._heap import heap_grow, heap_pop, heap_push
+from sgplan.heap import heap_grow, heap_pop, heap_push
 
 
 @njit(cache=True)

@@ -19,7 +19,7 @@ import numpy as np
 from numba import njit
 
 from sgplan.planning._dijkstra import dijkstra, label_runs
-from sgplan.planning._heap import heap_pop, heap_push
+from sgplan.heap import heap_pop, heap_push
 
 FOUND, EXHAUSTED, BUDGET, GROW = 0, 1, 2, 3
 ACT_STAIRS = 8

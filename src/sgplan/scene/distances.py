@@ -15,54 +15,11 @@ import numpy as np
 from numba import njit
 
 from sgplan.errors import PlanningError
+from sgplan.heap import heap_grow, heap_pop, heap_push
 from sgplan.scene.grid import OccupancyGrid
 
 GridCell3 = tuple[int, int, int]
 """A cell ``(row, col, floor)``, the order used by the authors' start positions."""
-
-
-@njit(cache=True)
-def _heap_push(keys, values, size, key, value):
-    if size == keys.shape[0]:
-        new_keys = np.empty(2 * size, dtype=keys.dtype)
-        new_values = np.empty(2 * size, dtype=values.dtype)
-        new_keys[:size] = keys
-        new_values[:size] = values
-        keys, values = new_keys, new_values
-    i = size
-    while i > 0:
-        parent = (i - 1) >> 1
-        if keys[parent] <= key:
-            break
-        keys[i] = keys[parent]
-        values[i] = values[parent]
-        i = parent
-    keys[i] = key
-    values[i] = value
-    return keys, values, size + 1
-
-
-@njit(cache=True)
-def _heap_pop(keys, values, size):
-    top_key, top_value = keys[0], values[0]
-    size -= 1
-    key, value = keys[size], values[size]
-    i = 0
-    while True:
-        child = 2 * i + 1
-        if child >= size:
-            break
-        if child + 1 < size and keys[child + 1] < keys[child]:
-            child += 1
-        if key <= keys[child]:
-            break
-        keys[i] = keys[child]
-        values[i] = values[child]
-        i = child
-    if size > 0:
-        keys[i] = key
-        values[i] = value
-    return top_key, top_value, size
 
 
 @njit(cache=True)
@@ -72,19 +29,23 @@ def _dijkstra(traversable, rows, cols, sources, res_x, res_y, link_a, link_b, li
     plane = rows * cols
     dist = np.full(n, np.inf)
     done = np.zeros(n, dtype=np.bool_)
-    keys = np.empty(1024, dtype=np.float64)
-    values = np.empty(1024, dtype=np.int64)
+    keys = np.empty(1024 + sources.shape[0], dtype=np.float64)
+    ties = np.zeros(keys.shape[0], dtype=np.float64)
+    values = np.empty(keys.shape[0], dtype=np.int64)
     size = 0
     for s in sources:
         if dist[s] > 0.0:
             dist[s] = 0.0
-            keys, values, size = _heap_push(keys, values, size, 0.0, s)
+            size = heap_push(keys, ties, values, size, 0.0, 0.0, s)
     diagonal = np.sqrt(res_x * res_x + res_y * res_y)
     while size > 0:
-        d, cell, size = _heap_pop(keys, values, size)
+        d, cell = keys[0], values[0]
+        size = heap_pop(keys, ties, values, size)
         if done[cell]:
             continue
         done[cell] = True
+        if size + 8 + link_a.shape[0] > keys.shape[0]:
+            keys, ties, values = heap_grow(keys, ties, values, size)
         rem = cell % plane
         r = rem // cols
         c = rem % cols
@@ -105,7 +66,7 @@ def _dijkstra(traversable, rows, cols, sources, res_x, res_y, link_a, link_b, li
                 nd = d + step
                 if nd < dist[nxt]:
                     dist[nxt] = nd
-                    keys, values, size = _heap_push(keys, values, size, nd, nxt)
+                    size = heap_push(keys, ties, values, size, nd, 0.0, nxt)
         for k in range(link_a.shape[0]):
             if link_a[k] == cell:
                 other = link_b[k]
@@ -116,7 +77,7 @@ def _dijkstra(traversable, rows, cols, sources, res_x, res_y, link_a, link_b, li
             nd = d + link_cost[k]
             if not done[other] and nd < dist[other]:
                 dist[other] = nd
-                keys, values, size = _heap_push(keys, values, size, nd, other)
+                size = heap_push(keys, ties, values, size, nd, 0.0, other)
     return dist
 
 

@@ -1,4 +1,4 @@
-"""Binary min-heaps on plain arrays, for numba-compiled searches.
+"""Binary min-heaps on plain arrays, shared by the numba-compiled searches (grid Dijkstra, AMRA*).
 
 An entry is ``(key, tie, value)``: entries are ordered by ``key`` ascending and, on equal keys, by
 ``tie`` DESCENDING (the searches pass ``g`` as tie, so among equal ``f`` the deeper state comes first,
