@@ -12,6 +12,7 @@ from pathlib import Path
 
 import pytest
 
+from sgplan import files as files_module
 from sgplan.errors import LLMError
 from sgplan.llm import cache as cache_module
 from sgplan.llm.cache import CachedChatBackend, ChatCache, cache_key, cache_request, open_chat_backend
@@ -176,7 +177,7 @@ def test_interrupted_write_leaves_no_entry(
         written.append(Path(src).read_text(encoding="utf-8"))  # the temp file was fully written...
         raise failure  # ...but the process fails before it is moved into place
 
-    monkeypatch.setattr(cache_module.os, "replace", failing_replace)
+    monkeypatch.setattr(files_module.os, "replace", failing_replace)
     expected = LLMError if isinstance(failure, OSError) else KeyboardInterrupt
     with pytest.raises(expected):
         cache.put(GOLDEN_KEY, request, result(), endpoint="test")
@@ -191,9 +192,10 @@ def test_crash_between_write_and_rename_leaves_no_entry(tmp_path: Path) -> None:
     code = textwrap.dedent(
         f"""
         import os
+        from sgplan import files
         from sgplan.llm import cache as cache_module
         from sgplan.llm.client import ChatResult
-        cache_module.os.replace = lambda src, dst: os._exit(17)
+        files.os.replace = lambda src, dst: os._exit(17)
         request = cache_module.cache_request({MODEL!r}, {MESSAGES!r}, {PARAMS!r})
         cache = cache_module.ChatCache({str(tmp_path)!r})
         cache.put({GOLDEN_KEY!r}, request, ChatResult("x", "m"), endpoint="t")

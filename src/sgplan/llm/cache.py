@@ -20,8 +20,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
-import tempfile
 import threading
 from collections.abc import Sequence
 from datetime import datetime, timezone
@@ -29,6 +27,7 @@ from pathlib import Path
 from typing import Any, Literal, get_args
 
 from sgplan.errors import LLMError
+from sgplan.files import write_text_atomically
 from sgplan.llm.client import (
     ChatBackend,
     ChatResult,
@@ -125,25 +124,10 @@ class ChatCache:
         path = self.path(key)
         try:
             self.directory.mkdir(parents=True, exist_ok=True)
-            _write_atomically(path, text)
+            write_text_atomically(path, text)
         except OSError as exc:
             raise LLMError(f"{path}: cannot write LLM cache entry ({one_line(exc)})") from None
         return path
-
-
-def _write_atomically(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` so that readers see either no file or the whole file."""
-    fd, tmp_name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem[:16]}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as tmp:
-            tmp.write(text)
-            tmp.flush()
-            os.fsync(tmp.fileno())
-        os.replace(tmp_name, path)
-    except BaseException:
-        # Any failure (disk full, interrupt) before the rename: drop the partial temporary file.
-        Path(tmp_name).unlink(missing_ok=True)
-        raise
 
 
 def _result_to_json(result: ChatResult) -> dict[str, Any]:
