@@ -108,6 +108,15 @@ def test_remaining_mission_keeps_order_and_negations():
     assert remaining_mission(dfa, accepting).steps == ()
 
 
+def test_remaining_mission_does_not_ask_to_avoid_a_room_left_behind():
+    # Rooms exclude each other: entering p2 means p1 is false, but p1 is not a room to avoid.
+    dfa = ltlf_to_dfa(parse_infix("F(p1 & F p2) & G !p3 & G !(p1 & p2)"))
+    after_p1 = dfa.step(dfa.initial, dfa.label_of(["p1"]))
+    rest = remaining_mission(dfa, after_p1)
+    assert "p1" in rest.steps[-1].must_not_hold
+    assert rest.to_make_true == (frozenset({"p2"}),) and rest.to_keep_false == {"p3"}
+
+
 def test_dot_export():
     dfa = ltlf_to_dfa(MISSION)
     text = to_dot(dfa)

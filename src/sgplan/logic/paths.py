@@ -41,21 +41,20 @@ class MissionStep:
 
 @dataclass(frozen=True)
 class RemainingMission:
-    """What is left to do from a state, read off a shortest (unit-weight) path to acceptance."""
+    """What is left to do from a state, read off a shortest (unit-weight) path to acceptance.
+
+    ``to_keep_false``: the propositions that lead to a dead state, whatever else holds, from every state
+    of that path (e.g. the rooms to avoid). A proposition that is merely false on the path's transitions
+    -- a room the robot is not in because it is entering another -- is not in it.
+    """
 
     steps: tuple[MissionStep, ...]
+    to_keep_false: frozenset[str] = frozenset()
 
     @property
     def to_make_true(self) -> tuple[frozenset[str], ...]:
         """Per step, in order, the propositions that must become true (empty sets dropped)."""
         return tuple(s.must_hold for s in self.steps if s.must_hold)
-
-    @property
-    def to_keep_false(self) -> frozenset[str]:
-        """Propositions false at every step of the path (e.g. the rooms to avoid)."""
-        if not self.steps:
-            return frozenset()
-        return frozenset.intersection(*(s.must_not_hold for s in self.steps))
 
 
 def _weights(a: Automaton, weights: np.ndarray | None) -> np.ndarray:
@@ -134,7 +133,8 @@ def remaining_mission(a: Automaton, state: int) -> RemainingMission | None:
     """The propositions to make true (in order) and to keep false from ``state`` to acceptance.
 
     Read off a shortest unit-weight path; for each of its transitions, the propositions true (false) in
-    every label that takes it. ``None`` if ``state`` is a sink; no steps if it is accepting.
+    every label that takes it; see :class:`RemainingMission` for ``to_keep_false``. ``None`` if ``state``
+    is a sink; no steps if it is accepting.
     """
     path = shortest_path(a, state)
     if path is None:
@@ -146,4 +146,16 @@ def remaining_mission(a: Automaton, state: int) -> RemainingMission | None:
         always_on = int(np.bitwise_and.reduce(members)) if members.size else 0
         always_off = full & ~int(np.bitwise_or.reduce(members)) if members.size else 0
         steps.append(MissionStep(q, r, a.props_of(always_on), a.props_of(always_off)))
-    return RemainingMission(tuple(steps))
+    return RemainingMission(tuple(steps), _forbidden(a, path.states[:-1] or path.states))
+
+
+def _forbidden(a: Automaton, states: tuple[int, ...]) -> frozenset[str]:
+    """Propositions whose every label leads to a dead state from each of ``states``."""
+    live = a.live_states()
+    labels = np.arange(a.num_labels)
+    keep = np.ones(len(a.aps), dtype=bool)
+    for s in states:
+        dead = ~live[a.table[s]]
+        for i in np.flatnonzero(keep):
+            keep[i] = bool(dead[(labels >> i) & 1 == 1].all())
+    return frozenset(a.aps[i] for i in np.flatnonzero(keep))
