@@ -332,7 +332,7 @@ def _action_maps(
     problem: PlanningProblem, graph: CellGraph, rooms: list, cell_room: np.ndarray
 ) -> tuple[list[ActionMap], KernelActions, np.ndarray]:
     """The composite action families and their per-room / per-floor tables for the kernel."""
-    building, grid = problem.building, problem.grid
+    grid = problem.grid
     floors = graph.shape[0]
     room_index = {room.id: i for i, room in enumerate(rooms)}
     room_cells = np.bincount(cell_room[cell_room >= 0], minlength=len(rooms))
