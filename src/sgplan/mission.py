@@ -229,6 +229,18 @@ def read_guidance(path: str | Path) -> Guidance:
     return {room: (states or {}) for room, states in doc.items()}
 
 
+def write_guidance(guidance: Mapping[Any, Mapping[Any, Sequence[str]]], path: str | Path) -> Path:
+    """Write ``guidance`` as the authors' ``llm_heuristic.yaml`` (integer keys, lists of call strings)."""
+    path = Path(path)
+    plain = {int(r): {int(q): list(calls) for q, calls in states.items()} for r, states in guidance.items()}
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(yaml.safe_dump(plain, sort_keys=True), encoding="utf-8")
+    except OSError as exc:
+        raise MissionError(f"cannot write the guidance ({exc.strerror or exc})", path) from None
+    return path
+
+
 def load_mission_folder(path: str | Path, profile: str = "ltlf", guidance: bool = True) -> Mission:
     """Load a mission folder in the authors' layout (see the module docstring).
 
@@ -322,6 +334,5 @@ def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str 
         if value is not None:
             (folder / name).write_text(value.rstrip("\n") + "\n", encoding="utf-8")
     if mission.guidance is not None:
-        plain = {int(r): {int(q): list(calls) for q, calls in states.items()} for r, states in mission.guidance.items()}
-        (folder / "llm_heuristic.yaml").write_text(yaml.safe_dump(plain, sort_keys=True), encoding="utf-8")
+        write_guidance(mission.guidance, folder / "llm_heuristic.yaml")
     return folder

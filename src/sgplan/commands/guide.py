@@ -1,0 +1,58 @@
+"""``sgplan guide``: room-level guidance (llm_heuristic.yaml) for a mission folder.
+
+``--llm openai:MODEL`` asks a language model for every room x automaton state and keeps only the calls
+that the scene graph allows; ``--llm offline`` (the default) uses the symbolic guide, which is not a
+language model. The run record of the LLM calls goes beside the output (``llm_guidance_record.json``).
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from sgplan.commands.common import add_scene_arguments, load_scene_arg, say
+from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
+
+RECORD_NAME = "llm_guidance_record.json"
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("guide", help="write room-level guidance (llm_heuristic.yaml) for a mission folder")
+    add_scene_arguments(parser)
+    parser.add_argument("--mission-dir", required=True, metavar="DIR", help="mission folder (automaton.aut, ap_desc.yaml)")
+    parser.add_argument("--out", metavar="FILE", help="where to write (default: DIR/llm_heuristic.yaml)")
+    parser.add_argument("--profile", choices=("ltlf", "authors"), default="ltlf",
+                        help="how automaton.aut's missing edges are read (as for sgplan plan; default ltlf)")
+    add_llm_arguments(parser)
+    parser.add_argument("--max-concurrency", type=int, default=4, metavar="N", help="LLM calls in flight (default 4)")
+    parser.add_argument("--rpm", type=float, metavar="R", help="at most R LLM requests per minute (hosted APIs)")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from sgplan.mission import write_guidance
+    from sgplan.mission import load_mission_folder
+
+    building = load_scene_arg(args.scene, args.data)
+    mission = load_mission_folder(args.mission_dir, profile=args.profile, guidance=False)
+    mission.check_scene(building)
+    options = {} if args.llm == "offline" else {"max_concurrency": args.max_concurrency,
+                                                "requests_per_minute": args.rpm,
+                                                "mission_text": mission.grounded_text}
+    backends = open_backends_from_args(args, **options)
+    say(f"guidance from {backends.guide.name} ({backends.description})")
+    guidance = backends.guide.guide(building, mission.automaton, mission.descriptions)
+    out = Path(args.out) if args.out else Path(args.mission_dir) / "llm_heuristic.yaml"
+    write_guidance(guidance, out)
+    entries = sum(len(states) for states in guidance.values())
+    print(f"wrote {out}: {entries} entries for {len(guidance)} rooms x {mission.automaton.num_states} automaton states")
+    report = getattr(backends.guide, "report", None)
+    if backends.chat is not None and report is not None:
+        summary = backends.record.to_json()["summary"]
+        print(f"LLM: {report.asked} entries asked ({summary['from_cache']} from the cache), {report.skipped} with "
+              f"nothing left to do, {report.failed} failed; calls kept {report.calls_kept}, dropped {report.calls_dropped}")
+        for reason in report.reasons[:5]:
+            say(f"  dropped: {reason}")
+        record_path = backends.record.save(out.parent / RECORD_NAME)
+        print(f"wrote the LLM run record {record_path}")
+    return 0

@@ -1,0 +1,140 @@
+"""``sgplan translate`` and ``sgplan guide``: offline and against the scripted server, record then replay,
+one-line errors, and the interactive request to rephrase."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+from pathlib import Path
+
+import pytest
+import yaml
+
+from sgplan.cli import main
+from sgplan.commands import translate
+
+from .fake_openai_server import RecordedRequest
+
+TEXT = "Visit the bathroom on floor 0, then the dining room. Always avoid the kitchen."
+GROUNDED = "Visit room_5, then room_7. Always avoid room_4."
+TOKENS = "['AND', 'EVENTUALLY', 'AND', 'enter(room_5)', 'EVENTUALLY', 'enter(room_7)', 'ALWAYS', 'NOT', 'enter(room_4)']"
+
+
+def demo_model(request: RecordedRequest) -> str:
+    """A well-behaved model for the demo building, answering by prompt kind."""
+    system = request.messages[0]["content"]
+    if system.startswith("You rewrite a robot's mission"):
+        return json.dumps({"grounded": GROUNDED, "problems": []})
+    if system.startswith("You translate a robot's mission"):
+        return TOKENS
+    room = re.search(r"You are in room_(\d+)\.", request.last_user_message).group(1)
+    return f"<command>move(room_{room}, room_2)</command>"  # valid only where room_2 is a neighbour
+
+
+@pytest.fixture(autouse=True)
+def _clean_llm_env(monkeypatch: pytest.MonkeyPatch) -> None:
+    for name in ("OPENAI_BASE_URL", "SGPLAN_LLM_CONFIG", "OPENAI_API_KEY", "SGPLAN_LLM_API_KEY"):
+        monkeypatch.delenv(name, raising=False)
+
+
+@pytest.fixture
+def llm_args(fake_llm, tmp_path: Path) -> list[str]:
+    config = tmp_path / "llm.yaml"
+    config.write_text(yaml.safe_dump({"timeout_s": 2.0, "max_retries": 1, "backoff_base_s": 0.001,
+                                      "backoff_max_s": 0.01}))
+    return ["--llm", "openai:fake-model", "--base-url", fake_llm.base_url, "--llm-config", str(config)]
+
+
+def test_offline_translate_then_guide(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "mission"
+    assert main(["translate", "--scene", "demo", "--text", TEXT, "--out", str(out)]) == 0
+    printed = capsys.readouterr()
+    assert f"grounded: {GROUNDED}" in printed.out and "offline-pattern" in printed.err
+    assert main(["guide", "--scene", "demo", "--mission-dir", str(out)]) == 0
+    guidance = yaml.safe_load((out / "llm_heuristic.yaml").read_text())
+    assert set(guidance) == {2, 4, 5, 6, 7, 8, 9, 11, 12, 13, 14}
+    assert "offline-symbolic" in capsys.readouterr().err
+
+
+def test_llm_translate_records_then_replays_without_a_server(fake_llm, llm_args, tmp_path: Path,
+                                                             capsys: pytest.CaptureFixture[str]) -> None:
+    fake_llm.respond_with(demo_model)
+    cache, first, second = tmp_path / "cache", tmp_path / "m1", tmp_path / "m2"
+    argv = ["translate", "--scene", "demo", "--text", TEXT, *llm_args, "--cache", str(cache)]
+    assert main([*argv, "--out", str(first)]) == 0
+    assert "2 LLM calls (0 from the cache)" in capsys.readouterr().err
+    fake_llm.respond_with(None)  # any request now fails the test
+    replay = ["translate", "--scene", "demo", "--text", TEXT, "--llm", "openai:fake-model", "--cache", str(cache),
+              "--replay", "--out", str(second)]
+    assert main(replay) == 0
+    assert len(fake_llm.requests) == 2
+    assert (first / "GPT_LTL_formula.txt").read_text() == (second / "GPT_LTL_formula.txt").read_text()
+    assert (second / "automaton.aut").read_text() == (first / "automaton.aut").read_text()
+    record = json.loads((second / "llm_record.json").read_text())
+    assert record["summary"]["from_cache"] == 2 and "replayed from" in record["backend"]
+
+
+def test_llm_guide_writes_guidance_and_its_record(fake_llm, llm_args, tmp_path: Path,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    fake_llm.respond_with(demo_model)
+    out = tmp_path / "mission"
+    assert main(["translate", "--scene", "demo", "--text", TEXT, *llm_args, "--out", str(out)]) == 0
+    assert main(["guide", "--scene", "demo", "--mission-dir", str(out), *llm_args, "--max-concurrency", "2"]) == 0
+    printed = capsys.readouterr().out
+    guidance = yaml.safe_load((out / "llm_heuristic.yaml").read_text())
+    assert guidance[5][0] == ["move(5, 2)"] and guidance[11][0] == []  # room_11 does not connect to room_2
+    assert re.search(r"LLM: 22 entries asked \(0 from the cache\), 11 with nothing left to do, 0 failed; "
+                     r"calls kept 10, dropped 12", printed)
+    record = json.loads((out / "llm_guidance_record.json").read_text())
+    assert record["summary"]["calls"] == 22 and record["calls"][0]["step"] == "guidance"
+
+
+@pytest.mark.parametrize(
+    ("extra", "fragment"),
+    [
+        (["--text", "Visit the bathroom."], "'the bathroom' matches 2 rooms"),
+        (["--text", TEXT, "--llm", "openai:m", "--replay"], "--replay needs the cache"),
+        (["--text", TEXT, "--llm", "gpt4"], "unknown --llm 'gpt4'"),
+        (["--text", TEXT, "--base-url", "http://127.0.0.1:1/v1"], "only apply to a language model"),
+        (["--text", TEXT, "--llm", "openai:m", "--cache", "CACHE", "--replay"], "replay: no recorded LLM call"),
+    ],
+)
+def test_user_errors_are_one_line_exit_2(extra: list[str], fragment: str, tmp_path: Path,
+                                        capsys: pytest.CaptureFixture[str]) -> None:
+    argv = ["translate", "--scene", "demo", "--out", str(tmp_path / "m"),
+            *[str(tmp_path / "cache") if a == "CACHE" else a for a in extra]]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err[-1].startswith("sgplan: error:") and fragment in err[-1] and "Traceback" not in "\n".join(err)
+
+
+def test_server_errors_are_one_line_exit_2(fake_llm, llm_args, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    fake_llm.push_status(500, times=2)
+    assert main(["translate", "--scene", "demo", "--text", TEXT, *llm_args, "--out", str(tmp_path / "m")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()[-1]
+    assert err.startswith("sgplan: error: LLM call to") and "failed after 2 attempts: HTTP 500" in err
+
+
+def test_interactive_rephrasing_after_an_ambiguous_mission(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    parser = argparse.ArgumentParser()
+    translate.register(parser.add_subparsers())
+    args = parser.parse_args(["translate", "--scene", "demo", "--text", "Visit the bathroom.",
+                              "--out", str(tmp_path / "m")])
+    questions: list[str] = []
+    answers = iter(["Visit the bathroom on floor 1."])
+
+    def ask(question: str) -> str:
+        questions.append(question)
+        return next(answers)
+
+    assert translate.run(args, ask=ask) == 0
+    assert len(questions) == 1 and "Rephrase the mission" in questions[0]
+    assert "matches 2 rooms" in capsys.readouterr().err
+    assert (tmp_path / "m" / "NL_instructions.txt").read_text() == "Visit the bathroom on floor 1.\n"
+    # giving up (an empty answer) re-raises the original error
+    args.text = "Visit the bathroom."
+    from sgplan.errors import MissionError
+
+    with pytest.raises(MissionError, match="matches 2 rooms"):
+        translate.run(args, ask=lambda question: "")
