@@ -2,6 +2,6 @@
 
 from __future__ import annotations
 
-from sgplan.commands import demo, guide, inspect, plan, translate
+from sgplan.commands import bench, demo, guide, inspect, plan, translate
 
-REGISTRY = [demo.register, inspect.register, plan.register, translate.register, guide.register]
+REGISTRY = [demo.register, inspect.register, plan.register, translate.register, guide.register, bench.register]

@@ -1,0 +1,208 @@
+"""Executors: run cases, each in its own worker process, locally or on Ray; yield result rows.
+
+Both executors call :func:`run_isolated` for every case, so a case is measured the same way everywhere:
+a fresh ``python -m sgplan.bench.worker`` process (its own peak RSS, crash isolation), killed after the
+per-case wall timeout. An executor's :meth:`run` is a generator of rows in completion order; closing it
+(an interrupt) kills the running workers and records nothing for them.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Iterable, Iterator, Sequence
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from pathlib import Path
+from typing import Any
+
+from sgplan.bench.cases import BenchError, Case
+from sgplan.bench.results import failed_row, make_row
+
+DEFAULT_CASE_TIMEOUT_S = 600.0
+_STDERR_TAIL = 600
+
+
+def worker_command() -> list[str]:
+    """The default worker command on this machine: this interpreter running :mod:`sgplan.bench.worker`."""
+    return [sys.executable, "-m", "sgplan.bench.worker"]
+
+
+def _worker_env() -> dict[str, str]:
+    env = dict(os.environ)
+    # One case per core: keep numeric libraries from starting their own thread pools in each worker.
+    for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
+        env[name] = "1"
+    # The worker must import the same sgplan as this process (also from a source checkout).
+    source = str(Path(__file__).resolve().parents[2])
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, (source, env.get("PYTHONPATH"))))
+    return env
+
+
+def _peak_rss_of(pid: int) -> float | None:
+    """Peak resident memory (MiB) of a live process, from /proc (Linux); ``None`` elsewhere."""
+    try:
+        for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) / 1024.0
+    except (OSError, ValueError, IndexError):
+        pass
+    return None
+
+
+def _death(returncode: int, stderr: str) -> str:
+    if returncode < 0:
+        try:
+            how = f"was killed by signal {signal.Signals(-returncode).name}"
+        except ValueError:
+            how = f"was killed by signal {-returncode}"
+    else:
+        how = f"exited with code {returncode} without a result"
+    tail = stderr.strip()[-_STDERR_TAIL:]
+    return f"the worker process {how}" + (f"; its last output: {tail}" if tail else "")
+
+
+def run_isolated(
+    case: Case,
+    *,
+    timeout_s: float = DEFAULT_CASE_TIMEOUT_S,
+    gallery_dir: str | None = None,
+    command: Sequence[str] | None = None,
+    executor: str = "local",
+    running: set[subprocess.Popen] | None = None,
+    cancel: threading.Event | None = None,
+) -> dict[str, Any]:
+    """Run ``case`` in a fresh worker process and return its result row (never raises for the case).
+
+    Parameters
+    ----------
+    timeout_s:
+        wall seconds after which the worker is killed and the row gets status ``wall-timeout``.
+    command:
+        the worker command (default :func:`worker_command`); it reads the request JSON on stdin and
+        prints the measurements as its last stdout line.
+    running, cancel:
+        for a local executor: the live process is kept in ``running`` while it runs, and killed at once
+        if ``cancel`` is set.
+    """
+    request = json.dumps({"case": case.to_dict(), "gallery_dir": gallery_dir})
+    t0 = time.perf_counter()
+    proc = subprocess.Popen(
+        list(command or worker_command()), stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE, text=True, env=_worker_env(),
+        start_new_session=True,  # a terminal Ctrl-C reaches the sweep, which then stops the workers
+    )
+    if running is not None:
+        running.add(proc)
+    try:
+        if cancel is not None and cancel.is_set():
+            proc.kill()
+        try:
+            stdout, stderr = proc.communicate(request, timeout=timeout_s)
+        except subprocess.TimeoutExpired:
+            rss = _peak_rss_of(proc.pid)
+            proc.kill()
+            proc.communicate()
+            return failed_row(case, "wall-timeout", f"killed after the per-case wall timeout of {timeout_s:g} s",
+                              wall_s=time.perf_counter() - t0, executor=executor, peak_rss_mb=rss)
+    finally:
+        if running is not None:
+            running.discard(proc)
+    wall_s = time.perf_counter() - t0
+    lines = stdout.strip().splitlines()
+    if proc.returncode == 0 and lines:
+        try:
+            measured = json.loads(lines[-1])
+        except json.JSONDecodeError:
+            measured = None
+        if isinstance(measured, dict) and "status" in measured:
+            return make_row(case, measured, wall_s=wall_s, executor=executor)
+    return failed_row(case, "crashed", _death(proc.returncode, stderr), wall_s=wall_s, executor=executor)
+
+
+class LocalExecutor:
+    """Run cases on this machine, ``jobs`` worker processes at a time (default: one per core)."""
+
+    name = "local"
+
+    def __init__(self, jobs: int | None = None, *, timeout_s: float = DEFAULT_CASE_TIMEOUT_S,
+                 gallery_dir: str | None = None, command: Sequence[str] | None = None) -> None:
+        self.jobs = max(1, jobs or os.cpu_count() or 1)
+        self.timeout_s = timeout_s
+        self.gallery_dir = gallery_dir
+        self.command = list(command) if command else None
+
+    def run(self, cases: Iterable[Case]) -> Iterator[dict[str, Any]]:
+        """Rows of ``cases`` as they finish."""
+        running: set[subprocess.Popen] = set()
+        cancel = threading.Event()
+        pool = ThreadPoolExecutor(max_workers=self.jobs, thread_name_prefix="sgplan-bench")
+        futures = [
+            pool.submit(run_isolated, case, timeout_s=self.timeout_s, gallery_dir=self.gallery_dir,
+                        command=self.command, executor=self.name, running=running, cancel=cancel)
+            for case in cases
+        ]
+        try:
+            for future in as_completed(futures):
+                yield future.result()
+        finally:
+            cancel.set()
+            pool.shutdown(wait=False, cancel_futures=True)
+            for proc in list(running):
+                proc.kill()
+            pool.shutdown(wait=True)
+
+
+class RayExecutor:
+    """Run cases as Ray tasks (one CPU each), on a local Ray started with ``jobs`` CPUs or on the cluster
+    at ``address``. Every node needs sgplan installed and the data folder at the same path.
+
+    An already initialised Ray (e.g. ``ray.init(num_cpus=2)`` by the caller) is used as it is.
+    """
+
+    name = "ray"
+
+    def __init__(self, jobs: int | None = None, *, address: str | None = None,
+                 timeout_s: float = DEFAULT_CASE_TIMEOUT_S, gallery_dir: str | None = None,
+                 command: Sequence[str] | None = None) -> None:
+        self.jobs = jobs if jobs or address else os.cpu_count()  # None: whatever the cluster offers
+        self.address = address
+        self.timeout_s = timeout_s
+        self.gallery_dir = gallery_dir
+        self.command = list(command) if command else None
+
+    def run(self, cases: Iterable[Case]) -> Iterator[dict[str, Any]]:
+        """Rows of ``cases`` as they finish."""
+        try:
+            import ray
+        except ImportError:
+            raise BenchError("the Ray executor needs Ray: pip install 'sgplan[ray]'") from None
+        started = not ray.is_initialized()
+        if started:
+            if self.address:
+                ray.init(address=self.address, log_to_driver=False)
+            else:
+                ray.init(num_cpus=self.jobs, include_dashboard=False, log_to_driver=False)
+        task = ray.remote(num_cpus=1, max_retries=0)(run_isolated)
+        pending = {
+            task.remote(case, timeout_s=self.timeout_s, gallery_dir=self.gallery_dir, command=self.command,
+                        executor=self.name): case
+            for case in cases
+        }
+        try:
+            while pending:
+                (ref,), _ = ray.wait(list(pending), num_returns=1)
+                case = pending.pop(ref)
+                try:
+                    yield ray.get(ref)
+                except ray.exceptions.RayError as error:  # the Ray worker or its node died
+                    yield failed_row(case, "crashed", f"the Ray task failed: {error}", wall_s=None, executor=self.name)
+        finally:
+            for ref in pending:
+                ray.cancel(ref, force=True)
+            if started:
+                ray.shutdown()

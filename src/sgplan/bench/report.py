@@ -1,0 +1,93 @@
+"""The sweep report: ``report.md`` (the paper's tables beside ours, excluded cases, checks) and the two
+figures under ``figures/``, written into a results folder."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from sgplan.bench import figures, tables
+from sgplan.bench.results import ResultStore, counts, load_rows, load_sweeps
+
+REPORT_FILE = "report.md"
+FIGURES_DIR = "figures"
+
+
+@dataclass
+class Report:
+    """Files written by :func:`write_report`: the Markdown report, figure files, and the tables' text."""
+
+    markdown: Path
+    figures: list[Path] = field(default_factory=list)
+    table2: str = ""
+    table3: str = ""
+
+
+def write_report(folder: str | Path, rows: Sequence[dict[str, Any]] | None = None) -> Report:
+    """Write ``report.md`` and the figures into ``folder`` from its ``results.jsonl`` (or ``rows``), and
+    refresh ``results.csv`` / ``results.json``. The sweep calls of ``sweeps.jsonl`` are listed with their
+    wall time.
+
+    Raises
+    ------
+    BenchError
+        the folder holds no results.
+    """
+    out = Path(folder).expanduser()
+    if rows is None:
+        rows = load_rows(out)
+        ResultStore(out).export()
+    fig_dir = out / FIGURES_DIR
+    report = Report(markdown=out / REPORT_FILE)
+    case = tables.table2_case(rows)
+    if case is not None:
+        scene, mission = case
+        report.table2 = tables.table2(rows, scene, mission)
+        report.figures += figures.cost_vs_time(rows, scene, mission, fig_dir)
+        start = figures.default_expansion_case(rows, scene, mission)
+        if start is not None:
+            report.figures += figures.expansions_per_iteration(rows, scene, mission, start, fig_dir)
+    report.table3 = tables.table3(rows)
+    compared, disagreements = tables.cost_disagreements(rows)
+    status_counts = ", ".join(f"{n} {s}" for s, n in sorted(counts(rows).items()))
+    profiles = ", ".join(sorted({r["profile"] for r in rows}))
+
+    text = [
+        "# sgplan benchmark report",
+        "",
+        f"{len(rows)} cases ({status_counts}); semantics profile: {profiles}.",
+    ]
+    sweeps = load_sweeps(out)
+    if sweeps:
+        text += ["", "Sweep calls (whole `sgplan bench` run, wall clock):", ""]
+        text += [f"- {s['finished_at']}: {s['ran']} cases run, {s['skipped']} already recorded, "
+                 f"{s['wall_s']:.0f} s wall ({s['executor']} executor, {s['jobs']} jobs)" for s in sweeps]
+    text += [
+        "",
+        "Times are AMRA* search seconds, as in the paper: the first path (1st iteration) and the optimum",
+        "(last iteration), without loading and precomputation, which are shown separately; *case wall* is",
+        "the whole worker process (interpreter start, imports, loading, precomputation, search).",
+        "Means are over the cases that reached the optimum (n); the others are listed under *Excluded cases*.",
+        "",
+    ]
+    if case is not None:
+        text += [f"## Table II - {case[0]} mission {case[1]}, per setup (mean over starts)", "", report.table2, ""]
+    text += [
+        "## Table III - per scene: 1st iter. time (s) / 1st cost ÷ opt. cost / opt. time (s), mean over missions x starts",
+        "", report.table3, "",
+        "## Loading, precomputation, wall time and memory", "", tables.resources_table(rows), "",
+        "## Excluded cases (not in the means)", "", tables.excluded_table(rows), "",
+        "## Cross-check of optimal costs", "",
+        (f"All setups found the same optimal cost in each of the {compared} (scene, mission, start) groups run "
+         "with more than one setup." if not disagreements else
+         f"{len(disagreements)} of {compared} groups disagree:\n\n" + "\n".join(f"- {d}" for d in disagreements)),
+        "",
+    ]
+    if report.figures:
+        text += ["## Figures", ""]
+        text += [f"![{p.stem}]({p.relative_to(out).as_posix()})" for p in report.figures if p.suffix == ".png"]
+        text.append("")
+    report.markdown.write_text("\n".join(text), encoding="utf-8")
+    return report

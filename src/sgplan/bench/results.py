@@ -1,0 +1,190 @@
+"""Benchmark results: the row schema and the append-only store a sweep resumes from.
+
+A sweep's output folder holds ``results.jsonl``: one JSON object per finished case, appended with a
+single ``write`` + ``fsync`` as the case finishes, so an interrupt leaves at most one incomplete last
+line, which is dropped on the next open. ``results.csv`` (the columns of :data:`COLUMNS`) and
+``results.json`` (full rows, with per-iteration records) are regenerated from it, atomically.
+When a case is recorded twice (a re-run with ``retry``), the last row wins.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import os
+import socket
+import time
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Any
+
+from sgplan.bench.cases import BenchError, Case
+from sgplan.bench.worker import LEVELS, MEASURED
+from sgplan.files import write_text_atomically
+
+RESULTS_JSONL, RESULTS_CSV, RESULTS_JSON = "results.jsonl", "results.csv", "results.json"
+SWEEPS_JSONL = "sweeps.jsonl"
+"""One line per sweep call: when, cases run / resumed, wall seconds, executor, jobs."""
+
+SOLVED = ("optimal", "timeout")
+"""Statuses of a planner run that ended normally (``timeout``: the search budget ran out)."""
+EXCLUDED_PLANNING = ("invalid-start", "infeasible")
+"""The case has no answer to measure: the start is in collision / violates the mission, or no path exists."""
+FAILED = ("error", "crashed", "wall-timeout")
+"""The case did not run to its end: a bug or bad input (``error``), the worker process died
+(``crashed``), or it ran past the per-case wall timeout and was killed (``wall-timeout``)."""
+RETRYABLE = ("crashed", "wall-timeout")
+
+COLUMNS = (
+    "key", "scene", "mission", "start", "setup", "profile", "time_limit_s", "status", "reason",
+    "start_cell", "cost_m", "first_cost_m", "cost_ratio", "first_time_s", "optimal_time_s",
+    "num_iterations", "expansions", *(f"exp_{level}" for level in LEVELS),
+    "load_s", "precompute_s", "search_s", "wall_s", "peak_rss_mb", "guidance", "path_cells",
+    "executor", "host", "finished_at",
+)
+"""The CSV columns, in order (documented in docs/bench.md); ``results.json`` rows add ``queues``,
+``iterations`` and ``gallery``."""
+
+
+def make_row(case: Case, measured: dict[str, Any], *, wall_s: float | None, executor: str) -> dict[str, Any]:
+    """A result row: the case's fields, the worker's measurements, and the parent's wall time."""
+    row: dict[str, Any] = {
+        "key": case.key, "scene": case.scene, "mission": case.mission, "start": case.start,
+        "setup": case.setup, "profile": case.profile, "time_limit_s": case.time_limit_s,
+    }
+    row.update(dict.fromkeys(MEASURED))
+    row.update(measured)
+    row.update(
+        wall_s=wall_s, executor=executor, host=socket.gethostname(),
+        finished_at=time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+    )
+    return row
+
+
+def failed_row(case: Case, status: str, reason: str, *, wall_s: float | None, executor: str,
+               peak_rss_mb: float | None = None) -> dict[str, Any]:
+    """The row of a case whose worker did not report (``crashed`` / ``wall-timeout`` / ``error``)."""
+    return make_row(case, {"status": status, "reason": reason, "peak_rss_mb": peak_rss_mb},
+                    wall_s=wall_s, executor=executor)
+
+
+class ResultStore:
+    """The results of one output folder (see the module docstring).
+
+    Parameters
+    ----------
+    folder:
+        the output folder; created if needed.
+    """
+
+    def __init__(self, folder: str | Path) -> None:
+        self.folder = Path(folder).expanduser()
+        try:
+            self.folder.mkdir(parents=True, exist_ok=True)
+        except OSError as error:
+            raise BenchError(f"cannot create the output folder {self.folder}: {error.strerror}") from None
+        self.path = self.folder / RESULTS_JSONL
+        self._rows: dict[str, dict[str, Any]] = {}
+        self._load()
+
+    def _load(self) -> None:
+        if not self.path.exists():
+            return
+        data = self.path.read_bytes()
+        complete = data[: data.rfind(b"\n") + 1]
+        if len(complete) != len(data):
+            # An interrupted append: drop the partial line so the next append starts on a fresh line.
+            with open(self.path, "r+b") as handle:
+                handle.truncate(len(complete))
+        for number, line in enumerate(complete.decode("utf-8").splitlines(), 1):
+            if not line.strip():
+                continue
+            try:
+                row = json.loads(line)
+                self._rows[row["key"]] = row
+            except (json.JSONDecodeError, KeyError, TypeError):
+                raise BenchError(f"line {number} is not a result row; fix or remove it", self.path) from None
+
+    def __len__(self) -> int:
+        return len(self._rows)
+
+    def __contains__(self, key: str) -> bool:
+        return key in self._rows
+
+    def get(self, key: str) -> dict[str, Any] | None:
+        return self._rows.get(key)
+
+    def rows(self) -> list[dict[str, Any]]:
+        """The latest row of every recorded case, in the order first recorded."""
+        return list(self._rows.values())
+
+    def append(self, row: dict[str, Any]) -> None:
+        """Record ``row`` durably: one write of one complete line, then fsync."""
+        line = (json.dumps(row, allow_nan=False) + "\n").encode("utf-8")
+        fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+        try:
+            written = os.write(fd, line)
+            if written != len(line):  # pragma: no cover - a full disk
+                raise BenchError(f"short write ({written} of {len(line)} bytes)", self.path)
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+        self._rows[row["key"]] = row
+
+    def export(self) -> tuple[Path, Path]:
+        """(Re)write ``results.csv`` and ``results.json`` from the recorded rows; returns their paths."""
+        rows = self.rows()
+        buffer = io.StringIO()
+        writer = csv.DictWriter(buffer, fieldnames=COLUMNS, extrasaction="ignore", lineterminator="\n")
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({k: _csv_value(row.get(k)) for k in COLUMNS})
+        csv_path, json_path = self.folder / RESULTS_CSV, self.folder / RESULTS_JSON
+        write_text_atomically(csv_path, buffer.getvalue())
+        write_text_atomically(json_path, json.dumps(rows, indent=1, allow_nan=False) + "\n")
+        return csv_path, json_path
+
+
+def _csv_value(value: Any) -> Any:
+    if value is None:
+        return ""
+    if isinstance(value, (list, tuple)):
+        return " ".join(str(v) for v in value)
+    return value
+
+
+def load_rows(folder: str | Path) -> list[dict[str, Any]]:
+    """The rows recorded in ``folder/results.jsonl`` (a clear error if there are none)."""
+    path = Path(folder).expanduser() / RESULTS_JSONL
+    if not path.is_file():
+        raise BenchError(f"no results in {path.parent}: run `sgplan bench --out {path.parent}` first")
+    return ResultStore(path.parent).rows()
+
+
+def record_sweep(folder: str | Path, info: dict[str, Any]) -> None:
+    """Append one sweep call's summary (``info`` plus the time) to ``folder/sweeps.jsonl``."""
+    line = json.dumps({"finished_at": time.strftime("%Y-%m-%dT%H:%M:%S%z"), **info}, allow_nan=False)
+    with open(Path(folder).expanduser() / SWEEPS_JSONL, "a", encoding="utf-8") as handle:
+        handle.write(line + "\n")
+
+
+def load_sweeps(folder: str | Path) -> list[dict[str, Any]]:
+    """The sweep calls recorded in ``folder`` (none if the file is absent; unreadable lines skipped, since
+    this log is informative only)."""
+    path = Path(folder).expanduser() / SWEEPS_JSONL
+    out = []
+    for line in path.read_text(encoding="utf-8").splitlines() if path.is_file() else []:
+        try:
+            out.append(json.loads(line))
+        except json.JSONDecodeError:
+            continue
+    return out
+
+
+def counts(rows: Iterable[dict[str, Any]]) -> dict[str, int]:
+    """Number of rows per status."""
+    out: dict[str, int] = {}
+    for row in rows:
+        out[row["status"]] = out.get(row["status"], 0) + 1
+    return out

@@ -1,0 +1,74 @@
+"""Run a sweep: the cases not yet in the results store, on an executor, recording each as it finishes."""
+
+from __future__ import annotations
+
+import contextlib
+import time
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+from sgplan.bench.cases import Case
+from sgplan.bench.results import RETRYABLE, ResultStore
+
+
+class Executor(Protocol):
+    """Anything that runs cases and yields their result rows as they finish (see bench.executors)."""
+
+    name: str
+
+    def run(self, cases: Iterable[Case]) -> Iterator[dict[str, Any]]: ...
+
+
+@dataclass
+class SweepSummary:
+    """What a call of :func:`run_sweep` did: cases in the sweep, already recorded (skipped), run now,
+    statuses of the rows recorded now, and the wall seconds of the call."""
+
+    total: int
+    skipped: int
+    ran: int = 0
+    statuses: dict[str, int] = field(default_factory=dict)
+    wall_s: float = 0.0
+
+
+def pending_cases(cases: Sequence[Case], store: ResultStore, *, retry: bool = False) -> list[Case]:
+    """The cases to run: those without a row in ``store`` (with ``retry``, also those whose last row
+    is ``crashed`` or ``wall-timeout``)."""
+    def todo(case: Case) -> bool:
+        row = store.get(case.key)
+        return row is None or (retry and row["status"] in RETRYABLE)
+
+    return [case for case in cases if todo(case)]
+
+
+def run_sweep(
+    cases: Sequence[Case],
+    store: ResultStore,
+    executor: Executor,
+    *,
+    retry: bool = False,
+    on_start: Callable[[int, int], None] | None = None,
+    on_row: Callable[[dict[str, Any]], None] | None = None,
+) -> SweepSummary:
+    """Run the cases of ``cases`` that ``store`` lacks on ``executor``; append every row as it arrives.
+
+    ``on_start(to_run, skipped)`` is called once before the first case, ``on_row(row)`` after each row
+    is stored. An interrupt (KeyboardInterrupt) stops the executor's workers and propagates; every row
+    stored before it stays, so calling again with the same cases runs only the rest.
+    """
+    t0 = time.perf_counter()
+    todo = pending_cases(cases, store, retry=retry)
+    summary = SweepSummary(total=len(cases), skipped=len(cases) - len(todo))
+    if on_start is not None:
+        on_start(len(todo), summary.skipped)
+    if todo:
+        with contextlib.closing(executor.run(todo)) as rows:
+            for row in rows:
+                store.append(row)
+                summary.ran += 1
+                summary.statuses[row["status"]] = summary.statuses.get(row["status"], 0) + 1
+                if on_row is not None:
+                    on_row(row)
+    summary.wall_s = time.perf_counter() - t0
+    return summary

@@ -1,0 +1,133 @@
+"""Run one benchmark case in this process and measure it (the child side of every executor).
+
+``python -m sgplan.bench.worker`` reads ``{"case": {...}, "gallery_dir": str | null}`` as JSON on stdin
+and writes one JSON object (the measurements, see :func:`measure`) as the last line of stdout. Each case
+runs in a fresh process so that its peak memory (``ru_maxrss`` of this process) is its own and a crash
+takes down nothing but the case.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import math
+import resource
+import sys
+import time
+import traceback
+from pathlib import Path
+from typing import Any
+
+from sgplan.bench.cases import Case
+from sgplan.errors import PlanningError, SgplanError
+
+LEVELS = ("anchor", "occupancy", "object", "room", "floor")
+"""Hierarchy levels, in the order of the ``exp_<level>`` result columns."""
+
+MEASURED = (
+    "status", "reason", "start_cell", "cost_m", "first_cost_m", "cost_ratio", "first_time_s", "optimal_time_s",
+    "num_iterations", "expansions", *(f"exp_{level}" for level in LEVELS), "load_s", "precompute_s", "search_s",
+    "peak_rss_mb", "guidance", "path_cells", "queues", "iterations", "gallery",
+)
+"""The fields :func:`measure` reports (``None`` where a case did not get that far)."""
+
+
+def queue_level(queue: str) -> str:
+    """The hierarchy level of a queue name such as ``"LLM/room"`` (``PlanResult.queues``)."""
+    return queue.rsplit("/", 1)[-1]
+
+
+def _peak_rss_mb() -> float:
+    # Linux reports ru_maxrss in KiB.
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def measure(case: Case, gallery_dir: str | Path | None = None) -> dict[str, Any]:
+    """Plan ``case`` and return its measurements (JSON-ready; the fields of :data:`MEASURED`).
+
+    Never raises for a case that fails: a :class:`PlanningError` gives its status (``invalid-start``,
+    ``infeasible``, ``error``) and message as ``reason``; any other exception gives ``error``.
+    """
+    t0 = time.perf_counter()
+    out: dict[str, Any] = dict.fromkeys(MEASURED)
+    out["status"] = "error"
+    try:
+        _plan_case(case, gallery_dir, out, t0)
+    except PlanningError as error:
+        out.update(status=error.status, reason=str(error))
+    except SgplanError as error:
+        out.update(status="error", reason=str(error))
+    except Exception as error:  # a bug: recorded like a failure, with the traceback on stderr
+        traceback.print_exc()
+        out.update(status="error", reason=f"{type(error).__name__}: {error}")
+    out["peak_rss_mb"] = _peak_rss_mb()
+    return out
+
+
+def _plan_case(case: Case, gallery_dir: str | Path | None, out: dict[str, Any], t0: float) -> None:
+    from sgplan.mission import load_mission_folder
+    from sgplan.pipeline import add_offline_guidance, make_problem, resolve_start
+    from sgplan.planning.amra import get_setup, plan
+    from sgplan.scene.loading import load_scene
+
+    building = load_scene(case.scene_dir)
+    mission = load_mission_folder(case.mission_dir, profile=case.profile)
+    out["guidance"] = "mission" if mission.guidance is not None else "none"
+    if get_setup(case.setup).uses_llm and mission.guidance is None:
+        # The same fallback as `sgplan plan`, recorded so such rows are not mistaken for LLM guidance.
+        out["guidance"] = add_offline_guidance(mission, building)
+    start = resolve_start(building, index=case.start)
+    out["start_cell"] = list(start)
+    prepared = make_problem(building, mission, start, profile=case.profile)
+    out["load_s"] = time.perf_counter() - t0
+
+    result = plan(prepared.problem, case.setup, time_limit_s=case.time_limit_s)
+    its = result.iterations
+    out.update(
+        status=result.status,
+        reason=None if result.status == "optimal" else "the search time limit ran out before the optimum",
+        precompute_s=result.precompute_s,
+        search_s=result.search_s,
+        queues=list(result.queues),
+        iterations=[
+            {"w1": it.w1, "w2": it.w2, "cost_m": it.cost_m, "bound": it.bound, "time_s": it.time_s,
+             "expansions": list(it.expansions)}
+            for it in its
+        ],
+        num_iterations=len(its),
+        expansions=result.expansions,
+        cost_m=result.cost_m if math.isfinite(result.cost_m) else None,
+        path_cells=None if result.path is None else len(result.path),
+    )
+    if its:
+        out.update(first_time_s=its[0].time_s, first_cost_m=its[0].cost_m)
+        for level in LEVELS:
+            out[f"exp_{level}"] = sum(
+                n for q, n in zip(result.queues, its[-1].expansions) if queue_level(q) == level
+            )
+    if result.status == "optimal" and its:
+        out["optimal_time_s"] = its[-1].time_s
+        out["cost_ratio"] = its[0].cost_m / result.cost_m if result.cost_m > 0 else 1.0
+    if gallery_dir is not None and result.path is not None:
+        from sgplan.scene.draw import draw_building
+
+        cells = [tuple(int(v) for v in row[:3]) for row in result.path]
+        written = draw_building(building, gallery_dir, grid=prepared.problem.grid, path=cells, stem=f"{case.slug}_floor")
+        out["gallery"] = [str(p) for p in written]
+
+
+def main() -> int:
+    """Entry point of ``python -m sgplan.bench.worker`` (see the module docstring)."""
+    request = json.loads(sys.stdin.read())
+    case = Case.from_dict(request["case"])
+    real_stdout = sys.stdout
+    # Anything the planner or a library prints goes to stderr: stdout carries only the result line.
+    with contextlib.redirect_stdout(sys.stderr):
+        measured = measure(case, request.get("gallery_dir"))
+    real_stdout.write(json.dumps(measured, allow_nan=False) + "\n")
+    real_stdout.flush()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

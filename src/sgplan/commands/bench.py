@@ -1,0 +1,138 @@
+"""``sgplan bench``: sweep scenes x missions x starts x setups and report the paper's tables and figures.
+
+``sgplan bench [run]`` runs (or resumes) a sweep into ``--out`` and writes the report at the end;
+``sgplan bench report --out DIR`` rewrites the report from the results already in DIR.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+from typing import TYPE_CHECKING, Any
+
+from sgplan.commands.common import say
+
+if TYPE_CHECKING:
+    from sgplan.bench.cases import Case
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    from sgplan.bench.executors import DEFAULT_CASE_TIMEOUT_S
+    from sgplan.datasets import ENV_VAR
+    from sgplan.planning.amra import SETUPS
+
+    parser = sub.add_parser(
+        "bench", help="benchmark sweep with the paper's tables and figures (run, resume or report)",
+        description="Run scenes x missions x starts x setups, each case in its own worker process, and "
+                    "write results (CSV, JSON), the paper's Tables II/III beside ours, and its two figures. "
+                    "Without selection flags the sweep is the paper's. Re-running resumes.",
+    )
+    parser.add_argument("action", nargs="?", choices=("run", "report"), default="run",
+                        help="run (default): run or resume the sweep, then report; report: report only")
+    parser.add_argument("--out", metavar="DIR", default="bench-out", help="results folder (default: bench-out)")
+    parser.add_argument("--data", metavar="DIR",
+                        help=f"data folder of <scene>/missions/<m>/ (default: ${ENV_VAR}, else ../shared/datasets/gibson-3dsg)")
+    parser.add_argument("--scenes", nargs="+", metavar="NAME", help="scenes (default: all in the data folder)")
+    parser.add_argument("--missions", nargs="+", metavar="NAME", help="mission folder names (default: all)")
+    parser.add_argument("--starts", metavar="LIST", help="initial-position indices, e.g. 0,2-4 (default: all)")
+    parser.add_argument("--setups", nargs="+", metavar="NAME",
+                        help=f"planner setups among {', '.join(SETUPS)} (default: ALL NO-LLM A*)")
+    parser.add_argument("--profile", choices=("authors", "ltlf"), default="authors",
+                        help="semantics (default: authors, as the paper's numbers); recorded in every row")
+    parser.add_argument("--time-limit", type=float, metavar="S", help="search time budget per case (seconds)")
+    parser.add_argument("--case-timeout", type=float, default=DEFAULT_CASE_TIMEOUT_S, metavar="S",
+                        help=f"kill a case's worker after S wall seconds (default: {DEFAULT_CASE_TIMEOUT_S:g})")
+    parser.add_argument("--jobs", "-j", type=int, metavar="N",
+                        help=f"cases run at once (default: the number of cores, {os.cpu_count()})")
+    parser.add_argument("--executor", choices=("local", "ray"), default="local",
+                        help="local process pool (default) or Ray (pip install 'sgplan[ray]')")
+    parser.add_argument("--address", metavar="ADDR", help="Ray cluster address (default: start a local Ray)")
+    parser.add_argument("--gallery", action="store_true", help="draw each case's path, one PNG per floor, under OUT/gallery")
+    parser.add_argument("--retry", action="store_true", help="also re-run cases recorded as crashed or wall-timeout")
+    parser.add_argument("--no-report", action="store_true", help="do not write the report after the sweep")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    if args.action == "report":
+        _print_report(args.out)
+        return 0
+    return _sweep(args)
+
+
+def _cases(args: argparse.Namespace) -> list[Case]:
+    from sgplan.bench.cases import Grid, discover, expand, paper_grids, parse_selection
+    from sgplan.datasets import SCENES, find_gibson_root
+    from sgplan.errors import SceneError
+
+    root = find_gibson_root(args.data)
+    if root is None:
+        raise SceneError(f"cannot find the data folder: give --data DIR (a folder like ../shared/datasets/gibson-3dsg "
+                         f"holding {', '.join(SCENES)})")
+    scenes = discover(root, args.scenes)
+    selected = any(v is not None for v in (args.scenes, args.missions, args.starts, args.setups))
+    if selected:
+        grids = [Grid(missions=tuple(args.missions) if args.missions else None,
+                      starts=parse_selection(args.starts) if args.starts else None,
+                      **({"setups": tuple(args.setups)} if args.setups else {}))]
+    else:
+        grids = paper_grids(s.name for s in scenes)
+    say(f"data: {root}")
+    return expand(scenes, grids, profile=args.profile, time_limit_s=args.time_limit)
+
+
+def _sweep(args: argparse.Namespace) -> int:
+    from rich.console import Console
+    from rich.markup import escape
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+
+    from sgplan.bench.executors import LocalExecutor, RayExecutor
+    from sgplan.bench.results import FAILED, ResultStore, record_sweep
+    from sgplan.bench.sweep import run_sweep
+
+    cases = _cases(args)
+    store = ResultStore(args.out)
+    gallery = str(store.folder.resolve() / "gallery") if args.gallery else None
+    options = {"timeout_s": args.case_timeout, "gallery_dir": gallery}
+    executor = (RayExecutor(args.jobs, address=args.address, **options) if args.executor == "ray"
+                else LocalExecutor(args.jobs, **options))
+    console = Console(stderr=True)
+    statuses: dict[str, int] = {}
+    with Progress(TextColumn("[bold]bench"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                  TextColumn("ETA"), TimeRemainingColumn(), TextColumn("{task.fields[statuses]}"),
+                  console=console, transient=False) as progress:
+        task = progress.add_task("bench", total=None, statuses="")
+
+        def on_start(to_run: int, skipped: int) -> None:
+            progress.update(task, total=to_run)
+            progress.console.print(f"{len(cases)} cases ({args.profile} profile): {skipped} already in "
+                                   f"{store.path}, {to_run} to run with the {executor.name} executor")
+
+        def on_row(row: dict[str, Any]) -> None:
+            statuses[row["status"]] = statuses.get(row["status"], 0) + 1
+            progress.update(task, advance=1, statuses=" ".join(f"{s}:{n}" for s, n in sorted(statuses.items())))
+            if row["status"] in FAILED:
+                progress.console.print(f"[yellow]{escape(row['key'])}: {row['status']}[/] - {escape(str(row.get('reason')))}")
+
+        try:
+            summary = run_sweep(cases, store, executor, retry=args.retry, on_start=on_start, on_row=on_row)
+        finally:
+            csv_path, json_path = store.export()
+    jobs = executor.jobs or "cluster"
+    record_sweep(store.folder, {"ran": summary.ran, "skipped": summary.skipped, "wall_s": summary.wall_s,
+                                "executor": executor.name, "jobs": jobs, "statuses": summary.statuses})
+    say(f"ran {summary.ran} cases in {summary.wall_s:.1f} s wall ({executor.name}, {jobs} jobs); "
+        f"{summary.skipped} were already recorded; results: {csv_path}, {json_path}")
+    if not args.no_report:
+        _print_report(args.out)
+    return 0
+
+
+def _print_report(folder: str) -> None:
+    from sgplan.bench.report import write_report
+
+    report = write_report(folder)
+    if report.table2:
+        print(report.table2, end="\n\n")
+    print(report.table3)
+    say(f"wrote {report.markdown}" + "".join(f", {p}" for p in report.figures))

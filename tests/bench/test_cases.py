@@ -1,0 +1,61 @@
+"""Sweep definition: discovery of a data folder, grids, keys, selections and their errors."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from sgplan.bench.cases import BenchError, Case, Grid, discover, expand, paper_grids, parse_selection
+
+from tests.bench.conftest import SCENE
+
+
+def test_discover_finds_scene_missions_and_starts(data_dir: Path) -> None:
+    (scene,) = discover(data_dir)
+    assert scene.name == SCENE and scene.missions == ("1", "2", "3") and scene.num_starts == 6
+
+
+def test_expand_is_a_deduplicated_union_in_paper_order(data_dir: Path) -> None:
+    scenes = discover(data_dir)
+    grids = [Grid(missions=("1",), starts=(0,), setups=("A*", "ALL")),
+             Grid(missions=("1",), starts=(0,), setups=("all", "NO_LLM"))]
+    cases = expand(scenes, grids, profile="ltlf", time_limit_s=5)
+    assert [c.setup for c in cases] == ["ALL", "NO-LLM", "A*"]
+    assert cases[0].key == f"{SCENE}/1/0/ALL/ltlf/tl=5"
+    assert Case.from_dict(cases[2].to_dict()) == cases[2] and cases[2].slug == f"{SCENE}_m1_s0_Astar"
+
+
+def test_paper_grids_add_table2_only_with_benevolence() -> None:
+    assert len(paper_grids(["Allensville"])) == 1
+    table3, table2 = paper_grids(["Allensville", "Benevolence"])
+    assert table2.scenes == ("Benevolence",) and table2.missions == ("1",) and len(table2.setups) == 7
+    assert table3.setups == ("ALL", "NO-LLM", "A*")
+
+
+@pytest.mark.parametrize(
+    ("grid", "message"),
+    [
+        (Grid(scenes=("Nowhere",)), "not in the sweep"),
+        (Grid(missions=("9",)), "no mission 9"),
+        (Grid(starts=(6,)), "6 initial positions; start index 6"),
+    ],
+)
+def test_expand_names_what_is_missing(data_dir: Path, grid: Grid, message: str) -> None:
+    with pytest.raises(BenchError, match=message):
+        expand(discover(data_dir), [grid])
+
+
+def test_discover_errors(tmp_path: Path, data_dir: Path) -> None:
+    with pytest.raises(BenchError, match="does not exist"):
+        discover(tmp_path / "absent")
+    with pytest.raises(BenchError, match="holds no scene"):
+        discover(tmp_path)
+    with pytest.raises(BenchError, match="no scene Nowhere"):
+        discover(data_dir, ["Nowhere"])
+
+
+def test_parse_selection() -> None:
+    assert parse_selection("0,2-4") == (0, 2, 3, 4)
+    with pytest.raises(BenchError, match="bad start selection"):
+        parse_selection("1-x")

@@ -1,0 +1,148 @@
+"""Executors and sweeps: right costs, statuses apart, results files, resume, crash/timeout, interrupt."""
+
+from __future__ import annotations
+
+import csv
+import json
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from sgplan.bench.cases import Case
+from sgplan.bench.executors import LocalExecutor
+from sgplan.bench.results import COLUMNS, RESULTS_JSONL, ResultStore
+from sgplan.bench.sweep import pending_cases, run_sweep
+from sgplan.mission import load_mission_folder
+from sgplan.pipeline import make_problem
+from sgplan.planning import plan
+from sgplan.scene.loading import load_scene
+
+from tests.bench.conftest import BAD_START, SCENE
+
+FAKE_WORKER = [sys.executable, str(Path(__file__).with_name("fake_worker.py"))]
+
+
+def _direct_cost(case: Case) -> float:
+    building = load_scene(case.scene_dir)
+    mission = load_mission_folder(case.mission_dir, profile=case.profile)
+    problem = make_problem(building, mission, building.initial_cells[case.start], profile=case.profile).problem
+    return plan(problem, case.setup).cost_m
+
+
+def test_local_executor_gives_the_costs_of_plan(swept: tuple[list[Case], ResultStore]) -> None:
+    cases, store = swept
+    rows = {r["key"]: r for r in store.rows()}
+    assert set(rows) == {c.key for c in cases}
+    optimal = [c for c in cases if rows[c.key]["status"] == "optimal"]
+    assert len(optimal) == 5
+    for case in optimal:
+        row = rows[case.key]
+        assert row["cost_m"] == pytest.approx(_direct_cost(case), abs=1e-9)
+        assert row["first_cost_m"] >= row["cost_m"] - 1e-9 and row["cost_ratio"] >= 1.0 - 1e-12
+        assert 0 <= row["first_time_s"] <= row["optimal_time_s"] <= row["search_s"] + 1e-9
+        assert sum(row[f"exp_{lv}"] for lv in ("anchor", "occupancy", "object", "room", "floor")) == row["expansions"]
+        assert row["peak_rss_mb"] > 50 and row["wall_s"] > row["load_s"] > 0 and row["precompute_s"] > 0
+        assert row["guidance"] == "mission" and row["profile"] == "authors" and row["executor"] == "local"
+        assert len(row["iterations"]) == row["num_iterations"] and len(row["queues"]) == len(row["iterations"][0]["expansions"])
+
+
+def test_infeasible_and_invalid_starts_are_recorded_with_reasons(swept: tuple[list[Case], ResultStore]) -> None:
+    _, store = swept
+    infeasible = store.get(f"{SCENE}/3/0/ALL/authors/tl=none")
+    invalid = store.get(f"{SCENE}/1/{BAD_START}/ALL/authors/tl=none")
+    assert infeasible["status"] == "infeasible" and "accepts no word" in infeasible["reason"]
+    assert invalid["status"] == "invalid-start" and "lies in no room" in invalid["reason"]
+    assert infeasible["cost_m"] is None and invalid.get("first_time_s") is None
+
+
+def test_results_files_have_one_row_per_case_and_stable_columns(swept: tuple[list[Case], ResultStore]) -> None:
+    cases, store = swept
+    csv_path, json_path = store.export()
+    with open(csv_path, newline="") as handle:
+        reader = csv.DictReader(handle)
+        assert tuple(reader.fieldnames) == COLUMNS
+        rows = list(reader)
+    assert len(rows) == len(cases) == len(json.loads(json_path.read_text()))
+    assert {r["status"] for r in rows} == {"optimal", "infeasible", "invalid-start"}
+
+
+def test_rerun_runs_nothing_and_a_torn_last_line_is_dropped(swept: tuple[list[Case], ResultStore], tmp_path: Path) -> None:
+    cases, store = swept
+    copy = tmp_path / RESULTS_JSONL
+    lines = store.path.read_text().splitlines(keepends=True)
+    # Two rows lost and a third half-written, as after an interrupt in the middle of an append.
+    copy.write_text("".join(lines[:-3]) + lines[-3][: len(lines[-3]) // 2])
+    resumed = ResultStore(tmp_path)
+    assert len(resumed) == len(cases) - 3 and copy.read_text().endswith("\n")
+    missing = {c.key for c in pending_cases(cases, resumed)}
+    assert len(missing) == 3
+    assert pending_cases(cases, store) == []
+
+    class Recording:
+        name = "recording"
+
+        def __init__(self) -> None:
+            self.ran: list[str] = []
+
+        def run(self, todo):  # replays the recorded rows instead of planning again
+            for case in todo:
+                self.ran.append(case.key)
+                yield store.get(case.key)
+
+    executor = Recording()
+    summary = run_sweep(cases, resumed, executor)
+    assert set(executor.ran) == missing and summary.skipped == len(cases) - 3 and summary.ran == 3
+    assert len(ResultStore(tmp_path)) == len(cases)
+
+
+def test_crash_and_wall_timeout_are_recorded_and_the_sweep_goes_on(data_dir: Path, tmp_path: Path) -> None:
+    def case(mission: str) -> Case:
+        return Case(SCENE, mission, 0, "ALL", "authors", str(data_dir / SCENE), str(data_dir / SCENE / "missions" / mission))
+
+    cases = [case("crash"), case("hang"), case("1"), case("2")]
+    store = ResultStore(tmp_path)
+    t0 = time.perf_counter()
+    summary = run_sweep(cases, store, LocalExecutor(2, timeout_s=3.0, command=FAKE_WORKER))
+    assert time.perf_counter() - t0 < 30
+    assert summary.ran == 4 and summary.statuses == {"crashed": 1, "wall-timeout": 1, "optimal": 2}
+    crashed, hung = store.get(cases[0].key), store.get(cases[1].key)
+    assert "SIGSEGV" in crashed["reason"] and "about to crash" in crashed["reason"]
+    assert "wall timeout of 3 s" in hung["reason"] and hung["wall_s"] >= 3.0
+    assert run_sweep(cases, store, LocalExecutor(2, timeout_s=3.0, command=FAKE_WORKER)).ran == 0
+    retried = run_sweep(cases, store, LocalExecutor(2, timeout_s=1.0, command=FAKE_WORKER), retry=True)
+    assert retried.ran == 2 and len(store) == 4
+
+
+def _rows_in(folder: Path) -> list[dict]:
+    path = folder / RESULTS_JSONL
+    return [json.loads(line) for line in path.read_text().splitlines()] if path.exists() else []
+
+
+def test_interrupting_the_command_and_rerunning_finishes_only_the_missing_cases(data_dir: Path, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    command = [sys.executable, "-m", "sgplan.cli", "bench", "--data", str(data_dir), "--out", str(out),
+               "--missions", "1", "--starts", "0,1", "--setups", "ALL", "NO-LLM", "A*", "--jobs", "1", "--no-report"]
+    proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not _rows_in(out) and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.1)
+    proc.send_signal(signal.SIGINT)
+    _, stderr = proc.communicate(timeout=60)
+    assert proc.returncode == 130, stderr
+    first = _rows_in(out)
+    assert 1 <= len(first) < 6
+    assert (out / "results.csv").exists()  # exported on the way out
+
+    done = subprocess.run(command, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert f"{len(first)} already in" in done.stderr
+    final = _rows_in(out)
+    assert len(final) == 6 == len({r["key"] for r in final})
+    assert final[: len(first)] == first  # the finished rows were kept, not re-run
+    assert all(r["status"] == "optimal" for r in final)
+    (call,) = [json.loads(line) for line in (out / "sweeps.jsonl").read_text().splitlines()]
+    assert call["ran"] == 6 - len(first) and call["skipped"] == len(first) and call["jobs"] == 1
