@@ -14,7 +14,6 @@ import pytest
 
 from sgplan import files as files_module
 from sgplan.errors import LLMError
-from sgplan.llm import cache as cache_module
 from sgplan.llm.cache import CachedChatBackend, ChatCache, cache_key, cache_request, open_chat_backend
 from sgplan.llm.client import ChatBackend, ChatResult, OpenAIChatClient, complete_many
 from sgplan.llm.config import LLMConfig

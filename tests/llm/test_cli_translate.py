@@ -138,3 +138,41 @@ def test_interactive_rephrasing_after_an_ambiguous_mission(tmp_path: Path, capsy
 
     with pytest.raises(MissionError, match="matches 2 rooms"):
         translate.run(args, ask=lambda question: "")
+
+
+def test_plan_text_offline_translates_guides_and_verifies(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    saved, result = tmp_path / "mission", tmp_path / "result.json"
+    argv = ["plan", "--scene", "demo", "--text", TEXT, "--verify", "--save-mission", str(saved), "--json", str(result)]
+    assert main(argv) == 0
+    printed = capsys.readouterr()
+    assert "verified:" in printed.out and "offline-symbolic" in printed.err
+    record = json.loads(result.read_text())
+    assert record["status"] == "optimal" and record["verified"] is True and "llm" not in record
+    # The saved folder is the same mission: planning it again gives the same optimum.
+    assert main(["plan", "--scene", "demo", "--mission-dir", str(saved), "--json", str(tmp_path / "again.json")]) == 0
+    assert json.loads((tmp_path / "again.json").read_text())["cost"] == record["cost"]
+
+
+def test_plan_text_with_a_language_model_uses_its_translation_and_guidance(
+    fake_llm, llm_args, tmp_path: Path, capsys: pytest.CaptureFixture[str],
+) -> None:
+    fake_llm.respond_with(demo_model)
+    saved, result = tmp_path / "mission", tmp_path / "result.json"
+    argv = ["plan", "--scene", "demo", "--text", TEXT, *llm_args, "--verify", "--save-mission", str(saved),
+            "--json", str(result)]
+    assert main(argv) == 0
+    record = json.loads(result.read_text())
+    guidance_calls = len(fake_llm.requests) - 2
+    assert guidance_calls > 0 and record["llm"]["calls"] == len(fake_llm.requests)
+    assert record["status"] == "optimal" and record["verified"] is True
+    assert (saved / "GPT_LTL_formula.txt").read_text().strip() == TOKENS
+    guidance = yaml.safe_load((saved / "llm_heuristic.yaml").read_text())
+    assert any(calls == ["move(5, 2)"] for calls in guidance.get(5, {}).values())
+    saved_record = json.loads((saved / "llm_record.json").read_text())
+    assert saved_record["summary"]["calls"] == len(fake_llm.requests)
+
+
+def test_plan_save_mission_needs_text(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    argv = ["plan", "--scene", "demo", "--formula", "F enter(room_4)", "--save-mission", str(tmp_path / "m")]
+    assert main(argv) == 2
+    assert "use it with --text" in capsys.readouterr().err

@@ -30,8 +30,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from sgplan.mission import write_guidance
-    from sgplan.mission import load_mission_folder
+    from sgplan.mission import load_mission_folder, write_guidance
 
     building = load_scene_arg(args.scene, args.data)
     mission = load_mission_folder(args.mission_dir, profile=args.profile, guidance=False)

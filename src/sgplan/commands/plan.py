@@ -1,4 +1,9 @@
-"""``sgplan plan``: plan an optimal path for a mission over a scene with AMRA*."""
+"""``sgplan plan``: plan an optimal path for a mission over a scene with AMRA*.
+
+The mission is a mission folder, a formula, or natural language (``--text``, translated by the backend
+of ``--llm``). When the setup needs guidance that the mission does not carry, the ``--llm`` backend's
+guide provides it (the offline symbolic guide by default, which is not a language model).
+"""
 
 from __future__ import annotations
 
@@ -6,10 +11,16 @@ import argparse
 import json
 import time
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from sgplan.commands.common import add_scene_arguments, load_scene_arg, say
+from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 from sgplan.errors import MissionError, PlanningError, SgplanError
+
+if TYPE_CHECKING:
+    from sgplan.llm.backends import Backends
+    from sgplan.mission import Mission
+    from sgplan.scene.model import Building
 
 
 def _start_cell(text: str) -> tuple[int, int, int]:
@@ -28,6 +39,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     what = parser.add_mutually_exclusive_group(required=True)
     what.add_argument("--mission-dir", metavar="DIR", help="mission folder (automaton.aut, ap_desc.yaml, llm_heuristic.yaml)")
     what.add_argument("--formula", metavar="F", help="LTL formula: token list, Spot infix or LBT prefix")
+    what.add_argument("--text", metavar="MISSION", help="the mission in natural language (translated with --llm)")
     parser.add_argument("--aps", metavar="FILE", help="ap_desc.yaml giving the formula's proposition names a meaning")
     parser.add_argument("--guidance", metavar="FILE", help="llm_heuristic.yaml to use instead of the mission's")
     where = parser.add_mutually_exclusive_group()
@@ -44,6 +56,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--json", metavar="OUT", help="write the result as JSON")
     parser.add_argument("--draw", metavar="DIR", help="write one PNG per floor with the path")
     parser.add_argument("--verify", action="store_true", help="check the path with the independent checker")
+    parser.add_argument("--save-mission", metavar="DIR",
+                        help="with --text: save the translated mission, its guidance and the LLM run record here")
+    add_llm_arguments(parser)
     parser.set_defaults(run=run)
 
 
@@ -61,22 +76,38 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> int:
-    from sgplan.mission import load_mission_folder, mission_from_formula, read_ap_desc, read_guidance
-    from sgplan.pipeline import add_offline_guidance, make_problem, resolve_start, result_record
+    from sgplan.llm.translation import RECORD_NAME
+    from sgplan.mission import load_mission_folder, mission_from_formula, read_ap_desc, read_guidance, write_guidance
+    from sgplan.pipeline import make_problem, resolve_start, result_record
     from sgplan.planning.amra import get_setup, plan
 
     building = load_scene_arg(args.scene, args.data)
+    if args.save_mission and not args.text:
+        raise MissionError("--save-mission saves a translated mission: use it with --text")
+    backends = None
     if args.mission_dir:
         mission = load_mission_folder(args.mission_dir, profile=args.profile)
-    else:
+    elif args.formula:
         mission = mission_from_formula(args.formula, read_ap_desc(args.aps) if args.aps else None)
+    else:
+        backends = open_backends_from_args(args, mission_text=args.text)
+        say(f"translating with {backends.translator.name} ({backends.description})")
+        mission = _translate(args, building, backends)
     if args.guidance:
         mission.guidance = read_guidance(args.guidance)
     for note in mission.notes:
         say(f"note: {note}")
     if get_setup(args.setup).uses_llm and mission.guidance is None:
-        say(f"note: setup {args.setup} needs guidance and the mission has none: using the "
-            f"{add_offline_guidance(mission, building)} guide (not an LLM)")
+        backends = backends or open_backends_from_args(args, mission_text=mission.grounded_text or mission.text)
+        say(f"setup {args.setup} needs guidance: asking {backends.guide.name} ({backends.description})")
+        mission.guidance = backends.guide.guide(building, mission.automaton, mission.descriptions)
+        if args.save_mission:
+            say(f"wrote {write_guidance(mission.guidance, Path(args.save_mission) / 'llm_heuristic.yaml')}")
+    if backends is not None and backends.chat is not None:
+        summary = backends.record.to_json()["summary"]
+        record["llm"] = {"backend": backends.description, "calls": summary["calls"], "from_cache": summary["from_cache"]}
+        if args.save_mission:
+            backends.record.save(Path(args.save_mission) / RECORD_NAME)
     start = resolve_start(building, args.start, args.start_index)
     prepared = make_problem(building, mission, start, profile=args.profile,
                             robot_radius_m=args.robot_radius, reach_radius_m=args.reach_radius)
@@ -116,6 +147,22 @@ def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> i
         for png in draw_building(building, args.draw, grid=prepared.problem.grid, path=cells, stem="plan_floor"):
             say(f"wrote {png}")
     return 0
+
+
+def _translate(args: argparse.Namespace, building: Building, backends: Backends) -> Mission:
+    """The mission of ``--text``, saved under ``--save-mission`` when given."""
+    from sgplan.llm.translation import mission_of, translate_to_folder
+    from sgplan.logic import to_infix
+
+    if args.save_mission:
+        translation, mission = translate_to_folder(args.text, building, backends.translator, args.save_mission,
+                                                   backends.record)
+        say(f"wrote the mission folder {args.save_mission}")
+    else:
+        translation = backends.translator.translate(args.text, building)
+        mission = mission_of(translation)
+    say(f"formula: {to_infix(translation.formula)} ({mission.automaton.num_states} automaton states)")
+    return mission
 
 
 def _write_json(target: str | None, record: dict[str, Any]) -> None:
