@@ -69,7 +69,9 @@ def heap_grow(keys, ties, values, size):
     new_keys = np.empty(cap, dtype=keys.dtype)
     new_ties = np.empty(cap, dtype=ties.dtype)
     new_values = np.empty(cap, dtype=values.dtype)
-    new_keys[:size] = keys[:size]
-    new_ties[:size] = ties[:size]
-    new_values[:size] = values[:size]
+    # An element loop, not slice assignment: slices pull in numba's shape-error machinery (~2 s of JIT).
+    for i in range(size):
+        new_keys[i] = keys[i]
+        new_ties[i] = ties[i]
+        new_values[i] = values[i]
     return new_keys, new_ties, new_values

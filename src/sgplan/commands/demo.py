@@ -18,6 +18,8 @@ DEMO_MISSION = (
     "Visit the bathroom on floor 0 without touching the sink, then sit on a chair in the dining room, "
     "then go to the bedroom with the teddy bear. Always avoid the living room and the kitchen."
 )
+FIRST_RUN_HINT_S = 3.0
+"""Above this set-up time (seconds) the demo explains that numba was compiling (first run only)."""
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -60,6 +62,10 @@ def run(args: argparse.Namespace) -> int:
         prepared.problem, "ALL",
         callback=lambda it: say(f"  (w1, w2) = ({it.w1:g}, {it.w2:g})  cost {it.cost_m:.3f} m  {it.time_s * 1e3:.1f} ms"),
     )
+    setup_s = prepared.build_s + result.precompute_s
+    if setup_s > FIRST_RUN_HINT_S:
+        say(f"  (set-up took {setup_s:.1f} s, mostly the one-time compile of the planner's numba kernels; "
+            "they are cached, so later runs start in about a second)")
     check = check_path(result.path, prepared.problem.grid, prepared.problem.labels, mission.automaton)
     if not check.valid:  # pragma: no cover - a bug, not a user error
         raise RuntimeError(f"demo path failed the independent check: {check.problems}")

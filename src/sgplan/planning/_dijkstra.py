@@ -38,7 +38,7 @@ def dijkstra(
     keys = np.empty(cap, dtype=np.float64)
     ties = np.zeros(cap, dtype=np.float64)
     values = np.empty(cap, dtype=np.int64)
-    size = 0
+    size = np.int64(0)  # typed, not a literal: one compiled heap specialization
     for s in sources:
         local = s - lo
         if pred[local] == 1:

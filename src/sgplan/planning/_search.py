@@ -41,7 +41,7 @@ def build_map(G, A, M, k):
     hi = G.floor_offset[f + 1]
     src = A.map_src[A.map_src_ptr[k] : A.map_src_ptr[k + 1]]
     count = dijkstra(
-        G.nbr, G.step_cost, G.stairs_first, G.stairs_from, G.stairs_to, G.stairs_cost, lo, hi, False, src,
+        G.nbr, G.step_cost, G.stairs_first, G.stairs_from, G.stairs_to, G.stairs_cost, lo, hi, np.bool_(False), src,
         G.cell_room, A.map_stop_room[k], A.map_stop_count[k], M.dist[k], M.pred[k], M.order,
     )
     label_runs(M.order, count, M.pred[k], G.cell_label, lo, M.run[k])
@@ -53,7 +53,7 @@ def build_all_maps(G, A, M):
     """Build every action family not built yet."""
     for k in range(M.done.shape[0]):
         if M.done[k] == 0:
-            build_map(G, A, M, k)
+            build_map(G, A, M, np.int64(k))
 
 
 @njit(cache=True)
@@ -66,7 +66,7 @@ def follow_map(G, A, M, L, k, c, q):
     a stretch of equal labels is read once.
     """
     if M.done[k] == 0:
-        build_map(G, A, M, k)
+        build_map(G, A, M, np.int64(k))
     lo = G.floor_offset[A.map_floor[k]]
     pred = M.pred[k]
     dist = M.dist[k]
@@ -328,7 +328,7 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     capacity = S.hkey.shape[1]
     done = 0
     while True:
-        mk0 = clean_top(S, 0, 0, iteration)
+        mk0 = clean_top(S, np.int64(0), q_level[0], iteration)  # typed as the other call: one specialization
         goal = S.fscal[0]
         if goal < INF and goal <= w2 * mk0:
             return FOUND, done

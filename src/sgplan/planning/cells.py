@@ -87,7 +87,7 @@ class CellGraph:
         order = np.empty(n, dtype=np.int32)
         dijkstra(
             self.nbr, self.step_cost, self.stairs_first, self.stairs_from, self.stairs_to, self.stairs_cost,
-            0, n, True, np.asarray(sources, dtype=np.int64), _NO_ROOMS, -1, 0, dist, pred, order,
+            0, n, True, np.asarray(sources, dtype=np.int64), _NO_ROOMS, np.int32(-1), 0, dist, pred, order,
         )
         dist[pred == 0] = np.inf
         return dist

@@ -32,7 +32,7 @@ def _dijkstra(traversable, rows, cols, sources, res_x, res_y, link_a, link_b, li
     keys = np.empty(1024 + sources.shape[0], dtype=np.float64)
     ties = np.zeros(keys.shape[0], dtype=np.float64)
     values = np.empty(keys.shape[0], dtype=np.int64)
-    size = 0
+    size = np.int64(0)  # typed, not a literal: one compiled heap specialization
     for s in sources:
         if dist[s] > 0.0:
             dist[s] = 0.0
