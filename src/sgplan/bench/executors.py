@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import os
+import shlex
 import signal
 import subprocess
 import sys
@@ -27,8 +28,21 @@ DEFAULT_CASE_TIMEOUT_S = 600.0
 _STDERR_TAIL = 600
 
 
+WORKER_ENV = "SGPLAN_BENCH_WORKER"
+"""Environment variable that replaces the worker command (shell words), e.g. to pin workers to cores
+(``taskset -c 1 python -m sgplan.bench.worker``) or to profile them."""
+
+
 def worker_command() -> list[str]:
-    """The default worker command on this machine: this interpreter running :mod:`sgplan.bench.worker`."""
+    """The worker command: ``$SGPLAN_BENCH_WORKER`` split into shell words if set, else this
+    interpreter running :mod:`sgplan.bench.worker`."""
+    custom = os.environ.get(WORKER_ENV, "").strip()
+    if custom:
+        try:
+            words = shlex.split(custom)
+        except ValueError as exc:
+            raise BenchError(f"${WORKER_ENV}={custom!r} is not a valid command line: {exc}") from None
+        return words
     return [sys.executable, "-m", "sgplan.bench.worker"]
 
 
@@ -134,7 +148,7 @@ class LocalExecutor:
         self.jobs = max(1, jobs or os.cpu_count() or 1)
         self.timeout_s = timeout_s
         self.gallery_dir = gallery_dir
-        self.command = list(command) if command else None
+        self.command = list(command) if command else worker_command()
 
     def run(self, cases: Iterable[Case]) -> Iterator[dict[str, Any]]:
         """Rows of ``cases`` as they finish."""
@@ -173,7 +187,7 @@ class RayExecutor:
         self.address = address
         self.timeout_s = timeout_s
         self.gallery_dir = gallery_dir
-        self.command = list(command) if command else None
+        self.command = list(command) if command else worker_command()
 
     def run(self, cases: Iterable[Case]) -> Iterator[dict[str, Any]]:
         """Rows of ``cases`` as they finish."""
