@@ -92,3 +92,22 @@ def test_plan_gibson_mission_folder_authors_profile(gibson_root: Path, capsys: p
     assert main(["plan", "--scene", str(gibson_root / "Benevolence"), "--mission-dir", str(folder),
                  "--start-index", "0", "--profile", "authors", "--verify"]) == 0
     assert "cost 18.8181 m" in capsys.readouterr().out  # reference-algorithm.md §11, stay column
+
+
+@pytest.mark.parametrize(
+    ("argv", "fragment"),
+    [
+        (["plan", "--scene", "demo", "--formula", 'F "enter(room_5)"', "--time-limit", "nan"], "finite number of seconds > 0"),
+        (["plan", "--scene", "demo", "--formula", 'F "enter(room_5)"', "--max-expansions", "0"], "whole number >= 1"),
+        (["bench", "--jobs", "-2"], "whole number >= 1"),
+        (["bench", "--case-timeout", "inf"], "finite number of seconds > 0"),
+        (["bench", "--time-limit", "-1"], "finite number of seconds > 0"),
+        (["demo", "--start-index", "x"], "whole number >= 0"),
+        (["inspect", "demo", "--robot-radius", "-0.1"], "length in metres >= 0"),
+    ],
+)
+def test_bad_numbers_are_refused_by_the_parser(argv: list[str], fragment: str, capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        main(argv)
+    assert exit_info.value.code == 2
+    assert fragment in capsys.readouterr().err

@@ -1,8 +1,10 @@
-"""Argument helpers shared by sub-commands: naming a scene, the Gibson data folder, console output."""
+"""Argument helpers shared by sub-commands: naming a scene, the Gibson data folder, checked numbers,
+console output."""
 
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from pathlib import Path
 
@@ -48,3 +50,33 @@ def load_scene_arg(spec: str, data: str | None = None) -> Building:
 def say(message: str) -> None:
     """Progress and status lines go to stderr, so stdout stays clean for results."""
     print(message, file=sys.stderr, flush=True)
+
+
+def _number(text: str, kind: type, *, allow_zero: bool, what: str) -> float:
+    try:
+        value = kind(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not {what}") from None
+    if not math.isfinite(value) or value < 0 or (value == 0 and not allow_zero):
+        raise argparse.ArgumentTypeError(f"{text!r} is not {what}")
+    return value
+
+
+def positive_int(text: str) -> int:
+    """argparse type: an integer >= 1."""
+    return int(_number(text, int, allow_zero=False, what="a whole number >= 1"))
+
+
+def non_negative_int(text: str) -> int:
+    """argparse type: an integer >= 0."""
+    return int(_number(text, int, allow_zero=True, what="a whole number >= 0"))
+
+
+def positive_seconds(text: str) -> float:
+    """argparse type: a finite number of seconds > 0."""
+    return _number(text, float, allow_zero=False, what="a finite number of seconds > 0")
+
+
+def non_negative_metres(text: str) -> float:
+    """argparse type: a finite length in metres >= 0."""
+    return _number(text, float, allow_zero=True, what="a finite length in metres >= 0")

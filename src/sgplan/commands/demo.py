@@ -12,7 +12,7 @@ import json
 import time
 from pathlib import Path
 
-from sgplan.commands.common import say
+from sgplan.commands.common import non_negative_int, say
 
 DEMO_MISSION = (
     "Visit the bathroom on floor 0 without touching the sink, then sit on a chair in the dining room, "
@@ -26,7 +26,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("demo", help="run the whole pipeline on the embedded demo building (offline)")
     parser.add_argument("--out", metavar="DIR", default="out/demo", help="output folder (default: out/demo)")
     parser.add_argument("--text", default=DEMO_MISSION, help="the mission (controlled English, see docs/offline.md)")
-    parser.add_argument("--start-index", type=int, default=0, metavar="K", help="initial position K (0-4)")
+    parser.add_argument("--start-index", type=non_negative_int, default=0, metavar="K", help="initial position K (0-4)")
     parser.set_defaults(run=run)
 
 

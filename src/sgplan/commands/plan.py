@@ -13,7 +13,8 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from sgplan.commands.common import add_scene_arguments, load_scene_arg, say
+from sgplan.commands.common import (add_scene_arguments, load_scene_arg, non_negative_int, non_negative_metres, positive_int,
+                                    positive_seconds, say)
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 from sgplan.errors import MissionError, PlanningError, SgplanError
 
@@ -44,15 +45,15 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--guidance", metavar="FILE", help="llm_heuristic.yaml to use instead of the mission's")
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--start", type=_start_cell, metavar="ROW,COL,FLOOR", help="start cell")
-    where.add_argument("--start-index", type=int, metavar="K", help="start at the scene's initial position K")
+    where.add_argument("--start-index", type=non_negative_int, metavar="K", help="start at the scene's initial position K")
     parser.add_argument("--setup", default="ALL", help=f"planner setup: {', '.join(SETUPS)} (default ALL)")
     parser.add_argument("--profile", choices=("ltlf", "authors"), default="ltlf",
                         help="semantics: ltlf (default; start label read, missing automaton edges reject) or "
                              "authors (the authors' C++: start label not read, missing edges keep the state)")
-    parser.add_argument("--robot-radius", type=float, metavar="M", help="robot radius (default: the scene's)")
-    parser.add_argument("--reach-radius", type=float, metavar="M", help="object reach radius (default: the scene's)")
-    parser.add_argument("--time-limit", type=float, metavar="S", help="search time budget in seconds")
-    parser.add_argument("--max-expansions", type=int, metavar="N", help="search expansion budget")
+    parser.add_argument("--robot-radius", type=non_negative_metres, metavar="M", help="robot radius (default: the scene's)")
+    parser.add_argument("--reach-radius", type=non_negative_metres, metavar="M", help="object reach radius (default: the scene's)")
+    parser.add_argument("--time-limit", type=positive_seconds, metavar="S", help="search time budget in seconds")
+    parser.add_argument("--max-expansions", type=positive_int, metavar="N", help="search expansion budget")
     parser.add_argument("--json", metavar="OUT", help="write the result as JSON")
     parser.add_argument("--draw", metavar="DIR", help="write one PNG per floor with the path")
     parser.add_argument("--verify", action="store_true", help="check the path with the independent checker")
