@@ -8,7 +8,8 @@ from pathlib import Path
 import pytest
 
 from sgplan.bench import tables
-from sgplan.bench.cases import Case
+from sgplan.bench.cases import BenchError, Case
+from sgplan.bench.report import write_report
 from sgplan.bench.results import ResultStore
 from sgplan.cli import main
 
@@ -45,7 +46,7 @@ def _row(scene: str, mission: str, start: int, setup: str, cost: float, **extra:
     row = {"key": f"{scene}/{mission}/{start}/{setup}", "scene": scene, "mission": mission, "start": start,
            "setup": setup, "profile": "authors", "status": "optimal", "cost_m": cost, "first_cost_m": cost * 1.5,
            "cost_ratio": 1.5, "first_time_s": 0.01, "optimal_time_s": 2.0, "precompute_s": 3.0, "load_s": 1.0,
-           "wall_s": 7.0, "peak_rss_mb": 400.0, "iterations": its, "queues": ["LTL/anchor", "LTL/occupancy"]}
+           "wall_s": 7.0, "peak_rss_mb": 400.0, "expansions": 130, "iterations": its, "queues": ["LTL/anchor", "LTL/occupancy"]}
     row.update(extra)
     return row
 
@@ -63,3 +64,19 @@ def test_paper_numbers_stand_beside_ours() -> None:
     rows.append(_row("Benevolence", "1", 0, "NO-LLM", 20.5))
     compared, bad = tables.cost_disagreements(rows)
     assert compared == 2 and len(bad) == 1 and "NO-LLM 20.500000" in bad[0]
+
+
+def test_the_report_never_mixes_profiles_or_time_limits(tmp_path: Path) -> None:
+    authors = [_row("Benevolence", "1", k, "ALL", 20.0, finished_at="2026-01-01T10:00:00") for k in (0, 1)]
+    ltlf = [_row("Benevolence", "1", k, "ALL", 30.0, profile="ltlf", finished_at="2026-01-02T10:00:00",
+                 key=f"Benevolence/1/{k}/ALL/ltlf") for k in (0, 1, 2)]
+    limited = [_row("Benevolence", "1", 0, "ALL", 25.0, time_limit_s=5.0, key="Benevolence/1/0/ALL/tl=5")]
+    rows = authors + ltlf + limited
+    latest = write_report(tmp_path, rows)  # default: the condition of the newest row (ltlf)
+    text = (tmp_path / "report.md").read_text()
+    assert "| ALL | 3 |" in latest.table2 and "profile ltlf, no time limit" in text
+    assert "2 cases under profile authors, no time limit" in text and "1 cases under profile authors, time limit 5 s" in text
+    chosen = write_report(tmp_path, rows, condition=("authors", 5.0))
+    assert "| ALL | 1 |" in chosen.table2
+    with pytest.raises(BenchError, match="no results under profile ltlf, time limit 9 s"):
+        write_report(tmp_path, rows, condition=("ltlf", 9.0))

@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import Any
 
 from sgplan.bench import figures, tables
+from sgplan.bench.cases import BenchError
 from sgplan.bench.results import ResultStore, counts, load_rows, load_sweeps
 
 REPORT_FILE = "report.md"
@@ -25,20 +26,47 @@ class Report:
     table3: str = ""
 
 
-def write_report(folder: str | Path, rows: Sequence[dict[str, Any]] | None = None) -> Report:
+Condition = tuple[str, float | None]
+"""What makes numbers comparable: (semantics profile, search time limit in seconds or ``None``)."""
+
+
+def condition_of(row: dict[str, Any]) -> Condition:
+    return (row["profile"], row.get("time_limit_s"))
+
+
+def _describe(condition: Condition) -> str:
+    profile, limit = condition
+    return f"profile {profile}, " + ("no time limit" if limit is None else f"time limit {limit:g} s")
+
+
+def latest_condition(rows: Sequence[dict[str, Any]]) -> Condition:
+    """The condition of the most recently finished row (the last sweep's, normally)."""
+    return condition_of(max(rows, key=lambda r: r.get("finished_at") or ""))
+
+
+def write_report(folder: str | Path, rows: Sequence[dict[str, Any]] | None = None, *,
+                 condition: Condition | None = None) -> Report:
     """Write ``report.md`` and the figures into ``folder`` from its ``results.jsonl`` (or ``rows``), and
     refresh ``results.csv`` / ``results.json``. The sweep calls of ``sweeps.jsonl`` are listed with their
     wall time.
 
+    Tables and figures cover one ``condition`` (default: :func:`latest_condition`), so that means never
+    mix semantics profiles or time limits; rows of other conditions are counted in a note.
+
     Raises
     ------
     BenchError
-        the folder holds no results.
+        the folder holds no results, or none under ``condition``.
     """
     out = Path(folder).expanduser()
     if rows is None:
         rows = load_rows(out)
         ResultStore(out).export()
+    condition = condition or latest_condition(rows)
+    others = counts({"status": _describe(condition_of(r))} for r in rows if condition_of(r) != condition)
+    rows = [r for r in rows if condition_of(r) == condition]
+    if not rows:
+        raise BenchError(f"no results under {_describe(condition)} in {out}; recorded: {', '.join(others)}")
     fig_dir = out / FIGURES_DIR
     report = Report(markdown=out / REPORT_FILE)
     case = tables.table2_case(rows)
@@ -52,13 +80,15 @@ def write_report(folder: str | Path, rows: Sequence[dict[str, Any]] | None = Non
     report.table3 = tables.table3(rows)
     compared, disagreements = tables.cost_disagreements(rows)
     status_counts = ", ".join(f"{n} {s}" for s, n in sorted(counts(rows).items()))
-    profiles = ", ".join(sorted({r["profile"] for r in rows}))
 
     text = [
         "# sgplan benchmark report",
         "",
-        f"{len(rows)} cases ({status_counts}); semantics profile: {profiles}.",
+        f"{len(rows)} cases ({status_counts}); {_describe(condition)}.",
     ]
+    if others:
+        text += ["", "Not in this report (other conditions; choose with `sgplan bench report --profile P "
+                 "--time-limit S`): " + "; ".join(f"{n} cases under {c}" for c, n in sorted(others.items())) + "."]
     sweeps = load_sweeps(out)
     if sweeps:
         text += ["", "Sweep calls (whole `sgplan bench` run, wall clock):", ""]

@@ -7,13 +7,17 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
+import signal
+from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
-from sgplan.commands.common import say
+from sgplan.commands.common import positive_int, positive_seconds, say
 
 if TYPE_CHECKING:
     from sgplan.bench.cases import Case
+    from sgplan.bench.results import ResultStore
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -37,25 +41,28 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--starts", metavar="LIST", help="initial-position indices, e.g. 0,2-4 (default: all)")
     parser.add_argument("--setups", nargs="+", metavar="NAME",
                         help=f"planner setups among {', '.join(SETUPS)} (default: ALL NO-LLM A*)")
-    parser.add_argument("--profile", choices=("authors", "ltlf"), default="authors",
-                        help="semantics (default: authors, as the paper's numbers); recorded in every row")
-    parser.add_argument("--time-limit", type=float, metavar="S", help="search time budget per case (seconds)")
-    parser.add_argument("--case-timeout", type=float, default=DEFAULT_CASE_TIMEOUT_S, metavar="S",
+    parser.add_argument("--profile", choices=("authors", "ltlf"),
+                        help="semantics (default: authors, as the paper's numbers); recorded in every row. "
+                             "With report: the rows to report (default: those of the latest sweep)")
+    parser.add_argument("--time-limit", type=positive_seconds, metavar="S",
+                        help="search time budget per case (seconds). With report: the rows to report")
+    parser.add_argument("--case-timeout", type=positive_seconds, default=DEFAULT_CASE_TIMEOUT_S, metavar="S",
                         help=f"kill a case's worker after S wall seconds (default: {DEFAULT_CASE_TIMEOUT_S:g})")
-    parser.add_argument("--jobs", "-j", type=int, metavar="N",
+    parser.add_argument("--jobs", "-j", type=positive_int, metavar="N",
                         help=f"cases run at once (default: the number of cores, {os.cpu_count()})")
     parser.add_argument("--executor", choices=("local", "ray"), default="local",
                         help="local process pool (default) or Ray (pip install 'sgplan[ray]')")
     parser.add_argument("--address", metavar="ADDR", help="Ray cluster address (default: start a local Ray)")
     parser.add_argument("--gallery", action="store_true", help="draw each case's path, one PNG per floor, under OUT/gallery")
-    parser.add_argument("--retry", action="store_true", help="also re-run cases recorded as crashed or wall-timeout")
+    parser.add_argument("--retry", action="store_true", help="also re-run cases recorded as error, crashed or wall-timeout")
     parser.add_argument("--no-report", action="store_true", help="do not write the report after the sweep")
     parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
     if args.action == "report":
-        _print_report(args.out)
+        chosen = args.profile is not None or args.time_limit is not None
+        _print_report(args.out, (args.profile or "authors", args.time_limit) if chosen else None)
         return 0
     return _sweep(args)
 
@@ -78,20 +85,51 @@ def _cases(args: argparse.Namespace) -> list[Case]:
     else:
         grids = paper_grids(s.name for s in scenes)
     say(f"data: {root}")
-    return expand(scenes, grids, profile=args.profile, time_limit_s=args.time_limit)
+    return expand(scenes, grids, profile=args.profile or "authors", time_limit_s=args.time_limit)
+
+
+@contextlib.contextmanager
+def _termination_as_interrupt() -> Iterator[None]:
+    """Treat SIGTERM and SIGHUP like Ctrl-C while sweeping, so the workers are stopped and the results
+    exported on the way out."""
+    def interrupt(signum: int, frame: object) -> None:
+        raise KeyboardInterrupt
+
+    previous = {sig: signal.signal(sig, interrupt) for sig in (signal.SIGTERM, signal.SIGHUP)}
+    try:
+        yield
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
 
 
 def _sweep(args: argparse.Namespace) -> int:
+    from sgplan.bench.results import ResultStore, make_folder, record_sweep, writing_lock
+
+    cases = _cases(args)
+    with writing_lock(make_folder(args.out)), _termination_as_interrupt():
+        store = ResultStore(args.out)
+        executor, summary, (csv_path, json_path) = _run_with_progress(args, cases, store)
+        jobs = executor.jobs or "cluster"
+        record_sweep(store.folder, {"ran": summary.ran, "skipped": summary.skipped, "wall_s": summary.wall_s,
+                                    "executor": executor.name, "jobs": jobs, "statuses": summary.statuses})
+    say(f"ran {summary.ran} cases in {summary.wall_s:.1f} s wall ({executor.name}, {jobs} jobs); "
+        f"{summary.skipped} were already recorded; results: {csv_path}, {json_path}")
+    if not args.no_report:
+        _print_report(args.out, (cases[0].profile, args.time_limit))
+    return 0
+
+
+def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: ResultStore) -> tuple[Any, Any, Any]:
+    """Run the sweep with a progress bar; returns (executor, sweep summary, exported file paths)."""
     from rich.console import Console
     from rich.markup import escape
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 
     from sgplan.bench.executors import LocalExecutor, RayExecutor
-    from sgplan.bench.results import FAILED, ResultStore, record_sweep
+    from sgplan.bench.results import FAILED
     from sgplan.bench.sweep import run_sweep
 
-    cases = _cases(args)
-    store = ResultStore(args.out)
     gallery = str(store.folder.resolve() / "gallery") if args.gallery else None
     options = {"timeout_s": args.case_timeout, "gallery_dir": gallery}
     executor = (RayExecutor(args.jobs, address=args.address, **options) if args.executor == "ray"
@@ -105,7 +143,7 @@ def _sweep(args: argparse.Namespace) -> int:
 
         def on_start(to_run: int, skipped: int) -> None:
             progress.update(task, total=to_run)
-            progress.console.print(f"{len(cases)} cases ({args.profile} profile): {skipped} already in "
+            progress.console.print(f"{len(cases)} cases ({cases[0].profile} profile): {skipped} already in "
                                    f"{store.path}, {to_run} to run with the {executor.name} executor")
 
         def on_row(row: dict[str, Any]) -> None:
@@ -117,21 +155,14 @@ def _sweep(args: argparse.Namespace) -> int:
         try:
             summary = run_sweep(cases, store, executor, retry=args.retry, on_start=on_start, on_row=on_row)
         finally:
-            csv_path, json_path = store.export()
-    jobs = executor.jobs or "cluster"
-    record_sweep(store.folder, {"ran": summary.ran, "skipped": summary.skipped, "wall_s": summary.wall_s,
-                                "executor": executor.name, "jobs": jobs, "statuses": summary.statuses})
-    say(f"ran {summary.ran} cases in {summary.wall_s:.1f} s wall ({executor.name}, {jobs} jobs); "
-        f"{summary.skipped} were already recorded; results: {csv_path}, {json_path}")
-    if not args.no_report:
-        _print_report(args.out)
-    return 0
+            exported = store.export()
+    return executor, summary, exported
 
 
-def _print_report(folder: str) -> None:
+def _print_report(folder: str, condition: tuple[str, float | None] | None) -> None:
     from sgplan.bench.report import write_report
 
-    report = write_report(folder)
+    report = write_report(folder, condition=condition)
     if report.table2:
         print(report.table2, end="\n\n")
     print(report.table3)
