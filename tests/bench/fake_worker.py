@@ -10,6 +10,8 @@ import signal
 import sys
 import time
 
+from sgplan.bench.worker import exit_when_orphaned
+
 
 def _answered_before() -> bool:
     once = os.environ.get("FAKE_WORKER_ONCE")
@@ -22,6 +24,7 @@ def _answered_before() -> bool:
         return True
 
 
+exit_when_orphaned()
 request = json.loads(sys.stdin.read())
 mission = request["case"]["mission"]
 if mission == "crash":

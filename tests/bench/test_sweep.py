@@ -16,7 +16,7 @@ import pytest
 
 from sgplan.bench.cases import BenchError, Case
 from sgplan.bench.executors import WORKER_ENV, LocalExecutor, worker_command
-from sgplan.bench.results import COLUMNS, RESULTS_JSONL, ResultStore
+from sgplan.bench.results import COLUMNS, RESULTS_JSONL, ResultStore, writing_lock
 from sgplan.bench.sweep import pending_cases, run_sweep
 from sgplan.mission import load_mission_folder
 from sgplan.pipeline import make_problem
@@ -79,7 +79,8 @@ def test_rerun_runs_nothing_and_a_torn_last_line_is_dropped(swept: tuple[list[Ca
     # Two rows lost and a third half-written, as after an interrupt in the middle of an append.
     copy.write_text("".join(lines[:-3]) + lines[-3][: len(lines[-3]) // 2])
     resumed = ResultStore(tmp_path)
-    assert len(resumed) == len(cases) - 3 and copy.read_text().endswith("\n")
+    assert len(resumed) == len(cases) - 3
+    assert not copy.read_text().endswith("\n")  # a reader leaves the file alone; the next append cuts it
     missing = {c.key for c in pending_cases(cases, resumed)}
     assert len(missing) == 3
     assert pending_cases(cases, store) == []
@@ -98,6 +99,7 @@ def test_rerun_runs_nothing_and_a_torn_last_line_is_dropped(swept: tuple[list[Ca
     executor = Recording()
     summary = run_sweep(cases, resumed, executor)
     assert set(executor.ran) == missing and summary.skipped == len(cases) - 3 and summary.ran == 3
+    assert len(ResultStore(tmp_path)) == len(cases) and copy.read_text().count("\n") == len(cases)
     assert len(ResultStore(tmp_path)) == len(cases)
 
 
@@ -124,17 +126,48 @@ def _rows_in(folder: Path) -> list[dict]:
     return [json.loads(line) for line in path.read_text().splitlines()] if path.exists() else []
 
 
-def test_interrupting_the_command_and_rerunning_finishes_only_the_missing_cases(data_dir: Path, tmp_path: Path) -> None:
-    out = tmp_path / "out"
-    command = [sys.executable, "-m", "sgplan.cli", "bench", "--data", str(data_dir), "--out", str(out),
-               "--missions", "1", "--starts", "0,1", "--setups", "ALL", "NO-LLM", "A*", "--jobs", "1", "--no-report"]
-    # First run: a stand-in worker that answers the first case and hangs on the next, so the interrupt
-    # always lands mid-sweep, however fast or loaded the machine is.
-    env = {**os.environ, WORKER_ENV: shlex.join(FAKE_WORKER), "FAKE_WORKER_ONCE": str(tmp_path / "answered")}
+def _bench_command(data_dir: Path, out: Path) -> list[str]:
+    return [sys.executable, "-m", "sgplan.cli", "bench", "--data", str(data_dir), "--out", str(out),
+            "--missions", "1", "--starts", "0,1", "--setups", "ALL", "NO-LLM", "A*", "--jobs", "1", "--no-report"]
+
+
+def _start_sweep_that_hangs_after_one_case(command: list[str], marker: Path) -> subprocess.Popen:
+    """Start ``command`` with a stand-in worker that answers the first case and hangs on the next, and
+    return once the first row is recorded: a signal sent then always lands mid-sweep, however fast or
+    loaded the machine is. Its workers carry ``marker`` in their environment."""
+    env = {**os.environ, WORKER_ENV: shlex.join(FAKE_WORKER), "FAKE_WORKER_ONCE": str(marker)}
     proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    out = Path(command[command.index("--out") + 1])
     deadline = time.monotonic() + 120
     while not _rows_in(out) and time.monotonic() < deadline and proc.poll() is None:
         time.sleep(0.1)
+    return proc
+
+
+def _workers_alive(marker: Path) -> list[int]:
+    """Pids of live processes whose environment holds ``marker`` (Linux /proc)."""
+    needle = f"FAKE_WORKER_ONCE={marker}".encode()
+    alive = []
+    for environ in Path("/proc").glob("[0-9]*/environ"):
+        try:
+            if needle in environ.read_bytes().split(b"\0"):
+                alive.append(int(environ.parent.name))
+        except OSError:
+            continue
+    return alive
+
+
+def _wait_for_no_workers(marker: Path, timeout_s: float = 10.0) -> list[int]:
+    deadline = time.monotonic() + timeout_s
+    while (alive := _workers_alive(marker)) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    return alive
+
+
+def test_interrupting_the_command_and_rerunning_finishes_only_the_missing_cases(data_dir: Path, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    command = _bench_command(data_dir, out)
+    proc = _start_sweep_that_hangs_after_one_case(command, tmp_path / "answered")
     proc.send_signal(signal.SIGINT)
     _, stderr = proc.communicate(timeout=60)
     assert proc.returncode == 130, stderr
@@ -159,3 +192,46 @@ def test_the_worker_command_can_be_replaced_from_the_environment(monkeypatch: py
     monkeypatch.setenv(WORKER_ENV, "python 'unclosed")
     with pytest.raises(BenchError, match=WORKER_ENV):
         LocalExecutor(1)
+
+
+def test_a_second_sweep_into_the_same_folder_is_refused(tmp_path: Path) -> None:
+    with writing_lock(tmp_path):
+        with pytest.raises(BenchError, match="another `sgplan bench` is writing"):
+            with writing_lock(tmp_path):
+                pass
+    with writing_lock(tmp_path):  # released
+        pass
+
+
+@pytest.mark.parametrize(("content", "fragment"), [
+    (b'{"key": "a", "status": "optimal"}\n', "missing scene, mission, start, setup, profile"),
+    (b"\xff\xfe\n", "is not UTF-8"),
+    (b"[1, 2]\n", "line 1 is not a result row"),
+])
+def test_a_damaged_results_file_gets_a_clear_error(tmp_path: Path, content: bytes, fragment: str) -> None:
+    (tmp_path / RESULTS_JSONL).write_bytes(content)
+    with pytest.raises(BenchError, match=fragment):
+        ResultStore(tmp_path)
+
+
+def test_retry_reruns_failed_rows_including_errors(swept: tuple[list[Case], ResultStore], tmp_path: Path) -> None:
+    cases, store = swept
+    copy = ResultStore(tmp_path)
+    for status, case in zip(("error", "crashed", "wall-timeout", "optimal"), cases):
+        copy.append({**store.get(case.key), "status": status})
+    retried = {c.key for c in pending_cases(cases[:4], copy, retry=True)}
+    assert retried == {c.key for c in cases[:3]}
+    assert pending_cases(cases[:4], copy) == []
+
+
+@pytest.mark.skipif(not Path("/proc/self/environ").exists(), reason="needs Linux /proc")
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGHUP, signal.SIGKILL])
+def test_no_worker_outlives_a_terminated_sweep(data_dir: Path, tmp_path: Path, sig: signal.Signals) -> None:
+    marker = tmp_path / "answered"
+    proc = _start_sweep_that_hangs_after_one_case(_bench_command(data_dir, tmp_path / "out"), marker)
+    assert _workers_alive(marker), "the hanging worker should be running"
+    proc.send_signal(sig)
+    _, stderr = proc.communicate(timeout=60)
+    # SIGTERM and SIGHUP stop the sweep like Ctrl-C; after SIGKILL the orphaned worker notices and exits.
+    assert proc.returncode == (-signal.SIGKILL if sig == signal.SIGKILL else 130), stderr
+    assert _wait_for_no_workers(marker) == []

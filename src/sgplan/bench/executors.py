@@ -23,6 +23,7 @@ from typing import Any
 
 from sgplan.bench.cases import BenchError, Case
 from sgplan.bench.results import failed_row, make_row
+from sgplan.bench.worker import PARENT_ENV
 
 DEFAULT_CASE_TIMEOUT_S = 600.0
 _STDERR_TAIL = 600
@@ -48,6 +49,7 @@ def worker_command() -> list[str]:
 
 def _worker_env() -> dict[str, str]:
     env = dict(os.environ)
+    env[PARENT_ENV] = str(os.getpid())  # the worker exits if this process dies
     # One case per core: keep numeric libraries from starting their own thread pools in each worker.
     for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
         env[name] = "1"

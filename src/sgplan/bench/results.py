@@ -9,13 +9,15 @@ When a case is recorded twice (a re-run with ``retry``), the last row wins.
 
 from __future__ import annotations
 
+import contextlib
 import csv
+import fcntl
 import io
 import json
 import os
 import socket
 import time
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -27,14 +29,14 @@ RESULTS_JSONL, RESULTS_CSV, RESULTS_JSON = "results.jsonl", "results.csv", "resu
 SWEEPS_JSONL = "sweeps.jsonl"
 """One line per sweep call: when, cases run / resumed, wall seconds, executor, jobs."""
 
-SOLVED = ("optimal", "timeout")
-"""Statuses of a planner run that ended normally (``timeout``: the search budget ran out)."""
-EXCLUDED_PLANNING = ("invalid-start", "infeasible")
-"""The case has no answer to measure: the start is in collision / violates the mission, or no path exists."""
 FAILED = ("error", "crashed", "wall-timeout")
 """The case did not run to its end: a bug or bad input (``error``), the worker process died
 (``crashed``), or it ran past the per-case wall timeout and was killed (``wall-timeout``)."""
-RETRYABLE = ("crashed", "wall-timeout")
+RETRYABLE = FAILED
+"""Statuses that ``--retry`` runs again (an ``error`` may come from a bug fixed since)."""
+LOCK_FILE = ".lock"
+REQUIRED = ("key", "scene", "mission", "start", "setup", "profile", "status")
+"""Fields every stored row must have (the report groups and keys rows by them)."""
 
 COLUMNS = (
     "key", "scene", "mission", "start", "setup", "profile", "time_limit_s", "status", "reason",
@@ -69,6 +71,16 @@ def failed_row(case: Case, status: str, reason: str, *, wall_s: float | None, ex
                     wall_s=wall_s, executor=executor)
 
 
+def make_folder(folder: str | Path) -> Path:
+    """``folder`` as a path, created if needed (a BenchError saying why if it cannot be)."""
+    path = Path(folder).expanduser()
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise BenchError(f"cannot create the output folder {path}: {error.strerror}") from None
+    return path
+
+
 class ResultStore:
     """The results of one output folder (see the module docstring).
 
@@ -79,13 +91,10 @@ class ResultStore:
     """
 
     def __init__(self, folder: str | Path) -> None:
-        self.folder = Path(folder).expanduser()
-        try:
-            self.folder.mkdir(parents=True, exist_ok=True)
-        except OSError as error:
-            raise BenchError(f"cannot create the output folder {self.folder}: {error.strerror}") from None
+        self.folder = make_folder(folder)
         self.path = self.folder / RESULTS_JSONL
         self._rows: dict[str, dict[str, Any]] = {}
+        self._partial = 0
         self._load()
 
     def _load(self) -> None:
@@ -93,18 +102,24 @@ class ResultStore:
             return
         data = self.path.read_bytes()
         complete = data[: data.rfind(b"\n") + 1]
-        if len(complete) != len(data):
-            # An interrupted append: drop the partial line so the next append starts on a fresh line.
-            with open(self.path, "r+b") as handle:
-                handle.truncate(len(complete))
-        for number, line in enumerate(complete.decode("utf-8").splitlines(), 1):
+        # An interrupted append leaves a partial last line: ignored here, cut off by the next append.
+        self._partial = len(data) - len(complete)
+        try:
+            text = complete.decode("utf-8")
+        except UnicodeDecodeError as error:
+            raise BenchError(f"is not UTF-8 text (byte {error.start}); fix or remove it", self.path) from None
+        for number, line in enumerate(text.splitlines(), 1):
             if not line.strip():
                 continue
             try:
                 row = json.loads(line)
-                self._rows[row["key"]] = row
-            except (json.JSONDecodeError, KeyError, TypeError):
-                raise BenchError(f"line {number} is not a result row; fix or remove it", self.path) from None
+            except json.JSONDecodeError:
+                row = None
+            missing = [k for k in REQUIRED if k not in row] if isinstance(row, dict) else list(REQUIRED)
+            if missing:
+                raise BenchError(f"line {number} is not a result row (missing {', '.join(missing)}); "
+                                 "fix or remove it", self.path)
+            self._rows[row["key"]] = row
 
     def __len__(self) -> int:
         return len(self._rows)
@@ -120,10 +135,14 @@ class ResultStore:
         return list(self._rows.values())
 
     def append(self, row: dict[str, Any]) -> None:
-        """Record ``row`` durably: one write of one complete line, then fsync."""
+        """Record ``row`` durably: one write of one complete line, then fsync. Only the holder of
+        :func:`writing_lock` may append."""
         line = (json.dumps(row, allow_nan=False) + "\n").encode("utf-8")
         fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
         try:
+            if self._partial:
+                os.ftruncate(fd, os.fstat(fd).st_size - self._partial)
+                self._partial = 0
             written = os.write(fd, line)
             if written != len(line):  # pragma: no cover - a full disk
                 raise BenchError(f"short write ({written} of {len(line)} bytes)", self.path)
@@ -188,3 +207,26 @@ def counts(rows: Iterable[dict[str, Any]]) -> dict[str, int]:
     for row in rows:
         out[row["status"]] = out.get(row["status"], 0) + 1
     return out
+
+
+@contextlib.contextmanager
+def writing_lock(folder: str | Path) -> Iterator[None]:
+    """Hold the exclusive right to append to ``folder``'s results (an advisory ``flock`` on
+    ``folder/.lock``, released when the process ends however it ends).
+
+    Raises
+    ------
+    BenchError
+        another sweep is writing into ``folder``.
+    """
+    path = Path(folder).expanduser() / LOCK_FILE
+    with open(path, "a+b") as handle:
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise BenchError("another `sgplan bench` is writing into this folder; wait for it or use another "
+                             "--out", path.parent) from None
+        try:
+            yield
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)

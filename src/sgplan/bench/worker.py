@@ -11,8 +11,10 @@ from __future__ import annotations
 import contextlib
 import json
 import math
+import os
 import resource
 import sys
+import threading
 import time
 import traceback
 from pathlib import Path
@@ -116,8 +118,39 @@ def _plan_case(case: Case, gallery_dir: str | Path | None, out: dict[str, Any], 
         out["gallery"] = [str(p) for p in written]
 
 
+PARENT_ENV = "SGPLAN_BENCH_PARENT"
+"""Environment variable by which an executor tells its workers the pid of the process that runs them."""
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # exists, owned by someone else
+        return True
+    return True
+
+
+def exit_when_orphaned(poll_s: float = 1.0) -> None:
+    """Exit as soon as the process that runs this worker dies: workers run in their own session (a
+    terminal's Ctrl-C goes to the sweep only), so nothing else would stop them if the sweep were killed
+    outright. The executor's pid comes from ``$SGPLAN_BENCH_PARENT``, which also covers a sweep killed
+    while this worker was still starting (and a wrapper command between the two)."""
+    first_parent = os.getppid()
+    sweep = int(os.environ.get(PARENT_ENV) or first_parent)
+
+    def watch() -> None:
+        while os.getppid() == first_parent and _alive(sweep):
+            time.sleep(poll_s)
+        os._exit(3)
+
+    threading.Thread(target=watch, name="sgplan-orphan-watch", daemon=True).start()
+
+
 def main() -> int:
     """Entry point of ``python -m sgplan.bench.worker`` (see the module docstring)."""
+    exit_when_orphaned()
     request = json.loads(sys.stdin.read())
     case = Case.from_dict(request["case"])
     real_stdout = sys.stdout
