@@ -199,10 +199,14 @@ class RayExecutor:
             raise BenchError("the Ray executor needs Ray: pip install 'sgplan[ray]'") from None
         started = not ray.is_initialized()
         if started:
-            if self.address:
-                ray.init(address=self.address, log_to_driver=False)
-            else:
-                ray.init(num_cpus=self.jobs, include_dashboard=False, log_to_driver=False)
+            try:
+                if self.address:
+                    ray.init(address=self.address, log_to_driver=False)
+                else:
+                    ray.init(num_cpus=self.jobs, include_dashboard=False, log_to_driver=False)
+            except (ConnectionError, RuntimeError, ValueError, TimeoutError) as error:
+                where = f"the Ray cluster at {self.address}" if self.address else "a local Ray"
+                raise BenchError(f"cannot start {where}: {error}") from None
         task = ray.remote(num_cpus=1, max_retries=0)(run_isolated)
         pending = {
             task.remote(case, timeout_s=self.timeout_s, gallery_dir=self.gallery_dir, command=self.command,
