@@ -115,6 +115,9 @@ def test_hopeless_replies_end_with_a_request_to_rephrase(fake_llm, llm_client, d
         ("['EVENTUALLY', 'enter(room_14)']", "names room_14, which is not a known"),
         ("['EVENTUALLY', 'enter(object_21)']", "malformed"),
         ("['AND', 'EVENTUALLY', 'enter(room_5)', 'ALWAYS', 'NOT', 'enter(room_5)']", "can never be satisfied"),
+        # tautologies ask nothing of the robot; the second one only because rooms are mutually exclusive
+        ("['OR', 'EVENTUALLY', 'enter(room_5)', 'NOT', 'EVENTUALLY', 'enter(room_5)']", "satisfied by every path"),
+        ("['ALWAYS', 'NOT', 'AND', 'enter(room_5)', 'enter(room_4)']", "asks nothing of the robot"),
     ],
 )
 def test_invented_ids_and_impossible_formulas_are_repaired_then_refused(fake_llm, llm_client, demo, bad, fragment) -> None:
@@ -127,6 +130,24 @@ def test_invented_ids_and_impossible_formulas_are_repaired_then_refused(fake_llm
     fake_llm.push_reply(bad, times=2)
     with pytest.raises(RephraseError, match=fragment):
         LLMTranslator(llm_client, max_repairs=1).translate(TEXT, demo)
+
+
+def test_a_formula_whose_automaton_is_too_large_is_repaired(fake_llm, llm_client, demo) -> None:
+    objects = [f"object_{n}" for n in range(15, 35)]  # 20 propositions: 2**20 labels exceed the table limit
+    fake_llm.push_reply(json.dumps({"grounded": f"Reach {', '.join(objects)} in any order.", "problems": []}))
+    fake_llm.push_reply(repr(conjunction_of_goals(objects)))
+    fake_llm.push_reply("['EVENTUALLY', 'reach(object_15)']")
+    translation = LLMTranslator(llm_client).translate("Reach 20 objects.", demo)
+    assert translation.repairs == 1 and translation.tokens == ("EVENTUALLY", "reach(object_15)")
+    assert "table entries, more than max_entries" in fake_llm.requests[2].last_user_message
+
+
+def conjunction_of_goals(objects: list[str]) -> list[str]:
+    """Prefix tokens of ``F reach(o1) & F reach(o2) & ...``."""
+    tokens: list[str] = []
+    for key in objects[:-1]:
+        tokens += ["AND", "EVENTUALLY", f"reach({key})"]
+    return [*tokens, "EVENTUALLY", f"reach({objects[-1]})"]
 
 
 def test_ambiguous_references_are_never_guessed(fake_llm, llm_client, demo) -> None:

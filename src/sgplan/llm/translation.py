@@ -6,15 +6,16 @@ Pipeline (SYSTEM.md §3 steps 1-5), for one sample:
 2. the IDs of the grounded text (regex) and the grounded text go to the translation prompt;
 3. the reply's list is parsed with :func:`sgplan.logic.parse_tokens` restricted to those IDs, so an
    operator short of operands, a leftover token, a malformed or invented ID are all precise errors;
-4. a parsed formula whose automaton accepts nothing is an error too;
+4. a parsed formula whose automaton is too large, accepts nothing or accepts every path (it asks nothing)
+   is an error too;
 5. an error is sent back with the repair prompt (the error and the list with the faulty token marked), at
    most ``max_repairs`` times; then the mission is refused with a :class:`RephraseError`.
 
 A wrong formula is never accepted: the only way out of the loop is a formula that parses over the
-grounded IDs and is satisfiable. With ``samples > 1`` translation runs that many times (with seeds 0..k-1)
-and the formulas are grouped by language equivalence of their automata (not by string equality); the
-largest group wins, a tie is refused. Warnings (first-cell-only conjuncts, NEXT, non-co-safe parts, IDs
-of the grounded text that the formula does not use) are kept, not fatal.
+grounded IDs, is satisfiable and is not a tautology. With ``samples > 1`` translation runs that many times
+(with seeds 0..k-1) and the formulas are grouped by language equivalence of their automata (not by string
+equality); the largest group wins, a tie is refused. Warnings (first-cell-only conjuncts, NEXT, non-co-safe
+parts, IDs of the grounded text that the formula does not use) are kept, not fatal.
 
 :class:`LLMTranslator` has the same ``translate(text, building)`` contract as the offline
 :class:`~sgplan.llm.offline.PatternTranslator`; :func:`translate_to_folder` runs either and saves the
@@ -30,7 +31,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from sgplan.errors import FormulaError, SgplanError
+from sgplan.errors import AutomatonError, FormulaError, SgplanError
 from sgplan.llm.client import ChatBackend
 from sgplan.llm.config import one_line
 from sgplan.llm.grounding import (
@@ -47,6 +48,7 @@ from sgplan.llm.prompts import load_prompt
 from sgplan.llm.records import RunRecord
 from sgplan.logic import (
     Formula,
+    Not,
     atoms,
     distances_to_accept,
     formula_warnings,
@@ -109,19 +111,37 @@ def mark_token(tokens: list[str] | None, reply: str, position: int | None) -> st
     return "[" + ", ".join(shown) + "]"
 
 
+def _accepts_nothing(formula: Formula) -> bool:
+    """Whether no path satisfies ``formula`` (rooms mutually exclusive).
+
+    Raises :class:`FormulaError` when the automaton is too large to build, so that it is repaired too.
+    """
+    try:
+        automaton = mission_from_formula(formula).automaton
+    except AutomatonError as exc:
+        raise FormulaError(f"{exc}; write a shorter formula for the same mission") from None
+    return not np.isfinite(distances_to_accept(automaton)[automaton.initial])
+
+
 def check_formula(tokens: list[str], ids: tuple[str, ...]) -> tuple[Formula, list[str]]:
-    """Parse ``tokens`` over the grounded ``ids`` and check that the formula can be satisfied.
+    """Parse ``tokens`` over the grounded ``ids`` and check that the formula asks something possible.
 
     Returns the formula and its warnings. Raises :class:`FormulaError` (with the token position where
-    there is one) for anything that must be repaired.
+    there is one) for anything that must be repaired: a parse error, an automaton too large to build, a
+    formula that no path satisfies and one that every path satisfies (it asks nothing of the robot).
     """
     formula = parse_tokens(tokens, known=ids)
     rooms = [p for p in atoms(formula) if p.startswith("enter(")]
-    automaton = mission_from_formula(formula).automaton
-    if not np.isfinite(distances_to_accept(automaton)[automaton.initial]):
+    if _accepts_nothing(formula):
         raise FormulaError(
             f"the formula {to_infix(formula)} can never be satisfied by any path (with one room at a time: "
             f"{', '.join(rooms) or 'no rooms'}); the mission surely means something else"
+        )
+    if _accepts_nothing(Not(formula)):
+        raise FormulaError(
+            f"the formula {to_infix(formula)} is satisfied by every path (with one room at a time: "
+            f"{', '.join(rooms) or 'no rooms'}), so it asks nothing of the robot; the mission surely means "
+            "something else"
         )
     warnings = formula_warnings(formula)
     warnings += [f"'{to_infix(part)}' is not co-safe: it constrains the whole path"
@@ -263,8 +283,6 @@ class LLMTranslator:
             after the repairs, or a tied vote; the message says what to rephrase.
         LLMError
             The backend failed.
-        AutomatonError
-            The formula's automaton is too large.
         """
         grounding = ground_mission(text, building, self.backend, self.record, max_repairs=self.max_repairs,
                                    params=self.grounding_params)
