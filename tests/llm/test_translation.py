@@ -207,8 +207,23 @@ def test_a_tied_vote_is_refused(fake_llm, llm_client, demo) -> None:
     fake_llm.push_reply(GROUNDING_REPLY)
     fake_llm.push_reply("['EVENTUALLY', 'enter(room_5)']")
     fake_llm.push_reply(GOOD)
-    with pytest.raises(RephraseError, match="disagree"):
+    with pytest.raises(RephraseError, match="no majority"):
         LLMTranslator(llm_client, samples=2).translate(TEXT, demo)
+
+
+def test_failed_samples_count_against_the_majority(fake_llm, llm_client, demo) -> None:
+    fake_llm.push_reply(GROUNDING_REPLY)
+    fake_llm.push_reply(GOOD)
+    fake_llm.push_reply("no list", times=2)  # two samples fail (no repairs allowed)
+    with pytest.raises(RephraseError, match=r"the 3 translations have no majority \(.* \(1x\); 2 failed\)"):
+        LLMTranslator(llm_client, samples=3, max_repairs=0).translate(TEXT, demo)
+    # two agreeing samples of three are a majority even when the third fails
+    fake_llm.push_reply(GROUNDING_REPLY)
+    fake_llm.push_reply(GOOD, times=2)
+    fake_llm.push_reply("no list")
+    translation = LLMTranslator(llm_client, samples=3, max_repairs=0).translate(TEXT, demo)
+    assert_gold(translation.formula)
+    assert translation.votes == (2,)
 
 
 def fast_client(fake_llm, **overrides) -> OpenAIChatClient:

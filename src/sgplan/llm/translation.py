@@ -14,8 +14,9 @@ Pipeline (SYSTEM.md §3 steps 1-5), for one sample:
 A wrong formula is never accepted: the only way out of the loop is a formula that parses over the
 grounded IDs, is satisfiable and is not a tautology. With ``samples > 1`` translation runs that many times
 (with seeds 0..k-1) and the formulas are grouped by language equivalence of their automata (not by string
-equality); the largest group wins, a tie is refused. Warnings (first-cell-only conjuncts, NEXT, non-co-safe
-parts, IDs of the grounded text that the formula does not use) are kept, not fatal.
+equality); the largest group wins if it holds more than half of all the samples (a failed sample counts
+against every group), otherwise the mission is refused. Warnings (first-cell-only conjuncts, NEXT,
+non-co-safe parts, IDs of the grounded text that the formula does not use) are kept, not fatal.
 
 :class:`LLMTranslator` has the same ``translate(text, building)`` contract as the offline
 :class:`~sgplan.llm.offline.PatternTranslator`; :func:`translate_to_folder` runs either and saves the
@@ -202,10 +203,13 @@ def _translate_once(
     )
 
 
-def _vote(samples: list[_Sample]) -> tuple[_Sample, tuple[int, ...]]:
+def _vote(samples: list[_Sample], total: int) -> tuple[_Sample, tuple[int, ...]]:
     """The representative of the largest class of language-equivalent samples, and the class sizes.
 
-    Raises :class:`RephraseError` when two classes tie for the largest.
+    ``total`` is the number of samples asked for, failed ones included: the winning class must hold more
+    than half of them, so a few successes among many failures do not decide the mission.
+
+    Raises :class:`RephraseError` when no class holds such a majority.
     """
     classes: list[list[_Sample]] = []
     for s in samples:
@@ -216,11 +220,12 @@ def _vote(samples: list[_Sample]) -> tuple[_Sample, tuple[int, ...]]:
             home.append(s)
     classes.sort(key=len, reverse=True)
     sizes = tuple(len(c) for c in classes)
-    if len(classes) > 1 and sizes[0] == sizes[1]:
+    if 2 * sizes[0] <= total:
         shown = "; ".join(f"{to_infix(c[0].formula)} ({len(c)}x)" for c in classes[:3])
+        failed = total - len(samples)
         raise RephraseError(
-            f"the {len(samples)} translations disagree with no majority ({shown}); the mission is read in "
-            "several ways: rephrase it more precisely"
+            f"the {total} translations have no majority ({shown}{f'; {failed} failed' if failed else ''}); "
+            "the mission is read in several ways or is hard to translate: rephrase it more precisely"
         )
     return classes[0][0], sizes
 
@@ -235,7 +240,8 @@ class LLMTranslator:
     record:
         Where calls and events go; a fresh :class:`RunRecord` by default (see :attr:`record`).
     samples:
-        Translations to vote on (grounding is done once). With more than one, calls use seeds
+        Translations to vote on (grounding is done once); a reading wins with more than half of them,
+        failed ones included. With more than one, calls use seeds
         ``0..samples-1`` and, unless ``params`` sets one, temperature :data:`SAMPLING_TEMPERATURE`.
     max_repairs:
         Repair rounds per sample (and unusable grounding replies sent back) before refusing.
@@ -280,7 +286,7 @@ class LLMTranslator:
         ------
         RephraseError
             (a :class:`~sgplan.errors.MissionError`) unresolved/ambiguous references, no valid formula
-            after the repairs, or a tied vote; the message says what to rephrase.
+            after the repairs, or no majority in the vote; the message says what to rephrase.
         LLMError
             The backend failed.
         """
@@ -298,7 +304,7 @@ class LLMTranslator:
         if not results:
             assert refusal is not None
             raise refusal
-        winner, sizes = _vote(results)
+        winner, sizes = _vote(results, self.samples)
         if self.samples > 1:
             self.record.event("vote", samples=self.samples, failed=self.samples - len(results), classes=list(sizes),
                               winner=to_infix(winner.formula))
