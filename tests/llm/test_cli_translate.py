@@ -13,6 +13,7 @@ import yaml
 
 from sgplan.cli import main
 from sgplan.commands import translate
+from sgplan.errors import MissionError
 
 from .fake_openai_server import RecordedRequest
 
@@ -134,10 +135,34 @@ def test_interactive_rephrasing_after_an_ambiguous_mission(tmp_path: Path, capsy
     assert (tmp_path / "m" / "NL_instructions.txt").read_text() == "Visit the bathroom on floor 1.\n"
     # giving up (an empty answer) re-raises the original error
     args.text = "Visit the bathroom."
-    from sgplan.errors import MissionError
-
     with pytest.raises(MissionError, match="matches 2 rooms"):
         translate.run(args, ask=lambda question: "")
+
+
+@pytest.mark.parametrize(
+    ("option", "fragment"),
+    [(["--samples", "0"], "'0' is not a whole number >= 1"),
+     (["--max-repairs", "-1"], "'-1' is not a whole number >= 0")],
+)
+def test_bad_counts_are_refused_by_the_parser(llm_args, tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                              option: list[str], fragment: str) -> None:
+    argv = ["translate", "--scene", "demo", "--text", TEXT, *llm_args, "--out", str(tmp_path / "m"), *option]
+    with pytest.raises(SystemExit) as info:
+        main(argv)
+    assert info.value.code == 2 and fragment in capsys.readouterr().err
+
+
+def test_closed_stdin_at_the_rephrase_prompt_gives_up_with_the_refusal(tmp_path: Path) -> None:
+    parser = argparse.ArgumentParser()
+    translate.register(parser.add_subparsers())
+    args = parser.parse_args(["translate", "--scene", "demo", "--text", "Visit the bathroom.",
+                              "--out", str(tmp_path / "m")])
+
+    def ask(question: str) -> str:
+        raise EOFError
+
+    with pytest.raises(MissionError, match="matches 2 rooms"):
+        translate.run(args, ask=ask)
 
 
 def test_plan_text_offline_translates_guides_and_verifies(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

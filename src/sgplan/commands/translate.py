@@ -3,8 +3,8 @@
 The language backend is ``--llm openai:MODEL`` (any OpenAI-compatible server; ``--base-url``, ``--cache``,
 ``--replay``) or ``--llm offline`` (the pattern translator, not a language model; the default). When the
 mission cannot be translated as written (an ambiguous or unknown reference, no valid formula after the
-repairs) and the terminal is interactive, the user is asked to rephrase it; otherwise the error ends the
-command (exit code 2).
+repairs) and the terminal is interactive, the user is asked to rephrase it (an empty line or the end of
+input gives up); otherwise the error ends the command (exit code 2).
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from sgplan.commands.common import add_scene_arguments, load_scene_arg, say
+from sgplan.commands.common import add_scene_arguments, load_scene_arg, non_negative_int, positive_int, say
 from sgplan.errors import MissionError
 
 if TYPE_CHECKING:
@@ -50,11 +50,19 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--out", required=True, metavar="MISSION_DIR",
                         help="mission folder to write (the authors' layout plus llm_record.json)")
     add_llm_arguments(parser)
-    parser.add_argument("--samples", type=int, default=1, metavar="K",
+    parser.add_argument("--samples", type=positive_int, default=1, metavar="K",
                         help="translate K times and keep the majority by automaton equivalence (default 1)")
-    parser.add_argument("--max-repairs", type=int, default=3, metavar="N",
+    parser.add_argument("--max-repairs", type=non_negative_int, default=3, metavar="N",
                         help="times an invalid formula is sent back for repair before giving up (default 3)")
     parser.set_defaults(run=run)
+
+
+def _rephrased(ask: Callable[[str], str]) -> str:
+    """The user's rephrased mission, or ``""`` to give up (an empty line, or stdin closed)."""
+    try:
+        return ask("Rephrase the mission (empty line to give up): ").strip()
+    except EOFError:
+        return ""
 
 
 def run(args: argparse.Namespace, ask: Callable[[str], str] | None = None) -> int:
@@ -76,7 +84,7 @@ def run(args: argparse.Namespace, ask: Callable[[str], str] | None = None) -> in
             if ask is None:
                 raise
             say(f"sgplan: the mission cannot be translated as written: {error}")
-            text = ask("Rephrase the mission (empty line to give up): ").strip()
+            text = _rephrased(ask)
             if not text:
                 raise
     print(f"grounded: {translation.grounded_text}")
