@@ -13,11 +13,14 @@ import yaml
 
 from sgplan.errors import LLMError
 from sgplan.llm.guidance import (
+    IMPLAUSIBLE_LABEL_COST,
     LazyGuidance,
     LLMGuide,
     generate_guidance,
+    label_costs,
     parse_commands,
     remaining_text,
+    route_prefix,
     validate_call,
 )
 from sgplan.llm.records import RunRecord
@@ -47,13 +50,13 @@ def room_of(request: RecordedRequest) -> int:
 
 
 def mixed_reply(demo):
-    """Per room: one valid move, one move to an object (dropped), reach of the bowl (valid only in room_4)."""
+    """Per room: reach of the bowl (valid only in room_4), one move to an object (dropped), one valid move."""
 
     def answer(request: RecordedRequest) -> str:
         room = demo.room(uuid=room_of(request))
-        return (f"<command>move(room_{room.uuid}, room_{room.connected_room_uuids[0]})</command>\n"
+        return (f"<command>reach({room.uuid}, 19)</command>\n"
                 f"<command>move(room_{room.uuid}, object_21)</command>\n"
-                f"<command>reach({room.uuid}, 19)</command>")
+                f"<command>move(room_{room.uuid}, room_{room.connected_room_uuids[0]})</command>")
 
     return answer
 
@@ -126,7 +129,7 @@ def test_batch_guidance_validates_counts_and_skips(fake_llm, llm_client, demo, m
     assert report.asked == len(rooms) * 2 == len(fake_llm.requests) and report.failed == 0
     assert report.skipped == len(rooms)  # the sink: nothing to ask, no call
     assert report.calls_kept == len(rooms) * 2 + 2 and report.calls_dropped == len(rooms) * 2 * 2 - 2
-    assert guidance[2][0] == ["move(2, 4)"] and guidance[4][0] == ["move(4, 2)", "reach(4, 19)"]
+    assert guidance[2][0] == ["move(2, 4)"] and guidance[4][0] == ["reach(4, 19)", "move(4, 2)"]
     sink = a.step(a.initial, a.label_of({"enter(room_4)"}))
     assert guidance[2][sink] == []
     prompts = [r.last_user_message for r in fake_llm.requests if room_of(r) == 2]
@@ -138,7 +141,7 @@ def test_batch_guidance_validates_counts_and_skips(fake_llm, llm_client, demo, m
     # llm_heuristic.yaml round trip in the authors' form
     path = write_guidance(guidance, tmp_path / "llm_heuristic.yaml")
     assert read_guidance(path) == guidance
-    assert yaml.safe_load(path.read_text())[4][0] == ["move(4, 2)", "reach(4, 19)"]
+    assert yaml.safe_load(path.read_text())[4][0] == ["reach(4, 19)", "move(4, 2)"]
 
 
 def test_failed_entries_are_empty_and_counted_and_all_failing_is_an_error(fake_llm, llm_client, demo, mission) -> None:
@@ -178,11 +181,11 @@ def test_lazy_guidance_asks_only_what_is_queried_once(fake_llm, llm_client, demo
     a = mission.automaton
     sink = a.step(a.initial, a.label_of({"enter(room_4)"}))
     lazy = LazyGuidance(demo, a, llm_client, RunRecord("x"))
-    assert lazy(4, 0) == ["move(4, 2)", "reach(4, 19)"]
-    assert lazy(4, 0) == ["move(4, 2)", "reach(4, 19)"]
+    assert lazy(4, 0) == ["reach(4, 19)", "move(4, 2)"]
+    assert lazy(4, 0) == ["reach(4, 19)", "move(4, 2)"]
     assert lazy(4, sink) == [] and lazy(999, 0) == [] and lazy(4, 99) == []
     assert len(fake_llm.requests) == 1
-    assert lazy.table() == {4: {0: ["move(4, 2)", "reach(4, 19)"], sink: []}}
+    assert lazy.table() == {4: {0: ["reach(4, 19)", "move(4, 2)"], sink: []}}
     assert lazy.report.asked == 1 and lazy.report.calls_dropped == 1
 
 
@@ -208,8 +211,9 @@ def test_authors_gpt4_guidance_replayed_through_the_pipeline(fake_llm, llm_clien
     shipped = yaml.safe_load((folder / "llm_heuristic.yaml").read_text())
     a, actions = mission.automaton, mission.descriptions
     by_text = {}
+    costs = label_costs(a, building, actions)
     for q in range(a.num_states):
-        by_text.setdefault(remaining_text(a, q, actions), q)
+        by_text.setdefault(remaining_text(a, q, actions, costs), q)
 
     def answer(request: RecordedRequest) -> str:
         remaining = request.last_user_message.split("Remaining mission: ")[1].split("\nGive")[0]
@@ -223,3 +227,37 @@ def test_authors_gpt4_guidance_replayed_through_the_pipeline(fake_llm, llm_clien
     kept = [c for states in guidance.values() for calls in states.values() for c in calls]
     assert len(kept) == report.calls_kept and report.calls_dropped > 0
     assert all(validate_call(c, building)[0] == c for c in kept)
+
+
+def test_only_calls_that_form_one_route_from_the_room_are_kept() -> None:
+    assert route_prefix(["move(2, 4)", "reach(4, 19)", "move(4, 6)"], 2) == (["move(2, 4)", "reach(4, 19)", "move(4, 6)"], "")
+    kept, reason = route_prefix(["move(2, 4)", "move(5, 6)", "move(6, 7)"], 2)
+    assert kept == ["move(2, 4)"] and "move(5, 6) starts in room_5, not in where move(2, 4) ended (room_4)" in reason
+    kept, reason = route_prefix(["reach(4, 19)"], 2)
+    assert kept == [] and "not in the current room (room_2)" in reason
+    assert route_prefix([], 2) == ([], "")
+
+
+def test_a_broken_route_is_cut_and_its_calls_counted(fake_llm, llm_client, demo, mission) -> None:
+    room = demo.room(uuid=2)
+    step = room.connected_room_uuids[0]
+    elsewhere = next(r.uuid for r in demo.rooms() if r.uuid not in (2, step) and r.connected_room_uuids)
+    other = demo.room(uuid=elsewhere).connected_room_uuids[0]
+    reply = (f"<command>move(2, {step})</command><command>move({elsewhere}, {other})</command>"
+             f"<command>move({other}, {elsewhere})</command>")
+    fake_llm.respond_with(lambda request: reply)
+    guidance, report = generate_guidance(demo, mission.automaton, llm_client, RunRecord("x"))
+    assert guidance[2][mission.automaton.initial] == [f"move(2, {step})"]
+    assert report.calls_dropped >= 2 * 2 and any("dropped with the 1 calls after it" in r for r in report.reasons)
+    assert report.calls_kept + report.calls_dropped == 3 * report.asked
+
+
+def test_the_remaining_mission_avoids_labels_the_scene_makes_implausible(demo) -> None:
+    a = mission_from_formula('F "enter(room_5)" & F "enter(room_7)" & F "reach(object_32)"').automaton
+    assert demo.object(uuid=32).room_uuid not in (5, 7)
+    costs = label_costs(a, demo)
+    assert "enter room_7 and reach object_32" in remaining_text(a, a.initial)  # one letter, impossible at one cell
+    assert remaining_text(a, a.initial, weights=costs) == "1. reach object_32; 2. enter room_7; 3. enter room_5."
+    both = a.label_of({"enter(room_5)", "enter(room_7)"})
+    assert costs[both] == IMPLAUSIBLE_LABEL_COST and costs[a.label_of({"reach(object_32)", "enter(room_7)"})] == IMPLAUSIBLE_LABEL_COST
+    assert costs[a.label_of({"reach(object_32)"})] == costs[a.label_of({"enter(room_7)"})] == 1.0

@@ -9,9 +9,12 @@ every state of that path forbids. The reply's ``<command>`` elements are parsed 
 reads replies that are not well-formed XML) and every call is validated:
 
 - ``move(a, b)``: ``a`` and ``b`` are rooms and the scene graph connects ``a`` to ``b``;
-- ``reach(r, o)``: ``r`` is a room, ``o`` an object, and ``o`` lies in ``r``.
+- ``reach(r, o)``: ``r`` is a room, ``o`` an object, and ``o`` lies in ``r``;
+- together they form one route (:func:`route_prefix`): the first starts in the current room, each next
+  where the previous ended; the calls from the first break on are dropped.
 
-Invalid calls are dropped and counted (:class:`GuidanceReport`); the others are kept in the authors'
+The shortest automaton path avoids labels that cannot hold at one cell (:func:`label_costs`), so the
+model is never asked to be in two rooms at once. Invalid calls are dropped and counted (:class:`GuidanceReport`); the others are kept in the authors'
 ``llm_heuristic.yaml`` form with bare uuids: ``{room_uuid: {q: ["move(2, 9)", "reach(5, 21)"]}}``.
 States that are sinks or need nothing made true get an empty list without any call; a failed call gives
 an empty list too (h_LLM is then 0 there), is counted, and is not cached, so a re-run retries it.
@@ -32,6 +35,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
 
 from sgplan.errors import LLMError, MissionError
 from sgplan.llm.client import ChatBackend, ChatResult, complete_many
@@ -83,14 +87,49 @@ def _spoken(action: str) -> str:
     return action.replace("(", " ").replace(")", "")
 
 
-def remaining_text(automaton: Automaton, state: int, ap_actions: Mapping[str, str] | None = None) -> str | None:
+IMPLAUSIBLE_LABEL_COST = 1000.0
+"""Automaton-path cost of a label the scene graph makes implausible (vs 1 for any other label): high
+enough that a path using one is chosen only when no other path exists."""
+
+
+def label_costs(automaton: Automaton, building: Building, ap_actions: Mapping[str, str] | None = None) -> np.ndarray:
+    """``(num_labels,)``: 1 per label, :data:`IMPLAUSIBLE_LABEL_COST` for a label that the scene graph
+    makes implausible at one cell -- two rooms entered at once, or an object reached from a room that does
+    not hold it (possible only across a wall within the reach radius)."""
+    actions = dict(ap_actions or {})
+    labels = np.arange(automaton.num_labels)
+    rooms_in_label = np.zeros(automaton.num_labels, dtype=np.int64)
+    implausible = np.zeros(automaton.num_labels, dtype=bool)
+    entered: dict[int, int] = {}  # proposition index -> room uuid
+    for i, ap in enumerate(automaton.aps):
+        key = action_entity(actions.get(ap, ap)) or ""
+        kind, _, number = key.partition("_")
+        if kind == "room" and number.isdigit():
+            entered[i] = int(number)
+            rooms_in_label += (labels >> i) & 1
+    implausible |= rooms_in_label > 1
+    for i, ap in enumerate(automaton.aps):
+        key = action_entity(actions.get(ap, ap)) or ""
+        kind, _, number = key.partition("_")
+        if kind != "object" or not number.isdigit() or not building.has_object(int(number)):
+            continue
+        home = building.object(uuid=int(number)).room_uuid
+        for j, room in entered.items():
+            if room != home:
+                implausible |= (((labels >> i) & 1) & ((labels >> j) & 1)).astype(bool)
+    return np.where(implausible, IMPLAUSIBLE_LABEL_COST, 1.0)
+
+
+def remaining_text(automaton: Automaton, state: int, ap_actions: Mapping[str, str] | None = None,
+                   weights: np.ndarray | None = None) -> str | None:
     """The remaining mission of ``state`` in words, or ``None`` when there is nothing to ask.
 
     Steps (what to make true, in order) and what to avoid throughout come from
-    :func:`sgplan.logic.remaining_mission`. ``None`` for sinks, accepting states, and states where nothing
-    needs to be made true. ``ap_actions`` maps proposition names to action tokens (``{"p1": "enter(room_2)"}``).
+    :func:`sgplan.logic.remaining_mission` (with ``weights`` per label, e.g. :func:`label_costs`). ``None``
+    for sinks, accepting states, and states where nothing needs to be made true. ``ap_actions`` maps
+    proposition names to action tokens (``{"p1": "enter(room_2)"}``).
     """
-    remaining = remaining_mission(automaton, state)
+    remaining = remaining_mission(automaton, state, weights)
     if remaining is None or not remaining.to_make_true:
         return None
     actions = dict(ap_actions or {})
@@ -157,6 +196,30 @@ def validate_call(text: str, building: Building) -> tuple[str | None, str]:
     return f"{kind}({a[1]}, {b[1]})", ""
 
 
+_CANONICAL = re.compile(r"^(move|reach)\((\d+), (\d+)\)$")
+
+
+def route_prefix(calls: list[str], room_uuid: int) -> tuple[list[str], str]:
+    """The longest prefix of canonical ``calls`` that forms one route from room ``room_uuid``, and why
+    the next call breaks it (``""`` if none does).
+
+    The first call must start in ``room_uuid``; each next one where the previous ended (``move(a, b)``
+    ends in ``b``, ``reach(r, o)`` in ``r``). h_LLM sums the calls' lengths as one route, so calls past a
+    break would add distances that no route travels.
+    """
+    here = room_uuid
+    for k, call in enumerate(calls):
+        match = _CANONICAL.match(call)
+        if match is None:
+            raise ValueError(f"{call!r} is not a canonical call (see validate_call)")
+        kind, start, end = match.group(1), int(match.group(2)), int(match.group(3))
+        if start != here:
+            where = "the current room" if k == 0 else f"where {calls[k - 1]} ended"
+            return calls[:k], f"{call} starts in room_{start}, not in {where} (room_{here})"
+        here = end if kind == "move" else start
+    return list(calls), ""
+
+
 # -- asking -----------------------------------------------------------------------------------------------
 
 
@@ -188,8 +251,9 @@ class _Asker:
                          if mission_text else "")
         reachable = automaton.reachable_states()
         self.states = [q for q in range(automaton.num_states) if reachable[q] and not automaton.accepting[q]]
-        self._remaining = {q: remaining_text(automaton, q, ap_actions) for q in self.states}
         self._check_actions(ap_actions or {})
+        costs = label_costs(automaton, building, ap_actions)
+        self._remaining = {q: remaining_text(automaton, q, ap_actions, costs) for q in self.states}
 
     def _check_actions(self, ap_actions: Mapping[str, str]) -> None:
         for ap in self.automaton.aps:
@@ -218,16 +282,21 @@ class _Asker:
                 self.report.failed += 1
                 self.report.note(f"room_{room_uuid}, state {q}: {one_line(outcome, 200)}")
                 return []
-        calls, dropped = [], []
+        valid, dropped = [], []
         for text in parse_commands(outcome.content):
             call, reason = validate_call(text, self.building)
             if call is None:
                 dropped.append(reason)
             else:
-                calls.append(call)
+                valid.append(call)
+        calls, broken = route_prefix(valid, room_uuid)
+        if broken:
+            dropped.append(f"{broken}; dropped with the {len(valid) - len(calls) - 1} calls after it")
+        if outcome.finish_reason == "length":  # cut off by max_tokens: the route may be incomplete
+            self.record.event("guidance-reply-truncated", call=index, room=room_uuid, state=q)
         with self._lock:
             self.report.calls_kept += len(calls)
-            self.report.calls_dropped += len(dropped)
+            self.report.calls_dropped += len(dropped) - bool(broken) + len(valid) - len(calls)
             for reason in dropped:
                 self.report.note(f"room_{room_uuid}, state {q}: {reason}")
         if dropped or not calls:

@@ -41,7 +41,7 @@ class MissionStep:
 
 @dataclass(frozen=True)
 class RemainingMission:
-    """What is left to do from a state, read off a shortest (unit-weight) path to acceptance.
+    """What is left to do from a state, read off a shortest path to acceptance.
 
     ``to_keep_false``: the propositions that lead to a dead state, whatever else holds, from every state
     of that path (e.g. the rooms to avoid). A proposition that is merely false on the path's transitions
@@ -129,14 +129,15 @@ def shortest_path(a: Automaton, source: int | None = None, weights: np.ndarray |
     return AutomatonPath(tuple(states), tuple(labels), float(dist[states[0]]))
 
 
-def remaining_mission(a: Automaton, state: int) -> RemainingMission | None:
+def remaining_mission(a: Automaton, state: int, weights: np.ndarray | None = None) -> RemainingMission | None:
     """The propositions to make true (in order) and to keep false from ``state`` to acceptance.
 
-    Read off a shortest unit-weight path; for each of its transitions, the propositions true (false) in
-    every label that takes it; see :class:`RemainingMission` for ``to_keep_false``. ``None`` if ``state``
-    is a sink; no steps if it is accepting.
+    Read off a shortest path (unit weights, or ``weights`` per label as in :func:`distances_to_accept`,
+    e.g. to steer clear of labels the scene makes implausible); for each of its transitions, the
+    propositions true (false) in every label that takes it; see :class:`RemainingMission` for
+    ``to_keep_false``. ``None`` if ``state`` is a sink; no steps if it is accepting.
     """
-    path = shortest_path(a, state)
+    path = shortest_path(a, state, weights)
     if path is None:
         return None
     steps = []
