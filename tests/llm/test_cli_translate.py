@@ -13,7 +13,8 @@ import yaml
 
 from sgplan.cli import main
 from sgplan.commands import translate
-from sgplan.errors import MissionError
+from sgplan.errors import LLMError, MissionError
+from sgplan.llm.records import RunRecord
 
 from .fake_openai_server import RecordedRequest
 
@@ -139,6 +140,30 @@ def test_interactive_rephrasing_after_an_ambiguous_mission(tmp_path: Path, capsy
         translate.run(args, ask=lambda question: "")
 
 
+def test_a_new_mission_drops_the_old_guidance_and_a_refusal_keeps_the_old_mission(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str],
+) -> None:
+    out = tmp_path / "mission"
+    translate_offline = ["translate", "--scene", "demo", "--out", str(out), "--text"]
+    assert main([*translate_offline, TEXT]) == 0
+    assert main(["guide", "--scene", "demo", "--mission-dir", str(out)]) == 0
+    (out / "llm_guidance_record.json").write_text("{}\n")
+    notes = out / "notes.txt"  # not a mission file: left alone
+    notes.write_text("mine\n")
+    # a refusal leaves the earlier mission whole (its guidance included) and records itself beside it
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    assert main([*translate_offline, "Visit the bathroom."]) == 2
+    assert "matches 2 rooms" in capsys.readouterr().err
+    assert {p.name: p.read_bytes() for p in out.iterdir() if p.name != "llm_refused_record.json"} == before
+    assert json.loads((out / "llm_refused_record.json").read_text())["events"][-1]["kind"] == "refused"
+    # a new mission drops what was made for the old one, and the old refusal
+    assert main([*translate_offline, "Visit the kitchen."]) == 0
+    names = {p.name for p in out.iterdir()}
+    assert not names & {"llm_heuristic.yaml", "llm_guidance_record.json", "llm_refused_record.json"}
+    assert {"automaton.aut", "llm_record.json", "notes.txt"} <= names
+    assert (out / "NL_instructions.txt").read_text() == "Visit the kitchen.\n"
+
+
 @pytest.mark.parametrize(
     ("option", "fragment"),
     [(["--samples", "0"], "'0' is not a whole number >= 1"),
@@ -150,6 +175,40 @@ def test_bad_counts_are_refused_by_the_parser(llm_args, tmp_path: Path, capsys: 
     with pytest.raises(SystemExit) as info:
         main(argv)
     assert info.value.code == 2 and fragment in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("out", "fragment"),
+    [("file", "is a file, not a mission folder"), ("file/m", "cannot write a mission folder here")],
+)
+def test_an_unusable_out_folder_is_one_line_and_not_a_reason_to_rephrase(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], out: str, fragment: str,
+) -> None:
+    (tmp_path / "file").write_text("not a folder\n")
+    argv = ["translate", "--scene", "demo", "--text", TEXT, "--out", str(tmp_path / out)]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()[-1]
+    assert err.startswith(f"sgplan: error: {tmp_path / out}: {fragment}")
+    parser = argparse.ArgumentParser()
+    translate.register(parser.add_subparsers())
+
+    def ask(question: str) -> str:
+        raise AssertionError("asked to rephrase a mission that was not the problem")
+
+    with pytest.raises(MissionError, match=fragment):
+        translate.run(parser.parse_args(argv), ask=ask)
+
+
+def test_a_record_that_cannot_be_saved_does_not_hide_the_refusal(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    def save(record: RunRecord, path: Path) -> Path:
+        raise LLMError(f"{path}: cannot write the LLM run record (disk full)")
+
+    monkeypatch.setattr(RunRecord, "save", save)
+    argv = ["translate", "--scene", "demo", "--text", "Visit the bathroom.", "--out", str(tmp_path / "m")]
+    assert main(argv) == 2
+    assert "matches 2 rooms" in capsys.readouterr().err.strip().splitlines()[-1]
 
 
 def test_closed_stdin_at_the_rephrase_prompt_gives_up_with_the_refusal(tmp_path: Path) -> None:

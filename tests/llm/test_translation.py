@@ -103,8 +103,8 @@ def test_hopeless_replies_end_with_a_request_to_rephrase(fake_llm, llm_client, d
     with pytest.raises(RephraseError, match=r"no valid formula .* in 3 attempts .* rephrase the mission"):
         translate_to_folder(TEXT, demo, LLMTranslator(llm_client, record=record, max_repairs=2), tmp_path, record)
     assert len(fake_llm.requests) == 4
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["llm_record.json"]  # no half-made mission
-    assert json.loads((tmp_path / "llm_record.json").read_text())["events"][-1]["kind"] == "refused"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["llm_refused_record.json"]  # no half-made mission
+    assert json.loads((tmp_path / "llm_refused_record.json").read_text())["events"][-1]["kind"] == "refused"
 
 
 @pytest.mark.parametrize(
@@ -263,7 +263,7 @@ def test_server_failures_end_in_one_llm_error_and_no_cache_entry(fake_llm, demo,
             translate_to_folder(TEXT, demo, LLMTranslator(backend, record=record), tmp_path / "mission", record)
     assert "\n" not in str(info.value)
     assert not (tmp_path / "cache").exists() or not list((tmp_path / "cache").iterdir())
-    assert sorted(p.name for p in (tmp_path / "mission").iterdir()) == ["llm_record.json"]
+    assert sorted(p.name for p in (tmp_path / "mission").iterdir()) == ["llm_refused_record.json"]
     assert record.calls[0]["error"] and record.calls[0]["reply"] is None
 
 

@@ -81,7 +81,8 @@ def run(args: argparse.Namespace, ask: Callable[[str], str] | None = None) -> in
             translation, mission = translate_to_folder(text, building, backends.translator, args.out, backends.record)
             break
         except MissionError as error:
-            if ask is None:
+            # An error naming a file (the --out folder) is not about the wording: rephrasing cannot fix it.
+            if ask is None or error.path is not None:
                 raise
             say(f"sgplan: the mission cannot be translated as written: {error}")
             text = _rephrased(ask)

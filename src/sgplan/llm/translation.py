@@ -25,6 +25,8 @@ mission folder in the authors' layout plus the run record.
 
 from __future__ import annotations
 
+import contextlib
+import tempfile
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -32,7 +34,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from sgplan.errors import AutomatonError, FormulaError, SgplanError
+from sgplan.errors import AutomatonError, FormulaError, LLMError, MissionError, SgplanError
 from sgplan.llm.client import ChatBackend
 from sgplan.llm.config import one_line
 from sgplan.llm.grounding import (
@@ -70,6 +72,12 @@ SAMPLING_TEMPERATURE = 0.7
 
 RECORD_NAME = "llm_record.json"
 """The run record's file name in a mission folder."""
+
+REFUSED_RECORD_NAME = "llm_refused_record.json"
+"""The run record of a refused translation: written beside an earlier mission's files, never over them."""
+
+GUIDANCE_FILES = ("llm_heuristic.yaml", "llm_guidance_record.json")
+"""What ``sgplan guide`` (or ``plan --save-mission``) adds to a mission folder; it fits that mission only."""
 
 
 @dataclass(frozen=True)
@@ -317,6 +325,23 @@ def mission_of(translation: TranslationLike) -> Mission:
     return mission_from_formula(translation.formula, text=translation.text, grounded_text=translation.grounded_text)
 
 
+def _writable_folder(out: str | Path) -> Path:
+    """``out`` as a folder that exists (created if needed) and can be written to.
+
+    Raises :class:`MissionError` naming ``out`` when it is a file or the folder cannot be made or written,
+    so that callers learn it before any translation is paid for.
+    """
+    folder = Path(out)
+    if folder.exists() and not folder.is_dir():
+        raise MissionError("is a file, not a mission folder: choose a folder to write the mission to", folder)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        tempfile.TemporaryFile(dir=folder).close()
+    except OSError as exc:
+        raise MissionError(f"cannot write a mission folder here ({exc.strerror or exc})", folder) from None
+    return folder
+
+
 def translate_to_folder(
     text: str,
     building: Building,
@@ -328,20 +353,38 @@ def translate_to_folder(
 
     Writes the authors' mission-folder files (:func:`~sgplan.mission.save_mission_folder`, with the
     attribute hierarchy as ``building_desc.yaml``), ``env_elements.txt`` (the grounded IDs) and the run
-    record ``llm_record.json``. On a refusal only the record is written, then the error is re-raised, so a
-    folder never holds a half-made mission. Returns the translation and its mission.
+    record ``llm_record.json``, and removes what an earlier mission left there for its own automaton
+    (:data:`GUIDANCE_FILES`) and an earlier refusal's record. Other files in ``out`` are left alone.
+
+    On a refusal (or a failed backend) only the record is written, as :data:`REFUSED_RECORD_NAME`, then
+    the error is re-raised: the folder never holds a half-made mission, and an earlier mission in it stays
+    whole. Returns the translation and its mission.
+
+    Raises
+    ------
+    MissionError
+        ``out`` is a file, or a folder that cannot be created or written; or the translator refused.
+    LLMError
+        The backend failed, or the run record cannot be written.
     """
-    folder = Path(out)
+    folder = _writable_folder(out)
     try:
         translation = translator.translate(text, building)
     except SgplanError as exc:
         record.event("refused", error=one_line(exc))
-        record.save(folder / RECORD_NAME)
+        # The refusal is what the user must read: a record that cannot be saved must not replace it.
+        with contextlib.suppress(LLMError):
+            record.save(folder / REFUSED_RECORD_NAME)
         raise
     mission = mission_of(translation)
-    save_mission_folder(mission, folder, hierarchy_text=environment_text(building))
     ids = extract_ids(translation.grounded_text)
-    (folder / "env_elements.txt").write_text("[" + ", ".join(ids) + "]\n", encoding="utf-8")
+    try:
+        for name in (*GUIDANCE_FILES, REFUSED_RECORD_NAME):
+            (folder / name).unlink(missing_ok=True)
+        save_mission_folder(mission, folder, hierarchy_text=environment_text(building))
+        (folder / "env_elements.txt").write_text("[" + ", ".join(ids) + "]\n", encoding="utf-8")
+    except OSError as exc:
+        raise MissionError(f"cannot write the mission ({exc.strerror or exc})", folder) from None
     record.event("saved", folder=str(folder), backend=translation.backend, tokens=list(translation.tokens),
                  formula=to_infix(translation.formula), states=mission.automaton.num_states)
     record.save(folder / RECORD_NAME)
