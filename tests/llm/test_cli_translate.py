@@ -252,6 +252,8 @@ def test_plan_text_with_a_language_model_uses_its_translation_and_guidance(
     assert (saved / "GPT_LTL_formula.txt").read_text().strip() == TOKENS
     guidance = yaml.safe_load((saved / "llm_heuristic.yaml").read_text())
     assert any(calls == ["move(5, 2)"] for calls in guidance.get(5, {}).values())
+    guide_prompts = [r.last_user_message for r in fake_llm.requests[2:]]
+    assert all(p.startswith(f"The whole mission is: {GROUNDED}") for p in guide_prompts)  # grounded, not raw
     saved_record = json.loads((saved / "llm_record.json").read_text())
     assert saved_record["summary"]["calls"] == len(fake_llm.requests)
 

@@ -77,6 +77,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> int:
+    from sgplan.llm.guidance import LLMGuide
     from sgplan.llm.translation import RECORD_NAME
     from sgplan.mission import load_mission_folder, mission_from_formula, read_ap_desc, read_guidance, write_guidance
     from sgplan.pipeline import make_problem, resolve_start, result_record
@@ -91,7 +92,7 @@ def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> i
     elif args.formula:
         mission = mission_from_formula(args.formula, read_ap_desc(args.aps) if args.aps else None)
     else:
-        backends = open_backends_from_args(args, mission_text=args.text)
+        backends = open_backends_from_args(args)
         say(f"translating with {backends.translator.name} ({backends.description})")
         mission = _translate(args, building, backends)
     if args.guidance:
@@ -99,7 +100,11 @@ def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> i
     for note in mission.notes:
         say(f"note: {note}")
     if get_setup(args.setup).uses_llm and mission.guidance is None:
-        backends = backends or open_backends_from_args(args, mission_text=mission.grounded_text or mission.text)
+        mission_text = mission.grounded_text or mission.text
+        if backends is None:
+            backends = open_backends_from_args(args, mission_text=mission_text)
+        elif isinstance(backends.guide, LLMGuide):
+            backends.guide.mission_text = mission_text  # the grounded text, known only after translation
         say(f"setup {args.setup} needs guidance: asking {backends.guide.name} ({backends.description})")
         mission.guidance = backends.guide.guide(building, mission.automaton, mission.descriptions)
         if args.save_mission:
