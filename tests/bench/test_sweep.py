@@ -182,8 +182,10 @@ def test_interrupting_the_command_and_rerunning_finishes_only_the_missing_cases(
     assert len(final) == 6 == len({r["key"] for r in final})
     assert final[: len(first)] == first  # the finished rows were kept, not re-run
     assert all(r["status"] == "optimal" for r in final)
-    (call,) = [json.loads(line) for line in (out / "sweeps.jsonl").read_text().splitlines()]
+    interrupted, call = [json.loads(line) for line in (out / "sweeps.jsonl").read_text().splitlines()]
+    assert interrupted["interrupted"] and interrupted["ran"] == 1 and interrupted["skipped"] == 0
     assert call["ran"] == 6 - len(first) and call["skipped"] == len(first) and call["jobs"] == 1
+    assert not call["interrupted"]
 
 
 def test_the_worker_command_can_be_replaced_from_the_environment(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -93,7 +93,8 @@ def write_report(folder: str | Path, rows: Sequence[dict[str, Any]] | None = Non
     if sweeps:
         text += ["", "Sweep calls (whole `sgplan bench` run, wall clock):", ""]
         text += [f"- {s['finished_at']}: {s['ran']} cases run, {s['skipped']} already recorded, "
-                 f"{s['wall_s']:.0f} s wall ({s['executor']} executor, {s['jobs']} jobs)" for s in sweeps]
+                 f"{s['wall_s']:.0f} s wall ({s['executor']} executor, {s['jobs']} jobs)"
+                 + (", interrupted" if s.get("interrupted") else "") for s in sweeps]
     text += [
         "",
         "Times are AMRA* search seconds, as in the paper: the first path (1st iteration) and the optimum",

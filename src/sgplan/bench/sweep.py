@@ -23,13 +23,14 @@ class Executor(Protocol):
 @dataclass
 class SweepSummary:
     """What a call of :func:`run_sweep` did: cases in the sweep, already recorded (skipped), run now,
-    statuses of the rows recorded now, and the wall seconds of the call."""
+    statuses of the rows recorded now, the wall seconds of the call, and whether it was interrupted."""
 
     total: int
     skipped: int
     ran: int = 0
     statuses: dict[str, int] = field(default_factory=dict)
     wall_s: float = 0.0
+    interrupted: bool = False
 
 
 def pending_cases(cases: Sequence[Case], store: ResultStore, *, retry: bool = False) -> list[Case]:

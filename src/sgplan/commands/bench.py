@@ -10,6 +10,7 @@ import argparse
 import contextlib
 import os
 import signal
+import time
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
@@ -104,15 +105,13 @@ def _termination_as_interrupt() -> Iterator[None]:
 
 
 def _sweep(args: argparse.Namespace) -> int:
-    from sgplan.bench.results import ResultStore, make_folder, record_sweep, writing_lock
+    from sgplan.bench.results import ResultStore, make_folder, writing_lock
 
     cases = _cases(args)
     with writing_lock(make_folder(args.out)), _termination_as_interrupt():
         store = ResultStore(args.out)
         executor, summary, (csv_path, json_path) = _run_with_progress(args, cases, store)
-        jobs = executor.jobs or "cluster"
-        record_sweep(store.folder, {"ran": summary.ran, "skipped": summary.skipped, "wall_s": summary.wall_s,
-                                    "executor": executor.name, "jobs": jobs, "statuses": summary.statuses})
+    jobs = executor.jobs or "cluster"
     say(f"ran {summary.ran} cases in {summary.wall_s:.1f} s wall ({executor.name}, {jobs} jobs); "
         f"{summary.skipped} were already recorded; results: {csv_path}, {json_path}")
     if not args.no_report:
@@ -127,8 +126,8 @@ def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: Resul
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 
     from sgplan.bench.executors import LocalExecutor, RayExecutor
-    from sgplan.bench.results import FAILED
-    from sgplan.bench.sweep import run_sweep
+    from sgplan.bench.results import FAILED, record_sweep
+    from sgplan.bench.sweep import SweepSummary, run_sweep
 
     gallery = str(store.folder.resolve() / "gallery") if args.gallery else None
     options = {"timeout_s": args.case_timeout, "gallery_dir": gallery}
@@ -141,9 +140,11 @@ def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: Resul
                   console=console, transient=False) as progress:
         task = progress.add_task("bench", total=None, statuses="")
 
-        def on_start(to_run: int, skipped: int) -> None:
+        def on_start(to_run: int, already: int) -> None:
+            nonlocal skipped
+            skipped = already
             progress.update(task, total=to_run)
-            progress.console.print(f"{len(cases)} cases ({cases[0].profile} profile): {skipped} already in "
+            progress.console.print(f"{len(cases)} cases ({cases[0].profile} profile): {already} already in "
                                    f"{store.path}, {to_run} to run with the {executor.name} executor")
 
         def on_row(row: dict[str, Any]) -> None:
@@ -152,10 +153,21 @@ def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: Resul
             if row["status"] in FAILED:
                 progress.console.print(f"[yellow]{escape(row['key'])}: {row['status']}[/] - {escape(str(row.get('reason')))}")
 
+        t0 = time.perf_counter()
+        skipped, summary = len(cases), None
         try:
             summary = run_sweep(cases, store, executor, retry=args.retry, on_start=on_start, on_row=on_row)
+        except KeyboardInterrupt:
+            # Log the partial call too: its rows are in the results and its wall time is real.
+            summary = SweepSummary(total=len(cases), skipped=skipped, ran=sum(statuses.values()),
+                                   statuses=dict(statuses), wall_s=time.perf_counter() - t0, interrupted=True)
+            raise
         finally:
             exported = store.export()
+            if summary is not None:
+                record_sweep(store.folder, {"ran": summary.ran, "skipped": summary.skipped, "wall_s": summary.wall_s,
+                                            "executor": executor.name, "jobs": executor.jobs or "cluster",
+                                            "statuses": summary.statuses, "interrupted": summary.interrupted})
     return executor, summary, exported
 
 
