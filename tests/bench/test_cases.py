@@ -24,6 +24,9 @@ def test_expand_is_a_deduplicated_union_in_paper_order(data_dir: Path) -> None:
     assert [c.setup for c in cases] == ["ALL", "NO-LLM", "A*"]
     assert cases[0].key == f"{SCENE}/1/0/ALL/ltlf/tl=5"
     assert Case.from_dict(cases[2].to_dict()) == cases[2] and cases[2].slug == f"{SCENE}_m1_s0_Astar"
+    # time limits that differ only past the 6th digit are different cases
+    near = [Case(SCENE, "1", 0, "ALL", "authors", "s", "m", t).key for t in (1.0000001, 1.0000002, 0.25)]
+    assert near == [f"{SCENE}/1/0/ALL/authors/tl={t}" for t in ("1.0000001", "1.0000002", "0.25")]
 
 
 def test_paper_grids_add_table2_only_with_benevolence() -> None:

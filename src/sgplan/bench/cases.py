@@ -38,6 +38,12 @@ class BenchError(SgplanError):
         super().__init__(f"{self.path}: {message}" if self.path is not None else message)
 
 
+def _exact(value: float) -> str:
+    """Shortest text of ``value`` that reads back as the same float (``5``, ``0.25``, ``1.0000001``)."""
+    short = f"{value:g}"
+    return short if float(short) == value else repr(value)
+
+
 @dataclass(frozen=True)
 class Case:
     """One benchmark case: plan ``mission`` of ``scene`` from initial position ``start`` with ``setup``.
@@ -58,7 +64,7 @@ class Case:
     @property
     def key(self) -> str:
         """The resume key: every field that can change the outcome (not the paths, which may move)."""
-        limit = "none" if self.time_limit_s is None else f"{self.time_limit_s:g}"
+        limit = "none" if self.time_limit_s is None else _exact(self.time_limit_s)
         return f"{self.scene}/{self.mission}/{self.start}/{self.setup}/{self.profile}/tl={limit}"
 
     @property
