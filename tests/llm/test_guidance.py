@@ -20,7 +20,7 @@ from sgplan.llm.guidance import (
     label_costs,
     parse_commands,
     remaining_text,
-    route_prefix,
+    route_break,
     validate_call,
 )
 from sgplan.llm.records import RunRecord
@@ -229,27 +229,25 @@ def test_authors_gpt4_guidance_replayed_through_the_pipeline(fake_llm, llm_clien
     assert all(validate_call(c, building)[0] == c for c in kept)
 
 
-def test_only_calls_that_form_one_route_from_the_room_are_kept() -> None:
-    assert route_prefix(["move(2, 4)", "reach(4, 19)", "move(4, 6)"], 2) == (["move(2, 4)", "reach(4, 19)", "move(4, 6)"], "")
-    kept, reason = route_prefix(["move(2, 4)", "move(5, 6)", "move(6, 7)"], 2)
-    assert kept == ["move(2, 4)"] and "move(5, 6) starts in room_5, not in where move(2, 4) ended (room_4)" in reason
-    kept, reason = route_prefix(["reach(4, 19)"], 2)
-    assert kept == [] and "not in the current room (room_2)" in reason
-    assert route_prefix([], 2) == ([], "")
+def test_route_breaks_are_found() -> None:
+    assert route_break(["move(2, 4)", "reach(4, 19)", "move(4, 6)"], 2) == ""
+    assert route_break([], 2) == ""
+    assert "move(5, 6) starts in room_5, not in where move(2, 4) ended (room_4)" in route_break(
+        ["move(2, 4)", "move(5, 6)", "move(6, 7)"], 2)
+    assert "not in the current room (room_2)" in route_break(["reach(4, 19)"], 2)
 
 
-def test_a_broken_route_is_cut_and_its_calls_counted(fake_llm, llm_client, demo, mission) -> None:
-    room = demo.room(uuid=2)
-    step = room.connected_room_uuids[0]
+def test_a_broken_route_is_counted_and_kept(fake_llm, llm_client, demo, mission) -> None:
+    step = demo.room(uuid=2).connected_room_uuids[0]
     elsewhere = next(r.uuid for r in demo.rooms() if r.uuid not in (2, step) and r.connected_room_uuids)
     other = demo.room(uuid=elsewhere).connected_room_uuids[0]
-    reply = (f"<command>move(2, {step})</command><command>move({elsewhere}, {other})</command>"
-             f"<command>move({other}, {elsewhere})</command>")
+    reply = f"<command>move(2, {step})</command><command>move({elsewhere}, {other})</command>"
     fake_llm.respond_with(lambda request: reply)
     guidance, report = generate_guidance(demo, mission.automaton, llm_client, RunRecord("x"))
-    assert guidance[2][mission.automaton.initial] == [f"move(2, {step})"]
-    assert report.calls_dropped >= 2 * 2 and any("dropped with the 1 calls after it" in r for r in report.reasons)
-    assert report.calls_kept + report.calls_dropped == 3 * report.asked
+    assert guidance[2][mission.automaton.initial] == [f"move(2, {step})", f"move({elsewhere}, {other})"]
+    assert report.calls_dropped == 0 and report.calls_kept == 2 * report.asked
+    assert report.routes_broken == report.asked  # from every room, one of the two calls is off the route
+    assert any("route broken (calls kept)" in r for r in report.reasons)
 
 
 def test_the_remaining_mission_avoids_labels_the_scene_makes_implausible(demo) -> None:

@@ -49,7 +49,8 @@ def run(args: argparse.Namespace) -> int:
     if backends.chat is not None and report is not None:
         summary = backends.record.to_json()["summary"]
         print(f"LLM: {report.asked} entries asked ({summary['from_cache']} from the cache), {report.skipped} with "
-              f"nothing left to do, {report.failed} failed; calls kept {report.calls_kept}, dropped {report.calls_dropped}")
+              f"nothing left to do, {report.failed} failed; calls kept {report.calls_kept}, dropped {report.calls_dropped}; "
+              f"{report.routes_broken} entries whose calls do not form one route")
         for reason in report.reasons[:5]:
             say(f"  dropped: {reason}")
         record_path = backends.record.save(out.parent / RECORD_NAME)

@@ -9,13 +9,12 @@ every state of that path forbids. The reply's ``<command>`` elements are parsed 
 reads replies that are not well-formed XML) and every call is validated:
 
 - ``move(a, b)``: ``a`` and ``b`` are rooms and the scene graph connects ``a`` to ``b``;
-- ``reach(r, o)``: ``r`` is a room, ``o`` an object, and ``o`` lies in ``r``;
-- together they form one route (:func:`route_prefix`): the first starts in the current room, each next
-  where the previous ended; the calls from the first break on are dropped.
+- ``reach(r, o)``: ``r`` is a room, ``o`` an object, and ``o`` lies in ``r``.
 
-The shortest automaton path avoids labels that cannot hold at one cell (:func:`label_costs`), so the
-model is never asked to be in two rooms at once. Invalid calls are dropped and counted (:class:`GuidanceReport`); the others are kept in the authors'
-``llm_heuristic.yaml`` form with bare uuids: ``{room_uuid: {q: ["move(2, 9)", "reach(5, 21)"]}}``.
+Invalid calls are dropped and counted (:class:`GuidanceReport`); kept calls that do not form one route
+from the current room (:func:`route_break`) are counted too, but kept. The remaining mission's automaton
+path avoids labels that cannot hold at one cell (:func:`label_costs`), so the model is never asked to be
+in two rooms at once. Kept calls are stored in the authors' ``llm_heuristic.yaml`` form with bare uuids: ``{room_uuid: {q: ["move(2, 9)", "reach(5, 21)"]}}``.
 States that are sinks or need nothing made true get an empty list without any call; a failed call gives
 an empty list too (h_LLM is then 0 there), is counted, and is not cached, so a re-run retries it.
 
@@ -64,7 +63,8 @@ class GuidanceReport:
 
     ``asked``: entries sent to the model; ``skipped``: entries with nothing to do (no call made);
     ``failed``: entries whose call raised :class:`LLMError`; ``calls_kept`` / ``calls_dropped``: calls
-    that passed / failed validation; ``reasons``: the first few drop or failure reasons.
+    that passed / failed validation; ``routes_broken``: entries whose kept calls do not form one route
+    (:func:`route_break`); ``reasons``: the first few drop, break or failure reasons.
     """
 
     asked: int = 0
@@ -72,6 +72,7 @@ class GuidanceReport:
     failed: int = 0
     calls_kept: int = 0
     calls_dropped: int = 0
+    routes_broken: int = 0
     reasons: list[str] = field(default_factory=list)
 
     def note(self, reason: str) -> None:
@@ -199,13 +200,12 @@ def validate_call(text: str, building: Building) -> tuple[str | None, str]:
 _CANONICAL = re.compile(r"^(move|reach)\((\d+), (\d+)\)$")
 
 
-def route_prefix(calls: list[str], room_uuid: int) -> tuple[list[str], str]:
-    """The longest prefix of canonical ``calls`` that forms one route from room ``room_uuid``, and why
-    the next call breaks it (``""`` if none does).
+def route_break(calls: list[str], room_uuid: int) -> str:
+    """Why canonical ``calls`` do not form one route from room ``room_uuid`` (``""`` if they do).
 
-    The first call must start in ``room_uuid``; each next one where the previous ended (``move(a, b)``
-    ends in ``b``, ``reach(r, o)`` in ``r``). h_LLM sums the calls' lengths as one route, so calls past a
-    break would add distances that no route travels.
+    A route's first call starts in ``room_uuid``, each next one where the previous ended (``move(a, b)``
+    ends in ``b``, ``reach(r, o)`` in ``r``). A break is reported, not repaired: measured on GPT-4's
+    guidance (benchmarks/guidance_route_rule.py), cutting lists at the break made h_LLM weaker, not better.
     """
     here = room_uuid
     for k, call in enumerate(calls):
@@ -215,9 +215,9 @@ def route_prefix(calls: list[str], room_uuid: int) -> tuple[list[str], str]:
         kind, start, end = match.group(1), int(match.group(2)), int(match.group(3))
         if start != here:
             where = "the current room" if k == 0 else f"where {calls[k - 1]} ended"
-            return calls[:k], f"{call} starts in room_{start}, not in {where} (room_{here})"
+            return f"{call} starts in room_{start}, not in {where} (room_{here})"
         here = end if kind == "move" else start
-    return list(calls), ""
+    return ""
 
 
 # -- asking -----------------------------------------------------------------------------------------------
@@ -282,26 +282,27 @@ class _Asker:
                 self.report.failed += 1
                 self.report.note(f"room_{room_uuid}, state {q}: {one_line(outcome, 200)}")
                 return []
-        valid, dropped = [], []
+        calls, dropped = [], []
         for text in parse_commands(outcome.content):
             call, reason = validate_call(text, self.building)
             if call is None:
                 dropped.append(reason)
             else:
-                valid.append(call)
-        calls, broken = route_prefix(valid, room_uuid)
-        if broken:
-            dropped.append(f"{broken}; dropped with the {len(valid) - len(calls) - 1} calls after it")
+                calls.append(call)
+        broken = route_break(calls, room_uuid)
         if outcome.finish_reason == "length":  # cut off by max_tokens: the route may be incomplete
             self.record.event("guidance-reply-truncated", call=index, room=room_uuid, state=q)
         with self._lock:
             self.report.calls_kept += len(calls)
-            self.report.calls_dropped += len(dropped) - bool(broken) + len(valid) - len(calls)
+            self.report.calls_dropped += len(dropped)
+            self.report.routes_broken += bool(broken)
             for reason in dropped:
                 self.report.note(f"room_{room_uuid}, state {q}: {reason}")
-        if dropped or not calls:
+            if broken:
+                self.report.note(f"room_{room_uuid}, state {q}: route broken (calls kept): {broken}")
+        if dropped or not calls or broken:
             self.record.event("guidance-calls-dropped", call=index, room=room_uuid, state=q, kept=len(calls),
-                              dropped=dropped)
+                              dropped=dropped, route_break=broken or None)
         return calls
 
 
@@ -353,7 +354,7 @@ def generate_guidance(
         guidance[room_uuid][q] = asker.accept(room_uuid, q, messages, outcome)
     report = asker.report
     record.event("guidance", asked=report.asked, skipped=report.skipped, failed=report.failed,
-                 calls_kept=report.calls_kept, calls_dropped=report.calls_dropped)
+                 calls_kept=report.calls_kept, calls_dropped=report.calls_dropped, routes_broken=report.routes_broken)
     if pending and report.failed == len(pending):
         first = next(o for o in outcomes if isinstance(o, LLMError))
         raise LLMError(f"all {len(pending)} guidance calls failed; the first: {first}")
