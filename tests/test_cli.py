@@ -104,6 +104,8 @@ def test_plan_gibson_mission_folder_authors_profile(gibson_root: Path, capsys: p
         (["bench", "--time-limit", "-1"], "finite number of seconds > 0"),
         (["demo", "--start-index", "x"], "whole number >= 0"),
         (["inspect", "demo", "--robot-radius", "-0.1"], "length in metres >= 0"),
+        (["guide", "--max-concurrency", "0"], "whole number >= 1"),
+        (["guide", "--rpm", "nan"], "finite number > 0"),
     ],
 )
 def test_bad_numbers_are_refused_by_the_parser(argv: list[str], fragment: str, capsys: pytest.CaptureFixture[str]) -> None:

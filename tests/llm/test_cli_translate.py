@@ -92,6 +92,18 @@ def test_llm_guide_writes_guidance_and_its_record(fake_llm, llm_args, tmp_path: 
     assert record["summary"]["calls"] == 22 and record["calls"][0]["step"] == "guidance"
 
 
+def test_llm_guide_keeps_the_record_when_every_call_fails(fake_llm, llm_args, tmp_path: Path,
+                                                          capsys: pytest.CaptureFixture[str]) -> None:
+    fake_llm.respond_with(demo_model)
+    out = tmp_path / "mission"
+    assert main(["translate", "--scene", "demo", "--text", TEXT, *llm_args, "--out", str(out)]) == 0
+    fake_llm.respond_with(lambda request: "")  # empty content: every guidance call fails
+    assert main(["guide", "--scene", "demo", "--mission-dir", str(out), *llm_args]) == 2
+    assert "all 22 guidance calls failed" in capsys.readouterr().err
+    record = json.loads((out / "llm_guidance_record.json").read_text())
+    assert record["summary"]["calls"] == 22 and not (out / "llm_heuristic.yaml").exists()
+
+
 @pytest.mark.parametrize(
     ("extra", "fragment"),
     [
@@ -99,6 +111,7 @@ def test_llm_guide_writes_guidance_and_its_record(fake_llm, llm_args, tmp_path: 
         (["--text", TEXT, "--llm", "openai:m", "--replay"], "--replay needs the cache"),
         (["--text", TEXT, "--llm", "gpt4"], "unknown --llm 'gpt4'"),
         (["--text", TEXT, "--base-url", "http://127.0.0.1:1/v1"], "only apply to a language model"),
+        (["--text", TEXT, "--samples", "3"], "--samples only apply to a language model"),
         (["--text", TEXT, "--llm", "openai:m", "--cache", "CACHE", "--replay"], "replay: no recorded LLM call"),
     ],
 )

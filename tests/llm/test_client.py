@@ -234,6 +234,8 @@ def test_html_instead_of_json(fake_llm: FakeOpenAIServer, llm_client: OpenAIChat
         ("", "stop", "choice 0 has empty content (finish_reason 'stop')"),
         ("  \n ", "stop", "choice 0 has empty content"),
         (None, "length", "hit the token limit before any text; raise max_tokens)"),
+        ("<think>Let me see... the kitchen is", "length", "only a <think> reasoning block, no answer; raise max_tokens"),
+        ("<think>done</think>\n ", "stop", "only a <think> reasoning block, no answer)"),
     ],
 )
 def test_empty_content(
@@ -247,6 +249,15 @@ def test_empty_content(
     with pytest.raises(LLMError, match=re.escape(expected)):
         llm_client.complete(ASK)
     assert len(fake_llm.requests) == 1
+
+
+def test_a_leading_reasoning_block_is_not_part_of_the_answer(
+    fake_llm: FakeOpenAIServer, llm_client: OpenAIChatClient,
+) -> None:
+    fake_llm.push_reply("<think>\nThe user wants <command>move(1, 2)</command>? No.\n</think>\n<command>move(2, 3)</command>")
+    assert llm_client.complete(ASK).content == "\n<command>move(2, 3)</command>"
+    fake_llm.push_reply("The answer mentions <think> later, and stays whole.")
+    assert llm_client.complete(ASK).content == "The answer mentions <think> later, and stays whole."
 
 
 def test_refusal_is_reported(fake_llm: FakeOpenAIServer, llm_client: OpenAIChatClient) -> None:

@@ -72,6 +72,11 @@ def non_negative_int(text: str) -> int:
     return int(_number(text, int, allow_zero=True, what="a whole number >= 0"))
 
 
+def positive_number(text: str) -> float:
+    """argparse type: a finite number > 0."""
+    return _number(text, float, allow_zero=False, what="a finite number > 0")
+
+
 def positive_seconds(text: str) -> float:
     """argparse type: a finite number of seconds > 0."""
     return _number(text, float, allow_zero=False, what="a finite number of seconds > 0")

@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from sgplan.commands.common import add_scene_arguments, load_scene_arg, say
+from sgplan.commands.common import add_scene_arguments, load_scene_arg, positive_int, positive_number, say
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 
 RECORD_NAME = "llm_guidance_record.json"
@@ -24,24 +24,30 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--profile", choices=("ltlf", "authors"), default="ltlf",
                         help="how automaton.aut's missing edges are read (as for sgplan plan; default ltlf)")
     add_llm_arguments(parser)
-    parser.add_argument("--max-concurrency", type=int, default=4, metavar="N", help="LLM calls in flight (default 4)")
-    parser.add_argument("--rpm", type=float, metavar="R", help="at most R LLM requests per minute (hosted APIs)")
+    parser.add_argument("--max-concurrency", type=positive_int, default=4, metavar="N", help="LLM calls in flight (default 4)")
+    parser.add_argument("--rpm", type=positive_number, metavar="R", help="at most R LLM requests per minute (hosted APIs)")
     parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    from sgplan.errors import LLMError
     from sgplan.mission import load_mission_folder, write_guidance
 
     building = load_scene_arg(args.scene, args.data)
     mission = load_mission_folder(args.mission_dir, profile=args.profile, guidance=False)
     mission.check_scene(building)
-    options = {} if args.llm == "offline" else {"max_concurrency": args.max_concurrency,
-                                                "requests_per_minute": args.rpm,
-                                                "mission_text": mission.grounded_text}
+    options = {"requests_per_minute": args.rpm}
+    if args.llm != "offline":
+        options.update(max_concurrency=args.max_concurrency, mission_text=mission.grounded_text)
     backends = open_backends_from_args(args, **options)
     say(f"guidance from {backends.guide.name} ({backends.description})")
-    guidance = backends.guide.guide(building, mission.automaton, mission.descriptions)
     out = Path(args.out) if args.out else Path(args.mission_dir) / "llm_heuristic.yaml"
+    try:
+        guidance = backends.guide.guide(building, mission.automaton, mission.descriptions)
+    except LLMError:
+        if backends.chat is not None:  # every call failed: keep the record of what was tried
+            say(f"wrote the LLM run record {backends.record.save(out.parent / RECORD_NAME)}")
+        raise
     write_guidance(guidance, out)
     entries = sum(len(states) for states in guidance.values())
     print(f"wrote {out}: {entries} entries for {len(guidance)} rooms x {mission.automaton.num_states} automaton states")

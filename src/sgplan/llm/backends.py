@@ -112,7 +112,8 @@ def open_backends(
     """
     if spec == OFFLINE:
         given = [name for name, value in (("--base-url", base_url), ("--cache", cache_dir), ("--replay", replay),
-                                           ("--llm-config", config_path)) if value]
+                                           ("--llm-config", config_path), ("--rpm", requests_per_minute),
+                                           ("--samples", samples != 1)) if value]
         if given:
             raise LLMError(f"{', '.join(given)} only apply to a language model; with --llm offline leave them out")
         from sgplan.llm.offline import PatternTranslator, SymbolicGuide

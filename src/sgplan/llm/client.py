@@ -21,6 +21,7 @@ from __future__ import annotations
 import ipaddress
 import json
 import random
+import re
 import threading
 import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -389,11 +390,14 @@ def _result_from_body(
         if not isinstance(message, dict):
             raise LLMError(f"{where}: choice {i} has no 'message' object")
         content = message.get("content")
-        if isinstance(content, str) and content.strip():
-            texts.append(content)
+        answer = _without_reasoning(content) if isinstance(content, str) else ""
+        if answer.strip():
+            texts.append(answer)
             continue
         finish = choice.get("finish_reason")
-        if message.get("refusal"):
+        if isinstance(content, str) and content.strip():
+            reason = "only a <think> reasoning block, no answer" + ("; raise max_tokens" if finish == "length" else "")
+        elif message.get("refusal"):
             reason = f"the model refused: {one_line(message['refusal'])}"
         elif message.get("tool_calls"):
             reason = "the model returned tool calls instead of text"
@@ -416,6 +420,15 @@ def _result_from_body(
 
 
 # -- small helpers --------------------------------------------------------------------------------------
+
+_REASONING = re.compile(r"^\s*<think>.*?(?:</think>|\Z)", re.DOTALL)
+
+
+def _without_reasoning(content: str) -> str:
+    """``content`` without a leading ``<think>...</think>`` block, which reasoning models served without
+    a reasoning parser (Ollama, llama.cpp, vLLM) put before the answer; an unclosed block is all reasoning."""
+    return _REASONING.sub("", content, count=1)
+
 
 
 def _is_loopback(base_url: str) -> bool:
