@@ -52,12 +52,21 @@ def say(message: str) -> None:
     print(message, file=sys.stderr, flush=True)
 
 
-def _number(text: str, kind: type, *, allow_zero: bool, what: str) -> float:
+MAX_SECONDS = 1e6
+"""Upper bound of a time option (about 11.6 days; larger values overflow the OS timers)."""
+MAX_ROBOT_RADIUS_M = 2.0
+"""Upper bound of the robot radius: a wider robot fits no door, and the footprint inflation grows with
+the square of the radius (at 100 m it takes minutes)."""
+MAX_REACH_RADIUS_M = 100.0
+"""Upper bound of the reach radius: larger than any building."""
+
+
+def _number(text: str, kind: type, *, allow_zero: bool, what: str, maximum: float = math.inf) -> float:
     try:
         value = kind(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"{text!r} is not {what}") from None
-    if not math.isfinite(value) or value < 0 or (value == 0 and not allow_zero):
+    if not math.isfinite(value) or value < 0 or (value == 0 and not allow_zero) or value > maximum:
         raise argparse.ArgumentTypeError(f"{text!r} is not {what}")
     return value
 
@@ -78,10 +87,18 @@ def positive_number(text: str) -> float:
 
 
 def positive_seconds(text: str) -> float:
-    """argparse type: a finite number of seconds > 0."""
-    return _number(text, float, allow_zero=False, what="a finite number of seconds > 0")
+    """argparse type: a number of seconds in (0, :data:`MAX_SECONDS`]."""
+    return _number(text, float, allow_zero=False, maximum=MAX_SECONDS,
+                   what=f"a number of seconds > 0 and <= {MAX_SECONDS:g}")
 
 
-def non_negative_metres(text: str) -> float:
-    """argparse type: a finite length in metres >= 0."""
-    return _number(text, float, allow_zero=True, what="a finite length in metres >= 0")
+def robot_radius(text: str) -> float:
+    """argparse type: a robot radius in metres in (0, :data:`MAX_ROBOT_RADIUS_M`]."""
+    return _number(text, float, allow_zero=False, maximum=MAX_ROBOT_RADIUS_M,
+                   what=f"a radius in metres > 0 and <= {MAX_ROBOT_RADIUS_M:g}")
+
+
+def reach_radius(text: str) -> float:
+    """argparse type: a reach radius in metres in [0, :data:`MAX_REACH_RADIUS_M`]."""
+    return _number(text, float, allow_zero=True, maximum=MAX_REACH_RADIUS_M,
+                   what=f"a radius in metres >= 0 and <= {MAX_REACH_RADIUS_M:g}")

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import argparse
 
-from sgplan.commands.common import add_scene_arguments, load_scene_arg, non_negative_metres, say
+from sgplan.commands.common import add_scene_arguments, load_scene_arg, robot_radius, say
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("inspect", help="summarise a scene (floors, rooms, objects, grid, portals)")
     add_scene_arguments(parser, positional=True)
-    parser.add_argument("--robot-radius", type=non_negative_metres, default=None, metavar="M",
+    parser.add_argument("--robot-radius", type=robot_radius, default=None, metavar="M",
                         help="robot radius in metres for the free-cell counts (default: the scene's, else 0)")
     parser.add_argument("--draw", metavar="DIR", default=None, help="write one PNG per floor into DIR")
     parser.add_argument("--no-objects", action="store_true", help="leave the object lists out")

@@ -13,8 +13,8 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from sgplan.commands.common import (add_scene_arguments, load_scene_arg, non_negative_int, non_negative_metres, positive_int,
-                                    positive_seconds, say)
+from sgplan.commands.common import (add_scene_arguments, load_scene_arg, non_negative_int, positive_int,
+                                    positive_seconds, reach_radius, robot_radius, say)
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 from sgplan.errors import MissionError, PlanningError, SgplanError
 
@@ -50,8 +50,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--profile", choices=("ltlf", "authors"), default="ltlf",
                         help="semantics: ltlf (default; start label read, missing automaton edges reject) or "
                              "authors (the authors' C++: start label not read, missing edges keep the state)")
-    parser.add_argument("--robot-radius", type=non_negative_metres, metavar="M", help="robot radius (default: the scene's)")
-    parser.add_argument("--reach-radius", type=non_negative_metres, metavar="M", help="object reach radius (default: the scene's)")
+    parser.add_argument("--robot-radius", type=robot_radius, metavar="M", help="robot radius (default: the scene's)")
+    parser.add_argument("--reach-radius", type=reach_radius, metavar="M", help="object reach radius (default: the scene's)")
     parser.add_argument("--time-limit", type=positive_seconds, metavar="S", help="search time budget in seconds")
     parser.add_argument("--max-expansions", type=positive_int, metavar="N", help="search expansion budget")
     parser.add_argument("--json", metavar="OUT", help="write the result as JSON")
