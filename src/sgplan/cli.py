@@ -10,6 +10,7 @@ Every :class:`~sgplan.errors.SgplanError` is printed as ``sgplan: error: <messag
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
 from collections.abc import Sequence
 
@@ -39,9 +40,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             raise
         print(f"sgplan: error: {error}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as stop:
         print("sgplan: interrupted", file=sys.stderr)
-        return 130
+        return 128 + int(getattr(stop, "signum", None) or signal.SIGINT)  # the shell's convention
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -9,7 +9,7 @@ import pytest
 
 from sgplan.bench import tables
 from sgplan.bench.cases import BenchError, Case
-from sgplan.bench.report import write_report
+from sgplan.bench.report import choose_condition, write_report
 from sgplan.bench.results import ResultStore
 from sgplan.cli import main
 
@@ -80,3 +80,21 @@ def test_the_report_never_mixes_profiles_or_time_limits(tmp_path: Path) -> None:
     assert "| ALL | 1 |" in chosen.table2
     with pytest.raises(BenchError, match="no results under profile ltlf, time limit 9 s"):
         write_report(tmp_path, rows, condition=("ltlf", 9.0))
+
+
+def test_report_rows_are_chosen_by_profile_and_time_limit() -> None:
+    rows = [_row("B", "1", 0, "ALL", 1.0, finished_at="2026-01-01"),
+            _row("B", "1", 0, "ALL", 1.0, profile="ltlf", time_limit_s=0.1234567, finished_at="2026-01-03"),
+            _row("B", "1", 0, "ALL", 1.0, time_limit_s=5.0, finished_at="2026-01-02")]
+    assert choose_condition(rows) == ("ltlf", 0.1234567)
+    assert choose_condition(rows, profile="authors") == ("authors", 5.0)  # the newest authors row's limit
+    assert choose_condition(rows, time_limit_s=0.1234567) == ("ltlf", 0.1234567)
+    with pytest.raises(BenchError, match=r"no results with profile ltlf, time limit 5 s; recorded: .*"
+                                         r"profile ltlf, time limit 0.1234567 s"):
+        choose_condition(rows, "ltlf", 5.0)
+
+
+def test_report_of_an_empty_results_file_says_what_to_do(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    (tmp_path / "results.jsonl").write_text('{"key": "a", "scene"')  # only a torn first row
+    assert main(["bench", "report", "--out", str(tmp_path)]) == 2
+    assert "no results in" in capsys.readouterr().err

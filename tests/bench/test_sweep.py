@@ -16,6 +16,7 @@ import pytest
 
 from sgplan.bench.cases import BenchError, Case
 from sgplan.bench.executors import WORKER_ENV, LocalExecutor, worker_command
+from sgplan.bench.worker import PARENT_ENV
 from sgplan.bench.results import COLUMNS, RESULTS_JSONL, ResultStore, writing_lock
 from sgplan.bench.sweep import pending_cases, run_sweep
 from sgplan.mission import load_mission_folder
@@ -133,20 +134,22 @@ def _bench_command(data_dir: Path, out: Path) -> list[str]:
 
 def _start_sweep_that_hangs_after_one_case(command: list[str], marker: Path) -> subprocess.Popen:
     """Start ``command`` with a stand-in worker that answers the first case and hangs on the next, and
-    return once the first row is recorded: a signal sent then always lands mid-sweep, however fast or
-    loaded the machine is. Its workers carry ``marker`` in their environment."""
+    return once the first row is recorded (and a moment later, so that the sweep has counted it): a
+    signal sent then always lands mid-sweep, however fast or loaded the machine is. ``marker`` is the
+    stand-in's answered-once file."""
     env = {**os.environ, WORKER_ENV: shlex.join(FAKE_WORKER), "FAKE_WORKER_ONCE": str(marker)}
     proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     out = Path(command[command.index("--out") + 1])
     deadline = time.monotonic() + 120
     while not _rows_in(out) and time.monotonic() < deadline and proc.poll() is None:
         time.sleep(0.1)
+    time.sleep(0.5)  # the row is in the file; let the sweep finish recording it (the next case hangs)
     return proc
 
 
-def _workers_alive(marker: Path) -> list[int]:
-    """Pids of live processes whose environment holds ``marker`` (Linux /proc)."""
-    needle = f"FAKE_WORKER_ONCE={marker}".encode()
+def _workers_alive(sweep_pid: int) -> list[int]:
+    """Pids of live worker processes started by the sweep ``sweep_pid`` (their environment names it)."""
+    needle = f"{PARENT_ENV}={sweep_pid}".encode()
     alive = []
     for environ in Path("/proc").glob("[0-9]*/environ"):
         try:
@@ -157,9 +160,9 @@ def _workers_alive(marker: Path) -> list[int]:
     return alive
 
 
-def _wait_for_no_workers(marker: Path, timeout_s: float = 10.0) -> list[int]:
+def _wait_for_no_workers(sweep_pid: int, timeout_s: float = 10.0) -> list[int]:
     deadline = time.monotonic() + timeout_s
-    while (alive := _workers_alive(marker)) and time.monotonic() < deadline:
+    while (alive := _workers_alive(sweep_pid)) and time.monotonic() < deadline:
         time.sleep(0.1)
     return alive
 
@@ -194,6 +197,26 @@ def test_the_worker_command_can_be_replaced_from_the_environment(monkeypatch: py
     monkeypatch.setenv(WORKER_ENV, "python 'unclosed")
     with pytest.raises(BenchError, match=WORKER_ENV):
         LocalExecutor(1)
+    monkeypatch.setenv(WORKER_ENV, "/no/such/worker -m x")
+    with pytest.raises(BenchError, match="cannot find the program '/no/such/worker'"):
+        LocalExecutor(1)
+
+
+def test_a_worker_that_cannot_start_stops_the_sweep_with_a_clear_error(swept, tmp_path: Path) -> None:
+    cases, _ = swept
+    with pytest.raises(BenchError, match="cannot start the worker '/no/such/python'"):
+        run_sweep(cases[:2], ResultStore(tmp_path), LocalExecutor(1, command=["/no/such/python"]))
+
+
+def test_a_last_row_without_its_newline_is_kept(swept, tmp_path: Path) -> None:
+    cases, store = swept
+    lines = store.path.read_text().splitlines()
+    (tmp_path / RESULTS_JSONL).write_text("\n".join(lines[:2]))  # the 2nd row lacks its newline
+    copy = ResultStore(tmp_path)
+    assert len(copy) == 2
+    copy.append(store.get(json.loads(lines[2])["key"]))
+    assert [json.loads(line)["key"] for line in (tmp_path / RESULTS_JSONL).read_text().splitlines()] == \
+        [json.loads(line)["key"] for line in lines[:3]]
 
 
 def test_a_second_sweep_into_the_same_folder_is_refused(tmp_path: Path) -> None:
@@ -229,11 +252,14 @@ def test_retry_reruns_failed_rows_including_errors(swept: tuple[list[Case], Resu
 @pytest.mark.skipif(not Path("/proc/self/environ").exists(), reason="needs Linux /proc")
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGHUP, signal.SIGKILL])
 def test_no_worker_outlives_a_terminated_sweep(data_dir: Path, tmp_path: Path, sig: signal.Signals) -> None:
-    marker = tmp_path / "answered"
-    proc = _start_sweep_that_hangs_after_one_case(_bench_command(data_dir, tmp_path / "out"), marker)
-    assert _workers_alive(marker), "the hanging worker should be running"
+    proc = _start_sweep_that_hangs_after_one_case(_bench_command(data_dir, tmp_path / "out"), tmp_path / "answered")
+    assert len(_workers_alive(proc.pid)) == 1, "the hanging worker should be running"
     proc.send_signal(sig)
     _, stderr = proc.communicate(timeout=60)
-    # SIGTERM and SIGHUP stop the sweep like Ctrl-C; after SIGKILL the orphaned worker notices and exits.
-    assert proc.returncode == (-signal.SIGKILL if sig == signal.SIGKILL else 130), stderr
-    assert _wait_for_no_workers(marker) == []
+    # SIGTERM and SIGHUP stop the sweep like Ctrl-C (exit 128 + signal); after SIGKILL the orphaned
+    # worker notices and exits.
+    assert proc.returncode == (-signal.SIGKILL if sig == signal.SIGKILL else 128 + sig), stderr
+    assert _wait_for_no_workers(proc.pid) == []
+    if sig != signal.SIGKILL:
+        (logged,) = [json.loads(line) for line in (tmp_path / "out" / "sweeps.jsonl").read_text().splitlines()]
+        assert logged["interrupted"] and logged["ran"] == 1

@@ -38,7 +38,7 @@ class BenchError(SgplanError):
         super().__init__(f"{self.path}: {message}" if self.path is not None else message)
 
 
-def _exact(value: float) -> str:
+def exact_number(value: float) -> str:
     """Shortest text of ``value`` that reads back as the same float (``5``, ``0.25``, ``1.0000001``)."""
     short = f"{value:g}"
     return short if float(short) == value else repr(value)
@@ -64,7 +64,7 @@ class Case:
     @property
     def key(self) -> str:
         """The resume key: every field that can change the outcome (not the paths, which may move)."""
-        limit = "none" if self.time_limit_s is None else _exact(self.time_limit_s)
+        limit = "none" if self.time_limit_s is None else exact_number(self.time_limit_s)
         return f"{self.scene}/{self.mission}/{self.start}/{self.setup}/{self.profile}/tl={limit}"
 
     @property

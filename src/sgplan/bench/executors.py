@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import os
 import shlex
+import shutil
 import signal
 import subprocess
 import sys
@@ -43,6 +44,8 @@ def worker_command() -> list[str]:
             words = shlex.split(custom)
         except ValueError as exc:
             raise BenchError(f"${WORKER_ENV}={custom!r} is not a valid command line: {exc}") from None
+        if shutil.which(words[0]) is None:
+            raise BenchError(f"${WORKER_ENV}: cannot find the program {words[0]!r}")
         return words
     return [sys.executable, "-m", "sgplan.bench.worker"]
 
@@ -107,11 +110,15 @@ def run_isolated(
     """
     request = json.dumps({"case": case.to_dict(), "gallery_dir": gallery_dir})
     t0 = time.perf_counter()
-    proc = subprocess.Popen(
-        list(command or worker_command()), stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE, text=True, env=_worker_env(),
-        start_new_session=True,  # a terminal Ctrl-C reaches the sweep, which then stops the workers
-    )
+    argv = list(command or worker_command())
+    try:
+        proc = subprocess.Popen(
+            argv, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+            env=_worker_env(),
+            start_new_session=True,  # a terminal Ctrl-C reaches the sweep, which then stops the workers
+        )
+    except OSError as error:  # every case would fail the same way: stop the sweep
+        raise BenchError(f"cannot start the worker {argv[0]!r}: {error.strerror or error}") from None
     if running is not None:
         running.add(proc)
     try:

@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import Any
 
 from sgplan.bench import figures, tables
-from sgplan.bench.cases import BenchError
+from sgplan.bench.cases import BenchError, exact_number
 from sgplan.bench.results import ResultStore, counts, load_rows, load_sweeps
 
 REPORT_FILE = "report.md"
@@ -36,12 +36,27 @@ def condition_of(row: dict[str, Any]) -> Condition:
 
 def _describe(condition: Condition) -> str:
     profile, limit = condition
-    return f"profile {profile}, " + ("no time limit" if limit is None else f"time limit {limit:g} s")
+    return f"profile {profile}, " + ("no time limit" if limit is None else f"time limit {exact_number(limit)} s")
 
 
-def latest_condition(rows: Sequence[dict[str, Any]]) -> Condition:
-    """The condition of the most recently finished row (the last sweep's, normally)."""
-    return condition_of(max(rows, key=lambda r: r.get("finished_at") or ""))
+def choose_condition(rows: Sequence[dict[str, Any]], profile: str | None = None,
+                     time_limit_s: float | None = None) -> Condition:
+    """The condition of the newest row among those with the given ``profile`` and ``time_limit_s``
+    (``None``: any).
+
+    Raises
+    ------
+    BenchError
+        no row matches.
+    """
+    matching = [r for r in rows if (profile is None or r["profile"] == profile)
+                and (time_limit_s is None or r.get("time_limit_s") == time_limit_s)]
+    if not matching:
+        recorded = sorted({_describe(condition_of(r)) for r in rows})
+        wanted = ", ".join(filter(None, (profile and f"profile {profile}",
+                                         time_limit_s is not None and f"time limit {exact_number(time_limit_s)} s")))
+        raise BenchError(f"no results with {wanted}; recorded: {'; '.join(recorded) or 'none'}")
+    return condition_of(max(matching, key=lambda r: r.get("finished_at") or ""))
 
 
 def write_report(folder: str | Path, rows: Sequence[dict[str, Any]] | None = None, *,
@@ -50,8 +65,8 @@ def write_report(folder: str | Path, rows: Sequence[dict[str, Any]] | None = Non
     refresh ``results.csv`` / ``results.json``. The sweep calls of ``sweeps.jsonl`` are listed with their
     wall time.
 
-    Tables and figures cover one ``condition`` (default: :func:`latest_condition`), so that means never
-    mix semantics profiles or time limits; rows of other conditions are counted in a note.
+    Tables and figures cover one ``condition`` (default: the newest row's, :func:`choose_condition`), so
+    that means never mix semantics profiles or time limits; rows of other conditions are counted in a note.
 
     Raises
     ------
@@ -62,7 +77,9 @@ def write_report(folder: str | Path, rows: Sequence[dict[str, Any]] | None = Non
     if rows is None:
         rows = load_rows(out)
         ResultStore(out).export()
-    condition = condition or latest_condition(rows)
+    if not rows:
+        raise BenchError(f"no results to report in {out}")
+    condition = condition or choose_condition(rows)
     others = counts({"status": _describe(condition_of(r))} for r in rows if condition_of(r) != condition)
     rows = [r for r in rows if condition_of(r) == condition]
     if not rows:

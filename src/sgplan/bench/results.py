@@ -81,6 +81,14 @@ def make_folder(folder: str | Path) -> Path:
     return path
 
 
+def _is_row(data: bytes) -> bool:
+    try:
+        row = json.loads(data)
+    except (UnicodeDecodeError, json.JSONDecodeError):
+        return False
+    return isinstance(row, dict) and all(k in row for k in REQUIRED)
+
+
 class ResultStore:
     """The results of one output folder (see the module docstring).
 
@@ -95,6 +103,7 @@ class ResultStore:
         self.path = self.folder / RESULTS_JSONL
         self._rows: dict[str, dict[str, Any]] = {}
         self._partial = 0
+        self._newline_missing = False
         self._load()
 
     def _load(self) -> None:
@@ -102,8 +111,13 @@ class ResultStore:
             return
         data = self.path.read_bytes()
         complete = data[: data.rfind(b"\n") + 1]
-        # An interrupted append leaves a partial last line: ignored here, cut off by the next append.
-        self._partial = len(data) - len(complete)
+        tail = data[len(complete):]
+        if tail.strip() and _is_row(tail):
+            # A whole row without its newline (a hand edit): kept; the next append adds the newline.
+            complete, self._newline_missing = data + b"\n", True
+        else:
+            # An interrupted append leaves a partial last line: ignored here, cut off by the next append.
+            self._partial = len(tail)
         try:
             text = complete.decode("utf-8")
         except UnicodeDecodeError as error:
@@ -143,6 +157,9 @@ class ResultStore:
             if self._partial:
                 os.ftruncate(fd, os.fstat(fd).st_size - self._partial)
                 self._partial = 0
+            if self._newline_missing:
+                line = b"\n" + line
+                self._newline_missing = False
             written = os.write(fd, line)
             if written != len(line):  # pragma: no cover - a full disk
                 raise BenchError(f"short write ({written} of {len(line)} bytes)", self.path)
@@ -176,9 +193,10 @@ def _csv_value(value: Any) -> Any:
 def load_rows(folder: str | Path) -> list[dict[str, Any]]:
     """The rows recorded in ``folder/results.jsonl`` (a clear error if there are none)."""
     path = Path(folder).expanduser() / RESULTS_JSONL
-    if not path.is_file():
+    rows = ResultStore(path.parent).rows() if path.is_file() else []
+    if not rows:
         raise BenchError(f"no results in {path.parent}: run `sgplan bench --out {path.parent}` first")
-    return ResultStore(path.parent).rows()
+    return rows
 
 
 def record_sweep(folder: str | Path, info: dict[str, Any]) -> None:

@@ -55,21 +55,38 @@ def run_sweep(
     """Run the cases of ``cases`` that ``store`` lacks on ``executor``; append every row as it arrives.
 
     ``on_start(to_run, skipped)`` is called once before the first case, ``on_row(row)`` after each row
-    is stored. An interrupt (KeyboardInterrupt) stops the executor's workers and propagates; every row
-    stored before it stays, so calling again with the same cases runs only the rest.
+    is stored. An interrupt (KeyboardInterrupt) stops the executor's workers and propagates as
+    :class:`SweepInterrupted` with the summary so far; every row stored before it stays, so calling
+    again with the same cases runs only the rest. (A row stored in the instant before the interrupt may
+    be missing from ``summary.ran``; the store is the truth.)
     """
     t0 = time.perf_counter()
     todo = pending_cases(cases, store, retry=retry)
     summary = SweepSummary(total=len(cases), skipped=len(cases) - len(todo))
     if on_start is not None:
         on_start(len(todo), summary.skipped)
-    if todo:
-        with contextlib.closing(executor.run(todo)) as rows:
-            for row in rows:
-                store.append(row)
-                summary.ran += 1
-                summary.statuses[row["status"]] = summary.statuses.get(row["status"], 0) + 1
-                if on_row is not None:
-                    on_row(row)
+    try:
+        if todo:
+            with contextlib.closing(executor.run(todo)) as rows:
+                for row in rows:
+                    store.append(row)
+                    summary.ran += 1
+                    summary.statuses[row["status"]] = summary.statuses.get(row["status"], 0) + 1
+                    if on_row is not None:
+                        on_row(row)
+    except KeyboardInterrupt as stop:
+        summary.interrupted = True
+        summary.wall_s = time.perf_counter() - t0
+        raise SweepInterrupted(summary, getattr(stop, "signum", None)) from None
     summary.wall_s = time.perf_counter() - t0
     return summary
+
+
+class SweepInterrupted(KeyboardInterrupt):
+    """A sweep stopped by an interrupt; ``summary`` says what it did until then (``interrupted`` set),
+    ``signum`` which signal stopped it if known."""
+
+    def __init__(self, summary: SweepSummary, signum: int | None = None) -> None:
+        super().__init__("sweep interrupted")
+        self.summary = summary
+        self.signum = signum

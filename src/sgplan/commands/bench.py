@@ -10,7 +10,6 @@ import argparse
 import contextlib
 import os
 import signal
-import time
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
@@ -44,9 +43,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help=f"planner setups among {', '.join(SETUPS)} (default: ALL NO-LLM A*)")
     parser.add_argument("--profile", choices=("authors", "ltlf"),
                         help="semantics (default: authors, as the paper's numbers); recorded in every row. "
-                             "With report: the rows to report (default: those of the latest sweep)")
+                             "With report: the rows to report (default: the newest row's profile)")
     parser.add_argument("--time-limit", type=positive_seconds, metavar="S",
-                        help="search time budget per case (seconds). With report: the rows to report")
+                        help="search time budget per case (seconds). With report: the rows to report (default: the newest "
+                             "row's time limit among those of --profile)")
     parser.add_argument("--case-timeout", type=positive_seconds, default=DEFAULT_CASE_TIMEOUT_S, metavar="S",
                         help=f"kill a case's worker after S wall seconds (default: {DEFAULT_CASE_TIMEOUT_S:g})")
     parser.add_argument("--jobs", "-j", type=positive_int, metavar="N",
@@ -62,8 +62,10 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     if args.action == "report":
-        chosen = args.profile is not None or args.time_limit is not None
-        _print_report(args.out, (args.profile or "authors", args.time_limit) if chosen else None)
+        from sgplan.bench.report import choose_condition
+        from sgplan.bench.results import load_rows
+
+        _print_report(args.out, choose_condition(load_rows(args.out), args.profile, args.time_limit))
         return 0
     return _sweep(args)
 
@@ -94,7 +96,9 @@ def _termination_as_interrupt() -> Iterator[None]:
     """Treat SIGTERM and SIGHUP like Ctrl-C while sweeping, so the workers are stopped and the results
     exported on the way out."""
     def interrupt(signum: int, frame: object) -> None:
-        raise KeyboardInterrupt
+        stop = KeyboardInterrupt()
+        stop.signum = signum  # type: ignore[attr-defined]  # the exit status says which signal
+        raise stop
 
     previous = {sig: signal.signal(sig, interrupt) for sig in (signal.SIGTERM, signal.SIGHUP)}
     try:
@@ -127,7 +131,7 @@ def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: Resul
 
     from sgplan.bench.executors import LocalExecutor, RayExecutor
     from sgplan.bench.results import FAILED, record_sweep
-    from sgplan.bench.sweep import SweepSummary, run_sweep
+    from sgplan.bench.sweep import SweepInterrupted, run_sweep
 
     gallery = str(store.folder.resolve() / "gallery") if args.gallery else None
     options = {"timeout_s": args.case_timeout, "gallery_dir": gallery}
@@ -141,8 +145,6 @@ def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: Resul
         task = progress.add_task("bench", total=None, statuses="")
 
         def on_start(to_run: int, already: int) -> None:
-            nonlocal skipped
-            skipped = already
             progress.update(task, total=to_run)
             progress.console.print(f"{len(cases)} cases ({cases[0].profile} profile): {already} already in "
                                    f"{store.path}, {to_run} to run with the {executor.name} executor")
@@ -153,14 +155,11 @@ def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: Resul
             if row["status"] in FAILED:
                 progress.console.print(f"[yellow]{escape(row['key'])}: {row['status']}[/] - {escape(str(row.get('reason')))}")
 
-        t0 = time.perf_counter()
-        skipped, summary = len(cases), None
+        summary = None
         try:
             summary = run_sweep(cases, store, executor, retry=args.retry, on_start=on_start, on_row=on_row)
-        except KeyboardInterrupt:
-            # Log the partial call too: its rows are in the results and its wall time is real.
-            summary = SweepSummary(total=len(cases), skipped=skipped, ran=sum(statuses.values()),
-                                   statuses=dict(statuses), wall_s=time.perf_counter() - t0, interrupted=True)
+        except SweepInterrupted as stop:
+            summary = stop.summary  # logged too: its rows are in the results and its wall time is real
             raise
         finally:
             exported = store.export()
