@@ -107,6 +107,20 @@ def test_record_then_replay_offline(
     assert isinstance(replayer, ChatBackend) and isinstance(recorder, ChatBackend)
 
 
+def test_an_entry_recorded_with_its_reasoning_replays_without_it(
+    fake_llm: FakeOpenAIServer, llm_client: OpenAIChatClient, tmp_path: Path,
+) -> None:
+    fake_llm.push_reply("['enter(room_3)']")
+    CachedChatBackend(tmp_path, mode="record", inner=llm_client).complete(MESSAGES, temperature=0)
+    (name,) = entries(tmp_path)
+    entry = json.loads((tmp_path / name).read_text(encoding="utf-8"))
+    old = "<think>room_3 it is</think>['enter(room_3)']"  # as an earlier sgplan recorded it
+    entry["response"].update(content=old, choices=[old])
+    (tmp_path / name).write_text(json.dumps(entry), encoding="utf-8")
+    replayed = CachedChatBackend(tmp_path, mode="replay", model="fake-model").complete(MESSAGES, temperature=0)
+    assert replayed.content == "['enter(room_3)']" and replayed.choices == ("['enter(room_3)']",)
+
+
 def test_entry_is_human_readable(
     fake_llm: FakeOpenAIServer, llm_client: OpenAIChatClient, tmp_path: Path,
 ) -> None:

@@ -102,6 +102,10 @@ def test_llm_guide_keeps_the_record_when_every_call_fails(fake_llm, llm_args, tm
     assert "all 22 guidance calls failed" in capsys.readouterr().err
     record = json.loads((out / "llm_guidance_record.json").read_text())
     assert record["summary"]["calls"] == 22 and not (out / "llm_heuristic.yaml").exists()
+    blocked = tmp_path / "a-file"
+    blocked.write_text("")
+    assert main(["guide", "--scene", "demo", "--mission-dir", str(out), *llm_args, "--out", str(blocked / "x.yaml")]) == 2
+    assert "all 22 guidance calls failed" in capsys.readouterr().err  # not hidden by the unsaved record
 
 
 @pytest.mark.parametrize(

@@ -258,6 +258,9 @@ def test_a_leading_reasoning_block_is_not_part_of_the_answer(
     assert llm_client.complete(ASK).content == "\n<command>move(2, 3)</command>"
     fake_llm.push_reply("The answer mentions <think> later, and stays whole.")
     assert llm_client.complete(ASK).content == "The answer mentions <think> later, and stays whole."
+    # the template opened the block in the prompt: the reply starts inside it
+    fake_llm.push_reply("the kitchen is room_4\n</think>\n['EVENTUALLY', 'enter(room_4)']")
+    assert llm_client.complete(ASK).content == "\n['EVENTUALLY', 'enter(room_4)']"
 
 
 def test_refusal_is_reported(fake_llm: FakeOpenAIServer, llm_client: OpenAIChatClient) -> None:

@@ -8,6 +8,7 @@ language model. The run record of the LLM calls goes beside the output (``llm_gu
 from __future__ import annotations
 
 import argparse
+import contextlib
 from pathlib import Path
 
 from sgplan.commands.common import add_scene_arguments, load_scene_arg, positive_int, positive_number, say
@@ -46,7 +47,8 @@ def run(args: argparse.Namespace) -> int:
         guidance = backends.guide.guide(building, mission.automaton, mission.descriptions)
     except LLMError:
         if backends.chat is not None:  # every call failed: keep the record of what was tried
-            say(f"wrote the LLM run record {backends.record.save(out.parent / RECORD_NAME)}")
+            with contextlib.suppress(LLMError):  # but never in place of the real error
+                say(f"wrote the LLM run record {backends.record.save(out.parent / RECORD_NAME)}")
         raise
     write_guidance(guidance, out)
     entries = sum(len(states) for states in guidance.values())

@@ -35,6 +35,7 @@ from sgplan.llm.client import (
     OpenAIChatClient,
     normalize_messages,
     normalize_params,
+    without_reasoning,
 )
 from sgplan.llm.config import LLMConfig, one_line
 
@@ -143,14 +144,16 @@ def _result_to_json(result: ChatResult) -> dict[str, Any]:
 
 
 def _result_from_json(data: dict[str, Any]) -> ChatResult:
+    # Entries recorded before reasoning blocks were removed are answered as a fresh reply would be.
+    choices = tuple(without_reasoning(text) for text in data["choices"])
     return ChatResult(
-        content=data["content"],
+        content=choices[0],
         model=data["model"],
         finish_reason=data["finish_reason"],
         usage=data["usage"],
         latency_s=float(data["latency_s"]),
         from_cache=True,
-        choices=tuple(data["choices"]),
+        choices=choices,
         attempts=int(data["attempts"]),
     )
 

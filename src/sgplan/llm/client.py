@@ -390,7 +390,7 @@ def _result_from_body(
         if not isinstance(message, dict):
             raise LLMError(f"{where}: choice {i} has no 'message' object")
         content = message.get("content")
-        answer = _without_reasoning(content) if isinstance(content, str) else ""
+        answer = without_reasoning(content) if isinstance(content, str) else ""
         if answer.strip():
             texts.append(answer)
             continue
@@ -422,12 +422,19 @@ def _result_from_body(
 # -- small helpers --------------------------------------------------------------------------------------
 
 _REASONING = re.compile(r"^\s*<think>.*?(?:</think>|\Z)", re.DOTALL)
+_REASONING_TAIL = re.compile(r"^.*?</think>", re.DOTALL)
 
 
-def _without_reasoning(content: str) -> str:
-    """``content`` without a leading ``<think>...</think>`` block, which reasoning models served without
-    a reasoning parser (Ollama, llama.cpp, vLLM) put before the answer; an unclosed block is all reasoning."""
-    return _REASONING.sub("", content, count=1)
+def without_reasoning(content: str) -> str:
+    """``content`` without the reasoning that models served without a reasoning parser (Ollama,
+    llama.cpp, vLLM) put before the answer: a leading ``<think>...</think>`` block (an unclosed one is all
+    reasoning), or everything up to a ``</think>`` whose ``<think>`` was in the prompt template."""
+    if _REASONING.match(content):
+        return _REASONING.sub("", content, count=1)
+    end = content.find("</think>")
+    if end >= 0 and "<think>" not in content[:end]:
+        return _REASONING_TAIL.sub("", content, count=1)
+    return content
 
 
 
