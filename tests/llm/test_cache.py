@@ -107,12 +107,18 @@ def test_record_then_replay_offline(
     assert isinstance(replayer, ChatBackend) and isinstance(recorder, ChatBackend)
 
 
+def record_one(fake_llm: FakeOpenAIServer, llm_client: OpenAIChatClient, folder: Path, reply: str) -> tuple[str, str]:
+    """Record one call answered with ``reply`` into ``folder``; the entry's file name and text."""
+    fake_llm.push_reply(reply)
+    CachedChatBackend(folder, mode="record", inner=llm_client).complete(MESSAGES, temperature=0)
+    (name,) = entries(folder)
+    return name, (folder / name).read_text(encoding="utf-8")
+
+
 def test_an_entry_recorded_with_its_reasoning_replays_without_it(
     fake_llm: FakeOpenAIServer, llm_client: OpenAIChatClient, tmp_path: Path,
 ) -> None:
-    fake_llm.push_reply("['enter(room_3)']")
-    CachedChatBackend(tmp_path, mode="record", inner=llm_client).complete(MESSAGES, temperature=0)
-    (name,) = entries(tmp_path)
+    name, _ = record_one(fake_llm, llm_client, tmp_path, "['enter(room_3)']")
     entry = json.loads((tmp_path / name).read_text(encoding="utf-8"))
     old = "<think>room_3 it is</think>['enter(room_3)']"  # as an earlier sgplan recorded it
     entry["response"].update(content=old, choices=[old])
@@ -124,10 +130,7 @@ def test_an_entry_recorded_with_its_reasoning_replays_without_it(
 def test_entry_is_human_readable(
     fake_llm: FakeOpenAIServer, llm_client: OpenAIChatClient, tmp_path: Path,
 ) -> None:
-    fake_llm.push_reply("['enter(room_3)']")
-    CachedChatBackend(tmp_path, mode="record", inner=llm_client).complete(MESSAGES, temperature=0)
-    (name,) = entries(tmp_path)
-    text = (tmp_path / name).read_text(encoding="utf-8")
+    name, text = record_one(fake_llm, llm_client, tmp_path, "['enter(room_3)']")
     entry = json.loads(text)
     assert name == f"{entry['key']}.json"
     assert entry["format"] == "sgplan-llm-cache/1"
