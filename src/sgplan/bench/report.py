@@ -3,6 +3,7 @@ figures under ``figures/``, written into a results folder."""
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -80,7 +81,7 @@ def write_report(folder: str | Path, rows: Sequence[dict[str, Any]] | None = Non
     if not rows:
         raise BenchError(f"no results to report in {out}")
     condition = condition or choose_condition(rows)
-    others = counts({"status": _describe(condition_of(r))} for r in rows if condition_of(r) != condition)
+    others = Counter(_describe(condition_of(r)) for r in rows if condition_of(r) != condition)
     rows = [r for r in rows if condition_of(r) == condition]
     if not rows:
         raise BenchError(f"no results under {_describe(condition)} in {out}; recorded: {', '.join(others)}")

@@ -14,9 +14,6 @@ from pathlib import Path
 from sgplan.commands.common import add_scene_arguments, load_scene_arg, positive_int, positive_number, say
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 
-RECORD_NAME = "llm_guidance_record.json"
-
-
 def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("guide", help="write room-level guidance (llm_heuristic.yaml) for a mission folder")
     add_scene_arguments(parser)
@@ -32,6 +29,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from sgplan.errors import LLMError
+    from sgplan.llm.translation import GUIDANCE_RECORD_NAME
     from sgplan.mission import load_mission_folder, write_guidance
 
     building = load_scene_arg(args.scene, args.data)
@@ -48,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
     except LLMError:
         if backends.chat is not None:  # every call failed: keep the record of what was tried
             with contextlib.suppress(LLMError):  # but never in place of the real error
-                say(f"wrote the LLM run record {backends.record.save(out.parent / RECORD_NAME)}")
+                say(f"wrote the LLM run record {backends.record.save(out.parent / GUIDANCE_RECORD_NAME)}")
         raise
     write_guidance(guidance, out)
     entries = sum(len(states) for states in guidance.values())
@@ -61,6 +59,6 @@ def run(args: argparse.Namespace) -> int:
               f"{report.routes_broken} entries whose calls do not form one route")
         for reason in report.reasons[:5]:
             say(f"  dropped: {reason}")
-        record_path = backends.record.save(out.parent / RECORD_NAME)
+        record_path = backends.record.save(out.parent / GUIDANCE_RECORD_NAME)
         print(f"wrote the LLM run record {record_path}")
     return 0

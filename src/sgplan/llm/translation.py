@@ -76,7 +76,10 @@ RECORD_NAME = "llm_record.json"
 REFUSED_RECORD_NAME = "llm_refused_record.json"
 """The run record of a refused translation: written beside an earlier mission's files, never over them."""
 
-GUIDANCE_FILES = ("llm_heuristic.yaml", "llm_guidance_record.json")
+GUIDANCE_RECORD_NAME = "llm_guidance_record.json"
+"""The run record of ``sgplan guide``'s LLM calls, beside the guidance it wrote."""
+
+GUIDANCE_FILES = ("llm_heuristic.yaml", GUIDANCE_RECORD_NAME)
 """What ``sgplan guide`` (or ``plan --save-mission``) adds to a mission folder; it fits that mission only."""
 
 
