@@ -14,6 +14,7 @@ from pathlib import Path
 from sgplan.commands.common import add_scene_arguments, load_scene_arg, positive_int, positive_number, say
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 
+
 def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("guide", help="write room-level guidance (llm_heuristic.yaml) for a mission folder")
     add_scene_arguments(parser)

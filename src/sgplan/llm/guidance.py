@@ -14,7 +14,8 @@ reads replies that are not well-formed XML) and every call is validated:
 Invalid calls are dropped and counted (:class:`GuidanceReport`); kept calls that do not form one route
 from the current room (:func:`route_break`) are counted too, but kept. The remaining mission's automaton
 path avoids labels that cannot hold at one cell (:func:`label_costs`), so the model is never asked to be
-in two rooms at once. Kept calls are stored in the authors' ``llm_heuristic.yaml`` form with bare uuids: ``{room_uuid: {q: ["move(2, 9)", "reach(5, 21)"]}}``.
+in two rooms at once. Kept calls are stored in the authors' ``llm_heuristic.yaml`` form with bare
+uuids: ``{room_uuid: {q: ["move(2, 9)", "reach(5, 21)"]}}``.
 States that are sinks or need nothing made true get an empty list without any call; a failed call gives
 an empty list too (h_LLM is then 0 there), is counted, and is not cached, so a re-run retries it.
 
@@ -98,26 +99,29 @@ def label_costs(automaton: Automaton, building: Building, ap_actions: Mapping[st
     makes implausible at one cell -- two rooms entered at once, or an object reached from a room that does
     not hold it (possible only across a wall within the reach radius)."""
     actions = dict(ap_actions or {})
+    rooms: dict[int, int] = {}  # proposition index -> the room uuid it enters
+    objects: dict[int, int] = {}  # proposition index -> the object uuid it reaches
+    for i, ap in enumerate(automaton.aps):
+        kind, _, number = (action_entity(actions.get(ap, ap)) or "").partition("_")
+        if number.isdigit() and kind == "room":
+            rooms[i] = int(number)
+        elif number.isdigit() and kind == "object":
+            objects[i] = int(number)
     labels = np.arange(automaton.num_labels)
-    rooms_in_label = np.zeros(automaton.num_labels, dtype=np.int64)
-    implausible = np.zeros(automaton.num_labels, dtype=bool)
-    entered: dict[int, int] = {}  # proposition index -> room uuid
-    for i, ap in enumerate(automaton.aps):
-        key = action_entity(actions.get(ap, ap)) or ""
-        kind, _, number = key.partition("_")
-        if kind == "room" and number.isdigit():
-            entered[i] = int(number)
-            rooms_in_label += (labels >> i) & 1
-    implausible |= rooms_in_label > 1
-    for i, ap in enumerate(automaton.aps):
-        key = action_entity(actions.get(ap, ap)) or ""
-        kind, _, number = key.partition("_")
-        if kind != "object" or not number.isdigit() or not building.has_object(int(number)):
-            continue
-        home = building.object(uuid=int(number)).room_uuid
-        for j, room in entered.items():
-            if room != home:
-                implausible |= (((labels >> i) & 1) & ((labels >> j) & 1)).astype(bool)
+
+    def holds(i: int) -> np.ndarray:
+        return ((labels >> i) & 1).astype(bool)
+
+    rooms_entered = np.zeros(len(labels), dtype=np.int64)
+    for i in rooms:
+        rooms_entered += holds(i)
+    implausible = rooms_entered > 1
+    for i, obj in objects.items():
+        if building.has_object(obj):
+            home = building.object(uuid=obj).room_uuid
+            for j, room in rooms.items():
+                if room != home:
+                    implausible |= holds(i) & holds(j)
     return np.where(implausible, IMPLAUSIBLE_LABEL_COST, 1.0)
 
 
