@@ -1,0 +1,379 @@
+"""Matterport3D ``.house`` files (the ASCII 1.1 house annotation) -> a building.
+
+The file is plain text, one record per line, its kind in the first token (Matterport3D's
+data_organization.md documents the fields). Used here:
+
+====  ===============================================================================================
+H     counts of every record kind (checked against the records found: a short count = a cut file)
+L     level: index, bounding box                                       -> a floor (lowest first)
+R     region: index, level, one-letter label, bounding box, height     -> a room (:data:`REGION_NAMES`)
+S     surface: index, region, label                                    -> a floor polygon of that room
+V     vertex: index, surface, position                                 -> the polygon's corners, in order
+C     category: index, raw name, mpcat40 name                          -> object names
+O     object: index, region, category, centre, two box axes, half sizes -> an object / obstacle / door
+P     portal: region pair, bounding box                                -> a passage, as a door
+====  ===============================================================================================
+
+How the map is drawn (all metric, then rasterised at the chosen resolution):
+
+- every room is the union of its floor polygons; a cell in no polygon is wall near a room, outside
+  beyond ``WALL_BAND_M``;
+- the file holds no wall geometry other than the gaps between floor polygons: two rooms whose polygons
+  come closer than ``open_gap_m`` (default 0.14 m, thinner than an interior wall) share an open
+  boundary, and the gap between them is floor; a wider gap is a wall;
+- a door (mpcat40 ``door``: doors and door frames) or a portal touching two rooms opens the wall
+  between them across its width;
+- other objects become sgplan objects named by their raw category (``coffee#table`` ->
+  "coffee table"); whether one blocks the robot is decided by its height (:mod:`.assemble`). Walls,
+  floors, ceilings and void annotations are not objects (a ``wall`` box spans its whole region).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from scipy import ndimage
+
+from sgplan.errors import SceneError
+from sgplan.importers.assemble import FloorDraft, ImportResult, ObjectDraft, RoomDraft, Settings, assemble
+from sgplan.importers.raster import GridFrame, box_corners, hull_mask, polygon_area_m2, polygon_distance_m, polygon_mask
+from sgplan.scene.model import NO_ROOM, CatCode
+
+REGION_NAMES: dict[str, str] = {
+    "a": "bathroom",
+    "b": "bedroom",
+    "c": "closet",
+    "d": "dining_room",
+    "e": "lobby",  # entryway / foyer / lobby
+    "f": "family_room",
+    "g": "garage",
+    "h": "corridor",  # hallway
+    "i": "library",
+    "j": "laundry_room",  # laundry room / mudroom
+    "k": "kitchen",
+    "l": "living_room",
+    "m": "meeting_room",
+    "n": "lounge",
+    "o": "office",
+    "p": "porch",  # porch / terrace / deck / driveway
+    "r": "rec_room",  # recreation / game room
+    "s": "stairs",
+    "t": "toilet_room",  # a small room with only a toilet; "toilet" would clash with the object
+    "u": "utility_room",  # utility room / tool room
+    "v": "tv_room",
+    "w": "gym",  # workout / gym / exercise
+    "x": "outdoor",
+    "y": "balcony",
+    "z": "other_room",
+    "B": "bar",
+    "C": "classroom",
+    "D": "dining_booth",
+    "S": "spa",  # spa / sauna
+    "T": "vehicle",  # transportation
+    "-": "room",  # no label
+}
+"""Matterport3D region labels (data_organization.md) -> sgplan room categories (Gibson-style names
+where Gibson has the category: lobby, corridor)."""
+
+NOT_OBJECTS = frozenset({"wall", "floor", "ceiling", "door", "void"})
+"""mpcat40 categories that are structure or annotation leftovers, not objects."""
+NOT_OBJECT_NAMES = frozenset({"unknown", "remove", "delete"})
+
+WALL_BAND_M = 0.5
+"""Cells within this distance of a room but in none are wall; farther ones are outside."""
+DOOR_REACH_M = 0.3
+"""A door box is deepened to at least this on each side of its plane, so it spans the wall it sits in."""
+DEFAULT_OPEN_GAP_M = 0.14
+
+
+@dataclass
+class _Region:
+    index: int
+    level: int
+    label: str
+    height_m: float
+    polygons: list[np.ndarray] = field(default_factory=list)
+
+
+@dataclass
+class House:
+    """The records of a ``.house`` file that the importer uses (see the module docstring)."""
+
+    path: Path
+    levels: dict[int, np.ndarray]
+    """level index -> bounding box ``[xlo, ylo, zlo, xhi, yhi, zhi]``."""
+    regions: dict[int, _Region]
+    categories: dict[int, tuple[str, str]]
+    """category index -> (raw name, mpcat40 name)."""
+    objects: list[tuple[int, int, int, np.ndarray]]
+    """(object index, region, category, 15 numbers: centre, axis 0, axis 1, half sizes)."""
+    portals: list[tuple[int, int, int, np.ndarray]]
+    """(portal index, region 0, region 1, bounding box)."""
+    surface_z: dict[int, list[float]]
+    """region index -> heights of its floor surfaces."""
+
+
+# -- parsing -------------------------------------------------------------------------------------------
+
+
+def is_house_file(path: Path) -> bool:
+    return path.is_file() and path.suffix.lower() == ".house"
+
+
+def _records(path: Path) -> Iterator[tuple[int, list[str]]]:
+    try:
+        with path.open(encoding="utf-8") as handle:
+            first = handle.readline().split()
+            if first[:1] != ["ASCII"]:
+                raise SceneError("not a Matterport3D .house file: the first line must be 'ASCII 1.1'", path)
+            for number, line in enumerate(handle, start=2):
+                tokens = line.split()
+                if tokens:
+                    yield number, tokens
+    except (OSError, UnicodeDecodeError) as error:
+        raise SceneError(f"cannot read: {error}", path) from None
+
+
+_MIN_TOKENS = {"H": 13, "L": 13, "R": 16, "S": 8, "V": 7, "C": 6, "O": 16, "P": 11}
+_COUNT_FIELD = {"V": 5, "S": 6, "O": 8, "C": 9, "R": 10, "P": 11, "L": 12}
+"""Position in the H record of each record kind's count."""
+
+
+def read_house(path: str | Path) -> House:
+    """Parse a ``.house`` file (see the module docstring for the records used).
+
+    Raises
+    ------
+    SceneError
+        naming the file and line for a short record or a field that is not a number; naming the
+        entity for a reference to a missing level, region or surface, a count in the H record that
+        disagrees with the records, or a file without H, levels or regions.
+    """
+    path = Path(path)
+    header: list[str] | None = None
+    counts = dict.fromkeys(_COUNT_FIELD, 0)
+    levels: dict[int, np.ndarray] = {}
+    regions: dict[int, _Region] = {}
+    surfaces: dict[int, tuple[int, str, float]] = {}
+    vertices: dict[int, list[tuple[int, float, float]]] = {}
+    categories: dict[int, tuple[str, str]] = {}
+    objects: list[tuple[int, int, int, np.ndarray]] = []
+    portals: list[tuple[int, int, int, np.ndarray]] = []
+    for line, t in _records(path):
+        kind = t[0]
+        if kind not in _MIN_TOKENS:
+            continue
+        if len(t) < _MIN_TOKENS[kind]:
+            raise SceneError(f"line {line}: a {kind} record needs {_MIN_TOKENS[kind]} fields, found {len(t)}", path)
+        counts[kind] = counts.get(kind, 0) + 1
+        try:
+            if kind == "H":
+                header = t
+            elif kind == "L":
+                levels[int(t[1])] = np.array(t[7:13], dtype=float)
+            elif kind == "R":
+                regions[int(t[1])] = _Region(int(t[1]), int(t[2]), t[5], float(t[15]))
+            elif kind == "S":
+                surfaces[int(t[1])] = (int(t[2]), t[4], float(t[7]))
+            elif kind == "V":
+                vertices.setdefault(int(t[2]), []).append((int(t[1]), float(t[4]), float(t[5])))
+            elif kind == "C":
+                categories[int(t[1])] = (t[3].replace("#", " ").lower(), t[5].lower())
+            elif kind == "O":
+                objects.append((int(t[1]), int(t[2]), int(t[3]), np.array(t[4:16], dtype=float)))
+            elif kind == "P":
+                portals.append((int(t[1]), int(t[2]), int(t[3]), np.array(t[5:11], dtype=float)))
+        except ValueError:
+            raise SceneError(f"line {line}: a {kind} record has a field that is not a number", path) from None
+    if header is None:
+        raise SceneError("no H (house) record: not a Matterport3D .house file", path)
+    for kind, position in _COUNT_FIELD.items():
+        declared = int(header[position]) if header[position].lstrip("-").isdigit() else -1
+        if declared != counts[kind]:
+            raise SceneError(
+                f"the H record declares {header[position]} {kind} records but the file holds {counts[kind]} "
+                "(a cut or edited file?)",
+                path,
+            )
+    if not levels or not regions:
+        raise SceneError("the house has no levels (L) or no regions (R): nothing to plan on", path)
+    surface_z: dict[int, list[float]] = {}
+    for surface, corners in sorted(vertices.items()):
+        if surface not in surfaces:
+            raise SceneError(f"vertices name surface {surface}, which has no S record", path)
+        region_index, _, z = surfaces[surface]
+        if region_index not in regions:
+            raise SceneError(f"surface {surface} names region {region_index}, which has no R record", path)
+        polygon = np.array([(x, y) for _, x, y in sorted(corners)], dtype=float)
+        if len(polygon) < 3 or polygon_area_m2(polygon) < 1e-4:
+            raise SceneError(
+                f"surface {surface} (region {region_index}) is a degenerate floor polygon "
+                f"({len(polygon)} vertices, area {polygon_area_m2(polygon):.2g} m^2)",
+                path,
+            )
+        regions[region_index].polygons.append(polygon)
+        surface_z.setdefault(region_index, []).append(z)
+    for region in regions.values():
+        if region.level not in levels:
+            raise SceneError(
+                f"region {region.index} is on level {region.level}, but the file has levels {sorted(levels)}", path
+            )
+        if region.label not in REGION_NAMES:
+            raise SceneError(f"region {region.index} has label {region.label!r}, not a Matterport3D region label", path)
+    for index, region, category, _ in objects:
+        if category >= 0 and category not in categories:
+            raise SceneError(f"object {index} names category {category}, which has no C record", path)
+        if region >= 0 and region not in regions:
+            raise SceneError(f"object {index} names region {region}, which has no R record", path)
+    for index, r0, r1, _ in portals:
+        if r0 not in regions or r1 not in regions:
+            raise SceneError(f"portal {index} joins regions {r0} and {r1}; one has no R record", path)
+    return House(path, levels, regions, categories, objects, portals, surface_z)
+
+
+# -- building ------------------------------------------------------------------------------------------
+
+
+def import_house(path: str | Path, settings: Settings | None = None, open_gap_m: float = DEFAULT_OPEN_GAP_M) -> ImportResult:
+    """The building of a Matterport3D ``.house`` file (see the module docstring for the mapping)."""
+    settings = settings or Settings()
+    house = read_house(path)
+    notes: list[str] = []
+    drawn = {i: r for i, r in house.regions.items() if r.polygons}
+    undrawn = sorted(set(house.regions) - set(drawn))
+    if undrawn:
+        notes.append(f"region(s) {undrawn} have no floor polygon and are left out (their objects join the nearest room)")
+    if not drawn:
+        raise SceneError("no region has a floor polygon (S and V records): nothing to rasterise", house.path)
+    ground = _level_grounds(house, drawn)
+    order = sorted(ground, key=lambda level: ground[level])  # floors lowest first
+    floor_of = {level: k for k, level in enumerate(order)}
+    corners = np.vstack([p for r in drawn.values() for p in r.polygons])
+    frame = GridFrame.around(corners.min(axis=0), corners.max(axis=0), settings.resolution_m, WALL_BAND_M + 0.5)
+
+    rooms = [RoomDraft(i + 1, REGION_NAMES[r.label], floor_of[r.level], r.height_m) for i, r in sorted(drawn.items())]
+    floors = []
+    for level in order:
+        on_level = {i: r for i, r in drawn.items() if r.level == level}
+        floors.append(_floor(house, frame, on_level, ground[level], f"{chr(ord('A') + floor_of[level])}", open_gap_m))
+    objects = list(_objects(house, drawn, floor_of, ground))
+    result = assemble(house.path.stem, frame, floors, rooms, objects, settings)
+    result.notes[:0] = notes
+    return result
+
+
+def _level_grounds(house: House, drawn: dict[int, _Region]) -> dict[int, float]:
+    """Ground height per level: the median height of its regions' floor surfaces (else its box bottom)."""
+    grounds = {}
+    for level, box in house.levels.items():
+        heights = [z for i, r in drawn.items() if r.level == level for z in house.surface_z.get(i, [])]
+        grounds[level] = float(np.median(heights)) if heights else float(box[2])
+    return {level: z for level, z in grounds.items() if any(r.level == level for r in drawn.values())}
+
+
+def _floor(
+    house: House, frame: GridFrame, regions: dict[int, _Region], ground_z: float, name: str, open_gap_m: float
+) -> FloorDraft:
+    room_map = np.full(frame.shape, NO_ROOM, dtype=np.int16)
+    for index, region in sorted(regions.items()):
+        for polygon in region.polygons:
+            room_map[polygon_mask(frame, polygon)] = index + 1
+    res = frame.resolution_m
+    distance = {i: ndimage.distance_transform_edt(room_map != i + 1, sampling=res) for i in regions}
+    near_room = ndimage.distance_transform_edt(room_map <= 0, sampling=res) <= WALL_BAND_M
+    cat = np.where(room_map > 0, CatCode.GROUND, np.where(near_room, CatCode.WALL, CatCode.OUTSIDE)).astype(np.int16)
+
+    gaps: dict[tuple[int, int], float] = {}
+    for a in regions:
+        for b in regions:
+            if a < b:
+                gaps[(a, b)] = min(polygon_distance_m(p, q) for p in regions[a].polygons for q in regions[b].polygons)
+    for (a, b), gap in gaps.items():
+        if gap <= open_gap_m:
+            _bridge(cat, room_map, distance, a, b, gap, res, None)
+    doors = [numbers for _, _, c, numbers in house.objects if c >= 0 and house.categories[c][1] == "door"]
+    for box in doors:
+        footprint = _door_footprint(frame, box)
+        touched = [i for i in regions if (footprint & (room_map == i + 1)).any()]
+        for a in touched:
+            for b in touched:
+                if a < b:
+                    _bridge(cat, room_map, distance, a, b, gaps[(a, b)], res, footprint)
+    for index, r0, r1, box in house.portals:
+        if r0 in regions and r1 in regions and r0 != r1:
+            a, b = min(r0, r1), max(r0, r1)
+            lo, hi = box[:3], box[3:]
+            footprint = hull_mask(frame, np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]]))
+            footprint = ndimage.binary_dilation(footprint, iterations=max(1, int(round(DOOR_REACH_M / res))))
+            _bridge(cat, room_map, distance, a, b, gaps[(a, b)], res, footprint)
+    return FloorDraft(name, ground_z, cat, room_map)
+
+
+def _bridge(
+    cat: np.ndarray,
+    room_map: np.ndarray,
+    distance: dict[int, np.ndarray],
+    a: int,
+    b: int,
+    gap_m: float,
+    res: float,
+    within: np.ndarray | None,
+) -> None:
+    """Turn the wall cells between regions ``a`` and ``b`` (inside ``within``, if given) into their floor.
+
+    The cells between them are those whose distances to the two rooms add up to about the gap; each
+    joins the nearer room.
+    """
+    da, db = distance[a], distance[b]
+    between = (room_map == NO_ROOM) & (da + db <= gap_m + 2 * res) & (np.maximum(da, db) <= gap_m + 2 * res)
+    if within is not None:
+        between &= within
+    room_map[between] = np.where(da[between] <= db[between], a + 1, b + 1)
+    cat[between] = CatCode.GROUND
+
+
+def _box_axes(numbers: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Centre, unit axes (rows; the third = axis 0 x axis 1) and half sizes of an O record's box."""
+    center, a0, a1, half = numbers[:3], numbers[3:6], numbers[6:9], numbers[9:12]
+    axes = np.array([a0, a1, np.cross(a0, a1)])
+    norms = np.linalg.norm(axes, axis=1, keepdims=True)
+    return center, axes / np.where(norms > 0, norms, 1.0), np.abs(half)
+
+
+def _door_footprint(frame: GridFrame, numbers: np.ndarray) -> np.ndarray:
+    """A door's footprint, deepened to :data:`DOOR_REACH_M` on each side so it spans its wall."""
+    center, axes, half = _box_axes(numbers)
+    vertical = int(np.argmax(np.abs(axes[:, 2])))
+    horizontal = [k for k in range(3) if k != vertical]
+    thin = min(horizontal, key=lambda k: half[k])
+    half = half.copy()
+    half[thin] = max(half[thin], DOOR_REACH_M)
+    return hull_mask(frame, box_corners(center, axes, half)[:, :2])
+
+
+def _objects(
+    house: House, drawn: dict[int, _Region], floor_of: dict[int, int], ground: dict[int, float]
+) -> Iterator[ObjectDraft]:
+    for index, region, category, numbers in house.objects:
+        if category < 0:
+            continue
+        raw, mpcat = house.categories[category]
+        if mpcat in NOT_OBJECTS or raw in NOT_OBJECT_NAMES:
+            continue
+        center, axes, half = _box_axes(numbers)
+        if region in house.regions and house.regions[region].level in floor_of:
+            level = house.regions[region].level
+        else:  # no usable region: the level whose ground is nearest below the box
+            level = min(floor_of, key=lambda lv: abs(center[2] - ground[lv]))
+        yield ObjectDraft(
+            name=raw,
+            floor=floor_of[level],
+            center_m=center,
+            axes=axes,
+            half_sizes_m=half,
+            room_id=region + 1 if region in drawn else None,
+            source=f"object {index}",
+        )
