@@ -16,7 +16,10 @@ def load_scene(path: str | Path) -> Building:
 
     - a folder with ``building.yaml`` (or that file): the authors' scene, with rasters;
     - a folder with ``scene.json`` (or a ``.json`` file): sgplan's native format;
-    - a ``.npz`` file: a raw 3D Scene Graph (graph only, ``Floor.has_maps`` False).
+    - a ``.npz`` file: a raw 3D Scene Graph (graph only, ``Floor.has_maps`` False);
+    - a source of another tool, imported on the fly (:mod:`sgplan.importers.detect`): a Matterport3D
+      ``.house`` file, a ROS ``map.yaml`` with its rooms file beside it, a Hydra scene-graph ``.json``
+      with its label file beside it.
 
     Raises
     ------
@@ -28,12 +31,18 @@ def load_scene(path: str | Path) -> Building:
         raise SceneError("scene path does not exist", path)
     if is_authors_scene(path):
         return load_authors_scene(path)
+    from sgplan.importers.detect import detect_kind, import_scene  # importers sit above scene/
+
+    kind = detect_kind(path)
+    if kind is not None:
+        return import_scene(kind, path).building
     if is_native_scene(path):
         return read_native_scene(path)
     if is_gibson_npz(path):
         return load_gibson_npz(path)
     raise SceneError(
         "not a scene: expected a folder holding building.yaml (authors' format) or scene.json (sgplan's "
-        "format), or a raw 3DSceneGraph_<name>.npz file",
+        "format), a raw 3DSceneGraph_<name>.npz file, or a source to import (a Matterport3D .house, a ROS "
+        "map.yaml, a Hydra scene-graph .json)",
         path,
     )
