@@ -25,7 +25,7 @@ CHAIR = ((1.0, 0.0), (0.4, 0.4, 0.8))  # centre (x, y), box size; it stands on t
 LAMP = ((4.0, 0.0), (0.3, 0.3, 0.2))  # hangs at 2.4 m
 
 
-def build_graph(path: Path, rooms: int = 2, objects: bool = True) -> Path:
+def build_graph(path: Path, rooms: int = 2, objects: bool = True, mesh: bool = False) -> Path:
     """Six places in a row, 1 m apart, 0.5 m of free space each; places 0-2 in room 0, 3-5 in room 1."""
     graph = dsg.DynamicSceneGraph()
     for k, (x, y) in enumerate(PLACES):
@@ -50,8 +50,23 @@ def build_graph(path: Path, rooms: int = 2, objects: bool = True) -> Path:
             attributes.position = np.array([x, y, z])
             attributes.bounding_box = dsg.BoundingBox(np.array(size, dtype=np.float32), np.array([x, y, z], dtype=np.float32))
             graph.add_node(dsg.DsgLayers.OBJECTS, dsg.NodeSymbol("O", k).value, attributes)
+    if mesh:
+        graph.mesh = floor_mesh()
     graph.save(str(path))
     return path
+
+
+def floor_mesh() -> object:
+    """Floor vertices (z = 0) four per 0.1 m cell over x [-0.5, 5.5], y [-0.5, 0.5]; a 0.4 m block at x = 3."""
+    fx, fy = np.meshgrid(np.arange(-0.475, 5.5, 0.05), np.arange(-0.475, 0.5, 0.05), indexing="ij")
+    bx, by = np.meshgrid(np.arange(2.825, 3.2, 0.05), np.arange(-0.175, 0.2, 0.05), indexing="ij")
+    points = np.concatenate([
+        np.column_stack([fx.ravel(), fy.ravel(), np.zeros(fx.size)]),
+        np.column_stack([bx.ravel(), by.ravel(), np.full(bx.size, 0.5)]),
+    ])
+    mesh = dsg.Mesh()
+    mesh.set_vertices(np.hstack([points, np.zeros_like(points)]).T)  # rows: x, y, z, r, g, b
+    return mesh
 
 
 def labels(tmp_path: Path, text: str = "objects: {5: chair, 11: lamp}\nrooms: {0: kitchen, 1: living room}\n") -> object:
@@ -89,6 +104,13 @@ def test_planned_cost_matches_the_exact_solver(tmp_path: Path) -> None:
     start = next(c for c in building.initial_cells if building.floors[0].room_map[c[0], c[1]] != living.id)
     cost, exact = planned_and_exact_cost(building, f'F "enter({living.key})"', start)
     assert cost == pytest.approx(exact) and exact > 0.5
+
+
+def test_mesh_gives_the_free_space(tmp_path: Path) -> None:
+    result = import_dsg(build_graph(tmp_path / "g.json", mesh=True), labels(tmp_path), SETTINGS)
+    assert any("mesh" in note for note in result.notes)
+    # 60 x 10 floor cells, minus the 4 x 4 block the mesh shows and the chair's 4 x 4 footprint
+    assert free_cells(result.building) == 600 - 16 - 16
 
 
 def test_unsegmented_scene_is_one_room_with_a_note(tmp_path: Path) -> None:

@@ -5,11 +5,13 @@ on Linux x86_64 / aarch64, macOS arm64 and Windows amd64).
 
 Mapping
 -------
-- **Free space** comes from the places layer (``PLACES``, layer 3): each place is the centre of a ball
-  of free space of radius ``distance``; the floor's free cells are the discs of those radii around the
-  places, plus, along every edge between two places, the capsule of the smaller radius (Hydra links
-  places whose balls overlap, so the capsule is free too). A one-cell ring around the free space is
-  drawn as wall; the rest is outside.
+- **Free space** comes from the mesh when the file has one (:func:`mesh_free_space`: cells where the
+  mesh shows floor and nothing up to robot height), else from the places layer (``PLACES``, layer 3):
+  each place is the centre of a ball of free space of radius ``distance``; the floor's free cells are
+  the discs of those radii around the places, plus, along every edge between two places, the capsule of
+  the smaller radius (Hydra links places whose balls overlap, so the capsule is free too). A one-cell
+  ring around the free space is drawn as wall; the rest is outside. The places are needed either way:
+  they carry the rooms.
 - **Rooms** come from the room layer (``ROOMS``, layer 4) and their child places: a free cell belongs to
   the room of the nearest place. Places under no room join the room of their nearest place that has
   one. A file without rooms (Hydra did not segment any) becomes one room covering all the free space;
@@ -41,6 +43,10 @@ from sgplan.scene.model import NO_ROOM, CatCode
 LAYER_IDS = {"OBJECTS": 2, "PLACES": 3, "ROOMS": 4}
 """Hydra's layer ids (used when the file does not name its layers)."""
 DEFAULT_FLOOR_GAP_M = 1.5
+FLOOR_BAND_M = 0.15
+"""Mesh vertices within this height of the ground are floor."""
+BODY_HEIGHT_M = 1.5
+"""Mesh vertices from the floor band up to this height above the ground block the robot."""
 
 
 def spark_dsg() -> Any:
@@ -117,24 +123,34 @@ def import_dsg(
         )
     _adopt_orphans(places)
     room_ids = {node: k + 1 for k, node in enumerate(sorted(room_names))}
-    floor_of_room, grounds = _floors(places, room_ids, floor_gap_m)
+    floor_of_room, place_grounds = _floors(places, room_ids, floor_gap_m)
+    place_floor = [floor_of_room[room_ids[p.room]] for p in places]  # type: ignore[index]
+    objects = _objects(graph, layers, labels, places, place_floor, path)
+    grounds = [  # objects stand on the floor: the lowest box bottom is the ground
+        float(min((o.corners()[:, 2].min() for o in objects if o.floor == k), default=ground))
+        for k, ground in enumerate(place_grounds)
+    ]
+    mesh = _mesh_points(graph)
     xy = np.array([p.xyz[:2] for p in places])
     radius = np.array([p.radius_m for p in places])
-    frame = GridFrame.around((xy - radius[:, None]).min(axis=0), (xy + radius[:, None]).max(axis=0), settings.resolution_m, 0.5)
+    lo, hi = (xy - radius[:, None]).min(axis=0), (xy + radius[:, None]).max(axis=0)
+    if mesh is not None:
+        lo, hi = np.minimum(lo, mesh[:, :2].min(axis=0)), np.maximum(hi, mesh[:, :2].max(axis=0))
+        notes.append("free space comes from the scene graph's mesh (floor and obstacle vertices), rooms from its places")
+    frame = GridFrame.around(lo, hi, settings.resolution_m, 0.5)
     edges = _place_edges(graph, layers, {p.id: k for k, p in enumerate(places)})
     floors = []
     for k, ground in enumerate(grounds):
-        members = np.array([floor_of_room[room_ids[p.room]] == k for p in places])  # type: ignore[index]
-        floors.append(_floor(frame, places, members, edges, room_ids, ground, chr(ord("A") + k)))
+        members = np.array([f == k for f in place_floor])
+        if mesh is not None:
+            free = mesh_free_space(frame, mesh, ground)
+        else:
+            free = places_free_space(frame, places, members, edges)
+        floors.append(_floor(frame, free, places, members, room_ids, ground, chr(ord("A") + k)))
     rooms = [
         RoomDraft(room_ids[node], room_names[node], floor_of_room[room_ids[node]])
         for node in sorted(room_names)
     ]
-    objects = _objects(graph, layers, labels, places, [floor_of_room[room_ids[p.room]] for p in places], path)  # type: ignore[index]
-    for k, floor in enumerate(floors):  # objects stand on the floor: the lowest box bottom is the ground
-        bottoms = [o.corners()[:, 2].min() for o in objects if o.floor == k]
-        if bottoms:
-            floor.ground_z_m = float(min(bottoms))
     result = assemble(path.stem, frame, floors, rooms, objects, settings)
     result.notes[:0] = notes
     return result
@@ -233,27 +249,63 @@ def _place_edges(graph: Any, layers: dict[str, int], index: dict[int, int]) -> n
     return np.array(pairs, dtype=np.int64).reshape(-1, 2)
 
 
-def _floor(
-    frame: GridFrame,
-    places: list[_Place],
-    members: np.ndarray,
-    edges: np.ndarray,
-    room_ids: dict[int, int],
-    ground_z: float,
-    name: str,
-) -> FloorDraft:
+def places_free_space(frame: GridFrame, places: list[_Place], members: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    """The free cells of one floor from its places: discs of their radii, capsules along their edges."""
     xy = np.array([p.xyz[:2] for p in places])
     radius = np.array([p.radius_m for p in places])
     free = capsules_mask(frame, xy[members], xy[members], radius[members])
     on_floor = edges[members[edges[:, 0]] & members[edges[:, 1]]] if len(edges) else edges
     if len(on_floor):
         free |= capsules_mask(frame, xy[on_floor[:, 0]], xy[on_floor[:, 1]], np.minimum(radius[on_floor[:, 0]], radius[on_floor[:, 1]]))
+    return free
+
+
+def mesh_free_space(frame: GridFrame, points: np.ndarray, ground_z: float) -> np.ndarray:
+    """The free cells of one floor from mesh vertices ``(n, 3)``: floor seen, no obstacle above it.
+
+    A cell is floor when it holds a vertex within :data:`FLOOR_BAND_M` of ``ground_z`` (gaps between
+    vertices are closed over two cells); it is blocked when it holds a vertex between that band and
+    :data:`BODY_HEIGHT_M` above the ground (walls, furniture; not the ceiling, not the floor above).
+    """
+    cells = frame.cell_of(points[:, :2])
+    on_grid = frame.contains(cells)
+    height = points[:, 2] - ground_z
+    floor, blocked = frame.empty(), frame.empty()
+    seen = on_grid & (np.abs(height) <= FLOOR_BAND_M)
+    floor[cells[seen, 0], cells[seen, 1]] = True
+    high = on_grid & (height > FLOOR_BAND_M) & (height <= BODY_HEIGHT_M)
+    blocked[cells[high, 0], cells[high, 1]] = True
+    floor = ndimage.binary_closing(floor, iterations=2)
+    return floor & ~blocked
+
+
+def _mesh_points(graph: Any) -> np.ndarray | None:
+    """The mesh's vertex positions ``(n, 3)``, or ``None`` without a mesh."""
+    if not graph.has_mesh() or graph.mesh.num_vertices() == 0:
+        return None
+    points = np.asarray(graph.mesh.get_vertices(), dtype=float)[:3].T
+    points = points[np.isfinite(points).all(axis=1)]
+    return points if len(points) else None
+
+
+def _floor(
+    frame: GridFrame,
+    free: np.ndarray,
+    places: list[_Place],
+    members: np.ndarray,
+    room_ids: dict[int, int],
+    ground_z: float,
+    name: str,
+) -> FloorDraft:
+    """The floor's rasters: ``free`` cells as ground, each in the room of its nearest place; a wall ring."""
+    xy = np.array([p.xyz[:2] for p in places])
     room_of_place = np.array([room_ids[p.room] for p in places], dtype=np.int16)[members]  # type: ignore[index]
     cells = np.argwhere(free)
-    centres = np.asarray(frame.origin_m) + (cells + 0.5) * frame.resolution_m
-    _, nearest = cKDTree(xy[members]).query(centres)
     room_map = np.full(frame.shape, NO_ROOM, dtype=np.int16)
-    room_map[cells[:, 0], cells[:, 1]] = room_of_place[nearest]
+    if len(cells):
+        centres = np.asarray(frame.origin_m) + (cells + 0.5) * frame.resolution_m
+        _, nearest = cKDTree(xy[members]).query(centres)
+        room_map[cells[:, 0], cells[:, 1]] = room_of_place[nearest]
     ring = ndimage.binary_dilation(free, iterations=1) & ~free
     cat = np.full(frame.shape, CatCode.OUTSIDE, dtype=np.int16)
     cat[free] = CatCode.GROUND
