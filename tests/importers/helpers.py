@@ -10,7 +10,7 @@ from sgplan.mission import mission_from_formula
 from sgplan.pipeline import make_problem
 from sgplan.planning.amra import plan
 from sgplan.scene.grid import build_occupancy_grid
-from sgplan.scene.model import Building
+from sgplan.scene.model import Building, Room
 
 from ..planning.oracle import optimal_cost
 
@@ -19,7 +19,9 @@ def free_cells(building: Building, radius_m: float = 0.0) -> int:
     return int(build_occupancy_grid(building, radius_m).traversable.sum())
 
 
-def planned_and_exact_cost(building: Building, formula: str, start: tuple[int, int, int]) -> tuple[float, float]:
+def planned_and_exact_cost(
+    building: Building, formula: str, start: tuple[int, int, int]
+) -> tuple[float, float]:
     """The NO-LLM planner's cost and the oracle's, for ``formula`` from ``start`` (the scene's radii)."""
     mission = mission_from_formula(formula)
     problem = make_problem(building, mission, start).problem
@@ -29,7 +31,7 @@ def planned_and_exact_cost(building: Building, formula: str, start: tuple[int, i
     return float(result.cost_m), float(expected)
 
 
-def room_named(building: Building, name: str):  # noqa: ANN201 - a Room
+def room_named(building: Building, name: str) -> Room:
     (room,) = building.rooms_named(name)
     return room
 

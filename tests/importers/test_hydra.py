@@ -17,7 +17,14 @@ from .helpers import free_cells, planned_and_exact_cost
 
 dsg = pytest.importorskip("spark_dsg", reason="spark-dsg is not installed here (pip install 'sgplan[hydra]')")
 
-REAL = Path(__file__).resolve().parents[2] / ".." / "shared" / "datasets" / "scene-examples" / "apartment_dsg.json"
+REAL = (
+    Path(__file__).resolve().parents[2]
+    / ".."
+    / "shared"
+    / "datasets"
+    / "scene-examples"
+    / "apartment_dsg.json"
+)
 SETTINGS = Settings(resolution_m=0.1, robot_radius_m=0.0, reach_radius_m=0.3)
 RADIUS = 0.5
 PLACES = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (3.0, 0.0), (4.0, 0.0), (5.0, 0.0)]
@@ -48,7 +55,9 @@ def build_graph(path: Path, rooms: int = 2, objects: bool = True, mesh: bool = F
             attributes = dsg.ObjectNodeAttributes()
             attributes.semantic_label = label
             attributes.position = np.array([x, y, z])
-            attributes.bounding_box = dsg.BoundingBox(np.array(size, dtype=np.float32), np.array([x, y, z], dtype=np.float32))
+            attributes.bounding_box = dsg.BoundingBox(
+                np.array(size, dtype=np.float32), np.array([x, y, z], dtype=np.float32)
+            )
             graph.add_node(dsg.DsgLayers.OBJECTS, dsg.NodeSymbol("O", k).value, attributes)
     if mesh:
         graph.mesh = floor_mesh()
@@ -60,16 +69,20 @@ def floor_mesh() -> object:
     """Floor vertices (z = 0) four per 0.1 m cell over x [-0.5, 5.5], y [-0.5, 0.5]; a 0.4 m block at x = 3."""
     fx, fy = np.meshgrid(np.arange(-0.475, 5.5, 0.05), np.arange(-0.475, 0.5, 0.05), indexing="ij")
     bx, by = np.meshgrid(np.arange(2.825, 3.2, 0.05), np.arange(-0.175, 0.2, 0.05), indexing="ij")
-    points = np.concatenate([
-        np.column_stack([fx.ravel(), fy.ravel(), np.zeros(fx.size)]),
-        np.column_stack([bx.ravel(), by.ravel(), np.full(bx.size, 0.5)]),
-    ])
+    points = np.concatenate(
+        [
+            np.column_stack([fx.ravel(), fy.ravel(), np.zeros(fx.size)]),
+            np.column_stack([bx.ravel(), by.ravel(), np.full(bx.size, 0.5)]),
+        ]
+    )
     mesh = dsg.Mesh()
     mesh.set_vertices(np.hstack([points, np.zeros_like(points)]).T)  # rows: x, y, z, r, g, b
     return mesh
 
 
-def labels(tmp_path: Path, text: str = "objects: {5: chair, 11: lamp}\nrooms: {0: kitchen, 1: living room}\n") -> object:
+def labels(
+    tmp_path: Path, text: str = "objects: {5: chair, 11: lamp}\nrooms: {0: kitchen, 1: living room}\n"
+) -> object:
     path = tmp_path / "labels.yaml"
     path.write_text(text)
     return read_label_map(path)
@@ -122,7 +135,10 @@ def test_unsegmented_scene_is_one_room_with_a_note(tmp_path: Path) -> None:
 
 
 def test_label_files_in_every_shape(tmp_path: Path) -> None:
-    hydra = labels(tmp_path, "total_semantic_labels: 12\nlabel_names:\n  - {label: 5, name: chair}\n  - {label: 11, name: lamp}\n")
+    hydra = labels(
+        tmp_path,
+        "total_semantic_labels: 12\nlabel_names:\n  - {label: 5, name: chair}\n  - {label: 11, name: lamp}\n",
+    )
     assert hydra.object_name(5) == "chair" and hydra.room_name(0) == "room"
     flat = labels(tmp_path, "5: dining_table\n")
     assert flat.object_name(5) == "dining table"

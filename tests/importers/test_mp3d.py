@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -14,7 +15,14 @@ from sgplan.scene.native import read_native_scene, write_native_scene
 
 from .helpers import free_cells, planned_and_exact_cost, room_named
 
-REAL = Path(__file__).resolve().parents[2] / ".." / "shared" / "datasets" / "scene-examples" / "example_mp3d_scene.house"
+REAL = (
+    Path(__file__).resolve().parents[2]
+    / ".."
+    / "shared"
+    / "datasets"
+    / "scene-examples"
+    / "example_mp3d_scene.house"
+)
 SETTINGS = Settings(resolution_m=0.1, robot_radius_m=0.0, reach_radius_m=0.3)
 
 
@@ -38,8 +46,12 @@ def house_text(door: bool = True, gap_m: float = 0.2, extra: str = "") -> str:
         "S 1 1 0 F 4.5 1.5 0  0 0 1  3.2 0 0 6 3 0  0 0 0 0 0",
     ]
     lines += [f"V {k} {k // 4} F {x} {y} 0  0 0 1  0 0 0" for k, (x, y) in enumerate(vertices)]
-    lines += ["C 0 1 wall 1 wall 0 0 0 0 0", "C 1 2 bed 11 bed 0 0 0 0 0", "C 2 3 light 28 lighting 0 0 0 0 0",
-              "C 3 4 door 4 door 0 0 0 0 0"]
+    lines += [
+        "C 0 1 wall 1 wall 0 0 0 0 0",
+        "C 1 2 bed 11 bed 0 0 0 0 0",
+        "C 2 3 light 28 lighting 0 0 0 0 0",
+        "C 3 4 door 4 door 0 0 0 0 0",
+    ]
     return "\n".join(lines + objects) + "\n" + extra
 
 
@@ -91,14 +103,22 @@ def test_native_round_trip_and_direct_use(tmp_path: Path) -> None:
         (lambda t: t.replace("ASCII 1.1", "hello"), "first line"),
         (lambda t: t.replace("R 1 0 0 0 k", "R 1 3 0 0 k"), "level 3"),
         (lambda t: t.replace("R 1 0 0 0 k", "R 1 0 0 0 q"), "label 'q'"),
-        (lambda t: t.replace("V 5 1 F 6 0 0", "V 5 1 F 3.2 0 0").replace("V 6 1 F 6 3 0", "V 6 1 F 3.2 3 0"), "degenerate"),
+        (
+            lambda t: t.replace("V 5 1 F 6 0 0", "V 5 1 F 3.2 0 0").replace(
+                "V 6 1 F 6 3 0", "V 6 1 F 3.2 3 0"
+            ),
+            "degenerate",
+        ),
         (lambda t: t.replace("O 0 0 1 1 1", "O 0 0 9 1 1"), "category 9"),
         (lambda t: t.replace("O 0 0 1 1 1 0.3", "O 0 0 1 1 x 0.3"), "not a number"),
         (lambda t: "\n".join(line for line in t.splitlines() if not line.startswith("V 7")), "declares"),
-        (lambda t: t.replace("R 0 0 0 0 b 1.5 1.5 0  0 0 0 3 3 2.5  2.5 0 0 0 0", "R 0 0 0 0 b 1.5"), "needs 16 fields"),
+        (
+            lambda t: t.replace("R 0 0 0 0 b 1.5 1.5 0  0 0 0 3 3 2.5  2.5 0 0 0 0", "R 0 0 0 0 b 1.5"),
+            "needs 16 fields",
+        ),
     ],
 )
-def test_malformed_files_give_clear_errors(tmp_path: Path, edit, message: str) -> None:  # noqa: ANN001
+def test_malformed_files_give_clear_errors(tmp_path: Path, edit: Callable[[str], str], message: str) -> None:
     with pytest.raises(SceneError, match=message):
         import_house(write(tmp_path, edit(house_text())), SETTINGS)
 
@@ -114,7 +134,9 @@ def test_real_house_imports_with_connected_rooms() -> None:
 
 @pytest.mark.skipif(not REAL.is_file(), reason="the Matterport3D example is not in ../shared")
 def test_reader_agrees_with_spark_dsg_on_the_real_house() -> None:
-    mp3d = pytest.importorskip("spark_dsg.mp3d", reason="spark-dsg is not installed (pip install 'sgplan[hydra]')")
+    mp3d = pytest.importorskip(
+        "spark_dsg.mp3d", reason="spark-dsg is not installed (pip install 'sgplan[hydra]')"
+    )
     house = read_house(REAL)
     info = mp3d.load_mp3d_info(str(REAL))
     assert len(info["R"]) == len(house.regions) and len(info["O"]) == len(house.objects)

@@ -32,7 +32,9 @@ objects:
 """
 
 
-def write_map(folder: Path, *, door: bool = True, negate: int = 0, extra: str = "", rooms: str = ROOMS) -> Path:
+def write_map(
+    folder: Path, *, door: bool = True, negate: int = 0, extra: str = "", rooms: str = ROOMS
+) -> Path:
     """A 100 x 60 pixel map at 5 cm: walls around two rooms split by a wall with (maybe) a door."""
     image = np.full((60, 100), 205, np.uint8)  # unknown
     image[5:55, 5:95] = 0

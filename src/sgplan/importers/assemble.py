@@ -107,7 +107,9 @@ class ImportResult:
 def blocks(obj: ObjectDraft, ground_z_m: float, settings: Settings) -> bool:
     """Whether the object stands on the floor (see the module docstring)."""
     z = obj.corners()[:, 2]
-    return bool(z.min() <= ground_z_m + settings.near_floor_m and z.max() >= ground_z_m + settings.min_height_m)
+    return bool(
+        z.min() <= ground_z_m + settings.near_floor_m and z.max() >= ground_z_m + settings.min_height_m
+    )
 
 
 def paint_objects(
@@ -192,7 +194,9 @@ def assemble(
         floor = floors[draft.floor]
         neighbours = sorted(connected.get(draft.id, ()))
         cells = np.argwhere(floor.room_map == draft.id)
-        built[draft.id] = _room(draft, cells, frame, floor.ground_z_m, room_uuid, neighbours, doors[draft.floor])
+        built[draft.id] = _room(
+            draft, cells, frame, floor.ground_z_m, room_uuid, neighbours, doors[draft.floor]
+        )
     for obj, object_id in kept:
         room = built[obj.room_id]  # type: ignore[index]
         cells = np.argwhere(floors[obj.floor].cat_map == object_id)
@@ -242,19 +246,27 @@ def assemble(
     return ImportResult(building, notes)
 
 
-def _check_drafts(floors: Sequence[FloorDraft], rooms: Sequence[RoomDraft], objects: Sequence[ObjectDraft]) -> None:
+def _check_drafts(
+    floors: Sequence[FloorDraft], rooms: Sequence[RoomDraft], objects: Sequence[ObjectDraft]
+) -> None:
     seen: set[int] = set()
     for room in rooms:
         if not 0 < room.id <= MAX_ID or room.id in seen:
             raise SceneError(f"room id {room.id} ({room.name}) is repeated or outside 1..{MAX_ID}")
         if not 0 <= room.floor < len(floors):
-            raise SceneError(f"room {room.id} ({room.name}) is on floor {room.floor}, but there are {len(floors)} floor(s)")
+            raise SceneError(
+                f"room {room.id} ({room.name}) is on floor {room.floor}, but there are {len(floors)} floor(s)"
+            )
         seen.add(room.id)
     for obj in objects:
         if not 0 <= obj.floor < len(floors):
-            raise SceneError(f"object {obj.name} ({obj.source}) is on floor {obj.floor}, but there are {len(floors)} floor(s)")
+            raise SceneError(
+                f"object {obj.name} ({obj.source}) is on floor {obj.floor}, but there are {len(floors)} floor(s)"
+            )
         if obj.room_id is not None and obj.room_id not in seen:
-            raise SceneError(f"object {obj.name} ({obj.source}) names room {obj.room_id}, which does not exist")
+            raise SceneError(
+                f"object {obj.name} ({obj.source}) names room {obj.room_id}, which does not exist"
+            )
 
 
 def _with_rooms(
@@ -269,14 +281,18 @@ def _with_rooms(
             continue
         room_map = floors[obj.floor].room_map
         if not (room_map > 0).any():
-            raise SceneError(f"object {obj.name} ({obj.source}) stands on floor {obj.floor}, which has no room cells")
+            raise SceneError(
+                f"object {obj.name} ({obj.source}) stands on floor {obj.floor}, which has no room cells"
+            )
         if obj.floor not in nearest:  # index of the nearest room cell, for every cell of the floor
             _, index = ndimage.distance_transform_edt(room_map <= 0, return_indices=True)
             nearest[obj.floor] = (index[0], index[1])
         row, col = np.clip(frame.cell_of(obj.center_m[:2])[0], 0, np.array(room_map.shape) - 1)
         rows, cols = nearest[obj.floor]
         room_id = int(room_map[rows[row, col], cols[row, col]])
-        out.append(ObjectDraft(obj.name, obj.floor, obj.center_m, obj.axes, obj.half_sizes_m, room_id, obj.source))
+        out.append(
+            ObjectDraft(obj.name, obj.floor, obj.center_m, obj.axes, obj.half_sizes_m, room_id, obj.source)
+        )
     return out
 
 

@@ -103,7 +103,7 @@ def import_dsg(
     dsg = spark_dsg()
     try:
         graph = dsg.DynamicSceneGraph.load(str(path))
-    except Exception as error:  # the C++ reader raises bare RuntimeError / json errors
+    except Exception as error:  # noqa: BLE001 - the C++ reader raises RuntimeError, json and pybind errors
         raise SceneError(f"spark-dsg cannot read this scene graph: {error}", path) from None
     layers = _layer_ids(graph)
     notes: list[str] = []
@@ -136,7 +136,9 @@ def import_dsg(
     lo, hi = (xy - radius[:, None]).min(axis=0), (xy + radius[:, None]).max(axis=0)
     if mesh is not None:
         lo, hi = np.minimum(lo, mesh[:, :2].min(axis=0)), np.maximum(hi, mesh[:, :2].max(axis=0))
-        notes.append("free space comes from the scene graph's mesh (floor and obstacle vertices), rooms from its places")
+        notes.append(
+            "free space comes from the scene graph's mesh (floor and obstacle vertices), rooms from its places"
+        )
     frame = GridFrame.around(lo, hi, settings.resolution_m, 0.5)
     edges = _place_edges(graph, layers, {p.id: k for k, p in enumerate(places)})
     floors = []
@@ -160,8 +162,13 @@ def _layer_ids(graph: Any) -> dict[str, int]:
     named = getattr(graph, "layer_names", None)
     ids = dict(LAYER_IDS)
     if isinstance(named, dict):
-        ids.update({key: int(getattr(value, "layer", value)) for key, value in named.items() if key in LAYER_IDS})
+        ids.update({key: _layer_number(value) for key, value in named.items() if key in LAYER_IDS})
     return ids
+
+
+def _layer_number(key: Any) -> int:
+    """A layer id from spark-dsg's ``LayerKey`` (newer files) or a plain integer."""
+    return int(key.layer) if hasattr(key, "layer") else int(key)
 
 
 def _nodes(graph: Any, layer: int) -> list[Any]:
@@ -170,7 +177,10 @@ def _nodes(graph: Any, layer: int) -> list[Any]:
 
 def _places(graph: Any, layers: dict[str, int], path: Path) -> list[_Place]:
     if not graph.has_layer(layers["PLACES"]):
-        raise SceneError(f"the scene graph has no places layer (layer {layers['PLACES']}): it says nothing about free space", path)
+        raise SceneError(
+            f"the scene graph has no places layer (layer {layers['PLACES']}): it says nothing about free space",
+            path,
+        )
     rooms = {int(n.id.value): n for n in _nodes(graph, layers["ROOMS"])}
     place_room: dict[int, int] = {}
     for room_id, room in rooms.items():
@@ -216,15 +226,17 @@ def _adopt_orphans(places: list[_Place]) -> None:
         place.room = roomed[int(k)].room
 
 
-def _floors(places: list[_Place], room_ids: dict[int, int], floor_gap_m: float) -> tuple[dict[int, int], list[float]]:
+def _floors(
+    places: list[_Place], room_ids: dict[int, int], floor_gap_m: float
+) -> tuple[dict[int, int], list[float]]:
     """Floor index of every room (clustered by the median height of its places) and each floor's ground."""
     height = {
         room_ids[node]: float(np.median([p.xyz[2] for p in places if p.room == node]))
         for node in room_ids
         if any(p.room == node for p in places)
     }
-    for node in room_ids:  # a room without places: the lowest floor (it will cover no cell, with a note)
-        height.setdefault(room_ids[node], min(height.values(), default=0.0))
+    for room in room_ids.values():  # a room without places: the lowest floor (it covers no cell, with a note)
+        height.setdefault(room, min(height.values(), default=0.0))
     ordered = sorted(height, key=lambda r: height[r])
     floor_of: dict[int, int] = {}
     floor = 0
@@ -249,14 +261,21 @@ def _place_edges(graph: Any, layers: dict[str, int], index: dict[int, int]) -> n
     return np.array(pairs, dtype=np.int64).reshape(-1, 2)
 
 
-def places_free_space(frame: GridFrame, places: list[_Place], members: np.ndarray, edges: np.ndarray) -> np.ndarray:
+def places_free_space(
+    frame: GridFrame, places: list[_Place], members: np.ndarray, edges: np.ndarray
+) -> np.ndarray:
     """The free cells of one floor from its places: discs of their radii, capsules along their edges."""
     xy = np.array([p.xyz[:2] for p in places])
     radius = np.array([p.radius_m for p in places])
     free = capsules_mask(frame, xy[members], xy[members], radius[members])
     on_floor = edges[members[edges[:, 0]] & members[edges[:, 1]]] if len(edges) else edges
     if len(on_floor):
-        free |= capsules_mask(frame, xy[on_floor[:, 0]], xy[on_floor[:, 1]], np.minimum(radius[on_floor[:, 0]], radius[on_floor[:, 1]]))
+        free |= capsules_mask(
+            frame,
+            xy[on_floor[:, 0]],
+            xy[on_floor[:, 1]],
+            np.minimum(radius[on_floor[:, 0]], radius[on_floor[:, 1]]),
+        )
     return free
 
 
@@ -314,7 +333,12 @@ def _floor(
 
 
 def _objects(
-    graph: Any, layers: dict[str, int], labels: LabelMap | None, places: list[_Place], place_floor: list[int], path: Path
+    graph: Any,
+    layers: dict[str, int],
+    labels: LabelMap | None,
+    places: list[_Place],
+    place_floor: list[int],
+    path: Path,
 ) -> list[ObjectDraft]:
     nodes = _nodes(graph, layers["OBJECTS"])
     if not nodes:

@@ -65,7 +65,11 @@ def read_label_map(path: str | Path) -> LabelMap:
     if isinstance(data, dict) and "label_names" in data:
         return LabelMap(path, _hydra(data["label_names"], path))
     if isinstance(data, dict) and ("objects" in data or "rooms" in data):
-        return LabelMap(path, _mapping(data.get("objects") or {}, path, "objects"), _mapping(data.get("rooms") or {}, path, "rooms"))
+        return LabelMap(
+            path,
+            _mapping(data.get("objects") or {}, path, "objects"),
+            _mapping(data.get("rooms") or {}, path, "rooms"),
+        )
     if isinstance(data, dict):
         return LabelMap(path, _mapping(data, path, "labels"))
     raise SceneError(

@@ -39,7 +39,14 @@ from scipy import ndimage
 
 from sgplan.errors import SceneError
 from sgplan.importers.assemble import FloorDraft, ImportResult, ObjectDraft, RoomDraft, Settings, assemble
-from sgplan.importers.raster import GridFrame, box_corners, hull_mask, polygon_area_m2, polygon_distance_m, polygon_mask
+from sgplan.importers.raster import (
+    GridFrame,
+    box_corners,
+    hull_mask,
+    polygon_area_m2,
+    polygon_distance_m,
+    polygon_mask,
+)
 from sgplan.scene.model import NO_ROOM, CatCode
 
 REGION_NAMES: dict[str, str] = {
@@ -167,7 +174,9 @@ def read_house(path: str | Path) -> House:
         if kind not in _MIN_TOKENS:
             continue
         if len(t) < _MIN_TOKENS[kind]:
-            raise SceneError(f"line {line}: a {kind} record needs {_MIN_TOKENS[kind]} fields, found {len(t)}", path)
+            raise SceneError(
+                f"line {line}: a {kind} record needs {_MIN_TOKENS[kind]} fields, found {len(t)}", path
+            )
         counts[kind] = counts.get(kind, 0) + 1
         try:
             if kind == "H":
@@ -219,15 +228,18 @@ def read_house(path: str | Path) -> House:
     for region in regions.values():
         if region.level not in levels:
             raise SceneError(
-                f"region {region.index} is on level {region.level}, but the file has levels {sorted(levels)}", path
+                f"region {region.index} is on level {region.level}, but the file has levels {sorted(levels)}",
+                path,
             )
         if region.label not in REGION_NAMES:
-            raise SceneError(f"region {region.index} has label {region.label!r}, not a Matterport3D region label", path)
-    for index, region, category, _ in objects:
+            raise SceneError(
+                f"region {region.index} has label {region.label!r}, not a Matterport3D region label", path
+            )
+    for index, region_index, category, _ in objects:
         if category >= 0 and category not in categories:
             raise SceneError(f"object {index} names category {category}, which has no C record", path)
-        if region >= 0 and region not in regions:
-            raise SceneError(f"object {index} names region {region}, which has no R record", path)
+        if region_index >= 0 and region_index not in regions:
+            raise SceneError(f"object {index} names region {region_index}, which has no R record", path)
     for index, r0, r1, _ in portals:
         if r0 not in regions or r1 not in regions:
             raise SceneError(f"portal {index} joins regions {r0} and {r1}; one has no R record", path)
@@ -237,7 +249,9 @@ def read_house(path: str | Path) -> House:
 # -- building ------------------------------------------------------------------------------------------
 
 
-def import_house(path: str | Path, settings: Settings | None = None, open_gap_m: float = DEFAULT_OPEN_GAP_M) -> ImportResult:
+def import_house(
+    path: str | Path, settings: Settings | None = None, open_gap_m: float = DEFAULT_OPEN_GAP_M
+) -> ImportResult:
     """The building of a Matterport3D ``.house`` file (see the module docstring for the mapping)."""
     settings = settings or Settings()
     house = read_house(path)
@@ -245,20 +259,29 @@ def import_house(path: str | Path, settings: Settings | None = None, open_gap_m:
     drawn = {i: r for i, r in house.regions.items() if r.polygons}
     undrawn = sorted(set(house.regions) - set(drawn))
     if undrawn:
-        notes.append(f"region(s) {undrawn} have no floor polygon and are left out (their objects join the nearest room)")
+        notes.append(
+            f"region(s) {undrawn} have no floor polygon and are left out (their objects join the nearest room)"
+        )
     if not drawn:
         raise SceneError("no region has a floor polygon (S and V records): nothing to rasterise", house.path)
     ground = _level_grounds(house, drawn)
     order = sorted(ground, key=lambda level: ground[level])  # floors lowest first
     floor_of = {level: k for k, level in enumerate(order)}
     corners = np.vstack([p for r in drawn.values() for p in r.polygons])
-    frame = GridFrame.around(corners.min(axis=0), corners.max(axis=0), settings.resolution_m, WALL_BAND_M + 0.5)
+    frame = GridFrame.around(
+        corners.min(axis=0), corners.max(axis=0), settings.resolution_m, WALL_BAND_M + 0.5
+    )
 
-    rooms = [RoomDraft(i + 1, REGION_NAMES[r.label], floor_of[r.level], r.height_m) for i, r in sorted(drawn.items())]
+    rooms = [
+        RoomDraft(i + 1, REGION_NAMES[r.label], floor_of[r.level], r.height_m)
+        for i, r in sorted(drawn.items())
+    ]
     floors = []
     for level in order:
         on_level = {i: r for i, r in drawn.items() if r.level == level}
-        floors.append(_floor(house, frame, on_level, ground[level], f"{chr(ord('A') + floor_of[level])}", open_gap_m))
+        floors.append(
+            _floor(house, frame, on_level, ground[level], f"{chr(ord('A') + floor_of[level])}", open_gap_m)
+        )
     objects = list(_objects(house, drawn, floor_of, ground))
     result = assemble(house.path.stem, frame, floors, rooms, objects, settings)
     result.notes[:0] = notes
@@ -284,13 +307,17 @@ def _floor(
     res = frame.resolution_m
     distance = {i: ndimage.distance_transform_edt(room_map != i + 1, sampling=res) for i in regions}
     near_room = ndimage.distance_transform_edt(room_map <= 0, sampling=res) <= WALL_BAND_M
-    cat = np.where(room_map > 0, CatCode.GROUND, np.where(near_room, CatCode.WALL, CatCode.OUTSIDE)).astype(np.int16)
+    cat = np.where(room_map > 0, CatCode.GROUND, np.where(near_room, CatCode.WALL, CatCode.OUTSIDE)).astype(
+        np.int16
+    )
 
     gaps: dict[tuple[int, int], float] = {}
-    for a in regions:
-        for b in regions:
+    for a, region_a in regions.items():
+        for b, region_b in regions.items():
             if a < b:
-                gaps[(a, b)] = min(polygon_distance_m(p, q) for p in regions[a].polygons for q in regions[b].polygons)
+                gaps[(a, b)] = min(
+                    polygon_distance_m(p, q) for p in region_a.polygons for q in region_b.polygons
+                )
     for (a, b), gap in gaps.items():
         if gap <= open_gap_m:
             _bridge(cat, room_map, distance, a, b, gap, res, None)
@@ -306,8 +333,10 @@ def _floor(
         if r0 in regions and r1 in regions and r0 != r1:
             a, b = min(r0, r1), max(r0, r1)
             lo, hi = box[:3], box[3:]
-            footprint = hull_mask(frame, np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]]))
-            footprint = ndimage.binary_dilation(footprint, iterations=max(1, int(round(DOOR_REACH_M / res))))
+            footprint = hull_mask(
+                frame, np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]])
+            )
+            footprint = ndimage.binary_dilation(footprint, iterations=max(1, round(DOOR_REACH_M / res)))
             _bridge(cat, room_map, distance, a, b, gaps[(a, b)], res, footprint)
     return FloorDraft(name, ground_z, cat, room_map)
 

@@ -40,7 +40,7 @@ class GridFrame:
             raise SceneError(f"grid resolution must be a positive number of metres, got {resolution_m}")
         lo = np.asarray(lo_xy, dtype=float) - margin_m
         hi = np.asarray(hi_xy, dtype=float) + margin_m
-        rows, cols = (int(math.ceil((hi[k] - lo[k]) / resolution_m)) for k in (0, 1))
+        rows, cols = (math.ceil((hi[k] - lo[k]) / resolution_m) for k in (0, 1))
         if rows * cols > MAX_CELLS:
             raise SceneError(
                 f"a {hi[0] - lo[0]:.1f} x {hi[1] - lo[1]:.1f} m scene at {resolution_m} m per cell needs "
@@ -58,7 +58,9 @@ class GridFrame:
         cells = np.asarray(cells).reshape(-1, 2)
         return (cells >= 0).all(axis=1) & (cells[:, 0] < self.shape[0]) & (cells[:, 1] < self.shape[1])
 
-    def window(self, lo_xy: np.ndarray, hi_xy: np.ndarray) -> tuple[slice, slice, np.ndarray, np.ndarray] | None:
+    def window(
+        self, lo_xy: np.ndarray, hi_xy: np.ndarray
+    ) -> tuple[slice, slice, np.ndarray, np.ndarray] | None:
         """Row / column slices of the cells whose centres may lie in ``[lo, hi]``, with those centres.
 
         Returns ``(rows, cols, x, y)`` with ``x`` ``(n_rows, 1)`` and ``y`` ``(1, n_cols)`` metric centres,
@@ -85,7 +87,9 @@ def polygon_mask(frame: GridFrame, vertices_xy: np.ndarray) -> np.ndarray:
     if found is None:
         return mask
     rows, cols, x, y = found
-    centres = np.column_stack([np.broadcast_to(x, (x.size, y.size)).ravel(), np.broadcast_to(y, (x.size, y.size)).ravel()])
+    centres = np.column_stack(
+        [np.broadcast_to(x, (x.size, y.size)).ravel(), np.broadcast_to(y, (x.size, y.size)).ravel()]
+    )
     inside = MplPath(np.vstack([vertices, vertices[:1]]), closed=True).contains_points(centres)
     mask[rows, cols] = inside.reshape(x.size, y.size)
     return mask
@@ -110,7 +114,11 @@ def capsules_mask(frame: GridFrame, a_xy: np.ndarray, b_xy: np.ndarray, radius_m
         rows, cols, x, y = found
         d = b - a
         length2 = float(d @ d)
-        t = np.zeros((x.size, y.size)) if length2 == 0 else np.clip(((x - a[0]) * d[0] + (y - a[1]) * d[1]) / length2, 0, 1)
+        t = (
+            np.zeros((x.size, y.size))
+            if length2 == 0
+            else np.clip(((x - a[0]) * d[0] + (y - a[1]) * d[1]) / length2, 0, 1)
+        )
         mask[rows, cols] |= (x - a[0] - t * d[0]) ** 2 + (y - a[1] - t * d[1]) ** 2 <= r * r
     return mask
 
@@ -138,7 +146,9 @@ def hull_mask(frame: GridFrame, points_xy: np.ndarray) -> np.ndarray:
 def box_corners(center: np.ndarray, axes: np.ndarray, half_sizes: np.ndarray) -> np.ndarray:
     """The 8 corners ``(8, 3)`` of an oriented box: centre ``(3,)``, unit axes as rows ``(3, 3)``, half sizes ``(3,)``."""
     signs = np.array([[i, j, k] for i in (-1, 1) for j in (-1, 1) for k in (-1, 1)], dtype=float)
-    return np.asarray(center, dtype=float) + (signs * np.asarray(half_sizes, dtype=float)) @ np.asarray(axes, dtype=float)
+    return np.asarray(center, dtype=float) + (signs * np.asarray(half_sizes, dtype=float)) @ np.asarray(
+        axes, dtype=float
+    )
 
 
 def polygon_distance_m(p: np.ndarray, q: np.ndarray) -> float:
@@ -163,7 +173,9 @@ def polygon_distance_m(p: np.ndarray, q: np.ndarray) -> float:
 
     def crosses(a1: np.ndarray, b1: np.ndarray, a2: np.ndarray, b2: np.ndarray) -> bool:
         def orient(o: np.ndarray, s: np.ndarray, t: np.ndarray) -> np.ndarray:
-            return (s[..., 0] - o[..., 0]) * (t[..., 1] - o[..., 1]) - (s[..., 1] - o[..., 1]) * (t[..., 0] - o[..., 0])
+            return (s[..., 0] - o[..., 0]) * (t[..., 1] - o[..., 1]) - (s[..., 1] - o[..., 1]) * (
+                t[..., 0] - o[..., 0]
+            )
 
         A1, B1, A2, B2 = a1[:, None], b1[:, None], a2[None], b2[None]
         d1, d2 = orient(A2, B2, A1), orient(A2, B2, B1)

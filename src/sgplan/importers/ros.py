@@ -68,7 +68,7 @@ def _load_yaml(path: Path, what: str) -> dict[str, Any]:
 
 
 def _number(data: dict[str, Any], key: str, path: Path, default: float | None = None) -> float:
-    value = data.get(key, default)
+    value: Any = data.get(key, default)
     if not is_number(value) or not math.isfinite(float(value)):
         raise SceneError(f"field {key!r} must be a number, got {value!r}", path)
     return float(value)
@@ -90,14 +90,18 @@ def read_map(path: str | Path) -> tuple[np.ndarray, tuple[float, float], float]:
     if not (isinstance(origin, list) and len(origin) == 3 and all(is_number(v) for v in origin)):
         raise SceneError(f"field 'origin' must be [x, y, yaw], got {origin!r}", path)
     if abs(float(origin[2])) > 1e-9:
-        raise SceneError(f"origin yaw {origin[2]} is not 0: rotated maps are not supported (rotate the image)", path)
+        raise SceneError(
+            f"origin yaw {origin[2]} is not 0: rotated maps are not supported (rotate the image)", path
+        )
     negate = data.get("negate", 0)
     if negate not in (0, 1, True, False):
         raise SceneError(f"field 'negate' must be 0 or 1, got {negate!r}", path)
     occupied = _number(data, "occupied_thresh", path, 0.65)
     free = _number(data, "free_thresh", path, 0.196)
     if not 0 <= free <= occupied <= 1:
-        raise SceneError(f"thresholds must satisfy 0 <= free_thresh ({free}) <= occupied_thresh ({occupied}) <= 1", path)
+        raise SceneError(
+            f"thresholds must satisfy 0 <= free_thresh ({free}) <= occupied_thresh ({occupied}) <= 1", path
+        )
     mode = data.get("mode", "trinary")
     if mode not in MODES:
         raise SceneError(f"field 'mode' must be one of {', '.join(MODES)}, got {mode!r}", path)
@@ -125,7 +129,10 @@ def read_map(path: str | Path) -> tuple[np.ndarray, tuple[float, float], float]:
 
 
 def _points(value: Any, n: int | None, what: str, path: Path) -> np.ndarray:
-    if not (isinstance(value, list) and all(isinstance(p, list) and len(p) == 2 and all(is_number(v) for v in p) for p in value)):
+    if not (
+        isinstance(value, list)
+        and all(isinstance(p, list) and len(p) == 2 and all(is_number(v) for v in p) for p in value)
+    ):
         raise SceneError(f"{what} must be a list of [x, y] points in metres", path)
     points = np.array(value, dtype=float)
     if n is not None and len(points) != n:
@@ -133,7 +140,9 @@ def _points(value: Any, n: int | None, what: str, path: Path) -> np.ndarray:
     return points
 
 
-def import_ros_map(map_path: str | Path, rooms_path: str | Path, settings: Settings | None = None) -> ImportResult:
+def import_ros_map(
+    map_path: str | Path, rooms_path: str | Path, settings: Settings | None = None
+) -> ImportResult:
     """The one-floor building of a map_server map and a rooms file (see the module docstring).
 
     Raises
@@ -158,25 +167,39 @@ def import_ros_map(map_path: str | Path, rooms_path: str | Path, settings: Setti
     for k, entry in enumerate(entries):
         label = f"room {k + 1}"
         if not isinstance(entry, dict) or not isinstance(entry.get("name"), str) or not entry["name"].strip():
-            raise SceneError(f"{label}: needs a 'name' (its category, e.g. kitchen) and a 'polygon'", rooms_path)
+            raise SceneError(
+                f"{label}: needs a 'name' (its category, e.g. kitchen) and a 'polygon'", rooms_path
+            )
         name = entry["name"].strip().lower().replace(" ", "_")
         label = f"room {k + 1} ({name})"
         polygon = _points(entry.get("polygon"), None, f"{label}: 'polygon'", rooms_path)
         if len(polygon) < 3 or polygon_area_m2(polygon) < resolution * resolution / 4:
-            raise SceneError(f"{label}: degenerate polygon ({len(polygon)} points, area {polygon_area_m2(polygon):.3g} m^2)", rooms_path)
+            raise SceneError(
+                f"{label}: degenerate polygon ({len(polygon)} points, area {polygon_area_m2(polygon):.3g} m^2)",
+                rooms_path,
+            )
         mask = polygon_mask(frame, polygon)
         if not mask.any():
-            raise SceneError(f"{label}: the polygon covers no cell of the map (is it in the map frame, in metres?)", rooms_path)
+            raise SceneError(
+                f"{label}: the polygon covers no cell of the map (is it in the map frame, in metres?)",
+                rooms_path,
+            )
         overlap = int((mask & (room_map > 0)).sum())
         if overlap:
-            notes.append(f"{label} overlaps earlier rooms on {overlap} cell(s); they stay with the earlier rooms")
+            notes.append(
+                f"{label} overlaps earlier rooms on {overlap} cell(s); they stay with the earlier rooms"
+            )
         room_map[mask & (room_map <= 0)] = k + 1
         rooms.append(RoomDraft(k + 1, name, 0, _number(entry, "height", rooms_path, 2.5)))
         ids_by_name.setdefault(name, []).append(k + 1)
     outside = int(((cat == CatCode.GROUND) & (room_map <= 0)).sum())
     if outside:
-        notes.append(f"{outside} free cell(s) of the map lie in no room polygon; the robot will not enter them")
-    objects = [_object(entry, k, ids_by_name, rooms_path) for k, entry in enumerate(spec.get("objects") or [])]
+        notes.append(
+            f"{outside} free cell(s) of the map lie in no room polygon; the robot will not enter them"
+        )
+    objects = [
+        _object(entry, k, ids_by_name, rooms_path) for k, entry in enumerate(spec.get("objects") or [])
+    ]
     floor = FloorDraft("A", 0.0, cat, room_map)
     result = assemble(map_path.stem, frame, [floor], rooms, objects, settings)
     result.notes[:0] = notes
