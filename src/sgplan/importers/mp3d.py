@@ -21,8 +21,10 @@ How the map is drawn (all metric, then rasterised at the chosen resolution):
 - the file holds no wall geometry other than the gaps between floor polygons: two rooms whose polygons
   come closer than ``open_gap_m`` (default 0.14 m, thinner than an interior wall) share an open
   boundary, and the gap between them is floor; a wider gap is a wall;
-- a door (mpcat40 ``door``: doors and door frames) or a portal touching two rooms opens the wall
-  between them across its width;
+- a door (mpcat40 ``door``: doors and door frames) opens the wall across its width between the two
+  rooms covering most of its footprint (deepened to ``DOOR_REACH_M`` on each side to span the wall);
+  a door touching one room only (a front door) opens nothing; a portal (P) opens the wall between its
+  two regions;
 - other objects become sgplan objects named by their raw category (``coffee#table`` ->
   "coffee table"); whether one blocks the robot is decided by its height (:mod:`.assemble`). Walls,
   floors, ceilings and void annotations are not objects (a ``wall`` box spans its whole region).
@@ -324,11 +326,12 @@ def _floor(
     doors = [numbers for _, _, c, numbers in house.objects if c >= 0 and house.categories[c][1] == "door"]
     for box in doors:
         footprint = _door_footprint(frame, box)
-        touched = [i for i in regions if (footprint & (room_map == i + 1)).any()]
-        for a in touched:
-            for b in touched:
-                if a < b:
-                    _bridge(cat, room_map, distance, a, b, gaps[(a, b)], res, footprint)
+        # a door joins two spaces: the two rooms covering most of its footprint
+        overlap = {i: int((footprint & (room_map == i + 1)).sum()) for i in regions}
+        touched = sorted((i for i in regions if overlap[i]), key=lambda i: -overlap[i])[:2]
+        if len(touched) == 2:
+            a, b = sorted(touched)
+            _bridge(cat, room_map, distance, a, b, gaps[(a, b)], res, footprint)
     for index, r0, r1, box in house.portals:
         if r0 in regions and r1 in regions and r0 != r1:
             a, b = min(r0, r1), max(r0, r1)
