@@ -22,7 +22,16 @@ def test_import_inspect_and_plan_in_words(tmp_path: Path, capsys: pytest.Capture
     assert main(["inspect", str(scene), "--draw", str(tmp_path / "draw")]) == 0
     assert "bedroom" in capsys.readouterr().out and (tmp_path / "draw" / "floor_0.png").is_file()
     out = tmp_path / "run.json"
-    argv = ["plan", "--scene", str(scene), "--text", "go to the bed, then the kitchen", "--verify", "--json", str(out)]
+    argv = [
+        "plan",
+        "--scene",
+        str(scene),
+        "--text",
+        "go to the bed, then the kitchen",
+        "--verify",
+        "--json",
+        str(out),
+    ]
     assert main(argv) == 0  # no start given: the scene's first start cell
     record = json.loads(out.read_text())
     assert record["verified"] and record["status"] == "optimal"
@@ -53,3 +62,24 @@ def test_import_errors_exit_2_with_one_line(
     assert main([a.format(**names) for a in argv]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert err[0].startswith("sgplan: error:") and fragment in err[0] and "Traceback" not in "\n".join(err)
+
+
+REAL_HOUSE = (
+    Path(__file__).resolve().parents[2]
+    / ".."
+    / "shared"
+    / "datasets"
+    / "scene-examples"
+    / "example_mp3d_scene.house"
+)
+
+
+@pytest.mark.skipif(not REAL_HOUSE.is_file(), reason="the Matterport3D example is not in ../shared")
+def test_real_house_plans_a_mission_in_words(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    scene = tmp_path / "house"
+    assert main(["import", "mp3d", str(REAL_HOUSE), "--out", str(scene)]) == 0
+    out = tmp_path / "run.json"
+    text = "go to the kitchen, then a bathroom; never enter the bedroom"
+    assert main(["plan", "--scene", str(scene), "--text", text, "--verify", "--json", str(out)]) == 0
+    record = json.loads(out.read_text())
+    assert record["verified"] and record["status"] == "optimal" and 5.0 < record["cost"] < 10.0
