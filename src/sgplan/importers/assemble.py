@@ -27,7 +27,7 @@ import numpy as np
 from scipy import ndimage
 
 from sgplan.errors import SceneError
-from sgplan.importers.raster import GridFrame, box_corners, hull_mask
+from sgplan.importers.raster import GridFrame, box_corners, hull_cells
 from sgplan.scene.doors import connections, door_cells
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.model import Building, CatCode, Floor, Room, SceneObject
@@ -36,8 +36,8 @@ ENTRANCE_NAMES = ("lobby", "entryway", "entrance", "foyer", "entrance_hall")
 """Room categories a robot is likely to start in; their start cells come first."""
 
 HANG_REACH_CELLS = 2
-"""A non-blocking object may take obstacle cells up to this many cells beyond its footprint (the wall
-a picture or a towel hangs on lies just outside the room's floor polygon)."""
+"""A non-blocking object may take obstacle cells up to this many cells (in rows and columns) beyond its
+footprint: the wall a picture or a towel hangs on lies just outside the room's floor polygon."""
 
 MAX_ID = int(np.iinfo(np.int16).max)
 """Rasters are int16: room and object ids must fit."""
@@ -121,17 +121,25 @@ def paint_objects(
     """
     if len(objects) > MAX_ID:
         raise SceneError(f"{len(objects)} objects do not fit an int16 category map (at most {MAX_ID})")
-    footprints = [hull_mask(frame, obj.corners()[:, :2]) for obj in objects]
+    footprints = [hull_cells(frame, obj.corners()[:, :2]) for obj in objects]
     standing = [blocks(obj, floors[obj.floor].ground_z_m, settings) for obj in objects]
+    reach = np.array(
+        [
+            (dr, dc)
+            for dr in range(-HANG_REACH_CELLS, HANG_REACH_CELLS + 1)
+            for dc in range(-HANG_REACH_CELLS, HANG_REACH_CELLS + 1)
+        ]
+    )
     # Largest first: a smaller object painted later lies on top of (and rarely erases) a larger one.
-    for i in sorted(range(len(objects)), key=lambda i: -int(footprints[i].sum())):
+    for i in sorted(range(len(objects)), key=lambda i: -len(footprints[i])):
         cat = floors[objects[i].floor].cat_map
-        if standing[i]:
-            cells = footprints[i]
-        else:  # on obstacles only, reaching a little beyond its box for the wall it hangs on
-            near = ndimage.binary_dilation(footprints[i], iterations=HANG_REACH_CELLS)
-            cells = near & (cat != CatCode.GROUND) & (cat != CatCode.OUTSIDE)
-        cat[cells] = i + 1
+        cells = footprints[i]
+        if not standing[i]:  # on obstacles only, reaching a little beyond its box for the wall it hangs on
+            near = np.unique((cells[:, None, :] + reach[None]).reshape(-1, 2), axis=0)
+            near = near[frame.contains(near)]
+            code = cat[near[:, 0], near[:, 1]]
+            cells = near[(code != CatCode.GROUND) & (code != CatCode.OUTSIDE)]
+        cat[cells[:, 0], cells[:, 1]] = i + 1
     kept: list[tuple[ObjectDraft, int]] = []
     dropped: list[str] = []
     present = [set(np.unique(f.cat_map[f.cat_map > 0]).tolist()) for f in floors]
@@ -189,17 +197,20 @@ def assemble(
 
     doors = [door_cells(f.room_map, f.cat_map) for f in floors]
     connected = connections(doors)
+    # bounding boxes of every id in one pass per raster, so no step scans the grid once per room or object
+    room_boxes = [ndimage.find_objects(np.maximum(f.room_map, 0)) for f in floors]
+    object_boxes = [ndimage.find_objects(np.maximum(f.cat_map, 0)) for f in floors]
     built: dict[int, Room] = {}
     for draft in ordered:
         floor = floors[draft.floor]
         neighbours = sorted(connected.get(draft.id, ()))
-        cells = np.argwhere(floor.room_map == draft.id)
+        cells = _cells_of(floor.room_map, draft.id, room_boxes[draft.floor])
         built[draft.id] = _room(
             draft, cells, frame, floor.ground_z_m, room_uuid, neighbours, doors[draft.floor]
         )
     for obj, object_id in kept:
         room = built[obj.room_id]  # type: ignore[index]
-        cells = np.argwhere(floors[obj.floor].cat_map == object_id)
+        cells = _cells_of(floors[obj.floor].cat_map, object_id, object_boxes[obj.floor])
         corners = obj.corners()
         room.objects[object_id] = SceneObject(
             id=object_id,
@@ -234,16 +245,32 @@ def assemble(
         robot_radius_m=settings.robot_radius_m,
         reach_radius_m=settings.reach_radius_m,
     )
-    building.initial_cells = start_cells(building, settings.robot_radius_m)
+    building.initial_cells = start_cells(building, settings.robot_radius_m, room_boxes)
     if not building.initial_cells:
         raise SceneError(
             f"no room of {name!r} has a cell free for a robot of radius {settings.robot_radius_m} m: the free "
             "space is too narrow or lies outside every room (try a smaller --robot-radius or a finer --resolution)"
         )
-    empty = [r.key for r in building.rooms() if not (building.floors[r.floor].room_map == r.id).any()]
+    empty = [
+        r.key
+        for r in building.rooms()
+        if not len(_cells_of(floors[r.floor].room_map, r.id, room_boxes[r.floor]))
+    ]
     if empty:
         notes.append(f"room(s) {', '.join(empty)} cover no cell of the grid: missions cannot enter them")
     return ImportResult(building, notes)
+
+
+Boxes = list[tuple[slice, slice] | None]
+"""``ndimage.find_objects`` of a raster: entry ``k - 1`` bounds the cells holding ``k``."""
+
+
+def _cells_of(raster: np.ndarray, value: int, boxes: Boxes) -> np.ndarray:
+    """The ``(row, col)`` cells ``(n, 2)`` of ``raster`` holding ``value``, looked for inside its box only."""
+    box = boxes[value - 1] if value - 1 < len(boxes) else None
+    if box is None:
+        return np.zeros((0, 2), dtype=np.int64)
+    return np.argwhere(raster[box] == value) + (box[0].start, box[1].start)
 
 
 def _check_drafts(
@@ -328,23 +355,32 @@ def _room(
     )
 
 
-def start_cells(building: Building, robot_radius_m: float) -> list[tuple[int, int, int]]:
+def start_cells(
+    building: Building, robot_radius_m: float, room_boxes: Sequence[Boxes] | None = None
+) -> list[tuple[int, int, int]]:
     """One start cell ``(row, col, floor)`` per room that has a free cell, entrance rooms first.
 
     The cell is the free cell of the room's largest 8-connected free component nearest the mean of that
-    component: "the middle of the room" where the robot fits.
+    component: "the middle of the room" where the robot fits. ``room_boxes`` (per floor,
+    ``ndimage.find_objects`` of its room map) only saves the search; it is computed when omitted.
     """
     grid = build_occupancy_grid(building, robot_radius_m)
+    if room_boxes is None:
+        room_boxes = [ndimage.find_objects(np.maximum(f.room_map, 0)) for f in building.floors]
     eight = np.ones((3, 3), dtype=bool)
     rooms = sorted(building.rooms(), key=lambda r: (r.name.lower() not in ENTRANCE_NAMES, r.floor, r.id))
     starts = []
     for room in rooms:
-        free = grid.traversable[room.floor] & (grid.room_map[room.floor] == room.id)
+        boxes = room_boxes[room.floor]
+        box = boxes[room.id - 1] if room.id - 1 < len(boxes) else None
+        if box is None:
+            continue
+        free = grid.traversable[room.floor][box] & (grid.room_map[room.floor][box] == room.id)
         labels, count = ndimage.label(free, structure=eight)
         if count == 0:
             continue
         largest = 1 + int(np.argmax(np.bincount(labels.ravel())[1:]))
         cells = np.argwhere(labels == largest)
         best = cells[np.argmin(((cells - cells.mean(axis=0)) ** 2).sum(axis=1))]
-        starts.append((int(best[0]), int(best[1]), room.floor))
+        starts.append((int(best[0]) + box[0].start, int(best[1]) + box[1].start, room.floor))
     return starts

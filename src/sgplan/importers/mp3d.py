@@ -44,10 +44,10 @@ from sgplan.importers.assemble import FloorDraft, ImportResult, ObjectDraft, Roo
 from sgplan.importers.raster import (
     GridFrame,
     box_corners,
-    hull_mask,
+    hull_cells,
     polygon_area_m2,
+    polygon_cells,
     polygon_distance_m,
-    polygon_mask,
 )
 from sgplan.scene.model import NO_ROOM, CatCode
 
@@ -93,7 +93,7 @@ NOT_OBJECT_NAMES = frozenset({"unknown", "remove", "delete"})
 
 WALL_BAND_M = 0.5
 """Cells within this distance of a room but in none are wall; farther ones are outside."""
-DOOR_REACH_M = 0.3
+DOOR_REACH_M = 0.5
 """A door box is deepened to at least this on each side of its plane, so it spans the wall it sits in."""
 DEFAULT_OPEN_GAP_M = 0.14
 
@@ -305,66 +305,105 @@ def _floor(
     room_map = np.full(frame.shape, NO_ROOM, dtype=np.int16)
     for index, region in sorted(regions.items()):
         for polygon in region.polygons:
-            room_map[polygon_mask(frame, polygon)] = index + 1
-    res = frame.resolution_m
-    distance = {i: ndimage.distance_transform_edt(room_map != i + 1, sampling=res) for i in regions}
-    near_room = ndimage.distance_transform_edt(room_map <= 0, sampling=res) <= WALL_BAND_M
-    cat = np.where(room_map > 0, CatCode.GROUND, np.where(near_room, CatCode.WALL, CatCode.OUTSIDE)).astype(
-        np.int16
-    )
-
-    gaps: dict[tuple[int, int], float] = {}
-    for a, region_a in regions.items():
-        for b, region_b in regions.items():
-            if a < b:
-                gaps[(a, b)] = min(
-                    polygon_distance_m(p, q) for p in region_a.polygons for q in region_b.polygons
-                )
-    for (a, b), gap in gaps.items():
-        if gap <= open_gap_m:
-            _bridge(cat, room_map, distance, a, b, gap, res, None)
-    doors = [numbers for _, _, c, numbers in house.objects if c >= 0 and house.categories[c][1] == "door"]
-    for box in doors:
-        footprint = _door_footprint(frame, box)
-        # a door joins two spaces: the two rooms covering most of its footprint
-        overlap = {i: int((footprint & (room_map == i + 1)).sum()) for i in regions}
-        touched = sorted((i for i in regions if overlap[i]), key=lambda i: -overlap[i])[:2]
-        if len(touched) == 2:
-            a, b = sorted(touched)
-            _bridge(cat, room_map, distance, a, b, gaps[(a, b)], res, footprint)
-    for index, r0, r1, box in house.portals:
+            cells = polygon_cells(frame, polygon)
+            room_map[cells[:, 0], cells[:, 1]] = index + 1
+    polygons = room_map.copy()  # distances are measured to the polygons, before any gap is bridged
+    near_room = ndimage.distance_transform_edt(room_map <= 0, sampling=frame.resolution_m) <= WALL_BAND_M
+    cat = np.where(room_map > 0, CatCode.GROUND, np.where(near_room, CatCode.WALL, CatCode.OUTSIDE))
+    floor = FloorDraft(name, ground_z, cat.astype(np.int16), room_map)
+    bridge = _Bridges(floor, polygons, frame.resolution_m, regions)
+    for a, b in bridge.pairs_within(open_gap_m):
+        bridge(a, b, None)
+    for _, _, category, numbers in house.objects:
+        if category >= 0 and house.categories[category][1] == "door":
+            cells = _door_cells(frame, numbers)
+            # a door joins two spaces: the two rooms covering most of its footprint
+            counts = np.bincount(np.maximum(polygons[cells[:, 0], cells[:, 1]], 0), minlength=1)[1:]
+            touched = [int(k) for k in np.argsort(-counts, kind="stable")[:2] if counts[k] > 0]
+            if len(touched) == 2:
+                bridge(min(touched), max(touched), cells)
+    for _, r0, r1, box in house.portals:
         if r0 in regions and r1 in regions and r0 != r1:
-            a, b = min(r0, r1), max(r0, r1)
-            lo, hi = box[:3], box[3:]
-            footprint = hull_mask(
-                frame, np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]])
-            )
-            footprint = ndimage.binary_dilation(footprint, iterations=max(1, round(DOOR_REACH_M / res)))
-            _bridge(cat, room_map, distance, a, b, gaps[(a, b)], res, footprint)
-    return FloorDraft(name, ground_z, cat, room_map)
+            lo, hi = box[:2] - DOOR_REACH_M, box[3:5] + DOOR_REACH_M
+            rectangle = np.array([[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]])
+            bridge(min(r0, r1), max(r0, r1), polygon_cells(frame, rectangle))
+    return floor
 
 
-def _bridge(
-    cat: np.ndarray,
-    room_map: np.ndarray,
-    distance: dict[int, np.ndarray],
-    a: int,
-    b: int,
-    gap_m: float,
-    res: float,
-    within: np.ndarray | None,
-) -> None:
-    """Turn the wall cells between regions ``a`` and ``b`` (inside ``within``, if given) into their floor.
+class _Bridges:
+    """Opens the wall between two regions of one floor (``__call__``), measuring near the two rooms only.
 
-    The cells between them are those whose distances to the two rooms add up to about the gap; each
-    joins the nearer room.
+    The cells between regions ``a`` and ``b`` are the non-room cells whose distances to the two
+    polygons add up to at most the gap between them (plus two cells); each joins the nearer room and
+    becomes floor. Distances are computed in the window around the two rooms, so a bridge costs what the
+    two rooms cover, not what the floor holds.
     """
-    da, db = distance[a], distance[b]
-    between = (room_map == NO_ROOM) & (da + db <= gap_m + 2 * res) & (np.maximum(da, db) <= gap_m + 2 * res)
-    if within is not None:
-        between &= within
-    room_map[between] = np.where(da[between] <= db[between], a + 1, b + 1)
-    cat[between] = CatCode.GROUND
+
+    def __init__(
+        self, floor: FloorDraft, polygons: np.ndarray, res: float, regions: dict[int, _Region]
+    ) -> None:
+        self.floor, self.polygons, self.res, self.regions = floor, polygons, res, regions
+        self.boxes = ndimage.find_objects(np.maximum(polygons, 0))
+        self.gaps: dict[tuple[int, int], float] = {}
+
+    def box(self, region: int) -> tuple[slice, slice] | None:
+        return self.boxes[region] if region < len(self.boxes) else None
+
+    def gap(self, a: int, b: int) -> float:
+        """Metric distance between the floor polygons of regions ``a < b`` (cached)."""
+        if (a, b) not in self.gaps:
+            self.gaps[(a, b)] = min(
+                polygon_distance_m(p, q) for p in self.regions[a].polygons for q in self.regions[b].polygons
+            )
+        return self.gaps[(a, b)]
+
+    def pairs_within(self, limit_m: float) -> list[tuple[int, int]]:
+        """Region pairs ``(a, b)``, ``a < b``, whose polygons come within ``limit_m`` of each other."""
+        bounds = {
+            i: (np.vstack(r.polygons).min(axis=0), np.vstack(r.polygons).max(axis=0))
+            for i, r in self.regions.items()
+        }
+        pairs = []
+        for a in sorted(self.regions):
+            for b in sorted(self.regions):
+                if a < b:
+                    apart = np.maximum(bounds[a][0] - bounds[b][1], bounds[b][0] - bounds[a][1]).max()
+                    if apart <= limit_m and self.gap(a, b) <= limit_m:
+                        pairs.append((a, b))
+        return pairs
+
+    def __call__(self, a: int, b: int, within: np.ndarray | None) -> None:
+        box_a, box_b = self.box(a), self.box(b)
+        if box_a is None or box_b is None:
+            return
+        gap, res = self.gap(a, b), self.res
+        margin = int(np.ceil((gap + 2 * res) / res)) + 1
+        rows, cols = self.polygons.shape
+        window = (
+            slice(
+                max(0, min(box_a[0].start, box_b[0].start) - margin),
+                min(rows, max(box_a[0].stop, box_b[0].stop) + margin),
+            ),
+            slice(
+                max(0, min(box_a[1].start, box_b[1].start) - margin),
+                min(cols, max(box_a[1].stop, box_b[1].stop) + margin),
+            ),
+        )
+        polygons = self.polygons[window]
+        da = ndimage.distance_transform_edt(polygons != a + 1, sampling=res)
+        db = ndimage.distance_transform_edt(polygons != b + 1, sampling=res)
+        room_map, cat = self.floor.room_map[window], self.floor.cat_map[window]  # views
+        between = (room_map == NO_ROOM) & (da + db <= gap + 2 * res) & (np.maximum(da, db) <= gap + 2 * res)
+        if within is not None:
+            inside = np.zeros_like(between)
+            local = within - (window[0].start, window[1].start)
+            keep = (
+                (local >= 0).all(axis=1) & (local[:, 0] < inside.shape[0]) & (local[:, 1] < inside.shape[1])
+            )
+            inside[local[keep, 0], local[keep, 1]] = True
+            between &= inside
+        room_map[between] = np.where(da[between] <= db[between], a + 1, b + 1)
+        cat[between] = CatCode.GROUND
 
 
 def _box_axes(numbers: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -375,15 +414,15 @@ def _box_axes(numbers: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return center, axes / np.where(norms > 0, norms, 1.0), np.abs(half)
 
 
-def _door_footprint(frame: GridFrame, numbers: np.ndarray) -> np.ndarray:
-    """A door's footprint, deepened to :data:`DOOR_REACH_M` on each side so it spans its wall."""
+def _door_cells(frame: GridFrame, numbers: np.ndarray) -> np.ndarray:
+    """A door's footprint cells, deepened to :data:`DOOR_REACH_M` on each side so it spans its wall."""
     center, axes, half = _box_axes(numbers)
     vertical = int(np.argmax(np.abs(axes[:, 2])))
     horizontal = [k for k in range(3) if k != vertical]
     thin = min(horizontal, key=lambda k: half[k])
     half = half.copy()
     half[thin] = max(half[thin], DOOR_REACH_M)
-    return hull_mask(frame, box_corners(center, axes, half)[:, :2])
+    return hull_cells(frame, box_corners(center, axes, half)[:, :2])
 
 
 def _objects(

@@ -79,19 +79,29 @@ class GridFrame:
         return np.zeros(self.shape, dtype=bool)
 
 
-def polygon_mask(frame: GridFrame, vertices_xy: np.ndarray) -> np.ndarray:
-    """Cells whose centres lie inside the simple polygon ``vertices_xy`` ``(n, 2)`` (metres, either winding)."""
+def polygon_cells(frame: GridFrame, vertices_xy: np.ndarray) -> np.ndarray:
+    """``(row, col)`` cells ``(n, 2)`` whose centres lie inside the simple polygon ``vertices_xy`` (metres)."""
     vertices = np.asarray(vertices_xy, dtype=float).reshape(-1, 2)
-    mask = frame.empty()
     found = frame.window(vertices.min(axis=0), vertices.max(axis=0))
     if found is None:
-        return mask
+        return np.zeros((0, 2), dtype=np.int64)
     rows, cols, x, y = found
     centres = np.column_stack(
         [np.broadcast_to(x, (x.size, y.size)).ravel(), np.broadcast_to(y, (x.size, y.size)).ravel()]
     )
     inside = MplPath(np.vstack([vertices, vertices[:1]]), closed=True).contains_points(centres)
-    mask[rows, cols] = inside.reshape(x.size, y.size)
+    return np.argwhere(inside.reshape(x.size, y.size)) + (rows.start, cols.start)
+
+
+def polygon_mask(frame: GridFrame, vertices_xy: np.ndarray) -> np.ndarray:
+    """:func:`polygon_cells` as a ``(rows, cols)`` mask."""
+    return cells_mask(frame, polygon_cells(frame, vertices_xy))
+
+
+def cells_mask(frame: GridFrame, cells: np.ndarray) -> np.ndarray:
+    """A ``(rows, cols)`` mask true on the given ``(n, 2)`` cells (all on the grid)."""
+    mask = frame.empty()
+    mask[cells[:, 0], cells[:, 1]] = True
     return mask
 
 
@@ -123,24 +133,22 @@ def capsules_mask(frame: GridFrame, a_xy: np.ndarray, b_xy: np.ndarray, radius_m
     return mask
 
 
-def hull_mask(frame: GridFrame, points_xy: np.ndarray) -> np.ndarray:
-    """Cells inside the convex hull of ``points_xy`` ``(n, 2)``, or the cell of their centre when the hull is flat.
+def hull_cells(frame: GridFrame, points_xy: np.ndarray) -> np.ndarray:
+    """Cells ``(n, 2)`` inside the convex hull of ``points_xy``, or the cell of their centre when it has none.
 
     An object's footprint is the hull of its box corners projected on the floor; a box seen edge-on
-    (zero area) still covers the cell it stands in, so every object keeps at least one cell.
+    (zero area) still covers the cell it stands in, so every object on the grid keeps at least one cell.
     """
     points = np.asarray(points_xy, dtype=float).reshape(-1, 2)
-    mask = frame.empty()
+    cells = np.zeros((0, 2), dtype=np.int64)
     try:
-        hull = points[ConvexHull(points).vertices]
-        mask = polygon_mask(frame, hull)
+        cells = polygon_cells(frame, points[ConvexHull(points).vertices])
     except (QhullError, ValueError):
         pass
-    if not mask.any():
-        cell = frame.cell_of(points.mean(axis=0))
-        if frame.contains(cell)[0]:
-            mask[cell[0, 0], cell[0, 1]] = True
-    return mask
+    if len(cells) == 0:
+        centre = frame.cell_of(points.mean(axis=0))
+        cells = centre[frame.contains(centre)]
+    return cells
 
 
 def box_corners(center: np.ndarray, axes: np.ndarray, half_sizes: np.ndarray) -> np.ndarray:
