@@ -32,12 +32,17 @@ CHAIR = ((1.0, 0.0), (0.4, 0.4, 0.8))  # centre (x, y), box size; it stands on t
 LAMP = ((4.0, 0.0), (0.3, 0.3, 0.2))  # hangs at 2.4 m
 
 
-def build_graph(path: Path, rooms: int = 2, objects: bool = True, mesh: bool = False) -> Path:
-    """Six places in a row, 1 m apart, 0.5 m of free space each; places 0-2 in room 0, 3-5 in room 1."""
+def build_graph(
+    path: Path, rooms: int = 2, objects: bool = True, mesh: bool = False, upstairs_m: float = 0.0
+) -> Path:
+    """Six places in a row, 1 m apart, 0.5 m of free space each; places 0-2 in room 0, 3-5 in room 1.
+
+    ``upstairs_m`` lifts room 1's places by that much (another floor when above the floor gap).
+    """
     graph = dsg.DynamicSceneGraph()
     for k, (x, y) in enumerate(PLACES):
         attributes = dsg.PlaceNodeAttributes()
-        attributes.position = np.array([x, y, 1.0])
+        attributes.position = np.array([x, y, 1.0 + (upstairs_m if k >= 3 else 0.0)])
         attributes.distance = RADIUS
         graph.add_node(dsg.DsgLayers.PLACES, dsg.NodeSymbol("p", k).value, attributes)
         if k:
@@ -117,6 +122,14 @@ def test_planned_cost_matches_the_exact_solver(tmp_path: Path) -> None:
     start = next(c for c in building.initial_cells if building.floors[0].room_map[c[0], c[1]] != living.id)
     cost, exact = planned_and_exact_cost(building, f'F "enter({living.key})"', start)
     assert cost == pytest.approx(exact) and exact > 0.5
+
+
+def test_rooms_far_apart_in_height_are_floors(tmp_path: Path) -> None:
+    result = import_dsg(build_graph(tmp_path / "g.json", upstairs_m=3.0), labels(tmp_path), SETTINGS)
+    building = result.building
+    assert building.num_floors == 2 and any("not joined" in note for note in result.notes)
+    assert [r.name for r in building.floors[1].rooms.values()] == ["living_room"]
+    assert len(building.initial_cells) == 2 and {c[2] for c in building.initial_cells} == {0, 1}
 
 
 def test_mesh_gives_the_free_space(tmp_path: Path) -> None:

@@ -88,6 +88,16 @@ def test_planned_cost_matches_the_exact_solver(tmp_path: Path) -> None:
     assert cost == pytest.approx(exact) and exact > 1.0
 
 
+def test_levels_become_floors_lowest_first(tmp_path: Path) -> None:
+    text = house_text(door=False).replace(" 4 2 0 1 ", " 4 2 0 2 ")  # two levels in the H counts
+    text = text.replace("L 0 2 -", "L 1 1 - 3 1.5 3  0 0 3 6 3 5.5 0 0 0 0 0\nL 0 1 -")
+    text = text.replace("R 1 0 0 0 k", "R 1 1 0 0 k").replace("S 1 1 0 F 4.5 1.5 0 ", "S 1 1 0 F 4.5 1.5 3 ")
+    result = import_house(write(tmp_path, text), SETTINGS)
+    building = result.building
+    assert [[r.name for r in f.rooms.values()] for f in building.floors] == [["bedroom"], ["kitchen"]]
+    assert building.floors[1].ground_z_m == 3.0 and any("not joined" in n for n in result.notes)
+
+
 def test_native_round_trip_and_direct_use(tmp_path: Path) -> None:
     path = write(tmp_path, house_text())
     building = import_house(path, SETTINGS).building

@@ -258,6 +258,11 @@ def assemble(
     ]
     if empty:
         notes.append(f"room(s) {', '.join(empty)} cover no cell of the grid: missions cannot enter them")
+    if building.num_floors > 1:
+        notes.append(
+            f"{building.num_floors} floors, not joined: stairs are not imported, so a path stays on the floor "
+            "it starts on"
+        )
     return ImportResult(building, notes)
 
 
