@@ -33,7 +33,12 @@ LAMP = ((4.0, 0.0), (0.3, 0.3, 0.2))  # hangs at 2.4 m
 
 
 def build_graph(
-    path: Path, rooms: int = 2, objects: bool = True, mesh: bool = False, upstairs_m: float = 0.0
+    path: Path,
+    rooms: int = 2,
+    objects: bool = True,
+    mesh: bool = False,
+    upstairs_m: float = 0.0,
+    children: bool = True,
 ) -> Path:
     """Six places in a row, 1 m apart, 0.5 m of free space each; places 0-2 in room 0, 3-5 in room 1.
 
@@ -53,7 +58,7 @@ def build_graph(
         attributes.semantic_label = r
         graph.add_node(dsg.DsgLayers.ROOMS, dsg.NodeSymbol("R", r).value, attributes)
     for k in range(len(PLACES)):
-        if rooms:
+        if rooms and children:
             graph.insert_edge(dsg.NodeSymbol("R", min(k // 3, rooms - 1)).value, dsg.NodeSymbol("p", k).value)
     if objects:
         for k, ((x, y), size, z, label) in enumerate([(*CHAIR, 0.4, 5), (*LAMP, 2.4, 11)]):
@@ -137,6 +142,14 @@ def test_mesh_gives_the_free_space(tmp_path: Path) -> None:
     assert any("mesh" in note for note in result.notes)
     # 60 x 10 floor cells, minus the 4 x 4 block the mesh shows and the chair's 4 x 4 footprint
     assert free_cells(result.building) == 600 - 16 - 16
+
+
+def test_rooms_without_children_take_the_places_nearest_them(tmp_path: Path) -> None:
+    building = import_dsg(
+        build_graph(tmp_path / "g.json", children=False), labels(tmp_path), SETTINGS
+    ).building
+    kitchen, living = building.rooms_named("kitchen")[0], building.rooms_named("living_room")[0]
+    assert kitchen.connected_room_ids == (living.id,) and free_cells(building) == expected_free_cells(0.1)
 
 
 def test_unsegmented_scene_is_one_room_with_a_note(tmp_path: Path) -> None:

@@ -107,7 +107,7 @@ def import_dsg(
         raise SceneError(f"spark-dsg cannot read this scene graph: {error}", path) from None
     layers = _layer_ids(graph)
     notes: list[str] = []
-    places = _places(graph, layers, path)
+    places = _places(graph, layers, path, notes)
     room_names = _room_names(graph, layers, labels)
     if not room_names:
         notes.append(
@@ -121,7 +121,7 @@ def import_dsg(
         notes.append(
             "Hydra segmented a single room for the whole scene: missions can name objects but not distinct rooms"
         )
-    _adopt_orphans(places)
+    _adopt_orphans(graph, layers, places)
     room_ids = {node: k + 1 for k, node in enumerate(sorted(room_names))}
     floor_of_room, place_grounds = _floors(places, room_ids, floor_gap_m)
     place_floor = [floor_of_room[room_ids[p.room]] for p in places]  # type: ignore[index]
@@ -175,7 +175,7 @@ def _nodes(graph: Any, layer: int) -> list[Any]:
     return list(graph.get_layer(layer).nodes) if graph.has_layer(layer) else []
 
 
-def _places(graph: Any, layers: dict[str, int], path: Path) -> list[_Place]:
+def _places(graph: Any, layers: dict[str, int], path: Path, notes: list[str]) -> list[_Place]:
     if not graph.has_layer(layers["PLACES"]):
         raise SceneError(
             f"the scene graph has no places layer (layer {layers['PLACES']}): it says nothing about free space",
@@ -187,11 +187,13 @@ def _places(graph: Any, layers: dict[str, int], path: Path) -> list[_Place]:
         for child in room.children():
             place_room[int(child)] = room_id
     places = []
+    skipped = 0
     for node in _nodes(graph, layers["PLACES"]):
         attributes = node.attributes
         radius = float(getattr(attributes, "distance", 0.0))
         xyz = np.asarray(attributes.position, dtype=float)
         if not (np.isfinite(radius) and radius > 0 and np.isfinite(xyz).all()):
+            skipped += 1
             continue
         places.append(_Place(int(node.id.value), xyz, radius, place_room.get(int(node.id.value))))
     if not places:
@@ -199,6 +201,10 @@ def _places(graph: Any, layers: dict[str, int], path: Path) -> list[_Place]:
             f"the places layer (layer {layers['PLACES']}) holds no place with a positive free-space distance: "
             "nothing tells where the robot may go",
             path,
+        )
+    if skipped:
+        notes.append(
+            f"{skipped} place(s) without a positive free-space distance or a finite position are ignored"
         )
     return places
 
@@ -212,18 +218,26 @@ def _room_names(graph: Any, layers: dict[str, int], labels: LabelMap | None) -> 
     return names
 
 
-def _adopt_orphans(places: list[_Place]) -> None:
-    """Places under no room join the room of their nearest place that has one."""
-    roomed = [p for p in places if p.room is not None]
+def _adopt_orphans(graph: Any, layers: dict[str, int], places: list[_Place]) -> None:
+    """Places under no room join the room of their nearest place that has one.
+
+    When no place has a room (a file whose rooms list no children), each place joins the room whose
+    node position is nearest.
+    """
     orphans = [p for p in places if p.room is None]
     if not orphans:
         return
-    if not roomed:
-        raise SceneError("no place belongs to a room: cannot tell which room the free space is in")
-    tree = cKDTree(np.array([p.xyz for p in roomed]))
-    _, nearest = tree.query(np.array([p.xyz for p in orphans]))
+    roomed = [p for p in places if p.room is not None]
+    if roomed:
+        anchors = np.array([p.xyz for p in roomed])
+        owners = [p.room for p in roomed]
+    else:
+        nodes = _nodes(graph, layers["ROOMS"])
+        anchors = np.array([np.asarray(n.attributes.position, dtype=float) for n in nodes])
+        owners = [int(n.id.value) for n in nodes]
+    _, nearest = cKDTree(anchors).query(np.array([p.xyz for p in orphans]))
     for place, k in zip(orphans, np.atleast_1d(nearest)):
-        place.room = roomed[int(k)].room
+        place.room = owners[int(k)]
 
 
 def _floors(
