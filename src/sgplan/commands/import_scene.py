@@ -8,8 +8,7 @@ from sgplan.commands.common import positive_number, reach_radius, robot_radius, 
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    from sgplan.importers.detect import KINDS
-    from sgplan.importers.mp3d import DEFAULT_OPEN_GAP_M
+    from sgplan.importers import DEFAULT_OPEN_GAP_M, KINDS
 
     parser = sub.add_parser(
         "import", help="import a Hydra / Matterport3D / ROS map scene into sgplan's format"

@@ -8,17 +8,15 @@ file beside it (:data:`ROOMS_BESIDE`); a Hydra ``.json`` whose label file sits b
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Literal
 
 from sgplan.errors import SceneError
+from sgplan.importers import DEFAULT_OPEN_GAP_M, KINDS, Kind
 from sgplan.importers.assemble import ImportResult, Settings
 from sgplan.importers.hydra import import_dsg, looks_like_dsg
 from sgplan.importers.labelspace import read_label_map
-from sgplan.importers.mp3d import DEFAULT_OPEN_GAP_M, import_house, is_house_file
+from sgplan.importers.mp3d import import_house, is_house_file
 from sgplan.importers.ros import import_ros_map, is_ros_map
 
-Kind = Literal["hydra", "mp3d", "ros"]
-KINDS: tuple[Kind, ...] = ("hydra", "mp3d", "ros")
 ROOMS_BESIDE = ("{stem}_rooms.yaml", "rooms.yaml")
 LABELS_BESIDE = ("{stem}_labels.yaml", "{stem}_labels.csv", "labels.yaml", "labels.csv")
 

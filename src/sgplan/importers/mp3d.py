@@ -40,6 +40,7 @@ import numpy as np
 from scipy import ndimage
 
 from sgplan.errors import SceneError
+from sgplan.importers import DEFAULT_OPEN_GAP_M
 from sgplan.importers.assemble import FloorDraft, ImportResult, ObjectDraft, RoomDraft, Settings, assemble
 from sgplan.importers.raster import (
     GridFrame,
@@ -95,7 +96,6 @@ WALL_BAND_M = 0.5
 """Cells within this distance of a room but in none are wall; farther ones are outside."""
 DOOR_REACH_M = 0.5
 """A door box is deepened to at least this on each side of its plane, so it spans the wall it sits in."""
-DEFAULT_OPEN_GAP_M = 0.14
 
 
 @dataclass
