@@ -181,19 +181,7 @@ def assemble(
     kept, notes = paint_objects(frame, floors, objects, settings)
 
     ordered = sorted(rooms, key=lambda r: r.id)
-    next_uuid = 2
-    room_uuid: dict[int, int] = {}
-    floor_uuid: dict[int, int] = {}
-    for draft in ordered:
-        room_uuid[draft.id] = next_uuid
-        next_uuid += 1
-        if draft.floor not in floor_uuid:
-            floor_uuid[draft.floor] = next_uuid
-            next_uuid += 1
-    for index in range(len(floors)):
-        if index not in floor_uuid:
-            floor_uuid[index] = next_uuid
-            next_uuid += 1
+    room_uuid, floor_uuid, next_uuid = _uuids(ordered, len(floors))
 
     doors = [door_cells(f.room_map, f.cat_map) for f in floors]
     connected = connections(doors)
@@ -264,6 +252,27 @@ def assemble(
             "it starts on"
         )
     return ImportResult(building, notes)
+
+
+def _uuids(ordered: Sequence[RoomDraft], floors: int) -> tuple[dict[int, int], dict[int, int], int]:
+    """uuids by the authors' rule: rooms in id order from 2, each floor's right after its first room.
+
+    Returns room id -> uuid, floor index -> uuid, and the first uuid left for the objects.
+    """
+    next_uuid = 2
+    room_uuid: dict[int, int] = {}
+    floor_uuid: dict[int, int] = {}
+    for draft in ordered:
+        room_uuid[draft.id] = next_uuid
+        next_uuid += 1
+        if draft.floor not in floor_uuid:
+            floor_uuid[draft.floor] = next_uuid
+            next_uuid += 1
+    for index in range(floors):  # a floor without rooms still needs a uuid of its own
+        if index not in floor_uuid:
+            floor_uuid[index] = next_uuid
+            next_uuid += 1
+    return room_uuid, floor_uuid, next_uuid
 
 
 Boxes = list[tuple[slice, slice] | None]

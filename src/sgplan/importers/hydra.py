@@ -131,16 +131,37 @@ def import_dsg(
         for k, ground in enumerate(place_grounds)
     ]
     mesh = _mesh_points(graph)
+    if mesh is not None:
+        notes.append(
+            "free space comes from the scene graph's mesh (floor and obstacle vertices), rooms from its places"
+        )
+    edges = _place_edges(graph, layers, {p.id: k for k, p in enumerate(places)})
+    frame, floors = _floor_drafts(places, place_floor, edges, room_ids, grounds, mesh, settings)
+    rooms = [
+        RoomDraft(room_ids[node], room_names[node], floor_of_room[room_ids[node]])
+        for node in sorted(room_names)
+    ]
+    result = assemble(path.stem, frame, floors, rooms, objects, settings)
+    result.notes[:0] = notes
+    return result
+
+
+def _floor_drafts(
+    places: list[_Place],
+    place_floor: list[int],
+    edges: np.ndarray,
+    room_ids: dict[int, int],
+    grounds: list[float],
+    mesh: np.ndarray | None,
+    settings: Settings,
+) -> tuple[GridFrame, list[FloorDraft]]:
+    """The shared grid (around the places' free space and the mesh) and every floor's rasters."""
     xy = np.array([p.xyz[:2] for p in places])
     radius = np.array([p.radius_m for p in places])
     lo, hi = (xy - radius[:, None]).min(axis=0), (xy + radius[:, None]).max(axis=0)
     if mesh is not None:
         lo, hi = np.minimum(lo, mesh[:, :2].min(axis=0)), np.maximum(hi, mesh[:, :2].max(axis=0))
-        notes.append(
-            "free space comes from the scene graph's mesh (floor and obstacle vertices), rooms from its places"
-        )
     frame = GridFrame.around(lo, hi, settings.resolution_m, 0.5)
-    edges = _place_edges(graph, layers, {p.id: k for k, p in enumerate(places)})
     floors = []
     for k, ground in enumerate(grounds):
         members = np.array([f == k for f in place_floor])
@@ -149,13 +170,7 @@ def import_dsg(
         else:
             free = places_free_space(frame, places, members, edges)
         floors.append(_floor(frame, free, places, members, room_ids, ground, chr(ord("A") + k)))
-    rooms = [
-        RoomDraft(room_ids[node], room_names[node], floor_of_room[room_ids[node]])
-        for node in sorted(room_names)
-    ]
-    result = assemble(path.stem, frame, floors, rooms, objects, settings)
-    result.notes[:0] = notes
-    return result
+    return frame, floors
 
 
 def _layer_ids(graph: Any) -> dict[str, int]:

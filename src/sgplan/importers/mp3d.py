@@ -151,6 +151,42 @@ _COUNT_FIELD = {"V": 5, "S": 6, "O": 8, "C": 9, "R": 10, "P": 11, "L": 12}
 """Position in the H record of each record kind's count."""
 
 
+@dataclass
+class _Records:
+    """The records of a file as parsed, before their references are checked."""
+
+    header: list[str] | None = None
+    counts: dict[str, int] = field(default_factory=lambda: dict.fromkeys(_COUNT_FIELD, 0))
+    levels: dict[int, np.ndarray] = field(default_factory=dict)
+    regions: dict[int, _Region] = field(default_factory=dict)
+    surfaces: dict[int, tuple[int, str, float]] = field(default_factory=dict)
+    vertices: dict[int, list[tuple[int, float, float]]] = field(default_factory=dict)
+    categories: dict[int, tuple[str, str]] = field(default_factory=dict)
+    objects: list[tuple[int, int, int, np.ndarray]] = field(default_factory=list)
+    portals: list[tuple[int, int, int, np.ndarray]] = field(default_factory=list)
+
+    def add(self, t: list[str]) -> None:
+        """Store one record (``t`` = its tokens); ``ValueError`` for a field that is not a number."""
+        kind = t[0]
+        self.counts[kind] = self.counts.get(kind, 0) + 1
+        if kind == "H":
+            self.header = t
+        elif kind == "L":
+            self.levels[int(t[1])] = np.array(t[7:13], dtype=float)
+        elif kind == "R":
+            self.regions[int(t[1])] = _Region(int(t[1]), int(t[2]), t[5], float(t[15]))
+        elif kind == "S":
+            self.surfaces[int(t[1])] = (int(t[2]), t[4], float(t[7]))
+        elif kind == "V":
+            self.vertices.setdefault(int(t[2]), []).append((int(t[1]), float(t[4]), float(t[5])))
+        elif kind == "C":
+            self.categories[int(t[1])] = (t[3].replace("#", " ").lower(), t[5].lower())
+        elif kind == "O":
+            self.objects.append((int(t[1]), int(t[2]), int(t[3]), np.array(t[4:16], dtype=float)))
+        elif kind == "P":
+            self.portals.append((int(t[1]), int(t[2]), int(t[3]), np.array(t[5:11], dtype=float)))
+
+
 def read_house(path: str | Path) -> House:
     """Parse a ``.house`` file (see the module docstring for the records used).
 
@@ -158,65 +194,55 @@ def read_house(path: str | Path) -> House:
     ------
     SceneError
         naming the file and line for a short record or a field that is not a number; naming the
-        entity for a reference to a missing level, region or surface, a count in the H record that
-        disagrees with the records, or a file without H, levels or regions.
+        entity for a reference to a missing level, region or surface, a degenerate floor polygon, an
+        unknown region label, a count in the H record that disagrees with the records, or a file
+        without H, levels or regions.
     """
     path = Path(path)
-    header: list[str] | None = None
-    counts = dict.fromkeys(_COUNT_FIELD, 0)
-    levels: dict[int, np.ndarray] = {}
-    regions: dict[int, _Region] = {}
-    surfaces: dict[int, tuple[int, str, float]] = {}
-    vertices: dict[int, list[tuple[int, float, float]]] = {}
-    categories: dict[int, tuple[str, str]] = {}
-    objects: list[tuple[int, int, int, np.ndarray]] = []
-    portals: list[tuple[int, int, int, np.ndarray]] = []
-    for line, t in _records(path):
-        kind = t[0]
+    records = _Records()
+    for line, tokens in _records(path):
+        kind = tokens[0]
         if kind not in _MIN_TOKENS:
             continue
-        if len(t) < _MIN_TOKENS[kind]:
-            raise SceneError(
-                f"line {line}: a {kind} record needs {_MIN_TOKENS[kind]} fields, found {len(t)}", path
-            )
-        counts[kind] = counts.get(kind, 0) + 1
+        if len(tokens) < _MIN_TOKENS[kind]:
+            message = f"line {line}: a {kind} record needs {_MIN_TOKENS[kind]} fields, found {len(tokens)}"
+            raise SceneError(message, path)
         try:
-            if kind == "H":
-                header = t
-            elif kind == "L":
-                levels[int(t[1])] = np.array(t[7:13], dtype=float)
-            elif kind == "R":
-                regions[int(t[1])] = _Region(int(t[1]), int(t[2]), t[5], float(t[15]))
-            elif kind == "S":
-                surfaces[int(t[1])] = (int(t[2]), t[4], float(t[7]))
-            elif kind == "V":
-                vertices.setdefault(int(t[2]), []).append((int(t[1]), float(t[4]), float(t[5])))
-            elif kind == "C":
-                categories[int(t[1])] = (t[3].replace("#", " ").lower(), t[5].lower())
-            elif kind == "O":
-                objects.append((int(t[1]), int(t[2]), int(t[3]), np.array(t[4:16], dtype=float)))
-            elif kind == "P":
-                portals.append((int(t[1]), int(t[2]), int(t[3]), np.array(t[5:11], dtype=float)))
+            records.add(tokens)
         except ValueError:
             raise SceneError(f"line {line}: a {kind} record has a field that is not a number", path) from None
+    _check_counts(records, path)
+    surface_z = _attach_polygons(records, path)
+    _check_references(records, path)
+    return House(
+        path, records.levels, records.regions, records.categories, records.objects, records.portals, surface_z
+    )
+
+
+def _check_counts(records: _Records, path: Path) -> None:
+    header = records.header
     if header is None:
         raise SceneError("no H (house) record: not a Matterport3D .house file", path)
     for kind, position in _COUNT_FIELD.items():
         declared = int(header[position]) if header[position].lstrip("-").isdigit() else -1
-        if declared != counts[kind]:
+        if declared != records.counts[kind]:
             raise SceneError(
-                f"the H record declares {header[position]} {kind} records but the file holds {counts[kind]} "
-                "(a cut or edited file?)",
+                f"the H record declares {header[position]} {kind} records but the file holds "
+                f"{records.counts[kind]} (a cut or edited file?)",
                 path,
             )
-    if not levels or not regions:
+    if not records.levels or not records.regions:
         raise SceneError("the house has no levels (L) or no regions (R): nothing to plan on", path)
+
+
+def _attach_polygons(records: _Records, path: Path) -> dict[int, list[float]]:
+    """Give every region its floor polygons (vertices in index order); returns the surfaces' heights."""
     surface_z: dict[int, list[float]] = {}
-    for surface, corners in sorted(vertices.items()):
-        if surface not in surfaces:
+    for surface, corners in sorted(records.vertices.items()):
+        if surface not in records.surfaces:
             raise SceneError(f"vertices name surface {surface}, which has no S record", path)
-        region_index, _, z = surfaces[surface]
-        if region_index not in regions:
+        region_index, _, z = records.surfaces[surface]
+        if region_index not in records.regions:
             raise SceneError(f"surface {surface} names region {region_index}, which has no R record", path)
         polygon = np.array([(x, y) for _, x, y in sorted(corners)], dtype=float)
         if len(polygon) < 3 or polygon_area_m2(polygon) < 1e-4:
@@ -225,27 +251,30 @@ def read_house(path: str | Path) -> House:
                 f"({len(polygon)} vertices, area {polygon_area_m2(polygon):.2g} m^2)",
                 path,
             )
-        regions[region_index].polygons.append(polygon)
+        records.regions[region_index].polygons.append(polygon)
         surface_z.setdefault(region_index, []).append(z)
+    return surface_z
+
+
+def _check_references(records: _Records, path: Path) -> None:
+    levels, regions = records.levels, records.regions
     for region in regions.values():
         if region.level not in levels:
-            raise SceneError(
-                f"region {region.index} is on level {region.level}, but the file has levels {sorted(levels)}",
-                path,
+            message = (
+                f"region {region.index} is on level {region.level}, but the file has levels {sorted(levels)}"
             )
+            raise SceneError(message, path)
         if region.label not in REGION_NAMES:
-            raise SceneError(
-                f"region {region.index} has label {region.label!r}, not a Matterport3D region label", path
-            )
-    for index, region_index, category, _ in objects:
-        if category >= 0 and category not in categories:
+            message = f"region {region.index} has label {region.label!r}, not a Matterport3D region label"
+            raise SceneError(message, path)
+    for index, region_index, category, _ in records.objects:
+        if category >= 0 and category not in records.categories:
             raise SceneError(f"object {index} names category {category}, which has no C record", path)
         if region_index >= 0 and region_index not in regions:
             raise SceneError(f"object {index} names region {region_index}, which has no R record", path)
-    for index, r0, r1, _ in portals:
+    for index, r0, r1, _ in records.portals:
         if r0 not in regions or r1 not in regions:
             raise SceneError(f"portal {index} joins regions {r0} and {r1}; one has no R record", path)
-    return House(path, levels, regions, categories, objects, portals, surface_z)
 
 
 # -- building ------------------------------------------------------------------------------------------
