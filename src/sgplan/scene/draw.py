@@ -301,14 +301,27 @@ def _draw_path(ax: Axes, cells: np.ndarray, floor: int, px_per_cell: float) -> n
     return xy[on_floor]
 
 
-def _draw_arrows(ax: Axes, xy: np.ndarray, progress: np.ndarray, on_floor: np.ndarray,
-                 px_per_cell: float) -> None:
-    """Arrows along each run of the path on this floor, every ~70 px, offset to the right of travel."""
+def arrow_marks(xy: np.ndarray, on_floor: np.ndarray, spacing: float, length: float,
+                lane: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Where direction arrows go along the runs of a path that lie on one floor.
+
+    Parameters
+    ----------
+    xy:
+        ``(n, 2)`` path points ``(x, y)`` in drawing units (here cells: x = column, y = row).
+    on_floor:
+        ``(n,)`` bool, the points on the floor drawn.
+    spacing, length, lane:
+        distance between arrows along the path, arrow length, and offset to the right of travel (so the
+        two legs of an out-and-back path are apart), all in drawing units with y growing downwards.
+
+    Returns
+    -------
+    ``(centres (k, 2), vectors (k, 2), index (k,))``: arrow midpoints, arrow vectors (of ``length``), and
+    the fractional path index of each arrow (for colouring by progress).
+    """
     breaks = np.flatnonzero(np.diff(on_floor.astype(np.int8)) != 0) + 1
-    spacing = _ARROW_SPACING_PX / px_per_cell
-    length = _ARROW_LENGTH_PX / px_per_cell
-    lane = _LANE_OFFSET_PX / px_per_cell
-    points, vectors, shades = [], [], []
+    points, vectors, where = [], [], []
     for run in np.split(np.arange(len(xy)), breaks):
         if len(run) < 2 or not on_floor[run[0]]:
             continue
@@ -317,23 +330,30 @@ def _draw_arrows(ax: Axes, xy: np.ndarray, progress: np.ndarray, on_floor: np.nd
         if arc[-1] < 2 * length:
             continue
         marks = np.arange(spacing / 2, arc[-1] - length / 2, spacing)
-        for s in marks:
-            a = np.array([np.interp(s - length / 2, arc, p[:, 0]), np.interp(s - length / 2, arc, p[:, 1])])
-            b = np.array([np.interp(s + length / 2, arc, p[:, 0]), np.interp(s + length / 2, arc, p[:, 1])])
-            d = b - a
-            norm = float(np.hypot(*d))
-            if norm == 0:
-                continue
-            unit = d / norm
-            # Right of travel on screen (rows grow downwards): (x, y) -> (-y, x).
-            centre = (a + b) / 2 + lane * np.array([-unit[1], unit[0]])
-            points.append(centre)
-            vectors.append(unit * length)
-            shades.append(np.interp(s, arc, progress[run]))
+        tail = np.column_stack([np.interp(marks - length / 2, arc, p[:, 0]), np.interp(marks - length / 2, arc, p[:, 1])])
+        head = np.column_stack([np.interp(marks + length / 2, arc, p[:, 0]), np.interp(marks + length / 2, arc, p[:, 1])])
+        d = head - tail
+        norm = np.hypot(d[:, 0], d[:, 1])
+        keep = norm > 0
+        unit = d[keep] / norm[keep, None]
+        # Right of travel on screen (y grows downwards): (x, y) -> (-y, x).
+        points.append((tail[keep] + head[keep]) / 2 + lane * np.column_stack([-unit[:, 1], unit[:, 0]]))
+        vectors.append(unit * length)
+        where.append(np.interp(marks[keep], arc, run.astype(float)))
     if not points:
+        return np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0)
+    return np.concatenate(points), np.concatenate(vectors), np.concatenate(where)
+
+
+def _draw_arrows(ax: Axes, xy: np.ndarray, progress: np.ndarray, on_floor: np.ndarray,
+                 px_per_cell: float) -> None:
+    """Arrows along each run of the path on this floor, every ~70 px, offset to the right of travel."""
+    pts, vec, index = arrow_marks(xy, on_floor, _ARROW_SPACING_PX / px_per_cell,
+                                  _ARROW_LENGTH_PX / px_per_cell, _LANE_OFFSET_PX / px_per_cell)
+    if not len(pts):
         return
-    pts, vec = np.array(points), np.array(vectors)
-    ax.quiver(pts[:, 0], pts[:, 1], vec[:, 0], vec[:, 1], color=PATH_COLOURS(np.array(shades)),
+    shades = np.interp(index, np.arange(len(progress)), progress)
+    ax.quiver(pts[:, 0], pts[:, 1], vec[:, 0], vec[:, 1], color=PATH_COLOURS(shades),
               angles="xy", scale_units="xy", scale=1, pivot="mid", units="dots", width=2.6,
               headwidth=3.5, headlength=4.0, headaxislength=3.5, zorder=4.5, edgecolor="white", linewidth=0.4)
 

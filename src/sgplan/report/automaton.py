@@ -1,0 +1,177 @@
+"""The mission automaton as a picture: SVG from Graphviz ``dot`` when installed, else from matplotlib.
+
+Graphviz lays out large automata far better, so it is used when its ``dot`` program is on the PATH (the
+Debian package ``graphviz``); without it a layered matplotlib drawing is made (states in columns by
+their distance from the initial state, edges as arcs labelled with their guards), so a picture is
+always written. Both use :func:`sgplan.logic.dot.edges`, so they show the same edges.
+"""
+
+from __future__ import annotations
+
+import io
+import shutil
+import subprocess
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Literal
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+from matplotlib.patches import Circle, FancyArrowPatch
+
+from sgplan.errors import AutomatonError, OutputError
+from sgplan.logic.automaton import Automaton
+from sgplan.logic.dot import edges, shown_states, to_dot, wrap_guard
+
+Engine = Literal["auto", "graphviz", "matplotlib"]
+GRAPHVIZ_TIMEOUT_S = 30.0
+"""Longest ``dot`` may run; automata that need longer to lay out are drawn by matplotlib instead."""
+
+
+def graphviz_available() -> bool:
+    """Whether Graphviz's ``dot`` program is on the PATH."""
+    return shutil.which("dot") is not None
+
+
+def automaton_svg(a: Automaton, *, names: Mapping[str, str] | None = None, hide_sinks: bool = True,
+                  engine: Engine = "auto") -> str:
+    """The automaton as SVG text (an ``<svg>`` document without an XML prolog, ready to inline in HTML).
+
+    Parameters
+    ----------
+    names:
+        renames propositions in the edge guards, e.g. ``mission.descriptions``.
+    hide_sinks:
+        leave out the states that cannot reach acceptance (a missing edge then means "rejects").
+    engine:
+        ``"graphviz"`` (needs ``dot``), ``"matplotlib"``, or ``"auto"``: Graphviz when available and
+        working, else matplotlib.
+
+    Raises
+    ------
+    AutomatonError
+        with ``engine="graphviz"`` when ``dot`` is missing or fails.
+    """
+    if engine not in ("auto", "graphviz", "matplotlib"):
+        raise AutomatonError(f"unknown automaton drawing engine {engine!r}: use auto, graphviz or matplotlib")
+    if engine == "graphviz" or (engine == "auto" and graphviz_available()):
+        try:
+            return _strip_prolog(_graphviz_svg(to_dot(a, hide_sinks, names=names)))
+        except AutomatonError:
+            if engine == "graphviz":
+                raise
+    return _strip_prolog(_matplotlib_svg(a, names, hide_sinks))
+
+
+def _graphviz_svg(dot: str) -> str:
+    if not graphviz_available():
+        raise AutomatonError("Graphviz is not installed (no `dot` on the PATH); install the graphviz package")
+    try:
+        done = subprocess.run(["dot", "-Tsvg"], input=dot, capture_output=True, text=True,
+                              timeout=GRAPHVIZ_TIMEOUT_S, check=False)
+    except (OSError, subprocess.TimeoutExpired) as error:
+        raise AutomatonError(f"Graphviz `dot` could not draw the automaton: {error}") from None
+    if done.returncode != 0:
+        raise AutomatonError(f"Graphviz `dot` failed (exit {done.returncode}): {done.stderr.strip()[:300]}")
+    return done.stdout
+
+
+def _strip_prolog(svg: str) -> str:
+    """The ``<svg ...>...</svg>`` element alone (no ``<?xml?>`` / ``<!DOCTYPE>``, which HTML rejects)."""
+    start = svg.find("<svg")
+    return svg[start:] if start >= 0 else svg
+
+
+def _layers(a: Automaton, shown: np.ndarray) -> dict[int, tuple[int, int]]:
+    """``state -> (column, row)``: column = breadth-first distance from the initial state."""
+    depth = {a.initial: 0}
+    frontier = [a.initial]
+    while frontier:
+        nxt = []
+        for q in frontier:
+            for r in np.unique(a.table[q]).tolist():
+                if shown[r] and r not in depth:
+                    depth[r] = depth[q] + 1
+                    nxt.append(r)
+        frontier = nxt
+    for q in np.flatnonzero(shown).tolist():  # shown but unreachable: one column after the rest
+        depth.setdefault(q, max(depth.values()) + 1)
+    rows: dict[int, int] = {}
+    place = {}
+    for q in sorted(depth, key=lambda s: (depth[s], s)):
+        place[q] = (depth[q], rows.get(depth[q], 0))
+        rows[depth[q]] = place[q][1] + 1
+    # Centre each column vertically.
+    tallest = max(rows.values())
+    return {q: (c, r - (rows[c] - 1) / 2 + (tallest - 1) / 2) for q, (c, r) in place.items()}  # type: ignore[misc]
+
+
+def _matplotlib_svg(a: Automaton, names: Mapping[str, str] | None, hide_sinks: bool) -> str:
+    shown = shown_states(a, hide_sinks)
+    place = _layers(a, shown)
+    columns = max(c for c, _ in place.values()) + 1
+    tallest = max(r for _, r in place.values()) + 1
+    guards = [(q, r, wrap_guard(g)) for q, r, g in edges(a, hide_sinks, names)]
+    # Room for the widest and tallest guard between two columns / rows (7 pt text: ~0.06 in a char).
+    widest = max((len(line) for *_, g in guards for line in g.split("\n")), default=4)
+    tallest_guard = max((g.count("\n") + 1 for *_, g in guards), default=1)
+    dx, dy = max(2.0, 0.065 * widest + 0.9), max(1.5, 0.16 * tallest_guard + 0.9)
+    fig = Figure(figsize=(1.5 + dx * columns, 1.0 + dy * tallest))
+    FigureCanvasAgg(fig)
+    ax = fig.add_axes((0, 0, 1, 1))
+    ax.set_xlim(-1.0, dx * (columns - 1) + 1.0)
+    ax.set_ylim(dy * (tallest - 1) + 0.8, -0.8)
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+    xy = {q: np.array([dx * c, dy * r]) for q, (c, r) in place.items()}
+    radius = 0.28
+    for q, centre in xy.items():
+        ax.add_patch(Circle(centre, radius, fc="white", ec="black", lw=1.2, zorder=3))
+        if a.accepting[q]:
+            ax.add_patch(Circle(centre, radius * 0.8, fc="none", ec="black", lw=1.0, zorder=3))
+        ax.text(*centre, str(q), ha="center", va="center", fontsize=10, zorder=4)
+    init = xy[a.initial]
+    ax.add_patch(FancyArrowPatch(init - (0.8, 0), init - (radius, 0), arrowstyle="-|>", mutation_scale=12))
+    pairs = {(q, r) for q, r, _ in edges(a, hide_sinks)}
+    for q, r, guard in guards:
+        style = dict(fontsize=7, ha="center", va="center", multialignment="left", zorder=5,
+                     bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.85})
+        if q == r:  # a loop above the state
+            top = xy[q] - (0, radius)
+            ax.add_patch(FancyArrowPatch(top - (0.12, 0), top + (0.12, 0), connectionstyle="arc3,rad=-2.2",
+                                         arrowstyle="-|>", mutation_scale=10, lw=0.9, zorder=2))
+            ax.text(top[0], top[1] - 0.3, guard, **{**style, "va": "bottom"})  # type: ignore[arg-type]
+            continue
+        # Bend edges with a partner the other way, so the two are apart (rad > 0 bends to the right).
+        rad = 0.25 if (r, q) in pairs else 0.12
+        p0, p1 = xy[q], xy[r]
+        ax.add_patch(FancyArrowPatch(p0, p1, connectionstyle=f"arc3,rad={rad}", arrowstyle="-|>",
+                                     mutation_scale=11, lw=0.9, shrinkA=14, shrinkB=14, zorder=2))
+        d = p1 - p0
+        # The arc's midpoint: half way to arc3's control point (display y grows down here: flip the sign).
+        mid = (p0 + p1) / 2 + 0.5 * rad * np.array([-d[1], d[0]])
+        ax.text(*mid, guard, **style)  # type: ignore[arg-type]
+    buffer = io.StringIO()
+    fig.savefig(buffer, format="svg", bbox_inches="tight", pad_inches=0.1)  # guards may overhang the axes
+    return buffer.getvalue()
+
+
+def write_automaton(a: Automaton, out_dir: str | Path, *, stem: str = "automaton",
+                    names: Mapping[str, str] | None = None, hide_sinks: bool = True,
+                    engine: Engine = "auto") -> list[Path]:
+    """Write ``<stem>.dot`` and ``<stem>.svg`` into ``out_dir``; returns both paths.
+
+    See :func:`automaton_svg` for the options. Raises :class:`OutputError` if the files cannot be
+    written, :class:`AutomatonError` as :func:`automaton_svg` does.
+    """
+    out = Path(out_dir)
+    dot_path, svg_path = out / f"{stem}.dot", out / f"{stem}.svg"
+    svg = automaton_svg(a, names=names, hide_sinks=hide_sinks, engine=engine)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        dot_path.write_text(to_dot(a, hide_sinks, name=stem, names=names), encoding="utf-8")
+        svg_path.write_text(svg, encoding="utf-8")
+    except OSError as error:
+        raise OutputError(f"cannot write the automaton drawing into {out}: {error.strerror}") from None
+    return [dot_path, svg_path]
