@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from sgplan.errors import SceneError
+from sgplan.scene.doors import door_cells
 from sgplan.scene.model import NO_ROOM, Building, CatCode, Floor, Room, SceneObject, StairsEnd
 
 # --- catalogues ----------------------------------------------------------------------------------------
@@ -269,28 +270,6 @@ class _FloorPlan:
     rooms: list[_PlacedRoom]
 
 
-def _door_cells(room_map: np.ndarray, cat_map: np.ndarray) -> dict[tuple[int, int], np.ndarray]:
-    """For every ordered pair ``(a, b)`` of touching rooms: GROUND cells of ``b`` 4-adjacent to ``a``."""
-    pairs: dict[tuple[int, int], list[np.ndarray]] = {}
-    for axis in (0, 1):
-        for flip in (False, True):
-            a = room_map[:-1, :] if axis == 0 else room_map[:, :-1]
-            b = room_map[1:, :] if axis == 0 else room_map[:, 1:]
-            b_cat = cat_map[1:, :] if axis == 0 else cat_map[:, 1:]
-            offset = (1, 0) if axis == 0 else (0, 1)
-            if flip:
-                a, b = b, a
-                b_cat = cat_map[:-1, :] if axis == 0 else cat_map[:, :-1]
-                offset = (0, 0)
-            hit = (a > 0) & (b > 0) & (a != b) & (b_cat == CatCode.GROUND)
-            rows, cols = np.nonzero(hit)
-            for key in set(zip(a[rows, cols].tolist(), b[rows, cols].tolist())):
-                sel = (a[rows, cols] == key[0]) & (b[rows, cols] == key[1])
-                cells = np.stack([rows[sel] + offset[0], cols[sel] + offset[1]], axis=1)
-                pairs.setdefault(key, []).append(cells)
-    return {key: np.unique(np.concatenate(parts), axis=0).astype(np.int32) for key, parts in pairs.items()}
-
-
 def _build(
     name: str,
     floor_specs: Sequence[Sequence[RoomSpec]],
@@ -493,7 +472,7 @@ def _assemble(
             floor_uuid[f] = next_uuid
             next_uuid += 1
 
-    doors = [_door_cells(fp.room, fp.cat) for fp in plans]
+    doors = [door_cells(fp.room, fp.cat) for fp in plans]
     connected: dict[int, set[int]] = {r.id: set() for r in all_rooms}
     for floor_doors in doors:
         for a, b in floor_doors:
