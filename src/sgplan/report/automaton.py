@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Literal
 
 import numpy as np
+from matplotlib import rc_context
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.patches import Circle, FancyArrowPatch
@@ -153,7 +154,8 @@ def _matplotlib_svg(a: Automaton, names: Mapping[str, str] | None, hide_sinks: b
         mid = (p0 + p1) / 2 + 0.5 * rad * np.array([-d[1], d[0]])
         ax.text(*mid, guard, **style)  # type: ignore[arg-type]
     buffer = io.StringIO()
-    fig.savefig(buffer, format="svg", bbox_inches="tight", pad_inches=0.1)  # guards may overhang the axes
+    with rc_context({"svg.fonttype": "none"}):  # text stays text: smaller, searchable, selectable
+        fig.savefig(buffer, format="svg", bbox_inches="tight", pad_inches=0.1)  # guards may overhang the axes
     return buffer.getvalue()
 
 

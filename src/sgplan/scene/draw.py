@@ -29,7 +29,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from matplotlib import colormaps
+from matplotlib import colormaps, rc_context
 from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import LineCollection
@@ -556,7 +556,8 @@ def draw_building(
         for fmt in formats:
             target = out / f"{stem}_{floor}.{fmt}"
             try:
-                fig.savefig(target, format=fmt)
+                with rc_context({"svg.fonttype": "none"}):  # SVG text stays text: smaller and searchable
+                    fig.savefig(target, format=fmt)
             except OSError as error:
                 raise SceneError(f"cannot write {target}: {error.strerror}") from None
             written.append(target)
