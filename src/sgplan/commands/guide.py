@@ -11,7 +11,7 @@ import argparse
 import contextlib
 from pathlib import Path
 
-from sgplan.commands.common import add_scene_arguments, load_scene_arg, positive_int, say
+from sgplan.commands.common import add_profile_argument, add_scene_arguments, load_scene_arg, positive_int, say
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 
 
@@ -20,8 +20,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_scene_arguments(parser)
     parser.add_argument("--mission-dir", required=True, metavar="DIR", help="mission folder (automaton.aut, ap_desc.yaml)")
     parser.add_argument("--out", metavar="FILE", help="where to write (default: DIR/llm_heuristic.yaml)")
-    parser.add_argument("--profile", choices=("ltlf", "authors"), default="ltlf",
-                        help="how automaton.aut's missing edges are read (as for sgplan plan; default ltlf)")
+    add_profile_argument(parser, extra_help="; here: how automaton.aut's missing edges are read")
     add_llm_arguments(parser, translates=False)
     parser.add_argument("--max-concurrency", type=positive_int, default=4, metavar="N", help="LLM calls in flight (default 4)")
     parser.set_defaults(run=run)
