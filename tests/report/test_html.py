@@ -17,7 +17,7 @@ from PIL import Image
 
 from sgplan.errors import OutputError
 from sgplan.report.html import report_html, write_html_report
-from tests.report.conftest import REACH_M, DemoPlan
+from tests.plans import REACH_M, DemoPlan
 
 EXPLANATION = "First the bathroom, keeping away from its sink; then a dining chair; then the bedroom upstairs."
 BROWSER_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
