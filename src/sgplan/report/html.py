@@ -89,7 +89,7 @@ def _floor_svg(building: Building, floor: int, cells: np.ndarray) -> str:
     """The SVG overlay of one floor in cell coordinates (x = column, y = row): path, arrows, markers."""
     f = building.floors[floor]
     rows, cols = f.shape
-    unit = max(rows, cols) / 400  # drawing units per ~CSS pixel of a 400 px wide map
+    unit = cols / 1000  # cells per CSS pixel: the map is shown about 1000 px wide
     parts = [f'<svg class="overlay" viewBox="-0.5 -0.5 {cols} {rows}" preserveAspectRatio="none" '
              f'xmlns="http://www.w3.org/2000/svg">']
     rooms = sorted(r.id for r in building.rooms() if r.floor == floor)
@@ -116,7 +116,7 @@ def _floor_svg(building: Building, floor: int, cells: np.ndarray) -> str:
         centres, vectors, index = arrow_marks(xy, on, _ARROW_SPACING * max(rows, cols), 8 * unit, 3 * unit)
         for (cx, cy), (vx, vy), i in zip(centres, vectors, index):
             angle = math.degrees(math.atan2(vy, vx))
-            s = 4.5 * unit
+            s = 6.5 * unit
             parts.append(f'<polygon class="arrow" points="{s:g},0 {-s:g},{-0.7 * s:g} {-0.5 * s:g},0 {-s:g},{0.7 * s:g}" '
                          f'fill="{_colour(i / max(n - 1, 1))}" '
                          f'transform="translate({cx:.2f},{cy:.2f}) rotate({angle:.1f})"/>')
