@@ -193,14 +193,15 @@ def densify(path: np.ndarray, keep: np.ndarray, automaton: Automaton, labels: np
     """The cells a robot crosses following the kept rows of ``path`` in straight segments, as a path
     ``(m, 4)`` with automaton states replayed from the labels (for checking a simplified path).
 
-    Stairs legs (floor changes) are kept as the single stairs move.
+    Stairs legs (floor changes) and single steps are kept as the planner's move; longer segments become
+    their :func:`crossed_cells` (side cells of corner touches included, as :func:`simplify_path` checks them).
     """
     rows = as_path_array(path)
     cells = [rows[keep[0], :3]]
     for a, b in zip(keep[:-1], keep[1:]):
         ra, rb = rows[a], rows[b]
-        if ra[2] != rb[2]:
-            cells.append(rb[:3])
+        if ra[2] != rb[2] or max(abs(int(rb[0] - ra[0])), abs(int(rb[1] - ra[1]))) <= 1:
+            cells.append(rb[:3])  # the stairs, or the planner's own step (a diagonal step may cut a corner)
             continue
         for row, col in crossed_cells((int(ra[0]), int(ra[1])), (int(rb[0]), int(rb[1])))[1:]:
             cells.append(np.array([row, col, ra[2]]))
