@@ -14,10 +14,14 @@ from sgplan.scene.model import Building
 
 # The demo's mission shape: the bathroom without its sink, then a dining-room chair, then the bedroom
 # upstairs, always avoiding the living room and the kitchen. The path goes out and back and takes the stairs.
-FORMULA = ('F("enter(room_5)" & !"reach(object_21)" & F("reach(object_28)" & "enter(room_7)" & F "enter(room_11)")) '
-           '& G(!"enter(room_6)" & !"enter(room_4)")')
-TEXT = ("Visit the bathroom but not its sink, sit on a dining chair, then go to the bedroom upstairs; "
-        "never enter the living room or kitchen.")
+FORMULA = (
+    'F("enter(room_5)" & !"reach(object_21)" & F("reach(object_28)" & "enter(room_7)" & F "enter(room_11)")) '
+    '& G(!"enter(room_6)" & !"enter(room_4)")'
+)
+TEXT = (
+    "Visit the bathroom but not its sink, sit on a dining chair, then go to the bedroom upstairs; "
+    "never enter the living room or kitchen."
+)
 REACH_M = 0.6
 
 
@@ -35,8 +39,14 @@ def demo_plan() -> DemoPlan:
     building = demo_building()
     mission = mission_from_formula(FORMULA, text=TEXT)
     grid = build_occupancy_grid(building, building.robot_radius_m or 0.0)
-    problem = PlanningProblem(building=building, grid=grid, labels=mission.labels(building, REACH_M),
-                              automaton=mission.automaton, start=building.initial_cells[0], reach_radius_m=REACH_M)
+    problem = PlanningProblem(
+        building=building,
+        grid=grid,
+        labels=mission.labels(building, REACH_M),
+        automaton=mission.automaton,
+        start=building.initial_cells[0],
+        reach_radius_m=REACH_M,
+    )
     result = plan(problem, "NO-LLM")
     assert result.path is not None
     return DemoPlan(building, grid, mission, result)

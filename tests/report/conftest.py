@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from tests.plans import DemoPlan, demo_plan as _demo_plan
+from tests.plans import DemoPlan
+from tests.plans import demo_plan as _demo_plan
 
 
 @pytest.fixture(scope="session")

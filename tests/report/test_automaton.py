@@ -32,7 +32,10 @@ def test_edges_cover_every_transition_of_the_shown_states() -> None:
 
 
 def test_wrap_guard_keeps_the_expression() -> None:
-    guard = "!enter(room_5)&!reach(object_21)&!enter(room_7)&!enter(room_11) | reach(object_21)&!enter(room_7) | true"
+    guard = (
+        "!enter(room_5)&!reach(object_21)&!enter(room_7)&!enter(room_11)"
+        " | reach(object_21)&!enter(room_7) | true"
+    )
     wrapped = wrap_guard(guard, width=30)
     lines = wrapped.split("\n")
     assert len(lines) >= 4 and all(len(line) <= 34 for line in lines)
@@ -50,7 +53,9 @@ def test_dot_with_names_and_line_breaks() -> None:
     assert "\\l" in long and all(line.startswith(("digraph", "  ", "}")) for line in long.splitlines())
 
 
-@pytest.mark.skipif(not graphviz_available(), reason="Graphviz `dot` is not installed (apt-get install graphviz)")
+@pytest.mark.skipif(
+    not graphviz_available(), reason="Graphviz `dot` is not installed (apt-get install graphviz)"
+)
 def test_graphviz_svg_and_dot_parse(tmp_path: Path) -> None:
     dfa = ltlf_to_dfa(MISSION)
     svg = automaton_svg(dfa, names=NAMES, engine="graphviz")

@@ -19,16 +19,33 @@ from sgplan.errors import OutputError
 from sgplan.report.html import report_html, write_html_report
 from tests.plans import REACH_M, DemoPlan
 
-EXPLANATION = "First the bathroom, keeping away from its sink; then a dining chair; then the bedroom upstairs."
-BROWSER_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-                 "--disable-component-update", "--disable-sync", "--no-first-run"]
+EXPLANATION = (
+    "First the bathroom, keeping away from its sink; then a dining chair; then the bedroom upstairs."
+)
+BROWSER_FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--no-first-run",
+]
 
 
 @pytest.fixture(scope="module")
 def report(demo_plan: DemoPlan, tmp_path_factory: pytest.TempPathFactory) -> Path:
     d = demo_plan
-    return write_html_report(tmp_path_factory.mktemp("report") / "plan.html", d.building, d.grid, d.result, d.mission,
-                             explanation=EXPLANATION, reach_radius_m=REACH_M, engine="matplotlib")
+    return write_html_report(
+        tmp_path_factory.mktemp("report") / "plan.html",
+        d.building,
+        d.grid,
+        d.result,
+        d.mission,
+        explanation=EXPLANATION,
+        reach_radius_m=REACH_M,
+        engine="matplotlib",
+    )
 
 
 def _data_uri_image(uri: str) -> np.ndarray:
@@ -39,14 +56,14 @@ def _data_uri_image(uri: str) -> np.ndarray:
 
 def test_report_is_self_contained_and_complete(report: Path, demo_plan: DemoPlan) -> None:
     page = report.read_text(encoding="utf-8")
-    # Nothing is fetched: no external scripts, styles, images or links (SVG namespaces are names, not fetches).
+    # Nothing is fetched: no external scripts, styles, images or links (SVG namespaces are names only).
     assert not re.search(r'(src|href)="(?!data:|#)', page)
-    assert "<link rel=\"stylesheet\"" not in page and "@import" not in page
+    assert '<link rel="stylesheet"' not in page and "@import" not in page
     assert len(re.findall(r'class="floor-tab"', page)) == demo_plan.building.num_floors == 2
     assert EXPLANATION in page and "never enter the living room" in page
     assert 'id="cost-chart"' in page and 'id="transitions"' in page and "<svg" in page
     # The path is drawn on both floors (it takes the stairs), start on floor 0, end on floor 1.
-    layers = re.findall(r'<div class="floor" data-floor="(\d)".*?</svg>', page, flags=re.S)
+    layers = re.findall(r'<div class="floor" data-floor="(\d)".*?</svg>', page, flags=re.DOTALL)
     assert layers == ["0", "1"]
     floor0, floor1 = page.split('<div class="floor" data-floor="1"')
     assert 'class="start"' in floor0 and 'class="end"' not in floor0.split('id="floors"')[1]
@@ -63,15 +80,23 @@ def test_id_rasters_round_trip(report: Path, demo_plan: DemoPlan) -> None:
         layer = page.split(f'<div class="floor" data-floor="{floor.index}"')[1]
         rooms_uri = re.search(r'class="ids rooms" hidden alt="" src="([^"]+)"', layer).group(1)  # type: ignore[union-attr]
         objects_uri = re.search(r'class="ids objects" hidden alt="" src="([^"]+)"', layer).group(1)  # type: ignore[union-attr]
-        for uri, expected in ((rooms_uri, np.maximum(floor.room_map, 0)), (objects_uri, np.maximum(floor.cat_map, 0))):
+        for uri, expected in (
+            (rooms_uri, np.maximum(floor.room_map, 0)),
+            (objects_uri, np.maximum(floor.cat_map, 0)),
+        ):
             rgba = _data_uri_image(uri).astype(np.int64)
             ids = rgba[..., 0] | rgba[..., 1] << 8 | rgba[..., 2] << 16
             assert (rgba[..., 3] == 255).all()
             np.testing.assert_array_equal(ids, expected)
     entities = json.loads(page.split('id="sgplan-entities">')[1].split("</script>")[0])
     teddy = demo_plan.building.objects_named("teddy bear")[0]
-    assert entities["objects"][str(teddy.id)] == {"name": "teddy bear", "key": teddy.key, "uuid": teddy.uuid,
-                                                  "floor": 1, "room": demo_plan.building.room(id=teddy.room_id).key}
+    assert entities["objects"][str(teddy.id)] == {
+        "name": "teddy bear",
+        "key": teddy.key,
+        "uuid": teddy.uuid,
+        "floor": 1,
+        "room": demo_plan.building.room(id=teddy.room_id).key,
+    }
 
 
 def test_report_without_path_and_write_errors(demo_plan: DemoPlan, tmp_path: Path) -> None:
@@ -91,11 +116,19 @@ def _browser() -> tuple[object, str]:
         from playwright.sync_api import sync_playwright
     except ImportError:
         pytest.skip("the Python package playwright is not installed (pip install -e '.[test]')")
-    candidates = [os.environ.get("SGPLAN_CHROMIUM"), "/usr/bin/chromium", shutil.which("chromium"),
-                  shutil.which("chromium-browser"), shutil.which("google-chrome")]
+    candidates = [
+        os.environ.get("SGPLAN_CHROMIUM"),
+        "/usr/bin/chromium",
+        shutil.which("chromium"),
+        shutil.which("chromium-browser"),
+        shutil.which("google-chrome"),
+    ]
     executable = next((c for c in candidates if c and Path(c).is_file()), None)
     if executable is None:
-        pytest.skip("no Chromium found (apt-get install chromium, or set SGPLAN_CHROMIUM); .ci/run installs it as root")
+        pytest.skip(
+            "no Chromium found (apt-get install chromium, or set SGPLAN_CHROMIUM); "
+            ".ci/run installs it when run as root"
+        )
     return sync_playwright, executable
 
 
@@ -114,11 +147,18 @@ def test_report_in_headless_chromium(report: Path, demo_plan: DemoPlan) -> None:
             pytest.skip(f"Chromium at {executable} did not start: {str(error).splitlines()[0]}")
         try:
             page = browser.new_page(viewport={"width": 1200, "height": 900})
-            page.on("console", lambda m: problems.append(f"console {m.type}: {m.text}") if m.type in ("error", "warning") else None)
+            page.on(
+                "console",
+                lambda m: (
+                    problems.append(f"console {m.type}: {m.text}") if m.type in ("error", "warning") else None
+                ),
+            )
             page.on("pageerror", lambda e: problems.append(f"page error: {e}"))
             page.on("requestfailed", lambda r: problems.append(f"request failed: {r.url}"))
             page.goto(report.as_uri())
-            page.wait_for_selector('#floors .floor[data-floor="1"][data-ready="true"]', state="attached", timeout=20_000)
+            page.wait_for_selector(
+                '#floors .floor[data-floor="1"][data-ready="true"]', state="attached", timeout=20_000
+            )
 
             tabs = page.locator(".floor-tab")
             assert tabs.count() == 2
@@ -127,7 +167,9 @@ def test_report_in_headless_chromium(report: Path, demo_plan: DemoPlan) -> None:
             assert not page.locator('.floor[data-floor="1"]').is_visible()
             assert page.locator('.floor[data-floor="0"] polyline.path').first.is_visible()
             assert page.locator('.floor[data-floor="0"] circle.start').is_visible()
-            assert page.locator("#cost-chart").is_visible() and page.locator(".automaton-svg svg").is_visible()
+            assert (
+                page.locator("#cost-chart").is_visible() and page.locator(".automaton-svg svg").is_visible()
+            )
 
             tabs.nth(1).click()
             assert page.locator('.floor[data-floor="1"]').is_visible()
@@ -140,7 +182,9 @@ def test_report_in_headless_chromium(report: Path, demo_plan: DemoPlan) -> None:
             box = stage.bounding_box()
             assert box is not None
             rows, cols = floor1.shape
-            page.mouse.move(box["x"] + (col + 0.5) / cols * box["width"], box["y"] + (row + 0.5) / rows * box["height"])
+            page.mouse.move(
+                box["x"] + (col + 0.5) / cols * box["width"], box["y"] + (row + 0.5) / rows * box["height"]
+            )
             tooltip = page.locator("#tooltip")
             assert tooltip.is_visible()
             text = tooltip.inner_text()

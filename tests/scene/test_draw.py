@@ -13,7 +13,15 @@ from PIL import Image
 
 from sgplan.errors import SceneError
 from sgplan.scene.demo import demo_building
-from sgplan.scene.draw import MissionView, arrow_marks, draw_building, draw_floor, floor_image, path_cells, room_colour
+from sgplan.scene.draw import (
+    MissionView,
+    arrow_marks,
+    draw_building,
+    draw_floor,
+    floor_image,
+    path_cells,
+    room_colour,
+)
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.labels import label_raster
 from sgplan.scene.model import CatCode
@@ -22,8 +30,13 @@ from tests.plans import REACH_M, TEXT, demo_plan
 
 def _view() -> MissionView:
     d = demo_plan()
-    return MissionView(text=TEXT, explanation="one line of explanation", cost_m=d.result.cost_m,
-                       propositions=d.mission.ordered_propositions, reach_radius_m=REACH_M)
+    return MissionView(
+        text=TEXT,
+        explanation="one line of explanation",
+        cost_m=d.result.cost_m,
+        propositions=d.mission.ordered_propositions,
+        reach_radius_m=REACH_M,
+    )
 
 
 def test_floor_image_colours() -> None:
@@ -59,8 +72,15 @@ def test_path_cells_accepts_rows_and_planner_arrays() -> None:
 
 def test_draw_building_with_the_planner_path_png_and_svg(tmp_path: Path) -> None:
     d = demo_plan()
-    written = draw_building(d.building, tmp_path / "out", grid=d.grid, path=d.result.path, mission=_view(),
-                            stem="plan", formats=("png", "svg"))
+    written = draw_building(
+        d.building,
+        tmp_path / "out",
+        grid=d.grid,
+        path=d.result.path,
+        mission=_view(),
+        stem="plan",
+        formats=("png", "svg"),
+    )
     assert [p.name for p in written] == ["plan_0.png", "plan_0.svg", "plan_1.png", "plan_1.svg"]
     for png in written[::2]:
         with Image.open(png) as image:
@@ -103,7 +123,9 @@ def test_labels_clear_markers_and_each_other(floor: int) -> None:
         assert x0 - 1 <= a0 and a1 <= x1 + 1 and y0 - 1 <= b0 and b1 <= y1 + 1, f"{text!r} leaves the map"
         for r, c in markers:
             mx, my = ax.transData.transform((c, r))
-            assert not (a0 - 4 < mx < a1 + 4 and b0 - 4 < my < b1 + 4), f"{text!r} covers the marker at {(r, c)}"
+            assert not (a0 - 4 < mx < a1 + 4 and b0 - 4 < my < b1 + 4), (
+                f"{text!r} covers the marker at {(r, c)}"
+            )
         for other, (o0, p0, o1, p1) in boxes[:k]:
             overlap = max(0, min(a1, o1) - max(a0, o0)) * max(0, min(b1, p1) - max(b0, p0))
             assert overlap < 1.0, f"{text!r} overlaps {other!r}"
@@ -128,7 +150,7 @@ def test_legend_title_ticks_and_scale_bar() -> None:
 
 
 def test_arrows_of_an_out_and_back_path_lie_on_both_sides() -> None:
-    out = [(10, c) for c in range(0, 41)]
+    out = [(10, c) for c in range(41)]
     xy = np.array([(c, r) for r, c in out + out[::-1]], dtype=float)  # east along row 10, then back west
     centres, vectors, index = arrow_marks(xy, np.ones(len(xy), bool), spacing=10, length=3, lane=1)
     east, west = vectors[:, 0] > 0, vectors[:, 0] < 0

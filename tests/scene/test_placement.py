@@ -1,4 +1,5 @@
-"""Greedy label placement: free spots first, never over a taken box when there is room, soft points avoided."""
+"""Greedy label placement: free spots first, never over a taken box when there is room, soft points
+avoided."""
 
 from __future__ import annotations
 
@@ -52,5 +53,9 @@ def test_soft_points_are_avoided_when_cheap() -> None:
     points = np.column_stack([np.linspace(60, 140, 40), np.full(40, 50.0)])  # a path through the anchor
     placer = LabelPlacer((0, 0, 200, 100), soft_points=points)
     box = placer.place((100, 50), (40, 10))
-    assert not ((points[:, 0] >= box[0]) & (points[:, 0] <= box[2]) & (points[:, 1] >= box[1])
-                & (points[:, 1] <= box[3])).any()
+    assert not (
+        (points[:, 0] >= box[0])
+        & (points[:, 0] <= box[2])
+        & (points[:, 1] >= box[1])
+        & (points[:, 1] <= box[3])
+    ).any()

@@ -9,7 +9,6 @@ import numpy as np
 from sgplan.logic.automaton import Automaton
 from sgplan.logic.labels import format_cover, label_cover
 
-
 GUARD_LINE_CHARS = 40
 """Guards longer than this are broken into lines: one disjunct per line, long conjunctions wrapped."""
 
@@ -21,7 +20,8 @@ def _escape(text: str) -> str:
 
 
 def wrap_guard(guard: str, width: int = GUARD_LINE_CHARS) -> str:
-    """The guard on several lines: each disjunct starts one (with ``|``), long ones are cut before an ``&``."""
+    """The guard on several lines: a line per disjunct (from the second on, led by ``|``), long ones cut
+    before an ``&``."""
     lines = []
     for k, term in enumerate(guard.split(" | ")):
         line = "| " if k else ""
@@ -45,7 +45,9 @@ def shown_states(a: Automaton, hide_sinks: bool = False) -> np.ndarray:
     return shown
 
 
-def edges(a: Automaton, hide_sinks: bool = False, names: Mapping[str, str] | None = None) -> list[tuple[int, int, str]]:
+def edges(
+    a: Automaton, hide_sinks: bool = False, names: Mapping[str, str] | None = None
+) -> list[tuple[int, int, str]]:
     """``(source, target, guard)`` for every pair of shown states joined by some label.
 
     The guard is an expression over the propositions (``&``, ``|``, ``!``, ``true``); ``names`` renames
@@ -63,16 +65,22 @@ def edges(a: Automaton, hide_sinks: bool = False, names: Mapping[str, str] | Non
     return out
 
 
-def to_dot(a: Automaton, hide_sinks: bool = False, name: str = "automaton",
-           names: Mapping[str, str] | None = None) -> str:
+def to_dot(
+    a: Automaton, hide_sinks: bool = False, name: str = "automaton", names: Mapping[str, str] | None = None
+) -> str:
     """DOT text: accepting states double circles, edges labelled with expressions over the propositions.
 
     With ``hide_sinks`` the states that cannot reach acceptance, and the edges into them, are left out
     (a missing edge then means "rejects"); ``names`` renames propositions in the edge labels.
     """
     shown = shown_states(a, hide_sinks)
-    lines = [f'digraph "{_escape(name)}" {{', "  rankdir=LR;", "  node [fontsize=12]; edge [fontsize=9];", '  init [shape=point, label=""];']
-    for q in np.flatnonzero(shown):
+    lines = [
+        f'digraph "{_escape(name)}" {{',
+        "  rankdir=LR;",
+        "  node [fontsize=12]; edge [fontsize=9];",
+        '  init [shape=point, label=""];',
+    ]
+    for q in np.flatnonzero(shown).tolist():
         shape = "doublecircle" if a.accepting[q] else "circle"
         lines.append(f'  {q} [shape={shape}, label="{q}"];')
     lines.append(f"  init -> {a.initial};")

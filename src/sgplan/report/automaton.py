@@ -13,7 +13,7 @@ import shutil
 import subprocess
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from matplotlib import rc_context
@@ -35,8 +35,9 @@ def graphviz_available() -> bool:
     return shutil.which("dot") is not None
 
 
-def automaton_svg(a: Automaton, *, names: Mapping[str, str] | None = None, hide_sinks: bool = True,
-                  engine: Engine = "auto") -> str:
+def automaton_svg(
+    a: Automaton, *, names: Mapping[str, str] | None = None, hide_sinks: bool = True, engine: Engine = "auto"
+) -> str:
     """The automaton as SVG text (an ``<svg>`` document without an XML prolog, ready to inline in HTML).
 
     Parameters
@@ -69,8 +70,14 @@ def _graphviz_svg(dot: str) -> str:
     if not graphviz_available():
         raise AutomatonError("Graphviz is not installed (no `dot` on the PATH); install the graphviz package")
     try:
-        done = subprocess.run(["dot", "-Tsvg"], input=dot, capture_output=True, text=True,
-                              timeout=GRAPHVIZ_TIMEOUT_S, check=False)
+        done = subprocess.run(
+            ["dot", "-Tsvg"],
+            input=dot,
+            capture_output=True,
+            text=True,
+            timeout=GRAPHVIZ_TIMEOUT_S,
+            check=False,
+        )
     except (OSError, subprocess.TimeoutExpired) as error:
         raise AutomatonError(f"Graphviz `dot` could not draw the automaton: {error}") from None
     if done.returncode != 0:
@@ -125,43 +132,75 @@ def _matplotlib_svg(a: Automaton, names: Mapping[str, str] | None, hide_sinks: b
     ax.set_ylim(dy * (tallest - 1) + 0.8, -0.8)
     ax.set_aspect("equal")
     ax.set_axis_off()
-    xy = {q: np.array([dx * c, dy * r]) for q, (c, r) in place.items()}
+    xy = {q: (dx * c, dy * r) for q, (c, r) in place.items()}
     radius = 0.28
-    for q, centre in xy.items():
-        ax.add_patch(Circle(centre, radius, fc="white", ec="black", lw=1.2, zorder=3))
+    for q, (x, y) in xy.items():
+        ax.add_patch(Circle((x, y), radius, fc="white", ec="black", lw=1.2, zorder=3))
         if a.accepting[q]:
-            ax.add_patch(Circle(centre, radius * 0.8, fc="none", ec="black", lw=1.0, zorder=3))
-        ax.text(*centre, str(q), ha="center", va="center", fontsize=10, zorder=4)
-    init = xy[a.initial]
-    ax.add_patch(FancyArrowPatch(init - (0.8, 0), init - (radius, 0), arrowstyle="-|>", mutation_scale=12))
+            ax.add_patch(Circle((x, y), radius * 0.8, fc="none", ec="black", lw=1.0, zorder=3))
+        ax.text(x, y, str(q), ha="center", va="center", fontsize=10, zorder=4)
+    x, y = xy[a.initial]
+    ax.add_patch(FancyArrowPatch((x - 0.8, y), (x - radius, y), arrowstyle="-|>", mutation_scale=12))
     pairs = {(q, r) for q, r, _ in edges(a, hide_sinks)}
     for q, r, guard in guards:
-        style = dict(fontsize=7, ha="center", va="center", multialignment="left", zorder=5,
-                     bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.85})
+        style: dict[str, Any] = {
+            "fontsize": 7,
+            "ha": "center",
+            "va": "center",
+            "multialignment": "left",
+            "zorder": 5,
+            "bbox": {"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.85},
+        }
         if q == r:  # a loop above the state
-            top = xy[q] - (0, radius)
-            ax.add_patch(FancyArrowPatch(top - (0.12, 0), top + (0.12, 0), connectionstyle="arc3,rad=-2.2",
-                                         arrowstyle="-|>", mutation_scale=10, lw=0.9, zorder=2))
-            ax.text(top[0], top[1] - 0.3, guard, **{**style, "va": "bottom"})  # type: ignore[arg-type]
+            x, y = xy[q][0], xy[q][1] - radius
+            ax.add_patch(
+                FancyArrowPatch(
+                    (x - 0.12, y),
+                    (x + 0.12, y),
+                    connectionstyle="arc3,rad=-2.2",
+                    arrowstyle="-|>",
+                    mutation_scale=10,
+                    lw=0.9,
+                    zorder=2,
+                )
+            )
+            ax.text(x, y - 0.3, guard, **{**style, "va": "bottom"})
             continue
         # Bend edges with a partner the other way, so the two are apart (rad > 0 bends to the right).
         rad = 0.25 if (r, q) in pairs else 0.12
         p0, p1 = xy[q], xy[r]
-        ax.add_patch(FancyArrowPatch(p0, p1, connectionstyle=f"arc3,rad={rad}", arrowstyle="-|>",
-                                     mutation_scale=11, lw=0.9, shrinkA=14, shrinkB=14, zorder=2))
-        d = p1 - p0
+        ax.add_patch(
+            FancyArrowPatch(
+                p0,
+                p1,
+                connectionstyle=f"arc3,rad={rad}",
+                arrowstyle="-|>",
+                mutation_scale=11,
+                lw=0.9,
+                shrinkA=14,
+                shrinkB=14,
+                zorder=2,
+            )
+        )
+        ddx, ddy = p1[0] - p0[0], p1[1] - p0[1]
         # The arc's midpoint: half way to arc3's control point (display y grows down here: flip the sign).
-        mid = (p0 + p1) / 2 + 0.5 * rad * np.array([-d[1], d[0]])
-        ax.text(*mid, guard, **style)  # type: ignore[arg-type]
+        mid_x, mid_y = (p0[0] + p1[0]) / 2 - 0.5 * rad * ddy, (p0[1] + p1[1]) / 2 + 0.5 * rad * ddx
+        ax.text(mid_x, mid_y, guard, **style)
     buffer = io.StringIO()
     with rc_context({"svg.fonttype": "none"}):  # text stays text: smaller, searchable, selectable
         fig.savefig(buffer, format="svg", bbox_inches="tight", pad_inches=0.1)  # guards may overhang the axes
     return buffer.getvalue()
 
 
-def write_automaton(a: Automaton, out_dir: str | Path, *, stem: str = "automaton",
-                    names: Mapping[str, str] | None = None, hide_sinks: bool = True,
-                    engine: Engine = "auto") -> list[Path]:
+def write_automaton(
+    a: Automaton,
+    out_dir: str | Path,
+    *,
+    stem: str = "automaton",
+    names: Mapping[str, str] | None = None,
+    hide_sinks: bool = True,
+    engine: Engine = "auto",
+) -> list[Path]:
     """Write ``<stem>.dot`` and ``<stem>.svg`` into ``out_dir``; returns both paths.
 
     See :func:`automaton_svg` for the options. Raises :class:`OutputError` if the files cannot be

@@ -90,12 +90,18 @@ def _floor_svg(building: Building, floor: int, cells: np.ndarray) -> str:
     f = building.floors[floor]
     rows, cols = f.shape
     unit = cols / 1000  # cells per CSS pixel: the map is shown about 1000 px wide
-    parts = [f'<svg class="overlay" viewBox="-0.5 -0.5 {cols} {rows}" preserveAspectRatio="none" '
-             f'xmlns="http://www.w3.org/2000/svg">']
+    parts = [
+        (
+            f'<svg class="overlay" viewBox="-0.5 -0.5 {cols} {rows}" preserveAspectRatio="none" '
+            'xmlns="http://www.w3.org/2000/svg">'
+        )
+    ]
     rooms = sorted(r.id for r in building.rooms() if r.floor == floor)
     for room_id, (r, c) in label_anchors(f.room_map, rooms, f.cat_map == CatCode.GROUND).items():
-        parts.append(f'<text class="room-label" x="{c}" y="{r}" font-size="{11 * unit:.2f}">'
-                     f'{html.escape(building.room(id=room_id).name)}</text>')
+        parts.append(
+            f'<text class="room-label" x="{c}" y="{r}" font-size="{11 * unit:.2f}">'
+            f"{html.escape(building.room(id=room_id).name)}</text>"
+        )
     if len(cells):
         n = len(cells)
         on = cells[:, 2] == floor
@@ -112,28 +118,39 @@ def _floor_svg(building: Building, floor: int, cells: np.ndarray) -> str:
             for run in runs:
                 pts = np.concatenate([xy[run], xy[run[-1] + 1][None]])
                 text = " ".join(f"{x:g},{y:g}" for x, y in pts)
-                parts.append(f'<polyline class="path" points="{text}" stroke="{_colour((b + 0.5) / steps)}"/>')
+                parts.append(
+                    f'<polyline class="path" points="{text}" stroke="{_colour((b + 0.5) / steps)}"/>'
+                )
         centres, vectors, index = arrow_marks(xy, on, _ARROW_SPACING * max(rows, cols), 8 * unit, 3 * unit)
         for (cx, cy), (vx, vy), i in zip(centres, vectors, index):
             angle = math.degrees(math.atan2(vy, vx))
             s = 6.5 * unit
-            parts.append(f'<polygon class="arrow" points="{s:g},0 {-s:g},{-0.7 * s:g} {-0.5 * s:g},0 {-s:g},{0.7 * s:g}" '
-                         f'fill="{_colour(i / max(n - 1, 1))}" '
-                         f'transform="translate({cx:.2f},{cy:.2f}) rotate({angle:.1f})"/>')
+            shape = f"{s:g},0 {-s:g},{-0.7 * s:g} {-0.5 * s:g},0 {-s:g},{0.7 * s:g}"
+            parts.append(
+                f'<polygon class="arrow" points="{shape}" fill="{_colour(i / max(n - 1, 1))}" '
+                f'transform="translate({cx:.2f},{cy:.2f}) rotate({angle:.1f})"/>'
+            )
         start, end = cells[0], cells[-1]
         if end[2] == floor:
             s = 7 * unit
-            parts.append(f'<rect class="end" x="{end[1] - s:.2f}" y="{end[0] - s:.2f}" width="{2 * s:.2f}" '
-                         f'height="{2 * s:.2f}"><title>end: row {end[0]}, column {end[1]}, floor {floor}</title></rect>')
+            parts.append(
+                f'<rect class="end" x="{end[1] - s:.2f}" y="{end[0] - s:.2f}" width="{2 * s:.2f}" '
+                f'height="{2 * s:.2f}"><title>end: row {end[0]}, column {end[1]}, floor {floor}</title>'
+                "</rect>"
+            )
         if start[2] == floor:
-            parts.append(f'<circle class="start" cx="{start[1]}" cy="{start[0]}" r="{6 * unit:.2f}">'
-                         f'<title>start: row {start[0]}, column {start[1]}, floor {floor}</title></circle>')
+            parts.append(
+                f'<circle class="start" cx="{start[1]}" cy="{start[0]}" r="{6 * unit:.2f}">'
+                f"<title>start: row {start[0]}, column {start[1]}, floor {floor}</title></circle>"
+            )
     for end_, word in ((f.up_stairs, "up"), (f.down_stairs, "down")):
         if end_ is not None:
             r, c = end_.portal
             target = floor + 1 if word == "up" else floor - 1
-            parts.append(f'<circle class="portal" cx="{c}" cy="{r}" r="{5 * unit:.2f}"><title>stairs {word} to floor '
-                         f'{target} (row {r}, column {c})</title></circle>')
+            parts.append(
+                f'<circle class="portal" cx="{c}" cy="{r}" r="{5 * unit:.2f}"><title>stairs {word} to floor '
+                f"{target} (row {r}, column {c})</title></circle>"
+            )
     parts.append("</svg>")
     return "".join(parts)
 
@@ -147,14 +164,18 @@ def _reach_image(labels: np.ndarray) -> str | None:
     return _png_data_uri(rgba)
 
 
-def _floors_html(building: Building, grid: OccupancyGrid | None, cells: np.ndarray, reach: np.ndarray | None) -> str:
+def _floors_html(
+    building: Building, grid: OccupancyGrid | None, cells: np.ndarray, reach: np.ndarray | None
+) -> str:
     tabs, layers = [], []
     for f in building.floors:
         k = f.index
         rows, cols = f.shape
         on_floor = int((cells[:, 2] == k).sum()) if len(cells) else 0
-        tabs.append(f'<button type="button" class="floor-tab" data-floor="{k}">floor {k} ({html.escape(f.name)})'
-                    f'{f" - {on_floor} path cells" if on_floor else ""}</button>')
+        tabs.append(
+            f'<button type="button" class="floor-tab" data-floor="{k}">floor {k} ({html.escape(f.name)})'
+            f"{f' - {on_floor} path cells' if on_floor else ''}</button>"
+        )
         image = _png_data_uri((floor_image(building, k, grid) * 255).round().astype(np.uint8))
         objects = np.where(f.cat_map > 0, f.cat_map, 0)
         reach_uri = _reach_image(reach[k]) if reach is not None else None
@@ -168,17 +189,27 @@ def _floors_html(building: Building, grid: OccupancyGrid | None, cells: np.ndarr
             f'<img class="ids objects" hidden alt="" src="{_id_image(objects)}">'
             "</div></div>"
         )
-    return ('<div id="floor-tabs" role="tablist">' + "".join(tabs) + "</div>"
-            '<label class="toggle"><input type="checkbox" id="show-reach" checked> reach regions of the mission</label>'
-            '<div id="floors">' + "".join(layers) + '</div><div id="tooltip" hidden></div>')
+    return (
+        '<div id="floor-tabs" role="tablist">' + "".join(tabs) + "</div>"
+        '<label class="toggle"><input type="checkbox" id="show-reach" checked> '
+        "reach regions of the mission</label>"
+        '<div id="floors">' + "".join(layers) + '</div><div id="tooltip" hidden></div>'
+    )
 
 
 def _entities_json(building: Building) -> str:
-    rooms = {str(r.id): {"name": r.name, "key": r.key, "uuid": r.uuid, "floor": r.floor} for r in building.rooms()}
+    rooms = {
+        str(r.id): {"name": r.name, "key": r.key, "uuid": r.uuid, "floor": r.floor} for r in building.rooms()
+    }
     objects = {}
     for o in building.objects():
-        objects[str(o.id)] = {"name": o.name, "key": o.key, "uuid": o.uuid, "floor": building.floor_of_object(o),
-                              "room": building.room(id=o.room_id).key if o.room_id else None}
+        objects[str(o.id)] = {
+            "name": o.name,
+            "key": o.key,
+            "uuid": o.uuid,
+            "floor": building.floor_of_object(o),
+            "room": building.room(id=o.room_id).key if o.room_id else None,
+        }
     # "</" would end the script element early.
     return json.dumps({"rooms": rooms, "objects": objects}).replace("</", "<\\/")
 
@@ -206,30 +237,47 @@ def _chart_svg(iterations: Sequence[Any]) -> str:
     for k in range(1, len(its)):
         steps += [f"{x(t[k]):.1f},{y(c[k - 1]):.1f}", f"{x(t[k]):.1f},{y(c[k]):.1f}"]
     steps.append(f"{x(t_max):.1f},{y(c[-1]):.1f}")
-    parts = [f'<svg id="cost-chart" viewBox="0 0 {w} {h}" width="{w}" height="{h}" xmlns="http://www.w3.org/2000/svg" '
-             'role="img" aria-label="cost against time">',
-             f'<line class="axis" x1="{left}" y1="{h - bottom}" x2="{w - right}" y2="{h - bottom}"/>',
-             f'<line class="axis" x1="{left}" y1="{top}" x2="{left}" y2="{h - bottom}"/>']
+    parts = [
+        (
+            f'<svg id="cost-chart" viewBox="0 0 {w} {h}" width="{w}" height="{h}" '
+            'xmlns="http://www.w3.org/2000/svg" role="img" aria-label="cost against time">'
+        ),
+        f'<line class="axis" x1="{left}" y1="{h - bottom}" x2="{w - right}" y2="{h - bottom}"/>',
+        f'<line class="axis" x1="{left}" y1="{top}" x2="{left}" y2="{h - bottom}"/>',
+    ]
     for v in np.linspace(c_lo, c_hi, 5):
         parts.append(f'<text class="tick" x="{left - 6}" y="{y(v) + 4:.1f}" text-anchor="end">{v:.2f}</text>')
     for v in np.linspace(0, t_max, 5):
-        parts.append(f'<text class="tick" x="{x(v):.1f}" y="{h - bottom + 16}" text-anchor="middle">{v:.3g}</text>')
-    parts.append(f'<text class="label" x="{(left + w) / 2}" y="{h - 6}" text-anchor="middle">search time (s)</text>')
-    parts.append(f'<text class="label" transform="translate(14,{(h - bottom + top) / 2}) rotate(-90)" '
-                 'text-anchor="middle">path cost (m)</text>')
+        parts.append(
+            f'<text class="tick" x="{x(v):.1f}" y="{h - bottom + 16}" text-anchor="middle">{v:.3g}</text>'
+        )
+    parts.append(
+        f'<text class="label" x="{(left + w) / 2}" y="{h - 6}" text-anchor="middle">search time (s)</text>'
+    )
+    parts.append(
+        f'<text class="label" transform="translate(14,{(h - bottom + top) / 2}) rotate(-90)" '
+        'text-anchor="middle">path cost (m)</text>'
+    )
     parts.append(f'<polyline class="series" points="{" ".join(steps)}"/>')
     for it in its:
-        parts.append(f'<circle class="point" cx="{x(it.time_s):.1f}" cy="{y(it.cost_m):.1f}" r="4">'
-                     f'<title>(w1, w2) = ({it.w1:g}, {it.w2:g}): cost {it.cost_m:.3f} m after {it.time_s:.4f} s, '
-                     f'bound x{it.bound:g}</title></circle>')
+        parts.append(
+            f'<circle class="point" cx="{x(it.time_s):.1f}" cy="{y(it.cost_m):.1f}" r="4">'
+            f"<title>(w1, w2) = ({it.w1:g}, {it.w2:g}): cost {it.cost_m:.3f} m after {it.time_s:.4f} s, "
+            f"bound x{it.bound:g}</title></circle>"
+        )
     parts.append("</svg>")
     return "".join(parts)
 
 
 def _table(head: Sequence[str], rows: Sequence[Sequence[Any]], table_id: str) -> str:
-    cells = "".join("<tr>" + "".join(f"<td>{html.escape(str(v))}</td>" for v in row) + "</tr>" for row in rows)
-    return (f'<table id="{table_id}"><thead><tr>' + "".join(f"<th>{html.escape(h)}</th>" for h in head)
-            + f"</tr></thead><tbody>{cells}</tbody></table>")
+    cells = "".join(
+        "<tr>" + "".join(f"<td>{html.escape(str(v))}</td>" for v in row) + "</tr>" for row in rows
+    )
+    return (
+        f'<table id="{table_id}"><thead><tr>'
+        + "".join(f"<th>{html.escape(h)}</th>" for h in head)
+        + f"</tr></thead><tbody>{cells}</tbody></table>"
+    )
 
 
 def _proposition_rows(building: Building, mission: Mission) -> list[tuple[str, str, str]]:
@@ -265,43 +313,70 @@ def report_html(
         mission_rows.append(("grounded", mission.grounded_text))
     if mission.formula is not None:
         mission_rows.append(("formula", str(mission.formula)))
-    summary = [("status", result.status), ("cost", cost), ("setup", result.setup),
-               ("path", f"{len(cells)} cells" if len(cells) else "none"),
-               ("start", f"row {cells[0][0]}, column {cells[0][1]}, floor {cells[0][2]}" if len(cells) else "-")]
+    summary = [
+        ("status", result.status),
+        ("cost", cost),
+        ("setup", result.setup),
+        ("path", f"{len(cells)} cells" if len(cells) else "none"),
+        ("start", f"row {cells[0][0]}, column {cells[0][1]}, floor {cells[0][2]}" if len(cells) else "-"),
+    ]
     events = getattr(result, "events", None) or []
     sections = [
         f"<header><h1>{html.escape(heading)}</h1></header>",
         '<section id="mission"><h2>Mission</h2><dl>'
-        + "".join(f"<dt>{html.escape(k)}</dt><dd>{html.escape(v)}</dd>" for k, v in mission_rows) + "</dl>"
+        + "".join(f"<dt>{html.escape(k)}</dt><dd>{html.escape(v)}</dd>" for k, v in mission_rows)
+        + "</dl>"
         + (f'<p id="explanation">{html.escape(explanation)}</p>' if explanation else "")
         + "<h3>Propositions</h3>"
         + _table(("name", "meaning", "in the scene"), _proposition_rows(building, mission), "propositions")
         + "</section>",
         '<section id="result"><h2>Result</h2><dl>'
-        + "".join(f"<dt>{k}</dt><dd>{html.escape(v)}</dd>" for k, v in summary) + "</dl></section>",
-        '<section id="map"><h2>Floors</h2><p class="hint">Hover the map for rooms and objects. The path runs from '
-        'blue (start, green circle) to red (end, red square); arrows show the direction; gold dots are stairs '
-        "portals.</p>" + _floors_html(building, grid, cells, reach) + "</section>",
+        + "".join(f"<dt>{k}</dt><dd>{html.escape(v)}</dd>" for k, v in summary)
+        + "</dl></section>",
+        '<section id="map"><h2>Floors</h2><p class="hint">Hover the map for rooms and objects. '
+        "The path runs from blue (start, green circle) to red (end, red square); arrows show the "
+        "direction; gold dots are stairs portals.</p>"
+        + _floors_html(building, grid, cells, reach)
+        + "</section>",
     ]
     if events:
-        sections.append('<section id="events"><h2>Events along the path</h2><ol>'
-                        + "".join(f"<li>{html.escape(e.describe())}</li>" for e in events) + "</ol></section>")
+        sections.append(
+            '<section id="events"><h2>Events along the path</h2><ol>'
+            + "".join(f"<li>{html.escape(e.describe())}</li>" for e in events)
+            + "</ol></section>"
+        )
     sections.append(
         '<section id="automaton"><h2>Automaton</h2><p class="hint">Double circles accept; a missing edge '
         "rejects (states that cannot accept are left out).</p>"
         f'<div class="automaton-svg">{automaton_svg(mission.automaton, names=names, engine=engine)}</div>'
-        + _table(("from", "to", "when"), edges(mission.automaton, True, names), "transitions") + "</section>")
-    iteration_rows = [(f"({it.w1:g}, {it.w2:g})", f"{it.cost_m:.3f}" if math.isfinite(it.cost_m) else "-",
-                       f"x{it.bound:g}", f"{it.time_s:.4f}") for it in result.iterations]
-    sections.append('<section id="iterations"><h2>Iterations (cost against time)</h2>' + _chart_svg(result.iterations)
-                    + _table(("(w1, w2)", "cost (m)", "bound", "time (s)"), iteration_rows, "iteration-table")
-                    + "</section>")
+        + _table(("from", "to", "when"), edges(mission.automaton, True, names), "transitions")
+        + "</section>"
+    )
+    iteration_rows = [
+        (
+            f"({it.w1:g}, {it.w2:g})",
+            f"{it.cost_m:.3f}" if math.isfinite(it.cost_m) else "-",
+            f"x{it.bound:g}",
+            f"{it.time_s:.4f}",
+        )
+        for it in result.iterations
+    ]
+    sections.append(
+        '<section id="iterations"><h2>Iterations (cost against time)</h2>'
+        + _chart_svg(result.iterations)
+        + _table(("(w1, w2)", "cost (m)", "bound", "time (s)"), iteration_rows, "iteration-table")
+        + "</section>"
+    )
     page = resources.files("sgplan.report").joinpath("template.html").read_text(encoding="utf-8")
     css = resources.files("sgplan.report").joinpath("report.css").read_text(encoding="utf-8")
     script = resources.files("sgplan.report").joinpath("report.js").read_text(encoding="utf-8")
-    return (page.replace("<!--TITLE-->", html.escape(heading)).replace("/*CSS*/", css)
-            .replace("<!--BODY-->", "\n".join(sections)).replace("<!--DATA-->", _entities_json(building))
-            .replace("/*JS*/", script))
+    return (
+        page.replace("<!--TITLE-->", html.escape(heading))
+        .replace("/*CSS*/", css)
+        .replace("<!--BODY-->", "\n".join(sections))
+        .replace("<!--DATA-->", _entities_json(building))
+        .replace("/*JS*/", script)
+    )
 
 
 def write_html_report(
@@ -341,8 +416,16 @@ def write_html_report(
     OutputError
         if the file cannot be written.
     """
-    text = report_html(building, grid, result, mission, explanation=explanation, reach_radius_m=reach_radius_m,
-                       title=title, engine=engine)
+    text = report_html(
+        building,
+        grid,
+        result,
+        mission,
+        explanation=explanation,
+        reach_radius_m=reach_radius_m,
+        title=title,
+        engine=engine,
+    )
     target = Path(path)
     try:
         target.parent.mkdir(parents=True, exist_ok=True)

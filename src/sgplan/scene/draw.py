@@ -211,8 +211,9 @@ def _layout(rows: int, cols: int, title_lines: int, legend_rows: int) -> tuple[F
     return fig, ax, font
 
 
-def _title_lines(building: Building, floor: int, mission: MissionView | None, width_chars: int,
-                 title: str | None) -> list[tuple[str, dict[str, Any]]]:
+def _title_lines(
+    building: Building, floor: int, mission: MissionView | None, width_chars: int, title: str | None
+) -> list[tuple[str, dict[str, Any]]]:
     f = building.floors[floor]
     head = title or f"{building.name} - floor {floor} ({f.name})"
     if mission is not None and mission.cost_m is not None and np.isfinite(mission.cost_m):
@@ -227,7 +228,9 @@ def _title_lines(building: Building, floor: int, mission: MissionView | None, wi
     return lines
 
 
-def _legend_handles(has_grid: bool, has_portal: bool, has_path: bool, mission: MissionView | None) -> list[Any]:
+def _legend_handles(
+    has_grid: bool, has_portal: bool, has_path: bool, mission: MissionView | None
+) -> list[Any]:
     handles: list[Any] = [
         Patch(fc=_WALL, label="wall"),
         Patch(fc=_OUTSIDE, ec="0.6", label="outside"),
@@ -237,14 +240,16 @@ def _legend_handles(has_grid: bool, has_portal: bool, has_path: bool, mission: M
     if has_grid:
         handles.append(Patch(fc=0.75 * _UNROOMED_GROUND + 0.25 * _WALL, label="not traversable"))
     if has_portal:
-        handles.append(Line2D([], [], ls="none", marker="*", ms=11, color=_PORTAL, mec="black",
-                              label="stairs portal"))
+        handles.append(
+            Line2D([], [], ls="none", marker="*", ms=11, color=_PORTAL, mec="black", label="stairs portal")
+        )
     if has_path:
         handles += [
             Line2D([], [], ls="none", marker="o", ms=9, color=_START, mec="black", label="start"),
             Line2D([], [], ls="none", marker="s", ms=9, color=_END, mec="black", label="end"),
-            Line2D([], [], color=PATH_COLOURS(0.5), lw=2.2, marker=">", ms=5,
-                   label="path (blue early, red late)"),
+            Line2D(
+                [], [], color=PATH_COLOURS(0.5), lw=2.2, marker=">", ms=5, label="path (blue early, red late)"
+            ),
         ]
     if mission is not None and any(p.kind == "reach" for p in mission.propositions):
         handles.append(Patch(fc=(*_REACH, 0.35), ec=_REACH, label="reach region (mission)"))
@@ -292,17 +297,19 @@ def _draw_path(ax: Axes, cells: np.ndarray, floor: int, px_per_cell: float) -> n
     on_floor = cells[:, 2] == floor
     same = on_floor[:-1] & on_floor[1:]
     xy = cells[:, [1, 0]].astype(float)  # (x = column, y = row)
-    segments = np.stack([xy[:-1][same], xy[1:][same]], axis=1)
+    segments = list(np.stack([xy[:-1][same], xy[1:][same]], axis=1))
     colours = PATH_COLOURS(progress[:-1][same])
-    ax.add_collection(LineCollection(segments, colors="white", linewidths=4.2, alpha=0.85, zorder=3.9,
-                                     capstyle="round"))
+    ax.add_collection(
+        LineCollection(segments, colors="white", linewidths=4.2, alpha=0.85, zorder=3.9, capstyle="round")
+    )
     ax.add_collection(LineCollection(segments, colors=colours, linewidths=2.2, zorder=4, capstyle="round"))
     _draw_arrows(ax, xy, progress, on_floor, px_per_cell)
     return xy[on_floor]
 
 
-def arrow_marks(xy: np.ndarray, on_floor: np.ndarray, spacing: float, length: float,
-                lane: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def arrow_marks(
+    xy: np.ndarray, on_floor: np.ndarray, spacing: float, length: float, lane: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Where direction arrows go along the runs of a path that lie on one floor.
 
     Parameters
@@ -330,8 +337,12 @@ def arrow_marks(xy: np.ndarray, on_floor: np.ndarray, spacing: float, length: fl
         if arc[-1] < 2 * length:
             continue
         marks = np.arange(spacing / 2, arc[-1] - length / 2, spacing)
-        tail = np.column_stack([np.interp(marks - length / 2, arc, p[:, 0]), np.interp(marks - length / 2, arc, p[:, 1])])
-        head = np.column_stack([np.interp(marks + length / 2, arc, p[:, 0]), np.interp(marks + length / 2, arc, p[:, 1])])
+        tail = np.column_stack(
+            [np.interp(marks - length / 2, arc, p[:, 0]), np.interp(marks - length / 2, arc, p[:, 1])]
+        )
+        head = np.column_stack(
+            [np.interp(marks + length / 2, arc, p[:, 0]), np.interp(marks + length / 2, arc, p[:, 1])]
+        )
         d = head - tail
         norm = np.hypot(d[:, 0], d[:, 1])
         keep = norm > 0
@@ -345,17 +356,39 @@ def arrow_marks(xy: np.ndarray, on_floor: np.ndarray, spacing: float, length: fl
     return np.concatenate(points), np.concatenate(vectors), np.concatenate(where)
 
 
-def _draw_arrows(ax: Axes, xy: np.ndarray, progress: np.ndarray, on_floor: np.ndarray,
-                 px_per_cell: float) -> None:
+def _draw_arrows(
+    ax: Axes, xy: np.ndarray, progress: np.ndarray, on_floor: np.ndarray, px_per_cell: float
+) -> None:
     """Arrows along each run of the path on this floor, every ~70 px, offset to the right of travel."""
-    pts, vec, index = arrow_marks(xy, on_floor, _ARROW_SPACING_PX / px_per_cell,
-                                  _ARROW_LENGTH_PX / px_per_cell, _LANE_OFFSET_PX / px_per_cell)
+    pts, vec, index = arrow_marks(
+        xy,
+        on_floor,
+        _ARROW_SPACING_PX / px_per_cell,
+        _ARROW_LENGTH_PX / px_per_cell,
+        _LANE_OFFSET_PX / px_per_cell,
+    )
     if not len(pts):
         return
     shades = np.interp(index, np.arange(len(progress)), progress)
-    ax.quiver(pts[:, 0], pts[:, 1], vec[:, 0], vec[:, 1], color=PATH_COLOURS(shades),
-              angles="xy", scale_units="xy", scale=1, pivot="mid", units="dots", width=2.6,
-              headwidth=3.5, headlength=4.0, headaxislength=3.5, zorder=4.5, edgecolor="white", linewidth=0.4)
+    ax.quiver(
+        pts[:, 0],
+        pts[:, 1],
+        vec[:, 0],
+        vec[:, 1],
+        color=PATH_COLOURS(shades),
+        angles="xy",
+        scale_units="xy",
+        scale=1,
+        pivot="mid",
+        units="dots",
+        width=2.6,
+        headwidth=3.5,
+        headlength=4.0,
+        headaxislength=3.5,
+        zorder=4.5,
+        edgecolor="white",
+        linewidth=0.4,
+    )
 
 
 def _draw_ticks(ax: Axes, rows: int, cols: int, font: float) -> None:
@@ -377,10 +410,24 @@ def _draw_scale_bar(ax: Axes, building: Building, cols: int, map_h_in: float, fo
     transform = blended_transform_factory(ax.transData, ax.transAxes)
     y = 1.0 + 0.1 / map_h_in
     x1 = cols - 0.5
-    ax.plot([x1 - cells, x1], [y, y], color="black", lw=2.5, transform=transform, clip_on=False,
-            solid_capstyle="butt")
-    ax.text(x1 - cells / 2, y + 0.04 / map_h_in, f"{metres:g} m ({cells:.0f} cells)", ha="center", va="bottom",
-            fontsize=font, transform=transform)
+    ax.plot(
+        [x1 - cells, x1],
+        [y, y],
+        color="black",
+        lw=2.5,
+        transform=transform,
+        clip_on=False,
+        solid_capstyle="butt",
+    )
+    ax.text(
+        x1 - cells / 2,
+        y + 0.04 / map_h_in,
+        f"{metres:g} m ({cells:.0f} cells)",
+        ha="center",
+        va="bottom",
+        fontsize=font,
+        transform=transform,
+    )
 
 
 def draw_floor(
@@ -418,7 +465,9 @@ def draw_floor(
     cells = path_cells(path) if path is not None else np.zeros((0, 3), dtype=np.int64)
     f = building.floors[floor]
     rows, cols = f.shape
-    portals = [(end.portal, word) for end, word in ((f.up_stairs, "up"), (f.down_stairs, "down")) if end is not None]
+    portals = [
+        (end.portal, word) for end, word in ((f.up_stairs, "up"), (f.down_stairs, "down")) if end is not None
+    ]
     handles = _legend_handles(grid is not None, bool(portals), len(cells) > 0, mission)
 
     scale = max(min(15.0 / cols, 13.0 / rows), 6.5 / max(rows, cols))
@@ -437,8 +486,12 @@ def draw_floor(
     path_xy = _draw_path(ax, cells, floor, px_per_cell) if len(cells) else np.zeros((0, 2))
 
     renderer = fig.canvas.get_renderer()  # type: ignore[attr-defined]
-    placer = LabelPlacer(tuple(ax.bbox.extents), gap=3.0, soft_points=ax.transData.transform(path_xy)
-                         if len(path_xy) else np.zeros((0, 2)))
+    x0, y0, x1, y1 = (float(v) for v in ax.bbox.extents)
+    placer = LabelPlacer(
+        (x0, y0, x1, y1),
+        gap=3.0,
+        soft_points=ax.transData.transform(path_xy) if len(path_xy) else np.zeros((0, 2)),
+    )
     for (r, c), _ in portals:
         ax.plot([c], [r], marker="*", ms=15, color=_PORTAL, mec="black", mew=0.8, zorder=6)
         placer.block(_marker_box(ax, (r, c), 9.0))
@@ -452,9 +505,18 @@ def draw_floor(
             placer.block(_marker_box(ax, (start[0], start[1]), 7.0))
     _place_labels(ax, renderer, placer, _floor_labels(building, floor, portals, mission_objects, font))
 
-    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.45 / ax.get_position().height /
-              fig.get_figheight()), ncol=legend_cols, fontsize=font, frameon=True, framealpha=0.9,
-              borderaxespad=0.0, handlelength=1.6, columnspacing=1.0)
+    ax.legend(
+        handles=handles,
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.45 / ax.get_position().height / fig.get_figheight()),
+        ncol=legend_cols,
+        fontsize=font,
+        frameon=True,
+        framealpha=0.9,
+        borderaxespad=0.0,
+        handlelength=1.6,
+        columnspacing=1.0,
+    )
     top = 1.0 - 0.12 / fig.get_figheight()
     line_h = (font + 4) * 1.45 / 72 / fig.get_figheight()
     for k, (text, style) in enumerate(lines):
@@ -464,38 +526,87 @@ def draw_floor(
     return fig
 
 
-def _marker_box(ax: Axes, cell: tuple[int, int] | np.ndarray, half_px: float) -> tuple[float, float, float, float]:
+def _marker_box(
+    ax: Axes, cell: tuple[int, int] | np.ndarray, half_px: float
+) -> tuple[float, float, float, float]:
     x, y = ax.transData.transform((float(cell[1]), float(cell[0])))
     return (x - half_px, y - half_px, x + half_px, y + half_px)
 
 
-def _floor_labels(building: Building, floor: int, portals: list[tuple[tuple[int, int], str]],
-                  mission_objects: set[int], font: float) -> list[_Label]:
+def _floor_labels(
+    building: Building,
+    floor: int,
+    portals: list[tuple[tuple[int, int], str]],
+    mission_objects: set[int],
+    font: float,
+) -> list[_Label]:
     """Every label of the floor, in placement priority: stairs, rooms, mission objects, other objects."""
     f = building.floors[floor]
     labels = []
     for (r, c), word in portals:
         target = floor + 1 if word == "up" else floor - 1
-        labels.append(_Label((r, c), f"stairs {word}\nto floor {target}", dict(
-            fontsize=font, color="#3d1466", fontweight="bold", zorder=8,
-            bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "#3d1466", "lw": 0.6, "alpha": 0.9})))
+        labels.append(
+            _Label(
+                (r, c),
+                f"stairs {word}\nto floor {target}",
+                {
+                    "fontsize": font,
+                    "color": "#3d1466",
+                    "fontweight": "bold",
+                    "zorder": 8,
+                    "bbox": {
+                        "boxstyle": "round,pad=0.2",
+                        "fc": "white",
+                        "ec": "#3d1466",
+                        "lw": 0.6,
+                        "alpha": 0.9,
+                    },
+                },
+            )
+        )
     known_rooms = {r.id for r in f.rooms.values()} | {r.id for r in building.rooms() if r.floor == floor}
-    for room_id, anchor in label_anchors(f.room_map, sorted(known_rooms), f.cat_map == CatCode.GROUND).items():
+    for room_id, anchor in label_anchors(
+        f.room_map, sorted(known_rooms), f.cat_map == CatCode.GROUND
+    ).items():
         room = building.room(id=room_id)
-        labels.append(_Label(anchor, f"{room.name}\n{room.key}", dict(
-            fontsize=font + 0.5, fontweight="bold", color="#1a1a40", zorder=7,
-            bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.75})))
+        labels.append(
+            _Label(
+                anchor,
+                f"{room.name}\n{room.key}",
+                {
+                    "fontsize": font + 0.5,
+                    "fontweight": "bold",
+                    "color": "#1a1a40",
+                    "zorder": 7,
+                    "bbox": {"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.75},
+                },
+            )
+        )
     known_objects = {o.id for o in building.objects()}
     object_ids = [i for i in np.unique(f.cat_map[f.cat_map > 0]).tolist() if i in known_objects]
     object_ids.sort(key=lambda i: i not in mission_objects)
     for object_id, anchor in label_anchors(f.cat_map, object_ids).items():
         obj = building.object(id=object_id)
         ours = object_id in mission_objects
-        labels.append(_Label(anchor, f"{obj.name}\n{obj.key}", dict(
-            fontsize=font - 1, color="#003b3b" if ours else "#4a1d00", fontweight="bold" if ours else "normal",
-            zorder=7.5 if ours else 7,
-            bbox={"boxstyle": "round,pad=0.15", "fc": "#e0fbfb" if ours else "#ffe8cc",
-                  "ec": _MISSION_ROOM if ours else "#cc6600", "lw": 1.0 if ours else 0.5, "alpha": 0.88})))
+        labels.append(
+            _Label(
+                anchor,
+                f"{obj.name}\n{obj.key}",
+                {
+                    "fontsize": font - 1,
+                    "color": "#003b3b" if ours else "#4a1d00",
+                    "fontweight": "bold" if ours else "normal",
+                    "zorder": 7.5 if ours else 7,
+                    "bbox": {
+                        "boxstyle": "round,pad=0.15",
+                        "fc": "#e0fbfb" if ours else "#ffe8cc",
+                        "ec": _MISSION_ROOM if ours else "#cc6600",
+                        "lw": 1.0 if ours else 0.5,
+                        "alpha": 0.88,
+                    },
+                },
+            )
+        )
     return labels
 
 
@@ -509,13 +620,20 @@ def _place_labels(ax: Axes, renderer: Any, placer: LabelPlacer, labels: list[_La
         text = ax.text(c, r, label.text, ha="center", va="center", **label.style)
         extent = text.get_window_extent(renderer)
         pad = float(label.style["bbox"]["boxstyle"].split("pad=")[1]) * label.style["fontsize"] * dpi_scale
-        x0, y0, x1, y1 = placer.place((float(anchor[0]), float(anchor[1])),
-                                      (extent.width + 2 * pad + 2, extent.height + 2 * pad + 2))
+        x0, y0, x1, y1 = placer.place(
+            (float(anchor[0]), float(anchor[1])), (extent.width + 2 * pad + 2, extent.height + 2 * pad + 2)
+        )
         centre = to_data.transform(((x0 + x1) / 2, (y0 + y1) / 2))
         text.set_position((float(centre[0]), float(centre[1])))
         if not (x0 <= anchor[0] <= x1 and y0 <= anchor[1] <= y1):
-            ax.plot([c, centre[0]], [r, centre[1]], color=label.style["color"], lw=0.7, alpha=0.8,
-                    zorder=label.style["zorder"] - 0.05)
+            ax.plot(
+                [c, centre[0]],
+                [r, centre[1]],
+                color=label.style["color"],
+                lw=0.7,
+                alpha=0.8,
+                zorder=label.style["zorder"] - 0.05,
+            )
             ax.plot([c], [r], "o", ms=2.5, color=label.style["color"], zorder=label.style["zorder"] - 0.05)
 
 
@@ -543,7 +661,9 @@ def draw_building(
     """
     unknown = [fmt for fmt in formats if fmt not in FORMATS]
     if unknown or not formats:
-        raise SceneError(f"cannot draw format(s) {', '.join(unknown) or '(none)'}: use {' or '.join(FORMATS)}")
+        raise SceneError(
+            f"cannot draw format(s) {', '.join(unknown) or '(none)'}: use {' or '.join(FORMATS)}"
+        )
     cells = path_cells(path) if path is not None else None
     out = Path(out_dir)
     try:

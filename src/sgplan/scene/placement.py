@@ -88,11 +88,13 @@ class LabelPlacer:
         score = _OFFSETS[:, 2].copy()
         if len(self.soft_points):
             px, py = self.soft_points[:, 0], self.soft_points[:, 1]
-            covered = ((px >= x0[:, None]) & (px <= x1[:, None]) & (py >= y0[:, None]) & (py <= y1[:, None]))
+            covered = (px >= x0[:, None]) & (px <= x1[:, None]) & (py >= y0[:, None]) & (py <= y1[:, None])
             score += _SOFT_WEIGHT * np.minimum(covered.sum(axis=1), _SOFT_CAP)
         free = bad <= 1e-9
         # A free spot if there is one; otherwise the least-overlapping, nearest one.
-        best = int(np.argmin(np.where(free, score, np.inf))) if free.any() else int(np.lexsort((score, bad))[0])
+        best = (
+            int(np.argmin(np.where(free, score, np.inf))) if free.any() else int(np.lexsort((score, bad))[0])
+        )
         box = (float(x0[best]), float(y0[best]), float(x1[best]), float(y1[best]))
         if keep:
             self._boxes.append(box)
