@@ -77,11 +77,19 @@ def configure_logging(args: argparse.Namespace) -> None:
     """Progress and status lines go to stderr through the ``sgplan`` logger, so stdout stays clean for
     results: INFO and above by default, WARNING and above with ``--quiet``, everything with ``--verbose``."""
     level = logging.WARNING if args.quiet else logging.DEBUG if args.verbose else logging.INFO
-    handler = logging.StreamHandler(sys.stderr)
+    handler = _StderrHandler()
     handler.setFormatter(logging.Formatter("%(message)s"))
     log.handlers[:] = [handler]
     log.setLevel(level)
     log.propagate = False
+
+
+class _StderrHandler(logging.StreamHandler):  # type: ignore[type-arg]
+    """Writes to whatever ``sys.stderr`` is when a line is logged (tests and callers may swap it)."""
+
+    def emit(self, record: logging.LogRecord) -> None:
+        self.stream = sys.stderr
+        super().emit(record)
 
 
 def say(message: str) -> None:
