@@ -86,3 +86,17 @@ def test_engine_errors(monkeypatch: pytest.MonkeyPatch) -> None:
     with pytest.raises(AutomatonError, match="Graphviz is not installed"):
         automaton_svg(dfa, engine="graphviz")
     assert automaton_svg(dfa, engine="auto").startswith("<svg")  # falls back to matplotlib
+
+
+def test_large_automata_get_numbered_edges_or_a_note() -> None:
+    big = ltlf_to_dfa(parse_infix("F p1 & F p2 & F p3 & F p4 & G !p5"))  # 16 live states, many edges
+    listed = edges(big, hide_sinks=True)
+    assert len(listed) > 12
+    svg = automaton_svg(big, engine="matplotlib")  # numbered by default above 12 edges
+    texts = re.findall(r"<text[^>]*>([^<]*)</text>", svg)
+    assert f"[{len(listed)}]" in texts and not any("&" in t for t in texts)
+    dot = to_dot(big, hide_sinks=True, numbered=True)
+    assert dot.count('label="[') == len(listed) and dot.count("tooltip=") == len(listed)
+    huge = ltlf_to_dfa(parse_infix("F p1 & F p2 & F p3 & F p4 & F p5"))  # 32 states
+    note = automaton_svg(huge, engine="matplotlib")
+    assert note.startswith("<svg") and "too large to draw without Graphviz" in note

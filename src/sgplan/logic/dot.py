@@ -66,12 +66,18 @@ def edges(
 
 
 def to_dot(
-    a: Automaton, hide_sinks: bool = False, name: str = "automaton", names: Mapping[str, str] | None = None
+    a: Automaton,
+    hide_sinks: bool = False,
+    name: str = "automaton",
+    names: Mapping[str, str] | None = None,
+    numbered: bool = False,
 ) -> str:
     """DOT text: accepting states double circles, edges labelled with expressions over the propositions.
 
     With ``hide_sinks`` the states that cannot reach acceptance, and the edges into them, are left out
-    (a missing edge then means "rejects"); ``names`` renames propositions in the edge labels.
+    (a missing edge then means "rejects"); ``names`` renames propositions in the edge labels. With
+    ``numbered`` an edge is labelled ``[k]``, its position in :func:`edges` from 1, and its guard becomes
+    its tooltip (large automata stay readable next to a table of the guards).
     """
     shown = shown_states(a, hide_sinks)
     lines = [
@@ -84,7 +90,10 @@ def to_dot(
         shape = "doublecircle" if a.accepting[q] else "circle"
         lines.append(f'  {q} [shape={shape}, label="{q}"];')
     lines.append(f"  init -> {a.initial};")
-    for q, r, guard in edges(a, hide_sinks, names):
-        lines.append(f'  {q} -> {r} [label="{_escape(wrap_guard(guard))}"];')
+    for k, (q, r, guard) in enumerate(edges(a, hide_sinks, names), start=1):
+        if numbered:
+            lines.append(f'  {q} -> {r} [label="[{k}]", tooltip="{_escape(guard)}"];')
+        else:
+            lines.append(f'  {q} -> {r} [label="{_escape(wrap_guard(guard))}"];')
     lines.append("}")
     return "\n".join(lines) + "\n"

@@ -8,6 +8,7 @@ always written. Both use :func:`sgplan.logic.dot.edges`, so they show the same e
 
 from __future__ import annotations
 
+import html
 import io
 import shutil
 import subprocess
@@ -26,6 +27,10 @@ from sgplan.logic.automaton import Automaton
 from sgplan.logic.dot import edges, shown_states, to_dot, wrap_guard
 
 Engine = Literal["auto", "graphviz", "matplotlib"]
+NUMBERED_ABOVE_EDGES = 12
+"""Automata with more edges are drawn with numbered edges (guards in a table / tooltips)."""
+MATPLOTLIB_MAX_STATES = 16
+"""Above this many shown states the matplotlib layout is unreadable: a note replaces the picture."""
 GRAPHVIZ_TIMEOUT_S = 30.0
 """Longest ``dot`` may run; automata that need longer to lay out are drawn by matplotlib instead."""
 
@@ -36,7 +41,12 @@ def graphviz_available() -> bool:
 
 
 def automaton_svg(
-    a: Automaton, *, names: Mapping[str, str] | None = None, hide_sinks: bool = True, engine: Engine = "auto"
+    a: Automaton,
+    *,
+    names: Mapping[str, str] | None = None,
+    hide_sinks: bool = True,
+    engine: Engine = "auto",
+    numbered: bool | None = None,
 ) -> str:
     """The automaton as SVG text (an ``<svg>`` document without an XML prolog, ready to inline in HTML).
 
@@ -49,6 +59,9 @@ def automaton_svg(
     engine:
         ``"graphviz"`` (needs ``dot``), ``"matplotlib"``, or ``"auto"``: Graphviz when available and
         working, else matplotlib.
+    numbered:
+        label edges ``[k]`` (their position in :func:`sgplan.logic.dot.edges`, from 1) instead of their
+        guards; ``None`` does so above :data:`NUMBERED_ABOVE_EDGES` edges.
 
     Raises
     ------
@@ -57,13 +70,15 @@ def automaton_svg(
     """
     if engine not in ("auto", "graphviz", "matplotlib"):
         raise AutomatonError(f"unknown automaton drawing engine {engine!r}: use auto, graphviz or matplotlib")
+    if numbered is None:
+        numbered = len(edges(a, hide_sinks)) > NUMBERED_ABOVE_EDGES
     if engine == "graphviz" or (engine == "auto" and graphviz_available()):
         try:
-            return _strip_prolog(_graphviz_svg(to_dot(a, hide_sinks, names=names)))
+            return _strip_prolog(_graphviz_svg(to_dot(a, hide_sinks, names=names, numbered=numbered)))
         except AutomatonError:
             if engine == "graphviz":
                 raise
-    return _strip_prolog(_matplotlib_svg(a, names, hide_sinks))
+    return _strip_prolog(_matplotlib_svg(a, names, hide_sinks, numbered))
 
 
 def _graphviz_svg(dot: str) -> str:
@@ -115,12 +130,24 @@ def _layers(a: Automaton, shown: np.ndarray) -> dict[int, tuple[int, int]]:
     return {q: (c, r - (rows[c] - 1) / 2 + (tallest - 1) / 2) for q, (c, r) in place.items()}  # type: ignore[misc]
 
 
-def _matplotlib_svg(a: Automaton, names: Mapping[str, str] | None, hide_sinks: bool) -> str:
+def _matplotlib_svg(a: Automaton, names: Mapping[str, str] | None, hide_sinks: bool, numbered: bool) -> str:
     shown = shown_states(a, hide_sinks)
+    if shown.sum() > MATPLOTLIB_MAX_STATES:
+        note = (
+            f"{int(shown.sum())} states, {len(edges(a, hide_sinks))} edges: too large to draw without Graphviz "
+            "(install the graphviz package); the DOT file and the transition table list every edge."
+        )
+        return (
+            '<svg xmlns="http://www.w3.org/2000/svg" width="900" height="40" viewBox="0 0 900 40">'
+            f'<text x="4" y="24" font-size="13">{html.escape(note)}</text></svg>'
+        )
     place = _layers(a, shown)
     columns = max(c for c, _ in place.values()) + 1
     tallest = max(r for _, r in place.values()) + 1
-    guards = [(q, r, wrap_guard(g)) for q, r, g in edges(a, hide_sinks, names)]
+    guards = [
+        (q, r, f"[{k}]" if numbered else wrap_guard(g))
+        for k, (q, r, g) in enumerate(edges(a, hide_sinks, names), start=1)
+    ]
     # Room for the widest and tallest guard between two columns / rows (7 pt text: ~0.06 in a char).
     widest = max((len(line) for *_, g in guards for line in g.split("\n")), default=4)
     tallest_guard = max((g.count("\n") + 1 for *_, g in guards), default=1)
@@ -203,7 +230,8 @@ def write_automaton(
 ) -> list[Path]:
     """Write ``<stem>.dot`` and ``<stem>.svg`` into ``out_dir``; returns both paths.
 
-    See :func:`automaton_svg` for the options. Raises :class:`OutputError` if the files cannot be
+    See :func:`automaton_svg` for the options. The DOT file always has the guards in full; in a large
+    automaton's SVG the edges are numbered (with Graphviz, hovering an edge shows its guard). Raises :class:`OutputError` if the files cannot be
     written, :class:`AutomatonError` as :func:`automaton_svg` does.
     """
     out = Path(out_dir)

@@ -347,9 +347,14 @@ def report_html(
         )
     sections.append(
         '<section id="automaton"><h2>Automaton</h2><p class="hint">Double circles accept; a missing edge '
-        "rejects (states that cannot accept are left out).</p>"
+        "rejects (states that cannot accept are left out). In a large automaton the edges carry the "
+        "numbers of the table below.</p>"
         f'<div class="automaton-svg">{automaton_svg(mission.automaton, names=names, engine=engine)}</div>'
-        + _table(("from", "to", "when"), edges(mission.automaton, True, names), "transitions")
+        + _table(
+            ("#", "from", "to", "when"),
+            [(k, *edge) for k, edge in enumerate(edges(mission.automaton, True, names), start=1)],
+            "transitions",
+        )
         + "</section>"
     )
     iteration_rows = [
