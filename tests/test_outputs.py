@@ -147,3 +147,12 @@ def test_a_timeout_exits_3_and_prints_its_bound(tmp_path: Path, capsys: pytest.C
     assert "--max-expansions 300" in err and record["bound"] > 1
     assert main([*argv, "--max-expansions", "1"]) == 3
     assert "no path found within the budget (--max-expansions 1)" in capsys.readouterr().err
+
+
+def test_plan_draws_png_svg_and_the_automaton_and_writes_the_html_report(tmp_path: Path) -> None:
+    code = main(["plan", "--scene", "demo", "--formula", FORMULA, "--setup", "NO-LLM", "--draw", str(tmp_path / "d"),
+                 "--html", str(tmp_path / "r.html")])
+    names = {p.name for p in (tmp_path / "d").iterdir()}
+    assert code == 0 and {"plan_floor_0.png", "plan_floor_1.svg", "automaton.dot", "automaton.svg"} <= names
+    page = (tmp_path / "r.html").read_text()
+    assert page.startswith("<!DOCTYPE html>") and "enter(room_11)" in page and 'id="events"' in page

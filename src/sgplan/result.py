@@ -9,6 +9,7 @@ along the path) and, when available, a plain-language explanation of the mission
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -159,13 +160,36 @@ class PlanResult:
         (:func:`sgplan.outputs.files.write_ros_path_yaml`)."""
         return write_ros_path_yaml(self.waypoints_simplified if simplified else self.waypoints, path, frame_id)
 
-    def draw(self, out_dir: str | Path, *, stem: str = "plan_floor") -> list[Path]:
-        """Draw every floor with the path into ``out_dir`` (one PNG per floor); returns the files."""
-        from sgplan.scene.draw import draw_building
+    def draw(self, out_dir: str | Path, *, stem: str = "plan_floor", formats: Sequence[str] = ("png",),
+             automaton: bool = True) -> list[Path]:
+        """Draw every floor with the path, the mission and the cost into ``out_dir`` (one picture per floor
+        and format: ``png``, ``svg``), and the mission's automaton beside them (``automaton.dot`` / ``.svg``,
+        unless ``automaton=False``); returns the files."""
+        from sgplan.report.automaton import write_automaton
+        from sgplan.scene.draw import MissionView, draw_building
 
-        if self.building is None:
-            raise OutputError("this result carries no building to draw (it was built by hand)")
-        return draw_building(self.building, out_dir, grid=self.grid, path=self.cells or None, stem=stem)
+        building, mission = self._drawable()
+        view = MissionView(text=self.mission_text or self.formula, explanation=self.explanation,
+                           cost_m=self.cost_m if self.path is not None else None,
+                           propositions=tuple(mission.ordered_propositions), reach_radius_m=self.radii.reach_m)
+        written = draw_building(building, out_dir, grid=self.grid, path=self.path, mission=view, stem=stem,
+                                formats=formats)
+        if automaton:
+            written += write_automaton(mission.automaton, out_dir, names=mission.descriptions)
+        return written
+
+    def write_html(self, path: str | Path) -> Path:
+        """Write the self-contained HTML report of this plan (:func:`sgplan.report.html.write_html_report`)."""
+        from sgplan.report.html import write_html_report
+
+        building, mission = self._drawable()
+        return write_html_report(path, building, self.grid, self, mission, explanation=self.explanation,
+                                 reach_radius_m=self.radii.reach_m)
+
+    def _drawable(self) -> tuple[Building, Mission]:
+        if self.building is None or self.mission is None:
+            raise OutputError("this result carries no building and mission to draw (it was built by hand)")
+        return self.building, self.mission
 
 
 def write_text(path: str | Path, text: str) -> Path:

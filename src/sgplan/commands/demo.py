@@ -1,8 +1,8 @@
 """``sgplan demo``: the whole pipeline on the embedded demo building, offline, in a few seconds.
 
 Demo building -> offline translation of a natural-language mission -> minimal DFA -> offline symbolic
-guidance -> AMRA* (setup ALL) -> independent check -> PNGs per floor, the mission folder, the waypoints
-(CSV, ROS path YAML) and the run record ``run.json`` (the shape of ``plan --json``), all through
+guidance -> AMRA* (setup ALL) -> independent check -> PNG and SVG per floor, the automaton, an HTML report,
+the mission folder, the waypoints (CSV, ROS path YAML) and the run record ``run.json`` (the shape of ``plan --json``), all through
 :mod:`sgplan.api`. Both language steps use the offline backends, which are not LLMs; the output says so.
 """
 
@@ -59,8 +59,8 @@ def run(args: argparse.Namespace) -> int:
         say(f"  {event.describe()}")
     mission_dir = save_mission_folder(result.mission or mission, out / "mission",
                                       hierarchy_text=attribute_hierarchy(building))
-    written = [*result.draw(out), result.write_waypoints_csv(out / "waypoints.csv"),
-               result.write_ros_path_yaml(out / "ros_path.yaml")]
+    written = [*result.draw(out, formats=("png", "svg")), result.write_html(out / "report.html"),
+               result.write_waypoints_csv(out / "waypoints.csv"), result.write_ros_path_yaml(out / "ros_path.yaml")]
     record = result.to_dict()
     record["backends"] = {"translation": f"{backends.translator.name} (not an LLM)",
                           "guidance": f"{result.guidance} (not an LLM)"}

@@ -75,7 +75,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                      "ROS nav_msgs/Path messages, one per floor stretch")
     out.add_argument("--dense", action="store_true", help="--waypoints / --ros-path hold every cell, not the "
                      "simplified polyline")
-    out.add_argument("--draw", metavar="DIR", help="write one PNG per floor with the path")
+    out.add_argument("--draw", metavar="DIR", help="write one PNG and one SVG per floor with the path, and the "
+                     "automaton (DOT, SVG)")
+    out.add_argument("--html", metavar="FILE", help="write a self-contained HTML report of the plan")
     parser.add_argument("--verify", action="store_true",
                         help="accepted for old scripts: every path is checked by the independent checker")
     parser.add_argument("--save-mission", metavar="DIR",
@@ -171,9 +173,11 @@ def _report(args: argparse.Namespace, result: PlanResult) -> int:
             say(f"wrote {result.write_waypoints_csv(args.waypoints, simplified=simplified)}")
         if args.ros_path:
             say(f"wrote {result.write_ros_path_yaml(args.ros_path, simplified=simplified)}")
-        if args.draw:
-            for png in result.draw(args.draw):
-                say(f"wrote {png}")
+    if args.draw:
+        for picture in result.draw(args.draw, formats=("png", "svg")):
+            say(f"wrote {picture}")
+    if args.html:
+        say(f"wrote {result.write_html(args.html)}")
     if result.status == "timeout":
         budget = ", ".join(part for part in (
             f"--time-limit {args.time_limit:g} s" if args.time_limit is not None else "",
