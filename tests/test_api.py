@@ -27,7 +27,7 @@ def demo() -> sgplan.api.Building:
 def test_the_readme_example_is_at_most_five_lines_and_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                                             capsys: pytest.CaptureFixture[str]) -> None:
     text = README.read_text(encoding="utf-8")
-    block = re.search(r"From Python.*?```python\n(.*?)```", text, re.S)
+    block = re.search(r"From Python.*?```python\n(.*?)```", text, re.DOTALL)
     assert block is not None
     lines = block[1].strip().splitlines()
     assert len(lines) <= 5 and lines[0] == "import sgplan"

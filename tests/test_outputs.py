@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import itertools
 import json
 import math
 from functools import lru_cache
@@ -11,7 +12,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
-from hypothesis import given, strategies as st
+from hypothesis import given
+from hypothesis import strategies as st
 
 import sgplan
 from sgplan.cli import main
@@ -72,7 +74,7 @@ def test_a_segment_never_cuts_through_a_cell_that_changes_the_mission() -> None:
     labels = r.labels.copy()
     labels[floor, cut[0], cut[1]] |= np.uint32(1 << automaton.aps.index("enter(room_4)"))  # now "kitchen"
     again = simplify_path(r.path, r.grid, labels, automaton)
-    for a, b in zip(again[:-1], again[1:]):
+    for a, b in itertools.pairwise(again):
         if b == a + 1:
             continue  # the planner's own step
         crossed = crossed_cells(tuple(r.path[a, :2].tolist()), tuple(r.path[b, :2].tolist()))[1:-1]

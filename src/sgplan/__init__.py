@@ -20,8 +20,15 @@ from typing import TYPE_CHECKING, Any
 from sgplan.errors import SgplanError
 
 if TYPE_CHECKING:
-    from sgplan.api import (Session, add_guidance, load_mission, load_scene, mission_from_formula,
-                            mission_from_text, plan)
+    from sgplan.api import (
+        Session,
+        add_guidance,
+        load_mission,
+        load_scene,
+        mission_from_formula,
+        mission_from_text,
+        plan,
+    )
     from sgplan.result import PlanResult
     from sgplan.scene.builder import BuildingBuilder
     from sgplan.starts import Point
@@ -40,7 +47,10 @@ _LAZY = {
     "Point": "sgplan.starts",
     "BuildingBuilder": "sgplan.scene.builder",
 }
-__all__ = ["SgplanError", "__version__", *_LAZY]
+__all__ = [
+    "BuildingBuilder", "PlanResult", "Point", "Session", "SgplanError", "__version__", "add_guidance",
+    "load_mission", "load_scene", "mission_from_formula", "mission_from_text", "plan",
+]
 
 
 def __getattr__(name: str) -> Any:

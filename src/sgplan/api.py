@@ -18,7 +18,7 @@ import time
 from collections.abc import Mapping
 from dataclasses import replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -32,24 +32,13 @@ from sgplan.scene.model import Building
 from sgplan.starts import StartSpec, start_cell
 
 if TYPE_CHECKING:
-    from sgplan.llm.backends import Backends
-    from sgplan.mission import Guidance
+    from sgplan.llm.backends import Backends, MissionGuide
     from sgplan.planning.amra import IterationCallback
 
 log = logging.getLogger("sgplan")
 
 DEMO = "demo"
 """The scene name of the embedded demo building."""
-
-
-class Guide(Protocol):
-    """What a guide is to :func:`plan`: ``name`` and ``guide(building, automaton, descriptions)`` giving
-    LLM guidance (the offline :class:`~sgplan.llm.offline.SymbolicGuide`, an LLM guide)."""
-
-    name: str
-
-    def guide(self, building: Building, automaton: Any, ap_actions: Mapping[str, str] | None = None) -> Guidance:
-        ...
 
 
 # -- scenes ------------------------------------------------------------------------------------------
@@ -109,7 +98,8 @@ def mission_from_formula(
     ``enter(room_<uuid>)`` / ``reach(object_<uuid>)``, or over names given a meaning by ``aps`` (an
     ``ap_desc.yaml`` file or a mapping). With ``building``, its propositions are checked against it now.
     """
-    from sgplan.mission import mission_from_formula as from_formula, read_ap_desc
+    from sgplan.mission import mission_from_formula as from_formula
+    from sgplan.mission import read_ap_desc
 
     meanings = read_ap_desc(aps) if isinstance(aps, (str, Path)) else aps
     mission = from_formula(formula, meanings, text=text)
@@ -154,7 +144,7 @@ def _backends(llm: str | Backends, **options: Any) -> Backends:
     return open_backends(llm, **options) if isinstance(llm, str) else llm
 
 
-def add_guidance(mission: Mission, building: Building, guide: Guide | None = None) -> tuple[Mission, str]:
+def add_guidance(mission: Mission, building: Building, guide: MissionGuide | None = None) -> tuple[Mission, str]:
     """``mission`` with LLM-heuristic guidance from ``guide`` (default: the offline symbolic guide, not an
     LLM) when it carries none, and where the guidance came from (``"mission"`` or the guide's name).
     The given mission is not changed."""
@@ -234,12 +224,13 @@ class Session:
         time_limit_s: float | None = None,
         max_expansions: int | None = None,
         verify: bool = True,
-        guide: Guide | None = None,
+        guide: MissionGuide | None = None,
         callback: IterationCallback | None = None,
     ) -> PlanResult:
         """Plan ``mission`` from ``start`` with AMRA*; see :func:`sgplan.plan`."""
         from sgplan.jit import announce_compile
-        from sgplan.planning.amra import get_setup, plan as amra_plan
+        from sgplan.planning.amra import get_setup
+        from sgplan.planning.amra import plan as amra_plan
 
         t0 = time.perf_counter()
         spec = get_setup(setup)
@@ -322,7 +313,7 @@ def plan(
     time_limit_s: float | None = None,
     max_expansions: int | None = None,
     verify: bool = True,
-    guide: Guide | None = None,
+    guide: MissionGuide | None = None,
     callback: IterationCallback | None = None,
     session: Session | None = None,
 ) -> PlanResult:

@@ -20,6 +20,7 @@ from sgplan.commands import REGISTRY
 from sgplan.commands.common import add_common_options, configure_logging
 from sgplan.errors import SgplanError
 
+
 def _build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="sgplan",

@@ -29,12 +29,12 @@ def kernels_cached() -> bool | None:
             value for module in (heap, _dijkstra, _search) for value in vars(module).values()
             if isinstance(value, CPUDispatcher) and getattr(value, "_cache", None) is not None
         ]
+        files = [getattr(kernel, "_cache")._cache_file for kernel in kernels]  # noqa: B009 - private in numba
         # Helpers only ever inlined into other kernels have no index file; the entry points have one once
         # compiled, and an index whose source stamp is stale loads as empty (the kernel will be recompiled).
-        files = [kernel._cache._cache_file for kernel in kernels]
         indexed = [f for f in files if os.path.exists(f._index_path)]
         return bool(indexed) and all(bool(f._load_index()) for f in indexed)
-    except Exception:  # numba internals changed: say nothing rather than fail a run
+    except Exception:  # noqa: BLE001 - numba internals changed: say nothing rather than fail a run
         return None
 
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Sequence
-from typing import NamedTuple, Union
+from typing import NamedTuple
 
 import numpy as np
 from scipy import ndimage
@@ -41,7 +41,7 @@ class Point(NamedTuple):
     floor: int
 
 
-StartSpec = Union[None, int, str, Point, Sequence[float]]
+StartSpec = None | int | str | Point | Sequence[float]
 """Anything :func:`start_cell` accepts."""
 
 

@@ -14,7 +14,14 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from sgplan.commands.common import DEFAULT_PROFILE, add_profile_argument, positive_int, positive_seconds, say, split_list
+from sgplan.commands.common import (
+    DEFAULT_PROFILE,
+    add_profile_argument,
+    positive_int,
+    positive_seconds,
+    say,
+    split_list,
+)
 
 if TYPE_CHECKING:
     from sgplan.bench.cases import Case
@@ -123,7 +130,6 @@ def _termination_as_interrupt() -> Iterator[None]:
 
 def _sweep(args: argparse.Namespace) -> int:
     from sgplan.bench.results import ResultStore, make_folder, writing_lock
-
     from sgplan.jit import announce_compile
 
     cases = _cases(args)
@@ -143,7 +149,14 @@ def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: Resul
     """Run the sweep with a progress bar; returns (executor, sweep summary, exported file paths)."""
     from rich.console import Console
     from rich.markup import escape
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
 
     from sgplan.bench.executors import LocalExecutor, RayExecutor
     from sgplan.bench.results import FAILED, record_sweep
@@ -157,7 +170,7 @@ def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: Resul
     statuses: dict[str, int] = {}
     with Progress(TextColumn("[bold]bench"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                   TextColumn("ETA"), TimeRemainingColumn(), TextColumn("{task.fields[statuses]}"),
-                  console=console, transient=False) as progress:
+                  console=console, transient=False, disable=args.quiet) as progress:
         task = progress.add_task("bench", total=None, statuses="")
 
         def on_start(to_run: int, already: int) -> None:

@@ -11,7 +11,13 @@ import argparse
 import contextlib
 from pathlib import Path
 
-from sgplan.commands.common import add_profile_argument, add_scene_arguments, load_scene_arg, positive_int, say
+from sgplan.commands.common import (
+    add_profile_argument,
+    add_scene_arguments,
+    load_scene_arg,
+    positive_int,
+    say,
+)
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 
 
@@ -34,7 +40,7 @@ def run(args: argparse.Namespace) -> int:
     building = load_scene_arg(args.scene, args.data)
     mission = load_mission_folder(args.mission_dir, profile=args.profile, guidance=False)
     mission.check_scene(building)
-    options = {}
+    options: dict[str, object] = {}
     if args.llm != "offline":
         options.update(max_concurrency=args.max_concurrency, mission_text=mission.grounded_text)
     backends = open_backends_from_args(args, **options)

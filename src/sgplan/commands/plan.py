@@ -14,11 +14,22 @@ import argparse
 import json
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
-from sgplan.commands.common import (add_profile_argument, add_scene_arguments, load_scene_arg, non_negative_int,
-                                    positive_int, positive_seconds, reach_radius, robot_radius, say)
+from sgplan.commands.common import (
+    add_profile_argument,
+    add_scene_arguments,
+    load_scene_arg,
+    log,
+    non_negative_int,
+    positive_int,
+    positive_seconds,
+    reach_radius,
+    robot_radius,
+    say,
+)
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 from sgplan.errors import MissionError, SgplanError
 
@@ -30,7 +41,9 @@ TIMEOUT_EXIT = 3
 """Exit code of a plan whose search budget ran out (distinct from errors, 2)."""
 
 
-def _triple(kind: type, what: str):  # noqa: ANN202 - an argparse type factory
+def _triple(kind: type, what: str) -> Callable[[str], tuple]:
+    """An argparse type reading ``A,B,FLOOR`` with ``A`` and ``B`` of ``kind``."""
+
     def parse(text: str) -> tuple:
         try:
             a, b, floor = text.split(",")
@@ -183,10 +196,10 @@ def _report(args: argparse.Namespace, result: PlanResult) -> int:
             f"--time-limit {args.time_limit:g} s" if args.time_limit is not None else "",
             f"--max-expansions {args.max_expansions}" if args.max_expansions is not None else "") if part)
         if result.path is None:
-            print(f"sgplan: timeout: no path found within the budget ({budget})", file=sys.stderr)
+            log.warning(f"sgplan: timeout: no path found within the budget ({budget})")
         else:
-            print(f"sgplan: timeout: the budget ({budget}) ran out; the path's cost {result.cost_m:.4f} m is within "
-                  f"x{result.bound:g} of the optimum", file=sys.stderr)
+            log.warning(f"sgplan: timeout: the budget ({budget}) ran out; the path's cost {result.cost_m:.4f} m is "
+                        f"within x{result.bound:g} of the optimum")
         return TIMEOUT_EXIT
     return 0
 

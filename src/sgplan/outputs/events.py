@@ -102,14 +102,14 @@ def path_events(
     events = []
     for k in np.flatnonzero((masks & ~previous_mask) | (rows[:, 3] != previous_q)).tolist():
         row, col, floor, q = (int(v) for v in rows[k])
-        where = {"index": k, "cost_m": float(costs_m[k]), "floor": floor, "row": row, "col": col}
+        cost_m = float(costs_m[k])
         new = int(masks[k] & ~previous_mask[k])
         for bit, ap in enumerate(automaton.aps):
             if new >> bit & 1:
                 meaning = descriptions.get(ap, ap)
-                events.append(Event(kind="proposition", proposition=ap, meaning=meaning,
-                                    entity=_entity_name(building, meaning), **where))
+                events.append(Event(k, "proposition", cost_m, floor, row, col, proposition=ap, meaning=meaning,
+                                    entity=_entity_name(building, meaning)))
         if q != previous_q[k]:
-            events.append(Event(kind="state", from_state=int(previous_q[k]), to_state=q,
-                                accepting=bool(automaton.accepting[q]), **where))
+            events.append(Event(k, "state", cost_m, floor, row, col, from_state=int(previous_q[k]), to_state=q,
+                                accepting=bool(automaton.accepting[q])))
     return events

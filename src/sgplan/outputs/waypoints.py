@@ -16,6 +16,7 @@ path takes the stairs.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass
@@ -84,7 +85,8 @@ def leg_costs(path: np.ndarray, grid: OccupancyGrid) -> np.ndarray:
     costs = np.hypot(step[:, 0] * grid.resolution_m[0], step[:, 1] * grid.resolution_m[1])
     stairs = _stairs_costs(grid)
     for k in np.flatnonzero(step[:, 2] != 0):
-        a, b = tuple(int(v) for v in rows[k, :3]), tuple(int(v) for v in rows[k + 1, :3])
+        a = (int(rows[k, 0]), int(rows[k, 1]), int(rows[k, 2]))
+        b = (int(rows[k + 1, 0]), int(rows[k + 1, 1]), int(rows[k + 1, 2]))
         if (a, b) not in stairs:
             raise ValueError(f"path rows {k} {a} and {k + 1} {b} change floor but are not joined by stairs")
         costs[k] = stairs[(a, b)]
@@ -138,7 +140,7 @@ def crossed_cells(a: tuple[int, int], b: tuple[int, int]) -> np.ndarray:
     if len(cells) == 0:
         return np.array([a], dtype=np.int64)
     out = [cells[0]]
-    for prev, cell in zip(cells[:-1], cells[1:]):
+    for prev, cell in itertools.pairwise(cells):
         if prev[0] != cell[0] and prev[1] != cell[1]:  # a corner: add both side cells
             out += [np.array([cell[0], prev[1]]), np.array([prev[0], cell[1]])]
         out.append(cell)
@@ -198,7 +200,7 @@ def densify(path: np.ndarray, keep: np.ndarray, automaton: Automaton, labels: np
     """
     rows = as_path_array(path)
     cells = [rows[keep[0], :3]]
-    for a, b in zip(keep[:-1], keep[1:]):
+    for a, b in itertools.pairwise(keep):
         ra, rb = rows[a], rows[b]
         if ra[2] != rb[2] or max(abs(int(rb[0] - ra[0])), abs(int(rb[1] - ra[1]))) <= 1:
             cells.append(rb[:3])  # the stairs, or the planner's own step (a diagonal step may cut a corner)

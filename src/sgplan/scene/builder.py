@@ -219,7 +219,7 @@ class BuildingBuilder:
         step_mask = self._region(f"staircase {room_id} steps", box=steps) if steps is not None else None
         if step_mask is not None and (step_mask & ~mask).any():
             del self._rooms[room_id]
-            raise SceneError(f"staircase {room_id}: steps {tuple(steps)} reach outside the staircase")
+            raise SceneError(f"staircase {room_id}: steps {tuple(steps or ())} reach outside the staircase")
         cost = _number(cost_m, f"staircase {room_id} cost_m", positive=True) if cost_m is not None else None
         self._stairs[floor] = _Stairs(room_id, lower, upper, step_mask, cost)
         return room_id
