@@ -81,15 +81,15 @@ def test_draw_building_with_the_planner_path_png_and_svg(tmp_path: Path) -> None
         formats=("png", "svg"),
     )
     assert [p.name for p in written] == ["plan_0.png", "plan_0.svg", "plan_1.png", "plan_1.svg"]
+    pictures = []
     for png in written[::2]:
         with Image.open(png) as image:
             assert image.format == "PNG" and image.width > 800 and image.height > 800
-            pixels = np.asarray(image.convert("RGB")).astype(int)
-        r, g, b = pixels[..., 0], pixels[..., 1], pixels[..., 2]
-        assert ((r > 180) & (g < 60) & (b < 60)).sum() > 50  # the late, red part of the path (and the end)
-    with Image.open(written[0]) as image:
-        pixels = np.asarray(image.convert("RGB")).astype(int)
-    assert ((pixels[..., 2] > 150) & (pixels[..., 0] < 60) & (pixels[..., 1] < 100)).sum() > 50  # early, blue
+            pictures.append(np.asarray(image.convert("RGB")).astype(int))
+    blue = [((p[..., 2] > 150) & (p[..., 0] < 60) & (p[..., 1] < 100)).sum() for p in pictures]
+    red = [((p[..., 0] > 180) & (p[..., 1] < 60) & (p[..., 2] < 60)).sum() for p in pictures]
+    # The path starts (blue) on floor 0 and ends (red, with the red end marker) on floor 1.
+    assert blue[0] > 50 and red[1] > 50 and blue[0] > blue[1] and red[1] > red[0]
     svg = written[1].read_text(encoding="utf-8")
     assert "<svg" in svg and "stairs up" in svg and "corridor" in svg  # text kept as text
 
@@ -135,8 +135,9 @@ def test_legend_title_ticks_and_scale_bar() -> None:
     fig = draw_floor(d.building, 0, grid=d.grid, path=d.result.path, mission=_view())
     ax = fig.axes[0]
     legend = [t.get_text() for t in ax.get_legend().get_texts()]
-    for entry in ("start", "end", "stairs portal", "reach region (mission)", "mission room"):
+    for entry in ("start", "stairs portal", "reach region (mission)", "mission room"):
         assert entry in legend
+    assert "end" not in legend  # the path ends upstairs
     assert any(t.startswith("path") for t in legend)
     title = " ".join(t.get_text() for t in fig.texts)
     assert f"cost {d.result.cost_m:.2f} m" in title and "one line of explanation" in title
@@ -192,3 +193,17 @@ def test_draw_benevolence(gibson_root: Path, tmp_path: Path) -> None:
     building = load_authors_scene(gibson_root / "Benevolence")
     written = draw_building(building, tmp_path, grid=build_occupancy_grid(building, building.robot_radius_m))
     assert len(written) == 3 and all(p.stat().st_size > 20_000 for p in written)
+
+
+def test_legend_lists_what_the_floor_shows() -> None:
+    d = demo_plan()
+    cells = path_cells(d.result.path)
+    upstairs_only = cells[cells[:, 2] == 1]  # a path that never visits floor 0
+    fig = draw_floor(d.building, 0, path=upstairs_only, mission=_view())
+    legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert "start" not in legend and "end" not in legend and not any(t.startswith("path") for t in legend)
+    assert "reach region (mission)" in legend  # the sink and the chairs are on floor 0
+    assert "the path does not come to this floor" in " ".join(t.get_text() for t in fig.texts)
+    fig = draw_floor(d.building, 1, path=upstairs_only, mission=_view())
+    legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert {"start", "end"} <= set(legend) and "reach region (mission)" not in legend

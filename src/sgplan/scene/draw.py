@@ -213,12 +213,19 @@ def _layout(rows: int, cols: int, title_lines: int, legend_rows: int) -> tuple[F
 
 
 def _title_lines(
-    building: Building, floor: int, mission: MissionView | None, width_chars: int, title: str | None
+    building: Building,
+    floor: int,
+    mission: MissionView | None,
+    width_chars: int,
+    title: str | None,
+    note: str | None = None,
 ) -> list[tuple[str, dict[str, Any]]]:
     f = building.floors[floor]
     head = title or f"{building.name} - floor {floor} ({f.name})"
     if mission is not None and mission.cost_m is not None and np.isfinite(mission.cost_m):
         head += f" - cost {mission.cost_m:.2f} m"
+    if note:
+        head += f" ({note})"
     lines: list[tuple[str, dict[str, Any]]] = [(head, {"fontweight": "bold"})]
     if mission is not None and mission.text:
         for line in textwrap.wrap(f"mission: {mission.text}", width_chars)[:4]:
@@ -229,32 +236,45 @@ def _title_lines(
     return lines
 
 
-def _legend_handles(
-    has_grid: bool, has_portal: bool, has_path: bool, mission: MissionView | None
-) -> list[Any]:
+@dataclass(frozen=True)
+class _OnFloor:
+    """What a floor shows, so its legend lists only that."""
+
+    grid: bool
+    portal: bool
+    path: bool
+    start: bool
+    end: bool
+    reach: bool
+    mission_room: bool
+
+
+def _legend_handles(shown: _OnFloor) -> list[Any]:
     handles: list[Any] = [
         Patch(fc=_WALL, label="wall"),
         Patch(fc=_OUTSIDE, ec="0.6", label="outside"),
         Patch(fc=_OBJECT, label="object"),
         Patch(fc=_STAIRS, label="stairs"),
     ]
-    if has_grid:
+    if shown.grid:
         handles.append(Patch(fc=0.75 * _UNROOMED_GROUND + 0.25 * _WALL, label="not traversable"))
-    if has_portal:
+    if shown.portal:
         handles.append(
             Line2D([], [], ls="none", marker="*", ms=11, color=_PORTAL, mec="black", label="stairs portal")
         )
-    if has_path:
-        handles += [
-            Line2D([], [], ls="none", marker="o", ms=9, color=_START, mec="black", label="start"),
-            Line2D([], [], ls="none", marker="s", ms=9, color=_END, mec="black", label="end"),
+    if shown.start:
+        handles.append(Line2D([], [], ls="none", marker="o", ms=9, color=_START, mec="black", label="start"))
+    if shown.end:
+        handles.append(Line2D([], [], ls="none", marker="s", ms=9, color=_END, mec="black", label="end"))
+    if shown.path:
+        handles.append(
             Line2D(
                 [], [], color=PATH_COLOURS(0.5), lw=2.2, marker=">", ms=5, label="path (blue early, red late)"
-            ),
-        ]
-    if mission is not None and any(p.kind == "reach" for p in mission.propositions):
+            )
+        )
+    if shown.reach:
         handles.append(Patch(fc=(*_REACH, _REACH_ALPHA), ec=_REACH, label="reach region (mission)"))
-    if mission is not None and any(p.kind == "enter" for p in mission.propositions):
+    if shown.mission_room:
         handles.append(Line2D([], [], color=_MISSION_ROOM, lw=2, ls="--", label="mission room"))
     return handles
 
@@ -473,17 +493,31 @@ def draw_floor(
     portals = [
         (end.portal, word) for end, word in ((f.up_stairs, "up"), (f.down_stairs, "down")) if end is not None
     ]
-    handles = _legend_handles(grid is not None, bool(portals), len(cells) > 0, mission)
+    here = cells[:, 2] == floor
+    region = reach_region(building, floor, mission) if mission is not None else None
+    mission_rooms = [
+        building.room(uuid=p.uuid).id for p in (mission.propositions if mission else ()) if p.kind == "enter"
+    ]
+    shown = _OnFloor(
+        grid=grid is not None,
+        portal=bool(portals),
+        path=bool(here.any()),
+        start=bool(len(cells)) and bool(here[0]),
+        end=bool(len(cells)) and bool(here[-1]),
+        reach=region is not None and bool(region.any()),
+        mission_room=bool(mission_rooms) and bool(np.isin(f.room_map, mission_rooms).any()),
+    )
+    handles = _legend_handles(shown)
+    note = "the path does not come to this floor" if len(cells) and not shown.path else None
 
     scale = max(min(15.0 / cols, 13.0 / rows), 6.5 / max(rows, cols))
     fig_w = 0.9 + cols * scale
     legend_cols = max(3, min(len(handles), int(fig_w / 1.55)))
     font_guess = float(np.clip(min(cols, rows) * scale * 0.85, 6.5, 8.5))
-    lines = _title_lines(building, floor, mission, int(fig_w * 72 / ((font_guess + 2) * 0.55)), title)
+    lines = _title_lines(building, floor, mission, int(fig_w * 72 / ((font_guess + 2) * 0.55)), title, note)
     fig, ax, font = _layout(rows, cols, len(lines), -(-len(handles) // legend_cols))
 
     image = floor_image(building, floor, grid)
-    region = reach_region(building, floor, mission) if mission is not None else None
     if region is not None:  # blended here: one raster to resample instead of two (drawing time)
         image[region] = (1 - _REACH_ALPHA) * image[region] + _REACH_ALPHA * np.asarray(_REACH)
     ax.imshow((image * 255).round().astype(np.uint8), interpolation="nearest", aspect="auto", zorder=1)
