@@ -10,12 +10,14 @@ import re
 import shutil
 from dataclasses import replace
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 from PIL import Image
 
 from sgplan.errors import OutputError
+from sgplan.outputs.events import Event
 from sgplan.report.html import report_html, write_html_report
 from tests.plans import REACH_M, DemoPlan
 
@@ -199,3 +201,47 @@ def test_report_in_headless_chromium(report: Path, demo_plan: DemoPlan) -> None:
         finally:
             browser.close()
     assert problems == []
+
+
+def test_events_are_listed_and_marked_on_their_floor(demo_plan: DemoPlan) -> None:
+    d = demo_plan
+    path = d.result.path
+    assert path is not None
+    first_up = int(np.flatnonzero(path[:, 2] == 1)[0])
+    events = [
+        Event(
+            5,
+            "proposition",
+            1.0,
+            int(path[5, 2]),
+            int(path[5, 0]),
+            int(path[5, 1]),
+            "p1",
+            "enter(room_2)",
+            "corridor",
+        ),
+        Event(
+            first_up,
+            "state",
+            9.0,
+            1,
+            int(path[first_up, 0]),
+            int(path[first_up, 1]),
+            from_state=1,
+            to_state=2,
+        ),
+    ]
+    with_events = SimpleNamespace(
+        path=path,
+        cost_m=d.result.cost_m,
+        status=d.result.status,
+        setup=d.result.setup,
+        iterations=d.result.iterations,
+        events=events,
+    )
+    page = report_html(d.building, d.grid, with_events, d.mission, engine="matplotlib")
+    listed = page.split('<section id="events">')[1].split("</section>")[0]
+    assert listed.count("<li>") == 2 and "enter(room_2) (corridor) became true" in listed
+    floor0, floor1 = page.split('<div class="floor" data-floor="1"')
+    assert floor0.count('class="event"') == 1 and floor1.count('class="event"') == 1
+    assert "mission state 1 -&gt; 2" in floor1

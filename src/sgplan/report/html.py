@@ -49,6 +49,16 @@ class Iteration(Protocol):
     time_s: float
 
 
+class PathEvent(Protocol):
+    """An event along the path as the report reads it (:class:`sgplan.outputs.events.Event`)."""
+
+    floor: int
+    row: int
+    col: int
+
+    def describe(self) -> str: ...
+
+
 class PlanOutcome(Protocol):
     """What the report reads of a plan result (both ``sgplan.planning.amra.PlanResult`` and
     ``sgplan.result.PlanResult`` fit): the path rows ``(row, col, floor, ...)`` or ``None``, the cost in
@@ -85,7 +95,7 @@ def _colour(value: float) -> str:
     return f"#{int(r * 255):02x}{int(g * 255):02x}{int(b * 255):02x}"
 
 
-def _floor_svg(building: Building, floor: int, cells: np.ndarray) -> str:
+def _floor_svg(building: Building, floor: int, cells: np.ndarray, events: Sequence[PathEvent] = ()) -> str:
     """The SVG overlay of one floor in cell coordinates (x = column, y = row): path, arrows, markers."""
     f = building.floors[floor]
     rows, cols = f.shape
@@ -143,6 +153,14 @@ def _floor_svg(building: Building, floor: int, cells: np.ndarray) -> str:
                 f'<circle class="start" cx="{start[1]}" cy="{start[0]}" r="{6 * unit:.2f}">'
                 f"<title>start: row {start[0]}, column {start[1]}, floor {floor}</title></circle>"
             )
+    for event in events:
+        if event.floor == floor:
+            s = 4.5 * unit
+            parts.append(
+                f'<rect class="event" x="{-s:.2f}" y="{-s:.2f}" width="{2 * s:.2f}" height="{2 * s:.2f}" '
+                f'transform="translate({event.col},{event.row}) rotate(45)">'
+                f"<title>{html.escape(event.describe())}</title></rect>"
+            )
     for end_, word in ((f.up_stairs, "up"), (f.down_stairs, "down")):
         if end_ is not None:
             r, c = end_.portal
@@ -165,7 +183,11 @@ def _reach_image(labels: np.ndarray) -> str | None:
 
 
 def _floors_html(
-    building: Building, grid: OccupancyGrid | None, cells: np.ndarray, reach: np.ndarray | None
+    building: Building,
+    grid: OccupancyGrid | None,
+    cells: np.ndarray,
+    reach: np.ndarray | None,
+    events: Sequence[PathEvent],
 ) -> str:
     tabs, layers = [], []
     for f in building.floors:
@@ -184,7 +206,7 @@ def _floors_html(
             f'<div class="stage" style="aspect-ratio: {cols} / {rows}">'
             f'<img class="map" alt="floor {k} map" src="{image}">'
             + (f'<img class="reach" alt="reach regions on floor {k}" src="{reach_uri}">' if reach_uri else "")
-            + _floor_svg(building, k, cells)
+            + _floor_svg(building, k, cells, events)
             + f'<img class="ids rooms" hidden alt="" src="{_id_image(f.room_map)}">'
             f'<img class="ids objects" hidden alt="" src="{_id_image(objects)}">'
             "</div></div>"
@@ -335,8 +357,8 @@ def report_html(
         + "</dl></section>",
         '<section id="map"><h2>Floors</h2><p class="hint">Hover the map for rooms and objects. '
         "The path runs from blue (start, green circle) to red (end, red square); arrows show the "
-        "direction; gold dots are stairs portals.</p>"
-        + _floors_html(building, grid, cells, reach)
+        "direction; gold dots are stairs portals, white diamonds the events (hover them).</p>"
+        + _floors_html(building, grid, cells, reach, events)
         + "</section>",
     ]
     if events:
