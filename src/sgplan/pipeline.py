@@ -1,7 +1,7 @@
 """Joining the parts: scene + mission + start -> a planning problem, with the scene's defaults.
 
-These helpers hold the choices every front end (CLI, demo, benchmarks) must make the same way: which
-robot and reach radii apply, which start cell is meant, and how the grid and labels are built.
+These helpers hold the choices every front end must make the same way (through :mod:`sgplan.api`): which
+robot and reach radii apply, which initial position is meant, and how the grid and labels are built.
 """
 
 from __future__ import annotations
@@ -114,18 +114,6 @@ def make_problem(
         ap_descriptions=mission.descriptions,
     )
     return PreparedProblem(problem, radii, time.perf_counter() - t0)
-
-
-def add_offline_guidance(mission: Mission, building: Building) -> str:
-    """Give ``mission`` guidance from the offline symbolic guide (not an LLM); returns its backend name.
-
-    Used when a setup needs guidance that the mission does not carry, so LLM-guided setups still run.
-    """
-    from sgplan.llm.offline import SymbolicGuide
-
-    guide = SymbolicGuide()
-    mission.guidance = guide.guide(building, mission.automaton, mission.descriptions)
-    return guide.name
 
 
 def iteration_records(iterations: Sequence[IterationRecord]) -> list[dict[str, Any]]:

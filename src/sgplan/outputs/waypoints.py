@@ -139,12 +139,17 @@ def crossed_cells(a: tuple[int, int], b: tuple[int, int]) -> np.ndarray:
     cells = np.floor(p0 + mids[:, None] * d).astype(np.int64)
     if len(cells) == 0:
         return np.array([a], dtype=np.int64)
-    out = [cells[0]]
-    for prev, cell in itertools.pairwise(cells):
-        if prev[0] != cell[0] and prev[1] != cell[1]:  # a corner: add both side cells
-            out += [np.array([cell[0], prev[1]]), np.array([prev[0], cell[1]])]
-        out.append(cell)
-    return np.array(out, dtype=np.int64)
+    step = np.diff(cells, axis=0)
+    corners = np.flatnonzero((step[:, 0] != 0) & (step[:, 1] != 0))  # the segment passes a cell corner
+    if len(corners) == 0:
+        return cells
+    prev, nxt = cells[corners], cells[corners + 1]
+    sides = np.stack([np.column_stack([nxt[:, 0], prev[:, 1]]), np.column_stack([prev[:, 0], nxt[:, 1]])], axis=1)
+    parts = np.split(cells, corners + 1)
+    out = [parts[0]]
+    for side, part in zip(sides, parts[1:]):
+        out += [side, part]
+    return np.concatenate(out)
 
 
 def simplify_path(path: np.ndarray, grid: OccupancyGrid, labels: np.ndarray, automaton: Automaton) -> np.ndarray:
