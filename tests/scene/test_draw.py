@@ -12,15 +12,8 @@ from PIL import Image
 
 from sgplan.errors import SceneError
 from sgplan.scene.demo import demo_building
-from sgplan.scene.draw import (
-    MissionView,
-    arrow_marks,
-    draw_building,
-    draw_floor,
-    floor_image,
-    path_cells,
-    room_colour,
-)
+from sgplan.scene.draw import MissionView, draw_building, draw_floor, floor_image, room_colour
+from sgplan.scene.draw_path import arrow_marks, path_cells
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.labels import label_raster
 from sgplan.scene.model import CatCode

@@ -30,7 +30,9 @@ from sgplan.errors import OutputError
 from sgplan.logic.dot import edges
 from sgplan.mission import Mission
 from sgplan.report.automaton import Engine, automaton_svg
-from sgplan.scene.draw import PATH_COLOURS, arrow_marks, floor_image, label_anchors, path_cells
+from sgplan.scene.draw import floor_image
+from sgplan.scene.draw_labels import label_anchors
+from sgplan.scene.draw_path import PATH_COLOURS, arrow_marks, path_cells
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.labels import label_raster
 from sgplan.scene.model import Building, CatCode
