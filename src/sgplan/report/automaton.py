@@ -134,8 +134,8 @@ def _matplotlib_svg(a: Automaton, names: Mapping[str, str] | None, hide_sinks: b
     shown = shown_states(a, hide_sinks)
     if shown.sum() > MATPLOTLIB_MAX_STATES:
         note = (
-            f"{int(shown.sum())} states, {len(edges(a, hide_sinks))} edges: too large to draw without Graphviz "
-            "(install the graphviz package); the DOT file and the transition table list every edge."
+            f"{int(shown.sum())} states, {len(edges(a, hide_sinks))} edges: too large to draw without "
+            "Graphviz (install the graphviz package); the DOT file and the transition table list every edge."
         )
         return (
             '<svg xmlns="http://www.w3.org/2000/svg" width="900" height="40" viewBox="0 0 900 40">'
@@ -231,8 +231,10 @@ def write_automaton(
     """Write ``<stem>.dot`` and ``<stem>.svg`` into ``out_dir``; returns both paths.
 
     See :func:`automaton_svg` for the options. The DOT file always has the guards in full; in a large
-    automaton's SVG the edges are numbered (with Graphviz, hovering an edge shows its guard). Raises :class:`OutputError` if the files cannot be
-    written, :class:`AutomatonError` as :func:`automaton_svg` does.
+    automaton's SVG the edges are numbered (with Graphviz, hovering an edge shows its guard).
+
+    Raises :class:`OutputError` if the files cannot be written, :class:`AutomatonError` as
+    :func:`automaton_svg` does.
     """
     out = Path(out_dir)
     dot_path, svg_path = out / f"{stem}.dot", out / f"{stem}.svg"
