@@ -55,6 +55,9 @@ def test_demo_runs_end_to_end_offline(tmp_path: Path, capsys: pytest.CaptureFixt
     assert {row[2] for row in record["path"]} == {0, 1}  # the mission needs both floors
     assert "G(" in record["mission"]["formula"]  # the "always avoid" part
     assert (tmp_path / "plan_floor_1.png").is_file() and (tmp_path / "mission" / "automaton.aut").is_file()
+    written = {p.name for p in tmp_path.iterdir()}
+    assert {"plan_floor_0.svg", "automaton.svg", "report.html", "waypoints.csv", "ros_path.yaml"} <= written
+    assert record["backends"]["guidance"] == "offline-symbolic (not an LLM)" and record["events"]
 
 
 DEMO_FORMULA = 'F("enter(room_5)" & F "reach(object_28)") & G !"enter(room_6)"'
