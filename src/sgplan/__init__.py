@@ -5,7 +5,7 @@ Data flows one way: scene -> mission -> automaton -> domain -> search -> result.
     import sgplan
     building = sgplan.load_scene("demo")
     mission = sgplan.mission_from_text("Go to the kitchen, then the bedroom with the clock.", building)
-    result = sgplan.plan(building, mission, start="bathroom")
+    result = sgplan.plan(building, mission, start="kitchen")
     result.draw("out/quick"); result.write_json("out/quick/plan.json")
 
 Its names are loaded on first use (``import sgplan`` stays cheap: no numpy, numba or scipy until then).

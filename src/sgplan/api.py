@@ -4,7 +4,7 @@ worker): scene -> mission -> plan -> result.
 >>> import sgplan
 >>> building = sgplan.load_scene("demo")
 >>> mission = sgplan.mission_from_text("Go to the kitchen, then the bedroom with the clock.", building)
->>> result = sgplan.plan(building, mission, start="bathroom")    # planned and checked
+>>> result = sgplan.plan(building, mission, start="kitchen")      # planned and checked
 >>> result.draw("out/quick"); result.write_json("out/quick/plan.json")  # doctest: +SKIP
 
 :class:`Session` plans many missions on one building and keeps the occupancy grid of each robot radius
