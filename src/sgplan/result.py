@@ -77,7 +77,7 @@ class PlanResult:
     start_from: str
     radii: Radii
     queues: tuple[str, ...]
-    iterations: list[IterationRecord]
+    iterations: Sequence[IterationRecord]
     mission_text: str | None
     grounded_text: str | None
     formula: str | None
