@@ -18,6 +18,7 @@ from collections.abc import Sequence
 import numpy as np
 from PIL import Image
 
+from sgplan.errors import OutputError
 from sgplan.report.outcome import PathEvent
 from sgplan.scene.draw import floor_image
 from sgplan.scene.draw_labels import label_anchors
@@ -37,10 +38,11 @@ def _png_data_uri(rgba: np.ndarray) -> str:
 
 
 def _id_image(ids: np.ndarray) -> str:
-    """A raster of non-negative ids (< 2**24) as an opaque PNG: red = low byte, green, blue = high byte.
-
-    Opaque, so browsers keep the exact bytes when the script reads them back through a canvas.
+    """A raster of ids (< 2**24; negative ones read as 0) as an opaque PNG: red = low byte, green, blue =
+    high byte. Opaque, so browsers keep the exact bytes when the script reads them back through a canvas.
     """
+    if ids.size and int(ids.max()) >= 1 << 24:
+        raise OutputError(f"an id raster holds id {int(ids.max())}; the HTML report encodes ids below 2**24")
     ids = np.where(ids > 0, ids, 0).astype(np.uint32)
     rgba = np.empty((*ids.shape, 4), dtype=np.uint8)
     rgba[..., 0], rgba[..., 1], rgba[..., 2] = ids & 255, (ids >> 8) & 255, (ids >> 16) & 255
@@ -54,71 +56,58 @@ def _colour(value: float) -> str:
 
 
 def _floor_svg(building: Building, floor: int, cells: np.ndarray, events: Sequence[PathEvent] = ()) -> str:
-    """The SVG overlay of one floor in cell coordinates (x = column, y = row): path, arrows, markers."""
+    """The SVG overlay of one floor in cell coordinates (x = column, y = row): room names, the path with
+    its arrows, then the portals, events, end and start on top."""
     f = building.floors[floor]
     rows, cols = f.shape
     unit = cols / 1000  # cells per CSS pixel: the map is shown about 1000 px wide
-    parts = [
-        (
-            f'<svg class="overlay" viewBox="-0.5 -0.5 {cols} {rows}" preserveAspectRatio="none" '
-            'xmlns="http://www.w3.org/2000/svg">'
-        )
-    ]
+    head = (
+        f'<svg class="overlay" viewBox="-0.5 -0.5 {cols} {rows}" preserveAspectRatio="none" '
+        'xmlns="http://www.w3.org/2000/svg">'
+    )
     rooms = sorted(r.id for r in building.rooms() if r.floor == floor)
-    for room_id, (r, c) in label_anchors(f.room_map, rooms, f.cat_map == CatCode.GROUND).items():
+    names = [
+        f'<text class="room-label" x="{c}" y="{r}" font-size="{11 * unit:.2f}">'
+        f"{html.escape(building.room(id=room_id).name)}</text>"
+        for room_id, (r, c) in label_anchors(f.room_map, rooms, f.cat_map == CatCode.GROUND).items()
+    ]
+    path = _path_svg(cells, floor, unit, max(rows, cols)) if len(cells) else []
+    return head + "".join(names + path + _markers_svg(building, floor, cells, events, unit)) + "</svg>"
+
+
+def _path_svg(cells: np.ndarray, floor: int, unit: float, size: int) -> list[str]:
+    """The floor's part of the path: polylines coloured by progress, and direction arrows."""
+    n = len(cells)
+    on = cells[:, 2] == floor
+    xy = cells[:, [1, 0]].astype(float)
+    same = on[:-1] & on[1:]
+    # One polyline per colour step and run keeps the progress colouring without one element per cell.
+    steps = 24
+    bins = np.minimum((np.arange(n - 1) * steps) // max(n - 1, 1), steps - 1)
+    parts = []
+    for b in range(steps):
+        idx = np.flatnonzero(same & (bins == b))
+        for run in np.split(idx, np.flatnonzero(np.diff(idx) != 1) + 1) if len(idx) else []:
+            pts = np.concatenate([xy[run], xy[run[-1] + 1][None]])
+            text = " ".join(f"{x:g},{y:g}" for x, y in pts)
+            parts.append(f'<polyline class="path" points="{text}" stroke="{_colour((b + 0.5) / steps)}"/>')
+    s = 6.5 * unit
+    shape = f"{s:g},0 {-s:g},{-0.7 * s:g} {-0.5 * s:g},0 {-s:g},{0.7 * s:g}"
+    centres, vectors, index = arrow_marks(xy, on, _ARROW_SPACING * size, 8 * unit, 3 * unit)
+    for (cx, cy), (vx, vy), i in zip(centres, vectors, index):
         parts.append(
-            f'<text class="room-label" x="{c}" y="{r}" font-size="{11 * unit:.2f}">'
-            f"{html.escape(building.room(id=room_id).name)}</text>"
+            f'<polygon class="arrow" points="{shape}" fill="{_colour(i / max(n - 1, 1))}" '
+            f'transform="translate({cx:.2f},{cy:.2f}) rotate({math.degrees(math.atan2(vy, vx)):.1f})"/>'
         )
-    if len(cells):
-        n = len(cells)
-        on = cells[:, 2] == floor
-        xy = cells[:, [1, 0]].astype(float)
-        same = on[:-1] & on[1:]
-        # One short polyline per colour step keeps the progress colouring without one element per cell.
-        steps = 24
-        bins = np.minimum((np.arange(n - 1) * steps) // max(n - 1, 1), steps - 1)
-        for b in range(steps):
-            idx = np.flatnonzero(same & (bins == b))
-            if not len(idx):
-                continue
-            runs = np.split(idx, np.flatnonzero(np.diff(idx) != 1) + 1)
-            for run in runs:
-                pts = np.concatenate([xy[run], xy[run[-1] + 1][None]])
-                text = " ".join(f"{x:g},{y:g}" for x, y in pts)
-                parts.append(
-                    f'<polyline class="path" points="{text}" stroke="{_colour((b + 0.5) / steps)}"/>'
-                )
-        centres, vectors, index = arrow_marks(xy, on, _ARROW_SPACING * max(rows, cols), 8 * unit, 3 * unit)
-        for (cx, cy), (vx, vy), i in zip(centres, vectors, index):
-            angle = math.degrees(math.atan2(vy, vx))
-            s = 6.5 * unit
-            shape = f"{s:g},0 {-s:g},{-0.7 * s:g} {-0.5 * s:g},0 {-s:g},{0.7 * s:g}"
-            parts.append(
-                f'<polygon class="arrow" points="{shape}" fill="{_colour(i / max(n - 1, 1))}" '
-                f'transform="translate({cx:.2f},{cy:.2f}) rotate({angle:.1f})"/>'
-            )
-        start, end = cells[0], cells[-1]
-        if end[2] == floor:
-            s = 7 * unit
-            parts.append(
-                f'<rect class="end" x="{end[1] - s:.2f}" y="{end[0] - s:.2f}" width="{2 * s:.2f}" '
-                f'height="{2 * s:.2f}"><title>end: row {end[0]}, column {end[1]}, floor {floor}</title>'
-                "</rect>"
-            )
-        if start[2] == floor:
-            parts.append(
-                f'<circle class="start" cx="{start[1]}" cy="{start[0]}" r="{6 * unit:.2f}">'
-                f"<title>start: row {start[0]}, column {start[1]}, floor {floor}</title></circle>"
-            )
-    for event in events:
-        if event.floor == floor:
-            s = 4.5 * unit
-            parts.append(
-                f'<rect class="event" x="{-s:.2f}" y="{-s:.2f}" width="{2 * s:.2f}" height="{2 * s:.2f}" '
-                f'transform="translate({event.col},{event.row}) rotate(45)">'
-                f"<title>{html.escape(event.describe())}</title></rect>"
-            )
+    return parts
+
+
+def _markers_svg(
+    building: Building, floor: int, cells: np.ndarray, events: Sequence[PathEvent], unit: float
+) -> list[str]:
+    """Portals, events, end and start of one floor, each with a tooltip; later ones lie on top."""
+    f = building.floors[floor]
+    parts = []
     for end_, word in ((f.up_stairs, "up"), (f.down_stairs, "down")):
         if end_ is not None:
             r, c = end_.portal
@@ -127,8 +116,26 @@ def _floor_svg(building: Building, floor: int, cells: np.ndarray, events: Sequen
                 f'<circle class="portal" cx="{c}" cy="{r}" r="{5 * unit:.2f}"><title>stairs {word} to floor '
                 f"{target} (row {r}, column {c})</title></circle>"
             )
-    parts.append("</svg>")
-    return "".join(parts)
+    s = 4.5 * unit
+    for event in (e for e in events if e.floor == floor):
+        parts.append(
+            f'<rect class="event" x="{-s:.2f}" y="{-s:.2f}" width="{2 * s:.2f}" height="{2 * s:.2f}" '
+            f'transform="translate({event.col},{event.row}) rotate(45)">'
+            f"<title>{html.escape(event.describe())}</title></rect>"
+        )
+    if len(cells) and cells[-1][2] == floor:
+        r, c, s = cells[-1][0], cells[-1][1], 7 * unit
+        parts.append(
+            f'<rect class="end" x="{c - s:.2f}" y="{r - s:.2f}" width="{2 * s:.2f}" height="{2 * s:.2f}">'
+            f"<title>end: row {r}, column {c}, floor {floor}</title></rect>"
+        )
+    if len(cells) and cells[0][2] == floor:
+        r, c = cells[0][0], cells[0][1]
+        parts.append(
+            f'<circle class="start" cx="{c}" cy="{r}" r="{6 * unit:.2f}">'
+            f"<title>start: row {r}, column {c}, floor {floor}</title></circle>"
+        )
+    return parts
 
 
 def _reach_image(labels: np.ndarray) -> str | None:
