@@ -19,6 +19,7 @@ from PIL import Image
 from sgplan.errors import OutputError
 from sgplan.outputs.events import Event
 from sgplan.report.html import report_html, write_html_report
+from sgplan.scene.draw_path import path_cells
 from tests.plans import REACH_M, DemoPlan
 
 EXPLANATION = (
@@ -245,3 +246,19 @@ def test_events_are_listed_and_marked_on_their_floor(demo_plan: DemoPlan) -> Non
     floor0, floor1 = page.split('<div class="floor" data-floor="1"')
     assert floor0.count('class="event"') == 1 and floor1.count('class="event"') == 1
     assert "mission state 1 -&gt; 2" in floor1
+
+
+def test_room_names_keep_off_the_start_and_end(report: Path, demo_plan: DemoPlan) -> None:
+    page = report.read_text(encoding="utf-8")
+    cells = path_cells(demo_plan.result.path)
+    for cell in (cells[0], cells[-1]):
+        layer = page.split(f'<div class="floor" data-floor="{cell[2]}"')[1].split("</svg>")[0]
+        names = re.findall(
+            r'class="room-label" x="([\d.]+)" y="([\d.]+)" font-size="([\d.]+)"[^>]*>([^<]+)<', layer
+        )
+        assert len(names) >= 5
+        for x, y, font, name in names:
+            half_w, half_h = 0.31 * float(font) * len(name), 0.65 * float(font)
+            assert abs(float(x) - cell[1]) > half_w or abs(float(y) - cell[0]) > half_h, (
+                f"{name} covers {cell}"
+            )

@@ -25,6 +25,7 @@ from sgplan.scene.draw_labels import label_anchors
 from sgplan.scene.draw_path import PATH_COLOURS, arrow_marks
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building, CatCode
+from sgplan.scene.placement import LabelPlacer
 
 _ARROW_SPACING = 0.06
 """Arrow spacing along the path, as a fraction of the floor's larger side."""
@@ -65,14 +66,32 @@ def _floor_svg(building: Building, floor: int, cells: np.ndarray, events: Sequen
         f'<svg class="overlay" viewBox="-0.5 -0.5 {cols} {rows}" preserveAspectRatio="none" '
         'xmlns="http://www.w3.org/2000/svg">'
     )
-    rooms = sorted(r.id for r in building.rooms() if r.floor == floor)
-    names = [
-        f'<text class="room-label" x="{c}" y="{r}" font-size="{11 * unit:.2f}">'
-        f"{html.escape(building.room(id=room_id).name)}</text>"
-        for room_id, (r, c) in label_anchors(f.room_map, rooms, f.cat_map == CatCode.GROUND).items()
-    ]
     path = _path_svg(cells, floor, unit, max(rows, cols)) if len(cells) else []
-    return head + "".join(names + path + _markers_svg(building, floor, cells, events, unit)) + "</svg>"
+    names = _room_names_svg(building, floor, cells, unit)
+    return head + "".join(path + names + _markers_svg(building, floor, cells, events, unit)) + "</svg>"
+
+
+def _room_names_svg(building: Building, floor: int, cells: np.ndarray, unit: float) -> list[str]:
+    """Room names at their rooms' freest cells, moved off the start, end and portals (and each other)."""
+    f = building.floors[floor]
+    rows, cols = f.shape
+    placer = LabelPlacer((-0.5, -0.5, cols - 0.5, rows - 0.5), gap=2 * unit)
+    markers = [end.portal for end in (f.up_stairs, f.down_stairs) if end is not None]
+    markers += [(int(cell[0]), int(cell[1])) for cell in (*cells[:1], *cells[-1:]) if cell[2] == floor]
+    for r, c in markers:
+        placer.block((c - 8 * unit, r - 8 * unit, c + 8 * unit, r + 8 * unit))
+    font = 11 * unit
+    parts = []
+    rooms = sorted(r.id for r in building.rooms() if r.floor == floor)
+    for room_id, (r, c) in label_anchors(f.room_map, rooms, f.cat_map == CatCode.GROUND).items():
+        name = building.room(id=room_id).name
+        # Box size from the text length: about 0.6 em a character in the report's sans-serif font.
+        x0, y0, x1, y1 = placer.place((c, r), (0.62 * font * len(name) + 4 * unit, 1.3 * font))
+        parts.append(
+            f'<text class="room-label" x="{(x0 + x1) / 2:.2f}" y="{(y0 + y1) / 2:.2f}" '
+            f'font-size="{font:.2f}" stroke-width="{3 * unit:.2f}">{html.escape(name)}</text>'
+        )
+    return parts
 
 
 def _path_svg(cells: np.ndarray, floor: int, unit: float, size: int) -> list[str]:
