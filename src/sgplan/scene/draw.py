@@ -275,7 +275,12 @@ def _draw_ticks(ax: Axes, rows: int, cols: int, font: float) -> None:
     step = _nice_step(max(rows, cols), 12)
     ax.set_xticks(np.arange(0, cols, step))
     ax.set_yticks(np.arange(0, rows, step))
+    # Unlabelled minor ticks on all four sides, a fifth of a step apart, to read a cell off the picture.
+    ax.set_xticks(np.arange(0, cols, step / 5), minor=True)
+    ax.set_yticks(np.arange(0, rows, step / 5), minor=True)
+    ax.tick_params(which="both", top=True, right=True)
     ax.tick_params(labelsize=font, length=3, pad=1.5)
+    ax.tick_params(which="minor", length=1.5)
     ax.set_xlabel("column", fontsize=font, labelpad=1)
     ax.set_ylabel("row", fontsize=font, labelpad=1)
     ax.grid(True, color="black", alpha=0.12, lw=0.5)
