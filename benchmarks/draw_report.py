@@ -21,16 +21,16 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
-from sgplan.datasets import SCENES, find_gibson_root  # noqa: E402
-from sgplan.errors import PlanningError  # noqa: E402
-from sgplan.mission import load_mission_folder  # noqa: E402
-from sgplan.planning.amra import plan  # noqa: E402
-from sgplan.planning.problem import PlanningProblem  # noqa: E402
-from sgplan.report.automaton import automaton_svg, graphviz_available  # noqa: E402
-from sgplan.report.html import report_html  # noqa: E402
-from sgplan.scene.authors import load_authors_scene  # noqa: E402
-from sgplan.scene.draw import MissionView, draw_floor  # noqa: E402
-from sgplan.scene.grid import build_occupancy_grid  # noqa: E402
+from sgplan.datasets import SCENES, find_gibson_root
+from sgplan.errors import PlanningError
+from sgplan.mission import load_mission_folder
+from sgplan.planning.amra import plan
+from sgplan.planning.problem import PlanningProblem
+from sgplan.report.automaton import automaton_svg, graphviz_available
+from sgplan.report.html import report_html
+from sgplan.scene.authors import load_authors_scene
+from sgplan.scene.draw import MissionView, draw_floor
+from sgplan.scene.grid import build_occupancy_grid
 
 
 def main() -> int:
@@ -50,8 +50,14 @@ def main() -> int:
         grid = build_occupancy_grid(building, building.robot_radius_m or 0.0)
         labels = mission.labels(building, reach)
         for start in building.initial_cells:
-            problem = PlanningProblem(building=building, grid=grid, labels=labels, automaton=mission.automaton,
-                                      start=start, reach_radius_m=reach)
+            problem = PlanningProblem(
+                building=building,
+                grid=grid,
+                labels=labels,
+                automaton=mission.automaton,
+                start=start,
+                reach_radius_m=reach,
+            )
             try:
                 result = plan(problem, "NO-LLM")
                 break
@@ -60,8 +66,12 @@ def main() -> int:
         else:
             print(f"{scene}: mission 1 accepts no initial position")
             continue
-        view = MissionView(text=mission.text, cost_m=result.cost_m, propositions=mission.ordered_propositions,
-                           reach_radius_m=reach)
+        view = MissionView(
+            text=mission.text,
+            cost_m=result.cost_m,
+            propositions=mission.ordered_propositions,
+            reach_radius_m=reach,
+        )
         out = args.out / scene
         out.mkdir(parents=True, exist_ok=True)
         for floor in range(building.num_floors):
@@ -79,7 +89,7 @@ def main() -> int:
         page = report_html(building, grid, result, mission, reach_radius_m=reach)
         t2 = time.perf_counter()
         (out / "report.html").write_text(page, encoding="utf-8")
-        print(f"{scene:13s}     -                          |  {t1 - t0:11.2f}  {t2 - t1:8.2f}  {len(page) / 1e3:9.0f}")
+        print(f"{scene:13s} {'-':>5s}  {'':24s}|  {t1 - t0:11.2f}  {t2 - t1:8.2f}  {len(page) / 1e3:9.0f}")
     return 0
 
 
