@@ -51,10 +51,13 @@ def test_demo_runs_end_to_end_offline(tmp_path: Path, capsys: pytest.CaptureFixt
     out = capsys.readouterr().out
     assert "offline-pattern" in out and "offline-symbolic" in out and "not LLMs" in out
     record = json.loads((tmp_path / "run.json").read_text())
-    assert record["verified"] and record["plan"]["status"] == "optimal"
-    assert {row[2] for row in record["plan"]["path"]} == {0, 1}  # the mission needs both floors
+    assert record["verified"] and record["status"] == "optimal"
+    assert {row[2] for row in record["path"]} == {0, 1}  # the mission needs both floors
     assert "G(" in record["mission"]["formula"]  # the "always avoid" part
     assert (tmp_path / "plan_floor_1.png").is_file() and (tmp_path / "mission" / "automaton.aut").is_file()
+    written = {p.name for p in tmp_path.iterdir()}
+    assert {"plan_floor_0.svg", "automaton.svg", "report.html", "waypoints.csv", "ros_path.yaml"} <= written
+    assert record["backends"]["guidance"] == "offline-symbolic (not an LLM)" and record["events"]
 
 
 DEMO_FORMULA = 'F("enter(room_5)" & F "reach(object_28)") & G !"enter(room_6)"'
@@ -67,9 +70,9 @@ def test_plan_formula_on_demo_writes_verified_json(tmp_path: Path, capsys: pytes
     assert main(["plan", "--scene", "demo", "--formula", DEMO_FORMULA, "--setup", "NO-LLM", "--verify",
                  "--json", str(out), "--draw", str(tmp_path)]) == 0
     record = json.loads(out.read_text())
-    assert record["status"] == "optimal" and record["verified"] and record["cost"] > 0
+    assert record["status"] == "optimal" and record["verified"] and record["cost_m"] > 0
     assert record["iterations"][-1]["w1"] == 1 and len(record["iterations"][-1]["expansions"]) == 5
-    assert set(record["timings"]) >= {"load_s", "precompute_s", "search_s"}
+    assert set(record["timings"]) >= {"prepare_s", "precompute_s", "search_s", "wall_s"}
     assert len(record["path"][0]) == 4 and (tmp_path / "plan_floor_0.png").is_file()
 
 
@@ -106,7 +109,8 @@ def test_plan_gibson_mission_folder_authors_profile(gibson_root: Path, capsys: p
         (["demo", "--start-index", "x"], "whole number >= 0"),
         (["inspect", "demo", "--robot-radius", "-0.1"], "radius in metres > 0 and <= 2"),
         (["plan", "--scene", "demo", "--formula", "x", "--robot-radius", "100"], "radius in metres > 0 and <= 2"),
-        (["plan", "--scene", "demo", "--formula", "x", "--reach-radius", "1e308"], "radius in metres >= 0 and <= 100"),
+        (["plan", "--scene", "demo", "--formula", "x", "--reach-radius", "1e308"], "radius in metres > 0 and <= 100"),
+        (["plan", "--scene", "demo", "--formula", "x", "--reach-radius", "0"], "radius in metres > 0 and <= 100"),
         (["guide", "--max-concurrency", "0"], "whole number >= 1"),
         (["guide", "--rpm", "nan"], "finite number > 0"),
     ],

@@ -4,7 +4,8 @@ Each sub-command lives in a module of :mod:`sgplan.commands` with a ``register(s
 that adds its parser and sets ``run`` to a function ``(args) -> exit code``.
 
 Every :class:`~sgplan.errors.SgplanError` is printed as ``sgplan: error: <message>`` and exits with code 2;
-``--debug`` shows the traceback instead.
+``--debug`` shows the traceback instead. ``--debug``, ``--quiet`` and ``--verbose`` go before or after the
+sub-command.
 """
 
 from __future__ import annotations
@@ -14,18 +15,24 @@ import signal
 import sys
 from collections.abc import Sequence
 
+from sgplan import __version__
 from sgplan.commands import REGISTRY
+from sgplan.commands.common import add_common_options, configure_logging
 from sgplan.errors import SgplanError
+
 
 def _build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="sgplan",
         description="Optimal scene-graph planning of natural-language missions with LLM guidance.",
     )
-    parser.add_argument("--debug", action="store_true", help="show tracebacks for sgplan errors")
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+    add_common_options(parser, top=True)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for register in REGISTRY:
         register(sub)
+    for command in sub.choices.values():
+        add_common_options(command, top=False)
     return parser
 
 
@@ -33,6 +40,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``sgplan`` console script; returns the process exit code."""
     parser = _build_parser()
     args = parser.parse_args(argv)
+    configure_logging(args)
     try:
         return int(args.run(args) or 0)
     except SgplanError as error:

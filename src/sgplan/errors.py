@@ -74,3 +74,7 @@ class PlanningError(SgplanError):
 
 class LLMError(SgplanError):
     """The language-model backend failed (network, protocol, cache miss in replay mode, bad replies)."""
+
+
+class OutputError(SgplanError):
+    """A result file (JSON, waypoints CSV, ROS path YAML, drawing) cannot be written."""

@@ -1,21 +1,24 @@
 """Joining the parts: scene + mission + start -> a planning problem, with the scene's defaults.
 
-These helpers hold the choices every front end (CLI, demo, benchmarks) must make the same way: which
-robot and reach radii apply, which start cell is meant, and how the grid and labels are built.
+These helpers hold the choices every front end must make the same way (through :mod:`sgplan.api`): which
+robot and reach radii apply, which initial position is meant, and how the grid and labels are built.
 """
 
 from __future__ import annotations
 
 import math
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
+
 from sgplan.errors import PlanningError
 from sgplan.mission import Mission
-from sgplan.planning.amra import PlanResult
+from sgplan.planning.amra import IterationRecord
 from sgplan.planning.problem import PlanningProblem
-from sgplan.scene.grid import build_occupancy_grid
+from sgplan.scene.grid import OccupancyGrid, build_occupancy_grid
 from sgplan.scene.model import Building
 
 DEFAULT_REACH_RADIUS_M = 0.6
@@ -83,12 +86,22 @@ def make_problem(
     robot_radius_m: float | None = None,
     reach_radius_m: float | None = None,
     use_guidance: bool = True,
+    grid: OccupancyGrid | None = None,
+    labels: np.ndarray | None = None,
 ) -> PreparedProblem:
-    """Build the occupancy grid and the label raster, and assemble a :class:`PlanningProblem`."""
+    """Build the occupancy grid and the label raster, and assemble a :class:`PlanningProblem`.
+
+    ``grid`` / ``labels`` may be given already built (a :class:`sgplan.api.Session` keeps them between
+    missions); they must be the ones of these radii (``grid.robot_radius_m`` is checked).
+    """
     t0 = time.perf_counter()
     radii = resolve_radii(building, robot_radius_m, reach_radius_m)
-    grid = build_occupancy_grid(building, radii.robot_m)
-    labels = mission.labels(building, radii.reach_m)
+    if grid is None:
+        grid = build_occupancy_grid(building, radii.robot_m)
+    elif grid.robot_radius_m != radii.robot_m:
+        raise PlanningError(f"the given grid is for robot radius {grid.robot_radius_m} m, not {radii.robot_m} m")
+    if labels is None:
+        labels = mission.labels(building, radii.reach_m)
     problem = PlanningProblem(
         building=building,
         grid=grid,
@@ -103,32 +116,17 @@ def make_problem(
     return PreparedProblem(problem, radii, time.perf_counter() - t0)
 
 
-def add_offline_guidance(mission: Mission, building: Building) -> str:
-    """Give ``mission`` guidance from the offline symbolic guide (not an LLM); returns its backend name.
+def iteration_records(iterations: Sequence[IterationRecord]) -> list[dict[str, Any]]:
+    """JSON-ready records of AMRA* iterations: weights, ``cost_m`` (metres), suboptimality bound w1*w2,
+    cumulative search seconds and cumulative expansions per queue (``PlanResult.queues`` order).
+    The one shape of iterations in every sgplan output (``plan --json``, demo's run.json, bench rows)."""
+    return [
+        {"w1": it.w1, "w2": it.w2, "cost_m": it.cost_m, "bound": it.bound, "time_s": it.time_s,
+         "expansions": list(it.expansions)}
+        for it in iterations
+    ]
 
-    Used when a setup needs guidance that the mission does not carry, so LLM-guided setups still run.
-    """
-    from sgplan.llm.offline import SymbolicGuide
 
-    guide = SymbolicGuide()
-    mission.guidance = guide.guide(building, mission.automaton, mission.descriptions)
-    return guide.name
-
-
-def result_record(result: PlanResult) -> dict[str, Any]:
-    """The JSON-ready record of a plan result: status, setup, profile, cost (metres, ``None`` without a
-    path), queues, iterations, path rows ``[row, col, floor, q]`` and search timings."""
-    return {
-        "status": result.status,
-        "setup": result.setup,
-        "profile": result.profile,
-        "cost": result.cost_m if math.isfinite(result.cost_m) else None,
-        "queues": list(result.queues),
-        "iterations": [
-            {"w1": it.w1, "w2": it.w2, "cost": it.cost_m, "bound": it.bound, "time_s": it.time_s,
-             "expansions": list(it.expansions)}
-            for it in result.iterations
-        ],
-        "path": result.path.tolist() if result.path is not None else None,
-        "timings": {"precompute_s": result.precompute_s, "search_s": result.search_s},
-    }
+def finite_or_none(value: float) -> float | None:
+    """``value``, or ``None`` for an infinite / NaN one (JSON has no infinity)."""
+    return value if math.isfinite(value) else None

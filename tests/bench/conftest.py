@@ -7,12 +7,12 @@ from pathlib import Path
 
 import pytest
 
+from sgplan.api import add_guidance
 from sgplan.bench.cases import Grid, discover, expand
 from sgplan.bench.executors import LocalExecutor
 from sgplan.bench.results import ResultStore
 from sgplan.bench.sweep import run_sweep
 from sgplan.mission import mission_from_formula, save_mission_folder
-from sgplan.pipeline import add_offline_guidance
 from sgplan.scene.demo import demo_building
 from sgplan.scene.native import write_native_scene
 
@@ -41,9 +41,8 @@ def data_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     building.initial_cells = [*building.initial_cells, (0, 0, 0)]
     scene = write_native_scene(building, root / SCENE)
     for name, formula in MISSIONS.items():
-        mission = mission_from_formula(formula)
-        add_offline_guidance(mission, building)
-        save_mission_folder(mission, scene / "missions" / name)
+        guided, _ = add_guidance(mission_from_formula(formula), building)
+        save_mission_folder(guided, scene / "missions" / name)
     return root
 
 

@@ -251,7 +251,7 @@ def test_plan_text_offline_translates_guides_and_verifies(tmp_path: Path, capsys
     assert record["status"] == "optimal" and record["verified"] is True and "llm" not in record
     # The saved folder is the same mission: planning it again gives the same optimum.
     assert main(["plan", "--scene", "demo", "--mission-dir", str(saved), "--json", str(tmp_path / "again.json")]) == 0
-    assert json.loads((tmp_path / "again.json").read_text())["cost"] == record["cost"]
+    assert json.loads((tmp_path / "again.json").read_text())["cost_m"] == record["cost_m"]
 
 
 def test_plan_text_with_a_language_model_uses_its_translation_and_guidance(

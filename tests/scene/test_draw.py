@@ -1,4 +1,5 @@
-"""Floor drawings: files written, colours where they belong, path overlay, errors."""
+"""Floor drawings: colours, the planner's path as it is, labels clear of markers and of each other,
+legend / title / ticks / scale bar, direction arrows, reach regions, PNG and SVG, errors."""
 
 from __future__ import annotations
 
@@ -6,14 +7,28 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from matplotlib.quiver import Quiver
 from PIL import Image
 
 from sgplan.errors import SceneError
 from sgplan.scene.demo import demo_building
-from sgplan.scene.distances import grid_distances
-from sgplan.scene.draw import draw_building, draw_floor, floor_image, room_colour
+from sgplan.scene.draw import MissionView, draw_building, draw_floor, floor_image, room_colour
+from sgplan.scene.draw_path import arrow_marks, path_cells
 from sgplan.scene.grid import build_occupancy_grid
+from sgplan.scene.labels import label_raster
 from sgplan.scene.model import CatCode
+from tests.plans import REACH_M, TEXT, demo_plan
+
+
+def _view() -> MissionView:
+    d = demo_plan()
+    return MissionView(
+        text=TEXT,
+        explanation="one line of explanation",
+        cost_m=d.result.cost_m,
+        propositions=d.mission.ordered_propositions,
+        reach_radius_m=REACH_M,
+    )
 
 
 def test_floor_image_colours() -> None:
@@ -36,33 +51,118 @@ def test_floor_image_colours() -> None:
     assert blocked.any() and (shaded[blocked].sum(axis=1) < image[blocked].sum(axis=1)).all()
 
 
-def test_draw_building_writes_one_png_per_floor(tmp_path: Path) -> None:
-    building = demo_building()
-    grid = build_occupancy_grid(building, building.robot_radius_m)
-    start = building.initial_cells[0]
-    goal = building.initial_cells[-1]
-    # A real path: walk down the distance field from the goal to the start.
-    dist = grid_distances(grid, [start])
-    path = [goal]
-    while path[-1] != start:
-        r, c, f = path[-1]
-        link = next((s for s in grid.stairs if f == s.upper_floor and (r, c) == s.upper_cell), None)
-        via_stairs = link is not None and dist[link.lower_floor][link.lower_cell] + link.cost_m
-        if link is not None and via_stairs == pytest.approx(dist[f, r, c]):
-            path.append((*link.lower_cell, link.lower_floor))
-            continue
-        window = dist[f, r - 1 : r + 2, c - 1 : c + 2]
-        dr, dc = np.unravel_index(int(np.argmin(window)), window.shape)
-        path.append((r + int(dr) - 1, c + int(dc) - 1, f))
-    written = draw_building(building, tmp_path / "out", grid=grid, path=path[::-1])
-    assert [p.name for p in written] == ["floor_0.png", "floor_1.png"]
-    for png in written:
+def test_path_cells_accepts_rows_and_planner_arrays() -> None:
+    d = demo_plan()
+    cells = path_cells(d.result.path)  # (n, 4) with the automaton state
+    assert cells.shape == (len(d.result.path), 3) and cells.dtype == np.int64
+    np.testing.assert_array_equal(path_cells([tuple(c) for c in cells.tolist()]), cells)
+    assert path_cells([]).shape == (0, 3)
+    for bad in ([(1, 2)], np.zeros((3, 3)), [(1, 2, 3), (1, 2)]):
+        with pytest.raises(SceneError, match="a path must be rows"):
+            path_cells(bad)  # type: ignore[arg-type]
+
+
+def test_draw_building_with_the_planner_path_png_and_svg(tmp_path: Path) -> None:
+    d = demo_plan()
+    written = draw_building(
+        d.building,
+        tmp_path / "out",
+        grid=d.grid,
+        path=d.result.path,
+        mission=_view(),
+        stem="plan",
+        formats=("png", "svg"),
+    )
+    assert [p.name for p in written] == ["plan_0.png", "plan_0.svg", "plan_1.png", "plan_1.svg"]
+    pictures = []
+    for png in written[::2]:
         with Image.open(png) as image:
-            assert image.format == "PNG" and image.width > 500 and image.height > 500
-            pixels = np.asarray(image.convert("RGB"))
-        # The path is drawn in red on both floors.
-        red = (pixels[..., 0] > 200) & (pixels[..., 1] < 80) & (pixels[..., 2] < 80)
-        assert red.sum() > 100
+            assert image.format == "PNG" and image.width > 800 and image.height > 800
+            pictures.append(np.asarray(image.convert("RGB")).astype(int))
+    blue = [((p[..., 2] > 150) & (p[..., 0] < 60) & (p[..., 1] < 100)).sum() for p in pictures]
+    red = [((p[..., 0] > 180) & (p[..., 1] < 60) & (p[..., 2] < 60)).sum() for p in pictures]
+    # The path starts (blue) on floor 0 and ends (red, with the red end marker) on floor 1.
+    assert blue[0] > 50 and red[1] > 50 and blue[0] > blue[1] and red[1] > red[0]
+    svg = written[1].read_text(encoding="utf-8")
+    assert "<svg" in svg and "stairs up" in svg and "corridor" in svg  # text kept as text
+
+
+def _label_boxes(fig, ax) -> list[tuple[str, tuple[float, float, float, float]]]:
+    renderer = fig.canvas.get_renderer()
+    out = []
+    for text in ax.texts:
+        if text.get_bbox_patch() is None or " m (" in text.get_text():
+            continue
+        extent = text.get_window_extent(renderer)
+        out.append((text.get_text(), (extent.x0, extent.y0, extent.x1, extent.y1)))
+    return out
+
+
+@pytest.mark.parametrize("floor", [0, 1])
+def test_labels_clear_markers_and_each_other(floor: int) -> None:
+    d = demo_plan()
+    fig = draw_floor(d.building, floor, grid=d.grid, path=d.result.path, mission=_view())
+    ax = fig.axes[0]
+    boxes = _label_boxes(fig, ax)
+    assert len(boxes) >= 10 and any("corridor" in t for t, _ in boxes)
+    cells = path_cells(d.result.path)
+    f = d.building.floors[floor]
+    markers = [tuple(c[:2]) for c in (cells[0], cells[-1]) if c[2] == floor]
+    markers += [end.portal for end in (f.up_stairs, f.down_stairs) if end is not None]
+    assert markers
+    x0, y0, x1, y1 = ax.bbox.extents
+    for k, (text, (a0, b0, a1, b1)) in enumerate(boxes):
+        assert x0 - 1 <= a0 and a1 <= x1 + 1 and y0 - 1 <= b0 and b1 <= y1 + 1, f"{text!r} leaves the map"
+        for r, c in markers:
+            mx, my = ax.transData.transform((c, r))
+            assert not (a0 - 4 < mx < a1 + 4 and b0 - 4 < my < b1 + 4), (
+                f"{text!r} covers the marker at {(r, c)}"
+            )
+        for other, (o0, p0, o1, p1) in boxes[:k]:
+            overlap = max(0, min(a1, o1) - max(a0, o0)) * max(0, min(b1, p1) - max(b0, p0))
+            assert overlap < 1.0, f"{text!r} overlaps {other!r}"
+
+
+def test_legend_title_ticks_and_scale_bar() -> None:
+    d = demo_plan()
+    fig = draw_floor(d.building, 0, grid=d.grid, path=d.result.path, mission=_view())
+    ax = fig.axes[0]
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    for entry in ("start", "stairs portal", "reach region (mission)", "mission room"):
+        assert entry in legend
+    assert "end" not in legend  # the path ends upstairs
+    assert any(t.startswith("path") for t in legend)
+    title = " ".join(t.get_text() for t in fig.texts)
+    assert f"cost {d.result.cost_m:.2f} m" in title and "one line of explanation" in title
+    assert "mission: Visit the bathroom" in title
+    assert len(ax.get_xticks()) >= 3 and len(ax.get_yticks()) >= 3
+    assert ax.get_xlabel() == "column" and ax.get_ylabel() == "row"
+    assert any(t.get_text() == "2 m (40 cells)" for t in ax.texts)  # 0.05 m cells: 2 m = 40 columns
+    arrows = [c for c in ax.collections if isinstance(c, Quiver)]
+    assert len(arrows) == 1 and arrows[0].N >= 5
+
+
+def test_arrows_of_an_out_and_back_path_lie_on_both_sides() -> None:
+    out = [(10, c) for c in range(41)]
+    xy = np.array([(c, r) for r, c in out + out[::-1]], dtype=float)  # east along row 10, then back west
+    centres, vectors, index = arrow_marks(xy, np.ones(len(xy), bool), spacing=10, length=3, lane=1)
+    east, west = vectors[:, 0] > 0, vectors[:, 0] < 0
+    assert east.sum() >= 3 and west.sum() >= 3 and (east | west).all()
+    np.testing.assert_allclose(centres[east, 1], 11.0)  # right of eastward travel, rows growing down: below
+    np.testing.assert_allclose(centres[west, 1], 9.0)
+    np.testing.assert_allclose(np.hypot(*vectors.T), 3.0)
+    assert (np.diff(index) > 0).all() and index[west].min() > index[east].max()
+
+
+def test_reach_regions_are_shaded_exactly() -> None:
+    d = demo_plan()
+    view = _view()
+    plain = np.asarray(draw_floor(d.building, 0).axes[0].images[0].get_array())
+    shaded = np.asarray(draw_floor(d.building, 0, mission=view).axes[0].images[0].get_array())
+    reach = [p for p in view.propositions if p.kind == "reach"]
+    expected = label_raster(d.building, reach, REACH_M)[0] > 0
+    assert expected.any()
+    np.testing.assert_array_equal((plain != shaded).any(axis=2), expected)
 
 
 def test_draw_errors(tmp_path: Path) -> None:
@@ -73,6 +173,10 @@ def test_draw_errors(tmp_path: Path) -> None:
     blocker.write_text("not a folder")
     with pytest.raises(SceneError, match="cannot create"):
         draw_building(building, blocker / "sub")
+    with pytest.raises(SceneError, match="cannot draw format"):
+        draw_building(building, tmp_path, formats=("jpg",))
+    with pytest.raises(SceneError, match="a path must be rows"):
+        draw_building(building, tmp_path, path=[(1.5, 2.0, 0.0)])
 
 
 @pytest.mark.gibson
@@ -82,3 +186,17 @@ def test_draw_benevolence(gibson_root: Path, tmp_path: Path) -> None:
     building = load_authors_scene(gibson_root / "Benevolence")
     written = draw_building(building, tmp_path, grid=build_occupancy_grid(building, building.robot_radius_m))
     assert len(written) == 3 and all(p.stat().st_size > 20_000 for p in written)
+
+
+def test_legend_lists_what_the_floor_shows() -> None:
+    d = demo_plan()
+    cells = path_cells(d.result.path)
+    upstairs_only = cells[cells[:, 2] == 1]  # a path that never visits floor 0
+    fig = draw_floor(d.building, 0, path=upstairs_only, mission=_view())
+    legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert "start" not in legend and "end" not in legend and not any(t.startswith("path") for t in legend)
+    assert "reach region (mission)" in legend  # the sink and the chairs are on floor 0
+    assert "the path does not come to this floor" in " ".join(t.get_text() for t in fig.texts)
+    fig = draw_floor(d.building, 1, path=upstairs_only, mission=_view())
+    legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert {"start", "end"} <= set(legend) and "reach region (mission)" not in legend

@@ -11,9 +11,17 @@ import contextlib
 import os
 import signal
 from collections.abc import Iterator
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from sgplan.commands.common import positive_int, positive_seconds, say
+from sgplan.commands.common import (
+    DEFAULT_PROFILE,
+    add_profile_argument,
+    positive_int,
+    positive_seconds,
+    say,
+    split_list,
+)
 
 if TYPE_CHECKING:
     from sgplan.bench.cases import Case
@@ -36,14 +44,16 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--out", metavar="DIR", default="bench-out", help="results folder (default: bench-out)")
     parser.add_argument("--data", metavar="DIR",
                         help=f"data folder of <scene>/missions/<m>/ (default: ${ENV_VAR}, else ../shared/datasets/gibson-3dsg)")
-    parser.add_argument("--scenes", nargs="+", metavar="NAME", help="scenes (default: all in the data folder)")
+    parser.add_argument("--scenes", nargs="+", metavar="NAME",
+                        help="scenes, any case, space- or comma-separated (default: all in the data folder)")
     parser.add_argument("--missions", nargs="+", metavar="NAME", help="mission folder names (default: all)")
     parser.add_argument("--starts", metavar="LIST", help="initial-position indices, e.g. 0,2-4 (default: all)")
     parser.add_argument("--setups", nargs="+", metavar="NAME",
-                        help=f"planner setups among {', '.join(SETUPS)} (default: ALL NO-LLM A*)")
-    parser.add_argument("--profile", choices=("authors", "ltlf"),
-                        help="semantics (default: authors, as the paper's numbers); recorded in every row. "
-                             "With report: the rows to report (default: the newest row's profile)")
+                        help=f"planner setups among {', '.join(SETUPS)}, any case (default: ALL NO-LLM A*)")
+    add_profile_argument(parser, default=None,
+                         extra_help=f"; recorded in every row (run: default {DEFAULT_PROFILE}, as for plan; the "
+                                    "paper's tables were made with authors). With report: the rows to report "
+                                    "(default: the newest row's profile)")
     parser.add_argument("--time-limit", type=positive_seconds, metavar="S",
                         help="search time budget per case (seconds). With report: the rows to report (default: the newest "
                              "row's time limit among those of --profile)")
@@ -79,16 +89,26 @@ def _cases(args: argparse.Namespace) -> list[Case]:
     if root is None:
         raise SceneError(f"cannot find the data folder: give --data DIR (a folder like ../shared/datasets/gibson-3dsg "
                          f"holding {', '.join(SCENES)})")
-    scenes = discover(root, args.scenes)
-    selected = any(v is not None for v in (args.scenes, args.missions, args.starts, args.setups))
+    names, missions, setups = split_list(args.scenes), split_list(args.missions), split_list(args.setups)
+    scenes = discover(root, _scene_folders(root, names))
+    selected = any(v is not None for v in (names, missions, args.starts, setups))
     if selected:
-        grids = [Grid(missions=tuple(args.missions) if args.missions else None,
+        grids = [Grid(missions=tuple(missions) if missions else None,
                       starts=parse_selection(args.starts) if args.starts else None,
-                      **({"setups": tuple(args.setups)} if args.setups else {}))]
+                      **({"setups": tuple(setups)} if setups else {}))]
     else:
         grids = paper_grids(s.name for s in scenes)
     say(f"data: {root}")
-    return expand(scenes, grids, profile=args.profile or "authors", time_limit_s=args.time_limit)
+    return expand(scenes, grids, profile=args.profile or DEFAULT_PROFILE, time_limit_s=args.time_limit)
+
+
+def _scene_folders(root: Path, names: list[str] | None) -> list[str] | None:
+    """The folder names under ``root`` of scenes named in any case (``collierville`` -> ``Collierville``);
+    unknown names are kept as given, for :func:`~sgplan.bench.cases.discover` to refuse."""
+    if names is None:
+        return None
+    folders = {p.name.lower(): p.name for p in root.iterdir() if p.is_dir()}
+    return [folders.get(name.lower(), name) for name in names]
 
 
 @contextlib.contextmanager
@@ -110,8 +130,10 @@ def _termination_as_interrupt() -> Iterator[None]:
 
 def _sweep(args: argparse.Namespace) -> int:
     from sgplan.bench.results import ResultStore, make_folder, writing_lock
+    from sgplan.jit import announce_compile
 
     cases = _cases(args)
+    announce_compile()  # the workers compile on first use; said once here rather than by each of them
     with writing_lock(make_folder(args.out)), _termination_as_interrupt():
         store = ResultStore(args.out)
         executor, summary, (csv_path, json_path) = _run_with_progress(args, cases, store)
@@ -127,7 +149,14 @@ def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: Resul
     """Run the sweep with a progress bar; returns (executor, sweep summary, exported file paths)."""
     from rich.console import Console
     from rich.markup import escape
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
 
     from sgplan.bench.executors import LocalExecutor, RayExecutor
     from sgplan.bench.results import FAILED, record_sweep
@@ -141,7 +170,7 @@ def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: Resul
     statuses: dict[str, int] = {}
     with Progress(TextColumn("[bold]bench"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                   TextColumn("ETA"), TimeRemainingColumn(), TextColumn("{task.fields[statuses]}"),
-                  console=console, transient=False) as progress:
+                  console=console, transient=False, disable=args.quiet) as progress:
         task = progress.add_task("bench", total=None, statuses="")
 
         def on_start(to_run: int, already: int) -> None:

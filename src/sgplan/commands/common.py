@@ -1,25 +1,31 @@
-"""Argument helpers shared by sub-commands: naming a scene, the Gibson data folder, checked numbers,
-console output."""
+"""Argument helpers shared by sub-commands: naming a scene, the Gibson data folder, the semantics profile,
+checked numbers and lists, the options every command takes (``--debug``, ``--quiet``, ``--verbose``), and
+console output through :mod:`logging`."""
 
 from __future__ import annotations
 
 import argparse
+import logging
 import math
 import sys
-from pathlib import Path
+from collections.abc import Iterable
 
-from sgplan.datasets import ENV_VAR, SCENES, scene_dir
-from sgplan.errors import SceneError
+from sgplan.datasets import ENV_VAR, SCENES
 from sgplan.scene.model import Building
 
 DEMO = "demo"
+DEFAULT_PROFILE = "ltlf"
+"""The semantics profile of every command (plan, guide, bench): LTL over finite traces, the start cell's
+label read. ``--profile authors`` reproduces the authors' C++ (and the paper's numbers) for comparison."""
+PROFILES = ("ltlf", "authors")
+log = logging.getLogger("sgplan")
 
 
 def add_scene_arguments(parser: argparse.ArgumentParser, *, positional: bool = False) -> None:
     """Add the scene argument (``SCENE`` or ``--scene``) and ``--data``."""
     help_text = (
         f"scene folder (authors' building.yaml layout, sgplan's format, or a raw .npz), a Gibson scene name "
-        f"({', '.join(SCENES)}) looked up under --data, or '{DEMO}' for the embedded demo building"
+        f"({', '.join(SCENES)}; any case) looked up under --data, or '{DEMO}' for the embedded demo building"
     )
     if positional:
         parser.add_argument("scene", metavar="SCENE", help=help_text)
@@ -32,24 +38,63 @@ def add_scene_arguments(parser: argparse.ArgumentParser, *, positional: bool = F
 
 
 def load_scene_arg(spec: str, data: str | None = None) -> Building:
-    """The building named by a scene argument (see :func:`add_scene_arguments`)."""
-    from sgplan.scene.loading import load_scene
+    """The building named by a scene argument (see :func:`add_scene_arguments` and :func:`sgplan.load_scene`)."""
+    from sgplan.api import load_scene
 
-    if spec == DEMO:
-        from sgplan.scene.demo import demo_building
+    return load_scene(spec, data)
 
-        return demo_building()
-    path = Path(spec).expanduser()
-    if path.exists():
-        return load_scene(path)
-    if spec in SCENES:
-        return load_scene(scene_dir(spec, data))
-    raise SceneError(f"scene {spec!r} is neither an existing path, a Gibson scene name ({', '.join(SCENES)}) nor '{DEMO}'")
+
+def add_profile_argument(parser: argparse.ArgumentParser, *, default: str | None = DEFAULT_PROFILE,
+                         extra_help: str = "") -> None:
+    """``--profile ltlf|authors`` (any case), the same on every command; default :data:`DEFAULT_PROFILE`."""
+    parser.add_argument(
+        "--profile", type=str.lower, choices=PROFILES, default=default,
+        help=f"semantics: ltlf (default; start label read, missing automaton edges reject) or authors (the "
+             f"authors' C++ and the paper's numbers: start label not read, missing edges keep the state){extra_help}",
+    )
+
+
+def split_list(values: Iterable[str] | None) -> list[str] | None:
+    """The items of a list option given space- or comma-separated (``--scenes a b`` = ``--scenes a,b``)."""
+    if values is None:
+        return None
+    return [item for value in values for item in (part.strip() for part in value.split(",")) if item]
+
+
+def add_common_options(parser: argparse.ArgumentParser, *, top: bool) -> None:
+    """``--debug``, ``--quiet``, ``--verbose``: on the top-level parser (``top``) and again on every
+    sub-command, where they default to "not given" so ``sgplan plan --debug`` and ``sgplan --debug plan``
+    mean the same."""
+    defaults = {"default": False} if top else {"default": argparse.SUPPRESS}
+    group = parser.add_argument_group("output") if top else parser
+    group.add_argument("--debug", action="store_true", help="show tracebacks for sgplan errors", **defaults)
+    group.add_argument("--quiet", "-q", action="store_true", help="print only results, warnings and errors",
+                       **defaults)
+    group.add_argument("--verbose", "-v", action="store_true", help="also print debugging detail", **defaults)
+
+
+def configure_logging(args: argparse.Namespace) -> None:
+    """Progress and status lines go to stderr through the ``sgplan`` logger, so stdout stays clean for
+    results: INFO and above by default, WARNING and above with ``--quiet``, everything with ``--verbose``."""
+    level = logging.WARNING if args.quiet else logging.DEBUG if args.verbose else logging.INFO
+    handler = _StderrHandler()
+    handler.setFormatter(logging.Formatter("%(message)s"))
+    log.handlers[:] = [handler]
+    log.setLevel(level)
+    log.propagate = False
+
+
+class _StderrHandler(logging.StreamHandler):  # type: ignore[type-arg]
+    """Writes to whatever ``sys.stderr`` is when a line is logged (tests and callers may swap it)."""
+
+    def emit(self, record: logging.LogRecord) -> None:
+        self.stream = sys.stderr
+        super().emit(record)
 
 
 def say(message: str) -> None:
-    """Progress and status lines go to stderr, so stdout stays clean for results."""
-    print(message, file=sys.stderr, flush=True)
+    """A progress or status line (logged at INFO on the ``sgplan`` logger: stderr, hidden by ``--quiet``)."""
+    log.info(message)
 
 
 MAX_SECONDS = 1e6
@@ -99,6 +144,6 @@ def robot_radius(text: str) -> float:
 
 
 def reach_radius(text: str) -> float:
-    """argparse type: a reach radius in metres in [0, :data:`MAX_REACH_RADIUS_M`]."""
-    return _number(text, float, allow_zero=True, maximum=MAX_REACH_RADIUS_M,
-                   what=f"a radius in metres >= 0 and <= {MAX_REACH_RADIUS_M:g}")
+    """argparse type: a reach radius in metres in (0, :data:`MAX_REACH_RADIUS_M`] (0 would reach nothing)."""
+    return _number(text, float, allow_zero=False, maximum=MAX_REACH_RADIUS_M,
+                   what=f"a radius in metres > 0 and <= {MAX_REACH_RADIUS_M:g}")

@@ -11,7 +11,13 @@ import argparse
 import contextlib
 from pathlib import Path
 
-from sgplan.commands.common import add_scene_arguments, load_scene_arg, positive_int, positive_number, say
+from sgplan.commands.common import (
+    add_profile_argument,
+    add_scene_arguments,
+    load_scene_arg,
+    positive_int,
+    say,
+)
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 
 
@@ -20,11 +26,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_scene_arguments(parser)
     parser.add_argument("--mission-dir", required=True, metavar="DIR", help="mission folder (automaton.aut, ap_desc.yaml)")
     parser.add_argument("--out", metavar="FILE", help="where to write (default: DIR/llm_heuristic.yaml)")
-    parser.add_argument("--profile", choices=("ltlf", "authors"), default="ltlf",
-                        help="how automaton.aut's missing edges are read (as for sgplan plan; default ltlf)")
-    add_llm_arguments(parser)
+    add_profile_argument(parser, extra_help="; here: how automaton.aut's missing edges are read")
+    add_llm_arguments(parser, translates=False)
     parser.add_argument("--max-concurrency", type=positive_int, default=4, metavar="N", help="LLM calls in flight (default 4)")
-    parser.add_argument("--rpm", type=positive_number, metavar="R", help="at most R LLM requests per minute (hosted APIs)")
     parser.set_defaults(run=run)
 
 
@@ -36,7 +40,7 @@ def run(args: argparse.Namespace) -> int:
     building = load_scene_arg(args.scene, args.data)
     mission = load_mission_folder(args.mission_dir, profile=args.profile, guidance=False)
     mission.check_scene(building)
-    options = {"requests_per_minute": args.rpm}
+    options: dict[str, object] = {}
     if args.llm != "offline":
         options.update(max_concurrency=args.max_concurrency, mission_text=mission.grounded_text)
     backends = open_backends_from_args(args, **options)

@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
+import json
+import sys
 
 from sgplan.commands.common import add_scene_arguments, load_scene_arg, robot_radius, say
 
@@ -14,10 +17,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="robot radius in metres for the free-cell counts (default: the scene's, else 0)")
     parser.add_argument("--draw", metavar="DIR", default=None, help="write one PNG per floor into DIR")
     parser.add_argument("--no-objects", action="store_true", help="leave the object lists out")
+    parser.add_argument("--json", metavar="OUT", help="write the summary as JSON ('-': to stdout, instead of the text)")
     parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    from sgplan.result import write_text
     from sgplan.scene.draw import draw_building
     from sgplan.scene.grid import build_occupancy_grid
     from sgplan.scene.summary import summarize, summary_lines
@@ -26,7 +31,15 @@ def run(args: argparse.Namespace) -> int:
     has_maps = all(floor.has_maps for floor in building.floors)
     radius = args.robot_radius if args.robot_radius is not None else (building.robot_radius_m or 0.0)
     grid = build_occupancy_grid(building, radius) if has_maps else None
-    print("\n".join(summary_lines(summarize(building, grid), objects=not args.no_objects)))
+    summary = summarize(building, grid)
+    if args.json:
+        text = json.dumps(dataclasses.asdict(summary), indent=1, allow_nan=False) + "\n"
+        if args.json == "-":
+            sys.stdout.write(text)
+        else:
+            say(f"wrote {write_text(args.json, text)}")
+    if args.json != "-":
+        print("\n".join(summary_lines(summary, objects=not args.no_objects)))
     if args.draw:
         if not has_maps:
             say("no maps in this scene (raw .npz): nothing to draw")

@@ -1,41 +1,64 @@
-"""``sgplan plan``: plan an optimal path for a mission over a scene with AMRA*.
+"""``sgplan plan``: plan an optimal path for a mission over a scene with AMRA* (through :mod:`sgplan.api`).
 
 The mission is a mission folder, a formula, or natural language (``--text``, translated by the backend
 of ``--llm``). When the setup needs guidance that the mission does not carry, the ``--llm`` backend's
 guide provides it (the offline symbolic guide by default, which is not a language model).
+
+Exit codes: 0 optimal; 2 an error (bad input, invalid start, infeasible mission); 3 a budget ran out
+(``--time-limit`` / ``--max-expansions``): the best path so far is still written, with its bound.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TextIO
 
-from sgplan.commands.common import (add_scene_arguments, load_scene_arg, non_negative_int, positive_int,
-                                    positive_seconds, reach_radius, robot_radius, say)
+from sgplan.commands.common import (
+    add_profile_argument,
+    add_scene_arguments,
+    load_scene_arg,
+    log,
+    non_negative_int,
+    positive_int,
+    positive_seconds,
+    reach_radius,
+    robot_radius,
+    say,
+)
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
-from sgplan.errors import MissionError, PlanningError, SgplanError
+from sgplan.errors import MissionError, SgplanError
 
 if TYPE_CHECKING:
     from sgplan.llm.backends import Backends
-    from sgplan.mission import Mission
-    from sgplan.scene.model import Building
+    from sgplan.result import PlanResult
+
+TIMEOUT_EXIT = 3
+"""Exit code of a plan whose search budget ran out (distinct from errors, 2)."""
 
 
-def _start_cell(text: str) -> tuple[int, int, int]:
-    try:
-        row, col, floor = (int(v) for v in text.split(","))
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected ROW,COL,FLOOR (grid cells), got {text!r}") from None
-    return (row, col, floor)
+def _triple(kind: type, what: str) -> Callable[[str], tuple]:
+    """An argparse type reading ``A,B,FLOOR`` with ``A`` and ``B`` of ``kind``."""
+
+    def parse(text: str) -> tuple:
+        try:
+            a, b, floor = text.split(",")
+            return (kind(a), kind(b), int(floor))
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}") from None
+    return parse
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     from sgplan.planning.amra import SETUPS
 
-    parser = sub.add_parser("plan", help="plan an optimal path for a mission (AMRA*)")
+    parser = sub.add_parser("plan", help="plan an optimal path for a mission (AMRA*)",
+                            description="Plan an optimal path. Exit codes: 0 optimal, 2 error, 3 budget ran out "
+                                        "(the best path so far is still written).")
     add_scene_arguments(parser)
     what = parser.add_mutually_exclusive_group(required=True)
     what.add_argument("--mission-dir", metavar="DIR", help="mission folder (automaton.aut, ap_desc.yaml, llm_heuristic.yaml)")
@@ -44,19 +67,32 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--aps", metavar="FILE", help="ap_desc.yaml giving the formula's proposition names a meaning")
     parser.add_argument("--guidance", metavar="FILE", help="llm_heuristic.yaml to use instead of the mission's")
     where = parser.add_mutually_exclusive_group()
-    where.add_argument("--start", type=_start_cell, metavar="ROW,COL,FLOOR", help="start cell")
-    where.add_argument("--start-index", type=non_negative_int, metavar="K", help="start at the scene's initial position K")
-    parser.add_argument("--setup", default="ALL", help=f"planner setup: {', '.join(SETUPS)} (default ALL)")
-    parser.add_argument("--profile", choices=("ltlf", "authors"), default="ltlf",
-                        help="semantics: ltlf (default; start label read, missing automaton edges reject) or "
-                             "authors (the authors' C++: start label not read, missing edges keep the state)")
+    where.add_argument("--start", type=_triple(int, "ROW,COL,FLOOR (grid cells)"), metavar="ROW,COL,FLOOR",
+                       help="start cell")
+    where.add_argument("--start-xy", type=_triple(float, "X,Y,FLOOR (metres, floor index)"), metavar="X,Y,FLOOR",
+                       help="start at a metric point (snapped to the nearest free cell within 0.5 m)")
+    where.add_argument("--start-room", metavar="ROOM", help="start in a room: room_<uuid>, a category "
+                       "('kitchen') or 'bathroom on floor 1'; the room's free cell farthest from obstacles")
+    where.add_argument("--start-index", type=non_negative_int, metavar="K",
+                       help="start at the scene's initial position K (default 0)")
+    parser.add_argument("--setup", default="ALL", help=f"planner setup, any case: {', '.join(SETUPS)} (default ALL)")
+    add_profile_argument(parser)
     parser.add_argument("--robot-radius", type=robot_radius, metavar="M", help="robot radius (default: the scene's)")
     parser.add_argument("--reach-radius", type=reach_radius, metavar="M", help="object reach radius (default: the scene's)")
     parser.add_argument("--time-limit", type=positive_seconds, metavar="S", help="search time budget in seconds")
     parser.add_argument("--max-expansions", type=positive_int, metavar="N", help="search expansion budget")
-    parser.add_argument("--json", metavar="OUT", help="write the result as JSON")
-    parser.add_argument("--draw", metavar="DIR", help="write one PNG per floor with the path")
-    parser.add_argument("--verify", action="store_true", help="check the path with the independent checker")
+    out = parser.add_argument_group("outputs")
+    out.add_argument("--json", metavar="OUT", help="write the result as JSON ('-': to stdout)")
+    out.add_argument("--waypoints", metavar="FILE.csv", help="write the simplified metric waypoints as CSV")
+    out.add_argument("--ros-path", metavar="FILE.yaml", help="write the simplified waypoints as YAML shaped like "
+                     "ROS nav_msgs/Path messages, one per floor stretch")
+    out.add_argument("--dense", action="store_true", help="--waypoints / --ros-path hold every cell, not the "
+                     "simplified polyline")
+    out.add_argument("--draw", metavar="DIR", help="write one PNG and one SVG per floor with the path, and the "
+                     "automaton (DOT, SVG)")
+    out.add_argument("--html", metavar="FILE", help="write a self-contained HTML report of the plan")
+    parser.add_argument("--verify", action="store_true",
+                        help="accepted for old scripts: every path is checked by the independent checker")
     parser.add_argument("--save-mission", metavar="DIR",
                         help="with --text: save the translated mission, its guidance and the LLM run record here")
     add_llm_arguments(parser)
@@ -67,116 +103,115 @@ def run(args: argparse.Namespace) -> int:
     t_start = time.perf_counter()
     record: dict[str, Any] = {"status": "error", "profile": args.profile, "setup": args.setup}
     try:
-        status = _plan(args, record, t_start)
+        result, llm = _plan(args)
     except SgplanError as error:
         record.update(status=getattr(error, "status", "error"), message=str(error))
         _write_json(args.json, record)
         raise
+    record = result.to_dict()
+    if llm is not None:
+        record["llm"] = llm
+    record["timings"]["wall_s"] = time.perf_counter() - t_start
     _write_json(args.json, record)
-    return status
+    return _report(args, result)
 
 
-def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> int:
-    from sgplan.llm.guidance import LLMGuide
-    from sgplan.llm.translation import RECORD_NAME
-    from sgplan.mission import load_mission_folder, mission_from_formula, read_ap_desc, read_guidance, write_guidance
-    from sgplan.pipeline import make_problem, resolve_start, result_record
-    from sgplan.planning.amra import get_setup, plan
+def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any] | None]:
+    import sgplan
+    from sgplan.mission import read_guidance, write_guidance
+    from sgplan.planning.amra import get_setup
 
     building = load_scene_arg(args.scene, args.data)
     if args.save_mission and not args.text:
         raise MissionError("--save-mission saves a translated mission: use it with --text")
-    backends = None
+    backends: Backends | None = None
     if args.mission_dir:
-        mission = load_mission_folder(args.mission_dir, profile=args.profile)
+        mission = sgplan.load_mission(args.mission_dir, profile=args.profile)
     elif args.formula:
-        mission = mission_from_formula(args.formula, read_ap_desc(args.aps) if args.aps else None)
+        mission = sgplan.mission_from_formula(args.formula, aps=args.aps)
     else:
         backends = open_backends_from_args(args)
         say(f"translating with {backends.translator.name} ({backends.description})")
-        mission = _translate(args, building, backends)
+        mission = sgplan.mission_from_text(args.text, building, llm=backends, save_to=args.save_mission)
+        if args.save_mission:
+            say(f"wrote the mission folder {args.save_mission}")
+        say(f"formula: {mission.formula} ({mission.automaton.num_states} automaton states)")
     if args.guidance:
         mission.guidance = read_guidance(args.guidance)
     for note in mission.notes:
         say(f"note: {note}")
+    guide = None
     if get_setup(args.setup).uses_llm and mission.guidance is None:
-        mission_text = mission.grounded_text or mission.text
         if backends is None:
-            backends = open_backends_from_args(args, mission_text=mission_text)
-        elif isinstance(backends.guide, LLMGuide):
-            backends.guide.mission_text = mission_text  # the grounded text, known only after translation
-        say(f"setup {args.setup} needs guidance: asking {backends.guide.name} ({backends.description})")
-        mission.guidance = backends.guide.guide(building, mission.automaton, mission.descriptions)
-        if args.save_mission:
-            say(f"wrote {write_guidance(mission.guidance, Path(args.save_mission) / 'llm_heuristic.yaml')}")
-    if backends is not None and backends.chat is not None:
-        summary = backends.record.to_json()["summary"]
-        record["llm"] = {"backend": backends.description, "calls": summary["calls"], "from_cache": summary["from_cache"]}
-        if args.save_mission:
-            backends.record.save(Path(args.save_mission) / RECORD_NAME)
-    start = resolve_start(building, args.start, args.start_index)
-    prepared = make_problem(building, mission, start, profile=args.profile,
-                            robot_radius_m=args.robot_radius, reach_radius_m=args.reach_radius)
-    load_s = time.perf_counter() - t_start
-    say(f"scene {building.name}: start {start}, robot radius {prepared.radii.robot_m} m ({prepared.radii.robot_from}), "
-        f"reach {prepared.radii.reach_m} m ({prepared.radii.reach_from}), profile {args.profile}, "
-        f"{mission.automaton.num_states} automaton states")
+            backends = open_backends_from_args(args, mission_text=mission.grounded_text or mission.text)
+        guide = backends.guide
+        say(f"setup {args.setup} needs guidance: asking {guide.name} ({backends.description})")
 
     def progress(it: Any) -> None:
         say(f"  (w1, w2) = ({it.w1:g}, {it.w2:g})  cost {it.cost_m:.4f} m  bound x{it.bound:g}  "
             f"{it.time_s:.3f} s  {sum(it.expansions):,} expansions")
 
-    result = plan(prepared.problem, args.setup, time_limit_s=args.time_limit,
-                  max_expansions=args.max_expansions, callback=progress)
-    record.update(result_record(result))
-    record.update(start=list(start), radii={"robot_m": prepared.radii.robot_m, "reach_m": prepared.radii.reach_m})
-    record["timings"].update(load_s=load_s, wall_s=time.perf_counter() - t_start)
-    if result.path is None:
-        raise PlanningError(f"no path found within the budget ({result.status})", status=result.status)
-    print(f"{result.status}: cost {result.cost_m:.4f} m over {len(result.path)} cells "
-          f"(setup {result.setup}, {len(result.iterations)} iterations, search {result.search_s:.3f} s, "
-          f"precompute {result.precompute_s:.3f} s)")
-    if args.verify:
-        from sgplan.planning.checker import check_path
+    start = (args.start or args.start_xy or args.start_room
+             or (args.start_index if args.start_index is not None else None))
+    if args.start_xy:
+        start = sgplan.Point(*args.start_xy)
+    result = sgplan.plan(building, mission, start, setup=args.setup, profile=args.profile,
+                         robot_radius_m=args.robot_radius, reach_radius_m=args.reach_radius,
+                         time_limit_s=args.time_limit, max_expansions=args.max_expansions, guide=guide,
+                         callback=progress)
+    if args.save_mission and guide is not None and result.mission is not None and result.mission.guidance:
+        say(f"wrote {write_guidance(result.mission.guidance, Path(args.save_mission) / 'llm_heuristic.yaml')}")
+    llm = None
+    if backends is not None and backends.chat is not None:
+        from sgplan.llm.translation import RECORD_NAME
 
-        check = check_path(result.path, prepared.problem.grid, prepared.problem.labels, mission.automaton, args.profile)
-        record["verified"] = check.valid
-        if not check.valid:
-            raise PlanningError("the path failed the independent check: " + "; ".join(check.problems))
-        if abs(check.cost_m - result.cost_m) > 1e-6:
-            raise PlanningError(f"the checker recomputes cost {check.cost_m:.6f} m, the planner said {result.cost_m:.6f} m")
-        print(f"verified: the path is legal, collision-free and accepted; cost {check.cost_m:.4f} m")
+        summary = backends.record.to_json()["summary"]
+        llm = {"backend": backends.description, "calls": summary["calls"], "from_cache": summary["from_cache"]}
+        if args.save_mission:
+            backends.record.save(Path(args.save_mission) / RECORD_NAME)
+    return result, llm
+
+
+def _report(args: argparse.Namespace, result: PlanResult) -> int:
+    """Print the outcome (to stderr when the JSON goes to stdout), write the files; the exit code."""
+    out: TextIO = sys.stderr if args.json == "-" else sys.stdout
+    if result.path is not None:
+        print(result.summary() + f", search {result.timings['search_s']:.3f} s, precompute "
+              f"{result.timings['precompute_s']:.3f} s", file=out)
+        print(f"verified: the path is legal, collision-free and accepted; cost {result.cost_m:.4f} m", file=out)
+        for event in result.events:
+            say(f"  {event.describe()}")
+        simplified = not args.dense
+        if args.waypoints:
+            say(f"wrote {result.write_waypoints_csv(args.waypoints, simplified=simplified)}")
+        if args.ros_path:
+            say(f"wrote {result.write_ros_path_yaml(args.ros_path, simplified=simplified)}")
     if args.draw:
-        from sgplan.scene.draw import draw_building
-
-        cells = [tuple(int(v) for v in row[:3]) for row in result.path]
-        for png in draw_building(building, args.draw, grid=prepared.problem.grid, path=cells, stem="plan_floor"):
-            say(f"wrote {png}")
+        for picture in result.draw(args.draw, formats=("png", "svg")):
+            say(f"wrote {picture}")
+    if args.html:
+        say(f"wrote {result.write_html(args.html)}")
+    if result.status == "timeout":
+        budget = ", ".join(part for part in (
+            f"--time-limit {args.time_limit:g} s" if args.time_limit is not None else "",
+            f"--max-expansions {args.max_expansions}" if args.max_expansions is not None else "") if part)
+        if result.path is None:
+            log.warning(f"sgplan: timeout: no path found within the budget ({budget})")
+        else:
+            log.warning(f"sgplan: timeout: the budget ({budget}) ran out; the path's cost {result.cost_m:.4f} m is "
+                        f"within x{result.bound:g} of the optimum")
+        return TIMEOUT_EXIT
     return 0
-
-
-def _translate(args: argparse.Namespace, building: Building, backends: Backends) -> Mission:
-    """The mission of ``--text``, saved under ``--save-mission`` when given."""
-    from sgplan.llm.translation import mission_of, translate_to_folder
-    from sgplan.logic import to_infix
-
-    if args.save_mission:
-        translation, mission = translate_to_folder(args.text, building, backends.translator, args.save_mission,
-                                                   backends.record)
-        say(f"wrote the mission folder {args.save_mission}")
-    else:
-        translation = backends.translator.translate(args.text, building)
-        mission = mission_of(translation)
-    say(f"formula: {to_infix(translation.formula)} ({mission.automaton.num_states} automaton states)")
-    return mission
 
 
 def _write_json(target: str | None, record: dict[str, Any]) -> None:
     if not target:
         return
-    path = Path(target)
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(json.dumps(record, indent=1) + "\n", encoding="utf-8")
-    except OSError as error:
-        raise MissionError(f"cannot write the JSON result: {error.strerror}", path) from None
+    text = json.dumps(record, indent=1, allow_nan=False) + "\n"
+    if target == "-":
+        sys.stdout.write(text)
+        sys.stdout.flush()
+        return
+    from sgplan.result import write_text
+
+    write_text(target, text)

@@ -14,15 +14,23 @@ import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from sgplan.commands.common import add_scene_arguments, load_scene_arg, non_negative_int, positive_int, say
+from sgplan.commands.common import (
+    add_scene_arguments,
+    load_scene_arg,
+    non_negative_int,
+    positive_int,
+    positive_number,
+    say,
+)
 from sgplan.errors import MissionError
 
 if TYPE_CHECKING:
     from sgplan.llm.backends import Backends
 
 
-def add_llm_arguments(parser: argparse.ArgumentParser) -> None:
-    """The options choosing the language backend, shared by ``translate`` and ``guide``."""
+def add_llm_arguments(parser: argparse.ArgumentParser, *, translates: bool = True) -> None:
+    """The options choosing the language backend, the same on every command that talks to one
+    (``translate``, ``guide``, ``plan``); ``translates`` adds the translation options."""
     group = parser.add_argument_group("language backend")
     group.add_argument("--llm", default="offline", metavar="SPEC",
                        help="'openai:MODEL' for any OpenAI-compatible server, or 'offline' for the rule-based "
@@ -33,14 +41,23 @@ def add_llm_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--llm-config", metavar="FILE", help="YAML file with LLM settings (see docs/llm.md)")
     group.add_argument("--cache", metavar="DIR", help="record every LLM call in DIR and answer recorded calls from it")
     group.add_argument("--replay", action="store_true", help="answer only from --cache, never contact a server")
+    group.add_argument("--rpm", type=positive_number, metavar="R", help="at most R LLM requests per minute (hosted APIs)")
+    if translates:
+        group.add_argument("--samples", type=positive_int, default=1, metavar="K",
+                           help="translate K times and keep the majority by automaton equivalence (default 1)")
+        group.add_argument("--max-repairs", type=non_negative_int, default=3, metavar="N",
+                           help="times an invalid formula is sent back for repair before giving up (default 3)")
 
 
 def open_backends_from_args(args: argparse.Namespace, **options: Any) -> Backends:
     """:func:`sgplan.llm.backends.open_backends` for the options of :func:`add_llm_arguments`."""
     from sgplan.llm.backends import open_backends
 
+    if getattr(args, "samples", None) is not None:
+        options.setdefault("samples", args.samples)
+        options.setdefault("max_repairs", args.max_repairs)
     return open_backends(args.llm, base_url=args.base_url, cache_dir=args.cache, replay=args.replay,
-                         config_path=args.llm_config, **options)
+                         config_path=args.llm_config, requests_per_minute=args.rpm, **options)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -50,10 +67,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--out", required=True, metavar="MISSION_DIR",
                         help="mission folder to write (the authors' layout plus llm_record.json)")
     add_llm_arguments(parser)
-    parser.add_argument("--samples", type=positive_int, default=1, metavar="K",
-                        help="translate K times and keep the majority by automaton equivalence (default 1)")
-    parser.add_argument("--max-repairs", type=non_negative_int, default=3, metavar="N",
-                        help="times an invalid formula is sent back for repair before giving up (default 3)")
     parser.set_defaults(run=run)
 
 
@@ -71,7 +84,7 @@ def run(args: argparse.Namespace, ask: Callable[[str], str] | None = None) -> in
     from sgplan.logic import to_infix
 
     building = load_scene_arg(args.scene, args.data)
-    backends = open_backends_from_args(args, samples=args.samples, max_repairs=args.max_repairs)
+    backends = open_backends_from_args(args)
     say(f"translating with {backends.translator.name} ({backends.description})")
     if ask is None and sys.stdin.isatty() and sys.stderr.isatty():
         ask = input

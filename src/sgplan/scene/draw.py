@@ -1,32 +1,51 @@
-"""Drawings of a building, one PNG per floor, with an optional path on top (matplotlib, Agg backend).
+"""Drawings of a building, one picture (PNG and/or SVG) per floor, with an optional plan on top.
 
 Colours: outside light grey, walls dark grey, each room its own pastel colour (labelled with its
 category and ``room_<uuid>``), objects dark orange (labelled with class and ``object_<uuid>``), stairs
-purple, stairs portals as stars. With an occupancy grid, ground cells the robot may not enter (too close
-to an obstacle, or outside every room) are shaded. A path is a sequence of ``(row, col, floor)`` cells;
-each floor shows its part, the start as a green circle and the end as a red square.
+purple, stairs portals as gold stars. With an occupancy grid, ground cells the robot may not enter (too
+close to an obstacle, or outside every room) are shaded.
 
-Images use matrix orientation: rows (metric x) downwards, columns (metric y) to the right.
+A path is a sequence of ``(row, col, floor)`` cells -- a list of tuples or the planner's ``(n, 4)``
+ndarray. Each floor shows its part, coloured from blue (early) to red (late) with arrows in the
+direction of travel (:mod:`sgplan.scene.draw_path`); the start is a green circle and the end a red
+square. Labels are placed so that they cover neither those markers, nor the stairs portals, nor each
+other (:mod:`sgplan.scene.draw_labels`). Each floor's legend lists what that floor shows.
+
+A :class:`MissionView` adds the mission (text or formula, a one-line explanation) and the cost to the
+title, shades the reach regions of the mission's ``reach`` objects and outlines its ``enter`` rooms.
+
+Images use matrix orientation: rows (metric x) downwards, columns (metric y) to the right; the axes
+are ticked in rows and columns (so a ``--start ROW,COL,FLOOR`` can be read off) and a scale bar gives
+metres.
 """
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
-from matplotlib import colormaps
+from matplotlib import colormaps, rc_context
+from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
-from scipy import ndimage
+from matplotlib.transforms import blended_transform_factory
 
 from sgplan.errors import SceneError
+from sgplan.scene.draw_labels import floor_labels, marker_box, place_labels
+from sgplan.scene.draw_path import PATH_COLOURS, PathCells, draw_path, path_cells
 from sgplan.scene.grid import OccupancyGrid
+from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building, CatCode
+from sgplan.scene.placement import LabelPlacer
 
-PathCells = Sequence[tuple[int, int, int]]
-"""A path as ``(row, col, floor)`` cells, in order."""
+FORMATS = ("png", "svg")
+"""The picture formats :func:`draw_building` writes."""
 
 _OUTSIDE = np.array([0.94, 0.94, 0.94])
 _WALL = np.array([0.22, 0.22, 0.25])
@@ -38,6 +57,13 @@ _PALETTE = np.array(
     + [colormaps["Pastel2"](i)[:3] for i in range(7)]
     + [colormaps["Set3"](i)[:3] for i in range(12)]
 )
+_COLOURS = np.vstack([_OUTSIDE, _WALL, _UNROOMED_GROUND, _STAIRS, _OBJECT, _PALETTE])
+"""Colour lookup of :func:`floor_image`: outside, wall, ground outside rooms, stairs, object, rooms."""
+_REACH = (0.0, 0.55, 0.55)
+_REACH_ALPHA = 0.33
+_MISSION_ROOM = "#006d6d"
+_START, _END, _PORTAL = "#2ca02c", "#e01818", "#ffd700"
+_DPI = 110
 
 
 def room_colour(room_id: int) -> np.ndarray:
@@ -45,44 +71,248 @@ def room_colour(room_id: int) -> np.ndarray:
     return _PALETTE[room_id % len(_PALETTE)]
 
 
+@dataclass(frozen=True)
+class MissionView:
+    """What a drawing shows of a mission.
+
+    Attributes
+    ----------
+    text:
+        the mission as the user gave it (natural language or a formula), put in the title.
+    explanation:
+        an optional one-line explanation, put under the text.
+    cost_m:
+        the plan's cost in metres, put in the title.
+    propositions:
+        the mission's propositions: the reach regions of its ``reach`` objects are shaded and its
+        ``enter`` rooms outlined.
+    reach_radius_m:
+        the global reach radius for ``reach`` propositions without their own (default: the building's).
+    """
+
+    text: str | None = None
+    explanation: str | None = None
+    cost_m: float | None = None
+    propositions: Sequence[Proposition] = ()
+    reach_radius_m: float | None = None
+
+
 def floor_image(building: Building, floor: int, grid: OccupancyGrid | None = None) -> np.ndarray:
     """The floor's colour raster: ``(rows, cols, 3)`` float RGB in [0, 1] (see the module's colours)."""
     f = building.floors[floor]
     cat, rooms = f.cat_map, f.room_map
-    image = np.empty((*cat.shape, 3))
-    image[:] = _OUTSIDE
-    image[(cat == CatCode.WALL) | (cat == CatCode.CEILING)] = _WALL
     ground = cat == CatCode.GROUND
-    image[ground] = _UNROOMED_GROUND
-    in_room = ground & (rooms > 0)
-    image[in_room] = _PALETTE[rooms[in_room] % len(_PALETTE)]
-    if grid is not None:
+    # A colour index per cell, then one lookup: much faster than masked writes into the RGB image.
+    index = np.where((cat == CatCode.WALL) | (cat == CatCode.CEILING), 1, 0)
+    index = np.where(ground, np.where(rooms > 0, 5 + rooms % len(_PALETTE), 2), index)
+    index = np.where((cat == CatCode.STAIRS_UP) | (cat == CatCode.STAIRS_DOWN), 3, index)
+    index = np.where(cat > 0, 4, index)
+    image = _COLOURS[index]
+    if grid is not None:  # only ground cells can be blocked, so objects and stairs keep their colours
         blocked = ground & ~grid.traversable[floor]
         image[blocked] = 0.75 * image[blocked] + 0.25 * _WALL
-    image[(cat == CatCode.STAIRS_UP) | (cat == CatCode.STAIRS_DOWN)] = _STAIRS
-    image[cat > 0] = _OBJECT
     return image
 
 
-def _label_positions(
-    raster: np.ndarray, ids: np.ndarray, open_cells: np.ndarray | None = None
-) -> dict[int, tuple[float, float]]:
-    """For each id, the (row, col) of a label spot: the cell of the id farthest inside its region.
+def _nice_step(extent: float, target: int) -> float:
+    """A 1-2-5 step giving at most about ``target`` ticks over ``extent``."""
+    for magnitude in 10.0 ** np.arange(-2, 6):
+        for base in (1, 2, 2.5, 5):
+            if extent / (base * magnitude) <= target:
+                return float(base * magnitude)
+    return float(extent)
 
-    With ``open_cells``, the spot is sought among the region's open cells first (room labels go on
-    free floor rather than on the furniture), falling back to the whole region.
+
+def _nice_floor(value: float) -> float:
+    """The largest 1-2-5 number not above ``value`` (> 0)."""
+    magnitude = 10.0 ** np.floor(np.log10(value))
+    return float(max(b for b in (1, 2, 5) if b * magnitude <= value * (1 + 1e-9)) * magnitude)
+
+
+@dataclass(frozen=True)
+class _Frame:
+    """The map's size on paper: inches per cell, map width and height (inches), base font (points)."""
+
+    scale: float
+    map_w: float
+    map_h: float
+    font: float
+
+    @classmethod
+    def of(cls, rows: int, cols: int) -> _Frame:
+        scale = max(min(15.0 / cols, 13.0 / rows), 6.5 / max(rows, cols))  # inches per cell
+        map_w, map_h = cols * scale, rows * scale
+        return cls(scale, map_w, map_h, float(np.clip(min(map_w, map_h) * 0.85, 6.5, 8.5)))
+
+    @property
+    def width(self) -> float:
+        """Figure width in inches (the map and its side margins)."""
+        return _LEFT_IN + self.map_w + _RIGHT_IN
+
+
+_LEFT_IN, _RIGHT_IN = 0.65, 0.25
+
+
+def _layout(frame: _Frame, title_lines: int, legend_rows: int) -> tuple[Figure, Axes]:
+    """A figure whose map axes has square cells and fixed margins for the title and the legend.
+
+    The axes position is final (no tight_layout later), so label boxes measured now stay right.
     """
-    positions = {}
-    for value in ids.tolist():
-        mask = raster == value
-        if open_cells is not None and (mask & open_cells).any():
-            mask &= open_cells
-        rows, cols = np.nonzero(mask.any(axis=1))[0], np.nonzero(mask.any(axis=0))[0]
-        r0, r1, c0, c1 = rows[0], rows[-1] + 1, cols[0], cols[-1] + 1
-        depth = ndimage.distance_transform_edt(np.pad(mask[r0:r1, c0:c1], 1))[1:-1, 1:-1]
-        r, c = np.unravel_index(int(np.argmax(depth)), depth.shape)
-        positions[int(value)] = (float(r0 + r), float(c0 + c))
-    return positions
+    line_in = (frame.font + 4) * 1.45 / 72
+    top = 0.25 + title_lines * line_in + 0.35  # title, then the scale bar above the map
+    bottom = 0.55 + legend_rows * (frame.font * 2.0 / 72) + 0.1
+    width, height = frame.width, top + frame.map_h + bottom
+    fig = Figure(figsize=(width, height), dpi=_DPI)
+    FigureCanvasAgg(fig)
+    ax = fig.add_axes((_LEFT_IN / width, bottom / height, frame.map_w / width, frame.map_h / height))
+    return fig, ax
+
+
+def _title_lines(
+    building: Building,
+    floor: int,
+    mission: MissionView | None,
+    width_chars: int,
+    title: str | None,
+    note: str | None = None,
+) -> list[tuple[str, dict[str, Any]]]:
+    f = building.floors[floor]
+    head = title or f"{building.name} - floor {floor} ({f.name})"
+    if mission is not None and mission.cost_m is not None and np.isfinite(mission.cost_m):
+        head += f" - cost {mission.cost_m:.2f} m"
+    if note:
+        head += f" ({note})"
+    lines: list[tuple[str, dict[str, Any]]] = [(head, {"fontweight": "bold"})]
+    if mission is not None and mission.text:
+        for line in textwrap.wrap(f"mission: {mission.text}", width_chars)[:4]:
+            lines.append((line, {}))
+    if mission is not None and mission.explanation:
+        for line in textwrap.wrap(mission.explanation, width_chars)[:2]:
+            lines.append((line, {"fontstyle": "italic", "color": "#333333"}))
+    return lines
+
+
+@dataclass(frozen=True)
+class _OnFloor:
+    """What a floor shows, so its legend lists only that."""
+
+    grid: bool
+    portal: bool
+    path: bool
+    start: bool
+    end: bool
+    reach: bool
+    mission_room: bool
+
+
+def _legend_handles(shown: _OnFloor) -> list[Any]:
+    handles: list[Any] = [
+        Patch(fc=_WALL, label="wall"),
+        Patch(fc=_OUTSIDE, ec="0.6", label="outside"),
+        Patch(fc=_OBJECT, label="object"),
+        Patch(fc=_STAIRS, label="stairs"),
+    ]
+    if shown.grid:
+        handles.append(Patch(fc=0.75 * _UNROOMED_GROUND + 0.25 * _WALL, label="not traversable"))
+    if shown.portal:
+        handles.append(
+            Line2D([], [], ls="none", marker="*", ms=11, color=_PORTAL, mec="black", label="stairs portal")
+        )
+    if shown.start:
+        handles.append(Line2D([], [], ls="none", marker="o", ms=9, color=_START, mec="black", label="start"))
+    if shown.end:
+        handles.append(Line2D([], [], ls="none", marker="s", ms=9, color=_END, mec="black", label="end"))
+    if shown.path:
+        handles.append(
+            Line2D(
+                [], [], color=PATH_COLOURS(0.5), lw=2.2, marker=">", ms=5, label="path (blue early, red late)"
+            )
+        )
+    if shown.reach:
+        handles.append(Patch(fc=(*_REACH, _REACH_ALPHA), ec=_REACH, label="reach region (mission)"))
+    if shown.mission_room:
+        handles.append(Line2D([], [], color=_MISSION_ROOM, lw=2, ls="--", label="mission room"))
+    return handles
+
+
+def _outline(ax: Axes, mask: np.ndarray, **style: Any) -> None:
+    """Contour of a boolean mask, computed on its bounding box only (fast on large floors)."""
+    rows, cols = np.nonzero(mask.any(axis=1))[0], np.nonzero(mask.any(axis=0))[0]
+    if len(rows) == 0:
+        return
+    r0, r1 = max(rows[0] - 1, 0), min(rows[-1] + 2, mask.shape[0])
+    c0, c1 = max(cols[0] - 1, 0), min(cols[-1] + 2, mask.shape[1])
+    sub = np.pad(mask[r0:r1, c0:c1].astype(float), 1)
+    ax.contour(np.arange(c0 - 1, c1 + 1), np.arange(r0 - 1, r1 + 1), sub, levels=[0.5], **style)
+
+
+def reach_region(building: Building, floor: int, mission: MissionView) -> np.ndarray:
+    """``(rows, cols)`` bool: the cells of ``floor`` within reach of one of the mission's objects."""
+    reach = [p for p in mission.propositions if p.kind == "reach"]
+    if not reach:
+        return np.zeros(building.floors[floor].shape, dtype=bool)
+    return label_raster(building, reach, mission.reach_radius_m)[floor] > 0
+
+
+def _draw_mission_regions(
+    ax: Axes, building: Building, floor: int, mission: MissionView, region: np.ndarray
+) -> set[int]:
+    """Outline the reach ``region`` (shaded in the raster) and the rooms of the mission; returns the ids
+    of its objects."""
+    f = building.floors[floor]
+    if region.any():
+        _outline(ax, region, colors=[_REACH], linewidths=0.9, zorder=2.1)
+    for p in mission.propositions:
+        if p.kind == "enter":
+            room = building.room(uuid=p.uuid)
+            mask = f.room_map == room.id
+            if mask.any():
+                _outline(ax, mask, colors=[_MISSION_ROOM], linewidths=2.0, linestyles="--", zorder=2.2)
+    return {building.object(uuid=p.uuid).id for p in mission.propositions if p.kind == "reach"}
+
+
+def _draw_ticks(ax: Axes, rows: int, cols: int, font: float) -> None:
+    step = _nice_step(max(rows, cols), 12)
+    ax.set_xticks(np.arange(0, cols, step))
+    ax.set_yticks(np.arange(0, rows, step))
+    # Unlabelled minor ticks on all four sides, a fifth of a step apart, to read a cell off the picture.
+    ax.set_xticks(np.arange(0, cols, step / 5), minor=True)
+    ax.set_yticks(np.arange(0, rows, step / 5), minor=True)
+    ax.tick_params(which="both", top=True, right=True)
+    ax.tick_params(labelsize=font, length=3, pad=1.5)
+    ax.tick_params(which="minor", length=1.5)
+    ax.set_xlabel("column", fontsize=font, labelpad=1)
+    ax.set_ylabel("row", fontsize=font, labelpad=1)
+    ax.grid(True, color="black", alpha=0.12, lw=0.5)
+    ax.set_axisbelow(False)
+
+
+def _draw_scale_bar(ax: Axes, building: Building, cols: int, map_h_in: float, font: float) -> None:
+    """A metre bar above the map's top right corner (in column units: cells are metres / resolution)."""
+    res_col = building.resolution_m[1]
+    metres = _nice_floor(cols * res_col * 0.25)
+    cells = metres / res_col
+    transform = blended_transform_factory(ax.transData, ax.transAxes)
+    y = 1.0 + 0.1 / map_h_in
+    x1 = cols - 0.5
+    ax.plot(
+        [x1 - cells, x1],
+        [y, y],
+        color="black",
+        lw=2.5,
+        transform=transform,
+        clip_on=False,
+        solid_capstyle="butt",
+    )
+    ax.text(
+        x1 - cells / 2,
+        y + 0.04 / map_h_in,
+        f"{metres:g} m ({cells:.0f} cells)",
+        ha="center",
+        va="bottom",
+        fontsize=font,
+        transform=transform,
+    )
 
 
 def draw_floor(
@@ -92,84 +322,141 @@ def draw_floor(
     grid: OccupancyGrid | None = None,
     path: PathCells | None = None,
     title: str | None = None,
+    mission: MissionView | None = None,
 ) -> Figure:
-    """A matplotlib figure of one floor (not attached to pyplot; save it with ``fig.savefig``)."""
+    """A matplotlib figure of one floor (not attached to pyplot; save it with ``fig.savefig``).
+
+    Parameters
+    ----------
+    grid:
+        shades the ground cells the robot may not enter.
+    path:
+        ``(row, col, floor[, ...])`` rows (a list of tuples or the planner's ndarray); the floor's part
+        is drawn with its direction, the start and the end.
+    title:
+        replaces the first title line (default: building, floor index and name).
+    mission:
+        adds the mission text, explanation and cost to the title and marks its rooms and objects.
+
+    Raises
+    ------
+    SceneError
+        for a floor the building lacks, or a malformed path.
+    """
     if not 0 <= floor < building.num_floors:
         raise SceneError(
             f"building {building.name!r} has no floor {floor} (floors 0..{building.num_floors - 1})"
         )
+    cells = path_cells(path) if path is not None else np.zeros((0, 3), dtype=np.int64)
     f = building.floors[floor]
     rows, cols = f.shape
-    width_in = float(np.clip(cols / 70.0, 7.0, 16.0))
-    fig = Figure(figsize=(width_in, width_in * rows / cols + 0.6), dpi=110)
-    FigureCanvasAgg(fig)
-    ax = fig.add_subplot()
-    ax.imshow(floor_image(building, floor, grid), interpolation="nearest")
-    ax.set_axis_off()
-    font = float(np.clip(min(rows, cols) / 45.0, 6.0, 8.5))
-
-    room_ids = np.unique(f.room_map[f.room_map > 0])
-    room_ids_known = {r.id for r in building.rooms()}
-    known_rooms = np.array([i for i in room_ids.tolist() if i in room_ids_known], dtype=f.room_map.dtype)
-    for room_id, (r, c) in _label_positions(f.room_map, known_rooms, f.cat_map == CatCode.GROUND).items():
-        room = building.room(id=room_id)
-        ax.text(
-            c, r, f"{room.name}\n{room.key}", ha="center", va="center", fontsize=font + 0.5,
-            fontweight="bold", color="#1a1a40", zorder=7,
-            bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.7},
-        )
-    object_ids = np.unique(f.cat_map[f.cat_map > 0])
-    object_ids_known = {o.id for o in building.objects()}
-    known = [i for i in object_ids.tolist() if i in object_ids_known]
-    for object_id, (r, c) in _label_positions(f.cat_map, np.array(known, dtype=f.cat_map.dtype)).items():
-        obj = building.object(id=object_id)
-        ax.text(
-            c, r, f"{obj.name}\n{obj.key}", ha="center", va="center", fontsize=font - 1,
-            color="#4a1d00",
-            bbox={"boxstyle": "round,pad=0.15", "fc": "#ffe8cc", "ec": "#cc6600", "lw": 0.5, "alpha": 0.85},
-        )
-    for end, word in ((f.up_stairs, "up"), (f.down_stairs, "down")):
-        if end is None:
-            continue
-        r, c = end.portal
-        ax.plot([c], [r], marker="*", ms=14, color="#ffd700", mec="black", mew=0.8, zorder=5)
-        target = floor + 1 if word == "up" else floor - 1
-        ax.annotate(
-            f"stairs {word} to floor {target}", (c, r), xytext=(8, 8), textcoords="offset points",
-            fontsize=font, color="#3d1466", fontweight="bold",
-            bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "#3d1466", "lw": 0.5, "alpha": 0.8},
-            zorder=6,
-        )
-    if path:
-        _draw_path(ax, path, floor)
-    legend = [
-        Patch(fc=_WALL, label="wall"),
-        Patch(fc=_OUTSIDE, ec="0.6", label="outside"),
-        Patch(fc=_OBJECT, label="object"),
-        Patch(fc=_STAIRS, label="stairs"),
+    portals = [
+        (end.portal, word) for end, word in ((f.up_stairs, "up"), (f.down_stairs, "down")) if end is not None
     ]
-    if grid is not None:
-        legend.append(Patch(fc=0.75 * _UNROOMED_GROUND + 0.25 * _WALL, label="not traversable"))
-    ax.legend(handles=legend, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=len(legend),
-              fontsize=font, frameon=True, framealpha=0.8, borderaxespad=0.2)
-    ax.set_title(title or f"{building.name} - floor {floor} ({f.name})", fontsize=font + 4, pad=18)
-    fig.tight_layout(pad=0.4)
+    region = reach_region(building, floor, mission) if mission is not None else None
+    shown = _shown(building, floor, grid, cells, region, mission)
+    handles = _legend_handles(shown)
+    note = "the path does not come to this floor" if len(cells) and not shown.path else None
+    frame = _Frame.of(rows, cols)
+    legend_cols = max(3, min(len(handles), int(frame.width / 1.55)))
+    lines = _title_lines(
+        building, floor, mission, int(frame.width * 72 / ((frame.font + 2) * 0.55)), title, note
+    )
+    fig, ax = _layout(frame, len(lines), -(-len(handles) // legend_cols))
+
+    image = floor_image(building, floor, grid)
+    if region is not None:  # blended here: one raster to resample instead of two (drawing time)
+        image[region] = (1 - _REACH_ALPHA) * image[region] + _REACH_ALPHA * np.asarray(_REACH)
+    ax.imshow((image * 255).round().astype(np.uint8), interpolation="nearest", aspect="auto", zorder=1)
+    ax.set_xlim(-0.5, cols - 0.5)
+    ax.set_ylim(rows - 0.5, -0.5)
+    _draw_ticks(ax, rows, cols, frame.font)
+    mission_objects = set()
+    if mission is not None and region is not None:
+        mission_objects = _draw_mission_regions(ax, building, floor, mission, region)
+    path_xy = draw_path(ax, cells, floor, ax.bbox.width / cols) if len(cells) else np.zeros((0, 2))
+    placer = _draw_markers(ax, portals, cells, floor, path_xy)
+    labels = floor_labels(building, floor, portals, mission_objects, frame.font)
+    place_labels(ax, fig.canvas.get_renderer(), placer, labels)  # type: ignore[attr-defined]
+
+    _add_legend_and_title(fig, ax, handles, legend_cols, lines, frame.font)
+    _draw_scale_bar(ax, building, cols, frame.map_h, frame.font)
     return fig
 
 
-def _draw_path(ax, path: PathCells, floor: int) -> None:
-    cells = np.asarray(path, dtype=np.int64).reshape(-1, 3)
-    on_floor = cells[:, 2] == floor
-    # Split into runs of consecutive cells on this floor (a path may leave and come back by stairs).
-    breaks = np.flatnonzero(np.diff(on_floor.astype(np.int8)) != 0) + 1
-    for run in np.split(np.arange(len(cells)), breaks):
-        if len(run) and on_floor[run[0]]:
-            ax.plot(cells[run, 1], cells[run, 0], color="#d62728", lw=2.0, zorder=4)
-    start, end = cells[0], cells[-1]
-    if start[2] == floor:
-        ax.plot([start[1]], [start[0]], "o", ms=10, color="#2ca02c", mec="black", zorder=6, label="start")
-    if end[2] == floor:
-        ax.plot([end[1]], [end[0]], "s", ms=10, color="#d62728", mec="black", zorder=6, label="end")
+def _shown(
+    building: Building,
+    floor: int,
+    grid: OccupancyGrid | None,
+    cells: np.ndarray,
+    region: np.ndarray | None,
+    mission: MissionView | None,
+) -> _OnFloor:
+    here = cells[:, 2] == floor
+    rooms = [
+        building.room(uuid=p.uuid).id for p in (mission.propositions if mission else ()) if p.kind == "enter"
+    ]
+    f = building.floors[floor]
+    return _OnFloor(
+        grid=grid is not None,
+        portal=f.up_stairs is not None or f.down_stairs is not None,
+        path=bool(here.any()),
+        start=bool(len(cells)) and bool(here[0]),
+        end=bool(len(cells)) and bool(here[-1]),
+        reach=region is not None and bool(region.any()),
+        mission_room=bool(rooms) and bool(np.isin(f.room_map, rooms).any()),
+    )
+
+
+def _draw_markers(
+    ax: Axes, portals: list[tuple[tuple[int, int], str]], cells: np.ndarray, floor: int, path_xy: np.ndarray
+) -> LabelPlacer:
+    """Draw the portals, the end and the start; returns a label placer that keeps labels off them (and,
+    if it can, off the path)."""
+    x0, y0, x1, y1 = (float(v) for v in ax.bbox.extents)
+    soft = ax.transData.transform(path_xy) if len(path_xy) else np.zeros((0, 2))
+    placer = LabelPlacer((x0, y0, x1, y1), gap=3.0, soft_points=soft)
+    for (r, c), _ in portals:
+        ax.plot([c], [r], marker="*", ms=15, color=_PORTAL, mec="black", mew=0.8, zorder=6)
+        placer.block(marker_box(ax, (r, c), 9.0))
+    if len(cells):
+        start, end = cells[0], cells[-1]
+        if end[2] == floor:
+            ax.plot([end[1]], [end[0]], "s", ms=12, color=_END, mec="black", zorder=6.5)
+            placer.block(marker_box(ax, (end[0], end[1]), 8.0))
+        if start[2] == floor:  # drawn last: on top of the end when a path comes back to its start
+            ax.plot([start[1]], [start[0]], "o", ms=10, color=_START, mec="black", zorder=6.6)
+            placer.block(marker_box(ax, (start[0], start[1]), 7.0))
+    return placer
+
+
+def _add_legend_and_title(
+    fig: Figure,
+    ax: Axes,
+    handles: list[Any],
+    legend_cols: int,
+    lines: list[tuple[str, dict[str, Any]]],
+    font: float,
+) -> None:
+    """The legend under the map (below the column ticks) and the title lines at the top."""
+    height = fig.get_figheight()
+    ax.legend(
+        handles=handles,
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.45 / (ax.get_position().height * height)),
+        ncol=legend_cols,
+        fontsize=font,
+        frameon=True,
+        framealpha=0.9,
+        borderaxespad=0.0,
+        handlelength=1.6,
+        columnspacing=1.0,
+    )
+    top = 1.0 - 0.12 / height
+    line_h = (font + 4) * 1.45 / 72 / height
+    for k, (text, style) in enumerate(lines):
+        size = font + 4 if k == 0 else font + 2
+        fig.text(0.5, top - k * line_h, text, ha="center", va="top", fontsize=size, **style)
 
 
 def draw_building(
@@ -178,18 +465,28 @@ def draw_building(
     *,
     grid: OccupancyGrid | None = None,
     path: PathCells | None = None,
+    mission: MissionView | None = None,
     stem: str = "floor",
+    formats: Sequence[str] = ("png",),
 ) -> list[Path]:
-    """Write one PNG per floor, ``<out_dir>/<stem>_<k>.png``; returns the paths written.
+    """Write one picture per floor and format, ``<out_dir>/<stem>_<k>.<format>``; returns the paths.
 
     ``grid`` shades the ground cells the robot may not enter; ``path`` overlays a path of
-    ``(row, col, floor)`` cells.
+    ``(row, col, floor[, ...])`` rows (the planner's ``result.path`` ndarray works as it is);
+    ``mission`` adds the mission, its explanation and the cost to the titles and marks its regions;
+    ``formats`` is any of :data:`FORMATS`.
 
     Raises
     ------
     SceneError
-        if ``out_dir`` cannot be created or written to.
+        for an unknown format, a malformed path, or if ``out_dir`` cannot be created or written to.
     """
+    unknown = [fmt for fmt in formats if fmt not in FORMATS]
+    if unknown or not formats:
+        raise SceneError(
+            f"cannot draw format(s) {', '.join(unknown) or '(none)'}: use {' or '.join(FORMATS)}"
+        )
+    cells = path_cells(path) if path is not None else None
     out = Path(out_dir)
     try:
         out.mkdir(parents=True, exist_ok=True)
@@ -197,11 +494,13 @@ def draw_building(
         raise SceneError(f"cannot create the drawing folder {out}: {error.strerror}") from None
     written = []
     for floor in range(building.num_floors):
-        fig = draw_floor(building, floor, grid=grid, path=path)
-        target = out / f"{stem}_{floor}.png"
-        try:
-            fig.savefig(target)
-        except OSError as error:
-            raise SceneError(f"cannot write {target}: {error.strerror}") from None
-        written.append(target)
+        fig = draw_floor(building, floor, grid=grid, path=cells, mission=mission)
+        for fmt in formats:
+            target = out / f"{stem}_{floor}.{fmt}"
+            try:
+                with rc_context({"svg.fonttype": "none"}):  # SVG text stays text: smaller and searchable
+                    fig.savefig(target, format=fmt)
+            except OSError as error:
+                raise SceneError(f"cannot write {target}: {error.strerror}") from None
+            written.append(target)
     return written

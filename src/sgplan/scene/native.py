@@ -69,13 +69,23 @@ def write_native_scene(building: Building, folder: str | Path) -> Path:
         },
         "floors": [_floor_document(floor) for floor in building.floors],
     }
-    (folder / GRAPH_FILE).write_text(json.dumps(document, indent=1, allow_nan=False) + "\n", encoding="utf-8")
+    text = json.dumps(document, indent=1, allow_nan=False, default=_plain_number)
+    (folder / GRAPH_FILE).write_text(text + "\n", encoding="utf-8")
     raster_path = folder / RASTER_FILE
     if arrays:
         np.savez_compressed(raster_path, **arrays)
     elif raster_path.exists():
         raster_path.unlink()  # a stale file from an earlier write would contradict "rasters": null
     return folder
+
+
+def _plain_number(value: object) -> int | float:
+    """JSON for numpy scalars (ids, cells and sizes built with numpy arithmetic); anything else is refused."""
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, np.floating):
+        return float(value)
+    raise TypeError(f"{type(value).__name__} {value!r} is not JSON serialisable")
 
 
 def _floor_document(floor: Floor) -> dict[str, Any]:

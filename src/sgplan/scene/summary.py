@@ -67,6 +67,9 @@ class SceneSummary:
     floors: tuple[FloorSummary, ...]
     stairs: tuple[StairsSummary, ...]
     initial_cells: tuple[tuple[int, int, int], ...]
+    initial_cells_free: tuple[bool | None, ...] = ()
+    """Per initial cell: whether a robot of ``robot_radius_m`` may stand there (inside the grid, not in an
+    inflated obstacle, in a room); ``None`` without maps."""
 
     @property
     def num_rooms(self) -> int:
@@ -123,6 +126,10 @@ def summarize(building: Building, grid: OccupancyGrid | None = None) -> SceneSum
             for s in (grid.stairs if grid is not None else ())
         ),
         initial_cells=tuple(building.initial_cells),
+        initial_cells_free=tuple(
+            grid.is_traversable(floor, (row, col)) if grid is not None else None
+            for row, col, floor in building.initial_cells
+        ),
     )
 
 
@@ -143,14 +150,23 @@ def summary_lines(summary: SceneSummary, *, objects: bool = True) -> list[str]:
             + (f", reach radius {summary.reach_radius_m:g} m" if summary.reach_radius_m is not None else "")
         )
     if summary.initial_cells:
-        lines.append("  initial cells (row, col, floor): " + ", ".join(str(c) for c in summary.initial_cells))
+        free = summary.initial_cells_free or (None,) * len(summary.initial_cells)
+        lines.append("  initial cells (row, col, floor): " + ", ".join(
+            f"{k}: {cell}" + (" NOT FREE" if ok is False else "")
+            for k, (cell, ok) in enumerate(zip(summary.initial_cells, free))
+        ))
+        blocked = [k for k, ok in enumerate(free) if ok is False]
+        if blocked:
+            lines.append(f"  warning: initial cell(s) {', '.join(map(str, blocked))} lie in an obstacle (inflated "
+                         f"by the robot radius {summary.robot_radius_m:g} m) or outside every room: a plan "
+                         "cannot start there")
     for floor in summary.floors:
         head = f"floor {floor.index} ({floor.name}): {len(floor.rooms)} rooms, {floor.num_objects} objects"
         if floor.free_cells is not None:
-            parts = ", ".join(f"{s:,}" for s in floor.component_sizes)
+            parts = "; ".join(f"{s:,}" for s in floor.component_sizes)
             head += (
                 f", {floor.free_cells:,} free cells in {len(floor.component_sizes)}"
-                f"{'+' if len(floor.component_sizes) == 10 else ''} component(s) [{parts}]"
+                f"{'+' if len(floor.component_sizes) == 10 else ''} component(s) of [{parts}] cells"
             )
         lines.append(head)
         for end, cell in (("up", floor.up_portal), ("down", floor.down_portal)):

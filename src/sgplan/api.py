@@ -1,0 +1,359 @@
+"""sgplan's public API, the one path every front end takes (the CLI ``plan`` and ``demo``, the benchmark
+worker): scene -> mission -> plan -> result.
+
+>>> import sgplan
+>>> building = sgplan.load_scene("demo")
+>>> mission = sgplan.mission_from_text("Go to the kitchen, then the bedroom with the clock.", building)
+>>> result = sgplan.plan(building, mission, start="kitchen")      # planned and checked
+>>> result.draw("out/quick"); result.write_json("out/quick/plan.json")  # doctest: +SKIP
+
+:class:`Session` plans many missions on one building and keeps the occupancy grid of each robot radius
+and the label raster of each proposition and reach radius between them.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+from collections.abc import Mapping
+from dataclasses import replace
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from sgplan.errors import PlanningError, SceneError
+from sgplan.mission import Mission
+from sgplan.pipeline import Radii, make_problem, resolve_radii
+from sgplan.result import PlanResult
+from sgplan.scene.grid import OccupancyGrid, build_occupancy_grid
+from sgplan.scene.labels import Proposition, label_raster
+from sgplan.scene.model import Building
+from sgplan.starts import StartSpec, start_cell
+
+if TYPE_CHECKING:
+    from sgplan.llm.backends import Backends, MissionGuide
+    from sgplan.planning.amra import IterationCallback
+
+log = logging.getLogger("sgplan")
+
+DEMO = "demo"
+"""The scene name of the embedded demo building."""
+
+
+# -- scenes ------------------------------------------------------------------------------------------
+
+
+def load_scene(scene: str | Path | Building, data: str | Path | None = None) -> Building:
+    """The building named by ``scene``.
+
+    ``scene`` is ``"demo"`` (the embedded demo building), a Gibson scene name (``"Benevolence"``, any case)
+    looked up under ``data`` (default: ``$SGPLAN_GIBSON_DIR``, else ``../shared/datasets/gibson-3dsg``), a
+    scene folder or file in any supported format (:func:`sgplan.scene.loading.load_scene`), or a
+    :class:`Building` (returned as it is).
+
+    Raises
+    ------
+    SceneError
+        when ``scene`` is none of these, or its files are malformed.
+    """
+    from sgplan.datasets import SCENES, scene_dir
+    from sgplan.scene.loading import load_scene as load_path
+
+    if isinstance(scene, Building):
+        return scene
+    spec = str(scene)
+    if spec.lower() == DEMO:
+        from sgplan.scene.demo import demo_building
+
+        return demo_building()
+    path = Path(spec).expanduser()
+    if path.exists():
+        return load_path(path)
+    names = {name.lower(): name for name in SCENES}
+    if spec.lower() in names:
+        return load_path(scene_dir(names[spec.lower()], data))
+    raise SceneError(f"scene {spec!r} is neither an existing path, a Gibson scene name ({', '.join(SCENES)}) "
+                     f"nor '{DEMO}'")
+
+
+# -- missions ----------------------------------------------------------------------------------------
+
+
+def load_mission(folder: str | Path, *, profile: str = "ltlf", guidance: bool = True) -> Mission:
+    """The mission of a mission folder (the authors' layout; see :mod:`sgplan.mission`)."""
+    from sgplan.mission import load_mission_folder
+
+    return load_mission_folder(folder, profile=profile, guidance=guidance)
+
+
+def mission_from_formula(
+    formula: str | Any,
+    building: Building | None = None,
+    *,
+    aps: str | Path | Mapping[str, Proposition] | None = None,
+    text: str | None = None,
+) -> Mission:
+    """The mission of an LTL formula (LLM token list, Spot infix or LBT prefix) over action tokens
+    ``enter(room_<uuid>)`` / ``reach(object_<uuid>)``, or over names given a meaning by ``aps`` (an
+    ``ap_desc.yaml`` file or a mapping). With ``building``, its propositions are checked against it now.
+    """
+    from sgplan.mission import mission_from_formula as from_formula
+    from sgplan.mission import read_ap_desc
+
+    meanings = read_ap_desc(aps) if isinstance(aps, (str, Path)) else aps
+    mission = from_formula(formula, meanings, text=text)
+    if building is not None:
+        mission.check_scene(building)
+    return mission
+
+
+def mission_from_text(
+    text: str,
+    building: Building,
+    *,
+    llm: str | Backends = "offline",
+    save_to: str | Path | None = None,
+    **llm_options: Any,
+) -> Mission:
+    """Translate a mission in natural language into a :class:`Mission` (grounded in ``building``).
+
+    ``llm`` is ``"offline"`` (rule-based backends for controlled English, not a language model),
+    ``"openai:MODEL"`` (any OpenAI-compatible server; ``llm_options`` are those of
+    :func:`sgplan.llm.backends.open_backends`: ``base_url``, ``cache_dir``, ``replay``, ``samples``,
+    ``max_repairs``, ``requests_per_minute`` ...), or backends already open. With ``save_to``, the mission
+    folder, the grounded IDs and the LLM run record are written there.
+
+    Raises
+    ------
+    MissionError, LLMError
+        an ambiguous or unknown reference (with the candidates), a failed translation.
+    """
+    from sgplan.llm.translation import mission_of, translate_to_folder
+
+    backends = _backends(llm, **llm_options)
+    if save_to is not None:
+        _, mission = translate_to_folder(text, building, backends.translator, save_to, backends.record)
+        return mission
+    return mission_of(backends.translator.translate(text, building))
+
+
+def _backends(llm: str | Backends, **options: Any) -> Backends:
+    from sgplan.llm.backends import open_backends
+
+    return open_backends(llm, **options) if isinstance(llm, str) else llm
+
+
+def add_guidance(mission: Mission, building: Building, guide: MissionGuide | None = None) -> tuple[Mission, str]:
+    """``mission`` with LLM-heuristic guidance from ``guide`` (default: the offline symbolic guide, not an
+    LLM) when it carries none, and where the guidance came from (``"mission"`` or the guide's name).
+    The given mission is not changed."""
+    if mission.guidance is not None:
+        return mission, "mission"
+    if guide is None:
+        from sgplan.llm.offline import SymbolicGuide
+
+        guide = SymbolicGuide()
+    from sgplan.llm.guidance import LLMGuide
+
+    if isinstance(guide, LLMGuide) and guide.mission_text is None:
+        guide.mission_text = mission.grounded_text or mission.text  # the prompt quotes the mission
+    log.debug("guidance from %s", guide.name)
+    return replace(mission, guidance=guide.guide(building, mission.automaton, mission.descriptions)), guide.name
+
+
+def _explanation(mission: Mission, building: Building) -> str | None:
+    """The mission explained in plain language.
+
+    MERGE POINT (issue 13, item 1): the explainer branch adds ``sgplan.explain.explain_mission(mission,
+    building)``; when merging, return its text here. This is the only place a plan gets its explanation.
+    """
+    return None
+
+
+# -- planning ----------------------------------------------------------------------------------------
+
+
+class Session:
+    """Plans many missions on one building, keeping between them the occupancy grid of each robot radius
+    and the label raster of each (proposition, reach radius).
+
+    >>> session = Session(sgplan.load_scene("demo"))                    # doctest: +SKIP
+    >>> [session.plan(m, start="kitchen").cost_m for m in missions]    # doctest: +SKIP
+    """
+
+    def __init__(self, building: Building | str | Path, data: str | Path | None = None) -> None:
+        self.building = load_scene(building, data)
+        self._grids: dict[float, OccupancyGrid] = {}
+        self._masks: dict[tuple[Proposition, float], np.ndarray] = {}
+
+    def radii(self, robot_radius_m: float | None = None, reach_radius_m: float | None = None) -> Radii:
+        """The radii a plan uses: given, else the scene's, else the defaults (:func:`resolve_radii`)."""
+        return resolve_radii(self.building, robot_radius_m, reach_radius_m)
+
+    def grid(self, robot_radius_m: float | None = None) -> OccupancyGrid:
+        """The occupancy grid for this robot radius (built once per radius)."""
+        radius = self.radii(robot_radius_m).robot_m
+        if radius not in self._grids:
+            self._grids[radius] = build_occupancy_grid(self.building, radius)
+        return self._grids[radius]
+
+    def labels(self, mission: Mission, reach_radius_m: float | None = None) -> np.ndarray:
+        """The mission's label raster (as :meth:`Mission.labels`), from per-proposition masks kept between
+        missions."""
+        mission.check_scene(self.building)
+        reach = self.radii(reach_radius_m=reach_radius_m).reach_m
+        floors, (rows, cols) = self.building.num_floors, self.building.grid_shape
+        labels = np.zeros((floors, rows, cols), dtype=np.uint32)
+        for bit, prop in enumerate(mission.ordered_propositions):
+            key = (prop, reach)
+            if key not in self._masks:
+                self._masks[key] = label_raster(self.building, [prop], reach).astype(bool)
+            labels[self._masks[key]] |= np.uint32(1 << bit)
+        return labels
+
+    def plan(
+        self,
+        mission: Mission,
+        start: StartSpec = None,
+        *,
+        setup: str = "ALL",
+        profile: str = "ltlf",
+        robot_radius_m: float | None = None,
+        reach_radius_m: float | None = None,
+        time_limit_s: float | None = None,
+        max_expansions: int | None = None,
+        verify: bool = True,
+        guide: MissionGuide | None = None,
+        callback: IterationCallback | None = None,
+    ) -> PlanResult:
+        """Plan ``mission`` from ``start`` with AMRA*; see :func:`sgplan.plan`."""
+        from sgplan.jit import announce_compile
+        from sgplan.planning.amra import get_setup
+        from sgplan.planning.amra import plan as amra_plan
+
+        t0 = time.perf_counter()
+        spec = get_setup(setup)
+        guidance = "mission" if mission.guidance is not None else None
+        if spec.uses_llm:
+            mission, guidance = add_guidance(mission, self.building, guide)
+        radii = self.radii(robot_radius_m, reach_radius_m)
+        grid = self.grid(radii.robot_m)
+        start_at, start_from = start_cell(self.building, grid, start)
+        prepared = make_problem(
+            self.building, mission, start_at, profile=profile, robot_radius_m=radii.robot_m,
+            reach_radius_m=radii.reach_m, grid=grid, labels=self.labels(mission, radii.reach_m),
+        )
+        prepare_s = time.perf_counter() - t0
+        log.info("scene %s: start %s (%s), robot radius %g m (%s), reach %g m (%s), profile %s, %d automaton states",
+                 self.building.name, start_at, start_from, radii.robot_m, radii.robot_from, radii.reach_m,
+                 radii.reach_from, profile, mission.automaton.num_states)
+        announce_compile()
+        found = amra_plan(prepared.problem, spec.name, time_limit_s=time_limit_s,
+                          max_expansions=max_expansions, callback=callback)
+        result = PlanResult(
+            scene=self.building.name, status=found.status, setup=found.setup, profile=profile,
+            cost_m=found.cost_m, bound=found.iterations[-1].bound if found.iterations else None,
+            path=found.path, start=start_at, start_from=start_from, radii=radii, queues=found.queues,
+            iterations=found.iterations, mission_text=mission.text, grounded_text=mission.grounded_text,
+            formula=_formula_text(mission), propositions=mission.descriptions, guidance=guidance,
+            notes=list(mission.notes), building=self.building, grid=grid, labels=prepared.problem.labels,
+            mission=mission, explanation=_explanation(mission, self.building),
+        )
+        if found.status == "optimal":
+            result.bound = 1.0
+        if found.path is not None:
+            _add_outputs(result, verify)
+        result.timings = {"prepare_s": prepare_s, "precompute_s": found.precompute_s, "search_s": found.search_s,
+                          "wall_s": time.perf_counter() - t0}
+        return result
+
+
+def _formula_text(mission: Mission) -> str | None:
+    from sgplan.logic import to_infix
+
+    return to_infix(mission.formula) if mission.formula is not None else None
+
+
+def _add_outputs(result: PlanResult, verify: bool) -> None:
+    """Check the path (when asked) and add the waypoints and events."""
+    from sgplan.outputs.events import path_events
+    from sgplan.outputs.waypoints import leg_costs, path_waypoints, simplify_path
+    from sgplan.planning.checker import check_path
+
+    assert result.path is not None and result.grid is not None and result.labels is not None
+    assert result.mission is not None and result.building is not None
+    automaton = result.mission.automaton
+    if verify:
+        check = check_path(result.path, result.grid, result.labels, automaton, result.profile)
+        if not check.valid:
+            raise PlanningError("the path failed the independent check (a bug, please report it): "
+                                + "; ".join(check.problems))
+        if abs(check.cost_m - result.cost_m) > 1e-6:
+            raise PlanningError(f"the checker recomputes cost {check.cost_m:.6f} m, the planner said "
+                                f"{result.cost_m:.6f} m (a bug, please report it)")
+        result.verified = True
+    result.waypoints = path_waypoints(result.path, result.grid, result.building)
+    keep = simplify_path(result.path, result.grid, result.labels, automaton)
+    result.waypoints_simplified = path_waypoints(result.path, result.grid, result.building, keep)
+    costs = np.concatenate([[0.0], np.cumsum(leg_costs(result.path, result.grid))])
+    result.events = path_events(result.path, costs, result.labels, automaton, result.building,
+                                result.mission.descriptions)
+
+
+def plan(
+    building: Building,
+    mission: Mission,
+    start: StartSpec = None,
+    *,
+    setup: str = "ALL",
+    profile: str = "ltlf",
+    robot_radius_m: float | None = None,
+    reach_radius_m: float | None = None,
+    time_limit_s: float | None = None,
+    max_expansions: int | None = None,
+    verify: bool = True,
+    guide: MissionGuide | None = None,
+    callback: IterationCallback | None = None,
+    session: Session | None = None,
+) -> PlanResult:
+    """Plan an optimal path for ``mission`` over ``building`` with AMRA* and check it.
+
+    Parameters
+    ----------
+    start:
+        ``None`` (the scene's first initial position), an initial position index, a cell
+        ``(row, col, floor)``, a metric :class:`~sgplan.starts.Point` ``(x_m, y_m, floor)`` (or a triple with
+        float x/y), or a room (``"kitchen"``, ``"room_5"``); see :mod:`sgplan.starts`.
+    setup:
+        the paper's planner setup: ALL (default), NO-LLM, A*, OCC, OBJ, ROOM, FLR (any case). A setup using
+        LLM guidance on a mission without guidance gets it from ``guide`` (default: the offline symbolic
+        guide, which is not an LLM); ``PlanResult.guidance`` says which.
+    profile:
+        ``"ltlf"`` (start label read, missing automaton edges reject) or ``"authors"`` (docs/semantics.md).
+    robot_radius_m, reach_radius_m:
+        metres; default the scene's, else 0 and 0.6.
+    time_limit_s, max_expansions:
+        search budgets; when one runs out the result has status ``"timeout"`` with the best path so far
+        (its ``bound``) or none. No exception: the caller decides.
+    verify:
+        check the path and its cost with the independent checker (``PlanResult.verified``).
+    callback:
+        called with each AMRA* iteration record as it finishes.
+    session:
+        plan within this :class:`Session` (its grids and labels are reused); default a new one.
+
+    Raises
+    ------
+    PlanningError
+        ``status="invalid-start"`` / ``"infeasible"`` with the reason, or ``"error"`` (bad setup, radii).
+    SceneError, MissionError
+        the mission names entities the building lacks.
+    """
+    if session is None:
+        session = Session(building)
+    elif session.building is not building:
+        raise PlanningError("the session plans on another building than the one given")
+    return session.plan(mission, start, setup=setup, profile=profile, robot_radius_m=robot_radius_m,
+                        reach_radius_m=reach_radius_m, time_limit_s=time_limit_s, max_expansions=max_expansions,
+                        verify=verify, guide=guide, callback=callback)

@@ -1,0 +1,220 @@
+"""The floors of the HTML report: one layer per floor, all inline.
+
+A layer is the floor raster as a PNG data URI, the reach regions as a second (toggled) PNG, an SVG
+overlay in cell coordinates (x = column, y = row: room names, the path coloured by progress with
+arrows, start, end, portals, events with tooltips), and two id rasters (room and object id per cell, in
+the bytes of opaque PNGs) that the page's script reads back to name what the pointer is over.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import io
+import json
+import math
+from collections.abc import Sequence
+
+import numpy as np
+from PIL import Image
+
+from sgplan.errors import OutputError
+from sgplan.report.outcome import PathEvent
+from sgplan.scene.draw import floor_image
+from sgplan.scene.draw_labels import label_anchors
+from sgplan.scene.draw_path import PATH_COLOURS, arrow_marks
+from sgplan.scene.grid import OccupancyGrid
+from sgplan.scene.model import Building, CatCode
+from sgplan.scene.placement import LabelPlacer
+
+_ARROW_SPACING = 0.06
+"""Arrow spacing along the path, as a fraction of the floor's larger side."""
+
+
+def _png_data_uri(rgba: np.ndarray) -> str:
+    """``data:image/png;base64,...`` of a ``(rows, cols, 3|4)`` uint8 array."""
+    buffer = io.BytesIO()
+    Image.fromarray(rgba).save(buffer, format="PNG", optimize=False)
+    return "data:image/png;base64," + base64.b64encode(buffer.getvalue()).decode("ascii")
+
+
+def _id_image(ids: np.ndarray) -> str:
+    """A raster of ids (< 2**24; negative ones read as 0) as an opaque PNG: red = low byte, green, blue =
+    high byte. Opaque, so browsers keep the exact bytes when the script reads them back through a canvas.
+    """
+    if ids.size and int(ids.max()) >= 1 << 24:
+        raise OutputError(f"an id raster holds id {int(ids.max())}; the HTML report encodes ids below 2**24")
+    ids = np.where(ids > 0, ids, 0).astype(np.uint32)
+    rgba = np.empty((*ids.shape, 4), dtype=np.uint8)
+    rgba[..., 0], rgba[..., 1], rgba[..., 2] = ids & 255, (ids >> 8) & 255, (ids >> 16) & 255
+    rgba[..., 3] = 255
+    return _png_data_uri(rgba)
+
+
+def _colour(value: float) -> str:
+    r, g, b, _ = PATH_COLOURS(value)
+    return f"#{int(r * 255):02x}{int(g * 255):02x}{int(b * 255):02x}"
+
+
+def _floor_svg(building: Building, floor: int, cells: np.ndarray, events: Sequence[PathEvent] = ()) -> str:
+    """The SVG overlay of one floor in cell coordinates (x = column, y = row): room names, the path with
+    its arrows, then the portals, events, end and start on top."""
+    f = building.floors[floor]
+    rows, cols = f.shape
+    unit = cols / 1000  # cells per CSS pixel: the map is shown about 1000 px wide
+    head = (
+        f'<svg class="overlay" viewBox="-0.5 -0.5 {cols} {rows}" preserveAspectRatio="none" '
+        'xmlns="http://www.w3.org/2000/svg">'
+    )
+    path = _path_svg(cells, floor, unit, max(rows, cols)) if len(cells) else []
+    names = _room_names_svg(building, floor, cells, unit)
+    return head + "".join(path + names + _markers_svg(building, floor, cells, events, unit)) + "</svg>"
+
+
+def _room_names_svg(building: Building, floor: int, cells: np.ndarray, unit: float) -> list[str]:
+    """Room names at their rooms' freest cells, moved off the start, end and portals (and each other)."""
+    f = building.floors[floor]
+    rows, cols = f.shape
+    placer = LabelPlacer((-0.5, -0.5, cols - 0.5, rows - 0.5), gap=2 * unit)
+    markers = [end.portal for end in (f.up_stairs, f.down_stairs) if end is not None]
+    markers += [(int(cell[0]), int(cell[1])) for cell in (*cells[:1], *cells[-1:]) if cell[2] == floor]
+    for r, c in markers:
+        placer.block((c - 8 * unit, r - 8 * unit, c + 8 * unit, r + 8 * unit))
+    font = 11 * unit
+    parts = []
+    rooms = sorted(r.id for r in building.rooms() if r.floor == floor)
+    for room_id, (r, c) in label_anchors(f.room_map, rooms, f.cat_map == CatCode.GROUND).items():
+        name = building.room(id=room_id).name
+        # Box size from the text length: about 0.6 em a character in the report's sans-serif font.
+        x0, y0, x1, y1 = placer.place((c, r), (0.62 * font * len(name) + 4 * unit, 1.3 * font))
+        parts.append(
+            f'<text class="room-label" x="{(x0 + x1) / 2:.2f}" y="{(y0 + y1) / 2:.2f}" '
+            f'font-size="{font:.2f}" stroke-width="{3 * unit:.2f}">{html.escape(name)}</text>'
+        )
+    return parts
+
+
+def _path_svg(cells: np.ndarray, floor: int, unit: float, size: int) -> list[str]:
+    """The floor's part of the path: polylines coloured by progress, and direction arrows."""
+    n = len(cells)
+    on = cells[:, 2] == floor
+    xy = cells[:, [1, 0]].astype(float)
+    same = on[:-1] & on[1:]
+    # One polyline per colour step and run keeps the progress colouring without one element per cell.
+    steps = 24
+    bins = np.minimum((np.arange(n - 1) * steps) // max(n - 1, 1), steps - 1)
+    parts = []
+    for b in range(steps):
+        idx = np.flatnonzero(same & (bins == b))
+        for run in np.split(idx, np.flatnonzero(np.diff(idx) != 1) + 1) if len(idx) else []:
+            pts = np.concatenate([xy[run], xy[run[-1] + 1][None]])
+            text = " ".join(f"{x:g},{y:g}" for x, y in pts)
+            parts.append(f'<polyline class="path" points="{text}" stroke="{_colour((b + 0.5) / steps)}"/>')
+    s = 6.5 * unit
+    shape = f"{s:g},0 {-s:g},{-0.7 * s:g} {-0.5 * s:g},0 {-s:g},{0.7 * s:g}"
+    centres, vectors, index = arrow_marks(xy, on, _ARROW_SPACING * size, 8 * unit, 3 * unit)
+    for (cx, cy), (vx, vy), i in zip(centres, vectors, index):
+        parts.append(
+            f'<polygon class="arrow" points="{shape}" fill="{_colour(i / max(n - 1, 1))}" '
+            f'transform="translate({cx:.2f},{cy:.2f}) rotate({math.degrees(math.atan2(vy, vx)):.1f})"/>'
+        )
+    return parts
+
+
+def _markers_svg(
+    building: Building, floor: int, cells: np.ndarray, events: Sequence[PathEvent], unit: float
+) -> list[str]:
+    """Portals, events, end and start of one floor, each with a tooltip; later ones lie on top."""
+    f = building.floors[floor]
+    parts = []
+    for end_, word in ((f.up_stairs, "up"), (f.down_stairs, "down")):
+        if end_ is not None:
+            r, c = end_.portal
+            target = floor + 1 if word == "up" else floor - 1
+            parts.append(
+                f'<circle class="portal" cx="{c}" cy="{r}" r="{5 * unit:.2f}"><title>stairs {word} to floor '
+                f"{target} (row {r}, column {c})</title></circle>"
+            )
+    s = 4.5 * unit
+    for event in (e for e in events if e.floor == floor):
+        parts.append(
+            f'<rect class="event" x="{-s:.2f}" y="{-s:.2f}" width="{2 * s:.2f}" height="{2 * s:.2f}" '
+            f'transform="translate({event.col},{event.row}) rotate(45)">'
+            f"<title>{html.escape(event.describe())}</title></rect>"
+        )
+    if len(cells) and cells[-1][2] == floor:
+        r, c, s = cells[-1][0], cells[-1][1], 7 * unit
+        parts.append(
+            f'<rect class="end" x="{c - s:.2f}" y="{r - s:.2f}" width="{2 * s:.2f}" height="{2 * s:.2f}">'
+            f"<title>end: row {r}, column {c}, floor {floor}</title></rect>"
+        )
+    if len(cells) and cells[0][2] == floor:
+        r, c = cells[0][0], cells[0][1]
+        parts.append(
+            f'<circle class="start" cx="{c}" cy="{r}" r="{6 * unit:.2f}">'
+            f"<title>start: row {r}, column {c}, floor {floor}</title></circle>"
+        )
+    return parts
+
+
+def _reach_image(labels: np.ndarray) -> str | None:
+    region = labels > 0
+    if not region.any():
+        return None
+    rgba = np.zeros((*region.shape, 4), dtype=np.uint8)
+    rgba[region] = (0, 140, 140, 110)
+    return _png_data_uri(rgba)
+
+
+def floors_html(
+    building: Building,
+    grid: OccupancyGrid | None,
+    cells: np.ndarray,
+    reach: np.ndarray | None,
+    events: Sequence[PathEvent],
+) -> str:
+    tabs, layers = [], []
+    for f in building.floors:
+        k = f.index
+        rows, cols = f.shape
+        on_floor = int((cells[:, 2] == k).sum()) if len(cells) else 0
+        tabs.append(
+            f'<button type="button" class="floor-tab" data-floor="{k}">floor {k} ({html.escape(f.name)})'
+            f"{f' - {on_floor} path cells' if on_floor else ''}</button>"
+        )
+        image = _png_data_uri((floor_image(building, k, grid) * 255).round().astype(np.uint8))
+        objects = np.where(f.cat_map > 0, f.cat_map, 0)
+        reach_uri = _reach_image(reach[k]) if reach is not None else None
+        layers.append(
+            f'<div class="floor" data-floor="{k}" data-rows="{rows}" data-cols="{cols}" hidden>'
+            f'<div class="stage" style="aspect-ratio: {cols} / {rows}">'
+            f'<img class="map" alt="floor {k} map" src="{image}">'
+            + (f'<img class="reach" alt="reach regions on floor {k}" src="{reach_uri}">' if reach_uri else "")
+            + _floor_svg(building, k, cells, events)
+            + f'<img class="ids rooms" hidden alt="" src="{_id_image(f.room_map)}">'
+            f'<img class="ids objects" hidden alt="" src="{_id_image(objects)}">'
+            "</div></div>"
+        )
+    return (
+        '<div id="floor-tabs" role="tablist">' + "".join(tabs) + "</div>"
+        '<label class="toggle"><input type="checkbox" id="show-reach" checked> '
+        "reach regions of the mission</label>"
+        '<div id="floors">' + "".join(layers) + '</div><div id="tooltip" hidden></div>'
+    )
+
+
+def entities_json(building: Building) -> str:
+    rooms = {
+        str(r.id): {"name": r.name, "key": r.key, "uuid": r.uuid, "floor": r.floor} for r in building.rooms()
+    }
+    objects = {}
+    for o in building.objects():
+        objects[str(o.id)] = {
+            "name": o.name,
+            "key": o.key,
+            "uuid": o.uuid,
+            "floor": building.floor_of_object(o),
+            "room": building.room(id=o.room_id).key if o.room_id else None,
+        }
+    # "</" would end the script element early.
+    return json.dumps({"rooms": rooms, "objects": objects}).replace("</", "<\\/")

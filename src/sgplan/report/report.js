@@ -1,0 +1,64 @@
+"use strict";
+// Floor switching, the reach-region toggle and hover details. The id rasters hold, per cell, the room
+// id and the object id (red = low byte, green, blue = high byte); they are read once through a canvas.
+(function () {
+  const entities = JSON.parse(document.getElementById("sgplan-entities").textContent);
+  const tabs = Array.from(document.querySelectorAll(".floor-tab"));
+  const layers = Array.from(document.querySelectorAll("#floors .floor"));
+  const tooltip = document.getElementById("tooltip");
+
+  function showFloor(k) {
+    layers.forEach(function (layer) { layer.hidden = layer.dataset.floor !== String(k); });
+    tabs.forEach(function (tab) { tab.setAttribute("aria-selected", tab.dataset.floor === String(k) ? "true" : "false"); });
+    document.body.dataset.floor = String(k);
+  }
+  tabs.forEach(function (tab) { tab.addEventListener("click", function () { showFloor(tab.dataset.floor); }); });
+  const firstWithPath = tabs.find(function (tab) { return /path cells/.test(tab.textContent); });
+  showFloor(firstWithPath ? firstWithPath.dataset.floor : 0);
+
+  const reach = document.getElementById("show-reach");
+  reach.addEventListener("change", function () { document.body.classList.toggle("hide-reach", !reach.checked); });
+
+  function idsOf(img) {
+    const canvas = document.createElement("canvas");
+    canvas.width = img.naturalWidth;
+    canvas.height = img.naturalHeight;
+    const context = canvas.getContext("2d", { willReadFrequently: true });
+    context.drawImage(img, 0, 0);
+    const rgba = context.getImageData(0, 0, canvas.width, canvas.height).data;
+    const ids = new Uint32Array(canvas.width * canvas.height);
+    for (let i = 0; i < ids.length; i++) {
+      ids[i] = rgba[4 * i] | (rgba[4 * i + 1] << 8) | (rgba[4 * i + 2] << 16);
+    }
+    return ids;
+  }
+  function whenLoaded(img) {
+    return img.complete ? Promise.resolve(img) : new Promise(function (ok) { img.addEventListener("load", function () { ok(img); }); });
+  }
+
+  layers.forEach(function (layer) {
+    const rows = Number(layer.dataset.rows), cols = Number(layer.dataset.cols);
+    const stage = layer.querySelector(".stage");
+    let rooms = null, objects = null;
+    Promise.all([whenLoaded(layer.querySelector("img.ids.rooms")), whenLoaded(layer.querySelector("img.ids.objects"))])
+      .then(function (imgs) { rooms = idsOf(imgs[0]); objects = idsOf(imgs[1]); layer.dataset.ready = "true"; });
+    stage.addEventListener("mousemove", function (event) {
+      if (!rooms) { return; }
+      const box = stage.getBoundingClientRect();
+      const col = Math.floor((event.clientX - box.left) / box.width * cols);
+      const row = Math.floor((event.clientY - box.top) / box.height * rows);
+      if (row < 0 || col < 0 || row >= rows || col >= cols) { tooltip.hidden = true; return; }
+      const lines = ["row " + row + ", column " + col + ", floor " + layer.dataset.floor];
+      const room = entities.rooms[rooms[row * cols + col]];
+      const object = entities.objects[objects[row * cols + col]];
+      if (object) { lines.push("object: " + object.name + " (" + object.key + ", id " + objects[row * cols + col] + ", floor " + object.floor + ")"); }
+      if (room) { lines.push("room: " + room.name + " (" + room.key + ", id " + rooms[row * cols + col] + ", floor " + room.floor + ")"); }
+      tooltip.textContent = "";
+      lines.forEach(function (line) { const div = document.createElement("div"); div.textContent = line; tooltip.appendChild(div); });
+      tooltip.style.left = (event.clientX + 14) + "px";
+      tooltip.style.top = (event.clientY + 14) + "px";
+      tooltip.hidden = false;
+    });
+    stage.addEventListener("mouseleave", function () { tooltip.hidden = true; });
+  });
+})();

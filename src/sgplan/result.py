@@ -1,0 +1,203 @@
+"""The public result of planning one mission: :class:`PlanResult` (what :func:`sgplan.plan` returns).
+
+It holds the path and how it was found (status, cost, iterations, timings), the mission it satisfies
+(text, formula, propositions), the robot-ready outputs (metric waypoints dense and simplified, the events
+along the path) and, when available, a plain-language explanation of the mission. ``to_dict()`` /
+``to_json()`` give the one JSON shape sgplan writes (``plan --json``, demo's ``run.json``).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from sgplan.errors import OutputError
+from sgplan.outputs.events import Event
+from sgplan.outputs.files import write_ros_path_yaml, write_waypoints_csv
+from sgplan.outputs.waypoints import Waypoint
+from sgplan.pipeline import Radii, finite_or_none, iteration_records
+from sgplan.planning.amra import IterationRecord
+
+if TYPE_CHECKING:
+    from sgplan.mission import Mission
+    from sgplan.scene.grid import OccupancyGrid
+    from sgplan.scene.model import Building
+
+
+@dataclass(eq=False)
+class PlanResult:
+    """One planned mission.
+
+    Attributes
+    ----------
+    scene:
+        the building's name.
+    status:
+        ``"optimal"`` (``cost_m`` is the exact optimum) or ``"timeout"`` (a budget ran out: the best path
+        so far, within ``bound`` times the optimum, or no path).
+    cost_m:
+        path cost in metres (``inf`` without a path).
+    bound:
+        the suboptimality bound w1*w2 of the last finished iteration (1 when optimal), ``None`` if none
+        finished.
+    path:
+        ``(n, 4)`` int64 ``[row, col, floor, q]`` per cell, start first (``q``: automaton state after the
+        cell); ``None`` without a path.
+    start, start_from:
+        the start cell ``(row, col, floor)`` and how it was chosen (``"room kitchen room_5"``).
+    waypoints, waypoints_simplified:
+        the path in metres, every cell / the simplified polyline (see :mod:`sgplan.outputs.waypoints`).
+    events:
+        propositions becoming true and automaton moves along the path (:mod:`sgplan.outputs.events`).
+    verified:
+        True when the independent checker accepted the path and its cost, ``None`` when not checked.
+    guidance:
+        where the LLM-heuristic guidance came from: ``"mission"`` (it carried some) or the name of the
+        guide that a setup using guidance asked; ``None`` when there is none.
+    explanation:
+        the mission in plain language, when an explainer is available; else ``None``.
+    timings:
+        seconds: ``prepare_s`` (guidance, grid and labels), ``precompute_s`` (planning domain),
+        ``search_s``, ``wall_s`` (the whole call).
+    """
+
+    scene: str
+    status: str
+    setup: str
+    profile: str
+    cost_m: float
+    bound: float | None
+    path: np.ndarray | None
+    start: tuple[int, int, int]
+    start_from: str
+    radii: Radii
+    queues: tuple[str, ...]
+    iterations: Sequence[IterationRecord]
+    mission_text: str | None
+    grounded_text: str | None
+    formula: str | None
+    propositions: dict[str, str]
+    waypoints: list[Waypoint] = field(default_factory=list)
+    waypoints_simplified: list[Waypoint] = field(default_factory=list)
+    events: list[Event] = field(default_factory=list)
+    verified: bool | None = None
+    guidance: str | None = None
+    explanation: str | None = None
+    timings: dict[str, float] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+    building: Building | None = field(default=None, repr=False)
+    grid: OccupancyGrid | None = field(default=None, repr=False)
+    labels: np.ndarray | None = field(default=None, repr=False)
+    mission: Mission | None = field(default=None, repr=False)
+
+    @property
+    def found(self) -> bool:
+        """Whether a path was found."""
+        return self.path is not None
+
+    @property
+    def cells(self) -> list[tuple[int, int, int]]:
+        """The path as ``(row, col, floor)`` cells (empty without a path)."""
+        return [] if self.path is None else [(int(r), int(c), int(f)) for r, c, f, _ in self.path.tolist()]
+
+    def summary(self) -> str:
+        """One line: status, cost, cells, waypoints, setup."""
+        if self.path is None:
+            return f"{self.status}: no path (setup {self.setup})"
+        return (f"{self.status}: cost {self.cost_m:.4f} m over {len(self.path)} cells, "
+                f"{len(self.waypoints_simplified)} simplified waypoints (setup {self.setup}, "
+                f"{len(self.iterations)} iterations)")
+
+    def __str__(self) -> str:
+        return self.summary()
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON-ready record (plain dicts, lists, numbers, strings, ``None``; no infinities)."""
+        return {
+            "scene": self.scene,
+            "mission": {"text": self.mission_text, "grounded_text": self.grounded_text, "formula": self.formula,
+                        "propositions": dict(self.propositions)},
+            "explanation": self.explanation,
+            "start": list(self.start),
+            "start_from": self.start_from,
+            "setup": self.setup,
+            "profile": self.profile,
+            "status": self.status,
+            "cost_m": finite_or_none(self.cost_m),
+            "bound": self.bound,
+            "verified": self.verified,
+            "guidance": self.guidance,
+            "radii": {"robot_m": self.radii.robot_m, "reach_m": self.radii.reach_m,
+                      "robot_from": self.radii.robot_from, "reach_from": self.radii.reach_from},
+            "queues": list(self.queues),
+            "iterations": iteration_records(self.iterations),
+            "path": None if self.path is None else self.path.tolist(),
+            "waypoints": [w.to_dict() for w in self.waypoints],
+            "waypoints_simplified": [w.to_dict() for w in self.waypoints_simplified],
+            "events": [e.to_dict() for e in self.events],
+            "timings": dict(self.timings),
+            "notes": list(self.notes),
+        }
+
+    def to_json(self, indent: int | None = 1) -> str:
+        return json.dumps(self.to_dict(), indent=indent, allow_nan=False)
+
+    def write_json(self, path: str | Path) -> Path:
+        """Write :meth:`to_json` to ``path`` (folders created); returns the path."""
+        return write_text(path, self.to_json() + "\n")
+
+    def write_waypoints_csv(self, path: str | Path, *, simplified: bool = True) -> Path:
+        """The (simplified, by default) waypoints as CSV (:func:`sgplan.outputs.files.write_waypoints_csv`)."""
+        return write_waypoints_csv(self.waypoints_simplified if simplified else self.waypoints, path)
+
+    def write_ros_path_yaml(self, path: str | Path, *, simplified: bool = True, frame_id: str = "map") -> Path:
+        """The (simplified) waypoints as ROS ``nav_msgs/Path`` per floor stretch
+        (:func:`sgplan.outputs.files.write_ros_path_yaml`)."""
+        return write_ros_path_yaml(self.waypoints_simplified if simplified else self.waypoints, path, frame_id)
+
+    def draw(self, out_dir: str | Path, *, stem: str = "plan_floor", formats: Sequence[str] = ("png",),
+             automaton: bool = True) -> list[Path]:
+        """Draw every floor with the path, the mission and the cost into ``out_dir`` (one picture per floor
+        and format: ``png``, ``svg``), and the mission's automaton beside them (``automaton.dot`` / ``.svg``,
+        unless ``automaton=False``); returns the files."""
+        from sgplan.report.automaton import write_automaton
+        from sgplan.scene.draw import MissionView, draw_building
+
+        building, mission = self._drawable()
+        view = MissionView(text=self.mission_text or self.formula, explanation=self.explanation,
+                           cost_m=self.cost_m if self.path is not None else None,
+                           propositions=tuple(mission.ordered_propositions), reach_radius_m=self.radii.reach_m)
+        written = draw_building(building, out_dir, grid=self.grid, path=self.path, mission=view, stem=stem,
+                                formats=formats)
+        if automaton:
+            written += write_automaton(mission.automaton, out_dir, names=mission.descriptions)
+        return written
+
+    def write_html(self, path: str | Path) -> Path:
+        """Write the self-contained HTML report of this plan (:func:`sgplan.report.html.write_html_report`)."""
+        from sgplan.report.html import write_html_report
+
+        building, mission = self._drawable()
+        return write_html_report(path, building, self.grid, self, mission, explanation=self.explanation,
+                                 reach_radius_m=self.radii.reach_m)
+
+    def _drawable(self) -> tuple[Building, Mission]:
+        if self.building is None or self.mission is None:
+            raise OutputError("this result carries no building and mission to draw (it was built by hand)")
+        return self.building, self.mission
+
+
+def write_text(path: str | Path, text: str) -> Path:
+    """Write ``text`` to ``path`` (UTF-8, folders created); :class:`OutputError` naming the file on failure."""
+    target = Path(path).expanduser()
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_text(text, encoding="utf-8")
+    except OSError as error:
+        raise OutputError(f"{target}: cannot write: {error.strerror}") from None
+    return target

@@ -1,0 +1,138 @@
+"""Where a plan starts: a grid cell, a metric point, a room, or one of the scene's initial positions.
+
+:func:`start_cell` turns any of these into the ``(row, col, floor)`` cell the planner needs:
+
+- ``None``: the scene's first initial position (``initial_positions.yaml``);
+- an ``int``: the scene's initial position with that index;
+- three integers ``(row, col, floor)``: that grid cell, as given;
+- a :class:`Point` ``(x_m, y_m, floor)``, or three numbers of which ``x`` or ``y`` is a float: the cell
+  holding that metric point; if the robot could not stand there (an inflated obstacle), the nearest
+  traversable cell of the same floor within :data:`SNAP_M`;
+- a string: a room, by its key ``room_<uuid>`` or its category (``"kitchen"``, case-insensitive, which must
+  name one room, or ``"bathroom on floor 1"``): the room's traversable cell farthest from every obstacle.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Sequence
+from typing import NamedTuple
+
+import numpy as np
+from scipy import ndimage
+
+from sgplan.errors import PlanningError
+from sgplan.pipeline import resolve_start
+from sgplan.scene.fields import is_int, is_number
+from sgplan.scene.grid import OccupancyGrid
+from sgplan.scene.model import Building, Room
+
+_ON_FLOOR = re.compile(r"^(.*?)\s+on\s+floor\s+(\d+)$", re.IGNORECASE)
+SNAP_M = 0.5
+"""How far (metres) a metric start may be moved to the nearest cell the robot can stand on."""
+
+
+class Point(NamedTuple):
+    """A metric start: ``x_m``, ``y_m`` in the scene's frame (metres) on floor ``floor``."""
+
+    x_m: float
+    y_m: float
+    floor: int
+
+
+StartSpec = None | int | str | Point | Sequence[float]
+"""Anything :func:`start_cell` accepts."""
+
+
+def start_cell(building: Building, grid: OccupancyGrid, start: StartSpec = None) -> tuple[tuple[int, int, int], str]:
+    """The start cell ``(row, col, floor)`` meant by ``start`` (see the module), and how it was chosen
+    (for messages and results, e.g. ``"room kitchen room_5"``).
+
+    Raises
+    ------
+    PlanningError
+        ``status="invalid-start"`` for an unknown or ambiguous room, a room without a traversable cell,
+        a point off the grid or too far from any traversable cell, a floor that does not exist, or an
+        initial position index out of range; ``status="error"`` for a value of another type.
+    """
+    if start is None or (is_int(start) and not isinstance(start, Sequence)):
+        index = None if start is None else int(start)  # type: ignore[arg-type]
+        try:
+            cell = resolve_start(building, index=index)
+        except PlanningError as error:
+            raise PlanningError(str(error), status="invalid-start") from None
+        return cell, f"initial position {index or 0}"
+    if isinstance(start, str):
+        return _room_start(building, grid, _find_room(building, start))
+    if isinstance(start, Sequence) and len(start) == 3 and all(is_number(v) for v in start):
+        if not is_int(start[2]):
+            raise PlanningError(f"start {tuple(start)}: the floor must be a whole number", status="invalid-start")
+        if isinstance(start, Point) or not (is_int(start[0]) and is_int(start[1])):
+            return _point_start(building, grid, float(start[0]), float(start[1]), int(start[2]))
+        return (int(start[0]), int(start[1]), int(start[2])), "cell"
+    raise PlanningError(
+        f"start {start!r} is none of: a cell (row, col, floor), a Point(x_m, y_m, floor), a room name or key, "
+        "an initial position index, None"
+    )
+
+
+def _find_room(building: Building, name: str) -> Room:
+    key = name.strip()
+    if key.lower().startswith("room_") and key[5:].isdigit():
+        uuid = int(key[5:])
+        if not building.has_room(uuid):
+            raise PlanningError(f"start: building {building.name!r} has no room {key}", status="invalid-start")
+        return building.room(uuid=uuid)
+    on_floor = _ON_FLOOR.match(key)
+    rooms = building.rooms_named(on_floor[1], int(on_floor[2])) if on_floor else building.rooms_named(key)
+    if len(rooms) == 1:
+        return rooms[0]
+    if not rooms:
+        names = sorted({room.name for room in building.rooms()})
+        raise PlanningError(f"start: building {building.name!r} has no room called {name!r} (rooms: "
+                            f"{', '.join(names)})", status="invalid-start")
+    listing = ", ".join(f"{room.key} (floor {room.floor})" for room in rooms)
+    raise PlanningError(f"start: {name!r} names {len(rooms)} rooms ({listing}); give a key or say "
+                        f"'{name} on floor N'", status="invalid-start")
+
+
+def _room_start(building: Building, grid: OccupancyGrid, room: Room) -> tuple[tuple[int, int, int], str]:
+    free = (grid.room_map[room.floor] == room.id) & grid.traversable[room.floor]
+    if not free.any():
+        raise PlanningError(
+            f"start: room {room.name} {room.key} has no cell a robot of radius {grid.robot_radius_m} m can stand on",
+            status="invalid-start",
+        )
+    # The cell deepest inside the room's free area: clear of walls, furniture and doorways.
+    depth = ndimage.distance_transform_edt(free)
+    row, col = np.unravel_index(int(np.argmax(depth)), depth.shape)
+    return (int(row), int(col), room.floor), f"room {room.name} {room.key}"
+
+
+def _point_start(building: Building, grid: OccupancyGrid, x_m: float, y_m: float,
+                 floor: int) -> tuple[tuple[int, int, int], str]:
+    if not (math.isfinite(x_m) and math.isfinite(y_m)):
+        raise PlanningError(f"start point ({x_m}, {y_m}) is not finite", status="invalid-start")
+    if not 0 <= floor < building.num_floors:
+        raise PlanningError(f"start point on floor {floor}: building {building.name!r} has floors "
+                            f"0..{building.num_floors - 1}", status="invalid-start")
+    row, col = building.floors[floor].xy_to_cell(x_m, y_m)
+    _, rows, cols = grid.shape
+    if not (0 <= row < rows and 0 <= col < cols):
+        raise PlanningError(f"start point ({x_m:g}, {y_m:g}) m lies off floor {floor}'s grid", status="invalid-start")
+    where = f"point ({x_m:g}, {y_m:g}) m floor {floor}"
+    if grid.traversable[floor, row, col]:
+        return (row, col, floor), where
+    blocked = ~grid.traversable[floor]
+    distance, (near_r, near_c) = (
+        ndimage.distance_transform_edt(blocked, sampling=grid.resolution_m, return_indices=True)
+        if not blocked.all() else (np.full(blocked.shape, np.inf), (blocked, blocked))
+    )
+    if distance[row, col] > SNAP_M:
+        raise PlanningError(
+            f"start {where} is not free for a robot of radius {grid.robot_radius_m} m and no free cell lies within "
+            f"{SNAP_M} m", status="invalid-start",
+        )
+    cell = (int(near_r[row, col]), int(near_c[row, col]), floor)
+    return cell, f"{where}, moved {float(distance[row, col]):.2f} m to the nearest free cell"

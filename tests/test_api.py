@@ -1,0 +1,128 @@
+"""The public API: `import sgplan` is cheap and flat; scenes, missions, starts, plans, sessions."""
+
+from __future__ import annotations
+
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy import ndimage
+
+import sgplan
+from sgplan.errors import PlanningError, SceneError
+
+README = Path(__file__).resolve().parents[1] / "README.md"
+KITCHEN_THEN_BEDROOM = 'F("enter(room_4)" & F "enter(room_11)")'
+
+
+@pytest.fixture(scope="module")
+def demo() -> sgplan.api.Building:
+    return sgplan.load_scene("demo")
+
+
+def test_the_readme_example_is_at_most_five_lines_and_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                            capsys: pytest.CaptureFixture[str]) -> None:
+    text = README.read_text(encoding="utf-8")
+    block = re.search(r"From Python.*?```python\n(.*?)```", text, re.DOTALL)
+    assert block is not None
+    lines = block[1].strip().splitlines()
+    assert len(lines) <= 5 and lines[0] == "import sgplan"
+    monkeypatch.chdir(tmp_path)
+    namespace: dict[str, object] = {}
+    exec(block[1], namespace)  # noqa: S102 - the README's own code
+    result = namespace["result"]
+    assert isinstance(result, sgplan.PlanResult) and result.status == "optimal" and result.verified
+    assert hasattr(result, "explanation") and str(result) in capsys.readouterr().out
+    assert {"plan.json", "plan_floor_0.png", "plan_floor_1.png", "automaton.svg"} <= {
+        p.name for p in (tmp_path / "out/quick").iterdir()}
+    assert json.loads((tmp_path / "out/quick/plan.json").read_text())["cost_m"] == pytest.approx(result.cost_m)
+
+
+def test_import_sgplan_is_cheap_and_names_load_on_first_use() -> None:
+    code = "import sys, sgplan; print(sorted(m for m in ('numpy', 'numba', 'scipy') if m in sys.modules)); sgplan.plan"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"
+    assert {"load_scene", "mission_from_text", "plan", "Session", "PlanResult", "Point"} <= set(dir(sgplan))
+    with pytest.raises(AttributeError, match="no attribute 'nope'"):
+        sgplan.nope  # noqa: B018
+
+
+def test_load_scene_accepts_names_in_any_case_paths_and_buildings(demo, tmp_path: Path) -> None:
+    assert sgplan.load_scene("DEMO").name == demo.name and sgplan.load_scene(demo) is demo
+    from sgplan.scene.native import write_native_scene
+
+    assert sgplan.load_scene(write_native_scene(demo, tmp_path / "d")).name == demo.name
+    with pytest.raises(SceneError, match="neither an existing path"):
+        sgplan.load_scene("no-such-scene")
+
+
+def test_gibson_scene_names_in_any_case(gibson_root: Path) -> None:
+    assert sgplan.load_scene("collierville", data=gibson_root).name.lower() == "collierville"
+
+
+def test_starts_by_cell_point_room_and_index(demo) -> None:
+    session = sgplan.Session(demo)
+    mission = sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo)
+    grid = session.grid()
+    by_room = session.plan(mission, "bathroom on floor 0", setup="NO-LLM")
+    row, col, floor = by_room.start
+    assert grid.traversable[floor, row, col] and grid.room_map[floor, row, col] == demo.room(uuid=5).id
+    assert by_room.start_from == "room bathroom room_5" and session.plan(mission, "room_5", setup="NO-LLM").start == by_room.start
+    x, y = demo.floors[0].cell_to_xy((row, col))
+    by_point = session.plan(mission, sgplan.Point(x + 0.01, y - 0.01, 0), setup="NO-LLM")
+    assert by_point.start == by_room.start and by_point.cost_m == pytest.approx(by_room.cost_m)
+    assert session.plan(mission, (row, col, floor), setup="NO-LLM").start_from == "cell"
+    assert session.plan(mission, 2, setup="NO-LLM").start == demo.initial_cells[2]
+    blocked = np.argwhere(~grid.traversable[0] & (grid.room_map[0] > 0))  # inflated-obstacle cells in rooms
+    depth = ndimage.distance_transform_edt(~grid.traversable[0])
+    snap = next(c for c in blocked if 0 < depth[tuple(c)] * 0.05 <= 0.3)
+    snapped = session.plan(mission, (*demo.floors[0].cell_to_xy(tuple(snap)), 0), setup="NO-LLM")
+    assert "moved" in snapped.start_from and grid.traversable[0, snapped.start[0], snapped.start[1]]
+    with pytest.raises(PlanningError, match="names 2 rooms .*room_5 .*room_14") as error:
+        session.plan(mission, "bathroom")
+    assert error.value.status == "invalid-start"
+    with pytest.raises(PlanningError, match="no free cell lies within 0.5 m"):
+        session.plan(mission, sgplan.Point(*demo.floors[0].cell_to_xy((0, 0)), 0))
+    with pytest.raises(PlanningError, match="floors 0..1"):
+        session.plan(mission, sgplan.Point(0.0, 0.0, 5))
+    with pytest.raises(PlanningError, match="no room called 'garage'"):
+        session.plan(mission, "garage")
+    with pytest.raises(PlanningError, match="is none of"):
+        session.plan(mission, {"x": 1})  # type: ignore[arg-type]
+
+
+def test_a_session_keeps_grids_and_labels_and_plans_like_fresh_calls(demo) -> None:
+    session = sgplan.Session(demo)
+    first = sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo)
+    second = sgplan.mission_from_formula('F("reach(object_28)") & G !"enter(room_4)"', demo)
+    results = [session.plan(m, 0, setup="NO-LLM") for m in (first, second, first)]
+    assert results[0].grid is results[1].grid is session.grid() and len(session._grids) == 1
+    for mission in (first, second):
+        assert np.array_equal(session.labels(mission), mission.labels(demo, demo.reach_radius_m))
+    fresh = [sgplan.plan(demo, m, 0, setup="NO-LLM") for m in (first, second)]
+    assert [r.cost_m for r in results] == pytest.approx([fresh[0].cost_m, fresh[1].cost_m, fresh[0].cost_m])
+    assert session.grid(0.2) is not session.grid() and len(session._grids) == 2
+    with pytest.raises(PlanningError, match="another building"):
+        sgplan.plan(sgplan.load_scene("demo"), first, session=session)
+
+
+def test_guidance_provenance_and_timeouts_as_results(demo) -> None:
+    mission = sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo)
+    assert sgplan.plan(demo, mission, setup="no-llm").guidance is None
+    guided = sgplan.plan(demo, mission, setup="ALL")
+    assert guided.guidance == "offline-symbolic" and mission.guidance is None  # the caller's mission is unchanged
+    assert guided.mission is not None and guided.mission.guidance is not None
+    cut = sgplan.plan(demo, mission, setup="NO-LLM", max_expansions=1)
+    assert cut.status == "timeout" and cut.path is None and cut.to_dict()["cost_m"] is None
+    record = json.loads(guided.to_json())
+    assert record["mission"]["formula"] and record["explanation"] is None and record["verified"] is True
+
+
+def test_mission_from_text_offline_and_saved(demo, tmp_path: Path) -> None:
+    mission = sgplan.mission_from_text("Go to the kitchen.", demo, save_to=tmp_path / "m")
+    assert mission.grounded_text == "Go to room_4." and (tmp_path / "m" / "automaton.aut").is_file()
+    assert sgplan.load_mission(tmp_path / "m").automaton.num_states == mission.automaton.num_states

@@ -1,0 +1,160 @@
+"""Robot-ready outputs: waypoints (dense and simplified), events, CSV and ROS path files, `plan --json`."""
+
+from __future__ import annotations
+
+import csv
+import itertools
+import json
+import math
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+from hypothesis import given
+from hypothesis import strategies as st
+
+import sgplan
+from sgplan.cli import main
+from sgplan.outputs.waypoints import crossed_cells, densify, leg_costs, simplify_path
+from sgplan.planning.checker import check_path
+from sgplan.result import PlanResult
+
+# Out and back on floor 0, then upstairs, never through the living room (room_6) or the kitchen (room_4).
+FORMULA = ('F("enter(room_5)" & F("reach(object_28)" & F "enter(room_11)")) '
+           '& G(!"enter(room_6)" & !"enter(room_4)")')
+
+
+@lru_cache(maxsize=1)
+def demo_result() -> PlanResult:
+    building = sgplan.load_scene("demo")
+    return sgplan.plan(building, sgplan.mission_from_formula(FORMULA, building), 0, setup="NO-LLM")
+
+
+@given(st.tuples(st.integers(-6, 6), st.integers(-6, 6)), st.tuples(st.integers(-6, 6), st.integers(-6, 6)))
+def test_crossed_cells_cover_the_segment_in_order(a: tuple[int, int], b: tuple[int, int]) -> None:
+    cells = crossed_cells(a, b)
+    assert tuple(cells[0]) == a and tuple(cells[-1]) == b
+    assert (np.abs(np.diff(cells, axis=0)).max(axis=1, initial=1) == 1).all()  # 4- or 8-adjacent steps
+    # Oracle: every point sampled densely on the segment lies in a returned cell.
+    t = np.linspace(0.0, 1.0, 2001)[:, None]
+    points = np.array(a) + 0.5 + t * (np.array(b) - np.array(a))
+    inside = {tuple(c) for c in cells.tolist()}
+    sampled = {tuple(c) for c in np.floor(points).astype(int).tolist()}
+    assert sampled <= inside
+
+
+def test_simplified_waypoints_keep_the_mission_the_clearance_and_the_stairs() -> None:
+    r = demo_result()
+    automaton = r.mission.automaton
+    keep = simplify_path(r.path, r.grid, r.labels, automaton)
+    assert [w.index for w in r.waypoints_simplified] == keep.tolist()
+    assert 2 < len(keep) < len(r.path) / 5
+    crossed = densify(r.path, keep, automaton, r.labels)  # the cells a robot crosses on the polyline
+    check = check_path(crossed, r.grid, r.labels, automaton, "ltlf")
+    assert check.valid, check.problems  # free cells only, avoided rooms avoided, mission accepted
+    assert r.waypoints_simplified[-1].cost_m <= r.cost_m + 1e-9
+    floors = [w.floor for w in r.waypoints_simplified]
+    changes = [i for i in range(1, len(floors)) if floors[i] != floors[i - 1]]
+    assert len(changes) == 1 and floors[0] == 0 and floors[-1] == 1
+    stairs = r.grid.stairs[0]
+    below, above = r.waypoints_simplified[changes[0] - 1], r.waypoints_simplified[changes[0]]
+    assert (below.row, below.col) == stairs.lower_cell and (above.row, above.col) == stairs.upper_cell
+
+
+def test_a_segment_never_cuts_through_a_cell_that_changes_the_mission() -> None:
+    r = demo_result()
+    automaton = r.mission.automaton
+    keep = simplify_path(r.path, r.grid, r.labels, automaton)
+    (ra, ca, floor), (rb, cb, _) = r.path[keep[0], :3], r.path[keep[1], :3]
+    on_path = {tuple(c) for c in r.path[:, :3].tolist()}
+    cut = next(tuple(c) for c in crossed_cells((int(ra), int(ca)), (int(rb), int(cb))).tolist()
+               if (*c, floor) not in on_path)  # a cell the first segment crosses but the path does not visit
+    labels = r.labels.copy()
+    labels[floor, cut[0], cut[1]] |= np.uint32(1 << automaton.aps.index("enter(room_4)"))  # now "kitchen"
+    again = simplify_path(r.path, r.grid, labels, automaton)
+    for a, b in itertools.pairwise(again):
+        if b == a + 1:
+            continue  # the planner's own step
+        crossed = crossed_cells(tuple(r.path[a, :2].tolist()), tuple(r.path[b, :2].tolist()))[1:-1]
+        assert r.path[a, 2] != floor or cut not in {tuple(c) for c in crossed.tolist()}
+    assert len(again) > len(keep) and check_path(densify(r.path, again, automaton, labels), r.grid, labels,
+                                                 automaton).valid
+
+
+def test_waypoints_are_metric_and_in_rooms() -> None:
+    r = demo_result()
+    w = r.waypoints[0]
+    assert (w.row, w.col, w.floor) == r.start and w.cost_m == 0.0
+    assert (w.x_m, w.y_m) == pytest.approx(r.building.floors[0].cell_to_xy((w.row, w.col)))
+    assert w.z_m == r.building.floors[0].ground_z_m and w.room == "room_2" and w.room_name == "corridor"
+    assert r.waypoints[-1].cost_m == pytest.approx(r.cost_m) == pytest.approx(leg_costs(r.path, r.grid).sum())
+    assert r.waypoints[-1].z_m == r.building.floors[1].ground_z_m > 0
+
+
+def test_events_say_where_each_proposition_became_true_and_the_automaton_moved() -> None:
+    r = demo_result()
+    props = [e for e in r.events if e.kind == "proposition"]
+    assert [e.meaning for e in props if e.meaning != "enter(room_2)"][:3] == \
+        ["enter(room_5)", "reach(object_28)", "enter(room_11)"]
+    states = [e for e in r.events if e.kind == "state"]
+    assert states[-1].accepting and states[-1].to_state == r.path[-1, 3] and states[-1].index == len(r.path) - 1
+    costs = np.concatenate([[0.0], np.cumsum(leg_costs(r.path, r.grid))])
+    for e in r.events:
+        assert e.cost_m == pytest.approx(costs[e.index]) and (e.row, e.col, e.floor) == tuple(r.path[e.index, :3])
+    kitchen = next(e for e in props if e.meaning == "enter(room_5)")
+    assert kitchen.entity == "bathroom" and "bathroom" in kitchen.describe()
+
+
+def test_csv_and_ros_path_files(tmp_path: Path) -> None:
+    r = demo_result()
+    with r.write_waypoints_csv(tmp_path / "w.csv").open() as handle:
+        rows = list(csv.DictReader(handle))
+    assert len(rows) == len(r.waypoints_simplified) and float(rows[-1]["cost_m"]) == pytest.approx(
+        r.waypoints_simplified[-1].cost_m, abs=1e-4)
+    assert len(list(csv.reader(r.write_waypoints_csv(tmp_path / "d.csv", simplified=False).open()))) == len(r.path) + 1
+    document = yaml.safe_load(r.write_ros_path_yaml(tmp_path / "p.yaml", frame_id="house").read_text())
+    assert [p["floor"] for p in document["paths"]] == [0, 1]
+    poses = [pose for p in document["paths"] for pose in p["path"]["poses"]]
+    assert len(poses) == len(r.waypoints_simplified) and poses[0]["header"]["frame_id"] == "house"
+    first, second = poses[0]["pose"], poses[1]["pose"]
+    q = first["orientation"]
+    assert q["z"] ** 2 + q["w"] ** 2 == pytest.approx(1.0, abs=1e-5)
+    heading = math.atan2(second["position"]["y"] - first["position"]["y"], second["position"]["x"] - first["position"]["x"])
+    assert 2 * math.atan2(q["z"], q["w"]) == pytest.approx(heading, abs=1e-4)
+
+
+def test_plan_json_to_stdout_and_robot_files(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                             capsys: pytest.CaptureFixture[str]) -> None:
+    monkeypatch.chdir(tmp_path)
+    code = main(["plan", "--scene", "demo", "--text", "Go to the kitchen.", "--start-room", "bathroom on floor 0",
+                 "--json", "-", "--waypoints", "w.csv", "--ros-path", "p.yaml", "--setup", "no-llm"])
+    out = capsys.readouterr().out
+    record = json.loads(out)  # stdout holds the JSON only
+    assert code == 0 and not (tmp_path / "-").exists() and (tmp_path / "w.csv").is_file()
+    assert record["scene"] == "demo-house" and record["mission"]["text"] == "Go to the kitchen."
+    assert record["mission"]["formula"] and record["mission"]["propositions"] == {"enter(room_4)": "enter(room_4)"}
+    assert record["status"] == "optimal" and record["cost_m"] > 0 and record["start_from"] == "room bathroom room_5"
+    assert record["events"][-1]["accepting"] and record["waypoints_simplified"][0]["room"] == "room_5"
+    assert "cost" not in record and all("cost_m" in it for it in record["iterations"])
+
+
+def test_a_timeout_exits_3_and_prints_its_bound(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    argv = ["plan", "--scene", "demo", "--formula", FORMULA, "--setup", "NO-LLM", "--json", str(tmp_path / "t.json")]
+    assert main([*argv, "--max-expansions", "300"]) == 3
+    err = capsys.readouterr().err
+    record = json.loads((tmp_path / "t.json").read_text())
+    assert record["status"] == "timeout" and f"within x{record['bound']:g} of the optimum" in err
+    assert "--max-expansions 300" in err and record["bound"] > 1
+    assert main([*argv, "--max-expansions", "1"]) == 3
+    assert "no path found within the budget (--max-expansions 1)" in capsys.readouterr().err
+
+
+def test_plan_draws_png_svg_and_the_automaton_and_writes_the_html_report(tmp_path: Path) -> None:
+    code = main(["plan", "--scene", "demo", "--formula", FORMULA, "--setup", "NO-LLM", "--draw", str(tmp_path / "d"),
+                 "--html", str(tmp_path / "r.html")])
+    names = {p.name for p in (tmp_path / "d").iterdir()}
+    assert code == 0 and {"plan_floor_0.png", "plan_floor_1.svg", "automaton.dot", "automaton.svg"} <= names
+    page = (tmp_path / "r.html").read_text()
+    assert page.startswith("<!DOCTYPE html>") and "enter(room_11)" in page and 'id="events"' in page
