@@ -82,4 +82,4 @@ def test_real_house_plans_a_mission_in_words(tmp_path: Path, capsys: pytest.Capt
     text = "go to the kitchen, then a bathroom; never enter the bedroom"
     assert main(["plan", "--scene", str(scene), "--text", text, "--verify", "--json", str(out)]) == 0
     record = json.loads(out.read_text())
-    assert record["verified"] and record["status"] == "optimal" and 5.0 < record["cost"] < 10.0
+    assert record["verified"] and record["status"] == "optimal" and 5.0 < record["cost_m"] < 10.0
