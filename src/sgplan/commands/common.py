@@ -10,6 +10,7 @@ from pathlib import Path
 
 from sgplan.datasets import ENV_VAR, SCENES, scene_dir
 from sgplan.errors import SceneError
+from sgplan.limits import MAX_REACH_RADIUS_M, MAX_ROBOT_RADIUS_M, MAX_SECONDS
 from sgplan.scene.model import Building
 
 DEMO = "demo"
@@ -50,15 +51,6 @@ def load_scene_arg(spec: str, data: str | None = None) -> Building:
 def say(message: str) -> None:
     """Progress and status lines go to stderr, so stdout stays clean for results."""
     print(message, file=sys.stderr, flush=True)
-
-
-MAX_SECONDS = 1e6
-"""Upper bound of a time option (about 11.6 days; larger values overflow the OS timers)."""
-MAX_ROBOT_RADIUS_M = 2.0
-"""Upper bound of the robot radius: a wider robot fits no door, and the footprint inflation grows with
-the square of the radius (at 100 m it takes minutes)."""
-MAX_REACH_RADIUS_M = 100.0
-"""Upper bound of the reach radius: larger than any building."""
 
 
 def _number(text: str, kind: type, *, allow_zero: bool, what: str, maximum: float = math.inf) -> float:
