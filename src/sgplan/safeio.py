@@ -146,9 +146,9 @@ def parse_json(text: str, error: ErrorType, path: Path | None, what: str = "JSON
     try:
         return json.loads(text, parse_constant=refuse_constant)
     except json.JSONDecodeError as exc:
-        raise error(f"invalid {what} at line {exc.lineno} column {exc.colno}: {exc.msg}", path) from None
+        raise error(f"invalid JSON at line {exc.lineno} column {exc.colno}: {exc.msg}", path) from None
     except (ValueError, RecursionError) as exc:
-        raise error(f"invalid {what}: {clip(str(exc))}", path) from None
+        raise error(f"invalid JSON: {clip(str(exc))}", path) from None
 
 
 def load_json(path: str | Path, error: ErrorType, what: str = "JSON file", max_bytes: int = MAX_FILE_BYTES,
@@ -279,7 +279,7 @@ def parse_yaml(text: str, error: ErrorType, path: Path | None, what: str = "YAML
         mark = getattr(exc, "problem_mark", None)
         where = f" at line {mark.line + 1}" if mark is not None else ""
         problem = getattr(exc, "problem", None) or (str(exc).splitlines() or [type(exc).__name__])[0]
-        raise error(f"invalid {what}{where}: {clip(str(problem))}", path) from None
+        raise error(f"invalid YAML{where}: {clip(str(problem))}", path) from None
 
 
 def load_yaml(path: str | Path, error: ErrorType, what: str = "YAML file", max_bytes: int = MAX_FILE_BYTES) -> Any:

@@ -17,6 +17,7 @@ from sgplan.commands.common import (add_scene_arguments, load_scene_arg, non_neg
                                     positive_seconds, reach_radius, robot_radius, say)
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 from sgplan.errors import MissionError, PlanningError, SgplanError
+from sgplan.files import write_text_atomically
 
 if TYPE_CHECKING:
     from sgplan.llm.backends import Backends
@@ -87,9 +88,12 @@ def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> i
     if args.save_mission and not args.text:
         raise MissionError("--save-mission saves a translated mission: use it with --text")
     backends = None
-    if args.mission_dir:
+    for option, value in (("--mission-dir", args.mission_dir), ("--formula", args.formula), ("--text", args.text)):
+        if value is not None and not value.strip():
+            raise MissionError(f"{option} is empty: give a {option[2:].replace('-dir', ' folder')}")
+    if args.mission_dir is not None:
         mission = load_mission_folder(args.mission_dir, profile=args.profile)
-    elif args.formula:
+    elif args.formula is not None:
         mission = mission_from_formula(args.formula, read_ap_desc(args.aps) if args.aps else None)
     else:
         backends = open_backends_from_args(args)
@@ -177,6 +181,6 @@ def _write_json(target: str | None, record: dict[str, Any]) -> None:
     path = Path(target)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(json.dumps(record, indent=1) + "\n", encoding="utf-8")
+        write_text_atomically(path, json.dumps(record, indent=1) + "\n")
     except OSError as error:
         raise MissionError(f"cannot write the JSON result: {error.strerror}", path) from None

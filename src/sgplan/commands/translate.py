@@ -70,6 +70,8 @@ def run(args: argparse.Namespace, ask: Callable[[str], str] | None = None) -> in
     from sgplan.llm.translation import translate_to_folder
     from sgplan.logic import to_infix
 
+    if not args.text.strip():
+        raise MissionError("--text is empty: give the mission in natural language")
     building = load_scene_arg(args.scene, args.data)
     backends = open_backends_from_args(args, samples=args.samples, max_repairs=args.max_repairs)
     say(f"translating with {backends.translator.name} ({backends.description})")
