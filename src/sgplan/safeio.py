@@ -85,13 +85,13 @@ def check_regular_file(path: Path, error: ErrorType, what: str = "file", max_byt
     try:
         info = os.stat(path)
     except FileNotFoundError:
-        raise error(f"{what} does not exist", path) from None
+        raise error(f"cannot read the {what}: it does not exist", path) from None
     except OSError as exc:  # ELOOP (symlink loop), EACCES on a parent, ENAMETOOLONG ...
         raise error(f"cannot open the {what}: {_describe_os_error(exc)}", path) from None
     if stat.S_ISDIR(info.st_mode):
-        raise error(f"expected a {what} but found a directory", path)
+        raise error(f"cannot read the {what}: it is a directory, not a file", path)
     if not stat.S_ISREG(info.st_mode):
-        raise error(f"expected a {what} but found a special file (device, FIFO or socket)", path)
+        raise error(f"cannot read the {what}: it is a device, FIFO or socket, not a regular file", path)
     if info.st_size > max_bytes:
         raise error(f"{what} is {info.st_size:,} bytes, more than the {max_bytes:,} sgplan reads", path)
     return info.st_size
