@@ -14,7 +14,8 @@ import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from sgplan.commands.common import add_scene_arguments, load_scene_arg, non_negative_int, positive_int, say
+from sgplan.commands.common import (add_scene_arguments, load_scene_arg, non_negative_int, positive_int,
+                                    positive_seconds, say)
 from sgplan.errors import MissionError
 
 if TYPE_CHECKING:
@@ -33,6 +34,9 @@ def add_llm_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--llm-config", metavar="FILE", help="YAML file with LLM settings (see docs/llm.md)")
     group.add_argument("--cache", metavar="DIR", help="record every LLM call in DIR and answer recorded calls from it")
     group.add_argument("--replay", action="store_true", help="answer only from --cache, never contact a server")
+    group.add_argument("--llm-deadline", type=positive_seconds, metavar="S",
+                       help="give up on one LLM call (all its retries included) after S seconds "
+                            "(default: deadline_s of the LLM config, 120)")
 
 
 def open_backends_from_args(args: argparse.Namespace, **options: Any) -> Backends:
@@ -40,7 +44,7 @@ def open_backends_from_args(args: argparse.Namespace, **options: Any) -> Backend
     from sgplan.llm.backends import open_backends
 
     return open_backends(args.llm, base_url=args.base_url, cache_dir=args.cache, replay=args.replay,
-                         config_path=args.llm_config, **options)
+                         config_path=args.llm_config, deadline_s=args.llm_deadline, **options)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
