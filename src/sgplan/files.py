@@ -1,10 +1,18 @@
-"""Small file-system helpers shared by the caches, run records and benchmark results."""
+"""Small file-system helpers shared by every writer of sgplan's outputs: atomic files, atomic folders.
+
+Every output (plan results, mission folders, run records, caches, benchmark results) is written so that
+a failure or a crash at any point leaves the earlier version whole or the new one complete.
+"""
 
 from __future__ import annotations
 
+import contextlib
+import ctypes
+import fcntl
 import os
 import secrets
-from collections.abc import Mapping
+import shutil
+from collections.abc import Callable, Iterator, Mapping
 from pathlib import Path
 
 
@@ -41,3 +49,88 @@ def write_texts_atomically(texts: Mapping[Path, str]) -> None:
         for tmp_path, _ in written:
             tmp_path.unlink(missing_ok=True)
         raise
+
+
+@contextlib.contextmanager
+def folder_lock(folder: Path) -> Iterator[None]:
+    """Hold an exclusive advisory lock (``flock``) for rewriting ``folder``; waits for the current holder.
+
+    The lock file is ``.<name>.lock`` beside the folder, not inside it, since :func:`rebuild_folder`
+    swaps the folder itself. The lock is released when the block ends or the process dies.
+    OSError (the parent folder cannot be written) propagates.
+    """
+    path = folder.parent / f".{folder.name}.lock"
+    with open(path, "a+b") as handle:
+        fcntl.flock(handle, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)
+
+
+def rebuild_folder(folder: Path, build: Callable[[Path], None], carry_over: Callable[[str], bool]) -> None:
+    """Replace ``folder`` by a new version, whole: readers see the old folder or the new one, never a mix.
+
+    The new version is made in a staging folder beside ``folder``: the entries of the old one for which
+    ``carry_over(name)`` is true are copied in, then ``build(staging)`` writes the rest. Only then is the
+    staging folder swapped with ``folder`` (one atomic ``renameat2(RENAME_EXCHANGE)`` where the system
+    has it, else two renames), under :func:`folder_lock`, so concurrent rebuilds leave one of them whole.
+    If anything fails before the swap, ``folder`` is untouched and the staging folder removed.
+    """
+    folder = folder.resolve() if folder.is_symlink() else folder
+    with folder_lock(folder):
+        staging = folder.parent / f".{folder.name}.{secrets.token_hex(6)}.new"
+        staging.mkdir()
+        try:
+            if folder.is_dir():
+                for entry in folder.iterdir():
+                    if not carry_over(entry.name):
+                        continue
+                    if entry.is_dir() and not entry.is_symlink():
+                        shutil.copytree(entry, staging / entry.name, symlinks=True)
+                    else:
+                        shutil.copy2(entry, staging / entry.name, follow_symlinks=False)
+            build(staging)
+            _fsync_folder(staging)
+            if folder.exists():
+                _swap(staging, folder)  # staging now holds the old version, removed below
+            else:
+                os.rename(staging, folder)
+            _fsync_folder(folder.parent)
+        finally:
+            shutil.rmtree(staging, ignore_errors=True)
+
+
+_RENAME_EXCHANGE = 2
+_AT_FDCWD = -100
+
+
+def _swap(a: Path, b: Path) -> None:
+    """Exchange two folders atomically (Linux ``renameat2``); elsewhere move ``b`` aside, then ``a`` in."""
+    libc = ctypes.CDLL(None, use_errno=True)
+    renameat2 = getattr(libc, "renameat2", None)
+    if renameat2 is not None:
+        result = renameat2(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), _RENAME_EXCHANGE)
+        if result == 0:
+            return
+        errno = ctypes.get_errno()
+        if errno not in (38, 22, 95):  # ENOSYS, EINVAL, EOPNOTSUPP: fall back below
+            raise OSError(errno, os.strerror(errno), str(b))
+    aside = b.with_name(f".{b.name}.{secrets.token_hex(6)}.old")
+    os.rename(b, aside)
+    os.rename(a, b)
+    os.rename(aside, a)
+
+
+def _fsync_folder(folder: Path) -> None:
+    """Flush a folder's entries (new names, renames) to disk; a no-op where folders cannot be opened."""
+    try:
+        fd = os.open(folder, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)

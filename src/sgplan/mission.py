@@ -28,6 +28,7 @@ import numpy as np
 import yaml
 
 from sgplan.errors import FormulaError, MissionError, SgplanError
+from sgplan.files import write_text_atomically
 from sgplan.limits import MAX_REACH_RADIUS_M
 from sgplan.safeio import load_yaml, quote, read_text
 from sgplan.scene.fields import is_int, is_number
@@ -254,7 +255,7 @@ def write_guidance(guidance: Mapping[Any, Mapping[Any, Sequence[str]]], path: st
     plain = {int(r): {int(q): list(calls) for q, calls in states.items()} for r, states in guidance.items()}
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(yaml.safe_dump(plain, sort_keys=True), encoding="utf-8")
+        write_text_atomically(path, yaml.safe_dump(plain, sort_keys=True))
     except OSError as exc:
         raise MissionError(f"cannot write the guidance ({exc.strerror or exc})", path) from None
     return path
@@ -330,11 +331,9 @@ def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str 
     if mission.formula is not None:
         tokens = to_tokens(mission.formula, ap_tokens=actions)
         p_names = number_aps(tokens)
-        (folder / "GPT_LTL_formula.txt").write_text(repr(tokens) + "\n", encoding="utf-8")
-        (folder / "ap_dict.txt").write_text(repr(p_names) + "\n", encoding="utf-8")
-        (folder / "Spot_LTL_formula.txt").write_text(
-            to_prefix(parse_tokens(tokens, ap_names=p_names)) + "\n", encoding="utf-8"
-        )
+        write_text_atomically(folder / "GPT_LTL_formula.txt", repr(tokens) + "\n")
+        write_text_atomically(folder / "ap_dict.txt", repr(p_names) + "\n")
+        write_text_atomically(folder / "Spot_LTL_formula.txt", to_prefix(parse_tokens(tokens, ap_names=p_names)) + "\n")
     else:
         p_names = {token: f"p{k + 1}" for k, token in enumerate(dict.fromkeys(actions.values()))}
     renamed = replace(mission.automaton, aps=tuple(p_names[actions[ap]] for ap in mission.automaton.aps))
@@ -346,14 +345,14 @@ def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str 
         if prop.kind == "reach":
             entry["reach_distance"] = float(prop.reach_radius_m) if prop.reach_radius_m else -1.0
         ap_desc[p_names[prop.name]] = entry
-    (folder / "ap_desc.yaml").write_text(yaml.safe_dump(ap_desc, sort_keys=True), encoding="utf-8")
+    write_text_atomically(folder / "ap_desc.yaml", yaml.safe_dump(ap_desc, sort_keys=True))
     for name, value in (
         ("NL_instructions.txt", mission.text),
         ("NL_instructions_uuid.txt", mission.grounded_text),
         ("building_desc.yaml", hierarchy_text),
     ):
         if value is not None:
-            (folder / name).write_text(value.rstrip("\n") + "\n", encoding="utf-8")
+            write_text_atomically(folder / name, value.rstrip("\n") + "\n")
     if mission.guidance is not None:
         write_guidance(mission.guidance, folder / "llm_heuristic.yaml")
     return folder

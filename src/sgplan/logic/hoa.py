@@ -26,6 +26,7 @@ from typing import Literal
 import numpy as np
 
 from sgplan.errors import AutomatonError
+from sgplan.files import write_text_atomically
 from sgplan.logic.automaton import Automaton
 from sgplan.logic.labels import format_cover, label_cover
 from sgplan.logic.ltlf import DEFAULT_MAX_ENTRIES
@@ -347,5 +348,5 @@ def write_hoa(automaton: Automaton, path: str | Path | None = None, name: str | 
     lines.append("--END--")
     text = "\n".join(lines) + "\n"
     if path is not None:
-        Path(path).write_text(text, encoding="utf-8")
+        write_text_atomically(Path(path), text)
     return text
