@@ -61,7 +61,7 @@ def quote(value: object, limit: int = 80) -> str:
     """
     try:
         text = _REPR.repr(value)
-    except Exception:  # a value whose __repr__ fails still gets a message
+    except Exception:  # noqa: BLE001 - a value whose __repr__ fails still gets a message
         text = f"<{type(value).__name__}>"
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
@@ -272,7 +272,7 @@ def parse_yaml(text: str, error: ErrorType, path: Path | None, what: str = "YAML
     """The YAML document ``text`` (safe types only) within this module's limits; see the module docstring."""
     try:
         _check_events(text, _FAST_LOADER)
-        return yaml.load(text, Loader=_FAST_LOADER)  # noqa: S506 - a SafeLoader subclass
+        return yaml.load(text, Loader=_FAST_LOADER)  # a SafeLoader subclass
     except RecursionError:
         raise error(f"{what} nests deeper than {MAX_DEPTH} levels", path) from None
     except yaml.YAMLError as exc:

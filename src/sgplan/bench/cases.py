@@ -17,8 +17,8 @@ from pathlib import Path
 from typing import Any
 
 from sgplan.errors import SgplanError
-from sgplan.safeio import quote
 from sgplan.planning.amra import get_setup
+from sgplan.safeio import quote
 
 PAPER_SETUPS = ("ALL", "OCC", "OBJ", "ROOM", "FLR", "NO-LLM", "A*")
 """The seven setups in the order of the paper's Table II."""

@@ -13,6 +13,8 @@ import time
 from pathlib import Path
 
 from sgplan.commands.common import non_negative_int, say
+from sgplan.errors import MissionError
+from sgplan.files import write_text_atomically
 
 DEMO_MISSION = (
     "Visit the bathroom on floor 0 without touching the sink, then sit on a chair in the dining room, "
@@ -42,6 +44,12 @@ def run(args: argparse.Namespace) -> int:
 
     t0 = time.perf_counter()
     out = Path(args.out)
+    if not args.out.strip() or (out.exists() and not out.is_dir()):
+        raise MissionError("--out must name a folder to write the demo's outputs to", out)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise MissionError(f"cannot create the output folder ({error.strerror or error})", out) from None
     building = demo_building()
     say(f"scene: {building.name}, {building.num_floors} floors, {sum(1 for _ in building.rooms())} rooms, "
         f"{sum(1 for _ in building.objects())} objects (embedded demo building)")
@@ -86,7 +94,10 @@ def run(args: argparse.Namespace) -> int:
         "verified": check.valid,
         "wall_s": time.perf_counter() - t0,
     }
-    (out / "run.json").write_text(json.dumps(record, indent=1) + "\n", encoding="utf-8")
+    try:
+        write_text_atomically(out / "run.json", json.dumps(record, indent=1) + "\n")
+    except OSError as error:
+        raise MissionError(f"cannot write run.json ({error.strerror or error})", out) from None
     print(f"backends: translation {translator.name}, guidance {guide_name} (offline, not LLMs)")
     print(f"wrote {', '.join(str(p) for p in pngs)}, {out / 'run.json'} and the mission folder {mission_dir}")
     return 0

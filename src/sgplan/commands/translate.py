@@ -14,8 +14,14 @@ import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from sgplan.commands.common import (add_scene_arguments, load_scene_arg, non_negative_int, positive_int,
-                                    positive_seconds, say)
+from sgplan.commands.common import (
+    add_scene_arguments,
+    load_scene_arg,
+    non_negative_int,
+    positive_int,
+    positive_seconds,
+    say,
+)
 from sgplan.errors import MissionError
 
 if TYPE_CHECKING:

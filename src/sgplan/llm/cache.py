@@ -28,7 +28,6 @@ from typing import Any, Literal, get_args
 
 from sgplan.errors import LLMError
 from sgplan.files import write_text_atomically
-from sgplan.safeio import clip, load_json, quote
 from sgplan.llm.client import (
     ChatBackend,
     ChatResult,
@@ -39,6 +38,7 @@ from sgplan.llm.client import (
     without_reasoning,
 )
 from sgplan.llm.config import LLMConfig, one_line
+from sgplan.safeio import clip, load_json, quote
 
 CacheMode = Literal["live", "record", "replay"]
 

@@ -18,6 +18,7 @@ number of attempts. Both the client and the cache are safe to call from several 
 
 from __future__ import annotations
 
+import functools
 import ipaddress
 import json
 import random
@@ -288,10 +289,11 @@ class OpenAIChatClient:
                 raise LLMError(f"{self._failed(attempt - 1)}: {self._past_deadline()}")
             retry_after_s: float | None = None
             try:
-                raw = _within(remaining, lambda: self._sdk.chat.completions.with_raw_response.create(
-                    model=self.config.model, messages=request_messages,
-                    timeout=min(self.config.timeout_s, remaining), **request_params
-                ))
+                send = functools.partial(
+                    self._sdk.chat.completions.with_raw_response.create, model=self.config.model,
+                    messages=request_messages, timeout=min(self.config.timeout_s, remaining), **request_params,
+                )
+                raw = _within(remaining, send)
                 if raw is None:
                     raise LLMError(f"{self._failed(attempt)}: {self._past_deadline()}")
             except openai.APIStatusError as exc:
@@ -368,7 +370,7 @@ def _within(seconds: float, call: Callable[[], _T]) -> _T | None:
     def run() -> None:
         try:
             outcome.append((True, call()))
-        except BaseException as exc:  # handed to the caller's thread
+        except BaseException as exc:  # noqa: BLE001 - handed to the caller's thread, which re-raises it
             outcome.append((False, exc))
 
     worker = threading.Thread(target=run, name="sgplan-llm-request", daemon=True)

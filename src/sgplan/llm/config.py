@@ -24,8 +24,6 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
-
-
 from sgplan.errors import LLMError
 from sgplan.safeio import load_yaml
 

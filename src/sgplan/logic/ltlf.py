@@ -41,7 +41,6 @@ import numpy as np
 from sgplan.errors import AutomatonError, FormulaError
 from sgplan.logic.automaton import Automaton
 from sgplan.logic.formula import (
-    check_nesting,
     Always,
     And,
     Atom,
@@ -55,11 +54,12 @@ from sgplan.logic.formula import (
     Until,
     WeakNext,
     atoms,
+    check_nesting,
 )
 from sgplan.logic.infix import to_infix
-from sgplan.safeio import quote
 from sgplan.logic.minimize import minimize, product
 from sgplan.logic.normal import nnf
+from sgplan.safeio import quote
 
 DEFAULT_MAX_ENTRIES = 1_000_000
 """Default limit on ``num_states * 2**len(aps)`` (dense table entries, 4 bytes each)."""

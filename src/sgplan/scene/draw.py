@@ -11,6 +11,7 @@ Images use matrix orientation: rows (metric x) downwards, columns (metric y) to 
 
 from __future__ import annotations
 
+import os
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -199,9 +200,13 @@ def draw_building(
     for floor in range(building.num_floors):
         fig = draw_floor(building, floor, grid=grid, path=path)
         target = out / f"{stem}_{floor}.png"
+        partial = out / f".{target.name}.{os.getpid()}.tmp"
         try:
-            fig.savefig(target)
+            fig.savefig(partial, format="png")
+            os.replace(partial, target)  # an earlier drawing stays whole if this one fails
         except OSError as error:
             raise SceneError(f"cannot write {target}: {error.strerror}") from None
+        finally:
+            partial.unlink(missing_ok=True)
         written.append(target)
     return written

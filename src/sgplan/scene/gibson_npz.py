@@ -94,7 +94,7 @@ class RestrictedUnpickler(pickle._Unpickler):
     the stack and stop reading early; unpickling the graph part of a Gibson file this way is fast.
     """
 
-    dispatch = dict(pickle._Unpickler.dispatch)  # type: ignore[attr-defined]
+    dispatch = dict(pickle._Unpickler.dispatch)  # type: ignore[attr-defined]  # noqa: RUF012
 
     def find_class(self, module: str, name: str) -> Any:
         try:
