@@ -30,6 +30,7 @@ Two environment variables turn the suite into a measurement:
 from __future__ import annotations
 
 import contextlib
+import ctypes
 import hashlib
 import io
 import json
@@ -75,12 +76,12 @@ def run_cli(
     subprocess_only: bool = False,
     rlimits: Mapping[int, int] | None = None,
     env: Mapping[str, str] | None = None,
-    user: int | None = None,
+    unprivileged: bool = False,
     timeout_s: float = TIME_BUDGET_S,
 ) -> Run:
     """Run ``sgplan argv``; in this process unless a subprocess is needed or the suite is recording."""
-    if subprocess_only or RECORD or rlimits or env or user is not None:
-        return _run_subprocess(argv, rlimits or {}, env or {}, user, timeout_s)
+    if subprocess_only or RECORD or rlimits or env or unprivileged:
+        return _run_subprocess(argv, rlimits or {}, env or {}, unprivileged, timeout_s)
     return _run_inprocess(argv, timeout_s)
 
 
@@ -114,7 +115,7 @@ def _run_inprocess(argv: Sequence[str], timeout_s: float) -> Run:
 
 
 def _run_subprocess(
-    argv: Sequence[str], rlimits: Mapping[int, int], env: Mapping[str, str], user: int | None, timeout_s: float
+    argv: Sequence[str], rlimits: Mapping[int, int], env: Mapping[str, str], unprivileged: bool, timeout_s: float
 ) -> Run:
     def limit() -> None:
         resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT_BYTES, MEMORY_LIMIT_BYTES))
@@ -122,9 +123,8 @@ def _run_subprocess(
             resource.setrlimit(kind, (value, value))
         # A write past RLIMIT_FSIZE then fails with EFBIG (a full disk) instead of killing the process.
         signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-        if user is not None:
-            os.setgid(user)
-            os.setuid(user)
+        if unprivileged:
+            drop_file_permission_override()
 
     full_env = {**os.environ, **env}
     if PYTHONPATH:
@@ -140,6 +140,34 @@ def _run_subprocess(
         stdout, stderr = proc.communicate()
         code = None
     return Run(code, stdout, stderr, time.monotonic() - started)
+
+
+_PR_CAPBSET_DROP = 24
+_CAP_DAC_OVERRIDE, _CAP_DAC_READ_SEARCH = 1, 2
+
+
+def drop_file_permission_override() -> None:
+    """Make this process (and what it executes) obey file permissions even as root.
+
+    Drops CAP_DAC_OVERRIDE and CAP_DAC_READ_SEARCH from the capability bounding set, so that a mode-000
+    file is unreadable as it would be for any user (switching to another user id is no option here: the
+    interpreter may live under root's home). Raises OSError where the system does not allow it.
+    """
+    libc = ctypes.CDLL(None, use_errno=True)
+    for capability in (_CAP_DAC_OVERRIDE, _CAP_DAC_READ_SEARCH):
+        if libc.prctl(_PR_CAPBSET_DROP, capability, 0, 0, 0) != 0:
+            errno = ctypes.get_errno()
+            raise OSError(errno, os.strerror(errno))
+
+
+def can_drop_file_permission_override() -> bool:
+    """Whether :func:`drop_file_permission_override` works here (root with CAP_SETPCAP, on Linux)."""
+    try:
+        result = subprocess.run([sys.executable, "-c", "pass"], preexec_fn=drop_file_permission_override,
+                                capture_output=True, timeout=60)
+    except (OSError, subprocess.SubprocessError):
+        return False
+    return result.returncode == 0
 
 
 def classify(run: Run, *, must_fail: bool = False) -> str:

@@ -41,7 +41,11 @@ def load_scene_arg(spec: str, data: str | None = None) -> Building:
 
         return demo_building()
     path = Path(spec).expanduser()
-    if path.exists():
+    try:
+        exists = path.exists()
+    except OSError as error:  # e.g. a parent folder that cannot be searched
+        raise SceneError(f"cannot read the scene: {error.strerror or error}", path) from None
+    if exists:
         return load_scene(path)
     if spec in SCENES:
         return load_scene(scene_dir(spec, data))
