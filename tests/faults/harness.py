@@ -22,6 +22,8 @@ Two environment variables turn the suite into a measurement:
 ``SGPLAN_FAULTS_RECORD=FILE``
     append each case's outcome to FILE (JSON lines) instead of asserting, and run every case in a
     subprocess under a memory limit, so a crash or a hang of the code under test cannot stop the run;
+``SGPLAN_FAULTS_SCALE=K``
+    run K times as many generated examples (the heavier variant, benchmarks/faults_slow.py);
 ``SGPLAN_FAULTS_PYTHONPATH=DIR``
     the ``src`` folder whose sgplan the subprocesses import (e.g. an older checkout, to count its
     outcomes); by default the subprocesses import the sgplan under test.
@@ -44,12 +46,25 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from hypothesis import HealthCheck, settings
+
 RECORD = os.environ.get("SGPLAN_FAULTS_RECORD")
 PYTHONPATH = os.environ.get("SGPLAN_FAULTS_PYTHONPATH")
 TIME_BUDGET_S = float(os.environ.get("SGPLAN_FAULTS_TIME_BUDGET", "30"))
 """Wall seconds a case may take (generous: the CI machine is shared); beyond it the case is a hang."""
 MEMORY_LIMIT_BYTES = 3 * 2**30
 """Address-space limit of a subprocess case (numba and numpy reserve ~1 GB of it at start)."""
+
+EXAMPLES_SCALE = float(os.environ.get("SGPLAN_FAULTS_SCALE", "1"))
+"""Multiplies every generated test's example count (benchmarks/faults_slow.py raises it)."""
+
+
+def generated(examples: int) -> settings:
+    """Hypothesis settings of a generated fault test: ``examples`` (scaled) fixed examples, the same on
+    every run (derandomized, no example database), so that two versions of sgplan meet the same cases."""
+    return settings(max_examples=max(1, round(examples * EXAMPLES_SCALE)), deadline=None, derandomize=True,
+                    database=None, suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+
 
 _BOOT = "import sys\nfrom sgplan.cli import main\nsys.exit(main(sys.argv[1:]))"
 

@@ -139,10 +139,10 @@ def damaged_hoa(draw: st.DrawFn, text: str) -> bytes:
     if kind == "aps":
         count = draw(st.sampled_from([21, 40, 64, 1000]))
         names = " ".join(f'"p{k}"' for k in range(count))
-        return re.sub(r"^AP:.*$", f"AP: {count} {names}", text, flags=re.M).encode()
+        return re.sub(r"^AP:.*$", f"AP: {count} {names}", text, flags=re.MULTILINE).encode()
     if kind == "states":
         count = draw(st.sampled_from([0, 5_000_000, 10**12]))
-        return re.sub(r"^States:.*$", f"States: {count}", text, flags=re.M).encode()
+        return re.sub(r"^States:.*$", f"States: {count}", text, flags=re.MULTILINE).encode()
     if kind == "label":
         depth = draw(st.sampled_from([50, 5000]))
         label = draw(st.sampled_from(["!" * depth + "0", "(" * depth + "0" + ")" * depth]))

@@ -155,7 +155,7 @@ def _edit(path: Path, pattern: str, replacement: str, count: int = 0) -> None:
     import re
 
     text = path.read_text()
-    new = re.sub(pattern, lambda _: replacement, text, count=count, flags=re.M)
+    new = re.sub(pattern, lambda _: replacement, text, count=count, flags=re.MULTILINE)
     assert new != text, f"{pattern} not in {path}"
     path.write_text(new)
 

@@ -11,16 +11,14 @@ from collections.abc import Callable
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given
 from hypothesis import strategies as st
 
-from tests.faults.harness import check
+from tests.faults.harness import check, generated
 from tests.faults.inputs import fresh_copy, pickled_npz, scene_graph_dict, write_npz
 from tests.faults.strategies import BAD_SCALARS, DEEP, damaged_hoa, damaged_json, damaged_yaml, token_lists
 
-GENERATED = settings(max_examples=12, deadline=None, derandomize=True, database=None,
-                     suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
-"""Every generated test: a fixed, bounded set of examples (the same ones before and after a change)."""
+GENERATED = generated(12)
 
 PLAN = ["--time-limit", "5", "--setup", "NO-LLM"]
 """Planning options of the mission cases: a small budget and no guidance needed."""

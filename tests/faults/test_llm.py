@@ -9,10 +9,10 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given
 from hypothesis import strategies as st
 
-from tests.faults.harness import PYTHONPATH, RECORD, check
+from tests.faults.harness import PYTHONPATH, RECORD, check, generated
 from tests.faults.strategies import damaged_json
 from tests.llm.fake_openai_server import FakeOpenAIServer, Step, completion_body
 
@@ -81,8 +81,7 @@ _BODIES = st.one_of(
 )
 
 
-@settings(max_examples=10, deadline=None, derandomize=True, database=None,
-          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@generated(10)
 @given(body=_BODIES, status=st.sampled_from([200, 200, 500, 429]), content_type=st.sampled_from(
     ["application/json", "text/html"]))
 def test_malformed_replies(server: FakeOpenAIServer, llm_args: list[str], body: bytes, status: int,
@@ -108,8 +107,7 @@ def recorded_cache(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return cache
 
 
-@settings(max_examples=12, deadline=None, derandomize=True, database=None,
-          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@generated(12)
 @given(data=st.data())
 def test_damaged_cache_entries(recorded_cache: Path, data: st.DataObject) -> None:
     with tempfile.TemporaryDirectory(prefix="sgplan-fault-") as tmp:

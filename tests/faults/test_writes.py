@@ -14,13 +14,13 @@ import time
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given
 from hypothesis import strategies as st
 
 from sgplan.bench.executors import WORKER_ENV
 from sgplan.commands.demo import DEMO_MISSION
 from tests.bench.conftest import data_dir  # noqa: F401 - the bench tests' data folder, as a fixture here
-from tests.faults.harness import PYTHONPATH, RECORD, check, record
+from tests.faults.harness import PYTHONPATH, RECORD, check, generated, record
 
 FAKE_WORKER = [sys.executable, str(Path(__file__).parents[1] / "bench" / "fake_worker.py")]
 OTHER_MISSION = "Go to the bathroom on floor 0."
@@ -99,8 +99,7 @@ def test_concurrent_translations_into_one_folder(tmp_path: Path) -> None:
 SIGNALS = st.sampled_from([signal.SIGINT, signal.SIGTERM, signal.SIGHUP])
 
 
-@settings(max_examples=2, deadline=None, derandomize=True, database=None,
-          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@generated(2)
 @given(sig=SIGNALS, delay_s=st.floats(0.0, 2.0))
 def test_signal_at_a_random_point_of_a_sweep(data_dir: Path, tmp_path_factory: pytest.TempPathFactory,  # noqa: F811
                                              sig: signal.Signals, delay_s: float) -> None:
