@@ -213,7 +213,8 @@ def read_ap_desc(path: str | Path) -> dict[str, Proposition]:
                 f"proposition {quote(name)}: unknown type {quote(entry['type'])} (use kEnterRoom or kReachObject)",
                 path,
             )
-        uuid, radius = entry.get("uuid"), entry.get("reach_distance", -1.0)
+        uuid: Any = entry.get("uuid")
+        radius: Any = entry.get("reach_distance", -1.0)
         if not is_int(uuid) or uuid < 0:
             raise MissionError(f"proposition {quote(name)}: 'uuid' must be a whole number >= 0, got {quote(uuid)}", path)
         # -1 (any value <= 0) means the global reach radius; others are capped as --reach-radius is.

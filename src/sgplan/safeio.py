@@ -259,7 +259,9 @@ def _check_events(text: str, loader: Any) -> None:
         if isinstance(event, (yaml.SequenceStartEvent, yaml.MappingStartEvent)):
             depth += 1
             if depth > MAX_DEPTH:
-                raise YamlLimitError(f"nesting deeper than {MAX_DEPTH} levels at line {event.start_mark.line + 1}")
+                mark = event.start_mark
+                where = f" at line {mark.line + 1}" if mark is not None else ""
+                raise YamlLimitError(f"nesting deeper than {MAX_DEPTH} levels{where}")
         elif isinstance(event, (yaml.SequenceEndEvent, yaml.MappingEndEvent)):
             depth -= 1
         elif isinstance(event, yaml.AliasEvent):

@@ -216,7 +216,7 @@ def to_infix(formula: Formula, dialect: Dialect = "sgplan") -> str:
     parsers produce them); n-ary ones print flat and read back left-nested.
     """
     strong, weak = ("X[!]", "X") if dialect == "spot" else ("X", None)
-    symbols = {Not: "!", Next: strong, WeakNext: weak, Eventually: "F", Always: "G"}
+    symbols: dict[type, str | None] = {Not: "!", Next: strong, WeakNext: weak, Eventually: "F", Always: "G"}
 
     def unfold(f: Formula) -> Formula:
         # Without a weak-next symbol, weak next is written !X!f.
