@@ -193,7 +193,7 @@ def _bounded_construct(loader: Any, node: yaml.Node) -> None:
             if ident in on_path:
                 raise YamlLimitError("the document refers to itself (a recursive alias)")
             continue
-        if depth > MAX_DEPTH:
+        if depth > MAX_DEPTH and not isinstance(current, yaml.ScalarNode):  # collections count, as in the events
             mark = current.start_mark
             raise YamlLimitError(f"nesting deeper than {MAX_DEPTH} levels at line {mark.line + 1}")
         if isinstance(current, yaml.MappingNode):
