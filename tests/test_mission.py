@@ -87,7 +87,7 @@ def test_bad_folders(tmp_path: Path) -> None:
     with pytest.raises(MissionError, match="uses p1, which ap_desc.yaml does not define"):
         load_mission_folder(folder)
     (folder / "ap_desc.yaml").write_text("p1: [unclosed\n")
-    with pytest.raises(MissionError, match="not valid YAML"):
+    with pytest.raises(MissionError, match="invalid YAML"):
         load_mission_folder(folder)
     (folder / "ap_desc.yaml").unlink()
     with pytest.raises(MissionError, match="missing ap_desc.yaml"):

@@ -68,7 +68,11 @@ def load_scene(scene: str | Path | Building, data: str | Path | None = None) -> 
 
         return demo_building()
     path = Path(spec).expanduser()
-    if path.exists():
+    try:
+        exists = path.exists()
+    except OSError as error:  # e.g. a parent folder that cannot be searched
+        raise SceneError(f"cannot read the scene: {error.strerror or error}", path) from None
+    if exists:
         return load_path(path)
     names = {name.lower(): name for name in SCENES}
     if spec.lower() in names:

@@ -51,6 +51,30 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt as stop:
         print("sgplan: interrupted", file=sys.stderr)
         return 128 + int(getattr(stop, "signum", None) or signal.SIGINT)  # the shell's convention
+    except (Exception, RecursionError, MemoryError) as error:  # a bug, never bad input: exit 70, not 2
+        if args.debug:
+            raise
+        print(_internal_error_line(args, error), file=sys.stderr)
+        return INTERNAL_ERROR
+
+
+INTERNAL_ERROR = 70
+"""Exit code of an unexpected exception (a bug in sgplan): sysexits' EX_SOFTWARE, distinct from 2 (bad input,
+SgplanError) and 3 (a search budget ran out)."""
+
+
+def _internal_error_line(args: argparse.Namespace, error: BaseException) -> str:
+    """One line naming the command, the exception and the inputs, pointing to ``--debug``."""
+    from sgplan.safeio import clip
+
+    inputs = [f"{name}={clip(str(value), 60)}" for name, value in sorted(vars(args).items())
+              if name in _INPUT_OPTIONS and value not in (None, False)]
+    return (f"sgplan {args.command}: internal error: {type(error).__name__}: {clip(str(error), 200)} "
+            f"(input: {', '.join(inputs) or 'none'}); run with --debug for the traceback, and please report it")
+
+
+_INPUT_OPTIONS = ("scene", "mission_dir", "formula", "text", "aps", "guidance", "out", "data", "cache",
+                  "llm", "llm_config", "start", "start_index", "setup", "missions", "scenes", "starts")
 
 
 if __name__ == "__main__":  # pragma: no cover

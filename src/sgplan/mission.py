@@ -18,6 +18,7 @@ Only ``automaton.aut`` and ``ap_desc.yaml`` are required to plan; the rest is re
 from __future__ import annotations
 
 import ast
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -27,6 +28,10 @@ import numpy as np
 import yaml
 
 from sgplan.errors import FormulaError, MissionError, SgplanError
+from sgplan.files import write_text_atomically
+from sgplan.limits import MAX_REACH_RADIUS_M
+from sgplan.safeio import load_yaml, quote, read_text
+from sgplan.scene.fields import is_int, is_number
 from sgplan.logic import (
     Automaton,
     Formula,
@@ -169,20 +174,19 @@ def mission_from_formula(
 # -- reading the authors' folder ---------------------------------------------------------------------
 
 
+MAX_MISSION_FILE_BYTES = 16 * 2**20
+"""Cap of one mission-folder file (16 MiB); the Gibson missions' largest, building_desc.yaml, is ~0.1 MB."""
+
+
 def _read_text(path: Path) -> str | None:
-    try:
-        return path.read_text(encoding="utf-8").strip() if path.is_file() else None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise MissionError(f"cannot read: {exc}", path) from None
+    """The stripped text of an optional file, ``None`` when absent; anything else under its name is an error."""
+    if not (path.exists() or path.is_symlink()):
+        return None
+    return read_text(path, MissionError, "file", MAX_MISSION_FILE_BYTES).strip()
 
 
 def _read_yaml(path: Path) -> Any:
-    try:
-        return yaml.load(path.read_text(encoding="utf-8"), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
-    except (OSError, UnicodeDecodeError) as exc:
-        raise MissionError(f"cannot read: {exc}", path) from None
-    except yaml.YAMLError as exc:
-        raise MissionError(f"not valid YAML: {str(exc).splitlines()[0]}", path) from None
+    return load_yaml(path, MissionError, "YAML file", MAX_MISSION_FILE_BYTES)
 
 
 def read_ap_desc(path: str | Path) -> dict[str, Proposition]:
@@ -197,23 +201,33 @@ def read_ap_desc(path: str | Path) -> dict[str, Proposition]:
         raise MissionError("expected a mapping of proposition name -> {type, uuid}", path)
     meaning: dict[str, Proposition] = {}
     for name, entry in doc.items():
+        if not isinstance(name, str):
+            raise MissionError(f"proposition names must be strings like p1, got {quote(name)}", path)
         if not isinstance(entry, dict) or "type" not in entry:
-            raise MissionError(f"proposition {name!r}: expected a mapping with 'type' and 'uuid'", path)
-        kind = _AP_TYPES.get(entry["type"])
+            raise MissionError(f"proposition {quote(name)}: expected a mapping with 'type' and 'uuid'", path)
+        kind = _AP_TYPES.get(entry["type"]) if isinstance(entry["type"], str) else None
         if entry["type"] == "kNA":
             continue
         if kind is None:
             raise MissionError(
-                f"proposition {name!r}: unknown type {entry['type']!r} (use kEnterRoom or kReachObject)", path
+                f"proposition {quote(name)}: unknown type {quote(entry['type'])} (use kEnterRoom or kReachObject)",
+                path,
+            )
+        uuid: Any = entry.get("uuid")
+        radius: Any = entry.get("reach_distance", -1.0)
+        if not is_int(uuid) or uuid < 0:
+            raise MissionError(f"proposition {quote(name)}: 'uuid' must be a whole number >= 0, got {quote(uuid)}", path)
+        # -1 (any value <= 0) means the global reach radius; others are capped as --reach-radius is.
+        if not is_number(radius) or not math.isfinite(radius) or radius > MAX_REACH_RADIUS_M:
+            raise MissionError(
+                f"proposition {quote(name)}: 'reach_distance' must be a number of metres <= {MAX_REACH_RADIUS_M:g} "
+                f"(or -1 for the scene's), got {quote(radius)}",
+                path,
             )
         try:
-            uuid = int(entry["uuid"])
-            radius = float(entry.get("reach_distance", -1.0))
-            meaning[str(name)] = Proposition(kind, uuid, radius if kind == "reach" and radius > 0 else None)
-        except (KeyError, TypeError, ValueError) as exc:
-            raise MissionError(f"proposition {name!r}: bad or missing field ({exc})", path) from None
+            meaning[name] = Proposition(kind, int(uuid), float(radius) if kind == "reach" and radius > 0 else None)
         except SgplanError as exc:
-            raise MissionError(f"proposition {name!r}: {exc}", path) from None
+            raise MissionError(f"proposition {quote(name)}: {exc}", path) from None
     return meaning
 
 
@@ -226,6 +240,13 @@ def read_guidance(path: str | Path) -> Guidance:
         return {}
     if not isinstance(doc, dict) or not all(isinstance(v, dict) or v is None for v in doc.values()):
         raise MissionError("expected {room_uuid: {automaton state: [calls]}}", path)
+    for room, states in doc.items():
+        for state, calls in (states or {}).items():
+            if calls is not None and not (isinstance(calls, list) and all(isinstance(c, str) for c in calls)):
+                raise MissionError(
+                    f"room {quote(room)}, state {quote(state)}: expected a list of call strings, got {quote(calls)}",
+                    path,
+                )
     return {room: (states or {}) for room, states in doc.items()}
 
 
@@ -235,7 +256,7 @@ def write_guidance(guidance: Mapping[Any, Mapping[Any, Sequence[str]]], path: st
     plain = {int(r): {int(q): list(calls) for q, calls in states.items()} for r, states in guidance.items()}
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(yaml.safe_dump(plain, sort_keys=True), encoding="utf-8")
+        write_text_atomically(path, yaml.safe_dump(plain, sort_keys=True))
     except OSError as exc:
         raise MissionError(f"cannot write the guidance ({exc.strerror or exc})", path) from None
     return path
@@ -247,12 +268,14 @@ def load_mission_folder(path: str | Path, profile: str = "ltlf", guidance: bool 
     ``profile`` says how the HOA automaton's missing edges are read: ``"ltlf"`` (reject) or
     ``"authors"`` (keep the state). With ``guidance=False`` llm_heuristic.yaml is not read.
     """
+    if not str(path).strip():
+        raise MissionError("the mission folder is an empty path")
     folder = Path(path)
     if not folder.is_dir():
-        raise MissionError("mission folder does not exist", folder)
+        raise MissionError("mission folder does not exist" if not folder.exists() else "not a folder", folder)
     hoa_path, ap_path = folder / "automaton.aut", folder / "ap_desc.yaml"
     for required in (hoa_path, ap_path):
-        if not required.is_file():
+        if not (required.exists() or required.is_symlink()):
             raise MissionError(f"missing {required.name}: a mission folder needs automaton.aut and ap_desc.yaml", folder)
     automaton = read_hoa(hoa_path, profile)  # type: ignore[arg-type]
     meaning = read_ap_desc(ap_path)
@@ -278,7 +301,7 @@ def load_mission_folder(path: str | Path, profile: str = "ltlf", guidance: bool 
         formula=formula,
         text=_read_text(folder / "NL_instructions.txt"),
         grounded_text=_read_text(folder / "NL_instructions_uuid.txt"),
-        guidance=read_guidance(heuristic) if guidance and heuristic.is_file() else None,
+        guidance=read_guidance(heuristic) if guidance and (heuristic.exists() or heuristic.is_symlink()) else None,
         source=folder,
         notes=[f"ap_desc.yaml defines {', '.join(unused)}, which the automaton does not use"] if unused else [],
     )
@@ -287,7 +310,7 @@ def load_mission_folder(path: str | Path, profile: str = "ltlf", guidance: bool 
 def _literal_dict(text: str, folder: Path) -> dict[str, str]:
     try:
         value = ast.literal_eval(text)
-    except (ValueError, SyntaxError):
+    except (ValueError, SyntaxError, TypeError, MemoryError, RecursionError):
         raise MissionError("ap_dict.txt is not a Python dict literal", folder) from None
     if not isinstance(value, dict):
         raise MissionError("ap_dict.txt is not a dict", folder)
@@ -309,11 +332,9 @@ def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str 
     if mission.formula is not None:
         tokens = to_tokens(mission.formula, ap_tokens=actions)
         p_names = number_aps(tokens)
-        (folder / "GPT_LTL_formula.txt").write_text(repr(tokens) + "\n", encoding="utf-8")
-        (folder / "ap_dict.txt").write_text(repr(p_names) + "\n", encoding="utf-8")
-        (folder / "Spot_LTL_formula.txt").write_text(
-            to_prefix(parse_tokens(tokens, ap_names=p_names)) + "\n", encoding="utf-8"
-        )
+        write_text_atomically(folder / "GPT_LTL_formula.txt", repr(tokens) + "\n")
+        write_text_atomically(folder / "ap_dict.txt", repr(p_names) + "\n")
+        write_text_atomically(folder / "Spot_LTL_formula.txt", to_prefix(parse_tokens(tokens, ap_names=p_names)) + "\n")
     else:
         p_names = {token: f"p{k + 1}" for k, token in enumerate(dict.fromkeys(actions.values()))}
     renamed = replace(mission.automaton, aps=tuple(p_names[actions[ap]] for ap in mission.automaton.aps))
@@ -325,14 +346,14 @@ def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str 
         if prop.kind == "reach":
             entry["reach_distance"] = float(prop.reach_radius_m) if prop.reach_radius_m else -1.0
         ap_desc[p_names[prop.name]] = entry
-    (folder / "ap_desc.yaml").write_text(yaml.safe_dump(ap_desc, sort_keys=True), encoding="utf-8")
+    write_text_atomically(folder / "ap_desc.yaml", yaml.safe_dump(ap_desc, sort_keys=True))
     for name, value in (
         ("NL_instructions.txt", mission.text),
         ("NL_instructions_uuid.txt", mission.grounded_text),
         ("building_desc.yaml", hierarchy_text),
     ):
         if value is not None:
-            (folder / name).write_text(value.rstrip("\n") + "\n", encoding="utf-8")
+            write_text_atomically(folder / name, value.rstrip("\n") + "\n")
     if mission.guidance is not None:
         write_guidance(mission.guidance, folder / "llm_heuristic.yaml")
     return folder

@@ -193,11 +193,14 @@ class PlanResult:
 
 
 def write_text(path: str | Path, text: str) -> Path:
-    """Write ``text`` to ``path`` (UTF-8, folders created); :class:`OutputError` naming the file on failure."""
+    """Write ``text`` to ``path`` atomically (UTF-8, folders created; an earlier file stays whole if this
+    write fails); :class:`OutputError` naming the file on failure."""
+    from sgplan.files import write_text_atomically
+
     target = Path(path).expanduser()
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
-        target.write_text(text, encoding="utf-8")
+        write_text_atomically(target, text)
     except OSError as error:
         raise OutputError(f"{target}: cannot write: {error.strerror}") from None
     return target

@@ -61,6 +61,8 @@ class Step:
     """One scripted answer: a status, headers and body, sent after ``delay_s`` seconds.
 
     ``disconnect`` closes the connection without answering (a connection error for the client).
+    ``trickle_s`` > 0 sends the headers at once, then the body one byte every ``trickle_s`` seconds (a
+    reply that stalls mid-body without ever tripping a per-read timeout).
     """
 
     status: int = 200
@@ -69,6 +71,7 @@ class Step:
     headers: Mapping[str, str] = field(default_factory=dict)
     delay_s: float = 0.0
     disconnect: bool = False
+    trickle_s: float = 0.0
 
 
 def completion_body(
@@ -216,6 +219,11 @@ class FakeOpenAIServer:
         """Queue a normal reply sent only after ``delay_s`` seconds (to exceed a client timeout)."""
         self.push_reply(content, delay_s=delay_s)
 
+    def push_trickle(self, content: str = "a reply that never ends", interval_s: float = 0.2) -> None:
+        """Queue a normal reply whose body arrives one byte every ``interval_s`` seconds."""
+        body = json.dumps(completion_body(content, model=self._default_model or "fake-model")).encode()
+        self.push(Step(body=body + b" " * 10_000, trickle_s=interval_s))
+
     def push_disconnect(self, *, times: int = 1) -> None:
         """Queue a connection closed without any answer (a connection error for the client)."""
         self.push(Step(disconnect=True), times=times)
@@ -291,6 +299,14 @@ class _Handler(BaseHTTPRequestHandler):
             for name, value in step.headers.items():
                 self.send_header(name, value)
             self.end_headers()
-            self.wfile.write(step.body)
+            if not step.trickle_s:
+                self.wfile.write(step.body)
+                return
+            self.wfile.flush()
+            for k in range(len(step.body)):
+                if self.fake._stopping.wait(step.trickle_s):
+                    return
+                self.wfile.write(step.body[k : k + 1])
+                self.wfile.flush()
         except (BrokenPipeError, ConnectionResetError):
             pass  # the client gave up (e.g. it timed out); nothing to answer

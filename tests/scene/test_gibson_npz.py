@@ -148,7 +148,7 @@ def test_wrong_content(tmp_path: Path) -> None:
     _write_npz(tmp_path / "list.npz", [1, 2])
     with pytest.raises(SceneError, match=r"list.npz: corrupt pickle .* got dtype object and shape \(2,\)"):
         load_gibson_npz(tmp_path / "list.npz")
-    with pytest.raises(SceneError, match=r"absent.npz: raw scene graph file does not exist"):
+    with pytest.raises(SceneError, match=r"absent.npz: cannot read the raw scene graph file: it does not exist"):
         load_gibson_npz(tmp_path / "absent.npz")
 
 

@@ -18,6 +18,7 @@ from typing import Any
 
 from sgplan.errors import SgplanError
 from sgplan.planning.amra import get_setup
+from sgplan.safeio import quote
 
 PAPER_SETUPS = ("ALL", "OCC", "OBJ", "ROOM", "FLR", "NO-LLM", "A*")
 """The seven setups in the order of the paper's Table II."""
@@ -200,13 +201,21 @@ def expand(
     )
 
 
+MAX_STARTS = 100_000
+"""Starts one selection may name (a scene has tens of initial positions)."""
+
+
 def parse_selection(text: str) -> tuple[int, ...]:
     """Start indices from ``"0,2-4"`` style text (commas and inclusive ranges)."""
     out: list[int] = []
     for part in filter(None, (p.strip() for p in text.split(","))):
-        match = re.fullmatch(r"(\d+)(?:-(\d+))?", part)
+        match = re.fullmatch(r"(\d{1,9})(?:-(\d{1,9}))?", part)
         if not match:
-            raise BenchError(f"bad start selection {part!r}: use indices and ranges like 0,2-4")
+            raise BenchError(f"bad start selection {quote(part)}: use indices and ranges like 0,2-4")
         lo, hi = int(match[1]), int(match[2] or match[1])
+        if hi < lo:
+            raise BenchError(f"bad start selection {quote(part)}: the range ends before it starts")
+        if len(out) + hi - lo + 1 > MAX_STARTS:
+            raise BenchError(f"start selection {quote(text)} names more than {MAX_STARTS:,} starts")
         out.extend(range(lo, hi + 1))
     return tuple(out)

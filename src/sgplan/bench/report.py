@@ -12,6 +12,7 @@ from typing import Any
 from sgplan.bench import figures, tables
 from sgplan.bench.cases import BenchError, exact_number
 from sgplan.bench.results import ResultStore, counts, load_rows, load_sweeps
+from sgplan.files import write_text_atomically
 
 REPORT_FILE = "report.md"
 FIGURES_DIR = "figures"
@@ -138,5 +139,8 @@ def write_report(folder: str | Path, rows: Sequence[dict[str, Any]] | None = Non
         text += ["## Figures", ""]
         text += [f"![{p.stem}]({p.relative_to(out).as_posix()})" for p in report.figures if p.suffix == ".png"]
         text.append("")
-    report.markdown.write_text("\n".join(text), encoding="utf-8")
+    try:
+        write_text_atomically(report.markdown, "\n".join(text))
+    except OSError as error:
+        raise BenchError(f"cannot write the report ({error.strerror or error})", report.markdown) from None
     return report

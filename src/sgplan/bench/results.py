@@ -14,6 +14,7 @@ import csv
 import fcntl
 import io
 import json
+import math
 import os
 import socket
 import time
@@ -23,7 +24,9 @@ from typing import Any
 
 from sgplan.bench.cases import BenchError, Case
 from sgplan.bench.worker import LEVELS, MEASURED
-from sgplan.files import write_text_atomically
+from sgplan.files import write_texts_atomically
+from sgplan.safeio import clip, quote, read_bytes
+from sgplan.scene.fields import is_int, is_number
 
 RESULTS_JSONL, RESULTS_CSV, RESULTS_JSON = "results.jsonl", "results.csv", "results.json"
 SWEEPS_JSONL = "sweeps.jsonl"
@@ -81,12 +84,42 @@ def make_folder(folder: str | Path) -> Path:
     return path
 
 
-def _is_row(data: bytes) -> bool:
+_TEXT_FIELDS = ("key", "scene", "mission", "setup", "profile", "status")
+_NUMBER_FIELDS = tuple(
+    c for c in COLUMNS
+    if c.endswith(("_s", "_m", "_mb")) or c in ("cost_ratio", "num_iterations", "expansions", "path_cells")
+    or c.startswith("exp_")
+)
+"""Fields that hold a finite number or null in every row (the report computes with them)."""
+
+
+def _refuse_constant(name: str) -> Any:
+    raise ValueError(f"{name} is not a JSON number")
+
+
+def _parse_row(data: bytes | str) -> tuple[dict[str, Any] | None, str]:
+    """The row in one line of results.jsonl, or ``None`` and what is wrong with it."""
     try:
-        row = json.loads(data)
-    except (UnicodeDecodeError, json.JSONDecodeError):
-        return False
-    return isinstance(row, dict) and all(k in row for k in REQUIRED)
+        row = json.loads(data, parse_constant=_refuse_constant)
+    except (UnicodeDecodeError, ValueError, RecursionError) as error:
+        return None, f"not a JSON object ({clip(str(error), 80)})"
+    if not isinstance(row, dict):
+        return None, f"not a JSON object but {type(row).__name__}"
+    missing = [k for k in REQUIRED if k not in row]
+    if missing:
+        return None, f"missing {', '.join(missing)}"
+    wrong = [k for k in _TEXT_FIELDS if not isinstance(row[k], str)]
+    if not is_int(row["start"]):
+        wrong.append("start")
+    wrong += [k for k in _NUMBER_FIELDS if row.get(k) is not None
+              and not (is_number(row[k]) and math.isfinite(row[k]))]
+    if wrong:
+        return None, f"field(s) {', '.join(wrong)} of the wrong type ({wrong[0]} = {quote(row.get(wrong[0]))})"
+    return row, ""
+
+
+def _is_row(data: bytes) -> bool:
+    return _parse_row(data)[0] is not None
 
 
 class ResultStore:
@@ -107,9 +140,9 @@ class ResultStore:
         self._load()
 
     def _load(self) -> None:
-        if not self.path.exists():
+        if not (self.path.exists() or self.path.is_symlink()):
             return
-        data = self.path.read_bytes()
+        data = read_bytes(self.path, BenchError, "results file")
         complete = data[: data.rfind(b"\n") + 1]
         tail = data[len(complete):]
         if tail.strip() and _is_row(tail):
@@ -125,14 +158,9 @@ class ResultStore:
         for number, line in enumerate(text.splitlines(), 1):
             if not line.strip():
                 continue
-            try:
-                row = json.loads(line)
-            except json.JSONDecodeError:
-                row = None
-            missing = [k for k in REQUIRED if k not in row] if isinstance(row, dict) else list(REQUIRED)
-            if missing:
-                raise BenchError(f"line {number} is not a result row (missing {', '.join(missing)}); "
-                                 "fix or remove it", self.path)
+            row, problem = _parse_row(line)
+            if row is None:
+                raise BenchError(f"line {number} is not a result row ({problem}); fix or remove it", self.path)
             self._rows[row["key"]] = row
 
     def __len__(self) -> int:
@@ -177,8 +205,14 @@ class ResultStore:
         for row in rows:
             writer.writerow({k: _csv_value(row.get(k)) for k in COLUMNS})
         csv_path, json_path = self.folder / RESULTS_CSV, self.folder / RESULTS_JSON
-        write_text_atomically(csv_path, buffer.getvalue())
-        write_text_atomically(json_path, json.dumps(rows, indent=1, allow_nan=False) + "\n")
+        try:
+            # Both files are written in full before either replaces its old version, so a failed write
+            # (a full disk) leaves the two earlier files, which agree.
+            write_texts_atomically({csv_path: buffer.getvalue(),
+                                    json_path: json.dumps(rows, indent=1, allow_nan=False) + "\n"})
+        except OSError as error:
+            raise BenchError(f"cannot write results.csv and results.json ({error.strerror or error}); "
+                             "the earlier ones are unchanged", self.folder) from None
         return csv_path, json_path
 
 
@@ -202,8 +236,12 @@ def load_rows(folder: str | Path) -> list[dict[str, Any]]:
 def record_sweep(folder: str | Path, info: dict[str, Any]) -> None:
     """Append one sweep call's summary (``info`` plus the time) to ``folder/sweeps.jsonl``."""
     line = json.dumps({"finished_at": time.strftime("%Y-%m-%dT%H:%M:%S%z"), **info}, allow_nan=False)
-    with open(Path(folder).expanduser() / SWEEPS_JSONL, "a", encoding="utf-8") as handle:
-        handle.write(line + "\n")
+    path = Path(folder).expanduser() / SWEEPS_JSONL
+    try:
+        with open(path, "a", encoding="utf-8") as handle:
+            handle.write(line + "\n")
+    except OSError as error:
+        raise BenchError(f"cannot record the sweep: {error.strerror or error}", path) from None
 
 
 def load_sweeps(folder: str | Path) -> list[dict[str, Any]]:
@@ -211,11 +249,17 @@ def load_sweeps(folder: str | Path) -> list[dict[str, Any]]:
     this log is informative only)."""
     path = Path(folder).expanduser() / SWEEPS_JSONL
     out = []
-    for line in path.read_text(encoding="utf-8").splitlines() if path.is_file() else []:
+    try:
+        text = path.read_text(encoding="utf-8", errors="replace") if path.is_file() else ""
+    except OSError:
+        text = ""
+    for line in text.splitlines():
         try:
-            out.append(json.loads(line))
-        except json.JSONDecodeError:
+            entry = json.loads(line, parse_constant=_refuse_constant)
+        except (ValueError, RecursionError):
             continue
+        if isinstance(entry, dict):
+            out.append(entry)
     return out
 
 
@@ -238,7 +282,11 @@ def writing_lock(folder: str | Path) -> Iterator[None]:
         another sweep is writing into ``folder``.
     """
     path = Path(folder).expanduser() / LOCK_FILE
-    with open(path, "a+b") as handle:
+    try:
+        handle = open(path, "a+b")  # noqa: SIM115 - closed below, after the lock is released
+    except OSError as error:
+        raise BenchError(f"cannot open the lock file: {error.strerror or error}", path) from None
+    with handle:
         try:
             fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:

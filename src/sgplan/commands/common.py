@@ -11,6 +11,7 @@ import sys
 from collections.abc import Iterable
 
 from sgplan.datasets import ENV_VAR, SCENES
+from sgplan.limits import MAX_REACH_RADIUS_M, MAX_ROBOT_RADIUS_M, MAX_SECONDS
 from sgplan.scene.model import Building
 
 DEMO = "demo"
@@ -95,15 +96,6 @@ class _StderrHandler(logging.StreamHandler):  # type: ignore[type-arg]
 def say(message: str) -> None:
     """A progress or status line (logged at INFO on the ``sgplan`` logger: stderr, hidden by ``--quiet``)."""
     log.info(message)
-
-
-MAX_SECONDS = 1e6
-"""Upper bound of a time option (about 11.6 days; larger values overflow the OS timers)."""
-MAX_ROBOT_RADIUS_M = 2.0
-"""Upper bound of the robot radius: a wider robot fits no door, and the footprint inflation grows with
-the square of the radius (at 100 m it takes minutes)."""
-MAX_REACH_RADIUS_M = 100.0
-"""Upper bound of the reach radius: larger than any building."""
 
 
 def _number(text: str, kind: type, *, allow_zero: bool, what: str, maximum: float = math.inf) -> float:

@@ -14,6 +14,7 @@ import time
 from pathlib import Path
 
 from sgplan.commands.common import non_negative_int, say
+from sgplan.errors import MissionError
 
 DEMO_MISSION = (
     "Visit the bathroom on floor 0 without touching the sink, then sit on a chair in the dining room, "
@@ -38,6 +39,12 @@ def run(args: argparse.Namespace) -> int:
 
     t0 = time.perf_counter()
     out = Path(args.out)
+    if not args.out.strip() or (out.exists() and not out.is_dir()):
+        raise MissionError("--out must name a folder to write the demo's outputs to", out)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise MissionError(f"cannot create the output folder ({error.strerror or error})", out) from None
     building = sgplan.load_scene("demo")
     say(f"scene: {building.name}, {building.num_floors} floors, {sum(1 for _ in building.rooms())} rooms, "
         f"{sum(1 for _ in building.objects())} objects (embedded demo building)")

@@ -125,9 +125,12 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any] | None]:
     if args.save_mission and not args.text:
         raise MissionError("--save-mission saves a translated mission: use it with --text")
     backends: Backends | None = None
-    if args.mission_dir:
+    for option, value in (("--mission-dir", args.mission_dir), ("--formula", args.formula), ("--text", args.text)):
+        if value is not None and not value.strip():
+            raise MissionError(f"{option} is empty: give a {option[2:].replace('-dir', ' folder')}")
+    if args.mission_dir is not None:
         mission = sgplan.load_mission(args.mission_dir, profile=args.profile)
-    elif args.formula:
+    elif args.formula is not None:
         mission = sgplan.mission_from_formula(args.formula, aps=args.aps)
     else:
         backends = open_backends_from_args(args)

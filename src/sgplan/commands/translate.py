@@ -20,6 +20,7 @@ from sgplan.commands.common import (
     non_negative_int,
     positive_int,
     positive_number,
+    positive_seconds,
     say,
 )
 from sgplan.errors import MissionError
@@ -41,6 +42,9 @@ def add_llm_arguments(parser: argparse.ArgumentParser, *, translates: bool = Tru
     group.add_argument("--llm-config", metavar="FILE", help="YAML file with LLM settings (see docs/llm.md)")
     group.add_argument("--cache", metavar="DIR", help="record every LLM call in DIR and answer recorded calls from it")
     group.add_argument("--replay", action="store_true", help="answer only from --cache, never contact a server")
+    group.add_argument("--llm-deadline", type=positive_seconds, metavar="S",
+                       help="give up on one LLM call (all its retries included) after S seconds "
+                            "(default: deadline_s of the LLM config, 120)")
     group.add_argument("--rpm", type=positive_number, metavar="R", help="at most R LLM requests per minute (hosted APIs)")
     if translates:
         group.add_argument("--samples", type=positive_int, default=1, metavar="K",
@@ -57,7 +61,8 @@ def open_backends_from_args(args: argparse.Namespace, **options: Any) -> Backend
         options.setdefault("samples", args.samples)
         options.setdefault("max_repairs", args.max_repairs)
     return open_backends(args.llm, base_url=args.base_url, cache_dir=args.cache, replay=args.replay,
-                         config_path=args.llm_config, requests_per_minute=args.rpm, **options)
+                         config_path=args.llm_config, requests_per_minute=args.rpm, deadline_s=args.llm_deadline,
+                         **options)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -83,6 +88,8 @@ def run(args: argparse.Namespace, ask: Callable[[str], str] | None = None) -> in
     from sgplan.llm.translation import translate_to_folder
     from sgplan.logic import to_infix
 
+    if not args.text.strip():
+        raise MissionError("--text is empty: give the mission in natural language")
     building = load_scene_arg(args.scene, args.data)
     backends = open_backends_from_args(args)
     say(f"translating with {backends.translator.name} ({backends.description})")

@@ -85,6 +85,7 @@ def open_backends(
     replay: bool = False,
     config_path: str | Path | None = None,
     requests_per_minute: float | None = None,
+    deadline_s: float | None = None,
     samples: int = 1,
     max_repairs: int = 3,
     max_concurrency: int = 4,
@@ -95,7 +96,7 @@ def open_backends(
 
     Parameters
     ----------
-    base_url, config_path, requests_per_minute:
+    base_url, config_path, requests_per_minute, deadline_s:
         Endpoint settings for ``openai:MODEL`` (see :func:`~sgplan.llm.config.load_llm_config`).
     cache_dir, replay:
         Record calls in ``cache_dir`` (answering recorded ones from it); with ``replay``, only answer from it.
@@ -112,7 +113,7 @@ def open_backends(
     """
     if spec == OFFLINE:
         given = [name for name, value in (("--base-url", base_url), ("--cache", cache_dir), ("--replay", replay),
-                                           ("--llm-config", config_path), ("--rpm", requests_per_minute),
+                                           ("--llm-config", config_path), ("--rpm", requests_per_minute), ("--llm-deadline", deadline_s),
                                            ("--samples", samples != 1)) if value]
         if given:
             raise LLMError(f"{', '.join(given)} only apply to a language model; with --llm offline leave them out")
@@ -133,7 +134,7 @@ def open_backends(
 
     mode = "replay" if replay else ("record" if cache_dir is not None else "live")
     config = None if replay else load_llm_config(config_path, model=model, base_url=base_url,
-                                                 requests_per_minute=requests_per_minute)
+                                                 requests_per_minute=requests_per_minute, deadline_s=deadline_s)
     chat = open_chat_backend(mode, config=config, cache_dir=cache_dir, model=model)
     record = RunRecord(chat.label)
     translator = LLMTranslator(chat, record=record, samples=samples, max_repairs=max_repairs, params=params)

@@ -38,6 +38,7 @@ from sgplan.llm.client import (
     without_reasoning,
 )
 from sgplan.llm.config import LLMConfig, one_line
+from sgplan.safeio import clip, load_json, quote
 
 CacheMode = Literal["live", "record", "replay"]
 
@@ -88,14 +89,12 @@ class ChatCache:
         Raises :class:`LLMError` if the entry is unreadable or records a different request.
         """
         path = self.path(key)
-        try:
-            entry = json.loads(path.read_text(encoding="utf-8"))
-        except FileNotFoundError:
+        if not (path.exists() or path.is_symlink()):
             return None
-        except (OSError, UnicodeDecodeError, ValueError) as exc:
-            raise LLMError(
-                f"{path}: unreadable LLM cache entry ({one_line(exc)}); delete it to record the call again"
-            ) from None
+        try:
+            entry = load_json(path, _CacheEntryError, "LLM cache entry", MAX_ENTRY_BYTES)
+        except _CacheEntryError as exc:
+            raise LLMError(f"{exc}; delete it to record the call again") from None
         if not isinstance(entry, dict) or entry.get("format") != ENTRY_FORMAT:
             raise LLMError(
                 f"{path}: not an LLM cache entry of format {ENTRY_FORMAT!r}; "
@@ -108,8 +107,9 @@ class ChatCache:
             )
         try:
             return _result_from_json(entry["response"])
-        except (KeyError, TypeError, ValueError) as exc:
-            raise LLMError(f"{path}: malformed 'response' in LLM cache entry ({one_line(exc)})") from None
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:
+            raise LLMError(f"{path}: malformed 'response' in LLM cache entry ({clip(one_line(exc))}); "
+                           "delete it to record the call again") from None
 
     def put(self, key: str, request: dict[str, Any], result: ChatResult, *, endpoint: str) -> Path:
         """Write the entry for ``key`` atomically and return its path; I/O errors raise :class:`LLMError`."""
@@ -131,6 +131,17 @@ class ChatCache:
         return path
 
 
+MAX_ENTRY_BYTES = 64 * 2**20
+"""Cap of one cache entry file (64 MiB); a recorded chat reply is a few kB."""
+
+
+class _CacheEntryError(LLMError):
+    """An unreadable entry (``path`` first, as safeio's readers expect); re-raised as an LLMError."""
+
+    def __init__(self, message: str, path: Path | None = None) -> None:
+        super().__init__(f"{path}: unreadable LLM cache entry ({message})")
+
+
 def _result_to_json(result: ChatResult) -> dict[str, Any]:
     return {
         "content": result.content,
@@ -144,8 +155,13 @@ def _result_to_json(result: ChatResult) -> dict[str, Any]:
 
 
 def _result_from_json(data: dict[str, Any]) -> ChatResult:
+    choices_data = data["choices"]
+    if not isinstance(choices_data, list) or not choices_data or not all(isinstance(c, str) for c in choices_data):
+        raise ValueError(f"'choices' must be a non-empty list of texts, got {quote(choices_data)}")
+    if data["usage"] is not None and not isinstance(data["usage"], dict):
+        raise ValueError(f"'usage' must be a mapping or null, got {quote(data['usage'])}")
     # Entries recorded before reasoning blocks were removed are answered as a fresh reply would be.
-    choices = tuple(without_reasoning(text) for text in data["choices"])
+    choices = tuple(without_reasoning(text) for text in choices_data)
     return ChatResult(
         content=choices[0],
         model=data["model"],

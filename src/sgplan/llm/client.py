@@ -18,16 +18,18 @@ number of attempts. Both the client and the cache are safe to call from several 
 
 from __future__ import annotations
 
+import functools
 import ipaddress
 import json
 import random
 import re
+import sys
 import threading
 import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
+from typing import TYPE_CHECKING, Any, Protocol, TypeVar, runtime_checkable
 from urllib.parse import urlsplit
 
 from sgplan.errors import LLMError
@@ -201,6 +203,9 @@ class OpenAIChatClient:
         Called with the backoff delay in seconds between attempts (tests pass a recorder).
     rng:
         Source of the backoff jitter.
+    notify:
+        Called with one line before each retry (default: print it to stderr), so a slow server is
+        never silent.
 
     Notes
     -----
@@ -221,6 +226,7 @@ class OpenAIChatClient:
         *,
         sleep: Callable[[float], None] = time.sleep,
         rng: random.Random | None = None,
+        notify: Callable[[str], None] | None = None,
     ) -> None:
         # Imported here, not at module level: the SDK takes ~0.6 s to import, and offline runs (replay,
         # rule-based backends) never need it.
@@ -228,6 +234,7 @@ class OpenAIChatClient:
 
         self.config = config
         self._sleep = sleep
+        self._notify = notify if notify is not None else _to_stderr
         self._rng = rng or random.Random()
         self._rate_limiter = (
             RateLimiter(config.requests_per_minute, sleep=sleep) if config.requests_per_minute else None
@@ -273,14 +280,22 @@ class OpenAIChatClient:
         request_params = normalize_params(params)
         max_attempts = 1 + self.config.max_retries
         started = time.monotonic()
+        deadline = started + self.config.deadline_s
         for attempt in range(1, max_attempts + 1):
             if self._rate_limiter is not None:
                 self._rate_limiter.acquire()
+            remaining = deadline - time.monotonic()
+            if remaining <= 0:
+                raise LLMError(f"{self._failed(attempt - 1)}: {self._past_deadline()}")
             retry_after_s: float | None = None
             try:
-                raw = self._sdk.chat.completions.with_raw_response.create(
-                    model=self.config.model, messages=request_messages, **request_params
+                send = functools.partial(
+                    self._sdk.chat.completions.with_raw_response.create, model=self.config.model,
+                    messages=request_messages, timeout=min(self.config.timeout_s, remaining), **request_params,
                 )
+                raw = _within(remaining, send)
+                if raw is None:
+                    raise LLMError(f"{self._failed(attempt)}: {self._past_deadline()}")
             except openai.APIStatusError as exc:
                 status = exc.status_code
                 problem = f"HTTP {status}: {_server_message(exc)}"
@@ -304,8 +319,18 @@ class OpenAIChatClient:
                 )
             if attempt == max_attempts:
                 raise LLMError(f"{self._failed(attempt)}: {problem}")
-            self._sleep(self._backoff_s(attempt, retry_after_s))
+            delay = self._backoff_s(attempt, retry_after_s)
+            if time.monotonic() + delay >= deadline:
+                raise LLMError(f"{self._failed(attempt)}: {problem}; no time left for a retry "
+                               f"within the {self.config.deadline_s:g} s deadline")
+            self._notify(f"sgplan: LLM attempt {attempt} of {max_attempts} to {self.config.endpoint} failed "
+                         f"({one_line(problem, 160)}); retrying in {delay:.1f} s")
+            self._sleep(delay)
         raise AssertionError("unreachable: the loop returns or raises")
+
+    def _past_deadline(self) -> str:
+        return (f"no complete answer within the {self.config.deadline_s:g} s deadline of the whole call "
+                "(deadline_s in the LLM config, or --llm-deadline)")
 
     def _backoff_s(self, retry: int, retry_after_s: float | None) -> float:
         """Seconds to wait before retry number ``retry`` (1-based); honours a server's Retry-After."""
@@ -324,6 +349,39 @@ class OpenAIChatClient:
 
     def _where(self, attempt: int) -> str:
         return f"LLM reply from {self.config.endpoint} (model {self.config.model!r}, attempt {attempt})"
+
+
+def _to_stderr(line: str) -> None:
+    print(line, file=sys.stderr, flush=True)
+
+
+_T = TypeVar("_T")
+
+
+def _within(seconds: float, call: Callable[[], _T]) -> _T | None:
+    """``call()``, or ``None`` if it has not returned after ``seconds``.
+
+    The per-read timeout of the HTTP client does not bound a reply that trickles in a byte at a time,
+    so the request runs in a daemon thread that is abandoned at the deadline (it ends by itself at
+    the server's next stall longer than ``timeout_s``). Exceptions of ``call`` propagate.
+    """
+    outcome: list[Any] = []
+
+    def run() -> None:
+        try:
+            outcome.append((True, call()))
+        except BaseException as exc:  # noqa: BLE001 - handed to the caller's thread, which re-raises it
+            outcome.append((False, exc))
+
+    worker = threading.Thread(target=run, name="sgplan-llm-request", daemon=True)
+    worker.start()
+    worker.join(seconds)
+    if not outcome:
+        return None
+    ok, value = outcome[0]
+    if not ok:
+        raise value
+    return value
 
 
 def complete_many(

@@ -24,9 +24,8 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
-import yaml
-
 from sgplan.errors import LLMError
+from sgplan.safeio import load_yaml
 
 OPENAI_BASE_URL = "https://api.openai.com/v1"
 """The endpoint used when none is configured."""
@@ -56,6 +55,9 @@ class LLMConfig:
         Sent as a bearer token. Never printed (excluded from ``repr``).
     timeout_s:
         Limit for each network phase of one attempt (connect, send, each read), not for the whole call.
+    deadline_s:
+        Limit for the whole call: every attempt, backoff wait and stalled reply included. A server that
+        accepts and never answers, or trickles its reply, fails the call after this long.
     max_retries:
         Retries after the first attempt on HTTP 429, HTTP 5xx, connection errors and timeouts; other
         HTTP 4xx statuses are never retried. ``0`` means a single attempt.
@@ -71,6 +73,7 @@ class LLMConfig:
     base_url: str = OPENAI_BASE_URL
     api_key: str = field(default=PLACEHOLDER_API_KEY, repr=False)
     timeout_s: float = 60.0
+    deadline_s: float = 120.0
     max_retries: int = 4
     backoff_base_s: float = 1.0
     backoff_max_s: float = 30.0
@@ -88,6 +91,7 @@ class LLMConfig:
         if not isinstance(self.api_key, str) or not self.api_key:
             raise LLMError("LLM config: 'api_key' must be a non-empty string")
         _check_number("timeout_s", self.timeout_s, minimum=0.0, strict=True)
+        _check_number("deadline_s", self.deadline_s, minimum=0.0, strict=True)
         _check_number("backoff_base_s", self.backoff_base_s, minimum=0.0)
         _check_number("backoff_max_s", self.backoff_max_s, minimum=0.0)
         if self.requests_per_minute is not None:
@@ -196,12 +200,9 @@ def load_llm_config(
 
 def _read_config_file(path: Path, fields: set[str]) -> dict[str, Any]:
     """The top-level mapping of a YAML config file, restricted to known keys."""
-    try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise LLMError(f"{path}: LLM config file not found") from None
-    except (OSError, UnicodeDecodeError, yaml.YAMLError) as exc:
-        raise LLMError(f"{path}: cannot read the LLM config file ({one_line(exc)})") from None
+    if not (path.exists() or path.is_symlink()):
+        raise LLMError(f"{path}: LLM config file not found")
+    data = load_yaml(path, _ConfigFileError, "LLM config file", 2**20)
     if data is None:
         return {}
     if not isinstance(data, dict):
@@ -217,6 +218,13 @@ def _read_config_file(path: Path, fields: set[str]) -> dict[str, Any]:
     except LLMError as exc:
         raise LLMError(f"{path}: {exc}") from None
     return dict(data)
+
+
+class _ConfigFileError(LLMError):
+    """An unreadable config file (``path`` first, as safeio's readers expect)."""
+
+    def __init__(self, message: str, path: Path | None = None) -> None:
+        super().__init__(f"{path}: cannot read the LLM config file ({message})")
 
 
 def one_line(value: object, limit: int | None = None) -> str:

@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from sgplan.errors import AutomatonError, FormulaError, LLMError, MissionError, SgplanError
+from sgplan.files import rebuild_folder, write_text_atomically
 from sgplan.llm.client import ChatBackend
 from sgplan.llm.config import one_line
 from sgplan.llm.grounding import (
@@ -357,7 +358,10 @@ def translate_to_folder(
     Writes the authors' mission-folder files (:func:`~sgplan.mission.save_mission_folder`, with the
     attribute hierarchy as ``building_desc.yaml``), ``env_elements.txt`` (the grounded IDs) and the run
     record ``llm_record.json``, and removes what an earlier mission left there for its own automaton
-    (:data:`GUIDANCE_FILES`) and an earlier refusal's record. Other files in ``out`` are left alone.
+    (:data:`GUIDANCE_FILES`) and an earlier refusal's record. Other files in ``out`` are kept. The new
+    folder is built beside ``out`` and swapped in whole (:func:`~sgplan.files.rebuild_folder`), so a
+    failure or a crash leaves the earlier mission whole, and concurrent translations into one folder
+    leave one of them, never a mix.
 
     On a refusal (or a failed backend) only the record is written, as :data:`REFUSED_RECORD_NAME`, then
     the error is re-raised: the folder never holds a half-made mission, and an earlier mission in it stays
@@ -381,14 +385,21 @@ def translate_to_folder(
         raise
     mission = mission_of(translation)
     ids = extract_ids(translation.grounded_text)
-    try:
-        for name in (*GUIDANCE_FILES, REFUSED_RECORD_NAME):
-            (folder / name).unlink(missing_ok=True)
-        save_mission_folder(mission, folder, hierarchy_text=environment_text(building))
-        (folder / "env_elements.txt").write_text("[" + ", ".join(ids) + "]\n", encoding="utf-8")
-    except OSError as exc:
-        raise MissionError(f"cannot write the mission ({exc.strerror or exc})", folder) from None
+    hierarchy = environment_text(building)
     record.event("saved", folder=str(folder), backend=translation.backend, tokens=list(translation.tokens),
                  formula=to_infix(translation.formula), states=mission.automaton.num_states)
-    record.save(folder / RECORD_NAME)
+
+    def build(staging: Path) -> None:
+        save_mission_folder(mission, staging, hierarchy_text=hierarchy)
+        write_text_atomically(staging / "env_elements.txt", "[" + ", ".join(ids) + "]\n")
+        record.save(staging / RECORD_NAME)
+
+    # The new mission is built beside the folder and swapped in whole; what an earlier mission left for
+    # its own automaton (guidance) or an earlier refusal's record is not carried over.
+    dropped = {*GUIDANCE_FILES, REFUSED_RECORD_NAME}
+    try:
+        rebuild_folder(folder, build, carry_over=lambda name: name not in dropped)
+    except OSError as exc:
+        raise MissionError(f"cannot write the mission ({exc.strerror or exc}); the folder is unchanged",
+                           folder) from None
     return translation, mission

@@ -15,6 +15,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Iterator
 
+from sgplan.errors import FormulaError
+
 
 class Formula:
     """Base class of every formula node. Supports ``~f``, ``f & g``, ``f | g`` as shorthands."""
@@ -199,3 +201,46 @@ def is_temporal(formula: Formula) -> bool:
 def size(formula: Formula) -> int:
     """Number of nodes."""
     return sum(1 for _ in walk(formula))
+
+
+MAX_NESTING = 100
+"""Operator nesting the negation normal form of a formula may have for an automaton to be built from it
+(see :func:`nesting`); missions nest fewer than 10 levels.
+
+Automaton construction recurses over the normal form, so its depth must be bounded for the
+interpreter's stack. The normal form cancels chains of negations, and chains of one junction
+(``a & b & c ...``) count as one level, so a conjunction of any length and a chain of NOTs of any
+length are accepted."""
+
+
+def nesting(formula: Formula) -> int:
+    """The operator nesting depth of ``formula``, a chain of one junction (``&`` in ``&``) counting once.
+
+    Iterative, so it is safe on formulas of any depth.
+    """
+    deepest = 0
+    stack: list[tuple[Formula, int]] = [(formula, 1)]
+    while stack:
+        node, depth = stack.pop()
+        deepest = max(deepest, depth)
+        for child in node.children():
+            same_junction = isinstance(node, (And, Or)) and type(child) is type(node)
+            stack.append((child, depth if same_junction else depth + 1))
+    return deepest
+
+
+def check_nesting(formula: Formula) -> Formula:
+    """``formula`` itself if it nests at most :data:`MAX_NESTING` levels deep (see :func:`nesting`).
+
+    Raises
+    ------
+    FormulaError
+        the formula nests deeper (e.g. a chain of a thousand NOT tokens).
+    """
+    depth = nesting(formula)
+    if depth > MAX_NESTING:
+        raise FormulaError(
+            f"the formula nests temporal and boolean operators {depth} levels deep (after pushing negations "
+            f"in); sgplan builds automata for at most {MAX_NESTING} levels"
+        )
+    return formula

@@ -26,10 +26,22 @@ from typing import Literal
 import numpy as np
 
 from sgplan.errors import AutomatonError
+from sgplan.files import write_text_atomically
 from sgplan.logic.automaton import Automaton
 from sgplan.logic.labels import format_cover, label_cover
+from sgplan.logic.ltlf import DEFAULT_MAX_ENTRIES
+from sgplan.safeio import quote, read_text
 
 Profile = Literal["ltlf", "authors"]
+
+MAX_HOA_APS = 20
+"""Propositions an automaton file may declare: the transition table has 2^APs columns per state."""
+MAX_HOA_TABLE = DEFAULT_MAX_ENTRIES
+"""Entries (states x 2^APs) of the transition table a file may ask for, as for a formula's automaton."""
+MAX_HOA_BYTES = 64 * 2**20
+"""Size cap of an automaton file (64 MiB)."""
+MAX_LABEL_DEPTH = 100
+"""Nesting of ``!`` and ``(`` in one edge label (the label parser recurses)."""
 
 _TOKEN = re.compile(
     r"""(?P<space>\s+|/\*.*?\*/)
@@ -79,34 +91,36 @@ class _Tokens:
     def expect(self, kind: str, what: str) -> str:
         item = self.take()
         if item[0] != kind:
-            raise self.error(f"expected {what}, found {item[1]!r}", item)
+            raise self.error(f"expected {what}, found {quote(item[1])}", item)
         return item[1]
 
 
 def _parse_label(tokens: _Tokens, num_aps: int, labels: np.ndarray) -> np.ndarray:
     """A label expression ``0&!1 | t`` as the bool array of the labels it contains (up to ``]``)."""
 
-    def disjunction() -> np.ndarray:
-        value = conjunction()
+    def disjunction(depth: int) -> np.ndarray:
+        value = conjunction(depth)
         while tokens.peek()[1] == "|":
             tokens.take()
-            value = value | conjunction()
+            value = value | conjunction(depth)
         return value
 
-    def conjunction() -> np.ndarray:
-        value = negation()
+    def conjunction(depth: int) -> np.ndarray:
+        value = negation(depth)
         while tokens.peek()[1] == "&":
             tokens.take()
-            value = value & negation()
+            value = value & negation(depth)
         return value
 
-    def negation() -> np.ndarray:
+    def negation(depth: int) -> np.ndarray:
         item = tokens.take()
         kind, text, _ = item
+        if depth > MAX_LABEL_DEPTH:
+            raise tokens.error(f"an edge label nests '!' and '(' more than {MAX_LABEL_DEPTH} deep", item)
         if text == "!":
-            return ~negation()
+            return ~negation(depth + 1)
         if text == "(":
-            value = disjunction()
+            value = disjunction(depth + 1)
             if tokens.take()[1] != ")":
                 raise tokens.error("unbalanced parenthesis in an edge label", item)
             return value
@@ -119,9 +133,9 @@ def _parse_label(tokens: _Tokens, num_aps: int, labels: np.ndarray) -> np.ndarra
             return np.full(labels.size, text == "t")
         if kind == "alias":
             raise tokens.error(f"alias {text} is not supported; write labels over AP indices", item)
-        raise tokens.error(f"expected an AP index, t, f, ! or ( in an edge label, found {text!r}", item)
+        raise tokens.error(f"expected an AP index, t, f, ! or ( in an edge label, found {quote(text)}", item)
 
-    value = disjunction()
+    value = disjunction(0)
     if tokens.take()[1] != "]":
         raise tokens.error("an edge label must end with ]")
     return value
@@ -135,7 +149,7 @@ def _parse_marks(tokens: _Tokens) -> set[int]:
     while tokens.peek()[1] != "}":
         item = tokens.take()
         if item[0] != "int":
-            raise tokens.error(f"expected an acceptance mark number, found {item[1]!r}", item)
+            raise tokens.error(f"expected an acceptance mark number, found {quote(item[1])}", item)
         if int(item[1]) != 0:
             raise tokens.error(
                 f"acceptance mark {item[1]} is not declared (Buchi acceptance has mark 0 only)", item
@@ -168,7 +182,7 @@ def parse_hoa(text: str, profile: Profile = "ltlf", path: str | Path | None = No
     tokens = _Tokens(text, source)
     header = tokens.take()
     if header[1] != "HOA:":
-        raise tokens.error(f"expected 'HOA: v1' at the start, found {header[1]!r}", header)
+        raise tokens.error(f"expected 'HOA: v1' at the start, found {quote(header[1])}", header)
     tokens.expect("ident", "the version v1")
     num_states: int | None = None
     initial: int | None = None
@@ -179,9 +193,11 @@ def parse_hoa(text: str, profile: Profile = "ltlf", path: str | Path | None = No
         if kind == "marker" and name == "--BODY--":
             break
         if kind != "header":
-            raise tokens.error(f"expected a header line or --BODY--, found {name!r}", item)
+            raise tokens.error(f"expected a header line or --BODY--, found {quote(name)}", item)
         if name == "States:":
             num_states = int(tokens.expect("int", "the number of states"))
+            if num_states < 1 or num_states > MAX_HOA_TABLE:
+                raise tokens.error(f"States: {num_states} is not between 1 and {MAX_HOA_TABLE:,}", item)
         elif name == "Start:":
             if initial is not None:
                 raise tokens.error("several Start: lines (several initial states) are not supported", item)
@@ -190,9 +206,12 @@ def parse_hoa(text: str, profile: Profile = "ltlf", path: str | Path | None = No
                 raise tokens.error("a conjunction of initial states (alternation) is not supported", item)
         elif name == "AP:":
             count = int(tokens.expect("int", "the number of APs"))
+            if count > MAX_HOA_APS:
+                raise tokens.error(f"AP: declares {count} propositions; sgplan reads at most {MAX_HOA_APS} "
+                                   f"(the transition table has 2^APs columns per state)", item)
             aps = [tokens.expect("string", f"{count} quoted AP names")[1:-1] for _ in range(count)]
             if len(set(aps)) != count:
-                raise tokens.error(f"the AP: line names a proposition twice: {aps}", item)
+                raise tokens.error(f"the AP: line names a proposition twice: {quote(aps)}", item)
         elif name == "Acceptance:":
             acceptance = []
             while tokens.peek()[0] not in ("header", "marker", "eof"):
@@ -213,6 +232,9 @@ def parse_hoa(text: str, profile: Profile = "ltlf", path: str | Path | None = No
         aps = []
     if initial is None:
         raise tokens.error("the header has no Start: line")
+    if num_states is not None and num_states << len(aps) > MAX_HOA_TABLE:
+        raise tokens.error(f"States: {num_states} over {len(aps)} APs is a table of {num_states << len(aps):,} "
+                           f"entries, more than the {MAX_HOA_TABLE:,} sgplan builds")
     labels = np.arange(1 << len(aps), dtype=np.int64)
     edges: list[tuple[int, np.ndarray, int, set[int], tuple[str, str, int]]] = []
     state_marks: dict[int, set[int]] = {}
@@ -222,7 +244,7 @@ def parse_hoa(text: str, profile: Profile = "ltlf", path: str | Path | None = No
         if item[1] == "--END--":
             break
         if item[1] != "State:":
-            raise tokens.error(f"expected 'State:' or '--END--', found {item[1]!r}", item)
+            raise tokens.error(f"expected 'State:' or '--END--', found {quote(item[1])}", item)
         if tokens.peek()[1] == "[":
             raise tokens.error("state labels are not supported; label the edges", item)
         state = int(tokens.expect("int", "a state number"))
@@ -235,7 +257,7 @@ def parse_hoa(text: str, profile: Profile = "ltlf", path: str | Path | None = No
         while tokens.peek()[1] not in ("State:", "--END--") and tokens.peek()[0] != "eof":
             edge = tokens.take()
             if edge[1] != "[":
-                raise tokens.error(f"expected an edge '[label] target', found {edge[1]!r} (implicit labels "
+                raise tokens.error(f"expected an edge '[label] target', found {quote(edge[1])} (implicit labels "
                                    f"are not supported)", edge)
             members = _parse_label(tokens, len(aps), labels)
             target = int(tokens.expect("int", "the edge's target state"))
@@ -245,6 +267,9 @@ def parse_hoa(text: str, profile: Profile = "ltlf", path: str | Path | None = No
         if tokens.peek()[0] == "eof":
             raise tokens.error("the body ends without --END--")
     n = num_states if num_states is not None else max(declared | {e[2] for e in edges} | {initial}) + 1
+    if n << len(aps) > MAX_HOA_TABLE:
+        raise AutomatonError(f"the automaton uses {n:,} states over {len(aps)} APs, a table of more than "
+                             f"{MAX_HOA_TABLE:,} entries", source)
     for value, what in [(initial, "Start:")] + [(e[2], "an edge target") for e in edges] + \
             [(s, "State:") for s in declared]:
         if not 0 <= value < n:
@@ -289,11 +314,7 @@ def read_hoa(path: str | Path, profile: Profile = "ltlf") -> Automaton:
         the file cannot be read or is not a supported HOA automaton (the message names the file).
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise AutomatonError(f"cannot read the automaton file: {exc}", path) from None
-    return parse_hoa(text, profile, path)
+    return parse_hoa(read_text(path, AutomatonError, "automaton file", MAX_HOA_BYTES), profile, path)
 
 
 def _quote(name: str) -> str:
@@ -327,5 +348,5 @@ def write_hoa(automaton: Automaton, path: str | Path | None = None, name: str | 
     lines.append("--END--")
     text = "\n".join(lines) + "\n"
     if path is not None:
-        Path(path).write_text(text, encoding="utf-8")
+        write_text_atomically(Path(path), text)
     return text

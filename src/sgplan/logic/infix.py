@@ -216,26 +216,48 @@ def to_infix(formula: Formula, dialect: Dialect = "sgplan") -> str:
     parsers produce them); n-ary ones print flat and read back left-nested.
     """
     strong, weak = ("X[!]", "X") if dialect == "spot" else ("X", None)
+    symbols: dict[type, str | None] = {Not: "!", Next: strong, WeakNext: weak, Eventually: "F", Always: "G"}
 
-    def show(f: Formula) -> str:
+    def unfold(f: Formula) -> Formula:
+        # Without a weak-next symbol, weak next is written !X!f.
+        return Not(Next(Not(f.arg))) if isinstance(f, WeakNext) and weak is None else f
+
+    def leaf(f: Formula) -> str:
         if isinstance(f, Const):
             return "true" if f.value else "false"
-        if isinstance(f, Atom):
-            return _atom_text(f.name)
-        if isinstance(f, WeakNext) and weak is None:
-            return show(Not(Next(Not(f.arg))))
-        if isinstance(f, (Not, Next, WeakNext, Eventually, Always)):
-            symbol = {Not: "!", Next: strong, WeakNext: weak, Eventually: "F", Always: "G"}[type(f)]
-            inner = show(f.arg)
-            if isinstance(f.arg, (And, Or, Implies, Equiv, Until, Release)):
-                return f"{symbol}({inner})"
-            return f"{symbol}{inner}" if symbol == "!" else f"{symbol} {inner}"
-        symbol = _BINARY_SYMBOL[type(f)]
-        parts = []
-        for child in f.children():
-            text = show(child)
-            binary = isinstance(child, (And, Or, Implies, Equiv, Until, Release))
-            parts.append(f"({text})" if binary else text)
-        return f" {symbol} ".join(parts)
+        return _atom_text(f.name)  # type: ignore[attr-defined]
 
-    return show(formula)
+    root = unfold(formula)
+    if isinstance(root, (Const, Atom)):
+        return leaf(root)
+    # Depth-first with an explicit stack (a formula from a file may nest deeper than Python recurses).
+    # A frame is (node, its children, the texts of the children written so far).
+    frames: list[tuple[Formula, list[Formula], list[str]]] = [(root, [unfold(c) for c in root.children()], [])]
+    while True:
+        node, children, done = frames[-1]
+        if len(done) < len(children):
+            child = children[len(done)]
+            if isinstance(child, (Const, Atom)):
+                done.append(leaf(child))
+            else:
+                frames.append((child, [unfold(c) for c in child.children()], []))
+            continue
+        frames.pop()
+        text = _node_text(node, children, done, symbols)
+        if not frames:
+            return text
+        frames[-1][2].append(text)
+
+
+_BINARY_NODES = (And, Or, Implies, Equiv, Until, Release)
+
+
+def _node_text(node: Formula, children: list[Formula], texts: list[str], symbols: dict[type, str | None]) -> str:
+    """The infix text of an operator node from its children's texts (a binary child is parenthesised)."""
+    if isinstance(node, (Not, Next, WeakNext, Eventually, Always)):
+        symbol, inner = symbols[type(node)], texts[0]
+        if isinstance(children[0], _BINARY_NODES):
+            return f"{symbol}({inner})"
+        return f"{symbol}{inner}" if symbol == "!" else f"{symbol} {inner}"
+    parts = [f"({text})" if isinstance(child, _BINARY_NODES) else text for child, text in zip(children, texts)]
+    return f" {_BINARY_SYMBOL[type(node)]} ".join(parts)

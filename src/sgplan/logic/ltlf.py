@@ -54,10 +54,12 @@ from sgplan.logic.formula import (
     Until,
     WeakNext,
     atoms,
+    check_nesting,
 )
 from sgplan.logic.infix import to_infix
 from sgplan.logic.minimize import minimize, product
 from sgplan.logic.normal import nnf
+from sgplan.safeio import quote
 
 DEFAULT_MAX_ENTRIES = 1_000_000
 """Default limit on ``num_states * 2**len(aps)`` (dense table entries, 4 bytes each)."""
@@ -312,14 +314,14 @@ def ltlf_to_dfa(
     missing = [p for p in used if p not in aps]
     if missing:
         raise FormulaError(
-            f"proposition {missing[0]!r} of the formula is not among the automaton's {list(aps)}"
+            f"proposition {quote(missing[0])} of the formula is not among the automaton's {quote(list(aps))}"
         )
     num_labels = 1 << len(aps)
     if num_labels > max_entries:
         raise _too_big(formula, 1, num_labels, max_entries, "at least")
     possible = possible_labels(aps, exclusive)
     prog = _Progression(aps, np.flatnonzero(possible))
-    normal = nnf(formula)
+    normal = check_nesting(nnf(formula))  # progression recurses over the normal form
     conjuncts = list(normal.args) if isinstance(normal, And) else [normal]
     parts = [_conjunct_dfa(c, prog, possible, tuple(aps), max_entries, formula) for c in conjuncts]
     result = parts[0]

@@ -127,45 +127,77 @@ def nnf(formula: Formula) -> Formula:
     return _nnf(formula, False)
 
 
-@lru_cache(maxsize=100_000)
-def _nnf(f: Formula, negate: bool) -> Formula:
+def _nnf(formula: Formula, negate: bool) -> Formula:
+    """``nnf`` of ``formula`` (negated if ``negate``), with an explicit stack: no recursion, so a long
+    chain of ``&`` or ``!`` as written by a user cannot overflow the interpreter's stack. Shared
+    sub-formulas are normalised once (the memo)."""
+    memo: dict[tuple[Formula, bool], Formula] = {}
+    stack: list[tuple[Formula, bool]] = [(formula, negate)]
+    while stack:
+        f, neg = stack[-1]
+        if (f, neg) in memo:
+            stack.pop()
+            continue
+        needs = _operands(f, neg)
+        missing = [item for item in needs if item not in memo]
+        if missing:
+            stack.extend(missing)
+            continue
+        stack.pop()
+        memo[(f, neg)] = _combine(f, neg, [memo[item] for item in needs])
+    return memo[(formula, negate)]
+
+
+def _operands(f: Formula, negate: bool) -> list[tuple[Formula, bool]]:
+    """The (sub-formula, negated?) pairs whose normal forms :func:`_combine` builds ``f``'s from."""
+    if isinstance(f, (Const, Atom)):
+        return []
+    if isinstance(f, Not):
+        return [(f.arg, not negate)]
+    if isinstance(f, (And, Or)):
+        return [(a, negate) for a in f.args]
+    if isinstance(f, Implies):  # a -> b  ==  !a | b
+        return [(f.left, not negate), (f.right, negate)]
+    if isinstance(f, Equiv):
+        return [(f.left, False), (f.right, False), (f.left, True), (f.right, True)]
+    if isinstance(f, (Next, WeakNext, Eventually, Always)):
+        return [(f.arg, negate)]
+    if isinstance(f, (Until, Release)):
+        return [(f.left, negate), (f.right, negate)]
+    raise TypeError(f"not a formula node: {f!r}")
+
+
+def _combine(f: Formula, negate: bool, parts: list[Formula]) -> Formula:
+    """The normal form of ``f`` (negated if ``negate``) from those of :func:`_operands`, in order."""
     if isinstance(f, Const):
         return Const(f.value != negate)
     if isinstance(f, Atom):
         return Not(f) if negate else f
     if isinstance(f, Not):
-        return _nnf(f.arg, not negate)
+        return parts[0]
     if isinstance(f, And):
-        parts = [_nnf(a, negate) for a in f.args]
         return mk_or(parts) if negate else mk_and(parts)
     if isinstance(f, Or):
-        parts = [_nnf(a, negate) for a in f.args]
         return mk_and(parts) if negate else mk_or(parts)
-    if isinstance(f, Implies):
-        # a -> b  ==  !a | b
-        return _nnf(Or((Not(f.left), f.right)), negate)
+    if isinstance(f, Implies):  # !(a -> b) == a & !b;  a -> b == !a | b
+        return mk_and(parts) if negate else mk_or(parts)
     if isinstance(f, Equiv):
-        both = mk_and([_nnf(f.left, False), _nnf(f.right, False)])
-        neither = mk_and([_nnf(f.left, True), _nnf(f.right, True)])
+        left, right, not_left, not_right = parts
         if not negate:
-            return mk_or([both, neither])
-        return mk_or([mk_and([_nnf(f.left, False), _nnf(f.right, True)]),
-                      mk_and([_nnf(f.left, True), _nnf(f.right, False)])])
+            return mk_or([mk_and([left, right]), mk_and([not_left, not_right])])
+        return mk_or([mk_and([left, not_right]), mk_and([not_left, right])])
+    arg = parts[0]
     if isinstance(f, Next):
         # !X f == weak-next !f: at the last cell X f is false, so its negation is true there.
-        return mk_weak_next(_nnf(f.arg, True)) if negate else mk_next(_nnf(f.arg, False))
+        return mk_weak_next(arg) if negate else mk_next(arg)
     if isinstance(f, WeakNext):
-        return mk_next(_nnf(f.arg, True)) if negate else mk_weak_next(_nnf(f.arg, False))
+        return mk_next(arg) if negate else mk_weak_next(arg)
     if isinstance(f, Eventually):
-        return mk_always(_nnf(f.arg, True)) if negate else mk_eventually(_nnf(f.arg, False))
+        return mk_always(arg) if negate else mk_eventually(arg)
     if isinstance(f, Always):
-        return mk_eventually(_nnf(f.arg, True)) if negate else mk_always(_nnf(f.arg, False))
+        return mk_eventually(arg) if negate else mk_always(arg)
     if isinstance(f, Until):
-        if negate:
-            return mk_release(_nnf(f.left, True), _nnf(f.right, True))
-        return mk_until(_nnf(f.left, False), _nnf(f.right, False))
+        return mk_release(parts[0], parts[1]) if negate else mk_until(parts[0], parts[1])
     if isinstance(f, Release):
-        if negate:
-            return mk_until(_nnf(f.left, True), _nnf(f.right, True))
-        return mk_release(_nnf(f.left, False), _nnf(f.right, False))
+        return mk_until(parts[0], parts[1]) if negate else mk_release(parts[0], parts[1])
     raise TypeError(f"not a formula node: {f!r}")

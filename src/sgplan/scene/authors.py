@@ -15,16 +15,19 @@ that both lists name the same set of rooms).
 
 from __future__ import annotations
 
+import os
 import re
+import warnings
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 import numpy as np
-import yaml
 from PIL import Image
 
 from sgplan.errors import SceneError
+from sgplan.limits import MAX_GRID_CELLS, MAX_REACH_RADIUS_M, MAX_ROBOT_RADIUS_M
+from sgplan.safeio import check_regular_file, load_yaml, quote, read_text
 from sgplan.scene.fields import Fields, is_int
 from sgplan.scene.model import Building, Floor, Room, SceneObject, StairsEnd
 
@@ -34,9 +37,6 @@ RADIUS_CONFIG_FILE = "radius_config.bash"
 
 PNG_OFFSET = 5
 """Stored PNG value minus this is the semantic value (the authors' ``+ SOC.NA`` with ``NA = -5``)."""
-
-# The libyaml parser is ~10x faster than the pure-Python one on the 9,000-line building files.
-_YamlLoader: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 
 def load_authors_scene(path: str | Path) -> Building:
@@ -69,7 +69,7 @@ def load_authors_scene(path: str | Path) -> Building:
     if num_floors < 1 or set(floors_data) != set(range(num_floors)):
         raise top.error(
             f"field 'floors' must be keyed 0..{num_floors - 1} (num_floors = {num_floors}), "
-            f"got keys {list(floors_data)}"
+            f"got keys {quote(list(floors_data))}"
         )
     floor_fields = [Fields(floors_data[k], yaml_path, f"floor {k}") for k in range(num_floors)]
     shape = _common_grid_shape(floor_fields)
@@ -128,24 +128,27 @@ def _locate(path: str | Path) -> tuple[Path, Path]:
 
 
 def _read_yaml(path: Path) -> Any:
-    try:
-        with path.open("rb") as stream:
-            return yaml.load(stream, Loader=_YamlLoader)
-    except yaml.YAMLError as error:
-        mark = getattr(error, "problem_mark", None)
-        where = f" at line {mark.line + 1}" if mark is not None else ""
-        problem = getattr(error, "problem", None) or str(error).splitlines()[0]
-        raise SceneError(f"invalid YAML{where}: {problem}", path) from None
-    except OSError as error:
-        raise SceneError(f"cannot read: {error.strerror}", path) from None
+    return load_yaml(path, SceneError, "YAML file")
+
+
+def _optional_file(path: Path) -> bool:
+    """Whether the optional file ``path`` is present; something else under its name is an error."""
+    if not os.path.lexists(path):
+        return False
+    check_regular_file(path, SceneError, "file")
+    return True
 
 
 def _read_png(path: Path, fields: Fields, key: str, shape: tuple[int, int]) -> np.ndarray:
     """Decode one 8-bit grayscale map to ``int16`` semantic values (stored value - 5)."""
-    if not path.is_file():
+    if not os.path.lexists(path):
         raise fields.error(f"field {key!r} names {path}, which does not exist")
+    size = check_regular_file(path, SceneError, "map")
     try:
-        with Image.open(path) as image:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", Image.DecompressionBombWarning)
+            image = Image.open(path)
+        with image:
             if image.mode != "L":
                 raise SceneError(f"map must be an 8-bit grayscale PNG (mode L), got mode {image.mode}", path)
             # The header size is checked before decoding, so a wrong (or huge) map costs nothing.
@@ -158,18 +161,21 @@ def _read_png(path: Path, fields: Fields, key: str, shape: tuple[int, int]) -> n
             stored = np.asarray(image, dtype=np.uint8)
     except SceneError:
         raise
-    except (OSError, SyntaxError, ValueError) as error:
-        raise SceneError(f"cannot decode map: {error}", path) from None
+    except (Image.DecompressionBombError, Image.DecompressionBombWarning) as error:
+        raise SceneError(f"refusing to decode the map ({size:,} bytes): {quote(str(error), 200)}", path) from None
+    except (OSError, SyntaxError, ValueError, MemoryError) as error:
+        raise SceneError(f"cannot decode map ({size:,} bytes): {quote(str(error), 200)}", path) from None
     return stored.astype(np.int16) - PNG_OFFSET
 
 
 def _read_radius_config(path: Path) -> tuple[float | None, float | None]:
     """``ROBOT_RADIUS`` and ``OBJECT_REACH_RADIUS`` (m) from the bash file, parsed, never executed."""
-    if not path.is_file():
+    if not _optional_file(path):
         return None, None
     values: dict[str, float] = {}
+    limits = {"ROBOT_RADIUS": MAX_ROBOT_RADIUS_M, "OBJECT_REACH_RADIUS": MAX_REACH_RADIUS_M}
     assignment = re.compile(r"^\s*(?:export\s+)?(ROBOT_RADIUS|OBJECT_REACH_RADIUS)=(.*)$")
-    for number, line in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), 1):
+    for number, line in enumerate(read_text(path, SceneError, "radius file", 2**20).splitlines(), 1):
         match = assignment.match(line)
         if match is None:
             continue
@@ -177,10 +183,13 @@ def _read_radius_config(path: Path) -> tuple[float | None, float | None]:
         try:
             value = float(text)
         except ValueError:
-            message = f"line {number}: {name} must be a number of metres, got {text!r}"
+            message = f"line {number}: {name} must be a number of metres, got {quote(text)}"
             raise SceneError(message, path) from None
-        if not value > 0 or value == float("inf"):
-            raise SceneError(f"line {number}: {name} must be a positive number of metres, got {text}", path)
+        if not 0 < value <= limits[name]:
+            raise SceneError(
+                f"line {number}: {name} must be a positive number of metres, at most {limits[name]:g}, got {quote(text)}",
+                path,
+            )
         values[name] = value
     return values.get("ROBOT_RADIUS"), values.get("OBJECT_REACH_RADIUS")
 
@@ -189,7 +198,7 @@ def _read_initial_positions(
     path: Path, num_floors: int, shape: tuple[int, int]
 ) -> list[tuple[int, int, int]]:
     """The optional start cells ``(row, col, floor)``; each must lie on the grid of an existing floor."""
-    if not path.is_file():
+    if not _optional_file(path):
         return []
     document = _read_yaml(path)
     if document is None:
@@ -199,11 +208,11 @@ def _read_initial_positions(
     cells = []
     for index, item in enumerate(document):
         if not (isinstance(item, list) and len(item) == 3 and all(is_int(v) for v in item)):
-            raise SceneError(f"entry {index} must be [row, col, floor] integers, got {item!r}", path)
+            raise SceneError(f"entry {index} must be [row, col, floor] integers, got {quote(item)}", path)
         row, col, floor = (int(v) for v in item)
         if not (0 <= floor < num_floors and 0 <= row < shape[0] and 0 <= col < shape[1]):
             raise SceneError(
-                f"entry {index} {item} is off the grid ({shape[0]}x{shape[1]} cells, {num_floors} floors)",
+                f"entry {index} {quote(item)} is off the grid ({shape[0]}x{shape[1]} cells, {num_floors} floors)",
                 path,
             )
         cells.append((row, col, floor))
@@ -217,17 +226,19 @@ def _common_grid_shape(floor_fields: list[Fields]) -> tuple[int, int]:
     shapes = []
     for fields in floor_fields:
         rows, cols = fields.int_list("grid_map_size", 2)
-        if rows < 1 or cols < 1:
-            raise fields.error(f"field 'grid_map_size' must be positive, got {[rows, cols]}")
+        if rows < 1 or cols < 1 or rows * cols > MAX_GRID_CELLS:
+            raise fields.error(
+                f"field 'grid_map_size' must be positive and at most {MAX_GRID_CELLS:,} cells, got {[rows, cols]}"
+            )
         shapes.append((rows, cols))
     if len(set(shapes)) != 1:
-        raise floor_fields[0].error(f"all floors must share one grid_map_size, got {shapes}")
+        raise floor_fields[0].error(f"all floors must share one grid_map_size, got {quote(shapes)}")
     return shapes[0]
 
 
 def _read_floor(fields: Fields, index: int, num_floors: int, shape: tuple[int, int]) -> Floor:
     if fields.integer("id") != index:
-        raise fields.error(f"field 'id' is {fields.raw('id')!r} but the floor is keyed {index}")
+        raise fields.error(f"field 'id' is {quote(fields.raw('id'))} but the floor is keyed {index}")
     resolution = fields.vector("grid_map_resolution", 2)
     if not (resolution > 0).all():
         raise fields.error(f"field 'grid_map_resolution' must be positive, got {resolution.tolist()}")
@@ -252,7 +263,7 @@ def _read_floor(fields: Fields, index: int, num_floors: int, shape: tuple[int, i
 def _read_room(fields: Fields, key: object, floor: Floor, num_floors: int, shape: tuple[int, int]) -> Room:
     room_id = fields.integer("id")
     if room_id != key or room_id <= 0:
-        raise fields.error(f"field 'id' is {room_id} but the room is keyed {key!r} (ids are positive)")
+        raise fields.error(f"field 'id' is {room_id} but the room is keyed {quote(key)} (ids are positive)")
     parent = fields.integer("parent_id")
     if parent != floor.index:
         raise fields.error(
@@ -281,7 +292,7 @@ def _read_room(fields: Fields, key: object, floor: Floor, num_floors: int, shape
 def _read_object(fields: Fields, key: object, room: Room, shape: tuple[int, int]) -> SceneObject:
     object_id = fields.integer("id")
     if object_id != key or object_id <= 0:
-        raise fields.error(f"field 'id' is {object_id} but the object is keyed {key!r} (ids are positive)")
+        raise fields.error(f"field 'id' is {object_id} but the object is keyed {quote(key)} (ids are positive)")
     if fields.integer("parent_id") != room.id:
         raise fields.error(f"parent_id {fields.raw('parent_id')} is not its room {room.id}")
     if fields.integer("parent_uuid", room.uuid) != room.uuid:
@@ -317,19 +328,19 @@ def _link_rooms(
         ids = room_fields.int_list("connected_room_ids", allow_null=True)
         unknown = [i for i in ids if i not in room_uuid_by_id]
         if unknown:
-            raise room_fields.error(f"connected_room_ids names unknown room id(s) {unknown}")
+            raise room_fields.error(f"connected_room_ids names unknown room id(s) {quote(unknown)}")
         uuids = [room_uuid_by_id[i] for i in ids]
         listed = room_fields.int_list("connected_room_uuids", allow_null=True)
         if sorted(listed) != sorted(uuids):
             raise room_fields.error(
-                f"connected_room_uuids {sorted(listed)} are not the uuids {sorted(uuids)} of "
-                f"connected_room_ids {ids}"
+                f"connected_room_uuids {quote(sorted(listed))} are not the uuids {quote(sorted(uuids))} of "
+                f"connected_room_ids {quote(ids)}"
             )
         room.connected_room_ids = tuple(ids)
         room.connected_room_uuids = tuple(uuids)
         for neighbour, cells in room_fields.mapping("door_grids").items():
             if not is_int(neighbour) or neighbour not in room_uuid_by_id:
-                raise room_fields.error(f"door_grids names unknown room id {neighbour!r}")
+                raise room_fields.error(f"door_grids names unknown room id {quote(neighbour)}")
             room.door_cells[int(neighbour)] = _door_cells(room_fields, int(neighbour), cells, shape)
 
 

@@ -37,6 +37,7 @@ from matplotlib.patches import Patch
 from matplotlib.transforms import blended_transform_factory
 
 from sgplan.errors import SceneError
+from sgplan.files import write_file_atomically
 from sgplan.scene.draw_labels import floor_labels, marker_box, place_labels
 from sgplan.scene.draw_path import PATH_COLOURS, PathCells, draw_path, path_cells
 from sgplan.scene.grid import OccupancyGrid
@@ -499,7 +500,8 @@ def draw_building(
             target = out / f"{stem}_{floor}.{fmt}"
             try:
                 with rc_context({"svg.fonttype": "none"}):  # SVG text stays text: smaller and searchable
-                    fig.savefig(target, format=fmt)
+                    # an earlier drawing stays whole if this one fails
+                    write_file_atomically(target, lambda tmp: fig.savefig(tmp, format=fmt))
             except OSError as error:
                 raise SceneError(f"cannot write {target}: {error.strerror}") from None
             written.append(target)

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from sgplan.errors import SceneError
+from sgplan.safeio import quote
 
 _MISSING: Any = object()
 
@@ -67,7 +68,7 @@ class Fields:
     def integer(self, key: str, default: Any = _MISSING) -> int:
         value = self.raw(key, default)
         if not is_int(value):
-            raise self.error(f"field {key!r} must be an integer, got {value!r}")
+            raise self.error(f"field {key!r} must be an integer, got {quote(value)}")
         return int(value)
 
     def number(self, key: str, default: Any = _MISSING) -> float:
@@ -76,13 +77,13 @@ class Fields:
         if isinstance(value, np.ndarray) and value.shape == ():
             value = value.item()
         if not is_number(value) or not math.isfinite(value):
-            raise self.error(f"field {key!r} must be a finite number, got {value!r}")
+            raise self.error(f"field {key!r} must be a finite number, got {quote(value)}")
         return float(value)
 
     def text(self, key: str, default: Any = _MISSING) -> str:
         value = self.raw(key, default)
         if not isinstance(value, str):
-            raise self.error(f"field {key!r} must be a string, got {value!r}")
+            raise self.error(f"field {key!r} must be a string, got {quote(value)}")
         return value
 
     def vector(self, key: str, length: int) -> np.ndarray:
@@ -94,7 +95,7 @@ class Fields:
             or len(items) != length
             or not all(is_number(v) and math.isfinite(v) for v in items)
         ):
-            raise self.error(f"field {key!r} must be a list of {length} finite numbers, got {value!r}")
+            raise self.error(f"field {key!r} must be a list of {length} finite numbers, got {quote(value)}")
         return np.array(items, dtype=np.float64)
 
     def int_list(self, key: str, length: int | None = None, *, allow_null: bool = False) -> list[int]:
@@ -108,7 +109,7 @@ class Fields:
             or not all(is_int(v) for v in value)
         ):
             size = f"{length} " if length is not None else ""
-            raise self.error(f"field {key!r} must be a list of {size}integers, got {value!r}")
+            raise self.error(f"field {key!r} must be a list of {size}integers, got {quote(value)}")
         return [int(v) for v in value]
 
     def cell(self, key: str) -> tuple[int, int]:
@@ -122,7 +123,7 @@ class Fields:
         if value is None:
             return ()
         if not isinstance(value, (list, tuple)) or not all(isinstance(v, str) for v in value):
-            raise self.error(f"field {key!r} must be a list of strings, got {value!r}")
+            raise self.error(f"field {key!r} must be a list of strings, got {quote(value)}")
         return tuple(value)
 
     def mapping(self, key: str, *, allow_null: bool = True) -> Mapping[Any, Any]:

@@ -31,11 +31,16 @@ import numpy as np
 from numpy.lib import format as npy_format
 
 from sgplan.errors import SceneError
+from sgplan.safeio import check_regular_file, clip, quote
 from sgplan.scene.fields import Fields
 from sgplan.scene.model import Building, Floor, Room, SceneObject
 
 ARRAY_KEY = "output"
 """The one member of the npz (``output.npy``)."""
+MAX_PICKLE_NESTING = 256
+"""Open MARKs (nested tuples, lists, dicts being filled) the unpickler admits; Gibson files use < 10."""
+MAX_PICKLE_STACK = 100_000
+"""Items the unpickler's stack may hold at once (containers nested without MARKs count here)."""
 
 
 def _reconstruct(subtype: type, shape: Any, dtype: Any) -> np.ndarray:
@@ -89,11 +94,30 @@ class RestrictedUnpickler(pickle._Unpickler):
     the stack and stop reading early; unpickling the graph part of a Gibson file this way is fast.
     """
 
+    dispatch = dict(pickle._Unpickler.dispatch)  # type: ignore[attr-defined]  # noqa: RUF012
+
     def find_class(self, module: str, name: str) -> Any:
         try:
             return _ALLOWED[(module, name)]
         except KeyError:
             raise ForbiddenGlobal(module, name) from None
+
+    def _check_depth(self) -> None:
+        # The unpickler itself is iterative, but what it builds is walked by recursive code later
+        # (repr, comparisons); nesting shows as open MARKs (metastack) or containers left on the stack.
+        if len(self.metastack) > MAX_PICKLE_NESTING or len(self.stack) > MAX_PICKLE_STACK:
+            raise pickle.UnpicklingError(
+                f"the pickle nests deeper than {MAX_PICKLE_NESTING} levels or holds more than "
+                f"{MAX_PICKLE_STACK:,} open items"
+            )
+
+    for _opcode in (pickle.MARK, pickle.EMPTY_LIST, pickle.EMPTY_DICT, pickle.EMPTY_SET, pickle.EMPTY_TUPLE):
+        def _bounded(self: RestrictedUnpickler, _load: Callable[..., None] = dispatch[_opcode[0]]) -> None:
+            _load(self)
+            self._check_depth()
+
+        dispatch[_opcode[0]] = _bounded
+    del _opcode, _bounded
 
 
 class _KeysFound(Exception):
@@ -162,13 +186,12 @@ def read_scene_graph_dict(
         pickled dict, lacks one of ``keys``, or its pickle names a forbidden global (the message names it).
     """
     path = Path(path).expanduser()
-    if not path.is_file():
-        raise SceneError("raw scene graph file does not exist", path)
+    check_regular_file(path, SceneError, "raw scene graph file")
     member = f"{ARRAY_KEY}.npy"
     try:
         with zipfile.ZipFile(path) as archive:
             if member not in archive.namelist():
-                raise SceneError(f"npz has no {ARRAY_KEY!r} array (members: {archive.namelist()})", path)
+                raise SceneError(f"npz has no {ARRAY_KEY!r} array (members: {quote(archive.namelist())})", path)
             with archive.open(member) as stream:
                 value = _unpickle_npy(stream, frozenset(keys) if keys is not None else None)
     except ForbiddenGlobal as error:
@@ -180,9 +203,9 @@ def read_scene_graph_dict(
     except SceneError:
         raise
     except (zipfile.BadZipFile, zlib.error, EOFError, OSError) as error:
-        raise SceneError(f"not a readable npz (corrupt or truncated): {error}", path) from None
-    except (pickle.UnpicklingError, ValueError, TypeError, AttributeError, IndexError, KeyError) as error:
-        raise SceneError(f"corrupt pickle in {member}: {error}", path) from None
+        raise SceneError(f"not a readable npz (corrupt or truncated): {clip(str(error))}", path) from None
+    except (pickle.UnpicklingError, ValueError, TypeError, AttributeError, IndexError, KeyError, RecursionError) as error:
+        raise SceneError(f"corrupt pickle in {member}: {clip(str(error))}", path) from None
     except MemoryError:
         raise SceneError(f"{member} asks for more memory than is available", path) from None
     if not isinstance(value, dict):
@@ -191,7 +214,7 @@ def read_scene_graph_dict(
         return value
     missing = [key for key in keys if key not in value]
     if missing:
-        raise SceneError(f"the scene-graph dict has no {missing} item(s) (it has {list(value)})", path)
+        raise SceneError(f"the scene-graph dict has no {missing} item(s) (it has {quote(list(value))})", path)
     return {key: value[key] for key in keys}
 
 
@@ -246,7 +269,7 @@ def load_gibson_npz(path: str | Path) -> Building:
         fields = Fields(record, path, f"room {key}")
         letter = fields.text("floor_number")
         if len(letter) != 1 or not letter.isalpha():
-            raise fields.error(f"field 'floor_number' must be one floor letter, got {letter!r}")
+            raise fields.error(f"field 'floor_number' must be one floor letter, got {quote(letter)}")
         room_uuid = next_uuid
         next_uuid += 1
         if letter not in floor_uuid:
@@ -309,7 +332,7 @@ def is_gibson_npz(path: str | Path) -> bool:
 def _node_id(fields: Fields, key: object) -> int:
     node_id = fields.integer("id")
     if node_id != key or node_id <= 0:
-        raise fields.error(f"field 'id' is {node_id} but the node is keyed {key!r} (ids are positive)")
+        raise fields.error(f"field 'id' is {node_id} but the node is keyed {quote(key)} (ids are positive)")
     return node_id
 
 

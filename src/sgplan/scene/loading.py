@@ -27,18 +27,24 @@ def load_scene(path: str | Path) -> Building:
         The path does not exist or is none of these, or the loader of its format rejects it.
     """
     path = Path(path).expanduser()
-    if not path.exists():
-        raise SceneError("scene path does not exist", path)
-    if is_authors_scene(path):
+    try:
+        if not path.exists():
+            raise SceneError("scene path does not exist", path)
+        # Telling the formats apart looks into the folder: an unreadable one fails here.
+        kind = "authors" if is_authors_scene(path) else "native" if is_native_scene(path) else (
+            "npz" if is_gibson_npz(path) else None)
+    except OSError as error:
+        raise SceneError(f"cannot read the scene: {error.strerror or error}", path) from None
+    if kind == "authors":
         return load_authors_scene(path)
     from sgplan.importers.detect import detect_kind, import_scene  # importers sit above scene/
 
-    kind = detect_kind(path)
-    if kind is not None:
-        return import_scene(kind, path).building
-    if is_native_scene(path):
+    source = detect_kind(path)
+    if source is not None:
+        return import_scene(source, path).building
+    if kind == "native":
         return read_native_scene(path)
-    if is_gibson_npz(path):
+    if kind == "npz":
         return load_gibson_npz(path)
     raise SceneError(
         "not a scene: expected a folder holding building.yaml (authors' format) or scene.json (sgplan's "

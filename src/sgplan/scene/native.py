@@ -17,12 +17,16 @@ from __future__ import annotations
 import json
 import math
 import zipfile
+import zlib
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from sgplan.errors import SceneError
+from sgplan.files import write_file_atomically, write_text_atomically
+from sgplan.limits import MAX_GRID_CELLS, MAX_REACH_RADIUS_M, MAX_ROBOT_RADIUS_M
+from sgplan.safeio import check_regular_file, load_json, quote
 from sgplan.scene.fields import Fields, is_int
 from sgplan.scene.model import Building, Floor, Room, SceneObject, StairsEnd
 
@@ -69,12 +73,13 @@ def write_native_scene(building: Building, folder: str | Path) -> Path:
         },
         "floors": [_floor_document(floor) for floor in building.floors],
     }
-    text = json.dumps(document, indent=1, allow_nan=False, default=_plain_number)
-    (folder / GRAPH_FILE).write_text(text + "\n", encoding="utf-8")
     raster_path = folder / RASTER_FILE
+    # Rasters first, each file replaced whole: an interrupted write leaves the earlier scene readable.
     if arrays:
-        np.savez_compressed(raster_path, **arrays)
-    elif raster_path.exists():
+        write_file_atomically(raster_path, lambda tmp: np.savez_compressed(tmp, **arrays))
+    text = json.dumps(document, indent=1, allow_nan=False, default=_plain_number)
+    write_text_atomically(folder / GRAPH_FILE, text + "\n")
+    if not arrays and raster_path.exists():
         raster_path.unlink()  # a stale file from an earlier write would contradict "rasters": null
     return folder
 
@@ -164,15 +169,9 @@ def read_native_scene(path: str | Path) -> Building:
     if not path.exists():
         raise SceneError("scene path does not exist", path)
     graph_path = path / GRAPH_FILE if path.is_dir() else path
-    if not graph_path.is_file():
+    if not (graph_path.exists() or graph_path.is_symlink()):
         raise SceneError(f"scene folder has no {GRAPH_FILE}", path)
-    try:
-        document = json.loads(graph_path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError) as error:
-        raise SceneError(f"cannot read: {error}", graph_path) from None
-    except json.JSONDecodeError as error:
-        where = f"line {error.lineno} column {error.colno}"
-        raise SceneError(f"invalid JSON at {where}: {error.msg}", graph_path) from None
+    document = load_json(graph_path, SceneError, "scene file")
     top = Fields(document, graph_path, "scene")
     if top.raw("format", None) != FORMAT_NAME or not is_int(top.raw("version", None)):
         raise top.error(f"not an {FORMAT_NAME} document (fields 'format' and 'version' are required)")
@@ -206,8 +205,8 @@ def read_native_scene(path: str | Path) -> Building:
             name=info.text("name"),
             floors=floors,
             source=graph_path.parent,
-            robot_radius_m=None if robot is None else info.number("robot_radius_m"),
-            reach_radius_m=None if reach is None else info.number("reach_radius_m"),
+            robot_radius_m=None if robot is None else _radius(info, "robot_radius_m", MAX_ROBOT_RADIUS_M),
+            reach_radius_m=None if reach is None else _radius(info, "reach_radius_m", MAX_REACH_RADIUS_M),
             initial_cells=[(c[0], c[1], c[2]) for c in cells],
         )
     except SceneError as error:
@@ -218,6 +217,14 @@ def read_native_scene(path: str | Path) -> Building:
     return building
 
 
+def _radius(fields: Fields, key: str, maximum: float) -> float:
+    """A radius in metres in (0, ``maximum``], the bound the command line puts on the same option."""
+    value = fields.number(key)
+    if not 0 < value <= maximum:
+        raise fields.error(f"field {key!r} must be a radius in metres > 0 and <= {maximum:g}, got {value:g}")
+    return value
+
+
 def _read_floor(fields: Fields, position: int) -> tuple[Floor, tuple[int, int]]:
     """The floor (rasters still empty) and its declared ``grid_shape``."""
     if fields.integer("index") != position:
@@ -226,6 +233,8 @@ def _read_floor(fields: Fields, position: int) -> tuple[Floor, tuple[int, int]]:
     resolution = fields.vector("resolution_m", 2)
     ground = fields.raw("ground_z_m", None)
     rows, cols = fields.int_list("grid_shape", 2)
+    if rows * cols > MAX_GRID_CELLS:
+        raise fields.error(f"grid_shape {[rows, cols]} has more than {MAX_GRID_CELLS:,} cells")
     if rows < 0 or cols < 0 or ((rows == 0) != (cols == 0)) or (rows > 0 and not (resolution > 0).all()):
         raise fields.error(f"grid_shape {[rows, cols]} with resolution_m {resolution.tolist()} is not a grid")
     floor = Floor(
@@ -314,15 +323,16 @@ def _read_arrays(graph_path: Path, top: Fields) -> dict[str, np.ndarray]:
     if name is None:
         return {}
     if not isinstance(name, str) or Path(name).name != name:
-        raise top.error(f"field 'rasters' must be a file name beside {GRAPH_FILE}, got {name!r}")
+        raise top.error(f"field 'rasters' must be a file name beside {GRAPH_FILE}, got {quote(name)}")
     path = graph_path.parent / name
-    if not path.is_file():
+    if not path.exists():
         raise top.error(f"field 'rasters' names {path}, which does not exist")
+    check_regular_file(path, SceneError, "raster archive")
     try:
         with np.load(path, allow_pickle=False) as archive:
             return {key: archive[key] for key in archive.files}
-    except (OSError, ValueError, EOFError, zipfile.BadZipFile) as error:
-        message = f"not a readable npz of plain arrays (corrupt or truncated): {error}"
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile, zlib.error, MemoryError) as error:
+        message = f"not a readable npz of plain arrays (corrupt or truncated): {quote(str(error), 200)}"
         raise SceneError(message, path) from None
 
 
