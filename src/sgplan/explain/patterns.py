@@ -110,6 +110,27 @@ def _is_literal(f: Formula) -> bool:
     return isinstance(f, Atom) or (isinstance(f, Not) and isinstance(f.arg, Atom))
 
 
+def _factored(s: Formula) -> list[Formula] | None:
+    """``s`` as a list of conjoined literals and choices among atoms, or ``None``.
+
+    A disjunction of conjunctions that share all literals but one atom each is factored:
+    ``(a & r) | (b & r)`` -> ``[a | b, r]`` (two chairs of one room).
+    """
+    if isinstance(s, Or):
+        options = [_conjuncts(d) for d in _disjuncts(s)]
+        if not all(all(_is_literal(x) for x in o) for o in options):
+            return None
+        common = [x for x in options[0] if all(x in o for o in options[1:])]
+        rest = [[x for x in o if x not in common] for o in options]
+        if not all(len(r) == 1 and isinstance(r[0], Atom) for r in rest) or len({r[0] for r in rest}) < len(rest):
+            return None
+        return [Or(tuple(r[0] for r in rest)), *common]
+    items = _conjuncts(s)
+    ok = all(_is_literal(x) or (isinstance(x, Or) and all(isinstance(d, Atom) for d in _disjuncts(x)))
+             for x in items)
+    return items if ok and len(items) > 1 else None
+
+
 class _Reader:
     def __init__(self, describe: Describe) -> None:
         self.describe = describe
@@ -182,28 +203,38 @@ class _Reader:
         same = self._same_kind_atoms(s) if isinstance(s, Or) else None
         if same is not None:
             return f"{'reach' if same[0].kind == 'object' else 'go to'} {self.choice(same)}"
-        if isinstance(s, And) and all(_is_literal(c) for c in _conjuncts(s)):
-            reading = self._joint_goal(_conjuncts(s))
+        parts = _factored(s)
+        if parts is not None:
+            reading = self._joint_goal(parts)
             if reading is not None:
                 return reading
         return f"at some moment be {self.cond(s)}"
 
     def _joint_goal(self, literals: list[Formula]) -> str | None:
-        """``reach A and B at the same moment while in R while not ...`` for a conjunction of literals."""
-        positive = [self.entity(a) for a in literals if isinstance(a, Atom)]
+        """``reach A and B at the same moment while in R while not ...`` for a conjunction of literals
+        and choices among atoms of one kind."""
+        positive: list[list[Entity]] = []
+        for item in literals:
+            if isinstance(item, Atom):
+                positive.append([self.entity(item)])
+            elif isinstance(item, Or):
+                same = self._same_kind_atoms(item)
+                if same is None:
+                    return None
+                positive.append(same)
         negative = [a for a in literals if isinstance(a, Not)]
-        rooms = [e for e in positive if e.kind == "room"]
-        objects = [e for e in positive if e.kind == "object"]
+        rooms = [g for g in positive if g[0].kind == "room"]
+        objects = [g for g in positive if g[0].kind == "object"]
         if len(rooms) > 1 or len(rooms) + len(objects) != len(positive) or not positive:
             return None
         if objects:
-            text = "reach " + " and ".join(e.phrase() for e in objects)
+            text = "reach " + " and ".join(self.choice(g) for g in objects)
             if len(objects) > 1:
                 text += " at the same moment"
             if rooms:
-                text += f" while in {rooms[0].phrase()}"
+                text += f" while in {self.choice(rooms[0])}"
         else:
-            text = f"go to {rooms[0].phrase()}"
+            text = f"go to {self.choice(rooms[0])}"
         if negative:
             text += " while " + " and ".join(self.cond(n) for n in negative)
         return text
