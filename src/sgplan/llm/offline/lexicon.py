@@ -113,7 +113,8 @@ REFUSED_VERBS: dict[str, str] = {
     "remain": "'remain' (the translator cannot express staying in a place)",
     "wait": "'wait' (the translator cannot express waiting)",
     "repeat": "'repeat' (the translator cannot express repeated visits)",
-    "twice": "'twice' (the translator cannot express repeated visits)",
+    "twice": "'twice' here (say 'visit the kitchen twice')",
+    "thrice": "'thrice' (say 'visit the kitchen twice', then again)",
     "unless": "'unless' (rephrase with 'if')",
     "except": "'except' here (put 'except ...' right after the noun phrase it restricts)",
     "previous": "'previous' (name the rooms or objects again instead of referring back to them)",
@@ -130,12 +131,20 @@ REFUSED_VERBS: dict[str, str] = {
 """Words that would silently change the meaning if read as ordinary words: refused with a reason."""
 
 FILLERS = frozenset(
-    """please also then eventually first firstly secondly thirdly lastly finally afterwards later next
+    """please also then eventually first firstly lastly finally afterwards later next
     at some point sometime you should must need needs to have has had be been is are was were can could
-    would will shall robot and moreover additionally furthermore too as well go ahead kindly do again
+    would will shall robot and moreover additionally furthermore too as well go ahead kindly do
     """.split()
 )
-"""Words that carry no meaning for the formula wherever they appear between clauses."""
+"""Words that carry no meaning for the formula wherever they appear between clauses. Order words that do
+carry meaning (*secondly*, *before that*, *but first*, a trailing *first*, *again*) are grammar, not
+fillers (:mod:`.grammar`)."""
+
+RELATIVE_FLOORS = {"upstairs": 1, "downstairs": -1}
+"""Floors relative to the robot's start floor (or, in a two-floor building, the upper / lower floor)."""
+
+REVISIT_VERBS = frozenset("return returning back".split())
+"""``return to X`` / ``go back to X`` after X was visited: a new visit, as with ``again``."""
 
 ORDER_MODIFIERS = (
     ("one", "after", "the", "other"), ("one", "after", "another"), ("in", "that", "order"),
