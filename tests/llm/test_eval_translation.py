@@ -4,7 +4,6 @@ and against the scripted OpenAI-compatible server (record, then replay without i
 from __future__ import annotations
 
 import json
-import re
 from pathlib import Path
 
 import pytest
@@ -77,10 +76,11 @@ def test_cli_offline_prints_refused_and_wrong_side_by_side(mission_set: Path, tm
     out = capsys.readouterr().out
     assert "[refused] bathroom (demo): Visit the bathroom.\n    'the bathroom' matches 2 rooms" in out
     block = out[out.index("[wrong] either"):]
-    expected = re.search(r"\n    expected: (.*)\n", block).group(1)
-    got = re.search(r"\n    got:      (.*)\n", block).group(1)
-    assert "room_4" in expected and "room_6" in expected and expected != got and "room_4" in got
-    assert "they differ on" in block
+    expected = block[block.index("\n    expected: "):block.index("\n    got:      ")]
+    got = block[block.index("\n    got:      "):block.index("\n    they differ on {enter(room_4)}")]
+    # plain words from sgplan.explain, one under the other: a choice against two goals
+    assert "kitchen (room_4, floor 0) or the living room (room_6, floor 0)" in expected
+    assert " or " not in got and "kitchen (room_4, floor 0)" in got and "living room (room_6, floor 0)" in got
     assert "[right]" not in out and out.strip().endswith("right 3/5 (60.0%), wrong 1, refused 1  [offline-pattern]")
     assert json.loads(report.read_text())["counts"]["wrong"] == 1
     # without the wrong gold, nothing is wrong: exit status 0
@@ -163,3 +163,18 @@ def test_against_the_fake_openai_server_then_replayed(fake_llm, tmp_path: Path, 
     data = json.loads(report.read_text())
     assert data["counts"] == {"right": 1, "wrong": 1, "refused": 1} and data["backend"].startswith("llm")
     assert len(fake_llm.requests) == 5
+
+
+def test_start_floor_reaches_the_offline_translator(tmp_path: Path):
+    missions = [{"id": "up", "scene": "demo", "text": "Go to the bathroom downstairs.", "formula": "F r5",
+                 "start_floor": 1},
+                {"id": "here", "scene": "demo", "text": "Go to the bathroom on this floor.", "formula": "F r14",
+                 "start_floor": 1},
+                {"id": "unknown", "scene": "demo", "text": "Go to the bathroom on this floor.", "formula": "F r14"}]
+    demo = demo_building()
+    score = score_translator(PatternTranslator(), load_jsonl_set(write_set(tmp_path / "s.jsonl", missions)),
+                             lambda scene: demo)
+    assert [r.outcome for r in score.results] == ["right", "right", "refused"]
+    bad = write_set(tmp_path / "bad.jsonl", [{**missions[0], "start_floor": "one"}])
+    with pytest.raises(MissionError, match="start_floor must be a floor number"):
+        load_jsonl_set(bad)

@@ -185,3 +185,8 @@ def test_again_without_an_ordered_first_visit_is_refused(demo):
     refused("Visit the kitchen again.", "'the kitchen again': it was not a goal before", demo)
     refused("Visit the kitchen. Visit it again.", "needs the first visit earlier in the same sequence", demo)
     refused("Visit the kitchen nine times.", "at most 5 repeated visits", demo)
+
+
+def test_this_floor_is_the_start_floor(demo):
+    means("Go to the bathroom on this floor.", "F r5", demo, PatternTranslator(start_floor=0))
+    refused("Go to the bathroom on this floor.", "'this floor' depends on where the robot starts", demo)

@@ -17,7 +17,7 @@ from pathlib import Path
 
 from sgplan.commands.common import load_scene_arg, non_negative_int, positive_int, say
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
-from sgplan.llm.evaluate import Explainer, infix_explainer
+from sgplan.logic import Formula
 from sgplan.scene.model import Building
 
 
@@ -45,13 +45,12 @@ def _indented(label: str, text: str) -> str:
     return "\n".join([f"    {label} {lines[0]}", *(f"    {pad}{line}" for line in lines[1:])])
 
 
-def _explainer() -> Explainer:
-    """Plain words from :mod:`sgplan.explain` when it is installed alongside, else the infix formula."""
-    try:
-        from sgplan.explain import explain_formula
-    except ImportError:
-        return infix_explainer
-    return lambda formula, building: explain_formula(formula, building).text
+def _explain(formula: Formula, building: Building) -> str:
+    """What a formula asks in plain words over the scene (:func:`sgplan.explain.explain_mission`)."""
+    from sgplan.explain import explain_mission
+    from sgplan.mission import mission_from_formula
+
+    return explain_mission(mission_from_formula(formula), building).text
 
 
 def run(args: argparse.Namespace) -> int:
@@ -65,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
         return load_scene_arg(scene, args.data)
 
     say(f"scoring {backends.translator.name} ({backends.description}) on {len(missions)} missions of {args.set}")
-    score = score_translator(backends.translator, missions, building_of, set_path=str(args.set), explain=_explainer())
+    score = score_translator(backends.translator, missions, building_of, set_path=str(args.set), explain=_explain)
     for r in score.results:
         if r.outcome == "right" and not args.verbose:
             continue

@@ -7,7 +7,8 @@ The set is a JSONL file, one mission per line::
 ``scene`` is ``demo``, a Gibson scene name or a scene folder; ``formula`` is the gold formula in Spot-like
 infix over ``"enter(room_N)"`` / ``"reach(object_N)"`` (the shorthand ``r4`` / ``o19`` is accepted too).
 A line with ``"formula": null`` and an optional ``"expect_error": "fragment"`` is a mission the backend
-must refuse. Other fields are kept as they are and ignored. Blank lines and lines starting with ``#``
+must refuse. An optional ``"start_floor"`` (0 = the lowest) says where the robot starts, for words such as
+"upstairs" (the offline translator reads them relative to it; a language model gets the text only). Other fields are kept as they are and ignored. Blank lines and lines starting with ``#``
 are skipped.
 
 A translation is **right** when its automaton accepts exactly the gold's words among those the scene
@@ -81,8 +82,13 @@ def load_jsonl_set(path: str | Path) -> list[EvalMission]:
                 raise MissionError(f"{where} (mission {mission_id!r}): the gold formula does not parse: {exc}",
                                    path) from None
         expect_error = None if gold is not None else str(entry.get("expect_error") or "")
+        start_floor = entry.get("start_floor")
+        if start_floor is not None and (not isinstance(start_floor, int) or start_floor < 0):
+            raise MissionError(f"{where} (mission {mission_id!r}): start_floor must be a floor number (0 = the "
+                               f"lowest), got {start_floor!r}", path)
         missions.append(EvalMission(mission_id, str(entry["scene"]), str(entry["text"]), gold, expect_error,
-                                    must_pass=False, paper=False, note=str(entry.get("note", ""))))
+                                    must_pass=False, paper=False, note=str(entry.get("note", "")),
+                                    start_floor=start_floor))
     if not missions:
         raise MissionError("the mission set holds no mission", path)
     return missions

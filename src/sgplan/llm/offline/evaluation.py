@@ -30,7 +30,9 @@ _SHORTHAND = re.compile(r"\b([ro])(\d+)\b")
 
 
 class Translator(Protocol):
-    """What is scored: a named backend turning text into a formula for a building."""
+    """What is scored: a named backend turning text into a formula for a building. A backend that can read
+    words relative to the robot's start ("upstairs") also has ``starting_on(floor)`` returning a copy
+    that knows the start floor; it is used for missions that give one."""
 
     @property
     def name(self) -> str: ...
@@ -40,7 +42,8 @@ class Translator(Protocol):
 
 @dataclass(frozen=True)
 class EvalMission:
-    """One mission of the set; exactly one of ``gold`` and ``expect_error`` is set."""
+    """One mission of the set; exactly one of ``gold`` and ``expect_error`` is set; ``start_floor`` is the
+    robot's start floor when the mission gives it."""
 
     id: str
     scene: str
@@ -50,6 +53,7 @@ class EvalMission:
     must_pass: bool
     paper: bool
     note: str
+    start_floor: int | None = None
 
 
 @dataclass(frozen=True)
@@ -144,8 +148,10 @@ def evaluate(
     results = []
     for m in missions:
         building = building_of(m.scene)
+        starting_on = getattr(translator, "starting_on", None)
+        backend = starting_on(m.start_floor) if m.start_floor is not None and starting_on else translator
         try:
-            formula = translator.translate(m.text, building).formula  # type: ignore[attr-defined]
+            formula = backend.translate(m.text, building).formula  # type: ignore[attr-defined]
         except MissionError as exc:
             message = str(exc)
             if m.expect_error is not None:

@@ -885,7 +885,8 @@ class MissionParser:
         return head
 
     def floor_qualifier(self) -> int | None:
-        """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> 1, 1, 0."""
+        """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> 1, 1, 0;
+        ``upstairs`` / ``downstairs`` / ``on this floor``: relative to the start floor (:meth:`relative_floor`)."""
         if self.word() in lx.RELATIVE_FLOORS:  # "the bathroom upstairs"
             floor = self.relative_floor(self.word())
             self.i += 1
@@ -902,6 +903,13 @@ class MissionParser:
             k += 2
         elif nxt in lx.FLOOR_WORDS and (w in lx.FLOOR_ORDINALS or w in lx.FLOOR_NAMED or w in lx.FLOOR_TOP):
             floor = lx.FLOOR_ORDINALS.get(w, lx.FLOOR_NAMED.get(w, self.vocab.num_floors - 1))
+            k += 2
+        elif nxt in lx.FLOOR_WORDS and w in lx.START_FLOOR_WORDS:  # "on this floor": where the robot starts
+            if self.start_floor is None:
+                raise self.fail(f"'{w} {nxt}' depends on where the robot starts, which is not known here; say which "
+                                f"floor (the building {self.vocab.building_name!r} has floors 0 to "
+                                f"{self.vocab.num_floors - 1})")
+            floor = self.start_floor
             k += 2
         if floor is None:
             return None

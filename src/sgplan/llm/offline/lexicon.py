@@ -143,6 +143,9 @@ fillers (:mod:`.grammar`)."""
 RELATIVE_FLOORS = {"upstairs": 1, "downstairs": -1}
 """Floors relative to the robot's start floor (or, in a two-floor building, the upper / lower floor)."""
 
+START_FLOOR_WORDS = ("this", "current", "my", "our")
+"""``on this floor`` / ``on the current floor``: the robot's start floor."""
+
 REVISIT_VERBS = frozenset("return returning back".split())
 """``return to X`` / ``go back to X`` after X was visited: a new visit, as with ``again``."""
 

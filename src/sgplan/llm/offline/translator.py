@@ -74,6 +74,10 @@ class PatternTranslator:
         to it (without it they are understood only in a two-floor building)."""
         self.start_floor = start_floor
 
+    def starting_on(self, floor: int | None) -> PatternTranslator:
+        """The same translator for a robot starting on ``floor``."""
+        return PatternTranslator(floor)
+
     def translate(self, text: str, building: Building) -> Translation:
         """Parse, ground and translate ``text``.
 
