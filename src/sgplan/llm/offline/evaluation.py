@@ -29,6 +29,13 @@ Outcome = Literal["right", "refused", "wrong"]
 _SHORTHAND = re.compile(r"\b([ro])(\d+)\b")
 
 
+class Translated(Protocol):
+    """What a translator returns, as far as scoring is concerned."""
+
+    @property
+    def formula(self) -> Formula: ...
+
+
 class Translator(Protocol):
     """What is scored: a named backend turning text into a formula for a building. A backend that can read
     words relative to the robot's start ("upstairs") also has ``starting_on(floor)`` returning a copy
@@ -37,7 +44,7 @@ class Translator(Protocol):
     @property
     def name(self) -> str: ...
 
-    def translate(self, text: str, building: Building) -> object: ...
+    def translate(self, text: str, building: Building) -> Translated: ...
 
 
 @dataclass(frozen=True)
@@ -142,8 +149,8 @@ def evaluate(
     """Translate every mission with ``translator`` and classify the outcome (see :class:`EvalResult`).
 
     Formulas are compared under the scene's facts (:func:`same_language` with the mission's building).
-    ``translator.translate`` must return an object with a ``formula`` attribute. Errors other than
-    :class:`MissionError` propagate: they are bugs (or a failing language-model server), not refusals.
+    Errors other than :class:`MissionError` propagate: they are bugs (or a failing language-model
+    server), not refusals.
     """
     results = []
     for m in missions:
@@ -151,7 +158,7 @@ def evaluate(
         starting_on = getattr(translator, "starting_on", None)
         backend = starting_on(m.start_floor) if m.start_floor is not None and starting_on else translator
         try:
-            formula = backend.translate(m.text, building).formula  # type: ignore[attr-defined]
+            formula = backend.translate(m.text, building).formula
         except MissionError as exc:
             message = str(exc)
             if m.expect_error is not None:

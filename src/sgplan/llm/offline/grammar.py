@@ -888,9 +888,9 @@ class MissionParser:
         """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> 1, 1, 0;
         ``upstairs`` / ``downstairs`` / ``on this floor``: relative to the start floor (:meth:`relative_floor`)."""
         if self.word() in lx.RELATIVE_FLOORS:  # "the bathroom upstairs"
-            floor = self.relative_floor(self.word())
+            relative = self.relative_floor(self.word())
             self.i += 1
-            return floor
+            return relative
         if self.word() not in ("on", "in", "at", "of", "from"):
             return None
         k = 1
