@@ -297,11 +297,14 @@ def _literal_dict(text: str, folder: Path) -> dict[str, str]:
 # -- writing the authors' folder ---------------------------------------------------------------------
 
 
-def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str | None = None) -> Path:
+def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str | None = None,
+                        building: Building | None = None) -> Path:
     """Write ``mission`` in the authors' layout under ``path`` (created if needed); returns the folder.
 
     Propositions are renamed p1..pN by first appearance in the token list, as the authors do, so the
-    folder loads back with :func:`load_mission_folder` to an equivalent mission.
+    folder loads back with :func:`load_mission_folder` to an equivalent mission. With ``building``, the
+    scene it was made for is recorded in ``scene.yaml`` (:mod:`sgplan.identity`), so that planning it on
+    another scene is refused.
     """
     folder = Path(path)
     folder.mkdir(parents=True, exist_ok=True)
@@ -335,4 +338,8 @@ def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str 
             (folder / name).write_text(value.rstrip("\n") + "\n", encoding="utf-8")
     if mission.guidance is not None:
         write_guidance(mission.guidance, folder / "llm_heuristic.yaml")
+    if building is not None:
+        from sgplan.identity import write_scene_record
+
+        write_scene_record(folder, mission.propositions, building)
     return folder

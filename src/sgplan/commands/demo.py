@@ -13,6 +13,7 @@ import time
 from pathlib import Path
 
 from sgplan.commands.common import non_negative_int, say
+from sgplan.commands.sayback import say_back
 
 DEMO_MISSION = (
     "Visit the bathroom on floor 0 without touching the sink, then sit on a chair in the dining room, "
@@ -53,6 +54,7 @@ def run(args: argparse.Namespace) -> int:
     print(f"grounded: {translation.grounded_text}")
     print(f"formula:  {translation.formula}")
     print(f"automaton: {mission.automaton.num_states} states over {len(mission.automaton.aps)} propositions")
+    explanation = say_back(mission, building)
     guide_name = add_offline_guidance(mission, building)
 
     start = resolve_start(building, index=args.start_index)
@@ -73,14 +75,16 @@ def run(args: argparse.Namespace) -> int:
           f"{result.iterations[0].time_s * 1e3:.1f} ms, optimum after {result.search_s * 1e3:.1f} ms of search; "
           "verified by the independent checker")
 
-    mission_dir = save_mission_folder(mission, out / "mission", hierarchy_text=attribute_hierarchy(building))
+    mission_dir = save_mission_folder(mission, out / "mission", hierarchy_text=attribute_hierarchy(building),
+                                      building=building)
     cells = [tuple(int(v) for v in row[:3]) for row in result.path]
     pngs = draw_building(building, out, grid=prepared.problem.grid, path=cells, stem="plan_floor")
     record = {
         "backends": {"translation": f"{translator.name} (not an LLM)", "guidance": f"{guide_name} (not an LLM)"},
         "scene": building.name,
         "mission": {"text": args.text, "grounded_text": translation.grounded_text,
-                    "tokens": list(translation.tokens), "formula": str(translation.formula)},
+                    "tokens": list(translation.tokens), "formula": str(translation.formula),
+                    "explanation": explanation.to_dict()},
         "start": list(start),
         "plan": result_record(result),
         "verified": check.valid,

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 from sgplan.commands.common import (add_scene_arguments, load_scene_arg, non_negative_int, positive_int,
                                     positive_seconds, reach_radius, robot_radius, say)
+from sgplan.commands.sayback import check_before_planning, check_folder_fits, say_back
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 from sgplan.errors import MissionError, PlanningError, SgplanError
 
@@ -57,6 +58,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--json", metavar="OUT", help="write the result as JSON")
     parser.add_argument("--draw", metavar="DIR", help="write one PNG per floor with the path")
     parser.add_argument("--verify", action="store_true", help="check the path with the independent checker")
+    parser.add_argument("--confirm", action="store_true",
+                        help="show what will be planned and ask before planning (needs a terminal)")
+    parser.add_argument("--force", action="store_true",
+                        help="plan a --mission-dir even if it was made for another scene")
     parser.add_argument("--save-mission", metavar="DIR",
                         help="with --text: save the translated mission, its guidance and the LLM run record here")
     add_llm_arguments(parser)
@@ -99,6 +104,9 @@ def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> i
         mission.guidance = read_guidance(args.guidance)
     for note in mission.notes:
         say(f"note: {note}")
+    if args.mission_dir:
+        check_folder_fits(args.mission_dir, mission, building, force=args.force, record=record)
+    say_back(mission, building, record, confirm=args.confirm)
     if get_setup(args.setup).uses_llm and mission.guidance is None:
         mission_text = mission.grounded_text or mission.text
         if backends is None:
@@ -117,6 +125,7 @@ def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> i
     start = resolve_start(building, args.start, args.start_index)
     prepared = make_problem(building, mission, start, profile=args.profile,
                             robot_radius_m=args.robot_radius, reach_radius_m=args.reach_radius)
+    check_before_planning(mission, building, prepared, record)
     load_s = time.perf_counter() - t_start
     say(f"scene {building.name}: start {start}, robot radius {prepared.radii.robot_m} m ({prepared.radii.robot_from}), "
         f"reach {prepared.radii.reach_m} m ({prepared.radii.reach_from}), profile {args.profile}, "

@@ -15,6 +15,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from sgplan.commands.common import add_scene_arguments, load_scene_arg, non_negative_int, positive_int, say
+from sgplan.commands.sayback import say_back
 from sgplan.errors import MissionError
 
 if TYPE_CHECKING:
@@ -94,6 +95,7 @@ def run(args: argparse.Namespace, ask: Callable[[str], str] | None = None) -> in
     for warning in getattr(translation, "warnings", ()):
         print(f"warning:  {warning}")
     print(f"automaton: {mission.automaton.num_states} states over {len(mission.automaton.aps)} propositions")
+    say_back(mission, building)
     summary = backends.record.to_json()["summary"]
     if backends.chat is not None:
         say(f"{summary['calls']} LLM calls ({summary['from_cache']} from the cache)")

@@ -69,6 +69,12 @@ def pattern_clauses(formula: Formula, describe: Describe) -> list[str] | None:
         return None
 
 
+def condition_text(formula: Formula, describe: Describe) -> str:
+    """A state condition (no temporal operator) as a phrase: ``in the kitchen (...) and not within
+    reach of the sink (...)``."""
+    return _Reader(describe).cond(formula)
+
+
 def _sentence(text: str) -> str:
     return text[:1].upper() + text[1:] + "."
 

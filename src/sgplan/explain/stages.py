@@ -95,6 +95,19 @@ def _irrelevant(a: Automaton, realizable: np.ndarray) -> list[int]:
     return out
 
 
+def forbidden_bits(a: Automaton, labels: np.ndarray) -> list[int]:
+    """The propositions (bit indices) whose truth ends the mission: some label of ``labels`` has them,
+    and from every live reachable state every such label leads to a dead state."""
+    live = a.live_states()
+    states = np.flatnonzero(live & a.reachable_states())
+    out = []
+    for i in range(len(a.aps)):
+        having = labels[(labels >> i) & 1 == 1]
+        if having.size and not live[a.table[np.ix_(states, having)]].any():
+            out.append(i)
+    return out
+
+
 def stage_lines(automaton: Automaton, entities: Mapping[str, Entity], realizable: np.ndarray | None = None
                 ) -> list[str]:
     """The automaton explanation as lines of text (see the module docstring).
@@ -118,13 +131,7 @@ def stage_lines(automaton: Automaton, entities: Mapping[str, Entity], realizable
         steps = ", then ".join(f"be {words.label(label)}" for label in word)
         lines.append(f"- {steps or 'nothing: it is complete as soon as it starts'}.")
     live = np.isfinite(dist)
-    reachable = a.reachable_states()
-    forbidden = [
-        i for i in range(len(a.aps))
-        if any(labels >> i & 1)
-        and all(not live[a.table[q, label]] for q in np.flatnonzero(live & reachable)
-                for label in labels if label >> i & 1)
-    ]
+    forbidden = forbidden_bits(a, labels)
     if forbidden:
         lines.append("Forbidden at every moment (the mission fails): "
                      + "; ".join(words.label(1 << i) for i in forbidden) + ".")

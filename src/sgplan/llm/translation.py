@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from sgplan.errors import AutomatonError, FormulaError, LLMError, MissionError, SgplanError
+from sgplan.explain import explain_mission
 from sgplan.llm.client import ChatBackend
 from sgplan.llm.config import one_line
 from sgplan.llm.grounding import (
@@ -355,8 +356,9 @@ def translate_to_folder(
     """Translate ``text`` with ``translator`` (LLM or offline) and save every step under ``out``.
 
     Writes the authors' mission-folder files (:func:`~sgplan.mission.save_mission_folder`, with the
-    attribute hierarchy as ``building_desc.yaml``), ``env_elements.txt`` (the grounded IDs) and the run
-    record ``llm_record.json``, and removes what an earlier mission left there for its own automaton
+    attribute hierarchy as ``building_desc.yaml`` and the scene record ``scene.yaml``), ``env_elements.txt``
+    (the grounded IDs) and the run record ``llm_record.json`` (with an ``explained`` event holding the
+    mission's plain-English explanation), and removes what an earlier mission left there for its own automaton
     (:data:`GUIDANCE_FILES`) and an earlier refusal's record. Other files in ``out`` are left alone.
 
     On a refusal (or a failed backend) only the record is written, as :data:`REFUSED_RECORD_NAME`, then
@@ -384,11 +386,12 @@ def translate_to_folder(
     try:
         for name in (*GUIDANCE_FILES, REFUSED_RECORD_NAME):
             (folder / name).unlink(missing_ok=True)
-        save_mission_folder(mission, folder, hierarchy_text=environment_text(building))
+        save_mission_folder(mission, folder, hierarchy_text=environment_text(building), building=building)
         (folder / "env_elements.txt").write_text("[" + ", ".join(ids) + "]\n", encoding="utf-8")
     except OSError as exc:
         raise MissionError(f"cannot write the mission ({exc.strerror or exc})", folder) from None
     record.event("saved", folder=str(folder), backend=translation.backend, tokens=list(translation.tokens),
                  formula=to_infix(translation.formula), states=mission.automaton.num_states)
+    record.event("explained", **explain_mission(mission, building).to_dict())
     record.save(folder / RECORD_NAME)
     return translation, mission
