@@ -190,3 +190,64 @@ def test_again_without_an_ordered_first_visit_is_refused(demo):
 def test_this_floor_is_the_start_floor(demo):
     means("Go to the bathroom on this floor.", "F r5", demo, PatternTranslator(start_floor=0))
     refused("Go to the bathroom on this floor.", "'this floor' depends on where the robot starts", demo)
+
+
+# ---- more everyday constructs, read as people mean them (or refused with the phrase named)
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Take the bowl in the kitchen to the dining room.", "F(o19 & F r7)"),
+        ("Bring the bowl to the dining table.", "F(o19 & F o27)"),
+        ("Sit on one of the dining room chairs.", "F(o28 | o29)"),
+        ("Read my book.", "F o39"),
+        ("Go to the bedroom that doesn't have a book.", "F r11"),
+        ("Go to the bedroom with no teddy bear.", "F r13"),
+        ("Go to the ground floor bathroom.", "F r5"),
+        ("Visit the top floor.", "F(r9 | r11 | r12 | r13 | r14)"),
+        ("Never go up to the top floor. Visit the kitchen.", "G(!r9 & !r11 & !r12 & !r13 & !r14) & F r4"),
+        ("Go to the bathroom on floor 0 and avoid the sink the whole time.", "F r5 & G !o21"),
+        ("Only after you have opened the fridge may you go into the living room.", "F r6 & (!r6 U o15)"),
+        ("I do want you to visit the kitchen.", "F r4"),
+        ("Go to the living room, but not before you have been in the kitchen.", "F r6 & (!r6 U r4)"),
+        ("Get something from the fridge.", "F o15"),
+        ("Go to the kitchen for the bowl.", "F o19"),
+        ("Whenever you enter the kitchen, go to the dining room after.", "G(r4 -> F r7)"),
+        ("Go to the living room, and stay out of the kitchen until you get there.", "F r6 & (!r4 U r6)"),
+        ("Go to the living room and look at the tv there.", "F o23"),
+        ("Go to the living room, but stop by the kitchen before that.", "F(r4 & F r6)"),
+        ("Go upstairs and check the sink.", "F o41"),
+        ("Visit the kitchen or the dining room, I don't care which.", "F(r4 | r7)"),
+        ("Visit the kitchen and the living room, any order.", "F r4 & F r6"),
+        ("Open the fridge and the oven in either order, then go to the couch.", "F(o15 & F o22) & F(o16 & F o22)"),
+        ("Use the toilet in the bathroom attached to the kitchen.", "F o20"),
+    ],
+)
+def test_everyday_constructs(demo, text, gold):
+    means(text, gold, demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("Wash your hands in the kitchen.", "no room or object of this scene is called 'hands'"),
+        ("Go to the bathroom on the middle floor.", "has 2 floors (0 to 1), so no middle one"),
+        ("Go to the bedroom that doesn't have a bed.", "'the bedroom that doesn't have a bed' matches no room"),
+    ],
+)
+def test_everyday_constructs_refused(demo, text, fragment):
+    refused(text, fragment, demo)
+
+
+@pytest.mark.gibson
+def test_everyday_constructs_in_gibson_scenes(gibson_root):
+    from sgplan.scene.authors import load_authors_scene
+
+    allensville = load_authors_scene(gibson_root / "Allensville")
+    means("Go to the bedroom that only has a bed in it.", "F r5", allensville)
+    benevolence = load_authors_scene(gibson_root / "Benevolence")
+    means("Go to the bedroom with the two beds.", "F r8", benevolence)
+    refused("Go to the fridge while avoiding the stairs.", "'the stairs' matches 2 rooms", benevolence)
+    means("Go downstairs to the lobby.", "F r17", benevolence, PatternTranslator(start_floor=2))
+    collierville = load_authors_scene(gibson_root / "Collierville")
+    means("Use the toilet on the middle floor.", "F o38", collierville)

@@ -30,7 +30,8 @@ from sgplan.logic.tokens import action_entity
 Mode = Literal["the", "any", "all"]
 Role = Literal["goal", "avoid", "condition", "qualifier"]
 
-_DETERMINERS = frozenset("the a an any all every each both either this that these those some".split())
+_POSSESSIVES = frozenset("my your our his her their".split())
+_DETERMINERS = frozenset("the a an any all every each both either this that these those some".split()) | _POSSESSIVES
 _SEQ_WORDS = (("and", "then"), ("then",), ("after", "that"), ("afterwards",), ("afterward",), ("next",),
               ("finally",), ("subsequently",), ("after", "which"), ("followed", "by"), ("later",),
               ("and", "finally"), ("lastly",), ("secondly",), ("thirdly",), ("fourthly",), ("second", ","),
@@ -50,9 +51,14 @@ action only constrain the moment that action is done (F(x & !y)), as in the auth
 _QUAL_IN = ("in", "inside", "within", "of", "from")
 _QUAL_CONTAINS = (("with",), ("having",), ("containing",), ("that", "has"), ("that", "have"),
                   ("which", "has"), ("which", "have"), ("that", "contains"), ("which", "contains"),
-                  ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"))
+                  ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"), ("that", "only", "has"),
+                  ("which", "only", "has"), ("that", "only", "have"), ("with", "only"), ("that", "has", "only"),
+                  ("containing", "only"))
+_QUAL_LACKS = (("that", "does", "not", "have"), ("which", "does", "not", "have"), ("with", "no"),
+               ("that", "has", "no"), ("that", "does", "not", "contain"), ("where", "there", "is", "no"))
 _QUAL_NEXT = (("next", "to"), ("adjacent", "to"), ("beside",), ("near",), ("connected", "to"), ("by",),
-              ("off",), ("close", "to"), ("joined", "to"), ("linked", "to"))
+              ("off",), ("close", "to"), ("joined", "to"), ("linked", "to"), ("attached", "to"),
+              ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to"))
 _QUAL_EXCEPT = (("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
                 ("excluding",), ("besides",))
 _PARTICLES = frozenset("on off up down out over".split())
@@ -60,14 +66,15 @@ _SUBJECT_FILLERS = frozenset("you we i the robot it ever have has had do does di
                              "been also first".split())
 _CONDITION_WORDS = ("if", "when", "once", "in case")
 _WHENEVER = (("whenever",), ("every", "time"), ("each", "time"), ("any", "time"), ("anytime",))
-_ONLY_AFTER = (("only", "after"), ("only", "once"))
+_ONLY_AFTER = (("only", "after"), ("only", "once"), ("not", "before"), ("not", "until"))
 _FIRST = frozenset({"first", "firstly"})
+_MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
 _STRUCTURAL = (
-    frozenset(w for table in (_SEQ_WORDS, _NEG_STARTS, _QUAL_CONTAINS, _QUAL_NEXT, _QUAL_EXCEPT,
+    frozenset(w for table in (_SEQ_WORDS, _NEG_STARTS, _QUAL_CONTAINS, _QUAL_LACKS, _QUAL_NEXT, _QUAL_EXCEPT,
                               lx.ORDER_MODIFIERS) for seq in table for w in seq)
     | frozenset(_QUAL_IN) | frozenset(w for c in _CONDITION_WORDS for w in c.split()) | _DETERMINERS
     | frozenset(lx.FLOOR_WORDS) | frozenset(lx.FLOOR_ORDINALS) | frozenset(lx.FLOOR_NAMED)
-    | frozenset(lx.FLOOR_TOP) | frozenset(lx.NUMBER_WORDS) | frozenset(lx.PRONOUNS)
+    | frozenset(lx.FLOOR_TOP) | frozenset(lx.FLOOR_MIDDLE) | frozenset(lx.NUMBER_WORDS) | frozenset(lx.PRONOUNS)
     | frozenset(lx.GENERIC_ROOM_WORDS) | frozenset({"whenever", "only", "than", "zero", "ever", "again", "twice",
                                                   "times", "anytime"})
 ) - lx.POSITIVE_VERBS - {"first", "also", "please", "eventually", "finally"}
@@ -90,6 +97,8 @@ class NounPhrase:
     mode: Mode
     room_scoped: bool
     role: Role
+    count: int | None = None
+    """How many entities the phrase said ("the two beds"), if it said so."""
 
 
 @dataclass
@@ -126,7 +135,7 @@ class MissionParser:
         self.sentence_scope: list[Entity] = []
         self.prior_steps: list[Step] = []
         """The steps of the previous sentence when this one continues its sequence ("... Then ...")."""
-        self.pending_floor: int | None = None
+        self.pending_floor: frozenset[int] | None = None
         """A floor said in the verb slot ("go upstairs to ..."), for the next noun phrase."""
 
     # -- token helpers --------------------------------------------------------------------------------
@@ -216,10 +225,10 @@ class MissionParser:
             if seq is not None:
                 self.i += len(seq)
                 seen_sequence = True
-            elif self.word() == "," or (self.word() in lx.FILLERS and self.word() not in ("do", "and", "then", "next")):
-                self.i += 1
             elif self.at_any(lx.TIME_FILLERS) is not None:
                 self.i += len(self.at_any(lx.TIME_FILLERS) or ())
+            elif self.word() == "," or (self.word() in lx.FILLERS and self.word() not in ("do", "and", "then", "next")):
+                self.i += 1
             else:
                 break
         return seen_sequence
@@ -372,18 +381,26 @@ class MissionParser:
     def body(self) -> Clause:
         clause = Clause()
         while not self.done():
+            if self.word() in ("but", "and", ",") and self.at_any(_ONLY_AFTER, k=1):
+                self.i += 1  # "..., but only after X" / "..., but not before X"
             if (self.at("only", "if") or any(self.at(*w.split()) for w in _CONDITION_WORDS)
                     or self.at_any(_ONLY_AFTER) or self.at_any(_WHENEVER)):
                 break
+            if self.word() in ("after", "afterwards", "afterward") and self.word(1) in ("", ","):
+                self.i += 1  # "..., go to the dining room after."
+                continue
             if any(clause.steps) and (self.word() in _FIRST or self.at("before", "that")):
                 self.goals_first(clause)
                 continue
+            before = self.i
             if self.skip_fillers(sequence_too=True):
                 if clause.steps[-1]:
                     clause.steps.append([])
                 continue
             if self.done():
                 break
+            if self.i > before:
+                continue  # look again at what follows the fillers
             neg = self.at_any(_NEG_STARTS)
             if neg is not None:
                 self.negation(neg, clause)
@@ -406,8 +423,12 @@ class MissionParser:
                     raise self.fail(f"cannot understand {lx.REFUSED_VERBS[self.word()]}")
                 steps = self.action(step_rooms=self.step_rooms(clause.steps[-1]))
                 self.check_revisits(steps[0], self.prior_steps + clause.steps[:-1])
-                if self.word() in _FIRST:  # "go to B, but go to A first" (first of all: nothing to move)
-                    self.i += 1
+                before_that = self.at("before", "that") and self.word(2) in ("", ",", "and", "then")
+                if self.word() in _FIRST or before_that:  # "go to B, but go to A first / before that"
+                    if before_that and len([s for s in clause.steps if s]) > 1:
+                        raise self.fail(f"'before that' at {self.here()}: it is not clear which of the earlier goals "
+                                        f"this comes before; put the goals in the order they must be done")
+                    self.i += 2 if before_that else 1
                     self.skip_of_all()
                     if any(clause.steps):
                         clause.steps[0:0] = [s for s in steps if s]
@@ -466,6 +487,10 @@ class MissionParser:
         entities = [e for np in nps for e in np.entities]
         forbidden = conj([Not(Atom(e.action)) for e in entities])
         self.skip_particles()
+        whole = self.at_any(lx.WHOLE_MISSION)
+        if whole is not None:  # "avoid the office the whole time"
+            self.i += len(whole)
+            is_global = True
         if self.word() in ("until", "before"):
             self.i += 1
             self.skip_subject()
@@ -506,6 +531,10 @@ class MissionParser:
             w = self.word()
             if w in lx.REFUSED_VERBS:
                 raise self.fail(f"cannot understand {lx.REFUSED_VERBS[w]}")
+            if w in _MODALS and self.word(1) not in ("not", "never"):
+                seen.append(w)  # "may you go into ...", "I do want you to visit ...": no negation
+                self.i += 1
+                continue
             if self.at_any(_NEG_STARTS) is not None:
                 break
             if w in lx.RELATIVE_FLOORS:  # "go upstairs to the bathroom": the bathroom on that floor
@@ -516,19 +545,19 @@ class MissionParser:
             self.i += 1
         return seen
 
-    def relative_floor(self, word: str) -> int:
-        """The floor *upstairs* / *downstairs* means: one above / below the start floor when it is known;
+    def relative_floor(self, word: str) -> frozenset[int]:
+        """The floors *upstairs* / *downstairs* mean: those above / below the start floor when it is known;
         in a two-floor building, the upper / lower floor; otherwise it is refused, naming the floors."""
         step = lx.RELATIVE_FLOORS[word]
         floors = self.vocab.num_floors
         if self.start_floor is not None:
-            floor = self.start_floor + step
-            if not 0 <= floor < floors:
+            wanted = frozenset(f for f in range(floors) if (f - self.start_floor) * step > 0)
+            if not wanted:
                 raise self.fail(f"'{word}': the robot starts on floor {self.start_floor} and the building "
                                 f"{self.vocab.building_name!r} has floors 0 to {floors - 1}")
-            return floor
+            return wanted
         if floors == 2:
-            return 1 if step > 0 else 0
+            return frozenset({1 if step > 0 else 0})
         listing = "floor 0" if floors == 1 else f"floors 0 to {floors - 1}"
         raise self.fail(f"'{word}' depends on where the robot starts, which is not known here; say which floor "
                         f"(the building {self.vocab.building_name!r} has {listing})")
@@ -536,6 +565,9 @@ class MissionParser:
     def action(self, step_rooms: list[Entity] | None = None) -> list[Step]:
         """Verb words and noun phrases -> one or more steps (``put X in Y``, ordered lists give more)."""
         verbs = self.verb_words()
+        if not self.np_starts() and self.pending_floor is not None and self.word() in ("and", ",", "then"):
+            self.i += 1  # "go upstairs and check the laptop": the laptop upstairs
+            return self.action(step_rooms)
         if not self.np_starts():
             what = f"after '{' '.join(verbs)}'" if verbs else "here"
             raise self.fail(f"expected a room or object {what}, found {self.here()}")
@@ -550,7 +582,10 @@ class MissionParser:
         steps: list[Step] = [[]] if carry and pronoun_only else self.tasks_of(nps, ordered is not None)
         self.revisits(nps, steps, verbs)
         self.skip_particles()
-        if carry and self.word() in ("in", "into", "on", "onto", "to", "inside") and self.np_starts(1):
+        # "put X in Y", "take X to Y", and any object followed by "to Y": X, then Y.
+        carried = carry or (self.word() in ("to", "into", "onto") and all(e.kind == "object" for np in nps
+                                                                         for e in np.entities))
+        if carried and self.word() in ("in", "into", "on", "onto", "to", "inside") and self.np_starts(1):
             self.i += 1
             dest = self.noun_phrase_list("goal", [])
             steps.extend(self.tasks_of(dest, False))
@@ -565,6 +600,8 @@ class MissionParser:
                 self.skip_particles()
             elif not purpose_verbs:
                 raise self.fail(f"cannot understand {self.here()}")
+        if self.word() == "there":  # "look at the TV there": where the step is
+            self.i += 1
         if self.at_any(lx.TIME_FILLERS):
             self.i += len(self.at_any(lx.TIME_FILLERS) or ())
         return steps or [[]]
@@ -621,6 +658,8 @@ class MissionParser:
             return False
         if w.startswith(("room_", "object_")) or w in lx.PRONOUNS:
             return w != "it" or self.word(k + 1) not in ("is", "was")
+        if w == "there":  # "get there": the last place named as a goal
+            return self.word(k + 1) not in ("is", "are", "was", "were")
         if w in _DETERMINERS:
             return not (w == "some" and self.word(k + 1) == "point") and not (w == "that" and self.word(k + 1) in ("order",))
         if w in lx.NUMBER_WORDS or w.isdigit():
@@ -638,7 +677,8 @@ class MissionParser:
             if self.word() == "," and self.word(1) in ("and", "or") and self.np_starts(2):
                 joiners.add(self.word(1))
                 self.i += 2
-            elif self.word() == "," and self.np_starts(1) and not self.at_any(_NEG_STARTS, k=1):
+            elif (self.word() == "," and self.np_starts(1) and not self.at_any(_NEG_STARTS, k=1)
+                  and not self.at_any(lx.TIME_FILLERS, k=1)):
                 self.i += 1
             elif self.word() in ("and", "or") and self.np_starts(1):
                 joiners.add(self.word())
@@ -670,6 +710,14 @@ class MissionParser:
         if first is None:
             raise self.fail("expected a room or object at the end of the sentence")
         w = self.word()
+        if w == "there":
+            self.i += 1
+            goals = [r for r in self.references if r.role == "goal" and r.phrase.lower() not in lx.PRONOUNS]
+            if not goals:
+                raise self.fail("'there' does not refer to any place named before it")
+            ref = max(goals, key=lambda r: r.start)
+            return self.record(NounPhrase(w, first.start, first.end, list(ref.entities), ref.mode, ref.room_scoped,
+                                          role))
         if w in lx.PRONOUNS:
             self.i += 1
             ref = self.antecedent(w, pronoun_kind)
@@ -681,9 +729,15 @@ class MissionParser:
         if other:
             self.i += 1
         mode, count = self.quantifier()
-        floor_first = self.word() if self.word() in lx.RELATIVE_FLOORS else None  # "the upstairs bathroom"
-        if floor_first is not None:
+        floors_first: frozenset[int] | None = None
+        if self.word() in lx.RELATIVE_FLOORS:  # "the upstairs bathroom"
+            floors_first = self.relative_floor(self.word())
             self.i += 1
+        elif (said := self.floor_words()) is not None:  # "the ground floor bathroom", "the top floor"
+            floors_first = said[0]
+            self.i += said[1]
+            if self.vocab.match_head(self.words(), self.i) is None:
+                return self.floor_place(first, floors_first, mode, role)
         if self.word().startswith(("room_", "object_")):
             key = self.word()
             if key not in self.vocab.by_key:
@@ -703,8 +757,8 @@ class MissionParser:
                 mode = "all"
         if other:
             entities = self.others(entities, first.start)
-        if floor_first is not None:
-            entities = self.vocab.on_floor(entities, self.relative_floor(floor_first))
+        if floors_first is not None:
+            entities = self.vocab.on_floor(entities, floors_first)
         if self.pending_floor is not None:
             entities = self.vocab.on_floor(entities, self.pending_floor)
             self.pending_floor = None
@@ -714,7 +768,8 @@ class MissionParser:
             container = entities
             head = self.head(None)
             entities = self.vocab.inside(self.vocab.of_head(head), container)
-            mode = "all" if head.plural else mode
+            if head.plural and mode in (None, "the"):
+                mode = "all"
             room_scoped = True
         while True:
             if self.word() == "'s" and head.kind == "room":
@@ -732,7 +787,7 @@ class MissionParser:
                 entities = self.vocab.on_floor(entities, floor)
                 continue
             if (self.word() in _QUAL_IN and self.np_starts(1) and not self.at_any(lx.ORDER_MODIFIERS)
-                    and not self.at_any(lx.TIME_FILLERS)):
+                    and not self.at_any(lx.TIME_FILLERS) and not (role == "qualifier" and self.word(1) in ("it", "there"))):
                 self.i += 1
                 inner = self.noun_phrase("qualifier")
                 if head.kind != "object" or any(e.kind != "room" for e in inner.entities):
@@ -742,6 +797,15 @@ class MissionParser:
                 inner.entities = [r for r in inner.entities if any(e.room_key == r.key for e in entities)]
                 room_scoped = True
                 continue
+            lacks = self.at_any(_QUAL_LACKS)
+            if lacks and self.np_starts(len(lacks)):
+                self.i += len(lacks)
+                inner = self.noun_phrase("qualifier")
+                if head.kind != "room" or any(e.kind != "object" for e in inner.entities):
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> without any <object>'")
+                entities = self.vocab.lacking(entities, inner.entities)
+                self.skip_in_it()
+                continue
             contains = self.at_any(_QUAL_CONTAINS)
             if contains and self.np_starts(len(contains)):
                 self.i += len(contains)
@@ -749,8 +813,10 @@ class MissionParser:
                 inner = self.noun_phrase("qualifier")
                 if head.kind != "room" or any(e.kind != "object" for e in inner.entities):
                     raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> with the <object>'")
-                entities = self.vocab.containing(entities, inner.entities, n)
+                entities = self.vocab.containing(entities, inner.entities, n if n is not None else inner.count,
+                                                 only="only" in contains)
                 inner.entities = [o for o in inner.entities if any(o.room_key == r.key for r in entities)]
+                self.skip_in_it()
                 continue
             nxt = self.at_any(_QUAL_NEXT)
             if nxt and self.np_starts(len(nxt)):
@@ -783,9 +849,18 @@ class MissionParser:
                                 f"named in the same step; it is at {', '.join(e.describe() for e in entities[:8])}; "
                                 f"say 'then' between the two, or name its room ('the {head_word(entities)} in the ...')")
         last = self.toks[self.i - 1]
-        np = NounPhrase(self.span_text(first.start, last.end), first.start, last.end, entities, mode, room_scoped, role)
+        np = NounPhrase(self.span_text(first.start, last.end), first.start, last.end, entities, mode, room_scoped, role,
+                        count)
         self.check(np, head, count)
         return self.record(np)
+
+    def floor_place(self, first: Tok, floors: frozenset[int], mode: Mode | None, role: Role) -> NounPhrase:
+        """``the top floor`` as a place: any of its rooms as a goal or condition, all of them to avoid."""
+        rooms = self.vocab.on_floor(self.vocab.of_head(Head("room", frozenset(), True, 1)), floors)
+        chosen: Mode = "all" if role == "avoid" or mode == "all" else "any"
+        last = self.toks[self.i - 1]
+        return self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, rooms, chosen,
+                                      False, role))
 
     def others(self, entities: list[Entity], before: int) -> list[Entity]:
         """``the other X``: the X not named before ``before`` (a character offset); refused when none was."""
@@ -793,6 +868,11 @@ class MissionParser:
         if not any(e.key in named for e in entities):
             raise self.fail(f"'the other {head_word(entities)}': no {head_word(entities)} was named before it")
         return [e for e in entities if e.key not in named]
+
+    def skip_in_it(self) -> None:
+        """``the bedroom that only has a bed in it``: the trailing *in it* repeats the room."""
+        if self.word() in ("in", "inside") and self.word(1) in ("it", "there"):
+            self.i += 2
 
     def except_list(self, head: Head) -> list[NounPhrase]:
         out = [self.noun_phrase("qualifier", None, head)]
@@ -837,7 +917,7 @@ class MissionParser:
             mode, count = "all", (2 if w == "both" else None)
             if self.word() == "of":
                 self.i += 1
-        elif w in ("the", "this", "that", "these", "those"):
+        elif w in ("the", "this", "that", "these", "those") or w in _POSSESSIVES:
             self.i += 1
             mode = "the"
         if self.word() in ("the", "these", "those") and mode is not None:
@@ -884,8 +964,8 @@ class MissionParser:
         self.i += head.words
         return head
 
-    def floor_qualifier(self) -> int | None:
-        """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> 1, 1, 0;
+    def floor_qualifier(self) -> frozenset[int] | None:
+        """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> {1}, {1}, {0};
         ``upstairs`` / ``downstairs`` / ``on this floor``: relative to the start floor (:meth:`relative_floor`)."""
         if self.word() in lx.RELATIVE_FLOORS:  # "the bathroom upstairs"
             relative = self.relative_floor(self.word())
@@ -893,32 +973,41 @@ class MissionParser:
             return relative
         if self.word() not in ("on", "in", "at", "of", "from"):
             return None
-        k = 1
-        if self.word(k) == "the":
-            k += 1
+        k = 2 if self.word(1) == "the" else 1
+        said = self.floor_words(k)
+        if said is None:
+            return None
+        self.i += k + said[1]
+        return said[0]
+
+    def floor_words(self, k: int = 0) -> tuple[frozenset[int], int] | None:
+        """The floor named by the words at offset ``k`` and how many words name it: ``floor 1``, ``second
+        floor``, ``ground floor``, ``top floor``, ``middle floor``, ``this floor`` (the start floor); ``None``
+        if they name no floor. Floors the building does not have are refused."""
         w, nxt = self.word(k), self.word(k + 1)
-        floor: int | None = None
+        floors = self.vocab.num_floors
         if w in lx.FLOOR_WORDS and (nxt.isdigit() or nxt in lx.NUMBER_WORDS or nxt == "zero"):
             floor = 0 if nxt == "zero" else int(nxt) if nxt.isdigit() else lx.NUMBER_WORDS[nxt]
-            k += 2
-        elif nxt in lx.FLOOR_WORDS and (w in lx.FLOOR_ORDINALS or w in lx.FLOOR_NAMED or w in lx.FLOOR_TOP):
-            floor = lx.FLOOR_ORDINALS.get(w, lx.FLOOR_NAMED.get(w, self.vocab.num_floors - 1))
-            k += 2
-        elif nxt in lx.FLOOR_WORDS and w in lx.START_FLOOR_WORDS:  # "on this floor": where the robot starts
+        elif nxt not in lx.FLOOR_WORDS:
+            return None
+        elif w in lx.FLOOR_ORDINALS or w in lx.FLOOR_NAMED or w in lx.FLOOR_TOP:
+            floor = lx.FLOOR_ORDINALS.get(w, lx.FLOOR_NAMED.get(w, floors - 1))
+        elif w in lx.FLOOR_MIDDLE:
+            if floors % 2 == 0:
+                raise self.fail(f"'{w} {nxt}': the building {self.vocab.building_name!r} has {floors} floors "
+                                f"(0 to {floors - 1}), so no middle one; say which floor")
+            floor = floors // 2
+        elif w in lx.START_FLOOR_WORDS:  # "on this floor": where the robot starts
             if self.start_floor is None:
                 raise self.fail(f"'{w} {nxt}' depends on where the robot starts, which is not known here; say which "
-                                f"floor (the building {self.vocab.building_name!r} has floors 0 to "
-                                f"{self.vocab.num_floors - 1})")
+                                f"floor (the building {self.vocab.building_name!r} has floors 0 to {floors - 1})")
             floor = self.start_floor
-            k += 2
-        if floor is None:
+        else:
             return None
-        if not 0 <= floor < self.vocab.num_floors:
-            phrase = " ".join(self.words()[self.i + 1 : self.i + k])
-            raise self.fail(f"'{phrase}': the building {self.vocab.building_name!r} has floors 0 to "
-                            f"{self.vocab.num_floors - 1} (floor 0 is the lowest; 'the first floor' is floor 0)")
-        self.i += k
-        return floor
+        if not 0 <= floor < floors:
+            raise self.fail(f"'{w} {nxt}': the building {self.vocab.building_name!r} has floors 0 to "
+                            f"{floors - 1} (floor 0 is the lowest; 'the first floor' is floor 0)")
+        return frozenset({floor}), 2
 
     # -- grounding checks -----------------------------------------------------------------------------
     def check(self, np: NounPhrase, head: Head, count: int | None) -> None:
