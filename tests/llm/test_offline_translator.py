@@ -156,7 +156,8 @@ def test_pronouns_agree_in_number(translate):
 _WORDS = ("visit the a any all every both either kitchen bathroom bathrooms bedroom chair chairs sink tv it them "
           "then and or , . if when until before after only avoid never don't always without in on with next to "
           "floor 0 1 first second top except one of couch put bring that order after other room rooms 's not "
-          "stay away from take water go room_4 object_19 two").split()
+          "stay away from take water go room_4 object_19 two again twice times upstairs downstairs whenever "
+          "there first secondly that whole time my ground middle no doesn't have").split()
 
 
 @settings(max_examples=300, deadline=None)

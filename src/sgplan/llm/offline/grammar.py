@@ -2,11 +2,12 @@
 
 The grammar is documented for users in docs/offline.md. In short, a mission is a list of sentences; each
 sentence is a sequence of steps joined by ``then`` / ``after that`` / ``finally`` / ``X after Y`` /
-``X before Y``; a step is one or more actions (``visit the kitchen and water the plant``); an action is
-verb words followed by a list of noun phrases; negations (``always avoid``, ``never``, ``don't``,
-``avoid``, ``without``, ``stay away from``), ``until``, conditions (``if ... , ...``, ``... if ...``,
-``... only if ...``) and sentence prefixes (``After visiting X, ...``, ``Only after ...``, ``In the
-kitchen, ...``) wrap them. Noun phrases are grounded as they are read (:class:`NounPhrase`), so pronouns
+``X before Y`` / ``..., but first X`` / ``Before that, ...``; a step is one or more actions (``visit the
+kitchen and water the plant``); an action is verb words followed by a list of noun phrases (``again``,
+``twice`` make new visits); negations (``always avoid``, ``never``, ``don't``, ``avoid``, ``without``,
+``stay away from``; a trailing one on a room holds for the whole mission), ``until``, conditions
+(``if ... , ...``, ``... if ...``, ``... only if ...``, ``whenever ...``) and sentence prefixes (``After
+visiting X, ...``, ``Only after ...``, ``In the kitchen, ...``) wrap them. Noun phrases are grounded as they are read (:class:`NounPhrase`), so pronouns
 (``it``, ``them``) and room context ("go to the dining room and sit on one of the chairs": the chairs of
 that dining room) use what came before.
 
