@@ -245,6 +245,9 @@ def test_everyday_constructs_in_gibson_scenes(gibson_root):
 
     allensville = load_authors_scene(gibson_root / "Allensville")
     means("Go to the bedroom that only has a bed in it.", "F r5", allensville)
+    # issue 11: "the couch in the lobby" where the lobby has no couch never picks another room's couch
+    for text in ("Sit on the couch in the lobby.", "Go to the lobby and sit on the couch."):
+        assert "object_40 (couch in room_12, floor 0)" in refused(text, "couch", allensville)
     benevolence = load_authors_scene(gibson_root / "Benevolence")
     means("Go to the bedroom with the two beds.", "F r8", benevolence)
     refused("Go to the fridge while avoiding the stairs.", "'the stairs' matches 2 rooms", benevolence)

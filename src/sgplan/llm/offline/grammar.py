@@ -506,10 +506,10 @@ class MissionParser:
             clause.constraints.append(Always(forbidden))
         else:
             target = [t for s in clause.steps for t in s][-1]
-            local, whole = self.avoidance_scope(target, entities)
+            local, everywhere = self.avoidance_scope(target, entities)
             target.avoid.extend(Not(Atom(e.action)) for e in local)
-            if whole:
-                clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in whole])))
+            if everywhere:
+                clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in everywhere])))
 
     def avoidance_scope(self, target: Task, forbidden: list[Entity]) -> tuple[list[Entity], list[Entity]]:
         """Split what a trailing *avoid* / *without* forbids into what holds when ``target`` is done (an object
