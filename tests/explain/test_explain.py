@@ -106,8 +106,13 @@ def test_no_two_inequivalent_small_formulas_read_alike() -> None:
     ("F(a | b)", "Go to a kitchen (room_1, floor 0, or room_2, floor 1)."),
     ("G !a", "Never enter the kitchen (room_1, floor 0)."),
     ("!a U b", "Go to the kitchen (room_2, floor 1), without entering the kitchen (room_1, floor 0) before that."),
-    ("G(a -> F c)", ("Whenever you are in the kitchen (room_1, floor 0), afterwards reach the sink "
-                    "(object_3, in the kitchen room_1, floor 0) (at that moment or later).")),
+    ("G(a -> F c)", ("Whenever you are in the kitchen (room_1, floor 0), reach the sink "
+                     "(object_3, in the kitchen room_1, floor 0) then or afterwards.")),
+    ("F(a & F(!a & F a))", ("Go to the kitchen (room_1, floor 0), then be outside the kitchen (room_1, floor 0), "
+                            "then go to the kitchen (room_1, floor 0).")),
+    ("F((a & F c) | (b & F d))", ("Do one of: [go to the kitchen (room_1, floor 0), then reach the sink (object_3, "
+                                  "in the kitchen room_1, floor 0)] or [go to the kitchen (room_2, floor 1), then "
+                                  "reach the sink (object_4, in the kitchen room_1, floor 0)].")),
     ("F((c & a) | (d & a))", ("Reach a sink (object_3 or object_4, in the kitchen room_1, floor 0) while in "
                              "the kitchen (room_1, floor 0).")),
     ("a", "Start in the kitchen (room_1, floor 0)."),

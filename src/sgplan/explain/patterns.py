@@ -10,12 +10,13 @@ Readings (finite paths; "moment" = a cell of the path; the first cell is the sta
 formula                     clause
 ==========================  ======================================================================
 ``s`` (no temporal op)      start <s>  (it is read at the first cell only)
-``F s``                     go to / reach <s>
+``F s``                     go to / reach <s>; ``F !a``: be outside / out of reach of a
+``F(A | B)``                do one of: [F A] or [F B]
 ``F(s & F t)``              go to <s>, then go to <t>           (``then``: at that moment or later)
 ``F(s & psi)``              go to <s>, and from that moment on <psi>
 ``G !a``, ``G(!a & !b)``    never enter a or b / never come within reach of ...
 ``G s``                     at every moment be <s>
-``G(s -> F t)``             whenever you are <s>, afterwards go to <t> (at that moment or later)
+``G(s -> F t)``             whenever you are <s>, go to <t> then or afterwards
 ``G(s -> psi)``             whenever you are <s>, from that moment on <psi>
 ``s U t``                   go to <t>, being <s> at every moment before that
 ``A -> B``                  if <A>, then <B>            (A a condition: start / ever / always)
@@ -206,6 +207,9 @@ class _Reader:
         if isinstance(s, Atom):
             e = self.entity(s)
             return f"{'reach' if e.kind == 'object' else 'go to'} {e.phrase()}"
+        if isinstance(s, Not) and isinstance(s.arg, Atom):
+            e = self.entity(s.arg)
+            return f"be {'out of reach of' if e.kind == 'object' else 'outside'} {e.phrase()}"
         same = self._same_kind_atoms(s) if isinstance(s, Or) else None
         if same is not None:
             return f"{'reach' if same[0].kind == 'object' else 'go to'} {self.choice(same)}"
@@ -288,6 +292,8 @@ class _Reader:
         """``F body``: a goal, possibly followed by what must happen from there."""
         if not is_temporal(body):
             return self.goal(body)
+        if isinstance(body, Or):  # F(A | B) = F A | F B: a choice between two ways
+            return "do one of: " + " or ".join(f"[{self.eventually(d)}]" for d in _disjuncts(body))
         parts = _conjuncts(body)
         here = [p for p in parts if not is_temporal(p)]
         later = [p for p in parts if is_temporal(p)]
@@ -306,7 +312,7 @@ class _Reader:
         if isinstance(body, Implies) and not is_temporal(body.left):
             trigger = self.cond(body.left)
             if isinstance(body.right, Eventually) and not is_temporal(body.right.arg):
-                return f"whenever you are {trigger}, afterwards {self.goal(body.right.arg)} (at that moment or later)"
+                return f"whenever you are {trigger}, {self.goal(body.right.arg)} then or afterwards"
             if is_temporal(body.right):
                 return f"whenever you are {trigger}, from that moment on {self.clause(body.right)}"
         if is_temporal(body):
