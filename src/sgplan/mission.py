@@ -11,6 +11,7 @@ The mission folder is the authors' layout (reference-algorithm.md §1.4)::
     automaton.aut             HOA automaton over p1..pN
     building_desc.yaml        the attribute hierarchy given to the LLM (prompt text)
     llm_heuristic.yaml        guidance {room_uuid: {q: [calls]}}
+    scene.yaml                sgplan's folders only: the scene it was made for (:mod:`sgplan.identity`)
 
 Only ``automaton.aut`` and ``ap_desc.yaml`` are required to plan; the rest is read when present.
 """
