@@ -173,3 +173,13 @@ def _scene(root: Path, name: str):  # type: ignore[no-untyped-def]
     if name not in _SCENES:
         _SCENES[name] = load_scene(root / name)
     return _SCENES[name]
+
+
+def test_authors_semantics_are_explained_from_the_automaton(gibson_root: Path) -> None:
+    # Read with the authors' semantics (a missing edge keeps the state) the avoidance is lost: the
+    # explanation must tell what that automaton accepts, not what the formula says.
+    mission = load_mission_folder(gibson_root / "Benevolence" / "missions" / "1", profile="authors")
+    explanation = explain_mission(mission, _scene(gibson_root, "Benevolence"))
+    assert explanation.method == "automaton"
+    assert "accepts other paths than its formula" in explanation.text.splitlines()[0]
+    assert "the living room (room_16, floor 1) (never matters by itself here)" in explanation.text

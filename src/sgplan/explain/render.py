@@ -30,6 +30,8 @@ Method = Literal["patterns", "automaton"]
 
 HEADER = "The mission, as it will be planned:"
 AUTOMATON_HEADER = "The mission, as it will be planned (read from its automaton; it has no simpler reading):"
+DIFFERS_HEADER = ("The mission, as it will be planned (read from its automaton, which accepts other paths than its "
+                  "formula, e.g. under the authors' semantics):")
 
 
 @dataclass(frozen=True)
@@ -94,12 +96,14 @@ def explain_formula(
         automaton = ltlf_to_dfa(formula)  # type: ignore[arg-type]
     if realizable is None:
         realizable = np.ones(automaton.num_labels, bool)
-    if formula is not None and _reads_as(formula, automaton, realizable):
-        clauses = pattern_clauses(formula, lookup)
+    same = formula is not None and _reads_as(formula, automaton, realizable)
+    if same:
+        clauses = pattern_clauses(formula, lookup)  # type: ignore[arg-type]
         if clauses is not None:
             return Explanation("\n".join([HEADER, *_numbered(clauses)]), "patterns")
     entities = {p: lookup(p) for p in automaton.aps}
-    return Explanation("\n".join([AUTOMATON_HEADER, *stage_lines(automaton, entities, realizable)]), "automaton")
+    header = AUTOMATON_HEADER if formula is None or same else DIFFERS_HEADER
+    return Explanation("\n".join([header, *stage_lines(automaton, entities, realizable)]), "automaton")
 
 
 def _reads_as(formula: Formula, automaton: Automaton, realizable: np.ndarray) -> bool:

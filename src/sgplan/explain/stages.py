@@ -121,7 +121,7 @@ def stage_lines(automaton: Automaton, entities: Mapping[str, Entity], realizable
     words = _Words(entities, a.aps)
     dist = _steps_to_accept(a, labels)
     unused = set(_irrelevant(a, realizable))
-    mentions = [entities[p].phrase() + (" (it changes nothing)" if i in unused else "")
+    mentions = [entities[p].phrase() + (" (never matters by itself here)" if i in unused else "")
                 for i, p in enumerate(a.aps)]
     lines = [f"It mentions {'; '.join(mentions)}." if mentions else "It mentions no place."]
     if not np.isfinite(dist[a.initial]):
