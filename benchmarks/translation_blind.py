@@ -39,7 +39,7 @@ def explain(formula: Formula, building: Building) -> str:
     return explain_mission(mission_from_formula(formula), building).text
 
 
-def report(score: TranslationScore, set_path: Path, seconds: float) -> str:
+def report(score: TranslationScore, set_path: Path) -> str:
     """The score file: counts, then every wrong mission (gold and translation in words and in infix),
     then every refused one with its reason."""
     counts, total = score.counts, len(score.results)
@@ -52,8 +52,6 @@ def report(score: TranslationScore, set_path: Path, seconds: float) -> str:
         "| outcome | missions | share |",
         "|---|---:|---:|",
         *(f"| {k} | {counts[k]} | {100.0 * counts[k] / total:.1f} % |" for k in ("right", "wrong", "refused")),
-        "",
-        f"Translated and scored in {seconds:.1f} s.",
         "",
         f"## Wrong ({counts['wrong']})",
         "",
@@ -97,7 +95,8 @@ def main(argv: list[str] | None = None) -> int:
     missions = load_jsonl_set(args.set)
     started = time.perf_counter()
     score = score_translator(PatternTranslator(), missions, building_of, set_path=str(args.set), explain=explain)
-    text = report(score, args.set.resolve(), time.perf_counter() - started)
+    seconds = time.perf_counter() - started
+    text = report(score, args.set.resolve())
     if args.out == "-":
         print(text, end="")
     else:
@@ -105,7 +104,7 @@ def main(argv: list[str] | None = None) -> int:
         Path(args.out).write_text(text, encoding="utf-8")
         counts = score.counts
         print(f"right {counts['right']}/{len(score.results)}, wrong {counts['wrong']}, refused {counts['refused']}; "
-              f"wrote {args.out}")
+              f"({seconds:.1f} s); wrote {args.out}")
     return 1 if score.counts["wrong"] else 0
 
 
