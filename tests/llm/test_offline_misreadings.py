@@ -211,6 +211,7 @@ def test_this_floor_is_the_start_floor(demo):
         ("I do want you to visit the kitchen.", "F r4"),
         ("Go to the living room, but not before you have been in the kitchen.", "F r6 & (!r6 U r4)"),
         ("Get something from the fridge.", "F o15"),
+        ("Walk from the kitchen to the living room.", "F(r4 & F r6)"),
         ("Go to the kitchen for the bowl.", "F o19"),
         ("Whenever you enter the kitchen, go to the dining room after.", "G(r4 -> F r7)"),
         ("Go to the living room, and stay out of the kitchen until you get there.", "F r6 & (!r4 U r6)"),

@@ -583,9 +583,9 @@ class MissionParser:
         steps: list[Step] = [[]] if carry and pronoun_only else self.tasks_of(nps, ordered is not None)
         self.revisits(nps, steps, verbs)
         self.skip_particles()
-        # "put X in Y", "take X to Y", and any object followed by "to Y": X, then Y.
-        carried = carry or (self.word() in ("to", "into", "onto") and all(e.kind == "object" for np in nps
-                                                                         for e in np.entities))
+        # "put X in Y", "take X to Y", "go from X to Y", and any object followed by "to Y": X, then Y.
+        carried = carry or (self.word() in ("to", "into", "onto") and (
+            "from" in verbs or all(e.kind == "object" for np in nps for e in np.entities)))
         if carried and self.word() in ("in", "into", "on", "onto", "to", "inside") and self.np_starts(1):
             self.i += 1
             dest = self.noun_phrase_list("goal", [])
