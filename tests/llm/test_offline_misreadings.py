@@ -138,6 +138,7 @@ def test_the_other(demo):
     means("Go to the bedroom with the book, then the other bedroom.", "F(r13 & F r11)", demo)
     means("Touch the sink in the kitchen, then the other sinks.", "F(o17 & F o21 & F o41)", demo)
     refused("Go to the other bedroom.", "no bedroom was named before it", demo)
+    means("Visit the bedroom with the book and then the other one.", "F(r13 & F r11)", demo)
 
 
 @pytest.mark.parametrize(
@@ -234,6 +235,7 @@ def test_everyday_constructs(demo, text, gold):
         ("Wash your hands in the kitchen.", "no room or object of this scene is called 'hands'"),
         ("Go to the bathroom on the middle floor.", "has 2 floors (0 to 1), so no middle one"),
         ("Go to the bedroom that doesn't have a bed.", "'the bedroom that doesn't have a bed' matches no room"),
+        ("Go to the dining room but not the kitchen.", "'the kitchen' is not one of 'the dining room'"),
     ],
 )
 def test_everyday_constructs_refused(demo, text, fragment):

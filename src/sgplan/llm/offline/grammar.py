@@ -727,6 +727,9 @@ class MissionParser:
                             pronoun_mode, ref.room_scoped, role)
             return self.record(np)
         other = self.at("the", "other") and self.vocab.match_head(self.words(), self.i + 2) is not None
+        if self.at("the", "other", "one") and one_head is None:  # "the bedroom with the book, then the other one"
+            one_head = self.last_head()
+            other = True
         if other:
             self.i += 1
         mode, count = self.quantifier()
@@ -832,9 +835,14 @@ class MissionParser:
             comma = 1 if self.word() == "," else 0
             exc = self.at_any(_QUAL_EXCEPT, k=comma)
             if exc and self.np_starts(comma + len(exc)):
+                restricted = self.span_text(first.start, self.toks[self.i - 1].end)
                 self.i += comma + len(exc)
                 excluded = self.except_list(head)
                 keys = {e.key for np in excluded for e in np.entities}
+                stray = [np.phrase for np in excluded if not {e.key for e in np.entities} & {e.key for e in entities}]
+                if stray:  # "the dining room but not the kitchen": not an exception, and not understood
+                    raise self.fail(f"'{' '.join(exc)} {stray[0]}': {stray[0]!r} is not one of {restricted!r}; to "
+                                    f"forbid it, say 'never enter {stray[0]}'")
                 entities = [e for e in entities if e.key not in keys]
                 continue
             break
@@ -862,6 +870,14 @@ class MissionParser:
         last = self.toks[self.i - 1]
         return self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, rooms, chosen,
                                       False, role))
+
+    def last_head(self) -> Head | None:
+        """The kind and category of the last room or object named (what *the other one* refers to)."""
+        for np in sorted(self.references, key=lambda r: r.start, reverse=True):
+            categories = {e.category for e in np.entities}
+            if np.role != "qualifier" and np.entities and len(categories) == 1:
+                return Head(np.entities[0].kind, frozenset(categories), False, 1)
+        return None
 
     def others(self, entities: list[Entity], before: int) -> list[Entity]:
         """``the other X``: the X not named before ``before`` (a character offset); refused when none was."""
