@@ -10,7 +10,7 @@ import pytest
 import yaml
 
 from sgplan.cli import main
-from sgplan.commands.sayback import say_back
+from sgplan.commands.sayback import check_before_planning, say_back
 from sgplan.errors import ConfirmationError
 from sgplan.mission import mission_from_formula, save_mission_folder
 from sgplan.scene.demo import demo_building
@@ -95,3 +95,11 @@ def test_own_mission_folder_plans(tmp_path: Path, capsys: pytest.CaptureFixture[
     folder = save_mission_folder(mission_from_formula(GOAL), tmp_path / "m", building=demo_building())
     assert main(["plan", "--scene", "demo", "--mission-dir", str(folder), "--setup", "NO-LLM"]) == 0
     assert EXPLAINED in capsys.readouterr().out
+
+
+def test_translate_warns_when_the_mission_cannot_be_planned(capsys: pytest.CaptureFixture[str]) -> None:
+    # What `translate` runs after writing the folder: the scene checks without a start, never raising.
+    mission = mission_from_formula('F "enter(room_4)" & G !"enter(room_4)"')
+    check = check_before_planning(mission, demo_building(), stop=False)
+    assert [f.kind for f in check.findings] == ["unsatisfiable"]
+    assert "warning: it cannot be planned: no path in scene 'demo-house'" in capsys.readouterr().err

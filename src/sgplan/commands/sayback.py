@@ -74,20 +74,27 @@ def check_folder_fits(folder: str | Path, mission: Mission, building: Building, 
         record["scene_fit"] = {"checked_through": fit.source, "mismatches": list(fit.mismatches), "forced": force}
 
 
-def check_before_planning(mission: Mission, building: Building, prepared: PreparedProblem,
-                          record: dict[str, Any] | None = None) -> SceneCheck:
-    """Run :func:`sgplan.explain.checks.check_mission_in_scene` on the problem about to be planned;
-    print warnings and notes (stderr), store all findings as ``record["scene_check"]``, raise the first
-    error (see :meth:`SceneCheck.raise_errors`)."""
+def check_before_planning(mission: Mission, building: Building, prepared: PreparedProblem | None = None,
+                          record: dict[str, Any] | None = None, *, stop: bool = True) -> SceneCheck:
+    """Run :func:`sgplan.explain.checks.check_mission_in_scene` on the problem about to be planned (or,
+    without ``prepared``, on the scene alone, start-independent checks only); print the findings (stderr),
+    store them all as ``record["scene_check"]``, and with ``stop`` raise the first error (see
+    :meth:`SceneCheck.raise_errors`); without it an error is printed as a warning."""
     from sgplan.explain.checks import check_mission_in_scene
 
-    problem = prepared.problem
-    check = check_mission_in_scene(mission, building, problem.start, grid=problem.grid, labels=problem.labels,
-                                   profile=problem.profile)
+    if prepared is None:
+        check = check_mission_in_scene(mission, building)
+    else:
+        problem = prepared.problem
+        check = check_mission_in_scene(mission, building, problem.start, grid=problem.grid, labels=problem.labels,
+                                       profile=problem.profile)
     for finding in check.findings:
         if finding.severity != "error":
             say(f"{finding.severity}: {finding.message}")
+        elif not stop:
+            say(f"warning: it cannot be planned: {finding.message}")
     if record is not None:
         record["scene_check"] = check.to_dict()
-    check.raise_errors()
+    if stop:
+        check.raise_errors()
     return check

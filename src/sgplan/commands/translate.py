@@ -15,7 +15,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from sgplan.commands.common import add_scene_arguments, load_scene_arg, non_negative_int, positive_int, say
-from sgplan.commands.sayback import say_back
+from sgplan.commands.sayback import check_before_planning, say_back
 from sgplan.errors import MissionError
 
 if TYPE_CHECKING:
@@ -96,6 +96,7 @@ def run(args: argparse.Namespace, ask: Callable[[str], str] | None = None) -> in
         print(f"warning:  {warning}")
     print(f"automaton: {mission.automaton.num_states} states over {len(mission.automaton.aps)} propositions")
     say_back(mission, building)
+    check_before_planning(mission, building, stop=False)
     summary = backends.record.to_json()["summary"]
     if backends.chat is not None:
         say(f"{summary['calls']} LLM calls ({summary['from_cache']} from the cache)")
