@@ -47,6 +47,7 @@ def test_object_reached_from_a_room_it_is_not_in() -> None:
     check = _check('F("enter(room_4)" & "reach(object_41)")')
     assert _kinds(check) == ["unsatisfiable", "impossible-part"]
     assert "no place in this scene is in the kitchen" in check.findings[1].message
+    assert "this part cannot hold in this scene: Reach the sink (object_41" in check.findings[0].message
 
 
 def test_a_local_avoidance_the_scene_makes_vacuous_is_a_warning() -> None:

@@ -236,7 +236,8 @@ class _Context:
                 small = restricted(dfa, self.realizable)
                 if not small.live_states()[small.initial]:
                     said = " ".join(self._sentences(subset))
-                    return f"{head}: these parts cannot all hold in this scene: {said}"
+                    which = "this part cannot hold" if size == 1 else "these parts cannot all hold"
+                    return f"{head}: {which} in this scene: {said}"
         return f"{head}: its parts together cannot hold in this scene"
 
     def _sentences(self, parts: Sequence[Formula]) -> list[str]:
