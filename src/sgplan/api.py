@@ -34,6 +34,7 @@ from sgplan.starts import StartSpec, start_cell
 if TYPE_CHECKING:
     from sgplan.llm.backends import Backends, MissionGuide
     from sgplan.planning.amra import IterationCallback
+    from sgplan.planning.problem import PlanningProblem
 
 log = logging.getLogger("sgplan")
 
@@ -167,12 +168,11 @@ def add_guidance(mission: Mission, building: Building, guide: MissionGuide | Non
 
 
 def _explanation(mission: Mission, building: Building) -> str | None:
-    """The mission explained in plain language.
+    """The mission explained in plain English (:func:`sgplan.explain.explain_mission`): the one place a
+    plan gets its explanation."""
+    from sgplan.explain import explain_mission
 
-    MERGE POINT (issue 13, item 1): the explainer branch adds ``sgplan.explain.explain_mission(mission,
-    building)``; when merging, return its text here. This is the only place a plan gets its explanation.
-    """
-    return None
+    return explain_mission(mission, building).text
 
 
 # -- planning ----------------------------------------------------------------------------------------
@@ -248,6 +248,7 @@ class Session:
             self.building, mission, start_at, profile=profile, robot_radius_m=radii.robot_m,
             reach_radius_m=radii.reach_m, grid=grid, labels=self.labels(mission, radii.reach_m),
         )
+        scene_check = _check_in_scene(mission, self.building, prepared.problem)
         prepare_s = time.perf_counter() - t0
         log.info("scene %s: start %s (%s), robot radius %g m (%s), reach %g m (%s), profile %s, %d automaton states",
                  self.building.name, start_at, start_from, radii.robot_m, radii.robot_from, radii.reach_m,
@@ -262,7 +263,7 @@ class Session:
             iterations=found.iterations, mission_text=mission.text, grounded_text=mission.grounded_text,
             formula=_formula_text(mission), propositions=mission.descriptions, guidance=guidance,
             notes=list(mission.notes), building=self.building, grid=grid, labels=prepared.problem.labels,
-            mission=mission, explanation=_explanation(mission, self.building),
+            mission=mission, explanation=_explanation(mission, self.building), scene_check=scene_check,
         )
         if found.status == "optimal":
             result.bound = 1.0
@@ -271,6 +272,24 @@ class Session:
         result.timings = {"prepare_s": prepare_s, "precompute_s": found.precompute_s, "search_s": found.search_s,
                           "wall_s": time.perf_counter() - t0}
         return result
+
+
+def _check_in_scene(mission: Mission, building: Building, problem: PlanningProblem) -> list[dict[str, Any]]:
+    """The scene-aware checks of the problem about to be searched
+    (:func:`sgplan.explain.checks.check_mission_in_scene`): warnings and notes are logged, the first error
+    is raised (unsatisfiable in this scene, from this start, or only through forbidden rooms); the findings
+    as records."""
+    from sgplan.explain.checks import check_mission_in_scene
+
+    check = check_mission_in_scene(mission, building, problem.start, grid=problem.grid, labels=problem.labels,
+                                   profile=problem.profile)
+    for finding in check.findings:
+        if finding.severity == "warning":
+            log.warning(f"warning: {finding.message}")
+        elif finding.severity == "note":
+            log.info(f"note: {finding.message}")
+    check.raise_errors()
+    return check.to_dict()
 
 
 def _formula_text(mission: Mission) -> str | None:

@@ -3,9 +3,9 @@
 Each sub-command lives in a module of :mod:`sgplan.commands` with a ``register(subparsers)`` function
 that adds its parser and sets ``run`` to a function ``(args) -> exit code``.
 
-Every :class:`~sgplan.errors.SgplanError` is printed as ``sgplan: error: <message>`` and exits with code 2;
-``--debug`` shows the traceback instead. ``--debug``, ``--quiet`` and ``--verbose`` go before or after the
-sub-command.
+Every :class:`~sgplan.errors.SgplanError` is printed as ``sgplan: error: <message>`` and exits with its
+``exit_code`` (2; 4 for a mission that no path in the scene satisfies); ``--debug`` shows the traceback
+instead. ``--debug``, ``--quiet`` and ``--verbose`` go before or after the sub-command.
 """
 
 from __future__ import annotations
@@ -47,7 +47,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.debug:
             raise
         print(f"sgplan: error: {error}", file=sys.stderr)
-        return 2
+        return error.exit_code
     except KeyboardInterrupt as stop:
         print("sgplan: interrupted", file=sys.stderr)
         return 128 + int(getattr(stop, "signum", None) or signal.SIGINT)  # the shell's convention

@@ -3,7 +3,8 @@
 Every error a user can cause (bad files, bad formulas, unreachable goals, a misbehaving LLM) is raised as
 a subclass of :class:`SgplanError`. Its message is one or two sentences that name the file, field or
 entity at fault and, where there is one, what to do about it. The CLI prints ``str(error)`` and exits
-with code 2; it never shows a traceback for these.
+with the error's ``exit_code`` (2; 4 for a mission no path in the scene can satisfy); it never shows a
+traceback for these. (Exit code 3 is a search budget that ran out, 70 a bug in sgplan.)
 """
 
 from __future__ import annotations
@@ -13,6 +14,9 @@ from pathlib import Path
 
 class SgplanError(Exception):
     """Base class of every error sgplan raises on purpose."""
+
+    exit_code = 2
+    """The CLI's exit status for this error."""
 
 
 class SceneError(SgplanError):
@@ -63,13 +67,34 @@ class PlanningError(SgplanError):
     """Planning cannot start or cannot succeed.
 
     ``status`` is the machine-readable outcome reported in JSON results: ``"invalid-start"`` (the start
-    cell is not free, or its label already violates the mission) or ``"infeasible"`` (no path satisfies
-    the mission), or ``"error"`` for anything else.
+    cell is not free, or its label already violates the mission), ``"infeasible"`` (no path from this
+    start satisfies the mission), ``"unsatisfiable"`` (no path anywhere in the scene can, see
+    :class:`UnsatisfiableMissionError`), or ``"error"`` for anything else.
     """
 
     def __init__(self, message: str, status: str = "error") -> None:
         self.status = status
         super().__init__(message)
+
+
+class UnsatisfiableMissionError(PlanningError):
+    """No path in this scene, from any start, satisfies the mission (e.g. "go to the kitchen; never enter
+    the kitchen", or an object to reach from a room its reach does not cover). Status
+    ``"unsatisfiable"``, CLI exit code 4, so scripts tell it from a bad start (exit code 2)."""
+
+    exit_code = 4
+
+    def __init__(self, message: str) -> None:
+        super().__init__(message, status="unsatisfiable")
+
+
+class SceneMismatchError(MissionError):
+    """A mission folder was made for another scene (its recorded scene, or the categories and floors of
+    the entities it names, differ from the scene given); ``--force`` plans it anyway."""
+
+
+class ConfirmationError(SgplanError):
+    """``--confirm`` could not ask (no terminal), or the user did not confirm the mission."""
 
 
 class LLMError(SgplanError):

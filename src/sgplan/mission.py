@@ -11,6 +11,7 @@ The mission folder is the authors' layout (reference-algorithm.md §1.4)::
     automaton.aut             HOA automaton over p1..pN
     building_desc.yaml        the attribute hierarchy given to the LLM (prompt text)
     llm_heuristic.yaml        guidance {room_uuid: {q: [calls]}}
+    scene.yaml                sgplan's folders only: the scene it was made for (:mod:`sgplan.identity`)
 
 Only ``automaton.aut`` and ``ap_desc.yaml`` are required to plan; the rest is read when present.
 """
@@ -320,11 +321,14 @@ def _literal_dict(text: str, folder: Path) -> dict[str, str]:
 # -- writing the authors' folder ---------------------------------------------------------------------
 
 
-def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str | None = None) -> Path:
+def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str | None = None,
+                        building: Building | None = None) -> Path:
     """Write ``mission`` in the authors' layout under ``path`` (created if needed); returns the folder.
 
     Propositions are renamed p1..pN by first appearance in the token list, as the authors do, so the
-    folder loads back with :func:`load_mission_folder` to an equivalent mission.
+    folder loads back with :func:`load_mission_folder` to an equivalent mission. With ``building``, the
+    scene it was made for is recorded in ``scene.yaml`` (:mod:`sgplan.identity`), so that planning it on
+    another scene is refused.
     """
     folder = Path(path)
     folder.mkdir(parents=True, exist_ok=True)
@@ -356,4 +360,8 @@ def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str 
             write_text_atomically(folder / name, value.rstrip("\n") + "\n")
     if mission.guidance is not None:
         write_guidance(mission.guidance, folder / "llm_heuristic.yaml")
+    if building is not None:
+        from sgplan.identity import write_scene_record
+
+        write_scene_record(folder, mission.propositions, building)
     return folder

@@ -60,7 +60,10 @@ class PlanResult:
         where the LLM-heuristic guidance came from: ``"mission"`` (it carried some) or the name of the
         guide that a setup using guidance asked; ``None`` when there is none.
     explanation:
-        the mission in plain language, when an explainer is available; else ``None``.
+        the mission in plain English (:func:`sgplan.explain.explain_mission`), said back before planning.
+    scene_check:
+        the findings of the scene-aware checks run before the search (warnings and notes; an error stops
+        the plan), as records (:meth:`sgplan.explain.checks.SceneCheck.to_dict`).
     timings:
         seconds: ``prepare_s`` (guidance, grid and labels), ``precompute_s`` (planning domain),
         ``search_s``, ``wall_s`` (the whole call).
@@ -88,6 +91,7 @@ class PlanResult:
     verified: bool | None = None
     guidance: str | None = None
     explanation: str | None = None
+    scene_check: list[dict[str, Any]] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     building: Building | None = field(default=None, repr=False)
@@ -123,6 +127,7 @@ class PlanResult:
             "mission": {"text": self.mission_text, "grounded_text": self.grounded_text, "formula": self.formula,
                         "propositions": dict(self.propositions)},
             "explanation": self.explanation,
+            "scene_check": list(self.scene_check),
             "start": list(self.start),
             "start_from": self.start_from,
             "setup": self.setup,

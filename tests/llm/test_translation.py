@@ -75,7 +75,9 @@ def test_correct_replies_give_the_formula_and_a_complete_folder(fake_llm, llm_cl
     assert [c["prompt_version"] for c in saved["calls"]] == ["grounding/1+hierarchy/1", "translation/1"]
     assert saved["calls"][1]["reply"].startswith("Here is the list") and saved["calls"][1]["from_cache"] is False
     assert saved["calls"][0]["latency_s"] > 0 and saved["calls"][0]["error"] is None
-    assert [e["kind"] for e in saved["events"]] == ["grounded", "formula-accepted", "saved"]
+    assert [e["kind"] for e in saved["events"]] == ["grounded", "formula-accepted", "saved", "explained"]
+    assert "the kitchen (room_4, floor 0)" in saved["events"][-1]["text"]
+    assert {"scene.yaml"} <= names
 
 
 def test_a_syntax_error_is_repaired_with_the_precise_error(fake_llm, llm_client, demo) -> None:

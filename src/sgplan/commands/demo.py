@@ -14,6 +14,7 @@ import time
 from pathlib import Path
 
 from sgplan.commands.common import non_negative_int, say
+from sgplan.commands.sayback import say_back
 from sgplan.errors import MissionError
 
 DEMO_MISSION = (
@@ -54,6 +55,7 @@ def run(args: argparse.Namespace) -> int:
     print(f"grounded: {mission.grounded_text}")
     print(f"formula:  {mission.formula}")
     print(f"automaton: {mission.automaton.num_states} states over {len(mission.automaton.aps)} propositions")
+    say_back(mission, building)
     say("planning with AMRA* (setup ALL):")
     result = sgplan.plan(
         building, mission, args.start_index, setup="ALL", guide=backends.guide,
@@ -65,7 +67,8 @@ def run(args: argparse.Namespace) -> int:
     for event in result.events:
         say(f"  {event.describe()}")
     mission_dir = save_mission_folder(result.mission or mission, out / "mission",
-                                      hierarchy_text=attribute_hierarchy(building))
+                                      hierarchy_text=attribute_hierarchy(building),
+                                      building=building)
     written = [*result.draw(out, formats=("png", "svg")), result.write_html(out / "report.html"),
                result.write_waypoints_csv(out / "waypoints.csv"), result.write_ros_path_yaml(out / "ros_path.yaml")]
     record = result.to_dict()

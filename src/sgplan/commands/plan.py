@@ -5,7 +5,8 @@ of ``--llm``). When the setup needs guidance that the mission does not carry, th
 guide provides it (the offline symbolic guide by default, which is not a language model).
 
 Exit codes: 0 optimal; 2 an error (bad input, invalid start, infeasible mission); 3 a budget ran out
-(``--time-limit`` / ``--max-expansions``): the best path so far is still written, with its bound.
+(``--time-limit`` / ``--max-expansions``): the best path so far is still written, with its bound; 4 no
+path in the scene satisfies the mission, from any start; 70 a bug in sgplan.
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ from sgplan.commands.common import (
     robot_radius,
     say,
 )
+from sgplan.commands.sayback import check_folder_fits, say_back
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 from sgplan.errors import MissionError, SgplanError
 
@@ -58,7 +60,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 
     parser = sub.add_parser("plan", help="plan an optimal path for a mission (AMRA*)",
                             description="Plan an optimal path. Exit codes: 0 optimal, 2 error, 3 budget ran out "
-                                        "(the best path so far is still written).")
+                                        "(the best path so far is still written), 4 no path in the scene "
+                                        "satisfies the mission, 70 a bug.")
     add_scene_arguments(parser)
     what = parser.add_mutually_exclusive_group(required=True)
     what.add_argument("--mission-dir", metavar="DIR", help="mission folder (automaton.aut, ap_desc.yaml, llm_heuristic.yaml)")
@@ -93,6 +96,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     out.add_argument("--html", metavar="FILE", help="write a self-contained HTML report of the plan")
     parser.add_argument("--verify", action="store_true",
                         help="accepted for old scripts: every path is checked by the independent checker")
+    parser.add_argument("--confirm", action="store_true",
+                        help="show what will be planned and ask before planning (needs a terminal)")
+    parser.add_argument("--force", action="store_true",
+                        help="plan a --mission-dir even if it was made for another scene")
     parser.add_argument("--save-mission", metavar="DIR",
                         help="with --text: save the translated mission, its guidance and the LLM run record here")
     add_llm_arguments(parser)
@@ -103,20 +110,19 @@ def run(args: argparse.Namespace) -> int:
     t_start = time.perf_counter()
     record: dict[str, Any] = {"status": "error", "profile": args.profile, "setup": args.setup}
     try:
-        result, llm = _plan(args)
+        result, extras = _plan(args)
     except SgplanError as error:
         record.update(status=getattr(error, "status", "error"), message=str(error))
         _write_json(args.json, record)
         raise
-    record = result.to_dict()
-    if llm is not None:
-        record["llm"] = llm
+    record = result.to_dict() | extras
     record["timings"]["wall_s"] = time.perf_counter() - t_start
     _write_json(args.json, record)
     return _report(args, result)
 
 
-def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any] | None]:
+def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
+    """The plan of ``args``, and what the JSON record holds beyond the result (scene fit, LLM calls)."""
     import sgplan
     from sgplan.mission import read_guidance, write_guidance
     from sgplan.planning.amra import get_setup
@@ -143,6 +149,11 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any] | None]:
         mission.guidance = read_guidance(args.guidance)
     for note in mission.notes:
         say(f"note: {note}")
+    extras: dict[str, Any] = {}
+    if args.mission_dir:
+        check_folder_fits(args.mission_dir, mission, building, force=args.force, record=extras)
+    # Said back before any guidance call or search; on stderr when stdout carries the JSON.
+    say_back(mission, building, confirm=args.confirm, stream=sys.stderr if args.json == "-" else sys.stdout)
     guide = None
     if get_setup(args.setup).uses_llm and mission.guidance is None:
         if backends is None:
@@ -164,15 +175,15 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any] | None]:
                          callback=progress)
     if args.save_mission and guide is not None and result.mission is not None and result.mission.guidance:
         say(f"wrote {write_guidance(result.mission.guidance, Path(args.save_mission) / 'llm_heuristic.yaml')}")
-    llm = None
     if backends is not None and backends.chat is not None:
         from sgplan.llm.translation import RECORD_NAME
 
         summary = backends.record.to_json()["summary"]
-        llm = {"backend": backends.description, "calls": summary["calls"], "from_cache": summary["from_cache"]}
+        extras["llm"] = {"backend": backends.description, "calls": summary["calls"],
+                         "from_cache": summary["from_cache"]}
         if args.save_mission:
             backends.record.save(Path(args.save_mission) / RECORD_NAME)
-    return result, llm
+    return result, extras
 
 
 def _report(args: argparse.Namespace, result: PlanResult) -> int:

@@ -23,6 +23,7 @@ from sgplan.commands.common import (
     positive_seconds,
     say,
 )
+from sgplan.commands.sayback import check_before_planning, say_back
 from sgplan.errors import MissionError
 
 if TYPE_CHECKING:
@@ -114,6 +115,8 @@ def run(args: argparse.Namespace, ask: Callable[[str], str] | None = None) -> in
     for warning in getattr(translation, "warnings", ()):
         print(f"warning:  {warning}")
     print(f"automaton: {mission.automaton.num_states} states over {len(mission.automaton.aps)} propositions")
+    say_back(mission, building)
+    check_before_planning(mission, building, stop=False)
     summary = backends.record.to_json()["summary"]
     if backends.chat is not None:
         say(f"{summary['calls']} LLM calls ({summary['from_cache']} from the cache)")

@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from sgplan.errors import AutomatonError, FormulaError, LLMError, MissionError, SgplanError
+from sgplan.explain import explain_mission
 from sgplan.files import rebuild_folder, write_text_atomically
 from sgplan.llm.client import ChatBackend
 from sgplan.llm.config import one_line
@@ -356,8 +357,9 @@ def translate_to_folder(
     """Translate ``text`` with ``translator`` (LLM or offline) and save every step under ``out``.
 
     Writes the authors' mission-folder files (:func:`~sgplan.mission.save_mission_folder`, with the
-    attribute hierarchy as ``building_desc.yaml``), ``env_elements.txt`` (the grounded IDs) and the run
-    record ``llm_record.json``, and removes what an earlier mission left there for its own automaton
+    attribute hierarchy as ``building_desc.yaml`` and the scene record ``scene.yaml``), ``env_elements.txt``
+    (the grounded IDs) and the run record ``llm_record.json`` (with an ``explained`` event holding the mission's plain-English
+    explanation), and removes what an earlier mission left there for its own automaton
     (:data:`GUIDANCE_FILES`) and an earlier refusal's record. Other files in ``out`` are kept. The new
     folder is built beside ``out`` and swapped in whole (:func:`~sgplan.files.rebuild_folder`), so a
     failure or a crash leaves the earlier mission whole, and concurrent translations into one folder
@@ -388,9 +390,10 @@ def translate_to_folder(
     hierarchy = environment_text(building)
     record.event("saved", folder=str(folder), backend=translation.backend, tokens=list(translation.tokens),
                  formula=to_infix(translation.formula), states=mission.automaton.num_states)
+    record.event("explained", **explain_mission(mission, building).to_dict())
 
     def build(staging: Path) -> None:
-        save_mission_folder(mission, staging, hierarchy_text=hierarchy)
+        save_mission_folder(mission, staging, hierarchy_text=hierarchy, building=building)
         write_text_atomically(staging / "env_elements.txt", "[" + ", ".join(ids) + "]\n")
         record.save(staging / RECORD_NAME)
 

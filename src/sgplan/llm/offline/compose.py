@@ -11,7 +11,9 @@ The sequence ``s_1, ..., s_n`` becomes, from the last step backwards, ``R_n = AN
 rest of the sequence happens after it"; the rest then happens after the last of them, which is what
 "do all of these, then ..." means (``F(a & F c) & F(b & F c)`` holds iff ``c`` follows both ``a`` and
 ``b``). ``avoid`` are the local negations of the task ("visit the bathroom and avoid the sink" ->
-``F(enter(bathroom) & !reach(sink))``, the convention of the authors' missions).
+``F(enter(bathroom) & !reach(sink))``, the convention of the authors' missions). A ``revisit`` task
+("... then the kitchen again", "twice") is a new visit: the robot is somewhere else first,
+``F(!m & F(m & avoid & R))``, so it cannot be satisfied by staying where the previous step ended.
 """
 
 from __future__ import annotations
@@ -20,16 +22,18 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
-from sgplan.logic.formula import And, Eventually, Formula, Or
+from sgplan.logic.formula import And, Eventually, Formula, Not, Or
 
 
 @dataclass
 class Task:
-    """One goal: ``any`` of ``members`` or ``all`` of them, each with the local negations ``avoid``."""
+    """One goal: ``any`` of ``members`` or ``all`` of them, each with the local negations ``avoid``;
+    ``revisit``: reached anew, after being elsewhere (see the module docstring)."""
 
     mode: Literal["any", "all"]
     members: list[Formula]
     avoid: list[Formula] = field(default_factory=list)
+    revisit: bool = False
 
 
 Step = list[Task]
@@ -62,9 +66,10 @@ def disj(parts: Sequence[Formula]) -> Formula:
 def task_formulas(task: Task, rest: Formula | None) -> list[Formula]:
     """The conjuncts that say ``task`` is done and ``rest`` (the later steps) happens afterwards."""
     extra = task.avoid + ([rest] if rest is not None else [])
-    if task.mode == "any":
-        return [Eventually(conj([disj(task.members), *extra]))]
-    return [Eventually(conj([m, *extra])) for m in task.members]
+    targets = [disj(task.members)] if task.mode == "any" else task.members
+    if task.revisit:
+        return [Eventually(conj([Not(m), Eventually(conj([m, *extra]))])) for m in targets]
+    return [Eventually(conj([m, *extra])) for m in targets]
 
 
 def sequence_formula(steps: Sequence[Step]) -> Formula | None:

@@ -4,7 +4,8 @@ The set is a YAML file (format in tests/llm/data/pattern_missions.yaml): per mis
 either a gold formula (infix, with the shorthand ``r2`` = ``"enter(room_2)"``, ``o27`` =
 ``"reach(object_27)"``) or the fragment of the error the translator must raise. A translation is right
 when its LTLf automaton accepts exactly the gold's words among the words with at most one room per cell
-(the only ones a robot can produce), or when it raises the expected error.
+(the only ones a robot can produce) and, given the scene, with every object reached only from its room,
+or when it raises the expected error.
 """
 
 from __future__ import annotations
@@ -18,8 +19,9 @@ from typing import Literal, Protocol
 import yaml
 
 from sgplan.errors import MissionError, SgplanError
-from sgplan.logic import atoms, difference_word, ltlf_to_dfa, parse_infix
-from sgplan.logic.formula import Formula
+from sgplan.logic import Always, Atom, Implies, atoms, difference_word, ltlf_to_dfa, parse_infix
+from sgplan.logic.formula import And, Formula
+from sgplan.logic.tokens import action_entity
 from sgplan.scene.model import Building
 
 Outcome = Literal["right", "refused", "wrong"]
@@ -27,17 +29,28 @@ Outcome = Literal["right", "refused", "wrong"]
 _SHORTHAND = re.compile(r"\b([ro])(\d+)\b")
 
 
+class Translated(Protocol):
+    """What a translator returns, as far as scoring is concerned."""
+
+    @property
+    def formula(self) -> Formula: ...
+
+
 class Translator(Protocol):
-    """What is scored: a named backend turning text into a formula for a building."""
+    """What is scored: a named backend turning text into a formula for a building. A backend that can read
+    words relative to the robot's start ("upstairs") also has ``starting_on(floor)`` returning a copy
+    that knows the start floor; it is used for missions that give one."""
 
-    name: str
+    @property
+    def name(self) -> str: ...
 
-    def translate(self, text: str, building: Building) -> object: ...
+    def translate(self, text: str, building: Building) -> Translated: ...
 
 
 @dataclass(frozen=True)
 class EvalMission:
-    """One mission of the set; exactly one of ``gold`` and ``expect_error`` is set."""
+    """One mission of the set; exactly one of ``gold`` and ``expect_error`` is set; ``start_floor`` is the
+    robot's start floor when the mission gives it."""
 
     id: str
     scene: str
@@ -47,17 +60,20 @@ class EvalMission:
     must_pass: bool
     paper: bool
     note: str
+    start_floor: int | None = None
 
 
 @dataclass(frozen=True)
 class EvalResult:
     """How a translator did on one mission: ``right``, ``refused`` (a MissionError where a formula was
     expected) or ``wrong`` (a formula not equivalent to the gold, or the wrong error or none);
-    ``detail`` says what happened (the error, or a word on which translation and gold disagree)."""
+    ``detail`` says what happened (the error, or a word on which translation and gold disagree);
+    ``formula`` is the translation (``None`` when the translator raised)."""
 
     mission: EvalMission
     outcome: Outcome
     detail: str
+    formula: Formula | None = None
 
 
 def expand_shorthand(text: str) -> str:
@@ -89,10 +105,34 @@ def load_mission_set(path: str | Path) -> list[EvalMission]:
     return out
 
 
-def same_language(a: Formula, b: Formula) -> tuple[bool, str]:
-    """Whether ``a`` and ``b`` accept the same finite words with at most one room per letter; if not, a
-    shortest word on which they differ, as text."""
+def scene_facts(propositions: Iterable[str], building: Building) -> list[Formula]:
+    """What the scene makes true of every path, for the objects among ``propositions``: each
+    ``reach(object_u)`` holds only in its room (``G(reach(object_u) -> enter(room_r))``).
+
+    Raises :class:`MissionError` for an ``enter(...)`` / ``reach(...)`` proposition naming no room or object
+    of ``building``."""
+    rooms = {room.key for room in building.rooms()}
+    room_of = {obj.key: room.key for room in building.rooms() for obj in room.objects.values()}
+    facts: list[Formula] = []
+    for p in propositions:
+        key = action_entity(p)
+        if key in room_of:
+            facts.append(Always(Implies(Atom(p), Atom(f"enter({room_of[key]})"))))
+        elif key not in rooms:
+            raise MissionError(f"proposition {p!r} names no room or object of the scene {building.name!r}")
+    return facts
+
+
+def same_language(a: Formula, b: Formula, building: Building | None = None) -> tuple[bool, str]:
+    """Whether ``a`` and ``b`` accept the same finite words with at most one room per letter (and, given
+    ``building``, with every object reached only from its room, see :func:`scene_facts`); if not, a
+    shortest such word on which they differ, as text."""
     union = list(dict.fromkeys(atoms(a) + atoms(b)))
+    if building is not None:
+        facts = scene_facts(union, building)
+        if facts:
+            a, b = And((a, *facts)), And((b, *facts))
+            union = list(dict.fromkeys(union + list(atoms(a))))
     rooms = [p for p in union if p.startswith("enter(")]
     dfa_a = ltlf_to_dfa(a, aps=union, exclusive=[rooms])
     dfa_b = ltlf_to_dfa(b, aps=union, exclusive=[rooms])
@@ -108,14 +148,17 @@ def evaluate(
 ) -> list[EvalResult]:
     """Translate every mission with ``translator`` and classify the outcome (see :class:`EvalResult`).
 
-    ``translator.translate`` must return an object with a ``formula`` attribute. Errors other than
-    :class:`MissionError` propagate: they are bugs, not refusals.
+    Formulas are compared under the scene's facts (:func:`same_language` with the mission's building).
+    Errors other than :class:`MissionError` propagate: they are bugs (or a failing language-model
+    server), not refusals.
     """
     results = []
     for m in missions:
         building = building_of(m.scene)
+        starting_on = getattr(translator, "starting_on", None)
+        backend = starting_on(m.start_floor) if m.start_floor is not None and starting_on else translator
         try:
-            formula = translator.translate(m.text, building).formula  # type: ignore[attr-defined]
+            formula = backend.translate(m.text, building).formula
         except MissionError as exc:
             message = str(exc)
             if m.expect_error is not None:
@@ -125,8 +168,10 @@ def evaluate(
                 results.append(EvalResult(m, "refused", message))
             continue
         if m.gold is None:
-            results.append(EvalResult(m, "wrong", f"expected an error containing {m.expect_error!r}, got {formula}"))
+            results.append(EvalResult(m, "wrong", f"expected an error containing {m.expect_error!r}, got {formula}",
+                                      formula))
             continue
-        same, why = same_language(formula, m.gold)
-        results.append(EvalResult(m, "right" if same else "wrong", f"got {formula}" + ("" if same else f"; {why}")))
+        same, why = same_language(formula, m.gold, building)
+        results.append(EvalResult(m, "right" if same else "wrong", f"got {formula}" + ("" if same else f"; {why}"),
+                                  formula))
     return results

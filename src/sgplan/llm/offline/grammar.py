@@ -2,11 +2,12 @@
 
 The grammar is documented for users in docs/offline.md. In short, a mission is a list of sentences; each
 sentence is a sequence of steps joined by ``then`` / ``after that`` / ``finally`` / ``X after Y`` /
-``X before Y``; a step is one or more actions (``visit the kitchen and water the plant``); an action is
-verb words followed by a list of noun phrases; negations (``always avoid``, ``never``, ``don't``,
-``avoid``, ``without``, ``stay away from``), ``until``, conditions (``if ... , ...``, ``... if ...``,
-``... only if ...``) and sentence prefixes (``After visiting X, ...``, ``Only after ...``, ``In the
-kitchen, ...``) wrap them. Noun phrases are grounded as they are read (:class:`NounPhrase`), so pronouns
+``X before Y`` / ``..., but first X`` / ``Before that, ...``; a step is one or more actions (``visit the
+kitchen and water the plant``); an action is verb words followed by a list of noun phrases (``again``,
+``twice`` make new visits); negations (``always avoid``, ``never``, ``don't``, ``avoid``, ``without``,
+``stay away from``; a trailing one on a room holds for the whole mission), ``until``, conditions
+(``if ... , ...``, ``... if ...``, ``... only if ...``, ``whenever ...``) and sentence prefixes (``After
+visiting X, ...``, ``Only after ...``, ``In the kitchen, ...``) wrap them. Noun phrases are grounded as they are read (:class:`NounPhrase`), so pronouns
 (``it``, ``them``) and room context ("go to the dining room and sit on one of the chairs": the chairs of
 that dining room) use what came before.
 
@@ -24,15 +25,18 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.compose import Step, Task, conj, disj, sequence_formula
 from sgplan.llm.offline.names import Entity, Head, SceneVocabulary
 from sgplan.llm.offline.text import Tok, sentences, tokenize
-from sgplan.logic.formula import Always, And, Atom, Eventually, Formula, Implies, Not, Until
+from sgplan.logic.formula import Always, And, Atom, Eventually, Formula, Implies, Not, Until, atoms
+from sgplan.logic.tokens import action_entity
 
 Mode = Literal["the", "any", "all"]
 Role = Literal["goal", "avoid", "condition", "qualifier"]
 
-_DETERMINERS = frozenset("the a an any all every each both either this that these those some".split())
+_POSSESSIVES = frozenset("my your our his her their".split())
+_DETERMINERS = frozenset("the a an any all every each both either this that these those some".split()) | _POSSESSIVES
 _SEQ_WORDS = (("and", "then"), ("then",), ("after", "that"), ("afterwards",), ("afterward",), ("next",),
               ("finally",), ("subsequently",), ("after", "which"), ("followed", "by"), ("later",),
-              ("and", "finally"), ("lastly",))
+              ("and", "finally"), ("lastly",), ("secondly",), ("thirdly",), ("fourthly",), ("second", ","),
+              ("third", ","), ("fourth", ","))
 _NEG_STARTS = (("always", "avoid"), ("always", "stay", "away", "from"), ("always", "keep", "away", "from"),
                ("always", "stay", "out", "of"), ("always", "keep", "out", "of"), ("never",),
                ("do", "not"), ("does", "not"), ("must", "not"), ("should", "not"), ("can", "not"),
@@ -48,22 +52,32 @@ action only constrain the moment that action is done (F(x & !y)), as in the auth
 _QUAL_IN = ("in", "inside", "within", "of", "from")
 _QUAL_CONTAINS = (("with",), ("having",), ("containing",), ("that", "has"), ("that", "have"),
                   ("which", "has"), ("which", "have"), ("that", "contains"), ("which", "contains"),
-                  ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"))
+                  ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"), ("that", "only", "has"),
+                  ("which", "only", "has"), ("that", "only", "have"), ("with", "only"), ("that", "has", "only"),
+                  ("containing", "only"))
+_QUAL_LACKS = (("that", "does", "not", "have"), ("which", "does", "not", "have"), ("with", "no"),
+               ("that", "has", "no"), ("that", "does", "not", "contain"), ("where", "there", "is", "no"))
 _QUAL_NEXT = (("next", "to"), ("adjacent", "to"), ("beside",), ("near",), ("connected", "to"), ("by",),
-              ("off",), ("close", "to"), ("joined", "to"), ("linked", "to"))
+              ("off",), ("close", "to"), ("joined", "to"), ("linked", "to"), ("attached", "to"),
+              ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to"))
 _QUAL_EXCEPT = (("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
                 ("excluding",), ("besides",))
 _PARTICLES = frozenset("on off up down out over".split())
 _SUBJECT_FILLERS = frozenset("you we i the robot it ever have has had do does did are is were was already "
                              "been also first".split())
 _CONDITION_WORDS = ("if", "when", "once", "in case")
+_WHENEVER = (("whenever",), ("every", "time"), ("each", "time"), ("any", "time"), ("anytime",))
+_ONLY_AFTER = (("only", "after"), ("only", "once"), ("not", "before"), ("not", "until"))
+_FIRST = frozenset({"first", "firstly"})
+_MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
 _STRUCTURAL = (
-    frozenset(w for table in (_SEQ_WORDS, _NEG_STARTS, _QUAL_CONTAINS, _QUAL_NEXT, _QUAL_EXCEPT,
+    frozenset(w for table in (_SEQ_WORDS, _NEG_STARTS, _QUAL_CONTAINS, _QUAL_LACKS, _QUAL_NEXT, _QUAL_EXCEPT,
                               lx.ORDER_MODIFIERS) for seq in table for w in seq)
     | frozenset(_QUAL_IN) | frozenset(w for c in _CONDITION_WORDS for w in c.split()) | _DETERMINERS
     | frozenset(lx.FLOOR_WORDS) | frozenset(lx.FLOOR_ORDINALS) | frozenset(lx.FLOOR_NAMED)
-    | frozenset(lx.FLOOR_TOP) | frozenset(lx.NUMBER_WORDS) | frozenset(lx.PRONOUNS)
-    | frozenset(lx.GENERIC_ROOM_WORDS) | frozenset({"whenever", "only", "than", "zero", "ever"})
+    | frozenset(lx.FLOOR_TOP) | frozenset(lx.FLOOR_MIDDLE) | frozenset(lx.NUMBER_WORDS) | frozenset(lx.PRONOUNS)
+    | frozenset(lx.GENERIC_ROOM_WORDS) | frozenset({"whenever", "only", "than", "zero", "ever", "again", "twice",
+                                                  "times", "anytime"})
 ) - lx.POSITIVE_VERBS - {"first", "also", "please", "eventually", "finally"}
 """Words with a role in the grammar: in the verb slot they signal a sentence that was not understood."""
 
@@ -84,6 +98,8 @@ class NounPhrase:
     mode: Mode
     room_scoped: bool
     role: Role
+    count: int | None = None
+    """How many entities the phrase said ("the two beds"), if it said so."""
 
 
 @dataclass
@@ -110,13 +126,18 @@ def member_formula(entity: Entity, room_scoped: bool) -> Formula:
 class MissionParser:
     """Parses one mission text against one scene; see :func:`parse_mission`."""
 
-    def __init__(self, text: str, vocabulary: SceneVocabulary) -> None:
+    def __init__(self, text: str, vocabulary: SceneVocabulary, start_floor: int | None = None) -> None:
         self.text = text
         self.vocab = vocabulary
+        self.start_floor = start_floor
         self.references: list[NounPhrase] = []
         self.toks: list[Tok] = []
         self.i = 0
         self.sentence_scope: list[Entity] = []
+        self.prior_steps: list[Step] = []
+        """The steps of the previous sentence when this one continues its sequence ("... Then ...")."""
+        self.pending_floor: frozenset[int] | None = None
+        """A floor said in the verb slot ("go upstairs to ..."), for the next noun phrase."""
 
     # -- token helpers --------------------------------------------------------------------------------
     def word(self, k: int = 0) -> str:
@@ -156,11 +177,20 @@ class MissionParser:
         parts: list[Clause | Formula] = []
         for sentence in sentences(tokenize(self.text)):
             self.toks, self.i, self.sentence_scope = sentence, 0, []
+            previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
+            precedes = self.sentence_precedes(parts)
             continues = self.skip_fillers(sequence_too=True)
+            self.prior_steps = previous.steps if continues and previous is not None else []
             result = self.sentence()
-            if continues and parts and isinstance(parts[-1], Clause) and isinstance(result, Clause):
-                parts[-1].steps.extend(result.steps)
-                parts[-1].constraints.extend(result.constraints)
+            if precedes:
+                if previous is None or not isinstance(result, Clause):
+                    raise self.fail("'before that' / 'first' in a later sentence needs a plain list of goals in "
+                                    "this sentence and the one before it")
+                previous.steps[0:0] = [s for s in result.steps if s]
+                previous.constraints.extend(result.constraints)
+            elif continues and previous is not None and isinstance(result, Clause):
+                previous.steps.extend(result.steps)
+                previous.constraints.extend(result.constraints)
             else:
                 parts.append(result)
         formulas = [p.formula() if isinstance(p, Clause) else p for p in parts]
@@ -168,6 +198,25 @@ class MissionParser:
         if not present:
             raise self.fail("the mission names no room or object to visit or avoid")
         return conj(present)
+
+    def sentence_precedes(self, parts: list[Clause | Formula]) -> bool:
+        """Whether this sentence starts with *before that* or *first* after sentences with goals: its steps
+        then come before the previous sentence's (consumes the words). Refused when that is ambiguous."""
+        has_goals = [p for p in parts if not isinstance(p, Clause) or any(p.steps)]
+        if self.at("before", "that"):
+            self.i += 2
+        elif self.word() in _FIRST and has_goals:
+            self.i += 1
+        else:
+            return False
+        if self.word() == ",":
+            self.i += 1
+        said = self.span_text(self.toks[0].start, self.toks[self.i - 1].end)
+        if len(has_goals) != 1 or (said.lower().startswith("before") and
+                                   isinstance(has_goals[0], Clause) and len([s for s in has_goals[0].steps if s]) > 1):
+            raise self.fail(f"'{said}': it is not clear which of the earlier goals this comes before; put the "
+                            f"goals in the order they must be done (with 'then')")
+        return True
 
     def skip_fillers(self, sequence_too: bool = False) -> bool:
         """Skip words without meaning at a clause start; True if a sequencing word ('then', ...) was seen."""
@@ -177,17 +226,21 @@ class MissionParser:
             if seq is not None:
                 self.i += len(seq)
                 seen_sequence = True
-            elif self.word() == "," or (self.word() in lx.FILLERS and self.word() not in ("do", "and", "then", "next")):
-                self.i += 1
             elif self.at_any(lx.TIME_FILLERS) is not None:
                 self.i += len(self.at_any(lx.TIME_FILLERS) or ())
+            elif self.word() == "," or (self.word() in lx.FILLERS and self.word() not in ("do", "and", "then", "next")):
+                self.i += 1
             else:
                 break
         return seen_sequence
 
     def sentence(self) -> Clause | Formula:
-        if self.at("whenever") or self.at("every", "time"):
-            raise self.fail("'whenever' is not understood (say 'if you visit X, ...' for a one-off condition)")
+        whenever = self.at_any(_WHENEVER)
+        if whenever is not None:
+            self.i += len(whenever)
+            trigger = self.trigger()
+            self.expect_comma_or_then()
+            return self.whenever(trigger, self.body())
         cond_word = next((w for w in _CONDITION_WORDS if self.at(*w.split())), None)
         if cond_word is not None:
             self.i += len(cond_word.split())
@@ -195,7 +248,7 @@ class MissionParser:
             self.expect_comma_or_then()
             body = self.body()
             return Implies(condition, self.require(body, "after the condition"))
-        if self.at("only", "after"):
+        if self.at_any(_ONLY_AFTER):
             self.i += 2
             before = self.prefix_clause()
             body = self.body()
@@ -227,6 +280,18 @@ class MissionParser:
     def postfix_condition(self, body: Clause) -> Clause | Formula:
         if self.done():
             return body
+        if self.at_any(_ONLY_AFTER):
+            self.i += 2
+            self.skip_subject()
+            before = Clause(steps=self.action())
+            self.expect_end()
+            return self.only_after(before, body)
+        whenever = self.at_any(_WHENEVER)
+        if whenever is not None:
+            self.i += len(whenever)
+            trigger = self.trigger()
+            self.expect_end()
+            return self.whenever(trigger, body)
         if self.at("only", "if"):
             self.i += 2
             condition = self.condition()
@@ -272,6 +337,25 @@ class MissionParser:
                 parts.extend(Until(forbidden, m) for m in t.members)
         return conj(parts + body.constraints)
 
+    def trigger(self) -> Task:
+        """The one place of ``whenever you enter the kitchen``: a task whose members trigger the response."""
+        self.skip_subject()
+        if self.word() in ("not", "never"):
+            raise self.fail("negative triggers ('whenever you do not ...') are not understood")
+        tasks = [t for step in self.action() for t in step]
+        if len(tasks) != 1:
+            raise self.fail("'whenever ...' needs one room or object (or a choice of them) as its trigger")
+        return tasks[0]
+
+    def whenever(self, trigger: Task, body: Clause) -> Formula:
+        """``Whenever X, Y`` / ``Y whenever X``: each time the robot is at X, Y follows (``G(X -> F Y)``, the
+        finite-path response; Y may happen at X itself). Y must be goals only: a prohibition scoped to
+        "whenever" is not expressible this way, so it is refused."""
+        if body.constraints or any(t.avoid for step in body.steps for t in step):
+            raise self.fail("'whenever X, ...' is understood with goals only (e.g. 'whenever you enter the kitchen, "
+                            "open the fridge'), not with prohibitions")
+        return Always(Implies(disj(trigger.members), self.require(body, "for 'whenever'")))
+
     def prefix_clause(self) -> Clause:
         """The clause of ``After visiting X,`` / ``Before going to Y,`` up to the comma."""
         self.skip_subject()
@@ -298,14 +382,26 @@ class MissionParser:
     def body(self) -> Clause:
         clause = Clause()
         while not self.done():
-            if self.at("only", "if") or any(self.at(*w.split()) for w in _CONDITION_WORDS):
+            if self.word() in ("but", "and", ",") and self.at_any(_ONLY_AFTER, k=1):
+                self.i += 1  # "..., but only after X" / "..., but not before X"
+            if (self.at("only", "if") or any(self.at(*w.split()) for w in _CONDITION_WORDS)
+                    or self.at_any(_ONLY_AFTER) or self.at_any(_WHENEVER)):
                 break
+            if self.word() in ("after", "afterwards", "afterward") and self.word(1) in ("", ","):
+                self.i += 1  # "..., go to the dining room after."
+                continue
+            if any(clause.steps) and (self.word() in _FIRST or self.at("before", "that")):
+                self.goals_first(clause)
+                continue
+            before = self.i
             if self.skip_fillers(sequence_too=True):
                 if clause.steps[-1]:
                     clause.steps.append([])
                 continue
             if self.done():
                 break
+            if self.i > before:
+                continue  # look again at what follows the fillers
             neg = self.at_any(_NEG_STARTS)
             if neg is not None:
                 self.negation(neg, clause)
@@ -327,10 +423,49 @@ class MissionParser:
                 if self.word() in lx.REFUSED_VERBS:
                     raise self.fail(f"cannot understand {lx.REFUSED_VERBS[self.word()]}")
                 steps = self.action(step_rooms=self.step_rooms(clause.steps[-1]))
+                self.check_revisits(steps[0], self.prior_steps + clause.steps[:-1])
+                before_that = self.at("before", "that") and self.word(2) in ("", ",", "and", "then")
+                if self.word() in _FIRST or before_that:  # "go to B, but go to A first / before that"
+                    if before_that and len([s for s in clause.steps if s]) > 1:
+                        raise self.fail(f"'before that' at {self.here()}: it is not clear which of the earlier goals "
+                                        f"this comes before; put the goals in the order they must be done")
+                    self.i += 2 if before_that else 1
+                    self.skip_of_all()
+                    if any(clause.steps):
+                        clause.steps[0:0] = [s for s in steps if s]
+                        continue
                 clause.steps[-1].extend(steps[0])
                 if len(steps) > 1:
                     clause.steps.extend(steps[1:])
         return clause
+
+    def skip_of_all(self) -> None:
+        if self.at("of", "all"):
+            self.i += 2
+
+    def goals_first(self, clause: Clause) -> None:
+        """``..., but first (go to) X`` / ``..., and before that X``: X's steps come before the clause's.
+        *before that* after several steps is ambiguous (before which?) and refused."""
+        before_that = self.at("before", "that")
+        if before_that and len([s for s in clause.steps if s]) > 1:
+            raise self.fail(f"'before that' at {self.here()}: it is not clear which of the earlier goals this comes "
+                            f"before; put the goals in the order they must be done (with 'then')")
+        self.i += 2 if before_that else 1
+        self.skip_of_all()
+        if self.word() == ",":
+            self.i += 1
+        self.skip_subject()
+        steps = self.action()
+        clause.steps[0:0] = [s for s in steps if s]
+
+    def check_revisits(self, step: Step, earlier: list[Step]) -> None:
+        """A new visit ("again", "go back to", "return to") must follow an earlier step of the same sequence
+        that went there; otherwise nothing orders the two visits and the mission would be misread."""
+        done = [m for s in earlier for t in s for m in t.members]
+        for task in step:
+            if task.revisit and not all(m in done for m in task.members):
+                raise self.fail("'again' / 'back to' needs the first visit earlier in the same sequence (e.g. 'go to "
+                                "the kitchen, then the bedroom, then back to the kitchen')")
 
     def step_rooms(self, step: Step) -> list[Entity]:
         """Rooms the current step sends the robot to: context for the objects named next."""
@@ -343,13 +478,20 @@ class MissionParser:
         """``always avoid X`` / ``never enter X`` (global: G !X), ``avoid X`` after an action (local),
         ``don't enter X until Y`` (``!X U Y``)."""
         self.i += len(marker)
+        if self.word() == "ever":  # "never ever", "don't ever"
+            self.i += 1
         has_goal = any(clause.steps)
         is_global = bool(_GLOBAL_NEG & set(marker)) or not has_goal
         self.verb_words()
         rooms = self.step_rooms(clause.steps[-1]) if not is_global else self.sentence_scope
         nps = self.noun_phrase_list("avoid", rooms)
-        forbidden = conj([Not(Atom(e.action)) for np in nps for e in np.entities])
+        entities = [e for np in nps for e in np.entities]
+        forbidden = conj([Not(Atom(e.action)) for e in entities])
         self.skip_particles()
+        whole = self.at_any(lx.WHOLE_MISSION)
+        if whole is not None:  # "avoid the office the whole time"
+            self.i += len(whole)
+            is_global = True
         if self.word() in ("until", "before"):
             self.i += 1
             self.skip_subject()
@@ -364,7 +506,20 @@ class MissionParser:
             clause.constraints.append(Always(forbidden))
         else:
             target = [t for s in clause.steps for t in s][-1]
-            target.avoid.extend(forbidden.args if isinstance(forbidden, And) else [forbidden])
+            local, everywhere = self.avoidance_scope(target, entities)
+            target.avoid.extend(Not(Atom(e.action)) for e in local)
+            if everywhere:
+                clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in everywhere])))
+
+    def avoidance_scope(self, target: Task, forbidden: list[Entity]) -> tuple[list[Entity], list[Entity]]:
+        """Split what a trailing *avoid* / *without* forbids into what holds when ``target`` is done (an object
+        of a room the target is in: "visit the bathroom and avoid the sink") and what holds for the whole
+        mission: a room (one room at a time makes "in the bedroom and not in the kitchen" say nothing, so
+        "go to the bedroom while avoiding the kitchen" means never entering it), or an object elsewhere."""
+        keys = [action_entity(a) for m in target.members for a in atoms(m)]
+        rooms = {self.vocab.by_key[k].room_key for k in keys if k in self.vocab.by_key}
+        local = [e for e in forbidden if e.kind == "object" and e.room_key in rooms]
+        return local, [e for e in forbidden if e not in local]
 
     # -- actions -------------------------------------------------------------------------------------
     def verb_words(self) -> list[str]:
@@ -377,17 +532,43 @@ class MissionParser:
             w = self.word()
             if w in lx.REFUSED_VERBS:
                 raise self.fail(f"cannot understand {lx.REFUSED_VERBS[w]}")
+            if w in _MODALS and self.word(1) not in ("not", "never"):
+                seen.append(w)  # "may you go into ...", "I do want you to visit ...": no negation
+                self.i += 1
+                continue
             if self.at_any(_NEG_STARTS) is not None:
                 break
-            if w not in lx.POSITIVE_VERBS and (w in _STRUCTURAL or not w.isalpha()):
+            if w in lx.RELATIVE_FLOORS:  # "go upstairs to the bathroom": the bathroom on that floor
+                self.pending_floor = self.relative_floor(w)
+            elif w not in lx.POSITIVE_VERBS and (w in _STRUCTURAL or not w.isalpha()):
                 raise self.fail(f"cannot understand '{w}' in {self.here()}")
             seen.append(w)
             self.i += 1
         return seen
 
+    def relative_floor(self, word: str) -> frozenset[int]:
+        """The floors *upstairs* / *downstairs* mean: those above / below the start floor when it is known;
+        in a two-floor building, the upper / lower floor; otherwise it is refused, naming the floors."""
+        step = lx.RELATIVE_FLOORS[word]
+        floors = self.vocab.num_floors
+        if self.start_floor is not None:
+            wanted = frozenset(f for f in range(floors) if (f - self.start_floor) * step > 0)
+            if not wanted:
+                raise self.fail(f"'{word}': the robot starts on floor {self.start_floor} and the building "
+                                f"{self.vocab.building_name!r} has floors 0 to {floors - 1}")
+            return wanted
+        if floors == 2:
+            return frozenset({1 if step > 0 else 0})
+        listing = "floor 0" if floors == 1 else f"floors 0 to {floors - 1}"
+        raise self.fail(f"'{word}' depends on where the robot starts, which is not known here; say which floor "
+                        f"(the building {self.vocab.building_name!r} has {listing})")
+
     def action(self, step_rooms: list[Entity] | None = None) -> list[Step]:
         """Verb words and noun phrases -> one or more steps (``put X in Y``, ordered lists give more)."""
         verbs = self.verb_words()
+        if not self.np_starts() and self.pending_floor is not None and self.word() in ("and", ",", "then"):
+            self.i += 1  # "go upstairs and check the laptop": the laptop upstairs
+            return self.action(step_rooms)
         if not self.np_starts():
             what = f"after '{' '.join(verbs)}'" if verbs else "here"
             raise self.fail(f"expected a room or object {what}, found {self.here()}")
@@ -400,8 +581,12 @@ class MissionParser:
         pronoun_only = all(np.phrase.lower() in lx.PRONOUNS for np in nps)
         # "put it in Y": the object is already in hand, the goal is Y, after what came before.
         steps: list[Step] = [[]] if carry and pronoun_only else self.tasks_of(nps, ordered is not None)
+        self.revisits(nps, steps, verbs)
         self.skip_particles()
-        if carry and self.word() in ("in", "into", "on", "onto", "to", "inside") and self.np_starts(1):
+        # "put X in Y", "take X to Y", "go from X to Y", and any object followed by "to Y": X, then Y.
+        carried = carry or (self.word() in ("to", "into", "onto") and (
+            "from" in verbs or all(e.kind == "object" for np in nps for e in np.entities)))
+        if carried and self.word() in ("in", "into", "on", "onto", "to", "inside") and self.np_starts(1):
             self.i += 1
             dest = self.noun_phrase_list("goal", [])
             steps.extend(self.tasks_of(dest, False))
@@ -416,9 +601,43 @@ class MissionParser:
                 self.skip_particles()
             elif not purpose_verbs:
                 raise self.fail(f"cannot understand {self.here()}")
+        if self.word() == "there":  # "look at the TV there": where the step is
+            self.i += 1
         if self.at_any(lx.TIME_FILLERS):
             self.i += len(self.at_any(lx.TIME_FILLERS) or ())
         return steps or [[]]
+
+    def revisits(self, nps: list[NounPhrase], steps: list[Step], verbs: list[str]) -> None:
+        """``X again`` / ``go back to X`` / ``return to X`` (X named as a goal before): a new visit;
+        ``X twice`` / ``X three times``: the visit and then new visits (see :class:`~.compose.Task`)."""
+        again = self.word() == "again"
+        named_before = all(
+            any(r.role == "goal" and r.start < nps[0].start and e in r.entities for r in self.references)
+            for np in nps for e in np.entities)
+        if again:
+            self.i += 1
+            if not named_before:
+                raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)} again': it was not a goal before")
+        if again or (set(verbs) & lx.REVISIT_VERBS and named_before):
+            for task in steps[0]:
+                task.revisit = True
+        times = self.repetitions()
+        if times > 1 and any(steps):
+            last = [t for t in steps[-1]]
+            steps.extend([Task(t.mode, t.members, [], True) for t in last] for _ in range(times - 1))
+
+    def repetitions(self) -> int:
+        """``twice`` / ``two times`` / ``3 times`` after the noun phrases -> 2, 2, 3 (consumed); else 1."""
+        if self.word() == "twice":
+            self.i += 1
+            return 2
+        n = lx.NUMBER_WORDS.get(self.word()) or (int(self.word()) if self.word().isdigit() else None)
+        if n is None or self.word(1) != "times":
+            return 1
+        if not 1 <= n <= 5:
+            raise self.fail(f"'{self.word()} times': at most 5 repeated visits are understood")
+        self.i += 2
+        return n
 
     def skip_particles(self) -> None:
         if self.word() in _PARTICLES and (self.word(1) in ("", ",", "and", "then", "to") or self.at_any(_NEG_STARTS, k=1)):
@@ -440,6 +659,8 @@ class MissionParser:
             return False
         if w.startswith(("room_", "object_")) or w in lx.PRONOUNS:
             return w != "it" or self.word(k + 1) not in ("is", "was")
+        if w == "there":  # "get there": the last place named as a goal
+            return self.word(k + 1) not in ("is", "are", "was", "were")
         if w in _DETERMINERS:
             return not (w == "some" and self.word(k + 1) == "point") and not (w == "that" and self.word(k + 1) in ("order",))
         if w in lx.NUMBER_WORDS or w.isdigit():
@@ -457,7 +678,8 @@ class MissionParser:
             if self.word() == "," and self.word(1) in ("and", "or") and self.np_starts(2):
                 joiners.add(self.word(1))
                 self.i += 2
-            elif self.word() == "," and self.np_starts(1) and not self.at_any(_NEG_STARTS, k=1):
+            elif (self.word() == "," and self.np_starts(1) and not self.at_any(_NEG_STARTS, k=1)
+                  and not self.at_any(lx.TIME_FILLERS, k=1)):
                 self.i += 1
             elif self.word() in ("and", "or") and self.np_starts(1):
                 joiners.add(self.word())
@@ -473,11 +695,11 @@ class MissionParser:
         if "or" in joiners or either:
             if any(np.mode == "all" and len(np.entities) > 1 for np in nps):
                 raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)}' joins a group with 'or'; say 'any of ...'")
+            # Being at an object implies being in its room, so locating some alternatives by their room and
+            # others not changes nothing: the merged phrase locates all of them.
             merged = NounPhrase(self.span_text(nps[0].start, nps[-1].end), nps[0].start, nps[-1].end,
                                 [e for np in nps for e in np.entities], "any",
-                                all(np.room_scoped for np in nps), role)
-            if len({np.room_scoped for np in nps}) > 1:
-                raise self.fail(f"'{merged.phrase}' mixes objects located by room with others; split it")
+                                any(np.room_scoped for np in nps), role)
             return [merged]
         return nps
 
@@ -489,6 +711,14 @@ class MissionParser:
         if first is None:
             raise self.fail("expected a room or object at the end of the sentence")
         w = self.word()
+        if w == "there":
+            self.i += 1
+            goals = [r for r in self.references if r.role == "goal" and r.phrase.lower() not in lx.PRONOUNS]
+            if not goals:
+                raise self.fail("'there' does not refer to any place named before it")
+            ref = max(goals, key=lambda r: r.start)
+            return self.record(NounPhrase(w, first.start, first.end, list(ref.entities), ref.mode, ref.room_scoped,
+                                          role))
         if w in lx.PRONOUNS:
             self.i += 1
             ref = self.antecedent(w, pronoun_kind)
@@ -496,7 +726,22 @@ class MissionParser:
             np = NounPhrase(self.span_text(first.start, first.end), first.start, first.end, list(ref.entities),
                             pronoun_mode, ref.room_scoped, role)
             return self.record(np)
+        other = self.at("the", "other") and self.vocab.match_head(self.words(), self.i + 2) is not None
+        if self.at("the", "other", "one") and one_head is None:  # "the bedroom with the book, then the other one"
+            one_head = self.last_head()
+            other = True
+        if other:
+            self.i += 1
         mode, count = self.quantifier()
+        floors_first: frozenset[int] | None = None
+        if self.word() in lx.RELATIVE_FLOORS:  # "the upstairs bathroom"
+            floors_first = self.relative_floor(self.word())
+            self.i += 1
+        elif (said := self.floor_words()) is not None:  # "the ground floor bathroom", "the top floor"
+            floors_first = said[0]
+            self.i += said[1]
+            if self.vocab.match_head(self.words(), self.i) is None:
+                return self.floor_place(first, floors_first, mode, role)
         if self.word().startswith(("room_", "object_")):
             key = self.word()
             if key not in self.vocab.by_key:
@@ -506,13 +751,30 @@ class MissionParser:
             self.i += 1
             mode = "the"
         else:
+            if other:
+                self.i += 1  # "other"
             head = self.head(one_head)
             entities = self.vocab.of_head(head)
             if mode is None:
                 mode = "all" if head.plural else "the"
             elif mode == "the" and head.plural:
                 mode = "all"
+        if other:
+            entities = self.others(entities, first.start)
+        if floors_first is not None:
+            entities = self.vocab.on_floor(entities, floors_first)
+        if self.pending_floor is not None:
+            entities = self.vocab.on_floor(entities, self.pending_floor)
+            self.pending_floor = None
         room_scoped = False
+        compound = head.kind == "room" and self.vocab.match_head(self.words(), self.i)
+        if compound and compound.kind == "object":  # "the kitchen sink": the sink in the kitchen
+            container = entities
+            head = self.head(None)
+            entities = self.vocab.inside(self.vocab.of_head(head), container)
+            if head.plural and mode in (None, "the"):
+                mode = "all"
+            room_scoped = True
         while True:
             if self.word() == "'s" and head.kind == "room":
                 self.i += 1
@@ -529,7 +791,7 @@ class MissionParser:
                 entities = self.vocab.on_floor(entities, floor)
                 continue
             if (self.word() in _QUAL_IN and self.np_starts(1) and not self.at_any(lx.ORDER_MODIFIERS)
-                    and not self.at_any(lx.TIME_FILLERS)):
+                    and not self.at_any(lx.TIME_FILLERS) and not (role == "qualifier" and self.word(1) in ("it", "there"))):
                 self.i += 1
                 inner = self.noun_phrase("qualifier")
                 if head.kind != "object" or any(e.kind != "room" for e in inner.entities):
@@ -539,6 +801,15 @@ class MissionParser:
                 inner.entities = [r for r in inner.entities if any(e.room_key == r.key for e in entities)]
                 room_scoped = True
                 continue
+            lacks = self.at_any(_QUAL_LACKS)
+            if lacks and self.np_starts(len(lacks)):
+                self.i += len(lacks)
+                inner = self.noun_phrase("qualifier")
+                if head.kind != "room" or any(e.kind != "object" for e in inner.entities):
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> without any <object>'")
+                entities = self.vocab.lacking(entities, inner.entities)
+                self.skip_in_it()
+                continue
             contains = self.at_any(_QUAL_CONTAINS)
             if contains and self.np_starts(len(contains)):
                 self.i += len(contains)
@@ -546,8 +817,10 @@ class MissionParser:
                 inner = self.noun_phrase("qualifier")
                 if head.kind != "room" or any(e.kind != "object" for e in inner.entities):
                     raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> with the <object>'")
-                entities = self.vocab.containing(entities, inner.entities, n)
+                entities = self.vocab.containing(entities, inner.entities, n if n is not None else inner.count,
+                                                 only="only" in contains)
                 inner.entities = [o for o in inner.entities if any(o.room_key == r.key for r in entities)]
+                self.skip_in_it()
                 continue
             nxt = self.at_any(_QUAL_NEXT)
             if nxt and self.np_starts(len(nxt)):
@@ -562,9 +835,14 @@ class MissionParser:
             comma = 1 if self.word() == "," else 0
             exc = self.at_any(_QUAL_EXCEPT, k=comma)
             if exc and self.np_starts(comma + len(exc)):
+                restricted = self.span_text(first.start, self.toks[self.i - 1].end)
                 self.i += comma + len(exc)
                 excluded = self.except_list(head)
                 keys = {e.key for np in excluded for e in np.entities}
+                stray = [np.phrase for np in excluded if not {e.key for e in np.entities} & {e.key for e in entities}]
+                if stray:  # "the dining room but not the kitchen": not an exception, and not understood
+                    raise self.fail(f"'{' '.join(exc)} {stray[0]}': {stray[0]!r} is not one of {restricted!r}; to "
+                                    f"forbid it, say 'never enter {stray[0]}'")
                 entities = [e for e in entities if e.key not in keys]
                 continue
             break
@@ -572,10 +850,46 @@ class MissionParser:
             scoped = self.vocab.inside(entities, scope)
             if scoped:
                 entities, room_scoped = scoped, True
+            elif role == "goal" and entities:
+                # "go to the lobby and sit on the couch" where the lobby has no couch: another room's couch
+                # is not what was asked for.
+                where = " or ".join(f"{r.key} ({r.category})" for r in scope)
+                raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}' is not in {where} "
+                                f"named in the same step; it is at {', '.join(e.describe() for e in entities[:8])}; "
+                                f"say 'then' between the two, or name its room ('the {head_word(entities)} in the ...')")
         last = self.toks[self.i - 1]
-        np = NounPhrase(self.span_text(first.start, last.end), first.start, last.end, entities, mode, room_scoped, role)
+        np = NounPhrase(self.span_text(first.start, last.end), first.start, last.end, entities, mode, room_scoped, role,
+                        count)
         self.check(np, head, count)
         return self.record(np)
+
+    def floor_place(self, first: Tok, floors: frozenset[int], mode: Mode | None, role: Role) -> NounPhrase:
+        """``the top floor`` as a place: any of its rooms as a goal or condition, all of them to avoid."""
+        rooms = self.vocab.on_floor(self.vocab.of_head(Head("room", frozenset(), True, 1)), floors)
+        chosen: Mode = "all" if role == "avoid" or mode == "all" else "any"
+        last = self.toks[self.i - 1]
+        return self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, rooms, chosen,
+                                      False, role))
+
+    def last_head(self) -> Head | None:
+        """The kind and category of the last room or object named (what *the other one* refers to)."""
+        for np in sorted(self.references, key=lambda r: r.start, reverse=True):
+            categories = {e.category for e in np.entities}
+            if np.role != "qualifier" and np.entities and len(categories) == 1:
+                return Head(np.entities[0].kind, frozenset(categories), False, 1)
+        return None
+
+    def others(self, entities: list[Entity], before: int) -> list[Entity]:
+        """``the other X``: the X not named before ``before`` (a character offset); refused when none was."""
+        named = {e.key for r in self.references if r.start < before for e in r.entities}
+        if not any(e.key in named for e in entities):
+            raise self.fail(f"'the other {head_word(entities)}': no {head_word(entities)} was named before it")
+        return [e for e in entities if e.key not in named]
+
+    def skip_in_it(self) -> None:
+        """``the bedroom that only has a bed in it``: the trailing *in it* repeats the room."""
+        if self.word() in ("in", "inside") and self.word(1) in ("it", "there"):
+            self.i += 2
 
     def except_list(self, head: Head) -> list[NounPhrase]:
         out = [self.noun_phrase("qualifier", None, head)]
@@ -620,7 +934,7 @@ class MissionParser:
             mode, count = "all", (2 if w == "both" else None)
             if self.word() == "of":
                 self.i += 1
-        elif w in ("the", "this", "that", "these", "those"):
+        elif w in ("the", "this", "that", "these", "those") or w in _POSSESSIVES:
             self.i += 1
             mode = "the"
         if self.word() in ("the", "these", "those") and mode is not None:
@@ -667,31 +981,50 @@ class MissionParser:
         self.i += head.words
         return head
 
-    def floor_qualifier(self) -> int | None:
-        """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> 1, 1, 0."""
-        if self.word() not in ("on", "in", "at", "of", "from", "upstairs", "downstairs"):
+    def floor_qualifier(self) -> frozenset[int] | None:
+        """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> {1}, {1}, {0};
+        ``upstairs`` / ``downstairs`` / ``on this floor``: relative to the start floor (:meth:`relative_floor`)."""
+        if self.word() in lx.RELATIVE_FLOORS:  # "the bathroom upstairs"
+            relative = self.relative_floor(self.word())
+            self.i += 1
+            return relative
+        if self.word() not in ("on", "in", "at", "of", "from"):
             return None
-        if self.word() in ("upstairs", "downstairs"):
-            raise self.fail(f"'{self.word()}' is not understood; say which floor ('on floor 1')")
-        k = 1
-        if self.word(k) == "the":
-            k += 1
+        k = 2 if self.word(1) == "the" else 1
+        said = self.floor_words(k)
+        if said is None:
+            return None
+        self.i += k + said[1]
+        return said[0]
+
+    def floor_words(self, k: int = 0) -> tuple[frozenset[int], int] | None:
+        """The floor named by the words at offset ``k`` and how many words name it: ``floor 1``, ``second
+        floor``, ``ground floor``, ``top floor``, ``middle floor``, ``this floor`` (the start floor); ``None``
+        if they name no floor. Floors the building does not have are refused."""
         w, nxt = self.word(k), self.word(k + 1)
-        floor: int | None = None
+        floors = self.vocab.num_floors
         if w in lx.FLOOR_WORDS and (nxt.isdigit() or nxt in lx.NUMBER_WORDS or nxt == "zero"):
             floor = 0 if nxt == "zero" else int(nxt) if nxt.isdigit() else lx.NUMBER_WORDS[nxt]
-            k += 2
-        elif nxt in lx.FLOOR_WORDS and (w in lx.FLOOR_ORDINALS or w in lx.FLOOR_NAMED or w in lx.FLOOR_TOP):
-            floor = lx.FLOOR_ORDINALS.get(w, lx.FLOOR_NAMED.get(w, self.vocab.num_floors - 1))
-            k += 2
-        if floor is None:
+        elif nxt not in lx.FLOOR_WORDS:
             return None
-        if not 0 <= floor < self.vocab.num_floors:
-            phrase = " ".join(self.words()[self.i + 1 : self.i + k])
-            raise self.fail(f"'{phrase}': the building {self.vocab.building_name!r} has floors 0 to "
-                            f"{self.vocab.num_floors - 1} (floor 0 is the lowest; 'the first floor' is floor 0)")
-        self.i += k
-        return floor
+        elif w in lx.FLOOR_ORDINALS or w in lx.FLOOR_NAMED or w in lx.FLOOR_TOP:
+            floor = lx.FLOOR_ORDINALS.get(w, lx.FLOOR_NAMED.get(w, floors - 1))
+        elif w in lx.FLOOR_MIDDLE:
+            if floors % 2 == 0:
+                raise self.fail(f"'{w} {nxt}': the building {self.vocab.building_name!r} has {floors} floors "
+                                f"(0 to {floors - 1}), so no middle one; say which floor")
+            floor = floors // 2
+        elif w in lx.START_FLOOR_WORDS:  # "on this floor": where the robot starts
+            if self.start_floor is None:
+                raise self.fail(f"'{w} {nxt}' depends on where the robot starts, which is not known here; say which "
+                                f"floor (the building {self.vocab.building_name!r} has floors 0 to {floors - 1})")
+            floor = self.start_floor
+        else:
+            return None
+        if not 0 <= floor < floors:
+            raise self.fail(f"'{w} {nxt}': the building {self.vocab.building_name!r} has floors 0 to "
+                            f"{floors - 1} (floor 0 is the lowest; 'the first floor' is floor 0)")
+        return frozenset({floor}), 2
 
     # -- grounding checks -----------------------------------------------------------------------------
     def check(self, np: NounPhrase, head: Head, count: int | None) -> None:
@@ -741,14 +1074,22 @@ class MissionParser:
         return f"say 'any {word}' or 'every {word}', or name it by its ID (e.g. {ents[0].key})"
 
 
+def head_word(entities: list[Entity]) -> str:
+    """The category of a group of entities, for messages (``room`` when they differ)."""
+    categories = {e.category for e in entities}
+    return categories.pop() if len(categories) == 1 else entities[0].kind if entities else "room"
+
+
 def _goal_eventually(task: Task) -> list[Formula]:
     if task.mode == "any":
         return [Eventually(disj(task.members))]
     return [Eventually(m) for m in task.members]
 
 
-def parse_mission(text: str, vocabulary: SceneVocabulary) -> tuple[Formula, list[NounPhrase]]:
-    """Parse and ground ``text``; the formula and every noun phrase read, in text order.
+def parse_mission(text: str, vocabulary: SceneVocabulary,
+                  start_floor: int | None = None) -> tuple[Formula, list[NounPhrase]]:
+    """Parse and ground ``text``; the formula and every noun phrase read, in text order. ``start_floor``
+    (the robot's, when known) is what *upstairs* / *downstairs* are relative to.
 
     Raises
     ------
@@ -756,6 +1097,6 @@ def parse_mission(text: str, vocabulary: SceneVocabulary) -> tuple[Formula, list
         a phrase that is not understood, a reference that matches nothing, or a definite reference
         ("the bathroom") that matches several entities; the message names the phrase and the candidates.
     """
-    parser = MissionParser(text, vocabulary)
+    parser = MissionParser(text, vocabulary, start_floor)
     formula = parser.parse()
     return formula, sorted(parser.references, key=lambda np: np.start)

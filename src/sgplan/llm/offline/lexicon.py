@@ -77,6 +77,8 @@ FLOOR_ORDINALS = {
 """``the first floor`` is the lowest floor (index 0): ordinals count floors from the lowest, US style."""
 FLOOR_NAMED = {"ground": 0, "bottom": 0, "lowest": 0, "basement": 0}
 FLOOR_TOP = ("top", "highest", "upper", "uppermost")
+FLOOR_MIDDLE = ("middle",)
+"""``the middle floor``: understood in a building with an odd number of floors (3: floor 1)."""
 
 FLOOR_WORDS = ("floor", "level", "storey", "story")
 
@@ -91,12 +93,13 @@ POSITIVE_VERBS = frozenset(
     dust dusting wipe wiping tidy tidying feed put putting place placing drop dropping bring bringing carry
     carrying deliver delivering return returning explore exploring see seeing pet mop mopping scrub
     scrubbing fill filling close closing empty emptying sweep sweeping play playing cook cooking
-    lie lying rest resting sleep sleeping shower showering bathe use off up down out over
+    lie lying rest resting sleep sleeping shower showering bathe use off up down out over from for
     """.split()
 )
 """Verb-slot words known to mean "go to / interact with" the noun phrase that follows."""
 
-CARRY_VERBS = frozenset("put putting place placing drop dropping bring bringing carry carrying deliver delivering".split())
+CARRY_VERBS = frozenset("put putting place placing drop dropping bring bringing carry carrying deliver delivering "
+                        "take taking took move moving".split())
 """``put X in Y`` / ``bring X to Y``: the goal is Y (after X when X is a new noun phrase)."""
 
 REFUSED_VERBS: dict[str, str] = {
@@ -113,7 +116,8 @@ REFUSED_VERBS: dict[str, str] = {
     "remain": "'remain' (the translator cannot express staying in a place)",
     "wait": "'wait' (the translator cannot express waiting)",
     "repeat": "'repeat' (the translator cannot express repeated visits)",
-    "twice": "'twice' (the translator cannot express repeated visits)",
+    "twice": "'twice' here (say 'visit the kitchen twice')",
+    "thrice": "'thrice' (say 'visit the kitchen twice', then again)",
     "unless": "'unless' (rephrase with 'if')",
     "except": "'except' here (put 'except ...' right after the noun phrase it restricts)",
     "previous": "'previous' (name the rooms or objects again instead of referring back to them)",
@@ -130,12 +134,24 @@ REFUSED_VERBS: dict[str, str] = {
 """Words that would silently change the meaning if read as ordinary words: refused with a reason."""
 
 FILLERS = frozenset(
-    """please also then eventually first firstly secondly thirdly lastly finally afterwards later next
+    """please also then eventually first firstly lastly finally afterwards later next
     at some point sometime you should must need needs to have has had be been is are was were can could
-    would will shall robot and moreover additionally furthermore too as well go ahead kindly do again
+    would will shall robot and moreover additionally furthermore too as well go ahead kindly do though hey
+    okay ok thanks
     """.split()
 )
-"""Words that carry no meaning for the formula wherever they appear between clauses."""
+"""Words that carry no meaning for the formula wherever they appear between clauses. Order words that do
+carry meaning (*secondly*, *before that*, *but first*, a trailing *first*, *again*) are grammar, not
+fillers (:mod:`.grammar`)."""
+
+RELATIVE_FLOORS = {"upstairs": 1, "downstairs": -1}
+"""Floors relative to the robot's start floor (or, in a two-floor building, the upper / lower floor)."""
+
+START_FLOOR_WORDS = ("this", "current", "my", "our")
+"""``on this floor`` / ``on the current floor``: the robot's start floor."""
+
+REVISIT_VERBS = frozenset("return returning back".split())
+"""``return to X`` / ``go back to X`` after X was visited: a new visit, as with ``again``."""
 
 ORDER_MODIFIERS = (
     ("one", "after", "the", "other"), ("one", "after", "another"), ("in", "that", "order"),
@@ -145,8 +161,17 @@ ORDER_MODIFIERS = (
 """Said after a list: its items are done one after the other (in the order written, for explicit lists)."""
 
 TIME_FILLERS = (("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("eventually",), ("later",),
-                ("in", "any", "order"), ("in", "whatever", "order"))
-"""Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order)."""
+                ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"), ("any", "order"),
+                ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "one"), ("whichever",),
+                ("no", "matter", "which"), ("does", "not", "matter", "which"), ("it", "does", "not", "matter", "which"),
+                ("it", "does", "not", "matter"), ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"),
+                ("is", "fine"), ("at", "any", "point"))
+"""Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
+choice is anyone's)."""
+
+WHOLE_MISSION = (("the", "whole", "time"), ("the", "entire", "time"), ("at", "all", "times"), ("at", "any", "time"),
+                 ("at", "any", "point"), ("throughout",), ("the", "whole", "way"), ("all", "the", "time"))
+"""Said after what to avoid: the prohibition holds for the whole mission (``G !x``), not only at one step."""
 
 
 def plural(word: str) -> str:

@@ -8,7 +8,7 @@ synonyms of :data:`.lexicon.SYNONYMS` that fit a category the scene has (``sofa`
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Collection, Iterable
 from dataclasses import dataclass
 from typing import Literal
 
@@ -101,7 +101,9 @@ class SceneVocabulary:
             kind = by_kind[next(iter(cats))]
             for form, is_plural in ((word, False), (plural(word), True)):
                 key = tuple(form.split())
-                table[key] = Head(kind, frozenset(cats), is_plural, len(key))
+                # A word whose plural is itself ("stairs") stays singular: "the stairs" is then one
+                # staircase, ambiguous where there are several, rather than silently all of them.
+                table.setdefault(key, Head(kind, frozenset(cats), is_plural, len(key)))
         for word in GENERIC_ROOM_WORDS:
             table.setdefault((word,), Head("room", frozenset(), word.endswith("s"), 1))
         return table
@@ -126,22 +128,35 @@ class SceneVocabulary:
             if e.kind == head.kind and (not head.categories or e.category in head.categories)
         ]
 
-    def on_floor(self, entities: Iterable[Entity], floor: int) -> list[Entity]:
-        return [e for e in entities if e.floor == floor]
+    def on_floor(self, entities: Iterable[Entity], floors: int | Collection[int]) -> list[Entity]:
+        """Entities on ``floors`` (one floor or several)."""
+        wanted = {floors} if isinstance(floors, int) else set(floors)
+        return [e for e in entities if e.floor in wanted]
 
     def inside(self, entities: Iterable[Entity], rooms: Iterable[Entity]) -> list[Entity]:
         """Objects among ``entities`` that lie in one of ``rooms``."""
         keys = {r.key for r in rooms}
         return [e for e in entities if e.kind == "object" and e.room_key in keys]
 
-    def containing(self, rooms: Iterable[Entity], objects: list[Entity], count: int | None) -> list[Entity]:
-        """Rooms holding at least one of ``objects`` (exactly ``count`` of them when ``count`` is given)."""
+    def containing(self, rooms: Iterable[Entity], objects: list[Entity], count: int | None,
+                   only: bool = False) -> list[Entity]:
+        """Rooms holding at least one of ``objects`` (exactly ``count`` of them when ``count`` is given;
+        with ``only``, nothing of another category)."""
+        categories = {o.category for o in objects}
         out = []
         for room in rooms:
             n = sum(1 for o in objects if o.room_key == room.key)
+            if only and any(e.kind == "object" and e.room_key == room.key and e.category not in categories
+                            for e in self.entities):
+                continue
             if (n >= 1 and count is None) or (count is not None and n == count):
                 out.append(room)
         return out
+
+    def lacking(self, rooms: Iterable[Entity], objects: list[Entity]) -> list[Entity]:
+        """Rooms holding none of ``objects``."""
+        holders = {o.room_key for o in objects}
+        return [r for r in rooms if r.key not in holders]
 
     def next_to(self, rooms: Iterable[Entity], others: Iterable[Entity]) -> list[Entity]:
         """Rooms among ``rooms`` connected to one of ``others`` (and not one of them)."""

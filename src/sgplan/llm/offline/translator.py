@@ -69,6 +69,15 @@ class PatternTranslator:
 
     name = PATTERN_BACKEND
 
+    def __init__(self, start_floor: int | None = None) -> None:
+        """``start_floor``: the floor the robot starts on, when known; *upstairs* / *downstairs* are relative
+        to it (without it they are understood only in a two-floor building)."""
+        self.start_floor = start_floor
+
+    def starting_on(self, floor: int | None) -> PatternTranslator:
+        """The same translator for a robot starting on ``floor``."""
+        return PatternTranslator(floor)
+
     def translate(self, text: str, building: Building) -> Translation:
         """Parse, ground and translate ``text``.
 
@@ -80,7 +89,7 @@ class PatternTranslator:
             the candidates as ``room_<uuid> (floor k)`` and says how to disambiguate.
         """
         vocabulary = SceneVocabulary(building)
-        formula, nps = parse_mission(text, vocabulary)
+        formula, nps = parse_mission(text, vocabulary, self.start_floor)
         tokens = to_tokens(formula)
         # The token list must be exactly what the shared parser reads back; a failure here is a bug.
         parse_tokens(tokens, known=vocabulary.by_key.keys())

@@ -1,0 +1,120 @@
+"""What a proposition names in the scene: category, floor and id, as English noun phrases.
+
+An :class:`Entity` is the scene-side meaning of one proposition (``enter(room_11)`` -> the kitchen,
+room_11 on floor 0). The explanation renderers only see entities, never the user's text, so what they
+print is what the planner will use.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Literal
+
+from sgplan.errors import FormulaError
+from sgplan.scene.labels import Proposition
+from sgplan.scene.model import Building
+
+EntityKind = Literal["room", "object", "unknown"]
+
+
+@dataclass(frozen=True)
+class Entity:
+    """One proposition's meaning in a scene.
+
+    Attributes
+    ----------
+    proposition:
+        the proposition name in the formula / automaton (``p1`` or ``enter(room_2)``).
+    kind:
+        ``"room"`` (true inside the room), ``"object"`` (true within reach of the object) or
+        ``"unknown"`` (the scene has no such entity, or no scene was given).
+    key:
+        the unique id used in missions, e.g. ``room_11`` or ``object_27``; the proposition name for
+        ``unknown``.
+    category:
+        the scene's category with underscores as spaces (``living room``), ``None`` if unknown.
+    floor:
+        the floor index, ``None`` if unknown.
+    room_key, room_category:
+        for an object, the room that holds it.
+    """
+
+    proposition: str
+    kind: EntityKind
+    key: str
+    category: str | None = None
+    floor: int | None = None
+    room_key: str | None = None
+    room_category: str | None = None
+
+    @property
+    def where(self) -> str:
+        """The location part of the phrase: ``floor 0`` or ``in the bathroom room_2, floor 0``."""
+        parts = []
+        if self.room_key is not None:
+            parts.append(f"in the {self.room_category} {self.room_key}")
+        if self.floor is not None:
+            parts.append(f"floor {self.floor}")
+        return ", ".join(parts)
+
+    def phrase(self) -> str:
+        """``the kitchen (room_11, floor 0)``, ``the sink (object_27, in the bathroom room_2, floor 0)``."""
+        if self.kind == "unknown":
+            return f"{self.key} (not in this scene)" if self.key.startswith(("room_", "object_")) else self.key
+        where = self.where
+        return f"the {self.category} ({self.key}{', ' + where if where else ''})"
+
+
+def _category(name: str) -> str:
+    return name.replace("_", " ")
+
+
+def entity_of(name: str, proposition: Proposition | None, building: Building | None) -> Entity:
+    """The entity ``proposition`` (named ``name`` in the formula) denotes in ``building``."""
+    if proposition is None:
+        try:
+            proposition = Proposition.parse(name)
+        except FormulaError:  # not an action token: a bare name with no meaning in the scene
+            return Entity(name, "unknown", name)
+    key = f"{'room' if proposition.kind == 'enter' else 'object'}_{proposition.uuid}"
+    if building is None:
+        return Entity(name, "room" if proposition.kind == "enter" else "object", key)
+    if proposition.kind == "enter":
+        if not building.has_room(proposition.uuid):
+            return Entity(name, "unknown", key)
+        room = building.room(uuid=proposition.uuid)
+        return Entity(name, "room", key, _category(room.name), room.floor)
+    if not building.has_object(proposition.uuid):
+        return Entity(name, "unknown", key)
+    obj = building.object(uuid=proposition.uuid)
+    room = building.room(id=obj.room_id)
+    return Entity(name, "object", key, _category(obj.name), room.floor, room.key, _category(room.name))
+
+
+def entities_of(
+    names: Sequence[str], propositions: Mapping[str, Proposition] | None, building: Building | None
+) -> dict[str, Entity]:
+    """``{name: Entity}`` for every proposition name, in the given order."""
+    meaning = propositions or {}
+    return {name: entity_of(name, meaning.get(name), building) for name in names}
+
+
+def group_phrase(entities: Sequence[Entity], article: str = "a") -> str:
+    """Alternatives of one kind and category as one phrase: ``a bedroom (room_5 or room_6, floor 1)``.
+
+    Entities sharing their location print it once; otherwise each id carries its own
+    (``a bedroom (room_5, floor 0, or room_6, floor 1)``). Mixed categories list the phrases with "or".
+    """
+    if len(entities) == 1:
+        return entities[0].phrase()
+    first = entities[0]
+    if first.kind == "unknown" or any(e.kind != first.kind or e.category != first.category for e in entities):
+        return " or ".join(e.phrase() for e in entities)
+    wheres = {e.where for e in entities}
+    if len(wheres) == 1:
+        where = wheres.pop()
+        keys = " or ".join(e.key for e in entities)
+        return f"{article} {first.category} ({keys}{', ' + where if where else ''})"
+    items = [f"{e.key}, {e.where}" if e.where else e.key for e in entities]
+    return f"{article} {first.category} ({', or '.join(items)})"

@@ -1,0 +1,333 @@
+"""Reading a formula's structure aloud: sequences, choices, goals, avoidance, until, conditions.
+
+:func:`pattern_clauses` turns a formula into one English clause per top-level conjunct, or returns
+``None`` when some part has no pattern here (then the caller explains the automaton instead). Each
+clause is an imperative sentence that names every proposition it covers through its :class:`Entity`.
+
+Readings (finite paths; "moment" = a cell of the path; the first cell is the start):
+
+==========================  ======================================================================
+formula                     clause
+==========================  ======================================================================
+``s`` (no temporal op)      start <s>  (it is read at the first cell only)
+``F s``                     go to / reach <s>; ``F !a``: be outside / out of reach of a
+``F(A | B)``                do one of: [F A] or [F B]
+``F(s & F t)``              go to <s>, then go to <t>           (``then``: at that moment or later)
+``F(s & psi)``              go to <s>, and from that moment on <psi>
+``G !a``, ``G(!a & !b)``    never enter a or b / never come within reach of ...
+``G s``                     at every moment be <s>
+``G(s -> F t)``             whenever you are <s>, go to <t> then or afterwards
+``G(s -> psi)``             whenever you are <s>, from that moment on <psi>
+``s U t``                   go to <t>, being <s> at every moment before that
+``A -> B``                  if <A>, then <B>            (A a condition: start / ever / always)
+``A <-> B``                 make sure that <A> exactly when <B>
+``A | B``                   do one of: [A] or [B]
+``A & B`` (nested)          do both: [A] and [B]
+==========================  ======================================================================
+
+A state condition ``s`` (no temporal operator) reads "in the kitchen (room_11, floor 0)", "within reach
+of the sink (...)", "not in ...", joined by "and" / "or"; a compound part inside another is put in
+square brackets so that the reading is never ambiguous. ``X``, weak ``X``, ``R`` and ``G`` over
+temporal formulas (other than the response shape) have no pattern.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+from sgplan.explain.entities import Entity, group_phrase
+from sgplan.logic.formula import (
+    Always,
+    And,
+    Atom,
+    Const,
+    Equiv,
+    Eventually,
+    Formula,
+    Implies,
+    Not,
+    Or,
+    Until,
+    is_temporal,
+)
+
+Describe = Callable[[str], Entity]
+
+
+class _NoPattern(Exception):
+    """Some part of the formula has no direct reading; the automaton explains it instead."""
+
+
+def pattern_clauses(formula: Formula, describe: Describe) -> list[str] | None:
+    """One clause per top-level conjunct of ``formula`` (capitalised, ending with "."), or ``None``.
+
+    ``describe`` maps a proposition name to its :class:`Entity`.
+    """
+    reader = _Reader(describe)
+    try:
+        return [_sentence(reader.clause(part)) for part in _conjuncts(_simplify(formula))]
+    except _NoPattern:
+        return None
+
+
+def condition_text(formula: Formula, describe: Describe) -> str:
+    """A state condition (no temporal operator) as a phrase: ``in the kitchen (...) and not within
+    reach of the sink (...)``."""
+    return _Reader(describe).cond(formula)
+
+
+def _sentence(text: str) -> str:
+    return text[:1].upper() + text[1:] + "."
+
+
+def _conjuncts(formula: Formula) -> list[Formula]:
+    if isinstance(formula, And):
+        return [c for arg in formula.args for c in _conjuncts(arg)]
+    return [formula]
+
+
+def _disjuncts(formula: Formula) -> list[Formula]:
+    if isinstance(formula, Or):
+        return [d for arg in formula.args for d in _disjuncts(arg)]
+    return [formula]
+
+
+def _simplify(formula: Formula) -> Formula:
+    """Equivalent formula with negations pushed through ``!``, ``F`` and ``G`` (``!F a`` = ``G !a``),
+    and through ``&`` / ``|`` of state conditions, so that avoidance reads as avoidance."""
+    if isinstance(formula, Not):
+        arg = formula.arg
+        if isinstance(arg, Not):
+            return _simplify(arg.arg)
+        if isinstance(arg, Eventually):
+            return Always(_simplify(Not(arg.arg)))
+        if isinstance(arg, Always):
+            return Eventually(_simplify(Not(arg.arg)))
+        return Not(_simplify(arg))
+    if isinstance(formula, (Eventually, Always)):
+        return type(formula)(_simplify(formula.arg))
+    if isinstance(formula, (And, Or)):
+        return type(formula)(tuple(_simplify(a) for a in formula.args))
+    if isinstance(formula, (Implies, Equiv, Until)):
+        return type(formula)(_simplify(formula.left), _simplify(formula.right))
+    return formula
+
+
+def _is_literal(f: Formula) -> bool:
+    return isinstance(f, Atom) or (isinstance(f, Not) and isinstance(f.arg, Atom))
+
+
+def _factored(s: Formula) -> list[Formula] | None:
+    """``s`` as a list of conjoined literals and choices among atoms, or ``None``.
+
+    A disjunction of conjunctions that share all literals but one atom each is factored:
+    ``(a & r) | (b & r)`` -> ``[a | b, r]`` (two chairs of one room).
+    """
+    if isinstance(s, Or):
+        options = [_conjuncts(d) for d in _disjuncts(s)]
+        if not all(all(_is_literal(x) for x in o) for o in options):
+            return None
+        common = [x for x in options[0] if all(x in o for o in options[1:])]
+        rest = [[x for x in o if x not in common] for o in options]
+        if not all(len(r) == 1 and isinstance(r[0], Atom) for r in rest) or len({r[0] for r in rest}) < len(rest):
+            return None
+        return [Or(tuple(r[0] for r in rest)), *common]
+    items = _conjuncts(s)
+    ok = all(_is_literal(x) or (isinstance(x, Or) and all(isinstance(d, Atom) for d in _disjuncts(x)))
+             for x in items)
+    return items if ok and len(items) > 1 else None
+
+
+class _Reader:
+    def __init__(self, describe: Describe) -> None:
+        self.describe = describe
+
+    # -- state conditions (no temporal operator) ---------------------------------------------------
+    def entity(self, atom: Atom) -> Entity:
+        return self.describe(atom.name)
+
+    def at(self, atom: Atom) -> str:
+        """``in the kitchen (...)`` / ``within reach of the sink (...)``."""
+        e = self.entity(atom)
+        return f"{'within reach of' if e.kind == 'object' else 'in'} {e.phrase()}"
+
+    def _same_kind_atoms(self, f: Formula) -> list[Entity] | None:
+        """The entities of a disjunction of two or more atoms of one kind, else ``None``."""
+        items = _disjuncts(f)
+        if len(items) < 2 or not all(isinstance(i, Atom) for i in items):
+            return None
+        entities = [self.entity(i) for i in items]  # type: ignore[arg-type]
+        kinds = {e.kind for e in entities}
+        return entities if len(kinds) == 1 and len({e.key for e in entities}) == len(entities) else None
+
+    def choice(self, entities: Sequence[Entity]) -> str:
+        """Alternatives grouped by category, in order of first appearance of each category."""
+        groups: dict[tuple[str, str | None], list[Entity]] = {}
+        for e in entities:
+            groups.setdefault((e.kind, e.category if e.kind != "unknown" else e.key), []).append(e)
+        return " or ".join(group_phrase(g) for g in groups.values())
+
+    def cond(self, f: Formula) -> str:
+        """The state condition ``f`` as an adjective phrase (``in X and not within reach of Y``)."""
+        if isinstance(f, Const):
+            return "anywhere" if f.value else "nowhere (impossible)"
+        if isinstance(f, Atom):
+            return self.at(f)
+        if isinstance(f, Not):
+            if isinstance(f.arg, Atom):
+                return "not " + self.at(f.arg)
+            return "not " + self.wrapped(f.arg)
+        if isinstance(f, Or):
+            same = self._same_kind_atoms(f)
+            if same is not None:
+                word = "within reach of" if same[0].kind == "object" else "in"
+                return f"{word} {self.choice(same)}"
+            return " or ".join(self.wrapped(d) for d in _disjuncts(f))
+        if isinstance(f, And):
+            return " and ".join(self.wrapped(c) for c in _conjuncts(f))
+        if isinstance(f, Implies):
+            return f"if {self.wrapped(f.left)} then {self.wrapped(f.right)}"
+        if isinstance(f, Equiv):
+            return f"{self.wrapped(f.left)} exactly when {self.wrapped(f.right)}"
+        raise _NoPattern(f)
+
+    def wrapped(self, f: Formula) -> str:
+        """:meth:`cond` in square brackets unless ``f`` is a literal or a grouped choice."""
+        text = self.cond(f)
+        same = self._same_kind_atoms(f) if isinstance(f, Or) else None
+        # A choice within one category reads as one noun phrase ("a bedroom (room_5 or room_6)").
+        if _is_literal(f) or (same is not None and same[0].kind != "unknown"
+                                and len({(e.kind, e.category) for e in same}) == 1):
+            return text
+        return f"[{text}]"
+
+    # -- goals: F s ----------------------------------------------------------------------------------
+    def goal(self, s: Formula) -> str:
+        """``F s`` for a state condition ``s`` as an imperative: go to / reach ..."""
+        if isinstance(s, Atom):
+            e = self.entity(s)
+            return f"{'reach' if e.kind == 'object' else 'go to'} {e.phrase()}"
+        if isinstance(s, Not) and isinstance(s.arg, Atom):
+            e = self.entity(s.arg)
+            return f"be {'out of reach of' if e.kind == 'object' else 'outside'} {e.phrase()}"
+        same = self._same_kind_atoms(s) if isinstance(s, Or) else None
+        if same is not None:
+            return f"{'reach' if same[0].kind == 'object' else 'go to'} {self.choice(same)}"
+        parts = _factored(s)
+        if parts is not None:
+            reading = self._joint_goal(parts)
+            if reading is not None:
+                return reading
+        return f"at some moment be {self.cond(s)}"
+
+    def _joint_goal(self, literals: list[Formula]) -> str | None:
+        """``reach A and B at the same moment while in R while not ...`` for a conjunction of literals
+        and choices among atoms of one kind."""
+        positive: list[list[Entity]] = []
+        for item in literals:
+            if isinstance(item, Atom):
+                positive.append([self.entity(item)])
+            elif isinstance(item, Or):
+                same = self._same_kind_atoms(item)
+                if same is None:
+                    return None
+                positive.append(same)
+        negative = [a for a in literals if isinstance(a, Not)]
+        rooms = [g for g in positive if g[0].kind == "room"]
+        objects = [g for g in positive if g[0].kind == "object"]
+        if len(rooms) > 1 or len(rooms) + len(objects) != len(positive) or not positive:
+            return None
+        if objects:
+            text = "reach " + " and ".join(self.choice(g) for g in objects)
+            if len(objects) > 1:
+                text += " at the same moment"
+            if rooms:
+                text += f" while in {self.choice(rooms[0])}"
+        else:
+            text = f"go to {self.choice(rooms[0])}"
+        if negative:
+            text += " while " + " and ".join(self.cond(n) for n in negative)
+        return text
+
+    # -- conditions of if / iff ----------------------------------------------------------------------
+    def statement(self, f: Formula) -> str:
+        """A formula as a condition that is true or false of the whole path."""
+        if not is_temporal(f):
+            return f"you start {self.cond(f)}"
+        if isinstance(f, Eventually) and not is_temporal(f.arg):
+            return f"you are at some moment {self.cond(f.arg)}"
+        if isinstance(f, Always) and not is_temporal(f.arg):
+            return f"you are at every moment {self.cond(f.arg)}"
+        if isinstance(f, (And, Or)):
+            word = " and " if isinstance(f, And) else " or "
+            parts = _conjuncts(f) if isinstance(f, And) else _disjuncts(f)
+            return word.join(f"[{self.statement(p)}]" for p in parts)
+        raise _NoPattern(f)
+
+    # -- clauses -------------------------------------------------------------------------------------
+    def clause(self, f: Formula) -> str:
+        """Any supported formula as an imperative clause (lower-case start, no final period)."""
+        if isinstance(f, Implies):
+            return f"if {self.statement(f.left)}, then {self.clause(f.right)}"
+        if not is_temporal(f):
+            return f"start {self.cond(f)}"
+        if isinstance(f, Eventually):
+            return self.eventually(f.arg)
+        if isinstance(f, Always):
+            return self.always(f.arg)
+        if isinstance(f, Until) and not is_temporal(f.left) and not is_temporal(f.right):
+            left = f.left
+            if isinstance(left, Not) and isinstance(left.arg, Atom) and self.entity(left.arg).kind == "room":
+                return f"{self.goal(f.right)}, without entering {self.entity(left.arg).phrase()} before that"
+            return f"{self.goal(f.right)}, being {self.cond(left)} at every moment before that"
+        if isinstance(f, Equiv):
+            return f"make sure that [{self.statement(f.left)}] exactly when [{self.statement(f.right)}]"
+        if isinstance(f, Or):
+            return "do one of: " + " or ".join(f"[{self.clause(d)}]" for d in _disjuncts(f))
+        if isinstance(f, And):
+            return "do both: " + " and ".join(f"[{self.clause(c)}]" for c in _conjuncts(f))
+        raise _NoPattern(f)
+
+    def eventually(self, body: Formula) -> str:
+        """``F body``: a goal, possibly followed by what must happen from there."""
+        if not is_temporal(body):
+            return self.goal(body)
+        if isinstance(body, Or):  # F(A | B) = F A | F B: a choice between two ways
+            return "do one of: " + " or ".join(f"[{self.eventually(d)}]" for d in _disjuncts(body))
+        parts = _conjuncts(body)
+        here = [p for p in parts if not is_temporal(p)]
+        later = [p for p in parts if is_temporal(p)]
+        if not here:
+            return f"at some moment, from then on: {self.clause(body)}"
+        goal = self.goal(here[0] if len(here) == 1 else And(tuple(here)))
+        if len(later) == 1 and isinstance(later[0], Eventually):
+            return f"{goal}, then {self.eventually(later[0].arg)}"
+        if len(later) == 1:
+            return f"{goal}, and from that moment on {self.clause(later[0])}"
+        rest = " and ".join(f"[{self.clause(p)}]" for p in later)
+        return f"{goal}, and from that moment on do both: {rest}"
+
+    def always(self, body: Formula) -> str:
+        """``G body``: avoidance, an invariant, or a response."""
+        if isinstance(body, Implies) and not is_temporal(body.left):
+            trigger = self.cond(body.left)
+            if isinstance(body.right, Eventually) and not is_temporal(body.right.arg):
+                return f"whenever you are {trigger}, {self.goal(body.right.arg)} then or afterwards"
+            if is_temporal(body.right):
+                return f"whenever you are {trigger}, from that moment on {self.clause(body.right)}"
+        if is_temporal(body):
+            raise _NoPattern(body)
+        items = _conjuncts(body)
+        if all(isinstance(i, Not) and isinstance(i.arg, Atom) for i in items):
+            entities = [self.entity(i.arg) for i in items]  # type: ignore[attr-defined]
+            rooms = [e for e in entities if e.kind != "object"]
+            objects = [e for e in entities if e.kind == "object"]
+            said = []
+            if rooms:
+                said.append("enter " + " or ".join(e.phrase() for e in rooms))
+            if objects:
+                said.append("come within reach of " + " or ".join(e.phrase() for e in objects))
+            return "never " + ", and never ".join(said)
+        if isinstance(body, Not) and isinstance(body.arg, And):
+            return f"never be {self.cond(body.arg)} at the same moment"
+        return f"at every moment be {self.cond(body)}"

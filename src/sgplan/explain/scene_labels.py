@@ -1,0 +1,48 @@
+"""The label sets a scene can actually produce for a mission's propositions.
+
+A label (bitmask over the automaton's propositions) is *realizable* when some cell carries it: rooms
+are exclusive (a cell lies in one room), and an object is reached only from the cells its reach window
+covers (:func:`sgplan.scene.labels.label_raster`, the one source of truth for labels). Which cells count
+is the caller's choice: every cell inside a room (the explanation: independent of the robot's size), or
+the free cells of an occupancy grid (the pre-planning checks).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from sgplan.scene.labels import Proposition, label_raster
+from sgplan.scene.model import Building
+
+
+def occurring_labels(labels: np.ndarray, where: np.ndarray, num_labels: int) -> np.ndarray:
+    """``(num_labels,)`` bool: the labels of ``labels`` (any shape) that occur where ``where`` is True."""
+    present = np.zeros(num_labels, bool)
+    values = np.unique(labels[where])
+    present[values[values < num_labels].astype(np.int64)] = True
+    return present
+
+
+def in_room_cells(building: Building) -> np.ndarray:
+    """``(floors, rows, cols)`` bool: the cells that lie inside some room."""
+    return np.stack([floor.room_map > 0 for floor in building.floors])
+
+
+def realizable_labels(propositions: Sequence[Proposition], building: Building,
+                      reach_radius_m: float | None = None) -> np.ndarray:
+    """``(2**len(propositions),)`` bool: the labels (bit ``i`` = ``propositions[i]``) that some in-room
+    cell of ``building`` carries (reach radius: the given one, else the scene's, else the default of
+    :mod:`sgplan.pipeline`).
+
+    Raises
+    ------
+    SceneError
+        a proposition names an entity the building lacks.
+    """
+    from sgplan.pipeline import resolve_radii
+
+    radius = resolve_radii(building).reach_m if reach_radius_m is None else reach_radius_m
+    labels = label_raster(building, propositions, radius)
+    return occurring_labels(labels, in_room_cells(building), 1 << len(propositions))
