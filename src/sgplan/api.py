@@ -167,12 +167,13 @@ def add_guidance(mission: Mission, building: Building, guide: MissionGuide | Non
     return replace(mission, guidance=guide.guide(building, mission.automaton, mission.descriptions)), guide.name
 
 
-def _explanation(mission: Mission, building: Building) -> str | None:
-    """The mission explained in plain English (:func:`sgplan.explain.explain_mission`): the one place a
-    plan gets its explanation."""
+def _explanation(mission: Mission, building: Building) -> dict[str, str]:
+    """The mission explained in plain English (:func:`sgplan.explain.explain_mission`) as the
+    ``explanation`` and ``explanation_method`` of a :class:`PlanResult`: the one place a plan gets it."""
     from sgplan.explain import explain_mission
 
-    return explain_mission(mission, building).text
+    explained = explain_mission(mission, building)
+    return {"explanation": explained.text, "explanation_method": explained.method}
 
 
 # -- planning ----------------------------------------------------------------------------------------
@@ -263,7 +264,7 @@ class Session:
             iterations=found.iterations, mission_text=mission.text, grounded_text=mission.grounded_text,
             formula=_formula_text(mission), propositions=mission.descriptions, guidance=guidance,
             notes=list(mission.notes), building=self.building, grid=grid, labels=prepared.problem.labels,
-            mission=mission, explanation=_explanation(mission, self.building), scene_check=scene_check,
+            mission=mission, scene_check=scene_check, **_explanation(mission, self.building),
         )
         if found.status == "optimal":
             result.bound = 1.0

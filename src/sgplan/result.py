@@ -60,7 +60,8 @@ class PlanResult:
         where the LLM-heuristic guidance came from: ``"mission"`` (it carried some) or the name of the
         guide that a setup using guidance asked; ``None`` when there is none.
     explanation:
-        the mission in plain English (:func:`sgplan.explain.explain_mission`), said back before planning.
+        the mission in plain English (:func:`sgplan.explain.explain_mission`), said back before planning;
+        ``explanation_method`` says how it was read (``"patterns"`` or ``"automaton"``).
     scene_check:
         the findings of the scene-aware checks run before the search (warnings and notes; an error stops
         the plan), as records (:meth:`sgplan.explain.checks.SceneCheck.to_dict`).
@@ -91,6 +92,7 @@ class PlanResult:
     verified: bool | None = None
     guidance: str | None = None
     explanation: str | None = None
+    explanation_method: str | None = None
     scene_check: list[dict[str, Any]] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
@@ -126,7 +128,8 @@ class PlanResult:
             "scene": self.scene,
             "mission": {"text": self.mission_text, "grounded_text": self.grounded_text, "formula": self.formula,
                         "propositions": dict(self.propositions)},
-            "explanation": self.explanation,
+            "explanation": None if self.explanation is None else {"text": self.explanation,
+                                                                   "method": self.explanation_method},
             "scene_check": list(self.scene_check),
             "start": list(self.start),
             "start_from": self.start_from,

@@ -85,7 +85,7 @@ def test_cli_offline_prints_refused_and_wrong_side_by_side(mission_set: Path, tm
     assert json.loads(report.read_text())["counts"]["wrong"] == 1
     # without the wrong gold, nothing is wrong: exit status 0
     clean = write_set(tmp_path / "clean.jsonl", MISSIONS[:4])
-    assert main(["eval-translation", "--set", str(clean), "--llm", "offline", "--verbose"]) == 0
+    assert main(["eval-translation", "--set", str(clean), "--llm", "offline", "--show-right"]) == 0
     assert "[right] kitchen" in capsys.readouterr().out
 
 

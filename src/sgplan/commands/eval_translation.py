@@ -15,7 +15,7 @@ import json
 from functools import cache
 from pathlib import Path
 
-from sgplan.commands.common import load_scene_arg, non_negative_int, positive_int, say
+from sgplan.commands.common import load_scene_arg, say
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 from sgplan.logic import Formula
 from sgplan.scene.model import Building
@@ -30,12 +30,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="folder holding the Gibson scenes named by the set (default: $SGPLAN_GIBSON_DIR, "
                              "else ../shared/datasets/gibson-3dsg)")
     parser.add_argument("--json", metavar="FILE", help="also write the full report (every mission) as JSON")
-    parser.add_argument("--verbose", action="store_true", help="also list the missions translated right")
-    add_llm_arguments(parser)
-    parser.add_argument("--samples", type=positive_int, default=1, metavar="K",
-                        help="translate each mission K times and keep the majority (language models only)")
-    parser.add_argument("--max-repairs", type=non_negative_int, default=3, metavar="N",
-                        help="times an invalid formula is sent back for repair (default 3)")
+    parser.add_argument("--show-right", action="store_true", help="also list the missions translated right")
+    add_llm_arguments(parser)  # with --samples / --max-repairs
     parser.set_defaults(run=run)
 
 
@@ -57,7 +53,7 @@ def run(args: argparse.Namespace) -> int:
     from sgplan.llm.evaluate import load_jsonl_set, score_translator
 
     missions = load_jsonl_set(args.set)
-    backends = open_backends_from_args(args, samples=args.samples, max_repairs=args.max_repairs)
+    backends = open_backends_from_args(args)
 
     @cache
     def building_of(scene: str) -> Building:
@@ -66,7 +62,7 @@ def run(args: argparse.Namespace) -> int:
     say(f"scoring {backends.translator.name} ({backends.description}) on {len(missions)} missions of {args.set}")
     score = score_translator(backends.translator, missions, building_of, set_path=str(args.set), explain=_explain)
     for r in score.results:
-        if r.outcome == "right" and not args.verbose:
+        if r.outcome == "right" and not args.show_right:
             continue
         print(f"[{r.outcome}] {r.mission.id} ({r.mission.scene}): {r.mission.text}")
         if r.mission.id in score.explanations:
