@@ -170,7 +170,7 @@ def token_lists(draw: st.DrawFn, actions: list[str]) -> str:
                                min_size=0, max_size=30))
     elif kind == "chain":
         operator = draw(st.sampled_from(["NOT", "NEXT", "EVENTUALLY", "ALWAYS"]))
-        tokens = [operator] * draw(st.sampled_from([99, 1000, 15000])) + [draw(st.sampled_from(actions))]
+        tokens = [operator] * draw(st.sampled_from([99, 1000, 8000])) + [draw(st.sampled_from(actions))]
     elif kind == "flat":
         junction = draw(st.sampled_from(["AND", "OR"]))
         terms = draw(st.integers(2, 600))

@@ -34,6 +34,7 @@ from sgplan.logic.formula import (
     WeakNext,
 )
 from sgplan.logic.prefix import Operator, parse_prefix_tokens
+from sgplan.safeio import quote
 
 TOKEN_OPERATORS: dict[str, Operator] = {
     "NOT": Operator(1, Not), "NEGATION": Operator(1, Not), "NEXT": Operator(1, Next),
@@ -61,19 +62,27 @@ def canonical_action(token: str) -> str | None:
     return f"{m.group(1)}({m.group(2)})"
 
 
+MAX_TOKENS = 100_000
+"""Tokens a formula's list may have (missions have tens); the parser itself never recurses."""
+
+
 def as_token_list(tokens: Sequence[str] | str) -> list[str]:
     """The token list itself, or the list parsed from its Python repr (as in GPT_LTL_formula.txt).
 
     Raises
     ------
     FormulaError
-        the text is not a Python list literal, or an element is not a string.
+        the text is not a Python list literal, an element is not a string, or the list is longer than
+        :data:`MAX_TOKENS`.
     """
     if isinstance(tokens, str):
         text = tokens.strip()
+        if len(text) > 32 * MAX_TOKENS:
+            raise FormulaError(f"the formula text is {len(text):,} characters long; sgplan reads token lists of "
+                               f"at most {MAX_TOKENS:,} tokens")
         try:
             value = ast.literal_eval(text)
-        except (ValueError, SyntaxError, MemoryError, RecursionError) as exc:
+        except (ValueError, SyntaxError, TypeError, MemoryError, RecursionError) as exc:
             detail = f" ({exc.msg} at character {exc.offset})" if isinstance(exc, SyntaxError) else ""
             raise FormulaError(
                 "the formula is not a Python list of quoted tokens like "
@@ -82,12 +91,14 @@ def as_token_list(tokens: Sequence[str] | str) -> list[str]:
         if not isinstance(value, (list, tuple)):
             raise FormulaError(f"the formula must be a list of tokens, got a {type(value).__name__}")
         tokens = value
+    if len(tokens) > MAX_TOKENS:
+        raise FormulaError(f"the formula has {len(tokens):,} tokens; sgplan reads at most {MAX_TOKENS:,}")
     result = []
     for i, token in enumerate(tokens):
         if not isinstance(token, str):
             kind = type(token).__name__
             article = "an" if kind[0] in "aeiou" else "a"
-            raise FormulaError(f"token {i} is {token!r} ({article} {kind}), not a string", i)
+            raise FormulaError(f"token {i} is {quote(token)} ({article} {kind}), not a string", i)
         result.append(token)
     return result
 
