@@ -49,6 +49,11 @@ from pathlib import Path
 from hypothesis import HealthCheck, settings
 
 from sgplan.cli import INTERNAL_ERROR
+from sgplan.commands.plan import TIMEOUT_EXIT
+from sgplan.errors import SgplanError, UnsatisfiableMissionError
+
+CLEAN_EXITS = (0, SgplanError.exit_code, TIMEOUT_EXIT, UnsatisfiableMissionError.exit_code)
+"""Exit codes of a run that ended as designed: done, bad input, a budget ran out, an unsatisfiable mission."""
 
 RECORD = os.environ.get("SGPLAN_FAULTS_RECORD")
 PYTHONPATH = os.environ.get("SGPLAN_FAULTS_PYTHONPATH")
@@ -193,7 +198,7 @@ def classify(run: Run, *, must_fail: bool = False) -> str:
         return "hang"
     if run.escaped is not None or "Traceback" in run.stderr or run.code == INTERNAL_ERROR:
         return "traceback"
-    if run.code < 0 or run.code not in (0, 2):
+    if run.code < 0 or run.code not in CLEAN_EXITS:
         return "crash"
     if run.code == 0:
         return "accepted" if must_fail else "clean"

@@ -34,7 +34,8 @@ from sgplan.explain.patterns import condition_text, pattern_clauses
 from sgplan.explain.scene_labels import occurring_labels
 from sgplan.explain.stages import forbidden_bits, restricted
 from sgplan.logic.automaton import Automaton
-from sgplan.logic.formula import And, Atom, Const, Equiv, Formula, Implies, Not, Or, atoms, is_temporal, walk
+from sgplan.logic.formula import (MAX_NESTING, And, Atom, Const, Equiv, Formula, Implies, Not, Or, atoms, depth,
+                                  is_temporal, walk)
 from sgplan.logic.infix import to_infix
 from sgplan.logic.ltlf import ltlf_to_dfa
 from sgplan.mission import Mission
@@ -171,10 +172,16 @@ class _Context:
         return self.cond(true[0] if len(true) == 1 else And(tuple(true)))
 
     # -- state conditions the scene makes impossible or redundant --------------------------------------
+    def _readable(self) -> bool:
+        """Whether the parts of the formula as written can be read: it names only the automaton's
+        propositions and nests no deeper than automata are built for (the reading recurses)."""
+        formula, aps = self.mission.formula, self.mission.automaton.aps
+        return formula is not None and depth(formula) <= MAX_NESTING and all(p in aps for p in atoms(formula))
+
     def part_findings(self) -> list[Finding]:
         formula = self.mission.formula
         aps = self.mission.automaton.aps
-        if formula is None or any(p not in aps for p in atoms(formula)):
+        if formula is None or not self._readable():
             return []
         present = np.flatnonzero(self.realizable)
         index = {p: i for i, p in enumerate(aps)}
@@ -225,7 +232,7 @@ class _Context:
         head = f"no path in scene {self.building.name!r} satisfies the mission, from any start"
         formula = self.mission.formula
         aps = self.mission.automaton.aps
-        if formula is None or any(p not in aps for p in atoms(formula)):
+        if formula is None or not self._readable():
             return f"{head}: its automaton accepts no path of places this scene has"
         parts = _flat_and(formula)
         rooms = [p for p in aps if self.describe(p).kind == "room"]

@@ -21,7 +21,7 @@ from sgplan.explain.scene_labels import realizable_labels
 from sgplan.explain.stages import restricted, stage_lines
 from sgplan.logic.automaton import Automaton
 from sgplan.logic.equivalence import equivalent
-from sgplan.logic.formula import Formula, atoms
+from sgplan.logic.formula import MAX_NESTING, Formula, atoms, depth
 from sgplan.logic.ltlf import ltlf_to_dfa, possible_labels
 from sgplan.mission import Mission
 from sgplan.scene.model import Building
@@ -96,7 +96,9 @@ def explain_formula(
         automaton = ltlf_to_dfa(formula)  # type: ignore[arg-type]
     if realizable is None:
         realizable = np.ones(automaton.num_labels, bool)
-    same = formula is not None and _reads_as(formula, automaton, realizable)
+    # A formula nested deeper than automata are built for (a chain of thousands of NOTs) is read from its
+    # automaton: the structural reading recurses over the formula as written.
+    same = formula is not None and depth(formula) <= MAX_NESTING and _reads_as(formula, automaton, realizable)
     if same:
         clauses = pattern_clauses(formula, lookup)  # type: ignore[arg-type]
         if clauses is not None:

@@ -213,6 +213,19 @@ interpreter's stack. The normal form cancels chains of negations, and chains of 
 length are accepted."""
 
 
+def depth(formula: Formula) -> int:
+    """The depth of ``formula``'s tree (an atom is 1), every operator counting; iterative, so it is safe on
+    formulas of any depth. Code that recurses over a formula as written checks it against
+    :data:`MAX_NESTING` first."""
+    deepest = 0
+    stack: list[tuple[Formula, int]] = [(formula, 1)]
+    while stack:
+        node, level = stack.pop()
+        deepest = max(deepest, level)
+        stack.extend((child, level + 1) for child in node.children())
+    return deepest
+
+
 def nesting(formula: Formula) -> int:
     """The operator nesting depth of ``formula``, a chain of one junction (``&`` in ``&``) counting once.
 

@@ -205,7 +205,8 @@ def read_native_scene(path: str | Path) -> Building:
             name=info.text("name"),
             floors=floors,
             source=graph_path.parent,
-            robot_radius_m=None if robot is None else _radius(info, "robot_radius_m", MAX_ROBOT_RADIUS_M),
+            robot_radius_m=None if robot is None else _radius(info, "robot_radius_m", MAX_ROBOT_RADIUS_M,
+                                                              zero=True),
             reach_radius_m=None if reach is None else _radius(info, "reach_radius_m", MAX_REACH_RADIUS_M),
             initial_cells=[(c[0], c[1], c[2]) for c in cells],
         )
@@ -217,11 +218,13 @@ def read_native_scene(path: str | Path) -> Building:
     return building
 
 
-def _radius(fields: Fields, key: str, maximum: float) -> float:
-    """A radius in metres in (0, ``maximum``], the bound the command line puts on the same option."""
+def _radius(fields: Fields, key: str, maximum: float, *, zero: bool = False) -> float:
+    """A radius in metres in (0, ``maximum``] (``[0, maximum]`` with ``zero``: a point robot), the bounds
+    the command line puts on the same option."""
     value = fields.number(key)
-    if not 0 < value <= maximum:
-        raise fields.error(f"field {key!r} must be a radius in metres > 0 and <= {maximum:g}, got {value:g}")
+    if not (0 <= value if zero else 0 < value) or not value <= maximum:
+        low = ">= 0" if zero else "> 0"
+        raise fields.error(f"field {key!r} must be a radius in metres {low} and <= {maximum:g}, got {value:g}")
     return value
 
 
