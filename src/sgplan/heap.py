@@ -18,7 +18,7 @@ def _before(key_a, tie_a, key_b, tie_b):
     return key_a < key_b or (key_a == key_b and tie_a > tie_b)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def heap_push(keys, ties, values, size, key, tie, value):
     """Insert one entry; the arrays must have room for ``size + 1`` entries. Returns the new size."""
     i = size
@@ -36,7 +36,7 @@ def heap_push(keys, ties, values, size, key, tie, value):
     return size + 1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def heap_pop(keys, ties, values, size):
     """Remove the top entry (read it from index 0 first). Returns the new size."""
     size -= 1

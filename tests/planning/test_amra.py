@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError
 from sgplan.planning import SETUPS, PlanningProblem, get_setup, plan
+from sgplan.planning.amra import LTL
 from sgplan.planning.checker import check_path
 from sgplan.scene.grid import StairsLink
 
@@ -96,7 +97,7 @@ def test_expansion_budget_gives_timeout() -> None:
 def test_setups_by_name() -> None:
     assert get_setup("no_llm") is SETUPS["NO-LLM"] and get_setup("a_star") is SETUPS["A*"]
     assert len(SETUPS["ALL"].queues) == 9 and len(SETUPS["NO-LLM"].queues) == 5
-    assert len(SETUPS["A*"].queues) == 2 and SETUPS["A*"].max_level == 1
+    assert SETUPS["A*"].queues == ((0, LTL),) and SETUPS["A*"].max_level == 1
     assert all(len(SETUPS[name].queues) == 6 for name in ("OCC", "OBJ", "ROOM", "FLR"))
     with pytest.raises(PlanningError, match="unknown setup"):
         get_setup("FAST")

@@ -24,6 +24,7 @@ from sgplan.heap import heap_pop, heap_push
 FOUND, EXHAUSTED, BUDGET, GROW = 0, 1, 2, 3
 ACT_STAIRS = 8
 ACT_MAP = 16
+ALL_LEVELS = 0x1F  # closed bits of levels 0 (anchor) .. 4
 INF = np.inf
 
 SearchState = namedtuple(
@@ -56,212 +57,219 @@ def build_all_maps(G, A, M):
             build_map(G, A, M, np.int64(k))
 
 
+# The hot path (successors, heuristics, expansion, heap tops) takes plain arrays, never the named tuples:
+# numba increfs/decrefs every array of a tuple passed to a helper, and in the branchy search loop those
+# atomic reference counts are not pruned -- they were ~40 % of the search time. The tuple-level entry
+# points (improve_path, start_iteration, successors, h_llm) unpack once and call the array-level cores.
+
+
 @njit(cache=True)
-def follow_map(G, A, M, L, k, c, q):
-    """``(end cell, q, cost)`` of action family ``k`` taken from cell ``c`` in state ``q``; end = -1 if the
-    action is unavailable (``c`` is a target already, cannot reach one, or the automaton dies on the way).
+def ensure_maps(G, A, M, c, level, max_level):
+    """Build (once) every composite action map that expanding cell ``c`` at ``level`` may follow."""
+    room = G.cell_room[c]
+    if max_level >= 2 and (level == 0 or level == 2) and G.in_object_region[c] and room >= 0:
+        for t in range(A.room_obj_ptr[room], A.room_obj_ptr[room + 1]):
+            if M.done[A.room_obj_map[t]] == 0:
+                build_map(G, A, M, np.int64(A.room_obj_map[t]))
+    if max_level >= 3 and (level == 0 or level == 3) and room >= 0:
+        for t in range(A.room_room_ptr[room], A.room_room_ptr[room + 1]):
+            if M.done[A.room_room_map[t]] == 0:
+                build_map(G, A, M, np.int64(A.room_room_map[t]))
+    if max_level >= 4 and (level == 0 or level == 4):
+        f = G.cell_floor[c]
+        for k in (A.floor_up_map[f], A.floor_down_map[f]):
+            if k >= 0 and M.done[k] == 0:
+                build_map(G, A, M, np.int64(k))
+
+
+@njit(cache=True, inline="always")
+def maps_ready(done, cell_room, cell_floor, in_object_region, room_obj_ptr, room_obj_map, room_room_ptr,
+               room_room_map, floor_up_map, floor_down_map, c, level, max_level):
+    """Whether every map :func:`ensure_maps` would build for (c, level) is built already."""
+    if max_level < 2 or level == 1:
+        return True
+    room = cell_room[c]
+    if (level == 0 or level == 2) and in_object_region[c] and room >= 0:
+        for t in range(room_obj_ptr[room], room_obj_ptr[room + 1]):
+            if done[room_obj_map[t]] == 0:
+                return False
+    if max_level >= 3 and (level == 0 or level == 3) and room >= 0:
+        for t in range(room_room_ptr[room], room_room_ptr[room + 1]):
+            if done[room_room_map[t]] == 0:
+                return False
+    if max_level >= 4 and (level == 0 or level == 4):
+        f = cell_floor[c]
+        if (floor_up_map[f] >= 0 and done[floor_up_map[f]] == 0) or (
+            floor_down_map[f] >= 0 and done[floor_down_map[f]] == 0
+        ):
+            return False
+    return True
+
+
+@njit(cache=True, inline="always")
+def follow_map(floor_offset, cell_label, map_floor, map_exit_cell, map_exit_cost, dist, pred, run, trans,
+               accepting, dead, idempotent, k, c, q):
+    """``(end cell, q, cost)`` of action family ``k`` (built) taken from cell ``c`` in state ``q``; end = -1
+    if the action is unavailable (``c`` is a target already, cannot reach one, or the automaton dies).
 
     The automaton reads every cell after ``c`` up to the end (for a floor action also the far portal); it
     stops early, at that cell and cost, when it accepts. With an idempotent table (T(T(q,l),l) = T(q,l))
     a stretch of equal labels is read once.
     """
-    if M.done[k] == 0:
-        build_map(G, A, M, np.int64(k))
-    lo = G.floor_offset[A.map_floor[k]]
-    pred = M.pred[k]
-    dist = M.dist[k]
-    run = M.run[k]
+    lo = floor_offset[map_floor[k]]
     u = c - lo
-    p = pred[u]
+    p = pred[k, u]
     if p <= 1:
         return -1, q, 0.0
-    total = dist[u]
+    total = dist[k, u]
     x = p - 2
-    idempotent = L.idempotent[0]
     while True:
-        q = L.trans[q, G.cell_label[x + lo]]
-        if L.accepting[q]:
-            return x + lo, q, total - dist[x]
-        if L.dead[q]:
+        q = trans[q, cell_label[x + lo]]
+        if accepting[q]:
+            return x + lo, q, total - dist[k, x]
+        if dead[q]:
             return -1, q, 0.0
-        y = run[x] - 1 if idempotent else x
-        py = pred[y]
+        y = run[k, x] - 1 if idempotent else x
+        py = pred[k, y]
         if py == 1:
             break
         x = py - 2
     end = y + lo
     cost = total
-    exit_cell = A.map_exit_cell[k]
+    exit_cell = map_exit_cell[k]
     if exit_cell >= 0:
-        q = L.trans[q, G.cell_label[exit_cell]]
-        if L.dead[q]:
+        q = trans[q, cell_label[exit_cell]]
+        if dead[q]:
             return -1, q, 0.0
         end = exit_cell
-        cost = total + A.map_exit_cost[k]
+        cost = total + map_exit_cost[k]
     return end, q, cost
+
+
+@njit(cache=True, inline="always")
+def push_map(floor_offset, cell_label, map_floor, map_exit_cell, map_exit_cost, dist, pred, run, trans, accepting,
+             dead, idempotent, k, c, q, n, out_c, out_q, out_cost, out_act):
+    """Append action family ``k`` from (c, q) to the ``out_*`` buffers if available; returns the new count."""
+    end, nq, cost = follow_map(floor_offset, cell_label, map_floor, map_exit_cell, map_exit_cost, dist, pred, run,
+                               trans, accepting, dead, idempotent, k, c, q)
+    if end >= 0:
+        out_c[n] = end
+        out_q[n] = nq
+        out_cost[n] = cost
+        out_act[n] = ACT_MAP + k
+        n += 1
+    return n
+
+
+@njit(cache=True)
+def successors_core(nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost, floor_offset, cell_floor,
+                    cell_label, cell_room, in_object_region, room_obj_ptr, room_obj_map, room_room_ptr, room_room_map,
+                    floor_up_map, floor_down_map, map_floor, map_exit_cell, map_exit_cost, dist, pred, run, trans,
+                    accepting, dead, idempotent, c, q, level, max_level, out_c, out_q, out_cost, out_act):
+    """Write the successors of (c, q) at ``level`` (0 = anchor: union of levels 1..max_level) into the
+    ``out_*`` buffers; returns their number. The maps involved must be built (:func:`ensure_maps`).
+    Successor q may be dead; the caller filters."""
+    n = 0
+    if level <= 1:
+        for k in range(8):
+            v = nbr[c, k]
+            if v >= 0:
+                out_c[n] = v
+                out_q[n] = trans[q, cell_label[v]]
+                out_cost[n] = step_cost[k]
+                out_act[n] = k
+                n += 1
+        j = stairs_first[c]
+        while j >= 0 and j < stairs_from.shape[0] and stairs_from[j] == c:
+            v = stairs_to[j]
+            out_c[n] = v
+            out_q[n] = trans[q, cell_label[v]]
+            out_cost[n] = stairs_cost[j]
+            out_act[n] = ACT_STAIRS
+            n += 1
+            j += 1
+    room = cell_room[c]
+    if max_level >= 2 and (level == 0 or level == 2) and in_object_region[c] and room >= 0:
+        for t in range(room_obj_ptr[room], room_obj_ptr[room + 1]):
+            n = push_map(floor_offset, cell_label, map_floor, map_exit_cell, map_exit_cost, dist, pred, run, trans,
+                         accepting, dead, idempotent, room_obj_map[t], c, q, n, out_c, out_q, out_cost, out_act)
+    if max_level >= 3 and (level == 0 or level == 3) and room >= 0:
+        for t in range(room_room_ptr[room], room_room_ptr[room + 1]):
+            n = push_map(floor_offset, cell_label, map_floor, map_exit_cell, map_exit_cost, dist, pred, run, trans,
+                         accepting, dead, idempotent, room_room_map[t], c, q, n, out_c, out_q, out_cost, out_act)
+    if max_level >= 4 and (level == 0 or level == 4):
+        f = cell_floor[c]
+        for k in (floor_up_map[f], floor_down_map[f]):
+            if k >= 0:
+                n = push_map(floor_offset, cell_label, map_floor, map_exit_cell, map_exit_cost, dist, pred, run,
+                             trans, accepting, dead, idempotent, k, c, q, n, out_c, out_q, out_cost, out_act)
+    return n
 
 
 @njit(cache=True)
 def successors(G, A, M, L, c, q, level, max_level, out_c, out_q, out_cost, out_act):
-    """Write the successors of (c, q) at ``level`` (0 = anchor: union of levels 1..max_level) into the
-    ``out_*`` buffers; returns their number. Successor q may be dead; the caller filters."""
-    n = 0
-    if level <= 1:
-        for k in range(8):
-            v = G.nbr[c, k]
-            if v >= 0:
-                out_c[n] = v
-                out_q[n] = L.trans[q, G.cell_label[v]]
-                out_cost[n] = G.step_cost[k]
-                out_act[n] = k
-                n += 1
-        j = G.stairs_first[c]
-        while j >= 0 and j < G.stairs_from.shape[0] and G.stairs_from[j] == c:
-            v = G.stairs_to[j]
-            out_c[n] = v
-            out_q[n] = L.trans[q, G.cell_label[v]]
-            out_cost[n] = G.stairs_cost[j]
-            out_act[n] = ACT_STAIRS
-            n += 1
-            j += 1
-    room = G.cell_room[c]
-    if max_level >= 2 and (level == 0 or level == 2) and G.in_object_region[c] and room >= 0:
-        for t in range(A.room_obj_ptr[room], A.room_obj_ptr[room + 1]):
-            k = A.room_obj_map[t]
-            end, nq, cost = follow_map(G, A, M, L, k, c, q)
-            if end >= 0:
-                out_c[n] = end
-                out_q[n] = nq
-                out_cost[n] = cost
-                out_act[n] = ACT_MAP + k
-                n += 1
-    if max_level >= 3 and (level == 0 or level == 3) and room >= 0:
-        for t in range(A.room_room_ptr[room], A.room_room_ptr[room + 1]):
-            k = A.room_room_map[t]
-            end, nq, cost = follow_map(G, A, M, L, k, c, q)
-            if end >= 0:
-                out_c[n] = end
-                out_q[n] = nq
-                out_cost[n] = cost
-                out_act[n] = ACT_MAP + k
-                n += 1
-    if max_level >= 4 and (level == 0 or level == 4):
-        f = G.cell_floor[c]
-        for k in (A.floor_up_map[f], A.floor_down_map[f]):
-            if k >= 0:
-                end, nq, cost = follow_map(G, A, M, L, k, c, q)
-                if end >= 0:
-                    out_c[n] = end
-                    out_q[n] = nq
-                    out_cost[n] = cost
-                    out_act[n] = ACT_MAP + k
-                    n += 1
-    return n
+    """:func:`successors_core` on the named tuples, building the maps it needs first."""
+    ensure_maps(G, A, M, c, level, max_level)
+    return successors_core(
+        G.nbr, G.step_cost, G.stairs_first, G.stairs_from, G.stairs_to, G.stairs_cost, G.floor_offset, G.cell_floor,
+        G.cell_label, G.cell_room, G.in_object_region, A.room_obj_ptr, A.room_obj_map, A.room_room_ptr,
+        A.room_room_map, A.floor_up_map, A.floor_down_map, A.map_floor, A.map_exit_cell, A.map_exit_cost, M.dist,
+        M.pred, M.run, L.trans, L.accepting, L.dead, L.idempotent[0], c, q, level, max_level, out_c, out_q,
+        out_cost, out_act,
+    )
 
 
 @njit(cache=True, inline="always")
-def h_ltl(L, c, q):
-    if L.accepting[q]:
+def h_ltl(accepting, q_row, hmap, c, q):
+    if accepting[q]:
         return 0.0
-    row = L.q_row[q]
+    row = q_row[q]
     if row < 0:
         return INF
-    return L.hmap[row, c]
+    return hmap[row, c]
 
 
 @njit(cache=True, inline="always")
+def h_llm_core(cell_room, cell_xyz, accepting, llm_sum, llm_target, llm_valid, c, q):
+    if accepting[q]:
+        return 0.0
+    room = cell_room[c]
+    if room < 0 or not llm_valid[room, q]:
+        return 0.0
+    dx = cell_xyz[c, 0] - llm_target[room, q, 0]
+    dy = cell_xyz[c, 1] - llm_target[room, q, 1]
+    dz = cell_xyz[c, 2] - llm_target[room, q, 2]
+    return llm_sum[room, q] + np.sqrt(dx * dx + dy * dy + dz * dz)
+
+
+@njit(cache=True)
 def h_llm(G, L, c, q):
-    if L.accepting[q]:
-        return 0.0
-    room = G.cell_room[c]
-    if room < 0 or not L.llm_valid[room, q]:
-        return 0.0
-    dx = G.cell_xyz[c, 0] - L.llm_target[room, q, 0]
-    dy = G.cell_xyz[c, 1] - L.llm_target[room, q, 1]
-    dz = G.cell_xyz[c, 2] - L.llm_target[room, q, 2]
-    return L.llm_sum[room, q] + np.sqrt(dx * dx + dy * dy + dz * dz)
+    """h_LLM at (cell c, state q), metres (0 where guidance has nothing)."""
+    return h_llm_core(G.cell_room, G.cell_xyz, L.accepting, L.llm_sum, L.llm_target, L.llm_valid, c, q)
 
 
 @njit(cache=True, inline="always")
-def in_level(G, c, level):
+def in_level(cell_room, in_object_region, c, level):
     if level == 2:
-        return G.in_object_region[c]
+        return in_object_region[c]
     if level == 3:
-        return G.cell_room[c] >= 0
+        return cell_room[c] >= 0
     return True
 
 
 @njit(cache=True, inline="always")
-def closed_at(S, s, level, iteration):
-    return S.epoch[s] == iteration and (S.closed[s] >> level) & 1 == 1
+def closed_at(epoch, closed, s, level, iteration):
+    return epoch[s] == iteration and (closed[s] >> level) & 1 == 1
 
 
-@njit(cache=True)
-def queue_h(G, L, htype, c, q, h0):
-    return h0 if htype == 0 else h_llm(G, L, c, q)
-
-
-@njit(cache=True)
-def expand(G, A, M, L, S, q_level, q_htype, max_level, s, level, out_c, out_q, out_cost, out_act):
-    """Expand state ``s`` at ``level``: close it there and update its successors (AMRA* Expand)."""
-    num_q = L.trans.shape[0]
-    c = s // num_q
-    q = s % num_q
-    iteration = S.iscal[3]
-    w1 = S.fscal[1]
-    w2 = S.fscal[2]
-    if S.epoch[s] != iteration:
-        S.epoch[s] = iteration
-        S.closed[s] = 0
-    S.closed[s] |= 1 << level
-    gs = S.g[s]
-    n = successors(G, A, M, L, c, q, level, max_level, out_c, out_q, out_cost, out_act)
-    for t in range(n):
-        nc = out_c[t]
-        nq = out_q[t]
-        ns = nc * num_q + nq
-        gn = gs + out_cost[t]
-        if S.seen[ns] and gn >= S.g[ns]:
-            continue
-        if L.accepting[nq]:
-            S.g[ns] = gn
-            S.parent[ns] = s
-            S.action[ns] = out_act[t]
-            S.seen[ns] = 1
-            if gn < S.fscal[0]:
-                S.fscal[0] = gn
-                S.iscal[0] = ns
-            continue
-        h0 = h_ltl(L, nc, nq)
-        if h0 == INF:
-            continue
-        S.g[ns] = gn
-        S.parent[ns] = s
-        S.action[ns] = out_act[t]
-        S.seen[ns] = 1
-        if closed_at(S, ns, 0, iteration):
-            S.incons[S.iscal[2]] = ns
-            S.iscal[2] += 1
-            continue
-        f0 = gn + w1 * h0
-        S.hsize[0] = heap_push(S.hkey[0], S.hg[0], S.hstate[0], S.hsize[0], f0, gn, ns)
-        for j in range(1, q_level.shape[0]):
-            lj = q_level[j]
-            if not in_level(G, nc, lj) or closed_at(S, ns, lj, iteration):
-                continue
-            fj = gn + w1 * queue_h(G, L, q_htype[j], nc, nq, h0)
-            if fj <= w2 * f0:
-                S.hsize[j] = heap_push(S.hkey[j], S.hg[j], S.hstate[j], S.hsize[j], fj, gn, ns)
-
-
-@njit(cache=True)
-def clean_top(S, i, level, iteration):
+@njit(cache=True, inline="always")
+def clean_top(g, epoch, closed, hkey, hg, hstate, hsize, i, level, iteration):
     """Drop stale entries from the top of heap ``i``; return its minimum key (inf when empty)."""
-    while S.hsize[i] > 0:
-        s = S.hstate[i, 0]
-        if S.hg[i, 0] == S.g[s] and not closed_at(S, s, level, iteration):
-            return S.hkey[i, 0]
-        S.hsize[i] = heap_pop(S.hkey[i], S.hg[i], S.hstate[i], S.hsize[i])
+    while hsize[i] > 0:
+        s = hstate[i, 0]
+        if hg[i, 0] == g[s] and not closed_at(epoch, closed, s, level, iteration):
+            return hkey[i, 0]
+        hsize[i] = heap_pop(hkey[i], hg[i], hstate[i], hsize[i])
     return INF
 
 
@@ -271,42 +279,48 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
     other queue gets the OPEN_0 states of its level; all closed sets are cleared. The heaps need room for
     ``hsize[0] + n_incons`` entries."""
     num_q = L.trans.shape[0]
+    g, epoch, closed, incons, iscal = S.g, S.epoch, S.closed, S.incons, S.iscal
+    hkey, hg, hstate, hsize = S.hkey, S.hg, S.hstate, S.hsize
+    accepting, q_row, hmap = L.accepting, L.q_row, L.hmap
+    cell_room, cell_xyz, in_object_region = G.cell_room, G.cell_xyz, G.in_object_region
+    llm_sum, llm_target, llm_valid = L.llm_sum, L.llm_target, L.llm_valid
     previous = iteration - 1
-    cand = np.empty(S.hsize[0] + S.iscal[2], dtype=np.int64)
+    cand = np.empty(hsize[0] + iscal[2], dtype=np.int64)
     m = 0
-    for e in range(S.hsize[0]):
-        s = S.hstate[0, e]
-        if S.hg[0, e] != S.g[s] or closed_at(S, s, 0, previous) or S.epoch[s] == iteration:
+    for e in range(hsize[0]):
+        s = hstate[0, e]
+        if hg[0, e] != g[s] or closed_at(epoch, closed, s, 0, previous) or epoch[s] == iteration:
             continue
-        S.epoch[s] = iteration
-        S.closed[s] = 0
+        epoch[s] = iteration
+        closed[s] = 0
         cand[m] = s
         m += 1
-    for e in range(S.iscal[2]):
-        s = S.incons[e]
-        if S.epoch[s] == iteration:
+    for e in range(iscal[2]):
+        s = incons[e]
+        if epoch[s] == iteration:
             continue
-        S.epoch[s] = iteration
-        S.closed[s] = 0
+        epoch[s] = iteration
+        closed[s] = 0
         cand[m] = s
         m += 1
-    S.iscal[2] = 0
-    S.iscal[3] = iteration
+    iscal[2] = 0
+    iscal[3] = iteration
     S.fscal[1] = w1
     S.fscal[2] = w2
     for i in range(q_level.shape[0]):
-        S.hsize[i] = 0
+        hsize[i] = 0
     for t in range(m):
         s = cand[t]
         c = s // num_q
         q = s % num_q
-        gs = S.g[s]
-        h0 = h_ltl(L, c, q)
-        S.hsize[0] = heap_push(S.hkey[0], S.hg[0], S.hstate[0], S.hsize[0], gs + w1 * h0, gs, s)
+        gs = g[s]
+        h0 = h_ltl(accepting, q_row, hmap, c, q)
+        hsize[0] = heap_push(hkey[0], hg[0], hstate[0], hsize[0], gs + w1 * h0, gs, s)
         for j in range(1, q_level.shape[0]):
-            if in_level(G, c, q_level[j]):
-                fj = gs + w1 * queue_h(G, L, q_htype[j], c, q, h0)
-                S.hsize[j] = heap_push(S.hkey[j], S.hg[j], S.hstate[j], S.hsize[j], fj, gs, s)
+            if in_level(cell_room, in_object_region, c, q_level[j]):
+                hj = h0 if q_htype[j] == 0 else h_llm_core(cell_room, cell_xyz, accepting, llm_sum, llm_target,
+                                                           llm_valid, c, q)
+                hsize[j] = heap_push(hkey[j], hg[j], hstate[j], hsize[j], gs + w1 * hj, gs, s)
 
 
 @njit(cache=True)
@@ -317,19 +331,42 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     -- with a consistent anchor heuristic that bounds its cost by w1*w2 times the optimum, and makes it
     optimal at (1, 1); EXHAUSTED when the anchor queue is empty and no goal was found; BUDGET after
     ``budget`` expansions; GROW when a heap or the INCONS list needs more room.
+
+    Expand (AMRA*): the chosen state is closed at its queue's level (at every level when the anchor
+    expands it: the anchor generates the successors of all levels from the same g), each successor whose g
+    improves is recorded; an accepting one becomes a goal candidate, one already closed in the anchor goes
+    to INCONS, others enter the anchor queue and every queue of a level they belong to whose key is within
+    w2 of the anchor key.
     """
+    # Unpack once (see the note above the array-level cores).
+    nbr, step_cost, stairs_first, stairs_from = G.nbr, G.step_cost, G.stairs_first, G.stairs_from
+    stairs_to, stairs_cost, floor_offset, cell_floor = G.stairs_to, G.stairs_cost, G.floor_offset, G.cell_floor
+    cell_label, cell_room, cell_xyz, in_object_region = G.cell_label, G.cell_room, G.cell_xyz, G.in_object_region
+    room_obj_ptr, room_obj_map, room_room_ptr, room_room_map = A.room_obj_ptr, A.room_obj_map, A.room_room_ptr, A.room_room_map
+    floor_up_map, floor_down_map, map_floor = A.floor_up_map, A.floor_down_map, A.map_floor
+    map_exit_cell, map_exit_cost = A.map_exit_cell, A.map_exit_cost
+    done_maps, dist, pred, run = M.done, M.dist, M.pred, M.run
+    trans, accepting, dead, q_row, hmap = L.trans, L.accepting, L.dead, L.q_row, L.hmap
+    idempotent = L.idempotent[0]
+    llm_sum, llm_target, llm_valid = L.llm_sum, L.llm_target, L.llm_valid
+    g, parent, action, seen, closed, epoch = S.g, S.parent, S.action, S.seen, S.closed, S.epoch
+    hkey, hg, hstate, hsize, incons, fscal, iscal = S.hkey, S.hg, S.hstate, S.hsize, S.incons, S.fscal, S.iscal
+    expansions = S.expansions
+
     num_queues = q_level.shape[0]
-    iteration = S.iscal[3]
-    w2 = S.fscal[2]
+    num_q = trans.shape[0]
+    iteration = iscal[3]
+    w1 = fscal[1]
+    w2 = fscal[2]
     out_c = np.empty(max_succ, dtype=np.int64)
     out_q = np.empty(max_succ, dtype=np.int64)
     out_cost = np.empty(max_succ, dtype=np.float64)
     out_act = np.empty(max_succ, dtype=np.int32)
-    capacity = S.hkey.shape[1]
+    capacity = hkey.shape[1]
     done = 0
     while True:
-        mk0 = clean_top(S, np.int64(0), q_level[0], iteration)  # typed as the other call: one specialization
-        goal = S.fscal[0]
+        mk0 = clean_top(g, epoch, closed, hkey, hg, hstate, hsize, 0, q_level[0], iteration)
+        goal = fscal[0]
         if goal < INF and goal <= w2 * mk0:
             return FOUND, done
         if mk0 == INF:
@@ -337,18 +374,74 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
         if done >= budget:
             return BUDGET, done
         for i in range(num_queues):
-            if S.hsize[i] + max_succ > capacity:
+            if hsize[i] + max_succ > capacity:
                 return GROW, done
-        if S.iscal[2] + max_succ > S.incons.shape[0]:
+        if iscal[2] + max_succ > incons.shape[0]:
             return GROW, done
         chosen = 0
         if num_queues > 1:
-            i = S.iscal[1]
-            S.iscal[1] = i % (num_queues - 1) + 1
-            if clean_top(S, i, q_level[i], iteration) <= w2 * mk0:
+            i = iscal[1]
+            iscal[1] = i % (num_queues - 1) + 1
+            if clean_top(g, epoch, closed, hkey, hg, hstate, hsize, i, q_level[i], iteration) <= w2 * mk0:
                 chosen = i
-        s = S.hstate[chosen, 0]
-        S.hsize[chosen] = heap_pop(S.hkey[chosen], S.hg[chosen], S.hstate[chosen], S.hsize[chosen])
-        expand(G, A, M, L, S, q_level, q_htype, max_level, s, q_level[chosen], out_c, out_q, out_cost, out_act)
-        S.expansions[chosen] += 1
+        s = hstate[chosen, 0]
+        hsize[chosen] = heap_pop(hkey[chosen], hg[chosen], hstate[chosen], hsize[chosen])
+        level = q_level[chosen]
+        expansions[chosen] += 1
         done += 1
+
+        # Expand s at level.
+        c = s // num_q
+        q = s % num_q
+        if epoch[s] != iteration:
+            epoch[s] = iteration
+            closed[s] = 0
+        closed[s] |= ALL_LEVELS if level == 0 else 1 << level
+        if not maps_ready(done_maps, cell_room, cell_floor, in_object_region, room_obj_ptr, room_obj_map,
+                          room_room_ptr, room_room_map, floor_up_map, floor_down_map, c, level, max_level):
+            ensure_maps(G, A, M, c, level, max_level)
+        gs = g[s]
+        n = successors_core(
+            nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost, floor_offset, cell_floor, cell_label,
+            cell_room, in_object_region, room_obj_ptr, room_obj_map, room_room_ptr, room_room_map, floor_up_map,
+            floor_down_map, map_floor, map_exit_cell, map_exit_cost, dist, pred, run, trans, accepting, dead,
+            idempotent, c, q, level, max_level, out_c, out_q, out_cost, out_act,
+        )
+        for t in range(n):
+            nc = out_c[t]
+            nq = out_q[t]
+            ns = nc * num_q + nq
+            gn = gs + out_cost[t]
+            if seen[ns] and gn >= g[ns]:
+                continue
+            if accepting[nq]:
+                g[ns] = gn
+                parent[ns] = s
+                action[ns] = out_act[t]
+                seen[ns] = 1
+                if gn < fscal[0]:
+                    fscal[0] = gn
+                    iscal[0] = ns
+                continue
+            h0 = h_ltl(accepting, q_row, hmap, nc, nq)
+            if h0 == INF:
+                continue
+            g[ns] = gn
+            parent[ns] = s
+            action[ns] = out_act[t]
+            seen[ns] = 1
+            if closed_at(epoch, closed, ns, 0, iteration):
+                incons[iscal[2]] = ns
+                iscal[2] += 1
+                continue
+            f0 = gn + w1 * h0
+            hsize[0] = heap_push(hkey[0], hg[0], hstate[0], hsize[0], f0, gn, ns)
+            for j in range(1, num_queues):
+                lj = q_level[j]
+                if not in_level(cell_room, in_object_region, nc, lj) or closed_at(epoch, closed, ns, lj, iteration):
+                    continue
+                hj = h0 if q_htype[j] == 0 else h_llm_core(cell_room, cell_xyz, accepting, llm_sum, llm_target,
+                                                           llm_valid, nc, nq)
+                fj = gn + w1 * hj
+                if fj <= w2 * f0:
+                    hsize[j] = heap_push(hkey[j], hg[j], hstate[j], hsize[j], fj, gn, ns)
