@@ -19,7 +19,7 @@ import numpy as np
 from numba import njit
 
 from sgplan.planning._dijkstra import dijkstra, label_runs
-from sgplan.heap import heap_pop, heap_push
+from sgplan.heap import heap_pop_at, heap_push_at
 
 FOUND, EXHAUSTED, BUDGET, GROW = 0, 1, 2, 3
 ACT_STAIRS = 8
@@ -31,7 +31,8 @@ SearchState = namedtuple(
     "SearchState", "g parent action seen closed epoch hkey hg hstate hsize incons fscal iscal expansions"
 )
 """Search memory. ``fscal = [goal_g, w1, w2]``; ``iscal = [goal_state, round_robin, n_incons, iteration]``;
-``hkey/hg/hstate (K, capacity)`` one lazy heap per queue with ``hsize (K,)``; ``expansions (K,)``."""
+``hkey/hg/hstate (K * capacity,)`` one lazy heap per queue (queue ``i`` at offset ``i * capacity``) with
+``hsize (K,)``; ``expansions (K,)``."""
 
 
 @njit(cache=True)
@@ -107,116 +108,122 @@ def maps_ready(done, cell_room, cell_floor, in_object_region, room_obj_ptr, room
 
 
 @njit(cache=True, inline="always")
-def follow_map(floor_offset, cell_label, map_floor, map_exit_cell, map_exit_cost, dist, pred, run, trans,
-               accepting, dead, idempotent, k, c, q):
-    """``(end cell, q, cost)`` of action family ``k`` (built) taken from cell ``c`` in state ``q``; end = -1
-    if the action is unavailable (``c`` is a target already, cannot reach one, or the automaton dies).
-
-    The automaton reads every cell after ``c`` up to the end (for a floor action also the far portal); it
-    stops early, at that cell and cost, when it accepts. With an idempotent table (T(T(q,l),l) = T(q,l))
-    a stretch of equal labels is read once.
-    """
-    lo = floor_offset[map_floor[k]]
-    u = c - lo
-    p = pred[k, u]
-    if p <= 1:
-        return -1, q, 0.0
-    total = dist[k, u]
-    x = p - 2
-    while True:
-        q = trans[q, cell_label[x + lo]]
-        if accepting[q]:
-            return x + lo, q, total - dist[k, x]
-        if dead[q]:
-            return -1, q, 0.0
-        y = run[k, x] - 1 if idempotent else x
-        py = pred[k, y]
-        if py == 1:
-            break
-        x = py - 2
-    end = y + lo
-    cost = total
-    exit_cell = map_exit_cell[k]
-    if exit_cell >= 0:
-        q = trans[q, cell_label[exit_cell]]
-        if dead[q]:
-            return -1, q, 0.0
-        end = exit_cell
-        cost = total + map_exit_cost[k]
-    return end, q, cost
-
-
-@njit(cache=True, inline="always")
-def push_map(floor_offset, cell_label, map_floor, map_exit_cell, map_exit_cost, dist, pred, run, trans, accepting,
-             dead, idempotent, k, c, q, n, out_c, out_q, out_cost, out_act):
-    """Append action family ``k`` from (c, q) to the ``out_*`` buffers if available; returns the new count."""
-    end, nq, cost = follow_map(floor_offset, cell_label, map_floor, map_exit_cell, map_exit_cost, dist, pred, run,
-                               trans, accepting, dead, idempotent, k, c, q)
-    if end >= 0:
-        out_c[n] = end
-        out_q[n] = nq
-        out_cost[n] = cost
-        out_act[n] = ACT_MAP + k
+def step_successors(nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost, cell_label, trans, c, q,
+                    out_c, out_q, out_cost, out_act):
+    """Write the occupancy successors of (c, q) (8 steps, stairs) into the ``out_*`` buffers; returns
+    their number. Successor q may be dead; the caller filters."""
+    n = 0
+    for k in range(8):
+        v = nbr[c, k]
+        if v >= 0:
+            out_c[n] = v
+            out_q[n] = trans[q, cell_label[v]]
+            out_cost[n] = step_cost[k]
+            out_act[n] = k
+            n += 1
+    j = stairs_first[c]
+    while j >= 0 and j < stairs_from.shape[0] and stairs_from[j] == c:
+        v = stairs_to[j]
+        out_c[n] = v
+        out_q[n] = trans[q, cell_label[v]]
+        out_cost[n] = stairs_cost[j]
+        out_act[n] = ACT_STAIRS
         n += 1
+        j += 1
     return n
 
 
 @njit(cache=True)
-def successors_core(nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost, floor_offset, cell_floor,
-                    cell_label, cell_room, in_object_region, room_obj_ptr, room_obj_map, room_room_ptr, room_room_map,
-                    floor_up_map, floor_down_map, map_floor, map_exit_cell, map_exit_cost, dist, pred, run, trans,
-                    accepting, dead, idempotent, c, q, level, max_level, out_c, out_q, out_cost, out_act):
-    """Write the successors of (c, q) at ``level`` (0 = anchor: union of levels 1..max_level) into the
-    ``out_*`` buffers; returns their number. The maps involved must be built (:func:`ensure_maps`).
-    Successor q may be dead; the caller filters."""
-    n = 0
-    if level <= 1:
-        for k in range(8):
-            v = nbr[c, k]
-            if v >= 0:
-                out_c[n] = v
-                out_q[n] = trans[q, cell_label[v]]
-                out_cost[n] = step_cost[k]
-                out_act[n] = k
-                n += 1
-        j = stairs_first[c]
-        while j >= 0 and j < stairs_from.shape[0] and stairs_from[j] == c:
-            v = stairs_to[j]
-            out_c[n] = v
-            out_q[n] = trans[q, cell_label[v]]
-            out_cost[n] = stairs_cost[j]
-            out_act[n] = ACT_STAIRS
-            n += 1
-            j += 1
+def map_successors(floor_offset, cell_floor, cell_label, cell_room, in_object_region, room_obj_ptr, room_obj_map,
+                   room_room_ptr, room_room_map, floor_up_map, floor_down_map, map_floor, map_exit_cell,
+                   map_exit_cost, dist, pred, run, trans, accepting, dead, idempotent, c, q0, level, max_level, n,
+                   out_c, out_q, out_cost, out_act):
+    """Append the composite-action successors of (c, q0) at ``level`` (levels 2..max_level; 0 = all of
+    them) to the ``out_*`` buffers after the first ``n``; returns the new count. The maps involved must be
+    built (:func:`ensure_maps`).
+
+    Following action family ``k`` from ``c``: unavailable if ``c`` is a target already, cannot reach one,
+    or the automaton dies on the way. The automaton reads every cell after ``c`` up to the end (for a
+    floor action also the far portal); it stops early, at that cell and cost, when it accepts. With an
+    idempotent table (T(T(q,l),l) = T(q,l)) a stretch of equal labels is read once.
+
+    One flat loop, no helper calls: numba reference-counts the arrays passed to helpers, which in this
+    loop cost more than the work itself.
+    """
     room = cell_room[c]
+    f = cell_floor[c]
+    n_obj = 0
     if max_level >= 2 and (level == 0 or level == 2) and in_object_region[c] and room >= 0:
-        for t in range(room_obj_ptr[room], room_obj_ptr[room + 1]):
-            n = push_map(floor_offset, cell_label, map_floor, map_exit_cell, map_exit_cost, dist, pred, run, trans,
-                         accepting, dead, idempotent, room_obj_map[t], c, q, n, out_c, out_q, out_cost, out_act)
+        n_obj = room_obj_ptr[room + 1] - room_obj_ptr[room]
+    n_room = 0
     if max_level >= 3 and (level == 0 or level == 3) and room >= 0:
-        for t in range(room_room_ptr[room], room_room_ptr[room + 1]):
-            n = push_map(floor_offset, cell_label, map_floor, map_exit_cell, map_exit_cost, dist, pred, run, trans,
-                         accepting, dead, idempotent, room_room_map[t], c, q, n, out_c, out_q, out_cost, out_act)
-    if max_level >= 4 and (level == 0 or level == 4):
-        f = cell_floor[c]
-        for k in (floor_up_map[f], floor_down_map[f]):
-            if k >= 0:
-                n = push_map(floor_offset, cell_label, map_floor, map_exit_cell, map_exit_cost, dist, pred, run,
-                             trans, accepting, dead, idempotent, k, c, q, n, out_c, out_q, out_cost, out_act)
+        n_room = room_room_ptr[room + 1] - room_room_ptr[room]
+    n_floor = 2 if max_level >= 4 and (level == 0 or level == 4) else 0
+    for t in range(n_obj + n_room + n_floor):
+        if t < n_obj:
+            k = room_obj_map[room_obj_ptr[room] + t]
+        elif t < n_obj + n_room:
+            k = room_room_map[room_room_ptr[room] + t - n_obj]
+        elif t == n_obj + n_room:
+            k = floor_up_map[f]
+        else:
+            k = floor_down_map[f]
+        if k < 0:
+            continue
+        lo = floor_offset[map_floor[k]]
+        p = pred[k, c - lo]
+        if p <= 1:
+            continue
+        total = dist[k, c - lo]
+        q = q0
+        x = p - 2
+        end = -1
+        cost = 0.0
+        while True:
+            q = trans[q, cell_label[x + lo]]
+            if accepting[q]:
+                end = x + lo
+                cost = total - dist[k, x]
+                break
+            if dead[q]:
+                break
+            y = run[k, x] - 1 if idempotent else x
+            py = pred[k, y]
+            if py == 1:
+                end = y + lo
+                cost = total
+                if map_exit_cell[k] >= 0:
+                    q = trans[q, cell_label[map_exit_cell[k]]]
+                    end = -1 if dead[q] else map_exit_cell[k]
+                    cost = total + map_exit_cost[k]
+                break
+            x = py - 2
+        if end >= 0:
+            out_c[n] = end
+            out_q[n] = q
+            out_cost[n] = cost
+            out_act[n] = ACT_MAP + k
+            n += 1
     return n
 
 
 @njit(cache=True)
 def successors(G, A, M, L, c, q, level, max_level, out_c, out_q, out_cost, out_act):
-    """:func:`successors_core` on the named tuples, building the maps it needs first."""
+    """Write the successors of (c, q) at ``level`` (0 = anchor: union of levels 1..max_level) into the
+    ``out_*`` buffers, building the maps they need first; returns their number. Successor q may be dead."""
     ensure_maps(G, A, M, c, level, max_level)
-    return successors_core(
-        G.nbr, G.step_cost, G.stairs_first, G.stairs_from, G.stairs_to, G.stairs_cost, G.floor_offset, G.cell_floor,
-        G.cell_label, G.cell_room, G.in_object_region, A.room_obj_ptr, A.room_obj_map, A.room_room_ptr,
-        A.room_room_map, A.floor_up_map, A.floor_down_map, A.map_floor, A.map_exit_cell, A.map_exit_cost, M.dist,
-        M.pred, M.run, L.trans, L.accepting, L.dead, L.idempotent[0], c, q, level, max_level, out_c, out_q,
-        out_cost, out_act,
-    )
+    n = 0
+    if level <= 1:
+        n = step_successors(G.nbr, G.step_cost, G.stairs_first, G.stairs_from, G.stairs_to, G.stairs_cost,
+                            G.cell_label, L.trans, c, q, out_c, out_q, out_cost, out_act)
+    if max_level >= 2 and level != 1:
+        n = map_successors(
+            G.floor_offset, G.cell_floor, G.cell_label, G.cell_room, G.in_object_region, A.room_obj_ptr,
+            A.room_obj_map, A.room_room_ptr, A.room_room_map, A.floor_up_map, A.floor_down_map, A.map_floor,
+            A.map_exit_cell, A.map_exit_cost, M.dist, M.pred, M.run, L.trans, L.accepting, L.dead, L.idempotent[0],
+            c, q, level, max_level, n, out_c, out_q, out_cost, out_act,
+        )
+    return n
 
 
 @njit(cache=True, inline="always")
@@ -263,13 +270,14 @@ def closed_at(epoch, closed, s, level, iteration):
 
 
 @njit(cache=True, inline="always")
-def clean_top(g, epoch, closed, hkey, hg, hstate, hsize, i, level, iteration):
+def clean_top(g, epoch, closed, hkey, hg, hstate, hsize, capacity, i, level, iteration):
     """Drop stale entries from the top of heap ``i``; return its minimum key (inf when empty)."""
+    base = i * capacity
     while hsize[i] > 0:
-        s = hstate[i, 0]
-        if hg[i, 0] == g[s] and not closed_at(epoch, closed, s, level, iteration):
-            return hkey[i, 0]
-        hsize[i] = heap_pop(hkey[i], hg[i], hstate[i], hsize[i])
+        s = hstate[base]
+        if hg[base] == g[s] and not (epoch[s] == iteration and (closed[s] >> level) & 1 == 1):
+            return hkey[base]
+        hsize[i] = heap_pop_at(hkey, hg, hstate, base, hsize[i])
     return INF
 
 
@@ -285,11 +293,12 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
     cell_room, cell_xyz, in_object_region = G.cell_room, G.cell_xyz, G.in_object_region
     llm_sum, llm_target, llm_valid = L.llm_sum, L.llm_target, L.llm_valid
     previous = iteration - 1
+    capacity = hkey.shape[0] // q_level.shape[0]
     cand = np.empty(hsize[0] + iscal[2], dtype=np.int64)
     m = 0
     for e in range(hsize[0]):
-        s = hstate[0, e]
-        if hg[0, e] != g[s] or closed_at(epoch, closed, s, 0, previous) or epoch[s] == iteration:
+        s = hstate[e]
+        if hg[e] != g[s] or closed_at(epoch, closed, s, 0, previous) or epoch[s] == iteration:
             continue
         epoch[s] = iteration
         closed[s] = 0
@@ -315,12 +324,12 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
         q = s % num_q
         gs = g[s]
         h0 = h_ltl(accepting, q_row, hmap, c, q)
-        hsize[0] = heap_push(hkey[0], hg[0], hstate[0], hsize[0], gs + w1 * h0, gs, s)
+        hsize[0] = heap_push_at(hkey, hg, hstate, 0, hsize[0], gs + w1 * h0, gs, s)
         for j in range(1, q_level.shape[0]):
             if in_level(cell_room, in_object_region, c, q_level[j]):
                 hj = h0 if q_htype[j] == 0 else h_llm_core(cell_room, cell_xyz, accepting, llm_sum, llm_target,
                                                            llm_valid, c, q)
-                hsize[j] = heap_push(hkey[j], hg[j], hstate[j], hsize[j], gs + w1 * hj, gs, s)
+                hsize[j] = heap_push_at(hkey, hg, hstate, j * capacity, hsize[j], gs + w1 * hj, gs, s)
 
 
 @njit(cache=True)
@@ -362,10 +371,10 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     out_q = np.empty(max_succ, dtype=np.int64)
     out_cost = np.empty(max_succ, dtype=np.float64)
     out_act = np.empty(max_succ, dtype=np.int32)
-    capacity = hkey.shape[1]
+    capacity = hkey.shape[0] // num_queues
     done = 0
     while True:
-        mk0 = clean_top(g, epoch, closed, hkey, hg, hstate, hsize, 0, q_level[0], iteration)
+        mk0 = clean_top(g, epoch, closed, hkey, hg, hstate, hsize, capacity, 0, q_level[0], iteration)
         goal = fscal[0]
         if goal < INF and goal <= w2 * mk0:
             return FOUND, done
@@ -382,10 +391,10 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
         if num_queues > 1:
             i = iscal[1]
             iscal[1] = i % (num_queues - 1) + 1
-            if clean_top(g, epoch, closed, hkey, hg, hstate, hsize, i, q_level[i], iteration) <= w2 * mk0:
+            if clean_top(g, epoch, closed, hkey, hg, hstate, hsize, capacity, i, q_level[i], iteration) <= w2 * mk0:
                 chosen = i
-        s = hstate[chosen, 0]
-        hsize[chosen] = heap_pop(hkey[chosen], hg[chosen], hstate[chosen], hsize[chosen])
+        s = hstate[chosen * capacity]
+        hsize[chosen] = heap_pop_at(hkey, hg, hstate, chosen * capacity, hsize[chosen])
         level = q_level[chosen]
         expansions[chosen] += 1
         done += 1
@@ -397,16 +406,21 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
             epoch[s] = iteration
             closed[s] = 0
         closed[s] |= ALL_LEVELS if level == 0 else 1 << level
-        if not maps_ready(done_maps, cell_room, cell_floor, in_object_region, room_obj_ptr, room_obj_map,
-                          room_room_ptr, room_room_map, floor_up_map, floor_down_map, c, level, max_level):
-            ensure_maps(G, A, M, c, level, max_level)
         gs = g[s]
-        n = successors_core(
-            nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost, floor_offset, cell_floor, cell_label,
-            cell_room, in_object_region, room_obj_ptr, room_obj_map, room_room_ptr, room_room_map, floor_up_map,
-            floor_down_map, map_floor, map_exit_cell, map_exit_cost, dist, pred, run, trans, accepting, dead,
-            idempotent, c, q, level, max_level, out_c, out_q, out_cost, out_act,
-        )
+        n = 0
+        if level <= 1:
+            n = step_successors(nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost, cell_label, trans,
+                                c, q, out_c, out_q, out_cost, out_act)
+        if max_level >= 2 and level != 1:
+            if not maps_ready(done_maps, cell_room, cell_floor, in_object_region, room_obj_ptr, room_obj_map,
+                              room_room_ptr, room_room_map, floor_up_map, floor_down_map, c, level, max_level):
+                ensure_maps(G, A, M, c, level, max_level)
+            n = map_successors(
+                floor_offset, cell_floor, cell_label, cell_room, in_object_region, room_obj_ptr, room_obj_map,
+                room_room_ptr, room_room_map, floor_up_map, floor_down_map, map_floor, map_exit_cell, map_exit_cost,
+                dist, pred, run, trans, accepting, dead, idempotent, c, q, level, max_level, n, out_c, out_q,
+                out_cost, out_act,
+            )
         for t in range(n):
             nc = out_c[t]
             nq = out_q[t]
@@ -430,18 +444,20 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
             parent[ns] = s
             action[ns] = out_act[t]
             seen[ns] = 1
-            if closed_at(epoch, closed, ns, 0, iteration):
+            if epoch[ns] == iteration and closed[ns] & 1 == 1:  # closed in the anchor
                 incons[iscal[2]] = ns
                 iscal[2] += 1
                 continue
             f0 = gn + w1 * h0
-            hsize[0] = heap_push(hkey[0], hg[0], hstate[0], hsize[0], f0, gn, ns)
+            hsize[0] = heap_push_at(hkey, hg, hstate, 0, hsize[0], f0, gn, ns)
             for j in range(1, num_queues):
                 lj = q_level[j]
-                if not in_level(cell_room, in_object_region, nc, lj) or closed_at(epoch, closed, ns, lj, iteration):
+                if (lj == 2 and not in_object_region[nc]) or (lj == 3 and cell_room[nc] < 0):  # in_level, inline
+                    continue
+                if epoch[ns] == iteration and (closed[ns] >> lj) & 1 == 1:
                     continue
                 hj = h0 if q_htype[j] == 0 else h_llm_core(cell_room, cell_xyz, accepting, llm_sum, llm_target,
                                                            llm_valid, nc, nq)
                 fj = gn + w1 * hj
                 if fj <= w2 * f0:
-                    hsize[j] = heap_push(hkey[j], hg[j], hstate[j], hsize[j], fj, gn, ns)
+                    hsize[j] = heap_push_at(hkey, hg, hstate, j * capacity, hsize[j], fj, gn, ns)

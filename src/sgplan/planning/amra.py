@@ -208,7 +208,7 @@ def plan(
             result.search_s += time.perf_counter() - t0
             expansions += int(done)
             if code == GROW:
-                state = _reserve(state, 2 * state.hkey.shape[1])
+                state = _reserve(state, 2 * state.hkey.shape[0] // len(spec.queues))
                 continue
             if code != BUDGET:
                 break
@@ -268,9 +268,9 @@ def _new_state(domain: PlanningDomain, num_queues: int) -> SearchState:
         seen=sparse_zeros(num_states, np.uint8),
         closed=sparse_zeros(num_states, np.uint8),
         epoch=sparse_zeros(num_states, np.int32),
-        hkey=sparse_zeros((num_queues, capacity), np.float64),
-        hg=sparse_zeros((num_queues, capacity), np.float64),
-        hstate=sparse_zeros((num_queues, capacity), np.int64),
+        hkey=sparse_zeros(num_queues * capacity, np.float64),
+        hg=sparse_zeros(num_queues * capacity, np.float64),
+        hstate=sparse_zeros(num_queues * capacity, np.int64),
         hsize=np.zeros(num_queues, dtype=np.int64),
         incons=np.empty(capacity, dtype=np.int64),
         fscal=np.array([np.inf, 1.0, 1.0]),
@@ -286,16 +286,19 @@ def _new_state(domain: PlanningDomain, num_queues: int) -> SearchState:
 
 def _reserve(state: SearchState, capacity: int) -> SearchState:
     """``state`` with heaps and INCONS able to hold at least ``capacity`` entries each (doubling)."""
-    new = state.hkey.shape[1]
+    num_queues = state.hsize.shape[0]
+    old_cap = state.hkey.shape[0] // num_queues
+    new = old_cap
     while new < capacity:
         new *= 2
-    if new != state.hkey.shape[1]:
-        size = int(state.hsize.max(initial=0))
+    if new != old_cap:
         grown = {}
         for name in ("hkey", "hg", "hstate"):
             old = getattr(state, name)
-            arr = np.empty((old.shape[0], new), dtype=old.dtype)
-            arr[:, :size] = old[:, :size]
+            arr = sparse_zeros(num_queues * new, old.dtype)
+            for i in range(num_queues):  # heap i moves from offset i * old_cap to i * new
+                size = int(state.hsize[i])
+                arr[i * new : i * new + size] = old[i * old_cap : i * old_cap + size]
             grown[name] = arr
         state = state._replace(**grown)
     if state.incons.shape[0] < capacity:
