@@ -20,6 +20,7 @@ from numba import njit
 
 from sgplan.planning._dijkstra import dijkstra, label_runs
 from sgplan.heap import heap_pop_at, heap_push_at
+from sgplan.planning.ltl_heuristic import fill_row
 
 FOUND, EXHAUSTED, BUDGET, GROW = 0, 1, 2, 3
 ACT_STAIRS = 8
@@ -228,6 +229,7 @@ def successors(G, A, M, L, c, q, level, max_level, out_c, out_q, out_cost, out_a
 
 @njit(cache=True, inline="always")
 def h_ltl(accepting, q_row, hmap, c, q):
+    """h_LTL at (c, q); q's row must be filled (:func:`~sgplan.planning.ltl_heuristic.fill_row`)."""
     if accepting[q]:
         return 0.0
     row = q_row[q]
@@ -323,6 +325,9 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
         c = s // num_q
         q = s % num_q
         gs = g[s]
+        row = q_row[q]
+        if row >= 0 and L.h_ready[row] == 0:
+            fill_row(hmap, L.h_ready, L.h_dist, L.h_ptr, L.h_label, L.h_add, row)
         h0 = h_ltl(accepting, q_row, hmap, c, q)
         hsize[0] = heap_push_at(hkey, hg, hstate, 0, hsize[0], gs + w1 * h0, gs, s)
         for j in range(1, q_level.shape[0]):
@@ -356,6 +361,7 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     map_exit_cell, map_exit_cost = A.map_exit_cell, A.map_exit_cost
     done_maps, dist, pred, run = M.done, M.dist, M.pred, M.run
     trans, accepting, dead, q_row, hmap = L.trans, L.accepting, L.dead, L.q_row, L.hmap
+    h_ready, h_dist, h_ptr, h_label, h_add = L.h_ready, L.h_dist, L.h_ptr, L.h_label, L.h_add
     idempotent = L.idempotent[0]
     llm_sum, llm_target, llm_valid = L.llm_sum, L.llm_target, L.llm_valid
     g, parent, action, seen, closed, epoch = S.g, S.parent, S.action, S.seen, S.closed, S.epoch
@@ -437,6 +443,9 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
                     fscal[0] = gn
                     iscal[0] = ns
                 continue
+            row = q_row[nq]
+            if row >= 0 and h_ready[row] == 0:  # first time the search meets state nq
+                fill_row(hmap, h_ready, h_dist, h_ptr, h_label, h_add, row)
             h0 = h_ltl(accepting, q_row, hmap, nc, nq)
             if h0 == INF:
                 continue
