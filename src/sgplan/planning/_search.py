@@ -18,8 +18,8 @@ from collections import namedtuple
 import numpy as np
 from numba import njit
 
-from sgplan.planning._dijkstra import dijkstra, label_runs
 from sgplan.heap import heap_pop_at, heap_push_at
+from sgplan.planning._dijkstra import dijkstra, label_runs
 from sgplan.planning.ltl_heuristic import fill_row
 
 FOUND, EXHAUSTED, BUDGET, GROW = 0, 1, 2, 3

@@ -88,9 +88,7 @@ def fill_row(hmap, ready, dist, term_ptr, term_label, term_add, row):
         i = term_label[t]
         add = term_add[t]
         for c in range(n):
-            v = dist[i, c] + add
-            if v < hmap[row, c]:
-                hmap[row, c] = v
+            hmap[row, c] = min(hmap[row, c], dist[i, c] + add)
     ready[row] = 1
 
 
