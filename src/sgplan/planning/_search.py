@@ -459,14 +459,19 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
                 continue
             f0 = gn + w1 * h0
             hsize[0] = heap_push_at(hkey, hg, hstate, 0, hsize[0], f0, gn, ns)
+            h_l = -1.0  # h_LLM(nc, nq) (>= 0), computed once for all the LLM queues
             for j in range(1, num_queues):
                 lj = q_level[j]
                 if (lj == 2 and not in_object_region[nc]) or (lj == 3 and cell_room[nc] < 0):  # in_level, inline
                     continue
                 if epoch[ns] == iteration and (closed[ns] >> lj) & 1 == 1:
                     continue
-                hj = h0 if q_htype[j] == 0 else h_llm_core(cell_room, cell_xyz, accepting, llm_sum, llm_target,
-                                                           llm_valid, nc, nq)
+                if q_htype[j] == 0:
+                    hj = h0
+                else:
+                    if h_l < 0.0:
+                        h_l = h_llm_core(cell_room, cell_xyz, accepting, llm_sum, llm_target, llm_valid, nc, nq)
+                    hj = h_l
                 fj = gn + w1 * hj
                 if fj <= w2 * f0:
                     hsize[j] = heap_push_at(hkey, hg, hstate, j * capacity, hsize[j], fj, gn, ns)
