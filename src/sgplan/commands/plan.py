@@ -77,8 +77,6 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> int:
-    from sgplan.llm.guidance import LLMGuide
-    from sgplan.llm.translation import RECORD_NAME
     from sgplan.mission import load_mission_folder, mission_from_formula, read_ap_desc, read_guidance, write_guidance
     from sgplan.pipeline import make_problem, resolve_start, result_record
     from sgplan.planning.amra import get_setup, plan
@@ -101,6 +99,8 @@ def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> i
         say(f"note: {note}")
     if get_setup(args.setup).uses_llm and mission.guidance is None:
         mission_text = mission.grounded_text or mission.text
+        from sgplan.llm.guidance import LLMGuide  # LLM modules only when a guide is needed (~0.2 s)
+
         if backends is None:
             backends = open_backends_from_args(args, mission_text=mission_text)
         elif isinstance(backends.guide, LLMGuide):
@@ -113,6 +113,8 @@ def _plan(args: argparse.Namespace, record: dict[str, Any], t_start: float) -> i
         summary = backends.record.to_json()["summary"]
         record["llm"] = {"backend": backends.description, "calls": summary["calls"], "from_cache": summary["from_cache"]}
         if args.save_mission:
+            from sgplan.llm.translation import RECORD_NAME  # the LLM stack costs ~0.5 s: only when used
+
             backends.record.save(Path(args.save_mission) / RECORD_NAME)
     start = resolve_start(building, args.start, args.start_index)
     prepared = make_problem(building, mission, start, profile=args.profile,
