@@ -18,48 +18,63 @@ def _before(key_a, tie_a, key_b, tie_b):
     return key_a < key_b or (key_a == key_b and tie_a > tie_b)
 
 
-@njit(cache=True)
-def heap_push(keys, ties, values, size, key, tie, value):
-    """Insert one entry; the arrays must have room for ``size + 1`` entries. Returns the new size."""
+@njit(cache=True, inline="always")
+def heap_push_at(keys, ties, values, base, size, key, tie, value):
+    """Insert one entry into the heap stored at ``keys[base : base + size]`` (and likewise ``ties``,
+    ``values``), which must have room for ``size + 1`` entries. Returns the new size. Several heaps can
+    share one flat array this way, each at its own ``base``."""
     i = size
     while i > 0:
         parent = (i - 1) >> 1
-        if not _before(key, tie, keys[parent], ties[parent]):
+        if not _before(key, tie, keys[base + parent], ties[base + parent]):
             break
-        keys[i] = keys[parent]
-        ties[i] = ties[parent]
-        values[i] = values[parent]
+        keys[base + i] = keys[base + parent]
+        ties[base + i] = ties[base + parent]
+        values[base + i] = values[base + parent]
         i = parent
-    keys[i] = key
-    ties[i] = tie
-    values[i] = value
+    keys[base + i] = key
+    ties[base + i] = tie
+    values[base + i] = value
     return size + 1
 
 
-@njit(cache=True)
-def heap_pop(keys, ties, values, size):
-    """Remove the top entry (read it from index 0 first). Returns the new size."""
+@njit(cache=True, inline="always")
+def heap_pop_at(keys, ties, values, base, size):
+    """Remove the top entry (read it from index ``base`` first) of the heap at ``base``. Returns the new
+    size."""
     size -= 1
     if size <= 0:
         return 0
-    key, tie, value = keys[size], ties[size], values[size]
+    key, tie, value = keys[base + size], ties[base + size], values[base + size]
     i = 0
     while True:
         child = 2 * i + 1
         if child >= size:
             break
-        if child + 1 < size and _before(keys[child + 1], ties[child + 1], keys[child], ties[child]):
+        if child + 1 < size and _before(keys[base + child + 1], ties[base + child + 1], keys[base + child], ties[base + child]):
             child += 1
-        if not _before(keys[child], ties[child], key, tie):
+        if not _before(keys[base + child], ties[base + child], key, tie):
             break
-        keys[i] = keys[child]
-        ties[i] = ties[child]
-        values[i] = values[child]
+        keys[base + i] = keys[base + child]
+        ties[base + i] = ties[base + child]
+        values[base + i] = values[base + child]
         i = child
-    keys[i] = key
-    ties[i] = tie
-    values[i] = value
+    keys[base + i] = key
+    ties[base + i] = tie
+    values[base + i] = value
     return size
+
+
+@njit(cache=True, inline="always")
+def heap_push(keys, ties, values, size, key, tie, value):
+    """Insert one entry; the arrays must have room for ``size + 1`` entries. Returns the new size."""
+    return heap_push_at(keys, ties, values, 0, size, key, tie, value)
+
+
+@njit(cache=True, inline="always")
+def heap_pop(keys, ties, values, size):
+    """Remove the top entry (read it from index 0 first). Returns the new size."""
+    return heap_pop_at(keys, ties, values, 0, size)
 
 
 @njit(cache=True)

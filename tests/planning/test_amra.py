@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError
 from sgplan.planning import SETUPS, PlanningProblem, get_setup, plan
+from sgplan.planning.amra import LLM, LTL
 from sgplan.planning.checker import check_path
 from sgplan.scene.grid import StairsLink
 
@@ -82,7 +83,7 @@ def test_iteration_records_and_callback() -> None:
     assert costs == sorted(costs, reverse=True)
     times = [r.time_s for r in result.iterations]
     assert times == sorted(times)
-    assert len(result.iterations[-1].expansions) == len(result.queues) == 9
+    assert len(result.iterations[-1].expansions) == len(result.queues) == 5
     assert result.iterations[-1].cost_m == pytest.approx(result.cost_m, abs=1e-9)
 
 
@@ -95,9 +96,11 @@ def test_expansion_budget_gives_timeout() -> None:
 
 def test_setups_by_name() -> None:
     assert get_setup("no_llm") is SETUPS["NO-LLM"] and get_setup("a_star") is SETUPS["A*"]
-    assert len(SETUPS["ALL"].queues) == 9 and len(SETUPS["NO-LLM"].queues) == 5
-    assert len(SETUPS["A*"].queues) == 2 and SETUPS["A*"].max_level == 1
-    assert all(len(SETUPS[name].queues) == 6 for name in ("OCC", "OBJ", "ROOM", "FLR"))
+    # (level, LTL) queues are merged into the anchor: the anchor, then the LLM queues of the setup.
+    assert SETUPS["ALL"].queues == ((0, LTL),) + tuple((level, LLM) for level in range(1, 5))
+    assert SETUPS["NO-LLM"].queues == ((0, LTL),) and SETUPS["NO-LLM"].max_level == 4
+    assert SETUPS["A*"].queues == ((0, LTL),) and SETUPS["A*"].max_level == 1
+    assert [SETUPS[name].queues[1] for name in ("OCC", "OBJ", "ROOM", "FLR")] == [(lv, LLM) for lv in range(1, 5)]
     with pytest.raises(PlanningError, match="unknown setup"):
         get_setup("FAST")
     with pytest.raises(PlanningError, match="needs LLM guidance"):

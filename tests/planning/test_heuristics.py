@@ -114,3 +114,27 @@ def test_llm_value_online() -> None:
     expected = float(np.linalg.norm(domain.graph.cell_xyz[cell] - problem.building.room(uuid=10).location_m))
     assert h_llm(domain.kgraph, domain.klogic, cell, 0) == pytest.approx(expected)
     assert h_llm(domain.kgraph, domain.klogic, cell, 1) == 0.0  # accepting
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.integers(0, 2**31 - 1))
+def test_ltl_rows_filled_on_demand_match_the_eager_minimum(seed: int) -> None:
+    """A search fills only the rows of states it meets; every row, filled on demand, equals the eager
+    numpy minimum over its terms (and is +inf exactly where no term is finite)."""
+    from sgplan.planning import plan
+
+    problem = random_problem(seed, guidance="none")
+    try:
+        ltl = problem.domain.ltl
+        plan(problem, "A*")
+    except PlanningError:
+        return
+    met = ltl.ready.copy()
+    for row in range(ltl.ready.shape[0]):
+        terms = range(ltl.term_ptr[row], ltl.term_ptr[row + 1])
+        eager = np.min([ltl.dist[ltl.term_label[t]] + ltl.term_add[t] for t in terms], axis=0)
+        q = int(np.flatnonzero(ltl.q_row == row)[0])
+        assert [ltl.value(c, q) for c in range(eager.shape[0])] == eager.tolist()
+    start_row = int(ltl.q_row[problem.domain.q_start])
+    assert start_row < 0 or met[start_row] == 1  # the search read the start's row
+    assert ltl.ready.all()

@@ -8,14 +8,16 @@ empty word is accepted iff ``initial`` is accepting.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Iterable, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.sparse import csr_matrix
-from scipy.sparse.csgraph import breadth_first_order
 
 from sgplan.errors import AutomatonError
+
+if TYPE_CHECKING:
+    from scipy.sparse import csr_matrix
 
 
 @dataclass(eq=False)
@@ -118,12 +120,16 @@ class Automaton:
 
     def state_graph(self) -> csr_matrix:
         """Sparse ``(n, n)`` matrix with entry ``[q, r]`` = number of labels leading from ``q`` to ``r``."""
+        from scipy.sparse import csr_matrix  # scipy.sparse costs ~0.1 s to import: only when used
+
         n = self.num_states
         rows = np.repeat(np.arange(n), self.num_labels)
         return csr_matrix((np.ones(rows.size, np.int32), (rows, self.table.ravel())), shape=(n, n))
 
     def reachable_states(self) -> np.ndarray:
         """``(n,)`` bool: the states some word leads to from the initial state."""
+        from scipy.sparse.csgraph import breadth_first_order
+
         order = breadth_first_order(self.state_graph(), self.initial, directed=True,
                                     return_predecessors=False)
         mask = np.zeros(self.num_states, bool)
@@ -132,6 +138,9 @@ class Automaton:
 
     def live_states(self) -> np.ndarray:
         """``(n,)`` bool: the states from which some word reaches an accepting state."""
+        from scipy.sparse import csr_matrix
+        from scipy.sparse.csgraph import breadth_first_order
+
         n = self.num_states
         # Reverse graph plus a virtual source (index n) pointing at every accepting state.
         reverse = self.state_graph().T.tocoo()

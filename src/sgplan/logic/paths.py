@@ -9,8 +9,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.sparse import csr_matrix
-from scipy.sparse.csgraph import dijkstra
 
 from sgplan.errors import AutomatonError
 from sgplan.logic.automaton import Automaton
@@ -103,6 +101,9 @@ def _to_accept(a: Automaton, w: np.ndarray) -> tuple[np.ndarray, np.ndarray, dic
         return np.full(n, np.inf), np.full(n, -9999), {}
     src, dst, cost, lab = _cheapest_edges(a, w)
     # Dijkstra from the accepting states on the reversed graph: predecessors there are next states here.
+    from scipy.sparse import csr_matrix  # scipy.sparse costs ~0.1 s to import: only when used
+    from scipy.sparse.csgraph import dijkstra
+
     reverse = csr_matrix((cost, (dst, src)), shape=(n, n))
     dist, pred, _ = dijkstra(reverse, directed=True, indices=acc, min_only=True, return_predecessors=True)
     best_label = {(int(s), int(d)): int(l) for s, d, l in zip(src, dst, lab)}

@@ -46,17 +46,22 @@ class Setup:
         return tuple(f"{'LTL' if h == LTL else 'LLM'}/{LEVEL_NAMES[level]}" for level, h in self.queues)
 
 
-_LTL_ALL = tuple((level, LTL) for level in range(5))
+# Queue layouts (reference-algorithm.md §7.2), with every (level, LTL) queue merged into the anchor: such a
+# queue has the anchor's heuristic, so it holds the anchor's states under the anchor's keys, and since the
+# anchor expansion generates every level's successors (and closes the state at every level), expanding a
+# state there again only repeats work -- in NO-LLM each state was expanded by up to five queues. What
+# remains is the anchor (level 0 = union of levels 1..max_level, h_LTL) and the LLM-guided level queues.
+_LLM_LEVELS = tuple((level, LLM) for level in range(1, 5))
 SETUPS: dict[str, Setup] = {
-    "ALL": Setup("ALL", 4, _LTL_ALL + tuple((level, LLM) for level in range(1, 5))),
-    "NO-LLM": Setup("NO-LLM", 4, _LTL_ALL),
-    "A*": Setup("A*", 1, ((0, LTL), (1, LTL))),
-    "OCC": Setup("OCC", 4, _LTL_ALL + ((1, LLM),)),
-    "OBJ": Setup("OBJ", 4, _LTL_ALL + ((2, LLM),)),
-    "ROOM": Setup("ROOM", 4, _LTL_ALL + ((3, LLM),)),
-    "FLR": Setup("FLR", 4, _LTL_ALL + ((4, LLM),)),
+    "ALL": Setup("ALL", 4, ((0, LTL),) + _LLM_LEVELS),
+    "NO-LLM": Setup("NO-LLM", 4, ((0, LTL),)),
+    "A*": Setup("A*", 1, ((0, LTL),)),
+    "OCC": Setup("OCC", 4, ((0, LTL), (1, LLM))),
+    "OBJ": Setup("OBJ", 4, ((0, LTL), (2, LLM))),
+    "ROOM": Setup("ROOM", 4, ((0, LTL), (3, LLM))),
+    "FLR": Setup("FLR", 4, ((0, LTL), (4, LLM))),
 }
-"""The paper's setups (reference-algorithm.md §7.2)."""
+"""The paper's setups (reference-algorithm.md §7.2), (level, LTL) queues merged into the anchor (above)."""
 _ALIASES = {"NO_LLM": "NO-LLM", "NOLLM": "NO-LLM", "ASTAR": "A*", "A_STAR": "A*", "A-STAR": "A*"}
 
 
@@ -151,7 +156,8 @@ def plan(
     prebuild_actions:
         build every composite action map before the search clock starts (the authors' accounting, and
         a first path within milliseconds); ``False`` builds them lazily inside the search, which saves
-        1-3 s of precomputation on large scenes when only the optimum matters.
+        1-3 s of precomputation on large scenes when only the optimum matters. Setups without composite
+        actions (A*, ``max_level`` 1) never build them.
 
     Raises
     ------
@@ -167,7 +173,7 @@ def plan(
     if not (0 < decay < 1) or min(final_weights) < 1 or weights[0] < final_weights[0] or weights[1] < final_weights[1]:
         raise PlanningError(f"bad weight schedule {weights} -> {final_weights} with decay {decay}")
 
-    if prebuild_actions:
+    if prebuild_actions and spec.max_level >= 2:
         domain.build_actions()
     q_level = np.array([level for level, _ in spec.queues], dtype=np.int32)
     q_htype = np.array([h for _, h in spec.queues], dtype=np.int32)
@@ -205,7 +211,7 @@ def plan(
             result.search_s += time.perf_counter() - t0
             expansions += int(done)
             if code == GROW:
-                state = _reserve(state, 2 * state.hkey.shape[1])
+                state = _reserve(state, 2 * state.hkey.shape[0] // len(spec.queues))
                 continue
             if code != BUDGET:
                 break
@@ -255,7 +261,9 @@ def _warm_up(domain: PlanningDomain, q_level: np.ndarray, q_htype: np.ndarray, m
 def _new_state(domain: PlanningDomain, num_queues: int) -> SearchState:
     """Fresh search memory with the start state in INCONS (so the first iteration opens it)."""
     num_states = domain.graph.num_cells * domain.num_states
-    capacity = 1 << 14
+    # Heap arrays are lazily committed zeros: pages cost memory only when used, so a generous start costs nothing
+    # and avoids most of the growth copies during the search.
+    capacity = int(min(num_states + 16, 1 << 20))
     state = SearchState(
         g=sparse_zeros(num_states, np.float64),
         parent=sparse_zeros(num_states, np.int64),
@@ -263,9 +271,9 @@ def _new_state(domain: PlanningDomain, num_queues: int) -> SearchState:
         seen=sparse_zeros(num_states, np.uint8),
         closed=sparse_zeros(num_states, np.uint8),
         epoch=sparse_zeros(num_states, np.int32),
-        hkey=np.empty((num_queues, capacity), dtype=np.float64),
-        hg=np.empty((num_queues, capacity), dtype=np.float64),
-        hstate=np.empty((num_queues, capacity), dtype=np.int64),
+        hkey=sparse_zeros(num_queues * capacity, np.float64),
+        hg=sparse_zeros(num_queues * capacity, np.float64),
+        hstate=sparse_zeros(num_queues * capacity, np.int64),
         hsize=np.zeros(num_queues, dtype=np.int64),
         incons=np.empty(capacity, dtype=np.int64),
         fscal=np.array([np.inf, 1.0, 1.0]),
@@ -281,16 +289,19 @@ def _new_state(domain: PlanningDomain, num_queues: int) -> SearchState:
 
 def _reserve(state: SearchState, capacity: int) -> SearchState:
     """``state`` with heaps and INCONS able to hold at least ``capacity`` entries each (doubling)."""
-    new = state.hkey.shape[1]
+    num_queues = state.hsize.shape[0]
+    old_cap = state.hkey.shape[0] // num_queues
+    new = old_cap
     while new < capacity:
         new *= 2
-    if new != state.hkey.shape[1]:
-        size = int(state.hsize.max(initial=0))
+    if new != old_cap:
         grown = {}
         for name in ("hkey", "hg", "hstate"):
             old = getattr(state, name)
-            arr = np.empty((old.shape[0], new), dtype=old.dtype)
-            arr[:, :size] = old[:, :size]
+            arr = sparse_zeros(num_queues * new, old.dtype)
+            for i in range(num_queues):  # heap i moves from offset i * old_cap to i * new
+                size = int(state.hsize[i])
+                arr[i * new : i * new + size] = old[i * old_cap : i * old_cap + size]
             grown[name] = arr
         state = state._replace(**grown)
     if state.incons.shape[0] < capacity:

@@ -43,7 +43,10 @@ KernelActions = namedtuple(
     "map_src_ptr map_src map_stop_room map_stop_count map_exit_cell map_exit_cost",
 )
 KernelMaps = namedtuple("KernelMaps", "done dist pred run order")
-KernelLogic = namedtuple("KernelLogic", "trans accepting dead idempotent hmap q_row llm_sum llm_target llm_valid")
+KernelLogic = namedtuple(
+    "KernelLogic",
+    "trans accepting dead idempotent hmap q_row h_ready h_dist h_ptr h_label h_add llm_sum llm_target llm_valid",
+)
 
 MAP_OBJECT, MAP_ROOM, MAP_FLOOR_UP, MAP_FLOOR_DOWN = 0, 1, 2, 3
 
@@ -220,6 +223,11 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
         idempotent=np.array([idempotent]),
         hmap=ltl.hmap,
         q_row=ltl.q_row,
+        h_ready=ltl.ready,
+        h_dist=ltl.dist,
+        h_ptr=ltl.term_ptr,
+        h_label=ltl.term_label,
+        h_add=ltl.term_add,
         llm_sum=guide.leg_sum,
         llm_target=guide.target,
         llm_valid=guide.has_target,
