@@ -23,14 +23,14 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
-from sgplan.datasets import SCENES, find_gibson_root  # noqa: E402
-from sgplan.errors import PlanningError  # noqa: E402
-from sgplan.llm.guidance import Guidance, route_break, validate_call  # noqa: E402
-from sgplan.mission import load_mission_folder  # noqa: E402
-from sgplan.pipeline import make_problem  # noqa: E402
-from sgplan.planning import plan  # noqa: E402
-from sgplan.scene.authors import load_authors_scene  # noqa: E402
-from sgplan.scene.model import Building  # noqa: E402
+from sgplan.datasets import SCENES, find_gibson_root
+from sgplan.errors import PlanningError
+from sgplan.llm.guidance import Guidance, route_break, validate_call
+from sgplan.mission import load_mission_folder
+from sgplan.pipeline import make_problem
+from sgplan.planning import plan
+from sgplan.scene.authors import load_authors_scene
+from sgplan.scene.model import Building
 
 VARIANTS = ("shipped", "valid", "route")
 

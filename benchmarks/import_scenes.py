@@ -24,10 +24,10 @@ import time
 from pathlib import Path
 
 _T0 = time.perf_counter()
-from sgplan.importers.assemble import Settings  # noqa: E402
-from sgplan.importers.labelspace import read_label_map  # noqa: E402
-from sgplan.importers.mp3d import import_house  # noqa: E402
-from sgplan.scene.native import write_native_scene  # noqa: E402
+from sgplan.importers.assemble import Settings
+from sgplan.importers.labelspace import read_label_map
+from sgplan.importers.mp3d import import_house
+from sgplan.scene.native import write_native_scene
 
 _IMPORT_S = time.perf_counter() - _T0
 EXAMPLES = Path(__file__).resolve().parents[1] / ".." / "shared" / "datasets" / "scene-examples"

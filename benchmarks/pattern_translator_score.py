@@ -13,7 +13,7 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 from sgplan.datasets import find_gibson_root
@@ -35,7 +35,7 @@ def main(argv: list[str] | None = None) -> int:
 
     root = find_gibson_root(args.gibson)
 
-    @lru_cache(maxsize=None)
+    @cache
     def building_of(scene: str) -> Building:
         if scene == "demo":
             return demo_building()

@@ -33,7 +33,7 @@ def test_the_readme_example_is_at_most_five_lines_and_runs(tmp_path: Path, monke
     assert len(lines) <= 5 and lines[0] == "import sgplan"
     monkeypatch.chdir(tmp_path)
     namespace: dict[str, object] = {}
-    exec(block[1], namespace)  # noqa: S102 - the README's own code
+    exec(block[1], namespace)
     result = namespace["result"]
     assert isinstance(result, sgplan.PlanResult) and result.status == "optimal" and result.verified
     assert hasattr(result, "explanation") and str(result) in capsys.readouterr().out
@@ -82,12 +82,12 @@ def test_starts_by_cell_point_room_and_index(demo) -> None:
     snap = next(c for c in blocked if 0 < depth[tuple(c)] * 0.05 <= 0.3)
     snapped = session.plan(mission, (*demo.floors[0].cell_to_xy(tuple(snap)), 0), setup="NO-LLM")
     assert "moved" in snapped.start_from and grid.traversable[0, snapped.start[0], snapped.start[1]]
-    with pytest.raises(PlanningError, match="names 2 rooms .*room_5 .*room_14") as error:
+    with pytest.raises(PlanningError, match=r"names 2 rooms .*room_5 .*room_14") as error:
         session.plan(mission, "bathroom")
     assert error.value.status == "invalid-start"
-    with pytest.raises(PlanningError, match="no free cell lies within 0.5 m"):
+    with pytest.raises(PlanningError, match=r"no free cell lies within 0.5 m"):
         session.plan(mission, sgplan.Point(*demo.floors[0].cell_to_xy((0, 0)), 0))
-    with pytest.raises(PlanningError, match="floors 0..1"):
+    with pytest.raises(PlanningError, match=r"floors 0..1"):
         session.plan(mission, sgplan.Point(0.0, 0.0, 5))
     with pytest.raises(PlanningError, match="no room called 'garage'"):
         session.plan(mission, "garage")

@@ -10,7 +10,16 @@ import pytest
 
 from sgplan.errors import SceneError
 from sgplan.files import rebuild_folder, write_text_atomically, write_texts_atomically
-from sgplan.safeio import MAX_DEPTH, json_depth, load_json, load_yaml, parse_json, parse_yaml, quote, read_text
+from sgplan.safeio import (
+    MAX_DEPTH,
+    json_depth,
+    load_json,
+    load_yaml,
+    parse_json,
+    parse_yaml,
+    quote,
+    read_text,
+)
 
 
 def test_quote_is_bounded_in_length_and_time() -> None:

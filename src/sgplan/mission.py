@@ -31,22 +31,22 @@ import yaml
 from sgplan.errors import FormulaError, MissionError, SgplanError
 from sgplan.files import write_text_atomically
 from sgplan.limits import MAX_REACH_RADIUS_M
-from sgplan.safeio import load_yaml, quote, read_text
-from sgplan.scene.fields import is_int, is_number
 from sgplan.logic import (
     Automaton,
     Formula,
     atoms,
     ltlf_to_dfa,
     number_aps,
-    read_hoa,
     parse_infix,
     parse_prefix,
     parse_tokens,
+    read_hoa,
     to_prefix,
     to_tokens,
     write_hoa,
 )
+from sgplan.safeio import load_yaml, quote, read_text
+from sgplan.scene.fields import is_int, is_number
 from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building
 

@@ -12,7 +12,6 @@ from sgplan.bench.cases import BenchError, Case
 from sgplan.bench.report import choose_condition, write_report
 from sgplan.bench.results import ResultStore
 from sgplan.cli import main
-
 from tests.bench.conftest import BAD_START, SCENE
 
 

@@ -16,14 +16,13 @@ import pytest
 
 from sgplan.bench.cases import BenchError, Case
 from sgplan.bench.executors import WORKER_ENV, LocalExecutor, worker_command
-from sgplan.bench.worker import PARENT_ENV
 from sgplan.bench.results import COLUMNS, RESULTS_JSONL, ResultStore, writing_lock
 from sgplan.bench.sweep import pending_cases, run_sweep
+from sgplan.bench.worker import PARENT_ENV
 from sgplan.mission import load_mission_folder
 from sgplan.pipeline import make_problem
 from sgplan.planning import plan
 from sgplan.scene.loading import load_scene
-
 from tests.bench.conftest import BAD_START, SCENE
 
 FAKE_WORKER = [sys.executable, str(Path(__file__).with_name("fake_worker.py"))]
@@ -209,7 +208,7 @@ def test_a_worker_that_cannot_start_stops_the_sweep_with_a_clear_error(swept, tm
 
 
 def test_a_last_row_without_its_newline_is_kept(swept, tmp_path: Path) -> None:
-    cases, store = swept
+    _, store = swept
     lines = store.path.read_text().splitlines()
     (tmp_path / RESULTS_JSONL).write_text("\n".join(lines[:2]))  # the 2nd row lacks its newline
     copy = ResultStore(tmp_path)
@@ -220,10 +219,9 @@ def test_a_last_row_without_its_newline_is_kept(swept, tmp_path: Path) -> None:
 
 
 def test_a_second_sweep_into_the_same_folder_is_refused(tmp_path: Path) -> None:
-    with writing_lock(tmp_path):
-        with pytest.raises(BenchError, match="another `sgplan bench` is writing"):
-            with writing_lock(tmp_path):
-                pass
+    with writing_lock(tmp_path), pytest.raises(BenchError, match="another `sgplan bench` is writing"), \
+            writing_lock(tmp_path):
+        pass
     with writing_lock(tmp_path):  # released
         pass
 

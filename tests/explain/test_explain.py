@@ -42,12 +42,12 @@ ENTITIES = {
 
 def formulas(names: tuple[str, ...], max_leaves: int) -> st.SearchStrategy[Formula]:
     unary = (Not, Eventually, Always, Next)
-    binary = (lambda l, r: And((l, r)), lambda l, r: Or((l, r)), Until, Implies, Equiv)
+    binary = (lambda a, b: And((a, b)), lambda a, b: Or((a, b)), Until, Implies, Equiv)
     return st.recursive(
         st.sampled_from(names).map(Atom),
         lambda inner: st.one_of(
             st.builds(lambda op, f: op(f), st.sampled_from(unary), inner),
-            st.builds(lambda op, l, r: op(l, r), st.sampled_from(binary), inner, inner),
+            st.builds(lambda op, a, b: op(a, b), st.sampled_from(binary), inner, inner),
         ),
         max_leaves=max_leaves,
     )

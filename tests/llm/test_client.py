@@ -267,7 +267,7 @@ def test_refusal_is_reported(fake_llm: FakeOpenAIServer, llm_client: OpenAIChatC
     body = completion_body(None)
     body["choices"][0]["message"]["refusal"] = "I can't help with that."
     fake_llm.push_raw(json.dumps(body))
-    with pytest.raises(LLMError, match="the model refused: I can't help with that."):
+    with pytest.raises(LLMError, match=r"the model refused: I can't help with that."):
         llm_client.complete(ASK)
 
 
@@ -442,13 +442,12 @@ def test_config_file_errors(tmp_path, text: str, expected: str) -> None:  # type
 
 
 def test_config_file_missing(tmp_path) -> None:  # type: ignore[no-untyped-def]
-    with pytest.raises(LLMError, match="llm.yaml: LLM config file not found"):
+    with pytest.raises(LLMError, match=r"llm.yaml: LLM config file not found"):
         load_llm_config(tmp_path / "llm.yaml", environ={})
 
 
 def test_tests_cannot_leave_loopback() -> None:
     with pytest.raises(AssertionError, match="must stay on loopback"):
         socket.getaddrinfo("api.openai.com", 443)
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
-        with pytest.raises(AssertionError, match="loopback"):
-            sock.connect(("192.0.2.1", 443))  # TEST-NET-1; the guard refuses before any packet is sent
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock, pytest.raises(AssertionError, match="loopback"):
+        sock.connect(("192.0.2.1", 443))  # TEST-NET-1; the guard refuses before any packet is sent

@@ -20,7 +20,13 @@ from sgplan.llm.config import LLMConfig
 from sgplan.llm.grounding import RephraseError
 from sgplan.llm.offline.evaluation import expand_shorthand, same_language
 from sgplan.llm.records import RECORD_FORMAT, RunRecord
-from sgplan.llm.translation import LLMTranslator, check_formula, mark_token, reply_token_list, translate_to_folder
+from sgplan.llm.translation import (
+    LLMTranslator,
+    check_formula,
+    mark_token,
+    reply_token_list,
+    translate_to_folder,
+)
 from sgplan.logic import equivalent, parse_infix
 from sgplan.mission import load_mission_folder
 from sgplan.scene.demo import demo_building

@@ -91,7 +91,7 @@ def test_bad_assemblies_are_refused_when_built() -> None:
         BuildingBuilder("empty", size_m=(1.0, 1.0)).build()
     b = _builder()
     b.add_floor()
-    with pytest.raises(SceneError, match="portal .* lies outside the staircase"):
+    with pytest.raises(SceneError, match=r"portal .* lies outside the staircase"):
         b.add_staircase(0, box=(2, 0, 4, 4), portal=(1.0, 1.0))
     b.add_staircase(0, box=(2, 0, 4, 4), portal=(3.0, 2.0), cost_m=0.5)
     with pytest.raises(SceneError, match="below the straight-line distance"):

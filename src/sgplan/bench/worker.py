@@ -58,7 +58,7 @@ def measure(case: Case, gallery_dir: str | Path | None = None) -> dict[str, Any]
         out.update(status=error.status, reason=str(error))
     except SgplanError as error:
         out.update(status="error", reason=str(error))
-    except Exception as error:  # a bug: recorded like a failure, with the traceback on stderr
+    except Exception as error:  # noqa: BLE001 - a bug: recorded like a failure, with the traceback on stderr
         traceback.print_exc()
         out.update(status="error", reason=f"{type(error).__name__}: {error}")
     out["peak_rss_mb"] = _peak_rss_mb()

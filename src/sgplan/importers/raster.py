@@ -9,6 +9,7 @@ inside the shape's bounding box only, so a shape costs what it covers, not what 
 
 from __future__ import annotations
 
+import contextlib
 import math
 from dataclasses import dataclass
 
@@ -141,10 +142,8 @@ def hull_cells(frame: GridFrame, points_xy: np.ndarray) -> np.ndarray:
     """
     points = np.asarray(points_xy, dtype=float).reshape(-1, 2)
     cells = np.zeros((0, 2), dtype=np.int64)
-    try:
+    with contextlib.suppress(QhullError, ValueError):  # a degenerate hull: the fallback below
         cells = polygon_cells(frame, points[ConvexHull(points).vertices])
-    except (QhullError, ValueError):
-        pass
     if len(cells) == 0:
         centre = frame.cell_of(points.mean(axis=0))
         cells = centre[frame.contains(centre)]

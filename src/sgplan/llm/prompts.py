@@ -16,7 +16,7 @@ from __future__ import annotations
 import re
 import string
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 from importlib import resources
 
 from sgplan.errors import LLMError
@@ -126,7 +126,7 @@ def parse_template(name: str, source: str) -> PromptTemplate:
     return PromptTemplate(name, versions[0], texts)
 
 
-@lru_cache(maxsize=None)
+@cache
 def load_prompt(name: str) -> PromptTemplate:
     """The shipped template ``name`` (one of :data:`PROMPT_NAMES`), parsed once per process.
 

@@ -8,8 +8,8 @@ empty word is accepted iff ``initial`` is accepting.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Iterable, Sequence
 
 import numpy as np
 from scipy.sparse import csr_matrix

@@ -12,8 +12,8 @@ path); ``WeakNext`` is its dual (true at the last cell) and appears mainly as th
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Iterator
 
 from sgplan.errors import FormulaError
 

@@ -85,7 +85,7 @@ class _Tokens:
         return item
 
     def error(self, message: str, item: tuple[str, str, int] | None = None) -> AutomatonError:
-        kind, value, line = item or self.peek()
+        _, _, line = item or self.peek()
         return AutomatonError(f"line {line}: {message}", self.path)
 
     def expect(self, kind: str, what: str) -> str:

@@ -34,7 +34,7 @@ rejecting sink ``(false, False)``; the DFA is minimal for the language restricte
 
 from __future__ import annotations
 
-from typing import Collection, Sequence
+from collections.abc import Collection, Sequence
 
 import numpy as np
 

@@ -9,8 +9,8 @@ distinct formulas.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from functools import lru_cache
-from typing import Iterable
 
 from sgplan.logic.formula import (
     FALSE,

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import ast
 import re
-from typing import Collection, Mapping, Sequence
+from collections.abc import Collection, Mapping, Sequence
 
 from sgplan.errors import FormulaError
 from sgplan.logic.formula import (

@@ -390,7 +390,7 @@ def _read_stairs(
 
 def _check_stairs_pairs(floors: list[Floor], path: Path) -> None:
     """Floor k's up stairs and floor k+1's down stairs must be the same staircase at the same cost."""
-    for lower, upper in zip(floors, floors[1:] + [None]):
+    for lower, upper in zip(floors, [*floors[1:], None]):
         up, down = lower.up_stairs, upper.down_stairs if upper is not None else None
         if (up is None) != (down is None) or (
             up is not None and down is not None and (up.room_id != down.room_id or up.cost_m != down.cost_m)

@@ -143,7 +143,7 @@ class _PlacedRoom:
 
 
 def _cells(length_m: float, cell_m: float, minimum: int = 1) -> int:
-    return max(minimum, int(round(length_m / cell_m)))
+    return max(minimum, round(length_m / cell_m))
 
 
 class _Planner:
