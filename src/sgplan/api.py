@@ -18,7 +18,7 @@ import time
 from collections.abc import Mapping
 from dataclasses import replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 
@@ -167,7 +167,12 @@ def add_guidance(mission: Mission, building: Building, guide: MissionGuide | Non
     return replace(mission, guidance=guide.guide(building, mission.automaton, mission.descriptions)), guide.name
 
 
-def _explanation(mission: Mission, building: Building) -> dict[str, str]:
+class _Explained(TypedDict):
+    explanation: str
+    explanation_method: str
+
+
+def _explanation(mission: Mission, building: Building) -> _Explained:
     """The mission explained in plain English (:func:`sgplan.explain.explain_mission`) as the
     ``explanation`` and ``explanation_method`` of a :class:`PlanResult`: the one place a plan gets it."""
     from sgplan.explain import explain_mission

@@ -23,7 +23,7 @@ import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 import yaml
@@ -53,7 +53,7 @@ from sgplan.scene.model import Building
 Guidance = Mapping[Any, Mapping[Any, Sequence[str]]]
 """LLM guidance: ``{room_uuid: {automaton state: ["move(a, b)" | "reach(r, o)", ...]}}``."""
 
-_AP_TYPES = {"kEnterRoom": "enter", "kReachObject": "reach"}
+_AP_TYPES: dict[str, Literal["enter", "reach"]] = {"kEnterRoom": "enter", "kReachObject": "reach"}
 
 
 @dataclass(eq=False)

@@ -243,7 +243,7 @@ class SafeLimitedLoader(_LimitsMixin, yaml.SafeLoader):
 _CLoader: Any = getattr(yaml, "CSafeLoader", None)
 if _CLoader is not None:
 
-    class CSafeLimitedLoader(_LimitsMixin, _CLoader):  # type: ignore[misc, valid-type]
+    class CSafeLimitedLoader(_LimitsMixin, _CLoader):
         """libyaml's safe loader with this module's limits (only for documents shallow enough)."""
 
     _FAST_LOADER: Any = CSafeLimitedLoader

@@ -57,7 +57,7 @@ def start_cell(building: Building, grid: OccupancyGrid, start: StartSpec = None)
         initial position index out of range; ``status="error"`` for a value of another type.
     """
     if start is None or (is_int(start) and not isinstance(start, Sequence)):
-        index = None if start is None else int(start)  # type: ignore[arg-type]
+        index = None if start is None else int(start)
         try:
             cell = resolve_start(building, index=index)
         except PlanningError as error:

@@ -20,7 +20,7 @@ SCENE = "demo-house"
 MISSIONS = {
     "1": 'F "enter(room_5)"',  # the floor-0 bathroom
     "2": 'F ("reach(object_32)" & F "enter(room_7)")',  # the teddy bear upstairs, then the dining room
-    "3": 'F "enter(room_5)" & G !"enter(room_5)"',  # no word satisfies it: infeasible
+    "3": 'F "enter(room_5)" & G !"enter(room_5)"',  # no word satisfies it: unsatisfiable
 }
 BAD_START = 5
 """Index of an extra initial position at cell (0, 0, 0), which lies in no room: an invalid start."""
@@ -31,7 +31,7 @@ SWEEP = [
     Grid(missions=("3",), starts=(0,), setups=("ALL",)),
     Grid(missions=("1",), starts=(BAD_START,), setups=("ALL",)),
 ]
-"""Four optimal cases, one infeasible, one invalid start (7 cases, a few seconds on 2 cores)."""
+"""Four optimal cases, one unsatisfiable, one invalid start (7 cases, a few seconds on 2 cores)."""
 
 
 @pytest.fixture(scope="session")

@@ -25,7 +25,7 @@ def test_report_from_a_results_folder(swept: tuple[list[Case], ResultStore], tmp
     assert f"## Table II - {SCENE} mission 1" in text and "## Table III" in text
     assert "| ALL | 2 |" in text and "| A* | 2 |" in text  # 2 starts averaged; the invalid start is not
     assert f"| {SCENE} | 1 | {BAD_START} | invalid-start | ALL | start (row 0, col 0, floor 0) lies in no room" in text
-    assert f"| {SCENE} | 3 | 0 | infeasible | ALL | the mission automaton accepts no word at all |" in text
+    assert f"| {SCENE} | 3 | 0 | unsatisfiable | ALL | no path in scene '{SCENE}' satisfies the mission" in text
     assert "same optimal cost in each of the 2" in text
     assert "| setup | n | 1st iter. time (s) | paper |" in printed
     for name in ("cost_vs_time", "expansions_per_iteration"):

@@ -56,7 +56,7 @@ def test_infeasible_and_invalid_starts_are_recorded_with_reasons(swept: tuple[li
     _, store = swept
     infeasible = store.get(f"{SCENE}/3/0/ALL/authors/tl=none")
     invalid = store.get(f"{SCENE}/1/{BAD_START}/ALL/authors/tl=none")
-    assert infeasible["status"] == "infeasible" and "accepts no word" in infeasible["reason"]
+    assert infeasible["status"] == "unsatisfiable" and "cannot all hold in this scene" in infeasible["reason"]
     assert invalid["status"] == "invalid-start" and "lies in no room" in invalid["reason"]
     assert infeasible["cost_m"] is None and invalid.get("first_time_s") is None
 
@@ -69,7 +69,7 @@ def test_results_files_have_one_row_per_case_and_stable_columns(swept: tuple[lis
         assert tuple(reader.fieldnames) == COLUMNS
         rows = list(reader)
     assert len(rows) == len(cases) == len(json.loads(json_path.read_text()))
-    assert {r["status"] for r in rows} == {"optimal", "infeasible", "invalid-start"}
+    assert {r["status"] for r in rows} == {"optimal", "unsatisfiable", "invalid-start"}
 
 
 def test_rerun_runs_nothing_and_a_torn_last_line_is_dropped(swept: tuple[list[Case], ResultStore], tmp_path: Path) -> None:

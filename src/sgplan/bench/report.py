@@ -55,8 +55,9 @@ def choose_condition(rows: Sequence[dict[str, Any]], profile: str | None = None,
                 and (time_limit_s is None or r.get("time_limit_s") == time_limit_s)]
     if not matching:
         recorded = sorted({_describe(condition_of(r)) for r in rows})
-        wanted = ", ".join(filter(None, (profile and f"profile {profile}",
-                                         time_limit_s is not None and f"time limit {exact_number(time_limit_s)} s")))
+        parts = ([f"profile {profile}"] if profile else []) + (
+            [] if time_limit_s is None else [f"time limit {exact_number(time_limit_s)} s"])
+        wanted = ", ".join(parts)
         raise BenchError(f"no results with {wanted}; recorded: {'; '.join(recorded) or 'none'}")
     return condition_of(max(matching, key=lambda r: r.get("finished_at") or ""))
 

@@ -85,7 +85,7 @@ def configure_logging(args: argparse.Namespace) -> None:
     log.propagate = False
 
 
-class _StderrHandler(logging.StreamHandler):  # type: ignore[type-arg]
+class _StderrHandler(logging.StreamHandler):
     """Writes to whatever ``sys.stderr`` is when a line is logged (tests and callers may swap it)."""
 
     def emit(self, record: logging.LogRecord) -> None:

@@ -60,7 +60,8 @@ class PromptTemplate:
         if self.parts[0][0] is None:
             raise LLMError(f"prompt {self.name!r} is a text fragment, not a chat; use .text()")
         rendered = self._render(values)
-        return [{"role": role, "content": text} for (role, _), text in zip(self.parts, rendered)]  # type: ignore[misc]
+        roles = [role for role, _ in self.parts if role is not None]  # a chat: every part has its role
+        return [{"role": role, "content": text} for role, text in zip(roles, rendered)]
 
     def text(self, **values: str) -> str:
         """The fragment with every placeholder replaced."""
@@ -139,5 +140,5 @@ def load_prompt(name: str) -> PromptTemplate:
     """
     if name not in PROMPT_NAMES:
         raise LLMError(f"unknown prompt {name!r} (shipped: {', '.join(PROMPT_NAMES)})")
-    source = resources.files("sgplan.llm").joinpath("prompts", f"{name}.txt").read_text(encoding="utf-8")
+    source = (resources.files("sgplan.llm") / "prompts" / f"{name}.txt").read_text(encoding="utf-8")
     return parse_template(name, source)

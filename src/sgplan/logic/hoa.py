@@ -68,8 +68,10 @@ class _Tokens:
             m = _TOKEN.match(text, pos)
             if m is None:
                 raise AutomatonError(f"line {line}: unexpected character {text[pos]!r}", path)
-            if m.lastgroup != "space":
-                self.items.append((m.lastgroup, m.group(), line))
+            kind = m.lastgroup
+            assert kind is not None, "every alternative of _TOKEN is a named group"
+            if kind != "space":
+                self.items.append((kind, m.group(), line))
             line += m.group().count("\n")
             pos = m.end()
         self.items.append(("eof", "end of file", line))

@@ -70,8 +70,9 @@ def _lex(text: str) -> list[tuple[str, str, int]]:
             if text[pos] == '"':
                 raise FormulaError(f"the quoted proposition at character {pos} is never closed", pos)
             raise FormulaError(f"unexpected character {text[pos]!r} at character {pos}", pos)
-        start = m.start(m.lastgroup)
-        kind, value = m.lastgroup, m.group(m.lastgroup)
+        kind = m.lastgroup
+        assert kind is not None, "every alternative of _LEX is a named group"
+        start, value = m.start(kind), m.group(kind)
         pos = m.end()
         if kind == "quoted":
             out.append(("atom", value[1:-1], start))

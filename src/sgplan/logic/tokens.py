@@ -137,8 +137,8 @@ def parse_tokens(
     """
     items = as_token_list(tokens)
     known_set = None if known is None else set(known)
-    operators = {t: TOKEN_OPERATORS.get(t.strip().upper()) for t in items}
-    operators = {t: op for t, op in operators.items() if op is not None}
+    spelled = {t: TOKEN_OPERATORS.get(t.strip().upper()) for t in items}
+    operators = {t: op for t, op in spelled.items() if op is not None}
 
     def where(i: int) -> str:
         return f"token {i} {items[i]!r}"
