@@ -14,7 +14,6 @@ import yaml
 from sgplan.errors import LLMError
 from sgplan.llm.guidance import (
     IMPLAUSIBLE_LABEL_COST,
-    LazyGuidance,
     LLMGuide,
     generate_guidance,
     label_costs,
@@ -174,19 +173,6 @@ def test_batch_respects_the_concurrency_limit(fake_llm, llm_client, demo, missio
     fake_llm.respond_with(answer)
     generate_guidance(demo, mission.automaton, llm_client, RunRecord("x"), max_concurrency=3)
     assert 2 <= state["max"] <= 3
-
-
-def test_lazy_guidance_asks_only_what_is_queried_once(fake_llm, llm_client, demo, mission) -> None:
-    fake_llm.respond_with(mixed_reply(demo))
-    a = mission.automaton
-    sink = a.step(a.initial, a.label_of({"enter(room_4)"}))
-    lazy = LazyGuidance(demo, a, llm_client, RunRecord("x"))
-    assert lazy(4, 0) == ["reach(4, 19)", "move(4, 2)"]
-    assert lazy(4, 0) == ["reach(4, 19)", "move(4, 2)"]
-    assert lazy(4, sink) == [] and lazy(999, 0) == [] and lazy(4, 99) == []
-    assert len(fake_llm.requests) == 1
-    assert lazy.table() == {4: {0: ["reach(4, 19)", "move(4, 2)"], sink: []}}
-    assert lazy.report.asked == 1 and lazy.report.calls_dropped == 1
 
 
 def test_llm_guide_has_the_offline_guides_contract(fake_llm, llm_client, demo, mission) -> None:

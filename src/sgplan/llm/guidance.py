@@ -19,9 +19,9 @@ uuids: ``{room_uuid: {q: ["move(2, 9)", "reach(5, 21)"]}}``.
 States that are sinks or need nothing made true get an empty list without any call; a failed call gives
 an empty list too (h_LLM is then 0 there), is counted, and is not cached, so a re-run retries it.
 
-Two ways to run: :func:`generate_guidance` asks for every entry at once (with
+:func:`generate_guidance` asks for every entry at once (with
 :func:`~sgplan.llm.client.complete_many`'s concurrency limit; a hosted API's rate limit is the live
-client's ``requests_per_minute``), and :class:`LazyGuidance` asks only for the entries requested, once each.
+client's ``requests_per_minute``).
 :class:`LLMGuide` has the same ``guide(building, automaton, ap_actions)`` contract as the offline
 :class:`~sgplan.llm.offline.SymbolicGuide`.
 """
@@ -363,66 +363,6 @@ def generate_guidance(
         first = next(o for o in outcomes if isinstance(o, LLMError))
         raise LLMError(f"all {len(pending)} guidance calls failed; the first: {first}")
     return guidance, report
-
-
-class LazyGuidance:
-    """Guidance asked only for the entries requested: ``lazy(room_uuid, q) -> [calls]``, each asked once.
-
-    Thread-safe; concurrent requests for the same entry wait for one call. :meth:`table` gives the entries
-    asked so far in the :data:`Guidance` form. Rooms or states outside the automaton/building give ``[]``.
-    """
-
-    def __init__(
-        self,
-        building: Building,
-        automaton: Automaton,
-        backend: ChatBackend,
-        record: RunRecord,
-        *,
-        ap_actions: Mapping[str, str] | None = None,
-        mission_text: str | None = None,
-        params: Mapping[str, Any] = DEFAULT_PARAMS,
-    ) -> None:
-        self._asker = _Asker(building, automaton, backend, record, ap_actions=ap_actions,
-                             mission_text=mission_text, params=params)
-        self._entries: dict[tuple[int, int], list[str]] = {}
-        self._locks: dict[tuple[int, int], threading.Lock] = {}
-        self._guard = threading.Lock()
-
-    @property
-    def report(self) -> GuidanceReport:
-        return self._asker.report
-
-    def __call__(self, room_uuid: int, q: int) -> list[str]:
-        key = (int(room_uuid), int(q))
-        if not self._asker.building.has_room(key[0]) or key[1] not in self._asker.states:
-            return []
-        with self._guard:
-            lock = self._locks.setdefault(key, threading.Lock())
-        with lock:
-            if key not in self._entries:
-                self._entries[key] = self._ask(*key)
-            return list(self._entries[key])
-
-    def _ask(self, room_uuid: int, q: int) -> list[str]:
-        asker = self._asker
-        messages = asker.messages(room_uuid, q)
-        if messages is None:
-            return []
-        try:
-            outcome: ChatResult | LLMError = asker.backend.complete(messages, **asker.params)
-        except LLMError as error:
-            outcome = error
-        return asker.accept(room_uuid, q, messages, outcome)
-
-    def table(self) -> Guidance:
-        """The entries asked so far: ``{room_uuid: {q: [calls]}}``."""
-        with self._guard:
-            items = sorted(self._entries.items())
-        out: Guidance = {}
-        for (room, q), calls in items:
-            out.setdefault(room, {})[q] = list(calls)
-        return out
 
 
 class LLMGuide:
