@@ -4,7 +4,8 @@ For each shipped Gibson mission (authors profile) and start, plans with setup AL
 ``shipped`` (the authors' llm_heuristic.yaml as it is; the planner skips calls it cannot use), ``valid``
 (only calls that pass :func:`sgplan.llm.guidance.validate_call`, as sgplan's guidance step keeps),
 ``route`` (those, also cut at the first break of the route rule, :func:`sgplan.llm.guidance.route_break`;
-sgplan reports such breaks but does not cut, because of what this measures), and once with NO-LLM. Prints per variant the entries changed, and means of the first path's search time,
+sgplan reports such breaks but does not cut, because of what this measures), and once with NO-LLM. Prints per
+variant the entries changed, and means of the first path's search time,
 first cost / optimal cost, search time to the optimum and expansions.
 
     .venv/bin/python benchmarks/guidance_route_rule.py              # starts 0 and 3

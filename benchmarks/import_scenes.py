@@ -59,16 +59,19 @@ def big_house(n: int, path: Path) -> Path:
             )
         if k // n + 1 < n:  # door to the room below (along x)
             objects.append(
-                f"O {len(objects)} {k} 0 {x0 + size + wall / 2} {y0 + 2} 1  0 0 1  0 1 0  1 0.45 0.05  0 0 0 0 0 0 0 0"
+                f"O {len(objects)} {k} 0 {x0 + size + wall / 2} {y0 + 2} 1  0 0 1  0 1 0  1 0.45 0.05  0 0 0 "
+                "0 0 0 0 0"
             )
         if k % n + 1 < n:  # door to the room on the right (along y)
             objects.append(
-                f"O {len(objects)} {k} 0 {x0 + 2} {y0 + size + wall / 2} 1  0 0 1  1 0 0  1 0.45 0.05  0 0 0 0 0 0 0 0"
+                f"O {len(objects)} {k} 0 {x0 + 2} {y0 + size + wall / 2} 1  0 0 1  1 0 0  1 0.45 0.05  0 0 0 "
+                "0 0 0 0 0"
             )
     span = n * pitch
     lines = [
         "ASCII 1.1",
-        f"H - - 0 0 {len(vertices)} {n * n} 0 {len(objects)} 2 {n * n} 0 1 0 0 0 0 0 0 0 0 {span} {span} 2.5 0 0 0 0 0",
+        f"H - - 0 0 {len(vertices)} {n * n} 0 {len(objects)} 2 {n * n} 0 1 0 0 0 0 0 0 0 0 {span} {span} 2.5 "
+        "0 0 0 0 0",
         f"L 0 {n * n} - 0 0 0  0 0 0 {span} {span} 2.5 0 0 0 0 0",
         *records,
         *vertices,

@@ -33,7 +33,11 @@ def _name(doc: Path) -> str:
 def python_blocks(doc: Path) -> list[tuple[int, str]]:
     """``(first line number, code)`` of each ```python block of ``doc``."""
     text = doc.read_text(encoding="utf-8")
-    return [(text.count("\n", 0, m.start()) + 2, m.group(2)) for m in FENCE.finditer(text) if m.group(1) == "python"]
+    return [
+        (text.count("\n", 0, m.start()) + 2, m.group(2))
+        for m in FENCE.finditer(text)
+        if m.group(1) == "python"
+    ]
 
 
 def code_lines(doc: Path) -> list[tuple[int, str]]:
@@ -109,11 +113,15 @@ COMMANDS = [(doc, line, argv) for doc in DOCS for line, argv in sgplan_commands(
 
 
 def test_docs_show_commands() -> None:
-    assert len(COMMANDS) > 20 and {argv[0] for _, _, argv in COMMANDS} >= {"plan", "inspect", "bench", "import"}
+    assert len(COMMANDS) > 20 and {argv[0] for _, _, argv in COMMANDS} >= {
+        "plan", "inspect", "bench", "import",
+    }
 
 
 @pytest.mark.parametrize(("doc", "line", "argv"), COMMANDS, ids=[f"{_name(d)}:{n}" for d, n, _ in COMMANDS])
-def test_sgplan_command_lines_parse(doc: Path, line: int, argv: list[str], capsys: pytest.CaptureFixture) -> None:
+def test_sgplan_command_lines_parse(
+    doc: Path, line: int, argv: list[str], capsys: pytest.CaptureFixture
+) -> None:
     try:
         args = _build_parser().parse_args(argv)
     except SystemExit as stop:  # argparse's way of refusing (or of answering --help / --version)
@@ -124,7 +132,9 @@ def test_sgplan_command_lines_parse(doc: Path, line: int, argv: list[str], capsy
 
 # Repository paths cited in the docs: src/..., tests/..., benchmarks/..., docs/..., .ci/... and the package's
 # own sgplan/....py; placeholders (<Scene>, *.png) and links to other pages are checked the same way.
-CITED = re.compile(r"(?<![\w/.-])((?:src|tests|benchmarks|docs|\.ci)/[\w./-]*[\w/]|sgplan/[\w/]+\.py)(?![\w<*])")
+CITED = re.compile(
+    r"(?<![\w/.-])((?:src|tests|benchmarks|docs|\.ci)/[\w./-]*[\w/]|sgplan/[\w/]+\.py)(?![\w<*])"
+)
 LINK = re.compile(r"\]\(([\w./-]+\.md)\)")
 
 

@@ -56,7 +56,10 @@ def test_yaml_alias_bomb_is_refused_before_it_expands() -> None:
 
 def test_yaml_within_the_limits_reads_as_usual() -> None:
     nested = "[" * (MAX_DEPTH - 1) + "1" + "]" * (MAX_DEPTH - 1)
-    assert parse_yaml(f"a: {nested}\nb: &x [1, 2]\nc: *x\n1: one\n'1': text\n", SceneError, None)["c"] == [1, 2]
+    assert parse_yaml(f"a: {nested}\nb: &x [1, 2]\nc: *x\n1: one\n'1': text\n", SceneError, None)["c"] == [
+        1,
+        2,
+    ]
 
 
 def test_json_limits() -> None:

@@ -64,8 +64,10 @@ EXAMPLES_SCALE = float(os.environ.get("SGPLAN_FAULTS_SCALE", "1"))
 def generated(examples: int) -> settings:
     """Hypothesis settings of a generated fault test: ``examples`` (scaled) fixed examples, the same on
     every run (derandomized, no example database), so that two versions of sgplan meet the same cases."""
-    return settings(max_examples=max(1, round(examples * EXAMPLES_SCALE)), deadline=None, derandomize=True,
-                    database=None, suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+    return settings(
+        max_examples=max(1, round(examples * EXAMPLES_SCALE)), deadline=None, derandomize=True, database=None,
+        suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow],
+    )
 
 
 _BOOT = "import sys\nfrom sgplan.cli import main\nsys.exit(main(sys.argv[1:]))"
@@ -132,7 +134,8 @@ def _run_inprocess(argv: Sequence[str], timeout_s: float) -> Run:
 
 
 def _run_subprocess(
-    argv: Sequence[str], rlimits: Mapping[int, int], env: Mapping[str, str], unprivileged: bool, timeout_s: float
+    argv: Sequence[str], rlimits: Mapping[int, int], env: Mapping[str, str], unprivileged: bool,
+    timeout_s: float,
 ) -> Run:
     def limit() -> None:
         resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT_BYTES, MEMORY_LIMIT_BYTES))
@@ -147,8 +150,10 @@ def _run_subprocess(
     if PYTHONPATH:
         full_env["PYTHONPATH"] = PYTHONPATH
     started = time.monotonic()
-    proc = subprocess.Popen([sys.executable, "-c", _BOOT, *argv], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            preexec_fn=limit, env=full_env, text=True, errors="replace", start_new_session=True)
+    proc = subprocess.Popen(
+        [sys.executable, "-c", _BOOT, *argv], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+        preexec_fn=limit, env=full_env, text=True, errors="replace", start_new_session=True,
+    )
     try:
         stdout, stderr = proc.communicate(timeout=timeout_s)
         code: int | None = proc.returncode

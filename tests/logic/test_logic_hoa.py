@@ -54,7 +54,9 @@ def test_transition_marks_on_self_loops_make_states_accepting():
     text = ALLENSVILLE_5.replace("State: 0 {0}\n[t] 0", "State: 0\n[t] 0 {0}")
     assert parse_hoa(text).accepting[0]
     bad = ALLENSVILLE_5.replace("[2] 0", "[2] 0 {0}")
-    with pytest.raises(AutomatonError, match="line 12: an acceptance mark on an edge between different states"):
+    with pytest.raises(
+        AutomatonError, match="line 12: an acceptance mark on an edge between different states"
+    ):
         parse_hoa(bad)
 
 

@@ -114,7 +114,10 @@ def _parse_row(data: bytes | str) -> tuple[dict[str, Any] | None, str]:
     wrong += [k for k in _NUMBER_FIELDS if row.get(k) is not None
               and not (is_number(row[k]) and math.isfinite(row[k]))]
     if wrong:
-        return None, f"field(s) {', '.join(wrong)} of the wrong type ({wrong[0]} = {quote(row.get(wrong[0]))})"
+        return (
+            None,
+            f"field(s) {', '.join(wrong)} of the wrong type ({wrong[0]} = {quote(row.get(wrong[0]))})",
+        )
     return row, ""
 
 
@@ -160,7 +163,9 @@ class ResultStore:
                 continue
             row, problem = _parse_row(line)
             if row is None:
-                raise BenchError(f"line {number} is not a result row ({problem}); fix or remove it", self.path)
+                raise BenchError(
+                    f"line {number} is not a result row ({problem}); fix or remove it", self.path
+                )
             self._rows[row["key"]] = row
 
     def __len__(self) -> int:

@@ -117,11 +117,19 @@ def open_backends(
         endpoint configuration problem (no model, no key for OpenAI's endpoint, a bad config file).
     """
     if spec == OFFLINE:
-        given = [name for name, value in (("--base-url", base_url), ("--cache", cache_dir), ("--replay", replay),
-                                           ("--llm-config", config_path), ("--rpm", requests_per_minute), ("--llm-deadline", deadline_s),
-                                           ("--samples", samples != 1)) if value]
+        given = [
+            name
+            for name, value in (
+                ("--base-url", base_url), ("--cache", cache_dir), ("--replay", replay),
+                ("--llm-config", config_path), ("--rpm", requests_per_minute), ("--llm-deadline", deadline_s),
+                ("--samples", samples != 1),
+            )
+            if value
+        ]
         if given:
-            raise LLMError(f"{', '.join(given)} only apply to a language model; with --llm offline leave them out")
+            raise LLMError(
+                f"{', '.join(given)} only apply to a language model; with --llm offline leave them out"
+            )
         from sgplan.llm.offline import PatternTranslator, SymbolicGuide
 
         pattern, symbolic = PatternTranslator(), SymbolicGuide()
@@ -137,9 +145,17 @@ def open_backends(
     from sgplan.llm.guidance import LLMGuide
     from sgplan.llm.translation import LLMTranslator
 
-    mode: Literal["live", "record", "replay"] = "replay" if replay else ("record" if cache_dir is not None else "live")
-    config = None if replay else load_llm_config(config_path, model=model, base_url=base_url,
-                                                 requests_per_minute=requests_per_minute, deadline_s=deadline_s)
+    mode: Literal["live", "record", "replay"] = (
+        "replay" if replay else ("record" if cache_dir is not None else "live")
+    )
+    config = (
+        None
+        if replay
+        else load_llm_config(
+            config_path, model=model, base_url=base_url, requests_per_minute=requests_per_minute,
+            deadline_s=deadline_s,
+        )
+    )
     chat = open_chat_backend(mode, config=config, cache_dir=cache_dir, model=model)
     record = RunRecord(chat.label)
     translator = LLMTranslator(chat, record=record, samples=samples, max_repairs=max_repairs, params=params)

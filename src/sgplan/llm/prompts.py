@@ -75,7 +75,8 @@ class PromptTemplate:
         unused = sorted(values.keys() - expected)
         if missing or unused:
             raise LLMError(
-                f"prompt {self.version}: values missing for {missing or 'none'}, given but unused {unused or 'none'}"
+                f"prompt {self.version}: values missing for {missing or 'none'}, given but unused "
+                f"{unused or 'none'}"
             )
         return [string.Template(text).substitute(values).strip() for _, text in self.parts]
 
@@ -84,7 +85,9 @@ def _placeholders(template: string.Template, name: str) -> set[str]:
     names: set[str] = set()
     for match in template.pattern.finditer(template.template):
         if match.group("invalid") is not None:
-            raise LLMError(f"prompt template {name!r}: a '$' that starts no placeholder (write $$ for a dollar)")
+            raise LLMError(
+                f"prompt template {name!r}: a '$' that starts no placeholder (write $$ for a dollar)"
+            )
         found = match.group("named") or match.group("braced")
         if found:
             names.add(found)
@@ -97,7 +100,8 @@ def parse_template(name: str, source: str) -> PromptTemplate:
     Raises
     ------
     LLMError
-        no ``# version:`` header, an unknown role, text before the first role line of a chat, or an empty body.
+        no ``# version:`` header, an unknown role, text before the first role line of a chat, or an empty
+        body.
     """
     lines = source.splitlines()
     header_end = next((i for i, line in enumerate(lines) if not line.startswith("#")), len(lines))

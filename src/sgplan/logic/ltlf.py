@@ -182,7 +182,9 @@ class _Progression:
             steps = [self.step(a) for a in f.args]
             conj = isinstance(f, And)
             lams = np.stack([s[1] for s in steps])
-            return self.junction(conj, [s[0] for s in steps]), np.asarray(lams.all(0) if conj else lams.any(0))
+            return self.junction(conj, [s[0] for s in steps]), np.asarray(
+                lams.all(0) if conj else lams.any(0)
+            )
         eid = self.element(f)
         cached = self.memo.get(eid)
         if cached is not None:

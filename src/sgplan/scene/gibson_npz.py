@@ -195,7 +195,9 @@ def read_scene_graph_dict(
     try:
         with zipfile.ZipFile(path) as archive:
             if member not in archive.namelist():
-                raise SceneError(f"npz has no {ARRAY_KEY!r} array (members: {quote(archive.namelist())})", path)
+                raise SceneError(
+                    f"npz has no {ARRAY_KEY!r} array (members: {quote(archive.namelist())})", path
+                )
             with archive.open(member) as stream:
                 value = _unpickle_npy(stream, frozenset(keys) if keys is not None else None)
     except ForbiddenGlobal as error:
@@ -208,7 +210,9 @@ def read_scene_graph_dict(
         raise
     except (zipfile.BadZipFile, zlib.error, EOFError, OSError) as error:
         raise SceneError(f"not a readable npz (corrupt or truncated): {clip(str(error))}", path) from None
-    except (pickle.UnpicklingError, ValueError, TypeError, AttributeError, IndexError, KeyError, RecursionError) as error:
+    except (
+        pickle.UnpicklingError, ValueError, TypeError, AttributeError, IndexError, KeyError, RecursionError,
+    ) as error:
         raise SceneError(f"corrupt pickle in {member}: {clip(str(error))}", path) from None
     except MemoryError:
         raise SceneError(f"{member} asks for more memory than is available", path) from None
