@@ -3,14 +3,15 @@
 Outcomes (what issue 14 counts):
 
 ``clean``
-    exit 0 (the input happened to be valid and ``must_fail`` is off) or exit 2 with one
-    ``... error: ...`` line last on stderr and no traceback;
+    exit 0 (the input happened to be valid and ``must_fail`` is off), exit 3 (a search budget ran out), or
+    exit 2 (bad input) or 4 (no path satisfies the mission) with one ``... error: ...`` line last on stderr
+    and no traceback;
 ``traceback``
     an exception escaped (in-process), a ``Traceback`` on stderr, or the internal-error exit code (70);
 ``hang``
     no exit within the time budget;
 ``crash``
-    killed by a signal (a segfault, the memory limit) or an exit code other than 0, 2, 3;
+    killed by a signal (a segfault, the memory limit) or an exit code other than 0, 2, 3, 4;
 ``accepted``
     a must-fail input that exited 0;
 ``data-loss``
@@ -198,10 +199,12 @@ def classify(run: Run, *, must_fail: bool = False) -> str:
         return "hang"
     if run.escaped is not None or "Traceback" in run.stderr or run.code == INTERNAL_ERROR:
         return "traceback"
-    if run.code < 0 or run.code not in (0, 2):
+    if run.code < 0 or run.code not in (0, 2, 3, 4):
         return "crash"
     if run.code == 0:
         return "accepted" if must_fail else "clean"
+    if run.code == 3:  # a search budget ran out: the best path so far is written, no error
+        return "clean"
     last = run.stderr.strip().splitlines()[-1] if run.stderr.strip() else ""
     return "clean" if "error:" in last else "traceback"
 

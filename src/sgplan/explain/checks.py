@@ -34,7 +34,21 @@ from sgplan.explain.patterns import condition_text, pattern_clauses
 from sgplan.explain.scene_labels import occurring_labels
 from sgplan.explain.stages import forbidden_bits, restricted
 from sgplan.logic.automaton import Automaton
-from sgplan.logic.formula import And, Atom, Const, Equiv, Formula, Implies, Not, Or, atoms, is_temporal, walk
+from sgplan.logic.formula import (
+    MAX_NESTING,
+    And,
+    Atom,
+    Const,
+    Equiv,
+    Formula,
+    Implies,
+    Not,
+    Or,
+    atoms,
+    depth,
+    is_temporal,
+    walk,
+)
 from sgplan.logic.infix import to_infix
 from sgplan.logic.ltlf import ltlf_to_dfa
 from sgplan.mission import Mission
@@ -139,7 +153,10 @@ def check_mission_in_scene(
         return SceneCheck(())
     entities = entities_of(list(automaton.aps), mission.propositions, building)
     context = _Context(mission, building, grid, labels, entities, realizable)
-    findings = context.part_findings()
+    # The part analysis recurses over the formula as written; a deeper one (a 500-term conjunction as
+    # nested pairs) still gets the whole-mission checks below, which work on the automaton.
+    shallow = mission.formula is None or depth(mission.formula) <= MAX_NESTING
+    findings = context.part_findings() if shallow else []
     whole = restricted(automaton, realizable)
     if not whole.live_states()[whole.initial]:
         findings.insert(0, Finding("unsatisfiable", context.conflict()))
@@ -328,9 +345,16 @@ class _Context:
 
 
 def _flat_and(formula: Formula) -> list[Formula]:
-    if isinstance(formula, And):
-        return [c for arg in formula.args for c in _flat_and(arg)]
-    return [formula]
+    """The conjuncts of ``formula``, nested ``And`` flattened, in order (iterative: any depth)."""
+    parts: list[Formula] = []
+    stack = [formula]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, And):
+            stack.extend(reversed(node.args))
+        else:
+            parts.append(node)
+    return parts
 
 
 def _evaluate(f: Formula, labels: np.ndarray, index: dict[str, int]) -> np.ndarray:

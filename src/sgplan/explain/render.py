@@ -21,7 +21,7 @@ from sgplan.explain.scene_labels import realizable_labels
 from sgplan.explain.stages import restricted, stage_lines
 from sgplan.logic.automaton import Automaton
 from sgplan.logic.equivalence import equivalent
-from sgplan.logic.formula import Formula, atoms
+from sgplan.logic.formula import MAX_NESTING, Formula, atoms, depth
 from sgplan.logic.ltlf import ltlf_to_dfa, possible_labels
 from sgplan.mission import Mission
 from sgplan.scene.model import Building
@@ -99,8 +99,10 @@ def explain_formula(
     if realizable is None:
         realizable = np.ones(automaton.num_labels, bool)
     same = formula is not None and _reads_as(formula, automaton, realizable)
-    if same:
-        clauses = pattern_clauses(formula, lookup)  # type: ignore[arg-type]
+    # The pattern reader recurses over the formula as written: one nested deeper than any automaton's
+    # normal form may be (4001 NOTs, a 500-term conjunction as nested pairs) is read off the automaton.
+    if same and formula is not None and depth(formula) <= MAX_NESTING:
+        clauses = pattern_clauses(formula, lookup)
         if clauses is not None:
             return Explanation("\n".join([HEADER, *_numbered(clauses)]), "patterns")
     entities = {p: lookup(p) for p in automaton.aps}

@@ -203,6 +203,20 @@ def size(formula: Formula) -> int:
     return sum(1 for _ in walk(formula))
 
 
+def depth(formula: Formula) -> int:
+    """The nesting depth of ``formula`` as written, every operator counting (iterative: safe at any depth).
+
+    Code that recurses over a formula as written (not its normal form, see :func:`nesting`) checks it
+    against :data:`MAX_NESTING` first.
+    """
+    deepest, stack = 0, [(formula, 1)]
+    while stack:
+        node, level = stack.pop()
+        deepest = max(deepest, level)
+        stack.extend((child, level + 1) for child in node.children())
+    return deepest
+
+
 MAX_NESTING = 100
 """Operator nesting the negation normal form of a formula may have for an automaton to be built from it
 (see :func:`nesting`); missions nest fewer than 10 levels.
