@@ -44,8 +44,11 @@ def main() -> None:
     for folder_name, r in zip(sorted(p.name for p in (folder / "missions").iterdir() if p.is_dir()), kept):
         t0 = time.perf_counter()
         simplify_path(r.path, r.grid, r.labels, r.mission.automaton)
-        print(f"| {folder_name} | {len(r.path)} | {len(r.waypoints_simplified)} | {time.perf_counter() - t0:.3f} | "
-              f"{r.timings['wall_s']:.2f} |")
+        print(
+            f"| {folder_name} | {len(r.path)} | {len(r.waypoints_simplified)} | "
+            f"{time.perf_counter() - t0:.3f} | "
+            f"{r.timings['wall_s']:.2f} |"
+        )
 
 
 if __name__ == "__main__":

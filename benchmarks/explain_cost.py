@@ -49,7 +49,10 @@ def main() -> None:
     if root is None:
         sys.exit("Gibson data not found (set SGPLAN_GIBSON_DIR)")
     totals = {"make_problem": 0.0, "explain": 0.0, "check": 0.0, "identity": 0.0}
-    print(f"{'mission':16} {'make_problem':>12} {'explain':>9} {'method':>9} {'check':>8} {'identity':>9}  findings")
+    print(
+        f"{'mission':16} {'make_problem':>12} {'explain':>9} {'method':>9} {'check':>8} {'identity':>9}  "
+        "findings"
+    )
     for scene in SCENES:
         building = load_scene(root / scene)
         for number in range(1, 6):

@@ -39,8 +39,10 @@ def main() -> int:
     env = {**os.environ, "SGPLAN_FAULTS_RECORD": str(out), "SGPLAN_FAULTS_SCALE": "5" if args.slow else "1"}
     if args.pythonpath:
         env["SGPLAN_FAULTS_PYTHONPATH"] = str(Path(args.pythonpath).resolve())
-    subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "tests/faults", *args.pytest_args],
-                   cwd=ROOT, env=env, check=False)
+    subprocess.run(
+        [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "tests/faults", *args.pytest_args],
+        cwd=ROOT, env=env, check=False,
+    )
     rows = [json.loads(line) for line in out.read_text().splitlines()] if out.exists() else []
     counts = collections.Counter(row["outcome"] for row in rows)
     print(f"\n{len(rows)} cases: " + ", ".join(f"{counts.get(o, 0)} {o}" for o in OUTCOMES)

@@ -4,7 +4,8 @@ For each shipped Gibson mission (authors profile) and start, plans with setup AL
 ``shipped`` (the authors' llm_heuristic.yaml as it is; the planner skips calls it cannot use), ``valid``
 (only calls that pass :func:`sgplan.llm.guidance.validate_call`, as sgplan's guidance step keeps),
 ``route`` (those, also cut at the first break of the route rule, :func:`sgplan.llm.guidance.route_break`;
-sgplan reports such breaks but does not cut, because of what this measures), and once with NO-LLM. Prints per variant the entries changed, and means of the first path's search time,
+sgplan reports such breaks but does not cut, because of what this measures), and once with NO-LLM. Prints per
+variant the entries changed, and means of the first path's search time,
 first cost / optimal cost, search time to the optimum and expansions.
 
     .venv/bin/python benchmarks/guidance_route_rule.py              # starts 0 and 3
@@ -23,14 +24,14 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
-from sgplan.datasets import SCENES, find_gibson_root  # noqa: E402
-from sgplan.errors import PlanningError  # noqa: E402
-from sgplan.llm.guidance import Guidance, route_break, validate_call  # noqa: E402
-from sgplan.mission import load_mission_folder  # noqa: E402
-from sgplan.pipeline import make_problem  # noqa: E402
-from sgplan.planning import plan  # noqa: E402
-from sgplan.scene.authors import load_authors_scene  # noqa: E402
-from sgplan.scene.model import Building  # noqa: E402
+from sgplan.datasets import SCENES, find_gibson_root
+from sgplan.errors import PlanningError
+from sgplan.llm.guidance import Guidance, route_break, validate_call
+from sgplan.mission import load_mission_folder
+from sgplan.pipeline import make_problem
+from sgplan.planning import plan
+from sgplan.scene.authors import load_authors_scene
+from sgplan.scene.model import Building
 
 VARIANTS = ("shipped", "valid", "route")
 

@@ -24,10 +24,10 @@ import time
 from pathlib import Path
 
 _T0 = time.perf_counter()
-from sgplan.importers.assemble import Settings  # noqa: E402
-from sgplan.importers.labelspace import read_label_map  # noqa: E402
-from sgplan.importers.mp3d import import_house  # noqa: E402
-from sgplan.scene.native import write_native_scene  # noqa: E402
+from sgplan.importers.assemble import Settings
+from sgplan.importers.labelspace import read_label_map
+from sgplan.importers.mp3d import import_house
+from sgplan.scene.native import write_native_scene
 
 _IMPORT_S = time.perf_counter() - _T0
 EXAMPLES = Path(__file__).resolve().parents[1] / ".." / "shared" / "datasets" / "scene-examples"
@@ -59,16 +59,19 @@ def big_house(n: int, path: Path) -> Path:
             )
         if k // n + 1 < n:  # door to the room below (along x)
             objects.append(
-                f"O {len(objects)} {k} 0 {x0 + size + wall / 2} {y0 + 2} 1  0 0 1  0 1 0  1 0.45 0.05  0 0 0 0 0 0 0 0"
+                f"O {len(objects)} {k} 0 {x0 + size + wall / 2} {y0 + 2} 1  0 0 1  0 1 0  1 0.45 0.05  0 0 0 "
+                "0 0 0 0 0"
             )
         if k % n + 1 < n:  # door to the room on the right (along y)
             objects.append(
-                f"O {len(objects)} {k} 0 {x0 + 2} {y0 + size + wall / 2} 1  0 0 1  1 0 0  1 0.45 0.05  0 0 0 0 0 0 0 0"
+                f"O {len(objects)} {k} 0 {x0 + 2} {y0 + size + wall / 2} 1  0 0 1  1 0 0  1 0.45 0.05  0 0 0 "
+                "0 0 0 0 0"
             )
     span = n * pitch
     lines = [
         "ASCII 1.1",
-        f"H - - 0 0 {len(vertices)} {n * n} 0 {len(objects)} 2 {n * n} 0 1 0 0 0 0 0 0 0 0 {span} {span} 2.5 0 0 0 0 0",
+        f"H - - 0 0 {len(vertices)} {n * n} 0 {len(objects)} 2 {n * n} 0 1 0 0 0 0 0 0 0 0 {span} {span} 2.5 "
+        "0 0 0 0 0",
         f"L 0 {n * n} - 0 0 0  0 0 0 {span} {span} 2.5 0 0 0 0 0",
         *records,
         *vertices,

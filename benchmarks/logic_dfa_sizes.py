@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import random
 import time
+from functools import partial
 from pathlib import Path
 
 import yaml
@@ -18,7 +19,6 @@ from sgplan.datasets import SCENES, find_gibson_root
 from sgplan.errors import AutomatonError
 from sgplan.logic import Atom, Formula, ltlf_to_dfa, parse_infix, parse_prefix, read_hoa
 from sgplan.logic.formula import Always, And, Equiv, Eventually, Implies, Next, Not, Or, Release, Until
-
 
 
 def best_ms(build, repeat: int = 5) -> tuple[object, float]:
@@ -39,8 +39,8 @@ def missions(root: Path) -> None:
             formula = parse_prefix((folder / "Spot_LTL_formula.txt").read_text())
             desc = yaml.safe_load((folder / "ap_desc.yaml").read_text())
             rooms = [name for name, d in desc.items() if d["type"] == "kEnterRoom"]
-            dfa, ms = best_ms(lambda: ltlf_to_dfa(formula))
-            pruned, ms_pruned = best_ms(lambda: ltlf_to_dfa(formula, exclusive=[rooms]))
+            dfa, ms = best_ms(partial(ltlf_to_dfa, formula))
+            pruned, ms_pruned = best_ms(partial(ltlf_to_dfa, formula, exclusive=[rooms]))
             spot = read_hoa(folder / "automaton.aut")
             print(f"| {scene} {k} | {len(dfa.aps)} | {dfa.num_states} | {ms:.1f} | {pruned.num_states} | "
                   f"{ms_pruned:.1f} | {spot.num_states} |")
@@ -92,7 +92,7 @@ def largest_random(count: int, seed: int) -> None:
     start = time.perf_counter()
     for _ in range(count):
         formula = random_formula(rng, aps, depth=6)
-        dfa, ms = best_ms(lambda: ltlf_to_dfa(formula), repeat=1)
+        dfa, ms = best_ms(partial(ltlf_to_dfa, formula), repeat=1)
         rows.append((dfa.num_states, ms, len(dfa.aps), formula))
     total = time.perf_counter() - start
     rows.sort(key=lambda r: (-r[0], -r[1]))

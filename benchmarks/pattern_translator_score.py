@@ -13,7 +13,7 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 from sgplan.datasets import find_gibson_root
@@ -29,13 +29,15 @@ DEFAULT_SET = Path(__file__).resolve().parents[1] / "tests" / "llm" / "data" / "
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--set", type=Path, default=DEFAULT_SET)
-    parser.add_argument("--gibson", type=Path, default=None, help="folder holding Allensville/ ... (default: auto)")
+    parser.add_argument(
+        "--gibson", type=Path, default=None, help="folder holding Allensville/ ... (default: auto)"
+    )
     parser.add_argument("--verbose", action="store_true", help="also print the right ones")
     args = parser.parse_args(argv)
 
     root = find_gibson_root(args.gibson)
 
-    @lru_cache(maxsize=None)
+    @cache
     def building_of(scene: str) -> Building:
         if scene == "demo":
             return demo_building()
@@ -59,7 +61,9 @@ def main(argv: list[str] | None = None) -> int:
         refused = sum(r.outcome == "refused" for r in subset)
         wrong = sum(r.outcome == "wrong" for r in subset)
         pct = 100.0 * right / len(subset) if subset else float("nan")
-        return f"{label:<22} {right:>3}/{len(subset):<3} right ({pct:5.1f}%), {refused} refused, {wrong} wrong"
+        return (
+            f"{label:<22} {right:>3}/{len(subset):<3} right ({pct:5.1f}%), {refused} refused, {wrong} wrong"
+        )
 
     print()
     print(line("all missions", results))

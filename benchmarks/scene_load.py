@@ -20,10 +20,10 @@ import time
 from pathlib import Path
 
 _T0 = time.perf_counter()
-from sgplan.datasets import scene_dir  # noqa: E402
-from sgplan.scene.authors import load_authors_scene  # noqa: E402
-from sgplan.scene.grid import build_occupancy_grid  # noqa: E402
-from sgplan.scene.labels import MAX_PROPOSITIONS, Proposition, label_raster  # noqa: E402
+from sgplan.datasets import scene_dir
+from sgplan.scene.authors import load_authors_scene
+from sgplan.scene.grid import build_occupancy_grid
+from sgplan.scene.labels import MAX_PROPOSITIONS, Proposition, label_raster
 
 _IMPORT_S = time.perf_counter() - _T0
 

@@ -1,6 +1,7 @@
 """Score the offline pattern translator on the blind mission set and write the committed score file.
 
-    .venv/bin/python benchmarks/translation_blind.py            # writes benchmarks/results/translation_blind.md
+    .venv/bin/python benchmarks/translation_blind.py            # writes
+    benchmarks/results/translation_blind.md
     .venv/bin/python benchmarks/translation_blind.py --out -    # print the report instead
 
 The set (benchmarks/data/blind_missions.jsonl, described in benchmarks/data/README_blind.md) was written
@@ -46,12 +47,16 @@ def report(score: TranslationScore, set_path: Path) -> str:
     lines = [
         "# Offline translator on the blind mission set",
         "",
-        f"Set: `{set_path.relative_to(REPO) if set_path.is_relative_to(REPO) else set_path}` ({total} missions). "
+        f"Set: `{set_path.relative_to(REPO) if set_path.is_relative_to(REPO) else set_path}` ({total} "
+        "missions). "
         f"Backend: `{score.backend}`. Reproduce: `.venv/bin/python benchmarks/translation_blind.py`.",
         "",
         "| outcome | missions | share |",
         "|---|---:|---:|",
-        *(f"| {k} | {counts[k]} | {100.0 * counts[k] / total:.1f} % |" for k in ("right", "wrong", "refused")),
+        *(
+            f"| {k} | {counts[k]} | {100.0 * counts[k] / total:.1f} % |"
+            for k in ("right", "wrong", "refused")
+        ),
         "",
         f"## Wrong ({counts['wrong']})",
         "",
@@ -78,7 +83,9 @@ def report(score: TranslationScore, set_path: Path) -> str:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--set", type=Path, default=DEFAULT_SET)
-    parser.add_argument("--gibson", type=Path, default=None, help="folder holding Allensville/ ... (default: auto)")
+    parser.add_argument(
+        "--gibson", type=Path, default=None, help="folder holding Allensville/ ... (default: auto)"
+    )
     parser.add_argument("--out", default=str(DEFAULT_OUT), help="the score file to write, or - for stdout")
     args = parser.parse_args(argv)
 
@@ -94,7 +101,9 @@ def main(argv: list[str] | None = None) -> int:
 
     missions = load_jsonl_set(args.set)
     started = time.perf_counter()
-    score = score_translator(PatternTranslator(), missions, building_of, set_path=str(args.set), explain=explain)
+    score = score_translator(
+        PatternTranslator(), missions, building_of, set_path=str(args.set), explain=explain
+    )
     seconds = time.perf_counter() - started
     text = report(score, args.set.resolve())
     if args.out == "-":
@@ -103,8 +112,11 @@ def main(argv: list[str] | None = None) -> int:
         Path(args.out).parent.mkdir(parents=True, exist_ok=True)
         Path(args.out).write_text(text, encoding="utf-8")
         counts = score.counts
-        print(f"right {counts['right']}/{len(score.results)}, wrong {counts['wrong']}, refused {counts['refused']}; "
-              f"({seconds:.1f} s); wrote {args.out}")
+        print(
+            f"right {counts['right']}/{len(score.results)}, wrong {counts['wrong']}, refused "
+            f"{counts['refused']}; "
+            f"({seconds:.1f} s); wrote {args.out}"
+        )
     return 1 if score.counts["wrong"] else 0
 
 

@@ -33,17 +33,22 @@ def test_the_readme_example_is_at_most_five_lines_and_runs(tmp_path: Path, monke
     assert len(lines) <= 5 and lines[0] == "import sgplan"
     monkeypatch.chdir(tmp_path)
     namespace: dict[str, object] = {}
-    exec(block[1], namespace)  # noqa: S102 - the README's own code
+    exec(block[1], namespace)
     result = namespace["result"]
     assert isinstance(result, sgplan.PlanResult) and result.status == "optimal" and result.verified
     assert hasattr(result, "explanation") and str(result) in capsys.readouterr().out
     assert {"plan.json", "plan_floor_0.png", "plan_floor_1.png", "automaton.svg"} <= {
         p.name for p in (tmp_path / "out/quick").iterdir()}
-    assert json.loads((tmp_path / "out/quick/plan.json").read_text())["cost_m"] == pytest.approx(result.cost_m)
+    assert json.loads((tmp_path / "out/quick/plan.json").read_text())["cost_m"] == pytest.approx(
+        result.cost_m
+    )
 
 
 def test_import_sgplan_is_cheap_and_names_load_on_first_use() -> None:
-    code = "import sys, sgplan; print(sorted(m for m in ('numpy', 'numba', 'scipy') if m in sys.modules)); sgplan.plan"
+    code = (
+        "import sys, sgplan; print(sorted(m for m in ('numpy', 'numba', 'scipy') if m in sys.modules)); "
+        "sgplan.plan"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
     assert {"load_scene", "mission_from_text", "plan", "Session", "PlanResult", "Point"} <= set(dir(sgplan))
@@ -71,7 +76,10 @@ def test_starts_by_cell_point_room_and_index(demo) -> None:
     by_room = session.plan(mission, "bathroom on floor 0", setup="NO-LLM")
     row, col, floor = by_room.start
     assert grid.traversable[floor, row, col] and grid.room_map[floor, row, col] == demo.room(uuid=5).id
-    assert by_room.start_from == "room bathroom room_5" and session.plan(mission, "room_5", setup="NO-LLM").start == by_room.start
+    assert (
+        by_room.start_from == "room bathroom room_5"
+        and session.plan(mission, "room_5", setup="NO-LLM").start == by_room.start
+    )
     x, y = demo.floors[0].cell_to_xy((row, col))
     by_point = session.plan(mission, sgplan.Point(x + 0.01, y - 0.01, 0), setup="NO-LLM")
     assert by_point.start == by_room.start and by_point.cost_m == pytest.approx(by_room.cost_m)
@@ -82,12 +90,12 @@ def test_starts_by_cell_point_room_and_index(demo) -> None:
     snap = next(c for c in blocked if 0 < depth[tuple(c)] * 0.05 <= 0.3)
     snapped = session.plan(mission, (*demo.floors[0].cell_to_xy(tuple(snap)), 0), setup="NO-LLM")
     assert "moved" in snapped.start_from and grid.traversable[0, snapped.start[0], snapped.start[1]]
-    with pytest.raises(PlanningError, match="names 2 rooms .*room_5 .*room_14") as error:
+    with pytest.raises(PlanningError, match=r"names 2 rooms .*room_5 .*room_14") as error:
         session.plan(mission, "bathroom")
     assert error.value.status == "invalid-start"
-    with pytest.raises(PlanningError, match="no free cell lies within 0.5 m"):
+    with pytest.raises(PlanningError, match=r"no free cell lies within 0.5 m"):
         session.plan(mission, sgplan.Point(*demo.floors[0].cell_to_xy((0, 0)), 0))
-    with pytest.raises(PlanningError, match="floors 0..1"):
+    with pytest.raises(PlanningError, match=r"floors 0..1"):
         session.plan(mission, sgplan.Point(0.0, 0.0, 5))
     with pytest.raises(PlanningError, match="no room called 'garage'"):
         session.plan(mission, "garage")
@@ -114,12 +122,18 @@ def test_guidance_provenance_and_timeouts_as_results(demo) -> None:
     mission = sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo)
     assert sgplan.plan(demo, mission, setup="no-llm").guidance is None
     guided = sgplan.plan(demo, mission, setup="ALL")
-    assert guided.guidance == "offline-symbolic" and mission.guidance is None  # the caller's mission is unchanged
+    assert (
+        guided.guidance == "offline-symbolic" and mission.guidance is None
+    )  # the caller's mission is unchanged
     assert guided.mission is not None and guided.mission.guidance is not None
     cut = sgplan.plan(demo, mission, setup="NO-LLM", max_expansions=1)
     assert cut.status == "timeout" and cut.path is None and cut.to_dict()["cost_m"] is None
     record = json.loads(guided.to_json())
-    assert record["mission"]["formula"] and "room_" in record["explanation"]["text"] and record["verified"] is True
+    assert (
+        record["mission"]["formula"]
+        and "room_" in record["explanation"]["text"]
+        and record["verified"] is True
+    )
 
 
 def test_mission_from_text_offline_and_saved(demo, tmp_path: Path) -> None:

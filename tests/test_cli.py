@@ -30,7 +30,9 @@ def test_inspect_gibson_scene_by_name(gibson_root: Path, capsys: pytest.CaptureF
         (["inspect", "Benevolence", "--data", "/no/such/data"], "does not exist"),
     ],
 )
-def test_user_errors_exit_2_with_one_line(argv: list[str], fragment: str, capsys: pytest.CaptureFixture[str]) -> None:
+def test_user_errors_exit_2_with_one_line(
+    argv: list[str], fragment: str, capsys: pytest.CaptureFixture[str]
+) -> None:
     assert main(argv) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) <= 2 and err[0].startswith("sgplan: error:") and fragment in err[0]
@@ -63,7 +65,9 @@ def test_demo_runs_end_to_end_offline(tmp_path: Path, capsys: pytest.CaptureFixt
 DEMO_FORMULA = 'F("enter(room_5)" & F "reach(object_28)") & G !"enter(room_6)"'
 
 
-def test_plan_formula_on_demo_writes_verified_json(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_plan_formula_on_demo_writes_verified_json(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     import json
 
     out = tmp_path / "r.json"
@@ -76,21 +80,30 @@ def test_plan_formula_on_demo_writes_verified_json(tmp_path: Path, capsys: pytes
     assert len(record["path"][0]) == 4 and (tmp_path / "plan_floor_0.png").is_file()
 
 
-def test_plan_reports_invalid_start_and_infeasible(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_plan_reports_invalid_start_and_infeasible(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     import json
 
     out = tmp_path / "r.json"
-    assert main(["plan", "--scene", "demo", "--formula", DEMO_FORMULA, "--start", "0,0,0", "--json", str(out)]) == 2
+    assert (
+        main(["plan", "--scene", "demo", "--formula", DEMO_FORMULA, "--start", "0,0,0", "--json", str(out)])
+        == 2
+    )
     assert json.loads(out.read_text())["status"] == "invalid-start"
     assert "start" in capsys.readouterr().err
     # the bathroom is reachable only through the corridor, which the mission forbids
     blocked = 'F "enter(room_5)" & G !"enter(room_2)"'
-    assert main(["plan", "--scene", "demo", "--formula", blocked, "--start-index", "1", "--json", str(out)]) == 2
+    assert (
+        main(["plan", "--scene", "demo", "--formula", blocked, "--start-index", "1", "--json", str(out)]) == 2
+    )
     assert json.loads(out.read_text())["status"] == "infeasible"
 
 
 @pytest.mark.gibson
-def test_plan_gibson_mission_folder_authors_profile(gibson_root: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_plan_gibson_mission_folder_authors_profile(
+    gibson_root: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     folder = gibson_root / "Benevolence" / "missions" / "1"
     assert main(["plan", "--scene", str(gibson_root / "Benevolence"), "--mission-dir", str(folder),
                  "--start-index", "0", "--profile", "authors", "--verify"]) == 0
@@ -100,22 +113,39 @@ def test_plan_gibson_mission_folder_authors_profile(gibson_root: Path, capsys: p
 @pytest.mark.parametrize(
     ("argv", "fragment"),
     [
-        (["plan", "--scene", "demo", "--formula", 'F "enter(room_5)"', "--time-limit", "nan"], "number of seconds > 0 and <= 1e+06"),
-        (["plan", "--scene", "demo", "--formula", 'F "enter(room_5)"', "--max-expansions", "0"], "whole number >= 1"),
+        (
+            ["plan", "--scene", "demo", "--formula", 'F "enter(room_5)"', "--time-limit", "nan"],
+            "number of seconds > 0 and <= 1e+06",
+        ),
+        (
+            ["plan", "--scene", "demo", "--formula", 'F "enter(room_5)"', "--max-expansions", "0"],
+            "whole number >= 1",
+        ),
         (["bench", "--jobs", "-2"], "whole number >= 1"),
         (["bench", "--case-timeout", "inf"], "number of seconds > 0"),
         (["bench", "--case-timeout", "3e6"], "number of seconds > 0 and <= 1e+06"),
         (["bench", "--time-limit", "-1"], "number of seconds > 0"),
         (["demo", "--start-index", "x"], "whole number >= 0"),
         (["inspect", "demo", "--robot-radius", "-0.1"], "radius in metres > 0 and <= 2"),
-        (["plan", "--scene", "demo", "--formula", "x", "--robot-radius", "100"], "radius in metres > 0 and <= 2"),
-        (["plan", "--scene", "demo", "--formula", "x", "--reach-radius", "1e308"], "radius in metres > 0 and <= 100"),
-        (["plan", "--scene", "demo", "--formula", "x", "--reach-radius", "0"], "radius in metres > 0 and <= 100"),
+        (
+            ["plan", "--scene", "demo", "--formula", "x", "--robot-radius", "100"],
+            "radius in metres > 0 and <= 2",
+        ),
+        (
+            ["plan", "--scene", "demo", "--formula", "x", "--reach-radius", "1e308"],
+            "radius in metres > 0 and <= 100",
+        ),
+        (
+            ["plan", "--scene", "demo", "--formula", "x", "--reach-radius", "0"],
+            "radius in metres > 0 and <= 100",
+        ),
         (["guide", "--max-concurrency", "0"], "whole number >= 1"),
         (["guide", "--rpm", "nan"], "finite number > 0"),
     ],
 )
-def test_bad_numbers_are_refused_by_the_parser(argv: list[str], fragment: str, capsys: pytest.CaptureFixture[str]) -> None:
+def test_bad_numbers_are_refused_by_the_parser(
+    argv: list[str], fragment: str, capsys: pytest.CaptureFixture[str]
+) -> None:
     with pytest.raises(SystemExit) as exit_info:
         main(argv)
     assert exit_info.value.code == 2

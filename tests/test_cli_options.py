@@ -25,7 +25,9 @@ def test_version(capsys: pytest.CaptureFixture[str]) -> None:
 
 
 @pytest.mark.parametrize("where", ["before", "after"])
-def test_quiet_verbose_and_debug_go_before_or_after_the_command(where: str, capsys: pytest.CaptureFixture[str]) -> None:
+def test_quiet_verbose_and_debug_go_before_or_after_the_command(
+    where: str, capsys: pytest.CaptureFixture[str]
+) -> None:
     def run(*flags: str) -> str:
         argv = ["plan", "--scene", "demo", *FORMULA]
         assert main([*flags, *argv] if where == "before" else [*argv, *flags]) == 0
@@ -54,8 +56,15 @@ def test_the_compile_notice_is_said_when_kernels_are_cold(monkeypatch: pytest.Mo
 
 
 def test_plan_takes_the_llm_options_and_names_in_any_case(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["plan", "--scene", "DEMO", "--formula", 'F "enter(room_4)"', "--setup", "no-llm", "--profile",
-                 "LTLF"]) == 0
+    assert (
+        main(
+            [
+                "plan", "--scene", "DEMO", "--formula", 'F "enter(room_4)"', "--setup", "no-llm", "--profile",
+                "LTLF",
+            ]
+        )
+        == 0
+    )
     code = main(["plan", "--scene", "demo", "--text", "Go to the kitchen.", "--samples", "2", "--rpm", "5"])
     assert code == 2 and "--rpm, --samples only apply to a language model" in capsys.readouterr().err
 
@@ -64,14 +73,21 @@ def test_one_list_syntax_and_scene_names_in_any_case(tmp_path: Path) -> None:
     assert split_list(["a,b", "c", " d , "]) == ["a", "b", "c", "d"] and split_list(None) is None
     for name in ("Collierville", "Benevolence"):
         (tmp_path / name).mkdir()
-    assert _scene_folders(tmp_path, ["collierville", "BENEVOLENCE", "nope"]) == ["Collierville", "Benevolence", "nope"]
+    assert _scene_folders(tmp_path, ["collierville", "BENEVOLENCE", "nope"]) == [
+        "Collierville", "Benevolence", "nope",
+    ]
 
 
-def test_inspect_json_and_flags_start_cells_inside_obstacles(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_inspect_json_and_flags_start_cells_inside_obstacles(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     assert main(["inspect", "demo", "--json", "-"]) == 0
     summary = json.loads(capsys.readouterr().out)
     assert summary["name"] == "demo-house" and summary["initial_cells_free"] == [True] * 5
-    assert main(["inspect", "demo", "--robot-radius", "1.0", "--no-objects", "--json", str(tmp_path / "s.json")]) == 0
+    assert (
+        main(["inspect", "demo", "--robot-radius", "1.0", "--no-objects", "--json", str(tmp_path / "s.json")])
+        == 0
+    )
     text = capsys.readouterr().out
     flags = json.loads((tmp_path / "s.json").read_text())["initial_cells_free"]
     assert False in flags and "NOT FREE" in text and "a plan cannot start there" in text

@@ -51,8 +51,13 @@ def test_shipped_folders_fit_only_their_own_scene(gibson_root: Path) -> None:
 
 
 @pytest.mark.gibson
-def test_plan_refuses_a_shipped_folder_on_another_scene(gibson_root: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_plan_refuses_a_shipped_folder_on_another_scene(
+    gibson_root: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     folder = gibson_root / "Allensville" / "missions" / "4"
-    assert main(["plan", "--scene", "Collierville", "--data", str(gibson_root), "--mission-dir", str(folder)]) == 2
+    assert (
+        main(["plan", "--scene", "Collierville", "--data", str(gibson_root), "--mission-dir", str(folder)])
+        == 2
+    )
     err = capsys.readouterr().err
     assert "room_10 was a dining room on floor 0, but in 'Collierville' it is a corridor on floor 1" in err

@@ -84,11 +84,11 @@ def test_bad_folders(tmp_path: Path) -> None:
     with pytest.raises(MissionError, match="unknown type 'kTeleport'"):
         load_mission_folder(folder)
     (folder / "ap_desc.yaml").write_text("p7: {type: kEnterRoom, uuid: 2}\n")
-    with pytest.raises(MissionError, match="uses p1, which ap_desc.yaml does not define"):
+    with pytest.raises(MissionError, match=r"uses p1, which ap_desc.yaml does not define"):
         load_mission_folder(folder)
     (folder / "ap_desc.yaml").write_text("p1: [unclosed\n")
     with pytest.raises(MissionError, match="invalid YAML"):
         load_mission_folder(folder)
     (folder / "ap_desc.yaml").unlink()
-    with pytest.raises(MissionError, match="missing ap_desc.yaml"):
+    with pytest.raises(MissionError, match=r"missing ap_desc.yaml"):
         load_mission_folder(folder)

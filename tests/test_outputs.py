@@ -99,10 +99,14 @@ def test_events_say_where_each_proposition_became_true_and_the_automaton_moved()
     assert [e.meaning for e in props if e.meaning != "enter(room_2)"][:3] == \
         ["enter(room_5)", "reach(object_28)", "enter(room_11)"]
     states = [e for e in r.events if e.kind == "state"]
-    assert states[-1].accepting and states[-1].to_state == r.path[-1, 3] and states[-1].index == len(r.path) - 1
+    assert (
+        states[-1].accepting and states[-1].to_state == r.path[-1, 3] and states[-1].index == len(r.path) - 1
+    )
     costs = np.concatenate([[0.0], np.cumsum(leg_costs(r.path, r.grid))])
     for e in r.events:
-        assert e.cost_m == pytest.approx(costs[e.index]) and (e.row, e.col, e.floor) == tuple(r.path[e.index, :3])
+        assert e.cost_m == pytest.approx(costs[e.index]) and (e.row, e.col, e.floor) == tuple(
+            r.path[e.index, :3]
+        )
     kitchen = next(e for e in props if e.meaning == "enter(room_5)")
     assert kitchen.entity == "bathroom" and "bathroom" in kitchen.describe()
 
@@ -113,7 +117,10 @@ def test_csv_and_ros_path_files(tmp_path: Path) -> None:
         rows = list(csv.DictReader(handle))
     assert len(rows) == len(r.waypoints_simplified) and float(rows[-1]["cost_m"]) == pytest.approx(
         r.waypoints_simplified[-1].cost_m, abs=1e-4)
-    assert len(list(csv.reader(r.write_waypoints_csv(tmp_path / "d.csv", simplified=False).open()))) == len(r.path) + 1
+    assert (
+        len(list(csv.reader(r.write_waypoints_csv(tmp_path / "d.csv", simplified=False).open())))
+        == len(r.path) + 1
+    )
     document = yaml.safe_load(r.write_ros_path_yaml(tmp_path / "p.yaml", frame_id="house").read_text())
     assert [p["floor"] for p in document["paths"]] == [0, 1]
     poses = [pose for p in document["paths"] for pose in p["path"]["poses"]]
@@ -121,27 +128,42 @@ def test_csv_and_ros_path_files(tmp_path: Path) -> None:
     first, second = poses[0]["pose"], poses[1]["pose"]
     q = first["orientation"]
     assert q["z"] ** 2 + q["w"] ** 2 == pytest.approx(1.0, abs=1e-5)
-    heading = math.atan2(second["position"]["y"] - first["position"]["y"], second["position"]["x"] - first["position"]["x"])
+    heading = math.atan2(
+        second["position"]["y"] - first["position"]["y"], second["position"]["x"] - first["position"]["x"]
+    )
     assert 2 * math.atan2(q["z"], q["w"]) == pytest.approx(heading, abs=1e-4)
 
 
 def test_plan_json_to_stdout_and_robot_files(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                              capsys: pytest.CaptureFixture[str]) -> None:
     monkeypatch.chdir(tmp_path)
-    code = main(["plan", "--scene", "demo", "--text", "Go to the kitchen.", "--start-room", "bathroom on floor 0",
-                 "--json", "-", "--waypoints", "w.csv", "--ros-path", "p.yaml", "--setup", "no-llm"])
+    code = main(
+        [
+            "plan", "--scene", "demo", "--text", "Go to the kitchen.", "--start-room", "bathroom on floor 0",
+            "--json", "-", "--waypoints", "w.csv", "--ros-path", "p.yaml", "--setup", "no-llm",
+        ]
+    )
     out = capsys.readouterr().out
     record = json.loads(out)  # stdout holds the JSON only
     assert code == 0 and not (tmp_path / "-").exists() and (tmp_path / "w.csv").is_file()
     assert record["scene"] == "demo-house" and record["mission"]["text"] == "Go to the kitchen."
-    assert record["mission"]["formula"] and record["mission"]["propositions"] == {"enter(room_4)": "enter(room_4)"}
-    assert record["status"] == "optimal" and record["cost_m"] > 0 and record["start_from"] == "room bathroom room_5"
+    assert record["mission"]["formula"] and record["mission"]["propositions"] == {
+        "enter(room_4)": "enter(room_4)"
+    }
+    assert (
+        record["status"] == "optimal"
+        and record["cost_m"] > 0
+        and record["start_from"] == "room bathroom room_5"
+    )
     assert record["events"][-1]["accepting"] and record["waypoints_simplified"][0]["room"] == "room_5"
     assert "cost" not in record and all("cost_m" in it for it in record["iterations"])
 
 
 def test_a_timeout_exits_3_and_prints_its_bound(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    argv = ["plan", "--scene", "demo", "--formula", FORMULA, "--setup", "NO-LLM", "--json", str(tmp_path / "t.json")]
+    argv = [
+        "plan", "--scene", "demo", "--formula", FORMULA, "--setup", "NO-LLM", "--json",
+        str(tmp_path / "t.json"),
+    ]
     assert main([*argv, "--max-expansions", "300"]) == 3
     err = capsys.readouterr().err
     record = json.loads((tmp_path / "t.json").read_text())
@@ -152,8 +174,12 @@ def test_a_timeout_exits_3_and_prints_its_bound(tmp_path: Path, capsys: pytest.C
 
 
 def test_plan_draws_png_svg_and_the_automaton_and_writes_the_html_report(tmp_path: Path) -> None:
-    code = main(["plan", "--scene", "demo", "--formula", FORMULA, "--setup", "NO-LLM", "--draw", str(tmp_path / "d"),
-                 "--html", str(tmp_path / "r.html")])
+    code = main(
+        [
+            "plan", "--scene", "demo", "--formula", FORMULA, "--setup", "NO-LLM", "--draw",
+            str(tmp_path / "d"), "--html", str(tmp_path / "r.html"),
+        ]
+    )
     names = {p.name for p in (tmp_path / "d").iterdir()}
     assert code == 0 and {"plan_floor_0.png", "plan_floor_1.svg", "automaton.dot", "automaton.svg"} <= names
     page = (tmp_path / "r.html").read_text()

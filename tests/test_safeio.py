@@ -10,7 +10,16 @@ import pytest
 
 from sgplan.errors import SceneError
 from sgplan.files import rebuild_folder, write_text_atomically, write_texts_atomically
-from sgplan.safeio import MAX_DEPTH, json_depth, load_json, load_yaml, parse_json, parse_yaml, quote, read_text
+from sgplan.safeio import (
+    MAX_DEPTH,
+    json_depth,
+    load_json,
+    load_yaml,
+    parse_json,
+    parse_yaml,
+    quote,
+    read_text,
+)
 
 
 def test_quote_is_bounded_in_length_and_time() -> None:
@@ -47,7 +56,10 @@ def test_yaml_alias_bomb_is_refused_before_it_expands() -> None:
 
 def test_yaml_within_the_limits_reads_as_usual() -> None:
     nested = "[" * (MAX_DEPTH - 1) + "1" + "]" * (MAX_DEPTH - 1)
-    assert parse_yaml(f"a: {nested}\nb: &x [1, 2]\nc: *x\n1: one\n'1': text\n", SceneError, None)["c"] == [1, 2]
+    assert parse_yaml(f"a: {nested}\nb: &x [1, 2]\nc: *x\n1: one\n'1': text\n", SceneError, None)["c"] == [
+        1,
+        2,
+    ]
 
 
 def test_json_limits() -> None:

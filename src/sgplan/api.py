@@ -18,7 +18,7 @@ import time
 from collections.abc import Mapping
 from dataclasses import replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 
@@ -149,7 +149,9 @@ def _backends(llm: str | Backends, **options: Any) -> Backends:
     return open_backends(llm, **options) if isinstance(llm, str) else llm
 
 
-def add_guidance(mission: Mission, building: Building, guide: MissionGuide | None = None) -> tuple[Mission, str]:
+def add_guidance(
+    mission: Mission, building: Building, guide: MissionGuide | None = None
+) -> tuple[Mission, str]:
     """``mission`` with LLM-heuristic guidance from ``guide`` (default: the offline symbolic guide, not an
     LLM) when it carries none, and where the guidance came from (``"mission"`` or the guide's name).
     The given mission is not changed."""
@@ -164,10 +166,17 @@ def add_guidance(mission: Mission, building: Building, guide: MissionGuide | Non
     if isinstance(guide, LLMGuide) and guide.mission_text is None:
         guide.mission_text = mission.grounded_text or mission.text  # the prompt quotes the mission
     log.debug("guidance from %s", guide.name)
-    return replace(mission, guidance=guide.guide(building, mission.automaton, mission.descriptions)), guide.name
+    return replace(
+        mission, guidance=guide.guide(building, mission.automaton, mission.descriptions)
+    ), guide.name
 
 
-def _explanation(mission: Mission, building: Building) -> dict[str, str]:
+class _Explained(TypedDict):
+    explanation: str
+    explanation_method: str
+
+
+def _explanation(mission: Mission, building: Building) -> _Explained:
     """The mission explained in plain English (:func:`sgplan.explain.explain_mission`) as the
     ``explanation`` and ``explanation_method`` of a :class:`PlanResult`: the one place a plan gets it."""
     from sgplan.explain import explain_mission
@@ -251,9 +260,12 @@ class Session:
         )
         scene_check = _check_in_scene(mission, self.building, prepared.problem)
         prepare_s = time.perf_counter() - t0
-        log.info("scene %s: start %s (%s), robot radius %g m (%s), reach %g m (%s), profile %s, %d automaton states",
-                 self.building.name, start_at, start_from, radii.robot_m, radii.robot_from, radii.reach_m,
-                 radii.reach_from, profile, mission.automaton.num_states)
+        log.info(
+            "scene %s: start %s (%s), robot radius %g m (%s), reach %g m (%s), profile %s, %d automaton "
+            "states",
+            self.building.name, start_at, start_from, radii.robot_m, radii.robot_from, radii.reach_m,
+            radii.reach_from, profile, mission.automaton.num_states,
+        )
         announce_compile()
         found = amra_plan(prepared.problem, spec.name, time_limit_s=time_limit_s,
                           max_expansions=max_expansions, callback=callback)
@@ -270,8 +282,10 @@ class Session:
             result.bound = 1.0
         if found.path is not None:
             _add_outputs(result, verify)
-        result.timings = {"prepare_s": prepare_s, "precompute_s": found.precompute_s, "search_s": found.search_s,
-                          "wall_s": time.perf_counter() - t0}
+        result.timings = {
+            "prepare_s": prepare_s, "precompute_s": found.precompute_s, "search_s": found.search_s,
+            "wall_s": time.perf_counter() - t0,
+        }
         return result
 
 
@@ -378,6 +392,8 @@ def plan(
         session = Session(building)
     elif session.building is not building:
         raise PlanningError("the session plans on another building than the one given")
-    return session.plan(mission, start, setup=setup, profile=profile, robot_radius_m=robot_radius_m,
-                        reach_radius_m=reach_radius_m, time_limit_s=time_limit_s, max_expansions=max_expansions,
-                        verify=verify, guide=guide, callback=callback)
+    return session.plan(
+        mission, start, setup=setup, profile=profile, robot_radius_m=robot_radius_m,
+        reach_radius_m=reach_radius_m, time_limit_s=time_limit_s, max_expansions=max_expansions,
+        verify=verify, guide=guide, callback=callback,
+    )

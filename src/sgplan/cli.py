@@ -69,8 +69,10 @@ def _internal_error_line(args: argparse.Namespace, error: BaseException) -> str:
 
     inputs = [f"{name}={clip(str(value), 60)}" for name, value in sorted(vars(args).items())
               if name in _INPUT_OPTIONS and value not in (None, False)]
-    return (f"sgplan {args.command}: internal error: {type(error).__name__}: {clip(str(error), 200)} "
-            f"(input: {', '.join(inputs) or 'none'}); run with --debug for the traceback, and please report it")
+    return (
+        f"sgplan {args.command}: internal error: {type(error).__name__}: {clip(str(error), 200)} "
+        f"(input: {', '.join(inputs) or 'none'}); run with --debug for the traceback, and please report it"
+    )
 
 
 _INPUT_OPTIONS = ("scene", "mission_dir", "formula", "text", "aps", "guidance", "out", "data", "cache",

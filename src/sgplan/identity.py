@@ -71,7 +71,9 @@ def entity_facts(propositions: Mapping[str, Proposition], building: Building) ->
     return dict(sorted(facts.items()))
 
 
-def write_scene_record(folder: str | Path, propositions: Mapping[str, Proposition], building: Building) -> Path:
+def write_scene_record(
+    folder: str | Path, propositions: Mapping[str, Proposition], building: Building
+) -> Path:
     """Write ``scene.yaml`` (see the module docstring) into ``folder``; returns its path."""
     path = Path(folder) / SCENE_RECORD_NAME
     doc = {"format": FORMAT, "scene": building.name, "graph_sha256": scene_graph_hash(building),
@@ -100,7 +102,9 @@ class SceneFit:
         return not self.mismatches
 
 
-def check_folder_scene(folder: str | Path, propositions: Mapping[str, Proposition], building: Building) -> SceneFit:
+def check_folder_scene(
+    folder: str | Path, propositions: Mapping[str, Proposition], building: Building
+) -> SceneFit:
     """Compare the mission folder ``folder`` (whose propositions are ``propositions``) with ``building``.
 
     Raises
@@ -116,7 +120,11 @@ def check_folder_scene(folder: str | Path, propositions: Mapping[str, Propositio
     record = folder / SCENE_RECORD_NAME
     if record.is_file():
         doc = _read(record)
-        if not isinstance(doc, dict) or doc.get("format") != FORMAT or not isinstance(doc.get("entities"), dict):
+        if (
+            not isinstance(doc, dict)
+            or doc.get("format") != FORMAT
+            or not isinstance(doc.get("entities"), dict)
+        ):
             raise MissionError(f"not a scene record ({FORMAT}); delete it or write the mission again", record)
         if doc.get("graph_sha256") == scene_graph_hash(building):
             return SceneFit(SCENE_RECORD_NAME)
@@ -131,9 +139,16 @@ def check_folder_scene(folder: str | Path, propositions: Mapping[str, Propositio
         return SceneFit(SCENE_RECORD_NAME, tuple(problems), notes)
     described = _authors_description(folder / "building_desc.yaml")
     if described is None:
-        return SceneFit("nothing", tuple(missing),
-                        (("the folder records no scene (no scene.yaml or building_desc.yaml): it could not be "
-                         "checked against the scene"),))
+        return SceneFit(
+            "nothing",
+            tuple(missing),
+            (
+                (
+                    "the folder records no scene (no scene.yaml or building_desc.yaml): it could not be "
+                    "checked against the scene"
+                ),
+            ),
+        )
     wanted = {key: described[key] for key in here if key in described}
     unnamed = [key for key in here if key not in described]
     problems = _differences(wanted, here, building.name) + missing
@@ -155,9 +170,12 @@ def ensure_folder_fits_scene(folder: str | Path, propositions: Mapping[str, Prop
         return fit
     said = "; ".join(fit.mismatches)
     if not force:
-        raise SceneMismatchError(f"this mission does not fit scene {building.name!r} (checked through "
-                                 f"{fit.source}): {said}. Plan it on its own scene, or pass --force to plan it "
-                                 "here anyway", folder)
+        raise SceneMismatchError(
+            f"this mission does not fit scene {building.name!r} (checked through "
+            f"{fit.source}): {said}. Plan it on its own scene, or pass --force to plan it "
+            "here anyway",
+            folder,
+        )
     return SceneFit(fit.source, fit.mismatches,
                     (*fit.notes, (f"planning anyway (--force) although the mission does not fit scene "
                                  f"{building.name!r}: {said}")))
@@ -178,7 +196,10 @@ def _differences(recorded: Mapping[str, Any], here: Mapping[str, dict[str, Any]]
             continue
         said_then = f"{_a(str(then.get('category')))} on floor {then.get('floor')}"
         said_now = f"{_a(now['category'])} on floor {now['floor']}"
-        if _normal(str(then.get("category"))) != _normal(now["category"]) or then.get("floor") != now["floor"]:
+        if (
+            _normal(str(then.get("category"))) != _normal(now["category"])
+            or then.get("floor") != now["floor"]
+        ):
             out.append(f"{key} was {said_then}, but in {scene!r} it is {said_now}")
     return out
 

@@ -23,7 +23,7 @@ import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 import yaml
@@ -31,29 +31,29 @@ import yaml
 from sgplan.errors import FormulaError, MissionError, SgplanError
 from sgplan.files import write_text_atomically
 from sgplan.limits import MAX_REACH_RADIUS_M
-from sgplan.safeio import load_yaml, quote, read_text
-from sgplan.scene.fields import is_int, is_number
 from sgplan.logic import (
     Automaton,
     Formula,
     atoms,
     ltlf_to_dfa,
     number_aps,
-    read_hoa,
     parse_infix,
     parse_prefix,
     parse_tokens,
+    read_hoa,
     to_prefix,
     to_tokens,
     write_hoa,
 )
+from sgplan.safeio import load_yaml, quote, read_text
+from sgplan.scene.fields import is_int, is_number
 from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building
 
 Guidance = Mapping[Any, Mapping[Any, Sequence[str]]]
 """LLM guidance: ``{room_uuid: {automaton state: ["move(a, b)" | "reach(r, o)", ...]}}``."""
 
-_AP_TYPES = {"kEnterRoom": "enter", "kReachObject": "reach"}
+_AP_TYPES: dict[str, Literal["enter", "reach"]] = {"kEnterRoom": "enter", "kReachObject": "reach"}
 
 
 @dataclass(eq=False)
@@ -180,7 +180,8 @@ MAX_MISSION_FILE_BYTES = 16 * 2**20
 
 
 def _read_text(path: Path) -> str | None:
-    """The stripped text of an optional file, ``None`` when absent; anything else under its name is an error."""
+    """The stripped text of an optional file, ``None`` when absent; anything else under its name is an
+    error."""
     if not (path.exists() or path.is_symlink()):
         return None
     return read_text(path, MissionError, "file", MAX_MISSION_FILE_BYTES).strip()
@@ -211,22 +212,28 @@ def read_ap_desc(path: str | Path) -> dict[str, Proposition]:
             continue
         if kind is None:
             raise MissionError(
-                f"proposition {quote(name)}: unknown type {quote(entry['type'])} (use kEnterRoom or kReachObject)",
+                f"proposition {quote(name)}: unknown type {quote(entry['type'])} (use kEnterRoom or "
+                "kReachObject)",
                 path,
             )
         uuid: Any = entry.get("uuid")
         radius: Any = entry.get("reach_distance", -1.0)
         if not is_int(uuid) or uuid < 0:
-            raise MissionError(f"proposition {quote(name)}: 'uuid' must be a whole number >= 0, got {quote(uuid)}", path)
+            raise MissionError(
+                f"proposition {quote(name)}: 'uuid' must be a whole number >= 0, got {quote(uuid)}", path
+            )
         # -1 (any value <= 0) means the global reach radius; others are capped as --reach-radius is.
         if not is_number(radius) or not math.isfinite(radius) or radius > MAX_REACH_RADIUS_M:
             raise MissionError(
-                f"proposition {quote(name)}: 'reach_distance' must be a number of metres <= {MAX_REACH_RADIUS_M:g} "
+                f"proposition {quote(name)}: 'reach_distance' must be a number of metres <= "
+                f"{MAX_REACH_RADIUS_M:g} "
                 f"(or -1 for the scene's), got {quote(radius)}",
                 path,
             )
         try:
-            meaning[name] = Proposition(kind, int(uuid), float(radius) if kind == "reach" and radius > 0 else None)
+            meaning[name] = Proposition(
+                kind, int(uuid), float(radius) if kind == "reach" and radius > 0 else None
+            )
         except SgplanError as exc:
             raise MissionError(f"proposition {quote(name)}: {exc}", path) from None
     return meaning
@@ -245,7 +252,8 @@ def read_guidance(path: str | Path) -> Guidance:
         for state, calls in (states or {}).items():
             if calls is not None and not (isinstance(calls, list) and all(isinstance(c, str) for c in calls)):
                 raise MissionError(
-                    f"room {quote(room)}, state {quote(state)}: expected a list of call strings, got {quote(calls)}",
+                    f"room {quote(room)}, state {quote(state)}: expected a list of call strings, got "
+                    f"{quote(calls)}",
                     path,
                 )
     return {room: (states or {}) for room, states in doc.items()}
@@ -277,12 +285,16 @@ def load_mission_folder(path: str | Path, profile: str = "ltlf", guidance: bool 
     hoa_path, ap_path = folder / "automaton.aut", folder / "ap_desc.yaml"
     for required in (hoa_path, ap_path):
         if not (required.exists() or required.is_symlink()):
-            raise MissionError(f"missing {required.name}: a mission folder needs automaton.aut and ap_desc.yaml", folder)
+            raise MissionError(
+                f"missing {required.name}: a mission folder needs automaton.aut and ap_desc.yaml", folder
+            )
     automaton = read_hoa(hoa_path, profile)  # type: ignore[arg-type]
     meaning = read_ap_desc(ap_path)
     missing = [ap for ap in automaton.aps if ap not in meaning]
     if missing:
-        raise MissionError(f"automaton.aut uses {', '.join(missing)}, which ap_desc.yaml does not define", folder)
+        raise MissionError(
+            f"automaton.aut uses {', '.join(missing)}, which ap_desc.yaml does not define", folder
+        )
 
     formula = None
     tokens_text = _read_text(folder / "GPT_LTL_formula.txt")
@@ -302,9 +314,13 @@ def load_mission_folder(path: str | Path, profile: str = "ltlf", guidance: bool 
         formula=formula,
         text=_read_text(folder / "NL_instructions.txt"),
         grounded_text=_read_text(folder / "NL_instructions_uuid.txt"),
-        guidance=read_guidance(heuristic) if guidance and (heuristic.exists() or heuristic.is_symlink()) else None,
+        guidance=read_guidance(heuristic)
+        if guidance and (heuristic.exists() or heuristic.is_symlink())
+        else None,
         source=folder,
-        notes=[f"ap_desc.yaml defines {', '.join(unused)}, which the automaton does not use"] if unused else [],
+        notes=[f"ap_desc.yaml defines {', '.join(unused)}, which the automaton does not use"]
+        if unused
+        else [],
     )
 
 
@@ -338,7 +354,9 @@ def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str 
         p_names = number_aps(tokens)
         write_text_atomically(folder / "GPT_LTL_formula.txt", repr(tokens) + "\n")
         write_text_atomically(folder / "ap_dict.txt", repr(p_names) + "\n")
-        write_text_atomically(folder / "Spot_LTL_formula.txt", to_prefix(parse_tokens(tokens, ap_names=p_names)) + "\n")
+        write_text_atomically(
+            folder / "Spot_LTL_formula.txt", to_prefix(parse_tokens(tokens, ap_names=p_names)) + "\n"
+        )
     else:
         p_names = {token: f"p{k + 1}" for k, token in enumerate(dict.fromkeys(actions.values()))}
     renamed = replace(mission.automaton, aps=tuple(p_names[actions[ap]] for ap in mission.automaton.aps))
@@ -346,7 +364,10 @@ def save_mission_folder(mission: Mission, path: str | Path, hierarchy_text: str 
     ap_desc = {}
     for ap in mission.automaton.aps:
         prop = mission.propositions[ap]
-        entry: dict[str, Any] = {"type": "kEnterRoom" if prop.kind == "enter" else "kReachObject", "uuid": prop.uuid}
+        entry: dict[str, Any] = {
+            "type": "kEnterRoom" if prop.kind == "enter" else "kReachObject",
+            "uuid": prop.uuid,
+        }
         if prop.kind == "reach":
             entry["reach_distance"] = float(prop.reach_radius_m) if prop.reach_radius_m else -1.0
         ap_desc[p_names[prop.name]] = entry

@@ -44,27 +44,43 @@ def resolve_radii(building: Building, robot_m: float | None = None, reach_m: flo
     robot, robot_from = (robot_m, "given") if robot_m is not None else (
         (building.robot_radius_m, "scene") if building.robot_radius_m is not None else (0.0, "default")
     )
-    reach, reach_from = (reach_m, "given") if reach_m is not None else (
-        (building.reach_radius_m, "scene") if building.reach_radius_m is not None else (DEFAULT_REACH_RADIUS_M, "default")
+    reach, reach_from = (
+        (reach_m, "given")
+        if reach_m is not None
+        else (
+            (building.reach_radius_m, "scene")
+            if building.reach_radius_m is not None
+            else (DEFAULT_REACH_RADIUS_M, "default")
+        )
     )
     if robot < 0 or reach <= 0:
-        raise PlanningError(f"radii must be robot >= 0 and reach > 0 metres, got robot {robot}, reach {reach}")
+        raise PlanningError(
+            f"radii must be robot >= 0 and reach > 0 metres, got robot {robot}, reach {reach}"
+        )
     if reach < robot:
-        raise PlanningError(f"reach radius {reach} m is smaller than the robot radius {robot} m; give a larger --reach-radius")
+        raise PlanningError(
+            f"reach radius {reach} m is smaller than the robot radius {robot} m; give a larger --reach-radius"
+        )
     return Radii(float(robot), float(reach), robot_from, reach_from)
 
 
-def resolve_start(building: Building, start: tuple[int, int, int] | None = None, index: int | None = None) -> tuple[int, int, int]:
+def resolve_start(
+    building: Building, start: tuple[int, int, int] | None = None, index: int | None = None
+) -> tuple[int, int, int]:
     """The start cell ``(row, col, floor)``: given, or the scene's initial cell number ``index``
     (initial_positions.yaml), or its first one."""
     if start is not None:
         return (int(start[0]), int(start[1]), int(start[2]))
     cells = building.initial_cells
     if not cells:
-        raise PlanningError(f"scene {building.name!r} has no initial positions: give a start cell (row, col, floor)")
+        raise PlanningError(
+            f"scene {building.name!r} has no initial positions: give a start cell (row, col, floor)"
+        )
     k = 0 if index is None else index
     if not 0 <= k < len(cells):
-        raise PlanningError(f"start index {k} is out of range: scene {building.name!r} has {len(cells)} initial positions")
+        raise PlanningError(
+            f"start index {k} is out of range: scene {building.name!r} has {len(cells)} initial positions"
+        )
     return cells[k]
 
 
@@ -99,7 +115,9 @@ def make_problem(
     if grid is None:
         grid = build_occupancy_grid(building, radii.robot_m)
     elif grid.robot_radius_m != radii.robot_m:
-        raise PlanningError(f"the given grid is for robot radius {grid.robot_radius_m} m, not {radii.robot_m} m")
+        raise PlanningError(
+            f"the given grid is for robot radius {grid.robot_radius_m} m, not {radii.robot_m} m"
+        )
     if labels is None:
         labels = mission.labels(building, radii.reach_m)
     problem = PlanningProblem(

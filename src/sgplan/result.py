@@ -126,10 +126,13 @@ class PlanResult:
         """The JSON-ready record (plain dicts, lists, numbers, strings, ``None``; no infinities)."""
         return {
             "scene": self.scene,
-            "mission": {"text": self.mission_text, "grounded_text": self.grounded_text, "formula": self.formula,
-                        "propositions": dict(self.propositions)},
-            "explanation": None if self.explanation is None else {"text": self.explanation,
-                                                                   "method": self.explanation_method},
+            "mission": {
+                "text": self.mission_text, "grounded_text": self.grounded_text, "formula": self.formula,
+                "propositions": dict(self.propositions),
+            },
+            "explanation": None
+            if self.explanation is None
+            else {"text": self.explanation, "method": self.explanation_method},
             "scene_check": list(self.scene_check),
             "start": list(self.start),
             "start_from": self.start_from,
@@ -140,8 +143,10 @@ class PlanResult:
             "bound": self.bound,
             "verified": self.verified,
             "guidance": self.guidance,
-            "radii": {"robot_m": self.radii.robot_m, "reach_m": self.radii.reach_m,
-                      "robot_from": self.radii.robot_from, "reach_from": self.radii.reach_from},
+            "radii": {
+                "robot_m": self.radii.robot_m, "reach_m": self.radii.reach_m,
+                "robot_from": self.radii.robot_from, "reach_from": self.radii.reach_from,
+            },
             "queues": list(self.queues),
             "iterations": iteration_records(self.iterations),
             "path": None if self.path is None else self.path.tolist(),
@@ -160,13 +165,18 @@ class PlanResult:
         return write_text(path, self.to_json() + "\n")
 
     def write_waypoints_csv(self, path: str | Path, *, simplified: bool = True) -> Path:
-        """The (simplified, by default) waypoints as CSV (:func:`sgplan.outputs.files.write_waypoints_csv`)."""
+        """The (simplified, by default) waypoints as CSV
+        (:func:`sgplan.outputs.files.write_waypoints_csv`)."""
         return write_waypoints_csv(self.waypoints_simplified if simplified else self.waypoints, path)
 
-    def write_ros_path_yaml(self, path: str | Path, *, simplified: bool = True, frame_id: str = "map") -> Path:
+    def write_ros_path_yaml(
+        self, path: str | Path, *, simplified: bool = True, frame_id: str = "map"
+    ) -> Path:
         """The (simplified) waypoints as ROS ``nav_msgs/Path`` per floor stretch
         (:func:`sgplan.outputs.files.write_ros_path_yaml`)."""
-        return write_ros_path_yaml(self.waypoints_simplified if simplified else self.waypoints, path, frame_id)
+        return write_ros_path_yaml(
+            self.waypoints_simplified if simplified else self.waypoints, path, frame_id
+        )
 
     def draw(self, out_dir: str | Path, *, stem: str = "plan_floor", formats: Sequence[str] = ("png",),
              automaton: bool = True) -> list[Path]:
@@ -177,9 +187,11 @@ class PlanResult:
         from sgplan.scene.draw import MissionView, draw_building
 
         building, mission = self._drawable()
-        view = MissionView(text=self.mission_text or self.formula, explanation=self.explanation,
-                           cost_m=self.cost_m if self.path is not None else None,
-                           propositions=tuple(mission.ordered_propositions), reach_radius_m=self.radii.reach_m)
+        view = MissionView(
+            text=self.mission_text or self.formula, explanation=self.explanation,
+            cost_m=self.cost_m if self.path is not None else None,
+            propositions=tuple(mission.ordered_propositions), reach_radius_m=self.radii.reach_m,
+        )
         written = draw_building(building, out_dir, grid=self.grid, path=self.path, mission=view, stem=stem,
                                 formats=formats)
         if automaton:
@@ -187,7 +199,8 @@ class PlanResult:
         return written
 
     def write_html(self, path: str | Path) -> Path:
-        """Write the self-contained HTML report of this plan (:func:`sgplan.report.html.write_html_report`)."""
+        """Write the self-contained HTML report of this plan
+        (:func:`sgplan.report.html.write_html_report`)."""
         from sgplan.report.html import write_html_report
 
         building, mission = self._drawable()

@@ -76,7 +76,9 @@ def _describe_os_error(error: OSError) -> str:
     return error.strerror or type(error).__name__
 
 
-def check_regular_file(path: Path, error: ErrorType, what: str = "file", max_bytes: int = MAX_FILE_BYTES) -> int:
+def check_regular_file(
+    path: Path, error: ErrorType, what: str = "file", max_bytes: int = MAX_FILE_BYTES
+) -> int:
     """The size in bytes of ``path``, after checking it is a readable regular file of at most ``max_bytes``.
 
     Raises ``error(message, path)`` for a missing path, a directory, a device or FIFO (reading one may
@@ -97,7 +99,9 @@ def check_regular_file(path: Path, error: ErrorType, what: str = "file", max_byt
     return info.st_size
 
 
-def read_bytes(path: str | Path, error: ErrorType, what: str = "file", max_bytes: int = MAX_FILE_BYTES) -> bytes:
+def read_bytes(
+    path: str | Path, error: ErrorType, what: str = "file", max_bytes: int = MAX_FILE_BYTES
+) -> bytes:
     """The content of ``path`` (see :func:`check_regular_file` for what is refused)."""
     path = Path(path)
     check_regular_file(path, error, what, max_bytes)
@@ -135,7 +139,9 @@ def json_depth(text: str | bytes) -> int:
     return int(np.cumsum(steps).max(initial=0))
 
 
-def parse_json(text: str, error: ErrorType, path: Path | None, what: str = "JSON", max_depth: int = MAX_DEPTH) -> Any:
+def parse_json(
+    text: str, error: ErrorType, path: Path | None, what: str = "JSON", max_depth: int = MAX_DEPTH
+) -> Any:
     """``json.loads(text)`` with a depth bound; NaN and infinities are refused (not JSON)."""
     if json_depth(text) > max_depth:
         raise error(f"{what} nests deeper than {max_depth} levels", path)
@@ -184,7 +190,9 @@ def _bounded_construct(loader: Any, node: yaml.Node) -> None:
             on_path.discard(ident)
             expanded[ident] = 1 + sum(expanded[id(c)] for c in _children(current))
             if expanded[ident] > MAX_YAML_NODES:
-                raise YamlLimitError(f"the document expands to more than {MAX_YAML_NODES:,} nodes (an alias bomb?)")
+                raise YamlLimitError(
+                    f"the document expands to more than {MAX_YAML_NODES:,} nodes (an alias bomb?)"
+                )
             continue
         if ident in expanded or ident in on_path:
             aliases += 1
@@ -193,7 +201,9 @@ def _bounded_construct(loader: Any, node: yaml.Node) -> None:
             if ident in on_path:
                 raise YamlLimitError("the document refers to itself (a recursive alias)")
             continue
-        if depth > MAX_DEPTH and not isinstance(current, yaml.ScalarNode):  # collections count, as in the events
+        if depth > MAX_DEPTH and not isinstance(
+            current, yaml.ScalarNode
+        ):  # collections count, as in the events
             mark = current.start_mark
             raise YamlLimitError(f"nesting deeper than {MAX_DEPTH} levels at line {mark.line + 1}")
         if isinstance(current, yaml.MappingNode):
@@ -225,7 +235,8 @@ def _check_duplicate_keys(loader: Any, node: yaml.MappingNode) -> None:
         if key in seen:
             mark = key_node.start_mark
             raise YamlLimitError(
-                f"duplicate key {quote(key_node.value)} at line {mark.line + 1} (a key may appear once per mapping)"
+                f"duplicate key {quote(key_node.value)} at line {mark.line + 1} (a key may appear once per "
+                "mapping)"
             )
         seen.add(key)
 
@@ -243,7 +254,7 @@ class SafeLimitedLoader(_LimitsMixin, yaml.SafeLoader):
 _CLoader: Any = getattr(yaml, "CSafeLoader", None)
 if _CLoader is not None:
 
-    class CSafeLimitedLoader(_LimitsMixin, _CLoader):  # type: ignore[misc, valid-type]
+    class CSafeLimitedLoader(_LimitsMixin, _CLoader):
         """libyaml's safe loader with this module's limits (only for documents shallow enough)."""
 
     _FAST_LOADER: Any = CSafeLimitedLoader
@@ -284,7 +295,9 @@ def parse_yaml(text: str, error: ErrorType, path: Path | None, what: str = "YAML
         raise error(f"invalid YAML{where}: {clip(str(problem))}", path) from None
 
 
-def load_yaml(path: str | Path, error: ErrorType, what: str = "YAML file", max_bytes: int = MAX_FILE_BYTES) -> Any:
+def load_yaml(
+    path: str | Path, error: ErrorType, what: str = "YAML file", max_bytes: int = MAX_FILE_BYTES
+) -> Any:
     """The YAML document in ``path``, read and parsed within this module's limits."""
     path = Path(path)
     return parse_yaml(read_text(path, error, what, max_bytes), error, path, what)

@@ -45,7 +45,9 @@ StartSpec = None | int | str | Point | Sequence[float]
 """Anything :func:`start_cell` accepts."""
 
 
-def start_cell(building: Building, grid: OccupancyGrid, start: StartSpec = None) -> tuple[tuple[int, int, int], str]:
+def start_cell(
+    building: Building, grid: OccupancyGrid, start: StartSpec = None
+) -> tuple[tuple[int, int, int], str]:
     """The start cell ``(row, col, floor)`` meant by ``start`` (see the module), and how it was chosen
     (for messages and results, e.g. ``"room kitchen room_5"``).
 
@@ -57,7 +59,7 @@ def start_cell(building: Building, grid: OccupancyGrid, start: StartSpec = None)
         initial position index out of range; ``status="error"`` for a value of another type.
     """
     if start is None or (is_int(start) and not isinstance(start, Sequence)):
-        index = None if start is None else int(start)  # type: ignore[arg-type]
+        index = None if start is None else int(start)
         try:
             cell = resolve_start(building, index=index)
         except PlanningError as error:
@@ -67,12 +69,15 @@ def start_cell(building: Building, grid: OccupancyGrid, start: StartSpec = None)
         return _room_start(building, grid, _find_room(building, start))
     if isinstance(start, Sequence) and len(start) == 3 and all(is_number(v) for v in start):
         if not is_int(start[2]):
-            raise PlanningError(f"start {tuple(start)}: the floor must be a whole number", status="invalid-start")
+            raise PlanningError(
+                f"start {tuple(start)}: the floor must be a whole number", status="invalid-start"
+            )
         if isinstance(start, Point) or not (is_int(start[0]) and is_int(start[1])):
             return _point_start(building, grid, float(start[0]), float(start[1]), int(start[2]))
         return (int(start[0]), int(start[1]), int(start[2])), "cell"
     raise PlanningError(
-        f"start {start!r} is none of: a cell (row, col, floor), a Point(x_m, y_m, floor), a room name or key, "
+        f"start {start!r} is none of: a cell (row, col, floor), a Point(x_m, y_m, floor), a room name or "
+        "key, "
         "an initial position index, None"
     )
 
@@ -82,7 +87,9 @@ def _find_room(building: Building, name: str) -> Room:
     if key.lower().startswith("room_") and key[5:].isdigit():
         uuid = int(key[5:])
         if not building.has_room(uuid):
-            raise PlanningError(f"start: building {building.name!r} has no room {key}", status="invalid-start")
+            raise PlanningError(
+                f"start: building {building.name!r} has no room {key}", status="invalid-start"
+            )
         return building.room(uuid=uuid)
     on_floor = _ON_FLOOR.match(key)
     rooms = building.rooms_named(on_floor[1], int(on_floor[2])) if on_floor else building.rooms_named(key)
@@ -101,7 +108,8 @@ def _room_start(building: Building, grid: OccupancyGrid, room: Room) -> tuple[tu
     free = (grid.room_map[room.floor] == room.id) & grid.traversable[room.floor]
     if not free.any():
         raise PlanningError(
-            f"start: room {room.name} {room.key} has no cell a robot of radius {grid.robot_radius_m} m can stand on",
+            f"start: room {room.name} {room.key} has no cell a robot of radius {grid.robot_radius_m} m can "
+            "stand on",
             status="invalid-start",
         )
     # The cell deepest inside the room's free area: clear of walls, furniture and doorways.
@@ -120,7 +128,9 @@ def _point_start(building: Building, grid: OccupancyGrid, x_m: float, y_m: float
     row, col = building.floors[floor].xy_to_cell(x_m, y_m)
     _, rows, cols = grid.shape
     if not (0 <= row < rows and 0 <= col < cols):
-        raise PlanningError(f"start point ({x_m:g}, {y_m:g}) m lies off floor {floor}'s grid", status="invalid-start")
+        raise PlanningError(
+            f"start point ({x_m:g}, {y_m:g}) m lies off floor {floor}'s grid", status="invalid-start"
+        )
     where = f"point ({x_m:g}, {y_m:g}) m floor {floor}"
     if grid.traversable[floor, row, col]:
         return (row, col, floor), where
@@ -131,8 +141,10 @@ def _point_start(building: Building, grid: OccupancyGrid, x_m: float, y_m: float
     )
     if distance[row, col] > SNAP_M:
         raise PlanningError(
-            f"start {where} is not free for a robot of radius {grid.robot_radius_m} m and no free cell lies within "
-            f"{SNAP_M} m", status="invalid-start",
+            f"start {where} is not free for a robot of radius {grid.robot_radius_m} m and no free cell lies "
+            "within "
+            f"{SNAP_M} m",
+            status="invalid-start",
         )
     cell = (int(near_r[row, col]), int(near_c[row, col]), floor)
     return cell, f"{where}, moved {float(distance[row, col]):.2f} m to the nearest free cell"

@@ -7,7 +7,6 @@ from pathlib import Path
 import pytest
 
 from sgplan.bench.cases import BenchError, Case, Grid, discover, expand, paper_grids, parse_selection
-
 from tests.bench.conftest import SCENE
 
 

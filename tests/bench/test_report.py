@@ -12,7 +12,6 @@ from sgplan.bench.cases import BenchError, Case
 from sgplan.bench.report import choose_condition, write_report
 from sgplan.bench.results import ResultStore
 from sgplan.cli import main
-
 from tests.bench.conftest import BAD_START, SCENE
 
 
@@ -25,8 +24,13 @@ def test_report_from_a_results_folder(swept: tuple[list[Case], ResultStore], tmp
     text = (tmp_path / "report.md").read_text()
     assert f"## Table II - {SCENE} mission 1" in text and "## Table III" in text
     assert "| ALL | 2 |" in text and "| A* | 2 |" in text  # 2 starts averaged; the invalid start is not
-    assert f"| {SCENE} | 1 | {BAD_START} | invalid-start | ALL | start (row 0, col 0, floor 0) lies in no room" in text
-    assert f"| {SCENE} | 3 | 0 | unsatisfiable | ALL | no path in scene '{SCENE}' satisfies the mission" in text
+    assert (
+        f"| {SCENE} | 1 | {BAD_START} | invalid-start | ALL | start (row 0, col 0, floor 0) lies in no room"
+        in text
+    )
+    assert (
+        f"| {SCENE} | 3 | 0 | unsatisfiable | ALL | no path in scene '{SCENE}' satisfies the mission" in text
+    )
     assert "same optimal cost in each of the 2" in text
     assert "| setup | n | 1st iter. time (s) | paper |" in printed
     for name in ("cost_vs_time", "expansions_per_iteration"):
@@ -41,12 +45,17 @@ def test_report_without_results_says_what_to_do(tmp_path: Path, capsys: pytest.C
 
 
 def _row(scene: str, mission: str, start: int, setup: str, cost: float, **extra: object) -> dict:
-    its = [{"w1": 10.0, "w2": 20.0, "cost_m": cost * 1.5, "bound": 200.0, "time_s": 0.01, "expansions": [5, 5]},
-           {"w1": 1.0, "w2": 1.0, "cost_m": cost, "bound": 1.0, "time_s": 2.0, "expansions": [50, 70]}]
-    row = {"key": f"{scene}/{mission}/{start}/{setup}", "scene": scene, "mission": mission, "start": start,
-           "setup": setup, "profile": "authors", "status": "optimal", "cost_m": cost, "first_cost_m": cost * 1.5,
-           "cost_ratio": 1.5, "first_time_s": 0.01, "optimal_time_s": 2.0, "precompute_s": 3.0, "load_s": 1.0,
-           "wall_s": 7.0, "peak_rss_mb": 400.0, "expansions": 130, "iterations": its, "queues": ["LTL/anchor", "LTL/occupancy"]}
+    its = [
+        {"w1": 10.0, "w2": 20.0, "cost_m": cost * 1.5, "bound": 200.0, "time_s": 0.01, "expansions": [5, 5]},
+        {"w1": 1.0, "w2": 1.0, "cost_m": cost, "bound": 1.0, "time_s": 2.0, "expansions": [50, 70]},
+    ]
+    row = {
+        "key": f"{scene}/{mission}/{start}/{setup}", "scene": scene, "mission": mission, "start": start,
+        "setup": setup, "profile": "authors", "status": "optimal", "cost_m": cost, "first_cost_m": cost * 1.5,
+        "cost_ratio": 1.5, "first_time_s": 0.01, "optimal_time_s": 2.0, "precompute_s": 3.0, "load_s": 1.0,
+        "wall_s": 7.0, "peak_rss_mb": 400.0, "expansions": 130, "iterations": its,
+        "queues": ["LTL/anchor", "LTL/occupancy"],
+    }
     row.update(extra)
     return row
 
@@ -59,7 +68,11 @@ def test_paper_numbers_stand_beside_ours() -> None:
     t2 = tables.table2(rows, "Benevolence", "1")
     assert "| ALL | 2 | 0.0100 | 0.0007 | 1.5000 | 1.3763 | 2.00 | 8.9062 | 3.00 | 7.00 | 400 |" in t2
     t3 = tables.table3(rows)
-    assert "| ALL | 0.0100 / 1.50 / 2.00 | 2 | 0.3200 / 1.24 / 11.82 | 0.0100 / 2.50 / 2.00 | 1 | 0.2400 / 1.69 / 3.50 |" in t3
+    assert (
+        "| ALL | 0.0100 / 1.50 / 2.00 | 2 | 0.3200 / 1.24 / 11.82 | 0.0100 / 2.50 / 2.00 | 1 | 0.2400 / 1.69 "
+        "/ 3.50 |"
+        in t3
+    )
     assert "in collision" in tables.excluded_table(rows)
     rows.append(_row("Benevolence", "1", 0, "NO-LLM", 20.5))
     compared, bad = tables.cost_disagreements(rows)
@@ -75,7 +88,10 @@ def test_the_report_never_mixes_profiles_or_time_limits(tmp_path: Path) -> None:
     latest = write_report(tmp_path, rows)  # default: the condition of the newest row (ltlf)
     text = (tmp_path / "report.md").read_text()
     assert "| ALL | 3 |" in latest.table2 and "profile ltlf, no time limit" in text
-    assert "2 cases under profile authors, no time limit" in text and "1 cases under profile authors, time limit 5 s" in text
+    assert (
+        "2 cases under profile authors, no time limit" in text
+        and "1 cases under profile authors, time limit 5 s" in text
+    )
     chosen = write_report(tmp_path, rows, condition=("authors", 5.0))
     assert "| ALL | 1 |" in chosen.table2
     with pytest.raises(BenchError, match="no results under profile ltlf, time limit 9 s"):
@@ -94,7 +110,9 @@ def test_report_rows_are_chosen_by_profile_and_time_limit() -> None:
         choose_condition(rows, "ltlf", 5.0)
 
 
-def test_report_of_an_empty_results_file_says_what_to_do(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_report_of_an_empty_results_file_says_what_to_do(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     (tmp_path / "results.jsonl").write_text('{"key": "a", "scene"')  # only a torn first row
     assert main(["bench", "report", "--out", str(tmp_path)]) == 2
     assert "no results in" in capsys.readouterr().err

@@ -16,14 +16,13 @@ import pytest
 
 from sgplan.bench.cases import BenchError, Case
 from sgplan.bench.executors import WORKER_ENV, LocalExecutor, worker_command
-from sgplan.bench.worker import PARENT_ENV
 from sgplan.bench.results import COLUMNS, RESULTS_JSONL, ResultStore, writing_lock
 from sgplan.bench.sweep import pending_cases, run_sweep
+from sgplan.bench.worker import PARENT_ENV
 from sgplan.mission import load_mission_folder
 from sgplan.pipeline import make_problem
 from sgplan.planning import plan
 from sgplan.scene.loading import load_scene
-
 from tests.bench.conftest import BAD_START, SCENE
 
 FAKE_WORKER = [sys.executable, str(Path(__file__).with_name("fake_worker.py"))]
@@ -32,7 +31,9 @@ FAKE_WORKER = [sys.executable, str(Path(__file__).with_name("fake_worker.py"))]
 def _direct_cost(case: Case) -> float:
     building = load_scene(case.scene_dir)
     mission = load_mission_folder(case.mission_dir, profile=case.profile)
-    problem = make_problem(building, mission, building.initial_cells[case.start], profile=case.profile).problem
+    problem = make_problem(
+        building, mission, building.initial_cells[case.start], profile=case.profile
+    ).problem
     return plan(problem, case.setup).cost_m
 
 
@@ -47,13 +48,20 @@ def test_local_executor_gives_the_costs_of_plan(swept: tuple[list[Case], ResultS
         assert row["cost_m"] == pytest.approx(_direct_cost(case), abs=1e-9)
         assert row["first_cost_m"] >= row["cost_m"] - 1e-9 and row["cost_ratio"] >= 1.0 - 1e-12
         assert 0 <= row["first_time_s"] <= row["optimal_time_s"] <= row["search_s"] + 1e-9
-        assert sum(row[f"exp_{lv}"] for lv in ("anchor", "occupancy", "object", "room", "floor")) == row["expansions"]
+        assert (
+            sum(row[f"exp_{lv}"] for lv in ("anchor", "occupancy", "object", "room", "floor"))
+            == row["expansions"]
+        )
         assert row["peak_rss_mb"] > 50 and row["wall_s"] > row["load_s"] > 0 and row["precompute_s"] > 0
         assert row["guidance"] == "mission" and row["profile"] == "authors" and row["executor"] == "local"
-        assert len(row["iterations"]) == row["num_iterations"] and len(row["queues"]) == len(row["iterations"][0]["expansions"])
+        assert len(row["iterations"]) == row["num_iterations"] and len(row["queues"]) == len(
+            row["iterations"][0]["expansions"]
+        )
 
 
-def test_infeasible_and_invalid_starts_are_recorded_with_reasons(swept: tuple[list[Case], ResultStore]) -> None:
+def test_infeasible_and_invalid_starts_are_recorded_with_reasons(
+    swept: tuple[list[Case], ResultStore],
+) -> None:
     _, store = swept
     infeasible = store.get(f"{SCENE}/3/0/ALL/authors/tl=none")
     invalid = store.get(f"{SCENE}/1/{BAD_START}/ALL/authors/tl=none")
@@ -62,7 +70,9 @@ def test_infeasible_and_invalid_starts_are_recorded_with_reasons(swept: tuple[li
     assert infeasible["cost_m"] is None and invalid.get("first_time_s") is None
 
 
-def test_results_files_have_one_row_per_case_and_stable_columns(swept: tuple[list[Case], ResultStore]) -> None:
+def test_results_files_have_one_row_per_case_and_stable_columns(
+    swept: tuple[list[Case], ResultStore],
+) -> None:
     cases, store = swept
     csv_path, json_path = store.export()
     with open(csv_path, newline="") as handle:
@@ -73,7 +83,9 @@ def test_results_files_have_one_row_per_case_and_stable_columns(swept: tuple[lis
     assert {r["status"] for r in rows} == {"optimal", "unsatisfiable", "invalid-start"}
 
 
-def test_rerun_runs_nothing_and_a_torn_last_line_is_dropped(swept: tuple[list[Case], ResultStore], tmp_path: Path) -> None:
+def test_rerun_runs_nothing_and_a_torn_last_line_is_dropped(
+    swept: tuple[list[Case], ResultStore], tmp_path: Path
+) -> None:
     cases, store = swept
     copy = tmp_path / RESULTS_JSONL
     lines = store.path.read_text().splitlines(keepends=True)
@@ -106,7 +118,10 @@ def test_rerun_runs_nothing_and_a_torn_last_line_is_dropped(swept: tuple[list[Ca
 
 def test_crash_and_wall_timeout_are_recorded_and_the_sweep_goes_on(data_dir: Path, tmp_path: Path) -> None:
     def case(mission: str) -> Case:
-        return Case(SCENE, mission, 0, "ALL", "authors", str(data_dir / SCENE), str(data_dir / SCENE / "missions" / mission))
+        return Case(
+            SCENE, mission, 0, "ALL", "authors", str(data_dir / SCENE),
+            str(data_dir / SCENE / "missions" / mission),
+        )
 
     cases = [case("crash"), case("hang"), case("1"), case("2")]
     store = ResultStore(tmp_path)
@@ -128,8 +143,10 @@ def _rows_in(folder: Path) -> list[dict]:
 
 
 def _bench_command(data_dir: Path, out: Path) -> list[str]:
-    return [sys.executable, "-m", "sgplan.cli", "bench", "--data", str(data_dir), "--out", str(out),
-            "--missions", "1", "--starts", "0,1", "--setups", "ALL", "NO-LLM", "A*", "--jobs", "1", "--no-report"]
+    return [
+        sys.executable, "-m", "sgplan.cli", "bench", "--data", str(data_dir), "--out", str(out), "--missions",
+        "1", "--starts", "0,1", "--setups", "ALL", "NO-LLM", "A*", "--jobs", "1", "--no-report",
+    ]
 
 
 def _start_sweep_that_hangs_after_one_case(command: list[str], marker: Path) -> subprocess.Popen:
@@ -167,7 +184,9 @@ def _wait_for_no_workers(sweep_pid: int, timeout_s: float = 10.0) -> list[int]:
     return alive
 
 
-def test_interrupting_the_command_and_rerunning_finishes_only_the_missing_cases(data_dir: Path, tmp_path: Path) -> None:
+def test_interrupting_the_command_and_rerunning_finishes_only_the_missing_cases(
+    data_dir: Path, tmp_path: Path
+) -> None:
     out = tmp_path / "out"
     command = _bench_command(data_dir, out)
     proc = _start_sweep_that_hangs_after_one_case(command, tmp_path / "answered")
@@ -209,7 +228,7 @@ def test_a_worker_that_cannot_start_stops_the_sweep_with_a_clear_error(swept, tm
 
 
 def test_a_last_row_without_its_newline_is_kept(swept, tmp_path: Path) -> None:
-    cases, store = swept
+    _, store = swept
     lines = store.path.read_text().splitlines()
     (tmp_path / RESULTS_JSONL).write_text("\n".join(lines[:2]))  # the 2nd row lacks its newline
     copy = ResultStore(tmp_path)
@@ -220,10 +239,9 @@ def test_a_last_row_without_its_newline_is_kept(swept, tmp_path: Path) -> None:
 
 
 def test_a_second_sweep_into_the_same_folder_is_refused(tmp_path: Path) -> None:
-    with writing_lock(tmp_path):
-        with pytest.raises(BenchError, match="another `sgplan bench` is writing"):
-            with writing_lock(tmp_path):
-                pass
+    with writing_lock(tmp_path), pytest.raises(BenchError, match="another `sgplan bench` is writing"), \
+            writing_lock(tmp_path):
+        pass
     with writing_lock(tmp_path):  # released
         pass
 
@@ -239,7 +257,9 @@ def test_a_damaged_results_file_gets_a_clear_error(tmp_path: Path, content: byte
         ResultStore(tmp_path)
 
 
-def test_retry_reruns_failed_rows_including_errors(swept: tuple[list[Case], ResultStore], tmp_path: Path) -> None:
+def test_retry_reruns_failed_rows_including_errors(
+    swept: tuple[list[Case], ResultStore], tmp_path: Path
+) -> None:
     cases, store = swept
     copy = ResultStore(tmp_path)
     for status, case in zip(("error", "crashed", "wall-timeout", "optimal"), cases):
@@ -252,7 +272,9 @@ def test_retry_reruns_failed_rows_including_errors(swept: tuple[list[Case], Resu
 @pytest.mark.skipif(not Path("/proc/self/environ").exists(), reason="needs Linux /proc")
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGHUP, signal.SIGKILL])
 def test_no_worker_outlives_a_terminated_sweep(data_dir: Path, tmp_path: Path, sig: signal.Signals) -> None:
-    proc = _start_sweep_that_hangs_after_one_case(_bench_command(data_dir, tmp_path / "out"), tmp_path / "answered")
+    proc = _start_sweep_that_hangs_after_one_case(
+        _bench_command(data_dir, tmp_path / "out"), tmp_path / "answered"
+    )
     assert len(_workers_alive(proc.pid)) == 1, "the hanging worker should be running"
     proc.send_signal(sig)
     _, stderr = proc.communicate(timeout=60)
@@ -261,5 +283,7 @@ def test_no_worker_outlives_a_terminated_sweep(data_dir: Path, tmp_path: Path, s
     assert proc.returncode == (-signal.SIGKILL if sig == signal.SIGKILL else 128 + sig), stderr
     assert _wait_for_no_workers(proc.pid) == []
     if sig != signal.SIGKILL:
-        (logged,) = [json.loads(line) for line in (tmp_path / "out" / "sweeps.jsonl").read_text().splitlines()]
+        (logged,) = [
+            json.loads(line) for line in (tmp_path / "out" / "sweeps.jsonl").read_text().splitlines()
+        ]
         assert logged["interrupted"] and logged["ran"] == 1

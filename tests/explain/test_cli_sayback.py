@@ -19,7 +19,9 @@ GOAL = 'F("enter(room_5)" & F "enter(room_11)") & G !"enter(room_6)"'
 EXPLAINED = "Go to the bathroom (room_5, floor 0), then go to the bedroom (room_11, floor 1)."
 
 
-def test_plan_prints_and_records_the_explanation_once(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_plan_prints_and_records_the_explanation_once(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     out = tmp_path / "r.json"
     assert main(["plan", "--scene", "demo", "--formula", GOAL, "--setup", "NO-LLM", "--json", str(out)]) == 0
     printed = capsys.readouterr().out
@@ -30,9 +32,13 @@ def test_plan_prints_and_records_the_explanation_once(tmp_path: Path, capsys: py
     assert record["scene_check"] == []
 
 
-def test_contradiction_exits_3_with_its_own_status(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_contradiction_exits_3_with_its_own_status(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     out = tmp_path / "r.json"
-    argv = ["plan", "--scene", "demo", "--formula", 'F "enter(room_4)" & G !"enter(room_4)"', "--json", str(out)]
+    argv = [
+        "plan", "--scene", "demo", "--formula", 'F "enter(room_4)" & G !"enter(room_4)"', "--json", str(out),
+    ]
     assert main(argv) == 4
     err = capsys.readouterr().err
     assert "from any start" in err and "Go to the kitchen (room_4, floor 0). Never enter the kitchen" in err
@@ -56,8 +62,9 @@ def test_confirm_asks_and_stops_unless_yes() -> None:
             say_back(mission, building, confirm=True, ask=lambda q, a=answer: a)
 
 
-def test_translate_prints_the_explanation_and_writes_scene_record(tmp_path: Path,
-                                                                   capsys: pytest.CaptureFixture[str]) -> None:
+def test_translate_prints_the_explanation_and_writes_scene_record(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     out = tmp_path / "m"
     text = "Visit the bathroom on floor 0, then the dining room. Always avoid the kitchen."
     assert main(["translate", "--scene", "demo", "--text", text, "--out", str(out)]) == 0
@@ -66,7 +73,10 @@ def test_translate_prints_the_explanation_and_writes_scene_record(tmp_path: Path
     events = json.loads((out / "llm_record.json").read_text())["events"]
     assert [e["method"] for e in events if e["kind"] == "explained"] == ["patterns"]
     scene = yaml.safe_load((out / "scene.yaml").read_text())
-    assert scene["scene"] == "demo-house" and scene["entities"]["room_4"] == {"category": "kitchen", "floor": 0}
+    assert scene["scene"] == "demo-house" and scene["entities"]["room_4"] == {
+        "category": "kitchen",
+        "floor": 0,
+    }
 
 
 def _folder_for_another_scene(tmp_path: Path) -> Path:
@@ -78,8 +88,9 @@ def _folder_for_another_scene(tmp_path: Path) -> Path:
     return folder
 
 
-def test_mission_folder_of_another_scene_is_refused_unless_forced(tmp_path: Path,
-                                                                   capsys: pytest.CaptureFixture[str]) -> None:
+def test_mission_folder_of_another_scene_is_refused_unless_forced(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     folder = _folder_for_another_scene(tmp_path)
     argv = ["plan", "--scene", "demo", "--mission-dir", str(folder), "--setup", "NO-LLM"]
     assert main(argv) == 2

@@ -42,12 +42,12 @@ ENTITIES = {
 
 def formulas(names: tuple[str, ...], max_leaves: int) -> st.SearchStrategy[Formula]:
     unary = (Not, Eventually, Always, Next)
-    binary = (lambda l, r: And((l, r)), lambda l, r: Or((l, r)), Until, Implies, Equiv)
+    binary = (lambda a, b: And((a, b)), lambda a, b: Or((a, b)), Until, Implies, Equiv)
     return st.recursive(
         st.sampled_from(names).map(Atom),
         lambda inner: st.one_of(
             st.builds(lambda op, f: op(f), st.sampled_from(unary), inner),
-            st.builds(lambda op, l, r: op(l, r), st.sampled_from(binary), inner, inner),
+            st.builds(lambda op, a, b: op(a, b), st.sampled_from(binary), inner, inner),
         ),
         max_leaves=max_leaves,
     )
@@ -82,7 +82,9 @@ def test_same_text_only_for_equivalent_formulas(batch: list[Formula]) -> None:
 def _all_formulas(size: int, names: tuple[str, ...]) -> list[Formula]:
     if size == 1:
         return [Atom(n) for n in names]
-    out: list[Formula] = [op(f) for op in (Not, Eventually, Always, Next) for f in _all_formulas(size - 1, names)]
+    out: list[Formula] = [
+        op(f) for op in (Not, Eventually, Always, Next) for f in _all_formulas(size - 1, names)
+    ]
     for k in range(1, size - 1):
         for left in _all_formulas(k, names):
             for right in _all_formulas(size - 1 - k, names):
@@ -101,22 +103,49 @@ def test_no_two_inequivalent_small_formulas_read_alike() -> None:
         assert all(equivalent(group[0], g) for g in group[1:]), group
 
 
-@pytest.mark.parametrize(("infix", "expected"), [
-    ("F(a & F b)", "Go to the kitchen (room_1, floor 0), then go to the kitchen (room_2, floor 1)."),
-    ("F(a | b)", "Go to a kitchen (room_1, floor 0, or room_2, floor 1)."),
-    ("G !a", "Never enter the kitchen (room_1, floor 0)."),
-    ("!a U b", "Go to the kitchen (room_2, floor 1), without entering the kitchen (room_1, floor 0) before that."),
-    ("G(a -> F c)", ("Whenever you are in the kitchen (room_1, floor 0), reach the sink "
-                     "(object_3, in the kitchen room_1, floor 0) then or afterwards.")),
-    ("F(a & F(!a & F a))", ("Go to the kitchen (room_1, floor 0), then be outside the kitchen (room_1, floor 0), "
-                            "then go to the kitchen (room_1, floor 0).")),
-    ("F((a & F c) | (b & F d))", ("Do one of: [go to the kitchen (room_1, floor 0), then reach the sink (object_3, "
-                                  "in the kitchen room_1, floor 0)] or [go to the kitchen (room_2, floor 1), then "
-                                  "reach the sink (object_4, in the kitchen room_1, floor 0)].")),
-    ("F((c & a) | (d & a))", ("Reach a sink (object_3 or object_4, in the kitchen room_1, floor 0) while in "
-                             "the kitchen (room_1, floor 0).")),
-    ("a", "Start in the kitchen (room_1, floor 0)."),
-])
+@pytest.mark.parametrize(
+    ("infix", "expected"),
+    [
+        ("F(a & F b)", "Go to the kitchen (room_1, floor 0), then go to the kitchen (room_2, floor 1)."),
+        ("F(a | b)", "Go to a kitchen (room_1, floor 0, or room_2, floor 1)."),
+        ("G !a", "Never enter the kitchen (room_1, floor 0)."),
+        (
+            "!a U b",
+            "Go to the kitchen (room_2, floor 1), without entering the kitchen (room_1, floor 0) before "
+            "that.",
+        ),
+        (
+            "G(a -> F c)",
+            (
+                "Whenever you are in the kitchen (room_1, floor 0), reach the sink "
+                "(object_3, in the kitchen room_1, floor 0) then or afterwards."
+            ),
+        ),
+        (
+            "F(a & F(!a & F a))",
+            (
+                "Go to the kitchen (room_1, floor 0), then be outside the kitchen (room_1, floor 0), "
+                "then go to the kitchen (room_1, floor 0)."
+            ),
+        ),
+        (
+            "F((a & F c) | (b & F d))",
+            (
+                "Do one of: [go to the kitchen (room_1, floor 0), then reach the sink (object_3, "
+                "in the kitchen room_1, floor 0)] or [go to the kitchen (room_2, floor 1), then "
+                "reach the sink (object_4, in the kitchen room_1, floor 0)]."
+            ),
+        ),
+        (
+            "F((c & a) | (d & a))",
+            (
+                "Reach a sink (object_3 or object_4, in the kitchen room_1, floor 0) while in "
+                "the kitchen (room_1, floor 0)."
+            ),
+        ),
+        ("a", "Start in the kitchen (room_1, floor 0)."),
+    ],
+)
 def test_patterns_read_directly(infix: str, expected: str) -> None:
     explanation = explain_formula(parse_infix(infix), ENTITIES)
     assert explanation.method == "patterns"
@@ -140,7 +169,9 @@ def test_contradiction_says_nothing_completes_it() -> None:
 
 def _golden(name: str, text: str) -> None:
     path = GOLDEN / f"{name}.txt"
-    assert path.read_text(encoding="utf-8") == text + "\n", f"explanation of {name} changed; read it, then update {path}"
+    assert path.read_text(encoding="utf-8") == text + "\n", (
+        f"explanation of {name} changed; read it, then update {path}"
+    )
 
 
 DEMO_FORMULAS = {

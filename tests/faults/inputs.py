@@ -19,13 +19,21 @@ MISSION_FORMULA = 'F ("reach(object_32)" & F "enter(room_7)")'
 
 def scene_graph_dict() -> dict:
     """A small scene-graph dict in the Gibson npz layout (two rooms, one object)."""
-    room = {"id": 1, "floor_number": "A", "scene_category": "kitchen", "location": np.zeros(3), "size": np.ones(3)}
+    room = {
+        "id": 1, "floor_number": "A", "scene_category": "kitchen", "location": np.zeros(3),
+        "size": np.ones(3),
+    }
     return {
         "building": {"id": 1, "name": "Tiny"},
         "room": {1: room, 2: {**room, "id": 2, "scene_category": "bathroom"}},
-        "object": {3: {"id": 3, "parent_room": 1, "class_": "sink", "location": np.zeros(3), "size": np.ones(3),
-                       "action_affordance": ["wash"]}},
-        "camera": {}, "panorama": {},
+        "object": {
+            3: {
+                "id": 3, "parent_room": 1, "class_": "sink", "location": np.zeros(3), "size": np.ones(3),
+                "action_affordance": ["wash"],
+            }
+        },
+        "camera": {},
+        "panorama": {},
     }
 
 

@@ -56,13 +56,19 @@ def damaged_yaml(draw: st.DrawFn, text: str) -> bytes:
     elif kind == "bomb":
         # The bomb's anchor goes on the field; its expansion comes back through the last alias.
         lines[index] = f"{head} *i"
-        return ("bombs:\n  a: " + ANCHOR_BOMB.replace("\n", "\n  ").rstrip() + "\n" + "\n".join(lines)).encode()
+        return (
+            "bombs:\n  a: " + ANCHOR_BOMB.replace("\n", "\n  ").rstrip() + "\n" + "\n".join(lines)
+        ).encode()
     elif kind == "deep":
         depth = draw(st.sampled_from([70, 300, DEEP]))
         lines[index] = f"{head} " + "[" * depth + "1" + "]" * depth
     elif kind == "flow-deep":
         depth = draw(st.sampled_from([70, 5000]))
-        return ("- " * depth + "x\n").encode() if draw(st.booleans()) else ("{a: " * depth + "1" + "}" * depth).encode()
+        return (
+            ("- " * depth + "x\n").encode()
+            if draw(st.booleans())
+            else ("{a: " * depth + "1" + "}" * depth).encode()
+        )
     elif kind == "duplicate":
         lines.insert(index + 1, line)
     elif kind == "encoding":
@@ -166,8 +172,12 @@ def token_lists(draw: st.DrawFn, actions: list[str]) -> str:
     """A token-list formula text: random token soup, long chains, flat junctions, or a damaged repr."""
     kind = draw(st.sampled_from(["soup", "chain", "flat", "repr"]))
     if kind == "soup":
-        tokens = draw(st.lists(st.sampled_from(OPERATOR_TOKENS + actions + ["enter(room_999999999999)", "x", ""]),
-                               min_size=0, max_size=30))
+        tokens = draw(
+            st.lists(
+                st.sampled_from(OPERATOR_TOKENS + actions + ["enter(room_999999999999)", "x", ""]),
+                min_size=0, max_size=30,
+            )
+        )
     elif kind == "chain":
         operator = draw(st.sampled_from(["NOT", "NEXT", "EVENTUALLY", "ALWAYS"]))
         tokens = [operator] * draw(st.sampled_from([99, 1000, 8000])) + [draw(st.sampled_from(actions))]

@@ -15,10 +15,12 @@ def _failing(error: BaseException):  # type: ignore[no-untyped-def]
     return run
 
 
-@pytest.mark.parametrize("error", [ValueError("x" * 10_000), RecursionError("deep"), MemoryError(), KeyError("k")])
-def test_an_unexpected_exception_is_one_line_and_exit_70(monkeypatch: pytest.MonkeyPatch,
-                                                        capsys: pytest.CaptureFixture[str],
-                                                        error: BaseException) -> None:
+@pytest.mark.parametrize(
+    "error", [ValueError("x" * 10_000), RecursionError("deep"), MemoryError(), KeyError("k")]
+)
+def test_an_unexpected_exception_is_one_line_and_exit_70(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str], error: BaseException
+) -> None:
     monkeypatch.setattr(cli, "_build_parser", _parser_running(_failing(error)))
     assert cli.main(["plan", "--scene", "demo", "--formula", "F p"]) == cli.INTERNAL_ERROR
     lines = capsys.readouterr().err.strip().splitlines()

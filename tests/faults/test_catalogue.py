@@ -35,24 +35,45 @@ def _bomb_in(field_line: str) -> str:
 # -- scene files: each must be refused ---------------------------------------------------------------------
 
 SCENE_FAULTS: dict[str, tuple[str, Callable[[Path], None]]] = {
-    "robot radius 1000 m": ("radius_config.bash", lambda s: (s / "radius_config.bash").write_text("ROBOT_RADIUS=1000\n")),
-    "reach 1e308 m": ("radius_config.bash", lambda s: (s / "radius_config.bash").write_text("OBJECT_REACH_RADIUS=1e308\n")),
+    "robot radius 1000 m": (
+        "radius_config.bash",
+        lambda s: (s / "radius_config.bash").write_text("ROBOT_RADIUS=1000\n"),
+    ),
+    "reach 1e308 m": (
+        "radius_config.bash",
+        lambda s: (s / "radius_config.bash").write_text("OBJECT_REACH_RADIUS=1e308\n"),
+    ),
     "radius file is a directory": ("radius_config.bash", lambda s: _replace_by_dir(s / "radius_config.bash")),
-    "initial positions is a directory": ("initial_positions.yaml", lambda s: _replace_by_dir(s / "initial_positions.yaml")),
+    "initial positions is a directory": (
+        "initial_positions.yaml",
+        lambda s: _replace_by_dir(s / "initial_positions.yaml"),
+    ),
     "building.yaml is a directory": ("building.yaml", lambda s: _replace_by_dir(s / "building.yaml")),
     "building.yaml symlink loop": ("building.yaml", lambda s: _symlink_loop(s / "building.yaml")),
     "radius file symlink loop": ("radius_config.bash", lambda s: _symlink_loop(s / "radius_config.bash")),
     "map symlink loop": ("0.png", lambda s: _symlink_loop(s / "cat_maps" / "0.png")),
     "radius file is a FIFO": ("radius_config.bash", lambda s: _fifo(s / "radius_config.bash")),
-    "anchor bomb in grid size": ("building.yaml", lambda s: _yaml_field(s / "building.yaml", "grid_map_size")),
-    "anchor bomb in a start": ("initial_positions.yaml",
-                               lambda s: (s / "initial_positions.yaml").write_text(_bomb_in("- *i"))),
-    "deep YAML nesting": ("building.yaml", lambda s: (s / "building.yaml").write_text("[" * DEEP + "]" * DEEP)),
+    "anchor bomb in grid size": (
+        "building.yaml",
+        lambda s: _yaml_field(s / "building.yaml", "grid_map_size"),
+    ),
+    "anchor bomb in a start": (
+        "initial_positions.yaml",
+        lambda s: (s / "initial_positions.yaml").write_text(_bomb_in("- *i")),
+    ),
+    "deep YAML nesting": (
+        "building.yaml",
+        lambda s: (s / "building.yaml").write_text("[" * DEEP + "]" * DEEP),
+    ),
     "deep block nesting": ("building.yaml", lambda s: (s / "building.yaml").write_text("- " * 20000 + "x\n")),
-    "duplicate key": ("building.yaml", lambda s: (s / "building.yaml").write_text(
-        (s / "building.yaml").read_text() + "num_floors: 2\n")),
-    "UTF-16 building.yaml": ("building.yaml", lambda s: (s / "building.yaml").write_bytes(
-        (s / "building.yaml").read_text().encode("utf-16"))),
+    "duplicate key": (
+        "building.yaml",
+        lambda s: (s / "building.yaml").write_text((s / "building.yaml").read_text() + "num_floors: 2\n"),
+    ),
+    "UTF-16 building.yaml": (
+        "building.yaml",
+        lambda s: (s / "building.yaml").write_bytes((s / "building.yaml").read_text().encode("utf-16")),
+    ),
     "map 20000 x 20000": ("0.png", lambda s: _huge_png(s)),
     "map not a PNG": ("0.png", lambda s: (s / "cat_maps" / "0.png").write_bytes(b"GIF89a" + bytes(100))),
 }
@@ -133,14 +154,23 @@ def test_unreadable_files(templates: dict[str, Path]) -> None:
 # -- missions -------------------------------------------------------------------------------------------
 
 MISSION_FAULTS: dict[str, Callable[[Path], None]] = {
-    "40 APs": lambda m: _edit(m / "automaton.aut", r"^AP: \d+", "AP: 40" + "".join(f' "q{k}"' for k in range(40))),
+    "40 APs": lambda m: _edit(
+        m / "automaton.aut", r"^AP: \d+", "AP: 40" + "".join(f' "q{k}"' for k in range(40))
+    ),
     "5,000,000 states": lambda m: _edit(m / "automaton.aut", r"^States: \d+", "States: 5000000"),
-    "ap_desc reach 1e5 m": lambda m: _edit(m / "ap_desc.yaml", r"reach_distance: .*", "reach_distance: 100000.0"),
-    "ap_desc reach 1e308 m": lambda m: _edit(m / "ap_desc.yaml", r"reach_distance: .*", "reach_distance: 1.0e+308"),
+    "ap_desc reach 1e5 m": lambda m: _edit(
+        m / "ap_desc.yaml", r"reach_distance: .*", "reach_distance: 100000.0"
+    ),
+    "ap_desc reach 1e308 m": lambda m: _edit(
+        m / "ap_desc.yaml", r"reach_distance: .*", "reach_distance: 1.0e+308"
+    ),
     "ap_desc duplicate keys": lambda m: (m / "ap_desc.yaml").write_text(
-        (m / "ap_desc.yaml").read_text() + (m / "ap_desc.yaml").read_text()),
+        (m / "ap_desc.yaml").read_text() + (m / "ap_desc.yaml").read_text()
+    ),
     "ap_desc uuid is a list": lambda m: _edit(m / "ap_desc.yaml", r"uuid: \d+", "uuid: [1, 2]"),
-    "ap_desc type is a list": lambda m: _edit(m / "ap_desc.yaml", r"type: kReachObject", "type: [kReachObject]"),
+    "ap_desc type is a list": lambda m: _edit(
+        m / "ap_desc.yaml", r"type: kReachObject", "type: [kReachObject]"
+    ),
     "guidance calls are a bomb": lambda m: (m / "llm_heuristic.yaml").write_text(_bomb_in("1: {0: *i}")),
     "guidance calls not strings": lambda m: (m / "llm_heuristic.yaml").write_text("1: {0: [[1, 2], 3]}\n"),
     "automaton is a directory": lambda m: _replace_by_dir(m / "automaton.aut"),
@@ -174,16 +204,21 @@ FLAT_500 = repr(["AND"] * 499 + ["enter(room_5)", "enter(room_7)"] * 250)
 NOT_CHAIN = repr(["NOT"] * 4001 + ["enter(room_5)"])
 
 
-@pytest.mark.parametrize(("fault", "argv", "must_fail"), [
-    ("empty --formula", ["plan", "--scene", "demo", "--formula", "", *PLAN], True),
-    ("empty --mission-dir", ["plan", "--scene", "demo", "--mission-dir", "", *PLAN], True),
-    ("empty --text", ["translate", "--scene", "demo", "--text", " ", "--out", "{tmp}/m"], True),
-    ("flat conjunction of 500 terms", ["plan", "--scene", "demo", "--formula", FLAT_500, *PLAN], True),
-    ("chain of 4001 NOTs", ["plan", "--scene", "demo", "--formula", NOT_CHAIN, *PLAN], False),
-    ("bench start range 0-99999999999", ["bench", "--out", "{tmp}/b", "--data", "{tmp}", "--starts", "0-99999999999"],
-     True),
-    ("demo --out is a file", ["demo", "--out", "{tmp}/file"], True),
-])
+@pytest.mark.parametrize(
+    ("fault", "argv", "must_fail"),
+    [
+        ("empty --formula", ["plan", "--scene", "demo", "--formula", "", *PLAN], True),
+        ("empty --mission-dir", ["plan", "--scene", "demo", "--mission-dir", "", *PLAN], True),
+        ("empty --text", ["translate", "--scene", "demo", "--text", " ", "--out", "{tmp}/m"], True),
+        ("flat conjunction of 500 terms", ["plan", "--scene", "demo", "--formula", FLAT_500, *PLAN], True),
+        ("chain of 4001 NOTs", ["plan", "--scene", "demo", "--formula", NOT_CHAIN, *PLAN], False),
+        (
+            "bench start range 0-99999999999",
+            ["bench", "--out", "{tmp}/b", "--data", "{tmp}", "--starts", "0-99999999999"], True,
+        ),
+        ("demo --out is a file", ["demo", "--out", "{tmp}/file"], True),
+    ],
+)
 def test_command_line(tmp_path: Path, fault: str, argv: list[str], must_fail: bool) -> None:
     (tmp_path / "file").write_text("not a folder\n")
     check(f"cli/{fault}", [a.replace("{tmp}", str(tmp_path)) for a in argv], must_fail=must_fail)

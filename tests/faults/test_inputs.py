@@ -75,13 +75,29 @@ def test_png_maps(templates: dict[str, Path], cut: int, flip: int) -> None:
         check("authors/png", _inspect(scene))
 
 
-_NPZ_VALUES = st.sampled_from([
-    None, 1, "x", [], [[[[]]]], {"building": None}, {"building": {}, "room": [], "object": {}},
-    {"building": {"id": "1", "name": 5}, "room": {}, "object": {}},
-    {"building": {"id": 1, "name": "n"}, "room": {1: {"id": 1, "floor_number": "AB"}}, "object": {}},
-    {"building": {"id": 1, "name": "n"}, "room": {1: {"id": 1, "floor_number": "A", "scene_category": "k",
-                                                      "location": [float("nan")] * 3, "size": [1, 1]}}, "object": {}},
-])
+_NPZ_VALUES = st.sampled_from(
+    [
+        None,
+        1,
+        "x",
+        [],
+        [[[[]]]],
+        {"building": None},
+        {"building": {}, "room": [], "object": {}},
+        {"building": {"id": "1", "name": 5}, "room": {}, "object": {}},
+        {"building": {"id": 1, "name": "n"}, "room": {1: {"id": 1, "floor_number": "AB"}}, "object": {}},
+        {
+            "building": {"id": 1, "name": "n"},
+            "room": {
+                1: {
+                    "id": 1, "floor_number": "A", "scene_category": "k", "location": [float("nan")] * 3,
+                    "size": [1, 1],
+                }
+            },
+            "object": {},
+        },
+    ]
+)
 
 
 @GENERATED
@@ -135,11 +151,13 @@ def test_gpt_formula_file(templates: dict[str, Path], data: st.DataObject) -> No
 
 # -- benchmark results and LLM cache entries --------------------------------------------------------------
 
-_ROW = {"key": "demo-house/1/0/ALL/authors/none", "scene": "demo-house", "mission": "1", "start": 0, "setup": "ALL",
-        "profile": "authors", "time_limit_s": None, "status": "optimal", "reason": None, "cost_m": 3.5,
-        "first_cost_m": 3.5, "cost_ratio": 1.0, "first_time_s": 0.01, "optimal_time_s": 0.02,
-        "num_iterations": 1, "expansions": 10, "load_s": 0.1, "precompute_s": 0.1, "search_s": 0.02,
-        "wall_s": 1.0, "peak_rss_mb": 100.0, "path_cells": 5}
+_ROW = {
+    "key": "demo-house/1/0/ALL/authors/none", "scene": "demo-house", "mission": "1", "start": 0,
+    "setup": "ALL", "profile": "authors", "time_limit_s": None, "status": "optimal", "reason": None,
+    "cost_m": 3.5, "first_cost_m": 3.5, "cost_ratio": 1.0, "first_time_s": 0.01, "optimal_time_s": 0.02,
+    "num_iterations": 1, "expansions": 10, "load_s": 0.1, "precompute_s": 0.1, "search_s": 0.02,
+    "wall_s": 1.0, "peak_rss_mb": 100.0, "path_cells": 5,
+}
 
 
 @GENERATED
@@ -148,7 +166,9 @@ def test_bench_rows(data: st.DataObject) -> None:
     damaged = data.draw(damaged_json(_ROW))
     with tempfile.TemporaryDirectory(prefix="sgplan-fault-") as tmp:
         out = Path(tmp)
-        (out / "results.jsonl").write_bytes(json.dumps(_ROW).encode() + b"\n" + damaged.replace(b"\n", b" ") + b"\n")
+        (out / "results.jsonl").write_bytes(
+            json.dumps(_ROW).encode() + b"\n" + damaged.replace(b"\n", b" ") + b"\n"
+        )
         check("bench/results.jsonl", ["bench", "report", "--out", str(out)])
 
 

@@ -57,8 +57,10 @@ def _retry_lines(expected: int):  # type: ignore[no-untyped-def]
 def test_server_that_never_answers(server: FakeOpenAIServer, tmp_path: Path, llm_args: list[str]) -> None:
     for _ in range(3):
         server.push_delay(600)
-    run = check("llm/server never answers", _translate(tmp_path, llm_args), must_fail=True, after=_retry_lines(2),
-                allow=("clean",))
+    run = check(
+        "llm/server never answers", _translate(tmp_path, llm_args), must_fail=True, after=_retry_lines(2),
+        allow=("clean",),
+    )
     assert RECORD or run.wall_s < DEADLINE_S + 15
 
 
@@ -100,9 +102,13 @@ def recorded_cache(tmp_path_factory: pytest.TempPathFactory) -> Path:
         fake.respond_with(lambda request: "x")
         from sgplan.cli import main
 
-        main(["translate", "--scene", "demo", "--text", "Go to the bathroom on floor 0.", "--out",
-              str(cache.parent / "recorded-mission"), "--llm", "openai:fake-model", "--base-url", fake.base_url,
-              "--cache", str(cache)])
+        main(
+            [
+                "translate", "--scene", "demo", "--text", "Go to the bathroom on floor 0.", "--out",
+                str(cache.parent / "recorded-mission"), "--llm", "openai:fake-model", "--base-url",
+                fake.base_url, "--cache", str(cache),
+            ]
+        )
     assert list(cache.glob("*.json")), "the translation recorded no cache entry"
     return cache
 
@@ -116,9 +122,13 @@ def test_damaged_cache_entries(recorded_cache: Path, data: st.DataObject) -> Non
         for entry in sorted(recorded_cache.glob("*.json")):
             damaged = data.draw(damaged_json(json.loads(entry.read_text())))
             (cache / entry.name).write_bytes(damaged)
-        check("llm/damaged cache entry", ["translate", "--scene", "demo", "--text", "Go to the bathroom on floor 0.",
-                                          "--out", str(Path(tmp) / "m"), "--llm", "openai:fake-model", "--cache",
-                                          str(cache), "--replay"])
+        check(
+            "llm/damaged cache entry",
+            [
+                "translate", "--scene", "demo", "--text", "Go to the bathroom on floor 0.", "--out",
+                str(Path(tmp) / "m"), "--llm", "openai:fake-model", "--cache", str(cache), "--replay",
+            ],
+        )
 
 
 def test_cache_entry_with_empty_choices(recorded_cache: Path, tmp_path: Path) -> None:
@@ -128,7 +138,11 @@ def test_cache_entry_with_empty_choices(recorded_cache: Path, tmp_path: Path) ->
         document = json.loads(entry.read_text())
         document["response"]["choices"] = []
         (cache / entry.name).write_text(json.dumps(document))
-    check("llm/cache entry with empty choices", ["translate", "--scene", "demo", "--text",
-                                                 "Go to the bathroom on floor 0.", "--out", str(tmp_path / "m"),
-                                                 "--llm", "openai:fake-model", "--cache", str(cache), "--replay"],
-          must_fail=True)
+    check(
+        "llm/cache entry with empty choices",
+        [
+            "translate", "--scene", "demo", "--text", "Go to the bathroom on floor 0.", "--out",
+            str(tmp_path / "m"), "--llm", "openai:fake-model", "--cache", str(cache), "--replay",
+        ],
+        must_fail=True,
+    )

@@ -36,17 +36,25 @@ def test_plan_json_on_a_full_disk(tmp_path: Path) -> None:
     out = tmp_path / "result.json"
     earlier = json.dumps({"status": "optimal", "cost_m": 1.0}) + "\n"
     out.write_text(earlier)
-    check("write/plan --json on a full disk",
-          ["plan", "--scene", "demo", "--formula", 'F "enter(room_5)"', "--setup", "NO-LLM", "--json", str(out)],
-          survivors=[out], rlimits={resource.RLIMIT_FSIZE: len(earlier) + 10},
-          after=lambda run: _no_leftovers(tmp_path))
+    check(
+        "write/plan --json on a full disk",
+        [
+            "plan", "--scene", "demo", "--formula", 'F "enter(room_5)"', "--setup", "NO-LLM", "--json",
+            str(out),
+        ],
+        survivors=[out],
+        rlimits={resource.RLIMIT_FSIZE: len(earlier) + 10},
+        after=lambda run: _no_leftovers(tmp_path),
+    )
 
 
 @pytest.mark.parametrize("limit", [100, 1000])  # fails at automaton.aut / building_desc.yaml
 def test_translate_over_a_mission_on_a_full_disk(tmp_path: Path, limit: int) -> None:
     folder = tmp_path / "mission"
-    check("write/translate (first)", ["translate", "--scene", "demo", "--text", DEMO_MISSION, "--out", str(folder)],
-          allow=("clean",))
+    check(
+        "write/translate (first)",
+        ["translate", "--scene", "demo", "--text", DEMO_MISSION, "--out", str(folder)], allow=("clean",),
+    )
     (folder / "llm_heuristic.yaml").write_text("{}\n")  # guidance of the earlier mission
     check(f"write/translate over a mission, disk full at {limit} B",
           ["translate", "--scene", "demo", "--text", OTHER_MISSION, "--out", str(folder)],
@@ -77,18 +85,33 @@ def test_concurrent_translations_into_one_folder(tmp_path: Path) -> None:
     references = []
     for k, text in enumerate((DEMO_MISSION, OTHER_MISSION)):
         alone = tmp_path / f"alone{k}"
-        check("write/translate (reference)", ["translate", "--scene", "demo", "--text", text, "--out", str(alone)])
+        check(
+            "write/translate (reference)",
+            ["translate", "--scene", "demo", "--text", text, "--out", str(alone)],
+        )
         references.append({name: (alone / name).read_bytes() for name in mission_files})
     folder = tmp_path / "shared"
     env = {**os.environ, **({"PYTHONPATH": PYTHONPATH} if PYTHONPATH else {})}
     for round_ in range(3):
-        procs = [subprocess.Popen([sys.executable, "-m", "sgplan.cli", "translate", "--scene", "demo", "--text", text,
-                                   "--out", str(folder)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
-                 for text in (DEMO_MISSION, OTHER_MISSION)]
+        procs = [
+            subprocess.Popen(
+                [
+                    sys.executable, "-m", "sgplan.cli", "translate", "--scene", "demo", "--text", text,
+                    "--out", str(folder),
+                ],
+                stdout=subprocess.PIPE,
+                stderr=subprocess.PIPE,
+                env=env,
+            )
+            for text in (DEMO_MISSION, OTHER_MISSION)
+        ]
         codes = [p.wait(timeout=300) for p in procs]
         for p in procs:
             p.communicate()
-        found = {name: (folder / name).read_bytes() if (folder / name).is_file() else None for name in mission_files}
+        found = {
+            name: (folder / name).read_bytes() if (folder / name).is_file() else None
+            for name in mission_files
+        }
         outcome = "clean" if codes == [0, 0] and found in references else "data-loss"
         record(f"write/concurrent translations, round {round_}", outcome)
         if not RECORD:
@@ -104,16 +127,27 @@ SIGNALS = st.sampled_from([signal.SIGINT, signal.SIGTERM, signal.SIGHUP])
 def test_signal_at_a_random_point_of_a_sweep(data_dir: Path, tmp_path_factory: pytest.TempPathFactory,  # noqa: F811
                                              sig: signal.Signals, delay_s: float) -> None:
     out = tmp_path_factory.mktemp("sweep")
-    env = {**os.environ, WORKER_ENV: shlex.join(FAKE_WORKER), **({"PYTHONPATH": PYTHONPATH} if PYTHONPATH else {})}
-    base = [sys.executable, "-m", "sgplan.cli", "bench", "--data", str(data_dir), "--out", str(out), "--missions", "1",
-            "--setups", "ALL", "A*", "--jobs", "1", "--no-report"]
+    env = {
+        **os.environ, WORKER_ENV: shlex.join(FAKE_WORKER),
+        **({"PYTHONPATH": PYTHONPATH} if PYTHONPATH else {}),
+    }
+    base = [
+        sys.executable, "-m", "sgplan.cli", "bench", "--data", str(data_dir), "--out", str(out), "--missions",
+        "1", "--setups", "ALL", "A*", "--jobs", "1", "--no-report",
+    ]
     first = subprocess.run([*base, "--starts", "0"], env=env, capture_output=True, timeout=300)
     earlier = (out / "results.jsonl").read_bytes()
-    proc = subprocess.Popen([*base, "--starts", "0-4"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc = subprocess.Popen(
+        [*base, "--starts", "0-4"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE
+    )
     # The random point is counted from the sweep's first new row, so that it lands mid-sweep (a signal
     # during the interpreter's start-up imports is Python's business, not the sweep's).
     deadline = time.monotonic() + 120
-    while (out / "results.jsonl").stat().st_size == len(earlier) and proc.poll() is None and time.monotonic() < deadline:
+    while (
+        (out / "results.jsonl").stat().st_size == len(earlier)
+        and proc.poll() is None
+        and time.monotonic() < deadline
+    ):
         time.sleep(0.02)
     time.sleep(delay_s)
     proc.send_signal(sig)

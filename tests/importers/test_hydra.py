@@ -76,7 +76,8 @@ def build_graph(
 
 
 def floor_mesh() -> object:
-    """Floor vertices (z = 0) four per 0.1 m cell over x [-0.5, 5.5], y [-0.5, 0.5]; a 0.4 m block at x = 3."""
+    """Floor vertices (z = 0) four per 0.1 m cell over x [-0.5, 5.5], y [-0.5, 0.5]; a 0.4 m block at x =
+    3."""
     fx, fy = np.meshgrid(np.arange(-0.475, 5.5, 0.05), np.arange(-0.475, 0.5, 0.05), indexing="ij")
     bx, by = np.meshgrid(np.arange(2.825, 3.2, 0.05), np.arange(-0.175, 0.2, 0.05), indexing="ij")
     points = np.concatenate(

@@ -67,7 +67,8 @@ def test_rooms_objects_connections_and_free_cells(tmp_path: Path) -> None:
     assert kitchen.connected_room_ids == (living.id,)
     assert [o.name for o in kitchen.objects.values()] == ["refrigerator"]
     assert [o.name for o in living.objects.values()] == ["couch"]
-    # free pixels: 48 x 88, minus the 2-pixel wall except its 10-pixel door, minus 8 x 12 fridge and 1 couch cell
+    # free pixels: 48 x 88, minus the 2-pixel wall except its 10-pixel door, minus 8 x 12 fridge and 1 couch
+    # cell
     assert free_cells(building) == 48 * 88 - 2 * 48 + 2 * 10 - 8 * 12 - 1
     walled = import_ros_map(write_map(tmp_path, door=False), tmp_path / "rooms.yaml", SETTINGS).building
     assert room_named(walled, "kitchen").connected_room_ids == ()

@@ -270,10 +270,10 @@ class FakeOpenAIServer:
 class _Handler(BaseHTTPRequestHandler):
     fake: FakeOpenAIServer  # set on the per-server subclass
 
-    def log_message(self, format: str, *args: Any) -> None:  # noqa: A002 - keep test output clean
+    def log_message(self, format: str, *args: Any) -> None:
         pass
 
-    def do_POST(self) -> None:  # noqa: N802 - http.server naming
+    def do_POST(self) -> None:
         length = int(self.headers.get("Content-Length") or 0)
         body = self.rfile.read(length) if length else b""
         request = RecordedRequest("POST", self.path, dict(self.headers.items()), body)
@@ -288,7 +288,7 @@ class _Handler(BaseHTTPRequestHandler):
             return
         self._send(step)
 
-    def do_GET(self) -> None:  # noqa: N802
+    def do_GET(self) -> None:
         self._send(Step(status=404, body=json.dumps(error_body(f"no route {self.path}")).encode()))
 
     def _send(self, step: Step) -> None:

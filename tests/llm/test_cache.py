@@ -107,7 +107,9 @@ def test_record_then_replay_offline(
     assert isinstance(replayer, ChatBackend) and isinstance(recorder, ChatBackend)
 
 
-def record_one(fake_llm: FakeOpenAIServer, llm_client: OpenAIChatClient, folder: Path, reply: str) -> tuple[str, str]:
+def record_one(
+    fake_llm: FakeOpenAIServer, llm_client: OpenAIChatClient, folder: Path, reply: str
+) -> tuple[str, str]:
     """Record one call answered with ``reply`` into ``folder``; the entry's file name and text."""
     fake_llm.push_reply(reply)
     CachedChatBackend(folder, mode="record", inner=llm_client).complete(MESSAGES, temperature=0)
@@ -123,7 +125,9 @@ def test_an_entry_recorded_with_its_reasoning_replays_without_it(
     old = "<think>room_3 it is</think>['enter(room_3)']"  # as an earlier sgplan recorded it
     entry["response"].update(content=old, choices=[old])
     (tmp_path / name).write_text(json.dumps(entry), encoding="utf-8")
-    replayed = CachedChatBackend(tmp_path, mode="replay", model="fake-model").complete(MESSAGES, temperature=0)
+    replayed = CachedChatBackend(tmp_path, mode="replay", model="fake-model").complete(
+        MESSAGES, temperature=0
+    )
     assert replayed.content == "['enter(room_3)']" and replayed.choices == ("['enter(room_3)']",)
 
 

@@ -20,7 +20,10 @@ from .fake_openai_server import RecordedRequest
 
 TEXT = "Visit the bathroom on floor 0, then the dining room. Always avoid the kitchen."
 GROUNDED = "Visit room_5, then room_7. Always avoid room_4."
-TOKENS = "['AND', 'EVENTUALLY', 'AND', 'enter(room_5)', 'EVENTUALLY', 'enter(room_7)', 'ALWAYS', 'NOT', 'enter(room_4)']"
+TOKENS = (
+    "['AND', 'EVENTUALLY', 'AND', 'enter(room_5)', 'EVENTUALLY', 'enter(room_7)', "
+    "'ALWAYS', 'NOT', 'enter(room_4)']"
+)
 
 
 def demo_model(request: RecordedRequest) -> str:
@@ -67,8 +70,10 @@ def test_llm_translate_records_then_replays_without_a_server(fake_llm, llm_args,
     assert main([*argv, "--out", str(first)]) == 0
     assert "2 LLM calls (0 from the cache)" in capsys.readouterr().err
     fake_llm.respond_with(None)  # any request now fails the test
-    replay = ["translate", "--scene", "demo", "--text", TEXT, "--llm", "openai:fake-model", "--cache", str(cache),
-              "--replay", "--out", str(second)]
+    replay = [
+        "translate", "--scene", "demo", "--text", TEXT, "--llm", "openai:fake-model", "--cache", str(cache),
+        "--replay", "--out", str(second),
+    ]
     assert main(replay) == 0
     assert len(fake_llm.requests) == 2
     assert (first / "GPT_LTL_formula.txt").read_text() == (second / "GPT_LTL_formula.txt").read_text()
@@ -82,7 +87,10 @@ def test_llm_guide_writes_guidance_and_its_record(fake_llm, llm_args, tmp_path: 
     fake_llm.respond_with(demo_model)
     out = tmp_path / "mission"
     assert main(["translate", "--scene", "demo", "--text", TEXT, *llm_args, "--out", str(out)]) == 0
-    assert main(["guide", "--scene", "demo", "--mission-dir", str(out), *llm_args, "--max-concurrency", "2"]) == 0
+    assert (
+        main(["guide", "--scene", "demo", "--mission-dir", str(out), *llm_args, "--max-concurrency", "2"])
+        == 0
+    )
     printed = capsys.readouterr().out
     guidance = yaml.safe_load((out / "llm_heuristic.yaml").read_text())
     assert guidance[5][0] == ["move(5, 2)"] and guidance[11][0] == []  # room_11 does not connect to room_2
@@ -104,7 +112,15 @@ def test_llm_guide_keeps_the_record_when_every_call_fails(fake_llm, llm_args, tm
     assert record["summary"]["calls"] == 22 and not (out / "llm_heuristic.yaml").exists()
     blocked = tmp_path / "a-file"
     blocked.write_text("")
-    assert main(["guide", "--scene", "demo", "--mission-dir", str(out), *llm_args, "--out", str(blocked / "x.yaml")]) == 2
+    assert (
+        main(
+            [
+                "guide", "--scene", "demo", "--mission-dir", str(out), *llm_args, "--out",
+                str(blocked / "x.yaml"),
+            ]
+        )
+        == 2
+    )
     assert "all 22 guidance calls failed" in capsys.readouterr().err  # not hidden by the unsaved record
 
 
@@ -116,7 +132,10 @@ def test_llm_guide_keeps_the_record_when_every_call_fails(fake_llm, llm_args, tm
         (["--text", TEXT, "--llm", "gpt4"], "unknown --llm 'gpt4'"),
         (["--text", TEXT, "--base-url", "http://127.0.0.1:1/v1"], "only apply to a language model"),
         (["--text", TEXT, "--samples", "3"], "--samples only apply to a language model"),
-        (["--text", TEXT, "--llm", "openai:m", "--cache", "CACHE", "--replay"], "replay: no recorded LLM call"),
+        (
+            ["--text", TEXT, "--llm", "openai:m", "--cache", "CACHE", "--replay"],
+            "replay: no recorded LLM call",
+        ),
     ],
 )
 def test_user_errors_are_one_line_exit_2(extra: list[str], fragment: str, tmp_path: Path,
@@ -128,14 +147,20 @@ def test_user_errors_are_one_line_exit_2(extra: list[str], fragment: str, tmp_pa
     assert err[-1].startswith("sgplan: error:") and fragment in err[-1] and "Traceback" not in "\n".join(err)
 
 
-def test_server_errors_are_one_line_exit_2(fake_llm, llm_args, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_server_errors_are_one_line_exit_2(
+    fake_llm, llm_args, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     fake_llm.push_status(500, times=2)
-    assert main(["translate", "--scene", "demo", "--text", TEXT, *llm_args, "--out", str(tmp_path / "m")]) == 2
+    assert (
+        main(["translate", "--scene", "demo", "--text", TEXT, *llm_args, "--out", str(tmp_path / "m")]) == 2
+    )
     err = capsys.readouterr().err.strip().splitlines()[-1]
     assert err.startswith("sgplan: error: LLM call to") and "failed after 2 attempts: HTTP 500" in err
 
 
-def test_interactive_rephrasing_after_an_ambiguous_mission(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_interactive_rephrasing_after_an_ambiguous_mission(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     parser = argparse.ArgumentParser()
     translate.register(parser.add_subparsers())
     args = parser.parse_args(["translate", "--scene", "demo", "--text", "Visit the bathroom.",
@@ -241,16 +266,24 @@ def test_closed_stdin_at_the_rephrase_prompt_gives_up_with_the_refusal(tmp_path:
         translate.run(args, ask=ask)
 
 
-def test_plan_text_offline_translates_guides_and_verifies(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_plan_text_offline_translates_guides_and_verifies(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     saved, result = tmp_path / "mission", tmp_path / "result.json"
-    argv = ["plan", "--scene", "demo", "--text", TEXT, "--verify", "--save-mission", str(saved), "--json", str(result)]
+    argv = [
+        "plan", "--scene", "demo", "--text", TEXT, "--verify", "--save-mission", str(saved), "--json",
+        str(result),
+    ]
     assert main(argv) == 0
     printed = capsys.readouterr()
     assert "verified:" in printed.out and "offline-symbolic" in printed.err
     record = json.loads(result.read_text())
     assert record["status"] == "optimal" and record["verified"] is True and "llm" not in record
     # The saved folder is the same mission: planning it again gives the same optimum.
-    assert main(["plan", "--scene", "demo", "--mission-dir", str(saved), "--json", str(tmp_path / "again.json")]) == 0
+    assert (
+        main(["plan", "--scene", "demo", "--mission-dir", str(saved), "--json", str(tmp_path / "again.json")])
+        == 0
+    )
     assert json.loads((tmp_path / "again.json").read_text())["cost_m"] == record["cost_m"]
 
 

@@ -234,7 +234,10 @@ def test_html_instead_of_json(fake_llm: FakeOpenAIServer, llm_client: OpenAIChat
         ("", "stop", "choice 0 has empty content (finish_reason 'stop')"),
         ("  \n ", "stop", "choice 0 has empty content"),
         (None, "length", "hit the token limit before any text; raise max_tokens)"),
-        ("<think>Let me see... the kitchen is", "length", "only a <think> reasoning block, no answer; raise max_tokens"),
+        (
+            "<think>Let me see... the kitchen is", "length",
+            "only a <think> reasoning block, no answer; raise max_tokens",
+        ),
         ("<think>done</think>\n ", "stop", "only a <think> reasoning block, no answer)"),
     ],
 )
@@ -254,7 +257,9 @@ def test_empty_content(
 def test_a_leading_reasoning_block_is_not_part_of_the_answer(
     fake_llm: FakeOpenAIServer, llm_client: OpenAIChatClient,
 ) -> None:
-    fake_llm.push_reply("<think>\nThe user wants <command>move(1, 2)</command>? No.\n</think>\n<command>move(2, 3)</command>")
+    fake_llm.push_reply(
+        "<think>\nThe user wants <command>move(1, 2)</command>? No.\n</think>\n<command>move(2, 3)</command>"
+    )
     assert llm_client.complete(ASK).content == "\n<command>move(2, 3)</command>"
     fake_llm.push_reply("The answer mentions <think> later, and stays whole.")
     assert llm_client.complete(ASK).content == "The answer mentions <think> later, and stays whole."
@@ -267,7 +272,7 @@ def test_refusal_is_reported(fake_llm: FakeOpenAIServer, llm_client: OpenAIChatC
     body = completion_body(None)
     body["choices"][0]["message"]["refusal"] = "I can't help with that."
     fake_llm.push_raw(json.dumps(body))
-    with pytest.raises(LLMError, match="the model refused: I can't help with that."):
+    with pytest.raises(LLMError, match=r"the model refused: I can't help with that."):
         llm_client.complete(ASK)
 
 
@@ -442,13 +447,15 @@ def test_config_file_errors(tmp_path, text: str, expected: str) -> None:  # type
 
 
 def test_config_file_missing(tmp_path) -> None:  # type: ignore[no-untyped-def]
-    with pytest.raises(LLMError, match="llm.yaml: LLM config file not found"):
+    with pytest.raises(LLMError, match=r"llm.yaml: LLM config file not found"):
         load_llm_config(tmp_path / "llm.yaml", environ={})
 
 
 def test_tests_cannot_leave_loopback() -> None:
     with pytest.raises(AssertionError, match="must stay on loopback"):
         socket.getaddrinfo("api.openai.com", 443)
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
-        with pytest.raises(AssertionError, match="loopback"):
-            sock.connect(("192.0.2.1", 443))  # TEST-NET-1; the guard refuses before any packet is sent
+    with (
+        socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock,
+        pytest.raises(AssertionError, match="loopback"),
+    ):
+        sock.connect(("192.0.2.1", 443))  # TEST-NET-1; the guard refuses before any packet is sent

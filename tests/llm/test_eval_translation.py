@@ -33,7 +33,9 @@ MISSIONS = [
 
 
 def write_set(path: Path, missions: list[dict]) -> Path:
-    path.write_text("# a comment line\n" + "\n".join(json.dumps(m) for m in missions) + "\n\n", encoding="utf-8")
+    path.write_text(
+        "# a comment line\n" + "\n".join(json.dumps(m) for m in missions) + "\n\n", encoding="utf-8"
+    )
     return path
 
 
@@ -48,7 +50,10 @@ def test_scene_facts_make_an_object_imply_its_room():
     assert same_language(got, gold, demo) == (True, "")
     assert not same_language(got, gold)[0]  # without the scene the room is an independent proposition
     # one room at a time: a local "not in the kitchen" while in the bedroom says nothing, a global one does
-    local, scoped = parse_infix(expand_shorthand("F(r11 & !r4)")), parse_infix(expand_shorthand("F r11 & G !r4"))
+    local, scoped = (
+        parse_infix(expand_shorthand("F(r11 & !r4)")),
+        parse_infix(expand_shorthand("F r11 & G !r4")),
+    )
     assert same_language(local, parse_infix(expand_shorthand("F r11")), demo)[0]
     same, why = same_language(local, scoped, demo)
     assert not same and why == "they differ on {enter(room_4)} {enter(room_11)}"
@@ -66,13 +71,17 @@ def test_offline_score_counts_and_explains_the_wrong_ones(mission_set: Path):
     report = score.to_dict()
     assert report["counts"] == {"right": 3, "wrong": 1, "refused": 1} and report["total"] == 5
     wrong = next(m for m in report["missions"] if m["id"] == "either")
-    assert wrong["translation"] == 'F "enter(room_4)" & F "enter(room_6)"' and wrong["gold_explanation"].startswith("<")
+    assert wrong["translation"] == 'F "enter(room_4)" & F "enter(room_6)"' and wrong[
+        "gold_explanation"
+    ].startswith("<")
 
 
 def test_cli_offline_prints_refused_and_wrong_side_by_side(mission_set: Path, tmp_path: Path,
                                                            capsys: pytest.CaptureFixture[str]):
     report = tmp_path / "report.json"
-    assert main(["eval-translation", "--set", str(mission_set), "--llm", "offline", "--json", str(report)]) == 1
+    assert (
+        main(["eval-translation", "--set", str(mission_set), "--llm", "offline", "--json", str(report)]) == 1
+    )
     out = capsys.readouterr().out
     assert "[refused] bathroom (demo): Visit the bathroom.\n    'the bathroom' matches 2 rooms" in out
     block = out[out.index("[wrong] either"):]
@@ -81,7 +90,9 @@ def test_cli_offline_prints_refused_and_wrong_side_by_side(mission_set: Path, tm
     # plain words from sgplan.explain, one under the other: a choice against two goals
     assert "kitchen (room_4, floor 0) or the living room (room_6, floor 0)" in expected
     assert " or " not in got and "kitchen (room_4, floor 0)" in got and "living room (room_6, floor 0)" in got
-    assert "[right]" not in out and out.strip().endswith("right 3/5 (60.0%), wrong 1, refused 1  [offline-pattern]")
+    assert "[right]" not in out and out.strip().endswith(
+        "right 3/5 (60.0%), wrong 1, refused 1  [offline-pattern]"
+    )
     assert json.loads(report.read_text())["counts"]["wrong"] == 1
     # without the wrong gold, nothing is wrong: exit status 0
     clean = write_set(tmp_path / "clean.jsonl", MISSIONS[:4])
@@ -93,15 +104,29 @@ def test_cli_offline_prints_refused_and_wrong_side_by_side(mission_set: Path, tm
     ("line", "fragment"),
     [
         ("{not json", "line 2: not JSON"),
-        (json.dumps({"id": "x", "scene": "demo", "text": "t"}), "line 2: expected an object with id, scene, text and formula"),
-        (json.dumps({"id": "x", "scene": "demo", "text": "t", "formula": "F ("}), "mission 'x'): the gold formula does not parse"),
-        (json.dumps({"id": "x", "scene": "demo", "text": "Visit the kitchen.", "formula": "F r99"}),
-         "mission 'x': the gold formula: proposition 'enter(room_99)' names no room or object of the scene"),
-        (json.dumps({"id": "kitchen", "scene": "demo", "text": "t", "formula": "F r4"}), "the id 'kitchen' is used twice"),
+        (
+            json.dumps({"id": "x", "scene": "demo", "text": "t"}),
+            "line 2: expected an object with id, scene, text and formula",
+        ),
+        (
+            json.dumps({"id": "x", "scene": "demo", "text": "t", "formula": "F ("}),
+            "mission 'x'): the gold formula does not parse",
+        ),
+        (
+            json.dumps({"id": "x", "scene": "demo", "text": "Visit the kitchen.", "formula": "F r99"}),
+            "mission 'x': the gold formula: proposition 'enter(room_99)' names no room or object of the "
+            "scene",
+        ),
+        (
+            json.dumps({"id": "kitchen", "scene": "demo", "text": "t", "formula": "F r4"}),
+            "the id 'kitchen' is used twice",
+        ),
         (json.dumps({"id": "x", "scene": "nowhere", "text": "t", "formula": "F r4"}), "scene 'nowhere'"),
     ],
 )
-def test_bad_sets_are_one_line_errors(tmp_path: Path, line: str, fragment: str, capsys: pytest.CaptureFixture[str]):
+def test_bad_sets_are_one_line_errors(
+    tmp_path: Path, line: str, fragment: str, capsys: pytest.CaptureFixture[str]
+):
     path = tmp_path / "bad.jsonl"
     path.write_text(json.dumps(MISSIONS[0]) + "\n" + line + "\n", encoding="utf-8")
     assert main(["eval-translation", "--set", str(path), "--llm", "offline"]) == 2
@@ -122,8 +147,10 @@ def test_empty_or_missing_set_is_an_error(tmp_path: Path):
 GROUNDINGS = {
     "Go to the kitchen, then the living room.": ("Go to room_5, then room_6.", []),
     "Take the bowl in the kitchen.": ("Take object_19 in room_4.", []),
-    "Visit the bathroom.": ("Visit the bathroom.",
-                            [{"phrase": "the bathroom", "kind": "ambiguous", "candidates": ["room_5", "room_14"]}]),
+    "Visit the bathroom.": (
+        "Visit the bathroom.",
+        [{"phrase": "the bathroom", "kind": "ambiguous", "candidates": ["room_5", "room_14"]}],
+    ),
 }
 TOKENS = {
     "Go to room_5, then room_6.": "['EVENTUALLY', 'AND', 'enter(room_5)', 'EVENTUALLY', 'enter(room_6)']",
@@ -140,8 +167,9 @@ def scripted_model(request: RecordedRequest) -> str:
     return next(tokens for grounded, tokens in TOKENS.items() if grounded in user)
 
 
-def test_against_the_fake_openai_server_then_replayed(fake_llm, tmp_path: Path, capsys: pytest.CaptureFixture[str],
-                                                      monkeypatch: pytest.MonkeyPatch):
+def test_against_the_fake_openai_server_then_replayed(
+    fake_llm, tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+):
     for name in ("OPENAI_BASE_URL", "SGPLAN_LLM_CONFIG", "OPENAI_API_KEY", "SGPLAN_LLM_API_KEY"):
         monkeypatch.delenv(name, raising=False)
     config = tmp_path / "llm.yaml"
@@ -150,7 +178,9 @@ def test_against_the_fake_openai_server_then_replayed(fake_llm, tmp_path: Path, 
     mission_set = write_set(tmp_path / "set.jsonl", MISSIONS[:3])
     fake_llm.respond_with(scripted_model)
     cache = tmp_path / "cache"
-    argv = ["eval-translation", "--set", str(mission_set), "--llm", "openai:fake-model", "--cache", str(cache)]
+    argv = [
+        "eval-translation", "--set", str(mission_set), "--llm", "openai:fake-model", "--cache", str(cache),
+    ]
     assert main([*argv, "--base-url", fake_llm.base_url, "--llm-config", str(config)]) == 1
     printed = capsys.readouterr()
     assert "[wrong] kitchen (demo)" in printed.out and "room_5" in printed.out
@@ -166,11 +196,17 @@ def test_against_the_fake_openai_server_then_replayed(fake_llm, tmp_path: Path, 
 
 
 def test_start_floor_reaches_the_offline_translator(tmp_path: Path):
-    missions = [{"id": "up", "scene": "demo", "text": "Go to the bathroom downstairs.", "formula": "F r5",
-                 "start_floor": 1},
-                {"id": "here", "scene": "demo", "text": "Go to the bathroom on this floor.", "formula": "F r14",
-                 "start_floor": 1},
-                {"id": "unknown", "scene": "demo", "text": "Go to the bathroom on this floor.", "formula": "F r14"}]
+    missions = [
+        {
+            "id": "up", "scene": "demo", "text": "Go to the bathroom downstairs.", "formula": "F r5",
+            "start_floor": 1,
+        },
+        {
+            "id": "here", "scene": "demo", "text": "Go to the bathroom on this floor.", "formula": "F r14",
+            "start_floor": 1,
+        },
+        {"id": "unknown", "scene": "demo", "text": "Go to the bathroom on this floor.", "formula": "F r14"},
+    ]
     demo = demo_building()
     score = score_translator(PatternTranslator(), load_jsonl_set(write_set(tmp_path / "s.jsonl", missions)),
                              lambda scene: demo)

@@ -1,4 +1,5 @@
-"""Guidance generation against a real chat-completions server: prompts, XML replies, validation, batch/lazy."""
+"""Guidance generation against a real chat-completions server: prompts, XML replies, validation,
+batch/lazy."""
 
 from __future__ import annotations
 
@@ -14,7 +15,6 @@ import yaml
 from sgplan.errors import LLMError
 from sgplan.llm.guidance import (
     IMPLAUSIBLE_LABEL_COST,
-    LazyGuidance,
     LLMGuide,
     generate_guidance,
     label_costs,
@@ -31,7 +31,10 @@ from .fake_openai_server import RecordedRequest, Step, error_body
 
 # demo: room_2 corridor (floor 0) connects to 4, 5, 6, 7, 8; room_4 kitchen holds object_19 (bowl);
 # room_5 bathroom; room_7 dining room. Mission: bathroom, then dining room, never the kitchen.
-FORMULA = "['AND', 'EVENTUALLY', 'AND', 'enter(room_5)', 'EVENTUALLY', 'enter(room_7)', 'ALWAYS', 'NOT', 'enter(room_4)']"
+FORMULA = (
+    "['AND', 'EVENTUALLY', 'AND', 'enter(room_5)', 'EVENTUALLY', 'enter(room_7)', "
+    "'ALWAYS', 'NOT', 'enter(room_4)']"
+)
 ROOM = re.compile(r"You are in room_(\d+)\.")
 
 
@@ -82,9 +85,14 @@ def test_remaining_mission_over_p_names_uses_the_actions(mission) -> None:
 @pytest.mark.parametrize(
     ("reply", "commands"),
     [
-        ("<command>move(room_2, room_5)</command><command> reach(room_5, object_21) </command>",
-         ["move(room_2, room_5)", "reach(room_5, object_21)"]),
-        ("Sure! <command>move(2, 5)</command> & then <command>reach(5, 21)</command>", ["move(2, 5)", "reach(5, 21)"]),
+        (
+            "<command>move(room_2, room_5)</command><command> reach(room_5, object_21) </command>",
+            ["move(room_2, room_5)", "reach(room_5, object_21)"],
+        ),
+        (
+            "Sure! <command>move(2, 5)</command> & then <command>reach(5, 21)</command>",
+            ["move(2, 5)", "reach(5, 21)"],
+        ),
         ("<response><command>move(2, 5)</command><note>hi</note></response>", ["move(2, 5)"]),
         ("I cannot help with that.", []),
     ],
@@ -117,7 +125,9 @@ def test_validate_call(demo, call: str, expected: str) -> None:
         assert canonical is None and expected in reason
 
 
-def test_batch_guidance_validates_counts_and_skips(fake_llm, llm_client, demo, mission, tmp_path: Path) -> None:
+def test_batch_guidance_validates_counts_and_skips(
+    fake_llm, llm_client, demo, mission, tmp_path: Path
+) -> None:
     fake_llm.respond_with(mixed_reply(demo))
     record = RunRecord(llm_client.label)
     guidance, report = generate_guidance(demo, mission.automaton, llm_client, record,
@@ -133,10 +143,14 @@ def test_batch_guidance_validates_counts_and_skips(fake_llm, llm_client, demo, m
     sink = a.step(a.initial, a.label_of({"enter(room_4)"}))
     assert guidance[2][sink] == []
     prompts = [r.last_user_message for r in fake_llm.requests if room_of(r) == 2]
-    assert all(p.startswith("The whole mission is: Visit room_5, then room_7; avoid room_4.") for p in prompts)
+    assert all(
+        p.startswith("The whole mission is: Visit room_5, then room_7; avoid room_4.") for p in prompts
+    )
     assert sum("Remaining mission: 1. enter room_5; 2. enter room_7. Throughout: never enter room_4.\n" in p
                for p in prompts) == 1
-    assert {c["prompt_version"] for c in record.calls} == {"guidance/1+hierarchy/1"} and len(record.calls) == report.asked
+    assert {c["prompt_version"] for c in record.calls} == {"guidance/1+hierarchy/1"} and len(
+        record.calls
+    ) == report.asked
     assert all(c["context"].keys() == {"room", "state"} for c in record.calls)
     # llm_heuristic.yaml round trip in the authors' form
     path = write_guidance(guidance, tmp_path / "llm_heuristic.yaml")
@@ -144,7 +158,9 @@ def test_batch_guidance_validates_counts_and_skips(fake_llm, llm_client, demo, m
     assert yaml.safe_load(path.read_text())[4][0] == ["reach(4, 19)", "move(4, 2)"]
 
 
-def test_failed_entries_are_empty_and_counted_and_all_failing_is_an_error(fake_llm, llm_client, demo, mission) -> None:
+def test_failed_entries_are_empty_and_counted_and_all_failing_is_an_error(
+    fake_llm, llm_client, demo, mission
+) -> None:
     def answer(request: RecordedRequest):
         if room_of(request) == 2:
             return Step(status=500, body=__import__("json").dumps(error_body("boom")).encode())
@@ -174,19 +190,6 @@ def test_batch_respects_the_concurrency_limit(fake_llm, llm_client, demo, missio
     fake_llm.respond_with(answer)
     generate_guidance(demo, mission.automaton, llm_client, RunRecord("x"), max_concurrency=3)
     assert 2 <= state["max"] <= 3
-
-
-def test_lazy_guidance_asks_only_what_is_queried_once(fake_llm, llm_client, demo, mission) -> None:
-    fake_llm.respond_with(mixed_reply(demo))
-    a = mission.automaton
-    sink = a.step(a.initial, a.label_of({"enter(room_4)"}))
-    lazy = LazyGuidance(demo, a, llm_client, RunRecord("x"))
-    assert lazy(4, 0) == ["reach(4, 19)", "move(4, 2)"]
-    assert lazy(4, 0) == ["reach(4, 19)", "move(4, 2)"]
-    assert lazy(4, sink) == [] and lazy(999, 0) == [] and lazy(4, 99) == []
-    assert len(fake_llm.requests) == 1
-    assert lazy.table() == {4: {0: ["reach(4, 19)", "move(4, 2)"], sink: []}}
-    assert lazy.report.asked == 1 and lazy.report.calls_dropped == 1
 
 
 def test_llm_guide_has_the_offline_guides_contract(fake_llm, llm_client, demo, mission) -> None:
@@ -254,8 +257,15 @@ def test_the_remaining_mission_avoids_labels_the_scene_makes_implausible(demo) -
     a = mission_from_formula('F "enter(room_5)" & F "enter(room_7)" & F "reach(object_32)"').automaton
     assert demo.object(uuid=32).room_uuid not in (5, 7)
     costs = label_costs(a, demo)
-    assert "enter room_7 and reach object_32" in remaining_text(a, a.initial)  # one letter, impossible at one cell
-    assert remaining_text(a, a.initial, weights=costs) == "1. reach object_32; 2. enter room_7; 3. enter room_5."
+    assert "enter room_7 and reach object_32" in remaining_text(
+        a, a.initial
+    )  # one letter, impossible at one cell
+    assert (
+        remaining_text(a, a.initial, weights=costs) == "1. reach object_32; 2. enter room_7; 3. enter room_5."
+    )
     both = a.label_of({"enter(room_5)", "enter(room_7)"})
-    assert costs[both] == IMPLAUSIBLE_LABEL_COST and costs[a.label_of({"reach(object_32)", "enter(room_7)"})] == IMPLAUSIBLE_LABEL_COST
+    assert (
+        costs[both] == IMPLAUSIBLE_LABEL_COST
+        and costs[a.label_of({"reach(object_32)", "enter(room_7)"})] == IMPLAUSIBLE_LABEL_COST
+    )
     assert costs[a.label_of({"reach(object_32)"})] == costs[a.label_of({"enter(room_7)"})] == 1.0

@@ -31,7 +31,9 @@ def test_chat_templates_render_roles_in_order_and_fragments_render_text() -> Non
     assert [m["role"] for m in messages] == ["system", "user"]
     assert messages[-1]["content"] == "IDs in the mission: [room_2]\nMission: Visit room_2."
     assert "NEXT" in messages[0]["content"] and "'NEXT', 'enter(room_2)'" in messages[0]["content"]
-    guidance = load_prompt("guidance").messages(environment="E", mission_context="", room="room_2", remaining="1. x.")
+    guidance = load_prompt("guidance").messages(
+        environment="E", mission_context="", room="room_2", remaining="1. x."
+    )
     assert [m["role"] for m in guidance] == ["system", "user", "assistant", "user"]
     with pytest.raises(LLMError, match="fragment"):
         load_prompt("hierarchy").messages(hierarchy="x")

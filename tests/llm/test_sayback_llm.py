@@ -33,9 +33,11 @@ def test_plan_text_says_the_bathroom_was_understood(fake_llm, tmp_path: Path,  #
     config = tmp_path / "llm.yaml"
     config.write_text(yaml.safe_dump({"timeout_s": 2.0, "max_retries": 1}))
     out = tmp_path / "r.json"
-    argv = ["plan", "--scene", "demo", "--text", "Go to the kitchen.", "--setup", "NO-LLM", "--json", str(out),
-            "--llm", "openai:fake-model", "--base-url", fake_llm.base_url, "--llm-config", str(config),
-            "--save-mission", str(tmp_path / "m")]
+    argv = [
+        "plan", "--scene", "demo", "--text", "Go to the kitchen.", "--setup", "NO-LLM", "--json", str(out),
+        "--llm", "openai:fake-model", "--base-url", fake_llm.base_url, "--llm-config", str(config),
+        "--save-mission", str(tmp_path / "m"),
+    ]
     assert main(argv) == 0
     assert "Go to the bathroom (room_5, floor 0)." in capsys.readouterr().out
     assert "bathroom (room_5" in json.loads(out.read_text())["explanation"]["text"]

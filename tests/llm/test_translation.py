@@ -20,7 +20,13 @@ from sgplan.llm.config import LLMConfig
 from sgplan.llm.grounding import RephraseError
 from sgplan.llm.offline.evaluation import expand_shorthand, same_language
 from sgplan.llm.records import RECORD_FORMAT, RunRecord
-from sgplan.llm.translation import LLMTranslator, check_formula, mark_token, reply_token_list, translate_to_folder
+from sgplan.llm.translation import (
+    LLMTranslator,
+    check_formula,
+    mark_token,
+    reply_token_list,
+    translate_to_folder,
+)
 from sgplan.logic import equivalent, parse_infix
 from sgplan.mission import load_mission_folder
 from sgplan.scene.demo import demo_building
@@ -47,18 +53,27 @@ def calls_of(record: RunRecord) -> list[str]:
     return [c["step"] for c in record.calls]
 
 
-def test_correct_replies_give_the_formula_and_a_complete_folder(fake_llm, llm_client, demo, tmp_path: Path) -> None:
+def test_correct_replies_give_the_formula_and_a_complete_folder(
+    fake_llm, llm_client, demo, tmp_path: Path
+) -> None:
     fake_llm.push_reply(GROUNDING_REPLY)
     fake_llm.push_reply(f"Here is the list:\n```python\n{GOOD}\n```")
     record = RunRecord(llm_client.label)
-    translation, mission = translate_to_folder(TEXT, demo, LLMTranslator(llm_client, record=record), tmp_path, record)
+    translation, mission = translate_to_folder(
+        TEXT, demo, LLMTranslator(llm_client, record=record), tmp_path, record
+    )
     assert_gold(translation.formula)
-    assert translation.grounded_text == GROUNDED and translation.ids == ("room_5", "object_28", "object_29", "room_7", "room_4")
+    assert translation.grounded_text == GROUNDED and translation.ids == (
+        "room_5", "object_28", "object_29", "room_7", "room_4",
+    )
     assert translation.repairs == 0 and translation.votes == (1,)
     # what the model was told: the hierarchy with connections, then the grounded text and its IDs
     first, second = fake_llm.requests
     assert "room_8: staircase. Connects to: room_2, room_9 (floor 1)." in first.last_user_message
-    assert second.last_user_message == f"IDs in the mission: [room_5, object_28, object_29, room_7, room_4]\nMission: {GROUNDED}"
+    assert (
+        second.last_user_message
+        == f"IDs in the mission: [room_5, object_28, object_29, room_7, room_4]\nMission: {GROUNDED}"
+    )
     assert first.json["temperature"] == 0.0
     # the folder: authors' layout + env_elements + the run record; it loads back to the same language
     names = {p.name for p in tmp_path.iterdir()}
@@ -73,7 +88,9 @@ def test_correct_replies_give_the_formula_and_a_complete_folder(fake_llm, llm_cl
     saved = json.loads((tmp_path / "llm_record.json").read_text())
     assert saved["format"] == RECORD_FORMAT and saved["summary"]["calls"] == 2
     assert [c["prompt_version"] for c in saved["calls"]] == ["grounding/1+hierarchy/1", "translation/1"]
-    assert saved["calls"][1]["reply"].startswith("Here is the list") and saved["calls"][1]["from_cache"] is False
+    assert (
+        saved["calls"][1]["reply"].startswith("Here is the list") and saved["calls"][1]["from_cache"] is False
+    )
     assert saved["calls"][0]["latency_s"] > 0 and saved["calls"][0]["error"] is None
     assert [e["kind"] for e in saved["events"]] == ["grounded", "formula-accepted", "saved", "explained"]
     assert "the kitchen (room_4, floor 0)" in saved["events"][-1]["text"]
@@ -88,7 +105,9 @@ def test_a_syntax_error_is_repaired_with_the_precise_error(fake_llm, llm_client,
     translator = LLMTranslator(llm_client)
     translation = translator.translate(TEXT, demo)
     assert_gold(translation.formula)
-    assert translation.repairs == 2 and calls_of(translator.record) == ["grounding", "translation", "repair", "repair"]
+    assert translation.repairs == 2 and calls_of(translator.record) == [
+        "grounding", "translation", "repair", "repair",
+    ]
     repair = fake_llm.requests[2]
     assert "token 0 'AND' needs 2 operands" in repair.last_user_message
     assert "['AND'  <-- here, 'EVENTUALLY', 'enter(room_5)']" in repair.last_user_message
@@ -103,7 +122,9 @@ def test_hopeless_replies_end_with_a_request_to_rephrase(fake_llm, llm_client, d
     fake_llm.push_reply("I think the robot should go to the bathroom.", times=3)
     record = RunRecord(llm_client.label)
     with pytest.raises(RephraseError, match=r"no valid formula .* in 3 attempts .* rephrase the mission"):
-        translate_to_folder(TEXT, demo, LLMTranslator(llm_client, record=record, max_repairs=2), tmp_path, record)
+        translate_to_folder(
+            TEXT, demo, LLMTranslator(llm_client, record=record, max_repairs=2), tmp_path, record
+        )
     assert len(fake_llm.requests) == 4
     assert sorted(p.name for p in tmp_path.iterdir()) == ["llm_refused_record.json"]  # no half-made mission
     assert json.loads((tmp_path / "llm_refused_record.json").read_text())["events"][-1]["kind"] == "refused"
@@ -116,13 +137,21 @@ def test_hopeless_replies_end_with_a_request_to_rephrase(fake_llm, llm_client, d
         # room_14 exists, but the grounded mission does not mention it: an invented reference too
         ("['EVENTUALLY', 'enter(room_14)']", "names room_14, which is not a known"),
         ("['EVENTUALLY', 'enter(object_21)']", "malformed"),
-        ("['AND', 'EVENTUALLY', 'enter(room_5)', 'ALWAYS', 'NOT', 'enter(room_5)']", "can never be satisfied"),
+        (
+            "['AND', 'EVENTUALLY', 'enter(room_5)', 'ALWAYS', 'NOT', 'enter(room_5)']",
+            "can never be satisfied",
+        ),
         # tautologies ask nothing of the robot; the second one only because rooms are mutually exclusive
-        ("['OR', 'EVENTUALLY', 'enter(room_5)', 'NOT', 'EVENTUALLY', 'enter(room_5)']", "satisfied by every path"),
+        (
+            "['OR', 'EVENTUALLY', 'enter(room_5)', 'NOT', 'EVENTUALLY', 'enter(room_5)']",
+            "satisfied by every path",
+        ),
         ("['ALWAYS', 'NOT', 'AND', 'enter(room_5)', 'enter(room_4)']", "asks nothing of the robot"),
     ],
 )
-def test_invented_ids_and_impossible_formulas_are_repaired_then_refused(fake_llm, llm_client, demo, bad, fragment) -> None:
+def test_invented_ids_and_impossible_formulas_are_repaired_then_refused(
+    fake_llm, llm_client, demo, bad, fragment
+) -> None:
     fake_llm.push_reply(GROUNDING_REPLY)
     fake_llm.push_reply(bad)
     fake_llm.push_reply(GOOD)
@@ -181,16 +210,22 @@ def test_a_mission_naming_nothing_is_refused(fake_llm, llm_client, demo) -> None
 
 
 def test_warnings_are_kept_for_next_and_first_cell_constraints(fake_llm, llm_client, demo) -> None:
-    fake_llm.push_reply(json.dumps({"grounded": "Start in room_5 and step into room_2 next.", "problems": []}))
+    fake_llm.push_reply(
+        json.dumps({"grounded": "Start in room_5 and step into room_2 next.", "problems": []})
+    )
     fake_llm.push_reply("['AND', 'enter(room_5)', 'NEXT', 'enter(room_2)']")
-    translation = LLMTranslator(llm_client).translate("Start in the bathroom on floor 0, then the corridor.", demo)
+    translation = LLMTranslator(llm_client).translate(
+        "Start in the bathroom on floor 0, then the corridor.", demo
+    )
     text = " ".join(translation.warnings)
     assert "only constrains the first cell" in text and "X (NEXT)" in text
 
 
 def test_majority_vote_groups_by_automaton_equivalence(fake_llm, llm_client, demo) -> None:
-    swapped = ("['AND', 'ALWAYS', 'NOT', 'enter(room_4)', 'EVENTUALLY', 'AND', 'enter(room_5)', 'EVENTUALLY', "
-               "'AND', 'enter(room_7)', 'OR', 'reach(object_29)', 'reach(object_28)']")
+    swapped = (
+        "['AND', 'ALWAYS', 'NOT', 'enter(room_4)', 'EVENTUALLY', 'AND', 'enter(room_5)', 'EVENTUALLY', "
+        "'AND', 'enter(room_7)', 'OR', 'reach(object_29)', 'reach(object_28)']"
+    )
     fake_llm.push_reply(GROUNDING_REPLY)
     fake_llm.push_reply("['EVENTUALLY', 'enter(room_5)']")  # a different reading
     fake_llm.push_reply(GOOD)
@@ -256,20 +291,26 @@ def test_transient_failures_are_retried_and_recorded(fake_llm, demo) -> None:
     ],
     ids=["500s", "timeouts", "truncated-json", "empty-content"],
 )
-def test_server_failures_end_in_one_llm_error_and_no_cache_entry(fake_llm, demo, tmp_path: Path, script, fragment) -> None:
+def test_server_failures_end_in_one_llm_error_and_no_cache_entry(
+    fake_llm, demo, tmp_path: Path, script, fragment
+) -> None:
     script(fake_llm)
     with fast_client(fake_llm) as client:
         backend = CachedChatBackend(tmp_path / "cache", mode="record", inner=client)
         record = RunRecord(backend.label)
         with pytest.raises(LLMError, match=fragment) as info:
-            translate_to_folder(TEXT, demo, LLMTranslator(backend, record=record), tmp_path / "mission", record)
+            translate_to_folder(
+                TEXT, demo, LLMTranslator(backend, record=record), tmp_path / "mission", record
+            )
     assert "\n" not in str(info.value)
     assert not (tmp_path / "cache").exists() or not list((tmp_path / "cache").iterdir())
     assert sorted(p.name for p in (tmp_path / "mission").iterdir()) == ["llm_refused_record.json"]
     assert record.calls[0]["error"] and record.calls[0]["reply"] is None
 
 
-def test_record_then_replay_offline_gives_the_same_mission(fake_llm, llm_client, demo, tmp_path: Path) -> None:
+def test_record_then_replay_offline_gives_the_same_mission(
+    fake_llm, llm_client, demo, tmp_path: Path
+) -> None:
     cache = tmp_path / "cache"
     fake_llm.push_reply(GROUNDING_REPLY)
     fake_llm.push_reply("['AND', 'EVENTUALLY', 'enter(room_5)']")
@@ -295,14 +336,20 @@ def test_reply_parsing_helpers() -> None:
 
 
 @pytest.mark.gibson
-def test_benevolence_mission_is_translated_and_checked_against_the_scene(fake_llm, llm_client, gibson_root, tmp_path) -> None:
+def test_benevolence_mission_is_translated_and_checked_against_the_scene(
+    fake_llm, llm_client, gibson_root, tmp_path
+) -> None:
     from sgplan.scene.loading import load_scene
 
     building = load_scene(gibson_root / "Benevolence")
     bathroom = next(r for r in building.rooms() if r.name == "bathroom")
     corridor = next(r for r in building.rooms() if r.name == "corridor")
-    fake_llm.push_reply(json.dumps({"grounded": f"Go to {bathroom.key}, never entering {corridor.key}.", "problems": []}))
-    fake_llm.push_reply(f"['AND', 'EVENTUALLY', 'enter({bathroom.key})', 'ALWAYS', 'NOT', 'enter({corridor.key})']")
+    fake_llm.push_reply(
+        json.dumps({"grounded": f"Go to {bathroom.key}, never entering {corridor.key}.", "problems": []})
+    )
+    fake_llm.push_reply(
+        f"['AND', 'EVENTUALLY', 'enter({bathroom.key})', 'ALWAYS', 'NOT', 'enter({corridor.key})']"
+    )
     record = RunRecord(llm_client.label)
     _, mission = translate_to_folder("Go to the bathroom, never entering the corridor.", building,
                                      LLMTranslator(llm_client, record=record), tmp_path, record)

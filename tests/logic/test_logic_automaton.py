@@ -33,7 +33,7 @@ MISSION = parse_infix("F(p1 & F p2) & G !p3")
 def test_validation_errors_are_specific():
     with pytest.raises(AutomatonError, match=r"shape \(2, 3\); expected \(num_states >= 1, 2\)"):
         Automaton(("a",), np.zeros((2, 3)), 0, np.zeros(2, bool))
-    with pytest.raises(AutomatonError, match="targets outside 0..0"):
+    with pytest.raises(AutomatonError, match=r"targets outside 0..0"):
         Automaton(("a",), np.array([[0, 1]]), 0, np.zeros(1, bool))
     with pytest.raises(AutomatonError, match="initial state 3 is outside"):
         Automaton(("a",), np.zeros((1, 2)), 3, np.zeros(1, bool))

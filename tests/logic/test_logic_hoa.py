@@ -44,7 +44,7 @@ def test_missing_edges_reject_by_default_and_stay_under_the_authors_profile():
 
 def test_authors_profile_ignores_self_loops_that_overlap_other_edges():
     text = ALLENSVILLE_5.replace("[!2] 1", "[t] 1")  # self-loop now overlaps the edge to 0
-    with pytest.raises(AutomatonError, match="line 13: state 1 has two edges for label 4 .* deterministic"):
+    with pytest.raises(AutomatonError, match=r"line 13: state 1 has two edges for label 4 .* deterministic"):
         parse_hoa(text)
     authors = parse_hoa(text, profile="authors")
     assert authors.table[1, 0b100] == 0 and authors.table[1, 0b000] == 1
@@ -54,7 +54,9 @@ def test_transition_marks_on_self_loops_make_states_accepting():
     text = ALLENSVILLE_5.replace("State: 0 {0}\n[t] 0", "State: 0\n[t] 0 {0}")
     assert parse_hoa(text).accepting[0]
     bad = ALLENSVILLE_5.replace("[2] 0", "[2] 0 {0}")
-    with pytest.raises(AutomatonError, match="line 12: an acceptance mark on an edge between different states"):
+    with pytest.raises(
+        AutomatonError, match="line 12: an acceptance mark on an edge between different states"
+    ):
         parse_hoa(bad)
 
 
@@ -105,7 +107,7 @@ def test_hoa_errors_are_precise(change, message):
 
 
 def test_read_hoa_reports_unreadable_files(tmp_path):
-    with pytest.raises(AutomatonError, match="missing.aut: cannot read the automaton file"):
+    with pytest.raises(AutomatonError, match=r"missing.aut: cannot read the automaton file"):
         read_hoa(tmp_path / "missing.aut")
     with pytest.raises(AutomatonError, match="unknown automaton profile 'stay'"):
         parse_hoa(ALLENSVILLE_5, profile="stay")

@@ -111,7 +111,9 @@ def test_twelve_unordered_goals_are_refused_early_with_the_predicted_size():
         ltlf_to_dfa(parse_infix(goals))
     assert time.perf_counter() - start < 2.0
     # The limit is configurable: five goals need 32 states x 32 labels.
-    assert ltlf_to_dfa(parse_infix(" & ".join(f"F p{i}" for i in range(5))), max_entries=1024).num_states == 32
+    assert (
+        ltlf_to_dfa(parse_infix(" & ".join(f"F p{i}" for i in range(5))), max_entries=1024).num_states == 32
+    )
     with pytest.raises(AutomatonError, match="max_entries=1,023"):
         ltlf_to_dfa(parse_infix(" & ".join(f"F p{i}" for i in range(5))), max_entries=1023)
 

@@ -42,7 +42,9 @@ def test_infix_examples():
     assert parse_infix("p1 U p2 & p3") == And((Until(p1, p2), p3))  # U binds tighter, as in Spot
     assert parse_infix("GFp1") == Always(Eventually(p1))
     assert parse_infix("true R false") == Release(Const(True), Const(False))
-    assert parse_infix('"enter(room_2)" | [] <> x') == Or((Atom("enter(room_2)"), Always(Eventually(Atom("x")))))
+    assert parse_infix('"enter(room_2)" | [] <> x') == Or(
+        (Atom("enter(room_2)"), Always(Eventually(Atom("x"))))
+    )
 
 
 def test_next_dialects():
@@ -88,8 +90,10 @@ def test_tokens_round_trip(formula):
 
 
 def test_tokens_vocabulary_and_ap_names():
-    tokens = ["AND", "EVENTUALLY", "AND", "enter(room_2)", "NEGATION", "reach(object_27)",
-              "ALWAYS", "IMPLY", "NEXT", "enter( room_3 )", "UNTIL", "not", "enter(room_2)", "reach(object_27)"]
+    tokens = [
+        "AND", "EVENTUALLY", "AND", "enter(room_2)", "NEGATION", "reach(object_27)", "ALWAYS", "IMPLY",
+        "NEXT", "enter( room_3 )", "UNTIL", "not", "enter(room_2)", "reach(object_27)",
+    ]
     f = parse_tokens(tokens)
     assert atoms(f) == ("enter(room_2)", "reach(object_27)", "enter(room_3)")
     names = number_aps(tokens)
@@ -97,9 +101,12 @@ def test_tokens_vocabulary_and_ap_names():
     g = parse_tokens(tokens, ap_names=names)
     assert atoms(g) == ("p1", "p2", "p3")
     back = to_tokens(g, ap_tokens={v: k for k, v in names.items()})
-    assert parse_tokens(back) == parse_tokens(["AND", "EVENTUALLY", "AND", "enter(room_2)", "NOT", "reach(object_27)",
-                                               "ALWAYS", "IMPLY", "NEXT", "enter(room_3)", "UNTIL", "NOT",
-                                               "enter(room_2)", "reach(object_27)"])
+    assert parse_tokens(back) == parse_tokens(
+        [
+            "AND", "EVENTUALLY", "AND", "enter(room_2)", "NOT", "reach(object_27)", "ALWAYS", "IMPLY", "NEXT",
+            "enter(room_3)", "UNTIL", "NOT", "enter(room_2)", "reach(object_27)",
+        ]
+    )
     assert to_tokens(parse_infix("a R b"), {"a": "enter(room_1)", "b": "enter(room_2)"}) == [
         "NOT", "UNTIL", "NOT", "enter(room_1)", "NOT", "enter(room_2)"]
 
@@ -110,12 +117,25 @@ def test_tokens_vocabulary_and_ap_names():
         ([], "the list is empty", None),
         ("[]", "the list is empty", None),
         (["AND", "enter(room_2)"], "token 0 'AND' needs 2 operands but the list ends after 1", 0),
-        (["AND", "enter(room_2)", "EVENTUALLY"], "token 2 'EVENTUALLY' needs 1 operand but the list ends after 0", 2),
+        (
+            ["AND", "enter(room_2)", "EVENTUALLY"],
+            "token 2 'EVENTUALLY' needs 1 operand but the list ends after 0", 2,
+        ),
         (["THEN", "enter(room_2)"], "token 0 'THEN' is not an operator (NOT, NEGATION,", 0),
-        (["EVENTUALLY", "reach(object_99)"], "token 1 'reach(object_99)' names object_99, which is not a known", 1),
-        (["EVENTUALLY", "enter(object_27)"], "token 1 'enter(object_27)' is malformed: enter takes a room_<id>", 1),
-        (["enter(room_2)", "enter(room_2)", "ALWAYS"],
-         "the formula is complete at token 0 but 2 more tokens follow, starting with token 1 'enter(room_2)'", 1),
+        (
+            ["EVENTUALLY", "reach(object_99)"],
+            "token 1 'reach(object_99)' names object_99, which is not a known", 1,
+        ),
+        (
+            ["EVENTUALLY", "enter(object_27)"],
+            "token 1 'enter(object_27)' is malformed: enter takes a room_<id>", 1,
+        ),
+        (
+            ["enter(room_2)", "enter(room_2)", "ALWAYS"],
+            "the formula is complete at token 0 but 2 more tokens follow, starting with token 1 "
+            "'enter(room_2)'",
+            1,
+        ),
         (["NOT", 5], "token 1 is 5 (an int), not a string", 1),
         ("['AND', 'enter(room_2)'", "the formula is not a Python list of quoted tokens", None),
         ("{'AND': 1}", "the formula must be a list of tokens, got a dict", None),
@@ -157,7 +177,10 @@ def test_infix_errors_are_precise(text, message, position):
     [
         ("  ", "the formula is empty", None),
         ("& p1", "token 0 '&' (character 0) needs 2 operands but the formula ends after 1", 0),
-        ("F p1 p2", "the formula is complete at token 1 but 1 more token follows, starting with token 2 'p2'", 5),
+        (
+            "F p1 p2",
+            "the formula is complete at token 1 but 1 more token follows, starting with token 2 'p2'", 5,
+        ),
         ("& p1 ( p2", "token 2 '(' (character 5) is neither an operator", 5),
     ],
 )

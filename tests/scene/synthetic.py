@@ -45,7 +45,9 @@ def _room(
     }
 
 
-def _object(object_id: int, uuid: int, name: str, room: dict[str, Any], box: tuple[int, int, int, int]) -> dict[str, Any]:
+def _object(
+    object_id: int, uuid: int, name: str, room: dict[str, Any], box: tuple[int, int, int, int]
+) -> dict[str, Any]:
     return {
         "id": object_id,
         "uuid": uuid,

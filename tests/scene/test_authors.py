@@ -136,26 +136,59 @@ FRIDGE = (*KITCHEN, "objects", 7)
 
 # (mutation of the document before writing, pattern the error message must match)
 BAD_DOCUMENTS = {
-    "room on unknown floor": (_set((*KITCHEN, "parent_id"), 5), r"room 1 \(floor 0\): parent_id 5 .*unknown floor"),
-    "room under wrong floor": (_set((*KITCHEN, "parent_id"), 1), r"room 1 \(floor 0\): parent_id 1 does not name"),
-    "non-numeric location": (_set((*KITCHEN, "location"), [1.0, "two", 3.0]), r"room 1 .*'location' must be a list of 3"),
-    "non-numeric resolution": (_set(("floors", 1, "grid_map_resolution"), "fine"), r"floor 1: field 'grid_map_resolution'"),
+    "room on unknown floor": (
+        _set((*KITCHEN, "parent_id"), 5),
+        r"room 1 \(floor 0\): parent_id 5 .*unknown floor",
+    ),
+    "room under wrong floor": (
+        _set((*KITCHEN, "parent_id"), 1),
+        r"room 1 \(floor 0\): parent_id 1 does not name",
+    ),
+    "non-numeric location": (
+        _set((*KITCHEN, "location"), [1.0, "two", 3.0]),
+        r"room 1 .*'location' must be a list of 3",
+    ),
+    "non-numeric resolution": (
+        _set(("floors", 1, "grid_map_resolution"), "fine"),
+        r"floor 1: field 'grid_map_resolution'",
+    ),
     "boolean id": (_set((*FRIDGE, "uuid"), True), r"object 7 \(room 1\): field 'uuid' must be an integer"),
     "missing field": (_delete((*FRIDGE, "name")), r"object 7 \(room 1\): missing field 'name'"),
     "object parent": (_set((*FRIDGE, "parent_id"), 2), r"object 7 \(room 1\): parent_id 2 is not its room 1"),
     "object key": (_set((*FRIDGE, "id"), 17), r"object 7 \(room 1\): field 'id' is 17"),
     "unknown connection": (_set((*KITCHEN, "connected_room_ids"), [2, 99]), r"unknown room id\(s\) \[99\]"),
-    "uuids disagree": (_set((*KITCHEN, "connected_room_uuids"), [4, 6]), r"connected_room_uuids \[4, 6\] are not"),
-    "door off grid": (_set((*KITCHEN, "door_grids"), {2: [[1, 80]]}), r"door_grids\[2\] cell \[1, 80\] is off"),
-    "door unknown room": (_set((*KITCHEN, "door_grids"), {12: [[1, 8]]}), r"door_grids names unknown room id 12"),
-    "bbox off grid": (_set((*KITCHEN, "grid_map_max"), [12, 3]), r"'grid_map_max' \[12, 3\] is off the 12x16"),
+    "uuids disagree": (
+        _set((*KITCHEN, "connected_room_uuids"), [4, 6]),
+        r"connected_room_uuids \[4, 6\] are not",
+    ),
+    "door off grid": (
+        _set((*KITCHEN, "door_grids"), {2: [[1, 80]]}),
+        r"door_grids\[2\] cell \[1, 80\] is off",
+    ),
+    "door unknown room": (
+        _set((*KITCHEN, "door_grids"), {12: [[1, 8]]}),
+        r"door_grids names unknown room id 12",
+    ),
+    "bbox off grid": (
+        _set((*KITCHEN, "grid_map_max"), [12, 3]),
+        r"'grid_map_max' \[12, 3\] is off the 12x16",
+    ),
     "floor keys": (_set(("num_floors",), 3), r"building: field 'floors' must be keyed 0..2"),
     "floor id": (_set(("floors", 1, "id"), 4), r"floor 1: field 'id' is 4"),
     "grid sizes differ": (_set(("floors", 1, "grid_map_size"), [12, 17]), r"share one grid_map_size"),
     "duplicate uuid": (_set((*FRIDGE, "uuid"), 6), r"room 4 and object 7 share uuid 6"),
-    "stairs mismatch": (_set(("floors", 1, "down_stairs_cost"), 3.0), r"floor 0's up stairs .* do not match floor 1"),
-    "stairs without portal": (_set(("floors", 0, "up_stairs_portal"), None), r"floor 0: up_stairs_id is 3 but"),
-    "stairs unknown room": (_set(("floors", 0, "up_stairs_id"), 33), r"floor 0: up_stairs_id 33 is not a room"),
+    "stairs mismatch": (
+        _set(("floors", 1, "down_stairs_cost"), 3.0),
+        r"floor 0's up stairs .* do not match floor 1",
+    ),
+    "stairs without portal": (
+        _set(("floors", 0, "up_stairs_portal"), None),
+        r"floor 0: up_stairs_id is 3 but",
+    ),
+    "stairs unknown room": (
+        _set(("floors", 0, "up_stairs_id"), 33),
+        r"floor 0: up_stairs_id 33 is not a room",
+    ),
     "floors not a mapping": (_set(("floors",), [1, 2]), r"building: field 'floors' must be a mapping"),
 }
 
@@ -173,11 +206,15 @@ def test_bad_building_yaml(tmp_path: Path, case: str) -> None:
 
 BAD_FILES: dict[str, tuple[Mutation, str, str]] = {
     # (mutation of the written folder, file the message must start with, pattern)
-    "missing map file": (_remove_cat_map, "building.yaml", r"floor 1: field 'cat_map' names .*1.png, which does not exist"),
+    "missing map file": (
+        _remove_cat_map, "building.yaml", r"floor 1: field 'cat_map' names .*1.png, which does not exist",
+    ),
     "corrupt png": (_corrupt_png, "room_maps/0.png", r"cannot decode map"),
     "colour png": (_rgb_png, "cat_maps/0.png", r"8-bit grayscale PNG \(mode L\), got mode RGB"),
     "wrong map size": (_wrong_size, "room_maps/1.png", r"map is 12x15 .* floor 1 has grid_map_size 12x16"),
-    "unknown object id in map": (_unknown_object_in_map, "cat_maps/0.png", r"object id\(s\) \[42\] that floor 0"),
+    "unknown object id in map": (
+        _unknown_object_in_map, "cat_maps/0.png", r"object id\(s\) \[42\] that floor 0",
+    ),
     "object of another floor": (_object_of_other_floor_in_map, "cat_maps/0.png", r"object id\(s\) \[8\]"),
     "unknown room id in map": (_unknown_room_in_map, "room_maps/1.png", r"room id\(s\) \[2\] that floor 1"),
     "invalid yaml": (
@@ -287,7 +324,8 @@ def test_gibson_scene(gibson_root: Path, scene: str) -> None:
         cat = floor.cat_map
         found = (
             (cat == CatCode.GROUND).sum(), (cat > 0).sum(), (cat == CatCode.WALL).sum(),
-            (cat == CatCode.OUTSIDE).sum(), (cat == CatCode.STAIRS_UP).sum(), (cat == CatCode.STAIRS_DOWN).sum(),
+            (cat == CatCode.OUTSIDE).sum(), (cat == CatCode.STAIRS_UP).sum(),
+            (cat == CatCode.STAIRS_DOWN).sum(),
         )
         assert found == counts
     for room in building.rooms():

@@ -40,7 +40,10 @@ def test_a_built_two_floor_building_plans_draws_and_round_trips(tmp_path: Path) 
     result = sgplan.plan(building, mission)
     assert result.status == "optimal" and result.verified and {c[2] for c in result.cells} == {0, 1}
     assert [e.entity for e in result.events if e.kind == "proposition"] == ["sink", "bedroom"]
-    assert [p.name for p in result.draw(tmp_path / "png", automaton=False)] == ["plan_floor_0.png", "plan_floor_1.png"]
+    assert [p.name for p in result.draw(tmp_path / "png", automaton=False)] == [
+        "plan_floor_0.png",
+        "plan_floor_1.png",
+    ]
     building.initial_cells = [tuple(np.int64(v) for v in building.initial_cells[0])]  # numpy ints write too
     again = read_native_scene(write_native_scene(building, tmp_path / "scene"))
     for room in building.rooms():
@@ -91,7 +94,7 @@ def test_bad_assemblies_are_refused_when_built() -> None:
         BuildingBuilder("empty", size_m=(1.0, 1.0)).build()
     b = _builder()
     b.add_floor()
-    with pytest.raises(SceneError, match="portal .* lies outside the staircase"):
+    with pytest.raises(SceneError, match=r"portal .* lies outside the staircase"):
         b.add_staircase(0, box=(2, 0, 4, 4), portal=(1.0, 1.0))
     b.add_staircase(0, box=(2, 0, 4, 4), portal=(3.0, 2.0), cost_m=0.5)
     with pytest.raises(SceneError, match="below the straight-line distance"):

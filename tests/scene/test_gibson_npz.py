@@ -17,8 +17,9 @@ from sgplan.scene.gibson_npz import load_gibson_npz, read_scene_graph_dict
 
 def _room(room_id: int, floor: str, category: str) -> dict:
     return {
-        "id": room_id, "floor_number": floor, "scene_category": category, "location": np.array([1.0, 2.0, 0.5]),
-        "size": np.array([3.0, 4.0, 2.5]), "volume": 30.0, "floor_area": 12.0, "parent_building": 77,
+        "id": room_id, "floor_number": floor, "scene_category": category,
+        "location": np.array([1.0, 2.0, 0.5]), "size": np.array([3.0, 4.0, 2.5]), "volume": 30.0,
+        "floor_area": 12.0, "parent_building": 77,
     }
 
 
@@ -115,7 +116,9 @@ def test_codecs_other_than_latin1_are_refused(tmp_path: Path) -> None:
     path = tmp_path / "codec.npz"
     with zipfile.ZipFile(path, "w") as archive:
         archive.writestr("output.npy", header.getvalue() + pickled)
-    with pytest.raises(SceneError, match=r"codec.npz: corrupt pickle in output.npy: .*only admitted for latin1"):
+    with pytest.raises(
+        SceneError, match=r"codec.npz: corrupt pickle in output.npy: .*only admitted for latin1"
+    ):
         load_gibson_npz(path)
 
 
@@ -140,7 +143,9 @@ def test_truncated_and_corrupt_files(tmp_path: Path) -> None:
 
 def test_wrong_content(tmp_path: Path) -> None:
     np.savez(tmp_path / "numbers.npz", output=np.zeros(3))
-    with pytest.raises(SceneError, match=r"numbers.npz: corrupt pickle .* got dtype float64 and shape \(3,\)"):
+    with pytest.raises(
+        SceneError, match=r"numbers.npz: corrupt pickle .* got dtype float64 and shape \(3,\)"
+    ):
         load_gibson_npz(tmp_path / "numbers.npz")
     np.savez(tmp_path / "other.npz", scene=np.zeros(3))
     with pytest.raises(SceneError, match=r"other.npz: npz has no 'output' array"):
@@ -148,7 +153,9 @@ def test_wrong_content(tmp_path: Path) -> None:
     _write_npz(tmp_path / "list.npz", [1, 2])
     with pytest.raises(SceneError, match=r"list.npz: corrupt pickle .* got dtype object and shape \(2,\)"):
         load_gibson_npz(tmp_path / "list.npz")
-    with pytest.raises(SceneError, match=r"absent.npz: cannot read the raw scene graph file: it does not exist"):
+    with pytest.raises(
+        SceneError, match=r"absent.npz: cannot read the raw scene graph file: it does not exist"
+    ):
         load_gibson_npz(tmp_path / "absent.npz")
 
 
@@ -157,7 +164,10 @@ def test_wrong_content(tmp_path: Path) -> None:
     [
         (lambda g: g["object"][1].update(parent_room=42), r"object 1: parent_room 42 is not a room"),
         (lambda g: g["room"][5].update(floor_number=2), r"room 5: field 'floor_number' must be a string"),
-        (lambda g: g["room"][5].update(location=np.zeros(2)), r"room 5: field 'location' must be a list of 3"),
+        (
+            lambda g: g["room"][5].update(location=np.zeros(2)),
+            r"room 5: field 'location' must be a list of 3",
+        ),
         (lambda g: g["room"][5].update(id=6), r"room 5: field 'id' is 6 but the node is keyed 5"),
         (lambda g: g.pop("object"), r"has no \['object'\] item"),
         (lambda g: g["building"].pop("name"), r"building: missing field 'name'"),
@@ -176,13 +186,19 @@ def test_gibson_npz_matches_building_yaml(gibson_root: Path, scene: str) -> None
     graph = load_gibson_npz(gibson_root / f"3DSceneGraph_{scene}.npz")
     authors = load_authors_scene(gibson_root / scene)
     assert (graph.id, graph.name) == (authors.id, authors.name)
-    assert [(f.index, f.name, f.uuid) for f in graph.floors] == [(f.index, f.name, f.uuid) for f in authors.floors]
+    assert [(f.index, f.name, f.uuid) for f in graph.floors] == [
+        (f.index, f.name, f.uuid) for f in authors.floors
+    ]
 
     def rooms(b):
-        return sorted((r.uuid, r.id, r.name, r.floor, tuple(r.location_m), tuple(r.size_m)) for r in b.rooms())
+        return sorted(
+            (r.uuid, r.id, r.name, r.floor, tuple(r.location_m), tuple(r.size_m)) for r in b.rooms()
+        )
 
     def objects(b):
-        return sorted((o.uuid, o.id, o.name, o.room_id, o.room_uuid, o.action_affordance) for o in b.objects())
+        return sorted(
+            (o.uuid, o.id, o.name, o.room_id, o.room_uuid, o.action_affordance) for o in b.objects()
+        )
 
     assert rooms(graph) == rooms(authors)
     assert objects(graph) == objects(authors)

@@ -13,12 +13,13 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from scipy import ndimage
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import dijkstra
 
 from sgplan.errors import PlanningError, SceneError
 from sgplan.scene.distances import grid_distances
-from sgplan.scene.footprint import footprint_kernel, footprint_vertices, inflate, inflate_reference
+from sgplan.scene.footprint import FootprintKernel, footprint_kernel, footprint_vertices, inflate
 from sgplan.scene.grid import (
     OccupancyGrid,
     build_occupancy_grid,
@@ -51,6 +52,17 @@ def test_app_kernel_sizes_match_reference(scene: str, radius: float, cells: int)
     # Roughly a disk of radius r/res cells around the anchor.
     offsets = kernel.offsets * np.asarray(res)
     assert np.hypot(offsets[:, 0], offsets[:, 1]).max() < radius + 2 * max(res)
+
+
+def inflate_reference(obstacles: np.ndarray, kernel: FootprintKernel) -> np.ndarray:
+    """Slow, direct twin of :func:`inflate` (``scipy.ndimage.binary_dilation``): its test oracle."""
+    offsets = kernel.offsets
+    half = int(np.abs(offsets).max()) if len(offsets) else 0
+    # scipy's dilation mirrors its structure about the centre (a true Minkowski sum), OpenCV's does not:
+    # feed scipy the mirrored kernel, padded so that the anchor sits at the centre.
+    structure = np.zeros((2 * half + 1, 2 * half + 1), dtype=bool)
+    structure[half - offsets[:, 0], half - offsets[:, 1]] = True
+    return ndimage.binary_dilation(obstacles, structure=structure)
 
 
 def test_footprint_variants() -> None:

@@ -24,7 +24,10 @@ def test_synthetic_hierarchy(tmp_path: Path) -> None:
         "Floor 1:\n"
         "  room_6: bedroom. Connects to: room_5 (floor 0). Objects: object_9 (bed).\n"
     )
-    assert attribute_hierarchy(building, connections=False, objects=False).splitlines()[2] == "  room_2: kitchen."
+    assert (
+        attribute_hierarchy(building, connections=False, objects=False).splitlines()[2]
+        == "  room_2: kitchen."
+    )
 
 
 def test_order_does_not_depend_on_insertion(tmp_path: Path) -> None:
@@ -50,5 +53,7 @@ def test_gibson_hierarchy(gibson_root: Path) -> None:
     assert all(f"{o.key} ({o.name})" in text for o in building.objects())
     assert len(text) < 2500  # compact: about 45 characters per entity
     # the graph-only npz gives the same rooms and objects, without connections
-    from_npz = attribute_hierarchy(load_gibson_npz(gibson_root / "3DSceneGraph_Benevolence.npz"), connections=False)
+    from_npz = attribute_hierarchy(
+        load_gibson_npz(gibson_root / "3DSceneGraph_Benevolence.npz"), connections=False
+    )
     assert from_npz == attribute_hierarchy(building, connections=False)

@@ -38,7 +38,9 @@ def test_round_trip_synthetic(tmp_path: Path, tiny: Building) -> None:
 
 def test_document_shape(tmp_path: Path, tiny: Building) -> None:
     document = json.loads((write_native_scene(tiny, tmp_path / "native") / "scene.json").read_text())
-    assert (document["format"], document["version"], document["rasters"]) == ("sgplan-scene", 1, "rasters.npz")
+    assert (document["format"], document["version"], document["rasters"]) == (
+        "sgplan-scene", 1, "rasters.npz",
+    )
     floor = document["floors"][0]
     assert floor["grid_shape"] == [12, 16] and floor["up_stairs"]["portal"] == [6, 2]
     assert [r["id"] for r in floor["rooms"]] == [1, 2, 3]
@@ -101,15 +103,21 @@ def _room(document: dict, floor: int = 0, index: int = 0) -> dict:
 
 BAD: dict[str, tuple[Edit, str, str]] = {
     # edit of the written folder, file the message starts with, pattern
-    "other format": (_doc(lambda d: d.update(format="x")), "scene.json", r"scene: not an sgplan-scene document"),
+    "other format": (
+        _doc(lambda d: d.update(format="x")), "scene.json", r"scene: not an sgplan-scene document",
+    ),
     "newer version": (_doc(lambda d: d.update(version=9)), "scene.json", r"version 9 is newer"),
-    "missing field": (_doc(lambda d: _room(d).pop("uuid")), "scene.json", r"room 1 \(floor 0\): missing field 'uuid'"),
+    "missing field": (
+        _doc(lambda d: _room(d).pop("uuid")), "scene.json", r"room 1 \(floor 0\): missing field 'uuid'",
+    ),
     "non-numeric": (
         _doc(lambda d: _room(d)["objects"][0].update(size_m=[1, "big", 2])),
         "scene.json",
         r"object 7 \(room 1\): field 'size_m' must be a list of 3",
     ),
-    "floor index": (_doc(lambda d: d["floors"][1].update(index=3)), "scene.json", r"floor 1: field 'index' is 3"),
+    "floor index": (
+        _doc(lambda d: d["floors"][1].update(index=3)), "scene.json", r"floor 1: field 'index' is 3",
+    ),
     "bad connection": (
         _doc(lambda d: _room(d).update(connected_room_uuids=[4, 6])),
         "scene.json",

@@ -25,7 +25,7 @@ def test_labels_avoid_markers_and_each_other_and_stay_inside() -> None:
     boxes = [placer.place((100, 50), (40, 12)) for _ in range(6)]  # six labels all wanting the marker's spot
     for k, box in enumerate(boxes):
         assert _overlap(box, marker) == 0
-        assert 0 <= box[0] and box[2] <= 200 and 0 <= box[1] and box[3] <= 100
+        assert box[0] >= 0 and box[2] <= 200 and box[1] >= 0 and box[3] <= 100
         assert all(_overlap(box, other) == 0 for other in boxes[:k])
     # The first one sits next to the marker (in the first rings around it), not far away.
     centre = ((boxes[0][0] + boxes[0][2]) / 2, (boxes[0][1] + boxes[0][3]) / 2)

@@ -118,14 +118,18 @@ def discover(data: str | Path, scenes: Sequence[str] | None = None) -> list[Data
     names = list(scenes) if scenes else available
     unknown = [n for n in names if n not in available]
     if unknown:
-        raise BenchError(f"no scene {', '.join(unknown)} under {root} (scenes with missions: {', '.join(available)})")
+        raise BenchError(
+            f"no scene {', '.join(unknown)} under {root} (scenes with missions: {', '.join(available)})"
+        )
     found = []
     for name in names:
         folder = root / name
         missions = sorted((p.name for p in (folder / "missions").iterdir() if p.is_dir()), key=mission_order)
         if not missions:
             raise BenchError(f"scene {name!r} has no mission folders under {folder / 'missions'}")
-        found.append(DataScene(name, folder.resolve(), tuple(missions), len(load_scene(folder).initial_cells)))
+        found.append(
+            DataScene(name, folder.resolve(), tuple(missions), len(load_scene(folder).initial_cells))
+        )
     return found
 
 

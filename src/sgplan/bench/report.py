@@ -38,7 +38,9 @@ def condition_of(row: dict[str, Any]) -> Condition:
 
 def _describe(condition: Condition) -> str:
     profile, limit = condition
-    return f"profile {profile}, " + ("no time limit" if limit is None else f"time limit {exact_number(limit)} s")
+    return f"profile {profile}, " + (
+        "no time limit" if limit is None else f"time limit {exact_number(limit)} s"
+    )
 
 
 def choose_condition(rows: Sequence[dict[str, Any]], profile: str | None = None,
@@ -55,8 +57,9 @@ def choose_condition(rows: Sequence[dict[str, Any]], profile: str | None = None,
                 and (time_limit_s is None or r.get("time_limit_s") == time_limit_s)]
     if not matching:
         recorded = sorted({_describe(condition_of(r)) for r in rows})
-        wanted = ", ".join(filter(None, (profile and f"profile {profile}",
-                                         time_limit_s is not None and f"time limit {exact_number(time_limit_s)} s")))
+        parts = ([f"profile {profile}"] if profile else []) + (
+            [] if time_limit_s is None else [f"time limit {exact_number(time_limit_s)} s"])
+        wanted = ", ".join(parts)
         raise BenchError(f"no results with {wanted}; recorded: {'; '.join(recorded) or 'none'}")
     return condition_of(max(matching, key=lambda r: r.get("finished_at") or ""))
 
@@ -106,8 +109,11 @@ def write_report(folder: str | Path, rows: Sequence[dict[str, Any]] | None = Non
         f"{len(rows)} cases ({status_counts}); {_describe(condition)}.",
     ]
     if others:
-        text += ["", "Not in this report (other conditions; choose with `sgplan bench report --profile P "
-                 "--time-limit S`): " + "; ".join(f"{n} cases under {c}" for c, n in sorted(others.items())) + "."]
+        text += [
+            "",
+            "Not in this report (other conditions; choose with `sgplan bench report --profile P "
+            "--time-limit S`): " + "; ".join(f"{n} cases under {c}" for c, n in sorted(others.items())) + ".",
+        ]
     sweeps = load_sweeps(out)
     if sweeps:
         text += ["", "Sweep calls (whole `sgplan bench` run, wall clock):", ""]
@@ -119,25 +125,48 @@ def write_report(folder: str | Path, rows: Sequence[dict[str, Any]] | None = Non
         "Times are AMRA* search seconds, as in the paper: the first path (1st iteration) and the optimum",
         "(last iteration), without loading and precomputation, which are shown separately; *case wall* is",
         "the whole worker process (interpreter start, imports, loading, precomputation, search).",
-        "Means are over the cases that reached the optimum (n); the others are listed under *Excluded cases*.",
+        "Means are over the cases that reached the optimum (n); the others are listed under *Excluded "
+        "cases*.",
         "",
     ]
     if case is not None:
-        text += [f"## Table II - {case[0]} mission {case[1]}, per setup (mean over starts)", "", report.table2, ""]
+        text += [
+            f"## Table II - {case[0]} mission {case[1]}, per setup (mean over starts)",
+            "",
+            report.table2,
+            "",
+        ]
     text += [
-        "## Table III - per scene: 1st iter. time (s) / 1st cost ÷ opt. cost / opt. time (s), mean over missions x starts",
-        "", report.table3, "",
-        "## Loading, precomputation, wall time and memory", "", tables.resources_table(rows), "",
-        "## Excluded cases (not in the means)", "", tables.excluded_table(rows), "",
-        "## Cross-check of optimal costs", "",
-        (f"All setups found the same optimal cost in each of the {compared} (scene, mission, start) groups run "
-         "with more than one setup." if not disagreements else
-         f"{len(disagreements)} of {compared} groups disagree:\n\n" + "\n".join(f"- {d}" for d in disagreements)),
+        "## Table III - per scene: 1st iter. time (s) / 1st cost ÷ opt. cost / opt. time (s), mean over "
+        "missions x starts",
+        "",
+        report.table3,
+        "",
+        "## Loading, precomputation, wall time and memory",
+        "",
+        tables.resources_table(rows),
+        "",
+        "## Excluded cases (not in the means)",
+        "",
+        tables.excluded_table(rows),
+        "",
+        "## Cross-check of optimal costs",
+        "",
+        (
+            f"All setups found the same optimal cost in each of the {compared} (scene, mission, start) "
+            "groups run "
+            "with more than one setup."
+            if not disagreements
+            else f"{len(disagreements)} of {compared} groups disagree:\n\n"
+            + "\n".join(f"- {d}" for d in disagreements)
+        ),
         "",
     ]
     if report.figures:
         text += ["## Figures", ""]
-        text += [f"![{p.stem}]({p.relative_to(out).as_posix()})" for p in report.figures if p.suffix == ".png"]
+        text += [
+            f"![{p.stem}]({p.relative_to(out).as_posix()})" for p in report.figures if p.suffix == ".png"
+        ]
         text.append("")
     try:
         write_text_atomically(report.markdown, "\n".join(text))

@@ -14,9 +14,9 @@ import csv
 import fcntl
 import io
 import json
-import math
 import os
 import socket
+import sys
 import time
 from collections.abc import Iterable, Iterator
 from pathlib import Path
@@ -111,10 +111,15 @@ def _parse_row(data: bytes | str) -> tuple[dict[str, Any] | None, str]:
     wrong = [k for k in _TEXT_FIELDS if not isinstance(row[k], str)]
     if not is_int(row["start"]):
         wrong.append("start")
+    # Finite and within float range: int/float comparison is exact, so a huge JSON integer is refused here
+    # instead of overflowing in the report's float arithmetic (math.isfinite would raise on it).
     wrong += [k for k in _NUMBER_FIELDS if row.get(k) is not None
-              and not (is_number(row[k]) and math.isfinite(row[k]))]
+              and not (is_number(row[k]) and abs(row[k]) <= sys.float_info.max)]
     if wrong:
-        return None, f"field(s) {', '.join(wrong)} of the wrong type ({wrong[0]} = {quote(row.get(wrong[0]))})"
+        return (
+            None,
+            f"field(s) {', '.join(wrong)} of the wrong type ({wrong[0]} = {quote(row.get(wrong[0]))})",
+        )
     return row, ""
 
 
@@ -160,7 +165,9 @@ class ResultStore:
                 continue
             row, problem = _parse_row(line)
             if row is None:
-                raise BenchError(f"line {number} is not a result row ({problem}); fix or remove it", self.path)
+                raise BenchError(
+                    f"line {number} is not a result row ({problem}); fix or remove it", self.path
+                )
             self._rows[row["key"]] = row
 
     def __len__(self) -> int:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import contextlib
 import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
@@ -67,13 +66,19 @@ def run_sweep(
         on_start(len(todo), summary.skipped)
     try:
         if todo:
-            with contextlib.closing(executor.run(todo)) as rows:
+            rows = executor.run(todo)
+            try:
                 for row in rows:
                     store.append(row)
                     summary.ran += 1
                     summary.statuses[row["status"]] = summary.statuses.get(row["status"], 0) + 1
                     if on_row is not None:
                         on_row(row)
+            finally:
+                # A generator executor stops its workers when closed (on an interrupt, or a failed append).
+                close = getattr(rows, "close", None)
+                if close is not None:
+                    close()
     except KeyboardInterrupt as stop:
         summary.interrupted = True
         summary.wall_s = time.perf_counter() - t0

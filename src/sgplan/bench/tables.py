@@ -90,7 +90,9 @@ def table2(rows: Sequence[Row], scene: str, mission: str) -> str:
         p = paper.get(setup)
         ours = ("-",) * 3 if m is None else (_t(m.first_time_s), f"{m.cost_ratio:.4f}", _t(m.optimal_time_s))
         theirs = ("-",) * 3 if p is None else (f"{p[0]:.4f}", f"{p[1]:.4f}", f"{p[2]:.4f}")
-        extra = ("-",) * 3 if m is None else (f"{m.precompute_s:.2f}", f"{m.wall_s:.2f}", f"{m.peak_rss_mb:.0f}")
+        extra = (
+            ("-",) * 3 if m is None else (f"{m.precompute_s:.2f}", f"{m.wall_s:.2f}", f"{m.peak_rss_mb:.0f}")
+        )
         lines.append(
             f"| {setup} | {0 if m is None else m.n} | {ours[0]} | {theirs[0]} | {ours[1]} | {theirs[1]} "
             f"| {ours[2]} | {theirs[2]} | {' | '.join(extra)} |"
@@ -120,8 +122,10 @@ def table3(rows: Sequence[Row], setups: Sequence[str] = TABLE3_SETUPS) -> str:
 
 def resources_table(rows: Sequence[Row], setups: Sequence[str] = TABLE3_SETUPS) -> str:
     """Per scene x setup: means of load, precompute, whole-case wall seconds and peak RSS (optimal rows)."""
-    lines = ["| scene | setup | n | load (s) | precompute (s) | opt. search (s) | case wall (s) | peak RSS (MB) |",
-             "|---|---|---|---|---|---|---|---|"]
+    lines = [
+        "| scene | setup | n | load (s) | precompute (s) | opt. search (s) | case wall (s) | peak RSS (MB) |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
     for scene in _scenes(rows):
         for setup in [s for s in setups if _select(rows, setup=s)]:
             m = means(_select(rows, scene=scene, setup=setup))
@@ -138,12 +142,16 @@ def excluded_table(rows: Sequence[Row]) -> str:
     for r in sorted(rows, key=lambda r: (mission_order(r["mission"]), r["start"], order.get(r["setup"], 99))):
         if r["status"] != "optimal":
             reason = (r.get("reason") or "").replace("|", "\\|").replace("\n", " ")
-            groups.setdefault((r["scene"], r["mission"], r["start"], r["status"], reason), []).append(r["setup"])
+            groups.setdefault((r["scene"], r["mission"], r["start"], r["status"], reason), []).append(
+                r["setup"]
+            )
     if not groups:
         return "None: every case reached the optimum."
     lines = ["| scene | mission | start | status | setups | reason |", "|---|---|---|---|---|---|"]
     scenes = {name: k for k, name in enumerate(_scenes(rows))}
-    for (scene, mission, start, status, reason), setups in sorted(groups.items(), key=lambda g: scenes[g[0][0]]):
+    for (scene, mission, start, status, reason), setups in sorted(
+        groups.items(), key=lambda g: scenes[g[0][0]]
+    ):
         lines.append(f"| {scene} | {mission} | {start} | {status} | {', '.join(setups)} | {reason} |")
     return "\n".join(lines)
 

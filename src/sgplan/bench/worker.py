@@ -26,9 +26,9 @@ LEVELS = ("anchor", "occupancy", "object", "room", "floor")
 """Hierarchy levels, in the order of the ``exp_<level>`` result columns."""
 
 MEASURED = (
-    "status", "reason", "start_cell", "cost_m", "first_cost_m", "cost_ratio", "first_time_s", "optimal_time_s",
-    "num_iterations", "expansions", *(f"exp_{level}" for level in LEVELS), "load_s", "precompute_s", "search_s",
-    "peak_rss_mb", "guidance", "path_cells", "queues", "iterations", "gallery",
+    "status", "reason", "start_cell", "cost_m", "first_cost_m", "cost_ratio", "first_time_s",
+    "optimal_time_s", "num_iterations", "expansions", *(f"exp_{level}" for level in LEVELS), "load_s",
+    "precompute_s", "search_s", "peak_rss_mb", "guidance", "path_cells", "queues", "iterations", "gallery",
 )
 """The fields :func:`measure` reports (``None`` where a case did not get that far)."""
 
@@ -58,7 +58,7 @@ def measure(case: Case, gallery_dir: str | Path | None = None) -> dict[str, Any]
         out.update(status=error.status, reason=str(error))
     except SgplanError as error:
         out.update(status="error", reason=str(error))
-    except Exception as error:  # a bug: recorded like a failure, with the traceback on stderr
+    except Exception as error:  # noqa: BLE001 - a bug: recorded like a failure, with the traceback on stderr
         traceback.print_exc()
         out.update(status="error", reason=f"{type(error).__name__}: {error}")
     out["peak_rss_mb"] = _peak_rss_mb()
@@ -102,7 +102,9 @@ def _plan_case(case: Case, gallery_dir: str | Path | None, out: dict[str, Any], 
         out["optimal_time_s"] = its[-1].time_s
         out["cost_ratio"] = its[0].cost_m / result.cost_m if result.cost_m > 0 else 1.0
     if gallery_dir is not None and result.path is not None:
-        out["gallery"] = [str(p) for p in result.draw(gallery_dir, stem=f"{case.slug}_floor", automaton=False)]
+        out["gallery"] = [
+            str(p) for p in result.draw(gallery_dir, stem=f"{case.slug}_floor", automaton=False)
+        ]
 
 
 PARENT_ENV = "SGPLAN_BENCH_PARENT"

@@ -4,5 +4,7 @@ from __future__ import annotations
 
 from sgplan.commands import bench, demo, eval_translation, guide, import_scene, inspect, plan, translate
 
-REGISTRY = [demo.register, inspect.register, plan.register, translate.register, guide.register, bench.register,
-            import_scene.register, eval_translation.register]
+REGISTRY = [
+    demo.register, inspect.register, plan.register, translate.register, guide.register, bench.register,
+    import_scene.register, eval_translation.register,
+]

@@ -41,31 +41,51 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("action", nargs="?", choices=("run", "report"), default="run",
                         help="run (default): run or resume the sweep, then report; report: report only")
-    parser.add_argument("--out", metavar="DIR", default="bench-out", help="results folder (default: bench-out)")
-    parser.add_argument("--data", metavar="DIR",
-                        help=f"data folder of <scene>/missions/<m>/ (default: ${ENV_VAR}, else ../shared/datasets/gibson-3dsg)")
+    parser.add_argument(
+        "--out", metavar="DIR", default="bench-out", help="results folder (default: bench-out)"
+    )
+    parser.add_argument(
+        "--data", metavar="DIR",
+        help=f"data folder of <scene>/missions/<m>/ (default: ${ENV_VAR}, "
+        "else ../shared/datasets/gibson-3dsg)",
+    )
     parser.add_argument("--scenes", nargs="+", metavar="NAME",
                         help="scenes, any case, space- or comma-separated (default: all in the data folder)")
     parser.add_argument("--missions", nargs="+", metavar="NAME", help="mission folder names (default: all)")
-    parser.add_argument("--starts", metavar="LIST", help="initial-position indices, e.g. 0,2-4 (default: all)")
+    parser.add_argument(
+        "--starts", metavar="LIST", help="initial-position indices, e.g. 0,2-4 (default: all)"
+    )
     parser.add_argument("--setups", nargs="+", metavar="NAME",
                         help=f"planner setups among {', '.join(SETUPS)}, any case (default: ALL NO-LLM A*)")
-    add_profile_argument(parser, default=None,
-                         extra_help=f"; recorded in every row (run: default {DEFAULT_PROFILE}, as for plan; the "
-                                    "paper's tables were made with authors). With report: the rows to report "
-                                    "(default: the newest row's profile)")
-    parser.add_argument("--time-limit", type=positive_seconds, metavar="S",
-                        help="search time budget per case (seconds). With report: the rows to report (default: the newest "
-                             "row's time limit among those of --profile)")
-    parser.add_argument("--case-timeout", type=positive_seconds, default=DEFAULT_CASE_TIMEOUT_S, metavar="S",
-                        help=f"kill a case's worker after S wall seconds (default: {DEFAULT_CASE_TIMEOUT_S:g})")
+    add_profile_argument(
+        parser,
+        default=None,
+        extra_help=f"; recorded in every row (run: default {DEFAULT_PROFILE}, as for plan; the "
+        "paper's tables were made with authors). With report: the rows to report "
+        "(default: the newest row's profile)",
+    )
+    parser.add_argument(
+        "--time-limit",
+        type=positive_seconds,
+        metavar="S",
+        help="search time budget per case (seconds). With report: the rows to report (default: the newest "
+        "row's time limit among those of --profile)",
+    )
+    parser.add_argument(
+        "--case-timeout", type=positive_seconds, default=DEFAULT_CASE_TIMEOUT_S, metavar="S",
+        help=f"kill a case's worker after S wall seconds (default: {DEFAULT_CASE_TIMEOUT_S:g})",
+    )
     parser.add_argument("--jobs", "-j", type=positive_int, metavar="N",
                         help=f"cases run at once (default: the number of cores, {os.cpu_count()})")
     parser.add_argument("--executor", choices=("local", "ray"), default="local",
                         help="local process pool (default) or Ray (pip install 'sgplan[ray]')")
     parser.add_argument("--address", metavar="ADDR", help="Ray cluster address (default: start a local Ray)")
-    parser.add_argument("--gallery", action="store_true", help="draw each case's path, one PNG per floor, under OUT/gallery")
-    parser.add_argument("--retry", action="store_true", help="also re-run cases recorded as error, crashed or wall-timeout")
+    parser.add_argument(
+        "--gallery", action="store_true", help="draw each case's path, one PNG per floor, under OUT/gallery"
+    )
+    parser.add_argument(
+        "--retry", action="store_true", help="also re-run cases recorded as error, crashed or wall-timeout"
+    )
     parser.add_argument("--no-report", action="store_true", help="do not write the report after the sweep")
     parser.set_defaults(run=run)
 
@@ -87,8 +107,10 @@ def _cases(args: argparse.Namespace) -> list[Case]:
 
     root = find_gibson_root(args.data)
     if root is None:
-        raise SceneError(f"cannot find the data folder: give --data DIR (a folder like ../shared/datasets/gibson-3dsg "
-                         f"holding {', '.join(SCENES)})")
+        raise SceneError(
+            f"cannot find the data folder: give --data DIR (a folder like ../shared/datasets/gibson-3dsg "
+            f"holding {', '.join(SCENES)})"
+        )
     names, missions, setups = split_list(args.scenes), split_list(args.missions), split_list(args.setups)
     scenes = discover(root, _scene_folders(root, names))
     selected = any(v is not None for v in (names, missions, args.starts, setups))
@@ -145,7 +167,9 @@ def _sweep(args: argparse.Namespace) -> int:
     return 0
 
 
-def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: ResultStore) -> tuple[Any, Any, Any]:
+def _run_with_progress(
+    args: argparse.Namespace, cases: list[Case], store: ResultStore
+) -> tuple[Any, Any, Any]:
     """Run the sweep with a progress bar; returns (executor, sweep summary, exported file paths)."""
     from rich.console import Console
     from rich.markup import escape
@@ -180,9 +204,13 @@ def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: Resul
 
         def on_row(row: dict[str, Any]) -> None:
             statuses[row["status"]] = statuses.get(row["status"], 0) + 1
-            progress.update(task, advance=1, statuses=" ".join(f"{s}:{n}" for s, n in sorted(statuses.items())))
+            progress.update(
+                task, advance=1, statuses=" ".join(f"{s}:{n}" for s, n in sorted(statuses.items()))
+            )
             if row["status"] in FAILED:
-                progress.console.print(f"[yellow]{escape(row['key'])}: {row['status']}[/] - {escape(str(row.get('reason')))}")
+                progress.console.print(
+                    f"[yellow]{escape(row['key'])}: {row['status']}[/] - {escape(str(row.get('reason')))}"
+                )
 
         summary = None
         try:
@@ -193,9 +221,14 @@ def _run_with_progress(args: argparse.Namespace, cases: list[Case], store: Resul
         finally:
             exported = store.export()
             if summary is not None:
-                record_sweep(store.folder, {"ran": summary.ran, "skipped": summary.skipped, "wall_s": summary.wall_s,
-                                            "executor": executor.name, "jobs": executor.jobs or "cluster",
-                                            "statuses": summary.statuses, "interrupted": summary.interrupted})
+                record_sweep(
+                    store.folder,
+                    {
+                        "ran": summary.ran, "skipped": summary.skipped, "wall_s": summary.wall_s,
+                        "executor": executor.name, "jobs": executor.jobs or "cluster",
+                        "statuses": summary.statuses, "interrupted": summary.interrupted,
+                    },
+                )
     return executor, summary, exported
 
 

@@ -39,7 +39,8 @@ def add_scene_arguments(parser: argparse.ArgumentParser, *, positional: bool = F
 
 
 def load_scene_arg(spec: str, data: str | None = None) -> Building:
-    """The building named by a scene argument (see :func:`add_scene_arguments` and :func:`sgplan.load_scene`)."""
+    """The building named by a scene argument (see :func:`add_scene_arguments` and
+    :func:`sgplan.load_scene`)."""
     from sgplan.api import load_scene
 
     return load_scene(spec, data)
@@ -49,9 +50,13 @@ def add_profile_argument(parser: argparse.ArgumentParser, *, default: str | None
                          extra_help: str = "") -> None:
     """``--profile ltlf|authors`` (any case), the same on every command; default :data:`DEFAULT_PROFILE`."""
     parser.add_argument(
-        "--profile", type=str.lower, choices=PROFILES, default=default,
+        "--profile",
+        type=str.lower,
+        choices=PROFILES,
+        default=default,
         help=f"semantics: ltlf (default; start label read, missing automaton edges reject) or authors (the "
-             f"authors' C++ and the paper's numbers: start label not read, missing edges keep the state){extra_help}",
+        "authors' C++ and the paper's numbers: start label not read, missing edges keep the "
+        f"state){extra_help}",
     )
 
 
@@ -85,7 +90,7 @@ def configure_logging(args: argparse.Namespace) -> None:
     log.propagate = False
 
 
-class _StderrHandler(logging.StreamHandler):  # type: ignore[type-arg]
+class _StderrHandler(logging.StreamHandler):
     """Writes to whatever ``sys.stderr`` is when a line is logged (tests and callers may swap it)."""
 
     def emit(self, record: logging.LogRecord) -> None:

@@ -2,7 +2,8 @@
 
 Demo building -> offline translation of a natural-language mission -> minimal DFA -> offline symbolic
 guidance -> AMRA* (setup ALL) -> independent check -> PNG and SVG per floor, the automaton, an HTML report,
-the mission folder, the waypoints (CSV, ROS path YAML) and the run record ``run.json`` (the shape of ``plan --json``), all through
+the mission folder, the waypoints (CSV, ROS path YAML) and the run record ``run.json`` (the shape of ``plan
+--json``), all through
 :mod:`sgplan.api`. Both language steps use the offline backends, which are not LLMs; the output says so.
 """
 
@@ -26,8 +27,12 @@ DEMO_MISSION = (
 def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("demo", help="run the whole pipeline on the embedded demo building (offline)")
     parser.add_argument("--out", metavar="DIR", default="out/demo", help="output folder (default: out/demo)")
-    parser.add_argument("--text", default=DEMO_MISSION, help="the mission (controlled English, see docs/offline.md)")
-    parser.add_argument("--start-index", type=non_negative_int, default=0, metavar="K", help="initial position K (0-4)")
+    parser.add_argument(
+        "--text", default=DEMO_MISSION, help="the mission (controlled English, see docs/offline.md)"
+    )
+    parser.add_argument(
+        "--start-index", type=non_negative_int, default=0, metavar="K", help="initial position K (0-4)"
+    )
     parser.set_defaults(run=run)
 
 
@@ -58,19 +63,29 @@ def run(args: argparse.Namespace) -> int:
     say_back(mission, building)
     say("planning with AMRA* (setup ALL):")
     result = sgplan.plan(
-        building, mission, args.start_index, setup="ALL", guide=backends.guide,
-        callback=lambda it: say(f"  (w1, w2) = ({it.w1:g}, {it.w2:g})  cost {it.cost_m:.3f} m  {it.time_s * 1e3:.1f} ms"),
+        building,
+        mission,
+        args.start_index,
+        setup="ALL",
+        guide=backends.guide,
+        callback=lambda it: say(
+            f"  (w1, w2) = ({it.w1:g}, {it.w2:g})  cost {it.cost_m:.3f} m  {it.time_s * 1e3:.1f} ms"
+        ),
     )
-    print(f"optimal path: {result.cost_m:.3f} m, {len(result.cells)} cells ({len(result.waypoints_simplified)} "
-          f"simplified waypoints), first path after {result.iterations[0].time_s * 1e3:.1f} ms, optimum after "
-          f"{result.timings['search_s'] * 1e3:.1f} ms of search; verified by the independent checker")
+    print(
+        f"optimal path: {result.cost_m:.3f} m, {len(result.cells)} cells ({len(result.waypoints_simplified)} "
+        f"simplified waypoints), first path after {result.iterations[0].time_s * 1e3:.1f} ms, optimum after "
+        f"{result.timings['search_s'] * 1e3:.1f} ms of search; verified by the independent checker"
+    )
     for event in result.events:
         say(f"  {event.describe()}")
     mission_dir = save_mission_folder(result.mission or mission, out / "mission",
                                       hierarchy_text=attribute_hierarchy(building),
                                       building=building)
-    written = [*result.draw(out, formats=("png", "svg")), result.write_html(out / "report.html"),
-               result.write_waypoints_csv(out / "waypoints.csv"), result.write_ros_path_yaml(out / "ros_path.yaml")]
+    written = [
+        *result.draw(out, formats=("png", "svg")), result.write_html(out / "report.html"),
+        result.write_waypoints_csv(out / "waypoints.csv"), result.write_ros_path_yaml(out / "ros_path.yaml"),
+    ]
     record = result.to_dict()
     record["backends"] = {"translation": f"{backends.translator.name} (not an LLM)",
                           "guidance": f"{result.guidance} (not an LLM)"}

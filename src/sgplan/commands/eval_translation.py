@@ -26,9 +26,13 @@ def register(sub: argparse._SubParsersAction) -> None:
                             help="score a language backend on a JSONL set of missions with gold formulas")
     parser.add_argument("--set", required=True, metavar="FILE.jsonl",
                         help="missions, one JSON object per line: id, scene, text, formula (see docs/llm.md)")
-    parser.add_argument("--data", metavar="DIR", default=None,
-                        help="folder holding the Gibson scenes named by the set (default: $SGPLAN_GIBSON_DIR, "
-                             "else ../shared/datasets/gibson-3dsg)")
+    parser.add_argument(
+        "--data",
+        metavar="DIR",
+        default=None,
+        help="folder holding the Gibson scenes named by the set (default: $SGPLAN_GIBSON_DIR, "
+        "else ../shared/datasets/gibson-3dsg)",
+    )
     parser.add_argument("--json", metavar="FILE", help="also write the full report (every mission) as JSON")
     parser.add_argument("--show-right", action="store_true", help="also list the missions translated right")
     add_llm_arguments(parser)  # with --samples / --max-repairs
@@ -59,8 +63,13 @@ def run(args: argparse.Namespace) -> int:
     def building_of(scene: str) -> Building:
         return load_scene_arg(scene, args.data)
 
-    say(f"scoring {backends.translator.name} ({backends.description}) on {len(missions)} missions of {args.set}")
-    score = score_translator(backends.translator, missions, building_of, set_path=str(args.set), explain=_explain)
+    say(
+        f"scoring {backends.translator.name} ({backends.description}) on {len(missions)} missions of "
+        f"{args.set}"
+    )
+    score = score_translator(
+        backends.translator, missions, building_of, set_path=str(args.set), explain=_explain
+    )
     for r in score.results:
         if r.outcome == "right" and not args.show_right:
             continue

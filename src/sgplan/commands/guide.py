@@ -22,13 +22,19 @@ from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    parser = sub.add_parser("guide", help="write room-level guidance (llm_heuristic.yaml) for a mission folder")
+    parser = sub.add_parser(
+        "guide", help="write room-level guidance (llm_heuristic.yaml) for a mission folder"
+    )
     add_scene_arguments(parser)
-    parser.add_argument("--mission-dir", required=True, metavar="DIR", help="mission folder (automaton.aut, ap_desc.yaml)")
+    parser.add_argument(
+        "--mission-dir", required=True, metavar="DIR", help="mission folder (automaton.aut, ap_desc.yaml)"
+    )
     parser.add_argument("--out", metavar="FILE", help="where to write (default: DIR/llm_heuristic.yaml)")
     add_profile_argument(parser, extra_help="; here: how automaton.aut's missing edges are read")
     add_llm_arguments(parser, translates=False)
-    parser.add_argument("--max-concurrency", type=positive_int, default=4, metavar="N", help="LLM calls in flight (default 4)")
+    parser.add_argument(
+        "--max-concurrency", type=positive_int, default=4, metavar="N", help="LLM calls in flight (default 4)"
+    )
     parser.set_defaults(run=run)
 
 
@@ -55,13 +61,20 @@ def run(args: argparse.Namespace) -> int:
         raise
     write_guidance(guidance, out)
     entries = sum(len(states) for states in guidance.values())
-    print(f"wrote {out}: {entries} entries for {len(guidance)} rooms x {mission.automaton.num_states} automaton states")
+    print(
+        f"wrote {out}: {entries} entries for {len(guidance)} rooms x {mission.automaton.num_states} "
+        "automaton states"
+    )
     report = getattr(backends.guide, "report", None)
     if backends.chat is not None and report is not None:
         summary = backends.record.to_json()["summary"]
-        print(f"LLM: {report.asked} entries asked ({summary['from_cache']} from the cache), {report.skipped} with "
-              f"nothing left to do, {report.failed} failed; calls kept {report.calls_kept}, dropped {report.calls_dropped}; "
-              f"{report.routes_broken} entries whose calls do not form one route")
+        print(
+            f"LLM: {report.asked} entries asked ({summary['from_cache']} from the cache), {report.skipped} "
+            "with "
+            f"nothing left to do, {report.failed} failed; calls kept {report.calls_kept}, dropped "
+            f"{report.calls_dropped}; "
+            f"{report.routes_broken} entries whose calls do not form one route"
+        )
         for reason in report.reasons[:5]:
             say(f"  dropped: {reason}")
         record_path = backends.record.save(out.parent / GUIDANCE_RECORD_NAME)

@@ -57,7 +57,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         type=positive_number,
         default=DEFAULT_OPEN_GAP_M,
         metavar="M",
-        help=f"mp3d: floor polygons closer than this share an open boundary, not a wall ({DEFAULT_OPEN_GAP_M})",
+        help="mp3d: floor polygons closer than this share an open boundary, not a wall "
+        f"({DEFAULT_OPEN_GAP_M})",
     )
     parser.set_defaults(run=run)
 
@@ -82,6 +83,7 @@ def run(args: argparse.Namespace) -> int:
     rows, cols = building.grid_shape
     print(
         f"imported {building.name}: {building.num_floors} floor(s), {rooms} rooms, {objects} objects, "
-        f"{rows} x {cols} cells of {building.resolution_m[0]:g} m, {len(building.initial_cells)} start cells -> {folder}"
+        f"{rows} x {cols} cells of {building.resolution_m[0]:g} m, {len(building.initial_cells)} start cells "
+        f"-> {folder}"
     )
     return 0

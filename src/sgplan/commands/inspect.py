@@ -17,7 +17,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="robot radius in metres for the free-cell counts (default: the scene's, else 0)")
     parser.add_argument("--draw", metavar="DIR", default=None, help="write one PNG per floor into DIR")
     parser.add_argument("--no-objects", action="store_true", help="leave the object lists out")
-    parser.add_argument("--json", metavar="OUT", help="write the summary as JSON ('-': to stdout, instead of the text)")
+    parser.add_argument(
+        "--json", metavar="OUT", help="write the summary as JSON ('-': to stdout, instead of the text)"
+    )
     parser.set_defaults(run=run)
 
 

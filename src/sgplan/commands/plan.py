@@ -58,41 +58,69 @@ def _triple(kind: type, what: str) -> Callable[[str], tuple]:
 def register(sub: argparse._SubParsersAction) -> None:
     from sgplan.planning.amra import SETUPS
 
-    parser = sub.add_parser("plan", help="plan an optimal path for a mission (AMRA*)",
-                            description="Plan an optimal path. Exit codes: 0 optimal, 2 error, 3 budget ran out "
-                                        "(the best path so far is still written), 4 no path in the scene "
-                                        "satisfies the mission, 70 a bug.")
+    parser = sub.add_parser(
+        "plan",
+        help="plan an optimal path for a mission (AMRA*)",
+        description="Plan an optimal path. Exit codes: 0 optimal, 2 error, 3 budget ran out "
+        "(the best path so far is still written), 4 no path in the scene "
+        "satisfies the mission, 70 a bug.",
+    )
     add_scene_arguments(parser)
     what = parser.add_mutually_exclusive_group(required=True)
-    what.add_argument("--mission-dir", metavar="DIR", help="mission folder (automaton.aut, ap_desc.yaml, llm_heuristic.yaml)")
+    what.add_argument(
+        "--mission-dir", metavar="DIR",
+        help="mission folder (automaton.aut, ap_desc.yaml, llm_heuristic.yaml)",
+    )
     what.add_argument("--formula", metavar="F", help="LTL formula: token list, Spot infix or LBT prefix")
-    what.add_argument("--text", metavar="MISSION", help="the mission in natural language (translated with --llm)")
-    parser.add_argument("--aps", metavar="FILE", help="ap_desc.yaml giving the formula's proposition names a meaning")
-    parser.add_argument("--guidance", metavar="FILE", help="llm_heuristic.yaml to use instead of the mission's")
+    what.add_argument(
+        "--text", metavar="MISSION", help="the mission in natural language (translated with --llm)"
+    )
+    parser.add_argument(
+        "--aps", metavar="FILE", help="ap_desc.yaml giving the formula's proposition names a meaning"
+    )
+    parser.add_argument(
+        "--guidance", metavar="FILE", help="llm_heuristic.yaml to use instead of the mission's"
+    )
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--start", type=_triple(int, "ROW,COL,FLOOR (grid cells)"), metavar="ROW,COL,FLOOR",
                        help="start cell")
-    where.add_argument("--start-xy", type=_triple(float, "X,Y,FLOOR (metres, floor index)"), metavar="X,Y,FLOOR",
-                       help="start at a metric point (snapped to the nearest free cell within 0.5 m)")
+    where.add_argument(
+        "--start-xy", type=_triple(float, "X,Y,FLOOR (metres, floor index)"), metavar="X,Y,FLOOR",
+        help="start at a metric point (snapped to the nearest free cell within 0.5 m)",
+    )
     where.add_argument("--start-room", metavar="ROOM", help="start in a room: room_<uuid>, a category "
                        "('kitchen') or 'bathroom on floor 1'; the room's free cell farthest from obstacles")
     where.add_argument("--start-index", type=non_negative_int, metavar="K",
                        help="start at the scene's initial position K (default 0)")
-    parser.add_argument("--setup", default="ALL", help=f"planner setup, any case: {', '.join(SETUPS)} (default ALL)")
+    parser.add_argument(
+        "--setup", default="ALL", help=f"planner setup, any case: {', '.join(SETUPS)} (default ALL)"
+    )
     add_profile_argument(parser)
-    parser.add_argument("--robot-radius", type=robot_radius, metavar="M", help="robot radius (default: the scene's)")
-    parser.add_argument("--reach-radius", type=reach_radius, metavar="M", help="object reach radius (default: the scene's)")
-    parser.add_argument("--time-limit", type=positive_seconds, metavar="S", help="search time budget in seconds")
+    parser.add_argument(
+        "--robot-radius", type=robot_radius, metavar="M", help="robot radius (default: the scene's)"
+    )
+    parser.add_argument(
+        "--reach-radius", type=reach_radius, metavar="M", help="object reach radius (default: the scene's)"
+    )
+    parser.add_argument(
+        "--time-limit", type=positive_seconds, metavar="S", help="search time budget in seconds"
+    )
     parser.add_argument("--max-expansions", type=positive_int, metavar="N", help="search expansion budget")
     out = parser.add_argument_group("outputs")
     out.add_argument("--json", metavar="OUT", help="write the result as JSON ('-': to stdout)")
     out.add_argument("--waypoints", metavar="FILE.csv", help="write the simplified metric waypoints as CSV")
-    out.add_argument("--ros-path", metavar="FILE.yaml", help="write the simplified waypoints as YAML shaped like "
-                     "ROS nav_msgs/Path messages, one per floor stretch")
+    out.add_argument(
+        "--ros-path",
+        metavar="FILE.yaml",
+        help="write the simplified waypoints as YAML shaped like "
+        "ROS nav_msgs/Path messages, one per floor stretch",
+    )
     out.add_argument("--dense", action="store_true", help="--waypoints / --ros-path hold every cell, not the "
                      "simplified polyline")
-    out.add_argument("--draw", metavar="DIR", help="write one PNG and one SVG per floor with the path, and the "
-                     "automaton (DOT, SVG)")
+    out.add_argument(
+        "--draw", metavar="DIR",
+        help="write one PNG and one SVG per floor with the path, and the automaton (DOT, SVG)",
+    )
     out.add_argument("--html", metavar="FILE", help="write a self-contained HTML report of the plan")
     parser.add_argument("--verify", action="store_true",
                         help="accepted for old scripts: every path is checked by the independent checker")
@@ -100,8 +128,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="show what will be planned and ask before planning (needs a terminal)")
     parser.add_argument("--force", action="store_true",
                         help="plan a --mission-dir even if it was made for another scene")
-    parser.add_argument("--save-mission", metavar="DIR",
-                        help="with --text: save the translated mission, its guidance and the LLM run record here")
+    parser.add_argument(
+        "--save-mission", metavar="DIR",
+        help="with --text: save the translated mission, its guidance and the LLM run record here",
+    )
     add_llm_arguments(parser)
     parser.set_defaults(run=run)
 
@@ -131,7 +161,9 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     if args.save_mission and not args.text:
         raise MissionError("--save-mission saves a translated mission: use it with --text")
     backends: Backends | None = None
-    for option, value in (("--mission-dir", args.mission_dir), ("--formula", args.formula), ("--text", args.text)):
+    for option, value in (
+        ("--mission-dir", args.mission_dir), ("--formula", args.formula), ("--text", args.text),
+    ):
         if value is not None and not value.strip():
             raise MissionError(f"{option} is empty: give a {option[2:].replace('-dir', ' folder')}")
     if args.mission_dir is not None:
@@ -174,7 +206,9 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
                          time_limit_s=args.time_limit, max_expansions=args.max_expansions, guide=guide,
                          callback=progress)
     if args.save_mission and guide is not None and result.mission is not None and result.mission.guidance:
-        say(f"wrote {write_guidance(result.mission.guidance, Path(args.save_mission) / 'llm_heuristic.yaml')}")
+        say(
+            f"wrote {write_guidance(result.mission.guidance, Path(args.save_mission) / 'llm_heuristic.yaml')}"
+        )
     if backends is not None and backends.chat is not None:
         from sgplan.llm.translation import RECORD_NAME
 
@@ -192,7 +226,9 @@ def _report(args: argparse.Namespace, result: PlanResult) -> int:
     if result.path is not None:
         print(result.summary() + f", search {result.timings['search_s']:.3f} s, precompute "
               f"{result.timings['precompute_s']:.3f} s", file=out)
-        print(f"verified: the path is legal, collision-free and accepted; cost {result.cost_m:.4f} m", file=out)
+        print(
+            f"verified: the path is legal, collision-free and accepted; cost {result.cost_m:.4f} m", file=out
+        )
         for event in result.events:
             say(f"  {event.describe()}")
         simplified = not args.dense
@@ -212,8 +248,10 @@ def _report(args: argparse.Namespace, result: PlanResult) -> int:
         if result.path is None:
             log.warning(f"sgplan: timeout: no path found within the budget ({budget})")
         else:
-            log.warning(f"sgplan: timeout: the budget ({budget}) ran out; the path's cost {result.cost_m:.4f} m is "
-                        f"within x{result.bound:g} of the optimum")
+            log.warning(
+                f"sgplan: timeout: the budget ({budget}) ran out; the path's cost {result.cost_m:.4f} m is "
+                f"within x{result.bound:g} of the optimum"
+            )
         return TIMEOUT_EXIT
     return 0
 

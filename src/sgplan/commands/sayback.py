@@ -73,7 +73,9 @@ def check_folder_fits(folder: str | Path, mission: Mission, building: Building, 
     for note in fit.notes:
         say(f"note: {note}")
     if record is not None:
-        record["scene_fit"] = {"checked_through": fit.source, "mismatches": list(fit.mismatches), "forced": force}
+        record["scene_fit"] = {
+            "checked_through": fit.source, "mismatches": list(fit.mismatches), "forced": force,
+        }
 
 
 def check_before_planning(mission: Mission, building: Building, prepared: PreparedProblem | None = None,
@@ -88,8 +90,10 @@ def check_before_planning(mission: Mission, building: Building, prepared: Prepar
         check = check_mission_in_scene(mission, building)
     else:
         problem = prepared.problem
-        check = check_mission_in_scene(mission, building, problem.start, grid=problem.grid, labels=problem.labels,
-                                       profile=problem.profile)
+        check = check_mission_in_scene(
+            mission, building, problem.start, grid=problem.grid, labels=problem.labels,
+            profile=problem.profile,
+        )
     for finding in check.findings:
         if finding.severity != "error":
             say(f"{finding.severity}: {finding.message}")

@@ -1,4 +1,5 @@
-"""``sgplan translate``: a natural-language mission -> grounded formula -> automaton, saved as a mission folder.
+"""``sgplan translate``: a natural-language mission -> grounded formula -> automaton, saved as a mission
+folder.
 
 The language backend is ``--llm openai:MODEL`` (any OpenAI-compatible server; ``--base-url``, ``--cache``,
 ``--replay``) or ``--llm offline`` (the pattern translator, not a language model; the default). When the
@@ -34,24 +35,38 @@ def add_llm_arguments(parser: argparse.ArgumentParser, *, translates: bool = Tru
     """The options choosing the language backend, the same on every command that talks to one
     (``translate``, ``guide``, ``plan``); ``translates`` adds the translation options."""
     group = parser.add_argument_group("language backend")
-    group.add_argument("--llm", default="offline", metavar="SPEC",
-                       help="'openai:MODEL' for any OpenAI-compatible server, or 'offline' for the rule-based "
-                            "backends, which are not language models (default: offline)")
+    group.add_argument(
+        "--llm",
+        default="offline",
+        metavar="SPEC",
+        help="'openai:MODEL' for any OpenAI-compatible server, or 'offline' for the rule-based "
+        "backends, which are not language models (default: offline)",
+    )
     group.add_argument("--base-url", metavar="URL",
                        help="API root of the server, e.g. http://127.0.0.1:11434/v1 (default: OpenAI's, or "
                             "$OPENAI_BASE_URL)")
     group.add_argument("--llm-config", metavar="FILE", help="YAML file with LLM settings (see docs/llm.md)")
-    group.add_argument("--cache", metavar="DIR", help="record every LLM call in DIR and answer recorded calls from it")
-    group.add_argument("--replay", action="store_true", help="answer only from --cache, never contact a server")
+    group.add_argument(
+        "--cache", metavar="DIR", help="record every LLM call in DIR and answer recorded calls from it"
+    )
+    group.add_argument(
+        "--replay", action="store_true", help="answer only from --cache, never contact a server"
+    )
     group.add_argument("--llm-deadline", type=positive_seconds, metavar="S",
                        help="give up on one LLM call (all its retries included) after S seconds "
                             "(default: deadline_s of the LLM config, 120)")
-    group.add_argument("--rpm", type=positive_number, metavar="R", help="at most R LLM requests per minute (hosted APIs)")
+    group.add_argument(
+        "--rpm", type=positive_number, metavar="R", help="at most R LLM requests per minute (hosted APIs)"
+    )
     if translates:
-        group.add_argument("--samples", type=positive_int, default=1, metavar="K",
-                           help="translate K times and keep the majority by automaton equivalence (default 1)")
-        group.add_argument("--max-repairs", type=non_negative_int, default=3, metavar="N",
-                           help="times an invalid formula is sent back for repair before giving up (default 3)")
+        group.add_argument(
+            "--samples", type=positive_int, default=1, metavar="K",
+            help="translate K times and keep the majority by automaton equivalence (default 1)",
+        )
+        group.add_argument(
+            "--max-repairs", type=non_negative_int, default=3, metavar="N",
+            help="times an invalid formula is sent back for repair before giving up (default 3)",
+        )
 
 
 def open_backends_from_args(args: argparse.Namespace, **options: Any) -> Backends:
@@ -61,9 +76,10 @@ def open_backends_from_args(args: argparse.Namespace, **options: Any) -> Backend
     if getattr(args, "samples", None) is not None:
         options.setdefault("samples", args.samples)
         options.setdefault("max_repairs", args.max_repairs)
-    return open_backends(args.llm, base_url=args.base_url, cache_dir=args.cache, replay=args.replay,
-                         config_path=args.llm_config, requests_per_minute=args.rpm, deadline_s=args.llm_deadline,
-                         **options)
+    return open_backends(
+        args.llm, base_url=args.base_url, cache_dir=args.cache, replay=args.replay,
+        config_path=args.llm_config, requests_per_minute=args.rpm, deadline_s=args.llm_deadline, **options,
+    )
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -99,7 +115,9 @@ def run(args: argparse.Namespace, ask: Callable[[str], str] | None = None) -> in
     text = args.text
     while True:
         try:
-            translation, mission = translate_to_folder(text, building, backends.translator, args.out, backends.record)
+            translation, mission = translate_to_folder(
+                text, building, backends.translator, args.out, backends.record
+            )
             break
         except MissionError as error:
             # An error naming a file (the --out folder) is not about the wording: rephrasing cannot fix it.

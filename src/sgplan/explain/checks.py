@@ -34,8 +34,21 @@ from sgplan.explain.patterns import condition_text, pattern_clauses
 from sgplan.explain.scene_labels import occurring_labels
 from sgplan.explain.stages import forbidden_bits, restricted
 from sgplan.logic.automaton import Automaton
-from sgplan.logic.formula import (MAX_NESTING, And, Atom, Const, Equiv, Formula, Implies, Not, Or, atoms, depth,
-                                  is_temporal, walk)
+from sgplan.logic.formula import (
+    MAX_NESTING,
+    And,
+    Atom,
+    Const,
+    Equiv,
+    Formula,
+    Implies,
+    Not,
+    Or,
+    atoms,
+    depth,
+    is_temporal,
+    walk,
+)
 from sgplan.logic.infix import to_infix
 from sgplan.logic.ltlf import ltlf_to_dfa
 from sgplan.mission import Mission
@@ -140,6 +153,8 @@ def check_mission_in_scene(
         return SceneCheck(())
     entities = entities_of(list(automaton.aps), mission.propositions, building)
     context = _Context(mission, building, grid, labels, entities, realizable)
+    # The part analysis recurses over the formula as written: a deeper one (a 500-term conjunction as
+    # nested pairs) gets only the whole-mission checks below, which work on the automaton (_readable).
     findings = context.part_findings()
     whole = restricted(automaton, realizable)
     if not whole.live_states()[whole.initial]:
@@ -203,7 +218,8 @@ class _Context:
             why = f" ({'; '.join(outside)})" if outside else ""
             return [Finding("impossible-part", f"no place in this scene is {self.cond(node)}{why}")]
         findings = [
-            Finding("object-outside-room", f"{o}: it is reached from there only through a wall") for o in outside
+            Finding("object-outside-room", f"{o}: it is reached from there only through a wall")
+            for o in outside
         ]
         for k, part in enumerate(parts):
             # Only a negated place can be a misreading ("... and not in the kitchen" while in the bathroom);
@@ -213,15 +229,23 @@ class _Context:
             others = parts[:k] + parts[k + 1:]
             rest = others[0] if len(others) == 1 else And(tuple(others))
             if not (_evaluate(rest, present, index) & ~_evaluate(part, present, index)).any():
-                findings.append(Finding(
-                    "vacuous",
-                    f"'{self.cond(part)}' changes nothing in '{self.cond(node)}': every place of this scene that "
-                    f"is {self.cond(rest)} already is (one room at a time; an object is reached only near it)",
-                ))
+                findings.append(
+                    Finding(
+                        "vacuous",
+                        f"'{self.cond(part)}' changes nothing in '{self.cond(node)}': every place of this "
+                        "scene that "
+                        f"is {self.cond(rest)} already is (one room at a time; an object is reached only "
+                        "near it)",
+                    )
+                )
         return findings
 
     def _objects_outside_rooms(self, parts: list[Formula]) -> list[str]:
-        rooms = [self.describe(p.name) for p in parts if isinstance(p, Atom) and self.describe(p.name).kind == "room"]
+        rooms = [
+            self.describe(p.name)
+            for p in parts
+            if isinstance(p, Atom) and self.describe(p.name).kind == "room"
+        ]
         objects = [self.describe(p.name) for p in parts
                    if isinstance(p, Atom) and self.describe(p.name).kind == "object"]
         return [f"{o.phrase()} is not in {r.phrase()}" for r in rooms for o in objects if o.room_key != r.key]
@@ -257,22 +281,35 @@ class _Context:
     def start_findings(self, whole: Automaton, start: tuple[int, int, int], profile: str) -> list[Finding]:
         row, col, floor = start
         floors, rows, cols = self.grid.shape
-        if not (0 <= floor < floors and 0 <= row < rows and 0 <= col < cols) or not self.grid.traversable[floor, row, col]:
+        if (
+            not (0 <= floor < floors and 0 <= row < rows and 0 <= col < cols)
+            or not self.grid.traversable[floor, row, col]
+        ):
             return []  # the planner says why the start cannot be used
         label = int(self.labels[floor, row, col])
         q0 = int(whole.table[whole.initial, label]) if profile == "ltlf" else whole.initial
         where = f"start (row {row}, col {col}, floor {floor}), {self.label_words(label)},"
         live = whole.live_states()
         if not live[q0]:
-            return [Finding("unsatisfiable-from-start",
-                            f"{where} violates the mission: from there no path can satisfy it; start elsewhere")]
+            return [
+                Finding(
+                    "unsatisfiable-from-start",
+                    f"{where} violates the mission: from there no path can satisfy it; start elsewhere",
+                )
+            ]
         if whole.accepting[q0]:
-            return [Finding("satisfied-at-start", f"{where} already satisfies the mission: the optimal plan is "
-                                                  "to stay there (0 m)")]
+            return [
+                Finding(
+                    "satisfied-at-start",
+                    f"{where} already satisfies the mission: the optimal plan is to stay there (0 m)",
+                )
+            ]
         blocked = self._blocked(whole, start, label, profile)
         return [blocked] if blocked is not None else []
 
-    def _blocked(self, whole: Automaton, start: tuple[int, int, int], label: int, profile: str) -> Finding | None:
+    def _blocked(
+        self, whole: Automaton, start: tuple[int, int, int], label: int, profile: str
+    ) -> Finding | None:
         """Whether avoiding the forbidden rooms cuts the start off from what the mission needs."""
         aps = self.mission.automaton.aps
         forbidden = [i for i in forbidden_bits(whole, np.flatnonzero(self.realizable))
@@ -293,20 +330,36 @@ class _Context:
             return None
         present = np.bitwise_or.reduce(np.flatnonzero(self.realizable))
         near_bits = np.bitwise_or.reduce(np.flatnonzero(near))
-        missing = [aps[i] for i in range(len(aps)) if present >> i & 1 and not near_bits >> i & 1 and i not in forbidden]
-        culprits = [aps[i] for i, rid in zip(forbidden, room_ids)
-                    if np.bitwise_or.reduce(np.flatnonzero(reachable_labels([r for r in room_ids if r != rid])))
-                    & ~near_bits]
+        missing = [
+            aps[i]
+            for i in range(len(aps))
+            if present >> i & 1 and not near_bits >> i & 1 and i not in forbidden
+        ]
+        culprits = [
+            aps[i]
+            for i, rid in zip(forbidden, room_ids)
+            if np.bitwise_or.reduce(np.flatnonzero(reachable_labels([r for r in room_ids if r != rid])))
+            & ~near_bits
+        ]
         goals = "; ".join(self.describe(p).phrase() for p in missing) or "what the mission needs"
         rooms = "; ".join(self.describe(p).phrase() for p in (culprits or [aps[i] for i in forbidden]))
-        return Finding("blocked-by-forbidden", f"from start {start}, {goals} can be reached only through rooms the "
-                                               f"mission forbids: {rooms}")
+        return Finding(
+            "blocked-by-forbidden",
+            f"from start {start}, {goals} can be reached only through rooms the mission forbids: {rooms}",
+        )
 
 
 def _flat_and(formula: Formula) -> list[Formula]:
-    if isinstance(formula, And):
-        return [c for arg in formula.args for c in _flat_and(arg)]
-    return [formula]
+    """The conjuncts of ``formula``, nested ``And`` flattened, in order (iterative: any depth)."""
+    parts: list[Formula] = []
+    stack = [formula]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, And):
+            stack.extend(reversed(node.args))
+        else:
+            parts.append(node)
+    return parts
 
 
 def _evaluate(f: Formula, labels: np.ndarray, index: dict[str, int]) -> np.ndarray:

@@ -61,7 +61,9 @@ class Entity:
     def phrase(self) -> str:
         """``the kitchen (room_11, floor 0)``, ``the sink (object_27, in the bathroom room_2, floor 0)``."""
         if self.kind == "unknown":
-            return f"{self.key} (not in this scene)" if self.key.startswith(("room_", "object_")) else self.key
+            return (
+                f"{self.key} (not in this scene)" if self.key.startswith(("room_", "object_")) else self.key
+            )
         where = self.where
         return f"the {self.category} ({self.key}{', ' + where if where else ''})"
 

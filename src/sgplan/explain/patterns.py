@@ -129,7 +129,9 @@ def _factored(s: Formula) -> list[Formula] | None:
             return None
         common = [x for x in options[0] if all(x in o for o in options[1:])]
         rest = [[x for x in o if x not in common] for o in options]
-        if not all(len(r) == 1 and isinstance(r[0], Atom) for r in rest) or len({r[0] for r in rest}) < len(rest):
+        if not all(len(r) == 1 and isinstance(r[0], Atom) for r in rest) or len({r[0] for r in rest}) < len(
+            rest
+        ):
             return None
         return [Or(tuple(r[0] for r in rest)), *common]
     items = _conjuncts(s)

@@ -30,8 +30,10 @@ Method = Literal["patterns", "automaton"]
 
 HEADER = "The mission, as it will be planned:"
 AUTOMATON_HEADER = "The mission, as it will be planned (read from its automaton; it has no simpler reading):"
-DIFFERS_HEADER = ("The mission, as it will be planned (read from its automaton, which accepts other paths than its "
-                  "formula, e.g. under the authors' semantics):")
+DIFFERS_HEADER = (
+    "The mission, as it will be planned (read from its automaton, which accepts other paths than its "
+    "formula, e.g. under the authors' semantics):"
+)
 
 
 @dataclass(frozen=True)
@@ -100,7 +102,7 @@ def explain_formula(
     # automaton: the structural reading recurses over the formula as written.
     same = formula is not None and depth(formula) <= MAX_NESTING and _reads_as(formula, automaton, realizable)
     if same:
-        clauses = pattern_clauses(formula, lookup)  # type: ignore[arg-type]
+        clauses = pattern_clauses(formula, lookup)
         if clauses is not None:
             return Explanation("\n".join([HEADER, *_numbered(clauses)]), "patterns")
     entities = {p: lookup(p) for p in automaton.aps}
@@ -116,7 +118,9 @@ def _reads_as(formula: Formula, automaton: Automaton, realizable: np.ndarray) ->
     return equivalent(restricted(own, realizable), restricted(automaton, realizable))
 
 
-def explain_mission(mission: Mission, building: Building, *, reach_radius_m: float | None = None) -> Explanation:
+def explain_mission(
+    mission: Mission, building: Building, *, reach_radius_m: float | None = None
+) -> Explanation:
     """Explain ``mission`` over ``building`` (see the module docstring).
 
     Parameters
@@ -135,7 +139,9 @@ def explain_mission(mission: Mission, building: Building, *, reach_radius_m: flo
         deterministic: the same mission and scene always give the same text.
     """
     automaton = mission.automaton
-    extra = [p for p in atoms(mission.formula) if p not in automaton.aps] if mission.formula is not None else []
+    extra = (
+        [p for p in atoms(mission.formula) if p not in automaton.aps] if mission.formula is not None else []
+    )
     if extra:  # propositions the automaton ignores (e.g. an authors' HOA dropped them): read them too
         automaton = automaton.with_aps((*automaton.aps, *extra))
     entities = entities_of(list(automaton.aps), mission.propositions, building)

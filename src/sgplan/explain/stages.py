@@ -148,6 +148,7 @@ def stage_lines(automaton: Automaton, entities: Mapping[str, Entity], realizable
             + (f"stage {stage[r]}" if r in stage else "the mission fails")
             for r, group in moves.items()
         ]
-        head = f"- stage {stage[int(q)]}{' (start)' if q == a.initial else ''}{' (complete)' if a.accepting[q] else ''}"
+        start, complete = " (start)" if q == a.initial else "", " (complete)" if a.accepting[q] else ""
+        head = f"- stage {stage[int(q)]}{start}{complete}"
         lines.append(f"{head}: {'; '.join(said) + '; otherwise stay' if said else 'stay whatever happens'}.")
     return lines

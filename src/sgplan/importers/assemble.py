@@ -151,7 +151,8 @@ def paint_objects(
     notes = []
     if dropped:
         notes.append(
-            f"{len(dropped)} object(s) left out: they hang above free floor (or are covered by others), so no "
+            f"{len(dropped)} object(s) left out: they hang above free floor (or are covered by others), so "
+            "no "
             f"cell of the map holds them: {', '.join(dropped)}"
         )
     return kept, notes
@@ -236,8 +237,10 @@ def assemble(
     building.initial_cells = start_cells(building, settings.robot_radius_m, room_boxes)
     if not building.initial_cells:
         raise SceneError(
-            f"no room of {name!r} has a cell free for a robot of radius {settings.robot_radius_m} m: the free "
-            "space is too narrow or lies outside every room (try a smaller --robot-radius or a finer --resolution)"
+            f"no room of {name!r} has a cell free for a robot of radius {settings.robot_radius_m} m: the "
+            "free "
+            "space is too narrow or lies outside every room (try a smaller --robot-radius or a finer "
+            "--resolution)"
         )
     empty = [
         r.key
@@ -248,7 +251,8 @@ def assemble(
         notes.append(f"room(s) {', '.join(empty)} cover no cell of the grid: missions cannot enter them")
     if building.num_floors > 1:
         notes.append(
-            f"{building.num_floors} floors, not joined: stairs are not imported, so a path stays on the floor "
+            f"{building.num_floors} floors, not joined: stairs are not imported, so a path stays on the "
+            "floor "
             "it starts on"
         )
     return ImportResult(building, notes)
@@ -302,7 +306,8 @@ def _check_drafts(
     for obj in objects:
         if not 0 <= obj.floor < len(floors):
             raise SceneError(
-                f"object {obj.name} ({obj.source}) is on floor {obj.floor}, but there are {len(floors)} floor(s)"
+                f"object {obj.name} ({obj.source}) is on floor {obj.floor}, but there are {len(floors)} "
+                "floor(s)"
             )
         if obj.room_id is not None and obj.room_id not in seen:
             raise SceneError(
@@ -313,7 +318,8 @@ def _check_drafts(
 def _with_rooms(
     objects: Sequence[ObjectDraft], frame: GridFrame, floors: Sequence[FloorDraft], rooms: Sequence[RoomDraft]
 ) -> list[ObjectDraft]:
-    """The objects, each with a room on its own floor: as given if that fits, else the room nearest its centre."""
+    """The objects, each with a room on its own floor: as given if that fits, else the room nearest its
+    centre."""
     nearest: dict[int, tuple[np.ndarray, np.ndarray]] = {}
     out = []
     for obj in objects:

@@ -119,7 +119,8 @@ def import_dsg(
             place.room = 0
     elif len(room_names) == 1:
         notes.append(
-            "Hydra segmented a single room for the whole scene: missions can name objects but not distinct rooms"
+            "Hydra segmented a single room for the whole scene: missions can name objects but not distinct "
+            "rooms"
         )
     _adopt_orphans(graph, layers, places)
     room_ids = {node: k + 1 for k, node in enumerate(sorted(room_names))}
@@ -133,7 +134,8 @@ def import_dsg(
     mesh = _mesh_points(graph)
     if mesh is not None:
         notes.append(
-            "free space comes from the scene graph's mesh (floor and obstacle vertices), rooms from its places"
+            "free space comes from the scene graph's mesh (floor and obstacle vertices), rooms from its "
+            "places"
         )
     edges = _place_edges(graph, layers, {p.id: k for k, p in enumerate(places)})
     frame, floors = _floor_drafts(places, place_floor, edges, room_ids, grounds, mesh, settings)
@@ -193,7 +195,8 @@ def _nodes(graph: Any, layer: int) -> list[Any]:
 def _places(graph: Any, layers: dict[str, int], path: Path, notes: list[str]) -> list[_Place]:
     if not graph.has_layer(layers["PLACES"]):
         raise SceneError(
-            f"the scene graph has no places layer (layer {layers['PLACES']}): it says nothing about free space",
+            f"the scene graph has no places layer (layer {layers['PLACES']}): it says nothing about free "
+            "space",
             path,
         )
     rooms = {int(n.id.value): n for n in _nodes(graph, layers["ROOMS"])}
@@ -213,7 +216,8 @@ def _places(graph: Any, layers: dict[str, int], path: Path, notes: list[str]) ->
         places.append(_Place(int(node.id.value), xyz, radius, place_room.get(int(node.id.value))))
     if not places:
         raise SceneError(
-            f"the places layer (layer {layers['PLACES']}) holds no place with a positive free-space distance: "
+            f"the places layer (layer {layers['PLACES']}) holds no place with a positive free-space "
+            "distance: "
             "nothing tells where the robot may go",
             path,
         )

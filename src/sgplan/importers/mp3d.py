@@ -291,7 +291,8 @@ def import_house(
     undrawn = sorted(set(house.regions) - set(drawn))
     if undrawn:
         notes.append(
-            f"region(s) {undrawn} have no floor polygon and are left out (their objects join the nearest room)"
+            f"region(s) {undrawn} have no floor polygon and are left out (their objects join the nearest "
+            "room)"
         )
     if not drawn:
         raise SceneError("no region has a floor polygon (S and V records): nothing to rasterise", house.path)

@@ -9,6 +9,7 @@ inside the shape's bounding box only, so a shape costs what it covers, not what 
 
 from __future__ import annotations
 
+import contextlib
 import math
 from dataclasses import dataclass
 
@@ -49,7 +50,8 @@ class GridFrame:
         return cls((float(lo[0]), float(lo[1])), float(resolution_m), (max(rows, 1), max(cols, 1)))
 
     def cell_of(self, xy: np.ndarray) -> np.ndarray:
-        """The ``(row, col)`` cells (int64, ``(n, 2)``) containing metric points ``(n, 2)``; may lie off the grid."""
+        """The ``(row, col)`` cells (int64, ``(n, 2)``) containing metric points ``(n, 2)``; may lie off the
+        grid."""
         xy = np.asarray(xy, dtype=float).reshape(-1, 2)
         return np.floor((xy - np.asarray(self.origin_m)) / self.resolution_m).astype(np.int64)
 
@@ -80,7 +82,8 @@ class GridFrame:
 
 
 def polygon_cells(frame: GridFrame, vertices_xy: np.ndarray) -> np.ndarray:
-    """``(row, col)`` cells ``(n, 2)`` whose centres lie inside the simple polygon ``vertices_xy`` (metres)."""
+    """``(row, col)`` cells ``(n, 2)`` whose centres lie inside the simple polygon ``vertices_xy``
+    (metres)."""
     vertices = np.asarray(vertices_xy, dtype=float).reshape(-1, 2)
     found = frame.window(vertices.min(axis=0), vertices.max(axis=0))
     if found is None:
@@ -141,10 +144,8 @@ def hull_cells(frame: GridFrame, points_xy: np.ndarray) -> np.ndarray:
     """
     points = np.asarray(points_xy, dtype=float).reshape(-1, 2)
     cells = np.zeros((0, 2), dtype=np.int64)
-    try:
+    with contextlib.suppress(QhullError, ValueError):  # a degenerate hull: the fallback below
         cells = polygon_cells(frame, points[ConvexHull(points).vertices])
-    except (QhullError, ValueError):
-        pass
     if len(cells) == 0:
         centre = frame.cell_of(points.mean(axis=0))
         cells = centre[frame.contains(centre)]
@@ -152,7 +153,8 @@ def hull_cells(frame: GridFrame, points_xy: np.ndarray) -> np.ndarray:
 
 
 def box_corners(center: np.ndarray, axes: np.ndarray, half_sizes: np.ndarray) -> np.ndarray:
-    """The 8 corners ``(8, 3)`` of an oriented box: centre ``(3,)``, unit axes as rows ``(3, 3)``, half sizes ``(3,)``."""
+    """The 8 corners ``(8, 3)`` of an oriented box: centre ``(3,)``, unit axes as rows ``(3, 3)``, half sizes
+    ``(3,)``."""
     signs = np.array([[i, j, k] for i in (-1, 1) for j in (-1, 1) for k in (-1, 1)], dtype=float)
     return np.asarray(center, dtype=float) + (signs * np.asarray(half_sizes, dtype=float)) @ np.asarray(
         axes, dtype=float

@@ -175,7 +175,8 @@ def import_ros_map(
         polygon = _points(entry.get("polygon"), None, f"{label}: 'polygon'", rooms_path)
         if len(polygon) < 3 or polygon_area_m2(polygon) < resolution * resolution / 4:
             raise SceneError(
-                f"{label}: degenerate polygon ({len(polygon)} points, area {polygon_area_m2(polygon):.3g} m^2)",
+                f"{label}: degenerate polygon ({len(polygon)} points, area {polygon_area_m2(polygon):.3g} "
+                "m^2)",
                 rooms_path,
             )
         mask = polygon_mask(frame, polygon)

@@ -21,7 +21,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Any, Literal, Protocol
 
 from sgplan.errors import LLMError
 from sgplan.llm.client import ChatBackend
@@ -34,13 +34,18 @@ OPENAI_PREFIX = "openai:"
 
 
 class TranslationLike(Protocol):
-    """What every translator returns."""
+    """What every translator returns (read-only: the translators return frozen dataclasses)."""
 
-    backend: str
-    text: str
-    grounded_text: str
-    tokens: Sequence[str]
-    formula: Formula
+    @property
+    def backend(self) -> str: ...
+    @property
+    def text(self) -> str: ...
+    @property
+    def grounded_text(self) -> str: ...
+    @property
+    def tokens(self) -> Sequence[str]: ...
+    @property
+    def formula(self) -> Formula: ...
 
 
 class MissionTranslator(Protocol):
@@ -112,16 +117,24 @@ def open_backends(
         endpoint configuration problem (no model, no key for OpenAI's endpoint, a bad config file).
     """
     if spec == OFFLINE:
-        given = [name for name, value in (("--base-url", base_url), ("--cache", cache_dir), ("--replay", replay),
-                                           ("--llm-config", config_path), ("--rpm", requests_per_minute), ("--llm-deadline", deadline_s),
-                                           ("--samples", samples != 1)) if value]
+        given = [
+            name
+            for name, value in (
+                ("--base-url", base_url), ("--cache", cache_dir), ("--replay", replay),
+                ("--llm-config", config_path), ("--rpm", requests_per_minute), ("--llm-deadline", deadline_s),
+                ("--samples", samples != 1),
+            )
+            if value
+        ]
         if given:
-            raise LLMError(f"{', '.join(given)} only apply to a language model; with --llm offline leave them out")
+            raise LLMError(
+                f"{', '.join(given)} only apply to a language model; with --llm offline leave them out"
+            )
         from sgplan.llm.offline import PatternTranslator, SymbolicGuide
 
-        translator, guide = PatternTranslator(), SymbolicGuide()
-        description = f"{translator.name} translator and {guide.name} guide (offline, not language models)"
-        return Backends(translator, guide, RunRecord(description), None, description)
+        pattern, symbolic = PatternTranslator(), SymbolicGuide()
+        description = f"{pattern.name} translator and {symbolic.name} guide (offline, not language models)"
+        return Backends(pattern, symbolic, RunRecord(description), None, description)
     if not spec.startswith(OPENAI_PREFIX) or not spec[len(OPENAI_PREFIX):].strip():
         raise LLMError(f"unknown --llm {spec!r}: use 'offline' or 'openai:MODEL' (e.g. openai:gpt-4o)")
     model = spec[len(OPENAI_PREFIX):].strip()
@@ -132,9 +145,17 @@ def open_backends(
     from sgplan.llm.guidance import LLMGuide
     from sgplan.llm.translation import LLMTranslator
 
-    mode = "replay" if replay else ("record" if cache_dir is not None else "live")
-    config = None if replay else load_llm_config(config_path, model=model, base_url=base_url,
-                                                 requests_per_minute=requests_per_minute, deadline_s=deadline_s)
+    mode: Literal["live", "record", "replay"] = (
+        "replay" if replay else ("record" if cache_dir is not None else "live")
+    )
+    config = (
+        None
+        if replay
+        else load_llm_config(
+            config_path, model=model, base_url=base_url, requests_per_minute=requests_per_minute,
+            deadline_s=deadline_s,
+        )
+    )
     chat = open_chat_backend(mode, config=config, cache_dir=cache_dir, model=model)
     record = RunRecord(chat.label)
     translator = LLMTranslator(chat, record=record, samples=samples, max_repairs=max_repairs, params=params)

@@ -156,7 +156,11 @@ def _result_to_json(result: ChatResult) -> dict[str, Any]:
 
 def _result_from_json(data: dict[str, Any]) -> ChatResult:
     choices_data = data["choices"]
-    if not isinstance(choices_data, list) or not choices_data or not all(isinstance(c, str) for c in choices_data):
+    if (
+        not isinstance(choices_data, list)
+        or not choices_data
+        or not all(isinstance(c, str) for c in choices_data)
+    ):
         raise ValueError(f"'choices' must be a non-empty list of texts, got {quote(choices_data)}")
     if data["usage"] is not None and not isinstance(data["usage"], dict):
         raise ValueError(f"'usage' must be a mapping or null, got {quote(data['usage'])}")

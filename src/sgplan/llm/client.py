@@ -291,7 +291,8 @@ class OpenAIChatClient:
             try:
                 send = functools.partial(
                     self._sdk.chat.completions.with_raw_response.create, model=self.config.model,
-                    messages=request_messages, timeout=min(self.config.timeout_s, remaining), **request_params,
+                    messages=request_messages, timeout=min(self.config.timeout_s, remaining),
+                    **request_params,
                 )
                 raw = _within(remaining, send)
                 if raw is None:
@@ -454,7 +455,9 @@ def _result_from_body(
             continue
         finish = choice.get("finish_reason")
         if isinstance(content, str) and content.strip():
-            reason = "only a <think> reasoning block, no answer" + ("; raise max_tokens" if finish == "length" else "")
+            reason = "only a <think> reasoning block, no answer" + (
+                "; raise max_tokens" if finish == "length" else ""
+            )
         elif message.get("refusal"):
             reason = f"the model refused: {one_line(message['refusal'])}"
         elif message.get("tool_calls"):

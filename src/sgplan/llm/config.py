@@ -171,7 +171,7 @@ def load_llm_config(
     from_file = _read_config_file(Path(path), fields) if path is not None else {}
 
     values: dict[str, Any] = {}
-    if "OPENAI_BASE_URL" in env and env["OPENAI_BASE_URL"]:
+    if env.get("OPENAI_BASE_URL"):
         values["base_url"] = env["OPENAI_BASE_URL"]
     env_key = next((env[name] for name in KEY_ENV_VARS if env.get(name)), None)
     key_var = from_file.pop("api_key_env", None)

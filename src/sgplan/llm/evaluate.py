@@ -8,11 +8,13 @@ The set is a JSONL file, one mission per line::
 infix over ``"enter(room_N)"`` / ``"reach(object_N)"`` (the shorthand ``r4`` / ``o19`` is accepted too).
 A line with ``"formula": null`` and an optional ``"expect_error": "fragment"`` is a mission the backend
 must refuse. An optional ``"start_floor"`` (0 = the lowest) says where the robot starts, for words such as
-"upstairs" (the offline translator reads them relative to it; a language model gets the text only). Other fields are kept as they are and ignored. Blank lines and lines starting with ``#``
+"upstairs" (the offline translator reads them relative to it; a language model gets the text only). Other
+fields are kept as they are and ignored. Blank lines and lines starting with ``#``
 are skipped.
 
 A translation is **right** when its automaton accepts exactly the gold's words among those the scene
-allows (one room at a time; an object only from its room: :func:`~sgplan.llm.offline.evaluation.same_language`),
+allows (one room at a time; an object only from its room:
+:func:`~sgplan.llm.offline.evaluation.same_language`),
 **refused** when the backend raised a :class:`~sgplan.errors.MissionError` (it said it could not), and
 **wrong** otherwise: the dangerous case, a formula that does not mean the mission.
 """
@@ -79,13 +81,17 @@ def load_jsonl_set(path: str | Path) -> list[EvalMission]:
             try:
                 gold = parse_infix(expand_shorthand(str(entry["formula"])))
             except SgplanError as exc:
-                raise MissionError(f"{where} (mission {mission_id!r}): the gold formula does not parse: {exc}",
-                                   path) from None
+                raise MissionError(
+                    f"{where} (mission {mission_id!r}): the gold formula does not parse: {exc}", path
+                ) from None
         expect_error = None if gold is not None else str(entry.get("expect_error") or "")
         start_floor = entry.get("start_floor")
         if start_floor is not None and (not isinstance(start_floor, int) or start_floor < 0):
-            raise MissionError(f"{where} (mission {mission_id!r}): start_floor must be a floor number (0 = the "
-                               f"lowest), got {start_floor!r}", path)
+            raise MissionError(
+                f"{where} (mission {mission_id!r}): start_floor must be a floor number (0 = the "
+                f"lowest), got {start_floor!r}",
+                path,
+            )
         missions.append(EvalMission(mission_id, str(entry["scene"]), str(entry["text"]), gold, expect_error,
                                     must_pass=False, paper=False, note=str(entry.get("note", "")),
                                     start_floor=start_floor))
@@ -160,7 +166,9 @@ def score_translator(
             try:
                 scene_facts(atoms(mission.gold), building_of(mission.scene))
             except MissionError as exc:
-                raise MissionError(f"mission {mission.id!r}: the gold formula: {exc}", set_path or None) from None
+                raise MissionError(
+                    f"mission {mission.id!r}: the gold formula: {exc}", set_path or None
+                ) from None
         (result,) = evaluate(translator, [mission], building_of)
         results.append(result)
         if result.outcome == "wrong" and result.formula is not None and mission.gold is not None:

@@ -86,12 +86,14 @@ def building_ids(building: Building) -> frozenset[str]:
 
 
 def environment_text(building: Building) -> str:
-    """The building as given to the model: the hierarchy preamble and the attribute hierarchy with connections."""
+    """The building as given to the model: the hierarchy preamble and the attribute hierarchy with
+    connections."""
     return load_prompt("hierarchy").text(hierarchy=attribute_hierarchy(building, connections=True).rstrip())
 
 
 def with_environment(version: str) -> str:
-    """The version recorded for a prompt that embeds :func:`environment_text`, e.g. ``grounding/1+hierarchy/1``."""
+    """The version recorded for a prompt that embeds :func:`environment_text`, e.g.
+    ``grounding/1+hierarchy/1``."""
     return f"{version}+{load_prompt('hierarchy').version}"
 
 
@@ -135,7 +137,9 @@ def parse_grounding_reply(reply: str, known: frozenset[str]) -> tuple[str, list[
         raise ReplyError('it needs a non-empty string "grounded" and a list "problems"')
     invented = [key for key in extract_ids(grounded) if key not in known]
     if invented:
-        raise ReplyError(f"{', '.join(invented)} {'is' if len(invented) == 1 else 'are'} not an ID of this building")
+        raise ReplyError(
+            f"{', '.join(invented)} {'is' if len(invented) == 1 else 'are'} not an ID of this building"
+        )
     found = []
     for item in problems:
         if not isinstance(item, dict) or not isinstance(item.get("phrase"), str):
@@ -160,7 +164,8 @@ def rephrase_message(text: str, problems: Sequence[ReferenceProblem], building: 
             parts.append(f"{p.phrase!r} matches no room or object of building {building.name!r}")
     return (
         f"cannot ground the mission {one_line(text, 120)!r}: {'; '.join(parts)}. "
-        "Rephrase it so that each reference names exactly one room or object (e.g. add the floor or the room)."
+        "Rephrase it so that each reference names exactly one room or object (e.g. add the floor or the "
+        "room)."
     )
 
 

@@ -19,9 +19,9 @@ uuids: ``{room_uuid: {q: ["move(2, 9)", "reach(5, 21)"]}}``.
 States that are sinks or need nothing made true get an empty list without any call; a failed call gives
 an empty list too (h_LLM is then 0 there), is counted, and is not cached, so a re-run retries it.
 
-Two ways to run: :func:`generate_guidance` asks for every entry at once (with
+:func:`generate_guidance` asks for every entry at once (with
 :func:`~sgplan.llm.client.complete_many`'s concurrency limit; a hosted API's rate limit is the live
-client's ``requests_per_minute``), and :class:`LazyGuidance` asks only for the entries requested, once each.
+client's ``requests_per_minute``).
 :class:`LLMGuide` has the same ``guide(building, automaton, ap_actions)`` contract as the offline
 :class:`~sgplan.llm.offline.SymbolicGuide`.
 """
@@ -53,7 +53,9 @@ Guidance = dict[int, dict[int, list[str]]]
 DEFAULT_PARAMS: Mapping[str, Any] = {"temperature": 0.0, "max_tokens": 512}
 """Sampling parameters of guidance calls unless the caller gives others."""
 
-_CALL = re.compile(r"^\s*(move|reach)\s*\(\s*((?:room_|object_)?\d+)\s*,\s*((?:room_|object_)?\d+)\s*\)\s*;?\s*$")
+_CALL = re.compile(
+    r"^\s*(move|reach)\s*\(\s*((?:room_|object_)?\d+)\s*,\s*((?:room_|object_)?\d+)\s*\)\s*;?\s*$"
+)
 _COMMAND = re.compile(r"<command>(.*?)</command>", re.DOTALL)
 _MAX_REASONS = 20
 
@@ -94,7 +96,9 @@ IMPLAUSIBLE_LABEL_COST = 1000.0
 enough that a path using one is chosen only when no other path exists."""
 
 
-def label_costs(automaton: Automaton, building: Building, ap_actions: Mapping[str, str] | None = None) -> np.ndarray:
+def label_costs(
+    automaton: Automaton, building: Building, ap_actions: Mapping[str, str] | None = None
+) -> np.ndarray:
     """``(num_labels,)``: 1 per label, :data:`IMPLAUSIBLE_LABEL_COST` for a label that the scene graph
     makes implausible at one cell -- two rooms entered at once, or an object reached from a room that does
     not hold it (possible only across a wall within the reach radius)."""
@@ -192,7 +196,10 @@ def validate_call(text: str, building: Building) -> tuple[str | None, str]:
         return None, f"{text.strip()}: {a_text} is not a room of the building"
     want = "room" if kind == "move" else "object"
     if b is None or b[0] != want:
-        return None, f"{text.strip()}: {b_text} is not {'a room' if want == 'room' else 'an object'} of the building"
+        return (
+            None,
+            f"{text.strip()}: {b_text} is not {'a room' if want == 'room' else 'an object'} of the building",
+        )
     room = building.room(uuid=a[1])
     if kind == "move" and b[1] not in room.connected_room_uuids:
         return None, f"{text.strip()}: room_{a[1]} does not connect to room_{b[1]}"
@@ -263,7 +270,9 @@ class _Asker:
         for ap in self.automaton.aps:
             key = action_entity(ap_actions.get(ap, ap))
             if key is None:
-                raise MissionError(f"automaton proposition {ap!r} has no action enter(room_<id>)/reach(object_<id>)")
+                raise MissionError(
+                    f"automaton proposition {ap!r} has no action enter(room_<id>)/reach(object_<id>)"
+                )
 
     def messages(self, room_uuid: int, q: int) -> list[dict[str, str]] | None:
         """The chat for entry (room, q), or ``None`` (counted as skipped) when nothing is left to do."""
@@ -275,7 +284,9 @@ class _Asker:
         return self._prompt.messages(environment=self._environment, mission_context=self._context,
                                      room=f"room_{room_uuid}", remaining=remaining)
 
-    def accept(self, room_uuid: int, q: int, messages: list[dict[str, str]], outcome: ChatResult | LLMError) -> list[str]:
+    def accept(
+        self, room_uuid: int, q: int, messages: list[dict[str, str]], outcome: ChatResult | LLMError
+    ) -> list[str]:
         """Record the call, then parse and validate its reply; the valid calls of the entry."""
         context = {"room": room_uuid, "state": q}
         index = self.record.add_call(self.backend, messages, self.params, outcome, step="guidance",
@@ -353,76 +364,20 @@ def generate_guidance(
                 guidance[room.uuid][q] = []
             else:
                 pending.append((room.uuid, q, messages))
-    outcomes = complete_many(backend, [(m, asker.params) for _, _, m in pending], max_concurrency=max_concurrency)
+    outcomes = complete_many(
+        backend, [(m, asker.params) for _, _, m in pending], max_concurrency=max_concurrency
+    )
     for (room_uuid, q, messages), outcome in zip(pending, outcomes):
         guidance[room_uuid][q] = asker.accept(room_uuid, q, messages, outcome)
     report = asker.report
-    record.event("guidance", asked=report.asked, skipped=report.skipped, failed=report.failed,
-                 calls_kept=report.calls_kept, calls_dropped=report.calls_dropped, routes_broken=report.routes_broken)
+    record.event(
+        "guidance", asked=report.asked, skipped=report.skipped, failed=report.failed,
+        calls_kept=report.calls_kept, calls_dropped=report.calls_dropped, routes_broken=report.routes_broken,
+    )
     if pending and report.failed == len(pending):
         first = next(o for o in outcomes if isinstance(o, LLMError))
         raise LLMError(f"all {len(pending)} guidance calls failed; the first: {first}")
     return guidance, report
-
-
-class LazyGuidance:
-    """Guidance asked only for the entries requested: ``lazy(room_uuid, q) -> [calls]``, each asked once.
-
-    Thread-safe; concurrent requests for the same entry wait for one call. :meth:`table` gives the entries
-    asked so far in the :data:`Guidance` form. Rooms or states outside the automaton/building give ``[]``.
-    """
-
-    def __init__(
-        self,
-        building: Building,
-        automaton: Automaton,
-        backend: ChatBackend,
-        record: RunRecord,
-        *,
-        ap_actions: Mapping[str, str] | None = None,
-        mission_text: str | None = None,
-        params: Mapping[str, Any] = DEFAULT_PARAMS,
-    ) -> None:
-        self._asker = _Asker(building, automaton, backend, record, ap_actions=ap_actions,
-                             mission_text=mission_text, params=params)
-        self._entries: dict[tuple[int, int], list[str]] = {}
-        self._locks: dict[tuple[int, int], threading.Lock] = {}
-        self._guard = threading.Lock()
-
-    @property
-    def report(self) -> GuidanceReport:
-        return self._asker.report
-
-    def __call__(self, room_uuid: int, q: int) -> list[str]:
-        key = (int(room_uuid), int(q))
-        if not self._asker.building.has_room(key[0]) or key[1] not in self._asker.states:
-            return []
-        with self._guard:
-            lock = self._locks.setdefault(key, threading.Lock())
-        with lock:
-            if key not in self._entries:
-                self._entries[key] = self._ask(*key)
-            return list(self._entries[key])
-
-    def _ask(self, room_uuid: int, q: int) -> list[str]:
-        asker = self._asker
-        messages = asker.messages(room_uuid, q)
-        if messages is None:
-            return []
-        try:
-            outcome: ChatResult | LLMError = asker.backend.complete(messages, **asker.params)
-        except LLMError as error:
-            outcome = error
-        return asker.accept(room_uuid, q, messages, outcome)
-
-    def table(self) -> Guidance:
-        """The entries asked so far: ``{room_uuid: {q: [calls]}}``."""
-        with self._guard:
-            items = sorted(self._entries.items())
-        out: Guidance = {}
-        for (room, q), calls in items:
-            out.setdefault(room, {})[q] = list(calls)
-        return out
 
 
 class LLMGuide:
@@ -451,10 +406,13 @@ class LLMGuide:
     def name(self) -> str:
         return f"llm:{self.backend.model}"
 
-    def guide(self, building: Building, automaton: Automaton, ap_actions: Mapping[str, str] | None = None) -> Guidance:
-        """``{room_uuid: {q: [calls]}}`` for every room and reachable non-accepting state; see :func:`generate_guidance`."""
+    def guide(
+        self, building: Building, automaton: Automaton, ap_actions: Mapping[str, str] | None = None
+    ) -> Guidance:
+        """``{room_uuid: {q: [calls]}}`` for every room and reachable non-accepting state; see
+        :func:`generate_guidance`."""
         guidance, self.report = generate_guidance(
-            building, automaton, self.backend, self.record, ap_actions=ap_actions, mission_text=self.mission_text,
-            params=self.params, max_concurrency=self.max_concurrency,
+            building, automaton, self.backend, self.record, ap_actions=ap_actions,
+            mission_text=self.mission_text, params=self.params, max_concurrency=self.max_concurrency,
         )
         return guidance

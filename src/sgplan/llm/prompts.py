@@ -16,7 +16,7 @@ from __future__ import annotations
 import re
 import string
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 from importlib import resources
 
 from sgplan.errors import LLMError
@@ -60,7 +60,8 @@ class PromptTemplate:
         if self.parts[0][0] is None:
             raise LLMError(f"prompt {self.name!r} is a text fragment, not a chat; use .text()")
         rendered = self._render(values)
-        return [{"role": role, "content": text} for (role, _), text in zip(self.parts, rendered)]  # type: ignore[misc]
+        roles = [role for role, _ in self.parts if role is not None]  # a chat: every part has its role
+        return [{"role": role, "content": text} for role, text in zip(roles, rendered)]
 
     def text(self, **values: str) -> str:
         """The fragment with every placeholder replaced."""
@@ -74,7 +75,8 @@ class PromptTemplate:
         unused = sorted(values.keys() - expected)
         if missing or unused:
             raise LLMError(
-                f"prompt {self.version}: values missing for {missing or 'none'}, given but unused {unused or 'none'}"
+                f"prompt {self.version}: values missing for {missing or 'none'}, given but unused "
+                f"{unused or 'none'}"
             )
         return [string.Template(text).substitute(values).strip() for _, text in self.parts]
 
@@ -83,7 +85,9 @@ def _placeholders(template: string.Template, name: str) -> set[str]:
     names: set[str] = set()
     for match in template.pattern.finditer(template.template):
         if match.group("invalid") is not None:
-            raise LLMError(f"prompt template {name!r}: a '$' that starts no placeholder (write $$ for a dollar)")
+            raise LLMError(
+                f"prompt template {name!r}: a '$' that starts no placeholder (write $$ for a dollar)"
+            )
         found = match.group("named") or match.group("braced")
         if found:
             names.add(found)
@@ -96,7 +100,8 @@ def parse_template(name: str, source: str) -> PromptTemplate:
     Raises
     ------
     LLMError
-        no ``# version:`` header, an unknown role, text before the first role line of a chat, or an empty body.
+        no ``# version:`` header, an unknown role, text before the first role line of a chat, or an empty
+        body.
     """
     lines = source.splitlines()
     header_end = next((i for i, line in enumerate(lines) if not line.startswith("#")), len(lines))
@@ -126,7 +131,7 @@ def parse_template(name: str, source: str) -> PromptTemplate:
     return PromptTemplate(name, versions[0], texts)
 
 
-@lru_cache(maxsize=None)
+@cache
 def load_prompt(name: str) -> PromptTemplate:
     """The shipped template ``name`` (one of :data:`PROMPT_NAMES`), parsed once per process.
 
@@ -139,5 +144,5 @@ def load_prompt(name: str) -> PromptTemplate:
     """
     if name not in PROMPT_NAMES:
         raise LLMError(f"unknown prompt {name!r} (shipped: {', '.join(PROMPT_NAMES)})")
-    source = resources.files("sgplan.llm").joinpath("prompts", f"{name}.txt").read_text(encoding="utf-8")
+    source = (resources.files("sgplan.llm") / "prompts" / f"{name}.txt").read_text(encoding="utf-8")
     return parse_template(name, source)

@@ -69,7 +69,9 @@ class RunRecord:
         try:
             result = backend.complete(messages, **params)
         except LLMError as error:
-            self.add_call(backend, messages, params, error, step=step, prompt_version=prompt_version, context=context)
+            self.add_call(
+                backend, messages, params, error, step=step, prompt_version=prompt_version, context=context
+            )
             raise
         index = self.add_call(backend, messages, params, result, step=step, prompt_version=prompt_version,
                               context=context)
@@ -86,7 +88,8 @@ class RunRecord:
         prompt_version: str,
         context: Mapping[str, Any] | None = None,
     ) -> int:
-        """Record a call made elsewhere (e.g. by :func:`~sgplan.llm.client.complete_many`); returns its index."""
+        """Record a call made elsewhere (e.g. by :func:`~sgplan.llm.client.complete_many`); returns its
+        index."""
         entry: dict[str, Any] = {
             "step": step,
             "prompt_version": prompt_version,
@@ -117,7 +120,8 @@ class RunRecord:
             return entry["index"]
 
     def event(self, kind: str, *, call: int | None = None, **data: Any) -> None:
-        """Record a pipeline event (``kind`` such as ``"parse-error"``, ``"accepted"``) with JSON-ready data."""
+        """Record a pipeline event (``kind`` such as ``"parse-error"``, ``"accepted"``) with JSON-ready
+        data."""
         with self._lock:
             self.events.append({"kind": kind, **({"call": call} if call is not None else {}), **data})
 

@@ -113,7 +113,9 @@ def reply_token_list(reply: str) -> list[str]:
     text = strip_fences(reply)
     start, end = text.find("["), text.rfind("]")
     if start < 0 or end < start:
-        raise FormulaError("the reply contains no list [...]; reply with the Python list of quoted tokens only")
+        raise FormulaError(
+            "the reply contains no list [...]; reply with the Python list of quoted tokens only"
+        )
     return as_token_list(text[start : end + 1])
 
 
@@ -201,9 +203,13 @@ def _translate_once(
         except FormulaError as exc:
             record.event("formula-rejected", call=index, sample=sample, error=str(exc), position=exc.position)
             last_error = str(exc)
-            messages = [*messages, {"role": "assistant", "content": result.content},
-                        *repair.messages(error=last_error, marked=mark_token(tokens, result.content, exc.position),
-                                         ids=id_list)]
+            messages = [
+                *messages,
+                {"role": "assistant", "content": result.content},
+                *repair.messages(
+                    error=last_error, marked=mark_token(tokens, result.content, exc.position), ids=id_list
+                ),
+            ]
             version = repair.version
             continue
         canonical = tuple(to_tokens(formula))
@@ -211,8 +217,10 @@ def _translate_once(
                      formula=to_infix(formula), warnings=warnings, repairs=attempt)
         return _Sample(canonical, formula, tuple(warnings), attempt)
     raise RephraseError(
-        f"the model gave no valid formula for {one_line(grounding.text, 120)!r} in {max_repairs + 1} attempts "
-        f"(last error: {last_error}); rephrase the mission in simpler sentences (one goal each) or use another model"
+        f"the model gave no valid formula for {one_line(grounding.text, 120)!r} in {max_repairs + 1} "
+        "attempts "
+        f"(last error: {last_error}); rephrase the mission in simpler sentences (one goal each) or use "
+        "another model"
     )
 
 
@@ -263,7 +271,8 @@ class LLMTranslator:
 
     Example
     -------
-    >>> t = LLMTranslator(backend).translate("Visit the kitchen, then avoid the bathroom.", building)  # doctest: +SKIP
+    >>> text = "Visit the kitchen, then avoid the bathroom."
+    >>> t = LLMTranslator(backend).translate(text, building)  # doctest: +SKIP
     >>> t.tokens  # doctest: +SKIP
     ('AND', 'EVENTUALLY', 'enter(room_4)', 'ALWAYS', 'NOT', 'enter(room_5)')
     """
@@ -319,15 +328,21 @@ class LLMTranslator:
             raise refusal
         winner, sizes = _vote(results, self.samples)
         if self.samples > 1:
-            self.record.event("vote", samples=self.samples, failed=self.samples - len(results), classes=list(sizes),
-                              winner=to_infix(winner.formula))
-        return LLMTranslation(self.name, grounding.text, grounding.grounded_text, grounding.ids, winner.tokens,
-                              winner.formula, winner.warnings, sizes, winner.repairs)
+            self.record.event(
+                "vote", samples=self.samples, failed=self.samples - len(results), classes=list(sizes),
+                winner=to_infix(winner.formula),
+            )
+        return LLMTranslation(
+            self.name, grounding.text, grounding.grounded_text, grounding.ids, winner.tokens, winner.formula,
+            winner.warnings, sizes, winner.repairs,
+        )
 
 
 def mission_of(translation: TranslationLike) -> Mission:
     """The mission (minimal DFA, propositions) of a translation from any translator backend."""
-    return mission_from_formula(translation.formula, text=translation.text, grounded_text=translation.grounded_text)
+    return mission_from_formula(
+        translation.formula, text=translation.text, grounded_text=translation.grounded_text
+    )
 
 
 def _writable_folder(out: str | Path) -> Path:
@@ -358,7 +373,8 @@ def translate_to_folder(
 
     Writes the authors' mission-folder files (:func:`~sgplan.mission.save_mission_folder`, with the
     attribute hierarchy as ``building_desc.yaml`` and the scene record ``scene.yaml``), ``env_elements.txt``
-    (the grounded IDs) and the run record ``llm_record.json`` (with an ``explained`` event holding the mission's plain-English
+    (the grounded IDs) and the run record ``llm_record.json`` (with an ``explained`` event holding the
+    mission's plain-English
     explanation), and removes what an earlier mission left there for its own automaton
     (:data:`GUIDANCE_FILES`) and an earlier refusal's record. Other files in ``out`` are kept. The new
     folder is built beside ``out`` and swapped in whole (:func:`~sgplan.files.rebuild_folder`), so a

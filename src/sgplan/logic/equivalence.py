@@ -8,7 +8,7 @@ A word is a tuple of sets of true propositions, one per cell; ``()`` is the empt
 
 from __future__ import annotations
 
-from typing import Callable, Union
+from collections.abc import Callable
 
 import numpy as np
 
@@ -17,7 +17,7 @@ from sgplan.logic.formula import Formula, atoms
 from sgplan.logic.ltlf import ltlf_to_dfa
 
 Word = tuple[frozenset[str], ...]
-Language = Union[Automaton, Formula]
+Language = Automaton | Formula
 
 
 def _aligned(a: Language, b: Language) -> tuple[Automaton, Automaton]:

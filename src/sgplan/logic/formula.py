@@ -12,8 +12,8 @@ path); ``WeakNext`` is its dual (true at the last cell) and appears mainly as th
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Iterator
 
 from sgplan.errors import FormulaError
 
@@ -203,6 +203,20 @@ def size(formula: Formula) -> int:
     return sum(1 for _ in walk(formula))
 
 
+def depth(formula: Formula) -> int:
+    """The nesting depth of ``formula`` as written, every operator counting (iterative: safe at any depth).
+
+    Code that recurses over a formula as written (not its normal form, see :func:`nesting`) checks it
+    against :data:`MAX_NESTING` first.
+    """
+    deepest, stack = 0, [(formula, 1)]
+    while stack:
+        node, level = stack.pop()
+        deepest = max(deepest, level)
+        stack.extend((child, level + 1) for child in node.children())
+    return deepest
+
+
 MAX_NESTING = 100
 """Operator nesting the negation normal form of a formula may have for an automaton to be built from it
 (see :func:`nesting`); missions nest fewer than 10 levels.
@@ -211,19 +225,6 @@ Automaton construction recurses over the normal form, so its depth must be bound
 interpreter's stack. The normal form cancels chains of negations, and chains of one junction
 (``a & b & c ...``) count as one level, so a conjunction of any length and a chain of NOTs of any
 length are accepted."""
-
-
-def depth(formula: Formula) -> int:
-    """The depth of ``formula``'s tree (an atom is 1), every operator counting; iterative, so it is safe on
-    formulas of any depth. Code that recurses over a formula as written checks it against
-    :data:`MAX_NESTING` first."""
-    deepest = 0
-    stack: list[tuple[Formula, int]] = [(formula, 1)]
-    while stack:
-        node, level = stack.pop()
-        deepest = max(deepest, level)
-        stack.extend((child, level + 1) for child in node.children())
-    return deepest
 
 
 def nesting(formula: Formula) -> int:

@@ -68,8 +68,10 @@ class _Tokens:
             m = _TOKEN.match(text, pos)
             if m is None:
                 raise AutomatonError(f"line {line}: unexpected character {text[pos]!r}", path)
-            if m.lastgroup != "space":
-                self.items.append((m.lastgroup, m.group(), line))
+            kind = m.lastgroup
+            assert kind is not None, "every alternative of _TOKEN is a named group"
+            if kind != "space":
+                self.items.append((kind, m.group(), line))
             line += m.group().count("\n")
             pos = m.end()
         self.items.append(("eof", "end of file", line))
@@ -85,7 +87,7 @@ class _Tokens:
         return item
 
     def error(self, message: str, item: tuple[str, str, int] | None = None) -> AutomatonError:
-        kind, value, line = item or self.peek()
+        _, _, line = item or self.peek()
         return AutomatonError(f"line {line}: {message}", self.path)
 
     def expect(self, kind: str, what: str) -> str:
@@ -233,8 +235,10 @@ def parse_hoa(text: str, profile: Profile = "ltlf", path: str | Path | None = No
     if initial is None:
         raise tokens.error("the header has no Start: line")
     if num_states is not None and num_states << len(aps) > MAX_HOA_TABLE:
-        raise tokens.error(f"States: {num_states} over {len(aps)} APs is a table of {num_states << len(aps):,} "
-                           f"entries, more than the {MAX_HOA_TABLE:,} sgplan builds")
+        raise tokens.error(
+            f"States: {num_states} over {len(aps)} APs is a table of {num_states << len(aps):,} "
+            f"entries, more than the {MAX_HOA_TABLE:,} sgplan builds"
+        )
     labels = np.arange(1 << len(aps), dtype=np.int64)
     edges: list[tuple[int, np.ndarray, int, set[int], tuple[str, str, int]]] = []
     state_marks: dict[int, set[int]] = {}
@@ -257,8 +261,11 @@ def parse_hoa(text: str, profile: Profile = "ltlf", path: str | Path | None = No
         while tokens.peek()[1] not in ("State:", "--END--") and tokens.peek()[0] != "eof":
             edge = tokens.take()
             if edge[1] != "[":
-                raise tokens.error(f"expected an edge '[label] target', found {quote(edge[1])} (implicit labels "
-                                   f"are not supported)", edge)
+                raise tokens.error(
+                    f"expected an edge '[label] target', found {quote(edge[1])} (implicit labels "
+                    f"are not supported)",
+                    edge,
+                )
             members = _parse_label(tokens, len(aps), labels)
             target = int(tokens.expect("int", "the edge's target state"))
             if tokens.peek()[1] == "&":

@@ -70,8 +70,9 @@ def _lex(text: str) -> list[tuple[str, str, int]]:
             if text[pos] == '"':
                 raise FormulaError(f"the quoted proposition at character {pos} is never closed", pos)
             raise FormulaError(f"unexpected character {text[pos]!r} at character {pos}", pos)
-        start = m.start(m.lastgroup)
-        kind, value = m.lastgroup, m.group(m.lastgroup)
+        kind = m.lastgroup
+        assert kind is not None, "every alternative of _LEX is a named group"
+        start, value = m.start(kind), m.group(kind)
         pos = m.end()
         if kind == "quoted":
             out.append(("atom", value[1:-1], start))
@@ -232,7 +233,9 @@ def to_infix(formula: Formula, dialect: Dialect = "sgplan") -> str:
         return leaf(root)
     # Depth-first with an explicit stack (a formula from a file may nest deeper than Python recurses).
     # A frame is (node, its children, the texts of the children written so far).
-    frames: list[tuple[Formula, list[Formula], list[str]]] = [(root, [unfold(c) for c in root.children()], [])]
+    frames: list[tuple[Formula, list[Formula], list[str]]] = [
+        (root, [unfold(c) for c in root.children()], [])
+    ]
     while True:
         node, children, done = frames[-1]
         if len(done) < len(children):
@@ -252,12 +255,16 @@ def to_infix(formula: Formula, dialect: Dialect = "sgplan") -> str:
 _BINARY_NODES = (And, Or, Implies, Equiv, Until, Release)
 
 
-def _node_text(node: Formula, children: list[Formula], texts: list[str], symbols: dict[type, str | None]) -> str:
+def _node_text(
+    node: Formula, children: list[Formula], texts: list[str], symbols: dict[type, str | None]
+) -> str:
     """The infix text of an operator node from its children's texts (a binary child is parenthesised)."""
     if isinstance(node, (Not, Next, WeakNext, Eventually, Always)):
         symbol, inner = symbols[type(node)], texts[0]
         if isinstance(children[0], _BINARY_NODES):
             return f"{symbol}({inner})"
         return f"{symbol}{inner}" if symbol == "!" else f"{symbol} {inner}"
-    parts = [f"({text})" if isinstance(child, _BINARY_NODES) else text for child, text in zip(children, texts)]
+    parts = [
+        f"({text})" if isinstance(child, _BINARY_NODES) else text for child, text in zip(children, texts)
+    ]
     return f" {_BINARY_SYMBOL[type(node)]} ".join(parts)

@@ -6,7 +6,7 @@ A set of labels over ``n`` propositions is a ``(2**n,)`` bool array. A cube is a
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 

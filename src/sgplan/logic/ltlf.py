@@ -34,7 +34,7 @@ rejecting sink ``(false, False)``; the DFA is minimal for the language restricte
 
 from __future__ import annotations
 
-from typing import Collection, Sequence
+from collections.abc import Collection, Sequence
 
 import numpy as np
 
@@ -182,13 +182,17 @@ class _Progression:
             steps = [self.step(a) for a in f.args]
             conj = isinstance(f, And)
             lams = np.stack([s[1] for s in steps])
-            return self.junction(conj, [s[0] for s in steps]), lams.all(0) if conj else lams.any(0)
+            return self.junction(conj, [s[0] for s in steps]), np.asarray(
+                lams.all(0) if conj else lams.any(0)
+            )
         eid = self.element(f)
         cached = self.memo.get(eid)
         if cached is not None:
             return cached
         if isinstance(f, (Atom, Not)):
-            name = f.name if isinstance(f, Atom) else f.arg.name  # NNF: Not only wraps atoms
+            atom = f if isinstance(f, Atom) else f.arg
+            assert isinstance(atom, Atom), "NNF: Not only wraps atoms"
+            name = atom.name
             holds = (self.labels >> self.bit[name] & 1).astype(bool)
             if isinstance(f, Not):
                 holds = ~holds

@@ -9,8 +9,8 @@ distinct formulas.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from functools import lru_cache
-from typing import Iterable
 
 from sgplan.logic.formula import (
     FALSE,
@@ -49,7 +49,7 @@ def _is_literal_pair(items: set[Formula]) -> bool:
     return any(isinstance(f, Not) and f.arg in items for f in items)
 
 
-def _junction(items: Iterable[Formula], kind: type, unit: Const, zero: Const) -> Formula:
+def _junction(items: Iterable[Formula], kind: type[And] | type[Or], unit: Const, zero: Const) -> Formula:
     flat: set[Formula] = set()
     stack = list(items)
     while stack:

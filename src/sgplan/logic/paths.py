@@ -106,7 +106,7 @@ def _to_accept(a: Automaton, w: np.ndarray) -> tuple[np.ndarray, np.ndarray, dic
 
     reverse = csr_matrix((cost, (dst, src)), shape=(n, n))
     dist, pred, _ = dijkstra(reverse, directed=True, indices=acc, min_only=True, return_predecessors=True)
-    best_label = {(int(s), int(d)): int(l) for s, d, l in zip(src, dst, lab)}
+    best_label = {(int(s), int(d)): int(a) for s, d, a in zip(src, dst, lab)}
     return dist, pred, best_label
 
 

@@ -14,8 +14,8 @@ The engine :func:`parse_prefix_tokens` is shared with the LLM token-list syntax
 from __future__ import annotations
 
 import re
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Callable, Mapping, Sequence
 
 from sgplan.errors import FormulaError
 from sgplan.logic.formula import (

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import ast
 import re
-from typing import Collection, Mapping, Sequence
+from collections.abc import Collection, Mapping, Sequence
 
 from sgplan.errors import FormulaError
 from sgplan.logic.formula import (
@@ -148,8 +148,8 @@ def parse_tokens(
     """
     items = as_token_list(tokens)
     known_set = None if known is None else set(known)
-    operators = {t: TOKEN_OPERATORS.get(t.strip().upper()) for t in items}
-    operators = {t: op for t, op in operators.items() if op is not None}
+    spelled = {t: TOKEN_OPERATORS.get(t.strip().upper()) for t in items}
+    operators = {t: op for t, op in spelled.items() if op is not None}
 
     def where(i: int) -> str:
         return f"token {i} {items[i]!r}"

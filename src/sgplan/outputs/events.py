@@ -51,7 +51,9 @@ class Event:
         where = f"at ({self.row}, {self.col}) floor {self.floor}"
         if self.kind == "proposition":
             what = self.meaning or self.proposition
-            return f"{self.cost_m:.2f} m: {what}{f' ({self.entity})' if self.entity else ''} became true {where}"
+            return (
+                f"{self.cost_m:.2f} m: {what}{f' ({self.entity})' if self.entity else ''} became true {where}"
+            )
         tail = " (accepting: mission done)" if self.accepting else ""
         return f"{self.cost_m:.2f} m: mission state {self.from_state} -> {self.to_state} {where}{tail}"
 
@@ -88,7 +90,8 @@ def path_events(
     costs_m:
         ``(n,)`` cumulative path cost at each row (metres, 0 at the start).
     labels:
-        the ``(floors, rows, cols)`` label raster the path was planned with (bit ``i`` = ``automaton.aps[i]``).
+        the ``(floors, rows, cols)`` label raster the path was planned with (bit ``i`` =
+        ``automaton.aps[i]``).
     automaton:
         the mission DFA; its initial state precedes the start row.
     descriptions:
@@ -107,9 +110,17 @@ def path_events(
         for bit, ap in enumerate(automaton.aps):
             if new >> bit & 1:
                 meaning = descriptions.get(ap, ap)
-                events.append(Event(k, "proposition", cost_m, floor, row, col, proposition=ap, meaning=meaning,
-                                    entity=_entity_name(building, meaning)))
+                events.append(
+                    Event(
+                        k, "proposition", cost_m, floor, row, col, proposition=ap, meaning=meaning,
+                        entity=_entity_name(building, meaning),
+                    )
+                )
         if q != previous_q[k]:
-            events.append(Event(k, "state", cost_m, floor, row, col, from_state=int(previous_q[k]), to_state=q,
-                                accepting=bool(automaton.accepting[q])))
+            events.append(
+                Event(
+                    k, "state", cost_m, floor, row, col, from_state=int(previous_q[k]), to_state=q,
+                    accepting=bool(automaton.accepting[q]),
+                )
+            )
     return events

@@ -14,7 +14,8 @@ goes up and comes back down has two stretches on the lower floor)::
                 position: {x: 1.25, y: -3.5, z: 0.0}
                 orientation: {x: 0.0, y: 0.0, z: 0.38, w: 0.92}   # heading to the next pose
 
-Positions are metres in the scene's frame (rounded to 0.1 mm); orientations are yaw-only quaternions facing the next pose
+Positions are metres in the scene's frame (rounded to 0.1 mm); orientations are yaw-only quaternions facing
+the next pose
 (the last pose of a stretch keeps the heading of the one before).
 """
 
@@ -50,8 +51,12 @@ def write_waypoints_csv(waypoints: Sequence[Waypoint], path: str | Path) -> Path
             writer = csv.writer(handle)
             writer.writerow(CSV_COLUMNS)
             for w in waypoints:
-                writer.writerow([w.index, f"{w.x_m:.4f}", f"{w.y_m:.4f}", f"{w.z_m:.4f}", w.floor, w.room or "",
-                                 w.room_name or "", w.row, w.col, w.q, f"{w.cost_m:.4f}"])
+                writer.writerow(
+                    [
+                        w.index, f"{w.x_m:.4f}", f"{w.y_m:.4f}", f"{w.z_m:.4f}", w.floor, w.room or "",
+                        w.room_name or "", w.row, w.col, w.q, f"{w.cost_m:.4f}",
+                    ]
+                )
     except OSError as error:
         raise OutputError(f"{target}: cannot write the waypoints: {error.strerror}") from None
     return target

@@ -110,11 +110,13 @@ def path_waypoints(
         x_m, y_m, frame_z = grid.cell_xyz(floor, (row, col))
         ground = building.floors[floor].ground_z_m
         room = rooms.get(int(grid.room_map[floor, row, col]))
-        points.append(Waypoint(
-            index=k, x_m=x_m, y_m=y_m, z_m=float(ground) if math.isfinite(ground) else frame_z,
-            floor=floor, row=row, col=col, room=room.key if room else None, room_name=room.name if room else None,
-            q=q, cost_m=cost_m,
-        ))
+        points.append(
+            Waypoint(
+                index=k, x_m=x_m, y_m=y_m, z_m=float(ground) if math.isfinite(ground) else frame_z,
+                floor=floor, row=row, col=col, room=room.key if room else None,
+                room_name=room.name if room else None, q=q, cost_m=cost_m,
+            )
+        )
     return points
 
 
@@ -144,7 +146,9 @@ def crossed_cells(a: tuple[int, int], b: tuple[int, int]) -> np.ndarray:
     if len(corners) == 0:
         return cells
     prev, nxt = cells[corners], cells[corners + 1]
-    sides = np.stack([np.column_stack([nxt[:, 0], prev[:, 1]]), np.column_stack([prev[:, 0], nxt[:, 1]])], axis=1)
+    sides = np.stack(
+        [np.column_stack([nxt[:, 0], prev[:, 1]]), np.column_stack([prev[:, 0], nxt[:, 1]])], axis=1
+    )
     parts = np.split(cells, corners + 1)
     out = [parts[0]]
     for side, part in zip(sides, parts[1:]):
@@ -152,7 +156,9 @@ def crossed_cells(a: tuple[int, int], b: tuple[int, int]) -> np.ndarray:
     return np.concatenate(out)
 
 
-def simplify_path(path: np.ndarray, grid: OccupancyGrid, labels: np.ndarray, automaton: Automaton) -> np.ndarray:
+def simplify_path(
+    path: np.ndarray, grid: OccupancyGrid, labels: np.ndarray, automaton: Automaton
+) -> np.ndarray:
     """Indices (ascending, first and last included) of the rows of ``path`` to keep (see the module).
 
     Greedy: from each kept row, extend the straight segment row by row while it stays valid; every
@@ -175,7 +181,9 @@ def simplify_path(path: np.ndarray, grid: OccupancyGrid, labels: np.ndarray, aut
     return np.array(keep, dtype=np.int64)
 
 
-def _segment_ok(rows: np.ndarray, i: int, j: int, grid: OccupancyGrid, labels: np.ndarray, table: np.ndarray) -> bool:
+def _segment_ok(
+    rows: np.ndarray, i: int, j: int, grid: OccupancyGrid, labels: np.ndarray, table: np.ndarray
+) -> bool:
     """Whether the straight segment from row ``i`` to row ``j`` may replace rows ``i+1 .. j-1``."""
     floor = rows[i, 2]
     if (rows[i:j + 1, 2] != floor).any():

@@ -162,7 +162,9 @@ def _read_png(path: Path, fields: Fields, key: str, shape: tuple[int, int]) -> n
     except SceneError:
         raise
     except (Image.DecompressionBombError, Image.DecompressionBombWarning) as error:
-        raise SceneError(f"refusing to decode the map ({size:,} bytes): {quote(str(error), 200)}", path) from None
+        raise SceneError(
+            f"refusing to decode the map ({size:,} bytes): {quote(str(error), 200)}", path
+        ) from None
     except (OSError, SyntaxError, ValueError, MemoryError) as error:
         raise SceneError(f"cannot decode map ({size:,} bytes): {quote(str(error), 200)}", path) from None
     return stored.astype(np.int16) - PNG_OFFSET
@@ -187,7 +189,8 @@ def _read_radius_config(path: Path) -> tuple[float | None, float | None]:
             raise SceneError(message, path) from None
         if not 0 < value <= limits[name]:
             raise SceneError(
-                f"line {number}: {name} must be a positive number of metres, at most {limits[name]:g}, got {quote(text)}",
+                f"line {number}: {name} must be a positive number of metres, at most {limits[name]:g}, got "
+                f"{quote(text)}",
                 path,
             )
         values[name] = value
@@ -212,7 +215,8 @@ def _read_initial_positions(
         row, col, floor = (int(v) for v in item)
         if not (0 <= floor < num_floors and 0 <= row < shape[0] and 0 <= col < shape[1]):
             raise SceneError(
-                f"entry {index} {quote(item)} is off the grid ({shape[0]}x{shape[1]} cells, {num_floors} floors)",
+                f"entry {index} {quote(item)} is off the grid ({shape[0]}x{shape[1]} cells, {num_floors} "
+                "floors)",
                 path,
             )
         cells.append((row, col, floor))
@@ -228,7 +232,8 @@ def _common_grid_shape(floor_fields: list[Fields]) -> tuple[int, int]:
         rows, cols = fields.int_list("grid_map_size", 2)
         if rows < 1 or cols < 1 or rows * cols > MAX_GRID_CELLS:
             raise fields.error(
-                f"field 'grid_map_size' must be positive and at most {MAX_GRID_CELLS:,} cells, got {[rows, cols]}"
+                f"field 'grid_map_size' must be positive and at most {MAX_GRID_CELLS:,} cells, got "
+                f"{[rows, cols]}"
             )
         shapes.append((rows, cols))
     if len(set(shapes)) != 1:
@@ -292,7 +297,9 @@ def _read_room(fields: Fields, key: object, floor: Floor, num_floors: int, shape
 def _read_object(fields: Fields, key: object, room: Room, shape: tuple[int, int]) -> SceneObject:
     object_id = fields.integer("id")
     if object_id != key or object_id <= 0:
-        raise fields.error(f"field 'id' is {object_id} but the object is keyed {quote(key)} (ids are positive)")
+        raise fields.error(
+            f"field 'id' is {object_id} but the object is keyed {quote(key)} (ids are positive)"
+        )
     if fields.integer("parent_id") != room.id:
         raise fields.error(f"parent_id {fields.raw('parent_id')} is not its room {room.id}")
     if fields.integer("parent_uuid", room.uuid) != room.uuid:
@@ -390,7 +397,7 @@ def _read_stairs(
 
 def _check_stairs_pairs(floors: list[Floor], path: Path) -> None:
     """Floor k's up stairs and floor k+1's down stairs must be the same staircase at the same cost."""
-    for lower, upper in zip(floors, floors[1:] + [None]):
+    for lower, upper in zip(floors, [*floors[1:], None]):
         up, down = lower.up_stairs, upper.down_stairs if upper is not None else None
         if (up is None) != (down is None) or (
             up is not None and down is not None and (up.room_id != down.room_id or up.cost_m != down.cost_m)

@@ -174,8 +174,12 @@ class BuildingBuilder:
         if not all(isinstance(a, str) for a in affordances):
             raise SceneError(f"{what}: affordances must be strings")
         object_id = len(self._objects) + 1
-        self._objects.append(_Object(object_id, room, name.strip(), mask, _box(box, what),
-                                     _number(height_m, f"{what} height_m", positive=True), tuple(affordances)))
+        self._objects.append(
+            _Object(
+                object_id, room, name.strip(), mask, _box(box, what),
+                _number(height_m, f"{what} height_m", positive=True), tuple(affordances),
+            )
+        )
         return object_id
 
     def add_door(self, room_a: int, room_b: int, *, at: Sequence[float], width_m: float = 0.9) -> None:
@@ -184,13 +188,18 @@ class BuildingBuilder:
         if room_a == room_b:
             raise SceneError(f"door: room {room_a} cannot have a door to itself")
         if not self._floors_of(a) & self._floors_of(b):
-            raise SceneError(f"door: rooms {room_a} (floor {a.floor}) and {room_b} (floor {b.floor}) share no floor")
-        self._doors.append(_Door(room_a, room_b, _pair(at, "door at"), _number(width_m, "door width_m", positive=True)))
+            raise SceneError(
+                f"door: rooms {room_a} (floor {a.floor}) and {room_b} (floor {b.floor}) share no floor"
+            )
+        self._doors.append(
+            _Door(room_a, room_b, _pair(at, "door at"), _number(width_m, "door width_m", positive=True))
+        )
 
-    def add_staircase(self, floor: int, *, portal: Sequence[float], upper_portal: Sequence[float] | None = None,
-                      box: Sequence[float] | None = None, polygon: Sequence[Sequence[float]] | None = None,
-                      cells: np.ndarray | None = None, steps: Sequence[float] | None = None,
-                      cost_m: float | None = None) -> int:
+    def add_staircase(
+        self, floor: int, *, portal: Sequence[float], upper_portal: Sequence[float] | None = None,
+        box: Sequence[float] | None = None, polygon: Sequence[Sequence[float]] | None = None,
+        cells: np.ndarray | None = None, steps: Sequence[float] | None = None, cost_m: float | None = None,
+    ) -> int:
         """Add a staircase room from ``floor`` to the floor above (drawn on both); returns its room id.
 
         ``portal`` / ``upper_portal`` (default: the same point) are the metric points where the stairs are
@@ -264,7 +273,10 @@ class BuildingBuilder:
                             reach_radius_m=self.reach_radius_m, initial_cells=list(self._starts))
         self._attach_stairs(building, room_uuids)
         for start in self._starts:
-            if cats[start[2]][start[0], start[1]] != CatCode.GROUND or rooms_maps[start[2]][start[0], start[1]] <= 0:
+            if (
+                cats[start[2]][start[0], start[1]] != CatCode.GROUND
+                or rooms_maps[start[2]][start[0], start[1]] <= 0
+            ):
                 raise SceneError(f"start cell {start} lies on a wall, an object or outside every room")
         return building
 
@@ -293,7 +305,9 @@ class BuildingBuilder:
             cats[self._rooms[obj.room].floor][obj.mask] = obj.id
         return cats, room_maps
 
-    def _make_room(self, room: _Room, uuids: dict[int, int], doors: list[dict[tuple[int, int], np.ndarray]]) -> Room:
+    def _make_room(
+        self, room: _Room, uuids: dict[int, int], doors: list[dict[tuple[int, int], np.ndarray]]
+    ) -> Room:
         linked = sorted(connections(doors).get(room.id, set()))
         rows, cols = np.nonzero(room.mask)
         lo, hi = (int(rows.min()), int(cols.min())), (int(rows.max()), int(cols.max()))
@@ -328,25 +342,39 @@ class BuildingBuilder:
                 cell = self._cell(point)
                 assert cell is not None  # checked in add_staircase
                 if building.floors[k].cat_map[cell] != CatCode.GROUND:
-                    raise SceneError(f"staircase {stairs.room}: the portal {point} on floor {k} lies on a wall, the "
-                                     "steps or an object; move it onto the landing")
+                    raise SceneError(
+                        f"staircase {stairs.room}: the portal {point} on floor {k} lies on a wall, the "
+                        "steps or an object; move it onto the landing"
+                    )
                 ends.append(cell)
-            d_xy = math.hypot((ends[0][0] - ends[1][0]) * self.resolution_m, (ends[0][1] - ends[1][1]) * self.resolution_m)
+            d_xy = math.hypot(
+                (ends[0][0] - ends[1][0]) * self.resolution_m, (ends[0][1] - ends[1][1]) * self.resolution_m
+            )
             floor_gap = self._floors[floor + 1][1] - self._floors[floor][1]
             shortest = math.hypot(d_xy, float(heights[floor + 1] - heights[floor]))
-            cost = stairs.cost_m if stairs.cost_m is not None else STAIRS_COST_FACTOR * math.hypot(d_xy, floor_gap)
+            cost = (
+                stairs.cost_m
+                if stairs.cost_m is not None
+                else STAIRS_COST_FACTOR * math.hypot(d_xy, floor_gap)
+            )
             if cost < shortest:
-                raise SceneError(f"staircase {stairs.room}: cost {cost} m is below the straight-line distance "
-                                 f"{shortest:.3f} m between its portals; give a larger cost_m")
+                raise SceneError(
+                    f"staircase {stairs.room}: cost {cost} m is below the straight-line distance "
+                    f"{shortest:.3f} m between its portals; give a larger cost_m"
+                )
             for k, cell, attribute in ((floor, ends[0], "up_stairs"), (floor + 1, ends[1], "down_stairs")):
-                setattr(building.floors[k], attribute,
-                        StairsEnd(room_id=stairs.room, room_uuid=uuids[stairs.room], portal=cell, cost_m=cost))
+                setattr(
+                    building.floors[k], attribute,
+                    StairsEnd(room_id=stairs.room, room_uuid=uuids[stairs.room], portal=cell, cost_m=cost),
+                )
 
     # -- checks and geometry -------------------------------------------------------------------------
 
     def _floor(self, floor: int) -> int:
         if not (is_number(floor) and float(floor).is_integer() and 0 <= int(floor) < len(self._floors)):
-            raise SceneError(f"no floor {floor!r}: floors are 0..{len(self._floors) - 1} (add_floor() adds one)")
+            raise SceneError(
+                f"no floor {floor!r}: floors are 0..{len(self._floors) - 1} (add_floor() adds one)"
+            )
         return int(floor)
 
     def _room(self, room: int) -> _Room:
@@ -356,8 +384,11 @@ class BuildingBuilder:
 
     def _floors_of(self, room: _Room) -> set[int]:
         """The floors a room is drawn on: its own, and the one above for a staircase."""
-        return {room.floor, room.floor + 1} if room.floor in self._stairs and self._stairs[room.floor].room == room.id \
+        return (
+            {room.floor, room.floor + 1}
+            if room.floor in self._stairs and self._stairs[room.floor].room == room.id
             else {room.floor}
+        )
 
     def _check_free(self, what: str, floor: int, mask: np.ndarray) -> None:
         for other in self._rooms.values():

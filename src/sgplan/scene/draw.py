@@ -24,6 +24,7 @@ from __future__ import annotations
 import textwrap
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -501,7 +502,7 @@ def draw_building(
             try:
                 with rc_context({"svg.fonttype": "none"}):  # SVG text stays text: smaller and searchable
                     # an earlier drawing stays whole if this one fails
-                    write_file_atomically(target, lambda tmp: fig.savefig(tmp, format=fmt))
+                    write_file_atomically(target, partial(fig.savefig, format=fmt))
             except OSError as error:
                 raise SceneError(f"cannot write {target}: {error.strerror}") from None
             written.append(target)

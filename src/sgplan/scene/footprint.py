@@ -187,14 +187,3 @@ def inflate(obstacles: np.ndarray, kernel: FootprintKernel) -> np.ndarray:
         for d_row in d_rows:
             out |= running[pad + d_row : pad + d_row + rows, col0 : col0 + cols].astype(bool)
     return out
-
-
-def inflate_reference(obstacles: np.ndarray, kernel: FootprintKernel) -> np.ndarray:
-    """Slow, direct twin of :func:`inflate` (``scipy.ndimage.binary_dilation``), kept as its test oracle."""
-    offsets = kernel.offsets
-    half = int(np.abs(offsets).max()) if len(offsets) else 0
-    # scipy's dilation mirrors its structure about the centre (a true Minkowski sum), OpenCV's does not:
-    # feed scipy the mirrored kernel, padded so that the anchor sits at the centre.
-    structure = np.zeros((2 * half + 1, 2 * half + 1), dtype=bool)
-    structure[half - offsets[:, 0], half - offsets[:, 1]] = True
-    return ndimage.binary_dilation(obstacles, structure=structure)

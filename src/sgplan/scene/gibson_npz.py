@@ -25,7 +25,7 @@ import zipfile
 import zlib
 from collections.abc import Callable
 from pathlib import Path
-from typing import IO, Any
+from typing import IO, Any, cast
 
 import numpy as np
 from numpy.lib import format as npy_format
@@ -58,9 +58,10 @@ def _latin1_encode(text: Any, encoding: str = "utf-8") -> bytes:
     return text.encode("latin1")
 
 
-_NUMPY_RECONSTRUCT: Callable[..., np.ndarray] = np.zeros(1).__reduce__()[0]  # type: ignore[index]
-_NUMPY_SCALAR: Callable[..., Any] = np.float64(0).__reduce__()[0]  # type: ignore[index]
-_NUMPY_FROMBUFFER: Callable[..., Any] = np.zeros(1).__reduce_ex__(5)[0]  # type: ignore[index]
+# The reconstructors numpy's own pickles name, whatever module they live in for this numpy version.
+_NUMPY_RECONSTRUCT = cast(Callable[..., np.ndarray], np.zeros(1).__reduce__()[0])
+_NUMPY_SCALAR = cast(Callable[..., Any], np.float64(0).__reduce__()[0])
+_NUMPY_FROMBUFFER = cast(Callable[..., Any], np.zeros(1).__reduce_ex__(5)[0])
 
 # numpy < 2 pickles name numpy.core.*, numpy >= 2 numpy._core.*.
 _MULTIARRAY = ("numpy.core.multiarray", "numpy._core.multiarray")
@@ -94,7 +95,10 @@ class RestrictedUnpickler(pickle._Unpickler):
     the stack and stop reading early; unpickling the graph part of a Gibson file this way is fast.
     """
 
-    dispatch = dict(pickle._Unpickler.dispatch)  # type: ignore[attr-defined]  # noqa: RUF012
+    dispatch = dict(pickle._Unpickler.dispatch)  # noqa: RUF012 - the class's own copy, hooked below
+    # Set by the pure-Python unpickler's load(): the items read since the last MARK, and the outer ones.
+    stack: list[Any]
+    metastack: list[list[Any]]
 
     def find_class(self, module: str, name: str) -> Any:
         try:
@@ -116,7 +120,7 @@ class RestrictedUnpickler(pickle._Unpickler):
             _load(self)
             self._check_depth()
 
-        dispatch[_opcode[0]] = _bounded
+        dispatch[_opcode[0]] = _bounded  # type: ignore[assignment]  # only called on this class's instances
     del _opcode, _bounded
 
 
@@ -137,7 +141,7 @@ class _KeysUnpickler(RestrictedUnpickler):
     If the keys come last, the whole pickle is read as usual.
     """
 
-    dispatch = dict(RestrictedUnpickler.dispatch)
+    dispatch = dict(RestrictedUnpickler.dispatch)  # noqa: RUF012 - the class's own copy, hooked below
 
     def __init__(self, stream: IO[bytes], keys: frozenset[str]) -> None:
         super().__init__(stream, encoding="latin1")
@@ -159,7 +163,7 @@ class _KeysUnpickler(RestrictedUnpickler):
             _load(self)
             self._after_string_push()
 
-        dispatch[_opcode[0]] = _hooked
+        dispatch[_opcode[0]] = _hooked  # type: ignore[assignment]  # only called on this class's instances
     del _opcode, _hooked
 
 
@@ -191,7 +195,9 @@ def read_scene_graph_dict(
     try:
         with zipfile.ZipFile(path) as archive:
             if member not in archive.namelist():
-                raise SceneError(f"npz has no {ARRAY_KEY!r} array (members: {quote(archive.namelist())})", path)
+                raise SceneError(
+                    f"npz has no {ARRAY_KEY!r} array (members: {quote(archive.namelist())})", path
+                )
             with archive.open(member) as stream:
                 value = _unpickle_npy(stream, frozenset(keys) if keys is not None else None)
     except ForbiddenGlobal as error:
@@ -204,7 +210,9 @@ def read_scene_graph_dict(
         raise
     except (zipfile.BadZipFile, zlib.error, EOFError, OSError) as error:
         raise SceneError(f"not a readable npz (corrupt or truncated): {clip(str(error))}", path) from None
-    except (pickle.UnpicklingError, ValueError, TypeError, AttributeError, IndexError, KeyError, RecursionError) as error:
+    except (
+        pickle.UnpicklingError, ValueError, TypeError, AttributeError, IndexError, KeyError, RecursionError,
+    ) as error:
         raise SceneError(f"corrupt pickle in {member}: {clip(str(error))}", path) from None
     except MemoryError:
         raise SceneError(f"{member} asks for more memory than is available", path) from None

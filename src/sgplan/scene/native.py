@@ -76,7 +76,8 @@ def write_native_scene(building: Building, folder: str | Path) -> Path:
     raster_path = folder / RASTER_FILE
     # Rasters first, each file replaced whole: an interrupted write leaves the earlier scene readable.
     if arrays:
-        write_file_atomically(raster_path, lambda tmp: np.savez_compressed(tmp, **arrays))
+        # numpy's stubs fear an array named allow_pickle; ours are cat_map_<k>, room_map_<k>, door_cells...
+        write_file_atomically(raster_path, lambda tmp: np.savez_compressed(tmp, **arrays))  # type: ignore[arg-type]
     text = json.dumps(document, indent=1, allow_nan=False, default=_plain_number)
     write_text_atomically(folder / GRAPH_FILE, text + "\n")
     if not arrays and raster_path.exists():

@@ -157,9 +157,11 @@ def summary_lines(summary: SceneSummary, *, objects: bool = True) -> list[str]:
         ))
         blocked = [k for k, ok in enumerate(free) if ok is False]
         if blocked:
-            lines.append(f"  warning: initial cell(s) {', '.join(map(str, blocked))} lie in an obstacle (inflated "
-                         f"by the robot radius {summary.robot_radius_m:g} m) or outside every room: a plan "
-                         "cannot start there")
+            lines.append(
+                f"  warning: initial cell(s) {', '.join(map(str, blocked))} lie in an obstacle (inflated "
+                f"by the robot radius {summary.robot_radius_m:g} m) or outside every room: a plan "
+                "cannot start there"
+            )
     for floor in summary.floors:
         head = f"floor {floor.index} ({floor.name}): {len(floor.rooms)} rooms, {floor.num_objects} objects"
         if floor.free_cells is not None:

@@ -143,7 +143,7 @@ class _PlacedRoom:
 
 
 def _cells(length_m: float, cell_m: float, minimum: int = 1) -> int:
-    return max(minimum, int(round(length_m / cell_m)))
+    return max(minimum, round(length_m / cell_m))
 
 
 class _Planner:
@@ -349,12 +349,11 @@ def _build(
             for kind, what, width in entries:
                 box = _Box(band_box.r0, band_box.r1, c, c + width)
                 c += width + plan.inner
-                if kind == "stairs":
+                if isinstance(what, int):  # a staircase slot: the floor it climbs from
                     placed = _place_stairs(
                         plan, cat, room, reserved, box, side, f, what, stair_ids, stair_rooms
                     )
                 else:
-                    assert isinstance(what, RoomSpec)
                     placed = _PlacedRoom(next_room_id, what.category, f, box, what.objects)
                     next_room_id += 1
                     cat[box.slices()] = CatCode.GROUND
@@ -473,7 +472,7 @@ def _assemble(
             next_uuid += 1
 
     doors = [door_cells(fp.room, fp.cat) for fp in plans]
-    connected = {r.id: set() for r in all_rooms} | connections(doors)
+    connected: dict[int, set[int]] = {r.id: set() for r in all_rooms} | connections(doors)
 
     half_h = 1.4
     rooms: dict[int, Room] = {}
