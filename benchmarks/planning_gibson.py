@@ -65,7 +65,9 @@ def main() -> None:
     parser.add_argument("--all", action="store_true", help="every mission and start of the three scenes")
     parser.add_argument("--setups", nargs="+", default=["ALL"])
     parser.add_argument("--profile", default="authors")
-    parser.add_argument("--one", nargs=4, metavar=("SCENE", "MISSION", "START", "SETUP"), help=argparse.SUPPRESS)
+    parser.add_argument(
+        "--one", nargs=4, metavar=("SCENE", "MISSION", "START", "SETUP"), help=argparse.SUPPRESS
+    )
     args = parser.parse_args()
     if args.one:
         scene, mission, start, setup = args.one
@@ -85,8 +87,20 @@ def main() -> None:
     for scene, mission, start, setup in cases:
         t0 = time.perf_counter()
         out = subprocess.run(
-            [sys.executable, __file__, "--profile", args.profile, "--one", scene, str(mission), str(start), setup],
-            capture_output=True, text=True, cwd=REPO,
+            [
+                sys.executable,
+                __file__,
+                "--profile",
+                args.profile,
+                "--one",
+                scene,
+                str(mission),
+                str(start),
+                setup,
+            ],
+            capture_output=True,
+            text=True,
+            cwd=REPO,
         )
         wall = time.perf_counter() - t0
         if out.returncode != 0:
@@ -101,15 +115,24 @@ def main() -> None:
         expected = STAY_COSTS.get((scene, mission), (None,) * 5)[start] if args.profile == "authors" else None
         if "cost" in row:
             if (scene, mission) in STAY_COSTS:
-                note += f" {'ok' if expected is not None and abs(round(row['cost'], 4) - expected) < 1e-4 else 'MISMATCH'}"
-            print(f"{name:<26} {row['status']:<13} {row['first_s']:>8.4f} {row['first_cost'] / row['cost']:>7.4f} "
-                  f"{row['cost']:>9.4f} {row['opt_s']:>7.3f} {row['expansions']:>10} {row['load_s']:>6.2f} "
-                  f"{row['precompute_s']:>6.2f} {wall:>6.2f} {row['rss_mb']:>7.0f}  {note}", flush=True)
+                same = expected is not None and abs(round(row['cost'], 4) - expected) < 1e-4
+                note += f" {'ok' if same else 'MISMATCH'}"
+            print(
+                f"{name:<26} {row['status']:<13} {row['first_s']:>8.4f} "
+                f"{row['first_cost'] / row['cost']:>7.4f} "
+                f"{row['cost']:>9.4f} {row['opt_s']:>7.3f} {row['expansions']:>10} {row['load_s']:>6.2f} "
+                f"{row['precompute_s']:>6.2f} {wall:>6.2f} {row['rss_mb']:>7.0f}  {note}",
+                flush=True,
+            )
         else:
             if (scene, mission) in STAY_COSTS:
                 note += f" {'ok' if expected is None else 'MISMATCH'}"
-            print(f"{name:<26} {row['status']:<13} {'':>8} {'':>7} {'':>9} {'':>7} {'':>10} {row['load_s']:>6.2f} "
-                  f"{'':>6} {wall:>6.2f} {row['rss_mb']:>7.0f}  {note}", flush=True)
+            print(
+                f"{name:<26} {row['status']:<13} {'':>8} {'':>7} {'':>9} {'':>7} {'':>10} "
+                f"{row['load_s']:>6.2f} "
+                f"{'':>6} {wall:>6.2f} {row['rss_mb']:>7.0f}  {note}",
+                flush=True,
+            )
 
 
 if __name__ == "__main__":

@@ -1,17 +1,19 @@
 """sgplan's search against the compiled blind product-graph Dijkstra, per shipped Gibson case, in one run.
 
 For every case (3 scenes x 5 missions x the chosen starts, authors profile) the parent process runs the
-reference (benchmarks/dijkstra_reference, compiled C, exact) three times and keeps the fastest, and one child process per setup runs
-sgplan (``planning_gibson.py --one``: imports, load, plan, exit). Per case it prints sgplan's search to the
-optimum divided by the Dijkstra's search (both exclude precompute / indexing), the first-path time, both
-optimal costs (they must agree to 1e-6 m), the child's whole-process wall seconds and peak RSS; then the
-median and worst ratio per setup. Needs the Gibson data and a C compiler (it says so if none exists).
+reference (benchmarks/dijkstra_reference, compiled C, exact) three times and keeps the fastest, and one
+child process per setup runs sgplan (``planning_gibson.py --one``: imports, load, plan, exit). Per case it
+prints sgplan's search to the optimum divided by the Dijkstra's search (both exclude precompute / indexing),
+the first-path time, both optimal costs (they must agree to 1e-6 m), the child's whole-process wall seconds
+and peak RSS; then the median and worst ratio per setup. Needs the Gibson data and a C compiler (it says
+so if none exists).
 
 Before/after in one run: export an older tree and pass it as a variant; the variants run back to back on
 each case, so machine load hits them alike (report ratios, the machine is shared):
 
     git archive <commit> src | tar -x -C /tmp/sgplan-before
-    .venv/bin/python benchmarks/planning_vs_dijkstra.py --variant before=/tmp/sgplan-before/src --variant after=src
+    .venv/bin/python benchmarks/planning_vs_dijkstra.py \
+        --variant before=/tmp/sgplan-before/src --variant after=src
 
     .venv/bin/python benchmarks/planning_vs_dijkstra.py                       # this tree, starts 0-1
     .venv/bin/python benchmarks/planning_vs_dijkstra.py --scenes Allensville --setups A* --json out.json
@@ -67,10 +69,13 @@ def summary(rows: list[dict], variants: list[str], setups: list[str]) -> None:
             first = [r["first_s"] for r in mine]
             wall = [r["wall_s"] for r in mine]
             rss = [r["rss_mb"] for r in mine]
-            print(f"{variant:<10} {setup:<7} {len(mine):>5} {statistics.median(ratios):>9.2f} {max(ratios):>7.2f} "
-                  f"{sum(x <= 1 for x in ratios):>5} {sum(x <= 1.5 for x in ratios):>5} "
-                  f"{statistics.median(first):>9.4f} {max(first):>9.4f} {statistics.median(wall):>8.2f} "
-                  f"{max(wall):>8.2f} {statistics.median(rss):>7.0f} {max(rss):>7.0f}")
+            print(
+                f"{variant:<10} {setup:<7} {len(mine):>5} "
+                f"{statistics.median(ratios):>9.2f} {max(ratios):>7.2f} "
+                f"{sum(x <= 1 for x in ratios):>5} {sum(x <= 1.5 for x in ratios):>5} "
+                f"{statistics.median(first):>9.4f} {max(first):>9.4f} {statistics.median(wall):>8.2f} "
+                f"{max(wall):>8.2f} {statistics.median(rss):>7.0f} {max(rss):>7.0f}"
+            )
 
 
 def main() -> int:
@@ -112,26 +117,47 @@ def main() -> int:
                 for setup in args.setups:
                     for variant, src in variants.items():
                         row = run_child(src, scene, mission, start, setup)
-                        row.update(variant=variant, scene=scene, mission=mission, start=start, setup=setup,
-                                   dijkstra_s=ref["search_s"], dijkstra_pops=ref["pops"], dijkstra_cost=ref["cost"])
+                        row.update(
+                            variant=variant,
+                            scene=scene,
+                            mission=mission,
+                            start=start,
+                            setup=setup,
+                            dijkstra_s=ref["search_s"],
+                            dijkstra_pops=ref["pops"],
+                            dijkstra_cost=ref["cost"],
+                        )
                         name = f"{scene} m{mission} s{start} {setup}"
                         if "cost" in row:
                             agree = abs(row["cost"] - ref["cost"]) <= 1e-6
                             row["ratio"] = row["opt_s"] / max(ref["search_s"], 1e-9)
-                            print(f"{name:<28} {variant:<8} {row['status']:<13} {ref['search_s']:>7.3f} "
-                                  f"{ref['pops']:>8} {row['opt_s']:>7.3f} {row['ratio']:>6.2f} {row['first_s']:>7.4f} "
-                                  f"{row['expansions']:>8} {row['wall_s']:>6.2f} {row['rss_mb']:>6.0f}  "
-                                  f"{row['cost']:.6f} {'ok' if agree else 'MISMATCH ' + repr(ref['cost'])}", flush=True)
+                            print(
+                                f"{name:<28} {variant:<8} {row['status']:<13} {ref['search_s']:>7.3f} "
+                                f"{ref['pops']:>8} {row['opt_s']:>7.3f} {row['ratio']:>6.2f} "
+                                f"{row['first_s']:>7.4f} "
+                                f"{row['expansions']:>8} {row['wall_s']:>6.2f} {row['rss_mb']:>6.0f}  "
+                                f"{row['cost']:.6f} {'ok' if agree else 'MISMATCH ' + repr(ref['cost'])}",
+                                flush=True,
+                            )
                         else:
-                            agree = ref["cost"] == float("inf") and row["status"] in ("infeasible", "invalid-start")
-                            print(f"{name:<28} {variant:<8} {row['status']:<13} {ref['search_s']:>7.3f} "
-                                  f"{ref['pops']:>8} {'':>7} {'':>6} {'':>7} {'':>8} {row['wall_s']:>6.2f} "
-                                  f"{row.get('rss_mb', 0):>6.0f}  {'ok (no path)' if agree else 'MISMATCH'}", flush=True)
+                            agree = ref["cost"] == float("inf") and row["status"] in (
+                                "infeasible",
+                                "invalid-start",
+                            )
+                            print(
+                                f"{name:<28} {variant:<8} {row['status']:<13} {ref['search_s']:>7.3f} "
+                                f"{ref['pops']:>8} {'':>7} {'':>6} {'':>7} {'':>8} {row['wall_s']:>6.2f} "
+                                f"{row.get('rss_mb', 0):>6.0f}  {'ok (no path)' if agree else 'MISMATCH'}",
+                                flush=True,
+                            )
                         row["agree"] = agree
                         rows.append(row)
     summary(rows, list(variants), args.setups)
     bad = [r for r in rows if not r["agree"]]
-    print(f"\n{len(rows)} runs in {time.perf_counter() - t_start:.0f} s; cost disagreements with the reference: {len(bad)}")
+    print(
+        f"\n{len(rows)} runs in {time.perf_counter() - t_start:.0f} s; "
+        f"cost disagreements with the reference: {len(bad)}"
+    )
     if args.json:
         args.json.write_text(json.dumps(rows, indent=1, default=str))
     return 1 if bad else 0

@@ -100,27 +100,43 @@ def fit_exponent(xs: list[float], ys: list[float]) -> float:
     return sum((p[0] - mx) * (p[1] - my) for p in pts) / den if den else float("nan")
 
 
-PARTS = ("building_s", "automaton_s", "grid_labels_s", "domain_s", "actions_s", "search_s", "wall_s", "rss_mb")
+PARTS = (
+    "building_s",
+    "automaton_s",
+    "grid_labels_s",
+    "domain_s",
+    "actions_s",
+    "search_s",
+    "wall_s",
+    "rss_mb",
+)
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--sizes", nargs="+", type=float, default=[0.25, 1.0, 4.0], help="millions of grid cells")
+    parser.add_argument(
+        "--sizes", nargs="+", type=float, default=[0.25, 1.0, 4.0], help="millions of grid cells"
+    )
     parser.add_argument("--floors", nargs="+", type=int, default=[1, 2])
     parser.add_argument("--goals", nargs="+", type=int, default=[2, 5])
     parser.add_argument("--orders", nargs="+", default=["sequenced", "unordered"])
     parser.add_argument("--setup", default="NO-LLM")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--timeout", type=float, default=300.0, help="seconds per case")
-    parser.add_argument("--one", nargs=4, metavar=("SIZE", "FLOORS", "GOALS", "ORDER"), help=argparse.SUPPRESS)
+    parser.add_argument(
+        "--one", nargs=4, metavar=("SIZE", "FLOORS", "GOALS", "ORDER"), help=argparse.SUPPRESS
+    )
     args = parser.parse_args()
     if args.one:
         size, floors, goals, order = args.one
         print(json.dumps(run_case(float(size), int(floors), int(goals), order, args.setup, args.seed)))
         return 0
 
-    print(f"{'size M':>6} {'fl':>2} {'goals':>9} {'grid':>9} {'free':>9} {'Q':>4} " + " ".join(f"{p[:-2]:>9}" for p in PARTS)
-          + f" {'expans':>9}")
+    print(
+        f"{'size M':>6} {'fl':>2} {'goals':>9} {'grid':>9} {'free':>9} {'Q':>4} "
+        + " ".join(f"{p[:-2]:>9}" for p in PARTS)
+        + f" {'expans':>9}"
+    )
     rows = []
     for floors in args.floors:
         for goals in args.goals:
@@ -130,22 +146,37 @@ def main() -> int:
                            "--one", str(size), str(floors), str(goals), order]
                     t0 = time.perf_counter()
                     try:
-                        out = subprocess.run(cmd, capture_output=True, text=True, cwd=REPO, timeout=args.timeout,
-                                             check=False)
+                        out = subprocess.run(
+                            cmd, capture_output=True, text=True, cwd=REPO, timeout=args.timeout, check=False
+                        )
                     except subprocess.TimeoutExpired:
-                        print(f"{size:>6} {floors:>2} {goals:>2} {order[:6]:>6} timed out after {args.timeout:g} s")
+                        print(
+                            f"{size:>6} {floors:>2} {goals:>2} {order[:6]:>6} "
+                            f"timed out after {args.timeout:g} s"
+                        )
                         continue
                     wall = time.perf_counter() - t0
                     if out.returncode != 0:
-                        print(f"{size:>6} {floors:>2} {goals:>2} {order[:6]:>6} failed: {out.stderr.strip()[-300:]}")
+                        print(
+                            f"{size:>6} {floors:>2} {goals:>2} {order[:6]:>6} "
+                            f"failed: {out.stderr.strip()[-300:]}"
+                        )
                         continue
                     row = json.loads(out.stdout.strip().splitlines()[-1])
                     row["wall_s"] = wall
                     rows.append(row)
-                    print(f"{size:>6} {floors:>2} {goals:>2} {order[:6]:>6} {row['grid_cells']:>9} {row['free_cells']:>9} "
-                          f"{row['states']:>4} " + " ".join(f"{row[p]:>9.2f}" for p in PARTS) + f" {row['expansions']:>9}",
-                          flush=True)
-    print("\ngrowth exponents b in (part ~ free_cells^b), per floors / goals / order, over the sizes that finished")
+                    print(
+                        f"{size:>6} {floors:>2} {goals:>2} {order[:6]:>6} "
+                        f"{row['grid_cells']:>9} {row['free_cells']:>9} "
+                        f"{row['states']:>4} "
+                        + " ".join(f"{row[p]:>9.2f}" for p in PARTS)
+                        + f" {row['expansions']:>9}",
+                        flush=True,
+                    )
+    print(
+        "\ngrowth exponents b in (part ~ free_cells^b), per floors / goals / order, "
+        "over the sizes that finished"
+    )
     for floors in args.floors:
         for goals in args.goals:
             for order in args.orders:

@@ -10,7 +10,9 @@ from hypothesis import strategies as st
 
 from sgplan.heap import heap_pop_at, heap_push_at
 
-_OPS = st.lists(st.tuples(st.integers(0, 2), st.booleans(), st.integers(0, 20), st.integers(0, 5)), max_size=200)
+_OPS = st.lists(
+    st.tuples(st.integers(0, 2), st.booleans(), st.integers(0, 20), st.integers(0, 5)), max_size=200
+)
 
 
 @settings(max_examples=60, deadline=None)

@@ -50,7 +50,17 @@ def library() -> ctypes.CDLL:
     if not target.exists():
         cache.mkdir(parents=True, exist_ok=True)
         partial = target.with_suffix(f".{os.getpid()}.tmp")
-        cmd = [find_compiler(), "-O3", "-march=native", "-shared", "-fPIC", "-o", str(partial), str(SOURCE), "-lm"]
+        cmd = [
+            find_compiler(),
+            "-O3",
+            "-march=native",
+            "-shared",
+            "-fPIC",
+            "-o",
+            str(partial),
+            str(SOURCE),
+            "-lm",
+        ]
         built = subprocess.run(cmd, capture_output=True, text=True, check=False)
         if built.returncode != 0:
             raise RuntimeError(f"compiling {SOURCE} failed ({' '.join(cmd)}):\n{built.stderr}")
@@ -80,7 +90,11 @@ def solve(problem) -> dict:
     table = np.ascontiguousarray(automaton.table, dtype=np.int32)
     accepting = np.ascontiguousarray(automaton.accepting, dtype=np.uint8)
     row, col, floor = problem.start
-    q_start = int(table[automaton.initial, labels[floor, row, col]]) if problem.profile == "ltlf" else automaton.initial
+    q_start = (
+        int(table[automaton.initial, labels[floor, row, col]])
+        if problem.profile == "ltlf"
+        else automaton.initial
+    )
     stairs = np.array(
         [(s.lower_floor, *s.lower_cell, s.upper_floor, *s.upper_cell) for s in grid.stairs], dtype=np.int32
     ).reshape(-1, 6)
@@ -92,8 +106,24 @@ def solve(problem) -> dict:
         return a.ctypes.data
 
     code = library().product_dijkstra(
-        floors, rows, cols, p(traversable), p(labels), table.shape[0], table.shape[1], p(table), p(accepting),
-        len(stairs_cost), p(stairs), p(stairs_cost), float(res_x), float(res_y), floor, row, col, int(q_start),
+        floors,
+        rows,
+        cols,
+        p(traversable),
+        p(labels),
+        table.shape[0],
+        table.shape[1],
+        p(table),
+        p(accepting),
+        len(stairs_cost),
+        p(stairs),
+        p(stairs_cost),
+        float(res_x),
+        float(res_y),
+        floor,
+        row,
+        col,
+        int(q_start),
         p(out),
     )
     if code != 0:

@@ -51,7 +51,9 @@ def heap_pop_at(keys, ties, values, base, size):
         child = 2 * i + 1
         if child >= size:
             break
-        if child + 1 < size and _before(keys[base + child + 1], ties[base + child + 1], keys[base + child], ties[base + child]):
+        if child + 1 < size and _before(
+            keys[base + child + 1], ties[base + child + 1], keys[base + child], ties[base + child]
+        ):
             child += 1
         if not _before(keys[base + child], ties[base + child], key, tie):
             break

@@ -35,7 +35,9 @@ def scene(root: Path, name: str) -> Building:
     return load_authors_scene(root / name)
 
 
-def load_case(root: Path, name: str, mission: int, start_index: int, profile: str = "authors") -> PlanningProblem:
+def load_case(
+    root: Path, name: str, mission: int, start_index: int, profile: str = "authors"
+) -> PlanningProblem:
     """The planning problem of ``name`` mission ``mission`` from initial position ``start_index``."""
     building = scene(root, name)
     loaded = load_mission_folder(root / name / "missions" / str(mission), profile=profile)

@@ -84,7 +84,9 @@ def random_problem(seed: int, profile: str = "ltlf", guidance: str = "random") -
     objects = list(building.objects())
     picks = rng.choice(len(rooms), size=min(3, len(rooms)), replace=False)
     props = [Proposition("enter", rooms[int(i)].uuid) for i in picks[:2]]
-    props.append(Proposition("reach", objects[0].uuid) if objects else Proposition("enter", rooms[int(picks[-1])].uuid))
+    props.append(
+        Proposition("reach", objects[0].uuid) if objects else Proposition("enter", rooms[int(picks[-1])].uuid)
+    )
     aps = ("p0", "p1", "p2")
     formula = FORMULAS[int(rng.integers(len(FORMULAS)))]
     labels = label_raster(building, props, 0.5)

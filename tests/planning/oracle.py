@@ -30,11 +30,15 @@ def optimal_cost(
     ``inf`` when no such path exists. Under ``"ltlf"`` the start cell's label is read first; under
     ``"authors"`` it is not.
     """
-    floors, rows, cols = grid.traversable.shape
+    _, rows, cols = grid.traversable.shape
     res_x, res_y = grid.resolution_m
     row0, col0, floor0 = start
     table = automaton.table
-    q0 = int(table[automaton.initial, int(labels[floor0, row0, col0])]) if profile == "ltlf" else automaton.initial
+    q0 = (
+        int(table[automaton.initial, int(labels[floor0, row0, col0])])
+        if profile == "ltlf"
+        else automaton.initial
+    )
 
     stairs: dict[tuple[int, int, int], list[tuple[tuple[int, int, int], float]]] = {}
     for link in grid.stairs:

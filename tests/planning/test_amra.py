@@ -100,7 +100,9 @@ def test_setups_by_name() -> None:
     assert SETUPS["ALL"].queues == ((0, LTL),) + tuple((level, LLM) for level in range(1, 5))
     assert SETUPS["NO-LLM"].queues == ((0, LTL),) and SETUPS["NO-LLM"].max_level == 4
     assert SETUPS["A*"].queues == ((0, LTL),) and SETUPS["A*"].max_level == 1
-    assert [SETUPS[name].queues[1] for name in ("OCC", "OBJ", "ROOM", "FLR")] == [(lv, LLM) for lv in range(1, 5)]
+    assert [SETUPS[name].queues[1] for name in ("OCC", "OBJ", "ROOM", "FLR")] == [
+        (lv, LLM) for lv in range(1, 5)
+    ]
     with pytest.raises(PlanningError, match="unknown setup"):
         get_setup("FAST")
     with pytest.raises(PlanningError, match="needs LLM guidance"):
@@ -125,7 +127,10 @@ def test_every_setup_is_optimal_on_random_instances(seed: int, profile: str) -> 
         try:
             result = plan(problem, name)
         except PlanningError as error:
-            assert error.status in ("infeasible", "invalid-start") and math.isinf(expected), (name, str(error))
+            assert error.status in ("infeasible", "invalid-start") and math.isinf(expected), (
+                name,
+                str(error),
+            )
             continue
         assert result.cost_m == pytest.approx(expected, abs=1e-9), name
         check = check_path(result.path, problem.grid, problem.labels, problem.automaton, profile)

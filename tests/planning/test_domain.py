@@ -59,7 +59,11 @@ def test_start_label_leading_to_sink_names_propositions() -> None:
 def test_unreachable_proposition_is_infeasible() -> None:
     building = open_building(2)
     problem = PlanningProblem(
-        building, open_grid(building), marks((2, 5, 12), {0: [(2, 10, 1)]}), automaton("F p0", ("p0",)), (2, 0, 0)
+        building,
+        open_grid(building),
+        marks((2, 5, 12), {0: [(2, 10, 1)]}),
+        automaton("F p0", ("p0",)),
+        (2, 0, 0),
     )
     error = _status(problem)
     assert error.status == "infeasible" and "p0 never holds on a cell reachable" in str(error)
@@ -70,9 +74,17 @@ def test_bad_inputs() -> None:
         _problem((2, 0, 0), profile="strict")
     building = open_building()
     with pytest.raises(PlanningError, match="shape"):
-        PlanningProblem(building, open_grid(building), np.zeros((1, 2, 2), np.uint32), automaton("F p0", ("p0",)), (0, 0, 0))
+        PlanningProblem(
+            building,
+            open_grid(building),
+            np.zeros((1, 2, 2), np.uint32),
+            automaton("F p0", ("p0",)),
+            (0, 0, 0),
+        )
     labels = np.full((1, 5, 12), 4, np.uint32)
-    error = _status(PlanningProblem(building, open_grid(building), labels, automaton("F p0", ("p0",)), (0, 0, 0)))
+    error = _status(
+        PlanningProblem(building, open_grid(building), labels, automaton("F p0", ("p0",)), (0, 0, 0))
+    )
     assert "bitmask 4" in str(error)
 
 
@@ -102,7 +114,9 @@ def test_floor_actions_take_the_stairs() -> None:
 def _edges(domain, cell, q, level=0, max_level=4):
     n_buf = 64
     out = (np.empty(n_buf, np.int64), np.empty(n_buf, np.int64), np.empty(n_buf), np.empty(n_buf, np.int32))
-    n = successors(domain.kgraph, domain.kactions, domain.kmaps, domain.klogic, cell, q, level, max_level, *out)
+    n = successors(
+        domain.kgraph, domain.kactions, domain.kmaps, domain.klogic, cell, q, level, max_level, *out
+    )
     return [(int(out[0][i]), int(out[1][i]), float(out[2][i]), int(out[3][i])) for i in range(n)]
 
 
@@ -126,7 +140,9 @@ def test_composite_actions_are_exact_move_sequences(seed: int) -> None:
             k = code - ACT_MAP
             cells = np.array([cell, *domain.action_cells(k, int(cell), end)])
             assert path_cost(domain, cells) == pytest.approx(cost, abs=1e-9)
-            steps = np.abs(np.diff(np.stack([graph.cell_row[cells], graph.cell_col[cells]]), axis=1)).max(axis=0)
+            steps = np.abs(np.diff(np.stack([graph.cell_row[cells], graph.cell_col[cells]]), axis=1)).max(
+                axis=0
+            )
             same_floor = np.diff(graph.cell_floor[cells]) == 0
             assert np.all(steps[same_floor] == 1)
             run = q
@@ -134,5 +150,7 @@ def test_composite_actions_are_exact_move_sequences(seed: int) -> None:
                 run = int(domain.trans[run, domain.cell_label[c]])
             assert run == nq
             if not domain.accepting[nq] and domain.maps[k].kind not in (MAP_FLOOR_UP, MAP_FLOOR_DOWN):
-                sources = domain.kactions.map_src[domain.kactions.map_src_ptr[k] : domain.kactions.map_src_ptr[k + 1]]
+                sources = domain.kactions.map_src[
+                    domain.kactions.map_src_ptr[k] : domain.kactions.map_src_ptr[k + 1]
+                ]
                 assert cost == pytest.approx(graph.distances(sources)[cell], abs=1e-9)

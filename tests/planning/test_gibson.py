@@ -45,7 +45,9 @@ def test_collierville_runs_across_floors(gibson_root) -> None:
     assert result.status == "optimal" and len(set(result.path[:, 2].tolist())) > 1
 
 
-@pytest.mark.parametrize("scene, start, clearance", [("Benevolence", 1, "0.177 m"), ("Allensville", 2, "0.112 m")])
+@pytest.mark.parametrize(
+    "scene, start, clearance", [("Benevolence", 1, "0.177 m"), ("Allensville", 2, "0.112 m")]
+)
 def test_start_in_collision(gibson_root, scene, start, clearance) -> None:
     with pytest.raises(PlanningError) as info:
         load_case(gibson_root, scene, 1, start).domain  # noqa: B018

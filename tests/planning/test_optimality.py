@@ -6,6 +6,7 @@ LLM guidance, under both semantics profiles. Every returned path must also pass 
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -110,7 +111,7 @@ def _check_all_setups(problem: PlanningProblem) -> None:
         assert result.status == "optimal"
         assert result.cost_m == pytest.approx(expected, rel=1e-9, abs=1e-9), setup
         costs = [it.cost_m for it in result.iterations]
-        assert all(a >= b - 1e-9 for a, b in zip(costs, costs[1:])), f"{setup}: costs rose {costs}"
+        assert all(a >= b - 1e-9 for a, b in itertools.pairwise(costs)), f"{setup}: costs rose {costs}"
         for it in result.iterations:
             assert it.cost_m <= it.bound * expected + 1e-9, f"{setup}: bound broken {it}"
         check = check_path(result.path, problem.grid, problem.labels, problem.automaton, problem.profile)
@@ -123,7 +124,9 @@ _SETTINGS = settings(max_examples=200, deadline=None, suppress_health_check=[Hea
 
 @_SETTINGS
 @given(seed=st.integers(0, 2**32 - 1), formula=formulas(), profile=st.sampled_from(["ltlf", "authors"]))
-def test_random_formulas_are_solved_optimally_by_every_setup(seed: int, formula: Formula, profile: str) -> None:
+def test_random_formulas_are_solved_optimally_by_every_setup(
+    seed: int, formula: Formula, profile: str
+) -> None:
     _check_all_setups(_instance(seed, formula, profile))
 
 

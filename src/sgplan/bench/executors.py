@@ -130,8 +130,14 @@ def run_isolated(
             rss = _peak_rss_of(proc.pid)
             proc.kill()
             proc.communicate()
-            return failed_row(case, "wall-timeout", f"killed after the per-case wall timeout of {timeout_s:g} s",
-                              wall_s=time.perf_counter() - t0, executor=executor, peak_rss_mb=rss)
+            return failed_row(
+                case,
+                "wall-timeout",
+                f"killed after the per-case wall timeout of {timeout_s:g} s",
+                wall_s=time.perf_counter() - t0,
+                executor=executor,
+                peak_rss_mb=rss,
+            )
     finally:
         if running is not None:
             running.discard(proc)
@@ -227,7 +233,9 @@ class RayExecutor:
                 try:
                     yield ray.get(ref)
                 except ray.exceptions.RayError as error:  # the Ray worker or its node died
-                    yield failed_row(case, "crashed", f"the Ray task failed: {error}", wall_s=None, executor=self.name)
+                    yield failed_row(
+                        case, "crashed", f"the Ray task failed: {error}", wall_s=None, executor=self.name
+                    )
         finally:
             for ref in pending:
                 ray.cancel(ref, force=True)

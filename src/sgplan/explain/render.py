@@ -101,7 +101,7 @@ def explain_formula(
     # A formula nested deeper than automata are built for (a chain of thousands of NOTs) is read from its
     # automaton: the structural reading recurses over the formula as written.
     same = formula is not None and depth(formula) <= MAX_NESTING and _reads_as(formula, automaton, realizable)
-    if same:
+    if same and formula is not None:
         clauses = pattern_clauses(formula, lookup)
         if clauses is not None:
             return Explanation("\n".join([HEADER, *_numbered(clauses)]), "patterns")

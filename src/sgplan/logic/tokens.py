@@ -78,8 +78,10 @@ def as_token_list(tokens: Sequence[str] | str) -> list[str]:
     if isinstance(tokens, str):
         text = tokens.strip()
         if len(text) > 32 * MAX_TOKENS:
-            raise FormulaError(f"the formula text is {len(text):,} characters long; sgplan reads token lists of "
-                               f"at most {MAX_TOKENS:,} tokens")
+            raise FormulaError(
+                f"the formula text is {len(text):,} characters long; sgplan reads token lists of "
+                f"at most {MAX_TOKENS:,} tokens"
+            )
         try:
             value = ast.literal_eval(text)
         except (ValueError, SyntaxError, TypeError, MemoryError, RecursionError) as exc:

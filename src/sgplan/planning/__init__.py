@@ -9,4 +9,13 @@ Typical use::
 from sgplan.planning.amra import SETUPS, IterationRecord, PlanResult, Setup, get_setup, plan
 from sgplan.planning.problem import PROFILES, PlanningProblem
 
-__all__ = ["PROFILES", "SETUPS", "IterationRecord", "PlanResult", "PlanningProblem", "Setup", "get_setup", "plan"]
+__all__ = [
+    "PROFILES",
+    "SETUPS",
+    "IterationRecord",
+    "PlanResult",
+    "PlanningProblem",
+    "Setup",
+    "get_setup",
+    "plan",
+]

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 try:  # NumPy's switch for madvise(MADV_HUGEPAGE); absent on some versions/platforms.
-    from numpy._core.multiarray import _set_madvise_hugepage
+    from numpy._core.multiarray import _set_madvise_hugepage  # type: ignore[attr-defined]
 except ImportError:  # pragma: no cover - depends on the NumPy build
     try:
         from numpy.core.multiarray import _set_madvise_hugepage  # type: ignore[no-redef]

@@ -44,8 +44,22 @@ def build_map(G, A, M, k):
     hi = G.floor_offset[f + 1]
     src = A.map_src[A.map_src_ptr[k] : A.map_src_ptr[k + 1]]
     count = dijkstra(
-        G.nbr, G.step_cost, G.stairs_first, G.stairs_from, G.stairs_to, G.stairs_cost, lo, hi, np.bool_(False), src,
-        G.cell_room, A.map_stop_room[k], A.map_stop_count[k], M.dist[k], M.pred[k], M.order,
+        G.nbr,
+        G.step_cost,
+        G.stairs_first,
+        G.stairs_from,
+        G.stairs_to,
+        G.stairs_cost,
+        lo,
+        hi,
+        np.bool_(False),
+        src,
+        G.cell_room,
+        A.map_stop_room[k],
+        A.map_stop_count[k],
+        M.dist[k],
+        M.pred[k],
+        M.order,
     )
     label_runs(M.order, count, M.pred[k], G.cell_label, lo, M.run[k])
     M.done[k] = 1
@@ -109,8 +123,22 @@ def maps_ready(done, cell_room, cell_floor, in_object_region, room_obj_ptr, room
 
 
 @njit(cache=True, inline="always")
-def step_successors(nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost, cell_label, trans, c, q,
-                    out_c, out_q, out_cost, out_act):
+def step_successors(
+    nbr,
+    step_cost,
+    stairs_first,
+    stairs_from,
+    stairs_to,
+    stairs_cost,
+    cell_label,
+    trans,
+    c,
+    q,
+    out_c,
+    out_q,
+    out_cost,
+    out_act,
+):
     """Write the occupancy successors of (c, q) (8 steps, stairs) into the ``out_*`` buffers; returns
     their number. Successor q may be dead; the caller filters."""
     n = 0
@@ -135,10 +163,38 @@ def step_successors(nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs
 
 
 @njit(cache=True)
-def map_successors(floor_offset, cell_floor, cell_label, cell_room, in_object_region, room_obj_ptr, room_obj_map,
-                   room_room_ptr, room_room_map, floor_up_map, floor_down_map, map_floor, map_exit_cell,
-                   map_exit_cost, dist, pred, run, trans, accepting, dead, idempotent, c, q0, level, max_level, n,
-                   out_c, out_q, out_cost, out_act):
+def map_successors(
+    floor_offset,
+    cell_floor,
+    cell_label,
+    cell_room,
+    in_object_region,
+    room_obj_ptr,
+    room_obj_map,
+    room_room_ptr,
+    room_room_map,
+    floor_up_map,
+    floor_down_map,
+    map_floor,
+    map_exit_cell,
+    map_exit_cost,
+    dist,
+    pred,
+    run,
+    trans,
+    accepting,
+    dead,
+    idempotent,
+    c,
+    q0,
+    level,
+    max_level,
+    n,
+    out_c,
+    out_q,
+    out_cost,
+    out_act,
+):
     """Append the composite-action successors of (c, q0) at ``level`` (levels 2..max_level; 0 = all of
     them) to the ``out_*`` buffers after the first ``n``; returns the new count. The maps involved must be
     built (:func:`ensure_maps`).
@@ -219,10 +275,36 @@ def successors(G, A, M, L, c, q, level, max_level, out_c, out_q, out_cost, out_a
                             G.cell_label, L.trans, c, q, out_c, out_q, out_cost, out_act)
     if max_level >= 2 and level != 1:
         n = map_successors(
-            G.floor_offset, G.cell_floor, G.cell_label, G.cell_room, G.in_object_region, A.room_obj_ptr,
-            A.room_obj_map, A.room_room_ptr, A.room_room_map, A.floor_up_map, A.floor_down_map, A.map_floor,
-            A.map_exit_cell, A.map_exit_cost, M.dist, M.pred, M.run, L.trans, L.accepting, L.dead, L.idempotent[0],
-            c, q, level, max_level, n, out_c, out_q, out_cost, out_act,
+            G.floor_offset,
+            G.cell_floor,
+            G.cell_label,
+            G.cell_room,
+            G.in_object_region,
+            A.room_obj_ptr,
+            A.room_obj_map,
+            A.room_room_ptr,
+            A.room_room_map,
+            A.floor_up_map,
+            A.floor_down_map,
+            A.map_floor,
+            A.map_exit_cell,
+            A.map_exit_cost,
+            M.dist,
+            M.pred,
+            M.run,
+            L.trans,
+            L.accepting,
+            L.dead,
+            L.idempotent[0],
+            c,
+            q,
+            level,
+            max_level,
+            n,
+            out_c,
+            out_q,
+            out_cost,
+            out_act,
         )
     return n
 
@@ -332,8 +414,11 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
         hsize[0] = heap_push_at(hkey, hg, hstate, 0, hsize[0], gs + w1 * h0, gs, s)
         for j in range(1, q_level.shape[0]):
             if in_level(cell_room, in_object_region, c, q_level[j]):
-                hj = h0 if q_htype[j] == 0 else h_llm_core(cell_room, cell_xyz, accepting, llm_sum, llm_target,
-                                                           llm_valid, c, q)
+                hj = (
+                    h0
+                    if q_htype[j] == 0
+                    else h_llm_core(cell_room, cell_xyz, accepting, llm_sum, llm_target, llm_valid, c, q)
+                )
                 hsize[j] = heap_push_at(hkey, hg, hstate, j * capacity, hsize[j], gs + w1 * hj, gs, s)
 
 
@@ -354,9 +439,24 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     """
     # Unpack once (see the note above the array-level cores).
     nbr, step_cost, stairs_first, stairs_from = G.nbr, G.step_cost, G.stairs_first, G.stairs_from
-    stairs_to, stairs_cost, floor_offset, cell_floor = G.stairs_to, G.stairs_cost, G.floor_offset, G.cell_floor
-    cell_label, cell_room, cell_xyz, in_object_region = G.cell_label, G.cell_room, G.cell_xyz, G.in_object_region
-    room_obj_ptr, room_obj_map, room_room_ptr, room_room_map = A.room_obj_ptr, A.room_obj_map, A.room_room_ptr, A.room_room_map
+    stairs_to, stairs_cost, floor_offset, cell_floor = (
+        G.stairs_to,
+        G.stairs_cost,
+        G.floor_offset,
+        G.cell_floor,
+    )
+    cell_label, cell_room, cell_xyz, in_object_region = (
+        G.cell_label,
+        G.cell_room,
+        G.cell_xyz,
+        G.in_object_region,
+    )
+    room_obj_ptr, room_obj_map, room_room_ptr, room_room_map = (
+        A.room_obj_ptr,
+        A.room_obj_map,
+        A.room_room_ptr,
+        A.room_room_map,
+    )
     floor_up_map, floor_down_map, map_floor = A.floor_up_map, A.floor_down_map, A.map_floor
     map_exit_cell, map_exit_cost = A.map_exit_cell, A.map_exit_cost
     done_maps, dist, pred, run = M.done, M.dist, M.pred, M.run
@@ -365,7 +465,15 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     idempotent = L.idempotent[0]
     llm_sum, llm_target, llm_valid = L.llm_sum, L.llm_target, L.llm_valid
     g, parent, action, seen, closed, epoch = S.g, S.parent, S.action, S.seen, S.closed, S.epoch
-    hkey, hg, hstate, hsize, incons, fscal, iscal = S.hkey, S.hg, S.hstate, S.hsize, S.incons, S.fscal, S.iscal
+    hkey, hg, hstate, hsize, incons, fscal, iscal = (
+        S.hkey,
+        S.hg,
+        S.hstate,
+        S.hsize,
+        S.incons,
+        S.fscal,
+        S.iscal,
+    )
     expansions = S.expansions
 
     num_queues = q_level.shape[0]
@@ -397,7 +505,10 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
         if num_queues > 1:
             i = iscal[1]
             iscal[1] = i % (num_queues - 1) + 1
-            if clean_top(g, epoch, closed, hkey, hg, hstate, hsize, capacity, i, q_level[i], iteration) <= w2 * mk0:
+            if (
+                clean_top(g, epoch, closed, hkey, hg, hstate, hsize, capacity, i, q_level[i], iteration)
+                <= w2 * mk0
+            ):
                 chosen = i
         s = hstate[chosen * capacity]
         hsize[chosen] = heap_pop_at(hkey, hg, hstate, chosen * capacity, hsize[chosen])
@@ -415,17 +526,70 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
         gs = g[s]
         n = 0
         if level <= 1:
-            n = step_successors(nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost, cell_label, trans,
-                                c, q, out_c, out_q, out_cost, out_act)
+            n = step_successors(
+                nbr,
+                step_cost,
+                stairs_first,
+                stairs_from,
+                stairs_to,
+                stairs_cost,
+                cell_label,
+                trans,
+                c,
+                q,
+                out_c,
+                out_q,
+                out_cost,
+                out_act,
+            )
         if max_level >= 2 and level != 1:
-            if not maps_ready(done_maps, cell_room, cell_floor, in_object_region, room_obj_ptr, room_obj_map,
-                              room_room_ptr, room_room_map, floor_up_map, floor_down_map, c, level, max_level):
+            if not maps_ready(
+                done_maps,
+                cell_room,
+                cell_floor,
+                in_object_region,
+                room_obj_ptr,
+                room_obj_map,
+                room_room_ptr,
+                room_room_map,
+                floor_up_map,
+                floor_down_map,
+                c,
+                level,
+                max_level,
+            ):
                 ensure_maps(G, A, M, c, level, max_level)
             n = map_successors(
-                floor_offset, cell_floor, cell_label, cell_room, in_object_region, room_obj_ptr, room_obj_map,
-                room_room_ptr, room_room_map, floor_up_map, floor_down_map, map_floor, map_exit_cell, map_exit_cost,
-                dist, pred, run, trans, accepting, dead, idempotent, c, q, level, max_level, n, out_c, out_q,
-                out_cost, out_act,
+                floor_offset,
+                cell_floor,
+                cell_label,
+                cell_room,
+                in_object_region,
+                room_obj_ptr,
+                room_obj_map,
+                room_room_ptr,
+                room_room_map,
+                floor_up_map,
+                floor_down_map,
+                map_floor,
+                map_exit_cell,
+                map_exit_cost,
+                dist,
+                pred,
+                run,
+                trans,
+                accepting,
+                dead,
+                idempotent,
+                c,
+                q,
+                level,
+                max_level,
+                n,
+                out_c,
+                out_q,
+                out_cost,
+                out_act,
             )
         for t in range(n):
             nc = out_c[t]
@@ -462,7 +626,9 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
             h_l = -1.0  # h_LLM(nc, nq) (>= 0), computed once for all the LLM queues
             for j in range(1, num_queues):
                 lj = q_level[j]
-                if (lj == 2 and not in_object_region[nc]) or (lj == 3 and cell_room[nc] < 0):  # in_level, inline
+                if (lj == 2 and not in_object_region[nc]) or (
+                    lj == 3 and cell_room[nc] < 0
+                ):  # in_level, inline
                     continue
                 if epoch[ns] == iteration and (closed[ns] >> lj) & 1 == 1:
                     continue
@@ -470,7 +636,9 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
                     hj = h0
                 else:
                     if h_l < 0.0:
-                        h_l = h_llm_core(cell_room, cell_xyz, accepting, llm_sum, llm_target, llm_valid, nc, nq)
+                        h_l = h_llm_core(
+                            cell_room, cell_xyz, accepting, llm_sum, llm_target, llm_valid, nc, nq
+                        )
                     hj = h_l
                 fj = gn + w1 * hj
                 if fj <= w2 * f0:

@@ -170,7 +170,12 @@ def plan(
     domain = problem.domain
     if spec.uses_llm and domain.llm is None:
         raise PlanningError(f"setup {spec.name} needs LLM guidance; give the problem guidance or use NO-LLM")
-    if not (0 < decay < 1) or min(final_weights) < 1 or weights[0] < final_weights[0] or weights[1] < final_weights[1]:
+    if (
+        not (0 < decay < 1)
+        or min(final_weights) < 1
+        or weights[0] < final_weights[0]
+        or weights[1] < final_weights[1]
+    ):
         raise PlanningError(f"bad weight schedule {weights} -> {final_weights} with decay {decay}")
 
     if prebuild_actions and spec.max_level >= 2:
@@ -178,7 +183,9 @@ def plan(
     q_level = np.array([level for level, _ in spec.queues], dtype=np.int32)
     q_htype = np.array([h for _, h in spec.queues], dtype=np.int32)
     acts = domain.kactions
-    max_succ = int(10 + np.diff(acts.room_obj_ptr).max(initial=0) + np.diff(acts.room_room_ptr).max(initial=0) + 2)
+    max_succ = int(
+        10 + np.diff(acts.room_obj_ptr).max(initial=0) + np.diff(acts.room_room_ptr).max(initial=0) + 2
+    )
     warm_s = _warm_up(domain, q_level, q_htype, spec.max_level, max_succ)
     result = PlanResult(
         status="optimal", setup=spec.name, profile=problem.profile, cost_m=float("inf"), path=None,
@@ -187,7 +194,9 @@ def plan(
     if domain.accepting[domain.q_start]:
         result.cost_m = 0.0
         result.path = _path_rows(domain, np.array([domain.start_cell]))
-        result.iterations.append(IterationRecord(*weights, 0.0, weights[0] * weights[1], 0.0, (0,) * len(spec.queues)))
+        result.iterations.append(
+            IterationRecord(*weights, 0.0, weights[0] * weights[1], 0.0, (0,) * len(spec.queues))
+        )
         return result
 
     state = _new_state(domain, len(spec.queues))
@@ -246,14 +255,25 @@ def plan(
     return result
 
 
-def _warm_up(domain: PlanningDomain, q_level: np.ndarray, q_htype: np.ndarray, max_level: int, max_succ: int) -> float:
+def _warm_up(
+    domain: PlanningDomain, q_level: np.ndarray, q_htype: np.ndarray, max_level: int, max_succ: int
+) -> float:
     """Load (or compile) the search kernels on an empty search, so that no JIT time counts as search."""
     t0 = time.perf_counter()
     scratch = _new_state(domain, len(q_level))
     scratch.iscal[2] = 0
     _search.start_iteration(domain.kgraph, domain.klogic, scratch, q_level, q_htype, 1.0, 1.0, 1)
     _search.improve_path(
-        domain.kgraph, domain.kactions, domain.kmaps, domain.klogic, scratch, q_level, q_htype, max_level, 0, max_succ
+        domain.kgraph,
+        domain.kactions,
+        domain.kmaps,
+        domain.klogic,
+        scratch,
+        q_level,
+        q_htype,
+        max_level,
+        0,
+        max_succ,
     )
     return time.perf_counter() - t0
 
@@ -261,7 +281,8 @@ def _warm_up(domain: PlanningDomain, q_level: np.ndarray, q_htype: np.ndarray, m
 def _new_state(domain: PlanningDomain, num_queues: int) -> SearchState:
     """Fresh search memory with the start state in INCONS (so the first iteration opens it)."""
     num_states = domain.graph.num_cells * domain.num_states
-    # Heap arrays are lazily committed zeros: pages cost memory only when used, so a generous start costs nothing
+    # Heap arrays are lazily committed zeros: pages cost memory only when used, so a generous start costs
+    # nothing
     # and avoids most of the growth copies during the search.
     capacity = int(min(num_states + 16, 1 << 20))
     state = SearchState(
@@ -340,9 +361,9 @@ def _path_rows(domain: PlanningDomain, cells: np.ndarray) -> np.ndarray:
     for i in range(1, len(cells)):
         q = int(domain.trans[q, labels[i]])
         states[i] = q
-    return np.stack([graph.cell_row[cells], graph.cell_col[cells], graph.cell_floor[cells], states], axis=1).astype(
-        np.int64
-    )
+    return np.stack(
+        [graph.cell_row[cells], graph.cell_col[cells], graph.cell_floor[cells], states], axis=1
+    ).astype(np.int64)
 
 
 def path_cost(domain: PlanningDomain, cells: np.ndarray) -> float:
@@ -351,7 +372,10 @@ def path_cost(domain: PlanningDomain, cells: np.ndarray) -> float:
     a, b = cells[:-1], cells[1:]
     same = graph.cell_floor[a] == graph.cell_floor[b]
     res_x, res_y = (graph.step_cost[1], graph.step_cost[3])
-    steps = np.hypot((graph.cell_row[b] - graph.cell_row[a])[same] * res_x, (graph.cell_col[b] - graph.cell_col[a])[same] * res_y)
+    steps = np.hypot(
+        (graph.cell_row[b] - graph.cell_row[a])[same] * res_x,
+        (graph.cell_col[b] - graph.cell_col[a])[same] * res_y,
+    )
     total = float(steps.sum())
     for u, v in zip(a[~same], b[~same]):
         j = np.flatnonzero((graph.stairs_from == u) & (graph.stairs_to == v))

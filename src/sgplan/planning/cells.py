@@ -72,7 +72,7 @@ class CellGraph:
 
     def gather(self, raster: np.ndarray) -> np.ndarray:
         """The values of a ``(floors, rows, cols)`` raster at every cell, as an ``(N,)`` array."""
-        f, r, c = self.shape
+        _, r, c = self.shape
         flat = (self.cell_floor.astype(np.int64) * r + self.cell_row) * c + self.cell_col
         return raster.reshape(-1)[flat]
 

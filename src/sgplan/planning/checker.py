@@ -99,14 +99,14 @@ def _moves_cost(path: np.ndarray, grid: OccupancyGrid) -> tuple[float, list[str]
     grid_step = same_floor & (np.maximum(d_row, d_col) == 1)
     step_cost = np.hypot(d_row * res_x, d_col * res_y)
 
-    stairs = {}
+    stairs: dict[tuple[tuple[int, ...], tuple[int, ...]], float] = {}
     for link in grid.stairs:
         lower = (link.lower_cell[0], link.lower_cell[1], link.lower_floor)
         upper = (link.upper_cell[0], link.upper_cell[1], link.upper_floor)
         stairs[(lower, upper)] = stairs[(upper, lower)] = link.cost_m
 
     total = float(step_cost[grid_step].sum())
-    problems = []
+    problems: list[str] = []
     for k in np.flatnonzero(~grid_step):
         a, b = tuple(int(v) for v in path[k, :3]), tuple(int(v) for v in path[k + 1, :3])
         if (a, b) in stairs:

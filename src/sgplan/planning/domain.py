@@ -45,7 +45,8 @@ KernelActions = namedtuple(
 KernelMaps = namedtuple("KernelMaps", "done dist pred run order")
 KernelLogic = namedtuple(
     "KernelLogic",
-    "trans accepting dead idempotent hmap q_row h_ready h_dist h_ptr h_label h_add llm_sum llm_target llm_valid",
+    "trans accepting dead idempotent hmap q_row h_ready h_dist h_ptr h_label h_add llm_sum llm_target "
+    "llm_valid",
 )
 
 MAP_OBJECT, MAP_ROOM, MAP_FLOOR_UP, MAP_FLOOR_DOWN = 0, 1, 2, 3
@@ -118,13 +119,15 @@ class PlanningDomain:
         """
         lo = int(self.graph.floor_offset[self.kactions.map_floor[k]])
         pred = self.kmaps.pred[k]
-        cells = []
+        cells: list[int] = []
         x = start
         while x != end:
             p = int(pred[x - lo]) if 0 <= x - lo < pred.shape[0] else 0
             x = p - 2 + lo if p > 1 else int(self.kactions.map_exit_cell[k]) if p == 1 else -1
             if x < 0 or len(cells) > pred.shape[0]:
-                raise PlanningError(f"internal error: action {self.maps[k]} from cell {start} misses cell {end}")
+                raise PlanningError(
+                    f"internal error: action {self.maps[k]} from cell {start} misses cell {end}"
+                )
             cells.append(x)
         return cells
 
@@ -195,7 +198,9 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
     for i, room in enumerate(rooms):
         room_lut[room.id] = i
     room_ids = graph.gather(problem.grid.room_map).astype(np.int64)
-    cell_room = np.where((room_ids > 0) & (room_ids < len(room_lut) - 1), room_lut[np.clip(room_ids, 0, None)], -1)
+    cell_room = np.where(
+        (room_ids > 0) & (room_ids < len(room_lut) - 1), room_lut[np.clip(room_ids, 0, None)], -1
+    )
     cell_room = cell_room.astype(np.int32)
 
     maps, kactions, in_region = _action_maps(problem, graph, rooms, cell_room)
@@ -287,7 +292,8 @@ def _check_start(problem: PlanningProblem, graph: CellGraph) -> int:
     where = f"start (row {row}, col {col}, floor {floor})"
     if not (0 <= floor < floors and 0 <= row < rows and 0 <= col < cols):
         raise PlanningError(
-            f"{where} lies outside the grid ({floors} floors of {rows} x {cols} cells)", status="invalid-start"
+            f"{where} lies outside the grid ({floors} floors of {rows} x {cols} cells)",
+            status="invalid-start",
         )
     cell = graph.cell_id(row, col, floor)
     if cell >= 0:
@@ -322,7 +328,9 @@ def _clearance(problem: PlanningProblem, cat: np.ndarray | None, row: int, col: 
     return f": the nearest obstacle is {nearest:.3f} m away, less than the robot radius {radius:g} m"
 
 
-def _infeasible_reason(problem: PlanningProblem, masks: np.ndarray, reachable: np.ndarray, q_start: int) -> str:
+def _infeasible_reason(
+    problem: PlanningProblem, masks: np.ndarray, reachable: np.ndarray, q_start: int
+) -> str:
     """Which propositions can never hold on a reachable cell, or which automaton progress is blocked."""
     seen = np.bitwise_or.reduce(masks[reachable]) if reachable.any() else 0
     missing = [problem.ap_name(i) for i in range(len(problem.automaton.aps)) if not seen >> i & 1]
@@ -365,7 +373,7 @@ def _action_maps(
     for r, room in enumerate(rooms):
         if room.floor >= floors:
             continue
-        stop = -1 if room.is_staircase else r
+        stop = -1 if room.is_staircase else r  # the room a map's paths stop in (-1: none)
         for obj in room.objects.values():
             cells = _reach_region(problem, graph, room, obj)
             if cells.size:
@@ -380,7 +388,9 @@ def _action_maps(
                 continue
             ids = _cell_ids(graph, room.floor, np.asarray(doors, dtype=np.int64).reshape(-1, 2))
             if ids.size:
-                room_room[r].append(add(ActionMap(MAP_ROOM, (room.uuid, rooms[other].uuid), room.floor), ids, r))
+                room_room[r].append(
+                    add(ActionMap(MAP_ROOM, (room.uuid, rooms[other].uuid), room.floor), ids, r)
+                )
 
     floor_up = np.full(floors, -1, dtype=np.int32)
     floor_down = np.full(floors, -1, dtype=np.int32)
@@ -393,7 +403,11 @@ def _action_maps(
             ActionMap(MAP_FLOOR_UP, link.lower_floor, link.lower_floor), np.array([low]), -1, up, link.cost_m
         )
         floor_down[link.upper_floor] = add(
-            ActionMap(MAP_FLOOR_DOWN, link.upper_floor, link.upper_floor), np.array([up]), -1, low, link.cost_m
+            ActionMap(MAP_FLOOR_DOWN, link.upper_floor, link.upper_floor),
+            np.array([up]),
+            -1,
+            low,
+            link.cost_m,
         )
 
     def csr(lists: list[list[int]]) -> tuple[np.ndarray, np.ndarray]:
@@ -406,7 +420,7 @@ def _action_maps(
     room_ptr, room_map = csr(room_room)
     src_ptr = np.zeros(len(maps) + 1, dtype=np.int64)
     src_ptr[1:] = np.cumsum([len(s) for s in sources])
-    stop = np.array(stop_room, dtype=np.int32)
+    stop_rooms = np.array(stop_room, dtype=np.int32)
     kactions = KernelActions(
         room_obj_ptr=obj_ptr,
         room_obj_map=obj_map,
@@ -417,8 +431,8 @@ def _action_maps(
         map_floor=np.array([m.floor for m in maps], dtype=np.int32),
         map_src_ptr=src_ptr,
         map_src=np.concatenate(sources) if sources else np.zeros(0, dtype=np.int64),
-        map_stop_room=stop,
-        map_stop_count=np.array([room_cells[s] if s >= 0 else 0 for s in stop], dtype=np.int64),
+        map_stop_room=stop_rooms,
+        map_stop_count=np.array([room_cells[s] if s >= 0 else 0 for s in stop_rooms], dtype=np.int64),
         map_exit_cell=np.array(exit_cell, dtype=np.int64),
         map_exit_cost=np.array(exit_cost, dtype=np.float64),
     )
@@ -441,7 +455,10 @@ def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj) -> np.n
         return np.zeros(0, dtype=np.int64)
     res = problem.grid.resolution_m
     rows, cols = floor.shape
-    pad = (int(np.ceil(problem.reach_radius_m / res[0])) + 1, int(np.ceil(problem.reach_radius_m / res[1])) + 1)
+    pad = (
+        int(np.ceil(problem.reach_radius_m / res[0])) + 1,
+        int(np.ceil(problem.reach_radius_m / res[1])) + 1,
+    )
     r0, c0 = max(obj.grid_min[0] - pad[0], 0), max(obj.grid_min[1] - pad[1], 0)
     r1, c1 = min(obj.grid_max[0] + pad[0] + 1, rows), min(obj.grid_max[1] + pad[1] + 1, cols)
     footprint = floor.cat_map[r0:r1, c0:c1] == obj.id

@@ -85,7 +85,9 @@ def build_llm_heuristic(
         for q_key, calls in per_state.items():
             q = _as_int(q_key)
             if q is None or not 0 <= q < num_states or not isinstance(calls, (list, tuple)):
-                stats.skip(f"room {room_uuid}: state key {q_key!r} is not a state with a call list", entry=True)
+                stats.skip(
+                    f"room {room_uuid}: state key {q_key!r} is not a state with a call list", entry=True
+                )
                 continue
             stats.entries += 1
             legs = [leg for leg in (_leg(call, building, stats) for call in calls) if leg is not None]

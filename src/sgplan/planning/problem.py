@@ -60,7 +60,9 @@ class PlanningProblem:
 
     def __post_init__(self) -> None:
         if self.profile not in PROFILES:
-            raise PlanningError(f"unknown semantics profile {self.profile!r}; use one of {', '.join(PROFILES)}")
+            raise PlanningError(
+                f"unknown semantics profile {self.profile!r}; use one of {', '.join(PROFILES)}"
+            )
         if tuple(self.labels.shape) != tuple(self.grid.shape):
             raise PlanningError(
                 f"label raster has shape {tuple(self.labels.shape)}, the grid {tuple(self.grid.shape)} "
@@ -69,7 +71,9 @@ class PlanningProblem:
         if not np.issubdtype(self.labels.dtype, np.integer):
             raise PlanningError(f"label raster must hold integer bitmasks, got dtype {self.labels.dtype}")
         if not (np.isfinite(self.reach_radius_m) and self.reach_radius_m > 0):
-            raise PlanningError(f"reach radius must be a positive number of metres, got {self.reach_radius_m}")
+            raise PlanningError(
+                f"reach radius must be a positive number of metres, got {self.reach_radius_m}"
+            )
         self.start = tuple(int(v) for v in self.start)  # type: ignore[assignment]
 
     def ap_name(self, index: int) -> str:

@@ -223,9 +223,11 @@ def _radius(fields: Fields, key: str, maximum: float, *, zero: bool = False) -> 
     """A radius in metres in (0, ``maximum``] (``[0, maximum]`` with ``zero``: a point robot), the bounds
     the command line puts on the same option."""
     value = fields.number(key)
-    if not (0 <= value if zero else 0 < value) or not value <= maximum:
+    if not (value >= 0 if zero else value > 0) or not value <= maximum:
         low = ">= 0" if zero else "> 0"
-        raise fields.error(f"field {key!r} must be a radius in metres {low} and <= {maximum:g}, got {value:g}")
+        raise fields.error(
+            f"field {key!r} must be a radius in metres {low} and <= {maximum:g}, got {value:g}"
+        )
     return value
 
 
