@@ -11,7 +11,7 @@ from sgplan.planning import PlanningProblem
 from sgplan.scene.grid import OccupancyGrid, StairsLink, build_occupancy_grid
 from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building, CatCode, Floor, Room
-from sgplan.scene.synthetic import random_small_building
+from tests.scene.small_buildings import random_small_building
 
 RES = 0.1
 

@@ -12,9 +12,9 @@ from sgplan.planning import PlanningProblem
 from sgplan.planning._search import ACT_MAP, successors
 from sgplan.planning.amra import path_cost
 from sgplan.planning.domain import MAP_FLOOR_DOWN, MAP_FLOOR_UP
-from sgplan.scene.distances import grid_distances
 from sgplan.scene.grid import StairsLink
 from sgplan.scene.model import CatCode
+from tests.scene.distances import grid_distances
 
 from .instances import RES, automaton, marks, open_building, open_grid, random_problem
 

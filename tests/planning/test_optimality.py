@@ -21,7 +21,7 @@ from sgplan.planning.checker import check_path
 from sgplan.planning.problem import PlanningProblem
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.labels import Proposition, label_raster
-from sgplan.scene.synthetic import random_small_building
+from tests.scene.small_buildings import random_small_building
 
 from .oracle import optimal_cost
 

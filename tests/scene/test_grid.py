@@ -18,7 +18,6 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import dijkstra
 
 from sgplan.errors import PlanningError, SceneError
-from sgplan.scene.distances import grid_distances
 from sgplan.scene.footprint import FootprintKernel, footprint_kernel, footprint_vertices, inflate
 from sgplan.scene.grid import (
     OccupancyGrid,
@@ -28,7 +27,9 @@ from sgplan.scene.grid import (
     stairs_links,
 )
 from sgplan.scene.model import CatCode, StairsEnd
-from sgplan.scene.synthetic import generate_building, random_small_building
+from sgplan.scene.synthetic import generate_building
+from tests.scene.distances import grid_distances
+from tests.scene.small_buildings import random_small_building
 
 # Floor 0 geometry of the three scenes (building.yaml), to check kernels without the data.
 GEOMETRY = {

@@ -13,7 +13,7 @@ from sgplan.errors import FormulaError, MissionError, SceneError
 from sgplan.scene.demo import demo_building
 from sgplan.scene.labels import MAX_PROPOSITIONS, Proposition, label_raster, reach_half_widths
 from sgplan.scene.model import Building
-from sgplan.scene.synthetic import random_small_building
+from tests.scene.small_buildings import random_small_building
 
 
 def test_proposition_names_and_parsing() -> None:

@@ -11,11 +11,12 @@ from hypothesis import strategies as st
 
 from sgplan.errors import SceneError
 from sgplan.scene.demo import DEMO_REACH_RADIUS_M, DEMO_ROBOT_RADIUS_M, demo_building
-from sgplan.scene.distances import grid_distances
 from sgplan.scene.grid import build_occupancy_grid, floor_heights_m
 from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building, CatCode
-from sgplan.scene.synthetic import RoomSpec, building_from_specs, generate_building, random_small_building
+from sgplan.scene.synthetic import RoomSpec, building_from_specs, generate_building
+from tests.scene.distances import grid_distances
+from tests.scene.small_buildings import random_small_building
 
 
 def check_invariants(building: Building) -> None:

@@ -6,7 +6,7 @@ metres (``res_x``, ``res_y`` or ``hypot(res_x, res_y)``); a stairs move joins th
 :class:`StairsLink` at its cost.
 
 :func:`build_occupancy_grid` builds the grid exactly as the authors' planner does
-(reference-algorithm.md §2); :mod:`sgplan.scene.distances` computes exact shortest distances over it.
+(the authors' occupancy rule); the planner's domain computes shortest distances over it.
 """
 
 from __future__ import annotations
