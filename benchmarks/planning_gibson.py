@@ -2,13 +2,13 @@
 
 Prints per case: first-path search time, first cost / optimal cost, search time to the optimum,
 expansions, load and precompute seconds, whole-process wall seconds and peak RSS (the child's own
-ru_maxrss), next to the authors' C++ reference where one exists (reference-algorithm.md / issue 4).
+ru_maxrss), next to the authors' C++ numbers measured on this kind of machine where they exist.
 
     .venv/bin/python benchmarks/planning_gibson.py                 # the four reference cases
     .venv/bin/python benchmarks/planning_gibson.py --all           # 3 scenes x 5 missions x 5 starts
     .venv/bin/python benchmarks/planning_gibson.py --all --setups ALL NO-LLM A*
 
-With ``--all`` the optimal costs are also compared with the "stay" column of reference-algorithm.md §11.
+With ``--all`` the optimal costs are also compared with the authors' planner's recorded optima.
 Needs the Gibson data (see sgplan.datasets).
 """
 
