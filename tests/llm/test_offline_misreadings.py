@@ -170,6 +170,28 @@ def test_whenever_is_a_response(demo, text, gold):
 @pytest.mark.parametrize(
     ("text", "gold"),
     [
+        ("Water the plant in the office. If you ever walk into the dining room, check the sink upstairs later.",
+         "F o36 & G(r7 -> F o41)"),
+        ("If you enter the living room at some point, sit on the couch afterwards.", "G(r6 -> F o22)"),
+        ("If you pass through the kitchen, go to the bedroom with the book after that.", "G(r4 -> F r13)"),
+        ("Open the fridge afterwards if you ever end up in the dining room.", "G(r7 -> F o15)"),
+        ("Visit the bathroom on floor 1 if you visit the kitchen at any time.", "G(r4 -> F r14)"),
+        # without those words the condition is one event: "if X happens (at all), Y"
+        ("If you visit the kitchen, then take the bowl.", "F r4 -> F o19"),
+    ],
+)
+def test_a_condition_about_every_visit_is_a_response(demo, text, gold):
+    means(text, gold, demo)
+
+
+def test_a_response_to_several_places_is_refused(demo):
+    refused("If you ever go to the kitchen and the bedroom with the book, visit the office afterwards.",
+            "with one room or object", demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
         ("Visit the kitchen twice.", "F(r4 & F(!r4 & F r4))"),
         ("Visit the kitchen two times.", "F(r4 & F(!r4 & F r4))"),
         ("Go to the kitchen, then go to the kitchen again.", "F(r4 & F(!r4 & F r4))"),

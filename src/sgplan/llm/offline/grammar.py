@@ -68,6 +68,11 @@ _SUBJECT_FILLERS = frozenset("you we i the robot it ever have has had do does di
 _CONDITION_WORDS = ("if", "when", "once", "in case")
 _WHENEVER = (("whenever",), ("every", "time"), ("each", "time"), ("any", "time"), ("anytime",))
 _ONLY_AFTER = (("only", "after"), ("only", "once"), ("not", "before"), ("not", "until"))
+_EVER = (("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"), ("every", "time"),
+         ("each", "time"), ("anytime",))
+"""In a condition ("if you ever go into X"): it is about each visit of X, a response, not one event."""
+_AFTERWARDS = (("afterwards",), ("afterward",), ("after", "that"), ("after",), ("later",), ("straight", "after"), ("right", "after"))
+"""In the consequent of a condition ("..., visit Y afterwards"): Y follows X, a response."""
 _FIRST = frozenset({"first", "firstly"})
 _MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
 _STRUCTURAL = (
@@ -244,10 +249,13 @@ class MissionParser:
         cond_word = next((w for w in _CONDITION_WORDS if self.at(*w.split())), None)
         if cond_word is not None:
             self.i += len(cond_word.split())
-            condition = self.condition()
+            start = self.i
+            condition, tasks = self.condition()
+            said_ever = self.says(_EVER, start, self.i)
             self.expect_comma_or_then()
+            start = self.i
             body = self.body()
-            return Implies(condition, self.require(body, "after the condition"))
+            return self.conditional(condition, tasks, body, said_ever or self.says(_AFTERWARDS, start, self.i))
         if self.at_any(_ONLY_AFTER):
             self.i += 2
             before = self.prefix_clause()
@@ -294,15 +302,17 @@ class MissionParser:
             return self.whenever(trigger, body)
         if self.at("only", "if"):
             self.i += 2
-            condition = self.condition()
+            condition, _ = self.condition()
             self.expect_end()
             return Implies(self.require(body, "before 'only if'"), condition)
         cond_word = next((w for w in _CONDITION_WORDS if self.at(*w.split())), None)
         if cond_word is not None:
             self.i += len(cond_word.split())
-            condition = self.condition()
+            start = self.i
+            condition, tasks = self.condition()
+            response = self.says(_EVER, start, self.i) or self.says(_AFTERWARDS, 0, start)
             self.expect_end()
-            return Implies(condition, self.require(body, f"before '{cond_word}'"))
+            return self.conditional(condition, tasks, body, response)
         raise self.fail(f"cannot understand {self.here()}")
 
     def require(self, clause: Clause, where: str) -> Formula:
@@ -363,8 +373,8 @@ class MissionParser:
         self.expect_comma_or_then()
         return Clause(steps=steps)
 
-    def condition(self) -> Formula:
-        """``if you go to the kitchen``: the formula that the condition happened (F ...)."""
+    def condition(self) -> tuple[Formula, list[Task]]:
+        """``if you go to the kitchen``: the formula that the condition happened (F ...), and its tasks."""
         self.skip_subject()
         if self.word() in ("not", "never"):
             raise self.fail("negative conditions ('if you do not ...') are not understood")
@@ -372,7 +382,23 @@ class MissionParser:
         f = sequence_formula(steps)
         if f is None:
             raise self.fail("the condition names no room or object")
-        return f
+        return f, [t for step in steps for t in step]
+
+    def says(self, phrases: tuple[tuple[str, ...], ...], start: int, end: int) -> bool:
+        """Whether one of ``phrases`` occurs among the tokens ``[start, end)`` of this sentence."""
+        return any(self.at(*p, k=j - self.i) for j in range(start, end) for p in phrases
+                   if j + len(p) <= end)
+
+    def conditional(self, condition: Formula, tasks: list[Task], body: Clause, response: bool) -> Formula:
+        """``if X, Y``: ``F X -> Y``. When the antecedent says *ever* / *at any point* or the consequent
+        *afterwards* / *after that*, people mean a response to each visit of X, as with *whenever*
+        (``G(X -> F Y)``); that needs one place as X (else it is refused rather than guessed)."""
+        if not response:
+            return Implies(condition, self.require(body, "for the condition"))
+        if len(tasks) != 1:
+            raise self.fail("'if you ever go to X, ... afterwards' is understood with one room or object (or a "
+                            "choice of them) as X")
+        return self.whenever(tasks[0], body)
 
     def skip_subject(self) -> None:
         while self.word() in _SUBJECT_FILLERS and not self.np_starts():
