@@ -279,3 +279,24 @@ def test_everyday_constructs_in_gibson_scenes(gibson_root):
     means("Go downstairs to the lobby.", "F r17", benevolence, PatternTranslator(start_floor=2))
     collierville = load_authors_scene(gibson_root / "Collierville")
     means("Use the toilet on the middle floor.", "F o38", collierville)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Once you have been to the office, sit on the couch.", "F(r12 & F o22)"),
+        ("Sit on the couch once you have been to the office.", "F(r12 & F o22)"),
+        ("Open the fridge, and once you are done, wash the bowl.", "F(o15 & F o19)"),
+        ("Touch the teddy bear. When you have finished with that, go to the dining room.", "F(o32 & F r7)"),
+        ("When done with the office, head to the bathroom on floor 0.", "F(r12 & F r5)"),
+        ("Go to the dining room after you are done with the living room.", "F(r6 & F r7)"),
+        ("Sit on the couch. Stay out of the kitchen until you have done that.", "F o22 & (!r4 U o22)"),
+    ],
+)
+def test_once_and_done_are_sequences(demo, text, gold):
+    means(text, gold, demo)
+
+
+def test_when_without_a_clear_reading_is_refused(demo):
+    refused("When you reach the kitchen, open the fridge.", "say which", demo)
+    refused("Never enter the office until you have done that.", "'done that' does not refer", demo)

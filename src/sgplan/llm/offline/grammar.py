@@ -65,8 +65,10 @@ _QUAL_EXCEPT = (("except", "for"), ("except",), ("but", "not"), ("other", "than"
 _PARTICLES = frozenset("on off up down out over".split())
 _SUBJECT_FILLERS = frozenset("you we i the robot it ever have has had do does did are is were was already "
                              "been also first".split())
-_CONDITION_WORDS = ("if", "when", "once", "in case")
+_CONDITION_WORDS = ("if", "when", "in case")
+"""Conditions; *once* is temporal ('once you have been to X' = after X), not a condition."""
 _WHENEVER = (("whenever",), ("every", "time"), ("each", "time"), ("any", "time"), ("anytime",))
+_DONE = frozenset({"done", "finished", "through"})
 _ONLY_AFTER = (("only", "after"), ("only", "once"), ("not", "before"), ("not", "until"))
 _EVER = (("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"), ("every", "time"),
          ("each", "time"), ("anytime",))
@@ -81,7 +83,7 @@ _STRUCTURAL = (
     | frozenset(_QUAL_IN) | frozenset(w for c in _CONDITION_WORDS for w in c.split()) | _DETERMINERS
     | frozenset(lx.FLOOR_WORDS) | frozenset(lx.FLOOR_ORDINALS) | frozenset(lx.FLOOR_NAMED)
     | frozenset(lx.FLOOR_TOP) | frozenset(lx.FLOOR_MIDDLE) | frozenset(lx.NUMBER_WORDS) | frozenset(lx.PRONOUNS)
-    | frozenset(lx.GENERIC_ROOM_WORDS) | frozenset({"whenever", "only", "than", "zero", "ever", "again", "twice",
+    | frozenset(lx.GENERIC_ROOM_WORDS) | frozenset({"whenever", "only", "than", "zero", "ever", "again", "twice", "once",
                                                   "times", "anytime"})
 ) - lx.POSITIVE_VERBS - {"first", "also", "please", "eventually", "finally"}
 """Words with a role in the grammar: in the verb slot they signal a sentence that was not understood."""
@@ -141,6 +143,8 @@ class MissionParser:
         self.sentence_scope: list[Entity] = []
         self.prior_steps: list[Step] = []
         """The steps of the previous sentence when this one continues its sequence ("... Then ...")."""
+        self.last_step: Step = []
+        """The last step with goals of the previous sentence (what *done that* refers to)."""
         self.pending_floor: frozenset[int] | None = None
         """A floor said in the verb slot ("go upstairs to ..."), for the next noun phrase."""
 
@@ -198,6 +202,8 @@ class MissionParser:
                 previous.constraints.extend(result.constraints)
             else:
                 parts.append(result)
+            if isinstance(result, Clause) and any(result.steps):
+                self.last_step = [s for s in result.steps if s][-1]
         formulas = [p.formula() if isinstance(p, Clause) else p for p in parts]
         present = [f for f in formulas if f is not None]
         if not present:
@@ -228,7 +234,9 @@ class MissionParser:
         seen_sequence = False
         while not self.done():
             seq = self.at_any(_SEQ_WORDS) if sequence_too else None
-            if seq is not None:
+            if sequence_too and self.done_sequence():
+                seen_sequence = True
+            elif seq is not None:
                 self.i += len(seq)
                 seen_sequence = True
             elif self.at_any(lx.TIME_FILLERS) is not None:
@@ -246,6 +254,13 @@ class MissionParser:
             trigger = self.trigger()
             self.expect_comma_or_then()
             return self.whenever(trigger, self.body())
+        done = self.done_words()
+        if done and self.word(done) == "with" and self.np_starts(done + 1):  # "when done with the garage, ..."
+            self.i += done + 1
+            before = self.prefix_clause()
+            body = self.body()
+            body.steps[:0] = before.steps
+            return self.postfix_condition(body)
         cond_word = next((w for w in _CONDITION_WORDS if self.at(*w.split())), None)
         if cond_word is not None:
             self.i += len(cond_word.split())
@@ -255,13 +270,14 @@ class MissionParser:
             self.expect_comma_or_then()
             start = self.i
             body = self.body()
-            return self.conditional(condition, tasks, body, said_ever or self.says(_AFTERWARDS, start, self.i))
+            return self.conditional(cond_word, condition, tasks, body,
+                                    said_ever or self.says(_AFTERWARDS, start, self.i))
         if self.at_any(_ONLY_AFTER):
             self.i += 2
             before = self.prefix_clause()
             body = self.body()
             return self.only_after(before, body)
-        if self.word() in ("after", "once"):
+        if self.word() in ("after", "once") and not self.at("after", "that"):
             self.i += 1
             before = self.prefix_clause()
             body = self.body()
@@ -312,7 +328,7 @@ class MissionParser:
             condition, tasks = self.condition()
             response = self.says(_EVER, start, self.i) or self.says(_AFTERWARDS, 0, start)
             self.expect_end()
-            return self.conditional(condition, tasks, body, response)
+            return self.conditional(cond_word, condition, tasks, body, response)
         raise self.fail(f"cannot understand {self.here()}")
 
     def require(self, clause: Clause, where: str) -> Formula:
@@ -389,10 +405,14 @@ class MissionParser:
         return any(self.at(*p, k=j - self.i) for j in range(start, end) for p in phrases
                    if j + len(p) <= end)
 
-    def conditional(self, condition: Formula, tasks: list[Task], body: Clause, response: bool) -> Formula:
+    def conditional(self, word: str, condition: Formula, tasks: list[Task], body: Clause, response: bool) -> Formula:
         """``if X, Y``: ``F X -> Y``. When the antecedent says *ever* / *at any point* or the consequent
         *afterwards* / *after that*, people mean a response to each visit of X, as with *whenever*
-        (``G(X -> F Y)``); that needs one place as X (else it is refused rather than guessed)."""
+        (``G(X -> F Y)``); that needs one place as X (else it is refused rather than guessed). A bare
+        ``when X, Y`` may mean either, or a plain sequence, so it is refused."""
+        if not response and word == "when":
+            raise self.fail("'when X, Y' can mean 'after X, Y' (in order), 'whenever X, Y' (each time) or 'if X, Y' "
+                            "(X at all); say which")
         if not response:
             return Implies(condition, self.require(body, "for the condition"))
         if len(tasks) != 1:
@@ -404,12 +424,54 @@ class MissionParser:
         while self.word() in _SUBJECT_FILLERS and not self.np_starts():
             self.i += 1
 
+    def done_words(self, k: int = 0) -> int:
+        """How many words at offset ``k`` say the previous step is over: ``once you're done``, ``when you
+        have finished``, ``after that is done`` (0 if they do not). ``with X`` after them is not counted."""
+        if self.word(k) not in ("once", "when", "after"):
+            return 0
+        n = 1
+        while self.word(k + n) in _SUBJECT_FILLERS | {"that", "this", "are", "all", "both", "of", "them"}:
+            n += 1
+        return n + 1 if self.word(k + n) in _DONE else 0
+
+    def done_sequence(self) -> bool:
+        """``once you're done (with that) (,)``: consumed when it refers back to the previous step (a
+        sequence word then); not when it names what is done (``when done with the garage``)."""
+        n = self.done_words()
+        if not n:
+            return False
+        back = ("that", "this", "it", "them", "everything", "there")
+        if self.word(n) == "with" and (self.word(n + 1) not in back or self.np_starts(n + 2)):
+            return False
+        k = n + 1 if self.word(n) == "with" else n
+        self.i += k + (1 if self.word(k) in back else 0)
+        return True
+
+    def previous_step(self, clause: Clause) -> Step:
+        """The last step with goals, in this clause or the sentence before (what *that* in *before you have
+        done that* refers to); refused when there is none."""
+        for step in reversed(clause.steps):
+            if step:
+                return step
+        if self.last_step:
+            return self.last_step
+        raise self.fail("'done that' does not refer to any goal named before it")
+
     # -- sentence bodies -----------------------------------------------------------------------------
     def body(self) -> Clause:
         clause = Clause()
         while not self.done():
             if self.word() in ("but", "and", ",") and self.at_any(_ONLY_AFTER, k=1):
                 self.i += 1  # "..., but only after X" / "..., but not before X"
+            done = self.done_words()
+            if done and self.word(done) == "with" and self.np_starts(done + 1):  # "... when done with X"
+                self.i += done + 1
+                clause.steps[-1:-1] = [t for t in self.action() if t]
+                continue
+            if done and self.skip_fillers(sequence_too=True):
+                if clause.steps[-1]:
+                    clause.steps.append([])
+                continue
             if (self.at("only", "if") or any(self.at(*w.split()) for w in _CONDITION_WORDS)
                     or self.at_any(_ONLY_AFTER) or self.at_any(_WHENEVER)):
                 break
@@ -431,7 +493,7 @@ class MissionParser:
             neg = self.at_any(_NEG_STARTS)
             if neg is not None:
                 self.negation(neg, clause)
-            elif self.word() == "after" and not self.at("after", "that"):
+            elif self.word() in ("after", "once") and not self.at("after", "that"):
                 self.i += 1
                 self.skip_subject()
                 clause.steps[-1:-1] = [t for t in self.action() if t]
@@ -521,7 +583,14 @@ class MissionParser:
         if self.word() in ("until", "before"):
             self.i += 1
             self.skip_subject()
-            steps = self.action()
+            back = ("that", "this", "it", "so")
+            if self.word() in _DONE and (self.word(1) in back and not self.np_starts(2) or not self.np_starts(1)):
+                self.i += 1  # "... before you've done that"
+                if self.word() in back:
+                    self.i += 1
+                steps = [self.previous_step(clause)]
+            else:
+                steps = self.action()
             tasks = [t for s in steps for t in s]
             if len(tasks) != 1:
                 raise self.fail("'... until X' needs one goal X")
