@@ -300,3 +300,19 @@ def test_once_and_done_are_sequences(demo, text, gold):
 def test_when_without_a_clear_reading_is_refused(demo):
     refused("When you reach the kitchen, open the fridge.", "say which", demo)
     refused("Never enter the office until you have done that.", "'done that' does not refer", demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Sit on the couch first and wash the bowl.", "F(o22 & F o19)"),
+        ("Visit the dining room and the office, the office first.", "F(r12 & F r7)"),
+    ],
+)
+def test_a_trailing_first_orders_what_follows(demo, text, gold):
+    means(text, gold, demo)
+
+
+def test_unclear_first_and_repeated_phrases_are_refused(demo):
+    refused("Go to the office. Go to the kitchen first.", "trailing 'first'", demo)
+    refused("Visit the kitchen, the office and the kitchen.", "named twice", demo)

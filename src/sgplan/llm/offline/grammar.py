@@ -522,6 +522,12 @@ class MissionParser:
                     if any(clause.steps):
                         clause.steps[0:0] = [s for s in steps if s]
                         continue
+                    if self.done() and self.last_step:  # "Go to B. Go to A first.": before which goal?
+                        raise self.fail("a trailing 'first' in a later sentence: start the sentence with 'Before "
+                                        "that' or put the goals in the order they must be done")
+                    clause.steps[-1].extend(steps[0])  # "go to A first and (then) B": A, then the rest
+                    clause.steps.extend(steps[1:] + [[]])
+                    continue
                 clause.steps[-1].extend(steps[0])
                 if len(steps) > 1:
                     clause.steps.extend(steps[1:])
@@ -670,12 +676,17 @@ class MissionParser:
         scope = list(step_rooms or []) or self.sentence_scope
         carry = bool(set(verbs) & lx.CARRY_VERBS)
         nps = self.noun_phrase_list("goal", scope, "object" if carry else None)
+        listed = len(nps)
+        nps = self.first_of_list(nps)
+        lead = len(nps) < listed  # "A and B, B first": B, then A
         ordered = self.at_any(lx.ORDER_MODIFIERS)
         if ordered:
             self.i += len(ordered)
         pronoun_only = all(np.phrase.lower() in lx.PRONOUNS for np in nps)
         # "put it in Y": the object is already in hand, the goal is Y, after what came before.
         steps: list[Step] = [[]] if carry and pronoun_only else self.tasks_of(nps, ordered is not None)
+        if lead:
+            steps = [steps[0][:1], steps[0][1:]]
         self.revisits(nps, steps, verbs)
         self.skip_particles()
         # "put X in Y", "take X to Y", "go from X to Y", and any object followed by "to Y": X, then Y.
@@ -701,6 +712,19 @@ class MissionParser:
         if self.at_any(lx.TIME_FILLERS):
             self.i += len(self.at_any(lx.TIME_FILLERS) or ())
         return steps or [[]]
+
+    def first_of_list(self, nps: list[NounPhrase]) -> list[NounPhrase]:
+        """``A and B, B first``: the list with B moved to the front and once only (*first* is consumed; the
+        caller orders it before the rest). Any other phrase named twice in one list is refused: it is not clear what is meant."""
+        keys = [frozenset(e.key for e in np.entities) for np in nps]
+        repeated = [n for n, k in enumerate(keys) if k in keys[:n]]
+        if not repeated:
+            return nps
+        if repeated == [len(nps) - 1] and self.word() in _FIRST:
+            self.i += 1
+            again = keys.index(keys[-1])
+            return [nps[-1]] + [np for n, np in enumerate(nps[:-1]) if n != again]
+        raise self.fail(f"'{nps[repeated[0]].phrase}' is named twice in one list")
 
     def revisits(self, nps: list[NounPhrase], steps: list[Step], verbs: list[str]) -> None:
         """``X again`` / ``go back to X`` / ``return to X`` (X named as a goal before): a new visit;
