@@ -316,3 +316,41 @@ def test_a_trailing_first_orders_what_follows(demo, text, gold):
 def test_unclear_first_and_repeated_phrases_are_refused(demo):
     refused("Go to the office. Go to the kitchen first.", "trailing 'first'", demo)
     refused("Visit the kitchen, the office and the kitchen.", "named twice", demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Head to a bathroom, either one works.", "F(r5 | r14)"),
+        ("Sit on one of the chairs in the dining room, whichever you like, then watch the TV.",
+         "F((o28 | o29) & r7 & F o23)"),
+        ("Wash the bowl, then go to a bedroom, any one, then the office.", "F(o19 & F((r11 | r13) & F r12))"),
+        ("Could you sit on the couch and open the fridge? The order doesn't matter.", "F o22 & F o15"),
+        ("I need you to wash the bowl. Make sure that you never enter the dining room.", "F o19 & G !r7"),
+        ("Open the fridge, wash the bowl (in any order), then go to the office.",
+         "F(o15 & F r12) & F(o19 & F r12)"),
+        ("Touch the sink in the bathroom on floor 1, then the one in the bathroom on floor 0.",
+         "F(o41 & r14 & F(o21 & r5))"),
+        ("Sit on the couch. Don't ever go upstairs.", "F o22 & G(!r9 & !r11 & !r12 & !r13 & !r14)"),
+        ("Open the fridge, and stay out of the dining room on the way.", "F o15 & G !r7"),
+    ],
+)
+def test_everyday_wrappers_choices_and_asides(demo, text, gold):
+    means(text, gold, demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("Visit the bedrooms, either one.", "which means each of them"),
+        ("Go to the kitchen and maybe the office.", "'maybe'"),
+        ("Open the fridge and try to sit on the couch.", "'try'"),
+    ],
+)
+def test_choices_of_all_and_optional_goals_are_refused(demo, text, fragment):
+    refused(text, fragment, demo)
+
+
+def test_never_upstairs_from_the_start_floor(demo):
+    means("Touch the teddy bear and never go downstairs.", "F o32 & G(!r2 & !r4 & !r5 & !r6 & !r7 & !r8)", demo,
+          PatternTranslator(start_floor=1))

@@ -241,6 +241,8 @@ class MissionParser:
                 seen_sequence = True
             elif self.at_any(lx.TIME_FILLERS) is not None:
                 self.i += len(self.at_any(lx.TIME_FILLERS) or ())
+            elif self.at_any(lx.POLITE) is not None:
+                self.i += len(self.at_any(lx.POLITE) or ())
             elif self.word() == "," or (self.word() in lx.FILLERS and self.word() not in ("do", "and", "then", "next")):
                 self.i += 1
             else:
@@ -578,7 +580,12 @@ class MissionParser:
         is_global = bool(_GLOBAL_NEG & set(marker)) or not has_goal
         self.verb_words()
         rooms = self.step_rooms(clause.steps[-1]) if not is_global else self.sentence_scope
-        nps = self.noun_phrase_list("avoid", rooms)
+        if self.pending_floor is not None and not self.np_starts():  # "never go upstairs": any room there
+            first = self.toks[self.i - 1]
+            nps = [self.floor_place(first, self.pending_floor, "all", "avoid")]
+            self.pending_floor = None
+        else:
+            nps = self.noun_phrase_list("avoid", rooms)
         entities = [e for np in nps for e in np.entities]
         forbidden = conj([Not(Atom(e.action)) for e in entities])
         self.skip_particles()
@@ -679,6 +686,7 @@ class MissionParser:
         listed = len(nps)
         nps = self.first_of_list(nps)
         lead = len(nps) < listed  # "A and B, B first": B, then A
+        self.choice_affirmed(nps)
         ordered = self.at_any(lx.ORDER_MODIFIERS)
         if ordered:
             self.i += len(ordered)
@@ -712,6 +720,19 @@ class MissionParser:
         if self.at_any(lx.TIME_FILLERS):
             self.i += len(self.at_any(lx.TIME_FILLERS) or ())
         return steps or [[]]
+
+    def choice_affirmed(self, nps: list[NounPhrase]) -> None:
+        """Consume ``, either one is fine`` / ``, any of them`` after a choice; refused after a phrase that
+        means each of several (the remark would turn "all" into "one of"), or after several phrases."""
+        comma = 1 if self.word() == "," else 0
+        said = self.at_any(lx.CHOICE_AFFIRMATIONS, k=comma)
+        time = self.at_any(lx.TIME_FILLERS, k=comma)  # "whichever first" is about the order
+        if said is None or (said == ("is", "fine") and comma) or (time is not None and len(time) >= len(said)):
+            return
+        if len(nps) > 1 or nps[0].mode != "any":
+            raise self.fail(f"'{' '.join(said)}' after '{self.span_text(nps[0].start, nps[-1].end)}', which "
+                            f"means each of them: say 'any of ...' or 'A or B' for a choice")
+        self.i += comma + len(said)
 
     def first_of_list(self, nps: list[NounPhrase]) -> list[NounPhrase]:
         """``A and B, B first``: the list with B moved to the front and once only (*first* is consumed; the
@@ -798,7 +819,7 @@ class MissionParser:
                 joiners.add(self.word(1))
                 self.i += 2
             elif (self.word() == "," and self.np_starts(1) and not self.at_any(_NEG_STARTS, k=1)
-                  and not self.at_any(lx.TIME_FILLERS, k=1)):
+                  and not self.at_any(lx.TIME_FILLERS, k=1) and not self.at_any(lx.CHOICE_AFFIRMATIONS, k=1)):
                 self.i += 1
             elif self.word() in ("and", "or") and self.np_starts(1):
                 joiners.add(self.word())
@@ -845,6 +866,8 @@ class MissionParser:
             np = NounPhrase(self.span_text(first.start, first.end), first.start, first.end, list(ref.entities),
                             pronoun_mode, ref.room_scoped, role)
             return self.record(np)
+        if self.word() in ("the", "a") and self.word(1) in lx.ANAPHORIC_ONE and one_head is None:
+            one_head = self.last_head()  # "the teddy bear in the bedroom, then the one in the living room"
         other = self.at("the", "other") and self.vocab.match_head(self.words(), self.i + 2) is not None
         if self.at("the", "other", "one") and one_head is None:  # "the bedroom with the book, then the other one"
             one_head = self.last_head()

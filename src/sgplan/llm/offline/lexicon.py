@@ -130,6 +130,14 @@ REFUSED_VERBS: dict[str, str] = {
     "closest": "'closest' (distances are not known to the translator; name the room or object)",
     "farthest": "'farthest'",
     "only": "'only' here ('only if' and 'only after' are understood)",
+    "maybe": "'maybe' (optional goals cannot be expressed; leave the goal out or make it a goal)",
+    "perhaps": "'perhaps' (optional goals cannot be expressed; leave the goal out or make it a goal)",
+    "possibly": "'possibly' (optional goals cannot be expressed; leave the goal out or make it a goal)",
+    "optionally": "'optionally' (optional goals cannot be expressed; leave the goal out or make it a goal)",
+    "hopefully": "'hopefully' (optional goals cannot be expressed; leave the goal out or make it a goal)",
+    "ideally": "'ideally' (preferences cannot be expressed; say what must happen)",
+    "preferably": "'preferably' (preferences cannot be expressed; say what must happen)",
+    "try": "'try' (optional goals cannot be expressed; say what must happen)",
 }
 """Words that would silently change the meaning if read as ordinary words: refused with a reason."""
 
@@ -143,6 +151,13 @@ FILLERS = frozenset(
 """Words that carry no meaning for the formula wherever they appear between clauses. Order words that do
 carry meaning (*secondly*, *before that*, *but first*, a trailing *first*, *again*) are grammar, not
 fillers (:mod:`.grammar`)."""
+
+POLITE = (("make", "sure"), ("make", "sure", "that"), ("be", "sure", "to"), ("be", "sure", "that"),
+          ("i", "need", "you", "to"), ("i", "want", "you", "to"), ("i", "would", "like", "you", "to"),
+          ("i", "d", "like", "you", "to"), ("we", "need", "you", "to"), ("can", "you"), ("could", "you"),
+          ("would", "you"), ("will", "you"), ("remember", "to"), ("i", "would", "like"), ("i", "need"),
+          ("i", "want"), ("let", "us"), ("let", "'s"), ("for", "me"))
+"""Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
 
 RELATIVE_FLOORS = {"upstairs": 1, "downstairs": -1}
 """Floors relative to the robot's start floor (or, in a two-floor building, the upper / lower floor)."""
@@ -162,15 +177,30 @@ ORDER_MODIFIERS = (
 
 TIME_FILLERS = (("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("eventually",), ("later",),
                 ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"), ("any", "order"),
-                ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "one"), ("whichever",),
-                ("no", "matter", "which"), ("does", "not", "matter", "which"), ("it", "does", "not", "matter", "which"),
-                ("it", "does", "not", "matter"), ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"),
-                ("is", "fine"), ("at", "any", "point"))
+                ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "order"),
+                ("order", "does", "not", "matter"), ("the", "order", "does", "not", "matter"),
+                ("order", "is", "not", "important"), ("the", "order", "is", "not", "important"),
+                ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"))
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
 
+CHOICE_AFFIRMATIONS = (
+    ("either", "one"), ("any", "one"), ("either", "one", "is", "fine"), ("any", "one", "is", "fine"),
+    ("either", "is", "fine"), ("either", "works"), ("either", "one", "works"), ("any", "of", "them"),
+    ("either", "of", "them"), ("any", "of", "them", "is", "fine"), ("either", "will", "do"),
+    ("any", "will", "do"), ("whichever",), ("whichever", "one"), ("whichever", "you", "like"),
+    ("whichever", "is", "fine"), ("no", "matter", "which"), ("no", "matter", "which", "one"),
+    ("it", "does", "not", "matter", "which"), ("does", "not", "matter", "which"),
+    ("does", "not", "matter", "which", "one"), ("it", "does", "not", "matter", "which", "one"),
+    ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"), ("is", "fine"),
+    ("your", "choice"), ("your", "pick"), ("take", "your", "pick"),
+)
+"""Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
+means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
+
 WHOLE_MISSION = (("the", "whole", "time"), ("the", "entire", "time"), ("at", "all", "times"), ("at", "any", "time"),
-                 ("at", "any", "point"), ("throughout",), ("the", "whole", "way"), ("all", "the", "time"))
+                 ("at", "any", "point"), ("throughout",), ("the", "whole", "way"), ("all", "the", "time"),
+                 ("on", "the", "way"), ("on", "your", "way"), ("along", "the", "way"), ("at", "all"))
 """Said after what to avoid: the prohibition holds for the whole mission (``G !x``), not only at one step."""
 
 

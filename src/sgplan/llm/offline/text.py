@@ -1,7 +1,7 @@
 """Tokens of a mission text, with their character spans, split into sentences.
 
 Text is lower-cased; contractions are expanded (``don't`` -> ``do not``), a possessive ``'s`` becomes
-its own token, and list markers (``1)``, ``(2)``, ``3.`` at the start of an item) end a sentence like
+its own token, parentheses become commas (an aside), and list markers (``1)``, ``(2)``, ``3.`` at the start of an item) end a sentence like
 ``.``, ``;``, ``!``, ``?`` and ``:`` do. Entity IDs (``room_2``, ``object_27``) stay single tokens, so
 already-grounded text is understood too.
 """
@@ -60,6 +60,10 @@ def sentences(tokens: list[Tok]) -> list[list[Tok]]:
                 parts[-1].pop()
             parts.append([])
             i += 1  # the ')' or '.'
+        elif tok.text in "()" and not (i + 1 < len(tokens) and tokens[i + 1].text.isdigit()):
+            # an aside in parentheses reads like one between commas: "the fridge (any order), then ..."
+            if parts[-1] and parts[-1][-1].text != "," and nxt not in (",", ""):
+                parts[-1].append(Tok(",", tok.start, tok.end))
         else:
             parts[-1].append(tok)
         i += 1
