@@ -354,3 +354,22 @@ def test_choices_of_all_and_optional_goals_are_refused(demo, text, fragment):
 def test_never_upstairs_from_the_start_floor(demo):
     means("Touch the teddy bear and never go downstairs.", "F o32 & G(!r2 & !r4 & !r5 & !r6 & !r7 & !r8)", demo,
           PatternTranslator(start_floor=1))
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("On your way to the office, wash the bowl and then sit on the couch.", "F(o19 & F(o22 & F r12))"),
+        ("Wash the bowl, and on your way back up touch the teddy bear.", "F(o19 & F o32)"),
+        ("Sit on the chairs in the dining room, both of them, then watch the TV.",
+         "F(o28 & r7 & F o23) & F(o29 & r7 & F o23)"),
+        ("Touch the sink in the ground-floor bathroom, then the toilet on the top floor.", "F(o21 & r5 & F o40)"),
+        ("Visit the office, the kitchen and the dining room, in that order please.", "F(r12 & F(r4 & F r7))"),
+    ],
+)
+def test_way_group_and_order_remarks(demo, text, gold):
+    means(text, gold, demo)
+
+
+def test_a_group_of_the_wrong_size_is_refused(demo):
+    refused("Sit on the chairs in the dining room, all three of them.", "is 2, not 3", demo)

@@ -69,6 +69,9 @@ _CONDITION_WORDS = ("if", "when", "in case")
 """Conditions; *once* is temporal ('once you have been to X' = after X), not a condition."""
 _WHENEVER = (("whenever",), ("every", "time"), ("each", "time"), ("any", "time"), ("anytime",))
 _DONE = frozenset({"done", "finished", "through"})
+_ON_THE_WAY = (("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way"))
+_WAY_BACK = frozenset({"back", "up", "down", "there", "out", "over", "home"})
+"""``on your way back (up)``: after what came before, like *then*."""
 _ONLY_AFTER = (("only", "after"), ("only", "once"), ("not", "before"), ("not", "until"))
 _EVER = (("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"), ("every", "time"),
          ("each", "time"), ("anytime",))
@@ -234,7 +237,13 @@ class MissionParser:
         seen_sequence = False
         while not self.done():
             seq = self.at_any(_SEQ_WORDS) if sequence_too else None
-            if sequence_too and self.done_sequence():
+            way = self.at_any(_ON_THE_WAY)
+            if sequence_too and way is not None and self.word(len(way)) in _WAY_BACK:
+                self.i += len(way)
+                while self.word() in _WAY_BACK:
+                    self.i += 1
+                seen_sequence = True
+            elif sequence_too and self.done_sequence():
                 seen_sequence = True
             elif seq is not None:
                 self.i += len(seq)
@@ -284,6 +293,13 @@ class MissionParser:
             before = self.prefix_clause()
             body = self.body()
             body.steps[:0] = before.steps
+            return self.postfix_condition(body)
+        way = self.at_any(_ON_THE_WAY)
+        if way is not None and self.word(len(way)) in ("to", "into") and self.np_starts(len(way) + 1):
+            self.i += len(way)  # "On your way to the lobby, check the couch": the couch, then the lobby
+            after = self.prefix_clause()
+            body = self.body()
+            body.steps.extend(after.steps)
             return self.postfix_condition(body)
         if self.word() == "before":
             self.i += 1
@@ -470,7 +486,8 @@ class MissionParser:
                 self.i += done + 1
                 clause.steps[-1:-1] = [t for t in self.action() if t]
                 continue
-            if done and self.skip_fillers(sequence_too=True):
+            way = self.at_any(_ON_THE_WAY, k=1 if self.word() in ("and", ",") else 0)
+            if (done or way) and self.skip_fillers(sequence_too=True):
                 if clause.steps[-1]:
                     clause.steps.append([])
                 continue
@@ -683,13 +700,14 @@ class MissionParser:
         scope = list(step_rooms or []) or self.sentence_scope
         carry = bool(set(verbs) & lx.CARRY_VERBS)
         nps = self.noun_phrase_list("goal", scope, "object" if carry else None)
-        listed = len(nps)
+        first = self.word() in _FIRST
         nps = self.first_of_list(nps)
-        lead = len(nps) < listed  # "A and B, B first": B, then A
+        lead = first and self.word() not in _FIRST  # "A and B, B first": B, then A
         self.choice_affirmed(nps)
-        ordered = self.at_any(lx.ORDER_MODIFIERS)
+        comma = 1 if self.word() == "," else 0
+        ordered = self.at_any(lx.ORDER_MODIFIERS, k=comma)
         if ordered:
-            self.i += len(ordered)
+            self.i += comma + len(ordered)
         pronoun_only = all(np.phrase.lower() in lx.PRONOUNS for np in nps)
         # "put it in Y": the object is already in hand, the goal is Y, after what came before.
         steps: list[Step] = [[]] if carry and pronoun_only else self.tasks_of(nps, ordered is not None)
@@ -737,6 +755,9 @@ class MissionParser:
     def first_of_list(self, nps: list[NounPhrase]) -> list[NounPhrase]:
         """``A and B, B first``: the list with B moved to the front and once only (*first* is consumed; the
         caller orders it before the rest). Any other phrase named twice in one list is refused: it is not clear what is meant."""
+        keys = [frozenset(e.key for e in np.entities) for np in nps]
+        # "the chairs, both of them": the second phrase only restates the first
+        nps = [np for n, np in enumerate(nps) if not (n and keys[n] == keys[n - 1] and np.phrase.lower().endswith("them"))]
         keys = [frozenset(e.key for e in np.entities) for np in nps]
         repeated = [n for n, k in enumerate(keys) if k in keys[:n]]
         if not repeated:
@@ -859,6 +880,9 @@ class MissionParser:
             ref = max(goals, key=lambda r: r.start)
             return self.record(NounPhrase(w, first.start, first.end, list(ref.entities), ref.mode, ref.room_scoped,
                                           role))
+        group = self.all_of_them() if role == "goal" else None
+        if group is not None:
+            return group
         if w in lx.PRONOUNS:
             self.i += 1
             ref = self.antecedent(w, pronoun_kind)
@@ -1060,6 +1084,24 @@ class MissionParser:
                 return np
         raise self.fail(f"'{pronoun}' does not refer to any {'group of ' if plural else ''}room or object named before it")
 
+    def all_of_them(self) -> NounPhrase | None:
+        """``all of them`` / ``both of them`` / ``each of them`` / ``all three of them``: the group named
+        before (its size checked against the number said); None if the words are not there."""
+        n = 1 if self.word() in ("all", "both", "each", "every") else 0
+        said = lx.NUMBER_WORDS.get(self.word(n)) if n else None
+        k = n + (1 if said else 0)
+        if not n or not self.at("of", "them", k=k) and not (said and self.word(k) in ("", ",")):
+            return None
+        count = 2 if self.word() == "both" else said
+        first = self.toks[self.i]
+        self.i += k + (2 if self.at("of", "them", k=k) else 0)
+        ref = self.antecedent("them")
+        if count is not None and len(ref.entities) != count:
+            raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}': '{ref.phrase}' is "
+                            f"{len(ref.entities)}, not {count}")
+        return self.record(NounPhrase(self.span_text(first.start, self.toks[self.i - 1].end), first.start,
+                                      self.toks[self.i - 1].end, list(ref.entities), "all", ref.room_scoped, "goal"))
+
     def quantifier(self) -> tuple[Mode | None, int | None]:
         """Determiners -> (mode, required count); ``None`` mode = decided by the head's number."""
         w = self.word()
@@ -1134,8 +1176,8 @@ class MissionParser:
             return None
         k = 2 if self.word(1) == "the" else 1
         said = self.floor_words(k)
-        if said is None:
-            return None
+        if said is None or self.vocab.match_head(self.words(), self.i + k + said[1]) is not None:
+            return None  # none, or "in the ground floor bathroom": a room named with its floor
         self.i += k + said[1]
         return said[0]
 
