@@ -373,3 +373,29 @@ def test_way_group_and_order_remarks(demo, text, gold):
 
 def test_a_group_of_the_wrong_size_is_refused(demo):
     refused("Sit on the chairs in the dining room, all three of them.", "is 2, not 3", demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Head to the bedroom with the book via the office.", "F(r12 & F r13)"),
+        ("Walk through the dining room to the living room, then open the fridge.", "F(r7 & F(r6 & F o15))"),
+        ("Wash the bowl, then go to the office, passing through the bathroom on floor 1.",
+         "F(o19 & F(r14 & F r12))"),
+    ],
+)
+def test_waypoints_come_before_their_goal(demo, text, gold):
+    means(text, gold, demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("Sit on the couch and the teddy bear via the kitchen.", "which of the goals"),
+        ("Stay away from the kitchen after you sit on the couch.", "for part of the mission"),
+        ("Open the fridge, then wash the bowl. The order doesn't matter.", "given in order"),
+        ("Go to the office. Touch the teddy bear first.", "trailing 'first'"),
+    ],
+)
+def test_partial_prohibitions_and_contradictory_order_are_refused(demo, text, fragment):
+    refused(text, fragment, demo)

@@ -69,6 +69,9 @@ _CONDITION_WORDS = ("if", "when", "in case")
 """Conditions; *once* is temporal ('once you have been to X' = after X), not a condition."""
 _WHENEVER = (("whenever",), ("every", "time"), ("each", "time"), ("any", "time"), ("anytime",))
 _DONE = frozenset({"done", "finished", "through"})
+_WAYPOINT = (("via",), ("through",), ("past",), ("by", "way", "of"), ("passing", "through"), ("going", "through"),
+             ("passing", "by"), ("going", "past"), ("passing",), ("by", "going", "through"))
+"""Right after a goal: what follows is on the way there (before it)."""
 _ON_THE_WAY = (("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way"))
 _WAY_BACK = frozenset({"back", "up", "down", "there", "out", "over", "home"})
 """``on your way back (up)``: after what came before, like *then*."""
@@ -194,6 +197,9 @@ class MissionParser:
             continues = self.skip_fillers(sequence_too=True)
             self.prior_steps = previous.steps if continues and previous is not None else []
             result = self.sentence()
+            if (isinstance(result, Clause) and not any(result.steps) and not result.constraints and previous
+                    and "order" in self.words() and len([s for s in previous.steps if s]) > 1):
+                raise self.fail("'the order does not matter' after goals given in order; say which it is")
             if precedes:
                 if previous is None or not isinstance(result, Clause):
                     raise self.fail("'before that' / 'first' in a later sentence needs a plain list of goals in "
@@ -521,6 +527,8 @@ class MissionParser:
                 self.skip_subject()
                 clause.steps.extend(self.action())
                 clause.steps.append([])
+            elif self.at_any(_WAYPOINT, k=1 if self.word() == "," else 0) and any(clause.steps[-1]):
+                self.waypoint(clause)
             elif self.word() in ("and", "but", "or", "while", "as"):
                 if self.word() == "or":
                     raise self.fail(f"'or' between actions is not understood at {self.here()} "
@@ -551,6 +559,17 @@ class MissionParser:
                 if len(steps) > 1:
                     clause.steps.extend(steps[1:])
         return clause
+
+    def waypoint(self, clause: Clause) -> None:
+        """``go to Y via X`` / ``..., passing through X``: X on the way, before the one goal Y just named."""
+        if self.word() == ",":
+            self.i += 1
+        self.i += len(self.at_any(_WAYPOINT) or ())
+        if len(clause.steps[-1]) != 1:
+            raise self.fail(f"it is not clear which of the goals {self.here()} is on the way to; say 'go to X, then Y'")
+        target = clause.steps.pop()
+        clause.steps.extend([t for t in self.action() if t])
+        clause.steps.extend([target, []])
 
     def skip_of_all(self) -> None:
         if self.at("of", "all"):
@@ -610,6 +629,9 @@ class MissionParser:
         if whole is not None:  # "avoid the office the whole time"
             self.i += len(whole)
             is_global = True
+        if self.word() in ("after", "once", "when", "during") and not self.at("after", "that"):
+            raise self.fail(f"a prohibition for part of the mission ({self.here()}) is not understood; say 'never "
+                            f"enter X' (the whole mission) or 'do not enter X until ...'")
         if self.word() in ("until", "before"):
             self.i += 1
             self.skip_subject()
@@ -717,7 +739,7 @@ class MissionParser:
         self.skip_particles()
         # "put X in Y", "take X to Y", "go from X to Y", and any object followed by "to Y": X, then Y.
         carried = carry or (self.word() in ("to", "into", "onto") and (
-            "from" in verbs or all(e.kind == "object" for np in nps for e in np.entities)))
+            set(verbs) & {"from", "through", "via", "past"} or all(e.kind == "object" for np in nps for e in np.entities)))
         if carried and self.word() in ("in", "into", "on", "onto", "to", "inside") and self.np_starts(1):
             self.i += 1
             dest = self.noun_phrase_list("goal", [])
