@@ -399,3 +399,18 @@ def test_waypoints_come_before_their_goal(demo, text, gold):
 )
 def test_partial_prohibitions_and_contradictory_order_are_refused(demo, text, fragment):
     refused(text, fragment, demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Go to the bathroom on floor 0 and touch the sink in there.", "F r5 & F(o21 & r5)"),
+        ("Watch the TV, then sit on the couch in there.", "F(o23 & F(o22 & r6))"),
+        ("Dust the chairs in the dining room. Keep out of the office until both of them are done.",
+         "F(o28 & r7) & F(o29 & r7) & (!r12 U (o28 & r7)) & (!r12 U (o29 & r7))"),
+        ("Never enter the office until the kitchen and the dining room have been visited.",
+         "(!r12 U r4) & (!r12 U r7)"),
+    ],
+)
+def test_there_and_until_done(demo, text, gold):
+    means(text, gold, demo)

@@ -643,7 +643,13 @@ class MissionParser:
                 steps = [self.previous_step(clause)]
             else:
                 steps = self.action()
+                if self.word() in ("is", "are", "has", "have") and self.word(1) in _DONE | {"been", "visited"}:
+                    self.i += 2  # "until both bathrooms are done"
+                    if self.word() in ("visited", "checked", "cleaned"):
+                        self.i += 1
             tasks = [t for s in steps for t in s]
+            if len(tasks) > 1 and all(t.mode == "all" for t in tasks):  # "until A and B": each of them
+                tasks = [Task("all", [m for t in tasks for m in t.members])]
             if len(tasks) != 1:
                 raise self.fail("'... until X' needs one goal X")
             t = tasks[0]
@@ -900,8 +906,10 @@ class MissionParser:
             if not goals:
                 raise self.fail("'there' does not refer to any place named before it")
             ref = max(goals, key=lambda r: r.start)
-            return self.record(NounPhrase(w, first.start, first.end, list(ref.entities), ref.mode, ref.room_scoped,
-                                          role))
+            entities = list(ref.entities)
+            if role == "qualifier":  # "the clock in there": the room of the last goal
+                entities = list({e.room_key: self.vocab.by_key[e.room_key] for e in entities}.values())
+            return self.record(NounPhrase(w, first.start, first.end, entities, ref.mode, ref.room_scoped, role))
         group = self.all_of_them() if role == "goal" else None
         if group is not None:
             return group
