@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 import pytest
@@ -18,7 +18,7 @@ MIN_SCORE = 0.85
 """Floor on the share of right translations over the whole set (the paper's own texts included)."""
 
 
-@lru_cache(maxsize=None)
+@cache
 def building_of(scene: str):
     if scene == "demo":
         return demo_building()

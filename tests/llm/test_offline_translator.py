@@ -9,6 +9,7 @@ from hypothesis import strategies as st
 from sgplan.errors import MissionError
 from sgplan.llm.offline import PATTERN_BACKEND, PatternTranslator
 from sgplan.llm.offline.evaluation import expand_shorthand, same_language
+from sgplan.llm.offline.lexicon import word_set
 from sgplan.logic import parse_infix, parse_tokens, to_tokens
 from sgplan.scene.demo import demo_building
 
@@ -153,11 +154,13 @@ def test_pronouns_agree_in_number(translate):
                  "F(o26 & F(!o26 & F o26) & F(!o33 & F o33)) & F(o33 & F(!o26 & F o26) & F(!o33 & F o33))")
 
 
-_WORDS = ("visit the a any all every both either kitchen bathroom bathrooms bedroom chair chairs sink tv it them "
-          "then and or , . if when until before after only avoid never don't always without in on with next to "
-          "floor 0 1 first second top except one of couch put bring that order after other room rooms 's not "
-          "stay away from take water go room_4 object_19 two again twice times upstairs downstairs whenever "
-          "there first secondly that whole time my ground middle no doesn't have").split()
+_WORDS = sorted(word_set(
+    "visit the a any all every both either kitchen bathroom bathrooms bedroom chair chairs sink tv it them "
+    "then and or , . if when until before after only avoid never don't always without in on with next to "
+    "floor 0 1 first second top except one of couch put bring that order after other room rooms 's not "
+    "stay away from take water go room_4 object_19 two again twice times upstairs downstairs whenever "
+    "there first secondly that whole time my ground middle no doesn't have once done you're way your via "
+    "through ( ) whichever fine maybe ever afterwards are is make sure could"))
 
 
 @settings(max_examples=300, deadline=None)

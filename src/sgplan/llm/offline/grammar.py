@@ -31,8 +31,8 @@ from sgplan.logic.tokens import action_entity
 Mode = Literal["the", "any", "all"]
 Role = Literal["goal", "avoid", "condition", "qualifier"]
 
-_POSSESSIVES = frozenset("my your our his her their".split())
-_DETERMINERS = frozenset("the a an any all every each both either this that these those some".split()) | _POSSESSIVES
+_POSSESSIVES = lx.word_set("my your our his her their")
+_DETERMINERS = lx.word_set("the a an any all every each both either this that these those some") | _POSSESSIVES
 _SEQ_WORDS = (("and", "then"), ("then",), ("after", "that"), ("afterwards",), ("afterward",), ("next",),
               ("finally",), ("subsequently",), ("after", "which"), ("followed", "by"), ("later",),
               ("and", "finally"), ("lastly",), ("secondly",), ("thirdly",), ("fourthly",), ("second", ","),
@@ -62,9 +62,9 @@ _QUAL_NEXT = (("next", "to"), ("adjacent", "to"), ("beside",), ("near",), ("conn
               ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to"))
 _QUAL_EXCEPT = (("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
                 ("excluding",), ("besides",))
-_PARTICLES = frozenset("on off up down out over".split())
-_SUBJECT_FILLERS = frozenset("you we i the robot it ever have has had do does did are is were was already "
-                             "been also first".split())
+_PARTICLES = lx.word_set("on off up down out over")
+_SUBJECT_FILLERS = lx.word_set("you we i the robot it ever have has had do does did are is were was already "
+                                "been also first")
 _CONDITION_WORDS = ("if", "when", "in case")
 """Conditions; *once* is temporal ('once you have been to X' = after X), not a condition."""
 _WHENEVER = (("whenever",), ("every", "time"), ("each", "time"), ("any", "time"), ("anytime",))
@@ -636,7 +636,7 @@ class MissionParser:
             self.i += 1
             self.skip_subject()
             back = ("that", "this", "it", "so")
-            if self.word() in _DONE and (self.word(1) in back and not self.np_starts(2) or not self.np_starts(1)):
+            if self.word() in _DONE and ((self.word(1) in back and not self.np_starts(2)) or not self.np_starts(1)):
                 self.i += 1  # "... before you've done that"
                 if self.word() in back:
                     self.i += 1
@@ -1120,7 +1120,7 @@ class MissionParser:
         n = 1 if self.word() in ("all", "both", "each", "every") else 0
         said = lx.NUMBER_WORDS.get(self.word(n)) if n else None
         k = n + (1 if said else 0)
-        if not n or not self.at("of", "them", k=k) and not (said and self.word(k) in ("", ",")):
+        if not n or (not self.at("of", "them", k=k) and not (said and self.word(k) in ("", ","))):
             return None
         count = 2 if self.word() == "both" else said
         first = self.toks[self.i]

@@ -11,6 +11,12 @@ from __future__ import annotations
 
 import re
 
+
+def word_set(text: str) -> frozenset[str]:
+    """The words of ``text`` (split at white space): the word lists below are written as running text."""
+    return frozenset(text.split())
+
+
 # Category synonyms: a word or phrase users say -> the scene categories it may denote (underscores of the
 # Gibson categories are spaces here). A synonym only applies to categories the scene actually has.
 SYNONYMS: dict[str, tuple[str, ...]] = {
@@ -82,7 +88,7 @@ FLOOR_MIDDLE = ("middle",)
 
 FLOOR_WORDS = ("floor", "level", "storey", "story")
 
-POSITIVE_VERBS = frozenset(
+POSITIVE_VERBS = word_set(
     """visit visits visiting visited enter enters entering entered go goes going went walk walks walking
     head heads heading move moves moving get gets getting come coming reach reaches reaching reached take
     takes taking took grab grabbing pick picking water watering watered clean cleaning cleaned vacuum
@@ -94,12 +100,12 @@ POSITIVE_VERBS = frozenset(
     carrying deliver delivering return returning explore exploring see seeing pet mop mopping scrub
     scrubbing fill filling close closing empty emptying sweep sweeping play playing cook cooking
     lie lying rest resting sleep sleeping shower showering bathe use off up down out over from for
-    """.split()
+    """
 )
 """Verb-slot words known to mean "go to / interact with" the noun phrase that follows."""
 
-CARRY_VERBS = frozenset("put putting place placing drop dropping bring bringing carry carrying deliver delivering "
-                        "take taking took move moving".split())
+CARRY_VERBS = word_set("put putting place placing drop dropping bring bringing carry carrying deliver delivering "
+                       "take taking took move moving")
 """``put X in Y`` / ``bring X to Y``: the goal is Y (after X when X is a new noun phrase)."""
 
 REFUSED_VERBS: dict[str, str] = {
@@ -141,12 +147,12 @@ REFUSED_VERBS: dict[str, str] = {
 }
 """Words that would silently change the meaning if read as ordinary words: refused with a reason."""
 
-FILLERS = frozenset(
+FILLERS = word_set(
     """please also then eventually first firstly lastly finally afterwards later next
     at some point sometime you should must need needs to have has had be been is are was were can could
     would will shall robot and moreover additionally furthermore too as well go ahead kindly do though hey
     okay ok thanks
-    """.split()
+    """
 )
 """Words that carry no meaning for the formula wherever they appear between clauses. Order words that do
 carry meaning (*secondly*, *before that*, *but first*, a trailing *first*, *again*) are grammar, not
@@ -165,7 +171,7 @@ RELATIVE_FLOORS = {"upstairs": 1, "downstairs": -1}
 START_FLOOR_WORDS = ("this", "current", "my", "our")
 """``on this floor`` / ``on the current floor``: the robot's start floor."""
 
-REVISIT_VERBS = frozenset("return returning back".split())
+REVISIT_VERBS = word_set("return returning back")
 """``return to X`` / ``go back to X`` after X was visited: a new visit, as with ``again``."""
 
 ORDER_MODIFIERS = (

@@ -55,7 +55,7 @@ def sentences(tokens: list[Tok]) -> list[list[Tok]]:
         at_item_start = not parts[-1] or parts[-1][-1].text == "("
         if tok.text in SENTENCE_END:
             parts.append([])
-        elif tok.text.isdigit() and nxt == ")" or (tok.text.isdigit() and nxt == "." and at_item_start):
+        elif (tok.text.isdigit() and nxt == ")") or (tok.text.isdigit() and nxt == "." and at_item_start):
             if parts[-1] and parts[-1][-1].text == "(":
                 parts[-1].pop()
             parts.append([])
