@@ -40,7 +40,8 @@ def refused(text: str, fragment: str, building: Building, translator: PatternTra
     ("text", "gold"),
     [
         ("Go to the kitchen, but first go to the bathroom on floor 1.", "F(r14 & F r4)"),
-        ("Go to the kitchen, then the dining room, but first visit the home office.", "F(r12 & F(r4 & F r7))"),
+        ("Go to the kitchen, then the dining room, but first visit the home office.", "F(r12 & F(r4 & F "
+         "r7))"),
         ("Firstly go to the home office. Secondly go to the kitchen.", "F(r12 & F r4)"),
         ("First, go to the home office. Second, go to the kitchen. Lastly, go to the dining room.",
          "F(r12 & F(r4 & F r7))"),
@@ -69,7 +70,8 @@ def test_ambiguous_before_that_is_refused(demo):
         ("Go to the bedroom with the teddy bear and avoid the kitchen.", "F r11 & G !r4"),
         ("Go to the bedroom with the teddy bear but avoid the kitchen.", "F r11 & G !r4"),
         ("Go to the bedroom with the teddy bear without entering the kitchen.", "F r11 & G !r4"),
-        ("Go to the dining room, then the bedroom with the book, and avoid the kitchen.", "F(r7 & F r13) & G !r4"),
+        ("Go to the dining room, then the bedroom with the book, and avoid the kitchen.", "F(r7 & F r13) & G "
+         "!r4"),
         # an object elsewhere: the local reading would say nothing, so it holds for the whole mission
         ("Go to the kitchen and avoid the couch.", "F r4 & G !o22"),
         # an object of the room the step is in keeps the authors' local reading
@@ -82,7 +84,8 @@ def test_trailing_avoidance_of_a_room_holds_for_the_whole_mission(demo, text, go
 
 
 def test_an_object_is_not_taken_from_another_room(demo):
-    message = refused("Go to the kitchen and sit on the couch.", "'the couch' is not in room_4 (kitchen)", demo)
+    message = refused("Go to the kitchen and sit on the couch.", "'the couch' is not in room_4 (kitchen)",
+                      demo)
     assert "object_22 (couch in room_6, floor 0)" in message
     refused("In the kitchen, sit on the couch.", "'the couch' is not in room_4 (kitchen)", demo)
     refused("Sit on the couch in the kitchen.", "this scene has: object_22 (couch in room_6, floor 0)", demo)
@@ -122,7 +125,8 @@ def test_upstairs_and_downstairs(demo):
     refused("Go upstairs.", "expected a room or object after 'upstairs'", demo)
     # with a known start floor it is relative to it
     means("Go to the bathroom downstairs.", "F r5", demo, PatternTranslator(start_floor=1))
-    refused("Go to the bathroom upstairs.", "the robot starts on floor 1", demo, PatternTranslator(start_floor=1))
+    refused("Go to the bathroom upstairs.", "the robot starts on floor 1", demo,
+            PatternTranslator(start_floor=1))
 
 
 @pytest.mark.gibson
@@ -170,7 +174,8 @@ def test_whenever_is_a_response(demo, text, gold):
 @pytest.mark.parametrize(
     ("text", "gold"),
     [
-        ("Water the plant in the office. If you ever walk into the dining room, check the sink upstairs later.",
+        ("Water the plant in the office. If you ever walk into the dining room, check the sink upstairs "
+         "later.",
          "F o36 & G(r7 -> F o41)"),
         ("If you enter the living room at some point, sit on the couch afterwards.", "G(r6 -> F o22)"),
         ("If you pass through the kitchen, go to the bedroom with the book after that.", "G(r4 -> F r13)"),
@@ -243,7 +248,8 @@ def test_this_floor_is_the_start_floor(demo):
         ("Go upstairs and check the sink.", "F o41"),
         ("Visit the kitchen or the dining room, I don't care which.", "F(r4 | r7)"),
         ("Visit the kitchen and the living room, any order.", "F r4 & F r6"),
-        ("Open the fridge and the oven in either order, then go to the couch.", "F(o15 & F o22) & F(o16 & F o22)"),
+        ("Open the fridge and the oven in either order, then go to the couch.", "F(o15 & F o22) & F(o16 & F "
+         "o22)"),
         ("Use the toilet in the bathroom attached to the kitchen.", "F o20"),
     ],
 )
@@ -256,7 +262,8 @@ def test_everyday_constructs(demo, text, gold):
     [
         ("Wash your hands in the kitchen.", "no room or object of this scene is called 'hands'"),
         ("Go to the bathroom on the middle floor.", "has 2 floors (0 to 1), so no middle one"),
-        ("Go to the bedroom that doesn't have a bed.", "'the bedroom that doesn't have a bed' matches no room"),
+        ("Go to the bedroom that doesn't have a bed.", "'the bedroom that doesn't have a bed' matches no "
+         "room"),
         ("Go to the dining room but not the kitchen.", "'the kitchen' is not one of 'the dining room'"),
     ],
 )
@@ -352,7 +359,8 @@ def test_choices_of_all_and_optional_goals_are_refused(demo, text, fragment):
 
 
 def test_never_upstairs_from_the_start_floor(demo):
-    means("Touch the teddy bear and never go downstairs.", "F o32 & G(!r2 & !r4 & !r5 & !r6 & !r7 & !r8)", demo,
+    means("Touch the teddy bear and never go downstairs.", "F o32 & G(!r2 & !r4 & !r5 & !r6 & !r7 & !r8)",
+          demo,
           PatternTranslator(start_floor=1))
 
 
@@ -363,7 +371,8 @@ def test_never_upstairs_from_the_start_floor(demo):
         ("Wash the bowl, and on your way back up touch the teddy bear.", "F(o19 & F o32)"),
         ("Sit on the chairs in the dining room, both of them, then watch the TV.",
          "F(o28 & r7 & F o23) & F(o29 & r7 & F o23)"),
-        ("Touch the sink in the ground-floor bathroom, then the toilet on the top floor.", "F(o21 & r5 & F o40)"),
+        ("Touch the sink in the ground-floor bathroom, then the toilet on the top floor.", "F(o21 & r5 & F "
+         "o40)"),
         ("Visit the office, the kitchen and the dining room, in that order please.", "F(r12 & F(r4 & F r7))"),
     ],
 )

@@ -6,10 +6,12 @@ sentence is a sequence of steps joined by ``then`` / ``after that`` / ``finally`
 kitchen and water the plant``); an action is verb words followed by a list of noun phrases (``again``,
 ``twice`` make new visits); negations (``always avoid``, ``never``, ``don't``, ``avoid``, ``without``,
 ``stay away from``; a trailing one on a room holds for the whole mission), ``until``, conditions
-(``if ... , ...``, ``... if ...``, ``... only if ...``, ``whenever ...``) and sentence prefixes (``After
-visiting X, ...``, ``Only after ...``, ``In the kitchen, ...``) wrap them. Noun phrases are grounded as they are read (:class:`NounPhrase`), so pronouns
-(``it``, ``them``) and room context ("go to the dining room and sit on one of the chairs": the chairs of
-that dining room) use what came before.
+(``if ... , ...``, ``... if ...``, ``... only if ...``, ``whenever ...``; ``if you ever ...`` and
+``..., Y afterwards`` make a condition a response like *whenever*; a bare ``when ...`` is refused) and
+sentence prefixes (``After visiting X, ...``, ``Once ...``, ``Only after ...``, ``On your way to X, ...``,
+``In the kitchen, ...``) wrap them. Noun phrases are grounded as they are read (:class:`NounPhrase`), so
+pronouns (``it``, ``them``) and room context ("go to the dining room and sit on one of the chairs": the
+chairs of that dining room) use what came before.
 
 Anything the grammar does not understand raises :class:`~sgplan.errors.MissionError` naming the phrase;
 it never guesses.
@@ -32,7 +34,8 @@ Mode = Literal["the", "any", "all"]
 Role = Literal["goal", "avoid", "condition", "qualifier"]
 
 _POSSESSIVES = lx.word_set("my your our his her their")
-_DETERMINERS = lx.word_set("the a an any all every each both either this that these those some") | _POSSESSIVES
+_DETERMINERS = lx.word_set("the a an any all every each both either this that these those "
+                           "some") | _POSSESSIVES
 _SEQ_WORDS = (("and", "then"), ("then",), ("after", "that"), ("afterwards",), ("afterward",), ("next",),
               ("finally",), ("subsequently",), ("after", "which"), ("followed", "by"), ("later",),
               ("and", "finally"), ("lastly",), ("secondly",), ("thirdly",), ("fourthly",), ("second", ","),
@@ -45,15 +48,18 @@ _NEG_STARTS = (("always", "avoid"), ("always", "stay", "away", "from"), ("always
                ("keep", "out", "of"), ("without",), ("while", "avoiding"), ("always", "do", "not"),
                ("and", "avoid"), ("but", "avoid"), ("but", "never"), ("and", "never"), ("but", "do", "not"),
                ("and", "do", "not"), ("but", "not"), ("no",))
-_GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can", "cannot", "may", "will", "no",
+_GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can", "cannot", "may", "will",
+                         "no",
                          "stay", "keep"})
 """A negation with one of these words holds for the whole mission (G !x); 'avoid' and 'without' after an
 action only constrain the moment that action is done (F(x & !y)), as in the authors' missions."""
 _QUAL_IN = ("in", "inside", "within", "of", "from")
 _QUAL_CONTAINS = (("with",), ("having",), ("containing",), ("that", "has"), ("that", "have"),
                   ("which", "has"), ("which", "have"), ("that", "contains"), ("which", "contains"),
-                  ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"), ("that", "only", "has"),
-                  ("which", "only", "has"), ("that", "only", "have"), ("with", "only"), ("that", "has", "only"),
+                  ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"), ("that", "only",
+                                                                                           "has"),
+                  ("which", "only", "has"), ("that", "only", "have"), ("with", "only"), ("that", "has",
+                                                                                         "only"),
                   ("containing", "only"))
 _QUAL_LACKS = (("that", "does", "not", "have"), ("which", "does", "not", "have"), ("with", "no"),
                ("that", "has", "no"), ("that", "does", "not", "contain"), ("where", "there", "is", "no"))
@@ -69,7 +75,8 @@ _CONDITION_WORDS = ("if", "when", "in case")
 """Conditions; *once* is temporal ('once you have been to X' = after X), not a condition."""
 _WHENEVER = (("whenever",), ("every", "time"), ("each", "time"), ("any", "time"), ("anytime",))
 _DONE = frozenset({"done", "finished", "through"})
-_WAYPOINT = (("via",), ("through",), ("past",), ("by", "way", "of"), ("passing", "through"), ("going", "through"),
+_WAYPOINT = (("via",), ("through",), ("past",), ("by", "way", "of"), ("passing", "through"), ("going",
+                                                                                              "through"),
              ("passing", "by"), ("going", "past"), ("passing",), ("by", "going", "through"))
 """Right after a goal: what follows is on the way there (before it)."""
 _ON_THE_WAY = (("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way"))
@@ -79,7 +86,10 @@ _ONLY_AFTER = (("only", "after"), ("only", "once"), ("not", "before"), ("not", "
 _EVER = (("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"), ("every", "time"),
          ("each", "time"), ("anytime",))
 """In a condition ("if you ever go into X"): it is about each visit of X, a response, not one event."""
-_AFTERWARDS = (("afterwards",), ("afterward",), ("after", "that"), ("after",), ("later",), ("straight", "after"), ("right", "after"))
+_AFTERWARDS = (("afterwards",), ("afterward",), ("after", "that"), ("after",), ("later",), ("straight",
+                                                                                            "after"),
+                                                                                            ("right",
+                                                                                             "after"))
 """In the consequent of a condition ("..., visit Y afterwards"): Y follows X, a response."""
 _FIRST = frozenset({"first", "firstly"})
 _MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
@@ -88,8 +98,10 @@ _STRUCTURAL = (
                               lx.ORDER_MODIFIERS) for seq in table for w in seq)
     | frozenset(_QUAL_IN) | frozenset(w for c in _CONDITION_WORDS for w in c.split()) | _DETERMINERS
     | frozenset(lx.FLOOR_WORDS) | frozenset(lx.FLOOR_ORDINALS) | frozenset(lx.FLOOR_NAMED)
-    | frozenset(lx.FLOOR_TOP) | frozenset(lx.FLOOR_MIDDLE) | frozenset(lx.NUMBER_WORDS) | frozenset(lx.PRONOUNS)
-    | frozenset(lx.GENERIC_ROOM_WORDS) | frozenset({"whenever", "only", "than", "zero", "ever", "again", "twice", "once",
+    | frozenset(lx.FLOOR_TOP) | frozenset(lx.FLOOR_MIDDLE) | frozenset(lx.NUMBER_WORDS)
+    | frozenset(lx.PRONOUNS)
+    | frozenset(lx.GENERIC_ROOM_WORDS) | frozenset({"whenever", "only", "than", "zero", "ever", "again",
+                                                    "twice", "once",
                                                   "times", "anytime"})
 ) - lx.POSITIVE_VERBS - {"first", "also", "please", "eventually", "finally"}
 """Words with a role in the grammar: in the verb slot they signal a sentence that was not understood."""
@@ -185,7 +197,8 @@ class MissionParser:
         return f"'{self.span_text(tail[0].start, tail[-1].end)}'"
 
     def fail(self, message: str) -> MissionError:
-        return MissionError(f"{message}; rephrase the mission (see docs/offline.md for the understood English)")
+        return MissionError(f"{message}; rephrase the mission (see docs/offline.md for the understood "
+                            f"English)")
 
     # -- the mission ------------------------------------------------------------------------------------
     def parse(self) -> Formula:
@@ -202,7 +215,8 @@ class MissionParser:
                 raise self.fail("'the order does not matter' after goals given in order; say which it is")
             if precedes:
                 if previous is None or not isinstance(result, Clause):
-                    raise self.fail("'before that' / 'first' in a later sentence needs a plain list of goals in "
+                    raise self.fail("'before that' / 'first' in a later sentence needs a plain list of goals "
+                                    "in "
                                     "this sentence and the one before it")
                 previous.steps[0:0] = [s for s in result.steps if s]
                 previous.constraints.extend(result.constraints)
@@ -233,8 +247,10 @@ class MissionParser:
             self.i += 1
         said = self.span_text(self.toks[0].start, self.toks[self.i - 1].end)
         if len(has_goals) != 1 or (said.lower().startswith("before") and
-                                   isinstance(has_goals[0], Clause) and len([s for s in has_goals[0].steps if s]) > 1):
-            raise self.fail(f"'{said}': it is not clear which of the earlier goals this comes before; put the "
+                                   isinstance(has_goals[0], Clause) and len([s for s in has_goals[0].steps
+                                                                             if s]) > 1):
+            raise self.fail(f"'{said}': it is not clear which of the earlier goals this comes before; put "
+                            f"the "
                             f"goals in the order they must be done (with 'then')")
         return True
 
@@ -258,7 +274,8 @@ class MissionParser:
                 self.i += len(self.at_any(lx.TIME_FILLERS) or ())
             elif self.at_any(lx.POLITE) is not None:
                 self.i += len(self.at_any(lx.POLITE) or ())
-            elif self.word() == "," or (self.word() in lx.FILLERS and self.word() not in ("do", "and", "then", "next")):
+            elif self.word() == "," or (self.word() in lx.FILLERS and self.word() not in ("do", "and", "then",
+                                                                                          "next")):
                 self.i += 1
             else:
                 break
@@ -272,7 +289,8 @@ class MissionParser:
             self.expect_comma_or_then()
             return self.whenever(trigger, self.body())
         done = self.done_words()
-        if done and self.word(done) == "with" and self.np_starts(done + 1):  # "when done with the garage, ..."
+        if done and self.word(done) == "with" and self.np_starts(done
+                                                                 + 1):  # "when done with the garage, ..."
             self.i += done + 1
             before = self.prefix_clause()
             body = self.body()
@@ -402,7 +420,8 @@ class MissionParser:
         finite-path response; Y may happen at X itself). Y must be goals only: a prohibition scoped to
         "whenever" is not expressible this way, so it is refused."""
         if body.constraints or any(t.avoid for step in body.steps for t in step):
-            raise self.fail("'whenever X, ...' is understood with goals only (e.g. 'whenever you enter the kitchen, "
+            raise self.fail("'whenever X, ...' is understood with goals only (e.g. 'whenever you enter the "
+                            "kitchen, "
                             "open the fridge'), not with prohibitions")
         return Always(Implies(disj(trigger.members), self.require(body, "for 'whenever'")))
 
@@ -429,18 +448,21 @@ class MissionParser:
         return any(self.at(*p, k=j - self.i) for j in range(start, end) for p in phrases
                    if j + len(p) <= end)
 
-    def conditional(self, word: str, condition: Formula, tasks: list[Task], body: Clause, response: bool) -> Formula:
+    def conditional(self, word: str, condition: Formula, tasks: list[Task], body: Clause,
+                    response: bool) -> Formula:
         """``if X, Y``: ``F X -> Y``. When the antecedent says *ever* / *at any point* or the consequent
         *afterwards* / *after that*, people mean a response to each visit of X, as with *whenever*
         (``G(X -> F Y)``); that needs one place as X (else it is refused rather than guessed). A bare
         ``when X, Y`` may mean either, or a plain sequence, so it is refused."""
         if not response and word == "when":
-            raise self.fail("'when X, Y' can mean 'after X, Y' (in order), 'whenever X, Y' (each time) or 'if X, Y' "
+            raise self.fail("'when X, Y' can mean 'after X, Y' (in order), 'whenever X, Y' (each time) or "
+                            "'if X, Y' "
                             "(X at all); say which")
         if not response:
             return Implies(condition, self.require(body, "for the condition"))
         if len(tasks) != 1:
-            raise self.fail("'if you ever go to X, ... afterwards' is understood with one room or object (or a "
+            raise self.fail("'if you ever go to X, ... afterwards' is understood with one room or object (or "
+                            "a "
                             "choice of them) as X")
         return self.whenever(tasks[0], body)
 
@@ -542,7 +564,8 @@ class MissionParser:
                 before_that = self.at("before", "that") and self.word(2) in ("", ",", "and", "then")
                 if self.word() in _FIRST or before_that:  # "go to B, but go to A first / before that"
                     if before_that and len([s for s in clause.steps if s]) > 1:
-                        raise self.fail(f"'before that' at {self.here()}: it is not clear which of the earlier goals "
+                        raise self.fail(f"'before that' at {self.here()}: it is not clear which of the "
+                                        f"earlier goals "
                                         f"this comes before; put the goals in the order they must be done")
                     self.i += 2 if before_that else 1
                     self.skip_of_all()
@@ -550,7 +573,8 @@ class MissionParser:
                         clause.steps[0:0] = [s for s in steps if s]
                         continue
                     if self.done() and self.last_step:  # "Go to B. Go to A first.": before which goal?
-                        raise self.fail("a trailing 'first' in a later sentence: start the sentence with 'Before "
+                        raise self.fail("a trailing 'first' in a later sentence: start the sentence with "
+                                        "'Before "
                                         "that' or put the goals in the order they must be done")
                     clause.steps[-1].extend(steps[0])  # "go to A first and (then) B": A, then the rest
                     clause.steps.extend(steps[1:] + [[]])
@@ -566,7 +590,8 @@ class MissionParser:
             self.i += 1
         self.i += len(self.at_any(_WAYPOINT) or ())
         if len(clause.steps[-1]) != 1:
-            raise self.fail(f"it is not clear which of the goals {self.here()} is on the way to; say 'go to X, then Y'")
+            raise self.fail(f"it is not clear which of the goals {self.here()} is on the way to; say 'go to "
+                            f"X, then Y'")
         target = clause.steps.pop()
         clause.steps.extend([t for t in self.action() if t])
         clause.steps.extend([target, []])
@@ -580,7 +605,8 @@ class MissionParser:
         *before that* after several steps is ambiguous (before which?) and refused."""
         before_that = self.at("before", "that")
         if before_that and len([s for s in clause.steps if s]) > 1:
-            raise self.fail(f"'before that' at {self.here()}: it is not clear which of the earlier goals this comes "
+            raise self.fail(f"'before that' at {self.here()}: it is not clear which of the earlier goals "
+                            f"this comes "
                             f"before; put the goals in the order they must be done (with 'then')")
         self.i += 2 if before_that else 1
         self.skip_of_all()
@@ -596,7 +622,8 @@ class MissionParser:
         done = [m for s in earlier for t in s for m in t.members]
         for task in step:
             if task.revisit and not all(m in done for m in task.members):
-                raise self.fail("'again' / 'back to' needs the first visit earlier in the same sequence (e.g. 'go to "
+                raise self.fail("'again' / 'back to' needs the first visit earlier in the same sequence "
+                                "(e.g. 'go to "
                                 "the kitchen, then the bedroom, then back to the kitchen')")
 
     def step_rooms(self, step: Step) -> list[Entity]:
@@ -630,20 +657,23 @@ class MissionParser:
             self.i += len(whole)
             is_global = True
         if self.word() in ("after", "once", "when", "during") and not self.at("after", "that"):
-            raise self.fail(f"a prohibition for part of the mission ({self.here()}) is not understood; say 'never "
+            raise self.fail(f"a prohibition for part of the mission ({self.here()}) is not understood; say "
+                            f"'never "
                             f"enter X' (the whole mission) or 'do not enter X until ...'")
         if self.word() in ("until", "before"):
             self.i += 1
             self.skip_subject()
             back = ("that", "this", "it", "so")
-            if self.word() in _DONE and ((self.word(1) in back and not self.np_starts(2)) or not self.np_starts(1)):
+            if self.word() in _DONE and ((self.word(1) in back and not self.np_starts(2))
+                                         or not self.np_starts(1)):
                 self.i += 1  # "... before you've done that"
                 if self.word() in back:
                     self.i += 1
                 steps = [self.previous_step(clause)]
             else:
                 steps = self.action()
-                if self.word() in ("is", "are", "has", "have") and self.word(1) in _DONE | {"been", "visited"}:
+                if self.word() in ("is", "are", "has", "have") and self.word(1) in _DONE | {"been",
+                                                                                            "visited"}:
                     self.i += 2  # "until both bathrooms are done"
                     if self.word() in ("visited", "checked", "cleaned"):
                         self.i += 1
@@ -665,7 +695,8 @@ class MissionParser:
                 clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in everywhere])))
 
     def avoidance_scope(self, target: Task, forbidden: list[Entity]) -> tuple[list[Entity], list[Entity]]:
-        """Split what a trailing *avoid* / *without* forbids into what holds when ``target`` is done (an object
+        """Split what a trailing *avoid* / *without* forbids into what holds when ``target`` is done (an
+        object
         of a room the target is in: "visit the bathroom and avoid the sink") and what holds for the whole
         mission: a room (one room at a time makes "in the bedroom and not in the kitchen" say nothing, so
         "go to the bedroom while avoiding the kitchen" means never entering it), or an object elsewhere."""
@@ -713,7 +744,8 @@ class MissionParser:
         if floors == 2:
             return frozenset({1 if step > 0 else 0})
         listing = "floor 0" if floors == 1 else f"floors 0 to {floors - 1}"
-        raise self.fail(f"'{word}' depends on where the robot starts, which is not known here; say which floor "
+        raise self.fail(f"'{word}' depends on where the robot starts, which is not known here; say which "
+                        f"floor "
                         f"(the building {self.vocab.building_name!r} has {listing})")
 
     def action(self, step_rooms: list[Entity] | None = None) -> list[Step]:
@@ -745,7 +777,8 @@ class MissionParser:
         self.skip_particles()
         # "put X in Y", "take X to Y", "go from X to Y", and any object followed by "to Y": X, then Y.
         carried = carry or (self.word() in ("to", "into", "onto") and (
-            set(verbs) & {"from", "through", "via", "past"} or all(e.kind == "object" for np in nps for e in np.entities)))
+            set(verbs) & {"from", "through", "via", "past"} or all(e.kind == "object" for np in nps
+                                                                   for e in np.entities)))
         if carried and self.word() in ("in", "into", "on", "onto", "to", "inside") and self.np_starts(1):
             self.i += 1
             dest = self.noun_phrase_list("goal", [])
@@ -773,7 +806,8 @@ class MissionParser:
         comma = 1 if self.word() == "," else 0
         said = self.at_any(lx.CHOICE_AFFIRMATIONS, k=comma)
         time = self.at_any(lx.TIME_FILLERS, k=comma)  # "whichever first" is about the order
-        if said is None or (said == ("is", "fine") and comma) or (time is not None and len(time) >= len(said)):
+        if said is None or (said == ("is", "fine") and comma) or (time is not None
+                                                                  and len(time) >= len(said)):
             return
         if len(nps) > 1 or nps[0].mode != "any":
             raise self.fail(f"'{' '.join(said)}' after '{self.span_text(nps[0].start, nps[-1].end)}', which "
@@ -782,10 +816,12 @@ class MissionParser:
 
     def first_of_list(self, nps: list[NounPhrase]) -> list[NounPhrase]:
         """``A and B, B first``: the list with B moved to the front and once only (*first* is consumed; the
-        caller orders it before the rest). Any other phrase named twice in one list is refused: it is not clear what is meant."""
+        caller orders it before the rest). Any other phrase named twice in one list is refused: it is not
+        clear what is meant."""
         keys = [frozenset(e.key for e in np.entities) for np in nps]
         # "the chairs, both of them": the second phrase only restates the first
-        nps = [np for n, np in enumerate(nps) if not (n and keys[n] == keys[n - 1] and np.phrase.lower().endswith("them"))]
+        nps = [np for n, np in enumerate(nps) if not (n and keys[n] == keys[n - 1]
+                                                      and np.phrase.lower().endswith("them"))]
         keys = [frozenset(e.key for e in np.entities) for np in nps]
         repeated = [n for n, k in enumerate(keys) if k in keys[:n]]
         if not repeated:
@@ -806,7 +842,8 @@ class MissionParser:
         if again:
             self.i += 1
             if not named_before:
-                raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)} again': it was not a goal before")
+                raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)} again': it was not a goal "
+                                f"before")
         if again or (set(verbs) & lx.REVISIT_VERBS and named_before):
             for task in steps[0]:
                 task.revisit = True
@@ -829,7 +866,8 @@ class MissionParser:
         return n
 
     def skip_particles(self) -> None:
-        if self.word() in _PARTICLES and (self.word(1) in ("", ",", "and", "then", "to") or self.at_any(_NEG_STARTS, k=1)):
+        if self.word() in _PARTICLES and (self.word(1) in ("", ",", "and", "then", "to")
+                                          or self.at_any(_NEG_STARTS, k=1)):
             self.i += 1
 
     def tasks_of(self, nps: list[NounPhrase], ordered: bool) -> list[Step]:
@@ -851,12 +889,15 @@ class MissionParser:
         if w == "there":  # "get there": the last place named as a goal
             return self.word(k + 1) not in ("is", "are", "was", "were")
         if w in _DETERMINERS:
-            return not (w == "some" and self.word(k + 1) == "point") and not (w == "that" and self.word(k + 1) in ("order",))
+            nxt = self.word(k + 1)
+            return not (w == "some" and nxt == "point") and not (w == "that" and nxt == "order")
         if w in lx.NUMBER_WORDS or w.isdigit():
-            return w != "one" or self.word(k + 1) == "of" or self.vocab.match_head(self.words(), self.i + k + 1) is not None
+            return w != "one" or self.word(k + 1) == "of" or self.vocab.match_head(self.words(), self.i + k
+                                                                                   + 1) is not None
         return self.vocab.match_head(self.words(), self.i + k) is not None
 
-    def noun_phrase_list(self, role: Role, scope: list[Entity], pronoun_kind: str | None = None) -> list[NounPhrase]:
+    def noun_phrase_list(self, role: Role, scope: list[Entity], pronoun_kind: str
+                         | None = None) -> list[NounPhrase]:
         """``A, B and C`` (each) or ``A or B`` / ``either A or B`` (one of them, as one phrase)."""
         either = self.word() == "either" and self.word(1) in _DETERMINERS | {"of"} and self.word(1) != "of"
         if either or (self.word() == "both" and self.word(1) in _DETERMINERS):
@@ -880,10 +921,12 @@ class MissionParser:
                 break
             nps.append(self.noun_phrase(role, scope))
         if joiners == {"and", "or"}:
-            raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)}' mixes 'and' and 'or'; split it into two sentences")
+            raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)}' mixes 'and' and 'or'; split it "
+                            f"into two sentences")
         if "or" in joiners or either:
             if any(np.mode == "all" and len(np.entities) > 1 for np in nps):
-                raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)}' joins a group with 'or'; say 'any of ...'")
+                raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)}' joins a group with 'or'; say "
+                                f"'any of ...'")
             # Being at an object implies being in its room, so locating some alternatives by their room and
             # others not changes nothing: the merged phrase locates all of them.
             merged = NounPhrase(self.span_text(nps[0].start, nps[-1].end), nps[0].start, nps[-1].end,
@@ -909,7 +952,8 @@ class MissionParser:
             entities = list(ref.entities)
             if role == "qualifier":  # "the clock in there": the room of the last goal
                 entities = list({e.room_key: self.vocab.by_key[e.room_key] for e in entities}.values())
-            return self.record(NounPhrase(w, first.start, first.end, entities, ref.mode, ref.room_scoped, role))
+            return self.record(NounPhrase(w, first.start, first.end, entities, ref.mode, ref.room_scoped,
+                                          role))
         group = self.all_of_them() if role == "goal" else None
         if group is not None:
             return group
@@ -917,13 +961,15 @@ class MissionParser:
             self.i += 1
             ref = self.antecedent(w, pronoun_kind)
             pronoun_mode: Mode = "all" if w in ("them", "they") else ref.mode
-            np = NounPhrase(self.span_text(first.start, first.end), first.start, first.end, list(ref.entities),
+            np = NounPhrase(self.span_text(first.start, first.end), first.start, first.end,
+                            list(ref.entities),
                             pronoun_mode, ref.room_scoped, role)
             return self.record(np)
         if self.word() in ("the", "a") and self.word(1) in lx.ANAPHORIC_ONE and one_head is None:
             one_head = self.last_head()  # "the teddy bear in the bedroom, then the one in the living room"
         other = self.at("the", "other") and self.vocab.match_head(self.words(), self.i + 2) is not None
-        if self.at("the", "other", "one") and one_head is None:  # "the bedroom with the book, then the other one"
+        if self.at("the", "other",
+                   "one") and one_head is None:  # "the bedroom with the book, then the other one"
             one_head = self.last_head()
             other = True
         if other:
@@ -977,7 +1023,8 @@ class MissionParser:
                 container = entities
                 head = self.head(None)
                 if head.kind != "object":
-                    raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}': only objects belong to a room")
+                    raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}': only "
+                                    f"objects belong to a room")
                 entities = self.vocab.inside(self.vocab.of_head(head), container)
                 mode = "all" if head.plural else "the"
                 room_scoped = True
@@ -987,11 +1034,13 @@ class MissionParser:
                 entities = self.vocab.on_floor(entities, floor)
                 continue
             if (self.word() in _QUAL_IN and self.np_starts(1) and not self.at_any(lx.ORDER_MODIFIERS)
-                    and not self.at_any(lx.TIME_FILLERS) and not (role == "qualifier" and self.word(1) in ("it", "there"))):
+                    and not self.at_any(lx.TIME_FILLERS) and not (role == "qualifier"
+                                                                  and self.word(1) in ("it", "there"))):
                 self.i += 1
                 inner = self.noun_phrase("qualifier")
                 if head.kind != "object" or any(e.kind != "room" for e in inner.entities):
-                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <object> in the <room>' "
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <object> in the "
+                                    f"<room>' "
                                     f"(rooms are not inside rooms, objects not inside objects)")
                 entities = self.vocab.inside(entities, inner.entities)
                 inner.entities = [r for r in inner.entities if any(e.room_key == r.key for e in entities)]
@@ -1002,7 +1051,8 @@ class MissionParser:
                 self.i += len(lacks)
                 inner = self.noun_phrase("qualifier")
                 if head.kind != "room" or any(e.kind != "object" for e in inner.entities):
-                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> without any <object>'")
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> without "
+                                    f"any <object>'")
                 entities = self.vocab.lacking(entities, inner.entities)
                 self.skip_in_it()
                 continue
@@ -1012,8 +1062,10 @@ class MissionParser:
                 n = self.count_word()
                 inner = self.noun_phrase("qualifier")
                 if head.kind != "room" or any(e.kind != "object" for e in inner.entities):
-                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> with the <object>'")
-                entities = self.vocab.containing(entities, inner.entities, n if n is not None else inner.count,
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> with the "
+                                    f"<object>'")
+                entities = self.vocab.containing(entities, inner.entities, n if n is not None
+                                                 else inner.count,
                                                  only="only" in contains)
                 inner.entities = [o for o in inner.entities if any(o.room_key == r.key for r in entities)]
                 self.skip_in_it()
@@ -1023,7 +1075,8 @@ class MissionParser:
                 self.i += len(nxt)
                 inner = self.noun_phrase("qualifier")
                 if head.kind != "room" or any(e.kind != "room" for e in inner.entities):
-                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': 'next to' relates rooms only")
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': 'next to' relates rooms "
+                                    f"only")
                 entities = self.vocab.next_to(entities, inner.entities)
                 inner.entities = [r for r in inner.entities
                                   if any(r.key in self.vocab.adjacent.get(e.key, ()) for e in entities)]
@@ -1035,9 +1088,11 @@ class MissionParser:
                 self.i += comma + len(exc)
                 excluded = self.except_list(head)
                 keys = {e.key for np in excluded for e in np.entities}
-                stray = [np.phrase for np in excluded if not {e.key for e in np.entities} & {e.key for e in entities}]
+                kept = {e.key for e in entities}
+                stray = [np.phrase for np in excluded if not {e.key for e in np.entities} & kept]
                 if stray:  # "the dining room but not the kitchen": not an exception, and not understood
-                    raise self.fail(f"'{' '.join(exc)} {stray[0]}': {stray[0]!r} is not one of {restricted!r}; to "
+                    raise self.fail(f"'{' '.join(exc)} {stray[0]}': {stray[0]!r} is not one of "
+                                    f"{restricted!r}; to "
                                     f"forbid it, say 'never enter {stray[0]}'")
                 entities = [e for e in entities if e.key not in keys]
                 continue
@@ -1050,11 +1105,15 @@ class MissionParser:
                 # "go to the lobby and sit on the couch" where the lobby has no couch: another room's couch
                 # is not what was asked for.
                 where = " or ".join(f"{r.key} ({r.category})" for r in scope)
-                raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}' is not in {where} "
-                                f"named in the same step; it is at {', '.join(e.describe() for e in entities[:8])}; "
-                                f"say 'then' between the two, or name its room ('the {head_word(entities)} in the ...')")
+                raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}' is not in "
+                                f"{where} "
+                                f"named in the same step; it is at "
+                                f"{', '.join(e.describe() for e in entities[:8])}; "
+                                f"say 'then' between the two, or name its room ('the {head_word(entities)} "
+                                f"in the ...')")
         last = self.toks[self.i - 1]
-        np = NounPhrase(self.span_text(first.start, last.end), first.start, last.end, entities, mode, room_scoped, role,
+        np = NounPhrase(self.span_text(first.start, last.end), first.start, last.end, entities, mode,
+                        room_scoped, role,
                         count)
         self.check(np, head, count)
         return self.record(np)
@@ -1064,7 +1123,8 @@ class MissionParser:
         rooms = self.vocab.on_floor(self.vocab.of_head(Head("room", frozenset(), True, 1)), floors)
         chosen: Mode = "all" if role == "avoid" or mode == "all" else "any"
         last = self.toks[self.i - 1]
-        return self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, rooms, chosen,
+        return self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, rooms,
+                                      chosen,
                                       False, role))
 
     def last_head(self) -> Head | None:
@@ -1079,7 +1139,8 @@ class MissionParser:
         """``the other X``: the X not named before ``before`` (a character offset); refused when none was."""
         named = {e.key for r in self.references if r.start < before for e in r.entities}
         if not any(e.key in named for e in entities):
-            raise self.fail(f"'the other {head_word(entities)}': no {head_word(entities)} was named before it")
+            raise self.fail(f"'the other {head_word(entities)}': no {head_word(entities)} was named before "
+                            f"it")
         return [e for e in entities if e.key not in named]
 
     def skip_in_it(self) -> None:
@@ -1112,7 +1173,8 @@ class MissionParser:
                 kind is None or all(e.kind == kind for e in np.entities)
             ):
                 return np
-        raise self.fail(f"'{pronoun}' does not refer to any {'group of ' if plural else ''}room or object named before it")
+        raise self.fail(f"'{pronoun}' does not refer to any {'group of ' if plural else ''}room or object "
+                        f"named before it")
 
     def all_of_them(self) -> NounPhrase | None:
         """``all of them`` / ``both of them`` / ``each of them`` / ``all three of them``: the group named
@@ -1130,7 +1192,8 @@ class MissionParser:
             raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}': '{ref.phrase}' is "
                             f"{len(ref.entities)}, not {count}")
         return self.record(NounPhrase(self.span_text(first.start, self.toks[self.i - 1].end), first.start,
-                                      self.toks[self.i - 1].end, list(ref.entities), "all", ref.room_scoped, "goal"))
+                                      self.toks[self.i - 1].end, list(ref.entities), "all", ref.room_scoped,
+                                      "goal"))
 
     def quantifier(self) -> tuple[Mode | None, int | None]:
         """Determiners -> (mode, required count); ``None`` mode = decided by the head's number."""
@@ -1153,7 +1216,8 @@ class MissionParser:
             mode = "the"
         if self.word() in ("the", "these", "those") and mode is not None:
             self.i += 1
-        n = self.count_word() if self.np_starts(1) or self.vocab.match_head(self.words(), self.i + 1) else None
+        n = self.count_word() if self.np_starts(1) or self.vocab.match_head(self.words(), self.i
+                                                                            + 1) else None
         if n is not None:
             if mode in (None, "any"):
                 raise self.fail(f"'{self.word(-1)} ...': choosing a number of them is not understood; "
@@ -1181,10 +1245,12 @@ class MissionParser:
         if w in lx.REFUSED_VERBS:
             raise self.fail(f"cannot understand {lx.REFUSED_VERBS[w]}")
         if w in lx.FLOOR_ORDINALS or w in lx.FLOOR_NAMED or w in lx.FLOOR_TOP:
-            raise self.fail(f"ordinals like '{w}' are only understood for floors ('the bathroom on the {w} floor')")
+            raise self.fail(f"ordinals like '{w}' are only understood for floors ('the bathroom on the {w} "
+                            f"floor')")
         head = self.vocab.match_head(self.words(), self.i)
         if head is None and self.done():
-            raise self.fail(f"expected a room or object after '{self.toks[self.i - 1].text}' at the end of the sentence")
+            raise self.fail(f"expected a room or object after '{self.toks[self.i - 1].text}' at the end of "
+                            f"the sentence")
         if head is None:
             unknown = self.word()
             raise self.fail(
@@ -1196,8 +1262,9 @@ class MissionParser:
         return head
 
     def floor_qualifier(self) -> frozenset[int] | None:
-        """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> {1}, {1}, {0};
-        ``upstairs`` / ``downstairs`` / ``on this floor``: relative to the start floor (:meth:`relative_floor`)."""
+        """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> {1}, {1},
+        {0}; ``upstairs`` / ``downstairs`` / ``on this floor``: relative to the start floor
+        (:meth:`relative_floor`). Not ``in the ground floor bathroom``: that names a room."""
         if self.word() in lx.RELATIVE_FLOORS:  # "the bathroom upstairs"
             relative = self.relative_floor(self.word())
             self.i += 1
@@ -1230,8 +1297,10 @@ class MissionParser:
             floor = floors // 2
         elif w in lx.START_FLOOR_WORDS:  # "on this floor": where the robot starts
             if self.start_floor is None:
-                raise self.fail(f"'{w} {nxt}' depends on where the robot starts, which is not known here; say which "
-                                f"floor (the building {self.vocab.building_name!r} has floors 0 to {floors - 1})")
+                raise self.fail(f"'{w} {nxt}' depends on where the robot starts, which is not known here; "
+                                f"say which "
+                                f"floor (the building {self.vocab.building_name!r} has floors 0 to "
+                                f"{floors - 1})")
             floor = self.start_floor
         else:
             return None
@@ -1250,10 +1319,12 @@ class MissionParser:
             raise self.fail(f"'{np.phrase}' matches no {head.kind}{self.existing(head)}")
         if count is not None and len(np.entities) != count:
             listing = ", ".join(e.describe() for e in np.entities)
-            raise self.fail(f"'{np.phrase}' should be {count} {head.kind}s but matches {len(np.entities)}: {listing}")
+            raise self.fail(f"'{np.phrase}' should be {count} {head.kind}s but matches {len(np.entities)}: "
+                            f"{listing}")
         if np.mode == "the" and len(np.entities) > 1:
             listing = ", ".join(
-                f"{e.key} (floor {e.floor})" if e.kind == "room" else f"{e.key} (in {e.room_key}, floor {e.floor})"
+                f"{e.key} (floor {e.floor})" if e.kind == "room" else f"{e.key} (in {e.room_key}, floor "
+                f"{e.floor})"
                 for e in np.entities
             )
             raise MissionError(
@@ -1276,12 +1347,14 @@ class MissionParser:
         if ents[0].kind == "object":
             if len({e.room_key for e in ents}) == len(ents):
                 room = self.vocab.by_key[ents[0].room_key]
-                return f"say which room it is in (e.g. 'the {word} in the {room.category} on floor {room.floor}')"
+                example = f"the {word} in the {room.category} on floor {room.floor}"
+                return f"say which room it is in (e.g. '{example}')"
         else:
             for e in ents:
                 own = {o.category for o in self.vocab.entities if o.kind == "object" and o.room_key == e.key}
                 others = {o.category for o in self.vocab.entities
-                          if o.kind == "object" and o.room_key != e.key and o.room_key in {x.key for x in ents}}
+                          if o.kind == "object" and o.room_key != e.key and o.room_key in {x.key
+                                                                                           for x in ents}}
                 unique = sorted(own - others)
                 if unique:
                     return f"say what it contains (e.g. 'the {word} with the {unique[0]}')"

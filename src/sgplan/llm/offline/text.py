@@ -1,9 +1,9 @@
 """Tokens of a mission text, with their character spans, split into sentences.
 
 Text is lower-cased; contractions are expanded (``don't`` -> ``do not``), a possessive ``'s`` becomes
-its own token, parentheses become commas (an aside), and list markers (``1)``, ``(2)``, ``3.`` at the start of an item) end a sentence like
-``.``, ``;``, ``!``, ``?`` and ``:`` do. Entity IDs (``room_2``, ``object_27``) stay single tokens, so
-already-grounded text is understood too.
+its own token, parentheses become commas (an aside), and list markers (``1)``, ``(2)``, ``3.`` at the
+start of an item) end a sentence like ``.``, ``;``, ``!``, ``?`` and ``:`` do. Entity IDs (``room_2``,
+``object_27``) stay single tokens, so already-grounded text is understood too.
 """
 
 from __future__ import annotations
@@ -13,7 +13,8 @@ from dataclasses import dataclass
 
 _WORD = re.compile(r"(?:room|object)_\d+|\d+(?:st|nd|rd|th)?|[a-z]+(?:'[a-z]+)?|'s\b|[,.;:!?()]")
 _NEGATED = {"don": "do", "doesn": "does", "didn": "did", "can": "can", "won": "will", "mustn": "must",
-            "shouldn": "should", "isn": "is", "aren": "are", "haven": "have", "hasn": "has", "wouldn": "would",
+            "shouldn": "should", "isn": "is", "aren": "are", "haven": "have", "hasn": "has",
+            "wouldn": "would",
             "couldn": "could", "shan": "shall", "mayn": "may"}
 SENTENCE_END = frozenset(".;:!?")
 
