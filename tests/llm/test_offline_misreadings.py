@@ -40,8 +40,8 @@ def refused(text: str, fragment: str, building: Building, translator: PatternTra
     ("text", "gold"),
     [
         ("Go to the kitchen, but first go to the bathroom on floor 1.", "F(r14 & F r4)"),
-        ("Go to the kitchen, then the dining room, but first visit the home office.", "F(r12 & F(r4 & F "
-         "r7))"),
+        ("Go to the kitchen, then the dining room, but first visit the home office.",
+         "F(r12 & F(r4 & F r7))"),
         ("Firstly go to the home office. Secondly go to the kitchen.", "F(r12 & F r4)"),
         ("First, go to the home office. Second, go to the kitchen. Lastly, go to the dining room.",
          "F(r12 & F(r4 & F r7))"),
@@ -70,8 +70,8 @@ def test_ambiguous_before_that_is_refused(demo):
         ("Go to the bedroom with the teddy bear and avoid the kitchen.", "F r11 & G !r4"),
         ("Go to the bedroom with the teddy bear but avoid the kitchen.", "F r11 & G !r4"),
         ("Go to the bedroom with the teddy bear without entering the kitchen.", "F r11 & G !r4"),
-        ("Go to the dining room, then the bedroom with the book, and avoid the kitchen.", "F(r7 & F r13) & G "
-         "!r4"),
+        ("Go to the dining room, then the bedroom with the book, and avoid the kitchen.",
+         "F(r7 & F r13) & G !r4"),
         # an object elsewhere: the local reading would say nothing, so it holds for the whole mission
         ("Go to the kitchen and avoid the couch.", "F r4 & G !o22"),
         # an object of the room the step is in keeps the authors' local reading
@@ -248,8 +248,8 @@ def test_this_floor_is_the_start_floor(demo):
         ("Go upstairs and check the sink.", "F o41"),
         ("Visit the kitchen or the dining room, I don't care which.", "F(r4 | r7)"),
         ("Visit the kitchen and the living room, any order.", "F r4 & F r6"),
-        ("Open the fridge and the oven in either order, then go to the couch.", "F(o15 & F o22) & F(o16 & F "
-         "o22)"),
+        ("Open the fridge and the oven in either order, then go to the couch.",
+         "F(o15 & F o22) & F(o16 & F o22)"),
         ("Use the toilet in the bathroom attached to the kitchen.", "F o20"),
     ],
 )
@@ -262,8 +262,8 @@ def test_everyday_constructs(demo, text, gold):
     [
         ("Wash your hands in the kitchen.", "no room or object of this scene is called 'hands'"),
         ("Go to the bathroom on the middle floor.", "has 2 floors (0 to 1), so no middle one"),
-        ("Go to the bedroom that doesn't have a bed.", "'the bedroom that doesn't have a bed' matches no "
-         "room"),
+        ("Go to the bedroom that doesn't have a bed.",
+         "'the bedroom that doesn't have a bed' matches no room"),
         ("Go to the dining room but not the kitchen.", "'the kitchen' is not one of 'the dining room'"),
     ],
 )
@@ -371,8 +371,8 @@ def test_never_upstairs_from_the_start_floor(demo):
         ("Wash the bowl, and on your way back up touch the teddy bear.", "F(o19 & F o32)"),
         ("Sit on the chairs in the dining room, both of them, then watch the TV.",
          "F(o28 & r7 & F o23) & F(o29 & r7 & F o23)"),
-        ("Touch the sink in the ground-floor bathroom, then the toilet on the top floor.", "F(o21 & r5 & F "
-         "o40)"),
+        ("Touch the sink in the ground-floor bathroom, then the toilet on the top floor.",
+         "F(o21 & r5 & F o40)"),
         ("Visit the office, the kitchen and the dining room, in that order please.", "F(r12 & F(r4 & F r7))"),
     ],
 )

@@ -99,8 +99,8 @@ def test_output_is_the_llm_token_format_with_grounded_text_and_references(transl
     refs = {r.phrase: r for r in t.references}
     assert refs["the bowl in the kitchen"].keys == ("object_19",)
     assert refs["the kitchen"].role == "qualifier" and refs["the kitchen"].keys == ("room_4",)
-    assert refs["the bathroom on floor 1"].keys == ("room_14",) and refs["the bathroom on floor "
-                                                                         "1"].role == "avoid"
+    assert refs["the bathroom on floor 1"].keys == ("room_14",
+                                                    ) and refs["the bathroom on floor 1"].role == "avoid"
     assert refs["the bathroom on floor 1"].descriptions == ("room_14 (bathroom, floor 1)",)
 
 
@@ -115,8 +115,8 @@ def test_deterministic(translate):
         ("Go to the bathroom.",
          "'the bathroom' matches 2 rooms: room_5 (floor 0), room_14 (floor 1); say which floor (e.g. 'the "
          "bathroom on floor 0')"),
-        ("Visit the bedroom.", "'the bedroom' matches 2 rooms: room_11 (floor 1), room_13 (floor 1); say "
-         "what it contains"),
+        ("Visit the bedroom.",
+         "'the bedroom' matches 2 rooms: room_11 (floor 1), room_13 (floor 1); say what it contains"),
         ("Sit on the chair in the dining room.",
          "'the chair in the dining room' matches 2 objects: object_28 (in room_7, floor 0), object_29 (in "
          "room_7, floor 0)"),
@@ -124,14 +124,14 @@ def test_deterministic(translate):
         ("Visit the garage.", "no room or object of this scene is called 'garage'"),
         ("Visit the bathroom on floor 4.", "has floors 0 to 1"),
         ("Visit the kitchen with the bed.", "'the kitchen with the bed' matches no room"),
-        ("Take both clocks in the living room.", "'both clocks in the living room' should be 2 objects but "
-         "matches 1"),
+        ("Take both clocks in the living room.",
+         "'both clocks in the living room' should be 2 objects but matches 1"),
         ("Leave the kitchen.", "cannot understand 'leave'"),
         ("Visit the kitchen and put it in the fridge.", "'it' does not refer to any room or object"),
         ("Visit the kitchen and the bathroom on floor 0 or the living room.", "mixes 'and' and 'or'"),
         ("Visit two bedrooms.", "choosing a number of them is not understood"),
-        ("Whenever you visit the kitchen, never open the fridge.", "'whenever X, ...' is understood with "
-         "goals only"),
+        ("Whenever you visit the kitchen, never open the fridge.",
+         "'whenever X, ...' is understood with goals only"),
         ("Go to the first bathroom.", "ordinals like 'first' are only understood for floors"),
         ("Please.", "names no room or object"),
         ("Visit the kitchen, then the.", "expected a room or object"),

@@ -169,12 +169,12 @@ def evaluate(
                 results.append(EvalResult(m, "refused", message))
             continue
         if m.gold is None:
-            results.append(EvalResult(m, "wrong", f"expected an error containing {m.expect_error!r}, got "
-                                      f"{formula}",
+            results.append(EvalResult(m, "wrong",
+                                      f"expected an error containing {m.expect_error!r}, got {formula}",
                                       formula))
             continue
         same, why = same_language(formula, m.gold, building)
-        results.append(EvalResult(m, "right" if same else "wrong", f"got {formula}" + ("" if same else f"; "
-                                                                                       f"{why}"),
+        results.append(EvalResult(m, "right" if same else "wrong",
+                                  f"got {formula}" + ("" if same else f"; {why}"),
                                   formula))
     return results

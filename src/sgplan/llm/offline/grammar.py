@@ -6,10 +6,10 @@ sentence is a sequence of steps joined by ``then`` / ``after that`` / ``finally`
 kitchen and water the plant``); an action is verb words followed by a list of noun phrases (``again``,
 ``twice`` make new visits); negations (``always avoid``, ``never``, ``don't``, ``avoid``, ``without``,
 ``stay away from``; a trailing one on a room holds for the whole mission), ``until``, conditions
-(``if ... , ...``, ``... if ...``, ``... only if ...``, ``whenever ...``; ``if you ever ...`` and
-``..., Y afterwards`` make a condition a response like *whenever*; a bare ``when ...`` is refused) and
-sentence prefixes (``After visiting X, ...``, ``Once ...``, ``Only after ...``, ``On your way to X, ...``,
-``In the kitchen, ...``) wrap them. Noun phrases are grounded as they are read (:class:`NounPhrase`), so
+(``if ... , ...``, ``... if ...``, ``... only if ...``, ``whenever ...``) and sentence prefixes (``After
+visiting X, ...``, ``Once ...``, ``Only after ...``, ``On your way to X, ...``, ``In the kitchen, ...``)
+wrap them; ``if you ever ...`` and ``..., Y afterwards`` make a condition a response like *whenever*, a
+bare ``when ...`` is refused. Noun phrases are grounded as they are read (:class:`NounPhrase`), so
 pronouns (``it``, ``them``) and room context ("go to the dining room and sit on one of the chairs": the
 chairs of that dining room) use what came before.
 
@@ -49,17 +49,16 @@ _NEG_STARTS = (("always", "avoid"), ("always", "stay", "away", "from"), ("always
                ("and", "avoid"), ("but", "avoid"), ("but", "never"), ("and", "never"), ("but", "do", "not"),
                ("and", "do", "not"), ("but", "not"), ("no",))
 _GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can", "cannot", "may", "will",
-                         "no",
-                         "stay", "keep"})
+                         "no", "stay", "keep"})
 """A negation with one of these words holds for the whole mission (G !x); 'avoid' and 'without' after an
 action only constrain the moment that action is done (F(x & !y)), as in the authors' missions."""
 _QUAL_IN = ("in", "inside", "within", "of", "from")
 _QUAL_CONTAINS = (("with",), ("having",), ("containing",), ("that", "has"), ("that", "have"),
                   ("which", "has"), ("which", "have"), ("that", "contains"), ("which", "contains"),
-                  ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"), ("that", "only",
-                                                                                           "has"),
-                  ("which", "only", "has"), ("that", "only", "have"), ("with", "only"), ("that", "has",
-                                                                                         "only"),
+                  ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"),
+                  ("that", "only", "has"),
+                  ("which", "only", "has"), ("that", "only", "have"), ("with", "only"),
+                  ("that", "has", "only"),
                   ("containing", "only"))
 _QUAL_LACKS = (("that", "does", "not", "have"), ("which", "does", "not", "have"), ("with", "no"),
                ("that", "has", "no"), ("that", "does", "not", "contain"), ("where", "there", "is", "no"))
@@ -75,9 +74,9 @@ _CONDITION_WORDS = ("if", "when", "in case")
 """Conditions; *once* is temporal ('once you have been to X' = after X), not a condition."""
 _WHENEVER = (("whenever",), ("every", "time"), ("each", "time"), ("any", "time"), ("anytime",))
 _DONE = frozenset({"done", "finished", "through"})
-_WAYPOINT = (("via",), ("through",), ("past",), ("by", "way", "of"), ("passing", "through"), ("going",
-                                                                                              "through"),
-             ("passing", "by"), ("going", "past"), ("passing",), ("by", "going", "through"))
+_WAYPOINT = (("via",), ("through",), ("past",), ("by", "way", "of"), ("passing", "through"),
+             ("going", "through"), ("passing", "by"), ("going", "past"), ("passing",),
+             ("by", "going", "through"))
 """Right after a goal: what follows is on the way there (before it)."""
 _ON_THE_WAY = (("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way"))
 _WAY_BACK = frozenset({"back", "up", "down", "there", "out", "over", "home"})
@@ -86,10 +85,8 @@ _ONLY_AFTER = (("only", "after"), ("only", "once"), ("not", "before"), ("not", "
 _EVER = (("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"), ("every", "time"),
          ("each", "time"), ("anytime",))
 """In a condition ("if you ever go into X"): it is about each visit of X, a response, not one event."""
-_AFTERWARDS = (("afterwards",), ("afterward",), ("after", "that"), ("after",), ("later",), ("straight",
-                                                                                            "after"),
-                                                                                            ("right",
-                                                                                             "after"))
+_AFTERWARDS = (("afterwards",), ("afterward",), ("after", "that"), ("after",), ("later",),
+               ("straight", "after"), ("right", "after"))
 """In the consequent of a condition ("..., visit Y afterwards"): Y follows X, a response."""
 _FIRST = frozenset({"first", "firstly"})
 _MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
@@ -100,9 +97,8 @@ _STRUCTURAL = (
     | frozenset(lx.FLOOR_WORDS) | frozenset(lx.FLOOR_ORDINALS) | frozenset(lx.FLOOR_NAMED)
     | frozenset(lx.FLOOR_TOP) | frozenset(lx.FLOOR_MIDDLE) | frozenset(lx.NUMBER_WORDS)
     | frozenset(lx.PRONOUNS)
-    | frozenset(lx.GENERIC_ROOM_WORDS) | frozenset({"whenever", "only", "than", "zero", "ever", "again",
-                                                    "twice", "once",
-                                                  "times", "anytime"})
+    | frozenset(lx.GENERIC_ROOM_WORDS)
+    | frozenset({"whenever", "only", "than", "zero", "ever", "again", "twice", "once", "times", "anytime"})
 ) - lx.POSITIVE_VERBS - {"first", "also", "please", "eventually", "finally"}
 """Words with a role in the grammar: in the verb slot they signal a sentence that was not understood."""
 
@@ -216,8 +212,7 @@ class MissionParser:
             if precedes:
                 if previous is None or not isinstance(result, Clause):
                     raise self.fail("'before that' / 'first' in a later sentence needs a plain list of goals "
-                                    "in "
-                                    "this sentence and the one before it")
+                                    "in this sentence and the one before it")
                 previous.steps[0:0] = [s for s in result.steps if s]
                 previous.constraints.extend(result.constraints)
             elif continues and previous is not None and isinstance(result, Clause):
@@ -247,11 +242,10 @@ class MissionParser:
             self.i += 1
         said = self.span_text(self.toks[0].start, self.toks[self.i - 1].end)
         if len(has_goals) != 1 or (said.lower().startswith("before") and
-                                   isinstance(has_goals[0], Clause) and len([s for s in has_goals[0].steps
-                                                                             if s]) > 1):
+                                   isinstance(has_goals[0], Clause)
+                                   and len([s for s in has_goals[0].steps if s]) > 1):
             raise self.fail(f"'{said}': it is not clear which of the earlier goals this comes before; put "
-                            f"the "
-                            f"goals in the order they must be done (with 'then')")
+                            f"the goals in the order they must be done (with 'then')")
         return True
 
     def skip_fillers(self, sequence_too: bool = False) -> bool:
@@ -274,8 +268,8 @@ class MissionParser:
                 self.i += len(self.at_any(lx.TIME_FILLERS) or ())
             elif self.at_any(lx.POLITE) is not None:
                 self.i += len(self.at_any(lx.POLITE) or ())
-            elif self.word() == "," or (self.word() in lx.FILLERS and self.word() not in ("do", "and", "then",
-                                                                                          "next")):
+            elif self.word() == "," or (self.word() in lx.FILLERS
+                                        and self.word() not in ("do", "and", "then", "next")):
                 self.i += 1
             else:
                 break
@@ -289,9 +283,8 @@ class MissionParser:
             self.expect_comma_or_then()
             return self.whenever(trigger, self.body())
         done = self.done_words()
-        if done and self.word(done) == "with" and self.np_starts(done
-                                                                 + 1):  # "when done with the garage, ..."
-            self.i += done + 1
+        if done and self.word(done) == "with" and self.np_starts(done + 1):
+            self.i += done + 1  # "when done with the garage, ..."
             before = self.prefix_clause()
             body = self.body()
             body.steps[:0] = before.steps
@@ -421,8 +414,7 @@ class MissionParser:
         "whenever" is not expressible this way, so it is refused."""
         if body.constraints or any(t.avoid for step in body.steps for t in step):
             raise self.fail("'whenever X, ...' is understood with goals only (e.g. 'whenever you enter the "
-                            "kitchen, "
-                            "open the fridge'), not with prohibitions")
+                            "kitchen, open the fridge'), not with prohibitions")
         return Always(Implies(disj(trigger.members), self.require(body, "for 'whenever'")))
 
     def prefix_clause(self) -> Clause:
@@ -456,14 +448,12 @@ class MissionParser:
         ``when X, Y`` may mean either, or a plain sequence, so it is refused."""
         if not response and word == "when":
             raise self.fail("'when X, Y' can mean 'after X, Y' (in order), 'whenever X, Y' (each time) or "
-                            "'if X, Y' "
-                            "(X at all); say which")
+                            "'if X, Y' (X at all); say which")
         if not response:
             return Implies(condition, self.require(body, "for the condition"))
         if len(tasks) != 1:
             raise self.fail("'if you ever go to X, ... afterwards' is understood with one room or object (or "
-                            "a "
-                            "choice of them) as X")
+                            "a choice of them) as X")
         return self.whenever(tasks[0], body)
 
     def skip_subject(self) -> None:
@@ -565,8 +555,8 @@ class MissionParser:
                 if self.word() in _FIRST or before_that:  # "go to B, but go to A first / before that"
                     if before_that and len([s for s in clause.steps if s]) > 1:
                         raise self.fail(f"'before that' at {self.here()}: it is not clear which of the "
-                                        f"earlier goals "
-                                        f"this comes before; put the goals in the order they must be done")
+                                        f"earlier goals this comes before; put the goals in the order they "
+                                        f"must be done")
                     self.i += 2 if before_that else 1
                     self.skip_of_all()
                     if any(clause.steps):
@@ -574,8 +564,7 @@ class MissionParser:
                         continue
                     if self.done() and self.last_step:  # "Go to B. Go to A first.": before which goal?
                         raise self.fail("a trailing 'first' in a later sentence: start the sentence with "
-                                        "'Before "
-                                        "that' or put the goals in the order they must be done")
+                                        "'Before that' or put the goals in the order they must be done")
                     clause.steps[-1].extend(steps[0])  # "go to A first and (then) B": A, then the rest
                     clause.steps.extend(steps[1:] + [[]])
                     continue
@@ -606,8 +595,7 @@ class MissionParser:
         before_that = self.at("before", "that")
         if before_that and len([s for s in clause.steps if s]) > 1:
             raise self.fail(f"'before that' at {self.here()}: it is not clear which of the earlier goals "
-                            f"this comes "
-                            f"before; put the goals in the order they must be done (with 'then')")
+                            f"this comes before; put the goals in the order they must be done (with 'then')")
         self.i += 2 if before_that else 1
         self.skip_of_all()
         if self.word() == ",":
@@ -623,8 +611,7 @@ class MissionParser:
         for task in step:
             if task.revisit and not all(m in done for m in task.members):
                 raise self.fail("'again' / 'back to' needs the first visit earlier in the same sequence "
-                                "(e.g. 'go to "
-                                "the kitchen, then the bedroom, then back to the kitchen')")
+                                "(e.g. 'go to the kitchen, then the bedroom, then back to the kitchen')")
 
     def step_rooms(self, step: Step) -> list[Entity]:
         """Rooms the current step sends the robot to: context for the objects named next."""
@@ -658,8 +645,7 @@ class MissionParser:
             is_global = True
         if self.word() in ("after", "once", "when", "during") and not self.at("after", "that"):
             raise self.fail(f"a prohibition for part of the mission ({self.here()}) is not understood; say "
-                            f"'never "
-                            f"enter X' (the whole mission) or 'do not enter X until ...'")
+                            f"'never enter X' (the whole mission) or 'do not enter X until ...'")
         if self.word() in ("until", "before"):
             self.i += 1
             self.skip_subject()
@@ -672,8 +658,8 @@ class MissionParser:
                 steps = [self.previous_step(clause)]
             else:
                 steps = self.action()
-                if self.word() in ("is", "are", "has", "have") and self.word(1) in _DONE | {"been",
-                                                                                            "visited"}:
+                said_done = self.word(1) in _DONE | {"been", "visited"}
+                if self.word() in ("is", "are", "has", "have") and said_done:
                     self.i += 2  # "until both bathrooms are done"
                     if self.word() in ("visited", "checked", "cleaned"):
                         self.i += 1
@@ -745,8 +731,7 @@ class MissionParser:
             return frozenset({1 if step > 0 else 0})
         listing = "floor 0" if floors == 1 else f"floors 0 to {floors - 1}"
         raise self.fail(f"'{word}' depends on where the robot starts, which is not known here; say which "
-                        f"floor "
-                        f"(the building {self.vocab.building_name!r} has {listing})")
+                        f"floor (the building {self.vocab.building_name!r} has {listing})")
 
     def action(self, step_rooms: list[Entity] | None = None) -> list[Step]:
         """Verb words and noun phrases -> one or more steps (``put X in Y``, ordered lists give more)."""
@@ -777,8 +762,8 @@ class MissionParser:
         self.skip_particles()
         # "put X in Y", "take X to Y", "go from X to Y", and any object followed by "to Y": X, then Y.
         carried = carry or (self.word() in ("to", "into", "onto") and (
-            set(verbs) & {"from", "through", "via", "past"} or all(e.kind == "object" for np in nps
-                                                                   for e in np.entities)))
+            set(verbs) & {"from", "through", "via", "past"}
+            or all(e.kind == "object" for np in nps for e in np.entities)))
         if carried and self.word() in ("in", "into", "on", "onto", "to", "inside") and self.np_starts(1):
             self.i += 1
             dest = self.noun_phrase_list("goal", [])
@@ -820,8 +805,8 @@ class MissionParser:
         clear what is meant."""
         keys = [frozenset(e.key for e in np.entities) for np in nps]
         # "the chairs, both of them": the second phrase only restates the first
-        nps = [np for n, np in enumerate(nps) if not (n and keys[n] == keys[n - 1]
-                                                      and np.phrase.lower().endswith("them"))]
+        nps = [np for n, np in enumerate(nps)
+               if not (n and keys[n] == keys[n - 1] and np.phrase.lower().endswith("them"))]
         keys = [frozenset(e.key for e in np.entities) for np in nps]
         repeated = [n for n, k in enumerate(keys) if k in keys[:n]]
         if not repeated:
@@ -892,12 +877,12 @@ class MissionParser:
             nxt = self.word(k + 1)
             return not (w == "some" and nxt == "point") and not (w == "that" and nxt == "order")
         if w in lx.NUMBER_WORDS or w.isdigit():
-            return w != "one" or self.word(k + 1) == "of" or self.vocab.match_head(self.words(), self.i + k
-                                                                                   + 1) is not None
+            return (w != "one" or self.word(k + 1) == "of"
+                    or self.vocab.match_head(self.words(), self.i + k + 1) is not None)
         return self.vocab.match_head(self.words(), self.i + k) is not None
 
-    def noun_phrase_list(self, role: Role, scope: list[Entity], pronoun_kind: str
-                         | None = None) -> list[NounPhrase]:
+    def noun_phrase_list(self, role: Role, scope: list[Entity],
+                         pronoun_kind: str | None = None) -> list[NounPhrase]:
         """``A, B and C`` (each) or ``A or B`` / ``either A or B`` (one of them, as one phrase)."""
         either = self.word() == "either" and self.word(1) in _DETERMINERS | {"of"} and self.word(1) != "of"
         if either or (self.word() == "both" and self.word(1) in _DETERMINERS):
@@ -968,9 +953,8 @@ class MissionParser:
         if self.word() in ("the", "a") and self.word(1) in lx.ANAPHORIC_ONE and one_head is None:
             one_head = self.last_head()  # "the teddy bear in the bedroom, then the one in the living room"
         other = self.at("the", "other") and self.vocab.match_head(self.words(), self.i + 2) is not None
-        if self.at("the", "other",
-                   "one") and one_head is None:  # "the bedroom with the book, then the other one"
-            one_head = self.last_head()
+        if self.at("the", "other", "one") and one_head is None:
+            one_head = self.last_head()  # "the bedroom with the book, then the other one"
             other = True
         if other:
             self.i += 1
@@ -1034,14 +1018,13 @@ class MissionParser:
                 entities = self.vocab.on_floor(entities, floor)
                 continue
             if (self.word() in _QUAL_IN and self.np_starts(1) and not self.at_any(lx.ORDER_MODIFIERS)
-                    and not self.at_any(lx.TIME_FILLERS) and not (role == "qualifier"
-                                                                  and self.word(1) in ("it", "there"))):
+                    and not self.at_any(lx.TIME_FILLERS)
+                    and not (role == "qualifier" and self.word(1) in ("it", "there"))):
                 self.i += 1
                 inner = self.noun_phrase("qualifier")
                 if head.kind != "object" or any(e.kind != "room" for e in inner.entities):
                     raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <object> in the "
-                                    f"<room>' "
-                                    f"(rooms are not inside rooms, objects not inside objects)")
+                                    f"<room>' (rooms are not inside rooms, objects not inside objects)")
                 entities = self.vocab.inside(entities, inner.entities)
                 inner.entities = [r for r in inner.entities if any(e.room_key == r.key for e in entities)]
                 room_scoped = True
@@ -1064,8 +1047,8 @@ class MissionParser:
                 if head.kind != "room" or any(e.kind != "object" for e in inner.entities):
                     raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> with the "
                                     f"<object>'")
-                entities = self.vocab.containing(entities, inner.entities, n if n is not None
-                                                 else inner.count,
+                entities = self.vocab.containing(entities, inner.entities,
+                                                 n if n is not None else inner.count,
                                                  only="only" in contains)
                 inner.entities = [o for o in inner.entities if any(o.room_key == r.key for r in entities)]
                 self.skip_in_it()
@@ -1088,12 +1071,11 @@ class MissionParser:
                 self.i += comma + len(exc)
                 excluded = self.except_list(head)
                 keys = {e.key for np in excluded for e in np.entities}
-                kept = {e.key for e in entities}
-                stray = [np.phrase for np in excluded if not {e.key for e in np.entities} & kept]
+                stray = [np.phrase for np in excluded if not {e.key for e in np.entities}
+                         & {e.key for e in entities}]
                 if stray:  # "the dining room but not the kitchen": not an exception, and not understood
                     raise self.fail(f"'{' '.join(exc)} {stray[0]}': {stray[0]!r} is not one of "
-                                    f"{restricted!r}; to "
-                                    f"forbid it, say 'never enter {stray[0]}'")
+                                    f"{restricted!r}; to forbid it, say 'never enter {stray[0]}'")
                 entities = [e for e in entities if e.key not in keys]
                 continue
             break
@@ -1106,11 +1088,9 @@ class MissionParser:
                 # is not what was asked for.
                 where = " or ".join(f"{r.key} ({r.category})" for r in scope)
                 raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}' is not in "
-                                f"{where} "
-                                f"named in the same step; it is at "
-                                f"{', '.join(e.describe() for e in entities[:8])}; "
-                                f"say 'then' between the two, or name its room ('the {head_word(entities)} "
-                                f"in the ...')")
+                                f"{where} named in the same step; it is at "
+                                f"{', '.join(e.describe() for e in entities[:8])}; say 'then' between the "
+                                f"two, or name its room ('the {head_word(entities)} in the ...')")
         last = self.toks[self.i - 1]
         np = NounPhrase(self.span_text(first.start, last.end), first.start, last.end, entities, mode,
                         room_scoped, role,
@@ -1216,8 +1196,8 @@ class MissionParser:
             mode = "the"
         if self.word() in ("the", "these", "those") and mode is not None:
             self.i += 1
-        n = self.count_word() if self.np_starts(1) or self.vocab.match_head(self.words(), self.i
-                                                                            + 1) else None
+        counted = self.np_starts(1) or self.vocab.match_head(self.words(), self.i + 1)
+        n = self.count_word() if counted else None
         if n is not None:
             if mode in (None, "any"):
                 raise self.fail(f"'{self.word(-1)} ...': choosing a number of them is not understood; "
@@ -1298,8 +1278,7 @@ class MissionParser:
         elif w in lx.START_FLOOR_WORDS:  # "on this floor": where the robot starts
             if self.start_floor is None:
                 raise self.fail(f"'{w} {nxt}' depends on where the robot starts, which is not known here; "
-                                f"say which "
-                                f"floor (the building {self.vocab.building_name!r} has floors 0 to "
+                                f"say which floor (the building {self.vocab.building_name!r} has floors 0 to "
                                 f"{floors - 1})")
             floor = self.start_floor
         else:
@@ -1323,8 +1302,8 @@ class MissionParser:
                             f"{listing}")
         if np.mode == "the" and len(np.entities) > 1:
             listing = ", ".join(
-                f"{e.key} (floor {e.floor})" if e.kind == "room" else f"{e.key} (in {e.room_key}, floor "
-                f"{e.floor})"
+                f"{e.key} (floor {e.floor})" if e.kind == "room"
+                else f"{e.key} (in {e.room_key}, floor {e.floor})"
                 for e in np.entities
             )
             raise MissionError(
@@ -1353,8 +1332,8 @@ class MissionParser:
             for e in ents:
                 own = {o.category for o in self.vocab.entities if o.kind == "object" and o.room_key == e.key}
                 others = {o.category for o in self.vocab.entities
-                          if o.kind == "object" and o.room_key != e.key and o.room_key in {x.key
-                                                                                           for x in ents}}
+                          if o.kind == "object" and o.room_key != e.key
+                          and o.room_key in {x.key for x in ents}}
                 unique = sorted(own - others)
                 if unique:
                     return f"say what it contains (e.g. 'the {word} with the {unique[0]}')"

@@ -106,8 +106,7 @@ POSITIVE_VERBS = word_set(
 """Verb-slot words known to mean "go to / interact with" the noun phrase that follows."""
 
 CARRY_VERBS = word_set("put putting place placing drop dropping bring bringing carry carrying deliver "
-                       "delivering "
-                       "take taking took move moving")
+                       "delivering take taking took move moving")
 """``put X in Y`` / ``bring X to Y``: the goal is Y (after X when X is a new noun phrase)."""
 
 REFUSED_VERBS: dict[str, str] = {
@@ -184,8 +183,8 @@ ORDER_MODIFIERS = (
 """Said after a list: its items are done one after the other (in the order written, for explicit lists)."""
 
 TIME_FILLERS = (("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("eventually",), ("later",),
-                ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"), ("any",
-                                                                                                 "order"),
+                ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"),
+                ("any", "order"),
                 ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "order"),
                 ("order", "does", "not", "matter"), ("the", "order", "does", "not", "matter"),
                 ("order", "is", "not", "important"), ("the", "order", "is", "not", "important"),
@@ -207,8 +206,8 @@ CHOICE_AFFIRMATIONS = (
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
 
-WHOLE_MISSION = (("the", "whole", "time"), ("the", "entire", "time"), ("at", "all", "times"), ("at", "any",
-                                                                                               "time"),
+WHOLE_MISSION = (("the", "whole", "time"), ("the", "entire", "time"), ("at", "all", "times"),
+                 ("at", "any", "time"),
                  ("at", "any", "point"), ("throughout",), ("the", "whole", "way"), ("all", "the", "time"),
                  ("on", "the", "way"), ("on", "your", "way"), ("along", "the", "way"), ("at", "all"))
 """Said after what to avoid: the prohibition holds for the whole mission (``G !x``), not only at one step."""
