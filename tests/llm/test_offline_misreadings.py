@@ -174,8 +174,8 @@ def test_whenever_is_a_response(demo, text, gold):
 @pytest.mark.parametrize(
     ("text", "gold"),
     [
-        ("Water the plant in the office. If you ever walk into the dining room, check the sink upstairs "
-         "later.",
+        ("Water the plant in the office. If you ever walk into the dining room, check the sink "
+         "upstairs later.",
          "F o36 & G(r7 -> F o41)"),
         ("If you enter the living room at some point, sit on the couch afterwards.", "G(r6 -> F o22)"),
         ("If you pass through the kitchen, go to the bedroom with the book after that.", "G(r4 -> F r13)"),
@@ -359,8 +359,8 @@ def test_choices_of_all_and_optional_goals_are_refused(demo, text, fragment):
 
 
 def test_never_upstairs_from_the_start_floor(demo):
-    means("Touch the teddy bear and never go downstairs.", "F o32 & G(!r2 & !r4 & !r5 & !r6 & !r7 & !r8)",
-          demo,
+    means("Touch the teddy bear and never go downstairs.",
+          "F o32 & G(!r2 & !r4 & !r5 & !r6 & !r7 & !r8)", demo,
           PatternTranslator(start_floor=1))
 
 

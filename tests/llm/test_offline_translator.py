@@ -99,8 +99,8 @@ def test_output_is_the_llm_token_format_with_grounded_text_and_references(transl
     refs = {r.phrase: r for r in t.references}
     assert refs["the bowl in the kitchen"].keys == ("object_19",)
     assert refs["the kitchen"].role == "qualifier" and refs["the kitchen"].keys == ("room_4",)
-    assert refs["the bathroom on floor 1"].keys == ("room_14",
-                                                    ) and refs["the bathroom on floor 1"].role == "avoid"
+    avoided = refs["the bathroom on floor 1"]
+    assert avoided.keys == ("room_14",) and avoided.role == "avoid"
     assert refs["the bathroom on floor 1"].descriptions == ("room_14 (bathroom, floor 1)",)
 
 
