@@ -192,6 +192,16 @@ def test_a_condition_about_every_visit_is_a_response(demo, text, gold):
 def test_a_response_to_several_places_is_refused(demo):
     refused("If you ever go to the kitchen and the bedroom with the book, visit the office afterwards.",
             "with one room or object", demo)
+    means("If at some point you go into the office, touch the teddy bear.", "G(r12 -> F o32)", demo)
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["If you enter the office after the kitchen, sit on the couch.",
+     "If you go to the dining room and sit on a chair, wash the bowl afterwards."],
+)
+def test_a_condition_of_more_than_one_action_is_refused(demo, text):
+    refused(text, "a condition is one action", demo)
 
 
 @pytest.mark.parametrize(

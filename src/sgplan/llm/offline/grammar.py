@@ -88,6 +88,9 @@ _EVER = (("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some"
 _AFTERWARDS = (("afterwards",), ("afterward",), ("after", "that"), ("after",), ("later",),
                ("straight", "after"), ("right", "after"))
 """In the consequent of a condition ("..., visit Y afterwards"): Y follows X, a response."""
+_CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "while", "without", "when", "if",
+                            "once", "whenever", "unless"})
+"""Words that would continue a condition past its one action (a comma or *then* ends it)."""
 _FIRST = frozenset({"first", "firstly"})
 _MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
 _STRUCTURAL = (
@@ -425,11 +428,19 @@ class MissionParser:
         return Clause(steps=steps)
 
     def condition(self) -> tuple[Formula, list[Task]]:
-        """``if you go to the kitchen``: the formula that the condition happened (F ...), and its tasks."""
+        """``if you go to the kitchen``: the formula that the condition happened (F ...), and its tasks.
+        One action: more ("... and open the fridge", "... after the office") is refused, not left to the
+        consequent."""
+        ever = self.at_any(_EVER)
+        if ever is not None:  # "if at any point you ...": kept for :meth:`says`
+            self.i += len(ever)
         self.skip_subject()
         if self.word() in ("not", "never"):
             raise self.fail("negative conditions ('if you do not ...') are not understood")
         steps = self.action()
+        if self.word() in _CONDITION_END or self.at_any(_NEG_STARTS):
+            raise self.fail(f"the condition goes on with {self.here()}; a condition is one action (e.g. 'if you "
+                            f"go to the kitchen, ...')")
         f = sequence_formula(steps)
         if f is None:
             raise self.fail("the condition names no room or object")
