@@ -439,8 +439,8 @@ class MissionParser:
             raise self.fail("negative conditions ('if you do not ...') are not understood")
         steps = self.action()
         if self.word() in _CONDITION_END or self.at_any(_NEG_STARTS):
-            raise self.fail(f"the condition goes on with {self.here()}; a condition is one action (e.g. 'if you "
-                            f"go to the kitchen, ...')")
+            raise self.fail(f"the condition goes on with {self.here()}; a condition is one action (e.g. 'if "
+                            f"you go to the kitchen, ...')")
         f = sequence_formula(steps)
         if f is None:
             raise self.fail("the condition names no room or object")
