@@ -433,3 +433,7 @@ def test_partial_prohibitions_and_contradictory_order_are_refused(demo, text, fr
 )
 def test_there_and_until_done(demo, text, gold):
     means(text, gold, demo)
+
+
+def test_on_your_way_there_is_refused(demo):
+    refused("Go to the office. On your way there, touch the teddy bear.", "on your way there", demo)

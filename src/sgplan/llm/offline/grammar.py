@@ -74,12 +74,12 @@ _CONDITION_WORDS = ("if", "when", "in case")
 """Conditions; *once* is temporal ('once you have been to X' = after X), not a condition."""
 _WHENEVER = (("whenever",), ("every", "time"), ("each", "time"), ("any", "time"), ("anytime",))
 _DONE = frozenset({"done", "finished", "through"})
-_WAYPOINT = (("via",), ("through",), ("past",), ("by", "way", "of"), ("passing", "through"),
+_WAYPOINT = (("via",), ("through",), ("by", "way", "of"), ("passing", "through"),
              ("going", "through"), ("passing", "by"), ("going", "past"), ("passing",),
              ("by", "going", "through"))
 """Right after a goal: what follows is on the way there (before it)."""
 _ON_THE_WAY = (("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way"))
-_WAY_BACK = frozenset({"back", "up", "down", "there", "out", "over", "home"})
+_WAY_BACK = frozenset({"back", "up", "down", "out", "home"})
 """``on your way back (up)``: after what came before, like *then*."""
 _ONLY_AFTER = (("only", "after"), ("only", "once"), ("not", "before"), ("not", "until"))
 _EVER = (("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"), ("every", "time"),
@@ -257,6 +257,8 @@ class MissionParser:
         while not self.done():
             seq = self.at_any(_SEQ_WORDS) if sequence_too else None
             way = self.at_any(_ON_THE_WAY)
+            if way is not None and self.word(len(way)) == "there":
+                raise self.fail("'on your way there': say 'before going to X, ...' or put the goals in order")
             if sequence_too and way is not None and self.word(len(way)) in _WAY_BACK:
                 self.i += len(way)
                 while self.word() in _WAY_BACK:
