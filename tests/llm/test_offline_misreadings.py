@@ -437,3 +437,28 @@ def test_there_and_until_done(demo, text, gold):
 
 def test_on_your_way_there_is_refused(demo):
     refused("Go to the office. On your way there, touch the teddy bear.", "on your way there", demo)
+
+
+@pytest.mark.gibson
+def test_new_constructs_in_gibson_scenes(gibson_root):
+    from sgplan.scene.authors import load_authors_scene
+
+    # Allensville: room_10 dining room, room_11 kitchen (object_15 oven, object_31/32 apples),
+    # room_12 living room, room_13 lobby
+    allensville = load_authors_scene(gibson_root / "Allensville")
+    means("If you ever walk through the kitchen, touch the oven afterwards. Visit the lobby.",
+          "G(r11 -> F o15) & F r13", allensville)
+    means("On your way to the lobby, look at the oven.", "F(o15 & F r13)", allensville)
+    means("Grab an apple, any one, then head to the dining room via the living room.",
+          "F((o31 | o32) & F(r12 & F r10))", allensville)
+    # Collierville from floor 1: downstairs is floor 0 (room_8, 13, 14, 17); object_27 fridge,
+    # object_20 microwave; object_19 keyboard in the office room_14, object_31 cup
+    collierville = load_authors_scene(gibson_root / "Collierville")
+    means("Never go downstairs. Could you check the fridge and the microwave (in any order)?",
+          "G(!r8 & !r13 & !r14 & !r17) & F o27 & F o20", collierville, PatternTranslator(start_floor=1))
+    means("Check the keyboard in the office, and once you're done, look at the cup.",
+          "F(o19 & r14 & F o31)", collierville)
+    # Benevolence: object_35 teddy bear in the bedroom room_8, object_36 in the living room room_16
+    benevolence = load_authors_scene(gibson_root / "Benevolence")
+    means("Touch the teddy bear in the bedroom, then the one in the living room.",
+          "F(o35 & r8 & F(o36 & r16))", benevolence)
