@@ -435,6 +435,13 @@ def test_there_and_until_done(demo, text, gold):
     means(text, gold, demo)
 
 
+def test_a_condition_may_open_with_and_or_but(demo):
+    means("Touch the teddy bear. And every time you enter the kitchen, wash the bowl afterwards.",
+          "F o32 & G(r4 -> F o19)", demo)
+    means("Open the fridge. But if you ever go into the office, visit the dining room afterwards.",
+          "F o15 & G(r12 -> F r7)", demo)
+
+
 def test_on_your_way_there_is_refused(demo):
     refused("Go to the office. On your way there, touch the teddy bear.", "on your way there", demo)
 

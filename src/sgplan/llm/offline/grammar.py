@@ -281,6 +281,9 @@ class MissionParser:
         return seen_sequence
 
     def sentence(self) -> Clause | Formula:
+        if self.word() in ("and", "but", "so") and (self.at_any(_WHENEVER, k=1) or any(
+                self.at(*w.split(), k=1) for w in _CONDITION_WORDS)):
+            self.i += 1  # "And whenever you ...", "But if you ...": a new condition, not a continuation
         whenever = self.at_any(_WHENEVER)
         if whenever is not None:
             self.i += len(whenever)
