@@ -442,6 +442,12 @@ def test_a_condition_may_open_with_and_or_but(demo):
           "F o15 & G(r12 -> F r7)", demo)
 
 
+def test_up_there_is_the_floor_of_the_last_goal(demo):
+    means("Touch the book and the teddy bear, then use the sink up there.", "F(o39 & F o41) & F(o32 & F o41)",
+          demo)
+    refused("Use the sink up there.", "'up there' does not refer", demo)
+
+
 def test_on_your_way_there_is_refused(demo):
     refused("Go to the office. On your way there, touch the teddy bear.", "on your way there", demo)
 

@@ -1260,11 +1260,18 @@ class MissionParser:
     def floor_qualifier(self) -> frozenset[int] | None:
         """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> {1}, {1},
         {0}; ``upstairs`` / ``downstairs`` / ``on this floor``: relative to the start floor
-        (:meth:`relative_floor`). Not ``in the ground floor bathroom``: that names a room."""
+        (:meth:`relative_floor`); ``up there`` / ``down there``: the floor(s) of the last goal. Not ``in the
+        ground floor bathroom``: that names a room."""
         if self.word() in lx.RELATIVE_FLOORS:  # "the bathroom upstairs"
             relative = self.relative_floor(self.word())
             self.i += 1
             return relative
+        if self.word() in ("up", "down") and self.word(1) == "there":  # "the bathroom up there"
+            goals = [r for r in self.references if r.role == "goal" and r.entities]
+            if not goals:
+                raise self.fail(f"'{self.word()} there' does not refer to any place named before it")
+            self.i += 2
+            return frozenset(e.floor for e in max(goals, key=lambda r: r.start).entities)
         if self.word() not in ("on", "in", "at", "of", "from"):
             return None
         k = 2 if self.word(1) == "the" else 1
