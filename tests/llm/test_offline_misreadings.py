@@ -475,3 +475,22 @@ def test_new_constructs_in_gibson_scenes(gibson_root):
     benevolence = load_authors_scene(gibson_root / "Benevolence")
     means("Touch the teddy bear in the bedroom, then the one in the living room.",
           "F(o35 & r8 & F(o36 & r16))", benevolence)
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("Wash the bowl and keep away from the office afterwards.", "for part of the mission"),
+        ("Sit on the couch, then never go back there.", "never go back"),
+        ("Never set foot in the dining room again.", "for part of the mission"),
+        ("Begin in the office and finish in the kitchen.", "where the path starts or ends"),
+        ("Touch the teddy bear and end up in the living room.", "where the path starts or ends"),
+    ],
+)
+def test_prohibitions_after_a_visit_and_path_ends_are_refused(demo, text, fragment):
+    refused(text, fragment, demo)
+
+
+def test_start_by_and_end_up_in_a_condition_are_read(demo):
+    means("Start by opening the fridge, then sit on the couch.", "F(o15 & F o22)", demo)
+    means("Whenever you end up in the dining room, wash the bowl.", "G(r7 -> F o19)", demo)

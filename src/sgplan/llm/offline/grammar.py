@@ -162,6 +162,8 @@ class MissionParser:
         """The steps of the previous sentence when this one continues its sequence ("... Then ...")."""
         self.last_step: Step = []
         """The last step with goals of the previous sentence (what *done that* refers to)."""
+        self.in_condition = False
+        """Reading the condition of *if* / *whenever* (where *end up in X* just means being in X)."""
         self.pending_floor: frozenset[int] | None = None
         """A floor said in the verb slot ("go upstairs to ..."), for the next noun phrase."""
 
@@ -411,7 +413,9 @@ class MissionParser:
         self.skip_subject()
         if self.word() in ("not", "never"):
             raise self.fail("negative triggers ('whenever you do not ...') are not understood")
+        self.in_condition = True
         tasks = [t for step in self.action() for t in step]
+        self.in_condition = False
         if len(tasks) != 1:
             raise self.fail("'whenever ...' needs one room or object (or a choice of them) as its trigger")
         return tasks[0]
@@ -442,7 +446,9 @@ class MissionParser:
         self.skip_subject()
         if self.word() in ("not", "never"):
             raise self.fail("negative conditions ('if you do not ...') are not understood")
+        self.in_condition = True
         steps = self.action()
+        self.in_condition = False
         if self.word() in _CONDITION_END or self.at_any(_NEG_STARTS):
             raise self.fail(f"the condition goes on with {self.here()}; a condition is one action (e.g. 'if "
                             f"you go to the kitchen, ...')")
@@ -644,7 +650,9 @@ class MissionParser:
             self.i += 1
         has_goal = any(clause.steps)
         is_global = bool(_GLOBAL_NEG & set(marker)) or not has_goal
-        self.verb_words()
+        if set(self.verb_words()) & lx.REVISIT_VERBS:  # "never go back to X": only after a first visit
+            raise self.fail("'never go back / return to X' (after a first visit) is not understood; say "
+                            "'never enter X' for the whole mission")
         rooms = self.step_rooms(clause.steps[-1]) if not is_global else self.sentence_scope
         if self.pending_floor is not None and not self.np_starts():  # "never go upstairs": any room there
             first = self.toks[self.i - 1]
@@ -659,7 +667,8 @@ class MissionParser:
         if whole is not None:  # "avoid the office the whole time"
             self.i += len(whole)
             is_global = True
-        if self.word() in ("after", "once", "when", "during") and not self.at("after", "that"):
+        if (self.word() in ("after", "once", "when", "during", "afterwards", "afterward", "later", "again")
+                or self.at("from", "then") or self.at("from", "now")):
             raise self.fail(f"a prohibition for part of the mission ({self.here()}) is not understood; say "
                             f"'never enter X' (the whole mission) or 'do not enter X until ...'")
         if self.word() in ("until", "before"):
@@ -718,6 +727,10 @@ class MissionParser:
             w = self.word()
             if w in lx.REFUSED_VERBS:
                 raise self.fail(f"cannot understand {lx.REFUSED_VERBS[w]}")
+            ends = self.word(1) in ("in", "at", "up", "with")
+            if w in lx.START_END_VERBS and ends and not self.in_condition:
+                raise self.fail(f"'{w} {self.word(1)} ...': where the path starts or ends cannot be "
+                                f"required; put the goals in order with 'then'")
             if w in _MODALS and self.word(1) not in ("not", "never"):
                 seen.append(w)  # "may you go into ...", "I do want you to visit ...": no negation
                 self.i += 1

@@ -166,6 +166,10 @@ POLITE = (("make", "sure"), ("make", "sure", "that"), ("be", "sure", "to"), ("be
           ("i", "want"), ("let", "us"), ("let", "'s"), ("for", "me"))
 """Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
 
+START_END_VERBS = word_set("start starting begin beginning end ending finish finishing")
+"""``start in X`` / ``end (up) in X``: where the path starts or ends, which a goal cannot say (the start is
+the robot's; an end would need an order): refused outside a condition, where *end up in* is just *go to*."""
+
 RELATIVE_FLOORS = {"upstairs": 1, "downstairs": -1}
 """Floors relative to the robot's start floor (or, in a two-floor building, the upper / lower floor)."""
 
