@@ -494,3 +494,10 @@ def test_prohibitions_after_a_visit_and_path_ends_are_refused(demo, text, fragme
 def test_start_by_and_end_up_in_a_condition_are_read(demo):
     means("Start by opening the fridge, then sit on the couch.", "F(o15 & F o22)", demo)
     means("Whenever you end up in the dining room, wash the bowl.", "G(r7 -> F o19)", demo)
+
+
+def test_a_member_of_a_group_first_and_do_it_again(demo):
+    means("Touch the clocks, the one in the bedroom first.", "F(o33 & r11 & F o26)", demo)
+    refused("Touch the clocks and the one in the bedroom.", "named twice", demo)
+    refused("Go to the office, then the kitchen. Do it twice.", "refers to what was done", demo)
+    means("Do the kitchen first, then the office.", "F(r4 & F r12)", demo)

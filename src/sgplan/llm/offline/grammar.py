@@ -731,6 +731,9 @@ class MissionParser:
             if w in lx.START_END_VERBS and ends and not self.in_condition:
                 raise self.fail(f"'{w} {self.word(1)} ...': where the path starts or ends cannot be "
                                 f"required; put the goals in order with 'then'")
+            if w in ("do", "does", "did", "doing") and self.word(1) in ("it", "that", "this", "so"):
+                raise self.fail(f"'{w} {self.word(1)}' refers to what was done, not to a place; name the "
+                                f"rooms or objects again")
             if w in _MODALS and self.word(1) not in ("not", "never"):
                 seen.append(w)  # "may you go into ...", "I do want you to visit ...": no negation
                 self.i += 1
@@ -837,13 +840,12 @@ class MissionParser:
         nps = [np for n, np in enumerate(nps)
                if not (n and keys[n] == keys[n - 1] and np.phrase.lower().endswith("them"))]
         keys = [frozenset(e.key for e in np.entities) for np in nps]
-        repeated = [n for n, k in enumerate(keys) if k in keys[:n]]
+        repeated = [n for n, k in enumerate(keys) if any(k & j for j in keys[:n])]
         if not repeated:
             return nps
         if repeated == [len(nps) - 1] and self.word() in _FIRST:
-            self.i += 1
-            again = keys.index(keys[-1])
-            return [nps[-1]] + [np for n, np in enumerate(nps[:-1]) if n != again]
+            self.i += 1  # "the clocks, the one in the bedroom first": that one, then the (other) clocks
+            return [nps[-1]] + [np for n, np in enumerate(nps[:-1]) if keys[n] != keys[-1]]
         raise self.fail(f"'{nps[repeated[0]].phrase}' is named twice in one list")
 
     def revisits(self, nps: list[NounPhrase], steps: list[Step], verbs: list[str]) -> None:
