@@ -40,16 +40,16 @@ def explain(formula: Formula, building: Building) -> str:
     return explain_mission(mission_from_formula(formula), building).text
 
 
-def report(score: TranslationScore, set_path: Path) -> str:
+def report(score: TranslationScore, set_path: Path, out_name: str) -> str:
     """The score file: counts, then every wrong mission (gold and translation in words and in infix),
-    then every refused one with its reason."""
+    then every refused one with its reason; ``out_name`` is where it is written (for the reproduce line)."""
     counts, total = score.counts, len(score.results)
+    shown = set_path.relative_to(REPO) if set_path.is_relative_to(REPO) else set_path
     lines = [
         "# Offline translator on the blind mission set",
         "",
-        f"Set: `{set_path.relative_to(REPO) if set_path.is_relative_to(REPO) else set_path}` ({total} "
-        "missions). "
-        f"Backend: `{score.backend}`. Reproduce: `.venv/bin/python benchmarks/translation_blind.py`.",
+        f"Set: `{shown}` ({total} missions). Backend: `{score.backend}`. Reproduce: `.venv/bin/python "
+        f"benchmarks/translation_blind.py --set {shown} --out {out_name}`.",
         "",
         "| outcome | missions | share |",
         "|---|---:|---:|",
@@ -105,7 +105,9 @@ def main(argv: list[str] | None = None) -> int:
         PatternTranslator(), missions, building_of, set_path=str(args.set), explain=explain
     )
     seconds = time.perf_counter() - started
-    text = report(score, args.set.resolve())
+    out = Path(args.out).resolve()
+    text = report(score, args.set.resolve(), args.out if args.out == "-" or not out.is_relative_to(REPO)
+                  else str(out.relative_to(REPO)))
     if args.out == "-":
         print(text, end="")
     else:

@@ -59,7 +59,8 @@ def check_guidance(building: Building, automaton: Automaton, ap_actions: dict[st
         for q, calls in per_state.items():
             end = follow(building, automaton, room_uuid, q, calls, ap_actions)
             if calls:
-                assert automaton.accepting[end], f"room {room_uuid}, state {q}: {calls} do not finish the mission"
+                why = f"room {room_uuid}, state {q}: {calls} do not finish the mission"
+                assert automaton.accepting[end], why
             else:
                 empty += 1
     return empty

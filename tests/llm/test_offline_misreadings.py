@@ -40,7 +40,8 @@ def refused(text: str, fragment: str, building: Building, translator: PatternTra
     ("text", "gold"),
     [
         ("Go to the kitchen, but first go to the bathroom on floor 1.", "F(r14 & F r4)"),
-        ("Go to the kitchen, then the dining room, but first visit the home office.", "F(r12 & F(r4 & F r7))"),
+        ("Go to the kitchen, then the dining room, but first visit the home office.",
+         "F(r12 & F(r4 & F r7))"),
         ("Firstly go to the home office. Secondly go to the kitchen.", "F(r12 & F r4)"),
         ("First, go to the home office. Second, go to the kitchen. Lastly, go to the dining room.",
          "F(r12 & F(r4 & F r7))"),
@@ -69,7 +70,8 @@ def test_ambiguous_before_that_is_refused(demo):
         ("Go to the bedroom with the teddy bear and avoid the kitchen.", "F r11 & G !r4"),
         ("Go to the bedroom with the teddy bear but avoid the kitchen.", "F r11 & G !r4"),
         ("Go to the bedroom with the teddy bear without entering the kitchen.", "F r11 & G !r4"),
-        ("Go to the dining room, then the bedroom with the book, and avoid the kitchen.", "F(r7 & F r13) & G !r4"),
+        ("Go to the dining room, then the bedroom with the book, and avoid the kitchen.",
+         "F(r7 & F r13) & G !r4"),
         # an object elsewhere: the local reading would say nothing, so it holds for the whole mission
         ("Go to the kitchen and avoid the couch.", "F r4 & G !o22"),
         # an object of the room the step is in keeps the authors' local reading
@@ -82,7 +84,8 @@ def test_trailing_avoidance_of_a_room_holds_for_the_whole_mission(demo, text, go
 
 
 def test_an_object_is_not_taken_from_another_room(demo):
-    message = refused("Go to the kitchen and sit on the couch.", "'the couch' is not in room_4 (kitchen)", demo)
+    message = refused("Go to the kitchen and sit on the couch.", "'the couch' is not in room_4 (kitchen)",
+                      demo)
     assert "object_22 (couch in room_6, floor 0)" in message
     refused("In the kitchen, sit on the couch.", "'the couch' is not in room_4 (kitchen)", demo)
     refused("Sit on the couch in the kitchen.", "this scene has: object_22 (couch in room_6, floor 0)", demo)
@@ -122,7 +125,8 @@ def test_upstairs_and_downstairs(demo):
     refused("Go upstairs.", "expected a room or object after 'upstairs'", demo)
     # with a known start floor it is relative to it
     means("Go to the bathroom downstairs.", "F r5", demo, PatternTranslator(start_floor=1))
-    refused("Go to the bathroom upstairs.", "the robot starts on floor 1", demo, PatternTranslator(start_floor=1))
+    refused("Go to the bathroom upstairs.", "the robot starts on floor 1", demo,
+            PatternTranslator(start_floor=1))
 
 
 @pytest.mark.gibson
@@ -165,6 +169,39 @@ def test_only_after(demo, text, gold):
 )
 def test_whenever_is_a_response(demo, text, gold):
     means(text, gold, demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Water the plant in the office. If you ever walk into the dining room, check the sink "
+         "upstairs later.",
+         "F o36 & G(r7 -> F o41)"),
+        ("If you enter the living room at some point, sit on the couch afterwards.", "G(r6 -> F o22)"),
+        ("If you pass through the kitchen, go to the bedroom with the book after that.", "G(r4 -> F r13)"),
+        ("Open the fridge afterwards if you ever end up in the dining room.", "G(r7 -> F o15)"),
+        ("Visit the bathroom on floor 1 if you visit the kitchen at any time.", "G(r4 -> F r14)"),
+        # without those words the condition is one event: "if X happens (at all), Y"
+        ("If you visit the kitchen, then take the bowl.", "F r4 -> F o19"),
+    ],
+)
+def test_a_condition_about_every_visit_is_a_response(demo, text, gold):
+    means(text, gold, demo)
+
+
+def test_a_response_to_several_places_is_refused(demo):
+    refused("If you ever go to the kitchen and the bedroom with the book, visit the office afterwards.",
+            "with one room or object", demo)
+    means("If at some point you go into the office, touch the teddy bear.", "G(r12 -> F o32)", demo)
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["If you enter the office after the kitchen, sit on the couch.",
+     "If you go to the dining room and sit on a chair, wash the bowl afterwards."],
+)
+def test_a_condition_of_more_than_one_action_is_refused(demo, text):
+    refused(text, "a condition is one action", demo)
 
 
 @pytest.mark.parametrize(
@@ -221,7 +258,8 @@ def test_this_floor_is_the_start_floor(demo):
         ("Go upstairs and check the sink.", "F o41"),
         ("Visit the kitchen or the dining room, I don't care which.", "F(r4 | r7)"),
         ("Visit the kitchen and the living room, any order.", "F r4 & F r6"),
-        ("Open the fridge and the oven in either order, then go to the couch.", "F(o15 & F o22) & F(o16 & F o22)"),
+        ("Open the fridge and the oven in either order, then go to the couch.",
+         "F(o15 & F o22) & F(o16 & F o22)"),
         ("Use the toilet in the bathroom attached to the kitchen.", "F o20"),
     ],
 )
@@ -234,7 +272,8 @@ def test_everyday_constructs(demo, text, gold):
     [
         ("Wash your hands in the kitchen.", "no room or object of this scene is called 'hands'"),
         ("Go to the bathroom on the middle floor.", "has 2 floors (0 to 1), so no middle one"),
-        ("Go to the bedroom that doesn't have a bed.", "'the bedroom that doesn't have a bed' matches no room"),
+        ("Go to the bedroom that doesn't have a bed.",
+         "'the bedroom that doesn't have a bed' matches no room"),
         ("Go to the dining room but not the kitchen.", "'the kitchen' is not one of 'the dining room'"),
     ],
 )
@@ -257,3 +296,208 @@ def test_everyday_constructs_in_gibson_scenes(gibson_root):
     means("Go downstairs to the lobby.", "F r17", benevolence, PatternTranslator(start_floor=2))
     collierville = load_authors_scene(gibson_root / "Collierville")
     means("Use the toilet on the middle floor.", "F o38", collierville)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Once you have been to the office, sit on the couch.", "F(r12 & F o22)"),
+        ("Sit on the couch once you have been to the office.", "F(r12 & F o22)"),
+        ("Open the fridge, and once you are done, wash the bowl.", "F(o15 & F o19)"),
+        ("Touch the teddy bear. When you have finished with that, go to the dining room.", "F(o32 & F r7)"),
+        ("When done with the office, head to the bathroom on floor 0.", "F(r12 & F r5)"),
+        ("Go to the dining room after you are done with the living room.", "F(r6 & F r7)"),
+        ("Sit on the couch. Stay out of the kitchen until you have done that.", "F o22 & (!r4 U o22)"),
+    ],
+)
+def test_once_and_done_are_sequences(demo, text, gold):
+    means(text, gold, demo)
+
+
+def test_when_without_a_clear_reading_is_refused(demo):
+    refused("When you reach the kitchen, open the fridge.", "say which", demo)
+    refused("Never enter the office until you have done that.", "'done that' does not refer", demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Sit on the couch first and wash the bowl.", "F(o22 & F o19)"),
+        ("Visit the dining room and the office, the office first.", "F(r12 & F r7)"),
+    ],
+)
+def test_a_trailing_first_orders_what_follows(demo, text, gold):
+    means(text, gold, demo)
+
+
+def test_unclear_first_and_repeated_phrases_are_refused(demo):
+    refused("Go to the office. Go to the kitchen first.", "trailing 'first'", demo)
+    refused("Visit the kitchen, the office and the kitchen.", "named twice", demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Head to a bathroom, either one works.", "F(r5 | r14)"),
+        ("Sit on one of the chairs in the dining room, whichever you like, then watch the TV.",
+         "F((o28 | o29) & r7 & F o23)"),
+        ("Wash the bowl, then go to a bedroom, any one, then the office.", "F(o19 & F((r11 | r13) & F r12))"),
+        ("Could you sit on the couch and open the fridge? The order doesn't matter.", "F o22 & F o15"),
+        ("I need you to wash the bowl. Make sure that you never enter the dining room.", "F o19 & G !r7"),
+        ("Open the fridge, wash the bowl (in any order), then go to the office.",
+         "F(o15 & F r12) & F(o19 & F r12)"),
+        ("Touch the sink in the bathroom on floor 1, then the one in the bathroom on floor 0.",
+         "F(o41 & r14 & F(o21 & r5))"),
+        ("Sit on the couch. Don't ever go upstairs.", "F o22 & G(!r9 & !r11 & !r12 & !r13 & !r14)"),
+        ("Open the fridge, and stay out of the dining room on the way.", "F o15 & G !r7"),
+    ],
+)
+def test_everyday_wrappers_choices_and_asides(demo, text, gold):
+    means(text, gold, demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("Visit the bedrooms, either one.", "which means each of them"),
+        ("Go to the kitchen and maybe the office.", "'maybe'"),
+        ("Open the fridge and try to sit on the couch.", "'try'"),
+    ],
+)
+def test_choices_of_all_and_optional_goals_are_refused(demo, text, fragment):
+    refused(text, fragment, demo)
+
+
+def test_never_upstairs_from_the_start_floor(demo):
+    means("Touch the teddy bear and never go downstairs.",
+          "F o32 & G(!r2 & !r4 & !r5 & !r6 & !r7 & !r8)", demo,
+          PatternTranslator(start_floor=1))
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("On your way to the office, wash the bowl and then sit on the couch.", "F(o19 & F(o22 & F r12))"),
+        ("Wash the bowl, and on your way back up touch the teddy bear.", "F(o19 & F o32)"),
+        ("Sit on the chairs in the dining room, both of them, then watch the TV.",
+         "F(o28 & r7 & F o23) & F(o29 & r7 & F o23)"),
+        ("Touch the sink in the ground-floor bathroom, then the toilet on the top floor.",
+         "F(o21 & r5 & F o40)"),
+        ("Visit the office, the kitchen and the dining room, in that order please.", "F(r12 & F(r4 & F r7))"),
+    ],
+)
+def test_way_group_and_order_remarks(demo, text, gold):
+    means(text, gold, demo)
+
+
+def test_a_group_of_the_wrong_size_is_refused(demo):
+    refused("Sit on the chairs in the dining room, all three of them.", "is 2, not 3", demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Head to the bedroom with the book via the office.", "F(r12 & F r13)"),
+        ("Walk through the dining room to the living room, then open the fridge.", "F(r7 & F(r6 & F o15))"),
+        ("Wash the bowl, then go to the office, passing through the bathroom on floor 1.",
+         "F(o19 & F(r14 & F r12))"),
+    ],
+)
+def test_waypoints_come_before_their_goal(demo, text, gold):
+    means(text, gold, demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("Sit on the couch and the teddy bear via the kitchen.", "which of the goals"),
+        ("Stay away from the kitchen after you sit on the couch.", "for part of the mission"),
+        ("Open the fridge, then wash the bowl. The order doesn't matter.", "given in order"),
+        ("Go to the office. Touch the teddy bear first.", "trailing 'first'"),
+    ],
+)
+def test_partial_prohibitions_and_contradictory_order_are_refused(demo, text, fragment):
+    refused(text, fragment, demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Go to the bathroom on floor 0 and touch the sink in there.", "F r5 & F(o21 & r5)"),
+        ("Watch the TV, then sit on the couch in there.", "F(o23 & F(o22 & r6))"),
+        ("Dust the chairs in the dining room. Keep out of the office until both of them are done.",
+         "F(o28 & r7) & F(o29 & r7) & (!r12 U (o28 & r7)) & (!r12 U (o29 & r7))"),
+        ("Never enter the office until the kitchen and the dining room have been visited.",
+         "(!r12 U r4) & (!r12 U r7)"),
+    ],
+)
+def test_there_and_until_done(demo, text, gold):
+    means(text, gold, demo)
+
+
+def test_a_condition_may_open_with_and_or_but(demo):
+    means("Touch the teddy bear. And every time you enter the kitchen, wash the bowl afterwards.",
+          "F o32 & G(r4 -> F o19)", demo)
+    means("Open the fridge. But if you ever go into the office, visit the dining room afterwards.",
+          "F o15 & G(r12 -> F r7)", demo)
+
+
+def test_up_there_is_the_floor_of_the_last_goal(demo):
+    means("Touch the book and the teddy bear, then use the sink up there.", "F(o39 & F o41) & F(o32 & F o41)",
+          demo)
+    refused("Use the sink up there.", "'up there' does not refer", demo)
+
+
+def test_on_your_way_there_is_refused(demo):
+    refused("Go to the office. On your way there, touch the teddy bear.", "on your way there", demo)
+
+
+@pytest.mark.gibson
+def test_new_constructs_in_gibson_scenes(gibson_root):
+    from sgplan.scene.authors import load_authors_scene
+
+    # Allensville: room_10 dining room, room_11 kitchen (object_15 oven, object_31/32 apples),
+    # room_12 living room, room_13 lobby
+    allensville = load_authors_scene(gibson_root / "Allensville")
+    means("If you ever walk through the kitchen, touch the oven afterwards. Visit the lobby.",
+          "G(r11 -> F o15) & F r13", allensville)
+    means("On your way to the lobby, look at the oven.", "F(o15 & F r13)", allensville)
+    means("Grab an apple, any one, then head to the dining room via the living room.",
+          "F((o31 | o32) & F(r12 & F r10))", allensville)
+    # Collierville from floor 1: downstairs is floor 0 (room_8, 13, 14, 17); object_27 fridge,
+    # object_20 microwave; object_19 keyboard in the office room_14, object_31 cup
+    collierville = load_authors_scene(gibson_root / "Collierville")
+    means("Never go downstairs. Could you check the fridge and the microwave (in any order)?",
+          "G(!r8 & !r13 & !r14 & !r17) & F o27 & F o20", collierville, PatternTranslator(start_floor=1))
+    means("Check the keyboard in the office, and once you're done, look at the cup.",
+          "F(o19 & r14 & F o31)", collierville)
+    # Benevolence: object_35 teddy bear in the bedroom room_8, object_36 in the living room room_16
+    benevolence = load_authors_scene(gibson_root / "Benevolence")
+    means("Touch the teddy bear in the bedroom, then the one in the living room.",
+          "F(o35 & r8 & F(o36 & r16))", benevolence)
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("Wash the bowl and keep away from the office afterwards.", "for part of the mission"),
+        ("Sit on the couch, then never go back there.", "never go back"),
+        ("Never set foot in the dining room again.", "for part of the mission"),
+        ("Begin in the office and finish in the kitchen.", "where the path starts or ends"),
+        ("Touch the teddy bear and end up in the living room.", "where the path starts or ends"),
+    ],
+)
+def test_prohibitions_after_a_visit_and_path_ends_are_refused(demo, text, fragment):
+    refused(text, fragment, demo)
+
+
+def test_start_by_and_end_up_in_a_condition_are_read(demo):
+    means("Start by opening the fridge, then sit on the couch.", "F(o15 & F o22)", demo)
+    means("Whenever you end up in the dining room, wash the bowl.", "G(r7 -> F o19)", demo)
+
+
+def test_a_member_of_a_group_first_and_do_it_again(demo):
+    means("Touch the clocks, the one in the bedroom first.", "F(o33 & r11 & F o26)", demo)
+    refused("Touch the clocks and the one in the bedroom.", "named twice", demo)
+    refused("Go to the office, then the kitchen. Do it twice.", "refers to what was done", demo)
+    means("Do the kitchen first, then the office.", "F(r4 & F r12)", demo)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 import pytest
@@ -18,7 +18,7 @@ MIN_SCORE = 0.85
 """Floor on the share of right translations over the whole set (the paper's own texts included)."""
 
 
-@lru_cache(maxsize=None)
+@cache
 def building_of(scene: str):
     if scene == "demo":
         return demo_building()
@@ -36,7 +36,8 @@ def test_the_set_is_large_and_varied():
 
 
 def test_demo_missions_score():
-    results = evaluate(PatternTranslator(), [m for m in load_mission_set(SET) if m.scene == "demo"], building_of)
+    results = evaluate(PatternTranslator(), [m for m in load_mission_set(SET) if m.scene == "demo"],
+                       building_of)
     assert [r.mission.id for r in results if r.outcome != "right"] == []
 
 
@@ -45,7 +46,8 @@ def test_full_score(gibson_root):
     results = evaluate(PatternTranslator(), load_mission_set(SET), building_of)
     wrong = [f"{r.mission.id}: {r.detail}" for r in results if r.outcome == "wrong"]
     assert not wrong, "silently wrong translations:\n" + "\n".join(wrong)
-    failed_must = [f"{r.mission.id}: {r.detail}" for r in results if r.mission.must_pass and r.outcome != "right"]
+    failed_must = [f"{r.mission.id}: {r.detail}" for r in results if r.mission.must_pass
+                   and r.outcome != "right"]
     assert not failed_must, "\n".join(failed_must)
     score = sum(r.outcome == "right" for r in results) / len(results)
     assert score >= MIN_SCORE, f"score {score:.1%} < {MIN_SCORE:.0%}"

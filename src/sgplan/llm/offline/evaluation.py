@@ -79,7 +79,8 @@ class EvalResult:
 def expand_shorthand(text: str) -> str:
     """``F(r2 & o27)`` -> ``F("enter(room_2)" & "reach(object_27)")``."""
     return _SHORTHAND.sub(
-        lambda m: f'"enter(room_{m.group(2)})"' if m.group(1) == "r" else f'"reach(object_{m.group(2)})"', text
+        lambda m: f'"enter(room_{m.group(2)})"' if m.group(1) == "r" else f'"reach(object_{m.group(2)})"',
+        text
     )
 
 
@@ -168,10 +169,12 @@ def evaluate(
                 results.append(EvalResult(m, "refused", message))
             continue
         if m.gold is None:
-            results.append(EvalResult(m, "wrong", f"expected an error containing {m.expect_error!r}, got {formula}",
+            results.append(EvalResult(m, "wrong",
+                                      f"expected an error containing {m.expect_error!r}, got {formula}",
                                       formula))
             continue
         same, why = same_language(formula, m.gold, building)
-        results.append(EvalResult(m, "right" if same else "wrong", f"got {formula}" + ("" if same else f"; {why}"),
+        results.append(EvalResult(m, "right" if same else "wrong",
+                                  f"got {formula}" + ("" if same else f"; {why}"),
                                   formula))
     return results

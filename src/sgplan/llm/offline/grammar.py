@@ -7,9 +7,11 @@ kitchen and water the plant``); an action is verb words followed by a list of no
 ``twice`` make new visits); negations (``always avoid``, ``never``, ``don't``, ``avoid``, ``without``,
 ``stay away from``; a trailing one on a room holds for the whole mission), ``until``, conditions
 (``if ... , ...``, ``... if ...``, ``... only if ...``, ``whenever ...``) and sentence prefixes (``After
-visiting X, ...``, ``Only after ...``, ``In the kitchen, ...``) wrap them. Noun phrases are grounded as they are read (:class:`NounPhrase`), so pronouns
-(``it``, ``them``) and room context ("go to the dining room and sit on one of the chairs": the chairs of
-that dining room) use what came before.
+visiting X, ...``, ``Once ...``, ``Only after ...``, ``On your way to X, ...``, ``In the kitchen, ...``)
+wrap them; ``if you ever ...`` and ``..., Y afterwards`` make a condition a response like *whenever*, a
+bare ``when ...`` is refused. Noun phrases are grounded as they are read (:class:`NounPhrase`), so
+pronouns (``it``, ``them``) and room context ("go to the dining room and sit on one of the chairs": the
+chairs of that dining room) use what came before.
 
 Anything the grammar does not understand raises :class:`~sgplan.errors.MissionError` naming the phrase;
 it never guesses.
@@ -31,8 +33,9 @@ from sgplan.logic.tokens import action_entity
 Mode = Literal["the", "any", "all"]
 Role = Literal["goal", "avoid", "condition", "qualifier"]
 
-_POSSESSIVES = frozenset("my your our his her their".split())
-_DETERMINERS = frozenset("the a an any all every each both either this that these those some".split()) | _POSSESSIVES
+_POSSESSIVES = lx.word_set("my your our his her their")
+_DETERMINERS = lx.word_set("the a an any all every each both either this that these those "
+                           "some") | _POSSESSIVES
 _SEQ_WORDS = (("and", "then"), ("then",), ("after", "that"), ("afterwards",), ("afterward",), ("next",),
               ("finally",), ("subsequently",), ("after", "which"), ("followed", "by"), ("later",),
               ("and", "finally"), ("lastly",), ("secondly",), ("thirdly",), ("fourthly",), ("second", ","),
@@ -45,15 +48,17 @@ _NEG_STARTS = (("always", "avoid"), ("always", "stay", "away", "from"), ("always
                ("keep", "out", "of"), ("without",), ("while", "avoiding"), ("always", "do", "not"),
                ("and", "avoid"), ("but", "avoid"), ("but", "never"), ("and", "never"), ("but", "do", "not"),
                ("and", "do", "not"), ("but", "not"), ("no",))
-_GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can", "cannot", "may", "will", "no",
-                         "stay", "keep"})
+_GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can", "cannot", "may", "will",
+                         "no", "stay", "keep"})
 """A negation with one of these words holds for the whole mission (G !x); 'avoid' and 'without' after an
 action only constrain the moment that action is done (F(x & !y)), as in the authors' missions."""
 _QUAL_IN = ("in", "inside", "within", "of", "from")
 _QUAL_CONTAINS = (("with",), ("having",), ("containing",), ("that", "has"), ("that", "have"),
                   ("which", "has"), ("which", "have"), ("that", "contains"), ("which", "contains"),
-                  ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"), ("that", "only", "has"),
-                  ("which", "only", "has"), ("that", "only", "have"), ("with", "only"), ("that", "has", "only"),
+                  ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"),
+                  ("that", "only", "has"),
+                  ("which", "only", "has"), ("that", "only", "have"), ("with", "only"),
+                  ("that", "has", "only"),
                   ("containing", "only"))
 _QUAL_LACKS = (("that", "does", "not", "have"), ("which", "does", "not", "have"), ("with", "no"),
                ("that", "has", "no"), ("that", "does", "not", "contain"), ("where", "there", "is", "no"))
@@ -62,12 +67,30 @@ _QUAL_NEXT = (("next", "to"), ("adjacent", "to"), ("beside",), ("near",), ("conn
               ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to"))
 _QUAL_EXCEPT = (("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
                 ("excluding",), ("besides",))
-_PARTICLES = frozenset("on off up down out over".split())
-_SUBJECT_FILLERS = frozenset("you we i the robot it ever have has had do does did are is were was already "
-                             "been also first".split())
-_CONDITION_WORDS = ("if", "when", "once", "in case")
+_PARTICLES = lx.word_set("on off up down out over")
+_SUBJECT_FILLERS = lx.word_set("you we i the robot it ever have has had do does did are is were was already "
+                                "been also first")
+_CONDITION_WORDS = ("if", "when", "in case")
+"""Conditions; *once* is temporal ('once you have been to X' = after X), not a condition."""
 _WHENEVER = (("whenever",), ("every", "time"), ("each", "time"), ("any", "time"), ("anytime",))
+_DONE = frozenset({"done", "finished", "through"})
+_WAYPOINT = (("via",), ("through",), ("by", "way", "of"), ("passing", "through"),
+             ("going", "through"), ("passing", "by"), ("going", "past"), ("passing",),
+             ("by", "going", "through"))
+"""Right after a goal: what follows is on the way there (before it)."""
+_ON_THE_WAY = (("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way"))
+_WAY_BACK = frozenset({"back", "up", "down", "out", "home"})
+"""``on your way back (up)``: after what came before, like *then*."""
 _ONLY_AFTER = (("only", "after"), ("only", "once"), ("not", "before"), ("not", "until"))
+_EVER = (("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"), ("every", "time"),
+         ("each", "time"), ("anytime",))
+"""In a condition ("if you ever go into X"): it is about each visit of X, a response, not one event."""
+_AFTERWARDS = (("afterwards",), ("afterward",), ("after", "that"), ("after",), ("later",),
+               ("straight", "after"), ("right", "after"))
+"""In the consequent of a condition ("..., visit Y afterwards"): Y follows X, a response."""
+_CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "while", "without", "when", "if",
+                            "once", "whenever", "unless"})
+"""Words that would continue a condition past its one action (a comma or *then* ends it)."""
 _FIRST = frozenset({"first", "firstly"})
 _MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
 _STRUCTURAL = (
@@ -75,9 +98,10 @@ _STRUCTURAL = (
                               lx.ORDER_MODIFIERS) for seq in table for w in seq)
     | frozenset(_QUAL_IN) | frozenset(w for c in _CONDITION_WORDS for w in c.split()) | _DETERMINERS
     | frozenset(lx.FLOOR_WORDS) | frozenset(lx.FLOOR_ORDINALS) | frozenset(lx.FLOOR_NAMED)
-    | frozenset(lx.FLOOR_TOP) | frozenset(lx.FLOOR_MIDDLE) | frozenset(lx.NUMBER_WORDS) | frozenset(lx.PRONOUNS)
-    | frozenset(lx.GENERIC_ROOM_WORDS) | frozenset({"whenever", "only", "than", "zero", "ever", "again", "twice",
-                                                  "times", "anytime"})
+    | frozenset(lx.FLOOR_TOP) | frozenset(lx.FLOOR_MIDDLE) | frozenset(lx.NUMBER_WORDS)
+    | frozenset(lx.PRONOUNS)
+    | frozenset(lx.GENERIC_ROOM_WORDS)
+    | frozenset({"whenever", "only", "than", "zero", "ever", "again", "twice", "once", "times", "anytime"})
 ) - lx.POSITIVE_VERBS - {"first", "also", "please", "eventually", "finally"}
 """Words with a role in the grammar: in the verb slot they signal a sentence that was not understood."""
 
@@ -136,6 +160,10 @@ class MissionParser:
         self.sentence_scope: list[Entity] = []
         self.prior_steps: list[Step] = []
         """The steps of the previous sentence when this one continues its sequence ("... Then ...")."""
+        self.last_step: Step = []
+        """The last step with goals of the previous sentence (what *done that* refers to)."""
+        self.in_condition = False
+        """Reading the condition of *if* / *whenever* (where *end up in X* just means being in X)."""
         self.pending_floor: frozenset[int] | None = None
         """A floor said in the verb slot ("go upstairs to ..."), for the next noun phrase."""
 
@@ -170,7 +198,8 @@ class MissionParser:
         return f"'{self.span_text(tail[0].start, tail[-1].end)}'"
 
     def fail(self, message: str) -> MissionError:
-        return MissionError(f"{message}; rephrase the mission (see docs/offline.md for the understood English)")
+        return MissionError(f"{message}; rephrase the mission (see docs/offline.md for the understood "
+                            f"English)")
 
     # -- the mission ------------------------------------------------------------------------------------
     def parse(self) -> Formula:
@@ -182,10 +211,13 @@ class MissionParser:
             continues = self.skip_fillers(sequence_too=True)
             self.prior_steps = previous.steps if continues and previous is not None else []
             result = self.sentence()
+            if (isinstance(result, Clause) and not any(result.steps) and not result.constraints and previous
+                    and "order" in self.words() and len([s for s in previous.steps if s]) > 1):
+                raise self.fail("'the order does not matter' after goals given in order; say which it is")
             if precedes:
                 if previous is None or not isinstance(result, Clause):
-                    raise self.fail("'before that' / 'first' in a later sentence needs a plain list of goals in "
-                                    "this sentence and the one before it")
+                    raise self.fail("'before that' / 'first' in a later sentence needs a plain list of goals "
+                                    "in this sentence and the one before it")
                 previous.steps[0:0] = [s for s in result.steps if s]
                 previous.constraints.extend(result.constraints)
             elif continues and previous is not None and isinstance(result, Clause):
@@ -193,6 +225,8 @@ class MissionParser:
                 previous.constraints.extend(result.constraints)
             else:
                 parts.append(result)
+            if isinstance(result, Clause) and any(result.steps):
+                self.last_step = [s for s in result.steps if s][-1]
         formulas = [p.formula() if isinstance(p, Clause) else p for p in parts]
         present = [f for f in formulas if f is not None]
         if not present:
@@ -213,9 +247,10 @@ class MissionParser:
             self.i += 1
         said = self.span_text(self.toks[0].start, self.toks[self.i - 1].end)
         if len(has_goals) != 1 or (said.lower().startswith("before") and
-                                   isinstance(has_goals[0], Clause) and len([s for s in has_goals[0].steps if s]) > 1):
-            raise self.fail(f"'{said}': it is not clear which of the earlier goals this comes before; put the "
-                            f"goals in the order they must be done (with 'then')")
+                                   isinstance(has_goals[0], Clause)
+                                   and len([s for s in has_goals[0].steps if s]) > 1):
+            raise self.fail(f"'{said}': it is not clear which of the earlier goals this comes before; put "
+                            f"the goals in the order they must be done (with 'then')")
         return True
 
     def skip_fillers(self, sequence_too: bool = False) -> bool:
@@ -223,41 +258,75 @@ class MissionParser:
         seen_sequence = False
         while not self.done():
             seq = self.at_any(_SEQ_WORDS) if sequence_too else None
-            if seq is not None:
+            way = self.at_any(_ON_THE_WAY)
+            if way is not None and self.word(len(way)) == "there":
+                raise self.fail("'on your way there': say 'before going to X, ...' or put the goals in order")
+            if sequence_too and way is not None and self.word(len(way)) in _WAY_BACK:
+                self.i += len(way)
+                while self.word() in _WAY_BACK:
+                    self.i += 1
+                seen_sequence = True
+            elif sequence_too and self.done_sequence():
+                seen_sequence = True
+            elif seq is not None:
                 self.i += len(seq)
                 seen_sequence = True
             elif self.at_any(lx.TIME_FILLERS) is not None:
                 self.i += len(self.at_any(lx.TIME_FILLERS) or ())
-            elif self.word() == "," or (self.word() in lx.FILLERS and self.word() not in ("do", "and", "then", "next")):
+            elif self.at_any(lx.POLITE) is not None:
+                self.i += len(self.at_any(lx.POLITE) or ())
+            elif self.word() == "," or (self.word() in lx.FILLERS
+                                        and self.word() not in ("do", "and", "then", "next")):
                 self.i += 1
             else:
                 break
         return seen_sequence
 
     def sentence(self) -> Clause | Formula:
+        if self.word() in ("and", "but", "so") and (self.at_any(_WHENEVER, k=1) or any(
+                self.at(*w.split(), k=1) for w in _CONDITION_WORDS)):
+            self.i += 1  # "And whenever you ...", "But if you ...": a new condition, not a continuation
         whenever = self.at_any(_WHENEVER)
         if whenever is not None:
             self.i += len(whenever)
             trigger = self.trigger()
             self.expect_comma_or_then()
             return self.whenever(trigger, self.body())
+        done = self.done_words()
+        if done and self.word(done) == "with" and self.np_starts(done + 1):
+            self.i += done + 1  # "when done with the garage, ..."
+            before = self.prefix_clause()
+            body = self.body()
+            body.steps[:0] = before.steps
+            return self.postfix_condition(body)
         cond_word = next((w for w in _CONDITION_WORDS if self.at(*w.split())), None)
         if cond_word is not None:
             self.i += len(cond_word.split())
-            condition = self.condition()
+            start = self.i
+            condition, tasks = self.condition()
+            said_ever = self.says(_EVER, start, self.i)
             self.expect_comma_or_then()
+            start = self.i
             body = self.body()
-            return Implies(condition, self.require(body, "after the condition"))
+            return self.conditional(cond_word, condition, tasks, body,
+                                    said_ever or self.says(_AFTERWARDS, start, self.i))
         if self.at_any(_ONLY_AFTER):
             self.i += 2
             before = self.prefix_clause()
             body = self.body()
             return self.only_after(before, body)
-        if self.word() in ("after", "once"):
+        if self.word() in ("after", "once") and not self.at("after", "that"):
             self.i += 1
             before = self.prefix_clause()
             body = self.body()
             body.steps[:0] = before.steps
+            return self.postfix_condition(body)
+        way = self.at_any(_ON_THE_WAY)
+        if way is not None and self.word(len(way)) in ("to", "into") and self.np_starts(len(way) + 1):
+            self.i += len(way)  # "On your way to the lobby, check the couch": the couch, then the lobby
+            after = self.prefix_clause()
+            body = self.body()
+            body.steps.extend(after.steps)
             return self.postfix_condition(body)
         if self.word() == "before":
             self.i += 1
@@ -294,15 +363,17 @@ class MissionParser:
             return self.whenever(trigger, body)
         if self.at("only", "if"):
             self.i += 2
-            condition = self.condition()
+            condition, _ = self.condition()
             self.expect_end()
             return Implies(self.require(body, "before 'only if'"), condition)
         cond_word = next((w for w in _CONDITION_WORDS if self.at(*w.split())), None)
         if cond_word is not None:
             self.i += len(cond_word.split())
-            condition = self.condition()
+            start = self.i
+            condition, tasks = self.condition()
+            response = self.says(_EVER, start, self.i) or self.says(_AFTERWARDS, 0, start)
             self.expect_end()
-            return Implies(condition, self.require(body, f"before '{cond_word}'"))
+            return self.conditional(cond_word, condition, tasks, body, response)
         raise self.fail(f"cannot understand {self.here()}")
 
     def require(self, clause: Clause, where: str) -> Formula:
@@ -342,7 +413,9 @@ class MissionParser:
         self.skip_subject()
         if self.word() in ("not", "never"):
             raise self.fail("negative triggers ('whenever you do not ...') are not understood")
+        self.in_condition = True
         tasks = [t for step in self.action() for t in step]
+        self.in_condition = False
         if len(tasks) != 1:
             raise self.fail("'whenever ...' needs one room or object (or a choice of them) as its trigger")
         return tasks[0]
@@ -352,8 +425,8 @@ class MissionParser:
         finite-path response; Y may happen at X itself). Y must be goals only: a prohibition scoped to
         "whenever" is not expressible this way, so it is refused."""
         if body.constraints or any(t.avoid for step in body.steps for t in step):
-            raise self.fail("'whenever X, ...' is understood with goals only (e.g. 'whenever you enter the kitchen, "
-                            "open the fridge'), not with prohibitions")
+            raise self.fail("'whenever X, ...' is understood with goals only (e.g. 'whenever you enter the "
+                            "kitchen, open the fridge'), not with prohibitions")
         return Always(Implies(disj(trigger.members), self.require(body, "for 'whenever'")))
 
     def prefix_clause(self) -> Clause:
@@ -363,20 +436,84 @@ class MissionParser:
         self.expect_comma_or_then()
         return Clause(steps=steps)
 
-    def condition(self) -> Formula:
-        """``if you go to the kitchen``: the formula that the condition happened (F ...)."""
+    def condition(self) -> tuple[Formula, list[Task]]:
+        """``if you go to the kitchen``: the formula that the condition happened (F ...), and its tasks.
+        One action: more ("... and open the fridge", "... after the office") is refused, not left to the
+        consequent."""
+        ever = self.at_any(_EVER)
+        if ever is not None:  # "if at any point you ...": kept for :meth:`says`
+            self.i += len(ever)
         self.skip_subject()
         if self.word() in ("not", "never"):
             raise self.fail("negative conditions ('if you do not ...') are not understood")
+        self.in_condition = True
         steps = self.action()
+        self.in_condition = False
+        if self.word() in _CONDITION_END or self.at_any(_NEG_STARTS):
+            raise self.fail(f"the condition goes on with {self.here()}; a condition is one action (e.g. 'if "
+                            f"you go to the kitchen, ...')")
         f = sequence_formula(steps)
         if f is None:
             raise self.fail("the condition names no room or object")
-        return f
+        return f, [t for step in steps for t in step]
+
+    def says(self, phrases: tuple[tuple[str, ...], ...], start: int, end: int) -> bool:
+        """Whether one of ``phrases`` occurs among the tokens ``[start, end)`` of this sentence."""
+        return any(self.at(*p, k=j - self.i) for j in range(start, end) for p in phrases
+                   if j + len(p) <= end)
+
+    def conditional(self, word: str, condition: Formula, tasks: list[Task], body: Clause,
+                    response: bool) -> Formula:
+        """``if X, Y``: ``F X -> Y``. When the antecedent says *ever* / *at any point* or the consequent
+        *afterwards* / *after that*, people mean a response to each visit of X, as with *whenever*
+        (``G(X -> F Y)``); that needs one place as X (else it is refused rather than guessed). A bare
+        ``when X, Y`` may mean either, or a plain sequence, so it is refused."""
+        if not response and word == "when":
+            raise self.fail("'when X, Y' can mean 'after X, Y' (in order), 'whenever X, Y' (each time) or "
+                            "'if X, Y' (X at all); say which")
+        if not response:
+            return Implies(condition, self.require(body, "for the condition"))
+        if len(tasks) != 1:
+            raise self.fail("'if you ever go to X, ... afterwards' is understood with one room or object (or "
+                            "a choice of them) as X")
+        return self.whenever(tasks[0], body)
 
     def skip_subject(self) -> None:
         while self.word() in _SUBJECT_FILLERS and not self.np_starts():
             self.i += 1
+
+    def done_words(self, k: int = 0) -> int:
+        """How many words at offset ``k`` say the previous step is over: ``once you're done``, ``when you
+        have finished``, ``after that is done`` (0 if they do not). ``with X`` after them is not counted."""
+        if self.word(k) not in ("once", "when", "after"):
+            return 0
+        n = 1
+        while self.word(k + n) in _SUBJECT_FILLERS | {"that", "this", "are", "all", "both", "of", "them"}:
+            n += 1
+        return n + 1 if self.word(k + n) in _DONE else 0
+
+    def done_sequence(self) -> bool:
+        """``once you're done (with that) (,)``: consumed when it refers back to the previous step (a
+        sequence word then); not when it names what is done (``when done with the garage``)."""
+        n = self.done_words()
+        if not n:
+            return False
+        back = ("that", "this", "it", "them", "everything", "there")
+        if self.word(n) == "with" and (self.word(n + 1) not in back or self.np_starts(n + 2)):
+            return False
+        k = n + 1 if self.word(n) == "with" else n
+        self.i += k + (1 if self.word(k) in back else 0)
+        return True
+
+    def previous_step(self, clause: Clause) -> Step:
+        """The last step with goals, in this clause or the sentence before (what *that* in *before you have
+        done that* refers to); refused when there is none."""
+        for step in reversed(clause.steps):
+            if step:
+                return step
+        if self.last_step:
+            return self.last_step
+        raise self.fail("'done that' does not refer to any goal named before it")
 
     # -- sentence bodies -----------------------------------------------------------------------------
     def body(self) -> Clause:
@@ -384,6 +521,16 @@ class MissionParser:
         while not self.done():
             if self.word() in ("but", "and", ",") and self.at_any(_ONLY_AFTER, k=1):
                 self.i += 1  # "..., but only after X" / "..., but not before X"
+            done = self.done_words()
+            if done and self.word(done) == "with" and self.np_starts(done + 1):  # "... when done with X"
+                self.i += done + 1
+                clause.steps[-1:-1] = [t for t in self.action() if t]
+                continue
+            way = self.at_any(_ON_THE_WAY, k=1 if self.word() in ("and", ",") else 0)
+            if (done or way) and self.skip_fillers(sequence_too=True):
+                if clause.steps[-1]:
+                    clause.steps.append([])
+                continue
             if (self.at("only", "if") or any(self.at(*w.split()) for w in _CONDITION_WORDS)
                     or self.at_any(_ONLY_AFTER) or self.at_any(_WHENEVER)):
                 break
@@ -405,7 +552,7 @@ class MissionParser:
             neg = self.at_any(_NEG_STARTS)
             if neg is not None:
                 self.negation(neg, clause)
-            elif self.word() == "after" and not self.at("after", "that"):
+            elif self.word() in ("after", "once") and not self.at("after", "that"):
                 self.i += 1
                 self.skip_subject()
                 clause.steps[-1:-1] = [t for t in self.action() if t]
@@ -414,6 +561,8 @@ class MissionParser:
                 self.skip_subject()
                 clause.steps.extend(self.action())
                 clause.steps.append([])
+            elif self.at_any(_WAYPOINT, k=1 if self.word() == "," else 0) and any(clause.steps[-1]):
+                self.waypoint(clause)
             elif self.word() in ("and", "but", "or", "while", "as"):
                 if self.word() == "or":
                     raise self.fail(f"'or' between actions is not understood at {self.here()} "
@@ -427,17 +576,36 @@ class MissionParser:
                 before_that = self.at("before", "that") and self.word(2) in ("", ",", "and", "then")
                 if self.word() in _FIRST or before_that:  # "go to B, but go to A first / before that"
                     if before_that and len([s for s in clause.steps if s]) > 1:
-                        raise self.fail(f"'before that' at {self.here()}: it is not clear which of the earlier goals "
-                                        f"this comes before; put the goals in the order they must be done")
+                        raise self.fail(f"'before that' at {self.here()}: it is not clear which of the "
+                                        f"earlier goals this comes before; put the goals in the order they "
+                                        f"must be done")
                     self.i += 2 if before_that else 1
                     self.skip_of_all()
                     if any(clause.steps):
                         clause.steps[0:0] = [s for s in steps if s]
                         continue
+                    if self.done() and self.last_step:  # "Go to B. Go to A first.": before which goal?
+                        raise self.fail("a trailing 'first' in a later sentence: start the sentence with "
+                                        "'Before that' or put the goals in the order they must be done")
+                    clause.steps[-1].extend(steps[0])  # "go to A first and (then) B": A, then the rest
+                    clause.steps.extend(steps[1:] + [[]])
+                    continue
                 clause.steps[-1].extend(steps[0])
                 if len(steps) > 1:
                     clause.steps.extend(steps[1:])
         return clause
+
+    def waypoint(self, clause: Clause) -> None:
+        """``go to Y via X`` / ``..., passing through X``: X on the way, before the one goal Y just named."""
+        if self.word() == ",":
+            self.i += 1
+        self.i += len(self.at_any(_WAYPOINT) or ())
+        if len(clause.steps[-1]) != 1:
+            raise self.fail(f"it is not clear which of the goals {self.here()} is on the way to; say 'go to "
+                            f"X, then Y'")
+        target = clause.steps.pop()
+        clause.steps.extend([t for t in self.action() if t])
+        clause.steps.extend([target, []])
 
     def skip_of_all(self) -> None:
         if self.at("of", "all"):
@@ -448,8 +616,8 @@ class MissionParser:
         *before that* after several steps is ambiguous (before which?) and refused."""
         before_that = self.at("before", "that")
         if before_that and len([s for s in clause.steps if s]) > 1:
-            raise self.fail(f"'before that' at {self.here()}: it is not clear which of the earlier goals this comes "
-                            f"before; put the goals in the order they must be done (with 'then')")
+            raise self.fail(f"'before that' at {self.here()}: it is not clear which of the earlier goals "
+                            f"this comes before; put the goals in the order they must be done (with 'then')")
         self.i += 2 if before_that else 1
         self.skip_of_all()
         if self.word() == ",":
@@ -464,8 +632,8 @@ class MissionParser:
         done = [m for s in earlier for t in s for m in t.members]
         for task in step:
             if task.revisit and not all(m in done for m in task.members):
-                raise self.fail("'again' / 'back to' needs the first visit earlier in the same sequence (e.g. 'go to "
-                                "the kitchen, then the bedroom, then back to the kitchen')")
+                raise self.fail("'again' / 'back to' needs the first visit earlier in the same sequence "
+                                "(e.g. 'go to the kitchen, then the bedroom, then back to the kitchen')")
 
     def step_rooms(self, step: Step) -> list[Entity]:
         """Rooms the current step sends the robot to: context for the objects named next."""
@@ -482,9 +650,16 @@ class MissionParser:
             self.i += 1
         has_goal = any(clause.steps)
         is_global = bool(_GLOBAL_NEG & set(marker)) or not has_goal
-        self.verb_words()
+        if set(self.verb_words()) & lx.REVISIT_VERBS:  # "never go back to X": only after a first visit
+            raise self.fail("'never go back / return to X' (after a first visit) is not understood; say "
+                            "'never enter X' for the whole mission")
         rooms = self.step_rooms(clause.steps[-1]) if not is_global else self.sentence_scope
-        nps = self.noun_phrase_list("avoid", rooms)
+        if self.pending_floor is not None and not self.np_starts():  # "never go upstairs": any room there
+            first = self.toks[self.i - 1]
+            nps = [self.floor_place(first, self.pending_floor, "all", "avoid")]
+            self.pending_floor = None
+        else:
+            nps = self.noun_phrase_list("avoid", rooms)
         entities = [e for np in nps for e in np.entities]
         forbidden = conj([Not(Atom(e.action)) for e in entities])
         self.skip_particles()
@@ -492,11 +667,30 @@ class MissionParser:
         if whole is not None:  # "avoid the office the whole time"
             self.i += len(whole)
             is_global = True
+        if (self.word() in ("after", "once", "when", "during", "afterwards", "afterward", "later", "again")
+                or self.at("from", "then") or self.at("from", "now")):
+            raise self.fail(f"a prohibition for part of the mission ({self.here()}) is not understood; say "
+                            f"'never enter X' (the whole mission) or 'do not enter X until ...'")
         if self.word() in ("until", "before"):
             self.i += 1
             self.skip_subject()
-            steps = self.action()
+            back = ("that", "this", "it", "so")
+            if self.word() in _DONE and ((self.word(1) in back and not self.np_starts(2))
+                                         or not self.np_starts(1)):
+                self.i += 1  # "... before you've done that"
+                if self.word() in back:
+                    self.i += 1
+                steps = [self.previous_step(clause)]
+            else:
+                steps = self.action()
+                said_done = self.word(1) in _DONE | {"been", "visited"}
+                if self.word() in ("is", "are", "has", "have") and said_done:
+                    self.i += 2  # "until both bathrooms are done"
+                    if self.word() in ("visited", "checked", "cleaned"):
+                        self.i += 1
             tasks = [t for s in steps for t in s]
+            if len(tasks) > 1 and all(t.mode == "all" for t in tasks):  # "until A and B": each of them
+                tasks = [Task("all", [m for t in tasks for m in t.members])]
             if len(tasks) != 1:
                 raise self.fail("'... until X' needs one goal X")
             t = tasks[0]
@@ -512,7 +706,8 @@ class MissionParser:
                 clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in everywhere])))
 
     def avoidance_scope(self, target: Task, forbidden: list[Entity]) -> tuple[list[Entity], list[Entity]]:
-        """Split what a trailing *avoid* / *without* forbids into what holds when ``target`` is done (an object
+        """Split what a trailing *avoid* / *without* forbids into what holds when ``target`` is done (an
+        object
         of a room the target is in: "visit the bathroom and avoid the sink") and what holds for the whole
         mission: a room (one room at a time makes "in the bedroom and not in the kitchen" say nothing, so
         "go to the bedroom while avoiding the kitchen" means never entering it), or an object elsewhere."""
@@ -532,6 +727,13 @@ class MissionParser:
             w = self.word()
             if w in lx.REFUSED_VERBS:
                 raise self.fail(f"cannot understand {lx.REFUSED_VERBS[w]}")
+            ends = self.word(1) in ("in", "at", "up", "with")
+            if w in lx.START_END_VERBS and ends and not self.in_condition:
+                raise self.fail(f"'{w} {self.word(1)} ...': where the path starts or ends cannot be "
+                                f"required; put the goals in order with 'then'")
+            if w in ("do", "does", "did", "doing") and self.word(1) in ("it", "that", "this", "so"):
+                raise self.fail(f"'{w} {self.word(1)}' refers to what was done, not to a place; name the "
+                                f"rooms or objects again")
             if w in _MODALS and self.word(1) not in ("not", "never"):
                 seen.append(w)  # "may you go into ...", "I do want you to visit ...": no negation
                 self.i += 1
@@ -560,8 +762,8 @@ class MissionParser:
         if floors == 2:
             return frozenset({1 if step > 0 else 0})
         listing = "floor 0" if floors == 1 else f"floors 0 to {floors - 1}"
-        raise self.fail(f"'{word}' depends on where the robot starts, which is not known here; say which floor "
-                        f"(the building {self.vocab.building_name!r} has {listing})")
+        raise self.fail(f"'{word}' depends on where the robot starts, which is not known here; say which "
+                        f"floor (the building {self.vocab.building_name!r} has {listing})")
 
     def action(self, step_rooms: list[Entity] | None = None) -> list[Step]:
         """Verb words and noun phrases -> one or more steps (``put X in Y``, ordered lists give more)."""
@@ -575,17 +777,25 @@ class MissionParser:
         scope = list(step_rooms or []) or self.sentence_scope
         carry = bool(set(verbs) & lx.CARRY_VERBS)
         nps = self.noun_phrase_list("goal", scope, "object" if carry else None)
-        ordered = self.at_any(lx.ORDER_MODIFIERS)
+        first = self.word() in _FIRST
+        nps = self.first_of_list(nps)
+        lead = first and self.word() not in _FIRST  # "A and B, B first": B, then A
+        self.choice_affirmed(nps)
+        comma = 1 if self.word() == "," else 0
+        ordered = self.at_any(lx.ORDER_MODIFIERS, k=comma)
         if ordered:
-            self.i += len(ordered)
+            self.i += comma + len(ordered)
         pronoun_only = all(np.phrase.lower() in lx.PRONOUNS for np in nps)
         # "put it in Y": the object is already in hand, the goal is Y, after what came before.
         steps: list[Step] = [[]] if carry and pronoun_only else self.tasks_of(nps, ordered is not None)
+        if lead:
+            steps = [steps[0][:1], steps[0][1:]]
         self.revisits(nps, steps, verbs)
         self.skip_particles()
         # "put X in Y", "take X to Y", "go from X to Y", and any object followed by "to Y": X, then Y.
         carried = carry or (self.word() in ("to", "into", "onto") and (
-            "from" in verbs or all(e.kind == "object" for np in nps for e in np.entities)))
+            set(verbs) & {"from", "through", "via", "past"}
+            or all(e.kind == "object" for np in nps for e in np.entities)))
         if carried and self.word() in ("in", "into", "on", "onto", "to", "inside") and self.np_starts(1):
             self.i += 1
             dest = self.noun_phrase_list("goal", [])
@@ -607,6 +817,37 @@ class MissionParser:
             self.i += len(self.at_any(lx.TIME_FILLERS) or ())
         return steps or [[]]
 
+    def choice_affirmed(self, nps: list[NounPhrase]) -> None:
+        """Consume ``, either one is fine`` / ``, any of them`` after a choice; refused after a phrase that
+        means each of several (the remark would turn "all" into "one of"), or after several phrases."""
+        comma = 1 if self.word() == "," else 0
+        said = self.at_any(lx.CHOICE_AFFIRMATIONS, k=comma)
+        time = self.at_any(lx.TIME_FILLERS, k=comma)  # "whichever first" is about the order
+        if said is None or (said == ("is", "fine") and comma) or (time is not None
+                                                                  and len(time) >= len(said)):
+            return
+        if len(nps) > 1 or nps[0].mode != "any":
+            raise self.fail(f"'{' '.join(said)}' after '{self.span_text(nps[0].start, nps[-1].end)}', which "
+                            f"means each of them: say 'any of ...' or 'A or B' for a choice")
+        self.i += comma + len(said)
+
+    def first_of_list(self, nps: list[NounPhrase]) -> list[NounPhrase]:
+        """``A and B, B first``: the list with B moved to the front and once only (*first* is consumed; the
+        caller orders it before the rest). Any other phrase named twice in one list is refused: it is not
+        clear what is meant."""
+        keys = [frozenset(e.key for e in np.entities) for np in nps]
+        # "the chairs, both of them": the second phrase only restates the first
+        nps = [np for n, np in enumerate(nps)
+               if not (n and keys[n] == keys[n - 1] and np.phrase.lower().endswith("them"))]
+        keys = [frozenset(e.key for e in np.entities) for np in nps]
+        repeated = [n for n, k in enumerate(keys) if any(k & j for j in keys[:n])]
+        if not repeated:
+            return nps
+        if repeated == [len(nps) - 1] and self.word() in _FIRST:
+            self.i += 1  # "the clocks, the one in the bedroom first": that one, then the (other) clocks
+            return [nps[-1]] + [np for n, np in enumerate(nps[:-1]) if keys[n] != keys[-1]]
+        raise self.fail(f"'{nps[repeated[0]].phrase}' is named twice in one list")
+
     def revisits(self, nps: list[NounPhrase], steps: list[Step], verbs: list[str]) -> None:
         """``X again`` / ``go back to X`` / ``return to X`` (X named as a goal before): a new visit;
         ``X twice`` / ``X three times``: the visit and then new visits (see :class:`~.compose.Task`)."""
@@ -617,7 +858,8 @@ class MissionParser:
         if again:
             self.i += 1
             if not named_before:
-                raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)} again': it was not a goal before")
+                raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)} again': it was not a goal "
+                                f"before")
         if again or (set(verbs) & lx.REVISIT_VERBS and named_before):
             for task in steps[0]:
                 task.revisit = True
@@ -640,7 +882,8 @@ class MissionParser:
         return n
 
     def skip_particles(self) -> None:
-        if self.word() in _PARTICLES and (self.word(1) in ("", ",", "and", "then", "to") or self.at_any(_NEG_STARTS, k=1)):
+        if self.word() in _PARTICLES and (self.word(1) in ("", ",", "and", "then", "to")
+                                          or self.at_any(_NEG_STARTS, k=1)):
             self.i += 1
 
     def tasks_of(self, nps: list[NounPhrase], ordered: bool) -> list[Step]:
@@ -662,12 +905,15 @@ class MissionParser:
         if w == "there":  # "get there": the last place named as a goal
             return self.word(k + 1) not in ("is", "are", "was", "were")
         if w in _DETERMINERS:
-            return not (w == "some" and self.word(k + 1) == "point") and not (w == "that" and self.word(k + 1) in ("order",))
+            nxt = self.word(k + 1)
+            return not (w == "some" and nxt == "point") and not (w == "that" and nxt == "order")
         if w in lx.NUMBER_WORDS or w.isdigit():
-            return w != "one" or self.word(k + 1) == "of" or self.vocab.match_head(self.words(), self.i + k + 1) is not None
+            return (w != "one" or self.word(k + 1) == "of"
+                    or self.vocab.match_head(self.words(), self.i + k + 1) is not None)
         return self.vocab.match_head(self.words(), self.i + k) is not None
 
-    def noun_phrase_list(self, role: Role, scope: list[Entity], pronoun_kind: str | None = None) -> list[NounPhrase]:
+    def noun_phrase_list(self, role: Role, scope: list[Entity],
+                         pronoun_kind: str | None = None) -> list[NounPhrase]:
         """``A, B and C`` (each) or ``A or B`` / ``either A or B`` (one of them, as one phrase)."""
         either = self.word() == "either" and self.word(1) in _DETERMINERS | {"of"} and self.word(1) != "of"
         if either or (self.word() == "both" and self.word(1) in _DETERMINERS):
@@ -679,7 +925,7 @@ class MissionParser:
                 joiners.add(self.word(1))
                 self.i += 2
             elif (self.word() == "," and self.np_starts(1) and not self.at_any(_NEG_STARTS, k=1)
-                  and not self.at_any(lx.TIME_FILLERS, k=1)):
+                  and not self.at_any(lx.TIME_FILLERS, k=1) and not self.at_any(lx.CHOICE_AFFIRMATIONS, k=1)):
                 self.i += 1
             elif self.word() in ("and", "or") and self.np_starts(1):
                 joiners.add(self.word())
@@ -691,10 +937,12 @@ class MissionParser:
                 break
             nps.append(self.noun_phrase(role, scope))
         if joiners == {"and", "or"}:
-            raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)}' mixes 'and' and 'or'; split it into two sentences")
+            raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)}' mixes 'and' and 'or'; split it "
+                            f"into two sentences")
         if "or" in joiners or either:
             if any(np.mode == "all" and len(np.entities) > 1 for np in nps):
-                raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)}' joins a group with 'or'; say 'any of ...'")
+                raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)}' joins a group with 'or'; say "
+                                f"'any of ...'")
             # Being at an object implies being in its room, so locating some alternatives by their room and
             # others not changes nothing: the merged phrase locates all of them.
             merged = NounPhrase(self.span_text(nps[0].start, nps[-1].end), nps[0].start, nps[-1].end,
@@ -717,18 +965,27 @@ class MissionParser:
             if not goals:
                 raise self.fail("'there' does not refer to any place named before it")
             ref = max(goals, key=lambda r: r.start)
-            return self.record(NounPhrase(w, first.start, first.end, list(ref.entities), ref.mode, ref.room_scoped,
+            entities = list(ref.entities)
+            if role == "qualifier":  # "the clock in there": the room of the last goal
+                entities = list({e.room_key: self.vocab.by_key[e.room_key] for e in entities}.values())
+            return self.record(NounPhrase(w, first.start, first.end, entities, ref.mode, ref.room_scoped,
                                           role))
+        group = self.all_of_them() if role == "goal" else None
+        if group is not None:
+            return group
         if w in lx.PRONOUNS:
             self.i += 1
             ref = self.antecedent(w, pronoun_kind)
             pronoun_mode: Mode = "all" if w in ("them", "they") else ref.mode
-            np = NounPhrase(self.span_text(first.start, first.end), first.start, first.end, list(ref.entities),
+            np = NounPhrase(self.span_text(first.start, first.end), first.start, first.end,
+                            list(ref.entities),
                             pronoun_mode, ref.room_scoped, role)
             return self.record(np)
+        if self.word() in ("the", "a") and self.word(1) in lx.ANAPHORIC_ONE and one_head is None:
+            one_head = self.last_head()  # "the teddy bear in the bedroom, then the one in the living room"
         other = self.at("the", "other") and self.vocab.match_head(self.words(), self.i + 2) is not None
-        if self.at("the", "other", "one") and one_head is None:  # "the bedroom with the book, then the other one"
-            one_head = self.last_head()
+        if self.at("the", "other", "one") and one_head is None:
+            one_head = self.last_head()  # "the bedroom with the book, then the other one"
             other = True
         if other:
             self.i += 1
@@ -781,7 +1038,8 @@ class MissionParser:
                 container = entities
                 head = self.head(None)
                 if head.kind != "object":
-                    raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}': only objects belong to a room")
+                    raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}': only "
+                                    f"objects belong to a room")
                 entities = self.vocab.inside(self.vocab.of_head(head), container)
                 mode = "all" if head.plural else "the"
                 room_scoped = True
@@ -791,12 +1049,13 @@ class MissionParser:
                 entities = self.vocab.on_floor(entities, floor)
                 continue
             if (self.word() in _QUAL_IN and self.np_starts(1) and not self.at_any(lx.ORDER_MODIFIERS)
-                    and not self.at_any(lx.TIME_FILLERS) and not (role == "qualifier" and self.word(1) in ("it", "there"))):
+                    and not self.at_any(lx.TIME_FILLERS)
+                    and not (role == "qualifier" and self.word(1) in ("it", "there"))):
                 self.i += 1
                 inner = self.noun_phrase("qualifier")
                 if head.kind != "object" or any(e.kind != "room" for e in inner.entities):
-                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <object> in the <room>' "
-                                    f"(rooms are not inside rooms, objects not inside objects)")
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <object> in the "
+                                    f"<room>' (rooms are not inside rooms, objects not inside objects)")
                 entities = self.vocab.inside(entities, inner.entities)
                 inner.entities = [r for r in inner.entities if any(e.room_key == r.key for e in entities)]
                 room_scoped = True
@@ -806,7 +1065,8 @@ class MissionParser:
                 self.i += len(lacks)
                 inner = self.noun_phrase("qualifier")
                 if head.kind != "room" or any(e.kind != "object" for e in inner.entities):
-                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> without any <object>'")
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> without "
+                                    f"any <object>'")
                 entities = self.vocab.lacking(entities, inner.entities)
                 self.skip_in_it()
                 continue
@@ -816,8 +1076,10 @@ class MissionParser:
                 n = self.count_word()
                 inner = self.noun_phrase("qualifier")
                 if head.kind != "room" or any(e.kind != "object" for e in inner.entities):
-                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> with the <object>'")
-                entities = self.vocab.containing(entities, inner.entities, n if n is not None else inner.count,
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': say 'the <room> with the "
+                                    f"<object>'")
+                entities = self.vocab.containing(entities, inner.entities,
+                                                 n if n is not None else inner.count,
                                                  only="only" in contains)
                 inner.entities = [o for o in inner.entities if any(o.room_key == r.key for r in entities)]
                 self.skip_in_it()
@@ -827,7 +1089,8 @@ class MissionParser:
                 self.i += len(nxt)
                 inner = self.noun_phrase("qualifier")
                 if head.kind != "room" or any(e.kind != "room" for e in inner.entities):
-                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': 'next to' relates rooms only")
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': 'next to' relates rooms "
+                                    f"only")
                 entities = self.vocab.next_to(entities, inner.entities)
                 inner.entities = [r for r in inner.entities
                                   if any(r.key in self.vocab.adjacent.get(e.key, ()) for e in entities)]
@@ -839,10 +1102,11 @@ class MissionParser:
                 self.i += comma + len(exc)
                 excluded = self.except_list(head)
                 keys = {e.key for np in excluded for e in np.entities}
-                stray = [np.phrase for np in excluded if not {e.key for e in np.entities} & {e.key for e in entities}]
+                stray = [np.phrase for np in excluded if not {e.key for e in np.entities}
+                         & {e.key for e in entities}]
                 if stray:  # "the dining room but not the kitchen": not an exception, and not understood
-                    raise self.fail(f"'{' '.join(exc)} {stray[0]}': {stray[0]!r} is not one of {restricted!r}; to "
-                                    f"forbid it, say 'never enter {stray[0]}'")
+                    raise self.fail(f"'{' '.join(exc)} {stray[0]}': {stray[0]!r} is not one of "
+                                    f"{restricted!r}; to forbid it, say 'never enter {stray[0]}'")
                 entities = [e for e in entities if e.key not in keys]
                 continue
             break
@@ -854,11 +1118,13 @@ class MissionParser:
                 # "go to the lobby and sit on the couch" where the lobby has no couch: another room's couch
                 # is not what was asked for.
                 where = " or ".join(f"{r.key} ({r.category})" for r in scope)
-                raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}' is not in {where} "
-                                f"named in the same step; it is at {', '.join(e.describe() for e in entities[:8])}; "
-                                f"say 'then' between the two, or name its room ('the {head_word(entities)} in the ...')")
+                raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}' is not in "
+                                f"{where} named in the same step; it is at "
+                                f"{', '.join(e.describe() for e in entities[:8])}; say 'then' between the "
+                                f"two, or name its room ('the {head_word(entities)} in the ...')")
         last = self.toks[self.i - 1]
-        np = NounPhrase(self.span_text(first.start, last.end), first.start, last.end, entities, mode, room_scoped, role,
+        np = NounPhrase(self.span_text(first.start, last.end), first.start, last.end, entities, mode,
+                        room_scoped, role,
                         count)
         self.check(np, head, count)
         return self.record(np)
@@ -868,7 +1134,8 @@ class MissionParser:
         rooms = self.vocab.on_floor(self.vocab.of_head(Head("room", frozenset(), True, 1)), floors)
         chosen: Mode = "all" if role == "avoid" or mode == "all" else "any"
         last = self.toks[self.i - 1]
-        return self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, rooms, chosen,
+        return self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, rooms,
+                                      chosen,
                                       False, role))
 
     def last_head(self) -> Head | None:
@@ -883,7 +1150,8 @@ class MissionParser:
         """``the other X``: the X not named before ``before`` (a character offset); refused when none was."""
         named = {e.key for r in self.references if r.start < before for e in r.entities}
         if not any(e.key in named for e in entities):
-            raise self.fail(f"'the other {head_word(entities)}': no {head_word(entities)} was named before it")
+            raise self.fail(f"'the other {head_word(entities)}': no {head_word(entities)} was named before "
+                            f"it")
         return [e for e in entities if e.key not in named]
 
     def skip_in_it(self) -> None:
@@ -916,7 +1184,27 @@ class MissionParser:
                 kind is None or all(e.kind == kind for e in np.entities)
             ):
                 return np
-        raise self.fail(f"'{pronoun}' does not refer to any {'group of ' if plural else ''}room or object named before it")
+        raise self.fail(f"'{pronoun}' does not refer to any {'group of ' if plural else ''}room or object "
+                        f"named before it")
+
+    def all_of_them(self) -> NounPhrase | None:
+        """``all of them`` / ``both of them`` / ``each of them`` / ``all three of them``: the group named
+        before (its size checked against the number said); None if the words are not there."""
+        n = 1 if self.word() in ("all", "both", "each", "every") else 0
+        said = lx.NUMBER_WORDS.get(self.word(n)) if n else None
+        k = n + (1 if said else 0)
+        if not n or (not self.at("of", "them", k=k) and not (said and self.word(k) in ("", ","))):
+            return None
+        count = 2 if self.word() == "both" else said
+        first = self.toks[self.i]
+        self.i += k + (2 if self.at("of", "them", k=k) else 0)
+        ref = self.antecedent("them")
+        if count is not None and len(ref.entities) != count:
+            raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}': '{ref.phrase}' is "
+                            f"{len(ref.entities)}, not {count}")
+        return self.record(NounPhrase(self.span_text(first.start, self.toks[self.i - 1].end), first.start,
+                                      self.toks[self.i - 1].end, list(ref.entities), "all", ref.room_scoped,
+                                      "goal"))
 
     def quantifier(self) -> tuple[Mode | None, int | None]:
         """Determiners -> (mode, required count); ``None`` mode = decided by the head's number."""
@@ -939,7 +1227,8 @@ class MissionParser:
             mode = "the"
         if self.word() in ("the", "these", "those") and mode is not None:
             self.i += 1
-        n = self.count_word() if self.np_starts(1) or self.vocab.match_head(self.words(), self.i + 1) else None
+        counted = self.np_starts(1) or self.vocab.match_head(self.words(), self.i + 1)
+        n = self.count_word() if counted else None
         if n is not None:
             if mode in (None, "any"):
                 raise self.fail(f"'{self.word(-1)} ...': choosing a number of them is not understood; "
@@ -967,10 +1256,12 @@ class MissionParser:
         if w in lx.REFUSED_VERBS:
             raise self.fail(f"cannot understand {lx.REFUSED_VERBS[w]}")
         if w in lx.FLOOR_ORDINALS or w in lx.FLOOR_NAMED or w in lx.FLOOR_TOP:
-            raise self.fail(f"ordinals like '{w}' are only understood for floors ('the bathroom on the {w} floor')")
+            raise self.fail(f"ordinals like '{w}' are only understood for floors ('the bathroom on the {w} "
+                            f"floor')")
         head = self.vocab.match_head(self.words(), self.i)
         if head is None and self.done():
-            raise self.fail(f"expected a room or object after '{self.toks[self.i - 1].text}' at the end of the sentence")
+            raise self.fail(f"expected a room or object after '{self.toks[self.i - 1].text}' at the end of "
+                            f"the sentence")
         if head is None:
             unknown = self.word()
             raise self.fail(
@@ -982,18 +1273,26 @@ class MissionParser:
         return head
 
     def floor_qualifier(self) -> frozenset[int] | None:
-        """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> {1}, {1}, {0};
-        ``upstairs`` / ``downstairs`` / ``on this floor``: relative to the start floor (:meth:`relative_floor`)."""
+        """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> {1}, {1},
+        {0}; ``upstairs`` / ``downstairs`` / ``on this floor``: relative to the start floor
+        (:meth:`relative_floor`); ``up there`` / ``down there``: the floor(s) of the last goal. Not ``in the
+        ground floor bathroom``: that names a room."""
         if self.word() in lx.RELATIVE_FLOORS:  # "the bathroom upstairs"
             relative = self.relative_floor(self.word())
             self.i += 1
             return relative
+        if self.word() in ("up", "down") and self.word(1) == "there":  # "the bathroom up there"
+            goals = [r for r in self.references if r.role == "goal" and r.entities]
+            if not goals:
+                raise self.fail(f"'{self.word()} there' does not refer to any place named before it")
+            self.i += 2
+            return frozenset(e.floor for e in max(goals, key=lambda r: r.start).entities)
         if self.word() not in ("on", "in", "at", "of", "from"):
             return None
         k = 2 if self.word(1) == "the" else 1
         said = self.floor_words(k)
-        if said is None:
-            return None
+        if said is None or self.vocab.match_head(self.words(), self.i + k + said[1]) is not None:
+            return None  # none, or "in the ground floor bathroom": a room named with its floor
         self.i += k + said[1]
         return said[0]
 
@@ -1016,8 +1315,9 @@ class MissionParser:
             floor = floors // 2
         elif w in lx.START_FLOOR_WORDS:  # "on this floor": where the robot starts
             if self.start_floor is None:
-                raise self.fail(f"'{w} {nxt}' depends on where the robot starts, which is not known here; say which "
-                                f"floor (the building {self.vocab.building_name!r} has floors 0 to {floors - 1})")
+                raise self.fail(f"'{w} {nxt}' depends on where the robot starts, which is not known here; "
+                                f"say which floor (the building {self.vocab.building_name!r} has floors 0 to "
+                                f"{floors - 1})")
             floor = self.start_floor
         else:
             return None
@@ -1036,10 +1336,12 @@ class MissionParser:
             raise self.fail(f"'{np.phrase}' matches no {head.kind}{self.existing(head)}")
         if count is not None and len(np.entities) != count:
             listing = ", ".join(e.describe() for e in np.entities)
-            raise self.fail(f"'{np.phrase}' should be {count} {head.kind}s but matches {len(np.entities)}: {listing}")
+            raise self.fail(f"'{np.phrase}' should be {count} {head.kind}s but matches {len(np.entities)}: "
+                            f"{listing}")
         if np.mode == "the" and len(np.entities) > 1:
             listing = ", ".join(
-                f"{e.key} (floor {e.floor})" if e.kind == "room" else f"{e.key} (in {e.room_key}, floor {e.floor})"
+                f"{e.key} (floor {e.floor})" if e.kind == "room"
+                else f"{e.key} (in {e.room_key}, floor {e.floor})"
                 for e in np.entities
             )
             raise MissionError(
@@ -1062,12 +1364,14 @@ class MissionParser:
         if ents[0].kind == "object":
             if len({e.room_key for e in ents}) == len(ents):
                 room = self.vocab.by_key[ents[0].room_key]
-                return f"say which room it is in (e.g. 'the {word} in the {room.category} on floor {room.floor}')"
+                example = f"the {word} in the {room.category} on floor {room.floor}"
+                return f"say which room it is in (e.g. '{example}')"
         else:
             for e in ents:
                 own = {o.category for o in self.vocab.entities if o.kind == "object" and o.room_key == e.key}
                 others = {o.category for o in self.vocab.entities
-                          if o.kind == "object" and o.room_key != e.key and o.room_key in {x.key for x in ents}}
+                          if o.kind == "object" and o.room_key != e.key
+                          and o.room_key in {x.key for x in ents}}
                 unique = sorted(own - others)
                 if unique:
                     return f"say what it contains (e.g. 'the {word} with the {unique[0]}')"

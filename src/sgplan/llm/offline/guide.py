@@ -63,7 +63,8 @@ class SymbolicGuide:
 
     name = SYMBOLIC_BACKEND
 
-    def guide(self, building: Building, automaton: Automaton, ap_actions: Mapping[str, str] | None = None) -> Guidance:
+    def guide(self, building: Building, automaton: Automaton,
+              ap_actions: Mapping[str, str] | None = None) -> Guidance:
         """Call lists for every room uuid (staircases included) and every non-accepting state.
 
         Parameters

@@ -11,6 +11,12 @@ from __future__ import annotations
 
 import re
 
+
+def word_set(text: str) -> frozenset[str]:
+    """The words of ``text`` (split at white space): the word lists below are written as running text."""
+    return frozenset(text.split())
+
+
 # Category synonyms: a word or phrase users say -> the scene categories it may denote (underscores of the
 # Gibson categories are spaces here). A synonym only applies to categories the scene actually has.
 SYNONYMS: dict[str, tuple[str, ...]] = {
@@ -52,7 +58,8 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     "laundry room": ("utility room",),
 }
 
-IRREGULAR_PLURALS: dict[str, str] = {"shelf": "shelves", "knife": "knives", "person": "people", "stairs": "stairs"}
+IRREGULAR_PLURALS: dict[str, str] = {"shelf": "shelves", "knife": "knives", "person": "people",
+                                     "stairs": "stairs"}
 
 GENERIC_ROOM_WORDS = ("room", "rooms", "place", "places", "area", "areas")
 """Heads meaning 'any room' ("every room on floor 0", "the room with two TVs")."""
@@ -82,7 +89,7 @@ FLOOR_MIDDLE = ("middle",)
 
 FLOOR_WORDS = ("floor", "level", "storey", "story")
 
-POSITIVE_VERBS = frozenset(
+POSITIVE_VERBS = word_set(
     """visit visits visiting visited enter enters entering entered go goes going went walk walks walking
     head heads heading move moves moving get gets getting come coming reach reaches reaching reached take
     takes taking took grab grabbing pick picking water watering watered clean cleaning cleaned vacuum
@@ -94,12 +101,12 @@ POSITIVE_VERBS = frozenset(
     carrying deliver delivering return returning explore exploring see seeing pet mop mopping scrub
     scrubbing fill filling close closing empty emptying sweep sweeping play playing cook cooking
     lie lying rest resting sleep sleeping shower showering bathe use off up down out over from for
-    """.split()
+    """
 )
 """Verb-slot words known to mean "go to / interact with" the noun phrase that follows."""
 
-CARRY_VERBS = frozenset("put putting place placing drop dropping bring bringing carry carrying deliver delivering "
-                        "take taking took move moving".split())
+CARRY_VERBS = word_set("put putting place placing drop dropping bring bringing carry carrying deliver "
+                       "delivering take taking took move moving")
 """``put X in Y`` / ``bring X to Y``: the goal is Y (after X when X is a new noun phrase)."""
 
 REFUSED_VERBS: dict[str, str] = {
@@ -130,19 +137,38 @@ REFUSED_VERBS: dict[str, str] = {
     "closest": "'closest' (distances are not known to the translator; name the room or object)",
     "farthest": "'farthest'",
     "only": "'only' here ('only if' and 'only after' are understood)",
+    "maybe": "'maybe' (optional goals cannot be expressed; leave the goal out or make it a goal)",
+    "perhaps": "'perhaps' (optional goals cannot be expressed; leave the goal out or make it a goal)",
+    "possibly": "'possibly' (optional goals cannot be expressed; leave the goal out or make it a goal)",
+    "optionally": "'optionally' (optional goals cannot be expressed; leave the goal out or make it a goal)",
+    "hopefully": "'hopefully' (optional goals cannot be expressed; leave the goal out or make it a goal)",
+    "ideally": "'ideally' (preferences cannot be expressed; say what must happen)",
+    "preferably": "'preferably' (preferences cannot be expressed; say what must happen)",
+    "try": "'try' (optional goals cannot be expressed; say what must happen)",
 }
 """Words that would silently change the meaning if read as ordinary words: refused with a reason."""
 
-FILLERS = frozenset(
+FILLERS = word_set(
     """please also then eventually first firstly lastly finally afterwards later next
     at some point sometime you should must need needs to have has had be been is are was were can could
     would will shall robot and moreover additionally furthermore too as well go ahead kindly do though hey
     okay ok thanks
-    """.split()
+    """
 )
 """Words that carry no meaning for the formula wherever they appear between clauses. Order words that do
 carry meaning (*secondly*, *before that*, *but first*, a trailing *first*, *again*) are grammar, not
 fillers (:mod:`.grammar`)."""
+
+POLITE = (("make", "sure"), ("make", "sure", "that"), ("be", "sure", "to"), ("be", "sure", "that"),
+          ("i", "need", "you", "to"), ("i", "want", "you", "to"), ("i", "would", "like", "you", "to"),
+          ("i", "d", "like", "you", "to"), ("we", "need", "you", "to"), ("can", "you"), ("could", "you"),
+          ("would", "you"), ("will", "you"), ("remember", "to"), ("i", "would", "like"), ("i", "need"),
+          ("i", "want"), ("let", "us"), ("let", "'s"), ("for", "me"))
+"""Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
+
+START_END_VERBS = word_set("start starting begin beginning end ending finish finishing")
+"""``start in X`` / ``end (up) in X``: where the path starts or ends, which a goal cannot say (the start is
+the robot's; an end would need an order): refused outside a condition, where *end up in* is just *go to*."""
 
 RELATIVE_FLOORS = {"upstairs": 1, "downstairs": -1}
 """Floors relative to the robot's start floor (or, in a two-floor building, the upper / lower floor)."""
@@ -150,7 +176,7 @@ RELATIVE_FLOORS = {"upstairs": 1, "downstairs": -1}
 START_FLOOR_WORDS = ("this", "current", "my", "our")
 """``on this floor`` / ``on the current floor``: the robot's start floor."""
 
-REVISIT_VERBS = frozenset("return returning back".split())
+REVISIT_VERBS = word_set("return returning back")
 """``return to X`` / ``go back to X`` after X was visited: a new visit, as with ``again``."""
 
 ORDER_MODIFIERS = (
@@ -161,16 +187,33 @@ ORDER_MODIFIERS = (
 """Said after a list: its items are done one after the other (in the order written, for explicit lists)."""
 
 TIME_FILLERS = (("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("eventually",), ("later",),
-                ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"), ("any", "order"),
-                ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "one"), ("whichever",),
-                ("no", "matter", "which"), ("does", "not", "matter", "which"), ("it", "does", "not", "matter", "which"),
-                ("it", "does", "not", "matter"), ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"),
-                ("is", "fine"), ("at", "any", "point"))
+                ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"),
+                ("any", "order"),
+                ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "order"),
+                ("order", "does", "not", "matter"), ("the", "order", "does", "not", "matter"),
+                ("order", "is", "not", "important"), ("the", "order", "is", "not", "important"),
+                ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"))
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
 
-WHOLE_MISSION = (("the", "whole", "time"), ("the", "entire", "time"), ("at", "all", "times"), ("at", "any", "time"),
-                 ("at", "any", "point"), ("throughout",), ("the", "whole", "way"), ("all", "the", "time"))
+CHOICE_AFFIRMATIONS = (
+    ("either", "one"), ("any", "one"), ("either", "one", "is", "fine"), ("any", "one", "is", "fine"),
+    ("either", "is", "fine"), ("either", "works"), ("either", "one", "works"), ("any", "of", "them"),
+    ("either", "of", "them"), ("any", "of", "them", "is", "fine"), ("either", "will", "do"),
+    ("any", "will", "do"), ("whichever",), ("whichever", "one"), ("whichever", "you", "like"),
+    ("whichever", "is", "fine"), ("no", "matter", "which"), ("no", "matter", "which", "one"),
+    ("it", "does", "not", "matter", "which"), ("does", "not", "matter", "which"),
+    ("does", "not", "matter", "which", "one"), ("it", "does", "not", "matter", "which", "one"),
+    ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"), ("is", "fine"),
+    ("your", "choice"), ("your", "pick"), ("take", "your", "pick"),
+)
+"""Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
+means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
+
+WHOLE_MISSION = (("the", "whole", "time"), ("the", "entire", "time"), ("at", "all", "times"),
+                 ("at", "any", "time"),
+                 ("at", "any", "point"), ("throughout",), ("the", "whole", "way"), ("all", "the", "time"),
+                 ("on", "the", "way"), ("on", "your", "way"), ("along", "the", "way"), ("at", "all"))
 """Said after what to avoid: the prohibition holds for the whole mission (``G !x``), not only at one step."""
 
 

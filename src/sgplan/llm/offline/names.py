@@ -161,4 +161,5 @@ class SceneVocabulary:
     def next_to(self, rooms: Iterable[Entity], others: Iterable[Entity]) -> list[Entity]:
         """Rooms among ``rooms`` connected to one of ``others`` (and not one of them)."""
         other_keys = {o.key for o in others}
-        return [r for r in rooms if r.key not in other_keys and self.adjacent.get(r.key, frozenset()) & other_keys]
+        return [r for r in rooms if r.key not in other_keys and self.adjacent.get(r.key, frozenset())
+                & other_keys]

@@ -1,9 +1,9 @@
 """Tokens of a mission text, with their character spans, split into sentences.
 
 Text is lower-cased; contractions are expanded (``don't`` -> ``do not``), a possessive ``'s`` becomes
-its own token, and list markers (``1)``, ``(2)``, ``3.`` at the start of an item) end a sentence like
-``.``, ``;``, ``!``, ``?`` and ``:`` do. Entity IDs (``room_2``, ``object_27``) stay single tokens, so
-already-grounded text is understood too.
+its own token, parentheses become commas (an aside), and list markers (``1)``, ``(2)``, ``3.`` at the
+start of an item) end a sentence like ``.``, ``;``, ``!``, ``?`` and ``:`` do. Entity IDs (``room_2``,
+``object_27``) stay single tokens, so already-grounded text is understood too.
 """
 
 from __future__ import annotations
@@ -13,7 +13,8 @@ from dataclasses import dataclass
 
 _WORD = re.compile(r"(?:room|object)_\d+|\d+(?:st|nd|rd|th)?|[a-z]+(?:'[a-z]+)?|'s\b|[,.;:!?()]")
 _NEGATED = {"don": "do", "doesn": "does", "didn": "did", "can": "can", "won": "will", "mustn": "must",
-            "shouldn": "should", "isn": "is", "aren": "are", "haven": "have", "hasn": "has", "wouldn": "would",
+            "shouldn": "should", "isn": "is", "aren": "are", "haven": "have", "hasn": "has",
+            "wouldn": "would",
             "couldn": "could", "shan": "shall", "mayn": "may"}
 SENTENCE_END = frozenset(".;:!?")
 
@@ -55,11 +56,15 @@ def sentences(tokens: list[Tok]) -> list[list[Tok]]:
         at_item_start = not parts[-1] or parts[-1][-1].text == "("
         if tok.text in SENTENCE_END:
             parts.append([])
-        elif tok.text.isdigit() and nxt == ")" or (tok.text.isdigit() and nxt == "." and at_item_start):
+        elif (tok.text.isdigit() and nxt == ")") or (tok.text.isdigit() and nxt == "." and at_item_start):
             if parts[-1] and parts[-1][-1].text == "(":
                 parts[-1].pop()
             parts.append([])
             i += 1  # the ')' or '.'
+        elif tok.text in "()" and not (i + 1 < len(tokens) and tokens[i + 1].text.isdigit()):
+            # an aside in parentheses reads like one between commas: "the fridge (any order), then ..."
+            if parts[-1] and parts[-1][-1].text != "," and nxt not in (",", ""):
+                parts[-1].append(Tok(",", tok.start, tok.end))
         else:
             parts[-1].append(tok)
         i += 1

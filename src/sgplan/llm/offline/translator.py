@@ -98,7 +98,8 @@ class PatternTranslator:
                       tuple(e.describe() for e in np.entities))
             for np in nps
         )
-        return Translation(self.name, text, grounded_text(text, nps, vocabulary), tuple(tokens), formula, references)
+        return Translation(self.name, text, grounded_text(text, nps, vocabulary), tuple(tokens), formula,
+                           references)
 
 
 def grounded_text(text: str, nps: list[NounPhrase], vocabulary: SceneVocabulary) -> str:
@@ -113,7 +114,8 @@ def grounded_text(text: str, nps: list[NounPhrase], vocabulary: SceneVocabulary)
         if np.start < cursor:
             continue  # a qualifier inside a phrase already replaced
         keys = list(dict.fromkeys(e.key for e in np.entities))
-        joined = keys[0] if len(keys) == 1 else f"{', '.join(keys[:-1])} {'or' if np.mode == 'any' else 'and'} {keys[-1]}"
+        joiner = "or" if np.mode == "any" else "and"
+        joined = keys[0] if len(keys) == 1 else f"{', '.join(keys[:-1])} {joiner} {keys[-1]}"
         if np.room_scoped and np.phrase.lower() not in PRONOUNS:
             rooms = list(dict.fromkeys(e.room_key for e in np.entities if e.kind == "object"))
             joined += " in " + " or ".join(rooms) if len(rooms) > 1 else f" in {rooms[0]}"
