@@ -126,10 +126,10 @@ def test_plan_gibson_mission_folder_authors_profile(
         (["bench", "--case-timeout", "3e6"], "number of seconds > 0 and <= 1e+06"),
         (["bench", "--time-limit", "-1"], "number of seconds > 0"),
         (["demo", "--start-index", "x"], "whole number >= 0"),
-        (["inspect", "demo", "--robot-radius", "-0.1"], "radius in metres > 0 and <= 2"),
+        (["inspect", "demo", "--robot-radius", "-0.1"], "radius in metres >= 0 and <= 2"),
         (
             ["plan", "--scene", "demo", "--formula", "x", "--robot-radius", "100"],
-            "radius in metres > 0 and <= 2",
+            "radius in metres >= 0 and <= 2",
         ),
         (
             ["plan", "--scene", "demo", "--formula", "x", "--reach-radius", "1e308"],

@@ -101,7 +101,7 @@ def test_levels_become_floors_lowest_first(tmp_path: Path) -> None:
 
 def test_native_round_trip_and_direct_use(tmp_path: Path) -> None:
     path = write(tmp_path, house_text())
-    # The native format, like --robot-radius, takes radii > 0 (SETTINGS' point robot would not be read back).
+    # A robot radius read back from the native format, as given (here a non-zero one).
     building = import_house(path, replace(SETTINGS, robot_radius_m=0.1)).building
     again = read_native_scene(write_native_scene(building, tmp_path / "scene"))
     assert [r.name for r in again.rooms()] == [r.name for r in building.rooms()]

@@ -135,9 +135,10 @@ def positive_seconds(text: str) -> float:
 
 
 def robot_radius(text: str) -> float:
-    """argparse type: a robot radius in metres in (0, :data:`MAX_ROBOT_RADIUS_M`]."""
-    return _number(text, float, allow_zero=False, maximum=MAX_ROBOT_RADIUS_M,
-                   what=f"a radius in metres > 0 and <= {MAX_ROBOT_RADIUS_M:g}")
+    """argparse type: a robot radius in metres in [0, :data:`MAX_ROBOT_RADIUS_M`] (0: a point robot, no
+    inflation; the same bounds as a scene file's)."""
+    return _number(text, float, allow_zero=True, maximum=MAX_ROBOT_RADIUS_M,
+                   what=f"a radius in metres >= 0 and <= {MAX_ROBOT_RADIUS_M:g}")
 
 
 def reach_radius(text: str) -> float:
