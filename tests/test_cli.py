@@ -150,3 +150,27 @@ def test_bad_numbers_are_refused_by_the_parser(
         main(argv)
     assert exit_info.value.code == 2
     assert fragment in capsys.readouterr().err
+
+
+@pytest.mark.gibson
+def test_plan_text_reads_downstairs_from_the_start_floor(
+    gibson_root: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Benevolence has three floors: "downstairs" means something only relative to where the robot starts.
+    argv = ["plan", "--scene", "Benevolence", "--data", str(gibson_root), "--text",
+            "Go to the bathroom downstairs.", "--setup", "A*"]
+    assert main([*argv, "--start-index", "3"]) == 0  # floor 2: the one bathroom below is room_2, floor 0
+    assert 'F "enter(room_2)"' in capsys.readouterr().err
+    assert main([*argv, "--start-index", "0"]) == 2  # floor 0: nothing is downstairs
+    assert "the robot starts on floor 0" in capsys.readouterr().err
+
+
+def test_start_floor_is_read_without_a_grid() -> None:
+    from sgplan.scene.demo import demo_building
+    from sgplan.starts import Point, start_floor
+
+    demo = demo_building()
+    assert start_floor(demo, None) == demo.initial_cells[0][2]
+    assert start_floor(demo, (3, 4, 1)) == 1 and start_floor(demo, Point(1.0, 2.0, 0)) == 0
+    assert start_floor(demo, "kitchen") == 0 and start_floor(demo, "bedroom with the teddy bear") is None
+    assert start_floor(demo, (3, 4, 7)) is None and start_floor(demo, 99) is None

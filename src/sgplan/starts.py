@@ -82,6 +82,23 @@ def start_cell(
     )
 
 
+def start_floor(building: Building, start: StartSpec = None) -> int | None:
+    """The floor ``start`` names, read without building the grid (for the offline translator's
+    *upstairs* / *downstairs*, known before planning); ``None`` when it names none that exists. A start
+    that :func:`start_cell` would refuse is refused there, not here."""
+    try:
+        if start is None or (is_int(start) and not isinstance(start, Sequence)):
+            return resolve_start(building, index=None if start is None else int(start))[2]
+        if isinstance(start, str):
+            return _find_room(building, start).floor
+        if isinstance(start, Sequence) and len(start) == 3 and is_int(start[2]):
+            floor = int(start[2])
+            return floor if 0 <= floor < building.num_floors else None
+    except PlanningError:
+        return None
+    return None
+
+
 def _find_room(building: Building, name: str) -> Room:
     key = name.strip()
     if key.lower().startswith("room_") and key[5:].isdigit():

@@ -38,6 +38,8 @@ from sgplan.errors import MissionError, SgplanError
 if TYPE_CHECKING:
     from sgplan.llm.backends import Backends
     from sgplan.result import PlanResult
+    from sgplan.scene.model import Building
+    from sgplan.starts import StartSpec
 
 TIMEOUT_EXIT = 3
 """Exit code of a plan whose search budget ran out (distinct from errors, 2)."""
@@ -171,7 +173,7 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     elif args.formula is not None:
         mission = sgplan.mission_from_formula(args.formula, aps=args.aps)
     else:
-        backends = open_backends_from_args(args)
+        backends = _for_start_floor(open_backends_from_args(args), building, _start_spec(args))
         say(f"translating with {backends.translator.name} ({backends.description})")
         mission = sgplan.mission_from_text(args.text, building, llm=backends, save_to=args.save_mission)
         if args.save_mission:
@@ -197,11 +199,7 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
         say(f"  (w1, w2) = ({it.w1:g}, {it.w2:g})  cost {it.cost_m:.4f} m  bound x{it.bound:g}  "
             f"{it.time_s:.3f} s  {sum(it.expansions):,} expansions")
 
-    start = (args.start or args.start_xy or args.start_room
-             or (args.start_index if args.start_index is not None else None))
-    if args.start_xy:
-        start = sgplan.Point(*args.start_xy)
-    result = sgplan.plan(building, mission, start, setup=args.setup, profile=args.profile,
+    result = sgplan.plan(building, mission, _start_spec(args), setup=args.setup, profile=args.profile,
                          robot_radius_m=args.robot_radius, reach_radius_m=args.reach_radius,
                          time_limit_s=args.time_limit, max_expansions=args.max_expansions, guide=guide,
                          callback=progress)
@@ -218,6 +216,28 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
         if args.save_mission:
             backends.record.save(Path(args.save_mission) / RECORD_NAME)
     return result, extras
+
+
+def _start_spec(args: argparse.Namespace) -> StartSpec:
+    """The start given by --start, --start-xy, --start-room or --start-index (see sgplan.starts)."""
+    from sgplan.starts import Point
+
+    if args.start_xy:
+        return Point(*args.start_xy)
+    return args.start or args.start_room or args.start_index
+
+
+def _for_start_floor(backends: Backends, building: Building, start: StartSpec) -> Backends:
+    """``backends`` with the offline translator told the start's floor, so that *upstairs* / *downstairs*
+    are read relative to it (a language model's prompt does not carry it)."""
+    from dataclasses import replace
+
+    from sgplan.llm.offline import PatternTranslator
+    from sgplan.starts import start_floor
+
+    if not isinstance(backends.translator, PatternTranslator):
+        return backends
+    return replace(backends, translator=backends.translator.starting_on(start_floor(building, start)))
 
 
 def _report(args: argparse.Namespace, result: PlanResult) -> int:
