@@ -11,6 +11,9 @@ instead. ``--debug``, ``--quiet`` and ``--verbose`` go before or after the sub-c
 from __future__ import annotations
 
 import argparse
+import atexit
+import contextlib
+import os
 import signal
 import sys
 from collections.abc import Sequence
@@ -36,8 +39,32 @@ def _build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``sgplan`` console script; returns the process exit code."""
+def main(argv: Sequence[str] | None = None, *, fast_exit: bool | None = None) -> int:
+    """Entry point of the ``sgplan`` console script; returns the process exit code.
+
+    With ``fast_exit`` (default: when ``argv`` is ``None``, i.e. when run as the console script) the
+    process ends here through :func:`exit_now` instead of returning: every output file is already written
+    atomically and closed by then, so only the interpreter's teardown is skipped (0.3-0.8 s after a plan:
+    freeing numba's compiled code and every imported module one by one).
+    """
+    code = _run(argv)
+    if (argv is None) if fast_exit is None else fast_exit:
+        exit_now(code)
+    return code
+
+
+def exit_now(code: int) -> None:
+    """End the process with ``code`` at once: run the ``atexit`` handlers (logging's flush among them),
+    flush stdout and stderr, then :func:`os._exit`, skipping the teardown of modules and objects.
+    Only for the end of a process whose outputs are complete (nothing else may be left to run)."""
+    atexit._run_exitfuncs()
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(OSError, ValueError):  # a closed or broken pipe: nothing left to save
+            stream.flush()
+    os._exit(code)
+
+
+def _run(argv: Sequence[str] | None) -> int:
     parser = _build_parser()
     args = parser.parse_args(argv)
     configure_logging(args)
@@ -80,4 +107,4 @@ _INPUT_OPTIONS = ("scene", "mission_dir", "formula", "text", "aps", "guidance", 
 
 
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    sys.exit(main(fast_exit=True))

@@ -17,7 +17,6 @@ from pathlib import Path
 from typing import Any
 
 from sgplan.errors import SgplanError
-from sgplan.planning.amra import get_setup
 from sgplan.safeio import quote
 
 PAPER_SETUPS = ("ALL", "OCC", "OBJ", "ROOM", "FLR", "NO-LLM", "A*")
@@ -167,6 +166,8 @@ def expand(
     BenchError
         a grid names a mission, start index or setup that a selected scene does not have.
     """
+    from sgplan.planning.amra import get_setup  # the planner (numba) only when cases are made
+
     by_name = {s.name: s for s in scenes}
     seen: dict[str, Case] = {}
     for grid in grids:

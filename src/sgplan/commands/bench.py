@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from sgplan.commands.common import (
     DEFAULT_PROFILE,
+    SETUP_NAMES,
     add_profile_argument,
     positive_int,
     positive_seconds,
@@ -31,7 +32,6 @@ if TYPE_CHECKING:
 def register(sub: argparse._SubParsersAction) -> None:
     from sgplan.bench.executors import DEFAULT_CASE_TIMEOUT_S
     from sgplan.datasets import ENV_VAR
-    from sgplan.planning.amra import SETUPS
 
     parser = sub.add_parser(
         "bench", help="benchmark sweep with the paper's tables and figures (run, resume or report)",
@@ -56,7 +56,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--starts", metavar="LIST", help="initial-position indices, e.g. 0,2-4 (default: all)"
     )
     parser.add_argument("--setups", nargs="+", metavar="NAME",
-                        help=f"planner setups among {', '.join(SETUPS)}, any case (default: ALL NO-LLM A*)")
+                        help=f"planner setups among {', '.join(SETUP_NAMES)}, any case "
+                        "(default: ALL NO-LLM A*)")
     add_profile_argument(
         parser,
         default=None,

@@ -14,11 +14,14 @@ import argparse
 import json
 from functools import cache
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from sgplan.commands.common import load_scene_arg, say
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
-from sgplan.logic import Formula
-from sgplan.scene.model import Building
+
+if TYPE_CHECKING:
+    from sgplan.logic import Formula
+    from sgplan.scene.model import Building
 
 
 def register(sub: argparse._SubParsersAction) -> None:

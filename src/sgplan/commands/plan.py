@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
 from sgplan.commands.common import (
+    SETUP_NAMES,
     add_profile_argument,
     add_scene_arguments,
     load_scene_arg,
@@ -58,8 +59,6 @@ def _triple(kind: type, what: str) -> Callable[[str], tuple]:
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    from sgplan.planning.amra import SETUPS
-
     parser = sub.add_parser(
         "plan",
         help="plan an optimal path for a mission (AMRA*)",
@@ -95,7 +94,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     where.add_argument("--start-index", type=non_negative_int, metavar="K",
                        help="start at the scene's initial position K (default 0)")
     parser.add_argument(
-        "--setup", default="ALL", help=f"planner setup, any case: {', '.join(SETUPS)} (default ALL)"
+        "--setup", default="ALL", help=f"planner setup, any case: {', '.join(SETUP_NAMES)} (default ALL)"
     )
     add_profile_argument(parser)
     parser.add_argument(

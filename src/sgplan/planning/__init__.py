@@ -6,8 +6,23 @@ Typical use::
     result = plan(problem, setup="ALL")       # PlanResult: status, cost_m, path, iterations, timings
 """
 
-from sgplan.planning.amra import SETUPS, IterationRecord, PlanResult, Setup, get_setup, plan
-from sgplan.planning.problem import PROFILES, PlanningProblem
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from sgplan.planning.amra import SETUPS, IterationRecord, PlanResult, Setup, get_setup, plan
+    from sgplan.planning.problem import PROFILES, PlanningProblem
+
+# Loaded on first use, as in ``sgplan/__init__.py``: importing one module of this package (the checker,
+# the problem) must not load the search and its compiled kernels (numba, ~0.5 s).
+_LAZY = {
+    "SETUPS": "sgplan.planning.amra", "IterationRecord": "sgplan.planning.amra",
+    "PlanResult": "sgplan.planning.amra", "Setup": "sgplan.planning.amra",
+    "get_setup": "sgplan.planning.amra", "plan": "sgplan.planning.amra",
+    "PROFILES": "sgplan.planning.problem", "PlanningProblem": "sgplan.planning.problem",
+}
 
 __all__ = [
     "PROFILES",
@@ -19,3 +34,16 @@ __all__ = [
     "get_setup",
     "plan",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'sgplan.planning' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))

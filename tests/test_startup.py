@@ -1,0 +1,78 @@
+"""What a CLI process pays before and after its work: a command does not import what it does not use,
+and the console script ends without the interpreter's teardown once its outputs are complete."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+from sgplan.commands.common import SETUP_NAMES
+
+HEAVY = ("numba", "scipy", "PIL", "matplotlib", "rich", "openai", "sgplan.planning.amra")
+
+
+def _modules_after(code: str) -> set[str]:
+    """The modules a fresh interpreter holds after running ``code`` (an import in a clean process)."""
+    out = subprocess.run(
+        [sys.executable, "-c", f"{code}\nimport sys, json\nprint(json.dumps(sorted(sys.modules)))"],
+        capture_output=True, text=True, check=True,
+    )
+    return set(json.loads(out.stdout.strip().splitlines()[-1]))
+
+
+def test_building_the_parser_imports_no_planner_or_heavy_library() -> None:
+    loaded = _modules_after("from sgplan.cli import _build_parser\n_build_parser()")
+    assert not [m for m in HEAVY if m in loaded]
+
+
+def test_importing_a_planning_module_does_not_load_the_search() -> None:
+    loaded = _modules_after("import sgplan.planning.problem")
+    assert "sgplan.planning.amra" not in loaded and "sgplan.planning._search" not in loaded
+
+
+def test_planning_package_names_still_resolve_lazily() -> None:
+    import sgplan.planning as planning
+    from sgplan.planning.amra import SETUPS, plan
+
+    assert planning.plan is plan and planning.SETUPS is SETUPS
+    assert {"plan", "PlanningProblem", "SETUPS"} <= set(dir(planning))
+
+
+def test_setup_names_of_the_cli_are_the_planners() -> None:
+    from sgplan.planning.amra import SETUPS
+
+    assert set(SETUP_NAMES) == set(SETUPS)
+
+
+def test_console_script_exits_fast_with_outputs_complete_and_atexit_run(tmp_path: Path) -> None:
+    """As the console script (argv None), ``main`` ends the process itself: the exit code is the
+    command's, stdout (a pipe, block-buffered) is complete, the JSON file is whole, atexit handlers ran,
+    and the interpreter's teardown (here: an object whose finaliser would print) is skipped."""
+    marker = tmp_path / "atexit-ran"
+    boot = (
+        "import atexit, sys\n"
+        f"atexit.register(lambda: open({str(marker)!r}, 'w').close())\n"
+        "class Noisy:\n"
+        "    def __del__(self):\n"
+        "        print('TEARDOWN', flush=True)\n"
+        "keep = Noisy()\n"
+        f"sys.argv = ['sgplan', 'plan', '--scene', 'demo', '--formula', 'F \"enter(room_5)\"', "
+        f"'--start-room', 'kitchen', '--json', '-', '--quiet']\n"
+        "from sgplan.cli import main\n"
+        "main()\n"
+        "print('NOT REACHED')\n"
+    )
+    out = subprocess.run([sys.executable, "-c", boot], capture_output=True, text=True, check=False)
+    assert out.returncode == 0, out.stderr
+    record = json.loads(out.stdout)  # the whole JSON document, nothing after it
+    assert record["status"] == "optimal"
+    assert marker.exists()
+    assert "TEARDOWN" not in out.stdout and "NOT REACHED" not in out.stdout
+
+
+def test_main_with_argv_returns_instead_of_exiting() -> None:
+    from sgplan.cli import main
+
+    assert main(["plan", "--scene", "demo", "--formula", "F p"]) == 2  # returns: the test goes on
