@@ -26,6 +26,7 @@ from sgplan.errors import PlanningError, SceneError
 from sgplan.mission import Mission
 from sgplan.pipeline import Radii, make_problem, resolve_radii
 from sgplan.result import PlanResult
+from sgplan.scene.cache import occupancy_grid_cached
 from sgplan.scene.grid import OccupancyGrid, build_occupancy_grid
 from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building
@@ -209,7 +210,7 @@ class Session:
         """The occupancy grid for this robot radius (built once per radius)."""
         radius = self.radii(robot_radius_m).robot_m
         if radius not in self._grids:
-            self._grids[radius] = build_occupancy_grid(self.building, radius)
+            self._grids[radius] = occupancy_grid_cached(self.building, radius, build_occupancy_grid)
         return self._grids[radius]
 
     def labels(self, mission: Mission, reach_radius_m: float | None = None) -> np.ndarray:

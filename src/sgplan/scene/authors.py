@@ -23,7 +23,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from PIL import Image
 
 from sgplan.errors import SceneError
 from sgplan.limits import MAX_GRID_CELLS, MAX_REACH_RADIUS_M, MAX_ROBOT_RADIUS_M
@@ -61,7 +60,13 @@ def load_authors_scene(path: str | Path) -> Building:
         a map holds an id the YAML does not declare, or references between nodes do not resolve. The
         message names the file and the floor / room / object and field at fault.
     """
-    folder, yaml_path = _locate(path)
+    return load_authors_scene_with_inputs(path)[0]
+
+
+def load_authors_scene_with_inputs(path: str | Path) -> tuple[Building, list[Path]]:
+    """:func:`load_authors_scene`, and every file it read or looked for: ``building.yaml``, the maps, and
+    the optional files (listed whether present or not), for :mod:`sgplan.scene.cache` to hash."""
+    folder, yaml_path = locate(path)
     document = _read_yaml(yaml_path)
     top = Fields(document, yaml_path, "building")
     floors_data = top.mapping("floors", allow_null=False)
@@ -81,14 +86,15 @@ def load_authors_scene(path: str | Path) -> Building:
         floor.up_stairs = _read_stairs(fields, "up", room_uuid_by_id, shape)
         floor.down_stairs = _read_stairs(fields, "down", room_uuid_by_id, shape)
     _check_stairs_pairs(floors, yaml_path)
+    inputs = [yaml_path, folder / RADIUS_CONFIG_FILE, folder / INITIAL_POSITIONS_FILE]
     for floor, fields in zip(floors, floor_fields):
-        _read_rasters(folder, fields, floor, shape)
+        inputs += _read_rasters(folder, fields, floor, shape)
 
     robot_radius_m, reach_radius_m = _read_radius_config(folder / RADIUS_CONFIG_FILE)
     initial_cells = _read_initial_positions(folder / INITIAL_POSITIONS_FILE, num_floors, shape)
     building_id, uuid, name = top.integer("id"), top.integer("uuid"), top.text("name")
     try:
-        return Building(
+        building = Building(
             id=building_id,
             uuid=uuid,
             name=name,
@@ -100,6 +106,7 @@ def load_authors_scene(path: str | Path) -> Building:
         )
     except SceneError as error:  # the model's own checks (unique ids / uuids) know no file
         raise SceneError(str(error), yaml_path) from None
+    return building, inputs
 
 
 def is_authors_scene(path: str | Path) -> bool:
@@ -113,7 +120,8 @@ def is_authors_scene(path: str | Path) -> bool:
 # -- files ---------------------------------------------------------------------------------------------
 
 
-def _locate(path: str | Path) -> tuple[Path, Path]:
+def locate(path: str | Path) -> tuple[Path, Path]:
+    """The scene folder and its ``building.yaml`` for ``path`` (either of them); SceneError if neither."""
     path = Path(path).expanduser()
     if not path.exists():
         raise SceneError("scene path does not exist", path)
@@ -144,6 +152,8 @@ def _read_png(path: Path, fields: Fields, key: str, shape: tuple[int, int]) -> n
     if not os.path.lexists(path):
         raise fields.error(f"field {key!r} names {path}, which does not exist")
     size = check_regular_file(path, SceneError, "map")
+    from PIL import Image  # only when a map is decoded (a cached scene needs none)
+
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("error", Image.DecompressionBombWarning)
@@ -415,10 +425,12 @@ def _stairs_text(end: StairsEnd | None) -> str:
     return "none" if end is None else f"room {end.room_id}, cost {end.cost_m} m"
 
 
-def _read_rasters(folder: Path, fields: Fields, floor: Floor, shape: tuple[int, int]) -> None:
-    """Decode the floor's maps into it and check them: every id they store must be declared."""
-    floor.cat_map = _read_png(folder / fields.text("cat_map"), fields, "cat_map", shape)
-    floor.room_map = _read_png(folder / fields.text("room_map"), fields, "room_map", shape)
+def _read_rasters(folder: Path, fields: Fields, floor: Floor, shape: tuple[int, int]) -> list[Path]:
+    """Decode the floor's maps into it and check them: every id they store must be declared. Returns the
+    two map files."""
+    cat_path, room_path = folder / fields.text("cat_map"), folder / fields.text("room_map")
+    floor.cat_map = _read_png(cat_path, fields, "cat_map", shape)
+    floor.room_map = _read_png(room_path, fields, "room_map", shape)
     objects, rooms = floor.undeclared_map_ids()
     for ids, kind, key in ((objects, "object", "cat_map"), (rooms, "room", "room_map")):
         if ids:
@@ -426,3 +438,4 @@ def _read_rasters(folder: Path, fields: Fields, floor: Floor, shape: tuple[int, 
                 f"holds {kind} id(s) {ids} that floor {floor.index} of building.yaml does not declare",
                 folder / fields.text(key),
             )
+    return [cat_path, room_path]

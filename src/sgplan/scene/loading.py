@@ -5,7 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from sgplan.errors import SceneError
-from sgplan.scene.authors import is_authors_scene, load_authors_scene
+from sgplan.scene.authors import is_authors_scene
+from sgplan.scene.cache import load_authors_scene_cached
 from sgplan.scene.gibson_npz import is_gibson_npz, load_gibson_npz
 from sgplan.scene.model import Building
 from sgplan.scene.native import is_native_scene, read_native_scene
@@ -14,7 +15,8 @@ from sgplan.scene.native import is_native_scene, read_native_scene
 def load_scene(path: str | Path) -> Building:
     """Load the scene at ``path``, whichever format it is in.
 
-    - a folder with ``building.yaml`` (or that file): the authors' scene, with rasters;
+    - a folder with ``building.yaml`` (or that file): the authors' scene, with rasters (through the
+      on-disk cache of :mod:`sgplan.scene.cache`);
     - a folder with ``scene.json`` (or a ``.json`` file): sgplan's native format;
     - a ``.npz`` file: a raw 3D Scene Graph (graph only, ``Floor.has_maps`` False);
     - a source of another tool, imported on the fly (:mod:`sgplan.importers.detect`): a Matterport3D
@@ -36,7 +38,7 @@ def load_scene(path: str | Path) -> Building:
     except OSError as error:
         raise SceneError(f"cannot read the scene: {error.strerror or error}", path) from None
     if kind == "authors":
-        return load_authors_scene(path)
+        return load_authors_scene_cached(path)
     from sgplan.importers.detect import detect_kind, import_scene  # importers sit above scene/
 
     source = detect_kind(path)

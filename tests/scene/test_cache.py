@@ -1,0 +1,174 @@
+"""The on-disk scene cache: a warm load gives the same building and grid without reading the scene again;
+any change of an input file (or a broken entry) rebuilds; it can be turned off; unsafe folders are unused."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from sgplan.scene import authors, cache, grid
+from sgplan.scene.loading import load_scene
+from tests.scene.synthetic import SyntheticScene, assert_same_building, synthetic_scene
+
+
+@pytest.fixture
+def cache_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    folder = tmp_path / "cache"
+    monkeypatch.setenv(cache.DIR_ENV, str(folder))
+    monkeypatch.delenv(cache.OFF_ENV, raising=False)
+    return folder
+
+
+@pytest.fixture
+def loads(monkeypatch: pytest.MonkeyPatch) -> list[Path]:
+    """Every real (uncached) load of an authors' scene, recorded."""
+    calls: list[Path] = []
+    real = authors.load_authors_scene_with_inputs
+
+    def counting(path: str | Path) -> tuple:
+        calls.append(Path(path))
+        return real(path)
+
+    monkeypatch.setattr(authors, "load_authors_scene_with_inputs", counting)
+    return calls
+
+
+@pytest.fixture
+def grid_builds() -> list[float]:
+    """The radii of every real grid build through :func:`_grid`."""
+    return []
+
+
+def _grid(building: object, radius: float, builds: list[float]) -> grid.OccupancyGrid:
+    def counting(b: object, r: float) -> grid.OccupancyGrid:
+        builds.append(r)
+        return grid.build_occupancy_grid(b, r)  # type: ignore[arg-type]
+
+    return cache.occupancy_grid_cached(building, radius, counting)  # type: ignore[arg-type]
+
+
+def test_warm_load_is_the_same_building_without_reading_the_scene(
+    tmp_path: Path, cache_folder: Path, loads: list[Path]
+) -> None:
+    folder = synthetic_scene().write(tmp_path / "tiny")
+    cold = load_scene(folder)
+    warm = load_scene(folder)
+    assert len(loads) == 1 and warm is not cold
+    assert_same_building(cold, warm)
+    assert warm.source == folder and warm.initial_cells == cold.initial_cells
+    assert len(list(cache_folder.glob(f"building-*{cache.SUFFIX}"))) == 1
+
+
+def _rename(scene: SyntheticScene) -> None:
+    scene.document["name"] = "Tinier"
+
+
+def _wall(scene: SyntheticScene) -> None:
+    scene.cat_maps[1][0, 8] = -3
+
+
+def _radius(scene: SyntheticScene) -> None:
+    scene.radius_config = "ROBOT_RADIUS=0.05\n"
+
+
+@pytest.mark.parametrize("change", [_rename, _wall, _radius], ids=["yaml", "map", "radius-file"])
+def test_any_changed_input_rebuilds(tmp_path: Path, cache_folder: Path, loads: list[Path], change) -> None:
+    scene = synthetic_scene()
+    folder = scene.write(tmp_path / "tiny")
+    load_scene(folder)
+    change(scene)
+    scene.write(folder)
+    again = load_scene(folder)
+    assert len(loads) == 2
+    assert_same_building(authors.load_authors_scene(folder), again)
+
+
+def test_removed_optional_file_rebuilds(tmp_path: Path, cache_folder: Path, loads: list[Path]) -> None:
+    folder = synthetic_scene().write(tmp_path / "tiny")
+    assert load_scene(folder).initial_cells
+    (folder / "initial_positions.yaml").unlink()
+    assert load_scene(folder).initial_cells == [] and len(loads) == 2
+
+
+def test_changed_map_gives_the_new_raster(tmp_path: Path, cache_folder: Path, loads: list[Path]) -> None:
+    scene = synthetic_scene()
+    folder = scene.write(tmp_path / "tiny")
+    assert load_scene(folder).floors[0].cat_map[4, 4] == 0
+    scene.cat_maps[0][4, 4] = -3  # a wall cell more
+    scene.write(folder)
+    assert load_scene(folder).floors[0].cat_map[4, 4] == -3
+    assert len(loads) == 2
+
+
+def test_off_switch_writes_and_reads_nothing(
+    tmp_path: Path, cache_folder: Path, loads: list[Path], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv(cache.OFF_ENV, "1")
+    folder = synthetic_scene().write(tmp_path / "tiny")
+    load_scene(folder)
+    load_scene(folder)
+    assert len(loads) == 2 and not cache_folder.exists()
+
+
+def test_broken_entry_is_rebuilt_not_an_error(tmp_path: Path, cache_folder: Path, loads: list[Path]) -> None:
+    folder = synthetic_scene().write(tmp_path / "tiny")
+    load_scene(folder)
+    (entry,) = cache_folder.glob(f"building-*{cache.SUFFIX}")
+    entry.write_bytes(entry.read_bytes()[:100])  # truncated
+    assert load_scene(folder).name == "Tiny"
+    assert load_scene(folder).name == "Tiny"
+    assert len(loads) == 2  # rebuilt once, then read
+
+
+def test_scene_errors_still_come_from_the_loader(tmp_path: Path, cache_folder: Path) -> None:
+    folder = synthetic_scene().write(tmp_path / "tiny")
+    load_scene(folder)
+    (folder / "cat_maps" / "0.png").unlink()
+    with pytest.raises(authors.SceneError, match="does not exist"):
+        load_scene(folder)
+
+
+def test_folder_writable_by_others_is_not_used(
+    tmp_path: Path, cache_folder: Path, loads: list[Path]
+) -> None:
+    cache_folder.mkdir(mode=0o700)
+    cache_folder.chmod(0o777)
+    folder = synthetic_scene().write(tmp_path / "tiny")
+    load_scene(folder)
+    load_scene(folder)
+    assert len(loads) == 2 and not list(cache_folder.iterdir())
+
+
+def test_grid_is_cached_per_building_content_and_radius(
+    tmp_path: Path, cache_folder: Path, grid_builds: list[float]
+) -> None:
+    folder = synthetic_scene().write(tmp_path / "tiny")
+    first = _grid(load_scene(folder), 0.1, grid_builds)
+    second = _grid(load_scene(folder), 0.1, grid_builds)  # another process would see the same
+    assert grid_builds == [0.1]
+    assert np.array_equal(first.traversable, second.traversable) and first.stairs == second.stairs
+    _grid(load_scene(folder), 0.0, grid_builds)
+    assert grid_builds == [0.1, 0.0]
+
+
+def test_grid_of_a_building_made_in_code_is_built(cache_folder: Path, grid_builds: list[float]) -> None:
+    from sgplan.scene.demo import demo_building
+
+    building = demo_building()
+    _grid(building, 0.0, grid_builds)
+    _grid(building, 0.0, grid_builds)
+    assert grid_builds == [0.0, 0.0]
+
+
+def test_prune_keeps_the_most_recently_used(tmp_path: Path) -> None:
+    import os
+
+    for age, name in enumerate(["old", "mid", "new"]):
+        path = tmp_path / f"building-{name}{cache.SUFFIX}"
+        path.write_bytes(b"x" * 100)
+        os.utime(path, (1000 + age, 1000 + age))
+    cache._prune(tmp_path, limit=250)
+    assert sorted(p.name for p in tmp_path.iterdir()) == [f"building-mid{cache.SUFFIX}",
+                                                           f"building-new{cache.SUFFIX}"]
