@@ -1,18 +1,20 @@
-"""Executors: run cases, each in its own worker process, locally or on Ray; yield result rows.
+"""Executors: run cases in worker processes, locally or on Ray; yield result rows.
 
-Both executors call :func:`run_isolated` for every case, so a case is measured the same way everywhere:
-a fresh ``python -m sgplan.bench.worker`` process (its own peak RSS, crash isolation), killed after the
-per-case wall timeout. An executor's :meth:`run` is a generator of rows in completion order; closing it
-(an interrupt) kills the running workers and records nothing for them.
+Every case runs in a ``python -m sgplan.bench.worker`` process apart from the sweep (crash isolation),
+killed after the per-case wall timeout. The local executor keeps ``jobs`` long-lived workers
+(:mod:`sgplan.bench.serving`) that run case after case, and replaces one only after a crash or a timeout;
+with ``reuse_workers=False``, and on Ray, each case gets a fresh process (:func:`run_isolated`). An
+executor's :meth:`run` is a generator of rows in completion order; closing it (an interrupt) kills the
+running workers and records nothing for them.
 """
 
 from __future__ import annotations
 
 import json
 import os
+import queue
 import shlex
 import shutil
-import signal
 import subprocess
 import sys
 import threading
@@ -24,10 +26,10 @@ from typing import Any
 
 from sgplan.bench.cases import BenchError, Case
 from sgplan.bench.results import failed_row, make_row
+from sgplan.bench.serving import ServingWorker, death, peak_rss_of
 from sgplan.bench.worker import PARENT_ENV
 
 DEFAULT_CASE_TIMEOUT_S = 600.0
-_STDERR_TAIL = 600
 
 
 WORKER_ENV = "SGPLAN_BENCH_WORKER"
@@ -60,29 +62,6 @@ def _worker_env() -> dict[str, str]:
     source = str(Path(__file__).resolve().parents[2])
     env["PYTHONPATH"] = os.pathsep.join(filter(None, (source, env.get("PYTHONPATH"))))
     return env
-
-
-def _peak_rss_of(pid: int) -> float | None:
-    """Peak resident memory (MiB) of a live process, from /proc (Linux); ``None`` elsewhere."""
-    try:
-        for line in Path(f"/proc/{pid}/status").read_text().splitlines():
-            if line.startswith("VmHWM:"):
-                return int(line.split()[1]) / 1024.0
-    except (OSError, ValueError, IndexError):
-        pass
-    return None
-
-
-def _death(returncode: int, stderr: str) -> str:
-    if returncode < 0:
-        try:
-            how = f"was killed by signal {signal.Signals(-returncode).name}"
-        except ValueError:
-            how = f"was killed by signal {-returncode}"
-    else:
-        how = f"exited with code {returncode} without a result"
-    tail = stderr.strip()[-_STDERR_TAIL:]
-    return f"the worker process {how}" + (f"; its last output: {tail}" if tail else "")
 
 
 def run_isolated(
@@ -127,7 +106,7 @@ def run_isolated(
         try:
             stdout, stderr = proc.communicate(request, timeout=timeout_s)
         except subprocess.TimeoutExpired:
-            rss = _peak_rss_of(proc.pid)
+            rss = peak_rss_of(proc.pid)
             proc.kill()
             proc.communicate()
             return failed_row(
@@ -150,31 +129,57 @@ def run_isolated(
             measured = None
         if isinstance(measured, dict) and "status" in measured:
             return make_row(case, measured, wall_s=wall_s, executor=executor)
-    return failed_row(case, "crashed", _death(proc.returncode, stderr), wall_s=wall_s, executor=executor)
+    return failed_row(case, "crashed", death(proc.returncode, stderr), wall_s=wall_s, executor=executor)
 
 
 class LocalExecutor:
-    """Run cases on this machine, ``jobs`` worker processes at a time (default: one per core)."""
+    """Run cases on this machine, ``jobs`` at a time (default: one per core), in ``jobs`` long-lived
+    worker processes (``reuse_workers``, the default; a worker's command gets ``--serve``) or in a fresh
+    process per case (then each case's peak memory is its process's alone, and it is slower)."""
 
     name = "local"
 
     def __init__(self, jobs: int | None = None, *, timeout_s: float = DEFAULT_CASE_TIMEOUT_S,
-                 gallery_dir: str | None = None, command: Sequence[str] | None = None) -> None:
+                 gallery_dir: str | None = None, command: Sequence[str] | None = None,
+                 reuse_workers: bool = True) -> None:
         self.jobs = max(1, jobs or os.cpu_count() or 1)
         self.timeout_s = timeout_s
         self.gallery_dir = gallery_dir
         self.command = list(command) if command else worker_command()
+        self.reuse_workers = reuse_workers
+        self.workers_started = 0
+        """Worker processes started by the last :meth:`run` (long-lived mode)."""
 
     def run(self, cases: Iterable[Case]) -> Iterator[dict[str, Any]]:
         """Rows of ``cases`` as they finish."""
         running: set[subprocess.Popen] = set()
+        idle: queue.SimpleQueue[ServingWorker] = queue.SimpleQueue()
+        live: set[ServingWorker] = set()
         cancel = threading.Event()
+        self.workers_started = 0
+
+        def serve(case: Case) -> dict[str, Any]:
+            try:
+                worker = idle.get_nowait()
+            except queue.Empty:
+                worker = ServingWorker(self.command, _worker_env())
+                live.add(worker)
+                self.workers_started += 1
+            row, healthy = worker.run(case, timeout_s=self.timeout_s, gallery_dir=self.gallery_dir,
+                                      executor=self.name, cancel=cancel)
+            if healthy and not cancel.is_set():
+                idle.put(worker)
+            else:  # crashed, timed out or stopped: never asked again
+                live.discard(worker)
+                worker.kill()
+            return row
+
+        def isolated(case: Case) -> dict[str, Any]:
+            return run_isolated(case, timeout_s=self.timeout_s, gallery_dir=self.gallery_dir,
+                                command=self.command, executor=self.name, running=running, cancel=cancel)
+
         pool = ThreadPoolExecutor(max_workers=self.jobs, thread_name_prefix="sgplan-bench")
-        futures = [
-            pool.submit(run_isolated, case, timeout_s=self.timeout_s, gallery_dir=self.gallery_dir,
-                        command=self.command, executor=self.name, running=running, cancel=cancel)
-            for case in cases
-        ]
+        futures = [pool.submit(serve if self.reuse_workers else isolated, case) for case in cases]
         try:
             for future in as_completed(futures):
                 yield future.result()
@@ -183,6 +188,8 @@ class LocalExecutor:
             pool.shutdown(wait=False, cancel_futures=True)
             for proc in list(running):
                 proc.kill()
+            for worker in list(live):
+                worker.kill()  # idle ones hold nothing of value; busy ones are stopped (not recorded)
             pool.shutdown(wait=True)
 
 

@@ -1,9 +1,14 @@
-"""Run one benchmark case in this process and measure it (the child side of every executor).
+"""Run benchmark cases in this process and measure them (the child side of every executor).
 
-``python -m sgplan.bench.worker`` reads ``{"case": {...}, "gallery_dir": str | null}`` as JSON on stdin
-and writes one JSON object (the measurements, see :func:`measure`) as the last line of stdout. Each case
-runs in a fresh process so that its peak memory (``ru_maxrss`` of this process) is its own and a crash
-takes down nothing but the case.
+``python -m sgplan.bench.worker`` reads one request ``{"case": {...}, "gallery_dir": str | null}`` as JSON
+on stdin and writes one JSON object (the measurements, see :func:`measure`) as the last line of stdout.
+
+``python -m sgplan.bench.worker --serve`` is a long-lived worker: it reads requests one per line and
+answers each with one line, until stdin closes; the local executor keeps one per job and starts a fresh one
+only after a crash or a wall timeout (a crash still takes down nothing but its case). It keeps the last
+scene's :class:`sgplan.Session` (building, grids, label masks) for the next cases of the same scene, and
+resets the kernel's peak-memory mark before every case (Linux), so ``peak_rss_mb`` is the peak during the
+case (which includes what the process already holds: interpreter, libraries, the kept scene).
 """
 
 from __future__ import annotations
@@ -39,21 +44,61 @@ def queue_level(queue: str) -> str:
 
 
 def _peak_rss_mb() -> float:
-    # Linux reports ru_maxrss in KiB.
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    """Peak resident memory (MiB) since the last :func:`reset_peak_rss` (Linux), else of the process."""
+    try:
+        with open("/proc/self/status") as status:
+            for line in status:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024.0
+    except (OSError, ValueError, IndexError):
+        pass
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # Linux: KiB; the whole process
 
 
-def measure(case: Case, gallery_dir: str | Path | None = None) -> dict[str, Any]:
+def reset_peak_rss() -> bool:
+    """Reset this process's peak-memory mark to its current size (Linux >= 4.0: ``/proc/self/clear_refs``);
+    returns whether it could."""
+    try:
+        with open("/proc/self/clear_refs", "w") as refs:
+            refs.write("5")
+        return True
+    except OSError:
+        return False
+
+
+class SceneKeeper:
+    """The :class:`sgplan.Session` of the last scene folder asked for: consecutive cases of one scene
+    share its building, grids and label masks (only one scene is kept, so memory stays one scene's)."""
+
+    def __init__(self) -> None:
+        self.folder: str | None = None
+        self.session: Any = None
+        self.loads = 0
+
+    def session_for(self, folder: str) -> Any:
+        import sgplan
+
+        if folder != self.folder:
+            self.folder, self.session = None, None  # the old scene is freed before the new one loads
+            self.session = sgplan.Session(sgplan.load_scene(folder))
+            self.folder = folder
+            self.loads += 1
+        return self.session
+
+
+def measure(case: Case, gallery_dir: str | Path | None = None, scenes: SceneKeeper | None = None
+            ) -> dict[str, Any]:
     """Plan ``case`` and return its measurements (JSON-ready; the fields of :data:`MEASURED`).
 
     Never raises for a case that fails: a :class:`PlanningError` gives its status (``invalid-start``,
-    ``infeasible``, ``error``) and message as ``reason``; any other exception gives ``error``.
+    ``infeasible``, ``error``) and message as ``reason``; any other exception gives ``error``. With
+    ``scenes``, the building comes from (and stays in) it.
     """
     t0 = time.perf_counter()
     out: dict[str, Any] = dict.fromkeys(MEASURED)
     out["status"] = "error"
     try:
-        _plan_case(case, gallery_dir, out, t0)
+        _plan_case(case, gallery_dir, out, t0, scenes or SceneKeeper())
     except PlanningError as error:
         out.update(status=error.status, reason=str(error))
     except SgplanError as error:
@@ -65,16 +110,17 @@ def measure(case: Case, gallery_dir: str | Path | None = None) -> dict[str, Any]
     return out
 
 
-def _plan_case(case: Case, gallery_dir: str | Path | None, out: dict[str, Any], t0: float) -> None:
+def _plan_case(case: Case, gallery_dir: str | Path | None, out: dict[str, Any], t0: float,
+               scenes: SceneKeeper) -> None:
     import sgplan
     from sgplan.pipeline import finite_or_none, iteration_records
 
-    building = sgplan.load_scene(case.scene_dir)
+    session = scenes.session_for(case.scene_dir)
     mission = sgplan.load_mission(case.mission_dir, profile=case.profile)
     loaded_s = time.perf_counter() - t0
     # Unchecked: the bench measures the planner; the checker's agreement is tested in tests/planning.
-    result = sgplan.plan(building, mission, case.start, setup=case.setup, profile=case.profile,
-                         time_limit_s=case.time_limit_s, verify=False)
+    result = session.plan(mission, case.start, setup=case.setup, profile=case.profile,
+                          time_limit_s=case.time_limit_s, verify=False)
     its = result.iterations
     out.update(
         status=result.status,
@@ -137,19 +183,31 @@ def exit_when_orphaned(poll_s: float = 1.0) -> None:
     threading.Thread(target=watch, name="sgplan-orphan-watch", daemon=True).start()
 
 
-def main() -> int:
-    """Entry point of ``python -m sgplan.bench.worker`` (see the module docstring)."""
+SERVE_FLAG = "--serve"
+"""Argument that makes the worker long-lived (one request per stdin line, one answer per stdout line)."""
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``python -m sgplan.bench.worker [--serve]`` (see the module docstring)."""
     exit_when_orphaned()
-    request = json.loads(sys.stdin.read())
-    case = Case.from_dict(request["case"])
+    serve = SERVE_FLAG in (sys.argv[1:] if argv is None else argv)
+    requests = iter(sys.stdin.readline, "") if serve else iter([sys.stdin.read()])
     real_stdout = sys.stdout
-    # Anything the planner or a library prints goes to stderr: stdout carries only the result line.
+    scenes = SceneKeeper()
+    # Anything the planner or a library prints goes to stderr: stdout carries only the result lines.
     with contextlib.redirect_stdout(sys.stderr):
-        measured = measure(case, request.get("gallery_dir"))
-    real_stdout.write(json.dumps(measured, allow_nan=False) + "\n")
-    real_stdout.flush()
+        for text in requests:
+            if not text.strip():
+                continue
+            request = json.loads(text)
+            reset_peak_rss()
+            measured = measure(Case.from_dict(request["case"]), request.get("gallery_dir"), scenes)
+            real_stdout.write(json.dumps(measured, allow_nan=False) + "\n")
+            real_stdout.flush()
     return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    from sgplan.cli import exit_now
+
+    exit_now(main())  # results are written: skip the interpreter's teardown

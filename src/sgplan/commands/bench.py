@@ -35,7 +35,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
     parser = sub.add_parser(
         "bench", help="benchmark sweep with the paper's tables and figures (run, resume or report)",
-        description="Run scenes x missions x starts x setups, each case in its own worker process, and "
+        description="Run scenes x missions x starts x setups in worker processes apart from the sweep, and "
                     "write results (CSV, JSON), the paper's Tables II/III beside ours, and its two figures. "
                     "Without selection flags the sweep is the paper's. Re-running resumes.",
     )
@@ -81,6 +81,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--executor", choices=("local", "ray"), default="local",
                         help="local process pool (default) or Ray (pip install 'sgplan[ray]')")
     parser.add_argument("--address", metavar="ADDR", help="Ray cluster address (default: start a local Ray)")
+    parser.add_argument(
+        "--fresh-workers", action="store_true",
+        help="local executor: a fresh worker process per case (each case's peak memory is then its own "
+        "process's; slower) instead of one long-lived worker per job",
+    )
     parser.add_argument(
         "--gallery", action="store_true", help="draw each case's path, one PNG per floor, under OUT/gallery"
     )
@@ -190,7 +195,7 @@ def _run_with_progress(
     gallery = str(store.folder.resolve() / "gallery") if args.gallery else None
     options = {"timeout_s": args.case_timeout, "gallery_dir": gallery}
     executor = (RayExecutor(args.jobs, address=args.address, **options) if args.executor == "ray"
-                else LocalExecutor(args.jobs, **options))
+                else LocalExecutor(args.jobs, reuse_workers=not args.fresh_workers, **options))
     console = Console(stderr=True)
     statuses: dict[str, int] = {}
     with Progress(TextColumn("[bold]bench"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),

@@ -1,0 +1,104 @@
+"""Long-lived bench workers: few processes run many cases, a crash or a timeout costs only its worker
+(replaced by a fresh one), and the results are those of a fresh process per case."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+
+from sgplan.bench.cases import Case, discover, expand
+from sgplan.bench.executors import LocalExecutor
+from sgplan.bench.results import ResultStore
+from sgplan.bench.sweep import run_sweep
+from sgplan.bench.worker import SceneKeeper, _peak_rss_mb, measure, reset_peak_rss
+from tests.bench.conftest import SCENE, SWEEP
+
+FAKE_WORKER = [sys.executable, str(Path(__file__).with_name("fake_worker.py"))]
+SAME = ("status", "cost_m", "first_cost_m", "num_iterations", "expansions", "start_cell", "path_cells",
+        "guidance", "reason")
+
+
+def _cases(data_dir: Path, missions: list[str]) -> list[Case]:
+    return [
+        Case(SCENE, mission, k, "ALL", "authors", str(data_dir / SCENE),
+             str(data_dir / SCENE / "missions" / mission))
+        for k, mission in enumerate(missions)
+    ]
+
+
+def _pids(rows: list[dict]) -> list[int]:
+    return [int(r["reason"].split()[1]) for r in rows if r["status"] == "optimal"]
+
+
+def _run(executor: LocalExecutor, cases: list[Case]) -> dict[str, dict]:
+    return {row["key"]: row for row in executor.run(cases)}
+
+
+def test_two_jobs_run_many_cases_in_two_processes(data_dir: Path) -> None:
+    executor = LocalExecutor(2, timeout_s=30, command=FAKE_WORKER)
+    rows = _run(executor, _cases(data_dir, ["1"] * 8))
+    assert len(rows) == 8 and all(r["status"] == "optimal" for r in rows.values())
+    assert executor.workers_started == 2 and len(set(_pids(list(rows.values())))) <= 2
+    assert max(int(r["reason"].split()[3]) for r in rows.values()) >= 4  # a worker ran several cases
+
+
+def test_a_crash_costs_only_its_worker_which_is_replaced(data_dir: Path) -> None:
+    executor = LocalExecutor(1, timeout_s=30, command=FAKE_WORKER)
+    cases = _cases(data_dir, ["1", "1", "crash", "1", "1"])
+    by_key = _run(executor, cases)
+    assert [by_key[c.key]["status"] for c in cases] == ["optimal", "optimal", "crashed", "optimal", "optimal"]
+    assert "SIGSEGV" in by_key[cases[2].key]["reason"] and "about to crash" in by_key[cases[2].key]["reason"]
+    before, after = _pids([by_key[c.key] for c in cases[:2]]), _pids([by_key[c.key] for c in cases[3:]])
+    assert len(set(before)) == 1 and len(set(after)) == 1 and before[0] != after[0]
+    assert executor.workers_started == 2
+    assert not Path(f"/proc/{before[0]}").exists()
+
+
+def test_a_timeout_kills_its_worker_and_the_next_case_gets_a_fresh_one(data_dir: Path) -> None:
+    executor = LocalExecutor(1, timeout_s=2.0, command=FAKE_WORKER)
+    cases = _cases(data_dir, ["1", "hang", "1"])
+    rows = {r["key"]: r for r in executor.run(cases)}
+    hung = rows[cases[1].key]
+    assert hung["status"] == "wall-timeout" and "wall timeout of 2 s" in hung["reason"]
+    assert hung["wall_s"] >= 2
+    first, last = _pids([rows[cases[0].key]]), _pids([rows[cases[2].key]])
+    assert first != last and executor.workers_started == 2
+    assert not Path(f"/proc/{first[0]}").exists()  # the hung worker was killed, not left behind
+    assert rows[cases[2].key]["reason"].endswith("case 1")  # a fresh process
+
+
+def test_long_lived_workers_give_the_results_of_a_process_per_case(
+    data_dir: Path, swept: tuple[list[Case], ResultStore], tmp_path: Path
+) -> None:
+    cases, store = swept  # run with the default executor: long-lived workers
+    fresh = ResultStore(tmp_path)
+    run_sweep(cases, fresh, LocalExecutor(2, timeout_s=300, reuse_workers=False))
+    for case in cases:
+        kept, alone = store.get(case.key), fresh.get(case.key)
+        assert {k: kept[k] for k in SAME} == {k: alone[k] for k in SAME}, case.key
+        assert [it["cost_m"] for it in kept["iterations"] or []] == [
+            it["cost_m"] for it in alone["iterations"] or []
+        ]
+
+
+def test_a_worker_keeps_the_scene_between_cases_of_that_scene(data_dir: Path) -> None:
+    cases = expand(discover(data_dir), SWEEP, profile="authors")
+    keeper = SceneKeeper()
+    rows = [measure(case, scenes=keeper) for case in cases]
+    assert keeper.loads == 1
+    assert sum(r["status"] == "optimal" for r in rows) == 5
+    assert rows[1]["load_s"] < rows[0]["load_s"]  # no scene loading the second time
+
+
+def test_peak_memory_is_reset_before_each_case() -> None:
+    import numpy as np
+
+    big = np.ones(40_000_000 // 8)  # 40 MB touched
+    big[:] = 2.0
+    peak_with = _peak_rss_mb()
+    del big
+    if not reset_peak_rss():
+        pytest.skip("no /proc/self/clear_refs here")
+    assert _peak_rss_mb() < peak_with - 20
