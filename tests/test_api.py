@@ -118,6 +118,27 @@ def test_a_session_keeps_grids_and_labels_and_plans_like_fresh_calls(demo) -> No
         sgplan.plan(sgplan.load_scene("demo"), first, session=session)
 
 
+def test_a_second_mission_on_a_session_builds_only_what_depends_on_it(demo) -> None:
+    """Work counted, not timed: the grid, the cell graph and the masks of propositions already seen are
+    built once per session; the plans are those of fresh calls (same cost and path)."""
+    session = sgplan.Session(demo)
+    first = sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo)
+    second = sgplan.mission_from_formula('F("reach(object_28)" & F "enter(room_5)")', demo)
+    a = session.plan(first, 0, setup="A*")
+    built = (dict(session.builds), dict(session.parts.builds))
+    assert built == ({"grid": 1, "label_mask": len(first.ordered_propositions)}, {"cell_graph": 1})
+    b = session.plan(second, 0, setup="A*")
+    new_props = set(second.ordered_propositions) - set(first.ordered_propositions)
+    assert session.builds == {"grid": 1, "label_mask": built[0]["label_mask"] + len(new_props)}
+    assert session.parts.builds == {"cell_graph": 1}
+    for kept, mission in ((a, first), (b, second)):
+        fresh = sgplan.plan(demo, mission, 0, setup="A*")
+        assert kept.cost_m == pytest.approx(fresh.cost_m, abs=1e-9)
+        assert np.array_equal(np.asarray(kept.path), np.asarray(fresh.path))
+    session.plan(first, 0, setup="A*", robot_radius_m=0.2)  # another grid: its own cell graph
+    assert session.builds["grid"] == 2 and session.parts.builds == {"cell_graph": 2}
+
+
 def test_guidance_provenance_and_timeouts_as_results(demo) -> None:
     mission = sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo)
     assert sgplan.plan(demo, mission, setup="no-llm").guidance is None

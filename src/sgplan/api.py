@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import logging
 import time
+from collections import Counter
 from collections.abc import Mapping
 from dataclasses import replace
 from pathlib import Path
@@ -25,6 +26,7 @@ import numpy as np
 from sgplan.errors import PlanningError, SceneError
 from sgplan.mission import Mission
 from sgplan.pipeline import Radii, make_problem, resolve_radii
+from sgplan.planning.shared import SharedParts
 from sgplan.result import PlanResult
 from sgplan.scene.cache import occupancy_grid_cached
 from sgplan.scene.grid import OccupancyGrid, build_occupancy_grid
@@ -190,8 +192,10 @@ def _explanation(mission: Mission, building: Building) -> _Explained:
 
 
 class Session:
-    """Plans many missions on one building, keeping between them the occupancy grid of each robot radius
-    and the label raster of each (proposition, reach radius).
+    """Plans many missions on one building, keeping between them the occupancy grid of each robot radius,
+    the label raster of each (proposition, reach radius) and the planner's building-only parts (``parts``:
+    the cell graph of each grid, ...; :mod:`sgplan.planning.shared`), so a second mission pays only for
+    what depends on it. ``builds`` counts what the session built (grids, label masks, parts).
 
     >>> session = Session(sgplan.load_scene("demo"))                    # doctest: +SKIP
     >>> [session.plan(m, start="kitchen").cost_m for m in missions]    # doctest: +SKIP
@@ -201,6 +205,8 @@ class Session:
         self.building = load_scene(building, data)
         self._grids: dict[float, OccupancyGrid] = {}
         self._masks: dict[tuple[Proposition, float], np.ndarray] = {}
+        self.parts = SharedParts()
+        self.builds: Counter[str] = Counter()
 
     def radii(self, robot_radius_m: float | None = None, reach_radius_m: float | None = None) -> Radii:
         """The radii a plan uses: given, else the scene's, else the defaults (:func:`resolve_radii`)."""
@@ -211,6 +217,7 @@ class Session:
         radius = self.radii(robot_radius_m).robot_m
         if radius not in self._grids:
             self._grids[radius] = occupancy_grid_cached(self.building, radius, build_occupancy_grid)
+            self.builds["grid"] += 1
         return self._grids[radius]
 
     def labels(self, mission: Mission, reach_radius_m: float | None = None) -> np.ndarray:
@@ -224,6 +231,7 @@ class Session:
             key = (prop, reach)
             if key not in self._masks:
                 self._masks[key] = label_raster(self.building, [prop], reach).astype(bool)
+                self.builds["label_mask"] += 1
             labels[self._masks[key]] |= np.uint32(1 << bit)
         return labels
 
@@ -258,6 +266,7 @@ class Session:
         prepared = make_problem(
             self.building, mission, start_at, profile=profile, robot_radius_m=radii.robot_m,
             reach_radius_m=radii.reach_m, grid=grid, labels=self.labels(mission, radii.reach_m),
+            shared=self.parts,
         )
         scene_check = _check_in_scene(mission, self.building, prepared.problem)
         prepare_s = time.perf_counter() - t0

@@ -18,6 +18,7 @@ from sgplan.errors import PlanningError
 from sgplan.mission import Mission
 from sgplan.planning.amra import IterationRecord
 from sgplan.planning.problem import PlanningProblem
+from sgplan.planning.shared import SharedParts
 from sgplan.scene.grid import OccupancyGrid, build_occupancy_grid
 from sgplan.scene.model import Building
 
@@ -104,11 +105,13 @@ def make_problem(
     use_guidance: bool = True,
     grid: OccupancyGrid | None = None,
     labels: np.ndarray | None = None,
+    shared: SharedParts | None = None,
 ) -> PreparedProblem:
     """Build the occupancy grid and the label raster, and assemble a :class:`PlanningProblem`.
 
     ``grid`` / ``labels`` may be given already built (a :class:`sgplan.api.Session` keeps them between
-    missions); they must be the ones of these radii (``grid.robot_radius_m`` is checked).
+    missions); they must be the ones of these radii (``grid.robot_radius_m`` is checked). ``shared``: the
+    session's building-only planner parts (:mod:`sgplan.planning.shared`).
     """
     t0 = time.perf_counter()
     radii = resolve_radii(building, robot_radius_m, reach_radius_m)
@@ -130,6 +133,7 @@ def make_problem(
         guidance=mission.guidance if use_guidance else None,
         reach_radius_m=radii.reach_m,
         ap_descriptions=mission.descriptions,
+        shared=shared,
     )
     return PreparedProblem(problem, radii, time.perf_counter() - t0)
 

@@ -29,6 +29,7 @@ from sgplan.planning.cells import CellGraph, build_cell_graph
 from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
 from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic
 from sgplan.planning.problem import PlanningProblem
+from sgplan.planning.shared import shared_part
 from sgplan.scene.model import CatCode
 
 # Arrays handed to the compiled search, grouped by role (numba accepts named tuples of arrays).
@@ -156,7 +157,7 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
         or which automaton progress cannot be reached).
     """
     t0 = time.perf_counter()
-    graph = build_cell_graph(problem.grid)
+    graph = shared_part(problem.shared, "cell_graph", problem.grid, lambda: build_cell_graph(problem.grid))
     start_cell = _check_start(problem, graph)
     automaton = problem.automaton
 

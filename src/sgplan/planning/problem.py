@@ -16,6 +16,7 @@ from sgplan.scene.model import Building
 
 if TYPE_CHECKING:
     from sgplan.planning.domain import PlanningDomain
+    from sgplan.planning.shared import SharedParts
 
 PROFILES = ("ltlf", "authors")
 """``ltlf``: the start cell's label is read (q_start = T(initial, label(start))); ``authors``: it is not
@@ -46,6 +47,9 @@ class PlanningProblem:
         radius (metres) defining the object level's "object reached" regions.
     ap_descriptions:
         optional names for messages, e.g. ``{"p1": "enter(room_2)"}``.
+    shared:
+        parts that depend only on the building, shared with the other problems of a
+        :class:`sgplan.Session` (:mod:`sgplan.planning.shared`); ``None``: built for this problem alone.
     """
 
     building: Building
@@ -57,6 +61,7 @@ class PlanningProblem:
     guidance: Mapping | None = None
     reach_radius_m: float = 0.6
     ap_descriptions: Mapping[str, str] = field(default_factory=dict)
+    shared: SharedParts | None = None
 
     def __post_init__(self) -> None:
         if self.profile not in PROFILES:
