@@ -45,6 +45,40 @@ def test_crossed_cells_cover_the_segment_in_order(a: tuple[int, int], b: tuple[i
     assert sampled <= inside
 
 
+def _crossed_cells_by_sampling_the_crossings(a: tuple[int, int], b: tuple[int, int]) -> np.ndarray:
+    """Reference for :func:`crossed_cells` (its former, floating-point implementation): the cells at the
+    midpoints between consecutive grid-line crossings, with both side cells inserted at corners."""
+    p0 = np.array([a[0] + 0.5, a[1] + 0.5])
+    d = np.array([b[0] - a[0], b[1] - a[1]], dtype=np.float64)
+    crossings = []
+    for axis in (0, 1):
+        if d[axis] != 0:
+            lo, hi = sorted((p0[axis], p0[axis] + d[axis]))
+            crossings.append((np.arange(np.floor(lo) + 1, np.ceil(hi)) - p0[axis]) / d[axis])
+    ts = np.unique(np.round(np.concatenate([[0.0, 1.0], *crossings]), 12))
+    cells = np.floor(p0 + ((ts[:-1] + ts[1:]) / 2.0)[:, None] * d).astype(np.int64).tolist()
+    out = [cells[0]]
+    for prev, nxt in itertools.pairwise(cells):
+        if prev[0] != nxt[0] and prev[1] != nxt[1]:
+            out += [[nxt[0], prev[1]], [prev[0], nxt[1]]]
+        out.append(nxt)
+    return np.array(out, dtype=np.int64)
+
+
+CELLS = st.tuples(st.integers(-40, 40), st.integers(-40, 40))
+
+
+@given(CELLS, CELLS)
+def test_crossed_cells_match_the_floating_point_reference(a: tuple[int, int], b: tuple[int, int]) -> None:
+    assert crossed_cells(a, b).tolist() == _crossed_cells_by_sampling_the_crossings(a, b).tolist()
+
+
+def test_crossed_cells_on_corners_and_lines() -> None:
+    for a, b in [((0, 0), (3, 3)), ((0, 0), (2, 6)), ((5, 5), (5, -2)), ((1, 1), (1, 1)), ((0, 0), (-4, 2))]:
+        assert crossed_cells(a, b).tolist() == _crossed_cells_by_sampling_the_crossings(a, b).tolist()
+    assert crossed_cells((0, 0), (1, 1)).tolist() == [[0, 0], [1, 0], [0, 1], [1, 1]]
+
+
 def test_simplified_waypoints_keep_the_mission_the_clearance_and_the_stairs() -> None:
     r = demo_result()
     automaton = r.mission.automaton

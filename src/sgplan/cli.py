@@ -48,9 +48,15 @@ def main(argv: Sequence[str] | None = None, *, fast_exit: bool | None = None) ->
     freeing numba's compiled code and every imported module one by one).
     """
     code = _run(argv)
-    if (argv is None) if fast_exit is None else fast_exit:
+    if ((argv is None) if fast_exit is None else fast_exit) and not _observed():
         exit_now(code)
     return code
+
+
+def _observed() -> bool:
+    """Whether a profiler or tracer (cProfile, coverage, a debugger) runs, which writes its results at the
+    interpreter's normal exit: then the process ends normally."""
+    return sys.getprofile() is not None or sys.gettrace() is not None
 
 
 def exit_now(code: int) -> None:

@@ -127,33 +127,33 @@ def crossed_cells(a: tuple[int, int], b: tuple[int, int]) -> np.ndarray:
     Conservative: where the segment passes exactly through a cell corner, both cells beside the corner
     are included (before the diagonal cell), so consecutive cells are always 4- or 8-adjacent and no
     touched cell is left out.
+
+    Exact integer arithmetic (a walk over the grid lines crossed): from a cell centre, the segment crosses
+    its ``m``-th row line at ``t = (2m - 1) / (2 |d_row|)`` and its ``n``-th column line at
+    ``t = (2n - 1) / (2 |d_col|)``; both at once is a corner. (The simplification calls this for every
+    candidate segment, so it avoids numpy's per-call overhead on these short segments.)
     """
-    p0 = np.array([a[0] + 0.5, a[1] + 0.5])
-    d = np.array([b[0] - a[0], b[1] - a[1]], dtype=np.float64)
-    crossings = []
-    for axis in (0, 1):
-        if d[axis] != 0:
-            lo, hi = sorted((p0[axis], p0[axis] + d[axis]))
-            bounds = np.arange(math.floor(lo) + 1, math.ceil(hi))
-            crossings.append((bounds - p0[axis]) / d[axis])
-    ts = np.unique(np.round(np.concatenate([[0.0, 1.0], *crossings]), 12))
-    mids = (ts[:-1] + ts[1:]) / 2.0
-    cells = np.floor(p0 + mids[:, None] * d).astype(np.int64)
-    if len(cells) == 0:
-        return np.array([a], dtype=np.int64)
-    step = np.diff(cells, axis=0)
-    corners = np.flatnonzero((step[:, 0] != 0) & (step[:, 1] != 0))  # the segment passes a cell corner
-    if len(corners) == 0:
-        return cells
-    prev, nxt = cells[corners], cells[corners + 1]
-    sides = np.stack(
-        [np.column_stack([nxt[:, 0], prev[:, 1]]), np.column_stack([prev[:, 0], nxt[:, 1]])], axis=1
-    )
-    parts = np.split(cells, corners + 1)
-    out = [parts[0]]
-    for side, part in zip(sides, parts[1:]):
-        out += [side, part]
-    return np.concatenate(out)
+    (r, c), (r1, c1) = (int(a[0]), int(a[1])), (int(b[0]), int(b[1]))
+    dr, dc = abs(r1 - r), abs(c1 - c)
+    sr, sc = (1 if r1 > r else -1), (1 if c1 > c else -1)
+    cells = [(r, c)]
+    m = n = 1  # the next row / column line to cross
+    while m <= dr or n <= dc:
+        # Compare (2m - 1) / dr with (2n - 1) / dc by cross-multiplying (a missing axis never comes first).
+        row_t = (2 * m - 1) * dc if m <= dr else None
+        col_t = (2 * n - 1) * dr if n <= dc else None
+        if col_t is None or (row_t is not None and row_t < col_t):
+            r += sr
+            m += 1
+        elif row_t is None or col_t < row_t:
+            c += sc
+            n += 1
+        else:  # a corner: both side cells, then the diagonal one
+            cells += [(r + sr, c), (r, c + sc)]
+            r, c = r + sr, c + sc
+            m, n = m + 1, n + 1
+        cells.append((r, c))
+    return np.array(cells, dtype=np.int64)
 
 
 def simplify_path(
