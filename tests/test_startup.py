@@ -32,6 +32,19 @@ def test_importing_a_planning_module_does_not_load_the_search() -> None:
     assert "sgplan.planning.amra" not in loaded and "sgplan.planning._search" not in loaded
 
 
+def test_translating_a_mission_does_not_load_the_planner() -> None:
+    loaded = _modules_after(
+        "import sgplan\nbuilding = sgplan.load_scene('demo')\n"
+        "sgplan.mission_from_text('Go to the kitchen.', building)"
+    )
+    assert "numba" not in loaded and "sgplan.planning.amra" not in loaded and "matplotlib" not in loaded
+
+
+def test_inspect_without_drawing_loads_no_plotting_or_planner() -> None:
+    loaded = _modules_after("from sgplan.cli import main\nmain(['inspect', 'demo', '--json', '-'])")
+    assert not [m for m in ("matplotlib", "numba", "sgplan.planning.amra", "rich", "openai") if m in loaded]
+
+
 def test_planning_package_names_still_resolve_lazily() -> None:
     import sgplan.planning as planning
     from sgplan.planning.amra import SETUPS, plan

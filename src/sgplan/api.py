@@ -24,20 +24,19 @@ from typing import TYPE_CHECKING, Any, TypedDict
 import numpy as np
 
 from sgplan.errors import PlanningError, SceneError
-from sgplan.mission import Mission
 from sgplan.pipeline import Radii, make_problem, resolve_radii
 from sgplan.planning.shared import SharedParts
-from sgplan.result import PlanResult
-from sgplan.scene.cache import occupancy_grid_cached
-from sgplan.scene.grid import OccupancyGrid, build_occupancy_grid
-from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building
-from sgplan.starts import StartSpec, start_cell
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # the planner, grid and labels (numba, scipy) load when a plan is made, not for a mission
     from sgplan.llm.backends import Backends, MissionGuide
+    from sgplan.mission import Mission
     from sgplan.planning.amra import IterationCallback
     from sgplan.planning.problem import PlanningProblem
+    from sgplan.result import PlanResult
+    from sgplan.scene.grid import OccupancyGrid
+    from sgplan.scene.labels import Proposition
+    from sgplan.starts import StartSpec
 
 log = logging.getLogger("sgplan")
 
@@ -214,6 +213,9 @@ class Session:
 
     def grid(self, robot_radius_m: float | None = None) -> OccupancyGrid:
         """The occupancy grid for this robot radius (built once per radius)."""
+        from sgplan.scene.cache import occupancy_grid_cached
+        from sgplan.scene.grid import build_occupancy_grid
+
         radius = self.radii(robot_radius_m).robot_m
         if radius not in self._grids:
             self._grids[radius] = occupancy_grid_cached(self.building, radius, build_occupancy_grid)
@@ -223,6 +225,8 @@ class Session:
     def labels(self, mission: Mission, reach_radius_m: float | None = None) -> np.ndarray:
         """The mission's label raster (as :meth:`Mission.labels`), from per-proposition masks kept between
         missions."""
+        from sgplan.scene.labels import label_raster
+
         mission.check_scene(self.building)
         reach = self.radii(reach_radius_m=reach_radius_m).reach_m
         floors, (rows, cols) = self.building.num_floors, self.building.grid_shape
@@ -254,6 +258,8 @@ class Session:
         from sgplan.jit import announce_compile
         from sgplan.planning.amra import get_setup
         from sgplan.planning.amra import plan as amra_plan
+        from sgplan.result import PlanResult
+        from sgplan.starts import start_cell
 
         t0 = time.perf_counter()
         spec = get_setup(setup)

@@ -10,17 +10,19 @@ import math
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from sgplan.errors import PlanningError
-from sgplan.mission import Mission
-from sgplan.planning.amra import IterationRecord
-from sgplan.planning.problem import PlanningProblem
-from sgplan.planning.shared import SharedParts
-from sgplan.scene.grid import OccupancyGrid, build_occupancy_grid
-from sgplan.scene.model import Building
+
+if TYPE_CHECKING:  # the planner and the grid builder (numba, scipy) load when a problem is made
+    import numpy as np
+
+    from sgplan.mission import Mission
+    from sgplan.planning.amra import IterationRecord
+    from sgplan.planning.problem import PlanningProblem
+    from sgplan.planning.shared import SharedParts
+    from sgplan.scene.grid import OccupancyGrid
+    from sgplan.scene.model import Building
 
 DEFAULT_REACH_RADIUS_M = 0.6
 """The authors' app default, used when neither the user nor the scene gives a reach radius."""
@@ -113,6 +115,9 @@ def make_problem(
     missions); they must be the ones of these radii (``grid.robot_radius_m`` is checked). ``shared``: the
     session's building-only planner parts (:mod:`sgplan.planning.shared`).
     """
+    from sgplan.planning.problem import PlanningProblem
+    from sgplan.scene.grid import build_occupancy_grid
+
     t0 = time.perf_counter()
     radii = resolve_radii(building, robot_radius_m, reach_radius_m)
     if grid is None:

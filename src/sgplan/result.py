@@ -21,10 +21,10 @@ from sgplan.outputs.events import Event
 from sgplan.outputs.files import write_ros_path_yaml, write_waypoints_csv
 from sgplan.outputs.waypoints import Waypoint
 from sgplan.pipeline import Radii, finite_or_none, iteration_records
-from sgplan.planning.amra import IterationRecord
 
 if TYPE_CHECKING:
     from sgplan.mission import Mission
+    from sgplan.planning.amra import IterationRecord
     from sgplan.scene.grid import OccupancyGrid
     from sgplan.scene.model import Building
 

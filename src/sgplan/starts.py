@@ -20,7 +20,6 @@ from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
-from scipy import ndimage
 
 from sgplan.errors import PlanningError
 from sgplan.pipeline import resolve_start
@@ -129,6 +128,8 @@ def _room_start(building: Building, grid: OccupancyGrid, room: Room) -> tuple[tu
             "stand on",
             status="invalid-start",
         )
+    from scipy import ndimage  # ~0.3 s to import: only for a start given as a room or a point
+
     # The cell deepest inside the room's free area: clear of walls, furniture and doorways.
     depth = ndimage.distance_transform_edt(free)
     row, col = np.unravel_index(int(np.argmax(depth)), depth.shape)
@@ -151,6 +152,8 @@ def _point_start(building: Building, grid: OccupancyGrid, x_m: float, y_m: float
     where = f"point ({x_m:g}, {y_m:g}) m floor {floor}"
     if grid.traversable[floor, row, col]:
         return (row, col, floor), where
+    from scipy import ndimage
+
     blocked = ~grid.traversable[floor]
     distance, (near_r, near_c) = (
         ndimage.distance_transform_edt(blocked, sampling=grid.resolution_m, return_indices=True)

@@ -25,14 +25,14 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from sgplan.result import write_text
-    from sgplan.scene.draw import draw_building
+    from sgplan.scene.cache import occupancy_grid_cached
     from sgplan.scene.grid import build_occupancy_grid
     from sgplan.scene.summary import summarize, summary_lines
 
     building = load_scene_arg(args.scene, args.data)
     has_maps = all(floor.has_maps for floor in building.floors)
     radius = args.robot_radius if args.robot_radius is not None else (building.robot_radius_m or 0.0)
-    grid = build_occupancy_grid(building, radius) if has_maps else None
+    grid = occupancy_grid_cached(building, radius, build_occupancy_grid) if has_maps else None
     summary = summarize(building, grid)
     if args.json:
         text = json.dumps(dataclasses.asdict(summary), indent=1, allow_nan=False) + "\n"
@@ -43,6 +43,8 @@ def run(args: argparse.Namespace) -> int:
     if args.json != "-":
         print("\n".join(summary_lines(summary, objects=not args.no_objects)))
     if args.draw:
+        from sgplan.scene.draw import draw_building  # matplotlib: only when drawing
+
         if not has_maps:
             say("no maps in this scene (raw .npz): nothing to draw")
             return 0

@@ -26,7 +26,6 @@ from dataclasses import dataclass
 from typing import Any, Literal
 
 import numpy as np
-from scipy import ndimage
 
 from sgplan.errors import PlanningError, SgplanError, UnsatisfiableMissionError
 from sgplan.explain.entities import Entity, entities_of
@@ -383,6 +382,8 @@ def _evaluate(f: Formula, labels: np.ndarray, index: dict[str, int]) -> np.ndarr
 
 def _start_component(grid: OccupancyGrid, start: tuple[int, int, int], allowed: np.ndarray) -> np.ndarray:
     """``allowed`` cells connected to ``start`` by 8-connected moves and stairs links (bool raster)."""
+    from scipy import ndimage  # ~0.3 s to import: only for missions that forbid rooms
+
     row, col, floor = start
     if not allowed[floor, row, col]:
         area = np.zeros_like(allowed)
