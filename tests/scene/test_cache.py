@@ -153,13 +153,25 @@ def test_grid_is_cached_per_building_content_and_radius(
     assert grid_builds == [0.1, 0.0]
 
 
-def test_grid_of_a_building_made_in_code_is_built(cache_folder: Path, grid_builds: list[float]) -> None:
+def test_grid_of_a_building_changed_in_memory_is_rebuilt(
+    tmp_path: Path, cache_folder: Path, grid_builds: list[float]
+) -> None:
+    folder = synthetic_scene().write(tmp_path / "tiny")
+    _grid(load_scene(folder), 0.1, grid_builds)
+    changed = load_scene(folder)
+    changed.floors[0].cat_map[3, 3] = -3  # a wall put in by the caller
+    grid_of_changed = _grid(changed, 0.1, grid_builds)
+    assert grid_builds == [0.1, 0.1] and not grid_of_changed.traversable[0, 3, 3]
+    assert _grid(load_scene(folder), 0.1, grid_builds).traversable[0, 3, 3]  # the file's, still cached
+    assert grid_builds == [0.1, 0.1]
+
+
+def test_grid_of_a_building_made_in_code_is_cached_too(cache_folder: Path, grid_builds: list[float]) -> None:
     from sgplan.scene.demo import demo_building
 
-    building = demo_building()
-    _grid(building, 0.0, grid_builds)
-    _grid(building, 0.0, grid_builds)
-    assert grid_builds == [0.0, 0.0]
+    first = _grid(demo_building(), 0.0, grid_builds)
+    second = _grid(demo_building(), 0.0, grid_builds)
+    assert grid_builds == [0.0] and np.array_equal(first.traversable, second.traversable)
 
 
 def test_prune_keeps_the_most_recently_used(tmp_path: Path) -> None:
