@@ -83,6 +83,28 @@ def test_long_lived_workers_give_the_results_of_a_process_per_case(
         ]
 
 
+def test_output_written_straight_to_fd_1_does_not_break_the_answers(data_dir: Path) -> None:
+    """A long-lived worker's answers go to a private copy of stdout: a line written to file descriptor 1
+    by anything else during a case lands on stderr, not between two answers."""
+    import json
+    import subprocess
+
+    noisy = (
+        "import os, sys\nimport sgplan.bench.worker as w\nreal = w.measure\n"
+        "def measure(*args, **kwargs):\n    os.write(1, b'noise from C\\n')\n"
+        "    return real(*args, **kwargs)\n"
+        "w.measure = measure\nsys.exit(w.main(['--serve']))"
+    )
+    cases = _cases(data_dir, ["1", "2"])
+    requests = "".join(json.dumps({"case": c.to_dict(), "gallery_dir": None}) + "\n" for c in cases)
+    done = subprocess.run([sys.executable, "-c", noisy], input=requests, capture_output=True, text=True,
+                          timeout=300, check=False)
+    lines = done.stdout.splitlines()
+    assert done.returncode == 0 and len(lines) == 2, done.stderr[-2000:]
+    assert [json.loads(line)["status"] for line in lines] == ["optimal", "optimal"]
+    assert done.stderr.count("noise from C") == 2
+
+
 def test_a_worker_keeps_the_scene_between_cases_of_that_scene(data_dir: Path) -> None:
     cases = expand(discover(data_dir), SWEEP, profile="authors")
     keeper = SceneKeeper()

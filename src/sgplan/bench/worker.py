@@ -193,6 +193,12 @@ def main(argv: list[str] | None = None) -> int:
     serve = SERVE_FLAG in (sys.argv[1:] if argv is None else argv)
     requests = iter(sys.stdin.readline, "") if serve else iter([sys.stdin.read()])
     real_stdout = sys.stdout
+    if serve:
+        # Answers get a private copy of stdout and file descriptor 1 becomes stderr, so that nothing else
+        # (compiled code writing to fd 1 included) can put a line between two answers.
+        sys.stdout.flush()
+        real_stdout = os.fdopen(os.dup(1), "w")
+        os.dup2(2, 1)
     scenes = SceneKeeper()
     # Anything the planner or a library prints goes to stderr: stdout carries only the result lines.
     with contextlib.redirect_stdout(sys.stderr):
