@@ -19,9 +19,13 @@ from sgplan.scene.model import Building
 
 def occurring_labels(labels: np.ndarray, where: np.ndarray, num_labels: int) -> np.ndarray:
     """``(num_labels,)`` bool: the labels of ``labels`` (any shape) that occur where ``where`` is True."""
+    values = labels[where]
+    if values.size and int(values.min()) >= 0 and int(values.max()) < max(num_labels, 1 << 16):
+        # Counting is linear; sorting (np.unique) a scene's million cells took ~50 ms per call.
+        return np.bincount(values.astype(np.intp, copy=False), minlength=num_labels)[:num_labels] > 0
     present = np.zeros(num_labels, bool)
-    values = np.unique(labels[where])
-    present[values[values < num_labels].astype(np.int64)] = True
+    values = np.unique(values)
+    present[values[(values >= 0) & (values < num_labels)].astype(np.int64)] = True
     return present
 
 
