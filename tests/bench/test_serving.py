@@ -124,3 +124,25 @@ def test_peak_memory_is_reset_before_each_case() -> None:
     if not reset_peak_rss():
         pytest.skip("no /proc/self/clear_refs here")
     assert _peak_rss_mb() < peak_with - 20
+
+
+@pytest.mark.parametrize(("flag", "reuse"), [([], True), (["--fresh-workers"], False)])
+def test_the_command_uses_long_lived_workers_unless_told(
+    data_dir: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, flag: list[str], reuse: bool
+) -> None:
+    from sgplan.bench import executors
+    from sgplan.cli import main
+
+    made: list[LocalExecutor] = []
+
+    class Recording(LocalExecutor):
+        def __init__(self, *args: object, **kwargs: object) -> None:
+            super().__init__(*args, **kwargs)  # type: ignore[arg-type]
+            made.append(self)
+
+    monkeypatch.setattr(executors, "LocalExecutor", Recording)
+    argv = ["bench", "--data", str(data_dir), "--out", str(tmp_path), "--missions", "1", "--starts", "0",
+            "--setups", "A*", "--jobs", "1", "--no-report", "--quiet", *flag]
+    assert main(argv) == 0
+    assert [e.reuse_workers for e in made] == [reuse]
+    assert [r["status"] for r in ResultStore(tmp_path).rows()] == ["optimal"]
