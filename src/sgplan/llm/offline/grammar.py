@@ -92,6 +92,9 @@ _CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "whi
                             "once", "whenever", "unless"})
 """Words that would continue a condition past its one action (a comma or *then* ends it)."""
 _FIRST = frozenset({"first", "firstly"})
+_TRIP_NOUNS = frozenset({"trip", "visit", "stop", "detour", "run", "quick", "short", "pass"})
+"""``twice, with a trip / visit / stop to Y in between``: words naming the visit to Y."""
+_BETWEEN_TAIL = (("them",), ("the", "two"), ("the", "two", "visits"), ("each", "visit"), ("visits",))
 _MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
 _STRUCTURAL = (
     frozenset(w for table in (_SEQ_WORDS, _NEG_STARTS, _QUAL_CONTAINS, _QUAL_LACKS, _QUAL_NEXT, _QUAL_EXCEPT,
@@ -817,15 +820,27 @@ class MissionParser:
             self.i += len(self.at_any(lx.TIME_FILLERS) or ())
         return steps or [[]]
 
-    def choice_affirmed(self, nps: list[NounPhrase]) -> None:
-        """Consume ``, either one is fine`` / ``, any of them`` after a choice; refused after a phrase that
-        means each of several (the remark would turn "all" into "one of"), or after several phrases."""
+    def affirmation_ahead(self) -> tuple[str, ...] | None:
+        """The words of ``(,) either one is fine`` / ``, any one will do`` / ``, whichever`` right here (a
+        remark that the choice is the robot's), or ``None``; nothing is consumed."""
         comma = 1 if self.word() == "," else 0
         said = self.at_any(lx.CHOICE_AFFIRMATIONS, k=comma)
         time = self.at_any(lx.TIME_FILLERS, k=comma)  # "whichever first" is about the order
         if said is None or (said == ("is", "fine") and comma) or (time is not None
                                                                   and len(time) >= len(said)):
+            return None
+        return (",",) * comma + said
+
+    def choice_affirmed(self, nps: list[NounPhrase]) -> None:
+        """Consume ``, either one is fine`` / ``, any of them`` after a choice (a singular definite phrase
+        matching several, "the toilet on this floor, any one will do", was made a choice by :meth:`check`);
+        refused after a phrase that means each of several (the remark would turn "all" into "one of"), or
+        after several phrases."""
+        said = self.affirmation_ahead()
+        if said is None:
             return
+        comma = 1 if said[0] == "," else 0
+        said = said[comma:]
         if len(nps) > 1 or nps[0].mode != "any":
             raise self.fail(f"'{' '.join(said)}' after '{self.span_text(nps[0].start, nps[-1].end)}', which "
                             f"means each of them: say 'any of ...' or 'A or B' for a choice")
@@ -864,9 +879,40 @@ class MissionParser:
             for task in steps[0]:
                 task.revisit = True
         times = self.repetitions()
-        if times > 1 and any(steps):
+        between = self.in_between() if times == 2 and any(steps) else None
+        if between is not None:  # "X twice, with a visit to Y in between": X, then Y, then X
+            last = [t for t in steps[-1]]
+            steps.extend([*between, [Task(t.mode, t.members) for t in last]])
+        elif times > 1 and any(steps):
             last = [t for t in steps[-1]]
             steps.extend([Task(t.mode, t.members, [], True) for t in last] for _ in range(times - 1))
+
+    def in_between(self) -> list[Step] | None:
+        """After *twice*: ``(,) with (a trip / visit / stop) (to) Y in between`` or ``(,) visiting Y in
+        between``: the steps of Y (consumed); ``None`` when the words are not there (nothing consumed)."""
+        save, known = self.i, len(self.references)
+        k = 1 if self.word() == "," else 0
+        if self.word(k) == "with":
+            k += 1
+            if self.word(k) in ("a", "an") and self.word(k + 1) in _TRIP_NOUNS:
+                k += 2
+            elif self.word(k) in _TRIP_NOUNS:
+                k += 1
+        elif not self.word(k).endswith("ing") or self.word(k) in _STRUCTURAL:
+            return None
+        self.i += k
+        try:
+            steps = self.action()
+        except MissionError:
+            steps = []
+        if any(steps) and (self.at("in", "between") or self.word() == "between"):
+            self.i += 2 if self.word() == "in" else 1
+            if self.at_any(_BETWEEN_TAIL):
+                self.i += len(self.at_any(_BETWEEN_TAIL) or ())
+            return [s for s in steps if s]
+        del self.references[known:]
+        self.i = save
+        return None
 
     def repetitions(self) -> int:
         """``twice`` / ``two times`` / ``3 times`` after the noun phrases -> 2, 2, 3 (consumed); else 1."""
@@ -1033,6 +1079,16 @@ class MissionParser:
                 mode = "all"
             room_scoped = True
         while True:
+            if self.word() == "'s" and head.kind == "object":  # "the teddy bear's room": the room holding it
+                self.i += 1
+                owners = entities
+                head = self.head(None)
+                if head.kind != "room":
+                    raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}': only "
+                                    f"a room can hold an object ('the teddy bear's room')")
+                entities = self.vocab.containing(self.vocab.of_head(head), owners, None)
+                mode = "all" if head.plural else "the"
+                continue
             if self.word() == "'s" and head.kind == "room":
                 self.i += 1
                 container = entities
@@ -1059,6 +1115,16 @@ class MissionParser:
                 entities = self.vocab.inside(entities, inner.entities)
                 inner.entities = [r for r in inner.entities if any(e.room_key == r.key for e in entities)]
                 room_scoped = True
+                continue
+            held = self.relative_contents(head) if head.kind == "room" else None
+            if held is not None:  # "the room where the book is", "the room the book is in"
+                entities = self.vocab.containing(entities, held.entities, None)
+                held.entities = [o for o in held.entities if any(o.room_key == r.key for r in entities)]
+                continue
+            if self.without_contents(head, entities):  # "the bedroom without a potted plant"
+                inner = self.noun_phrase("qualifier")
+                entities = self.vocab.lacking(entities, inner.entities)
+                self.skip_in_it()
                 continue
             lacks = self.at_any(_QUAL_LACKS)
             if lacks and self.np_starts(len(lacks)):
@@ -1088,9 +1154,18 @@ class MissionParser:
             if nxt and self.np_starts(len(nxt)):
                 self.i += len(nxt)
                 inner = self.noun_phrase("qualifier")
-                if head.kind != "room" or any(e.kind != "room" for e in inner.entities):
-                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': 'next to' relates rooms "
-                                    f"only")
+                if any(e.kind != "room" for e in inner.entities):
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': 'next to' is understood "
+                                    f"for rooms only (distances between objects are not known); name the "
+                                    f"room the object is in")
+                if head.kind == "object":  # "the toilet next to the bedroom": in a room next to it
+                    rooms = self.vocab.next_to(
+                        [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in entities)],
+                        inner.entities)
+                    entities = self.vocab.inside(entities, rooms)
+                    inner.entities = [r for r in inner.entities
+                                      if any(r.key in self.vocab.adjacent.get(x.key, ()) for x in rooms)]
+                    continue
                 entities = self.vocab.next_to(entities, inner.entities)
                 inner.entities = [r for r in inner.entities
                                   if any(r.key in self.vocab.adjacent.get(e.key, ()) for e in entities)]
@@ -1128,6 +1203,70 @@ class MissionParser:
                         count)
         self.check(np, head, count)
         return self.record(np)
+
+    def relative_contents(self, head: Head) -> NounPhrase | None:
+        """``where the book is`` / ``in which the book is`` / ``(that) the book is in`` after a room head:
+        the object phrase those rooms must hold (consumed), or ``None`` (nothing consumed)."""
+        save, known = self.i, len(self.references)
+        if self.word() == "where" and self.np_starts(1) and self.word(1) != "there":
+            self.i += 1
+            tail: tuple[str, ...] = ()
+        elif self.at("in", "which") and self.np_starts(2):
+            self.i += 2
+            tail = ()
+        elif self.word() in ("that", "which") and self.np_starts(1):
+            self.i += 1
+            tail = ("in",)
+        elif self.np_starts() and not self.word().startswith(("room_", "object_")):
+            tail = ("in",)
+        else:
+            return None
+        try:
+            inner = self.noun_phrase("qualifier")
+        except MissionError:
+            if not tail:
+                raise
+            inner = None
+        ok = inner is not None and self.word() in ("is", "are", "was", "were", "sits", "lives", "stands")
+        if ok:
+            self.i += 1
+            if self.word() in ("located", "kept", "stored", "placed", "found", "standing", "sitting"):
+                self.i += 1
+            ok = all(self.word(n) == w for n, w in enumerate(tail))
+            self.i += len(tail)
+        if not ok or inner is None:
+            if not tail:
+                raise self.fail(f"'where ...' after a room is understood as 'the room where the <object> "
+                                f"is'; found {self.here()}")
+            del self.references[known:]
+            self.i = save
+            return None
+        if any(e.kind != "object" for e in inner.entities):
+            raise self.fail(f"'{inner.phrase}': a room is described by an object it holds ('the room where "
+                            f"the book is')")
+        return inner
+
+    def without_contents(self, head: Head, rooms: list[Entity]) -> bool:
+        """Whether ``without <object>`` here describes the rooms (``the bedroom without a potted plant``)
+        rather than what to avoid: only when several rooms are in question and the object tells them apart
+        (some hold it, some do not). Nothing is consumed but ``without``."""
+        if head.kind != "room" or self.word() != "without" or len(rooms) < 2 or not self.np_starts(1):
+            return False
+        save, known = self.i, len(self.references)
+        self.i += 1
+        try:
+            inner = self.noun_phrase("qualifier")
+        except MissionError:
+            inner = None
+        del self.references[known:]
+        self.i = save
+        if inner is None or any(e.kind != "object" for e in inner.entities):
+            return False
+        left = self.vocab.lacking(rooms, inner.entities)
+        if not left or len(left) == len(rooms):
+            return False
+        self.i += 1
+        return True
 
     def floor_place(self, first: Tok, floors: frozenset[int], mode: Mode | None, role: Role) -> NounPhrase:
         """``the top floor`` as a place: any of its rooms as a goal or condition, all of them to avoid."""
@@ -1289,12 +1428,38 @@ class MissionParser:
             return frozenset(e.floor for e in max(goals, key=lambda r: r.start).entities)
         if self.word() not in ("on", "in", "at", "of", "from"):
             return None
+        if self.at("the", "same", k=1) and self.word(3) in lx.FLOOR_WORDS:
+            self.i += 4
+            return self.same_floor()
+        if self.word(1) == "that" and self.word(2) in lx.FLOOR_WORDS:  # "on that floor": the last goal's
+            self.i += 3
+            return self.same_floor()
         k = 2 if self.word(1) == "the" else 1
         said = self.floor_words(k)
         if said is None or self.vocab.match_head(self.words(), self.i + k + said[1]) is not None:
             return None  # none, or "in the ground floor bathroom": a room named with its floor
         self.i += k + said[1]
         return said[0]
+
+    def same_floor(self) -> frozenset[int]:
+        """After ``on the same floor`` / ``on that floor``: the floor of ``as <phrase>`` when said, else of
+        the last goal named. It must be one floor: after a choice across floors ("either bedroom, then the
+        bathroom on the same floor") the floor depends on the choice, which is refused rather than
+        guessed."""
+        if self.word() == "as" and self.np_starts(1):
+            self.i += 1
+            ref = self.noun_phrase("qualifier")
+        else:
+            goals = [r for r in self.references if r.role == "goal" and r.entities]
+            if not goals:
+                raise self.fail("'the same floor' / 'that floor' does not refer to any place named before it")
+            ref = max(goals, key=lambda r: r.start)
+        floors = frozenset(e.floor for e in ref.entities)
+        if len(floors) != 1:
+            raise self.fail(f"'the same floor' as '{ref.phrase}', which is on floors "
+                            f"{', '.join(str(f) for f in sorted(floors))}: the floor depends on which one is "
+                            f"chosen; say which floor, or give each choice its own sentence")
+        return floors
 
     def floor_words(self, k: int = 0) -> tuple[frozenset[int], int] | None:
         """The floor named by the words at offset ``k`` and how many words name it: ``floor 1``, ``second
@@ -1338,6 +1503,9 @@ class MissionParser:
             listing = ", ".join(e.describe() for e in np.entities)
             raise self.fail(f"'{np.phrase}' should be {count} {head.kind}s but matches {len(np.entities)}: "
                             f"{listing}")
+        if np.mode == "the" and len(np.entities) > 1 and head.kind == np.entities[0].kind \
+                and not head.plural and self.affirmation_ahead() is not None:
+            np.mode = "any"  # "the toilet on this floor, any one will do": one of them
         if np.mode == "the" and len(np.entities) > 1:
             listing = ", ".join(
                 f"{e.key} (floor {e.floor})" if e.kind == "room"

@@ -163,7 +163,16 @@ POLITE = (("make", "sure"), ("make", "sure", "that"), ("be", "sure", "to"), ("be
           ("i", "need", "you", "to"), ("i", "want", "you", "to"), ("i", "would", "like", "you", "to"),
           ("i", "d", "like", "you", "to"), ("we", "need", "you", "to"), ("can", "you"), ("could", "you"),
           ("would", "you"), ("will", "you"), ("remember", "to"), ("i", "would", "like"), ("i", "need"),
-          ("i", "want"), ("let", "us"), ("let", "'s"), ("for", "me"))
+          ("i", "want"), ("let", "us"), ("let", "'s"), ("for", "me"),
+          *((owner, noun, "is", "to") for owner in ("the", "your", "my", "our")
+            for noun in ("task", "job", "goal", "mission", "aim", "objective", "plan", "errand")),
+          *((owner, noun, "is") for owner in ("the", "your", "my", "our")
+            for noun in ("task", "job", "goal", "mission", "aim", "objective", "plan", "errand")),
+          ("all", "you", "need", "to", "do", "is"), ("all", "you", "have", "to", "do", "is"),
+          ("what", "i", "need", "is", "for", "you", "to"), ("i", "would", "like", "it", "if", "you"),
+          ("i", "would", "appreciate", "it", "if", "you"), ("if", "you", "could"), ("if", "you", "would"),
+          ("would", "you", "mind"), ("do", "me", "a", "favor", "and"), ("do", "me", "a", "favour", "and"),
+          ("go", "and"), ("please", "make", "sure"))
 """Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
 
 START_END_VERBS = word_set("start starting begin beginning end ending finish finishing")
@@ -196,24 +205,36 @@ TIME_FILLERS = (("at", "some", "point"), ("at", "any", "time"), ("sometime",), (
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
 
-CHOICE_AFFIRMATIONS = (
-    ("either", "one"), ("any", "one"), ("either", "one", "is", "fine"), ("any", "one", "is", "fine"),
-    ("either", "is", "fine"), ("either", "works"), ("either", "one", "works"), ("any", "of", "them"),
-    ("either", "of", "them"), ("any", "of", "them", "is", "fine"), ("either", "will", "do"),
-    ("any", "will", "do"), ("whichever",), ("whichever", "one"), ("whichever", "you", "like"),
-    ("whichever", "is", "fine"), ("no", "matter", "which"), ("no", "matter", "which", "one"),
+_CHOOSERS = (("either",), ("any",), ("whichever",), ("either", "one"), ("any", "one"), ("whichever", "one"),
+             ("any", "of", "them"), ("either", "of", "them"), ("whichever", "of", "them"))
+_FINE = ((), ("is", "fine"), ("is", "ok"), ("is", "okay"), ("is", "good"), ("will", "do"), ("works",),
+         ("would", "do"), ("would", "be", "fine"), ("will", "be", "fine"), ("you", "like"), ("you", "want"),
+         ("you", "prefer"), ("you", "choose"), ("is", "closer"), ("is", "nearer"))
+CHOICE_AFFIRMATIONS = tuple(
+    chooser + fine for chooser in _CHOOSERS for fine in _FINE
+    if chooser + fine not in (("either",), ("any",))  # bare "either" / "any" start a noun phrase
+) + (
+    ("no", "matter", "which"), ("no", "matter", "which", "one"),
     ("it", "does", "not", "matter", "which"), ("does", "not", "matter", "which"),
     ("does", "not", "matter", "which", "one"), ("it", "does", "not", "matter", "which", "one"),
     ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"), ("is", "fine"),
-    ("your", "choice"), ("your", "pick"), ("take", "your", "pick"),
+    ("your", "choice"), ("your", "pick"), ("take", "your", "pick"), ("you", "pick"), ("you", "choose"),
+    ("it", "is", "up", "to", "you"), ("up", "to", "you"), ("i", "do", "not", "care"),
 )
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
 
+_SPAN_NOUNS = ("mission", "task", "trip", "route", "run", "time", "way", "journey", "tour", "job", "thing",
+               "path")
 WHOLE_MISSION = (("the", "whole", "time"), ("the", "entire", "time"), ("at", "all", "times"),
                  ("at", "any", "time"),
                  ("at", "any", "point"), ("throughout",), ("the", "whole", "way"), ("all", "the", "time"),
-                 ("on", "the", "way"), ("on", "your", "way"), ("along", "the", "way"), ("at", "all"))
+                 ("on", "the", "way"), ("on", "your", "way"), ("along", "the", "way"), ("at", "all"),
+                 ("all", "along"), ("for", "the", "duration"), ("the", "entire", "way"),
+                 *((pre, "the", whole, noun) for pre in ("for", "during", "throughout", "over")
+                   for whole in ("whole", "entire", "full") for noun in _SPAN_NOUNS),
+                 *(("throughout", "the", noun) for noun in _SPAN_NOUNS),
+                 *(("during", "the", noun) for noun in _SPAN_NOUNS))
 """Said after what to avoid: the prohibition holds for the whole mission (``G !x``), not only at one step."""
 
 
