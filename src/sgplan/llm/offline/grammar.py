@@ -24,7 +24,7 @@ from typing import Literal
 
 from sgplan.errors import MissionError
 from sgplan.llm.offline import lexicon as lx
-from sgplan.llm.offline.compose import Step, Task, conj, disj, sequence_formula
+from sgplan.llm.offline.compose import Step, Task, conj, disj, sequence_formula, strict_formulas
 from sgplan.llm.offline.names import Entity, Head, SceneVocabulary
 from sgplan.llm.offline.text import Tok, sentences, tokenize
 from sgplan.logic.formula import Always, And, Atom, Eventually, Formula, Implies, Not, Until, atoms
@@ -92,6 +92,19 @@ _CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "whi
                             "once", "whenever", "unless"})
 """Words that would continue a condition past its one action (a comma or *then* ends it)."""
 _FIRST = frozenset({"first", "firstly"})
+_STRICT_SEQ = tuple((*lead, *only) for lead in ((), (",",), ("and",), ("but",), (",", "and"), (",", "but"))
+                    for only in (("only", "after", "that"), ("only", "after", "this"), ("only", "then"),
+                                 ("only", "afterwards"), ("not", "before", "that"),
+                                 ("only", "once", "that", "is", "done"), ("only", "when", "that", "is", "done"),
+                                 ("only", "after", "you", "have", "done", "that"),
+                                 ("only", "once", "you", "have", "done", "that")))
+"""``A, and only after that B``: B after A, and not before it (strict)."""
+_STAY = frozenset({"stay", "remain", "keep", "staying", "remaining", "keeping"})
+_LEAVE = frozenset({"leave", "leaving"})
+_TIME_SCOPED = frozenset({"until", "till", "before", "after", "once", "when", "whenever", "if", "unless",
+                          "during"})
+"""Words that may limit a *stay on this floor* to part of the mission: such a sentence confines nothing."""
+"""``stay on this floor`` / ``don't leave the ground floor``: the mission is confined to floors."""
 _TRIP_NOUNS = frozenset({"trip", "visit", "stop", "detour", "run", "quick", "short", "pass"})
 """``twice, with a trip / visit / stop to Y in between``: words naming the visit to Y."""
 _BETWEEN_TAIL = (("them",), ("the", "two"), ("the", "two", "visits"), ("each", "visit"), ("visits",))
@@ -138,7 +151,7 @@ class Clause:
 
     def formula(self) -> Formula | None:
         goal = sequence_formula(self.steps)
-        parts = ([goal] if goal is not None else []) + self.constraints
+        parts = ([goal] if goal is not None else []) + strict_formulas(self.steps) + self.constraints
         return conj(parts) if parts else None
 
 
@@ -169,6 +182,10 @@ class MissionParser:
         """Reading the condition of *if* / *whenever* (where *end up in X* just means being in X)."""
         self.pending_floor: frozenset[int] | None = None
         """A floor said in the verb slot ("go upstairs to ..."), for the next noun phrase."""
+        self.strict_pending = False
+        """*only after that* / *only then* was said: the next action is strictly after the step before."""
+        self.confined: frozenset[int] | None = None
+        """The floors the mission stays on ("stay on this floor"): goals are grounded there."""
 
     # -- token helpers --------------------------------------------------------------------------------
     def word(self, k: int = 0) -> str:
@@ -207,8 +224,11 @@ class MissionParser:
     # -- the mission ------------------------------------------------------------------------------------
     def parse(self) -> Formula:
         parts: list[Clause | Formula] = []
-        for sentence in sentences(tokenize(self.text)):
+        all_sentences = sentences(tokenize(self.text))
+        self.confined = self.confinement(all_sentences)
+        for sentence in all_sentences:
             self.toks, self.i, self.sentence_scope = sentence, 0, []
+            self.strict_pending = False
             previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
             precedes = self.sentence_precedes(parts)
             continues = self.skip_fillers(sequence_too=True)
@@ -260,6 +280,11 @@ class MissionParser:
         """Skip words without meaning at a clause start; True if a sequencing word ('then', ...) was seen."""
         seen_sequence = False
         while not self.done():
+            strict = self.at_any(_STRICT_SEQ) if sequence_too else None
+            if strict is not None:  # "..., and only after that B": B strictly after
+                self.i += len(strict)
+                self.strict_pending = seen_sequence = True
+                continue
             seq = self.at_any(_SEQ_WORDS) if sequence_too else None
             way = self.at_any(_ON_THE_WAY)
             if way is not None and self.word(len(way)) == "there":
@@ -313,6 +338,8 @@ class MissionParser:
             body = self.body()
             return self.conditional(cond_word, condition, tasks, body,
                                     said_ever or self.says(_AFTERWARDS, start, self.i))
+        if self.word() in ("until", "till") or self.at("up", "until"):
+            return self.until_prefix()
         if self.at_any(_ONLY_AFTER):
             self.i += 2
             before = self.prefix_clause()
@@ -348,6 +375,31 @@ class MissionParser:
                 del self.references[known:]
                 self.i = save
         return self.postfix_condition(self.body())
+
+    def until_prefix(self) -> Clause:
+        """``Until you have reached X, stay out of Y`` / ``Till X, do not enter Y``: ``!Y U X`` for each
+        prohibition of the sentence; X is a step of the sentence, so a later *afterwards* / *then* follows
+        it. The rest of the sentence must be prohibitions only."""
+        self.i += 2 if self.word() == "up" else 1
+        self.skip_subject()
+        self.in_condition = True
+        steps = self.action()
+        self.in_condition = False
+        tasks = [t for step in steps for t in step]
+        if len(tasks) > 1 and all(t.mode == "all" for t in tasks):  # "until A and B": each of them
+            tasks = [Task("all", [m for t in tasks for m in t.members])]
+        if len(tasks) != 1:
+            raise self.fail("'until X, ...' needs one goal X")
+        self.expect_comma_or_then()
+        body = self.body()
+        if any(body.steps) or not body.constraints or not all(isinstance(c, Always) for c in body.constraints):
+            raise self.fail("'until X, ...' is understood with prohibitions only (e.g. 'until you have been "
+                            "to the kitchen, stay out of the office'); put goals in their own sentence")
+        target = tasks[0]
+        ends = [disj(target.members)] if target.mode == "any" else target.members
+        untils: list[Formula] = [Until(c.arg, end) for c in body.constraints if isinstance(c, Always)
+                                 for end in ends]
+        return Clause(steps=[[target]], constraints=untils)
 
     def postfix_condition(self, body: Clause) -> Clause | Formula:
         if self.done():
@@ -522,6 +574,10 @@ class MissionParser:
     def body(self) -> Clause:
         clause = Clause()
         while not self.done():
+            if self.at_any(_STRICT_SEQ) is not None and self.skip_fillers(sequence_too=True):
+                if clause.steps[-1]:
+                    clause.steps.append([])
+                continue
             if self.word() in ("but", "and", ",") and self.at_any(_ONLY_AFTER, k=1):
                 self.i += 1  # "..., but only after X" / "..., but not before X"
             done = self.done_words()
@@ -552,6 +608,8 @@ class MissionParser:
                 break
             if self.i > before:
                 continue  # look again at what follows the fillers
+            if self.stay_on_floor(clause):
+                continue
             neg = self.at_any(_NEG_STARTS)
             if neg is not None:
                 self.negation(neg, clause)
@@ -574,7 +632,14 @@ class MissionParser:
             else:
                 if self.word() in lx.REFUSED_VERBS:
                     raise self.fail(f"cannot understand {lx.REFUSED_VERBS[self.word()]}")
-                steps = self.action(step_rooms=self.step_rooms(clause.steps[-1]))
+                # "go to the bedroom, but stop by the couch first": a step moved before the others is
+                # not in their room
+                context = [] if self.moved_first() else self.step_rooms(clause.steps[-1])
+                steps = self.action(step_rooms=context)
+                if self.strict_pending:
+                    for task in steps[0]:
+                        task.strict = True
+                    self.strict_pending = False
                 self.check_revisits(steps[0], self.prior_steps + clause.steps[:-1])
                 before_that = self.at("before", "that") and self.word(2) in ("", ",", "and", "then")
                 if self.word() in _FIRST or before_that:  # "go to B, but go to A first / before that"
@@ -597,6 +662,17 @@ class MissionParser:
                 if len(steps) > 1:
                     clause.steps.extend(steps[1:])
         return clause
+
+    def moved_first(self) -> bool:
+        """Whether the action starting here ends with *first* / *before that* (looked ahead, up to the next
+        comma, *then* or *but*): it is then done before the step it is written after."""
+        for j in range(self.i, len(self.toks)):
+            w = self.toks[j].text
+            if w in _FIRST or (w == "before" and self.word(j - self.i + 1) == "that"):
+                return True
+            if w in (",", "then", "but", "after", "before", "if", "until", "when", "whenever"):
+                return False
+        return False
 
     def waypoint(self, clause: Clause) -> None:
         """``go to Y via X`` / ``..., passing through X``: X on the way, before the one goal Y just named."""
@@ -651,6 +727,8 @@ class MissionParser:
         self.i += len(marker)
         if self.word() == "ever":  # "never ever", "don't ever"
             self.i += 1
+        if self.stay_on_floor(clause, negated=True):  # "don't leave this floor"
+            return
         has_goal = any(clause.steps)
         is_global = bool(_GLOBAL_NEG & set(marker)) or not has_goal
         if set(self.verb_words()) & lx.REVISIT_VERBS:  # "never go back to X": only after a first visit
@@ -707,6 +785,79 @@ class MissionParser:
             target.avoid.extend(Not(Atom(e.action)) for e in local)
             if everywhere:
                 clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in everywhere])))
+
+    def stay_on_floor(self, clause: Clause, negated: bool = False) -> bool:
+        """``stay on this floor`` / ``stay on the ground floor`` / ``stay downstairs`` / ``keep to floor 1``
+        (or, after a negation, ``leave this floor``): every room of the other floors is forbidden for the
+        whole mission (consumed, True); False (nothing consumed) when the words are not there."""
+        said = self.staying(negated)
+        if said is not None and self.i and self.word(-1) in ("then", "afterwards", "later", "next", "finally"):
+            raise self.fail(f"'{self.word(-1)} {self.word()} ...': staying on a floor for the rest of the "
+                            f"mission only is not understood; say 'stay on ... the whole time'")
+        if said is None:
+            if negated and self.word() in _LEAVE:
+                raise self.fail(f"cannot understand {lx.REFUSED_VERBS['leave']}")
+            return False
+        floors, k = said
+        first, last = self.toks[self.i], self.toks[self.i + k - 1]
+        self.i += k
+        rooms = [e for e in self.vocab.entities if e.kind == "room" and e.floor not in floors]
+        if not rooms:
+            raise self.fail(f"'{self.span_text(first.start, last.end)}': the building has no other floor")
+        self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, rooms, "all",
+                               False, "avoid"))
+        whole = self.at_any(lx.WHOLE_MISSION)
+        if whole is not None:
+            self.i += len(whole)
+        clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in rooms])))
+        return True
+
+    def staying(self, negated: bool) -> tuple[frozenset[int], int] | None:
+        """The floors of ``stay on <floor>`` / ``stay downstairs`` (or ``leave <floor>`` after a negation)
+        here and how many words say it; ``None`` if the words are not there. Nothing is consumed."""
+        if self.word() not in (_LEAVE if negated else _STAY):
+            return None
+        k = 1
+        if self.word(k) in lx.RELATIVE_FLOORS and not negated:
+            return self.staying_floors(self.word(k)), k + 1
+        if self.word(k) in ("on", "to", "at", "in", "within") and not negated:
+            k += 1
+        k += 1 if self.word(k) == "the" else 0
+        said = self.floor_words(k)
+        if said is None or self.vocab.match_head(self.words(), self.i + k + said[1]) is not None:
+            return None  # not a floor, or "stay on the ground floor bathroom"
+        return said[0], k + said[1]
+
+    def confinement(self, sentence_tokens: list[list[Tok]]) -> frozenset[int] | None:
+        """The floors the whole mission is confined to by ``stay on <floor>`` / ``don't leave <floor>``
+        anywhere in it (read before the rest, so that "go to the toilet, staying on this floor" grounds
+        *the toilet* on that floor); ``None`` when the mission says no such thing."""
+        confined: frozenset[int] | None = None
+        for sentence in sentence_tokens:
+            if {t.text for t in sentence} & _TIME_SCOPED:
+                continue  # "until you reach X, stay on this floor": not the whole mission
+            self.toks = sentence
+            for j, tok in enumerate(sentence):
+                self.i = j
+                negated = tok.text in _LEAVE and j > 0 and sentence[j - 1].text in ("not", "never")
+                said = self.staying(negated) if tok.text in _STAY or negated else None
+                if said is not None:
+                    confined = said[0] if confined is None else confined & said[0]
+        self.toks, self.i = [], 0
+        return confined
+
+    def staying_floors(self, word: str) -> frozenset[int]:
+        """``stay downstairs`` / ``stay upstairs``: the lower / upper floor of a two-floor building, or the
+        start floor when it is the lowest / highest; otherwise it is not clear which floors are meant
+        (refused, naming them)."""
+        floors, step = self.vocab.num_floors, lx.RELATIVE_FLOORS[word]
+        extreme = 0 if step < 0 else floors - 1
+        if floors == 2 or self.start_floor == extreme:
+            return frozenset({extreme})
+        where = "is not known here" if self.start_floor is None else f"is floor {self.start_floor}"
+        raise self.fail(f"'stay {word}': the start floor {where} and the building "
+                        f"{self.vocab.building_name!r} has floors 0 to {floors - 1}; say 'stay on floor k' "
+                        f"or 'never go to floor k'")
 
     def avoidance_scope(self, target: Task, forbidden: list[Entity]) -> tuple[list[Entity], list[Entity]]:
         """Split what a trailing *avoid* / *without* forbids into what holds when ``target`` is done (an
@@ -953,6 +1104,9 @@ class MissionParser:
         if w in _DETERMINERS:
             nxt = self.word(k + 1)
             return not (w == "some" and nxt == "point") and not (w == "that" and nxt == "order")
+        if w in lx.FLOOR_WORDS and (self.word(k + 1).isdigit() or self.word(k + 1) in lx.NUMBER_WORDS
+                                    or self.word(k + 1) == "zero"):
+            return True  # "floor 2" as a place
         if w in lx.NUMBER_WORDS or w.isdigit():
             return (w != "one" or self.word(k + 1) == "of"
                     or self.vocab.match_head(self.words(), self.i + k + 1) is not None)
@@ -1069,6 +1223,8 @@ class MissionParser:
         if self.pending_floor is not None:
             entities = self.vocab.on_floor(entities, self.pending_floor)
             self.pending_floor = None
+        if self.confined is not None and role in ("goal", "condition"):
+            entities = self.vocab.on_floor(entities, self.confined)  # "stay on this floor": goals there
         room_scoped = False
         compound = head.kind == "room" and self.vocab.match_head(self.words(), self.i)
         if compound and compound.kind == "object":  # "the kitchen sink": the sink in the kitchen
@@ -1498,7 +1654,11 @@ class MissionParser:
                 raise self.fail(f"'{np.phrase}' matches no {head.kind} of this scene{self.existing(head)}")
             return
         if not np.entities:
-            raise self.fail(f"'{np.phrase}' matches no {head.kind}{self.existing(head)}")
+            kept = ""
+            if self.confined is not None and np.role in ("goal", "condition"):
+                kept = (f", on the floor(s) the mission stays on "
+                        f"({', '.join(str(f) for f in sorted(self.confined))})")
+            raise self.fail(f"'{np.phrase}' matches no {head.kind}{kept}{self.existing(head)}")
         if count is not None and len(np.entities) != count:
             listing = ", ".join(e.describe() for e in np.entities)
             raise self.fail(f"'{np.phrase}' should be {count} {head.kind}s but matches {len(np.entities)}: "
