@@ -92,6 +92,10 @@ _CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "whi
                             "once", "whenever", "unless"})
 """Words that would continue a condition past its one action (a comma or *then* ends it)."""
 _FIRST = frozenset({"first", "firstly"})
+_FLOOR_DIRECTIONS = {"above": 1, "up": 1, "higher": 1, "upstairs": 1, "below": -1, "down": -1, "lower": -1,
+                     "downstairs": -1, "beneath": -1, "under": -1}
+"""``the floor above``, ``two floors down``: floors counted from the start floor."""
+_FLOOR_PLURALS = (*lx.FLOOR_WORDS, "floors", "levels", "storeys", "stories")
 _STRICT_SEQ = tuple((*lead, *only) for lead in ((), (",",), ("and",), ("but",), (",", "and"), (",", "but"))
                     for only in (("only", "after", "that"), ("only", "after", "this"), ("only", "then"),
                                  ("only", "afterwards"), ("not", "before", "that"),
@@ -875,10 +879,14 @@ class MissionParser:
         """Words before the noun phrase: the verb, whatever it is, unless it is refused or a word of the
         grammar itself (``always``, ``floor``, ``next`` ... out of place are errors, not verbs)."""
         seen: list[str] = []
-        while not self.done() and not self.np_starts() and self.word() not in (",", "and", "or", "then",
+        while not self.done() and (not self.np_starts() or self.at("all", "the", "way")) \
+                and self.word() not in (",", "and", "or", "then",
                                                                               "if", "until", "before",
                                                                               "after", "when", "without"):
             w = self.word()
+            if self.at("all", "the", "way"):  # "go all the way up to ...": how far, not where
+                self.i += 3
+                continue
             if w in lx.REFUSED_VERBS:
                 raise self.fail(f"cannot understand {lx.REFUSED_VERBS[w]}")
             ends = self.word(1) in ("in", "at", "up", "with")
@@ -894,6 +902,16 @@ class MissionParser:
                 continue
             if self.at_any(_NEG_STARTS) is not None:
                 break
+            offset = self.floor_offset()
+            if offset is None and w in ("up", "down"):  # "go down two floors", "go up a floor"
+                turned = self.floor_count(1)
+                if turned is not None and self.word(2) in _FLOOR_PLURALS:
+                    offset = self.shifted_floor(turned * _FLOOR_DIRECTIONS[w], f"{w} {self.word(1)} "
+                                                f"{self.word(2)}"), 3
+            if offset is not None:  # "go two floors down to the garage": the garage on that floor
+                self.pending_floor = offset[0]
+                self.i += offset[1]
+                continue
             if w in lx.RELATIVE_FLOORS:  # "go upstairs to the bathroom": the bathroom on that floor
                 self.pending_floor = self.relative_floor(w)
             elif w not in lx.POSITIVE_VERBS and (w in _STRUCTURAL or not w.isalpha()):
@@ -902,13 +920,23 @@ class MissionParser:
             self.i += 1
         return seen
 
-    def relative_floor(self, word: str) -> frozenset[int]:
+    def relative_floor(self, word: str, candidates: list[Entity] | None = None) -> frozenset[int]:
         """The floors *upstairs* / *downstairs* mean: those above / below the start floor when it is known;
-        in a two-floor building, the upper / lower floor; otherwise it is refused, naming the floors."""
+        in a two-floor building, the upper / lower floor; for a noun ("the downstairs bathroom",
+        ``candidates`` = the bathrooms) whose candidates lie on exactly two floors, the lower / upper of
+        those, as people name such rooms whatever floor they stand on; otherwise it is refused, naming the
+        floors."""
         step = lx.RELATIVE_FLOORS[word]
         floors = self.vocab.num_floors
+        on = sorted({e.floor for e in candidates or []})
+        named = len(on) == 2 or (floors == 2 and candidates is not None)
+        if self.start_floor is None and floors > 2 and len(on) == 2:
+            return frozenset({on[1] if step > 0 else on[0]})
         if self.start_floor is not None:
+            self.check_still_on_start_floor(word)
             wanted = frozenset(f for f in range(floors) if (f - self.start_floor) * step > 0)
+            if not wanted and named:  # the robot is on the lowest floor: "the downstairs bathroom" is here
+                return frozenset({(on or [0, floors - 1])[-1 if step > 0 else 0]})
             if not wanted:
                 raise self.fail(f"'{word}': the robot starts on floor {self.start_floor} and the building "
                                 f"{self.vocab.building_name!r} has floors 0 to {floors - 1}")
@@ -1108,6 +1136,8 @@ class MissionParser:
                                     or self.word(k + 1) == "zero"):
             return True  # "floor 2" as a place
         if w in lx.NUMBER_WORDS or w.isdigit():
+            if self.word(k + 1) in _FLOOR_PLURALS and self.word(k + 2) in _FLOOR_DIRECTIONS:
+                return False  # "two floors up": where, not what
             return (w != "one" or self.word(k + 1) == "of"
                     or self.vocab.match_head(self.words(), self.i + k + 1) is not None)
         return self.vocab.match_head(self.words(), self.i + k) is not None
@@ -1191,8 +1221,9 @@ class MissionParser:
             self.i += 1
         mode, count = self.quantifier()
         floors_first: frozenset[int] | None = None
-        if self.word() in lx.RELATIVE_FLOORS:  # "the upstairs bathroom"
-            floors_first = self.relative_floor(self.word())
+        relative = ""
+        if self.word() in lx.RELATIVE_FLOORS:  # "the upstairs bathroom": applied once the noun is read
+            relative = self.word()
             self.i += 1
         elif (said := self.floor_words()) is not None:  # "the ground floor bathroom", "the top floor"
             floors_first = said[0]
@@ -1216,6 +1247,8 @@ class MissionParser:
                 mode = "all" if head.plural else "the"
             elif mode == "the" and head.plural:
                 mode = "all"
+        if relative:
+            floors_first = self.relative_floor(relative, entities)
         if other:
             entities = self.others(entities, first.start)
         if floors_first is not None:
@@ -1256,7 +1289,7 @@ class MissionParser:
                 mode = "all" if head.plural else "the"
                 room_scoped = True
                 continue
-            floor = self.floor_qualifier()
+            floor = self.floor_qualifier(entities)
             if floor is not None:
                 entities = self.vocab.on_floor(entities, floor)
                 continue
@@ -1567,15 +1600,21 @@ class MissionParser:
         self.i += head.words
         return head
 
-    def floor_qualifier(self) -> frozenset[int] | None:
+    def floor_qualifier(self, candidates: list[Entity]) -> frozenset[int] | None:
         """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> {1}, {1},
         {0}; ``upstairs`` / ``downstairs`` / ``on this floor``: relative to the start floor
         (:meth:`relative_floor`); ``up there`` / ``down there``: the floor(s) of the last goal. Not ``in the
         ground floor bathroom``: that names a room."""
         if self.word() in lx.RELATIVE_FLOORS:  # "the bathroom upstairs"
-            relative = self.relative_floor(self.word())
+            relative = self.relative_floor(self.word(), candidates)
             self.i += 1
             return relative
+        comma = 1 if self.word() == "," else 0
+        if self.floor_count(comma) is not None and self.word(comma + 1) in _FLOOR_PLURALS:
+            offset = self.floor_offset(comma)  # "the kitchen (,) one floor down"
+            if offset is not None:
+                self.i += comma + offset[1]
+                return offset[0]
         if self.word() in ("up", "down") and self.word(1) == "there":  # "the bathroom up there"
             goals = [r for r in self.references if r.role == "goal" and r.entities]
             if not goals:
@@ -1617,12 +1656,64 @@ class MissionParser:
                             f"chosen; say which floor, or give each choice its own sentence")
         return floors
 
+    def floor_offset(self, k: int = 0) -> tuple[frozenset[int], int] | None:
+        """Floors counted from the start floor, at offset ``k``: ``floor above`` / ``floor below`` (after
+        *the*), ``next floor up``, ``one floor up``, ``two floors down``, ``a floor down`` -> the floor and
+        how many words say it; ``None`` if the words are not there. Needs the start floor."""
+        w, nxt, third = self.word(k), self.word(k + 1), self.word(k + 2)
+        count = self.floor_count(k)
+        if w in lx.FLOOR_WORDS and nxt in _FLOOR_DIRECTIONS:
+            delta, n = _FLOOR_DIRECTIONS[nxt], 2
+        elif w == "next" and nxt in lx.FLOOR_WORDS and third in _FLOOR_DIRECTIONS:
+            delta, n = _FLOOR_DIRECTIONS[third], 3
+        elif count is not None and nxt in _FLOOR_PLURALS and third in _FLOOR_DIRECTIONS:
+            delta, n = _FLOOR_DIRECTIONS[third] * count, 3
+        else:
+            return None
+        floors = self.shifted_floor(delta, " ".join(self.word(k + j) for j in range(n)))
+        if self.word(k + n) in ("us", "you", "me"):
+            n += 1  # "the floor above us"
+        elif self.at("this", "one", k=k + n):
+            n += 2  # "the floor below this one"
+        return floors, n
+
+    def check_still_on_start_floor(self, said: str) -> None:
+        """Words relative to the start floor (*upstairs*, *the floor below*) are refused once a goal on
+        another floor was named: relative to the start, or to where that goal took the robot?"""
+        for r in self.references:
+            if r.role == "goal" and r.entities and self.start_floor not in {e.floor for e in r.entities}:
+                raise self.fail(f"'{said}' after '{r.phrase}' (floor "
+                                f"{', '.join(str(f) for f in sorted({e.floor for e in r.entities}))}): relative "
+                                f"to the start (floor {self.start_floor}) or to there? Say which floor")
+
+    def floor_count(self, k: int) -> int | None:
+        """``a`` / ``one`` / ``two`` / ``2`` at offset ``k`` as a number of floors, else ``None``."""
+        w = self.word(k)
+        return 1 if w == "a" else int(w) if w.isdigit() else lx.NUMBER_WORDS.get(w)
+
+    def shifted_floor(self, delta: int, said: str) -> frozenset[int]:
+        """The floor ``delta`` floors above the start floor (below if negative); refused without a start
+        floor or outside the building."""
+        floors = self.vocab.num_floors
+        if self.start_floor is None:
+            raise self.fail(f"'{said}' depends on where the robot starts, which is not known here; say which "
+                            f"floor (the building {self.vocab.building_name!r} has floors 0 to {floors - 1})")
+        self.check_still_on_start_floor(said)
+        floor = self.start_floor + delta
+        if not 0 <= floor < floors:
+            raise self.fail(f"'{said}': the robot starts on floor {self.start_floor} and the building "
+                            f"{self.vocab.building_name!r} has floors 0 to {floors - 1}")
+        return frozenset({floor})
+
     def floor_words(self, k: int = 0) -> tuple[frozenset[int], int] | None:
         """The floor named by the words at offset ``k`` and how many words name it: ``floor 1``, ``second
         floor``, ``ground floor``, ``top floor``, ``middle floor``, ``this floor`` (the start floor); ``None``
         if they name no floor. Floors the building does not have are refused."""
         w, nxt = self.word(k), self.word(k + 1)
         floors = self.vocab.num_floors
+        moved = self.floor_offset(k)
+        if moved is not None:
+            return moved
         if w in lx.FLOOR_WORDS and (nxt.isdigit() or nxt in lx.NUMBER_WORDS or nxt == "zero"):
             floor = 0 if nxt == "zero" else int(nxt) if nxt.isdigit() else lx.NUMBER_WORDS[nxt]
         elif nxt not in lx.FLOOR_WORDS:
