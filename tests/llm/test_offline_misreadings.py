@@ -134,7 +134,7 @@ def test_upstairs_without_a_start_in_a_taller_building_is_refused(gibson_root):
     from sgplan.scene.authors import load_authors_scene
 
     building = load_authors_scene(gibson_root / "Benevolence")
-    refused("Go to the bathroom upstairs.", "the building 'Benevolence' has floors 0 to 2", building)
+    refused("Go to the corridor upstairs.", "the building 'Benevolence' has floors 0 to 2", building)
     means("Go to the bedroom with the tv upstairs.", "F r8", building, PatternTranslator(start_floor=1))
 
 

@@ -929,14 +929,11 @@ class MissionParser:
         step = lx.RELATIVE_FLOORS[word]
         floors = self.vocab.num_floors
         on = sorted({e.floor for e in candidates or []})
-        named = len(on) == 2 or (floors == 2 and candidates is not None)
         if self.start_floor is None and floors > 2 and len(on) == 2:
             return frozenset({on[1] if step > 0 else on[0]})
         if self.start_floor is not None:
             self.check_still_on_start_floor(word)
             wanted = frozenset(f for f in range(floors) if (f - self.start_floor) * step > 0)
-            if not wanted and named:  # the robot is on the lowest floor: "the downstairs bathroom" is here
-                return frozenset({(on or [0, floors - 1])[-1 if step > 0 else 0]})
             if not wanted:
                 raise self.fail(f"'{word}': the robot starts on floor {self.start_floor} and the building "
                                 f"{self.vocab.building_name!r} has floors 0 to {floors - 1}")
