@@ -47,9 +47,18 @@ _NEG_STARTS = (("always", "avoid"), ("always", "stay", "away", "from"), ("always
                ("stay", "away", "from"), ("keep", "away", "from"), ("stay", "out", "of"),
                ("keep", "out", "of"), ("without",), ("while", "avoiding"), ("always", "do", "not"),
                ("and", "avoid"), ("but", "avoid"), ("but", "never"), ("and", "never"), ("but", "do", "not"),
-               ("and", "do", "not"), ("but", "not"), ("no",))
+               ("and", "do", "not"), ("but", "not"), ("no",), ("neither",), ("nor",), ("and", "nor"),
+               ("keep", "clear", "of"), ("steer", "clear", "of"), ("stay", "clear", "of"),
+               ("under", "no", "circumstances"), ("at", "no", "point"), ("at", "no", "time"))
 _GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can", "cannot", "may", "will",
-                         "no", "stay", "keep"})
+                         "no", "stay", "keep", "neither", "nor", "steer", "circumstances", "point", "time"})
+_OFF_LIMITS = tuple((*be, *said) for be in (("is",), ("are",), ("is", "strictly"), ("are", "strictly"))
+                    for said in (("off", "limits"), ("out", "of", "bounds"), ("forbidden",), ("prohibited",),
+                                 ("banned",), ("not", "allowed"), ("a", "no", "go"), ("no", "go"),
+                                 ("not", "to", "be", "entered"), ("to", "be", "avoided"),
+                                 ("not", "to", "be", "touched"), ("out", "of", "limits")))
+_OFF_LIMITS += tuple((modal, "be", "avoided") for modal in ("should", "must", "has", "have", "will"))
+"""``The kitchen is off limits``: never enter / reach what the sentence names (``G !x``)."""
 """A negation with one of these words holds for the whole mission (G !x); 'avoid' and 'without' after an
 action only constrain the moment that action is done (F(x & !y)), as in the authors' missions."""
 _QUAL_IN = ("in", "inside", "within", "of", "from")
@@ -612,8 +621,11 @@ class MissionParser:
                 break
             if self.i > before:
                 continue  # look again at what follows the fillers
-            if self.stay_on_floor(clause):
+            if self.stay_on_floor(clause) or self.off_limits(clause):
                 continue
+            nested = self.verbs_before_neither()
+            if nested:  # "go to neither A nor B": the verb says nothing, the negation is all
+                self.i += nested
             neg = self.at_any(_NEG_STARTS)
             if neg is not None:
                 self.negation(neg, clause)
@@ -729,6 +741,8 @@ class MissionParser:
         """``always avoid X`` / ``never enter X`` (global: G !X), ``avoid X`` after an action (local),
         ``don't enter X until Y`` (``!X U Y``)."""
         self.i += len(marker)
+        if self.at(",", "ever"):  # "never, ever"
+            self.i += 1
         if self.word() == "ever":  # "never ever", "don't ever"
             self.i += 1
         if self.stay_on_floor(clause, negated=True):  # "don't leave this floor"
@@ -789,6 +803,35 @@ class MissionParser:
             target.avoid.extend(Not(Atom(e.action)) for e in local)
             if everywhere:
                 clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in everywhere])))
+
+    def verbs_before_neither(self) -> int:
+        """How many verb words come before a *neither* here ("go to neither A nor B"), 0 if none do."""
+        n = 0
+        while self.word(n) in lx.POSITIVE_VERBS:
+            n += 1
+        return n if n and self.word(n) == "neither" else 0
+
+    def off_limits(self, clause: Clause) -> bool:
+        """``The kitchen is off limits`` / ``the office and the garage are out of bounds``: ``G !x`` for each
+        (consumed, True); False (nothing consumed) when the sentence does not say that."""
+        if not self.np_starts():
+            return False
+        save, known = self.i, len(self.references)
+        try:
+            nps = self.noun_phrase_list("avoid", [])
+        except MissionError:
+            nps = []
+        said = self.at_any(_OFF_LIMITS) if nps else None
+        if said is None:
+            del self.references[known:]
+            self.i = save
+            return False
+        self.i += len(said)
+        whole = self.at_any(lx.WHOLE_MISSION)
+        if whole is not None:
+            self.i += len(whole)
+        clause.constraints.append(Always(conj([Not(Atom(e.action)) for np in nps for e in np.entities])))
+        return True
 
     def stay_on_floor(self, clause: Clause, negated: bool = False) -> bool:
         """``stay on this floor`` / ``stay on the ground floor`` / ``stay downstairs`` / ``keep to floor 1``
@@ -1154,15 +1197,23 @@ class MissionParser:
             elif (self.word() == "," and self.np_starts(1) and not self.at_any(_NEG_STARTS, k=1)
                   and not self.at_any(lx.TIME_FILLERS, k=1) and not self.at_any(lx.CHOICE_AFFIRMATIONS, k=1)):
                 self.i += 1
-            elif self.word() in ("and", "or") and self.np_starts(1):
+            elif self.word() in ("and", "or", "nor") and self.np_starts(1):
                 joiners.add(self.word())
                 self.i += 1
+            elif self.at(",", "nor") and self.np_starts(2):
+                joiners.add("nor")
+                self.i += 2
             elif self.at("as", "well", "as") and self.np_starts(3):
                 joiners.add("and")
                 self.i += 3
             else:
                 break
             nps.append(self.noun_phrase(role, scope))
+        if "nor" in joiners:
+            if role != "avoid" or len(joiners) > 1:
+                raise self.fail(f"'nor' in '{self.span_text(nps[0].start, nps[-1].end)}' is understood only in "
+                                f"'never enter / neither A nor B' (each of them forbidden)")
+            return nps  # "neither A nor B": each of them is forbidden
         if joiners == {"and", "or"}:
             raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)}' mixes 'and' and 'or'; split it "
                             f"into two sentences")

@@ -145,6 +145,26 @@ REFUSED_VERBS: dict[str, str] = {
     "ideally": "'ideally' (preferences cannot be expressed; say what must happen)",
     "preferably": "'preferably' (preferences cannot be expressed; say what must happen)",
     "try": "'try' (optional goals cannot be expressed; say what must happen)",
+    "none": "'none' (say 'never enter X' to forbid a place)",
+    "nothing": "'nothing' (say 'never enter X' or 'do not touch X')",
+    "nowhere": "'nowhere' (say 'never enter X' to forbid a place)",
+    "instead": "'instead' (say what to visit, and 'never enter X' for what not to)",
+    "rather": "'rather' (say what to visit, and 'never enter X' for what not to)",
+    "refrain": "'refrain' (say 'never enter X' / 'do not touch X')",
+    "forbid": "'forbid' (say 'never enter X')",
+    "forbidden": "'forbidden' here (say 'X is forbidden' or 'never enter X')",
+    "prohibited": "'prohibited' here (say 'never enter X')",
+    "banned": "'banned' here (say 'never enter X')",
+    "hardly": "'hardly' (say 'never enter X' or make it a goal)",
+    "rarely": "'rarely' (say 'never enter X' or make it a goal)",
+    "seldom": "'seldom' (say 'never enter X' or make it a goal)",
+    "barely": "'barely'",
+    "fail": "'fail'",
+    "lest": "'lest' (rephrase with 'never')",
+    "cease": "'cease'",
+    "quit": "'quit'",
+    "prevent": "'prevent' (say 'never enter X')",
+    "stopping": "'stopping' (say 'visit X' or 'never enter X')",
 }
 """Words that would silently change the meaning if read as ordinary words: refused with a reason."""
 
@@ -163,7 +183,7 @@ POLITE = (("make", "sure"), ("make", "sure", "that"), ("be", "sure", "to"), ("be
           ("i", "need", "you", "to"), ("i", "want", "you", "to"), ("i", "would", "like", "you", "to"),
           ("i", "d", "like", "you", "to"), ("we", "need", "you", "to"), ("can", "you"), ("could", "you"),
           ("would", "you"), ("will", "you"), ("remember", "to"), ("i", "would", "like"), ("i", "need"),
-          ("i", "want"), ("let", "us"), ("let", "'s"), ("for", "me"),
+          ("i", "want"), ("let", "us"), ("let", "'s"), ("for", "me"), ("the", "robot"), ("robot", ","),
           *((owner, noun, "is", "to") for owner in ("the", "your", "my", "our")
             for noun in ("task", "job", "goal", "mission", "aim", "objective", "plan", "errand")),
           *((owner, noun, "is") for owner in ("the", "your", "my", "our")
