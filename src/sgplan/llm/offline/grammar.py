@@ -101,6 +101,11 @@ _CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "whi
                             "once", "whenever", "unless"})
 """Words that would continue a condition past its one action (a comma or *then* ends it)."""
 _FIRST = frozenset({"first", "firstly"})
+_VERB_IDIOMS = (("all", "the", "way"), ("a", "look"), ("a", "quick", "look"), ("a", "peek"), ("a", "glance"),
+                ("a", "quick", "peek"), ("your", "way"), ("my", "way"), ("its", "way"), ("a", "visit"),
+                ("a", "quick", "visit"), ("a", "trip"), ("a", "quick", "trip"), ("a", "detour"), ("a", "stop"),
+                ("a", "quick", "stop"), ("a", "seat"), ("a", "nap"), ("a", "rest"))
+"""Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*."""
 _FLOOR_DIRECTIONS = {"above": 1, "up": 1, "higher": 1, "upstairs": 1, "below": -1, "down": -1, "lower": -1,
                      "downstairs": -1, "beneath": -1, "under": -1}
 """``the floor above``, ``two floors down``: floors counted from the start floor."""
@@ -187,6 +192,9 @@ class MissionParser:
         self.toks: list[Tok] = []
         self.i = 0
         self.sentence_scope: list[Entity] = []
+        self.soft_scope: list[Entity] = []
+        """The rooms of a condition ("whenever you enter the bathroom, wash at the sink"): an ambiguous
+        definite object of the consequent is the one there, when exactly one is."""
         self.prior_steps: list[Step] = []
         """The steps of the previous sentence when this one continues its sequence ("... Then ...")."""
         self.last_step: Step = []
@@ -195,6 +203,8 @@ class MissionParser:
         """Reading the condition of *if* / *whenever* (where *end up in X* just means being in X)."""
         self.pending_floor: frozenset[int] | None = None
         """A floor said in the verb slot ("go upstairs to ..."), for the next noun phrase."""
+        self.going_back = False
+        """The last action said *back* / *return*: it comes after what was said before it."""
         self.strict_pending = False
         """*only after that* / *only then* was said: the next action is strictly after the step before."""
         self.confined: frozenset[int] | None = None
@@ -240,7 +250,7 @@ class MissionParser:
         all_sentences = sentences(tokenize(self.text))
         self.confined = self.confinement(all_sentences)
         for sentence in all_sentences:
-            self.toks, self.i, self.sentence_scope = sentence, 0, []
+            self.toks, self.i, self.sentence_scope, self.soft_scope = sentence, 0, [], []
             self.strict_pending = False
             previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
             precedes = self.sentence_precedes(parts)
@@ -332,6 +342,7 @@ class MissionParser:
             self.i += len(whenever)
             trigger = self.trigger()
             self.expect_comma_or_then()
+            self.soft_scope = self.rooms_of(trigger.members)
             return self.whenever(trigger, self.body())
         done = self.done_words()
         if done and self.word(done) == "with" and self.np_starts(done + 1):
@@ -347,6 +358,7 @@ class MissionParser:
             condition, tasks = self.condition()
             said_ever = self.says(_EVER, start, self.i)
             self.expect_comma_or_then()
+            self.soft_scope = self.rooms_of([m for t in tasks for m in t.members])
             start = self.i
             body = self.body()
             return self.conditional(cond_word, condition, tasks, body,
@@ -674,6 +686,8 @@ class MissionParser:
                     clause.steps[-1].extend(steps[0])  # "go to A first and (then) B": A, then the rest
                     clause.steps.extend(steps[1:] + [[]])
                     continue
+                if self.going_back and any(clause.steps[-1]):
+                    clause.steps.append([])  # "go to the kitchen and come back to the couch": after it
                 clause.steps[-1].extend(steps[0])
                 if len(steps) > 1:
                     clause.steps.extend(steps[1:])
@@ -922,13 +936,15 @@ class MissionParser:
         """Words before the noun phrase: the verb, whatever it is, unless it is refused or a word of the
         grammar itself (``always``, ``floor``, ``next`` ... out of place are errors, not verbs)."""
         seen: list[str] = []
-        while not self.done() and (not self.np_starts() or self.at("all", "the", "way")) \
+        while not self.done() and (not self.np_starts() or self.verb_idiom()) \
                 and self.word() not in (",", "and", "or", "then",
                                                                               "if", "until", "before",
                                                                               "after", "when", "without"):
             w = self.word()
-            if self.at("all", "the", "way"):  # "go all the way up to ...": how far, not where
-                self.i += 3
+            idiom = self.verb_idiom()
+            if idiom:  # "go all the way up to", "take a look at", "wash your hands at": part of the verb
+                seen += [t.text for t in self.toks[self.i : self.i + idiom]]
+                self.i += idiom
                 continue
             if w in lx.REFUSED_VERBS:
                 raise self.fail(f"cannot understand {lx.REFUSED_VERBS[w]}")
@@ -963,6 +979,25 @@ class MissionParser:
             self.i += 1
         return seen
 
+    def rooms_of(self, members: list[Formula]) -> list[Entity]:
+        """The rooms that the state formulas ``members`` put the robot in (their own or their objects')."""
+        keys = [action_entity(a) for m in members for a in atoms(m)]
+        rooms = dict.fromkeys(self.vocab.by_key[k].room_key for k in keys if k in self.vocab.by_key)
+        return [self.vocab.by_key[k] for k in rooms]
+
+    def verb_idiom(self) -> int:
+        """How many words here belong to the verb although they look like a noun phrase: ``all the way``,
+        ``a look`` / ``your way`` (*take a look at*, *make your way to*), or a body part before a place
+        (*wash your hands at the sink*); 0 if none."""
+        idiom = self.at_any(_VERB_IDIOMS)
+        if idiom is not None:
+            return len(idiom)
+        if (self.word() in ("your", "my", "his", "her", "their") and self.word(1).isalpha()
+                and self.vocab.match_head(self.words(), self.i + 1) is None
+                and self.word(2) in ("at", "using", "with", "on") and self.np_starts(3)):
+            return 2
+        return 0
+
     def relative_floor(self, word: str, candidates: list[Entity] | None = None) -> frozenset[int]:
         """The floors *upstairs* / *downstairs* mean: those above / below the start floor when it is known;
         in a two-floor building, the upper / lower floor; for a noun ("the downstairs bathroom",
@@ -990,6 +1025,7 @@ class MissionParser:
     def action(self, step_rooms: list[Entity] | None = None) -> list[Step]:
         """Verb words and noun phrases -> one or more steps (``put X in Y``, ordered lists give more)."""
         verbs = self.verb_words()
+        self.going_back = bool(set(verbs) & lx.REVISIT_VERBS)
         if not self.np_starts() and self.pending_floor is not None and self.word() in ("and", ",", "then"):
             self.i += 1  # "go upstairs and check the laptop": the laptop upstairs
             return self.action(step_rooms)
@@ -1390,7 +1426,7 @@ class MissionParser:
             nxt = self.at_any(_QUAL_NEXT)
             if nxt and self.np_starts(len(nxt)):
                 self.i += len(nxt)
-                inner = self.noun_phrase("qualifier")
+                inner = self.noun_phrase("qualifier", pronoun_kind="room")  # "the bathroom next to it"
                 if any(e.kind != "room" for e in inner.entities):
                     raise self.fail(f"'{self.span_text(first.start, inner.end)}': 'next to' is understood "
                                     f"for rooms only (distances between objects are not known); name the "
@@ -1422,6 +1458,9 @@ class MissionParser:
                 entities = [e for e in entities if e.key not in keys]
                 continue
             break
+        if (role == "goal" and self.soft_scope and head.kind == "object" and not room_scoped and mode == "the"
+                and len(entities) > 1 and len(self.vocab.inside(entities, self.soft_scope)) == 1):
+            entities, room_scoped = self.vocab.inside(entities, self.soft_scope), True
         if role != "qualifier" and scope and head.kind == "object" and not room_scoped:
             scoped = self.vocab.inside(entities, scope)
             if scoped:
