@@ -158,6 +158,8 @@ class NounPhrase:
     role: Role
     count: int | None = None
     """How many entities the phrase said ("the two beds"), if it said so."""
+    generic: bool = False
+    """The head noun was *room* / *place* (any room): *the one with ...* after it means any room too."""
 
 
 @dataclass
@@ -662,7 +664,8 @@ class MissionParser:
                     raise self.fail(f"cannot understand {lx.REFUSED_VERBS[self.word()]}")
                 # "go to the bedroom, but stop by the couch first": a step moved before the others is
                 # not in their room
-                context = [] if self.moved_first() else self.step_rooms(clause.steps[-1])
+                later = self.moved_first() or self.goes_back()  # nor is "come back to X" (after them)
+                context = [] if later else self.step_rooms(clause.steps[-1])
                 steps = self.action(step_rooms=context)
                 if self.strict_pending:
                     for task in steps[0]:
@@ -692,6 +695,15 @@ class MissionParser:
                 if len(steps) > 1:
                     clause.steps.extend(steps[1:])
         return clause
+
+    def goes_back(self) -> bool:
+        """Whether the verb words starting here say *back* / *return* ("come back to the couch")."""
+        n = 0
+        while self.word(n) in lx.POSITIVE_VERBS | lx.REVISIT_VERBS:
+            if self.word(n) in lx.REVISIT_VERBS:
+                return True
+            n += 1
+        return False
 
     def moved_first(self) -> bool:
         """Whether the action starting here ends with *first* / *before that* (looked ahead, up to the next
@@ -1096,7 +1108,7 @@ class MissionParser:
             return
         comma = 1 if said[0] == "," else 0
         said = said[comma:]
-        if len(nps) > 1 or nps[0].mode != "any":
+        if len(nps) > 1 or (nps[0].mode != "any" and len(nps[0].entities) > 1):
             raise self.fail(f"'{' '.join(said)}' after '{self.span_text(nps[0].start, nps[-1].end)}', which "
                             f"means each of them: say 'any of ...' or 'A or B' for a choice")
         self.i += comma + len(said)
@@ -1475,8 +1487,7 @@ class MissionParser:
                                 f"two, or name its room ('the {head_word(entities)} in the ...')")
         last = self.toks[self.i - 1]
         np = NounPhrase(self.span_text(first.start, last.end), first.start, last.end, entities, mode,
-                        room_scoped, role,
-                        count)
+                        room_scoped, role, count, head.kind == "room" and not head.categories)
         self.check(np, head, count)
         return self.record(np)
 
@@ -1557,6 +1568,8 @@ class MissionParser:
         """The kind and category of the last room or object named (what *the other one* refers to)."""
         for np in sorted(self.references, key=lambda r: r.start, reverse=True):
             categories = {e.category for e in np.entities}
+            if np.role != "qualifier" and np.generic:  # "the room where the book is, then the one ..."
+                return Head("room", frozenset(), False, 1)
             if np.role != "qualifier" and np.entities and len(categories) == 1:
                 return Head(np.entities[0].kind, frozenset(categories), False, 1)
         return None
