@@ -285,6 +285,39 @@ def test_negating_words_are_never_read_as_verbs(demo, text):
         PatternTranslator().translate(text, demo)
 
 
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        # 'prior' was taken for a verb, and the order was lost
+        ("Visit the office prior to the kitchen.", "F(r12 & F r4)"),
+        ("Prior to visiting the office, check the couch.", "F(o22 & F r12)"),
+        ("Start with the fridge, then go to the couch.", "F(o15 & F o22)"),
+        ("To start, check the oven. To finish, go to the bedroom with the book.", "F(o16 & F r13)"),
+        ("Go to the fridge. Last of all, visit the office.", "F(o15 & F r12)"),
+        ("As soon as you've been to the kitchen, go to the couch.", "F(r4 & F o22)"),
+        ("Don't go anywhere near the kitchen. Visit the couch.", "G !r4 & F o22"),
+        ("Check the TV along with the clock in the living room.", "F o23 & F o26"),
+        ("Go to the kitchen and the dining room, and the office last.", "F(r4 & F r12) & F(r7 & F r12)"),
+        ("Check the fridge and the couch. Visit the office last.", "F(o15 & F r12) & F(o22 & F r12)"),
+    ],
+)
+def test_order_phrases(demo, text, gold):
+    means(text, gold, demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("Visit the office last, and the kitchen.", "'last' followed by"),
+        ("Go to the kitchen; otherwise go to the office.", "'otherwise'"),
+        ("Sometimes check the fridge.", "'sometimes'"),
+        ("Go to the last room.", "'last'"),
+    ],
+)
+def test_order_and_frequency_words_refused(demo, text, fragment):
+    refused(text, fragment, demo)
+
+
 # ------------------------------------------------------------------ the everyday set, scored
 @cache
 def building_of(scene: str) -> Building:

@@ -26,7 +26,7 @@ from sgplan.errors import MissionError
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.compose import Step, Task, conj, disj, sequence_formula, strict_formulas
 from sgplan.llm.offline.names import Entity, Head, SceneVocabulary
-from sgplan.llm.offline.text import Tok, sentences, tokenize
+from sgplan.llm.offline.text import Tok, rewrite, sentences, tokenize
 from sgplan.logic.formula import Always, And, Atom, Eventually, Formula, Implies, Not, Until, atoms
 from sgplan.logic.tokens import action_entity
 
@@ -205,6 +205,8 @@ class MissionParser:
         """Reading the condition of *if* / *whenever* (where *end up in X* just means being in X)."""
         self.pending_floor: frozenset[int] | None = None
         """A floor said in the verb slot ("go upstairs to ..."), for the next noun phrase."""
+        self.said_last = False
+        """The sentence ended with *last* ("visit the office last"): its last step follows all else."""
         self.going_back = False
         """The last action said *back* / *return*: it comes after what was said before it."""
         self.strict_pending = False
@@ -249,7 +251,7 @@ class MissionParser:
     # -- the mission ------------------------------------------------------------------------------------
     def parse(self) -> Formula:
         parts: list[Clause | Formula] = []
-        all_sentences = sentences(tokenize(self.text))
+        all_sentences = sentences(rewrite(tokenize(self.text), lx.PHRASE_ALIASES))
         self.confined = self.confinement(all_sentences)
         for sentence in all_sentences:
             self.toks, self.i, self.sentence_scope, self.soft_scope = sentence, 0, [], []
@@ -258,7 +260,11 @@ class MissionParser:
             precedes = self.sentence_precedes(parts)
             continues = self.skip_fillers(sequence_too=True)
             self.prior_steps = previous.steps if continues and previous is not None else []
+            self.said_last = False
             result = self.sentence()
+            if self.said_last and not continues and not precedes and previous is not None:
+                continues = True  # "Go to the office last.": after the goals of the sentences before
+                self.prior_steps = previous.steps
             if (isinstance(result, Clause) and not any(result.steps) and not result.constraints and previous
                     and "order" in self.words() and len([s for s in previous.steps if s]) > 1):
                 raise self.fail("'the order does not matter' after goals given in order; say which it is")
@@ -689,6 +695,14 @@ class MissionParser:
                     clause.steps[-1].extend(steps[0])  # "go to A first and (then) B": A, then the rest
                     clause.steps.extend(steps[1:] + [[]])
                     continue
+                if self.said_last:  # "... and the office last": after everything else said
+                    self.skip_fillers()
+                    if not self.done():
+                        raise self.fail(f"'last' followed by {self.here()}: put the goals in the order they "
+                                        f"must be done (with 'then'), or say 'finally'")
+                    clause.steps[-1].extend(steps[0])
+                    clause.steps.extend([*steps[1:], []])
+                    continue
                 if self.going_back and any(clause.steps[-1]):
                     clause.steps.append([])  # "go to the kitchen and come back to the couch": after it
                 clause.steps[-1].extend(steps[0])
@@ -1060,6 +1074,10 @@ class MissionParser:
         steps: list[Step] = [[]] if carry and pronoun_only else self.tasks_of(nps, ordered is not None)
         if lead:
             steps = [steps[0][:1], steps[0][1:]]
+        if self.word() in ("last", "lastly") and self.word(1) in ("", ",") and len(steps) == 1:
+            self.i += 1  # "the kitchen and the office last": the office after the rest
+            self.said_last = True
+            steps = [steps[0][:-1], steps[0][-1:]]
         self.revisits(nps, steps, verbs)
         self.skip_particles()
         # "put X in Y", "take X to Y", "go from X to Y", and any object followed by "to Y": X, then Y.

@@ -165,6 +165,24 @@ REFUSED_VERBS: dict[str, str] = {
     "quit": "'quit'",
     "prevent": "'prevent' (say 'never enter X')",
     "stopping": "'stopping' (say 'visit X' or 'never enter X')",
+    "otherwise": "'otherwise' (alternatives between actions are not understood; say 'visit A or B')",
+    "else": "'else' (alternatives between actions are not understood; say 'visit A or B')",
+    "alternatively": "'alternatively' (say 'visit A or B')",
+    "sometimes": "'sometimes' (say what must happen)",
+    "occasionally": "'occasionally' (say what must happen)",
+    "often": "'often' (say what must happen)",
+    "usually": "'usually' (say what must happen)",
+    "normally": "'normally' (say what must happen)",
+    "mostly": "'mostly' (say what must happen)",
+    "almost": "'almost'",
+    "nearly": "'nearly'",
+    "repeatedly": "'repeatedly' (say 'twice' or 'three times')",
+    "continuously": "'continuously'",
+    "constantly": "'constantly'",
+    "regularly": "'regularly'",
+    "again and again": "'again and again'",
+    "unnecessarily": "'unnecessarily'",
+    "briefly": "'briefly'",
 }
 """Words that would silently change the meaning if read as ordinary words: refused with a reason."""
 
@@ -272,3 +290,35 @@ def plural(word: str) -> str:
     else:
         out = last + "s"
     return f"{head} {out}" if head else out
+
+
+PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
+    ("prior", "to"): ("before",),
+    ("ahead", "of"): ("before",),
+    ("in", "advance", "of"): ("before",),
+    ("as", "soon", "as"): ("once",),
+    ("the", "moment"): ("once",),
+    ("right", "after"): ("after",),
+    ("straight", "after"): ("after",),
+    ("immediately", "after"): ("after",),
+    ("start", "with"): ("first",),
+    ("begin", "with"): ("first",),
+    ("start", "off", "with"): ("first",),
+    ("to", "start", ","): ("first", ","),
+    ("to", "begin", ","): ("first", ","),
+    ("to", "start", "with", ","): ("first", ","),
+    ("to", "begin", "with", ","): ("first", ","),
+    ("first", "of", "all"): ("first",),
+    ("first", "off"): ("first",),
+    ("last", "of", "all"): ("finally",),
+    ("to", "finish", ","): ("finally", ","),
+    ("to", "finish", "off", ","): ("finally", ","),
+    ("to", "wrap", "up", ","): ("finally", ","),
+    ("along", "with"): ("and",),
+    ("together", "with"): ("and",),
+    ("plus",): ("and",),
+    ("anywhere", "near"): ("into",),
+    ("and", "also"): ("and",),
+}
+"""Phrases read as another (``prior to`` is ``before``, ``as soon as`` is ``once``), rewritten on the tokens
+before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase is taken for a verb."""

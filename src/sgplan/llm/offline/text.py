@@ -69,3 +69,23 @@ def sentences(tokens: list[Tok]) -> list[list[Tok]]:
             parts[-1].append(tok)
         i += 1
     return [p for p in parts if p]
+
+
+def rewrite(tokens: list[Tok], aliases: dict[tuple[str, ...], tuple[str, ...]]) -> list[Tok]:
+    """``tokens`` with every phrase of ``aliases`` (longest first, left to right) replaced by its reading;
+    each new token spans the whole phrase it replaces, so messages still quote the user's words."""
+    longest = max((len(k) for k in aliases), default=0)
+    out: list[Tok] = []
+    i = 0
+    while i < len(tokens):
+        for n in range(min(longest, len(tokens) - i), 0, -1):
+            reading = aliases.get(tuple(t.text for t in tokens[i : i + n]))
+            if reading is not None:
+                start, end = tokens[i].start, tokens[i + n - 1].end
+                out += [Tok(w, start, end) for w in reading]
+                i += n
+                break
+        else:
+            out.append(tokens[i])
+            i += 1
+    return out
