@@ -260,6 +260,29 @@ def test_room_context(demo, text, gold):
 @pytest.mark.parametrize(
     ("text", "gold"),
     [
+        ("Whenever you visit the kitchen, grab the bowl there.", "G(r4 -> F o19)"),
+        ("Go to the bedroom with the book and check the chair there.", "F o38"),
+        ("Go to the couch, and whenever you're in the dining room, look at the table.", "F o22 & G(r7 -> F o27)"),
+        ("Check the TV, but if you go into the kitchen, open the fridge.", "F o23 & (F r4 -> F o15)"),
+        ("Go to the laptop, and if you ever enter the bathroom upstairs, visit the kitchen afterwards.",
+         "F o35 & G(r14 -> F r4)"),
+        ("Whenever you enter the bathroom upstairs, use any sink.", "G(r14 -> F(o17 | o21 | o41))"),
+    ],
+)
+def test_conditions_and_there(demo, text, gold):
+    means(text, gold, demo)
+
+
+def test_an_object_after_a_condition_that_may_or_may_not_be_there_is_refused(demo):
+    # the bedroom's clock or any clock? (the living room has one too)
+    refused("Whenever you go into the bedroom with the teddy bear, check a clock.", "the ones there, or any",
+            demo)
+    refused("If you enter the living room, water the plants.", "the ones there, or any", demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
         # was read as two goals before: 'neither' and 'nor' were taken for verbs
         ("Go to neither the kitchen nor the office, but visit the couch.", "F o22 & G !r4 & G !r12"),
         ("Neither enter the kitchen nor go to the office. Check the TV.", "G !r4 & G !r12 & F o23"),

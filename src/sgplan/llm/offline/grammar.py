@@ -443,10 +443,17 @@ class MissionParser:
             before = Clause(steps=self.action())
             self.expect_end()
             return self.only_after(before, body)
+        joined = self.word(-1) in ("and", "but")  # "S, and whenever X, T" / "S, but if X, T"
         whenever = self.at_any(_WHENEVER)
         if whenever is not None:
             self.i += len(whenever)
             trigger = self.trigger()
+            if joined and self.word() in (",", "then") and self.word(1):
+                self.expect_comma_or_then()
+                self.soft_scope = self.rooms_of(trigger.members)
+                consequent = self.body()
+                self.expect_end()
+                return conj([self.require(body, "before the condition"), self.whenever(trigger, consequent)])
             self.expect_end()
             return self.whenever(trigger, body)
         if self.at("only", "if"):
@@ -459,6 +466,16 @@ class MissionParser:
             self.i += len(cond_word.split())
             start = self.i
             condition, tasks = self.condition()
+            if joined and self.word() in (",", "then") and self.word(1):
+                said_ever = self.says(_EVER, start, self.i)
+                self.expect_comma_or_then()
+                self.soft_scope = self.rooms_of([m for t in tasks for m in t.members])
+                start = self.i
+                consequent = self.body()
+                self.expect_end()
+                response = said_ever or self.says(_AFTERWARDS, start, self.i)
+                return conj([self.require(body, "before the condition"),
+                             self.conditional(cond_word, condition, tasks, consequent, response)])
             response = self.says(_EVER, start, self.i) or self.says(_AFTERWARDS, 0, start)
             self.expect_end()
             return self.conditional(cond_word, condition, tasks, body, response)
@@ -1419,6 +1436,12 @@ class MissionParser:
                 inner.entities = [r for r in inner.entities if any(e.room_key == r.key for e in entities)]
                 room_scoped = True
                 continue
+            if (self.word() == "there" and head.kind == "object" and role == "goal" and not room_scoped
+                    and self.word(1) not in ("is", "are", "was", "were")):
+                self.i += 1  # "grab a bottle there": in the room of the place named last
+                entities = self.vocab.inside(entities, self.there_rooms(first.start))
+                room_scoped = True
+                continue
             held = self.relative_contents(head) if head.kind == "room" else None
             if held is not None:  # "the room where the book is", "the room the book is in"
                 entities = self.vocab.containing(entities, held.entities, None)
@@ -1488,9 +1511,15 @@ class MissionParser:
                 entities = [e for e in entities if e.key not in keys]
                 continue
             break
-        if (role == "goal" and self.soft_scope and head.kind == "object" and not room_scoped and mode == "the"
-                and len(entities) > 1 and len(self.vocab.inside(entities, self.soft_scope)) == 1):
-            entities, room_scoped = self.vocab.inside(entities, self.soft_scope), True
+        there = self.vocab.inside(entities, self.soft_scope) if role == "goal" and head.kind == "object" else []
+        if not room_scoped and mode == "the" and not head.plural and len(entities) > 1 and len(there) == 1:
+            entities, room_scoped = there, True
+        elif not room_scoped and 0 < len(there) < len(entities) and first.text in ("the", "a", "an"):
+            where = " or ".join(f"{r.key} ({r.category})" for r in self.soft_scope)
+            noun = lx.plural(head_word(entities)) if head.plural else head_word(entities)
+            raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}' after a condition on "
+                            f"{where}: the ones there, or any in the building? Say 'the {noun} in the "
+                            f"{self.soft_scope[0].category}' or 'any {head_word(entities)}'")
         if role != "qualifier" and scope and head.kind == "object" and not room_scoped:
             scoped = self.vocab.inside(entities, scope)
             if scoped:
@@ -1572,6 +1601,16 @@ class MissionParser:
             return False
         self.i += 1
         return True
+
+    def there_rooms(self, before: int) -> list[Entity]:
+        """The rooms *there* means at character offset ``before``: those of the last place named as a goal
+        or a condition before it ("whenever you enter the kitchen, grab a bottle there")."""
+        places = [r for r in self.references if r.role in ("goal", "condition") and r.start < before
+                  and r.entities and r.phrase.lower() not in lx.PRONOUNS]
+        if not places:
+            raise self.fail("'there' does not refer to any place named before it")
+        last = max(places, key=lambda r: r.start)
+        return [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in last.entities)]
 
     def floor_place(self, first: Tok, floors: frozenset[int], mode: Mode | None, role: Role) -> NounPhrase:
         """``the top floor`` as a place: any of its rooms as a goal or condition, all of them to avoid."""
