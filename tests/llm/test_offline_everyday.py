@@ -298,6 +298,19 @@ def test_negations(demo, text, gold):
     means(text, gold, demo)
 
 
+def test_negations_typed_without_apostrophe(demo):
+    # 'dont' was taken for a verb, and the kitchen became a goal
+    means("go to the couch but dont go in the kitchen", "F o22 & G !r4", demo)
+    means("Check the TV. You cant enter the office.", "F o23 & G !r12", demo)
+
+
+def test_one_of_the_n(demo):
+    means("Sit on one of the two chairs in the dining room, then visit the kitchen.", "F((o28 | o29) & F r4)",
+          demo)
+    refused("Go to one of the three bedrooms.", "should be 3 rooms but matches 2", demo)
+    refused("Go to any two bedrooms.", "choosing a number of them is not understood", demo)
+
+
 @pytest.mark.parametrize(
     "text",
     ["Go to the kitchen, nor the office.", "Go to the kitchen and nothing else.",
@@ -338,6 +351,32 @@ def test_order_phrases(demo, text, gold):
     ],
 )
 def test_order_and_frequency_words_refused(demo, text, fragment):
+    refused(text, fragment, demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Go to the office, and on the way stop at the kitchen.", "F(r4 & F r12)"),
+        ("Go to the bathroom upstairs, checking the TV on the way.", "F(o23 & F r14)"),
+        ("Go to the couch, then the office, and look at the clock in the bedroom on your way.",
+         "F(o22 & F(o33 & F r12))"),
+        ("Visit the dining room; on the way, check the fridge.", "F(o15 & F r7)"),
+        ("Go to the bedroom with the book. On your way there, grab the bottle.", "F(o42 & F r13)"),
+    ],
+)
+def test_on_the_way(demo, text, gold):
+    means(text, gold, demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("Go to the kitchen and the office. On the way, check the TV.", "on the way to which"),
+        ("On the way, check the TV.", "needs the goal it is on the way to"),
+    ],
+)
+def test_on_the_way_refused(demo, text, fragment):
     refused(text, fragment, demo)
 
 

@@ -448,8 +448,11 @@ def test_up_there_is_the_floor_of_the_last_goal(demo):
     refused("Use the sink up there.", "'up there' does not refer", demo)
 
 
-def test_on_your_way_there_is_refused(demo):
-    refused("Go to the office. On your way there, touch the teddy bear.", "on your way there", demo)
+def test_on_your_way_there(demo):
+    # before the one goal named last; after several goals it is not clear on the way to which
+    means("Go to the office. On your way there, touch the teddy bear.", "F(o32 & F r12)", demo)
+    refused("Go to the office and the kitchen. On your way there, touch the teddy bear.",
+            "on the way to which", demo)
 
 
 @pytest.mark.gibson

@@ -205,6 +205,8 @@ class MissionParser:
         """Reading the condition of *if* / *whenever* (where *end up in X* just means being in X)."""
         self.pending_floor: frozenset[int] | None = None
         """A floor said in the verb slot ("go upstairs to ..."), for the next noun phrase."""
+        self.waypoint_pending = False
+        """*On the way (there),* was said: the next action comes before the goal named last."""
         self.said_last = False
         """The sentence ended with *last* ("visit the office last"): its last step follows all else."""
         self.going_back = False
@@ -255,6 +257,7 @@ class MissionParser:
         self.confined = self.confinement(all_sentences)
         for sentence in all_sentences:
             self.toks, self.i, self.sentence_scope, self.soft_scope = sentence, 0, [], []
+            self.waypoint_pending = False
             self.strict_pending = False
             previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
             precedes = self.sentence_precedes(parts)
@@ -318,9 +321,14 @@ class MissionParser:
                 continue
             seq = self.at_any(_SEQ_WORDS) if sequence_too else None
             way = self.at_any(_ON_THE_WAY)
-            if way is not None and self.word(len(way)) == "there":
+            n = len(way or ()) + (1 if self.word(len(way or ())) == "there" else 0)
+            if sequence_too and way is not None and (self.word(n) == "," or self.word(n) in lx.POSITIVE_VERBS
+                                                     and self.word(n) not in _WAY_BACK | {"to", "into"}):
+                self.i += n  # "On the way (there), stop at X": X before the goal named last
+                self.waypoint_pending = seen_sequence = True
+            elif way is not None and self.word(len(way)) == "there":
                 raise self.fail("'on your way there': say 'before going to X, ...' or put the goals in order")
-            if sequence_too and way is not None and self.word(len(way)) in _WAY_BACK:
+            elif sequence_too and way is not None and self.word(len(way)) in _WAY_BACK:
                 self.i += len(way)
                 while self.word() in _WAY_BACK:
                     self.i += 1
@@ -694,6 +702,10 @@ class MissionParser:
                     for task in steps[0]:
                         task.strict = True
                     self.strict_pending = False
+                if self.waypoint_pending or self.on_the_way_after():
+                    self.waypoint_pending = False
+                    self.insert_on_the_way(clause, steps)
+                    continue
                 self.check_revisits(steps[0], self.prior_steps + clause.steps[:-1])
                 before_that = self.at("before", "that") and self.word(2) in ("", ",", "and", "then")
                 if self.word() in _FIRST or before_that:  # "go to B, but go to A first / before that"
@@ -737,15 +749,45 @@ class MissionParser:
         return False
 
     def moved_first(self) -> bool:
-        """Whether the action starting here ends with *first* / *before that* (looked ahead, up to the next
-        comma, *then* or *but*): it is then done before the step it is written after."""
+        """Whether the action starting here ends with *first* / *before that* / *on the way* (looked ahead,
+        up to the next comma, *then* or *but*): it is then done before the step it is written after."""
         for j in range(self.i, len(self.toks)):
             w = self.toks[j].text
             if w in _FIRST or (w == "before" and self.word(j - self.i + 1) == "that"):
                 return True
+            way = self.at_any(_ON_THE_WAY, k=j - self.i)
+            if way is not None and self.word(j - self.i + len(way)) in ("", ",", "there", "and", "then"):
+                return True  # "check the couch on the way": before the step
             if w in (",", "then", "but", "after", "before", "if", "until", "when", "whenever"):
                 return False
         return False
+
+    def on_the_way_after(self) -> bool:
+        """``stop at X on the way (there)`` / ``on your way``, ending the action: consumed, True."""
+        way = self.at_any(_ON_THE_WAY)
+        if way is None:
+            return False
+        n = len(way) + (1 if self.word(len(way)) == "there" else 0)
+        if self.word(n) not in ("", ",", "and", "then"):
+            return False
+        self.i += n
+        return True
+
+    def insert_on_the_way(self, clause: Clause, steps: list[Step]) -> None:
+        """Put ``steps`` (said *on the way*) right before the goal named last, in this sentence or the one
+        it continues; refused when that goal is not one place (on the way to which?)."""
+        new = [s for s in steps if s]
+        for holder in (clause.steps, self.prior_steps):
+            filled = [k for k, s in enumerate(holder) if s]
+            if filled:
+                k = filled[-1]
+                if len(holder[k]) != 1 or self.prior_steps is holder and clause.steps != [[]] and any(
+                        clause.steps):
+                    raise self.fail("'on the way' after several goals: it is not clear on the way to which; "
+                                    "put the goals in the order they must be done (with 'then')")
+                holder[k:k] = new
+                return
+        raise self.fail("'on the way' needs the goal it is on the way to, named before it")
 
     def waypoint(self, clause: Clause) -> None:
         """``go to Y via X`` / ``..., passing through X``: X on the way, before the one goal Y just named."""
@@ -1696,9 +1738,11 @@ class MissionParser:
         w = self.word()
         mode: Mode | None = None
         count: int | None = None
+        chosen_from = False
         if w in ("one", "any", "either") and self.word(1) == "of":
             self.i += 2
             mode = "any"
+            chosen_from = self.word() in ("the", "these", "those")  # "one of the two bathrooms"
         elif w in ("a", "an", "any", "some", "either"):
             self.i += 1
             mode = "any"
@@ -1714,6 +1758,8 @@ class MissionParser:
             self.i += 1
         counted = self.np_starts(1) or self.vocab.match_head(self.words(), self.i + 1)
         n = self.count_word() if counted else None
+        if n is not None and chosen_from:
+            return mode, n  # one of them, and there must be n
         if n is not None:
             if mode in (None, "any"):
                 raise self.fail(f"'{self.word(-1)} ...': choosing a number of them is not understood; "

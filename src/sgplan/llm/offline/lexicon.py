@@ -164,7 +164,6 @@ REFUSED_VERBS: dict[str, str] = {
     "cease": "'cease'",
     "quit": "'quit'",
     "prevent": "'prevent' (say 'never enter X')",
-    "stopping": "'stopping' (say 'visit X' or 'never enter X')",
     "otherwise": "'otherwise' (alternatives between actions are not understood; say 'visit A or B')",
     "else": "'else' (alternatives between actions are not understood; say 'visit A or B')",
     "alternatively": "'alternatively' (say 'visit A or B')",

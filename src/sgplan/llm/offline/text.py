@@ -17,6 +17,10 @@ _NEGATED = {"don": "do", "doesn": "does", "didn": "did", "can": "can", "won": "w
             "wouldn": "would",
             "couldn": "could", "shan": "shall", "mayn": "may"}
 SENTENCE_END = frozenset(".;:!?")
+_BARE_NEGATED = {"dont": "do", "doesnt": "does", "didnt": "did", "cant": "can", "wont": "will",
+                 "mustnt": "must", "shouldnt": "should", "isnt": "is", "arent": "are", "havent": "have",
+                 "hasnt": "has", "wouldnt": "would", "couldnt": "could", "neednt": "need"}
+"""Negated auxiliaries typed without their apostrophe: read as ``do not`` ... (never as a verb)."""
 
 
 @dataclass(frozen=True)
@@ -34,7 +38,9 @@ def tokenize(text: str) -> list[Tok]:
     lowered = text.lower().replace("\u2019", "'")
     for m in _WORD.finditer(lowered):
         word, start, end = m.group(0), m.start(), m.end()
-        if word.endswith("n't"):
+        if word in _BARE_NEGATED:  # "dont", "cant": typed without the apostrophe
+            out += [Tok(_BARE_NEGATED[word], start, end), Tok("not", start, end)]
+        elif word.endswith("n't"):
             stem = word[:-3]
             out += [Tok(_NEGATED.get(stem + "n", stem), start, end), Tok("not", start, end)]
         elif word.endswith("'s") and len(word) > 2:
