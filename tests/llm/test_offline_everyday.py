@@ -370,6 +370,43 @@ def test_on_the_way(demo, text, gold):
 
 
 @pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        # a list joined by commas only, followed by 'then', is done in the order written (was: any order)
+        ("Go to the fridge, the oven, then the couch.", "F(o15 & F(o16 & F o22))"),
+        ("Go to the kitchen, pop up to the office, then come back down to the living room.",
+         "F(r4 & F(r12 & F r6))"),
+        ("Go to the kitchen, grab the bowl, then bring it to the dining table.", "F(r4 & F(o19 & F o27))"),
+        # an order remark or an 'and' keeps the set unordered, as before
+        ("Open the fridge, wash the bowl (in any order), then go to the office.", "F(o15 & F r12) & F(o19 & F r12)"),
+        ("Check the oven and the microwave, then the couch.", "F(o16 & F o22) & F(o18 & F o22)"),
+        ("Open the fridge, go to the couch.", "F o15 & F o22"),
+    ],
+)
+def test_comma_lists_before_then(demo, text, gold):
+    means(text, gold, demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Go to the bedroom with the book and the chair.", None),  # one room with both, or the chair too?
+        ("Go to the bedroom with the book and the kitchen.", "F r13 & F r4"),
+    ],
+)
+def test_contents_or_another_goal(demo, text, gold):
+    if gold is None:
+        refused(text, "a room with both, or", demo)
+    else:
+        means(text, gold, demo)
+
+
+def test_contents_that_narrow_are_contents(gibson_benevolence):
+    # both bedrooms have a book; only room_7 has the vase too
+    means("Go to the bedroom with the book and the vase.", "F r7", gibson_benevolence)
+
+
+@pytest.mark.parametrize(
     ("text", "fragment"),
     [
         ("Go to the kitchen and the office. On the way, check the TV.", "on the way to which"),

@@ -101,6 +101,9 @@ _CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "whi
                             "once", "whenever", "unless"})
 """Words that would continue a condition past its one action (a comma or *then* ends it)."""
 _FIRST = frozenset({"first", "firstly"})
+_THEN_NEXT = (("then",), ("and", "then"), ("finally",), ("and", "finally"), ("after", "that"),
+              ("afterwards",), ("lastly",))
+"""After a list joined by commas only: the list is a sequence too ("A, B, then C")."""
 _VERB_IDIOMS = (("all", "the", "way"), ("a", "look"), ("a", "quick", "look"), ("a", "peek"), ("a", "glance"),
                 ("a", "quick", "peek"), ("your", "way"), ("my", "way"), ("its", "way"), ("a", "visit"),
                 ("a", "quick", "visit"), ("a", "trip"), ("a", "quick", "trip"), ("a", "detour"), ("a", "stop"),
@@ -209,6 +212,12 @@ class MissionParser:
         """*On the way (there),* was said: the next action comes before the goal named last."""
         self.said_last = False
         """The sentence ended with *last* ("visit the office last"): its last step follows all else."""
+        self.lenient_scope = False
+        self.carried_rooms: list[Entity] = []
+        """The rooms of the step before a comma that made a sequence ("go to the kitchen, take a bottle,
+        then ..."): objects of the next action are looked for there first (leniently: elsewhere if none)."""
+        self.comma_list = False
+        """The last noun phrase list was joined by commas only ("the fridge, the oven")."""
         self.going_back = False
         """The last action said *back* / *return*: it comes after what was said before it."""
         self.strict_pending = False
@@ -657,6 +666,11 @@ class MissionParser:
             if any(clause.steps) and (self.word() in _FIRST or self.at("before", "that")):
                 self.goals_first(clause)
                 continue
+            if self.word() == "," and any(clause.steps[-1]) and self.comma_sequence():
+                self.i += 1  # "go to the kitchen, pop up to the bedroom, then ...": one after the other
+                self.carried_rooms = self.step_rooms(clause.steps[-1])
+                clause.steps.append([])
+                continue
             before = self.i
             if self.skip_fillers(sequence_too=True):
                 if clause.steps[-1]:
@@ -697,7 +711,10 @@ class MissionParser:
                 # not in their room
                 later = self.moved_first() or self.goes_back()  # nor is "come back to X" (after them)
                 context = [] if later else self.step_rooms(clause.steps[-1])
-                steps = self.action(step_rooms=context)
+                # "go to the kitchen, take a bottle, then ...": the kitchen's bottle if it has one
+                self.lenient_scope = not context and bool(self.carried_rooms) and not later
+                steps = self.action(step_rooms=context or (self.carried_rooms if self.lenient_scope else []))
+                self.lenient_scope, self.carried_rooms = False, []
                 if self.strict_pending:
                     for task in steps[0]:
                         task.strict = True
@@ -738,6 +755,22 @@ class MissionParser:
                 if len(steps) > 1:
                     clause.steps.extend(steps[1:])
         return clause
+
+    def comma_sequence(self) -> bool:
+        """At a comma between two actions (``go to the kitchen, pop up to the bedroom, then ...``): whether
+        a *then* / *finally* / *after that* follows later in the sentence, which makes the comma-joined
+        actions a sequence too, as people write them."""
+        nxt = self.word(1)
+        if not nxt.isalpha() or self.np_starts(1) or nxt in _STRUCTURAL \
+                or (nxt in lx.FILLERS and nxt not in lx.POSITIVE_VERBS) \
+                or nxt in lx.REFUSED_VERBS or self.at_any(_NEG_STARTS, k=1) or self.at_any(_WAYPOINT, k=1):
+            return False
+        for j in range(self.i + 1, len(self.toks)):
+            if self.toks[j].text in ("if", "whenever", "until", "unless", "when", "while", "order", "whichever"):
+                return False  # a condition, or "(in any order)" / "whichever first": not a sequence
+            if self.at_any(_THEN_NEXT, k=j - self.i) and (j == 0 or self.toks[j - 1].text in (",", "and")):
+                return True
+        return False
 
     def goes_back(self) -> bool:
         """Whether the verb words starting here say *back* / *return* ("come back to the couch")."""
@@ -1128,6 +1161,8 @@ class MissionParser:
         ordered = self.at_any(lx.ORDER_MODIFIERS, k=comma)
         if ordered:
             self.i += comma + len(ordered)
+        elif self.comma_list and len(nps) > 1 and self.at_any(_THEN_NEXT, k=comma):
+            ordered = ("then",)  # "the fridge, the oven, then the couch": one after the other, as written
         pronoun_only = all(np.phrase.lower() in lx.PRONOUNS for np in nps)
         # "put it in Y": the object is already in hand, the goal is Y, after what came before.
         steps: list[Step] = [[]] if carry and pronoun_only else self.tasks_of(nps, ordered is not None)
@@ -1334,6 +1369,7 @@ class MissionParser:
             else:
                 break
             nps.append(self.noun_phrase(role, scope))
+        self.comma_list = len(nps) > 1 and not joiners and not either
         if "nor" in joiners:
             if role != "avoid" or len(joiners) > 1:
                 raise self.fail(f"'nor' in '{self.span_text(nps[0].start, nps[-1].end)}' is understood only in "
@@ -1517,6 +1553,7 @@ class MissionParser:
                                                  only="only" in contains)
                 inner.entities = [o for o in inner.entities if any(o.room_key == r.key for r in entities)]
                 self.skip_in_it()
+                entities = self.more_contents(first, entities)
                 continue
             nxt = self.at_any(_QUAL_NEXT)
             if nxt and self.np_starts(len(nxt)):
@@ -1566,7 +1603,7 @@ class MissionParser:
             scoped = self.vocab.inside(entities, scope)
             if scoped:
                 entities, room_scoped = scoped, True
-            elif role == "goal" and entities:
+            elif role == "goal" and entities and not self.lenient_scope:
                 # "go to the lobby and sit on the couch" where the lobby has no couch: another room's couch
                 # is not what was asked for.
                 where = " or ".join(f"{r.key} ({r.category})" for r in scope)
@@ -1579,6 +1616,32 @@ class MissionParser:
                         room_scoped, role, count, head.kind == "room" and not head.categories)
         self.check(np, head, count)
         return self.record(np)
+
+    def more_contents(self, first: Tok, rooms: list[Entity]) -> list[Entity]:
+        """After ``the bedroom with the book``: ``and the vase`` may say more of its contents, or name
+        another goal. When the rooms are still several and the object narrows them, it is contents
+        (consumed); when one room is left and it holds that object too, either reading fits, which is
+        refused; otherwise nothing is consumed (another goal)."""
+        if self.word() != "and" or not self.np_starts(1) or role_is_pronoun(self.word(1)):
+            return rooms
+        save, known = self.i, len(self.references)
+        self.i += 1
+        try:
+            inner = self.noun_phrase("qualifier")
+        except MissionError:
+            inner = None
+        holders = ([] if inner is None or any(e.kind != "object" for e in inner.entities)
+                   else self.vocab.containing(rooms, inner.entities, None))
+        if len(rooms) > 1 and 0 < len(holders) < len(rooms):
+            self.skip_in_it()
+            return holders
+        if len(rooms) == 1 and holders and inner is not None:
+            raise self.fail(f"'{self.span_text(first.start, inner.end)}': a room with both, or "
+                            f"'{inner.phrase}' as another goal? Say 'the ... that has both ...', or 'then' "
+                            f"before '{inner.phrase}'")
+        del self.references[known:]
+        self.i = save
+        return rooms
 
     def relative_contents(self, head: Head) -> NounPhrase | None:
         """``where the book is`` / ``in which the book is`` / ``(that) the book is in`` after a room head:
@@ -1998,6 +2061,11 @@ class MissionParser:
                 if unique:
                     return f"say what it contains (e.g. 'the {word} with the {unique[0]}')"
         return f"say 'any {word}' or 'every {word}', or name it by its ID (e.g. {ents[0].key})"
+
+
+def role_is_pronoun(word: str) -> bool:
+    """Whether ``word`` is a pronoun (``and it`` never adds to a room's contents)."""
+    return word in lx.PRONOUNS
 
 
 def head_word(entities: list[Entity]) -> str:
