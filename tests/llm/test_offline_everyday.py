@@ -155,8 +155,19 @@ def test_floors_counted_from_the_start(demo, text, gold, start):
 def test_floors_counted_from_the_start_need_it_and_stay_unambiguous(demo):
     refused("Go to the floor above.", "depends on where the robot starts", demo)
     refused("Go to the bathroom two floors up.", "has floors 0 to 1", demo, 0)
-    # after a goal on another floor, 'the floor below' could be counted from there
-    refused("Go to the office, then to the floor below.", "relative to the start (floor 0) or to there", demo, 0)
+    # after a goal on another floor, 'the floor below' could be counted from there: both readings must agree
+    refused("Go to the office, then to the floor below.", "the robot starts on floor 0", demo, 0)
+    means("Go to the office, then downstairs to the kitchen.", "F(r12 & F r4)", demo, 1)
+
+
+def test_relative_floors_after_moving(gibson_collierville):
+    # start on floor 1; the garage is on floor 0: 'upstairs' from the start or from the garage
+    means("Go downstairs to the garage, then upstairs to the bedroom with the plant.", "F(r13 & F r7)",
+          gibson_collierville, 1)
+    refused("Go downstairs to the garage, then upstairs to the kitchen.", "The two differ here",
+            gibson_collierville, 1)
+    refused("Go to the bedroom with the plant, then go down one floor to the kitchen.", "The two differ here",
+            gibson_collierville, 1)
 
 
 def test_downstairs_as_a_name_in_a_taller_building(gibson_benevolence):
@@ -451,3 +462,8 @@ def test_everyday_gibson_missions(gibson_root):
 @pytest.fixture(scope="module")
 def gibson_benevolence(gibson_root) -> Building:
     return building_of("Benevolence")
+
+
+@pytest.fixture(scope="module")
+def gibson_collierville(gibson_root) -> Building:
+    return building_of("Collierville")

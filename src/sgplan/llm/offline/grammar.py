@@ -19,6 +19,7 @@ it never guesses.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -208,6 +209,9 @@ class MissionParser:
         """Reading the condition of *if* / *whenever* (where *end up in X* just means being in X)."""
         self.pending_floor: frozenset[int] | None = None
         """A floor said in the verb slot ("go upstairs to ..."), for the next noun phrase."""
+        self.alt_floors: frozenset[int] | None = None
+        self.alt_said: tuple[str, str] = ("", "")
+        """The floors of the second reading of a start-relative word (:meth:`check_still_on_start_floor`)."""
         self.waypoint_pending = False
         """*On the way (there),* was said: the next action comes before the goal named last."""
         self.said_last = False
@@ -978,6 +982,7 @@ class MissionParser:
                 raise self.fail(f"cannot understand {lx.REFUSED_VERBS['leave']}")
             return False
         floors, k = said
+        self.alt_floors = None  # "stay on ...": the floors said, whatever the goals before
         first, last = self.toks[self.i], self.toks[self.i + k - 1]
         self.i += k
         rooms = [e for e in self.vocab.entities if e.kind == "room" and e.floor not in floors]
@@ -1128,7 +1133,8 @@ class MissionParser:
         if self.start_floor is None and floors > 2 and len(on) == 2:
             return frozenset({on[1] if step > 0 else on[0]})
         if self.start_floor is not None:
-            self.check_still_on_start_floor(word)
+            self.check_still_on_start_floor(
+                word, lambda base: frozenset(f for f in range(floors) if (f - base) * step > 0))
             wanted = frozenset(f for f in range(floors) if (f - self.start_floor) * step > 0)
             if not wanted:
                 raise self.fail(f"'{word}': the robot starts on floor {self.start_floor} and the building "
@@ -1461,9 +1467,9 @@ class MissionParser:
         if other:
             entities = self.others(entities, first.start)
         if floors_first is not None:
-            entities = self.vocab.on_floor(entities, floors_first)
+            entities = self.on_floors(entities, floors_first)
         if self.pending_floor is not None:
-            entities = self.vocab.on_floor(entities, self.pending_floor)
+            entities = self.on_floors(entities, self.pending_floor)
             self.pending_floor = None
         if self.confined is not None and role in ("goal", "condition"):
             entities = self.vocab.on_floor(entities, self.confined)  # "stay on this floor": goals there
@@ -1500,7 +1506,7 @@ class MissionParser:
                 continue
             floor = self.floor_qualifier(entities)
             if floor is not None:
-                entities = self.vocab.on_floor(entities, floor)
+                entities = self.on_floors(entities, floor)
                 continue
             if (self.word() in _QUAL_IN and self.np_starts(1) and not self.at_any(lx.ORDER_MODIFIERS)
                     and not self.at_any(lx.TIME_FILLERS)
@@ -1719,7 +1725,7 @@ class MissionParser:
 
     def floor_place(self, first: Tok, floors: frozenset[int], mode: Mode | None, role: Role) -> NounPhrase:
         """``the top floor`` as a place: any of its rooms as a goal or condition, all of them to avoid."""
-        rooms = self.vocab.on_floor(self.vocab.of_head(Head("room", frozenset(), True, 1)), floors)
+        rooms = self.on_floors(self.vocab.of_head(Head("room", frozenset(), True, 1)), floors)
         chosen: Mode = "all" if role == "avoid" or mode == "all" else "any"
         last = self.toks[self.i - 1]
         return self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, rooms,
@@ -1943,14 +1949,37 @@ class MissionParser:
             n += 2  # "the floor below this one"
         return floors, n
 
-    def check_still_on_start_floor(self, said: str) -> None:
-        """Words relative to the start floor (*upstairs*, *the floor below*) are refused once a goal on
-        another floor was named: relative to the start, or to where that goal took the robot?"""
-        for r in self.references:
-            if r.role == "goal" and r.entities and self.start_floor not in {e.floor for e in r.entities}:
-                raise self.fail(f"'{said}' after '{r.phrase}' (floor "
-                                f"{', '.join(str(f) for f in sorted({e.floor for e in r.entities}))}): relative "
-                                f"to the start (floor {self.start_floor}) or to there? Say which floor")
+    def check_still_on_start_floor(self, said: str, relate: Callable[[int], frozenset[int]]) -> None:
+        """Words relative to the start floor (*upstairs*, *the floor below*) after a goal on another floor
+        could be relative to where that goal took the robot: ``relate`` (a floor -> the floors the words
+        mean from there) gives that second reading, kept in :attr:`alt_floors` and compared when the floors
+        are applied (:meth:`on_floors`); a last goal on several floors leaves no second reading to compare,
+        which is refused."""
+        goals = [r for r in self.references if r.role == "goal" and r.entities]
+        if not goals:
+            return
+        last = max(goals, key=lambda r: r.start)
+        at = {e.floor for e in last.entities}
+        if at == {self.start_floor}:
+            return
+        if len(at) > 1:
+            raise self.fail(f"'{said}' after '{last.phrase}' (floors "
+                            f"{', '.join(str(f) for f in sorted(at))}): relative to the start (floor "
+                            f"{self.start_floor}) or to there? Say which floor")
+        self.alt_floors = relate(at.pop())
+        self.alt_said = (said, last.phrase)
+
+    def on_floors(self, entities: list[Entity], floors: frozenset[int]) -> list[Entity]:
+        """``entities`` on ``floors``; when words relative to the start could also be read from the floor of
+        the goal named before them (:meth:`check_still_on_start_floor`), both readings must pick the same
+        entities, else it is refused."""
+        out = self.vocab.on_floor(entities, floors)
+        alt, self.alt_floors = self.alt_floors, None
+        if alt is not None and {e.key for e in self.vocab.on_floor(entities, alt)} != {e.key for e in out}:
+            said, after = self.alt_said
+            raise self.fail(f"'{said}' after '{after}': relative to the start (floor {self.start_floor}) or "
+                            f"to there? The two differ here; say which floor")
+        return out
 
     def floor_count(self, k: int) -> int | None:
         """``a`` / ``one`` / ``two`` / ``2`` at offset ``k`` as a number of floors, else ``None``."""
@@ -1964,7 +1993,8 @@ class MissionParser:
         if self.start_floor is None:
             raise self.fail(f"'{said}' depends on where the robot starts, which is not known here; say which "
                             f"floor (the building {self.vocab.building_name!r} has floors 0 to {floors - 1})")
-        self.check_still_on_start_floor(said)
+        self.check_still_on_start_floor(
+            said, lambda base: frozenset({base + delta}) if 0 <= base + delta < floors else frozenset())
         floor = self.start_floor + delta
         if not 0 <= floor < floors:
             raise self.fail(f"'{said}': the robot starts on floor {self.start_floor} and the building "
