@@ -69,6 +69,16 @@ def test_relative_clauses_as_references(demo, text, gold):
     means(text, gold, demo)
 
 
+def test_asides_and_the_same_room(demo):
+    means("Go to the couch, which is in the living room, then the office.", "F(o22 & F r12)", demo)
+    refused("Go to the couch, which is in the kitchen.", "matches no object", demo)
+    means("Go to the fridge, then the sink in the same room.", "F(o15 & F o17)", demo)
+    refused("Check the TV, then the clock in the same room as before.", "expected a room or object", demo)
+    # as a goal it is unclear (the room just visited, or the one before?): refused
+    refused("Go to the kitchen, then the office, then back to the same room.", "'the same ...'", demo)
+    refused("Use the sink in the same room.", "does not refer to any place", demo)
+
+
 def test_without_describes_a_room_only_when_it_tells_rooms_apart(demo):
     # one kitchen: 'without the bowl' is what to avoid there, as before
     means("Go to the kitchen without the bowl.", "F(r4 & !o19)", demo)

@@ -102,6 +102,11 @@ _CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "whi
                             "once", "whenever", "unless"})
 """Words that would continue a condition past its one action (a comma or *then* ends it)."""
 _FIRST = frozenset({"first", "firstly"})
+_ASIDE = tuple((",", rel, be, *also) for rel in ("which", "that") for be in ("is", "are")
+               for also in ((), ("also",), ("located",), ("also", "located")))
+_ASIDE_QUALIFIERS = frozenset({"in", "inside", "on", "next", "beside", "upstairs", "downstairs", "near",
+                               "adjacent", "connected", "attached"})
+"""``the couch, which is in the living room``: an aside read as the qualifier it states."""
 _THEN_NEXT = (("then",), ("and", "then"), ("finally",), ("and", "finally"), ("after", "that"),
               ("afterwards",), ("lastly",))
 """After a list joined by commas only: the list is a sequence too ("A, B, then C")."""
@@ -1418,6 +1423,14 @@ class MissionParser:
         group = self.all_of_them() if role == "goal" else None
         if group is not None:
             return group
+        if self.at("the", "same") and self.word(2) in ("room", "place") and role == "qualifier":
+            self.i += 3  # "the sink in the same room": the room of the place named last
+            rooms = self.there_rooms(first.start)
+            if len(rooms) != 1:
+                raise self.fail(f"'the same {self.word(-1)}': the place named before it is "
+                                f"{' or '.join(r.key for r in rooms)}; name the room")
+            return self.record(NounPhrase(self.span_text(first.start, self.toks[self.i - 1].end), first.start,
+                                          self.toks[self.i - 1].end, rooms, "the", False, role))
         if w in lx.PRONOUNS:
             self.i += 1
             ref = self.antecedent(w, pronoun_kind)
@@ -1483,6 +1496,10 @@ class MissionParser:
                 mode = "all"
             room_scoped = True
         while True:
+            aside = self.at_any(_ASIDE)
+            if aside is not None and self.word(len(aside)) in _ASIDE_QUALIFIERS:
+                self.i += len(aside)  # "the couch, which is in the living room": a qualifier all the same
+                continue
             if self.word() == "'s" and head.kind == "object":  # "the teddy bear's room": the room holding it
                 self.i += 1
                 owners = entities
