@@ -255,6 +255,22 @@ def test_until_at_the_start_of_a_sentence(demo, text, gold):
     means(text, gold, demo)
 
 
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        # the until's goal is the step a following 'then' comes after (was: the office in any order)
+        ("Avoid the dining room until you reach the couch, and then go to the office.",
+         "(!r7 U o22) & F(o22 & F r12)"),
+        ("Keep out of the kitchen until you have checked the TV. Then visit the office.",
+         "(!r4 U o23) & F(o23 & F r12)"),
+        # after a goal, the until constrains only; the goal keeps its place
+        ("Go to the couch, and don't enter the kitchen until you've seen the TV.", "F o22 & (!r4 U o23)"),
+    ],
+)
+def test_then_after_an_until(demo, text, gold):
+    means(text, gold, demo)
+
+
 def test_until_at_the_start_needs_prohibitions(demo):
     refused("Until you have reached the laptop, go to the kitchen.", "prohibitions only", demo)
 

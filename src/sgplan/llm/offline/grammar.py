@@ -936,6 +936,10 @@ class MissionParser:
             t = tasks[0]
             targets = [disj(t.members)] if t.mode == "any" else t.members
             clause.constraints.extend(Until(forbidden, m) for m in targets)
+            if not any(clause.steps) and not self.prior_steps:
+                # "Keep out of X until you have seen Y, then Z": Y (which the until requires) is the step
+                # that *then* follows
+                clause.steps[-1].append(Task(t.mode, list(t.members)))
         elif is_global:
             clause.constraints.append(Always(forbidden))
         else:
