@@ -79,6 +79,15 @@ def test_asides_and_the_same_room(demo):
     refused("Use the sink in the same room.", "does not refer to any place", demo)
 
 
+def test_next_to_it_and_dining_chairs(demo, gibson_benevolence):
+    # 'it' is the whole phrase named last; an object there is refused (distances are not known)
+    means("Go to the bedroom with the vase, then the corridor next to it.", "F(r7 & F r12)", gibson_benevolence)
+    refused("Check the vase in the bedroom, then the book next to it.", "'it' is 'the vase in the bedroom'",
+            gibson_benevolence)
+    means("Sit on one of the dining chairs.", "F(o28 | o29)", demo)
+    refused("Water the living plants.", "no room or object of this scene is called 'living'", demo)
+
+
 def test_without_describes_a_room_only_when_it_tells_rooms_apart(demo):
     # one kitchen: 'without the bowl' is what to avoid there, as before
     means("Go to the kitchen without the bowl.", "F(r4 & !o19)", demo)

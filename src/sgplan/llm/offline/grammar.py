@@ -1462,6 +1462,7 @@ class MissionParser:
             self.i += said[1]
             if self.vocab.match_head(self.words(), self.i) is None:
                 return self.floor_place(first, floors_first, mode, role)
+        modifier: list[Entity] = []
         if self.word().startswith(("room_", "object_")):
             key = self.word()
             if key not in self.vocab.by_key:
@@ -1473,8 +1474,13 @@ class MissionParser:
         else:
             if other:
                 self.i += 1  # "other"
+            modifier = self.vocab.room_modifier(self.words(), self.i)
+            if modifier:  # "the dining chairs": the chairs in the dining room
+                self.i += 1
             head = self.head(one_head)
             entities = self.vocab.of_head(head)
+            if modifier:
+                entities = self.vocab.inside(entities, modifier)
             if mode is None:
                 mode = "all" if head.plural else "the"
             elif mode == "the" and head.plural:
@@ -1490,7 +1496,7 @@ class MissionParser:
             self.pending_floor = None
         if self.confined is not None and role in ("goal", "condition"):
             entities = self.vocab.on_floor(entities, self.confined)  # "stay on this floor": goals there
-        room_scoped = False
+        room_scoped = bool(modifier)
         compound = head.kind == "room" and self.vocab.match_head(self.words(), self.i)
         if compound and compound.kind == "object":  # "the kitchen sink": the sink in the kitchen
             container = entities
@@ -1585,7 +1591,7 @@ class MissionParser:
             nxt = self.at_any(_QUAL_NEXT)
             if nxt and self.np_starts(len(nxt)):
                 self.i += len(nxt)
-                inner = self.noun_phrase("qualifier", pronoun_kind="room")  # "the bathroom next to it"
+                inner = self.next_to_it() if self.word() == "it" else self.noun_phrase("qualifier")
                 if any(e.kind != "room" for e in inner.entities):
                     raise self.fail(f"'{self.span_text(first.start, inner.end)}': 'next to' is understood "
                                     f"for rooms only (distances between objects are not known); name the "
@@ -1803,6 +1809,24 @@ class MissionParser:
                 return np
         raise self.fail(f"'{pronoun}' does not refer to any {'group of ' if plural else ''}room or object "
                         f"named before it")
+
+    def next_to_it(self) -> NounPhrase:
+        """``next to it``: *it* is the last whole phrase named (not one nested in it: in "the bedroom where
+        the teddy bear is" that is the bedroom); it must be a room, since distances between objects are not
+        known."""
+        refs = [r for r in self.references if r.phrase.lower() not in lx.PRONOUNS and r.entities]
+        outer = [r for r in refs if not any(o is not r and o.start <= r.start and r.end <= o.end
+                                            and (o.start, o.end) != (r.start, r.end) for o in refs)]
+        if not outer:
+            raise self.fail("'it' does not refer to any room named before it")
+        ref = max(outer, key=lambda r: r.start)
+        if any(e.kind != "room" for e in ref.entities):
+            raise self.fail(f"'next to it': 'it' is '{ref.phrase}', an object; 'next to' is understood for rooms "
+                            f"only (distances between objects are not known)")
+        tok = self.toks[self.i]
+        self.i += 1
+        return self.record(NounPhrase("it", tok.start, tok.end, list(ref.entities), ref.mode, False,
+                                      "qualifier"))
 
     def all_of_them(self) -> NounPhrase | None:
         """``all of them`` / ``both of them`` / ``each of them`` / ``all three of them``: the group named

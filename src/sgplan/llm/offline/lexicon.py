@@ -61,6 +61,10 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
 IRREGULAR_PLURALS: dict[str, str] = {"shelf": "shelves", "knife": "knives", "person": "people",
                                      "stairs": "stairs"}
 
+ROOM_MODIFIERS = frozenset({"dining", "utility"})
+"""First words of room categories used alone before an object: *the dining chairs* = the chairs in the
+dining room (not *living*, *empty*, *home*: those are ordinary adjectives too)."""
+
 GENERIC_ROOM_WORDS = ("room", "rooms", "place", "places", "area", "areas")
 """Heads meaning 'any room' ("every room on floor 0", "the room with two TVs")."""
 
