@@ -146,6 +146,24 @@ def test_staying_on_a_floor(demo, text, gold, start):
         means(text, gold, demo, start)
 
 
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Don't go to any other floor; check the laptop.", f"F o35 & G !({FLOOR_0})"),
+        ("Don't change floors. Visit the book.", f"F o39 & G !({FLOOR_0})"),
+        ("Stay on the same floor and use the toilet.", f"F o40 & G !({FLOOR_0})"),
+        ("Task: reach the bottle.", "F o42"),
+        ("Go to the room where you can find the laptop, then the room holding the teddy bear.", "F(r12 & F r11)"),
+    ],
+)
+def test_staying_on_the_start_floor(demo, text, gold):
+    means(text, gold, demo, 1)
+
+
+def test_staying_on_the_start_floor_needs_it(demo):
+    refused("Don't change floors. Visit the book.", "depends on where the robot starts", demo)
+
+
 def test_staying_on_a_floor_is_refused_when_partial_or_unclear(demo, gibson_benevolence):
     refused("Go to the kitchen, then stay on this floor.", "then stay", demo, 0)
     # an 'until' limits the stay: it confines nothing, so 'the toilet' stays ambiguous

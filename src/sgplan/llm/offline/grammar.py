@@ -128,6 +128,10 @@ _STRICT_SEQ = tuple((*lead, *only) for lead in ((), (",",), ("and",), ("but",), 
 """``A, and only after that B``: B after A, and not before it (strict)."""
 _STAY = frozenset({"stay", "remain", "keep", "staying", "remaining", "keeping"})
 _LEAVE = frozenset({"leave", "leaving"})
+_OTHER_FLOOR = (("any", "other", "floor"), ("another", "floor"), ("a", "different", "floor"), ("other", "floors"),
+                ("any", "other", "floors"), ("change", "floors"), ("change", "floor"), ("switch", "floors"),
+                ("any", "other", "level"), ("another", "level"), ("change", "levels"))
+"""``don't go to any other floor`` / ``don't change floors``: stay on the start floor."""
 _TIME_SCOPED = frozenset({"until", "till", "before", "after", "once", "when", "whenever", "if", "unless",
                           "during"})
 """Words that may limit a *stay on this floor* to part of the mission: such a sentence confines nothing."""
@@ -1008,6 +1012,13 @@ class MissionParser:
     def staying(self, negated: bool) -> tuple[frozenset[int], int] | None:
         """The floors of ``stay on <floor>`` / ``stay downstairs`` (or ``leave <floor>`` after a negation)
         here and how many words say it; ``None`` if the words are not there. Nothing is consumed."""
+        if negated:  # "don't go to any other floor", "don't change floors"
+            n = 0
+            while self.word(n) in lx.POSITIVE_VERBS and not self.at_any(_OTHER_FLOOR, k=n):
+                n += 1
+            other = self.at_any(_OTHER_FLOOR, k=n)
+            if other is not None:
+                return self.start_floor_only(" ".join(other)), n + len(other)
         if self.word() not in (_LEAVE if negated else _STAY):
             return None
         k = 1
@@ -1016,10 +1027,21 @@ class MissionParser:
         if self.word(k) in ("on", "to", "at", "in", "within") and not negated:
             k += 1
         k += 1 if self.word(k) == "the" else 0
+        if self.word(k) == "same" and self.word(k + 1) in lx.FLOOR_WORDS:  # "stay on the same floor"
+            return self.start_floor_only(f"the same {self.word(k + 1)}"), k + 2
         said = self.floor_words(k)
         if said is None or self.vocab.match_head(self.words(), self.i + k + said[1]) is not None:
             return None  # not a floor, or "stay on the ground floor bathroom"
         return said[0], k + said[1]
+
+    def start_floor_only(self, said: str) -> frozenset[int]:
+        """The start floor, for *stay on the same floor* / *don't go to any other floor*; refused when it is
+        not known."""
+        if self.start_floor is None:
+            raise self.fail(f"'{said}' depends on where the robot starts, which is not known here; say which "
+                            f"floor to stay on (the building {self.vocab.building_name!r} has floors 0 to "
+                            f"{self.vocab.num_floors - 1})")
+        return frozenset({self.start_floor})
 
     def confinement(self, sentence_tokens: list[list[Tok]]) -> frozenset[int] | None:
         """The floors the whole mission is confined to by ``stay on <floor>`` / ``don't leave <floor>``
@@ -1032,7 +1054,7 @@ class MissionParser:
             self.toks = sentence
             for j, tok in enumerate(sentence):
                 self.i = j
-                negated = tok.text in _LEAVE and j > 0 and sentence[j - 1].text in ("not", "never")
+                negated = j > 0 and sentence[j - 1].text in ("not", "never")
                 said = self.staying(negated) if tok.text in _STAY or negated else None
                 if said is not None:
                     confined = said[0] if confined is None else confined & said[0]
@@ -1073,6 +1095,8 @@ class MissionParser:
                                                                               "if", "until", "before",
                                                                               "after", "when", "without"):
             w = self.word()
+            if self.pending_floor is not None and (self.at_any(lx.WHOLE_MISSION) or self.at_any(lx.TIME_FILLERS)):
+                break  # "don't go downstairs at any point"
             idiom = self.verb_idiom()
             if idiom:  # "go all the way up to", "take a look at", "wash your hands at": part of the verb
                 seen += [t.text for t in self.toks[self.i : self.i + idiom]]

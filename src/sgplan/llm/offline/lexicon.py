@@ -213,7 +213,8 @@ POLITE = (("make", "sure"), ("make", "sure", "that"), ("be", "sure", "to"), ("be
           ("what", "i", "need", "is", "for", "you", "to"), ("i", "would", "like", "it", "if", "you"),
           ("i", "would", "appreciate", "it", "if", "you"), ("if", "you", "could"), ("if", "you", "would"),
           ("would", "you", "mind"), ("do", "me", "a", "favor", "and"), ("do", "me", "a", "favour", "and"),
-          ("go", "and"), ("please", "make", "sure"))
+          ("go", "and"), ("please", "make", "sure"),
+          *((word,) for word in ("task", "goal", "mission", "objective", "errand", "todo", "instructions")))
 """Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
 
 START_END_VERBS = word_set("start starting begin beginning end ending finish finishing")
@@ -321,6 +322,10 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("together", "with"): ("and",),
     ("plus",): ("and",),
     ("anywhere", "near"): ("into",),
+    ("where", "you", "can", "find"): ("containing",),
+    ("where", "you", "will", "find"): ("containing",),
+    ("where", "you", "find"): ("containing",),
+    ("holding",): ("containing",),
     ("and", "also"): ("and",),
 }
 """Phrases read as another (``prior to`` is ``before``, ``as soon as`` is ``once``), rewritten on the tokens
