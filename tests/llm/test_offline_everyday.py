@@ -520,3 +520,12 @@ def gibson_benevolence(gibson_root) -> Building:
 @pytest.fixture(scope="module")
 def gibson_collierville(gibson_root) -> Building:
     return building_of("Collierville")
+
+
+def test_grounded_text_of_floor_stays(demo):
+    # the grounded text names what the words name: the rooms kept, or the others for 'any other floor'
+    kept = "room_9, room_11, room_12, room_13 and room_14"
+    t = PatternTranslator(1).translate("Stay on this floor and go to the toilet.", demo)
+    assert t.grounded_text == f"Stay on {kept} and go to object_40."
+    t = PatternTranslator(1).translate("Don't go to any other floor; check the laptop.", demo)
+    assert t.grounded_text == "Don't go to room_2, room_4, room_5, room_6, room_7 and room_8; check object_35."

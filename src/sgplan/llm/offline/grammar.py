@@ -994,45 +994,52 @@ class MissionParser:
             if negated and self.word() in _LEAVE:
                 raise self.fail(f"cannot understand {lx.REFUSED_VERBS['leave']}")
             return False
-        floors, k = said
+        floors, k, where = said
+        other = self.at_any(_OTHER_FLOOR, k=where) is not None
         self.alt_floors = None  # "stay on ...": the floors said, whatever the goals before
-        first, last = self.toks[self.i], self.toks[self.i + k - 1]
+        first, last = self.toks[self.i + where], self.toks[self.i + k - 1]
         self.i += k
         rooms = [e for e in self.vocab.entities if e.kind == "room" and e.floor not in floors]
         if not rooms:
             raise self.fail(f"'{self.span_text(first.start, last.end)}': the building has no other floor")
-        self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, rooms, "all",
-                               False, "avoid"))
+        # the grounded text names what the words name: the floors kept ("stay on room_9, ... room_14"), or
+        # the others ("don't go to room_2, ... room_8" for "any other floor")
+        named = rooms if other else [e for e in self.vocab.entities if e.kind == "room" and e.floor in floors]
+        self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, named, "all",
+                               False, "avoid" if other else "qualifier"))
         whole = self.at_any(lx.WHOLE_MISSION)
         if whole is not None:
             self.i += len(whole)
         clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in rooms])))
         return True
 
-    def staying(self, negated: bool) -> tuple[frozenset[int], int] | None:
+    def staying(self, negated: bool) -> tuple[frozenset[int], int, int] | None:
         """The floors of ``stay on <floor>`` / ``stay downstairs`` (or ``leave <floor>`` after a negation)
-        here and how many words say it; ``None`` if the words are not there. Nothing is consumed."""
+        here, how many words say it and at which of them the floor words begin; ``None`` if the words are
+        not there. Nothing is consumed."""
         if negated:  # "don't go to any other floor", "don't change floors"
             n = 0
             while self.word(n) in lx.POSITIVE_VERBS and not self.at_any(_OTHER_FLOOR, k=n):
                 n += 1
             other = self.at_any(_OTHER_FLOOR, k=n)
             if other is not None:
-                return self.start_floor_only(" ".join(other)), n + len(other)
+                changed = other[0] in ("change", "switch")  # "change floors": the floors are the ones kept
+                return self.start_floor_only(" ".join(other)), n + len(other), n + (1 if changed else 0)
         if self.word() not in (_LEAVE if negated else _STAY):
             return None
         k = 1
         if self.word(k) in lx.RELATIVE_FLOORS and not negated:
-            return self.staying_floors(self.word(k)), k + 1
+            return self.staying_floors(self.word(k)), k + 1, k
         if self.word(k) in ("on", "to", "at", "in", "within") and not negated:
             k += 1
+        where = k
         k += 1 if self.word(k) == "the" else 0
         if self.word(k) == "same" and self.word(k + 1) in lx.FLOOR_WORDS:  # "stay on the same floor"
-            return self.start_floor_only(f"the same {self.word(k + 1)}"), k + 2
+            return self.start_floor_only(f"the same {self.word(k + 1)}"), k + 2, where
         said = self.floor_words(k)
         if said is None or self.vocab.match_head(self.words(), self.i + k + said[1]) is not None:
             return None  # not a floor, or "stay on the ground floor bathroom"
-        return said[0], k + said[1]
+        return said[0], k + said[1], where
 
     def start_floor_only(self, said: str) -> frozenset[int]:
         """The start floor, for *stay on the same floor* / *don't go to any other floor*; refused when it is
