@@ -529,3 +529,32 @@ def test_grounded_text_of_floor_stays(demo):
     assert t.grounded_text == f"Stay on {kept} and go to object_40."
     t = PatternTranslator(1).translate("Don't go to any other floor; check the laptop.", demo)
     assert t.grounded_text == "Don't go to room_2, room_4, room_5, room_6, room_7 and room_8; check object_35."
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Go to the kitchen and check its fridge.", "F o15"),
+        ("Visit the bedroom with the book, then wash your hands at its sink.", None),  # a bedroom has no sink
+        ("Visit the dining room and check its vase.", "F o30"),
+        ("Go to the office but avoid the kitchen and the bathroom downstairs while you do it.",
+         "F r12 & G !r4 & G !r5"),
+        # 'it' is the object the phrase is about, not the one named to locate it
+        ("Get the book from the bedroom with the chair, then bring it to the kitchen.", "F(o39 & F r4)"),
+    ],
+)
+def test_its_and_it(demo, text, gold):
+    if gold is None:
+        refused(text, "matches no object", demo)
+    else:
+        means(text, gold, demo)
+
+
+def test_its_room_is_the_attached_one(gibson_benevolence):
+    means("Stay out of the bedroom with the teddy bear and its bathroom; get the book in the other bedroom.",
+          "G !r8 & G !r6 & F o30", gibson_benevolence)
+
+
+def test_statements_are_not_read_as_commands(demo):
+    # 'left' was taken for a verb: 'I left my book ...' is not a goal
+    refused("I left my book in the bedroom, go get it.", "'left'", demo)

@@ -1466,6 +1466,20 @@ class MissionParser:
                                 f"{' or '.join(r.key for r in rooms)}; name the room")
             return self.record(NounPhrase(self.span_text(first.start, self.toks[self.i - 1].end), first.start,
                                           self.toks[self.i - 1].end, rooms, "the", False, role))
+        if w == "its" and self.vocab.match_head(self.words(), self.i + 1) is not None:
+            self.i += 1  # "its sink": the sink in the room just named (or in the room of the object named)
+            ref = self.antecedent("it")
+            container = [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in ref.entities)]
+            head = self.head(None)
+            if head.kind == "room":  # "the other bedroom and its bathroom": the bathroom attached to it
+                owned = self.vocab.next_to(self.vocab.of_head(head), container)
+            else:
+                owned = self.vocab.inside(self.vocab.of_head(head), container)
+            np = NounPhrase(self.span_text(first.start, self.toks[self.i - 1].end), first.start,
+                            self.toks[self.i - 1].end, owned, "all" if head.plural else "the",
+                            head.kind == "object", role)
+            self.check(np, head, None)
+            return self.record(np)
         if w in lx.PRONOUNS:
             self.i += 1
             ref = self.antecedent(w, pronoun_kind)
@@ -1829,15 +1843,21 @@ class MissionParser:
 
         ``it`` takes a phrase denoting one entity, ``them``/``they`` one denoting several, so in "go to the
         bedroom with the TV and turn it on" *it* is the TV, and in "take both bowls in the kitchen and put
-        them in the fridge" *them* are the bowls.
+        them in the fridge" *them* are the bowls. An object named inside an object phrase to locate it is
+        not the antecedent: in "get the book from the bedroom with the vase, then bring it ..." *it* is the
+        book.
         """
         plural = pronoun in ("them", "they")
-        for np in sorted(self.references, key=lambda r: r.start, reverse=True):
-            is_plural = np.mode == "all" and len(np.entities) > 1
-            if is_plural == plural and np.phrase.lower() not in lx.PRONOUNS and (
-                kind is None or all(e.kind == kind for e in np.entities)
-            ):
-                return np
+        fits = [np for np in sorted(self.references, key=lambda r: r.start, reverse=True)
+                if (np.mode == "all" and len(np.entities) > 1) == plural and np.phrase.lower() not in lx.PRONOUNS
+                and (kind is None or all(e.kind == kind for e in np.entities))]
+        if fits:
+            np = fits[0]
+            # "the book from the bedroom with the vase ... it": the object the phrase is about (its head),
+            # not an object named inside it to locate it
+            outer = [o for o in fits[1:] if o.start <= np.start and np.end <= o.end
+                     and all(e.kind == "object" for e in o.entities)]
+            return min(outer, key=lambda o: o.start) if outer else np
         raise self.fail(f"'{pronoun}' does not refer to any {'group of ' if plural else ''}room or object "
                         f"named before it")
 

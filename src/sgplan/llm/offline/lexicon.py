@@ -168,6 +168,7 @@ REFUSED_VERBS: dict[str, str] = {
     "cease": "'cease'",
     "quit": "'quit'",
     "prevent": "'prevent' (say 'never enter X')",
+    "left": "'left' (say where to go and what to reach)",
     "otherwise": "'otherwise' (alternatives between actions are not understood; say 'visit A or B')",
     "else": "'else' (alternatives between actions are not understood; say 'visit A or B')",
     "alternatively": "'alternatively' (say 'visit A or B')",
@@ -276,6 +277,9 @@ WHOLE_MISSION = (("the", "whole", "time"), ("the", "entire", "time"), ("at", "al
                  *((pre, "the", whole, noun) for pre in ("for", "during", "throughout", "over")
                    for whole in ("whole", "entire", "full") for noun in _SPAN_NOUNS),
                  *(("throughout", "the", noun) for noun in _SPAN_NOUNS),
+                 ("while", "you", "do", "it"), ("while", "you", "do", "that"), ("while", "you", "are", "at", "it"),
+                 ("while", "doing", "so"), ("while", "doing", "that"), ("while", "doing", "it"),
+                 ("in", "the", "process"),
                  *(("during", "the", noun) for noun in _SPAN_NOUNS))
 """Said after what to avoid: the prohibition holds for the whole mission (``G !x``), not only at one step."""
 
