@@ -558,3 +558,9 @@ def test_its_room_is_the_attached_one(gibson_benevolence):
 def test_statements_are_not_read_as_commands(demo):
     # 'left' was taken for a verb: 'I left my book ...' is not a goal
     refused("I left my book in the bedroom, go get it.", "'left'", demo)
+
+
+def test_statements_about_a_place_are_refused(demo):
+    # was read as the goals 'the bowl' and 'the kitchen', in any order with the dining table
+    refused("The bowl is in the kitchen. Bring it to the dining table.", "states something", demo)
+    means("The kitchen should be avoided; go to the couch.", "G !r4 & F o22", demo)

@@ -58,6 +58,9 @@ _OFF_LIMITS = tuple((*be, *said) for be in (("is",), ("are",), ("is", "strictly"
                                  ("banned",), ("not", "allowed"), ("a", "no", "go"), ("no", "go"),
                                  ("not", "to", "be", "entered"), ("to", "be", "avoided"),
                                  ("not", "to", "be", "touched"), ("out", "of", "limits")))
+_COPULAS = frozenset({"is", "are", "was", "were", "should", "must", "will", "has", "have", "seems", "looks",
+                      "might", "may", "can", "could", "needs", "need"})
+"""After a sentence's first noun phrase: a statement ("the bowl is in the kitchen"), never a goal."""
 _OFF_LIMITS += tuple((modal, "be", "avoided") for modal in ("should", "must", "has", "have", "will"))
 """``The kitchen is off limits``: never enter / reach what the sentence names (``G !x``)."""
 """A negation with one of these words holds for the whole mission (G !x); 'avoid' and 'without' after an
@@ -971,6 +974,10 @@ class MissionParser:
         except MissionError:
             nps = []
         said = self.at_any(_OFF_LIMITS) if nps else None
+        if said is None and nps and self.word() in _COPULAS:
+            raise self.fail(f"'{self.span_text(nps[0].start, self.toks[self.i].end)} ...' states something; "
+                            f"it is not understood as a goal or a prohibition (say what to do, e.g. 'go to "
+                            f"...', 'never enter ...', '... is off limits')")
         if said is None:
             del self.references[known:]
             self.i = save
