@@ -564,3 +564,17 @@ def test_statements_about_a_place_are_refused(demo):
     # was read as the goals 'the bowl' and 'the kitchen', in any order with the dining table
     refused("The bowl is in the kitchen. Bring it to the dining table.", "states something", demo)
     means("The kitchen should be avoided; go to the couch.", "G !r4 & F o22", demo)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        # the garage: part of the response, or a goal of its own? (was read as part of the response)
+        "Any time you go to the kitchen, grab the bowl afterwards, and go to the couch.",
+        "If you enter the office, check the laptop and then go to the bathroom upstairs.",
+        "Go to the kitchen and open the fridge if you pass the office.",
+    ],
+)
+def test_conditions_with_several_actions_are_refused(demo, text):
+    with pytest.raises(MissionError, match="several actions"):
+        PatternTranslator().translate(text, demo)

@@ -228,6 +228,10 @@ class MissionParser:
         """*On the way (there),* was said: the next action comes before the goal named last."""
         self.said_last = False
         """The sentence ended with *last* ("visit the office last"): its last step follows all else."""
+        self.body_actions = 0
+        """How many actions the sentence had before a trailing condition ("S if X")."""
+        self.actions = 0
+        """How many actions the sentence bodies read so far (a condition's consequent must be one)."""
         self.lenient_scope = False
         self.carried_rooms: list[Entity] = []
         """The rooms of the step before a comma that made a sequence ("go to the kitchen, take a bottle,
@@ -284,6 +288,7 @@ class MissionParser:
             self.toks, self.i, self.sentence_scope, self.soft_scope = sentence, 0, [], []
             self.waypoint_pending = False
             self.strict_pending = False
+            self.body_actions = 0
             previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
             precedes = self.sentence_precedes(parts)
             continues = self.skip_fillers(sequence_too=True)
@@ -384,7 +389,7 @@ class MissionParser:
             trigger = self.trigger()
             self.expect_comma_or_then()
             self.soft_scope = self.rooms_of(trigger.members)
-            return self.whenever(trigger, self.body())
+            return self.whenever(trigger, self.consequent())
         done = self.done_words()
         if done and self.word(done) == "with" and self.np_starts(done + 1):
             self.i += done + 1  # "when done with the garage, ..."
@@ -401,7 +406,7 @@ class MissionParser:
             self.expect_comma_or_then()
             self.soft_scope = self.rooms_of([m for t in tasks for m in t.members])
             start = self.i
-            body = self.body()
+            body = self.consequent()
             return self.conditional(cond_word, condition, tasks, body,
                                     said_ever or self.says(_AFTERWARDS, start, self.i))
         if self.word() in ("until", "till") or self.at("up", "until"):
@@ -440,7 +445,10 @@ class MissionParser:
             else:  # not "In <room>, ...": read it again as part of the sentence
                 del self.references[known:]
                 self.i = save
-        return self.postfix_condition(self.body())
+        before = self.actions
+        body = self.body()
+        self.body_actions = self.actions - before
+        return self.postfix_condition(body)
 
     def until_prefix(self) -> Clause:
         """``Until you have reached X, stay out of Y`` / ``Till X, do not enter Y``: ``!Y U X`` for each
@@ -467,16 +475,31 @@ class MissionParser:
                                  for end in ends]
         return Clause(steps=[[target]], constraints=untils)
 
+    def consequent(self) -> Clause:
+        """What a condition (*if*, *whenever*) asks for: one action. A second one (*..., grab the fridge
+        afterwards, and go to the garage*) may belong to the condition or be a goal of its own, so it is
+        refused rather than guessed."""
+        before = self.actions
+        body = self.body()
+        if self.actions - before > 1:
+            raise self.fail("a condition followed by several actions: it is not clear which of them belong to "
+                            "the condition; put the other goals in a sentence of their own")
+        return body
+
     def postfix_condition(self, body: Clause) -> Clause | Formula:
         if self.done():
             return body
+        joined = self.word(-1) in ("and", "but")  # "S, and whenever X, T" / "S, but if X, T"
+        if self.body_actions > 1 and not joined and (self.at_any(_WHENEVER) or any(
+                self.at(*w.split()) for w in (*_CONDITION_WORDS, "only if"))):
+            raise self.fail(f"several actions before {self.here()}: it is not clear which of them the condition "
+                            f"is about; give the condition its own sentence ('If ..., ...')")
         if self.at_any(_ONLY_AFTER):
             self.i += 2
             self.skip_subject()
             before = Clause(steps=self.action())
             self.expect_end()
             return self.only_after(before, body)
-        joined = self.word(-1) in ("and", "but")  # "S, and whenever X, T" / "S, but if X, T"
         whenever = self.at_any(_WHENEVER)
         if whenever is not None:
             self.i += len(whenever)
@@ -484,7 +507,7 @@ class MissionParser:
             if joined and self.word() in (",", "then") and self.word(1):
                 self.expect_comma_or_then()
                 self.soft_scope = self.rooms_of(trigger.members)
-                consequent = self.body()
+                consequent = self.consequent()
                 self.expect_end()
                 return conj([self.require(body, "before the condition"), self.whenever(trigger, consequent)])
             self.expect_end()
@@ -504,7 +527,7 @@ class MissionParser:
                 self.expect_comma_or_then()
                 self.soft_scope = self.rooms_of([m for t in tasks for m in t.members])
                 start = self.i
-                consequent = self.body()
+                consequent = self.consequent()
                 self.expect_end()
                 response = said_ever or self.says(_AFTERWARDS, start, self.i)
                 return conj([self.require(body, "before the condition"),
@@ -725,6 +748,7 @@ class MissionParser:
                     raise self.fail(f"cannot understand {lx.REFUSED_VERBS[self.word()]}")
                 # "go to the bedroom, but stop by the couch first": a step moved before the others is
                 # not in their room
+                self.actions += 1
                 later = self.moved_first() or self.goes_back()  # nor is "come back to X" (after them)
                 context = [] if later else self.step_rooms(clause.steps[-1])
                 # "go to the kitchen, take a bottle, then ...": the kitchen's bottle if it has one
