@@ -81,7 +81,8 @@ def test_asides_and_the_same_room(demo):
 
 def test_next_to_it_and_dining_chairs(demo, gibson_benevolence):
     # 'it' is the whole phrase named last; an object there is refused (distances are not known)
-    means("Go to the bedroom with the vase, then the corridor next to it.", "F(r7 & F r12)", gibson_benevolence)
+    means("Go to the bedroom with the vase, then the corridor next to it.", "F(r7 & F r12)",
+          gibson_benevolence)
     refused("Check the vase in the bedroom, then the book next to it.", "'it' is 'the vase in the bedroom'",
             gibson_benevolence)
     means("Sit on one of the dining chairs.", "F(o28 | o29)", demo)
@@ -108,8 +109,8 @@ def test_the_same_floor(demo, gibson_benevolence):
     means("Go to the laptop, then the bathroom on that floor.", "F(o35 & F r14)", demo)
     means("Go to the bathroom on the same floor as the teddy bear.", "F r14", demo)
     # a choice across floors: which floor depends on the choice
-    refused("Check any clock, then the bathroom on the same floor.", "the floor depends on which one is chosen",
-            demo)
+    refused("Check any clock, then the bathroom on the same floor.",
+            "the floor depends on which one is chosen", demo)
     refused("Go to a TV, then the bathroom on the same floor.", "floors 1, 2", gibson_benevolence)
 
 
@@ -130,7 +131,8 @@ def test_twice_with_a_visit_in_between(demo, text, gold):
     ("text", "gold", "start"),
     [
         ("Stay on this floor and check the toilet.", f"F o40 & G !({FLOOR_0})", 1),
-        ("Use the sink in the bathroom, but remain on this floor the whole time.", f"F o21 & G !({FLOOR_1})", 0),
+        ("Use the sink in the bathroom, but remain on this floor the whole time.", f"F o21 & G !({FLOOR_1})",
+         0),
         ("Don't leave this floor. Water the plant.", f"F o36 & G !({FLOOR_0})", 1),
         ("Keep to the ground floor and visit the bathroom.", f"F r5 & G !({FLOOR_1})", None),
         ("Stay upstairs and go to the bathroom.", f"F r14 & G !({FLOOR_0})", None),
@@ -153,7 +155,8 @@ def test_staying_on_a_floor(demo, text, gold, start):
         ("Don't change floors. Visit the book.", f"F o39 & G !({FLOOR_0})"),
         ("Stay on the same floor and use the toilet.", f"F o40 & G !({FLOOR_0})"),
         ("Task: reach the bottle.", "F o42"),
-        ("Go to the room where you can find the laptop, then the room holding the teddy bear.", "F(r12 & F r11)"),
+        ("Go to the room where you can find the laptop, then the room holding the teddy bear.",
+         "F(r12 & F r11)"),
     ],
 )
 def test_staying_on_the_start_floor(demo, text, gold):
@@ -239,7 +242,8 @@ def test_choice_remark_after_a_plural_still_refused(demo):
         ("The goal is to get to the office. Avoid the kitchen for the whole mission.", "F r12 & G !r4"),
         ("Would you mind checking the oven?", "F o16"),
         ("The robot must never enter the dining room. Go to the couch.", "G !r7 & F o22"),
-        ("Avoid the bathrooms throughout the trip and visit the bedroom with the book.", "F r13 & G !r5 & G !r14"),
+        ("Avoid the bathrooms throughout the trip and visit the bedroom with the book.",
+         "F r13 & G !r5 & G !r14"),
         ("Take a look at the clock in the bedroom, then make your way to the kitchen.", "F(o33 & F r4)"),
         ("Pay a visit to the dining room and take a seat on a chair.", "F(o28 | o29)"),
         ("Wash your hands at the sink in the kitchen.", "F o17"),
@@ -273,7 +277,8 @@ def test_only_after_that_is_strict(demo, text, gold):
     ("text", "gold"),
     [
         ("Until you have reached the laptop, stay out of the bathroom upstairs.", "!r14 U o35"),
-        ("Until you get to the kitchen, avoid the dining room and the living room; afterwards go to the couch.",
+        ("Until you get to the kitchen, avoid the dining room and the living room; afterwards go to the "
+         "couch.",
          "((!r7 & !r6) U r4) & F(r4 & F o22)"),
         ("Till you've visited both bedrooms, don't enter the office.", "(!r12 U r11) & (!r12 U r13)"),
     ],
@@ -326,7 +331,8 @@ def test_room_context(demo, text, gold):
     [
         ("Whenever you visit the kitchen, grab the bowl there.", "G(r4 -> F o19)"),
         ("Go to the bedroom with the book and check the chair there.", "F o38"),
-        ("Go to the couch, and whenever you're in the dining room, look at the table.", "F o22 & G(r7 -> F o27)"),
+        ("Go to the couch, and whenever you're in the dining room, look at the table.",
+         "F o22 & G(r7 -> F o27)"),
         ("Check the TV, but if you go into the kitchen, open the fridge.", "F o23 & (F r4 -> F o15)"),
         ("Go to the laptop, and if you ever enter the bathroom upstairs, visit the kitchen afterwards.",
          "F o35 & G(r14 -> F r4)"),
@@ -354,7 +360,8 @@ def test_an_object_after_a_condition_that_may_or_may_not_be_there_is_refused(dem
         ("The office and the dining room are out of bounds. Visit the bed in the teddy bear's room.",
          "G !r12 & G !r7 & F o31"),
         ("Keep clear of the kitchen and go to the couch.", "G !r4 & F o22"),
-        ("Check the clock in the living room, but under no circumstances enter the dining room.", "G !r7 & F o26"),
+        ("Check the clock in the living room, but under no circumstances enter the dining room.",
+         "G !r7 & F o26"),
         ("Go to the couch and never, ever touch the vase in the dining room.", "F o22 & G !o30"),
     ],
 )
@@ -442,7 +449,8 @@ def test_on_the_way(demo, text, gold):
          "F(r4 & F(r12 & F r6))"),
         ("Go to the kitchen, grab the bowl, then bring it to the dining table.", "F(r4 & F(o19 & F o27))"),
         # an order remark or an 'and' keeps the set unordered, as before
-        ("Open the fridge, wash the bowl (in any order), then go to the office.", "F(o15 & F r12) & F(o19 & F r12)"),
+        ("Open the fridge, wash the bowl (in any order), then go to the office.",
+         "F(o15 & F r12) & F(o19 & F r12)"),
         ("Check the oven and the microwave, then the couch.", "F(o16 & F o22) & F(o18 & F o22)"),
         ("Open the fridge, go to the couch.", "F o15 & F o22"),
     ],
@@ -528,7 +536,8 @@ def test_grounded_text_of_floor_stays(demo):
     t = PatternTranslator(1).translate("Stay on this floor and go to the toilet.", demo)
     assert t.grounded_text == f"Stay on {kept} and go to object_40."
     t = PatternTranslator(1).translate("Don't go to any other floor; check the laptop.", demo)
-    assert t.grounded_text == "Don't go to room_2, room_4, room_5, room_6, room_7 and room_8; check object_35."
+    others = "room_2, room_4, room_5, room_6, room_7 and room_8"
+    assert t.grounded_text == f"Don't go to {others}; check object_35."
 
 
 @pytest.mark.parametrize(

@@ -115,7 +115,8 @@ _THEN_NEXT = (("then",), ("and", "then"), ("finally",), ("and", "finally"), ("af
 """After a list joined by commas only: the list is a sequence too ("A, B, then C")."""
 _VERB_IDIOMS = (("all", "the", "way"), ("a", "look"), ("a", "quick", "look"), ("a", "peek"), ("a", "glance"),
                 ("a", "quick", "peek"), ("your", "way"), ("my", "way"), ("its", "way"), ("a", "visit"),
-                ("a", "quick", "visit"), ("a", "trip"), ("a", "quick", "trip"), ("a", "detour"), ("a", "stop"),
+                ("a", "quick", "visit"), ("a", "trip"), ("a", "quick", "trip"), ("a", "detour"),
+                ("a", "stop"),
                 ("a", "quick", "stop"), ("a", "seat"), ("a", "nap"), ("a", "rest"))
 """Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*."""
 _FLOOR_DIRECTIONS = {"above": 1, "up": 1, "higher": 1, "upstairs": 1, "below": -1, "down": -1, "lower": -1,
@@ -125,13 +126,15 @@ _FLOOR_PLURALS = (*lx.FLOOR_WORDS, "floors", "levels", "storeys", "stories")
 _STRICT_SEQ = tuple((*lead, *only) for lead in ((), (",",), ("and",), ("but",), (",", "and"), (",", "but"))
                     for only in (("only", "after", "that"), ("only", "after", "this"), ("only", "then"),
                                  ("only", "afterwards"), ("not", "before", "that"),
-                                 ("only", "once", "that", "is", "done"), ("only", "when", "that", "is", "done"),
+                                 ("only", "once", "that", "is", "done"),
+                                 ("only", "when", "that", "is", "done"),
                                  ("only", "after", "you", "have", "done", "that"),
                                  ("only", "once", "you", "have", "done", "that")))
 """``A, and only after that B``: B after A, and not before it (strict)."""
 _STAY = frozenset({"stay", "remain", "keep", "staying", "remaining", "keeping"})
 _LEAVE = frozenset({"leave", "leaving"})
-_OTHER_FLOOR = (("any", "other", "floor"), ("another", "floor"), ("a", "different", "floor"), ("other", "floors"),
+_OTHER_FLOOR = (("any", "other", "floor"), ("another", "floor"), ("a", "different", "floor"),
+                ("other", "floors"),
                 ("any", "other", "floors"), ("change", "floors"), ("change", "floor"), ("switch", "floors"),
                 ("any", "other", "level"), ("another", "level"), ("change", "levels"))
 """``don't go to any other floor`` / ``don't change floors``: stay on the start floor."""
@@ -352,8 +355,8 @@ class MissionParser:
             seq = self.at_any(_SEQ_WORDS) if sequence_too else None
             way = self.at_any(_ON_THE_WAY)
             n = len(way or ()) + (1 if self.word(len(way or ())) == "there" else 0)
-            if sequence_too and way is not None and (self.word(n) == "," or self.word(n) in lx.POSITIVE_VERBS
-                                                     and self.word(n) not in _WAY_BACK | {"to", "into"}):
+            if sequence_too and way is not None and (self.word(n) == "," or (self.word(n) in lx.POSITIVE_VERBS
+                                                     and self.word(n) not in _WAY_BACK | {"to", "into"})):
                 self.i += n  # "On the way (there), stop at X": X before the goal named last
                 self.waypoint_pending = seen_sequence = True
             elif way is not None and self.word(len(way)) == "there":
@@ -445,9 +448,9 @@ class MissionParser:
             else:  # not "In <room>, ...": read it again as part of the sentence
                 del self.references[known:]
                 self.i = save
-        before = self.actions
+        counted = self.actions
         body = self.body()
-        self.body_actions = self.actions - before
+        self.body_actions = self.actions - counted
         return self.postfix_condition(body)
 
     def until_prefix(self) -> Clause:
@@ -466,7 +469,8 @@ class MissionParser:
             raise self.fail("'until X, ...' needs one goal X")
         self.expect_comma_or_then()
         body = self.body()
-        if any(body.steps) or not body.constraints or not all(isinstance(c, Always) for c in body.constraints):
+        if (any(body.steps) or not body.constraints
+                or not all(isinstance(c, Always) for c in body.constraints)):
             raise self.fail("'until X, ...' is understood with prohibitions only (e.g. 'until you have been "
                             "to the kitchen, stay out of the office'); put goals in their own sentence")
         target = tasks[0]
@@ -482,7 +486,8 @@ class MissionParser:
         before = self.actions
         body = self.body()
         if self.actions - before > 1:
-            raise self.fail("a condition followed by several actions: it is not clear which of them belong to "
+            raise self.fail("a condition followed by several actions: it is not clear which of them belong "
+                            "to "
                             "the condition; put the other goals in a sentence of their own")
         return body
 
@@ -492,7 +497,8 @@ class MissionParser:
         joined = self.word(-1) in ("and", "but")  # "S, and whenever X, T" / "S, but if X, T"
         if self.body_actions > 1 and not joined and (self.at_any(_WHENEVER) or any(
                 self.at(*w.split()) for w in (*_CONDITION_WORDS, "only if"))):
-            raise self.fail(f"several actions before {self.here()}: it is not clear which of them the condition "
+            raise self.fail(f"several actions before {self.here()}: it is not clear which of them the "
+                            f"condition "
                             f"is about; give the condition its own sentence ('If ..., ...')")
         if self.at_any(_ONLY_AFTER):
             self.i += 2
@@ -806,7 +812,8 @@ class MissionParser:
                 or nxt in lx.REFUSED_VERBS or self.at_any(_NEG_STARTS, k=1) or self.at_any(_WAYPOINT, k=1):
             return False
         for j in range(self.i + 1, len(self.toks)):
-            if self.toks[j].text in ("if", "whenever", "until", "unless", "when", "while", "order", "whichever"):
+            if self.toks[j].text in ("if", "whenever", "until", "unless", "when", "while", "order",
+                                     "whichever"):
                 return False  # a condition, or "(in any order)" / "whichever first": not a sequence
             if self.at_any(_THEN_NEXT, k=j - self.i) and (j == 0 or self.toks[j - 1].text in (",", "and")):
                 return True
@@ -854,8 +861,8 @@ class MissionParser:
             filled = [k for k, s in enumerate(holder) if s]
             if filled:
                 k = filled[-1]
-                if len(holder[k]) != 1 or self.prior_steps is holder and clause.steps != [[]] and any(
-                        clause.steps):
+                if len(holder[k]) != 1 or (self.prior_steps is holder and clause.steps != [[]] and any(
+                        clause.steps)):
                     raise self.fail("'on the way' after several goals: it is not clear on the way to which; "
                                     "put the goals in the order they must be done (with 'then')")
                 holder[k:k] = new
@@ -1018,7 +1025,8 @@ class MissionParser:
         (or, after a negation, ``leave this floor``): every room of the other floors is forbidden for the
         whole mission (consumed, True); False (nothing consumed) when the words are not there."""
         said = self.staying(negated)
-        if said is not None and self.i and self.word(-1) in ("then", "afterwards", "later", "next", "finally"):
+        if said is not None and self.i and self.word(-1) in ("then", "afterwards", "later", "next",
+                                                             "finally"):
             raise self.fail(f"'{self.word(-1)} {self.word()} ...': staying on a floor for the rest of the "
                             f"mission only is not understood; say 'stay on ... the whole time'")
         if said is None:
@@ -1133,7 +1141,8 @@ class MissionParser:
                                                                               "if", "until", "before",
                                                                               "after", "when", "without"):
             w = self.word()
-            if self.pending_floor is not None and (self.at_any(lx.WHOLE_MISSION) or self.at_any(lx.TIME_FILLERS)):
+            if self.pending_floor is not None and (self.at_any(lx.WHOLE_MISSION)
+                                                   or self.at_any(lx.TIME_FILLERS)):
                 break  # "don't go downstairs at any point"
             idiom = self.verb_idiom()
             if idiom:  # "go all the way up to", "take a look at", "wash your hands at": part of the verb
@@ -1449,7 +1458,8 @@ class MissionParser:
         self.comma_list = len(nps) > 1 and not joiners and not either
         if "nor" in joiners:
             if role != "avoid" or len(joiners) > 1:
-                raise self.fail(f"'nor' in '{self.span_text(nps[0].start, nps[-1].end)}' is understood only in "
+                raise self.fail(f"'nor' in '{self.span_text(nps[0].start, nps[-1].end)}' is understood only "
+                                f"in "
                                 f"'never enter / neither A nor B' (each of them forbidden)")
             return nps  # "neither A nor B": each of them is forbidden
         if joiners == {"and", "or"}:
@@ -1699,13 +1709,15 @@ class MissionParser:
                 entities = [e for e in entities if e.key not in keys]
                 continue
             break
-        there = self.vocab.inside(entities, self.soft_scope) if role == "goal" and head.kind == "object" else []
+        there = (self.vocab.inside(entities, self.soft_scope) if role == "goal" and head.kind == "object"
+                 else [])
         if not room_scoped and mode == "the" and not head.plural and len(entities) > 1 and len(there) == 1:
             entities, room_scoped = there, True
         elif not room_scoped and 0 < len(there) < len(entities) and first.text in ("the", "a", "an"):
             where = " or ".join(f"{r.key} ({r.category})" for r in self.soft_scope)
             noun = lx.plural(head_word(entities)) if head.plural else head_word(entities)
-            raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}' after a condition on "
+            raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}' after a condition "
+                            f"on "
                             f"{where}: the ones there, or any in the building? Say 'the {noun} in the "
                             f"{self.soft_scope[0].category}' or 'any {head_word(entities)}'")
         if role != "qualifier" and scope and head.kind == "object" and not room_scoped:
@@ -1880,7 +1892,8 @@ class MissionParser:
         """
         plural = pronoun in ("them", "they")
         fits = [np for np in sorted(self.references, key=lambda r: r.start, reverse=True)
-                if (np.mode == "all" and len(np.entities) > 1) == plural and np.phrase.lower() not in lx.PRONOUNS
+                if (np.mode == "all" and len(np.entities) > 1) == plural
+                and np.phrase.lower() not in lx.PRONOUNS
                 and (kind is None or all(e.kind == kind for e in np.entities))]
         if fits:
             np = fits[0]
@@ -1903,7 +1916,8 @@ class MissionParser:
             raise self.fail("'it' does not refer to any room named before it")
         ref = max(outer, key=lambda r: r.start)
         if any(e.kind != "room" for e in ref.entities):
-            raise self.fail(f"'next to it': 'it' is '{ref.phrase}', an object; 'next to' is understood for rooms "
+            raise self.fail(f"'next to it': 'it' is '{ref.phrase}', an object; 'next to' is understood for "
+                            f"rooms "
                             f"only (distances between objects are not known)")
         tok = self.toks[self.i]
         self.i += 1

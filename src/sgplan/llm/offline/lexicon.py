@@ -277,7 +277,8 @@ WHOLE_MISSION = (("the", "whole", "time"), ("the", "entire", "time"), ("at", "al
                  *((pre, "the", whole, noun) for pre in ("for", "during", "throughout", "over")
                    for whole in ("whole", "entire", "full") for noun in _SPAN_NOUNS),
                  *(("throughout", "the", noun) for noun in _SPAN_NOUNS),
-                 ("while", "you", "do", "it"), ("while", "you", "do", "that"), ("while", "you", "are", "at", "it"),
+                 ("while", "you", "do", "it"), ("while", "you", "do", "that"),
+                 ("while", "you", "are", "at", "it"),
                  ("while", "doing", "so"), ("while", "doing", "that"), ("while", "doing", "it"),
                  ("in", "the", "process"),
                  *(("during", "the", noun) for noun in _SPAN_NOUNS))
