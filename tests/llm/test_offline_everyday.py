@@ -587,3 +587,19 @@ def test_statements_about_a_place_are_refused(demo):
 def test_conditions_with_several_actions_are_refused(demo, text):
     with pytest.raises(MissionError, match="several actions"):
         PatternTranslator().translate(text, demo)
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Go to the bathroom, the one upstairs.", "F r14"),
+        ("Go to the bedroom, the one with the teddy bear, then the kitchen.", "F(r11 & F r4)"),
+        ("Open the fridge, the one in the kitchen, and the oven.", "F o15 & F o16"),
+    ],
+)
+def test_apposition_says_which(demo, text, gold):
+    means(text, gold, demo)
+
+
+def test_apposition_that_fits_none_is_refused(demo):
+    refused("Go to the bathroom, the one with the couch.", "matches no room", demo)

@@ -1732,6 +1732,12 @@ class MissionParser:
                                 f"{where} named in the same step; it is at "
                                 f"{', '.join(e.describe() for e in entities[:8])}; say 'then' between the "
                                 f"two, or name its room ('the {head_word(entities)} in the ...')")
+        if (role != "qualifier" and mode == "the" and not head.plural and head.categories
+                and self.at(",", "the", "one") and not self.at_any(lx.CHOICE_AFFIRMATIONS, k=2)):
+            # "the bathroom, the one upstairs": the apposition says which
+            self.i += 1
+            which = self.noun_phrase("qualifier", None, Head(head.kind, head.categories, False, 1))
+            entities = [e for e in entities if e in which.entities]
         last = self.toks[self.i - 1]
         np = NounPhrase(self.span_text(first.start, last.end), first.start, last.end, entities, mode,
                         room_scoped, role, count, head.kind == "room" and not head.categories)
