@@ -22,7 +22,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
-from sgplan.logic.formula import And, Eventually, Formula, Not, Or
+from sgplan.logic.formula import And, Eventually, Formula, Not, Or, Until
 
 
 @dataclass
@@ -34,6 +34,9 @@ class Task:
     members: list[Formula]
     avoid: list[Formula] = field(default_factory=list)
     revisit: bool = False
+    strict: bool = False
+    """Said with *only after that* / *only then*: not done before the previous step (see
+    :func:`strict_formulas`)."""
 
 
 Step = list[Task]
@@ -78,3 +81,19 @@ def sequence_formula(steps: Sequence[Step]) -> Formula | None:
     for step in reversed([s for s in steps if s]):
         rest = conj([f for task in step for f in task_formulas(task, rest)])
     return rest
+
+
+def strict_formulas(steps: Sequence[Step]) -> list[Formula]:
+    """``A, and only after that B``: for each ``strict`` task of a step, its members are not done until the
+    previous step's tasks are (``!B U A``, one per member of an ``all`` task), on top of the sequence."""
+    out: list[Formula] = []
+    previous: Step = []
+    for step in [s for s in steps if s]:
+        for task in step:
+            if task.strict and previous:
+                forbidden = conj([Not(m) for m in task.members])
+                for before in previous:
+                    targets = [disj(before.members)] if before.mode == "any" else before.members
+                    out.extend(Until(forbidden, t) for t in targets)
+        previous = step
+    return out

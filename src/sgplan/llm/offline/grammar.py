@@ -19,14 +19,15 @@ it never guesses.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Literal
 
 from sgplan.errors import MissionError
 from sgplan.llm.offline import lexicon as lx
-from sgplan.llm.offline.compose import Step, Task, conj, disj, sequence_formula
+from sgplan.llm.offline.compose import Step, Task, conj, disj, sequence_formula, strict_formulas
 from sgplan.llm.offline.names import Entity, Head, SceneVocabulary
-from sgplan.llm.offline.text import Tok, sentences, tokenize
+from sgplan.llm.offline.text import Tok, rewrite, sentences, tokenize
 from sgplan.logic.formula import Always, And, Atom, Eventually, Formula, Implies, Not, Until, atoms
 from sgplan.logic.tokens import action_entity
 
@@ -47,9 +48,21 @@ _NEG_STARTS = (("always", "avoid"), ("always", "stay", "away", "from"), ("always
                ("stay", "away", "from"), ("keep", "away", "from"), ("stay", "out", "of"),
                ("keep", "out", "of"), ("without",), ("while", "avoiding"), ("always", "do", "not"),
                ("and", "avoid"), ("but", "avoid"), ("but", "never"), ("and", "never"), ("but", "do", "not"),
-               ("and", "do", "not"), ("but", "not"), ("no",))
+               ("and", "do", "not"), ("but", "not"), ("no",), ("neither",), ("nor",), ("and", "nor"),
+               ("keep", "clear", "of"), ("steer", "clear", "of"), ("stay", "clear", "of"),
+               ("under", "no", "circumstances"), ("at", "no", "point"), ("at", "no", "time"))
 _GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can", "cannot", "may", "will",
-                         "no", "stay", "keep"})
+                         "no", "stay", "keep", "neither", "nor", "steer", "circumstances", "point", "time"})
+_OFF_LIMITS = tuple((*be, *said) for be in (("is",), ("are",), ("is", "strictly"), ("are", "strictly"))
+                    for said in (("off", "limits"), ("out", "of", "bounds"), ("forbidden",), ("prohibited",),
+                                 ("banned",), ("not", "allowed"), ("a", "no", "go"), ("no", "go"),
+                                 ("not", "to", "be", "entered"), ("to", "be", "avoided"),
+                                 ("not", "to", "be", "touched"), ("out", "of", "limits")))
+_COPULAS = frozenset({"is", "are", "was", "were", "should", "must", "will", "has", "have", "seems", "looks",
+                      "might", "may", "can", "could", "needs", "need"})
+"""After a sentence's first noun phrase: a statement ("the bowl is in the kitchen"), never a goal."""
+_OFF_LIMITS += tuple((modal, "be", "avoided") for modal in ("should", "must", "has", "have", "will"))
+"""``The kitchen is off limits``: never enter / reach what the sentence names (``G !x``)."""
 """A negation with one of these words holds for the whole mission (G !x); 'avoid' and 'without' after an
 action only constrain the moment that action is done (F(x & !y)), as in the authors' missions."""
 _QUAL_IN = ("in", "inside", "within", "of", "from")
@@ -92,6 +105,46 @@ _CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "whi
                             "once", "whenever", "unless"})
 """Words that would continue a condition past its one action (a comma or *then* ends it)."""
 _FIRST = frozenset({"first", "firstly"})
+_ASIDE = tuple((",", rel, be, *also) for rel in ("which", "that") for be in ("is", "are")
+               for also in ((), ("also",), ("located",), ("also", "located")))
+_ASIDE_QUALIFIERS = frozenset({"in", "inside", "on", "next", "beside", "upstairs", "downstairs", "near",
+                               "adjacent", "connected", "attached"})
+"""``the couch, which is in the living room``: an aside read as the qualifier it states."""
+_THEN_NEXT = (("then",), ("and", "then"), ("finally",), ("and", "finally"), ("after", "that"),
+              ("afterwards",), ("lastly",))
+"""After a list joined by commas only: the list is a sequence too ("A, B, then C")."""
+_VERB_IDIOMS = (("all", "the", "way"), ("a", "look"), ("a", "quick", "look"), ("a", "peek"), ("a", "glance"),
+                ("a", "quick", "peek"), ("your", "way"), ("my", "way"), ("its", "way"), ("a", "visit"),
+                ("a", "quick", "visit"), ("a", "trip"), ("a", "quick", "trip"), ("a", "detour"),
+                ("a", "stop"),
+                ("a", "quick", "stop"), ("a", "seat"), ("a", "nap"), ("a", "rest"))
+"""Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*."""
+_FLOOR_DIRECTIONS = {"above": 1, "up": 1, "higher": 1, "upstairs": 1, "below": -1, "down": -1, "lower": -1,
+                     "downstairs": -1, "beneath": -1, "under": -1}
+"""``the floor above``, ``two floors down``: floors counted from the start floor."""
+_FLOOR_PLURALS = (*lx.FLOOR_WORDS, "floors", "levels", "storeys", "stories")
+_STRICT_SEQ = tuple((*lead, *only) for lead in ((), (",",), ("and",), ("but",), (",", "and"), (",", "but"))
+                    for only in (("only", "after", "that"), ("only", "after", "this"), ("only", "then"),
+                                 ("only", "afterwards"), ("not", "before", "that"),
+                                 ("only", "once", "that", "is", "done"),
+                                 ("only", "when", "that", "is", "done"),
+                                 ("only", "after", "you", "have", "done", "that"),
+                                 ("only", "once", "you", "have", "done", "that")))
+"""``A, and only after that B``: B after A, and not before it (strict)."""
+_STAY = frozenset({"stay", "remain", "keep", "staying", "remaining", "keeping"})
+_LEAVE = frozenset({"leave", "leaving"})
+_OTHER_FLOOR = (("any", "other", "floor"), ("another", "floor"), ("a", "different", "floor"),
+                ("other", "floors"),
+                ("any", "other", "floors"), ("change", "floors"), ("change", "floor"), ("switch", "floors"),
+                ("any", "other", "level"), ("another", "level"), ("change", "levels"))
+"""``don't go to any other floor`` / ``don't change floors``: stay on the start floor."""
+_TIME_SCOPED = frozenset({"until", "till", "before", "after", "once", "when", "whenever", "if", "unless",
+                          "during"})
+"""Words that may limit a *stay on this floor* to part of the mission: such a sentence confines nothing."""
+"""``stay on this floor`` / ``don't leave the ground floor``: the mission is confined to floors."""
+_TRIP_NOUNS = frozenset({"trip", "visit", "stop", "detour", "run", "quick", "short", "pass"})
+"""``twice, with a trip / visit / stop to Y in between``: words naming the visit to Y."""
+_BETWEEN_TAIL = (("them",), ("the", "two"), ("the", "two", "visits"), ("each", "visit"), ("visits",))
 _MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
 _STRUCTURAL = (
     frozenset(w for table in (_SEQ_WORDS, _NEG_STARTS, _QUAL_CONTAINS, _QUAL_LACKS, _QUAL_NEXT, _QUAL_EXCEPT,
@@ -124,6 +177,8 @@ class NounPhrase:
     role: Role
     count: int | None = None
     """How many entities the phrase said ("the two beds"), if it said so."""
+    generic: bool = False
+    """The head noun was *room* / *place* (any room): *the one with ...* after it means any room too."""
 
 
 @dataclass
@@ -135,7 +190,7 @@ class Clause:
 
     def formula(self) -> Formula | None:
         goal = sequence_formula(self.steps)
-        parts = ([goal] if goal is not None else []) + self.constraints
+        parts = ([goal] if goal is not None else []) + strict_formulas(self.steps) + self.constraints
         return conj(parts) if parts else None
 
 
@@ -158,6 +213,9 @@ class MissionParser:
         self.toks: list[Tok] = []
         self.i = 0
         self.sentence_scope: list[Entity] = []
+        self.soft_scope: list[Entity] = []
+        """The rooms of a condition ("whenever you enter the bathroom, wash at the sink"): an ambiguous
+        definite object of the consequent is the one there, when exactly one is."""
         self.prior_steps: list[Step] = []
         """The steps of the previous sentence when this one continues its sequence ("... Then ...")."""
         self.last_step: Step = []
@@ -166,6 +224,29 @@ class MissionParser:
         """Reading the condition of *if* / *whenever* (where *end up in X* just means being in X)."""
         self.pending_floor: frozenset[int] | None = None
         """A floor said in the verb slot ("go upstairs to ..."), for the next noun phrase."""
+        self.alt_floors: frozenset[int] | None = None
+        self.alt_said: tuple[str, str] = ("", "")
+        """The floors of the second reading of a start-relative word (:meth:`check_still_on_start_floor`)."""
+        self.waypoint_pending = False
+        """*On the way (there),* was said: the next action comes before the goal named last."""
+        self.said_last = False
+        """The sentence ended with *last* ("visit the office last"): its last step follows all else."""
+        self.body_actions = 0
+        """How many actions the sentence had before a trailing condition ("S if X")."""
+        self.actions = 0
+        """How many actions the sentence bodies read so far (a condition's consequent must be one)."""
+        self.lenient_scope = False
+        self.carried_rooms: list[Entity] = []
+        """The rooms of the step before a comma that made a sequence ("go to the kitchen, take a bottle,
+        then ..."): objects of the next action are looked for there first (leniently: elsewhere if none)."""
+        self.comma_list = False
+        """The last noun phrase list was joined by commas only ("the fridge, the oven")."""
+        self.going_back = False
+        """The last action said *back* / *return*: it comes after what was said before it."""
+        self.strict_pending = False
+        """*only after that* / *only then* was said: the next action is strictly after the step before."""
+        self.confined: frozenset[int] | None = None
+        """The floors the mission stays on ("stay on this floor"): goals are grounded there."""
 
     # -- token helpers --------------------------------------------------------------------------------
     def word(self, k: int = 0) -> str:
@@ -204,13 +285,22 @@ class MissionParser:
     # -- the mission ------------------------------------------------------------------------------------
     def parse(self) -> Formula:
         parts: list[Clause | Formula] = []
-        for sentence in sentences(tokenize(self.text)):
-            self.toks, self.i, self.sentence_scope = sentence, 0, []
+        all_sentences = sentences(rewrite(tokenize(self.text), lx.PHRASE_ALIASES))
+        self.confined = self.confinement(all_sentences)
+        for sentence in all_sentences:
+            self.toks, self.i, self.sentence_scope, self.soft_scope = sentence, 0, [], []
+            self.waypoint_pending = False
+            self.strict_pending = False
+            self.body_actions = 0
             previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
             precedes = self.sentence_precedes(parts)
             continues = self.skip_fillers(sequence_too=True)
             self.prior_steps = previous.steps if continues and previous is not None else []
+            self.said_last = False
             result = self.sentence()
+            if self.said_last and not continues and not precedes and previous is not None:
+                continues = True  # "Go to the office last.": after the goals of the sentences before
+                self.prior_steps = previous.steps
             if (isinstance(result, Clause) and not any(result.steps) and not result.constraints and previous
                     and "order" in self.words() and len([s for s in previous.steps if s]) > 1):
                 raise self.fail("'the order does not matter' after goals given in order; say which it is")
@@ -257,11 +347,21 @@ class MissionParser:
         """Skip words without meaning at a clause start; True if a sequencing word ('then', ...) was seen."""
         seen_sequence = False
         while not self.done():
+            strict = self.at_any(_STRICT_SEQ) if sequence_too else None
+            if strict is not None:  # "..., and only after that B": B strictly after
+                self.i += len(strict)
+                self.strict_pending = seen_sequence = True
+                continue
             seq = self.at_any(_SEQ_WORDS) if sequence_too else None
             way = self.at_any(_ON_THE_WAY)
-            if way is not None and self.word(len(way)) == "there":
+            n = len(way or ()) + (1 if self.word(len(way or ())) == "there" else 0)
+            if sequence_too and way is not None and (self.word(n) == "," or (self.word(n) in lx.POSITIVE_VERBS
+                                                     and self.word(n) not in _WAY_BACK | {"to", "into"})):
+                self.i += n  # "On the way (there), stop at X": X before the goal named last
+                self.waypoint_pending = seen_sequence = True
+            elif way is not None and self.word(len(way)) == "there":
                 raise self.fail("'on your way there': say 'before going to X, ...' or put the goals in order")
-            if sequence_too and way is not None and self.word(len(way)) in _WAY_BACK:
+            elif sequence_too and way is not None and self.word(len(way)) in _WAY_BACK:
                 self.i += len(way)
                 while self.word() in _WAY_BACK:
                     self.i += 1
@@ -291,7 +391,8 @@ class MissionParser:
             self.i += len(whenever)
             trigger = self.trigger()
             self.expect_comma_or_then()
-            return self.whenever(trigger, self.body())
+            self.soft_scope = self.rooms_of(trigger.members)
+            return self.whenever(trigger, self.consequent())
         done = self.done_words()
         if done and self.word(done) == "with" and self.np_starts(done + 1):
             self.i += done + 1  # "when done with the garage, ..."
@@ -306,10 +407,13 @@ class MissionParser:
             condition, tasks = self.condition()
             said_ever = self.says(_EVER, start, self.i)
             self.expect_comma_or_then()
+            self.soft_scope = self.rooms_of([m for t in tasks for m in t.members])
             start = self.i
-            body = self.body()
+            body = self.consequent()
             return self.conditional(cond_word, condition, tasks, body,
                                     said_ever or self.says(_AFTERWARDS, start, self.i))
+        if self.word() in ("until", "till") or self.at("up", "until"):
+            return self.until_prefix()
         if self.at_any(_ONLY_AFTER):
             self.i += 2
             before = self.prefix_clause()
@@ -344,11 +448,58 @@ class MissionParser:
             else:  # not "In <room>, ...": read it again as part of the sentence
                 del self.references[known:]
                 self.i = save
-        return self.postfix_condition(self.body())
+        counted = self.actions
+        body = self.body()
+        self.body_actions = self.actions - counted
+        return self.postfix_condition(body)
+
+    def until_prefix(self) -> Clause:
+        """``Until you have reached X, stay out of Y`` / ``Till X, do not enter Y``: ``!Y U X`` for each
+        prohibition of the sentence; X is a step of the sentence, so a later *afterwards* / *then* follows
+        it. The rest of the sentence must be prohibitions only."""
+        self.i += 2 if self.word() == "up" else 1
+        self.skip_subject()
+        self.in_condition = True
+        steps = self.action()
+        self.in_condition = False
+        tasks = [t for step in steps for t in step]
+        if len(tasks) > 1 and all(t.mode == "all" for t in tasks):  # "until A and B": each of them
+            tasks = [Task("all", [m for t in tasks for m in t.members])]
+        if len(tasks) != 1:
+            raise self.fail("'until X, ...' needs one goal X")
+        self.expect_comma_or_then()
+        body = self.body()
+        if (any(body.steps) or not body.constraints
+                or not all(isinstance(c, Always) for c in body.constraints)):
+            raise self.fail("'until X, ...' is understood with prohibitions only (e.g. 'until you have been "
+                            "to the kitchen, stay out of the office'); put goals in their own sentence")
+        target = tasks[0]
+        ends = [disj(target.members)] if target.mode == "any" else target.members
+        untils: list[Formula] = [Until(c.arg, end) for c in body.constraints if isinstance(c, Always)
+                                 for end in ends]
+        return Clause(steps=[[target]], constraints=untils)
+
+    def consequent(self) -> Clause:
+        """What a condition (*if*, *whenever*) asks for: one action. A second one (*..., grab the fridge
+        afterwards, and go to the garage*) may belong to the condition or be a goal of its own, so it is
+        refused rather than guessed."""
+        before = self.actions
+        body = self.body()
+        if self.actions - before > 1:
+            raise self.fail("a condition followed by several actions: it is not clear which of them belong "
+                            "to "
+                            "the condition; put the other goals in a sentence of their own")
+        return body
 
     def postfix_condition(self, body: Clause) -> Clause | Formula:
         if self.done():
             return body
+        joined = self.word(-1) in ("and", "but")  # "S, and whenever X, T" / "S, but if X, T"
+        if self.body_actions > 1 and not joined and (self.at_any(_WHENEVER) or any(
+                self.at(*w.split()) for w in (*_CONDITION_WORDS, "only if"))):
+            raise self.fail(f"several actions before {self.here()}: it is not clear which of them the "
+                            f"condition "
+                            f"is about; give the condition its own sentence ('If ..., ...')")
         if self.at_any(_ONLY_AFTER):
             self.i += 2
             self.skip_subject()
@@ -359,6 +510,12 @@ class MissionParser:
         if whenever is not None:
             self.i += len(whenever)
             trigger = self.trigger()
+            if joined and self.word() in (",", "then") and self.word(1):
+                self.expect_comma_or_then()
+                self.soft_scope = self.rooms_of(trigger.members)
+                consequent = self.consequent()
+                self.expect_end()
+                return conj([self.require(body, "before the condition"), self.whenever(trigger, consequent)])
             self.expect_end()
             return self.whenever(trigger, body)
         if self.at("only", "if"):
@@ -371,6 +528,16 @@ class MissionParser:
             self.i += len(cond_word.split())
             start = self.i
             condition, tasks = self.condition()
+            if joined and self.word() in (",", "then") and self.word(1):
+                said_ever = self.says(_EVER, start, self.i)
+                self.expect_comma_or_then()
+                self.soft_scope = self.rooms_of([m for t in tasks for m in t.members])
+                start = self.i
+                consequent = self.consequent()
+                self.expect_end()
+                response = said_ever or self.says(_AFTERWARDS, start, self.i)
+                return conj([self.require(body, "before the condition"),
+                             self.conditional(cond_word, condition, tasks, consequent, response)])
             response = self.says(_EVER, start, self.i) or self.says(_AFTERWARDS, 0, start)
             self.expect_end()
             return self.conditional(cond_word, condition, tasks, body, response)
@@ -519,6 +686,10 @@ class MissionParser:
     def body(self) -> Clause:
         clause = Clause()
         while not self.done():
+            if self.at_any(_STRICT_SEQ) is not None and self.skip_fillers(sequence_too=True):
+                if clause.steps[-1]:
+                    clause.steps.append([])
+                continue
             if self.word() in ("but", "and", ",") and self.at_any(_ONLY_AFTER, k=1):
                 self.i += 1  # "..., but only after X" / "..., but not before X"
             done = self.done_words()
@@ -540,6 +711,11 @@ class MissionParser:
             if any(clause.steps) and (self.word() in _FIRST or self.at("before", "that")):
                 self.goals_first(clause)
                 continue
+            if self.word() == "," and any(clause.steps[-1]) and self.comma_sequence():
+                self.i += 1  # "go to the kitchen, pop up to the bedroom, then ...": one after the other
+                self.carried_rooms = self.step_rooms(clause.steps[-1])
+                clause.steps.append([])
+                continue
             before = self.i
             if self.skip_fillers(sequence_too=True):
                 if clause.steps[-1]:
@@ -549,6 +725,11 @@ class MissionParser:
                 break
             if self.i > before:
                 continue  # look again at what follows the fillers
+            if self.stay_on_floor(clause) or self.off_limits(clause):
+                continue
+            nested = self.verbs_before_neither()
+            if nested:  # "go to neither A nor B": the verb says nothing, the negation is all
+                self.i += nested
             neg = self.at_any(_NEG_STARTS)
             if neg is not None:
                 self.negation(neg, clause)
@@ -571,7 +752,23 @@ class MissionParser:
             else:
                 if self.word() in lx.REFUSED_VERBS:
                     raise self.fail(f"cannot understand {lx.REFUSED_VERBS[self.word()]}")
-                steps = self.action(step_rooms=self.step_rooms(clause.steps[-1]))
+                # "go to the bedroom, but stop by the couch first": a step moved before the others is
+                # not in their room
+                self.actions += 1
+                later = self.moved_first() or self.goes_back()  # nor is "come back to X" (after them)
+                context = [] if later else self.step_rooms(clause.steps[-1])
+                # "go to the kitchen, take a bottle, then ...": the kitchen's bottle if it has one
+                self.lenient_scope = not context and bool(self.carried_rooms) and not later
+                steps = self.action(step_rooms=context or (self.carried_rooms if self.lenient_scope else []))
+                self.lenient_scope, self.carried_rooms = False, []
+                if self.strict_pending:
+                    for task in steps[0]:
+                        task.strict = True
+                    self.strict_pending = False
+                if self.waypoint_pending or self.on_the_way_after():
+                    self.waypoint_pending = False
+                    self.insert_on_the_way(clause, steps)
+                    continue
                 self.check_revisits(steps[0], self.prior_steps + clause.steps[:-1])
                 before_that = self.at("before", "that") and self.word(2) in ("", ",", "and", "then")
                 if self.word() in _FIRST or before_that:  # "go to B, but go to A first / before that"
@@ -590,10 +787,87 @@ class MissionParser:
                     clause.steps[-1].extend(steps[0])  # "go to A first and (then) B": A, then the rest
                     clause.steps.extend(steps[1:] + [[]])
                     continue
+                if self.said_last:  # "... and the office last": after everything else said
+                    self.skip_fillers()
+                    if not self.done():
+                        raise self.fail(f"'last' followed by {self.here()}: put the goals in the order they "
+                                        f"must be done (with 'then'), or say 'finally'")
+                    clause.steps[-1].extend(steps[0])
+                    clause.steps.extend([*steps[1:], []])
+                    continue
+                if self.going_back and any(clause.steps[-1]):
+                    clause.steps.append([])  # "go to the kitchen and come back to the couch": after it
                 clause.steps[-1].extend(steps[0])
                 if len(steps) > 1:
                     clause.steps.extend(steps[1:])
         return clause
+
+    def comma_sequence(self) -> bool:
+        """At a comma between two actions (``go to the kitchen, pop up to the bedroom, then ...``): whether
+        a *then* / *finally* / *after that* follows later in the sentence, which makes the comma-joined
+        actions a sequence too, as people write them."""
+        nxt = self.word(1)
+        if not nxt.isalpha() or self.np_starts(1) or nxt in _STRUCTURAL \
+                or (nxt in lx.FILLERS and nxt not in lx.POSITIVE_VERBS) \
+                or nxt in lx.REFUSED_VERBS or self.at_any(_NEG_STARTS, k=1) or self.at_any(_WAYPOINT, k=1):
+            return False
+        for j in range(self.i + 1, len(self.toks)):
+            if self.toks[j].text in ("if", "whenever", "until", "unless", "when", "while", "order",
+                                     "whichever"):
+                return False  # a condition, or "(in any order)" / "whichever first": not a sequence
+            if self.at_any(_THEN_NEXT, k=j - self.i) and (j == 0 or self.toks[j - 1].text in (",", "and")):
+                return True
+        return False
+
+    def goes_back(self) -> bool:
+        """Whether the verb words starting here say *back* / *return* ("come back to the couch")."""
+        n = 0
+        while self.word(n) in lx.POSITIVE_VERBS | lx.REVISIT_VERBS:
+            if self.word(n) in lx.REVISIT_VERBS:
+                return True
+            n += 1
+        return False
+
+    def moved_first(self) -> bool:
+        """Whether the action starting here ends with *first* / *before that* / *on the way* (looked ahead,
+        up to the next comma, *then* or *but*): it is then done before the step it is written after."""
+        for j in range(self.i, len(self.toks)):
+            w = self.toks[j].text
+            if w in _FIRST or (w == "before" and self.word(j - self.i + 1) == "that"):
+                return True
+            way = self.at_any(_ON_THE_WAY, k=j - self.i)
+            if way is not None and self.word(j - self.i + len(way)) in ("", ",", "there", "and", "then"):
+                return True  # "check the couch on the way": before the step
+            if w in (",", "then", "but", "after", "before", "if", "until", "when", "whenever"):
+                return False
+        return False
+
+    def on_the_way_after(self) -> bool:
+        """``stop at X on the way (there)`` / ``on your way``, ending the action: consumed, True."""
+        way = self.at_any(_ON_THE_WAY)
+        if way is None:
+            return False
+        n = len(way) + (1 if self.word(len(way)) == "there" else 0)
+        if self.word(n) not in ("", ",", "and", "then"):
+            return False
+        self.i += n
+        return True
+
+    def insert_on_the_way(self, clause: Clause, steps: list[Step]) -> None:
+        """Put ``steps`` (said *on the way*) right before the goal named last, in this sentence or the one
+        it continues; refused when that goal is not one place (on the way to which?)."""
+        new = [s for s in steps if s]
+        for holder in (clause.steps, self.prior_steps):
+            filled = [k for k, s in enumerate(holder) if s]
+            if filled:
+                k = filled[-1]
+                if len(holder[k]) != 1 or (self.prior_steps is holder and clause.steps != [[]] and any(
+                        clause.steps)):
+                    raise self.fail("'on the way' after several goals: it is not clear on the way to which; "
+                                    "put the goals in the order they must be done (with 'then')")
+                holder[k:k] = new
+                return
+        raise self.fail("'on the way' needs the goal it is on the way to, named before it")
 
     def waypoint(self, clause: Clause) -> None:
         """``go to Y via X`` / ``..., passing through X``: X on the way, before the one goal Y just named."""
@@ -646,8 +920,12 @@ class MissionParser:
         """``always avoid X`` / ``never enter X`` (global: G !X), ``avoid X`` after an action (local),
         ``don't enter X until Y`` (``!X U Y``)."""
         self.i += len(marker)
+        if self.at(",", "ever"):  # "never, ever"
+            self.i += 1
         if self.word() == "ever":  # "never ever", "don't ever"
             self.i += 1
+        if self.stay_on_floor(clause, negated=True):  # "don't leave this floor"
+            return
         has_goal = any(clause.steps)
         is_global = bool(_GLOBAL_NEG & set(marker)) or not has_goal
         if set(self.verb_words()) & lx.REVISIT_VERBS:  # "never go back to X": only after a first visit
@@ -696,6 +974,10 @@ class MissionParser:
             t = tasks[0]
             targets = [disj(t.members)] if t.mode == "any" else t.members
             clause.constraints.extend(Until(forbidden, m) for m in targets)
+            if not any(clause.steps) and not self.prior_steps:
+                # "Keep out of X until you have seen Y, then Z": Y (which the until requires) is the step
+                # that *then* follows
+                clause.steps[-1].append(Task(t.mode, list(t.members)))
         elif is_global:
             clause.constraints.append(Always(forbidden))
         else:
@@ -704,6 +986,139 @@ class MissionParser:
             target.avoid.extend(Not(Atom(e.action)) for e in local)
             if everywhere:
                 clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in everywhere])))
+
+    def verbs_before_neither(self) -> int:
+        """How many verb words come before a *neither* here ("go to neither A nor B"), 0 if none do."""
+        n = 0
+        while self.word(n) in lx.POSITIVE_VERBS:
+            n += 1
+        return n if n and self.word(n) == "neither" else 0
+
+    def off_limits(self, clause: Clause) -> bool:
+        """``The kitchen is off limits`` / ``the office and the garage are out of bounds``: ``G !x`` for each
+        (consumed, True); False (nothing consumed) when the sentence does not say that."""
+        if not self.np_starts():
+            return False
+        save, known = self.i, len(self.references)
+        try:
+            nps = self.noun_phrase_list("avoid", [])
+        except MissionError:
+            nps = []
+        said = self.at_any(_OFF_LIMITS) if nps else None
+        if said is None and nps and self.word() in _COPULAS:
+            raise self.fail(f"'{self.span_text(nps[0].start, self.toks[self.i].end)} ...' states something; "
+                            f"it is not understood as a goal or a prohibition (say what to do, e.g. 'go to "
+                            f"...', 'never enter ...', '... is off limits')")
+        if said is None:
+            del self.references[known:]
+            self.i = save
+            return False
+        self.i += len(said)
+        whole = self.at_any(lx.WHOLE_MISSION)
+        if whole is not None:
+            self.i += len(whole)
+        clause.constraints.append(Always(conj([Not(Atom(e.action)) for np in nps for e in np.entities])))
+        return True
+
+    def stay_on_floor(self, clause: Clause, negated: bool = False) -> bool:
+        """``stay on this floor`` / ``stay on the ground floor`` / ``stay downstairs`` / ``keep to floor 1``
+        (or, after a negation, ``leave this floor``): every room of the other floors is forbidden for the
+        whole mission (consumed, True); False (nothing consumed) when the words are not there."""
+        said = self.staying(negated)
+        if said is not None and self.i and self.word(-1) in ("then", "afterwards", "later", "next",
+                                                             "finally"):
+            raise self.fail(f"'{self.word(-1)} {self.word()} ...': staying on a floor for the rest of the "
+                            f"mission only is not understood; say 'stay on ... the whole time'")
+        if said is None:
+            if negated and self.word() in _LEAVE:
+                raise self.fail(f"cannot understand {lx.REFUSED_VERBS['leave']}")
+            return False
+        floors, k, where = said
+        other = self.at_any(_OTHER_FLOOR, k=where) is not None
+        self.alt_floors = None  # "stay on ...": the floors said, whatever the goals before
+        first, last = self.toks[self.i + where], self.toks[self.i + k - 1]
+        self.i += k
+        rooms = [e for e in self.vocab.entities if e.kind == "room" and e.floor not in floors]
+        if not rooms:
+            raise self.fail(f"'{self.span_text(first.start, last.end)}': the building has no other floor")
+        # the grounded text names what the words name: the floors kept ("stay on room_9, ... room_14"), or
+        # the others ("don't go to room_2, ... room_8" for "any other floor")
+        named = rooms if other else [e for e in self.vocab.entities if e.kind == "room" and e.floor in floors]
+        self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, named, "all",
+                               False, "avoid" if other else "qualifier"))
+        whole = self.at_any(lx.WHOLE_MISSION)
+        if whole is not None:
+            self.i += len(whole)
+        clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in rooms])))
+        return True
+
+    def staying(self, negated: bool) -> tuple[frozenset[int], int, int] | None:
+        """The floors of ``stay on <floor>`` / ``stay downstairs`` (or ``leave <floor>`` after a negation)
+        here, how many words say it and at which of them the floor words begin; ``None`` if the words are
+        not there. Nothing is consumed."""
+        if negated:  # "don't go to any other floor", "don't change floors"
+            n = 0
+            while self.word(n) in lx.POSITIVE_VERBS and not self.at_any(_OTHER_FLOOR, k=n):
+                n += 1
+            other = self.at_any(_OTHER_FLOOR, k=n)
+            if other is not None:
+                changed = other[0] in ("change", "switch")  # "change floors": the floors are the ones kept
+                return self.start_floor_only(" ".join(other)), n + len(other), n + (1 if changed else 0)
+        if self.word() not in (_LEAVE if negated else _STAY):
+            return None
+        k = 1
+        if self.word(k) in lx.RELATIVE_FLOORS and not negated:
+            return self.staying_floors(self.word(k)), k + 1, k
+        if self.word(k) in ("on", "to", "at", "in", "within") and not negated:
+            k += 1
+        where = k
+        k += 1 if self.word(k) == "the" else 0
+        if self.word(k) == "same" and self.word(k + 1) in lx.FLOOR_WORDS:  # "stay on the same floor"
+            return self.start_floor_only(f"the same {self.word(k + 1)}"), k + 2, where
+        said = self.floor_words(k)
+        if said is None or self.vocab.match_head(self.words(), self.i + k + said[1]) is not None:
+            return None  # not a floor, or "stay on the ground floor bathroom"
+        return said[0], k + said[1], where
+
+    def start_floor_only(self, said: str) -> frozenset[int]:
+        """The start floor, for *stay on the same floor* / *don't go to any other floor*; refused when it is
+        not known."""
+        if self.start_floor is None:
+            raise self.fail(f"'{said}' depends on where the robot starts, which is not known here; say which "
+                            f"floor to stay on (the building {self.vocab.building_name!r} has floors 0 to "
+                            f"{self.vocab.num_floors - 1})")
+        return frozenset({self.start_floor})
+
+    def confinement(self, sentence_tokens: list[list[Tok]]) -> frozenset[int] | None:
+        """The floors the whole mission is confined to by ``stay on <floor>`` / ``don't leave <floor>``
+        anywhere in it (read before the rest, so that "go to the toilet, staying on this floor" grounds
+        *the toilet* on that floor); ``None`` when the mission says no such thing."""
+        confined: frozenset[int] | None = None
+        for sentence in sentence_tokens:
+            if {t.text for t in sentence} & _TIME_SCOPED:
+                continue  # "until you reach X, stay on this floor": not the whole mission
+            self.toks = sentence
+            for j, tok in enumerate(sentence):
+                self.i = j
+                negated = j > 0 and sentence[j - 1].text in ("not", "never")
+                said = self.staying(negated) if tok.text in _STAY or negated else None
+                if said is not None:
+                    confined = said[0] if confined is None else confined & said[0]
+        self.toks, self.i = [], 0
+        return confined
+
+    def staying_floors(self, word: str) -> frozenset[int]:
+        """``stay downstairs`` / ``stay upstairs``: the lower / upper floor of a two-floor building, or the
+        start floor when it is the lowest / highest; otherwise it is not clear which floors are meant
+        (refused, naming them)."""
+        floors, step = self.vocab.num_floors, lx.RELATIVE_FLOORS[word]
+        extreme = 0 if step < 0 else floors - 1
+        if floors == 2 or self.start_floor == extreme:
+            return frozenset({extreme})
+        where = "is not known here" if self.start_floor is None else f"is floor {self.start_floor}"
+        raise self.fail(f"'stay {word}': the start floor {where} and the building "
+                        f"{self.vocab.building_name!r} has floors 0 to {floors - 1}; say 'stay on floor k' "
+                        f"or 'never go to floor k'")
 
     def avoidance_scope(self, target: Task, forbidden: list[Entity]) -> tuple[list[Entity], list[Entity]]:
         """Split what a trailing *avoid* / *without* forbids into what holds when ``target`` is done (an
@@ -721,10 +1136,19 @@ class MissionParser:
         """Words before the noun phrase: the verb, whatever it is, unless it is refused or a word of the
         grammar itself (``always``, ``floor``, ``next`` ... out of place are errors, not verbs)."""
         seen: list[str] = []
-        while not self.done() and not self.np_starts() and self.word() not in (",", "and", "or", "then",
+        while not self.done() and (not self.np_starts() or self.verb_idiom()) \
+                and self.word() not in (",", "and", "or", "then",
                                                                               "if", "until", "before",
                                                                               "after", "when", "without"):
             w = self.word()
+            if self.pending_floor is not None and (self.at_any(lx.WHOLE_MISSION)
+                                                   or self.at_any(lx.TIME_FILLERS)):
+                break  # "don't go downstairs at any point"
+            idiom = self.verb_idiom()
+            if idiom:  # "go all the way up to", "take a look at", "wash your hands at": part of the verb
+                seen += [t.text for t in self.toks[self.i : self.i + idiom]]
+                self.i += idiom
+                continue
             if w in lx.REFUSED_VERBS:
                 raise self.fail(f"cannot understand {lx.REFUSED_VERBS[w]}")
             ends = self.word(1) in ("in", "at", "up", "with")
@@ -740,6 +1164,16 @@ class MissionParser:
                 continue
             if self.at_any(_NEG_STARTS) is not None:
                 break
+            offset = self.floor_offset()
+            if offset is None and w in ("up", "down"):  # "go down two floors", "go up a floor"
+                turned = self.floor_count(1)
+                if turned is not None and self.word(2) in _FLOOR_PLURALS:
+                    offset = self.shifted_floor(turned * _FLOOR_DIRECTIONS[w], f"{w} {self.word(1)} "
+                                                f"{self.word(2)}"), 3
+            if offset is not None:  # "go two floors down to the garage": the garage on that floor
+                self.pending_floor = offset[0]
+                self.i += offset[1]
+                continue
             if w in lx.RELATIVE_FLOORS:  # "go upstairs to the bathroom": the bathroom on that floor
                 self.pending_floor = self.relative_floor(w)
             elif w not in lx.POSITIVE_VERBS and (w in _STRUCTURAL or not w.isalpha()):
@@ -748,12 +1182,39 @@ class MissionParser:
             self.i += 1
         return seen
 
-    def relative_floor(self, word: str) -> frozenset[int]:
+    def rooms_of(self, members: list[Formula]) -> list[Entity]:
+        """The rooms that the state formulas ``members`` put the robot in (their own or their objects')."""
+        keys = [action_entity(a) for m in members for a in atoms(m)]
+        rooms = dict.fromkeys(self.vocab.by_key[k].room_key for k in keys if k in self.vocab.by_key)
+        return [self.vocab.by_key[k] for k in rooms]
+
+    def verb_idiom(self) -> int:
+        """How many words here belong to the verb although they look like a noun phrase: ``all the way``,
+        ``a look`` / ``your way`` (*take a look at*, *make your way to*), or a body part before a place
+        (*wash your hands at the sink*); 0 if none."""
+        idiom = self.at_any(_VERB_IDIOMS)
+        if idiom is not None:
+            return len(idiom)
+        if (self.word() in ("your", "my", "his", "her", "their") and self.word(1).isalpha()
+                and self.vocab.match_head(self.words(), self.i + 1) is None
+                and self.word(2) in ("at", "using", "with", "on") and self.np_starts(3)):
+            return 2
+        return 0
+
+    def relative_floor(self, word: str, candidates: list[Entity] | None = None) -> frozenset[int]:
         """The floors *upstairs* / *downstairs* mean: those above / below the start floor when it is known;
-        in a two-floor building, the upper / lower floor; otherwise it is refused, naming the floors."""
+        in a two-floor building, the upper / lower floor; for a noun ("the downstairs bathroom",
+        ``candidates`` = the bathrooms) whose candidates lie on exactly two floors, the lower / upper of
+        those, as people name such rooms whatever floor they stand on; otherwise it is refused, naming the
+        floors."""
         step = lx.RELATIVE_FLOORS[word]
         floors = self.vocab.num_floors
+        on = sorted({e.floor for e in candidates or []})
+        if self.start_floor is None and floors > 2 and len(on) == 2:
+            return frozenset({on[1] if step > 0 else on[0]})
         if self.start_floor is not None:
+            self.check_still_on_start_floor(
+                word, lambda base: frozenset(f for f in range(floors) if (f - base) * step > 0))
             wanted = frozenset(f for f in range(floors) if (f - self.start_floor) * step > 0)
             if not wanted:
                 raise self.fail(f"'{word}': the robot starts on floor {self.start_floor} and the building "
@@ -768,6 +1229,7 @@ class MissionParser:
     def action(self, step_rooms: list[Entity] | None = None) -> list[Step]:
         """Verb words and noun phrases -> one or more steps (``put X in Y``, ordered lists give more)."""
         verbs = self.verb_words()
+        self.going_back = bool(set(verbs) & lx.REVISIT_VERBS)
         if not self.np_starts() and self.pending_floor is not None and self.word() in ("and", ",", "then"):
             self.i += 1  # "go upstairs and check the laptop": the laptop upstairs
             return self.action(step_rooms)
@@ -785,11 +1247,17 @@ class MissionParser:
         ordered = self.at_any(lx.ORDER_MODIFIERS, k=comma)
         if ordered:
             self.i += comma + len(ordered)
+        elif self.comma_list and len(nps) > 1 and self.at_any(_THEN_NEXT, k=comma):
+            ordered = ("then",)  # "the fridge, the oven, then the couch": one after the other, as written
         pronoun_only = all(np.phrase.lower() in lx.PRONOUNS for np in nps)
         # "put it in Y": the object is already in hand, the goal is Y, after what came before.
         steps: list[Step] = [[]] if carry and pronoun_only else self.tasks_of(nps, ordered is not None)
         if lead:
             steps = [steps[0][:1], steps[0][1:]]
+        if self.word() in ("last", "lastly") and self.word(1) in ("", ",") and len(steps) == 1:
+            self.i += 1  # "the kitchen and the office last": the office after the rest
+            self.said_last = True
+            steps = [steps[0][:-1], steps[0][-1:]]
         self.revisits(nps, steps, verbs)
         self.skip_particles()
         # "put X in Y", "take X to Y", "go from X to Y", and any object followed by "to Y": X, then Y.
@@ -817,16 +1285,28 @@ class MissionParser:
             self.i += len(self.at_any(lx.TIME_FILLERS) or ())
         return steps or [[]]
 
-    def choice_affirmed(self, nps: list[NounPhrase]) -> None:
-        """Consume ``, either one is fine`` / ``, any of them`` after a choice; refused after a phrase that
-        means each of several (the remark would turn "all" into "one of"), or after several phrases."""
+    def affirmation_ahead(self) -> tuple[str, ...] | None:
+        """The words of ``(,) either one is fine`` / ``, any one will do`` / ``, whichever`` right here (a
+        remark that the choice is the robot's), or ``None``; nothing is consumed."""
         comma = 1 if self.word() == "," else 0
         said = self.at_any(lx.CHOICE_AFFIRMATIONS, k=comma)
         time = self.at_any(lx.TIME_FILLERS, k=comma)  # "whichever first" is about the order
         if said is None or (said == ("is", "fine") and comma) or (time is not None
                                                                   and len(time) >= len(said)):
+            return None
+        return (",",) * comma + said
+
+    def choice_affirmed(self, nps: list[NounPhrase]) -> None:
+        """Consume ``, either one is fine`` / ``, any of them`` after a choice (a singular definite phrase
+        matching several, "the toilet on this floor, any one will do", was made a choice by :meth:`check`);
+        refused after a phrase that means each of several (the remark would turn "all" into "one of"), or
+        after several phrases."""
+        said = self.affirmation_ahead()
+        if said is None:
             return
-        if len(nps) > 1 or nps[0].mode != "any":
+        comma = 1 if said[0] == "," else 0
+        said = said[comma:]
+        if len(nps) > 1 or (nps[0].mode != "any" and len(nps[0].entities) > 1):
             raise self.fail(f"'{' '.join(said)}' after '{self.span_text(nps[0].start, nps[-1].end)}', which "
                             f"means each of them: say 'any of ...' or 'A or B' for a choice")
         self.i += comma + len(said)
@@ -864,9 +1344,40 @@ class MissionParser:
             for task in steps[0]:
                 task.revisit = True
         times = self.repetitions()
-        if times > 1 and any(steps):
+        between = self.in_between() if times == 2 and any(steps) else None
+        if between is not None:  # "X twice, with a visit to Y in between": X, then Y, then X
+            last = [t for t in steps[-1]]
+            steps.extend([*between, [Task(t.mode, t.members) for t in last]])
+        elif times > 1 and any(steps):
             last = [t for t in steps[-1]]
             steps.extend([Task(t.mode, t.members, [], True) for t in last] for _ in range(times - 1))
+
+    def in_between(self) -> list[Step] | None:
+        """After *twice*: ``(,) with (a trip / visit / stop) (to) Y in between`` or ``(,) visiting Y in
+        between``: the steps of Y (consumed); ``None`` when the words are not there (nothing consumed)."""
+        save, known = self.i, len(self.references)
+        k = 1 if self.word() == "," else 0
+        if self.word(k) == "with":
+            k += 1
+            if self.word(k) in ("a", "an") and self.word(k + 1) in _TRIP_NOUNS:
+                k += 2
+            elif self.word(k) in _TRIP_NOUNS:
+                k += 1
+        elif not self.word(k).endswith("ing") or self.word(k) in _STRUCTURAL:
+            return None
+        self.i += k
+        try:
+            steps = self.action()
+        except MissionError:
+            steps = []
+        if any(steps) and (self.at("in", "between") or self.word() == "between"):
+            self.i += 2 if self.word() == "in" else 1
+            if self.at_any(_BETWEEN_TAIL):
+                self.i += len(self.at_any(_BETWEEN_TAIL) or ())
+            return [s for s in steps if s]
+        del self.references[known:]
+        self.i = save
+        return None
 
     def repetitions(self) -> int:
         """``twice`` / ``two times`` / ``3 times`` after the noun phrases -> 2, 2, 3 (consumed); else 1."""
@@ -907,7 +1418,12 @@ class MissionParser:
         if w in _DETERMINERS:
             nxt = self.word(k + 1)
             return not (w == "some" and nxt == "point") and not (w == "that" and nxt == "order")
+        if w in lx.FLOOR_WORDS and (self.word(k + 1).isdigit() or self.word(k + 1) in lx.NUMBER_WORDS
+                                    or self.word(k + 1) == "zero"):
+            return True  # "floor 2" as a place
         if w in lx.NUMBER_WORDS or w.isdigit():
+            if self.word(k + 1) in _FLOOR_PLURALS and self.word(k + 2) in _FLOOR_DIRECTIONS:
+                return False  # "two floors up": where, not what
             return (w != "one" or self.word(k + 1) == "of"
                     or self.vocab.match_head(self.words(), self.i + k + 1) is not None)
         return self.vocab.match_head(self.words(), self.i + k) is not None
@@ -927,15 +1443,25 @@ class MissionParser:
             elif (self.word() == "," and self.np_starts(1) and not self.at_any(_NEG_STARTS, k=1)
                   and not self.at_any(lx.TIME_FILLERS, k=1) and not self.at_any(lx.CHOICE_AFFIRMATIONS, k=1)):
                 self.i += 1
-            elif self.word() in ("and", "or") and self.np_starts(1):
+            elif self.word() in ("and", "or", "nor") and self.np_starts(1):
                 joiners.add(self.word())
                 self.i += 1
+            elif self.at(",", "nor") and self.np_starts(2):
+                joiners.add("nor")
+                self.i += 2
             elif self.at("as", "well", "as") and self.np_starts(3):
                 joiners.add("and")
                 self.i += 3
             else:
                 break
             nps.append(self.noun_phrase(role, scope))
+        self.comma_list = len(nps) > 1 and not joiners and not either
+        if "nor" in joiners:
+            if role != "avoid" or len(joiners) > 1:
+                raise self.fail(f"'nor' in '{self.span_text(nps[0].start, nps[-1].end)}' is understood only "
+                                f"in "
+                                f"'never enter / neither A nor B' (each of them forbidden)")
+            return nps  # "neither A nor B": each of them is forbidden
         if joiners == {"and", "or"}:
             raise self.fail(f"'{self.span_text(nps[0].start, nps[-1].end)}' mixes 'and' and 'or'; split it "
                             f"into two sentences")
@@ -973,6 +1499,28 @@ class MissionParser:
         group = self.all_of_them() if role == "goal" else None
         if group is not None:
             return group
+        if self.at("the", "same") and self.word(2) in ("room", "place") and role == "qualifier":
+            self.i += 3  # "the sink in the same room": the room of the place named last
+            rooms = self.there_rooms(first.start)
+            if len(rooms) != 1:
+                raise self.fail(f"'the same {self.word(-1)}': the place named before it is "
+                                f"{' or '.join(r.key for r in rooms)}; name the room")
+            return self.record(NounPhrase(self.span_text(first.start, self.toks[self.i - 1].end), first.start,
+                                          self.toks[self.i - 1].end, rooms, "the", False, role))
+        if w == "its" and self.vocab.match_head(self.words(), self.i + 1) is not None:
+            self.i += 1  # "its sink": the sink in the room just named (or in the room of the object named)
+            ref = self.antecedent("it")
+            container = [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in ref.entities)]
+            head = self.head(None)
+            if head.kind == "room":  # "the other bedroom and its bathroom": the bathroom attached to it
+                owned = self.vocab.next_to(self.vocab.of_head(head), container)
+            else:
+                owned = self.vocab.inside(self.vocab.of_head(head), container)
+            np = NounPhrase(self.span_text(first.start, self.toks[self.i - 1].end), first.start,
+                            self.toks[self.i - 1].end, owned, "all" if head.plural else "the",
+                            head.kind == "object", role)
+            self.check(np, head, None)
+            return self.record(np)
         if w in lx.PRONOUNS:
             self.i += 1
             ref = self.antecedent(w, pronoun_kind)
@@ -991,14 +1539,16 @@ class MissionParser:
             self.i += 1
         mode, count = self.quantifier()
         floors_first: frozenset[int] | None = None
-        if self.word() in lx.RELATIVE_FLOORS:  # "the upstairs bathroom"
-            floors_first = self.relative_floor(self.word())
+        relative = ""
+        if self.word() in lx.RELATIVE_FLOORS:  # "the upstairs bathroom": applied once the noun is read
+            relative = self.word()
             self.i += 1
         elif (said := self.floor_words()) is not None:  # "the ground floor bathroom", "the top floor"
             floors_first = said[0]
             self.i += said[1]
             if self.vocab.match_head(self.words(), self.i) is None:
                 return self.floor_place(first, floors_first, mode, role)
+        modifier: list[Entity] = []
         if self.word().startswith(("room_", "object_")):
             key = self.word()
             if key not in self.vocab.by_key:
@@ -1010,20 +1560,29 @@ class MissionParser:
         else:
             if other:
                 self.i += 1  # "other"
+            modifier = self.vocab.room_modifier(self.words(), self.i)
+            if modifier:  # "the dining chairs": the chairs in the dining room
+                self.i += 1
             head = self.head(one_head)
             entities = self.vocab.of_head(head)
+            if modifier:
+                entities = self.vocab.inside(entities, modifier)
             if mode is None:
                 mode = "all" if head.plural else "the"
             elif mode == "the" and head.plural:
                 mode = "all"
+        if relative:
+            floors_first = self.relative_floor(relative, entities)
         if other:
             entities = self.others(entities, first.start)
         if floors_first is not None:
-            entities = self.vocab.on_floor(entities, floors_first)
+            entities = self.on_floors(entities, floors_first)
         if self.pending_floor is not None:
-            entities = self.vocab.on_floor(entities, self.pending_floor)
+            entities = self.on_floors(entities, self.pending_floor)
             self.pending_floor = None
-        room_scoped = False
+        if self.confined is not None and role in ("goal", "condition"):
+            entities = self.vocab.on_floor(entities, self.confined)  # "stay on this floor": goals there
+        room_scoped = bool(modifier)
         compound = head.kind == "room" and self.vocab.match_head(self.words(), self.i)
         if compound and compound.kind == "object":  # "the kitchen sink": the sink in the kitchen
             container = entities
@@ -1033,6 +1592,20 @@ class MissionParser:
                 mode = "all"
             room_scoped = True
         while True:
+            aside = self.at_any(_ASIDE)
+            if aside is not None and self.word(len(aside)) in _ASIDE_QUALIFIERS:
+                self.i += len(aside)  # "the couch, which is in the living room": a qualifier all the same
+                continue
+            if self.word() == "'s" and head.kind == "object":  # "the teddy bear's room": the room holding it
+                self.i += 1
+                owners = entities
+                head = self.head(None)
+                if head.kind != "room":
+                    raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}': only "
+                                    f"a room can hold an object ('the teddy bear's room')")
+                entities = self.vocab.containing(self.vocab.of_head(head), owners, None)
+                mode = "all" if head.plural else "the"
+                continue
             if self.word() == "'s" and head.kind == "room":
                 self.i += 1
                 container = entities
@@ -1044,9 +1617,9 @@ class MissionParser:
                 mode = "all" if head.plural else "the"
                 room_scoped = True
                 continue
-            floor = self.floor_qualifier()
+            floor = self.floor_qualifier(entities)
             if floor is not None:
-                entities = self.vocab.on_floor(entities, floor)
+                entities = self.on_floors(entities, floor)
                 continue
             if (self.word() in _QUAL_IN and self.np_starts(1) and not self.at_any(lx.ORDER_MODIFIERS)
                     and not self.at_any(lx.TIME_FILLERS)
@@ -1059,6 +1632,22 @@ class MissionParser:
                 entities = self.vocab.inside(entities, inner.entities)
                 inner.entities = [r for r in inner.entities if any(e.room_key == r.key for e in entities)]
                 room_scoped = True
+                continue
+            if (self.word() == "there" and head.kind == "object" and role == "goal" and not room_scoped
+                    and self.word(1) not in ("is", "are", "was", "were")):
+                self.i += 1  # "grab a bottle there": in the room of the place named last
+                entities = self.vocab.inside(entities, self.there_rooms(first.start))
+                room_scoped = True
+                continue
+            held = self.relative_contents(head) if head.kind == "room" else None
+            if held is not None:  # "the room where the book is", "the room the book is in"
+                entities = self.vocab.containing(entities, held.entities, None)
+                held.entities = [o for o in held.entities if any(o.room_key == r.key for r in entities)]
+                continue
+            if self.without_contents(head, entities):  # "the bedroom without a potted plant"
+                inner = self.noun_phrase("qualifier")
+                entities = self.vocab.lacking(entities, inner.entities)
+                self.skip_in_it()
                 continue
             lacks = self.at_any(_QUAL_LACKS)
             if lacks and self.np_starts(len(lacks)):
@@ -1083,14 +1672,24 @@ class MissionParser:
                                                  only="only" in contains)
                 inner.entities = [o for o in inner.entities if any(o.room_key == r.key for r in entities)]
                 self.skip_in_it()
+                entities = self.more_contents(first, entities)
                 continue
             nxt = self.at_any(_QUAL_NEXT)
             if nxt and self.np_starts(len(nxt)):
                 self.i += len(nxt)
-                inner = self.noun_phrase("qualifier")
-                if head.kind != "room" or any(e.kind != "room" for e in inner.entities):
-                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': 'next to' relates rooms "
-                                    f"only")
+                inner = self.next_to_it() if self.word() == "it" else self.noun_phrase("qualifier")
+                if any(e.kind != "room" for e in inner.entities):
+                    raise self.fail(f"'{self.span_text(first.start, inner.end)}': 'next to' is understood "
+                                    f"for rooms only (distances between objects are not known); name the "
+                                    f"room the object is in")
+                if head.kind == "object":  # "the toilet next to the bedroom": in a room next to it
+                    rooms = self.vocab.next_to(
+                        [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in entities)],
+                        inner.entities)
+                    entities = self.vocab.inside(entities, rooms)
+                    inner.entities = [r for r in inner.entities
+                                      if any(r.key in self.vocab.adjacent.get(x.key, ()) for x in rooms)]
+                    continue
                 entities = self.vocab.next_to(entities, inner.entities)
                 inner.entities = [r for r in inner.entities
                                   if any(r.key in self.vocab.adjacent.get(e.key, ()) for e in entities)]
@@ -1110,11 +1709,22 @@ class MissionParser:
                 entities = [e for e in entities if e.key not in keys]
                 continue
             break
+        there = (self.vocab.inside(entities, self.soft_scope) if role == "goal" and head.kind == "object"
+                 else [])
+        if not room_scoped and mode == "the" and not head.plural and len(entities) > 1 and len(there) == 1:
+            entities, room_scoped = there, True
+        elif not room_scoped and 0 < len(there) < len(entities) and first.text in ("the", "a", "an"):
+            where = " or ".join(f"{r.key} ({r.category})" for r in self.soft_scope)
+            noun = lx.plural(head_word(entities)) if head.plural else head_word(entities)
+            raise self.fail(f"'{self.span_text(first.start, self.toks[self.i - 1].end)}' after a condition "
+                            f"on "
+                            f"{where}: the ones there, or any in the building? Say 'the {noun} in the "
+                            f"{self.soft_scope[0].category}' or 'any {head_word(entities)}'")
         if role != "qualifier" and scope and head.kind == "object" and not room_scoped:
             scoped = self.vocab.inside(entities, scope)
             if scoped:
                 entities, room_scoped = scoped, True
-            elif role == "goal" and entities:
+            elif role == "goal" and entities and not self.lenient_scope:
                 # "go to the lobby and sit on the couch" where the lobby has no couch: another room's couch
                 # is not what was asked for.
                 where = " or ".join(f"{r.key} ({r.category})" for r in scope)
@@ -1122,16 +1732,121 @@ class MissionParser:
                                 f"{where} named in the same step; it is at "
                                 f"{', '.join(e.describe() for e in entities[:8])}; say 'then' between the "
                                 f"two, or name its room ('the {head_word(entities)} in the ...')")
+        if (role != "qualifier" and mode == "the" and not head.plural and head.categories
+                and self.at(",", "the", "one") and not self.at_any(lx.CHOICE_AFFIRMATIONS, k=2)):
+            # "the bathroom, the one upstairs": the apposition says which
+            self.i += 1
+            which = self.noun_phrase("qualifier", None, Head(head.kind, head.categories, False, 1))
+            entities = [e for e in entities if e in which.entities]
         last = self.toks[self.i - 1]
         np = NounPhrase(self.span_text(first.start, last.end), first.start, last.end, entities, mode,
-                        room_scoped, role,
-                        count)
+                        room_scoped, role, count, head.kind == "room" and not head.categories)
         self.check(np, head, count)
         return self.record(np)
 
+    def more_contents(self, first: Tok, rooms: list[Entity]) -> list[Entity]:
+        """After ``the bedroom with the book``: ``and the vase`` may say more of its contents, or name
+        another goal. When the rooms are still several and the object narrows them, it is contents
+        (consumed); when one room is left and it holds that object too, either reading fits, which is
+        refused; otherwise nothing is consumed (another goal)."""
+        if self.word() != "and" or not self.np_starts(1) or role_is_pronoun(self.word(1)):
+            return rooms
+        save, known = self.i, len(self.references)
+        self.i += 1
+        try:
+            inner = self.noun_phrase("qualifier")
+        except MissionError:
+            inner = None
+        holders = ([] if inner is None or any(e.kind != "object" for e in inner.entities)
+                   else self.vocab.containing(rooms, inner.entities, None))
+        if len(rooms) > 1 and 0 < len(holders) < len(rooms):
+            self.skip_in_it()
+            return holders
+        if len(rooms) == 1 and holders and inner is not None:
+            raise self.fail(f"'{self.span_text(first.start, inner.end)}': a room with both, or "
+                            f"'{inner.phrase}' as another goal? Say 'the ... that has both ...', or 'then' "
+                            f"before '{inner.phrase}'")
+        del self.references[known:]
+        self.i = save
+        return rooms
+
+    def relative_contents(self, head: Head) -> NounPhrase | None:
+        """``where the book is`` / ``in which the book is`` / ``(that) the book is in`` after a room head:
+        the object phrase those rooms must hold (consumed), or ``None`` (nothing consumed)."""
+        save, known = self.i, len(self.references)
+        if self.word() == "where" and self.np_starts(1) and self.word(1) != "there":
+            self.i += 1
+            tail: tuple[str, ...] = ()
+        elif self.at("in", "which") and self.np_starts(2):
+            self.i += 2
+            tail = ()
+        elif self.word() in ("that", "which") and self.np_starts(1):
+            self.i += 1
+            tail = ("in",)
+        elif self.np_starts() and not self.word().startswith(("room_", "object_")):
+            tail = ("in",)
+        else:
+            return None
+        try:
+            inner = self.noun_phrase("qualifier")
+        except MissionError:
+            if not tail:
+                raise
+            inner = None
+        ok = inner is not None and self.word() in ("is", "are", "was", "were", "sits", "lives", "stands")
+        if ok:
+            self.i += 1
+            if self.word() in ("located", "kept", "stored", "placed", "found", "standing", "sitting"):
+                self.i += 1
+            ok = all(self.word(n) == w for n, w in enumerate(tail))
+            self.i += len(tail)
+        if not ok or inner is None:
+            if not tail:
+                raise self.fail(f"'where ...' after a room is understood as 'the room where the <object> "
+                                f"is'; found {self.here()}")
+            del self.references[known:]
+            self.i = save
+            return None
+        if any(e.kind != "object" for e in inner.entities):
+            raise self.fail(f"'{inner.phrase}': a room is described by an object it holds ('the room where "
+                            f"the book is')")
+        return inner
+
+    def without_contents(self, head: Head, rooms: list[Entity]) -> bool:
+        """Whether ``without <object>`` here describes the rooms (``the bedroom without a potted plant``)
+        rather than what to avoid: only when several rooms are in question and the object tells them apart
+        (some hold it, some do not). Nothing is consumed but ``without``."""
+        if head.kind != "room" or self.word() != "without" or len(rooms) < 2 or not self.np_starts(1):
+            return False
+        save, known = self.i, len(self.references)
+        self.i += 1
+        try:
+            inner = self.noun_phrase("qualifier")
+        except MissionError:
+            inner = None
+        del self.references[known:]
+        self.i = save
+        if inner is None or any(e.kind != "object" for e in inner.entities):
+            return False
+        left = self.vocab.lacking(rooms, inner.entities)
+        if not left or len(left) == len(rooms):
+            return False
+        self.i += 1
+        return True
+
+    def there_rooms(self, before: int) -> list[Entity]:
+        """The rooms *there* means at character offset ``before``: those of the last place named as a goal
+        or a condition before it ("whenever you enter the kitchen, grab a bottle there")."""
+        places = [r for r in self.references if r.role in ("goal", "condition") and r.start < before
+                  and r.entities and r.phrase.lower() not in lx.PRONOUNS]
+        if not places:
+            raise self.fail("'there' does not refer to any place named before it")
+        last = max(places, key=lambda r: r.start)
+        return [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in last.entities)]
+
     def floor_place(self, first: Tok, floors: frozenset[int], mode: Mode | None, role: Role) -> NounPhrase:
         """``the top floor`` as a place: any of its rooms as a goal or condition, all of them to avoid."""
-        rooms = self.vocab.on_floor(self.vocab.of_head(Head("room", frozenset(), True, 1)), floors)
+        rooms = self.on_floors(self.vocab.of_head(Head("room", frozenset(), True, 1)), floors)
         chosen: Mode = "all" if role == "avoid" or mode == "all" else "any"
         last = self.toks[self.i - 1]
         return self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, rooms,
@@ -1142,6 +1857,8 @@ class MissionParser:
         """The kind and category of the last room or object named (what *the other one* refers to)."""
         for np in sorted(self.references, key=lambda r: r.start, reverse=True):
             categories = {e.category for e in np.entities}
+            if np.role != "qualifier" and np.generic:  # "the room where the book is, then the one ..."
+                return Head("room", frozenset(), False, 1)
             if np.role != "qualifier" and np.entities and len(categories) == 1:
                 return Head(np.entities[0].kind, frozenset(categories), False, 1)
         return None
@@ -1175,17 +1892,43 @@ class MissionParser:
 
         ``it`` takes a phrase denoting one entity, ``them``/``they`` one denoting several, so in "go to the
         bedroom with the TV and turn it on" *it* is the TV, and in "take both bowls in the kitchen and put
-        them in the fridge" *them* are the bowls.
+        them in the fridge" *them* are the bowls. An object named inside an object phrase to locate it is
+        not the antecedent: in "get the book from the bedroom with the vase, then bring it ..." *it* is the
+        book.
         """
         plural = pronoun in ("them", "they")
-        for np in sorted(self.references, key=lambda r: r.start, reverse=True):
-            is_plural = np.mode == "all" and len(np.entities) > 1
-            if is_plural == plural and np.phrase.lower() not in lx.PRONOUNS and (
-                kind is None or all(e.kind == kind for e in np.entities)
-            ):
-                return np
+        fits = [np for np in sorted(self.references, key=lambda r: r.start, reverse=True)
+                if (np.mode == "all" and len(np.entities) > 1) == plural
+                and np.phrase.lower() not in lx.PRONOUNS
+                and (kind is None or all(e.kind == kind for e in np.entities))]
+        if fits:
+            np = fits[0]
+            # "the book from the bedroom with the vase ... it": the object the phrase is about (its head),
+            # not an object named inside it to locate it
+            outer = [o for o in fits[1:] if o.start <= np.start and np.end <= o.end
+                     and all(e.kind == "object" for e in o.entities)]
+            return min(outer, key=lambda o: o.start) if outer else np
         raise self.fail(f"'{pronoun}' does not refer to any {'group of ' if plural else ''}room or object "
                         f"named before it")
+
+    def next_to_it(self) -> NounPhrase:
+        """``next to it``: *it* is the last whole phrase named (not one nested in it: in "the bedroom where
+        the teddy bear is" that is the bedroom); it must be a room, since distances between objects are not
+        known."""
+        refs = [r for r in self.references if r.phrase.lower() not in lx.PRONOUNS and r.entities]
+        outer = [r for r in refs if not any(o is not r and o.start <= r.start and r.end <= o.end
+                                            and (o.start, o.end) != (r.start, r.end) for o in refs)]
+        if not outer:
+            raise self.fail("'it' does not refer to any room named before it")
+        ref = max(outer, key=lambda r: r.start)
+        if any(e.kind != "room" for e in ref.entities):
+            raise self.fail(f"'next to it': 'it' is '{ref.phrase}', an object; 'next to' is understood for "
+                            f"rooms "
+                            f"only (distances between objects are not known)")
+        tok = self.toks[self.i]
+        self.i += 1
+        return self.record(NounPhrase("it", tok.start, tok.end, list(ref.entities), ref.mode, False,
+                                      "qualifier"))
 
     def all_of_them(self) -> NounPhrase | None:
         """``all of them`` / ``both of them`` / ``each of them`` / ``all three of them``: the group named
@@ -1211,9 +1954,11 @@ class MissionParser:
         w = self.word()
         mode: Mode | None = None
         count: int | None = None
+        chosen_from = False
         if w in ("one", "any", "either") and self.word(1) == "of":
             self.i += 2
             mode = "any"
+            chosen_from = self.word() in ("the", "these", "those")  # "one of the two bathrooms"
         elif w in ("a", "an", "any", "some", "either"):
             self.i += 1
             mode = "any"
@@ -1229,6 +1974,8 @@ class MissionParser:
             self.i += 1
         counted = self.np_starts(1) or self.vocab.match_head(self.words(), self.i + 1)
         n = self.count_word() if counted else None
+        if n is not None and chosen_from:
+            return mode, n  # one of them, and there must be n
         if n is not None:
             if mode in (None, "any"):
                 raise self.fail(f"'{self.word(-1)} ...': choosing a number of them is not understood; "
@@ -1272,15 +2019,21 @@ class MissionParser:
         self.i += head.words
         return head
 
-    def floor_qualifier(self) -> frozenset[int] | None:
+    def floor_qualifier(self, candidates: list[Entity]) -> frozenset[int] | None:
         """``on floor 1`` / ``in floor 1`` / ``on the second floor`` / ``on the ground floor`` -> {1}, {1},
         {0}; ``upstairs`` / ``downstairs`` / ``on this floor``: relative to the start floor
         (:meth:`relative_floor`); ``up there`` / ``down there``: the floor(s) of the last goal. Not ``in the
         ground floor bathroom``: that names a room."""
         if self.word() in lx.RELATIVE_FLOORS:  # "the bathroom upstairs"
-            relative = self.relative_floor(self.word())
+            relative = self.relative_floor(self.word(), candidates)
             self.i += 1
             return relative
+        comma = 1 if self.word() == "," else 0
+        if self.floor_count(comma) is not None and self.word(comma + 1) in _FLOOR_PLURALS:
+            offset = self.floor_offset(comma)  # "the kitchen (,) one floor down"
+            if offset is not None:
+                self.i += comma + offset[1]
+                return offset[0]
         if self.word() in ("up", "down") and self.word(1) == "there":  # "the bathroom up there"
             goals = [r for r in self.references if r.role == "goal" and r.entities]
             if not goals:
@@ -1289,6 +2042,12 @@ class MissionParser:
             return frozenset(e.floor for e in max(goals, key=lambda r: r.start).entities)
         if self.word() not in ("on", "in", "at", "of", "from"):
             return None
+        if self.at("the", "same", k=1) and self.word(3) in lx.FLOOR_WORDS:
+            self.i += 4
+            return self.same_floor()
+        if self.word(1) == "that" and self.word(2) in lx.FLOOR_WORDS:  # "on that floor": the last goal's
+            self.i += 3
+            return self.same_floor()
         k = 2 if self.word(1) == "the" else 1
         said = self.floor_words(k)
         if said is None or self.vocab.match_head(self.words(), self.i + k + said[1]) is not None:
@@ -1296,12 +2055,108 @@ class MissionParser:
         self.i += k + said[1]
         return said[0]
 
+    def same_floor(self) -> frozenset[int]:
+        """After ``on the same floor`` / ``on that floor``: the floor of ``as <phrase>`` when said, else of
+        the last goal named. It must be one floor: after a choice across floors ("either bedroom, then the
+        bathroom on the same floor") the floor depends on the choice, which is refused rather than
+        guessed."""
+        if self.word() == "as" and self.np_starts(1):
+            self.i += 1
+            ref = self.noun_phrase("qualifier")
+        else:
+            goals = [r for r in self.references if r.role == "goal" and r.entities]
+            if not goals:
+                raise self.fail("'the same floor' / 'that floor' does not refer to any place named before it")
+            ref = max(goals, key=lambda r: r.start)
+        floors = frozenset(e.floor for e in ref.entities)
+        if len(floors) != 1:
+            raise self.fail(f"'the same floor' as '{ref.phrase}', which is on floors "
+                            f"{', '.join(str(f) for f in sorted(floors))}: the floor depends on which one is "
+                            f"chosen; say which floor, or give each choice its own sentence")
+        return floors
+
+    def floor_offset(self, k: int = 0) -> tuple[frozenset[int], int] | None:
+        """Floors counted from the start floor, at offset ``k``: ``floor above`` / ``floor below`` (after
+        *the*), ``next floor up``, ``one floor up``, ``two floors down``, ``a floor down`` -> the floor and
+        how many words say it; ``None`` if the words are not there. Needs the start floor."""
+        w, nxt, third = self.word(k), self.word(k + 1), self.word(k + 2)
+        count = self.floor_count(k)
+        if w in lx.FLOOR_WORDS and nxt in _FLOOR_DIRECTIONS:
+            delta, n = _FLOOR_DIRECTIONS[nxt], 2
+        elif w == "next" and nxt in lx.FLOOR_WORDS and third in _FLOOR_DIRECTIONS:
+            delta, n = _FLOOR_DIRECTIONS[third], 3
+        elif count is not None and nxt in _FLOOR_PLURALS and third in _FLOOR_DIRECTIONS:
+            delta, n = _FLOOR_DIRECTIONS[third] * count, 3
+        else:
+            return None
+        floors = self.shifted_floor(delta, " ".join(self.word(k + j) for j in range(n)))
+        if self.word(k + n) in ("us", "you", "me"):
+            n += 1  # "the floor above us"
+        elif self.at("this", "one", k=k + n):
+            n += 2  # "the floor below this one"
+        return floors, n
+
+    def check_still_on_start_floor(self, said: str, relate: Callable[[int], frozenset[int]]) -> None:
+        """Words relative to the start floor (*upstairs*, *the floor below*) after a goal on another floor
+        could be relative to where that goal took the robot: ``relate`` (a floor -> the floors the words
+        mean from there) gives that second reading, kept in :attr:`alt_floors` and compared when the floors
+        are applied (:meth:`on_floors`); a last goal on several floors leaves no second reading to compare,
+        which is refused."""
+        goals = [r for r in self.references if r.role == "goal" and r.entities]
+        if not goals:
+            return
+        last = max(goals, key=lambda r: r.start)
+        at = {e.floor for e in last.entities}
+        if at == {self.start_floor}:
+            return
+        if len(at) > 1:
+            raise self.fail(f"'{said}' after '{last.phrase}' (floors "
+                            f"{', '.join(str(f) for f in sorted(at))}): relative to the start (floor "
+                            f"{self.start_floor}) or to there? Say which floor")
+        self.alt_floors = relate(at.pop())
+        self.alt_said = (said, last.phrase)
+
+    def on_floors(self, entities: list[Entity], floors: frozenset[int]) -> list[Entity]:
+        """``entities`` on ``floors``; when words relative to the start could also be read from the floor of
+        the goal named before them (:meth:`check_still_on_start_floor`), both readings must pick the same
+        entities, else it is refused."""
+        out = self.vocab.on_floor(entities, floors)
+        alt, self.alt_floors = self.alt_floors, None
+        if alt is not None and {e.key for e in self.vocab.on_floor(entities, alt)} != {e.key for e in out}:
+            said, after = self.alt_said
+            raise self.fail(f"'{said}' after '{after}': relative to the start (floor {self.start_floor}) or "
+                            f"to there? The two differ here; say which floor")
+        return out
+
+    def floor_count(self, k: int) -> int | None:
+        """``a`` / ``one`` / ``two`` / ``2`` at offset ``k`` as a number of floors, else ``None``."""
+        w = self.word(k)
+        return 1 if w == "a" else int(w) if w.isdigit() else lx.NUMBER_WORDS.get(w)
+
+    def shifted_floor(self, delta: int, said: str) -> frozenset[int]:
+        """The floor ``delta`` floors above the start floor (below if negative); refused without a start
+        floor or outside the building."""
+        floors = self.vocab.num_floors
+        if self.start_floor is None:
+            raise self.fail(f"'{said}' depends on where the robot starts, which is not known here; say which "
+                            f"floor (the building {self.vocab.building_name!r} has floors 0 to {floors - 1})")
+        self.check_still_on_start_floor(
+            said, lambda base: frozenset({base + delta}) if 0 <= base + delta < floors else frozenset())
+        floor = self.start_floor + delta
+        if not 0 <= floor < floors:
+            raise self.fail(f"'{said}': the robot starts on floor {self.start_floor} and the building "
+                            f"{self.vocab.building_name!r} has floors 0 to {floors - 1}")
+        return frozenset({floor})
+
     def floor_words(self, k: int = 0) -> tuple[frozenset[int], int] | None:
         """The floor named by the words at offset ``k`` and how many words name it: ``floor 1``, ``second
         floor``, ``ground floor``, ``top floor``, ``middle floor``, ``this floor`` (the start floor); ``None``
         if they name no floor. Floors the building does not have are refused."""
         w, nxt = self.word(k), self.word(k + 1)
         floors = self.vocab.num_floors
+        moved = self.floor_offset(k)
+        if moved is not None:
+            return moved
         if w in lx.FLOOR_WORDS and (nxt.isdigit() or nxt in lx.NUMBER_WORDS or nxt == "zero"):
             floor = 0 if nxt == "zero" else int(nxt) if nxt.isdigit() else lx.NUMBER_WORDS[nxt]
         elif nxt not in lx.FLOOR_WORDS:
@@ -1333,11 +2188,18 @@ class MissionParser:
                 raise self.fail(f"'{np.phrase}' matches no {head.kind} of this scene{self.existing(head)}")
             return
         if not np.entities:
-            raise self.fail(f"'{np.phrase}' matches no {head.kind}{self.existing(head)}")
+            kept = ""
+            if self.confined is not None and np.role in ("goal", "condition"):
+                kept = (f", on the floor(s) the mission stays on "
+                        f"({', '.join(str(f) for f in sorted(self.confined))})")
+            raise self.fail(f"'{np.phrase}' matches no {head.kind}{kept}{self.existing(head)}")
         if count is not None and len(np.entities) != count:
             listing = ", ".join(e.describe() for e in np.entities)
             raise self.fail(f"'{np.phrase}' should be {count} {head.kind}s but matches {len(np.entities)}: "
                             f"{listing}")
+        if np.mode == "the" and len(np.entities) > 1 and head.kind == np.entities[0].kind \
+                and not head.plural and self.affirmation_ahead() is not None:
+            np.mode = "any"  # "the toilet on this floor, any one will do": one of them
         if np.mode == "the" and len(np.entities) > 1:
             listing = ", ".join(
                 f"{e.key} (floor {e.floor})" if e.kind == "room"
@@ -1376,6 +2238,11 @@ class MissionParser:
                 if unique:
                     return f"say what it contains (e.g. 'the {word} with the {unique[0]}')"
         return f"say 'any {word}' or 'every {word}', or name it by its ID (e.g. {ents[0].key})"
+
+
+def role_is_pronoun(word: str) -> bool:
+    """Whether ``word`` is a pronoun (``and it`` never adds to a room's contents)."""
+    return word in lx.PRONOUNS
 
 
 def head_word(entities: list[Entity]) -> str:

@@ -61,6 +61,10 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
 IRREGULAR_PLURALS: dict[str, str] = {"shelf": "shelves", "knife": "knives", "person": "people",
                                      "stairs": "stairs"}
 
+ROOM_MODIFIERS = frozenset({"dining", "utility"})
+"""First words of room categories used alone before an object: *the dining chairs* = the chairs in the
+dining room (not *living*, *empty*, *home*: those are ordinary adjectives too)."""
+
 GENERIC_ROOM_WORDS = ("room", "rooms", "place", "places", "area", "areas")
 """Heads meaning 'any room' ("every room on floor 0", "the room with two TVs")."""
 
@@ -145,6 +149,44 @@ REFUSED_VERBS: dict[str, str] = {
     "ideally": "'ideally' (preferences cannot be expressed; say what must happen)",
     "preferably": "'preferably' (preferences cannot be expressed; say what must happen)",
     "try": "'try' (optional goals cannot be expressed; say what must happen)",
+    "none": "'none' (say 'never enter X' to forbid a place)",
+    "nothing": "'nothing' (say 'never enter X' or 'do not touch X')",
+    "nowhere": "'nowhere' (say 'never enter X' to forbid a place)",
+    "instead": "'instead' (say what to visit, and 'never enter X' for what not to)",
+    "rather": "'rather' (say what to visit, and 'never enter X' for what not to)",
+    "refrain": "'refrain' (say 'never enter X' / 'do not touch X')",
+    "forbid": "'forbid' (say 'never enter X')",
+    "forbidden": "'forbidden' here (say 'X is forbidden' or 'never enter X')",
+    "prohibited": "'prohibited' here (say 'never enter X')",
+    "banned": "'banned' here (say 'never enter X')",
+    "hardly": "'hardly' (say 'never enter X' or make it a goal)",
+    "rarely": "'rarely' (say 'never enter X' or make it a goal)",
+    "seldom": "'seldom' (say 'never enter X' or make it a goal)",
+    "barely": "'barely'",
+    "fail": "'fail'",
+    "lest": "'lest' (rephrase with 'never')",
+    "cease": "'cease'",
+    "quit": "'quit'",
+    "prevent": "'prevent' (say 'never enter X')",
+    "left": "'left' (say where to go and what to reach)",
+    "otherwise": "'otherwise' (alternatives between actions are not understood; say 'visit A or B')",
+    "else": "'else' (alternatives between actions are not understood; say 'visit A or B')",
+    "alternatively": "'alternatively' (say 'visit A or B')",
+    "sometimes": "'sometimes' (say what must happen)",
+    "occasionally": "'occasionally' (say what must happen)",
+    "often": "'often' (say what must happen)",
+    "usually": "'usually' (say what must happen)",
+    "normally": "'normally' (say what must happen)",
+    "mostly": "'mostly' (say what must happen)",
+    "almost": "'almost'",
+    "nearly": "'nearly'",
+    "repeatedly": "'repeatedly' (say 'twice' or 'three times')",
+    "continuously": "'continuously'",
+    "constantly": "'constantly'",
+    "regularly": "'regularly'",
+    "again and again": "'again and again'",
+    "unnecessarily": "'unnecessarily'",
+    "briefly": "'briefly'",
 }
 """Words that would silently change the meaning if read as ordinary words: refused with a reason."""
 
@@ -163,7 +205,17 @@ POLITE = (("make", "sure"), ("make", "sure", "that"), ("be", "sure", "to"), ("be
           ("i", "need", "you", "to"), ("i", "want", "you", "to"), ("i", "would", "like", "you", "to"),
           ("i", "d", "like", "you", "to"), ("we", "need", "you", "to"), ("can", "you"), ("could", "you"),
           ("would", "you"), ("will", "you"), ("remember", "to"), ("i", "would", "like"), ("i", "need"),
-          ("i", "want"), ("let", "us"), ("let", "'s"), ("for", "me"))
+          ("i", "want"), ("let", "us"), ("let", "'s"), ("for", "me"), ("the", "robot"), ("robot", ","),
+          *((owner, noun, "is", "to") for owner in ("the", "your", "my", "our")
+            for noun in ("task", "job", "goal", "mission", "aim", "objective", "plan", "errand")),
+          *((owner, noun, "is") for owner in ("the", "your", "my", "our")
+            for noun in ("task", "job", "goal", "mission", "aim", "objective", "plan", "errand")),
+          ("all", "you", "need", "to", "do", "is"), ("all", "you", "have", "to", "do", "is"),
+          ("what", "i", "need", "is", "for", "you", "to"), ("i", "would", "like", "it", "if", "you"),
+          ("i", "would", "appreciate", "it", "if", "you"), ("if", "you", "could"), ("if", "you", "would"),
+          ("would", "you", "mind"), ("do", "me", "a", "favor", "and"), ("do", "me", "a", "favour", "and"),
+          ("go", "and"), ("please", "make", "sure"),
+          *((word,) for word in ("task", "goal", "mission", "objective", "errand", "todo", "instructions")))
 """Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
 
 START_END_VERBS = word_set("start starting begin beginning end ending finish finishing")
@@ -196,24 +248,40 @@ TIME_FILLERS = (("at", "some", "point"), ("at", "any", "time"), ("sometime",), (
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
 
-CHOICE_AFFIRMATIONS = (
-    ("either", "one"), ("any", "one"), ("either", "one", "is", "fine"), ("any", "one", "is", "fine"),
-    ("either", "is", "fine"), ("either", "works"), ("either", "one", "works"), ("any", "of", "them"),
-    ("either", "of", "them"), ("any", "of", "them", "is", "fine"), ("either", "will", "do"),
-    ("any", "will", "do"), ("whichever",), ("whichever", "one"), ("whichever", "you", "like"),
-    ("whichever", "is", "fine"), ("no", "matter", "which"), ("no", "matter", "which", "one"),
+_CHOOSERS = (("either",), ("any",), ("whichever",), ("either", "one"), ("any", "one"), ("whichever", "one"),
+             ("any", "of", "them"), ("either", "of", "them"), ("whichever", "of", "them"))
+_FINE = ((), ("is", "fine"), ("is", "ok"), ("is", "okay"), ("is", "good"), ("will", "do"), ("works",),
+         ("would", "do"), ("would", "be", "fine"), ("will", "be", "fine"), ("you", "like"), ("you", "want"),
+         ("you", "prefer"), ("you", "choose"), ("is", "closer"), ("is", "nearer"))
+CHOICE_AFFIRMATIONS = tuple(
+    chooser + fine for chooser in _CHOOSERS for fine in _FINE
+    if chooser + fine not in (("either",), ("any",))  # bare "either" / "any" start a noun phrase
+) + (
+    ("no", "matter", "which"), ("no", "matter", "which", "one"),
     ("it", "does", "not", "matter", "which"), ("does", "not", "matter", "which"),
     ("does", "not", "matter", "which", "one"), ("it", "does", "not", "matter", "which", "one"),
     ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"), ("is", "fine"),
-    ("your", "choice"), ("your", "pick"), ("take", "your", "pick"),
+    ("your", "choice"), ("your", "pick"), ("take", "your", "pick"), ("you", "pick"), ("you", "choose"),
+    ("it", "is", "up", "to", "you"), ("up", "to", "you"), ("i", "do", "not", "care"),
 )
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
 
+_SPAN_NOUNS = ("mission", "task", "trip", "route", "run", "time", "way", "journey", "tour", "job", "thing",
+               "path")
 WHOLE_MISSION = (("the", "whole", "time"), ("the", "entire", "time"), ("at", "all", "times"),
                  ("at", "any", "time"),
                  ("at", "any", "point"), ("throughout",), ("the", "whole", "way"), ("all", "the", "time"),
-                 ("on", "the", "way"), ("on", "your", "way"), ("along", "the", "way"), ("at", "all"))
+                 ("on", "the", "way"), ("on", "your", "way"), ("along", "the", "way"), ("at", "all"),
+                 ("all", "along"), ("for", "the", "duration"), ("the", "entire", "way"),
+                 *((pre, "the", whole, noun) for pre in ("for", "during", "throughout", "over")
+                   for whole in ("whole", "entire", "full") for noun in _SPAN_NOUNS),
+                 *(("throughout", "the", noun) for noun in _SPAN_NOUNS),
+                 ("while", "you", "do", "it"), ("while", "you", "do", "that"),
+                 ("while", "you", "are", "at", "it"),
+                 ("while", "doing", "so"), ("while", "doing", "that"), ("while", "doing", "it"),
+                 ("in", "the", "process"),
+                 *(("during", "the", noun) for noun in _SPAN_NOUNS))
 """Said after what to avoid: the prohibition holds for the whole mission (``G !x``), not only at one step."""
 
 
@@ -231,3 +299,39 @@ def plural(word: str) -> str:
     else:
         out = last + "s"
     return f"{head} {out}" if head else out
+
+
+PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
+    ("prior", "to"): ("before",),
+    ("ahead", "of"): ("before",),
+    ("in", "advance", "of"): ("before",),
+    ("as", "soon", "as"): ("once",),
+    ("the", "moment"): ("once",),
+    ("right", "after"): ("after",),
+    ("straight", "after"): ("after",),
+    ("immediately", "after"): ("after",),
+    ("start", "with"): ("first",),
+    ("begin", "with"): ("first",),
+    ("start", "off", "with"): ("first",),
+    ("to", "start", ","): ("first", ","),
+    ("to", "begin", ","): ("first", ","),
+    ("to", "start", "with", ","): ("first", ","),
+    ("to", "begin", "with", ","): ("first", ","),
+    ("first", "of", "all"): ("first",),
+    ("first", "off"): ("first",),
+    ("last", "of", "all"): ("finally",),
+    ("to", "finish", ","): ("finally", ","),
+    ("to", "finish", "off", ","): ("finally", ","),
+    ("to", "wrap", "up", ","): ("finally", ","),
+    ("along", "with"): ("and",),
+    ("together", "with"): ("and",),
+    ("plus",): ("and",),
+    ("anywhere", "near"): ("into",),
+    ("where", "you", "can", "find"): ("containing",),
+    ("where", "you", "will", "find"): ("containing",),
+    ("where", "you", "find"): ("containing",),
+    ("holding",): ("containing",),
+    ("and", "also"): ("and",),
+}
+"""Phrases read as another (``prior to`` is ``before``, ``as soon as`` is ``once``), rewritten on the tokens
+before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase is taken for a verb."""

@@ -12,7 +12,7 @@ from collections.abc import Collection, Iterable
 from dataclasses import dataclass
 from typing import Literal
 
-from sgplan.llm.offline.lexicon import GENERIC_ROOM_WORDS, SYNONYMS, plural
+from sgplan.llm.offline.lexicon import GENERIC_ROOM_WORDS, ROOM_MODIFIERS, SYNONYMS, plural
 from sgplan.scene.model import Building
 
 Kind = Literal["room", "object"]
@@ -115,6 +115,19 @@ class SceneVocabulary:
             if head is not None:
                 return head
         return None
+
+    def room_modifier(self, words: list[str], start: int) -> list[Entity]:
+        """``dining`` in "the dining chairs": the first word of a room category (one of
+        :data:`.lexicon.ROOM_MODIFIERS`, not an adjective such as *living*) before an object noun -> the
+        rooms of that category (empty list otherwise)."""
+        if (start + 1 >= len(words) or words[start] not in ROOM_MODIFIERS
+                or self.match_head(words, start) is not None):
+            return []
+        after = self.match_head(words, start + 1)
+        if after is None or after.kind != "object":
+            return []
+        return [e for e in self.entities
+                if e.kind == "room" and len(e.category.split()) > 1 and e.category.split()[0] == words[start]]
 
     def category_names(self, kind: Kind) -> list[str]:
         """The categories of one kind present in the scene, sorted."""

@@ -17,6 +17,10 @@ _NEGATED = {"don": "do", "doesn": "does", "didn": "did", "can": "can", "won": "w
             "wouldn": "would",
             "couldn": "could", "shan": "shall", "mayn": "may"}
 SENTENCE_END = frozenset(".;:!?")
+_BARE_NEGATED = {"dont": "do", "doesnt": "does", "didnt": "did", "cant": "can", "wont": "will",
+                 "mustnt": "must", "shouldnt": "should", "isnt": "is", "arent": "are", "havent": "have",
+                 "hasnt": "has", "wouldnt": "would", "couldnt": "could", "neednt": "need"}
+"""Negated auxiliaries typed without their apostrophe: read as ``do not`` ... (never as a verb)."""
 
 
 @dataclass(frozen=True)
@@ -34,7 +38,9 @@ def tokenize(text: str) -> list[Tok]:
     lowered = text.lower().replace("\u2019", "'")
     for m in _WORD.finditer(lowered):
         word, start, end = m.group(0), m.start(), m.end()
-        if word.endswith("n't"):
+        if word in _BARE_NEGATED:  # "dont", "cant": typed without the apostrophe
+            out += [Tok(_BARE_NEGATED[word], start, end), Tok("not", start, end)]
+        elif word.endswith("n't"):
             stem = word[:-3]
             out += [Tok(_NEGATED.get(stem + "n", stem), start, end), Tok("not", start, end)]
         elif word.endswith("'s") and len(word) > 2:
@@ -69,3 +75,23 @@ def sentences(tokens: list[Tok]) -> list[list[Tok]]:
             parts[-1].append(tok)
         i += 1
     return [p for p in parts if p]
+
+
+def rewrite(tokens: list[Tok], aliases: dict[tuple[str, ...], tuple[str, ...]]) -> list[Tok]:
+    """``tokens`` with every phrase of ``aliases`` (longest first, left to right) replaced by its reading;
+    each new token spans the whole phrase it replaces, so messages still quote the user's words."""
+    longest = max((len(k) for k in aliases), default=0)
+    out: list[Tok] = []
+    i = 0
+    while i < len(tokens):
+        for n in range(min(longest, len(tokens) - i), 0, -1):
+            reading = aliases.get(tuple(t.text for t in tokens[i : i + n]))
+            if reading is not None:
+                start, end = tokens[i].start, tokens[i + n - 1].end
+                out += [Tok(w, start, end) for w in reading]
+                i += n
+                break
+        else:
+            out.append(tokens[i])
+            i += 1
+    return out
