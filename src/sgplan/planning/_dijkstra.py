@@ -178,6 +178,33 @@ def _settle(
 
 
 @njit(cache=True)
+def flood(nbr, stairs_first, stairs_from, stairs_to, start, seen):
+    """Mark in ``seen`` (bool, all cells) every cell reachable from cell ``start`` by steps and stairs."""
+    stack = np.empty(nbr.shape[0], dtype=np.int32)
+    stack[0] = start
+    seen[start] = True
+    top = 1
+    n_stairs = stairs_from.shape[0]
+    while top > 0:
+        top -= 1
+        u = stack[top]
+        for k in range(8):
+            v = nbr[u, k]
+            if v >= 0 and not seen[v]:
+                seen[v] = True
+                stack[top] = v
+                top += 1
+        j = stairs_first[u]
+        while j >= 0 and j < n_stairs and stairs_from[j] == u:
+            v = stairs_to[j]
+            if not seen[v]:
+                seen[v] = True
+                stack[top] = v
+                top += 1
+            j += 1
+
+
+@njit(cache=True)
 def label_runs(order, count, pred, cell_label, lo, run):
     """``run[x] = j + 1`` where local ``j`` is the last cell of the same-label stretch that starts at ``x``
     and follows ``pred`` towards the sources. Lets an action's automaton run skip repeated labels."""
