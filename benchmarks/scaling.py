@@ -29,14 +29,14 @@ import time
 
 T_START = time.perf_counter()
 
-import argparse  # noqa: E402 - the clock above starts before the imports it times
-import json  # noqa: E402
-import math  # noqa: E402
-import os  # noqa: E402
-import resource  # noqa: E402
-import subprocess  # noqa: E402
-import sys  # noqa: E402
-from pathlib import Path  # noqa: E402
+import argparse
+import json
+import math
+import os
+import resource
+import subprocess
+import sys
+from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -53,7 +53,7 @@ def _building(target_cells: float, floors: int, rooms: int, seed: int):
     """A synthetic building whose grid has about ``target_cells`` cells over all floors."""
     from sgplan.scene.synthetic import generate_building
 
-    probe = generate_building(num_floors=1, rooms_per_floor=rooms, num_objects=0, cell_m=0.05, seed=seed)
+    probe = generate_building(num_floors=floors, rooms_per_floor=rooms, num_objects=0, cell_m=0.05, seed=seed)
     rows, cols = probe.floors[0].shape
     cell_m = 0.05 * math.sqrt(rows * cols * floors / target_cells)  # area per floor is fixed in metres
     return generate_building(num_floors=floors, rooms_per_floor=rooms, num_objects=3 * rooms * floors,

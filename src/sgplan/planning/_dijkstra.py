@@ -57,7 +57,6 @@ def dijkstra(
     positive (the cell graph checks its stairs).
     """
     n = hi - lo
-    done = np.zeros(n, dtype=np.bool_)
     shortest = step_cost.min()
     if use_stairs and stairs_cost.shape[0] > 0:
         shortest = min(shortest, stairs_cost.min())
@@ -89,8 +88,7 @@ def dijkstra(
     # array variable re-bound inside a hot numba loop costs atomic reference counting on every iteration).
     while _settle(
         nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost, lo, n, use_stairs, cell_room,
-        stop_room, stop_count, dist, pred, order, done, delta, bkeys, bvals, bcount, skeys, sties, svals,
-        state,
+        stop_room, stop_count, dist, pred, order, delta, bkeys, bvals, bcount, skeys, sties, svals, state,
     ):
         if bcount.max() + 16 > bkeys.shape[1]:
             bkeys, bvals = _ring_grow(bkeys, bvals)
@@ -102,78 +100,97 @@ def dijkstra(
 @njit(cache=True)
 def _settle(
     nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost, lo, n, use_stairs, cell_room,
-    stop_room, stop_count, dist, pred, order, done, delta, bkeys, bvals, bcount, skeys, sties, svals,
-    state,
+    stop_room, stop_count, dist, pred, order, delta, bkeys, bvals, bcount, skeys, sties, svals, state,
 ):
     """The loop of :func:`dijkstra`; returns True when a queue needs more room first, False when the run
-    is over."""
+    is over.
+
+    No "settled" flags: entries are pushed only on a strict improvement, so a cell has at most one entry
+    with key ``dist[cell]`` (the rest are stale, ``key > dist``), and a settled cell is never improved
+    (every later key plus an edge exceeds its distance).
+    """
     num_buckets, cap = bkeys.shape
-    cur, pos, pending, ssize, settled, room_settled = state[0], state[1], state[2], state[3], state[4], state[5]
+    cur, pos, pending, ssize = state[0], state[1], state[2], state[3]
+    settled, room_settled = state[4], state[5]
     n_stairs = stairs_from.shape[0]
+    limit = cap - 8  # a settled cell pushes at most 8 step entries
+    stopped = False
     grow = False
     while True:
         slot = cur % num_buckets
         # Stairs entries whose bucket has come up join it (they are never earlier than the current one).
-        while ssize > 0 and int(skeys[0] / delta) <= cur:
-            if bcount[slot] >= cap:
-                break
+        while ssize > 0 and int(skeys[0] / delta) <= cur and bcount[slot] < limit:
             bkeys[slot, bcount[slot]] = skeys[0]
             bvals[slot, bcount[slot]] = svals[0]
             bcount[slot] += 1
             pending += 1
             ssize = heap_pop(skeys, sties, svals, ssize)
-        if ssize + 16 > skeys.shape[0] or bcount.max() + 16 > cap:
-            grow = True
-            break
-        if pos == bcount[slot]:  # the bucket is exhausted: on to the next non-empty one
-            bcount[slot] = 0
-            pos = 0
-            if pending == 0:
-                if ssize == 0:
-                    break
-                cur = max(cur + 1, int(skeys[0] / delta))
-            else:
-                cur += 1
-            continue
-        d = bkeys[slot, pos]
-        u = bvals[slot, pos]
-        pos += 1
-        pending -= 1
-        if done[u] or d > dist[u]:
-            continue
-        done[u] = True
-        order[settled] = u
-        settled += 1
-        gu = u + lo
-        if stop_room >= 0 and cell_room[gu] == stop_room:
-            room_settled += 1
-            if room_settled >= stop_count:
+        full = False
+        for b in range(num_buckets):
+            full |= bcount[b] > limit
+        while pos < bcount[slot]:
+            if full or ssize + 8 > skeys.shape[0]:
                 break
-        for k in range(8):
-            v = nbr[gu, k] - lo
-            if v < 0 or v >= n or done[v]:
+            d = bkeys[slot, pos]
+            u = bvals[slot, pos]
+            pos += 1
+            pending -= 1
+            if d > dist[u]:
                 continue
-            nd = d + step_cost[k]
-            if pred[v] == 0 or nd < dist[v]:
-                dist[v] = nd
-                pred[v] = u + 2
-                b = max(int(nd / delta), cur) % num_buckets
-                bkeys[b, bcount[b]] = nd
-                bvals[b, bcount[b]] = v
-                bcount[b] += 1
-                pending += 1
-        if use_stairs:
-            j = stairs_first[gu]
-            while j >= 0 and j < n_stairs and stairs_from[j] == gu:
-                v = stairs_to[j] - lo
-                if 0 <= v < n and not done[v]:
-                    nd = d + stairs_cost[j]
-                    if pred[v] == 0 or nd < dist[v]:
-                        dist[v] = nd
-                        pred[v] = u + 2
-                        ssize = heap_push(skeys, sties, svals, ssize, nd, 0.0, v)
-                j += 1
-    state[0], state[1], state[2], state[3], state[4], state[5] = cur, pos, pending, ssize, settled, room_settled
+            order[settled] = u
+            settled += 1
+            gu = u + lo
+            if stop_room >= 0 and cell_room[gu] == stop_room:
+                room_settled += 1
+                if room_settled >= stop_count:
+                    stopped = True
+                    break
+            for k in range(8):
+                v = nbr[gu, k] - lo
+                if v < 0 or v >= n:
+                    continue
+                nd = d + step_cost[k]
+                dv = dist[v]
+                # dist 0 marks sources and unreached cells (pred 0): pred is read only for those.
+                if nd < dv or (dv == 0.0 and pred[v] == 0):
+                    dist[v] = nd
+                    pred[v] = u + 2
+                    b = max(int(nd / delta), cur) % num_buckets
+                    bkeys[b, bcount[b]] = nd
+                    bvals[b, bcount[b]] = v
+                    bcount[b] += 1
+                    full |= bcount[b] > limit
+                    pending += 1
+            if use_stairs:
+                j = stairs_first[gu]
+                while j >= 0 and j < n_stairs and stairs_from[j] == gu:
+                    v = stairs_to[j] - lo
+                    if 0 <= v < n:
+                        nd = d + stairs_cost[j]
+                        dv = dist[v]
+                        if nd < dv or (dv == 0.0 and pred[v] == 0):
+                            dist[v] = nd
+                            pred[v] = u + 2
+                            ssize = heap_push(skeys, sties, svals, ssize, nd, 0.0, v)
+                    j += 1
+        if stopped:
+            grow = False
+            break
+        if pos < bcount[slot] or (ssize > 0 and int(skeys[0] / delta) <= cur):
+            grow = True  # stopped for room (in the bucket loop or the stairs merge)
+            break
+        # The bucket is exhausted: on to the next non-empty one.
+        bcount[slot] = 0
+        pos = 0
+        if pending == 0:
+            if ssize == 0:
+                grow = False
+                break
+            cur = max(cur + 1, int(skeys[0] / delta))
+        else:
+            cur += 1
+    state[0], state[1], state[2], state[3] = cur, pos, pending, ssize
+    state[4], state[5] = settled, room_settled
     return grow
 
 
