@@ -12,6 +12,7 @@ from scipy.sparse.csgraph import dijkstra as scipy_dijkstra
 from sgplan.errors import SceneError
 from sgplan.planning._dijkstra import dijkstra
 from sgplan.planning.cells import STEPS, build_cell_graph
+from sgplan.planning.domain import stop_counts
 from sgplan.scene.grid import OccupancyGrid, StairsLink
 
 
@@ -140,3 +141,30 @@ def test_cell_centres_and_gather() -> None:
     np.testing.assert_allclose(graph.cell_xyz[:, 2], np.array([0.0, 3.0])[f])
     raster = np.arange(np.prod(grid.shape)).reshape(grid.shape)
     assert np.array_equal(graph.gather(raster), raster[f, r, c])
+
+
+def test_stop_count_ignores_room_cells_cut_off_from_the_sources() -> None:
+    """A room with a walled-in pocket: the map's stop count leaves the pocket out, so its Dijkstra stops
+    before exhausting the floor, and every room cell it can reach is settled and exact."""
+    rows, cols = 30, 60
+    traversable = np.ones((1, rows, cols), dtype=bool)
+    traversable[0, 2:7, 2] = traversable[0, 2:7, 6] = traversable[0, 2, 2:7] = traversable[0, 6, 2:7] = False
+    grid = OccupancyGrid(
+        traversable=traversable, room_map=np.ones((1, rows, cols), dtype=np.int16), resolution_m=(0.05, 0.05),
+        origin_m=(0.0, 0.0), floor_z_m=np.array([0.0]), stairs=(), robot_radius_m=0.0,
+    )
+    graph = build_cell_graph(grid)
+    cell_room = (graph.cell_col < 10).astype(np.int32)  # room 1: the first 10 columns, pocket included
+    source = np.array([graph.cell_id(15, 1, 0)], dtype=np.int64)
+    (count,) = stop_counts(graph, cell_room, 2, np.array([0, 1]), source, np.array([1], dtype=np.int32))
+    assert count == int((cell_room == 1).sum()) - 9  # the 3 x 3 pocket
+    n = graph.num_cells
+    dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)
+    settled = dijkstra(
+        graph.nbr, graph.step_cost, graph.stairs_first, graph.stairs_from, graph.stairs_to,
+        graph.stairs_cost, 0, n, False, source, cell_room, np.int32(1), count, dist, pred, order,
+    )
+    full = _scipy_distances(grid, graph, source)
+    room = (cell_room == 1) & np.isfinite(full)
+    assert settled < int(np.isfinite(full).sum()) and (pred[room] > 0).all()
+    np.testing.assert_allclose(dist[room], full[room], atol=1e-9)

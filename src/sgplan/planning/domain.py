@@ -21,6 +21,7 @@ from collections import namedtuple
 from dataclasses import dataclass, field
 
 import numpy as np
+from numba import njit
 from scipy import ndimage
 
 from sgplan.errors import PlanningError
@@ -394,7 +395,6 @@ def _action_maps(
     grid = problem.grid
     floors = graph.shape[0]
     room_index = {room.id: i for i, room in enumerate(rooms)}
-    room_cells = np.bincount(cell_room[cell_room >= 0], minlength=len(rooms))
     in_region = np.zeros(graph.num_cells, dtype=np.bool_)
 
     maps: list[ActionMap] = []
@@ -464,6 +464,7 @@ def _action_maps(
     src_ptr = np.zeros(len(maps) + 1, dtype=np.int64)
     src_ptr[1:] = np.cumsum([len(s) for s in sources])
     stop_rooms = np.array(stop_room, dtype=np.int32)
+    map_src = np.concatenate(sources) if sources else np.zeros(0, dtype=np.int64)
     kactions = KernelActions(
         room_obj_ptr=obj_ptr,
         room_obj_map=obj_map,
@@ -473,13 +474,88 @@ def _action_maps(
         floor_down_map=floor_down,
         map_floor=np.array([m.floor for m in maps], dtype=np.int32),
         map_src_ptr=src_ptr,
-        map_src=np.concatenate(sources) if sources else np.zeros(0, dtype=np.int64),
+        map_src=map_src,
         map_stop_room=stop_rooms,
-        map_stop_count=np.array([room_cells[s] if s >= 0 else 0 for s in stop_rooms], dtype=np.int64),
+        map_stop_count=stop_counts(graph, cell_room, len(rooms), src_ptr, map_src, stop_rooms),
         map_exit_cell=np.array(exit_cell, dtype=np.int64),
         map_exit_cost=np.array(exit_cost, dtype=np.float64),
     )
     return maps, kactions, in_region
+
+
+def stop_counts(
+    graph: CellGraph,
+    cell_room: np.ndarray,
+    num_rooms: int,
+    src_ptr: np.ndarray,
+    src: np.ndarray,
+    stop_rooms: np.ndarray,
+) -> np.ndarray:
+    """``(M,)`` int64: for each action map, the cells of its stop room that its Dijkstra can reach (those
+    in the same per-floor connected component as one of its sources); 0 for maps without a stop room.
+
+    The map's Dijkstra stops once it has settled that many cells of the room: then every room cell it
+    will ever reach is settled. Counting all the room's cells instead would run it over the whole floor
+    whenever some room cell is cut off from the sources (a pocket behind furniture)."""
+    comp = np.empty(graph.num_cells, dtype=np.int32)
+    _components(graph.nbr, comp)
+    return _stop_counts(comp, cell_room, num_rooms, src_ptr, src, stop_rooms)
+
+
+@njit(cache=True)
+def _components(nbr, comp):
+    """Label the connected components of the step graph (no stairs: per floor) into ``comp``."""
+    n = nbr.shape[0]
+    comp[:] = -1
+    stack = np.empty(n, dtype=np.int32)
+    label = 0
+    for s in range(n):
+        if comp[s] >= 0:
+            continue
+        comp[s] = label
+        stack[0] = s
+        top = 1
+        while top > 0:
+            top -= 1
+            u = stack[top]
+            for k in range(8):
+                v = nbr[u, k]
+                if v >= 0 and comp[v] < 0:
+                    comp[v] = label
+                    stack[top] = v
+                    top += 1
+        label += 1
+
+
+@njit(cache=True)
+def _stop_counts(comp, cell_room, num_rooms, src_ptr, src, stop_rooms):
+    n = comp.shape[0]
+    room_ptr = np.zeros(num_rooms + 1, dtype=np.int64)
+    for c in range(n):
+        if cell_room[c] >= 0:
+            room_ptr[cell_room[c] + 1] += 1
+    for r in range(num_rooms):
+        room_ptr[r + 1] += room_ptr[r]
+    fill = room_ptr[:-1].copy()
+    room_cells = np.empty(room_ptr[num_rooms], dtype=np.int32)
+    for c in range(n):
+        if cell_room[c] >= 0:
+            room_cells[fill[cell_room[c]]] = c
+            fill[cell_room[c]] += 1
+    marked = np.zeros(comp.max() + 1 if n else 0, dtype=np.bool_)
+    out = np.zeros(stop_rooms.shape[0], dtype=np.int64)
+    for k in range(stop_rooms.shape[0]):
+        room = stop_rooms[k]
+        if room < 0:
+            continue
+        for i in range(src_ptr[k], src_ptr[k + 1]):
+            marked[comp[src[i]]] = True
+        for i in range(room_ptr[room], room_ptr[room + 1]):
+            if marked[comp[room_cells[i]]]:
+                out[k] += 1
+        for i in range(src_ptr[k], src_ptr[k + 1]):
+            marked[comp[src[i]]] = False
+    return out
 
 
 def _cell_ids(graph: CellGraph, floor: int, cells: np.ndarray) -> np.ndarray:
