@@ -78,9 +78,9 @@ class CellGraph:
         xyz[:, 2] = np.asarray(self.floor_z_m, dtype=np.float64)[self.cell_floor]
         return xyz
 
-    @cached_property
     def cell_pos(self) -> np.ndarray:
-        """``(N,)`` flat raster position of every cell (int32 when the raster allows, else int64)."""
+        """``(N,)`` flat raster position of every cell (int32 when the raster allows, else int64); computed
+        on each call, not kept (4-8 bytes a cell)."""
         f, r, c = self.shape
         dtype = np.int32 if f * r * c < 2**31 else np.int64
         pos = self.cell_floor.astype(dtype) * dtype(r)
@@ -98,15 +98,17 @@ class CellGraph:
 
     def gather(self, raster: np.ndarray) -> np.ndarray:
         """The values of a ``(floors, rows, cols)`` raster at every cell, as an ``(N,)`` array."""
-        return raster.reshape(-1)[self.cell_pos]
+        return raster.reshape(-1)[self.cell_pos()]
 
-    def distances(self, sources: np.ndarray) -> np.ndarray:
+    def distances(self, sources: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
         """Exact metres from every cell to the nearest of ``sources`` (cell indices), stairs included.
 
-        ``inf`` where no source can be reached.
+        ``inf`` where no source can be reached. Written into ``out`` (float64, ``(N,)``, any content) when
+        given, which is returned.
         """
         n = self.num_cells
-        dist = np.zeros(n, dtype=np.float64)
+        dist = np.zeros(n, dtype=np.float64) if out is None else out
+        dist[:] = 0.0
         pred = np.zeros(n, dtype=np.int32)
         order = np.empty(n, dtype=np.int32)
         dijkstra(

@@ -145,7 +145,7 @@ def build_ltl_heuristic(
     counts[needed] = [len(r) for r in regions]
     dist = np.empty((len(needed), graph.num_cells), dtype=np.float64)
     for i, cells in enumerate(regions):
-        dist[i] = graph.distances(cells)
+        graph.distances(cells, out=dist[i])
     region_cost = np.full((len(needed), len(needed)), np.inf)
     for i, cells in enumerate(regions):
         for j in range(len(needed)) if cells.size else ():
