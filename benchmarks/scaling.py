@@ -36,6 +36,7 @@ import os
 import resource
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
@@ -82,6 +83,7 @@ def run_case(
     def part(name: str, t0: float) -> None:
         row[f"{name}_s"] = time.perf_counter() - t0
         row[f"{name}_mb"] = _peak_mb()
+        print("PARTIAL " + json.dumps(row), flush=True)  # what finished, should the case be killed later
 
     t0 = time.perf_counter()
     building = _building(target_m * 1e6, floors, rooms=max(4, goals), seed=seed)
@@ -150,30 +152,44 @@ MB_PARTS = ("import_mb", "building_mb", "grid_mb", "labels_mb", "domain_mb", "se
 
 
 def _run_child(cmd: list[str], env: dict, timeout: float, max_rss_gb: float) -> tuple[str, str, float]:
-    """Run ``cmd``; returns (outcome, stdout or message, wall seconds). Kills it past the time or RSS
-    limit (RSS polled every 50 ms from /proc)."""
+    """Run ``cmd``; returns (outcome, final JSON row or message, wall seconds). Kills it past the time or
+    RSS limit (RSS polled every 50 ms from /proc), then reports the parts it finished."""
     t0 = time.perf_counter()
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=REPO, env=env)
-    status_path = Path(f"/proc/{proc.pid}/status")
-    worst = 0.0
-    while proc.poll() is None:
-        try:
-            for line in status_path.read_text().splitlines():
-                if line.startswith("VmRSS:"):
-                    worst = max(worst, int(line.split()[1]) / 1024**2)
-        except OSError:
-            pass
-        if worst > max_rss_gb or time.perf_counter() - t0 > timeout:
-            proc.kill()
-            proc.communicate()
-            what = f"RSS {worst:.1f} GB > {max_rss_gb:g} GB" if worst > max_rss_gb else f"{timeout:g} s"
-            return "killed", f"killed at {what} after {time.perf_counter() - t0:.0f} s", 0.0
-        time.sleep(0.05)
-    out, err = proc.communicate()
-    wall = time.perf_counter() - t0
-    if proc.returncode != 0:
-        return "failed", err.strip()[-300:], wall
-    return "ok", out, wall
+    # Output goes to a file: a child killed for time or memory still reports the parts it finished.
+    with tempfile.TemporaryFile("w+") as sink:
+        proc = subprocess.Popen(cmd, stdout=sink, stderr=subprocess.DEVNULL, text=True, cwd=REPO, env=env)
+        status_path = Path(f"/proc/{proc.pid}/status")
+        worst = 0.0
+        killed = ""
+        while proc.poll() is None:
+            try:
+                for line in status_path.read_text().splitlines():
+                    if line.startswith("VmRSS:"):
+                        worst = max(worst, int(line.split()[1]) / 1024**2)
+            except OSError:
+                pass
+            if worst > max_rss_gb or time.perf_counter() - t0 > timeout:
+                proc.kill()
+                proc.wait()
+                killed = f"RSS {worst:.1f} GB > {max_rss_gb:g} GB" if worst > max_rss_gb else f"{timeout:g} s"
+                break
+            time.sleep(0.05)
+        wall = time.perf_counter() - t0
+        sink.seek(0)
+        out = sink.read()
+    if killed:
+        partial = [line for line in out.splitlines() if line.startswith("PARTIAL ")]
+        done = ""
+        if partial:
+            row = json.loads(partial[-1][len("PARTIAL "):])
+            done = "; finished: " + ", ".join(
+                f"{k[:-2]} {v:.2f} s" for k, v in row.items() if k.endswith("_s") and k != "plan_s"
+            ) + f" (peak {max(v for k, v in row.items() if k.endswith('_mb')):.0f} MB)"
+        return "killed", f"killed at {killed} after {wall:.0f} s{done}", 0.0
+    final = [line for line in out.splitlines() if line.startswith("{")]
+    if proc.returncode != 0 or not final:
+        return "failed", f"exit code {proc.returncode}", wall
+    return "ok", final[-1], wall
 
 
 def main() -> int:
@@ -234,7 +250,7 @@ def main() -> int:
                         if outcome != "ok":
                             print(f"{label} {outcome}: {out}", flush=True)
                             continue
-                        row = json.loads(out.strip().splitlines()[-1])
+                        row = json.loads(out)
                         row["variant"] = name
                         row["wall_s"] = wall
                         row["plan_s"] = wall - row["building_s"]
