@@ -12,7 +12,7 @@ from scipy.sparse.csgraph import dijkstra as scipy_dijkstra
 from sgplan.errors import SceneError
 from sgplan.planning._dijkstra import dijkstra
 from sgplan.planning.cells import STEPS, build_cell_graph
-from sgplan.planning.domain import stop_counts
+from sgplan.planning.domain import _compact_labels, stop_counts
 from sgplan.scene.grid import OccupancyGrid, StairsLink
 
 
@@ -168,3 +168,15 @@ def test_stop_count_ignores_room_cells_cut_off_from_the_sources() -> None:
     room = (cell_room == 1) & np.isfinite(full)
     assert settled < int(np.isfinite(full).sum()) and (pred[room] > 0).all()
     np.testing.assert_allclose(dist[room], full[room], atol=1e-9)
+
+
+@settings(max_examples=20, deadline=None)
+@given(seed=st.integers(0, 2**31 - 1), bits=st.sampled_from([1, 5, 22, 30]))
+def test_compact_labels_equal_numpy_unique(seed: int, bits: int) -> None:
+    """Label ids by lookup table (small label spaces) or by sort (large ones) are np.unique's."""
+    rng = np.random.default_rng(seed)
+    masks = rng.choice(rng.integers(0, 2**bits, size=7), size=500).astype(np.uint32)
+    label_masks, cell_label = _compact_labels(masks, 2**bits)
+    expected_masks, expected_ids = np.unique(masks, return_inverse=True)
+    assert np.array_equal(label_masks, expected_masks) and label_masks.dtype == np.int64
+    assert np.array_equal(cell_label, expected_ids) and cell_label.dtype == np.int32
