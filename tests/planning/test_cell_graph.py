@@ -144,8 +144,9 @@ def test_cell_centres_and_gather() -> None:
 
 
 def test_stop_count_ignores_room_cells_cut_off_from_the_sources() -> None:
-    """A room with a walled-in pocket: the map's stop count leaves the pocket out, so its Dijkstra stops
-    before exhausting the floor, and every room cell it can reach is settled and exact."""
+    """A room with a walled-in pocket: the map's stop count leaves the pocket (unreachable from the start,
+    here the source) out, so its Dijkstra stops before exhausting the floor, and every room cell it can
+    reach is settled and exact."""
     rows, cols = 30, 60
     traversable = np.ones((1, rows, cols), dtype=bool)
     traversable[0, 2:7, 2] = traversable[0, 2:7, 6] = traversable[0, 2, 2:7] = traversable[0, 6, 2:7] = False
@@ -156,7 +157,7 @@ def test_stop_count_ignores_room_cells_cut_off_from_the_sources() -> None:
     graph = build_cell_graph(grid)
     cell_room = (graph.cell_col < 10).astype(np.int32)  # room 1: the first 10 columns, pocket included
     source = np.array([graph.cell_id(15, 1, 0)], dtype=np.int64)
-    (count,) = stop_counts(graph, cell_room, 2, np.array([0, 1]), source, np.array([1], dtype=np.int32))
+    (count,) = stop_counts(cell_room, graph.reachable(int(source[0])), 2, np.array([1], dtype=np.int32))
     assert count == int((cell_room == 1).sum()) - 9  # the 3 x 3 pocket
     n = graph.num_cells
     dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)

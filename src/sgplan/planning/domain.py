@@ -21,7 +21,6 @@ from collections import namedtuple
 from dataclasses import dataclass, field
 
 import numpy as np
-from numba import njit
 from scipy import ndimage
 
 from sgplan.errors import PlanningError
@@ -203,7 +202,6 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
         raise PlanningError(
             _infeasible_reason(problem, label_masks[cell_label], reachable, q_start), status="infeasible"
         )
-    del reachable
 
     rooms = list(problem.building.rooms())
     room_uuids = [room.uuid for room in rooms]
@@ -216,7 +214,8 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
     cell_room[inside] = room_lut[room_ids[inside]]
     del room_ids, inside
 
-    maps, kactions, in_region = _action_maps(problem, graph, rooms, cell_room)
+    maps, kactions, in_region = _action_maps(problem, graph, rooms, cell_room, reachable)
+    del reachable
     clock.lap("action_tables")
     n_max = int(np.diff(graph.floor_offset).max()) if graph.num_cells else 0
     kmaps = KernelMaps(
@@ -389,7 +388,7 @@ def _infeasible_reason(
 
 
 def _action_maps(
-    problem: PlanningProblem, graph: CellGraph, rooms: list, cell_room: np.ndarray
+    problem: PlanningProblem, graph: CellGraph, rooms: list, cell_room: np.ndarray, reachable: np.ndarray
 ) -> tuple[list[ActionMap], KernelActions, np.ndarray]:
     """The composite action families and their per-room / per-floor tables for the kernel."""
     grid = problem.grid
@@ -476,7 +475,7 @@ def _action_maps(
         map_src_ptr=src_ptr,
         map_src=map_src,
         map_stop_room=stop_rooms,
-        map_stop_count=stop_counts(graph, cell_room, len(rooms), src_ptr, map_src, stop_rooms),
+        map_stop_count=stop_counts(cell_room, reachable, len(rooms), stop_rooms),
         map_exit_cell=np.array(exit_cell, dtype=np.int64),
         map_exit_cost=np.array(exit_cost, dtype=np.float64),
     )
@@ -484,78 +483,20 @@ def _action_maps(
 
 
 def stop_counts(
-    graph: CellGraph,
-    cell_room: np.ndarray,
-    num_rooms: int,
-    src_ptr: np.ndarray,
-    src: np.ndarray,
-    stop_rooms: np.ndarray,
+    cell_room: np.ndarray, reachable: np.ndarray, num_rooms: int, stop_rooms: np.ndarray
 ) -> np.ndarray:
-    """``(M,)`` int64: for each action map, the cells of its stop room that its Dijkstra can reach (those
-    in the same per-floor connected component as one of its sources); 0 for maps without a stop room.
+    """``(M,)`` int64: for each action map, the cells of its stop room reachable from the start; 0 for
+    maps without a stop room.
 
-    The map's Dijkstra stops once it has settled that many cells of the room: then every room cell it
-    will ever reach is settled. Counting all the room's cells instead would run it over the whole floor
-    whenever some room cell is cut off from the sources (a pocket behind furniture)."""
-    comp = np.empty(graph.num_cells, dtype=np.int32)
-    _components(graph.nbr, comp)
-    return _stop_counts(comp, cell_room, num_rooms, src_ptr, src, stop_rooms)
-
-
-@njit(cache=True)
-def _components(nbr, comp):
-    """Label the connected components of the step graph (no stairs: per floor) into ``comp``."""
-    n = nbr.shape[0]
-    comp[:] = -1
-    stack = np.empty(n, dtype=np.int32)
-    label = 0
-    for s in range(n):
-        if comp[s] >= 0:
-            continue
-        comp[s] = label
-        stack[0] = s
-        top = 1
-        while top > 0:
-            top -= 1
-            u = stack[top]
-            for k in range(8):
-                v = nbr[u, k]
-                if v >= 0 and comp[v] < 0:
-                    comp[v] = label
-                    stack[top] = v
-                    top += 1
-        label += 1
-
-
-@njit(cache=True)
-def _stop_counts(comp, cell_room, num_rooms, src_ptr, src, stop_rooms):
-    n = comp.shape[0]
-    room_ptr = np.zeros(num_rooms + 1, dtype=np.int64)
-    for c in range(n):
-        if cell_room[c] >= 0:
-            room_ptr[cell_room[c] + 1] += 1
-    for r in range(num_rooms):
-        room_ptr[r + 1] += room_ptr[r]
-    fill = room_ptr[:-1].copy()
-    room_cells = np.empty(room_ptr[num_rooms], dtype=np.int32)
-    for c in range(n):
-        if cell_room[c] >= 0:
-            room_cells[fill[cell_room[c]]] = c
-            fill[cell_room[c]] += 1
-    marked = np.zeros(comp.max() + 1 if n else 0, dtype=np.bool_)
-    out = np.zeros(stop_rooms.shape[0], dtype=np.int64)
-    for k in range(stop_rooms.shape[0]):
-        room = stop_rooms[k]
-        if room < 0:
-            continue
-        for i in range(src_ptr[k], src_ptr[k + 1]):
-            marked[comp[src[i]]] = True
-        for i in range(room_ptr[room], room_ptr[room + 1]):
-            if marked[comp[room_cells[i]]]:
-                out[k] += 1
-        for i in range(src_ptr[k], src_ptr[k + 1]):
-            marked[comp[src[i]]] = False
-    return out
+    A map's Dijkstra stops once it has settled that many cells of the room. The search only ever stands
+    on reachable cells, and a map whose sources are reachable settles every reachable room cell of their
+    floor component: so it stops right after the last one it can serve. Counting every room cell
+    instead ran it over the whole floor whenever part of the room is cut off (a pocket behind
+    furniture). (Sources cut off from the start settle no reachable cell: whenever they stop, no cell
+    the search uses is missing.)"""
+    rooms = cell_room[reachable]
+    per_room = np.bincount(rooms[rooms >= 0], minlength=num_rooms).astype(np.int64)
+    return np.where(stop_rooms >= 0, per_room[np.maximum(stop_rooms, 0)], 0).astype(np.int64)
 
 
 def _cell_ids(graph: CellGraph, floor: int, cells: np.ndarray) -> np.ndarray:
