@@ -9,10 +9,13 @@ steps into traversable cells (Euclidean step cost in metres) and stairs between 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
+from numba import njit
 
-from sgplan.planning._dijkstra import dijkstra
+from sgplan.errors import SceneError
+from sgplan.planning._dijkstra import dijkstra, flood
 from sgplan.scene.grid import OccupancyGrid
 
 # (d_row, d_col) of the 8 moves; action code k of an occupancy step is the index here.
@@ -41,8 +44,8 @@ class CellGraph:
         ``(S,)`` stairs moves (both directions of every link), sorted by ``stairs_from``.
     stairs_first:
         ``(N,)`` int32: index of the first stairs move leaving the cell, -1 if none.
-    cell_xyz:
-        ``(N, 3)`` metric cell centres; z is the grid's floor height (``OccupancyGrid.floor_z_m``).
+    origin_m, resolution_m, floor_z_m:
+        the grid's frame (see :class:`OccupancyGrid`), for :attr:`cell_xyz`.
     """
 
     shape: tuple[int, int, int]
@@ -57,11 +60,34 @@ class CellGraph:
     stairs_to: np.ndarray
     stairs_cost: np.ndarray
     stairs_first: np.ndarray
-    cell_xyz: np.ndarray
+    origin_m: tuple[float, float]
+    resolution_m: tuple[float, float]
+    floor_z_m: np.ndarray
 
     @property
     def num_cells(self) -> int:
         return int(self.cell_floor.shape[0])
+
+    @cached_property
+    def cell_xyz(self) -> np.ndarray:
+        """``(N, 3)`` float64 metric cell centres; z is the grid's floor height. Built on first use (only
+        h_LLM needs it: 24 bytes a cell)."""
+        xyz = np.empty((self.num_cells, 3), dtype=np.float64)
+        xyz[:, 0] = self.origin_m[0] + (self.cell_row + 0.5) * self.resolution_m[0]
+        xyz[:, 1] = self.origin_m[1] + (self.cell_col + 0.5) * self.resolution_m[1]
+        xyz[:, 2] = np.asarray(self.floor_z_m, dtype=np.float64)[self.cell_floor]
+        return xyz
+
+    def cell_pos(self) -> np.ndarray:
+        """``(N,)`` flat raster position of every cell (int32 when the raster allows, else int64); computed
+        on each call, not kept (4-8 bytes a cell)."""
+        f, r, c = self.shape
+        dtype = np.int32 if f * r * c < 2**31 else np.int64
+        pos = self.cell_floor.astype(dtype) * dtype(r)
+        pos += self.cell_row
+        pos *= dtype(c)
+        pos += self.cell_col
+        return pos
 
     def cell_id(self, row: int, col: int, floor: int) -> int:
         """Index of cell ``(row, col, floor)``, -1 if it is outside the grid or not traversable."""
@@ -72,17 +98,17 @@ class CellGraph:
 
     def gather(self, raster: np.ndarray) -> np.ndarray:
         """The values of a ``(floors, rows, cols)`` raster at every cell, as an ``(N,)`` array."""
-        _, r, c = self.shape
-        flat = (self.cell_floor.astype(np.int64) * r + self.cell_row) * c + self.cell_col
-        return raster.reshape(-1)[flat]
+        return raster.reshape(-1)[self.cell_pos()]
 
-    def distances(self, sources: np.ndarray) -> np.ndarray:
+    def distances(self, sources: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
         """Exact metres from every cell to the nearest of ``sources`` (cell indices), stairs included.
 
-        ``inf`` where no source can be reached.
+        ``inf`` where no source can be reached. Written into ``out`` (float64, ``(N,)``, any content) when
+        given, which is returned.
         """
         n = self.num_cells
-        dist = np.zeros(n, dtype=np.float64)
+        dist = np.zeros(n, dtype=np.float64) if out is None else out
+        dist[:] = 0.0
         pred = np.zeros(n, dtype=np.int32)
         order = np.empty(n, dtype=np.int32)
         dijkstra(
@@ -92,30 +118,68 @@ class CellGraph:
         dist[pred == 0] = np.inf
         return dist
 
+    def reachable(self, start: int) -> np.ndarray:
+        """``(N,)`` bool: the cells reachable from cell ``start`` (steps and stairs); a flood fill."""
+        seen = np.zeros(self.num_cells, dtype=np.bool_)
+        flood(self.nbr, self.stairs_first, self.stairs_from, self.stairs_to, start, seen)
+        return seen
+
 
 _NO_ROOMS = np.zeros(0, dtype=np.int32)
 
 
-def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
-    """Index the traversable cells of ``grid`` and tabulate their moves (vectorised)."""
-    floors, rows, cols = grid.shape
-    flat = np.flatnonzero(grid.traversable.reshape(-1))
-    n = flat.shape[0]
-    index = np.full(floors * rows * cols, -1, dtype=np.int32)
-    index[flat] = np.arange(n, dtype=np.int32)
-    floor, rest = np.divmod(flat, rows * cols)
-    row, col = np.divmod(rest, cols)
+@njit(cache=True)
+def _tabulate(traversable, index, cell_floor, cell_row, cell_col, nbr):
+    """Number the traversable cells of ``traversable`` (floors, rows, cols) in raster order into
+    ``index`` (flat raster, -1 elsewhere) and ``cell_*``, then fill ``nbr`` (N, 8) per :data:`STEPS`."""
+    floors, rows, cols = traversable.shape
+    n = 0
+    for f in range(floors):
+        for r in range(rows):
+            for c in range(cols):
+                if traversable[f, r, c]:
+                    index[(f * rows + r) * cols + c] = n
+                    cell_floor[n] = f
+                    cell_row[n] = r
+                    cell_col[n] = c
+                    n += 1
+                else:
+                    index[(f * rows + r) * cols + c] = -1
+    for i in range(n):
+        f, r, c = cell_floor[i], cell_row[i], cell_col[i]
+        for k in range(8):
+            r2 = r + STEPS[k, 0]
+            c2 = c + STEPS[k, 1]
+            nbr[i, k] = index[(f * rows + r2) * cols + c2] if 0 <= r2 < rows and 0 <= c2 < cols else -1
 
+
+def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
+    """Index the traversable cells of ``grid`` and tabulate their moves (compiled, one pass per table).
+
+    Raises
+    ------
+    SceneError
+        if a stairs link costs zero or less (shortest paths need positive edge costs).
+    """
+    floors, rows, cols = grid.shape
+    traversable = np.ascontiguousarray(grid.traversable, dtype=np.bool_)
+    n = int(np.count_nonzero(traversable))
+    index = np.empty(floors * rows * cols, dtype=np.int32)
+    cell_floor = np.empty(n, dtype=np.int32)
+    cell_row = np.empty(n, dtype=np.int32)
+    cell_col = np.empty(n, dtype=np.int32)
+    nbr = np.empty((n, 8), dtype=np.int32)
+    _tabulate(traversable, index, cell_floor, cell_row, cell_col, nbr)
     res_x, res_y = grid.resolution_m
-    nbr = np.full((n, 8), -1, dtype=np.int32)
-    for k, (d_row, d_col) in enumerate(STEPS):
-        r2, c2 = row + d_row, col + d_col
-        inside = (r2 >= 0) & (r2 < rows) & (c2 >= 0) & (c2 < cols)
-        nbr[inside, k] = index[(floor[inside] * rows + r2[inside]) * cols + c2[inside]]
     step_cost = np.hypot(STEPS[:, 0] * res_x, STEPS[:, 1] * res_y).astype(np.float64)
 
     moves = []
     for link in grid.stairs:
+        if not link.cost_m > 0:
+            raise SceneError(
+                f"stairs between floors {link.lower_floor} and {link.upper_floor} cost {link.cost_m} m; "
+                "a stairs cost must be positive metres"
+            )
         low = index[(link.lower_floor * rows + link.lower_cell[0]) * cols + link.lower_cell[1]]
         up = index[(link.upper_floor * rows + link.upper_cell[0]) * cols + link.upper_cell[1]]
         if low >= 0 and up >= 0:
@@ -128,26 +192,20 @@ def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
     for j in range(len(moves) - 1, -1, -1):
         stairs_first[stairs_from[j]] = j
 
-    cell_xyz = np.stack(
-        [
-            grid.origin_m[0] + (row + 0.5) * res_x,
-            grid.origin_m[1] + (col + 0.5) * res_y,
-            np.asarray(grid.floor_z_m, dtype=np.float64)[floor],
-        ],
-        axis=1,
-    )
     return CellGraph(
         shape=(floors, rows, cols),
         index=index,
-        cell_floor=floor.astype(np.int32),
-        cell_row=row.astype(np.int32),
-        cell_col=col.astype(np.int32),
-        floor_offset=np.searchsorted(floor, np.arange(floors + 1)).astype(np.int64),
+        cell_floor=cell_floor,
+        cell_row=cell_row,
+        cell_col=cell_col,
+        floor_offset=np.searchsorted(cell_floor, np.arange(floors + 1)).astype(np.int64),
         nbr=nbr,
         step_cost=step_cost,
         stairs_from=stairs_from,
         stairs_to=stairs_to,
         stairs_cost=stairs_cost,
         stairs_first=stairs_first,
-        cell_xyz=cell_xyz,
+        origin_m=(float(grid.origin_m[0]), float(grid.origin_m[1])),
+        resolution_m=(float(res_x), float(res_y)),
+        floor_z_m=np.asarray(grid.floor_z_m, dtype=np.float64),
     )

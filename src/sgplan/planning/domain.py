@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import time
 from collections import namedtuple
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy import ndimage
@@ -86,6 +86,9 @@ class PlanningDomain:
         the composite action families, indexed like the kernel's map arrays.
     precompute_s:
         seconds spent building this domain, including :meth:`build_actions` once it ran.
+    timings:
+        seconds per part of :func:`build_domain` (cells, labels, reachable, ltl, action_tables; the
+        benchmarks print them).
     """
 
     graph: CellGraph
@@ -104,6 +107,7 @@ class PlanningDomain:
     kmaps: KernelMaps
     klogic: KernelLogic
     precompute_s: float
+    timings: dict[str, float] = field(default_factory=dict)
 
     @property
     def num_states(self) -> int:
@@ -157,23 +161,26 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
         or which automaton progress cannot be reached).
     """
     t0 = time.perf_counter()
+    clock = _Clock()
     graph = shared_part(problem.shared, "cell_graph", problem.grid, lambda: build_cell_graph(problem.grid))
+    clock.lap("cells")
     start_cell = _check_start(problem, graph)
     automaton = problem.automaton
 
-    masks = graph.gather(problem.labels).astype(np.int64)
-    if masks.size and (masks.min() < 0 or masks.max() >= automaton.num_labels):
+    masks = graph.gather(problem.labels)
+    if masks.size and (int(masks.max()) >= automaton.num_labels or int(masks.min()) < 0):
         raise PlanningError(
             f"label raster holds bitmask {int(masks.max())} but the automaton has only "
             f"{len(automaton.aps)} propositions ({', '.join(automaton.aps)})"
         )
-    label_masks, cell_label = np.unique(masks, return_inverse=True)
-    cell_label = cell_label.astype(np.int32)
+    label_masks, cell_label = _compact_labels(masks, automaton.num_labels)
+    del masks
     trans = np.ascontiguousarray(automaton.table[:, label_masks], dtype=np.int32)
     accepting = np.asarray(automaton.accepting, dtype=bool)
     dead = _dead_states(np.asarray(automaton.table), accepting)
+    clock.lap("labels")
 
-    start_mask = int(masks[start_cell])
+    start_mask = int(label_masks[cell_label[start_cell]])
     if problem.profile == "ltlf":
         q_start = int(automaton.table[automaton.initial, start_mask])
         if dead[q_start]:
@@ -188,23 +195,29 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
     if dead[q_start]:
         raise PlanningError("the mission automaton accepts no word at all", status="infeasible")
 
-    reachable = np.isfinite(graph.distances(np.array([start_cell])))
+    reachable = graph.reachable(start_cell)
+    clock.lap("reachable")
     ltl = build_ltl_heuristic(graph, cell_label, trans, accepting, q_start, reachable)
+    clock.lap("ltl")
     if not accepting[q_start] and not np.isfinite(ltl.value(start_cell, q_start)):
-        raise PlanningError(_infeasible_reason(problem, masks, reachable, q_start), status="infeasible")
+        raise PlanningError(
+            _infeasible_reason(problem, label_masks[cell_label], reachable, q_start), status="infeasible"
+        )
 
     rooms = list(problem.building.rooms())
     room_uuids = [room.uuid for room in rooms]
     room_lut = np.full(max([room.id for room in rooms], default=0) + 2, -1, dtype=np.int32)
     for i, room in enumerate(rooms):
         room_lut[room.id] = i
-    room_ids = graph.gather(problem.grid.room_map).astype(np.int64)
-    cell_room = np.where(
-        (room_ids > 0) & (room_ids < len(room_lut) - 1), room_lut[np.clip(room_ids, 0, None)], -1
-    )
-    cell_room = cell_room.astype(np.int32)
+    room_ids = graph.gather(problem.grid.room_map)
+    inside = (room_ids > 0) & (room_ids < len(room_lut) - 1)
+    cell_room = np.full(graph.num_cells, -1, dtype=np.int32)
+    cell_room[inside] = room_lut[room_ids[inside]]
+    del room_ids, inside
 
-    maps, kactions, in_region = _action_maps(problem, graph, rooms, cell_room)
+    maps, kactions, in_region = _action_maps(problem, graph, rooms, cell_room, reachable)
+    del reachable
+    clock.lap("action_tables")
     n_max = int(np.diff(graph.floor_offset).max()) if graph.num_cells else 0
     kmaps = KernelMaps(
         done=np.zeros(len(maps), dtype=np.uint8),
@@ -249,7 +262,9 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
         cell_floor=graph.cell_floor,
         cell_label=cell_label,
         cell_room=cell_room,
-        cell_xyz=graph.cell_xyz,
+        # Only h_LLM reads cell centres; without guidance it is never evaluated, and a lazily committed
+        # zero array stands in (24 bytes a cell never touched).
+        cell_xyz=graph.cell_xyz if llm is not None else sparse_zeros((graph.num_cells, 3), np.float64),
         in_object_region=in_region,
     )
     return PlanningDomain(
@@ -269,7 +284,35 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
         kmaps=kmaps,
         klogic=klogic,
         precompute_s=time.perf_counter() - t0,
+        timings=clock.laps,
     )
+
+
+class _Clock:
+    """Seconds per named part of :func:`build_domain` (``PlanningDomain.timings``)."""
+
+    def __init__(self) -> None:
+        self.laps: dict[str, float] = {}
+        self._last = time.perf_counter()
+
+    def lap(self, name: str) -> None:
+        now = time.perf_counter()
+        self.laps[name] = now - self._last
+        self._last = now
+
+
+def _compact_labels(masks: np.ndarray, num_labels: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(label_masks, cell_label)``: the distinct bitmasks (ascending, int64) and each cell's index into
+    them (int32). A lookup table when the automaton's label space is small, else a sort."""
+    if num_labels <= 1 << 22:
+        present = np.zeros(num_labels, dtype=np.bool_)
+        present[masks] = True
+        label_masks = np.flatnonzero(present)
+        lut = np.zeros(num_labels, dtype=np.int32)
+        lut[label_masks] = np.arange(len(label_masks), dtype=np.int32)
+        return label_masks.astype(np.int64), lut[masks]
+    label_masks, cell_label = np.unique(masks, return_inverse=True)
+    return label_masks.astype(np.int64), cell_label.astype(np.int32)
 
 
 def _listing(items: list[str]) -> str:
@@ -346,13 +389,12 @@ def _infeasible_reason(
 
 
 def _action_maps(
-    problem: PlanningProblem, graph: CellGraph, rooms: list, cell_room: np.ndarray
+    problem: PlanningProblem, graph: CellGraph, rooms: list, cell_room: np.ndarray, reachable: np.ndarray
 ) -> tuple[list[ActionMap], KernelActions, np.ndarray]:
     """The composite action families and their per-room / per-floor tables for the kernel."""
     grid = problem.grid
     floors = graph.shape[0]
     room_index = {room.id: i for i, room in enumerate(rooms)}
-    room_cells = np.bincount(cell_room[cell_room >= 0], minlength=len(rooms))
     in_region = np.zeros(graph.num_cells, dtype=np.bool_)
 
     maps: list[ActionMap] = []
@@ -422,6 +464,7 @@ def _action_maps(
     src_ptr = np.zeros(len(maps) + 1, dtype=np.int64)
     src_ptr[1:] = np.cumsum([len(s) for s in sources])
     stop_rooms = np.array(stop_room, dtype=np.int32)
+    map_src = np.concatenate(sources) if sources else np.zeros(0, dtype=np.int64)
     kactions = KernelActions(
         room_obj_ptr=obj_ptr,
         room_obj_map=obj_map,
@@ -431,13 +474,30 @@ def _action_maps(
         floor_down_map=floor_down,
         map_floor=np.array([m.floor for m in maps], dtype=np.int32),
         map_src_ptr=src_ptr,
-        map_src=np.concatenate(sources) if sources else np.zeros(0, dtype=np.int64),
+        map_src=map_src,
         map_stop_room=stop_rooms,
-        map_stop_count=np.array([room_cells[s] if s >= 0 else 0 for s in stop_rooms], dtype=np.int64),
+        map_stop_count=stop_counts(cell_room, reachable, len(rooms), stop_rooms),
         map_exit_cell=np.array(exit_cell, dtype=np.int64),
         map_exit_cost=np.array(exit_cost, dtype=np.float64),
     )
     return maps, kactions, in_region
+
+
+def stop_counts(
+    cell_room: np.ndarray, reachable: np.ndarray, num_rooms: int, stop_rooms: np.ndarray
+) -> np.ndarray:
+    """``(M,)`` int64: for each action map, the cells of its stop room reachable from the start; 0 for
+    maps without a stop room.
+
+    A map's Dijkstra stops once it has settled that many cells of the room. The search only ever stands
+    on reachable cells, and a map whose sources are reachable settles every reachable room cell of their
+    floor component: so it stops right after the last one it can serve. Counting every room cell
+    instead ran it over the whole floor whenever part of the room is cut off (a pocket behind
+    furniture). (Sources cut off from the start settle no reachable cell: whenever they stop, no cell
+    the search uses is missing.)"""
+    rooms = cell_room[reachable]
+    per_room = np.bincount(rooms[rooms >= 0], minlength=num_rooms).astype(np.int64)
+    return np.where(stop_rooms >= 0, per_room[np.maximum(stop_rooms, 0)], 0).astype(np.int64)
 
 
 def _cell_ids(graph: CellGraph, floor: int, cells: np.ndarray) -> np.ndarray:

@@ -139,22 +139,17 @@ def build_ltl_heuristic(
     needed = np.flatnonzero(leaves.any(axis=0))
 
     # Exact distance to each needed label region, and region-to-region lower bounds.
-    cells = np.flatnonzero(reachable) if reachable is not None else np.arange(graph.num_cells)
-    cells = cells[np.argsort(cell_label[cells], kind="stable")]
-    counts = np.bincount(cell_label[cells], minlength=num_labels)
-    starts = np.concatenate([[0], np.cumsum(counts)])
+    inside = reachable if reachable is not None else np.ones(graph.num_cells, dtype=bool)
+    regions = [np.flatnonzero((cell_label == label) & inside) for label in needed]
+    counts = np.zeros(num_labels, dtype=np.int64)
+    counts[needed] = [len(r) for r in regions]
     dist = np.empty((len(needed), graph.num_cells), dtype=np.float64)
-    for i, label in enumerate(needed):
-        dist[i] = graph.distances(cells[starts[label] : starts[label + 1]])
-    nonempty = np.flatnonzero(counts > 0)
-    slot = np.full(num_labels, -1)
-    slot[nonempty] = np.arange(len(nonempty))
-    present = np.flatnonzero(counts[needed] > 0)
+    for i, cells in enumerate(regions):
+        graph.distances(cells, out=dist[i])
     region_cost = np.full((len(needed), len(needed)), np.inf)
-    for j in range(len(needed)):
-        if present.size:
-            per_label = np.minimum.reduceat(dist[j][cells], starts[nonempty])
-            region_cost[present, j] = per_label[slot[needed[present]]]
+    for i, cells in enumerate(regions):
+        for j in range(len(needed)) if cells.size else ():
+            region_cost[i, j] = dist[j, cells].min()
     to_go = _backward_costs(trans, accepting, needed, region_cost)
 
     # A row per state with at least one term (a leaving label whose region is reachable and from whose

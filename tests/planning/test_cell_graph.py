@@ -1,0 +1,183 @@
+"""The compact cell graph and its compiled traversals (bucketed Dijkstra, flood fill) against scipy."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import dijkstra as scipy_dijkstra
+
+from sgplan.errors import SceneError
+from sgplan.planning._dijkstra import dijkstra
+from sgplan.planning.cells import STEPS, build_cell_graph
+from sgplan.planning.domain import _compact_labels, stop_counts
+from sgplan.scene.grid import OccupancyGrid, StairsLink
+
+
+def _random_grid(seed: int, res: tuple[float, float], stairs_cost: float) -> OccupancyGrid:
+    """Two floors of random walls (about 30 % blocked) and one stairs link, at resolution ``res``."""
+    rng = np.random.default_rng(seed)
+    floors, rows, cols = 2, int(rng.integers(3, 14)), int(rng.integers(3, 14))
+    traversable = rng.random((floors, rows, cols)) > 0.3
+    low = (int(rng.integers(rows)), int(rng.integers(cols)))
+    up = (int(rng.integers(rows)), int(rng.integers(cols)))
+    traversable[0][low] = traversable[1][up] = True
+    return OccupancyGrid(
+        traversable=traversable,
+        room_map=np.ones((floors, rows, cols), dtype=np.int16),
+        resolution_m=res,
+        origin_m=(0.0, 0.0),
+        floor_z_m=np.array([0.0, 3.0]),
+        stairs=(StairsLink(0, low, up, stairs_cost),),
+        robot_radius_m=0.0,
+    )
+
+
+def _scipy_distances(grid: OccupancyGrid, graph, sources: np.ndarray) -> np.ndarray:
+    """Distances over the compact cells, from an independently built sparse matrix (raster moves)."""
+    heads, tails, weights = [], [], []
+    floors, rows, cols = grid.shape
+    for f in range(floors):
+        for r in range(rows):
+            for c in range(cols):
+                a = graph.cell_id(r, c, f)
+                for d_row, d_col in STEPS:
+                    b = graph.cell_id(r + d_row, c + d_col, f)
+                    if a >= 0 and b >= 0:
+                        heads.append(a)
+                        tails.append(b)
+                        weights.append(np.hypot(d_row * grid.resolution_m[0], d_col * grid.resolution_m[1]))
+    for link in grid.stairs:
+        a = graph.cell_id(*link.lower_cell, link.lower_floor)
+        b = graph.cell_id(*link.upper_cell, link.upper_floor)
+        heads += [a, b]
+        tails += [b, a]
+        weights += [link.cost_m, link.cost_m]
+    n = graph.num_cells
+    matrix = coo_matrix((weights, (heads, tails)), shape=(n, n)).tocsr()
+    return scipy_dijkstra(matrix, indices=sources, min_only=True)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    seed=st.integers(0, 2**31 - 1),
+    res=st.sampled_from([(0.05, 0.05), (0.05, 0.08), (0.1, 0.03)]),
+    stairs_cost=st.sampled_from([4.0, 0.07, 0.001]),  # long, between the step costs, far below them
+    num_sources=st.integers(1, 5),
+)
+def test_distances_match_scipy(seed: int, res, stairs_cost: float, num_sources: int) -> None:
+    """Bucketed Dijkstra = scipy's heap Dijkstra (to float rounding) for any resolution and stairs cost,
+    including stairs far cheaper than a step (many buckets) and several sources; flood = reachability;
+    every predecessor chain is a shortest path."""
+    grid = _random_grid(seed, res, stairs_cost)
+    graph = build_cell_graph(grid)
+    sources = np.random.default_rng(seed).choice(graph.num_cells, min(num_sources, graph.num_cells),
+                                                 replace=False)
+    ours = graph.distances(sources)
+    theirs = _scipy_distances(grid, graph, sources)
+    np.testing.assert_allclose(ours, theirs, rtol=0, atol=1e-9)
+    assert np.array_equal(graph.reachable(int(sources[0])), np.isfinite(_scipy_distances(grid, graph,
+                                                                                         sources[:1])))
+    n = graph.num_cells
+    dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)
+    settled = dijkstra(
+        graph.nbr, graph.step_cost, graph.stairs_first, graph.stairs_from, graph.stairs_to,
+        graph.stairs_cost, 0, n, True, sources.astype(np.int64), np.zeros(0, np.int32), np.int32(-1), 0,
+        dist, pred, order,
+    )
+    assert settled == int(np.isfinite(theirs).sum())
+    assert np.all(np.diff(dist[order[:settled]]) >= -graph.step_cost.min())  # settled bucket by bucket
+    for cell in order[:settled]:
+        nxt = pred[cell] - 2
+        if nxt >= 0:
+            step = dist[cell] - dist[nxt]
+            stairs = (graph.stairs_from == cell) & (graph.stairs_to == nxt)
+            moves = np.concatenate([graph.step_cost[graph.nbr[cell] == nxt], graph.stairs_cost[stairs]])
+            assert np.isclose(moves, step, atol=1e-9).any()
+
+
+def test_many_sources_and_early_stop_grow_the_queues() -> None:
+    """More sources than the initial bucket capacity; an early stop leaves the stop room exact."""
+    rows, cols = 60, 70
+    grid = OccupancyGrid(
+        traversable=np.ones((1, rows, cols), dtype=bool),
+        room_map=np.ones((1, rows, cols), dtype=np.int16),
+        resolution_m=(0.05, 0.05), origin_m=(0.0, 0.0), floor_z_m=np.array([0.0]), stairs=(),
+        robot_radius_m=0.0,
+    )
+    graph = build_cell_graph(grid)
+    sources = np.arange(0, graph.num_cells, 2)  # 2100 sources
+    np.testing.assert_allclose(graph.distances(sources), _scipy_distances(grid, graph, sources), atol=1e-9)
+    n = graph.num_cells
+    cell_room = (graph.cell_col < 10).astype(np.int32)  # room 1: the first 10 columns
+    dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)
+    source = np.array([graph.cell_id(30, 0, 0)], dtype=np.int64)
+    settled = dijkstra(
+        graph.nbr, graph.step_cost, graph.stairs_first, graph.stairs_from, graph.stairs_to,
+        graph.stairs_cost, 0, n, False, source, cell_room, np.int32(1), int((cell_room == 1).sum()),
+        dist, pred, order,
+    )
+    assert settled < n
+    room = cell_room == 1
+    assert (pred[room] > 0).all()
+    np.testing.assert_allclose(dist[room], _scipy_distances(grid, graph, source)[room], atol=1e-9)
+
+
+def test_stairs_must_cost_something() -> None:
+    grid = _random_grid(1, (0.05, 0.05), 0.0)
+    with pytest.raises(SceneError, match="must be positive"):
+        build_cell_graph(grid)
+
+
+def test_cell_centres_and_gather() -> None:
+    grid = _random_grid(3, (0.05, 0.08), 1.0)
+    graph = build_cell_graph(grid)
+    f, r, c = np.nonzero(grid.traversable)  # raster order = cell order
+    assert np.array_equal(graph.cell_floor, f) and np.array_equal(graph.cell_row, r)
+    np.testing.assert_allclose(graph.cell_xyz[:, 0], (r + 0.5) * 0.05)
+    np.testing.assert_allclose(graph.cell_xyz[:, 1], (c + 0.5) * 0.08)
+    np.testing.assert_allclose(graph.cell_xyz[:, 2], np.array([0.0, 3.0])[f])
+    raster = np.arange(np.prod(grid.shape)).reshape(grid.shape)
+    assert np.array_equal(graph.gather(raster), raster[f, r, c])
+
+
+def test_stop_count_ignores_room_cells_cut_off_from_the_sources() -> None:
+    """A room with a walled-in pocket: the map's stop count leaves the pocket (unreachable from the start,
+    here the source) out, so its Dijkstra stops before exhausting the floor, and every room cell it can
+    reach is settled and exact."""
+    rows, cols = 30, 60
+    traversable = np.ones((1, rows, cols), dtype=bool)
+    traversable[0, 2:7, 2] = traversable[0, 2:7, 6] = traversable[0, 2, 2:7] = traversable[0, 6, 2:7] = False
+    grid = OccupancyGrid(
+        traversable=traversable, room_map=np.ones((1, rows, cols), dtype=np.int16), resolution_m=(0.05, 0.05),
+        origin_m=(0.0, 0.0), floor_z_m=np.array([0.0]), stairs=(), robot_radius_m=0.0,
+    )
+    graph = build_cell_graph(grid)
+    cell_room = (graph.cell_col < 10).astype(np.int32)  # room 1: the first 10 columns, pocket included
+    source = np.array([graph.cell_id(15, 1, 0)], dtype=np.int64)
+    (count,) = stop_counts(cell_room, graph.reachable(int(source[0])), 2, np.array([1], dtype=np.int32))
+    assert count == int((cell_room == 1).sum()) - 9  # the 3 x 3 pocket
+    n = graph.num_cells
+    dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)
+    settled = dijkstra(
+        graph.nbr, graph.step_cost, graph.stairs_first, graph.stairs_from, graph.stairs_to,
+        graph.stairs_cost, 0, n, False, source, cell_room, np.int32(1), count, dist, pred, order,
+    )
+    full = _scipy_distances(grid, graph, source)
+    room = (cell_room == 1) & np.isfinite(full)
+    assert settled < int(np.isfinite(full).sum()) and (pred[room] > 0).all()
+    np.testing.assert_allclose(dist[room], full[room], atol=1e-9)
+
+
+@settings(max_examples=20, deadline=None)
+@given(seed=st.integers(0, 2**31 - 1), bits=st.sampled_from([1, 5, 22, 30]))
+def test_compact_labels_equal_numpy_unique(seed: int, bits: int) -> None:
+    """Label ids by lookup table (small label spaces) or by sort (large ones) are np.unique's."""
+    rng = np.random.default_rng(seed)
+    masks = rng.choice(rng.integers(0, 2**bits, size=7), size=500).astype(np.uint32)
+    label_masks, cell_label = _compact_labels(masks, 2**bits)
+    expected_masks, expected_ids = np.unique(masks, return_inverse=True)
+    assert np.array_equal(label_masks, expected_masks) and label_masks.dtype == np.int64
+    assert np.array_equal(cell_label, expected_ids) and cell_label.dtype == np.int32
