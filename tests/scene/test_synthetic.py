@@ -10,7 +10,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from sgplan.errors import SceneError
-from sgplan.scene.demo import DEMO_REACH_RADIUS_M, DEMO_ROBOT_RADIUS_M, demo_building
+from sgplan.scene.demo import (
+    DEMO_REACH_RADIUS_M,
+    DEMO_ROBOT_RADIUS_M,
+    DEMO_STARTS,
+    deepest_start_cells,
+    demo_building,
+)
 from sgplan.scene.grid import build_occupancy_grid, floor_heights_m
 from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building, CatCode
@@ -160,6 +166,12 @@ def test_demo_building_content() -> None:
     assert {"toilet", "sink"} <= classes("bathroom")
     assert len(building.rooms_named("bedroom")) == 2
     assert all("bed" in {o.name for o in r.objects.values()} for r in building.rooms_named("bedroom"))
+
+
+def test_demo_starts_are_the_deepest_cells_of_their_rooms() -> None:
+    """The stored initial cells are what :func:`deepest_start_cells` derives from the generated house."""
+    building = demo_building()
+    assert building.initial_cells == list(DEMO_STARTS) == deepest_start_cells(building)
 
 
 def test_demo_building_is_plannable() -> None:

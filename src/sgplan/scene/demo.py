@@ -10,9 +10,7 @@ names (``refrigerator``, ``tv``, ``dining table``, ...), as in the real scenes.
 from __future__ import annotations
 
 import numpy as np
-from scipy import ndimage
 
-from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.model import Building
 from sgplan.scene.synthetic import RoomSpec, building_from_specs
 
@@ -39,14 +37,18 @@ DEMO_FLOORS: tuple[tuple[RoomSpec, ...], ...] = (
 
 _START_ROOMS = ("corridor", "living_room", "kitchen", "bedroom", "home_office")
 
+DEMO_STARTS: tuple[tuple[int, int, int], ...] = (
+    (103, 46, 0), (170, 39, 0), (53, 102, 0), (65, 93, 1), (42, 164, 1),
+)
+"""The demo's initial cells ``(row, col, floor)``: :func:`deepest_start_cells` of the demo building, stored
+so that loading the demo (e.g. to translate a mission) builds no occupancy grid; a test recomputes them."""
+
 
 def demo_building() -> Building:
     """A fresh copy of the demo building (same content on every call).
 
     It carries default ``robot_radius_m`` (0.15 m), ``reach_radius_m`` (0.6 m) and five
-    ``initial_cells`` ``(row, col, floor)``: the open-floor cell deepest inside the first room of each
-    category in ``corridor, living_room, kitchen, bedroom, home_office`` (floor order), all traversable
-    for the default radius.
+    ``initial_cells`` ``(row, col, floor)``: :data:`DEMO_STARTS`.
     """
     building = building_from_specs(
         DEMO_FLOORS,
@@ -56,6 +58,18 @@ def demo_building() -> Building:
         robot_radius_m=DEMO_ROBOT_RADIUS_M,
         reach_radius_m=DEMO_REACH_RADIUS_M,
     )
+    building.initial_cells = list(DEMO_STARTS)
+    return building
+
+
+def deepest_start_cells(building: Building) -> list[tuple[int, int, int]]:
+    """The open-floor cell deepest inside the first room of each category in ``corridor, living_room,
+    kitchen, bedroom, home_office`` (floor order), traversable for the demo robot radius: how
+    :data:`DEMO_STARTS` were chosen."""
+    from scipy import ndimage
+
+    from sgplan.scene.grid import build_occupancy_grid
+
     grid = build_occupancy_grid(building, DEMO_ROBOT_RADIUS_M)
     starts = []
     for category in _START_ROOMS:
@@ -64,5 +78,4 @@ def demo_building() -> Building:
         depth = ndimage.distance_transform_edt(inside)
         row, col = np.unravel_index(int(np.argmax(depth)), depth.shape)
         starts.append((int(row), int(col), room.floor))
-    building.initial_cells = starts
-    return building
+    return starts
