@@ -3,7 +3,6 @@ three Gibson scenes against the counts of reference-algorithm.md §1.1 and §10.
 
 from __future__ import annotations
 
-import time
 import tracemalloc
 from collections.abc import Callable
 from pathlib import Path
@@ -337,13 +336,12 @@ def test_gibson_scene(gibson_root: Path, scene: str) -> None:
 
 
 @pytest.mark.gibson
-def test_benevolence_loads_fast_and_small(gibson_root: Path) -> None:
+def test_benevolence_loads_within_a_memory_bound(gibson_root: Path) -> None:
+    """Loading holds well under 1 GB of Python allocations (its speed is measured in
+    benchmarks/scene_load.py, not here: a timed test fails on a loaded machine)."""
     load_authors_scene(gibson_root / "Benevolence")  # warm the imports and the file cache
     tracemalloc.start()
-    start = time.perf_counter()
     load_authors_scene(gibson_root / "Benevolence")
-    elapsed = time.perf_counter() - start
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
-    assert elapsed < 2.0
     assert peak < 1 << 30
