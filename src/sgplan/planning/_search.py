@@ -46,18 +46,20 @@ PAGE = 1 << PAGE_BITS  # cells per page (records of one automaton state)
 PAGE_MASK = PAGE - 1
 REC = 3  # words per record and per heap entry
 ARITY = 4  # heap fan-out
+FILL_FRACTION = 4  # an h_LTL row is filled after (cells / FILL_FRACTION) evaluations (see h_ltl)
 LOW32 = 0xFFFFFFFF
 # iscal slots
 I_GOAL, I_ROBIN, I_NINCONS, I_ITER, I_PAGES = 0, 1, 2, 3, 4
 
 SearchState = namedtuple(
-    "SearchState", "ptab pool poolf hbuf hbuff hsize incons fscal iscal expansions"
+    "SearchState", "ptab pool poolf hbuf hbuff hsize incons fscal iscal expansions h_evals"
 )
 """Search memory (see the module docstring). ``ptab (Q, pages per state)`` int64 page slots;
 ``pool`` int64 ``(slots * PAGE * REC,)`` records, ``poolf`` its float64 view; ``hbuf`` int64
 ``(K * capacity * REC,)`` one heap per queue (queue ``i`` at entry offset ``i * capacity``), ``hbuff``
 its float64 view, ``hsize (K,)``; ``incons`` int64 states; ``fscal = [goal_g, w1, w2]``;
-``iscal = [goal_state, round_robin, n_incons, iteration, pages used]``; ``expansions (K,)``."""
+``iscal = [goal_state, round_robin, n_incons, iteration, pages used]``; ``expansions (K,)``;
+``h_evals (rows,)`` h_LTL values computed per unfilled row (:func:`h_ltl`)."""
 
 
 @njit(cache=True)
@@ -334,14 +336,25 @@ def successors(G, A, M, L, c, q, level, max_level, out_c, out_q, out_cost, out_a
 
 
 @njit(cache=True, inline="always")
-def h_ltl(accepting, q_row, hmap, c, q):
-    """h_LTL at (c, q); q's row must be filled (:func:`~sgplan.planning.ltl_heuristic.fill_row`)."""
-    if accepting[q]:
-        return 0.0
-    row = q_row[q]
-    if row < 0:
-        return INF
-    return hmap[row, c]
+def h_ltl(hmap, h_ready, h_dist, h_ptr, h_label, h_add, h_evals, fill_after, row, c):
+    """h_LTL at cell ``c`` in the automaton state of tabulated row ``row`` (>= 0).
+
+    A filled row is read; otherwise the value is computed from the row's terms (min over its leaving
+    labels of the exact distance plus the cost to go after it, the same float operations as
+    :func:`~sgplan.planning.ltl_heuristic.fill_row`, so the same bits), and the row is filled once the
+    search has evaluated it ``fill_after`` times: a search that meets a state on a few cells pays a few
+    reads instead of a pass over every cell, one that floods it pays at most twice the fill.
+    """
+    if h_ready[row] == 1:
+        return hmap[row, c]
+    h_evals[row] += 1
+    if h_evals[row] > fill_after:
+        fill_row(hmap, h_ready, h_dist, h_ptr, h_label, h_add, row)
+        return hmap[row, c]
+    h = INF
+    for t in range(h_ptr[row], h_ptr[row + 1]):
+        h = min(h, h_dist[h_label[t], c] + h_add[t])
+    return h
 
 
 @njit(cache=True, inline="always")
@@ -562,6 +575,7 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
     for i in range(q_level.shape[0]):
         hsize[i] = 0
     num_queues = active_queues(q_level.shape[0], w1, w2)
+    fill_after = hmap.shape[1] // FILL_FRACTION
     bound = INF
     for t in range(m):
         s = cand[t]
@@ -569,9 +583,11 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
         q = s % num_q
         gs = poolf[rec_find(ptab, c, q)]
         row = q_row[q]
-        if row >= 0 and L.h_ready[row] == 0:
-            fill_row(hmap, L.h_ready, L.h_dist, L.h_ptr, L.h_label, L.h_add, row)
-        h0 = h_ltl(accepting, q_row, hmap, c, q)
+        h0 = (
+            h_ltl(hmap, L.h_ready, L.h_dist, L.h_ptr, L.h_label, L.h_add, S.h_evals, fill_after, row, c)
+            if row >= 0
+            else (0.0 if accepting[q] else INF)
+        )
         bound = min(bound, gs + h0)
         hsize[0] = hpush(hf, hi, 0, hsize[0], gs + w1 * h0, gs, s)
         for j in range(1, num_queues):
@@ -633,7 +649,8 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     h_ready, h_dist, h_ptr, h_label, h_add = L.h_ready, L.h_dist, L.h_ptr, L.h_label, L.h_add
     idempotent = L.idempotent[0]
     llm_sum, llm_target, llm_valid = L.llm_sum, L.llm_target, L.llm_valid
-    ptab, pool, poolf = S.ptab, S.pool, S.poolf
+    ptab, pool, poolf, h_evals = S.ptab, S.pool, S.poolf, S.h_evals
+    fill_after = hmap.shape[1] // FILL_FRACTION
     hf, hi, hsize, incons, fscal, iscal = S.hbuff, S.hbuf, S.hsize, S.incons, S.fscal, S.iscal
     expansions = S.expansions
 
@@ -776,9 +793,7 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
             rn = rec_find(ptab, nc, nq)
             if rn >= 0 and pool[rn + 2] & LOW32 != 0 and gn >= poolf[rn]:
                 continue
-            if h_ready[row] == 0:  # first time the search meets state nq
-                fill_row(hmap, h_ready, h_dist, h_ptr, h_label, h_add, row)
-            h0 = hmap[row, nc]
+            h0 = h_ltl(hmap, h_ready, h_dist, h_ptr, h_label, h_add, h_evals, fill_after, row, nc)
             if h0 == INF:
                 continue
             if rn < 0:

@@ -305,6 +305,7 @@ def _new_state(domain: PlanningDomain, num_queues: int, pages: int = 64) -> Sear
         fscal=np.array([np.inf, 1.0, 1.0]),
         iscal=np.array([-1, 1, 1, 0, 0], dtype=np.int64),
         expansions=np.zeros(num_queues, dtype=np.int64),
+        h_evals=np.zeros(domain.klogic.h_ready.shape[0], dtype=np.int64),
     )
     _search.init_start(state.ptab, state.pool, state.poolf, state.iscal, state.incons,
                        domain.start_cell, domain.q_start, num_q)
