@@ -105,6 +105,9 @@ class PlanResult:
         one :class:`IterationRecord` per finished iteration.
     precompute_s, search_s:
         seconds to build the domain (once per problem), and of search (including lazily built actions).
+    search_bytes:
+        bytes of search memory in use at the end (:func:`state_bytes`): state records of the pages the
+        search touched, the page table, heap and INCONS entries -- not cells x automaton states.
     """
 
     status: str
@@ -116,6 +119,7 @@ class PlanResult:
     queues: tuple[str, ...]
     precompute_s: float
     search_s: float
+    search_bytes: int = 0
 
     @property
     def expansions(self) -> int:
@@ -254,6 +258,7 @@ def plan(
             break
         w1, w2 = max(w1 * decay, final_weights[0]), max(w2 * decay, final_weights[1])
 
+    result.search_bytes = state_bytes(state)
     if np.isfinite(state.fscal[0]):
         cells = _recover_cells(domain, state, int(state.iscal[0]))
         result.path = _path_rows(domain, cells)
