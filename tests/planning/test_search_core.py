@@ -44,7 +44,7 @@ def test_page_table_hands_out_one_slot_per_touched_state_block() -> None:
     ptab = np.full((num_q, blocks), -1, dtype=np.int64)
     pool = np.zeros(num_q * blocks * core.PAGE * core.REC, dtype=np.int64)
     poolf = pool.view(np.float64)
-    iscal = np.array([-1, 1, 0, 0, 0], dtype=np.int64)
+    iscal = np.array([-1, 1, 0, 0, 0, 0, 0], dtype=np.int64)
     rng = np.random.default_rng(3)
     written: dict[tuple[int, int], float] = {}
     for c, q in zip(rng.integers(cells, size=300), rng.integers(num_q, size=300)):

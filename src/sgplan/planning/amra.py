@@ -308,7 +308,7 @@ def _new_state(domain: PlanningDomain, num_queues: int, pages: int = 64) -> Sear
         hsize=np.zeros(num_queues, dtype=np.int64),
         incons=np.empty(capacity, dtype=np.int64),
         fscal=np.array([np.inf, 1.0, 1.0]),
-        iscal=np.array([-1, 1, 1, 0, 0], dtype=np.int64),
+        iscal=np.array([-1, 1, 1, 0, 0, 0, 0], dtype=np.int64),
         expansions=np.zeros(num_queues, dtype=np.int64),
         h_evals=np.zeros(domain.klogic.h_ready.shape[0], dtype=np.int64),
     )
