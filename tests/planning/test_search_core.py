@@ -41,7 +41,7 @@ def _plan_or_none(problem: PlanningProblem, setup: str, **kw):
 def test_page_table_hands_out_one_slot_per_touched_state_block() -> None:
     num_q, cells = 7, 5000
     blocks = -(-cells // core.PAGE)
-    ptab = np.full((num_q, blocks), -1, dtype=np.int64)
+    ptab = np.full((num_q, blocks), -1, dtype=np.int32)
     pool = np.zeros(num_q * blocks * core.PAGE * core.REC, dtype=np.int64)
     poolf = pool.view(np.float64)
     iscal = np.array([-1, 1, 0, 0, 0, 0, 0], dtype=np.int64)
@@ -57,10 +57,12 @@ def test_page_table_hands_out_one_slot_per_touched_state_block() -> None:
     used = {(q, c >> core.PAGE_BITS) for c, q in written}
     assert iscal[core.I_PAGES] == len(used)  # one slot per touched (state, block), nothing else
     assert sorted(ptab[ptab >= 0].tolist()) == list(range(len(used)))
+    qb = core.q_bits(num_q)
+    assert (1 << qb) >= num_q > (1 << (qb - 1))
     for (c, q), g in written.items():
-        assert core.read_record(ptab, pool, poolf, num_q, c * num_q + q) == (g, 1000 + c, 5)
+        assert core.read_record(ptab, pool, poolf, (c << qb) | q) == (g, 1000 + c, 5)
     untouched = next((c, q) for c in range(cells) for q in range(num_q) if (c, q) not in written)
-    assert core.read_record(ptab, pool, poolf, num_q, untouched[0] * num_q + untouched[1])[2] == -1
+    assert core.read_record(ptab, pool, poolf, (untouched[0] << qb) | untouched[1])[2] == -1
 
 
 def test_closed_bits_belong_to_their_iteration() -> None:

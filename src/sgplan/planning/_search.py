@@ -1,6 +1,7 @@
 """The compiled core of AMRA*: successor generation over the hierarchical domain and the search loop.
 
-Product state ``s = cell * Q + q`` (int64); heaps, INCONS and parent pointers hold these numbers.
+Product state ``s = (cell << q_bits(Q)) | q`` (int64; shifts, not divisions, in the hot loop); heaps,
+INCONS and parent pointers hold these numbers.
 
 Search memory is paged and sparse in automaton states (what a search touches, not cells x Q): a page
 holds the records of ``PAGE`` consecutive cells in ONE automaton state, ``ptab[q, cell >> PAGE_BITS]``
@@ -57,7 +58,7 @@ MACRO_FREE, MACRO_YIELD = 2048, 8
 SearchState = namedtuple(
     "SearchState", "ptab pool poolf hbuf hbuff hsize incons fscal iscal expansions h_evals"
 )
-"""Search memory (see the module docstring). ``ptab (Q, pages per state)`` int64 page slots;
+"""Search memory (see the module docstring). ``ptab (Q, pages per state)`` int32 page slots;
 ``pool`` int64 ``(slots * PAGE * REC,)`` records, ``poolf`` its float64 view; ``hbuf`` int64
 ``(K * capacity * REC,)`` one heap per queue (queue ``i`` at entry offset ``i * capacity``), ``hbuff``
 its float64 view, ``hsize (K,)``; ``incons`` int64 states; ``fscal = [goal_g, w1, w2]``;
@@ -427,11 +428,20 @@ def with_closed(meta, bits, iteration):
     return meta | (bits << 32)
 
 
+@njit(cache=True, inline="always")
+def q_bits(num_q):
+    """Bits of the automaton state in a product state code ``(cell << q_bits) | q``."""
+    b = 1
+    while (1 << b) < num_q:
+        b += 1
+    return b
+
+
 @njit(cache=True)
-def read_record(ptab, pool, poolf, num_q, s):
+def read_record(ptab, pool, poolf, s):
     """``(g, parent, action)`` of product state ``s``; action -1 if ``s`` was never reached."""
-    c = s // num_q
-    r = rec_find(ptab, c, s - c * num_q)
+    qb = q_bits(ptab.shape[0])
+    r = rec_find(ptab, s >> qb, s & ((1 << qb) - 1))
     if r < 0 or pool[r + 2] & LOW32 == 0:
         return INF, np.int64(-1), np.int64(-1)
     return poolf[r], pool[r + 1], (pool[r + 2] & LOW32) - 1
@@ -503,14 +513,14 @@ def hpop(hf, hi, base, size):
 
 
 @njit(cache=True, inline="always")
-def clean_top(ptab, pool, poolf, hf, hi, hsize, capacity, num_q, i, level, iteration):
+def clean_top(ptab, pool, poolf, hf, hi, hsize, capacity, qb, i, level, iteration):
     """Drop stale entries from the top of heap ``i``; return its minimum key (inf when empty)."""
     base = i * capacity
     while hsize[i] > 0:
         e = base * REC
         s = hi[e + 2]
-        c = s // num_q
-        r = (ptab[s - c * num_q, c >> PAGE_BITS] * PAGE + (c & PAGE_MASK)) * REC
+        c = s >> qb
+        r = (ptab[s & ((1 << qb) - 1), c >> PAGE_BITS] * PAGE + (c & PAGE_MASK)) * REC
         if hf[e + 1] == poolf[r] and not is_closed(pool[r + 2], level, iteration):
             return hf[e]
         hsize[i] = hpop(hf, hi, base, hsize[i])
@@ -542,7 +552,8 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
     through a state of OPEN_0 + INCONS whose g is then optimal), so the best goal is optimal once its g is
     at most this value, and within w2 of optimal once at most w2 times it.
     """
-    num_q = L.trans.shape[0]
+    qb = q_bits(L.trans.shape[0])
+    qmask = (1 << qb) - 1
     ptab, pool, poolf, incons, iscal = S.ptab, S.pool, S.poolf, S.incons, S.iscal
     hf, hi, hsize = S.hbuff, S.hbuf, S.hsize
     accepting, q_row, hmap = L.accepting, L.q_row, L.hmap
@@ -554,8 +565,7 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
     m = 0
     for e in range(hsize[0]):
         s = hi[e * REC + 2]
-        c = s // num_q
-        r = rec_find(ptab, c, s - c * num_q)
+        r = rec_find(ptab, s >> qb, s & qmask)
         meta = pool[r + 2]
         if hf[e * REC + 1] != poolf[r] or is_closed(meta, 0, previous) or (meta >> 40) == iteration:
             continue
@@ -564,8 +574,7 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
         m += 1
     for e in range(iscal[I_NINCONS]):
         s = incons[e]
-        c = s // num_q
-        r = rec_find(ptab, c, s - c * num_q)
+        r = rec_find(ptab, s >> qb, s & qmask)
         meta = pool[r + 2]
         if (meta >> 40) == iteration:
             continue
@@ -583,8 +592,8 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
     bound = INF
     for t in range(m):
         s = cand[t]
-        c = s // num_q
-        q = s % num_q
+        c = s >> qb
+        q = s & qmask
         gs = poolf[rec_find(ptab, c, q)]
         row = q_row[q]
         h0 = (
@@ -664,7 +673,8 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     hf, hi, hsize, incons, fscal, iscal = S.hbuff, S.hbuf, S.hsize, S.incons, S.fscal, S.iscal
     expansions = S.expansions
 
-    num_q = trans.shape[0]
+    qb = q_bits(trans.shape[0])
+    qmask = (1 << qb) - 1
     iteration = iscal[I_ITER]
     w1 = fscal[1]
     w2 = fscal[2]
@@ -677,7 +687,7 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     capacity = hi.shape[0] // (REC * q_level.shape[0])
     done = 0
     while True:
-        mk0 = clean_top(ptab, pool, poolf, hf, hi, hsize, capacity, num_q, 0, q_level[0], iteration)
+        mk0 = clean_top(ptab, pool, poolf, hf, hi, hsize, capacity, qb, 0, q_level[0], iteration)
         goal = fscal[0]
         if goal < INF and goal <= w2 * mk0:
             return FOUND, done
@@ -695,7 +705,7 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
             i = iscal[I_ROBIN]
             iscal[I_ROBIN] = i % (num_queues - 1) + 1
             if (
-                clean_top(ptab, pool, poolf, hf, hi, hsize, capacity, num_q, i, q_level[i], iteration)
+                clean_top(ptab, pool, poolf, hf, hi, hsize, capacity, qb, i, q_level[i], iteration)
                 <= w2 * mk0
             ):
                 chosen = i
@@ -706,8 +716,8 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
         done += 1
 
         # Expand s at level.
-        c = s // num_q
-        q = s - c * num_q
+        c = s >> qb
+        q = s & qmask
         r = rec_find(ptab, c, q)
         if level == 0:
             pool[r + 2] = with_closed(pool[r + 2], ALL_LEVELS, iteration)
@@ -803,7 +813,7 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
                 pool[rn + 2] = (meta & ~LOW32) | (out_act[t] + 1)
                 if gn < fscal[0]:
                     fscal[0] = gn
-                    iscal[I_GOAL] = nc * num_q + nq
+                    iscal[I_GOAL] = (nc << qb) | nq
                 continue
             row = q_row[nq]
             if row < 0:  # no way to acceptance from nq (h = inf)
@@ -820,7 +830,7 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
             poolf[rn] = gn
             pool[rn + 1] = s
             pool[rn + 2] = (meta & ~LOW32) | (out_act[t] + 1)
-            ns = nc * num_q + nq
+            ns = (nc << qb) | nq
             if is_closed(meta, 0, iteration):  # closed in the anchor
                 incons[iscal[I_NINCONS]] = ns
                 iscal[I_NINCONS] += 1
@@ -850,10 +860,10 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
 
 
 @njit(cache=True)
-def init_start(ptab, pool, poolf, iscal, incons, start_cell, q_start, num_q):
+def init_start(ptab, pool, poolf, iscal, incons, start_cell, q_start):
     """Record the start state (g 0, no parent) in fresh search memory and put it in INCONS."""
     r = rec_touch(ptab, iscal, start_cell, q_start)
     poolf[r] = 0.0
     pool[r + 1] = -1
     pool[r + 2] = 1  # reached (action field 0 + 1)
-    incons[0] = start_cell * num_q + q_start
+    incons[0] = (start_cell << q_bits(ptab.shape[0])) | q_start

@@ -300,7 +300,7 @@ def _new_state(domain: PlanningDomain, num_queues: int, pages: int = 64) -> Sear
     hbuf = sparse_zeros(num_queues * capacity * _search.REC, np.int64)
     pool = sparse_zeros(pages * _search.PAGE * _search.REC, np.int64)
     state = SearchState(
-        ptab=np.full((num_q, blocks), -1, dtype=np.int64),
+        ptab=np.full((num_q, blocks), -1, dtype=np.int32),
         pool=pool,
         poolf=pool.view(np.float64),
         hbuf=hbuf,
@@ -313,7 +313,7 @@ def _new_state(domain: PlanningDomain, num_queues: int, pages: int = 64) -> Sear
         h_evals=np.zeros(domain.klogic.h_ready.shape[0], dtype=np.int64),
     )
     _search.init_start(state.ptab, state.pool, state.poolf, state.iscal, state.incons,
-                       domain.start_cell, domain.q_start, num_q)
+                       domain.start_cell, domain.q_start)
     return state
 
 
@@ -355,10 +355,10 @@ def state_bytes(state: SearchState) -> int:
 
 def _recover_cells(domain: PlanningDomain, state: SearchState, goal: int) -> np.ndarray:
     """Cell indices of the path to ``goal``, composite actions replayed cell by cell."""
-    num_q = domain.num_states
+    qb = int(_search.q_bits(domain.num_states))
     chain = [(goal, -1)]
     while True:
-        _, parent, action = _search.read_record(state.ptab, state.pool, state.poolf, num_q, chain[-1][0])
+        _, parent, action = _search.read_record(state.ptab, state.pool, state.poolf, chain[-1][0])
         if parent < 0:
             break
         chain[-1] = (chain[-1][0], int(action))
@@ -366,12 +366,12 @@ def _recover_cells(domain: PlanningDomain, state: SearchState, goal: int) -> np.
         if len(chain) > int(state.iscal[_search.I_PAGES]) * _search.PAGE + 1:
             raise PlanningError("internal error: the parent pointers form a cycle")
     chain.reverse()
-    cells = [chain[0][0] // num_q]
+    cells = [chain[0][0] >> qb]
     for child, code in chain[1:]:
         if code < ACT_MAP:
-            cells.append(child // num_q)
+            cells.append(child >> qb)
         else:
-            cells += domain.action_cells(code - ACT_MAP, cells[-1], child // num_q)
+            cells += domain.action_cells(code - ACT_MAP, cells[-1], child >> qb)
     return np.array(cells, dtype=np.int64)
 
 
