@@ -329,8 +329,8 @@ def _reserve(state: SearchState, capacity: int, free_pages: int = 0) -> SearchSt
     if new != old_cap:
         hbuf = sparse_zeros(num_queues * new * rec, np.int64)
         for i in range(num_queues):  # heap i moves from entry offset i * old_cap to i * new
-            size = int(state.hsize[i]) * rec
-            hbuf[i * new * rec : i * new * rec + size] = state.hbuf[i * old_cap * rec : i * old_cap * rec + size]
+            size, to, at = int(state.hsize[i]) * rec, i * new * rec, i * old_cap * rec
+            hbuf[to : to + size] = state.hbuf[at : at + size]
         state = state._replace(hbuf=hbuf, hbuff=hbuf.view(np.float64))
     if state.incons.shape[0] < capacity:
         incons = np.empty(max(capacity, 2 * state.incons.shape[0]), dtype=np.int64)
