@@ -21,7 +21,7 @@ import numpy as np
 from sgplan.errors import PlanningError
 from sgplan.planning import _search
 from sgplan.planning._memory import sparse_zeros
-from sgplan.planning._search import ACT_MAP, BUDGET, EXHAUSTED, GROW, SearchState
+from sgplan.planning._search import ACT_MAP, BUDGET, GROW, SearchState
 from sgplan.planning.domain import PlanningDomain, _infeasible_reason
 from sgplan.planning.problem import PlanningProblem
 
@@ -105,6 +105,9 @@ class PlanResult:
         one :class:`IterationRecord` per finished iteration.
     precompute_s, search_s:
         seconds to build the domain (once per problem), and of search (including lazily built actions).
+    search_bytes:
+        bytes of search memory in use at the end (:func:`state_bytes`): state records of the pages the
+        search touched, the page table, heap and INCONS entries -- not cells x automaton states.
     """
 
     status: str
@@ -116,6 +119,7 @@ class PlanResult:
     queues: tuple[str, ...]
     precompute_s: float
     search_s: float
+    search_bytes: int = 0
 
     @property
     def expansions(self) -> int:
@@ -202,15 +206,21 @@ def plan(
     state = _new_state(domain, len(spec.queues))
     chunk = 4096
     w1, w2 = float(weights[0]), float(weights[1])
-    iteration = 0
+    started = 0
     expansions = 0
+    bound = 0.0  # a lower bound on the optimum, from the last iteration's start (see _search.start_iteration)
     while True:
-        iteration += 1
-        state = _reserve(state, int(state.hsize[0] + state.iscal[2]) + max_succ)
-        t0 = time.perf_counter()
-        _search.start_iteration(domain.kgraph, domain.klogic, state, q_level, q_htype, w1, w2, iteration)
-        result.search_s += time.perf_counter() - t0
-        while True:
+        # An iteration whose bound already holds (best goal <= w2 x the lower bound: it would stop before
+        # its first expansion) is recorded without re-keying the queues; ARA*'s own shortcut.
+        if not (state.fscal[0] <= w2 * bound):
+            started += 1
+            state = _reserve(state, int(state.hsize[0] + state.iscal[_search.I_NINCONS]) + max_succ)
+            t0 = time.perf_counter()
+            bound = _search.start_iteration(
+                domain.kgraph, domain.klogic, state, q_level, q_htype, w1, w2, started
+            )
+            result.search_s += time.perf_counter() - t0
+        while not (state.fscal[0] <= w2 * bound):
             budget = chunk if max_expansions is None else max(0, min(chunk, max_expansions - expansions))
             t0 = time.perf_counter()
             code, done = _search.improve_path(
@@ -220,7 +230,7 @@ def plan(
             result.search_s += time.perf_counter() - t0
             expansions += int(done)
             if code == GROW:
-                state = _reserve(state, 2 * state.hkey.shape[0] // len(spec.queues))
+                state = _reserve(state, 2 * int(state.hsize.max(initial=0)) + max_succ, free_pages=max_succ)
                 continue
             if code != BUDGET:
                 break
@@ -230,7 +240,7 @@ def plan(
                 break
         if result.status == "timeout":
             break
-        if code == EXHAUSTED:
+        if not np.isfinite(state.fscal[0]):
             raise PlanningError(
                 _infeasible_reason(
                     problem, domain.label_masks[domain.cell_label],
@@ -248,6 +258,7 @@ def plan(
             break
         w1, w2 = max(w1 * decay, final_weights[0]), max(w2 * decay, final_weights[1])
 
+    result.search_bytes = state_bytes(state)
     if np.isfinite(state.fscal[0]):
         cells = _recover_cells(domain, state, int(state.iscal[0]))
         result.path = _path_rows(domain, cells)
@@ -260,7 +271,7 @@ def _warm_up(
 ) -> float:
     """Load (or compile) the search kernels on an empty search, so that no JIT time counts as search."""
     t0 = time.perf_counter()
-    scratch = _new_state(domain, len(q_level))
+    scratch = _new_state(domain, len(q_level), pages=1)
     scratch.iscal[2] = 0
     _search.start_iteration(domain.kgraph, domain.klogic, scratch, q_level, q_htype, 1.0, 1.0, 1)
     _search.improve_path(
@@ -278,76 +289,89 @@ def _warm_up(
     return time.perf_counter() - t0
 
 
-def _new_state(domain: PlanningDomain, num_queues: int) -> SearchState:
-    """Fresh search memory with the start state in INCONS (so the first iteration opens it)."""
-    num_states = domain.graph.num_cells * domain.num_states
-    # Heap arrays are lazily committed zeros: pages cost memory only when used, so a generous start costs
-    # nothing
-    # and avoids most of the growth copies during the search.
-    capacity = int(min(num_states + 16, 1 << 20))
+def _new_state(domain: PlanningDomain, num_queues: int, pages: int = 64) -> SearchState:
+    """Fresh search memory (pool of ``pages`` page slots, grown on demand) with the start state in INCONS
+    (so the first iteration opens it)."""
+    num_q = domain.num_states
+    blocks = -(-domain.graph.num_cells // _search.PAGE)
+    # Heaps are lazily committed zeros: pages cost memory only when used, so a generous start costs
+    # nothing and avoids most of the growth copies during the search.
+    capacity = int(min(domain.graph.num_cells * num_q + 16, 1 << 20))
+    hbuf = sparse_zeros(num_queues * capacity * _search.REC, np.int64)
+    pool = sparse_zeros(pages * _search.PAGE * _search.REC, np.int64)
     state = SearchState(
-        g=sparse_zeros(num_states, np.float64),
-        parent=sparse_zeros(num_states, np.int64),
-        action=sparse_zeros(num_states, np.int32),
-        seen=sparse_zeros(num_states, np.uint8),
-        closed=sparse_zeros(num_states, np.uint8),
-        epoch=sparse_zeros(num_states, np.int32),
-        hkey=sparse_zeros(num_queues * capacity, np.float64),
-        hg=sparse_zeros(num_queues * capacity, np.float64),
-        hstate=sparse_zeros(num_queues * capacity, np.int64),
+        ptab=np.full((num_q, blocks), -1, dtype=np.int32),
+        pool=pool,
+        poolf=pool.view(np.float64),
+        hbuf=hbuf,
+        hbuff=hbuf.view(np.float64),
         hsize=np.zeros(num_queues, dtype=np.int64),
         incons=np.empty(capacity, dtype=np.int64),
         fscal=np.array([np.inf, 1.0, 1.0]),
-        iscal=np.array([-1, 1, 1, 0], dtype=np.int64),
+        iscal=np.array([-1, 1, 1, 0, 0, 0, 0], dtype=np.int64),
         expansions=np.zeros(num_queues, dtype=np.int64),
+        h_evals=np.zeros(domain.klogic.h_ready.shape[0], dtype=np.int64),
     )
-    start = domain.start_cell * domain.num_states + domain.q_start
-    state.seen[start] = 1
-    state.parent[start] = -1
-    state.incons[0] = start
+    _search.init_start(state.ptab, state.pool, state.poolf, state.iscal, state.incons,
+                       domain.start_cell, domain.q_start)
     return state
 
 
-def _reserve(state: SearchState, capacity: int) -> SearchState:
-    """``state`` with heaps and INCONS able to hold at least ``capacity`` entries each (doubling)."""
+def _reserve(state: SearchState, capacity: int, free_pages: int = 0) -> SearchState:
+    """``state`` with heaps and INCONS able to hold at least ``capacity`` entries each, and at least
+    ``free_pages`` unused page slots in the pool (each grown by doubling, contents kept)."""
+    rec = _search.REC
     num_queues = state.hsize.shape[0]
-    old_cap = state.hkey.shape[0] // num_queues
+    old_cap = state.hbuf.shape[0] // (rec * num_queues)
     new = old_cap
     while new < capacity:
         new *= 2
     if new != old_cap:
-        grown = {}
-        for name in ("hkey", "hg", "hstate"):
-            old = getattr(state, name)
-            arr = sparse_zeros(num_queues * new, old.dtype)
-            for i in range(num_queues):  # heap i moves from offset i * old_cap to i * new
-                size = int(state.hsize[i])
-                arr[i * new : i * new + size] = old[i * old_cap : i * old_cap + size]
-            grown[name] = arr
-        state = state._replace(**grown)
+        hbuf = sparse_zeros(num_queues * new * rec, np.int64)
+        for i in range(num_queues):  # heap i moves from entry offset i * old_cap to i * new
+            size, to, at = int(state.hsize[i]) * rec, i * new * rec, i * old_cap * rec
+            hbuf[to : to + size] = state.hbuf[at : at + size]
+        state = state._replace(hbuf=hbuf, hbuff=hbuf.view(np.float64))
     if state.incons.shape[0] < capacity:
         incons = np.empty(max(capacity, 2 * state.incons.shape[0]), dtype=np.int64)
         incons[: state.iscal[2]] = state.incons[: state.iscal[2]]
         state = state._replace(incons=incons)
+    page_words = _search.PAGE * rec
+    used, slots = int(state.iscal[_search.I_PAGES]), state.pool.shape[0] // page_words
+    if used + free_pages > slots:
+        pool = sparse_zeros(max(2 * slots, used + free_pages) * page_words, np.int64)
+        pool[: used * page_words] = state.pool[: used * page_words]
+        state = state._replace(pool=pool, poolf=pool.view(np.float64))
     return state
+
+
+def state_bytes(state: SearchState) -> int:
+    """Bytes of search memory that can be committed: used pool pages, page table, heap and INCONS
+    entries in use (the rest of the lazily committed buffers is never touched)."""
+    used = int(state.iscal[_search.I_PAGES]) * _search.PAGE * _search.REC * 8
+    heaps = int(state.hsize.sum()) * _search.REC * 8
+    return used + state.ptab.nbytes + heaps + int(state.iscal[2]) * 8
 
 
 def _recover_cells(domain: PlanningDomain, state: SearchState, goal: int) -> np.ndarray:
     """Cell indices of the path to ``goal``, composite actions replayed cell by cell."""
-    num_q = domain.num_states
-    chain = [goal]
-    while state.parent[chain[-1]] >= 0:
-        chain.append(int(state.parent[chain[-1]]))
-        if len(chain) > state.g.shape[0]:
+    qb = int(_search.q_bits(domain.num_states))
+    chain = [(goal, -1)]
+    while True:
+        _, parent, action = _search.read_record(state.ptab, state.pool, state.poolf, chain[-1][0])
+        if parent < 0:
+            break
+        chain[-1] = (chain[-1][0], int(action))
+        chain.append((int(parent), -1))
+        if len(chain) > int(state.iscal[_search.I_PAGES]) * _search.PAGE + 1:
             raise PlanningError("internal error: the parent pointers form a cycle")
     chain.reverse()
-    cells = [chain[0] // num_q]
-    for child in chain[1:]:
-        code = int(state.action[child])
+    cells = [chain[0][0] >> qb]
+    for child, code in chain[1:]:
         if code < ACT_MAP:
-            cells.append(child // num_q)
+            cells.append(child >> qb)
         else:
-            cells += domain.action_cells(code - ACT_MAP, cells[-1], child // num_q)
+            cells += domain.action_cells(code - ACT_MAP, cells[-1], child >> qb)
     return np.array(cells, dtype=np.int64)
 
 

@@ -1,0 +1,184 @@
+"""The search core's own structures: paged state records, pool growth, lazy h_LTL values, reuse across
+AMRA* iterations, the frontier bound, the anchor-only (1, 1) iteration and occupancy-only anchor at w1 = 1.
+
+Optimality against the oracle is covered by test_optimality.py; here each structure is checked against
+the plain thing it replaces (a dense dict, a filled row, a fresh search).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from sgplan.errors import PlanningError
+from sgplan.planning import PlanningProblem, amra, plan
+from sgplan.planning import _search as core
+from sgplan.planning.checker import check_path
+
+from .instances import automaton, marks, open_building, open_grid, random_problem
+from .oracle import optimal_cost
+
+_FEW = settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+
+
+def _oracle(problem: PlanningProblem) -> float:
+    start = (problem.start[0], problem.start[1], problem.start[2])
+    return optimal_cost(problem.grid, problem.labels, problem.automaton, start, problem.profile)
+
+
+def _plan_or_none(problem: PlanningProblem, setup: str, **kw):
+    try:
+        return plan(problem, setup, **kw)
+    except PlanningError as error:
+        assert error.status in ("infeasible", "invalid-start")
+        return None
+
+
+def test_page_table_hands_out_one_slot_per_touched_state_block() -> None:
+    num_q, cells = 7, 5000
+    blocks = -(-cells // core.PAGE)
+    ptab = np.full((num_q, blocks), -1, dtype=np.int32)
+    pool = np.zeros(num_q * blocks * core.PAGE * core.REC, dtype=np.int64)
+    poolf = pool.view(np.float64)
+    iscal = np.array([-1, 1, 0, 0, 0, 0, 0], dtype=np.int64)
+    rng = np.random.default_rng(3)
+    written: dict[tuple[int, int], float] = {}
+    for c, q in zip(rng.integers(cells, size=300), rng.integers(num_q, size=300)):
+        r = core.rec_touch(ptab, iscal, int(c), int(q))
+        assert r == core.rec_find(ptab, int(c), int(q))
+        poolf[r] = float(c) + q / 10
+        pool[r + 1] = 1000 + int(c)
+        pool[r + 2] = 5 + 1  # action 5, reached
+        written[(int(c), int(q))] = float(c) + q / 10
+    used = {(q, c >> core.PAGE_BITS) for c, q in written}
+    assert iscal[core.I_PAGES] == len(used)  # one slot per touched (state, block), nothing else
+    assert sorted(ptab[ptab >= 0].tolist()) == list(range(len(used)))
+    qb = core.q_bits(num_q)
+    assert (1 << qb) >= num_q > (1 << (qb - 1))
+    for (c, q), g in written.items():
+        assert core.read_record(ptab, pool, poolf, (c << qb) | q) == (g, 1000 + c, 5)
+    untouched = next((c, q) for c in range(cells) for q in range(num_q) if (c, q) not in written)
+    assert core.read_record(ptab, pool, poolf, (untouched[0] << qb) | untouched[1])[2] == -1
+
+
+def test_closed_bits_belong_to_their_iteration() -> None:
+    meta = 1 + 7  # reached, action 7
+    meta = core.with_closed(meta, 1 << 2, 3)
+    assert core.is_closed(meta, 2, 3) and not core.is_closed(meta, 0, 3) and not core.is_closed(meta, 2, 4)
+    meta = core.with_closed(meta, core.ALL_LEVELS, 4)  # a new iteration drops the old bits
+    assert all(core.is_closed(meta, level, 4) for level in range(5)) and not core.is_closed(meta, 2, 3)
+    assert meta & core.LOW32 == 8  # the action field is untouched
+
+
+@_FEW
+@given(st.integers(0, 2**31 - 1), st.sampled_from(["A*", "NO-LLM", "ALL"]))
+def test_a_one_page_pool_grows_to_the_same_optimum(seed: int, setup: str) -> None:
+    problem = random_problem(seed)
+    default = _plan_or_none(problem, setup)
+    if default is None:
+        return
+    original = amra._new_state
+    try:
+        amra._new_state = lambda domain, k, pages=1: original(domain, k, pages=1)  # type: ignore[assignment]
+        small = plan(problem, setup)
+    finally:
+        amra._new_state = original  # type: ignore[assignment]
+    assert small.cost_m == pytest.approx(_oracle(problem), abs=1e-9)
+    assert small.cost_m == default.cost_m and small.expansions == default.expansions
+    assert check_path(small.path, problem.grid, problem.labels, problem.automaton, problem.profile).valid
+
+
+@_FEW
+@given(st.integers(0, 2**31 - 1), st.sampled_from(["A*", "NO-LLM", "ALL", "ROOM"]))
+def test_reusing_work_across_iterations_keeps_the_fresh_optimum(seed: int, setup: str) -> None:
+    """The anytime schedule (g-values, INCONS and the frontier bound carried across iterations) ends at
+    the optimum of a fresh single (1, 1) search, and each iteration's cost stays within its bound."""
+    problem = random_problem(seed)
+    anytime = _plan_or_none(problem, setup)
+    if anytime is None or anytime.cost_m == 0:  # no path, or the start is accepting (one record)
+        return
+    fresh = plan(problem, setup, weights=(1.0, 1.0))
+    expected = _oracle(problem)
+    assert anytime.cost_m == pytest.approx(expected, abs=1e-9)
+    assert fresh.cost_m == pytest.approx(expected, abs=1e-9)
+    assert [(it.w1, it.w2) for it in anytime.iterations] == [
+        (10, 20), (5, 10), (2.5, 5), (1.25, 2.5), (1, 1.25), (1, 1)
+    ]
+    for it in anytime.iterations:
+        assert it.cost_m <= it.bound * expected + 1e-9
+    totals = [sum(it.expansions) for it in anytime.iterations]
+    assert totals == sorted(totals)
+
+
+def test_an_iteration_whose_bound_already_holds_costs_no_expansion() -> None:
+    # Open room, goal straight ahead: the greedy first path is optimal, and the frontier bound at the
+    # next iteration's start proves it, so every later iteration is recorded without an expansion.
+    building = open_building(rows=5, cols=30)
+    grid = open_grid(building)
+    problem = PlanningProblem(building, grid, marks(grid.shape, {0: [(2, 25, 0)]}),
+                              automaton("F p0", ("p0",)), (2, 0, 0))
+    result = plan(problem, "A*")
+    assert result.cost_m == pytest.approx(25 * 0.1, abs=1e-12)
+    first = result.iterations[0].expansions
+    assert all(it.expansions == first for it in result.iterations)
+
+
+@_FEW
+@given(st.integers(0, 2**31 - 1))
+def test_lazy_h_values_equal_the_filled_rows(seed: int) -> None:
+    problem = random_problem(seed, guidance="none")
+    try:
+        domain = problem.domain
+    except PlanningError:
+        return
+    L = domain.klogic
+    rows = L.h_ready.shape[0]
+    ready = np.zeros(rows, dtype=np.uint8)
+    hmap = np.zeros_like(L.hmap)
+    evals = np.zeros(rows, dtype=np.int64)
+    cells = np.random.default_rng(seed).integers(domain.graph.num_cells, size=40)
+    for row in range(rows):
+        lazy = [core.h_ltl(hmap, ready, L.h_dist, L.h_ptr, L.h_label, L.h_add, evals, 10**9, row, int(c))
+                for c in cells]
+        assert not ready[row]  # computed from the terms, the row untouched
+        filled = [core.h_ltl(hmap, ready, L.h_dist, L.h_ptr, L.h_label, L.h_add, evals, 0, row, int(c))
+                  for c in cells]
+        assert ready[row]  # past the threshold the row is filled
+        assert lazy == filled  # the same bits
+        q = int(np.flatnonzero(L.q_row == row)[0])
+        assert lazy == [domain.ltl.value(int(c), q) for c in cells]
+
+
+@_FEW
+@given(st.integers(0, 2**31 - 1))
+def test_at_w1_one_the_anchor_is_the_plain_a_star(seed: int) -> None:
+    """From w1 = 1 the anchor follows occupancy moves only: NO-LLM's single (1, 1) search is A*'s,
+    expansion for expansion; with LLM guidance the (1, 1) iteration runs the anchor alone."""
+    problem = random_problem(seed)
+    astar = _plan_or_none(problem, "A*", weights=(1.0, 1.0))
+    if astar is None or astar.cost_m == 0:
+        return
+    nollm = plan(problem, "NO-LLM", weights=(1.0, 1.0))
+    assert nollm.expansions == astar.expansions and nollm.cost_m == astar.cost_m
+    everything = plan(problem, "ALL")
+    last, before = everything.iterations[-1], everything.iterations[-2]
+    assert last.expansions[1:] == before.expansions[1:]  # no LLM queue expanded at (1, 1)
+    assert everything.cost_m == pytest.approx(astar.cost_m, abs=1e-9)
+
+
+def test_search_memory_is_sparse_in_automaton_states() -> None:
+    """Four unordered goals near the start of a long hall: 16 automaton states x 60,000 cells dense
+    would be 23 MB of records; the search touches a small corner of it."""
+    building = open_building(rows=40, cols=1500)
+    grid = open_grid(building)
+    goals = {0: [(5, 8, 0)], 1: [(30, 10, 0)], 2: [(20, 30, 0)], 3: [(2, 40, 0)]}
+    problem = PlanningProblem(building, grid, marks(grid.shape, goals),
+                              automaton("F p0 & F p1 & F p2 & F p3", ("p0", "p1", "p2", "p3")), (20, 0, 0))
+    result = plan(problem, "A*")
+    assert math.isfinite(result.cost_m) and result.cost_m == pytest.approx(_oracle(problem), abs=1e-9)
+    dense = problem.domain.graph.num_cells * problem.domain.num_states * core.REC * 8
+    assert 0 < result.search_bytes < dense / 20
