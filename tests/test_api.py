@@ -139,6 +139,15 @@ def test_a_second_mission_on_a_session_builds_only_what_depends_on_it(demo) -> N
     assert session.builds["grid"] == 2 and session.parts.builds == {"cell_graph": 2}
 
 
+@pytest.mark.parametrize("setup", ["ALL", "NO-LLM"])
+def test_action_maps_built_on_demand_or_before_give_the_same_optimum(demo, setup: str) -> None:
+    mission = sgplan.mission_from_formula('F("reach(object_28)" & F "enter(room_5)")', demo)
+    lazy = sgplan.plan(demo, mission, 0, setup=setup)
+    built = sgplan.plan(demo, mission, 0, setup=setup, prebuild_actions=True)
+    assert lazy.status == built.status == "optimal" and lazy.verified and built.verified
+    assert lazy.cost_m == pytest.approx(built.cost_m, abs=1e-9)
+
+
 def test_guidance_provenance_and_timeouts_as_results(demo) -> None:
     mission = sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo)
     assert sgplan.plan(demo, mission, setup="no-llm").guidance is None
