@@ -298,6 +298,7 @@ class MissionParser:
             self.prior_steps = previous.steps if continues and previous is not None else []
             self.said_last = False
             result = self.sentence()
+            self.expect_all_read()
             if self.said_last and not continues and not precedes and previous is not None:
                 continues = True  # "Go to the office last.": after the goals of the sentences before
                 self.prior_steps = previous.steps
@@ -322,6 +323,16 @@ class MissionParser:
         if not present:
             raise self.fail("the mission names no room or object to visit or avoid")
         return conj(present)
+
+    def expect_all_read(self) -> None:
+        """The safeguard against silently dropped clauses: a sentence is understood only when every word
+        of it was read by some construct (or skipped by an explicit filler rule of :meth:`skip_fillers`);
+        otherwise the words left over are named in the refusal."""
+        self.skip_fillers()
+        if not self.done():
+            rest = self.span_text(self.toks[self.i].start, self.toks[-1].end)
+            raise self.fail(f"'{rest}' was not understood (the sentence was read only up to there), and "
+                            f"no part of a mission is ever dropped")
 
     def sentence_precedes(self, parts: list[Clause | Formula]) -> bool:
         """Whether this sentence starts with *before that* or *first* after sentences with goals: its steps
@@ -386,13 +397,8 @@ class MissionParser:
         if self.word() in ("and", "but", "so") and (self.at_any(_WHENEVER, k=1) or any(
                 self.at(*w.split(), k=1) for w in _CONDITION_WORDS)):
             self.i += 1  # "And whenever you ...", "But if you ...": a new condition, not a continuation
-        whenever = self.at_any(_WHENEVER)
-        if whenever is not None:
-            self.i += len(whenever)
-            trigger = self.trigger()
-            self.expect_comma_or_then()
-            self.soft_scope = self.rooms_of(trigger.members)
-            return self.whenever(trigger, self.consequent())
+        if self.at_any(_WHENEVER) is not None:
+            return self.more_conditions(self.prefix_whenever())
         done = self.done_words()
         if done and self.word(done) == "with" and self.np_starts(done + 1):
             self.i += done + 1  # "when done with the garage, ..."
@@ -410,8 +416,8 @@ class MissionParser:
             self.soft_scope = self.rooms_of([m for t in tasks for m in t.members])
             start = self.i
             body = self.consequent()
-            return self.conditional(cond_word, condition, tasks, body,
-                                    said_ever or self.says(_AFTERWARDS, start, self.i))
+            return self.more_conditions(self.conditional(cond_word, condition, tasks, body,
+                                                         said_ever or self.says(_AFTERWARDS, start, self.i)))
         if self.word() in ("until", "till") or self.at("up", "until"):
             return self.until_prefix()
         if self.at_any(_ONLY_AFTER):
@@ -452,6 +458,30 @@ class MissionParser:
         body = self.body()
         self.body_actions = self.actions - counted
         return self.postfix_condition(body)
+
+    def prefix_whenever(self) -> Formula:
+        """``Whenever X, Y`` (at *whenever* / *every time* ...): the response ``G(X -> F Y)``."""
+        self.i += len(self.at_any(_WHENEVER) or ())
+        trigger = self.trigger()
+        self.expect_comma_or_then()
+        self.soft_scope = self.rooms_of(trigger.members)
+        return self.whenever(trigger, self.consequent())
+
+    def more_conditions(self, first: Formula) -> Formula:
+        """Further *whenever* rules joined to a condition by *and* / *but* / commas (*whenever you enter
+        the kitchen, go to the living room, and whenever you are in the living room, go to the lobby*):
+        each one is kept, as a conjunct. Anything else after a condition is left for :meth:`parse` to
+        refuse (it never drops words)."""
+        rules = [first]
+        while not self.done():
+            k = 0
+            while self.word(k) in (",", "and", "but", "also"):
+                k += 1
+            if self.at_any(_WHENEVER, k=k) is None:
+                break
+            self.i += k
+            rules.append(self.prefix_whenever())
+        return conj(rules)
 
     def until_prefix(self) -> Clause:
         """``Until you have reached X, stay out of Y`` / ``Till X, do not enter Y``: ``!Y U X`` for each
@@ -514,8 +544,9 @@ class MissionParser:
                 self.expect_comma_or_then()
                 self.soft_scope = self.rooms_of(trigger.members)
                 consequent = self.consequent()
+                rules = self.more_conditions(self.whenever(trigger, consequent))
                 self.expect_end()
-                return conj([self.require(body, "before the condition"), self.whenever(trigger, consequent)])
+                return conj([self.require(body, "before the condition"), rules])
             self.expect_end()
             return self.whenever(trigger, body)
         if self.at("only", "if"):
@@ -1417,7 +1448,8 @@ class MissionParser:
             return self.word(k + 1) not in ("is", "are", "was", "were")
         if w in _DETERMINERS:
             nxt = self.word(k + 1)
-            return not (w == "some" and nxt == "point") and not (w == "that" and nxt == "order")
+            return (not (w == "some" and nxt == "point") and not (w == "that" and nxt == "order")
+                    and self.at_any(_WHENEVER, k=k) is None)  # "every time you ...": a condition
         if w in lx.FLOOR_WORDS and (self.word(k + 1).isdigit() or self.word(k + 1) in lx.NUMBER_WORDS
                                     or self.word(k + 1) == "zero"):
             return True  # "floor 2" as a place
@@ -2270,4 +2302,16 @@ def parse_mission(text: str, vocabulary: SceneVocabulary,
     """
     parser = MissionParser(text, vocabulary, start_floor)
     formula = parser.parse()
+    check_all_used(formula, parser.references, parser)
     return formula, sorted(parser.references, key=lambda np: np.start)
+
+
+def check_all_used(formula: Formula, nps: list[NounPhrase], parser: MissionParser) -> None:
+    """The second safeguard against a silently dropped clause: every place the text names as a goal, a
+    place to avoid or a condition must show up in the formula (qualifiers such as *the kitchen* in *the
+    sink in the kitchen* only narrow another phrase). A phrase that vanished is refused, named."""
+    used = set(atoms(formula))
+    for np in nps:
+        if np.role != "qualifier" and np.entities and not any(e.action in used for e in np.entities):
+            raise parser.fail(f"'{np.phrase}' was read but is not part of the mission that would be planned, "
+                              f"and no part of a mission is ever dropped")
