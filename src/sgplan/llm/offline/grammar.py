@@ -406,18 +406,8 @@ class MissionParser:
             body = self.body()
             body.steps[:0] = before.steps
             return self.postfix_condition(body)
-        cond_word = next((w for w in _CONDITION_WORDS if self.at(*w.split())), None)
-        if cond_word is not None:
-            self.i += len(cond_word.split())
-            start = self.i
-            condition, tasks = self.condition()
-            said_ever = self.says(_EVER, start, self.i)
-            self.expect_comma_or_then()
-            self.soft_scope = self.rooms_of([m for t in tasks for m in t.members])
-            start = self.i
-            body = self.consequent()
-            return self.more_conditions(self.conditional(cond_word, condition, tasks, body,
-                                                         said_ever or self.says(_AFTERWARDS, start, self.i)))
+        if self.condition_word() is not None:
+            return self.more_conditions(self.prefix_conditional())
         if self.word() in ("until", "till") or self.at("up", "until"):
             return self.until_prefix()
         if self.at_any(_ONLY_AFTER):
@@ -467,20 +457,44 @@ class MissionParser:
         self.soft_scope = self.rooms_of(trigger.members)
         return self.whenever(trigger, self.consequent())
 
+    def condition_word(self, k: int = 0) -> str | None:
+        """The condition word (*if*, *when*, *in case*) at ``k`` tokens ahead, if any."""
+        return next((w for w in _CONDITION_WORDS if self.at(*w.split(), k=k)), None)
+
+    def prefix_conditional(self) -> Formula:
+        """``If X, Y`` / ``When X, Y`` (at the condition word): see :meth:`conditional`."""
+        cond_word = self.condition_word() or ""
+        self.i += len(cond_word.split())
+        start = self.i
+        condition, tasks = self.condition()
+        said_ever = self.says(_EVER, start, self.i)
+        self.expect_comma_or_then()
+        self.soft_scope = self.rooms_of([m for t in tasks for m in t.members])
+        start = self.i
+        body = self.consequent()
+        return self.conditional(cond_word, condition, tasks, body,
+                                said_ever or self.says(_AFTERWARDS, start, self.i))
+
     def more_conditions(self, first: Formula) -> Formula:
-        """Further *whenever* rules joined to a condition by *and* / *but* / commas (*whenever you enter
-        the kitchen, go to the living room, and whenever you are in the living room, go to the lobby*):
-        each one is kept, as a conjunct. Anything else after a condition is left for :meth:`parse` to
-        refuse (it never drops words)."""
+        """Further condition rules joined to a condition by *and* / *but* / commas (*whenever you enter
+        the kitchen, go to the living room, and whenever you are in the living room, go to the lobby*;
+        *if X, Y, and if Z, W*): each one is kept, as a conjunct. Anything else after a condition is left
+        for :meth:`parse` to refuse (it never drops words)."""
         rules = [first]
         while not self.done():
             k = 0
             while self.word(k) in (",", "and", "but", "also"):
                 k += 1
-            if self.at_any(_WHENEVER, k=k) is None:
+            if not k and self.word(-1) not in (",", "and", "but", "also"):
+                break  # "..., open the fridge if ...": not a new rule
+            if self.at_any(_WHENEVER, k=k) is not None:
+                self.i += k
+                rules.append(self.prefix_whenever())
+            elif self.condition_word(k) is not None:
+                self.i += k
+                rules.append(self.prefix_conditional())
+            else:
                 break
-            self.i += k
-            rules.append(self.prefix_whenever())
         return conj(rules)
 
     def until_prefix(self) -> Clause:
@@ -547,8 +561,9 @@ class MissionParser:
                 rules = self.more_conditions(self.whenever(trigger, consequent))
                 self.expect_end()
                 return conj([self.require(body, "before the condition"), rules])
+            rules = self.more_conditions(self.whenever(trigger, body))
             self.expect_end()
-            return self.whenever(trigger, body)
+            return rules
         if self.at("only", "if"):
             self.i += 2
             condition, _ = self.condition()
@@ -565,13 +580,14 @@ class MissionParser:
                 self.soft_scope = self.rooms_of([m for t in tasks for m in t.members])
                 start = self.i
                 consequent = self.consequent()
-                self.expect_end()
                 response = said_ever or self.says(_AFTERWARDS, start, self.i)
-                return conj([self.require(body, "before the condition"),
-                             self.conditional(cond_word, condition, tasks, consequent, response)])
+                rules = self.more_conditions(self.conditional(cond_word, condition, tasks, consequent, response))
+                self.expect_end()
+                return conj([self.require(body, "before the condition"), rules])
             response = self.says(_EVER, start, self.i) or self.says(_AFTERWARDS, 0, start)
+            rules = self.more_conditions(self.conditional(cond_word, condition, tasks, body, response))
             self.expect_end()
-            return self.conditional(cond_word, condition, tasks, body, response)
+            return rules
         raise self.fail(f"cannot understand {self.here()}")
 
     def require(self, clause: Clause, where: str) -> Formula:
