@@ -245,6 +245,8 @@ class MissionParser:
         """The last action said *back* / *return*: it comes after what was said before it."""
         self.strict_pending = False
         """*only after that* / *only then* was said: the next action is strictly after the step before."""
+        self.only_verb = False
+        """Reading ``Only <verb> X after Y``: the body stops at *after* (see :meth:`only_verb_after`)."""
         self.confined: frozenset[int] | None = None
         """The floors the mission stays on ("stay on this floor"): goals are grounded there."""
 
@@ -444,10 +446,25 @@ class MissionParser:
             else:  # not "In <room>, ...": read it again as part of the sentence
                 del self.references[known:]
                 self.i = save
+        if self.word() == "only" and self.word(1) in lx.POSITIVE_VERBS:
+            return self.only_verb_after()
         counted = self.actions
         body = self.body()
         self.body_actions = self.actions - counted
         return self.postfix_condition(body)
+
+    def only_verb_after(self) -> Formula:
+        """``Only enter the living room after you have been to the kitchen`` (at *only*): the same as
+        ``Enter the living room only after ...``; what follows the condition is left to the end check."""
+        self.i += 1
+        self.only_verb = True
+        body = self.body()
+        self.only_verb = False
+        if self.word() not in ("after", "once"):
+            raise self.fail(f"'only' before a verb is understood as 'only <do X> after Y'; found {self.here()}")
+        self.i += 1
+        self.skip_subject()
+        return self.only_after(Clause(steps=self.action()), body)
 
     def prefix_whenever(self) -> Formula:
         """``Whenever X, Y`` (at *whenever* / *every time* ...): the response ``G(X -> F Y)``."""
@@ -613,6 +630,7 @@ class MissionParser:
         goals = [t for step in body.steps for t in step]
         if not prior or not goals or len([s for s in body.steps if s]) > 1:
             raise self.fail("'only after X, ...' needs one condition and one step after the comma")
+        self.check_restriction_target(goals)
         parts: list[Formula] = [f for t in goals for f in _goal_eventually(t)]
         forbidden = conj([Not(m) for t in goals for m in t.members])
         for t in prior:
@@ -621,6 +639,32 @@ class MissionParser:
             else:
                 parts.extend(Until(forbidden, m) for m in t.members)
         return conj(parts + body.constraints)
+
+    def check_restriction_target(self, goals: list[Task]) -> None:
+        """*Only after X* restricting an object located by its room (*go to a TV in the living room, but only
+        after the kitchen*) can mean "do not enter the living room before X" or "do not reach the TV before
+        X"; the two differ, so it is refused with both phrasings, unless the room itself is a goal of the
+        same step (then the room is what is restricted anyway). *only enter the living room after X* and
+        *reach the TV only after X* single one out."""
+        plain = {m for t in goals for m in t.members if isinstance(m, Atom)}
+        for member in (m for t in goals for m in t.members if isinstance(m, And)):
+            room = next(a for a in member.args if isinstance(a, Atom) and a.name.startswith("enter("))
+            if room in plain:
+                continue
+            obj = next(a.name for a in member.args if isinstance(a, Atom) and a != room)
+            named = next((np for np in reversed(self.references)
+                          if np.role != "qualifier" and any(e.action == obj for e in np.entities)), None)
+            entity = next(e for np in self.references for e in np.entities if e.action == obj)
+            room_name = self.vocab_room_name(entity.room_key)
+            thing = f"the {entity.category.replace('_', ' ')}"
+            raise self.fail(f"'only after' about '{named.phrase if named else thing}': it can mean not entering "
+                            f"{room_name} before that, or not reaching {thing} before that; say 'only enter "
+                            f"{room_name} after ...' or 'reach {thing} only after ...'")
+
+    def vocab_room_name(self, room_key: str) -> str:
+        """``the living room`` for the room ``room_key`` (its category), for messages."""
+        room = next((e for np in self.references for e in np.entities if e.key == room_key), None)
+        return f"the {room.category.replace('_', ' ')}" if room is not None else room_key
 
     def trigger(self) -> Task:
         """The one place of ``whenever you enter the kitchen``: a task whose members trigger the response."""
@@ -750,7 +794,8 @@ class MissionParser:
                     clause.steps.append([])
                 continue
             if (self.at("only", "if") or any(self.at(*w.split()) for w in _CONDITION_WORDS)
-                    or self.at_any(_ONLY_AFTER) or self.at_any(_WHENEVER)):
+                    or self.at_any(_ONLY_AFTER) or self.at_any(_WHENEVER)
+                    or (self.only_verb and self.word() in ("after", "once"))):
                 break
             if self.word() in ("after", "afterwards", "afterward") and self.word(1) in ("", ","):
                 self.i += 1  # "..., go to the dining room after."
@@ -809,6 +854,7 @@ class MissionParser:
                 steps = self.action(step_rooms=context or (self.carried_rooms if self.lenient_scope else []))
                 self.lenient_scope, self.carried_rooms = False, []
                 if self.strict_pending:
+                    self.check_restriction_target(steps[0])
                     for task in steps[0]:
                         task.strict = True
                     self.strict_pending = False
