@@ -86,5 +86,6 @@ def test_a_named_place_missing_from_the_formula_is_refused(demo):
     kitchen_only = Eventually(Atom("enter(room_4)"))
     with pytest.raises(MissionError, match="'the office' was read but is not part of the mission"):
         check_all_used(kitchen_only, parser.references, parser)
-    qualifier = NounPhrase(office.phrase, office.start, office.end, office.entities, "the", False, "qualifier")
+    qualifier = NounPhrase(office.phrase, office.start, office.end, office.entities, "the", False,
+                           "qualifier")
     check_all_used(kitchen_only, [qualifier], parser)  # a qualifier only narrows another phrase

@@ -461,7 +461,8 @@ class MissionParser:
         body = self.body()
         self.only_verb = False
         if self.word() not in ("after", "once"):
-            raise self.fail(f"'only' before a verb is understood as 'only <do X> after Y'; found {self.here()}")
+            raise self.fail(f"'only' before a verb is understood as 'only <do X> after Y'; found "
+                            f"{self.here()}")
         self.i += 1
         self.skip_subject()
         return self.only_after(Clause(steps=self.action()), body)
@@ -598,7 +599,8 @@ class MissionParser:
                 start = self.i
                 consequent = self.consequent()
                 response = said_ever or self.says(_AFTERWARDS, start, self.i)
-                rules = self.more_conditions(self.conditional(cond_word, condition, tasks, consequent, response))
+                rule = self.conditional(cond_word, condition, tasks, consequent, response)
+                rules = self.more_conditions(rule)
                 self.expect_end()
                 return conj([self.require(body, "before the condition"), rules])
             response = self.says(_EVER, start, self.i) or self.says(_AFTERWARDS, 0, start)
@@ -657,7 +659,8 @@ class MissionParser:
             entity = next(e for np in self.references for e in np.entities if e.action == obj)
             room_name = self.vocab_room_name(entity.room_key)
             thing = f"the {entity.category.replace('_', ' ')}"
-            raise self.fail(f"'only after' about '{named.phrase if named else thing}': it can mean not entering "
+            said = named.phrase if named else thing
+            raise self.fail(f"'only after' about '{said}': it can mean not entering "
                             f"{room_name} before that, or not reaching {thing} before that; say 'only enter "
                             f"{room_name} after ...' or 'reach {thing} only after ...'")
 
