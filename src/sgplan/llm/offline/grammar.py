@@ -26,6 +26,7 @@ from typing import Literal
 from sgplan.errors import MissionError
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.compose import Step, Task, conj, disj, sequence_formula, strict_formulas
+from sgplan.llm.offline.everyday import everyday_names
 from sgplan.llm.offline.names import Entity, Head, SceneVocabulary
 from sgplan.llm.offline.text import Tok, rewrite, sentences, tokenize
 from sgplan.logic.formula import Always, And, Atom, Eventually, Formula, Implies, Not, Until, atoms
@@ -287,7 +288,8 @@ class MissionParser:
     # -- the mission ------------------------------------------------------------------------------------
     def parse(self) -> Formula:
         parts: list[Clause | Formula] = []
-        all_sentences = sentences(rewrite(tokenize(self.text), lx.PHRASE_ALIASES))
+        tokens = everyday_names(rewrite(tokenize(self.text), lx.PHRASE_ALIASES), self.vocab)
+        all_sentences = sentences(tokens)
         self.confined = self.confinement(all_sentences)
         for sentence in all_sentences:
             self.toks, self.i, self.sentence_scope, self.soft_scope = sentence, 0, [], []
