@@ -292,7 +292,12 @@ def test_everyday_constructs_in_gibson_scenes(gibson_root):
         assert "object_40 (couch in room_12, floor 0)" in refused(text, "couch", allensville)
     benevolence = load_authors_scene(gibson_root / "Benevolence")
     means("Go to the bedroom with the two beds.", "F r8", benevolence)
-    refused("Go to the fridge while avoiding the stairs.", "'the stairs' matches 2 rooms", benevolence)
+    # to avoid, "the stairs" is every staircase (as a goal, which one is asked)
+    means("Go to the fridge while avoiding the stairs.", "F o28 & G !(r18 | r19)", benevolence)
+    means("Keep to the top floor and off the stairs, and visit each bathroom there.",
+          "F r4 & F r6 & G !(r2 | r9 | r14 | r17 | r18 | r10 | r13 | r15 | r16 | r19)", benevolence)
+    means("Use the fridge and keep off the stairs on floor 1.", "F o28 & G !r19", benevolence)
+    refused("Go to the stairs while avoiding the kitchen.", "'the stairs' matches 2 rooms", benevolence)
     means("Go downstairs to the lobby.", "F r17", benevolence, PatternTranslator(start_floor=2))
     collierville = load_authors_scene(gibson_root / "Collierville")
     means("Use the toilet on the middle floor.", "F o38", collierville)

@@ -42,6 +42,9 @@ _SEQ_WORDS = (("and", "then"), ("then",), ("after", "that"), ("afterwards",), ("
               ("finally",), ("subsequently",), ("after", "which"), ("followed", "by"), ("later",),
               ("and", "finally"), ("lastly",), ("secondly",), ("thirdly",), ("fourthly",), ("second", ","),
               ("third", ","), ("fourth", ","))
+_PLURAL_LOOKING = frozenset({"stairs"})
+"""Head nouns that look plural but are read as one entity (``the stairs`` is one staircase as a goal);
+to avoid, they mean each of them, as people mean *keep off the stairs*."""
 _NEG_STARTS = (("always", "avoid"), ("always", "stay", "away", "from"), ("always", "keep", "away", "from"),
                ("always", "stay", "out", "of"), ("always", "keep", "out", "of"), ("never",),
                ("do", "not"), ("does", "not"), ("must", "not"), ("should", "not"), ("can", "not"),
@@ -51,7 +54,8 @@ _NEG_STARTS = (("always", "avoid"), ("always", "stay", "away", "from"), ("always
                ("and", "avoid"), ("but", "avoid"), ("but", "never"), ("and", "never"), ("but", "do", "not"),
                ("and", "do", "not"), ("but", "not"), ("no",), ("neither",), ("nor",), ("and", "nor"),
                ("keep", "clear", "of"), ("steer", "clear", "of"), ("stay", "clear", "of"),
-               ("under", "no", "circumstances"), ("at", "no", "point"), ("at", "no", "time"))
+               ("under", "no", "circumstances"), ("at", "no", "point"), ("at", "no", "time"),
+               ("keep", "off"), ("stay", "off"), ("always", "keep", "off"), ("always", "stay", "off"))
 _GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can", "cannot", "may", "will",
                          "no", "stay", "keep", "neither", "nor", "steer", "circumstances", "point", "time"})
 _OFF_LIMITS = tuple((*be, *said) for be in (("is",), ("are",), ("is", "strictly"), ("are", "strictly"))
@@ -1002,10 +1006,27 @@ class MissionParser:
         """A new visit ("again", "go back to", "return to") must follow an earlier step of the same sequence
         that went there; otherwise nothing orders the two visits and the mission would be misread."""
         done = [m for s in earlier for t in s for m in t.members]
+        tasks = [t for s in earlier for t in s]
         for task in step:
-            if task.revisit and not all(m in done for m in task.members):
+            if task.revisit and not all(m in done or any(self.task_is_in(t, m) for t in tasks)
+                                        for m in task.members):
                 raise self.fail("'again' / 'back to' needs the first visit earlier in the same sequence "
                                 "(e.g. 'go to the kitchen, then the bedroom, then back to the kitchen')")
+
+    def task_is_in(self, task: Task, room: Formula) -> bool:
+        """Whether doing ``task`` means being in ``room`` (an ``enter(...)`` atom): each of its members is
+        that room or an object in it (an object is reached only from its room)."""
+        if not isinstance(room, Atom) or not room.name.startswith("enter("):
+            return False
+        key = room.name[len("enter("):-1]
+
+        def inside(member: Formula) -> bool:
+            names = [a.name for a in (member.args if isinstance(member, And) else (member,))
+                     if isinstance(a, Atom)]
+            return any(n == room.name
+                       or (n.startswith("reach(") and self.vocab.by_key[n[len("reach("):-1]].room_key == key)
+                       for n in names)
+        return all(inside(m) for m in task.members)
 
     def step_rooms(self, step: Step) -> list[Entity]:
         """Rooms the current step sends the robot to: context for the objects named next."""
@@ -1014,9 +1035,10 @@ class MissionParser:
                 if isinstance(a, Atom) and a.name.startswith("enter(")]
         return [self.vocab.by_key[k] for k in dict.fromkeys(keys)] + self.sentence_scope
 
-    def negation(self, marker: tuple[str, ...], clause: Clause) -> None:
+    def negation(self, marker: tuple[str, ...], clause: Clause, whole: bool = False) -> None:
         """``always avoid X`` / ``never enter X`` (global: G !X), ``avoid X`` after an action (local),
-        ``don't enter X until Y`` (``!X U Y``)."""
+        ``don't enter X until Y`` (``!X U Y``); ``whole``: said for the whole mission whatever came before
+        (``stay on the top floor and off the stairs``)."""
         self.i += len(marker)
         if self.at(",", "ever"):  # "never, ever"
             self.i += 1
@@ -1025,7 +1047,7 @@ class MissionParser:
         if self.stay_on_floor(clause, negated=True):  # "don't leave this floor"
             return
         has_goal = any(clause.steps)
-        is_global = bool(_GLOBAL_NEG & set(marker)) or not has_goal
+        is_global = whole or bool(_GLOBAL_NEG & set(marker)) or not has_goal
         if set(self.verb_words()) & lx.REVISIT_VERBS:  # "never go back to X": only after a first visit
             raise self.fail("'never go back / return to X' (after a first visit) is not understood; say "
                             "'never enter X' for the whole mission")
@@ -1148,6 +1170,9 @@ class MissionParser:
         if whole is not None:
             self.i += len(whole)
         clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in rooms])))
+        if self.at("and", "off") and self.np_starts(2):  # "stay on the top floor and off the stairs"
+            self.i += 1
+            self.negation(("off",), clause, whole=True)
         return True
 
     def staying(self, negated: bool) -> tuple[frozenset[int], int, int] | None:
@@ -1430,8 +1455,13 @@ class MissionParser:
         """``X again`` / ``go back to X`` / ``return to X`` (X named as a goal before): a new visit;
         ``X twice`` / ``X three times``: the visit and then new visits (see :class:`~.compose.Task`)."""
         again = self.word() == "again"
+        # an object in X named as a goal before was a visit of X too ("a vase in the lobby, ..., the lobby
+        # again"), when every object the phrase allowed is in X
         named_before = all(
-            any(r.role == "goal" and r.start < nps[0].start and e in r.entities for r in self.references)
+            any(r.role == "goal" and r.start < nps[0].start
+                and (e in r.entities or (e.kind == "room" and all(o.kind == "object" and o.room_key == e.key
+                                                                  for o in r.entities)))
+                for r in self.references)
             for np in nps for e in np.entities)
         if again:
             self.i += 1
@@ -2299,6 +2329,8 @@ class MissionParser:
         if np.mode == "the" and len(np.entities) > 1 and head.kind == np.entities[0].kind \
                 and not head.plural and self.affirmation_ahead() is not None:
             np.mode = "any"  # "the toilet on this floor, any one will do": one of them
+        if np.mode == "the" and np.role == "avoid" and np.phrase.lower().split()[-1] in _PLURAL_LOOKING:
+            np.mode = "all"  # "keep off the stairs": every staircase (of the qualified floors, if said)
         if np.mode == "the" and len(np.entities) > 1:
             listing = ", ".join(
                 f"{e.key} (floor {e.floor})" if e.kind == "room"

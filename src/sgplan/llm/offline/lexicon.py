@@ -244,7 +244,12 @@ TIME_FILLERS = (("at", "some", "point"), ("at", "any", "time"), ("sometime",), (
                 ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "order"),
                 ("order", "does", "not", "matter"), ("the", "order", "does", "not", "matter"),
                 ("order", "is", "not", "important"), ("the", "order", "is", "not", "important"),
-                ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"))
+                ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"),
+                *((*order, *liking) for order in (("in", "any", "order"), ("in", "whatever", "order"),
+                                                  ("in", "whichever", "order"), ("in", "either", "order"))
+                  for liking in (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "choose"),
+                                 ("you", "please"), ("you", "wish"))),
+                ("in", "whichever", "order"))
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
 
