@@ -42,6 +42,8 @@ _SEQ_WORDS = (("and", "then"), ("then",), ("after", "that"), ("afterwards",), ("
               ("finally",), ("subsequently",), ("after", "which"), ("followed", "by"), ("later",),
               ("and", "finally"), ("lastly",), ("secondly",), ("thirdly",), ("fourthly",), ("second", ","),
               ("third", ","), ("fourth", ","))
+_LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through"})
+"""Repeated in a list after *either* / *both*: *either to A or to B*."""
 _PLURAL_LOOKING = frozenset({"stairs"})
 """Head nouns that look plural but are read as one entity (``the stairs`` is one staircase as a goal);
 to avoid, they mean each of them, as people mean *keep off the stairs*."""
@@ -1439,9 +1441,12 @@ class MissionParser:
         caller orders it before the rest). Any other phrase named twice in one list is refused: it is not
         clear what is meant."""
         keys = [frozenset(e.key for e in np.entities) for np in nps]
-        # "the chairs, both of them": the second phrase only restates the first
+        # "the chairs, both of them": the second phrase only restates the first; so does "any X" after a
+        # choice of the same Xs ("a TV, any TV")
         nps = [np for n, np in enumerate(nps)
-               if not (n and keys[n] == keys[n - 1] and np.phrase.lower().endswith("them"))]
+               if not (n and keys[n] == keys[n - 1] and (np.phrase.lower().endswith("them")
+                                                         or (np.mode == nps[n - 1].mode == "any"
+                                                             and np.phrase.lower().startswith("any "))))]
         keys = [frozenset(e.key for e in np.entities) for np in nps]
         repeated = [n for n, k in enumerate(keys) if any(k & j for j in keys[:n])]
         if not repeated:
@@ -1561,12 +1566,23 @@ class MissionParser:
                          pronoun_kind: str | None = None) -> list[NounPhrase]:
         """``A, B and C`` (each) or ``A or B`` / ``either A or B`` (one of them, as one phrase)."""
         either = self.word() == "either" and self.word(1) in _DETERMINERS | {"of"} and self.word(1) != "of"
+        # "go either to the couch or to the bed": the preposition is repeated after each conjunction
+        repeated = (self.word() in ("either", "both") and self.word(1) in _LIST_PREPOSITIONS
+                    and self.np_starts(2))
+        preposition = self.word(1) if repeated else None
+        either = either or (preposition is not None and self.word() == "either")
         if either or (self.word() == "both" and self.word(1) in _DETERMINERS):
+            self.i += 1
+        if preposition is not None:
             self.i += 1
         nps = [self.noun_phrase(role, scope, None, pronoun_kind)]
         joiners: set[str] = set()
         while True:
-            if self.word() == "," and self.word(1) in ("and", "or") and self.np_starts(2):
+            if (preposition is not None and self.word() in ("and", "or") and self.word(1) == preposition
+                    and self.np_starts(2)):
+                joiners.add(self.word())
+                self.i += 2
+            elif self.word() == "," and self.word(1) in ("and", "or") and self.np_starts(2):
                 joiners.add(self.word(1))
                 self.i += 2
             elif (self.word() == "," and self.np_starts(1) and not self.at_any(_NEG_STARTS, k=1)

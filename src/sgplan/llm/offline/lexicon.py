@@ -337,6 +337,12 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("where", "you", "find"): ("containing",),
     ("holding",): ("containing",),
     ("and", "also"): ("and",),
+    # "take the stairs down to the ground floor": the stairs are the way there, not a goal; where to is
+    # said after them
+    **{("take", "the", stairs, way, "to"): ("go", way, "to")
+       for stairs in ("stairs", "staircase") for way in ("down", "up")},
+    **{(verb, way, "the", "stairs", "to"): ("go", way, "to")
+       for verb in ("go", "walk", "head") for way in ("down", "up")},
 }
 """Phrases read as another (``prior to`` is ``before``, ``as soon as`` is ``once``), rewritten on the tokens
 before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase is taken for a verb."""
