@@ -292,8 +292,9 @@ def test_everyday_constructs_in_gibson_scenes(gibson_root):
         assert "object_40 (couch in room_12, floor 0)" in refused(text, "couch", allensville)
     benevolence = load_authors_scene(gibson_root / "Benevolence")
     means("Go to the bedroom with the two beds.", "F r8", benevolence)
-    # to avoid, "the stairs" is every staircase (as a goal, which one is asked)
-    means("Go to the fridge while avoiding the stairs.", "F o28 & G !(r18 | r19)", benevolence)
+    # to avoid, "the stairs" is every staircase when the mission stays on some floors (the others are
+    # forbidden anyway); otherwise all of them or those of the floors used differ, so which is asked
+    refused("Go to the fridge while avoiding the stairs.", "'the stairs' matches 2 rooms", benevolence)
     means("Keep to the top floor and off the stairs, and visit each bathroom there.",
           "F r4 & F r6 & G !(r2 | r9 | r14 | r17 | r18 | r10 | r13 | r15 | r16 | r19)", benevolence)
     means("Use the fridge and keep off the stairs on floor 1.", "F o28 & G !r19", benevolence)

@@ -46,7 +46,7 @@ _LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through"})
 """Repeated in a list after *either* / *both*: *either to A or to B*."""
 _PLURAL_LOOKING = frozenset({"stairs"})
 """Head nouns that look plural but are read as one entity (``the stairs`` is one staircase as a goal);
-to avoid, they mean each of them, as people mean *keep off the stairs*."""
+to avoid, on a mission confined to some floors, they mean each of them (see :meth:`MissionParser.check`)."""
 _NEG_STARTS = (("always", "avoid"), ("always", "stay", "away", "from"), ("always", "keep", "away", "from"),
                ("always", "stay", "out", "of"), ("always", "keep", "out", "of"), ("never",),
                ("do", "not"), ("does", "not"), ("must", "not"), ("should", "not"), ("can", "not"),
@@ -2345,8 +2345,12 @@ class MissionParser:
         if np.mode == "the" and len(np.entities) > 1 and head.kind == np.entities[0].kind \
                 and not head.plural and self.affirmation_ahead() is not None:
             np.mode = "any"  # "the toilet on this floor, any one will do": one of them
-        if np.mode == "the" and np.role == "avoid" and np.phrase.lower().split()[-1] in _PLURAL_LOOKING:
-            np.mode = "all"  # "keep off the stairs": every staircase (of the qualified floors, if said)
+        if (np.mode == "the" and np.role == "avoid" and np.phrase.lower().split()[-1] in _PLURAL_LOOKING
+                and self.confined is not None):
+            # "stay on the top floor and keep off the stairs": the staircases of the floors the mission
+            # stays on, and those elsewhere are forbidden anyway, so every one of them. Without a
+            # confinement, all of them or those of the floors the mission uses differ: asked below.
+            np.mode = "all"
         if np.mode == "the" and len(np.entities) > 1:
             listing = ", ".join(
                 f"{e.key} (floor {e.floor})" if e.kind == "room"
