@@ -55,6 +55,11 @@ def means(text: str, gold: str, building: Building) -> None:
          "G(r12 -> F o22) & G(o22 -> F r4) & G(r4 -> F o15)"),
         ("Every time you enter the kitchen, open the fridge; any time you enter the office, visit the "
          "dining room.", "G(r4 -> F o15) & G(r12 -> F r7)"),
+        # the second rule used to be dropped
+        ("Whenever you are in the dining room, look at the table, and if you ever go to the kitchen, open "
+         "the fridge afterwards.", "G(r7 -> F o27) & G(r4 -> F o15)"),
+        ("Only after visiting the kitchen, go to the office, and whenever you are in the office, open the "
+         "laptop.", "F r12 & (!r12 U r4) & G(r12 -> F o35)"),
     ],
 )
 def test_every_condition_rule_is_kept(demo, text, gold):
@@ -66,6 +71,8 @@ def test_every_condition_rule_is_kept(demo, text, gold):
     [
         # used to be read as the first condition only
         ("If you go to the kitchen, open the fridge if you enter the office.", "'if you enter the office'"),
+        ("Until you reach the kitchen, avoid the office, and whenever you are in the kitchen, open the "
+         "fridge.", "'whenever you are in the kitchen, open the fridge' was not understood"),
         ("Whenever you enter the kitchen, open the fridge, and whenever you enter the office.",
          "nothing to do"),
     ],

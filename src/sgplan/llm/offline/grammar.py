@@ -424,7 +424,7 @@ class MissionParser:
             self.i += 2
             before = self.prefix_clause()
             body = self.body()
-            return self.only_after(before, body)
+            return self.more_conditions(self.only_after(before, body))
         if self.word() in ("after", "once") and not self.at("after", "that"):
             self.i += 1
             before = self.prefix_clause()
