@@ -17,7 +17,8 @@ from sgplan.errors import MissionError
 from sgplan.llm.offline.names import Entity, SceneVocabulary
 from sgplan.llm.offline.text import Tok
 
-_LOO = {("loo",): False, ("loos",): True, ("lavatory",): False, ("lavatories",): True, ("wc",): False}
+_LOO: dict[tuple[str, ...], bool] = {("loo",): False, ("loos",): True, ("lavatory",): False,
+                                     ("lavatories",): True, ("wc",): False}
 """Words for the bathroom; the value says whether the word is plural."""
 _LOO_TARGETS = (("room", "bathroom"), ("object", "toilet"))
 """What *loo* means, in order of preference: the first category the scene has."""

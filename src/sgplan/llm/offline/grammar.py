@@ -1037,10 +1037,10 @@ class MissionParser:
                 if isinstance(a, Atom) and a.name.startswith("enter(")]
         return [self.vocab.by_key[k] for k in dict.fromkeys(keys)] + self.sentence_scope
 
-    def negation(self, marker: tuple[str, ...], clause: Clause, whole: bool = False) -> None:
+    def negation(self, marker: tuple[str, ...], clause: Clause, said_whole: bool = False) -> None:
         """``always avoid X`` / ``never enter X`` (global: G !X), ``avoid X`` after an action (local),
-        ``don't enter X until Y`` (``!X U Y``); ``whole``: said for the whole mission whatever came before
-        (``stay on the top floor and off the stairs``)."""
+        ``don't enter X until Y`` (``!X U Y``). ``said_whole``: for the whole mission whatever came
+        before (``stay on the top floor and off the stairs``)."""
         self.i += len(marker)
         if self.at(",", "ever"):  # "never, ever"
             self.i += 1
@@ -1049,7 +1049,7 @@ class MissionParser:
         if self.stay_on_floor(clause, negated=True):  # "don't leave this floor"
             return
         has_goal = any(clause.steps)
-        is_global = whole or bool(_GLOBAL_NEG & set(marker)) or not has_goal
+        is_global = said_whole or bool(_GLOBAL_NEG & set(marker)) or not has_goal
         if set(self.verb_words()) & lx.REVISIT_VERBS:  # "never go back to X": only after a first visit
             raise self.fail("'never go back / return to X' (after a first visit) is not understood; say "
                             "'never enter X' for the whole mission")
@@ -1174,7 +1174,7 @@ class MissionParser:
         clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in rooms])))
         if self.at("and", "off") and self.np_starts(2):  # "stay on the top floor and off the stairs"
             self.i += 1
-            self.negation(("off",), clause, whole=True)
+            self.negation(("off",), clause, said_whole=True)
         return True
 
     def staying(self, negated: bool) -> tuple[frozenset[int], int, int] | None:
