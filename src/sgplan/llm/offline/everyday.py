@@ -36,6 +36,7 @@ def everyday_names(tokens: list[Tok], vocabulary: SceneVocabulary) -> list[Tok]:
     MissionError
         a kids' room the scene does not single out (the message names the candidate rooms).
     """
+    loo = _loo(vocabulary)
     out: list[Tok] = []
     i = 0
     while i < len(tokens):
@@ -45,10 +46,9 @@ def everyday_names(tokens: list[Tok], vocabulary: SceneVocabulary) -> list[Tok]:
             span = tokens[i : i + len(kids)]
             out.append(Tok(_kids_room(vocabulary, _said(span)), span[0].start, span[-1].end))
             i += len(kids)
-        elif words[:1] in _LOO and _loo(vocabulary) is not None:
-            category = _loo(vocabulary) or ""
-            plural = _LOO[words[:1]]
-            out += [Tok(w, tokens[i].start, tokens[i].end) for w in _plural(category, plural).split()]
+        elif words[:1] in _LOO and loo is not None:
+            said = loo + ("s" if _LOO[words[:1]] else "")  # "the loos": the bathrooms
+            out += [Tok(w, tokens[i].start, tokens[i].end) for w in said.split()]
             i += 1
         else:
             out.append(tokens[i])
@@ -65,10 +65,6 @@ def _loo(vocabulary: SceneVocabulary) -> str | None:
         if category in vocabulary.category_names(kind):  # type: ignore[arg-type]
             return category
     return None
-
-
-def _plural(category: str, plural: bool) -> str:
-    return category + ("s" if plural else "")
 
 
 def _kids_room(vocabulary: SceneVocabulary, said: str) -> str:
