@@ -144,6 +144,21 @@ def test_no_two_inequivalent_small_formulas_read_alike() -> None:
             ),
         ),
         ("a", "Start in the kitchen (room_1, floor 0)."),
+        (
+            "(!c & !(d & a)) U b",
+            (
+                "Go to the kitchen (room_2, floor 1), without coming within reach of the sink (object_3, in "
+                "the kitchen room_1, floor 0) or coming within reach of the sink (object_4, in the kitchen "
+                "room_1, floor 0) while in the kitchen (room_1, floor 0) before that."
+            ),
+        ),
+        (
+            "(!a & !c) U b",
+            (
+                "Go to the kitchen (room_2, floor 1), without entering the kitchen (room_1, floor 0) or "
+                "coming within reach of the sink (object_3, in the kitchen room_1, floor 0) before that."
+            ),
+        ),
     ],
 )
 def test_patterns_read_directly(infix: str, expected: str) -> None:

@@ -292,7 +292,13 @@ def test_everyday_constructs_in_gibson_scenes(gibson_root):
         assert "object_40 (couch in room_12, floor 0)" in refused(text, "couch", allensville)
     benevolence = load_authors_scene(gibson_root / "Benevolence")
     means("Go to the bedroom with the two beds.", "F r8", benevolence)
+    # to avoid, "the stairs" is every staircase when the mission stays on some floors (the others are
+    # forbidden anyway); otherwise all of them or those of the floors used differ, so which is asked
     refused("Go to the fridge while avoiding the stairs.", "'the stairs' matches 2 rooms", benevolence)
+    means("Keep to the top floor and off the stairs, and visit each bathroom there.",
+          "F r4 & F r6 & G !(r2 | r9 | r14 | r17 | r18 | r10 | r13 | r15 | r16 | r19)", benevolence)
+    means("Use the fridge and keep off the stairs on floor 1.", "F o28 & G !r19", benevolence)
+    refused("Go to the stairs while avoiding the kitchen.", "'the stairs' matches 2 rooms", benevolence)
     means("Go downstairs to the lobby.", "F r17", benevolence, PatternTranslator(start_floor=2))
     collierville = load_authors_scene(gibson_root / "Collierville")
     means("Use the toilet on the middle floor.", "F o38", collierville)
@@ -504,3 +510,33 @@ def test_a_member_of_a_group_first_and_do_it_again(demo):
     refused("Touch the clocks and the one in the bedroom.", "named twice", demo)
     refused("Go to the office, then the kitchen. Do it twice.", "refers to what was done", demo)
     means("Do the kitchen first, then the office.", "F(r4 & F r12)", demo)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "Sit on the couch in the living room, but only after you have been in the kitchen.",
+        "Only after visiting the kitchen, go to the couch in the living room.",
+        "Go to the kitchen, and only then to the couch in the living room.",
+        "Check the TV. Only after that, go to the couch in the living room.",
+    ],
+)
+def test_only_after_on_an_object_named_by_its_room_offers_both_readings(demo, text):
+    """Not entering the living room before the kitchen, or not reaching the couch before it: they differ."""
+    message = refused(text, "it can mean not entering the living room before that", demo)
+    assert "'only enter the living room after ...'" in message
+    assert "'reach the couch only after ...'" in message
+
+
+@pytest.mark.parametrize(
+    ("text", "gold"),
+    [
+        ("Only enter the living room after you have been in the kitchen.", "F r6 & (!r6 U r4)"),
+        ("Only go to the couch once you have visited the kitchen.", "F o22 & (!o22 U r4)"),
+        ("Reach the couch only after you have been in the kitchen.", "F o22 & (!o22 U r4)"),
+        ("Go to the living room and the couch, but only after you have been in the kitchen.",
+         "F r6 & F o22 & (!r6 U r4)"),
+    ],
+)
+def test_only_after_said_of_one_thing(demo, text, gold):
+    means(text, gold, demo)

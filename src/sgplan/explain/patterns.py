@@ -19,6 +19,7 @@ formula                     clause
 ``G(s -> F t)``             whenever you are <s>, go to <t> then or afterwards
 ``G(s -> psi)``             whenever you are <s>, from that moment on <psi>
 ``s U t``                   go to <t>, being <s> at every moment before that
+``!a & !(o & r) U t``       go to <t>, without entering a or coming within reach of o before that
 ``A -> B``                  if <A>, then <B>            (A a condition: start / ever / always)
 ``A <-> B``                 make sure that <A> exactly when <B>
 ``A | B``                   do one of: [A] or [B]
@@ -278,10 +279,10 @@ class _Reader:
         if isinstance(f, Always):
             return self.always(f.arg)
         if isinstance(f, Until) and not is_temporal(f.left) and not is_temporal(f.right):
-            left = f.left
-            if isinstance(left, Not) and isinstance(left.arg, Atom) and self.entity(left.arg).kind == "room":
-                return f"{self.goal(f.right)}, without entering {self.entity(left.arg).phrase()} before that"
-            return f"{self.goal(f.right)}, being {self.cond(left)} at every moment before that"
+            forbidden = self.forbidden(f.left)
+            if forbidden is not None:
+                return f"{self.goal(f.right)}, without {forbidden} before that"
+            return f"{self.goal(f.right)}, being {self.cond(f.left)} at every moment before that"
         if isinstance(f, Equiv):
             return f"make sure that [{self.statement(f.left)}] exactly when [{self.statement(f.right)}]"
         if isinstance(f, Or):
@@ -289,6 +290,38 @@ class _Reader:
         if isinstance(f, And):
             return "do both: " + " and ".join(f"[{self.clause(c)}]" for c in _conjuncts(f))
         raise _NoPattern(f)
+
+    def forbidden(self, s: Formula) -> str | None:
+        """A conjunction of negated places as what not to do (``entering the kitchen (...) or coming within
+        reach of a tv (...)``), else ``None``. ``!(o & r)`` with ``r`` the room of object ``o`` reads
+        ``coming within reach of o while in r``."""
+        rooms: list[Entity] = []
+        objects: list[Entity] = []
+        in_room: dict[str, tuple[Entity, list[Entity]]] = {}
+        for item in _conjuncts(s):
+            if not isinstance(item, Not):
+                return None
+            atoms = _conjuncts(item.arg)
+            if not all(isinstance(a, Atom) for a in atoms):
+                return None
+            entities = [self.entity(a) for a in atoms]  # type: ignore[arg-type]
+            things = [e for e in entities if e.kind == "object"]
+            places = [e for e in entities if e.kind == "room"]
+            if len(entities) == 1 and entities[0].kind != "unknown":
+                (objects if things else rooms).append(entities[0])
+            elif (len(entities) == 2 and len(things) == 1 and len(places) == 1
+                  and things[0].room_key == places[0].key):
+                in_room.setdefault(places[0].key, (places[0], []))[1].append(things[0])
+            else:
+                return None
+        said = []
+        if rooms:
+            said.append("entering " + " or ".join(e.phrase() for e in rooms))
+        if objects:
+            said.append("coming within reach of " + self.choice(objects))
+        for room, group in in_room.values():
+            said.append(f"coming within reach of {self.choice(group)} while in {room.phrase()}")
+        return " or ".join(said)
 
     def eventually(self, body: Formula) -> str:
         """``F body``: a goal, possibly followed by what must happen from there."""

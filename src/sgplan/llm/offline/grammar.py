@@ -26,6 +26,7 @@ from typing import Literal
 from sgplan.errors import MissionError
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.compose import Step, Task, conj, disj, sequence_formula, strict_formulas
+from sgplan.llm.offline.everyday import everyday_names
 from sgplan.llm.offline.names import Entity, Head, SceneVocabulary
 from sgplan.llm.offline.text import Tok, rewrite, sentences, tokenize
 from sgplan.logic.formula import Always, And, Atom, Eventually, Formula, Implies, Not, Until, atoms
@@ -41,6 +42,11 @@ _SEQ_WORDS = (("and", "then"), ("then",), ("after", "that"), ("afterwards",), ("
               ("finally",), ("subsequently",), ("after", "which"), ("followed", "by"), ("later",),
               ("and", "finally"), ("lastly",), ("secondly",), ("thirdly",), ("fourthly",), ("second", ","),
               ("third", ","), ("fourth", ","))
+_LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through"})
+"""Repeated in a list after *either* / *both*: *either to A or to B*."""
+_PLURAL_LOOKING = frozenset({"stairs"})
+"""Head nouns that look plural but are read as one entity (``the stairs`` is one staircase as a goal);
+to avoid, on a mission confined to some floors, they mean each of them (see :meth:`MissionParser.check`)."""
 _NEG_STARTS = (("always", "avoid"), ("always", "stay", "away", "from"), ("always", "keep", "away", "from"),
                ("always", "stay", "out", "of"), ("always", "keep", "out", "of"), ("never",),
                ("do", "not"), ("does", "not"), ("must", "not"), ("should", "not"), ("can", "not"),
@@ -50,7 +56,8 @@ _NEG_STARTS = (("always", "avoid"), ("always", "stay", "away", "from"), ("always
                ("and", "avoid"), ("but", "avoid"), ("but", "never"), ("and", "never"), ("but", "do", "not"),
                ("and", "do", "not"), ("but", "not"), ("no",), ("neither",), ("nor",), ("and", "nor"),
                ("keep", "clear", "of"), ("steer", "clear", "of"), ("stay", "clear", "of"),
-               ("under", "no", "circumstances"), ("at", "no", "point"), ("at", "no", "time"))
+               ("under", "no", "circumstances"), ("at", "no", "point"), ("at", "no", "time"),
+               ("keep", "off"), ("stay", "off"), ("always", "keep", "off"), ("always", "stay", "off"))
 _GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can", "cannot", "may", "will",
                          "no", "stay", "keep", "neither", "nor", "steer", "circumstances", "point", "time"})
 _OFF_LIMITS = tuple((*be, *said) for be in (("is",), ("are",), ("is", "strictly"), ("are", "strictly"))
@@ -245,6 +252,8 @@ class MissionParser:
         """The last action said *back* / *return*: it comes after what was said before it."""
         self.strict_pending = False
         """*only after that* / *only then* was said: the next action is strictly after the step before."""
+        self.only_verb = False
+        """Reading ``Only <verb> X after Y``: the body stops at *after* (see :meth:`only_verb_after`)."""
         self.confined: frozenset[int] | None = None
         """The floors the mission stays on ("stay on this floor"): goals are grounded there."""
 
@@ -285,7 +294,8 @@ class MissionParser:
     # -- the mission ------------------------------------------------------------------------------------
     def parse(self) -> Formula:
         parts: list[Clause | Formula] = []
-        all_sentences = sentences(rewrite(tokenize(self.text), lx.PHRASE_ALIASES))
+        tokens = everyday_names(rewrite(tokenize(self.text), lx.PHRASE_ALIASES), self.vocab)
+        all_sentences = sentences(tokens)
         self.confined = self.confinement(all_sentences)
         for sentence in all_sentences:
             self.toks, self.i, self.sentence_scope, self.soft_scope = sentence, 0, [], []
@@ -298,6 +308,7 @@ class MissionParser:
             self.prior_steps = previous.steps if continues and previous is not None else []
             self.said_last = False
             result = self.sentence()
+            self.expect_all_read()
             if self.said_last and not continues and not precedes and previous is not None:
                 continues = True  # "Go to the office last.": after the goals of the sentences before
                 self.prior_steps = previous.steps
@@ -322,6 +333,16 @@ class MissionParser:
         if not present:
             raise self.fail("the mission names no room or object to visit or avoid")
         return conj(present)
+
+    def expect_all_read(self) -> None:
+        """The safeguard against silently dropped clauses: a sentence is understood only when every word
+        of it was read by some construct (or skipped by an explicit filler rule of :meth:`skip_fillers`);
+        otherwise the words left over are named in the refusal."""
+        self.skip_fillers()
+        if not self.done():
+            rest = self.span_text(self.toks[self.i].start, self.toks[-1].end)
+            raise self.fail(f"'{rest}' was not understood (the sentence was read only up to there), and "
+                            f"no part of a mission is ever dropped")
 
     def sentence_precedes(self, parts: list[Clause | Formula]) -> bool:
         """Whether this sentence starts with *before that* or *first* after sentences with goals: its steps
@@ -386,13 +407,8 @@ class MissionParser:
         if self.word() in ("and", "but", "so") and (self.at_any(_WHENEVER, k=1) or any(
                 self.at(*w.split(), k=1) for w in _CONDITION_WORDS)):
             self.i += 1  # "And whenever you ...", "But if you ...": a new condition, not a continuation
-        whenever = self.at_any(_WHENEVER)
-        if whenever is not None:
-            self.i += len(whenever)
-            trigger = self.trigger()
-            self.expect_comma_or_then()
-            self.soft_scope = self.rooms_of(trigger.members)
-            return self.whenever(trigger, self.consequent())
+        if self.at_any(_WHENEVER) is not None:
+            return self.more_conditions(self.prefix_whenever())
         done = self.done_words()
         if done and self.word(done) == "with" and self.np_starts(done + 1):
             self.i += done + 1  # "when done with the garage, ..."
@@ -400,25 +416,15 @@ class MissionParser:
             body = self.body()
             body.steps[:0] = before.steps
             return self.postfix_condition(body)
-        cond_word = next((w for w in _CONDITION_WORDS if self.at(*w.split())), None)
-        if cond_word is not None:
-            self.i += len(cond_word.split())
-            start = self.i
-            condition, tasks = self.condition()
-            said_ever = self.says(_EVER, start, self.i)
-            self.expect_comma_or_then()
-            self.soft_scope = self.rooms_of([m for t in tasks for m in t.members])
-            start = self.i
-            body = self.consequent()
-            return self.conditional(cond_word, condition, tasks, body,
-                                    said_ever or self.says(_AFTERWARDS, start, self.i))
+        if self.condition_word() is not None:
+            return self.more_conditions(self.prefix_conditional())
         if self.word() in ("until", "till") or self.at("up", "until"):
             return self.until_prefix()
         if self.at_any(_ONLY_AFTER):
             self.i += 2
             before = self.prefix_clause()
             body = self.body()
-            return self.only_after(before, body)
+            return self.more_conditions(self.only_after(before, body))
         if self.word() in ("after", "once") and not self.at("after", "that"):
             self.i += 1
             before = self.prefix_clause()
@@ -448,10 +454,74 @@ class MissionParser:
             else:  # not "In <room>, ...": read it again as part of the sentence
                 del self.references[known:]
                 self.i = save
+        if self.word() == "only" and self.word(1) in lx.POSITIVE_VERBS:
+            return self.only_verb_after()
         counted = self.actions
         body = self.body()
         self.body_actions = self.actions - counted
         return self.postfix_condition(body)
+
+    def only_verb_after(self) -> Formula:
+        """``Only enter the living room after you have been to the kitchen`` (at *only*): the same as
+        ``Enter the living room only after ...``; what follows the condition is left to the end check."""
+        self.i += 1
+        self.only_verb = True
+        body = self.body()
+        self.only_verb = False
+        if self.word() not in ("after", "once"):
+            raise self.fail(f"'only' before a verb is understood as 'only <do X> after Y'; found "
+                            f"{self.here()}")
+        self.i += 1
+        self.skip_subject()
+        return self.only_after(Clause(steps=self.action()), body)
+
+    def prefix_whenever(self) -> Formula:
+        """``Whenever X, Y`` (at *whenever* / *every time* ...): the response ``G(X -> F Y)``."""
+        self.i += len(self.at_any(_WHENEVER) or ())
+        trigger = self.trigger()
+        self.expect_comma_or_then()
+        self.soft_scope = self.rooms_of(trigger.members)
+        return self.whenever(trigger, self.consequent())
+
+    def condition_word(self, k: int = 0) -> str | None:
+        """The condition word (*if*, *when*, *in case*) at ``k`` tokens ahead, if any."""
+        return next((w for w in _CONDITION_WORDS if self.at(*w.split(), k=k)), None)
+
+    def prefix_conditional(self) -> Formula:
+        """``If X, Y`` / ``When X, Y`` (at the condition word): see :meth:`conditional`."""
+        cond_word = self.condition_word() or ""
+        self.i += len(cond_word.split())
+        start = self.i
+        condition, tasks = self.condition()
+        said_ever = self.says(_EVER, start, self.i)
+        self.expect_comma_or_then()
+        self.soft_scope = self.rooms_of([m for t in tasks for m in t.members])
+        start = self.i
+        body = self.consequent()
+        return self.conditional(cond_word, condition, tasks, body,
+                                said_ever or self.says(_AFTERWARDS, start, self.i))
+
+    def more_conditions(self, first: Formula) -> Formula:
+        """Further condition rules joined to a condition by *and* / *but* / commas (*whenever you enter
+        the kitchen, go to the living room, and whenever you are in the living room, go to the lobby*;
+        *if X, Y, and if Z, W*): each one is kept, as a conjunct. Anything else after a condition is left
+        for :meth:`parse` to refuse (it never drops words)."""
+        rules = [first]
+        while not self.done():
+            k = 0
+            while self.word(k) in (",", "and", "but", "also"):
+                k += 1
+            if not k and self.word(-1) not in (",", "and", "but", "also"):
+                break  # "..., open the fridge if ...": not a new rule
+            if self.at_any(_WHENEVER, k=k) is not None:
+                self.i += k
+                rules.append(self.prefix_whenever())
+            elif self.condition_word(k) is not None:
+                self.i += k
+                rules.append(self.prefix_conditional())
+            else:
+                break
+        return conj(rules)
 
     def until_prefix(self) -> Clause:
         """``Until you have reached X, stay out of Y`` / ``Till X, do not enter Y``: ``!Y U X`` for each
@@ -514,10 +584,12 @@ class MissionParser:
                 self.expect_comma_or_then()
                 self.soft_scope = self.rooms_of(trigger.members)
                 consequent = self.consequent()
+                rules = self.more_conditions(self.whenever(trigger, consequent))
                 self.expect_end()
-                return conj([self.require(body, "before the condition"), self.whenever(trigger, consequent)])
+                return conj([self.require(body, "before the condition"), rules])
+            rules = self.more_conditions(self.whenever(trigger, body))
             self.expect_end()
-            return self.whenever(trigger, body)
+            return rules
         if self.at("only", "if"):
             self.i += 2
             condition, _ = self.condition()
@@ -534,13 +606,15 @@ class MissionParser:
                 self.soft_scope = self.rooms_of([m for t in tasks for m in t.members])
                 start = self.i
                 consequent = self.consequent()
-                self.expect_end()
                 response = said_ever or self.says(_AFTERWARDS, start, self.i)
-                return conj([self.require(body, "before the condition"),
-                             self.conditional(cond_word, condition, tasks, consequent, response)])
+                rule = self.conditional(cond_word, condition, tasks, consequent, response)
+                rules = self.more_conditions(rule)
+                self.expect_end()
+                return conj([self.require(body, "before the condition"), rules])
             response = self.says(_EVER, start, self.i) or self.says(_AFTERWARDS, 0, start)
+            rules = self.more_conditions(self.conditional(cond_word, condition, tasks, body, response))
             self.expect_end()
-            return self.conditional(cond_word, condition, tasks, body, response)
+            return rules
         raise self.fail(f"cannot understand {self.here()}")
 
     def require(self, clause: Clause, where: str) -> Formula:
@@ -566,6 +640,7 @@ class MissionParser:
         goals = [t for step in body.steps for t in step]
         if not prior or not goals or len([s for s in body.steps if s]) > 1:
             raise self.fail("'only after X, ...' needs one condition and one step after the comma")
+        self.check_restriction_target(goals)
         parts: list[Formula] = [f for t in goals for f in _goal_eventually(t)]
         forbidden = conj([Not(m) for t in goals for m in t.members])
         for t in prior:
@@ -574,6 +649,33 @@ class MissionParser:
             else:
                 parts.extend(Until(forbidden, m) for m in t.members)
         return conj(parts + body.constraints)
+
+    def check_restriction_target(self, goals: list[Task]) -> None:
+        """*Only after X* restricting an object located by its room (*go to a TV in the living room, but only
+        after the kitchen*) can mean "do not enter the living room before X" or "do not reach the TV before
+        X"; the two differ, so it is refused with both phrasings, unless the room itself is a goal of the
+        same step (then the room is what is restricted anyway). *only enter the living room after X* and
+        *reach the TV only after X* single one out."""
+        plain = {m for t in goals for m in t.members if isinstance(m, Atom)}
+        for member in (m for t in goals for m in t.members if isinstance(m, And)):
+            room = next(a for a in member.args if isinstance(a, Atom) and a.name.startswith("enter("))
+            if room in plain:
+                continue
+            obj = next(a.name for a in member.args if isinstance(a, Atom) and a != room)
+            named = next((np for np in reversed(self.references)
+                          if np.role != "qualifier" and any(e.action == obj for e in np.entities)), None)
+            entity = next(e for np in self.references for e in np.entities if e.action == obj)
+            room_name = self.vocab_room_name(entity.room_key)
+            thing = f"the {entity.category.replace('_', ' ')}"
+            said = named.phrase if named else thing
+            raise self.fail(f"'only after' about '{said}': it can mean not entering "
+                            f"{room_name} before that, or not reaching {thing} before that; say 'only enter "
+                            f"{room_name} after ...' or 'reach {thing} only after ...'")
+
+    def vocab_room_name(self, room_key: str) -> str:
+        """``the living room`` for the room ``room_key`` (its category), for messages."""
+        room = next((e for np in self.references for e in np.entities if e.key == room_key), None)
+        return f"the {room.category.replace('_', ' ')}" if room is not None else room_key
 
     def trigger(self) -> Task:
         """The one place of ``whenever you enter the kitchen``: a task whose members trigger the response."""
@@ -703,7 +805,8 @@ class MissionParser:
                     clause.steps.append([])
                 continue
             if (self.at("only", "if") or any(self.at(*w.split()) for w in _CONDITION_WORDS)
-                    or self.at_any(_ONLY_AFTER) or self.at_any(_WHENEVER)):
+                    or self.at_any(_ONLY_AFTER) or self.at_any(_WHENEVER)
+                    or (self.only_verb and self.word() in ("after", "once"))):
                 break
             if self.word() in ("after", "afterwards", "afterward") and self.word(1) in ("", ","):
                 self.i += 1  # "..., go to the dining room after."
@@ -762,6 +865,7 @@ class MissionParser:
                 steps = self.action(step_rooms=context or (self.carried_rooms if self.lenient_scope else []))
                 self.lenient_scope, self.carried_rooms = False, []
                 if self.strict_pending:
+                    self.check_restriction_target(steps[0])
                     for task in steps[0]:
                         task.strict = True
                     self.strict_pending = False
@@ -904,10 +1008,27 @@ class MissionParser:
         """A new visit ("again", "go back to", "return to") must follow an earlier step of the same sequence
         that went there; otherwise nothing orders the two visits and the mission would be misread."""
         done = [m for s in earlier for t in s for m in t.members]
+        tasks = [t for s in earlier for t in s]
         for task in step:
-            if task.revisit and not all(m in done for m in task.members):
+            if task.revisit and not all(m in done or any(self.task_is_in(t, m) for t in tasks)
+                                        for m in task.members):
                 raise self.fail("'again' / 'back to' needs the first visit earlier in the same sequence "
                                 "(e.g. 'go to the kitchen, then the bedroom, then back to the kitchen')")
+
+    def task_is_in(self, task: Task, room: Formula) -> bool:
+        """Whether doing ``task`` means being in ``room`` (an ``enter(...)`` atom): each of its members is
+        that room or an object in it (an object is reached only from its room)."""
+        if not isinstance(room, Atom) or not room.name.startswith("enter("):
+            return False
+        key = room.name[len("enter("):-1]
+
+        def inside(member: Formula) -> bool:
+            names = [a.name for a in (member.args if isinstance(member, And) else (member,))
+                     if isinstance(a, Atom)]
+            return any(n == room.name
+                       or (n.startswith("reach(") and self.vocab.by_key[n[len("reach("):-1]].room_key == key)
+                       for n in names)
+        return all(inside(m) for m in task.members)
 
     def step_rooms(self, step: Step) -> list[Entity]:
         """Rooms the current step sends the robot to: context for the objects named next."""
@@ -916,9 +1037,10 @@ class MissionParser:
                 if isinstance(a, Atom) and a.name.startswith("enter(")]
         return [self.vocab.by_key[k] for k in dict.fromkeys(keys)] + self.sentence_scope
 
-    def negation(self, marker: tuple[str, ...], clause: Clause) -> None:
+    def negation(self, marker: tuple[str, ...], clause: Clause, said_whole: bool = False) -> None:
         """``always avoid X`` / ``never enter X`` (global: G !X), ``avoid X`` after an action (local),
-        ``don't enter X until Y`` (``!X U Y``)."""
+        ``don't enter X until Y`` (``!X U Y``). ``said_whole``: for the whole mission whatever came
+        before (``stay on the top floor and off the stairs``)."""
         self.i += len(marker)
         if self.at(",", "ever"):  # "never, ever"
             self.i += 1
@@ -927,7 +1049,7 @@ class MissionParser:
         if self.stay_on_floor(clause, negated=True):  # "don't leave this floor"
             return
         has_goal = any(clause.steps)
-        is_global = bool(_GLOBAL_NEG & set(marker)) or not has_goal
+        is_global = said_whole or bool(_GLOBAL_NEG & set(marker)) or not has_goal
         if set(self.verb_words()) & lx.REVISIT_VERBS:  # "never go back to X": only after a first visit
             raise self.fail("'never go back / return to X' (after a first visit) is not understood; say "
                             "'never enter X' for the whole mission")
@@ -1050,6 +1172,9 @@ class MissionParser:
         if whole is not None:
             self.i += len(whole)
         clause.constraints.append(Always(conj([Not(Atom(e.action)) for e in rooms])))
+        if self.at("and", "off") and self.np_starts(2):  # "stay on the top floor and off the stairs"
+            self.i += 1
+            self.negation(("off",), clause, said_whole=True)
         return True
 
     def staying(self, negated: bool) -> tuple[frozenset[int], int, int] | None:
@@ -1316,9 +1441,12 @@ class MissionParser:
         caller orders it before the rest). Any other phrase named twice in one list is refused: it is not
         clear what is meant."""
         keys = [frozenset(e.key for e in np.entities) for np in nps]
-        # "the chairs, both of them": the second phrase only restates the first
+        # "the chairs, both of them": the second phrase only restates the first; so does "any X" after a
+        # choice of the same Xs ("a TV, any TV")
         nps = [np for n, np in enumerate(nps)
-               if not (n and keys[n] == keys[n - 1] and np.phrase.lower().endswith("them"))]
+               if not (n and keys[n] == keys[n - 1] and (np.phrase.lower().endswith("them")
+                                                         or (np.mode == nps[n - 1].mode == "any"
+                                                             and np.phrase.lower().startswith("any "))))]
         keys = [frozenset(e.key for e in np.entities) for np in nps]
         repeated = [n for n, k in enumerate(keys) if any(k & j for j in keys[:n])]
         if not repeated:
@@ -1332,8 +1460,13 @@ class MissionParser:
         """``X again`` / ``go back to X`` / ``return to X`` (X named as a goal before): a new visit;
         ``X twice`` / ``X three times``: the visit and then new visits (see :class:`~.compose.Task`)."""
         again = self.word() == "again"
+        # an object in X named as a goal before was a visit of X too ("a vase in the lobby, ..., the lobby
+        # again"), when every object the phrase allowed is in X
         named_before = all(
-            any(r.role == "goal" and r.start < nps[0].start and e in r.entities for r in self.references)
+            any(r.role == "goal" and r.start < nps[0].start
+                and (e in r.entities or (e.kind == "room" and all(o.kind == "object" and o.room_key == e.key
+                                                                  for o in r.entities)))
+                for r in self.references)
             for np in nps for e in np.entities)
         if again:
             self.i += 1
@@ -1417,7 +1550,8 @@ class MissionParser:
             return self.word(k + 1) not in ("is", "are", "was", "were")
         if w in _DETERMINERS:
             nxt = self.word(k + 1)
-            return not (w == "some" and nxt == "point") and not (w == "that" and nxt == "order")
+            return (not (w == "some" and nxt == "point") and not (w == "that" and nxt == "order")
+                    and self.at_any(_WHENEVER, k=k) is None)  # "every time you ...": a condition
         if w in lx.FLOOR_WORDS and (self.word(k + 1).isdigit() or self.word(k + 1) in lx.NUMBER_WORDS
                                     or self.word(k + 1) == "zero"):
             return True  # "floor 2" as a place
@@ -1432,12 +1566,23 @@ class MissionParser:
                          pronoun_kind: str | None = None) -> list[NounPhrase]:
         """``A, B and C`` (each) or ``A or B`` / ``either A or B`` (one of them, as one phrase)."""
         either = self.word() == "either" and self.word(1) in _DETERMINERS | {"of"} and self.word(1) != "of"
+        # "go either to the couch or to the bed": the preposition is repeated after each conjunction
+        repeated = (self.word() in ("either", "both") and self.word(1) in _LIST_PREPOSITIONS
+                    and self.np_starts(2))
+        preposition = self.word(1) if repeated else None
+        either = either or (preposition is not None and self.word() == "either")
         if either or (self.word() == "both" and self.word(1) in _DETERMINERS):
+            self.i += 1
+        if preposition is not None:
             self.i += 1
         nps = [self.noun_phrase(role, scope, None, pronoun_kind)]
         joiners: set[str] = set()
         while True:
-            if self.word() == "," and self.word(1) in ("and", "or") and self.np_starts(2):
+            if (preposition is not None and self.word() in ("and", "or") and self.word(1) == preposition
+                    and self.np_starts(2)):
+                joiners.add(self.word())
+                self.i += 2
+            elif self.word() == "," and self.word(1) in ("and", "or") and self.np_starts(2):
                 joiners.add(self.word(1))
                 self.i += 2
             elif (self.word() == "," and self.np_starts(1) and not self.at_any(_NEG_STARTS, k=1)
@@ -2200,6 +2345,12 @@ class MissionParser:
         if np.mode == "the" and len(np.entities) > 1 and head.kind == np.entities[0].kind \
                 and not head.plural and self.affirmation_ahead() is not None:
             np.mode = "any"  # "the toilet on this floor, any one will do": one of them
+        if (np.mode == "the" and np.role == "avoid" and np.phrase.lower().split()[-1] in _PLURAL_LOOKING
+                and self.confined is not None):
+            # "stay on the top floor and keep off the stairs": the staircases of the floors the mission
+            # stays on, and those elsewhere are forbidden anyway, so every one of them. Without a
+            # confinement, all of them or those of the floors the mission uses differ: asked below.
+            np.mode = "all"
         if np.mode == "the" and len(np.entities) > 1:
             listing = ", ".join(
                 f"{e.key} (floor {e.floor})" if e.kind == "room"
@@ -2270,4 +2421,16 @@ def parse_mission(text: str, vocabulary: SceneVocabulary,
     """
     parser = MissionParser(text, vocabulary, start_floor)
     formula = parser.parse()
+    check_all_used(formula, parser.references, parser)
     return formula, sorted(parser.references, key=lambda np: np.start)
+
+
+def check_all_used(formula: Formula, nps: list[NounPhrase], parser: MissionParser) -> None:
+    """The second safeguard against a silently dropped clause: every place the text names as a goal, a
+    place to avoid or a condition must show up in the formula (qualifiers such as *the kitchen* in *the
+    sink in the kitchen* only narrow another phrase). A phrase that vanished is refused, named."""
+    used = set(atoms(formula))
+    for np in nps:
+        if np.role != "qualifier" and np.entities and not any(e.action in used for e in np.entities):
+            raise parser.fail(f"'{np.phrase}' was read but is not part of the mission that would be planned, "
+                              f"and no part of a mission is ever dropped")

@@ -244,7 +244,12 @@ TIME_FILLERS = (("at", "some", "point"), ("at", "any", "time"), ("sometime",), (
                 ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "order"),
                 ("order", "does", "not", "matter"), ("the", "order", "does", "not", "matter"),
                 ("order", "is", "not", "important"), ("the", "order", "is", "not", "important"),
-                ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"))
+                ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"),
+                *((*order, *liking) for order in (("in", "any", "order"), ("in", "whatever", "order"),
+                                                  ("in", "whichever", "order"), ("in", "either", "order"))
+                  for liking in (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "choose"),
+                                 ("you", "please"), ("you", "wish"))),
+                ("in", "whichever", "order"))
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
 
@@ -332,6 +337,12 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("where", "you", "find"): ("containing",),
     ("holding",): ("containing",),
     ("and", "also"): ("and",),
+    # "take the stairs down to the ground floor": the stairs are the way there, not a goal; where to is
+    # said after them
+    **{("take", "the", stairs, way, "to"): ("go", way, "to")
+       for stairs in ("stairs", "staircase") for way in ("down", "up")},
+    **{(verb, way, "the", "stairs", "to"): ("go", way, "to")
+       for verb in ("go", "walk", "head") for way in ("down", "up")},
 }
 """Phrases read as another (``prior to`` is ``before``, ``as soon as`` is ``once``), rewritten on the tokens
 before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase is taken for a verb."""
