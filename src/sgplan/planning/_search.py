@@ -456,6 +456,22 @@ def _before(key_a, g_a, key_b, g_b):
 
 
 @njit(cache=True, inline="always")
+def _move_entry(hi, to, src):
+    """Copy the heap entry at word ``src`` to word ``to`` (through the integer view: bit-exact)."""
+    hi[to] = hi[src]
+    hi[to + 1] = hi[src + 1]
+    hi[to + 2] = hi[src + 2]
+
+
+@njit(cache=True, inline="always")
+def _put_entry(hf, hi, d, key, g, value):
+    """Write the heap entry ``(key, g, value)`` at word ``d``."""
+    hf[d] = key
+    hf[d + 1] = g
+    hi[d + 2] = value
+
+
+@njit(cache=True, inline="always")
 def hpush(hf, hi, base, size, key, g, value):
     """Insert ``(key, g, value)`` into the heap of ``size`` entries at entry offset ``base`` (room for one
     more is the caller's business); returns the new size."""
@@ -465,15 +481,9 @@ def hpush(hf, hi, base, size, key, g, value):
         a = (base + parent) * REC
         if not _before(key, g, hf[a], hf[a + 1]):
             break
-        d = (base + i) * REC
-        hi[d] = hi[a]
-        hi[d + 1] = hi[a + 1]
-        hi[d + 2] = hi[a + 2]
+        _move_entry(hi, (base + i) * REC, a)
         i = parent
-    d = (base + i) * REC
-    hf[d] = key
-    hf[d + 1] = g
-    hi[d + 2] = value
+    _put_entry(hf, hi, (base + i) * REC, key, g, value)
     return size + 1
 
 
@@ -499,16 +509,9 @@ def hpop(hf, hi, base, size):
                 best, bk, bg = child, hf[e], hf[e + 1]
         if not _before(bk, bg, key, g):
             break
-        d = (base + i) * REC
-        b = (base + best) * REC
-        hi[d] = hi[b]
-        hi[d + 1] = hi[b + 1]
-        hi[d + 2] = hi[b + 2]
+        _move_entry(hi, (base + i) * REC, (base + best) * REC)
         i = best
-    d = (base + i) * REC
-    hf[d] = key
-    hf[d + 1] = g
-    hi[d + 2] = value
+    _put_entry(hf, hi, (base + i) * REC, key, g, value)
     return size
 
 
