@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 from sgplan.errors import MissionError
+from sgplan.llm.offline import backref
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.compose import Step, Task, conj, disj, sequence_formula, strict_formulas
 from sgplan.llm.offline.everyday import everyday_names
@@ -1682,7 +1683,15 @@ class MissionParser:
             other = True
         if other:
             self.i += 1
-        mode, count = self.quantifier()
+        demo = self.demonstrative()
+        if demo:  # "that bathroom", "those two bedrooms", "the same sink": resolved below, never fresh
+            self.i += demo
+            mode, count = "the", None
+            n = self.count_word()
+            if n is not None:
+                mode, count = "all", n
+        else:
+            mode, count = self.quantifier()
         floors_first: frozenset[int] | None = None
         relative = ""
         if self.word() in lx.RELATIVE_FLOORS:  # "the upstairs bathroom": applied once the noun is read
@@ -1854,8 +1863,19 @@ class MissionParser:
                 entities = [e for e in entities if e.key not in keys]
                 continue
             break
-        there = (self.vocab.inside(entities, self.soft_scope) if role == "goal" and head.kind == "object"
-                 else [])
+        if demo:
+            said = self.span_text(first.start, self.toks[self.i - 1].end)
+            plural = head.plural or first.text.lower() in backref.PLURAL_DEMONSTRATIVES
+            got = backref.resolve(said, head, plural, entities, self.references, first.start,
+                                  self.vocab.by_key, role == "goal")
+            if isinstance(got, str):
+                raise self.fail(got)
+            entities, mode, room_scoped = got.entities, got.mode, room_scoped or got.room_scoped
+            if count is not None and len(entities) != count:
+                raise self.fail(f"'{said}' refers back to '{got.antecedent}', which is {len(entities)}, "
+                                f"not {count}")
+        there = (self.vocab.inside(entities, self.soft_scope)
+                 if role == "goal" and head.kind == "object" and not demo else [])
         if not room_scoped and mode == "the" and not head.plural and len(entities) > 1 and len(there) == 1:
             entities, room_scoped = there, True
         elif not room_scoped and 0 < len(there) < len(entities) and first.text in ("the", "a", "an"):
@@ -1865,7 +1885,7 @@ class MissionParser:
                             f"on "
                             f"{where}: the ones there, or any in the building? Say 'the {noun} in the "
                             f"{self.soft_scope[0].category}' or 'any {head_word(entities)}'")
-        if role != "qualifier" and scope and head.kind == "object" and not room_scoped:
+        if role != "qualifier" and scope and head.kind == "object" and not room_scoped and not demo:
             scoped = self.vocab.inside(entities, scope)
             if scoped:
                 entities, room_scoped = scoped, True
@@ -2093,6 +2113,15 @@ class MissionParser:
         return self.record(NounPhrase(self.span_text(first.start, self.toks[self.i - 1].end), first.start,
                                       self.toks[self.i - 1].end, list(ref.entities), "all", ref.room_scoped,
                                       "goal"))
+
+    def demonstrative(self) -> int:
+        """How many words of a back-pointing determiner start the noun phrase here (*that*, *those*, *the
+        same* ... before a room or object noun, with or without a number); 0 if none."""
+        n = backref.demonstrative_length(self.words(), self.i)
+        if not n:
+            return 0
+        k = self.i + n + (1 if self.word(n) in lx.NUMBER_WORDS or self.word(n).isdigit() else 0)
+        return n if self.vocab.match_head(self.words(), k) is not None else 0
 
     def quantifier(self) -> tuple[Mode | None, int | None]:
         """Determiners -> (mode, required count); ``None`` mode = decided by the head's number."""
