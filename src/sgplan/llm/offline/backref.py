@@ -28,14 +28,22 @@ PLURAL_DEMONSTRATIVES = ("these", "those")
 
 
 class Phrase(Protocol):
-    """What a recorded noun phrase offers (see ``grammar.NounPhrase``)."""
+    """What a recorded noun phrase offers (see ``grammar.NounPhrase``), read only."""
 
-    phrase: str
-    start: int
-    end: int
-    entities: list[Entity]
-    mode: str
-    room_scoped: bool
+    @property
+    def phrase(self) -> str: ...
+    @property
+    def start(self) -> int: ...
+    @property
+    def end(self) -> int: ...
+    @property
+    def entities(self) -> list[Entity]: ...
+    @property
+    def mode(self) -> str: ...
+    @property
+    def room_scoped(self) -> bool: ...
+    @property
+    def alternative(self) -> bool: ...
 
 
 @dataclass(frozen=True)
@@ -58,6 +66,24 @@ def demonstrative_length(words: Sequence[str], i: int) -> int:
     if w in ("the", "that", "this") and nxt == "same":
         return 2
     return 1 if w in DEMONSTRATIVES else 0
+
+
+def is_choice(np: Phrase) -> bool:
+    """Whether ``np`` leaves a choice open: one of several (*a vase*, *any bathroom*), or one alternative of
+    an *or* list (*the kitchen or the bathroom*), which the robot may not take."""
+    return np.alternative or (np.mode == "any" and len(np.entities) > 1)
+
+
+def choice_refusal(said: str, np: Phrase, places: int) -> str | None:
+    """The refusal for ``said`` pointing back to ``np`` when ``np`` is a choice and the reference would
+    denote ``places`` > 1 different things (rooms for *there*, floors for *up there*) or one alternative
+    of an *or* list: which one depends on the choice the robot makes, and reading it as any of them
+    would silently allow another one than the one chosen. None when the reference is determined."""
+    if not is_choice(np) or (places <= 1 and not np.alternative):
+        return None
+    what = "one alternative of a choice ('... or ...')" if np.alternative else "a choice"
+    return (f"'{said}' refers back to '{np.phrase}', {what}: which one depends on the choice the robot "
+            f"makes; name the room or object instead")
 
 
 def _fitting(np: Phrase, head: Head, by_key: dict[str, Entity]) -> list[Entity] | None:
@@ -95,9 +121,8 @@ def resolve(said: str, head: Head, plural: bool, described: list[Entity], refere
             return (f"'{said}' refers back to '{np.phrase}' ({', '.join(e.key for e in ents)}), which does "
                     f"not fit what the phrase says; name the room or object again")
         several = len(ents) > 1
-        if several and np.mode == "any":
-            return (f"'{said}' refers back to '{np.phrase}', a choice ({' or '.join(e.key for e in ents)}): "
-                    f"which one depends on the choice; name the room or object instead")
+        if (choice := choice_refusal(said, np, len(ents))) is not None:
+            return choice
         if several and not plural:
             return (f"'{said}' refers back to '{np.phrase}', which is several "
                     f"({', '.join(e.key for e in ents)}); say which one")

@@ -187,6 +187,12 @@ class NounPhrase:
     """How many entities the phrase said ("the two beds"), if it said so."""
     generic: bool = False
     """The head noun was *room* / *place* (any room): *the one with ...* after it means any room too."""
+    alternative: bool = False
+    """One alternative of an *or* list (*the kitchen or the bathroom*): a back-reference to it is not
+    determined (see :func:`.backref.choice_refusal`)."""
+    choice_of: str | None = None
+    """A pronoun whose antecedent is a choice: why it is refused if it is made a goal (:meth:`tasks_of`;
+    *put it in Y* only carries it)."""
 
 
 @dataclass
@@ -1534,6 +1540,8 @@ class MissionParser:
     def tasks_of(self, nps: list[NounPhrase], ordered: bool) -> list[Step]:
         tasks = []
         for np in nps:
+            if np.choice_of is not None:  # "look at a vase, then look at it again": the same vase
+                raise self.fail(np.choice_of)
             members = [member_formula(e, np.room_scoped) for e in np.entities]
             tasks.append(Task("any" if np.mode == "any" else "all", members))
         if ordered and len(tasks) > 1:
@@ -1617,6 +1625,8 @@ class MissionParser:
                                 f"'any of ...'")
             # Being at an object implies being in its room, so locating some alternatives by their room and
             # others not changes nothing: the merged phrase locates all of them.
+            for np in nps:
+                np.alternative = True
             merged = NounPhrase(self.span_text(nps[0].start, nps[-1].end), nps[0].start, nps[-1].end,
                                 [e for np in nps for e in np.entities], "any",
                                 any(np.room_scoped for np in nps), role)
@@ -1637,6 +1647,7 @@ class MissionParser:
             if not goals:
                 raise self.fail("'there' does not refer to any place named before it")
             ref = max(goals, key=lambda r: r.start)
+            self.determined("there", ref, len({e.room_key for e in ref.entities}))
             entities = list(ref.entities)
             if role == "qualifier":  # "the clock in there": the room of the last goal
                 entities = list({e.room_key: self.vocab.by_key[e.room_key] for e in entities}.values())
@@ -1657,6 +1668,7 @@ class MissionParser:
             self.i += 1  # "its sink": the sink in the room just named (or in the room of the object named)
             ref = self.antecedent("it")
             container = [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in ref.entities)]
+            self.determined("its", ref, len(container))
             head = self.head(None)
             if head.kind == "room":  # "the other bedroom and its bathroom": the bathroom attached to it
                 owned = self.vocab.next_to(self.vocab.of_head(head), container)
@@ -1674,6 +1686,7 @@ class MissionParser:
             np = NounPhrase(self.span_text(first.start, first.end), first.start, first.end,
                             list(ref.entities),
                             pronoun_mode, ref.room_scoped, role)
+            np.choice_of = backref.choice_refusal(w, ref, len(ref.entities))
             return self.record(np)
         if self.word() in ("the", "a") and self.word(1) in lx.ANAPHORIC_ONE and one_head is None:
             one_head = self.last_head()  # "the teddy bear in the bedroom, then the one in the living room"
@@ -1684,6 +1697,8 @@ class MissionParser:
         if other:
             self.i += 1
         demo = self.demonstrative()
+        mode: Mode | None
+        count: int | None
         if demo:  # "that bathroom", "those two bedrooms", "the same sink": resolved below, never fresh
             self.i += demo
             mode, count = "the", None
@@ -1864,15 +1879,15 @@ class MissionParser:
                 continue
             break
         if demo:
-            said = self.span_text(first.start, self.toks[self.i - 1].end)
+            spoken = self.span_text(first.start, self.toks[self.i - 1].end)
             plural = head.plural or first.text.lower() in backref.PLURAL_DEMONSTRATIVES
-            got = backref.resolve(said, head, plural, entities, self.references, first.start,
+            got = backref.resolve(spoken, head, plural, entities, self.references, first.start,
                                   self.vocab.by_key, role == "goal")
             if isinstance(got, str):
                 raise self.fail(got)
             entities, mode, room_scoped = got.entities, got.mode, room_scoped or got.room_scoped
             if count is not None and len(entities) != count:
-                raise self.fail(f"'{said}' refers back to '{got.antecedent}', which is {len(entities)}, "
+                raise self.fail(f"'{spoken}' refers back to '{got.antecedent}', which is {len(entities)}, "
                                 f"not {count}")
         there = (self.vocab.inside(entities, self.soft_scope)
                  if role == "goal" and head.kind == "object" and not demo else [])
@@ -2007,7 +2022,16 @@ class MissionParser:
         if not places:
             raise self.fail("'there' does not refer to any place named before it")
         last = max(places, key=lambda r: r.start)
-        return [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in last.entities)]
+        rooms = [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in last.entities)]
+        self.determined("there", last, len(rooms))
+        return rooms
+
+    def determined(self, said: str, ref: NounPhrase, places: int) -> None:
+        """Refuses ``said`` (*there*, *up there*, *its*, *next to it*) pointing back to a choice whose
+        alternatives differ in what ``said`` denotes (``places`` of them)."""
+        reason = backref.choice_refusal(said, ref, places)
+        if reason is not None:
+            raise self.fail(reason)
 
     def floor_place(self, first: Tok, floors: frozenset[int], mode: Mode | None, role: Role) -> NounPhrase:
         """``the top floor`` as a place: any of its rooms as a goal or condition, all of them to avoid."""
@@ -2086,6 +2110,7 @@ class MissionParser:
         if not outer:
             raise self.fail("'it' does not refer to any room named before it")
         ref = max(outer, key=lambda r: r.start)
+        self.determined("next to it", ref, len(ref.entities))
         if any(e.kind != "room" for e in ref.entities):
             raise self.fail(f"'next to it': 'it' is '{ref.phrase}', an object; 'next to' is understood for "
                             f"rooms "
@@ -2212,8 +2237,12 @@ class MissionParser:
             goals = [r for r in self.references if r.role == "goal" and r.entities]
             if not goals:
                 raise self.fail(f"'{self.word()} there' does not refer to any place named before it")
+            where = f"{self.word()} there"
             self.i += 2
-            return frozenset(e.floor for e in max(goals, key=lambda r: r.start).entities)
+            last = max(goals, key=lambda r: r.start)
+            floors = frozenset(e.floor for e in last.entities)
+            self.determined(where, last, len(floors))
+            return floors
         if self.word() not in ("on", "in", "at", "of", "from"):
             return None
         if self.at("the", "same", k=1) and self.word(3) in lx.FLOOR_WORDS:

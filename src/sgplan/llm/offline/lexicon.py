@@ -133,6 +133,8 @@ REFUSED_VERBS: dict[str, str] = {
     "except": "'except' here (put 'except ...' right after the noun phrase it restricts)",
     "previous": "'previous' (name the rooms or objects again instead of referring back to them)",
     "same": "'the same ...' (name the room or object again instead of referring back to it)",
+    "former": "'the former' (name the room or object again instead of referring back to it)",
+    "latter": "'the latter' (name the room or object again instead of referring back to it)",
     "other": "'other' (name the room or object explicitly)",
     "last": "'last' (name the room or object explicitly)",
     "most": "'most'",
