@@ -48,12 +48,14 @@ def building(scene: str) -> Building:
          "(!r4 U r7) & F(o36 | o37)"),
         ("Collierville", "Go into the bathroom on floor 1, then touch a sink in this bathroom.",
          "F(r2 & F((o25 & r2) | (o26 & r2)))"),
-        ("Collierville", "Visit the bathroom on the top floor, then the kitchen, then go back to that bathroom.",
+        ("Collierville",
+         "Visit the bathroom on the top floor, then the kitchen, then go back to that bathroom.",
          "F(r4 & F(r15 & F(!r4 & F r4)))"),
         # 'that room' after a phrase with a nested one: the phrase's head, not the nested room
         ("Benevolence", "Check the bed in the bedroom with the vase, then the book in that room.",
          "F(o54 & r7 & F(o30 & r7))"),
-        ("Benevolence", "Go to the bedroom with the teddy bear. Then go to the bathroom next to that bedroom.",
+        ("Benevolence",
+         "Go to the bedroom with the teddy bear. Then go to the bathroom next to that bedroom.",
          "F(r8 & F r6)"),
         ("Benevolence", "Go to the kitchen, then the living room. Then go to that kitchen again.",
          "F(r15 & F(r16 & F(!r15 & F r15)))"),
@@ -69,7 +71,8 @@ def building(scene: str) -> Building:
          " & F(o60 & r14 & F(r15 & F(o59 & r14) & F(o60 & r14) & F(o61 & r14)))"
          " & F(o61 & r14 & F(r15 & F(o59 & r14) & F(o60 & r14) & F(o61 & r14)))"),
         ("demo", "Visit both bathrooms, then the kitchen, then those bathrooms again.",
-         "F(r5 & F(r4 & F(!r5 & F r5) & F(!r14 & F r14))) & F(r14 & F(r4 & F(!r5 & F r5) & F(!r14 & F r14)))"),
+         "F(r5 & F(r4 & F(!r5 & F r5) & F(!r14 & F r14)))"
+         " & F(r14 & F(r4 & F(!r5 & F r5) & F(!r14 & F r14)))"),
         ("demo", "Go to the bathroom upstairs, then wash at the sink in that bathroom.",
          "F(r14 & F(o41 & r14))"),
     ],
@@ -87,7 +90,8 @@ def test_back_references_read(scene, text, gold):
         # nothing named before that fits
         ("Collierville", "Look at the sink in that bathroom.", "'that bathroom' does not refer back"),
         ("Allensville", "Go to this room.", "'this room' does not refer back"),
-        ("Allensville", "Go to the living room. Never enter that kitchen.", "'that kitchen' does not refer back"),
+        ("Allensville", "Go to the living room. Never enter that kitchen.",
+         "'that kitchen' does not refer back"),
         ("Allensville", "Go to the lobby. Look at those vases.", "'those vases' does not refer back"),
         # what the phrase adds must agree with what it refers to
         ("Collierville", "Go to the bathroom on floor 1, then to that bathroom on the top floor.",
@@ -101,7 +105,8 @@ def test_back_references_read(scene, text, gold):
         ("Collierville", "Go to the kitchen or the living room, then look at the vase in that room.",
          "one alternative of a choice"),
         ("Collierville", "Go to the kitchen or the living room, then look at the vase there.", "a choice"),
-        ("Allensville", "Go to a bathroom and flush the toilet there.", "'there' refers back to 'a bathroom'"),
+        ("Allensville", "Go to a bathroom and flush the toilet there.",
+         "'there' refers back to 'a bathroom'"),
         ("Allensville", "Go to a bathroom, then wash at the sink in there.", "a choice"),
         ("Allensville", "Go to a bathroom, then use its sink.", "'its' refers back"),
         ("Benevolence", "Visit any bathroom, then go to the bedroom up there.", "'up there' refers back"),
@@ -127,7 +132,8 @@ def test_unresolvable_back_references_refused(scene, text, fragment):
         ("Benevolence", "Grab a bottle in the kitchen. Bring it to the living room.",
          "F((o31 & r15) | (o32 & r15)) & F r16"),
         # and after a single thing it is that thing
-        ("Allensville", "Take the bowl in the kitchen and put it in the living room.", "F(o29 & r11 & F r12)"),
+        ("Allensville", "Take the bowl in the kitchen and put it in the living room.",
+         "F(o29 & r11 & F r12)"),
     ],
 )
 def test_pronouns_still_read(scene, text, gold):
