@@ -73,6 +73,8 @@ def building(scene: str) -> Building:
         ("demo", "Visit both bathrooms, then the kitchen, then those bathrooms again.",
          "F(r5 & F(r4 & F(!r5 & F r5) & F(!r14 & F r14)))"
          " & F(r14 & F(r4 & F(!r5 & F r5) & F(!r14 & F r14)))"),
+        ("Collierville", "Go to the bathroom on the top floor. Then use a toilet in that top floor bathroom.",
+         "F(r4 & F((o36 & r4) | (o37 & r4)))"),
         ("demo", "Go to the bathroom upstairs, then wash at the sink in that bathroom.",
          "F(r14 & F(o41 & r14))"),
     ],
@@ -112,10 +114,15 @@ def test_back_references_read(scene, text, gold):
         ("Benevolence", "Visit any bathroom, then go to the bedroom up there.", "'up there' refers back"),
         # 'that room' / 'the same room' as a place to go after several rooms: which one?
         ("demo", "Go to the kitchen, then the office, then back to that room.", "'that room': which one?"),
+        # the guard: a demonstrative is never read as a fresh description, whatever stands before the noun
+        ("Collierville", "Go to the bathroom on floor 1. Then go to that top floor bathroom.",
+         "does not fit"),
+        ("demo", "Go to the kitchen, then that other bathroom.", "'other'"),
+        ("Allensville", "Go to the kitchen. Then check those.", "'those"),
         # the former / the latter
         ("Allensville", "Visit the lobby and the kitchen. Then go back to the former.", "'the former'"),
         ("Allensville", "Visit the lobby and the kitchen. Then go back to the latter.", "'the latter'"),
-        ("Allensville", "Go to the kitchen, then that one.", "'one' does not refer"),
+        ("Allensville", "Go to the kitchen, then that one.", "'one'"),
     ],
 )
 def test_unresolvable_back_references_refused(scene, text, fragment):

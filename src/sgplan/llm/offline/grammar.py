@@ -2145,8 +2145,10 @@ class MissionParser:
         n = backref.demonstrative_length(self.words(), self.i)
         if not n:
             return 0
-        k = self.i + n + (1 if self.word(n) in lx.NUMBER_WORDS or self.word(n).isdigit() else 0)
-        return n if self.vocab.match_head(self.words(), k) is not None else 0
+        k = n + (1 if self.word(n) in lx.NUMBER_WORDS or self.word(n).isdigit() else 0)
+        if self.word(k) in lx.FLOOR_WORDS or self.word(k) in lx.ANAPHORIC_ONE:
+            return 0  # "this floor": the start floor (:meth:`floor_words`); "that one" is refused
+        return n
 
     def quantifier(self) -> tuple[Mode | None, int | None]:
         """Determiners -> (mode, required count); ``None`` mode = decided by the head's number."""
@@ -2166,6 +2168,11 @@ class MissionParser:
             mode, count = "all", (2 if w == "both" else None)
             if self.word() == "of":
                 self.i += 1
+        elif w in backref.DEMONSTRATIVES and self.word(1) not in lx.FLOOR_WORDS:
+            # the guard against reading a back-reference as a fresh description: only the demonstrative
+            # path (:meth:`demonstrative`, :func:`.backref.resolve`) may ground "that ..." / "this ..."
+            raise self.fail(f"'{w} {self.word(1)}' refers back to something named before, and is understood "
+                            f"only directly before a room or object ('{w} bathroom'); name it instead")
         elif w in ("the", "this", "that", "these", "those") or w in _POSSESSIVES:
             self.i += 1
             mode = "the"

@@ -73,7 +73,6 @@ ANAPHORIC_ONE = ("one", "ones")
 
 PRONOUNS = ("it", "them", "they", "its")
 
-ARTICLES_SINGULAR = ("the", "this", "that")
 INDEFINITE = ("a", "an", "any", "some", "either")
 UNIVERSAL = ("all", "every", "each", "both")
 
