@@ -1790,6 +1790,8 @@ class MissionParser:
             if floor is not None:
                 entities = self.on_floors(entities, floor)
                 continue
+            if self.whole_building():  # "any TV in the house": anywhere, as without it
+                continue
             if (self.word() in _QUAL_IN and self.np_starts(1) and not self.at_any(lx.ORDER_MODIFIERS)
                     and not self.at_any(lx.TIME_FILLERS)
                     and not (role == "qualifier" and self.word(1) in ("it", "there"))):
@@ -2025,6 +2027,17 @@ class MissionParser:
         rooms = [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in last.entities)]
         self.determined("there", last, len(rooms))
         return rooms
+
+    def whole_building(self) -> bool:
+        """Skips ``in the house`` / ``in this building`` / ``anywhere in the home`` after a noun (not ``in the
+        home office``, a room): the whole building restricts nothing."""
+        k = 2 if self.at("anywhere", "in") else 1 if self.word() in ("in", "inside", "throughout") else 0
+        if not k or self.word(k) not in ("the", "this", "our", "my", "your"):
+            return False
+        if self.word(k + 1) not in lx.WHOLE_BUILDING or self.vocab.match_head(self.words(), self.i + k + 1):
+            return False
+        self.i += k + 2
+        return True
 
     def determined(self, said: str, ref: NounPhrase, places: int) -> None:
         """Refuses ``said`` (*there*, *up there*, *its*, *next to it*) pointing back to a choice whose
