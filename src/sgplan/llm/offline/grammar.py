@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 from sgplan.errors import MissionError
-from sgplan.llm.offline import backref
+from sgplan.llm.offline import backref, preamble
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.compose import Step, Task, conj, disj, sequence_formula, strict_formulas
 from sgplan.llm.offline.everyday import everyday_names
@@ -154,6 +154,10 @@ _TRIP_NOUNS = frozenset({"trip", "visit", "stop", "detour", "run", "quick", "sho
 """``twice, with a trip / visit / stop to Y in between``: words naming the visit to Y."""
 _BETWEEN_TAIL = (("them",), ("the", "two"), ("the", "two", "visits"), ("each", "visit"), ("visits",))
 _MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
+_STATED_SUBJECTS = (("i", "am"), ("we", "are"), ("you", "are"), ("the", "robot", "is"), ("i",), ("we",),
+                    ("you",))
+"""*I'm* (the tokenizer drops the part after the apostrophe) / *we are* ... before where the robot is."""
+_NOW = (("right", "now"), ("now",), ("currently",), ("at", "the", "moment"), ("at", "present"))
 _STRUCTURAL = (
     frozenset(w for table in (_SEQ_WORDS, _NEG_STARTS, _QUAL_CONTAINS, _QUAL_LACKS, _QUAL_NEXT, _QUAL_EXCEPT,
                               lx.ORDER_MODIFIERS) for seq in table for w in seq)
@@ -302,7 +306,7 @@ class MissionParser:
     def parse(self) -> Formula:
         parts: list[Clause | Formula] = []
         tokens = everyday_names(rewrite(tokenize(self.text), lx.PHRASE_ALIASES), self.vocab)
-        all_sentences = sentences(tokens)
+        all_sentences = self.without_preamble(sentences(tokens))
         self.confined = self.confinement(all_sentences)
         for sentence in all_sentences:
             self.toks, self.i, self.sentence_scope, self.soft_scope = sentence, 0, [], []
@@ -340,6 +344,59 @@ class MissionParser:
         if not present:
             raise self.fail("the mission names no room or object to visit or avoid")
         return conj(present)
+
+    def without_preamble(self, all_sentences: list[list[Tok]]) -> list[list[Tok]]:
+        """The sentences without what asks nothing of the robot: statements of where it starts (*I'm
+        downstairs right now.*, :meth:`stated_start`, anywhere), and leading chit-chat sentences and the
+        chit-chat clause before the first comma of the first sentence with content (*Hi!*, *I'm hungry, go
+        to the fridge*; see :mod:`.preamble`)."""
+        kept: list[list[Tok]] = []
+        for sentence in all_sentences:
+            self.toks, self.i = sentence, 0
+            if self.stated_start():
+                continue
+            if not kept:
+                words = [t.text for t in sentence]
+                if preamble.is_chitchat(words, self.vocab, _STRUCTURAL):
+                    continue
+                sentence = sentence[preamble.leading_clause(words, self.vocab, _STRUCTURAL):]
+            kept.append(sentence)
+        return kept
+
+    def stated_start(self) -> bool:
+        """Reads a sentence that only says where the robot is (*I'm downstairs right now*, *we are on the
+        ground floor*, *you're upstairs*): the start floor, used by *upstairs* / *this floor* ...; refused
+        when it contradicts the known start floor, or when *upstairs* / *downstairs* do not name one floor.
+        False (nothing read) for any other sentence."""
+        k = next((len(s) for s in _STATED_SUBJECTS if self.at(*s)), 0)
+        if not k:
+            return False
+        k += 1 if self.word(k) in ("currently", "now", "still") else 0
+        w = self.word(k)
+        if w in lx.RELATIVE_FLOORS:
+            said, n = w, 1
+            floors = self.vocab.num_floors
+            extreme = 0 if w == "downstairs" else floors - 1
+            if floors != 2 and self.start_floor != extreme:
+                raise self.fail(f"'{w}': the building {self.vocab.building_name!r} has floors 0 to "
+                                f"{floors - 1}; say which floor the robot is on (e.g. 'I am on floor "
+                                f"{extreme}')")
+            floor = extreme
+        else:
+            j = k + (1 if w in ("on", "at") else 0)
+            j += 1 if self.word(j) == "the" else 0
+            if j == k or (found := self.floor_words(j)) is None or len(found[0]) != 1:
+                return False
+            floor, n, said = next(iter(found[0])), j - k + found[1], " ".join(self.words()[k:j + found[1]])
+        end = k + n
+        end += len(self.at_any(_NOW, k=end) or ())
+        if end != len(self.toks):
+            return False
+        if self.start_floor is not None and self.start_floor != floor:
+            raise self.fail(f"'{said}' says the robot is on floor {floor}, but it starts on floor "
+                            f"{self.start_floor}; say where it really is")
+        self.start_floor = floor
+        return True
 
     def expect_all_read(self) -> None:
         """The safeguard against silently dropped clauses: a sentence is understood only when every word
