@@ -157,6 +157,14 @@ _MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
 _STATED_SUBJECTS = (("i", "am"), ("we", "are"), ("you", "are"), ("the", "robot", "is"), ("i",), ("we",),
                     ("you",))
 """*I'm* (the tokenizer drops the part after the apostrophe) / *we are* ... before where the robot is."""
+_AFTER_ALL = tuple((w, *rest) for w in ("after", "once", "when")
+                   for rest in (("all",), ("both",), ("all", "that"), ("you", "done", "those"),
+                                ("you", "have", "done", "those"), ("you", "done", "all", "that"),
+                                ("you", "have", "done", "all", "that"), ("you", "done", "all"),
+                                ("you", "have", "done", "all"), ("you", "done", "both"),
+                                ("you", "have", "done", "both"), ("those", "are", "done"),
+                                ("all", "are", "done"), ("all", "that", "is", "done")))
+"""*after all three (of them)*, *once you've done those*: after every goal said before (:meth:`after_all`)."""
 _NOW = (("right", "now"), ("now",), ("currently",), ("at", "the", "moment"), ("at", "present"))
 _STRUCTURAL = (
     frozenset(w for table in (_SEQ_WORDS, _NEG_STARTS, _QUAL_CONTAINS, _QUAL_LACKS, _QUAL_NEXT, _QUAL_EXCEPT,
@@ -852,6 +860,10 @@ class MissionParser:
     def body(self) -> Clause:
         clause = Clause()
         while not self.done():
+            if self.after_all(clause):  # "..., and after all three, go to X": after every goal so far
+                if clause.steps[-1]:
+                    clause.steps.append([])
+                continue
             if self.at_any(_STRICT_SEQ) is not None and self.skip_fillers(sequence_too=True):
                 if clause.steps[-1]:
                     clause.steps.append([])
@@ -969,6 +981,35 @@ class MissionParser:
                 if len(steps) > 1:
                     clause.steps.extend(steps[1:])
         return clause
+
+    def after_all(self, clause: Clause) -> bool:
+        """Reads *(and / ,) after all three / after all of them / once you've done those (,)* after goals
+        of this sentence: what follows comes after every one of them (as a new step). Refused when the
+        number said is not the number of goals, or when an earlier sentence named goals too (all of which
+        ones?)."""
+        k = 2 if self.at(",", "and") else 1 if self.word() in (",", "and") else 0
+        phrase = self.at_any(_AFTER_ALL, k=k)
+        if phrase is None:
+            return False
+        n = len(phrase)
+        said = self.word(k + n) if self.word(k + n) in lx.NUMBER_WORDS else None
+        n += 1 if said is not None else 0
+        n += 2 if self.at("of", "them", k=k + n) or self.at("of", "those", k=k + n) else 0
+        if said is None and n == len(phrase) and phrase[-1] in ("all", "both") and self.np_starts(k + n):
+            return False  # "after all the bedrooms": an ordinary noun phrase
+        text = self.span_text(self.toks[self.i + k].start, self.toks[self.i + k + n - 1].end)
+        goals = sum(len(t.members) if t.mode == "all" else 1 for step in clause.steps for t in step)
+        if not goals:
+            return False
+        start = self.toks[0].start
+        if any(r.role == "goal" and r.start < start for r in self.references):
+            raise self.fail(f"'{text}': after the goals of this sentence only, or of the whole mission? Say "
+                            f"'then' and name what comes after what")
+        if said is not None and lx.NUMBER_WORDS[said] != goals:
+            raise self.fail(f"'{text}': this sentence names {goals} goals before it, not "
+                            f"{lx.NUMBER_WORDS[said]}")
+        self.i += k + n + (1 if self.word(k + n) == "," else 0)
+        return True
 
     def comma_sequence(self) -> bool:
         """At a comma between two actions (``go to the kitchen, pop up to the bedroom, then ...``): whether
