@@ -165,7 +165,8 @@ _AFTER_ALL = tuple((w, *rest) for w in ("after", "once", "when")
                                 ("you", "have", "done", "both"), ("those", "are", "done"),
                                 ("all", "are", "done"), ("all", "that", "is", "done")))
 """*after all three (of them)*, *once you've done those*: after every goal said before (:meth:`after_all`)."""
-_NOW = (("right", "now"), ("now",), ("currently",), ("at", "the", "moment"), ("at", "present"))
+_NOW = (("right", "now"), ("now",), ("currently",), ("at", "once"), ("at", "present"))
+"""*right now* ...; *at the moment* reads *at once* here (``lx.PHRASE_ALIASES``: *the moment* = *once*)."""
 _STRUCTURAL = (
     frozenset(w for table in (_SEQ_WORDS, _NEG_STARTS, _QUAL_CONTAINS, _QUAL_LACKS, _QUAL_NEXT, _QUAL_EXCEPT,
                               lx.ORDER_MODIFIERS) for seq in table for w in seq)
