@@ -110,6 +110,7 @@ def test_back_references_read(scene, text, gold):
         ("Allensville", "Go to a bathroom and flush the toilet there.",
          "'there' refers back to 'a bathroom'"),
         ("Allensville", "Go to a bathroom, then wash at the sink in there.", "a choice"),
+        ("Allensville", "Look at a vase in the lobby, but don't touch it.", "a choice"),
         ("Allensville", "Go to a bathroom, then use its sink.", "'its' refers back"),
         ("Benevolence", "Visit any bathroom, then go to the bedroom up there.", "'up there' refers back"),
         # 'that room' / 'the same room' as a place to go after several rooms: which one?

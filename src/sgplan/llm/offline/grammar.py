@@ -1786,6 +1786,8 @@ class MissionParser:
                             list(ref.entities),
                             pronoun_mode, ref.room_scoped, role)
             np.choice_of = backref.choice_refusal(w, ref, len(ref.entities))
+            if np.choice_of is not None and role != "goal":  # only a carried goal may leave it open
+                raise self.fail(np.choice_of)
             return self.record(np)
         if self.word() in ("the", "a") and self.word(1) in lx.ANAPHORIC_ONE and one_head is None:
             one_head = self.last_head()  # "the teddy bear in the bedroom, then the one in the living room"
