@@ -1,6 +1,6 @@
 """Refusal classes seen on blind set 5, generalised (own phrasings, not the set's sentences): leading
 chit-chat, a stated start floor, *in whatever order is quickest*, *X in the house*, *after all three / after
-all of them / once you've done those*."""
+all of them / once you've done those*, *The whole time, keep out of X*."""
 
 from __future__ import annotations
 
@@ -54,6 +54,12 @@ def read(text: str, building: Building, gold: str, start_floor: int | None = Non
          "F(r4 & F r12) & F(r7 & F r12)"),
         ("See the kitchen and the office in any order, after both of them go to the dining room.",
          "F(r4 & F r7) & F(r12 & F r7)"),
+        # a whole-mission opener before what to avoid
+        ("Visit the office. The entire time, stay out of the kitchen.", "F r12 & G !r4"),
+        ("Go to the dining room. At all times, avoid the office and the living room.",
+         "F r7 & G !r12 & G !r6"),
+        # not a waypoint opener
+        ("Go to the kitchen. On the way, look at the TV.", "F(o23 & F r4)"),
     ],
 )
 def test_set5_classes_read(demo, text, gold):
@@ -91,6 +97,10 @@ def test_stated_start_floor(demo, text, start, gold):
          "room.", None, "or of the whole mission"),
         ("Visit the kitchen and the office, and after all three go to the dining room.", None,
          "names 2 goals before it, not 3"),
+        # a whole-mission opener before goals
+        ("At all times, go to the kitchen.", None, "only before what to avoid"),
+        ("Go to the office. The whole time, stay off the couch and visit the kitchen.", None,
+         "only before what to avoid"),
         # 'in whatever order' with a reason that is not about speed is not skipped
         ("Visit the kitchen and the office in any order that makes sense.", None, "makes"),
     ],

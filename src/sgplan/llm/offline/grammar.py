@@ -323,11 +323,16 @@ class MissionParser:
             self.strict_pending = False
             self.body_actions = 0
             previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
+            opener = self.whole_mission_opener()
             precedes = self.sentence_precedes(parts)
             continues = self.skip_fillers(sequence_too=True)
             self.prior_steps = previous.steps if continues and previous is not None else []
             self.said_last = False
             result = self.sentence()
+            if opener and not (isinstance(result, Clause) and not any(result.steps) and result.constraints
+                               and all(isinstance(c, Always) for c in result.constraints)):
+                raise self.fail(f"'{opener}, ...' is understood only before what to avoid for the whole "
+                                f"mission ('{opener}, keep out of the kitchen')")
             self.expect_all_read()
             if self.said_last and not continues and not precedes and previous is not None:
                 continues = True  # "Go to the office last.": after the goals of the sentences before
@@ -371,6 +376,17 @@ class MissionParser:
                 sentence = sentence[preamble.leading_clause(words, self.vocab, _STRUCTURAL):]
             kept.append(sentence)
         return kept
+
+    def whole_mission_opener(self) -> str:
+        """Skips *The whole time,* / *At all times,* ... opening a sentence (the words, or "" if none): they
+        say what the trailing form says (*keep out of X the whole time*), so the sentence must be only
+        whole-mission avoidance, which :meth:`parse` checks."""
+        opener = self.at_any(lx.WHOLE_MISSION)
+        if opener is None or self.word(len(opener)) != "," or opener[0] in ("on", "along"):
+            return ""  # "On the way, X" is a waypoint (:meth:`body`)
+        said = self.span_text(self.toks[0].start, self.toks[len(opener) - 1].end)
+        self.i += len(opener) + 1
+        return said
 
     def stated_start(self) -> bool:
         """Reads a sentence that only says where the robot is (*I'm downstairs right now*, *we are on the
