@@ -75,6 +75,8 @@ def building(scene: str) -> Building:
          " & F(r14 & F(r4 & F(!r5 & F r5) & F(!r14 & F r14)))"),
         ("Collierville", "Go to the bathroom on the top floor. Then use a toilet in that top floor bathroom.",
          "F(r4 & F((o36 & r4) | (o37 & r4)))"),
+        ("Benevolence", "Visit both bedrooms. Then the kitchen. Then one of those bedrooms again.",
+         "F(r7 & F(r15 & F(!(r7 | r8) & F(r7 | r8)))) & F(r8 & F(r15 & F(!(r7 | r8) & F(r7 | r8))))"),
         ("demo", "Go to the bathroom upstairs, then wash at the sink in that bathroom.",
          "F(r14 & F(o41 & r14))"),
     ],
@@ -115,6 +117,11 @@ def test_back_references_read(scene, text, gold):
         ("Benevolence", "Visit any bathroom, then go to the bedroom up there.", "'up there' refers back"),
         # 'that room' / 'the same room' as a place to go after several rooms: which one?
         ("demo", "Go to the kitchen, then the office, then back to that room.", "'that room': which one?"),
+        # a quantifier before the demonstrative chooses among what it points back to, never among all
+        ("Benevolence", "Go to the bedroom with the vase and the kitchen. Then go to one of those bedrooms.",
+         "which is one (room_7), not several"),
+        ("Benevolence", "Visit the bathroom on floor 0 and the kitchen. Then check all of those sinks.",
+         "does not refer back"),
         # the guard: a demonstrative is never read as a fresh description, whatever stands before the noun
         ("Collierville", "Go to the bathroom on floor 1. Then go to that top floor bathroom.",
          "does not fit"),

@@ -126,6 +126,9 @@ def resolve(said: str, head: Head, plural: bool, described: list[Entity], refere
         if several and not plural:
             return (f"'{said}' refers back to '{np.phrase}', which is several "
                     f"({', '.join(e.key for e in ents)}); say which one")
+        if plural and not several:  # "those bedrooms" after one bedroom: not what was named
+            return (f"'{said}' refers back to '{np.phrase}', which is one ({ents[0].key}), not several; "
+                    f"name the room or object again")
         scoped = np.room_scoped and all(e.kind == "object" for e in ents)
         return Resolved(list(ents), "all" if several else "the", scoped, np.phrase)
     what = "room" if head.kind == "room" else "object"

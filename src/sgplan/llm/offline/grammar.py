@@ -1816,6 +1816,9 @@ class MissionParser:
         demo = self.demonstrative()
         mode: Mode | None
         count: int | None
+        quantified: Mode | None = None
+        """The quantifier before a demonstrative (*one of* / *all of those bedrooms*)."""
+        pointer = self.word() if demo else ""
         if demo:  # "that bathroom", "those two bedrooms", "the same sink": resolved below, never fresh
             self.i += demo
             mode, count = "the", None
@@ -1824,6 +1827,13 @@ class MissionParser:
                 mode, count = "all", n
         else:
             mode, count = self.quantifier()
+            if mode is not None and self.demonstrative():  # "one of those bedrooms": chosen among them
+                quantified = mode
+                demo = self.demonstrative()
+                pointer = self.word()
+                self.i += demo
+                if count is None and (n := self.count_word()) is not None:
+                    count = n
         floors_first: frozenset[int] | None = None
         relative = ""
         if self.word() in lx.RELATIVE_FLOORS:  # "the upstairs bathroom": applied once the noun is read
@@ -1999,12 +2009,12 @@ class MissionParser:
             break
         if demo:
             spoken = self.span_text(first.start, self.toks[self.i - 1].end)
-            plural = head.plural or first.text.lower() in backref.PLURAL_DEMONSTRATIVES
+            plural = head.plural or quantified is not None or pointer in backref.PLURAL_DEMONSTRATIVES
             got = backref.resolve(spoken, head, plural, entities, self.references, first.start,
                                   self.vocab.by_key, role == "goal")
             if isinstance(got, str):
                 raise self.fail(got)
-            entities, mode, room_scoped = got.entities, got.mode, room_scoped or got.room_scoped
+            entities, mode, room_scoped = got.entities, quantified or got.mode, room_scoped or got.room_scoped
             if count is not None and len(entities) != count:
                 raise self.fail(f"'{spoken}' refers back to '{got.antecedent}', which is {len(entities)}, "
                                 f"not {count}")
@@ -2306,7 +2316,7 @@ class MissionParser:
         elif w in ("the", "this", "that", "these", "those") or w in _POSSESSIVES:
             self.i += 1
             mode = "the"
-        if self.word() in ("the", "these", "those") and mode is not None:
+        if self.word() == "the" and mode is not None:
             self.i += 1
         counted = self.np_starts(1) or self.vocab.match_head(self.words(), self.i + 1)
         n = self.count_word() if counted else None
