@@ -122,6 +122,11 @@ def test_back_references_read(scene, text, gold):
          "which is one (room_7), not several"),
         ("Benevolence", "Visit the bathroom on floor 0 and the kitchen. Then check all of those sinks.",
          "does not refer back"),
+        # 'there' after several places, and 'back there' (the place named last is where the robot just was)
+        ("Benevolence", "Look at the kitchen and both bedrooms. Then get there.", "several places"),
+        ("Allensville", "Visit the bedroom with the vase, then the kitchen, then go back there.",
+         "'back there'"),
+        ("demo", "Go to the kitchen. Then the office, and return there.", "'back there'"),
         # the guard: a demonstrative is never read as a fresh description, whatever stands before the noun
         ("Collierville", "Go to the bathroom on floor 1. Then go to that top floor bathroom.",
          "does not fit"),

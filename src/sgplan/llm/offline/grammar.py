@@ -1763,6 +1763,12 @@ class MissionParser:
                 raise self.fail("'there' does not refer to any place named before it")
             ref = max(goals, key=lambda r: r.start)
             self.determined("there", ref, len({e.room_key for e in ref.entities}))
+            if role == "goal" and self.going_back:  # "A, then B, then go back there": B is where it is
+                raise self.fail(f"'back there': 'there' is the place named last ('{ref.phrase}'), where the "
+                                f"robot just was; name the place to go back to")
+            if role != "qualifier" and ref.mode == "all" and len(ref.entities) > 1:
+                raise self.fail(f"'there' refers back to '{ref.phrase}', which is several places; name the "
+                                f"one meant")  # "both bedrooms, then back there": which one?
             entities = list(ref.entities)
             if role == "qualifier":  # "the clock in there": the room of the last goal
                 entities = list({e.room_key: self.vocab.by_key[e.room_key] for e in entities}.values())
