@@ -36,7 +36,7 @@ def read(text: str, building: Building, gold: str, start_floor: int | None = Non
         ("Hello! Please visit the office.", "F r12"),
         ("Hey there! Head to the kitchen, then the dining room.", "F(r4 & F r7)"),
         ("Okay, quick request. Go to the living room.", "F r6"),
-        ("I need a small favour. Look at the TV and never enter the kitchen.", "F o23 & G !r4"),
+        ("I need a favour. Look at the TV and never enter the kitchen.", "F o23 & G !r4"),
         ("I'm thirsty, grab something from the fridge.", "F o15"),
         ("Good morning, visit the dining room.", "F r7"),
         # 'in whatever order is quickest': the default (the planner picks the best order)
@@ -90,6 +90,10 @@ def test_stated_start_floor(demo, text, start, gold):
         ("Hi! The kitchen is a mess. Go to the office.", None, "kitchen"),
         ("If you're hungry, go to the fridge.", None, "hungry"),
         ("Let's get going, go to the kitchen.", None, ""),
+        # an order about something the scene lacks is never taken for chit-chat
+        ("Feed the cat. Then go to the kitchen.", None, "'cat'"),
+        ("I want you to feed the dog, then go to the kitchen.", None, "'dog'"),
+        ("Feed pets, then go to the kitchen.", None, "feed pets"),
         # chit-chat after the mission is not skipped (only leading words are)
         ("Go to the kitchen. Thanks a lot!", None, "lot"),
         # after all of them: of this sentence, or of the whole mission?
