@@ -113,6 +113,7 @@ def test_back_references_read(scene, text, gold):
          "'there' refers back to 'a bathroom'"),
         ("Allensville", "Go to a bathroom, then wash at the sink in there.", "a choice"),
         ("Allensville", "Look at a vase in the lobby, but don't touch it.", "a choice"),
+        ("Allensville", "Go to a bathroom, then the sink in the same room.", "'the same room' refers back"),
         ("Allensville", "Go to a bathroom, then use its sink.", "'its' refers back"),
         ("Benevolence", "Visit any bathroom, then go to the bedroom up there.", "'up there' refers back"),
         # 'that room' / 'the same room' as a place to go after several rooms: which one?

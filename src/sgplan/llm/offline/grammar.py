@@ -1779,7 +1779,7 @@ class MissionParser:
             return group
         if self.at("the", "same") and self.word(2) in ("room", "place") and role == "qualifier":
             self.i += 3  # "the sink in the same room": the room of the place named last
-            rooms = self.there_rooms(first.start)
+            rooms = self.there_rooms(first.start, f"the same {self.word(-1)}")
             if len(rooms) != 1:
                 raise self.fail(f"'the same {self.word(-1)}': the place named before it is "
                                 f"{' or '.join(r.key for r in rooms)}; name the room")
@@ -2149,7 +2149,7 @@ class MissionParser:
         self.i += 1
         return True
 
-    def there_rooms(self, before: int) -> list[Entity]:
+    def there_rooms(self, before: int, said: str = "there") -> list[Entity]:
         """The rooms *there* means at character offset ``before``: those of the last place named as a goal
         or a condition before it ("whenever you enter the kitchen, grab a bottle there")."""
         places = [r for r in self.references if r.role in ("goal", "condition") and r.start < before
@@ -2158,7 +2158,7 @@ class MissionParser:
             raise self.fail("'there' does not refer to any place named before it")
         last = max(places, key=lambda r: r.start)
         rooms = [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in last.entities)]
-        self.determined("there", last, len(rooms))
+        self.determined(said, last, len(rooms))
         return rooms
 
     def whole_building(self) -> bool:
