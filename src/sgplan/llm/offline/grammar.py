@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 from sgplan.errors import MissionError
+from sgplan.llm.offline import backref, preamble
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.compose import Step, Task, conj, disj, sequence_formula, strict_formulas
 from sgplan.llm.offline.everyday import everyday_names
@@ -153,6 +154,19 @@ _TRIP_NOUNS = frozenset({"trip", "visit", "stop", "detour", "run", "quick", "sho
 """``twice, with a trip / visit / stop to Y in between``: words naming the visit to Y."""
 _BETWEEN_TAIL = (("them",), ("the", "two"), ("the", "two", "visits"), ("each", "visit"), ("visits",))
 _MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
+_STATED_SUBJECTS = (("i", "am"), ("we", "are"), ("you", "are"), ("the", "robot", "is"), ("i",), ("we",),
+                    ("you",))
+"""*I'm* (the tokenizer drops the part after the apostrophe) / *we are* ... before where the robot is."""
+_AFTER_ALL = tuple((w, *rest) for w in ("after", "once", "when")
+                   for rest in (("all",), ("both",), ("all", "that"), ("you", "done", "those"),
+                                ("you", "have", "done", "those"), ("you", "done", "all", "that"),
+                                ("you", "have", "done", "all", "that"), ("you", "done", "all"),
+                                ("you", "have", "done", "all"), ("you", "done", "both"),
+                                ("you", "have", "done", "both"), ("those", "are", "done"),
+                                ("all", "are", "done"), ("all", "that", "is", "done")))
+"""*after all three (of them)*, *once you've done those*: after every goal said before (:meth:`after_all`)."""
+_NOW = (("right", "now"), ("now",), ("currently",), ("at", "once"), ("at", "present"))
+"""*right now* ...; *at the moment* reads *at once* here (``lx.PHRASE_ALIASES``: *the moment* = *once*)."""
 _STRUCTURAL = (
     frozenset(w for table in (_SEQ_WORDS, _NEG_STARTS, _QUAL_CONTAINS, _QUAL_LACKS, _QUAL_NEXT, _QUAL_EXCEPT,
                               lx.ORDER_MODIFIERS) for seq in table for w in seq)
@@ -186,6 +200,12 @@ class NounPhrase:
     """How many entities the phrase said ("the two beds"), if it said so."""
     generic: bool = False
     """The head noun was *room* / *place* (any room): *the one with ...* after it means any room too."""
+    alternative: bool = False
+    """One alternative of an *or* list (*the kitchen or the bathroom*): a back-reference to it is not
+    determined (see :func:`.backref.choice_refusal`)."""
+    choice_of: str | None = None
+    """A pronoun whose antecedent is a choice: why it is refused if it is made a goal (:meth:`tasks_of`;
+    *put it in Y* only carries it)."""
 
 
 @dataclass
@@ -295,7 +315,7 @@ class MissionParser:
     def parse(self) -> Formula:
         parts: list[Clause | Formula] = []
         tokens = everyday_names(rewrite(tokenize(self.text), lx.PHRASE_ALIASES), self.vocab)
-        all_sentences = sentences(tokens)
+        all_sentences = self.without_preamble(sentences(tokens))
         self.confined = self.confinement(all_sentences)
         for sentence in all_sentences:
             self.toks, self.i, self.sentence_scope, self.soft_scope = sentence, 0, [], []
@@ -303,11 +323,16 @@ class MissionParser:
             self.strict_pending = False
             self.body_actions = 0
             previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
+            opener = self.whole_mission_opener()
             precedes = self.sentence_precedes(parts)
             continues = self.skip_fillers(sequence_too=True)
             self.prior_steps = previous.steps if continues and previous is not None else []
             self.said_last = False
             result = self.sentence()
+            if opener and not (isinstance(result, Clause) and not any(result.steps) and result.constraints
+                               and all(isinstance(c, Always) for c in result.constraints)):
+                raise self.fail(f"'{opener}, ...' is understood only before what to avoid for the whole "
+                                f"mission ('{opener}, keep out of the kitchen')")
             self.expect_all_read()
             if self.said_last and not continues and not precedes and previous is not None:
                 continues = True  # "Go to the office last.": after the goals of the sentences before
@@ -333,6 +358,70 @@ class MissionParser:
         if not present:
             raise self.fail("the mission names no room or object to visit or avoid")
         return conj(present)
+
+    def without_preamble(self, all_sentences: list[list[Tok]]) -> list[list[Tok]]:
+        """The sentences without what asks nothing of the robot: statements of where it starts (*I'm
+        downstairs right now.*, :meth:`stated_start`, anywhere), and leading chit-chat sentences and the
+        chit-chat clause before the first comma of the first sentence with content (*Hi!*, *I'm hungry, go
+        to the fridge*; see :mod:`.preamble`)."""
+        kept: list[list[Tok]] = []
+        for sentence in all_sentences:
+            self.toks, self.i = sentence, 0
+            if self.stated_start():
+                continue
+            if not kept:
+                words = [t.text for t in sentence]
+                if preamble.is_chitchat(words, self.vocab, _STRUCTURAL):
+                    continue
+                sentence = sentence[preamble.leading_clause(words, self.vocab, _STRUCTURAL):]
+            kept.append(sentence)
+        return kept
+
+    def whole_mission_opener(self) -> str:
+        """Skips *The whole time,* / *At all times,* ... opening a sentence (the words, or "" if none): they
+        say what the trailing form says (*keep out of X the whole time*), so the sentence must be only
+        whole-mission avoidance, which :meth:`parse` checks."""
+        opener = self.at_any(lx.WHOLE_MISSION)
+        if opener is None or self.word(len(opener)) != "," or opener[0] in ("on", "along"):
+            return ""  # "On the way, X" is a waypoint (:meth:`body`)
+        said = self.span_text(self.toks[0].start, self.toks[len(opener) - 1].end)
+        self.i += len(opener) + 1
+        return said
+
+    def stated_start(self) -> bool:
+        """Reads a sentence that only says where the robot is (*I'm downstairs right now*, *we are on the
+        ground floor*, *you're upstairs*): the start floor, used by *upstairs* / *this floor* ...; refused
+        when it contradicts the known start floor, or when *upstairs* / *downstairs* do not name one floor.
+        False (nothing read) for any other sentence."""
+        k = next((len(s) for s in _STATED_SUBJECTS if self.at(*s)), 0)
+        if not k:
+            return False
+        k += 1 if self.word(k) in ("currently", "now", "still") else 0
+        w = self.word(k)
+        if w in lx.RELATIVE_FLOORS:
+            said, n = w, 1
+            floors = self.vocab.num_floors
+            extreme = 0 if w == "downstairs" else floors - 1
+            if floors != 2 and self.start_floor != extreme:
+                raise self.fail(f"'{w}': the building {self.vocab.building_name!r} has floors 0 to "
+                                f"{floors - 1}; say which floor the robot is on (e.g. 'I am on floor "
+                                f"{extreme}')")
+            floor = extreme
+        else:
+            j = k + (1 if w in ("on", "at") else 0)
+            j += 1 if self.word(j) == "the" else 0
+            if j == k or (found := self.floor_words(j)) is None or len(found[0]) != 1:
+                return False
+            floor, n, said = next(iter(found[0])), j - k + found[1], " ".join(self.words()[k:j + found[1]])
+        end = k + n
+        end += len(self.at_any(_NOW, k=end) or ())
+        if end != len(self.toks):
+            return False
+        if self.start_floor is not None and self.start_floor != floor:
+            raise self.fail(f"'{said}' says the robot is on floor {floor}, but it starts on floor "
+                            f"{self.start_floor}; say where it really is")
+        self.start_floor = floor
+        return True
 
     def expect_all_read(self) -> None:
         """The safeguard against silently dropped clauses: a sentence is understood only when every word
@@ -788,6 +877,10 @@ class MissionParser:
     def body(self) -> Clause:
         clause = Clause()
         while not self.done():
+            if self.after_all(clause):  # "..., and after all three, go to X": after every goal so far
+                if clause.steps[-1]:
+                    clause.steps.append([])
+                continue
             if self.at_any(_STRICT_SEQ) is not None and self.skip_fillers(sequence_too=True):
                 if clause.steps[-1]:
                     clause.steps.append([])
@@ -905,6 +998,35 @@ class MissionParser:
                 if len(steps) > 1:
                     clause.steps.extend(steps[1:])
         return clause
+
+    def after_all(self, clause: Clause) -> bool:
+        """Reads *(and / ,) after all three / after all of them / once you've done those (,)* after goals
+        of this sentence: what follows comes after every one of them (as a new step). Refused when the
+        number said is not the number of goals, or when an earlier sentence named goals too (all of which
+        ones?)."""
+        k = 2 if self.at(",", "and") else 1 if self.word() in (",", "and") else 0
+        phrase = self.at_any(_AFTER_ALL, k=k)
+        if phrase is None:
+            return False
+        n = len(phrase)
+        said = self.word(k + n) if self.word(k + n) in lx.NUMBER_WORDS else None
+        n += 1 if said is not None else 0
+        n += 2 if self.at("of", "them", k=k + n) or self.at("of", "those", k=k + n) else 0
+        if said is None and n == len(phrase) and phrase[-1] in ("all", "both") and self.np_starts(k + n):
+            return False  # "after all the bedrooms": an ordinary noun phrase
+        text = self.span_text(self.toks[self.i + k].start, self.toks[self.i + k + n - 1].end)
+        goals = sum(len(t.members) if t.mode == "all" else 1 for step in clause.steps for t in step)
+        if not goals:
+            return False
+        start = self.toks[0].start
+        if any(r.role == "goal" and r.start < start for r in self.references):
+            raise self.fail(f"'{text}': after the goals of this sentence only, or of the whole mission? Say "
+                            f"'then' and name what comes after what")
+        if said is not None and lx.NUMBER_WORDS[said] != goals:
+            raise self.fail(f"'{text}': this sentence names {goals} goals before it, not "
+                            f"{lx.NUMBER_WORDS[said]}")
+        self.i += k + n + (1 if self.word(k + n) == "," else 0)
+        return True
 
     def comma_sequence(self) -> bool:
         """At a comma between two actions (``go to the kitchen, pop up to the bedroom, then ...``): whether
@@ -1533,6 +1655,8 @@ class MissionParser:
     def tasks_of(self, nps: list[NounPhrase], ordered: bool) -> list[Step]:
         tasks = []
         for np in nps:
+            if np.choice_of is not None:  # "look at a vase, then look at it again": the same vase
+                raise self.fail(np.choice_of)
             members = [member_formula(e, np.room_scoped) for e in np.entities]
             tasks.append(Task("any" if np.mode == "any" else "all", members))
         if ordered and len(tasks) > 1:
@@ -1616,6 +1740,8 @@ class MissionParser:
                                 f"'any of ...'")
             # Being at an object implies being in its room, so locating some alternatives by their room and
             # others not changes nothing: the merged phrase locates all of them.
+            for np in nps:
+                np.alternative = True
             merged = NounPhrase(self.span_text(nps[0].start, nps[-1].end), nps[0].start, nps[-1].end,
                                 [e for np in nps for e in np.entities], "any",
                                 any(np.room_scoped for np in nps), role)
@@ -1636,6 +1762,13 @@ class MissionParser:
             if not goals:
                 raise self.fail("'there' does not refer to any place named before it")
             ref = max(goals, key=lambda r: r.start)
+            self.determined("there", ref, len({e.room_key for e in ref.entities}))
+            if role == "goal" and self.going_back:  # "A, then B, then go back there": B is where it is
+                raise self.fail(f"'back there': 'there' is the place named last ('{ref.phrase}'), where the "
+                                f"robot just was; name the place to go back to")
+            if role != "qualifier" and ref.mode == "all" and len(ref.entities) > 1:
+                raise self.fail(f"'there' refers back to '{ref.phrase}', which is several places; name the "
+                                f"one meant")  # "both bedrooms, then back there": which one?
             entities = list(ref.entities)
             if role == "qualifier":  # "the clock in there": the room of the last goal
                 entities = list({e.room_key: self.vocab.by_key[e.room_key] for e in entities}.values())
@@ -1646,7 +1779,7 @@ class MissionParser:
             return group
         if self.at("the", "same") and self.word(2) in ("room", "place") and role == "qualifier":
             self.i += 3  # "the sink in the same room": the room of the place named last
-            rooms = self.there_rooms(first.start)
+            rooms = self.there_rooms(first.start, f"the same {self.word(-1)}")
             if len(rooms) != 1:
                 raise self.fail(f"'the same {self.word(-1)}': the place named before it is "
                                 f"{' or '.join(r.key for r in rooms)}; name the room")
@@ -1656,6 +1789,7 @@ class MissionParser:
             self.i += 1  # "its sink": the sink in the room just named (or in the room of the object named)
             ref = self.antecedent("it")
             container = [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in ref.entities)]
+            self.determined("its", ref, len(container))
             head = self.head(None)
             if head.kind == "room":  # "the other bedroom and its bathroom": the bathroom attached to it
                 owned = self.vocab.next_to(self.vocab.of_head(head), container)
@@ -1673,6 +1807,9 @@ class MissionParser:
             np = NounPhrase(self.span_text(first.start, first.end), first.start, first.end,
                             list(ref.entities),
                             pronoun_mode, ref.room_scoped, role)
+            np.choice_of = backref.choice_refusal(w, ref, len(ref.entities))
+            if np.choice_of is not None and role != "goal":  # only a carried goal may leave it open
+                raise self.fail(np.choice_of)
             return self.record(np)
         if self.word() in ("the", "a") and self.word(1) in lx.ANAPHORIC_ONE and one_head is None:
             one_head = self.last_head()  # "the teddy bear in the bedroom, then the one in the living room"
@@ -1682,7 +1819,27 @@ class MissionParser:
             other = True
         if other:
             self.i += 1
-        mode, count = self.quantifier()
+        demo = self.demonstrative()
+        mode: Mode | None
+        count: int | None
+        quantified: Mode | None = None
+        """The quantifier before a demonstrative (*one of* / *all of those bedrooms*)."""
+        pointer = self.word() if demo else ""
+        if demo:  # "that bathroom", "those two bedrooms", "the same sink": resolved below, never fresh
+            self.i += demo
+            mode, count = "the", None
+            n = self.count_word()
+            if n is not None:
+                mode, count = "all", n
+        else:
+            mode, count = self.quantifier()
+            if mode is not None and self.demonstrative():  # "one of those bedrooms": chosen among them
+                quantified = mode
+                demo = self.demonstrative()
+                pointer = self.word()
+                self.i += demo
+                if count is None and (n := self.count_word()) is not None:
+                    count = n
         floors_first: frozenset[int] | None = None
         relative = ""
         if self.word() in lx.RELATIVE_FLOORS:  # "the upstairs bathroom": applied once the noun is read
@@ -1765,6 +1922,8 @@ class MissionParser:
             floor = self.floor_qualifier(entities)
             if floor is not None:
                 entities = self.on_floors(entities, floor)
+                continue
+            if self.whole_building():  # "any TV in the house": anywhere, as without it
                 continue
             if (self.word() in _QUAL_IN and self.np_starts(1) and not self.at_any(lx.ORDER_MODIFIERS)
                     and not self.at_any(lx.TIME_FILLERS)
@@ -1854,8 +2013,19 @@ class MissionParser:
                 entities = [e for e in entities if e.key not in keys]
                 continue
             break
-        there = (self.vocab.inside(entities, self.soft_scope) if role == "goal" and head.kind == "object"
-                 else [])
+        if demo:
+            spoken = self.span_text(first.start, self.toks[self.i - 1].end)
+            plural = head.plural or quantified is not None or pointer in backref.PLURAL_DEMONSTRATIVES
+            got = backref.resolve(spoken, head, plural, entities, self.references, first.start,
+                                  self.vocab.by_key, role == "goal")
+            if isinstance(got, str):
+                raise self.fail(got)
+            entities, mode, room_scoped = got.entities, quantified or got.mode, room_scoped or got.room_scoped
+            if count is not None and len(entities) != count:
+                raise self.fail(f"'{spoken}' refers back to '{got.antecedent}', which is {len(entities)}, "
+                                f"not {count}")
+        there = (self.vocab.inside(entities, self.soft_scope)
+                 if role == "goal" and head.kind == "object" and not demo else [])
         if not room_scoped and mode == "the" and not head.plural and len(entities) > 1 and len(there) == 1:
             entities, room_scoped = there, True
         elif not room_scoped and 0 < len(there) < len(entities) and first.text in ("the", "a", "an"):
@@ -1865,7 +2035,7 @@ class MissionParser:
                             f"on "
                             f"{where}: the ones there, or any in the building? Say 'the {noun} in the "
                             f"{self.soft_scope[0].category}' or 'any {head_word(entities)}'")
-        if role != "qualifier" and scope and head.kind == "object" and not room_scoped:
+        if role != "qualifier" and scope and head.kind == "object" and not room_scoped and not demo:
             scoped = self.vocab.inside(entities, scope)
             if scoped:
                 entities, room_scoped = scoped, True
@@ -1979,7 +2149,7 @@ class MissionParser:
         self.i += 1
         return True
 
-    def there_rooms(self, before: int) -> list[Entity]:
+    def there_rooms(self, before: int, said: str = "there") -> list[Entity]:
         """The rooms *there* means at character offset ``before``: those of the last place named as a goal
         or a condition before it ("whenever you enter the kitchen, grab a bottle there")."""
         places = [r for r in self.references if r.role in ("goal", "condition") and r.start < before
@@ -1987,7 +2157,27 @@ class MissionParser:
         if not places:
             raise self.fail("'there' does not refer to any place named before it")
         last = max(places, key=lambda r: r.start)
-        return [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in last.entities)]
+        rooms = [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in last.entities)]
+        self.determined(said, last, len(rooms))
+        return rooms
+
+    def whole_building(self) -> bool:
+        """Skips ``in the house`` / ``in this building`` / ``anywhere in the home`` after a noun (not ``in the
+        home office``, a room): the whole building restricts nothing."""
+        k = 2 if self.at("anywhere", "in") else 1 if self.word() in ("in", "inside", "throughout") else 0
+        if not k or self.word(k) not in ("the", "this", "our", "my", "your"):
+            return False
+        if self.word(k + 1) not in lx.WHOLE_BUILDING or self.vocab.match_head(self.words(), self.i + k + 1):
+            return False
+        self.i += k + 2
+        return True
+
+    def determined(self, said: str, ref: NounPhrase, places: int) -> None:
+        """Refuses ``said`` (*there*, *up there*, *its*, *next to it*) pointing back to a choice whose
+        alternatives differ in what ``said`` denotes (``places`` of them)."""
+        reason = backref.choice_refusal(said, ref, places)
+        if reason is not None:
+            raise self.fail(reason)
 
     def floor_place(self, first: Tok, floors: frozenset[int], mode: Mode | None, role: Role) -> NounPhrase:
         """``the top floor`` as a place: any of its rooms as a goal or condition, all of them to avoid."""
@@ -2066,6 +2256,7 @@ class MissionParser:
         if not outer:
             raise self.fail("'it' does not refer to any room named before it")
         ref = max(outer, key=lambda r: r.start)
+        self.determined("next to it", ref, len(ref.entities))
         if any(e.kind != "room" for e in ref.entities):
             raise self.fail(f"'next to it': 'it' is '{ref.phrase}', an object; 'next to' is understood for "
                             f"rooms "
@@ -2094,6 +2285,17 @@ class MissionParser:
                                       self.toks[self.i - 1].end, list(ref.entities), "all", ref.room_scoped,
                                       "goal"))
 
+    def demonstrative(self) -> int:
+        """How many words of a back-pointing determiner start the noun phrase here (*that*, *those*, *the
+        same* ... before a room or object noun, with or without a number); 0 if none."""
+        n = backref.demonstrative_length(self.words(), self.i)
+        if not n:
+            return 0
+        k = n + (1 if self.word(n) in lx.NUMBER_WORDS or self.word(n).isdigit() else 0)
+        if self.word(k) in lx.FLOOR_WORDS or self.word(k) in lx.ANAPHORIC_ONE:
+            return 0  # "this floor": the start floor (:meth:`floor_words`); "that one" is refused
+        return n
+
     def quantifier(self) -> tuple[Mode | None, int | None]:
         """Determiners -> (mode, required count); ``None`` mode = decided by the head's number."""
         w = self.word()
@@ -2112,10 +2314,15 @@ class MissionParser:
             mode, count = "all", (2 if w == "both" else None)
             if self.word() == "of":
                 self.i += 1
+        elif w in backref.DEMONSTRATIVES and self.word(1) not in lx.FLOOR_WORDS:
+            # the guard against reading a back-reference as a fresh description: only the demonstrative
+            # path (:meth:`demonstrative`, :func:`.backref.resolve`) may ground "that ..." / "this ..."
+            raise self.fail(f"'{w} {self.word(1)}' refers back to something named before, and is understood "
+                            f"only directly before a room or object ('{w} bathroom'); name it instead")
         elif w in ("the", "this", "that", "these", "those") or w in _POSSESSIVES:
             self.i += 1
             mode = "the"
-        if self.word() in ("the", "these", "those") and mode is not None:
+        if self.word() == "the" and mode is not None:
             self.i += 1
         counted = self.np_starts(1) or self.vocab.match_head(self.words(), self.i + 1)
         n = self.count_word() if counted else None
@@ -2183,8 +2390,12 @@ class MissionParser:
             goals = [r for r in self.references if r.role == "goal" and r.entities]
             if not goals:
                 raise self.fail(f"'{self.word()} there' does not refer to any place named before it")
+            where = f"{self.word()} there"
             self.i += 2
-            return frozenset(e.floor for e in max(goals, key=lambda r: r.start).entities)
+            last = max(goals, key=lambda r: r.start)
+            floors = frozenset(e.floor for e in last.entities)
+            self.determined(where, last, len(floors))
+            return floors
         if self.word() not in ("on", "in", "at", "of", "from"):
             return None
         if self.at("the", "same", k=1) and self.word(3) in lx.FLOOR_WORDS:

@@ -73,7 +73,9 @@ ANAPHORIC_ONE = ("one", "ones")
 
 PRONOUNS = ("it", "them", "they", "its")
 
-ARTICLES_SINGULAR = ("the", "this", "that")
+WHOLE_BUILDING = ("house", "building", "home", "apartment", "flat")
+"""``any TV in the house``: the whole building, which restricts nothing."""
+
 INDEFINITE = ("a", "an", "any", "some", "either")
 UNIVERSAL = ("all", "every", "each", "both")
 
@@ -133,6 +135,8 @@ REFUSED_VERBS: dict[str, str] = {
     "except": "'except' here (put 'except ...' right after the noun phrase it restricts)",
     "previous": "'previous' (name the rooms or objects again instead of referring back to them)",
     "same": "'the same ...' (name the room or object again instead of referring back to it)",
+    "former": "'the former' (name the room or object again instead of referring back to it)",
+    "latter": "'the latter' (name the room or object again instead of referring back to it)",
     "other": "'other' (name the room or object explicitly)",
     "last": "'last' (name the room or object explicitly)",
     "most": "'most'",
@@ -248,7 +252,13 @@ TIME_FILLERS = (("at", "some", "point"), ("at", "any", "time"), ("sometime",), (
                 *((*order, *liking) for order in (("in", "any", "order"), ("in", "whatever", "order"),
                                                   ("in", "whichever", "order"), ("in", "either", "order"))
                   for liking in (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "choose"),
-                                 ("you", "please"), ("you", "wish"))),
+                                 ("you", "please"), ("you", "wish"),
+                                 # "in whatever order is quickest": the planner's optimal order is that
+                                 *(("is", best) for best in ("quickest", "fastest", "shortest", "best",
+                                                             "easiest", "efficient", "cheapest")),
+                                 ("is", "most", "efficient"), ("works", "best"), ("makes", "sense"),
+                                 ("makes", "the", "most", "sense"), ("is", "the", "quickest"),
+                                 ("is", "the", "fastest"), ("is", "the", "shortest"))),
                 ("in", "whichever", "order"))
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
