@@ -99,8 +99,10 @@ def bench_part(args: argparse.Namespace, variants: dict[str, Path], caches: dict
     walls = {}
     for name, src in variants.items():
         with tempfile.TemporaryDirectory() as out:
+            # Source trees older than `--quiet` show their progress bar instead.
+            quiet = ["--quiet"] if "--quiet" in (src / "sgplan" / "commands" / "common.py").read_text() else []
             argv = [sys.executable, "-m", "sgplan.cli", "bench", "--data", str(args.data), "--out", out,
-                    "--profile", "authors", "--no-report", "--quiet", *shlex.split(args.bench_args)]
+                    "--profile", "authors", "--no-report", *quiet, *shlex.split(args.bench_args)]
             t0 = time.perf_counter()
             done = subprocess.run(argv, capture_output=True, text=True, env=child_env(src, caches[name]),
                                   check=False)
