@@ -128,8 +128,8 @@ def _maps_built(session: sgplan.Session) -> np.ndarray:
 @pytest.mark.parametrize("setup", ["ALL", "NO-LLM", "A*"])
 def test_a_second_mission_on_a_session_builds_only_what_depends_on_it(demo, setup: str, prebuild: bool) -> None:
     """Work counted, not timed: the grid, the cell graph, the masks of propositions already seen, the
-    action tables, every action map and every h_LTL distance field are built once per session; the plans
-    are those of fresh calls (same cost and path)."""
+    action tables, every action map, every h_LTL distance field and the label runs of each labelling are
+    built once per session; the plans are those of fresh calls (same cost and path)."""
     session = sgplan.Session(demo)
     first = sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo)
     second = sgplan.mission_from_formula('F("reach(object_28)" & F "enter(room_5)")', demo)
@@ -137,13 +137,14 @@ def test_a_second_mission_on_a_session_builds_only_what_depends_on_it(demo, setu
     fields = set(session.parts.kept("distance_field"))
     built = (dict(session.builds), dict(session.parts.builds))
     assert built == ({"grid": 1, "label_mask": len(first.ordered_propositions)},
-                     {"cell_graph": 1, "action_tables": 1, "action_maps": 1, "distance_field": len(fields)})
+                     {"cell_graph": 1, "action_tables": 1, "action_maps": 1, "label_runs": 1,
+                      "distance_field": len(fields)})
     maps_a = _maps_built(session).copy()
     b = session.plan(second, 0, setup=setup, prebuild_actions=prebuild)
     new_props = set(second.ordered_propositions) - set(first.ordered_propositions)
     assert session.builds == {"grid": 1, "label_mask": built[0]["label_mask"] + len(new_props)}
     new_fields = set(session.parts.kept("distance_field")) - fields
-    assert session.parts.builds == {"cell_graph": 1, "action_tables": 1, "action_maps": 1,
+    assert session.parts.builds == {"cell_graph": 1, "action_tables": 1, "action_maps": 1, "label_runs": 2,
                                     "distance_field": len(fields) + len(new_fields)}
     fresh_maps = []
     for kept, mission in ((a, first), (b, second)):
@@ -160,7 +161,7 @@ def test_a_second_mission_on_a_session_builds_only_what_depends_on_it(demo, setu
     assert (setup == "A*") == (not maps_a.any())
     again = session.plan(first, 0, setup=setup, prebuild_actions=prebuild)  # nothing new at all
     assert session.parts.builds["distance_field"] == len(fields) + len(new_fields)
-    assert sum(session.parts.builds.values()) == 3 + len(fields) + len(new_fields)
+    assert sum(session.parts.builds.values()) == 5 + len(fields) + len(new_fields)
     assert again.cost_m == a.cost_m and np.array_equal(np.asarray(again.path), np.asarray(a.path))
     session.plan(first, 0, setup="A*", robot_radius_m=0.2)  # another grid: its own cell graph and maps
     assert session.builds["grid"] == 2

@@ -45,10 +45,10 @@ KernelActions = namedtuple(
     "map_src_ptr map_src map_stop_room map_stop_count map_exit_cell map_exit_cost",
 )
 KernelMaps = namedtuple("KernelMaps", "done dist pred run order count built")
-"""Composite action maps: ``done (M,)`` uint8 map ready for this problem (its label runs computed);
-``dist``, ``pred``, ``order (M, n)`` and ``count``, ``built (M,)``: the shortest-path fields, shared by
-the problems of a session (:class:`MapStore`); ``run (M, n)`` the label runs, this problem's own (they
-follow its labels)."""
+"""Composite action maps: ``dist``, ``pred``, ``order (M, n)``, ``count``, ``built (M,)`` the
+shortest-path fields, shared by the problems of a session (:class:`MapStore`); ``run (M, n)`` the label
+runs over them and ``done (M,)`` uint8 (map and runs ready), shared by the problems with the same cell
+labels (:class:`LabelRuns`)."""
 KernelLogic = namedtuple(
     "KernelLogic",
     "trans accepting dead idempotent hmap q_row h_ready h_dist h_ptr h_label h_add llm_sum llm_target "
@@ -219,13 +219,18 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
     store = shared_part(problem.shared, "action_maps", (problem.grid, problem.reach_radius_m, component),
                         lambda: MapStore.empty(tables, graph, reachable))
     kactions = tables.kactions._replace(map_stop_count=store.stop_count)
+    # Label runs follow which cells share a label: shared by the problems with the same cell labels.
+    labelling = hashlib.blake2b(cell_label.tobytes(), digest_size=16).digest()
+    runs = shared_part(problem.shared, "label_runs",
+                       (problem.grid, problem.reach_radius_m, component, labelling),
+                       lambda: LabelRuns.empty(store))
     del reachable
     clock.lap("action_tables")
     kmaps = KernelMaps(
-        done=np.zeros(len(maps), dtype=np.uint8),
+        done=runs.done,
         dist=store.dist,
         pred=store.pred,
-        run=sparse_zeros(store.dist.shape, np.int32),
+        run=runs.run,
         order=store.order,
         count=store.count,
         built=store.built,
@@ -446,6 +451,27 @@ class MapStore:
         """Bytes committed, estimated from the cells settled (the few cells reached but not settled at
         an early stop, and page rounding, are not counted)."""
         return int(self.count.sum()) * 16 + self.count.nbytes + self.stop_count.nbytes + self.built.nbytes
+
+
+@dataclass(eq=False)
+class LabelRuns:
+    """The label runs (:func:`sgplan.planning._dijkstra.label_runs`) over the maps of a :class:`MapStore`
+    for one cell labelling: ``run (M, n)`` lazily committed, ``done (M,)`` uint8 1 once family k's map
+    and runs are ready (the kernel's ``KernelMaps.done``)."""
+
+    store: MapStore
+    run: np.ndarray
+    done: np.ndarray
+
+    @classmethod
+    def empty(cls, store: MapStore) -> LabelRuns:
+        return cls(store=store, run=sparse_zeros(store.dist.shape, np.int32),
+                   done=np.zeros(store.count.shape[0], dtype=np.uint8))
+
+    def nbytes(self) -> int:
+        """Bytes committed, estimated as 4 per settled cell of the ready maps (the store's own bytes are
+        counted with the store)."""
+        return int(self.store.count[self.done.astype(bool)].sum()) * 4 + self.done.nbytes
 
 
 def _distance_field(problem: PlanningProblem, graph: CellGraph, cells: np.ndarray) -> np.ndarray:

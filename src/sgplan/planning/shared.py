@@ -8,8 +8,10 @@ by every planning problem of the session. The parts kept (:mod:`sgplan.planning.
   reach radius);
 - ``action_maps``: the shortest-path fields (distances, predecessors, settling order) of those families,
   filled lazily by the search as it needs them (key: grid, reach radius, and the connected component of
-  the start, which sets where a map's early stop may end); the label runs over them depend on the
-  mission's labels and stay with each problem;
+  the start, which sets where a map's early stop may end);
+- ``label_runs``: the runs of equal labels along those maps' paths (key: the same, and a digest of the
+  cells' labels: shared by problems whose cells carry the same labels, e.g. one mission from several
+  starts or setups);
 - ``distance_field``: the exact distance from every cell to a set of target cells, the terms of h_LTL
   (key: grid, the target cells).
 
