@@ -100,7 +100,8 @@ def bench_part(args: argparse.Namespace, variants: dict[str, Path], caches: dict
     for name, src in variants.items():
         with tempfile.TemporaryDirectory() as out:
             # Source trees older than `--quiet` show their progress bar instead.
-            quiet = ["--quiet"] if "--quiet" in (src / "sgplan" / "commands" / "common.py").read_text() else []
+            common = (src / "sgplan" / "commands" / "common.py").read_text()
+            quiet = ["--quiet"] if "--quiet" in common else []
             argv = [sys.executable, "-m", "sgplan.cli", "bench", "--data", str(args.data), "--out", out,
                     "--profile", "authors", "--no-report", *quiet, *shlex.split(args.bench_args)]
             t0 = time.perf_counter()

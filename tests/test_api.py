@@ -126,7 +126,9 @@ def _maps_built(session: sgplan.Session) -> np.ndarray:
 
 @pytest.mark.parametrize("prebuild", [False, True])
 @pytest.mark.parametrize("setup", ["ALL", "NO-LLM", "A*"])
-def test_a_second_mission_on_a_session_builds_only_what_depends_on_it(demo, setup: str, prebuild: bool) -> None:
+def test_a_second_mission_on_a_session_builds_only_what_depends_on_it(
+    demo, setup: str, prebuild: bool
+) -> None:
     """Work counted, not timed: the grid, the cell graph, the masks of propositions already seen, the
     action tables, every action map, every h_LTL distance field and the label runs of each labelling are
     built once per session; the plans are those of fresh calls (same cost and path)."""

@@ -212,7 +212,8 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
 
     tables = shared_part(problem.shared, "action_tables", (problem.grid, problem.reach_radius_m),
                          lambda: _action_tables(problem, graph))
-    cell_room, in_region, room_uuids, maps = tables.cell_room, tables.in_region, tables.room_uuids, tables.maps
+    cell_room, in_region, room_uuids = tables.cell_room, tables.in_region, tables.room_uuids
+    maps = tables.maps
     # The maps' early stops depend on which cells the search can stand on: the start's component, named
     # by its lowest cell.
     component = int(np.argmax(reachable))
@@ -224,7 +225,6 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
     runs = shared_part(problem.shared, "label_runs",
                        (problem.grid, problem.reach_radius_m, component, labelling),
                        lambda: LabelRuns.empty(store))
-    del reachable
     clock.lap("action_tables")
     kmaps = KernelMaps(
         done=runs.done,
@@ -423,8 +423,8 @@ class MapStore:
     (:func:`sgplan.planning._search.build_map`) and then reused by every later problem of the session.
 
     ``dist`` / ``pred`` / ``order`` ``(M, n)`` (lazily committed: a family costs 16 bytes per cell its
-    Dijkstra touched), ``count (M,)`` cells settled, ``built (M,)`` uint8 1 once the family's Dijkstra ran (it runs once
-    per store)."""
+    Dijkstra touched), ``count (M,)`` cells settled, ``built (M,)`` uint8 1 once the family's Dijkstra
+    ran (it runs once per store)."""
 
     stop_count: np.ndarray
     dist: np.ndarray
