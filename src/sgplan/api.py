@@ -431,7 +431,8 @@ def plan(
     callback:
         called with each AMRA* iteration record as it finishes.
     session:
-        plan within this :class:`Session` (its grids and labels are reused); default a new one.
+        plan within this :class:`Session` (its grids, labels, action maps and distance fields are
+        reused); default a new one that keeps no planner parts.
     prebuild_actions:
         build every composite action map before the search starts (the paper's accounting: the first
         path comes milliseconds after the search starts); default ``False`` builds each map when the
@@ -445,8 +446,8 @@ def plan(
     SceneError, MissionError
         the mission names entities the building lacks.
     """
-    if session is None:
-        session = Session(building)
+    if session is None:  # a one-off session keeps nothing: no copy of what this plan holds anyway
+        session = Session(building, max_shared_bytes=0)
     elif session.building is not building:
         raise PlanningError("the session plans on another building than the one given")
     return session.plan(

@@ -74,8 +74,8 @@ def build_map(G, A, M, k):
     :class:`~sgplan.planning.domain.MapStore`), then this problem's label runs over them."""
     f = A.map_floor[k]
     lo = G.floor_offset[f]
+    hi = G.floor_offset[f + 1]
     if M.built[k] == 0:
-        hi = G.floor_offset[f + 1]
         src = A.map_src[A.map_src_ptr[k] : A.map_src_ptr[k + 1]]
         M.count[k] = dijkstra(
             G.nbr,
@@ -93,10 +93,10 @@ def build_map(G, A, M, k):
             A.map_stop_count[k],
             M.dist[k],
             M.pred[k],
-            M.order[k],
+            M.order,
         )
         M.built[k] = 1
-    label_runs(M.order[k], M.count[k], M.pred[k], G.cell_label, lo, M.run[k])
+    label_runs(M.pred[k], hi - lo, G.cell_label, lo, M.run[k], M.order)
     M.done[k] = 1
 
 

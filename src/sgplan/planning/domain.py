@@ -45,10 +45,10 @@ KernelActions = namedtuple(
     "map_src_ptr map_src map_stop_room map_stop_count map_exit_cell map_exit_cost",
 )
 KernelMaps = namedtuple("KernelMaps", "done dist pred run order count built")
-"""Composite action maps: ``dist``, ``pred``, ``order (M, n)``, ``count``, ``built (M,)`` the
-shortest-path fields, shared by the problems of a session (:class:`MapStore`); ``run (M, n)`` the label
-runs over them and ``done (M,)`` uint8 (map and runs ready), shared by the problems with the same cell
-labels (:class:`LabelRuns`)."""
+"""Composite action maps: ``dist``, ``pred (M, n)``, ``count``, ``built (M,)`` the shortest-path
+fields, shared by the problems of a session (:class:`MapStore`); ``run (M, n)`` the label runs over them
+and ``done (M,)`` uint8 (map and runs ready), shared by the problems with the same cell labels
+(:class:`LabelRuns`); ``order (n,)`` scratch."""
 KernelLogic = namedtuple(
     "KernelLogic",
     "trans accepting dead idempotent hmap q_row h_ready h_dist h_ptr h_label h_add llm_sum llm_target "
@@ -203,7 +203,7 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
     reachable = graph.reachable(start_cell)
     clock.lap("reachable")
     ltl = build_ltl_heuristic(graph, cell_label, trans, accepting, q_start, reachable,
-                              distances=lambda cells: _distance_field(problem, graph, cells))
+                              distances=lambda cells, out: _distance_field(problem, graph, cells, out))
     clock.lap("ltl")
     if not accepting[q_start] and not np.isfinite(ltl.value(start_cell, q_start)):
         raise PlanningError(
@@ -231,7 +231,7 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
         dist=store.dist,
         pred=store.pred,
         run=runs.run,
-        order=store.order,
+        order=np.zeros(store.dist.shape[1], dtype=np.int32),
         count=store.count,
         built=store.built,
     )
@@ -422,14 +422,13 @@ class MapStore:
     connected component, filled by the search the first time a family is needed
     (:func:`sgplan.planning._search.build_map`) and then reused by every later problem of the session.
 
-    ``dist`` / ``pred`` / ``order`` ``(M, n)`` (lazily committed: a family costs 16 bytes per cell its
-    Dijkstra touched), ``count (M,)`` cells settled, ``built (M,)`` uint8 1 once the family's Dijkstra
+    ``dist`` / ``pred`` ``(M, n)`` (lazily committed: a family costs 12 bytes per cell its Dijkstra
+    touched), ``count (M,)`` cells settled, ``built (M,)`` uint8 1 once the family's Dijkstra
     ran (it runs once per store)."""
 
     stop_count: np.ndarray
     dist: np.ndarray
     pred: np.ndarray
-    order: np.ndarray
     count: np.ndarray
     built: np.ndarray
 
@@ -442,7 +441,6 @@ class MapStore:
                                    tables.kactions.map_stop_room),
             dist=sparse_zeros((m, n_max), np.float64),
             pred=sparse_zeros((m, n_max), np.int32),
-            order=sparse_zeros((m, n_max), np.int32),
             count=np.zeros(m, dtype=np.int64),
             built=np.zeros(m, dtype=np.uint8),
         )
@@ -450,7 +448,7 @@ class MapStore:
     def nbytes(self) -> int:
         """Bytes committed, estimated from the cells settled (the few cells reached but not settled at
         an early stop, and page rounding, are not counted)."""
-        return int(self.count.sum()) * 16 + self.count.nbytes + self.stop_count.nbytes + self.built.nbytes
+        return int(self.count.sum()) * 12 + self.count.nbytes + self.stop_count.nbytes + self.built.nbytes
 
 
 @dataclass(eq=False)
@@ -474,18 +472,22 @@ class LabelRuns:
         return int(self.store.count[self.done.astype(bool)].sum()) * 4 + self.done.nbytes
 
 
-def _distance_field(problem: PlanningProblem, graph: CellGraph, cells: np.ndarray) -> np.ndarray:
-    """Exact metres from every cell to ``cells`` (:meth:`CellGraph.distances`), shared within a session
-    by grid and target cells (read-only)."""
+def _distance_field(problem: PlanningProblem, graph: CellGraph, cells: np.ndarray, out: np.ndarray) -> None:
+    """Write into ``out`` the exact metres from every cell to ``cells`` (:meth:`CellGraph.distances`),
+    kept by the session (a read-only copy) by grid and target cells; computed in place when the session
+    keeps nothing."""
+    if problem.shared is None or not problem.shared.keeps:
+        graph.distances(cells, out=out)
+        return
     cells = np.ascontiguousarray(cells, dtype=np.int64)
     key = (problem.grid, len(cells), hashlib.blake2b(cells.tobytes(), digest_size=16).digest())
 
     def build() -> np.ndarray:
-        field_ = graph.distances(cells)
-        field_.flags.writeable = False
-        return field_
+        kept = graph.distances(cells, out=out).copy()
+        kept.flags.writeable = False
+        return kept
 
-    return shared_part(problem.shared, "distance_field", key, build)
+    out[:] = problem.shared.get("distance_field", key, build)
 
 
 def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:

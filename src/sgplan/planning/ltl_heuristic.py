@@ -113,7 +113,7 @@ def build_ltl_heuristic(
     accepting: np.ndarray,
     q_start: int,
     reachable: np.ndarray | None = None,
-    distances: Callable[[np.ndarray], np.ndarray] | None = None,
+    distances: Callable[[np.ndarray, np.ndarray], object] | None = None,
 ) -> LtlHeuristic:
     """Tabulate h_LTL for the states reachable from ``q_start``.
 
@@ -134,9 +134,9 @@ def build_ltl_heuristic(
         (the search never leaves them), which tightens h and makes it ``inf`` when a needed label occurs
         only elsewhere.
     distances:
-        optional ``distances(cells) -> (N,)`` float64 exact metres from every cell to ``cells`` (sorted
-        cell indices), e.g. kept by a session (:mod:`sgplan.planning.shared`); default
-        :meth:`CellGraph.distances`. The returned array is read, not kept.
+        optional ``distances(cells, out)`` writing into ``out`` ((N,) float64) the exact metres from
+        every cell to ``cells`` (sorted cell indices), e.g. kept by a session
+        (:mod:`sgplan.planning.shared`); default :meth:`CellGraph.distances`.
     """
     num_states, num_labels = trans.shape
     accepting = np.asarray(accepting, dtype=bool)
@@ -154,7 +154,7 @@ def build_ltl_heuristic(
         if distances is None:
             graph.distances(cells, out=dist[i])
         else:
-            dist[i] = distances(cells)
+            distances(cells, dist[i])
     region_cost = np.full((len(needed), len(needed)), np.inf)
     for i, cells in enumerate(regions):
         for j in range(len(needed)) if cells.size else ():

@@ -76,10 +76,19 @@ class SharedParts:
         self.builds: Counter[str] = Counter()
         self.evictions: Counter[str] = Counter()
 
+    @property
+    def keeps(self) -> bool:
+        """Whether parts are kept at all (``max_bytes > 0``)."""
+        return self.max_bytes > 0
+
     def get(self, name: str, key: Hashable, build: Callable[[], T]) -> T:
-        """The part ``name`` for ``key``, built by ``build()`` the first time (or after it was dropped).
-        The part must not be changed by its users, except a part designed to fill itself lazily (action
-        maps): every later problem of the session gets the same object."""
+        """The part ``name`` for ``key``, built by ``build()`` the first time (or after it was dropped;
+        every time when nothing is kept). The part must not be changed by its users, except a part
+        designed to fill itself lazily (action maps): every later problem of the session gets the same
+        object."""
+        if not self.keeps:
+            self.builds[name] += 1
+            return build()
         slot = (name, key)
         if slot in self._parts:
             self._parts.move_to_end(slot)
