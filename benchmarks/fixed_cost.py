@@ -99,8 +99,11 @@ def bench_part(args: argparse.Namespace, variants: dict[str, Path], caches: dict
     walls = {}
     for name, src in variants.items():
         with tempfile.TemporaryDirectory() as out:
+            # Source trees older than `--quiet` show their progress bar instead.
+            common = (src / "sgplan" / "commands" / "common.py").read_text()
+            quiet = ["--quiet"] if "--quiet" in common else []
             argv = [sys.executable, "-m", "sgplan.cli", "bench", "--data", str(args.data), "--out", out,
-                    "--profile", "authors", "--no-report", "--quiet", *shlex.split(args.bench_args)]
+                    "--profile", "authors", "--no-report", *quiet, *shlex.split(args.bench_args)]
             t0 = time.perf_counter()
             done = subprocess.run(argv, capture_output=True, text=True, env=child_env(src, caches[name]),
                                   check=False)
@@ -113,11 +116,14 @@ def bench_part(args: argparse.Namespace, variants: dict[str, Path], caches: dict
               flush=True)
         walls[f"{name}:costs"] = {r["key"]: r["cost_m"] for r in rows}  # type: ignore[assignment]
     names = list(variants)
-    if len(names) > 1:
-        first = names[0]
-        for other in names[1:]:
-            same = walls[f"{first}:costs"] == walls[f"{other}:costs"]
-            print(f"  {first} / {other}: x{walls[first] / walls[other]:.2f} wall; costs identical: {same}")
+    for i, first in enumerate(names):
+        for other in names[i + 1:]:
+            a, b = walls[f"{first}:costs"], walls[f"{other}:costs"]
+            same = a == b
+            gaps = [abs(a[k] - b[k]) for k in a.keys() & b.keys() if a[k] is not None and b[k] is not None]
+            print(f"  {first} / {other}: x{walls[first] / walls[other]:.2f} wall; costs identical: {same} "
+                  f"({len(a.keys() & b.keys())} cases in both, largest cost difference "
+                  f"{max(gaps, default=0.0):.3g} m, unpaired {len(a.keys() ^ b.keys())})")
 
 
 def main() -> None:

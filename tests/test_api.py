@@ -118,25 +118,78 @@ def test_a_session_keeps_grids_and_labels_and_plans_like_fresh_calls(demo) -> No
         sgplan.plan(sgplan.load_scene("demo"), first, session=session)
 
 
-def test_a_second_mission_on_a_session_builds_only_what_depends_on_it(demo) -> None:
-    """Work counted, not timed: the grid, the cell graph and the masks of propositions already seen are
+def _maps_built(session: sgplan.Session) -> np.ndarray:
+    """The one action-map store of a session (one grid, radius and component), as built flags."""
+    (store,) = session.parts.kept("action_maps").values()
+    return store.built.astype(bool)
+
+
+@pytest.mark.parametrize("prebuild", [False, True])
+@pytest.mark.parametrize("setup", ["ALL", "NO-LLM", "A*"])
+def test_a_second_mission_on_a_session_builds_only_what_depends_on_it(
+    demo, setup: str, prebuild: bool
+) -> None:
+    """Work counted, not timed: the grid, the cell graph, the masks of propositions already seen, the
+    action tables, every action map, every h_LTL distance field and the label runs of each labelling are
     built once per session; the plans are those of fresh calls (same cost and path)."""
     session = sgplan.Session(demo)
     first = sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo)
     second = sgplan.mission_from_formula('F("reach(object_28)" & F "enter(room_5)")', demo)
-    a = session.plan(first, 0, setup="A*")
+    a = session.plan(first, 0, setup=setup, prebuild_actions=prebuild)
+    fields = set(session.parts.kept("distance_field"))
     built = (dict(session.builds), dict(session.parts.builds))
-    assert built == ({"grid": 1, "label_mask": len(first.ordered_propositions)}, {"cell_graph": 1})
-    b = session.plan(second, 0, setup="A*")
+    assert built == ({"grid": 1, "label_mask": len(first.ordered_propositions)},
+                     {"cell_graph": 1, "action_tables": 1, "action_maps": 1, "label_runs": 1,
+                      "distance_field": len(fields)})
+    maps_a = _maps_built(session).copy()
+    b = session.plan(second, 0, setup=setup, prebuild_actions=prebuild)
     new_props = set(second.ordered_propositions) - set(first.ordered_propositions)
     assert session.builds == {"grid": 1, "label_mask": built[0]["label_mask"] + len(new_props)}
-    assert session.parts.builds == {"cell_graph": 1}
+    new_fields = set(session.parts.kept("distance_field")) - fields
+    assert session.parts.builds == {"cell_graph": 1, "action_tables": 1, "action_maps": 1, "label_runs": 2,
+                                    "distance_field": len(fields) + len(new_fields)}
+    fresh_maps = []
     for kept, mission in ((a, first), (b, second)):
-        fresh = sgplan.plan(demo, mission, 0, setup="A*")
+        alone = sgplan.Session(demo)
+        fresh = alone.plan(mission, 0, setup=setup, prebuild_actions=prebuild)
+        assert kept.status == fresh.status == "optimal"
         assert kept.cost_m == pytest.approx(fresh.cost_m, abs=1e-9)
         assert np.array_equal(np.asarray(kept.path), np.asarray(fresh.path))
-    session.plan(first, 0, setup="A*", robot_radius_m=0.2)  # another grid: its own cell graph
-    assert session.builds["grid"] == 2 and session.parts.builds == {"cell_graph": 2}
+        fresh_maps.append(_maps_built(alone))
+    # The second mission built exactly the maps it needs that the first had not: what the session holds
+    # is the union of what each mission builds alone (none for A*, every map when prebuilt).
+    assert np.array_equal(_maps_built(session), fresh_maps[0] | fresh_maps[1])
+    assert np.array_equal(maps_a, fresh_maps[0])
+    assert (setup == "A*") == (not maps_a.any())
+    again = session.plan(first, 0, setup=setup, prebuild_actions=prebuild)  # nothing new at all
+    assert session.parts.builds["distance_field"] == len(fields) + len(new_fields)
+    assert sum(session.parts.builds.values()) == 5 + len(fields) + len(new_fields)
+    assert again.cost_m == a.cost_m and np.array_equal(np.asarray(again.path), np.asarray(a.path))
+    session.plan(first, 0, setup="A*", robot_radius_m=0.2)  # another grid: its own cell graph and maps
+    assert session.builds["grid"] == 2
+    assert (session.parts.builds["cell_graph"], session.parts.builds["action_maps"]) == (2, 2)
+
+
+def test_session_parts_are_bounded_by_bytes_least_recently_used_first(demo) -> None:
+    """A session over its byte cap drops the parts used longest ago after a plan, and rebuilds them
+    when needed again, with the same result."""
+    mission = sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo)
+    session = sgplan.Session(demo, max_shared_bytes=0)  # keeps nothing
+    first = session.plan(mission, 0, setup="NO-LLM", prebuild_actions=True)
+    again = session.plan(mission, 0, setup="NO-LLM", prebuild_actions=True)
+    assert len(session.parts) == 0 and session.parts.builds["action_maps"] == 2
+    assert again.cost_m == first.cost_m and np.array_equal(again.path, first.path)
+    roomy = sgplan.Session(demo)
+    roomy.plan(mission, 0, setup="NO-LLM", prebuild_actions=True)
+    held = roomy.parts.nbytes()
+    (store,) = roomy.parts.kept("action_maps").values()
+    assert held >= store.nbytes() > 0
+    roomy.parts.max_bytes = held - 1  # one byte short: the oldest part (the cell graph) goes
+    assert roomy.parts.trim() < held and roomy.parts.evictions == {"cell_graph": 1}
+    assert roomy.parts.kept("action_maps")
+    again = roomy.plan(mission, 0, setup="NO-LLM", prebuild_actions=True)  # the graph rebuilt, maps kept
+    assert roomy.parts.builds["cell_graph"] == 2 and roomy.parts.builds["action_maps"] == 1
+    assert again.cost_m == first.cost_m and np.array_equal(again.path, first.path)
 
 
 @pytest.mark.parametrize("setup", ["ALL", "NO-LLM"])

@@ -193,18 +193,27 @@ def _explanation(mission: Mission, building: Building) -> _Explained:
 class Session:
     """Plans many missions on one building, keeping between them the occupancy grid of each robot radius,
     the label raster of each (proposition, reach radius) and the planner's building-only parts (``parts``:
-    the cell graph of each grid, ...; :mod:`sgplan.planning.shared`), so a second mission pays only for
-    what depends on it. ``builds`` counts what the session built (grids, label masks, parts).
+    the cell graph of each grid, the composite action tables and maps of each grid and reach radius, the
+    h_LTL distance field of each target region; :mod:`sgplan.planning.shared`), so a second mission pays
+    only for what depends on it. ``builds`` counts what the session built (grids, label masks);
+    ``parts.builds`` the parts.
+
+    The parts are bounded: after each plan the least recently used are dropped until they hold at most
+    ``max_shared_bytes`` (default 1 GiB, or ``$SGPLAN_SESSION_BYTES``); grids and label masks are kept
+    (one per radius and proposition).
 
     >>> session = Session(sgplan.load_scene("demo"))                    # doctest: +SKIP
     >>> [session.plan(m, start="kitchen").cost_m for m in missions]    # doctest: +SKIP
     """
 
-    def __init__(self, building: Building | str | Path, data: str | Path | None = None) -> None:
+    def __init__(
+        self, building: Building | str | Path, data: str | Path | None = None, *,
+        max_shared_bytes: int | None = None,
+    ) -> None:
         self.building = load_scene(building, data)
         self._grids: dict[float, OccupancyGrid] = {}
         self._masks: dict[tuple[Proposition, float], np.ndarray] = {}
-        self.parts = SharedParts()
+        self.parts = SharedParts(max_shared_bytes)
         self.builds: Counter[str] = Counter()
 
     def radii(self, robot_radius_m: float | None = None, reach_radius_m: float | None = None) -> Radii:
@@ -256,6 +265,31 @@ class Session:
         prebuild_actions: bool = False,
     ) -> PlanResult:
         """Plan ``mission`` from ``start`` with AMRA*; see :func:`sgplan.plan`."""
+        try:
+            return self._plan(
+                mission, start, setup=setup, profile=profile, robot_radius_m=robot_radius_m,
+                reach_radius_m=reach_radius_m, time_limit_s=time_limit_s, max_expansions=max_expansions,
+                verify=verify, guide=guide, callback=callback, prebuild_actions=prebuild_actions,
+            )
+        finally:
+            self.parts.trim()
+
+    def _plan(
+        self,
+        mission: Mission,
+        start: StartSpec,
+        *,
+        setup: str,
+        profile: str,
+        robot_radius_m: float | None,
+        reach_radius_m: float | None,
+        time_limit_s: float | None,
+        max_expansions: int | None,
+        verify: bool,
+        guide: MissionGuide | None,
+        callback: IterationCallback | None,
+        prebuild_actions: bool,
+    ) -> PlanResult:
         from sgplan.jit import announce_compile
         from sgplan.planning.amra import get_setup
         from sgplan.planning.amra import plan as amra_plan
@@ -397,7 +431,8 @@ def plan(
     callback:
         called with each AMRA* iteration record as it finishes.
     session:
-        plan within this :class:`Session` (its grids and labels are reused); default a new one.
+        plan within this :class:`Session` (its grids, labels, action maps and distance fields are
+        reused); default a new one that keeps no planner parts.
     prebuild_actions:
         build every composite action map before the search starts (the paper's accounting: the first
         path comes milliseconds after the search starts); default ``False`` builds each map when the
@@ -411,8 +446,8 @@ def plan(
     SceneError, MissionError
         the mission names entities the building lacks.
     """
-    if session is None:
-        session = Session(building)
+    if session is None:  # a one-off session keeps nothing: no copy of what this plan holds anyway
+        session = Session(building, max_shared_bytes=0)
     elif session.building is not building:
         raise PlanningError("the session plans on another building than the one given")
     return session.plan(

@@ -10,7 +10,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import dijkstra as scipy_dijkstra
 
 from sgplan.errors import SceneError
-from sgplan.planning._dijkstra import dijkstra
+from sgplan.planning._dijkstra import dijkstra, label_runs
 from sgplan.planning.cells import STEPS, build_cell_graph
 from sgplan.planning.domain import _compact_labels, stop_counts
 from sgplan.scene.grid import OccupancyGrid, StairsLink
@@ -96,6 +96,15 @@ def test_distances_match_scipy(seed: int, res, stairs_cost: float, num_sources: 
             stairs = (graph.stairs_from == cell) & (graph.stairs_to == nxt)
             moves = np.concatenate([graph.step_cost[graph.nbr[cell] == nxt], graph.stairs_cost[stairs]])
             assert np.isclose(moves, step, atol=1e-9).any()
+    # Label runs from pred alone: the last cell of the equal-label stretch, walked naively.
+    labels = np.random.default_rng(seed + 1).integers(0, 3, n).astype(np.int32)
+    run = np.zeros(n, np.int32)
+    label_runs(pred, n, labels, 0, run, np.empty(n, np.int32))
+    for cell in range(n):
+        last = cell if pred[cell] else -1
+        while last >= 0 and pred[last] > 1 and labels[pred[last] - 2] == labels[cell]:
+            last = pred[last] - 2
+        assert run[cell] == last + 1
 
 
 def test_many_sources_and_early_stop_grow_the_queues() -> None:

@@ -6,7 +6,8 @@ on stdin and writes one JSON object (the measurements, see :func:`measure`) as t
 ``python -m sgplan.bench.worker --serve`` is a long-lived worker: it reads requests one per line and
 answers each with one line, until stdin closes; the local executor keeps one per job and starts a fresh one
 only after a crash or a wall timeout (a crash still takes down nothing but its case). It keeps the last
-scene's :class:`sgplan.Session` (building, grids, label masks) for the next cases of the same scene, and
+scene's :class:`sgplan.Session` (building, grids, label masks, action maps, distance fields) for the next
+cases of the same scene, and
 resets the kernel's peak-memory mark before every case (Linux), so ``peak_rss_mb`` is the peak during the
 case (which includes what the process already holds: interpreter, libraries, the kept scene).
 """
@@ -68,7 +69,8 @@ def reset_peak_rss() -> bool:
 
 class SceneKeeper:
     """The :class:`sgplan.Session` of the last scene folder asked for: consecutive cases of one scene
-    share its building, grids and label masks (only one scene is kept, so memory stays one scene's)."""
+    share its building, grids, label masks, action maps and h_LTL distance fields (only one scene is kept,
+    and its session's planner parts are capped by bytes, so memory stays one scene's)."""
 
     def __init__(self) -> None:
         self.folder: str | None = None

@@ -222,14 +222,32 @@ def flood(nbr, stairs_first, stairs_from, stairs_to, start, seen):
 
 
 @njit(cache=True)
-def label_runs(order, count, pred, cell_label, lo, run):
+def label_runs(pred, n, cell_label, lo, run, stack):
     """``run[x] = j + 1`` where local ``j`` is the last cell of the same-label stretch that starts at ``x``
-    and follows ``pred`` towards the sources. Lets an action's automaton run skip repeated labels."""
-    for i in range(count):
-        u = order[i]
-        p = pred[u]
-        if p == 1:
-            run[u] = u + 1
-        else:
-            w = p - 2
-            run[u] = run[w] if cell_label[w + lo] == cell_label[u + lo] else u + 1
+    and follows ``pred`` towards the sources, for every reached ``x < n`` (``run`` all zeros before).
+    Lets an action's automaton run skip repeated labels.
+
+    Needs only ``pred`` (not the settling order, so a map kept for other labellings costs nothing more):
+    each chain is walked up to a cell whose run is known, then filled back down. ``stack`` is scratch of
+    at least ``n`` int32. A pass over ``n`` cells; the unreached ones are a read each."""
+    for x in range(n):
+        if pred[x] == 0 or run[x] != 0:
+            continue
+        top = 0
+        y = x
+        while run[y] == 0:
+            stack[top] = y
+            top += 1
+            p = pred[y]
+            if p == 1:
+                break
+            y = p - 2
+        while top > 0:
+            top -= 1
+            u = stack[top]
+            p = pred[u]
+            if p == 1:
+                run[u] = u + 1
+            else:
+                w = p - 2
+                run[u] = run[w] if cell_label[w + lo] == cell_label[u + lo] else u + 1

@@ -69,30 +69,34 @@ the anchor, anchor expansions of states reached by a composite action]``; ``expa
 
 @njit(cache=True)
 def build_map(G, A, M, k):
-    """Exact shortest paths of composite action family ``k`` (multi-source Dijkstra on its floor)."""
+    """Make composite action family ``k`` ready for this problem: its exact shortest paths
+    (multi-source Dijkstra on its floor; skipped when the shared store has them already, see
+    :class:`~sgplan.planning.domain.MapStore`), then this problem's label runs over them."""
     f = A.map_floor[k]
     lo = G.floor_offset[f]
     hi = G.floor_offset[f + 1]
-    src = A.map_src[A.map_src_ptr[k] : A.map_src_ptr[k + 1]]
-    count = dijkstra(
-        G.nbr,
-        G.step_cost,
-        G.stairs_first,
-        G.stairs_from,
-        G.stairs_to,
-        G.stairs_cost,
-        lo,
-        hi,
-        np.bool_(False),
-        src,
-        G.cell_room,
-        A.map_stop_room[k],
-        A.map_stop_count[k],
-        M.dist[k],
-        M.pred[k],
-        M.order,
-    )
-    label_runs(M.order, count, M.pred[k], G.cell_label, lo, M.run[k])
+    if M.built[k] == 0:
+        src = A.map_src[A.map_src_ptr[k] : A.map_src_ptr[k + 1]]
+        M.count[k] = dijkstra(
+            G.nbr,
+            G.step_cost,
+            G.stairs_first,
+            G.stairs_from,
+            G.stairs_to,
+            G.stairs_cost,
+            lo,
+            hi,
+            np.bool_(False),
+            src,
+            G.cell_room,
+            A.map_stop_room[k],
+            A.map_stop_count[k],
+            M.dist[k],
+            M.pred[k],
+            M.order,
+        )
+        M.built[k] = 1
+    label_runs(M.pred[k], hi - lo, G.cell_label, lo, M.run[k], M.order)
     M.done[k] = 1
 
 

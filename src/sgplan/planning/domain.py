@@ -16,6 +16,7 @@ automaton accepts part-way along the path, the action stops there (a shorter seq
 
 from __future__ import annotations
 
+import hashlib
 import time
 from collections import namedtuple
 from dataclasses import dataclass, field
@@ -43,7 +44,11 @@ KernelActions = namedtuple(
     "room_obj_ptr room_obj_map room_room_ptr room_room_map floor_up_map floor_down_map map_floor "
     "map_src_ptr map_src map_stop_room map_stop_count map_exit_cell map_exit_cost",
 )
-KernelMaps = namedtuple("KernelMaps", "done dist pred run order")
+KernelMaps = namedtuple("KernelMaps", "done dist pred run order count built")
+"""Composite action maps: ``dist``, ``pred (M, n)``, ``count``, ``built (M,)`` the shortest-path
+fields, shared by the problems of a session (:class:`MapStore`); ``run (M, n)`` the label runs over them
+and ``done (M,)`` uint8 (map and runs ready), shared by the problems with the same cell labels
+(:class:`LabelRuns`); ``order (n,)`` scratch."""
 KernelLogic = namedtuple(
     "KernelLogic",
     "trans accepting dead idempotent hmap q_row h_ready h_dist h_ptr h_label h_add llm_sum llm_target "
@@ -197,34 +202,38 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
 
     reachable = graph.reachable(start_cell)
     clock.lap("reachable")
-    ltl = build_ltl_heuristic(graph, cell_label, trans, accepting, q_start, reachable)
+    ltl = build_ltl_heuristic(graph, cell_label, trans, accepting, q_start, reachable,
+                              distances=lambda cells, out: _distance_field(problem, graph, cells, out))
     clock.lap("ltl")
     if not accepting[q_start] and not np.isfinite(ltl.value(start_cell, q_start)):
         raise PlanningError(
             _infeasible_reason(problem, label_masks[cell_label], reachable, q_start), status="infeasible"
         )
 
-    rooms = list(problem.building.rooms())
-    room_uuids = [room.uuid for room in rooms]
-    room_lut = np.full(max([room.id for room in rooms], default=0) + 2, -1, dtype=np.int32)
-    for i, room in enumerate(rooms):
-        room_lut[room.id] = i
-    room_ids = graph.gather(problem.grid.room_map)
-    inside = (room_ids > 0) & (room_ids < len(room_lut) - 1)
-    cell_room = np.full(graph.num_cells, -1, dtype=np.int32)
-    cell_room[inside] = room_lut[room_ids[inside]]
-    del room_ids, inside
-
-    maps, kactions, in_region = _action_maps(problem, graph, rooms, cell_room, reachable)
-    del reachable
+    tables = shared_part(problem.shared, "action_tables", (problem.grid, problem.reach_radius_m),
+                         lambda: _action_tables(problem, graph))
+    cell_room, in_region, room_uuids = tables.cell_room, tables.in_region, tables.room_uuids
+    maps = tables.maps
+    # The maps' early stops depend on which cells the search can stand on: the start's component, named
+    # by its lowest cell.
+    component = int(np.argmax(reachable))
+    store = shared_part(problem.shared, "action_maps", (problem.grid, problem.reach_radius_m, component),
+                        lambda: MapStore.empty(tables, graph, reachable))
+    kactions = tables.kactions._replace(map_stop_count=store.stop_count)
+    # Label runs follow which cells share a label: shared by the problems with the same cell labels.
+    labelling = hashlib.blake2b(cell_label.tobytes(), digest_size=16).digest()
+    runs = shared_part(problem.shared, "label_runs",
+                       (problem.grid, problem.reach_radius_m, component, labelling),
+                       lambda: LabelRuns.empty(store))
     clock.lap("action_tables")
-    n_max = int(np.diff(graph.floor_offset).max()) if graph.num_cells else 0
     kmaps = KernelMaps(
-        done=np.zeros(len(maps), dtype=np.uint8),
-        dist=sparse_zeros((len(maps), n_max), np.float64),
-        pred=sparse_zeros((len(maps), n_max), np.int32),
-        run=sparse_zeros((len(maps), n_max), np.int32),
-        order=np.zeros(n_max, dtype=np.int32),
+        done=runs.done,
+        dist=store.dist,
+        pred=store.pred,
+        run=runs.run,
+        order=np.zeros(store.dist.shape[1], dtype=np.int32),
+        count=store.count,
+        built=store.built,
     )
 
     llm = (
@@ -388,10 +397,112 @@ def _infeasible_reason(
     )
 
 
-def _action_maps(
-    problem: PlanningProblem, graph: CellGraph, rooms: list, cell_room: np.ndarray, reachable: np.ndarray
-) -> tuple[list[ActionMap], KernelActions, np.ndarray]:
-    """The composite action families and their per-room / per-floor tables for the kernel."""
+@dataclass(eq=False)
+class ActionTables:
+    """The composite action families of a grid and reach radius, and what the kernel needs to choose
+    them (no mission, no start: shared by a session's problems).
+
+    ``kactions.map_stop_count`` is a placeholder: the stop counts follow the start's component
+    (:class:`MapStore`)."""
+
+    maps: list[ActionMap]
+    kactions: KernelActions
+    in_region: np.ndarray
+    cell_room: np.ndarray
+    room_uuids: list[int]
+    num_rooms: int
+
+    def nbytes(self) -> int:
+        return self.in_region.nbytes + self.cell_room.nbytes + sum(a.nbytes for a in self.kactions)
+
+
+@dataclass(eq=False)
+class MapStore:
+    """The shortest-path fields of every action family of an :class:`ActionTables`, for starts in one
+    connected component, filled by the search the first time a family is needed
+    (:func:`sgplan.planning._search.build_map`) and then reused by every later problem of the session.
+
+    ``dist`` / ``pred`` ``(M, n)`` (lazily committed: a family costs 12 bytes per cell its Dijkstra
+    touched), ``count (M,)`` cells settled, ``built (M,)`` uint8 1 once the family's Dijkstra
+    ran (it runs once per store)."""
+
+    stop_count: np.ndarray
+    dist: np.ndarray
+    pred: np.ndarray
+    count: np.ndarray
+    built: np.ndarray
+
+    @classmethod
+    def empty(cls, tables: ActionTables, graph: CellGraph, reachable: np.ndarray) -> MapStore:
+        n_max = int(np.diff(graph.floor_offset).max()) if graph.num_cells else 0
+        m = len(tables.maps)
+        return cls(
+            stop_count=stop_counts(tables.cell_room, reachable, tables.num_rooms,
+                                   tables.kactions.map_stop_room),
+            dist=sparse_zeros((m, n_max), np.float64),
+            pred=sparse_zeros((m, n_max), np.int32),
+            count=np.zeros(m, dtype=np.int64),
+            built=np.zeros(m, dtype=np.uint8),
+        )
+
+    def nbytes(self) -> int:
+        """Bytes committed, estimated from the cells settled (the few cells reached but not settled at
+        an early stop, and page rounding, are not counted)."""
+        return int(self.count.sum()) * 12 + self.count.nbytes + self.stop_count.nbytes + self.built.nbytes
+
+
+@dataclass(eq=False)
+class LabelRuns:
+    """The label runs (:func:`sgplan.planning._dijkstra.label_runs`) over the maps of a :class:`MapStore`
+    for one cell labelling: ``run (M, n)`` lazily committed, ``done (M,)`` uint8 1 once family k's map
+    and runs are ready (the kernel's ``KernelMaps.done``)."""
+
+    store: MapStore
+    run: np.ndarray
+    done: np.ndarray
+
+    @classmethod
+    def empty(cls, store: MapStore) -> LabelRuns:
+        return cls(store=store, run=sparse_zeros(store.dist.shape, np.int32),
+                   done=np.zeros(store.count.shape[0], dtype=np.uint8))
+
+    def nbytes(self) -> int:
+        """Bytes committed, estimated as 4 per settled cell of the ready maps (the store's own bytes are
+        counted with the store)."""
+        return int(self.store.count[self.done.astype(bool)].sum()) * 4 + self.done.nbytes
+
+
+def _distance_field(problem: PlanningProblem, graph: CellGraph, cells: np.ndarray, out: np.ndarray) -> None:
+    """Write into ``out`` the exact metres from every cell to ``cells`` (:meth:`CellGraph.distances`),
+    kept by the session (a read-only copy) by grid and target cells; computed in place when the session
+    keeps nothing."""
+    if problem.shared is None or not problem.shared.keeps:
+        graph.distances(cells, out=out)
+        return
+    cells = np.ascontiguousarray(cells, dtype=np.int64)
+    key = (problem.grid, len(cells), hashlib.blake2b(cells.tobytes(), digest_size=16).digest())
+
+    def build() -> np.ndarray:
+        kept = graph.distances(cells, out=out).copy()
+        kept.flags.writeable = False
+        return kept
+
+    out[:] = problem.shared.get("distance_field", key, build)
+
+
+def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
+    """The composite action families of the problem's grid and reach radius, and their per-room /
+    per-floor tables for the kernel."""
+    rooms = list(problem.building.rooms())
+    room_lut = np.full(max([room.id for room in rooms], default=0) + 2, -1, dtype=np.int32)
+    for i, room in enumerate(rooms):
+        room_lut[room.id] = i
+    room_ids = graph.gather(problem.grid.room_map)
+    inside = (room_ids > 0) & (room_ids < len(room_lut) - 1)
+    cell_room = np.full(graph.num_cells, -1, dtype=np.int32)
+    cell_room[inside] = room_lut[room_ids[inside]]
+    del room_ids, inside
+
     grid = problem.grid
     floors = graph.shape[0]
     room_index = {room.id: i for i, room in enumerate(rooms)}
@@ -476,11 +587,12 @@ def _action_maps(
         map_src_ptr=src_ptr,
         map_src=map_src,
         map_stop_room=stop_rooms,
-        map_stop_count=stop_counts(cell_room, reachable, len(rooms), stop_rooms),
+        map_stop_count=np.zeros(len(maps), dtype=np.int64),  # per component: MapStore.stop_count
         map_exit_cell=np.array(exit_cell, dtype=np.int64),
         map_exit_cost=np.array(exit_cost, dtype=np.float64),
     )
-    return maps, kactions, in_region
+    return ActionTables(maps=maps, kactions=kactions, in_region=in_region, cell_room=cell_room,
+                        room_uuids=[room.uuid for room in rooms], num_rooms=len(rooms))
 
 
 def stop_counts(

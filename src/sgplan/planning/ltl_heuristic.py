@@ -24,6 +24,7 @@ lazily committed ``hmap`` are never written).
 from __future__ import annotations
 
 import heapq
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -112,6 +113,7 @@ def build_ltl_heuristic(
     accepting: np.ndarray,
     q_start: int,
     reachable: np.ndarray | None = None,
+    distances: Callable[[np.ndarray, np.ndarray], object] | None = None,
 ) -> LtlHeuristic:
     """Tabulate h_LTL for the states reachable from ``q_start``.
 
@@ -131,6 +133,10 @@ def build_ltl_heuristic(
         optional ``(N,)`` bool, the cells reachable from the start: label regions are restricted to them
         (the search never leaves them), which tightens h and makes it ``inf`` when a needed label occurs
         only elsewhere.
+    distances:
+        optional ``distances(cells, out)`` writing into ``out`` ((N,) float64) the exact metres from
+        every cell to ``cells`` (sorted cell indices), e.g. kept by a session
+        (:mod:`sgplan.planning.shared`); default :meth:`CellGraph.distances`.
     """
     num_states, num_labels = trans.shape
     accepting = np.asarray(accepting, dtype=bool)
@@ -145,7 +151,10 @@ def build_ltl_heuristic(
     counts[needed] = [len(r) for r in regions]
     dist = np.empty((len(needed), graph.num_cells), dtype=np.float64)
     for i, cells in enumerate(regions):
-        graph.distances(cells, out=dist[i])
+        if distances is None:
+            graph.distances(cells, out=dist[i])
+        else:
+            distances(cells, dist[i])
     region_cost = np.full((len(needed), len(needed)), np.inf)
     for i, cells in enumerate(regions):
         for j in range(len(needed)) if cells.size else ():
