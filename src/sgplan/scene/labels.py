@@ -18,9 +18,9 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
-from scipy import ndimage
 
 from sgplan.errors import FormulaError, MissionError, SceneError
+from sgplan.scene.dilate import box_dilate
 from sgplan.scene.model import Building
 
 PropositionKind = Literal["enter", "reach"]
@@ -110,10 +110,7 @@ def _reach_mask(cat_map: np.ndarray, object_id: int, half: tuple[int, int]) -> n
     # Work in the object's bounding box grown by the window: the rest of the floor stays False.
     r0, r1 = max(0, rows[0] - half[0]), min(cat_map.shape[0], rows[-1] + half[0] + 1)
     c0, c1 = max(0, cols[0] - half[1]), min(cat_map.shape[1], cols[-1] + half[1] + 1)
-    window = (2 * half[0] + 1, 2 * half[1] + 1)
-    out[r0:r1, c0:c1] = ndimage.maximum_filter(
-        footprint[r0:r1, c0:c1].view(np.uint8), size=window, mode="constant", cval=0
-    ).view(bool)
+    out[r0:r1, c0:c1] = box_dilate(footprint[r0:r1, c0:c1], half)
     return out
 
 
