@@ -29,6 +29,7 @@ from sgplan.planning.shared import SharedParts
 from sgplan.scene.model import Building
 
 if TYPE_CHECKING:  # the planner, grid and labels (numba, scipy) load when a plan is made, not for a mission
+    from sgplan.explain import Explanation
     from sgplan.llm.backends import Backends, MissionGuide
     from sgplan.mission import Mission
     from sgplan.planning.amra import IterationCallback
@@ -178,13 +179,15 @@ class _Explained(TypedDict):
     explanation_method: str
 
 
-def _explanation(mission: Mission, building: Building) -> _Explained:
+def _explanation(mission: Mission, building: Building, given: Explanation | None = None) -> _Explained:
     """The mission explained in plain English (:func:`sgplan.explain.explain_mission`) as the
-    ``explanation`` and ``explanation_method`` of a :class:`PlanResult`: the one place a plan gets it."""
-    from sgplan.explain import explain_mission
+    ``explanation`` and ``explanation_method`` of a :class:`PlanResult`: the one place a plan gets it.
+    ``given``: the caller's explanation of this mission and building (already said back), used as it is."""
+    if given is None:
+        from sgplan.explain import explain_mission
 
-    explained = explain_mission(mission, building)
-    return {"explanation": explained.text, "explanation_method": explained.method}
+        given = explain_mission(mission, building)
+    return {"explanation": given.text, "explanation_method": given.method}
 
 
 # -- planning ----------------------------------------------------------------------------------------
@@ -254,6 +257,7 @@ class Session:
         guide: MissionGuide | None = None,
         callback: IterationCallback | None = None,
         prebuild_actions: bool = False,
+        explanation: Explanation | None = None,
     ) -> PlanResult:
         """Plan ``mission`` from ``start`` with AMRA*; see :func:`sgplan.plan`."""
         from sgplan.jit import announce_compile
@@ -293,7 +297,7 @@ class Session:
             iterations=found.iterations, mission_text=mission.text, grounded_text=mission.grounded_text,
             formula=_formula_text(mission), propositions=mission.descriptions, guidance=guidance,
             notes=list(mission.notes), building=self.building, grid=grid, labels=prepared.problem.labels,
-            mission=mission, scene_check=scene_check, **_explanation(mission, self.building),
+            mission=mission, scene_check=scene_check, **_explanation(mission, self.building, explanation),
         )
         if found.status == "optimal":
             result.bound = 1.0
@@ -372,6 +376,7 @@ def plan(
     callback: IterationCallback | None = None,
     session: Session | None = None,
     prebuild_actions: bool = False,
+    explanation: Explanation | None = None,
 ) -> PlanResult:
     """Plan an optimal path for ``mission`` over ``building`` with AMRA* and check it.
 
@@ -403,6 +408,10 @@ def plan(
         path comes milliseconds after the search starts); default ``False`` builds each map when the
         search first needs it, which makes the whole plan about 0.6x as long on the Gibson scenes
         (A* never builds any).
+    explanation:
+        the mission's explanation over this building (:func:`sgplan.explain.explain_mission` with the
+        scene's reach radius) when the caller already made it, e.g. to say it back before planning: the
+        result carries it instead of making it again (a few tens of ms); default: made here.
 
     Raises
     ------
@@ -419,4 +428,5 @@ def plan(
         mission, start, setup=setup, profile=profile, robot_radius_m=robot_radius_m,
         reach_radius_m=reach_radius_m, time_limit_s=time_limit_s, max_expansions=max_expansions,
         verify=verify, guide=guide, callback=callback, prebuild_actions=prebuild_actions,
+        explanation=explanation,
     )
