@@ -37,23 +37,20 @@ def within_distance(footprint: np.ndarray, resolution_m: tuple[float, float], ra
 
     Equals ``scipy.ndimage.distance_transform_edt(~footprint, sampling=resolution_m) <= radius_m`` when
     ``footprint`` has a True cell (the distance is computed the same way: ``sqrt((dr*res_r)**2 +
-    (dc*res_c)**2)`` in float64). Cost: one row-run dilation per kernel row, O(rows of the disk x cells).
+    (dc*res_c)**2)`` in float64). Separable: the column distance to the nearest True cell of each row
+    first, then one vectorised test per row offset within the radius.
     """
     footprint = np.asarray(footprint, dtype=bool)
     res_r, res_c = float(resolution_m[0]), float(resolution_m[1])
-    out = np.zeros(footprint.shape, dtype=bool)
     rows, cols = footprint.shape
-    reach_r = min(int(radius_m / res_r) + 1, rows)
-    reach_c = np.arange(min(int(radius_m / res_c) + 1, cols) + 1)
-    for dr in range(-reach_r, reach_r + 1):
-        # Widest column offset of this kernel row: the same float expression as the EDT's distance.
-        inside = np.sqrt((dr * res_r) ** 2 + (reach_c * res_c) ** 2) <= radius_m
-        if not inside[0]:
-            continue
-        width = int(np.flatnonzero(inside)[-1])
-        src = footprint[max(0, dr):rows + min(0, dr)]  # row i + dr of the footprint lands on row i
-        if src.size == 0:
-            continue
-        spread = _runs_any(src, width, width, axis=1)
-        out[max(0, -dr):rows - max(0, dr)] |= spread
+    col = np.arange(cols, dtype=np.float64)
+    left = np.maximum.accumulate(np.where(footprint, col, -np.inf), axis=1)
+    right = np.minimum.accumulate(np.where(footprint, col, np.inf)[:, ::-1], axis=1)[:, ::-1]
+    dc = np.minimum(col - left, right - col)  # columns to the nearest True cell of the row (inf: none)
+    step_c = (dc * res_c) ** 2
+    out = np.zeros(footprint.shape, dtype=bool)
+    reach = min(int(radius_m / res_r) + 1, rows)  # row offsets beyond it are farther than the radius
+    for dr in range(-reach, reach + 1):
+        src = step_c[max(0, dr):rows + min(0, dr)]  # row i + dr lands on row i
+        out[max(0, -dr):rows - max(0, dr)] |= np.sqrt((dr * res_r) ** 2 + src) <= radius_m
     return out
