@@ -38,19 +38,31 @@ def within_distance(footprint: np.ndarray, resolution_m: tuple[float, float], ra
     Equals ``scipy.ndimage.distance_transform_edt(~footprint, sampling=resolution_m) <= radius_m`` when
     ``footprint`` has a True cell (the distance is computed the same way: ``sqrt((dr*res_r)**2 +
     (dc*res_c)**2)`` in float64). Separable: the column distance to the nearest True cell of each row
-    first, then one vectorised test per row offset within the radius.
+    first, then one integer test per row offset within the radius, on the rows holding True cells only.
     """
     footprint = np.asarray(footprint, dtype=bool)
     res_r, res_c = float(resolution_m[0]), float(resolution_m[1])
     rows, cols = footprint.shape
-    col = np.arange(cols, dtype=np.float64)
-    left = np.maximum.accumulate(np.where(footprint, col, -np.inf), axis=1)
-    right = np.minimum.accumulate(np.where(footprint, col, np.inf)[:, ::-1], axis=1)[:, ::-1]
-    dc = np.minimum(col - left, right - col)  # columns to the nearest True cell of the row (inf: none)
-    step_c = (dc * res_c) ** 2
     out = np.zeros(footprint.shape, dtype=bool)
-    reach = min(int(radius_m / res_r) + 1, rows)  # row offsets beyond it are farther than the radius
-    for dr in range(-reach, reach + 1):
-        src = step_c[max(0, dr):rows + min(0, dr)]  # row i + dr lands on row i
-        out[max(0, -dr):rows - max(0, dr)] |= np.sqrt((dr * res_r) ** 2 + src) <= radius_m
+    used = np.flatnonzero(footprint.any(axis=1))
+    if used.size == 0:
+        return out
+    first, last = int(used[0]), int(used[-1]) + 1
+    col = np.arange(cols)
+    big = 2 * cols + 1  # "no True cell in this row": farther than any kernel half-width
+    part = footprint[first:last]
+    left = np.maximum.accumulate(np.where(part, col, -big), axis=1)
+    right = np.minimum.accumulate(np.where(part, col, big)[:, ::-1], axis=1)[:, ::-1]
+    dc = np.minimum(col - left, right - col)  # columns to the nearest True cell of the row
+    # Half-width of the kernel in each row offset: the widest column offset within the radius, tested with
+    # the same float expression as the EDT's distance.
+    reach_r = min(int(radius_m / res_r) + 1, rows)
+    reach_c = np.arange(min(int(radius_m / res_c) + 1, cols) + 1)
+    for dr in range(-reach_r, reach_r + 1):
+        inside = np.flatnonzero(np.sqrt((dr * res_r) ** 2 + (reach_c * res_c) ** 2) <= radius_m)
+        if inside.size == 0 or inside[0] != 0:
+            continue
+        lo, hi = max(first - dr, 0), min(last - dr, rows)  # rows i whose row i + dr holds True cells
+        if lo < hi:
+            out[lo:hi] |= dc[lo + dr - first:hi + dr - first] <= int(inside[-1])
     return out
