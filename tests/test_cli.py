@@ -193,7 +193,8 @@ def test_plan_explains_the_mission_once(
 
     monkeypatch.setattr(sgplan.explain, "explain_mission", counted)
     out = tmp_path / "r.json"
-    assert main(["plan", "--scene", "demo", "--formula", DEMO_FORMULA, "--setup", "A*", "--json", str(out)]) == 0
+    argv = ["plan", "--scene", "demo", "--formula", DEMO_FORMULA, "--setup", "A*", "--json", str(out)]
+    assert main(argv) == 0
     record = json.loads(out.read_text())
     assert calls == ["explain"]
     assert record["explanation"]["text"] in capsys.readouterr().out

@@ -206,7 +206,7 @@ class Session:
     def __init__(self, building: Building | str | Path, data: str | Path | None = None) -> None:
         self.building = load_scene(building, data)
         self._grids: dict[float, OccupancyGrid] = {}
-        self._masks: dict[tuple[Proposition, float], np.ndarray] = {}
+        self._cells: dict[tuple[Proposition, float], np.ndarray] = {}  # flat indices where it holds
         self.parts = SharedParts()
         self.builds: Counter[str] = Counter()
 
@@ -226,20 +226,21 @@ class Session:
         return self._grids[radius]
 
     def labels(self, mission: Mission, reach_radius_m: float | None = None) -> np.ndarray:
-        """The mission's label raster (as :meth:`Mission.labels`), from per-proposition masks kept between
-        missions."""
-        from sgplan.scene.labels import label_raster
+        """The mission's label raster (as :meth:`Mission.labels`), from the cells of each proposition kept
+        between missions (sparse: a few MB at most where full masks took ~6 MB each on a Gibson scene)."""
+        from sgplan.scene.labels import proposition_cells
 
         mission.check_scene(self.building)
         reach = self.radii(reach_radius_m=reach_radius_m).reach_m
         floors, (rows, cols) = self.building.num_floors, self.building.grid_shape
         labels = np.zeros((floors, rows, cols), dtype=np.uint32)
+        flat = labels.reshape(-1)
         for bit, prop in enumerate(mission.ordered_propositions):
             key = (prop, reach)
-            if key not in self._masks:
-                self._masks[key] = label_raster(self.building, [prop], reach).astype(bool)
+            if key not in self._cells:
+                self._cells[key] = proposition_cells(self.building, prop, reach)
                 self.builds["label_mask"] += 1
-            labels[self._masks[key]] |= np.uint32(1 << bit)
+            flat[self._cells[key]] |= np.uint32(1 << bit)
         return labels
 
     def plan(

@@ -1,4 +1,4 @@
-"""The numpy dilations of reach regions agree cell for cell with scipy.ndimage (the reference they replace)."""
+"""The numpy dilations of reach regions agree cell for cell with scipy.ndimage (the reference replaced)."""
 
 from __future__ import annotations
 
