@@ -174,3 +174,27 @@ def test_start_floor_is_read_without_a_grid() -> None:
     assert start_floor(demo, (3, 4, 1)) == 1 and start_floor(demo, Point(1.0, 2.0, 0)) == 0
     assert start_floor(demo, "kitchen") == 0 and start_floor(demo, "bedroom with the teddy bear") is None
     assert start_floor(demo, (3, 4, 7)) is None and start_floor(demo, 99) is None
+
+
+def test_plan_explains_the_mission_once(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The explanation said back before planning is the one the result carries: made once per plan."""
+    import json
+
+    import sgplan.explain
+
+    calls: list[str] = []
+    real = sgplan.explain.explain_mission
+
+    def counted(*args: object, **kwargs: object) -> sgplan.explain.Explanation:
+        calls.append("explain")
+        return real(*args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(sgplan.explain, "explain_mission", counted)
+    out = tmp_path / "r.json"
+    argv = ["plan", "--scene", "demo", "--formula", DEMO_FORMULA, "--setup", "A*", "--json", str(out)]
+    assert main(argv) == 0
+    record = json.loads(out.read_text())
+    assert calls == ["explain"]
+    assert record["explanation"]["text"] in capsys.readouterr().out

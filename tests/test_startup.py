@@ -8,6 +8,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from sgplan.commands.common import SETUP_NAMES
 
 HEAVY = ("numba", "scipy", "PIL", "matplotlib", "rich", "openai", "sgplan.planning.amra")
@@ -92,3 +94,17 @@ def test_main_with_argv_returns_instead_of_exiting() -> None:
     from sgplan.cli import main
 
     assert main(["plan", "--scene", "demo", "--formula", "F p"]) == 2  # returns: the test goes on
+
+
+@pytest.mark.gibson
+def test_planning_a_gibson_mission_loads_no_scipy_image_or_sparse_code(gibson_root: Path) -> None:
+    """Label rasters, reach regions and the automaton's reachability are plain numpy: scipy.ndimage and
+    scipy.sparse (~0.3 s and ~30 MB to import) stay out of a plan (they are for drawing and importers)."""
+    scene = gibson_root / "Benevolence"
+    loaded = _modules_after(
+        "from sgplan.cli import main\n"
+        f"main(['plan', '--scene', {str(scene)!r}, '--mission-dir', {str(scene / 'missions' / '1')!r}, "
+        "'--setup', 'ALL', '--profile', 'authors', '--quiet'], fast_exit=False)"
+    )
+    assert "sgplan.planning.amra" in loaded  # it did plan
+    assert not [m for m in ("scipy.ndimage", "scipy.sparse") if m in loaded]

@@ -29,6 +29,7 @@ from sgplan.planning.shared import SharedParts
 from sgplan.scene.model import Building
 
 if TYPE_CHECKING:  # the planner, grid and labels (numba, scipy) load when a plan is made, not for a mission
+    from sgplan.explain import Explanation
     from sgplan.llm.backends import Backends, MissionGuide
     from sgplan.mission import Mission
     from sgplan.planning.amra import IterationCallback
@@ -178,13 +179,15 @@ class _Explained(TypedDict):
     explanation_method: str
 
 
-def _explanation(mission: Mission, building: Building) -> _Explained:
+def _explanation(mission: Mission, building: Building, given: Explanation | None = None) -> _Explained:
     """The mission explained in plain English (:func:`sgplan.explain.explain_mission`) as the
-    ``explanation`` and ``explanation_method`` of a :class:`PlanResult`: the one place a plan gets it."""
-    from sgplan.explain import explain_mission
+    ``explanation`` and ``explanation_method`` of a :class:`PlanResult`: the one place a plan gets it.
+    ``given``: the caller's explanation of this mission and building (already said back), used as it is."""
+    if given is None:
+        from sgplan.explain import explain_mission
 
-    explained = explain_mission(mission, building)
-    return {"explanation": explained.text, "explanation_method": explained.method}
+        given = explain_mission(mission, building)
+    return {"explanation": given.text, "explanation_method": given.method}
 
 
 # -- planning ----------------------------------------------------------------------------------------
@@ -212,7 +215,7 @@ class Session:
     ) -> None:
         self.building = load_scene(building, data)
         self._grids: dict[float, OccupancyGrid] = {}
-        self._masks: dict[tuple[Proposition, float], np.ndarray] = {}
+        self._cells: dict[tuple[Proposition, float], np.ndarray] = {}  # flat indices where it holds
         self.parts = SharedParts(max_shared_bytes)
         self.builds: Counter[str] = Counter()
 
@@ -232,20 +235,21 @@ class Session:
         return self._grids[radius]
 
     def labels(self, mission: Mission, reach_radius_m: float | None = None) -> np.ndarray:
-        """The mission's label raster (as :meth:`Mission.labels`), from per-proposition masks kept between
-        missions."""
-        from sgplan.scene.labels import label_raster
+        """The mission's label raster (as :meth:`Mission.labels`), from the cells of each proposition kept
+        between missions (sparse: a few MB at most where full masks took ~6 MB each on a Gibson scene)."""
+        from sgplan.scene.labels import proposition_cells
 
         mission.check_scene(self.building)
         reach = self.radii(reach_radius_m=reach_radius_m).reach_m
         floors, (rows, cols) = self.building.num_floors, self.building.grid_shape
         labels = np.zeros((floors, rows, cols), dtype=np.uint32)
+        flat = labels.reshape(-1)
         for bit, prop in enumerate(mission.ordered_propositions):
             key = (prop, reach)
-            if key not in self._masks:
-                self._masks[key] = label_raster(self.building, [prop], reach).astype(bool)
+            if key not in self._cells:
+                self._cells[key] = proposition_cells(self.building, prop, reach)
                 self.builds["label_mask"] += 1
-            labels[self._masks[key]] |= np.uint32(1 << bit)
+            flat[self._cells[key]] |= np.uint32(1 << bit)
         return labels
 
     def plan(
@@ -263,6 +267,7 @@ class Session:
         guide: MissionGuide | None = None,
         callback: IterationCallback | None = None,
         prebuild_actions: bool = False,
+        explanation: Explanation | None = None,
     ) -> PlanResult:
         """Plan ``mission`` from ``start`` with AMRA*; see :func:`sgplan.plan`."""
         try:
@@ -270,6 +275,7 @@ class Session:
                 mission, start, setup=setup, profile=profile, robot_radius_m=robot_radius_m,
                 reach_radius_m=reach_radius_m, time_limit_s=time_limit_s, max_expansions=max_expansions,
                 verify=verify, guide=guide, callback=callback, prebuild_actions=prebuild_actions,
+                explanation=explanation,
             )
         finally:
             self.parts.trim()
@@ -289,6 +295,7 @@ class Session:
         guide: MissionGuide | None,
         callback: IterationCallback | None,
         prebuild_actions: bool,
+        explanation: Explanation | None,
     ) -> PlanResult:
         from sgplan.jit import announce_compile
         from sgplan.planning.amra import get_setup
@@ -327,7 +334,7 @@ class Session:
             iterations=found.iterations, mission_text=mission.text, grounded_text=mission.grounded_text,
             formula=_formula_text(mission), propositions=mission.descriptions, guidance=guidance,
             notes=list(mission.notes), building=self.building, grid=grid, labels=prepared.problem.labels,
-            mission=mission, scene_check=scene_check, **_explanation(mission, self.building),
+            mission=mission, scene_check=scene_check, **_explanation(mission, self.building, explanation),
         )
         if found.status == "optimal":
             result.bound = 1.0
@@ -406,6 +413,7 @@ def plan(
     callback: IterationCallback | None = None,
     session: Session | None = None,
     prebuild_actions: bool = False,
+    explanation: Explanation | None = None,
 ) -> PlanResult:
     """Plan an optimal path for ``mission`` over ``building`` with AMRA* and check it.
 
@@ -438,6 +446,10 @@ def plan(
         path comes milliseconds after the search starts); default ``False`` builds each map when the
         search first needs it, which makes the whole plan about 0.6x as long on the Gibson scenes
         (A* never builds any).
+    explanation:
+        the mission's explanation over this building (:func:`sgplan.explain.explain_mission` with the
+        scene's reach radius) when the caller already made it, e.g. to say it back before planning: the
+        result carries it instead of making it again (a few tens of ms); default: made here.
 
     Raises
     ------
@@ -454,4 +466,5 @@ def plan(
         mission, start, setup=setup, profile=profile, robot_radius_m=robot_radius_m,
         reach_radius_m=reach_radius_m, time_limit_s=time_limit_s, max_expansions=max_expansions,
         verify=verify, guide=guide, callback=callback, prebuild_actions=prebuild_actions,
+        explanation=explanation,
     )

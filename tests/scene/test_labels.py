@@ -11,7 +11,13 @@ from hypothesis import strategies as st
 
 from sgplan.errors import FormulaError, MissionError, SceneError
 from sgplan.scene.demo import demo_building
-from sgplan.scene.labels import MAX_PROPOSITIONS, Proposition, label_raster, reach_half_widths
+from sgplan.scene.labels import (
+    MAX_PROPOSITIONS,
+    Proposition,
+    label_raster,
+    proposition_cells,
+    reach_half_widths,
+)
 from sgplan.scene.model import Building
 from tests.scene.small_buildings import random_small_building
 
@@ -59,6 +65,9 @@ def test_label_raster_matches_definition(seed: int, reach: float, own: float) ->
     labels = label_raster(building, props, reach)
     assert labels.dtype == np.uint32 and labels.shape == (building.num_floors, *building.grid_shape)
     np.testing.assert_array_equal(labels, _oracle(building, props, reach))
+    for bit, prop in enumerate(props[:8]):  # the sparse form Session keeps: the same cells, ascending
+        cells = proposition_cells(building, prop, reach)
+        np.testing.assert_array_equal(cells, np.flatnonzero(labels.reshape(-1) >> bit & 1))
 
 
 def test_demo_labels() -> None:

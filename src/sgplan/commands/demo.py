@@ -60,7 +60,7 @@ def run(args: argparse.Namespace) -> int:
     print(f"grounded: {mission.grounded_text}")
     print(f"formula:  {mission.formula}")
     print(f"automaton: {mission.automaton.num_states} states over {len(mission.automaton.aps)} propositions")
-    say_back(mission, building)
+    explanation = say_back(mission, building)
     say("planning with AMRA* (setup ALL):")
     result = sgplan.plan(
         building,
@@ -68,6 +68,7 @@ def run(args: argparse.Namespace) -> int:
         args.start_index,
         setup="ALL",
         guide=backends.guide,
+        explanation=explanation,
         callback=lambda it: say(
             f"  (w1, w2) = ({it.w1:g}, {it.w2:g})  cost {it.cost_m:.3f} m  {it.time_s * 1e3:.1f} ms"
         ),

@@ -186,7 +186,8 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     if args.mission_dir:
         check_folder_fits(args.mission_dir, mission, building, force=args.force, record=extras)
     # Said back before any guidance call or search; on stderr when stdout carries the JSON.
-    say_back(mission, building, confirm=args.confirm, stream=sys.stderr if args.json == "-" else sys.stdout)
+    explanation = say_back(mission, building, confirm=args.confirm,
+                           stream=sys.stderr if args.json == "-" else sys.stdout)
     guide = None
     if get_setup(args.setup).uses_llm and mission.guidance is None:
         if backends is None:
@@ -201,7 +202,7 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     result = sgplan.plan(building, mission, _start_spec(args), setup=args.setup, profile=args.profile,
                          robot_radius_m=args.robot_radius, reach_radius_m=args.reach_radius,
                          time_limit_s=args.time_limit, max_expansions=args.max_expansions, guide=guide,
-                         callback=progress)
+                         callback=progress, explanation=explanation)  # said back above: not made twice
     if args.save_mission and guide is not None and result.mission is not None and result.mission.guidance:
         say(
             f"wrote {write_guidance(result.mission.guidance, Path(args.save_mission) / 'llm_heuristic.yaml')}"

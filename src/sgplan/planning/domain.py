@@ -22,7 +22,6 @@ from collections import namedtuple
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import ndimage
 
 from sgplan.errors import PlanningError
 from sgplan.planning._memory import sparse_zeros
@@ -31,6 +30,7 @@ from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
 from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic
 from sgplan.planning.problem import PlanningProblem
 from sgplan.planning.shared import shared_part
+from sgplan.scene.dilate import within_distance
 from sgplan.scene.model import CatCode
 
 # Arrays handed to the compiled search, grouped by role (numba accepts named tuples of arrays).
@@ -637,7 +637,7 @@ def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj) -> np.n
     footprint = floor.cat_map[r0:r1, c0:c1] == obj.id
     if not footprint.any():
         return np.zeros(0, dtype=np.int64)
-    near = ndimage.distance_transform_edt(~footprint, sampling=res) <= problem.reach_radius_m
+    near = within_distance(footprint, res, problem.reach_radius_m)
     near &= floor.room_map[r0:r1, c0:c1] == room.id
     rr, cc = np.nonzero(near)
     ids = graph.index[(room.floor * rows + rr + r0) * cols + cc + c0]

@@ -14,7 +14,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import ndimage
 
 from sgplan.errors import SceneError
 from sgplan.scene.footprint import FootprintVariant, footprint_kernel, inflate
@@ -217,6 +216,8 @@ def component_sizes(grid: OccupancyGrid) -> list[np.ndarray]:
 
     Stairs are not followed: this describes each floor on its own.
     """
+    from scipy import ndimage  # ~0.2 s to import: only for this summary, not for planning
+
     eight = np.ones((3, 3), dtype=bool)
     sizes = []
     for layer in grid.traversable:

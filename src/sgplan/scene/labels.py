@@ -18,9 +18,9 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
-from scipy import ndimage
 
 from sgplan.errors import FormulaError, MissionError, SceneError
+from sgplan.scene.dilate import box_dilate
 from sgplan.scene.model import Building
 
 PropositionKind = Literal["enter", "reach"]
@@ -100,21 +100,51 @@ def reach_half_widths(resolution_m: tuple[float, float], reach_radius_m: float) 
     )
 
 
-def _reach_mask(cat_map: np.ndarray, object_id: int, half: tuple[int, int]) -> np.ndarray:
-    """Cells whose square window of ``half`` cells holds a cell of ``object_id``; bool like ``cat_map``."""
+def _reach_cells(cat_map: np.ndarray, object_id: int, half: tuple[int, int]) -> np.ndarray:
+    """Flat indices (into ``cat_map``) of the cells whose square window of ``half`` cells holds a cell of
+    ``object_id``; int64, ascending."""
     footprint = cat_map == object_id
-    out = np.zeros_like(footprint)
     rows, cols = np.nonzero(footprint.any(axis=1))[0], np.nonzero(footprint.any(axis=0))[0]
     if len(rows) == 0:
-        return out
-    # Work in the object's bounding box grown by the window: the rest of the floor stays False.
+        return np.zeros(0, dtype=np.int64)
+    # Work in the object's bounding box grown by the window: the rest of the floor is outside.
     r0, r1 = max(0, rows[0] - half[0]), min(cat_map.shape[0], rows[-1] + half[0] + 1)
     c0, c1 = max(0, cols[0] - half[1]), min(cat_map.shape[1], cols[-1] + half[1] + 1)
-    window = (2 * half[0] + 1, 2 * half[1] + 1)
-    out[r0:r1, c0:c1] = ndimage.maximum_filter(
-        footprint[r0:r1, c0:c1].view(np.uint8), size=window, mode="constant", cval=0
-    ).view(bool)
-    return out
+    rr, cc = np.nonzero(box_dilate(footprint[r0:r1, c0:c1], half))
+    return (rr + r0).astype(np.int64) * cat_map.shape[1] + (cc + c0)
+
+
+def proposition_cells(
+    building: Building, prop: Proposition, reach_radius_m: float | None = None
+) -> np.ndarray:
+    """Flat indices into a ``(floors, rows, cols)`` raster of the cells where ``prop`` holds; int64,
+    ascending. The sparse form of one bit of :func:`label_raster` (same arguments, same cells): a reach
+    region is a few thousand cells of a raster of millions.
+
+    Raises
+    ------
+    SceneError, MissionError
+        as :func:`label_raster`.
+    """
+    _check_known(building, [prop])
+    rows, cols = building.grid_shape
+    parts = []
+    if prop.kind == "enter":
+        room_id = building.room(uuid=prop.uuid).id
+        for floor in building.floors:
+            parts.append(np.flatnonzero(floor.room_map == room_id) + floor.index * rows * cols)
+    else:
+        default_reach = building.reach_radius_m if reach_radius_m is None else reach_radius_m
+        radius = prop.reach_radius_m if prop.reach_radius_m is not None else default_reach
+        if radius is None or not (np.isfinite(radius) and radius > 0):
+            raise MissionError(
+                f"{prop.name}: no reach radius (give the proposition one or pass a positive reach_radius_m)"
+            )
+        object_id = building.object(uuid=prop.uuid).id
+        half = reach_half_widths(building.resolution_m, radius)
+        for floor in building.floors:
+            parts.append(_reach_cells(floor.cat_map, object_id, half) + floor.index * rows * cols)
+    return np.concatenate(parts).astype(np.int64) if parts else np.zeros(0, dtype=np.int64)
 
 
 def label_raster(
@@ -146,23 +176,9 @@ def label_raster(
             f"{len(propositions)} propositions given; label rasters hold at most {MAX_PROPOSITIONS}"
         )
     _check_known(building, propositions)
-    default_reach = building.reach_radius_m if reach_radius_m is None else reach_radius_m
     floors, (rows, cols) = building.num_floors, building.grid_shape
     labels = np.zeros((floors, rows, cols), dtype=np.uint32)
+    flat = labels.reshape(-1)
     for bit, prop in enumerate(propositions):
-        value = np.uint32(1 << bit)
-        if prop.kind == "enter":
-            room_id = building.room(uuid=prop.uuid).id
-            for floor in building.floors:
-                labels[floor.index][floor.room_map == room_id] |= value
-            continue
-        radius = prop.reach_radius_m if prop.reach_radius_m is not None else default_reach
-        if radius is None or not (np.isfinite(radius) and radius > 0):
-            raise MissionError(
-                f"{prop.name}: no reach radius (give the proposition one or pass a positive reach_radius_m)"
-            )
-        object_id = building.object(uuid=prop.uuid).id
-        half = reach_half_widths(building.resolution_m, radius)
-        for floor in building.floors:
-            labels[floor.index][_reach_mask(floor.cat_map, object_id, half)] |= value
+        flat[proposition_cells(building, prop, reach_radius_m)] |= np.uint32(1 << bit)
     return labels
