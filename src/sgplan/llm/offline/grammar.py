@@ -206,6 +206,9 @@ class NounPhrase:
     choice_of: str | None = None
     """A pronoun whose antecedent is a choice: why it is refused if it is made a goal (:meth:`tasks_of`;
     *put it in Y* only carries it)."""
+    floor: bool = False
+    """A floor named as a place (*the top floor*: its rooms); *there* / *up there* / *on that floor* after it
+    mean that floor."""
 
 
 @dataclass
@@ -1429,6 +1432,23 @@ class MissionParser:
             self.i += 1
         return seen
 
+    def floor_move(self, nps: list[NounPhrase]) -> bool:
+        """``go (up) to the top floor and <action>`` / ``..., then <action>``: the floor is where the next
+        action is done, not a goal of its own (read as one, "and check a bathroom" would be any bathroom of
+        the building). When ``nps`` is one floor followed by a connective and a positive action, the
+        connective is consumed, the next noun phrase is put on that floor and True is returned; the floor
+        stays recorded, so *there* / *up there* / *on that floor* in that action mean it."""
+        if len(nps) != 1 or not nps[0].floor or nps[0].role != "goal":
+            return False
+        k = 0
+        while self.word(k) in (",", "and", "then"):
+            k += 1
+        if k == 0 or not (self.word(k) in lx.POSITIVE_VERBS or self.np_starts(k)):
+            return False
+        self.i += k
+        self.pending_floor = frozenset(e.floor for e in nps[0].entities)
+        return True
+
     def rooms_of(self, members: list[Formula]) -> list[Entity]:
         """The rooms that the state formulas ``members`` put the robot in (their own or their objects')."""
         keys = [action_entity(a) for m in members for a in atoms(m)]
@@ -1486,6 +1506,8 @@ class MissionParser:
         scope = list(step_rooms or []) or self.sentence_scope
         carry = bool(set(verbs) & lx.CARRY_VERBS)
         nps = self.noun_phrase_list("goal", scope, "object" if carry else None)
+        if self.floor_move(nps):  # "go up to the top floor and check a bathroom (there)": one goal there
+            return self.action(step_rooms)
         first = self.word() in _FIRST
         nps = self.first_of_list(nps)
         lead = first and self.word() not in _FIRST  # "A and B, B first": B, then A
@@ -1937,6 +1959,11 @@ class MissionParser:
                 inner.entities = [r for r in inner.entities if any(e.room_key == r.key for e in entities)]
                 room_scoped = True
                 continue
+            if self.word() == "there" and head.kind == "room" and self.word(1) not in ("is", "are", "was",
+                                                                                      "were"):
+                self.i += 1  # "go to the top floor and check a bathroom there": on that floor
+                entities = self.on_floors(entities, self.there_floors(first.start, head))
+                continue
             if (self.word() == "there" and head.kind == "object" and role == "goal" and not room_scoped
                     and self.word(1) not in ("is", "are", "was", "were")):
                 self.i += 1  # "grab a bottle there": in the room of the place named last
@@ -2157,9 +2184,39 @@ class MissionParser:
         if not places:
             raise self.fail("'there' does not refer to any place named before it")
         last = max(places, key=lambda r: r.start)
+        self.floor_or_place(said, last, rooms=True)
         rooms = [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in last.entities)]
-        self.determined(said, last, len(rooms))
+        if not last.floor:  # a floor is one place: "the top floor ... a book there" is any room of it
+            self.determined(said, last, len(rooms))
         return rooms
+
+    def floor_or_place(self, said: str, last: NounPhrase, rooms: bool = False) -> None:
+        """Refuses ``said`` (*there*, *up there*, *on that floor*) when a floor was named as a place before
+        ``last``, the place named last, and the two readings differ: "go to the top floor, then the
+        kitchen, then a bathroom up there" could mean either floor; with ``rooms`` (*there* as rooms: "a
+        book there") the floor and a room on it already differ."""
+        floors = [r for r in self.references if r.floor and r.role in ("goal", "condition")
+                  and r.start < last.start]
+        if last.floor or not floors:
+            return
+        floor = max(floors, key=lambda r: r.start)
+        if rooms or {e.floor for e in floor.entities} != {e.floor for e in last.entities}:
+            raise self.fail(f"'{said}' could refer back to '{floor.phrase}' or to '{last.phrase}', named "
+                            f"after it; name the floor or room again")
+
+    def there_floors(self, before: int, head: Head) -> frozenset[int]:
+        """The floor(s) *there* after a room (*a bathroom there*) means at character offset ``before``: a
+        floor named last as a place. A room or object named last is refused: rooms are not inside rooms,
+        and reading *there* as nothing would silently widen the phrase."""
+        places = [r for r in self.references if r.role in ("goal", "condition") and r.start < before
+                  and r.entities and r.phrase.lower() not in lx.PRONOUNS]
+        last = max(places, key=lambda r: r.start) if places else None
+        if last is None or not last.floor:
+            what = f"'{last.phrase}'" if last is not None else "nothing"
+            raise self.fail(f"'{head_word(self.vocab.of_head(head))} there': 'there' refers back to {what}, "
+                            f"not a floor (rooms are not inside rooms); name the floor (e.g. 'on floor 1') or "
+                            f"the room")
+        return frozenset(e.floor for e in last.entities)
 
     def whole_building(self) -> bool:
         """Skips ``in the house`` / ``in this building`` / ``anywhere in the home`` after a noun (not ``in the
@@ -2185,8 +2242,7 @@ class MissionParser:
         chosen: Mode = "all" if role == "avoid" or mode == "all" else "any"
         last = self.toks[self.i - 1]
         return self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, rooms,
-                                      chosen,
-                                      False, role))
+                                      chosen, False, role, floor=True))
 
     def last_head(self) -> Head | None:
         """The kind and category of the last room or object named (what *the other one* refers to)."""
@@ -2393,6 +2449,7 @@ class MissionParser:
             where = f"{self.word()} there"
             self.i += 2
             last = max(goals, key=lambda r: r.start)
+            self.floor_or_place(where, last)
             floors = frozenset(e.floor for e in last.entities)
             self.determined(where, last, len(floors))
             return floors
@@ -2424,6 +2481,7 @@ class MissionParser:
             if not goals:
                 raise self.fail("'the same floor' / 'that floor' does not refer to any place named before it")
             ref = max(goals, key=lambda r: r.start)
+            self.floor_or_place("the same floor' / 'that floor", ref)
         floors = frozenset(e.floor for e in ref.entities)
         if len(floors) != 1:
             raise self.fail(f"'the same floor' as '{ref.phrase}', which is on floors "
