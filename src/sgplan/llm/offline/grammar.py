@@ -2211,6 +2211,8 @@ class MissionParser:
         places = [r for r in self.references if r.role in ("goal", "condition") and r.start < before
                   and r.entities and r.phrase.lower() not in lx.PRONOUNS]
         last = max(places, key=lambda r: r.start) if places else None
+        if last is None and self.confined is not None:  # "keep to the top floor and visit each bathroom there"
+            return self.confined
         if last is None or not last.floor:
             what = f"'{last.phrase}'" if last is not None else "nothing"
             raise self.fail(f"'{head_word(self.vocab.of_head(head))} there': 'there' refers back to {what}, "
