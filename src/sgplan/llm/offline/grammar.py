@@ -279,6 +279,10 @@ class MissionParser:
         """Reading ``Only <verb> X after Y``: the body stops at *after* (see :meth:`only_verb_after`)."""
         self.confined: frozenset[int] | None = None
         """The floors the mission stays on ("stay on this floor"): goals are grounded there."""
+        self.action_floor: tuple[frozenset[int], int] | None = None
+        """The floors the action being read is done on, after a floor move ("go upstairs and check the
+        bathroom and the office": both upstairs), and the character offset where the action starts (*there*
+        after it means those floors)."""
 
     # -- token helpers --------------------------------------------------------------------------------
     def word(self, k: int = 0) -> str:
@@ -1446,8 +1450,15 @@ class MissionParser:
         if k == 0 or not (self.word(k) in lx.POSITIVE_VERBS or self.np_starts(k)):
             return False
         self.i += k
-        self.pending_floor = frozenset(e.floor for e in nps[0].entities)
         return True
+
+    def moved(self, floors: frozenset[int], step_rooms: list[Entity] | None) -> list[Step]:
+        """The action after a floor move (*go upstairs and ...*, *go to floor 1, then ...*): every goal of
+        it on ``floors`` (:attr:`action_floor`)."""
+        if self.done():
+            raise self.fail("expected an action after the floor to go to")
+        self.action_floor = (floors, self.toks[self.i].start)
+        return self.action(step_rooms)
 
     def rooms_of(self, members: list[Formula]) -> list[Entity]:
         """The rooms that the state formulas ``members`` put the robot in (their own or their objects')."""
@@ -1499,15 +1510,16 @@ class MissionParser:
         self.going_back = bool(set(verbs) & lx.REVISIT_VERBS)
         if not self.np_starts() and self.pending_floor is not None and self.word() in ("and", ",", "then"):
             self.i += 1  # "go upstairs and check the laptop": the laptop upstairs
-            return self.action(step_rooms)
+            return self.moved(self.pending_floor, step_rooms)
         if not self.np_starts():
             what = f"after '{' '.join(verbs)}'" if verbs else "here"
             raise self.fail(f"expected a room or object {what}, found {self.here()}")
         scope = list(step_rooms or []) or self.sentence_scope
         carry = bool(set(verbs) & lx.CARRY_VERBS)
         nps = self.noun_phrase_list("goal", scope, "object" if carry else None)
+        self.action_floor = None
         if self.floor_move(nps):  # "go up to the top floor and check a bathroom (there)": one goal there
-            return self.action(step_rooms)
+            return self.moved(frozenset(e.floor for e in nps[0].entities), step_rooms)
         first = self.word() in _FIRST
         nps = self.first_of_list(nps)
         lead = first and self.word() not in _FIRST  # "A and B, B first": B, then A
@@ -1904,6 +1916,8 @@ class MissionParser:
         if self.pending_floor is not None:
             entities = self.on_floors(entities, self.pending_floor)
             self.pending_floor = None
+        if self.action_floor is not None and role == "goal":  # "go upstairs and check A and B": both there
+            entities = self.vocab.on_floor(entities, self.action_floor[0])
         if self.confined is not None and role in ("goal", "condition"):
             entities = self.vocab.on_floor(entities, self.confined)  # "stay on this floor": goals there
         room_scoped = bool(modifier)
@@ -2211,6 +2225,9 @@ class MissionParser:
         places = [r for r in self.references if r.role in ("goal", "condition") and r.start < before
                   and r.entities and r.phrase.lower() not in lx.PRONOUNS]
         last = max(places, key=lambda r: r.start) if places else None
+        moved = self.action_floor
+        if moved is not None and (last is None or last.start < moved[1]):  # "go upstairs, then a bathroom there"
+            return moved[0]
         if last is None and self.confined is not None:  # "keep to the top floor and visit each bathroom there"
             return self.confined
         if last is None or not last.floor:
