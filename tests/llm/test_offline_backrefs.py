@@ -174,7 +174,8 @@ def test_pronouns_still_read(scene, text, gold):
         ("Benevolence", None, "Go down to the ground floor and use the bathroom down there.", "F r2"),
         ("Benevolence", None, "Go to the top floor. Check a bathroom there.", "F(r4 | r6)"),
         ("Benevolence", None, "Go up to the top floor and check every bathroom there.", "F r4 & F r6"),
-        ("Collierville", None, "Go up to the top floor and use a toilet there.", "F((o36 & r4) | (o37 & r4))"),
+        ("Collierville", None, "Go up to the top floor and use a toilet there.",
+         "F((o36 & r4) | (o37 & r4))"),
         ("Collierville", None, "Go to floor 1 and check a bathroom on that floor.", "F r2"),
         ("Collierville", None, "Go to the middle floor, then check the bathroom.", "F r2"),
         # 'go upstairs and ...' with the start floor known: every goal of that action upstairs / downstairs
@@ -196,7 +197,8 @@ def test_floor_back_references_read(scene, start, text, gold):
         ("Benevolence", None, "Go to the bedroom with the teddy bear and check a bathroom there.",
          "not a floor"),
         # 'there' could be the floor or a place named after it
-        ("Collierville", None, "Go to the top floor. Then the bedroom with the plant, and use the toilet there.",
+        ("Collierville", None,
+         "Go to the top floor. Then the bedroom with the plant, and use the toilet there.",
          "could refer back to 'the top floor' or to 'the bedroom with the plant'"),
         ("Benevolence", None, "Go to the top floor. Go to the kitchen, then a bathroom up there.",
          "could refer back to 'the top floor' or to 'the kitchen'"),

@@ -2226,15 +2226,15 @@ class MissionParser:
                   and r.entities and r.phrase.lower() not in lx.PRONOUNS]
         last = max(places, key=lambda r: r.start) if places else None
         moved = self.action_floor
-        if moved is not None and (last is None or last.start < moved[1]):  # "go upstairs, then a bathroom there"
+        if moved is not None and (last is None or last.start < moved[1]):  # "go upstairs, then X there"
             return moved[0]
-        if last is None and self.confined is not None:  # "keep to the top floor and visit each bathroom there"
+        if last is None and self.confined is not None:  # "keep to the top floor and visit X there"
             return self.confined
         if last is None or not last.floor:
             what = f"'{last.phrase}'" if last is not None else "nothing"
             raise self.fail(f"'{head_word(self.vocab.of_head(head))} there': 'there' refers back to {what}, "
-                            f"not a floor (rooms are not inside rooms); name the floor (e.g. 'on floor 1') or "
-                            f"the room")
+                            f"not a floor (rooms are not inside rooms); name the floor (e.g. 'on floor 1') "
+                            f"or the room")
         return frozenset(e.floor for e in last.entities)
 
     def whole_building(self) -> bool:
