@@ -162,3 +162,53 @@ def test_pronouns_still_read(scene, text, gold):
     formula = PatternTranslator().translate(text, b).formula
     same, why = same_language(formula, parse_infix(expand_shorthand(gold)), b)
     assert same, f"{text!r} -> {formula}, expected {gold}: {why}"
+
+
+@pytest.mark.parametrize(
+    ("scene", "start", "text", "gold"),
+    [
+        # a floor move before an action is where the action is done, not a goal of its own
+        ("Benevolence", None, "go up to the top floor and check a bathroom there", "F(r4 | r6)"),
+        ("Benevolence", None, "Go up to the top floor and use a bathroom.", "F(r4 | r6)"),
+        ("Benevolence", None, "Go to the top floor, then check a bathroom.", "F(r4 | r6)"),
+        ("Benevolence", None, "Go down to the ground floor and use the bathroom down there.", "F r2"),
+        ("Benevolence", None, "Go to the top floor. Check a bathroom there.", "F(r4 | r6)"),
+        ("Benevolence", None, "Go up to the top floor and check every bathroom there.", "F r4 & F r6"),
+        ("Collierville", None, "Go up to the top floor and use a toilet there.",
+         "F((o36 & r4) | (o37 & r4))"),
+        ("Collierville", None, "Go to floor 1 and check a bathroom on that floor.", "F r2"),
+        ("Collierville", None, "Go to the middle floor, then check the bathroom.", "F r2"),
+        # 'go upstairs and ...' with the start floor known: every goal of that action upstairs / downstairs
+        ("Benevolence", 0, "Go upstairs, then check a bathroom there.", "F(r4 | r6)"),
+        ("Collierville", 2, "Head downstairs and check the bathroom and the kitchen.", "F r2 & F r15"),
+    ],
+)
+def test_floor_back_references_read(scene, start, text, gold):
+    b = building(scene)
+    formula = PatternTranslator(start).translate(text, b).formula
+    same, why = same_language(formula, parse_infix(expand_shorthand(gold)), b)
+    assert same, f"{text!r} -> {formula}, expected {gold}: {why}"
+
+
+@pytest.mark.parametrize(
+    ("scene", "start", "text", "fragment"),
+    [
+        # 'a <room> there' after a room: rooms are not inside rooms (it was silently dropped before)
+        ("Benevolence", None, "Go to the bedroom with the teddy bear and check a bathroom there.",
+         "not a floor"),
+        # 'there' could be the floor or a place named after it
+        ("Collierville", None,
+         "Go to the top floor. Then the bedroom with the plant, and use the toilet there.",
+         "could refer back to 'the top floor' or to 'the bedroom with the plant'"),
+        ("Benevolence", None, "Go to the top floor. Go to the kitchen, then a bathroom up there.",
+         "could refer back to 'the top floor' or to 'the kitchen'"),
+        ("Benevolence", None, "Go to the top floor. Go to the kitchen, then a bathroom on the same floor.",
+         "could refer back to 'the top floor' or to 'the kitchen'"),
+        # upstairs with the start unknown in a three-floor building
+        ("Benevolence", None, "Go upstairs and use the bathroom.", "depends on where the robot starts"),
+    ],
+)
+def test_floor_back_references_refused(scene, start, text, fragment):
+    with pytest.raises(MissionError) as info:
+        PatternTranslator(start).translate(text, building(scene))
+    assert fragment in str(info.value)

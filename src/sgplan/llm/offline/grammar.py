@@ -206,6 +206,9 @@ class NounPhrase:
     choice_of: str | None = None
     """A pronoun whose antecedent is a choice: why it is refused if it is made a goal (:meth:`tasks_of`;
     *put it in Y* only carries it)."""
+    floor: bool = False
+    """A floor named as a place (*the top floor*: its rooms); *there* / *up there* / *on that floor* after it
+    mean that floor."""
 
 
 @dataclass
@@ -276,6 +279,10 @@ class MissionParser:
         """Reading ``Only <verb> X after Y``: the body stops at *after* (see :meth:`only_verb_after`)."""
         self.confined: frozenset[int] | None = None
         """The floors the mission stays on ("stay on this floor"): goals are grounded there."""
+        self.action_floor: tuple[frozenset[int], int] | None = None
+        """The floors the action being read is done on, after a floor move ("go upstairs and check the
+        bathroom and the office": both upstairs), and the character offset where the action starts (*there*
+        after it means those floors)."""
 
     # -- token helpers --------------------------------------------------------------------------------
     def word(self, k: int = 0) -> str:
@@ -1429,6 +1436,30 @@ class MissionParser:
             self.i += 1
         return seen
 
+    def floor_move(self, nps: list[NounPhrase]) -> bool:
+        """``go (up) to the top floor and <action>`` / ``..., then <action>``: the floor is where the next
+        action is done, not a goal of its own (read as one, "and check a bathroom" would be any bathroom of
+        the building). When ``nps`` is one floor followed by a connective and a positive action, the
+        connective is consumed, the next noun phrase is put on that floor and True is returned; the floor
+        stays recorded, so *there* / *up there* / *on that floor* in that action mean it."""
+        if len(nps) != 1 or not nps[0].floor or nps[0].role != "goal":
+            return False
+        k = 0
+        while self.word(k) in (",", "and", "then"):
+            k += 1
+        if k == 0 or not (self.word(k) in lx.POSITIVE_VERBS or self.np_starts(k)):
+            return False
+        self.i += k
+        return True
+
+    def moved(self, floors: frozenset[int], step_rooms: list[Entity] | None) -> list[Step]:
+        """The action after a floor move (*go upstairs and ...*, *go to floor 1, then ...*): every goal of
+        it on ``floors`` (:attr:`action_floor`)."""
+        if self.done():
+            raise self.fail("expected an action after the floor to go to")
+        self.action_floor = (floors, self.toks[self.i].start)
+        return self.action(step_rooms)
+
     def rooms_of(self, members: list[Formula]) -> list[Entity]:
         """The rooms that the state formulas ``members`` put the robot in (their own or their objects')."""
         keys = [action_entity(a) for m in members for a in atoms(m)]
@@ -1479,13 +1510,16 @@ class MissionParser:
         self.going_back = bool(set(verbs) & lx.REVISIT_VERBS)
         if not self.np_starts() and self.pending_floor is not None and self.word() in ("and", ",", "then"):
             self.i += 1  # "go upstairs and check the laptop": the laptop upstairs
-            return self.action(step_rooms)
+            return self.moved(self.pending_floor, step_rooms)
         if not self.np_starts():
             what = f"after '{' '.join(verbs)}'" if verbs else "here"
             raise self.fail(f"expected a room or object {what}, found {self.here()}")
         scope = list(step_rooms or []) or self.sentence_scope
         carry = bool(set(verbs) & lx.CARRY_VERBS)
         nps = self.noun_phrase_list("goal", scope, "object" if carry else None)
+        self.action_floor = None
+        if self.floor_move(nps):  # "go up to the top floor and check a bathroom (there)": one goal there
+            return self.moved(frozenset(e.floor for e in nps[0].entities), step_rooms)
         first = self.word() in _FIRST
         nps = self.first_of_list(nps)
         lead = first and self.word() not in _FIRST  # "A and B, B first": B, then A
@@ -1882,6 +1916,8 @@ class MissionParser:
         if self.pending_floor is not None:
             entities = self.on_floors(entities, self.pending_floor)
             self.pending_floor = None
+        if self.action_floor is not None and role == "goal":  # "go upstairs and check A and B": both there
+            entities = self.vocab.on_floor(entities, self.action_floor[0])
         if self.confined is not None and role in ("goal", "condition"):
             entities = self.vocab.on_floor(entities, self.confined)  # "stay on this floor": goals there
         room_scoped = bool(modifier)
@@ -1936,6 +1972,11 @@ class MissionParser:
                 entities = self.vocab.inside(entities, inner.entities)
                 inner.entities = [r for r in inner.entities if any(e.room_key == r.key for e in entities)]
                 room_scoped = True
+                continue
+            if self.word() == "there" and head.kind == "room" and self.word(1) not in ("is", "are", "was",
+                                                                                      "were"):
+                self.i += 1  # "go to the top floor and check a bathroom there": on that floor
+                entities = self.on_floors(entities, self.there_floors(first.start, head))
                 continue
             if (self.word() == "there" and head.kind == "object" and role == "goal" and not room_scoped
                     and self.word(1) not in ("is", "are", "was", "were")):
@@ -2157,9 +2198,44 @@ class MissionParser:
         if not places:
             raise self.fail("'there' does not refer to any place named before it")
         last = max(places, key=lambda r: r.start)
+        self.floor_or_place(said, last, rooms=True)
         rooms = [self.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in last.entities)]
-        self.determined(said, last, len(rooms))
+        if not last.floor:  # a floor is one place: "the top floor ... a book there" is any room of it
+            self.determined(said, last, len(rooms))
         return rooms
+
+    def floor_or_place(self, said: str, last: NounPhrase, rooms: bool = False) -> None:
+        """Refuses ``said`` (*there*, *up there*, *on that floor*) when a floor was named as a place before
+        ``last``, the place named last, and the two readings differ: "go to the top floor, then the
+        kitchen, then a bathroom up there" could mean either floor; with ``rooms`` (*there* as rooms: "a
+        book there") the floor and a room on it already differ."""
+        floors = [r for r in self.references if r.floor and r.role in ("goal", "condition")
+                  and r.start < last.start]
+        if last.floor or not floors:
+            return
+        floor = max(floors, key=lambda r: r.start)
+        if rooms or {e.floor for e in floor.entities} != {e.floor for e in last.entities}:
+            raise self.fail(f"'{said}' could refer back to '{floor.phrase}' or to '{last.phrase}', named "
+                            f"after it; name the floor or room again")
+
+    def there_floors(self, before: int, head: Head) -> frozenset[int]:
+        """The floor(s) *there* after a room (*a bathroom there*) means at character offset ``before``: a
+        floor named last as a place. A room or object named last is refused: rooms are not inside rooms,
+        and reading *there* as nothing would silently widen the phrase."""
+        places = [r for r in self.references if r.role in ("goal", "condition") and r.start < before
+                  and r.entities and r.phrase.lower() not in lx.PRONOUNS]
+        last = max(places, key=lambda r: r.start) if places else None
+        moved = self.action_floor
+        if moved is not None and (last is None or last.start < moved[1]):  # "go upstairs, then X there"
+            return moved[0]
+        if last is None and self.confined is not None:  # "keep to the top floor and visit X there"
+            return self.confined
+        if last is None or not last.floor:
+            what = f"'{last.phrase}'" if last is not None else "nothing"
+            raise self.fail(f"'{head_word(self.vocab.of_head(head))} there': 'there' refers back to {what}, "
+                            f"not a floor (rooms are not inside rooms); name the floor (e.g. 'on floor 1') "
+                            f"or the room")
+        return frozenset(e.floor for e in last.entities)
 
     def whole_building(self) -> bool:
         """Skips ``in the house`` / ``in this building`` / ``anywhere in the home`` after a noun (not ``in the
@@ -2185,8 +2261,7 @@ class MissionParser:
         chosen: Mode = "all" if role == "avoid" or mode == "all" else "any"
         last = self.toks[self.i - 1]
         return self.record(NounPhrase(self.span_text(first.start, last.end), first.start, last.end, rooms,
-                                      chosen,
-                                      False, role))
+                                      chosen, False, role, floor=True))
 
     def last_head(self) -> Head | None:
         """The kind and category of the last room or object named (what *the other one* refers to)."""
@@ -2393,6 +2468,7 @@ class MissionParser:
             where = f"{self.word()} there"
             self.i += 2
             last = max(goals, key=lambda r: r.start)
+            self.floor_or_place(where, last)
             floors = frozenset(e.floor for e in last.entities)
             self.determined(where, last, len(floors))
             return floors
@@ -2424,6 +2500,7 @@ class MissionParser:
             if not goals:
                 raise self.fail("'the same floor' / 'that floor' does not refer to any place named before it")
             ref = max(goals, key=lambda r: r.start)
+            self.floor_or_place("the same floor' / 'that floor", ref)
         floors = frozenset(e.floor for e in ref.entities)
         if len(floors) != 1:
             raise self.fail(f"'the same floor' as '{ref.phrase}', which is on floors "
