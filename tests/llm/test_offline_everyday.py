@@ -13,11 +13,10 @@ from sgplan.datasets import find_gibson_root
 from sgplan.errors import MissionError
 from sgplan.llm.evaluate import load_jsonl_set, score_translator
 from sgplan.llm.offline import PatternTranslator
-from sgplan.llm.offline.evaluation import expand_shorthand, same_language
-from sgplan.logic import parse_infix
 from sgplan.scene.authors import load_authors_scene
 from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building
+from tests.llm.offline_reading import means, refused
 
 SET = Path(__file__).parent / "data" / "everyday_missions.jsonl"
 
@@ -35,18 +34,6 @@ FLOOR_0 = "r2 | r4 | r5 | r6 | r7 | r8"
 @pytest.fixture(scope="module")
 def demo() -> Building:
     return demo_building()
-
-
-def means(text: str, gold: str, building: Building, start_floor: int | None = None) -> None:
-    formula = PatternTranslator(start_floor).translate(text, building).formula
-    same, why = same_language(formula, parse_infix(expand_shorthand(gold)), building)
-    assert same, f"{text!r} -> {formula}, expected {gold}: {why}"
-
-
-def refused(text: str, fragment: str, building: Building, start_floor: int | None = None) -> None:
-    with pytest.raises(MissionError) as info:
-        PatternTranslator(start_floor).translate(text, building)
-    assert fragment in str(info.value)
 
 
 @pytest.mark.parametrize(

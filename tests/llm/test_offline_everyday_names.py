@@ -8,13 +8,12 @@ import pytest
 
 from sgplan.errors import MissionError
 from sgplan.llm.offline import PatternTranslator
-from sgplan.llm.offline.evaluation import expand_shorthand, same_language
 from sgplan.llm.offline.everyday import everyday_names
 from sgplan.llm.offline.names import SceneVocabulary
 from sgplan.llm.offline.text import tokenize
-from sgplan.logic import parse_infix
 from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building
+from tests.llm.offline_reading import means
 
 # demo: room_5 bathroom floor 0, room_14 bathroom floor 1, room_11 bedroom with the teddy bear (object_32),
 # room_13 bedroom with the book, room_4 kitchen.
@@ -38,9 +37,7 @@ def demo() -> Building:
     ],
 )
 def test_everyday_names_the_scene_decides(demo, text, gold):
-    formula = PatternTranslator().translate(text, demo).formula
-    same, why = same_language(formula, parse_infix(expand_shorthand(gold)), demo)
-    assert same, f"{text!r} -> {formula}, expected {gold}: {why}"
+    means(text, gold, demo)
 
 
 def test_the_loo_is_a_bathroom_so_which_one_is_asked(demo):

@@ -5,12 +5,9 @@ from __future__ import annotations
 
 import pytest
 
-from sgplan.errors import MissionError
-from sgplan.llm.offline import PatternTranslator
-from sgplan.llm.offline.evaluation import expand_shorthand, same_language
-from sgplan.logic import parse_infix
 from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building
+from tests.llm.offline_reading import means, refused
 
 # demo building (2 floors): room_2 corridor, room_4 kitchen (object_15 refrigerator, object_17 sink,
 # object_19 bowl), room_5 bathroom floor 0 (object_21 sink), room_6 living room (object_22 couch,
@@ -21,19 +18,6 @@ from sgplan.scene.model import Building
 @pytest.fixture(scope="module")
 def demo() -> Building:
     return demo_building()
-
-
-def means(text: str, gold: str, building: Building, translator: PatternTranslator | None = None) -> None:
-    formula = (translator or PatternTranslator()).translate(text, building).formula
-    same, why = same_language(formula, parse_infix(expand_shorthand(gold)), building)
-    assert same, f"{text!r} -> {formula}, expected {gold}: {why}"
-
-
-def refused(text: str, fragment: str, building: Building, translator: PatternTranslator | None = None) -> str:
-    with pytest.raises(MissionError) as info:
-        (translator or PatternTranslator()).translate(text, building)
-    assert fragment in str(info.value)
-    return str(info.value)
 
 
 @pytest.mark.parametrize(
@@ -124,9 +108,9 @@ def test_upstairs_and_downstairs(demo):
     means("Clean the upstairs bathroom.", "F r14", demo)
     refused("Go upstairs.", "expected a room or object after 'upstairs'", demo)
     # with a known start floor it is relative to it
-    means("Go to the bathroom downstairs.", "F r5", demo, PatternTranslator(start_floor=1))
+    means("Go to the bathroom downstairs.", "F r5", demo, 1)
     refused("Go to the bathroom upstairs.", "the robot starts on floor 1", demo,
-            PatternTranslator(start_floor=1))
+            1)
 
 
 @pytest.mark.gibson
@@ -135,7 +119,7 @@ def test_upstairs_without_a_start_in_a_taller_building_is_refused(gibson_root):
 
     building = load_authors_scene(gibson_root / "Benevolence")
     refused("Go to the corridor upstairs.", "the building 'Benevolence' has floors 0 to 2", building)
-    means("Go to the bedroom with the tv upstairs.", "F r8", building, PatternTranslator(start_floor=1))
+    means("Go to the bedroom with the tv upstairs.", "F r8", building, 1)
 
 
 def test_the_other(demo):
@@ -226,7 +210,7 @@ def test_again_without_an_ordered_first_visit_is_refused(demo):
 
 
 def test_this_floor_is_the_start_floor(demo):
-    means("Go to the bathroom on this floor.", "F r5", demo, PatternTranslator(start_floor=0))
+    means("Go to the bathroom on this floor.", "F r5", demo, 0)
     refused("Go to the bathroom on this floor.", "'this floor' depends on where the robot starts", demo)
 
 
@@ -299,7 +283,7 @@ def test_everyday_constructs_in_gibson_scenes(gibson_root):
           "F r4 & F r6 & G !(r2 | r9 | r14 | r17 | r18 | r10 | r13 | r15 | r16 | r19)", benevolence)
     means("Use the fridge and keep off the stairs on floor 1.", "F o28 & G !r19", benevolence)
     refused("Go to the stairs while avoiding the kitchen.", "'the stairs' matches 2 rooms", benevolence)
-    means("Go downstairs to the lobby.", "F r17", benevolence, PatternTranslator(start_floor=2))
+    means("Go downstairs to the lobby.", "F r17", benevolence, 2)
     collierville = load_authors_scene(gibson_root / "Collierville")
     means("Use the toilet on the middle floor.", "F o38", collierville)
 
@@ -377,7 +361,7 @@ def test_choices_of_all_and_optional_goals_are_refused(demo, text, fragment):
 def test_never_upstairs_from_the_start_floor(demo):
     means("Touch the teddy bear and never go downstairs.",
           "F o32 & G(!r2 & !r4 & !r5 & !r6 & !r7 & !r8)", demo,
-          PatternTranslator(start_floor=1))
+          1)
 
 
 @pytest.mark.parametrize(
@@ -477,7 +461,7 @@ def test_new_constructs_in_gibson_scenes(gibson_root):
     # object_20 microwave; object_19 keyboard in the office room_14, object_31 cup
     collierville = load_authors_scene(gibson_root / "Collierville")
     means("Never go downstairs. Could you check the fridge and the microwave (in any order)?",
-          "G(!r8 & !r13 & !r14 & !r17) & F o27 & F o20", collierville, PatternTranslator(start_floor=1))
+          "G(!r8 & !r13 & !r14 & !r17) & F o27 & F o20", collierville, 1)
     means("Check the keyboard in the office, and once you're done, look at the cup.",
           "F(o19 & r14 & F o31)", collierville)
     # Benevolence: object_35 teddy bear in the bedroom room_8, object_36 in the living room room_16

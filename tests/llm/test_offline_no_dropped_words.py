@@ -8,13 +8,12 @@ import pytest
 
 from sgplan.errors import MissionError
 from sgplan.llm.offline import PatternTranslator
-from sgplan.llm.offline.evaluation import expand_shorthand, same_language
 from sgplan.llm.offline.grammar import MissionParser, NounPhrase, check_all_used
 from sgplan.llm.offline.names import SceneVocabulary
-from sgplan.logic import parse_infix
 from sgplan.logic.formula import Atom, Eventually
 from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building
+from tests.llm.offline_reading import means
 
 # demo building: room_4 kitchen (object_15 refrigerator), room_6 living room (object_22 couch), room_7
 # dining room (object_27 dining table), room_12 home office, room_13 bedroom with the book.
@@ -23,12 +22,6 @@ from sgplan.scene.model import Building
 @pytest.fixture(scope="module")
 def demo() -> Building:
     return demo_building()
-
-
-def means(text: str, gold: str, building: Building) -> None:
-    formula = PatternTranslator().translate(text, building).formula
-    same, why = same_language(formula, parse_infix(expand_shorthand(gold)), building)
-    assert same, f"{text!r} -> {formula}, expected {gold}: {why}"
 
 
 @pytest.mark.parametrize(

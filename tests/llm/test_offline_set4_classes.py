@@ -8,10 +8,9 @@ import pytest
 
 from sgplan.errors import MissionError
 from sgplan.llm.offline import PatternTranslator
-from sgplan.llm.offline.evaluation import expand_shorthand, same_language
-from sgplan.logic import parse_infix
 from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building
+from tests.llm.offline_reading import means
 
 # demo: room_4 kitchen (object_15 refrigerator, object_16 oven, object_18 microwave), room_5 bathroom
 # floor 0, room_6 living room (object_22 couch, object_23 tv, object_26 clock), room_7 dining room
@@ -52,9 +51,7 @@ def demo() -> Building:
     ],
 )
 def test_set4_classes_read(demo, text, gold):
-    formula = PatternTranslator().translate(text, demo).formula
-    same, why = same_language(formula, parse_infix(expand_shorthand(gold)), demo)
-    assert same, f"{text!r} -> {formula}, expected {gold}: {why}"
+    means(text, gold, demo)
 
 
 @pytest.mark.parametrize(

@@ -8,10 +8,9 @@ import pytest
 
 from sgplan.errors import MissionError
 from sgplan.llm.offline import PatternTranslator
-from sgplan.llm.offline.evaluation import expand_shorthand, same_language
-from sgplan.logic import parse_infix
 from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building
+from tests.llm.offline_reading import means
 
 # demo: room_4 kitchen (object_15 refrigerator), room_5 bathroom floor 0, room_6 living room (object_23
 # tv), room_7 dining room, room_11 / room_13 bedrooms floor 1, room_12 home office floor 1, room_14
@@ -21,12 +20,6 @@ from sgplan.scene.model import Building
 @pytest.fixture(scope="module")
 def demo() -> Building:
     return demo_building()
-
-
-def read(text: str, building: Building, gold: str, start_floor: int | None = None) -> None:
-    formula = PatternTranslator(start_floor).translate(text, building).formula
-    same, why = same_language(formula, parse_infix(expand_shorthand(gold)), building)
-    assert same, f"{text!r} -> {formula}, expected {gold}: {why}"
 
 
 @pytest.mark.parametrize(
@@ -63,7 +56,7 @@ def read(text: str, building: Building, gold: str, start_floor: int | None = Non
     ],
 )
 def test_set5_classes_read(demo, text, gold):
-    read(text, demo, gold)
+    means(text, gold, demo)
 
 
 @pytest.mark.parametrize(
@@ -77,7 +70,7 @@ def test_set5_classes_read(demo, text, gold):
     ],
 )
 def test_stated_start_floor(demo, text, start, gold):
-    read(text, demo, gold, start)
+    means(text, gold, demo, start)
 
 
 @pytest.mark.parametrize(
@@ -125,4 +118,4 @@ def test_stated_floor_needs_one_floor():
     building = load_authors_scene(root / "Benevolence")  # floors 0 to 2
     with pytest.raises(MissionError, match="say which floor the robot is on"):
         PatternTranslator().translate("I'm downstairs. Go to the bathroom upstairs.", building)
-    read("I'm downstairs. Go to the kitchen upstairs.", building, "F r15", start_floor=0)
+    means("I'm downstairs. Go to the kitchen upstairs.", "F r15", building, start_floor=0)
