@@ -2100,6 +2100,15 @@ class MissionParser:
         self.check(np, head, count)
         return self.record(np)
 
+    def object_qualifier_or_none(self) -> NounPhrase | None:
+        """The qualifier phrase here if it parses and names objects only, else ``None`` (a failed parse
+        may leave the position moved: the caller restores it)."""
+        try:
+            inner = self.noun_phrase("qualifier")
+        except MissionError:
+            return None
+        return None if any(e.kind != "object" for e in inner.entities) else inner
+
     def more_contents(self, first: Tok, rooms: list[Entity]) -> list[Entity]:
         """After ``the bedroom with the book``: ``and the vase`` may say more of its contents, or name
         another goal. When the rooms are still several and the object narrows them, it is contents
@@ -2109,12 +2118,8 @@ class MissionParser:
             return rooms
         save, known = self.i, len(self.references)
         self.i += 1
-        try:
-            inner = self.noun_phrase("qualifier")
-        except MissionError:
-            inner = None
-        holders = ([] if inner is None or any(e.kind != "object" for e in inner.entities)
-                   else self.vocab.containing(rooms, inner.entities, None))
+        inner = self.object_qualifier_or_none()
+        holders = [] if inner is None else self.vocab.containing(rooms, inner.entities, None)
         if len(rooms) > 1 and 0 < len(holders) < len(rooms):
             self.skip_in_it()
             return holders
@@ -2176,13 +2181,10 @@ class MissionParser:
             return False
         save, known = self.i, len(self.references)
         self.i += 1
-        try:
-            inner = self.noun_phrase("qualifier")
-        except MissionError:
-            inner = None
+        inner = self.object_qualifier_or_none()
         del self.references[known:]
         self.i = save
-        if inner is None or any(e.kind != "object" for e in inner.entities):
+        if inner is None:
             return False
         left = self.vocab.lacking(rooms, inner.entities)
         if not left or len(left) == len(rooms):
