@@ -27,7 +27,7 @@ PARTS = (
     ("sgplan.api", "Session.grid"), ("sgplan.api", "Session.labels"), ("sgplan.api", "make_problem"),
     ("sgplan.api", "_check_in_scene"), ("sgplan.planning.amra", "plan"),
     ("sgplan.planning.domain", "build_domain"), ("sgplan.planning.domain", "build_cell_graph"),
-    ("sgplan.planning.domain", "build_ltl_heuristic"), ("sgplan.planning.domain", "_action_maps"),
+    ("sgplan.planning.domain", "build_ltl_heuristic"), ("sgplan.planning.domain", "_action_tables"),
     ("sgplan.planning.amra", "_warm_up"), ("sgplan.api", "_explanation"), ("sgplan.api", "_add_outputs"),
     ("sgplan.commands.plan", "_write_json"),
 )
