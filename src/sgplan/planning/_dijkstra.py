@@ -10,8 +10,12 @@ indices ``[lo, hi)`` (one floor, or the whole building) and writes LOCAL arrays 
   written (and never cost memory);
 - ``order``: local indices in settling order, returned count of settled cells.
 
-An optional early stop ends the run once every cell of one room has been settled: composite actions are
-only taken from inside their room, so its distances are all that is needed, and they are already exact.
+A run may be confined to one room (``stop_room >= 0``): it then never steps into a cell of another room
+(the sources themselves may lie outside it, e.g. the door cells of a neighbouring room), so it computes
+the shortest paths that stay inside the room, and it ends early once a given number of the room's cells
+have been settled. Composite actions are only taken from inside their room, and a path inside the room is
+a sequence of real moves at their real cost, so the search stays exact; the run costs the room's cells,
+not the floor's (the reference planner confines its maps to a box around the room likewise).
 
 The priority queue is not a heap but a ring of buckets of width ``delta`` = the smallest edge cost (times
 ``1 - 1e-9``, a margin far above float64 rounding): no edge leads from a cell of the lowest bucket to
@@ -52,9 +56,11 @@ def dijkstra(
 ):
     """Fill ``dist`` / ``pred`` / ``order`` (local, see the module docstring); returns cells settled.
 
-    ``sources`` are global cell indices in ``[lo, hi)``. Stops early after ``stop_count`` cells of room
-    index ``stop_room`` are settled (``stop_room < 0``: run to exhaustion). Every edge cost must be
-    positive (the cell graph checks its stairs).
+    ``sources`` are global cell indices in ``[lo, hi)``. With ``stop_room >= 0`` the run never enters a
+    cell whose ``cell_room`` differs from ``stop_room`` (sources excepted) and stops early after
+    ``stop_count`` cells of that room are settled; with ``stop_room < 0`` it covers ``[lo, hi)`` to
+    exhaustion (``cell_room`` is then not read). Every edge cost must be positive (the cell graph checks
+    its stairs).
     """
     n = hi - lo
     shortest = step_cost.min()
@@ -147,7 +153,7 @@ def _settle(
                     break
             for k in range(8):
                 v = nbr[gu, k] - lo
-                if v < 0 or v >= n:
+                if v < 0 or v >= n or (stop_room >= 0 and cell_room[v + lo] != stop_room):
                     continue
                 nd = d + step_cost[k]
                 dv = dist[v]

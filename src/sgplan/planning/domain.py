@@ -8,8 +8,10 @@ The anchor (level 0) is the union. A state belongs to level 2 iff its cell lies 
 region, and to levels 1, 3, 4 and the anchor always (every traversable cell is in a room).
 
 Every composite action follows an EXACT shortest path over the same cells (multi-source Dijkstra from the
-action's target cells, built lazily inside the search the first time the action is needed) and advances
-the automaton over every cell of that path after the current one. So each composite action is exactly a
+action's target cells, built lazily inside the search the first time the action is needed): over the
+floor for floor actions, over the cells of the action's room for object and room actions (their paths
+never leave the room they start in, except for a room action's final door cell), and advances the
+automaton over every cell of that path after the current one. So each composite action is exactly a
 sequence of occupancy moves, and the optimum over the product graph is unchanged by adding them. If the
 automaton accepts part-way along the path, the action stops there (a shorter sequence of moves).
 """
@@ -601,12 +603,11 @@ def stop_counts(
     """``(M,)`` int64: for each action map, the cells of its stop room reachable from the start; 0 for
     maps without a stop room.
 
-    A map's Dijkstra stops once it has settled that many cells of the room. The search only ever stands
-    on reachable cells, and a map whose sources are reachable settles every reachable room cell of their
-    floor component: so it stops right after the last one it can serve. Counting every room cell
-    instead ran it over the whole floor whenever part of the room is cut off (a pocket behind
-    furniture). (Sources cut off from the start settle no reachable cell: whenever they stop, no cell
-    the search uses is missing.)"""
+    A map's Dijkstra (confined to its room) stops once it has settled that many cells of the room: the
+    search only ever stands on reachable cells, so it stops right after the last one it can serve.
+    Counting every room cell instead ran it to exhaustion whenever part of the room is cut off (a pocket
+    behind furniture). Room cells reachable from the start but not from the sources inside the room are
+    never settled: the run then ends by exhaustion of the room, and those cells have no such action."""
     rooms = cell_room[reachable]
     per_room = np.bincount(rooms[rooms >= 0], minlength=num_rooms).astype(np.int64)
     return np.where(stop_rooms >= 0, per_room[np.maximum(stop_rooms, 0)], 0).astype(np.int64)
