@@ -173,3 +173,29 @@ def _confined_distance(grid, domain, k: int, sources: np.ndarray, cell: int) -> 
     where = [(int(graph.cell_row[s]), int(graph.cell_col[s]), int(graph.cell_floor[s])) for s in sources]
     dist = grid_distances(dataclasses.replace(grid, traversable=traversable), where)
     return float(dist[graph.cell_floor[cell], graph.cell_row[cell], graph.cell_col[cell]])
+
+
+@settings(max_examples=10, deadline=None)
+@given(st.integers(0, 2**31 - 1))
+def test_level_one_domain_skips_the_action_tables_and_adds_them_later(seed: int) -> None:
+    """A domain for max level 1 (the A* setup) has no composite action families but the same occupancy
+    successors; asking it for level 4 afterwards gives the families and successors of a full domain."""
+    lean, full = random_problem(seed, guidance="none"), random_problem(seed, guidance="none")
+    try:
+        domain = lean.domain_for(1)
+    except PlanningError:
+        return
+    assert domain.max_level == 1 and domain.maps == [] and domain.kmaps.dist.size == 0
+    assert not domain.kgraph.in_object_region.any()
+    reference = full.domain
+    rng = np.random.default_rng(seed)
+    cells = rng.integers(domain.graph.num_cells, size=20)
+    for cell in cells:
+        q = int(rng.integers(domain.num_states))
+        assert _edges(domain, int(cell), q, max_level=1) == _edges(reference, int(cell), q, max_level=1)
+    assert lean.domain_for(4) is domain and domain.max_level == 4
+    assert domain.maps == reference.maps
+    assert np.array_equal(domain.kgraph.cell_room, reference.kgraph.cell_room)
+    for cell in cells:
+        q = int(rng.integers(domain.num_states))
+        assert _edges(domain, int(cell), q) == _edges(reference, int(cell), q)

@@ -90,7 +90,11 @@ class PlanningDomain:
     ltl, llm:
         heuristics (``llm`` built only when the problem carries guidance).
     maps:
-        the composite action families, indexed like the kernel's map arrays.
+        the composite action families, indexed like the kernel's map arrays (none below level 2).
+    max_level:
+        the highest planning level this domain serves: below 2 (the A* setup) the composite action
+        tables are not built, and the kernel gets placeholders (:func:`_no_actions`);
+        :meth:`ensure_level` builds them when a later plan needs them.
     precompute_s:
         seconds spent building this domain, including :meth:`build_actions` once it ran.
     timings:
@@ -114,6 +118,7 @@ class PlanningDomain:
     kmaps: KernelMaps
     klogic: KernelLogic
     precompute_s: float
+    max_level: int = 4
     timings: dict[str, float] = field(default_factory=dict)
 
     @property
@@ -143,6 +148,22 @@ class PlanningDomain:
             cells.append(x)
         return cells
 
+    def ensure_level(self, problem: PlanningProblem, max_level: int) -> None:
+        """Make the domain serve planning levels up to ``max_level``: builds the composite action tables
+        (adding the seconds to ``precompute_s``) if they were skipped and ``max_level >= 2``. ``problem``
+        must be the one this domain was built for."""
+        if max_level <= self.max_level or self.max_level >= 2:
+            self.max_level = max(self.max_level, max_level)
+            return
+        t0 = time.perf_counter()
+        reachable = self.graph.reachable(self.start_cell)
+        parts = _action_parts(problem, self.graph, self.cell_label, reachable)
+        self.maps, self.kactions, self.kmaps = parts.maps, parts.kactions, parts.kmaps
+        self.kgraph = self.kgraph._replace(cell_room=parts.cell_room, in_object_region=parts.in_region,
+                                           cell_xyz=_cell_xyz(self.graph, self.llm is not None))
+        self.max_level = max_level
+        self.precompute_s += time.perf_counter() - t0
+
     def build_actions(self) -> float:
         """Build every composite action map now instead of lazily during search; returns the seconds
         spent (also added to ``precompute_s``). Costs 1-3 s on the Gibson scenes; afterwards the first
@@ -156,8 +177,10 @@ class PlanningDomain:
         return spent
 
 
-def build_domain(problem: PlanningProblem) -> PlanningDomain:
-    """Validate the start and precompute everything the search needs except the action maps.
+def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain:
+    """Validate the start and precompute everything the search needs at planning levels up to
+    ``max_level`` except the action maps (built lazily by the search); below level 2 the composite
+    action tables are skipped (see ``PlanningDomain.max_level``).
 
     Raises
     ------
@@ -212,31 +235,11 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
             _infeasible_reason(problem, label_masks[cell_label], reachable, q_start), status="infeasible"
         )
 
-    tables = shared_part(problem.shared, "action_tables", (problem.grid, problem.reach_radius_m),
-                         lambda: _action_tables(problem, graph))
-    cell_room, in_region, room_uuids = tables.cell_room, tables.in_region, tables.room_uuids
-    maps = tables.maps
-    # The maps' early stops depend on which cells the search can stand on: the start's component, named
-    # by its lowest cell.
-    component = int(np.argmax(reachable))
-    store = shared_part(problem.shared, "action_maps", (problem.grid, problem.reach_radius_m, component),
-                        lambda: MapStore.empty(tables, graph, reachable))
-    kactions = tables.kactions._replace(map_stop_count=store.stop_count)
-    # Label runs follow which cells share a label: shared by the problems with the same cell labels.
-    labelling = hashlib.blake2b(cell_label.tobytes(), digest_size=16).digest()
-    runs = shared_part(problem.shared, "label_runs",
-                       (problem.grid, problem.reach_radius_m, component, labelling),
-                       lambda: LabelRuns.empty(store))
+    room_uuids = [room.uuid for room in problem.building.rooms()]  # room index -> uuid, as cell_room
+    parts = (_action_parts(problem, graph, cell_label, reachable) if max_level >= 2
+             else _no_actions(graph, len(room_uuids)))
+    del reachable
     clock.lap("action_tables")
-    kmaps = KernelMaps(
-        done=runs.done,
-        dist=store.dist,
-        pred=store.pred,
-        run=runs.run,
-        order=np.zeros(store.dist.shape[1], dtype=np.int32),
-        count=store.count,
-        built=store.built,
-    )
 
     llm = (
         build_llm_heuristic(problem.guidance, problem.building, room_uuids, automaton.num_states)
@@ -272,11 +275,9 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
         floor_offset=graph.floor_offset,
         cell_floor=graph.cell_floor,
         cell_label=cell_label,
-        cell_room=cell_room,
-        # Only h_LLM reads cell centres; without guidance it is never evaluated, and a lazily committed
-        # zero array stands in (24 bytes a cell never touched).
-        cell_xyz=graph.cell_xyz if llm is not None else sparse_zeros((graph.num_cells, 3), np.float64),
-        in_object_region=in_region,
+        cell_room=parts.cell_room,
+        cell_xyz=_cell_xyz(graph, llm is not None and max_level >= 2),
+        in_object_region=parts.in_region,
     )
     return PlanningDomain(
         graph=graph,
@@ -289,14 +290,94 @@ def build_domain(problem: PlanningProblem) -> PlanningDomain:
         ltl=ltl,
         llm=llm,
         room_uuids=room_uuids,
-        maps=maps,
+        maps=parts.maps,
         kgraph=kgraph,
-        kactions=kactions,
-        kmaps=kmaps,
+        kactions=parts.kactions,
+        kmaps=parts.kmaps,
         klogic=klogic,
         precompute_s=time.perf_counter() - t0,
+        max_level=max_level,
         timings=clock.laps,
     )
+
+
+ActionParts = namedtuple("ActionParts", "maps kactions kmaps cell_room in_region")
+"""What :func:`build_domain` hands the kernel for the composite actions: the families, their tables,
+their maps (this problem's view of the shared store), and the per-cell room index / object-region flag."""
+
+
+def _action_parts(
+    problem: PlanningProblem, graph: CellGraph, cell_label: np.ndarray, reachable: np.ndarray
+) -> ActionParts:
+    """The composite action tables of the problem's grid (shared by a session), the map store of the
+    start's connected component and the label runs of this labelling (both filled by the search)."""
+    tables = shared_part(problem.shared, "action_tables", (problem.grid, problem.reach_radius_m),
+                         lambda: _action_tables(problem, graph))
+    # The maps' early stops depend on which cells the search can stand on: the start's component, named
+    # by its lowest cell.
+    component = int(np.argmax(reachable))
+    store = shared_part(problem.shared, "action_maps", (problem.grid, problem.reach_radius_m, component),
+                        lambda: MapStore.empty(tables, graph, reachable))
+    # Label runs follow which cells share a label: shared by the problems with the same cell labels.
+    labelling = hashlib.blake2b(cell_label.tobytes(), digest_size=16).digest()
+    runs = shared_part(problem.shared, "label_runs",
+                       (problem.grid, problem.reach_radius_m, component, labelling),
+                       lambda: LabelRuns.empty(store))
+    kmaps = KernelMaps(
+        done=runs.done,
+        dist=store.dist,
+        pred=store.pred,
+        run=runs.run,
+        order=np.zeros(store.dist.shape[1], dtype=np.int32),
+        count=store.count,
+        built=store.built,
+    )
+    return ActionParts(maps=tables.maps, kactions=tables.kactions._replace(map_stop_count=store.stop_count),
+                       kmaps=kmaps, cell_room=tables.cell_room, in_region=tables.in_region)
+
+
+def _no_actions(graph: CellGraph, num_rooms: int) -> ActionParts:
+    """Placeholders for a search without composite actions (max level 1), typed as the kernel expects:
+    no families (empty tables; per-room pointers of ``num_rooms`` empty rooms, no floor maps) and
+    ``(0, 0)`` maps. ``cell_room`` and ``in_region`` are lazily committed zero arrays of one entry per
+    cell (no memory): a level-1 search without LLM queues never reads them (every setup with LLM queues
+    has max level 4)."""
+    floors = graph.shape[0]
+    none32, none64 = np.zeros(0, dtype=np.int32), np.zeros(0, dtype=np.int64)
+    kactions = KernelActions(
+        room_obj_ptr=np.zeros(num_rooms + 1, dtype=np.int64),
+        room_obj_map=none32,
+        room_room_ptr=np.zeros(num_rooms + 1, dtype=np.int64),
+        room_room_map=none32,
+        floor_up_map=np.full(floors, -1, dtype=np.int32),
+        floor_down_map=np.full(floors, -1, dtype=np.int32),
+        map_floor=none32,
+        map_src_ptr=np.zeros(1, dtype=np.int64),
+        map_src=none64,
+        map_stop_room=none32,
+        map_stop_count=none64,
+        map_exit_cell=none64,
+        map_exit_cost=np.zeros(0, dtype=np.float64),
+    )
+    kmaps = KernelMaps(
+        done=np.zeros(0, dtype=np.uint8),
+        dist=np.zeros((0, 0), dtype=np.float64),
+        pred=np.zeros((0, 0), dtype=np.int32),
+        run=np.zeros((0, 0), dtype=np.int32),
+        order=none32,
+        count=none64,
+        built=np.zeros(0, dtype=np.uint8),
+    )
+    return ActionParts(maps=[], kactions=kactions, kmaps=kmaps,
+                       cell_room=sparse_zeros(graph.num_cells, np.int32),
+                       in_region=sparse_zeros(graph.num_cells, np.bool_))
+
+
+def _cell_xyz(graph: CellGraph, used: bool) -> np.ndarray:
+    """The kernel's cell centres: only h_LLM reads them, and only setups with LLM queues (max level 4)
+    evaluate it; when not ``used`` a lazily committed zero array stands in (24 bytes a cell never
+    touched)."""
+    return graph.cell_xyz if used else sparse_zeros((graph.num_cells, 3), np.float64)
 
 
 class _Clock:

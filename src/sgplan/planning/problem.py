@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -87,9 +86,23 @@ class PlanningProblem:
         described = self.ap_descriptions.get(ap)
         return f"{ap} ({described})" if described and described != ap else ap
 
-    @cached_property
+    @property
     def domain(self) -> PlanningDomain:
-        """The precomputed planning domain (built on first use, then shared by every plan call).
+        """The precomputed planning domain for every level (built on first use, then shared by every
+        plan call): :meth:`domain_for` level 4.
+
+        Raises
+        ------
+        PlanningError
+            ``status="invalid-start"`` or ``status="infeasible"``, see :func:`build_domain`.
+        """
+        return self.domain_for(4)
+
+    def domain_for(self, max_level: int) -> PlanningDomain:
+        """The precomputed planning domain for a plan using levels up to ``max_level``, built on first use
+        and then shared by every plan call: built without the composite action tables when
+        ``max_level < 2`` (the A* setup); a later call with a higher level adds them
+        (:meth:`PlanningDomain.ensure_level`).
 
         Raises
         ------
@@ -98,4 +111,10 @@ class PlanningProblem:
         """
         from sgplan.planning.domain import build_domain
 
-        return build_domain(self)
+        built: PlanningDomain | None = self.__dict__.get("_domain")
+        if built is None:
+            built = build_domain(self, max_level)
+            self.__dict__["_domain"] = built
+        else:
+            built.ensure_level(self, max_level)
+        return built
