@@ -150,6 +150,42 @@ def test_cell_centres_and_gather() -> None:
     np.testing.assert_allclose(graph.cell_xyz[:, 2], np.array([0.0, 3.0])[f])
     raster = np.arange(np.prod(grid.shape)).reshape(grid.shape)
     assert np.array_equal(graph.gather(raster), raster[f, r, c])
+    index = np.full(grid.traversable.size, -1)
+    index[grid.traversable.reshape(-1)] = np.arange(graph.num_cells)
+    assert np.array_equal(graph.cell_ids(np.arange(grid.traversable.size)), index)
+    assert graph.cell_id(int(r[-1]), int(c[-1]), int(f[-1])) == graph.num_cells - 1
+
+
+def test_a_room_confined_run_never_leaves_its_room() -> None:
+    """A U-shaped room around another: the confined shortest paths go round the U (longer than across
+    the other room) and equal the distances over the room's cells alone."""
+    size = 20
+    grid = OccupancyGrid(
+        traversable=np.ones((1, size, size), dtype=bool), room_map=np.ones((1, size, size), dtype=np.int16),
+        resolution_m=(0.05, 0.05), origin_m=(0.0, 0.0), floor_z_m=np.array([0.0]), stairs=(),
+        robot_radius_m=0.0,
+    )
+    graph = build_cell_graph(grid)
+    row, col = graph.cell_row, graph.cell_col
+    in_u = (col < 5) | (col >= 15) | (row >= 15)
+    cell_room = np.where(in_u, 1, 2).astype(np.int32)
+    n = graph.num_cells
+    dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)
+    source = np.array([graph.cell_id(0, 0, 0)], dtype=np.int64)
+    settled = dijkstra(
+        graph.nbr, graph.step_cost, graph.stairs_first, graph.stairs_from, graph.stairs_to,
+        graph.stairs_cost, 0, n, False, source, cell_room, np.int32(1), int(in_u.sum()), dist, pred, order,
+    )
+    assert settled == int(in_u.sum()) and (pred[~in_u] == 0).all()
+    room_only = OccupancyGrid(
+        traversable=in_u.reshape(1, size, size), room_map=grid.room_map, resolution_m=grid.resolution_m,
+        origin_m=(0.0, 0.0), floor_z_m=np.array([0.0]), stairs=(), robot_radius_m=0.0,
+    )
+    small = build_cell_graph(room_only)
+    expected = _scipy_distances(room_only, small, np.array([small.cell_id(0, 0, 0)]))
+    np.testing.assert_allclose(dist[in_u], expected, atol=1e-9)
+    corner = graph.cell_id(0, size - 1, 0)
+    assert dist[corner] > graph.distances(source)[corner] + 1.0
 
 
 def test_stop_count_ignores_room_cells_cut_off_from_the_sources() -> None:

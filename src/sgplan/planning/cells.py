@@ -2,8 +2,10 @@
 
 Cells are numbered floor by floor in raster order (so each floor is a contiguous index range), which
 lets every per-cell array be a flat ``int32``/``float64`` array of length N instead of a full raster, and
-a product state be the single integer ``cell * Q + q``. Edges follow :mod:`sgplan.scene.grid`: 8-connected
-steps into traversable cells (Euclidean step cost in metres) and stairs between portal cells.
+a product state be the single integer ``cell * Q + q``. Nothing of the graph is sized by the whole
+raster: a raster position is found among the cells' (ascending) positions by binary search. Edges follow
+:mod:`sgplan.scene.grid`: 8-connected steps into traversable cells (Euclidean step cost in metres) and
+stairs between portal cells.
 """
 
 from __future__ import annotations
@@ -30,10 +32,11 @@ class CellGraph:
     ----------
     shape:
         ``(floors, rows, cols)`` of the grid.
-    index:
-        ``(floors * rows * cols,)`` int32: the cell index of each raster position, -1 if not traversable.
-    cell_floor, cell_row, cell_col:
-        ``(N,)`` int32 position of each cell.
+    cell_pos:
+        ``(N,)`` ascending flat raster position ``(floor * rows + row) * cols + col`` of each cell (int32
+        when the raster allows, else int64).
+    cell_floor:
+        ``(N,)`` int32 floor of each cell (:attr:`cell_row` / :attr:`cell_col` are computed on use).
     floor_offset:
         ``(floors + 1,)`` int64: cells of floor ``f`` are ``floor_offset[f] .. floor_offset[f+1] - 1``.
     nbr:
@@ -49,10 +52,8 @@ class CellGraph:
     """
 
     shape: tuple[int, int, int]
-    index: np.ndarray
+    cell_pos: np.ndarray
     cell_floor: np.ndarray
-    cell_row: np.ndarray
-    cell_col: np.ndarray
     floor_offset: np.ndarray
     nbr: np.ndarray
     step_cost: np.ndarray
@@ -78,27 +79,34 @@ class CellGraph:
         xyz[:, 2] = np.asarray(self.floor_z_m, dtype=np.float64)[self.cell_floor]
         return xyz
 
-    def cell_pos(self) -> np.ndarray:
-        """``(N,)`` flat raster position of every cell (int32 when the raster allows, else int64); computed
-        on each call, not kept (4-8 bytes a cell)."""
-        f, r, c = self.shape
-        dtype = np.int32 if f * r * c < 2**31 else np.int64
-        pos = self.cell_floor.astype(dtype) * dtype(r)
-        pos += self.cell_row
-        pos *= dtype(c)
-        pos += self.cell_col
-        return pos
+    @property
+    def cell_row(self) -> np.ndarray:
+        """``(N,)`` int32 row of each cell, computed on each access (4 bytes a cell, not kept)."""
+        _, rows, cols = self.shape
+        row = self.cell_pos // cols
+        row %= rows
+        return row.astype(np.int32, copy=False)
+
+    @property
+    def cell_col(self) -> np.ndarray:
+        """``(N,)`` int32 column of each cell, computed on each access (4 bytes a cell, not kept)."""
+        return (self.cell_pos % self.shape[2]).astype(np.int32, copy=False)
+
+    def cell_ids(self, positions: np.ndarray) -> np.ndarray:
+        """The cell index (int64) at each flat raster position of ``positions``, -1 where the position is
+        not a cell (not traversable). Positions must lie inside the raster."""
+        return _cell_ids(self.cell_pos, positions)
 
     def cell_id(self, row: int, col: int, floor: int) -> int:
         """Index of cell ``(row, col, floor)``, -1 if it is outside the grid or not traversable."""
         f, r, c = self.shape
         if not (0 <= floor < f and 0 <= row < r and 0 <= col < c):
             return -1
-        return int(self.index[(floor * r + row) * c + col])
+        return int(self.cell_ids(np.array([(floor * r + row) * c + col]))[0])
 
     def gather(self, raster: np.ndarray) -> np.ndarray:
         """The values of a ``(floors, rows, cols)`` raster at every cell, as an ``(N,)`` array."""
-        return raster.reshape(-1)[self.cell_pos()]
+        return raster.reshape(-1)[self.cell_pos]
 
     def distances(self, sources: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
         """Exact metres from every cell to the nearest of ``sources`` (cell indices), stairs included.
@@ -128,29 +136,51 @@ class CellGraph:
 _NO_ROOMS = np.zeros(0, dtype=np.int32)
 
 
+def _cell_ids(cell_pos: np.ndarray, positions: np.ndarray) -> np.ndarray:
+    """Int64 index into the ascending ``cell_pos`` of each of ``positions``, -1 where absent."""
+    positions = np.asarray(positions, dtype=np.int64)
+    if cell_pos.shape[0] == 0:
+        return np.full(positions.shape, -1, dtype=np.int64)
+    ids = np.searchsorted(cell_pos, positions)
+    ids[ids >= cell_pos.shape[0]] = 0
+    return np.where(cell_pos[ids] == positions, ids, -1)
+
+
 @njit(cache=True)
-def _tabulate(traversable, index, cell_floor, cell_row, cell_col, nbr):
+def _tabulate(traversable, cell_pos, cell_floor, nbr):
     """Number the traversable cells of ``traversable`` (floors, rows, cols) in raster order into
-    ``index`` (flat raster, -1 elsewhere) and ``cell_*``, then fill ``nbr`` (N, 8) per :data:`STEPS`."""
+    ``cell_pos`` / ``cell_floor``, then fill ``nbr`` (N, 8) per :data:`STEPS`. Scratch is a few rows,
+    not a raster: a row's cell indices are rebuilt from its first cell's index when needed."""
     floors, rows, cols = traversable.shape
+    row_first = np.empty(floors * rows, dtype=np.int64)
     n = 0
     for f in range(floors):
         for r in range(rows):
+            row_first[f * rows + r] = n
             for c in range(cols):
                 if traversable[f, r, c]:
-                    index[(f * rows + r) * cols + c] = n
+                    cell_pos[n] = (f * rows + r) * cols + c
                     cell_floor[n] = f
-                    cell_row[n] = r
-                    cell_col[n] = c
                     n += 1
-                else:
-                    index[(f * rows + r) * cols + c] = -1
-    for i in range(n):
-        f, r, c = cell_floor[i], cell_row[i], cell_col[i]
-        for k in range(8):
-            r2 = r + STEPS[k, 0]
-            c2 = c + STEPS[k, 1]
-            nbr[i, k] = index[(f * rows + r2) * cols + c2] if 0 <= r2 < rows and 0 <= c2 < cols else -1
+    near = np.empty((3, cols), dtype=np.int64)  # cell index per column of rows r-1, r, r+1 (-1: none)
+    for f in range(floors):
+        for r in range(rows):
+            for d in range(3):
+                r2 = r + d - 1
+                i = row_first[f * rows + r2] if 0 <= r2 < rows else 0
+                for c in range(cols):
+                    if 0 <= r2 < rows and traversable[f, r2, c]:
+                        near[d, c] = i
+                        i += 1
+                    else:
+                        near[d, c] = -1
+            for c in range(cols):
+                i = near[1, c]
+                if i < 0:
+                    continue
+                for k in range(8):
+                    c2 = c + STEPS[k, 1]
+                    nbr[i, k] = near[STEPS[k, 0] + 1, c2] if 0 <= c2 < cols else -1
 
 
 def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
@@ -164,12 +194,10 @@ def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
     floors, rows, cols = grid.shape
     traversable = np.ascontiguousarray(grid.traversable, dtype=np.bool_)
     n = int(np.count_nonzero(traversable))
-    index = np.empty(floors * rows * cols, dtype=np.int32)
+    cell_pos = np.empty(n, dtype=np.int32 if floors * rows * cols < 2**31 else np.int64)
     cell_floor = np.empty(n, dtype=np.int32)
-    cell_row = np.empty(n, dtype=np.int32)
-    cell_col = np.empty(n, dtype=np.int32)
     nbr = np.empty((n, 8), dtype=np.int32)
-    _tabulate(traversable, index, cell_floor, cell_row, cell_col, nbr)
+    _tabulate(traversable, cell_pos, cell_floor, nbr)
     res_x, res_y = grid.resolution_m
     step_cost = np.hypot(STEPS[:, 0] * res_x, STEPS[:, 1] * res_y).astype(np.float64)
 
@@ -180,8 +208,10 @@ def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
                 f"stairs between floors {link.lower_floor} and {link.upper_floor} cost {link.cost_m} m; "
                 "a stairs cost must be positive metres"
             )
-        low = index[(link.lower_floor * rows + link.lower_cell[0]) * cols + link.lower_cell[1]]
-        up = index[(link.upper_floor * rows + link.upper_cell[0]) * cols + link.upper_cell[1]]
+        low, up = _cell_ids(cell_pos, np.array([
+            (link.lower_floor * rows + link.lower_cell[0]) * cols + link.lower_cell[1],
+            (link.upper_floor * rows + link.upper_cell[0]) * cols + link.upper_cell[1],
+        ]))
         if low >= 0 and up >= 0:
             moves += [(low, up, link.cost_m), (up, low, link.cost_m)]
     moves.sort()
@@ -194,10 +224,8 @@ def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
 
     return CellGraph(
         shape=(floors, rows, cols),
-        index=index,
+        cell_pos=cell_pos,
         cell_floor=cell_floor,
-        cell_row=cell_row,
-        cell_col=cell_col,
         floor_offset=np.searchsorted(cell_floor, np.arange(floors + 1)).astype(np.int64),
         nbr=nbr,
         step_cost=step_cost,

@@ -698,7 +698,7 @@ def _cell_ids(graph: CellGraph, floor: int, cells: np.ndarray) -> np.ndarray:
     """Sorted unique cell indices of the traversable ``(row, col)`` cells among ``cells`` on ``floor``."""
     _, rows, cols = graph.shape
     inside = (cells[:, 0] >= 0) & (cells[:, 0] < rows) & (cells[:, 1] >= 0) & (cells[:, 1] < cols)
-    ids = graph.index[(floor * rows + cells[inside, 0]) * cols + cells[inside, 1]]
+    ids = graph.cell_ids((floor * rows + cells[inside, 0]) * cols + cells[inside, 1])
     return np.unique(ids[ids >= 0]).astype(np.int64)
 
 
@@ -722,5 +722,5 @@ def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj) -> np.n
     near = within_distance(footprint, res, problem.reach_radius_m)
     near &= floor.room_map[r0:r1, c0:c1] == room.id
     rr, cc = np.nonzero(near)
-    ids = graph.index[(room.floor * rows + rr + r0) * cols + cc + c0]
+    ids = graph.cell_ids((room.floor * rows + rr + r0) * cols + cc + c0)
     return ids[ids >= 0].astype(np.int64)
