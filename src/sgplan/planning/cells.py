@@ -104,6 +104,15 @@ class CellGraph:
             return -1
         return int(self.cell_ids(np.array([(floor * r + row) * c + col]))[0])
 
+    def window_ids(self, floor: int, rows: slice, cols: slice) -> np.ndarray:
+        """The cell index (int64, -1 where not a cell) of every position of the window ``[rows, cols]`` of
+        ``floor`` (slices with start and stop inside the raster, step 1): one binary search per window
+        row, then a walk over that row's cells."""
+        _, n_rows, n_cols = self.shape
+        out = np.full((rows.stop - rows.start, cols.stop - cols.start), -1, dtype=np.int64)
+        _window(self.cell_pos, (floor * n_rows + rows.start) * n_cols + cols.start, n_cols, out)
+        return out
+
     def gather(self, raster: np.ndarray) -> np.ndarray:
         """The values of a ``(floors, rows, cols)`` raster at every cell, as an ``(N,)`` array."""
         return raster.reshape(-1)[self.cell_pos]
@@ -136,12 +145,26 @@ class CellGraph:
 _NO_ROOMS = np.zeros(0, dtype=np.int32)
 
 
+@njit(cache=True)
+def _window(cell_pos, first, stride, out):
+    """``out[i, j]`` = index of the cell at raster position ``first + i * stride + j``, where there is one
+    (``out`` holds -1 before)."""
+    for i in range(out.shape[0]):
+        start = first + i * stride
+        k = np.searchsorted(cell_pos, start)
+        while k < cell_pos.shape[0] and cell_pos[k] < start + out.shape[1]:
+            out[i, cell_pos[k] - start] = k
+            k += 1
+
+
 def _cell_ids(cell_pos: np.ndarray, positions: np.ndarray) -> np.ndarray:
-    """Int64 index into the ascending ``cell_pos`` of each of ``positions``, -1 where absent."""
-    positions = np.asarray(positions, dtype=np.int64)
+    """Int64 index into the ascending ``cell_pos`` of each of ``positions`` (raster positions), -1 where
+    absent."""
+    # In cell_pos's dtype: a mixed-dtype search would convert all of cell_pos on every call.
+    positions = np.asarray(positions).astype(cell_pos.dtype, copy=False)
     if cell_pos.shape[0] == 0:
         return np.full(positions.shape, -1, dtype=np.int64)
-    ids = np.searchsorted(cell_pos, positions)
+    ids = np.searchsorted(cell_pos, positions).astype(np.int64, copy=False)
     ids[ids >= cell_pos.shape[0]] = 0
     return np.where(cell_pos[ids] == positions, ids, -1)
 

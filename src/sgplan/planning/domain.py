@@ -698,8 +698,10 @@ def _cell_ids(graph: CellGraph, floor: int, cells: np.ndarray) -> np.ndarray:
     """Sorted unique cell indices of the traversable ``(row, col)`` cells among ``cells`` on ``floor``."""
     _, rows, cols = graph.shape
     inside = (cells[:, 0] >= 0) & (cells[:, 0] < rows) & (cells[:, 1] >= 0) & (cells[:, 1] < cols)
-    ids = graph.cell_ids((floor * rows + cells[inside, 0]) * cols + cells[inside, 1])
-    return np.unique(ids[ids >= 0]).astype(np.int64)
+    # Sorted positions first: their binary searches then walk the cell positions in order (cache-friendly,
+    # ~10x faster on a large graph), and ascending positions give ascending cell indices.
+    ids = graph.cell_ids(np.unique((floor * rows + cells[inside, 0]) * cols + cells[inside, 1]))
+    return ids[ids >= 0]
 
 
 def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj) -> np.ndarray:
@@ -721,6 +723,5 @@ def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj) -> np.n
         return np.zeros(0, dtype=np.int64)
     near = within_distance(footprint, res, problem.reach_radius_m)
     near &= floor.room_map[r0:r1, c0:c1] == room.id
-    rr, cc = np.nonzero(near)
-    ids = graph.cell_ids((room.floor * rows + rr + r0) * cols + cc + c0)
-    return ids[ids >= 0].astype(np.int64)
+    ids = graph.window_ids(room.floor, slice(r0, r1), slice(c0, c1))[near]
+    return ids[ids >= 0]
