@@ -18,6 +18,7 @@ from numba import njit
 
 from sgplan.errors import SceneError
 from sgplan.planning._dijkstra import dijkstra, flood
+from sgplan.planning._memory import sparse_zeros
 from sgplan.scene.grid import OccupancyGrid
 
 # (d_row, d_col) of the 8 moves; action code k of an occupancy step is the index here.
@@ -46,7 +47,10 @@ class CellGraph:
     stairs_from, stairs_to, stairs_cost:
         ``(S,)`` stairs moves (both directions of every link), sorted by ``stairs_from``.
     stairs_first:
-        ``(N,)`` int32: index of the first stairs move leaving the cell, -1 if none.
+        ``(N,)`` int32: index of the first stairs move leaving the cell; for a cell without stairs an
+        index whose move does not leave it (0: lazily committed zeros, written only at the portals, so
+        4 bytes a portal instead of a cell). Readers walk ``j = stairs_first[c]`` while
+        ``stairs_from[j] == c``.
     origin_m, resolution_m, floor_z_m:
         the grid's frame (see :class:`OccupancyGrid`), for :attr:`cell_xyz`.
     """
@@ -241,7 +245,7 @@ def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
     stairs_from = np.array([m[0] for m in moves], dtype=np.int32)
     stairs_to = np.array([m[1] for m in moves], dtype=np.int32)
     stairs_cost = np.array([m[2] for m in moves], dtype=np.float64)
-    stairs_first = np.full(n, -1, dtype=np.int32)
+    stairs_first = sparse_zeros(n, np.int32)
     for j in range(len(moves) - 1, -1, -1):
         stairs_first[stairs_from[j]] = j
 
