@@ -142,16 +142,22 @@ def test_stairs_must_cost_something() -> None:
 
 def test_cell_centres_and_gather() -> None:
     grid = _random_grid(3, (0.05, 0.08), 1.0)
+    grid.room_map[:] = np.where(np.arange(grid.shape[2]) < 4, 7, 2).astype(np.int16)  # two rooms
     graph = build_cell_graph(grid)
-    f, r, c = np.nonzero(grid.traversable)  # raster order = cell order
+    f, r, c = np.unravel_index(graph.positions(), grid.shape)
+    assert grid.traversable[f, r, c].all() and len(set(graph.positions())) == grid.traversable.sum()
     assert np.array_equal(graph.cell_floor, f) and np.array_equal(graph.cell_row, r)
+    assert np.array_equal(graph.cell_col, c)
+    # Numbered by floor, then room (ascending id), then raster order.
+    order = np.lexsort((graph.positions(), grid.room_map[f, r, c], f))
+    assert np.array_equal(order, np.arange(graph.num_cells))
     np.testing.assert_allclose(graph.cell_xyz[:, 0], (r + 0.5) * 0.05)
     np.testing.assert_allclose(graph.cell_xyz[:, 1], (c + 0.5) * 0.08)
     np.testing.assert_allclose(graph.cell_xyz[:, 2], np.array([0.0, 3.0])[f])
     raster = np.arange(np.prod(grid.shape)).reshape(grid.shape)
     assert np.array_equal(graph.gather(raster), raster[f, r, c])
     index = np.full(grid.traversable.size, -1)
-    index[grid.traversable.reshape(-1)] = np.arange(graph.num_cells)
+    index[graph.positions()] = np.arange(graph.num_cells)
     assert np.array_equal(graph.cell_ids(np.arange(grid.traversable.size)), index)
     assert graph.cell_id(int(r[-1]), int(c[-1]), int(f[-1])) == graph.num_cells - 1
     rows, cols = grid.shape[1:]

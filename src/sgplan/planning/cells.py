@@ -1,9 +1,15 @@
 """The compact cell graph the planner searches: traversable cells only, indexed 0..N-1.
 
-Cells are numbered floor by floor in raster order (so each floor is a contiguous index range), which
-lets every per-cell array be a flat ``int32``/``float64`` array of length N instead of a full raster, and
-a product state be the single integer ``cell * Q + q``. Nothing of the graph is sized by the whole
-raster: a raster position is found among the cells' (ascending) positions by binary search. Edges follow
+Cells are numbered floor by floor, within a floor room by room (ascending room id), and within a room in
+raster order. So each floor is a contiguous index range, which lets every per-cell array be a flat
+``int32``/``float64`` array of length N instead of a full raster and a product state a single integer;
+and each room is one too, so what is written over one room (a composite action's map, confined to its
+room; a search's pages) fills whole memory pages instead of a slice of every raster row it crosses.
+
+Nothing of the graph is sized by the whole raster: a cell is named by its key
+``((floor * G + group) * rows + row) * cols + col`` (``group`` = rank of its room id among the room ids
+of traversable cells, G of them), keys ascend with the cell index, and a raster position is found by
+computing its key (room id from the grid's room raster) and binary search. Edges follow
 :mod:`sgplan.scene.grid`: 8-connected steps into traversable cells (Euclidean step cost in metres) and
 stairs between portal cells.
 """
@@ -33,11 +39,17 @@ class CellGraph:
     ----------
     shape:
         ``(floors, rows, cols)`` of the grid.
-    cell_pos:
-        ``(N,)`` ascending flat raster position ``(floor * rows + row) * cols + col`` of each cell (int32
-        when the raster allows, else int64).
+    cell_key:
+        ``(N,)`` ascending key of each cell (see the module docstring; int32 when the key range allows,
+        else int64).
+    room_map:
+        the grid's ``(floors, rows, cols)`` room raster (the grid's own array, not a copy), and
+    room_group:
+        ``(65536,)`` int32: the group of each int16 room id (at ``id + 32768``), -1 for ids of no cell;
+        ``num_groups`` groups. Together they give the key of a raster position.
     cell_floor:
-        ``(N,)`` int32 floor of each cell (:attr:`cell_row` / :attr:`cell_col` are computed on use).
+        ``(N,)`` int32 floor of each cell (:attr:`cell_row` / :attr:`cell_col` and :meth:`positions` are
+        computed on use).
     floor_offset:
         ``(floors + 1,)`` int64: cells of floor ``f`` are ``floor_offset[f] .. floor_offset[f+1] - 1``.
     nbr:
@@ -56,7 +68,10 @@ class CellGraph:
     """
 
     shape: tuple[int, int, int]
-    cell_pos: np.ndarray
+    cell_key: np.ndarray
+    room_map: np.ndarray
+    room_group: np.ndarray
+    num_groups: int
     cell_floor: np.ndarray
     floor_offset: np.ndarray
     nbr: np.ndarray
@@ -87,19 +102,29 @@ class CellGraph:
     def cell_row(self) -> np.ndarray:
         """``(N,)`` int32 row of each cell, computed on each access (4 bytes a cell, not kept)."""
         _, rows, cols = self.shape
-        row = self.cell_pos // cols
+        row = self.cell_key // cols
         row %= rows
         return row.astype(np.int32, copy=False)
 
     @property
     def cell_col(self) -> np.ndarray:
         """``(N,)`` int32 column of each cell, computed on each access (4 bytes a cell, not kept)."""
-        return (self.cell_pos % self.shape[2]).astype(np.int32, copy=False)
+        return (self.cell_key % self.shape[2]).astype(np.int32, copy=False)
+
+    def positions(self) -> np.ndarray:
+        """``(N,)`` flat raster position ``(floor * rows + row) * cols + col`` of every cell (int32 when the
+        raster allows, else int64), computed on each call."""
+        floors, rows, cols = self.shape
+        dtype = np.int32 if floors * rows * cols < 2**31 else np.int64
+        plane = rows * cols
+        within = (self.cell_key % plane).astype(dtype, copy=False)  # row * cols + col
+        within += self.cell_floor.astype(dtype) * dtype(plane)
+        return within
 
     def cell_ids(self, positions: np.ndarray) -> np.ndarray:
         """The cell index (int64) at each flat raster position of ``positions``, -1 where the position is
         not a cell (not traversable). Positions must lie inside the raster."""
-        return _cell_ids(self.cell_pos, positions)
+        return _ids_at(self.cell_key, self.room_map, self.room_group, self.num_groups, positions)
 
     def cell_id(self, row: int, col: int, floor: int) -> int:
         """Index of cell ``(row, col, floor)``, -1 if it is outside the grid or not traversable."""
@@ -110,16 +135,14 @@ class CellGraph:
 
     def window_ids(self, floor: int, rows: slice, cols: slice) -> np.ndarray:
         """The cell index (int64, -1 where not a cell) of every position of the window ``[rows, cols]`` of
-        ``floor`` (slices with start and stop inside the raster, step 1): one binary search per window
-        row, then a walk over that row's cells."""
+        ``floor`` (slices with start and stop inside the raster, step 1)."""
         _, n_rows, n_cols = self.shape
-        out = np.full((rows.stop - rows.start, cols.stop - cols.start), -1, dtype=np.int64)
-        _window(self.cell_pos, (floor * n_rows + rows.start) * n_cols + cols.start, n_cols, out)
-        return out
+        rr, cc = np.mgrid[rows, cols]
+        return self.cell_ids((floor * n_rows + rr) * n_cols + cc)
 
     def gather(self, raster: np.ndarray) -> np.ndarray:
         """The values of a ``(floors, rows, cols)`` raster at every cell, as an ``(N,)`` array."""
-        return raster.reshape(-1)[self.cell_pos]
+        return raster.reshape(-1)[self.positions()]
 
     def distances(self, sources: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
         """Exact metres from every cell to the nearest of ``sources`` (cell indices), stairs included.
@@ -149,65 +172,86 @@ class CellGraph:
 _NO_ROOMS = np.zeros(0, dtype=np.int32)
 
 
+def _ids_at(
+    cell_key: np.ndarray, room_map: np.ndarray, room_group: np.ndarray, num_groups: int, positions: np.ndarray
+) -> np.ndarray:
+    """:meth:`CellGraph.cell_ids` from the graph's parts."""
+    positions = np.asarray(positions, dtype=np.int64)
+    _, rows, cols = room_map.shape
+    plane = rows * cols
+    group = room_group[room_map.reshape(-1)[positions].astype(np.int64) + 32768]
+    ids = _find(cell_key, (positions // plane * num_groups + group) * plane + positions % plane)
+    ids[group < 0] = -1  # a room id of no cell: the key would name a cell of another group
+    return ids
+
+
+def _find(cell_key: np.ndarray, keys: np.ndarray) -> np.ndarray:
+    """Int64 index into the ascending ``cell_key`` of each of ``keys``, -1 where absent."""
+    if cell_key.shape[0] == 0:
+        return np.full(keys.shape, -1, dtype=np.int64)
+    # Searched in cell_key's dtype (a mixed-dtype search converts all of cell_key on every call); keys
+    # beyond its range cannot be present.
+    info = np.iinfo(cell_key.dtype)
+    valid = (keys >= info.min) & (keys <= info.max)
+    wanted = np.where(valid, keys, 0).astype(cell_key.dtype, copy=False)
+    ids = np.searchsorted(cell_key, wanted).astype(np.int64, copy=False)
+    ids[ids >= cell_key.shape[0]] = 0
+    return np.where(valid & (cell_key[ids] == wanted), ids, -1)
+
+
 @njit(cache=True)
-def _window(cell_pos, first, stride, out):
-    """``out[i, j]`` = index of the cell at raster position ``first + i * stride + j``, where there is one
-    (``out`` holds -1 before)."""
-    for i in range(out.shape[0]):
-        start = first + i * stride
-        k = np.searchsorted(cell_pos, start)
-        while k < cell_pos.shape[0] and cell_pos[k] < start + out.shape[1]:
-            out[i, cell_pos[k] - start] = k
-            k += 1
-
-
-def _cell_ids(cell_pos: np.ndarray, positions: np.ndarray) -> np.ndarray:
-    """Int64 index into the ascending ``cell_pos`` of each of ``positions`` (raster positions), -1 where
-    absent."""
-    # In cell_pos's dtype: a mixed-dtype search would convert all of cell_pos on every call.
-    positions = np.asarray(positions).astype(cell_pos.dtype, copy=False)
-    if cell_pos.shape[0] == 0:
-        return np.full(positions.shape, -1, dtype=np.int64)
-    ids = np.searchsorted(cell_pos, positions).astype(np.int64, copy=False)
-    ids[ids >= cell_pos.shape[0]] = 0
-    return np.where(cell_pos[ids] == positions, ids, -1)
-
-
-@njit(cache=True)
-def _tabulate(traversable, cell_pos, cell_floor, nbr):
-    """Number the traversable cells of ``traversable`` (floors, rows, cols) in raster order into
-    ``cell_pos`` / ``cell_floor``, then fill ``nbr`` (N, 8) per :data:`STEPS`. Scratch is a few rows,
-    not a raster: a row's cell indices are rebuilt from its first cell's index when needed."""
+def _room_ids(traversable, room_map, present):
+    """Mark in ``present`` (at ``id + 32768``) the room id of every traversable cell."""
     floors, rows, cols = traversable.shape
-    row_first = np.empty(floors * rows, dtype=np.int64)
-    n = 0
     for f in range(floors):
         for r in range(rows):
-            row_first[f * rows + r] = n
             for c in range(cols):
                 if traversable[f, r, c]:
-                    cell_pos[n] = (f * rows + r) * cols + c
-                    cell_floor[n] = f
-                    n += 1
-    near = np.empty((3, cols), dtype=np.int64)  # cell index per column of rows r-1, r, r+1 (-1: none)
+                    present[room_map[f, r, c] + 32768] = True
+
+
+@njit(cache=True)
+def _tabulate(traversable, room_map, room_group, num_groups, cell_key, cell_floor, nbr):
+    """Number the traversable cells of ``traversable`` (floors, rows, cols) by (floor, room group, raster
+    order) into ``cell_key`` / ``cell_floor``, and fill ``nbr`` (N, 8) per :data:`STEPS`. Scratch is a
+    counter per group and the cell indices of three raster rows, not a raster: rows are numbered in
+    raster order (each group's counter advancing), one row ahead of the row whose moves are filled."""
+    floors, rows, cols = traversable.shape
+    slots = floors * num_groups
+    start = np.zeros(slots + 1, dtype=np.int64)
     for f in range(floors):
         for r in range(rows):
-            for d in range(3):
-                r2 = r + d - 1
-                i = row_first[f * rows + r2] if 0 <= r2 < rows else 0
-                for c in range(cols):
-                    if 0 <= r2 < rows and traversable[f, r2, c]:
-                        near[d, c] = i
-                        i += 1
-                    else:
-                        near[d, c] = -1
             for c in range(cols):
-                i = near[1, c]
+                if traversable[f, r, c]:
+                    start[f * num_groups + room_group[room_map[f, r, c] + 32768] + 1] += 1
+    for g in range(slots):
+        start[g + 1] += start[g]
+    near = np.full((3, cols), -1, dtype=np.int64)  # cell index per column of rows r-1, r, r+1 (mod 3)
+    for f in range(floors):
+        for r in range(-1, rows):
+            ahead = r + 1
+            if ahead < rows:
+                b = ahead % 3
+                for c in range(cols):
+                    if traversable[f, ahead, c]:
+                        g = f * num_groups + room_group[room_map[f, ahead, c] + 32768]
+                        i = start[g]
+                        start[g] += 1
+                        near[b, c] = i
+                        cell_key[i] = (g * rows + ahead) * cols + c
+                        cell_floor[i] = f
+                    else:
+                        near[b, c] = -1
+            if r < 0:
+                continue
+            for c in range(cols):
+                i = near[r % 3, c]
                 if i < 0:
                     continue
                 for k in range(8):
+                    r2 = r + STEPS[k, 0]
                     c2 = c + STEPS[k, 1]
-                    nbr[i, k] = near[STEPS[k, 0] + 1, c2] if 0 <= c2 < cols else -1
+                    nbr[i, k] = near[r2 % 3, c2] if 0 <= r2 < rows and 0 <= c2 < cols else -1
 
 
 def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
@@ -220,11 +264,18 @@ def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
     """
     floors, rows, cols = grid.shape
     traversable = np.ascontiguousarray(grid.traversable, dtype=np.bool_)
+    room_map = np.ascontiguousarray(grid.room_map, dtype=np.int16)
+    present = np.zeros(1 << 16, dtype=np.bool_)
+    _room_ids(traversable, room_map, present)
+    num_groups = int(present.sum())
+    room_group = np.full(1 << 16, -1, dtype=np.int32)
+    room_group[present] = np.arange(num_groups, dtype=np.int32)
     n = int(np.count_nonzero(traversable))
-    cell_pos = np.empty(n, dtype=np.int32 if floors * rows * cols < 2**31 else np.int64)
+    keys = floors * max(num_groups, 1) * rows * cols
+    cell_key = np.empty(n, dtype=np.int32 if keys < 2**31 else np.int64)
     cell_floor = np.empty(n, dtype=np.int32)
     nbr = np.empty((n, 8), dtype=np.int32)
-    _tabulate(traversable, cell_pos, cell_floor, nbr)
+    _tabulate(traversable, room_map, room_group, num_groups, cell_key, cell_floor, nbr)
     res_x, res_y = grid.resolution_m
     step_cost = np.hypot(STEPS[:, 0] * res_x, STEPS[:, 1] * res_y).astype(np.float64)
 
@@ -235,7 +286,7 @@ def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
                 f"stairs between floors {link.lower_floor} and {link.upper_floor} cost {link.cost_m} m; "
                 "a stairs cost must be positive metres"
             )
-        low, up = _cell_ids(cell_pos, np.array([
+        low, up = _ids_at(cell_key, room_map, room_group, num_groups, np.array([
             (link.lower_floor * rows + link.lower_cell[0]) * cols + link.lower_cell[1],
             (link.upper_floor * rows + link.upper_cell[0]) * cols + link.upper_cell[1],
         ]))
@@ -251,7 +302,10 @@ def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
 
     return CellGraph(
         shape=(floors, rows, cols),
-        cell_pos=cell_pos,
+        cell_key=cell_key,
+        room_map=room_map,
+        room_group=room_group,
+        num_groups=num_groups,
         cell_floor=cell_floor,
         floor_offset=np.searchsorted(cell_floor, np.arange(floors + 1)).astype(np.int64),
         nbr=nbr,

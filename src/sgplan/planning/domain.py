@@ -698,10 +698,8 @@ def _cell_ids(graph: CellGraph, floor: int, cells: np.ndarray) -> np.ndarray:
     """Sorted unique cell indices of the traversable ``(row, col)`` cells among ``cells`` on ``floor``."""
     _, rows, cols = graph.shape
     inside = (cells[:, 0] >= 0) & (cells[:, 0] < rows) & (cells[:, 1] >= 0) & (cells[:, 1] < cols)
-    # Sorted positions first: their binary searches then walk the cell positions in order (cache-friendly,
-    # ~10x faster on a large graph), and ascending positions give ascending cell indices.
-    ids = graph.cell_ids(np.unique((floor * rows + cells[inside, 0]) * cols + cells[inside, 1]))
-    return ids[ids >= 0]
+    ids = graph.cell_ids((floor * rows + cells[inside, 0]) * cols + cells[inside, 1])
+    return np.unique(ids[ids >= 0])
 
 
 def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj) -> np.ndarray:
