@@ -160,12 +160,6 @@ def test_cell_centres_and_gather() -> None:
     index[graph.positions()] = np.arange(graph.num_cells)
     assert np.array_equal(graph.cell_ids(np.arange(grid.traversable.size)), index)
     assert graph.cell_id(int(r[-1]), int(c[-1]), int(f[-1])) == graph.num_cells - 1
-    rows, cols = grid.shape[1:]
-    windows = [(slice(0, rows), slice(0, cols)), (slice(1, rows - 1), slice(2, cols)),
-               (slice(2, 3), slice(0, 1))]
-    for window in windows:
-        expected = index.reshape(grid.shape)[1][window]
-        assert np.array_equal(graph.window_ids(1, *window), expected)
 
 
 def test_a_room_confined_run_never_leaves_its_room() -> None:

@@ -133,13 +133,6 @@ class CellGraph:
             return -1
         return int(self.cell_ids(np.array([(floor * r + row) * c + col]))[0])
 
-    def window_ids(self, floor: int, rows: slice, cols: slice) -> np.ndarray:
-        """The cell index (int64, -1 where not a cell) of every position of the window ``[rows, cols]`` of
-        ``floor`` (slices with start and stop inside the raster, step 1)."""
-        _, n_rows, n_cols = self.shape
-        rr, cc = np.mgrid[rows, cols]
-        return self.cell_ids((floor * n_rows + rr) * n_cols + cc)
-
     def gather(self, raster: np.ndarray) -> np.ndarray:
         """The values of a ``(floors, rows, cols)`` raster at every cell, as an ``(N,)`` array."""
         return raster.reshape(-1)[self.positions()]

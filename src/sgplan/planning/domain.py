@@ -721,5 +721,6 @@ def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj) -> np.n
         return np.zeros(0, dtype=np.int64)
     near = within_distance(footprint, res, problem.reach_radius_m)
     near &= floor.room_map[r0:r1, c0:c1] == room.id
-    ids = graph.window_ids(room.floor, slice(r0, r1), slice(c0, c1))[near]
+    rr, cc = np.nonzero(near)
+    ids = graph.cell_ids((room.floor * rows + rr + r0) * cols + cc + c0)
     return ids[ids >= 0]

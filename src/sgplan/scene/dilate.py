@@ -58,11 +58,15 @@ def within_distance(footprint: np.ndarray, resolution_m: tuple[float, float], ra
     # the same float expression as the EDT's distance.
     reach_r = min(int(radius_m / res_r) + 1, rows)
     reach_c = np.arange(min(int(radius_m / res_c) + 1, cols) + 1)
-    for dr in range(-reach_r, reach_r + 1):
-        inside = np.flatnonzero(np.sqrt((dr * res_r) ** 2 + (reach_c * res_c) ** 2) <= radius_m)
-        if inside.size == 0 or inside[0] != 0:
+    offsets = np.arange(-reach_r, reach_r + 1)
+    inside = np.sqrt((offsets[:, None] * res_r) ** 2 + (reach_c[None, :] * res_c) ** 2) <= radius_m
+    # Per row offset the widest column offset k with every offset 0..k inside (-1: none; the distance
+    # grows with k, so "inside" is a prefix).
+    widest = np.where(inside[:, 0], inside.shape[1] - 1 - np.argmax(inside[:, ::-1], axis=1), -1)
+    for dr, k in zip(offsets.tolist(), widest.tolist()):
+        if k < 0:
             continue
         lo, hi = max(first - dr, 0), min(last - dr, rows)  # rows i whose row i + dr holds True cells
         if lo < hi:
-            out[lo:hi] |= dc[lo + dr - first:hi + dr - first] <= int(inside[-1])
+            out[lo:hi] |= dc[lo + dr - first:hi + dr - first] <= k
     return out
