@@ -6,7 +6,7 @@ by every planning problem of the session. The parts kept (:mod:`sgplan.planning.
 - ``cell_graph``: the cell graph of an occupancy grid (key: the grid object);
 - ``action_tables``: the composite action families, their source cells and per-room tables (key: grid,
   reach radius);
-- ``action_maps``: the shortest-path fields (distances, predecessors, settling order) of those families,
+- ``action_maps``: the shortest-path fields (distances, predecessors) of those families,
   filled lazily by the search as it needs them (key: grid, reach radius, and the connected component of
   the start, which sets where a map's early stop may end);
 - ``label_runs``: the runs of equal labels along those maps' paths (key: the same, and a digest of the
