@@ -67,12 +67,14 @@ def dijkstra(
     if use_stairs and stairs_cost.shape[0] > 0:
         shortest = min(shortest, stairs_cost.min())
     delta = shortest * (1.0 - 1e-9)
-    num_buckets = int(step_cost.max() / delta) + 2
+    num_buckets = 1  # a power of two (a mask, not a division, picks the slot), at least the reach + 2
+    while num_buckets < int(step_cost.max() / delta) + 2:
+        num_buckets *= 2
     cap = 1024
     while cap < sources.shape[0]:
         cap *= 2
     bkeys = np.empty((num_buckets, cap), dtype=np.float64)
-    bvals = np.empty((num_buckets, cap), dtype=np.int64)
+    bvals = np.empty((num_buckets, cap), dtype=np.int32)
     bcount = np.zeros(num_buckets, dtype=np.int64)
     skeys = np.empty(64, dtype=np.float64)  # the stairs heap
     sties = np.zeros(64, dtype=np.float64)
@@ -116,6 +118,11 @@ def _settle(
     (every later key plus an edge exceeds its distance).
     """
     num_buckets, cap = bkeys.shape
+    mask = num_buckets - 1
+    # Bucket of a key: key * (1 / delta) rounds differently from key / delta only within ~1e-16 of a
+    # bucket boundary, far inside the 1e-9 margin of delta below the shortest edge, so two cells sharing
+    # a bucket still cannot improve each other.
+    inv_delta = 1.0 / delta
     cur, pos, pending, ssize = state[0], state[1], state[2], state[3]
     settled, room_settled = state[4], state[5]
     n_stairs = stairs_from.shape[0]
@@ -123,7 +130,7 @@ def _settle(
     stopped = False
     grow = False
     while True:
-        slot = cur % num_buckets
+        slot = cur & mask
         # Stairs entries whose bucket has come up join it (they are never earlier than the current one).
         while ssize > 0 and int(skeys[0] / delta) <= cur and bcount[slot] < limit:
             bkeys[slot, bcount[slot]] = skeys[0]
@@ -161,7 +168,7 @@ def _settle(
                 if nd < dv or (dv == 0.0 and pred[v] == 0):
                     dist[v] = nd
                     pred[v] = u + 2
-                    b = max(int(nd / delta), cur) % num_buckets
+                    b = max(int(nd * inv_delta), cur) & mask
                     bkeys[b, bcount[b]] = nd
                     bvals[b, bcount[b]] = v
                     bcount[b] += 1
