@@ -320,7 +320,7 @@ def _action_parts(
     store = shared_part(problem.shared, "action_maps", (problem.grid, problem.reach_radius_m, component),
                         lambda: MapStore.empty(tables, graph, reachable))
     # Label runs follow which cells share a label: shared by the problems with the same cell labels.
-    labelling = hashlib.blake2b(np.ascontiguousarray(cell_label), digest_size=16).digest()  # no copy
+    labelling = hashlib.blake2b(np.ascontiguousarray(cell_label).data, digest_size=16).digest()  # no copy
     runs = shared_part(problem.shared, "label_runs",
                        (problem.grid, problem.reach_radius_m, component, labelling),
                        lambda: LabelRuns.empty(store))
