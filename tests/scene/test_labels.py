@@ -63,7 +63,8 @@ def test_label_raster_matches_definition(seed: int, reach: float, own: float) ->
     objects = list(building.objects())
     props += [Proposition("reach", o.uuid, own if i % 2 else None) for i, o in enumerate(objects)]
     labels = label_raster(building, props, reach)
-    assert labels.dtype == np.uint32 and labels.shape == (building.num_floors, *building.grid_shape)
+    smallest = np.uint8 if len(props) <= 8 else np.uint16 if len(props) <= 16 else np.uint32
+    assert labels.dtype == smallest and labels.shape == (building.num_floors, *building.grid_shape)
     np.testing.assert_array_equal(labels, _oracle(building, props, reach))
     for bit, prop in enumerate(props[:8]):  # the sparse form Session keeps: the same cells, ascending
         cells = proposition_cells(building, prop, reach)

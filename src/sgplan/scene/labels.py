@@ -25,7 +25,7 @@ from sgplan.scene.model import Building
 
 PropositionKind = Literal["enter", "reach"]
 MAX_PROPOSITIONS = 32
-"""Label rasters are ``uint32`` bitmasks: one bit per proposition."""
+"""Label rasters are unsigned bitmasks of at most 32 bits: one bit per proposition."""
 
 _TOKEN = re.compile(r"^\s*(enter|reach)\s*\(\s*(room|object)_(\d+)\s*\)\s*$")
 _ENTITY = {"enter": "room", "reach": "object"}
@@ -152,7 +152,9 @@ def label_raster(
     propositions: Sequence[Proposition],
     reach_radius_m: float | None = None,
 ) -> np.ndarray:
-    """The label of every cell: ``(floors, rows, cols)`` uint32, bit ``i`` = ``propositions[i]`` holds.
+    """The label of every cell: ``(floors, rows, cols)``, bit ``i`` = ``propositions[i]`` holds; the
+    smallest unsigned dtype with a bit per proposition (uint8 up to 8 propositions, uint16 up to 16, else
+    uint32: a raster is a byte a cell for most missions instead of four).
 
     Parameters
     ----------
@@ -177,8 +179,9 @@ def label_raster(
         )
     _check_known(building, propositions)
     floors, (rows, cols) = building.num_floors, building.grid_shape
-    labels = np.zeros((floors, rows, cols), dtype=np.uint32)
+    dtype = np.uint8 if len(propositions) <= 8 else np.uint16 if len(propositions) <= 16 else np.uint32
+    labels = np.zeros((floors, rows, cols), dtype=dtype)
     flat = labels.reshape(-1)
     for bit, prop in enumerate(propositions):
-        flat[proposition_cells(building, prop, reach_radius_m)] |= np.uint32(1 << bit)
+        flat[proposition_cells(building, prop, reach_radius_m)] |= dtype(1 << bit)
     return labels
