@@ -63,7 +63,7 @@ MAP_OBJECT, MAP_ROOM, MAP_FLOOR_UP, MAP_FLOOR_DOWN = 0, 1, 2, 3
 @dataclass(frozen=True)
 class ActionMap:
     """One composite action family: shortest paths to its target cells from anywhere on ``floor`` (floor
-actions) or in the family's room (object and room actions, paths within the room).
+    actions) or in the family's room (object and room actions, paths within the room).
 
     ``kind`` is one of MAP_OBJECT / MAP_ROOM / MAP_FLOOR_UP / MAP_FLOOR_DOWN; ``entity`` the object uuid,
     the ``(room uuid, neighbour room uuid)`` pair, or the floor index.
