@@ -679,6 +679,9 @@ def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
                         room_uuids=[room.uuid for room in rooms], num_rooms=len(rooms))
 
 
+_CHUNK = 1 << 20
+
+
 def stop_counts(
     cell_room: np.ndarray, reachable: np.ndarray, num_rooms: int, stop_rooms: np.ndarray
 ) -> np.ndarray:
@@ -690,8 +693,10 @@ def stop_counts(
     Counting every room cell instead ran it to exhaustion whenever part of the room is cut off (a pocket
     behind furniture). Room cells reachable from the start but not from the sources inside the room are
     never settled: the run then ends by exhaustion of the room, and those cells have no such action."""
-    rooms = cell_room[reachable]
-    per_room = np.bincount(rooms[rooms >= 0], minlength=num_rooms).astype(np.int64)
+    per_room = np.zeros(num_rooms, dtype=np.int64)
+    for lo in range(0, cell_room.shape[0], _CHUNK):  # chunks: temporaries of a few MB, not 8 bytes a cell
+        rooms = cell_room[lo : lo + _CHUNK][reachable[lo : lo + _CHUNK]]
+        per_room += np.bincount(rooms[rooms >= 0], minlength=num_rooms)[:num_rooms]
     return np.where(stop_rooms >= 0, per_room[np.maximum(stop_rooms, 0)], 0).astype(np.int64)
 
 
