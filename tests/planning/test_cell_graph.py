@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -132,6 +134,21 @@ def test_many_sources_and_early_stop_grow_the_queues() -> None:
     room = cell_room == 1
     assert (pred[room] > 0).all()
     np.testing.assert_allclose(dist[room], _scipy_distances(grid, graph, source)[room], atol=1e-9)
+
+
+def test_empty_grid_and_extreme_room_ids() -> None:
+    grid = _random_grid(5, (0.05, 0.05), 1.0)
+    blocked = np.zeros_like(grid.traversable)
+    empty = build_cell_graph(dataclasses.replace(grid, traversable=blocked, stairs=()))
+    assert empty.num_cells == 0 and empty.cell_id(0, 0, 0) == -1 and list(empty.floor_offset) == [0, 0, 0]
+    room_map = np.full(grid.shape, -(1 << 15), dtype=np.int16)
+    room_map[1] = (1 << 15) - 1
+    graph = build_cell_graph(dataclasses.replace(grid, room_map=room_map))
+    index = np.full(grid.traversable.size, -1)
+    index[graph.positions()] = np.arange(graph.num_cells)
+    assert np.array_equal(graph.cell_ids(np.arange(grid.traversable.size)), index)
+    with pytest.raises(SceneError, match="fit int16"):
+        build_cell_graph(dataclasses.replace(grid, room_map=room_map.astype(np.int32) + 1))
 
 
 def test_stairs_must_cost_something() -> None:

@@ -253,10 +253,18 @@ def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
     Raises
     ------
     SceneError
-        if a stairs link costs zero or less (shortest paths need positive edge costs).
+        if a stairs link costs zero or less (shortest paths need positive edge costs), or a room id does
+        not fit int16.
     """
     floors, rows, cols = grid.shape
     traversable = np.ascontiguousarray(grid.traversable, dtype=np.bool_)
+    if grid.room_map.dtype != np.int16 and grid.room_map.size and not (
+        int(grid.room_map.min()) >= -(1 << 15) and int(grid.room_map.max()) < 1 << 15
+    ):
+        raise SceneError(
+            f"room raster holds ids {int(grid.room_map.min())}..{int(grid.room_map.max())}; room ids must "
+            "fit int16 (the grid's room_map dtype)"
+        )
     room_map = np.ascontiguousarray(grid.room_map, dtype=np.int16)
     present = np.zeros(1 << 16, dtype=np.bool_)
     _room_ids(traversable, room_map, present)
