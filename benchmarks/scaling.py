@@ -74,6 +74,7 @@ def run_case(
     from sgplan.mission import mission_from_formula
     from sgplan.pipeline import make_problem, resolve_radii
     from sgplan.planning import plan
+    from sgplan.planning.amra import get_setup
     from sgplan.scene.grid import build_occupancy_grid
 
     row: dict = {"target_m": target_m, "floors": floors, "goals": goals, "order": order}
@@ -117,7 +118,9 @@ def run_case(
     row["states"] = int(problem.automaton.num_states)
     del free
     t0 = time.perf_counter()
-    domain = problem.domain
+    # The domain for the setup's levels, as the planner builds it (older source trees: the full one).
+    max_level = get_setup(setup).max_level
+    domain = problem.domain_for(max_level) if hasattr(problem, "domain_for") else problem.domain
     part("domain", t0)
     for name, seconds in getattr(domain, "timings", {}).items():
         row[f"dom_{name}_s"] = seconds
