@@ -108,3 +108,73 @@ def test_planning_a_gibson_mission_loads_no_scipy_image_or_sparse_code(gibson_ro
     )
     assert "sgplan.planning.amra" in loaded  # it did plan
     assert not [m for m in ("scipy.ndimage", "scipy.sparse") if m in loaded]
+
+
+_BLAS_STATE = (
+    "import json, sys\n"
+    "def blas_state():\n"
+    "    import numba.np.arraymath as am\n"
+    "    return {'have_blas': am._HAVE_BLAS, 'scipy_linalg': 'scipy.linalg' in sys.modules,\n"
+    "            'blocked': sys.modules.get('scipy.linalg.cython_blas', 0) is None,\n"
+    "            'hooks': [type(f).__name__ for f in sys.meta_path if 'Blas' in type(f).__name__],\n"
+    "            'loader': type(am.__loader__).__name__}\n"
+)
+
+
+def test_the_console_script_plans_without_importing_scipy_linalg(tmp_path: Path) -> None:
+    """The console script lets numba skip its BLAS probe (no scipy.linalg import), restores sys.modules
+    after, and the plan is the library's (same cost, verified by the checker)."""
+    import sgplan
+
+    state, out_json = tmp_path / "state.json", tmp_path / "plan.json"
+    formula = 'F("enter(room_4)" & F "enter(room_11)")'
+    boot = (
+        _BLAS_STATE + "import atexit\n"
+        f"atexit.register(lambda: open({str(state)!r}, 'w').write(json.dumps(blas_state())))\n"
+        f"sys.argv = ['sgplan', 'plan', '--scene', 'demo', '--formula', {formula!r}, '--start-index', '1', "
+        f"'--setup', 'NO-LLM', '--json', {str(out_json)!r}, '--quiet']\n"
+        "from sgplan.cli import main\n"
+        "main()\n"
+    )
+    out = subprocess.run([sys.executable, "-c", boot], capture_output=True, text=True, check=False)
+    assert out.returncode == 0, out.stderr
+    assert json.loads(state.read_text()) == {"have_blas": False, "scipy_linalg": False, "blocked": False,
+                                             "hooks": [], "loader": "SourceFileLoader"}
+    record = json.loads(out_json.read_text())
+    demo = sgplan.load_scene("demo")
+    expected = sgplan.plan(demo, sgplan.mission_from_formula(formula, demo), 1, setup="NO-LLM")
+    assert record["status"] == "optimal" and record["cost_m"] == pytest.approx(expected.cost_m, abs=1e-9)
+
+
+def test_library_use_keeps_numbas_blas_probe() -> None:
+    """``import sgplan`` and a Session's plan leave numba as the user's program would have it: the probe
+    ran (scipy.linalg imported, BLAS found) and no import hook of sgplan's is left behind."""
+    code = (
+        _BLAS_STATE + "import sgplan\n"
+        "demo = sgplan.load_scene('demo')\n"
+        "result = sgplan.Session(demo).plan(sgplan.mission_from_formula('F \"enter(room_5)\"', demo), 0,"
+        " setup='NO-LLM')\n"
+        "assert result.status == 'optimal'\n"
+        "print(json.dumps(blas_state()))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    state = json.loads(out.stdout.strip().splitlines()[-1])
+    assert state["have_blas"] is True and state["scipy_linalg"] is True and state["hooks"] == []
+
+
+def test_the_blas_hook_is_one_shot_and_falls_back_when_numba_differs() -> None:
+    """Installed once; a second call or an already loaded numba registry installs nothing; if numba's
+    module cannot be found where expected, the hook steps aside (the normal finders take over)."""
+    code = (
+        "import json, sys\n"
+        "from sgplan.jit import _SkipBlasProbe, skip_blas_probe\n"
+        "first, second = skip_blas_probe(), skip_blas_probe()\n"
+        "hook = next(f for f in sys.meta_path if isinstance(f, _SkipBlasProbe))\n"
+        "sys.meta_path.remove(hook)\n"
+        "stray = _SkipBlasProbe().find_spec('numba.np.arraymath', ['/nonexistent'])\n"
+        "import numba.np.arraymath\n"
+        "late = skip_blas_probe()\n"
+        "print(json.dumps([first, second, stray is None, late, numba.np.arraymath._HAVE_BLAS]))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert json.loads(out.stdout.strip().splitlines()[-1]) == [True, False, True, False, True]

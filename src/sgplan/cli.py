@@ -42,13 +42,20 @@ def _build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None, *, fast_exit: bool | None = None) -> int:
     """Entry point of the ``sgplan`` console script; returns the process exit code.
 
-    With ``fast_exit`` (default: when ``argv`` is ``None``, i.e. when run as the console script) the
-    process ends here through :func:`exit_now` instead of returning: every output file is already written
-    atomically and closed by then, so only the interpreter's teardown is skipped (0.3-0.8 s after a plan:
-    freeing numba's compiled code and every imported module one by one).
+    ``fast_exit`` (default: when ``argv`` is ``None``, i.e. when run as the console script) says that the
+    process is sgplan's own. Then numba skips its BLAS probe (:func:`sgplan.jit.skip_blas_probe`: no
+    scipy.linalg import, 0.1-0.25 s) and the process ends here through :func:`exit_now` instead of
+    returning: every output file is already written atomically and closed by then, so only the
+    interpreter's teardown is skipped (0.3-0.8 s after a plan: freeing numba's compiled code and every
+    imported module one by one).
     """
+    own_process = (argv is None) if fast_exit is None else fast_exit
+    if own_process:  # the process runs only sgplan's kernels: numba need not look for a BLAS
+        from sgplan.jit import skip_blas_probe
+
+        skip_blas_probe()
     code = _run(argv)
-    if ((argv is None) if fast_exit is None else fast_exit) and not _observed():
+    if own_process and not _observed():
         exit_now(code)
     return code
 
