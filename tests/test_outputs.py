@@ -117,6 +117,44 @@ def test_a_segment_never_cuts_through_a_cell_that_changes_the_mission() -> None:
                                                  automaton).valid
 
 
+def _simplify_reference(path: np.ndarray, grid, labels: np.ndarray, automaton) -> list[int]:
+    """The greedy rule of :func:`simplify_path` stated plainly in Python (its former implementation)."""
+
+    def segment_ok(i: int, j: int) -> bool:
+        floor, q = path[i, 2], path[i, 3]
+        if (path[i:j + 1, 2] != floor).any() or (path[i + 1:j, 3] != q).any():
+            return False
+        for r, c in crossed_cells(tuple(path[i, :2].tolist()), tuple(path[j, :2].tolist()))[1:-1].tolist():
+            if not (0 <= r < grid.shape[1] and 0 <= c < grid.shape[2]) or not grid.traversable[floor, r, c]:
+                return False
+            if automaton.table[q, labels[floor, r, c]] != q:
+                return False
+        return True
+
+    keep, i = [0], 0
+    while i < len(path) - 1:
+        j = i + 1
+        while j + 1 < len(path) and segment_ok(i, j + 1):
+            j += 1
+        keep.append(j)
+        i = j
+    return keep
+
+
+@pytest.mark.parametrize(("formula", "start", "setup"), [
+    (FORMULA, 0, "NO-LLM"), ('F("enter(room_4)" & F "enter(room_11)")', 2, "A*"),
+    ('F "reach(object_28)" & G !"enter(room_5)"', 1, "NO-LLM"),
+])
+def test_the_compiled_simplification_follows_the_greedy_rule(formula: str, start: int, setup: str) -> None:
+    building = sgplan.load_scene("demo")
+    r = sgplan.plan(building, sgplan.mission_from_formula(formula, building), start, setup=setup)
+    automaton = r.mission.automaton
+    keep = simplify_path(r.path, r.grid, r.labels, automaton)
+    assert keep.tolist() == _simplify_reference(r.path, r.grid, r.labels, automaton)
+    assert keep.dtype == np.int64 and 2 <= len(keep) < len(r.path)
+    assert simplify_path(r.path[:2], r.grid, r.labels, automaton).tolist() == [0, 1]
+
+
 def test_waypoints_are_metric_and_in_rooms() -> None:
     r = demo_result()
     w = r.waypoints[0]
