@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import dataclasses
 import itertools
 import json
 import math
@@ -163,6 +164,10 @@ def test_waypoints_are_metric_and_in_rooms() -> None:
     assert w.z_m == r.building.floors[0].ground_z_m and w.room == "room_2" and w.room_name == "corridor"
     assert r.waypoints[-1].cost_m == pytest.approx(r.cost_m) == pytest.approx(leg_costs(r.path, r.grid).sum())
     assert r.waypoints[-1].z_m == r.building.floors[1].ground_z_m > 0
+    record = w.to_dict()
+    assert list(record) == ["index", "x_m", "y_m", "z_m", "floor", "row", "col", "room", "room_name", "q",
+                            "cost_m"]
+    assert record == dataclasses.asdict(w) and all(type(v) in (int, float, str) for v in record.values())
 
 
 def test_events_say_where_each_proposition_became_true_and_the_automaton_moved() -> None:
