@@ -4,6 +4,7 @@ and the console script ends without the interpreter's teardown once its outputs 
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -27,6 +28,16 @@ def _modules_after(code: str) -> set[str]:
 def test_building_the_parser_imports_no_planner_or_heavy_library() -> None:
     loaded = _modules_after("from sgplan.cli import _build_parser\n_build_parser()")
     assert not [m for m in HEAVY if m in loaded]
+
+
+def test_building_the_parser_imports_no_bench_machinery_yet_bench_help_names_the_case_timeout() -> None:
+    from sgplan.bench.executors import DEFAULT_CASE_TIMEOUT_S
+
+    loaded = _modules_after("from sgplan.cli import _build_parser\n_build_parser()")
+    assert not [m for m in loaded if m.startswith("sgplan.bench")] and "numpy" not in loaded
+    out = subprocess.run([sys.executable, "-m", "sgplan.cli", "bench", "--help"], capture_output=True,
+                         text=True, check=True, env={**os.environ, "COLUMNS": "200"})
+    assert f"kill a case's worker after S wall seconds (default: {DEFAULT_CASE_TIMEOUT_S:g})" in out.stdout
 
 
 def test_importing_a_planning_module_does_not_load_the_search() -> None:
