@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from sgplan.cli import GC_YOUNG_THRESHOLD
 from sgplan.commands.common import SETUP_NAMES
 
 HEAVY = ("numba", "scipy", "PIL", "matplotlib", "rich", "openai", "sgplan.planning.amra")
@@ -128,13 +129,14 @@ _BLAS_STATE = (
     "    return {'have_blas': am._HAVE_BLAS, 'scipy_linalg': 'scipy.linalg' in sys.modules,\n"
     "            'blocked': sys.modules.get('scipy.linalg.cython_blas', 0) is None,\n"
     "            'hooks': [type(f).__name__ for f in sys.meta_path if 'Blas' in type(f).__name__],\n"
-    "            'loader': type(am.__loader__).__name__}\n"
+    "            'loader': type(am.__loader__).__name__, 'gc_young': __import__('gc').get_threshold()[0]}\n"
 )
 
 
 def test_the_console_script_plans_without_importing_scipy_linalg(tmp_path: Path) -> None:
     """The console script lets numba skip its BLAS probe (no scipy.linalg import), restores sys.modules
-    after, and the plan is the library's (same cost, verified by the checker)."""
+    after, runs the garbage collector less often, and the plan is the library's (same cost, verified by
+    the checker)."""
     import sgplan
 
     state, out_json = tmp_path / "state.json", tmp_path / "plan.json"
@@ -150,7 +152,8 @@ def test_the_console_script_plans_without_importing_scipy_linalg(tmp_path: Path)
     out = subprocess.run([sys.executable, "-c", boot], capture_output=True, text=True, check=False)
     assert out.returncode == 0, out.stderr
     assert json.loads(state.read_text()) == {"have_blas": False, "scipy_linalg": False, "blocked": False,
-                                             "hooks": [], "loader": "SourceFileLoader"}
+                                             "hooks": [], "loader": "SourceFileLoader",
+                                             "gc_young": GC_YOUNG_THRESHOLD}
     record = json.loads(out_json.read_text())
     demo = sgplan.load_scene("demo")
     expected = sgplan.plan(demo, sgplan.mission_from_formula(formula, demo), 1, setup="NO-LLM")
@@ -171,6 +174,7 @@ def test_library_use_keeps_numbas_blas_probe() -> None:
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     state = json.loads(out.stdout.strip().splitlines()[-1])
     assert state["have_blas"] is True and state["scipy_linalg"] is True and state["hooks"] == []
+    assert state["gc_young"] == 700  # Python's default: the garbage collector is the user's business
 
 
 def test_the_blas_hook_is_one_shot_and_falls_back_when_numba_differs() -> None:

@@ -217,8 +217,7 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    from sgplan.cli import exit_now
-    from sgplan.jit import skip_blas_probe
+    from sgplan.cli import exit_now, prepare_own_process
 
-    skip_blas_probe()  # a process of sgplan's own: numba need not import scipy.linalg to look for a BLAS
+    prepare_own_process()  # a process of sgplan's own (no BLAS probe, fewer garbage-collector passes)
     exit_now(main())  # results are written: skip the interpreter's teardown
