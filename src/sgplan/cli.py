@@ -58,7 +58,7 @@ def main(argv: Sequence[str] | None = None, *, fast_exit: bool | None = None) ->
     return code
 
 
-GC_YOUNG_THRESHOLD = 100_000
+GC_YOUNG_THRESHOLD = 300_000
 """Net allocations between two runs of the cyclic garbage collector in sgplan's own processes (Python's
 default: 700); see :func:`prepare_own_process`."""
 
@@ -70,9 +70,10 @@ def prepare_own_process() -> None:
     - numba skips its BLAS probe (:func:`sgplan.jit.skip_blas_probe`: no scipy.linalg import, 0.1-0.25 s).
     - The cyclic garbage collector runs after :data:`GC_YOUNG_THRESHOLD` net allocations instead of 700.
       A plan's garbage is almost all acyclic (numpy arrays, containers: freed by reference counting),
-      while each full pass of the collector walks every object numba and the imports created (~110,000):
-      with the default, a plan spent 60-110 ms in ~260 collections that freed ~2,000 objects. The
-      collector still runs, so cyclic garbage stays bounded (a few MB at most between two runs).
+      while numba's registries and the imports create some 10^5-10^6 long-lived objects that every
+      collection walks again: with the default, a plan spent 60-110 ms in ~260 collections that freed
+      ~2,000 objects (at 100,000: ~20 collections, ~35 ms; at 300,000: ~2, ~10 ms). The collector still
+      runs, so cyclic garbage stays bounded (a plan leaves ~35,000 objects, a few MB, uncollected).
     """
     from sgplan.jit import skip_blas_probe
 
