@@ -154,6 +154,14 @@ def test_the_compiled_simplification_follows_the_greedy_rule(formula: str, start
     assert keep.tolist() == _simplify_reference(r.path, r.grid, r.labels, automaton)
     assert keep.dtype == np.int64 and 2 <= len(keep) < len(r.path)
     assert simplify_path(r.path[:2], r.grid, r.labels, automaton).tolist() == [0, 1]
+    # A path given by hand that leaves the grid: its cells outside are refused (never read), like the rule's.
+    outside = r.path[:3].copy()
+    outside[:, 3] = r.path[0, 3]
+    far = 3 * (r.grid.shape[1] + r.grid.shape[2])  # segments longer than any inside the grid
+    outside[1, :2] = (outside[0, 0] - far, outside[0, 1])
+    outside[2, :2] = (outside[0, 0] - 2 * far, outside[0, 1] + 1)
+    assert simplify_path(outside, r.grid, r.labels, automaton).tolist() == [0, 1, 2] == \
+        _simplify_reference(outside, r.grid, r.labels, automaton)
 
 
 def test_waypoints_are_metric_and_in_rooms() -> None:

@@ -73,8 +73,10 @@ def simplify(rows: np.ndarray, traversable: np.ndarray, labels: np.ndarray, tabl
     """Indices of the rows of the ``(n, 4)`` path ``rows`` to keep (n > 2): greedy, from each kept row the
     segment is extended row by row while it stays valid (the planner's own move always is)."""
     n = len(rows)
-    _, num_rows, num_cols = traversable.shape
-    buffer = np.empty((2 * (num_rows + num_cols) + 1, 2), dtype=np.int64)
+    # Room for the longest segment between any two rows (sized from the path itself, so that a path
+    # reaching outside the grid cannot overrun it: its cells are refused, not read).
+    extent = rows[:, 0].max() - rows[:, 0].min() + rows[:, 1].max() - rows[:, 1].min()
+    buffer = np.empty((2 * extent + 1, 2), dtype=np.int64)
     keep = np.empty(n, dtype=np.int64)
     keep[0] = 0
     kept = 1
