@@ -185,9 +185,12 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     extras: dict[str, Any] = {}
     if args.mission_dir:
         check_folder_fits(args.mission_dir, mission, building, force=args.force, record=extras)
+    # The session keeps where each proposition holds between the saying back and the plan (no planner
+    # parts: this process plans once).
+    session = sgplan.Session(building, max_shared_bytes=0)
     # Said back before any guidance call or search; on stderr when stdout carries the JSON.
     explanation = say_back(mission, building, confirm=args.confirm,
-                           stream=sys.stderr if args.json == "-" else sys.stdout)
+                           stream=sys.stderr if args.json == "-" else sys.stdout, session=session)
     guide = None
     if get_setup(args.setup).uses_llm and mission.guidance is None:
         if backends is None:
@@ -202,7 +205,8 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     result = sgplan.plan(building, mission, _start_spec(args), setup=args.setup, profile=args.profile,
                          robot_radius_m=args.robot_radius, reach_radius_m=args.reach_radius,
                          time_limit_s=args.time_limit, max_expansions=args.max_expansions, guide=guide,
-                         callback=progress, explanation=explanation)  # said back above: not made twice
+                         callback=progress, explanation=explanation,  # said back above: not made twice
+                         session=session)
     if args.save_mission and guide is not None and result.mission is not None and result.mission.guidance:
         say(
             f"wrote {write_guidance(result.mission.guidance, Path(args.save_mission) / 'llm_heuristic.yaml')}"
