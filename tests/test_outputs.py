@@ -269,3 +269,22 @@ def test_plan_draws_png_svg_and_the_automaton_and_writes_the_html_report(tmp_pat
     assert code == 0 and {"plan_floor_0.png", "plan_floor_1.svg", "automaton.dot", "automaton.svg"} <= names
     page = (tmp_path / "r.html").read_text()
     assert page.startswith("<!DOCTYPE html>") and "enter(room_11)" in page and 'id="events"' in page
+
+
+def test_plan_records_are_json_with_one_line_per_row() -> None:
+    from sgplan.outputs.jsontext import record_json
+
+    record = demo_result().to_dict()
+    text = record_json(record)
+    assert json.loads(text) == json.loads(json.dumps(record)) and text.endswith("}\n")
+    lines = text.splitlines()
+    assert f"  {json.dumps(record['path'][0], separators=(', ', ': '))}," in lines
+    rows = sum(len(record[key]) for key in ("path", "waypoints", "waypoints_simplified", "events"))
+    assert len(lines) < rows + 200  # a row per line, not a number per line
+    odd = {"e": [], "rows": [[1, 2], {"a": "x\ny"}], "mixed": [1, [2]], "nested": {"k": [{"z": None}]}, "s": "é"}
+    assert json.loads(record_json(odd)) == odd and record_json({}) == "{}\n"
+    for bad in (float("nan"), float("inf")):
+        with pytest.raises(ValueError):
+            record_json({"cost_m": bad})
+        with pytest.raises(ValueError):
+            record_json({"rows": [[bad]]})

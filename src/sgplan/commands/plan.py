@@ -12,7 +12,6 @@ path in the scene satisfies the mission, from any start; 70 a bug in sgplan.
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import time
 from collections.abc import Callable
@@ -283,7 +282,9 @@ def _report(args: argparse.Namespace, result: PlanResult) -> int:
 def _write_json(target: str | None, record: dict[str, Any]) -> None:
     if not target:
         return
-    text = json.dumps(record, indent=1, allow_nan=False) + "\n"
+    from sgplan.outputs.jsontext import record_json
+
+    text = record_json(record)
     if target == "-":
         sys.stdout.write(text)
         sys.stdout.flush()
