@@ -281,7 +281,8 @@ def test_plan_records_are_json_with_one_line_per_row() -> None:
     assert f"  {json.dumps(record['path'][0], separators=(', ', ': '))}," in lines
     rows = sum(len(record[key]) for key in ("path", "waypoints", "waypoints_simplified", "events"))
     assert len(lines) < rows + 200  # a row per line, not a number per line
-    odd = {"e": [], "rows": [[1, 2], {"a": "x\ny"}], "mixed": [1, [2]], "nested": {"k": [{"z": None}]}, "s": "é"}
+    odd = {"e": [], "rows": [[1, 2], {"a": "x\ny"}], "mixed": [1, [2]], "nested": {"k": [{"z": None}]},
+           "s": "é"}
     assert json.loads(record_json(odd)) == odd and record_json({}) == "{}\n"
     for bad in (float("nan"), float("inf")):
         with pytest.raises(ValueError):
