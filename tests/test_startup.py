@@ -41,6 +41,15 @@ def test_building_the_parser_imports_no_bench_machinery_yet_bench_help_names_the
     assert f"kill a case's worker after S wall seconds (default: {DEFAULT_CASE_TIMEOUT_S:g})" in out.stdout
 
 
+def test_loading_a_native_scene_folder_loads_no_importer(tmp_path: Path) -> None:
+    from sgplan.scene.demo import demo_building
+    from sgplan.scene.native import write_native_scene
+
+    folder = write_native_scene(demo_building(), tmp_path / "house")
+    loaded = _modules_after(f"import sgplan\nb = sgplan.load_scene({str(folder)!r})\nassert b.rooms()")
+    assert not [m for m in loaded if m.startswith(("sgplan.importers", "scipy.spatial", "scipy.linalg"))]
+
+
 def test_importing_a_planning_module_does_not_load_the_search() -> None:
     loaded = _modules_after("import sgplan.planning.problem")
     assert "sgplan.planning.amra" not in loaded and "sgplan.planning._search" not in loaded
