@@ -43,11 +43,10 @@ def realizable_labels(propositions: Sequence[Proposition], building: Building,
     cell of ``building`` carries (reach radius: the given one, else the scene's, else the default of
     :mod:`sgplan.pipeline`).
 
-    The labels of :func:`~sgplan.scene.labels.label_raster`, read sparsely: only the cells where some
-    proposition holds carry a label other than 0, so only they are read (reading the raster at every
-    in-room cell took 10-20 ms per call on a Gibson scene). ``cells(prop, radius)`` gives the flat cell
-    indices of one proposition, as :func:`~sgplan.scene.labels.proposition_cells` (the default) does:
-    e.g. a :class:`sgplan.Session`'s, which keeps them for the plan that follows.
+    The labels are those of :func:`~sgplan.scene.labels.label_raster`, made from ``cells(prop, radius)``:
+    the flat cell indices of one proposition, as :func:`~sgplan.scene.labels.proposition_cells` (the
+    default) gives them, or a :class:`sgplan.Session`'s, which keeps them for the plan that follows
+    (finding them is most of the cost: ~10 ms for four objects on a Gibson scene).
 
     Raises
     ------
@@ -68,11 +67,4 @@ def realizable_labels(propositions: Sequence[Proposition], building: Building,
     labels = np.zeros(floors * rows * cols, dtype=np.uint32)  # as label_raster, flat
     for bit, prop in enumerate(propositions):
         labels[cells_of(prop, radius)] |= np.uint32(1 << bit)
-    touched = np.flatnonzero(labels)  # where some proposition holds: the only labels other than 0
-    in_room = in_room_cells(building).reshape(-1)
-    touched_in_room = in_room[touched]
-    present = np.zeros(1 << len(propositions), bool)
-    present[labels[touched[touched_in_room]]] = True
-    # Label 0: an in-room cell where no proposition holds.
-    present[0] = int(np.count_nonzero(in_room)) > int(np.count_nonzero(touched_in_room))
-    return present
+    return occurring_labels(labels, in_room_cells(building).reshape(-1), 1 << len(propositions))
