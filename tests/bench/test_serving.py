@@ -108,10 +108,15 @@ def test_output_written_straight_to_fd_1_does_not_break_the_answers(data_dir: Pa
 def test_a_worker_keeps_the_scene_between_cases_of_that_scene(data_dir: Path) -> None:
     cases = expand(discover(data_dir), SWEEP, profile="authors")
     keeper = SceneKeeper()
-    rows = [measure(case, scenes=keeper) for case in cases]
+    rows, sessions = [], []
+    for case in cases:
+        rows.append(measure(case, scenes=keeper))
+        sessions.append(keeper.session)
     assert keeper.loads == 1
     assert sum(r["status"] == "optimal" for r in rows) == 5
-    assert rows[1]["load_s"] < rows[0]["load_s"]  # no scene loading the second time
+    # No scene loading after the first case: every case planned in the one session (its building kept).
+    # (Timing it no longer tells: a native scene folder loads in a few ms.)
+    assert all(session is sessions[0] for session in sessions)
 
 
 def test_peak_memory_is_reset_before_each_case() -> None:
