@@ -3,7 +3,8 @@
 Part 1 (``plan``): for every shipped Gibson mission, the chosen starts and setups, each variant runs
 ``python -m sgplan.cli plan --scene S --mission-dir M --start-index K --setup X --profile authors --json F``
 as a fresh process, variants back to back on each case (so machine load hits them alike), warm caches
-(numba's, and sgplan's scene cache in a private folder, both warmed by one run per variant and scene first).
+(numba's, Python's bytecode cache beside each source tree, and sgplan's scene cache in a private folder,
+all warmed by one run per variant and scene first; ``--no-bytecode-cache``: compile from source each time).
 Per case: wall seconds (fork to exit, measured here) and peak RSS (``ru_maxrss`` of the child from
 ``wait4``), plus the planner's own precompute + search seconds from the JSON, so the fixed cost (the rest)
 shows; then median and worst per variant and setup.
@@ -35,9 +36,19 @@ SCENES = ("Allensville", "Benevolence", "Collierville")
 DEFAULT_BENCH = "--missions 1,2 --starts 0-4 --setups ALL NO-LLM A* --jobs 2"
 
 
+BYTECODE = True
+"""Whether the children may write and use Python's bytecode cache (``__pycache__`` beside the sources, as
+any installed or once-imported package has): ``--no-bytecode-cache`` makes every child compile sgplan's
+modules from source, as a shell with ``PYTHONDONTWRITEBYTECODE=1`` and a fresh tree does (~0.05-0.1 s)."""
+
+
 def child_env(src: Path, cache: Path) -> dict[str, str]:
     env = dict(os.environ, PYTHONPATH=str(src), SGPLAN_CACHE_DIR=str(cache))
     env.pop("SGPLAN_NO_CACHE", None)
+    if BYTECODE:  # the warm-up run writes it, like numba's cache and the scene cache
+        env.pop("PYTHONDONTWRITEBYTECODE", None)
+    else:
+        env["PYTHONDONTWRITEBYTECODE"] = "1"
     return env
 
 
@@ -137,7 +148,11 @@ def main() -> None:
     parser.add_argument("--no-plan", action="store_true", help="skip part 1")
     parser.add_argument("--bench", action="store_true", help="also run part 2")
     parser.add_argument("--bench-args", default=DEFAULT_BENCH)
+    parser.add_argument("--no-bytecode-cache", action="store_true",
+                        help="children compile sgplan from source every time (see BYTECODE)")
     args = parser.parse_args()
+    global BYTECODE
+    BYTECODE = not args.no_bytecode_cache
     given = args.variant or [f"this={REPO / 'src'}"]
     variants = {name: Path(path).resolve() for name, path in (v.split("=", 1) for v in given)}
     with tempfile.TemporaryDirectory() as root:

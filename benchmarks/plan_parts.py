@@ -4,7 +4,9 @@ of each part, in one process (the CLI's own code path; run it twice for a warm n
 Each listed function is wrapped to record ``time.perf_counter()`` and ``VmRSS`` / ``VmHWM`` (peak) of
 ``/proc/self/status`` when it starts and ends; the table prints them in order with the seconds since the
 previous mark. Numba's cached kernels are listed too (seconds to load each, RSS after), since the first
-load also initialises numba's compiler (~0.1 s, ~45 MB) and imports scipy.linalg (numba checks for BLAS).
+load also initialises numba's compiler (~0.1 s, ~45 MB). Like the console script, it sets the process up
+with :func:`sgplan.cli.prepare_own_process` (no BLAS probe, fewer garbage-collector passes);
+``--library-process`` leaves it as a program importing sgplan would have it.
 
     .venv/bin/python benchmarks/plan_parts.py plan --scene Benevolence --setup 'A*' --profile authors \\
         --mission-dir ../shared/datasets/gibson-3dsg/Benevolence/missions/4 --json /tmp/p.json
@@ -84,12 +86,18 @@ def main() -> int:
     mark("interpreter up")
     import sgplan.cli
 
+    argv = sys.argv[1:]
+    if "--library-process" in argv:
+        argv.remove("--library-process")
+    else:
+        sgplan.cli.prepare_own_process()  # as sgplan.cli.main does in the console script
+
     mark("sgplan.cli imported")
     for module_name, attr in PARTS:
         _wrap(module_name, attr)
     _watch_kernel_loads()
     mark("the parts' modules imported (numba, the planner: their import time is above, not below)")
-    code = sgplan.cli._run(sys.argv[1:])
+    code = sgplan.cli._run(argv)
     mark("done")
     previous = 0.0
     print(f"{'s':>7} {'+s':>7} {'RSS':>5} {'peak':>5}  part (exit code {code})", file=sys.stderr)

@@ -223,3 +223,24 @@ def test_mission_from_text_offline_and_saved(demo, tmp_path: Path) -> None:
     mission = sgplan.mission_from_text("Go to the kitchen.", demo, save_to=tmp_path / "m")
     assert mission.grounded_text == "Go to room_4." and (tmp_path / "m" / "automaton.aut").is_file()
     assert sgplan.load_mission(tmp_path / "m").automaton.num_states == mission.automaton.num_states
+
+
+def test_a_plan_finds_where_each_proposition_holds_once_for_its_explanation_and_labels(
+    demo, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import sgplan.explain.scene_labels
+    import sgplan.scene.labels as labels
+
+    built: list[str] = []
+    real = labels.proposition_cells
+
+    def counted(building: sgplan.api.Building, prop: labels.Proposition, reach_radius_m: float | None = None
+                ) -> np.ndarray:
+        built.append(prop.name)
+        return real(building, prop, reach_radius_m)
+
+    for module in (labels, sgplan.explain.scene_labels):
+        monkeypatch.setattr(module, "proposition_cells", counted)
+    result = sgplan.plan(demo, sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo), 0, setup="NO-LLM")
+    assert result.status == "optimal" and result.explanation_method == "patterns"
+    assert sorted(built) == ["enter(room_11)", "enter(room_4)"]

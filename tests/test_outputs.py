@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import dataclasses
 import itertools
 import json
 import math
@@ -117,6 +118,52 @@ def test_a_segment_never_cuts_through_a_cell_that_changes_the_mission() -> None:
                                                  automaton).valid
 
 
+def _simplify_reference(path: np.ndarray, grid, labels: np.ndarray, automaton) -> list[int]:
+    """The greedy rule of :func:`simplify_path` stated plainly in Python (its former implementation)."""
+
+    def segment_ok(i: int, j: int) -> bool:
+        floor, q = path[i, 2], path[i, 3]
+        if (path[i:j + 1, 2] != floor).any() or (path[i + 1:j, 3] != q).any():
+            return False
+        for r, c in crossed_cells(tuple(path[i, :2].tolist()), tuple(path[j, :2].tolist()))[1:-1].tolist():
+            if not (0 <= r < grid.shape[1] and 0 <= c < grid.shape[2]) or not grid.traversable[floor, r, c]:
+                return False
+            if automaton.table[q, labels[floor, r, c]] != q:
+                return False
+        return True
+
+    keep, i = [0], 0
+    while i < len(path) - 1:
+        j = i + 1
+        while j + 1 < len(path) and segment_ok(i, j + 1):
+            j += 1
+        keep.append(j)
+        i = j
+    return keep
+
+
+@pytest.mark.parametrize(("formula", "start", "setup"), [
+    (FORMULA, 0, "NO-LLM"), ('F("enter(room_4)" & F "enter(room_11)")', 2, "A*"),
+    ('F "reach(object_28)" & G !"enter(room_5)"', 1, "NO-LLM"),
+])
+def test_the_compiled_simplification_follows_the_greedy_rule(formula: str, start: int, setup: str) -> None:
+    building = sgplan.load_scene("demo")
+    r = sgplan.plan(building, sgplan.mission_from_formula(formula, building), start, setup=setup)
+    automaton = r.mission.automaton
+    keep = simplify_path(r.path, r.grid, r.labels, automaton)
+    assert keep.tolist() == _simplify_reference(r.path, r.grid, r.labels, automaton)
+    assert keep.dtype == np.int64 and 2 <= len(keep) < len(r.path)
+    assert simplify_path(r.path[:2], r.grid, r.labels, automaton).tolist() == [0, 1]
+    # A path given by hand that leaves the grid: its cells outside are refused (never read), like the rule's.
+    outside = r.path[:3].copy()
+    outside[:, 3] = r.path[0, 3]
+    far = 3 * (r.grid.shape[1] + r.grid.shape[2])  # segments longer than any inside the grid
+    outside[1, :2] = (outside[0, 0] - far, outside[0, 1])
+    outside[2, :2] = (outside[0, 0] - 2 * far, outside[0, 1] + 1)
+    assert simplify_path(outside, r.grid, r.labels, automaton).tolist() == [0, 1, 2] == \
+        _simplify_reference(outside, r.grid, r.labels, automaton)
+
+
 def test_waypoints_are_metric_and_in_rooms() -> None:
     r = demo_result()
     w = r.waypoints[0]
@@ -125,6 +172,10 @@ def test_waypoints_are_metric_and_in_rooms() -> None:
     assert w.z_m == r.building.floors[0].ground_z_m and w.room == "room_2" and w.room_name == "corridor"
     assert r.waypoints[-1].cost_m == pytest.approx(r.cost_m) == pytest.approx(leg_costs(r.path, r.grid).sum())
     assert r.waypoints[-1].z_m == r.building.floors[1].ground_z_m > 0
+    record = w.to_dict()
+    assert list(record) == ["index", "x_m", "y_m", "z_m", "floor", "row", "col", "room", "room_name", "q",
+                            "cost_m"]
+    assert record == dataclasses.asdict(w) and all(type(v) in (int, float, str) for v in record.values())
 
 
 def test_events_say_where_each_proposition_became_true_and_the_automaton_moved() -> None:
@@ -218,3 +269,23 @@ def test_plan_draws_png_svg_and_the_automaton_and_writes_the_html_report(tmp_pat
     assert code == 0 and {"plan_floor_0.png", "plan_floor_1.svg", "automaton.dot", "automaton.svg"} <= names
     page = (tmp_path / "r.html").read_text()
     assert page.startswith("<!DOCTYPE html>") and "enter(room_11)" in page and 'id="events"' in page
+
+
+def test_plan_records_are_json_with_one_line_per_row() -> None:
+    from sgplan.outputs.jsontext import record_json
+
+    record = demo_result().to_dict()
+    text = record_json(record)
+    assert json.loads(text) == json.loads(json.dumps(record)) and text.endswith("}\n")
+    lines = text.splitlines()
+    assert f"  {json.dumps(record['path'][0], separators=(', ', ': '))}," in lines
+    rows = sum(len(record[key]) for key in ("path", "waypoints", "waypoints_simplified", "events"))
+    assert len(lines) < rows + 200  # a row per line, not a number per line
+    odd = {"e": [], "rows": [[1, 2], {"a": "x\ny"}], "mixed": [1, [2]], "nested": {"k": [{"z": None}]},
+           "s": "é"}
+    assert json.loads(record_json(odd)) == odd and record_json({}) == "{}\n"
+    for bad in (float("nan"), float("inf")):
+        with pytest.raises(ValueError):
+            record_json({"cost_m": bad})
+        with pytest.raises(ValueError):
+            record_json({"rows": [[bad]]})

@@ -4,12 +4,14 @@ and the console script ends without the interpreter's teardown once its outputs 
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
+from sgplan.cli import GC_YOUNG_THRESHOLD
 from sgplan.commands.common import SETUP_NAMES
 
 HEAVY = ("numba", "scipy", "PIL", "matplotlib", "rich", "openai", "sgplan.planning.amra")
@@ -27,6 +29,25 @@ def _modules_after(code: str) -> set[str]:
 def test_building_the_parser_imports_no_planner_or_heavy_library() -> None:
     loaded = _modules_after("from sgplan.cli import _build_parser\n_build_parser()")
     assert not [m for m in HEAVY if m in loaded]
+
+
+def test_building_the_parser_imports_no_bench_machinery_yet_bench_help_names_the_case_timeout() -> None:
+    from sgplan.bench.executors import DEFAULT_CASE_TIMEOUT_S
+
+    loaded = _modules_after("from sgplan.cli import _build_parser\n_build_parser()")
+    assert not [m for m in loaded if m.startswith("sgplan.bench")] and "numpy" not in loaded
+    out = subprocess.run([sys.executable, "-m", "sgplan.cli", "bench", "--help"], capture_output=True,
+                         text=True, check=True, env={**os.environ, "COLUMNS": "200"})
+    assert f"kill a case's worker after S wall seconds (default: {DEFAULT_CASE_TIMEOUT_S:g})" in out.stdout
+
+
+def test_loading_a_native_scene_folder_loads_no_importer(tmp_path: Path) -> None:
+    from sgplan.scene.demo import demo_building
+    from sgplan.scene.native import write_native_scene
+
+    folder = write_native_scene(demo_building(), tmp_path / "house")
+    loaded = _modules_after(f"import sgplan\nb = sgplan.load_scene({str(folder)!r})\nassert b.rooms()")
+    assert not [m for m in loaded if m.startswith(("sgplan.importers", "scipy.spatial", "scipy.linalg"))]
 
 
 def test_importing_a_planning_module_does_not_load_the_search() -> None:
@@ -108,3 +129,76 @@ def test_planning_a_gibson_mission_loads_no_scipy_image_or_sparse_code(gibson_ro
     )
     assert "sgplan.planning.amra" in loaded  # it did plan
     assert not [m for m in ("scipy.ndimage", "scipy.sparse") if m in loaded]
+
+
+_BLAS_STATE = (
+    "import json, sys\n"
+    "def blas_state():\n"
+    "    import numba.np.arraymath as am\n"
+    "    return {'have_blas': am._HAVE_BLAS, 'scipy_linalg': 'scipy.linalg' in sys.modules,\n"
+    "            'blocked': sys.modules.get('scipy.linalg.cython_blas', 0) is None,\n"
+    "            'hooks': [type(f).__name__ for f in sys.meta_path if 'Blas' in type(f).__name__],\n"
+    "            'loader': type(am.__loader__).__name__, 'gc_young': __import__('gc').get_threshold()[0]}\n"
+)
+
+
+def test_the_console_script_plans_without_importing_scipy_linalg(tmp_path: Path) -> None:
+    """The console script lets numba skip its BLAS probe (no scipy.linalg import), restores sys.modules
+    after, runs the garbage collector less often, and the plan is the library's (same cost, verified by
+    the checker)."""
+    import sgplan
+
+    state, out_json = tmp_path / "state.json", tmp_path / "plan.json"
+    formula = 'F("enter(room_4)" & F "enter(room_11)")'
+    boot = (
+        _BLAS_STATE + "import atexit\n"
+        f"atexit.register(lambda: open({str(state)!r}, 'w').write(json.dumps(blas_state())))\n"
+        f"sys.argv = ['sgplan', 'plan', '--scene', 'demo', '--formula', {formula!r}, '--start-index', '1', "
+        f"'--setup', 'NO-LLM', '--json', {str(out_json)!r}, '--quiet']\n"
+        "from sgplan.cli import main\n"
+        "main()\n"
+    )
+    out = subprocess.run([sys.executable, "-c", boot], capture_output=True, text=True, check=False)
+    assert out.returncode == 0, out.stderr
+    assert json.loads(state.read_text()) == {"have_blas": False, "scipy_linalg": False, "blocked": False,
+                                             "hooks": [], "loader": "SourceFileLoader",
+                                             "gc_young": GC_YOUNG_THRESHOLD}
+    record = json.loads(out_json.read_text())
+    demo = sgplan.load_scene("demo")
+    expected = sgplan.plan(demo, sgplan.mission_from_formula(formula, demo), 1, setup="NO-LLM")
+    assert record["status"] == "optimal" and record["cost_m"] == pytest.approx(expected.cost_m, abs=1e-9)
+
+
+def test_library_use_keeps_numbas_blas_probe() -> None:
+    """``import sgplan`` and a Session's plan leave numba as the user's program would have it: the probe
+    ran (scipy.linalg imported, BLAS found) and no import hook of sgplan's is left behind."""
+    code = (
+        _BLAS_STATE + "import sgplan\n"
+        "demo = sgplan.load_scene('demo')\n"
+        "result = sgplan.Session(demo).plan(sgplan.mission_from_formula('F \"enter(room_5)\"', demo), 0,"
+        " setup='NO-LLM')\n"
+        "assert result.status == 'optimal'\n"
+        "print(json.dumps(blas_state()))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    state = json.loads(out.stdout.strip().splitlines()[-1])
+    assert state["have_blas"] is True and state["scipy_linalg"] is True and state["hooks"] == []
+    assert state["gc_young"] == 700  # Python's default: the garbage collector is the user's business
+
+
+def test_the_blas_hook_is_one_shot_and_falls_back_when_numba_differs() -> None:
+    """Installed once; a second call or an already loaded numba registry installs nothing; if numba's
+    module cannot be found where expected, the hook steps aside (the normal finders take over)."""
+    code = (
+        "import json, sys\n"
+        "from sgplan.jit import _SkipBlasProbe, skip_blas_probe\n"
+        "first, second = skip_blas_probe(), skip_blas_probe()\n"
+        "hook = next(f for f in sys.meta_path if isinstance(f, _SkipBlasProbe))\n"
+        "sys.meta_path.remove(hook)\n"
+        "stray = _SkipBlasProbe().find_spec('numba.np.arraymath', ['/nonexistent'])\n"
+        "import numba.np.arraymath\n"
+        "late = skip_blas_probe()\n"
+        "print(json.dumps([first, second, stray is None, late, numba.np.arraymath._HAVE_BLAS]))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert json.loads(out.stdout.strip().splitlines()[-1]) == [True, False, True, False, True]

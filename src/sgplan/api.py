@@ -16,7 +16,7 @@ from __future__ import annotations
 import logging
 import time
 from collections import Counter
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypedDict
@@ -179,14 +179,16 @@ class _Explained(TypedDict):
     explanation_method: str
 
 
-def _explanation(mission: Mission, building: Building, given: Explanation | None = None) -> _Explained:
+def _explanation(mission: Mission, building: Building, given: Explanation | None = None,
+                 cells: Callable[[Proposition, float], np.ndarray] | None = None) -> _Explained:
     """The mission explained in plain English (:func:`sgplan.explain.explain_mission`) as the
     ``explanation`` and ``explanation_method`` of a :class:`PlanResult`: the one place a plan gets it.
-    ``given``: the caller's explanation of this mission and building (already said back), used as it is."""
+    ``given``: the caller's explanation of this mission and building (already said back), used as it is;
+    ``cells``: where each proposition holds (:meth:`Session.proposition_cells`)."""
     if given is None:
         from sgplan.explain import explain_mission
 
-        given = explain_mission(mission, building)
+        given = explain_mission(mission, building, cells=cells)
     return {"explanation": given.text, "explanation_method": given.method}
 
 
@@ -237,20 +239,26 @@ class Session:
     def labels(self, mission: Mission, reach_radius_m: float | None = None) -> np.ndarray:
         """The mission's label raster (as :meth:`Mission.labels`), from the cells of each proposition kept
         between missions (sparse: a few MB at most where full masks took ~6 MB each on a Gibson scene)."""
-        from sgplan.scene.labels import proposition_cells
-
         mission.check_scene(self.building)
         reach = self.radii(reach_radius_m=reach_radius_m).reach_m
         floors, (rows, cols) = self.building.num_floors, self.building.grid_shape
         labels = np.zeros((floors, rows, cols), dtype=np.uint32)
         flat = labels.reshape(-1)
         for bit, prop in enumerate(mission.ordered_propositions):
-            key = (prop, reach)
-            if key not in self._cells:
-                self._cells[key] = proposition_cells(self.building, prop, reach)
-                self.builds["label_mask"] += 1
-            flat[self._cells[key]] |= np.uint32(1 << bit)
+            flat[self.proposition_cells(prop, reach)] |= np.uint32(1 << bit)
         return labels
+
+    def proposition_cells(self, prop: Proposition, reach_radius_m: float) -> np.ndarray:
+        """Flat indices of the cells where ``prop`` holds at this reach radius (metres), as
+        :func:`sgplan.scene.labels.proposition_cells`; built once per proposition and radius. The label
+        rasters and the explanations of this session's plans read them from here."""
+        from sgplan.scene.labels import proposition_cells
+
+        key = (prop, reach_radius_m)
+        if key not in self._cells:
+            self._cells[key] = proposition_cells(self.building, prop, reach_radius_m)
+            self.builds["label_mask"] += 1
+        return self._cells[key]
 
     def plan(
         self,
@@ -334,7 +342,8 @@ class Session:
             iterations=found.iterations, mission_text=mission.text, grounded_text=mission.grounded_text,
             formula=_formula_text(mission), propositions=mission.descriptions, guidance=guidance,
             notes=list(mission.notes), building=self.building, grid=grid, labels=prepared.problem.labels,
-            mission=mission, scene_check=scene_check, **_explanation(mission, self.building, explanation),
+            mission=mission, scene_check=scene_check,
+            **_explanation(mission, self.building, explanation, self.proposition_cells),
         )
         if found.status == "optimal":
             result.bound = 1.0

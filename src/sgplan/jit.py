@@ -1,14 +1,28 @@
-"""Whether the planner's numba kernels are compiled and cached yet, so a front end can say why the first
-run on a machine is silent for ~15 s (numba compiles the kernels once and caches them on disk).
+"""Numba housekeeping for the planner's kernels.
 
-Detection reads numba's on-disk cache index for every cached kernel of the planner; it uses numba
-internals, so any surprise from them means "unknown" and no notice, never an error.
+- Whether they are compiled and cached yet, so a front end can say why the first run on a machine is
+  silent for ~15 s (numba compiles the kernels once and caches them on disk). Detection reads numba's
+  on-disk cache index for every cached kernel of the planner; it uses numba internals, so any surprise
+  from them means "unknown" and no notice, never an error.
+- :func:`skip_blas_probe`, for sgplan's own processes only: numba's first kernel load does not import
+  scipy.linalg to find out whether a BLAS exists (the kernels use none). If numba's internals differ,
+  the hook does nothing and numba loads the normal way.
 """
 
 from __future__ import annotations
 
+import contextlib
+import importlib.machinery
 import logging
 import os
+import sys
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from importlib.abc import Loader
+    from importlib.machinery import ModuleSpec
+    from types import ModuleType
 
 log = logging.getLogger("sgplan")
 
@@ -23,10 +37,11 @@ def kernels_cached() -> bool | None:
         from numba.core.registry import CPUDispatcher
 
         from sgplan import heap
+        from sgplan.outputs import _segments
         from sgplan.planning import _dijkstra, _search
 
         kernels = [
-            value for module in (heap, _dijkstra, _search) for value in vars(module).values()
+            value for module in (heap, _dijkstra, _search, _segments) for value in vars(module).values()
             if isinstance(value, CPUDispatcher) and getattr(value, "_cache", None) is not None
         ]
         files = [getattr(kernel, "_cache")._cache_file for kernel in kernels]  # noqa: B009 - private in numba
@@ -44,3 +59,71 @@ def announce_compile() -> bool:
         log.info(NOTICE)
         return True
     return False
+
+
+# Numba's registry of array functions (numba.np.arraymath, imported the first time a kernel is compiled or
+# loaded from the cache) probes once whether a BLAS exists by importing scipy.linalg.cython_blas, which
+# imports all of scipy.linalg: 0.1-0.25 s and ~15 MB per process. sgplan's kernels call no BLAS (no np.dot,
+# @, np.linalg, np.correlate or np.convolve), so a process that runs only sgplan's kernels can let the probe
+# fail fast. The answer only decides how numba compiles np.correlate / np.convolve later (a plain loop
+# instead of BLAS); np.dot and np.linalg still import scipy when they are compiled. That is a choice for
+# the process's owner: only sgplan's own entry points (the CLI, the bench worker) make it, never
+# ``import sgplan`` inside a user's program.
+_ARRAYMATH = "numba.np.arraymath"
+_BLAS = "scipy.linalg.cython_blas"
+
+
+class _SkipBlasProbe:
+    """One-shot import hook (a meta path finder and loader): runs numba's arraymath module with
+    ``sys.modules[_BLAS] = None`` (an import of it then raises ImportError at once, without importing
+    scipy.linalg), then restores sys.modules. (Not derived from importlib.abc: importing that costs
+    ~5 ms of importlib.resources.)"""
+
+    def __init__(self) -> None:
+        self._inner: Loader | None = None
+
+    def find_spec(self, fullname: str, path: Sequence[str] | None, target: ModuleType | None = None
+                  ) -> ModuleSpec | None:
+        if fullname != _ARRAYMATH:
+            return None
+        with contextlib.suppress(ValueError):  # one shot: later imports go the normal way
+            sys.meta_path.remove(self)
+        try:
+            spec = importlib.machinery.PathFinder.find_spec(fullname, path, target)
+        except Exception:  # noqa: BLE001 - numba's layout changed: let the normal finders handle it
+            return None
+        if spec is None or spec.loader is None or not hasattr(spec.loader, "exec_module"):
+            return None
+        self._inner, spec.loader = spec.loader, self  # type: ignore[assignment]  # a Loader by duck typing
+        return spec
+
+    def create_module(self, spec: ModuleSpec) -> ModuleType | None:
+        assert self._inner is not None
+        return self._inner.create_module(spec)
+
+    def exec_module(self, module: ModuleType) -> None:
+        assert self._inner is not None
+        # The module keeps its real loader (as if this hook had never been there).
+        module.__loader__ = self._inner
+        if module.__spec__ is not None:
+            module.__spec__.loader = self._inner
+        if _BLAS in sys.modules:  # scipy.linalg is loaded already: the probe costs nothing
+            self._inner.exec_module(module)
+            return
+        sys.modules[_BLAS] = None  # type: ignore[assignment]  # None: an import fails at once
+        try:
+            self._inner.exec_module(module)
+        finally:
+            if _BLAS in sys.modules and sys.modules[_BLAS] is None:
+                del sys.modules[_BLAS]
+
+
+def skip_blas_probe() -> bool:
+    """In a process that only runs sgplan's kernels (the CLI, a bench worker): make numba's one-time BLAS
+    probe fail fast instead of importing scipy.linalg (see the comment above). Call it before numba's
+    registries load; returns whether the hook was installed (False: they are loaded already, or the hook
+    is in place). Never call it from library code: it changes how numba compiles the user's own kernels."""
+    if _ARRAYMATH in sys.modules or any(isinstance(f, _SkipBlasProbe) for f in sys.meta_path):
+        return False
+    sys.meta_path.insert(0, _SkipBlasProbe())
+    return True

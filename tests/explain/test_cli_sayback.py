@@ -32,6 +32,33 @@ def test_plan_prints_and_records_the_explanation_once(
     assert record["scene_check"] == []
 
 
+def test_plan_finds_where_each_proposition_holds_once_for_the_explanation_and_the_plan(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import numpy as np
+
+    import sgplan.explain.scene_labels
+    import sgplan.scene.labels as labels
+    from sgplan.scene.model import Building
+
+    built: list[str] = []
+    real = labels.proposition_cells
+
+    def counted(building: Building, prop: labels.Proposition, reach_radius_m: float | None = None
+                ) -> np.ndarray:
+        built.append(prop.name)
+        return real(building, prop, reach_radius_m)
+
+    for module in (labels, sgplan.explain.scene_labels):  # wherever it is called from
+        monkeypatch.setattr(module, "proposition_cells", counted)
+    out = tmp_path / "r.json"
+    assert main(["plan", "--scene", "demo", "--formula", GOAL, "--setup", "NO-LLM", "--json", str(out)]) == 0
+    assert sorted(built) == ["enter(room_11)", "enter(room_5)", "enter(room_6)"]  # each once, not twice
+    record = json.loads(out.read_text())
+    assert EXPLAINED in record["explanation"]["text"] and record["status"] == "optimal"
+    capsys.readouterr()
+
+
 def test_contradiction_exits_3_with_its_own_status(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

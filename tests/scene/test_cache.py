@@ -184,3 +184,28 @@ def test_prune_keeps_the_most_recently_used(tmp_path: Path) -> None:
     cache._prune(tmp_path, limit=250)
     assert sorted(p.name for p in tmp_path.iterdir()) == [f"building-mid{cache.SUFFIX}",
                                                            f"building-new{cache.SUFFIX}"]
+
+
+def test_content_hash_follows_the_contents_wherever_the_arrays_lie() -> None:
+    import pickle
+
+    base = {"name": "b", "maps": [np.arange(12, dtype=np.int32).reshape(3, 4), np.ones((2, 2), bool)],
+            "fortran": np.asfortranarray(np.eye(3))}
+    same = pickle.loads(pickle.dumps(base, protocol=5))  # equal contents, other objects
+    assert cache.content_hash(same) == cache.content_hash(base) and len(cache.content_hash(base)) == 32
+    changes = [("maps", 0, (2, 3), 99), ("maps", 1, (0, 0), False), ("fortran", None, (0, 1), 0.5)]
+    for key, index, cell, value in changes:
+        other = pickle.loads(pickle.dumps(base, protocol=5))
+        array = other[key] if index is None else other[key][index]
+        array[cell] = value
+        assert cache.content_hash(other) != cache.content_hash(base), (key, index)
+    strided = np.arange(20, dtype=np.int64)[::3]  # not contiguous: pickled in band, hashed all the same
+    changed = strided.copy()[::1]
+    changed[1] = 7
+    assert cache.content_hash([strided]) == cache.content_hash([np.arange(20, dtype=np.int64)[::3]])
+    assert cache.content_hash([strided]) != cache.content_hash([np.arange(20, dtype=np.int64)[::2]])
+    assert cache.content_hash([changed]) != cache.content_hash([strided.copy()])
+    swapped = dict(base, maps=[base["maps"][1], base["maps"][0]])  # the same bytes in another order
+    assert cache.content_hash(swapped) != cache.content_hash(base)
+    with pytest.raises((pickle.PicklingError, TypeError, AttributeError)):
+        cache.content_hash({"f": lambda: 0})

@@ -12,7 +12,6 @@ path in the scene satisfies the mission, from any start; 70 a bug in sgplan.
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import time
 from collections.abc import Callable
@@ -185,9 +184,12 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     extras: dict[str, Any] = {}
     if args.mission_dir:
         check_folder_fits(args.mission_dir, mission, building, force=args.force, record=extras)
+    # The session keeps where each proposition holds between the saying back and the plan (no planner
+    # parts: this process plans once).
+    session = sgplan.Session(building, max_shared_bytes=0)
     # Said back before any guidance call or search; on stderr when stdout carries the JSON.
     explanation = say_back(mission, building, confirm=args.confirm,
-                           stream=sys.stderr if args.json == "-" else sys.stdout)
+                           stream=sys.stderr if args.json == "-" else sys.stdout, session=session)
     guide = None
     if get_setup(args.setup).uses_llm and mission.guidance is None:
         if backends is None:
@@ -202,7 +204,8 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     result = sgplan.plan(building, mission, _start_spec(args), setup=args.setup, profile=args.profile,
                          robot_radius_m=args.robot_radius, reach_radius_m=args.reach_radius,
                          time_limit_s=args.time_limit, max_expansions=args.max_expansions, guide=guide,
-                         callback=progress, explanation=explanation)  # said back above: not made twice
+                         callback=progress, explanation=explanation,  # said back above: not made twice
+                         session=session)
     if args.save_mission and guide is not None and result.mission is not None and result.mission.guidance:
         say(
             f"wrote {write_guidance(result.mission.guidance, Path(args.save_mission) / 'llm_heuristic.yaml')}"
@@ -279,7 +282,9 @@ def _report(args: argparse.Namespace, result: PlanResult) -> int:
 def _write_json(target: str | None, record: dict[str, Any]) -> None:
     if not target:
         return
-    text = json.dumps(record, indent=1, allow_nan=False) + "\n"
+    from sgplan.outputs.jsontext import record_json
+
+    text = record_json(record)
     if target == "-":
         sys.stdout.write(text)
         sys.stdout.flush()

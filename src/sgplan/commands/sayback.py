@@ -17,6 +17,7 @@ from sgplan.commands.common import say
 from sgplan.errors import ConfirmationError
 
 if TYPE_CHECKING:
+    from sgplan.api import Session
     from sgplan.explain import Explanation
     from sgplan.explain.checks import SceneCheck
     from sgplan.mission import Mission
@@ -26,10 +27,10 @@ if TYPE_CHECKING:
 
 def say_back(mission: Mission, building: Building, record: dict[str, Any] | None = None, *,
              confirm: bool = False, ask: Callable[[str], str] | None = None,
-             stream: TextIO | None = None) -> Explanation:
+             stream: TextIO | None = None, session: Session | None = None) -> Explanation:
     """Print the explanation of ``mission`` (to ``stream``, default stdout), store it as
     ``record["explanation"]``, and with ``confirm`` ask before going on (``ask``: default ``input`` on a
-    terminal).
+    terminal). With ``session`` (of ``building``), where the propositions hold is kept there for the plan.
 
     Raises
     ------
@@ -38,7 +39,8 @@ def say_back(mission: Mission, building: Building, record: dict[str, Any] | None
     """
     from sgplan.explain import explain_mission
 
-    explanation = explain_mission(mission, building)
+    explanation = explain_mission(mission, building,
+                                  cells=None if session is None else session.proposition_cells)
     print(explanation.text, file=stream or sys.stdout, flush=True)
     if record is not None:
         record["explanation"] = explanation.to_dict()

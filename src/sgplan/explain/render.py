@@ -24,6 +24,7 @@ from sgplan.logic.equivalence import equivalent
 from sgplan.logic.formula import MAX_NESTING, Formula, atoms, depth
 from sgplan.logic.ltlf import ltlf_to_dfa, possible_labels
 from sgplan.mission import Mission
+from sgplan.scene.labels import Proposition
 from sgplan.scene.model import Building
 
 Method = Literal["patterns", "automaton"]
@@ -119,7 +120,8 @@ def _reads_as(formula: Formula, automaton: Automaton, realizable: np.ndarray) ->
 
 
 def explain_mission(
-    mission: Mission, building: Building, *, reach_radius_m: float | None = None
+    mission: Mission, building: Building, *, reach_radius_m: float | None = None,
+    cells: Callable[[Proposition, float], np.ndarray] | None = None,
 ) -> Explanation:
     """Explain ``mission`` over ``building`` (see the module docstring).
 
@@ -132,6 +134,10 @@ def explain_mission(
         occur (rooms exclusive, objects reached only near them).
     reach_radius_m:
         the object reach radius (metres); default the scene's, else sgplan's default.
+    cells:
+        where each proposition holds at a reach radius (flat cell indices, e.g.
+        :meth:`sgplan.Session.proposition_cells`, kept for the plan); default
+        :func:`sgplan.scene.labels.proposition_cells`.
 
     Returns
     -------
@@ -149,7 +155,7 @@ def explain_mission(
     realizable: np.ndarray | None = None
     if all(p is not None for p in props):
         try:
-            realizable = realizable_labels(props, building, reach_radius_m)  # type: ignore[arg-type]
+            realizable = realizable_labels(props, building, reach_radius_m, cells=cells)  # type: ignore[arg-type]
         except SgplanError:
             realizable = None  # entities the scene lacks: their phrases say so
     if realizable is None:

@@ -9,11 +9,13 @@ the free cells of an occupancy grid (the pre-planning checks).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from functools import partial
 
 import numpy as np
 
-from sgplan.scene.labels import Proposition, label_raster
+from sgplan.errors import MissionError
+from sgplan.scene.labels import MAX_PROPOSITIONS, Proposition, proposition_cells
 from sgplan.scene.model import Building
 
 
@@ -35,18 +37,34 @@ def in_room_cells(building: Building) -> np.ndarray:
 
 
 def realizable_labels(propositions: Sequence[Proposition], building: Building,
-                      reach_radius_m: float | None = None) -> np.ndarray:
+                      reach_radius_m: float | None = None, *,
+                      cells: Callable[[Proposition, float], np.ndarray] | None = None) -> np.ndarray:
     """``(2**len(propositions),)`` bool: the labels (bit ``i`` = ``propositions[i]``) that some in-room
     cell of ``building`` carries (reach radius: the given one, else the scene's, else the default of
     :mod:`sgplan.pipeline`).
+
+    The labels are those of :func:`~sgplan.scene.labels.label_raster`, made from ``cells(prop, radius)``:
+    the flat cell indices of one proposition, as :func:`~sgplan.scene.labels.proposition_cells` (the
+    default) gives them, or a :class:`sgplan.Session`'s, which keeps them for the plan that follows
+    (finding them is most of the cost: ~10 ms for four objects on a Gibson scene).
 
     Raises
     ------
     SceneError
         a proposition names an entity the building lacks.
+    MissionError
+        more propositions than a label holds, or a reach proposition without a radius.
     """
     from sgplan.pipeline import resolve_radii
 
+    if len(propositions) > MAX_PROPOSITIONS:  # as label_raster: a label is a uint32 bitmask
+        raise MissionError(
+            f"{len(propositions)} propositions given; a label holds at most {MAX_PROPOSITIONS}"
+        )
     radius = resolve_radii(building).reach_m if reach_radius_m is None else reach_radius_m
-    labels = label_raster(building, propositions, radius)
-    return occurring_labels(labels, in_room_cells(building), 1 << len(propositions))
+    cells_of = cells or partial(proposition_cells, building)
+    floors, (rows, cols) = building.num_floors, building.grid_shape
+    labels = np.zeros(floors * rows * cols, dtype=np.uint32)  # as label_raster, flat
+    for bit, prop in enumerate(propositions):
+        labels[cells_of(prop, radius)] |= np.uint32(1 << bit)
+    return occurring_labels(labels, in_room_cells(building).reshape(-1), 1 << len(propositions))

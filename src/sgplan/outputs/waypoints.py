@@ -19,7 +19,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Sequence
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -51,7 +51,12 @@ class Waypoint:
     cost_m: float
 
     def to_dict(self) -> dict[str, object]:
-        return asdict(self)
+        """The fields by name, in order (every value a plain int, float, str or None: no deep copy needed,
+        unlike ``dataclasses.asdict``, which cost ~15 ms for a dense path's ~1,300 waypoints)."""
+        return {name: getattr(self, name) for name in _WAYPOINT_FIELDS}
+
+
+_WAYPOINT_FIELDS = tuple(field.name for field in fields(Waypoint))
 
 
 def as_path_array(path: np.ndarray | Sequence[Sequence[int]]) -> np.ndarray:
@@ -128,32 +133,14 @@ def crossed_cells(a: tuple[int, int], b: tuple[int, int]) -> np.ndarray:
     are included (before the diagonal cell), so consecutive cells are always 4- or 8-adjacent and no
     touched cell is left out.
 
-    Exact integer arithmetic (a walk over the grid lines crossed): from a cell centre, the segment crosses
-    its ``m``-th row line at ``t = (2m - 1) / (2 |d_row|)`` and its ``n``-th column line at
-    ``t = (2n - 1) / (2 |d_col|)``; both at once is a corner. (The simplification calls this for every
-    candidate segment, so it avoids numpy's per-call overhead on these short segments.)
+    Exact integer arithmetic (a walk over the grid lines crossed, compiled:
+    :func:`sgplan.outputs._segments.walk`).
     """
+    from sgplan.outputs._segments import walk
+
     (r, c), (r1, c1) = (int(a[0]), int(a[1])), (int(b[0]), int(b[1]))
-    dr, dc = abs(r1 - r), abs(c1 - c)
-    sr, sc = (1 if r1 > r else -1), (1 if c1 > c else -1)
-    cells = [(r, c)]
-    m = n = 1  # the next row / column line to cross
-    while m <= dr or n <= dc:
-        # Compare (2m - 1) / dr with (2n - 1) / dc by cross-multiplying (a missing axis never comes first).
-        row_t = (2 * m - 1) * dc if m <= dr else None
-        col_t = (2 * n - 1) * dr if n <= dc else None
-        if col_t is None or (row_t is not None and row_t < col_t):
-            r += sr
-            m += 1
-        elif row_t is None or col_t < row_t:
-            c += sc
-            n += 1
-        else:  # a corner: both side cells, then the diagonal one
-            cells += [(r + sr, c), (r, c + sc)]
-            r, c = r + sr, c + sc
-            m, n = m + 1, n + 1
-        cells.append((r, c))
-    return np.array(cells, dtype=np.int64)
+    out = np.empty((2 * (abs(r1 - r) + abs(c1 - c)) + 1, 2), dtype=np.int64)
+    return out[:walk(r, c, r1, c1, out)]
 
 
 def simplify_path(
@@ -165,42 +152,15 @@ def simplify_path(
     segment between two kept rows lies on one floor. ``labels`` is the ``(floors, rows, cols)`` label
     raster the path was planned with and ``automaton`` its DFA.
     """
-    rows = as_path_array(path)
-    n = len(rows)
-    if n <= 2:
-        return np.arange(n)
-    table = np.asarray(automaton.table)
-    keep = [0]
-    i = 0
-    while i < n - 1:
-        j = i + 1  # the planner's own move is always valid
-        while j + 1 < n and _segment_ok(rows, i, j + 1, grid, labels, table):
-            j += 1
-        keep.append(j)
-        i = j
-    return np.array(keep, dtype=np.int64)
+    from sgplan.outputs._segments import simplify
 
-
-def _segment_ok(
-    rows: np.ndarray, i: int, j: int, grid: OccupancyGrid, labels: np.ndarray, table: np.ndarray
-) -> bool:
-    """Whether the straight segment from row ``i`` to row ``j`` may replace rows ``i+1 .. j-1``."""
-    floor = rows[i, 2]
-    if (rows[i:j + 1, 2] != floor).any():
-        return False
-    q = rows[i, 3]
-    if (rows[i + 1:j, 3] != q).any():  # the automaton moves inside: keep that cell
-        return False
-    cells = crossed_cells((int(rows[i, 0]), int(rows[i, 1])), (int(rows[j, 0]), int(rows[j, 1])))[1:-1]
-    if len(cells) == 0:
-        return True
-    _, num_rows, num_cols = grid.shape
-    if ((cells < 0) | (cells >= (num_rows, num_cols))).any():
-        return False
-    r, c = cells[:, 0], cells[:, 1]
-    if not grid.traversable[floor, r, c].all():
-        return False
-    return bool((table[q, labels[floor, r, c].astype(np.int64)] == q).all())
+    rows = np.ascontiguousarray(as_path_array(path))
+    if len(rows) <= 2:
+        return np.arange(len(rows))
+    # Fixed dtypes and layouts: one compiled signature, cached on disk.
+    traversable = np.ascontiguousarray(grid.traversable, dtype=np.bool_)
+    table = np.ascontiguousarray(automaton.table, dtype=np.int32)
+    return simplify(rows, traversable, np.ascontiguousarray(labels, dtype=np.uint32), table)
 
 
 def densify(path: np.ndarray, keep: np.ndarray, automaton: Automaton, labels: np.ndarray,

@@ -108,12 +108,12 @@ def occupancy_grid_cached(
     building: Building, robot_radius_m: float, build: Callable[[Building, float], OccupancyGrid]
 ) -> OccupancyGrid:
     """``build(building, robot_radius_m)``, from the cache when a grid of this building (exactly as it is
-    now, whatever its source) and radius was stored (hashing the building costs ~20 ms on a Gibson scene,
-    building its grid 0.1-0.2 s)."""
+    now, whatever its source) and radius was stored (hashing the building, :func:`content_hash`, costs
+    ~10 ms on a Gibson scene, building its grid 0.1-0.2 s)."""
     folder = _usable_dir()
     try:
-        content = hashlib.blake2b(pickle.dumps(building, protocol=5), digest_size=32).digest()
-    except (pickle.PicklingError, TypeError, AttributeError):  # a building holding something unpicklable
+        content = content_hash(building)
+    except (pickle.PicklingError, TypeError, AttributeError, ValueError):  # something unpicklable in it
         folder = None
     if folder is None:
         return build(building, robot_radius_m)
@@ -124,6 +124,27 @@ def occupancy_grid_cached(
     grid = build(building, robot_radius_m)
     _write(folder, "grid", key, {"grid": grid})
     return grid
+
+
+def content_hash(obj: object) -> bytes:
+    """SHA-256 of ``obj`` as pickled (protocol 5): equal for equal contents, whatever their source. The
+    arrays' bytes are hashed where they lie instead of being copied into the pickle first (out-of-band
+    buffers), and SHA-256 runs in hardware on most CPUs: ~10 ms for a Gibson building where
+    blake2b over a full pickle took ~25 ms.
+
+    Raises
+    ------
+    pickle.PicklingError, TypeError, AttributeError
+        ``obj`` holds something unpicklable.
+    """
+    buffers: list[pickle.PickleBuffer] = []
+    stream = pickle.dumps(obj, protocol=5, buffer_callback=buffers.append)  # None: every buffer out of band
+    digest = hashlib.sha256(stream)
+    for buffer in buffers:
+        raw = buffer.raw()  # numpy puts only contiguous arrays out of band: a flat view, never a copy
+        digest.update(raw.nbytes.to_bytes(8, "little"))
+        digest.update(raw)
+    return digest.digest()
 
 
 # -- entries -------------------------------------------------------------------------------------------

@@ -39,6 +39,10 @@ def load_scene(path: str | Path) -> Building:
         raise SceneError(f"cannot read the scene: {error.strerror or error}", path) from None
     if kind == "authors":
         return load_authors_scene_cached(path)
+    if kind == "native" and path.is_dir():
+        # Every importer reads a file, never a folder: no need to load them (their rasterising imports
+        # scipy.spatial and with it scipy.linalg, ~0.1-0.3 s, which a bench worker paid per native scene).
+        return read_native_scene(path)
     from sgplan.importers.detect import detect_kind, import_scene  # importers sit above scene/
 
     source = detect_kind(path)
