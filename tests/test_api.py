@@ -211,12 +211,19 @@ def test_guidance_provenance_and_timeouts_as_results(demo) -> None:
     assert guided.mission is not None and guided.mission.guidance is not None
     cut = sgplan.plan(demo, mission, setup="NO-LLM", max_expansions=1)
     assert cut.status == "timeout" and cut.path is None and cut.to_dict()["cost_m"] is None
-    record = json.loads(guided.to_json())
+    text = guided.to_json()
+    record = json.loads(text)
     assert (
         record["mission"]["formula"]
         and "room_" in record["explanation"]["text"]
         and record["verified"] is True
     )
+    # The layout plan --json writes: a line per path row, not a line per number.
+    lines = text.splitlines()
+    first = lines.index(' "path": [') + 1
+    assert lines[first:first + len(record["path"])] == [
+        f"  {json.dumps(row, separators=(', ', ': '))}," for row in record["path"][:-1]
+    ] + [f"  {json.dumps(record['path'][-1], separators=(', ', ': '))}"]
 
 
 def test_mission_from_text_offline_and_saved(demo, tmp_path: Path) -> None:

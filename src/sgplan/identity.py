@@ -28,6 +28,7 @@ from typing import Any
 import yaml
 
 from sgplan.errors import MissionError, SceneMismatchError
+from sgplan.safeio import load_yaml
 from sgplan.scene.labels import Proposition
 from sgplan.scene.model import Building
 
@@ -182,10 +183,8 @@ def ensure_folder_fits_scene(folder: str | Path, propositions: Mapping[str, Prop
 
 
 def _read(path: Path) -> Any:
-    try:
-        return yaml.safe_load(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, yaml.YAMLError) as exc:
-        raise MissionError(f"cannot read the scene record ({str(exc).splitlines()[0]})", path) from None
+    """The scene record's YAML document (libyaml's loader, within safeio's limits)."""
+    return load_yaml(path, MissionError, "scene record")
 
 
 def _differences(recorded: Mapping[str, Any], here: Mapping[str, dict[str, Any]], scene: str) -> list[str]:
@@ -210,7 +209,7 @@ def _authors_description(path: Path) -> dict[str, dict[str, Any]] | None:
     if not path.is_file():
         return None
     try:
-        doc = yaml.safe_load(path.read_text(encoding="utf-8"))
+        doc = load_yaml(path, MissionError, "building description")
         rooms = doc["Building description"]
         out: dict[str, dict[str, Any]] = {}
         for entry in rooms:
@@ -222,5 +221,5 @@ def _authors_description(path: Path) -> dict[str, dict[str, Any]] | None:
                 (obj_name, obj_key), = obj.items()
                 out[str(obj_key)] = {"category": str(obj_name).rsplit("_", 1)[0], "floor": floor}
         return out
-    except (OSError, UnicodeDecodeError, yaml.YAMLError, KeyError, TypeError, ValueError, AttributeError):
+    except (MissionError, KeyError, TypeError, ValueError, AttributeError):
         return None

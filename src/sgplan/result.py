@@ -8,7 +8,6 @@ along the path) and, when available, a plain-language explanation of the mission
 
 from __future__ import annotations
 
-import json
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -19,6 +18,7 @@ import numpy as np
 from sgplan.errors import OutputError
 from sgplan.outputs.events import Event
 from sgplan.outputs.files import write_ros_path_yaml, write_waypoints_csv
+from sgplan.outputs.jsontext import record_json
 from sgplan.outputs.waypoints import Waypoint
 from sgplan.pipeline import Radii, finite_or_none, iteration_records
 
@@ -157,12 +157,14 @@ class PlanResult:
             "notes": list(self.notes),
         }
 
-    def to_json(self, indent: int | None = 1) -> str:
-        return json.dumps(self.to_dict(), indent=indent, allow_nan=False)
+    def to_json(self) -> str:
+        """:meth:`to_dict` as JSON text in the layout ``plan --json`` writes
+        (:func:`sgplan.outputs.jsontext.record_json`: a line per key and per row of the long lists)."""
+        return record_json(self.to_dict())
 
     def write_json(self, path: str | Path) -> Path:
         """Write :meth:`to_json` to ``path`` (folders created); returns the path."""
-        return write_text(path, self.to_json() + "\n")
+        return write_text(path, self.to_json())
 
     def write_waypoints_csv(self, path: str | Path, *, simplified: bool = True) -> Path:
         """The (simplified, by default) waypoints as CSV

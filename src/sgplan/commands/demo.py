@@ -10,7 +10,6 @@ the mission folder, the waypoints (CSV, ROS path YAML) and the run record ``run.
 from __future__ import annotations
 
 import argparse
-import json
 import time
 from pathlib import Path
 
@@ -40,6 +39,7 @@ def run(args: argparse.Namespace) -> int:
     import sgplan
     from sgplan.llm.backends import open_backends
     from sgplan.mission import save_mission_folder
+    from sgplan.outputs.jsontext import record_json
     from sgplan.result import write_text
     from sgplan.scene.hierarchy import attribute_hierarchy
 
@@ -91,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
     record["backends"] = {"translation": f"{backends.translator.name} (not an LLM)",
                           "guidance": f"{result.guidance} (not an LLM)"}
     record["timings"]["wall_s"] = time.perf_counter() - t0
-    written.append(write_text(out / "run.json", json.dumps(record, indent=1, allow_nan=False) + "\n"))
+    written.append(write_text(out / "run.json", record_json(record)))
     print(f"backends: translation {backends.translator.name}, guidance {result.guidance} (offline, not LLMs)")
     print(f"wrote {', '.join(str(p) for p in written)} and the mission folder {mission_dir}")
     return 0
