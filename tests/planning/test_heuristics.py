@@ -158,15 +158,17 @@ def test_ltl_rows_filled_on_demand_match_the_eager_minimum(seed: int) -> None:
 def _eager_rows(ltl) -> np.ndarray:
     """``(Q, N)`` h_LTL of every state at every cell, in numpy from the terms (0 accepting, inf without a
     row): per term, phi = max(0, max over fields f of lo_f - d_f, d_f - hi_f), plus the cost to go."""
-    num_fields = ltl.dist.shape[0]
-    rows = np.full((ltl.q_row.shape[0], ltl.dist.shape[1]), np.inf)
+    dist = ltl.dist.T  # (F, N)
+    num_fields = dist.shape[0]
+    rows = np.full((ltl.q_row.shape[0], dist.shape[1]), np.inf)
     rows[ltl.accepting] = 0.0
     for q in np.flatnonzero(ltl.q_row >= 0):
         row = int(ltl.q_row[q])
-        for t in range(ltl.term_ptr[row], ltl.term_ptr[row + 1]):
+        groups = ltl.term_label[ltl.term_ptr[row] : ltl.term_ptr[row + 1]]
+        for t in (t for _, first, end in groups for t in range(first, end)):
             lo = ltl.term_add[t, 1 : 1 + num_fields, None]
             hi = ltl.term_add[t, 1 + num_fields :, None]
-            phi = np.maximum(np.maximum(lo - ltl.dist, ltl.dist - hi).max(axis=0), 0.0)
+            phi = np.maximum(np.maximum(lo - dist, dist - hi).max(axis=0), 0.0)
             rows[q] = np.minimum(rows[q], phi + ltl.term_add[t, 0])
     return rows
 
@@ -176,8 +178,9 @@ def _paper_rows(ltl, trans: np.ndarray) -> np.ndarray:
     costs ``c(l, l') = min over the region of l of d_l'``), by value iteration: the bound the pieces
     tighten."""
     labels = ltl.leaving_labels
-    regions = [ltl.dist[i] == 0.0 for i in range(len(labels))]
-    cost = np.array([[ltl.dist[j][regions[i]].min() for j in range(len(labels))] for i in range(len(labels))])
+    dist = ltl.dist.T  # (F, N)
+    regions = [dist[i] == 0.0 for i in range(len(labels))]
+    cost = np.array([[dist[j][regions[i]].min() for j in range(len(labels))] for i in range(len(labels))])
     num_states = trans.shape[0]
     to_go = np.where(ltl.accepting[None, :], 0.0, np.inf) * np.ones((len(labels), 1))
     changed = True
@@ -192,13 +195,13 @@ def _paper_rows(ltl, trans: np.ndarray) -> np.ndarray:
                 if (better < to_go[:, q]).any():
                     to_go[:, q] = np.minimum(to_go[:, q], better)
                     changed = True
-    rows = np.full((num_states, ltl.dist.shape[1]), np.inf)
+    rows = np.full((num_states, dist.shape[1]), np.inf)
     rows[ltl.accepting] = 0.0
     for q in np.flatnonzero(~ltl.accepting):
         for j, label in enumerate(labels):
             nq = trans[q, label]
             if nq != q:
-                rows[q] = np.minimum(rows[q], ltl.dist[j] + to_go[j, nq])
+                rows[q] = np.minimum(rows[q], dist[j] + to_go[j, nq])
     return rows
 
 

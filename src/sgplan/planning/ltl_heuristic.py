@@ -46,11 +46,11 @@ piece per label with phi = d_l; this h is never below it (LB(j, k) >= the region
 float64 sums and maxima of exact distances, so the only slack is float rounding (~1e-15 m). ``h = inf``
 proves that no accepting path exists, so the search may drop such states.
 
-Only automaton states reachable from the start state get a row, and a row is filled on first use
-(:func:`fill_row`): a search touches only a few of the states, and rows it never reads cost neither time nor
-memory (their pages of the lazily committed ``hmap`` are never written). Within a row the terms are sorted
-by their cost to go, so an evaluation stops at the first term whose cost to go alone is no better than the
-best value found, and skips terms whose own label's distance already is (:func:`row_value`).
+Only automaton states reachable from the start state get a row. The search computes values cell by cell
+(:func:`row_value`) and fills a whole row (:func:`fill_row`) only once it has evaluated it often
+(``_search.h_ltl``): rows it never fills cost no memory (their pages of the lazily committed ``hmap`` are
+never written). An evaluation takes the label groups of a row in order of the paper's term and stops as
+soon as no remaining term can be lower, so it usually computes one or two terms in full.
 """
 
 from __future__ import annotations
@@ -87,13 +87,14 @@ class LtlHeuristic:
     ready:
         ``(rows,)`` uint8.
     dist:
-        ``(F, N)`` float64: exact metres from each cell to the region of ``leaving_labels[f]`` (the
+        ``(N, F)`` float64: exact metres from each cell to the region of ``leaving_labels[f]`` (the
         landmarks of the module docstring).
     term_ptr, term_label, term_add:
-        row ``r`` is the min over its terms ``t in term_ptr[r] .. term_ptr[r+1]-1`` of
-        ``phi(x) + term_add[t, 0]``, ``phi`` the bound on the distance to the term's piece:
-        ``term_label[t]`` the field of the piece's label, ``term_add[t, 1:1+F]`` / ``term_add[t, 1+F:]`` the
-        smallest / largest value of each field over the piece. Terms are sorted by ``term_add[t, 0]``.
+        row ``r`` is the min over the terms ``t`` of its label groups ``g in term_ptr[r] ..
+        term_ptr[r+1]-1`` of ``phi(x) + term_add[t, 0]``, ``phi`` the bound on the distance to the term's
+        piece. Group ``g`` is ``term_label[g] = (field of the label, first term, end)``, its terms sorted
+        by cost to go ``term_add[t, 0]``; ``term_add[t, 1:1+F]`` / ``term_add[t, 1+F:]`` are the smallest
+        / largest value of each field over the piece.
     accepting:
         ``(Q,)`` bool.
     leaving_labels:
@@ -132,22 +133,39 @@ class LtlHeuristic:
 @njit(cache=True, inline="always")
 def row_value(dist, term_ptr, term_label, term_add, row, c):
     """h at cell ``c`` in the automaton state of row ``row``: the min over the row's terms (see
-    :class:`LtlHeuristic`), stopping at the first term whose cost to go is no better than the best value
-    (terms are sorted by it) and skipping terms whose label distance already is not (phi >= it)."""
-    num_fields = dist.shape[0]
+    :class:`LtlHeuristic`), computed in full only where it can matter.
+
+    A term's phi is at least its label's distance, so ``key = d_label(c) + cheapest cost to go`` bounds a
+    whole label group from below (the paper's term). Groups are taken in order of key (a selection scan:
+    a row has a handful), the scan stops once the next key is no better than the best value, and within
+    a group (sorted by cost to go) at the first term whose label distance plus cost to go is not. Skipped
+    terms cannot be below the result, so the value is the exact minimum."""
+    width = dist.shape[1]
     best = np.inf
-    for t in range(term_ptr[row], term_ptr[row + 1]):
-        add = term_add[t, 0]
-        if add >= best:
-            break
-        phi = dist[term_label[t], c]
-        if phi + add >= best:
-            continue
-        for f in range(num_fields):
-            x = dist[f, c]
-            phi = max(phi, term_add[t, 1 + f] - x, x - term_add[t, 1 + num_fields + f])
-        best = min(best, phi + add)
-    return best
+    last_key = -np.inf
+    last = -1
+    while True:
+        pick = -1
+        pick_key = np.inf
+        for g in range(term_ptr[row], term_ptr[row + 1]):
+            key = dist[c, term_label[g, 0]] + term_add[term_label[g, 1], 0]
+            if key < pick_key and (key > last_key or (key == last_key and g > last)):
+                pick = g
+                pick_key = key
+        if pick < 0 or pick_key >= best:
+            return best
+        own = dist[c, term_label[pick, 0]]
+        for t in range(term_label[pick, 1], term_label[pick, 2]):
+            add = term_add[t, 0]
+            if own + add >= best:
+                break
+            phi = own
+            for f in range(width):
+                x = dist[c, f]
+                phi = max(phi, term_add[t, 1 + f] - x, x - term_add[t, 1 + width + f])
+            best = min(best, phi + add)
+        last_key = pick_key
+        last = pick
 
 
 @njit(cache=True)
@@ -224,24 +242,30 @@ def build_ltl_heuristic(
     needed = np.flatnonzero(leaves.any(axis=0) & present)
     field_of = np.full(trans.shape[1], -1, dtype=np.int64)
     field_of[needed] = np.arange(len(needed))
-    dist = np.empty((len(needed), graph.num_cells), dtype=np.float64)
+    # Cell-major: an evaluation reads all the fields of one cell (one or two cache lines).
+    dist = np.empty((graph.num_cells, len(needed)), dtype=np.float64)
+    field = np.empty(graph.num_cells, dtype=np.float64)
     for i, label in enumerate(needed):
         cells = np.flatnonzero((cell_label == label) & inside)
         if distances is None:
-            graph.distances(cells, out=dist[i])
+            graph.distances(cells, out=field)
         else:
-            distances(cells, dist[i])
+            distances(cells, field)
+        dist[:, i] = field
+    del field
 
     twice = _moves_twice(trans, states)
     piece_label, piece_cells, piece_ptr = _pieces(graph, cell_label, field_of, inside, twice, start_cell,
                                                   piece_m, max_pieces)
     lo, hi = _piece_bounds(dist, piece_cells, piece_ptr)
     between = _piece_lower_bounds(dist, piece_cells, piece_ptr, lo, hi)
-    q_row, term_ptr, term_piece, term_add = _terms(trans, accepting, states, field_of, piece_label, between)
-    term_data = np.empty((len(term_piece), 1 + 2 * len(needed)), dtype=np.float64)
+    q_row, term_ptr, groups, term_piece, term_add = _terms(trans, accepting, states, field_of, piece_label,
+                                                           between)
+    width = dist.shape[1]
+    term_data = np.empty((len(term_piece), 1 + 2 * width), dtype=np.float64)
     term_data[:, 0] = term_add
-    term_data[:, 1 : 1 + len(needed)] = lo[term_piece]
-    term_data[:, 1 + len(needed) :] = hi[term_piece]
+    term_data[:, 1 : 1 + width] = lo[term_piece]
+    term_data[:, 1 + width :] = hi[term_piece]
     rows = len(term_ptr) - 1
     return LtlHeuristic(
         q_row=q_row,
@@ -249,7 +273,7 @@ def build_ltl_heuristic(
         ready=np.zeros(rows, dtype=np.uint8),
         dist=dist,
         term_ptr=term_ptr,
-        term_label=piece_label[term_piece],
+        term_label=groups,
         term_add=term_data,
         accepting=accepting,
         leaving_labels=needed,
@@ -347,15 +371,15 @@ def _entry_cells(nbr, stairs_from, stairs_to, cell_label, field_of, inside, twic
 @njit(cache=True)
 def _piece_bounds(dist, piece_cells, piece_ptr):
     """``(lo, hi)`` ``(K, F)``: smallest and largest value of each field over each piece."""
-    num_pieces, num_fields = piece_ptr.shape[0] - 1, dist.shape[0]
+    num_pieces, num_fields = piece_ptr.shape[0] - 1, dist.shape[1]
     lo = np.full((num_pieces, num_fields), np.inf)
     hi = np.full((num_pieces, num_fields), -np.inf)
     for k in range(num_pieces):
         for i in range(piece_ptr[k], piece_ptr[k + 1]):
             c = piece_cells[i]
             for f in range(num_fields):
-                lo[k, f] = min(lo[k, f], dist[f, c])
-                hi[k, f] = max(hi[k, f], dist[f, c])
+                lo[k, f] = min(lo[k, f], dist[c, f])
+                hi[k, f] = max(hi[k, f], dist[c, f])
     return lo, hi
 
 
@@ -370,7 +394,7 @@ def _piece_lower_bounds(dist, piece_cells, piece_ptr, lo, hi):
         for i in range(piece_ptr[j], piece_ptr[j + 1]):
             c = piece_cells[i]
             for f in range(num_fields):
-                x[f] = dist[f, c]
+                x[f] = dist[c, f]
             for k in range(num_pieces):
                 phi = 0.0
                 for f in range(num_fields):
@@ -386,12 +410,12 @@ def _terms(
     field_of: np.ndarray,
     piece_label: np.ndarray,
     between: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """``(q_row, term_ptr, term_piece, term_add)``: the terms (piece, cost to go after it) of every state
-    in ``states`` with a finite one, sorted by cost to go; ``G`` of the module docstring computed backwards
-    over (piece, state) -- in one sweep in reverse topological order when the automaton's state changes
-    form no cycle, else swept until nothing changes (costs are >= 0, so it converges to the least fixed
-    point, as Bellman-Ford)."""
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``(q_row, group_ptr, groups, term_piece, term_add)``: the terms (piece, cost to go after it) of
+    every state in ``states`` with a finite one, in label groups (see :class:`LtlHeuristic`). ``G`` of the
+    module docstring is computed backwards over (piece, state): in one sweep in reverse topological order
+    when the automaton's state changes form no cycle, else swept until nothing changes (costs are >= 0,
+    so it converges to the least fixed point, as Bellman-Ford)."""
     num_states = trans.shape[0]
     num_pieces = len(piece_label)
     # G[q] (K,): min over the cells of each piece of h(., q); +inf where unknown or unreachable.
@@ -422,9 +446,11 @@ def _terms(
                 changed = True
         changed = changed and not acyclic
     q_row = np.full(num_states, -1, dtype=np.int32)
-    term_ptr = [0]
+    group_ptr = [0]
+    groups: list[tuple[int, int, int]] = []
     term_piece: list[np.ndarray] = []
     term_add: list[np.ndarray] = []
+    num_terms = 0
     for q in states:
         pieces, nxt = piece_next[int(q)]
         add = to_go[nxt, pieces]
@@ -432,14 +458,22 @@ def _terms(
         if not finite.any():
             continue
         pieces, add = pieces[finite], add[finite]
-        order_t = np.argsort(add, kind="stable")
-        q_row[q] = len(term_ptr) - 1
-        term_piece.append(pieces[order_t])
-        term_add.append(add[order_t])
-        term_ptr.append(term_ptr[-1] + len(pieces))
+        # Label groups in order of their cheapest term, each sorted by cost to go.
+        by_label = np.lexsort((add, piece_label[pieces]))
+        pieces, add = pieces[by_label], add[by_label]
+        starts = np.flatnonzero(np.diff(piece_label[pieces], prepend=-1))
+        ends = np.append(starts[1:], len(pieces))
+        for i in np.argsort(add[starts], kind="stable"):
+            groups.append((int(piece_label[pieces[starts[i]]]), num_terms, num_terms + ends[i] - starts[i]))
+            term_piece.append(pieces[starts[i] : ends[i]])
+            term_add.append(add[starts[i] : ends[i]])
+            num_terms += ends[i] - starts[i]
+        q_row[q] = len(group_ptr) - 1
+        group_ptr.append(len(groups))
     return (
         q_row,
-        np.array(term_ptr, dtype=np.int64),
+        np.array(group_ptr, dtype=np.int64),
+        np.array(groups, dtype=np.int64).reshape(-1, 3),
         np.concatenate(term_piece) if term_piece else np.zeros(0, dtype=np.int64),
         np.concatenate(term_add) if term_add else np.zeros(0, dtype=np.float64),
     )
