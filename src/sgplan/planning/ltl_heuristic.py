@@ -64,11 +64,12 @@ from numba import njit
 from sgplan.planning._memory import sparse_zeros
 from sgplan.planning.cells import CellGraph
 
-PIECE_M = 0.3
+PIECE_M = 0.2
 """Side of the squares the entry cells of a label region are binned into (metres): the slack of the bound
-per region visited is about a piece's diameter. 0.3 m took h(start) of the 9-goal benchmark from 0.52 to
-0.95 of the optimum (0.6 m: 0.90, 0.15 m: 0.97, at twice the pieces)."""
-MAX_PIECES = 24
+per region visited is about a piece's diameter. 0.2 m took h(start) of the 9-goal benchmark from 0.52 to
+0.96 of the optimum and its A* expansions from 23.0M to 1.0M (0.3 m: 0.95 and 1.5M, 0.6 m: 0.91 and 3.4M;
+0.15 m: 0.97 and 0.7M, at more cost per evaluation)."""
+MAX_PIECES = 32
 """At most this many pieces per label region (larger regions get larger squares): the terms of a row, and
 so the cost of an evaluation, grow with the pieces."""
 
