@@ -164,6 +164,8 @@ def row_value(dist, term_ptr, term_label, term_add, row, c):
             for f in range(width):
                 x = dist[c, f]
                 phi = max(phi, term_add[t, 1 + f] - x, x - term_add[t, 1 + width + f])
+                if phi + add >= best:  # this term cannot be the minimum
+                    break
             best = min(best, phi + add)
         last_key = pick_key
         last = pick
