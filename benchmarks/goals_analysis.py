@@ -5,6 +5,11 @@ Builds the ``scaling.py --target 9goals`` case in this process, runs a plain A* 
 A*) and prints h(start) / C*, and the anchor expansions grouped by the number of goals still to visit.
 
     .venv/bin/python benchmarks/goals_analysis.py
+
+With the paper's region-level h_LTL (one region per label) it printed h(start) / C* = 0.52 (11.96 of
+23.06 m) and 17.7M expansions, most of them in the states with 4-6 of the 9 goals left (at most 6 labels
+are needed: some reach regions overlap): the bound lets the robot teleport inside each region it passes.
+With the entry pieces of ltl_heuristic.py: 0.96 and 1.0M expansions, the same optimum.
 """
 
 from __future__ import annotations
