@@ -11,6 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError
+from sgplan.logic import And, Atom, Eventually
 from sgplan.planning import PlanningProblem
 from sgplan.planning._search import h_llm
 from sgplan.planning.llm_heuristic import build_llm_heuristic
@@ -19,6 +20,7 @@ from sgplan.planning.ltl_heuristic import build_ltl_heuristic, fill_row, reachab
 from .instances import RES, automaton, marks, open_building, open_grid, random_problem
 from .oracle import optimal_cost
 from .test_domain import _edges
+from .test_optimality import _instance
 
 
 def _open_problem(formula: str, cells: dict, start=(2, 0, 0)) -> PlanningProblem:
@@ -266,3 +268,35 @@ def test_ltl_consistent_on_every_move_and_above_the_paper_bound(
     row, col, floor = problem.start
     optimum = optimal_cost(problem.grid, problem.labels, problem.automaton, (row, col, floor), profile)
     assert rows[domain.q_start, domain.start_cell] <= optimum + 1e-9
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 2**31 - 1), st.sampled_from([0.2, 1.5]), st.sampled_from([1, 4, 32]),
+       st.sampled_from(["A*", "NO-LLM"]))
+def test_unordered_goals_solved_optimally_with_any_pieces(
+    seed: int, piece_m: float, max_pieces: int, setup: str
+) -> None:
+    """Visit 3-4 places in any order (the case the pieces are for): whatever the pieces, the search with
+    this h_LTL as its anchor heuristic returns the oracle's optimum."""
+    from sgplan.planning import plan
+
+    goals = 3 + seed % 2
+    problem = _instance(seed, And(tuple(Eventually(Atom(f"a{i}")) for i in range(goals))), "ltlf")
+    problem.guidance = None
+    row, col, floor = problem.start
+    expected = optimal_cost(problem.grid, problem.labels, problem.automaton, (row, col, floor), "ltlf")
+    try:
+        domain = problem.domain
+    except PlanningError:
+        assert math.isinf(expected)
+        return
+    graph = domain.graph
+    ltl = build_ltl_heuristic(graph, domain.cell_label, domain.trans, domain.accepting, domain.q_start,
+                              graph.reachable(domain.start_cell), start_cell=domain.start_cell,
+                              piece_m=piece_m, max_pieces=max_pieces)
+    domain.ltl = ltl
+    domain.klogic = domain.klogic._replace(hmap=ltl.hmap, q_row=ltl.q_row, h_ready=ltl.ready, h_dist=ltl.dist,
+                                           h_ptr=ltl.term_ptr, h_label=ltl.term_label, h_add=ltl.term_add)
+    result = plan(problem, setup)
+    assert result.cost_m == pytest.approx(expected, rel=1e-9, abs=1e-9)
+    assert ltl.value(domain.start_cell, domain.q_start) <= expected + 1e-9
