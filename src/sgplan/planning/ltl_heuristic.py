@@ -227,10 +227,9 @@ def build_ltl_heuristic(
         every cell to ``cells`` (sorted cell indices), e.g. kept by a session
         (:mod:`sgplan.planning.shared`); default :meth:`CellGraph.distances`.
     start_cell:
-        the start's cell index: its neighbours are entry cells of their labels (the ``authors`` profile
-        reads the start's label only when leaving it); -1 when ``q_start`` already read it everywhere the
-        search can move to without a label change (callers that pass ``q_start`` for the ``ltlf`` profile
-        may still pass the start: it only adds entry cells).
+        the start's cell index: its neighbours become entry cells of their labels, since the ``authors``
+        profile reads the start's label only on the first move. -1: none, which keeps h consistent only
+        when ``q_start`` has read the start's label (the ``ltlf`` profile).
     piece_m, max_pieces:
         side of the pieces (metres) and most pieces per label region (:data:`PIECE_M`,
         :data:`MAX_PIECES`); any values keep h consistent, smaller pieces make it tighter and slower.
