@@ -1,4 +1,5 @@
-"""h_LTL (values, admissibility, consistency on sampled edges) and h_LLM (cost model, robustness)."""
+"""h_LTL (values, admissibility, consistency on every move, dominance over the paper's region-level bound)
+and h_LLM (cost model, robustness)."""
 
 from __future__ import annotations
 
@@ -10,14 +11,16 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError
+from sgplan.logic import And, Atom, Eventually
 from sgplan.planning import PlanningProblem
 from sgplan.planning._search import h_llm
 from sgplan.planning.llm_heuristic import build_llm_heuristic
-from sgplan.planning.ltl_heuristic import reachable_states
+from sgplan.planning.ltl_heuristic import build_ltl_heuristic, fill_row, reachable_states
 
 from .instances import RES, automaton, marks, open_building, open_grid, random_problem
 from .oracle import optimal_cost
 from .test_domain import _edges
+from .test_optimality import _instance
 
 
 def _open_problem(formula: str, cells: dict, start=(2, 0, 0)) -> PlanningProblem:
@@ -35,16 +38,30 @@ def test_ltl_value_is_exact_on_open_floor() -> None:
     assert h == pytest.approx(2 * (3 * RES + 2 * math.hypot(RES, RES)), abs=1e-12)
 
 
+def _possible(domain) -> np.ndarray:
+    """``(Q, L)`` bool: q can be the automaton state at a cell of compact label l during a search -- q is
+    ``T(p, l)`` for a non-accepting state p reachable from the start state (plus the start itself, which
+    callers add)."""
+    trans = domain.trans
+    expanded = reachable_states(trans, domain.q_start) & ~domain.accepting
+    possible = np.zeros(trans.shape, dtype=bool)
+    for label in range(trans.shape[1]):
+        possible[trans[expanded, label], label] = True
+    return possible
+
+
 def _check_consistency(problem: PlanningProblem, rng: np.random.Generator, samples: int) -> int:
-    """Check h(x) <= c(x, x') + h(x') on the anchor-level edges of sampled states; returns edges checked."""
+    """Check h(x) <= c(x, x') + h(x') on the anchor-level edges of sampled states that a search can meet;
+    returns edges checked."""
     domain = problem.domain
     domain.build_actions()
     graph = domain.graph
-    states = np.flatnonzero(reachable_states(domain.trans, domain.q_start) & ~domain.accepting)
+    possible = _possible(domain) & ~domain.accepting[:, None]
     checked = 0
-    if states.size == 0:
-        return checked
     for cell in rng.integers(graph.num_cells, size=samples):
+        states = np.flatnonzero(possible[:, domain.cell_label[cell]])
+        if states.size == 0:
+            continue
         q = int(rng.choice(states))
         h = domain.ltl.value(int(cell), q)
         if math.isinf(h):
@@ -78,8 +95,9 @@ def test_ltl_consistent_on_benevolence(gibson_root) -> None:
     assert _check_consistency(problem, rng, 400) > 1000
     # The stairs portals, where the authors' own heuristic violated consistency by millimetres.
     graph = problem.domain.graph
+    possible = _possible(problem.domain) & ~problem.domain.accepting[:, None]
     for portal in graph.stairs_from:
-        for q in np.flatnonzero(~problem.domain.accepting):
+        for q in np.flatnonzero(possible[:, problem.domain.cell_label[portal]]):
             h = problem.domain.ltl.value(int(portal), int(q))
             for end, nq, cost, _ in _edges(problem.domain, int(portal), int(q)):
                 assert h <= cost + problem.domain.ltl.value(end, nq) + 1e-9
@@ -119,8 +137,9 @@ def test_llm_value_online() -> None:
 @settings(max_examples=15, deadline=None)
 @given(st.integers(0, 2**31 - 1))
 def test_ltl_rows_filled_on_demand_match_the_eager_minimum(seed: int) -> None:
-    """A search fills only the rows of states it meets; every row, filled on demand, equals the eager
-    numpy minimum over its terms (and is +inf exactly where no term is finite)."""
+    """A search fills only the rows of states it meets (the others are computed per cell); every row,
+    filled by the search, computed per cell or filled afterwards, equals the eager numpy minimum over its
+    terms, to the bit (and is +inf exactly where no term is finite)."""
     from sgplan.planning import plan
 
     problem = random_problem(seed, guidance="none")
@@ -129,12 +148,155 @@ def test_ltl_rows_filled_on_demand_match_the_eager_minimum(seed: int) -> None:
         plan(problem, "A*")
     except PlanningError:
         return
-    met = ltl.ready.copy()
-    for row in range(ltl.ready.shape[0]):
-        terms = range(ltl.term_ptr[row], ltl.term_ptr[row + 1])
-        eager = np.min([ltl.dist[ltl.term_label[t]] + ltl.term_add[t] for t in terms], axis=0)
-        q = int(np.flatnonzero(ltl.q_row == row)[0])
-        assert [ltl.value(c, q) for c in range(eager.shape[0])] == eager.tolist()
-    start_row = int(ltl.q_row[problem.domain.q_start])
-    assert start_row < 0 or met[start_row] == 1  # the search read the start's row
-    assert ltl.ready.all()
+    eager_rows = _eager_rows(ltl)
+    for q in np.flatnonzero(ltl.q_row >= 0):
+        row = int(ltl.q_row[q])
+        eager = eager_rows[q].tolist()
+        assert [ltl.value(c, int(q)) for c in range(len(eager))] == eager
+        fill_row(ltl.hmap, ltl.ready, ltl.dist, ltl.term_ptr, ltl.term_label, ltl.term_add, row)
+        assert ltl.ready[row] == 1 and ltl.hmap[row].tolist() == eager
+
+
+def _eager_rows(ltl) -> np.ndarray:
+    """``(Q, N)`` h_LTL of every state at every cell, in numpy from the terms (0 accepting, inf without a
+    row): per term, phi = max(0, max over fields f of lo_f - d_f, d_f - hi_f), plus the cost to go."""
+    dist = ltl.dist.T  # (F, N)
+    num_fields = dist.shape[0]
+    rows = np.full((ltl.q_row.shape[0], dist.shape[1]), np.inf)
+    rows[ltl.accepting] = 0.0
+    for q in np.flatnonzero(ltl.q_row >= 0):
+        row = int(ltl.q_row[q])
+        groups = ltl.term_label[ltl.term_ptr[row] : ltl.term_ptr[row + 1]]
+        for t in (t for _, first, end in groups for t in range(first, end)):
+            lo = ltl.term_add[t, 1 : 1 + num_fields, None]
+            hi = ltl.term_add[t, 1 + num_fields :, None]
+            phi = np.maximum(np.maximum(lo - dist, dist - hi).max(axis=0), 0.0)
+            rows[q] = np.minimum(rows[q], phi + ltl.term_add[t, 0])
+    return rows
+
+
+def _paper_rows(ltl, trans: np.ndarray) -> np.ndarray:
+    """``(Q, N)`` the paper's h_LTL over the same label regions (one region per label, region-to-region
+    costs ``c(l, l') = min over the region of l of d_l'``), by value iteration: the bound the pieces
+    tighten."""
+    labels = ltl.leaving_labels
+    dist = ltl.dist.T  # (F, N)
+    regions = [dist[i] == 0.0 for i in range(len(labels))]
+    cost = np.array([[dist[j][regions[i]].min() for j in range(len(labels))] for i in range(len(labels))])
+    num_states = trans.shape[0]
+    to_go = np.where(ltl.accepting[None, :], 0.0, np.inf) * np.ones((len(labels), 1))
+    changed = True
+    while changed:
+        changed = False
+        for q in np.flatnonzero(~ltl.accepting):
+            for j, label in enumerate(labels):
+                nq = trans[q, label]
+                if nq == q:
+                    continue
+                better = cost[:, j] + to_go[j, nq]
+                if (better < to_go[:, q]).any():
+                    to_go[:, q] = np.minimum(to_go[:, q], better)
+                    changed = True
+    rows = np.full((num_states, dist.shape[1]), np.inf)
+    rows[ltl.accepting] = 0.0
+    for q in np.flatnonzero(~ltl.accepting):
+        for j, label in enumerate(labels):
+            nq = trans[q, label]
+            if nq != q:
+                rows[q] = np.minimum(rows[q], dist[j] + to_go[j, nq])
+    return rows
+
+
+def _every_move(graph):
+    """``(src, dst, cost)`` arrays of every move of the cell graph (steps and stairs)."""
+    src = np.repeat(np.arange(graph.num_cells), 8)
+    dst = graph.nbr.ravel().astype(np.int64)
+    cost = np.tile(graph.step_cost, graph.num_cells)
+    keep = dst >= 0
+    return (np.concatenate([src[keep], graph.stairs_from]), np.concatenate([dst[keep], graph.stairs_to]),
+            np.concatenate([cost[keep], graph.stairs_cost]))
+
+
+def test_ltl_value_sees_through_a_wide_region() -> None:
+    # A corridor: p0 covers columns 3..12, p1 is column 16, the start column 0; the mission visits p0
+    # then p1. The paper's bound lets the robot enter p0 at column 3 and leave it from column 12 (3 + 4
+    # cells); the pieces know that who enters at column 3 is 13 columns from p1: exact.
+    building = open_building(rows=1, cols=18)
+    problem = PlanningProblem(building, open_grid(building),
+                              marks((1, 1, 18), {0: [(0, c, 0) for c in range(3, 13)], 1: [(0, 16, 0)]}),
+                              automaton("F(p0 & F p1)", ("p0", "p1")), (0, 0, 0))
+    domain = problem.domain
+    assert domain.ltl.value(domain.start_cell, domain.q_start) == pytest.approx(16 * RES, abs=1e-12)
+    paper = _paper_rows(domain.ltl, domain.trans)[domain.q_start, domain.start_cell]
+    assert paper == pytest.approx(7 * RES, abs=1e-12)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(0, 2**31 - 1), st.sampled_from(["ltlf", "authors"]), st.sampled_from([0.2, 0.6, 1.5]),
+       st.sampled_from([1, 3, 24]))
+def test_ltl_consistent_on_every_move_and_above_the_paper_bound(
+    seed: int, profile: str, piece_m: float, max_pieces: int
+) -> None:
+    """Whatever the pieces (one cell each, squares of 2-6 cells, or merged down to 1-3 per label), on
+    every move out of every product state a search can meet, h(x, q) <= cost + h(x', q') (exhaustively,
+    with the numpy twin of the terms, which must match value()); h = 0 at acceptance; h(start) <= the
+    oracle's optimum; and h >= the paper's bound everywhere."""
+    problem = random_problem(seed, profile, guidance="none")
+    try:
+        domain = problem.domain
+    except PlanningError:
+        return
+    graph = domain.graph
+    ltl = build_ltl_heuristic(graph, domain.cell_label, domain.trans, domain.accepting, domain.q_start,
+                              graph.reachable(domain.start_cell), start_cell=domain.start_cell,
+                              piece_m=piece_m, max_pieces=max_pieces)
+    rows = _eager_rows(ltl)
+    cells = np.random.default_rng(seed).integers(graph.num_cells, size=20)
+    for q in range(domain.num_states):
+        assert [ltl.value(int(c), q) for c in cells] == rows[q, cells].tolist()
+    assert (rows[domain.accepting] == 0.0).all()
+    src, dst, cost = _every_move(graph)
+    possible = _possible(domain)[:, domain.cell_label]  # (Q, N)
+    possible[domain.q_start, domain.start_cell] = True
+    for q in np.flatnonzero(~domain.accepting):
+        at = possible[q, src] & np.isfinite(rows[q, src])
+        nq = domain.trans[q, domain.cell_label[dst[at]]]
+        slack = cost[at] + rows[nq, dst[at]] - rows[q, src[at]]
+        assert slack.min(initial=0.0) >= -1e-9, (q, src[at][np.argmin(slack)], dst[at][np.argmin(slack)])
+    paper = _paper_rows(ltl, domain.trans)
+    assert (rows >= paper - 1e-9).all()
+    row, col, floor = problem.start
+    optimum = optimal_cost(problem.grid, problem.labels, problem.automaton, (row, col, floor), profile)
+    assert rows[domain.q_start, domain.start_cell] <= optimum + 1e-9
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 2**31 - 1), st.sampled_from([0.2, 1.5]), st.sampled_from([1, 4, 32]),
+       st.sampled_from(["A*", "NO-LLM"]))
+def test_unordered_goals_solved_optimally_with_any_pieces(
+    seed: int, piece_m: float, max_pieces: int, setup: str
+) -> None:
+    """Visit 3-4 places in any order (the case the pieces are for): whatever the pieces, the search with
+    this h_LTL as its anchor heuristic returns the oracle's optimum."""
+    from sgplan.planning import plan
+
+    goals = 3 + seed % 2
+    problem = _instance(seed, And(tuple(Eventually(Atom(f"a{i}")) for i in range(goals))), "ltlf")
+    problem.guidance = None
+    row, col, floor = problem.start
+    expected = optimal_cost(problem.grid, problem.labels, problem.automaton, (row, col, floor), "ltlf")
+    try:
+        domain = problem.domain
+    except PlanningError:
+        assert math.isinf(expected)
+        return
+    graph = domain.graph
+    ltl = build_ltl_heuristic(graph, domain.cell_label, domain.trans, domain.accepting, domain.q_start,
+                              graph.reachable(domain.start_cell), start_cell=domain.start_cell,
+                              piece_m=piece_m, max_pieces=max_pieces)
+    domain.ltl = ltl
+    domain.klogic = domain.klogic._replace(hmap=ltl.hmap, q_row=ltl.q_row, h_ready=ltl.ready, h_dist=ltl.dist,
+                                           h_ptr=ltl.term_ptr, h_label=ltl.term_label, h_add=ltl.term_add)
+    result = plan(problem, setup)
+    assert result.cost_m == pytest.approx(expected, rel=1e-9, abs=1e-9)
+    assert ltl.value(domain.start_cell, domain.q_start) <= expected + 1e-9

@@ -34,7 +34,7 @@ import numpy as np
 from numba import njit
 
 from sgplan.planning._dijkstra import dijkstra, label_runs
-from sgplan.planning.ltl_heuristic import fill_row
+from sgplan.planning.ltl_heuristic import fill_row, row_value
 
 FOUND, EXHAUSTED, BUDGET, GROW = 0, 1, 2, 3
 ACT_STAIRS = 8
@@ -47,7 +47,10 @@ PAGE = 1 << PAGE_BITS  # cells per page (records of one automaton state)
 PAGE_MASK = PAGE - 1
 REC = 3  # words per record and per heap entry
 ARITY = 4  # heap fan-out
-FILL_FRACTION = 4  # an h_LTL row is filled after (cells / FILL_FRACTION) evaluations (see h_ltl)
+# An h_LTL row is filled after (cells / FILL_FRACTION) evaluations (see h_ltl). A cell of a fill costs
+# about one evaluation (ltl_heuristic.row_value), so filling after as many evaluations as cells pays at
+# most twice what the row's evaluations would cost, and a row the search meets less often is never filled.
+FILL_FRACTION = 1
 LOW32 = 0xFFFFFFFF
 # iscal slots
 I_GOAL, I_ROBIN, I_NINCONS, I_ITER, I_PAGES, I_MGEN, I_MUSE = 0, 1, 2, 3, 4, 5, 6
@@ -348,11 +351,11 @@ def successors(G, A, M, L, c, q, level, max_level, out_c, out_q, out_cost, out_a
 def h_ltl(hmap, h_ready, h_dist, h_ptr, h_label, h_add, h_evals, fill_after, row, c):
     """h_LTL at cell ``c`` in the automaton state of tabulated row ``row`` (>= 0).
 
-    A filled row is read; otherwise the value is computed from the row's terms (min over its leaving
-    labels of the exact distance plus the cost to go after it, the same float operations as
-    :func:`~sgplan.planning.ltl_heuristic.fill_row`, so the same bits), and the row is filled once the
-    search has evaluated it ``fill_after`` times: a search that meets a state on a few cells pays a few
-    reads instead of a pass over every cell, one that floods it pays at most twice the fill.
+    A filled row is read; otherwise the value is computed from the row's terms
+    (:func:`~sgplan.planning.ltl_heuristic.row_value`, which :func:`~sgplan.planning.ltl_heuristic.fill_row`
+    calls too, so the same bits), and the row is filled once the search has evaluated it ``fill_after``
+    times: a search that meets a state on fewer cells than the row has never pays the pass over every
+    cell, one that floods it pays at most twice the fill.
     """
     if h_ready[row] == 1:
         return hmap[row, c]
@@ -360,10 +363,7 @@ def h_ltl(hmap, h_ready, h_dist, h_ptr, h_label, h_add, h_evals, fill_after, row
     if h_evals[row] > fill_after:
         fill_row(hmap, h_ready, h_dist, h_ptr, h_label, h_add, row)
         return hmap[row, c]
-    h = INF
-    for t in range(h_ptr[row], h_ptr[row + 1]):
-        h = min(h, h_dist[h_label[t], c] + h_add[t])
-    return h
+    return row_value(h_dist, h_ptr, h_label, h_add, row, c)
 
 
 @njit(cache=True, inline="always")

@@ -229,7 +229,8 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
     reachable = graph.reachable(start_cell)
     clock.lap("reachable")
     ltl = build_ltl_heuristic(graph, cell_label, trans, accepting, q_start, reachable,
-                              distances=lambda cells, out: _distance_field(problem, graph, cells, out))
+                              distances=lambda cells, out: _distance_field(problem, graph, cells, out),
+                              start_cell=start_cell)
     clock.lap("ltl")
     if not accepting[q_start] and not np.isfinite(ltl.value(start_cell, q_start)):
         raise PlanningError(

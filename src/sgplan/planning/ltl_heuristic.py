@@ -1,29 +1,60 @@
 """h_LTL: a consistent lower bound on the cost to finish the mission from a product state (cell, q).
 
-The paper's construction (eq. for g(l, q)) with an exact metric: ``d_l(cell)`` is the exact shortest-path
-distance over the search graph (steps and stairs, stairs at their own cost) from the cell to the region
-of cells labelled ``l``; ``c(l, l')`` the smallest ``d_l'`` over the cells of ``l``. Then
+The paper's construction (eq. for g(l, q)) bounds the cost to go by the exact distance ``d_l(cell)`` to the
+region of the next label ``l`` plus a cost to go ``G(l, q')`` computed between label regions, with the
+region-to-region cost ``min over cells of l of d_l'``. That lets the robot "teleport" inside each region it
+passes: it arrives at the point nearest to where it came from and leaves from the point nearest to where it
+goes next. With several goals the slack adds up (9 unordered goals, 0.6 m reach: h(start) = 0.52 x the
+optimum, benchmarks/goals_analysis.py), and A* floods a wide band of every automaton state.
 
-    G(l, q) = 0                                                        if q is accepting
-    G(l, q) = min over l' with T(q, l') != q of  c(l, l') + G(l', T(q, l'))    otherwise
-    h(cell, q) = min over l' with T(q, l') != q of  d_l'(cell) + G(l', T(q, l'))
+Here the regions are cut into **pieces**, and the cost to go remembers the piece where the robot entered a
+region. Only the cells where the automaton can change state matter as entry points: the *entry cells* of
+label ``l`` are its cells with a neighbour of another label (a robot coming from outside enters there), the
+start's neighbours (the ``authors`` profile reads the start's label only on the first move) and, for a
+label that moves some state twice in a row, all its cells. The entry cells of a label are binned into
+squares of about :data:`PIECE_M` (at most :data:`MAX_PIECES` per label).
 
-(accepting q: 0; no way to acceptance: inf). Consistency on every move (cell, q) -> (cell', q'), cost w:
-if q' = q, ``d_l'(cell) <= w + d_l'(cell')`` (triangle inequality of an exact graph distance); if
-q' != q, the label l* of cell' leaves q, so ``h(cell, q) <= d_l*(cell) + G(l*, q') <= w + G(l*, q')`` and
-``G(l*, q') <= h(cell', q')`` because ``d_l''(cell') >= c(l*, l'')``. Composite actions are sequences of
-moves, so the bound chains. The maps are float64, so the only slack is float rounding (~1e-15 m).
-``h = inf`` proves that no accepting path exists, so the search may drop such states.
+Distances to a piece are bounded from below with the exact label distance fields ``d_f`` (multi-source
+Dijkstra over the search graph; every leaving label's region is one field) used as landmarks: the cell
+graph is undirected (cells.py: a step joins two traversable 8-neighbours, stairs go both ways at one
+cost), so each ``d_f`` is 1-Lipschitz and for every cell ``y`` of piece ``k``,
+``d(x, y) >= |d_f(x) - d_f(y)|``. With ``lo[k, f]`` / ``hi[k, f]`` the smallest / largest ``d_f`` over the
+piece,
 
-Only automaton states reachable from the start state get a row (one float64 map over the cells each), and
-a row is filled on first use (:func:`fill_row`): a search touches only a few of the states (3-9 of 8-32
-on the Gibson missions), and the rows it never reads cost neither time nor memory (their pages of the
-lazily committed ``hmap`` are never written).
+    phi_k(x) = max(0, max over f of (lo[k, f] - d_f(x)), max over f of (d_f(x) - hi[k, f]))  <= d(x, piece k)
+
+and ``phi_k`` is 1-Lipschitz (a max of 1-Lipschitz functions). Its own label's field gives
+``phi_k >= d_l``, so phi never undercuts the paper's term; the other labels' fields add the far side of
+the region as seen from where the robot was (the "arrival side" the region-level bound ignores). Then,
+with ``T`` the transition table,
+
+    h(x, q)    = 0                                                     if q is accepting
+    h(x, q)    = min over pieces k of labels l with T(q, l) != q of  phi_k(x) + G(k, T(q, l))
+    G(j, q)    = min over cells y of piece j of h(y, q)
+               = min over the same terms as h(., q) of  LB(j, k) + G(k, T(q, l)),   LB(j, k) = min over y in j
+                                                                                       of phi_k(y)
+
+(no term: h = inf, no way to acceptance). G is a backward shortest path over (piece, automaton state),
+exact over the pieces (LB is a min over the piece's cells, not an estimate).
+
+Consistency on every move (x, q) -> (x', q'), cost w: if q' = q, ``h(x, q) <= w + h(x', q)`` as h(., q) is
+a min of 1-Lipschitz functions. If q' != q, x' is an entry cell of its label l (the move crossed into the
+region, or left the start, or l moves states twice), so it lies in a piece k of l, ``phi_k(x') = 0`` and
+``h(x', q) <= G(k, q') <= h(x', q')``; with the first case, ``h(x, q) <= w + h(x', q')``. Composite actions
+are sequences of moves, so the bound chains; h = 0 at acceptance. The paper's h is the special case of one
+piece per label with phi = d_l; this h is never below it (LB(j, k) >= the region-to-region cost). Values are
+float64 sums and maxima of exact distances, so the only slack is float rounding (~1e-15 m). ``h = inf``
+proves that no accepting path exists, so the search may drop such states.
+
+Only automaton states reachable from the start state get a row. The search computes values cell by cell
+(:func:`row_value`) and fills a whole row (:func:`fill_row`) only once it has evaluated it often
+(``_search.h_ltl``): rows it never fills cost no memory (their pages of the lazily committed ``hmap`` are
+never written). An evaluation takes the label groups of a row in order of the paper's term and stops as
+soon as no remaining term can be lower, so it usually computes one or two terms in full.
 """
 
 from __future__ import annotations
 
-import heapq
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -32,6 +63,15 @@ from numba import njit
 
 from sgplan.planning._memory import sparse_zeros
 from sgplan.planning.cells import CellGraph
+
+PIECE_M = 0.2
+"""Side of the squares the entry cells of a label region are binned into (metres): the slack of the bound
+per region visited is about a piece's diameter. 0.2 m took h(start) of the 9-goal benchmark from 0.52 to
+0.96 of the optimum and its A* expansions from 23.0M to 1.0M (0.3 m: 0.95 and 1.5M, 0.6 m: 0.91 and 3.4M;
+0.15 m: 0.97 and 0.7M, at more cost per evaluation)."""
+MAX_PIECES = 32
+"""At most this many pieces per label region (larger regions get larger squares): the terms of a row, and
+so the cost of an evaluation, grow with the pieces."""
 
 
 @dataclass(eq=False)
@@ -48,13 +88,22 @@ class LtlHeuristic:
     ready:
         ``(rows,)`` uint8.
     dist:
-        ``(len(leaving_labels), N)`` float64: exact metres from each cell to each leaving label's region.
+        ``(N, F)`` float64: exact metres from each cell to the region of ``leaving_labels[f]`` (the
+        landmarks of the module docstring).
     term_ptr, term_label, term_add:
-        row ``r`` is ``min over t in term_ptr[r] .. term_ptr[r+1]-1 of dist[term_label[t]] + term_add[t]``.
+        row ``r`` is the min over the terms ``t`` of its label groups ``g in term_ptr[r] ..
+        term_ptr[r+1]-1`` of ``phi(x) + term_add[t, 0]``, ``phi`` the bound on the distance to the term's
+        piece. Group ``g`` is ``term_label[g] = (field of the label, first term, end)``, its terms sorted
+        by cost to go ``term_add[t, 0]``; ``term_add[t, 1:1+F]`` / ``term_add[t, 1+F:]`` are the smallest
+        / largest value of each field over the piece.
     accepting:
         ``(Q,)`` bool.
     leaving_labels:
-        compact label ids that leave at least one tabulated state (those whose regions were measured).
+        compact label ids that leave at least one tabulated state and occur on a reachable cell (those
+        whose regions were measured).
+    piece_label, piece_cells, piece_ptr:
+        piece ``k`` is the entry cells ``piece_cells[piece_ptr[k] : piece_ptr[k+1]]`` of field
+        ``piece_label[k]``.
     """
 
     q_row: np.ndarray
@@ -66,6 +115,9 @@ class LtlHeuristic:
     term_add: np.ndarray
     accepting: np.ndarray
     leaving_labels: np.ndarray
+    piece_label: np.ndarray
+    piece_cells: np.ndarray
+    piece_ptr: np.ndarray
 
     def value(self, cell: int, q: int) -> float:
         """h at product state (cell index, q), metres."""
@@ -75,21 +127,55 @@ class LtlHeuristic:
         if row < 0:
             return float("inf")
         if not self.ready[row]:
-            fill_row(self.hmap, self.ready, self.dist, self.term_ptr, self.term_label, self.term_add, row)
+            return float(row_value(self.dist, self.term_ptr, self.term_label, self.term_add, row, cell))
         return float(self.hmap[row, cell])
+
+
+@njit(cache=True, inline="always")
+def row_value(dist, term_ptr, term_label, term_add, row, c):
+    """h at cell ``c`` in the automaton state of row ``row``: the min over the row's terms (see
+    :class:`LtlHeuristic`), computed in full only where it can matter.
+
+    A term's phi is at least its label's distance, so ``key = d_label(c) + cheapest cost to go`` bounds a
+    whole label group from below (the paper's term). Groups are taken in order of key (a selection scan:
+    a row has a handful), the scan stops once the next key is no better than the best value, and within
+    a group (sorted by cost to go) at the first term whose label distance plus cost to go is not. Skipped
+    terms cannot be below the result, so the value is the exact minimum."""
+    width = dist.shape[1]
+    best = np.inf
+    last_key = -np.inf
+    last = -1
+    while True:
+        pick = -1
+        pick_key = np.inf
+        for g in range(term_ptr[row], term_ptr[row + 1]):
+            key = dist[c, term_label[g, 0]] + term_add[term_label[g, 1], 0]
+            if key < pick_key and (key > last_key or (key == last_key and g > last)):
+                pick = g
+                pick_key = key
+        if pick < 0 or pick_key >= best:
+            return best
+        own = dist[c, term_label[pick, 0]]
+        for t in range(term_label[pick, 1], term_label[pick, 2]):
+            add = term_add[t, 0]
+            if own + add >= best:
+                break
+            phi = own
+            for f in range(width):
+                x = dist[c, f]
+                phi = max(phi, term_add[t, 1 + f] - x, x - term_add[t, 1 + width + f])
+                if phi + add >= best:  # this term cannot be the minimum
+                    break
+            best = min(best, phi + add)
+        last_key = pick_key
+        last = pick
 
 
 @njit(cache=True)
 def fill_row(hmap, ready, dist, term_ptr, term_label, term_add, row):
-    """Fill ``hmap[row]`` from its terms (see :class:`LtlHeuristic`) and mark it ready."""
-    n = hmap.shape[1]
-    for c in range(n):
-        hmap[row, c] = np.inf
-    for t in range(term_ptr[row], term_ptr[row + 1]):
-        i = term_label[t]
-        add = term_add[t]
-        for c in range(n):
-            hmap[row, c] = min(hmap[row, c], dist[i, c] + add)
+    """Fill ``hmap[row]`` with :func:`row_value` at every cell (the same bits) and mark it ready."""
+    for c in range(hmap.shape[1]):
+        hmap[row, c] = row_value(dist, term_ptr, term_label, term_add, row, c)
     ready[row] = 1
 
 
@@ -114,13 +200,16 @@ def build_ltl_heuristic(
     q_start: int,
     reachable: np.ndarray | None = None,
     distances: Callable[[np.ndarray, np.ndarray], object] | None = None,
+    start_cell: int = -1,
+    piece_m: float = PIECE_M,
+    max_pieces: int = MAX_PIECES,
 ) -> LtlHeuristic:
     """Tabulate h_LTL for the states reachable from ``q_start``.
 
     Parameters
     ----------
     graph:
-        the cell graph searched.
+        the cell graph searched (undirected, as :mod:`sgplan.planning.cells` builds it).
     cell_label:
         ``(N,)`` compact label id of every cell (every id ``0 .. L-1`` occurs).
     trans:
@@ -137,78 +226,281 @@ def build_ltl_heuristic(
         optional ``distances(cells, out)`` writing into ``out`` ((N,) float64) the exact metres from
         every cell to ``cells`` (sorted cell indices), e.g. kept by a session
         (:mod:`sgplan.planning.shared`); default :meth:`CellGraph.distances`.
+    start_cell:
+        the start's cell index: its neighbours become entry cells of their labels, since the ``authors``
+        profile reads the start's label only on the first move. -1: none, which keeps h consistent only
+        when ``q_start`` has read the start's label (the ``ltlf`` profile).
+    piece_m, max_pieces:
+        side of the pieces (metres) and most pieces per label region (:data:`PIECE_M`,
+        :data:`MAX_PIECES`); any values keep h consistent, smaller pieces make it tighter and slower.
     """
-    num_states, num_labels = trans.shape
     accepting = np.asarray(accepting, dtype=bool)
     states = np.flatnonzero(reachable_states(trans, q_start) & ~accepting)
     leaves = trans[states] != states[:, None]
-    needed = np.flatnonzero(leaves.any(axis=0))
-
-    # Exact distance to each needed label region, and region-to-region lower bounds.
     inside = reachable if reachable is not None else np.ones(graph.num_cells, dtype=bool)
-    regions = [np.flatnonzero((cell_label == label) & inside) for label in needed]
-    counts = np.zeros(num_labels, dtype=np.int64)
-    counts[needed] = [len(r) for r in regions]
-    dist = np.empty((len(needed), graph.num_cells), dtype=np.float64)
-    for i, cells in enumerate(regions):
+    present = np.zeros(trans.shape[1], dtype=bool)
+    present[cell_label[inside]] = True
+    # Labels that leave some state and occur where the search can go: one distance field each.
+    needed = np.flatnonzero(leaves.any(axis=0) & present)
+    field_of = np.full(trans.shape[1], -1, dtype=np.int64)
+    field_of[needed] = np.arange(len(needed))
+    # Cell-major: an evaluation reads all the fields of one cell (one or two cache lines).
+    dist = np.empty((graph.num_cells, len(needed)), dtype=np.float64)
+    field = np.empty(graph.num_cells, dtype=np.float64)
+    for i, label in enumerate(needed):
+        cells = np.flatnonzero((cell_label == label) & inside)
         if distances is None:
-            graph.distances(cells, out=dist[i])
+            graph.distances(cells, out=field)
         else:
-            distances(cells, dist[i])
-    region_cost = np.full((len(needed), len(needed)), np.inf)
-    for i, cells in enumerate(regions):
-        for j in range(len(needed)) if cells.size else ():
-            region_cost[i, j] = dist[j, cells].min()
-    to_go = _backward_costs(trans, accepting, needed, region_cost)
+            distances(cells, field)
+        dist[:, i] = field
+    del field
 
-    # A row per state with at least one term (a leaving label whose region is reachable and from whose
-    # successor state acceptance is possible): exactly the states whose h is finite somewhere.
-    q_row = np.full(num_states, -1, dtype=np.int32)
-    term_ptr = [0]
-    term_label: list[int] = []
-    term_add: list[float] = []
-    for q in states:
-        terms = [(i, float(to_go[i, trans[q, label]])) for i, label in enumerate(needed)
-                 if trans[q, label] != q and counts[label] > 0 and np.isfinite(to_go[i, trans[q, label]])]
-        if terms:
-            q_row[q] = len(term_ptr) - 1
-            term_label += [i for i, _ in terms]
-            term_add += [add for _, add in terms]
-            term_ptr.append(len(term_label))
+    twice = _moves_twice(trans, states)
+    piece_label, piece_cells, piece_ptr = _pieces(graph, cell_label, field_of, inside, twice, start_cell,
+                                                  piece_m, max_pieces)
+    lo, hi = _piece_bounds(dist, piece_cells, piece_ptr)
+    between = _piece_lower_bounds(dist, piece_cells, piece_ptr, lo, hi)
+    q_row, term_ptr, groups, term_piece, term_add = _terms(trans, accepting, states, field_of, piece_label,
+                                                           between)
+    width = dist.shape[1]
+    term_data = np.empty((len(term_piece), 1 + 2 * width), dtype=np.float64)
+    term_data[:, 0] = term_add
+    term_data[:, 1 : 1 + width] = lo[term_piece]
+    term_data[:, 1 + width :] = hi[term_piece]
     rows = len(term_ptr) - 1
     return LtlHeuristic(
         q_row=q_row,
         hmap=sparse_zeros((rows, graph.num_cells), np.float64),
         ready=np.zeros(rows, dtype=np.uint8),
         dist=dist,
-        term_ptr=np.array(term_ptr, dtype=np.int64),
-        term_label=np.array(term_label, dtype=np.int64),
-        term_add=np.array(term_add, dtype=np.float64),
+        term_ptr=term_ptr,
+        term_label=groups,
+        term_add=term_data,
         accepting=accepting,
         leaving_labels=needed,
+        piece_label=piece_label,
+        piece_cells=piece_cells,
+        piece_ptr=piece_ptr,
     )
 
 
-def _backward_costs(
-    trans: np.ndarray, accepting: np.ndarray, needed: np.ndarray, region_cost: np.ndarray
-) -> np.ndarray:
-    """``G[i, q]`` of the module docstring for ``l = needed[i]``: Dijkstra backwards over (label, state)."""
-    num_states = trans.shape[0]
-    to_go = np.full((len(needed), num_states), np.inf)
-    to_go[:, accepting] = 0.0
-    heap = [(0.0, i, int(q)) for q in np.flatnonzero(accepting) for i in range(len(needed))]
-    heapq.heapify(heap)
-    all_states = np.arange(num_states)
-    while heap:
-        value, i, q = heapq.heappop(heap)
-        if value > to_go[i, q]:
+def _moves_twice(trans: np.ndarray, states: np.ndarray) -> np.ndarray:
+    """``(L,)`` bool: labels ``l`` with a state ``q`` among ``states`` where ``T(q, l) != q`` and
+    ``T(T(q, l), l) != T(q, l)`` (a robot staying on ``l`` changes state again: every cell of ``l`` is an
+    entry cell)."""
+    after = trans[states]
+    again = trans[after, np.arange(trans.shape[1])[None, :]]
+    return ((after != states[:, None]) & (again != after)).any(axis=0)
+
+
+def _pieces(
+    graph: CellGraph,
+    cell_label: np.ndarray,
+    field_of: np.ndarray,
+    inside: np.ndarray,
+    twice: np.ndarray,
+    start_cell: int,
+    piece_m: float,
+    max_pieces: int,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(piece_label, piece_cells, piece_ptr)`` (see :class:`LtlHeuristic`): the entry cells of every
+    measured label, binned into squares of ``piece_m`` (larger for labels that would get more than
+    ``max_pieces``)."""
+    entry = _entry_cells(graph.nbr, graph.stairs_from, graph.stairs_to, cell_label, field_of, inside,
+                         twice, start_cell)
+    cells = np.flatnonzero(entry)
+    field = field_of[cell_label[cells]]
+    side = max(1, round(piece_m / min(graph.resolution_m)))
+    labels, cell_lists = [], []
+    for f in range(int(field_of.max(initial=-1)) + 1):
+        own = cells[field == f]
+        bins = side
+        while True:
+            key = _bin_key(graph, own, bins)
+            uniq, inverse = np.unique(key, return_inverse=True)
+            if len(uniq) <= max_pieces or bins > max(graph.shape[1:]):  # at worst, one piece per floor
+                break
+            bins = int(np.ceil(bins * 1.5))
+        order = np.argsort(inverse, kind="stable")
+        splits = np.cumsum(np.bincount(inverse, minlength=len(uniq)))[:-1]
+        for piece in np.split(own[order], splits):
+            labels.append(f)
+            cell_lists.append(piece)
+    ptr = np.zeros(len(cell_lists) + 1, dtype=np.int64)
+    ptr[1:] = np.cumsum([len(c) for c in cell_lists])
+    flat = np.concatenate(cell_lists).astype(np.int64) if cell_lists else np.zeros(0, dtype=np.int64)
+    return np.array(labels, dtype=np.int64), flat, ptr
+
+
+def _bin_key(graph: CellGraph, cells: np.ndarray, side: int) -> np.ndarray:
+    """The square of ``side`` cells (per floor) holding each cell, as one int64."""
+    _, rows, cols = graph.shape
+    per_row = cols // side + 1
+    per_floor = (rows // side + 1) * per_row
+    return (graph.cell_floor[cells].astype(np.int64) * per_floor
+            + (graph.cell_row[cells] // side).astype(np.int64) * per_row
+            + graph.cell_col[cells] // side)
+
+
+@njit(cache=True)
+def _entry_cells(nbr, stairs_from, stairs_to, cell_label, field_of, inside, twice, start_cell):
+    """``(N,)`` bool: the measured-label cells (``field_of >= 0``, inside) where the automaton can change
+    state on a move (see the module docstring)."""
+    n = nbr.shape[0]
+    entry = np.zeros(n, dtype=np.bool_)
+    for x in range(n):
+        label = cell_label[x]
+        if not inside[x] or field_of[label] < 0:
             continue
-        # States p that leave for q on label needed[i]: G(l, p) <= c(l, needed[i]) + G(needed[i], q).
-        preds = np.flatnonzero((trans[:, needed[i]] == q) & (all_states != q) & ~accepting)
-        for p in preds:
-            candidate = region_cost[:, i] + value
-            better = np.flatnonzero(candidate < to_go[:, p])
-            to_go[better, p] = candidate[better]
-            for j in better:
-                heapq.heappush(heap, (float(candidate[j]), int(j), int(p)))
-    return to_go
+        if twice[label]:
+            entry[x] = True
+            continue
+        for k in range(8):
+            y = nbr[x, k]
+            if y >= 0 and (cell_label[y] != label or y == start_cell):
+                entry[x] = True
+                break
+    for j in range(stairs_from.shape[0]):
+        x = stairs_to[j]
+        if inside[x] and field_of[cell_label[x]] >= 0 and (
+            cell_label[stairs_from[j]] != cell_label[x] or stairs_from[j] == start_cell
+        ):
+            entry[x] = True
+    return entry
+
+
+@njit(cache=True)
+def _piece_bounds(dist, piece_cells, piece_ptr):
+    """``(lo, hi)`` ``(K, F)``: smallest and largest value of each field over each piece."""
+    num_pieces, num_fields = piece_ptr.shape[0] - 1, dist.shape[1]
+    lo = np.full((num_pieces, num_fields), np.inf)
+    hi = np.full((num_pieces, num_fields), -np.inf)
+    for k in range(num_pieces):
+        for i in range(piece_ptr[k], piece_ptr[k + 1]):
+            c = piece_cells[i]
+            for f in range(num_fields):
+                lo[k, f] = min(lo[k, f], dist[c, f])
+                hi[k, f] = max(hi[k, f], dist[c, f])
+    return lo, hi
+
+
+@njit(cache=True)
+def _piece_lower_bounds(dist, piece_cells, piece_ptr, lo, hi):
+    """``(K, K)``: ``LB[j, k]`` = min over the cells ``y`` of piece ``j`` of ``phi_k(y)`` (the module
+    docstring's bound on the distance from ``y`` to piece ``k``)."""
+    num_pieces, num_fields = lo.shape
+    between = np.full((num_pieces, num_pieces), np.inf)
+    x = np.empty(num_fields)
+    for j in range(num_pieces):
+        for i in range(piece_ptr[j], piece_ptr[j + 1]):
+            c = piece_cells[i]
+            for f in range(num_fields):
+                x[f] = dist[c, f]
+            for k in range(num_pieces):
+                phi = 0.0
+                for f in range(num_fields):
+                    phi = max(phi, lo[k, f] - x[f], x[f] - hi[k, f])
+                between[j, k] = min(between[j, k], phi)
+    return between
+
+
+def _terms(
+    trans: np.ndarray,
+    accepting: np.ndarray,
+    states: np.ndarray,
+    field_of: np.ndarray,
+    piece_label: np.ndarray,
+    between: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``(q_row, group_ptr, groups, term_piece, term_add)``: the terms (piece, cost to go after it) of
+    every state in ``states`` with a finite one, in label groups (see :class:`LtlHeuristic`). ``G`` of the
+    module docstring is computed backwards over (piece, state): in one sweep in reverse topological order
+    when the automaton's state changes form no cycle, else swept until nothing changes (costs are >= 0,
+    so it converges to the least fixed point, as Bellman-Ford)."""
+    num_states = trans.shape[0]
+    num_pieces = len(piece_label)
+    # G[q] (K,): min over the cells of each piece of h(., q); +inf where unknown or unreachable.
+    to_go = np.full((num_states, num_pieces), np.inf)
+    to_go[accepting] = 0.0
+    # Per state: the (piece, successor state) pairs of its terms.
+    label_of_field = np.empty(len(np.flatnonzero(field_of >= 0)), dtype=np.int64)
+    label_of_field[field_of[field_of >= 0]] = np.flatnonzero(field_of >= 0)
+    piece_labels = label_of_field[piece_label]
+    piece_next = {}
+    for q in states:
+        nxt = trans[q, piece_labels]
+        keep = nxt != q
+        piece_next[int(q)] = (np.flatnonzero(keep), nxt[keep])
+    order, acyclic = _reverse_topological(trans, states)
+    changed = True
+    while changed:
+        changed = False
+        for q in order:
+            pieces, nxt = piece_next[q]
+            add = to_go[nxt, pieces]
+            finite = np.isfinite(add)
+            if not finite.any():
+                continue
+            best = (between[:, pieces[finite]] + add[finite]).min(axis=1)
+            if (best < to_go[q]).any():
+                to_go[q] = np.minimum(to_go[q], best)
+                changed = True
+        changed = changed and not acyclic
+    q_row = np.full(num_states, -1, dtype=np.int32)
+    group_ptr = [0]
+    groups: list[tuple[int, int, int]] = []
+    term_piece: list[np.ndarray] = []
+    term_add: list[np.ndarray] = []
+    num_terms = 0
+    for q in states:
+        pieces, nxt = piece_next[int(q)]
+        add = to_go[nxt, pieces]
+        finite = np.isfinite(add)
+        if not finite.any():
+            continue
+        pieces, add = pieces[finite], add[finite]
+        # Label groups in order of their cheapest term, each sorted by cost to go.
+        by_label = np.lexsort((add, piece_label[pieces]))
+        pieces, add = pieces[by_label], add[by_label]
+        starts = np.flatnonzero(np.diff(piece_label[pieces], prepend=-1))
+        ends = np.append(starts[1:], len(pieces))
+        for i in np.argsort(add[starts], kind="stable"):
+            groups.append((int(piece_label[pieces[starts[i]]]), num_terms, num_terms + ends[i] - starts[i]))
+            term_piece.append(pieces[starts[i] : ends[i]])
+            term_add.append(add[starts[i] : ends[i]])
+            num_terms += ends[i] - starts[i]
+        q_row[q] = len(group_ptr) - 1
+        group_ptr.append(len(groups))
+    return (
+        q_row,
+        np.array(group_ptr, dtype=np.int64),
+        np.array(groups, dtype=np.int64).reshape(-1, 3),
+        np.concatenate(term_piece) if term_piece else np.zeros(0, dtype=np.int64),
+        np.concatenate(term_add) if term_add else np.zeros(0, dtype=np.float64),
+    )
+
+
+def _reverse_topological(trans: np.ndarray, states: np.ndarray) -> tuple[list[int], bool]:
+    """``(order, acyclic)``: ``states`` with every state after the states it moves to (Kahn's algorithm on
+    the state changes among ``states``); if those form a cycle, the states on it follow in index order
+    and ``acyclic`` is False."""
+    members = set(int(q) for q in states)
+    succ = {q: set(int(p) for p in np.unique(trans[q]) if int(p) != q and int(p) in members) for q in members}
+    pending = {q: len(s) for q, s in succ.items()}
+    pred: dict[int, list[int]] = {q: [] for q in members}
+    for q, s in succ.items():
+        for p in s:
+            pred[p].append(q)
+    ready = sorted(q for q, n in pending.items() if n == 0)
+    order: list[int] = []
+    while ready:
+        q = ready.pop()
+        order.append(q)
+        for p in pred[q]:
+            pending[p] -= 1
+            if pending[p] == 0:
+                ready.append(p)
+    acyclic = len(order) == len(members)
+    order += sorted(q for q in members if pending[q] > 0)
+    return order, acyclic
