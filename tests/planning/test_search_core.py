@@ -199,3 +199,48 @@ def test_search_memory_is_sparse_in_automaton_states() -> None:
     assert math.isfinite(result.cost_m) and result.cost_m == pytest.approx(_oracle(problem), abs=1e-9)
     dense = problem.domain.graph.num_cells * problem.domain.num_states * core.REC * 8
     assert 0 < result.search_bytes < dense / 20
+
+
+def _run_kernel(kernel, domain, state, q_level, q_htype, max_level: int):
+    """Run ``kernel`` (improve_path's signature) to the end of the iteration, growing memory on demand."""
+    while True:
+        code, _ = kernel(domain.kgraph, domain.kactions, domain.kmaps, domain.klogic, state, q_level, q_htype,
+                         max_level, 10**9, 16)
+        if code != core.GROW:
+            return code, state
+        state = amra._reserve(state, 2 * int(state.hsize.max(initial=0)) + 16, free_pages=16)
+
+
+@_FEW
+@given(st.integers(0, 2**31 - 1))
+def test_the_flat_anchor_loop_is_the_general_loop(seed: int) -> None:
+    """anchor_path (the A* / w1 = 1 loop written out flat) leaves bit-identical search memory to the
+    general multi_queue_path, iteration after iteration of the A* schedule (INCONS and closed-is-final
+    included)."""
+    problem = random_problem(seed)
+    try:
+        domain = problem.domain
+    except PlanningError:
+        return
+    if domain.accepting[domain.q_start]:
+        return
+    q_level, q_htype = np.zeros(1, dtype=np.int32), np.zeros(1, dtype=np.int32)
+    states = [amra._new_state(domain, 1, pages=1), amra._new_state(domain, 1, pages=1)]
+    flat = lambda G, A, M, L, S, ql, qh, ml, budget, succ: core.anchor_path(G, L, S, budget, succ)  # noqa: E731
+    for started, (w1, w2) in enumerate([(10.0, 20.0), (2.5, 5.0), (1.0, 1.25), (1.0, 1.0)], start=1):
+        codes = []
+        for i, kernel in enumerate((flat, core.multi_queue_path)):
+            state = amra._reserve(states[i], int(states[i].hsize[0] + states[i].iscal[core.I_NINCONS]) + 16)
+            core.start_iteration(domain.kgraph, domain.klogic, state, q_level, q_htype, w1, w2, started)
+            code, states[i] = _run_kernel(kernel, domain, state, q_level, q_htype, 1)
+            codes.append(code)
+        assert codes[0] == codes[1]
+        a, b = states
+        used = int(a.iscal[core.I_PAGES]) * core.PAGE * core.REC
+        assert np.array_equal(a.ptab, b.ptab) and np.array_equal(a.pool[:used], b.pool[:used])
+        heap = int(a.hsize[0]) * core.REC
+        assert np.array_equal(a.hbuf[:heap], b.hbuf[:heap]) and a.hsize[0] == b.hsize[0]
+        n = int(a.iscal[core.I_NINCONS])
+        assert np.array_equal(a.incons[:n], b.incons[:n])
+        assert np.array_equal(a.iscal, b.iscal) and np.array_equal(a.expansions, b.expansions)
+        assert a.fscal[0] == b.fscal[0] or (math.isinf(a.fscal[0]) and math.isinf(b.fscal[0]))

@@ -625,6 +625,198 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
 
 
 @njit(cache=True)
+def anchor_path(G, L, S, budget, max_succ):
+    """:func:`improve_path` for an iteration that runs the anchor queue alone over occupancy moves (the
+    A* setup throughout, every setup once w1 = 1): the same expansions in the same order as
+    :func:`multi_queue_path`, in one flat loop.
+
+    Flat because numba reference-counts the arrays a helper takes (``inline="always"`` included) with
+    atomic increments its pruning pass does not remove in this loop: calling the heap and record helpers
+    cost ~20 % of the A* search. So the heap pop (:func:`hpop`) and push (:func:`hpush`), the record
+    lookups (:func:`rec_find`, :func:`rec_touch`) and the closed test (:func:`is_closed`) are written
+    out here, and the counters live in locals until the loop returns. test_search_core checks that both
+    loops leave identical search memory.
+    """
+    nbr, step_cost, stairs_first, stairs_from = G.nbr, G.step_cost, G.stairs_first, G.stairs_from
+    stairs_to, stairs_cost, cell_label = G.stairs_to, G.stairs_cost, G.cell_label
+    trans, accepting, q_row, hmap = L.trans, L.accepting, L.q_row, L.hmap
+    h_ready, h_dist, h_ptr, h_label, h_add = L.h_ready, L.h_dist, L.h_ptr, L.h_label, L.h_add
+    ptab, pool, poolf, h_evals = S.ptab, S.pool, S.poolf, S.h_evals
+    hf, hi, hsize, incons, fscal, iscal = S.hbuff, S.hbuf, S.hsize, S.incons, S.fscal, S.iscal
+
+    qb = q_bits(trans.shape[0])
+    qmask = (1 << qb) - 1
+    iteration = iscal[I_ITER]
+    w1 = fscal[1]
+    w2 = fscal[2]
+    final = w1 <= 1.0  # closed is final (see improve_path)
+    fill_after = hmap.shape[1] // FILL_FRACTION
+    pool_slots = pool.shape[0] // (PAGE * REC)
+    capacity = hi.shape[0] // (REC * hsize.shape[0])
+    n_stairs = stairs_from.shape[0]
+    size = hsize[0]
+    pages = iscal[I_PAGES]
+    n_incons = iscal[I_NINCONS]
+    goal = fscal[0]
+    it_bits = iteration << 40
+    done = 0
+    while True:
+        # The top entry: stale (g changed since the push, or closed) -> pop it and look again; otherwise
+        # its key is the anchor's minimum key, checked against the end tests before it is expanded.
+        mk0 = INF
+        stale = False
+        s = np.int64(-1)
+        if size > 0:
+            s = hi[2]
+            c = s >> qb
+            r = (ptab[s & qmask, c >> PAGE_BITS] * PAGE + (c & PAGE_MASK)) * REC
+            meta = pool[r + 2]
+            stale = hf[1] != poolf[r] or ((meta >> 40) == iteration and (meta >> 32) & 1 == 1)
+            mk0 = hf[0]
+        if not stale:
+            if goal < INF and goal <= w2 * mk0:
+                status = FOUND
+                break
+            if mk0 == INF:
+                status = EXHAUSTED
+                break
+            if done >= budget:
+                status = BUDGET
+                break
+            if size + max_succ > capacity or n_incons + max_succ > incons.shape[0] or (
+                pages + max_succ > pool_slots
+            ):
+                status = GROW
+                break
+        # Pop (hpop).
+        size -= 1
+        if size > 0:
+            last = size * REC
+            key, g, value = hf[last], hf[last + 1], hi[last + 2]
+            i = 0
+            while True:
+                first = ARITY * i + 1
+                if first >= size:
+                    break
+                best = first
+                b = first * REC
+                bk, bg = hf[b], hf[b + 1]
+                for child in range(first + 1, min(first + ARITY, size)):
+                    e = child * REC
+                    ek = hf[e]
+                    if ek < bk or (ek == bk and hf[e + 1] > bg):
+                        best, bk, bg = child, ek, hf[e + 1]
+                if not (bk < key or (bk == key and bg > g)):
+                    break
+                d = i * REC
+                o = best * REC
+                hi[d] = hi[o]
+                hi[d + 1] = hi[o + 1]
+                hi[d + 2] = hi[o + 2]
+                i = best
+            d = i * REC
+            hf[d] = key
+            hf[d + 1] = g
+            hi[d + 2] = value
+        if stale:
+            continue
+
+        # Expand s: close it at every level, relax its occupancy moves.
+        done += 1
+        c = s >> qb
+        q = s & qmask
+        r = (ptab[q, c >> PAGE_BITS] * PAGE + (c & PAGE_MASK)) * REC
+        meta = pool[r + 2]
+        if (meta >> 40) != iteration:
+            meta = (meta & LOW32) | it_bits
+        pool[r + 2] = meta | (np.int64(ALL_LEVELS) << 32)
+        gs = poolf[r]
+        j = stairs_first[c]
+        for k in range(9 + n_stairs):
+            if k < 8:
+                nc = np.int64(nbr[c, k])
+                if nc < 0:
+                    continue
+                cost = step_cost[k]
+                act = k
+            else:  # stairs (step_successors' order)
+                if j < 0 or j >= n_stairs or stairs_from[j] != c:
+                    break
+                nc = np.int64(stairs_to[j])
+                cost = stairs_cost[j]
+                act = ACT_STAIRS
+                j += 1
+            nq = np.int64(trans[q, cell_label[nc]])
+            gn = gs + cost
+            row = q_row[nq]
+            is_goal = accepting[nq]
+            if row < 0 and not is_goal:  # no way to acceptance from nq (h = inf)
+                continue
+            blk = nc >> PAGE_BITS
+            p = ptab[nq, blk]
+            rn = np.int64(-1)
+            if p >= 0:
+                rn = (p * PAGE + (nc & PAGE_MASK)) * REC
+                meta = pool[rn + 2]
+                if meta & LOW32 != 0 and (
+                    gn >= poolf[rn] or (final and (meta >> 40) == iteration and (meta >> 32) & 1 == 1)
+                ):
+                    continue
+            h0 = 0.0
+            if not is_goal:
+                if h_ready[row] == 1:
+                    h0 = hmap[row, nc]
+                else:
+                    h0 = h_ltl(hmap, h_ready, h_dist, h_ptr, h_label, h_add, h_evals, fill_after, row, nc)
+                if h0 == INF:
+                    continue
+            if p < 0:  # rec_touch
+                p = pages
+                ptab[nq, blk] = p
+                pages += 1
+                rn = (p * PAGE + (nc & PAGE_MASK)) * REC
+            meta = pool[rn + 2]
+            poolf[rn] = gn
+            pool[rn + 1] = s
+            pool[rn + 2] = (meta & ~LOW32) | (act + 1)
+            ns = (nc << qb) | nq
+            if is_goal:
+                if gn < goal:
+                    goal = gn
+                    iscal[I_GOAL] = ns
+                continue
+            if (meta >> 40) == iteration and (meta >> 32) & 1 == 1:  # closed in the anchor
+                incons[n_incons] = ns
+                n_incons += 1
+                continue
+            # Push (hpush).
+            key = gn + w1 * h0
+            i = size
+            while i > 0:
+                parent = (i - 1) // ARITY
+                a = parent * REC
+                pk = hf[a]
+                if not (key < pk or (key == pk and gn > hf[a + 1])):
+                    break
+                d = i * REC
+                hi[d] = hi[a]
+                hi[d + 1] = hi[a + 1]
+                hi[d + 2] = hi[a + 2]
+                i = parent
+            d = i * REC
+            hf[d] = key
+            hf[d + 1] = gn
+            hi[d + 2] = ns
+            size += 1
+    hsize[0] = size
+    iscal[I_PAGES] = pages
+    iscal[I_NINCONS] = n_incons
+    fscal[0] = goal
+    S.expansions[0] += done
+    return status, done
+
+
+@njit(cache=True)
 def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     """AMRA* ImprovePath, round robin over the queues, until the bound holds or a limit is hit.
 
@@ -660,6 +852,15 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     bound and the optimum: the occupancy moves alone are the whole graph, and a composite action is a
     sequence of them.
     """
+    if active_queues(q_level.shape[0], S.fscal[1]) == 1 and (max_level == 1 or S.fscal[1] <= 1.0):
+        return anchor_path(G, L, S, budget, max_succ)
+    return multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ)
+
+
+@njit(cache=True)
+def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
+    """:func:`improve_path` in general: any queues, composite actions (the loop that :func:`anchor_path`
+    specialises)."""
     # Unpack once (see the note above the array-level cores).
     nbr, step_cost, stairs_first, stairs_from = G.nbr, G.step_cost, G.stairs_first, G.stairs_from
     stairs_to, stairs_cost, floor_offset, cell_floor = (
