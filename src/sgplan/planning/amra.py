@@ -266,6 +266,10 @@ def plan(
     return result
 
 
+_POOL_RESERVE_BYTES = 1 << 30
+"""Address space reserved for the state records at the start of a search (committed only as touched)."""
+
+
 def _warm_up(
     domain: PlanningDomain, q_level: np.ndarray, q_htype: np.ndarray, max_level: int, max_succ: int
 ) -> float:
@@ -289,11 +293,17 @@ def _warm_up(
     return time.perf_counter() - t0
 
 
-def _new_state(domain: PlanningDomain, num_queues: int, pages: int = 64) -> SearchState:
-    """Fresh search memory (pool of ``pages`` page slots, grown on demand) with the start state in INCONS
-    (so the first iteration opens it)."""
+def _new_state(domain: PlanningDomain, num_queues: int, pages: int | None = None) -> SearchState:
+    """Fresh search memory with the start state in INCONS (so the first iteration opens it).
+
+    The pool has ``pages`` page slots, grown on demand; by default as many as every (state, block) pair
+    up to ``_POOL_RESERVE_BYTES``: the reservation is lazily committed, so unused slots cost no memory,
+    and a pool that never has to grow is never copied (each doubling wrote, and page-faulted, the used
+    part again)."""
     num_q = domain.num_states
     blocks = -(-domain.graph.num_cells // _search.PAGE)
+    if pages is None:
+        pages = max(1, min(num_q * blocks, _POOL_RESERVE_BYTES // (_search.PAGE * _search.REC * 8)))
     # Heaps are lazily committed zeros: pages cost memory only when used, so a generous start costs
     # nothing and avoids most of the growth copies during the search.
     capacity = int(min(domain.graph.num_cells * num_q + 16, 1 << 20))
