@@ -244,3 +244,24 @@ def test_the_flat_anchor_loop_is_the_general_loop(seed: int) -> None:
         assert np.array_equal(a.incons[:n], b.incons[:n])
         assert np.array_equal(a.iscal, b.iscal) and np.array_equal(a.expansions, b.expansions)
         assert a.fscal[0] == b.fscal[0] or (math.isinf(a.fscal[0]) and math.isinf(b.fscal[0]))
+
+
+def test_a_pool_the_system_will_not_map_falls_back_to_a_smaller_one(monkeypatch) -> None:
+    """The default pool reserves a slot per (state, block); when the OS refuses that much address space
+    the pool starts smaller (halving; the search grows it as test_a_one_page_pool... checks)."""
+    page_words = core.PAGE * core.REC
+    asked = []
+
+    def picky(shape, dtype):
+        asked.append(shape // page_words)
+        if shape > 100 * page_words:
+            raise MemoryError
+        return np.zeros(shape, dtype)
+
+    monkeypatch.setattr(amra, "sparse_zeros", picky)
+    assert amra._pool_buffer(1000).shape[0] == 62 * page_words
+    assert asked == [1000, 500, 250, 125, 62]
+    asked.clear()
+    monkeypatch.setattr(amra, "sparse_zeros", lambda shape, dtype: (_ for _ in ()).throw(MemoryError))
+    with pytest.raises(MemoryError):
+        amra._pool_buffer(1000)
