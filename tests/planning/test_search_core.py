@@ -52,8 +52,7 @@ def test_page_table_hands_out_one_slot_per_touched_state_block() -> None:
         r = core.rec_touch(ptab, iscal, int(c), int(q))
         assert r == core.rec_find(ptab, int(c), int(q))
         poolf[r] = float(c) + q / 10
-        pool[r + 1] = 1000 + int(c)
-        pool[r + 2] = 5 + 1  # action 5, reached
+        pool[r + 1] = core.with_parent(pool[r + 1], 1000 + int(c), 5)
         written[(int(c), int(q))] = float(c) + q / 10
     used = {(q, c >> core.PAGE_BITS) for c, q in written}
     assert iscal[core.I_PAGES] == len(used)  # one slot per touched (state, block), nothing else
@@ -67,12 +66,26 @@ def test_page_table_hands_out_one_slot_per_touched_state_block() -> None:
 
 
 def test_closed_bits_belong_to_their_iteration() -> None:
-    meta = 1 + 7  # reached, action 7
-    meta = core.with_closed(meta, 1 << 2, 3)
-    assert core.is_closed(meta, 2, 3) and not core.is_closed(meta, 0, 3) and not core.is_closed(meta, 2, 4)
-    meta = core.with_closed(meta, core.ALL_LEVELS, 4)  # a new iteration drops the old bits
-    assert all(core.is_closed(meta, level, 4) for level in range(5)) and not core.is_closed(meta, 2, 3)
-    assert meta & core.LOW32 == 8  # the action field is untouched
+    parent = (1 << 34) - 3  # the largest product state the layout holds
+    link = core.with_parent(0, parent, core.ACT_MAP + 1000)
+    assert core.reached(link) and not core.reached(0)
+    link = core.with_closed(link, 1 << 2, 3)
+    assert core.is_closed(link, 2, 3) and not core.is_closed(link, 0, 3) and not core.is_closed(link, 2, 4)
+    link = core.with_closed(link, core.ALL_LEVELS, 4)  # a new iteration drops the old bits
+    assert all(core.is_closed(link, level, 4) for level in range(5)) and not core.is_closed(link, 2, 3)
+    assert core.link_parent(link) == parent and core.link_action(link) == core.ACT_MAP + 1000  # untouched
+    link = core.with_parent(link, -1, 7)  # a new parent keeps the closed bits
+    assert core.is_closed(link, 1, 4) and core.link_parent(link) == -1 and core.link_action(link) == 7
+    assert link > 0 and core.retagged(link, 255) & 0x1F == 0 and core.has_tag(core.retagged(link, 255), 255)
+    assert core.check_layout(1 << 24, 512, 10) is None  # 16M cells x 512 states
+    assert "2^34" in core.check_layout(1 << 25, 512, 10)
+    assert "composite" in core.check_layout(100, 4, 1 << 16)
+
+
+def test_a_schedule_longer_than_the_iteration_tags_is_refused() -> None:
+    problem = random_problem(3)
+    with pytest.raises(PlanningError, match="iterations"):
+        plan(problem, "A*", weights=(10.0, 20.0), decay=0.99)
 
 
 @_FEW
@@ -238,7 +251,7 @@ def test_the_flat_anchor_loop_is_the_general_loop(seed: int) -> None:
         a, b = states
         used = int(a.iscal[core.I_PAGES]) * core.PAGE * core.REC
         assert np.array_equal(a.ptab, b.ptab) and np.array_equal(a.pool[:used], b.pool[:used])
-        heap = int(a.hsize[0]) * core.REC
+        heap = int(a.hsize[0]) * core.HREC
         assert np.array_equal(a.hbuf[:heap], b.hbuf[:heap]) and a.hsize[0] == b.hsize[0]
         n = int(a.iscal[core.I_NINCONS])
         assert np.array_equal(a.incons[:n], b.incons[:n])
