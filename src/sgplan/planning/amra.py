@@ -1,8 +1,9 @@
 """AMRA* over the hierarchical domain: setups, weight schedule, budgets, results (the Python driver).
 
 The compiled loop is in :mod:`sgplan.planning._search`; this module owns the iteration schedule
-(weights (10, 20) halving to (1, 1), reference-algorithm.md §6), the queue layout of each setup (§7.2),
-time/expansion budgets, per-iteration records and path recovery.
+(weights (10, 20) halving to (1, 1), reference-algorithm.md §6; at most 255 iterations), the queue layout
+of each setup (§7.2), the search memory (a record pool reserved once, lazily committed), time/expansion
+budgets, per-iteration records and path recovery.
 
 Goal tracking (departing from the authors' inert test, §12.9): every generated state whose automaton
 state is accepting is a goal; the best one's g is compared with ``w2 * min key(anchor)`` after every
