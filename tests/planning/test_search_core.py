@@ -1,5 +1,6 @@
 """The search core's own structures: paged state records, pool growth, lazy h_LTL values, reuse across
-AMRA* iterations, the frontier bound, the anchor-only (1, 1) iteration and occupancy-only anchor at w1 = 1.
+AMRA* iterations, the frontier bound, the anchor-only iterations at w1 = 1, final closed states at w1 = 1
+and the occupancy-only anchor at w1 = 1.
 
 Optimality against the oracle is covered by test_optimality.py; here each structure is checked against
 the plain thing it replaces (a dense dict, a filled row, a fresh search).
@@ -51,8 +52,7 @@ def test_page_table_hands_out_one_slot_per_touched_state_block() -> None:
         r = core.rec_touch(ptab, iscal, int(c), int(q))
         assert r == core.rec_find(ptab, int(c), int(q))
         poolf[r] = float(c) + q / 10
-        pool[r + 1] = 1000 + int(c)
-        pool[r + 2] = 5 + 1  # action 5, reached
+        pool[r + 1] = core.with_parent(pool[r + 1], 1000 + int(c), 5)
         written[(int(c), int(q))] = float(c) + q / 10
     used = {(q, c >> core.PAGE_BITS) for c, q in written}
     assert iscal[core.I_PAGES] == len(used)  # one slot per touched (state, block), nothing else
@@ -66,12 +66,26 @@ def test_page_table_hands_out_one_slot_per_touched_state_block() -> None:
 
 
 def test_closed_bits_belong_to_their_iteration() -> None:
-    meta = 1 + 7  # reached, action 7
-    meta = core.with_closed(meta, 1 << 2, 3)
-    assert core.is_closed(meta, 2, 3) and not core.is_closed(meta, 0, 3) and not core.is_closed(meta, 2, 4)
-    meta = core.with_closed(meta, core.ALL_LEVELS, 4)  # a new iteration drops the old bits
-    assert all(core.is_closed(meta, level, 4) for level in range(5)) and not core.is_closed(meta, 2, 3)
-    assert meta & core.LOW32 == 8  # the action field is untouched
+    parent = (1 << 34) - 3  # the largest product state the layout holds
+    link = core.with_parent(0, parent, core.ACT_MAP + 1000)
+    assert core.reached(link) and not core.reached(0)
+    link = core.with_closed(link, 1 << 2, 3)
+    assert core.is_closed(link, 2, 3) and not core.is_closed(link, 0, 3) and not core.is_closed(link, 2, 4)
+    link = core.with_closed(link, core.ALL_LEVELS, 4)  # a new iteration drops the old bits
+    assert all(core.is_closed(link, level, 4) for level in range(5)) and not core.is_closed(link, 2, 3)
+    assert core.link_parent(link) == parent and core.link_action(link) == core.ACT_MAP + 1000  # untouched
+    link = core.with_parent(link, -1, 7)  # a new parent keeps the closed bits
+    assert core.is_closed(link, 1, 4) and core.link_parent(link) == -1 and core.link_action(link) == 7
+    assert link > 0 and core.retagged(link, 255) & 0x1F == 0 and core.has_tag(core.retagged(link, 255), 255)
+    assert core.check_layout(1 << 24, 512, 10) is None  # 16M cells x 512 states
+    assert "2^34" in core.check_layout(1 << 25, 512, 10)
+    assert "composite" in core.check_layout(100, 4, 1 << 16)
+
+
+def test_a_schedule_longer_than_the_iteration_tags_is_refused() -> None:
+    problem = random_problem(3)
+    with pytest.raises(PlanningError, match="iterations"):
+        plan(problem, "A*", weights=(10.0, 20.0), decay=0.99)
 
 
 @_FEW
@@ -157,7 +171,7 @@ def test_lazy_h_values_equal_the_filled_rows(seed: int) -> None:
 @given(st.integers(0, 2**31 - 1))
 def test_at_w1_one_the_anchor_is_the_plain_a_star(seed: int) -> None:
     """From w1 = 1 the anchor follows occupancy moves only: NO-LLM's single (1, 1) search is A*'s,
-    expansion for expansion; with LLM guidance the (1, 1) iteration runs the anchor alone."""
+    expansion for expansion; with LLM guidance every w1 = 1 iteration runs the anchor alone."""
     problem = random_problem(seed)
     astar = _plan_or_none(problem, "A*", weights=(1.0, 1.0))
     if astar is None or astar.cost_m == 0:
@@ -165,9 +179,25 @@ def test_at_w1_one_the_anchor_is_the_plain_a_star(seed: int) -> None:
     nollm = plan(problem, "NO-LLM", weights=(1.0, 1.0))
     assert nollm.expansions == astar.expansions and nollm.cost_m == astar.cost_m
     everything = plan(problem, "ALL")
-    last, before = everything.iterations[-1], everything.iterations[-2]
-    assert last.expansions[1:] == before.expansions[1:]  # no LLM queue expanded at (1, 1)
+    weighted = [it for it in everything.iterations if it.w1 > 1]
+    for it in everything.iterations:
+        if it.w1 == 1 and weighted:  # no LLM queue expanded at (1, 1.25) or (1, 1)
+            assert it.expansions[1:] == weighted[-1].expansions[1:]
     assert everything.cost_m == pytest.approx(astar.cost_m, abs=1e-9)
+
+
+# Seeds where, before closed states became final at w1 = 1, a (1, 1) iteration after a (1, w2) one
+# re-expanded states whose g had improved by float rounding only.
+@pytest.mark.parametrize("seed", [19, 57, 91, 103, 116, 128, 129, 172, 180, 188, 215, 232])
+def test_iterations_at_w1_one_are_one_a_star_search(seed: int) -> None:
+    """(1, 4) -> (1, 2) -> (1, 1) expands exactly what a single (1, 1) search does: at w1 = 1 a closed
+    state is final, so the later iterations only continue the first one."""
+    problem = random_problem(seed)
+    single = plan(problem, "A*", weights=(1.0, 1.0))
+    stepped = plan(problem, "A*", weights=(1.0, 4.0))
+    assert [(it.w1, it.w2) for it in stepped.iterations] == [(1, 4), (1, 2), (1, 1)]
+    assert stepped.expansions == single.expansions
+    assert stepped.cost_m == single.cost_m == pytest.approx(_oracle(problem), abs=1e-9)
 
 
 def test_search_memory_is_sparse_in_automaton_states() -> None:
@@ -182,3 +212,69 @@ def test_search_memory_is_sparse_in_automaton_states() -> None:
     assert math.isfinite(result.cost_m) and result.cost_m == pytest.approx(_oracle(problem), abs=1e-9)
     dense = problem.domain.graph.num_cells * problem.domain.num_states * core.REC * 8
     assert 0 < result.search_bytes < dense / 20
+
+
+def _run_kernel(kernel, domain, state, q_level, q_htype, max_level: int):
+    """Run ``kernel`` (improve_path's signature) to the end of the iteration, growing memory on demand."""
+    while True:
+        code, _ = kernel(domain.kgraph, domain.kactions, domain.kmaps, domain.klogic, state, q_level, q_htype,
+                         max_level, 10**9, 16)
+        if code != core.GROW:
+            return code, state
+        state = amra._reserve(state, 2 * int(state.hsize.max(initial=0)) + 16, free_pages=16)
+
+
+@_FEW
+@given(st.integers(0, 2**31 - 1))
+def test_the_flat_anchor_loop_is_the_general_loop(seed: int) -> None:
+    """anchor_path (the A* / w1 = 1 loop written out flat) leaves bit-identical search memory to the
+    general multi_queue_path, iteration after iteration of the A* schedule (INCONS and closed-is-final
+    included)."""
+    problem = random_problem(seed)
+    try:
+        domain = problem.domain
+    except PlanningError:
+        return
+    if domain.accepting[domain.q_start]:
+        return
+    q_level, q_htype = np.zeros(1, dtype=np.int32), np.zeros(1, dtype=np.int32)
+    states = [amra._new_state(domain, 1, pages=1), amra._new_state(domain, 1, pages=1)]
+    flat = lambda G, A, M, L, S, ql, qh, ml, budget, succ: core.anchor_path(G, L, S, budget, succ)  # noqa: E731
+    for started, (w1, w2) in enumerate([(10.0, 20.0), (2.5, 5.0), (1.0, 1.25), (1.0, 1.0)], start=1):
+        codes = []
+        for i, kernel in enumerate((flat, core.multi_queue_path)):
+            state = amra._reserve(states[i], int(states[i].hsize[0] + states[i].iscal[core.I_NINCONS]) + 16)
+            core.start_iteration(domain.kgraph, domain.klogic, state, q_level, q_htype, w1, w2, started)
+            code, states[i] = _run_kernel(kernel, domain, state, q_level, q_htype, 1)
+            codes.append(code)
+        assert codes[0] == codes[1]
+        a, b = states
+        used = int(a.iscal[core.I_PAGES]) * core.PAGE * core.REC
+        assert np.array_equal(a.ptab, b.ptab) and np.array_equal(a.pool[:used], b.pool[:used])
+        heap = int(a.hsize[0]) * core.HREC
+        assert np.array_equal(a.hbuf[:heap], b.hbuf[:heap]) and a.hsize[0] == b.hsize[0]
+        n = int(a.iscal[core.I_NINCONS])
+        assert np.array_equal(a.incons[:n], b.incons[:n])
+        assert np.array_equal(a.iscal, b.iscal) and np.array_equal(a.expansions, b.expansions)
+        assert a.fscal[0] == b.fscal[0] or (math.isinf(a.fscal[0]) and math.isinf(b.fscal[0]))
+
+
+def test_a_pool_the_system_will_not_map_falls_back_to_a_smaller_one(monkeypatch) -> None:
+    """The default pool reserves a slot per (state, block); when the OS refuses that much address space
+    the pool starts smaller (halving; the search grows it as test_a_one_page_pool... checks)."""
+    page_words = core.PAGE * core.REC
+    asked = []
+
+    def picky(shape, dtype):
+        asked.append(shape // page_words)
+        if shape > 100 * page_words:
+            raise MemoryError
+        return np.zeros(shape, dtype)
+
+    monkeypatch.setattr(amra, "sparse_zeros", picky)
+    assert amra._pool_buffer(1000).shape[0] == 62 * page_words
+    assert asked == [1000, 500, 250, 125, 62]
+    asked.clear()
+    monkeypatch.setattr(amra, "sparse_zeros", lambda shape, dtype: (_ for _ in ()).throw(MemoryError))
+    with pytest.raises(MemoryError):
+        amra._pool_buffer(1000)

@@ -1,8 +1,9 @@
 """AMRA* over the hierarchical domain: setups, weight schedule, budgets, results (the Python driver).
 
 The compiled loop is in :mod:`sgplan.planning._search`; this module owns the iteration schedule
-(weights (10, 20) halving to (1, 1), reference-algorithm.md §6), the queue layout of each setup (§7.2),
-time/expansion budgets, per-iteration records and path recovery.
+(weights (10, 20) halving to (1, 1), reference-algorithm.md §6; at most 255 iterations), the queue layout
+of each setup (§7.2), the search memory (a record pool reserved once, lazily committed), time/expansion
+budgets, per-iteration records and path recovery.
 
 Goal tracking (departing from the authors' inert test, §12.9): every generated state whose automaton
 state is accepting is a goal; the best one's g is compared with ``w2 * min key(anchor)`` after every
@@ -171,9 +172,6 @@ def plan(
         setup or a setup that needs LLM guidance the problem does not carry.
     """
     spec = get_setup(setup)
-    domain = problem.domain
-    if spec.uses_llm and domain.llm is None:
-        raise PlanningError(f"setup {spec.name} needs LLM guidance; give the problem guidance or use NO-LLM")
     if (
         not (0 < decay < 1)
         or min(final_weights) < 1
@@ -181,7 +179,17 @@ def plan(
         or weights[1] < final_weights[1]
     ):
         raise PlanningError(f"bad weight schedule {weights} -> {final_weights} with decay {decay}")
-
+    if _schedule_length(weights, final_weights, decay) > MAX_ITERATIONS:
+        raise PlanningError(
+            f"weight schedule {weights} -> {final_weights} with decay {decay} has more than {MAX_ITERATIONS}"
+            " iterations (the search tags closed states with the iteration in 8 bits); lower the decay factor"
+        )
+    domain = problem.domain
+    if spec.uses_llm and domain.llm is None:
+        raise PlanningError(f"setup {spec.name} needs LLM guidance; give the problem guidance or use NO-LLM")
+    too_big = _search.check_layout(domain.graph.num_cells, domain.num_states, len(domain.kactions.map_floor))
+    if too_big is not None:
+        raise PlanningError(f"{too_big}: split the building or simplify the mission")
     if prebuild_actions and spec.max_level >= 2:
         domain.build_actions()
     q_level = np.array([level for level, _ in spec.queues], dtype=np.int32)
@@ -266,6 +274,20 @@ def plan(
     return result
 
 
+MAX_ITERATIONS = _search.TAG_MASK
+"""The longest weight schedule (closed sets are tagged with the iteration number modulo 256)."""
+
+
+def _schedule_length(weights: tuple[float, float], final: tuple[float, float], decay: float) -> int:
+    """Iterations in the schedule ``weights`` -> ``final`` (each weight times ``decay``, floored)."""
+    w1, w2, n = float(weights[0]), float(weights[1]), 1
+    while not (w1 <= final[0] and w2 <= final[1]):
+        w1, w2, n = max(w1 * decay, final[0]), max(w2 * decay, final[1]), n + 1
+        if n > MAX_ITERATIONS:
+            break
+    return n
+
+
 def _warm_up(
     domain: PlanningDomain, q_level: np.ndarray, q_htype: np.ndarray, max_level: int, max_succ: int
 ) -> float:
@@ -289,16 +311,19 @@ def _warm_up(
     return time.perf_counter() - t0
 
 
-def _new_state(domain: PlanningDomain, num_queues: int, pages: int = 64) -> SearchState:
-    """Fresh search memory (pool of ``pages`` page slots, grown on demand) with the start state in INCONS
-    (so the first iteration opens it)."""
+def _new_state(domain: PlanningDomain, num_queues: int, pages: int | None = None) -> SearchState:
+    """Fresh search memory with the start state in INCONS (so the first iteration opens it).
+
+    The pool has ``pages`` page slots, grown on demand; by default a slot for every (automaton state,
+    block) pair, or as many as the operating system lets us map (:func:`_pool_buffer`). The reservation
+    is lazily committed, so the slots a search never uses cost no memory, and a pool that never grows is
+    never copied: each doubling wrote and page-faulted the used part again (10-17 % of the search on the
+    larger Gibson cases), and at its peak held both copies (+1 GB on 9 unordered goals)."""
     num_q = domain.num_states
     blocks = -(-domain.graph.num_cells // _search.PAGE)
-    # Heaps are lazily committed zeros: pages cost memory only when used, so a generous start costs
-    # nothing and avoids most of the growth copies during the search.
+    pool = _pool_buffer(num_q * blocks if pages is None else pages)
     capacity = int(min(domain.graph.num_cells * num_q + 16, 1 << 20))
-    hbuf = sparse_zeros(num_queues * capacity * _search.REC, np.int64)
-    pool = sparse_zeros(pages * _search.PAGE * _search.REC, np.int64)
+    hbuf = sparse_zeros(num_queues * capacity * _search.HREC, np.int64)
     state = SearchState(
         ptab=np.full((num_q, blocks), -1, dtype=np.int32),
         pool=pool,
@@ -317,10 +342,22 @@ def _new_state(domain: PlanningDomain, num_queues: int, pages: int = 64) -> Sear
     return state
 
 
+def _pool_buffer(pages: int) -> np.ndarray:
+    """A lazily committed pool of ``pages`` page slots, or of as many as can be mapped (halving on
+    MemoryError, down to one; the search grows it later if it needs more)."""
+    while True:
+        try:
+            return sparse_zeros(pages * _search.PAGE * _search.REC, np.int64)
+        except MemoryError:
+            if pages <= 1:
+                raise
+            pages //= 2
+
+
 def _reserve(state: SearchState, capacity: int, free_pages: int = 0) -> SearchState:
     """``state`` with heaps and INCONS able to hold at least ``capacity`` entries each, and at least
     ``free_pages`` unused page slots in the pool (each grown by doubling, contents kept)."""
-    rec = _search.REC
+    rec = _search.HREC
     num_queues = state.hsize.shape[0]
     old_cap = state.hbuf.shape[0] // (rec * num_queues)
     new = old_cap
@@ -336,7 +373,7 @@ def _reserve(state: SearchState, capacity: int, free_pages: int = 0) -> SearchSt
         incons = np.empty(max(capacity, 2 * state.incons.shape[0]), dtype=np.int64)
         incons[: state.iscal[2]] = state.incons[: state.iscal[2]]
         state = state._replace(incons=incons)
-    page_words = _search.PAGE * rec
+    page_words = _search.PAGE * _search.REC
     used, slots = int(state.iscal[_search.I_PAGES]), state.pool.shape[0] // page_words
     if used + free_pages > slots:
         pool = sparse_zeros(max(2 * slots, used + free_pages) * page_words, np.int64)
@@ -349,7 +386,7 @@ def state_bytes(state: SearchState) -> int:
     """Bytes of search memory that can be committed: used pool pages, page table, heap and INCONS
     entries in use (the rest of the lazily committed buffers is never touched)."""
     used = int(state.iscal[_search.I_PAGES]) * _search.PAGE * _search.REC * 8
-    heaps = int(state.hsize.sum()) * _search.REC * 8
+    heaps = int(state.hsize.sum()) * _search.HREC * 8
     return used + state.ptab.nbytes + heaps + int(state.iscal[2]) * 8
 
 
