@@ -199,3 +199,23 @@ def test_level_one_domain_skips_the_action_tables_and_adds_them_later(seed: int)
     for cell in cells:
         q = int(rng.integers(domain.num_states))
         assert _edges(domain, int(cell), q) == _edges(reference, int(cell), q)
+
+
+@settings(max_examples=5, deadline=None)
+@given(st.integers(0, 2**31 - 1))
+def test_the_a_star_setup_plans_on_a_level_one_domain_and_no_llm_upgrades_it(seed: int) -> None:
+    """plan() builds the domain its setup needs: A* (occupancy moves only) without composite action
+    tables; a later NO-LLM plan on the same problem adds them, and both reach the same optimum."""
+    from sgplan.planning import plan
+
+    problem, full = random_problem(seed, guidance="none"), random_problem(seed, guidance="none")
+    try:
+        a_star = plan(problem, "A*")
+    except PlanningError:
+        return
+    assert problem.domain_for(1).max_level == 1 and problem.domain_for(1).maps == []
+    no_llm = plan(problem, "NO-LLM")
+    assert problem.domain_for(1).max_level == 4 and problem.domain_for(1).maps == full.domain.maps
+    assert a_star.status == no_llm.status
+    if a_star.status == "optimal":
+        assert a_star.cost_m == pytest.approx(no_llm.cost_m, abs=1e-9)

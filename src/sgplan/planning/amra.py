@@ -184,7 +184,7 @@ def plan(
             f"weight schedule {weights} -> {final_weights} with decay {decay} has more than {MAX_ITERATIONS}"
             " iterations (the search tags closed states with the iteration in 8 bits); lower the decay factor"
         )
-    domain = problem.domain
+    domain = problem.domain_for(spec.max_level)  # A*: no composite action tables
     if spec.uses_llm and domain.llm is None:
         raise PlanningError(f"setup {spec.name} needs LLM guidance; give the problem guidance or use NO-LLM")
     too_big = _search.check_layout(domain.graph.num_cells, domain.num_states, len(domain.kactions.map_floor))
