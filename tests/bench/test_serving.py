@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import json
+import subprocess
 import sys
 from pathlib import Path
 
@@ -34,6 +36,13 @@ def _pids(rows: list[dict]) -> list[int]:
 
 def _run(executor: LocalExecutor, cases: list[Case]) -> dict[str, dict]:
     return {row["key"]: row for row in executor.run(cases)}
+
+
+def _serve(script: str, cases: list[Case]) -> subprocess.CompletedProcess[str]:
+    """Run ``python -c script`` (a worker serving requests on stdin) on ``cases``; its finished process."""
+    requests = "".join(json.dumps({"case": c.to_dict(), "gallery_dir": None}) + "\n" for c in cases)
+    return subprocess.run([sys.executable, "-c", script], input=requests, capture_output=True, text=True,
+                          timeout=300, check=False)
 
 
 def test_two_jobs_run_many_cases_in_two_processes(data_dir: Path) -> None:
@@ -86,9 +95,6 @@ def test_long_lived_workers_give_the_results_of_a_process_per_case(
 def test_output_written_straight_to_fd_1_does_not_break_the_answers(data_dir: Path) -> None:
     """A long-lived worker's answers go to a private copy of stdout: a line written to file descriptor 1
     by anything else during a case lands on stderr, not between two answers."""
-    import json
-    import subprocess
-
     noisy = (
         "import os, sys\nimport sgplan.bench.worker as w\nreal = w.measure\n"
         "def measure(*args, **kwargs):\n    os.write(1, b'noise from C\\n')\n"
@@ -96,9 +102,7 @@ def test_output_written_straight_to_fd_1_does_not_break_the_answers(data_dir: Pa
         "w.measure = measure\nsys.exit(w.main(['--serve']))"
     )
     cases = _cases(data_dir, ["1", "2"])
-    requests = "".join(json.dumps({"case": c.to_dict(), "gallery_dir": None}) + "\n" for c in cases)
-    done = subprocess.run([sys.executable, "-c", noisy], input=requests, capture_output=True, text=True,
-                          timeout=300, check=False)
+    done = _serve(noisy, cases)
     lines = done.stdout.splitlines()
     assert done.returncode == 0 and len(lines) == 2, done.stderr[-2000:]
     assert [json.loads(line)["status"] for line in lines] == ["optimal", "optimal"]
@@ -156,9 +160,6 @@ def test_the_command_uses_long_lived_workers_unless_told(
 def test_a_worker_process_is_set_up_as_sgplans_own(data_dir: Path, tmp_path: Path) -> None:
     """``python -m sgplan.bench.worker`` runs :func:`sgplan.cli.prepare_own_process`: numba skips its BLAS
     probe (no scipy.linalg) and the garbage collector runs less often; the answers are unchanged."""
-    import json
-    import subprocess
-
     from sgplan.cli import GC_YOUNG_THRESHOLD
 
     state = tmp_path / "state.json"
@@ -173,9 +174,7 @@ def test_a_worker_process_is_set_up_as_sgplans_own(data_dir: Path, tmp_path: Pat
         "runpy.run_module('sgplan.bench.worker', run_name='__main__')\n"
     )
     cases = _cases(data_dir, ["1", "2"])
-    requests = "".join(json.dumps({"case": c.to_dict(), "gallery_dir": None}) + "\n" for c in cases)
-    done = subprocess.run([sys.executable, "-c", boot], input=requests, capture_output=True, text=True,
-                          timeout=300, check=False)
+    done = _serve(boot, cases)
     assert done.returncode == 0, done.stderr[-2000:]
     answers = [json.loads(line) for line in done.stdout.splitlines()]
     assert [a["status"] for a in answers] == ["optimal", "optimal"]
