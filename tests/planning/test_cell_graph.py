@@ -179,6 +179,27 @@ def test_cell_centres_and_gather() -> None:
     assert graph.cell_id(int(r[-1]), int(c[-1]), int(f[-1])) == graph.num_cells - 1
 
 
+
+def test_centre_tables_give_the_per_cell_centres_bit_for_bit() -> None:
+    """The search reads h_LLM's cell centres from per-row / column / floor tables: the same float64 bits
+    as the per-cell formula (origin + (index + 0.5) * resolution), on an off-origin grid with several
+    rooms (keys of several groups)."""
+    grid = _random_grid(5, (0.05, 0.07), 1.0)
+    grid = OccupancyGrid(
+        traversable=grid.traversable, room_map=(np.arange(grid.shape[2]) % 3 + 1).astype(np.int16)
+        * np.ones(grid.shape, dtype=np.int16), resolution_m=grid.resolution_m, origin_m=(-3.7, 12.3),
+        floor_z_m=np.array([0.1, 2.9]), stairs=grid.stairs, robot_radius_m=0.0,
+    )
+    graph = build_cell_graph(grid)
+    f, r, c = np.unravel_index(graph.positions(), grid.shape)
+    expected = np.stack([-3.7 + (r + 0.5) * 0.05, 12.3 + (c + 0.5) * 0.07, np.array([0.1, 2.9])[f]], axis=1)
+    assert np.array_equal(graph.cell_xyz, expected)
+    x, y, z = graph.centre_tables
+    cols, rows = len(y), len(x)
+    assert np.array_equal(x[(graph.cell_key // cols) % rows], expected[:, 0])
+    assert np.array_equal(y[graph.cell_key % cols], expected[:, 1])
+    assert np.array_equal(z[graph.cell_floor], expected[:, 2])
+
 def test_a_room_confined_run_never_leaves_its_room() -> None:
     """A U-shaped room around another: the confined shortest paths go round the U (longer than across
     the other room) and equal the distances over the room's cells alone."""

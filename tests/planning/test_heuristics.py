@@ -132,6 +132,12 @@ def test_llm_value_online() -> None:
     expected = float(np.linalg.norm(domain.graph.cell_xyz[cell] - problem.building.room(uuid=10).location_m))
     assert h_llm(domain.kgraph, domain.klogic, cell, 0) == pytest.approx(expected)
     assert h_llm(domain.kgraph, domain.klogic, cell, 1) == 0.0  # accepting
+    # Bit for bit the value from the per-cell centres, at every cell of the room.
+    target, xyz = domain.klogic.llm_target[0, 0], domain.graph.cell_xyz
+    for c in np.flatnonzero(domain.kgraph.cell_room == 0):
+        d = xyz[c] - target
+        assert h_llm(domain.kgraph, domain.klogic, c, 0) == domain.klogic.llm_sum[0, 0] + math.sqrt(
+            d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
 
 
 @settings(max_examples=15, deadline=None)

@@ -375,22 +375,28 @@ def h_ltl(hmap, h_ready, h_dist, h_ptr, h_label, h_add, h_evals, fill_after, row
 
 
 @njit(cache=True, inline="always")
-def h_llm_core(cell_room, cell_xyz, accepting, llm_sum, llm_target, llm_valid, c, q):
+def h_llm_core(cell_room, cell_key, cell_floor, centre_x, centre_y, centre_z, accepting, llm_sum, llm_target,
+               llm_valid, c, q):
+    """h_LLM at (cell c, state q); the cell's centre is read from the per-row / column / floor tables
+    (:meth:`CellGraph.centre_tables`: the values of ``CellGraph.cell_xyz`` without its 24 bytes a cell)."""
     if accepting[q]:
         return 0.0
     room = cell_room[c]
     if room < 0 or not llm_valid[room, q]:
         return 0.0
-    dx = cell_xyz[c, 0] - llm_target[room, q, 0]
-    dy = cell_xyz[c, 1] - llm_target[room, q, 1]
-    dz = cell_xyz[c, 2] - llm_target[room, q, 2]
+    cols = centre_y.shape[0]
+    key = cell_key[c]
+    dx = centre_x[(key // cols) % centre_x.shape[0]] - llm_target[room, q, 0]
+    dy = centre_y[key % cols] - llm_target[room, q, 1]
+    dz = centre_z[cell_floor[c]] - llm_target[room, q, 2]
     return llm_sum[room, q] + np.sqrt(dx * dx + dy * dy + dz * dz)
 
 
 @njit(cache=True)
 def h_llm(G, L, c, q):
     """h_LLM at (cell c, state q), metres (0 where guidance has nothing)."""
-    return h_llm_core(G.cell_room, G.cell_xyz, L.accepting, L.llm_sum, L.llm_target, L.llm_valid, c, q)
+    return h_llm_core(G.cell_room, G.cell_key, G.cell_floor, G.centre_x, G.centre_y, G.centre_z, L.accepting,
+                      L.llm_sum, L.llm_target, L.llm_valid, c, q)
 
 
 @njit(cache=True, inline="always")
@@ -621,7 +627,9 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
     ptab, pool, poolf, incons, iscal = S.ptab, S.pool, S.poolf, S.incons, S.iscal
     hf, hi, hsize = S.hbuff, S.hbuf, S.hsize
     accepting, q_row, hmap = L.accepting, L.q_row, L.hmap
-    cell_room, cell_xyz, in_object_region = G.cell_room, G.cell_xyz, G.in_object_region
+    cell_room, in_object_region = G.cell_room, G.in_object_region
+    cell_key, cell_floor = G.cell_key, G.cell_floor
+    centre_x, centre_y, centre_z = G.centre_x, G.centre_y, G.centre_z
     llm_sum, llm_target, llm_valid = L.llm_sum, L.llm_target, L.llm_valid
     previous = iteration - 1
     capacity = hi.shape[0] // (HREC * q_level.shape[0])
@@ -674,7 +682,8 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
                 hj = (
                     h0
                     if q_htype[j] == 0
-                    else h_llm_core(cell_room, cell_xyz, accepting, llm_sum, llm_target, llm_valid, c, q)
+                    else h_llm_core(cell_room, cell_key, cell_floor, centre_x, centre_y, centre_z, accepting,
+                                    llm_sum, llm_target, llm_valid, c, q)
                 )
                 hsize[j] = hpush(hf, hi, j * capacity, hsize[j], gs + w1 * hj, gs, s)
     return bound
@@ -917,12 +926,8 @@ def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_suc
         G.floor_offset,
         G.cell_floor,
     )
-    cell_label, cell_room, cell_xyz, in_object_region = (
-        G.cell_label,
-        G.cell_room,
-        G.cell_xyz,
-        G.in_object_region,
-    )
+    cell_label, cell_room, in_object_region = G.cell_label, G.cell_room, G.in_object_region
+    cell_key, centre_x, centre_y, centre_z = G.cell_key, G.centre_x, G.centre_y, G.centre_z
     room_obj_ptr, room_obj_map, room_room_ptr, room_room_map = (
         A.room_obj_ptr,
         A.room_obj_map,
@@ -1121,7 +1126,8 @@ def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_suc
                 else:
                     if h_l < 0.0:
                         h_l = h_llm_core(
-                            cell_room, cell_xyz, accepting, llm_sum, llm_target, llm_valid, nc, nq
+                            cell_room, cell_key, cell_floor, centre_x, centre_y, centre_z, accepting, llm_sum,
+                            llm_target, llm_valid, nc, nq,
                         )
                     hj = h_l
                 fj = gn + w1 * hj

@@ -89,14 +89,22 @@ class CellGraph:
         return int(self.cell_floor.shape[0])
 
     @cached_property
+    def centre_tables(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(x of each row, y of each column, z of each floor)`` float64 metres: cell ``c``'s centre is
+        ``(x[cell_row[c]], y[cell_col[c]], z[cell_floor[c]])``, the same values as :attr:`cell_xyz`
+        without its 24 bytes a cell (the search reads them so, for h_LLM)."""
+        _, rows, cols = self.shape
+        return (
+            self.origin_m[0] + (np.arange(rows, dtype=np.int32) + 0.5) * self.resolution_m[0],
+            self.origin_m[1] + (np.arange(cols, dtype=np.int32) + 0.5) * self.resolution_m[1],
+            np.asarray(self.floor_z_m, dtype=np.float64),
+        )
+
+    @property
     def cell_xyz(self) -> np.ndarray:
-        """``(N, 3)`` float64 metric cell centres; z is the grid's floor height. Built on first use (only
-        h_LLM needs it: 24 bytes a cell)."""
-        xyz = np.empty((self.num_cells, 3), dtype=np.float64)
-        xyz[:, 0] = self.origin_m[0] + (self.cell_row + 0.5) * self.resolution_m[0]
-        xyz[:, 1] = self.origin_m[1] + (self.cell_col + 0.5) * self.resolution_m[1]
-        xyz[:, 2] = np.asarray(self.floor_z_m, dtype=np.float64)[self.cell_floor]
-        return xyz
+        """``(N, 3)`` float64 metric cell centres (z: the grid's floor height), computed on each access."""
+        x, y, z = self.centre_tables
+        return np.stack([x[self.cell_row], y[self.cell_col], z[self.cell_floor]], axis=1)
 
     @property
     def cell_row(self) -> np.ndarray:

@@ -39,7 +39,7 @@ from sgplan.scene.model import CatCode
 KernelGraph = namedtuple(
     "KernelGraph",
     "nbr step_cost stairs_first stairs_from stairs_to stairs_cost floor_offset cell_floor cell_label "
-    "cell_room cell_xyz in_object_region",
+    "cell_room in_object_region cell_key centre_x centre_y centre_z",
 )
 KernelActions = namedtuple(
     "KernelActions",
@@ -160,8 +160,7 @@ class PlanningDomain:
         reachable = self.graph.reachable(self.start_cell)
         parts = _action_parts(problem, self.graph, self.cell_label, reachable)
         self.maps, self.kactions, self.kmaps = parts.maps, parts.kactions, parts.kmaps
-        self.kgraph = self.kgraph._replace(cell_room=parts.cell_room, in_object_region=parts.in_region,
-                                           cell_xyz=_cell_xyz(self.graph, self.llm is not None))
+        self.kgraph = self.kgraph._replace(cell_room=parts.cell_room, in_object_region=parts.in_region)
         self.max_level = max_level
         self.precompute_s += time.perf_counter() - t0
 
@@ -278,8 +277,11 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
         cell_floor=graph.cell_floor,
         cell_label=cell_label,
         cell_room=parts.cell_room,
-        cell_xyz=_cell_xyz(graph, llm is not None and max_level >= 2),
         in_object_region=parts.in_region,
+        cell_key=graph.cell_key,
+        centre_x=graph.centre_tables[0],
+        centre_y=graph.centre_tables[1],
+        centre_z=graph.centre_tables[2],
     )
     return PlanningDomain(
         graph=graph,
@@ -373,13 +375,6 @@ def _no_actions(graph: CellGraph, num_rooms: int) -> ActionParts:
     return ActionParts(maps=[], kactions=kactions, kmaps=kmaps,
                        cell_room=sparse_zeros(graph.num_cells, np.int32),
                        in_region=sparse_zeros(graph.num_cells, np.bool_))
-
-
-def _cell_xyz(graph: CellGraph, used: bool) -> np.ndarray:
-    """The kernel's cell centres: only h_LLM reads them, and only setups with LLM queues (max level 4)
-    evaluate it; when not ``used`` a lazily committed zero array stands in (24 bytes a cell never
-    touched)."""
-    return graph.cell_xyz if used else sparse_zeros((graph.num_cells, 3), np.float64)
 
 
 class _Clock:
