@@ -15,7 +15,14 @@ from sgplan.logic import And, Atom, Eventually
 from sgplan.planning import PlanningProblem
 from sgplan.planning._search import h_llm
 from sgplan.planning.llm_heuristic import build_llm_heuristic
-from sgplan.planning.ltl_heuristic import build_ltl_heuristic, fill_row, reachable_states
+from sgplan.planning.ltl_heuristic import (
+    UNIT_M,
+    build_ltl_heuristic,
+    fill_row,
+    reachable_states,
+    unit_costs,
+    unit_field,
+)
 
 from .instances import RES, automaton, marks, open_building, open_grid, random_problem
 from .oracle import optimal_cost
@@ -31,11 +38,55 @@ def _open_problem(formula: str, cells: dict, start=(2, 0, 0)) -> PlanningProblem
 
 
 def test_ltl_value_is_exact_on_open_floor() -> None:
-    # On an obstacle-free floor the geodesic label distances make h exact for a sequence of two goals.
+    # On an obstacle-free floor the geodesic label distances make h exact for a sequence of two goals: the
+    # optimum with every move's cost rounded down to whole units of the fields, within a unit a move of it.
     problem = _open_problem("F(p1 & F p0)", {0: [(2, 10, 0)], 1: [(0, 5, 0)]})
     domain = problem.domain
-    h = domain.ltl.value(domain.start_cell, domain.q_start)
-    assert h == pytest.approx(2 * (3 * RES + 2 * math.hypot(RES, RES)), abs=1e-12)
+    ltl = domain.ltl
+    h = ltl.value(domain.start_cell, domain.q_start)
+    assert ltl.unit_m == UNIT_M
+    straight, diagonal = math.floor(RES / UNIT_M), math.floor(math.hypot(RES, RES) / UNIT_M)
+    assert h == 2 * (3 * straight + 2 * diagonal) * UNIT_M
+    assert h == pytest.approx(2 * (3 * RES + 2 * math.hypot(RES, RES)), abs=10 * UNIT_M)
+
+
+def test_distance_fields_are_whole_units_of_the_rounded_down_move_costs() -> None:
+    # A field is the exact shortest path over the moves' costs rounded down to whole units (so h stays
+    # consistent in the real costs), UNREACHED where its region cannot be reached, and a coarser unit is
+    # taken when a distance would not fit in 32 bits.
+    problem = _open_problem("F p0", {0: [(2, 10, 0)]})
+    graph = problem.domain.graph
+    target = np.array([graph.cell_id(2, 10, 0)])
+    field = unit_field(graph, target, UNIT_M)
+    assert field is not None and field.dtype == np.uint32 and field[target[0]] == 0
+    step, stairs = unit_costs(graph, UNIT_M)
+    assert (step == np.floor(graph.step_cost / UNIT_M)).all() and (step >= 1).all()
+    assert (step * UNIT_M <= graph.step_cost).all() and stairs.shape == graph.stairs_cost.shape
+    # Bellman's equations: |d(x) - d(y)| <= the rounded-down cost of every move, and a neighbour attains it.
+    for x in range(graph.num_cells):
+        moves = [(int(field[y]), int(step[k])) for k, y in enumerate(graph.nbr[x]) if y >= 0]
+        assert all(abs(int(field[x]) - there) <= cost for there, cost in moves)
+        assert field[x] == 0 if x == target[0] else field[x] == min(there + cost for there, cost in moves)
+    too_fine = unit_field(graph, target, 2.0**-40)  # 2^32 units of 2^-40 m: 3.9 mm
+    assert isinstance(too_fine, float)
+    assert too_fine * 2.0**-40 == pytest.approx(field.max() * UNIT_M, rel=1e-5)
+
+
+def test_a_distance_too_long_for_the_unit_takes_a_coarser_one(monkeypatch: pytest.MonkeyPatch) -> None:
+    # With units of 2^-40 m a field overflows 32 bits past 3.9 mm: the heuristic takes the power of two
+    # its longest distance needs, and h is still the rounded-down geodesic.
+    from sgplan.planning import ltl_heuristic
+
+    problem = _open_problem("F(p1 & F p0)", {0: [(2, 10, 0)], 1: [(0, 5, 0)]})
+    domain = problem.domain
+    monkeypatch.setattr(ltl_heuristic, "UNIT_M", 2.0**-40)
+    graph = domain.graph
+    ltl = build_ltl_heuristic(graph, domain.cell_label, domain.trans, domain.accepting, domain.q_start,
+                              graph.reachable(domain.start_cell), start_cell=domain.start_cell)
+    assert 2.0**-40 < ltl.unit_m <= 2.0**-20 and np.log2(ltl.unit_m).is_integer()
+    assert ltl.dist.max() < ltl_heuristic.UNREACHED
+    exact = 2 * (3 * RES + 2 * math.hypot(RES, RES))
+    assert exact - 10 * ltl.unit_m <= ltl.value(domain.start_cell, domain.q_start) <= exact
 
 
 def _possible(domain) -> np.ndarray:
@@ -159,14 +210,15 @@ def test_ltl_rows_filled_on_demand_match_the_eager_minimum(seed: int) -> None:
         row = int(ltl.q_row[q])
         eager = eager_rows[q].tolist()
         assert [ltl.value(c, int(q)) for c in range(len(eager))] == eager
-        fill_row(ltl.hmap, ltl.ready, ltl.dist, ltl.term_ptr, ltl.term_label, ltl.term_add, row)
+        fill_row(ltl.hmap, ltl.ready, ltl.dist, ltl.unit_m, ltl.term_ptr, ltl.term_label, ltl.term_add, row)
         assert ltl.ready[row] == 1 and ltl.hmap[row].tolist() == eager
 
 
 def _eager_rows(ltl) -> np.ndarray:
     """``(Q, N)`` h_LTL of every state at every cell, in numpy from the terms (0 accepting, inf without a
-    row): per term, phi = max(0, max over fields f of lo_f - d_f, d_f - hi_f), plus the cost to go."""
-    dist = ltl.dist.T  # (F, N)
+    row): per term, phi = max(0, max over fields f of lo_f - d_f, d_f - hi_f), plus the cost to go, in units
+    of the fields, times the unit."""
+    dist = ltl.fields_m() / ltl.unit_m  # (F, N) units
     num_fields = dist.shape[0]
     rows = np.full((ltl.q_row.shape[0], dist.shape[1]), np.inf)
     rows[ltl.accepting] = 0.0
@@ -178,7 +230,7 @@ def _eager_rows(ltl) -> np.ndarray:
             hi = ltl.term_add[t, 1 + num_fields :, None]
             phi = np.maximum(np.maximum(lo - dist, dist - hi).max(axis=0), 0.0)
             rows[q] = np.minimum(rows[q], phi + ltl.term_add[t, 0])
-    return rows
+    return rows * ltl.unit_m
 
 
 def _paper_rows(ltl, trans: np.ndarray) -> np.ndarray:
@@ -186,7 +238,7 @@ def _paper_rows(ltl, trans: np.ndarray) -> np.ndarray:
     costs ``c(l, l') = min over the region of l of d_l'``), by value iteration: the bound the pieces
     tighten."""
     labels = ltl.leaving_labels
-    dist = ltl.dist.T  # (F, N)
+    dist = ltl.fields_m()  # (F, N)
     regions = [dist[i] == 0.0 for i in range(len(labels))]
     cost = np.array([[dist[j][regions[i]].min() for j in range(len(labels))] for i in range(len(labels))])
     num_states = trans.shape[0]
@@ -232,9 +284,9 @@ def test_ltl_value_sees_through_a_wide_region() -> None:
                               marks((1, 1, 18), {0: [(0, c, 0) for c in range(3, 13)], 1: [(0, 16, 0)]}),
                               automaton("F(p0 & F p1)", ("p0", "p1")), (0, 0, 0))
     domain = problem.domain
-    assert domain.ltl.value(domain.start_cell, domain.q_start) == pytest.approx(16 * RES, abs=1e-12)
+    assert domain.ltl.value(domain.start_cell, domain.q_start) == pytest.approx(16 * RES, abs=16 * UNIT_M)
     paper = _paper_rows(domain.ltl, domain.trans)[domain.q_start, domain.start_cell]
-    assert paper == pytest.approx(7 * RES, abs=1e-12)
+    assert paper == pytest.approx(7 * RES, abs=7 * UNIT_M)
 
 
 @settings(max_examples=30, deadline=None)
@@ -302,7 +354,8 @@ def test_unordered_goals_solved_optimally_with_any_pieces(
                               piece_m=piece_m, max_pieces=max_pieces)
     domain.ltl = ltl
     domain.klogic = domain.klogic._replace(hmap=ltl.hmap, q_row=ltl.q_row, h_ready=ltl.ready, h_dist=ltl.dist,
-                                           h_ptr=ltl.term_ptr, h_label=ltl.term_label, h_add=ltl.term_add)
+                                           h_unit=ltl.unit_m, h_ptr=ltl.term_ptr, h_label=ltl.term_label,
+                                           h_add=ltl.term_add)
     result = plan(problem, setup)
     assert result.cost_m == pytest.approx(expected, rel=1e-9, abs=1e-9)
     assert ltl.value(domain.start_cell, domain.q_start) <= expected + 1e-9

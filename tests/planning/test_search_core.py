@@ -156,10 +156,12 @@ def test_lazy_h_values_equal_the_filled_rows(seed: int) -> None:
     evals = np.zeros(rows, dtype=np.int64)
     cells = np.random.default_rng(seed).integers(domain.graph.num_cells, size=40)
     for row in range(rows):
-        lazy = [core.h_ltl(hmap, ready, L.h_dist, L.h_ptr, L.h_label, L.h_add, evals, 10**9, row, int(c))
+        lazy = [core.h_ltl(hmap, ready, L.h_dist, L.h_unit, L.h_ptr, L.h_label, L.h_add, evals, 10**9, row,
+                           int(c))
                 for c in cells]
         assert not ready[row]  # computed from the terms, the row untouched
-        filled = [core.h_ltl(hmap, ready, L.h_dist, L.h_ptr, L.h_label, L.h_add, evals, 0, row, int(c))
+        filled = [core.h_ltl(hmap, ready, L.h_dist, L.h_unit, L.h_ptr, L.h_label, L.h_add, evals, 0, row,
+                             int(c))
                   for c in cells]
         assert ready[row]  # past the threshold the row is filled
         assert lazy == filled  # the same bits

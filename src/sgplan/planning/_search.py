@@ -356,7 +356,7 @@ def successors(G, A, M, L, c, q, level, max_level, out_c, out_q, out_cost, out_a
 
 
 @njit(cache=True, inline="always")
-def h_ltl(hmap, h_ready, h_dist, h_ptr, h_label, h_add, h_evals, fill_after, row, c):
+def h_ltl(hmap, h_ready, h_dist, h_unit, h_ptr, h_label, h_add, h_evals, fill_after, row, c):
     """h_LTL at cell ``c`` in the automaton state of tabulated row ``row`` (>= 0).
 
     A filled row is read; otherwise the value is computed from the row's terms
@@ -369,9 +369,9 @@ def h_ltl(hmap, h_ready, h_dist, h_ptr, h_label, h_add, h_evals, fill_after, row
         return hmap[row, c]
     h_evals[row] += 1
     if h_evals[row] > fill_after:
-        fill_row(hmap, h_ready, h_dist, h_ptr, h_label, h_add, row)
+        fill_row(hmap, h_ready, h_dist, h_unit, h_ptr, h_label, h_add, row)
         return hmap[row, c]
-    return row_value(h_dist, h_ptr, h_label, h_add, row, c)
+    return row_value(h_dist, h_unit, h_ptr, h_label, h_add, row, c)
 
 
 @njit(cache=True, inline="always")
@@ -671,7 +671,8 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
         gs = poolf[rec_find(ptab, c, q)]
         row = q_row[q]
         h0 = (
-            h_ltl(hmap, L.h_ready, L.h_dist, L.h_ptr, L.h_label, L.h_add, S.h_evals, fill_after, row, c)
+            h_ltl(hmap, L.h_ready, L.h_dist, L.h_unit, L.h_ptr, L.h_label, L.h_add, S.h_evals, fill_after,
+                  row, c)
             if row >= 0
             else (0.0 if accepting[q] else INF)
         )
@@ -705,7 +706,8 @@ def anchor_path(G, L, S, budget, max_succ):
     nbr, step_cost, stairs_first, stairs_from = G.nbr, G.step_cost, G.stairs_first, G.stairs_from
     stairs_to, stairs_cost, cell_label = G.stairs_to, G.stairs_cost, G.cell_label
     trans, accepting, q_row, hmap = L.trans, L.accepting, L.q_row, L.hmap
-    h_ready, h_dist, h_ptr, h_label, h_add = L.h_ready, L.h_dist, L.h_ptr, L.h_label, L.h_add
+    h_ready, h_dist, h_unit = L.h_ready, L.h_dist, L.h_unit
+    h_ptr, h_label, h_add = L.h_ptr, L.h_label, L.h_add
     ptab, pool, poolf, h_evals = S.ptab, S.pool, S.poolf, S.h_evals
     hf, hi, hsize, incons, fscal, iscal = S.hbuff, S.hbuf, S.hsize, S.incons, S.fscal, S.iscal
 
@@ -825,7 +827,8 @@ def anchor_path(G, L, S, budget, max_succ):
                 if h_ready[row] == 1:
                     h0 = hmap[row, nc]
                 else:
-                    h0 = h_ltl(hmap, h_ready, h_dist, h_ptr, h_label, h_add, h_evals, fill_after, row, nc)
+                    h0 = h_ltl(hmap, h_ready, h_dist, h_unit, h_ptr, h_label, h_add, h_evals, fill_after, row,
+                               nc)
                 if h0 == INF:
                     continue
             if p < 0:  # rec_touch
@@ -938,7 +941,8 @@ def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_suc
     map_exit_cell, map_exit_cost = A.map_exit_cell, A.map_exit_cost
     done_maps, dist, pred, run = M.done, M.dist, M.pred, M.run
     trans, accepting, dead, q_row, hmap = L.trans, L.accepting, L.dead, L.q_row, L.hmap
-    h_ready, h_dist, h_ptr, h_label, h_add = L.h_ready, L.h_dist, L.h_ptr, L.h_label, L.h_add
+    h_ready, h_dist, h_unit = L.h_ready, L.h_dist, L.h_unit
+    h_ptr, h_label, h_add = L.h_ptr, L.h_label, L.h_add
     idempotent = L.idempotent[0]
     llm_sum, llm_target, llm_valid = L.llm_sum, L.llm_target, L.llm_valid
     ptab, pool, poolf, h_evals = S.ptab, S.pool, S.poolf, S.h_evals
@@ -1097,7 +1101,7 @@ def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_suc
                 gn >= poolf[rn] or (w1 <= 1.0 and is_closed(pool[rn + 1], 0, iteration))
             ):
                 continue
-            h0 = h_ltl(hmap, h_ready, h_dist, h_ptr, h_label, h_add, h_evals, fill_after, row, nc)
+            h0 = h_ltl(hmap, h_ready, h_dist, h_unit, h_ptr, h_label, h_add, h_evals, fill_after, row, nc)
             if h0 == INF:
                 continue
             if rn < 0:

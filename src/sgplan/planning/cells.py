@@ -145,19 +145,24 @@ class CellGraph:
         """The values of a ``(floors, rows, cols)`` raster at every cell, as an ``(N,)`` array."""
         return raster.reshape(-1)[self.positions()]
 
-    def distances(self, sources: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+    def distances(
+        self, sources: np.ndarray, out: np.ndarray | None = None,
+        costs: tuple[np.ndarray, np.ndarray] | None = None,
+    ) -> np.ndarray:
         """Exact metres from every cell to the nearest of ``sources`` (cell indices), stairs included.
 
         ``inf`` where no source can be reached. Written into ``out`` (float64, ``(N,)``, any content) when
-        given, which is returned.
+        given, which is returned. ``costs``: other positive ``(step, stairs)`` costs of the same moves
+        (shapes of ``step_cost`` / ``stairs_cost``) in place of the metres.
         """
+        step_cost, stairs_cost = (self.step_cost, self.stairs_cost) if costs is None else costs
         n = self.num_cells
         dist = np.zeros(n, dtype=np.float64) if out is None else out
         dist[:] = 0.0
         pred = np.zeros(n, dtype=np.int32)
         order = np.empty(n, dtype=np.int32)
         dijkstra(
-            self.nbr, self.step_cost, self.stairs_first, self.stairs_from, self.stairs_to, self.stairs_cost,
+            self.nbr, step_cost, self.stairs_first, self.stairs_from, self.stairs_to, stairs_cost,
             0, n, True, np.asarray(sources, dtype=np.int64), _NO_ROOMS, np.int32(-1), 0, dist, pred, order,
         )
         dist[pred == 0] = np.inf

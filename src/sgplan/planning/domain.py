@@ -29,7 +29,7 @@ from sgplan.errors import PlanningError
 from sgplan.planning._memory import sparse_zeros
 from sgplan.planning.cells import CellGraph, build_cell_graph
 from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
-from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic
+from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic, unit_field
 from sgplan.planning.problem import PlanningProblem
 from sgplan.planning.shared import shared_part
 from sgplan.scene.dilate import within_distance
@@ -53,7 +53,7 @@ and ``done (M,)`` uint8 (map and runs ready), shared by the problems with the sa
 (:class:`LabelRuns`); ``order (n,)`` scratch."""
 KernelLogic = namedtuple(
     "KernelLogic",
-    "trans accepting dead idempotent hmap q_row h_ready h_dist h_ptr h_label h_add llm_sum llm_target "
+    "trans accepting dead idempotent hmap q_row h_ready h_dist h_unit h_ptr h_label h_add llm_sum llm_target "
     "llm_valid",
 )
 
@@ -228,7 +228,7 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
     reachable = graph.reachable(start_cell)
     clock.lap("reachable")
     ltl = build_ltl_heuristic(graph, cell_label, trans, accepting, q_start, reachable,
-                              distances=lambda cells, out: _distance_field(problem, graph, cells, out),
+                              distances=lambda cells, unit: _distance_field(problem, graph, cells, unit),
                               start_cell=start_cell)
     clock.lap("ltl")
     if not accepting[q_start] and not np.isfinite(ltl.value(start_cell, q_start)):
@@ -259,6 +259,7 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
         q_row=ltl.q_row,
         h_ready=ltl.ready,
         h_dist=ltl.dist,
+        h_unit=ltl.unit_m,
         h_ptr=ltl.term_ptr,
         h_label=ltl.term_label,
         h_add=ltl.term_add,
@@ -552,22 +553,22 @@ class LabelRuns:
         return int(self.store.count[self.done.astype(bool)].sum()) * 4 + self.done.nbytes
 
 
-def _distance_field(problem: PlanningProblem, graph: CellGraph, cells: np.ndarray, out: np.ndarray) -> None:
-    """Write into ``out`` the exact metres from every cell to ``cells`` (:meth:`CellGraph.distances`),
-    kept by the session (a read-only copy) by grid and target cells; computed in place when the session
-    keeps nothing."""
+def _distance_field(problem: PlanningProblem, graph: CellGraph, cells: np.ndarray, unit_m: float
+                    ) -> np.ndarray | float:
+    """:func:`~sgplan.planning.ltl_heuristic.unit_field` of ``graph``, kept by the session (read-only) by
+    grid, unit and target cells; computed each time when the session keeps nothing."""
     if problem.shared is None or not problem.shared.keeps:
-        graph.distances(cells, out=out)
-        return
+        return unit_field(graph, cells, unit_m)
     cells = np.ascontiguousarray(cells, dtype=np.int64)
-    key = (problem.grid, len(cells), hashlib.blake2b(cells.tobytes(), digest_size=16).digest())
+    key = (problem.grid, unit_m, len(cells), hashlib.blake2b(cells.tobytes(), digest_size=16).digest())
 
-    def build() -> np.ndarray:
-        kept = graph.distances(cells, out=out).copy()
-        kept.flags.writeable = False
-        return kept
+    def build() -> np.ndarray | float:
+        field = unit_field(graph, cells, unit_m)
+        if isinstance(field, np.ndarray):
+            field.flags.writeable = False
+        return field
 
-    out[:] = problem.shared.get("distance_field", key, build)
+    return problem.shared.get("distance_field", key, build)
 
 
 def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:

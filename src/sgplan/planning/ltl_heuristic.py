@@ -42,9 +42,18 @@ a min of 1-Lipschitz functions. If q' != q, x' is an entry cell of its label l (
 region, or left the start, or l moves states twice), so it lies in a piece k of l, ``phi_k(x') = 0`` and
 ``h(x', q) <= G(k, q') <= h(x', q')``; with the first case, ``h(x, q) <= w + h(x', q')``. Composite actions
 are sequences of moves, so the bound chains; h = 0 at acceptance. The paper's h is the special case of one
-piece per label with phi = d_l; this h is never below it (LB(j, k) >= the region-to-region cost). Values are
-float64 sums and maxima of exact distances, so the only slack is float rounding (~1e-15 m). ``h = inf``
+piece per label with phi = d_l; this h is never below it (LB(j, k) >= the region-to-region cost). ``h = inf``
 proves that no accepting path exists, so the search may drop such states.
+
+**Fixed point.** The fields are uint32 whole units of ``unit_m`` (:data:`UNIT_M` = 2^-22 m, coarser only
+where a distance would not fit): 4 bytes per cell and field instead of float64's 8. To keep every step of
+the argument above exact, a field is not a rounded metric distance (rounding breaks the 1-Lipschitz
+property by an ulp) but the exact shortest path over the same graph with every move's cost rounded *down*
+to whole units (:func:`unit_costs`): that ``d_f`` is 1-Lipschitz in the rounded costs, which are <= the
+real ones, and 0 on its region, which is all the proofs use. h is computed from sums and maxima of whole
+units (exact in float64 below 2^53) and converted to metres by a power of two (exact), so it has no
+rounding slack at all; it gives up at most a unit (2.4e-7 m) per move of a path in tightness. The 8
+fields of Collierville mission 5 take 16 MB instead of 32.
 
 Only automaton states reachable from the start state get a row. The search computes values cell by cell
 (:func:`row_value`) and fills a whole row (:func:`fill_row`) only once it has evaluated it often
@@ -69,6 +78,16 @@ PIECE_M = 0.2
 per region visited is about a piece's diameter. 0.2 m took h(start) of the 9-goal benchmark from 0.52 to
 0.96 of the optimum and its A* expansions from 23.0M to 1.0M (0.3 m: 0.95 and 1.5M, 0.6 m: 0.91 and 3.4M;
 0.15 m: 0.97 and 0.7M, at more cost per evaluation)."""
+UNIT_M = 2.0**-22
+"""Metres per unit of the distance fields (a power of two, so unit counts convert to metres exactly): 2^32
+units span 1,024 m; a building whose distances do not fit gets the coarser power of two they need. The
+unit lost per move is below any real difference of path costs, but it does break exact ties: where
+float64 fields made h exact along a bundle of equal-cost optimal paths (f = the optimum on all of them,
+so the search stopped without expanding them), those states now sit just below it and are expanded
+(Gibson, A*: 0-50 % more expansions on 5 of 20 cases, at a lower cost per expansion; see
+benchmarks/results/planning_vs_dijkstra.md)."""
+UNREACHED = np.uint32(np.iinfo(np.uint32).max)
+"""The field value of a cell that cannot reach the field's region."""
 MAX_PIECES = 32
 """At most this many pieces per label region (larger regions get larger squares): the terms of a row, and
 so the cost of an evaluation, grow with the pieces."""
@@ -88,14 +107,16 @@ class LtlHeuristic:
     ready:
         ``(rows,)`` uint8.
     dist:
-        ``(N, F)`` float64: exact metres from each cell to the region of ``leaving_labels[f]`` (the
-        landmarks of the module docstring).
+        ``(N, F)`` uint32: each cell's distance to the region of ``leaving_labels[f]`` in whole units of
+        ``unit_m`` (the landmarks of the module docstring; :data:`UNREACHED` where it cannot reach it).
+    unit_m:
+        metres per unit of ``dist`` and of the terms (a power of two).
     term_ptr, term_label, term_add:
-        row ``r`` is the min over the terms ``t`` of its label groups ``g in term_ptr[r] ..
+        row ``r`` is ``unit_m`` times the min over the terms ``t`` of its label groups ``g in term_ptr[r] ..
         term_ptr[r+1]-1`` of ``phi(x) + term_add[t, 0]``, ``phi`` the bound on the distance to the term's
-        piece. Group ``g`` is ``term_label[g] = (field of the label, first term, end)``, its terms sorted
-        by cost to go ``term_add[t, 0]``; ``term_add[t, 1:1+F]`` / ``term_add[t, 1+F:]`` are the smallest
-        / largest value of each field over the piece.
+        piece (in units). Group ``g`` is ``term_label[g] = (field of the label, first term, end)``, its terms
+        sorted by cost to go ``term_add[t, 0]``; ``term_add[t, 1:1+F]`` / ``term_add[t, 1+F:]`` are the
+        smallest / largest value of each field over the piece (units, as float64).
     accepting:
         ``(Q,)`` bool.
     leaving_labels:
@@ -110,6 +131,7 @@ class LtlHeuristic:
     hmap: np.ndarray
     ready: np.ndarray
     dist: np.ndarray
+    unit_m: float
     term_ptr: np.ndarray
     term_label: np.ndarray
     term_add: np.ndarray
@@ -127,14 +149,25 @@ class LtlHeuristic:
         if row < 0:
             return float("inf")
         if not self.ready[row]:
-            return float(row_value(self.dist, self.term_ptr, self.term_label, self.term_add, row, cell))
+            return float(row_value(self.dist, self.unit_m, self.term_ptr, self.term_label, self.term_add, row,
+                                   cell))
         return float(self.hmap[row, cell])
+
+    def fields_m(self) -> np.ndarray:
+        """``(F, N)`` float64: the distance fields in metres (``inf`` where unreached)."""
+        return np.where(self.dist.T == UNREACHED, np.inf, self.dist.T * self.unit_m)
 
 
 @njit(cache=True, inline="always")
-def row_value(dist, term_ptr, term_label, term_add, row, c):
-    """h at cell ``c`` in the automaton state of row ``row``: the min over the row's terms (see
-    :class:`LtlHeuristic`), computed in full only where it can matter.
+def _units(x):
+    """A field value as float64 units, ``inf`` for :data:`UNREACHED`."""
+    return np.inf if x == UNREACHED else np.float64(x)
+
+
+@njit(cache=True, inline="always")
+def row_value(dist, unit, term_ptr, term_label, term_add, row, c):
+    """h at cell ``c`` in the automaton state of row ``row``, metres: ``unit`` times the min over the row's
+    terms (see :class:`LtlHeuristic`), computed in full only where it can matter.
 
     A term's phi is at least its label's distance, so ``key = d_label(c) + cheapest cost to go`` bounds a
     whole label group from below (the paper's term). Groups are taken in order of key (a selection scan:
@@ -149,20 +182,20 @@ def row_value(dist, term_ptr, term_label, term_add, row, c):
         pick = -1
         pick_key = np.inf
         for g in range(term_ptr[row], term_ptr[row + 1]):
-            key = dist[c, term_label[g, 0]] + term_add[term_label[g, 1], 0]
+            key = _units(dist[c, term_label[g, 0]]) + term_add[term_label[g, 1], 0]
             if key < pick_key and (key > last_key or (key == last_key and g > last)):
                 pick = g
                 pick_key = key
         if pick < 0 or pick_key >= best:
-            return best
-        own = dist[c, term_label[pick, 0]]
+            return best * unit
+        own = _units(dist[c, term_label[pick, 0]])
         for t in range(term_label[pick, 1], term_label[pick, 2]):
             add = term_add[t, 0]
             if own + add >= best:
                 break
             phi = own
             for f in range(width):
-                x = dist[c, f]
+                x = _units(dist[c, f])
                 phi = max(phi, term_add[t, 1 + f] - x, x - term_add[t, 1 + width + f])
                 if phi + add >= best:  # this term cannot be the minimum
                     break
@@ -172,10 +205,10 @@ def row_value(dist, term_ptr, term_label, term_add, row, c):
 
 
 @njit(cache=True)
-def fill_row(hmap, ready, dist, term_ptr, term_label, term_add, row):
+def fill_row(hmap, ready, dist, unit, term_ptr, term_label, term_add, row):
     """Fill ``hmap[row]`` with :func:`row_value` at every cell (the same bits) and mark it ready."""
     for c in range(hmap.shape[1]):
-        hmap[row, c] = row_value(dist, term_ptr, term_label, term_add, row, c)
+        hmap[row, c] = row_value(dist, unit, term_ptr, term_label, term_add, row, c)
     ready[row] = 1
 
 
@@ -199,7 +232,7 @@ def build_ltl_heuristic(
     accepting: np.ndarray,
     q_start: int,
     reachable: np.ndarray | None = None,
-    distances: Callable[[np.ndarray, np.ndarray], object] | None = None,
+    distances: Callable[[np.ndarray, float], np.ndarray | float] | None = None,
     start_cell: int = -1,
     piece_m: float = PIECE_M,
     max_pieces: int = MAX_PIECES,
@@ -223,9 +256,8 @@ def build_ltl_heuristic(
         (the search never leaves them), which tightens h and makes it ``inf`` when a needed label occurs
         only elsewhere.
     distances:
-        optional ``distances(cells, out)`` writing into ``out`` ((N,) float64) the exact metres from
-        every cell to ``cells`` (sorted cell indices), e.g. kept by a session
-        (:mod:`sgplan.planning.shared`); default :meth:`CellGraph.distances`.
+        optional ``distances(cells, unit_m)``: :func:`unit_field` of ``graph`` (the default), e.g. kept by a
+        session (:mod:`sgplan.planning.shared`); ``cells`` are sorted cell indices.
     start_cell:
         the start's cell index: its neighbours become entry cells of their labels, since the ``authors``
         profile reads the start's label only on the first move. -1: none, which keeps h consistent only
@@ -244,17 +276,21 @@ def build_ltl_heuristic(
     needed = np.flatnonzero(leaves.any(axis=0) & present)
     field_of = np.full(trans.shape[1], -1, dtype=np.int64)
     field_of[needed] = np.arange(len(needed))
-    # Cell-major: an evaluation reads all the fields of one cell (one or two cache lines).
-    dist = np.empty((graph.num_cells, len(needed)), dtype=np.float64)
-    field = np.empty(graph.num_cells, dtype=np.float64)
-    for i, label in enumerate(needed):
-        cells = np.flatnonzero((cell_label == label) & inside)
-        if distances is None:
-            graph.distances(cells, out=field)
+    if distances is None:
+        def distances(cells: np.ndarray, unit: float) -> np.ndarray | float:
+            return unit_field(graph, cells, unit)
+    unit_m = finest_unit(graph)
+    while True:  # a coarser unit only if some distance does not fit in 32 bits
+        # Cell-major: an evaluation reads all the fields of one cell (one cache line).
+        dist = np.empty((graph.num_cells, len(needed)), dtype=np.uint32)
+        for i, label in enumerate(needed):
+            field = distances(np.flatnonzero((cell_label == label) & inside), unit_m)
+            if isinstance(field, float):
+                unit_m *= 2.0 ** np.ceil(np.log2(field / (UNREACHED - 1)))
+                break
+            dist[:, i] = field
         else:
-            distances(cells, field)
-        dist[:, i] = field
-    del field
+            break
 
     twice = _moves_twice(trans, states)
     piece_label, piece_cells, piece_ptr = _pieces(graph, cell_label, field_of, inside, twice, start_cell,
@@ -274,6 +310,7 @@ def build_ltl_heuristic(
         hmap=sparse_zeros((rows, graph.num_cells), np.float64),
         ready=np.zeros(rows, dtype=np.uint8),
         dist=dist,
+        unit_m=unit_m,
         term_ptr=term_ptr,
         term_label=groups,
         term_add=term_data,
@@ -283,6 +320,46 @@ def build_ltl_heuristic(
         piece_cells=piece_cells,
         piece_ptr=piece_ptr,
     )
+
+
+def finest_unit(graph: CellGraph) -> float:
+    """:data:`UNIT_M`, or the largest power of two not above the cheapest move if that is finer (every move
+    must cost at least one unit)."""
+    cheapest = min(graph.step_cost.min(), graph.stairs_cost.min(initial=np.inf))
+    return min(UNIT_M, 2.0 ** np.floor(np.log2(cheapest)))
+
+
+def unit_costs(graph: CellGraph, unit_m: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(step, stairs)``: the cost of every move of ``graph`` in whole units of ``unit_m``, rounded down
+    (float64 whole numbers, >= 1 when ``unit_m <= finest_unit(graph)``)."""
+    return np.floor(graph.step_cost / unit_m), np.floor(graph.stairs_cost / unit_m)
+
+
+def unit_field(graph: CellGraph, cells: np.ndarray, unit_m: float) -> np.ndarray | float:
+    """``(N,)`` uint32: each cell's distance to ``cells`` in whole units of ``unit_m`` over the moves'
+    costs rounded down (:func:`unit_costs`; the module docstring's fixed point), :data:`UNREACHED` where
+    none can be reached. If some distance does not fit below :data:`UNREACHED`, the largest one (units, a
+    float) instead: a coarser unit is needed."""
+    field = graph.distances(cells, costs=unit_costs(graph, unit_m))
+    out = np.empty(graph.num_cells, dtype=np.uint32)
+    largest = _whole_units(field, out)
+    return out if largest < UNREACHED else largest
+
+
+@njit(cache=True)
+def _whole_units(field, out):
+    """``out[i]`` = the whole number ``field[i]``, :data:`UNREACHED` for ``inf``, where it fits below
+    :data:`UNREACHED`; returns the largest finite value."""
+    largest = 0.0
+    for i in range(field.shape[0]):
+        x = field[i]
+        if x == np.inf:
+            out[i] = UNREACHED
+        else:
+            largest = max(largest, x)
+            if x < UNREACHED:
+                out[i] = np.uint32(x)
+    return largest
 
 
 def _moves_twice(trans: np.ndarray, states: np.ndarray) -> np.ndarray:
@@ -372,7 +449,7 @@ def _entry_cells(nbr, stairs_from, stairs_to, cell_label, field_of, inside, twic
 
 @njit(cache=True)
 def _piece_bounds(dist, piece_cells, piece_ptr):
-    """``(lo, hi)`` ``(K, F)``: smallest and largest value of each field over each piece."""
+    """``(lo, hi)`` ``(K, F)``: smallest and largest value of each field over each piece (float64 units)."""
     num_pieces, num_fields = piece_ptr.shape[0] - 1, dist.shape[1]
     lo = np.full((num_pieces, num_fields), np.inf)
     hi = np.full((num_pieces, num_fields), -np.inf)
@@ -380,15 +457,16 @@ def _piece_bounds(dist, piece_cells, piece_ptr):
         for i in range(piece_ptr[k], piece_ptr[k + 1]):
             c = piece_cells[i]
             for f in range(num_fields):
-                lo[k, f] = min(lo[k, f], dist[c, f])
-                hi[k, f] = max(hi[k, f], dist[c, f])
+                x = _units(dist[c, f])
+                lo[k, f] = min(lo[k, f], x)
+                hi[k, f] = max(hi[k, f], x)
     return lo, hi
 
 
 @njit(cache=True)
 def _piece_lower_bounds(dist, piece_cells, piece_ptr, lo, hi):
     """``(K, K)``: ``LB[j, k]`` = min over the cells ``y`` of piece ``j`` of ``phi_k(y)`` (the module
-    docstring's bound on the distance from ``y`` to piece ``k``)."""
+    docstring's bound on the distance from ``y`` to piece ``k``, units)."""
     num_pieces, num_fields = lo.shape
     between = np.full((num_pieces, num_pieces), np.inf)
     x = np.empty(num_fields)
@@ -396,7 +474,7 @@ def _piece_lower_bounds(dist, piece_cells, piece_ptr, lo, hi):
         for i in range(piece_ptr[j], piece_ptr[j + 1]):
             c = piece_cells[i]
             for f in range(num_fields):
-                x[f] = dist[c, f]
+                x[f] = _units(dist[c, f])
             for k in range(num_pieces):
                 phi = 0.0
                 for f in range(num_fields):
