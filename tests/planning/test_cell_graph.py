@@ -37,6 +37,12 @@ def _random_grid(seed: int, res: tuple[float, float], stairs_cost: float) -> Occ
     )
 
 
+def _moves(graph) -> tuple[np.ndarray, ...]:
+    """The cell graph's move arrays in the order the Dijkstra kernel takes them."""
+    return (graph.cell_at, graph.cell_pos, graph.step_offset, graph.step_cost, graph.stairs_first,
+            graph.stairs_from, graph.stairs_to, graph.stairs_cost)
+
+
 def _scipy_distances(grid: OccupancyGrid, graph, sources: np.ndarray) -> np.ndarray:
     """Distances over the compact cells, from an independently built sparse matrix (raster moves)."""
     heads, tails, weights = [], [], []
@@ -85,8 +91,7 @@ def test_distances_match_scipy(seed: int, res, stairs_cost: float, num_sources: 
     n = graph.num_cells
     dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)
     settled = dijkstra(
-        graph.nbr, graph.step_cost, graph.stairs_first, graph.stairs_from, graph.stairs_to,
-        graph.stairs_cost, 0, n, True, sources.astype(np.int64), np.zeros(0, np.int32), np.int32(-1), 0,
+        *_moves(graph), 0, n, True, sources.astype(np.int64), np.zeros(0, np.int32), np.int32(-1), 0,
         dist, pred, order,
     )
     assert settled == int(np.isfinite(theirs).sum())
@@ -96,7 +101,8 @@ def test_distances_match_scipy(seed: int, res, stairs_cost: float, num_sources: 
         if nxt >= 0:
             step = dist[cell] - dist[nxt]
             stairs = (graph.stairs_from == cell) & (graph.stairs_to == nxt)
-            moves = np.concatenate([graph.step_cost[graph.nbr[cell] == nxt], graph.stairs_cost[stairs]])
+            steps = graph.step_cost[graph.neighbours([cell])[0] == nxt]
+            moves = np.concatenate([steps, graph.stairs_cost[stairs]])
             assert np.isclose(moves, step, atol=1e-9).any()
     # Label runs from pred alone: the last cell of the equal-label stretch, walked naively.
     labels = np.random.default_rng(seed + 1).integers(0, 3, n).astype(np.int32)
@@ -126,8 +132,7 @@ def test_many_sources_and_early_stop_grow_the_queues() -> None:
     dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)
     source = np.array([graph.cell_id(30, 0, 0)], dtype=np.int64)
     settled = dijkstra(
-        graph.nbr, graph.step_cost, graph.stairs_first, graph.stairs_from, graph.stairs_to,
-        graph.stairs_cost, 0, n, False, source, cell_room, np.int32(1), int((cell_room == 1).sum()),
+        *_moves(graph), 0, n, False, source, cell_room, np.int32(1), int((cell_room == 1).sum()),
         dist, pred, order,
     )
     assert settled < n
@@ -149,6 +154,116 @@ def test_empty_grid_and_extreme_room_ids() -> None:
     assert np.array_equal(graph.cell_ids(np.arange(grid.traversable.size)), index)
     with pytest.raises(SceneError, match="fit int16"):
         build_cell_graph(dataclasses.replace(grid, room_map=room_map.astype(np.int32) + 1))
+
+
+def _rooms_and_stairs_grid(seed: int) -> OccupancyGrid:
+    """1-3 floors of 1-12 x 1-12 cells, mostly traversable (the raster border included), random room ids
+    (some negative, some of no traversable cell), and up to 3 stairs links between random portals."""
+    rng = np.random.default_rng(seed)
+    floors, rows, cols = int(rng.integers(1, 4)), int(rng.integers(1, 13)), int(rng.integers(1, 13))
+    traversable = rng.random((floors, rows, cols)) > rng.choice([0.1, 0.4, 0.8])
+    room_map = rng.choice(np.array([-7, 0, 2, 5, 9, 300], dtype=np.int16), size=(floors, rows, cols))
+    stairs = []
+    for _ in range(int(rng.integers(0, 4)) if floors > 1 else 0):
+        lower = int(rng.integers(floors - 1))
+        low = (int(rng.integers(rows)), int(rng.integers(cols)))
+        up = (int(rng.integers(rows)), int(rng.integers(cols)))
+        traversable[lower][low] = traversable[lower + 1][up] = True
+        stairs.append(StairsLink(lower, low, up, float(rng.uniform(0.5, 5.0))))
+    return OccupancyGrid(
+        traversable=traversable, room_map=room_map, resolution_m=(0.05, 0.07), origin_m=(0.0, 0.0),
+        floor_z_m=np.arange(floors) * 3.0, stairs=tuple(stairs), robot_radius_m=0.0,
+    )
+
+
+@settings(max_examples=60, deadline=None)
+@given(seed=st.integers(0, 2**31 - 1))
+def test_moves_equal_an_independent_numpy_neighbourhood(seed: int) -> None:
+    """The padded raster index gives, for every cell (border cells included), exactly the 8-neighbourhood
+    a plain numpy construction gives: cells numbered by (floor, room id, raster position), a step leads
+    to the traversable cell at (row + d_row, col + d_col) of the same floor, whatever its room, and
+    nowhere outside the raster; the stairs tables hold both directions of every link."""
+    grid = _rooms_and_stairs_grid(seed)
+    graph = build_cell_graph(grid)
+    floors, rows, cols = grid.shape
+    f, r, c = np.nonzero(grid.traversable)
+    flat = np.ravel_multi_index((f, r, c), grid.shape)
+    order = np.lexsort((flat, grid.room_map[f, r, c], f))
+    number = np.full(grid.shape, -1, dtype=np.int64)
+    number[f[order], r[order], c[order]] = np.arange(len(order))
+    framed = np.pad(number, ((0, 0), (1, 1), (1, 1)), constant_values=-1)
+    expected = np.stack(
+        [framed[:, 1 + dr : 1 + dr + rows, 1 + dc : 1 + dc + cols][f[order], r[order], c[order]]
+         for dr, dc in STEPS],
+        axis=1,
+    )
+    assert graph.num_cells == len(order)
+    assert np.array_equal(graph.neighbours(), expected)
+    backwards = np.arange(graph.num_cells)[::-1]
+    assert np.array_equal(graph.neighbours(backwards), expected[backwards])
+    assert np.array_equal(graph.positions(), flat[order])
+    assert np.array_equal(graph.cell_floor, f[order]) and graph.cell_floor.dtype == np.uint8
+    assert np.array_equal(graph.floor_offset, np.searchsorted(f[order], np.arange(floors + 1)))
+    assert graph.cell_pos.dtype == np.int32 and graph.cell_at.dtype == np.int32
+    assert graph.cell_at.shape == (floors * (rows + 2) * (cols + 2),)
+    assert (graph.cell_at >= 0).sum() == graph.num_cells  # the padding and blocked positions hold -1
+    expected_stairs = sorted(
+        move
+        for link in grid.stairs
+        for a, b in [(number[link.lower_floor][link.lower_cell], number[link.upper_floor][link.upper_cell])]
+        for move in ((a, b, link.cost_m), (b, a, link.cost_m))
+    )
+    assert list(zip(graph.stairs_from.tolist(), graph.stairs_to.tolist(), graph.stairs_cost.tolist(),
+                    strict=True)) == expected_stairs
+    for cell in range(graph.num_cells):
+        j, leaving = int(graph.stairs_first[cell]), []
+        while 0 <= j < len(graph.stairs_from) and graph.stairs_from[j] == cell:
+            leaving.append(j)
+            j += 1
+        assert leaving == np.flatnonzero(graph.stairs_from == cell).tolist()
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=st.integers(0, 2**31 - 1))
+def test_cell_ids_and_positions_round_trip(seed: int) -> None:
+    """cell_ids is a lookup: every raster position gives its cell or -1 (blocked), positions() and
+    cell_ids invert each other, cell_id is -1 outside the grid, rows / columns come back from cell_pos."""
+    grid = _rooms_and_stairs_grid(seed)
+    graph = build_cell_graph(grid)
+    floors, rows, cols = grid.shape
+    everywhere = graph.cell_ids(np.arange(grid.traversable.size))
+    assert everywhere.dtype == np.int64
+    assert np.array_equal(everywhere >= 0, grid.traversable.ravel())  # blocked positions: -1
+    assert np.array_equal(graph.cell_ids(graph.positions()), np.arange(graph.num_cells))
+    assert np.array_equal(everywhere[graph.positions()], np.arange(graph.num_cells))
+    assert np.array_equal(graph.cell_at[graph.cell_pos], np.arange(graph.num_cells))
+    f, r, c = np.unravel_index(graph.positions(), grid.shape)
+    assert np.array_equal(graph.cell_row, r) and np.array_equal(graph.cell_col, c)
+    for cell in range(graph.num_cells):
+        assert graph.cell_id(int(r[cell]), int(c[cell]), int(f[cell])) == cell
+    for floor, row, col in [(0, -1, 0), (0, 0, -1), (0, rows, 0), (0, 0, cols), (floors, 0, 0), (-1, 0, 0)]:
+        assert graph.cell_id(row, col, floor) == -1
+    for floor, row, col in zip(*np.nonzero(~grid.traversable), strict=True):
+        assert graph.cell_id(int(row), int(col), int(floor)) == -1
+
+
+def test_positions_of_a_raster_past_int32() -> None:
+    """A padded raster of more than 2^31 positions stores cell_pos as int64; the position arithmetic
+    (no array of that size needed) still inverts, and positions come back as int64."""
+    shape = (3, 30_000, 30_000)
+    floors, rows, cols = shape
+    rng = np.random.default_rng(0)
+    cells = np.sort(rng.choice(floors * rows * cols, 1000, replace=False))
+    f, r, c = np.unravel_index(cells, shape)
+    graph = dataclasses.replace(
+        build_cell_graph(_random_grid(0, (0.05, 0.05), 1.0)), shape=shape,
+        cell_pos=((f * (rows + 2) + r + 1) * (cols + 2) + c + 1).astype(np.int64),
+        cell_floor=f.astype(np.uint8),
+    )
+    assert graph.padded(cells).max() >= 2**31
+    assert np.array_equal(graph.padded(cells), graph.cell_pos)
+    assert np.array_equal(graph.positions(), cells) and graph.positions().dtype == np.int64
+    assert np.array_equal(graph.cell_row, r) and np.array_equal(graph.cell_col, c)
 
 
 def test_stairs_must_cost_something() -> None:
@@ -183,7 +298,7 @@ def test_cell_centres_and_gather() -> None:
 def test_centre_tables_give_the_per_cell_centres_bit_for_bit() -> None:
     """The search reads h_LLM's cell centres from per-row / column / floor tables: the same float64 bits
     as the per-cell formula (origin + (index + 0.5) * resolution), on an off-origin grid with several
-    rooms (keys of several groups)."""
+    rooms (cells numbered out of raster order)."""
     grid = _random_grid(5, (0.05, 0.07), 1.0)
     grid = OccupancyGrid(
         traversable=grid.traversable, room_map=(np.arange(grid.shape[2]) % 3 + 1).astype(np.int16)
@@ -195,9 +310,9 @@ def test_centre_tables_give_the_per_cell_centres_bit_for_bit() -> None:
     expected = np.stack([-3.7 + (r + 0.5) * 0.05, 12.3 + (c + 0.5) * 0.07, np.array([0.1, 2.9])[f]], axis=1)
     assert np.array_equal(graph.cell_xyz, expected)
     x, y, z = graph.centre_tables
-    cols, rows = len(y), len(x)
-    assert np.array_equal(x[(graph.cell_key // cols) % rows], expected[:, 0])
-    assert np.array_equal(y[graph.cell_key % cols], expected[:, 1])
+    _, prows, pcols = graph.padded_shape  # as h_llm_core reads them: row and column from cell_pos
+    assert np.array_equal(x[(graph.cell_pos // pcols) % prows - 1], expected[:, 0])
+    assert np.array_equal(y[graph.cell_pos % pcols - 1], expected[:, 1])
     assert np.array_equal(z[graph.cell_floor], expected[:, 2])
 
 def test_a_room_confined_run_never_leaves_its_room() -> None:
@@ -217,8 +332,7 @@ def test_a_room_confined_run_never_leaves_its_room() -> None:
     dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)
     source = np.array([graph.cell_id(0, 0, 0)], dtype=np.int64)
     settled = dijkstra(
-        graph.nbr, graph.step_cost, graph.stairs_first, graph.stairs_from, graph.stairs_to,
-        graph.stairs_cost, 0, n, False, source, cell_room, np.int32(1), int(in_u.sum()), dist, pred, order,
+        *_moves(graph), 0, n, False, source, cell_room, np.int32(1), int(in_u.sum()), dist, pred, order,
     )
     assert settled == int(in_u.sum()) and (pred[~in_u] == 0).all()
     room_only = OccupancyGrid(
@@ -251,8 +365,7 @@ def test_stop_count_ignores_room_cells_cut_off_from_the_sources() -> None:
     n = graph.num_cells
     dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)
     settled = dijkstra(
-        graph.nbr, graph.step_cost, graph.stairs_first, graph.stairs_from, graph.stairs_to,
-        graph.stairs_cost, 0, n, False, source, cell_room, np.int32(1), count, dist, pred, order,
+        *_moves(graph), 0, n, False, source, cell_room, np.int32(1), count, dist, pred, order,
     )
     full = _scipy_distances(grid, graph, source)
     room = (cell_room == 1) & np.isfinite(full)

@@ -63,8 +63,9 @@ def test_distance_fields_are_whole_units_of_the_rounded_down_move_costs() -> Non
     assert (step == np.floor(graph.step_cost / UNIT_M)).all() and (step >= 1).all()
     assert (step * UNIT_M <= graph.step_cost).all() and stairs.shape == graph.stairs_cost.shape
     # Bellman's equations: |d(x) - d(y)| <= the rounded-down cost of every move, and a neighbour attains it.
+    neighbours = graph.neighbours()
     for x in range(graph.num_cells):
-        moves = [(int(field[y]), int(step[k])) for k, y in enumerate(graph.nbr[x]) if y >= 0]
+        moves = [(int(field[y]), int(step[k])) for k, y in enumerate(neighbours[x]) if y >= 0]
         assert all(abs(int(field[x]) - there) <= cost for there, cost in moves)
         assert field[x] == 0 if x == target[0] else field[x] == min(there + cost for there, cost in moves)
     too_fine = unit_field(graph, target, 2.0**-40)  # 2^32 units of 2^-40 m: 3.9 mm
@@ -268,7 +269,7 @@ def _paper_rows(ltl, trans: np.ndarray) -> np.ndarray:
 def _every_move(graph):
     """``(src, dst, cost)`` arrays of every move of the cell graph (steps and stairs)."""
     src = np.repeat(np.arange(graph.num_cells), 8)
-    dst = graph.nbr.ravel().astype(np.int64)
+    dst = graph.neighbours().ravel().astype(np.int64)
     cost = np.tile(graph.step_cost, graph.num_cells)
     keep = dst >= 0
     return (np.concatenate([src[keep], graph.stairs_from]), np.concatenate([dst[keep], graph.stairs_to]),

@@ -1,8 +1,9 @@
 """Multi-source Dijkstra over the compact cell graph (numba), with predecessors and label runs.
 
 The graph is the one the search moves on (:mod:`sgplan.planning.cells`): 8-connected steps between
-traversable cells and, optionally, stairs between portals. A run covers a contiguous range of cell
-indices ``[lo, hi)`` (one floor, or the whole building) and writes LOCAL arrays of length ``hi - lo``:
+traversable cells (move ``k`` of cell ``u`` leads to ``cell_at[cell_pos[u] + step_offset[k]]``, -1: none)
+and, optionally, stairs between portals. A run covers a contiguous range of cell indices ``[lo, hi)``
+(one floor, or the whole building) and writes LOCAL arrays of length ``hi - lo``:
 
 - ``dist``: metres to the nearest source, valid where ``pred > 0``;
 - ``pred``: 0 = not reached, 1 = a source, ``j + 2`` = the next cell (local index ``j``) on a shortest path
@@ -51,7 +52,7 @@ def _ring_grow(keys, values):
 
 @njit(cache=True)
 def dijkstra(
-    nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost,
+    cell_at, cell_pos, step_offset, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost,
     lo, hi, use_stairs, sources, cell_room, stop_room, stop_count, dist, pred, order,
 ):
     """Fill ``dist`` / ``pred`` / ``order`` (local, see the module docstring); returns cells settled.
@@ -95,7 +96,8 @@ def dijkstra(
     # _settle returns when a bucket or the stairs heap may overflow; they grow here, outside its loop (an
     # array variable re-bound inside a hot numba loop costs atomic reference counting on every iteration).
     while _settle(
-        nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost, lo, n, use_stairs, cell_room,
+        cell_at, cell_pos, step_offset, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost,
+        lo, n, use_stairs, cell_room,
         stop_room, stop_count, dist, pred, order, delta, bkeys, bvals, bcount, skeys, sties, svals, state,
     ):
         if bcount.max() + 16 > bkeys.shape[1]:
@@ -107,7 +109,8 @@ def dijkstra(
 
 @njit(cache=True)
 def _settle(
-    nbr, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost, lo, n, use_stairs, cell_room,
+    cell_at, cell_pos, step_offset, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost,
+    lo, n, use_stairs, cell_room,
     stop_room, stop_count, dist, pred, order, delta, bkeys, bvals, bcount, skeys, sties, svals, state,
 ):
     """The loop of :func:`dijkstra`; returns True when a queue needs more room first, False when the run
@@ -158,8 +161,9 @@ def _settle(
                 if room_settled >= stop_count:
                     stopped = True
                     break
+            pu = cell_pos[gu]
             for k in range(8):
-                v = nbr[gu, k] - lo
+                v = cell_at[pu + step_offset[k]] - lo
                 if v < 0 or v >= n or (stop_room >= 0 and cell_room[v + lo] != stop_room):
                     continue
                 nd = d + step_cost[k]
@@ -208,9 +212,9 @@ def _settle(
 
 
 @njit(cache=True)
-def flood(nbr, stairs_first, stairs_from, stairs_to, start, seen):
+def flood(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, start, seen):
     """Mark in ``seen`` (bool, all cells) every cell reachable from cell ``start`` by steps and stairs."""
-    stack = np.empty(nbr.shape[0], dtype=np.int32)
+    stack = np.empty(cell_pos.shape[0], dtype=np.int32)
     stack[0] = start
     seen[start] = True
     top = 1
@@ -218,8 +222,9 @@ def flood(nbr, stairs_first, stairs_from, stairs_to, start, seen):
     while top > 0:
         top -= 1
         u = stack[top]
+        pu = cell_pos[u]
         for k in range(8):
-            v = nbr[u, k]
+            v = cell_at[pu + step_offset[k]]
             if v >= 0 and not seen[v]:
                 seen[v] = True
                 stack[top] = v

@@ -89,7 +89,9 @@ def build_map(G, A, M, k):
     if M.built[k] == 0:
         src = A.map_src[A.map_src_ptr[k] : A.map_src_ptr[k + 1]]
         M.count[k] = dijkstra(
-            G.nbr,
+            G.cell_at,
+            G.cell_pos,
+            G.step_offset,
             G.step_cost,
             G.stairs_first,
             G.stairs_from,
@@ -170,7 +172,9 @@ def maps_ready(done, cell_room, cell_floor, in_object_region, room_obj_ptr, room
 
 @njit(cache=True, inline="always")
 def step_successors(
-    nbr,
+    cell_at,
+    cell_pos,
+    step_offset,
     step_cost,
     stairs_first,
     stairs_from,
@@ -188,8 +192,9 @@ def step_successors(
     """Write the occupancy successors of (c, q) (8 steps, stairs) into the ``out_*`` buffers; returns
     their number. Successor q may be dead; the caller filters."""
     n = 0
+    pc = cell_pos[c]
     for k in range(8):
-        v = nbr[c, k]
+        v = cell_at[pc + step_offset[k]]
         if v >= 0:
             out_c[n] = v
             out_q[n] = trans[q, cell_label[v]]
@@ -317,8 +322,9 @@ def successors(G, A, M, L, c, q, level, max_level, out_c, out_q, out_cost, out_a
     ensure_maps(G, A, M, c, level, max_level)
     n = 0
     if level <= 1:
-        n = step_successors(G.nbr, G.step_cost, G.stairs_first, G.stairs_from, G.stairs_to, G.stairs_cost,
-                            G.cell_label, L.trans, c, q, out_c, out_q, out_cost, out_act)
+        n = step_successors(G.cell_at, G.cell_pos, G.step_offset, G.step_cost, G.stairs_first, G.stairs_from,
+                            G.stairs_to, G.stairs_cost, G.cell_label, L.trans, c, q, out_c, out_q, out_cost,
+                            out_act)
     if max_level >= 2 and level != 1:
         n = map_successors(
             G.floor_offset,
@@ -375,19 +381,20 @@ def h_ltl(hmap, h_ready, h_dist, h_unit, h_ptr, h_label, h_add, h_evals, fill_af
 
 
 @njit(cache=True, inline="always")
-def h_llm_core(cell_room, cell_key, cell_floor, centre_x, centre_y, centre_z, accepting, llm_sum, llm_target,
+def h_llm_core(cell_room, cell_pos, cell_floor, centre_x, centre_y, centre_z, accepting, llm_sum, llm_target,
                llm_valid, c, q):
     """h_LLM at (cell c, state q); the cell's centre is read from the per-row / column / floor tables
-    (:meth:`CellGraph.centre_tables`: the values of ``CellGraph.cell_xyz`` without its 24 bytes a cell)."""
+    (:meth:`CellGraph.centre_tables`: the values of ``CellGraph.cell_xyz`` without its 24 bytes a cell) at
+    its row and column in the padded raster (one more than in the grid)."""
     if accepting[q]:
         return 0.0
     room = cell_room[c]
     if room < 0 or not llm_valid[room, q]:
         return 0.0
-    cols = centre_y.shape[0]
-    key = cell_key[c]
-    dx = centre_x[(key // cols) % centre_x.shape[0]] - llm_target[room, q, 0]
-    dy = centre_y[key % cols] - llm_target[room, q, 1]
+    pcols = centre_y.shape[0] + 2
+    pos = cell_pos[c]
+    dx = centre_x[(pos // pcols) % (centre_x.shape[0] + 2) - 1] - llm_target[room, q, 0]
+    dy = centre_y[pos % pcols - 1] - llm_target[room, q, 1]
     dz = centre_z[cell_floor[c]] - llm_target[room, q, 2]
     return llm_sum[room, q] + np.sqrt(dx * dx + dy * dy + dz * dz)
 
@@ -395,7 +402,7 @@ def h_llm_core(cell_room, cell_key, cell_floor, centre_x, centre_y, centre_z, ac
 @njit(cache=True)
 def h_llm(G, L, c, q):
     """h_LLM at (cell c, state q), metres (0 where guidance has nothing)."""
-    return h_llm_core(G.cell_room, G.cell_key, G.cell_floor, G.centre_x, G.centre_y, G.centre_z, L.accepting,
+    return h_llm_core(G.cell_room, G.cell_pos, G.cell_floor, G.centre_x, G.centre_y, G.centre_z, L.accepting,
                       L.llm_sum, L.llm_target, L.llm_valid, c, q)
 
 
@@ -628,7 +635,7 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
     hf, hi, hsize = S.hbuff, S.hbuf, S.hsize
     accepting, q_row, hmap = L.accepting, L.q_row, L.hmap
     cell_room, in_object_region = G.cell_room, G.in_object_region
-    cell_key, cell_floor = G.cell_key, G.cell_floor
+    cell_pos, cell_floor = G.cell_pos, G.cell_floor
     centre_x, centre_y, centre_z = G.centre_x, G.centre_y, G.centre_z
     llm_sum, llm_target, llm_valid = L.llm_sum, L.llm_target, L.llm_valid
     previous = iteration - 1
@@ -683,7 +690,7 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
                 hj = (
                     h0
                     if q_htype[j] == 0
-                    else h_llm_core(cell_room, cell_key, cell_floor, centre_x, centre_y, centre_z, accepting,
+                    else h_llm_core(cell_room, cell_pos, cell_floor, centre_x, centre_y, centre_z, accepting,
                                     llm_sum, llm_target, llm_valid, c, q)
                 )
                 hsize[j] = hpush(hf, hi, j * capacity, hsize[j], gs + w1 * hj, gs, s)
@@ -703,7 +710,8 @@ def anchor_path(G, L, S, budget, max_succ):
     only and stay), and the counters live in locals until the loop returns. test_search_core checks that both
     loops leave identical search memory.
     """
-    nbr, step_cost, stairs_first, stairs_from = G.nbr, G.step_cost, G.stairs_first, G.stairs_from
+    cell_at, cell_pos, step_offset = G.cell_at, G.cell_pos, G.step_offset
+    step_cost, stairs_first, stairs_from = G.step_cost, G.stairs_first, G.stairs_from
     stairs_to, stairs_cost, cell_label = G.stairs_to, G.stairs_cost, G.cell_label
     trans, accepting, q_row, hmap = L.trans, L.accepting, L.q_row, L.hmap
     h_ready, h_dist, h_unit = L.h_ready, L.h_dist, L.h_unit
@@ -793,10 +801,11 @@ def anchor_path(G, L, S, budget, max_succ):
         r = (ptab[q, c >> PAGE_BITS] * PAGE + (c & PAGE_MASK)) * REC
         pool[r + 1] = with_closed(pool[r + 1], ALL_LEVELS, iteration)
         gs = poolf[r]
+        pc = np.int64(cell_pos[c])
         j = stairs_first[c]
         for k in range(9 + n_stairs):
             if k < 8:
-                nc = np.int64(nbr[c, k])
+                nc = np.int64(cell_at[pc + step_offset[k]])
                 if nc < 0:
                     continue
                 cost = step_cost[k]
@@ -922,7 +931,8 @@ def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_suc
     """:func:`improve_path` in general: any queues, composite actions (the loop that :func:`anchor_path`
     specialises)."""
     # Unpack once (see the note above the array-level cores).
-    nbr, step_cost, stairs_first, stairs_from = G.nbr, G.step_cost, G.stairs_first, G.stairs_from
+    cell_at, cell_pos, step_offset = G.cell_at, G.cell_pos, G.step_offset
+    step_cost, stairs_first, stairs_from = G.step_cost, G.stairs_first, G.stairs_from
     stairs_to, stairs_cost, floor_offset, cell_floor = (
         G.stairs_to,
         G.stairs_cost,
@@ -930,7 +940,7 @@ def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_suc
         G.cell_floor,
     )
     cell_label, cell_room, in_object_region = G.cell_label, G.cell_room, G.in_object_region
-    cell_key, centre_x, centre_y, centre_z = G.cell_key, G.centre_x, G.centre_y, G.centre_z
+    centre_x, centre_y, centre_z = G.centre_x, G.centre_y, G.centre_z
     room_obj_ptr, room_obj_map, room_room_ptr, room_room_map = (
         A.room_obj_ptr,
         A.room_obj_map,
@@ -1009,7 +1019,9 @@ def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_suc
         n = 0
         if level <= 1:
             n = step_successors(
-                nbr,
+                cell_at,
+                cell_pos,
+                step_offset,
                 step_cost,
                 stairs_first,
                 stairs_from,
@@ -1130,7 +1142,7 @@ def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_suc
                 else:
                     if h_l < 0.0:
                         h_l = h_llm_core(
-                            cell_room, cell_key, cell_floor, centre_x, centre_y, centre_z, accepting, llm_sum,
+                            cell_room, cell_pos, cell_floor, centre_x, centre_y, centre_z, accepting, llm_sum,
                             llm_target, llm_valid, nc, nq,
                         )
                     hj = h_l

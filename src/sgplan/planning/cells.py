@@ -6,12 +6,26 @@ raster order. So each floor is a contiguous index range, which lets every per-ce
 and each room is one too, so what is written over one room (a composite action's map, confined to its
 room; a search's pages) fills whole memory pages instead of a slice of every raster row it crosses.
 
-Nothing of the graph is sized by the whole raster: a cell is named by its key
-``((floor * G + group) * rows + row) * cols + col`` (``group`` = rank of its room id among the room ids
-of traversable cells, G of them), keys ascend with the cell index, and a raster position is found by
-computing its key (room id from the grid's room raster) and binary search. Edges follow
-:mod:`sgplan.scene.grid`: 8-connected steps into traversable cells (Euclidean step cost in metres) and
-stairs between portal cells.
+Moves are not tabulated per cell. A **padded raster index** ``cell_at`` holds, for every position of the
+grid with one extra cell on every side of each floor (``(floors, rows + 2, cols + 2)``, flat), the index
+of the cell there or -1 (not traversable, or padding); ``cell_pos[c]`` is cell ``c``'s position in it.
+Move ``k`` of :data:`STEPS` leads from ``c`` to ``cell_at[cell_pos[c] + step_offset[k]]`` (-1: not
+allowed), ``step_offset[k] = d_row * (cols + 2) + d_col``: the padding keeps every lookup in bounds, so
+it takes no branch, and never reaches another floor. A raster position is found by a lookup too
+(:meth:`CellGraph.cell_ids`). Edges follow :mod:`sgplan.scene.grid`: 8-connected steps into traversable
+cells (Euclidean step cost in metres; a diagonal step needs only its target cell traversable) and stairs
+between portal cells.
+
+Memory: 4 bytes per padded raster position (``cell_at``) plus 5 per cell (``cell_pos`` int32,
+``cell_floor`` uint8), against 40 per cell for a per-cell table of the 8 neighbours (32 bytes) with a
+sort key and an int32 floor. The index costs less whenever more than 4 / 35 = 11.4 % of the padded
+raster is traversable (Gibson scenes 23-28 %: Collierville 9.9 MB instead of 20.1 MB; the synthetic
+16M-cell building 56 %: 113 MB instead of 376 MB); on a very sparse raster it costs more (5 % free:
+85 bytes a cell instead of 40), because it pays for every blocked position. It is still the default:
+the grid itself (``traversable`` 1 byte, ``room_map`` 2 bytes) and the label raster (1-4 bytes) already
+take 4-7 bytes per raster position, so the index never changes the order of the memory a building
+needs, while the moves of the search's expansions and of every Dijkstra read a few raster rows instead
+of 32 bytes a cell, and a position is found without a search.
 """
 
 from __future__ import annotations
@@ -38,22 +52,22 @@ class CellGraph:
     Attributes
     ----------
     shape:
-        ``(floors, rows, cols)`` of the grid.
-    cell_key:
-        ``(N,)`` ascending key of each cell (see the module docstring; int32 when the key range allows,
-        else int64).
-    room_map:
-        the grid's ``(floors, rows, cols)`` room raster (the grid's own array, not a copy), and
-    room_group:
-        ``(65536,)`` int32: the group of each int16 room id (at ``id + 32768``), -1 for ids of no cell;
-        ``num_groups`` groups. Together they give the key of a raster position.
+        ``(floors, rows, cols)`` of the grid; the padded raster is ``(floors, rows + 2, cols + 2)``
+        (:attr:`padded_shape`), position ``(f, r, c)`` of the grid at ``(f, r + 1, c + 1)``.
+    cell_at:
+        ``(floors * (rows + 2) * (cols + 2),)`` int32: the padded raster index, the cell at each flat
+        padded position, -1 where there is none (not traversable, or the padding).
+    cell_pos:
+        ``(N,)`` flat padded position of each cell (int32 when the padded raster allows, else int64);
+        :attr:`cell_row` / :attr:`cell_col` and :meth:`positions` are computed from it on use.
     cell_floor:
-        ``(N,)`` int32 floor of each cell (:attr:`cell_row` / :attr:`cell_col` and :meth:`positions` are
-        computed on use).
+        ``(N,)`` floor of each cell, in the smallest unsigned dtype that holds the floor numbers (uint8 up
+        to 256 floors).
     floor_offset:
         ``(floors + 1,)`` int64: cells of floor ``f`` are ``floor_offset[f] .. floor_offset[f+1] - 1``.
-    nbr:
-        ``(N, 8)`` int32 neighbour cell per move of :data:`STEPS`, -1 where the move is not allowed.
+    step_offset:
+        ``(8,)`` int64: move ``k`` of :data:`STEPS` leads from cell ``c`` to
+        ``cell_at[cell_pos[c] + step_offset[k]]`` (-1: the move is not allowed); :meth:`neighbours`.
     step_cost:
         ``(8,)`` metres of each move.
     stairs_from, stairs_to, stairs_cost:
@@ -68,13 +82,11 @@ class CellGraph:
     """
 
     shape: tuple[int, int, int]
-    cell_key: np.ndarray
-    room_map: np.ndarray
-    room_group: np.ndarray
-    num_groups: int
+    cell_at: np.ndarray
+    cell_pos: np.ndarray
     cell_floor: np.ndarray
     floor_offset: np.ndarray
-    nbr: np.ndarray
+    step_offset: np.ndarray
     step_cost: np.ndarray
     stairs_from: np.ndarray
     stairs_to: np.ndarray
@@ -86,7 +98,13 @@ class CellGraph:
 
     @property
     def num_cells(self) -> int:
-        return int(self.cell_floor.shape[0])
+        return int(self.cell_pos.shape[0])
+
+    @property
+    def padded_shape(self) -> tuple[int, int, int]:
+        """``(floors, rows + 2, cols + 2)``: the raster :attr:`cell_at` indexes (flat)."""
+        floors, rows, cols = self.shape
+        return floors, rows + 2, cols + 2
 
     @cached_property
     def centre_tables(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -109,37 +127,58 @@ class CellGraph:
     @property
     def cell_row(self) -> np.ndarray:
         """``(N,)`` int32 row of each cell, computed on each access (4 bytes a cell, not kept)."""
-        _, rows, cols = self.shape
-        row = self.cell_key // cols
-        row %= rows
+        _, prows, pcols = self.padded_shape
+        row = self.cell_pos // pcols
+        row %= prows
+        row -= 1
         return row.astype(np.int32, copy=False)
 
     @property
     def cell_col(self) -> np.ndarray:
         """``(N,)`` int32 column of each cell, computed on each access (4 bytes a cell, not kept)."""
-        return (self.cell_key % self.shape[2]).astype(np.int32, copy=False)
+        col = self.cell_pos % self.padded_shape[2]
+        col -= 1
+        return col.astype(np.int32, copy=False)
 
     def positions(self) -> np.ndarray:
         """``(N,)`` flat raster position ``(floor * rows + row) * cols + col`` of every cell (int32 when the
         raster allows, else int64), computed on each call."""
         floors, rows, cols = self.shape
         dtype = np.int32 if floors * rows * cols < 2**31 else np.int64
-        plane = rows * cols
-        within = (self.cell_key % plane).astype(dtype, copy=False)  # row * cols + col
-        within += self.cell_floor.astype(dtype) * dtype(plane)
-        return within
+        _, prows, pcols = self.padded_shape
+        # padded = floor * prows * pcols + (row + 1) * pcols + col + 1
+        #        = position + floor * (prows * pcols - rows * cols) + 2 * row + pcols + 1
+        position = self.cell_pos.copy()
+        position -= self.cell_row.astype(position.dtype, copy=False) * 2 + (pcols + 1)
+        position -= self.cell_floor.astype(position.dtype) * (prows * pcols - rows * cols)
+        return position.astype(dtype, copy=False)
+
+    def padded(self, positions: np.ndarray) -> np.ndarray:
+        """The flat padded positions (int64) of flat raster positions ``(floor * rows + row) * cols + col``
+        (which must lie inside the raster)."""
+        _, rows, cols = self.shape
+        _, prows, pcols = self.padded_shape
+        positions = np.asarray(positions, dtype=np.int64)
+        floor, within = np.divmod(positions, rows * cols)
+        return positions + floor * (prows * pcols - rows * cols) + within // cols * 2 + (pcols + 1)
 
     def cell_ids(self, positions: np.ndarray) -> np.ndarray:
         """The cell index (int64) at each flat raster position of ``positions``, -1 where the position is
         not a cell (not traversable). Positions must lie inside the raster."""
-        return _ids_at(self.cell_key, self.room_map, self.room_group, self.num_groups, positions)
+        return self.cell_at[self.padded(positions)].astype(np.int64)
 
     def cell_id(self, row: int, col: int, floor: int) -> int:
         """Index of cell ``(row, col, floor)``, -1 if it is outside the grid or not traversable."""
         f, r, c = self.shape
         if not (0 <= floor < f and 0 <= row < r and 0 <= col < c):
             return -1
-        return int(self.cell_ids(np.array([(floor * r + row) * c + col]))[0])
+        return int(self.cell_at[(floor * (r + 2) + row + 1) * (c + 2) + col + 1])
+
+    def neighbours(self, cells: np.ndarray | None = None) -> np.ndarray:
+        """``(n, 8)`` int32: the cell each move of :data:`STEPS` leads to from each of ``cells`` (all cells
+        when None), -1 where the move is not allowed. Computed on each call."""
+        pos = self.cell_pos if cells is None else self.cell_pos[np.asarray(cells, dtype=np.int64)]
+        return self.cell_at[pos[:, None] + self.step_offset]
 
     def gather(self, raster: np.ndarray) -> np.ndarray:
         """The values of a ``(floors, rows, cols)`` raster at every cell, as an ``(N,)`` array."""
@@ -162,8 +201,9 @@ class CellGraph:
         pred = np.zeros(n, dtype=np.int32)
         order = np.empty(n, dtype=np.int32)
         dijkstra(
-            self.nbr, step_cost, self.stairs_first, self.stairs_from, self.stairs_to, stairs_cost,
-            0, n, True, np.asarray(sources, dtype=np.int64), _NO_ROOMS, np.int32(-1), 0, dist, pred, order,
+            self.cell_at, self.cell_pos, self.step_offset, step_cost, self.stairs_first, self.stairs_from,
+            self.stairs_to, stairs_cost, 0, n, True, np.asarray(sources, dtype=np.int64), _NO_ROOMS,
+            np.int32(-1), 0, dist, pred, order,
         )
         dist[pred == 0] = np.inf
         return dist
@@ -171,38 +211,12 @@ class CellGraph:
     def reachable(self, start: int) -> np.ndarray:
         """``(N,)`` bool: the cells reachable from cell ``start`` (steps and stairs); a flood fill."""
         seen = np.zeros(self.num_cells, dtype=np.bool_)
-        flood(self.nbr, self.stairs_first, self.stairs_from, self.stairs_to, start, seen)
+        flood(self.cell_at, self.cell_pos, self.step_offset, self.stairs_first, self.stairs_from,
+              self.stairs_to, start, seen)
         return seen
 
 
 _NO_ROOMS = np.zeros(0, dtype=np.int32)
-
-
-def _ids_at(
-    cell_key: np.ndarray, room_map: np.ndarray, room_group: np.ndarray, num_groups: int, positions: np.ndarray
-) -> np.ndarray:
-    """:meth:`CellGraph.cell_ids` from the graph's parts."""
-    positions = np.asarray(positions, dtype=np.int64)
-    _, rows, cols = room_map.shape
-    plane = rows * cols
-    group = room_group[room_map.reshape(-1)[positions].astype(np.int64) + 32768]
-    ids = _find(cell_key, (positions // plane * num_groups + group) * plane + positions % plane)
-    ids[group < 0] = -1  # a room id of no cell: the key would name a cell of another group
-    return ids
-
-
-def _find(cell_key: np.ndarray, keys: np.ndarray) -> np.ndarray:
-    """Int64 index into the ascending ``cell_key`` of each of ``keys``, -1 where absent."""
-    if cell_key.shape[0] == 0:
-        return np.full(keys.shape, -1, dtype=np.int64)
-    # Searched in cell_key's dtype (a mixed-dtype search converts all of cell_key on every call); keys
-    # beyond its range cannot be present.
-    info = np.iinfo(cell_key.dtype)
-    valid = (keys >= info.min) & (keys <= info.max)
-    wanted = np.where(valid, keys, 0).astype(cell_key.dtype, copy=False)
-    ids = np.searchsorted(cell_key, wanted).astype(np.int64, copy=False)
-    ids[ids >= cell_key.shape[0]] = 0
-    return np.where(valid & (cell_key[ids] == wanted), ids, -1)
 
 
 @njit(cache=True)
@@ -217,12 +231,13 @@ def _room_ids(traversable, room_map, present):
 
 
 @njit(cache=True)
-def _tabulate(traversable, room_map, room_group, num_groups, cell_key, cell_floor, nbr):
+def _tabulate(traversable, room_map, room_group, num_groups, cell_at, cell_pos, cell_floor, floor_offset):
     """Number the traversable cells of ``traversable`` (floors, rows, cols) by (floor, room group, raster
-    order) into ``cell_key`` / ``cell_floor``, and fill ``nbr`` (N, 8) per :data:`STEPS`. Scratch is a
-    counter per group and the cell indices of three raster rows, not a raster: rows are numbered in
-    raster order (each group's counter advancing), one row ahead of the row whose moves are filled."""
+    order) into ``cell_pos`` / ``cell_floor`` / ``floor_offset``, and fill the padded raster index
+    ``cell_at`` (every position, the padding -1 too): one counting pass, one numbering pass, each
+    group's counter advancing in raster order."""
     floors, rows, cols = traversable.shape
+    prows, pcols = rows + 2, cols + 2
     slots = floors * num_groups
     start = np.zeros(slots + 1, dtype=np.int64)
     for f in range(floors):
@@ -232,36 +247,33 @@ def _tabulate(traversable, room_map, room_group, num_groups, cell_key, cell_floo
                     start[f * num_groups + room_group[room_map[f, r, c] + 32768] + 1] += 1
     for g in range(slots):
         start[g + 1] += start[g]
-    near = np.full((3, cols), -1, dtype=np.int64)  # cell index per column of rows r-1, r, r+1 (mod 3)
+    for f in range(floors + 1):
+        floor_offset[f] = start[f * num_groups]
     for f in range(floors):
-        for r in range(-1, rows):
-            ahead = r + 1
-            if ahead < rows:
-                b = ahead % 3
-                for c in range(cols):
-                    if traversable[f, ahead, c]:
-                        g = f * num_groups + room_group[room_map[f, ahead, c] + 32768]
-                        i = start[g]
-                        start[g] += 1
-                        near[b, c] = i
-                        cell_key[i] = (g * rows + ahead) * cols + c
-                        cell_floor[i] = f
-                    else:
-                        near[b, c] = -1
-            if r < 0:
-                continue
+        base = f * prows * pcols
+        for p in range(base, base + pcols):  # the padding row above the floor
+            cell_at[p] = -1
+        for r in range(rows):
+            p = base + (r + 1) * pcols
+            cell_at[p] = -1  # the padding column on the left
             for c in range(cols):
-                i = near[r % 3, c]
-                if i < 0:
-                    continue
-                for k in range(8):
-                    r2 = r + STEPS[k, 0]
-                    c2 = c + STEPS[k, 1]
-                    nbr[i, k] = near[r2 % 3, c2] if 0 <= r2 < rows and 0 <= c2 < cols else -1
+                p += 1
+                if traversable[f, r, c]:
+                    g = f * num_groups + room_group[room_map[f, r, c] + 32768]
+                    i = start[g]
+                    start[g] += 1
+                    cell_at[p] = i
+                    cell_pos[i] = p
+                    cell_floor[i] = f
+                else:
+                    cell_at[p] = -1
+            cell_at[p + 1] = -1  # and on the right
+        for p in range(base + (rows + 1) * pcols, base + prows * pcols):  # the padding row below
+            cell_at[p] = -1
 
 
 def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
-    """Index the traversable cells of ``grid`` and tabulate their moves (compiled, one pass per table).
+    """Index the traversable cells of ``grid`` and their padded raster (compiled, two passes).
 
     Raises
     ------
@@ -285,13 +297,30 @@ def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
     room_group = np.full(1 << 16, -1, dtype=np.int32)
     room_group[present] = np.arange(num_groups, dtype=np.int32)
     n = int(np.count_nonzero(traversable))
-    keys = floors * max(num_groups, 1) * rows * cols
-    cell_key = np.empty(n, dtype=np.int32 if keys < 2**31 else np.int64)
-    cell_floor = np.empty(n, dtype=np.int32)
-    nbr = np.empty((n, 8), dtype=np.int32)
-    _tabulate(traversable, room_map, room_group, num_groups, cell_key, cell_floor, nbr)
+    padded = floors * (rows + 2) * (cols + 2)
+    cell_at = np.empty(padded, dtype=np.int32)
+    cell_pos = np.empty(n, dtype=np.int32 if padded < 2**31 else np.int64)
+    cell_floor = np.empty(n, dtype=np.min_scalar_type(max(floors - 1, 0)))
+    floor_offset = np.empty(floors + 1, dtype=np.int64)
+    _tabulate(traversable, room_map, room_group, num_groups, cell_at, cell_pos, cell_floor, floor_offset)
     res_x, res_y = grid.resolution_m
     step_cost = np.hypot(STEPS[:, 0] * res_x, STEPS[:, 1] * res_y).astype(np.float64)
+    graph = CellGraph(
+        shape=(floors, rows, cols),
+        cell_at=cell_at,
+        cell_pos=cell_pos,
+        cell_floor=cell_floor,
+        floor_offset=floor_offset,
+        step_offset=STEPS[:, 0] * (cols + 2) + STEPS[:, 1],
+        step_cost=step_cost,
+        stairs_from=np.zeros(0, dtype=np.int32),
+        stairs_to=np.zeros(0, dtype=np.int32),
+        stairs_cost=np.zeros(0, dtype=np.float64),
+        stairs_first=sparse_zeros(n, np.int32),
+        origin_m=(float(grid.origin_m[0]), float(grid.origin_m[1])),
+        resolution_m=(float(res_x), float(res_y)),
+        floor_z_m=np.asarray(grid.floor_z_m, dtype=np.float64),
+    )
 
     moves = []
     for link in grid.stairs:
@@ -300,35 +329,14 @@ def build_cell_graph(grid: OccupancyGrid) -> CellGraph:
                 f"stairs between floors {link.lower_floor} and {link.upper_floor} cost {link.cost_m} m; "
                 "a stairs cost must be positive metres"
             )
-        low, up = _ids_at(cell_key, room_map, room_group, num_groups, np.array([
-            (link.lower_floor * rows + link.lower_cell[0]) * cols + link.lower_cell[1],
-            (link.upper_floor * rows + link.upper_cell[0]) * cols + link.upper_cell[1],
-        ]))
+        low = graph.cell_id(link.lower_cell[0], link.lower_cell[1], link.lower_floor)
+        up = graph.cell_id(link.upper_cell[0], link.upper_cell[1], link.upper_floor)
         if low >= 0 and up >= 0:
             moves += [(low, up, link.cost_m), (up, low, link.cost_m)]
     moves.sort()
-    stairs_from = np.array([m[0] for m in moves], dtype=np.int32)
-    stairs_to = np.array([m[1] for m in moves], dtype=np.int32)
-    stairs_cost = np.array([m[2] for m in moves], dtype=np.float64)
-    stairs_first = sparse_zeros(n, np.int32)
+    graph.stairs_from = np.array([m[0] for m in moves], dtype=np.int32)
+    graph.stairs_to = np.array([m[1] for m in moves], dtype=np.int32)
+    graph.stairs_cost = np.array([m[2] for m in moves], dtype=np.float64)
     for j in range(len(moves) - 1, -1, -1):
-        stairs_first[stairs_from[j]] = j
-
-    return CellGraph(
-        shape=(floors, rows, cols),
-        cell_key=cell_key,
-        room_map=room_map,
-        room_group=room_group,
-        num_groups=num_groups,
-        cell_floor=cell_floor,
-        floor_offset=np.searchsorted(cell_floor, np.arange(floors + 1)).astype(np.int64),
-        nbr=nbr,
-        step_cost=step_cost,
-        stairs_from=stairs_from,
-        stairs_to=stairs_to,
-        stairs_cost=stairs_cost,
-        stairs_first=stairs_first,
-        origin_m=(float(grid.origin_m[0]), float(grid.origin_m[1])),
-        resolution_m=(float(res_x), float(res_y)),
-        floor_z_m=np.asarray(grid.floor_z_m, dtype=np.float64),
-    )
+        graph.stairs_first[graph.stairs_from[j]] = j
+    return graph

@@ -38,8 +38,8 @@ from sgplan.scene.model import CatCode
 # Arrays handed to the compiled search, grouped by role (numba accepts named tuples of arrays).
 KernelGraph = namedtuple(
     "KernelGraph",
-    "nbr step_cost stairs_first stairs_from stairs_to stairs_cost floor_offset cell_floor cell_label "
-    "cell_room in_object_region cell_key centre_x centre_y centre_z",
+    "cell_at cell_pos step_offset step_cost stairs_first stairs_from stairs_to stairs_cost floor_offset "
+    "cell_floor cell_label cell_room in_object_region centre_x centre_y centre_z",
 )
 KernelActions = namedtuple(
     "KernelActions",
@@ -268,7 +268,9 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
         llm_valid=guide.has_target,
     )
     kgraph = KernelGraph(
-        nbr=graph.nbr,
+        cell_at=graph.cell_at,
+        cell_pos=graph.cell_pos,
+        step_offset=graph.step_offset,
         step_cost=graph.step_cost,
         stairs_first=graph.stairs_first,
         stairs_from=graph.stairs_from,
@@ -279,7 +281,6 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
         cell_label=cell_label,
         cell_room=parts.cell_room,
         in_object_region=parts.in_region,
-        cell_key=graph.cell_key,
         centre_x=graph.centre_tables[0],
         centre_y=graph.centre_tables[1],
         centre_z=graph.centre_tables[2],

@@ -384,8 +384,8 @@ def _pieces(
     """``(piece_label, piece_cells, piece_ptr)`` (see :class:`LtlHeuristic`): the entry cells of every
     measured label, binned into squares of ``piece_m`` (larger for labels that would get more than
     ``max_pieces``)."""
-    entry = _entry_cells(graph.nbr, graph.stairs_from, graph.stairs_to, cell_label, field_of, inside,
-                         twice, start_cell)
+    entry = _entry_cells(graph.cell_at, graph.cell_pos, graph.step_offset, graph.stairs_from, graph.stairs_to,
+                         cell_label, field_of, inside, twice, start_cell)
     cells = np.flatnonzero(entry)
     field = field_of[cell_label[cells]]
     side = max(1, round(piece_m / min(graph.resolution_m)))
@@ -421,10 +421,11 @@ def _bin_key(graph: CellGraph, cells: np.ndarray, side: int) -> np.ndarray:
 
 
 @njit(cache=True)
-def _entry_cells(nbr, stairs_from, stairs_to, cell_label, field_of, inside, twice, start_cell):
+def _entry_cells(cell_at, cell_pos, step_offset, stairs_from, stairs_to, cell_label, field_of, inside, twice,
+                 start_cell):
     """``(N,)`` bool: the measured-label cells (``field_of >= 0``, inside) where the automaton can change
     state on a move (see the module docstring)."""
-    n = nbr.shape[0]
+    n = cell_pos.shape[0]
     entry = np.zeros(n, dtype=np.bool_)
     for x in range(n):
         label = cell_label[x]
@@ -433,8 +434,9 @@ def _entry_cells(nbr, stairs_from, stairs_to, cell_label, field_of, inside, twic
         if twice[label]:
             entry[x] = True
             continue
+        pos = cell_pos[x]
         for k in range(8):
-            y = nbr[x, k]
+            y = cell_at[pos + step_offset[k]]
             if y >= 0 and (cell_label[y] != label or y == start_cell):
                 entry[x] = True
                 break
