@@ -2,7 +2,9 @@
 
 Prints per case: first-path search time, first cost / optimal cost, search time to the optimum,
 expansions, load and precompute seconds, whole-process wall seconds and peak RSS (the child's own
-ru_maxrss), next to the authors' C++ numbers measured on this kind of machine where they exist.
+``VmHWM``; not ``ru_maxrss``, which Linux carries over an exec from the parent's address space, so a child
+started by a parent holding a loaded scene reported the parent's peak), next to the authors' C++
+numbers measured on this kind of machine where they exist.
 
     .venv/bin/python benchmarks/planning_gibson.py                 # the four reference cases
     .venv/bin/python benchmarks/planning_gibson.py --all           # 3 scenes x 5 missions x 5 starts
@@ -16,7 +18,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import resource
 import subprocess
 import sys
 import time
@@ -56,7 +57,10 @@ def run_one(scene: str, mission: int, start: int, setup: str, profile: str) -> d
             status=result.status, first_s=first.time_s, first_cost=first.cost_m, cost=result.cost_m,
             opt_s=last.time_s, expansions=result.expansions, precompute_s=result.precompute_s,
         )
-    row["rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    # VmHWM of this process's own address space (the worker's reader; present in older trees too)
+    from sgplan.bench.worker import _peak_rss_mb
+
+    row["rss_mb"] = _peak_rss_mb()
     return row
 
 
