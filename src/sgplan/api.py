@@ -239,14 +239,14 @@ class Session:
     def labels(self, mission: Mission, reach_radius_m: float | None = None) -> np.ndarray:
         """The mission's label raster (as :meth:`Mission.labels`), from the cells of each proposition kept
         between missions (sparse: a few MB at most where full masks took ~6 MB each on a Gibson scene)."""
+        from sgplan.scene.labels import raster_from_cells
+
         mission.check_scene(self.building)
         reach = self.radii(reach_radius_m=reach_radius_m).reach_m
-        floors, (rows, cols) = self.building.num_floors, self.building.grid_shape
-        labels = np.zeros((floors, rows, cols), dtype=np.uint32)
-        flat = labels.reshape(-1)
-        for bit, prop in enumerate(mission.ordered_propositions):
-            flat[self.proposition_cells(prop, reach)] |= np.uint32(1 << bit)
-        return labels
+        return raster_from_cells(
+            (self.building.num_floors, *self.building.grid_shape),
+            [self.proposition_cells(prop, reach) for prop in mission.ordered_propositions],
+        )
 
     def proposition_cells(self, prop: Proposition, reach_radius_m: float) -> np.ndarray:
         """Flat indices of the cells where ``prop`` holds at this reach radius (metres), as

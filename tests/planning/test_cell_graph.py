@@ -14,7 +14,7 @@ from scipy.sparse.csgraph import dijkstra as scipy_dijkstra
 from sgplan.errors import SceneError
 from sgplan.planning._dijkstra import dijkstra, label_runs
 from sgplan.planning.cells import STEPS, build_cell_graph
-from sgplan.planning.domain import _compact_labels, stop_counts
+from sgplan.planning.domain import _compact_labels, label_index_dtype, room_index_dtype, stop_counts
 from sgplan.scene.grid import OccupancyGrid, StairsLink
 
 
@@ -269,4 +269,15 @@ def test_compact_labels_equal_numpy_unique(seed: int, bits: int) -> None:
     label_masks, cell_label = _compact_labels(masks, 2**bits)
     expected_masks, expected_ids = np.unique(masks, return_inverse=True)
     assert np.array_equal(label_masks, expected_masks) and label_masks.dtype == np.int64
-    assert np.array_equal(cell_label, expected_ids) and cell_label.dtype == np.int32
+    assert np.array_equal(cell_label, expected_ids) and cell_label.dtype == np.uint8  # 7 labels at most
+
+
+def test_label_and_room_index_dtypes_hold_every_id() -> None:
+    """Compact label ids and room indices are stored in the smallest dtype that holds them all."""
+    cases = ((1, np.uint8), (256, np.uint8), (257, np.uint16), (65536, np.uint16), (65537, np.int32))
+    for count, dtype in cases:
+        assert label_index_dtype(count) == dtype and np.iinfo(dtype).max >= count - 1
+    masks = np.arange(300, dtype=np.uint32)
+    label_masks, cell_label = _compact_labels(masks, 512)
+    assert cell_label.dtype == np.uint16 and np.array_equal(label_masks[cell_label], masks)
+    assert room_index_dtype(32767) == np.int16 and room_index_dtype(32768) == np.int32

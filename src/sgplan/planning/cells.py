@@ -175,7 +175,7 @@ class CellGraph:
         return seen
 
 
-_NO_ROOMS = np.zeros(0, dtype=np.int32)
+_NO_ROOMS = np.zeros(0, dtype=np.int16)  # the dtype of a domain's cell_room: one compiled dijkstra for both
 
 
 def _ids_at(

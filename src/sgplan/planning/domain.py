@@ -374,7 +374,7 @@ def _no_actions(graph: CellGraph, num_rooms: int) -> ActionParts:
         built=np.zeros(0, dtype=np.uint8),
     )
     return ActionParts(maps=[], kactions=kactions, kmaps=kmaps,
-                       cell_room=sparse_zeros(graph.num_cells, np.int32),
+                       cell_room=sparse_zeros(graph.num_cells, room_index_dtype(num_rooms)),
                        in_region=sparse_zeros(graph.num_cells, np.bool_))
 
 
@@ -393,16 +393,29 @@ class _Clock:
 
 def _compact_labels(masks: np.ndarray, num_labels: int) -> tuple[np.ndarray, np.ndarray]:
     """``(label_masks, cell_label)``: the distinct bitmasks (ascending, int64) and each cell's index into
-    them (int32). A lookup table when the automaton's label space is small, else a sort."""
+    them (:func:`label_index_dtype`: a byte a cell on most missions). A lookup table when the automaton's
+    label space is small, else a sort."""
     if num_labels <= 1 << 22:
         present = np.zeros(num_labels, dtype=np.bool_)
         present[masks] = True
         label_masks = np.flatnonzero(present)
-        lut = np.zeros(num_labels, dtype=np.int32)
-        lut[label_masks] = np.arange(len(label_masks), dtype=np.int32)
+        lut = np.zeros(num_labels, dtype=label_index_dtype(len(label_masks)))
+        lut[label_masks] = np.arange(len(label_masks))
         return label_masks.astype(np.int64), lut[masks]
     label_masks, cell_label = np.unique(masks, return_inverse=True)
-    return label_masks.astype(np.int64), cell_label.astype(np.int32)
+    return label_masks.astype(np.int64), cell_label.astype(label_index_dtype(len(label_masks)))
+
+
+def label_index_dtype(count: int) -> type[np.integer]:
+    """The dtype of a cell's compact label id among ``count`` distinct labels: uint8 up to 256, uint16 up
+    to 65,536, else int32 (a search reads it once per successor, so it is kept small, not widened)."""
+    return np.uint8 if count <= 1 << 8 else np.uint16 if count <= 1 << 16 else np.int32
+
+
+def room_index_dtype(num_rooms: int) -> type[np.integer]:
+    """The dtype of a cell's room index (-1: no room) among ``num_rooms`` rooms: int16 when they fit, else
+    int32."""
+    return np.int16 if num_rooms < 1 << 15 else np.int32
 
 
 def _listing(items: list[str]) -> str:
@@ -580,7 +593,7 @@ def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
         room_lut[room.id] = i
     room_ids = graph.gather(problem.grid.room_map)
     inside = (room_ids > 0) & (room_ids < len(room_lut) - 1)
-    cell_room = np.full(graph.num_cells, -1, dtype=np.int32)
+    cell_room = np.full(graph.num_cells, -1, dtype=room_index_dtype(len(rooms)))
     cell_room[inside] = room_lut[room_ids[inside]]
     del room_ids, inside
 
