@@ -159,7 +159,7 @@ class CellGraph:
         n = self.num_cells
         dist = np.zeros(n, dtype=np.float64) if out is None else out
         dist[:] = 0.0
-        pred = np.zeros(n, dtype=np.int32)
+        pred = np.zeros(n, dtype=np.uint8)
         order = np.empty(n, dtype=np.int32)
         dijkstra(
             self.nbr, step_cost, self.stairs_first, self.stairs_from, self.stairs_to, stairs_cost,

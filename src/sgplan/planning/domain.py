@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from sgplan.errors import PlanningError
+from sgplan.planning._dijkstra import PRED_NONE, PRED_SOURCE, PRED_STAIRS, PRED_STEP, next_cell
 from sgplan.planning._memory import sparse_zeros
 from sgplan.planning.cells import CellGraph, build_cell_graph
 from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
@@ -140,8 +141,11 @@ class PlanningDomain:
         cells: list[int] = []
         x = start
         while x != end:
-            p = int(pred[x - lo]) if 0 <= x - lo < pred.shape[0] else 0
-            x = p - 2 + lo if p > 1 else int(self.kactions.map_exit_cell[k]) if p == 1 else -1
+            p = int(pred[x - lo]) if 0 <= x - lo < pred.shape[0] else PRED_NONE
+            if PRED_STEP <= p < PRED_STAIRS:
+                x = int(next_cell(self.graph.nbr, x, p))
+            else:
+                x = int(self.kactions.map_exit_cell[k]) if p == PRED_SOURCE else -1
             if x < 0 or len(cells) > pred.shape[0]:
                 raise PlanningError(
                     f"internal error: action {self.maps[k]} from cell {start} misses cell {end}"
@@ -367,7 +371,7 @@ def _no_actions(graph: CellGraph, num_rooms: int) -> ActionParts:
     kmaps = KernelMaps(
         done=np.zeros(0, dtype=np.uint8),
         dist=np.zeros((0, 0), dtype=np.float64),
-        pred=np.zeros((0, 0), dtype=np.int32),
+        pred=np.zeros((0, 0), dtype=np.uint8),
         run=np.zeros((0, 0), dtype=np.int32),
         order=none32,
         count=none64,
@@ -516,9 +520,9 @@ class MapStore:
     connected component, filled by the search the first time a family is needed
     (:func:`sgplan.planning._search.build_map`) and then reused by every later problem of the session.
 
-    ``dist`` / ``pred`` ``(M, n)`` (lazily committed: a family costs 12 bytes per cell its Dijkstra
-    touched), ``count (M,)`` cells settled, ``built (M,)`` uint8 1 once the family's Dijkstra
-    ran (it runs once per store)."""
+    ``dist`` / ``pred`` ``(M, n)`` float64 / uint8 move codes (lazily committed: a family costs 9 bytes
+    per cell its Dijkstra touched), ``count (M,)`` cells settled, ``built (M,)`` uint8 1 once the
+    family's Dijkstra ran (it runs once per store)."""
 
     stop_count: np.ndarray
     dist: np.ndarray
@@ -534,7 +538,7 @@ class MapStore:
             stop_count=stop_counts(tables.cell_room, reachable, tables.num_rooms,
                                    tables.kactions.map_stop_room),
             dist=sparse_zeros((m, n_max), np.float64),
-            pred=sparse_zeros((m, n_max), np.int32),
+            pred=sparse_zeros((m, n_max), np.uint8),
             count=np.zeros(m, dtype=np.int64),
             built=np.zeros(m, dtype=np.uint8),
         )
@@ -542,7 +546,7 @@ class MapStore:
     def nbytes(self) -> int:
         """Bytes committed, estimated from the cells settled (the few cells reached but not settled at
         an early stop, and page rounding, are not counted)."""
-        return int(self.count.sum()) * 12 + self.count.nbytes + self.stop_count.nbytes + self.built.nbytes
+        return int(self.count.sum()) * 9 + self.count.nbytes + self.stop_count.nbytes + self.built.nbytes
 
 
 @dataclass(eq=False)
