@@ -333,8 +333,11 @@ class Session:
             radii.reach_from, profile, mission.automaton.num_states,
         )
         announce_compile()
+        # Without kept parts the problem's maps are this plan's alone: freed once the search stops
+        # reading them.
         found = amra_plan(prepared.problem, spec.name, time_limit_s=time_limit_s,
-                          max_expansions=max_expansions, callback=callback, prebuild_actions=prebuild_actions)
+                          max_expansions=max_expansions, callback=callback, prebuild_actions=prebuild_actions,
+                          release_maps=not self.parts.keeps)
         result = PlanResult(
             scene=self.building.name, status=found.status, setup=found.setup, profile=profile,
             cost_m=found.cost_m, bound=found.iterations[-1].bound if found.iterations else None,

@@ -168,6 +168,20 @@ class PlanningDomain:
         self.max_level = max_level
         self.precompute_s += time.perf_counter() - t0
 
+    def release_map_fields(self) -> None:
+        """Free the composite action maps' distances and label runs, keeping the move codes that
+        :meth:`action_cells` follows: for a search whose remaining iterations read no map (the anchor
+        alone on occupancy moves) and whose maps no other problem shares. The domain then serves level 1
+        only (the maps' placeholders are empty); :meth:`ensure_level` builds fresh action parts for a
+        later search with composite actions."""
+        if self.max_level < 2:
+            return
+        maps = self.kmaps
+        self.kmaps = maps._replace(dist=np.zeros((0, 0), dtype=maps.dist.dtype),
+                                   run=np.zeros((0, 0), dtype=maps.run.dtype),
+                                   order=np.zeros(0, dtype=maps.order.dtype))
+        self.max_level = 1
+
     def build_actions(self) -> float:
         """Build every composite action map now instead of lazily during search; returns the seconds
         spent (also added to ``precompute_s``). Costs 1-3 s on the Gibson scenes; afterwards the first
