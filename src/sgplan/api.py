@@ -239,14 +239,14 @@ class Session:
     def labels(self, mission: Mission, reach_radius_m: float | None = None) -> np.ndarray:
         """The mission's label raster (as :meth:`Mission.labels`), from the cells of each proposition kept
         between missions (sparse: a few MB at most where full masks took ~6 MB each on a Gibson scene)."""
+        from sgplan.scene.labels import raster_from_cells
+
         mission.check_scene(self.building)
         reach = self.radii(reach_radius_m=reach_radius_m).reach_m
-        floors, (rows, cols) = self.building.num_floors, self.building.grid_shape
-        labels = np.zeros((floors, rows, cols), dtype=np.uint32)
-        flat = labels.reshape(-1)
-        for bit, prop in enumerate(mission.ordered_propositions):
-            flat[self.proposition_cells(prop, reach)] |= np.uint32(1 << bit)
-        return labels
+        return raster_from_cells(
+            (self.building.num_floors, *self.building.grid_shape),
+            [self.proposition_cells(prop, reach) for prop in mission.ordered_propositions],
+        )
 
     def proposition_cells(self, prop: Proposition, reach_radius_m: float) -> np.ndarray:
         """Flat indices of the cells where ``prop`` holds at this reach radius (metres), as
@@ -333,8 +333,11 @@ class Session:
             radii.reach_from, profile, mission.automaton.num_states,
         )
         announce_compile()
+        # Without kept parts the problem's maps are this plan's alone: freed once the search stops
+        # reading them.
         found = amra_plan(prepared.problem, spec.name, time_limit_s=time_limit_s,
-                          max_expansions=max_expansions, callback=callback, prebuild_actions=prebuild_actions)
+                          max_expansions=max_expansions, callback=callback, prebuild_actions=prebuild_actions,
+                          release_maps=not self.parts.keeps)
         result = PlanResult(
             scene=self.building.name, status=found.status, setup=found.setup, profile=profile,
             cost_m=found.cost_m, bound=found.iterations[-1].bound if found.iterations else None,

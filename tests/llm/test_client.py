@@ -359,10 +359,13 @@ def test_client_rate_limit_applies_to_every_attempt(
     fake_llm: FakeOpenAIServer, llm_config: LLMConfig,
 ) -> None:
     client, slept = make_client(llm_config, requests_per_minute=600)  # 0.1 s apart
+    # The limiter's clock stands still (the sleeps are recorded, not slept): however long the failed
+    # request takes on a loaded machine, the retry must wait for its slot.
+    client._rate_limiter = RateLimiter(600, clock=lambda: 0.0, sleep=slept.append)
     fake_llm.push_status(500)
     fake_llm.push_reply("ok")
     client.complete(ASK)
-    assert len(slept) == 2 and max(slept) > 0.05  # one backoff (ms) and one rate-limit wait (~0.1 s)
+    assert len(slept) == 2 and max(slept) == pytest.approx(0.1)  # one backoff (ms), one rate-limit wait
 
 
 def test_complete_many_keeps_order_limits_concurrency_and_isolates_errors(

@@ -136,3 +136,22 @@ def test_every_setup_is_optimal_on_random_instances(seed: int, profile: str) -> 
         check = check_path(result.path, problem.grid, problem.labels, problem.automaton, profile)
         assert check.valid, check.problems
         assert check.cost_m == pytest.approx(result.cost_m, abs=1e-9)
+
+
+@pytest.mark.parametrize("seed", [7, 10])  # instances whose ALL search runs the w1 = 1 iterations
+def test_released_maps_change_no_result(seed: int) -> None:
+    """A plan that frees its maps' distances and runs once w1 = 1 finds the same path with the same
+    expansions (its path's composite actions are replayed from the move codes kept); a later plan on the
+    same problem rebuilds what it needs and stays optimal."""
+    kept, released = random_problem(seed), random_problem(seed)
+    row, col, floor = kept.start
+    expected = optimal_cost(kept.grid, kept.labels, kept.automaton, (row, col, floor), "ltlf")
+    for name in ("ALL", "NO-LLM", "A*", "OBJ"):
+        mine, theirs = plan(released, name, release_maps=True), plan(kept, name)
+        assert np.array_equal(mine.path, theirs.path), name
+        assert [r.expansions for r in mine.iterations] == [r.expansions for r in theirs.iterations], name
+        assert mine.cost_m == pytest.approx(expected, abs=1e-9)
+        assert check_path(mine.path, released.grid, released.labels, released.automaton, "ltlf").valid
+        assert mine.iterations[-1].w1 == 1.0  # so the maps were freed (A*: still, from NO-LLM)
+        assert released.domain_for(1).kmaps.dist.size == 0 and released.domain_for(1).max_level == 1, name
+    assert kept.domain.kmaps.dist.size > 0  # kept by default

@@ -12,9 +12,17 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import dijkstra as scipy_dijkstra
 
 from sgplan.errors import SceneError
-from sgplan.planning._dijkstra import dijkstra, label_runs
+from sgplan.planning._dijkstra import (
+    PRED_NONE,
+    PRED_SOURCE,
+    PRED_STAIRS,
+    PRED_STEP,
+    dijkstra,
+    label_runs,
+    next_cell,
+)
 from sgplan.planning.cells import STEPS, build_cell_graph
-from sgplan.planning.domain import _compact_labels, stop_counts
+from sgplan.planning.domain import _compact_labels, label_index_dtype, room_index_dtype, stop_counts
 from sgplan.scene.grid import OccupancyGrid, StairsLink
 
 
@@ -37,10 +45,15 @@ def _random_grid(seed: int, res: tuple[float, float], stairs_cost: float) -> Occ
     )
 
 
+def _steps(graph) -> tuple[np.ndarray, ...]:
+    """The arrays that give a cell's steps (``cell_at[cell_pos[c] + step_offset[k]]``)."""
+    return graph.cell_at, graph.cell_pos, graph.step_offset
+
+
 def _moves(graph) -> tuple[np.ndarray, ...]:
     """The cell graph's move arrays in the order the Dijkstra kernel takes them."""
-    return (graph.cell_at, graph.cell_pos, graph.step_offset, graph.step_cost, graph.stairs_first,
-            graph.stairs_from, graph.stairs_to, graph.stairs_cost)
+    return (*_steps(graph), graph.step_cost, graph.stairs_first, graph.stairs_from, graph.stairs_to,
+            graph.stairs_cost)
 
 
 def _scipy_distances(grid: OccupancyGrid, graph, sources: np.ndarray) -> np.ndarray:
@@ -89,30 +102,45 @@ def test_distances_match_scipy(seed: int, res, stairs_cost: float, num_sources: 
     assert np.array_equal(graph.reachable(int(sources[0])), np.isfinite(_scipy_distances(grid, graph,
                                                                                          sources[:1])))
     n = graph.num_cells
-    dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)
+    assert np.array_equal(STEPS[::-1], -STEPS)  # a step code names the move back: 7 - k undoes k
+    dist, pred, order = np.zeros(n), np.zeros(n, np.uint8), np.empty(n, np.int32)
     settled = dijkstra(
-        *_moves(graph), 0, n, True, sources.astype(np.int64), np.zeros(0, np.int32), np.int32(-1), 0,
+        *_moves(graph), 0, n, True, sources.astype(np.int64), np.zeros(0, np.int16), np.int32(-1), 0,
         dist, pred, order,
     )
     assert settled == int(np.isfinite(theirs).sum())
     assert np.all(np.diff(dist[order[:settled]]) >= -graph.step_cost.min())  # settled bucket by bucket
-    for cell in order[:settled]:
-        nxt = pred[cell] - 2
-        if nxt >= 0:
-            step = dist[cell] - dist[nxt]
-            stairs = (graph.stairs_from == cell) & (graph.stairs_to == nxt)
-            steps = graph.step_cost[graph.neighbours([cell])[0] == nxt]
-            moves = np.concatenate([steps, graph.stairs_cost[stairs]])
-            assert np.isclose(moves, step, atol=1e-9).any()
-    # Label runs from pred alone: the last cell of the equal-label stretch, walked naively.
-    labels = np.random.default_rng(seed + 1).integers(0, 3, n).astype(np.int32)
+    assert set(np.flatnonzero(pred == PRED_SOURCE)) == set(sources.tolist())
+    for cell in order[:settled]:  # every code names a move that realises the cell's distance
+        code = int(pred[cell])
+        if PRED_STEP <= code < PRED_STAIRS:
+            nxt = int(next_cell(*_steps(graph), cell, code))
+            assert np.isclose(dist[cell] - dist[nxt], graph.step_cost[code - PRED_STEP], atol=1e-9)
+        elif code == PRED_STAIRS:
+            into = graph.stairs_to == cell
+            step = dist[cell] - dist[graph.stairs_from[into]]
+            assert np.isclose(step, graph.stairs_cost[into], atol=1e-9).any()
+        else:
+            assert code == PRED_SOURCE and dist[cell] == 0.0
+    # Label runs (steps only, as a map's run): the last cell of the equal-label stretch, walked naively.
+    dist[:], pred[:] = 0.0, PRED_NONE
+    settled = dijkstra(
+        *_moves(graph), 0, n, False, sources.astype(np.int64), np.zeros(0, np.int16), np.int32(-1), 0,
+        dist, pred, order,
+    )
+    labels = np.random.default_rng(seed + 1).integers(0, 3, n).astype(np.uint8)
     run = np.zeros(n, np.int32)
-    label_runs(pred, n, labels, 0, run, np.empty(n, np.int32))
+    label_runs(*_steps(graph), pred, n, labels, 0, run, np.empty(n, np.int32))
+
+    def after(cell: int) -> int:
+        return int(next_cell(*_steps(graph), cell, pred[cell])) if pred[cell] >= PRED_STEP else -1
+
     for cell in range(n):
         last = cell if pred[cell] else -1
-        while last >= 0 and pred[last] > 1 and labels[pred[last] - 2] == labels[cell]:
-            last = pred[last] - 2
+        while last >= 0 and after(last) >= 0 and labels[after(last)] == labels[cell]:
+            last = after(last)
         assert run[cell] == last + 1
+    assert (run > 0).sum() == settled
 
 
 def test_many_sources_and_early_stop_grow_the_queues() -> None:
@@ -128,8 +156,8 @@ def test_many_sources_and_early_stop_grow_the_queues() -> None:
     sources = np.arange(0, graph.num_cells, 2)  # 2100 sources
     np.testing.assert_allclose(graph.distances(sources), _scipy_distances(grid, graph, sources), atol=1e-9)
     n = graph.num_cells
-    cell_room = (graph.cell_col < 10).astype(np.int32)  # room 1: the first 10 columns
-    dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)
+    cell_room = (graph.cell_col < 10).astype(np.int16)  # room 1: the first 10 columns
+    dist, pred, order = np.zeros(n), np.zeros(n, np.uint8), np.empty(n, np.int32)
     source = np.array([graph.cell_id(30, 0, 0)], dtype=np.int64)
     settled = dijkstra(
         *_moves(graph), 0, n, False, source, cell_room, np.int32(1), int((cell_room == 1).sum()),
@@ -327,9 +355,9 @@ def test_a_room_confined_run_never_leaves_its_room() -> None:
     graph = build_cell_graph(grid)
     row, col = graph.cell_row, graph.cell_col
     in_u = (col < 5) | (col >= 15) | (row >= 15)
-    cell_room = np.where(in_u, 1, 2).astype(np.int32)
+    cell_room = np.where(in_u, 1, 2).astype(np.int16)
     n = graph.num_cells
-    dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)
+    dist, pred, order = np.zeros(n), np.zeros(n, np.uint8), np.empty(n, np.int32)
     source = np.array([graph.cell_id(0, 0, 0)], dtype=np.int64)
     settled = dijkstra(
         *_moves(graph), 0, n, False, source, cell_room, np.int32(1), int(in_u.sum()), dist, pred, order,
@@ -358,12 +386,12 @@ def test_stop_count_ignores_room_cells_cut_off_from_the_sources() -> None:
         origin_m=(0.0, 0.0), floor_z_m=np.array([0.0]), stairs=(), robot_radius_m=0.0,
     )
     graph = build_cell_graph(grid)
-    cell_room = (graph.cell_col < 10).astype(np.int32)  # room 1: the first 10 columns, pocket included
+    cell_room = (graph.cell_col < 10).astype(np.int16)  # room 1: the first 10 columns, pocket included
     source = np.array([graph.cell_id(15, 1, 0)], dtype=np.int64)
     (count,) = stop_counts(cell_room, graph.reachable(int(source[0])), 2, np.array([1], dtype=np.int32))
     assert count == int((cell_room == 1).sum()) - 9  # the 3 x 3 pocket
     n = graph.num_cells
-    dist, pred, order = np.zeros(n), np.zeros(n, np.int32), np.empty(n, np.int32)
+    dist, pred, order = np.zeros(n), np.zeros(n, np.uint8), np.empty(n, np.int32)
     settled = dijkstra(
         *_moves(graph), 0, n, False, source, cell_room, np.int32(1), count, dist, pred, order,
     )
@@ -382,4 +410,15 @@ def test_compact_labels_equal_numpy_unique(seed: int, bits: int) -> None:
     label_masks, cell_label = _compact_labels(masks, 2**bits)
     expected_masks, expected_ids = np.unique(masks, return_inverse=True)
     assert np.array_equal(label_masks, expected_masks) and label_masks.dtype == np.int64
-    assert np.array_equal(cell_label, expected_ids) and cell_label.dtype == np.int32
+    assert np.array_equal(cell_label, expected_ids) and cell_label.dtype == np.uint8  # 7 labels at most
+
+
+def test_label_and_room_index_dtypes_hold_every_id() -> None:
+    """Compact label ids and room indices are stored in the smallest dtype that holds them all."""
+    cases = ((1, np.uint8), (256, np.uint8), (257, np.uint16), (65536, np.uint16), (65537, np.int32))
+    for count, dtype in cases:
+        assert label_index_dtype(count) == dtype and np.iinfo(dtype).max >= count - 1
+    masks = np.arange(300, dtype=np.uint32)
+    label_masks, cell_label = _compact_labels(masks, 512)
+    assert cell_label.dtype == np.uint16 and np.array_equal(label_masks[cell_label], masks)
+    assert room_index_dtype(32767) == np.int16 and room_index_dtype(32768) == np.int32

@@ -15,7 +15,7 @@ from functools import partial
 import numpy as np
 
 from sgplan.errors import MissionError
-from sgplan.scene.labels import MAX_PROPOSITIONS, Proposition, proposition_cells
+from sgplan.scene.labels import MAX_PROPOSITIONS, Proposition, proposition_cells, raster_from_cells
 from sgplan.scene.model import Building
 
 
@@ -57,14 +57,12 @@ def realizable_labels(propositions: Sequence[Proposition], building: Building,
     """
     from sgplan.pipeline import resolve_radii
 
-    if len(propositions) > MAX_PROPOSITIONS:  # as label_raster: a label is a uint32 bitmask
+    if len(propositions) > MAX_PROPOSITIONS:  # as label_raster: a label is at most a uint32 bitmask
         raise MissionError(
             f"{len(propositions)} propositions given; a label holds at most {MAX_PROPOSITIONS}"
         )
     radius = resolve_radii(building).reach_m if reach_radius_m is None else reach_radius_m
     cells_of = cells or partial(proposition_cells, building)
     floors, (rows, cols) = building.num_floors, building.grid_shape
-    labels = np.zeros(floors * rows * cols, dtype=np.uint32)  # as label_raster, flat
-    for bit, prop in enumerate(propositions):
-        labels[cells_of(prop, radius)] |= np.uint32(1 << bit)
+    labels = raster_from_cells((floors * rows * cols,), [cells_of(prop, radius) for prop in propositions])
     return occurring_labels(labels, in_room_cells(building).reshape(-1), 1 << len(propositions))

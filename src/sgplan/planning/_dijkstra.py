@@ -6,9 +6,13 @@ and, optionally, stairs between portals. A run covers a contiguous range of cell
 (one floor, or the whole building) and writes LOCAL arrays of length ``hi - lo``:
 
 - ``dist``: metres to the nearest source, valid where ``pred > 0``;
-- ``pred``: 0 = not reached, 1 = a source, ``j + 2`` = the next cell (local index ``j``) on a shortest path
-  towards the sources. Arrays start as zeros, so unreached parts of big lazily-allocated arrays are never
-  written (and never cost memory);
+- ``pred`` (uint8): :data:`PRED_NONE` = not reached, :data:`PRED_SOURCE` = a source, ``PRED_STEP + k`` = the
+  next cell on a shortest path towards the sources is this cell's neighbour by move ``k`` of
+  :data:`sgplan.planning.cells.STEPS` (:func:`next_cell`), :data:`PRED_STAIRS` = reached by a stairs move
+  (which one is not kept: only whole-graph runs take stairs, and they read whether a cell was reached).
+  A move code instead of the next cell's index: a byte per cell instead of four, in every composite
+  action map. Arrays start as zeros, so unreached parts of big lazily-allocated arrays are never written
+  (and never cost memory);
 - ``order``: local indices in settling order, returned count of settled cells.
 
 A run may be confined to one room (``stop_room >= 0``): it then never steps into a cell of another room
@@ -35,6 +39,16 @@ import numpy as np
 from numba import njit
 
 from sgplan.heap import heap_grow, heap_pop, heap_push
+
+PRED_NONE, PRED_SOURCE, PRED_STEP, PRED_STAIRS = 0, 1, 2, 10
+"""``pred`` codes (module docstring): not reached, a source, ``PRED_STEP + k`` a step by move k, stairs."""
+
+
+@njit(cache=True, inline="always")
+def next_cell(cell_at, cell_pos, step_offset, x, code):
+    """The next cell (global index) after cell ``x`` towards the sources, given ``x``'s ``pred`` code (a
+    step code: ``PRED_STEP <= code < PRED_STAIRS``)."""
+    return cell_at[cell_pos[x] + step_offset[code - PRED_STEP]]
 
 
 @njit(cache=True)
@@ -85,10 +99,10 @@ def dijkstra(
     state = np.zeros(6, dtype=np.int64)
     for s in sources:
         local = s - lo
-        if pred[local] == 1:
+        if pred[local] == PRED_SOURCE:
             continue
         dist[local] = 0.0
-        pred[local] = 1
+        pred[local] = PRED_SOURCE
         bkeys[0, bcount[0]] = 0.0
         bvals[0, bcount[0]] = local
         bcount[0] += 1
@@ -169,9 +183,9 @@ def _settle(
                 nd = d + step_cost[k]
                 dv = dist[v]
                 # dist 0 marks sources and unreached cells (pred 0): pred is read only for those.
-                if nd < dv or (dv == 0.0 and pred[v] == 0):
+                if nd < dv or (dv == 0.0 and pred[v] == PRED_NONE):
                     dist[v] = nd
-                    pred[v] = u + 2
+                    pred[v] = PRED_STEP + 7 - k  # back to u: the opposite move (STEPS[7 - k] = -STEPS[k])
                     b = max(int(nd * inv_delta), cur) & mask
                     bkeys[b, bcount[b]] = nd
                     bvals[b, bcount[b]] = v
@@ -185,9 +199,9 @@ def _settle(
                     if 0 <= v < n:
                         nd = d + stairs_cost[j]
                         dv = dist[v]
-                        if nd < dv or (dv == 0.0 and pred[v] == 0):
+                        if nd < dv or (dv == 0.0 and pred[v] == PRED_NONE):
                             dist[v] = nd
-                            pred[v] = u + 2
+                            pred[v] = PRED_STAIRS
                             ssize = heap_push(skeys, sties, svals, ssize, nd, 0.0, v)
                     j += 1
         if stopped:
@@ -240,16 +254,16 @@ def flood(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, 
 
 
 @njit(cache=True)
-def label_runs(pred, n, cell_label, lo, run, stack):
+def label_runs(cell_at, cell_pos, step_offset, pred, n, cell_label, lo, run, stack):
     """``run[x] = j + 1`` where local ``j`` is the last cell of the same-label stretch that starts at ``x``
-    and follows ``pred`` towards the sources, for every reached ``x < n`` (``run`` all zeros before).
-    Lets an action's automaton run skip repeated labels.
+    and follows ``pred`` towards the sources, for every reached ``x < n`` (``run`` all zeros before; a run
+    of steps only, as every map's is). Lets an action's automaton run skip repeated labels.
 
     Needs only ``pred`` (not the settling order, so a map kept for other labellings costs nothing more):
     each chain is walked up to a cell whose run is known, then filled back down. ``stack`` is scratch of
     at least ``n`` int32. A pass over ``n`` cells; the unreached ones are a read each."""
     for x in range(n):
-        if pred[x] == 0 or run[x] != 0:
+        if pred[x] == PRED_NONE or run[x] != 0:
             continue
         top = 0
         y = x
@@ -257,15 +271,15 @@ def label_runs(pred, n, cell_label, lo, run, stack):
             stack[top] = y
             top += 1
             p = pred[y]
-            if p == 1:
+            if p == PRED_SOURCE:
                 break
-            y = p - 2
+            y = next_cell(cell_at, cell_pos, step_offset, y + lo, p) - lo
         while top > 0:
             top -= 1
             u = stack[top]
             p = pred[u]
-            if p == 1:
+            if p == PRED_SOURCE:
                 run[u] = u + 1
             else:
-                w = p - 2
+                w = next_cell(cell_at, cell_pos, step_offset, u + lo, p) - lo
                 run[u] = run[w] if cell_label[w + lo] == cell_label[u + lo] else u + 1

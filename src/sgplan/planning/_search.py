@@ -36,7 +36,7 @@ from collections import namedtuple
 import numpy as np
 from numba import njit
 
-from sgplan.planning._dijkstra import dijkstra, label_runs
+from sgplan.planning._dijkstra import PRED_SOURCE, dijkstra, label_runs, next_cell
 from sgplan.planning.ltl_heuristic import fill_row, row_value
 
 FOUND, EXHAUSTED, BUDGET, GROW = 0, 1, 2, 3
@@ -109,7 +109,7 @@ def build_map(G, A, M, k):
             M.order,
         )
         M.built[k] = 1
-    label_runs(M.pred[k], hi - lo, G.cell_label, lo, M.run[k], M.order)
+    label_runs(G.cell_at, G.cell_pos, G.step_offset, M.pred[k], hi - lo, G.cell_label, lo, M.run[k], M.order)
     M.done[k] = 1
 
 
@@ -229,6 +229,9 @@ def map_successors(
     map_floor,
     map_exit_cell,
     map_exit_cost,
+    cell_at,
+    cell_pos,
+    step_offset,
     dist,
     pred,
     run,
@@ -280,11 +283,11 @@ def map_successors(
             continue
         lo = floor_offset[map_floor[k]]
         p = pred[k, c - lo]
-        if p <= 1:
+        if p <= PRED_SOURCE:
             continue
         total = dist[k, c - lo]
         q = q0
-        x = p - 2
+        x = next_cell(cell_at, cell_pos, step_offset, c, p) - lo
         end = -1
         cost = 0.0
         while True:
@@ -297,7 +300,7 @@ def map_successors(
                 break
             y = run[k, x] - 1 if idempotent else x
             py = pred[k, y]
-            if py == 1:
+            if py == PRED_SOURCE:
                 end = y + lo
                 cost = total
                 if map_exit_cell[k] >= 0:
@@ -305,7 +308,7 @@ def map_successors(
                     end = -1 if dead[q] else map_exit_cell[k]
                     cost = total + map_exit_cost[k]
                 break
-            x = py - 2
+            x = next_cell(cell_at, cell_pos, step_offset, y + lo, py) - lo
         if end >= 0:
             out_c[n] = end
             out_q[n] = q
@@ -341,6 +344,9 @@ def successors(G, A, M, L, c, q, level, max_level, out_c, out_q, out_cost, out_a
             A.map_floor,
             A.map_exit_cell,
             A.map_exit_cost,
+            G.cell_at,
+            G.cell_pos,
+            G.step_offset,
             M.dist,
             M.pred,
             M.run,
@@ -1069,6 +1075,9 @@ def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_suc
                 map_floor,
                 map_exit_cell,
                 map_exit_cost,
+                cell_at,
+                cell_pos,
+                step_offset,
                 dist,
                 pred,
                 run,

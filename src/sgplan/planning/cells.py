@@ -199,7 +199,7 @@ class CellGraph:
         n = self.num_cells
         dist = np.zeros(n, dtype=np.float64) if out is None else out
         dist[:] = 0.0
-        pred = np.zeros(n, dtype=np.int32)
+        pred = np.zeros(n, dtype=np.uint8)
         order = np.empty(n, dtype=np.int32)
         dijkstra(
             self.cell_at, self.cell_pos, self.step_offset, step_cost, self.stairs_first, self.stairs_from,
@@ -217,7 +217,7 @@ class CellGraph:
         return seen
 
 
-_NO_ROOMS = np.zeros(0, dtype=np.int32)
+_NO_ROOMS = np.zeros(0, dtype=np.int16)  # the dtype of a domain's cell_room: one compiled dijkstra for both
 
 
 @njit(cache=True)

@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from sgplan.errors import PlanningError
+from sgplan.planning._dijkstra import PRED_NONE, PRED_SOURCE, PRED_STAIRS, PRED_STEP, next_cell
 from sgplan.planning._memory import sparse_zeros
 from sgplan.planning.cells import CellGraph, build_cell_graph
 from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
@@ -140,8 +141,11 @@ class PlanningDomain:
         cells: list[int] = []
         x = start
         while x != end:
-            p = int(pred[x - lo]) if 0 <= x - lo < pred.shape[0] else 0
-            x = p - 2 + lo if p > 1 else int(self.kactions.map_exit_cell[k]) if p == 1 else -1
+            p = int(pred[x - lo]) if 0 <= x - lo < pred.shape[0] else PRED_NONE
+            if PRED_STEP <= p < PRED_STAIRS:
+                x = int(next_cell(self.graph.cell_at, self.graph.cell_pos, self.graph.step_offset, x, p))
+            else:
+                x = int(self.kactions.map_exit_cell[k]) if p == PRED_SOURCE else -1
             if x < 0 or len(cells) > pred.shape[0]:
                 raise PlanningError(
                     f"internal error: action {self.maps[k]} from cell {start} misses cell {end}"
@@ -163,6 +167,20 @@ class PlanningDomain:
         self.kgraph = self.kgraph._replace(cell_room=parts.cell_room, in_object_region=parts.in_region)
         self.max_level = max_level
         self.precompute_s += time.perf_counter() - t0
+
+    def release_map_fields(self) -> None:
+        """Free the composite action maps' distances and label runs, keeping the move codes that
+        :meth:`action_cells` follows: for a search whose remaining iterations read no map (the anchor
+        alone on occupancy moves) and whose maps no other problem shares. The domain then serves level 1
+        only (the maps' placeholders are empty); :meth:`ensure_level` builds fresh action parts for a
+        later search with composite actions."""
+        if self.max_level < 2:
+            return
+        maps = self.kmaps
+        self.kmaps = maps._replace(dist=np.zeros((0, 0), dtype=maps.dist.dtype),
+                                   run=np.zeros((0, 0), dtype=maps.run.dtype),
+                                   order=np.zeros(0, dtype=maps.order.dtype))
+        self.max_level = 1
 
     def build_actions(self) -> float:
         """Build every composite action map now instead of lazily during search; returns the seconds
@@ -368,14 +386,14 @@ def _no_actions(graph: CellGraph, num_rooms: int) -> ActionParts:
     kmaps = KernelMaps(
         done=np.zeros(0, dtype=np.uint8),
         dist=np.zeros((0, 0), dtype=np.float64),
-        pred=np.zeros((0, 0), dtype=np.int32),
+        pred=np.zeros((0, 0), dtype=np.uint8),
         run=np.zeros((0, 0), dtype=np.int32),
         order=none32,
         count=none64,
         built=np.zeros(0, dtype=np.uint8),
     )
     return ActionParts(maps=[], kactions=kactions, kmaps=kmaps,
-                       cell_room=sparse_zeros(graph.num_cells, np.int32),
+                       cell_room=sparse_zeros(graph.num_cells, room_index_dtype(num_rooms)),
                        in_region=sparse_zeros(graph.num_cells, np.bool_))
 
 
@@ -394,16 +412,29 @@ class _Clock:
 
 def _compact_labels(masks: np.ndarray, num_labels: int) -> tuple[np.ndarray, np.ndarray]:
     """``(label_masks, cell_label)``: the distinct bitmasks (ascending, int64) and each cell's index into
-    them (int32). A lookup table when the automaton's label space is small, else a sort."""
+    them (:func:`label_index_dtype`: a byte a cell on most missions). A lookup table when the automaton's
+    label space is small, else a sort."""
     if num_labels <= 1 << 22:
         present = np.zeros(num_labels, dtype=np.bool_)
         present[masks] = True
         label_masks = np.flatnonzero(present)
-        lut = np.zeros(num_labels, dtype=np.int32)
-        lut[label_masks] = np.arange(len(label_masks), dtype=np.int32)
+        lut = np.zeros(num_labels, dtype=label_index_dtype(len(label_masks)))
+        lut[label_masks] = np.arange(len(label_masks))
         return label_masks.astype(np.int64), lut[masks]
     label_masks, cell_label = np.unique(masks, return_inverse=True)
-    return label_masks.astype(np.int64), cell_label.astype(np.int32)
+    return label_masks.astype(np.int64), cell_label.astype(label_index_dtype(len(label_masks)))
+
+
+def label_index_dtype(count: int) -> type[np.integer]:
+    """The dtype of a cell's compact label id among ``count`` distinct labels: uint8 up to 256, uint16 up
+    to 65,536, else int32 (a search reads it once per successor, so it is kept small, not widened)."""
+    return np.uint8 if count <= 1 << 8 else np.uint16 if count <= 1 << 16 else np.int32
+
+
+def room_index_dtype(num_rooms: int) -> type[np.integer]:
+    """The dtype of a cell's room index (-1: no room) among ``num_rooms`` rooms: int16 when they fit, else
+    int32."""
+    return np.int16 if num_rooms < 1 << 15 else np.int32
 
 
 def _listing(items: list[str]) -> str:
@@ -504,9 +535,9 @@ class MapStore:
     connected component, filled by the search the first time a family is needed
     (:func:`sgplan.planning._search.build_map`) and then reused by every later problem of the session.
 
-    ``dist`` / ``pred`` ``(M, n)`` (lazily committed: a family costs 12 bytes per cell its Dijkstra
-    touched), ``count (M,)`` cells settled, ``built (M,)`` uint8 1 once the family's Dijkstra
-    ran (it runs once per store)."""
+    ``dist`` / ``pred`` ``(M, n)`` float64 / uint8 move codes (lazily committed: a family costs 9 bytes
+    per cell its Dijkstra touched), ``count (M,)`` cells settled, ``built (M,)`` uint8 1 once the
+    family's Dijkstra ran (it runs once per store)."""
 
     stop_count: np.ndarray
     dist: np.ndarray
@@ -522,7 +553,7 @@ class MapStore:
             stop_count=stop_counts(tables.cell_room, reachable, tables.num_rooms,
                                    tables.kactions.map_stop_room),
             dist=sparse_zeros((m, n_max), np.float64),
-            pred=sparse_zeros((m, n_max), np.int32),
+            pred=sparse_zeros((m, n_max), np.uint8),
             count=np.zeros(m, dtype=np.int64),
             built=np.zeros(m, dtype=np.uint8),
         )
@@ -530,7 +561,7 @@ class MapStore:
     def nbytes(self) -> int:
         """Bytes committed, estimated from the cells settled (the few cells reached but not settled at
         an early stop, and page rounding, are not counted)."""
-        return int(self.count.sum()) * 12 + self.count.nbytes + self.stop_count.nbytes + self.built.nbytes
+        return int(self.count.sum()) * 9 + self.count.nbytes + self.stop_count.nbytes + self.built.nbytes
 
 
 @dataclass(eq=False)
@@ -581,7 +612,7 @@ def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
         room_lut[room.id] = i
     room_ids = graph.gather(problem.grid.room_map)
     inside = (room_ids > 0) & (room_ids < len(room_lut) - 1)
-    cell_room = np.full(graph.num_cells, -1, dtype=np.int32)
+    cell_room = np.full(graph.num_cells, -1, dtype=room_index_dtype(len(rooms)))
     cell_room[inside] = room_lut[room_ids[inside]]
     del room_ids, inside
 

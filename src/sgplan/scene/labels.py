@@ -117,9 +117,10 @@ def _reach_cells(cat_map: np.ndarray, object_id: int, half: tuple[int, int]) -> 
 def proposition_cells(
     building: Building, prop: Proposition, reach_radius_m: float | None = None
 ) -> np.ndarray:
-    """Flat indices into a ``(floors, rows, cols)`` raster of the cells where ``prop`` holds; int64,
-    ascending. The sparse form of one bit of :func:`label_raster` (same arguments, same cells): a reach
-    region is a few thousand cells of a raster of millions.
+    """Flat indices into a ``(floors, rows, cols)`` raster of the cells where ``prop`` holds, ascending;
+    int32 when the raster has fewer than 2**31 cells (4 bytes a cell: a session keeps them), else int64.
+    The sparse form of one bit of :func:`label_raster` (same arguments, same cells): a reach region is a
+    few thousand cells of a raster of millions.
 
     Raises
     ------
@@ -144,7 +145,25 @@ def proposition_cells(
         half = reach_half_widths(building.resolution_m, radius)
         for floor in building.floors:
             parts.append(_reach_cells(floor.cat_map, object_id, half) + floor.index * rows * cols)
-    return np.concatenate(parts).astype(np.int64) if parts else np.zeros(0, dtype=np.int64)
+    dtype = np.int32 if building.num_floors * rows * cols < 2**31 else np.int64
+    return np.concatenate(parts).astype(dtype) if parts else np.zeros(0, dtype=dtype)
+
+
+def label_dtype(count: int) -> type[np.unsignedinteger]:
+    """The smallest unsigned dtype with a bit for each of ``count`` propositions (at most
+    :data:`MAX_PROPOSITIONS`): uint8 up to 8, uint16 up to 16, else uint32."""
+    return np.uint8 if count <= 8 else np.uint16 if count <= 16 else np.uint32
+
+
+def raster_from_cells(shape: tuple[int, ...], cells: Sequence[np.ndarray]) -> np.ndarray:
+    """A label raster of ``shape`` (:func:`label_dtype` of ``len(cells)``) with bit ``i`` set at the flat
+    indices ``cells[i]`` (e.g. :func:`proposition_cells` of proposition ``i``)."""
+    dtype = label_dtype(len(cells))
+    labels = np.zeros(shape, dtype=dtype)
+    flat = labels.reshape(-1)
+    for bit, where in enumerate(cells):
+        flat[where] |= dtype(1 << bit)
+    return labels
 
 
 def label_raster(
@@ -153,8 +172,8 @@ def label_raster(
     reach_radius_m: float | None = None,
 ) -> np.ndarray:
     """The label of every cell: ``(floors, rows, cols)``, bit ``i`` = ``propositions[i]`` holds; the
-    smallest unsigned dtype with a bit per proposition (uint8 up to 8 propositions, uint16 up to 16, else
-    uint32: a raster is a byte a cell for most missions instead of four).
+    smallest unsigned dtype with a bit per proposition (:func:`label_dtype`: a raster is a byte a cell
+    for most missions instead of four).
 
     Parameters
     ----------
@@ -178,10 +197,7 @@ def label_raster(
             f"{len(propositions)} propositions given; label rasters hold at most {MAX_PROPOSITIONS}"
         )
     _check_known(building, propositions)
-    floors, (rows, cols) = building.num_floors, building.grid_shape
-    dtype = np.uint8 if len(propositions) <= 8 else np.uint16 if len(propositions) <= 16 else np.uint32
-    labels = np.zeros((floors, rows, cols), dtype=dtype)
-    flat = labels.reshape(-1)
-    for bit, prop in enumerate(propositions):
-        flat[proposition_cells(building, prop, reach_radius_m)] |= dtype(1 << bit)
-    return labels
+    return raster_from_cells(
+        (building.num_floors, *building.grid_shape),
+        [proposition_cells(building, prop, reach_radius_m) for prop in propositions],
+    )
