@@ -30,6 +30,7 @@ import time
 T_START = time.perf_counter()
 
 import argparse
+import inspect
 import json
 import math
 import os
@@ -125,7 +126,10 @@ def run_case(
     for name, seconds in getattr(domain, "timings", {}).items():
         row[f"dom_{name}_s"] = seconds
     before = domain.precompute_s
-    result = plan(problem, setup, prebuild_actions=prebuild)
+    # A one-off plan frees its maps' distances once the search stops reading them, as `sgplan plan` does
+    # (older source trees have no such option).
+    release = {"release_maps": True} if "release_maps" in inspect.signature(plan).parameters else {}
+    result = plan(problem, setup, prebuild_actions=prebuild, **release)
     # Composite action maps built before the search (--prebuild only) and the kernel load.
     row["actions_s"] = result.precompute_s - before
     row["search_s"] = result.search_s
