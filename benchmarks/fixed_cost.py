@@ -33,7 +33,7 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
 SCENES = ("Allensville", "Benevolence", "Collierville")
-DEFAULT_BENCH = "--missions 1,2 --starts 0-4 --setups ALL NO-LLM A* --jobs 2"
+DEFAULT_BENCH = "--missions 1 2 --starts 0-4 --setups ALL NO-LLM A* --jobs 2"  # older trees read no "1,2"
 
 
 BYTECODE = True
@@ -119,7 +119,11 @@ def bench_part(args: argparse.Namespace, variants: dict[str, Path], caches: dict
             done = subprocess.run(argv, capture_output=True, text=True, env=child_env(src, caches[name]),
                                   check=False)
             walls[name] = time.perf_counter() - t0
-            rows = [json.loads(line) for line in (Path(out) / "results.jsonl").read_text().splitlines()]
+            results = Path(out) / "results.jsonl"
+            if not results.exists():
+                sys.exit(f"{name}: sgplan bench wrote no results (exit {done.returncode}):\n"
+                         + done.stderr[-2000:])
+            rows = [json.loads(line) for line in results.read_text().splitlines()]
         statuses: dict[str, int] = {}
         for row in rows:
             statuses[row["status"]] = statuses.get(row["status"], 0) + 1
