@@ -173,7 +173,7 @@ class CellGraph:
         f, r, c = self.shape
         if not (0 <= floor < f and 0 <= row < r and 0 <= col < c):
             return -1
-        return int(self.cell_at[(floor * (r + 2) + row + 1) * (c + 2) + col + 1])
+        return int(self.cell_ids(np.array([(floor * r + row) * c + col]))[0])
 
     def neighbours(self, cells: np.ndarray | None = None) -> np.ndarray:
         """``(n, 8)`` int32: the cell each move of :data:`STEPS` leads to from each of ``cells`` (all cells
