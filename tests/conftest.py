@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 from hypothesis import settings
 
-from sgplan.datasets import find_gibson_root
 from sgplan.scene.cache import DIR_ENV, OFF_ENV
+from tests import shared_data
 
 # Property tests run a bounded number of examples so the suite stays well inside CI's budget.
 settings.register_profile("ci", max_examples=60, deadline=None)
@@ -27,7 +27,5 @@ def _private_scene_cache(tmp_path_factory: pytest.TempPathFactory) -> None:
 
 @pytest.fixture(scope="session")
 def gibson_root() -> Path:
-    root = find_gibson_root()
-    if root is None:
-        pytest.skip("Gibson data not found (set SGPLAN_GIBSON_DIR or place ../shared beside the repo)")
-    return root
+    """The Gibson data folder (:func:`tests.shared_data.gibson_root`: skips when absent)."""
+    return shared_data.gibson_root()

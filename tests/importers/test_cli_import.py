@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from sgplan.cli import main
+from tests.shared_data import scene_example
 
 from .test_mp3d import house_text
 from .test_ros import write_map
@@ -64,20 +65,12 @@ def test_import_errors_exit_2_with_one_line(
     assert err[0].startswith("sgplan: error:") and fragment in err[0] and "Traceback" not in "\n".join(err)
 
 
-REAL_HOUSE = (
-    Path(__file__).resolve().parents[2]
-    / ".."
-    / "shared"
-    / "datasets"
-    / "scene-examples"
-    / "example_mp3d_scene.house"
-)
 
 
-@pytest.mark.skipif(not REAL_HOUSE.is_file(), reason="the Matterport3D example is not in ../shared")
 def test_real_house_plans_a_mission_in_words(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    real_house = scene_example("example_mp3d_scene.house")
     scene = tmp_path / "house"
-    assert main(["import", "mp3d", str(REAL_HOUSE), "--out", str(scene)]) == 0
+    assert main(["import", "mp3d", str(real_house), "--out", str(scene)]) == 0
     out = tmp_path / "run.json"
     text = "go to the kitchen, then a bathroom; never enter the bedroom"
     assert main(["plan", "--scene", str(scene), "--text", text, "--verify", "--json", str(out)]) == 0

@@ -12,19 +12,12 @@ from sgplan.importers.assemble import Settings
 from sgplan.importers.hydra import import_dsg
 from sgplan.importers.labelspace import read_label_map
 from sgplan.scene.loading import load_scene
+from tests.shared_data import scene_example
 
 from .helpers import free_cells, planned_and_exact_cost
 
 dsg = pytest.importorskip("spark_dsg", reason="spark-dsg is not installed here (pip install 'sgplan[hydra]')")
 
-REAL = (
-    Path(__file__).resolve().parents[2]
-    / ".."
-    / "shared"
-    / "datasets"
-    / "scene-examples"
-    / "apartment_dsg.json"
-)
 SETTINGS = Settings(resolution_m=0.1, robot_radius_m=0.0, reach_radius_m=0.3)
 RADIUS = 0.5
 PLACES = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (3.0, 0.0), (4.0, 0.0), (5.0, 0.0)]
@@ -196,9 +189,9 @@ def test_direct_use_with_labels_beside(tmp_path: Path) -> None:
     assert sorted(r.name for r in load_scene(path).rooms()) == ["kitchen", "living_room"]
 
 
-@pytest.mark.skipif(not REAL.is_file(), reason="the Hydra apartment example is not in ../shared")
 def test_real_apartment(tmp_path: Path) -> None:
-    result = import_dsg(REAL, labels(tmp_path, "5: chair\n11: lamp\n16: table\n"))
+    real = scene_example("apartment_dsg.json")
+    result = import_dsg(real, labels(tmp_path, "5: chair\n11: lamp\n16: table\n"))
     building = result.building
     assert [r.name for r in building.rooms()] == ["room"] and any("single room" in n for n in result.notes)
     assert sorted(o.name for o in building.objects()).count("chair") == 3

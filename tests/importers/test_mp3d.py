@@ -13,17 +13,10 @@ from sgplan.importers.assemble import Settings
 from sgplan.importers.mp3d import import_house, read_house
 from sgplan.scene.loading import load_scene
 from sgplan.scene.native import read_native_scene, write_native_scene
+from tests.shared_data import scene_example
 
 from .helpers import free_cells, planned_and_exact_cost, room_named
 
-REAL = (
-    Path(__file__).resolve().parents[2]
-    / ".."
-    / "shared"
-    / "datasets"
-    / "scene-examples"
-    / "example_mp3d_scene.house"
-)
 SETTINGS = Settings(resolution_m=0.1, robot_radius_m=0.0, reach_radius_m=0.3)
 
 
@@ -135,21 +128,21 @@ def test_malformed_files_give_clear_errors(tmp_path: Path, edit: Callable[[str],
         import_house(write(tmp_path, edit(house_text())), SETTINGS)
 
 
-@pytest.mark.skipif(not REAL.is_file(), reason="the Matterport3D example is not in ../shared")
 def test_real_house_imports_with_connected_rooms() -> None:
-    building = import_house(REAL).building
+    real = scene_example("example_mp3d_scene.house")
+    building = import_house(real).building
     names = sorted(r.name for r in building.rooms())
     assert names.count("bathroom") == 2 and "kitchen" in names and "lobby" in names
     assert building.rooms_named("lobby")[0].floor == building.initial_cells[0][2]
     assert all(r.connected_room_ids for r in building.rooms())
 
 
-@pytest.mark.skipif(not REAL.is_file(), reason="the Matterport3D example is not in ../shared")
 def test_reader_agrees_with_spark_dsg_on_the_real_house() -> None:
+    real = scene_example("example_mp3d_scene.house")
     mp3d = pytest.importorskip(
         "spark_dsg.mp3d", reason="spark-dsg is not installed (pip install 'sgplan[hydra]')"
     )
-    house = read_house(REAL)
-    info = mp3d.load_mp3d_info(str(REAL))
+    house = read_house(real)
+    info = mp3d.load_mp3d_info(str(real))
     assert len(info["R"]) == len(house.regions) and len(info["O"]) == len(house.objects)
     assert sorted(r["label"] for r in info["R"]) == sorted(r.label for r in house.regions.values())

@@ -5,15 +5,10 @@ the choice the robot makes); what cannot be resolved is refused, naming it."""
 
 from __future__ import annotations
 
-from functools import cache
-
 import pytest
 
-from sgplan.datasets import find_gibson_root
-from sgplan.scene.authors import load_authors_scene
-from sgplan.scene.demo import demo_building
-from sgplan.scene.model import Building
 from tests.llm.offline_reading import means, refused
+from tests.shared_data import scene_building
 
 # Allensville: room_2 bathroom (o16 sink, o20 vase, o33 toilet), room_4 bathroom (o18 sink, o34 toilet),
 # room_6 bedroom (o24 vase, o45 bed), room_10 dining room (o36, o37 chairs), room_11 kitchen, room_12
@@ -25,13 +20,7 @@ from tests.llm.offline_reading import means, refused
 # bathrooms (o41 sink in room_14), room_4 kitchen, room_6 living room, room_12 office.
 
 
-@cache
-def building(scene: str) -> Building:
-    if scene == "demo":
-        return demo_building()
-    root = find_gibson_root()
-    assert root is not None, "the Gibson data is needed (see README)"
-    return load_authors_scene(root / scene)
+building = scene_building
 
 
 @pytest.mark.parametrize(

@@ -4,19 +4,17 @@ with our own phrasings, and a scored set of everyday missions over the four scen
 
 from __future__ import annotations
 
-from functools import cache
 from pathlib import Path
 
 import pytest
 
-from sgplan.datasets import find_gibson_root
 from sgplan.errors import MissionError
 from sgplan.llm.evaluate import load_jsonl_set, score_translator
 from sgplan.llm.offline import PatternTranslator
-from sgplan.scene.authors import load_authors_scene
 from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building
 from tests.llm.offline_reading import means, refused
+from tests.shared_data import scene_building
 
 SET = Path(__file__).parent / "data" / "everyday_missions.jsonl"
 
@@ -478,13 +476,7 @@ def test_on_the_way_refused(demo, text, fragment):
 
 
 # ------------------------------------------------------------------ the everyday set, scored
-@cache
-def building_of(scene: str) -> Building:
-    if scene == "demo":
-        return demo_building()
-    root = find_gibson_root()
-    assert root is not None
-    return load_authors_scene(root / scene)
+building_of = scene_building
 
 
 def test_the_everyday_set_is_varied():

@@ -2,29 +2,20 @@
 
 from __future__ import annotations
 
-from functools import cache
 from pathlib import Path
 
 import pytest
 
-from sgplan.datasets import find_gibson_root
 from sgplan.llm.offline import PatternTranslator
 from sgplan.llm.offline.evaluation import evaluate, load_mission_set
-from sgplan.scene.authors import load_authors_scene
-from sgplan.scene.demo import demo_building
+from tests.shared_data import scene_building
 
 SET = Path(__file__).parent / "data" / "pattern_missions.yaml"
 MIN_SCORE = 0.85
 """Floor on the share of right translations over the whole set (the paper's own texts included)."""
 
 
-@cache
-def building_of(scene: str):
-    if scene == "demo":
-        return demo_building()
-    root = find_gibson_root()
-    assert root is not None
-    return load_authors_scene(root / scene)
+building_of = scene_building
 
 
 def test_the_set_is_large_and_varied():

@@ -11,6 +11,7 @@ from sgplan.llm.offline import PatternTranslator
 from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building
 from tests.llm.offline_reading import means
+from tests.shared_data import scene_building
 
 # demo: room_4 kitchen (object_15 refrigerator), room_5 bathroom floor 0, room_6 living room (object_23
 # tv), room_7 dining room, room_11 / room_13 bedrooms floor 1, room_12 home office floor 1, room_14
@@ -110,12 +111,7 @@ def test_set5_classes_refused(demo, text, start, fragment):
 
 def test_stated_floor_needs_one_floor():
     """*downstairs* names a floor only in a two-floor building (or as the known start floor)."""
-    from sgplan.datasets import find_gibson_root
-    from sgplan.scene.authors import load_authors_scene
-
-    root = find_gibson_root()
-    assert root is not None
-    building = load_authors_scene(root / "Benevolence")  # floors 0 to 2
+    building = scene_building("Benevolence")  # floors 0 to 2
     with pytest.raises(MissionError, match="say which floor the robot is on"):
         PatternTranslator().translate("I'm downstairs. Go to the bathroom upstairs.", building)
     means("I'm downstairs. Go to the kitchen upstairs.", "F r15", building, start_floor=0)
