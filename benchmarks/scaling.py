@@ -74,8 +74,7 @@ def run_case(
 
     from sgplan.mission import mission_from_formula
     from sgplan.pipeline import make_problem, resolve_radii
-    from sgplan.planning import plan
-    from sgplan.planning.amra import get_setup
+    from sgplan.planning import get_setup, plan
     from sgplan.scene.grid import build_occupancy_grid
 
     row: dict = {"target_m": target_m, "floors": floors, "goals": goals, "order": order}

@@ -306,8 +306,8 @@ class Session:
         explanation: Explanation | None,
     ) -> PlanResult:
         from sgplan.jit import announce_compile
-        from sgplan.planning.amra import get_setup
         from sgplan.planning.amra import plan as amra_plan
+        from sgplan.planning.setups import get_setup
         from sgplan.result import PlanResult
         from sgplan.starts import start_cell
 

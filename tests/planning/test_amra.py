@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError
 from sgplan.planning import SETUPS, PlanningProblem, get_setup, plan
-from sgplan.planning.amra import LLM, LTL
 from sgplan.planning.checker import check_path
+from sgplan.planning.setups import LLM, LTL
 from sgplan.scene.grid import StairsLink
 
 from .instances import RES, automaton, marks, open_building, open_grid, random_problem

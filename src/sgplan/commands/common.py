@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 
 from sgplan.datasets import ENV_VAR, SCENES
 from sgplan.limits import MAX_REACH_RADIUS_M, MAX_ROBOT_RADIUS_M, MAX_SECONDS
+from sgplan.planning.setups import PROFILES
 
 if TYPE_CHECKING:
     from sgplan.scene.model import Building
@@ -21,11 +22,6 @@ DEMO = "demo"
 DEFAULT_PROFILE = "ltlf"
 """The semantics profile of every command (plan, guide, bench): LTL over finite traces, the start cell's
 label read. ``--profile authors`` reproduces the authors' C++ (and the paper's numbers) for comparison."""
-PROFILES = ("ltlf", "authors")
-SETUP_NAMES = ("ALL", "NO-LLM", "A*", "OCC", "OBJ", "ROOM", "FLR")
-"""The planner setups' names (``sgplan.planning.amra.SETUPS``, a test keeps both the same) for the options'
-help: building the parser must not import the planner (numba, scipy), which only ``plan`` and ``bench``
-use. ``--setup`` values are checked by ``get_setup`` when the command runs."""
 log = logging.getLogger("sgplan")
 
 

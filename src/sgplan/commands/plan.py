@@ -19,7 +19,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
 from sgplan.commands.common import (
-    SETUP_NAMES,
     add_profile_argument,
     add_scene_arguments,
     load_scene_arg,
@@ -34,6 +33,7 @@ from sgplan.commands.common import (
 from sgplan.commands.sayback import check_folder_fits, say_back
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 from sgplan.errors import MissionError, SgplanError
+from sgplan.planning.setups import SETUPS
 
 if TYPE_CHECKING:
     from sgplan.llm.backends import Backends
@@ -93,7 +93,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     where.add_argument("--start-index", type=non_negative_int, metavar="K",
                        help="start at the scene's initial position K (default 0)")
     parser.add_argument(
-        "--setup", default="ALL", help=f"planner setup, any case: {', '.join(SETUP_NAMES)} (default ALL)"
+        "--setup", default="ALL", help=f"planner setup, any case: {', '.join(SETUPS)} (default ALL)"
     )
     add_profile_argument(parser)
     parser.add_argument(
@@ -155,7 +155,7 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     """The plan of ``args``, and what the JSON record holds beyond the result (scene fit, LLM calls)."""
     import sgplan
     from sgplan.mission import read_guidance, write_guidance
-    from sgplan.planning.amra import get_setup
+    from sgplan.planning.setups import get_setup
 
     building = load_scene_arg(args.scene, args.data)
     if args.save_mission and not args.text:

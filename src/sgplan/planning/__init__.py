@@ -12,16 +12,17 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from sgplan.planning.amra import SETUPS, IterationRecord, PlanResult, Setup, get_setup, plan
-    from sgplan.planning.problem import PROFILES, PlanningProblem
+    from sgplan.planning.amra import IterationRecord, PlanResult, plan
+    from sgplan.planning.problem import PlanningProblem
+    from sgplan.planning.setups import PROFILES, SETUPS, Setup, get_setup
 
 # Loaded on first use, as in ``sgplan/__init__.py``: importing one module of this package (the checker,
 # the problem) must not load the search and its compiled kernels (numba, ~0.5 s).
 _LAZY = {
-    "SETUPS": "sgplan.planning.amra", "IterationRecord": "sgplan.planning.amra",
-    "PlanResult": "sgplan.planning.amra", "Setup": "sgplan.planning.amra",
-    "get_setup": "sgplan.planning.amra", "plan": "sgplan.planning.amra",
-    "PROFILES": "sgplan.planning.problem", "PlanningProblem": "sgplan.planning.problem",
+    "IterationRecord": "sgplan.planning.amra", "PlanResult": "sgplan.planning.amra",
+    "plan": "sgplan.planning.amra", "PlanningProblem": "sgplan.planning.problem",
+    "PROFILES": "sgplan.planning.setups", "SETUPS": "sgplan.planning.setups",
+    "Setup": "sgplan.planning.setups", "get_setup": "sgplan.planning.setups",
 }
 
 __all__ = [
