@@ -6,7 +6,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from sgplan.mission import Mission, mission_from_formula
-from sgplan.planning.amra import PlanResult, plan
+from sgplan.planning.amra import SearchResult, plan
 from sgplan.planning.problem import PlanningProblem
 from sgplan.scene.demo import demo_building
 from sgplan.scene.grid import OccupancyGrid, build_occupancy_grid
@@ -30,7 +30,7 @@ class DemoPlan:
     building: Building
     grid: OccupancyGrid
     mission: Mission
-    result: PlanResult
+    result: SearchResult
 
 
 @lru_cache(maxsize=1)

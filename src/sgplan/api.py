@@ -308,6 +308,7 @@ class Session:
         from sgplan.jit import announce_compile
         from sgplan.planning.amra import plan as amra_plan
         from sgplan.planning.setups import get_setup
+        from sgplan.planning.termination import ExpansionLimit, TimeLimit, any_of
         from sgplan.result import PlanResult
         from sgplan.starts import start_cell
 
@@ -335,9 +336,10 @@ class Session:
         announce_compile()
         # Without kept parts the problem's maps are this plan's alone: freed once the search stops
         # reading them.
-        found = amra_plan(prepared.problem, spec.name, time_limit_s=time_limit_s,
-                          max_expansions=max_expansions, callback=callback, prebuild_actions=prebuild_actions,
-                          release_maps=not self.parts.keeps)
+        budget = any_of(TimeLimit(time_limit_s) if time_limit_s is not None else None,
+                        ExpansionLimit(max_expansions) if max_expansions is not None else None)
+        found = amra_plan(prepared.problem, spec.name, termination=budget, callback=callback,
+                          prebuild_actions=prebuild_actions, release_maps=not self.parts.keeps)
         result = PlanResult(
             scene=self.building.name, status=found.status, setup=found.setup, profile=profile,
             cost_m=found.cost_m, bound=found.iterations[-1].bound if found.iterations else None,
