@@ -38,8 +38,9 @@ class PlanResult:
     scene:
         the building's name.
     status:
-        ``"optimal"`` (``cost_m`` is the exact optimum) or ``"timeout"`` (a budget ran out: the best path
-        so far, within ``bound`` times the optimum, or no path).
+        ``"optimal"`` (``cost_m`` is the exact optimum), ``"timeout"`` (a budget ran out) or
+        ``"cancelled"`` (a cancel flag was set): the best path so far, within ``bound`` times the optimum,
+        or no path.
     cost_m:
         path cost in metres (``inf`` without a path).
     bound:

@@ -11,6 +11,7 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
+import sgplan
 from sgplan.errors import PlanningError
 from sgplan.planning import PlanningProblem, plan
 from sgplan.planning.amra import CHUNK_EXPANSIONS
@@ -185,3 +186,17 @@ def test_a_search_cancelled_before_it_starts_builds_nothing() -> None:
     result = plan(problem, "NO-LLM", termination=cancel)
     assert result.status == "cancelled" and result.path is None and result.iterations == []
     assert result.precompute_s == 0.0 and "_domain" not in problem.__dict__  # no domain was built
+
+
+def test_the_public_plan_takes_a_termination_with_the_options_budgets() -> None:
+    demo = sgplan.load_scene("demo")
+    mission = sgplan.mission_from_formula('F "enter(room_5)" & F "reach(object_28)"', demo)
+    cancel = CancelFlag()
+    cancel.cancel()
+    stopped = sgplan.plan(demo, mission, 0, setup="NO-LLM", termination=cancel)
+    assert stopped.status == "cancelled" and stopped.path is None and stopped.bound is None
+    assert stopped.to_dict()["status"] == "cancelled"
+    cut = sgplan.plan(demo, mission, 0, setup="NO-LLM", max_expansions=1, termination=CancelFlag())
+    assert cut.status == "timeout"  # the options' budget still applies beside the given condition
+    whole = sgplan.plan(demo, mission, 0, setup="NO-LLM", termination=Deadline.after(600))
+    assert whole.status == "optimal" and whole.verified
