@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import lru_cache
 
-from sgplan.mission import Mission, mission_from_formula
+from sgplan.mission import Mission, compile_mission
 from sgplan.planning.amra import SearchResult, plan
 from sgplan.planning.problem import PlanningProblem
 from sgplan.scene.demo import demo_building
@@ -37,7 +37,7 @@ class DemoPlan:
 def demo_plan() -> DemoPlan:
     """The demo building, its grid, the mission above and its optimal plan from initial position 0."""
     building = demo_building()
-    mission = mission_from_formula(FORMULA, text=TEXT)
+    mission = compile_mission(FORMULA, text=TEXT)
     grid = build_occupancy_grid(building, building.robot_radius_m or 0.0)
     problem = PlanningProblem(
         building=building,

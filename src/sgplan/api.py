@@ -108,11 +108,10 @@ def mission_from_formula(
     ``enter(room_<uuid>)`` / ``reach(object_<uuid>)``, or over names given a meaning by ``aps`` (an
     ``ap_desc.yaml`` file or a mapping). With ``building``, its propositions are checked against it now.
     """
-    from sgplan.mission import mission_from_formula as from_formula
-    from sgplan.mission import read_ap_desc
+    from sgplan.mission import compile_mission, read_ap_desc
 
     meanings = read_ap_desc(aps) if isinstance(aps, (str, Path)) else aps
-    mission = from_formula(formula, meanings, text=text)
+    mission = compile_mission(formula, meanings, text=text)
     if building is not None:
         mission.check_scene(building)
     return mission
