@@ -23,10 +23,11 @@ from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 
+from sgplan.assembly import make_problem
 from sgplan.errors import PlanningError, SceneError
 from sgplan.options import PlanOptions
-from sgplan.pipeline import Radii, make_problem, resolve_radii
 from sgplan.planning.shared import SharedParts
+from sgplan.radii import Radii, resolve_radii
 from sgplan.scene.model import Building
 
 if TYPE_CHECKING:  # the planner, grid and labels (numba, scipy) load when a plan is made, not for a mission
