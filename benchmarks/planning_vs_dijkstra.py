@@ -9,9 +9,11 @@ and peak RSS; then the median and worst ratio per setup. Needs the Gibson data a
 so if none exists).
 
 Before/after in one run: export an older tree and pass it as a variant; the variants run back to back on
-each case, so machine load hits them alike (report ratios, the machine is shared):
+each case, so machine load hits them alike (report ratios, the machine is shared). A variant whose folder
+holds ``tests/`` beside ``src/`` loads its cases with its own ``tests/planning/gibson_cases.py`` (export
+both: the case loader follows the source tree's API); otherwise with this checkout's:
 
-    git archive <commit> src | tar -x -C /tmp/sgplan-before
+    git archive <commit> src tests | tar -x -C /tmp/sgplan-before
     .venv/bin/python benchmarks/planning_vs_dijkstra.py \
         --variant before=/tmp/sgplan-before/src --variant after=src
 
@@ -40,8 +42,10 @@ CHILD = REPO / "benchmarks" / "planning_gibson.py"
 
 
 def run_child(src: Path, scene: str, mission: int, start: int, setup: str) -> dict:
-    """One sgplan process on one case with ``src`` first on the import path; adds its wall seconds."""
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(src), str(REPO)]))
+    """One sgplan process on one case with ``src`` first on the import path, then the tests beside it (if
+    any), then this checkout's; adds its wall seconds."""
+    own_tests = [str(src.parent)] if (src.parent / "tests" / "planning" / "gibson_cases.py").is_file() else []
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(src), *own_tests, str(REPO)]))
     t0 = time.perf_counter()
     out = subprocess.run(
         [sys.executable, str(CHILD), "--profile", "authors", "--one", scene, str(mission), str(start), setup],
