@@ -135,6 +135,11 @@ def _settle(
     No "settled" flags: entries are pushed only on a strict improvement, so a cell has at most one entry
     with key ``dist[cell]`` (the rest are stale, ``key > dist``), and a settled cell is never improved
     (every later key plus an edge exceeds its distance).
+
+    One function: the bucket walk, the stairs merge and the relaxation share the ring, the stairs heap and
+    six counters, kept in locals for the whole run (written back to ``state`` on return); a helper per
+    settled cell would take a dozen arrays, each reference-counted on every call, which numba does not
+    prune in this loop (as in the search, :mod:`sgplan.planning._search`).
     """
     num_buckets, cap = bkeys.shape
     mask = num_buckets - 1

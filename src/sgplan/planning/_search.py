@@ -867,7 +867,14 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
 @njit(cache=True)
 def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     """:func:`improve_path` in general: any queues, composite actions (the loop that :func:`anchor_path`
-    specialises)."""
+    specialises).
+
+    One function, as AMRA*'s ImprovePath reads: pick a queue, pop, close, generate (the successor
+    generators are helpers), relax each successor into the queues. What is left inline is the loop's
+    bookkeeping over about fifty arrays unpacked once from the named tuples and a few counters; a helper
+    for a step would take a dozen of them, each reference-counted on every call in this loop (the note
+    above the array-level cores), or the tuples themselves, which costs more still.
+    """
     # Unpack once (see the note above the array-level cores).
     cell_at, cell_pos, step_offset = G.cell_at, G.cell_pos, G.step_offset
     step_cost, stairs_first, stairs_from = G.step_cost, G.stairs_first, G.stairs_from
