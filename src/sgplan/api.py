@@ -240,7 +240,7 @@ class Session:
 
     def labels(self, mission: Mission, reach_radius_m: float | None = None) -> np.ndarray:
         """The mission's label raster (as :meth:`Mission.labels`), from the cells of each proposition kept
-        between missions (sparse: a few MB at most where full masks took ~6 MB each on a Gibson scene)."""
+        between missions (flat indices: far smaller than a full mask per proposition)."""
         from sgplan.scene.labels import raster_from_cells
 
         mission.check_scene(self.building)
