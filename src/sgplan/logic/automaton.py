@@ -139,11 +139,14 @@ class Automaton:
             mask[frontier] = True
         return mask
 
-    def live_states(self) -> np.ndarray:
-        """``(n,)`` bool: the states from which some word reaches an accepting state."""
+    def live_states(self, labels: np.ndarray | None = None) -> np.ndarray:
+        """``(n,)`` bool: the states from which some word reaches an accepting state; with ``labels``
+        (label values, or a ``(num_labels,)`` bool mask), some word of those labels only (e.g. the label
+        sets a scene can produce)."""
+        table = self.table if labels is None else self.table[:, np.asarray(labels)]
         live = np.asarray(self.accepting, bool).copy()
         while True:  # a state is live when some label leads to a live state; at most n rounds
-            grown = live | live[self.table].any(axis=1)
+            grown = live | live[table].any(axis=1)
             if np.array_equal(grown, live):
                 return live
             live = grown
