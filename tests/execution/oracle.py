@@ -5,6 +5,7 @@ compiled kernel and its batching."""
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Sequence
 
 import numpy as np
@@ -29,7 +30,7 @@ def cells_read(poses: Sequence[Cell], grid: OccupancyGrid) -> list[list[Cell]]:
     """Per pose, the cells read when it is reached (the first pose: itself); stairs portal to portal."""
     links = {link.lower_floor: link for link in grid.stairs}
     out: list[list[Cell]] = [[tuple(poses[0])]]
-    for a, b in zip(poses, poses[1:]):
+    for a, b in itertools.pairwise(poses):
         here, cells = tuple(a), []
         while here[2] != b[2]:
             up = b[2] > here[2]

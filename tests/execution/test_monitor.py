@@ -111,8 +111,8 @@ def test_in_progress_says_what_is_left():
     assert before.summary() == f"in progress: left: {LEFT_AT_START}"
     chair = int(np.argmax(path()[:, 3] == 3))  # the chair reached: the bedroom is left
     after = monitor().observe_cells(path()[:chair + 1, :3])
-    assert after.left == ("go to the bedroom (room_11, floor 1); never enter the living room (room_6, floor 0) "
-                          "or the kitchen (room_4, floor 0)")
+    assert after.left == ("go to the bedroom (room_11, floor 1); never enter the living room (room_6, "
+                          "floor 0) or the kitchen (room_4, floor 0)")
     done = monitor().observe_cells(path()[:, :3])
     assert done.summary() == ("done: the mission is satisfied; if the robot goes on: never enter the living "
                               "room (room_6, floor 0) or the kitchen (room_4, floor 0)")
@@ -126,7 +126,8 @@ def test_a_violation_names_the_step_that_broke_the_mission():
     rooms = demo_plan().grid.room_map[path()[:, 2], path()[:, 0], path()[:, 1]]
     first = int(np.argmax(rooms == demo_plan().building.room(uuid=8).id))
     assert status.verdict == "violated" and status.violation is not None
-    assert status.violation.pose == first and status.violation.cell == tuple(int(v) for v in path()[first, :3])
+    assert status.violation.pose == first
+    assert status.violation.cell == tuple(int(v) for v in path()[first, :3])
     assert status.violation.text == ("entered the staircase (room_8, floor 0), which the mission forbids: "
                                      "never enter the staircase (room_8, floor 0)")
     assert status.summary().startswith(f"violated at pose {first}, x ")
@@ -148,7 +149,8 @@ def test_the_profiles_differ_on_the_first_pose():
     start = path()[:1, :3]
     ltlf = monitor(mission).observe_cells(start)
     assert ltlf.verdict == "violated" and ltlf.violation is not None and ltlf.violation.pose == 0
-    assert ltlf.violation.text.startswith("started in the corridor (room_2, floor 0), which the mission forbids")
+    assert ltlf.violation.text.startswith("started in the corridor (room_2, floor 0), which the mission "
+                                          "forbids")
     authors = monitor(mission, profile="authors")
     assert authors.observe_cells(start).verdict == "in-progress"
     second = authors.observe_cells(path()[1:2, :3])
@@ -213,7 +215,8 @@ def test_gaps_and_lines_through_obstacles_are_reported():
 def _cells_seen_through_a_wall(demo: DemoPlan) -> tuple[tuple[int, int], tuple[int, int]]:
     """Two free cells of floor 0 (in two rooms) whose straight line crosses cells the robot cannot enter."""
     free = demo.grid.traversable[0]
-    inside = [np.argwhere(free & (demo.grid.room_map[0] == room.id)) for room in demo.building.floors[0].rooms.values()]
+    inside = [np.argwhere(free & (demo.grid.room_map[0] == room.id))
+              for room in demo.building.floors[0].rooms.values()]
     middles = [tuple(int(v) for v in cells[len(cells) // 2]) for cells in inside if len(cells)]
     for a in middles:
         for b in middles:
@@ -227,8 +230,8 @@ def test_floors_without_stairs_between_them_are_an_error():
     grid = dataclasses.replace(demo.grid, stairs=())
     mon = Monitor(demo.building, demo.mission, grid, demo_labels())
     on_two_floors = path()[[0, -1], :3]
-    with pytest.raises(TrajectoryError, match="pose 0 on floor 0 and pose 1 on floor 1: no stairs join floors "
-                                              "0 and 1 in this scene"):
+    with pytest.raises(TrajectoryError, match="pose 0 on floor 0 and pose 1 on floor 1: no stairs join "
+                                              "floors 0 and 1 in this scene"):
         mon.observe_cells(on_two_floors)
 
 
