@@ -112,11 +112,10 @@ class MonitorStatus:
         ``(n,)`` metres along the assumed route from the run's first pose to each pose of this call.
     violation:
         the first step that broke the mission (it stays once broken), else ``None``.
-    left:
-        what is left to do, in words (``in-progress``); for ``done``, what must still hold if the robot
-        goes on (empty when nothing); empty for ``violated``.
     issues:
         what this call's poses made the monitor assume (:class:`~sgplan.execution.poses.PoseIssue`).
+    words:
+        the monitor's words (:class:`~sgplan.execution.words.MissionWords`), read by :attr:`left`.
     """
 
     verdict: Verdict
@@ -129,8 +128,17 @@ class MonitorStatus:
     states: np.ndarray = field(repr=False)
     lengths_m: np.ndarray = field(repr=False)
     violation: Violation | None
-    left: str
     issues: tuple[PoseIssue, ...]
+    words: MissionWords = field(repr=False, compare=False)
+
+    @property
+    def left(self) -> str:
+        """What is left to do, in words (``in-progress``); for ``done``, what must still hold if the robot
+        goes on (empty when nothing); empty for ``violated``.
+
+        Cost: the first time a run's monitor is asked about a state, a few small automata (milliseconds to
+        tens of milliseconds: the residual formula and its reading); a look-up afterwards."""
+        return "" if self.verdict == "violated" else self.words.residual(self.state).text()
 
     def summary(self, name: PoseNamer = pose_name) -> str:
         """One line (more for a residual read from its automaton): the verdict and what is left."""
@@ -245,8 +253,8 @@ class Monitor:
         messages.
 
         Cost: linear in the poses and the cells between them (compiled; the first call of a process
-        loads the kernel, the first ever compiles it), plus, the first time the run reaches an automaton
-        state, its residual in words (a few automata: milliseconds to tens of milliseconds).
+        loads the kernel, the first ever compiles it); the words of what is left are made when
+        :attr:`MonitorStatus.left` is read; those of a violation, once, when it happens.
 
         Raises
         ------
@@ -304,6 +312,5 @@ class Monitor:
                 ) -> MonitorStatus:
         accepting = bool(self.mission.automaton.accepting[self.state])
         verdict: Verdict = ("violated" if self._dead[self.state] else "done" if accepting else "in-progress")
-        left = "" if verdict == "violated" else self.words.residual(self.state).text()
         return MonitorStatus(verdict, self.state, accepting, self.cell, self.poses, self.cells, self.length_m,
-                             states, lengths_m, self.violation, left, issues)
+                             states, lengths_m, self.violation, issues, self.words)
