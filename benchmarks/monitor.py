@@ -27,6 +27,7 @@ import argparse
 import statistics
 import sys
 import time
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -90,7 +91,7 @@ def main() -> None:
             else:
                 continue
             centres = np.array([(w.x_m, w.y_m, w.floor) for w in result.waypoints])
-            make = lambda: Monitor.in_session(session, mission)  # noqa: E731 - one line, used below
+            make = partial(Monitor.in_session, session, mission)
             if first_call is None:
                 first_call = timed(make(), centres[:2])[0]
             for shape, poses in trajectories(centres).items():
@@ -104,16 +105,16 @@ def main() -> None:
                              statistics.median(t for t, _, _ in whole), per_pose,
                              statistics.median(w for _, _, w in whole)))
     print(f"Command: `.venv/bin/python benchmarks/monitor.py --repeat {args.repeat}`\n")
-    print(f"First call of the process (kernel loaded from numba's cache or compiled): {first_call * 1e3:.1f} ms; "
-          "not in the times below.\n")
-    print("| mission | start | trajectory | cells read | one call, 10,000 poses (ms) | one call per pose (µs) "
-          "| `left` in words, first read (ms) |")
+    print(f"First call of the process (kernel loaded from numba's cache or compiled): {first_call * 1e3:.1f} "
+          "ms; not in the times below.\n")
+    print("| mission | start | trajectory | cells read | one call, 10,000 poses (ms) | one call per pose "
+          "(µs) | `left` in words, first read (ms) |")
     print("|---|---|---|---|---|---|---|")
     for name, start, shape, cells, whole_s, per_pose_s, words_s in rows:
         print(f"| {name} | {start} | {shape} | {cells:,} | {whole_s * 1e3:.2f} | {per_pose_s * 1e6:.1f} | "
               f"{words_s * 1e3:.1f} |")
-    print("\n| trajectory | cases | cells read (median) | one call: median (ms) | max (ms) | cases over 10 ms "
-          "| per pose: median (µs) |")
+    print("\n| trajectory | cases | cells read (median) | one call: median (ms) | max (ms) | cases over "
+          "10 ms | per pose: median (µs) |")
     print("|---|---|---|---|---|---|---|")
     for shape in SHAPES:
         mine = [r for r in rows if r[2] == shape]
