@@ -106,3 +106,11 @@ def test_bad_trajectories_exit_2_with_one_line(capsys, tmp_path, text, fragment)
     lines = err.strip().splitlines()
     assert code == 2 and len(lines) == 1 and lines[0].startswith("sgplan: error: ")
     assert fragment in lines[0] and "Traceback" not in err
+
+
+def test_a_mission_in_words(plan_files, capsys):
+    code = main(["monitor", "--scene", "demo", "--text", "Go to the home office.", "--trajectory",
+                 str(plan_files[1])])
+    out = capsys.readouterr().out
+    assert code == IN_PROGRESS_EXIT
+    assert "verdict: in progress: left: go to the home office (room_12, floor 1)" in out

@@ -282,7 +282,8 @@ def test_states_equal_the_automaton_stepped_over_every_cell_passed(seed, formula
     assert final.verdict == ("violated" if dead[expected[-1]] else
                              "done" if automaton.accepting[expected[-1]] else "in-progress")
     assert final.cells == len(per_cell)
-    first_dead = next((k for k, q in enumerate(per_cell) if dead[q]), None)
+    before = [automaton.initial, *per_cell[:-1]]
+    first_dead = next((k for k, (p, q) in enumerate(zip(before, per_cell)) if dead[q] and not dead[p]), None)
     assert (final.violation is None) == (first_dead is None)
     if final.violation is not None:
         assert int(final.violation.to_state) == per_cell[first_dead]
@@ -310,3 +311,13 @@ def _random_poses(grid, rng: np.random.Generator) -> np.ndarray:
         else:  # a jump anywhere free, maybe on another floor
             poses.append(free[rng.integers(len(free))])
     return np.array([[r, c, f] for f, r, c in poses], dtype=np.int64)
+
+
+def test_a_monitor_resumed_past_saving_is_violated_without_naming_a_step():
+    mission = mission_from_formula(BEDROOM_NO_STAIRS)
+    broken = monitor(mission).observe_cells(path()[:, :3])
+    resumed = monitor(mission, state=broken.state, at=tuple(int(v) for v in path()[-1, :3]))
+    status = resumed.observe_cells(path()[-3:, :3])
+    assert status.verdict == "violated" and status.violation is None
+    assert status.summary() == (f"violated: the mission cannot be completed from automaton state "
+                                f"{broken.state}, as already when the monitor started")

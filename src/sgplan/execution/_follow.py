@@ -41,10 +41,10 @@ def follow(route: np.ndarray, read_first: bool, labels: np.ndarray, traversable:
     -------
     tuple
         ``(state, cells_read, broken_row, broken_cell_row, broken_cell_col, label_before, label_at,
-        state_before)``: the final state, the number of labels read, and where the automaton first
-        entered a ``dead`` state (the route row whose segment did it, the cell, the labels of the cell
-        before it -- ``-1`` when it is the first cell read -- and of that cell, the state before that
-        cell); ``broken_row`` is ``-1`` when it did not.
+        state_before)``: the final state, the number of labels read, and where the automaton first went
+        from a live state to a ``dead`` one (the route row whose segment did it, the cell, the labels of
+        the cell before it -- ``-1`` when it is the first cell read -- and of that cell, the state before
+        that cell); ``broken_row`` is ``-1`` when it did not.
     """
     m = route.shape[0]
     extent = 1
@@ -58,7 +58,7 @@ def follow(route: np.ndarray, read_first: bool, labels: np.ndarray, traversable:
     if read_first:
         q = table[state, previous]
         count = 1
-        if dead[q]:
+        if dead[q] and not dead[state]:
             broken, broken_r, broken_c, at, q_before = 0, route[0, 0], route[0, 1], previous, state
     states_out[0] = q
     blocked_out[0] = False
@@ -80,7 +80,7 @@ def follow(route: np.ndarray, read_first: bool, labels: np.ndarray, traversable:
             label = labels[f1, r, c]
             q_next = table[q, label]
             count += 1
-            if broken < 0 and dead[q_next]:
+            if broken < 0 and dead[q_next] and not dead[q]:
                 broken, broken_r, broken_c, before, at, q_before = k, r, c, previous, label, q
             q = q_next
             previous = label

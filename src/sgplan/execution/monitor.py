@@ -143,8 +143,9 @@ class MonitorStatus:
     def summary(self, name: PoseNamer = pose_name) -> str:
         """One line (more for a residual read from its automaton): the verdict and what is left."""
         if self.verdict == "violated":
-            if self.violation is None:  # resumed in a state that was already past saving
-                return f"violated: automaton state {self.state} can no longer complete the mission"
+            if self.violation is None:  # no step of this run broke it: it was so when the monitor started
+                return (f"violated: the mission cannot be completed from automaton state {self.state}, as "
+                        "already when the monitor started")
             return f"violated {self.violation.describe(name)}"
         if self.verdict == "done":
             keep = f"; if the robot goes on: {self.left}" if self.left else ""
