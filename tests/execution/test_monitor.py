@@ -321,3 +321,18 @@ def test_a_monitor_resumed_past_saving_is_violated_without_naming_a_step():
     assert status.verdict == "violated" and status.violation is None
     assert status.summary() == (f"violated: the mission cannot be completed from automaton state "
                                 f"{broken.state}, as already when the monitor started")
+
+
+def test_a_mission_without_a_formula_is_said_back_from_its_automaton():
+    demo = demo_plan()
+    bare = dataclasses.replace(demo.mission, formula=None)
+    status = monitor(bare).observe_cells(path()[:5, :3])
+    assert status.verdict == "in-progress"
+    assert status.left.startswith("as read from its automaton:\nIt mentions ")
+    assert "the bedroom (room_11, floor 1)" in status.left
+
+
+def test_done_with_nothing_left_to_keep():
+    status = monitor(mission_from_formula('F "enter(room_11)"')).observe_cells(path()[:, :3])
+    assert status.verdict == "done" and status.left == ""
+    assert status.summary() == "done: the mission is satisfied"

@@ -42,8 +42,8 @@ class Residual:
         the residual in words: one clause per part (``go to the bedroom (room_11, floor 1)``), or the lines
         of its automaton's reading; empty when nothing is asked (``method == "nothing"``).
     method:
-        ``"patterns"`` (read from ``formula``), ``"automaton"`` or ``"nothing"`` (the formula is
-        ``true``, or no continuation satisfies it).
+        ``"patterns"`` (read from ``formula``), ``"automaton"`` or ``"nothing"`` (every continuation
+        satisfies the mission, or none does).
     """
 
     formula: Formula | None
@@ -51,8 +51,11 @@ class Residual:
     method: ResidualMethod
 
     def text(self) -> str:
-        """The parts joined: ``go to the bedroom (...); never enter the kitchen (...)``."""
-        return "; ".join(self.parts) if self.method == "patterns" else "\n".join(self.parts)
+        """The parts joined: ``go to the bedroom (...); never enter the kitchen (...)``; read from the
+        automaton, ``as read from its automaton:`` and one line per part."""
+        if self.method == "automaton":
+            return "\n".join(["as read from its automaton:", *self.parts])
+        return "; ".join(self.parts)
 
 
 def _clause(sentence: str) -> str:
@@ -107,7 +110,7 @@ class MissionWords:
             if isinstance(residual, Const):
                 return Residual(residual, (), "nothing")
         continuing = started_in(self.automaton, state)
-        if not self.automaton.live_states(self.realizable)[state]:
+        if not self.automaton.live_states(self.realizable)[state] or self._always_accepting(state):
             return Residual(residual, (), "nothing")
         explanation = explain_formula(residual, self.entities, automaton=continuing,
                                       realizable=self.realizable)
@@ -115,6 +118,11 @@ class MissionWords:
         if explanation.method == "patterns":
             return Residual(residual, tuple(_clause(line) for line in lines), "patterns")
         return Residual(residual, tuple(lines), "automaton")
+
+    def _always_accepting(self, state: int) -> bool:
+        """Whether every word of realizable labels from ``state`` keeps the automaton accepting."""
+        from_here = Automaton(self.automaton.aps, self.automaton.table, state, self.automaton.accepting)
+        return bool(self.automaton.accepting[from_here.reachable_states(self.realizable)].all())
 
     def _word_to(self, state: int) -> list[int] | None:
         """A shortest word of realizable labels (else of any labels) from the initial state to ``state``."""
