@@ -35,7 +35,7 @@ import numpy as np
 from numba import njit
 
 from sgplan.planning._dijkstra import PRED_SOURCE, dijkstra, label_runs, next_cell
-from sgplan.planning._heap import ARITY, HREC, hpop, hpush
+from sgplan.planning._heap import HREC, hpop, hpush
 from sgplan.planning.ltl_heuristic import fill_row, row_value
 
 FOUND, EXHAUSTED, BUDGET, GROW = 0, 1, 2, 3
@@ -642,11 +642,12 @@ def anchor_path(G, L, S, budget, max_succ):
     :func:`multi_queue_path`, in one flat loop.
 
     Flat because numba reference-counts the arrays a helper takes (``inline="always"`` included) with
-    atomic increments its pruning pass does not remove in this loop: calling the heap and record helpers
-    cost ~20 % of the A* search. So the heap pop (:func:`hpop`) and push (:func:`hpush`), the record
-    lookups (:func:`rec_find`, :func:`rec_touch`) are written out here (the link helpers take scalars
-    only and stay), and the counters live in locals until the loop returns. test_search_core checks that both
-    loops leave identical search memory.
+    atomic increments its pruning pass does not always remove in this loop. So the record lookups
+    (:func:`rec_find`, :func:`rec_touch`) are written out here (the link helpers take scalars only and
+    stay), and the counters live in locals until the loop returns. The heap is the one heap's
+    (:func:`~sgplan.planning._heap.hpop`, :func:`~sgplan.planning._heap.hpush`), called: written out
+    here it was no faster (benchmarks/results/heap_inlining.md). test_search_core checks that both loops
+    leave identical search memory.
     """
     cell_at, cell_pos, step_offset = G.cell_at, G.cell_pos, G.step_offset
     step_cost, stairs_first, stairs_from = G.step_cost, G.stairs_first, G.stairs_from
@@ -699,36 +700,7 @@ def anchor_path(G, L, S, budget, max_succ):
             ):
                 status = GROW
                 break
-        # Pop (hpop).
-        size -= 1
-        if size > 0:
-            last = size * HREC
-            key, g, value = hf[last], hf[last + 1], hi[last + 2]
-            i = 0
-            while True:
-                first = ARITY * i + 1
-                if first >= size:
-                    break
-                best = first
-                b = first * HREC
-                bk, bg = hf[b], hf[b + 1]
-                for child in range(first + 1, min(first + ARITY, size)):
-                    e = child * HREC
-                    ek = hf[e]
-                    if ek < bk or (ek == bk and hf[e + 1] > bg):
-                        best, bk, bg = child, ek, hf[e + 1]
-                if not (bk < key or (bk == key and bg > g)):
-                    break
-                d = i * HREC
-                o = best * HREC
-                hi[d] = hi[o]
-                hi[d + 1] = hi[o + 1]
-                hi[d + 2] = hi[o + 2]
-                i = best
-            d = i * HREC
-            hf[d] = key
-            hf[d + 1] = g
-            hi[d + 2] = value
+        size = hpop(hf, hi, 0, size)  # the top entry: stale or about to be expanded
         if stale:
             continue
 
@@ -796,25 +768,7 @@ def anchor_path(G, L, S, budget, max_succ):
                 incons[n_incons] = ns
                 n_incons += 1
                 continue
-            # Push (hpush).
-            key = gn + w1 * h0
-            i = size
-            while i > 0:
-                parent = (i - 1) // ARITY
-                a = parent * HREC
-                pk = hf[a]
-                if not (key < pk or (key == pk and gn > hf[a + 1])):
-                    break
-                d = i * HREC
-                hi[d] = hi[a]
-                hi[d + 1] = hi[a + 1]
-                hi[d + 2] = hi[a + 2]
-                i = parent
-            d = i * HREC
-            hf[d] = key
-            hf[d + 1] = gn
-            hi[d + 2] = ns
-            size += 1
+            size = hpush(hf, hi, 0, size, gn + w1 * h0, gn, ns)
     hsize[0] = size
     iscal[I_PAGES] = pages
     iscal[I_NINCONS] = n_incons
