@@ -444,9 +444,8 @@ def plan(
         ``(row, col, floor)``, a metric :class:`~sgplan.starts.Point` ``(x_m, y_m, floor)`` (or a triple with
         float x/y), or a room (``"kitchen"``, ``"room_5"``); see :mod:`sgplan.starts`.
     options, **option_values:
-        the planning options (:class:`sgplan.PlanOptions`: ``setup``, ``profile``, ``robot_radius_m``,
-        ``reach_radius_m``, ``time_limit_s``, ``max_expansions``, ``verify``, ``prebuild_actions``), as a
-        value, as keywords (``setup="NO-LLM"``), or both (the keywords replace the value's fields). A
+        the planning options (:class:`sgplan.PlanOptions`, which states and checks them), as a value, as
+        keywords (``setup="NO-LLM"``), or both (the keywords replace the value's fields). A
         setup using LLM guidance on a mission without guidance gets it from ``guide`` (default: the
         offline symbolic guide, which is not an LLM); ``PlanResult.guidance`` says which. When a budget
         runs out the result has status ``"timeout"`` with the best path so far (its ``bound``) or none:
