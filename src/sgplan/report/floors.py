@@ -56,9 +56,11 @@ def _colour(value: float) -> str:
     return f"#{int(r * 255):02x}{int(g * 255):02x}{int(b * 255):02x}"
 
 
-def _floor_svg(building: Building, floor: int, cells: np.ndarray, events: Sequence[PathEvent] = ()) -> str:
+def floor_svg(building: Building, floor: int, cells: np.ndarray, events: Sequence[PathEvent] = ()) -> str:
     """The SVG overlay of one floor in cell coordinates (x = column, y = row): room names, the path with
-    its arrows, then the portals, events, end and start on top."""
+    its arrows, then the portals, events, end and start on top. ``cells``: the path's ``(n, 3)``
+    ``(row, col, floor)`` rows (empty: no path). The report draws each floor with it, and the live page of
+    ``sgplan serve`` swaps it in when a path changes."""
     f = building.floors[floor]
     rows, cols = f.shape
     unit = cols / 1000  # cells per CSS pixel: the map is shown about 1000 px wide
@@ -190,7 +192,7 @@ def floors_html(
             f'<div class="stage" style="aspect-ratio: {cols} / {rows}">'
             f'<img class="map" alt="floor {k} map" src="{image}">'
             + (f'<img class="reach" alt="reach regions on floor {k}" src="{reach_uri}">' if reach_uri else "")
-            + _floor_svg(building, k, cells, events)
+            + floor_svg(building, k, cells, events)
             + f'<img class="ids rooms" hidden alt="" src="{_id_image(f.room_map)}">'
             f'<img class="ids objects" hidden alt="" src="{_id_image(objects)}">'
             "</div></div>"
