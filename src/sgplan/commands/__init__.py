@@ -2,7 +2,17 @@
 
 from __future__ import annotations
 
-from sgplan.commands import bench, demo, eval_translation, guide, import_scene, inspect, plan, serve, translate
+from sgplan.commands import (
+    bench,
+    demo,
+    eval_translation,
+    guide,
+    import_scene,
+    inspect,
+    plan,
+    serve,
+    translate,
+)
 
 REGISTRY = [
     demo.register, inspect.register, plan.register, translate.register, guide.register, bench.register,
