@@ -7,13 +7,13 @@ left to do); replanning after scene changes and amendments belongs to :mod:`sgpl
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from sgplan.logic.automaton import Automaton
-from sgplan.outputs.events import Event
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 from sgplan.serve.errors import HTTPProblem
@@ -123,10 +123,23 @@ def _along(path: list[list[int]] | None, cell: tuple[int, int, int], since: int)
     return since + int(same[np.argmin(d2)])
 
 
-def left_to_do(events: list[dict[str, Any]], progress: Progress) -> list[str]:
-    """The plan's automaton moves still ahead of the robot, in words (empty once done)."""
+def left_to_do(events: list[dict[str, Any]], progress: Progress, phrase: Callable[[str], str]) -> list[str]:
+    """The steps of the plan still ahead of the robot, in words: where along the plan each move of the
+    mission happens and what becomes true there, each proposition named by ``phrase`` (``"the kitchen
+    (room_4, floor 0)"``); empty once done."""
     if progress.verdict == DONE:
         return []
-    return [
-        Event(**e).describe() for e in events if e.get("kind") == "state" and e["index"] > progress.path_index
-    ]
+    steps = []
+    for event in events:
+        if event.get("kind") != "state" or event["index"] <= progress.path_index:
+            continue
+        true = [
+            phrase(e["proposition"])
+            for e in events
+            if e.get("kind") == "proposition" and e["index"] == event["index"]
+        ]
+        where = f"row {event['row']}, column {event['col']}, floor {event['floor']}"
+        what = "at " + " and ".join(true) if true else "the mission moves on"
+        tail = ": the mission is done" if event.get("accepting") else ""
+        steps.append(f"{what} at {event['cost_m']:.2f} m along the plan ({where}){tail}")
+    return steps

@@ -76,7 +76,7 @@ class LiveRun:
             "request": self.request,
             "plan": self.plan,
             "progress": self.progress.to_dict(),
-            "left_to_do": left_to_do(self.plan.get("events", []), self.progress),
+            "left_to_do": self.left(self.progress),
             "events": self.seq,
         }
         if view:
@@ -91,6 +91,17 @@ class LiveRun:
             "verdict": self.progress.verdict,
             "poses": self.progress.poses,
         }
+
+    def left(self, progress: Progress) -> list[str]:
+        """What is left to do from ``progress`` along the plan, entities named as people name them."""
+        from sgplan.explain import entity_of
+
+        propositions, building = self.understood.mission.propositions, self.host.building
+        return left_to_do(
+            self.plan.get("events", []),
+            progress,
+            lambda name: entity_of(name, propositions.get(name), building).phrase(),
+        )
 
     def labels(self) -> np.ndarray:
         """The mission's label raster at the plan's reach radius (from the scene's warm session)."""
@@ -214,11 +225,7 @@ class RunBook:
             )
             status = {DONE: DONE, VIOLATED: VIOLATED}.get(progress.verdict, ACTIVE)
             saved_seq = run.seq
-            events = [
-                run.event(
-                    "progress", progress.to_dict() | {"left_to_do": left_to_do(run.plan["events"], progress)}
-                )
-            ]
+            events = [run.event("progress", progress.to_dict() | {"left_to_do": run.left(progress)})]
             if status != ACTIVE:
                 events.append(run.event(status, {"verdict": progress.verdict, "state": progress.state}))
             try:
