@@ -17,6 +17,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.middleware.cors import CORSMiddleware
 from fastapi.responses import HTMLResponse, JSONResponse, Response
 from starlette.concurrency import run_in_threadpool
+from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from sgplan import __version__
 from sgplan.errors import SgplanError
@@ -96,6 +97,18 @@ def _add_error_handlers(app: FastAPI) -> None:
     @app.exception_handler(SgplanError)
     async def sgplan_error(request: Request, error: SgplanError) -> Response:
         return error_response(error)
+
+    @app.exception_handler(StarletteHTTPException)
+    async def http_error(request: Request, error: StarletteHTTPException) -> Response:
+        message = {
+            404: f"no route {request.url.path}; the API is described at /docs",
+            405: f"{request.method} is not allowed on {request.url.path}",
+        }.get(error.status_code, str(error.detail))
+        return JSONResponse(
+            error_body(error.status_code, message, kind="HTTPError"),
+            status_code=error.status_code,
+            headers=error.headers,
+        )
 
     @app.exception_handler(RequestValidationError)
     async def bad_request(request: Request, error: RequestValidationError) -> Response:

@@ -79,7 +79,8 @@ class TokenGuard:
 
 
 class BodyLimit:
-    """Refuse (413) a request body over ``max_bytes``."""
+    """Refuse (413) a request body over ``max_bytes``: the body is read here first (up to the limit), then
+    handed to the application whole."""
 
     def __init__(self, app: ASGIApp, max_bytes: int = MAX_REQUEST_BYTES) -> None:
         self.app = app
@@ -88,8 +89,7 @@ class BodyLimit:
     def _problem(self) -> HTTPProblem:
         return HTTPProblem(
             413,
-            f"the request body is larger than {self.max_bytes:,} bytes; send fewer poses or "
-            "changes per request",
+            f"the request body is larger than {self.max_bytes:,} bytes; send fewer poses or changes per request",
         )
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
@@ -100,22 +100,21 @@ class BodyLimit:
             if name == b"content-length" and value.isdigit() and int(value) > self.max_bytes:
                 await _refuse(send, self._problem())
                 return
-        seen = 0
-
-        async def bounded() -> Message:
-            nonlocal seen
+        chunks, size = [], 0
+        while True:
             message = await receive()
-            if message["type"] == "http.request":
-                seen += len(message.get("body", b""))
-                if seen > self.max_bytes:
-                    raise _TooLarge
-            return message
+            if message["type"] != "http.request":  # the client left
+                return
+            chunks.append(message.get("body", b""))
+            size += len(chunks[-1])
+            if size > self.max_bytes:
+                await _refuse(send, self._problem())
+                return
+            if not message.get("more_body", False):
+                break
+        whole: list[Message] = [{"type": "http.request", "body": b"".join(chunks), "more_body": False}]
 
-        try:
-            await self.app(scope, bounded, send)
-        except _TooLarge:
-            await _refuse(send, self._problem())
+        async def replay() -> Message:
+            return whole.pop() if whole else await receive()
 
-
-class _TooLarge(Exception):
-    """A streamed body went over the limit (caught by :class:`BodyLimit`)."""
+        await self.app(scope, replay, send)

@@ -182,7 +182,7 @@ class RunBook:
                 secrets.token_hex(8),
                 host,
                 understood,
-                request.model_dump(mode="json"),
+                request.model_dump(mode="json", exclude_none=True),
                 plan,
                 progress,
                 DONE if progress.verdict == DONE else ACTIVE,
