@@ -15,12 +15,12 @@ import pytest
 
 pytest.importorskip("fastapi", reason="the serve extra is not installed (pip install 'sgplan[serve]')")
 
-from fastapi.testclient import TestClient  # noqa: E402
+from fastapi.testclient import TestClient
 
-from sgplan.serve.app import create_app  # noqa: E402
-from sgplan.serve.config import ServeConfig  # noqa: E402
-from sgplan.serve.scenes import SceneRegistry  # noqa: E402
-from sgplan.serve.service import MissionService  # noqa: E402
+from sgplan.serve.app import create_app
+from sgplan.serve.config import ServeConfig
+from sgplan.serve.scenes import SceneRegistry
+from sgplan.serve.service import MissionService
 
 KITCHEN_TEXT = "Go to the kitchen, then the bedroom with the clock. Always avoid the bathroom on floor 0."
 

@@ -47,7 +47,7 @@ def test_every_request_needs_the_token(guarded: TestClient) -> None:
 def test_other_addresses_refuse_to_start_without_a_token(tmp_path: Path) -> None:
     assert is_loopback("127.0.0.1") and is_loopback("::1") and is_loopback("localhost")
     assert not is_loopback("0.0.0.0") and not is_loopback("192.168.1.5") and not is_loopback("example.org")
-    with pytest.raises(ServeError, match="refusing to listen on 0.0.0.0 without a token"):
+    with pytest.raises(ServeError, match=r"refusing to listen on 0\.0\.0\.0 without a token"):
         ServeConfig(scenes=("demo",), host="0.0.0.0").checked()
     with pytest.raises(ServeError, match="use at least 16"):
         ServeConfig(scenes=("demo",), token="short").checked()

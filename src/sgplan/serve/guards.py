@@ -89,7 +89,8 @@ class BodyLimit:
     def _problem(self) -> HTTPProblem:
         return HTTPProblem(
             413,
-            f"the request body is larger than {self.max_bytes:,} bytes; send fewer poses or changes per request",
+            f"the request body is larger than {self.max_bytes:,} bytes; send fewer poses or changes at a "
+            "time",
         )
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
