@@ -5,9 +5,7 @@ from __future__ import annotations
 import base64
 import io
 import json
-import os
 import re
-import shutil
 from dataclasses import replace
 from pathlib import Path
 from types import SimpleNamespace
@@ -20,20 +18,13 @@ from sgplan.errors import OutputError
 from sgplan.outputs.events import Event
 from sgplan.report.html import report_html, write_html_report
 from sgplan.scene.draw_path import path_cells
+from tests.browser import BROWSER_FLAGS
+from tests.browser import browser as _browser
 from tests.plans import REACH_M, DemoPlan
 
 EXPLANATION = (
     "First the bathroom, keeping away from its sink; then a dining chair; then the bedroom upstairs."
 )
-BROWSER_FLAGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--no-first-run",
-]
 
 
 @pytest.fixture(scope="module")
@@ -111,28 +102,6 @@ def test_report_without_path_and_write_errors(demo_plan: DemoPlan, tmp_path: Pat
     blocker.write_text("not a folder")
     with pytest.raises(OutputError, match="cannot write the HTML report"):
         write_html_report(blocker / "plan.html", d.building, d.grid, d.result, d.mission, engine="matplotlib")
-
-
-def _browser() -> tuple[object, str]:
-    """Playwright's sync API and a Chromium executable, or skip saying what is missing."""
-    try:
-        from playwright.sync_api import sync_playwright
-    except ImportError:
-        pytest.skip("the Python package playwright is not installed (pip install -e '.[test]')")
-    candidates = [
-        os.environ.get("SGPLAN_CHROMIUM"),
-        "/usr/bin/chromium",
-        shutil.which("chromium"),
-        shutil.which("chromium-browser"),
-        shutil.which("google-chrome"),
-    ]
-    executable = next((c for c in candidates if c and Path(c).is_file()), None)
-    if executable is None:
-        pytest.skip(
-            "no Chromium found (apt-get install chromium, or set SGPLAN_CHROMIUM); "
-            ".ci/run installs it when run as root"
-        )
-    return sync_playwright, executable
 
 
 def test_report_in_headless_chromium(report: Path, demo_plan: DemoPlan) -> None:

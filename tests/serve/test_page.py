@@ -1,0 +1,144 @@
+"""The live page in headless Chromium against a real server: type a mission and read it said back, set
+the start on the map, plan and see the path, drive the simulated robot to the end, at desktop and phone
+width, by mouse and by keyboard; no console error, no failed request. Screenshots of every step go to
+``$SGPLAN_SCREENSHOTS`` when set (they were looked at; docs/serve.md describes them)."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+import sgplan
+from sgplan.starts import start_cell
+from tests.browser import BROWSER_FLAGS, browser
+from tests.serve.conftest import KITCHEN_TEXT, ServerProcess
+
+pytestmark = pytest.mark.slow
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[ServerProcess]:
+    process = ServerProcess(tmp_path_factory.mktemp("state")).start()
+    yield process
+    process.kill()
+
+
+@pytest.fixture
+def page(server: ServerProcess) -> Iterator[tuple[Any, list[str]]]:
+    sync_playwright, executable = browser()
+    problems: list[str] = []
+    with sync_playwright() as p:  # type: ignore[operator]
+        try:
+            chromium = p.chromium.launch(executable_path=executable, args=BROWSER_FLAGS, headless=True)
+        except Exception as error:  # noqa: BLE001 - any launch failure means "no usable browser here"
+            pytest.skip(f"Chromium at {executable} did not start: {str(error).splitlines()[0]}")
+        tab = chromium.new_page(viewport={"width": 1280, "height": 900})
+        tab.on(
+            "console",
+            lambda m: (
+                problems.append(f"console {m.type}: {m.text}") if m.type in ("error", "warning") else None
+            ),
+        )
+        tab.on("pageerror", lambda e: problems.append(f"page error: {e}"))
+        tab.on(
+            "requestfailed",
+            lambda r: (
+                problems.append(f"request failed: {r.url} {r.failure}")
+                if not r.url.endswith("/events")
+                else None
+            ),
+        )  # a stream closed by the page itself
+        tab.on(
+            "response", lambda r: problems.append(f"HTTP {r.status}: {r.url}") if r.status >= 400 else None
+        )
+        tab.goto(server.url + "/")
+        tab.wait_for_selector(
+            '#layers .floor[data-floor="1"][data-ready="true"]', state="attached", timeout=30_000
+        )
+        yield tab, problems
+        chromium.close()
+
+
+def shot(tab: Any, name: str) -> None:
+    folder = os.environ.get("SGPLAN_SCREENSHOTS")
+    if folder:
+        Path(folder).mkdir(parents=True, exist_ok=True)
+        tab.screenshot(path=str(Path(folder) / f"{name}.png"), full_page=True)
+
+
+def click_cell(tab: Any, cell: tuple[int, int, int], shape: tuple[int, int]) -> None:
+    stage = tab.locator(f'#layers .floor[data-floor="{cell[2]}"] .stage')
+    stage.scroll_into_view_if_needed()
+    box = stage.bounding_box()
+    rows, cols = shape
+    tab.mouse.click(
+        box["x"] + (cell[1] + 0.5) / cols * box["width"], box["y"] + (cell[0] + 0.5) / rows * box["height"]
+    )
+
+
+def test_type_plan_and_drive_the_robot(page: tuple[Any, list[str]]) -> None:
+    tab, problems = page
+    building = sgplan.load_scene("demo")
+    session = sgplan.Session(building)
+    kitchen, _ = start_cell(building, session.grid(), "kitchen")
+
+    tab.fill("#mission", KITCHEN_TEXT)
+    tab.wait_for_function("document.getElementById('explanation').textContent.includes('room_4, floor 0')")
+    said = tab.locator("#explanation").inner_text()
+    assert "Go to the kitchen (room_4, floor 0), then go to the bedroom (room_11, floor 1)" in said
+    assert "Never enter the bathroom (room_5, floor 0)" in said
+    shot(tab, "1-said-back")
+
+    click_cell(tab, kitchen, building.floors[0].shape)
+    assert tab.locator("#start-shown").inner_text() == f"cell row {kitchen[0]}, column {kitchen[1]}, floor 0"
+    assert tab.locator('#layers .floor[data-floor="0"] svg.marks circle.chosen-start').count() == 1
+    tab.locator("#plan").click()
+    tab.wait_for_function("document.getElementById('status').textContent.startsWith('Run ')")
+    assert "optimal" in tab.locator("#status").inner_text()
+    assert tab.locator('#layers .floor[data-floor="0"] svg.overlay polyline.path').count() > 0
+    assert tab.locator('#layers .floor[data-floor="0"] svg.overlay circle.start').count() == 1
+    assert "the bedroom (room_11, floor 1)" in tab.locator("#left").inner_text()
+    shot(tab, "2-planned")
+
+    # Hovering the map names the room (the report's hover, on the served floors).
+    stage = tab.locator('#layers .floor[data-floor="0"] .stage')
+    box = stage.bounding_box()
+    rows, cols = building.floors[0].shape
+    tab.mouse.move(
+        box["x"] + (kitchen[1] + 0.5) / cols * box["width"],
+        box["y"] + (kitchen[0] + 0.5) / rows * box["height"],
+    )
+    assert "room: kitchen (room_4" in tab.locator("#tooltip").inner_text()
+
+    tab.locator("#play").click()
+    tab.wait_for_function("document.getElementById('verdict').textContent.includes('done')", timeout=60_000)
+    assert tab.locator("#left").inner_text().startswith("nothing: the mission is done")
+    assert tab.locator('#layers .floor[data-floor="1"] svg.marks circle.robot').count() == 1
+    tab.wait_for_function("document.getElementById('log').textContent.includes('done')")
+    shot(tab, "3-driven")
+    assert problems == []
+
+
+def test_keyboard_and_phone_width(page: tuple[Any, list[str]]) -> None:
+    tab, problems = page
+    tab.set_viewport_size({"width": 390, "height": 844})
+    tab.focus("#start-room")
+    tab.keyboard.type("kitchen")
+    tab.keyboard.press("Tab")  # to the mission
+    tab.keyboard.type("Go to the dining room.")
+    tab.wait_for_function("document.getElementById('explanation').textContent.includes('dining room')")
+    tab.wait_for_function("!document.getElementById('plan').disabled")
+    tab.focus("#plan")
+    tab.keyboard.press("Enter")
+    tab.wait_for_function("document.getElementById('status').textContent.startsWith('Run ')")
+    # Nothing wider than the phone's screen but the map, which scales with it.
+    width = tab.evaluate("document.documentElement.scrollWidth")
+    assert width <= 390
+    shot(tab, "4-phone")
+    tab.locator("#cancel-run").click()
+    tab.wait_for_function("document.getElementById('status').textContent.includes('(cancelled)')")
+    assert problems == []
