@@ -9,6 +9,7 @@ from sgplan.commands import (
     guide,
     import_scene,
     inspect,
+    monitor,
     plan,
     serve,
     translate,
@@ -16,5 +17,5 @@ from sgplan.commands import (
 
 REGISTRY = [
     demo.register, inspect.register, plan.register, translate.register, guide.register, bench.register,
-    import_scene.register, eval_translation.register, serve.register,
+    import_scene.register, eval_translation.register, monitor.register, serve.register,
 ]
