@@ -587,20 +587,11 @@ class LabelRuns:
 
 def _distance_field(problem: PlanningProblem, graph: CellGraph, cells: np.ndarray, unit_m: float
                     ) -> np.ndarray | float:
-    """:func:`~sgplan.planning.ltl_heuristic.unit_field` of ``graph``, kept by the session (read-only) by
-    grid, unit and target cells; computed each time when the session keeps nothing."""
-    if problem.shared is None or not problem.shared.keeps:
+    """:func:`~sgplan.planning.ltl_heuristic.unit_field` of ``graph``, from the session's parts
+    (:meth:`SharedParts.distance_field`); computed each time without them."""
+    if problem.shared is None:
         return unit_field(graph, cells, unit_m)
-    cells = np.ascontiguousarray(cells, dtype=np.int64)
-    key = (problem.grid, unit_m, len(cells), hashlib.blake2b(cells.tobytes(), digest_size=16).digest())
-
-    def build() -> np.ndarray | float:
-        field = unit_field(graph, cells, unit_m)
-        if isinstance(field, np.ndarray):
-            field.flags.writeable = False
-        return field
-
-    return problem.shared.get("distance_field", key, build)
+    return problem.shared.distance_field(problem.grid, graph, cells, unit_m)
 
 
 def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
