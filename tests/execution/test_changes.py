@@ -101,3 +101,16 @@ def test_a_bad_document_is_refused(tmp_path):
     path.write_text("changes: [\n")
     with pytest.raises(SceneError, match=r"bad.yaml: invalid YAML"):
         read_changes(path)
+
+
+def test_the_json_schema_in_docs_lists_the_kinds_and_fields_the_reader_takes():
+    import json
+    from pathlib import Path
+
+    from sgplan.execution.changes import _FIELDS, CHANGE_KINDS
+
+    schema = json.loads((Path(__file__).parents[2] / "docs" / "changes.schema.json").read_text())
+    variants = schema["$defs"]["change"]["oneOf"]
+    kinds = {v["properties"]["kind"]["const"]: set(v["properties"]) - {"kind", "when"} for v in variants}
+    assert set(kinds) == set(CHANGE_KINDS)
+    assert kinds == _FIELDS
