@@ -30,6 +30,7 @@ from sgplan.planning.shared import SharedParts
 from sgplan.scene.model import Building
 
 if TYPE_CHECKING:  # the planner, grid and labels (numba, scipy) load when a plan is made, not for a mission
+    from sgplan.execution.run import Run
     from sgplan.explain import Explanation
     from sgplan.llm.backends import Backends, MissionGuide
     from sgplan.mission import Mission
@@ -175,13 +176,15 @@ def add_guidance(
     ), guide.name
 
 
-class _Explained(TypedDict):
+class Explained(TypedDict):
+    """The ``explanation`` and ``explanation_method`` of a :class:`PlanResult`."""
+
     explanation: str
     explanation_method: str
 
 
-def _explanation(mission: Mission, building: Building, given: Explanation | None = None,
-                 cells: Callable[[Proposition, float], np.ndarray] | None = None) -> _Explained:
+def explain_for_result(mission: Mission, building: Building, given: Explanation | None = None,
+                 cells: Callable[[Proposition, float], np.ndarray] | None = None) -> Explained:
     """The mission explained in plain English (:func:`sgplan.explain.explain_mission`) as the
     ``explanation`` and ``explanation_method`` of a :class:`PlanResult`: the one place a plan gets it.
     ``given``: the caller's explanation of this mission and building (already said back), used as it is;
@@ -305,18 +308,11 @@ class Session:
         stop_when = any_of(options.termination(), termination)
         found = amra_plan(staged.problem, options.setup, termination=stop_when, callback=callback,
                           prebuild_actions=options.prebuild_actions, release_maps=not self.parts.keeps)
-        result = _result(found, staged, options, self.building,
-                         _explanation(staged.mission, self.building, explanation, self.proposition_cells))
-        if found.path is not None:
-            _add_outputs(result, options.verify)
-        result.timings = {
-            "prepare_s": prepare_s, "precompute_s": found.precompute_s, "search_s": found.search_s,
-            "wall_s": time.perf_counter() - t0,
-        }
-        return result
+        explained = explain_for_result(staged.mission, self.building, explanation, self.proposition_cells)
+        return finish_plan(found, staged, options, explained, started=t0, prepare_s=prepare_s)
 
     def _stage(self, mission: Mission, start: StartSpec, options: PlanOptions,
-               guide: MissionGuide | None) -> _Staged:
+               guide: MissionGuide | None) -> StagedPlan:
         """Everything before the search: the guidance a setup needs, the radii, grid, start cell and the
         planning problem, checked against the scene (an error found there is raised)."""
         from sgplan.planning.setups import get_setup
@@ -337,13 +333,26 @@ class Session:
             self.building.name, start_at, start_from, radii.robot_m, radii.robot_from, radii.reach_m,
             radii.reach_from, options.profile, mission.automaton.num_states,
         )
-        return _Staged(mission, guidance, prepared.problem, radii, start_from, scene_check)
+        return StagedPlan(mission, guidance, prepared.problem, radii, start_from, scene_check)
+
+    def start(self, mission: Mission, start: StartSpec = None, *, options: PlanOptions | None = None,
+              guide: MissionGuide | None = None, **option_values: Any) -> Run:
+        """Start a :class:`~sgplan.execution.run.Run`: ``mission`` carried from ``start`` through the
+        changes of this building (which the run never makes to the session's own building), with progress,
+        monitoring, exact replanning and amendments. Options as :meth:`plan` takes them.
+
+        Cost: this session's grid and labels for the radii (kept), the run's cell numbering (two passes
+        over the grid); the first plan is made when ``run.plan`` is first read."""
+        from sgplan.execution.run import Run
+
+        return Run(self, mission, start, PlanOptions.from_keywords(options, **option_values), guide=guide)
 
 
 @dataclass(frozen=True)
-class _Staged:
-    """A plan's inputs once staged (:meth:`Session._stage`): the mission (with the guidance added, if any),
-    where its guidance came from, the problem, the radii, how the start was chosen, the scene check."""
+class StagedPlan:
+    """A plan's inputs once staged (:meth:`Session._stage`, or a run's plan from its position): the
+    mission (with the guidance added, if any), where its guidance came from, the problem, the radii, how the
+    start was chosen, the scene check's findings."""
 
     mission: Mission
     guidance: str | None
@@ -353,8 +362,22 @@ class _Staged:
     scene_check: list[dict[str, Any]]
 
 
-def _result(found: SearchResult, staged: _Staged, options: PlanOptions, building: Building,
-            explained: _Explained) -> PlanResult:
+def finish_plan(found: SearchResult, staged: StagedPlan, options: PlanOptions, explained: Explained, *,
+                started: float, prepare_s: float) -> PlanResult:
+    """The public result of a search over ``staged``'s problem: the path checked (``options.verify``), its
+    waypoints and events, the timings since ``started`` (a ``time.perf_counter()``)."""
+    result = _result(found, staged, options, staged.problem.building, explained)
+    if found.path is not None:
+        _add_outputs(result, options.verify, staged.problem.start_state)
+    result.timings = {
+        "prepare_s": prepare_s, "precompute_s": found.precompute_s, "search_s": found.search_s,
+        "wall_s": time.perf_counter() - started,
+    }
+    return result
+
+
+def _result(found: SearchResult, staged: StagedPlan, options: PlanOptions, building: Building,
+            explained: Explained) -> PlanResult:
     """The public result of a search (without the outputs :func:`_add_outputs` adds)."""
     from sgplan.result import PlanResult
 
@@ -395,8 +418,9 @@ def _formula_text(mission: Mission) -> str | None:
     return to_infix(mission.formula) if mission.formula is not None else None
 
 
-def _add_outputs(result: PlanResult, verify: bool) -> None:
-    """Check the path (when asked) and add the waypoints and events."""
+def _add_outputs(result: PlanResult, verify: bool, start_state: int | None) -> None:
+    """Check the path (when asked) and add the waypoints and events; ``start_state``: the automaton state
+    at the path's first cell when it resumes a mission (:class:`~sgplan.planning.PlanningProblem`)."""
     from sgplan.outputs.events import path_events
     from sgplan.outputs.waypoints import leg_costs, path_waypoints, simplify_path
     from sgplan.planning.checker import check_path
@@ -405,7 +429,7 @@ def _add_outputs(result: PlanResult, verify: bool) -> None:
     assert result.mission is not None and result.building is not None
     automaton = result.mission.automaton
     if verify:
-        check = check_path(result.path, result.grid, result.labels, automaton, result.profile)
+        check = check_path(result.path, result.grid, result.labels, automaton, result.profile, start_state)
         if not check.valid:
             raise PlanningError("the path failed the independent check (a bug, please report it): "
                                 + "; ".join(check.problems))
@@ -418,7 +442,7 @@ def _add_outputs(result: PlanResult, verify: bool) -> None:
     result.waypoints_simplified = path_waypoints(result.path, result.grid, result.building, keep)
     costs = np.concatenate([[0.0], np.cumsum(leg_costs(result.path, result.grid))])
     result.events = path_events(result.path, costs, result.labels, automaton, result.building,
-                                result.mission.descriptions)
+                                result.mission.descriptions, start_state=start_state)
 
 
 def plan(

@@ -16,7 +16,7 @@ if TYPE_CHECKING:
 
 def _unreachable_goals(run: Run) -> list[str]:
     """The places the rest of the mission must visit that no cell reachable from the robot offers."""
-    from sgplan.explain.entities import entity_of
+    from sgplan.explain.referents import referent_of
 
     automaton = run.mission.automaton
     rest = remaining_mission(automaton, run.state)
@@ -30,7 +30,7 @@ def _unreachable_goals(run: Run) -> list[str]:
     for name in needed:
         bit = automaton.aps.index(name)
         if not int(offered) >> bit & 1:
-            names.append(entity_of(name, run.mission.propositions.get(name), run.building).phrase())
+            names.append(referent_of(name, run.mission.propositions.get(name), run.building).phrase())
     return names
 
 

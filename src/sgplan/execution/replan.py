@@ -10,20 +10,22 @@ from typing import TYPE_CHECKING
 from sgplan.planning.problem import PlanningProblem
 
 if TYPE_CHECKING:
+    from sgplan.api import Explained
     from sgplan.execution.run import Run
     from sgplan.result import PlanResult
 
 
-def plan_from(run: Run, cell: tuple[int, int, int], state: int) -> PlanResult:
+def plan_from(run: Run, cell: tuple[int, int, int], state: int, explained: Explained) -> PlanResult:
     """The optimal plan of ``run``'s mission from ``cell`` ``(row, col, floor)`` in automaton ``state``
-    (the state after reading ``cell``'s label) in the run's current building.
+    (the state after reading ``cell``'s label) in the run's current building; ``explained``: the
+    mission's explanation, made once per mission by the run.
 
     Raises
     ------
     PlanningError
         ``status="infeasible"`` when no path satisfies the rest of the mission from there.
     """
-    from sgplan.api import finish_plan
+    from sgplan.api import StagedPlan, finish_plan
     from sgplan.planning.amra import plan as amra_plan
 
     t0 = time.perf_counter()
@@ -33,9 +35,9 @@ def plan_from(run: Run, cell: tuple[int, int, int], state: int) -> PlanResult:
         start=cell, start_state=state, profile=options.profile, guidance=mission.guidance,
         reach_radius_m=run.radii.reach_m, ap_descriptions=mission.descriptions, shared=run.parts,
     )
+    guidance = "mission" if mission.guidance is not None else None
+    staged = StagedPlan(mission, guidance, problem, run.radii, "the run's position", [])
     prepare_s = time.perf_counter() - t0
     found = amra_plan(problem, options.setup, termination=options.termination(),
                       prebuild_actions=options.prebuild_actions)
-    return finish_plan(found, problem, mission, options, radii=run.radii, start_from="the run's position",
-                       guidance="mission" if mission.guidance is not None else None, prepare_s=prepare_s,
-                       started=t0)
+    return finish_plan(found, staged, options, explained, started=t0, prepare_s=prepare_s)

@@ -42,7 +42,7 @@ from sgplan.execution.regrid import regrid
 from sgplan.execution.world import SceneDelta, SceneState
 
 if TYPE_CHECKING:
-    from sgplan.api import Session
+    from sgplan.api import Explained, Session
     from sgplan.llm.backends import MissionGuide
     from sgplan.mission import Mission
     from sgplan.options import PlanOptions
@@ -204,6 +204,7 @@ class Run:
         if check:  # a restored run's mission may name objects that only its changes add
             mission.check_scene(self.building)
         self.mission = mission
+        self._explained: Explained | None = None
         self.labels = RunLabels(self.building, mission.ordered_propositions, self.radii.reach_m, cells)
 
     def _follow_status(self) -> None:
@@ -257,10 +258,13 @@ class Run:
     def _search(self) -> PlanResult:
         """A plan from the robot's cell and state; :class:`PlanningError` (status ``infeasible``) when
         there is none. Other planning errors (a bug, a bad option) are raised as they are."""
+        from sgplan.api import explain_for_result
         from sgplan.execution.replan import plan_from
 
+        if self._explained is None:
+            self._explained = explain_for_result(self.mission, self.building)
         try:
-            return plan_from(self, self.position, self.state)
+            return plan_from(self, self.position, self.state, self._explained)
         except PlanningError as error:
             if error.status in ("infeasible", "invalid-start", "unsatisfiable"):
                 raise PlanningError(str(error), status="infeasible") from None
@@ -338,8 +342,11 @@ class Run:
         """
         typed = [c if not isinstance(c, dict) else change_from_dict(c, f"change {i}")
                  for i, c in enumerate(changes, 1)]
-        scene, grid, deltas, objects = self.scene, self.grid, [], set()
-        blocked, freed = [], []
+        scene, grid = self.scene, self.grid
+        deltas: list[SceneDelta] = []
+        objects: set[int] = set()
+        blocked: list[np.ndarray] = []
+        freed: list[np.ndarray] = []
         for i, change in enumerate(typed, 1):
             try:
                 scene, delta = scene.apply(change)
@@ -352,8 +359,8 @@ class Run:
             freed.append(moved.freed)
         row, col, floor = self.position
         if not grid.traversable[floor, row, col]:
-            raise SceneError(f"the changes put an obstacle on the robot's cell ({row}, {col}) of floor {floor}: "
-                             "move the robot first, or change the area around it")
+            raise SceneError(f"the changes put an obstacle on the robot's cell ({row}, {col}) of floor "
+                             f"{floor}: move the robot first, or change the area around it")
         from sgplan.execution.regrid import GridChange
 
         overall = _net_change(self.grid, grid, np.concatenate(blocked), np.concatenate(freed))
@@ -404,11 +411,13 @@ class Run:
         here = self.labels.raster[self.position[2], self.position[0], self.position[1]]
         truth = {p.name: bool(int(here) >> i & 1) for i, p in enumerate(self.labels.propositions)}
         truth |= self._truth_of(amendment)
-        residual = self.monitor.words.residual(self.state).formula if self.mission.formula is not None else None
+        residual = (self.monitor.words.residual(self.state).formula if self.mission.formula is not None
+                    else None)
         combined = combine(self.mission, self.state, amendment, truth, residual)
         reason = None
         if not combined.automaton.live_states()[combined.automaton.initial]:
-            reason = "with the mission's rest it can never be satisfied (or the robot's cell already breaks it)"
+            reason = ("with the mission's rest it can never be satisfied (or the robot's cell already "
+                      "breaks it)")
         else:
             before = (self.mission, self.labels, self.monitor, self.parts, self._status, self.why, self._plan,
                       self._stale, self._on_plan)

@@ -229,7 +229,12 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
     clock.lap("labels")
 
     start_mask = int(label_masks[cell_label[start_cell]])
-    if problem.profile == "ltlf":
+    if problem.start_state is not None:
+        q_start = int(problem.start_state)
+        if dead[q_start]:
+            raise PlanningError(f"automaton state {q_start} at the start can no longer accept: the "
+                                "mission is violated", status="infeasible")
+    elif problem.profile == "ltlf":
         q_start = int(automaton.table[automaton.initial, start_mask])
         if dead[q_start]:
             true_aps = [problem.ap_name(i) for i in range(len(automaton.aps)) if start_mask >> i & 1]
