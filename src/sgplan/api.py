@@ -274,13 +274,14 @@ class Session:
         callback: IterationCallback | None = None,
         explanation: Explanation | None = None,
         termination: Termination | None = None,
+        start_state: int | None = None,
         **option_values: Any,
     ) -> PlanResult:
         """Plan ``mission`` from ``start`` with AMRA*; see :func:`sgplan.plan`."""
         chosen = PlanOptions.from_keywords(options, **option_values)
         try:
             return self._plan(mission, start, chosen, guide=guide, callback=callback, explanation=explanation,
-                              termination=termination)
+                              termination=termination, start_state=start_state)
         finally:
             self.parts.trim()
 
@@ -294,13 +295,14 @@ class Session:
         callback: IterationCallback | None,
         explanation: Explanation | None,
         termination: Termination | None,
+        start_state: int | None,
     ) -> PlanResult:
         from sgplan.jit import announce_compile
         from sgplan.planning.amra import plan as amra_plan
         from sgplan.planning.termination import any_of
 
         t0 = time.perf_counter()
-        staged = self._stage(mission, start, options, guide)
+        staged = self._stage(mission, start, options, guide, start_state)
         prepare_s = time.perf_counter() - t0
         announce_compile()
         # Without kept parts the problem's maps are this plan's alone: freed once the search stops
@@ -312,7 +314,7 @@ class Session:
         return finish_plan(found, staged, options, explained, started=t0, prepare_s=prepare_s)
 
     def _stage(self, mission: Mission, start: StartSpec, options: PlanOptions,
-               guide: MissionGuide | None) -> StagedPlan:
+               guide: MissionGuide | None, start_state: int | None = None) -> StagedPlan:
         """Everything before the search: the guidance a setup needs, the radii, grid, start cell and the
         planning problem, checked against the scene (an error found there is raised)."""
         from sgplan.planning.setups import get_setup
@@ -325,7 +327,8 @@ class Session:
         grid = self.grid(radii.robot_m)
         start_at, start_from = start_cell(self.building, grid, start)
         prepared = make_problem(self.building, mission, start_at, options, grid=grid,
-                                labels=self.labels(mission, radii.reach_m), shared=self.parts)
+                                labels=self.labels(mission, radii.reach_m), shared=self.parts,
+                                start_state=start_state)
         scene_check = _check_in_scene(mission, self.building, prepared.problem)
         log.info(
             "scene %s: start %s (%s), robot radius %g m (%s), reach %g m (%s), profile %s, %d automaton "
@@ -401,8 +404,14 @@ def _check_in_scene(mission: Mission, building: Building, problem: PlanningProbl
     as records."""
     from sgplan.explain.checks import check_mission_in_scene
 
+    profile = problem.profile
+    if problem.start_state is not None:  # check what is left from the start state, its label read
+        a = mission.automaton
+        mission = replace(mission, automaton=type(a)(a.aps, a.table, problem.start_state, a.accepting),
+                          formula=None)
+        profile = "authors"
     check = check_mission_in_scene(mission, building, problem.start, grid=problem.grid, labels=problem.labels,
-                                   profile=problem.profile)
+                                   profile=profile)
     for finding in check.findings:
         if finding.severity == "warning":
             log.warning(f"warning: {finding.message}")
@@ -456,6 +465,7 @@ def plan(
     session: Session | None = None,
     explanation: Explanation | None = None,
     termination: Termination | None = None,
+    start_state: int | None = None,
     **option_values: Any,
 ) -> PlanResult:
     """Plan an optimal path for ``mission`` over ``building`` with AMRA* and check it.
@@ -488,6 +498,10 @@ def plan(
         :class:`~sgplan.planning.termination.CancelFlag` that another thread sets (status
         ``"cancelled"``, with the best path so far) or a wall-clock
         :class:`~sgplan.planning.termination.Deadline`; checked with the options' budgets.
+    start_state:
+        plan the rest of a mission already under way: the automaton state at ``start``, its label already
+        read (e.g. ``PlanResult.path[k, 3]`` at the path's cell ``k``, or a monitor's state there); the
+        path's rows then carry the states from it on. ``None``: from the automaton's initial state.
 
     Raises
     ------
@@ -503,4 +517,5 @@ def plan(
     elif session.building is not building:
         raise PlanningError("the session plans on another building than the one given")
     return session.plan(mission, start, options=options, guide=guide, callback=callback,
-                        explanation=explanation, termination=termination, **option_values)
+                        explanation=explanation, termination=termination, start_state=start_state,
+                        **option_values)

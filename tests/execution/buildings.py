@@ -13,7 +13,7 @@ from sgplan.scene.builder import BuildingBuilder
 from sgplan.scene.model import Building
 
 
-def _flat_floor(b: BuildingBuilder, floor: int, with_stairs_room: bool) -> None:
+def _flat_floor(b: BuildingBuilder, floor: int, with_stairs_room: bool) -> int:
     hall = b.add_room(floor, "corridor", box=(0.0, 0.0, 1.5, 5.0 if with_stairs_room else 6.0))
     kitchen = b.add_room(floor, "kitchen", box=(1.5, 0.0, 4.0, 3.0))
     bedroom = b.add_room(floor, "bedroom", box=(1.5, 3.0, 4.0, 6.0))
@@ -23,6 +23,7 @@ def _flat_floor(b: BuildingBuilder, floor: int, with_stairs_room: bool) -> None:
     b.add_object(kitchen, "sink", box=(3.3, 0.3, 3.8, 0.8))
     b.add_object(bedroom, "bed", box=(2.5, 4.5, 3.8, 5.7))
     b.add_object(hall, "plant", box=(0.3, 3.0, 0.6, 3.3))
+    return hall
 
 
 def flat(robot_radius_m: float = 0.0, reach_radius_m: float = 0.3) -> Building:
@@ -40,8 +41,9 @@ def house(robot_radius_m: float = 0.0, reach_radius_m: float = 0.3) -> Building:
     b = BuildingBuilder("house", size_m=(4.0, 6.0), resolution_m=0.1, wall_m=0.1,
                         robot_radius_m=robot_radius_m, reach_radius_m=reach_radius_m)
     ground, upper = b.add_floor(), b.add_floor()
-    _flat_floor(b, ground, with_stairs_room=True)
+    ground_hall = _flat_floor(b, ground, with_stairs_room=True)
     stairs = b.add_staircase(ground, portal=(0.75, 5.5), box=(0.0, 5.0, 1.5, 6.0))
+    b.add_door(ground_hall, stairs, at=(0.75, 5.0))
     hall = b.add_room(upper, "corridor", box=(0.0, 0.0, 1.5, 5.0))
     office = b.add_room(upper, "office", box=(1.5, 0.0, 4.0, 6.0))
     b.add_door(hall, office, at=(1.5, 2.5))

@@ -40,7 +40,8 @@ def _scene_findings(run: Run) -> list[str]:
     from sgplan.mission import Mission
 
     a = run.mission.automaton
-    rest = Mission(Automaton(a.aps, a.table, run.state, a.accepting), run.mission.propositions)
+    formula = run.monitor.words.residual(run.state).formula
+    rest = Mission(Automaton(a.aps, a.table, run.state, a.accepting), run.mission.propositions, formula)
     check = check_mission_in_scene(rest, run.building, run.position, grid=run.grid,
                                    labels=run.labels.raster, profile="authors")
     return [finding.message for finding in check.of("error")]

@@ -237,6 +237,14 @@ class Run:
         plan = self.plan
         return None if plan is None or plan.path is None else plan.path[self._on_plan :]
 
+    @property
+    def remaining_cost_m(self) -> float | None:
+        """Metres of :attr:`remaining_path` (the current plan from the robot's cell on)."""
+        from sgplan.outputs.waypoints import leg_costs
+
+        rest = self.remaining_path
+        return None if rest is None else float(leg_costs(rest, self.grid).sum())
+
     def replan(self) -> PlanResult | None:
         """Plan from the robot's (cell, automaton state) in the current building, now.
 
