@@ -74,7 +74,7 @@ def mission(building):
 
 CHANGES = {
     "close_door": [CloseDoor(("kitchen", "corridor on floor 0"))],
-    "open_door": [CloseDoor(("kitchen", "corridor on floor 0")), OpenDoor(("corridor on floor 0", "kitchen"))],
+    "open_door": [CloseDoor(("kitchen", "corridor on floor 0")), OpenDoor(("corridor on floor 0", "room_5"))],
     "block": [Block(Area(0, box_m=(0.0, 3.6, 0.8, 3.9)), "trolley")],
     "unblock": [Block(Area(0, box_m=(0.0, 3.6, 0.8, 3.9)), "trolley"), Unblock(name="trolley")],
     "move_object": [MoveObject("sink", (2.0, 2.5))],
