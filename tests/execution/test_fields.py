@@ -80,8 +80,9 @@ def test_repaired_fields_equal_fields_of_a_fresh_graph(seed, radius, fraction):
         grid, change = regrid(grid, new.building, delta.cells)
         graph, moved = remasked(graph, candidates, change)
         new_labels = label_raster(new.building, props, 0.3)
-        relabelled = np.flatnonzero(graph.gather(new_labels) != graph.gather(labels))
-        store.changed(np.union1d(moved, relabelled))
+        old_masks = graph.gather(labels)
+        relabelled = np.flatnonzero(graph.gather(new_labels) != old_masks)
+        store.changed(moved, relabelled, old_masks[relabelled])
         state, labels = new, new_labels
         assert np.array_equal(in_graph(graph), grid.traversable.reshape(-1)[graph.positions()])
         masks = graph.gather(labels)

@@ -208,3 +208,9 @@ def test_a_scene_graph_of_another_building_is_refused():
 
     with pytest.raises(SceneError, match="floors of"):
         diff_buildings(flat(), house())
+
+
+def test_an_objects_reach_changes_with_the_cells_a_removed_neighbour_leaves_it():
+    state, _ = SceneState.of(flat()).apply(AddObject("lamp", (2.4, 5.0), 0, (0.2, 0.4)))
+    state, delta = state.apply(RemoveObject("lamp"))
+    assert delta.objects == {9, 7}  # the lamp, and the bed that fills part of where it stood

@@ -34,20 +34,24 @@ class FieldStore:
     bounds) and ``reused`` (handed out as they were), for tests and benchmarks.
     """
 
-    def __init__(self, invalidate_fraction: float = 0.05, lower_fraction: float = 0.25) -> None:
+    def __init__(self, invalidate_fraction: float = 0.03, lower_fraction: float = 0.03) -> None:
         self.invalidate_fraction = invalidate_fraction
         self.lower_fraction = lower_fraction
         self._fields: dict[int, np.ndarray] = {}
-        self._pending: dict[int, list[np.ndarray]] = {}
+        # Per field, the changes since it was right: (cells that left or joined the graph, relabelled
+        # cells, their bitmasks before).
+        self._pending: dict[int, list[tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}
         self.exact: dict[int, bool] = {}
         self._unit_m: float | None = None
         self.counts: Counter[str] = Counter()
 
-    def changed(self, cells: np.ndarray) -> None:
-        """Note that ``cells`` (numbers) left or joined the graph or changed label bitmask."""
-        if cells.size:
+    def changed(self, moved: np.ndarray, relabelled: np.ndarray, masks_before: np.ndarray) -> None:
+        """Note that the cells ``moved`` (numbers) left or joined the graph, and that the cells
+        ``relabelled`` changed label bitmask (``masks_before``: theirs before): a field is repaired only
+        from those of the relabelled cells that joined or left its own region."""
+        if moved.size or relabelled.size:
             for pending in self._pending.values():
-                pending.append(cells)
+                pending.append((moved, relabelled, masks_before))
 
     def forget(self) -> None:
         """Drop every field (the bitmasks now mean other propositions)."""
@@ -84,7 +88,10 @@ class FieldStore:
     def _repair(self, graph: CellGraph, masks: np.ndarray, mask: int, kept: np.ndarray,
                 unit_m: float) -> bool:
         """Bring ``kept`` up to date in place; False when it must be recomputed instead."""
-        seeds = np.unique(np.concatenate(self._pending[mask]))
+        parts = []
+        for moved, relabelled, before in self._pending[mask]:
+            parts += [moved, relabelled[(before == mask) | (masks[relabelled] == mask)]]
+        seeds = np.unique(np.concatenate(parts))
         self._pending[mask] = []
         steps, stairs = unit_costs(graph, unit_m)
         done = np.zeros(2, dtype=np.int64)

@@ -92,7 +92,7 @@ class RunParts(SharedParts):
         masks = self.graph.gather(labels)
         if same_propositions:
             relabelled = np.flatnonzero(masks != self.masks) if labels is not self.labels else moved[:0]
-            self.fields.changed(np.union1d(moved, relabelled))
+            self.fields.changed(moved, relabelled, self.masks[relabelled])
         else:
             self.fields.forget()
         self.grid, self.labels, self.masks = grid, labels, masks

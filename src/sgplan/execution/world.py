@@ -72,7 +72,8 @@ class SceneDelta:
         floor -> flat positions (``row * cols + col``, ascending) whose category in
         :attr:`SceneState.building` changed.
     objects:
-        uuids of the objects moved, added or removed (their reach regions changed).
+        uuids of the objects moved, added or removed, and of those whose footprint gained or lost a cell
+        (their reach regions changed).
     """
 
     description: str
@@ -164,17 +165,26 @@ class SceneState:
         building = _rebuild(self.building, objects or {})
         new_floors = list(building.floors)
         delta_cells: dict[int, np.ndarray] = {}
+        footprints: set[int] = set()  # ids of the objects whose footprint lost or gained a cell
         for f in sorted(touched):
             effective = cats[f].copy()
             effective[self.blocked(f, blocks) & (cats[f] == CatCode.GROUND)] = CatCode.WALL
             changed = np.flatnonzero(effective != building.floors[f].cat_map)
             if changed.size:
                 delta_cells[f] = changed.astype(np.int64)
+                values = np.concatenate([effective.reshape(-1)[changed],
+                                         building.floors[f].cat_map.reshape(-1)[changed]])
+                footprints |= set(np.unique(values[values > 0]).tolist())
                 new_floors[f] = replace(new_floors[f], cat_map=effective)
         if delta_cells:
             building = replace(building, floors=new_floors)
         state = SceneState(self.base, building, tuple(cats), blocks, self.made if made is None else made)
-        return state, SceneDelta(description, delta_cells, frozenset(objects or {}))
+        # An object's reach follows its footprint: a moved object's, and a neighbour's that the cells it
+        # left were filled from (a cup leaves table).
+        uuids = set(objects or {})
+        for owner in (self.building, building):
+            uuids |= {o.uuid for o in owner.objects() if o.id in footprints}
+        return state, SceneDelta(description, delta_cells, frozenset(uuids))
 
     # -- rooms and objects, checked ----------------------------------------------------------------
 
