@@ -51,6 +51,8 @@ if TYPE_CHECKING:
     from sgplan.starts import StartSpec
 
 RunStatus = Literal["in-progress", "done", "violated", "impossible"]
+IMPOSSIBLE_EXIT = 7
+"""Exit code of a command whose run ended impossible (beside the monitor's 5 in progress, 6 violated)."""
 FORMAT = "sgplan-run"
 VERSION = 1
 """The ``format`` and ``version`` of :meth:`Run.to_dict`."""
@@ -230,6 +232,11 @@ class Run:
         if self._stale:
             self.replan()
         return self._plan
+
+    @property
+    def remaining_offset(self) -> int:
+        """The robot's row on the current plan's path."""
+        return self._on_plan
 
     @property
     def remaining_path(self) -> np.ndarray | None:
