@@ -102,8 +102,16 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
     size = 0
     near = np.empty(8 + stairs_from.shape[0], dtype=np.int64)
     cost = np.empty(8 + stairs_from.shape[0], dtype=np.int64)
-    # Phase 1: invalidate, in increasing old distance.
+    # Phase 1: invalidate, in increasing old distance -- skipped when more reachable cells left the graph
+    # than may be invalidated (each of them loses its distance).
+    gone = 0
     for s in seeds:
+        if not _in_graph(cell_at, cell_pos, s) and dist[s] != UNREACHED:
+            gone += 1
+    outcome = EXACT if gone <= max_lost else LOWER_BOUND
+    for s in seeds:
+        if outcome == LOWER_BOUND:
+            break
         if _in_graph(cell_at, cell_pos, s):
             if cell_mask[s] == target:
                 mark[s] = _TARGET
@@ -121,7 +129,6 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
                     keys, ties, values, size = _push(keys, ties, values, size, np.float64(dist[y]), y)
     lost = np.empty(64, dtype=np.int64)
     num_lost = 0
-    outcome = EXACT
     while size > 0:
         x = values[0]
         size = heap_pop(keys, ties, values, size)

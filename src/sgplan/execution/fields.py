@@ -34,7 +34,7 @@ class FieldStore:
     bounds) and ``reused`` (handed out as they were), for tests and benchmarks.
     """
 
-    def __init__(self, invalidate_fraction: float = 0.03, lower_fraction: float = 0.03) -> None:
+    def __init__(self, invalidate_fraction: float = 0.005, lower_fraction: float = 0.03) -> None:
         self.invalidate_fraction = invalidate_fraction
         self.lower_fraction = lower_fraction
         self._fields: dict[int, np.ndarray] = {}
