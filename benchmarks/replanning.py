@@ -91,7 +91,7 @@ def block_ahead(run, rest):
 
 def move_next_goal(run, rest):
     """Move the next object the rest of the path reaches into the deepest free spot of another room of its
-    floor; returns (change, undo) or None."""
+    floor (the change, or None)."""
     from scipy import ndimage
 
     from sgplan.errors import SceneError
@@ -110,7 +110,8 @@ def move_next_goal(run, rest):
             for room in run.building.floors[floor].rooms.values():
                 if room.id == obj.room_id or room.is_staircase:
                     continue
-                free = (run.building.floors[floor].room_map == room.id) & (run.building.floors[floor].cat_map == 0)
+                plan = run.building.floors[floor]
+                free = (plan.room_map == room.id) & (plan.cat_map == 0)
                 if not free.any():
                     continue
                 depth = ndimage.distance_transform_edt(free)
@@ -121,7 +122,7 @@ def move_next_goal(run, rest):
                     run.scene.apply(change)
                 except SceneError:
                     continue
-                return change, MoveObject(obj.key, (float(obj.location_m[0]), float(obj.location_m[1])), floor)
+                return change
     return None
 
 
@@ -147,7 +148,7 @@ def measure(run, change, options):
 def scenarios(scene, mission_index, start, setup, rows, verbose):
     import sgplan
     from sgplan.datasets import find_gibson_root
-    from sgplan.errors import PlanningError, SceneError
+    from sgplan.errors import PlanningError
     from sgplan.execution.changes import OpenDoor, Unblock
 
     root = find_gibson_root()
@@ -163,37 +164,40 @@ def scenarios(scene, mission_index, start, setup, rows, verbose):
         return
     for fraction in (0.25, 0.5, 0.75):
         run = session.start(mission, start, options=options)
-        run.plan
         run.observe(base.path[1 : int(len(base.path) * fraction), :3], metric=False)
         if run.plan is None or run.remaining_path is None or len(run.remaining_path) < 4:
             continue
-        rest = run.remaining_path
-
-        def record(kind, change) -> bool:
-            try:
-                replan_s, cost, fresh_s, fresh = measure(run, change, options)
-            except SceneError:  # e.g. the inflated door would cover the robot's own cell
-                return False
-            agree = (math.isinf(cost) and math.isinf(fresh)) or abs(cost - fresh) <= 1e-6
-            rows.append({"scene": scene, "mission": mission_index, "start": start, "setup": setup,
-                         "point": fraction, "kind": kind, "replan_s": replan_s, "fresh_s": fresh_s,
-                         "cost": cost, "fresh": fresh, "agree": agree})
-            if verbose:
-                print(f"{scene} {mission_index}/{start} {setup} @{fraction:.2f} {kind}: replan "
-                      f"{replan_s * 1e3:.1f} ms, fresh {fresh_s * 1e3:.0f} ms, cost {cost:.4f} / {fresh:.4f}"
-                      f"{'' if agree else '  DISAGREE'}", flush=True)
-            return True
-
-        door = next_door(run, rest)
-        if door is not None and record("close_door", _close(door)):
-            record("reopen_door", OpenDoor(door))
-        block = block_ahead(run, run.remaining_path if run.remaining_path is not None else rest)
-        if block is not None and record("block", block):
+        case = {"scene": scene, "mission": mission_index, "start": start, "setup": setup, "point": fraction}
+        door = next_door(run, run.remaining_path)
+        if door is not None and record(run, case, "close_door", _close(door), rows, verbose):
+            record(run, case, "reopen_door", OpenDoor(door), rows, verbose)
+        block = block_ahead(run, run.remaining_path)
+        if block is not None and record(run, case, "block", block, rows, verbose):
             run.change([Unblock(name="bench")])
-            run.plan
-        moved = move_next_goal(run, run.remaining_path if run.remaining_path is not None else rest)
+        if run.plan is None:
+            continue
+        moved = move_next_goal(run, run.remaining_path)
         if moved is not None:
-            record("move_object", moved[0])
+            record(run, case, "move_object", moved, rows, verbose)
+
+
+def record(run, case: dict, kind: str, change, rows: list[dict], verbose: bool) -> bool:
+    """Measure ``change`` on ``run`` into ``rows``; False when it cannot apply there (e.g. the inflated door
+    would cover the robot's own cell)."""
+    from sgplan.errors import SceneError
+
+    try:
+        replan_s, cost, fresh_s, fresh = measure(run, change, run.options)
+    except SceneError:
+        return False
+    agree = (math.isinf(cost) and math.isinf(fresh)) or abs(cost - fresh) <= 1e-6
+    rows.append({**case, "kind": kind, "replan_s": replan_s, "fresh_s": fresh_s, "cost": cost, "fresh": fresh,
+                 "agree": agree})
+    if verbose:
+        where = f"{case['scene']} {case['mission']}/{case['start']} {case['setup']} @{case['point']:.2f}"
+        print(f"{where} {kind}: replan {replan_s * 1e3:.1f} ms, fresh {fresh_s * 1e3:.0f} ms, "
+              f"cost {cost:.4f} / {fresh:.4f}{'' if agree else '  DISAGREE'}", flush=True)
+    return True
 
 
 def monitoring(scene: str = "Collierville", mission_index: int = 2) -> tuple[int, float]:
@@ -237,7 +241,7 @@ def successive(count: int = 1000, scene: str = "Benevolence") -> dict:
         change = (CloseDoor if k % 2 == 0 else OpenDoor)(door)
         t0 = time.perf_counter()
         run.change([change])
-        run.plan
+        assert run.plan is not None
         latencies.append(time.perf_counter() - t0)
     first, last = statistics.median(latencies[:100]), statistics.median(latencies[-100:])
     return {"changes": count, "first100_ms": first * 1e3, "last100_ms": last * 1e3, "ratio": last / first,
@@ -262,7 +266,8 @@ def table(rows: list[dict]) -> list[str]:
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--scenes", nargs="+", default=["Allensville", "Benevolence", "Collierville"])
     parser.add_argument("--missions", nargs="+", type=int, default=[1, 2, 3, 4, 5])
     parser.add_argument("--starts", nargs="+", type=int, default=[0, 1])
@@ -286,11 +291,12 @@ def main() -> None:
         result = successive(args.successive)
         lines += [f"{result['changes']} successive changes on one run (Benevolence mission 4, A*, the door "
                   f"{result['door'][0]}/{result['door'][1]} closed and opened in turn, a replan after each): "
-                  f"median replan {result['first100_ms']:.1f} ms over the first 100, {result['last100_ms']:.1f} "
-                  f"ms over the last 100 (x{result['ratio']:.2f}); peak RSS of the whole benchmark process "
-                  f"{result['peak_rss_mib']:.0f} MiB."]
+                  f"median replan {result['first100_ms']:.1f} ms over the first 100, "
+                  f"{result['last100_ms']:.1f} ms over the last 100 (x{result['ratio']:.2f}); "
+                  f"peak RSS of the whole benchmark process {result['peak_rss_mib']:.0f} MiB."]
     disagree = [r for r in rows if not r["agree"]]
-    lines += ["", f"{len(rows)} scenarios, {len(disagree)} cost disagreements; {time.time() - started:.0f} s."]
+    seconds = time.time() - started
+    lines += ["", f"{len(rows)} scenarios, {len(disagree)} cost disagreements; {seconds:.0f} s."]
     text = "\n".join(lines)
     print(text)
     if args.out:

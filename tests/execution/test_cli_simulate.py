@@ -57,7 +57,8 @@ def test_a_bad_changes_file_is_one_line_naming_the_change(tmp_path, capsys):
     assert f"{changes}: change 1 (close_door): field 'rooms' must name two rooms" in err
     changes = _changes(tmp_path, "changes:\n  - {kind: close_door, rooms: [kitchen, garage]}\n")
     assert main(["simulate", "--scene", "demo", "--formula", FORMULA, "--changes", str(changes)]) == 2
-    assert "change 1: close door: building 'demo-house' has no room called 'garage'" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "change 1: close door: building 'demo-house' has no room called 'garage'" in err
 
 
 def test_plan_after_a_trajectory_plans_the_rest_from_its_end(tmp_path, capsys):
@@ -79,6 +80,7 @@ def test_plan_after_a_trajectory_plans_the_rest_from_its_end(tmp_path, capsys):
 def test_plan_after_a_violating_trajectory_exits_6(tmp_path, capsys):
     trajectory = tmp_path / "living.csv"
     trajectory.write_text("x_m,y_m,floor\n-1.9,3.5,0\n-0.5,3.5,0\n-0.5,1.0,0\n2.0,-2.5,0\n")
-    code = main(["plan", "--scene", "demo", "--formula", FORMULA, "--after", str(trajectory), "--setup", "A*"])
+    code = main(["plan", "--scene", "demo", "--formula", FORMULA, "--after", str(trajectory),
+                 "--setup", "A*"])
     assert code == VIOLATED_EXIT
     assert "the trajectory violated" in capsys.readouterr().err

@@ -240,7 +240,8 @@ def _trajectory_end(args: argparse.Namespace, session: Session, mission: Mission
         log.warning(f"warning: {issue.message}")
     extras["after"] = {"trajectory": str(trajectory.path), **status.to_dict()}
     if status.verdict == "violated":
-        raise MissionViolatedError(f"{trajectory.path}: the trajectory {status.summary(trajectory.pose_name)}")
+        raise MissionViolatedError(f"{trajectory.path}: the trajectory "
+                                   f"{status.summary(trajectory.pose_name)}")
     say(f"after {trajectory.path}: {status.summary(trajectory.pose_name)}")
     assert status.cell is not None
     return status.cell, status.state

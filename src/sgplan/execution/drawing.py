@@ -62,13 +62,15 @@ def simulation_html(sim: Simulation, pictures: list[Path], path: str | Path) -> 
     """A self-contained HTML page: the timeline and the pictures (embedded)."""
     rows = "".join(f"<tr><td>{m.driven_m:.2f}</td><td>{html.escape(m.what)}</td>"
                    f"<td>{'' if m.replan_s is None else f'{m.replan_s * 1e3:.0f}'}</td>"
-                   f"<td>{'' if m.cost_m is None else f'{m.cost_m:.2f}'}</td><td>{html.escape(m.left)}</td></tr>"
+                   f"<td>{'' if m.cost_m is None else f'{m.cost_m:.2f}'}</td>"
+                   f"<td>{html.escape(m.left)}</td></tr>"
                    for m in sim.timeline)
     images = "".join(f"<figure><img alt='{p.name}' src='data:image/png;base64,"
                      f"{base64.b64encode(p.read_bytes()).decode()}'><figcaption>{p.name}</figcaption></figure>"
                      for p in pictures)
-    page = (f"<!doctype html><meta charset='utf-8'><title>sgplan simulate: {html.escape(sim.run.building.name)}"
-            f"</title><style>body{{font-family:sans-serif}}td,th{{padding:2px 8px;text-align:left}}"
+    name = html.escape(sim.run.building.name)
+    page = (f"<!doctype html><meta charset='utf-8'><title>sgplan simulate: {name}</title>"
+            f"<style>body{{font-family:sans-serif}}td,th{{padding:2px 8px;text-align:left}}"
             f"img{{max-width:100%}}</style><h1>Run on {html.escape(sim.run.building.name)}: "
             f"{sim.run.status}</h1><table><tr><th>driven m</th><th>what</th><th>replan ms</th>"
             f"<th>to go m</th><th>left</th></tr>{rows}</table>{images}")
