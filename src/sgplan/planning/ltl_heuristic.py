@@ -415,8 +415,8 @@ def _bin_key(graph: CellGraph, cells: np.ndarray, side: int) -> np.ndarray:
     _, rows, cols = graph.shape
     per_row = cols // side + 1
     per_floor = (rows // side + 1) * per_row
-    rows, cols = graph.row_col(cells)
-    return graph.cell_floor[cells].astype(np.int64) * per_floor + rows // side * per_row + cols // side
+    row, col = graph.row_col(cells)
+    return graph.cell_floor[cells].astype(np.int64) * per_floor + row // side * per_row + col // side
 
 
 @njit(cache=True)
