@@ -64,7 +64,7 @@ def test_repaired_fields_equal_fields_of_a_fresh_graph(seed, radius, fraction):
     state = SceneState.of(house(robot_radius_m=radius))
     props = [Proposition("reach", 10), Proposition("enter", 6), Proposition("reach", 13)]
     grid = build_occupancy_grid(state.building, radius)
-    candidates = candidate_graph(grid)
+    candidates = candidate_graph(grid, state.building)
     graph = masked_graph(candidates, grid.traversable)
     labels = label_raster(state.building, props, 0.3)
     unit = finest_unit(candidates)

@@ -44,7 +44,7 @@ def test_plans_over_carried_parts_are_optimal_after_changes(seed, formula, setup
     state = SceneState.of(house())
     grid = build_occupancy_grid(state.building, 0.0)
     labels = label_raster(state.building, PROPS, 0.3)
-    parts = RunParts(grid, labels)
+    parts = RunParts(grid, labels, state.building)
     for step in range(5):
         if step:
             try:
@@ -53,7 +53,7 @@ def test_plans_over_carried_parts_are_optimal_after_changes(seed, formula, setup
                 continue
             grid, change = regrid(grid, state.building, delta.cells)
             labels = label_raster(state.building, PROPS, 0.3)
-            parts.advance(grid, change, labels)
+            parts.advance(grid, change, labels, state.building)
         start = _free_cell(rng, grid)
         expected = optimal_cost(grid, labels, automaton, start)
         problem = PlanningProblem(state.building, grid, labels, automaton, start, reach_radius_m=0.3,

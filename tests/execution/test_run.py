@@ -217,3 +217,19 @@ def test_a_run_survives_saving_and_loading(building, mission):
     assert restored.to_dict() | {"history": []} == saved | {"history": []}
     with pytest.raises(SgplanError, match="not a saved run"):
         Run.from_dict({"format": "other"}, session)
+
+
+def test_a_newer_scene_graph_that_opens_a_wall_renumbers_and_replans_exactly(building, mission, tmp_path):
+    from dataclasses import replace
+
+    from sgplan.scene.native import write_native_scene
+
+    floors = list(building.floors)
+    cat = floors[0].cat_map.copy()
+    cat[14:16, 30:34] = 0  # a gap in the wall between the corridor and the bedroom (x 1.4-1.6 m, y 3-3.4 m)
+    floors[0] = replace(floors[0], cat_map=cat)
+    write_native_scene(replace(building, floors=floors), tmp_path / "newer")
+    run = sgplan.Session(building).start(mission, building.initial_cells[0], setup="A*")
+    assert run.plan is not None
+    run.change([NewSceneGraph(str(tmp_path / "newer"))])
+    _check(run)

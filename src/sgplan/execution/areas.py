@@ -58,11 +58,17 @@ def boundary_cells(room_map: np.ndarray, room_a: int, room_b: int) -> np.ndarray
     """The cells of rooms ``room_a`` and ``room_b`` (ids) that have an 8-neighbour in the other room: both
     sides of their shared boundary, so that no move leads from one room straight into the other once they
     are obstacles (this holds the rooms' door cells, :mod:`sgplan.scene.doors`)."""
-    in_a, in_b = room_map == room_a, room_map == room_b
-    if not (in_a.any() and in_b.any()):
+    either = (room_map == room_a) | (room_map == room_b)
+    if not either.any():
         return np.zeros(0, dtype=np.int64)
+    rows, cols = np.nonzero(either.any(axis=1))[0], np.nonzero(either.any(axis=0))[0]
+    r0, r1 = max(int(rows[0]) - 1, 0), int(rows[-1]) + 2
+    c0, c1 = max(int(cols[0]) - 1, 0), int(cols[-1]) + 2
+    window = room_map[r0:r1, c0:c1]
+    in_a, in_b = window == room_a, window == room_b
     side = (in_a & ndimage.binary_dilation(in_b, _EIGHT)) | (in_b & ndimage.binary_dilation(in_a, _EIGHT))
-    return np.flatnonzero(side).astype(np.int64)
+    rr, cc = np.nonzero(side)
+    return np.sort((rr + r0) * room_map.shape[1] + cc + c0).astype(np.int64)
 
 
 def footprint_cells(cat_map: np.ndarray, obj: SceneObject) -> np.ndarray:

@@ -3,10 +3,12 @@ masked to the cells that are traversable now.
 
 The planner's parts are per-cell arrays (distance fields, action maps, labels) indexed by cell number.
 A scene change that renumbered the cells would void all of them; so a run numbers, once, every cell that
-lies in a room or is a stairs portal -- no change can make any other cell traversable, since changes keep
-the rooms -- and a change only *masks* cells: a cell that is not traversable now has -1 in the graph's
-padded raster index (``cell_at``), so no move enters it, no look-up finds it and every search and
-Dijkstra of :mod:`sgplan.planning` treats it as absent, while its number and every array entry stay.
+a change could make traversable -- the cells of a room that are free ground or an object's footprint (a
+block only covers ground, a removed object's cells take their surroundings' category, walls stay walls)
+and the stairs portals -- and a change only *masks* cells: a cell that is not traversable now has -1 in
+the graph's padded raster index (``cell_at``), so no move enters it, no look-up finds it and every search
+and Dijkstra of :mod:`sgplan.planning` treats it as absent, while its number and every array entry stay.
+A newer scene graph that turns a wall into ground needs a new numbering (:func:`remasked` says so).
 
 A masked cell keeps its position (``cell_pos``), label and room; only ``cell_at`` differs between two
 masks of the same numbering, and ``cell_at[cell_pos[c]] == c`` says whether cell ``c`` is in the graph.
@@ -21,12 +23,21 @@ import numpy as np
 from sgplan.execution.regrid import GridChange
 from sgplan.planning.cells import CellGraph, build_cell_graph
 from sgplan.scene.grid import OccupancyGrid
+from sgplan.scene.model import Building, CatCode
 
 
-def candidate_graph(grid: OccupancyGrid) -> CellGraph:
-    """The unmasked graph of every cell of ``grid`` that is in a room or is a stairs portal (the cells any
-    change keeping the rooms could make traversable), numbered as :func:`build_cell_graph` numbers."""
-    return build_cell_graph(replace(grid, traversable=(grid.room_map > 0) | grid.traversable))
+class OutsideNumbering(ValueError):
+    """A change made traversable a cell that the run's numbering does not hold (a newer scene graph that
+    turned a wall into ground): the run numbers its cells anew."""
+
+
+def candidate_graph(grid: OccupancyGrid, building: Building) -> CellGraph:
+    """The unmasked graph of every cell of ``grid`` that lies in a room and is free ground or an object in
+    ``building``, or is traversable (a stairs portal): the cells a change could make traversable
+    (see the module), numbered as :func:`build_cell_graph` numbers."""
+    cat = np.stack([floor.cat_map for floor in building.floors])
+    could = (grid.room_map > 0) & ((cat == CatCode.GROUND) | (cat > 0))
+    return build_cell_graph(replace(grid, traversable=could | grid.traversable))
 
 
 def masked_graph(candidates: CellGraph, traversable: np.ndarray) -> CellGraph:
@@ -49,8 +60,8 @@ def remasked(graph: CellGraph, candidates: CellGraph, change: GridChange) -> tup
     cell_at[blocked] = -1
     cell_at[freed] = candidates.cell_at[freed]
     cells = np.concatenate([candidates.cell_at[blocked], candidates.cell_at[freed]]).astype(np.int64)
-    if (cells < 0).any():  # a cell outside every room and portal became traversable: not a candidate
-        raise ValueError("a change made a cell outside the rooms traversable")
+    if (cells < 0).any():
+        raise OutsideNumbering("a change made a cell traversable that the run's numbering does not hold")
     return replace(graph, cell_at=cell_at), np.sort(cells)
 
 

@@ -22,11 +22,12 @@ from typing import Any, TypeVar
 import numpy as np
 
 from sgplan.execution.fields import FieldStore
-from sgplan.execution.graph import candidate_graph, masked_graph, remasked
+from sgplan.execution.graph import OutsideNumbering, candidate_graph, masked_graph, remasked
 from sgplan.execution.regrid import GridChange
 from sgplan.planning.cells import CellGraph
 from sgplan.planning.shared import SharedParts
 from sgplan.scene.grid import OccupancyGrid
+from sgplan.scene.model import Building
 
 T = TypeVar("T")
 
@@ -43,15 +44,18 @@ class RunParts(SharedParts):
         the run's occupancy grid before any change.
     labels:
         its label raster (``(floors, rows, cols)`` bitmasks of the mission's propositions).
+    building:
+        the building of ``grid`` (which cells could become traversable: :mod:`sgplan.execution.graph`).
     max_bytes:
         the cap of the parts rebuilt per version (action tables and maps), as :class:`SharedParts`;
         the graph and the fields are the run's own and always kept.
     """
 
-    def __init__(self, grid: OccupancyGrid, labels: np.ndarray, max_bytes: int | None = None) -> None:
+    def __init__(self, grid: OccupancyGrid, labels: np.ndarray, building: Building,
+                 max_bytes: int | None = None) -> None:
         super().__init__(max_bytes)
         self.grid = grid
-        self.candidates = candidate_graph(grid)
+        self.candidates = candidate_graph(grid, building)
         self.graph = masked_graph(self.candidates, grid.traversable)
         self.fields = FieldStore()
         self.labels = labels
@@ -80,15 +84,25 @@ class RunParts(SharedParts):
             raise ValueError("the run's parts serve its current grid and cell graph only")
         return self.fields.field(graph, self.masks, int(self.masks[int(cells[0])]), unit_m)
 
-    def advance(self, grid: OccupancyGrid, change: GridChange, labels: np.ndarray, *,
+    def advance(self, grid: OccupancyGrid, change: GridChange, labels: np.ndarray, building: Building, *,
                 same_propositions: bool = True) -> None:
         """Serve ``grid`` and ``labels`` from now on: the grid and labels after a scene change whose effect
         on traversability is ``change``. ``same_propositions=False``: the label bits now mean other
         propositions (an amended mission), so no field can be repaired.
 
         Costs a copy of the graph's padded index, a pass over the cells' labels, and bookkeeping of the
-        changed cells (the fields are repaired when next asked for)."""
-        self.graph, moved = remasked(self.graph, self.candidates, change)
+        changed cells (the fields are repaired when next asked for). A change that made traversable a cell
+        the numbering does not hold (:class:`~sgplan.execution.graph.OutsideNumbering`) numbers the cells
+        anew, with every part rebuilt."""
+        try:
+            self.graph, moved = remasked(self.graph, self.candidates, change)
+        except OutsideNumbering:
+            self.candidates = candidate_graph(grid, building)
+            self.graph = masked_graph(self.candidates, grid.traversable)
+            self.fields.forget()
+            self.grid, self.labels, self.masks = grid, labels, self.graph.gather(labels)
+            self._parts.clear()
+            return
         masks = self.graph.gather(labels)
         if same_propositions:
             relabelled = np.flatnonzero(masks != self.masks) if labels is not self.labels else moved[:0]

@@ -140,7 +140,7 @@ class Run:
         self.scene = SceneState.of(session.building)
         self.grid = session.grid(self.radii.robot_m)
         self._set_mission(mission, session.proposition_cells, check=state is None)
-        self.parts = RunParts(self.grid, self.labels.raster)
+        self.parts = RunParts(self.grid, self.labels.raster, self.building)
         self.start, self.start_from = start_cell(session.building, self.grid, start)
         self.monitor = Monitor(session.building, self.mission, self.grid, self.labels.raster,
                                profile=self.options.profile, state=state,
@@ -381,7 +381,7 @@ class Run:
         overall = _net_change(self.grid, grid, np.concatenate(blocked), np.concatenate(freed))
         relabelled = self.labels.update(scene.building, objects)
         self.scene, self.grid = scene, grid
-        self.parts.advance(grid, GridChange(*overall), self.labels.raster)
+        self.parts.advance(grid, GridChange(*overall), self.labels.raster, scene.building)
         self.monitor = self.monitor.rebased(grid, self.labels.raster, scene.building)
         self.changes.extend(typed)
         kept = self._plan_survives(overall[0], overall[1].size == 0 and relabelled.size == 0)
@@ -467,7 +467,7 @@ class Run:
     def _adopt(self, mission: Mission) -> None:
         """Make ``mission`` (whose initial state is the robot's state now, a live one) the run's mission."""
         self._set_mission(mission)
-        self.parts = RunParts(self.grid, self.labels.raster)
+        self.parts = RunParts(self.grid, self.labels.raster, self.building)
         self.monitor = Monitor(self.building, self.mission, self.grid, self.labels.raster,
                                profile=self.options.profile, state=self.mission.automaton.initial,
                                at=self.position)
