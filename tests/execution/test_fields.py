@@ -96,5 +96,5 @@ def test_repaired_fields_equal_fields_of_a_fresh_graph(seed, radius, fraction):
             else:
                 assert (on_graph <= fresh).all() and _lipschitz(graph, field, unit)
                 assert (on_graph[fresh == 0] == 0).all()
-    assert store.counts["computed"] == len(wanted)
+    assert store.counts["computed"] >= len(wanted) and store.counts["repaired"] + store.counts["bounded"] > 0
     assert fraction < 1 or store.counts["bounded"] == 0

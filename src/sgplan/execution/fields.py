@@ -42,6 +42,7 @@ class FieldStore:
         # cells, their bitmasks before).
         self._pending: dict[int, list[tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}
         self.exact: dict[int, bool] = {}
+        self._size: dict[int, int] = {}  # cells of each field's region when it was computed
         self._unit_m: float | None = None
         self.counts: Counter[str] = Counter()
 
@@ -81,18 +82,25 @@ class FieldStore:
         self.counts["computed"] += 1
         if isinstance(field, np.ndarray):
             self._fields[mask], self._pending[mask], self.exact[mask] = field, [], True
+            self._size[mask] = int(np.count_nonzero(field == 0))
         else:
             self._fields.pop(mask, None)
         return field
 
     def _repair(self, graph: CellGraph, masks: np.ndarray, mask: int, kept: np.ndarray,
                 unit_m: float) -> bool:
-        """Bring ``kept`` up to date in place; False when it must be recomputed instead."""
-        parts = []
+        """Bring ``kept`` up to date in place; False when it must be recomputed instead: also when most of
+        the region's cells are new targets (a moved or added object's reach), whose distances change
+        almost everywhere -- a full Dijkstra is the cheaper way there."""
+        parts, joined = [], 0
         for moved, relabelled, before in self._pending[mask]:
-            parts += [moved, relabelled[(before == mask) | (masks[relabelled] == mask)]]
+            now = masks[relabelled] == mask
+            parts += [moved, relabelled[(before == mask) | now]]
+            joined += int(np.count_nonzero(now & (before != mask)))
         seeds = np.unique(np.concatenate(parts))
         self._pending[mask] = []
+        if 2 * joined > int(np.count_nonzero(masks[seeds] == mask)) + self._size.get(mask, 0):
+            return False
         steps, stairs = unit_costs(graph, unit_m)
         done = np.zeros(2, dtype=np.int64)
         outcome = repair_field(graph.cell_at, graph.cell_pos, graph.step_offset, steps.astype(np.int64),
