@@ -233,3 +233,17 @@ def test_a_newer_scene_graph_that_opens_a_wall_renumbers_and_replans_exactly(bui
     assert run.plan is not None
     run.change([NewSceneGraph(str(tmp_path / "newer"))])
     _check(run)
+
+
+@pytest.mark.parametrize("setup", ["A*", "ALL"])
+def test_a_plan_resumes_from_any_row_of_its_path(building, mission, setup):
+    from sgplan.outputs.waypoints import leg_costs
+
+    session = sgplan.Session(building)
+    full = session.plan(mission, building.initial_cells[0], setup=setup)
+    costs = np.concatenate([[0.0], np.cumsum(leg_costs(full.path, full.grid))])
+    for k in (1, len(full.path) // 3, len(full.path) - 2):
+        row, col, floor, q = (int(v) for v in full.path[k])
+        rest = session.plan(mission, (row, col, floor), setup=setup, start_state=q)
+        assert rest.cost_m == pytest.approx(full.cost_m - costs[k], abs=1e-6) and rest.verified
+        assert rest.path[0, 3] == q and not [e for e in rest.events if e.kind == "state" and e.index == 0]
