@@ -52,8 +52,10 @@ def test_plans_over_carried_parts_are_optimal_after_changes(seed, formula, setup
             except SceneError:
                 continue
             grid, change = regrid(grid, state.building, delta.cells)
-            labels = label_raster(state.building, PROPS, 0.3)
-            parts.advance(grid, change, labels, state.building)
+            new_labels = label_raster(state.building, PROPS, 0.3)
+            relabelled = np.flatnonzero(new_labels != labels)
+            labels = new_labels
+            parts.advance(grid, change, labels, relabelled, state.building)
         start = _free_cell(rng, grid)
         expected = optimal_cost(grid, labels, automaton, start)
         problem = PlanningProblem(state.building, grid, labels, automaton, start, reach_radius_m=0.3,

@@ -51,15 +51,20 @@ class RunLabels:
     def update(self, building: Building, objects: Collection[int]) -> np.ndarray:
         """The raster after the objects ``objects`` (uuids) moved, appeared or vanished in ``building``;
         returns the flat positions whose label changed (ascending). Costs the touched propositions' cells
-        and, if any changed, a new raster."""
+        and, if any changed, a copy of the raster (the old one may still be read: a plan made with it)."""
         changed = []
+        raster = self.raster.copy()
+        flat = raster.reshape(-1)
         for i, prop in enumerate(self.propositions):
             if prop.kind != "reach" or prop.uuid not in objects:
                 continue
             new = self._where(building, prop, lambda p, r: proposition_cells(building, p, r))
+            bit = raster.dtype.type(1 << i)
+            flat[self._cells[i]] &= ~bit
+            flat[new] |= bit
             changed.append(np.setxor1d(self._cells[i], new))
             self._cells[i] = new
         positions = np.unique(np.concatenate(changed)) if changed else np.zeros(0, dtype=np.int64)
         if positions.size:
-            self.raster = raster_from_cells(self.shape, self._cells)
+            self.raster = raster
         return positions.astype(np.int64)

@@ -84,16 +84,16 @@ class RunParts(SharedParts):
             raise ValueError("the run's parts serve its current grid and cell graph only")
         return self.fields.field(graph, self.masks, int(self.masks[int(cells[0])]), unit_m)
 
-    def advance(self, grid: OccupancyGrid, change: GridChange, labels: np.ndarray, building: Building, *,
-                same_propositions: bool = True) -> None:
+    def advance(self, grid: OccupancyGrid, change: GridChange, labels: np.ndarray, relabelled: np.ndarray,
+                building: Building) -> None:
         """Serve ``grid`` and ``labels`` from now on: the grid and labels after a scene change whose effect
-        on traversability is ``change``. ``same_propositions=False``: the label bits now mean other
-        propositions (an amended mission), so no field can be repaired.
+        on traversability is ``change`` and which changed the labels at the flat raster positions
+        ``relabelled``.
 
-        Costs a copy of the graph's padded index, a pass over the cells' labels, and bookkeeping of the
-        changed cells (the fields are repaired when next asked for). A change that made traversable a cell
-        the numbering does not hold (:class:`~sgplan.execution.graph.OutsideNumbering`) numbers the cells
-        anew, with every part rebuilt."""
+        Costs a copy of the graph's padded index and of the cells' bitmasks, and bookkeeping of the changed
+        cells (the fields are repaired when next asked for). A change that made traversable a cell the
+        numbering does not hold (:class:`~sgplan.execution.graph.OutsideNumbering`) numbers the cells anew,
+        with every part rebuilt."""
         try:
             self.graph, moved = remasked(self.graph, self.candidates, change)
         except OutsideNumbering:
@@ -103,12 +103,12 @@ class RunParts(SharedParts):
             self.grid, self.labels, self.masks = grid, labels, self.graph.gather(labels)
             self._parts.clear()
             return
-        masks = self.graph.gather(labels)
-        if same_propositions:
-            relabelled = np.flatnonzero(masks != self.masks) if labels is not self.labels else moved[:0]
-            self.fields.changed(moved, relabelled, self.masks[relabelled])
-        else:
-            self.fields.forget()
+        cells = self.candidates.cell_ids(relabelled)
+        held = cells >= 0
+        cells, positions = cells[held], relabelled[held]
+        masks = self.masks.copy()
+        masks[cells] = labels.reshape(-1)[positions]
+        self.fields.changed(moved, cells, self.masks[cells])
         self.grid, self.labels, self.masks = grid, labels, masks
         for slot in [slot for slot in self._parts if slot[0] in _PER_VERSION]:
             del self._parts[slot]

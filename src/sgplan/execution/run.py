@@ -381,7 +381,7 @@ class Run:
         overall = _net_change(self.grid, grid, np.concatenate(blocked), np.concatenate(freed))
         relabelled = self.labels.update(scene.building, objects)
         self.scene, self.grid = scene, grid
-        self.parts.advance(grid, GridChange(*overall), self.labels.raster, scene.building)
+        self.parts.advance(grid, GridChange(*overall), self.labels.raster, relabelled, scene.building)
         self.monitor = self.monitor.rebased(grid, self.labels.raster, scene.building)
         self.changes.extend(typed)
         kept = self._plan_survives(overall[0], overall[1].size == 0 and relabelled.size == 0)
