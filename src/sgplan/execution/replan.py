@@ -27,12 +27,15 @@ def plan_from(run: Run, cell: tuple[int, int, int], state: int, explained: Expla
     """
     from sgplan.api import StagedPlan, finish_plan
     from sgplan.planning.amra import plan as amra_plan
+    from sgplan.planning.setups import get_setup
 
     t0 = time.perf_counter()
     options, mission = run.options, run.mission
+    uses_guidance = get_setup(options.setup).uses_llm  # a setup without LLM queues never reads it
     problem = PlanningProblem(
         building=run.building, grid=run.grid, labels=run.labels.raster, automaton=mission.automaton,
-        start=cell, start_state=state, profile=options.profile, guidance=mission.guidance,
+        start=cell, start_state=state, profile=options.profile,
+        guidance=mission.guidance if uses_guidance else None,
         reach_radius_m=run.radii.reach_m, ap_descriptions=mission.descriptions, shared=run.parts,
     )
     guidance = "mission" if mission.guidance is not None else None
