@@ -247,3 +247,17 @@ def test_a_plan_resumes_from_any_row_of_its_path(building, mission, setup):
         rest = session.plan(mission, (row, col, floor), setup=setup, start_state=q)
         assert rest.cost_m == pytest.approx(full.cost_m - costs[k], abs=1e-6) and rest.verified
         assert rest.path[0, 3] == q and not [e for e in rest.events if e.kind == "state" and e.index == 0]
+
+
+def test_an_amendment_joins_a_mission_folder_with_its_own_proposition_names(building, mission, tmp_path):
+    from sgplan.mission import save_mission_folder
+
+    save_mission_folder(mission, tmp_path / "m", building=building)
+    folder = sgplan.load_mission(tmp_path / "m")
+    assert set(folder.automaton.aps) <= {"p1", "p2", "p3"}
+    run = sgplan.Session(building).start(folder, building.initial_cells[0], setup="A*")
+    run.observe(run.plan.path[:3, :3], metric=False)
+    amended = run.amend('G !"reach(object_12)"')
+    assert amended.accepted, amended.reason
+    assert "reach(object_12)" in run.mission.automaton.aps and "enter(room_9)" in run.mission.automaton.aps
+    _check(run)
