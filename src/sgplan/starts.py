@@ -15,7 +15,6 @@
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Sequence
 from typing import NamedTuple
 
@@ -27,7 +26,6 @@ from sgplan.scene.fields import is_int, is_number
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building, Room
 
-_ON_FLOOR = re.compile(r"^(.*?)\s+on\s+floor\s+(\d+)$", re.IGNORECASE)
 SNAP_M = 0.5
 """How far (metres) a metric start may be moved to the nearest cell the robot can stand on."""
 
@@ -99,25 +97,14 @@ def start_floor(building: Building, start: StartSpec = None) -> int | None:
 
 
 def _find_room(building: Building, name: str) -> Room:
-    key = name.strip()
-    if key.lower().startswith("room_") and key[5:].isdigit():
-        uuid = int(key[5:])
-        if not building.has_room(uuid):
-            raise PlanningError(
-                f"start: building {building.name!r} has no room {key}", status="invalid-start"
-            )
-        return building.room(uuid=uuid)
-    on_floor = _ON_FLOOR.match(key)
-    rooms = building.rooms_named(on_floor[1], int(on_floor[2])) if on_floor else building.rooms_named(key)
-    if len(rooms) == 1:
-        return rooms[0]
-    if not rooms:
-        names = sorted({room.name for room in building.rooms()})
-        raise PlanningError(f"start: building {building.name!r} has no room called {name!r} (rooms: "
-                            f"{', '.join(names)})", status="invalid-start")
-    listing = ", ".join(f"{room.key} (floor {room.floor})" for room in rooms)
-    raise PlanningError(f"start: {name!r} names {len(rooms)} rooms ({listing}); give a key or say "
-                        f"'{name} on floor N'", status="invalid-start")
+    """The room ``name`` names (:func:`sgplan.scene.lookup.find_room`), as a start."""
+    from sgplan.errors import SceneError
+    from sgplan.scene.lookup import find_room
+
+    try:
+        return find_room(building, name)
+    except SceneError as error:
+        raise PlanningError(f"start: {error}", status="invalid-start") from None
 
 
 def _room_start(building: Building, grid: OccupancyGrid, room: Room) -> tuple[tuple[int, int, int], str]:

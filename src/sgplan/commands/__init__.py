@@ -12,10 +12,11 @@ from sgplan.commands import (
     monitor,
     plan,
     serve,
+    simulate,
     translate,
 )
 
 REGISTRY = [
     demo.register, inspect.register, plan.register, translate.register, guide.register, bench.register,
-    import_scene.register, eval_translation.register, monitor.register, serve.register,
+    import_scene.register, eval_translation.register, monitor.register, simulate.register, serve.register,
 ]
