@@ -217,73 +217,164 @@ def _poses(waypoints: list[dict[str, float]]) -> list[list[float]]:
     return [[w["x_m"], w["y_m"], w["floor"]] for w in waypoints]
 
 
+def _events(client: TestClient, run_id: str, count: int, last: int = 0) -> list[tuple[str, str]]:
+    """The first ``count`` events of the run's stream after ``last``, as (id, kind)."""
+    seen: list[tuple[str, str]] = []
+    with client.stream("GET", f"/api/runs/{run_id}/events", headers={"Last-Event-ID": str(last)}) as stream:
+        event_id = ""
+        for line in stream.iter_lines():
+            if line.startswith("id:"):
+                event_id = line.split(": ", 1)[1]
+            elif line.startswith("event:"):
+                seen.append((event_id, line.split(": ", 1)[1]))
+                if len(seen) == count:
+                    break
+    return seen
+
+
 def test_a_run_follows_its_robot_to_done_and_streams_its_events(client: TestClient) -> None:
     created = client.post(
-        "/api/runs", json={"scene": "demo", "text": KITCHEN_TEXT, "start": {"room": "kitchen"}}
+        "/api/runs",
+        json={
+            "scene": "demo",
+            "text": KITCHEN_TEXT,
+            "start": {"room": "kitchen"},
+            "options": {"setup": "A*"},
+        },
     )
     assert created.status_code == 201
     run = created.json()
-    assert run["status"] == "active" and run["progress"]["verdict"] == "on-track"
-    assert "the bedroom (room_11, floor 1)" in run["left_to_do"][-1]
+    assert run["status"] == "in-progress" and run["plan"]["status"] == "optimal"
+    # The start is in the kitchen already: what is left says so.
+    assert run["left"] == "go to the bedroom (room_11, floor 1); never enter the bathroom (room_5, floor 0)"
     waypoints = run["plan"]["waypoints"]
     half = client.post(
-        f"/api/runs/{run['id']}/observe", json={"poses": _poses(waypoints[: len(waypoints) // 2])}
+        f"/api/runs/{run['id']}/observe", json={"poses": _poses(waypoints[1 : len(waypoints) // 2])}
     )
-    assert half.json()["status"] == "active" and half.json()["progress"]["poses"] == len(waypoints) // 2
+    answer = half.json()
+    assert (
+        answer["monitor"]["verdict"] == "in-progress"
+        and answer["run"]["plan_offset"] == len(waypoints) // 2 - 1
+    )
     rest = client.post(
         f"/api/runs/{run['id']}/observe", json={"poses": _poses(waypoints[len(waypoints) // 2 :])}
     )
-    assert rest.json()["status"] == "done" and rest.json()["left_to_do"] == []
-    assert client.get(f"/api/runs/{run['id']}").json()["progress"] == rest.json()["progress"]
+    assert rest.json()["run"]["status"] == "done" and rest.json()["monitor"]["verdict"] == "done"
+    got = client.get(f"/api/runs/{run['id']}").json()
+    assert got == rest.json()["run"]
+    assert got["position"] == [waypoints[-1]["row"], waypoints[-1]["col"], waypoints[-1]["floor"]]
     assert {
         "id": run["id"],
         "scene": "demo-house",
         "status": "done",
-        "verdict": "done",
-        "poses": len(waypoints),
+        "poses": got["monitor"]["poses"],
     } in client.get("/api/runs").json()
-    with client.stream("GET", f"/api/runs/{run['id']}/events") as stream:
-        kinds = [line.split(": ", 1)[1] for line in stream.iter_lines() if line.startswith("event:")]
-    assert kinds == ["planned", "progress", "progress", "done"]
-    with client.stream("GET", f"/api/runs/{run['id']}/events", headers={"Last-Event-ID": "2"}) as stream:
-        ids = [line.split(": ", 1)[1] for line in stream.iter_lines() if line.startswith("id:")]
-    assert ids == ["3", "4"]  # a reconnecting client gets what it missed
+    # Progress events come when the mission moves on: here only at the end.
+    assert _events(client, run["id"], got["events"]) == [("1", "replanned"), ("2", "done")]
+    # A reconnecting client gets what it missed.
+    assert _events(client, run["id"], 1, last=1) == [("2", "done")]
     assert "has ended (done)" in str(error_of(client.post(f"/api/runs/{run['id']}/cancel"), 409)["message"])
+
+
+def test_a_closed_door_replans_the_run_and_a_bad_change_changes_nothing(client: TestClient) -> None:
+    run = client.post(
+        "/api/runs",
+        json={
+            "scene": "demo",
+            "formula": 'F "enter(room_4)"',
+            "start": {"room": "room_7"},
+            "options": {"setup": "A*"},
+        },
+    ).json()
+    before = run["plan"]["cost_m"]
+    closed = client.post(
+        f"/api/runs/{run['id']}/changes",
+        json={"changes": [{"kind": "close_door", "rooms": ["corridor on floor 0", "kitchen"]}]},
+    ).json()
+    assert closed["changes"] == [{"kind": "close_door", "rooms": ["corridor on floor 0", "kitchen"]}]
+    assert closed["plan"]["cost_m"] > before  # the kitchen's other door is farther
+    building = sgplan.load_scene("demo")
+    door = [d for d in client.get("/api/scenes/demo").json()["doors"] if d["rooms"] == ["room_2", "room_4"]][
+        0
+    ]
+    assert [door["row"], door["col"], 0] not in [p[:3] for p in closed["plan"]["path"]]
+    bad = client.post(
+        f"/api/runs/{run['id']}/changes",
+        json={
+            "changes": [
+                {"kind": "open_door", "rooms": ["corridor on floor 0", "kitchen"]},
+                {"kind": "close_door", "rooms": ["corridor", "gym"]},
+            ]
+        },
+    )
+    assert "change 2" in str(error_of(bad, 422)["message"])
+    assert client.get(f"/api/runs/{run['id']}").json() == closed  # all or none
+    refused = client.post(
+        f"/api/runs/{run['id']}/changes", json={"changes": [{"kind": "scene_graph", "scene": "/etc"}]}
+    )
+    assert "not taken over HTTP" in str(error_of(refused, 422)["message"])
+    reopened = client.post(
+        f"/api/runs/{run['id']}/changes",
+        json={"changes": [{"kind": "open_door", "rooms": ["corridor on floor 0", "kitchen"]}]},
+    ).json()
+    assert reopened["plan"]["cost_m"] == pytest.approx(before)
+    assert building.num_floors == 2
+
+
+def test_amendments_replan_or_are_refused_with_409(client: TestClient) -> None:
+    run = client.post(
+        "/api/runs",
+        json={
+            "scene": "demo",
+            "formula": 'F "enter(room_4)"',
+            "start": {"room": "room_7"},
+            "options": {"setup": "A*"},
+        },
+    ).json()
+    refused = client.post(f"/api/runs/{run['id']}/amend", json={"text": "always avoid the kitchen"})
+    body = error_of(refused, 409)
+    assert "never enter the kitchen (room_4, floor 0)" in str(body["message"]).lower()
+    assert body["plan_status"] == "unsatisfiable"
+    amended = client.post(
+        f"/api/runs/{run['id']}/amend", json={"text": "also go to the bathroom on floor 0"}
+    ).json()
+    assert amended["amendments"] == ["also go to the bathroom on floor 0"]
+    assert (
+        "bathroom (room_5, floor 0)" in amended["left"] and amended["plan"]["cost_m"] > run["plan"]["cost_m"]
+    )
 
 
 def test_a_run_that_breaks_the_mission_is_violated(client: TestClient) -> None:
     run = client.post(
-        "/api/runs", json={"scene": "demo", "formula": FORMULA, "start": {"room": "kitchen"}}
+        "/api/runs",
+        json={"scene": "demo", "formula": FORMULA, "start": {"room": "kitchen"}, "options": {"setup": "A*"}},
     ).json()
     building = sgplan.load_scene("demo")
     bathroom = next(r for r in building.rooms() if r.key == "room_5")
     x, y = bathroom.location_m[:2]
     answer = client.post(f"/api/runs/{run['id']}/observe", json={"poses": [[float(x), float(y), 0]]}).json()
-    assert answer["status"] == "violated" and answer["progress"]["verdict"] == "violated"
+    assert answer["run"]["status"] == "violated" and answer["monitor"]["verdict"] == "violated"
+    assert "never enter the bathroom (room_5, floor 0)" in answer["monitor"]["violation"]["text"]
 
 
 def test_run_errors(client: TestClient) -> None:
     assert "unknown run" in str(error_of(client.get("/api/runs/nope"), 404)["message"])
     error_of(client.post("/api/runs/nope/observe", json={"poses": [[0.0, 0.0, 0]]}), 404)
     run = client.post(
-        "/api/runs", json={"scene": "demo", "formula": FORMULA, "start": {"room": "kitchen"}}
+        "/api/runs",
+        json={"scene": "demo", "formula": FORMULA, "start": {"room": "kitchen"}, "options": {"setup": "A*"}},
     ).json()
     off = client.post(f"/api/runs/{run['id']}/observe", json={"poses": [[1e6, 0.0, 0]]})
-    assert "off the map" in str(error_of(off, 422)["message"])
-    assert "floors 0-1" in str(
-        error_of(client.post(f"/api/runs/{run['id']}/observe", json={"poses": [[0.0, 0.0, 5]]}), 422)[
-            "message"
-        ]
-    )
+    error_of(off, 422)
+    error_of(client.post(f"/api/runs/{run['id']}/observe", json={"poses": [[0.0, 0.0, 5]]}), 422)
     too_many = {"poses": [[0.0, 0.0, 0]] * (MAX_POSES_PER_BATCH + 1)}
     assert "field poses" in str(
         error_of(client.post(f"/api/runs/{run['id']}/observe", json=too_many), 422)["message"]
     )
-    assert (
-        client.get(f"/api/runs/{run['id']}").json()["progress"]["poses"] == 0
-    )  # refused batches change nothing
+    assert client.get(f"/api/runs/{run['id']}").json() == run  # refused batches change nothing
     assert client.post(f"/api/runs/{run['id']}/cancel").json()["status"] == "cancelled"
     error_of(client.post(f"/api/runs/{run['id']}/observe", json={"poses": [[0.0, 0.0, 0]]}), 409)
+    error_of(client.post(f"/api/runs/{run['id']}/amend", json={"text": "also go to the kitchen"}), 409)
 
 
 def test_the_openapi_description_lists_every_route(client: TestClient) -> None:

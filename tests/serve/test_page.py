@@ -80,11 +80,15 @@ def click_cell(tab: Any, cell: tuple[int, int, int], shape: tuple[int, int]) -> 
     )
 
 
-def test_type_plan_and_drive_the_robot(page: tuple[Any, list[str]]) -> None:
+def _cost(tab: Any) -> float:
+    return float(tab.locator("#status").inner_text().split("cost ")[1].split(" m")[0])
+
+
+def test_type_plan_close_a_door_and_drive_the_robot(page: tuple[Any, list[str]]) -> None:
     tab, problems = page
     building = sgplan.load_scene("demo")
     session = sgplan.Session(building)
-    kitchen, _ = start_cell(building, session.grid(), "kitchen")
+    dining, _ = start_cell(building, session.grid(), "dining_room")
 
     tab.fill("#mission", KITCHEN_TEXT)
     tab.wait_for_function("document.getElementById('explanation').textContent.includes('room_4, floor 0')")
@@ -93,15 +97,18 @@ def test_type_plan_and_drive_the_robot(page: tuple[Any, list[str]]) -> None:
     assert "Never enter the bathroom (room_5, floor 0)" in said
     shot(tab, "1-said-back")
 
-    click_cell(tab, kitchen, building.floors[0].shape)
-    assert tab.locator("#start-shown").inner_text() == f"cell row {kitchen[0]}, column {kitchen[1]}, floor 0"
+    tab.fill("#mission", "Go to the kitchen.")
+    tab.wait_for_function("document.getElementById('explanation').textContent.includes('Formula: F')")
+    click_cell(tab, dining, building.floors[0].shape)
+    assert tab.locator("#start-shown").inner_text() == f"cell row {dining[0]}, column {dining[1]}, floor 0"
     assert tab.locator('#layers .floor[data-floor="0"] svg.marks circle.chosen-start').count() == 1
     tab.locator("#plan").click()
     tab.wait_for_function("document.getElementById('status').textContent.startsWith('Run ')")
-    assert "optimal" in tab.locator("#status").inner_text()
-    assert tab.locator('#layers .floor[data-floor="0"] svg.overlay polyline.path').count() > 0
-    assert tab.locator('#layers .floor[data-floor="0"] svg.overlay circle.start').count() == 1
-    assert "the bedroom (room_11, floor 1)" in tab.locator("#left").inner_text()
+    assert "(in-progress): optimal" in tab.locator("#status").inner_text()
+    overlay = tab.locator('#layers .floor[data-floor="0"] svg.overlay')
+    assert overlay.locator("polyline.path").count() > 0 and overlay.locator("circle.start").count() == 1
+    assert "Left: go to the kitchen (room_4, floor 0)" in tab.locator("#left").inner_text()
+    first_path, first_cost = overlay.inner_html(), _cost(tab)
     shot(tab, "2-planned")
 
     # Hovering the map names the room (the report's hover, on the served floors).
@@ -109,17 +116,34 @@ def test_type_plan_and_drive_the_robot(page: tuple[Any, list[str]]) -> None:
     box = stage.bounding_box()
     rows, cols = building.floors[0].shape
     tab.mouse.move(
-        box["x"] + (kitchen[1] + 0.5) / cols * box["width"],
-        box["y"] + (kitchen[0] + 0.5) / rows * box["height"],
+        box["x"] + (dining[1] + 0.5) / cols * box["width"],
+        box["y"] + (dining[0] + 0.5) / rows * box["height"],
     )
-    assert "room: kitchen (room_4" in tab.locator("#tooltip").inner_text()
+    assert "room: dining_room (room_7" in tab.locator("#tooltip").inner_text()
+
+    # Close the corridor's door into the kitchen: the path goes round through the bathroom.
+    door = tab.locator(
+        'svg.marks rect.door[aria-label="close the door between the corridor and the kitchen"]'
+    )
+    door.click()
+    tab.wait_for_function(
+        f"document.getElementById('status').textContent.startsWith('Run ') && "
+        f"!document.getElementById('status').textContent.includes('cost {first_cost:.2f} m')"
+    )
+    assert _cost(tab) > first_cost
+    assert tab.locator('#layers .floor[data-floor="0"] svg.overlay').inner_html() != first_path
+    assert tab.locator("svg.marks rect.door.closed").count() == 1
+    tab.wait_for_function(
+        "document.getElementById('log').textContent.includes('closed the door between the corridor')"
+    )
+    shot(tab, "3-door-closed")
 
     tab.locator("#play").click()
     tab.wait_for_function("document.getElementById('verdict').textContent.includes('done')", timeout=60_000)
-    assert tab.locator("#left").inner_text().startswith("nothing: the mission is done")
-    assert tab.locator('#layers .floor[data-floor="1"] svg.marks circle.robot').count() == 1
-    tab.wait_for_function("document.getElementById('log').textContent.includes('done')")
-    shot(tab, "3-driven")
+    assert tab.locator("#left").inner_text() == "Nothing is left: the mission is done."
+    assert tab.locator('#layers .floor[data-floor="0"] svg.marks circle.robot').count() == 1
+    tab.wait_for_function("document.getElementById('log').textContent.includes('done: ')")
+    shot(tab, "4-driven")
     assert problems == []
 
 
@@ -138,7 +162,7 @@ def test_keyboard_and_phone_width(page: tuple[Any, list[str]]) -> None:
     # Nothing wider than the phone's screen but the map, which scales with it.
     width = tab.evaluate("document.documentElement.scrollWidth")
     assert width <= 390
-    shot(tab, "4-phone")
+    shot(tab, "5-phone")
     tab.locator("#cancel-run").click()
     tab.wait_for_function("document.getElementById('status').textContent.includes('(cancelled)')")
     assert problems == []

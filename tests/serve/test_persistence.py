@@ -43,44 +43,48 @@ def test_runs_survive_sigkill_at_the_same_progress(tmp_path: Path) -> None:
                     ({"formula": FORMULA}, {"room": "living_room"}),
                 ]
             ):
-                run = c.post("/api/runs", json={"scene": "demo", **mission, "start": start}).json()
+                run = c.post(
+                    "/api/runs", json={"scene": "demo", **mission, "start": start, "options": {"setup": "A*"}}
+                ).json()
                 waypoints = run["plan"]["waypoints"]
+                if k == 0:
+                    c.post(
+                        f"/api/runs/{run['id']}/changes",
+                        json={"changes": [{"kind": "close_door", "rooms": ["room_2", "room_4"]}]},
+                    )
                 if k == 1:
-                    c.post(f"/api/runs/{run['id']}/observe", json={"poses": _poses(waypoints[:7])})
+                    c.post(f"/api/runs/{run['id']}/observe", json={"poses": _poses(waypoints[1:7])})
                     c.post(f"/api/runs/{run['id']}/observe", json={"poses": _poses(waypoints[7:12])})
+                    c.post(f"/api/runs/{run['id']}/amend", json={"text": "also go to the dining room"})
+                    driven_to = [waypoints[11][key] for key in ("row", "col", "floor")]
                 if k == 2:
-                    c.post(f"/api/runs/{run['id']}/observe", json={"poses": _poses(waypoints)})
+                    c.post(f"/api/runs/{run['id']}/observe", json={"poses": _poses(waypoints[1:])})
                 if k == 3:
                     c.post(f"/api/runs/{run['id']}/cancel")
                 made.append(c.get(f"/api/runs/{run['id']}").json())
             events = {run["id"]: _events(c, run) for run in made}
-        assert [r["status"] for r in made] == ["active", "active", "done", "cancelled"]
+        assert [r["status"] for r in made] == ["impossible", "in-progress", "done", "cancelled"]
+        assert made[0]["changes"] and made[1]["amendments"] and made[1]["position"] == driven_to
         server.kill()
 
         server.start()
         with httpx.Client(base_url=server.url, timeout=60) as c:
             assert c.get("/api/health").json()["runs"] == len(made)
             for before in made:
-                after = c.get(f"/api/runs/{before['id']}").json()
-                assert after == before
+                assert c.get(f"/api/runs/{before['id']}").json() == before
                 assert _events(c, before) == events[before["id"]]
-                again = c.post(
-                    "/api/plan",
-                    json={
-                        "scene": "demo",
-                        **{
-                            k: v
-                            for k, v in before["request"].items()
-                            if k in ("text", "formula", "start", "options")
-                        },
-                    },
-                )
-                assert again.json()["path"] == before["plan"]["path"]
-                assert again.json()["cost_m"] == before["plan"]["cost_m"]
-            # The restored runs go on where they were.
-            active = made[1]
-            rest = _poses(active["plan"]["waypoints"][12:])
+            # The open runs plan the same from where they stand: still impossible (the closed door was the
+            # kitchen's way out but through the forbidden bathroom), the other on the rest of its path.
+            impossible = c.post(f"/api/runs/{made[0]['id']}/replan").json()
+            assert impossible["status"] == "impossible" and impossible["why"] == made[0]["why"]
+            before = made[1]
+            again = c.post(f"/api/runs/{before['id']}/replan").json()
+            assert again["plan"]["path"] == before["plan"]["path"][before["plan_offset"] :]
+            assert again["position"] == before["position"] and again["state"] == before["state"]
+            # and go on where they were.
+            active = c.get(f"/api/runs/{made[1]['id']}").json()
+            rest = _poses(active["plan"]["waypoints"][1:])
             done = c.post(f"/api/runs/{active['id']}/observe", json={"poses": rest}).json()
-            assert done["status"] == "done" and done["progress"]["poses"] == len(active["plan"]["waypoints"])
+            assert done["run"]["status"] == "done"
     finally:
         server.kill()

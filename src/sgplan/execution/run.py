@@ -46,6 +46,7 @@ if TYPE_CHECKING:
     from sgplan.llm.backends import MissionGuide
     from sgplan.mission import Mission
     from sgplan.options import PlanOptions
+    from sgplan.planning.termination import Termination
     from sgplan.result import PlanResult
     from sgplan.scene.model import Building
     from sgplan.starts import StartSpec
@@ -150,6 +151,9 @@ class Run:
         self.history: list[RunEvent] = []
         self.why: str | None = None
         self._callbacks: list[Callable[[RunEvent], None]] = []
+        self.stop_when: Termination | None = None
+        """A further condition that stops the run's searches besides the options' budgets (e.g. a
+        service's request deadline and a cancel flag, :mod:`sgplan.planning.termination`)."""
         self._plan: PlanResult | None = None
         self._on_plan = 0  # the robot's row on the current plan's path
         self._stale = True

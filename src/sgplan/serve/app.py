@@ -187,7 +187,8 @@ def _add_run_routes(app: FastAPI, service: MissionService) -> None:
 
     @app.post("/api/runs/{run_id}/observe", responses=run_errors)
     def observe(run_id: str, request: ObserveRequest) -> dict[str, Any]:
-        """Report poses ``[x_m, y_m, floor]``: the monitor's verdict and what is left to do."""
+        """Report poses ``[x_m, y_m, floor]``: ``{"run": the run, "monitor": the runtime monitor's status}``
+        (verdict, state, what is left in words, the poses' issues)."""
         return service.runs.observe(run_id, request)
 
     @app.post("/api/runs/{run_id}/changes", responses=run_errors)
@@ -199,6 +200,11 @@ def _add_run_routes(app: FastAPI, service: MissionService) -> None:
     async def amend(run_id: str, request: AmendRequest) -> dict[str, Any]:
         """Amend the mission in words and replan."""
         return await service.runs.amend(run_id, request)
+
+    @app.post("/api/runs/{run_id}/replan", responses=run_errors)
+    async def replan(run_id: str) -> dict[str, Any]:
+        """Plan again from where the robot is (e.g. after it left its plan)."""
+        return await service.runs.replan(run_id)
 
     @app.post("/api/runs/{run_id}/cancel", responses=run_errors)
     def cancel(run_id: str) -> dict[str, Any]:

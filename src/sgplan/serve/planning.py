@@ -1,17 +1,21 @@
-"""One plan of a request on a warm scene, under the server's time limit.
+"""Plans of requests under the server's limits: a wall-clock deadline per request and a cancel flag.
 
-:func:`plan_on_host` is what a plan worker runs: it takes the scene's plan lock (one search at a time per
-session), plans with the scene's :class:`sgplan.Session` and the mission already understood (translated
-and explained once, :mod:`sgplan.serve.missions`), and stops the search when the request's deadline
-comes (the best path so far is kept; none found: 408).
+:class:`Budget` is what one request may spend: its deadline (:class:`sgplan.planning.termination.Deadline`,
+from the server's ``request_time_limit_s``) and a :class:`~sgplan.planning.termination.CancelFlag` another
+thread may set; both stop a running search at its next poll, which keeps the best path so far.
+:func:`plan_on_host` is what a plan worker runs for a one-shot plan: under the scene's plan lock (one
+search at a time fills a session's action maps), with the mission already understood (translated and
+explained once, :mod:`sgplan.serve.missions`).
 """
 
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from sgplan.options import PlanOptions
+from sgplan.planning.termination import CancelFlag, Deadline, Termination
 from sgplan.serve.errors import HTTPProblem
 
 if TYPE_CHECKING:
@@ -22,24 +26,45 @@ if TYPE_CHECKING:
 
 
 @dataclass(frozen=True)
-class Deadline:
-    """When a request must be answered (:func:`time.monotonic` seconds) and how long it was given."""
+class Budget:
+    """What one request may spend: ``seconds`` of wall clock from now, and a cancel flag."""
 
-    at: float
     seconds: float
+    deadline: Deadline
+    cancel: CancelFlag = field(default_factory=CancelFlag)
 
     @classmethod
-    def after(cls, seconds: float) -> Deadline:
-        return cls(time.monotonic() + seconds, seconds)
+    def of(cls, seconds: float) -> Budget:
+        return cls(seconds, Deadline.after(seconds))
 
-    def left_s(self) -> float:
-        return self.at - time.monotonic()
+    @property
+    def stop_when(self) -> Termination:
+        """The search's termination condition: the deadline or the cancel flag."""
+        return self.deadline | self.cancel
+
+    @property
+    def expired(self) -> bool:
+        return time.monotonic() >= self.deadline.at
+
+    def late(self) -> HTTPProblem:
+        """408: the deadline came before any path was found."""
+        return HTTPProblem(
+            408,
+            f"no path within the server's time limit of {self.seconds:g} s per request; retry later, or give "
+            "the plan a budget (options.time_limit_s, max_expansions) to get the best path so far",
+            retry_after_s=1,
+        )
+
+
+def plan_options(options: Options) -> PlanOptions:
+    """The request's options as the planner's :class:`sgplan.PlanOptions` (validated again there)."""
+    return PlanOptions(**options.model_dump(exclude_none=True))
 
 
 def plan_on_host(
-    host: SceneHost, understood: Understood, start: Start | None, options: Options, deadline: Deadline
+    host: SceneHost, understood: Understood, start: Start | None, options: Options, budget: Budget
 ) -> PlanResult:
-    """Plan ``understood`` on ``host`` from ``start`` with ``options``, stopping at ``deadline``.
+    """Plan ``understood`` on ``host`` from ``start`` with ``options``, stopping when ``budget`` runs out.
 
     Raises
     ------
@@ -49,33 +74,17 @@ def plan_on_host(
         what :func:`sgplan.plan` raises (a bad start, an infeasible mission ...).
     """
     with host.lock:
-        left = deadline.left_s()
-        if left <= 0:
-            raise _late(deadline)
-        limit = left if options.time_limit_s is None else min(options.time_limit_s, left)
+        if budget.expired:
+            raise budget.late()
         result = host.session.plan(
             understood.mission,
             None if start is None else start.spec(),
-            setup=options.setup,
-            profile=options.profile,
-            robot_radius_m=options.robot_radius_m,
-            reach_radius_m=options.reach_radius_m,
-            time_limit_s=limit,
-            max_expansions=options.max_expansions,
+            options=plan_options(options),
             explanation=understood.explanation,
+            termination=budget.stop_when,
         )
-    # The search's own clock runs behind the wall clock: when the server's limit stopped it, the deadline
-    # has passed; a budget of the request's (expansions, a shorter time) stops it before.
-    if result.status == "timeout" and result.path is None and deadline.left_s() <= 0:
-        raise _late(deadline)
+    # A budget of the request's own (expansions, search seconds) gives its best path, or none, with status
+    # "timeout"; the server's deadline without a path is the server's to answer for.
+    if result.path is None and result.status == "timeout" and budget.expired:
+        raise budget.late()
     return result
-
-
-def _late(deadline: Deadline) -> HTTPProblem:
-    return HTTPProblem(
-        408,
-        f"no path within the server's time limit of {deadline.seconds:g} s per request; "
-        "retry later, or give the plan a budget (options.time_limit_s, max_expansions) to get "
-        "the best path so far",
-        retry_after_s=1,
-    )

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 from sgplan import __version__
 from sgplan.serve.config import ServeConfig
 from sgplan.serve.missions import MissionBook, checks_from_start
-from sgplan.serve.planning import Deadline, plan_on_host
+from sgplan.serve.planning import Budget, plan_on_host
 from sgplan.serve.pool import WorkPool
 from sgplan.serve.scenes import SceneRegistry
 from sgplan.serve.views import overlays, scene_layers
@@ -82,12 +82,12 @@ class MissionService:
         """A one-shot plan in the pool: :meth:`sgplan.PlanResult.to_dict` (with ``request.view``:
         ``"overlays"``, one SVG per floor)."""
         host = self.scenes[request.scene]
-        deadline = Deadline.after(self.config.request_time_limit_s)
+        budget = Budget.of(self.config.request_time_limit_s)
         start = request.start.spec() if request.start is not None else None
 
         def job() -> dict[str, Any]:
             understood = self.missions.understand(host, request, start)
-            result = plan_on_host(host, understood, request.start, request.options, deadline)
+            result = plan_on_host(host, understood, request.start, request.options, budget)
             record = result.to_dict()
             if request.view:
                 record["overlays"] = overlays(host, result.path, result.events)

@@ -171,36 +171,37 @@
     state.run = run;
     state.plan = run.plan;
     const plan = run.plan;
-    setText("status", "Run " + run.id + " (" + run.status + "): " + plan.status + ", cost " +
-            (plan.cost_m === null ? "-" : plan.cost_m.toFixed(2) + " m") + ", " + (plan.path ? plan.path.length : 0) + " cells, setup " + plan.setup);
-    setText("verdict", "Monitor: " + run.progress.verdict + " (" + run.progress.poses + " poses seen)", run.progress.verdict);
-    list("left", run.left_to_do.length ? run.left_to_do : [run.status === "done" ? "nothing: the mission is done" : "-"]);
-    $("play").disabled = run.status !== "active";
-    $("cancel-run").disabled = run.status !== "active";
+    const open = run.status === "in-progress";
+    setText("status", "Run " + run.id + " (" + run.status + "): " + (plan ? plan.status + ", cost " +
+            (plan.cost_m === null ? "-" : plan.cost_m.toFixed(2) + " m") + ", " + (plan.path ? plan.path.length : 0) +
+            " cells, setup " + plan.setup : "no plan") + (run.why ? ". " + run.why : ""));
+    setText("verdict", "Monitor: " + run.status + " (" + run.monitor.poses + " poses seen, " +
+            run.monitor.length_m.toFixed(1) + " m driven)", run.status);
+    list("left", [run.left ? "Left: " + run.left : run.status === "done" ? "Nothing is left: the mission is done." : "-"]);
+    $("play").disabled = !open || !plan || !plan.path;
+    $("cancel-run").disabled = !open;
   }
   async function refreshView() {
     const run = await api("GET", "/api/runs/" + state.run.id + "?view=true");
+    state.robotAt = run.plan_offset;
     document.querySelectorAll("#layers .floor").forEach(function (layer, k) {
       const old = layer.querySelector("svg.overlay");
       const holder = document.createElement("div");
       holder.innerHTML = run.overlays[k];
       old.replaceWith(holder.firstChild);
     });
-    state.robotAt = 0;
     showRun(run);
     drawMarks();
-    const first = run.plan.path && run.plan.path.length ? run.plan.path[0][2] : null;
+    const first = run.plan && run.plan.path && run.plan.path.length ? run.plan.path[run.plan_offset][2] : null;
     if (first !== null) { state.floors.showFloor(first); }
   }
   function follow(runId) {
     if (state.events) { state.events.close(); }
     const url = "/api/runs/" + runId + "/events" + (token ? "?token=" + encodeURIComponent(token) : "");
     state.events = new EventSource(url);
-    ["planned", "replanned", "progress", "changed", "amended", "violated", "done", "cancelled"].forEach(function (kind) {
+    ["replanned", "progress", "changed", "amended", "refused", "impossible", "violated", "done", "cancelled"].forEach(function (kind) {
       state.events.addEventListener(kind, function (message) {
-        const data = JSON.parse(message.data);
-        log(kind + (data.message ? ": " + data.message : data.verdict ? ": " + data.verdict : data.cost_m !== undefined && data.cost_m !== null ? ": cost " + data.cost_m.toFixed(2) + " m" : ""));
-        if (kind === "replanned") { refreshView().catch(function (e) { log("error: " + e.message); }); }
+        log(kind + ": " + JSON.parse(message.data).message);
         if (kind === "done" || kind === "violated" || kind === "cancelled") { state.events.close(); }
       });
     });
@@ -214,7 +215,7 @@
     try {
       const run = await api("POST", "/api/runs", body);
       state.run = run;
-      log("run " + run.id + " started");
+      log("run " + run.id + " started: " + (run.plan ? "planned " + run.plan.cost_m.toFixed(2) + " m" : run.status));
       follow(run.id);
       await refreshView();
     } catch (error) {
@@ -224,7 +225,7 @@
     }
   }
   async function toggleDoor(door) {
-    if (!state.run || state.run.status !== "active") { setText("status", "Plan first: a door changes a run's scene."); return; }
+    if (!state.run || state.run.status !== "in-progress") { setText("status", "Plan first: a door changes a run's scene."); return; }
     const key = door.rooms.join("|");
     const kind = state.closed.has(key) ? "open_door" : "close_door";
     setText("status", (kind === "close_door" ? "Closing" : "Opening") + " the door between the " + door.names[0] + " and the " + door.names[1] + "; replanning...");
@@ -244,17 +245,16 @@
   }
   async function step() {
     const w = state.plan.waypoints;
-    const batch = w.slice(state.robotAt + (state.robotAt ? 1 : 0), state.robotAt + 6);
+    const batch = w.slice(state.robotAt + 1, state.robotAt + 6);
     if (!batch.length) { pause(); return; }
     try {
-      const run = await api("POST", "/api/runs/" + state.run.id + "/observe",
-                            { poses: batch.map(function (p) { return [p.x_m, p.y_m, p.floor]; }) });
+      const answer = await api("POST", "/api/runs/" + state.run.id + "/observe",
+                               { poses: batch.map(function (p) { return [p.x_m, p.y_m, p.floor]; }) });
       state.robotAt = batch[batch.length - 1].index;
-      state.run = run;
-      showRun(run);
+      showRun(answer.run);
       drawMarks();
       state.floors.showFloor(batch[batch.length - 1].floor);
-      if (run.status !== "active") { pause(); }
+      if (answer.run.status !== "in-progress") { pause(); }
     } catch (error) {
       setText("status", error.message);
       pause();
