@@ -293,10 +293,9 @@ def test_a_closed_door_replans_the_run_and_a_bad_change_changes_nothing(client: 
     ).json()
     assert closed["changes"] == [{"kind": "close_door", "rooms": ["corridor on floor 0", "kitchen"]}]
     assert closed["plan"]["cost_m"] > before  # the kitchen's other door is farther
-    building = sgplan.load_scene("demo")
-    door = [d for d in client.get("/api/scenes/demo").json()["doors"] if d["rooms"] == ["room_2", "room_4"]][
-        0
-    ]
+    door = next(
+        d for d in client.get("/api/scenes/demo").json()["doors"] if d["rooms"] == ["room_2", "room_4"]
+    )
     assert [door["row"], door["col"], 0] not in [p[:3] for p in closed["plan"]["path"]]
     bad = client.post(
         f"/api/runs/{run['id']}/changes",
@@ -318,7 +317,6 @@ def test_a_closed_door_replans_the_run_and_a_bad_change_changes_nothing(client: 
         json={"changes": [{"kind": "open_door", "rooms": ["corridor on floor 0", "kitchen"]}]},
     ).json()
     assert reopened["plan"]["cost_m"] == pytest.approx(before)
-    assert building.num_floors == 2
 
 
 def test_amendments_replan_or_are_refused_with_409(client: TestClient) -> None:
