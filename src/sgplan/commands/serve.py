@@ -39,6 +39,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="plans that may wait for a worker before requests get 503 (default 8)")
     parser.add_argument("--request-time-limit", type=positive_seconds, default=30.0, metavar="S",
                         help="wall-clock seconds one plan request may take (default 30)")
+    parser.add_argument("--hot-runs", type=positive_int, default=8, metavar="N",
+                        help="runs kept in memory with their planner parts (default 8); others wait in the database")
     parser.add_argument("--cors-origin", action="append", default=[], metavar="ORIGIN",
                         help="an origin allowed to call the API from its pages (repeat; default none)")
     parser.set_defaults(run=run)
@@ -56,7 +58,7 @@ def run(args: argparse.Namespace) -> int:
         scenes=tuple(args.scene), host=args.host, port=args.port,
         token=read_token_file(args.token_file) if args.token_file else args.token,
         state_dir=Path(args.state), database_url=args.database_url, data=args.data, plan_workers=args.workers,
-        plan_backlog=args.backlog, request_time_limit_s=args.request_time_limit,
+        plan_backlog=args.backlog, request_time_limit_s=args.request_time_limit, hot_runs=args.hot_runs,
         cors_origins=tuple(args.cors_origin),
     ).checked()
     say(f"loading {len(config.scenes)} scene(s): {', '.join(config.scenes)}")

@@ -58,6 +58,9 @@ class ServeConfig:
     request_time_limit_s:
         wall-clock seconds one plan request may take (queueing and planning) before it is stopped: the
         best path so far, or 408 without one.
+    hot_runs:
+        runs kept in memory with their planner parts (tens of MB each on a Gibson scene); the others are
+        brought back from the database when next used.
     cors_origins:
         origins allowed to call the API from a browser page served elsewhere; empty: no CORS headers.
     """
@@ -72,6 +75,7 @@ class ServeConfig:
     plan_workers: int = 2
     plan_backlog: int = 8
     request_time_limit_s: float = 30.0
+    hot_runs: int = 8
     cors_origins: tuple[str, ...] = ()
 
     def checked(self) -> ServeConfig:
@@ -90,8 +94,8 @@ class ServeConfig:
             )
         if not (0 < self.port < 65536):
             raise ServeError(f"--port {self.port} is not a TCP port (1-65535)")
-        if self.plan_workers < 1 or self.plan_backlog < 0:
-            raise ServeError("--workers must be >= 1 and --backlog >= 0")
+        if self.plan_workers < 1 or self.plan_backlog < 0 or self.hot_runs < 1:
+            raise ServeError("--workers and --hot-runs must be >= 1, --backlog >= 0")
         if not (0 < self.request_time_limit_s <= 3600):
             raise ServeError(f"--request-time-limit {self.request_time_limit_s:g} s is not in (0, 3600]")
         return self

@@ -36,6 +36,7 @@ from typing import TYPE_CHECKING, Any
 from sgplan.serve.errors import HTTPProblem, not_found
 from sgplan.serve.models import RunRequest
 from sgplan.serve.planning import Budget, plan_options
+from sgplan.serve.store import UNCHANGED
 from sgplan.serve.streams import MAX_STREAMS_PER_RUN, EventHub, RunEvent
 from sgplan.serve.views import overlays
 
@@ -68,8 +69,8 @@ class LiveRun:
     host: SceneHost
     request: dict[str, Any]
     saved: dict[str, Any]
-    """:meth:`Run.to_dict` without its history (the events are in the store) and the service's fields:
-    ``status``, ``plan``, ``plan_offset``, ``left``, ``seq``."""
+    """:meth:`Run.to_dict` (its history: the changes only; the events are in the store) and the service's
+    fields: ``status``, ``plan``, ``plan_offset``, ``left``, ``seq``."""
     version: int = 1
     run: Run | None = None
     lock: threading.Lock = field(default_factory=threading.Lock)
@@ -85,8 +86,9 @@ class LiveRun:
     def seq(self) -> int:
         return int(self.saved.get("seq", 0))
 
-    def public(self, view: bool = False) -> dict[str, Any]:
-        """The run as ``GET /api/runs/{id}`` answers (see the module docstring)."""
+    def public(self, view: bool = False, plan: bool = True) -> dict[str, Any]:
+        """The run as ``GET /api/runs/{id}`` answers (see the module docstring); without ``plan``, the plan
+        is left out but its cost (``plan_cost_m``): a pose report's answer stays small."""
         s = self.saved
         answer = {
             "id": self.id,
@@ -104,10 +106,12 @@ class LiveRun:
             "amendments": s["amendments"],
             "events": self.seq,
         }
+        if not plan:
+            answer["plan_cost_m"] = (answer.pop("plan") or {}).get("cost_m")
         if view:
-            plan = s.get("plan") or {}
+            current = s.get("plan") or {}
             answer["overlays"] = overlays(
-                self.host, (plan.get("path") or [])[s.get("plan_offset", 0) :] or None
+                self.host, (current.get("path") or [])[s.get("plan_offset", 0) :] or None
             )
         return answer
 
@@ -136,7 +140,7 @@ class RunBook:
         store: RunStore,
         *,
         request_time_limit_s: float,
-        max_hot: int = 32,
+        max_hot: int = 8,
     ) -> None:
         self.scenes = scenes
         self.missions = missions
@@ -159,7 +163,7 @@ class RunBook:
         """Bring back every run of the store whose scene this server serves (cold); returns how many."""
         for stored in self.store.load_all():
             host = self.scenes[stored.scene]
-            saved = dict(stored.record)
+            saved = dict(stored.record, plan=stored.plan)
             saved["seq"] = max(int(saved.get("seq", 0)), stored.last_seq)
             self._runs[stored.id] = LiveRun(stored.id, host, saved.pop("request"), saved, stored.version)
         return len(self._runs)
@@ -177,7 +181,7 @@ class RunBook:
         from sgplan.execution.run import Run
 
         if live.run is None:
-            live.run = Run.from_dict({**live.saved, "history": []}, live.host.session)
+            live.run = Run.from_dict(live.saved, live.host.session)
             live.run.subscribe(live.on_event)
         with self._lock:
             self._hot[live.id] = None
@@ -218,22 +222,28 @@ class RunBook:
     def _save(
         self, live: LiveRun, run: Run, plan: dict[str, Any] | None = None, status: str | None = None
     ) -> None:
-        """Store the run as it is now with its pending events (one transaction), then stream them."""
-        saved = {k: v for k, v in run.to_dict().items() if k != "history"}
+        """Store the run as it is now with its pending events (one transaction; its plan only when ``plan``
+        is a new one), then stream the events."""
+        # The run's events are in the store; of its history it keeps the changes (they say why a run is
+        # impossible), so neither the record nor the run in memory grows with every pose report.
+        run.history = [event for event in run.history if event.kind == "changed"]
+        saved = run.to_dict()
         saved.update(
             status=status or run.status,
             seq=live.seq,
             left=run.left(),
-            plan=plan if plan is not None else live.saved.get("plan"),
             plan_offset=run.remaining_offset if plan is None else 0,
         )
         rows = [(e.seq, e.kind, e.data) for e in live.pending]
         record = {"request": live.request, **saved}
         if live.version == 0:
-            self.store.insert(live.id, live.host.name, saved["status"], record, rows)
+            self.store.insert(live.id, live.host.name, saved["status"], record, plan, rows)
             live.version = 1
         else:
-            live.version = self.store.update(live.id, live.version, saved["status"], record, rows)
+            live.version = self.store.update(
+                live.id, live.version, saved["status"], record, rows, UNCHANGED if plan is None else plan
+            )
+        saved["plan"] = plan if plan is not None else live.saved.get("plan")
         events, live.pending, live.saved = live.pending, [], saved
         self.hub.publish(live.id, events)
 
@@ -308,7 +318,7 @@ class RunBook:
         with self._operation(live) as run:
             status = run.observe(request.poses)
             self._save(live, run)
-            return {"run": live.public(), "monitor": status.to_dict()}
+            return {"run": live.public(plan=False), "monitor": status.to_dict()}
 
     async def change(self, run_id: str, request: ChangesRequest) -> dict[str, Any]:
         """Apply scene changes (all or none) and replan from where the robot is."""

@@ -42,6 +42,9 @@ class RunRow(_Base):
     created_at: Mapped[float] = mapped_column(Float)
     updated_at: Mapped[float] = mapped_column(Float)
     record: Mapped[dict[str, Any]] = mapped_column(JSON)
+    plan: Mapped[dict[str, Any] | None] = mapped_column(JSON, nullable=True)
+    """The run's current plan, apart: it is written only when it changes (a plan is tens to hundreds of
+    kB; a pose report changes only the small record)."""
 
 
 class EventRow(_Base):
@@ -52,6 +55,14 @@ class EventRow(_Base):
     kind: Mapped[str] = mapped_column(String(32))
     at: Mapped[float] = mapped_column(Float)
     data: Mapped[dict[str, Any]] = mapped_column(JSON)
+
+
+class Unchanged:
+    """The type of :data:`UNCHANGED`."""
+
+
+UNCHANGED = Unchanged()
+"""Passed as a plan to :meth:`RunStore.update`: keep the stored one."""
 
 
 class StaleRun(ServeError):
@@ -67,6 +78,7 @@ class StoredRun:
     status: str
     version: int
     record: dict[str, Any]
+    plan: dict[str, Any] | None
     last_seq: int
 
 
@@ -113,9 +125,10 @@ class RunStore:
         scene: str,
         status: str,
         record: dict[str, Any],
+        plan: dict[str, Any] | None,
         events: list[tuple[int, str, dict[str, Any]]],
     ) -> None:
-        """Store a new run and its first events (``(seq, kind, data)``) in one transaction."""
+        """Store a new run, its plan and its first events (``(seq, kind, data)``) in one transaction."""
         now = time.time()
         with Session(self.engine) as session, session.begin():
             session.add(
@@ -127,6 +140,7 @@ class RunStore:
                     created_at=now,
                     updated_at=now,
                     record=record,
+                    plan=plan,
                 )
             )
             session.add_all(_event_rows(run_id, events, now))
@@ -138,9 +152,10 @@ class RunStore:
         status: str,
         record: dict[str, Any],
         events: list[tuple[int, str, dict[str, Any]]],
+        plan: dict[str, Any] | Unchanged | None = UNCHANGED,
     ) -> int:
-        """Replace the run's record if it is still at ``version`` and add its new events, in one
-        transaction; returns the new version.
+        """Replace the run's record (and its plan, unless :data:`UNCHANGED`) if it is still at ``version``
+        and add its new events, in one transaction; returns the new version.
 
         Raises
         ------
@@ -148,11 +163,17 @@ class RunStore:
             the run is no longer at ``version`` (changed elsewhere) or is gone.
         """
         now = time.time()
+        values: dict[str, Any] = {
+            "status": status,
+            "record": record,
+            "version": version + 1,
+            "updated_at": now,
+        }
+        if not isinstance(plan, Unchanged):
+            values["plan"] = plan
         with Session(self.engine) as session, session.begin():
             done = session.execute(
-                update(RunRow)
-                .where(RunRow.id == run_id, RunRow.version == version)
-                .values(status=status, record=record, version=version + 1, updated_at=now)
+                update(RunRow).where(RunRow.id == run_id, RunRow.version == version).values(**values)
             )
             if done.rowcount != 1:  # type: ignore[attr-defined]
                 raise StaleRun(f"run {run_id} changed in the database since it was read; read it again")
@@ -160,7 +181,7 @@ class RunStore:
         return version + 1
 
     def load_all(self) -> list[StoredRun]:
-        """Every run, oldest first, with the sequence number of its last event."""
+        """Every run, oldest first, with its plan and the sequence number of its last event."""
         with Session(self.engine) as session:
             rows = session.scalars(select(RunRow).order_by(RunRow.created_at)).all()
             last = {
@@ -169,7 +190,10 @@ class RunStore:
                     select(EventRow.run_id, func.max(EventRow.seq)).group_by(EventRow.run_id)
                 ).all()
             }
-            return [StoredRun(r.id, r.scene, r.status, r.version, r.record, last.get(r.id, 0)) for r in rows]
+            return [
+                StoredRun(r.id, r.scene, r.status, r.version, r.record, r.plan, last.get(r.id, 0))
+                for r in rows
+            ]
 
     def events(self, run_id: str, after_seq: int = 0) -> list[StoredEvent]:
         """The run's events after ``after_seq``, in order."""

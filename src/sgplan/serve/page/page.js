@@ -251,7 +251,7 @@
       const answer = await api("POST", "/api/runs/" + state.run.id + "/observe",
                                { poses: batch.map(function (p) { return [p.x_m, p.y_m, p.floor]; }) });
       state.robotAt = batch[batch.length - 1].index;
-      showRun(answer.run);
+      showRun(Object.assign({}, answer.run, { plan: state.plan }));  // a pose report leaves the plan out
       drawMarks();
       state.floors.showFloor(batch[batch.length - 1].floor);
       if (answer.run.status !== "in-progress") { pause(); }
