@@ -40,7 +40,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--request-time-limit", type=positive_seconds, default=30.0, metavar="S",
                         help="wall-clock seconds one plan request may take (default 30)")
     parser.add_argument("--hot-runs", type=positive_int, default=8, metavar="N",
-                        help="runs kept in memory with their planner parts (default 8); others wait in the database")
+                        help="runs kept in memory with their planner parts (default 8); the others wait in "
+                        "the database")
     parser.add_argument("--cors-origin", action="append", default=[], metavar="ORIGIN",
                         help="an origin allowed to call the API from its pages (repeat; default none)")
     parser.set_defaults(run=run)

@@ -211,6 +211,7 @@ class Run:
             mission.check_scene(self.building)
         self.mission = mission
         self._explained: Explained | None = None
+        self._mission_data: dict[str, Any] | None = None  # to_dict's form of the mission, made once
         self.labels = RunLabels(self.building, mission.ordered_propositions, self.radii.reach_m, cells)
 
     def _follow_status(self) -> None:
@@ -493,7 +494,7 @@ class Run:
         return {
             "format": FORMAT, "version": VERSION, "scene": scene_reference(self.session.building),
             "options": self.options.to_dict(), "start": list(self.start), "start_from": self.start_from,
-            "mission": mission_to_dict(self.mission), "changes": [c.to_dict() for c in self.changes],
+            "mission": self._saved_mission(mission_to_dict), "changes": [c.to_dict() for c in self.changes],
             "amendments": list(self.amendments), "position": list(self.position), "state": self.state,
             "status": self._status, "why": self.why,
             "monitor": {"poses": self.monitor.poses, "cells": self.monitor.cells,
@@ -501,6 +502,13 @@ class Run:
                         "violation": self.monitor.violation.to_dict() if self.monitor.violation else None},
             "history": [event.to_dict() for event in self.history],
         }
+
+    def _saved_mission(self, to_dict: Callable[[Mission], dict[str, Any]]) -> dict[str, Any]:
+        """The mission as :meth:`to_dict` saves it, made once per mission (a service saves a run after
+        every pose report; writing the automaton's HOA each time cost more than the report)."""
+        if self._mission_data is None:
+            self._mission_data = to_dict(self.mission)
+        return self._mission_data
 
     @classmethod
     def from_dict(cls, data: dict[str, Any], session: Session | None = None) -> Run:

@@ -127,10 +127,10 @@ def _add_scene_routes(app: FastAPI, service: MissionService) -> None:
         """The scenes this server serves (its own configuration)."""
         return [host.info() for host in service.scenes]
 
-    @app.get("/api/scenes/{scene}", responses=_ERRORS)
-    def scene(scene: str) -> dict[str, Any]:
+    @app.get("/api/scenes/{scene}", responses=_ERRORS, response_class=JSONResponse)
+    def scene(scene: str) -> Response:
         """A scene's summary (``sgplan inspect --json``) with its doors."""
-        return service.scenes[scene].summary
+        return JSONResponse(service.scenes[scene].summary)
 
     @app.get("/api/scenes/{scene}/floors/{floor}.png", responses=_ERRORS, response_class=Response)
     def floor_picture(scene: str, floor: int) -> Response:
@@ -180,36 +180,38 @@ def _add_run_routes(app: FastAPI, service: MissionService) -> None:
         """Every run held: id, scene, status, progress."""
         return service.runs.list()
 
-    @app.get("/api/runs/{run_id}", responses=run_errors)
-    def get_run(run_id: str, view: bool = False) -> dict[str, Any]:
+    # The run routes answer JSONResponse themselves: FastAPI's encoder walks every value of a dict answer
+    # again (a plan's waypoints), which cost more than the rest of a pose report.
+    @app.get("/api/runs/{run_id}", responses=run_errors, response_class=JSONResponse)
+    def get_run(run_id: str, view: bool = False) -> Response:
         """A run: mission, progress, plan, changes, amendments (with ``view``: the page's overlays)."""
-        return service.runs.get(run_id, view=view)
+        return JSONResponse(service.runs.get(run_id, view=view))
 
-    @app.post("/api/runs/{run_id}/observe", responses=run_errors)
-    def observe(run_id: str, request: ObserveRequest) -> dict[str, Any]:
+    @app.post("/api/runs/{run_id}/observe", responses=run_errors, response_class=JSONResponse)
+    def observe(run_id: str, request: ObserveRequest) -> Response:
         """Report poses ``[x_m, y_m, floor]``: ``{"run": the run, "monitor": the runtime monitor's status}``
         (verdict, state, what is left in words, the poses' issues)."""
-        return service.runs.observe(run_id, request)
+        return JSONResponse(service.runs.observe(run_id, request))
 
-    @app.post("/api/runs/{run_id}/changes", responses=run_errors)
-    async def changes(run_id: str, request: ChangesRequest) -> dict[str, Any]:
+    @app.post("/api/runs/{run_id}/changes", responses=run_errors, response_class=JSONResponse)
+    async def changes(run_id: str, request: ChangesRequest) -> Response:
         """Apply scene changes (a door closed, an area blocked ...) and replan from where the robot is."""
-        return await service.runs.change(run_id, request)
+        return JSONResponse(await service.runs.change(run_id, request))
 
-    @app.post("/api/runs/{run_id}/amend", responses=run_errors)
-    async def amend(run_id: str, request: AmendRequest) -> dict[str, Any]:
+    @app.post("/api/runs/{run_id}/amend", responses=run_errors, response_class=JSONResponse)
+    async def amend(run_id: str, request: AmendRequest) -> Response:
         """Amend the mission in words and replan."""
-        return await service.runs.amend(run_id, request)
+        return JSONResponse(await service.runs.amend(run_id, request))
 
-    @app.post("/api/runs/{run_id}/replan", responses=run_errors)
-    async def replan(run_id: str) -> dict[str, Any]:
+    @app.post("/api/runs/{run_id}/replan", responses=run_errors, response_class=JSONResponse)
+    async def replan(run_id: str) -> Response:
         """Plan again from where the robot is (e.g. after it left its plan)."""
-        return await service.runs.replan(run_id)
+        return JSONResponse(await service.runs.replan(run_id))
 
-    @app.post("/api/runs/{run_id}/cancel", responses=run_errors)
-    def cancel(run_id: str) -> dict[str, Any]:
+    @app.post("/api/runs/{run_id}/cancel", responses=run_errors, response_class=JSONResponse)
+    def cancel(run_id: str) -> Response:
         """Cancel a run (and any plan of it still searching)."""
-        return service.runs.cancel(run_id)
+        return JSONResponse(service.runs.cancel(run_id))
 
     @app.get("/api/runs/{run_id}/events", responses=run_errors)
     async def events(run_id: str, request: Request) -> Response:

@@ -44,8 +44,14 @@ class MissionService:
         missions = MissionBook()
         pool = WorkPool(config.plan_workers, config.plan_backlog)
         store = RunStore.open(config.database_url, config.state_dir)
-        runs = RunBook(scenes, missions, pool, store, request_time_limit_s=config.request_time_limit_s,
-                       max_hot=config.hot_runs)
+        runs = RunBook(
+            scenes,
+            missions,
+            pool,
+            store,
+            request_time_limit_s=config.request_time_limit_s,
+            max_hot=config.hot_runs,
+        )
         runs.restore()
         return cls(config, scenes, missions, pool, runs)
 

@@ -19,7 +19,20 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from sqlalchemy import JSON, Float, ForeignKey, Integer, String, create_engine, event, func, select, update
+from sqlalchemy import (
+    JSON,
+    Float,
+    ForeignKey,
+    Integer,
+    String,
+    bindparam,
+    create_engine,
+    event,
+    func,
+    insert,
+    select,
+    update,
+)
 from sqlalchemy.engine import Engine
 from sqlalchemy.exc import SQLAlchemyError
 from sqlalchemy.orm import DeclarativeBase, Mapped, Session, mapped_column
@@ -63,6 +76,12 @@ class Unchanged:
 
 UNCHANGED = Unchanged()
 """Passed as a plan to :meth:`RunStore.update`: keep the stored one."""
+
+
+_WHERE = (RunRow.id == bindparam("run_id"), RunRow.version == bindparam("old_version"))
+_FIELDS = {name: bindparam(name) for name in ("status", "record", "version", "updated_at")}
+_UPDATE_RECORD = update(RunRow).where(*_WHERE).values(**_FIELDS)
+_UPDATE_RECORD_AND_PLAN = update(RunRow).where(*_WHERE).values(**_FIELDS, plan=bindparam("plan"))
 
 
 class StaleRun(ServeError):
@@ -163,21 +182,25 @@ class RunStore:
             the run is no longer at ``version`` (changed elsewhere) or is gone.
         """
         now = time.time()
-        values: dict[str, Any] = {
+        params = {
+            "run_id": run_id,
+            "old_version": version,
             "status": status,
             "record": record,
             "version": version + 1,
             "updated_at": now,
         }
+        statement = _UPDATE_RECORD
         if not isinstance(plan, Unchanged):
-            values["plan"] = plan
-        with Session(self.engine) as session, session.begin():
-            done = session.execute(
-                update(RunRow).where(RunRow.id == run_id, RunRow.version == version).values(**values)
-            )
-            if done.rowcount != 1:  # type: ignore[attr-defined]
+            statement, params["plan"] = _UPDATE_RECORD_AND_PLAN, plan
+        # Core statements with bound parameters in one transaction: a pose report's write is on every
+        # robot's path, and a statement built with its values would be keyed on them again each time.
+        with self.engine.begin() as connection:
+            done = connection.execute(statement, params)
+            if done.rowcount != 1:
                 raise StaleRun(f"run {run_id} changed in the database since it was read; read it again")
-            session.add_all(_event_rows(run_id, events, now))
+            if events:
+                connection.execute(insert(EventRow), _event_values(run_id, events, now))
         return version + 1
 
     def load_all(self) -> list[StoredRun]:
@@ -207,6 +230,14 @@ class RunStore:
 
     def close(self) -> None:
         self.engine.dispose()
+
+
+def _event_values(
+    run_id: str, events: list[tuple[int, str, dict[str, Any]]], now: float
+) -> list[dict[str, Any]]:
+    return [
+        {"run_id": run_id, "seq": seq, "kind": kind, "at": now, "data": data} for seq, kind, data in events
+    ]
 
 
 def _event_rows(run_id: str, events: list[tuple[int, str, dict[str, Any]]], now: float) -> list[EventRow]:
