@@ -79,7 +79,7 @@ UNCHANGED = Unchanged()
 
 
 _WHERE = (RunRow.id == bindparam("run_id"), RunRow.version == bindparam("old_version"))
-_FIELDS = {name: bindparam(name) for name in ("status", "record", "version", "updated_at")}
+_FIELDS: dict[str, Any] = {name: bindparam(name) for name in ("status", "record", "version", "updated_at")}
 _UPDATE_RECORD = update(RunRow).where(*_WHERE).values(**_FIELDS)
 _UPDATE_RECORD_AND_PLAN = update(RunRow).where(*_WHERE).values(**_FIELDS, plan=bindparam("plan"))
 
