@@ -4,6 +4,10 @@ The server runs as a child process (``sgplan serve --scene <scene>``, a fresh st
 threads with their own HTTP connection (httpx), each looping for ``--seconds``. Phases (``--phases``):
 
 - ``quiet``: one client, ``explain`` and ``observe`` (100 poses) alone: the latencies without load;
+- ``plan-alone``: one client, one-shot A* ``plan`` requests one after the other (a warm plan's latency);
+- ``beside-plans``: one client planning without pause and one sending ``explain`` and ``observe``: what a
+  plan in a worker thread costs the requests served beside it (the GIL held by the planner's kernels, a
+  core taken);
 - ``mixed``: ``--clients`` clients mixing ``explain`` (30 %), one-shot A* ``plan`` (30 %), and a run
   each: created (A*), ``observe`` 100 poses at a time along its plan (30 %), a door on its remaining path
   closed and opened again (``change``, 10 %), a new run once it is done;
@@ -141,11 +145,11 @@ class Tally:
             "| endpoint | requests | per s | p50 ms | p95 ms | p99 ms | statuses |",
             "|---|---|---|---|---|---|---|",
         ]
-        for name in sorted(self.ms):
-            ms = np.array(self.ms[name])
+        for name in sorted(set(self.ms) | set(self.codes)):
+            ms = np.array(self.ms.get(name) or [np.nan])
             codes = ", ".join(f"{code}: {n}" for code, n in sorted(self.codes[name].items()))
             lines.append(
-                f"| {name} | {len(ms)} | {len(ms) / seconds:.1f} | {np.percentile(ms, 50):.1f} | "
+                f"| {name} | {sum(self.codes[name].values())} | {len(ms) / seconds:.1f} | {np.percentile(ms, 50):.1f} | "
                 f"{np.percentile(ms, 95):.1f} | {np.percentile(ms, 99):.1f} | {codes} |"
             )
         return lines
@@ -301,7 +305,13 @@ def client_loop(
         }
         weights, actions = zip(*choices[mix])
         while time.perf_counter() < until:
-            rng.choices(actions, weights)[0]()
+            try:
+                rng.choices(actions, weights)[0]()
+            except httpx.TransportError:  # the server was killed (the faults phase): wait for it
+                with tally.lock:
+                    tally.codes["(no answer: server down)"][0] += 1
+                robot.run = None
+                time.sleep(0.2)
             if robot.run is not None and (not runs or runs[-1] != robot.run["id"]):
                 runs.append(robot.run["id"])
     return runs
@@ -316,7 +326,9 @@ def load(
     results: list[list[str]] = [[] for _ in range(clients)]
 
     def work(k: int) -> None:
-        results[k] = client_loop(server.url, scene, cases, doors, tally, until, k, mix)
+        # "beside-plans": client 0 plans without pause, the others send explain and observe beside it.
+        own = mix if mix != "beside-plans" else ("plans" if k == 0 else "quiet")
+        results[k] = client_loop(server.url, scene, cases, doors, tally, until, k, own)
 
     threads = [threading.Thread(target=work, args=(k,)) for k in range(clients)]
     for t in threads:
@@ -442,7 +454,7 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=60.0)
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--backlog", type=int, default=8)
-    parser.add_argument("--phases", default="quiet,mixed,plans,faults")
+    parser.add_argument("--phases", default="quiet,plan-alone,beside-plans,mixed,plans,faults")
     args = parser.parse_args()
     state = Path(tempfile.mkdtemp(prefix="sgplan-serve-load-"))
     server = Server(args.scene, state, args.workers, args.backlog)
@@ -453,7 +465,7 @@ def main() -> None:
     print(f"# sgplan serve under load: {args.scene}\n")
     print(
         f"Command: `.venv/bin/python benchmarks/serve_load.py {' '.join(sys.argv[1:])}`; "
-        f"{os.cpu_count()} cores; server start (scene loaded, grid built) {start_s:.1f} s; "
+        f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} (other work on the machine); server start (scene loaded, grid built) {start_s:.1f} s; "
         f"workers {args.workers}, backlog {args.backlog}; "
         f"{len(cases)} (mission, start) pairs with a plan, each planned once first ({warm_s:.1f} s).\n"
     )
@@ -464,10 +476,12 @@ def main() -> None:
                 print("\n".join(faults(server, args.scene, cases, args.workers, args.backlog, state)))
                 print()
                 continue
-            clients = 1 if phase == "quiet" else args.clients
-            seconds = min(args.seconds, 20) if phase == "quiet" else args.seconds
+            clients = {"quiet": 1, "plan-alone": 1, "beside-plans": 2}.get(phase, args.clients)
+            seconds = min(args.seconds, 20) if clients < args.clients else args.seconds
             rss0 = server.rss_mb[-1] if server.rss_mb else 0.0
-            tally, runs = load(server, args.scene, cases, clients, seconds, phase)
+            tally, runs = load(
+                server, args.scene, cases, clients, seconds, "plans" if phase == "plan-alone" else phase
+            )
             print(f"## {phase}: {clients} client(s), {seconds:g} s, {len(runs)} runs\n")
             print("\n".join(tally.rows(seconds)))
             print(
