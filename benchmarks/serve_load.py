@@ -149,7 +149,8 @@ class Tally:
             ms = np.array(self.ms.get(name) or [np.nan])
             codes = ", ".join(f"{code}: {n}" for code, n in sorted(self.codes[name].items()))
             lines.append(
-                f"| {name} | {sum(self.codes[name].values())} | {len(ms) / seconds:.1f} | {np.percentile(ms, 50):.1f} | "
+                f"| {name} | {sum(self.codes[name].values())} | {len(ms) / seconds:.1f} "
+                f"| {np.percentile(ms, 50):.1f} | "
                 f"{np.percentile(ms, 95):.1f} | {np.percentile(ms, 99):.1f} | {codes} |"
             )
         return lines
@@ -465,7 +466,8 @@ def main() -> None:
     print(f"# sgplan serve under load: {args.scene}\n")
     print(
         f"Command: `.venv/bin/python benchmarks/serve_load.py {' '.join(sys.argv[1:])}`; "
-        f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} (other work on the machine); server start (scene loaded, grid built) {start_s:.1f} s; "
+        f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} (other work on the machine); "
+        f"server start (scene loaded, grid built) {start_s:.1f} s; "
         f"workers {args.workers}, backlog {args.backlog}; "
         f"{len(cases)} (mission, start) pairs with a plan, each planned once first ({warm_s:.1f} s).\n"
     )

@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 import shutil
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -40,3 +41,32 @@ def browser() -> tuple[object, str]:
             ".ci/run installs it when run as root"
         )
     return sync_playwright, executable
+
+
+def launch(playwright: Any, executable: str) -> Any:
+    """Headless Chromium from ``executable``, or skip the test when it does not start."""
+    try:
+        return playwright.chromium.launch(executable_path=executable, args=BROWSER_FLAGS, headless=True)
+    except Exception as error:  # noqa: BLE001 - any launch failure means "no usable browser here"
+        pytest.skip(f"Chromium at {executable} did not start: {str(error).splitlines()[0]}")
+
+
+def watch(page: Any, *, quiet_failures: tuple[str, ...] = ()) -> list[str]:
+    """The problems ``page`` runs into, as they happen: console errors and warnings, script errors,
+    failed requests (but those whose URL ends with one of ``quiet_failures``: requests the page itself
+    ends, such as an event stream it closes)."""
+    problems: list[str] = []
+    page.on(
+        "console",
+        lambda m: problems.append(f"console {m.type}: {m.text}") if m.type in ("error", "warning") else None,
+    )
+    page.on("pageerror", lambda e: problems.append(f"page error: {e}"))
+    page.on(
+        "requestfailed",
+        lambda r: (
+            None
+            if r.url.endswith(quiet_failures)
+            else problems.append(f"request failed: {r.url} {r.failure}")
+        ),
+    )
+    return problems

@@ -18,8 +18,8 @@ from sgplan.errors import OutputError
 from sgplan.outputs.events import Event
 from sgplan.report.html import report_html, write_html_report
 from sgplan.scene.draw_path import path_cells
-from tests.browser import BROWSER_FLAGS
 from tests.browser import browser as _browser
+from tests.browser import launch, watch
 from tests.plans import REACH_M, DemoPlan
 
 EXPLANATION = (
@@ -111,22 +111,11 @@ def test_report_in_headless_chromium(report: Path, demo_plan: DemoPlan) -> None:
     floor1 = building.floors[1]
     cells = np.argwhere(floor1.cat_map == teddy.id)
     row, col = (int(v) for v in cells[len(cells) // 2])
-    problems: list[str] = []
     with sync_playwright() as p:  # type: ignore[operator]
-        try:
-            browser = p.chromium.launch(executable_path=executable, args=BROWSER_FLAGS, headless=True)
-        except Exception as error:  # noqa: BLE001 - any launch failure means "no usable browser here"
-            pytest.skip(f"Chromium at {executable} did not start: {str(error).splitlines()[0]}")
+        browser = launch(p, executable)
         try:
             page = browser.new_page(viewport={"width": 1200, "height": 900})
-            page.on(
-                "console",
-                lambda m: (
-                    problems.append(f"console {m.type}: {m.text}") if m.type in ("error", "warning") else None
-                ),
-            )
-            page.on("pageerror", lambda e: problems.append(f"page error: {e}"))
-            page.on("requestfailed", lambda r: problems.append(f"request failed: {r.url}"))
+            problems = watch(page)
             page.goto(report.as_uri())
             page.wait_for_selector(
                 '#floors .floor[data-floor="1"][data-ready="true"]', state="attached", timeout=20_000

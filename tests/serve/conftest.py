@@ -22,6 +22,8 @@ from sgplan.serve.config import ServeConfig
 from sgplan.serve.scenes import SceneRegistry
 from sgplan.serve.service import MissionService
 
+SERVE_DEMO = (sys.executable, "-m", "sgplan.cli", "serve", "--scene", "demo")
+"""The command line that serves the demo scene (more options follow)."""
 KITCHEN_TEXT = "Go to the kitchen, then the bedroom with the clock. Always avoid the bathroom on floor 0."
 
 
@@ -61,12 +63,7 @@ class ServerProcess:
         import httpx
 
         command = [
-            sys.executable,
-            "-m",
-            "sgplan.cli",
-            "serve",
-            "--scene",
-            "demo",
+            *SERVE_DEMO,
             "--port",
             str(self.port),
             "--state",

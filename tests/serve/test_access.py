@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import os
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -13,7 +12,7 @@ from fastapi.testclient import TestClient
 
 from sgplan.serve.config import ServeConfig, ServeError, is_loopback, read_token_file
 from sgplan.serve.scenes import SceneRegistry
-from tests.serve.conftest import make_client
+from tests.serve.conftest import SERVE_DEMO, make_client
 
 TOKEN = "s3cret-token-of-the-test-0123456789"
 
@@ -54,12 +53,7 @@ def test_other_addresses_refuse_to_start_without_a_token(tmp_path: Path) -> None
     ServeConfig(scenes=("demo",), host="0.0.0.0", token=TOKEN).checked()
     done = subprocess.run(
         [
-            sys.executable,
-            "-m",
-            "sgplan.cli",
-            "serve",
-            "--scene",
-            "demo",
+            *SERVE_DEMO,
             "--host",
             "0.0.0.0",
             "--state",

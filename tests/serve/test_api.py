@@ -7,6 +7,7 @@ import json
 import threading
 import time
 from pathlib import Path
+from typing import Any
 
 import pytest
 from fastapi.testclient import TestClient
@@ -278,16 +279,19 @@ def test_a_run_follows_its_robot_to_done_and_streams_its_events(client: TestClie
     assert "has ended (done)" in str(error_of(client.post(f"/api/runs/{run['id']}/cancel"), 409)["message"])
 
 
+def _kitchen_run(client: TestClient) -> dict[str, Any]:
+    """A run to the kitchen from the dining room (A*)."""
+    body = {
+        "scene": "demo",
+        "formula": 'F "enter(room_4)"',
+        "start": {"room": "room_7"},
+        "options": {"setup": "A*"},
+    }
+    return dict(client.post("/api/runs", json=body).json())
+
+
 def test_a_closed_door_replans_the_run_and_a_bad_change_changes_nothing(client: TestClient) -> None:
-    run = client.post(
-        "/api/runs",
-        json={
-            "scene": "demo",
-            "formula": 'F "enter(room_4)"',
-            "start": {"room": "room_7"},
-            "options": {"setup": "A*"},
-        },
-    ).json()
+    run = _kitchen_run(client)
     before = run["plan"]["cost_m"]
     closed = client.post(
         f"/api/runs/{run['id']}/changes",
@@ -322,15 +326,7 @@ def test_a_closed_door_replans_the_run_and_a_bad_change_changes_nothing(client: 
 
 
 def test_amendments_replan_or_are_refused_with_409(client: TestClient) -> None:
-    run = client.post(
-        "/api/runs",
-        json={
-            "scene": "demo",
-            "formula": 'F "enter(room_4)"',
-            "start": {"room": "room_7"},
-            "options": {"setup": "A*"},
-        },
-    ).json()
+    run = _kitchen_run(client)
     refused = client.post(f"/api/runs/{run['id']}/amend", json={"text": "always avoid the kitchen"})
     body = error_of(refused, 409)
     assert "never enter the kitchen (room_4, floor 0)" in str(body["message"]).lower()

@@ -14,7 +14,7 @@ import pytest
 
 import sgplan
 from sgplan.starts import start_cell
-from tests.browser import BROWSER_FLAGS, browser
+from tests.browser import browser, launch, watch
 from tests.serve.conftest import KITCHEN_TEXT, ServerProcess
 
 pytestmark = pytest.mark.slow
@@ -30,28 +30,10 @@ def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[ServerProcess]:
 @pytest.fixture
 def page(server: ServerProcess) -> Iterator[tuple[Any, list[str]]]:
     sync_playwright, executable = browser()
-    problems: list[str] = []
     with sync_playwright() as p:  # type: ignore[operator]
-        try:
-            chromium = p.chromium.launch(executable_path=executable, args=BROWSER_FLAGS, headless=True)
-        except Exception as error:  # noqa: BLE001 - any launch failure means "no usable browser here"
-            pytest.skip(f"Chromium at {executable} did not start: {str(error).splitlines()[0]}")
+        chromium = launch(p, executable)
         tab = chromium.new_page(viewport={"width": 1280, "height": 900})
-        tab.on(
-            "console",
-            lambda m: (
-                problems.append(f"console {m.type}: {m.text}") if m.type in ("error", "warning") else None
-            ),
-        )
-        tab.on("pageerror", lambda e: problems.append(f"page error: {e}"))
-        tab.on(
-            "requestfailed",
-            lambda r: (
-                problems.append(f"request failed: {r.url} {r.failure}")
-                if not r.url.endswith("/events")
-                else None
-            ),
-        )  # a stream closed by the page itself
+        problems = watch(tab, quiet_failures=("/events",))  # a stream the page closes itself
         tab.on(
             "response", lambda r: problems.append(f"HTTP {r.status}: {r.url}") if r.status >= 400 else None
         )
