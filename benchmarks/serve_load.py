@@ -426,24 +426,20 @@ def faults(
     with httpx.Client(base_url=url, timeout=120) as c:
         after = {r["id"]: r for r in c.get("/api/runs").json()}
         lost = [run_id for run_id in seen if run_id not in after]
-        keys = ("status", "position", "state", "plan")
-        # A run acknowledged before the kill may have moved on by a request answered after the snapshot;
-        # it must then be at a later event, never at an unknown state.
+        # A run answered before the kill may have moved on by a request answered after the snapshot: its
+        # revision (changes committed) is then higher. At the same revision it must be the same run.
+        now = {run_id: c.get(f"/api/runs/{run_id}").json() for run_id in seen if run_id in after}
         corrupt = [
             run_id
-            for run_id, before in seen.items()
-            if run_id in after
-            and (
-                lambda now: (
-                    now["events"] < before["events"]
-                    or (now["events"] == before["events"] and any(now[k] != before[k] for k in keys))
-                )
-            )(c.get(f"/api/runs/{run_id}").json())
+            for run_id, run in now.items()
+            if run["revision"] < seen[run_id]["revision"]
+            or (run["revision"] == seen[run_id]["revision"] and run != seen[run_id])
         ]
+        moved_on = sum(run["revision"] > seen[run_id]["revision"] for run_id, run in now.items())
     lines.append(
         f"- SIGKILL under load ({sum(len(v) for v in load_tally.ms.values())} requests in 8 s, 4 clients), "
         f"restart in {restart_s:.1f} s: {len(seen)} runs before, {len(after)} after, {len(lost)} lost, "
-        f"{len(corrupt)} corrupted"
+        f"{len(corrupt)} corrupted ({moved_on} moved on by requests answered after the snapshot)"
     )
     return lines
 

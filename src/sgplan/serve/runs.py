@@ -19,12 +19,14 @@ The answer about a run (``GET /api/runs/{id}``): ``id``, ``scene``, ``status`` (
 start, options as given), ``position`` and ``state`` (the robot's cell and the mission's automaton state
 there), ``left`` (what is left of the mission, in words), ``plan`` (the JSON of ``sgplan plan --json`` of
 the current plan, ``plan_offset`` the robot's row on its path), ``monitor`` (poses, cells, metres),
-``changes``, ``amendments``, ``events`` (how many).
+``changes``, ``amendments``, ``events`` (how many), ``revision`` (how many changes of the run were
+committed: it only grows).
 """
 
 from __future__ import annotations
 
 import asyncio
+import logging
 import secrets
 import threading
 from collections import OrderedDict
@@ -36,7 +38,7 @@ from typing import TYPE_CHECKING, Any
 from sgplan.serve.errors import HTTPProblem, not_found
 from sgplan.serve.models import RunRequest
 from sgplan.serve.planning import Budget, plan_options
-from sgplan.serve.store import UNCHANGED
+from sgplan.serve.store import UNCHANGED, Unchanged
 from sgplan.serve.streams import MAX_STREAMS_PER_RUN, EventHub, RunEvent
 from sgplan.serve.views import overlays
 
@@ -52,6 +54,10 @@ if TYPE_CHECKING:
     from sgplan.serve.scenes import SceneHost, SceneRegistry
     from sgplan.serve.store import RunStore
 
+Plan = dict[str, Any] | Unchanged | None
+"""What an operation leaves of a run's plan: a new one (``plan --json``'s JSON), none (``None``), or the
+one it had (:data:`UNCHANGED`)."""
+log = logging.getLogger("sgplan")
 CANCELLED = "cancelled"
 ENDED = ("done", "violated", CANCELLED)
 """Statuses after which a run takes no more poses, changes or amendments."""
@@ -105,6 +111,7 @@ class LiveRun:
             "changes": s["changes"],
             "amendments": s["amendments"],
             "events": self.seq,
+            "revision": self.version,
         }
         if not plan:
             answer["plan_cost_m"] = (answer.pop("plan") or {}).get("cost_m")
@@ -162,6 +169,12 @@ class RunBook:
     def restore(self) -> int:
         """Bring back every run of the store whose scene this server serves (cold); returns how many."""
         for stored in self.store.load_all():
+            if stored.scene.lower() not in {name.lower() for name in self.scenes.names()}:
+                log.warning(
+                    f"run {stored.id} is on scene {stored.scene!r}, which this server does not serve: "
+                    "left in the database"
+                )
+                continue
             host = self.scenes[stored.scene]
             saved = dict(stored.record, plan=stored.plan)
             saved["seq"] = max(int(saved.get("seq", 0)), stored.last_seq)
@@ -219,11 +232,10 @@ class RunBook:
                     self._hot.pop(live.id, None)
                 raise
 
-    def _save(
-        self, live: LiveRun, run: Run, plan: dict[str, Any] | None = None, status: str | None = None
-    ) -> None:
-        """Store the run as it is now with its pending events (one transaction; its plan only when ``plan``
-        is a new one), then stream the events."""
+    def _save(self, live: LiveRun, run: Run, plan: Plan = UNCHANGED, status: str | None = None) -> None:
+        """Store the run as it is now with its pending events in one transaction, and ``plan`` unless it is
+        :data:`UNCHANGED` (``None``: the run has no plan now: done, violated, impossible); then stream the
+        events."""
         # The run's events are in the store; of its history it keeps the changes (they say why a run is
         # impossible), so neither the record nor the run in memory grows with every pose report.
         run.history = [event for event in run.history if event.kind == "changed"]
@@ -232,18 +244,17 @@ class RunBook:
             status=status or run.status,
             seq=live.seq,
             left=run.left(),
-            plan_offset=run.remaining_offset if plan is None else 0,
+            plan_offset=run.remaining_offset if isinstance(plan, Unchanged) else 0,
         )
         rows = [(e.seq, e.kind, e.data) for e in live.pending]
         record = {"request": live.request, **saved}
-        if live.version == 0:
-            self.store.insert(live.id, live.host.name, saved["status"], record, plan, rows)
+        if live.version == 0:  # a new run: its first plan, or none
+            first = None if isinstance(plan, Unchanged) else plan
+            self.store.insert(live.id, live.host.name, saved["status"], record, first, rows)
             live.version = 1
         else:
-            live.version = self.store.update(
-                live.id, live.version, saved["status"], record, rows, UNCHANGED if plan is None else plan
-            )
-        saved["plan"] = plan if plan is not None else live.saved.get("plan")
+            live.version = self.store.update(live.id, live.version, saved["status"], record, rows, plan)
+        saved["plan"] = live.saved.get("plan") if isinstance(plan, Unchanged) else plan
         events, live.pending, live.saved = live.pending, [], saved
         self.hub.publish(live.id, events)
 
@@ -251,7 +262,7 @@ class RunBook:
         if live.status in ENDED:
             raise HTTPProblem(409, f"run {live.id} has ended ({live.status}); start a new run")
 
-    async def _in_pool(self, live: LiveRun, work: Callable[[Run], dict[str, Any] | None]) -> dict[str, Any]:
+    async def _in_pool(self, live: LiveRun, work: Callable[[Run], Plan]) -> dict[str, Any]:
         """Run ``work`` on the run in a plan worker, under the run's lock and a fresh budget (the run's
         searches stop at its deadline or when the run is cancelled), then save; the run's answer."""
         budget = Budget.of(self.request_time_limit_s)
@@ -334,7 +345,7 @@ class RunBook:
                 )
         typed = [change_from_dict(c, f"change {k}") for k, c in enumerate(request.changes, 1)]
 
-        def work(run: Run) -> dict[str, Any] | None:
+        def work(run: Run) -> Plan:
             run.change(typed)
             return _plan_record(run, live.budget)
 
@@ -346,12 +357,12 @@ class RunBook:
         live = self._live(run_id)
         refused: list[str] = []
 
-        def work(run: Run) -> dict[str, Any] | None:
+        def work(run: Run) -> Plan:
             outcome = run.amend(request.text)
             if not outcome.accepted:
                 said = " ".join(outcome.said_back.splitlines()[1:]).rstrip(".")
                 refused.append(f"the amendment ({said}) is refused: {outcome.reason}")
-                return None
+                return UNCHANGED
             return _plan_record(run, live.budget)
 
         answer = await self._in_pool(live, work)
@@ -363,7 +374,7 @@ class RunBook:
         """Plan again from where the robot is (in the plan pool)."""
         live = self._live(run_id)
 
-        def work(run: Run) -> dict[str, Any] | None:
+        def work(run: Run) -> Plan:
             run.replan()
             return _plan_record(run, live.budget)
 
