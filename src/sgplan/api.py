@@ -386,7 +386,7 @@ def _formula_text(mission: Mission) -> str | None:
 def _add_outputs(result: PlanResult, verify: bool) -> None:
     """Check the path (when asked) and add the waypoints and events."""
     from sgplan.outputs.events import path_events
-    from sgplan.outputs.waypoints import leg_costs, path_waypoints, simplify_path
+    from sgplan.outputs.waypoints import leg_costs, path_waypoints
     from sgplan.planning.checker import check_path
 
     assert result.path is not None and result.grid is not None and result.labels is not None
@@ -402,8 +402,7 @@ def _add_outputs(result: PlanResult, verify: bool) -> None:
                                 f"{result.cost_m:.6f} m (a bug, please report it)")
         result.verified = True
     result.waypoints = path_waypoints(result.path, result.grid, result.building)
-    keep = simplify_path(result.path, result.grid, result.labels, automaton)
-    result.waypoints_simplified = path_waypoints(result.path, result.grid, result.building, keep)
+    result.simplify_waypoints()
     costs = np.concatenate([[0.0], np.cumsum(leg_costs(result.path, result.grid))])
     result.events = path_events(result.path, costs, result.labels, automaton, result.building,
                                 result.mission.descriptions)

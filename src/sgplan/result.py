@@ -52,6 +52,9 @@ class PlanResult:
         the start cell ``(row, col, floor)`` and how it was chosen (``"room kitchen room_5"``).
     waypoints, waypoints_simplified:
         the path in metres, every cell / the simplified polyline (see :mod:`sgplan.outputs.waypoints`).
+    waypoint_tolerance_m:
+        the clearance the simplified polyline may give up at the inflated obstacles' edge (metres; 0 by
+        default, :meth:`simplify_waypoints` sets another).
     events:
         propositions becoming true and automaton moves along the path (:mod:`sgplan.outputs.events`).
     verified:
@@ -88,6 +91,7 @@ class PlanResult:
     propositions: dict[str, str]
     waypoints: list[Waypoint] = field(default_factory=list)
     waypoints_simplified: list[Waypoint] = field(default_factory=list)
+    waypoint_tolerance_m: float = 0.0
     events: list[Event] = field(default_factory=list)
     verified: bool | None = None
     guidance: str | None = None
@@ -152,6 +156,7 @@ class PlanResult:
             "path": None if self.path is None else self.path.tolist(),
             "waypoints": [w.to_dict() for w in self.waypoints],
             "waypoints_simplified": [w.to_dict() for w in self.waypoints_simplified],
+            "waypoint_tolerance_m": self.waypoint_tolerance_m,
             "events": [e.to_dict() for e in self.events],
             "timings": dict(self.timings),
             "notes": list(self.notes),
@@ -165,6 +170,27 @@ class PlanResult:
     def write_json(self, path: str | Path) -> Path:
         """Write :meth:`to_json` to ``path`` (folders created); returns the path."""
         return write_text(path, self.to_json())
+
+    def simplify_waypoints(self, tolerance_m: float = 0.0) -> list[Waypoint]:
+        """Simplify the path again into :attr:`waypoints_simplified`, letting segments give up
+        ``tolerance_m`` metres of clearance at the inflated obstacles' edge (fewer waypoints where the path
+        hugs a rounded corner; :func:`sgplan.outputs.waypoints.simplify_path`); returns them.
+
+        Raises
+        ------
+        OutputError
+            without a path, or for a tolerance that is negative or not below the robot radius.
+        """
+        from sgplan.outputs.waypoints import path_waypoints, simplify_path
+
+        if (self.path is None or self.grid is None or self.labels is None or self.mission is None
+                or self.building is None):
+            raise OutputError("this result has no path, or no grid, labels, mission and building to simplify")
+        keep = simplify_path(self.path, self.grid, self.labels, self.mission.automaton,
+                             tolerance_m=tolerance_m, building=self.building)
+        self.waypoints_simplified = path_waypoints(self.path, self.grid, self.building, keep)
+        self.waypoint_tolerance_m = float(tolerance_m)
+        return self.waypoints_simplified
 
     def write_waypoints_csv(self, path: str | Path, *, simplified: bool = True) -> Path:
         """The (simplified, by default) waypoints as CSV

@@ -141,6 +141,11 @@ def positive_seconds(text: str) -> float:
                    what=f"a number of seconds > 0 and <= {MAX_SECONDS:g}")
 
 
+def non_negative_metres(text: str) -> float:
+    """argparse type: a finite number of metres >= 0."""
+    return _number(text, float, allow_zero=True, what="a finite number of metres >= 0")
+
+
 def robot_radius(text: str) -> float:
     """argparse type: a robot radius in metres in [0, :data:`MAX_ROBOT_RADIUS_M`] (0: a point robot, no
     inflation; the same bounds as a scene file's)."""

@@ -25,6 +25,7 @@ from sgplan.commands.common import (
     load_scene_arg,
     log,
     non_negative_int,
+    non_negative_metres,
     positive_int,
     positive_seconds,
     reach_radius,
@@ -117,6 +118,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     out.add_argument("--dense", action="store_true", help="--waypoints / --ros-path hold every cell, not the "
                      "simplified polyline")
+    out.add_argument("--waypoint-tolerance", type=non_negative_metres, default=0.0, metavar="M",
+                     help="simplified segments may give up M metres of clearance at the inflated obstacles' "
+                     "edge, for fewer waypoints where the path hugs a corner (below the robot radius; "
+                     "default 0: the planner's own clearance)")
     out.add_argument(
         "--draw", metavar="DIR",
         help="write one PNG and one SVG per floor with the path, and the automaton (DOT, SVG)",
@@ -206,6 +211,8 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
                          time_limit_s=args.time_limit, max_expansions=args.max_expansions, guide=guide,
                          callback=progress, explanation=explanation,  # said back above: not made twice
                          session=session)
+    if args.waypoint_tolerance and result.path is not None:
+        result.simplify_waypoints(args.waypoint_tolerance)
     if args.save_mission and guide is not None and result.mission is not None and result.mission.guidance:
         say(
             f"wrote {write_guidance(result.mission.guidance, Path(args.save_mission) / 'llm_heuristic.yaml')}"
