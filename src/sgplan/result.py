@@ -206,11 +206,12 @@ class PlanResult:
             self.waypoints_simplified if simplified else self.waypoints, path, frame_id
         )
 
-    def draw(self, out_dir: str | Path, *, stem: str = "plan_floor", formats: Sequence[str] = ("png",),
-             automaton: bool = True) -> list[Path]:
+    def draw(self, out_dir: str | Path, *, stem: str = "plan_floor", formats: Sequence[str] = ("png", "svg"),
+             automaton: bool = True, axes: str = "metres") -> list[Path]:
         """Draw every floor with the path, the mission and the cost into ``out_dir`` (one picture per floor
-        and format: ``png``, ``svg``), and the mission's automaton beside them (``automaton.dot`` / ``.svg``,
-        unless ``automaton=False``); returns the files."""
+        and format: PNG and SVG, as ``plan --draw``), and the mission's automaton beside them
+        (``automaton.dot`` / ``.svg``, unless ``automaton=False``); returns the files. ``axes`` is
+        ``"metres"`` (the map frame) or ``"cells"`` (:func:`sgplan.scene.draw.draw_floor`)."""
         from sgplan.report.automaton import write_automaton
         from sgplan.scene.draw import MissionView, draw_building
 
@@ -221,7 +222,7 @@ class PlanResult:
             propositions=tuple(mission.ordered_propositions), reach_radius_m=self.radii.reach_m,
         )
         written = draw_building(building, out_dir, grid=self.grid, path=self.path, mission=view, stem=stem,
-                                formats=formats)
+                                formats=formats, axes=axes)
         if automaton:
             written += write_automaton(mission.automaton, out_dir, names=mission.descriptions)
         return written

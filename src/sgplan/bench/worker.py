@@ -151,9 +151,8 @@ def _plan_case(case: Case, gallery_dir: str | Path | None, out: dict[str, Any], 
         out["optimal_time_s"] = its[-1].time_s
         out["cost_ratio"] = its[0].cost_m / result.cost_m if result.cost_m > 0 else 1.0
     if gallery_dir is not None and result.path is not None:
-        out["gallery"] = [
-            str(p) for p in result.draw(gallery_dir, stem=f"{case.slug}_floor", automaton=False)
-        ]
+        pictures = result.draw(gallery_dir, stem=f"{case.slug}_floor", formats=("png",), automaton=False)
+        out["gallery"] = [str(p) for p in pictures]
 
 
 PARENT_ENV = "SGPLAN_BENCH_PARENT"

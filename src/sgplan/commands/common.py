@@ -67,6 +67,13 @@ def add_profile_argument(parser: argparse.ArgumentParser, *, default: str | None
     )
 
 
+def add_axes_argument(parser: argparse.ArgumentParser | argparse._ArgumentGroup) -> None:
+    """``--axes metres|cells``: what the pictures' axes say (:mod:`sgplan.scene.draw_axes`)."""
+    parser.add_argument("--axes", choices=("metres", "cells"), default="metres",
+                        help="pictures' axes: metres in the map frame (x right, y up, as RViz shows it; "
+                        "default) or the grid's rows and columns (to read off a --start ROW,COL,FLOOR)")
+
+
 def split_list(values: Iterable[str] | None) -> list[str] | None:
     """The items of a list option given space- or comma-separated (``--scenes a b`` = ``--scenes a,b``)."""
     if values is None:

@@ -13,7 +13,7 @@ import argparse
 import time
 from pathlib import Path
 
-from sgplan.commands.common import non_negative_int, say
+from sgplan.commands.common import add_axes_argument, non_negative_int, say
 from sgplan.commands.sayback import say_back
 from sgplan.errors import MissionError
 
@@ -24,7 +24,13 @@ DEMO_MISSION = (
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    parser = sub.add_parser("demo", help="run the whole pipeline on the embedded demo building (offline)")
+    parser = sub.add_parser(
+        "demo", help="run the whole pipeline on the embedded demo building (offline)",
+        description="Run the whole pipeline on the embedded demo building, offline, in a few seconds: a "
+        "mission in controlled English is translated (offline, not an LLM), said back, turned into an "
+        "automaton and planned with AMRA*; the optimal path is checked and written as pictures per floor "
+        "(PNG, SVG), an HTML report, waypoints (CSV, ROS path YAML), the mission folder and run.json.",
+    )
     parser.add_argument("--out", metavar="DIR", default="out/demo", help="output folder (default: out/demo)")
     parser.add_argument(
         "--text", default=DEMO_MISSION, help="the mission (controlled English, see docs/offline.md)"
@@ -32,6 +38,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--start-index", type=non_negative_int, default=0, metavar="K", help="initial position K (0-4)"
     )
+    add_axes_argument(parser)
     parser.set_defaults(run=run)
 
 
@@ -84,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
                                       hierarchy_text=attribute_hierarchy(building),
                                       building=building)
     written = [
-        *result.draw(out, formats=("png", "svg")), result.write_html(out / "report.html"),
+        *result.draw(out, axes=args.axes), result.write_html(out / "report.html"),
         result.write_waypoints_csv(out / "waypoints.csv"), result.write_ros_path_yaml(out / "ros_path.yaml"),
     ]
     record = result.to_dict()

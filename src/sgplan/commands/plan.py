@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 
 from sgplan.commands.common import (
     SETUP_NAMES,
+    add_axes_argument,
     add_profile_argument,
     add_scene_arguments,
     load_scene_arg,
@@ -126,6 +127,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--draw", metavar="DIR",
         help="write one PNG and one SVG per floor with the path, and the automaton (DOT, SVG)",
     )
+    add_axes_argument(out)
     out.add_argument("--html", metavar="FILE", help="write a self-contained HTML report of the plan")
     parser.add_argument("--verify", action="store_true",
                         help="accepted for old scripts: every path is checked by the independent checker")
@@ -267,7 +269,7 @@ def _report(args: argparse.Namespace, result: PlanResult) -> int:
         if args.ros_path:
             say(f"wrote {result.write_ros_path_yaml(args.ros_path, simplified=simplified)}")
     if args.draw:
-        for picture in result.draw(args.draw, formats=("png", "svg")):
+        for picture in result.draw(args.draw, axes=args.axes):
             say(f"wrote {picture}")
     if args.html:
         say(f"wrote {result.write_html(args.html)}")
