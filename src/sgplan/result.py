@@ -21,6 +21,7 @@ from sgplan.outputs.files import write_ros_path_yaml, write_waypoints_csv
 from sgplan.outputs.jsontext import record_json
 from sgplan.outputs.waypoints import Waypoint
 from sgplan.pipeline import Radii, finite_or_none, iteration_records
+from sgplan.words import count
 
 if TYPE_CHECKING:
     from sgplan.mission import Mission
@@ -119,12 +120,15 @@ class PlanResult:
         """One line: status, cost, cells, waypoints, setup."""
         if self.path is None:
             return f"{self.status}: no path (setup {self.setup})"
-        return (f"{self.status}: cost {self.cost_m:.4f} m over {len(self.path)} cells, "
-                f"{len(self.waypoints_simplified)} simplified waypoints (setup {self.setup}, "
-                f"{len(self.iterations)} iterations)")
+        return (f"{self.status}: cost {self.cost_m:.4f} m over {count(len(self.path), 'cell')}, "
+                f"{count(len(self.waypoints_simplified), 'simplified waypoint')} (setup {self.setup}, "
+                f"{count(len(self.iterations), 'iteration')})")
 
     def __str__(self) -> str:
         return self.summary()
+
+    def __repr__(self) -> str:
+        return f"<PlanResult {self.scene!r} from {self.start} ({self.start_from}) {self.summary()}>"
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON-ready record (plain dicts, lists, numbers, strings, ``None``; no infinities)."""
