@@ -13,12 +13,9 @@ from typing import Any
 from sgplan.bench.cases import TABLE2_MISSION, TABLE2_SCENE, TABLE3_SETUPS, mission_order
 from sgplan.bench.paper import TABLE2, TABLE3
 from sgplan.bench.tables import Means, means, select
+from sgplan.words import count
 
 Row = dict[str, Any]
-
-
-def _count(n: int, word: str) -> str:
-    return f"{n} {word}" if n == 1 else f"{n} {word}s"
 
 
 def timing_section(rows: Sequence[Row]) -> list[str]:
@@ -44,14 +41,14 @@ def timing_section(rows: Sequence[Row]) -> list[str]:
             return f"{statistics.fmean(values):.2f} s" if values else "-"
 
         text.append(
-            f"- Reuse: {_count(len(warm), 'case')} of the {len(known)} optimal ones ran in a worker that had "
+            f"- Reuse: {count(len(warm), 'case')} of the {len(known)} optimal ones ran in a worker that had "
             "loaded their scene for an earlier case and kept it (building, grids, label masks, "
             "composite-action maps, h_LTL distance fields); their *precompute* is only what they added "
             f"(mean {mean_precompute(warm)}, against {mean_precompute(cold)} for the "
-            f"{_count(len(cold), 'case')} that loaded their scene). `--fresh-workers` runs every case cold."
+            f"{count(len(cold), 'case')} that loaded their scene). `--fresh-workers` runs every case cold."
         )
     elif known:
-        cases = _count(len(known), "optimal case")
+        cases = count(len(known), "optimal case")
         text.append(f"- Reuse: none; each of the {cases} loaded its scene itself.")
     return [*text, ""]
 
@@ -98,7 +95,7 @@ def comparison_section(rows: Sequence[Row], case: tuple[str, str] | None) -> lis
         "one, precomputation left out of both):", "",
         "- Search to the optimum, the paper's time over ours: "
         f"{_ratio_range([(m.optimal_time_s, p[2]) for m, p in pairs])} over "
-        f"{_count(len(pairs), '(scene, setup) cell')}; to the first path: "
+        f"{count(len(pairs), '(scene, setup) cell')}; to the first path: "
         f"{_ratio_range([(m.first_time_s, p[0]) for m, p in pairs])}.",
         f"- Fastest first path per scene, ours: {_winners(ours, 0, min)}. The paper's: "
         f"{_winners(paper, 0, min)}.",
@@ -111,7 +108,7 @@ def comparison_section(rows: Sequence[Row], case: tuple[str, str] | None) -> lis
         case_rows = select(rows, scene=case[0], mission=case[1])
         table2 = [(m, TABLE2[s]) for s in TABLE2 if (m := means(select(case_rows, setup=s))) is not None]
         if table2:
-            text.append(f"- Table II ({case[0]} mission {case[1]}, {_count(len(table2), 'setup')}): the "
+            text.append(f"- Table II ({case[0]} mission {case[1]}, {count(len(table2), 'setup')}): the "
                         "paper's time to the optimum over ours "
                         f"{_ratio_range([(m.optimal_time_s, p[2]) for m, p in table2])}.")
     return [*text, ""]
@@ -156,11 +153,11 @@ def semantics_section(rows: Sequence[Row]) -> list[str]:
         "Profile `authors` reproduces the authors' C++: a label with no automaton edge keeps the state and "
         "the start cell's label is not read (docs/semantics.md), so a path may cross a place that the "
         "mission's \"always avoid\" forbids. Each path was read again under `ltlf` (a missing edge rejects, "
-        f"the start is read): {len(checked) - len(broken)} of the {_count(len(checked), 'path')} satisfy "
+        f"the start is read): {len(checked) - len(broken)} of the {count(len(checked), 'path')} satisfy "
         f"the mission as written, {len(broken)} do not.",
     ]
     if len(checked) < len(paths):
-        text.append(f"{_count(len(paths) - len(checked), 'path')} could not be checked (rows recorded by an "
+        text.append(f"{count(len(paths) - len(checked), 'path')} could not be checked (rows recorded by an "
                     "older sgplan: run them again to check them).")
     groups: dict[tuple[Any, ...], list[str]] = {}
     for r in sorted(broken, key=lambda r: (r["scene"], mission_order(r["mission"]), r["start"])):

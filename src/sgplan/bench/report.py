@@ -13,6 +13,7 @@ from sgplan.bench import figures, findings, tables
 from sgplan.bench.cases import BenchError, exact_number
 from sgplan.bench.results import ResultStore, counts, load_rows, load_sweeps
 from sgplan.files import write_text_atomically
+from sgplan.words import count
 
 REPORT_FILE = "report.md"
 FIGURES_DIR = "figures"
@@ -121,17 +122,20 @@ def _figures(rows: Sequence[dict[str, Any]], case: tuple[str, str] | None, fig_d
 def _head(rows: Sequence[dict[str, Any]], condition: Condition, others: Counter[str],
           sweeps: Sequence[dict[str, Any]]) -> list[str]:
     status_counts = ", ".join(f"{n} {s}" for s, n in sorted(counts(rows).items()))
-    text = ["# sgplan benchmark report", "", f"{len(rows)} cases ({status_counts}); {_describe(condition)}."]
+    text = ["# sgplan benchmark report", "",
+            f"{count(len(rows), 'case')} ({status_counts}); {_describe(condition)}."]
     if others:
         text += [
             "",
             "Not in this report (other conditions; choose with `sgplan bench report --profile P "
-            "--time-limit S`): " + "; ".join(f"{n} cases under {c}" for c, n in sorted(others.items())) + ".",
+            "--time-limit S`): "
+            + "; ".join(f"{count(n, 'case')} under {c}" for c, n in sorted(others.items())) + ".",
         ]
     if sweeps:
         text += ["", "Sweep calls (whole `sgplan bench` run, wall clock):", ""]
-        text += [f"- {s['finished_at']}: {s['ran']} cases run, {s['skipped']} already recorded, "
-                 f"{s['wall_s']:.0f} s wall ({s['executor']} executor, {s['jobs']} jobs)"
+        text += [f"- {s['finished_at']}: {count(s['ran'], 'case')} run, {s['skipped']} already recorded, "
+                 f"{s['wall_s']:.0f} s wall ({s['executor']} executor, "
+                 f"{count(s['jobs'], 'job') if isinstance(s['jobs'], int) else s['jobs']})"
                  + (", interrupted" if s.get("interrupted") else "") for s in sweeps]
     return [*text, ""]
 

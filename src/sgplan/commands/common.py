@@ -32,8 +32,10 @@ log = logging.getLogger("sgplan")
 def add_scene_arguments(parser: argparse.ArgumentParser, *, positional: bool = False) -> None:
     """Add the scene argument (``SCENE`` or ``--scene``) and ``--data``."""
     help_text = (
-        f"scene folder (authors' building.yaml layout, sgplan's format, or a raw .npz), a Gibson scene name "
-        f"({', '.join(SCENES)}; any case) looked up under --data, or '{DEMO}' for the embedded demo building"
+        f"scene folder (authors' building.yaml layout, sgplan's format, or a raw .npz); a scene of another "
+        "tool, imported on the fly: a Matterport3D .house file, a ROS map.yaml (with rooms.yaml or "
+        "<stem>_rooms.yaml beside it) or a Hydra .json (with its labels file beside it); a Gibson scene name "
+        f"({', '.join(SCENES)}; any case) looked up under --data; or '{DEMO}' for the embedded demo building"
     )
     if positional:
         parser.add_argument("scene", metavar="SCENE", help=help_text)

@@ -16,6 +16,7 @@ from pathlib import Path
 from sgplan.commands.common import add_axes_argument, non_negative_int, say
 from sgplan.commands.sayback import say_back
 from sgplan.errors import MissionError
+from sgplan.words import count
 
 DEMO_MISSION = (
     "Visit the bathroom on floor 0 without touching the sink, then sit on a chair in the dining room, "
@@ -59,14 +60,16 @@ def run(args: argparse.Namespace) -> int:
     except OSError as error:
         raise MissionError(f"cannot create the output folder ({error.strerror or error})", out) from None
     building = sgplan.load_scene("demo")
-    say(f"scene: {building.name}, {building.num_floors} floors, {sum(1 for _ in building.rooms())} rooms, "
-        f"{sum(1 for _ in building.objects())} objects (embedded demo building)")
+    rooms, objects = sum(1 for _ in building.rooms()), sum(1 for _ in building.objects())
+    say(f"scene: {building.name}, {count(building.num_floors, 'floor')}, {count(rooms, 'room')}, "
+        f"{count(objects, 'object')} (embedded demo building)")
     print(f"mission: {args.text}")
     backends = open_backends("offline")
     mission = sgplan.mission_from_text(args.text, building, llm=backends)
     print(f"grounded: {mission.grounded_text}")
     print(f"formula:  {mission.formula}")
-    print(f"automaton: {mission.automaton.num_states} states over {len(mission.automaton.aps)} propositions")
+    print(f"automaton: {count(mission.automaton.num_states, 'state')} over "
+          f"{count(len(mission.automaton.aps), 'proposition')}")
     explanation = say_back(mission, building)
     say("planning with AMRA* (setup ALL):")
     result = sgplan.plan(
@@ -81,8 +84,9 @@ def run(args: argparse.Namespace) -> int:
         ),
     )
     print(
-        f"optimal path: {result.cost_m:.3f} m, {len(result.cells)} cells ({len(result.waypoints_simplified)} "
-        f"simplified waypoints), first path after {result.iterations[0].time_s * 1e3:.1f} ms, optimum after "
+        f"optimal path: {result.cost_m:.3f} m, {count(len(result.cells), 'cell')} "
+        f"({count(len(result.waypoints_simplified), 'simplified waypoint')}), first path after "
+        f"{result.iterations[0].time_s * 1e3:.1f} ms, optimum after "
         f"{result.timings['search_s'] * 1e3:.1f} ms of search; verified by the independent checker"
     )
     for event in result.events:

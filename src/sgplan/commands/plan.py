@@ -36,6 +36,7 @@ from sgplan.commands.common import (
 from sgplan.commands.sayback import check_folder_fits, say_back
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 from sgplan.errors import MissionError, SgplanError
+from sgplan.words import count
 
 if TYPE_CHECKING:
     from sgplan.llm.backends import Backends
@@ -130,7 +131,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_axes_argument(out)
     out.add_argument("--html", metavar="FILE", help="write a self-contained HTML report of the plan")
     parser.add_argument("--verify", action="store_true",
-                        help="accepted for old scripts: every path is checked by the independent checker")
+                        help="accepted for old scripts, changes nothing: every path is checked by the "
+                        "independent checker")
     parser.add_argument("--confirm", action="store_true",
                         help="show what will be planned and ask before planning (needs a terminal)")
     parser.add_argument("--force", action="store_true",
@@ -183,7 +185,7 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
         mission = sgplan.mission_from_text(args.text, building, llm=backends, save_to=args.save_mission)
         if args.save_mission:
             say(f"wrote the mission folder {args.save_mission}")
-        say(f"formula: {mission.formula} ({mission.automaton.num_states} automaton states)")
+        say(f"formula: {mission.formula} ({count(mission.automaton.num_states, 'automaton state')})")
     if args.guidance:
         mission.guidance = read_guidance(args.guidance)
     for note in mission.notes:

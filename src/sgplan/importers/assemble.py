@@ -31,6 +31,7 @@ from sgplan.importers.raster import GridFrame, box_corners, hull_cells
 from sgplan.scene.doors import connections, door_cells
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.model import Building, CatCode, Floor, Room, SceneObject
+from sgplan.words import count, series
 
 ENTRANCE_NAMES = ("lobby", "entryway", "entrance", "foyer", "entrance_hall")
 """Room categories a robot is likely to start in; their start cells come first."""
@@ -151,9 +152,9 @@ def paint_objects(
     notes = []
     if dropped:
         notes.append(
-            f"{len(dropped)} object(s) left out: they hang above free floor (or are covered by others), so "
-            "no "
-            f"cell of the map holds them: {', '.join(dropped)}"
+            f"{count(len(dropped), 'object')} left out, named as the source names them (they get no "
+            "object_<uuid>): they hang above free floor (or are covered by others), so no cell of the map "
+            f"holds them: {', '.join(dropped)}"
         )
     return kept, notes
 
@@ -248,14 +249,42 @@ def assemble(
         if not len(_cells_of(floors[r.floor].room_map, r.id, room_boxes[r.floor]))
     ]
     if empty:
-        notes.append(f"room(s) {', '.join(empty)} cover no cell of the grid: missions cannot enter them")
+        notes.append(f"{series(empty)} {'covers' if len(empty) == 1 else 'cover'} no cell of the grid: "
+                     "missions cannot enter them")
     if building.num_floors > 1:
         notes.append(
             f"{building.num_floors} floors, not joined: stairs are not imported, so a path stays on the "
-            "floor "
-            "it starts on"
+            "floor it starts on"
         )
-    return ImportResult(building, notes)
+    return ImportResult(building, notes + shut_off_notes(building, settings.robot_radius_m))
+
+
+SHUT_OFF_SHARE = 0.5
+"""A room is noted as mostly shut off when more than this share of its free cells lie outside its floor's
+largest free area."""
+
+
+def shut_off_notes(building: Building, robot_radius_m: float) -> list[str]:
+    """A note per room whose free cells mostly lie apart from its floor's largest connected free area at
+    this robot radius: a wall read where the source has an opening, or a room the robot cannot enter."""
+    grid = build_occupancy_grid(building, robot_radius_m)
+    notes = []
+    for floor in building.floors:
+        parts, _ = ndimage.label(grid.traversable[floor.index], structure=np.ones((3, 3), dtype=bool))
+        sizes = np.bincount(parts.ravel())
+        main = int(np.argmax(sizes[1:])) + 1 if len(sizes) > 1 else 0
+        for room in sorted(floor.rooms.values(), key=lambda r: r.id):
+            free = parts[floor.room_map == room.id]
+            free = free[free > 0]
+            apart = int((free != main).sum())
+            if len(free) and apart > SHUT_OFF_SHARE * len(free):
+                notes.append(
+                    f"{room.key} {room.name}: {apart:,} of its {count(len(free), 'free cell')} "
+                    f"({100 * apart / len(free):.0f}%) are cut off from the largest free area of floor "
+                    f"{floor.index} for a robot of radius {robot_radius_m:g} m, so plans reach little or "
+                    "none of it; draw the scene (sgplan inspect SCENE --draw DIR) to see which wall shuts it"
+                )
+    return notes
 
 
 def _uuids(ordered: Sequence[RoomDraft], floors: int) -> tuple[dict[int, int], dict[int, int], int]:

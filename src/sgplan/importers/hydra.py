@@ -39,6 +39,7 @@ from sgplan.importers.assemble import FloorDraft, ImportResult, ObjectDraft, Roo
 from sgplan.importers.labelspace import LabelMap
 from sgplan.importers.raster import GridFrame, capsules_mask
 from sgplan.scene.model import NO_ROOM, CatCode
+from sgplan.words import count
 
 LAYER_IDS = {"OBJECTS": 2, "PLACES": 3, "ROOMS": 4}
 """Hydra's layer ids (used when the file does not name its layers)."""
@@ -223,7 +224,8 @@ def _places(graph: Any, layers: dict[str, int], path: Path, notes: list[str]) ->
         )
     if skipped:
         notes.append(
-            f"{skipped} place(s) without a positive free-space distance or a finite position are ignored"
+            f"{count(skipped, 'place')} without a positive free-space distance or a finite position "
+            f"{'is' if skipped == 1 else 'are'} ignored"
         )
     return places
 
