@@ -109,6 +109,24 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--time-limit", type=positive_seconds, metavar="S", help="search time budget in seconds"
     )
     parser.add_argument("--max-expansions", type=positive_int, metavar="N", help="search expansion budget")
+    _add_output_arguments(parser)
+    parser.add_argument("--verify", action="store_true",
+                        help="accepted for old scripts, changes nothing: every path is checked by the "
+                        "independent checker")
+    parser.add_argument("--confirm", action="store_true",
+                        help="show what will be planned and ask before planning (needs a terminal)")
+    parser.add_argument("--force", action="store_true",
+                        help="plan a --mission-dir even if it was made for another scene")
+    parser.add_argument(
+        "--save-mission", metavar="DIR",
+        help="with --text: save the translated mission, its guidance and the LLM run record here",
+    )
+    add_llm_arguments(parser)
+    parser.set_defaults(run=run)
+
+
+def _add_output_arguments(parser: argparse.ArgumentParser) -> None:
+    """The ``outputs`` group: JSON, waypoint files, pictures and the HTML report."""
     out = parser.add_argument_group("outputs")
     out.add_argument("--json", metavar="OUT", help="write the result as JSON ('-': to stdout)")
     out.add_argument("--waypoints", metavar="FILE.csv", help="write the simplified metric waypoints as CSV")
@@ -130,19 +148,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     add_axes_argument(out)
     out.add_argument("--html", metavar="FILE", help="write a self-contained HTML report of the plan")
-    parser.add_argument("--verify", action="store_true",
-                        help="accepted for old scripts, changes nothing: every path is checked by the "
-                        "independent checker")
-    parser.add_argument("--confirm", action="store_true",
-                        help="show what will be planned and ask before planning (needs a terminal)")
-    parser.add_argument("--force", action="store_true",
-                        help="plan a --mission-dir even if it was made for another scene")
-    parser.add_argument(
-        "--save-mission", metavar="DIR",
-        help="with --text: save the translated mission, its guidance and the LLM run record here",
-    )
-    add_llm_arguments(parser)
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -198,22 +198,7 @@ def assemble(
         built[draft.id] = _room(
             draft, cells, frame, floor.ground_z_m, room_uuid, neighbours, doors[draft.floor]
         )
-    for obj, object_id in kept:
-        room = built[obj.room_id]  # type: ignore[index]
-        cells = _cells_of(floors[obj.floor].cat_map, object_id, object_boxes[obj.floor])
-        corners = obj.corners()
-        room.objects[object_id] = SceneObject(
-            id=object_id,
-            uuid=next_uuid,
-            name=obj.name,
-            room_id=room.id,
-            room_uuid=room.uuid,
-            location_m=np.asarray(obj.center_m, dtype=float),
-            size_m=corners.max(axis=0) - corners.min(axis=0),
-            grid_min=(int(cells[:, 0].min()), int(cells[:, 1].min())),
-            grid_max=(int(cells[:, 0].max()), int(cells[:, 1].max())),
-        )
-        next_uuid += 1
+    _put_objects(kept, built, floors, object_boxes, next_uuid)
     building = Building(
         id=1,
         uuid=1,
@@ -243,11 +228,34 @@ def assemble(
             "space is too narrow or lies outside every room (try a smaller --robot-radius or a finer "
             "--resolution)"
         )
-    empty = [
-        r.key
-        for r in building.rooms()
-        if not len(_cells_of(floors[r.floor].room_map, r.id, room_boxes[r.floor]))
-    ]
+    return ImportResult(building, notes + _building_notes(building, room_boxes, settings.robot_radius_m))
+
+
+def _put_objects(kept: Sequence[tuple[ObjectDraft, int]], built: dict[int, Room],
+                 floors: Sequence[FloorDraft], object_boxes: Sequence[Boxes], first_uuid: int) -> None:
+    """Add each kept object (with its id on the category map) to its room, uuids from ``first_uuid``."""
+    for uuid, (obj, object_id) in enumerate(kept, start=first_uuid):
+        room = built[obj.room_id]  # type: ignore[index]
+        cells = _cells_of(floors[obj.floor].cat_map, object_id, object_boxes[obj.floor])
+        corners = obj.corners()
+        room.objects[object_id] = SceneObject(
+            id=object_id,
+            uuid=uuid,
+            name=obj.name,
+            room_id=room.id,
+            room_uuid=room.uuid,
+            location_m=np.asarray(obj.center_m, dtype=float),
+            size_m=corners.max(axis=0) - corners.min(axis=0),
+            grid_min=(int(cells[:, 0].min()), int(cells[:, 1].min())),
+            grid_max=(int(cells[:, 0].max()), int(cells[:, 1].max())),
+        )
+
+
+def _building_notes(building: Building, room_boxes: Sequence[Boxes], robot_radius_m: float) -> list[str]:
+    """Notes on the finished building: rooms without a cell, floors not joined, rooms mostly shut off."""
+    notes = []
+    empty = [r.key for r in building.rooms()
+             if not len(_cells_of(building.floors[r.floor].room_map, r.id, room_boxes[r.floor]))]
     if empty:
         notes.append(f"{series(empty)} {'covers' if len(empty) == 1 else 'cover'} no cell of the grid: "
                      "missions cannot enter them")
@@ -256,7 +264,7 @@ def assemble(
             f"{building.num_floors} floors, not joined: stairs are not imported, so a path stays on the "
             "floor it starts on"
         )
-    return ImportResult(building, notes + shut_off_notes(building, settings.robot_radius_m))
+    return notes + shut_off_notes(building, robot_radius_m)
 
 
 SHUT_OFF_SHARE = 0.5
