@@ -9,7 +9,7 @@ import logging
 import math
 import sys
 from collections.abc import Iterable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from sgplan.datasets import ENV_VAR, SCENES
 from sgplan.limits import MAX_REACH_RADIUS_M, MAX_ROBOT_RADIUS_M, MAX_SECONDS
@@ -166,3 +166,19 @@ def reach_radius(text: str) -> float:
     """argparse type: a reach radius in metres in (0, :data:`MAX_REACH_RADIUS_M`] (0 would reach nothing)."""
     return _number(text, float, allow_zero=False, maximum=MAX_REACH_RADIUS_M,
                    what=f"a radius in metres > 0 and <= {MAX_REACH_RADIUS_M:g}")
+
+
+def write_json_record(target: str | None, record: dict[str, Any]) -> None:
+    """Write a command's JSON record to ``target`` (a file, atomically; ``-``: stdout; ``None``: nowhere)."""
+    if not target:
+        return
+    from sgplan.outputs.jsontext import record_json
+
+    text = record_json(record)
+    if target == "-":
+        sys.stdout.write(text)
+        sys.stdout.flush()
+        return
+    from sgplan.result import write_text
+
+    write_text(target, text)

@@ -32,16 +32,15 @@ from sgplan.commands.common import (
     reach_radius,
     robot_radius,
     say,
+    write_json_record,
 )
+from sgplan.commands.missions import add_mission_arguments, mission_from_args
 from sgplan.commands.sayback import check_folder_fits, say_back
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 from sgplan.errors import MissionError, SgplanError
-from sgplan.words import count
 
 if TYPE_CHECKING:
-    from sgplan.llm.backends import Backends
     from sgplan.result import PlanResult
-    from sgplan.scene.model import Building
     from sgplan.starts import StartSpec
 
 TIMEOUT_EXIT = 3
@@ -69,18 +68,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "satisfies the mission, 70 a bug.",
     )
     add_scene_arguments(parser)
-    what = parser.add_mutually_exclusive_group(required=True)
-    what.add_argument(
-        "--mission-dir", metavar="DIR",
-        help="mission folder (automaton.aut, ap_desc.yaml, llm_heuristic.yaml)",
-    )
-    what.add_argument("--formula", metavar="F", help="LTL formula: token list, Spot infix or LBT prefix")
-    what.add_argument(
-        "--text", metavar="MISSION", help="the mission in natural language (translated with --llm)"
-    )
-    parser.add_argument(
-        "--aps", metavar="FILE", help="ap_desc.yaml giving the formula's proposition names a meaning"
-    )
+    add_mission_arguments(parser)
     parser.add_argument(
         "--guidance", metavar="FILE", help="llm_heuristic.yaml to use instead of the mission's"
     )
@@ -157,11 +145,11 @@ def run(args: argparse.Namespace) -> int:
         result, extras = _plan(args)
     except SgplanError as error:
         record.update(status=getattr(error, "status", "error"), message=str(error))
-        _write_json(args.json, record)
+        write_json_record(args.json, record)
         raise
     record = result.to_dict() | extras
     record["timings"]["wall_s"] = time.perf_counter() - t_start
-    _write_json(args.json, record)
+    write_json_record(args.json, record)
     return _report(args, result)
 
 
@@ -174,23 +162,7 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     building = load_scene_arg(args.scene, args.data)
     if args.save_mission and not args.text:
         raise MissionError("--save-mission saves a translated mission: use it with --text")
-    backends: Backends | None = None
-    for option, value in (
-        ("--mission-dir", args.mission_dir), ("--formula", args.formula), ("--text", args.text),
-    ):
-        if value is not None and not value.strip():
-            raise MissionError(f"{option} is empty: give a {option[2:].replace('-dir', ' folder')}")
-    if args.mission_dir is not None:
-        mission = sgplan.load_mission(args.mission_dir, profile=args.profile)
-    elif args.formula is not None:
-        mission = sgplan.mission_from_formula(args.formula, aps=args.aps)
-    else:
-        backends = _for_start_floor(open_backends_from_args(args), building, _start_spec(args))
-        say(f"translating with {backends.translator.name} ({backends.description})")
-        mission = sgplan.mission_from_text(args.text, building, llm=backends, save_to=args.save_mission)
-        if args.save_mission:
-            say(f"wrote the mission folder {args.save_mission}")
-        say(f"formula: {mission.formula} ({count(mission.automaton.num_states, 'automaton state')})")
+    mission, backends = mission_from_args(args, building, _start_spec(args), save_to=args.save_mission)
     if args.guidance:
         mission.guidance = read_guidance(args.guidance)
     for note in mission.notes:
@@ -246,19 +218,6 @@ def _start_spec(args: argparse.Namespace) -> StartSpec:
     return args.start or args.start_room or args.start_index
 
 
-def _for_start_floor(backends: Backends, building: Building, start: StartSpec) -> Backends:
-    """``backends`` with the offline translator told the start's floor, so that *upstairs* / *downstairs*
-    are read relative to it (a language model's prompt does not carry it)."""
-    from dataclasses import replace
-
-    from sgplan.llm.offline import PatternTranslator
-    from sgplan.starts import start_floor
-
-    if not isinstance(backends.translator, PatternTranslator):
-        return backends
-    return replace(backends, translator=backends.translator.starting_on(start_floor(building, start)))
-
-
 def _report(args: argparse.Namespace, result: PlanResult) -> int:
     """Print the outcome (to stderr when the JSON goes to stdout), write the files; the exit code."""
     out: TextIO = sys.stderr if args.json == "-" else sys.stdout
@@ -293,18 +252,3 @@ def _report(args: argparse.Namespace, result: PlanResult) -> int:
             )
         return TIMEOUT_EXIT
     return 0
-
-
-def _write_json(target: str | None, record: dict[str, Any]) -> None:
-    if not target:
-        return
-    from sgplan.outputs.jsontext import record_json
-
-    text = record_json(record)
-    if target == "-":
-        sys.stdout.write(text)
-        sys.stdout.flush()
-        return
-    from sgplan.result import write_text
-
-    write_text(target, text)
