@@ -25,10 +25,11 @@ def timing_section(rows: Sequence[Row]) -> list[str]:
         "",
         "- *1st iter. time* and *opt. time* are AMRA* search seconds, as in the paper: from the start of the "
         "search to the first path and to the optimum. The search runs compiled (numba kernels, compiled "
-        "once per machine and loaded from numba's disk cache).",
+        "once per machine, kept in numba's disk cache and loaded before the search clock starts).",
         "- Not in them, as in the paper: *load* (the scene and mission, the occupancy grid and labels) and "
-        "*precompute* (the h_LTL distance fields, the LLM guidance lookup and the composite-action maps of "
-        "the object, room and floor levels, which the worker builds before the search clock starts).",
+        "*precompute* (the planning domain, all of it built before the search clock starts: the cell graph, "
+        "the h_LTL distance fields, the LLM heuristic's tables, the composite-action maps of the object, "
+        "room and floor levels, and loading the search kernels).",
         "- *case wall* is the parent's clock for the whole case: request to answer for a long-lived worker, "
         "the whole process (interpreter start and imports included) with `--fresh-workers`.",
     ]
