@@ -23,11 +23,11 @@ from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 
+from sgplan.english import count
 from sgplan.errors import PlanningError, SceneError
 from sgplan.pipeline import Radii, make_problem, resolve_radii
 from sgplan.planning.shared import SharedParts
 from sgplan.scene.model import Building
-from sgplan.words import count
 
 if TYPE_CHECKING:  # the planner, grid and labels (numba, scipy) load when a plan is made, not for a mission
     from sgplan.explain import Explanation

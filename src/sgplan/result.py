@@ -15,13 +15,13 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from sgplan.english import count
 from sgplan.errors import OutputError
 from sgplan.outputs.events import Event
 from sgplan.outputs.files import write_ros_path_yaml, write_waypoints_csv
 from sgplan.outputs.jsontext import record_json
 from sgplan.outputs.waypoints import Waypoint
 from sgplan.pipeline import Radii, finite_or_none, iteration_records
-from sgplan.words import count
 
 if TYPE_CHECKING:
     from sgplan.mission import Mission

@@ -21,12 +21,12 @@ from typing import NamedTuple
 
 import numpy as np
 
+from sgplan.english import count, series
 from sgplan.errors import PlanningError
 from sgplan.pipeline import resolve_start
 from sgplan.scene.fields import is_int, is_number
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building, Room
-from sgplan.words import count, series
 
 _ON_FLOOR = re.compile(r"^(.*?)\s+on\s+floor\s+(\d+)$", re.IGNORECASE)
 SNAP_M = 0.5

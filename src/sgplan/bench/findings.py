@@ -13,7 +13,7 @@ from typing import Any
 from sgplan.bench.cases import TABLE2_MISSION, TABLE2_SCENE, TABLE3_SETUPS, mission_order
 from sgplan.bench.paper import TABLE2, TABLE3
 from sgplan.bench.tables import Means, means, select
-from sgplan.words import count
+from sgplan.english import count
 
 Row = dict[str, Any]
 

@@ -12,8 +12,8 @@ from typing import Any
 from sgplan.bench import figures, findings, tables
 from sgplan.bench.cases import BenchError, exact_number
 from sgplan.bench.results import ResultStore, counts, load_rows, load_sweeps
+from sgplan.english import count
 from sgplan.files import write_text_atomically
-from sgplan.words import count
 
 REPORT_FILE = "report.md"
 FIGURES_DIR = "figures"

@@ -23,7 +23,7 @@ from sgplan.commands.common import (
     say,
     split_list,
 )
-from sgplan.words import count
+from sgplan.english import count
 
 if TYPE_CHECKING:
     from sgplan.bench.cases import Case

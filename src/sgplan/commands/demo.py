@@ -15,8 +15,8 @@ from pathlib import Path
 
 from sgplan.commands.common import add_axes_argument, non_negative_int, say
 from sgplan.commands.sayback import say_back
+from sgplan.english import count
 from sgplan.errors import MissionError
-from sgplan.words import count
 
 DEMO_MISSION = (
     "Visit the bathroom on floor 0 without touching the sink, then sit on a chair in the dining room, "

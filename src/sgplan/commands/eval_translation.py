@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 
 from sgplan.commands.common import load_scene_arg, say
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
-from sgplan.words import count
+from sgplan.english import count
 
 if TYPE_CHECKING:
     from sgplan.logic import Formula

@@ -19,7 +19,7 @@ from sgplan.commands.common import (
     say,
 )
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
-from sgplan.words import count
+from sgplan.english import count
 
 
 def register(sub: argparse._SubParsersAction) -> None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from sgplan.commands.common import positive_number, reach_radius, robot_radius, say
-from sgplan.words import count
+from sgplan.english import count
 
 
 def register(sub: argparse._SubParsersAction) -> None:

@@ -8,8 +8,8 @@ from typing import TYPE_CHECKING
 
 from sgplan.commands.common import say
 from sgplan.commands.translate import open_backends_from_args
+from sgplan.english import count
 from sgplan.errors import MissionError
-from sgplan.words import count
 
 if TYPE_CHECKING:
     from sgplan.llm.backends import Backends

@@ -28,8 +28,8 @@ from sgplan.commands.common import (
 from sgplan.commands.missions import add_mission_arguments, mission_from_args
 from sgplan.commands.sayback import check_folder_fits, say_back
 from sgplan.commands.translate import add_llm_arguments
+from sgplan.english import count
 from sgplan.errors import TrajectoryError
-from sgplan.words import count
 
 if TYPE_CHECKING:
     from sgplan.execution.monitor import MonitorStatus

@@ -25,8 +25,8 @@ from sgplan.commands.common import (
     say,
 )
 from sgplan.commands.sayback import check_before_planning, say_back
+from sgplan.english import count
 from sgplan.errors import MissionError
-from sgplan.words import count
 
 if TYPE_CHECKING:
     from sgplan.llm.backends import Backends

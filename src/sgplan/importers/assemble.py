@@ -26,12 +26,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import ndimage
 
+from sgplan.english import count, series
 from sgplan.errors import SceneError
 from sgplan.importers.raster import GridFrame, box_corners, hull_cells
 from sgplan.scene.doors import connections, door_cells
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.model import Building, CatCode, Floor, Room, SceneObject
-from sgplan.words import count, series
 
 ENTRANCE_NAMES = ("lobby", "entryway", "entrance", "foyer", "entrance_hall")
 """Room categories a robot is likely to start in; their start cells come first."""

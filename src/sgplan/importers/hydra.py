@@ -34,12 +34,12 @@ import numpy as np
 from scipy import ndimage
 from scipy.spatial import cKDTree
 
+from sgplan.english import count
 from sgplan.errors import SceneError
 from sgplan.importers.assemble import FloorDraft, ImportResult, ObjectDraft, RoomDraft, Settings, assemble
 from sgplan.importers.labelspace import LabelMap
 from sgplan.importers.raster import GridFrame, capsules_mask
 from sgplan.scene.model import NO_ROOM, CatCode
-from sgplan.words import count
 
 LAYER_IDS = {"OBJECTS": 2, "PLACES": 3, "ROOMS": 4}
 """Hydra's layer ids (used when the file does not name its layers)."""

@@ -39,6 +39,7 @@ from pathlib import Path
 import numpy as np
 from scipy import ndimage
 
+from sgplan.english import series
 from sgplan.errors import SceneError
 from sgplan.importers import DEFAULT_OPEN_GAP_M
 from sgplan.importers.assemble import FloorDraft, ImportResult, ObjectDraft, RoomDraft, Settings, assemble
@@ -51,7 +52,6 @@ from sgplan.importers.raster import (
     polygon_distance_m,
 )
 from sgplan.scene.model import NO_ROOM, CatCode
-from sgplan.words import series
 
 REGION_NAMES: dict[str, str] = {
     "a": "bathroom",

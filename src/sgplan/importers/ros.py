@@ -33,12 +33,12 @@ import numpy as np
 import yaml
 from PIL import Image, UnidentifiedImageError
 
+from sgplan.english import count
 from sgplan.errors import SceneError
 from sgplan.importers.assemble import FloorDraft, ImportResult, ObjectDraft, RoomDraft, Settings, assemble
 from sgplan.importers.raster import GridFrame, polygon_area_m2, polygon_mask
 from sgplan.scene.fields import is_number
 from sgplan.scene.model import NO_ROOM, CatCode
-from sgplan.words import count
 
 MODES = ("trinary", "scale", "raw")
 POINT_OBJECT_M = 1e-3

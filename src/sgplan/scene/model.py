@@ -26,8 +26,8 @@ from pathlib import Path
 
 import numpy as np
 
+from sgplan.english import count
 from sgplan.errors import SceneError
-from sgplan.words import count
 
 Cell = tuple[int, int]
 """A grid cell ``(row, col)`` on one floor."""

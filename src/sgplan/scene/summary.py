@@ -8,9 +8,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from sgplan.english import count
 from sgplan.scene.grid import OccupancyGrid, build_occupancy_grid, component_sizes
 from sgplan.scene.model import Building, Room
-from sgplan.words import count
 
 
 @dataclass(frozen=True)

@@ -1,8 +1,8 @@
-"""English counts and series for messages (sgplan.words)."""
+"""English counts and series for messages (sgplan.english)."""
 
 from __future__ import annotations
 
-from sgplan.words import count, series
+from sgplan.english import count, series
 
 
 def test_count_puts_the_noun_in_the_right_number() -> None:
