@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 
+from sgplan.english import count
 from sgplan.errors import PlanningError, SceneError
 from sgplan.options import PlanOptions
 from sgplan.pipeline import Radii, make_problem, resolve_radii
@@ -225,6 +226,13 @@ class Session:
         self.parts = SharedParts(max_shared_bytes)
         self.builds: Counter[str] = Counter()
 
+    def __repr__(self) -> str:
+        radii = ", ".join(f"{r:g} m" for r in sorted(self._grids)) or "none yet"
+        held_mib, cap_mib = self.parts.nbytes() / 2**20, self.parts.max_bytes / 2**20
+        return (f"<Session {self.building.name!r}: grids for robot radii {radii}, "
+                f"{count(len(self._cells), 'proposition')} located, {count(len(self.parts), 'planner part')} "
+                f"({held_mib:.0f} of at most {cap_mib:.0f} MiB)>")
+
     def radii(self, robot_radius_m: float | None = None, reach_radius_m: float | None = None) -> Radii:
         """The radii a plan uses: given, else the scene's, else the defaults (:func:`resolve_radii`)."""
         return resolve_radii(self.building, robot_radius_m, reach_radius_m)
@@ -308,8 +316,11 @@ class Session:
         # Without kept parts the problem's maps are this plan's alone: freed once the search stops
         # reading them.
         stop_when = any_of(options.termination(), termination)
-        found = amra_plan(staged.problem, options.setup, termination=stop_when, callback=callback,
-                          prebuild_actions=options.prebuild_actions, release_maps=not self.parts.keeps)
+        try:
+            found = amra_plan(staged.problem, options.setup, termination=stop_when, callback=callback,
+                              prebuild_actions=options.prebuild_actions, release_maps=not self.parts.keeps)
+        except PlanningError as error:
+            raise _with_cause(error, staged.mission, self.building, staged.problem) from None
         explained = explain_for_result(staged.mission, self.building, explanation, self.proposition_cells)
         return finish_plan(found, staged, options, explained, started=t0, prepare_s=prepare_s)
 
@@ -421,6 +432,19 @@ def _check_in_scene(mission: Mission, building: Building, problem: PlanningProbl
     return check.to_dict()
 
 
+def _with_cause(error: PlanningError, mission: Mission, building: Building,
+                problem: PlanningProblem) -> PlanningError:
+    """The planner's ``infeasible`` error said with its cause when a place the mission needs cannot be
+    reached from the start (:func:`sgplan.explain.checks.unreachable_finding`: no door, too narrow for this
+    robot); any other error as it is."""
+    if error.status != "infeasible":
+        return error
+    from sgplan.explain.checks import unreachable_finding
+
+    finding = unreachable_finding(mission, building, problem.grid, problem.labels, problem.start)
+    return error if finding is None else PlanningError(finding.message, status="infeasible")
+
+
 def _formula_text(mission: Mission) -> str | None:
     from sgplan.logic import to_infix
 
@@ -431,7 +455,7 @@ def _add_outputs(result: PlanResult, verify: bool, start_state: int | None) -> N
     """Check the path (when asked) and add the waypoints and events; ``start_state``: the automaton state
     at the path's first cell when it resumes a mission (:class:`~sgplan.planning.PlanningProblem`)."""
     from sgplan.outputs.events import path_events
-    from sgplan.outputs.waypoints import leg_costs, path_waypoints, simplify_path
+    from sgplan.outputs.waypoints import leg_costs, path_waypoints
     from sgplan.planning.checker import check_path
 
     assert result.path is not None and result.grid is not None and result.labels is not None
@@ -447,8 +471,7 @@ def _add_outputs(result: PlanResult, verify: bool, start_state: int | None) -> N
                                 f"{result.cost_m:.6f} m (a bug, please report it)")
         result.verified = True
     result.waypoints = path_waypoints(result.path, result.grid, result.building)
-    keep = simplify_path(result.path, result.grid, result.labels, automaton)
-    result.waypoints_simplified = path_waypoints(result.path, result.grid, result.building, keep)
+    result.simplify_waypoints()
     costs = np.concatenate([[0.0], np.cumsum(leg_costs(result.path, result.grid))])
     result.events = path_events(result.path, costs, result.labels, automaton, result.building,
                                 result.mission.descriptions, start_state=start_state)

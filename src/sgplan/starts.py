@@ -15,17 +15,20 @@
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
 
+from sgplan.english import count, series
 from sgplan.errors import PlanningError
 from sgplan.pipeline import resolve_start
 from sgplan.scene.fields import is_int, is_number
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building, Room
 
+_ON_FLOOR = re.compile(r"^(.*?)\s+on\s+floor\s+(\d+)$", re.IGNORECASE)
 SNAP_M = 0.5
 """How far (metres) a metric start may be moved to the nearest cell the robot can stand on."""
 
@@ -97,14 +100,40 @@ def start_floor(building: Building, start: StartSpec = None) -> int | None:
 
 
 def _find_room(building: Building, name: str) -> Room:
-    """The room ``name`` names (:func:`sgplan.scene.lookup.find_room`), as a start."""
-    from sgplan.errors import SceneError
-    from sgplan.scene.lookup import find_room
+    key = name.strip()
+    if key.lower().startswith("room_") and key[5:].isdigit():
+        uuid = int(key[5:])
+        if not building.has_room(uuid):
+            raise PlanningError(
+                f"start: building {building.name!r} has no room {key}", status="invalid-start"
+            )
+        return building.room(uuid=uuid)
+    on_floor = _ON_FLOOR.match(key)
+    rooms = building.rooms_named(on_floor[1], int(on_floor[2])) if on_floor else building.rooms_named(key)
+    if len(rooms) == 1:
+        return rooms[0]
+    if not rooms:
+        names = sorted({room.name for room in building.rooms()})
+        raise PlanningError(f"start: building {building.name!r} has no room called {name!r} (rooms: "
+                            f"{', '.join(names)})", status="invalid-start")
+    choices = ", ".join(f"'{spec}' ({about})" for spec, about in _telling_apart(building, rooms))
+    raise PlanningError(f"start: {name!r} names {count(len(rooms), 'room')}; say which, with one of: "
+                        f"{choices}", status="invalid-start")
 
-    try:
-        return find_room(building, name)
-    except SceneError as error:
-        raise PlanningError(f"start: {error}", status="invalid-start") from None
+
+def _telling_apart(building: Building, rooms: list[Room]) -> list[tuple[str, str]]:
+    """For each of ``rooms`` (one category), a start that names it alone -- ``'bathroom on floor 1'`` where
+    it is its floor's only one, else its key -- and what sets it apart (key or floor, neighbours)."""
+    floors = [room.floor for room in rooms]
+    out = []
+    for room in rooms:
+        alone = floors.count(room.floor) == 1
+        neighbours = [f"the {n}" for n in sorted({building.room(id=i).name.replace("_", " ")
+                                                   for i in room.connected_room_ids})]
+        near = f", next to {series(neighbours)}" if neighbours else ", no door to another room"
+        spec = f"{room.name} on floor {room.floor}" if alone else room.key
+        out.append((spec, f"{room.key if alone else f'floor {room.floor}'}{near}"))
+    return out
 
 
 def _room_start(building: Building, grid: OccupancyGrid, room: Room) -> tuple[tuple[int, int, int], str]:

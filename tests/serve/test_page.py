@@ -52,13 +52,15 @@ def shot(tab: Any, name: str) -> None:
         tab.screenshot(path=str(Path(folder) / f"{name}.png"), full_page=True)
 
 
-def click_cell(tab: Any, cell: tuple[int, int, int], shape: tuple[int, int]) -> None:
+def on_screen(tab: Any, cell: tuple[int, int, int], shape: tuple[int, int]) -> tuple[float, float]:
+    """Where ``cell`` is on the page: the map is drawn in the map frame (rows to the right, columns up)."""
     stage = tab.locator(f'#layers .floor[data-floor="{cell[2]}"] .stage')
     stage.scroll_into_view_if_needed()
     box = stage.bounding_box()
     rows, cols = shape
-    tab.mouse.click(
-        box["x"] + (cell[1] + 0.5) / cols * box["width"], box["y"] + (cell[0] + 0.5) / rows * box["height"]
+    return (
+        box["x"] + (cell[0] + 0.5) / rows * box["width"],
+        box["y"] + (cols - 1 - cell[1] + 0.5) / cols * box["height"],
     )
 
 
@@ -81,7 +83,7 @@ def test_type_plan_close_a_door_and_drive_the_robot(page: tuple[Any, list[str]])
 
     tab.fill("#mission", "Go to the kitchen.")
     tab.wait_for_function("document.getElementById('explanation').textContent.includes('Formula: F')")
-    click_cell(tab, dining, building.floors[0].shape)
+    tab.mouse.click(*on_screen(tab, dining, building.floors[0].shape))
     assert tab.locator("#start-shown").inner_text() == f"cell row {dining[0]}, column {dining[1]}, floor 0"
     assert tab.locator('#layers .floor[data-floor="0"] svg.marks circle.chosen-start').count() == 1
     tab.locator("#plan").click()
@@ -94,13 +96,7 @@ def test_type_plan_close_a_door_and_drive_the_robot(page: tuple[Any, list[str]])
     shot(tab, "2-planned")
 
     # Hovering the map names the room (the report's hover, on the served floors).
-    stage = tab.locator('#layers .floor[data-floor="0"] .stage')
-    box = stage.bounding_box()
-    rows, cols = building.floors[0].shape
-    tab.mouse.move(
-        box["x"] + (dining[1] + 0.5) / cols * box["width"],
-        box["y"] + (dining[0] + 0.5) / rows * box["height"],
-    )
+    tab.mouse.move(*on_screen(tab, dining, building.floors[0].shape))
     assert "room: dining_room (room_7" in tab.locator("#tooltip").inner_text()
 
     # Close the corridor's door into the kitchen: the path goes round through the bathroom.

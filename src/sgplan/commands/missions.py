@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 from sgplan.commands.common import say
 from sgplan.commands.translate import open_backends_from_args
+from sgplan.english import count
 from sgplan.errors import MissionError
 
 if TYPE_CHECKING:
@@ -55,7 +56,7 @@ def mission_from_args(args: argparse.Namespace, building: Building, start: Start
     mission = sgplan.mission_from_text(args.text, building, llm=backends, save_to=save_to)
     if save_to:
         say(f"wrote the mission folder {save_to}")
-    say(f"formula: {mission.formula} ({mission.automaton.num_states} automaton states)")
+    say(f"formula: {mission.formula} ({count(mission.automaton.num_states, 'automaton state')})")
     return mission, backends
 
 

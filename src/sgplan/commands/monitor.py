@@ -28,6 +28,7 @@ from sgplan.commands.common import (
 from sgplan.commands.missions import add_mission_arguments, mission_from_args
 from sgplan.commands.sayback import check_folder_fits, say_back
 from sgplan.commands.translate import add_llm_arguments
+from sgplan.english import count
 from sgplan.errors import TrajectoryError
 
 if TYPE_CHECKING:
@@ -115,6 +116,6 @@ def _report(status: MonitorStatus, trajectory: Trajectory, mismatches: list[str]
         log.warning(f"warning: {messages[0]}{more}")
     for message in mismatches:
         log.warning(f"warning: {trajectory.path}: {message}")
-    print(f"trajectory {trajectory.path}: {status.poses} poses, {status.cells} cells read, "
+    print(f"trajectory {trajectory.path}: {count(status.poses, 'pose')}, {count(status.cells, 'cell')} read, "
           f"{status.length_m:.2f} m; automaton state {status.state} (states 0..{num_states - 1})", file=out)
     print(f"verdict: {status.summary(trajectory.pose_name)}", file=out)

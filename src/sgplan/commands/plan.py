@@ -19,11 +19,13 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
 from sgplan.commands.common import (
+    add_axes_argument,
     add_profile_argument,
     add_scene_arguments,
     load_scene_arg,
     log,
     non_negative_int,
+    non_negative_metres,
     plan_options,
     positive_int,
     positive_seconds,
@@ -113,6 +115,24 @@ def register(sub: argparse._SubParsersAction) -> None:
                        "drove: a CSV as --waypoints writes, or x_m,y_m,floor rows), in the mission state "
                        "the trajectory left it in")
     add_planning_arguments(parser)
+    _add_output_arguments(parser)
+    parser.add_argument("--verify", action="store_true", default=None,
+                        help="accepted for old scripts, changes nothing: every path is checked by the "
+                        "independent checker")
+    parser.add_argument("--confirm", action="store_true",
+                        help="show what will be planned and ask before planning (needs a terminal)")
+    parser.add_argument("--force", action="store_true",
+                        help="plan a --mission-dir even if it was made for another scene")
+    parser.add_argument(
+        "--save-mission", metavar="DIR",
+        help="with --text: save the translated mission, its guidance and the LLM run record here",
+    )
+    add_llm_arguments(parser)
+    parser.set_defaults(run=run)
+
+
+def _add_output_arguments(parser: argparse.ArgumentParser) -> None:
+    """The ``outputs`` group: JSON, waypoint files, pictures and the HTML report."""
     out = parser.add_argument_group("outputs")
     out.add_argument("--json", metavar="OUT", help="write the result as JSON ('-': to stdout)")
     out.add_argument("--waypoints", metavar="FILE.csv", help="write the simplified metric waypoints as CSV")
@@ -124,23 +144,16 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     out.add_argument("--dense", action="store_true", help="--waypoints / --ros-path hold every cell, not the "
                      "simplified polyline")
+    out.add_argument("--waypoint-tolerance", type=non_negative_metres, default=0.0, metavar="M",
+                     help="simplified segments may give up M metres of clearance at the inflated obstacles' "
+                     "edge, for fewer waypoints where the path hugs a corner (below the robot radius; "
+                     "default 0: the planner's own clearance)")
     out.add_argument(
         "--draw", metavar="DIR",
         help="write one PNG and one SVG per floor with the path, and the automaton (DOT, SVG)",
     )
+    add_axes_argument(out)
     out.add_argument("--html", metavar="FILE", help="write a self-contained HTML report of the plan")
-    parser.add_argument("--verify", action="store_true", default=None,
-                        help="accepted for old scripts: every path is checked by the independent checker")
-    parser.add_argument("--confirm", action="store_true",
-                        help="show what will be planned and ask before planning (needs a terminal)")
-    parser.add_argument("--force", action="store_true",
-                        help="plan a --mission-dir even if it was made for another scene")
-    parser.add_argument(
-        "--save-mission", metavar="DIR",
-        help="with --text: save the translated mission, its guidance and the LLM run record here",
-    )
-    add_llm_arguments(parser)
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -198,6 +211,8 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     result = sgplan.plan(building, mission, start, options=options, guide=guide,
                          callback=progress, explanation=explanation,  # said back above: not made twice
                          session=session, start_state=start_state)
+    if args.waypoint_tolerance and result.path is not None:
+        result.simplify_waypoints(args.waypoint_tolerance)
     if args.save_mission and guide is not None and result.mission is not None and result.mission.guidance:
         say(
             f"wrote {write_guidance(result.mission.guidance, Path(args.save_mission) / 'llm_heuristic.yaml')}"
@@ -279,7 +294,7 @@ def _report(args: argparse.Namespace, result: PlanResult) -> int:
         if args.ros_path:
             say(f"wrote {result.write_ros_path_yaml(args.ros_path, simplified=simplified)}")
     if args.draw:
-        for picture in result.draw(args.draw, formats=("png", "svg")):
+        for picture in result.draw(args.draw, axes=args.axes):
             say(f"wrote {picture}")
     if args.html:
         say(f"wrote {result.write_html(args.html)}")

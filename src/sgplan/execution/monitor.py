@@ -9,11 +9,12 @@ What the monitor reads (the same word a planned path is judged by, docs/semantic
 cell the robot occupied, in order, each cell once per visit. Poses are turned into cells
 (:mod:`sgplan.execution.poses`: never moved; off the grid is an error, inside an obstacle is reported).
 Between two consecutive poses on one floor the robot is assumed to have driven the straight segment
-between their cell centres, and every cell the segment touches is read (corner touches count both side
-cells), as :func:`sgplan.outputs.waypoints.simplify_path` assumes of the waypoints it writes; a step to a
-neighbouring cell reads only that cell (the planner's own move). Between floors it took the stairs, portal
-to portal. A pose farther than ``max_gap_m`` from the one before, and a straight line that crosses cells
-the robot cannot enter, are reported: the verdict then rests on that assumption.
+between their cell centres, and every cell whose interior the segment crosses is read (a cell corner it
+passes through leads into the diagonal cell; the two cells beside it are only touched, as on the
+planner's diagonal step), as :func:`sgplan.outputs.waypoints.simplify_path` assumes of the waypoints it
+writes; a step to a neighbouring cell reads only that cell (the planner's own move). Between floors it
+took the stairs, portal to portal. A pose farther than ``max_gap_m`` from the one before, and a straight
+line that crosses cells the robot cannot enter, are reported: the verdict then rests on that assumption.
 
 Verdicts, after the poses read so far:
 

@@ -115,7 +115,7 @@
     document.querySelectorAll("#layers .floor").forEach(function (layer) {
       const svg = document.createElementNS("http://www.w3.org/2000/svg", "svg");
       svg.setAttribute("class", "marks");
-      svg.setAttribute("viewBox", "-0.5 -0.5 " + layer.dataset.cols + " " + layer.dataset.rows);
+      svg.setAttribute("viewBox", layer.querySelector("svg.overlay").getAttribute("viewBox"));  // the report's frame
       svg.setAttribute("preserveAspectRatio", "none");
       layer.querySelector(".stage").appendChild(svg);
       layer.querySelector(".stage").addEventListener("click", function (event) {
@@ -138,13 +138,14 @@
     document.querySelectorAll("#layers .floor").forEach(function (layer) {
       const svg = layer.querySelector("svg.marks");
       const floor = Number(layer.dataset.floor);
-      const unit = Number(layer.dataset.cols) / 1000;
+      const unit = Math.max(Number(layer.dataset.rows), Number(layer.dataset.cols)) / 1000;
+      const at = function (row, col) { return state.floors.svgXY(layer, row, col); };
       svg.textContent = "";
       state.doors.filter(function (d) { return d.floor === floor; }).forEach(function (door) {
         const key = door.rooms.join("|");
         const closed = state.closed.has(key);
-        const size = 7 * unit;
-        const mark = svgElement("rect", { class: "door" + (closed ? " closed" : ""), x: door.col - size, y: door.row - size,
+        const size = 7 * unit, p = at(door.row, door.col);
+        const mark = svgElement("rect", { class: "door" + (closed ? " closed" : ""), x: p.x - size, y: p.y - size,
                                           width: 2 * size, height: 2 * size, tabindex: "0", role: "button",
                                           "aria-label": (closed ? "open" : "close") + " the door between the " + door.names[0] + " and the " + door.names[1] });
         const title = svgElement("title", {});
@@ -157,11 +158,13 @@
         svg.appendChild(mark);
       });
       if (state.start && state.start.cell && state.start.cell[2] === floor) {
-        svg.appendChild(svgElement("circle", { class: "chosen-start", cx: state.start.cell[1], cy: state.start.cell[0], r: 9 * unit }));
+        const p = at(state.start.cell[0], state.start.cell[1]);
+        svg.appendChild(svgElement("circle", { class: "chosen-start", cx: p.x, cy: p.y, r: 9 * unit }));
       }
       const robot = robotCell();
       if (robot && robot.floor === floor) {
-        svg.appendChild(svgElement("circle", { class: "robot", cx: robot.col, cy: robot.row, r: 6 * unit }));
+        const p = at(robot.row, robot.col);
+        svg.appendChild(svgElement("circle", { class: "robot", cx: p.x, cy: p.y, r: 6 * unit }));
       }
     });
   }
