@@ -8,9 +8,10 @@ import pytest
 
 from sgplan.errors import MissionError
 from sgplan.llm.offline import PatternTranslator
-from sgplan.llm.offline.everyday import everyday_names
+from sgplan.llm.offline.grounding import Discourse
+from sgplan.llm.offline.meaning.mission import mission_formula
 from sgplan.llm.offline.names import SceneVocabulary
-from sgplan.llm.offline.text import tokenize
+from sgplan.llm.offline.syntax import split_mission
 from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building
 from tests.llm.offline_reading import means
@@ -64,7 +65,8 @@ def _with_teddy_bears_in(vocabulary: SceneVocabulary, rooms: list[str]) -> Scene
 )
 def test_a_kids_room_the_scene_does_not_single_out_is_refused(demo, rooms, fragment):
     vocabulary = _with_teddy_bears_in(SceneVocabulary(demo), rooms)
+    text = "Go to the kids' room."
     with pytest.raises(MissionError) as info:
-        everyday_names(tokenize("Go to the kids' room."), vocabulary)
+        mission_formula(split_mission(text, vocabulary.nouns), Discourse(vocabulary, text, None))
     assert "'kids room' is not a room category of this scene" in str(info.value)
     assert fragment in str(info.value)

@@ -8,8 +8,10 @@ import pytest
 
 from sgplan.errors import MissionError
 from sgplan.llm.offline import PatternTranslator
-from sgplan.llm.offline.grammar import MissionParser, NounPhrase, check_all_used
+from sgplan.llm.offline.grounding import Discourse, Grounded
+from sgplan.llm.offline.meaning.mission import check_all_used, mission_formula
 from sgplan.llm.offline.names import SceneVocabulary
+from sgplan.llm.offline.syntax import split_mission
 from sgplan.logic.formula import Atom, Eventually
 from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building
@@ -79,13 +81,13 @@ def test_words_left_over_are_refused(demo, text, left_over):
 def test_a_named_place_missing_from_the_formula_is_refused(demo):
     """The second safeguard, on its own: a goal phrase whose entities are absent from the formula."""
     vocabulary = SceneVocabulary(demo)
-    parser = MissionParser("Go to the kitchen and the office.", vocabulary)
-    formula = parser.parse()
-    check_all_used(formula, parser.references, parser)  # the whole reading: accepted
-    office = next(np for np in parser.references if "office" in np.phrase)
+    text = "Go to the kitchen and the office."
+    disc = Discourse(vocabulary, text, None)
+    formula = mission_formula(split_mission(text, vocabulary.nouns), disc)
+    check_all_used(formula, disc.references)  # the whole reading: accepted
+    office = next(g for g in disc.references if "office" in g.phrase)
     kitchen_only = Eventually(Atom("enter(room_4)"))
     with pytest.raises(MissionError, match="'the office' was read but is not part of the mission"):
-        check_all_used(kitchen_only, parser.references, parser)
-    qualifier = NounPhrase(office.phrase, office.start, office.end, office.entities, "the", False,
-                           "qualifier")
-    check_all_used(kitchen_only, [qualifier], parser)  # a qualifier only narrows another phrase
+        check_all_used(kitchen_only, disc.references)
+    qualifier = Grounded(office.phrase, office.start, office.end, office.entities, "the", False, "qualifier")
+    check_all_used(kitchen_only, [qualifier])  # a qualifier only narrows another phrase

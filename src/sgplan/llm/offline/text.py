@@ -11,16 +11,9 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from sgplan.llm.offline.lexicon import BARE_NEGATED, NEGATED_STEMS, SENTENCE_END
+
 _WORD = re.compile(r"(?:room|object)_\d+|\d+(?:st|nd|rd|th)?|[a-z]+(?:'[a-z]+)?|'s\b|[,.;:!?()]")
-_NEGATED = {"don": "do", "doesn": "does", "didn": "did", "can": "can", "won": "will", "mustn": "must",
-            "shouldn": "should", "isn": "is", "aren": "are", "haven": "have", "hasn": "has",
-            "wouldn": "would",
-            "couldn": "could", "shan": "shall", "mayn": "may"}
-SENTENCE_END = frozenset(".;:!?")
-_BARE_NEGATED = {"dont": "do", "doesnt": "does", "didnt": "did", "cant": "can", "wont": "will",
-                 "mustnt": "must", "shouldnt": "should", "isnt": "is", "arent": "are", "havent": "have",
-                 "hasnt": "has", "wouldnt": "would", "couldnt": "could", "neednt": "need"}
-"""Negated auxiliaries typed without their apostrophe: read as ``do not`` ... (never as a verb)."""
 
 
 @dataclass(frozen=True)
@@ -38,11 +31,11 @@ def tokenize(text: str) -> list[Tok]:
     lowered = text.lower().replace("\u2019", "'")
     for m in _WORD.finditer(lowered):
         word, start, end = m.group(0), m.start(), m.end()
-        if word in _BARE_NEGATED:  # "dont", "cant": typed without the apostrophe
-            out += [Tok(_BARE_NEGATED[word], start, end), Tok("not", start, end)]
+        if word in BARE_NEGATED:  # "dont", "cant": typed without the apostrophe
+            out += [Tok(BARE_NEGATED[word], start, end), Tok("not", start, end)]
         elif word.endswith("n't"):
             stem = word[:-3]
-            out += [Tok(_NEGATED.get(stem + "n", stem), start, end), Tok("not", start, end)]
+            out += [Tok(NEGATED_STEMS.get(stem + "n", stem), start, end), Tok("not", start, end)]
         elif word.endswith("'s") and len(word) > 2:
             out += [Tok(word[:-2], start, end - 2), Tok("'s", end - 2, end)]
         elif "'" in word:

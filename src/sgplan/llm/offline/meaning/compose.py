@@ -22,7 +22,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
-from sgplan.logic.formula import And, Eventually, Formula, Not, Or, Until
+from sgplan.llm.offline.names import Entity
+from sgplan.logic.formula import And, Atom, Eventually, Formula, Not, Or, Until
 
 
 @dataclass
@@ -97,3 +98,36 @@ def strict_formulas(steps: Sequence[Step]) -> list[Formula]:
                     out.extend(Until(forbidden, t) for t in targets)
         previous = step
     return out
+
+
+@dataclass
+class Clause:
+    """What one sentence body says: a sequence of steps and constraints on the whole mission."""
+
+    steps: list[Step] = field(default_factory=lambda: [[]])
+    constraints: list[Formula] = field(default_factory=list)
+
+    def formula(self) -> Formula | None:
+        """The sequence, its strict parts and the constraints, as one formula (``None`` if empty)."""
+        goal = sequence_formula(self.steps)
+        parts = ([goal] if goal is not None else []) + strict_formulas(self.steps) + self.constraints
+        return conj(parts) if parts else None
+
+    def filled(self) -> list[Step]:
+        """The steps that have tasks."""
+        return [s for s in self.steps if s]
+
+
+def member_formula(entity: Entity, room_scoped: bool) -> Formula:
+    """The state formula of being at ``entity`` (in its room too, for a room-scoped object)."""
+    atom = Atom(entity.action)
+    if entity.kind == "object" and room_scoped:
+        return conj([atom, Atom(f"enter({entity.room_key})")])
+    return atom
+
+
+def goal_eventually(task: Task) -> list[Formula]:
+    """``task`` done at some point (each member of an ``all`` task, one of an ``any`` task)."""
+    if task.mode == "any":
+        return [Eventually(disj(task.members))]
+    return [Eventually(m) for m in task.members]

@@ -1,5 +1,5 @@
-"""Demonstrative back-references of the pattern translator: *that bathroom*, *this room*, *those
-bedrooms*, *the same sink*.
+"""Demonstrative back-references: *that bathroom*, *this room*, *those bedrooms*, *the same sink*; and
+references to a choice (*a vase ... that vase*), which are refused.
 
 A noun phrase introduced by a demonstrative never describes a fresh set of rooms or objects: it names
 again something said before. Read as a fresh description (*the toilets in that bathroom* as the toilets in
@@ -17,33 +17,13 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Literal, Protocol
+from typing import Literal
 
-from sgplan.llm.offline.names import Entity, Head
-
-DEMONSTRATIVES = ("that", "this", "these", "those")
-"""Determiners that point back (``the same`` and ``that same`` / ``this same`` too)."""
-
-PLURAL_DEMONSTRATIVES = ("these", "those")
-
-
-class Phrase(Protocol):
-    """What a recorded noun phrase offers (see ``grammar.NounPhrase``), read only."""
-
-    @property
-    def phrase(self) -> str: ...
-    @property
-    def start(self) -> int: ...
-    @property
-    def end(self) -> int: ...
-    @property
-    def entities(self) -> list[Entity]: ...
-    @property
-    def mode(self) -> str: ...
-    @property
-    def room_scoped(self) -> bool: ...
-    @property
-    def alternative(self) -> bool: ...
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.grounding.discourse import Grounded
+from sgplan.llm.offline.names import Entity
+from sgplan.llm.offline.nouns import Head
 
 
 @dataclass(frozen=True)
@@ -58,35 +38,23 @@ class Resolved:
     """The text of the phrase referred to (for messages)."""
 
 
-def demonstrative_length(words: Sequence[str], i: int) -> int:
-    """How many words at ``words[i]`` form a back-pointing determiner (0 if none): *that*, *this*,
-    *these*, *those* (1), *the same*, *that same*, *this same* (2)."""
-    w = words[i] if i < len(words) else ""
-    nxt = words[i + 1] if i + 1 < len(words) else ""
-    if w in ("the", "that", "this") and nxt == "same":
-        return 2
-    return 1 if w in DEMONSTRATIVES else 0
-
-
-def is_choice(np: Phrase) -> bool:
+def is_choice(np: Grounded) -> bool:
     """Whether ``np`` leaves a choice open: one of several (*a vase*, *any bathroom*), or one alternative of
     an *or* list (*the kitchen or the bathroom*), which the robot may not take."""
     return np.alternative or (np.mode == "any" and len(np.entities) > 1)
 
 
-def choice_refusal(said: str, np: Phrase, places: int) -> str | None:
+def choice_refusal(said: str, np: Grounded, places: int) -> str | None:
     """The refusal for ``said`` pointing back to ``np`` when ``np`` is a choice and the reference would
     denote ``places`` > 1 different things (rooms for *there*, floors for *up there*) or one alternative
     of an *or* list: which one depends on the choice the robot makes, and reading it as any of them
     would silently allow another one than the one chosen. None when the reference is determined."""
     if not is_choice(np) or (places <= 1 and not np.alternative):
         return None
-    what = "one alternative of a choice ('... or ...')" if np.alternative else "a choice"
-    return (f"'{said}' refers back to '{np.phrase}', {what}: which one depends on the choice the robot "
-            f"makes; name the room or object instead")
+    return rf.choice_back_reference(said, np.phrase, np.alternative)
 
 
-def _fitting(np: Phrase, head: Head, by_key: dict[str, Entity]) -> list[Entity] | None:
+def _fitting(np: Grounded, head: Head, by_key: dict[str, Entity]) -> list[Entity] | None:
     """The entities of ``np`` as seen by ``head``, or None when ``np`` does not fit it."""
     if not np.entities:
         return None
@@ -101,7 +69,7 @@ def _fitting(np: Phrase, head: Head, by_key: dict[str, Entity]) -> list[Entity] 
     return ents
 
 
-def resolve(said: str, head: Head, plural: bool, described: list[Entity], references: Sequence[Phrase],
+def resolve(said: str, head: Head, plural: bool, described: list[Entity], references: Sequence[Grounded],
             before: int, by_key: dict[str, Entity], goal: bool = False) -> Resolved | str:
     """The phrase ``said`` (a demonstrative with ``head``, starting at character ``before``) resolved
     against the phrases recorded before it; ``described``: what the rest of the phrase allows (all of the
@@ -114,26 +82,21 @@ def resolve(said: str, head: Head, plural: bool, described: list[Entity], refere
     fitting = [(np, ents) for np in earlier if (ents := _fitting(np, head, by_key)) is not None]
     if goal and not head.categories and len({tuple(e.key for e in ents) for _, ents in fitting}) > 1:
         named = ", ".join(dict.fromkeys(f"'{np.phrase}'" for np, _ in fitting))
-        return f"'{said}': which one? Rooms named before it: {named}; name the room again"
+        return rf.which_room_again(said, named)
     for np, ents in fitting:
         keys = {e.key for e in described}
         if any(e.key not in keys for e in ents):
-            return (f"'{said}' refers back to '{np.phrase}' ({', '.join(e.key for e in ents)}), which does "
-                    f"not fit what the phrase says; name the room or object again")
+            return rf.demonstrative_disagrees(said, np.phrase, ", ".join(e.key for e in ents))
         several = len(ents) > 1
         if (choice := choice_refusal(said, np, len(ents))) is not None:
             return choice
         if several and not plural:
-            return (f"'{said}' refers back to '{np.phrase}', which is several "
-                    f"({', '.join(e.key for e in ents)}); say which one")
+            return rf.demonstrative_of_several(said, np.phrase, ", ".join(e.key for e in ents))
         if plural and not several:  # "those bedrooms" after one bedroom: not what was named
-            return (f"'{said}' refers back to '{np.phrase}', which is one ({ents[0].key}), not several; "
-                    f"name the room or object again")
+            return rf.demonstrative_of_one(said, np.phrase, ents[0].key)
         scoped = np.room_scoped and all(e.kind == "object" for e in ents)
         return Resolved(list(ents), "all" if several else "the", scoped, np.phrase)
-    what = "room" if head.kind == "room" else "object"
-    return (f"'{said}' does not refer back to any {what} named before it (a demonstrative such as "
-            f"'that' / 'this' / 'the same' names again something already said); name the {what}")
+    return rf.demonstrative_of_nothing(said, "room" if head.kind == "room" else "object")
 
 
-_PRONOUN_PHRASES = ("it", "them", "they", "its", "there")
+_PRONOUN_PHRASES = (*lx.PRONOUNS, "there")
