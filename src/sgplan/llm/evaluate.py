@@ -29,10 +29,10 @@ from pathlib import Path
 from typing import Any
 
 from sgplan.errors import MissionError, SgplanError
+from sgplan.llm.backends import MissionTranslator
 from sgplan.llm.offline.evaluation import (
     EvalMission,
     EvalResult,
-    Translator,
     evaluate,
     expand_shorthand,
     scene_facts,
@@ -137,7 +137,7 @@ def infix_explainer(formula: Formula, building: Building) -> str:
 
 
 def score_translator(
-    translator: Translator,
+    translator: MissionTranslator,
     missions: Iterable[EvalMission],
     building_of: Callable[[str], Building],
     *,

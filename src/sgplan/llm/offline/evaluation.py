@@ -14,7 +14,7 @@ import re
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Literal, Protocol
+from typing import TYPE_CHECKING, Literal
 
 import yaml
 
@@ -24,27 +24,12 @@ from sgplan.logic.formula import And, Formula
 from sgplan.logic.tokens import action_entity
 from sgplan.scene.model import Building
 
+if TYPE_CHECKING:
+    from sgplan.llm.backends import MissionTranslator
+
 Outcome = Literal["right", "refused", "wrong"]
 
 _SHORTHAND = re.compile(r"\b([ro])(\d+)\b")
-
-
-class Translated(Protocol):
-    """What a translator returns, as far as scoring is concerned."""
-
-    @property
-    def formula(self) -> Formula: ...
-
-
-class Translator(Protocol):
-    """What is scored: a named backend turning text into a formula for a building. A backend that can read
-    words relative to the robot's start ("upstairs") also has ``starting_on(floor)`` returning a copy
-    that knows the start floor; it is used for missions that give one."""
-
-    @property
-    def name(self) -> str: ...
-
-    def translate(self, text: str, building: Building) -> Translated: ...
 
 
 @dataclass(frozen=True)
@@ -145,7 +130,7 @@ def same_language(a: Formula, b: Formula, building: Building | None = None) -> t
 
 
 def evaluate(
-    translator: Translator, missions: Iterable[EvalMission], building_of: Callable[[str], Building]
+    translator: MissionTranslator, missions: Iterable[EvalMission], building_of: Callable[[str], Building]
 ) -> list[EvalResult]:
     """Translate every mission with ``translator`` and classify the outcome (see :class:`EvalResult`).
 
@@ -156,8 +141,7 @@ def evaluate(
     results = []
     for m in missions:
         building = building_of(m.scene)
-        starting_on = getattr(translator, "starting_on", None)
-        backend = starting_on(m.start_floor) if m.start_floor is not None and starting_on else translator
+        backend = translator.starting_on(m.start_floor) if m.start_floor is not None else translator
         try:
             formula = backend.translate(m.text, building).formula
         except MissionError as exc:

@@ -77,7 +77,8 @@ class PatternTranslator:
         self.start_floor = start_floor
 
     def starting_on(self, floor: int | None) -> PatternTranslator:
-        """The same translator for a robot starting on ``floor``."""
+        """The same translator for a robot starting on ``floor`` (``None``: not known), which *upstairs*,
+        *this floor*, *the floor above* are read from (:class:`~sgplan.llm.backends.MissionTranslator`)."""
         return PatternTranslator(floor)
 
     def translate(self, text: str, building: Building) -> Translation:
