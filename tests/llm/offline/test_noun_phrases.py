@@ -1,4 +1,8 @@
-"""Everyday room names the scene decides (``everyday.py``): *loo*, *kids' room*, *nursery* ..."""
+"""Noun phrases and their grounding read by the offline translator: heads, synonyms, everyday names,
+qualifiers, relative clauses, asides, room context, ambiguity.
+
+Each sentence of ``corpus/noun_phrases.jsonl`` must mean its gold formula or be refused with
+its fragment."""
 
 from __future__ import annotations
 
@@ -7,43 +11,18 @@ import dataclasses
 import pytest
 
 from sgplan.errors import MissionError
-from sgplan.llm.offline import PatternTranslator
+from sgplan.llm.offline.evaluation import EvalMission
 from sgplan.llm.offline.grounding import Discourse
 from sgplan.llm.offline.meaning.mission import mission_formula
 from sgplan.llm.offline.names import SceneVocabulary
 from sgplan.llm.offline.syntax import split_mission
-from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building
-from tests.llm.offline_reading import means
-
-# demo: room_5 bathroom floor 0, room_14 bathroom floor 1, room_11 bedroom with the teddy bear (object_32),
-# room_13 bedroom with the book, room_4 kitchen.
+from tests.llm.offline.corpus import cases, check
 
 
-@pytest.fixture(scope="module")
-def demo() -> Building:
-    return demo_building()
-
-
-@pytest.mark.parametrize(
-    ("text", "gold"),
-    [
-        ("Head to the loo upstairs.", "F r14"),
-        ("I'd like you to visit one of the loos.", "F(r5 | r14)"),
-        ("Go to the lavatory on the ground floor, then the kitchen.", "F(r5 & F r4)"),
-        ("Pop into the kids' room and then the kitchen.", "F(r11 & F r4)"),
-        ("Look at the clock in the kid's room.", "F o33"),
-        ("Go to the nursery.", "F r11"),
-        ("Never enter the children's room.", "G !r11"),
-    ],
-)
-def test_everyday_names_the_scene_decides(demo, text, gold):
-    means(text, gold, demo)
-
-
-def test_the_loo_is_a_bathroom_so_which_one_is_asked(demo):
-    with pytest.raises(MissionError, match="'the loo' matches 2 rooms"):
-        PatternTranslator().translate("Go to the loo.", demo)
+@pytest.mark.parametrize("mission", cases("noun_phrases"))
+def test_noun_phrases_read_or_refused(mission: EvalMission) -> None:
+    check(mission)
 
 
 def _with_teddy_bears_in(vocabulary: SceneVocabulary, rooms: list[str]) -> SceneVocabulary:
@@ -63,7 +42,8 @@ def _with_teddy_bears_in(vocabulary: SceneVocabulary, rooms: list[str]) -> Scene
         ([], "no room of this scene holds a teddy bear; candidates: room_11"),
     ],
 )
-def test_a_kids_room_the_scene_does_not_single_out_is_refused(demo, rooms, fragment):
+def test_a_kids_room_the_scene_does_not_single_out_is_refused(demo: Building, rooms: list[str],
+                                                               fragment: str) -> None:
     vocabulary = _with_teddy_bears_in(SceneVocabulary(demo), rooms)
     text = "Go to the kids' room."
     with pytest.raises(MissionError) as info:

@@ -11,7 +11,6 @@ from sgplan.llm.offline import SYMBOLIC_BACKEND, PatternTranslator, SymbolicGuid
 from sgplan.logic import atoms, ltlf_to_dfa, read_hoa
 from sgplan.logic.automaton import Automaton
 from sgplan.scene.authors import load_authors_scene
-from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building
 
 MISSIONS = [
@@ -64,11 +63,6 @@ def check_guidance(building: Building, automaton: Automaton, ap_actions: dict[st
             else:
                 empty += 1
     return empty
-
-
-@pytest.fixture(scope="module")
-def demo():
-    return demo_building()
 
 
 def demo_automaton(demo: Building, text: str) -> Automaton:

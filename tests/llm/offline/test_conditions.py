@@ -1,0 +1,17 @@
+"""Conditions read by the offline translator: if, whenever, responses (if you ever ... afterwards), only if,
+several rules, several actions, bare when.
+
+Each sentence of ``corpus/conditions.jsonl`` must mean its gold formula or be refused with
+its fragment."""
+
+from __future__ import annotations
+
+import pytest
+
+from sgplan.llm.offline.evaluation import EvalMission
+from tests.llm.offline.corpus import cases, check
+
+
+@pytest.mark.parametrize("mission", cases("conditions"))
+def test_conditions_read_or_refused(mission: EvalMission) -> None:
+    check(mission)
