@@ -68,6 +68,13 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     "foyer": ("lobby",),
     "entrance hall": ("lobby",),
     "laundry room": ("utility room",),
+    "utility": ("utility room",),
+    "hob": ("oven",),
+    "fridge freezer": ("refrigerator",),
+    "wash basin": ("sink",),
+    "landing": ("corridor",),
+    "front room": ("living room",),
+    "shower room": ("bathroom",),
 }
 """Category synonyms: a word or phrase users say -> the scene categories it may denote (underscores of the
 Gibson categories are spaces here). A synonym only applies to categories the scene actually has."""
@@ -76,6 +83,7 @@ EVERYDAY_NAMES: dict[str, tuple[str, ...]] = {
     "loo": ("bathroom", "toilet"),
     "lavatory": ("bathroom", "toilet"),
     "wc": ("bathroom", "toilet"),
+    "cloakroom": ("bathroom", "toilet"),
 }
 """Everyday names of a place no category spells: the first of the categories the scene has (*the loo* is
 the bathrooms, or the toilets in a scene without bathrooms)."""
@@ -314,8 +322,9 @@ VERB_IDIOMS = Phrases((("all", "the", "way"), ("a", "look"), ("a", "quick", "loo
                        ("a", "seat"), ("a", "nap"), ("a", "rest")))
 """Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*."""
 BODY_PART_OWNERS = ("your", "my", "his", "her", "their")
-BODY_PART_LINKS = ("at", "using", "with", "on")
-"""*wash your hands at the sink*: a body part before an object is part of the verb."""
+BODY_PART_LINKS = ("at", "using", "with", "on", "into")
+"""*wash your hands at the sink*, *pop your head into the office*: a body part before a place is part of the
+verb (not *in*: *wash your hands in the bathroom* implies a sink that is not said)."""
 PARTICLES = word_set("on off up down out over")
 SUBJECT_FILLERS = word_set("you we i the robot it ever have has had do does did are is were was already "
                            "been also first")
@@ -352,12 +361,19 @@ POLITE = Phrases((
     ("what", "i", "need", "is", "for", "you", "to"), ("i", "would", "like", "it", "if", "you"),
     ("i", "would", "appreciate", "it", "if", "you"), ("if", "you", "could"), ("if", "you", "would"),
     ("would", "you", "mind"), ("do", "me", "a", "favor", "and"), ("do", "me", "a", "favour", "and"),
-    ("go", "and"), ("please", "make", "sure"),
+    ("go", "and"), ("please", "make", "sure"), ("would", "you", "be", "so", "kind", "as", "to"),
+    ("would", "you", "kindly"), ("could", "you", "kindly"), ("would", "you", "please"),
+    ("could", "you", "please"),
+    ("be", "a", "dear", "and"), ("be", "a", "star", "and"), ("do", "us", "a", "favour", "and"),
+    ("do", "us", "a", "favor", "and"),
     *((word,) for word in ("task", "goal", "mission", "objective", "errand", "todo", "instructions"))))
 """Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
 
 _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "choose"), ("you", "please"),
-                 ("you", "wish"),
+                 ("you", "wish"), ("suits", "you"), ("is", "fine"),
+                 *(("is", easy) for easy in ("easiest", "easier", "simplest", "quicker", "faster", "shorter",
+                                             "convenient")),
+                 ("is", "most", "convenient"),
                  # "in whatever order is quickest": the planner's optimal order is that
                  *(("is", best) for best in ("quickest", "fastest", "shortest", "best", "easiest",
                                              "efficient", "cheapest")),
@@ -372,11 +388,47 @@ TIME_FILLERS = Phrases((
     ("order", "is", "not", "important"), ("the", "order", "is", "not", "important"),
     ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"),
     *((*order, *liking) for order in (("in", "any", "order"), ("in", "whatever", "order"),
-                                      ("in", "whichever", "order"), ("in", "either", "order"))
+                                      ("in", "whichever", "order"), ("in", "either", "order"),
+                                      ("any", "order"),
+                                      ("whatever", "order"), ("whichever", "order"), ("either", "order"))
       for liking in _ORDER_LIKING),
-    ("in", "whichever", "order")))
+    ("in", "whichever", "order"), ("whatever", "order"), ("either", "order"), ("no", "particular", "order"),
+    ("the", "order", "is", "up", "to", "you"), ("order", "is", "up", "to", "you"),
+    ("i", "do", "not", "care", "about", "the", "order"), ("i", "do", "not", "mind", "the", "order"),
+    ("i", "do", "not", "mind", "about", "the", "order"), ("do", "not", "worry", "about", "the", "order")))
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
+
+CLOSING = Phrases((
+    # sign-offs
+    ("thanks",), ("thank", "you"), ("thanks", "a", "lot"), ("thanks", "so", "much"),
+    ("thank", "you", "so", "much"),
+    ("thank", "you", "very", "much"), ("thanks", "very", "much"), ("many", "thanks"),
+    ("thanks", "a", "bunch"),
+    ("thanks", "a", "million"), ("thanks", "in", "advance"), ("thank", "you", "in", "advance"),
+    ("thanks", "for", "your", "help"), ("thank", "you", "for", "your", "help"), ("thanks", "for", "that"),
+    ("cheers",), ("ta",), ("bye",), ("goodbye",), ("bye", "for", "now"), ("see", "you", "later"),
+    ("much", "appreciated"), ("appreciate", "it"), ("i", "appreciate", "it"),
+    ("i", "would", "appreciate", "it"),
+    ("that", "'s", "all"), ("that", "'s", "all", "for", "now"), ("that", "'s", "it"),
+    ("that", "'s", "it", "for", "now"),
+    ("that", "'s", "everything"), ("that", "is", "all"), ("that", "is", "it"), ("that", "is", "everything"),
+    ("that", "will", "be", "all"), ("that", "would", "be", "all"), ("that", "should", "be", "all"),
+    ("have", "a", "nice", "day"), ("have", "a", "good", "day"), ("have", "a", "great", "day"),
+    ("have", "a", "good", "one"), ("good", "luck"), ("have", "fun"), ("you", "the", "best"),
+    ("you", "are", "the", "best"), ("you", "a", "star"), ("you", "are", "a", "star"), ("great", "job"),
+    ("good", "job"), ("well", "done"), ("over", "and", "out"), ("thanks", "mate"), ("cheers", "mate"),
+    ("thanks", "robot"), ("thank", "you", "robot"), ("thanks", "buddy"),
+    # asides that ask nothing
+    ("no", "rush"), ("no", "hurry"), ("no", "pressure"), ("if", "possible"), ("if", "you", "can"),
+    ("if", "you", "could"), ("when", "you", "can"), ("when", "you", "get", "a", "chance"),
+    ("when", "you", "have", "a", "moment"), ("when", "you", "have", "time"), ("whenever", "you", "can"),
+    ("at", "your", "convenience"), ("take", "your", "time"), ("in", "your", "own", "time"),
+    ("if", "that", "is", "okay"), ("if", "that", "is", "ok"), ("if", "that", "is", "alright"),
+    ("if", "you", "do", "not", "mind"), ("as", "usual"), ("as", "always")))
+"""Sign-offs (*thanks a lot*, *cheers*, *that's all for now*) and asides that ask nothing (*no rush*, *if
+possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
+of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""
 
 _CHOOSERS = (("either",), ("any",), ("whichever",), ("either", "one"), ("any", "one"), ("whichever", "one"),
              ("any", "of", "them"), ("either", "of", "them"), ("whichever", "of", "them"))
@@ -552,11 +604,14 @@ QUAL_EXCEPT = Phrases((("except", "for"), ("except",), ("but", "not"), ("other",
                        ("excluding",), ("besides",)))
 IN_IT = ("in", "inside")
 """``the bedroom that only has a bed in it``: the trailing *in it* repeats the room."""
-ASIDE = Phrases(tuple((",", rel, be, *also) for rel in ("which", "that") for be in ("is", "are")
+ASIDE = Phrases(tuple((",", rel, be, *also) for rel, be in (("which", "is"), ("which", "are"), ("that", "is"),
+                                                             ("that", "are"), ("it", "is"), ("it", "'s"),
+                                                             ("that", "'s"), ("they", "are"))
                       for also in ((), ("also",), ("located",), ("also", "located"))))
 ASIDE_QUALIFIERS = frozenset({"in", "inside", "on", "next", "beside", "upstairs", "downstairs", "near",
                               "adjacent", "connected", "attached"})
-"""``the couch, which is in the living room``: an aside read as the qualifier it states."""
+"""``the couch, which is in the living room`` / ``the bowl (it's in the kitchen)``: an aside read as the
+qualifier it states."""
 RELATIVE_BE = ("is", "are", "was", "were", "sits", "lives", "stands")
 RELATIVE_PARTICIPLES = ("located", "kept", "stored", "placed", "found", "standing", "sitting")
 """``the room where the book is (kept)``."""
@@ -574,7 +629,7 @@ TALK_NOUNS = frozenset({"plan", "few", "couple", "thing", "things", "favour", "f
 there could name something to go to (*feed the cat* where the scene has no cat must be refused, not
 skipped)."""
 OPENERS = frozenset({"hi", "hello", "hey", "okay", "ok", "alright", "well", "so", "good", "thanks", "thank",
-                     "i", "we", "here", "right"})
+                     "i", "we", "here", "right", "cheers", "morning", "evening", "afternoon", "sorry"})
 """Chit-chat starts with a greeting, an interjection or the speaker (*I'm hungry*, *here's the plan*); a
 sentence starting otherwise may be an order about something the scene lacks (*feed pets*), so it is parsed
 (and refused) instead."""

@@ -1,8 +1,9 @@
 """Tokens of a mission text, with their character spans, split into sentences.
 
 Text is lower-cased; contractions are expanded (``don't`` -> ``do not``), a possessive ``'s`` becomes
-its own token, parentheses become commas (an aside), and list markers (``1)``, ``(2)``, ``3.`` at the
-start of an item) end a sentence like ``.``, ``;``, ``!``, ``?`` and ``:`` do. Entity IDs (``room_2``,
+its own token, parentheses and dashes between words (an em or en dash, ``--``, a spaced ``-``) become commas
+(an aside), and list markers (``1)``, ``(2)``, ``3.`` at the start of an item) end a sentence like ``.``,
+``;``, ``!``, ``?`` and ``:`` do. Entity IDs (``room_2``,
 ``object_27``) stay single tokens, so already-grounded text is understood too.
 """
 
@@ -13,7 +14,10 @@ from dataclasses import dataclass
 
 from sgplan.llm.offline.lexicon import BARE_NEGATED, NEGATED_STEMS, SENTENCE_END
 
-_WORD = re.compile(r"(?:room|object)_\d+|\d+(?:st|nd|rd|th)?|[a-z]+(?:'[a-z]+)?|'s\b|[,.;:!?()]")
+_WORD = re.compile(r"(?:room|object)_\d+|\d+(?:st|nd|rd|th)?|[a-z]+(?:'[a-z]+)?|'s\b|[,.;:!?()]"
+                   r"|[\u2014\u2013]|--|(?<=\s)-(?=\s)")
+_DASH = "\u2014"
+"""An aside's dash, whatever dash was typed."""
 
 
 @dataclass(frozen=True)
@@ -36,6 +40,8 @@ def tokenize(text: str) -> list[Tok]:
         elif word.endswith("n't"):
             stem = word[:-3]
             out += [Tok(NEGATED_STEMS.get(stem + "n", stem), start, end), Tok("not", start, end)]
+        elif word in ("\u2013", "--", "-"):
+            out.append(Tok(_DASH, start, end))
         elif word.endswith("'s") and len(word) > 2:
             out += [Tok(word[:-2], start, end - 2), Tok("'s", end - 2, end)]
         elif "'" in word:
@@ -60,8 +66,9 @@ def sentences(tokens: list[Tok]) -> list[list[Tok]]:
                 parts[-1].pop()
             parts.append([])
             i += 1  # the ')' or '.'
-        elif tok.text in "()" and not (i + 1 < len(tokens) and tokens[i + 1].text.isdigit()):
-            # an aside in parentheses reads like one between commas: "the fridge (any order), then ..."
+        elif tok.text == _DASH or (tok.text in ("(", ")") and not (i + 1 < len(tokens)
+                                                                   and tokens[i + 1].text.isdigit())):
+            # an aside in parentheses or dashes reads like one between commas: "the fridge (any order), ..."
             if parts[-1] and parts[-1][-1].text != "," and nxt not in (",", ""):
                 parts[-1].append(Tok(",", tok.start, tok.end))
         else:

@@ -13,7 +13,7 @@ from typing import Literal
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import action, after_conjunction
-from sgplan.llm.offline.syntax.links import done_words, link
+from sgplan.llm.offline.syntax.links import closing_at, done_words, link
 from sgplan.llm.offline.syntax.negation import negation, off_limits, stay_on_floor
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
@@ -109,6 +109,14 @@ def way_link(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
         return None
     found = link(r, i)
     return found if not isinstance(found, Match) or found.node.sequence else None
+
+
+@ITEMS.rule("sign-off or aside")
+def closing(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*thanks a lot*, *cheers*, *if possible*, *no rush* closing a clause: nothing to do (before a condition
+    is looked for: *if possible* is none)."""
+    end = closing_at(r, i)
+    return Match(Skip(), end) if end else None
 
 
 @ITEMS.rule("condition follows")

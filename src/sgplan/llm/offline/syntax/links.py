@@ -36,6 +36,9 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     ``waypoint``) and where it ends; ``None`` when the words here are not one."""
     if sequence_too and (strict := r.phrase(i, lx.STRICT_SEQ)) is not None:
         return "strict", i + len(strict)  # "..., and only after that B": B strictly after
+    closing = closing_at(r, i)
+    if closing:
+        return "filler", closing
     way = r.phrase(i, lx.ON_THE_WAY)
     if way is not None:
         return on_the_way(r, i, way, sequence_too)
@@ -66,6 +69,13 @@ def on_the_way(r: Reader, i: int, way: tuple[str, ...],
     if sequence_too and r.word(i + len(way)) in lx.WAY_BACK:
         return "sequence", r.skip(i + len(way), lx.WAY_BACK)
     return None
+
+
+def closing_at(r: Reader, i: int) -> int:
+    """The end of a sign-off or an aside that asks nothing at ``i`` (*thanks a lot*, *if possible*), which
+    must close its clause (a comma or the end of the sentence follows); 0 if there is none."""
+    said = r.phrase(i, lx.CLOSING)
+    return i + len(said) if said is not None and r.word(i + len(said)) in ("", ",") else 0
 
 
 def done_words(r: Reader, i: int) -> int:
