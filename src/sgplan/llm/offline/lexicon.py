@@ -113,6 +113,17 @@ PLURAL_LOOKING = frozenset({"stairs"})
 """Head nouns that look plural but are read as one entity (``the stairs`` is one staircase as a goal);
 to avoid, on a mission confined to some floors, they mean each of them."""
 
+DESCRIPTIVE = word_set(
+    """big small large little tiny huge giant tall short long wide narrow old new older newer nice lovely
+    pretty ugly comfy comfortable cosy cozy fancy favourite favorite usual messy dirty dusty broken shiny
+    spare guest master main whole entire white black red blue green yellow grey gray brown pink purple
+    orange wooden leather glass plastic metal corner front"""
+)
+"""Words that describe a thing without the scene saying which things they fit (*the big couch*, *the red
+vase*): read only where they cannot change which entity is meant, when the phrase names one entity without
+them; otherwise refused, naming the word (never ignored, never guessed). Words of a category of the scene
+(*living* in *living room*) and verbs (*clean*, *empty*) are not among them."""
+
 WHOLE_BUILDING = ("house", "building", "home", "apartment", "flat")
 """``any TV in the house``: the whole building, which restricts nothing."""
 

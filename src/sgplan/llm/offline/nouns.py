@@ -91,6 +91,10 @@ class NounLexicon:
         named = any(k == "room" and c.split()[0] == words[start] and " " in c for c, k in self.kinds.items())
         return words[start] if named and after is not None and after.kind == "object" else None
 
+    def names_word(self, word: str) -> bool:
+        """Whether ``word`` is a word of a category of the scene (*living* in *living room*)."""
+        return any(word in category.split() for category in self.kinds)
+
     def category_names(self, kind: Kind) -> list[str]:
         """The categories of one kind present in the scene, sorted."""
         return sorted(c for c, k in self.kinds.items() if k == kind)

@@ -13,6 +13,8 @@ from collections.abc import Sequence
 from typing import NoReturn
 
 from sgplan.errors import MissionError
+from sgplan.llm.offline.lexicon import plural
+from sgplan.llm.offline.names import Entity, head_word
 
 REPHRASE = "; rephrase the mission (see docs/offline.md for the understood English)"
 
@@ -170,6 +172,15 @@ def both_contents_or_goal(said: str, thing: str) -> str:
 
 def same_room_unclear(word: str, keys: Sequence[str]) -> str:
     return rephrase(f"'the same {word}': the place named before it is {' or '.join(keys)}; name the room")
+
+
+def undecided_description(words: Sequence[str], said: str, entities: Sequence[Entity],
+                          singular: bool) -> str:
+    listing = ", ".join(e.describe() for e in entities[:8]) + (", ..." if len(entities) > 8 else "")
+    things, word = plural(head_word(list(entities))), " ".join(words)
+    return rephrase(f"'{word}' in '{said}': the scene does not say which of its {len(entities)} {things} "
+                    f"{'is' if singular else 'are'} {' and '.join(words)} ({listing}); name the one meant "
+                    f"another way (its room or floor), or leave '{word}' out")
 
 
 def kids_room(said: str, why: str, named: str) -> str:

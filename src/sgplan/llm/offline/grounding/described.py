@@ -62,6 +62,8 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
     if np.apposition is not None:  # "the bathroom, the one upstairs": the apposition says which
         which = ground_phrase(np.apposition, Where("qualifier"), disc)
         noun.entities = [e for e in noun.entities if e in which.entities]
+    if np.descriptive and len(noun.entities) > (np.determiner.count or 1):  # which couch is big is not known
+        rf.refuse(rf.undecided_description(np.descriptive, core, noun.entities, not noun.head.plural))
     g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, noun.entities, mode,
                  noun.room_scoped, where.role, np.determiner.count,
                  noun.head.kind == "room" and not noun.head.categories)

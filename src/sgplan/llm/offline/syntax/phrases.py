@@ -96,14 +96,16 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     """A determiner, floor words, a head noun and its qualifiers (*the ground floor bathroom with the
     sink*), or a floor named as a place (*the top floor*)."""
     first = i
-    one_from_context = r.word(i) in ("the", "a") and r.word(i + 1) in lx.ANAPHORIC_ONE and given is None
+    one_from_context = (r.word(i) in ("the", "a") and r.word(r.descriptive_end(i + 1)) in lx.ANAPHORIC_ONE
+                        and given is None)
     other = r.at(i, "the", "other") and r.head(i + 2) is not None
     if r.at(i, "the", "other", "one") and given is None:
         one_from_context = other = True  # "the bedroom with the book, then the other one"
     det = determiner(r, i + 1 if other else i, other)
     if not isinstance(det, Match):
         return det
-    i = det.end
+    i = r.descriptive_end(det.end)
+    said = r.words[det.end : i]
     relative = r.word(i) if r.word(i) in lx.RELATIVE_FLOORS else None
     floor_before = None if relative else floor_words(r, i)
     if relative:
@@ -112,8 +114,9 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
         i = floor_before.end
         if r.head(i) is None:  # "the top floor": a place
             return Match(FloorPlace(r.span(first, i), floor_before.node, det.node.mode), i)
-    return noun_with_head(r, first, i, role, det.node, relative,
-                          None if floor_before is None else floor_before.node,
+    described_as = (*said, *r.words[i : r.descriptive_end(i)])  # "the big (upstairs) couch"
+    return noun_with_head(r, first, r.descriptive_end(i), role, replace(det.node, descriptive=described_as),
+                          relative, None if floor_before is None else floor_before.node,
                           OneHead(False, given, one_from_context))
 
 
@@ -140,8 +143,8 @@ def noun_with_head(r: Reader, first: int, i: int, role: Role, det: Determiner, r
     if kind == "room" and (after := r.head(i)) is not None and after.kind == "object":
         compound, i = after, i + after.words  # "the kitchen sink": the sink in the kitchen
         mode = "all" if after.plural and mode == "the" else mode
-    noun = Described(r.span(first, i), r.word(first), replace(det, mode=mode), relative, floor_before,
-                     modifier, ref, compound, (), None, False)
+    noun = Described(r.span(first, i), r.word(first), replace(det, mode=mode, descriptive=()), relative,
+                     floor_before, modifier, ref, compound, (), None, False, det.descriptive)
     return qualifiers.finish(r, first, i, noun, role, compound is not None or modifier is not None)
 
 

@@ -125,9 +125,10 @@ def remark_ahead(r: Reader, i: int) -> tuple[str, ...] | None:
 def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Described]:
     """*the bathroom, the one upstairs*: a phrase about *the one* that says which."""
     head = current_head(noun)
+    one = r.descriptive_end(i + 2)  # "the bathroom, the (big) one upstairs"
     if (role == "qualifier" or noun.determiner.mode != "the" or head is None or head.plural
-            or not head.categories or not isinstance(noun.head, Head) or not r.at(i, ",", "the", "one")
-            or r.phrase(i + 2, lx.CHOICE_AFFIRMATIONS)):
+            or not head.categories or not isinstance(noun.head, Head) or not r.at(i, ",", "the")
+            or r.word(one) != "one" or r.phrase(one, lx.CHOICE_AFFIRMATIONS)):
         return None
     which = phrases.noun_phrase(r, i + 1, "qualifier", Head(head.kind, head.categories, False, 1))
     if isinstance(which, Match) and not isinstance(which.node, Described):

@@ -112,7 +112,18 @@ class Reader:
             if nxt in lx.FLOOR_PLURALS and self.word(i + 2) in lx.FLOOR_DIRECTIONS:
                 return False  # "two floors up": where, not what
             return w != "one" or nxt == "of" or self.head(i + 1) is not None
-        return self.head(i) is not None
+        return self.head(i) is not None or self.descriptive_end(i) > i
+
+    def descriptive_end(self, i: int) -> int:
+        """Where the descriptive words at ``i`` end (*the big comfy couch*) when a noun follows them, else
+        ``i`` (:data:`.lexicon.DESCRIPTIVE`, not words of the scene's categories)."""
+        j = i
+        while (self.word(j) in lx.DESCRIPTIVE and not self.nouns.names_word(self.word(j))
+               and self.head(j) is None):  # "the front room" is a name, not a description
+            j += 1
+        noun = (self.head(j) is not None or self.word(j) in lx.ANAPHORIC_ONE
+                or self.word(j) in lx.RELATIVE_FLOORS or self.nouns.room_modifier(self.words, j) is not None)
+        return j if noun else i
 
     def skip(self, i: int, words: Sequence[str] | frozenset[str]) -> int:
         """The first index from ``i`` whose word is not one of ``words``."""

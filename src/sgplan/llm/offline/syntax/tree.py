@@ -182,6 +182,8 @@ class Determiner:
     pointer: str | None = None
     quantified: Mode | None = None
     other: bool = False
+    descriptive: tuple[str, ...] = ()
+    """Descriptive words read with the determiner (:attr:`Described.descriptive`)."""
 
 
 @dataclass(frozen=True)
@@ -205,6 +207,8 @@ class Described:
     """*the bathroom, the one upstairs*: says which."""
     remark_follows: bool
     """A choice remark follows the phrase (*, any one will do*): a definite phrase may then be a choice."""
+    descriptive: tuple[str, ...] = ()
+    """Words describing the thing that the scene does not know (*big* in *the big couch*)."""
 
 
 NounPhrase = Pronoun | ThereNP | GroupRepeat | SameRoom | Its | FloorPlace | Described
