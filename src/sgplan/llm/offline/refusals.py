@@ -138,6 +138,11 @@ def object_in_room(said: str) -> str:
                     "inside objects)")
 
 
+def room_holds_none(said: str, room: str, thing: str) -> str:
+    return rephrase(f"'{said}': '{room}' has no {thing}; to go there as well, name it apart (e.g. '..., then "
+                    f"{room}')")
+
+
 def room_without(said: str) -> str:
     return rephrase(f"'{said}': say 'the <room> without any <object>'")
 

@@ -187,12 +187,17 @@ def there(q: There, noun: Noun, np: Described, where: Where, disc: Discourse) ->
 
 @applies(InRoom)
 def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
-    """*the sink in the kitchen*: the objects in that room (the room phrase keeps only the rooms used)."""
-    room = inner(q.room, disc)
-    if noun.head.kind != "object" or any(e.kind != "room" for e in room.entities):
-        rf.refuse(rf.object_in_room(disc.said(q.span.start, q.span.end)))
-    entities = disc.vocab.inside(noun.entities, room.entities)
-    room.entities = [r for r in room.entities if any(e.room_key == r.key for e in entities)]
+    """*the sink in the kitchen*: the objects in that room (the room phrase keeps only the rooms used); *every
+    plant in the office and the kitchen*: those of each room, each of which must hold some."""
+    rooms = [inner(room, disc) for room in q.rooms]
+    said = disc.said(q.span.start, q.span.end)
+    if noun.head.kind != "object" or any(e.kind != "room" for g in rooms for e in g.entities):
+        rf.refuse(rf.object_in_room(said))
+    entities = disc.vocab.inside(noun.entities, [e for g in rooms for e in g.entities])
+    for room in rooms:
+        room.entities = [r for r in room.entities if any(e.room_key == r.key for e in entities)]
+        if len(rooms) > 1 and not room.entities:  # not "... in A, and B": that would be another goal
+            rf.refuse(rf.room_holds_none(said, room.phrase, head_word(noun.entities)))
     return Noun(noun.head, entities, True)
 
 

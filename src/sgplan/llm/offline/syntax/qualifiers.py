@@ -28,6 +28,7 @@ from sgplan.llm.offline.syntax.tree import (
     KeyHead,
     Lacks,
     NextTo,
+    NounPhrase,
     OneHead,
     OnFloor,
     Possessive,
@@ -214,15 +215,23 @@ def whole_building(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skip
 
 @QUALIFIERS.rule("in a room")
 def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
-    """*the sink in / of / inside the kitchen*: the objects in that room."""
+    """*the sink in / of / inside the kitchen*: the objects in that room; *every plant in the office and
+    the kitchen*, *all the vases in A and B*: those of each room (a phrase about each of several objects)."""
     back = noun.role == "qualifier" and r.word(i + 1) in ("it", "there")
     if (r.word(i) not in lx.QUAL_IN or not r.np_starts(i + 1) or r.phrase(i, lx.ORDER_MODIFIERS)
             or r.phrase(i, lx.TIME_FILLERS) or back):
         return None
-    room = phrases.noun_phrase(r, i + 1, "qualifier")
-    if not isinstance(room, Match):
-        return room
-    return Match(InRoom(room.node, r.span(noun.first, room.end)), room.end)
+    rooms: list[NounPhrase] = []
+    j = i
+    while not rooms or (noun.noun.determiner.mode == "all" and r.word(j) == "and" and r.np_starts(j + 1)):
+        room = phrases.noun_phrase(r, j + 1, "qualifier")
+        if rooms and not (isinstance(room, Match) and names_rooms(room.node)):
+            break  # "every plant in the office and the couch": the couch is another goal
+        if not isinstance(room, Match):
+            return room
+        rooms.append(room.node)
+        j = room.end
+    return Match(InRoom(tuple(rooms), r.span(noun.first, j)), j)
 
 
 @QUALIFIERS.rule("there")
@@ -279,6 +288,12 @@ def without(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     end = skip_in_it(r, thing.end)
     return Match(Attachment(i, "without", noun.noun, thing.node, r.span(noun.first, thing.end),
                             r.decided(i) is True), end)
+
+
+def names_rooms(phrase: object) -> bool:
+    """Whether a phrase's words name rooms (*the kitchen*, *room_4*)."""
+    return isinstance(phrase, Described) and head_kind(phrase) == "room" and not phrase.compound and not any(
+        isinstance(q, Possessive) for q in phrase.qualifiers)
 
 
 def names_objects(phrase: object) -> bool:

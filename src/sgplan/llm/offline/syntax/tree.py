@@ -244,9 +244,10 @@ class OnFloor:
 
 @dataclass(frozen=True)
 class InRoom:
-    """*in / of / inside the kitchen* after an object: the objects in that room."""
+    """*in / of / inside the kitchen* after an object: the objects in that room; after a phrase about each of
+    several objects, *in the office and the kitchen*: those of both rooms."""
 
-    room: NounPhrase
+    rooms: tuple[NounPhrase, ...]
     span: Span
 
 
