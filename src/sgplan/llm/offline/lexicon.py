@@ -159,6 +159,19 @@ CHOOSING_OF = ("one", "any", "either")
 """``one of / any of / either of the X``: one of them."""
 DEFINITE = ("the", "this", "that", "these", "those")
 
+ANNOUNCED = word_set("things thing tasks task errands errand jobs job chores chore items item stops stop "
+                     "places spots bits stuff following these those this")
+"""The last word of what announces a list after a colon (*three things:*, *the following:*, *check these:*);
+a plural head noun of the scene does too (*visit two rooms:*)."""
+ANNOUNCING = word_set("the a few couple of some several my your our today 's following quick little "
+                      "small") | DETERMINERS
+"""Words of an announcement's noun group before its last word (*a few quick things*, *today's tasks*)."""
+HEADS_UP = word_set("remember note important reminder ps also careful warning update oh btw nb")
+"""Words that only ask for attention before a colon (*Remember: never enter the kitchen.*)."""
+ANNOUNCE_TAIL = Phrases((("for", "me"), ("for", "today"), ("today",), ("to", "do"), ("please",),
+                         ("for", "you"), ("to", "check"), ("to", "visit")))
+"""Words after an announcement's noun group (*three things for me:*)."""
+
 NUMBER_WORDS = {
     "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9,
     "ten": 10,

@@ -116,6 +116,16 @@ def group_in_a_choice(said: str) -> str:
     return rephrase(f"'{said}' joins a group with 'or'; say 'any of ...'")
 
 
+def announced_count(said: str, count: int, items: int) -> str:
+    follow = "follows" if items == 1 else "follow"
+    return rephrase(f"'{said}' announces {count}, but {items} {follow} after the colon; name them all, or "
+                    f"leave the number out")
+
+
+def not_announced(phrase: str, said: str) -> str:
+    return rephrase(f"'{phrase}' is not one of '{said}' announced before the colon; name the list again")
+
+
 def named_twice(phrase: str) -> str:
     return rephrase(f"'{phrase}' is named twice in one list")
 

@@ -52,7 +52,8 @@ def tokenize(text: str) -> list[Tok]:
 
 
 def sentences(tokens: list[Tok]) -> list[list[Tok]]:
-    """Split at sentence punctuation and list markers; empty sentences are dropped."""
+    """Split at sentence punctuation and list markers (a sentence ending with a colon keeps it); empty
+    sentences are dropped."""
     parts: list[list[Tok]] = [[]]
     i = 0
     while i < len(tokens):
@@ -60,6 +61,8 @@ def sentences(tokens: list[Tok]) -> list[list[Tok]]:
         nxt = tokens[i + 1].text if i + 1 < len(tokens) else ""
         at_item_start = not parts[-1] or parts[-1][-1].text == "("
         if tok.text in SENTENCE_END:
+            if tok.text == ":":  # kept: what comes before a colon may announce the list after it
+                parts[-1].append(tok)
             parts.append([])
         elif (tok.text.isdigit() and nxt == ")") or (tok.text.isdigit() and nxt == "." and at_item_start):
             if parts[-1] and parts[-1][-1].text == "(":

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 from sgplan.llm.offline.meaning.compose import Step
 from sgplan.llm.offline.names import Entity, SceneVocabulary
+from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax.tree import Mode, Role
 
 
@@ -60,6 +61,9 @@ class Discourse:
     """The floors the mission stays on (*stay on this floor*): goals are grounded there."""
     last_step: Step = field(default_factory=list)
     """The last step with goals of the previous sentence (what *done that* refers to)."""
+    announced: Head | None = None
+    """The head noun that announced the list of the sentence being read (*water these plants: the one in
+    the office and ...*): what *the one* is when nothing was named before."""
 
     def record(self, phrase: Grounded) -> Grounded:
         """Remember ``phrase`` (a back-reference may point to it) and return it."""
@@ -69,7 +73,7 @@ class Discourse:
     def fork(self) -> Discourse:
         """A copy to try a reading on, which the original does not see."""
         return Discourse(self.vocab, self.text, self.start_floor, copy.copy(self.references), self.confined,
-                         self.last_step)
+                         self.last_step, self.announced)
 
     def said(self, start: int, end: int) -> str:
         """The mission text between two character offsets."""

@@ -219,7 +219,8 @@ def resolved_head(ref: Head | OneHead, disc: Discourse) -> Head:
     """The head noun, *one* / *ones* read as the kind it stands for (refused when nothing says which)."""
     if isinstance(ref, Head):
         return ref
-    given = ref.given if ref.given is not None else last_head(disc) if ref.from_context else None
+    given = ref.given if ref.given is not None else (last_head(disc) or disc.announced) if ref.from_context \
+        else None
     if given is None:
         rf.refuse(rf.one_without_kind("ones" if ref.plural else "one"))
     return Head(given.kind, given.categories, ref.plural, 1)

@@ -36,6 +36,9 @@ class SentenceContext:
     """The sentence ended with *last* (*visit the office last*): its last step follows all else."""
     soft_scope: list[Entity] = field(default_factory=list)
     """The rooms of the condition whose consequent is being read."""
+    listed: bool = False
+    """The sentence is a list announced before a colon (*three things: A, B and C*): its actions are
+    independent tasks, an object of one is not looked for in the room of another."""
 
     def step_rooms(self, step: Step) -> list[Entity]:
         """The rooms ``step`` sends the robot to, and the sentence's room: where the objects named next in

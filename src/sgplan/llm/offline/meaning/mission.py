@@ -21,6 +21,7 @@ from sgplan.llm.offline.grounding.floors import floors_of
 from sgplan.llm.offline.meaning.compose import Clause, conj
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.sentences import Meaning, read_sentence_body
+from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import Reader, parse_sentence
 from sgplan.llm.offline.syntax.preamble import stated_start as said_start
 from sgplan.llm.offline.syntax.reader import Match, Refusal
@@ -58,9 +59,13 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
     precedes = sentence_precedes(sentence, parts)
     continues = sentence.lead.sequence
     ctx = SentenceContext(disc, sentence.span.start, strict_pending=sentence.lead.strict,
-                          waypoint_pending=sentence.lead.waypoint)
+                          waypoint_pending=sentence.lead.waypoint, listed=sentence.announced is not None)
+    disc.announced = sentence.announced.head if sentence.announced is not None else None
     ctx.prior_steps = previous.steps if continues and previous is not None else []
+    known = len(disc.references)
     result = read_sentence_body(sentence.body, ctx)
+    if sentence.announced is not None and sentence.announced.head is not None:
+        check_announced(disc.references[known:], sentence.announced.head, sentence.announced.said)
     if sentence.opener and not (isinstance(result, Clause) and not any(result.steps) and result.constraints
                                 and all(isinstance(c, Always) for c in result.constraints)):
         rf.refuse(rf.whole_mission_opener(sentence.opener))
@@ -81,6 +86,14 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
         parts.append(result)
     if isinstance(result, Clause) and any(result.steps):
         disc.last_step = result.filled()[-1]
+
+
+def check_announced(phrases: list[Grounded], head: Head, said: str) -> None:
+    """Every phrase of a list announced as *two rooms:* / *these plants:* must be such a room or object."""
+    for g in phrases:
+        if g.role != "qualifier" and any(e.kind != head.kind or (head.categories and e.category not in
+                                                                 head.categories) for e in g.entities):
+            rf.refuse(rf.not_announced(g.phrase, said))
 
 
 def sentence_precedes(sentence: MissionSentence, parts: list[Meaning]) -> bool:

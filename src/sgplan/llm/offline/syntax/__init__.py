@@ -22,6 +22,7 @@ from dataclasses import fields, is_dataclass, replace
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import NounLexicon
+from sgplan.llm.offline.syntax.colons import at_colons
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.sentences import mission_sentence
@@ -32,21 +33,21 @@ __all__ = ["Match", "Reader", "Refusal", "parse_sentence", "split_mission"]
 
 
 def split_mission(text: str, nouns: NounLexicon) -> list[Reader]:
-    """The sentences of ``text`` to parse, without leading chit-chat: sentences before the first one with
-    content (*Hi!*), and the chit-chat clause before the first comma of that one (*I'm hungry, go ...*).
-    Sentences that say where the robot is (*I'm downstairs right now.*) are kept wherever they are."""
+    """The sentences of ``text`` to parse, a list announced before a colon read with it (:mod:`.colons`), and
+    without leading chit-chat: sentences before the first one with content (*Hi!*), and the chit-chat clause
+    before the first comma of that one (*I'm hungry, go ...*). Sentences that say where the robot is (*I'm
+    downstairs right now.*) are kept wherever they are."""
     tokens = rewrite(tokenize(text), lx.PHRASE_ALIASES)
     out: list[Reader] = []
     content = False
-    for toks in sentences(tokens):
-        r = Reader(tuple(toks), text, nouns)
+    for r in at_colons([Reader(tuple(toks), text, nouns) for toks in sentences(tokens)]):
         if stated_start(r) is not None:
             out.append(r)
             continue
         if not content:
             if is_chitchat(r, 0, len(r)):
                 continue
-            r = Reader(r.toks[leading_clause(r):], text, nouns)
+            r = replace(r, toks=r.toks[leading_clause(r):])
             content = True
         out.append(r)
     return out

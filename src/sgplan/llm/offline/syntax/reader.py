@@ -16,7 +16,7 @@ from typing import Generic, TypeVar
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import Head, NounLexicon
 from sgplan.llm.offline.phrases import Phrases
-from sgplan.llm.offline.syntax.tree import Span
+from sgplan.llm.offline.syntax.tree import Announced, Span
 from sgplan.llm.offline.text import Tok
 
 N = TypeVar("N", covariant=True)
@@ -52,6 +52,8 @@ class Reader:
     text: str
     nouns: NounLexicon
     choices: Mapping[int, bool] = field(default_factory=dict)
+    announced: Announced | None = None
+    """What a colon before this sentence announced of its list (:mod:`.colons`)."""
     words: tuple[str, ...] = field(init=False)
 
     def __post_init__(self) -> None:

@@ -15,6 +15,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import after_conjunction
 from sgplan.llm.offline.syntax.body import body
+from sgplan.llm.offline.syntax.colons import listed
 from sgplan.llm.offline.syntax.links import at_end, comma_or_then, done_words, link, skip_subject
 from sgplan.llm.offline.syntax.phrases import noun_phrase
 from sgplan.llm.offline.syntax.qualifiers import head_kind
@@ -65,8 +66,12 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
         return rest
     if rest.end < len(r):
         return Refusal(rf.left_over(r.quote(rest.end, len(r))))
+    if r.announced is not None and r.announced.count is not None:
+        items = sum(len(found.items) for found in listed(said_body.node))
+        if items != r.announced.count:
+            return Refusal(rf.announced_count(r.announced.said, r.announced.count, items))
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
-                                 r.span(0, len(r))), len(r))
+                                 r.span(0, len(r)), r.announced), len(r))
 
 
 def sentence_body(r: Reader, i: int) -> Parse[SentenceBody]:

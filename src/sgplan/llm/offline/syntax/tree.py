@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 from sgplan.llm.offline.nouns import Head
+from sgplan.llm.offline.text import Tok
 
 Mode = Literal["the", "any", "all"]
 Role = Literal["goal", "avoid", "condition", "qualifier"]
@@ -602,6 +603,18 @@ SentenceBody = RuleSentence | UntilSentence | OnlyAfterSentence | PrefixedSenten
 
 
 @dataclass(frozen=True)
+class Announced:
+    """What announced the list of a sentence, before a colon (*three things:*, *visit two rooms:*): the
+    words of the noun group (``said``), the words before it (``prefix``, read with the list), how many items
+    it said and the head noun they must fit."""
+
+    said: str
+    prefix: tuple[Tok, ...]
+    count: int | None
+    head: Head | None
+
+
+@dataclass(frozen=True)
 class MissionSentence:
     """One sentence of the mission: how it joins the sentences before it, and what it says.
 
@@ -615,6 +628,7 @@ class MissionSentence:
     body: SentenceBody
     says_order: bool
     span: Span
+    announced: Announced | None = None
 
 
 @dataclass(frozen=True)
