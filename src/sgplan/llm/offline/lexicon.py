@@ -449,7 +449,10 @@ CLOSING = Phrases((
     ("when", "you", "have", "a", "moment"), ("when", "you", "have", "time"), ("whenever", "you", "can"),
     ("at", "your", "convenience"), ("take", "your", "time"), ("in", "your", "own", "time"),
     ("if", "that", "is", "okay"), ("if", "that", "is", "ok"), ("if", "that", "is", "alright"),
-    ("if", "you", "do", "not", "mind"), ("as", "usual"), ("as", "always")))
+    ("if", "you", "do", "not", "mind"), ("as", "usual"), ("as", "always"), ("no", "need", "to", "rush"),
+    ("that", "would", "be", "great"), ("that", "would", "be", "lovely"), ("that", "would", "be", "perfect"),
+    ("that", "would", "help"), ("if", "that", "makes", "sense"), ("thanks", "heaps"), ("really",),
+    ("you", "know"), ("quick", "one"), ("quick", "question"), ("quick", "request"), ("off", "you", "go")))
 """Sign-offs (*thanks a lot*, *cheers*, *that's all for now*) and asides that ask nothing (*no rush*, *if
 possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
 of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""

@@ -15,6 +15,7 @@ from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import qualifiers
 from sgplan.llm.offline.syntax.floors import floor_words
+from sgplan.llm.offline.syntax.links import closing_at
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.tree import (
@@ -282,7 +283,7 @@ def list_joiner(r: Reader, i: int, preposition: str | None) -> tuple[str, int] |
         return w, i + 2
     if w == "," and nxt in ("and", "or") and r.np_starts(i + 2):
         return nxt, i + 2
-    if (w == "," and r.np_starts(i + 1) and not r.phrase(i + 1, lx.NEG_STARTS)
+    if (w == "," and r.np_starts(i + 1) and not r.phrase(i + 1, lx.NEG_STARTS) and not closing_at(r, i + 1)
             and not r.phrase(i + 1, lx.TIME_FILLERS) and not r.phrase(i + 1, lx.CHOICE_AFFIRMATIONS)):
         return "", i + 1
     if w in ("and", "or", "nor") and r.np_starts(i + 1):

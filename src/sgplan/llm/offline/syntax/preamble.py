@@ -23,17 +23,21 @@ def is_chitchat(r: Reader, start: int, end: int) -> bool:
     in the grammar, and no article before anything but a word of talk (*the plan*)."""
     if end <= start or r.word(start) not in lx.OPENERS:
         return False
-    for k in range(start, end):
-        w = r.word(k)
-        if w == "," or (w == "there" and k > start and r.word(k - 1) in lx.GREETINGS):
-            continue  # "Hi there!": after a greeting, *there* is no place
+    k = start
+    while k < end:
+        w, closing = r.word(k), r.phrase(k, lx.CLOSING)
+        if closing is not None or w == "," or (w == "there" and k > start and r.word(k - 1) in lx.GREETINGS):
+            k += len(closing) if closing is not None else 1  # "Hi there, quick one": nothing said either
+            continue
         if w in lx.ARTICLES:
             if k + 1 < end and r.word(k + 1) in lx.TALK_NOUNS:
+                k += 1
                 continue
             return False
         if (w.startswith(("room_", "object_")) or w in lx.POSITIVE_VERBS or w in lx.REFUSED_WORDS
                 or w in lx.RELATIVE_FLOORS or w in lx.STRUCTURAL or w.isdigit() or r.head(k) is not None):
             return False
+        k += 1
     return True
 
 
