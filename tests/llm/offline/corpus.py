@@ -4,6 +4,7 @@ language under the scene's facts) or a fragment of the refusal it must get."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -38,3 +39,12 @@ def check(mission: EvalMission) -> None:
     """``mission`` is translated to a formula meaning its gold, or refused with its fragment."""
     (result,) = evaluate(PatternTranslator(), [mission], scene_building)
     assert result.outcome == "right", f"{mission.id}: {mission.text!r}: {result.detail}"
+
+
+def corpus_test(construct: str) -> Callable[[EvalMission], None]:
+    """The test of ``corpus/<construct>.jsonl``: each of its missions is read or refused as it says."""
+    @pytest.mark.parametrize("mission", cases(construct))
+    def test(mission: EvalMission) -> None:
+        check(mission)
+    test.__doc__ = f"corpus/{construct}.jsonl: each sentence means its gold formula or gets its refusal."
+    return test

@@ -6,12 +6,6 @@ its fragment."""
 
 from __future__ import annotations
 
-import pytest
+from tests.llm.offline.corpus import corpus_test
 
-from sgplan.llm.offline.evaluation import EvalMission
-from tests.llm.offline.corpus import cases, check
-
-
-@pytest.mark.parametrize("mission", cases("back_references"))
-def test_back_references_read_or_refused(mission: EvalMission) -> None:
-    check(mission)
+test_back_references_read_or_refused = corpus_test("back_references")

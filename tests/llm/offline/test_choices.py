@@ -6,12 +6,6 @@ its fragment."""
 
 from __future__ import annotations
 
-import pytest
+from tests.llm.offline.corpus import corpus_test
 
-from sgplan.llm.offline.evaluation import EvalMission
-from tests.llm.offline.corpus import cases, check
-
-
-@pytest.mark.parametrize("mission", cases("choices"))
-def test_choices_read_or_refused(mission: EvalMission) -> None:
-    check(mission)
+test_choices_read_or_refused = corpus_test("choices")

@@ -11,18 +11,14 @@ import dataclasses
 import pytest
 
 from sgplan.errors import MissionError
-from sgplan.llm.offline.evaluation import EvalMission
 from sgplan.llm.offline.grounding import Discourse
 from sgplan.llm.offline.meaning.mission import mission_formula
 from sgplan.llm.offline.names import SceneVocabulary
 from sgplan.llm.offline.syntax import split_mission
 from sgplan.scene.model import Building
-from tests.llm.offline.corpus import cases, check
+from tests.llm.offline.corpus import corpus_test
 
-
-@pytest.mark.parametrize("mission", cases("noun_phrases"))
-def test_noun_phrases_read_or_refused(mission: EvalMission) -> None:
-    check(mission)
+test_noun_phrases_read_or_refused = corpus_test("noun_phrases")
 
 
 def _with_teddy_bears_in(vocabulary: SceneVocabulary, rooms: list[str]) -> SceneVocabulary:

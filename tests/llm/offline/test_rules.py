@@ -19,6 +19,7 @@ from sgplan.llm.offline.grounding.described import APPLIERS
 from sgplan.llm.offline.grounding.phrases import GROUNDERS
 from sgplan.llm.offline.meaning.body import READERS
 from sgplan.llm.offline.meaning.sentences import SENTENCES
+from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.body import ITEMS
 from sgplan.llm.offline.syntax.phrases import NOUN_PHRASES
 from sgplan.llm.offline.syntax.qualifiers import QUALIFIERS
@@ -28,8 +29,7 @@ from tests.llm.offline.corpus import constructs, corpus
 from tests.shared_data import scene_building
 
 RULE_SETS: list[RuleSet[Any]] = [NOUN_PHRASES, QUALIFIERS, ITEMS, OPENINGS]
-REGISTRIES: dict[str, dict[type, Callable[..., Any]]] = {
-    "grounder": GROUNDERS, "applier": APPLIERS, "item reader": READERS, "sentence reader": SENTENCES}
+REGISTRIES: list[Registry[Any]] = [GROUNDERS, APPLIERS, READERS, SENTENCES]
 MAX_RULE_LINES = 40
 """A rule is a small function: its pattern and its production (docstring included)."""
 
@@ -38,7 +38,7 @@ MAX_RULE_LINES = 40
 def counting(hits: Counter[str]) -> Iterator[None]:
     """Count, while open, each rule that matched and each registered function that was called."""
     saved = [list(rules.rules) for rules in RULE_SETS]
-    saved_maps = {name: dict(registry) for name, registry in REGISTRIES.items()}
+    saved_maps = [dict(registry.functions) for registry in REGISTRIES]
 
     def counted(key: str, fn: Callable[..., Any], matched_only: bool) -> Callable[..., Any]:
         def wrapper(*args: Any) -> Any:
@@ -50,17 +50,16 @@ def counting(hits: Counter[str]) -> Iterator[None]:
 
     for rules in RULE_SETS:
         rules.rules = [(n, counted(f"{rules.slot}: {n}", fn, True)) for n, fn in rules.rules]
-    for name, registry in REGISTRIES.items():
-        for kind, fn in list(registry.items()):
-            registry[kind] = counted(f"{name}: {kind.__name__}", fn, False)
+    for registry in REGISTRIES:
+        for kind, fn in list(registry.functions.items()):
+            registry.functions[kind] = counted(f"{registry.job}: {kind.__name__}", fn, False)
     try:
         yield
     finally:
         for rules, kept in zip(RULE_SETS, saved):
             rules.rules = kept
-        for name, registry in REGISTRIES.items():
-            registry.clear()
-            registry.update(saved_maps[name])
+        for registry, kept_map in zip(REGISTRIES, saved_maps):
+            registry.functions = kept_map
 
 
 @pytest.mark.gibson
@@ -73,7 +72,7 @@ def test_every_rule_reads_some_sentence_of_the_corpus(gibson_root: object) -> No
                 with contextlib.suppress(MissionError):
                     translator.translate(mission.text, scene_building(mission.scene))
     names = [f"{rules.slot}: {n}" for rules in RULE_SETS for n in rules.names()]
-    names += [f"{name}: {kind.__name__}" for name, registry in REGISTRIES.items() for kind in registry]
+    names += [f"{registry.job}: {kind.__name__}" for registry in REGISTRIES for kind in registry]
     assert [n for n in names if not hits[n]] == []
 
 

@@ -9,19 +9,15 @@ from __future__ import annotations
 import pytest
 
 from sgplan.errors import MissionError
-from sgplan.llm.offline.evaluation import EvalMission
 from sgplan.llm.offline.grounding import Discourse, Grounded
 from sgplan.llm.offline.meaning.mission import check_all_used, mission_formula
 from sgplan.llm.offline.names import SceneVocabulary
 from sgplan.llm.offline.syntax import split_mission
 from sgplan.logic.formula import Atom, Eventually
 from sgplan.scene.model import Building
-from tests.llm.offline.corpus import cases, check
+from tests.llm.offline.corpus import corpus_test
 
-
-@pytest.mark.parametrize("mission", cases("sentences"))
-def test_sentences_read_or_refused(mission: EvalMission) -> None:
-    check(mission)
+test_sentences_read_or_refused = corpus_test("sentences")
 
 
 def test_a_named_place_missing_from_the_formula_is_refused(demo: Building) -> None:

@@ -19,6 +19,7 @@ from sgplan.llm.offline.grounding.floors import floors_of, on_floors, same_floor
 from sgplan.llm.offline.grounding.phrases import Noun, check, ground_phrase, grounds, head_entities
 from sgplan.llm.offline.grounding.places import next_to_it, there_floors, there_rooms
 from sgplan.llm.offline.names import Entity, head_word
+from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
     Attachment,
     Contains,
@@ -36,16 +37,8 @@ from sgplan.llm.offline.syntax.tree import (
     There,
 )
 
-Applier = Callable[[Any, Noun, Described, Where, Discourse], Noun]
-APPLIERS: dict[type, Applier] = {}
-
-
-def applies(kind: type) -> Callable[[Applier], Applier]:
-    """Register the decorated function as the applier of the qualifiers of type ``kind``."""
-    def register(fn: Applier) -> Applier:
-        APPLIERS[kind] = fn
-        return fn
-    return register
+APPLIERS: Registry[Callable[[Any, Noun, Described, Where, Discourse], Noun]] = Registry("qualifier")
+applies = APPLIERS.register
 
 
 @grounds(Described)
@@ -53,7 +46,7 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
     """Ground a described phrase (see the module docstring)."""
     noun = in_context(np, head_entities(np, disc), where, disc)
     for qualifier in np.qualifiers:
-        noun = APPLIERS[type(qualifier)](qualifier, noun, np, where, disc)
+        noun = APPLIERS(qualifier, noun, np, where, disc)
     mode: Mode = np.determiner.mode or "the"
     core = core_text(np, disc)
     if np.determiner.pointer is not None:

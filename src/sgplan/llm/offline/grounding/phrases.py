@@ -22,6 +22,7 @@ from sgplan.llm.offline.grounding.floors import determined, floors_of, on_floors
 from sgplan.llm.offline.grounding.places import there_rooms
 from sgplan.llm.offline.names import Entity
 from sgplan.llm.offline.nouns import Head
+from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
     Described,
     FloorPlace,
@@ -67,22 +68,15 @@ def ground_list(phrases: PhraseList, where: Where, disc: Discourse) -> list[Grou
                      any(g.room_scoped for g in out), where.role)]
 
 
-Grounder = Callable[[Any, Where, Discourse], Grounded]
-GROUNDERS: dict[type, Grounder] = {}
-"""How each kind of phrase of the syntax tree is grounded (registered with :func:`grounds`)."""
-
-
-def grounds(kind: type) -> Callable[[Grounder], Grounder]:
-    """Register the decorated function as the grounding of the phrases of type ``kind``."""
-    def register(fn: Grounder) -> Grounder:
-        GROUNDERS[kind] = fn
-        return fn
-    return register
+GROUNDERS: Registry[Callable[[Any, Where, Discourse], Grounded]] = Registry("grounding")
+"""How each kind of phrase of the syntax tree is grounded."""
+grounds = GROUNDERS.register
 
 
 def ground_phrase(np: NounPhrase, where: Where, disc: Discourse) -> Grounded:
     """Ground one phrase (see the module docstring)."""
-    return GROUNDERS[type(np)](np, where, disc)
+    grounded: Grounded = GROUNDERS(np, where, disc)
+    return grounded
 
 
 @grounds(Pronoun)

@@ -49,6 +49,20 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
         return steps_of(action.moved, ctx, scope, lenient, (floors, action.moved.span.start))
     phrases, lead = first_of_list(phrases, action.first)
     choice_remark(phrases, action.remark, disc.said)
+    steps = ordered_steps(action, phrases, carry, lead, ctx)
+    if action.repeat is not None:
+        repeats(phrases, steps, action.repeat, going_back, ctx)
+    elif going_back and named_before(phrases, ctx):
+        for task in steps[0]:
+            task.revisit = True
+    tail(action, phrases, steps, carry, replace(where, floor=None, action_floor=None, objects=False), ctx)
+    return ActionSteps(steps or [[]], action.first and not lead)
+
+
+def ordered_steps(action: Action, phrases: list[Grounded], carry: bool, lead: bool,
+                  ctx: SentenceContext) -> list[Step]:
+    """The tasks of the phrases, in the steps their order says: one step (any order), one each (*in that
+    order*), the one said *first* before the rest, the one said *last* after the rest."""
     pronouns_only = all(g.phrase.lower() in lx.PRONOUNS for g in phrases)
     # "put it in Y": the object is already in hand, the goal is Y, after what came before.
     steps = [[]] if carry and pronouns_only else tasks_of(phrases, action.ordered)
@@ -59,13 +73,7 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
             rf.refuse(rf.cannot_understand(lx.REFUSED_WORDS["last"]))
         ctx.said_last = True  # "the kitchen and the office last": the office after the rest
         steps = [steps[0][:-1], steps[0][-1:]]
-    if action.repeat is not None:
-        repeats(phrases, steps, action.repeat, going_back, ctx)
-    elif going_back and named_before(phrases, ctx):
-        for task in steps[0]:
-            task.revisit = True
-    tail(action, phrases, steps, carry, replace(where, floor=None, action_floor=None, objects=False), ctx)
-    return ActionSteps(steps or [[]], action.first and not lead)
+    return steps
 
 
 def tail(action: Action, phrases: list[Grounded], steps: list[Step], carry: bool, where: Where,

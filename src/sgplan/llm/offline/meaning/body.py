@@ -17,6 +17,7 @@ from sgplan.llm.offline.meaning.compose import Clause, Step
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.negations import negation, off_limits, stay_on_floor
 from sgplan.llm.offline.meaning.order import check_restriction_target
+from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
     AfterAll,
     Body,
@@ -33,23 +34,15 @@ from sgplan.llm.offline.syntax.tree import (
     Waypoint,
 )
 
-Reader = Callable[[Any, Clause, SentenceContext], None]
-READERS: dict[type, Reader] = {}
-
-
-def reads(kind: type) -> Callable[[Reader], Reader]:
-    """Register the decorated function as the reader of the items of type ``kind``."""
-    def register(fn: Reader) -> Reader:
-        READERS[kind] = fn
-        return fn
-    return register
+READERS: Registry[Callable[[Any, Clause, SentenceContext], None]] = Registry("item reader")
+reads = READERS.register
 
 
 def read_body(body: Body, ctx: SentenceContext) -> Clause:
     """The clause of ``body`` (see the module docstring)."""
     clause = Clause()
     for item in body.items:
-        READERS[type(item)](item, clause, ctx)
+        READERS(item, clause, ctx)
     return clause
 
 

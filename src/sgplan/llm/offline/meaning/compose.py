@@ -45,26 +45,24 @@ Step = list[Task]
 
 def conj(parts: Sequence[Formula]) -> Formula:
     """The conjunction of ``parts`` (flattening nested conjunctions, dropping duplicates); one part as is."""
-    flat: list[Formula] = []
-    for p in parts:
-        for q in p.args if isinstance(p, And) else (p,):
-            if q not in flat:
-                flat.append(q)
-    if not flat:
-        raise ValueError("empty conjunction")
-    return flat[0] if len(flat) == 1 else And(tuple(flat))
+    return joined(parts, And)
 
 
 def disj(parts: Sequence[Formula]) -> Formula:
     """The disjunction of ``parts`` (flattened, without duplicates); one part as is."""
+    return joined(parts, Or)
+
+
+def joined(parts: Sequence[Formula], op: type[And] | type[Or]) -> Formula:
+    """``parts`` joined by ``op``, nested ``op`` flattened and duplicates dropped; one part as is."""
     flat: list[Formula] = []
     for p in parts:
-        for q in p.args if isinstance(p, Or) else (p,):
+        for q in p.args if isinstance(p, op) else (p,):
             if q not in flat:
                 flat.append(q)
     if not flat:
-        raise ValueError("empty disjunction")
-    return flat[0] if len(flat) == 1 else Or(tuple(flat))
+        raise ValueError(f"empty {op.__name__}")
+    return flat[0] if len(flat) == 1 else op(tuple(flat))
 
 
 def task_formulas(task: Task, rest: Formula | None) -> list[Formula]:

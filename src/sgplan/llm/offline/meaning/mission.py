@@ -10,9 +10,6 @@ goals before it.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-from dataclasses import fields, is_dataclass
-
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding.attachments import describes
@@ -25,7 +22,7 @@ from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import Reader, parse_sentence
 from sgplan.llm.offline.syntax.preamble import stated_start as said_start
 from sgplan.llm.offline.syntax.reader import Match, Refusal
-from sgplan.llm.offline.syntax.tree import MissionSentence, RelativeFloor, StatedStart, StayOnFloor
+from sgplan.llm.offline.syntax.tree import MissionSentence, RelativeFloor, StatedStart, StayOnFloor, nodes
 from sgplan.logic.formula import Always, Formula, atoms
 
 
@@ -140,22 +137,10 @@ def confinement(readers: list[Reader], disc: Discourse) -> frozenset[int] | None
         parsed = parse_sentence(r, lambda a: True)
         if not isinstance(parsed, Match):
             continue
-        for stay in stays(parsed.node):
+        for stay in nodes(parsed.node, StayOnFloor):
             floors = floors_of(stay.floor, disc).floors
             confined = floors if confined is None else confined & floors
     return confined
-
-
-def stays(node: object) -> Iterator[StayOnFloor]:
-    """The *stay on a floor* items of a tree."""
-    if isinstance(node, StayOnFloor):
-        yield node
-    if is_dataclass(node) and not isinstance(node, type):
-        for f in fields(node):
-            yield from stays(getattr(node, f.name))
-    elif isinstance(node, tuple):
-        for child in node:
-            yield from stays(child)
 
 
 def check_all_used(formula: Formula, phrases: list[Grounded]) -> None:

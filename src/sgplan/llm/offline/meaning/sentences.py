@@ -19,6 +19,7 @@ from sgplan.llm.offline.meaning.compose import Clause, Task, conj, disj
 from sgplan.llm.offline.meaning.conditions import condition_of, require, rule_formula
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.order import only_after
+from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
     OnlyAfterPost,
     OnlyAfterSentence,
@@ -33,21 +34,14 @@ from sgplan.llm.offline.syntax.tree import (
 from sgplan.logic.formula import Always, Formula, Implies, Until
 
 Meaning = Clause | Formula
-SentenceReader = Callable[[Any, SentenceContext], Meaning]
-SENTENCES: dict[type, SentenceReader] = {}
-
-
-def reads(kind: type) -> Callable[[SentenceReader], SentenceReader]:
-    """Register the decorated function as the reader of the sentence bodies of type ``kind``."""
-    def register(fn: SentenceReader) -> SentenceReader:
-        SENTENCES[kind] = fn
-        return fn
-    return register
+SENTENCES: Registry[Callable[[Any, SentenceContext], Meaning]] = Registry("sentence reader")
+reads = SENTENCES.register
 
 
 def read_sentence_body(body: object, ctx: SentenceContext) -> Meaning:
     """The clause or formula of a sentence body (see the module docstring)."""
-    return SENTENCES[type(body)](body, ctx)
+    meaning: Meaning = SENTENCES(body, ctx)
+    return meaning
 
 
 @reads(RuleSentence)

@@ -17,8 +17,8 @@ and decided against the scene by the caller of :func:`parse_sentence`.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
-from dataclasses import fields, is_dataclass, replace
+from collections.abc import Callable
+from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import NounLexicon
@@ -26,7 +26,7 @@ from sgplan.llm.offline.syntax.colons import at_colons
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.sentences import mission_sentence
-from sgplan.llm.offline.syntax.tree import Attachment, Sentence
+from sgplan.llm.offline.syntax.tree import Attachment, Sentence, nodes
 from sgplan.llm.offline.text import rewrite, sentences, tokenize
 
 __all__ = ["Match", "Reader", "Refusal", "parse_sentence", "split_mission"]
@@ -65,19 +65,8 @@ def parse_sentence(r: Reader, decide: Callable[[Attachment], bool]) -> Parse[Sen
         tree = mission_sentence(replace(r, choices=dict(choices)))
         if not isinstance(tree, Match):
             return tree
-        open_ = next((a for a in attachments(tree.node) if a.at not in choices), None)
+        open_ = next((a for a in nodes(tree.node, Attachment) if a.at not in choices), None)
         if open_ is None:
             return tree
         choices[open_.at] = decide(open_)
 
-
-def attachments(node: object) -> Iterator[Attachment]:
-    """The attachments of a tree, in text order of their nodes."""
-    if isinstance(node, Attachment):
-        yield node
-    if is_dataclass(node) and not isinstance(node, type):
-        for f in fields(node):
-            yield from attachments(getattr(node, f.name))
-    elif isinstance(node, tuple):
-        for child in node:
-            yield from attachments(child)

@@ -5,20 +5,19 @@ A sentence that ends with a colon announces the list of the next one when it end
 only counts or names the items (*three things*, *the following*, *these rooms*): the noun group is dropped
 and the words before it (the verb, a negation: *never enter these rooms:*) are read with the list, so nothing
 that carries meaning is lost. How many items the announcement said, and of what, is kept
-(:class:`.tree.Announced`) and checked against the list (:func:`listed`, and the grounding for the
-category); the items are independent tasks. Words before a colon that ask nothing (*Here's the plan:*,
+(:class:`.tree.Announced`) and checked against the list (the phrases of its actions, and the grounding
+for the category); the items are independent tasks. Words before a colon that ask nothing (*Here's the plan:*,
 *Remember:*) are dropped. Any other colon ends a sentence, as ``.`` does.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-from dataclasses import fields, is_dataclass, replace
+from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.syntax.preamble import is_chitchat
 from sgplan.llm.offline.syntax.reader import Reader
-from sgplan.llm.offline.syntax.tree import Announced, PhraseList
+from sgplan.llm.offline.syntax.tree import Announced
 
 
 def at_colons(readers: list[Reader]) -> list[Reader]:
@@ -63,15 +62,3 @@ def announcement(r: Reader) -> Announced | None:
     return Announced(r.quote(start, end), r.toks[:start], count, head if head is not None and head.plural
                      and r.word(end - 1) not in lx.ANNOUNCED else None)
 
-
-def listed(node: object) -> Iterator[PhraseList]:
-    """The lists of phrases of a sentence's items (not the phrases inside a phrase's qualifiers)."""
-    if isinstance(node, PhraseList):
-        yield node
-        return
-    if is_dataclass(node) and not isinstance(node, type):
-        for f in fields(node):
-            yield from listed(getattr(node, f.name))
-    elif isinstance(node, tuple):
-        for child in node:
-            yield from listed(child)

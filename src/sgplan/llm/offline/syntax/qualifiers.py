@@ -10,6 +10,7 @@ whether it is already located in a room.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Literal
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
@@ -280,14 +281,22 @@ def holds(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
 def without(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*the bedroom without a potted plant*: which bedroom, when the plant tells the rooms apart (the scene
     decides, :class:`.tree.Attachment`); otherwise *without* is what to avoid, after the phrase."""
-    if noun.kind == "object" or r.word(i) != "without" or not r.np_starts(i + 1) or r.decided(i) is False:
+    if noun.kind == "object" or r.word(i) != "without" or not r.np_starts(i + 1):
+        return None
+    return attachment(r, i, noun, "without")
+
+
+def attachment(r: Reader, i: int, noun: NounSoFar,
+               kind: Literal["without", "and-contents"]) -> Parse[Qualifier]:
+    """The attachment of the words at ``i`` (*without X* / *and X*) to ``noun``, unless it was decided
+    against, or X does not name objects (then the words are read after the phrase)."""
+    if r.decided(i) is False:
         return None
     thing = phrases.noun_phrase(r, i + 1, "qualifier")
     if not isinstance(thing, Match) or not names_objects(thing.node):
         return None
-    end = skip_in_it(r, thing.end)
-    return Match(Attachment(i, "without", noun.noun, thing.node, r.span(noun.first, thing.end),
-                            r.decided(i) is True), end)
+    node = Attachment(i, kind, noun.noun, thing.node, r.span(noun.first, thing.end), r.decided(i) is True)
+    return Match(node, skip_in_it(r, thing.end))
 
 
 def names_rooms(phrase: object) -> bool:
@@ -340,14 +349,9 @@ def more_contents(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipp
     (the scene decides, :class:`.tree.Attachment`)."""
     said = noun.noun.qualifiers
     if (not said or not isinstance(said[-1], Contains) or r.word(i) != "and" or not r.np_starts(i + 1)
-            or r.word(i + 1) in lx.PRONOUNS or r.decided(i) is False):
+            or r.word(i + 1) in lx.PRONOUNS):
         return None
-    thing = phrases.noun_phrase(r, i + 1, "qualifier")
-    if not isinstance(thing, Match) or not names_objects(thing.node):
-        return None
-    end = skip_in_it(r, thing.end)
-    return Match(Attachment(i, "and-contents", noun.noun, thing.node, r.span(noun.first, thing.end),
-                            r.decided(i) is True), end)
+    return attachment(r, i, noun, "and-contents")
 
 
 @QUALIFIERS.rule("next to")

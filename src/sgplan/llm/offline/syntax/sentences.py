@@ -15,7 +15,6 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import after_conjunction
 from sgplan.llm.offline.syntax.body import body
-from sgplan.llm.offline.syntax.colons import listed
 from sgplan.llm.offline.syntax.links import at_end, comma_or_then, done_words, link, skip_subject
 from sgplan.llm.offline.syntax.phrases import noun_phrase
 from sgplan.llm.offline.syntax.qualifiers import head_kind
@@ -30,6 +29,7 @@ from sgplan.llm.offline.syntax.tree import (
     OnlyAfterPost,
     OnlyAfterSentence,
     OnlyIfPost,
+    PhraseList,
     PlainSentence,
     Postfix,
     PrefixedSentence,
@@ -39,6 +39,7 @@ from sgplan.llm.offline.syntax.tree import (
     SentenceBody,
     UntilSentence,
     WheneverRule,
+    nodes,
 )
 
 OPENINGS: RuleSet[SentenceBody] = RuleSet("sentence opening")
@@ -67,7 +68,7 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     if rest.end < len(r):
         return Refusal(rf.left_over(r.quote(rest.end, len(r))))
     if r.announced is not None and r.announced.count is not None:
-        items = sum(len(found.items) for found in listed(said_body.node))
+        items = sum(len(found.items) for found in nodes(said_body.node, PhraseList))
         if items != r.announced.count:
             return Refusal(rf.announced_count(r.announced.said, r.announced.count, items))
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,

@@ -9,8 +9,9 @@ bedroom without a plant*: a description of the bedroom, or what to avoid there?)
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Literal
+from collections.abc import Iterator
+from dataclasses import dataclass, fields, is_dataclass
+from typing import Literal, TypeVar
 
 from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.text import Tok
@@ -640,3 +641,18 @@ class StatedStart:
 
 
 Sentence = MissionSentence | StatedStart
+
+
+T = TypeVar("T")
+
+
+def nodes(tree: object, kind: type[T]) -> Iterator[T]:
+    """Every node of type ``kind`` in ``tree``, in text order (a node before the nodes inside it)."""
+    if isinstance(tree, kind):
+        yield tree
+    if is_dataclass(tree) and not isinstance(tree, type):
+        for f in fields(tree):
+            yield from nodes(getattr(tree, f.name), kind)
+    elif isinstance(tree, tuple):
+        for child in tree:
+            yield from nodes(child, kind)
