@@ -160,7 +160,7 @@ CHOOSING_OF = ("one", "any", "either")
 DEFINITE = ("the", "this", "that", "these", "those")
 
 ANNOUNCED = word_set("things thing tasks task errands errand jobs job chores chore items item stops stop "
-                     "places spots bits stuff following these those this")
+                     "places spots bits stuff rounds visits checks destinations following these those this")
 """The last word of what announces a list after a colon (*three things:*, *the following:*, *check these:*);
 a plural head noun of the scene does too (*visit two rooms:*)."""
 ANNOUNCING = word_set("the a few couple of some several my your our today 's following quick little "
@@ -379,8 +379,9 @@ POLITE = Phrases((
     ("i", "d", "like", "you", "to"), ("we", "need", "you", "to"), ("can", "you"), ("could", "you"),
     ("would", "you"), ("will", "you"), ("remember", "to"), ("i", "would", "like"), ("i", "need"),
     ("i", "want"), ("let", "us"), ("let", "'s"), ("for", "me"), ("the", "robot"), ("robot", ","),
-    *((owner, noun, "is", "to") for owner in ("the", "your", "my", "our") for noun in _TASK_NOUNS),
-    *((owner, noun, "is") for owner in ("the", "your", "my", "our") for noun in _TASK_NOUNS),
+    # not "the first / next task is to": that says an order
+    *((owner, *main, noun, *be) for owner in ("the", "your", "my", "our")
+      for main in ((), ("main",), ("only",)) for noun in _TASK_NOUNS for be in (("is", "to"), ("is",))),
     ("all", "you", "need", "to", "do", "is"), ("all", "you", "have", "to", "do", "is"),
     ("what", "i", "need", "is", "for", "you", "to"), ("i", "would", "like", "it", "if", "you"),
     ("i", "would", "appreciate", "it", "if", "you"), ("if", "you", "could"), ("if", "you", "would"),
@@ -451,7 +452,7 @@ CLOSING = Phrases((
     ("if", "that", "is", "okay"), ("if", "that", "is", "ok"), ("if", "that", "is", "alright"),
     ("if", "you", "do", "not", "mind"), ("as", "usual"), ("as", "always"), ("no", "need", "to", "rush"),
     ("that", "would", "be", "great"), ("that", "would", "be", "lovely"), ("that", "would", "be", "perfect"),
-    ("that", "would", "help"), ("if", "that", "makes", "sense"), ("thanks", "heaps"), ("really",),
+    ("that", "would", "help"), ("if", "that", "makes", "sense"), ("thanks", "heaps"), ("really",), ("oh",),
     ("you", "know"), ("quick", "one"), ("quick", "question"), ("quick", "request"), ("off", "you", "go")))
 """Sign-offs (*thanks a lot*, *cheers*, *that's all for now*) and asides that ask nothing (*no rush*, *if
 possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
@@ -488,6 +489,7 @@ WHOLE_MISSION = Phrases((
     *(("throughout", "the", noun) for noun in _SPAN_NOUNS),
     ("while", "you", "do", "it"), ("while", "you", "do", "that"), ("while", "you", "are", "at", "it"),
     ("while", "doing", "so"), ("while", "doing", "that"), ("while", "doing", "it"), ("in", "the", "process"),
+    ("entirely",), ("completely",), ("altogether",), ("at", "all", "costs"),
     *(("during", "the", noun) for noun in _SPAN_NOUNS)))
 """Said after what to avoid: the prohibition holds for the whole mission (``G !x``), not only at one step."""
 WAYPOINT_OPENERS = ("on", "along")

@@ -52,9 +52,11 @@ def tokenize(text: str) -> list[Tok]:
 
 
 def sentences(tokens: list[Tok]) -> list[list[Tok]]:
-    """Split at sentence punctuation and list markers (a sentence ending with a colon keeps it); empty
-    sentences are dropped."""
+    """Split at sentence punctuation and list markers (a sentence ending with a colon keeps it, and the
+    items of a list marked after a colon, *three stops: 1) A 2) B 3) C*, are one sentence joined by commas);
+    empty sentences are dropped."""
     parts: list[list[Tok]] = [[]]
+    after_colon = False
     i = 0
     while i < len(tokens):
         tok = tokens[i]
@@ -63,11 +65,15 @@ def sentences(tokens: list[Tok]) -> list[list[Tok]]:
         if tok.text in SENTENCE_END:
             if tok.text == ":":  # kept: what comes before a colon may announce the list after it
                 parts[-1].append(tok)
+            after_colon = tok.text == ":"
             parts.append([])
         elif (tok.text.isdigit() and nxt == ")") or (tok.text.isdigit() and nxt == "." and at_item_start):
             if parts[-1] and parts[-1][-1].text == "(":
                 parts[-1].pop()
-            parts.append([])
+            if after_colon and parts[-1]:
+                parts[-1].append(Tok(",", tok.start, tok.end))
+            elif not after_colon:
+                parts.append([])
             i += 1  # the ')' or '.'
         elif tok.text == _DASH or (tok.text in ("(", ")") and not (i + 1 < len(tokens)
                                                                    and tokens[i + 1].text.isdigit())):

@@ -152,6 +152,8 @@ def up_there(word: str, disc: Discourse) -> frozenset[int]:
     """*up there* / *down there*: the floor(s) of the goal named last (one floor, not a choice of several)."""
     last = disc.last_goal()
     said = f"{word} there"
+    if last is None and disc.confined is not None:  # "stay on the top floor and use the bathroom up there"
+        return disc.confined
     if last is None:
         rf.refuse(rf.up_there_of_nothing(word))
     floor_or_place(said, last, disc)
