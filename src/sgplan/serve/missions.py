@@ -91,7 +91,6 @@ class MissionBook:
         from sgplan.api import mission_from_formula, mission_from_text
         from sgplan.explain import explain_mission
         from sgplan.llm.backends import open_backends
-        from sgplan.llm.offline import PatternTranslator
 
         building = host.building
         if request.formula is not None:
@@ -99,8 +98,7 @@ class MissionBook:
         else:
             assert request.text is not None
             backends = open_backends("offline")
-            if isinstance(backends.translator, PatternTranslator):
-                backends = replace(backends, translator=backends.translator.starting_on(floor))
+            backends = replace(backends, translator=backends.translator.starting_on(floor))
             mission = mission_from_text(request.text, building, llm=backends)
         explanation = explain_mission(mission, building, cells=host.session.proposition_cells)
         return Understood(mission, explanation, check_mission_in_scene(mission, building))
