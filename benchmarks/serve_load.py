@@ -339,48 +339,42 @@ def load(
     return tally, [run for ids in results for run in ids]
 
 
-def faults(
-    server: Server, scene: str, cases: list[tuple[str, int]], workers: int, backlog: int, state: Path
-) -> list[str]:
-    """The fault runs; one line each."""
-    lines = []
-    url = server.url
+def stream_and_bad_bodies(url: str, scene: str, cases: list[tuple[str, int]]) -> list[str]:
+    """A client leaving an event stream mid-way; malformed and oversized bodies."""
     with httpx.Client(base_url=url, timeout=120) as c:
+        formula, start = cases[0]
         run = c.post(
             "/api/runs",
-            json={
-                "scene": scene,
-                "formula": cases[0][0],
-                "start": {"index": cases[0][1]},
-                "options": {"setup": "A*"},
-            },
+            json={"scene": scene, "formula": formula, "start": {"index": start}, "options": {"setup": "A*"}},
         ).json()
         with c.stream("GET", f"/api/runs/{run['id']}/events") as stream:
             next(stream.iter_lines())
         time.sleep(0.5)
         health = c.get("/api/health").json()
-        lines.append(
-            f"- client left an event stream mid-way: server up ({health['status']}), "
-            f"{health['plans_in_flight']} plans in flight"
-        )
+        json_type = {"content-type": "application/json"}
         bad = [
-            c.post(
-                "/api/plan", content=b"{not json", headers={"content-type": "application/json"}
-            ).status_code,
+            c.post("/api/plan", content=b"{not json", headers=json_type).status_code,
             c.post("/api/plan", json={"scene": scene}).status_code,
             c.post("/api/plan", json={"scene": scene, "formula": "F (("}).status_code,
             c.post(
-                "/api/runs/x/observe",
-                content=b"[" + b"1," * (2 << 20) + b"1]",
-                headers={"content-type": "application/json"},
+                "/api/runs/x/observe", content=b"[" + b"1," * (2 << 20) + b"1]", headers=json_type
             ).status_code,
             c.post("/api/runs/x/observe", json={"poses": [[0, 0, 0]] * 20_000}).status_code,
         ]
-        lines.append(f"- malformed / oversized bodies: statuses {bad} (no 500)")
+    return [
+        f"- client left an event stream mid-way: server up ({health['status']}), "
+        f"{health['plans_in_flight']} plans in flight",
+        f"- malformed / oversized bodies: statuses {bad} (no 500)",
+    ]
+
+
+def flood(url: str, scene: str, cases: list[tuple[str, int]], workers: int, backlog: int) -> str:
+    """``4 x (workers + backlog)`` concurrent ALL plans: the pool takes what it can, 503 for the rest."""
     tally = Tally()
-    flood = 4 * (workers + backlog)
+    count = 4 * (workers + backlog)
 
     def one(k: int) -> None:
+        formula, start = cases[k % len(cases)]
         with httpx.Client(base_url=url, timeout=120) as client:
             tally.call(
                 client,
@@ -389,59 +383,65 @@ def faults(
                 "/api/plan",
                 json={
                     "scene": scene,
-                    "formula": cases[k % len(cases)][0],
-                    "start": {"index": cases[k % len(cases)][1]},
+                    "formula": formula,
+                    "start": {"index": start},
                     "options": {"setup": "ALL"},
                 },
             )
 
-    threads = [threading.Thread(target=one, args=(k,)) for k in range(flood)]
+    threads = [threading.Thread(target=one, args=(k,)) for k in range(count)]
     for t in threads:
         t.start()
     for t in threads:
         t.join()
-    codes = dict(tally.codes["flood plan"])
-    lines.append(
-        f"- flood of {flood} concurrent ALL plans ({workers} workers, backlog {backlog}): statuses {codes}; "
-        f"server up: {httpx.get(url + '/api/health').status_code == 200}"
+    return (
+        f"- flood of {count} concurrent ALL plans ({workers} workers, backlog {backlog}): statuses "
+        f"{dict(tally.codes['flood plan'])}; server up: {httpx.get(url + '/api/health').status_code == 200}"
     )
-    # SIGKILL under load, restart, compare.
+
+
+def sigkill_under_load(server: Server, scene: str, cases: list[tuple[str, int]]) -> str:
+    """4 clients mixing requests for 8 s, SIGKILL, restart on the same state, every run compared."""
+    url = server.url
     doors = httpx.get(f"{url}/api/scenes/{scene}", timeout=60).json()["doors"]
-    load_tally = Tally()
+    tally = Tally()
     until = time.perf_counter() + 8
-    threads = [
+    for k in range(4):  # they go on after the kill and the restart, until the process ends
         threading.Thread(
-            target=client_loop, args=(url, scene, cases, doors, load_tally, until + 30, k, "mixed")
-        )
-        for k in range(4)
-    ]
-    for t in threads:
-        t.daemon = True
-        t.start()
+            target=client_loop, args=(url, scene, cases, doors, tally, until + 30, k, "mixed"), daemon=True
+        ).start()
     time.sleep(8)
     with httpx.Client(base_url=url, timeout=120) as c:
         seen = {r["id"]: c.get(f"/api/runs/{r['id']}").json() for r in c.get("/api/runs").json()}
     server.kill()
     restart_s = server.start()
     with httpx.Client(base_url=url, timeout=120) as c:
-        after = {r["id"]: r for r in c.get("/api/runs").json()}
-        lost = [run_id for run_id in seen if run_id not in after]
-        # A run answered before the kill may have moved on by a request answered after the snapshot: its
-        # revision (changes committed) is then higher. At the same revision it must be the same run.
+        after = {r["id"] for r in c.get("/api/runs").json()}
         now = {run_id: c.get(f"/api/runs/{run_id}").json() for run_id in seen if run_id in after}
-        corrupt = [
-            run_id
-            for run_id, run in now.items()
-            if run["revision"] < seen[run_id]["revision"]
-            or (run["revision"] == seen[run_id]["revision"] and run != seen[run_id])
-        ]
-        moved_on = sum(run["revision"] > seen[run_id]["revision"] for run_id, run in now.items())
-    lines.append(
-        f"- SIGKILL under load ({sum(len(v) for v in load_tally.ms.values())} requests in 8 s, 4 clients), "
-        f"restart in {restart_s:.1f} s: {len(seen)} runs before, {len(after)} after, {len(lost)} lost, "
+    # A run answered before the kill may have moved on by a request answered after the snapshot: its
+    # revision (changes committed) is then higher. At the same revision it must be the same run.
+    corrupt = [
+        run_id
+        for run_id, run in now.items()
+        if run["revision"] < seen[run_id]["revision"]
+        or (run["revision"] == seen[run_id]["revision"] and run != seen[run_id])
+    ]
+    moved_on = sum(run["revision"] > seen[run_id]["revision"] for run_id, run in now.items())
+    return (
+        f"- SIGKILL under load ({sum(len(v) for v in tally.ms.values())} requests in 8 s, 4 clients), "
+        f"restart in {restart_s:.1f} s: {len(seen)} runs before, {len(after)} after, "
+        f"{len(seen) - len(now)} lost, "
         f"{len(corrupt)} corrupted ({moved_on} moved on by requests answered after the snapshot)"
     )
-    return lines
+
+
+def faults(server: Server, scene: str, cases: list[tuple[str, int]], workers: int, backlog: int) -> list[str]:
+    """The fault runs; one line each."""
+    return [
+        *stream_and_bad_bodies(server.url, scene, cases),
+        flood(server.url, scene, cases, workers, backlog),
+        sigkill_under_load(server, scene, cases),
+    ]
 
 
 def main() -> None:
@@ -471,7 +471,7 @@ def main() -> None:
         for phase in args.phases.split(","):
             if phase == "faults":
                 print("## faults\n")
-                print("\n".join(faults(server, args.scene, cases, args.workers, args.backlog, state)))
+                print("\n".join(faults(server, args.scene, cases, args.workers, args.backlog)))
                 print()
                 continue
             clients = {"quiet": 1, "plan-alone": 1, "beside-plans": 2}.get(phase, args.clients)
