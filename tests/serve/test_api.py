@@ -181,7 +181,7 @@ def test_a_full_pool_answers_503_with_retry_after(demo_scenes: SceneRegistry, tm
         host = demo_scenes["demo"]
         body = {"scene": "demo", "formula": FORMULA, "start": {"room": "kitchen"}}
         first: list[int] = []
-        with host.lock:  # the one worker waits for the scene: the pool is full
+        with host.planner():  # the one worker waits for the scene's one session: the pool is full
             waiting = threading.Thread(
                 target=lambda: first.append(c.post("/api/plan", json=body).status_code)
             )

@@ -3,9 +3,9 @@
 :class:`Budget` is what one request may spend: its deadline (:class:`sgplan.planning.termination.Deadline`,
 from the server's ``request_time_limit_s``) and a :class:`~sgplan.planning.termination.CancelFlag` another
 thread may set; both stop a running search at its next poll, which keeps the best path so far.
-:func:`plan_on_host` is what a plan worker runs for a one-shot plan: under the scene's plan lock (one
-search at a time fills a session's action maps), with the mission already understood (translated and
-explained once, :mod:`sgplan.serve.missions`).
+:func:`plan_on_host` is what a plan worker runs for a one-shot plan: on one of the scene's sessions that
+no other plan uses (a search fills its session's action maps), with the mission already understood
+(translated and explained once, :mod:`sgplan.serve.missions`).
 """
 
 from __future__ import annotations
@@ -46,6 +46,11 @@ class Budget:
     def expired(self) -> bool:
         return time.monotonic() >= self.deadline.at
 
+    @property
+    def left_s(self) -> float:
+        """Seconds until the deadline (0 once it passed)."""
+        return max(0.0, self.deadline.at - time.monotonic())
+
     def late(self) -> HTTPProblem:
         """408: the deadline came before any path was found."""
         return HTTPProblem(
@@ -69,20 +74,21 @@ def plan_on_host(
     Raises
     ------
     HTTPProblem
-        408 when the deadline passed before any path was found (waiting for the lock included).
+        408 when the deadline passed before any path was found (waiting for a free session included).
     SgplanError
         what :func:`sgplan.plan` raises (a bad start, an infeasible mission ...).
     """
-    with host.lock:
-        if budget.expired:
-            raise budget.late()
-        result = host.session.plan(
-            understood.mission,
-            None if start is None else start.spec(),
-            options=plan_options(options),
-            explanation=understood.explanation,
-            termination=budget.stop_when,
-        )
+    try:
+        with host.planner(budget.left_s) as session:  # waiting for a free session counts too
+            result = session.plan(
+                understood.mission,
+                None if start is None else start.spec(),
+                options=plan_options(options),
+                explanation=understood.explanation,
+                termination=budget.stop_when,
+            )
+    except TimeoutError:  # no session came free before the deadline
+        raise budget.late() from None
     # A budget of the request's own (expansions, search seconds) gives its best path, or none, with status
     # "timeout"; the server's deadline without a path is the server's to answer for.
     if result.path is None and result.status == "timeout" and budget.expired:

@@ -1,8 +1,9 @@
 """The scenes a service serves, each loaded once and kept warm.
 
-A :class:`SceneHost` holds one building, its :class:`sgplan.Session` (grids, label masks and the
-planner's building-only parts, kept between requests) and the lock that lets one plan at a time use that
-session (its action maps fill themselves during a search: two searches must not fill them at once).
+A :class:`SceneHost` holds one building and its warm :class:`sgplan.Session` objects (grids, label masks
+and the planner's building-only parts, kept between requests): one per plan worker, each lent to one plan
+at a time (a session's action maps fill themselves during a search, so two searches must not share one),
+so a scene's one-shot plans run side by side. The first session also serves the say-back and the runs.
 Requests name a scene by its building's name (any case), never by a path: the list is the server's own
 configuration (:class:`sgplan.serve.config.ServeConfig`).
 """
@@ -11,8 +12,9 @@ from __future__ import annotations
 
 import dataclasses
 import io
-import threading
-from collections.abc import Iterable
+import queue
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
 from functools import cached_property
 from typing import Any
 
@@ -25,13 +27,36 @@ from sgplan.serve.errors import not_found
 
 
 class SceneHost:
-    """One served scene: its building, warm session and plan lock; pictures and lists made once."""
+    """One served scene: its building and warm sessions (``planners`` of them, see the module); pictures
+    and lists made once."""
 
-    def __init__(self, building: Building, *, max_shared_bytes: int | None = None) -> None:
+    def __init__(self, building: Building, *, planners: int = 1, max_shared_bytes: int | None = None) -> None:
         self.building = building
         self.session = Session(building, max_shared_bytes=max_shared_bytes)
-        self.lock = threading.Lock()
-        """Held by whoever plans on (or changes the parts of) :attr:`session`."""
+        """The say-back's and the runs' session (runs plan on parts of their own), and the first planner."""
+        self._free: queue.Queue[Session] = queue.Queue()
+        self._free.put(self.session)
+        for _ in range(planners - 1):
+            self._free.put(Session(building, max_shared_bytes=max_shared_bytes))
+
+    @contextmanager
+    def planner(self, wait_s: float | None = None) -> Iterator[Session]:
+        """A session no other plan uses, for the time of one plan; waits at most ``wait_s`` seconds
+        (``None``: as long as it takes).
+
+        Raises
+        ------
+        TimeoutError
+            no session came free in time.
+        """
+        try:
+            session = self._free.get(timeout=wait_s)
+        except queue.Empty:
+            raise TimeoutError from None
+        try:
+            yield session
+        finally:
+            self._free.put(session)
 
     @property
     def name(self) -> str:
@@ -53,8 +78,7 @@ class SceneHost:
         with the doors (:meth:`doors`)."""
         from sgplan.scene.summary import summarize
 
-        with self.lock:
-            grid = self.session.grid()
+        grid = self.session.grid()
         return dataclasses.asdict(summarize(self.building, grid)) | {"doors": self.doors}
 
     @cached_property
@@ -98,8 +122,7 @@ class SceneHost:
 
         from sgplan.scene.draw import floor_image
 
-        with self.lock:
-            grid = self.session.grid()
+        grid = self.session.grid()
         pictures = []
         for k in range(self.building.num_floors):
             buffer = io.BytesIO()
@@ -127,13 +150,16 @@ class SceneRegistry:
         }
 
     @classmethod
-    def load(cls, specs: Iterable[str], data: str | None = None) -> SceneRegistry:
-        """Load every scene of ``specs`` (names or folders, as :func:`sgplan.load_scene` takes them) and
-        build its default grid, so the first request does not pay for it."""
+    def load(cls, specs: Iterable[str], data: str | None = None, planners: int = 1) -> SceneRegistry:
+        """Load every scene of ``specs`` (names or folders, as :func:`sgplan.load_scene` takes them) with
+        ``planners`` sessions each and build their default grids, so the first requests do not pay for
+        them."""
         hosts, aliases = [], {}
         for spec in specs:
-            host = SceneHost(load_scene(spec, data))
-            host.session.grid()
+            host = SceneHost(load_scene(spec, data), planners=planners)
+            for _ in range(planners):
+                with host.planner() as session:
+                    session.grid()
             hosts.append(host)
             aliases[str(spec)] = host.name
         return cls(hosts, aliases)

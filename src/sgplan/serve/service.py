@@ -40,7 +40,8 @@ class MissionService:
         from sgplan.serve.runs import RunBook
         from sgplan.serve.store import RunStore
 
-        scenes = scenes if scenes is not None else SceneRegistry.load(config.scenes, config.data)
+        if scenes is None:
+            scenes = SceneRegistry.load(config.scenes, config.data, planners=config.plan_workers)
         missions = MissionBook()
         pool = WorkPool(config.plan_workers, config.plan_backlog)
         store = RunStore.open(config.database_url, config.state_dir)

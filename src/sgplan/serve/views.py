@@ -17,8 +17,7 @@ from sgplan.serve.scenes import SceneHost
 def scene_layers(host: SceneHost) -> dict[str, Any]:
     """The page's floors of a scene, no path yet: ``{"html": the report's floor tabs and layers,
     "entities": rooms and objects by id (JSON text) for the hover}``."""
-    with host.lock:
-        grid = host.session.grid()
+    grid = host.session.grid()
     empty = np.zeros((0, 3), dtype=np.int64)
     return {
         "html": floors_html(host.building, grid, empty, None, []),
