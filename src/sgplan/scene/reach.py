@@ -1,0 +1,116 @@
+"""Where an object is within reach: the two reach models, the one place that decides it.
+
+A reach model turns an object, a floor's rasters and a reach radius ``d`` (metres) into the cells from
+which the object counts as reached (``reach(object_<uuid>)`` holds there). Cells are compared by their
+centres; ``res_r`` / ``res_c`` are the metres per row / column.
+
+``box`` -- the authors' model (reference-algorithm.md §2.4), kept so that their numbers stay
+    reproducible (the default of the ``authors`` profile). A cell reaches the object when an object cell
+    lies in the axis-aligned window of ``int(d / res_r)`` rows and ``int(d / res_c)`` columns (each at
+    least 1) around it. The window's corners lie up to ``d * sqrt(2)`` away, and walls do not stop it:
+    an object is "reached" from the next room.
+
+``visible`` -- sgplan's model (the default of the ``ltlf`` profile). A cell reaches the object when it
+    is one of the object's cells, or when it is a floor cell (category ``GROUND``) and some object cell
+    ``t`` satisfies both:
+
+    - *within the radius*: ``sqrt((dr * res_r) ** 2 + (dc * res_c) ** 2) <= d`` in float64, ``(dr, dc)``
+      the row and column offsets between the two cells (:func:`sgplan.scene.dilate.radius_widths`);
+    - *in sight*: the straight segment between the two centres crosses no opaque cell. A segment crosses
+      a cell when it meets the cell's open square, so a segment through a cell corner crosses only the
+      diagonal cell, as the planner's diagonal step and the simplified waypoints' line-of-sight test do.
+
+    Opaque are the raw category map's non-floor cells (walls, other objects, stairs, outside) -- not the
+    obstacles inflated by the robot's radius: one reaches over the margin the robot keeps -- except the
+    object's own cells and the non-floor cells of the object's own room. Those stay see-through because
+    the category maps draw unlabelled furniture as wall: a sink sits inside a counter, a vase on a
+    sideboard, and counting them as walls would put half the Gibson objects out of every robot's reach.
+    A wall or a piece of furniture of another room, or the outside, blocks the line. Cells other than
+    floor (walls, furniture) never reach an object they are not part of: a robot stands on floor.
+
+Both give the cells of every floor (the object's footprint is looked up on each, as the C++ does) as flat
+indices into a ``(rows, cols)`` floor raster, ascending.
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+
+from sgplan.errors import PlanningError
+from sgplan.scene.dilate import box_dilate, radius_widths, within_distance
+from sgplan.scene.model import CatCode, Floor, SceneObject
+
+ReachModel = Literal["box", "visible"]
+REACH_MODELS: tuple[ReachModel, ...] = ("box", "visible")
+PROFILE_REACH_MODELS: dict[str, ReachModel] = {"ltlf": "visible", "authors": "box"}
+"""The reach model of each semantics profile when none is chosen: ``authors`` keeps the paper's window."""
+DEFAULT_REACH_MODEL: ReachModel = PROFILE_REACH_MODELS["ltlf"]
+
+
+def reach_model(name: str | None, profile: str = "ltlf") -> ReachModel:
+    """The reach model ``name`` (``"box"`` or ``"visible"``, any case), or the ``profile``'s default for
+    ``None``.
+
+    Raises
+    ------
+    PlanningError
+        for another name (the message lists the models).
+    """
+    if name is None:
+        return PROFILE_REACH_MODELS.get(profile, DEFAULT_REACH_MODEL)
+    model = str(name).strip().lower()
+    if model not in REACH_MODELS:
+        raise PlanningError(f"unknown reach model {name!r}; use one of {', '.join(REACH_MODELS)}")
+    return model  # narrowed by the membership test
+
+
+def reach_half_widths(resolution_m: tuple[float, float], reach_radius_m: float) -> tuple[int, int]:
+    """Half-widths ``(rows, cols)`` in cells of the ``box`` model's window: ``int(d / res)``, at least 1
+    each (truncated as the authors' C++ does: ``int(0.6 / 0.05)`` is 11)."""
+    return (
+        max(1, int(reach_radius_m / resolution_m[0])),
+        max(1, int(reach_radius_m / resolution_m[1])),
+    )
+
+
+def object_reach_cells(
+    floor: Floor, obj: SceneObject, reach_radius_m: float, model: ReachModel
+) -> np.ndarray:
+    """Flat indices (into ``floor``'s ``(rows, cols)`` rasters) of the cells from which ``obj`` is within
+    ``reach_radius_m`` metres under ``model``; int64, ascending; empty when the object has no cell on this
+    floor's category map."""
+    cat_map = floor.cat_map
+    footprint = cat_map == obj.id
+    rows, cols = np.nonzero(footprint.any(axis=1))[0], np.nonzero(footprint.any(axis=0))[0]
+    if len(rows) == 0:
+        return np.zeros(0, dtype=np.int64)
+    if model == "box":
+        pad = reach_half_widths(floor.resolution_m, reach_radius_m)
+    else:  # the disk's reach (one more cell: the float test decides at the edge)
+        res_r, res_c = floor.resolution_m
+        pad = (int(reach_radius_m / res_r) + 1, int(reach_radius_m / res_c) + 1)
+    # Work in the object's bounding box grown by the reach: the rest of the floor is out of it.
+    r0, r1 = max(0, rows[0] - pad[0]), min(cat_map.shape[0], rows[-1] + pad[0] + 1)
+    c0, c1 = max(0, cols[0] - pad[1]), min(cat_map.shape[1], cols[-1] + pad[1] + 1)
+    window = (slice(r0, r1), slice(c0, c1))
+    if model == "box":
+        reached = box_dilate(footprint[window], pad)
+    else:
+        reached = _visible(cat_map[window], floor.room_map[window], obj, floor.resolution_m, reach_radius_m)
+    rr, cc = np.nonzero(reached)
+    return (rr + r0).astype(np.int64) * cat_map.shape[1] + (cc + c0)
+
+
+def _visible(cat: np.ndarray, room: np.ndarray, obj: SceneObject, resolution_m: tuple[float, float],
+             reach_radius_m: float) -> np.ndarray:
+    """The ``visible`` model on one window of the rasters (bool, the window's shape)."""
+    from sgplan.scene._sight import visible_cells  # numba loads when a visible region is first made
+
+    target = cat == obj.id
+    floor = cat == CatCode.GROUND
+    opaque = ~floor & ~target & (room != obj.room_id)
+    viewers = floor & within_distance(target, resolution_m, reach_radius_m)
+    widest = radius_widths(resolution_m, reach_radius_m, *cat.shape)
+    return target | visible_cells(opaque, target, viewers, widest)
