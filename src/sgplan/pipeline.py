@@ -117,8 +117,10 @@ def make_problem(
     """
     from sgplan.planning.problem import PlanningProblem
     from sgplan.scene.grid import build_occupancy_grid
+    from sgplan.scene.reach import reach_model
 
     t0 = time.perf_counter()
+    model = reach_model(None, profile)
     radii = resolve_radii(building, robot_radius_m, reach_radius_m)
     if grid is None:
         grid = build_occupancy_grid(building, radii.robot_m)
@@ -127,7 +129,7 @@ def make_problem(
             f"the given grid is for robot radius {grid.robot_radius_m} m, not {radii.robot_m} m"
         )
     if labels is None:
-        labels = mission.labels(building, radii.reach_m)
+        labels = mission.labels(building, radii.reach_m, model)
     problem = PlanningProblem(
         building=building,
         grid=grid,
@@ -137,6 +139,7 @@ def make_problem(
         profile=profile,
         guidance=mission.guidance if use_guidance else None,
         reach_radius_m=radii.reach_m,
+        reach_model=model,
         ap_descriptions=mission.descriptions,
         shared=shared,
     )
