@@ -19,12 +19,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
 from sgplan.commands.common import (
-    SETUP_NAMES,
     add_profile_argument,
     add_scene_arguments,
     load_scene_arg,
     log,
     non_negative_int,
+    plan_options,
     positive_int,
     positive_seconds,
     reach_radius,
@@ -34,6 +34,7 @@ from sgplan.commands.common import (
 from sgplan.commands.sayback import check_folder_fits, say_back
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 from sgplan.errors import MissionError, SgplanError
+from sgplan.planning.setups import SETUPS, get_setup
 
 if TYPE_CHECKING:
     from sgplan.llm.backends import Backends
@@ -93,18 +94,16 @@ def register(sub: argparse._SubParsersAction) -> None:
     where.add_argument("--start-index", type=non_negative_int, metavar="K",
                        help="start at the scene's initial position K (default 0)")
     parser.add_argument(
-        "--setup", default="ALL", help=f"planner setup, any case: {', '.join(SETUP_NAMES)} (default ALL)"
+        "--setup", default="ALL", help=f"planner setup, any case: {', '.join(SETUPS)} (default ALL)"
     )
     add_profile_argument(parser)
-    parser.add_argument(
-        "--robot-radius", type=robot_radius, metavar="M", help="robot radius (default: the scene's)"
-    )
-    parser.add_argument(
-        "--reach-radius", type=reach_radius, metavar="M", help="object reach radius (default: the scene's)"
-    )
-    parser.add_argument(
-        "--time-limit", type=positive_seconds, metavar="S", help="search time budget in seconds"
-    )
+    # The planning options' arguments store under the options' names (commands.common.plan_options).
+    parser.add_argument("--robot-radius", dest="robot_radius_m", type=robot_radius, metavar="M",
+                        help="robot radius (default: the scene's)")
+    parser.add_argument("--reach-radius", dest="reach_radius_m", type=reach_radius, metavar="M",
+                        help="object reach radius (default: the scene's)")
+    parser.add_argument("--time-limit", dest="time_limit_s", type=positive_seconds, metavar="S",
+                        help="search time budget in seconds")
     parser.add_argument("--max-expansions", type=positive_int, metavar="N", help="search expansion budget")
     out = parser.add_argument_group("outputs")
     out.add_argument("--json", metavar="OUT", help="write the result as JSON ('-': to stdout)")
@@ -122,7 +121,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="write one PNG and one SVG per floor with the path, and the automaton (DOT, SVG)",
     )
     out.add_argument("--html", metavar="FILE", help="write a self-contained HTML report of the plan")
-    parser.add_argument("--verify", action="store_true",
+    parser.add_argument("--verify", action="store_true", default=None,
                         help="accepted for old scripts: every path is checked by the independent checker")
     parser.add_argument("--confirm", action="store_true",
                         help="show what will be planned and ask before planning (needs a terminal)")
@@ -155,8 +154,8 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     """The plan of ``args``, and what the JSON record holds beyond the result (scene fit, LLM calls)."""
     import sgplan
     from sgplan.mission import read_guidance, write_guidance
-    from sgplan.planning.amra import get_setup
 
+    options = plan_options(args)
     building = load_scene_arg(args.scene, args.data)
     if args.save_mission and not args.text:
         raise MissionError("--save-mission saves a translated mission: use it with --text")
@@ -167,7 +166,7 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
         if value is not None and not value.strip():
             raise MissionError(f"{option} is empty: give a {option[2:].replace('-dir', ' folder')}")
     if args.mission_dir is not None:
-        mission = sgplan.load_mission(args.mission_dir, profile=args.profile)
+        mission = sgplan.load_mission(args.mission_dir, profile=options.profile)
     elif args.formula is not None:
         mission = sgplan.mission_from_formula(args.formula, aps=args.aps)
     else:
@@ -191,19 +190,17 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     explanation = say_back(mission, building, confirm=args.confirm,
                            stream=sys.stderr if args.json == "-" else sys.stdout, session=session)
     guide = None
-    if get_setup(args.setup).uses_llm and mission.guidance is None:
+    if get_setup(options.setup).uses_llm and mission.guidance is None:
         if backends is None:
             backends = open_backends_from_args(args, mission_text=mission.grounded_text or mission.text)
         guide = backends.guide
-        say(f"setup {args.setup} needs guidance: asking {guide.name} ({backends.description})")
+        say(f"setup {options.setup} needs guidance: asking {guide.name} ({backends.description})")
 
     def progress(it: Any) -> None:
         say(f"  (w1, w2) = ({it.w1:g}, {it.w2:g})  cost {it.cost_m:.4f} m  bound x{it.bound:g}  "
             f"{it.time_s:.3f} s  {sum(it.expansions):,} expansions")
 
-    result = sgplan.plan(building, mission, _start_spec(args), setup=args.setup, profile=args.profile,
-                         robot_radius_m=args.robot_radius, reach_radius_m=args.reach_radius,
-                         time_limit_s=args.time_limit, max_expansions=args.max_expansions, guide=guide,
+    result = sgplan.plan(building, mission, _start_spec(args), options=options, guide=guide,
                          callback=progress, explanation=explanation,  # said back above: not made twice
                          session=session)
     if args.save_mission and guide is not None and result.mission is not None and result.mission.guidance:
@@ -266,7 +263,7 @@ def _report(args: argparse.Namespace, result: PlanResult) -> int:
         say(f"wrote {result.write_html(args.html)}")
     if result.status == "timeout":
         budget = ", ".join(part for part in (
-            f"--time-limit {args.time_limit:g} s" if args.time_limit is not None else "",
+            f"--time-limit {args.time_limit_s:g} s" if args.time_limit_s is not None else "",
             f"--max-expansions {args.max_expansions}" if args.max_expansions is not None else "") if part)
         if result.path is None:
             log.warning(f"sgplan: timeout: no path found within the budget ({budget})")

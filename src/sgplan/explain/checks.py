@@ -28,8 +28,8 @@ from typing import Any, Literal
 import numpy as np
 
 from sgplan.errors import PlanningError, SgplanError, UnsatisfiableMissionError
-from sgplan.explain.entities import Entity, entities_of
 from sgplan.explain.patterns import condition_text, pattern_clauses
+from sgplan.explain.referents import Referent, referents_of
 from sgplan.explain.scene_labels import occurring_labels
 from sgplan.explain.stages import forbidden_bits, restricted
 from sgplan.logic.automaton import Automaton
@@ -150,7 +150,7 @@ def check_mission_in_scene(
     realizable = occurring_labels(labels, grid.traversable, automaton.num_labels)
     if not realizable.any():
         return SceneCheck(())
-    entities = entities_of(list(automaton.aps), mission.propositions, building)
+    entities = referents_of(list(automaton.aps), mission.propositions, building)
     context = _Context(mission, building, grid, labels, entities, realizable)
     # The part analysis recurses over the formula as written: a deeper one (a 500-term conjunction as
     # nested pairs) gets only the whole-mission checks below, which work on the automaton (_readable).
@@ -169,10 +169,10 @@ class _Context:
     building: Building
     grid: OccupancyGrid
     labels: np.ndarray
-    entities: dict[str, Entity]
+    entities: dict[str, Referent]
     realizable: np.ndarray
 
-    def describe(self, name: str) -> Entity:
+    def describe(self, name: str) -> Referent:
         return self.entities[name]
 
     def cond(self, f: Formula) -> str:

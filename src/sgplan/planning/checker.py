@@ -14,9 +14,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from sgplan.logic.automaton import Automaton
+from sgplan.planning.setups import PROFILES
 from sgplan.scene.grid import OccupancyGrid
-
-PROFILES = ("ltlf", "authors")
 
 
 @dataclass(frozen=True)

@@ -10,6 +10,7 @@ import numpy as np
 
 from sgplan.errors import PlanningError
 from sgplan.logic.automaton import Automaton
+from sgplan.planning.setups import check_profile
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 from sgplan.scene.reach import reach_model
@@ -18,9 +19,6 @@ if TYPE_CHECKING:
     from sgplan.planning.domain import PlanningDomain
     from sgplan.planning.shared import SharedParts
 
-PROFILES = ("ltlf", "authors")
-"""``ltlf``: the start cell's label is read (q_start = T(initial, label(start))); ``authors``: it is not
-(q_start = initial), as in the authors' planner. Missing-edge behaviour is the automaton table's."""
 
 
 @dataclass(eq=False)
@@ -40,7 +38,7 @@ class PlanningProblem:
     start:
         ``(row, col, floor)`` start cell.
     profile:
-        ``"ltlf"`` (default) or ``"authors"``, see :data:`PROFILES`.
+        ``"ltlf"`` (default) or ``"authors"``, see :data:`sgplan.planning.setups.PROFILES`.
     guidance:
         optional LLM guidance ``{room_uuid: {q: [call strings]}}`` (llm_heuristic.yaml content).
     reach_radius_m:
@@ -69,10 +67,7 @@ class PlanningProblem:
     shared: SharedParts | None = None
 
     def __post_init__(self) -> None:
-        if self.profile not in PROFILES:
-            raise PlanningError(
-                f"unknown semantics profile {self.profile!r}; use one of {', '.join(PROFILES)}"
-            )
+        check_profile(self.profile)
         if tuple(self.labels.shape) != tuple(self.grid.shape):
             raise PlanningError(
                 f"label raster has shape {tuple(self.labels.shape)}, the grid {tuple(self.grid.shape)} "
