@@ -109,19 +109,18 @@ def make_problem(
     shared: SharedParts | None = None,
 ) -> PreparedProblem:
     """Build the occupancy grid and the label raster, and assemble a :class:`PlanningProblem` with the
-    profile and radii of ``options`` (default: the defaults, :class:`sgplan.PlanOptions`).
+    profile, radii and reach model of ``options`` (default: the defaults, :class:`sgplan.PlanOptions`).
 
     ``grid`` / ``labels`` may be given already built (a :class:`sgplan.api.Session` keeps them between
-    missions); they must be the ones of these radii (``grid.robot_radius_m`` is checked). ``shared``: the
-    session's building-only planner parts (:mod:`sgplan.planning.shared`).
+    missions); they must be the ones of these radii and reach model (``grid.robot_radius_m`` is checked).
+    ``shared``: the session's building-only planner parts (:mod:`sgplan.planning.shared`).
     """
     from sgplan.planning.problem import PlanningProblem
     from sgplan.scene.grid import build_occupancy_grid
-    from sgplan.scene.reach import reach_model
 
     t0 = time.perf_counter()
     options = options if options is not None else PlanOptions()
-    model = reach_model(None, options.profile)
+    model = options.effective_reach_model
     radii = resolve_radii(building, options.robot_radius_m, options.reach_radius_m)
     if grid is None:
         grid = build_occupancy_grid(building, radii.robot_m)

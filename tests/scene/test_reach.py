@@ -9,11 +9,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError
+from sgplan.planning.setups import PROFILE_REACH_MODELS, REACH_MODELS, reach_model_for
 from sgplan.scene.demo import demo_building
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.labels import Proposition, label_raster, proposition_cells
 from sgplan.scene.model import NO_ROOM, CatCode, Floor, SceneObject
-from sgplan.scene.reach import object_reach_cells, reach_model
+from sgplan.scene.reach import DEFAULT_REACH_MODEL, object_reach_cells
 from tests.scene.reach_oracle import crossed_cells, visible_reach
 from tests.shared_data import scene_building
 
@@ -47,7 +48,7 @@ def reached(floor: Floor, radius_m: float, model: str = "visible",
     """The model's cells as a bool raster, checked against the brute force for ``visible``."""
     obj = obj or the_object(floor)
     out = np.zeros(floor.shape, dtype=bool)
-    out.flat[object_reach_cells(floor, obj, radius_m, reach_model(model))] = True
+    out.flat[object_reach_cells(floor, obj, radius_m, model)] = True
     if model == "visible":
         np.testing.assert_array_equal(out, visible_reach(floor, obj, radius_m))
     return out
@@ -210,10 +211,13 @@ def test_labels_choose_the_model() -> None:
         cells = proposition_cells(building, prop, 0.6, model)
         np.testing.assert_array_equal(cells, object_reach_cells(floor, sink, 0.6, model))
         assert np.array_equal(np.flatnonzero(label_raster(building, [prop], 0.6, model)), cells)
-    assert reach_model(None, "authors") == "box" and reach_model(None, "ltlf") == "visible"
-    assert reach_model(" Visible ") == "visible"
+    assert reach_model_for("authors") == "box" and reach_model_for("ltlf") == "visible"
+    assert reach_model_for("authors", " Visible ") == "visible" and REACH_MODELS == ("box", "visible")
+    assert PROFILE_REACH_MODELS["ltlf"] == DEFAULT_REACH_MODEL
     with pytest.raises(PlanningError, match="unknown reach model 'sphere'; use one of box, visible"):
-        reach_model("sphere")
+        reach_model_for("ltlf", "sphere")
+    with pytest.raises(ValueError, match="unknown reach model 'Box'"):
+        object_reach_cells(floor, sink, 0.6, "Box")
 
 
 def _rows_cols(floor: Floor, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

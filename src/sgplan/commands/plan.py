@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 
 from sgplan.commands.common import (
     add_profile_argument,
+    add_reach_model_argument,
     add_scene_arguments,
     load_scene_arg,
     log,
@@ -102,6 +103,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="robot radius (default: the scene's)")
     parser.add_argument("--reach-radius", dest="reach_radius_m", type=reach_radius, metavar="M",
                         help="object reach radius (default: the scene's)")
+    add_reach_model_argument(parser)
     parser.add_argument("--time-limit", dest="time_limit_s", type=positive_seconds, metavar="S",
                         help="search time budget in seconds")
     parser.add_argument("--max-expansions", type=positive_int, metavar="N", help="search expansion budget")
@@ -188,7 +190,8 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     session = sgplan.Session(building, max_shared_bytes=0)
     # Said back before any guidance call or search; on stderr when stdout carries the JSON.
     explanation = say_back(mission, building, confirm=args.confirm,
-                           stream=sys.stderr if args.json == "-" else sys.stdout, session=session)
+                           stream=sys.stderr if args.json == "-" else sys.stdout, session=session,
+                           reach_radius_m=options.reach_radius_m, reach_model=options.effective_reach_model)
     guide = None
     if get_setup(options.setup).uses_llm and mission.guidance is None:
         if backends is None:

@@ -743,7 +743,7 @@ def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj) -> np.n
     problem's reach radius and model (:func:`sgplan.scene.reach.object_reach_cells`) that lie in the room
     and on the graph."""
     floor = problem.building.floors[room.floor]
-    flat = object_reach_cells(floor, obj, problem.reach_radius_m, problem.reach_model)  # type: ignore[arg-type]
+    flat = object_reach_cells(floor, obj, problem.reach_radius_m, str(problem.reach_model))
     flat = flat[floor.room_map.reshape(-1)[flat] == room.id]
     rows, cols = floor.shape
     ids = graph.cell_ids(room.floor * rows * cols + flat)

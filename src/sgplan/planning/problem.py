@@ -10,10 +10,9 @@ import numpy as np
 
 from sgplan.errors import PlanningError
 from sgplan.logic.automaton import Automaton
-from sgplan.planning.setups import check_profile
+from sgplan.planning.setups import check_profile, reach_model_for
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
-from sgplan.scene.reach import reach_model
 
 if TYPE_CHECKING:
     from sgplan.planning.domain import PlanningDomain
@@ -46,7 +45,7 @@ class PlanningProblem:
     reach_model:
         where an object counts as reached (:mod:`sgplan.scene.reach`: ``"visible"`` or ``"box"``), for the
         object level's regions as for the labels; ``None`` (default): the profile's
-        (:data:`~sgplan.scene.reach.PROFILE_REACH_MODELS`). The labels must be made with the same model.
+        (:data:`~sgplan.planning.setups.PROFILE_REACH_MODELS`). The labels must be made with the same model.
     ap_descriptions:
         optional names for messages, e.g. ``{"p1": "enter(room_2)"}``.
     shared:
@@ -79,7 +78,7 @@ class PlanningProblem:
             raise PlanningError(
                 f"reach radius must be a positive number of metres, got {self.reach_radius_m}"
             )
-        self.reach_model = reach_model(self.reach_model, self.profile)
+        self.reach_model = reach_model_for(self.profile, self.reach_model)
         self.start = tuple(int(v) for v in self.start)  # type: ignore[assignment]
 
     def ap_name(self, index: int) -> str:

@@ -18,7 +18,7 @@ import numpy as np
 
 from sgplan.errors import FormulaError, MissionError, SceneError
 from sgplan.scene.model import Building
-from sgplan.scene.reach import DEFAULT_REACH_MODEL, ReachModel, object_reach_cells
+from sgplan.scene.reach import DEFAULT_REACH_MODEL, object_reach_cells
 
 PropositionKind = Literal["enter", "reach"]
 MAX_PROPOSITIONS = 32
@@ -91,7 +91,7 @@ def _check_known(building: Building, propositions: Sequence[Proposition]) -> Non
 
 def proposition_cells(
     building: Building, prop: Proposition, reach_radius_m: float | None = None,
-    reach_model: ReachModel = DEFAULT_REACH_MODEL,
+    reach_model: str = DEFAULT_REACH_MODEL,
 ) -> np.ndarray:
     """Flat indices into a ``(floors, rows, cols)`` raster of the cells where ``prop`` holds, ascending;
     int32 when the raster has fewer than 2**31 cells (4 bytes a cell: a session keeps them), else int64.
@@ -145,7 +145,7 @@ def label_raster(
     building: Building,
     propositions: Sequence[Proposition],
     reach_radius_m: float | None = None,
-    reach_model: ReachModel = DEFAULT_REACH_MODEL,
+    reach_model: str = DEFAULT_REACH_MODEL,
 ) -> np.ndarray:
     """The label of every cell: ``(floors, rows, cols)``, bit ``i`` = ``propositions[i]`` holds; the
     smallest unsigned dtype with a bit per proposition (:func:`label_dtype`: a raster is a byte a cell

@@ -34,36 +34,14 @@ indices into a ``(rows, cols)`` floor raster, ascending.
 
 from __future__ import annotations
 
-from typing import Literal
-
 import numpy as np
 
-from sgplan.errors import PlanningError
 from sgplan.scene.dilate import box_dilate, radius_widths, within_distance
 from sgplan.scene.model import CatCode, Floor, SceneObject
 
-ReachModel = Literal["box", "visible"]
-REACH_MODELS: tuple[ReachModel, ...] = ("box", "visible")
-PROFILE_REACH_MODELS: dict[str, ReachModel] = {"ltlf": "visible", "authors": "box"}
-"""The reach model of each semantics profile when none is chosen: ``authors`` keeps the paper's window."""
-DEFAULT_REACH_MODEL: ReachModel = PROFILE_REACH_MODELS["ltlf"]
-
-
-def reach_model(name: str | None, profile: str = "ltlf") -> ReachModel:
-    """The reach model ``name`` (``"box"`` or ``"visible"``, any case), or the ``profile``'s default for
-    ``None``.
-
-    Raises
-    ------
-    PlanningError
-        for another name (the message lists the models).
-    """
-    if name is None:
-        return PROFILE_REACH_MODELS.get(profile, DEFAULT_REACH_MODEL)
-    model = str(name).strip().lower()
-    if model not in REACH_MODELS:
-        raise PlanningError(f"unknown reach model {name!r}; use one of {', '.join(REACH_MODELS)}")
-    return model  # narrowed by the membership test
+DEFAULT_REACH_MODEL = "visible"
+"""sgplan's model, the one of its default ``ltlf`` profile. The models' names, and which one each semantics
+profile uses, are in :mod:`sgplan.planning.setups` (``REACH_MODELS``, ``PROFILE_REACH_MODELS``)."""
 
 
 def reach_half_widths(resolution_m: tuple[float, float], reach_radius_m: float) -> tuple[int, int]:
@@ -75,12 +53,18 @@ def reach_half_widths(resolution_m: tuple[float, float], reach_radius_m: float) 
     )
 
 
-def object_reach_cells(
-    floor: Floor, obj: SceneObject, reach_radius_m: float, model: ReachModel
-) -> np.ndarray:
+def object_reach_cells(floor: Floor, obj: SceneObject, reach_radius_m: float, model: str) -> np.ndarray:
     """Flat indices (into ``floor``'s ``(rows, cols)`` rasters) of the cells from which ``obj`` is within
-    ``reach_radius_m`` metres under ``model``; int64, ascending; empty when the object has no cell on this
-    floor's category map."""
+    ``reach_radius_m`` metres under ``model`` (``"box"`` or ``"visible"``); int64, ascending; empty when
+    the object has no cell on this floor's category map.
+
+    Raises
+    ------
+    ValueError
+        for another model (user input is checked before, :func:`sgplan.planning.setups.reach_model_for`).
+    """
+    if model not in ("box", "visible"):
+        raise ValueError(f"unknown reach model {model!r}")
     cat_map = floor.cat_map
     footprint = cat_map == obj.id
     rows, cols = np.nonzero(footprint.any(axis=1))[0], np.nonzero(footprint.any(axis=0))[0]
