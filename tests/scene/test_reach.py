@@ -202,6 +202,20 @@ def test_visible_model_is_the_brute_force_on_larger_floors(case: tuple[Floor, fl
     reached(floor, radius)
 
 
+@settings(max_examples=40, deadline=None)
+@given(_floors(size=24, extent=8, cells_reach=10), st.integers(0, 2**32 - 1),
+       st.sampled_from(["box", "visible"]))
+def test_deciding_some_cells_gives_those_of_the_whole_region(case: tuple[Floor, float], seed: int,
+                                                              model: str) -> None:
+    """``among`` (the planning domain's free cells of one room) only saves work."""
+    floor, radius = case
+    obj = the_object(floor)
+    among = np.random.default_rng(seed).random(floor.shape) < 0.5
+    whole = object_reach_cells(floor, obj, radius, model)
+    np.testing.assert_array_equal(object_reach_cells(floor, obj, radius, model, among=among),
+                                  whole[among.reshape(-1)[whole]])
+
+
 def test_labels_choose_the_model() -> None:
     building = demo_building()
     sink = building.objects_named("sink")[0]

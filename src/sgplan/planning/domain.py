@@ -642,8 +642,9 @@ def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
         if room.floor >= floors:
             continue
         stop = -1 if room.is_staircase else r  # the room a map's paths stop in (-1: none)
+        in_room = _room_cells(problem, room) if room.objects else np.zeros(0, dtype=np.bool_)
         for obj in room.objects.values():
-            cells = _reach_region(problem, graph, room, obj)
+            cells = _reach_region(problem, graph, room, obj, in_room)
             if cells.size:
                 in_region[cells] = True
                 room_obj[r].append(add(ActionMap(MAP_OBJECT, obj.uuid, room.floor), cells, stop))
@@ -738,13 +739,19 @@ def _cell_ids(graph: CellGraph, floor: int, cells: np.ndarray) -> np.ndarray:
     return np.unique(ids[ids >= 0])
 
 
-def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj) -> np.ndarray:
+def _room_cells(problem: PlanningProblem, room) -> np.ndarray:
+    """``(rows, cols)`` bool: the traversable cells of ``room`` on its floor."""
+    return (problem.grid.room_map[room.floor] == room.id) & problem.grid.traversable[room.floor]
+
+
+def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj, in_room: np.ndarray) -> np.ndarray:
     """Cell indices of ``room`` from which ``obj`` is reached: the cells of its ``reach`` label at the
-    problem's reach radius and model (:func:`sgplan.scene.reach.object_reach_cells`) that lie in the room
-    and on the graph."""
+    problem's reach radius and model (:func:`sgplan.scene.reach.object_reach_cells`) among the room's
+    traversable cells ``in_room``."""
     floor = problem.building.floors[room.floor]
-    flat = object_reach_cells(floor, obj, problem.reach_radius_m, str(problem.reach_model))
-    flat = flat[floor.room_map.reshape(-1)[flat] == room.id]
+    if not floor.has_maps:
+        return np.zeros(0, dtype=np.int64)
+    flat = object_reach_cells(floor, obj, problem.reach_radius_m, str(problem.reach_model), among=in_room)
     rows, cols = floor.shape
     ids = graph.cell_ids(room.floor * rows * cols + flat)
     return ids[ids >= 0]

@@ -129,12 +129,14 @@ _BAND = 8
 
 
 @njit(cache=True)
-def _target_runs(target: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The target's cells as row runs and bands of :data:`_BAND` rows: ``(row_ptr, run_c0, run_c1, bands)``.
+def _target_runs(target: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The target's cells as row runs and bands of :data:`_BAND` rows:
+    ``(row_ptr, run_c0, run_c1, bands, extent)``.
 
     The runs of row ``i`` are ``row_ptr[i]:row_ptr[i + 1]`` (inclusive column ranges, left to right);
     ``bands[k] = (first row, last row, first column, last column)`` of the target cells in rows
-    ``k * _BAND .. (k + 1) * _BAND - 1``, first row -1 when there are none.
+    ``k * _BAND .. (k + 1) * _BAND - 1``, first row -1 when there are none; ``extent`` the same of all the
+    target's cells.
     """
     rows, cols = target.shape
     row_ptr = np.zeros(rows + 1, dtype=np.int64)
@@ -160,7 +162,9 @@ def _target_runs(target: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray
             band[1] = i
             band[2] = min(band[2], c0[row_ptr[i]])
             band[3] = max(band[3], c1[k - 1])
-    return row_ptr, c0[:k], c1[:k], bands
+    used = bands[bands[:, 0] >= 0]
+    extent = np.array([used[:, 0].min(), used[:, 2].min(), used[:, 1].max(), used[:, 3].max()])
+    return row_ptr, c0[:k], c1[:k], bands, extent
 
 
 _CACHE = 8
@@ -187,7 +191,8 @@ def _shadowed(r: int, c: int, a0: int, b0: int, a1: int, b1: int, boxes: np.ndar
 def _sees_in_row(opaque: np.ndarray, counts: np.ndarray, row_ptr: np.ndarray, run_c0: np.ndarray,
                  run_c1: np.ndarray, r: int, c: int, a: int, w: int, boxes: np.ndarray,
                  memory: np.ndarray) -> bool:
-    """Whether ``(r, c)`` sees a target cell of row ``a`` within ``w`` columns; see :func:`_sees`."""
+    """Whether ``(r, c)`` sees a target cell of row ``a`` within ``w`` columns; see :func:`_sees`. A run's
+    cells are tried from the one nearest the viewer's column outwards: the likeliest in sight."""
     for k in range(row_ptr[a], row_ptr[a + 1]):
         lo, hi = max(run_c0[k], c - w), min(run_c1[k], c + w)
         if lo > hi:
@@ -198,40 +203,40 @@ def _sees_in_row(opaque: np.ndarray, counts: np.ndarray, row_ptr: np.ndarray, ru
             return True
         if _shadowed(r, c, a, lo, a, hi, boxes, memory[2]):
             continue
-        for b in range(lo, hi + 1):
-            if _shadowed(r, c, a, b, a, b, boxes, memory[2]):
-                continue
-            blocker = first_opaque(opaque, r, c, a, b)
-            if blocker < 0:
-                memory[0], memory[1] = a, b
-                return True
-            slot = min(memory[2], _CACHE - 1)  # a full memory forgets its last rectangle
-            _grow_box(opaque, counts, blocker, boxes[slot])
-            for i in range(4):
-                boxes[0, i], boxes[slot, i] = boxes[slot, i], boxes[0, i]
-            memory[2] = min(memory[2] + 1, _CACHE)
+        for d in range(hi - lo + 1):  # near, then both sides of it, one column further each time
+            for side in range(2 if d else 1):
+                b = near + d if side == 0 else near - d
+                if b < lo or b > hi or _shadowed(r, c, a, b, a, b, boxes, memory[2]):
+                    continue
+                blocker = first_opaque(opaque, r, c, a, b)
+                if blocker < 0:
+                    memory[0], memory[1] = a, b
+                    return True
+                slot = min(memory[2], _CACHE - 1)  # a full memory forgets its last rectangle
+                _grow_box(opaque, counts, blocker, boxes[slot])
+                for i in range(4):
+                    boxes[0, i], boxes[slot, i] = boxes[slot, i], boxes[0, i]
+                memory[2] = min(memory[2] + 1, _CACHE)
     return False
 
 
 @njit(cache=True)
 def _sees(opaque: np.ndarray, counts: np.ndarray,
-          runs: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+          runs: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray],
           widest: np.ndarray, r: int, c: int, boxes: np.ndarray, memory: np.ndarray) -> bool:
     """Whether cell ``(r, c)`` sees a target cell within the radius (``widest``: per row offset, the widest
-    column offset within it, -1 for none).
+    column offset within it, -1 for none), once the target cell the previous viewer saw
+    (``memory[:2]``, updated to the one found) is out of reach or sight.
 
-    What the previous viewer (usually the neighbouring cell) learnt is tried first: ``memory[:2]``, the
-    target cell it saw (updated to the one found), and the first ``memory[2]`` rectangles of opaque cells
-    of ``boxes`` (a rectangle of opaque cells blocks what it blocks, whoever looks). Then the bands of
-    target rows, nearest first: a band in the shadow of one rectangle is passed over whole.
+    What earlier viewers learnt comes first: the first ``memory[2]`` rectangles of opaque cells of
+    ``boxes`` (a rectangle of opaque cells blocks what it blocks, whoever looks); one that shadows the
+    target's whole bounding box settles a viewer behind a wall at once. Then the bands of target rows,
+    nearest first: a band in the shadow of one rectangle is passed over whole.
     """
-    row_ptr, run_c0, run_c1, bands = runs
+    row_ptr, run_c0, run_c1, bands, extent = runs
     reach = widest.shape[0] - 1
-    if memory[0] >= 0:
-        a, b = memory[0], memory[1]
-        if (abs(a - r) <= reach and widest[abs(a - r)] >= abs(b - c)
-                and (_opaque_in(counts, r, c, a, b) == 0 or first_opaque(opaque, r, c, a, b) < 0)):
-            return True
+    if _shadowed(r, c, extent[0], extent[1], extent[2], extent[3], boxes, memory[2]):
+        return False
     home = r // _BAND
     for step in range(2 * bands.shape[0]):  # bands home, home + 1, home - 1, ...: nearest first
         k = home + (step + 1) // 2 if step % 2 else home - step // 2
@@ -245,33 +250,6 @@ def _sees(opaque: np.ndarray, counts: np.ndarray,
                                                          widest[abs(a - r)], boxes, memory):
                 return True
     return False
-
-
-@njit(cache=True)
-def _linked(opaque: np.ndarray, target: np.ndarray) -> np.ndarray:
-    """``(rows, cols)`` bool: the cells joined to a target cell by a chain of 8-adjacent cells that are not
-    opaque. A segment crosses such a chain from one end cell to the other (its crossed cells are
-    4-adjacent, or diagonal through a corner), so a viewer outside it sees nothing: a cell behind a wall
-    is settled without a single segment."""
-    rows, cols = opaque.shape
-    linked = target.copy()
-    stack = np.empty(rows * cols, dtype=np.int64)
-    top = 0
-    for i in range(rows):
-        for j in range(cols):
-            if target[i, j]:
-                stack[top] = i * cols + j
-                top += 1
-    while top > 0:
-        top -= 1
-        r, c = stack[top] // cols, stack[top] % cols
-        for a in range(max(r - 1, 0), min(r + 2, rows)):
-            for b in range(max(c - 1, 0), min(c + 2, cols)):
-                if not linked[a, b] and not opaque[a, b]:
-                    linked[a, b] = True
-                    stack[top] = a * cols + b
-                    top += 1
-    return linked
 
 
 @njit(cache=True)
@@ -295,12 +273,20 @@ def visible_cells(
     rows, cols = opaque.shape
     counts = _opaque_counts(opaque)
     runs = _target_runs(target)
-    linked = _linked(opaque, target)
     out = np.zeros((rows, cols), dtype=np.bool_)
     boxes = np.zeros((_CACHE, 4), dtype=np.int64)
     memory = np.array([-1, -1, 0], dtype=np.int64)
+    reach = widest.shape[0] - 1
     for r in range(rows):
         for c in range(cols):
-            if viewers[r, c] and linked[r, c]:
+            if not viewers[r, c]:
+                continue
+            # Most viewers see the target cell their neighbour saw, often with nothing opaque in the box
+            # between them: settled here, without a call.
+            a, b = memory[0], memory[1]
+            if (a >= 0 and abs(a - r) <= reach and widest[abs(a - r)] >= abs(b - c)
+                    and (_opaque_in(counts, r, c, a, b) == 0 or first_opaque(opaque, r, c, a, b) < 0)):
+                out[r, c] = True
+            else:
                 out[r, c] = _sees(opaque, counts, runs, widest, r, c, boxes, memory)
     return out

@@ -53,10 +53,15 @@ def reach_half_widths(resolution_m: tuple[float, float], reach_radius_m: float) 
     )
 
 
-def object_reach_cells(floor: Floor, obj: SceneObject, reach_radius_m: float, model: str) -> np.ndarray:
+def object_reach_cells(floor: Floor, obj: SceneObject, reach_radius_m: float, model: str,
+                       among: np.ndarray | None = None) -> np.ndarray:
     """Flat indices (into ``floor``'s ``(rows, cols)`` rasters) of the cells from which ``obj`` is within
     ``reach_radius_m`` metres under ``model`` (``"box"`` or ``"visible"``); int64, ascending; empty when
     the object has no cell on this floor's category map.
+
+    ``among``: a ``(rows, cols)`` bool raster; only its cells are decided (the others are left out), e.g.
+    the free cells of a room. The cells kept are those of the whole region that lie in it, found for
+    less work: a cell's line of sight never depends on the other cells' answers.
 
     Raises
     ------
@@ -79,22 +84,29 @@ def object_reach_cells(floor: Floor, obj: SceneObject, reach_radius_m: float, mo
     r0, r1 = max(0, rows[0] - pad[0]), min(cat_map.shape[0], rows[-1] + pad[0] + 1)
     c0, c1 = max(0, cols[0] - pad[1]), min(cat_map.shape[1], cols[-1] + pad[1] + 1)
     window = (slice(r0, r1), slice(c0, c1))
+    decide = None if among is None else among[window]
     if model == "box":
         reached = box_dilate(footprint[window], pad)
     else:
-        reached = _visible(cat_map[window], floor.room_map[window], obj, floor.resolution_m, reach_radius_m)
+        reached = _visible(cat_map[window], floor.room_map[window], obj, floor.resolution_m, reach_radius_m,
+                           decide)
+    if decide is not None:
+        reached &= decide
     rr, cc = np.nonzero(reached)
     return (rr + r0).astype(np.int64) * cat_map.shape[1] + (cc + c0)
 
 
 def _visible(cat: np.ndarray, room: np.ndarray, obj: SceneObject, resolution_m: tuple[float, float],
-             reach_radius_m: float) -> np.ndarray:
-    """The ``visible`` model on one window of the rasters (bool, the window's shape)."""
+             reach_radius_m: float, decide: np.ndarray | None) -> np.ndarray:
+    """The ``visible`` model on one window of the rasters (bool, the window's shape); only the floor cells
+    of ``decide`` are looked from when it is given."""
     from sgplan.scene._sight import visible_cells  # numba loads when a visible region is first made
 
     target = cat == obj.id
     floor = cat == CatCode.GROUND
     opaque = ~floor & ~target & (room != obj.room_id)
     viewers = floor & within_distance(target, resolution_m, reach_radius_m)
+    if decide is not None:
+        viewers &= decide
     widest = radius_widths(resolution_m, reach_radius_m, *cat.shape)
     return target | visible_cells(opaque, target, viewers, widest)
