@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 
+from sgplan.english import count
 from sgplan.errors import PlanningError, SceneError
 from sgplan.options import PlanOptions
 from sgplan.pipeline import Radii, make_problem, resolve_radii
@@ -227,6 +228,13 @@ class Session:
         self.parts = SharedParts(max_shared_bytes)
         self.builds: Counter[str] = Counter()
 
+    def __repr__(self) -> str:
+        radii = ", ".join(f"{r:g} m" for r in sorted(self._grids)) or "none yet"
+        held_mib, cap_mib = self.parts.nbytes() / 2**20, self.parts.max_bytes / 2**20
+        return (f"<Session {self.building.name!r}: grids for robot radii {radii}, "
+                f"{count(len(self._cells), 'proposition')} located, {count(len(self.parts), 'planner part')} "
+                f"({held_mib:.0f} of at most {cap_mib:.0f} MiB)>")
+
     def radii(self, robot_radius_m: float | None = None, reach_radius_m: float | None = None) -> Radii:
         """The radii a plan uses: given, else the scene's, else the defaults (:func:`resolve_radii`)."""
         return resolve_radii(self.building, robot_radius_m, reach_radius_m)
@@ -310,8 +318,11 @@ class Session:
         # Without kept parts the problem's maps are this plan's alone: freed once the search stops
         # reading them.
         stop_when = any_of(options.termination(), termination)
-        found = amra_plan(staged.problem, options.setup, termination=stop_when, callback=callback,
-                          prebuild_actions=options.prebuild_actions, release_maps=not self.parts.keeps)
+        try:
+            found = amra_plan(staged.problem, options.setup, termination=stop_when, callback=callback,
+                              prebuild_actions=options.prebuild_actions, release_maps=not self.parts.keeps)
+        except PlanningError as error:
+            raise _with_cause(error, staged.mission, self.building, staged.problem) from None
         result = _result(found, staged, options, self.building,
                          _explanation(staged.mission, self.building, explanation, self.proposition_cells,
                                       reach_radius_m=staged.radii.reach_m,
@@ -400,6 +411,19 @@ def _check_in_scene(mission: Mission, building: Building, problem: PlanningProbl
     return check.to_dict()
 
 
+def _with_cause(error: PlanningError, mission: Mission, building: Building,
+                problem: PlanningProblem) -> PlanningError:
+    """The planner's ``infeasible`` error said with its cause when a place the mission needs cannot be
+    reached from the start (:func:`sgplan.explain.checks.unreachable_finding`: no door, too narrow for this
+    robot); any other error as it is."""
+    if error.status != "infeasible":
+        return error
+    from sgplan.explain.checks import unreachable_finding
+
+    finding = unreachable_finding(mission, building, problem.grid, problem.labels, problem.start)
+    return error if finding is None else PlanningError(finding.message, status="infeasible")
+
+
 def _formula_text(mission: Mission) -> str | None:
     from sgplan.logic import to_infix
 
@@ -409,7 +433,7 @@ def _formula_text(mission: Mission) -> str | None:
 def _add_outputs(result: PlanResult, verify: bool) -> None:
     """Check the path (when asked) and add the waypoints and events."""
     from sgplan.outputs.events import path_events
-    from sgplan.outputs.waypoints import leg_costs, path_waypoints, simplify_path
+    from sgplan.outputs.waypoints import leg_costs, path_waypoints
     from sgplan.planning.checker import check_path
 
     assert result.path is not None and result.grid is not None and result.labels is not None
@@ -425,8 +449,7 @@ def _add_outputs(result: PlanResult, verify: bool) -> None:
                                 f"{result.cost_m:.6f} m (a bug, please report it)")
         result.verified = True
     result.waypoints = path_waypoints(result.path, result.grid, result.building)
-    keep = simplify_path(result.path, result.grid, result.labels, automaton)
-    result.waypoints_simplified = path_waypoints(result.path, result.grid, result.building, keep)
+    result.simplify_waypoints()
     costs = np.concatenate([[0.0], np.cumsum(leg_costs(result.path, result.grid))])
     result.events = path_events(result.path, costs, result.labels, automaton, result.building,
                                 result.mission.descriptions)

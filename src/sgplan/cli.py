@@ -141,7 +141,8 @@ def _internal_error_line(args: argparse.Namespace, error: BaseException) -> str:
 
 
 _INPUT_OPTIONS = ("scene", "mission_dir", "formula", "text", "aps", "guidance", "out", "data", "cache",
-                  "llm", "llm_config", "start", "start_index", "setup", "missions", "scenes", "starts")
+                  "llm", "llm_config", "start", "start_index", "setup", "missions", "scenes", "starts",
+                  "trajectory")
 
 
 if __name__ == "__main__":  # pragma: no cover

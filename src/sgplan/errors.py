@@ -103,3 +103,23 @@ class LLMError(SgplanError):
 
 class OutputError(SgplanError):
     """A result file (JSON, waypoints CSV, ROS path YAML, drawing) cannot be written."""
+
+
+class TrajectoryError(SgplanError):
+    """A trajectory (the poses a robot drove) cannot be read or monitored: a malformed file, a pose that is
+    not a number, off the grid or on a floor the scene lacks, a floor change with no stairs.
+
+    Parameters
+    ----------
+    message:
+        What is wrong, naming the pose (``pose 12``) or the field.
+    path, line:
+        The file and its 1-based line, if any; prefixed to the message (``w.csv: line 14: ...``).
+    """
+
+    def __init__(self, message: str, path: str | Path | None = None, line: int | None = None) -> None:
+        self.path = Path(path) if path is not None else None
+        self.line = line
+        where = [str(self.path)] if self.path is not None else []
+        where += [f"line {line}"] if line is not None else []
+        super().__init__(": ".join([*where, message]))

@@ -90,7 +90,7 @@ def test_the_report_never_mixes_profiles_or_time_limits(tmp_path: Path) -> None:
     assert "| ALL | 3 |" in latest.table2 and "profile ltlf, reach model box, no time limit" in text
     assert (
         "2 cases under profile authors, reach model box, no time limit" in text
-        and "1 cases under profile authors, reach model box, time limit 5 s" in text
+        and "1 case under profile authors, reach model box, time limit 5 s" in text
     )
     chosen = write_report(tmp_path, rows, condition=("authors", "box", 5.0))
     assert "| ALL | 1 |" in chosen.table2

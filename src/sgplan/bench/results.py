@@ -46,10 +46,10 @@ COLUMNS = (
     "start_cell", "cost_m", "first_cost_m", "cost_ratio", "first_time_s", "optimal_time_s",
     "num_iterations", "expansions", *(f"exp_{level}" for level in LEVELS),
     "load_s", "precompute_s", "search_s", "wall_s", "peak_rss_mb", "guidance", "path_cells",
-    "executor", "host", "finished_at",
+    "scene_reused", "ltlf_accepts", "executor", "host", "finished_at",
 )
 """The CSV columns, in order (documented in docs/bench.md); ``results.json`` rows add ``queues``,
-``iterations`` and ``gallery``."""
+``iterations``, ``gallery`` and ``ltlf_violations``."""
 
 
 def make_row(case: Case, measured: dict[str, Any], *, wall_s: float | None, executor: str) -> dict[str, Any]:

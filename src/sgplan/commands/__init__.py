@@ -2,9 +2,19 @@
 
 from __future__ import annotations
 
-from sgplan.commands import bench, demo, eval_translation, guide, import_scene, inspect, plan, translate
+from sgplan.commands import (
+    bench,
+    demo,
+    eval_translation,
+    guide,
+    import_scene,
+    inspect,
+    monitor,
+    plan,
+    translate,
+)
 
 REGISTRY = [
     demo.register, inspect.register, plan.register, translate.register, guide.register, bench.register,
-    import_scene.register, eval_translation.register,
+    import_scene.register, eval_translation.register, monitor.register,
 ]

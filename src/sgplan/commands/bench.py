@@ -23,6 +23,7 @@ from sgplan.commands.common import (
     say,
     split_list,
 )
+from sgplan.english import count
 from sgplan.planning.setups import SETUPS
 
 if TYPE_CHECKING:
@@ -183,9 +184,10 @@ def _sweep(args: argparse.Namespace) -> int:
     with writing_lock(make_folder(args.out)), _termination_as_interrupt():
         store = ResultStore(args.out)
         executor, summary, (csv_path, json_path) = _run_with_progress(args, cases, store)
-    jobs = executor.jobs or "cluster"
-    say(f"ran {summary.ran} cases in {summary.wall_s:.1f} s wall ({executor.name}, {jobs} jobs); "
-        f"{summary.skipped} were already recorded; results: {csv_path}, {json_path}")
+    jobs = count(executor.jobs, "job") if executor.jobs else "cluster"
+    recorded = f"{summary.skipped} {'was' if summary.skipped == 1 else 'were'} already recorded"
+    say(f"ran {count(summary.ran, 'case')} in {summary.wall_s:.1f} s wall ({executor.name}, {jobs}); "
+        f"{recorded}; results: {csv_path}, {json_path}")
     if not args.no_report:
         _print_report(args.out, (cases[0].profile, cases[0].effective_reach_model, args.time_limit))
     return 0
@@ -224,8 +226,9 @@ def _run_with_progress(
 
         def on_start(to_run: int, already: int) -> None:
             progress.update(task, total=to_run)
-            progress.console.print(f"{len(cases)} cases ({cases[0].profile} profile): {already} already in "
-                                   f"{store.path}, {to_run} to run with the {executor.name} executor")
+            progress.console.print(f"{count(len(cases), 'case')} ({cases[0].profile} profile): {already} "
+                                   f"already in {store.path}, {to_run} to run with the {executor.name} "
+                                   "executor")
 
         def on_row(row: dict[str, Any]) -> None:
             statuses[row["status"]] = statuses.get(row["status"], 0) + 1

@@ -29,8 +29,10 @@ log = logging.getLogger("sgplan")
 def add_scene_arguments(parser: argparse.ArgumentParser, *, positional: bool = False) -> None:
     """Add the scene argument (``SCENE`` or ``--scene``) and ``--data``."""
     help_text = (
-        f"scene folder (authors' building.yaml layout, sgplan's format, or a raw .npz), a Gibson scene name "
-        f"({', '.join(SCENES)}; any case) looked up under --data, or '{DEMO}' for the embedded demo building"
+        f"scene folder (authors' building.yaml layout, sgplan's format, or a raw .npz); a scene of another "
+        "tool, imported on the fly: a Matterport3D .house file, a ROS map.yaml (with rooms.yaml or "
+        "<stem>_rooms.yaml beside it) or a Hydra .json (with its labels file beside it); a Gibson scene name "
+        f"({', '.join(SCENES)}; any case) looked up under --data; or '{DEMO}' for the embedded demo building"
     )
     if positional:
         parser.add_argument("scene", metavar="SCENE", help=help_text)
@@ -84,6 +86,13 @@ def plan_options(args: argparse.Namespace, **fixed: Any) -> PlanOptions:
 
     given = {name: value for name in PlanOptions.names() if (value := getattr(args, name, None)) is not None}
     return PlanOptions(**(given | fixed))
+
+
+def add_axes_argument(parser: argparse.ArgumentParser | argparse._ArgumentGroup) -> None:
+    """``--axes metres|cells``: what the pictures' axes say (:mod:`sgplan.scene.draw_axes`)."""
+    parser.add_argument("--axes", choices=("metres", "cells"), default="metres",
+                        help="pictures' axes: metres in the map frame (x right, y up, as RViz shows it; "
+                        "default) or the grid's rows and columns (to read off a --start ROW,COL,FLOOR)")
 
 
 def split_list(values: Iterable[str] | None) -> list[str] | None:
@@ -160,6 +169,11 @@ def positive_seconds(text: str) -> float:
                    what=f"a number of seconds > 0 and <= {MAX_SECONDS:g}")
 
 
+def non_negative_metres(text: str) -> float:
+    """argparse type: a finite number of metres >= 0."""
+    return _number(text, float, allow_zero=True, what="a finite number of metres >= 0")
+
+
 def robot_radius(text: str) -> float:
     """argparse type: a robot radius in metres in [0, :data:`MAX_ROBOT_RADIUS_M`] (0: a point robot, no
     inflation; the same bounds as a scene file's)."""
@@ -171,3 +185,19 @@ def reach_radius(text: str) -> float:
     """argparse type: a reach radius in metres in (0, :data:`MAX_REACH_RADIUS_M`] (0 would reach nothing)."""
     return _number(text, float, allow_zero=False, maximum=MAX_REACH_RADIUS_M,
                    what=f"a radius in metres > 0 and <= {MAX_REACH_RADIUS_M:g}")
+
+
+def write_json_record(target: str | None, record: dict[str, Any]) -> None:
+    """Write a command's JSON record to ``target`` (a file, atomically; ``-``: stdout; ``None``: nowhere)."""
+    if not target:
+        return
+    from sgplan.outputs.jsontext import record_json
+
+    text = record_json(record)
+    if target == "-":
+        sys.stdout.write(text)
+        sys.stdout.flush()
+        return
+    from sgplan.result import write_text
+
+    write_text(target, text)

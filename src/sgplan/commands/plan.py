@@ -19,28 +19,30 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
 from sgplan.commands.common import (
+    add_axes_argument,
     add_profile_argument,
     add_reach_model_argument,
     add_scene_arguments,
     load_scene_arg,
     log,
     non_negative_int,
+    non_negative_metres,
     plan_options,
     positive_int,
     positive_seconds,
     reach_radius,
     robot_radius,
     say,
+    write_json_record,
 )
+from sgplan.commands.missions import add_mission_arguments, mission_from_args
 from sgplan.commands.sayback import check_folder_fits, say_back
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
 from sgplan.errors import MissionError, SgplanError
 from sgplan.planning.setups import SETUPS, get_setup
 
 if TYPE_CHECKING:
-    from sgplan.llm.backends import Backends
     from sgplan.result import PlanResult
-    from sgplan.scene.model import Building
     from sgplan.starts import StartSpec
 
 TIMEOUT_EXIT = 3
@@ -68,18 +70,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "satisfies the mission, 70 a bug.",
     )
     add_scene_arguments(parser)
-    what = parser.add_mutually_exclusive_group(required=True)
-    what.add_argument(
-        "--mission-dir", metavar="DIR",
-        help="mission folder (automaton.aut, ap_desc.yaml, llm_heuristic.yaml)",
-    )
-    what.add_argument("--formula", metavar="F", help="LTL formula: token list, Spot infix or LBT prefix")
-    what.add_argument(
-        "--text", metavar="MISSION", help="the mission in natural language (translated with --llm)"
-    )
-    parser.add_argument(
-        "--aps", metavar="FILE", help="ap_desc.yaml giving the formula's proposition names a meaning"
-    )
+    add_mission_arguments(parser)
     parser.add_argument(
         "--guidance", metavar="FILE", help="llm_heuristic.yaml to use instead of the mission's"
     )
@@ -107,24 +98,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--time-limit", dest="time_limit_s", type=positive_seconds, metavar="S",
                         help="search time budget in seconds")
     parser.add_argument("--max-expansions", type=positive_int, metavar="N", help="search expansion budget")
-    out = parser.add_argument_group("outputs")
-    out.add_argument("--json", metavar="OUT", help="write the result as JSON ('-': to stdout)")
-    out.add_argument("--waypoints", metavar="FILE.csv", help="write the simplified metric waypoints as CSV")
-    out.add_argument(
-        "--ros-path",
-        metavar="FILE.yaml",
-        help="write the simplified waypoints as YAML shaped like "
-        "ROS nav_msgs/Path messages, one per floor stretch",
-    )
-    out.add_argument("--dense", action="store_true", help="--waypoints / --ros-path hold every cell, not the "
-                     "simplified polyline")
-    out.add_argument(
-        "--draw", metavar="DIR",
-        help="write one PNG and one SVG per floor with the path, and the automaton (DOT, SVG)",
-    )
-    out.add_argument("--html", metavar="FILE", help="write a self-contained HTML report of the plan")
+    _add_output_arguments(parser)
     parser.add_argument("--verify", action="store_true", default=None,
-                        help="accepted for old scripts: every path is checked by the independent checker")
+                        help="accepted for old scripts, changes nothing: every path is checked by the "
+                        "independent checker")
     parser.add_argument("--confirm", action="store_true",
                         help="show what will be planned and ask before planning (needs a terminal)")
     parser.add_argument("--force", action="store_true",
@@ -137,6 +114,31 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.set_defaults(run=run)
 
 
+def _add_output_arguments(parser: argparse.ArgumentParser) -> None:
+    """The ``outputs`` group: JSON, waypoint files, pictures and the HTML report."""
+    out = parser.add_argument_group("outputs")
+    out.add_argument("--json", metavar="OUT", help="write the result as JSON ('-': to stdout)")
+    out.add_argument("--waypoints", metavar="FILE.csv", help="write the simplified metric waypoints as CSV")
+    out.add_argument(
+        "--ros-path",
+        metavar="FILE.yaml",
+        help="write the simplified waypoints as YAML shaped like "
+        "ROS nav_msgs/Path messages, one per floor stretch",
+    )
+    out.add_argument("--dense", action="store_true", help="--waypoints / --ros-path hold every cell, not the "
+                     "simplified polyline")
+    out.add_argument("--waypoint-tolerance", type=non_negative_metres, default=0.0, metavar="M",
+                     help="simplified segments may give up M metres of clearance at the inflated obstacles' "
+                     "edge, for fewer waypoints where the path hugs a corner (below the robot radius; "
+                     "default 0: the planner's own clearance)")
+    out.add_argument(
+        "--draw", metavar="DIR",
+        help="write one PNG and one SVG per floor with the path, and the automaton (DOT, SVG)",
+    )
+    add_axes_argument(out)
+    out.add_argument("--html", metavar="FILE", help="write a self-contained HTML report of the plan")
+
+
 def run(args: argparse.Namespace) -> int:
     t_start = time.perf_counter()
     record: dict[str, Any] = {"status": "error", "profile": args.profile, "setup": args.setup}
@@ -144,11 +146,11 @@ def run(args: argparse.Namespace) -> int:
         result, extras = _plan(args)
     except SgplanError as error:
         record.update(status=getattr(error, "status", "error"), message=str(error))
-        _write_json(args.json, record)
+        write_json_record(args.json, record)
         raise
     record = result.to_dict() | extras
     record["timings"]["wall_s"] = time.perf_counter() - t_start
-    _write_json(args.json, record)
+    write_json_record(args.json, record)
     return _report(args, result)
 
 
@@ -161,23 +163,7 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     building = load_scene_arg(args.scene, args.data)
     if args.save_mission and not args.text:
         raise MissionError("--save-mission saves a translated mission: use it with --text")
-    backends: Backends | None = None
-    for option, value in (
-        ("--mission-dir", args.mission_dir), ("--formula", args.formula), ("--text", args.text),
-    ):
-        if value is not None and not value.strip():
-            raise MissionError(f"{option} is empty: give a {option[2:].replace('-dir', ' folder')}")
-    if args.mission_dir is not None:
-        mission = sgplan.load_mission(args.mission_dir, profile=options.profile)
-    elif args.formula is not None:
-        mission = sgplan.mission_from_formula(args.formula, aps=args.aps)
-    else:
-        backends = _for_start_floor(open_backends_from_args(args), building, _start_spec(args))
-        say(f"translating with {backends.translator.name} ({backends.description})")
-        mission = sgplan.mission_from_text(args.text, building, llm=backends, save_to=args.save_mission)
-        if args.save_mission:
-            say(f"wrote the mission folder {args.save_mission}")
-        say(f"formula: {mission.formula} ({mission.automaton.num_states} automaton states)")
+    mission, backends = mission_from_args(args, building, _start_spec(args), save_to=args.save_mission)
     if args.guidance:
         mission.guidance = read_guidance(args.guidance)
     for note in mission.notes:
@@ -206,6 +192,8 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     result = sgplan.plan(building, mission, _start_spec(args), options=options, guide=guide,
                          callback=progress, explanation=explanation,  # said back above: not made twice
                          session=session)
+    if args.waypoint_tolerance and result.path is not None:
+        result.simplify_waypoints(args.waypoint_tolerance)
     if args.save_mission and guide is not None and result.mission is not None and result.mission.guidance:
         say(
             f"wrote {write_guidance(result.mission.guidance, Path(args.save_mission) / 'llm_heuristic.yaml')}"
@@ -230,19 +218,6 @@ def _start_spec(args: argparse.Namespace) -> StartSpec:
     return args.start or args.start_room or args.start_index
 
 
-def _for_start_floor(backends: Backends, building: Building, start: StartSpec) -> Backends:
-    """``backends`` with the offline translator told the start's floor, so that *upstairs* / *downstairs*
-    are read relative to it (a language model's prompt does not carry it)."""
-    from dataclasses import replace
-
-    from sgplan.llm.offline import PatternTranslator
-    from sgplan.starts import start_floor
-
-    if not isinstance(backends.translator, PatternTranslator):
-        return backends
-    return replace(backends, translator=backends.translator.starting_on(start_floor(building, start)))
-
-
 def _report(args: argparse.Namespace, result: PlanResult) -> int:
     """Print the outcome (to stderr when the JSON goes to stdout), write the files; the exit code."""
     out: TextIO = sys.stderr if args.json == "-" else sys.stdout
@@ -260,7 +235,7 @@ def _report(args: argparse.Namespace, result: PlanResult) -> int:
         if args.ros_path:
             say(f"wrote {result.write_ros_path_yaml(args.ros_path, simplified=simplified)}")
     if args.draw:
-        for picture in result.draw(args.draw, formats=("png", "svg")):
+        for picture in result.draw(args.draw, axes=args.axes):
             say(f"wrote {picture}")
     if args.html:
         say(f"wrote {result.write_html(args.html)}")
@@ -277,18 +252,3 @@ def _report(args: argparse.Namespace, result: PlanResult) -> int:
             )
         return TIMEOUT_EXIT
     return 0
-
-
-def _write_json(target: str | None, record: dict[str, Any]) -> None:
-    if not target:
-        return
-    from sgplan.outputs.jsontext import record_json
-
-    text = record_json(record)
-    if target == "-":
-        sys.stdout.write(text)
-        sys.stdout.flush()
-        return
-    from sgplan.result import write_text
-
-    write_text(target, text)

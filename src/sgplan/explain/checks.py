@@ -8,6 +8,9 @@ from the cells of its reach region (:mod:`sgplan.scene.reach`). :func:`check_mis
   smallest set of top-level parts that cannot hold together is named ("Go to the kitchen. Never enter
   the kitchen.");
 - ``unsatisfiable-from-start``: the start cell's own label already makes the mission impossible;
+- ``unreachable-from-start``: a place the mission needs cannot be reached from the start at all, with the
+  cause in words (no door to it, a way in too narrow for this robot and the largest radius that gets
+  through, or no way at any radius: :mod:`sgplan.explain.causes`);
 - ``blocked-by-forbidden``: what the mission needs can be reached from the start only through rooms it
   forbids (those rooms are named);
 - ``impossible-part`` / ``vacuous`` / ``object-outside-room``: a state condition of the formula that no
@@ -15,7 +18,9 @@ from the cells of its reach region (:mod:`sgplan.scene.reach`). :func:`check_mis
   the bathroom), an object to reach from a room it is not in;
 - ``satisfied-at-start``: the start already satisfies the mission (the optimal plan is to stay).
 
-The first three are errors (:meth:`SceneCheck.raise_errors`), the next three warnings, the last a note.
+The first four are errors (:meth:`SceneCheck.raise_errors`), the next three warnings, the last a note.
+An unsatisfiable mission names why its places cannot be used too (no room for the robot in them, no
+door).
 """
 
 from __future__ import annotations
@@ -28,6 +33,12 @@ from typing import Any, Literal
 import numpy as np
 
 from sgplan.errors import PlanningError, SgplanError, UnsatisfiableMissionError
+from sgplan.explain.causes import (
+    missing_from_start,
+    start_component,
+    why_no_free_cell,
+    why_unreachable,
+)
 from sgplan.explain.patterns import condition_text, pattern_clauses
 from sgplan.explain.referents import Referent, referents_of
 from sgplan.explain.scene_labels import occurring_labels
@@ -56,10 +67,10 @@ from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 
 FindingKind = Literal[
-    "unsatisfiable", "unsatisfiable-from-start", "blocked-by-forbidden",
+    "unsatisfiable", "unsatisfiable-from-start", "unreachable-from-start", "blocked-by-forbidden",
     "impossible-part", "vacuous", "object-outside-room", "satisfied-at-start",
 ]
-ERRORS = ("unsatisfiable", "unsatisfiable-from-start", "blocked-by-forbidden")
+ERRORS = ("unsatisfiable", "unsatisfiable-from-start", "unreachable-from-start", "blocked-by-forbidden")
 NOTES = ("satisfied-at-start",)
 MAX_CONFLICT_PARTS = 3
 """The largest set of top-level parts searched for a named conflict (beyond it: "the parts together")."""
@@ -94,8 +105,8 @@ class SceneCheck:
         UnsatisfiableMissionError
             ``unsatisfiable`` (status ``"unsatisfiable"``, exit code 4).
         PlanningError
-            ``unsatisfiable-from-start`` (status ``"invalid-start"``) or ``blocked-by-forbidden``
-            (status ``"infeasible"``).
+            ``unsatisfiable-from-start`` (status ``"invalid-start"``), ``unreachable-from-start`` or
+            ``blocked-by-forbidden`` (status ``"infeasible"``).
         """
         for finding in self.of("error"):
             if finding.kind == "unsatisfiable":
@@ -277,8 +288,21 @@ class _Context:
                 if not small.live_states()[small.initial]:
                     said = " ".join(self._sentences(subset))
                     which = "this part cannot hold" if size == 1 else "these parts cannot all hold"
-                    return f"{head}: {which} in this scene: {said}"
-        return f"{head}: its parts together cannot hold in this scene"
+                    return f"{head}: {which} in this scene: {said}{self._absent_causes(subset)}"
+        return f"{head}: its parts together cannot hold in this scene{self._absent_causes([formula])}"
+
+    def _absent_causes(self, parts: Sequence[Formula]) -> str:
+        """`` Why: ...`` for each place of ``parts`` that holds on no free cell of the scene (nothing when
+        every one does: the conflict is then in the parts themselves)."""
+        aps = list(self.mission.automaton.aps)
+        present = int(np.bitwise_or.reduce(np.flatnonzero(self.realizable))) if self.realizable.any() else 0
+        named = {a for part in parts for a in atoms(part)}
+        causes = [
+            why_no_free_cell(self.building, self.grid, self.describe(p), (self.labels >> i & 1).astype(bool))
+            for i, p in enumerate(aps)
+            if p in named and not present >> i & 1 and self.describe(p).kind != "unknown"
+        ]
+        return "".join(f" Why: {cause}." for cause in causes)
 
     def _sentences(self, parts: Sequence[Formula]) -> list[str]:
         out = []
@@ -319,7 +343,8 @@ class _Context:
     def _blocked(
         self, whole: Automaton, start: tuple[int, int, int], label: int, profile: str
     ) -> Finding | None:
-        """Whether avoiding the forbidden rooms cuts the start off from what the mission needs."""
+        """Whether avoiding the forbidden rooms cuts the start off from what the mission needs (or, when
+        the start is cut off from it anyway, why: :func:`unreachable_finding`)."""
         aps = self.mission.automaton.aps
         forbidden = [i for i in forbidden_bits(whole, np.flatnonzero(self.realizable))
                      if self.describe(aps[i]).kind == "room"]
@@ -329,14 +354,19 @@ class _Context:
 
         def reachable_labels(blocked_ids: list[int]) -> np.ndarray:
             allowed = self.grid.traversable & ~np.isin(self.grid.room_map, blocked_ids)
-            area = _start_component(self.grid, start, allowed)
+            area = start_component(self.grid, start, allowed)
             return occurring_labels(self.labels, area, self.mission.automaton.num_labels)
 
+        def live_on(labels: np.ndarray) -> bool:
+            local = restricted(self.mission.automaton, labels)
+            return bool(local.live_states()[int(local.table[local.initial, label]) if profile == "ltlf"
+                                            else local.initial])
+
         near = reachable_labels(room_ids)
-        local = restricted(self.mission.automaton, near)
-        q0 = int(local.table[local.initial, label]) if profile == "ltlf" else local.initial
-        if local.live_states()[q0]:
+        if live_on(near):
             return None
+        if not live_on(reachable_labels([])):  # cut off with every room open: the rooms are not the cause
+            return unreachable_finding(self.mission, self.building, self.grid, self.labels, start)
         present = np.bitwise_or.reduce(np.flatnonzero(self.realizable))
         near_bits = np.bitwise_or.reduce(np.flatnonzero(near))
         missing = [
@@ -356,6 +386,25 @@ class _Context:
             "blocked-by-forbidden",
             f"from start {start}, {goals} can be reached only through rooms the mission forbids: {rooms}",
         )
+
+
+def unreachable_finding(mission: Mission, building: Building, grid: OccupancyGrid, labels: np.ndarray,
+                        start: tuple[int, int, int]) -> Finding | None:
+    """``unreachable-from-start``, naming why each place the mission needs (not one it forbids) that holds
+    on some free cell but on none reachable from ``start`` cannot be reached (:mod:`sgplan.explain.causes`);
+    ``None`` when there is no such place (the mission fails for another reason)."""
+    automaton = mission.automaton
+    realizable = occurring_labels(labels, grid.traversable, automaton.num_labels)
+    forbidden = set(forbidden_bits(restricted(automaton, realizable), np.flatnonzero(realizable)))
+    entities = referents_of(list(automaton.aps), mission.propositions, building)
+    needed = [i for i in missing_from_start(grid, labels, start, automaton.aps)
+              if i not in forbidden and entities[automaton.aps[i]].kind != "unknown"]
+    if not needed:
+        return None
+    causes = [why_unreachable(building, grid, start, entities[automaton.aps[i]],
+                              (labels >> i & 1).astype(bool)) for i in needed]
+    return Finding("unreachable-from-start",
+                   f"no path from start {start} satisfies the mission: {'; and '.join(causes)}")
 
 
 def _flat_and(formula: Formula) -> list[Formula]:
@@ -388,35 +437,3 @@ def _evaluate(f: Formula, labels: np.ndarray, index: dict[str, int]) -> np.ndarr
     if type(f) in ops:
         return ops[type(f)](*values)
     raise SgplanError(f"internal error: {to_infix(f)} is not a state condition")
-
-
-def _start_component(grid: OccupancyGrid, start: tuple[int, int, int], allowed: np.ndarray) -> np.ndarray:
-    """``allowed`` cells connected to ``start`` by 8-connected moves and stairs links (bool raster)."""
-    from scipy import ndimage  # ~0.3 s to import: only for missions that forbid rooms
-
-    row, col, floor = start
-    if not allowed[floor, row, col]:
-        area = np.zeros_like(allowed)
-        area[floor, row, col] = True
-        return area
-    parts, offset = [], 0
-    for f in range(allowed.shape[0]):
-        lab, count = ndimage.label(allowed[f], structure=np.ones((3, 3), bool))
-        parts.append(np.where(lab > 0, lab + offset, 0))
-        offset += count
-    component = np.concatenate([[0], np.arange(1, offset + 1)])  # union-find parents over component ids
-
-    def root(x: int) -> int:
-        while component[x] != x:
-            component[x] = component[component[x]]
-            x = int(component[x])
-        return x
-
-    for link in grid.stairs:
-        a = int(parts[link.lower_floor][link.lower_cell])
-        b = int(parts[link.upper_floor][link.upper_cell])
-        if a and b:
-            component[root(a)] = root(b)
-    target = root(int(parts[floor][row, col]))
-    roots = np.array([root(i) for i in range(offset + 1)])
-    return np.stack([(p > 0) & (roots[p] == target) for p in parts])

@@ -45,6 +45,7 @@ from sgplan.logic.paths import (
     shortest_path,
 )
 from sgplan.logic.prefix import parse_prefix, to_prefix
+from sgplan.logic.progression import progress
 from sgplan.logic.tokens import number_aps, parse_tokens, to_tokens
 
 __all__ = [
@@ -53,7 +54,7 @@ __all__ = [
     "WeakNext", "Eventually", "Always", "Until", "Release", "atoms", "nnf",
     "parse_infix", "to_infix", "parse_prefix", "to_prefix", "parse_tokens", "to_tokens", "number_aps",
     "is_cosafe", "non_cosafe_parts", "formula_warnings",
-    "ltlf_to_dfa", "possible_labels", "minimize", "product",
+    "ltlf_to_dfa", "possible_labels", "minimize", "product", "progress",
     "parse_hoa", "read_hoa", "write_hoa", "to_dot",
     "distances_to_accept", "shortest_path", "remaining_mission",
     "equivalent", "included", "difference_word", "inclusion_counterexample",

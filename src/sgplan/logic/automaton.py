@@ -126,24 +126,29 @@ class Automaton:
         rows = np.repeat(np.arange(n), self.num_labels)
         return csr_matrix((np.ones(rows.size, np.int32), (rows, self.table.ravel())), shape=(n, n))
 
-    def reachable_states(self) -> np.ndarray:
-        """``(n,)`` bool: the states some word leads to from the initial state."""
+    def reachable_states(self, labels: np.ndarray | None = None) -> np.ndarray:
+        """``(n,)`` bool: the states some word leads to from the initial state; with ``labels`` (label
+        values, or a ``(num_labels,)`` bool mask), some word of those labels only."""
         # A fixpoint over the dense table (a few hundred states at most): no scipy.sparse (~0.15 s, ~30 MB
         # to import) for a graph this small.
+        table = self.table if labels is None else self.table[:, np.asarray(labels)]
         mask = np.zeros(self.num_states, bool)
         mask[self.initial] = True
         frontier = np.array([self.initial])
         while frontier.size:
-            successors = np.unique(self.table[frontier])
+            successors = np.unique(table[frontier])
             frontier = successors[~mask[successors]]
             mask[frontier] = True
         return mask
 
-    def live_states(self) -> np.ndarray:
-        """``(n,)`` bool: the states from which some word reaches an accepting state."""
+    def live_states(self, labels: np.ndarray | None = None) -> np.ndarray:
+        """``(n,)`` bool: the states from which some word reaches an accepting state; with ``labels``
+        (label values, or a ``(num_labels,)`` bool mask), some word of those labels only (e.g. the label
+        sets a scene can produce)."""
+        table = self.table if labels is None else self.table[:, np.asarray(labels)]
         live = np.asarray(self.accepting, bool).copy()
         while True:  # a state is live when some label leads to a live state; at most n rounds
-            grown = live | live[self.table].any(axis=1)
+            grown = live | live[table].any(axis=1)
             if np.array_equal(grown, live):
                 return live
             live = grown

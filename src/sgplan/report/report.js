@@ -37,7 +37,10 @@
   }
 
   layers.forEach(function (layer) {
+    // The map is drawn in the map frame: x (the grid's rows) to the right, y (its columns) upwards; the id
+    // rasters are stored the same way, one pixel per cell, cols high and rows wide.
     const rows = Number(layer.dataset.rows), cols = Number(layer.dataset.cols);
+    const origin = layer.dataset.origin.split(" ").map(Number), resolution = layer.dataset.resolution.split(" ").map(Number);
     const stage = layer.querySelector(".stage");
     let rooms = null, objects = null;
     Promise.all([whenLoaded(layer.querySelector("img.ids.rooms")), whenLoaded(layer.querySelector("img.ids.objects"))])
@@ -45,14 +48,16 @@
     stage.addEventListener("mousemove", function (event) {
       if (!rooms) { return; }
       const box = stage.getBoundingClientRect();
-      const col = Math.floor((event.clientX - box.left) / box.width * cols);
-      const row = Math.floor((event.clientY - box.top) / box.height * rows);
-      if (row < 0 || col < 0 || row >= rows || col >= cols) { tooltip.hidden = true; return; }
-      const lines = ["row " + row + ", column " + col + ", floor " + layer.dataset.floor];
-      const room = entities.rooms[rooms[row * cols + col]];
-      const object = entities.objects[objects[row * cols + col]];
-      if (object) { lines.push("object: " + object.name + " (" + object.key + ", id " + objects[row * cols + col] + ", floor " + object.floor + ")"); }
-      if (room) { lines.push("room: " + room.name + " (" + room.key + ", id " + rooms[row * cols + col] + ", floor " + room.floor + ")"); }
+      const across = Math.floor((event.clientX - box.left) / box.width * rows);
+      const down = Math.floor((event.clientY - box.top) / box.height * cols);
+      if (across < 0 || down < 0 || across >= rows || down >= cols) { tooltip.hidden = true; return; }
+      const row = across, col = cols - 1 - down, pixel = down * rows + across;
+      const x = origin[0] + (row + 0.5) * resolution[0], y = origin[1] + (col + 0.5) * resolution[1];
+      const lines = ["x " + x.toFixed(2) + " m, y " + y.toFixed(2) + " m (row " + row + ", column " + col + "), floor " + layer.dataset.floor];
+      const room = entities.rooms[rooms[pixel]];
+      const object = entities.objects[objects[pixel]];
+      if (object) { lines.push("object: " + object.name + " (" + object.key + ", id " + objects[pixel] + ", floor " + object.floor + ")"); }
+      if (room) { lines.push("room: " + room.name + " (" + room.key + ", id " + rooms[pixel] + ", floor " + room.floor + ")"); }
       tooltip.textContent = "";
       lines.forEach(function (line) { const div = document.createElement("div"); div.textContent = line; tooltip.appendChild(div); });
       tooltip.style.left = (event.clientX + 14) + "px";
