@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError
 from sgplan.planning.setups import PROFILE_REACH_MODELS, REACH_MODELS, reach_model_for
+from sgplan.scene._sight import visible_cells
 from sgplan.scene.demo import demo_building
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.labels import Proposition, label_raster, proposition_cells
@@ -152,6 +153,16 @@ AAAAA
     visible = reached(floor, 0.25)
     assert visible[1, 1] and visible[0, 0] and visible[2, 2]
     assert not visible[0, 2] and not visible[0, 3] and not visible[1, 3]
+
+
+def test_an_object_in_many_pieces() -> None:
+    """As many runs of object cells as a row can hold (every other cell), on odd and even widths."""
+    for width in (5, 6):
+        row = ("o." * width)[:width]
+        floor = drawn_floor("\n".join([row] * 3), "\n".join(["A" * width] * 3))
+        assert reached(floor, 0.15).all()
+    empty = np.zeros((3, 4), dtype=bool)
+    assert not visible_cells(empty, empty, ~empty, np.array([1, 0])).any()  # no object cell: nothing
 
 
 def test_anisotropic_cells_and_the_radius_edge() -> None:

@@ -15,29 +15,41 @@ from numba import njit
 
 
 @njit(cache=True)
+def next_crossing(m: int, n: int, dr: int, dc: int) -> tuple[bool, bool]:
+    """Which grid lines a segment between two cell centres crosses next, ``(a row line, a column line)``:
+    both at once is a cell corner, after which the segment goes on in the diagonal cell. The segment
+    spans ``dr`` rows and ``dc`` columns (absolute); ``m`` / ``n`` count the row / column lines crossed
+    so far plus one. The walk of the crossed cells, for sight here and for the simplified waypoints
+    (:mod:`sgplan.outputs._segments`), steps by it while ``m <= dr or n <= dc``.
+
+    Exact integer arithmetic: from a centre the segment meets its ``m``-th row line at
+    ``t = (2m - 1) / (2 dr)`` and its ``n``-th column line at ``t = (2n - 1) / (2 dc)``; the times are
+    compared by cross-multiplying (a missing axis never comes first).
+    """
+    row_time = (2 * m - 1) * dc if m <= dr else -1  # both times scaled by 2 * dr * dc
+    col_time = (2 * n - 1) * dr if n <= dc else -1
+    return (col_time < 0 or (row_time >= 0 and row_time <= col_time),
+            row_time < 0 or (col_time >= 0 and col_time <= row_time))
+
+
+@njit(cache=True)
 def first_opaque(opaque: np.ndarray, r: int, c: int, r1: int, c1: int) -> int:
     """The flat index (``row * cols + col``) of the first opaque cell that the segment from the centre of
-    ``(r, c)`` to the centre of ``(r1, c1)`` crosses, both end cells included; -1 if there is none.
-
-    Walks the crossed cells in order with exact integer arithmetic: from a centre the segment meets its
-    ``m``-th row line at ``t = (2m - 1) / (2 |d_row|)`` and its ``n``-th column line at
-    ``t = (2n - 1) / (2 |d_col|)``; the times are compared by cross-multiplying, and both at once is a
-    corner (the walk goes on to the diagonal cell).
-    """
+    ``(r, c)`` to the centre of ``(r1, c1)`` crosses, both end cells included; -1 if there is none. The
+    crossed cells are walked in order (:func:`next_crossing`)."""
     cols = opaque.shape[1]
     if opaque[r, c]:
         return r * cols + c
     dr, dc = abs(r1 - r), abs(c1 - c)
     sr = 1 if r1 > r else -1
     sc = 1 if c1 > c else -1
-    m = n = 1  # the next row / column line to cross
+    m = n = 1
     while m <= dr or n <= dc:
-        row_time = (2 * m - 1) * dc if m <= dr else -1  # both times scaled by 2 * dr * dc
-        col_time = (2 * n - 1) * dr if n <= dc else -1
-        if col_time < 0 or (row_time >= 0 and row_time <= col_time):
+        row_line, col_line = next_crossing(m, n, dr, dc)
+        if row_line:
             r += sr
             m += 1
-        if row_time < 0 or (col_time >= 0 and col_time <= row_time):
+        if col_line:
             c += sc
             n += 1
         if opaque[r, c]:
@@ -140,8 +152,9 @@ def _target_runs(target: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray
     """
     rows, cols = target.shape
     row_ptr = np.zeros(rows + 1, dtype=np.int64)
-    c0 = np.empty(target.size // 2 + 1, dtype=np.int64)
-    c1 = np.empty(target.size // 2 + 1, dtype=np.int64)
+    most = rows * ((cols + 1) // 2)  # runs are a cell apart at least
+    c0 = np.empty(most, dtype=np.int64)
+    c1 = np.empty(most, dtype=np.int64)
     bands = np.full(((rows + _BAND - 1) // _BAND, 4), -1, dtype=np.int64)
     k = 0
     for i in range(rows):
@@ -174,9 +187,9 @@ _CACHE = 8
 @njit(cache=True)
 def _shadowed(r: int, c: int, a0: int, b0: int, a1: int, b1: int, boxes: np.ndarray, count: int) -> bool:
     """Whether one remembered rectangle blocks the segments from ``(r, c)`` to every cell centre in rows
-    ``a0..a1`` and columns ``b0..b1``, moving it to the front when it does. The points that a segment
-    from ``(r, c)`` reaches only through a convex set form a convex region, so a rectangle that blocks
-    the four corners blocks all of it."""
+    ``a0..a1`` and columns ``b0..b1``, moving it to the front when it does. The points whose segment from
+    ``(r, c)`` meets a convex set (its shadow) form a convex region, so a rectangle that blocks the four
+    corners blocks all of them."""
     for k in range(count):
         box = boxes[k]
         if (meets_box(r, c, a0, b0, box) and meets_box(r, c, a1, b1, box)
@@ -271,9 +284,11 @@ def visible_cells(
     centres crosses no opaque cell (end cells included).
     """
     rows, cols = opaque.shape
+    out = np.zeros((rows, cols), dtype=np.bool_)
+    if not target.any():
+        return out
     counts = _opaque_counts(opaque)
     runs = _target_runs(target)
-    out = np.zeros((rows, cols), dtype=np.bool_)
     boxes = np.zeros((_CACHE, 4), dtype=np.int64)
     memory = np.array([-1, -1, 0], dtype=np.int64)
     reach = widest.shape[0] - 1
