@@ -89,3 +89,17 @@ def test_plan_reach_model_on_the_command_line(tmp_path: Path, capsys: pytest.Cap
         main(["plan", "--scene", "demo", "--formula", f'F "{CHAIR}"', "--reach-model", "sphere"])
     assert stop.value.code == 2
     assert "invalid choice: 'sphere' (choose from 'box', 'visible')" in capsys.readouterr().err
+
+
+def test_the_monitor_reads_the_mission_under_the_plans_reach_model(demo: sgplan.api.Building) -> None:
+    from sgplan.execution.monitor import Monitor
+
+    session = sgplan.Session(demo)
+    mission = sgplan.mission_from_formula(f'F "{CHAIR}"', demo)
+    for profile, model, expected in (("ltlf", None, "visible"), ("authors", None, "box"),
+                                     ("authors", "visible", "visible")):
+        monitor = Monitor.in_session(session, mission, profile=profile, reach_model=model)
+        assert np.array_equal(monitor.labels, session.labels(mission, None, expected))
+    plan = session.plan(mission, 0, reach_model="box")
+    monitor = Monitor.in_session(session, mission, reach_model="box")
+    assert monitor.observe_cells(plan.path[:, :3]).accepting
