@@ -61,13 +61,11 @@ def mission_from_args(args: argparse.Namespace, building: Building, start: Start
 
 
 def _for_start_floor(backends: Backends, building: Building, start: StartSpec) -> Backends:
-    """``backends`` with the offline translator told the start's floor, so that *upstairs* / *downstairs*
-    are read relative to it (a language model's prompt does not carry it)."""
+    """``backends`` with the translator told the start's floor, so that *upstairs* / *downstairs* are read
+    relative to it by a translator that can (``MissionTranslator.starting_on``; a language model's prompt
+    does not carry it)."""
     from dataclasses import replace
 
-    from sgplan.llm.offline import PatternTranslator
     from sgplan.starts import start_floor
 
-    if not isinstance(backends.translator, PatternTranslator):
-        return backends
     return replace(backends, translator=backends.translator.starting_on(start_floor(building, start)))
