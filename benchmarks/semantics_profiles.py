@@ -27,13 +27,14 @@ READINGS = {"authors": ("authors", "authors"), "strict": ("ltlf", "authors"), "l
 def solve(building, folder: Path, start: tuple[int, int, int], reading: str) -> str:
     from sgplan.errors import PlanningError
     from sgplan.mission import load_mission_folder
+    from sgplan.options import PlanOptions
     from sgplan.pipeline import make_problem
     from sgplan.planning import plan
 
     hoa_profile, plan_profile = READINGS[reading]
     mission = load_mission_folder(folder, profile=hoa_profile)
     try:
-        problem = make_problem(building, mission, start, profile=plan_profile).problem
+        problem = make_problem(building, mission, start, PlanOptions(profile=plan_profile)).problem
         return f"{plan(problem, 'ALL').cost_m:.4f}"
     except PlanningError as error:
         return error.status

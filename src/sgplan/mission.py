@@ -133,7 +133,7 @@ def parse_formula(text: str | Sequence[str], known: set[str] | None = None) -> F
             raise infix_error from None
 
 
-def mission_from_formula(
+def compile_mission(
     formula: Formula | str | Sequence[str],
     propositions: Mapping[str, Proposition] | None = None,
     *,
@@ -141,7 +141,8 @@ def mission_from_formula(
     grounded_text: str | None = None,
     guidance: Guidance | None = None,
 ) -> Mission:
-    """A mission whose automaton is the minimal DFA of ``formula`` (LTLf).
+    """A mission whose automaton is the minimal DFA of ``formula`` (LTLf), compiled here; the public
+    :func:`sgplan.mission_from_formula` builds on it (it also reads an ``ap_desc.yaml`` and checks the scene).
 
     Proposition names are either action tokens (``enter(room_2)``, then ``propositions`` may be
     omitted) or names given a meaning by ``propositions`` (e.g. ``p1`` from an ap_desc.yaml).

@@ -18,8 +18,8 @@ import numpy as np
 from sgplan.english import count
 from sgplan.errors import OutputError
 from sgplan.outputs.events import Event
-from sgplan.outputs.files import write_ros_path_yaml, write_waypoints_csv
 from sgplan.outputs.jsontext import record_json
+from sgplan.outputs.robot_files import write_ros_path_yaml, write_waypoints_csv
 from sgplan.outputs.waypoints import Waypoint
 from sgplan.pipeline import Radii, finite_or_none, iteration_records
 
@@ -39,8 +39,9 @@ class PlanResult:
     scene:
         the building's name.
     status:
-        ``"optimal"`` (``cost_m`` is the exact optimum) or ``"timeout"`` (a budget ran out: the best path
-        so far, within ``bound`` times the optimum, or no path).
+        ``"optimal"`` (``cost_m`` is the exact optimum), ``"timeout"`` (a budget ran out) or
+        ``"cancelled"`` (a cancel flag was set): the best path so far, within ``bound`` times the optimum,
+        or no path.
     cost_m:
         path cost in metres (``inf`` without a path).
     bound:
@@ -198,14 +199,14 @@ class PlanResult:
 
     def write_waypoints_csv(self, path: str | Path, *, simplified: bool = True) -> Path:
         """The (simplified, by default) waypoints as CSV
-        (:func:`sgplan.outputs.files.write_waypoints_csv`)."""
+        (:func:`sgplan.outputs.robot_files.write_waypoints_csv`)."""
         return write_waypoints_csv(self.waypoints_simplified if simplified else self.waypoints, path)
 
     def write_ros_path_yaml(
         self, path: str | Path, *, simplified: bool = True, frame_id: str = "map"
     ) -> Path:
         """The (simplified) waypoints as ROS ``nav_msgs/Path`` per floor stretch
-        (:func:`sgplan.outputs.files.write_ros_path_yaml`)."""
+        (:func:`sgplan.outputs.robot_files.write_ros_path_yaml`)."""
         return write_ros_path_yaml(
             self.waypoints_simplified if simplified else self.waypoints, path, frame_id
         )

@@ -20,6 +20,7 @@ from sgplan.bench.results import COLUMNS, RESULTS_JSONL, ResultStore, writing_lo
 from sgplan.bench.sweep import pending_cases, run_sweep
 from sgplan.bench.worker import PARENT_ENV
 from sgplan.mission import load_mission_folder
+from sgplan.options import PlanOptions
 from sgplan.pipeline import make_problem
 from sgplan.planning import plan
 from sgplan.scene.loading import load_scene
@@ -32,7 +33,7 @@ def _direct_cost(case: Case) -> float:
     building = load_scene(case.scene_dir)
     mission = load_mission_folder(case.mission_dir, profile=case.profile)
     problem = make_problem(
-        building, mission, building.initial_cells[case.start], profile=case.profile
+        building, mission, building.initial_cells[case.start], PlanOptions(profile=case.profile)
     ).problem
     return plan(problem, case.setup).cost_m
 

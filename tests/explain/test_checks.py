@@ -8,7 +8,7 @@ import pytest
 
 from sgplan.errors import PlanningError, UnsatisfiableMissionError
 from sgplan.explain.checks import check_mission_in_scene
-from sgplan.mission import mission_from_formula
+from sgplan.mission import compile_mission
 from sgplan.pipeline import make_problem
 from sgplan.planning.amra import plan
 from sgplan.scene.demo import demo_building
@@ -18,7 +18,7 @@ START = BUILDING.initial_cells[0]
 
 
 def _check(formula: str, start: tuple[int, int, int] | None = START):  # type: ignore[no-untyped-def]
-    return check_mission_in_scene(mission_from_formula(formula), BUILDING, start)
+    return check_mission_in_scene(compile_mission(formula), BUILDING, start)
 
 
 def _kinds(check) -> list[str]:  # type: ignore[no-untyped-def]
@@ -77,7 +77,7 @@ def test_goal_reachable_only_through_a_forbidden_room_names_it() -> None:
 
 
 def test_blocked_agrees_with_the_planner() -> None:
-    mission = mission_from_formula('F "enter(room_11)" & G !"enter(room_8)"')
+    mission = compile_mission('F "enter(room_11)" & G !"enter(room_8)"')
     prepared = make_problem(BUILDING, mission, START)
     with pytest.raises(PlanningError) as error:
         plan(prepared.problem, "NO-LLM")

@@ -16,9 +16,10 @@ from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError
 from sgplan.logic import Always, And, Atom, Eventually, Formula, Next, Not, Or, Until, ltlf_to_dfa
-from sgplan.planning.amra import SETUPS, plan
+from sgplan.planning.amra import plan
 from sgplan.planning.checker import check_path
 from sgplan.planning.problem import PlanningProblem
+from sgplan.planning.setups import SETUPS
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.labels import Proposition, label_raster
 from tests.scene.small_buildings import random_small_building

@@ -166,7 +166,7 @@ def expand(
     BenchError
         a grid names a mission, start index or setup that a selected scene does not have.
     """
-    from sgplan.planning.amra import get_setup  # the planner (numba) only when cases are made
+    from sgplan.planning.setups import get_setup
 
     by_name = {s.name: s for s in scenes}
     seen: dict[str, Case] = {}

@@ -16,7 +16,6 @@ from typing import TYPE_CHECKING, Any
 
 from sgplan.commands.common import (
     DEFAULT_PROFILE,
-    SETUP_NAMES,
     add_profile_argument,
     positive_int,
     positive_seconds,
@@ -24,6 +23,7 @@ from sgplan.commands.common import (
     split_list,
 )
 from sgplan.english import count
+from sgplan.planning.setups import SETUPS
 
 if TYPE_CHECKING:
     from sgplan.bench.cases import Case
@@ -70,7 +70,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--starts", metavar="LIST", help="initial-position indices, e.g. 0,2-4 (default: all)"
     )
     parser.add_argument("--setups", nargs="+", metavar="NAME",
-                        help=f"planner setups among {', '.join(SETUP_NAMES)}, any case "
+                        help=f"planner setups among {', '.join(SETUPS)}, any case "
                         "(default: ALL NO-LLM A*)")
     add_profile_argument(
         parser,

@@ -13,19 +13,16 @@ from typing import TYPE_CHECKING, Any
 
 from sgplan.datasets import ENV_VAR, SCENES
 from sgplan.limits import MAX_REACH_RADIUS_M, MAX_ROBOT_RADIUS_M, MAX_SECONDS
+from sgplan.planning.setups import PROFILES
 
 if TYPE_CHECKING:
+    from sgplan.options import PlanOptions
     from sgplan.scene.model import Building
 
 DEMO = "demo"
 DEFAULT_PROFILE = "ltlf"
 """The semantics profile of every command (plan, guide, bench): LTL over finite traces, the start cell's
 label read. ``--profile authors`` reproduces the authors' C++ (and the paper's numbers) for comparison."""
-PROFILES = ("ltlf", "authors")
-SETUP_NAMES = ("ALL", "NO-LLM", "A*", "OCC", "OBJ", "ROOM", "FLR")
-"""The planner setups' names (``sgplan.planning.amra.SETUPS``, a test keeps both the same) for the options'
-help: building the parser must not import the planner (numba, scipy), which only ``plan`` and ``bench``
-use. ``--setup`` values are checked by ``get_setup`` when the command runs."""
 log = logging.getLogger("sgplan")
 
 
@@ -67,6 +64,16 @@ def add_profile_argument(parser: argparse.ArgumentParser, *, default: str | None
         "authors' C++ and the paper's numbers: start label not read, missing edges keep the "
         f"state){extra_help}",
     )
+
+
+def plan_options(args: argparse.Namespace, **fixed: Any) -> PlanOptions:
+    """The planning options (:class:`sgplan.PlanOptions`) a command's arguments give: every option the
+    command has an argument for under the option's own name (``--robot-radius`` stores ``robot_radius_m``)
+    and the user gave, then ``fixed`` ones; checked as the API checks them."""
+    from sgplan.options import PlanOptions
+
+    given = {name: value for name in PlanOptions.names() if (value := getattr(args, name, None)) is not None}
+    return PlanOptions(**(given | fixed))
 
 
 def add_axes_argument(parser: argparse.ArgumentParser | argparse._ArgumentGroup) -> None:

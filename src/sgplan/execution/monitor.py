@@ -52,7 +52,7 @@ from sgplan.execution.poses import (
 from sgplan.execution.words import MissionWords
 from sgplan.explain.scene_labels import occurring_labels
 from sgplan.mission import Mission
-from sgplan.planning.problem import PROFILES
+from sgplan.planning.setups import PROFILES
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 

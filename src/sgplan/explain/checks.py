@@ -39,8 +39,8 @@ from sgplan.explain.causes import (
     why_no_free_cell,
     why_unreachable,
 )
-from sgplan.explain.entities import Entity, entities_of
 from sgplan.explain.patterns import condition_text, pattern_clauses
+from sgplan.explain.referents import Referent, referents_of
 from sgplan.explain.scene_labels import occurring_labels
 from sgplan.explain.stages import forbidden_bits, restricted
 from sgplan.logic.automaton import Automaton
@@ -161,7 +161,7 @@ def check_mission_in_scene(
     realizable = occurring_labels(labels, grid.traversable, automaton.num_labels)
     if not realizable.any():
         return SceneCheck(())
-    entities = entities_of(list(automaton.aps), mission.propositions, building)
+    entities = referents_of(list(automaton.aps), mission.propositions, building)
     context = _Context(mission, building, grid, labels, entities, realizable)
     # The part analysis recurses over the formula as written: a deeper one (a 500-term conjunction as
     # nested pairs) gets only the whole-mission checks below, which work on the automaton (_readable).
@@ -180,10 +180,10 @@ class _Context:
     building: Building
     grid: OccupancyGrid
     labels: np.ndarray
-    entities: dict[str, Entity]
+    entities: dict[str, Referent]
     realizable: np.ndarray
 
-    def describe(self, name: str) -> Entity:
+    def describe(self, name: str) -> Referent:
         return self.entities[name]
 
     def cond(self, f: Formula) -> str:
@@ -386,7 +386,7 @@ def unreachable_finding(mission: Mission, building: Building, grid: OccupancyGri
     automaton = mission.automaton
     realizable = occurring_labels(labels, grid.traversable, automaton.num_labels)
     forbidden = set(forbidden_bits(restricted(automaton, realizable), np.flatnonzero(realizable)))
-    entities = entities_of(list(automaton.aps), mission.propositions, building)
+    entities = referents_of(list(automaton.aps), mission.propositions, building)
     needed = [i for i in missing_from_start(grid, labels, start, automaton.aps)
               if i not in forbidden and entities[automaton.aps[i]].kind != "unknown"]
     if not needed:

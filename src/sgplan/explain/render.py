@@ -15,8 +15,8 @@ from typing import Any, Literal
 import numpy as np
 
 from sgplan.errors import SgplanError
-from sgplan.explain.entities import Entity, entities_of
 from sgplan.explain.patterns import pattern_clauses
+from sgplan.explain.referents import Referent, referents_of
 from sgplan.explain.scene_labels import realizable_labels
 from sgplan.explain.stages import restricted, stage_lines
 from sgplan.logic.automaton import Automaton
@@ -68,7 +68,7 @@ def _numbered(clauses: list[str]) -> list[str]:
 
 def explain_formula(
     formula: Formula | None,
-    describe: Callable[[str], Entity] | Mapping[str, Entity],
+    describe: Callable[[str], Referent] | Mapping[str, Referent],
     *,
     automaton: Automaton | None = None,
     realizable: np.ndarray | None = None,
@@ -80,7 +80,7 @@ def explain_formula(
     formula:
         the mission formula; ``None`` to explain ``automaton`` alone.
     describe:
-        proposition name -> :class:`Entity` (a mapping or a function).
+        proposition name -> :class:`Referent` (a mapping or a function).
     automaton:
         the DFA actually planned with; default ``ltlf_to_dfa(formula)``. When both are given and differ
         on the ``realizable`` labels, the automaton is explained (it is what gets planned).
@@ -150,7 +150,7 @@ def explain_mission(
     )
     if extra:  # propositions the automaton ignores (e.g. an authors' HOA dropped them): read them too
         automaton = automaton.with_aps((*automaton.aps, *extra))
-    entities = entities_of(list(automaton.aps), mission.propositions, building)
+    entities = referents_of(list(automaton.aps), mission.propositions, building)
     props = [mission.propositions.get(p) for p in automaton.aps]
     realizable: np.ndarray | None = None
     if all(p is not None for p in props):

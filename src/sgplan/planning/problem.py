@@ -10,6 +10,7 @@ import numpy as np
 
 from sgplan.errors import PlanningError
 from sgplan.logic.automaton import Automaton
+from sgplan.planning.setups import check_profile
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 
@@ -17,9 +18,6 @@ if TYPE_CHECKING:
     from sgplan.planning.domain import PlanningDomain
     from sgplan.planning.shared import SharedParts
 
-PROFILES = ("ltlf", "authors")
-"""``ltlf``: the start cell's label is read (q_start = T(initial, label(start))); ``authors``: it is not
-(q_start = initial), as in the authors' planner. Missing-edge behaviour is the automaton table's."""
 
 
 @dataclass(eq=False)
@@ -39,7 +37,7 @@ class PlanningProblem:
     start:
         ``(row, col, floor)`` start cell.
     profile:
-        ``"ltlf"`` (default) or ``"authors"``, see :data:`PROFILES`.
+        ``"ltlf"`` (default) or ``"authors"``, see :data:`sgplan.planning.setups.PROFILES`.
     guidance:
         optional LLM guidance ``{room_uuid: {q: [call strings]}}`` (llm_heuristic.yaml content).
     reach_radius_m:
@@ -49,6 +47,11 @@ class PlanningProblem:
     shared:
         parts that depend only on the building, shared with the other problems of a
         :class:`sgplan.Session` (:mod:`sgplan.planning.shared`); ``None``: built for this problem alone.
+    start_state:
+        resume a mission part-way: the automaton state at the start cell, its label already read (e.g. a
+        plan's state at one of its path cells, or a monitor's). ``None`` (default): the automaton's
+        initial state, the start's label read or not as ``profile`` says. Either way the search reads the
+        label of every cell it enters.
     """
 
     building: Building
@@ -61,12 +64,13 @@ class PlanningProblem:
     reach_radius_m: float = 0.6
     ap_descriptions: Mapping[str, str] = field(default_factory=dict)
     shared: SharedParts | None = None
+    start_state: int | None = None
 
     def __post_init__(self) -> None:
-        if self.profile not in PROFILES:
-            raise PlanningError(
-                f"unknown semantics profile {self.profile!r}; use one of {', '.join(PROFILES)}"
-            )
+        check_profile(self.profile)
+        if self.start_state is not None and not 0 <= int(self.start_state) < self.automaton.num_states:
+            raise PlanningError(f"start state {self.start_state} does not exist (automaton states 0.."
+                                f"{self.automaton.num_states - 1})")
         if tuple(self.labels.shape) != tuple(self.grid.shape):
             raise PlanningError(
                 f"label raster has shape {tuple(self.labels.shape)}, the grid {tuple(self.grid.shape)} "
