@@ -103,3 +103,22 @@ def test_the_monitor_reads_the_mission_under_the_plans_reach_model(demo: sgplan.
     plan = session.plan(mission, 0, reach_model="box")
     monitor = Monitor.in_session(session, mission, reach_model="box")
     assert monitor.observe_cells(plan.path[:, :3]).accepting
+
+
+@pytest.mark.parametrize("model", ["box", "visible"])
+def test_a_run_relabels_an_object_when_an_obstacle_appears_in_its_reach(demo: sgplan.api.Building,
+                                                                         model: str) -> None:
+    """A block beside the chair moves no object, yet under ``visible`` the chair is no longer reached from
+    the blocked floor: the run's labels stay those of its changed building, under either model."""
+    from sgplan.execution.changes import Area, Block
+
+    mission = sgplan.mission_from_formula(f'F "{CHAIR}"', demo)
+    run = sgplan.Session(demo).start(mission, 0, reach_model=model)
+    chair = demo.object(uuid=29)
+    floor = demo.floors[demo.room(uuid=chair.room_uuid).floor]
+    x, y = floor.cell_to_xy((chair.grid_max[0] + 4, (chair.grid_min[1] + chair.grid_max[1]) // 2))
+    before = run.labels.raster.copy()
+    run.change([Block(Area(floor.index, box_m=(x - 0.1, y - 0.1, x + 0.1, y + 0.1)))])
+    fresh = sgplan.Session(run.building).labels(run.mission, None, model)
+    assert np.array_equal(run.labels.raster, fresh)
+    assert np.array_equal(run.labels.raster, before) == (model == "box")

@@ -32,6 +32,7 @@ from sgplan.scene.model import Building
 from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 if TYPE_CHECKING:  # the planner, grid and labels (numba, scipy) load when a plan is made, not for a mission
+    from sgplan.execution.run import Run
     from sgplan.explain import Explanation
     from sgplan.llm.backends import Backends, MissionGuide
     from sgplan.mission import Mission
@@ -177,14 +178,16 @@ def add_guidance(
     ), guide.name
 
 
-class _Explained(TypedDict):
+class Explained(TypedDict):
+    """The ``explanation`` and ``explanation_method`` of a :class:`PlanResult`."""
+
     explanation: str
     explanation_method: str
 
 
-def _explanation(mission: Mission, building: Building, given: Explanation | None = None,
-                 cells: Callable[[Proposition, float, str], np.ndarray] | None = None, *,
-                 reach_radius_m: float, reach_model: str) -> _Explained:
+def explain_for_result(mission: Mission, building: Building, given: Explanation | None = None,
+                       cells: Callable[[Proposition, float, str], np.ndarray] | None = None, *,
+                       reach_radius_m: float | None = None, reach_model: str | None = None) -> Explained:
     """The mission explained in plain English (:func:`sgplan.explain.explain_mission`) as the
     ``explanation`` and ``explanation_method`` of a :class:`PlanResult`: the one place a plan gets it.
     ``given``: the caller's explanation of this mission and building (already said back), used as it is;
@@ -286,13 +289,14 @@ class Session:
         callback: IterationCallback | None = None,
         explanation: Explanation | None = None,
         termination: Termination | None = None,
+        start_state: int | None = None,
         **option_values: Any,
     ) -> PlanResult:
         """Plan ``mission`` from ``start`` with AMRA*; see :func:`sgplan.plan`."""
         chosen = PlanOptions.from_keywords(options, **option_values)
         try:
             return self._plan(mission, start, chosen, guide=guide, callback=callback, explanation=explanation,
-                              termination=termination)
+                              termination=termination, start_state=start_state)
         finally:
             self.parts.trim()
 
@@ -306,13 +310,14 @@ class Session:
         callback: IterationCallback | None,
         explanation: Explanation | None,
         termination: Termination | None,
+        start_state: int | None,
     ) -> PlanResult:
         from sgplan.jit import announce_compile
         from sgplan.planning.amra import plan as amra_plan
         from sgplan.planning.termination import any_of
 
         t0 = time.perf_counter()
-        staged = self._stage(mission, start, options, guide)
+        staged = self._stage(mission, start, options, guide, start_state)
         prepare_s = time.perf_counter() - t0
         announce_compile()
         # Without kept parts the problem's maps are this plan's alone: freed once the search stops
@@ -323,20 +328,13 @@ class Session:
                               prebuild_actions=options.prebuild_actions, release_maps=not self.parts.keeps)
         except PlanningError as error:
             raise _with_cause(error, staged.mission, self.building, staged.problem) from None
-        result = _result(found, staged, options, self.building,
-                         _explanation(staged.mission, self.building, explanation, self.proposition_cells,
-                                      reach_radius_m=staged.radii.reach_m,
-                                      reach_model=str(staged.problem.reach_model)))
-        if found.path is not None:
-            _add_outputs(result, options.verify)
-        result.timings = {
-            "prepare_s": prepare_s, "precompute_s": found.precompute_s, "search_s": found.search_s,
-            "wall_s": time.perf_counter() - t0,
-        }
-        return result
+        explained = explain_for_result(staged.mission, self.building, explanation, self.proposition_cells,
+                                       reach_radius_m=staged.radii.reach_m,
+                                       reach_model=str(staged.problem.reach_model))
+        return finish_plan(found, staged, options, explained, started=t0, prepare_s=prepare_s)
 
     def _stage(self, mission: Mission, start: StartSpec, options: PlanOptions,
-               guide: MissionGuide | None) -> _Staged:
+               guide: MissionGuide | None, start_state: int | None = None) -> StagedPlan:
         """Everything before the search: the guidance a setup needs, the radii, grid, start cell and the
         planning problem, checked against the scene (an error found there is raised)."""
         from sgplan.planning.setups import get_setup
@@ -350,7 +348,7 @@ class Session:
         start_at, start_from = start_cell(self.building, grid, start)
         labels = self.labels(mission, radii.reach_m, options.effective_reach_model)
         prepared = make_problem(self.building, mission, start_at, options, grid=grid, labels=labels,
-                                shared=self.parts)
+                                shared=self.parts, start_state=start_state)
         scene_check = _check_in_scene(mission, self.building, prepared.problem)
         log.info(
             "scene %s: start %s (%s), robot radius %g m (%s), reach %g m (%s, %s model), profile %s, %d "
@@ -358,13 +356,26 @@ class Session:
             self.building.name, start_at, start_from, radii.robot_m, radii.robot_from, radii.reach_m,
             radii.reach_from, prepared.problem.reach_model, options.profile, mission.automaton.num_states,
         )
-        return _Staged(mission, guidance, prepared.problem, radii, start_from, scene_check)
+        return StagedPlan(mission, guidance, prepared.problem, radii, start_from, scene_check)
+
+    def start(self, mission: Mission, start: StartSpec = None, *, options: PlanOptions | None = None,
+              guide: MissionGuide | None = None, **option_values: Any) -> Run:
+        """Start a :class:`~sgplan.execution.run.Run`: ``mission`` carried from ``start`` through the
+        changes of this building (which the run never makes to the session's own building), with progress,
+        monitoring, exact replanning and amendments. Options as :meth:`plan` takes them.
+
+        Cost: this session's grid and labels for the radii (kept), the run's cell numbering (two passes
+        over the grid); the first plan is made when ``run.plan`` is first read."""
+        from sgplan.execution.run import Run
+
+        return Run(self, mission, start, PlanOptions.from_keywords(options, **option_values), guide=guide)
 
 
 @dataclass(frozen=True)
-class _Staged:
-    """A plan's inputs once staged (:meth:`Session._stage`): the mission (with the guidance added, if any),
-    where its guidance came from, the problem, the radii, how the start was chosen, the scene check."""
+class StagedPlan:
+    """A plan's inputs once staged (:meth:`Session._stage`, or a run's plan from its position): the
+    mission (with the guidance added, if any), where its guidance came from, the problem, the radii, how the
+    start was chosen, the scene check's findings."""
 
     mission: Mission
     guidance: str | None
@@ -374,8 +385,22 @@ class _Staged:
     scene_check: list[dict[str, Any]]
 
 
-def _result(found: SearchResult, staged: _Staged, options: PlanOptions, building: Building,
-            explained: _Explained) -> PlanResult:
+def finish_plan(found: SearchResult, staged: StagedPlan, options: PlanOptions, explained: Explained, *,
+                started: float, prepare_s: float) -> PlanResult:
+    """The public result of a search over ``staged``'s problem: the path checked (``options.verify``), its
+    waypoints and events, the timings since ``started`` (a ``time.perf_counter()``)."""
+    result = _result(found, staged, options, staged.problem.building, explained)
+    if found.path is not None:
+        _add_outputs(result, options.verify, staged.problem.start_state)
+    result.timings = {
+        "prepare_s": prepare_s, "precompute_s": found.precompute_s, "search_s": found.search_s,
+        "wall_s": time.perf_counter() - started,
+    }
+    return result
+
+
+def _result(found: SearchResult, staged: StagedPlan, options: PlanOptions, building: Building,
+            explained: Explained) -> PlanResult:
     """The public result of a search (without the outputs :func:`_add_outputs` adds)."""
     from sgplan.result import PlanResult
 
@@ -400,8 +425,14 @@ def _check_in_scene(mission: Mission, building: Building, problem: PlanningProbl
     as records."""
     from sgplan.explain.checks import check_mission_in_scene
 
+    profile = problem.profile
+    if problem.start_state is not None:  # check what is left from the start state, its label read
+        a = mission.automaton
+        mission = replace(mission, automaton=type(a)(a.aps, a.table, problem.start_state, a.accepting),
+                          formula=None)
+        profile = "authors"
     check = check_mission_in_scene(mission, building, problem.start, grid=problem.grid, labels=problem.labels,
-                                   profile=problem.profile, reach_model=problem.reach_model)
+                                   profile=profile, reach_model=problem.reach_model)
     for finding in check.findings:
         if finding.severity == "warning":
             log.warning(f"warning: {finding.message}")
@@ -430,8 +461,9 @@ def _formula_text(mission: Mission) -> str | None:
     return to_infix(mission.formula) if mission.formula is not None else None
 
 
-def _add_outputs(result: PlanResult, verify: bool) -> None:
-    """Check the path (when asked) and add the waypoints and events."""
+def _add_outputs(result: PlanResult, verify: bool, start_state: int | None) -> None:
+    """Check the path (when asked) and add the waypoints and events; ``start_state``: the automaton state
+    at the path's first cell when it resumes a mission (:class:`~sgplan.planning.PlanningProblem`)."""
     from sgplan.outputs.events import path_events
     from sgplan.outputs.waypoints import leg_costs, path_waypoints
     from sgplan.planning.checker import check_path
@@ -440,7 +472,7 @@ def _add_outputs(result: PlanResult, verify: bool) -> None:
     assert result.mission is not None and result.building is not None
     automaton = result.mission.automaton
     if verify:
-        check = check_path(result.path, result.grid, result.labels, automaton, result.profile)
+        check = check_path(result.path, result.grid, result.labels, automaton, result.profile, start_state)
         if not check.valid:
             raise PlanningError("the path failed the independent check (a bug, please report it): "
                                 + "; ".join(check.problems))
@@ -452,7 +484,7 @@ def _add_outputs(result: PlanResult, verify: bool) -> None:
     result.simplify_waypoints()
     costs = np.concatenate([[0.0], np.cumsum(leg_costs(result.path, result.grid))])
     result.events = path_events(result.path, costs, result.labels, automaton, result.building,
-                                result.mission.descriptions)
+                                result.mission.descriptions, start_state=start_state)
 
 
 def plan(
@@ -466,6 +498,7 @@ def plan(
     session: Session | None = None,
     explanation: Explanation | None = None,
     termination: Termination | None = None,
+    start_state: int | None = None,
     **option_values: Any,
 ) -> PlanResult:
     """Plan an optimal path for ``mission`` over ``building`` with AMRA* and check it.
@@ -499,6 +532,10 @@ def plan(
         :class:`~sgplan.planning.termination.CancelFlag` that another thread sets (status
         ``"cancelled"``, with the best path so far) or a wall-clock
         :class:`~sgplan.planning.termination.Deadline`; checked with the options' budgets.
+    start_state:
+        plan the rest of a mission already under way: the automaton state at ``start``, its label already
+        read (e.g. ``PlanResult.path[k, 3]`` at the path's cell ``k``, or a monitor's state there); the
+        path's rows then carry the states from it on. ``None``: from the automaton's initial state.
 
     Raises
     ------
@@ -514,4 +551,5 @@ def plan(
     elif session.building is not building:
         raise PlanningError("the session plans on another building than the one given")
     return session.plan(mission, start, options=options, guide=guide, callback=callback,
-                        explanation=explanation, termination=termination, **option_values)
+                        explanation=explanation, termination=termination, start_state=start_state,
+                        **option_values)

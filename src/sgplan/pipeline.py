@@ -107,13 +107,15 @@ def make_problem(
     grid: OccupancyGrid | None = None,
     labels: np.ndarray | None = None,
     shared: SharedParts | None = None,
+    start_state: int | None = None,
 ) -> PreparedProblem:
     """Build the occupancy grid and the label raster, and assemble a :class:`PlanningProblem` with the
     profile, radii and reach model of ``options`` (default: the defaults, :class:`sgplan.PlanOptions`).
 
     ``grid`` / ``labels`` may be given already built (a :class:`sgplan.api.Session` keeps them between
     missions); they must be the ones of these radii and reach model (``grid.robot_radius_m`` is checked).
-    ``shared``: the session's building-only planner parts (:mod:`sgplan.planning.shared`).
+    ``shared``: the session's building-only planner parts (:mod:`sgplan.planning.shared`). ``start_state``:
+    resume a mission part-way (:class:`~sgplan.planning.PlanningProblem`).
     """
     from sgplan.planning.problem import PlanningProblem
     from sgplan.scene.grid import build_occupancy_grid
@@ -142,6 +144,7 @@ def make_problem(
         reach_model=model,
         ap_descriptions=mission.descriptions,
         shared=shared,
+        start_state=start_state,
     )
     return PreparedProblem(problem, radii, time.perf_counter() - t0)
 

@@ -141,6 +141,13 @@ class CellGraph:
         col -= 1
         return col.astype(np.int32, copy=False)
 
+    def row_col(self, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(rows, cols)`` int64 of the given cells only (:attr:`cell_row` / :attr:`cell_col` compute every
+        cell's)."""
+        _, prows, pcols = self.padded_shape
+        row, col = np.divmod(self.cell_pos[np.asarray(cells, dtype=np.int64)].astype(np.int64), pcols)
+        return row % prows - 1, col - 1
+
     def positions(self) -> np.ndarray:
         """``(N,)`` flat raster position ``(floor * rows + row) * cols + col`` of every cell (int32 when the
         raster allows, else int64), computed on each call."""

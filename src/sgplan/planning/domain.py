@@ -229,7 +229,12 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
     clock.lap("labels")
 
     start_mask = int(label_masks[cell_label[start_cell]])
-    if problem.profile == "ltlf":
+    if problem.start_state is not None:
+        q_start = int(problem.start_state)
+        if dead[q_start]:
+            raise PlanningError(f"automaton state {q_start} at the start can no longer accept: the "
+                                "mission is violated", status="infeasible")
+    elif problem.profile == "ltlf":
         q_start = int(automaton.table[automaton.initial, start_mask])
         if dead[q_start]:
             true_aps = [problem.ap_name(i) for i in range(len(automaton.aps)) if start_mask >> i & 1]
@@ -588,20 +593,11 @@ class LabelRuns:
 
 def _distance_field(problem: PlanningProblem, graph: CellGraph, cells: np.ndarray, unit_m: float
                     ) -> np.ndarray | float:
-    """:func:`~sgplan.planning.ltl_heuristic.unit_field` of ``graph``, kept by the session (read-only) by
-    grid, unit and target cells; computed each time when the session keeps nothing."""
-    if problem.shared is None or not problem.shared.keeps:
+    """:func:`~sgplan.planning.ltl_heuristic.unit_field` of ``graph``, from the session's parts
+    (:meth:`SharedParts.distance_field`); computed each time without them."""
+    if problem.shared is None:
         return unit_field(graph, cells, unit_m)
-    cells = np.ascontiguousarray(cells, dtype=np.int64)
-    key = (problem.grid, unit_m, len(cells), hashlib.blake2b(cells.tobytes(), digest_size=16).digest())
-
-    def build() -> np.ndarray | float:
-        field = unit_field(graph, cells, unit_m)
-        if isinstance(field, np.ndarray):
-            field.flags.writeable = False
-        return field
-
-    return problem.shared.get("distance_field", key, build)
+    return problem.shared.distance_field(problem.grid, graph, cells, unit_m)
 
 
 def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:

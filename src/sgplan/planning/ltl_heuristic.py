@@ -415,9 +415,8 @@ def _bin_key(graph: CellGraph, cells: np.ndarray, side: int) -> np.ndarray:
     _, rows, cols = graph.shape
     per_row = cols // side + 1
     per_floor = (rows // side + 1) * per_row
-    return (graph.cell_floor[cells].astype(np.int64) * per_floor
-            + (graph.cell_row[cells] // side).astype(np.int64) * per_row
-            + graph.cell_col[cells] // side)
+    row, col = graph.row_col(cells)
+    return graph.cell_floor[cells].astype(np.int64) * per_floor + row // side * per_row + col // side
 
 
 @njit(cache=True)

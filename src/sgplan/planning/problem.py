@@ -51,6 +51,11 @@ class PlanningProblem:
     shared:
         parts that depend only on the building, shared with the other problems of a
         :class:`sgplan.Session` (:mod:`sgplan.planning.shared`); ``None``: built for this problem alone.
+    start_state:
+        resume a mission part-way: the automaton state at the start cell, its label already read (e.g. a
+        plan's state at one of its path cells, or a monitor's). ``None`` (default): the automaton's
+        initial state, the start's label read or not as ``profile`` says. Either way the search reads the
+        label of every cell it enters.
     """
 
     building: Building
@@ -64,9 +69,13 @@ class PlanningProblem:
     reach_model: str | None = None
     ap_descriptions: Mapping[str, str] = field(default_factory=dict)
     shared: SharedParts | None = None
+    start_state: int | None = None
 
     def __post_init__(self) -> None:
         check_profile(self.profile)
+        if self.start_state is not None and not 0 <= int(self.start_state) < self.automaton.num_states:
+            raise PlanningError(f"start state {self.start_state} does not exist (automaton states 0.."
+                                f"{self.automaton.num_states - 1})")
         if tuple(self.labels.shape) != tuple(self.grid.shape):
             raise PlanningError(
                 f"label raster has shape {tuple(self.labels.shape)}, the grid {tuple(self.grid.shape)} "

@@ -68,25 +68,16 @@ def object_reach_cells(floor: Floor, obj: SceneObject, reach_radius_m: float, mo
     ValueError
         for another model (user input is checked before, :func:`sgplan.planning.setups.reach_model_for`).
     """
-    if model not in ("box", "visible"):
-        raise ValueError(f"unknown reach model {model!r}")
-    cat_map = floor.cat_map
-    footprint = cat_map == obj.id
-    rows, cols = np.nonzero(footprint.any(axis=1))[0], np.nonzero(footprint.any(axis=0))[0]
-    if len(rows) == 0:
+    footprint = floor.cat_map == obj.id
+    bounds = reach_window(floor, obj, reach_radius_m, model, footprint)
+    if bounds is None:
         return np.zeros(0, dtype=np.int64)
-    if model == "box":
-        pad = reach_half_widths(floor.resolution_m, reach_radius_m)
-    else:  # the disk's reach (one more cell: the float test decides at the edge)
-        res_r, res_c = floor.resolution_m
-        pad = (int(reach_radius_m / res_r) + 1, int(reach_radius_m / res_c) + 1)
-    # Work in the object's bounding box grown by the reach: the rest of the floor is out of it.
-    r0, r1 = max(0, rows[0] - pad[0]), min(cat_map.shape[0], rows[-1] + pad[0] + 1)
-    c0, c1 = max(0, cols[0] - pad[1]), min(cat_map.shape[1], cols[-1] + pad[1] + 1)
+    (r0, r1), (c0, c1) = bounds
+    cat_map = floor.cat_map
     window = (slice(r0, r1), slice(c0, c1))
     decide = None if among is None else among[window]
     if model == "box":
-        reached = box_dilate(footprint[window], pad)
+        reached = box_dilate(footprint[window], reach_half_widths(floor.resolution_m, reach_radius_m))
     else:
         reached = _visible(cat_map[window], floor.room_map[window], obj, floor.resolution_m, reach_radius_m,
                            decide)
@@ -94,6 +85,35 @@ def object_reach_cells(floor: Floor, obj: SceneObject, reach_radius_m: float, mo
         reached &= decide
     rr, cc = np.nonzero(reached)
     return (rr + r0).astype(np.int64) * cat_map.shape[1] + (cc + c0)
+
+
+def reach_window(floor: Floor, obj: SceneObject, reach_radius_m: float, model: str = DEFAULT_REACH_MODEL,
+                 footprint: np.ndarray | None = None
+                 ) -> tuple[tuple[int, int], tuple[int, int]] | None:
+    """``((row0, row1), (col0, col1))``, half-open: the part of ``floor`` that ``model`` looks at for
+    ``obj`` -- its footprint's bounding box grown by the reach (``int(d / res)`` cells per axis for the box,
+    one more for ``visible``, whose float test decides at the edge), clipped to the floor. Every cell
+    that reaches the object lies in it, and so does every line of sight (between two of its cells).
+    ``None`` when the object has no cell on the floor. ``footprint``: ``floor.cat_map == obj.id``, if
+    already made.
+
+    Raises
+    ------
+    ValueError
+        for another model (user input is checked before, :func:`sgplan.planning.setups.reach_model_for`).
+    """
+    if model not in ("box", "visible"):
+        raise ValueError(f"unknown reach model {model!r}")
+    footprint = floor.cat_map == obj.id if footprint is None else footprint
+    rows, cols = np.nonzero(footprint.any(axis=1))[0], np.nonzero(footprint.any(axis=0))[0]
+    if len(rows) == 0:
+        return None
+    res_r, res_c = floor.resolution_m
+    pad = (reach_half_widths(floor.resolution_m, reach_radius_m) if model == "box"
+           else (int(reach_radius_m / res_r) + 1, int(reach_radius_m / res_c) + 1))
+    height, width = floor.shape
+    return ((max(0, int(rows[0]) - pad[0]), min(height, int(rows[-1]) + pad[0] + 1)),
+            (max(0, int(cols[0]) - pad[1]), min(width, int(cols[-1]) + pad[1] + 1)))
 
 
 def _visible(cat: np.ndarray, room: np.ndarray, obj: SceneObject, resolution_m: tuple[float, float],
