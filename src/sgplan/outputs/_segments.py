@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from sgplan.scene._sight import next_crossing
+from sgplan.scene._sight import next_crossed
 
 
 @njit(cache=True)
@@ -17,8 +17,8 @@ def walk(r: int, c: int, r1: int, c1: int, out: np.ndarray) -> int:
     ``(r1, c1)`` meets into ``out[:k]`` (``(k, 2)`` int64 rows, in order, both ends included); returns
     ``k``. ``out`` holds at least ``|r1 - r| + |c1 - c| + 1`` rows.
 
-    The lines crossed come from :func:`sgplan.scene._sight.next_crossing` (exact integer arithmetic), the
-    rule the reach model's line of sight follows too: where the segment passes through a cell corner it
+    The steps come from :func:`sgplan.scene._sight.next_crossed` (exact integer arithmetic), the rule the
+    reach model's line of sight follows too: where the segment passes through a cell corner it
     touches the two cells beside it in one point only and goes on into the diagonal cell, exactly like
     the planner's own diagonal step.
     """
@@ -29,13 +29,7 @@ def walk(r: int, c: int, r1: int, c1: int, out: np.ndarray) -> int:
     k = 1
     m = n = 1  # the next row / column line to cross
     while m <= dr or n <= dc:
-        row_line, col_line = next_crossing(m, n, dr, dc)
-        if row_line:
-            r += sr
-            m += 1
-        if col_line:
-            c += sc
-            n += 1
+        r, c, m, n = next_crossed(r, c, m, n, dr, dc, sr, sc)
         out[k, 0], out[k, 1] = r, c
         k += 1
     return k

@@ -15,28 +15,33 @@ from numba import njit
 
 
 @njit(cache=True)
-def next_crossing(m: int, n: int, dr: int, dc: int) -> tuple[bool, bool]:
-    """Which grid lines a segment between two cell centres crosses next, ``(a row line, a column line)``:
-    both at once is a cell corner, after which the segment goes on in the diagonal cell. The segment
-    spans ``dr`` rows and ``dc`` columns (absolute); ``m`` / ``n`` count the row / column lines crossed
-    so far plus one. The walk of the crossed cells, for sight here and for the simplified waypoints
-    (:mod:`sgplan.outputs._segments`), steps by it while ``m <= dr or n <= dc``.
+def next_crossed(r: int, c: int, m: int, n: int, dr: int, dc: int, sr: int, sc: int
+                 ) -> tuple[int, int, int, int]:
+    """One step of the walk of the cells a segment between two cell centres crosses: from cell ``(r, c)``,
+    with ``m`` / ``n`` the row / column lines crossed so far plus one, the next cell and counts. The
+    segment spans ``dr`` rows and ``dc`` columns (absolute) in directions ``sr`` / ``sc`` (+1 or -1); the
+    walk steps while ``m <= dr or n <= dc``. For sight here and for the simplified waypoints
+    (:mod:`sgplan.outputs._segments`).
 
     Exact integer arithmetic: from a centre the segment meets its ``m``-th row line at
     ``t = (2m - 1) / (2 dr)`` and its ``n``-th column line at ``t = (2n - 1) / (2 dc)``; the times are
-    compared by cross-multiplying (a missing axis never comes first).
+    compared by cross-multiplying (a missing axis never comes first). Both at once is a cell corner: the
+    segment touches the two cells beside it in one point only and goes on in the diagonal cell.
     """
     row_time = (2 * m - 1) * dc if m <= dr else -1  # both times scaled by 2 * dr * dc
     col_time = (2 * n - 1) * dr if n <= dc else -1
-    return (col_time < 0 or (row_time >= 0 and row_time <= col_time),
-            row_time < 0 or (col_time >= 0 and col_time <= row_time))
+    if col_time < 0 or (row_time >= 0 and row_time <= col_time):
+        r, m = r + sr, m + 1
+    if row_time < 0 or (col_time >= 0 and col_time <= row_time):
+        c, n = c + sc, n + 1
+    return r, c, m, n
 
 
 @njit(cache=True)
 def first_opaque(opaque: np.ndarray, r: int, c: int, r1: int, c1: int) -> int:
     """The flat index (``row * cols + col``) of the first opaque cell that the segment from the centre of
     ``(r, c)`` to the centre of ``(r1, c1)`` crosses, both end cells included; -1 if there is none. The
-    crossed cells are walked in order (:func:`next_crossing`)."""
+    crossed cells are walked in order (:func:`next_crossed`)."""
     cols = opaque.shape[1]
     if opaque[r, c]:
         return r * cols + c
@@ -45,13 +50,7 @@ def first_opaque(opaque: np.ndarray, r: int, c: int, r1: int, c1: int) -> int:
     sc = 1 if c1 > c else -1
     m = n = 1
     while m <= dr or n <= dc:
-        row_line, col_line = next_crossing(m, n, dr, dc)
-        if row_line:
-            r += sr
-            m += 1
-        if col_line:
-            c += sc
-            n += 1
+        r, c, m, n = next_crossed(r, c, m, n, dr, dc, sr, sc)
         if opaque[r, c]:
             return r * cols + c
     return -1
