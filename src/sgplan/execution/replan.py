@@ -37,7 +37,8 @@ def plan_from(run: Run, cell: tuple[int, int, int], state: int, explained: Expla
         building=run.building, grid=run.grid, labels=run.labels.raster, automaton=mission.automaton,
         start=cell, start_state=state, profile=options.profile,
         guidance=mission.guidance if uses_guidance else None,
-        reach_radius_m=run.radii.reach_m, ap_descriptions=mission.descriptions, shared=run.parts,
+        reach_radius_m=run.radii.reach_m, reach_model=options.effective_reach_model,
+        ap_descriptions=mission.descriptions, shared=run.parts,
     )
     guidance = "mission" if mission.guidance is not None else None
     staged = StagedPlan(mission, guidance, problem, run.radii, "the run's position", [])

@@ -212,7 +212,8 @@ class Run:
         self.mission = mission
         self._explained: Explained | None = None
         self._mission_data: dict[str, Any] | None = None  # to_dict's form of the mission, made once
-        self.labels = RunLabels(self.building, mission.ordered_propositions, self.radii.reach_m, cells)
+        self.labels = RunLabels(self.building, mission.ordered_propositions, self.radii.reach_m,
+                                self.options.effective_reach_model, cells)
 
     def _follow_status(self) -> None:
         """The status after the monitor moved, with the events it calls for."""
@@ -282,7 +283,9 @@ class Run:
         from sgplan.execution.replan import plan_from
 
         if self._explained is None:
-            self._explained = explain_for_result(self.mission, self.building)
+            self._explained = explain_for_result(self.mission, self.building,
+                                                 reach_radius_m=self.radii.reach_m,
+                                                 reach_model=self.options.effective_reach_model)
         try:
             return plan_from(self, self.position, self.state, self._explained)
         except PlanningError as error:
@@ -384,7 +387,7 @@ class Run:
         from sgplan.execution.regrid import GridChange
 
         overall = _net_change(self.grid, grid, np.concatenate(blocked), np.concatenate(freed))
-        relabelled = self.labels.update(scene.building, objects)
+        relabelled = self.labels.update(scene.building, objects, _changed_cells(deltas))
         self.scene, self.grid = scene, grid
         self.parts.advance(grid, GridChange(*overall), self.labels.raster, relabelled, scene.building)
         self.monitor = self.monitor.rebased(grid, self.labels.raster, scene.building)
@@ -466,7 +469,8 @@ class Run:
         row, col, floor = self.position
         rows, cols = self.building.grid_shape
         at = (floor * rows + row) * cols + col
-        return {p.name: bool(np.isin(at, proposition_cells(self.building, p, self.radii.reach_m)))
+        model = self.options.effective_reach_model
+        return {p.name: bool(np.isin(at, proposition_cells(self.building, p, self.radii.reach_m, model)))
                 for p in mission.ordered_propositions}
 
     def _adopt(self, mission: Mission) -> None:
@@ -525,6 +529,12 @@ class Run:
         from sgplan.execution.run_io import restore
 
         return restore(cls, data, session)
+
+
+def _changed_cells(deltas: list[SceneDelta]) -> dict[int, np.ndarray]:
+    """Floor -> the flat positions whose category some of ``deltas`` changed."""
+    floors = {floor for delta in deltas for floor in delta.cells}
+    return {floor: np.concatenate([d.cells[floor] for d in deltas if floor in d.cells]) for floor in floors}
 
 
 def _net_change(old: Any, new: Any, blocked: np.ndarray, freed: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
