@@ -159,6 +159,11 @@ class Tally:
         return sum(n for codes in self.codes.values() for code, n in codes.items() if code >= 400)
 
 
+def mission_body(scene: str, formula: str, start: int, setup: str = "A*") -> dict[str, Any]:
+    """The JSON of a plan or run request: a formula from initial position ``start``."""
+    return {"scene": scene, "formula": formula, "start": {"index": start}, "options": {"setup": setup}}
+
+
 def missions(scene: str) -> list[str]:
     """The scene's Gibson missions as formula token lists (their GPT-4 outputs)."""
     root = find_gibson_root()
@@ -175,7 +180,7 @@ def plannable(url: str, scene: str, formulas: list[str]) -> list[tuple[str, int]
     with httpx.Client(base_url=url, timeout=300) as c:
         for formula in formulas:
             for k in range(5):
-                body = {"scene": scene, "formula": formula, "start": {"index": k}, "options": {"setup": "A*"}}
+                body = mission_body(scene, formula, k)
                 if c.post("/api/plan", json=body).status_code == 200:
                     cases.append((formula, k))
     return cases
@@ -211,12 +216,7 @@ class Robot:
 
     def create(self) -> None:
         formula, start = self.rng.choice(self.cases)
-        body = {
-            "scene": self.scene,
-            "formula": formula,
-            "start": {"index": start},
-            "options": {"setup": "A*"},
-        }
+        body = mission_body(self.scene, formula, start)
         self._adopt(self.tally.call(self.client, "run create", "POST", "/api/runs", json=body), ok=201)
         self.closed = None
 
@@ -291,12 +291,7 @@ def client_loop(
                 "plan (A*)",
                 "POST",
                 "/api/plan",
-                json={
-                    "scene": scene,
-                    "formula": formula,
-                    "start": {"index": start},
-                    "options": {"setup": "A*"},
-                },
+                json=mission_body(scene, formula, start),
             )
 
         choices: dict[str, list[tuple[float, Callable[[], None]]]] = {
@@ -345,7 +340,7 @@ def stream_and_bad_bodies(url: str, scene: str, cases: list[tuple[str, int]]) ->
         formula, start = cases[0]
         run = c.post(
             "/api/runs",
-            json={"scene": scene, "formula": formula, "start": {"index": start}, "options": {"setup": "A*"}},
+            json=mission_body(scene, formula, start),
         ).json()
         with c.stream("GET", f"/api/runs/{run['id']}/events") as stream:
             next(stream.iter_lines())
@@ -381,12 +376,7 @@ def flood(url: str, scene: str, cases: list[tuple[str, int]], workers: int, back
                 "flood plan",
                 "POST",
                 "/api/plan",
-                json={
-                    "scene": scene,
-                    "formula": formula,
-                    "start": {"index": start},
-                    "options": {"setup": "ALL"},
-                },
+                json=mission_body(scene, formula, start, "ALL"),
             )
 
     threads = [threading.Thread(target=one, args=(k,)) for k in range(count)]
