@@ -46,6 +46,7 @@ if TYPE_CHECKING:
     from sgplan.llm.backends import MissionGuide
     from sgplan.mission import Mission
     from sgplan.options import PlanOptions
+    from sgplan.planning.termination import Termination
     from sgplan.result import PlanResult
     from sgplan.scene.model import Building
     from sgplan.starts import StartSpec
@@ -150,6 +151,9 @@ class Run:
         self.history: list[RunEvent] = []
         self.why: str | None = None
         self._callbacks: list[Callable[[RunEvent], None]] = []
+        self.stop_when: Termination | None = None
+        """A further condition that stops the run's searches besides the options' budgets (e.g. a
+        service's request deadline and a cancel flag, :mod:`sgplan.planning.termination`)."""
         self._plan: PlanResult | None = None
         self._on_plan = 0  # the robot's row on the current plan's path
         self._stale = True
@@ -207,6 +211,7 @@ class Run:
             mission.check_scene(self.building)
         self.mission = mission
         self._explained: Explained | None = None
+        self._mission_data: dict[str, Any] | None = None  # to_dict's form of the mission, made once
         self.labels = RunLabels(self.building, mission.ordered_propositions, self.radii.reach_m,
                                 self.options.effective_reach_model, cells)
 
@@ -493,7 +498,7 @@ class Run:
         return {
             "format": FORMAT, "version": VERSION, "scene": scene_reference(self.session.building),
             "options": self.options.to_dict(), "start": list(self.start), "start_from": self.start_from,
-            "mission": mission_to_dict(self.mission), "changes": [c.to_dict() for c in self.changes],
+            "mission": self._saved_mission(mission_to_dict), "changes": [c.to_dict() for c in self.changes],
             "amendments": list(self.amendments), "position": list(self.position), "state": self.state,
             "status": self._status, "why": self.why,
             "monitor": {"poses": self.monitor.poses, "cells": self.monitor.cells,
@@ -501,6 +506,13 @@ class Run:
                         "violation": self.monitor.violation.to_dict() if self.monitor.violation else None},
             "history": [event.to_dict() for event in self.history],
         }
+
+    def _saved_mission(self, to_dict: Callable[[Mission], dict[str, Any]]) -> dict[str, Any]:
+        """The mission as :meth:`to_dict` saves it, made once per mission (a service saves a run after
+        every pose report; writing the automaton's HOA each time cost more than the report)."""
+        if self._mission_data is None:
+            self._mission_data = to_dict(self.mission)
+        return self._mission_data
 
     @classmethod
     def from_dict(cls, data: dict[str, Any], session: Session | None = None) -> Run:
