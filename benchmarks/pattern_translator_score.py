@@ -1,4 +1,4 @@
-"""Score the offline pattern translator on tests/llm/data/pattern_missions.yaml and list its failures.
+"""Score the offline pattern translator on its pattern set (tests/llm/offline/sets/pattern_missions.jsonl).
 
 Usage: python benchmarks/pattern_translator_score.py [--set PATH] [--gibson DIR] [--verbose]
 
@@ -17,13 +17,14 @@ from functools import cache
 from pathlib import Path
 
 from sgplan.datasets import find_gibson_root
+from sgplan.llm.evaluate import load_jsonl_set
 from sgplan.llm.offline import PatternTranslator
-from sgplan.llm.offline.evaluation import evaluate, load_mission_set
+from sgplan.llm.offline.evaluation import evaluate
 from sgplan.scene.authors import load_authors_scene
 from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building
 
-DEFAULT_SET = Path(__file__).resolve().parents[1] / "tests" / "llm" / "data" / "pattern_missions.yaml"
+DEFAULT_SET = Path(__file__).resolve().parents[1] / "tests/llm/offline/sets/pattern_missions.jsonl"
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -44,7 +45,7 @@ def main(argv: list[str] | None = None) -> int:
         assert root is not None
         return load_authors_scene(root / scene)
 
-    missions = load_mission_set(args.set)
+    missions = load_jsonl_set(args.set)
     usable = [m for m in missions if m.scene == "demo" or root is not None]
     if len(usable) < len(missions):
         print(f"Gibson data not found: skipping {len(missions) - len(usable)} missions over Gibson scenes")

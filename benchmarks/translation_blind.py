@@ -1,8 +1,13 @@
-"""Score the offline pattern translator on the blind mission set and write the committed score file.
+"""Score the offline pattern translator on blind mission sets and write the committed score files.
 
     .venv/bin/python benchmarks/translation_blind.py            # writes
     benchmarks/results/translation_blind.md
     .venv/bin/python benchmarks/translation_blind.py --out -    # print the report instead
+    .venv/bin/python benchmarks/translation_blind.py --set benchmarks/data/blind_missions{,_2,_3}.jsonl
+                                                                # one line per set: right / wrong / refused
+
+With several sets, each set's report is written beside the others when ``--reports DIR`` is given, and
+one table row per set is printed (``--out`` then writes that table).
 
 The set (benchmarks/data/blind_missions.jsonl, described in benchmarks/data/README_blind.md) was written
 by someone who had read neither the translator's code nor docs/offline.md; it is a held-out test, not a
@@ -18,6 +23,7 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+from collections.abc import Callable
 from functools import cache
 from pathlib import Path
 
@@ -82,13 +88,15 @@ def report(score: TranslationScore, set_path: Path, out_name: str) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--set", type=Path, default=DEFAULT_SET)
+    parser.add_argument("--set", type=Path, nargs="+", default=[DEFAULT_SET])
     parser.add_argument(
         "--gibson", type=Path, default=None, help="folder holding Allensville/ ... (default: auto)"
     )
-    parser.add_argument("--out", default=str(DEFAULT_OUT), help="the score file to write, or - for stdout")
+    parser.add_argument("--out", default=None,
+                        help="the score file to write (one set) or the table (several), or - for stdout")
+    parser.add_argument("--reports", type=Path, default=None,
+                        help="with several sets: also write each set's report in this folder")
     args = parser.parse_args(argv)
-
     root = find_gibson_root(args.gibson)
 
     @cache
@@ -99,27 +107,47 @@ def main(argv: list[str] | None = None) -> int:
             raise SystemExit("the Gibson data is needed for this set (see sgplan.datasets)")
         return load_authors_scene(root / scene)
 
-    missions = load_jsonl_set(args.set)
-    started = time.perf_counter()
-    score = score_translator(
-        PatternTranslator(), missions, building_of, set_path=str(args.set), explain=explain
-    )
-    seconds = time.perf_counter() - started
-    out = Path(args.out).resolve()
-    text = report(score, args.set.resolve(), args.out if args.out == "-" or not out.is_relative_to(REPO)
-                  else str(out.relative_to(REPO)))
-    if args.out == "-":
-        print(text, end="")
+    if len(args.set) == 1:
+        return one_set(args.set[0], args.out or str(DEFAULT_OUT), building_of)
+    rows = ["| set | missions | right | wrong | refused |", "|---|---:|---:|---:|---:|"]
+    wrong = 0
+    for path in args.set:
+        score = score_translator(PatternTranslator(), load_jsonl_set(path), building_of,
+                                 set_path=str(path), explain=explain)
+        if args.reports is not None:
+            out = args.reports / f"translation_{path.stem.replace('_missions', '')}.md"
+            out.parent.mkdir(parents=True, exist_ok=True)
+            out.write_text(report(score, path.resolve(), str(out)), encoding="utf-8")
+        c = score.counts
+        rows.append(f"| `{path.name}` | {len(score.results)} | {c['right']} | {c['wrong']} | "
+                    f"{c['refused']} |")
+        wrong += c["wrong"]
+    table = "\n".join(rows) + "\n"
+    if args.out in (None, "-"):
+        print(table, end="")
     else:
-        Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.out).write_text(text, encoding="utf-8")
-        counts = score.counts
-        print(
-            f"right {counts['right']}/{len(score.results)}, wrong {counts['wrong']}, refused "
-            f"{counts['refused']}; "
-            f"({seconds:.1f} s); wrote {args.out}"
-        )
-    return 1 if score.counts["wrong"] else 0
+        Path(args.out).write_text(table, encoding="utf-8")
+    return 1 if wrong else 0
+
+
+def one_set(path: Path, out_arg: str, building_of: Callable[[str], Building]) -> int:
+    """Score one set and write (or print, ``-``) its report."""
+    missions = load_jsonl_set(path)
+    started = time.perf_counter()
+    score = score_translator(PatternTranslator(), missions, building_of, set_path=str(path), explain=explain)
+    seconds = time.perf_counter() - started
+    out = Path(out_arg).resolve()
+    text = report(score, path.resolve(), out_arg if out_arg == "-" or not out.is_relative_to(REPO)
+                  else str(out.relative_to(REPO)))
+    if out_arg == "-":
+        print(text, end="")
+        return 1 if score.counts["wrong"] else 0
+    Path(out_arg).parent.mkdir(parents=True, exist_ok=True)
+    Path(out_arg).write_text(text, encoding="utf-8")
+    counts = score.counts
+    print(f"right {counts['right']}/{len(score.results)}, wrong {counts['wrong']}, "
+          f"refused {counts['refused']}; ({seconds:.1f} s); wrote {out_arg}")
+    return 1 if counts["wrong"] else 0
 
 
 if __name__ == "__main__":

@@ -13,6 +13,7 @@ import pytest
 from scipy import ndimage
 
 import sgplan
+from sgplan.cli import main
 from sgplan.errors import PlanningError, SceneError
 
 README = Path(__file__).resolve().parents[1] / "README.md"
@@ -90,7 +91,7 @@ def test_starts_by_cell_point_room_and_index(demo) -> None:
     snap = next(c for c in blocked if 0 < depth[tuple(c)] * 0.05 <= 0.3)
     snapped = session.plan(mission, (*demo.floors[0].cell_to_xy(tuple(snap)), 0), setup="NO-LLM")
     assert "moved" in snapped.start_from and grid.traversable[0, snapped.start[0], snapped.start[1]]
-    with pytest.raises(PlanningError, match=r"names 2 rooms .*room_5 .*room_14") as error:
+    with pytest.raises(PlanningError, match=r"names 2 rooms; .*room_5.*room_14") as error:
         session.plan(mission, "bathroom")
     assert error.value.status == "invalid-start"
     with pytest.raises(PlanningError, match=r"no free cell lies within 0.5 m"):
@@ -249,13 +250,58 @@ def test_a_plan_finds_where_each_proposition_holds_once_for_its_explanation_and_
     built: list[str] = []
     real = labels.proposition_cells
 
-    def counted(building: sgplan.api.Building, prop: labels.Proposition, reach_radius_m: float | None = None
-                ) -> np.ndarray:
+    def counted(building: sgplan.api.Building, prop: labels.Proposition, reach_radius_m: float | None = None,
+                reach_model: str = "visible") -> np.ndarray:
         built.append(prop.name)
-        return real(building, prop, reach_radius_m)
+        return real(building, prop, reach_radius_m, reach_model)
 
     for module in (labels, sgplan.explain.scene_labels):
         monkeypatch.setattr(module, "proposition_cells", counted)
     result = sgplan.plan(demo, sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo), 0, setup="NO-LLM")
     assert result.status == "optimal" and result.explanation_method == "patterns"
     assert sorted(built) == ["enter(room_11)", "enter(room_4)"]
+
+
+def test_reprs_are_short_and_say_what_they_hold(demo) -> None:
+    session = sgplan.Session(demo)
+    assert repr(session).startswith("<Session 'demo-house': grids for robot radii none yet, 0 propositions")
+    result = session.plan(sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo), start="kitchen")
+    text = repr(result)  # was 50,051 characters (every path row and waypoint)
+    assert len(text) < 250 and f"cost {result.cost_m:.4f} m over {len(result.path)} cells" in text
+    assert "'demo-house'" in text and "room kitchen room_4" in text and "setup ALL" in text
+    assert repr(demo) == ("<Building 'demo-house': 2 floors, 11 rooms, 28 objects, grid 210 x 206 cells of "
+                          "0.05 m>")  # was 18,308 characters
+    assert repr(demo.floors[1]) == "<Floor 1 (B): 5 rooms, grid 210 x 206 cells of 0.05 m>"
+    kitchen = "<Room room_4 kitchen (id 2, floor 0): 5 objects, connected to room_2, room_5>"
+    assert repr(demo.room(uuid=4)) == kitchen
+    assert "grids for robot radii 0.15 m, 2 propositions located" in repr(session)
+
+
+def test_dir_of_sgplan_is_its_public_api() -> None:
+    assert dir(sgplan) == sorted(sgplan.__all__)
+    assert not {"Any", "TYPE_CHECKING", "importlib", "annotations", "api"} & set(dir(sgplan))
+
+
+def test_result_draw_writes_what_plan_draw_writes(demo, tmp_path: Path) -> None:
+    result = sgplan.plan(demo, sgplan.mission_from_formula(KITCHEN_THEN_BEDROOM, demo), start="kitchen")
+    names = {p.name for p in result.draw(tmp_path / "api")}
+    assert main(["plan", "--scene", "demo", "--formula", KITCHEN_THEN_BEDROOM, "--start-room", "kitchen",
+                 "--draw", str(tmp_path / "cli"), "-q"]) == 0
+    assert names == {p.name for p in (tmp_path / "cli").iterdir()} >= {"plan_floor_0.png", "plan_floor_0.svg"}
+
+
+@pytest.mark.parametrize(("scene", "name"), [("demo", "bathroom"), ("Allensville", "corridor")])
+def test_each_start_suggested_for_an_ambiguous_room_is_accepted(scene: str, name: str) -> None:
+    """Allensville's three corridors are all on floor 0: "corridor on floor N" cannot tell them apart."""
+    from sgplan.scene.grid import build_occupancy_grid
+    from sgplan.starts import start_cell
+    from tests import shared_data
+
+    building = shared_data.scene_building(scene)
+    grid = build_occupancy_grid(building, building.robot_radius_m or 0.0)
+    with pytest.raises(PlanningError) as error:
+        start_cell(building, grid, name)
+    suggested = re.findall(r"'([^']+)' \(", str(error.value).split("with one of:")[1])
+    assert len(suggested) == len(building.rooms_named(name)) >= 2
+    rooms = [start_cell(building, grid, spec)[1] for spec in suggested]  # each one is accepted ...
+    assert len(set(rooms)) == len(rooms) and all(name in r for r in rooms)  # ... and names its own room

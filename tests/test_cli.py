@@ -198,3 +198,31 @@ def test_plan_explains_the_mission_once(
     record = json.loads(out.read_text())
     assert calls == ["explain"]
     assert record["explanation"]["text"] in capsys.readouterr().out
+
+
+def test_help_describes_demo_and_lists_every_scene_kind(capsys: pytest.CaptureFixture[str]) -> None:
+    for argv in (["demo", "--help"], ["plan", "--help"]):
+        with pytest.raises(SystemExit) as stop:
+            main(argv)
+        assert stop.value.code == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "Run the whole pipeline on the embedded demo building, offline" in out  # demo had none
+    assert all(kind in out for kind in (".house", "map.yaml", "Hydra .json", "building.yaml"))
+
+
+def test_counts_are_said_in_the_right_number(capsys: pytest.CaptureFixture[str]) -> None:
+    """An imported scene with one room said "1 rooms"."""
+    import sgplan
+    from sgplan.scene.summary import summarize, summary_lines
+
+    b = sgplan.BuildingBuilder("one room", size_m=(3.0, 3.0), resolution_m=0.1, robot_radius_m=0.1)
+    b.add_floor()
+    room = b.add_room(0, "office", box=(0, 0, 3, 3))
+    b.add_object(room, "desk", box=(0.3, 0.3, 1.0, 1.0))
+    b.add_start(2.0, 2.0, 0)
+    text = "\n".join(summary_lines(summarize(b.build())))
+    assert "1 floor, 1 room, 1 object" in text and "floor 0 (A): 1 room, 1 object" in text
+    assert "1 rooms" not in text and "floor(s)" not in text
+    assert main(["plan", "--scene", "demo", "--formula", 'F "enter(room_4)"', "--start-room", "kitchen"]) == 0
+    out = capsys.readouterr().out
+    assert "over 1 cell, 1 simplified waypoint (setup ALL, 1 iteration)" in out  # satisfied at the start

@@ -91,4 +91,4 @@ def test_inspect_json_and_flags_start_cells_inside_obstacles(
     text = capsys.readouterr().out
     flags = json.loads((tmp_path / "s.json").read_text())["initial_cells_free"]
     assert False in flags and "NOT FREE" in text and "a plan cannot start there" in text
-    assert "component(s) of [" in text and "; " in text.split("component(s) of [")[1].split("]")[0]
+    assert "components of [" in text and "; " in text.split("components of [")[1].split("]")[0]

@@ -147,3 +147,31 @@ def test_cited_files_are_shipped(doc: Path) -> None:
     missing += sorted(link for link in set(LINK.findall(text)) if not (doc.parent / link).exists())
     assert not missing, f"{_name(doc)} cites files the repository does not ship: {missing}"
     assert "/work/" not in text and "shared/design" not in text, f"{_name(doc)} cites a path of one machine"
+
+
+def _option_helps(command: str) -> dict[str, str]:
+    """Each option string of the sub-command ``command`` and its help text."""
+    import argparse
+
+    parser = _build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return {opt: action.help or "" for action in sub.choices[command]._actions
+            for opt in action.option_strings}
+
+
+def test_documented_commands_use_no_option_kept_only_for_old_scripts() -> None:
+    """The README used `plan --verify`, which `plan --help` says is accepted for old scripts."""
+    stale = [(f"{_name(doc)}:{line}", option) for doc, line, argv in COMMANDS
+             for option in argv[1:] if "old scripts" in _option_helps(argv[0]).get(option, "")]
+    assert stale == []
+
+
+MEASUREMENT_LOG = {"docs/planning.md"}
+"""Pages that still log measurement rounds with their machine's load (to move to benchmarks/results/)."""
+
+
+@pytest.mark.parametrize("doc", [d for d in DOCS if _name(d) not in MEASUREMENT_LOG], ids=_name)
+def test_docs_carry_no_notes_about_the_machine_load_of_the_day(doc: Path) -> None:
+    """Measurements and the conditions of their run belong in benchmarks/results/, with the command."""
+    text = doc.read_text(encoding="utf-8")
+    assert not re.search(r"heavily loaded|loaded by other|load \d+\W\d+|load average", text), _name(doc)

@@ -18,9 +18,14 @@ from hypothesis import strategies as st
 
 import sgplan
 from sgplan.cli import main
+from sgplan.errors import OutputError
+from sgplan.logic.automaton import Automaton
 from sgplan.outputs.waypoints import crossed_cells, densify, leg_costs, simplify_path
 from sgplan.planning.checker import check_path
 from sgplan.result import PlanResult
+from sgplan.scene.grid import OccupancyGrid
+from tests import shared_data
+from tests.polyline_oracle import cells_meeting_segment, check_polyline
 
 # Out and back on floor 0, then upstairs, never through the living room (room_6) or the kitchen (room_4).
 FORMULA = ('F("enter(room_5)" & F("reach(object_28)" & F "enter(room_11)")) '
@@ -33,22 +38,21 @@ def demo_result() -> PlanResult:
     return sgplan.plan(building, sgplan.mission_from_formula(FORMULA, building), 0, setup="NO-LLM")
 
 
-@given(st.tuples(st.integers(-6, 6), st.integers(-6, 6)), st.tuples(st.integers(-6, 6), st.integers(-6, 6)))
-def test_crossed_cells_cover_the_segment_in_order(a: tuple[int, int], b: tuple[int, int]) -> None:
+CELLS = st.tuples(st.integers(-40, 40), st.integers(-40, 40))
+
+
+@given(CELLS, CELLS)
+def test_crossed_cells_are_the_cells_whose_interior_the_segment_meets(a: tuple[int, int],
+                                                                       b: tuple[int, int]) -> None:
     cells = crossed_cells(a, b)
     assert tuple(cells[0]) == a and tuple(cells[-1]) == b
     assert (np.abs(np.diff(cells, axis=0)).max(axis=1, initial=1) == 1).all()  # 4- or 8-adjacent steps
-    # Oracle: every point sampled densely on the segment lies in a returned cell.
-    t = np.linspace(0.0, 1.0, 2001)[:, None]
-    points = np.array(a) + 0.5 + t * (np.array(b) - np.array(a))
-    inside = {tuple(c) for c in cells.tolist()}
-    sampled = {tuple(c) for c in np.floor(points).astype(int).tolist()}
-    assert sampled <= inside
+    assert cells.tolist() == cells_meeting_segment(a, b).tolist()  # brute force, same cells, same order
 
 
 def _crossed_cells_by_sampling_the_crossings(a: tuple[int, int], b: tuple[int, int]) -> np.ndarray:
-    """Reference for :func:`crossed_cells` (its former, floating-point implementation): the cells at the
-    midpoints between consecutive grid-line crossings, with both side cells inserted at corners."""
+    """Reference for :func:`crossed_cells` in floating point: the cells at the midpoints between
+    consecutive grid-line crossings (a corner is one crossing of both lines)."""
     p0 = np.array([a[0] + 0.5, a[1] + 0.5])
     d = np.array([b[0] - a[0], b[1] - a[1]], dtype=np.float64)
     crossings = []
@@ -57,27 +61,48 @@ def _crossed_cells_by_sampling_the_crossings(a: tuple[int, int], b: tuple[int, i
             lo, hi = sorted((p0[axis], p0[axis] + d[axis]))
             crossings.append((np.arange(np.floor(lo) + 1, np.ceil(hi)) - p0[axis]) / d[axis])
     ts = np.unique(np.round(np.concatenate([[0.0, 1.0], *crossings]), 12))
-    cells = np.floor(p0 + ((ts[:-1] + ts[1:]) / 2.0)[:, None] * d).astype(np.int64).tolist()
-    out = [cells[0]]
-    for prev, nxt in itertools.pairwise(cells):
-        if prev[0] != nxt[0] and prev[1] != nxt[1]:
-            out += [[nxt[0], prev[1]], [prev[0], nxt[1]]]
-        out.append(nxt)
-    return np.array(out, dtype=np.int64)
-
-
-CELLS = st.tuples(st.integers(-40, 40), st.integers(-40, 40))
+    return np.floor(p0 + ((ts[:-1] + ts[1:]) / 2.0)[:, None] * d).astype(np.int64).reshape(-1, 2)
 
 
 @given(CELLS, CELLS)
 def test_crossed_cells_match_the_floating_point_reference(a: tuple[int, int], b: tuple[int, int]) -> None:
-    assert crossed_cells(a, b).tolist() == _crossed_cells_by_sampling_the_crossings(a, b).tolist()
+    reference = _crossed_cells_by_sampling_the_crossings(a, b).tolist() if a != b else [list(a)]
+    assert crossed_cells(a, b).tolist() == reference
 
 
-def test_crossed_cells_on_corners_and_lines() -> None:
-    for a, b in [((0, 0), (3, 3)), ((0, 0), (2, 6)), ((5, 5), (5, -2)), ((1, 1), (1, 1)), ((0, 0), (-4, 2))]:
+def test_a_segment_through_corners_enters_only_the_diagonal_cells() -> None:
+    for a, b in [((0, 0), (3, 3)), ((0, 0), (2, 6)), ((5, 5), (5, -2)), ((0, 0), (-4, 2))]:
         assert crossed_cells(a, b).tolist() == _crossed_cells_by_sampling_the_crossings(a, b).tolist()
-    assert crossed_cells((0, 0), (1, 1)).tolist() == [[0, 0], [1, 0], [0, 1], [1, 1]]
+    assert crossed_cells((0, 0), (3, 3)).tolist() == [[0, 0], [1, 1], [2, 2], [3, 3]]
+    assert crossed_cells((0, 0), (2, -2)).tolist() == [[0, 0], [1, -1], [2, -2]]
+    assert crossed_cells((1, 1), (1, 1)).tolist() == [[1, 1]]
+    # (0, 0) -> (2, 6) passes through the corner of cells (0, 1) and (1, 2), then of (1, 4) and (2, 5).
+    assert crossed_cells((0, 0), (2, 6)).tolist() == [[0, 0], [0, 1], [1, 2], [1, 3], [1, 4], [2, 5], [2, 6]]
+
+
+def _diagonal_along_an_edge() -> tuple[np.ndarray, OccupancyGrid, np.ndarray, Automaton]:
+    """A path down the diagonal of a room whose cells above the diagonal are blocked (an inflated wall
+    at 45 degrees): every corner it passes touches a blocked cell."""
+    size = 30
+    rows, cols = np.indices((size, size))
+    traversable = (rows >= cols)[None]
+    grid = OccupancyGrid(traversable=traversable, room_map=np.ones_like(traversable, dtype=np.int16),
+                         resolution_m=(0.01, 0.01), origin_m=(0.0, 0.0), floor_z_m=np.zeros(1), stairs=(),
+                         robot_radius_m=0.1)
+    automaton = Automaton(aps=("p",), table=np.array([[0, 1], [1, 1]]), initial=0,
+                          accepting=np.array([False, True]))
+    labels = np.zeros((1, size, size), dtype=np.uint32)
+    labels[0, size - 1, size - 1] = 1  # the goal: the far corner
+    path = np.array([[k, k, 0, 0] for k in range(size)])
+    path[-1, 3] = 1
+    return path, grid, labels, automaton
+
+
+def test_a_diagonal_along_an_inflated_edge_is_one_segment() -> None:
+    path, grid, labels, automaton = _diagonal_along_an_edge()
+    keep = simplify_path(path, grid, labels, automaton)
+    assert keep.tolist() == [0, len(path) - 1]  # was every cell: the corners' side cells are blocked
+    assert check_polyline(path, keep, grid, labels, automaton) == []
 
 
 def test_simplified_waypoints_keep_the_mission_the_clearance_and_the_stairs() -> None:
@@ -119,13 +144,14 @@ def test_a_segment_never_cuts_through_a_cell_that_changes_the_mission() -> None:
 
 
 def _simplify_reference(path: np.ndarray, grid, labels: np.ndarray, automaton) -> list[int]:
-    """The greedy rule of :func:`simplify_path` stated plainly in Python (its former implementation)."""
+    """The rule of :func:`simplify_path` stated plainly in Python, over the brute-force segment cells: from
+    each kept row, the farthest row of its floor and state that a valid segment reaches."""
 
     def segment_ok(i: int, j: int) -> bool:
         floor, q = path[i, 2], path[i, 3]
         if (path[i:j + 1, 2] != floor).any() or (path[i + 1:j, 3] != q).any():
             return False
-        for r, c in crossed_cells(tuple(path[i, :2].tolist()), tuple(path[j, :2].tolist()))[1:-1].tolist():
+        for r, c in cells_meeting_segment(tuple(path[i, :2].tolist()), tuple(path[j, :2].tolist()))[1:-1]:
             if not (0 <= r < grid.shape[1] and 0 <= c < grid.shape[2]) or not grid.traversable[floor, r, c]:
                 return False
             if automaton.table[q, labels[floor, r, c]] != q:
@@ -134,11 +160,8 @@ def _simplify_reference(path: np.ndarray, grid, labels: np.ndarray, automaton) -
 
     keep, i = [0], 0
     while i < len(path) - 1:
-        j = i + 1
-        while j + 1 < len(path) and segment_ok(i, j + 1):
-            j += 1
-        keep.append(j)
-        i = j
+        keep.append(max(j for j in range(i + 1, len(path)) if j == i + 1 or segment_ok(i, j)))
+        i = keep[-1]
     return keep
 
 
@@ -146,7 +169,8 @@ def _simplify_reference(path: np.ndarray, grid, labels: np.ndarray, automaton) -
     (FORMULA, 0, "NO-LLM"), ('F("enter(room_4)" & F "enter(room_11)")', 2, "A*"),
     ('F "reach(object_28)" & G !"enter(room_5)"', 1, "NO-LLM"),
 ])
-def test_the_compiled_simplification_follows_the_greedy_rule(formula: str, start: int, setup: str) -> None:
+def test_the_compiled_simplification_follows_the_farthest_segment_rule(formula: str, start: int,
+                                                                       setup: str) -> None:
     building = sgplan.load_scene("demo")
     r = sgplan.plan(building, sgplan.mission_from_formula(formula, building), start, setup=setup)
     automaton = r.mission.automaton
@@ -289,3 +313,37 @@ def test_plan_records_are_json_with_one_line_per_row() -> None:
             record_json({"cost_m": bad})
         with pytest.raises(ValueError):
             record_json({"rows": [[bad]]})
+
+
+def test_simplified_waypoints_on_allensville_are_its_corners() -> None:
+    """The first-day report: "Check both bathrooms, then go to the kitchen" from the lobby gave 766 cells and
+    157 waypoints, 125 of its segments one cell long, along diagonals beside the inflated obstacles."""
+    building = shared_data.scene_building("Allensville")
+    mission = sgplan.mission_from_text("Check both bathrooms, then go to the kitchen", building)
+    r = sgplan.plan(building, mission, start="lobby")
+    keep = np.array([w.index for w in r.waypoints_simplified])
+    assert len(keep) <= 25 < len(r.path) / 25
+    assert check_polyline(r.path, keep, r.grid, r.labels, mission.automaton) == []
+    legs = leg_costs(r.path[keep], r.grid)
+    changes = set(np.flatnonzero(np.diff(r.path[:, 3])) + 1)  # rows where the mission moves on: kept
+    one_cell = [k for k, leg in enumerate(legs) if leg < 0.015 and keep[k + 1] not in changes]
+    assert len(one_cell) <= 1, [(keep[k], keep[k + 1]) for k in one_cell]
+
+
+def test_a_waypoint_tolerance_cuts_the_inflated_corners_and_nothing_else() -> None:
+    building = shared_data.scene_building("Allensville")
+    mission = sgplan.mission_from_text("Check both bathrooms, then go to the kitchen", building)
+    r = sgplan.plan(building, mission, start="lobby")
+    exact = [w.index for w in r.waypoints_simplified]
+    cut = np.array([w.index for w in r.simplify_waypoints(0.01)])
+    assert len(cut) < len(exact) and r.waypoint_tolerance_m == r.to_dict()["waypoint_tolerance_m"] == 0.01
+    changes = np.flatnonzero(np.diff(r.path[:, 3])) + 1
+    assert set(changes) <= set(cut.tolist())  # the mission still moves on at kept waypoints
+    assert check_polyline(r.path, cut, r.grid, r.labels, mission.automaton, tolerance_m=0.01,
+                          building=building) == []
+    without = check_polyline(r.path, cut, r.grid, r.labels, mission.automaton)
+    assert any("enters blocked cell" in problem for problem in without)  # it did use the tolerance
+    with pytest.raises(OutputError, match=r"below the robot radius 0\.15 m"):
+        r.simplify_waypoints(0.15)
+    with pytest.raises(OutputError, match="non-negative"):
+        r.simplify_waypoints(-0.01)

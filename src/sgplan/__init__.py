@@ -29,6 +29,7 @@ if TYPE_CHECKING:
         mission_from_text,
         plan,
     )
+    from sgplan.execution.run import Run
     from sgplan.options import PlanOptions
     from sgplan.result import PlanResult
     from sgplan.scene.builder import BuildingBuilder
@@ -45,12 +46,13 @@ _LAZY = {
     "plan": "sgplan.api",
     "Session": "sgplan.api",
     "PlanOptions": "sgplan.options",
+    "Run": "sgplan.execution.run",
     "PlanResult": "sgplan.result",
     "Point": "sgplan.starts",
     "BuildingBuilder": "sgplan.scene.builder",
 }
 __all__ = [
-    "BuildingBuilder", "PlanOptions", "PlanResult", "Point", "Session", "SgplanError", "__version__",
+    "BuildingBuilder", "PlanOptions", "PlanResult", "Point", "Run", "Session", "SgplanError", "__version__",
     "add_guidance", "load_mission", "load_scene", "mission_from_formula", "mission_from_text", "plan",
 ]
 
@@ -65,4 +67,5 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+    """The public API only (not this module's imports or the subpackages loaded so far)."""
+    return sorted(__all__)

@@ -24,13 +24,16 @@ from typing import TYPE_CHECKING, Any, TypedDict
 import numpy as np
 
 from sgplan.assembly import make_problem
+from sgplan.english import count
 from sgplan.errors import PlanningError, SceneError
 from sgplan.options import PlanOptions
 from sgplan.planning.shared import SharedParts
 from sgplan.radii import Radii, resolve_radii
 from sgplan.scene.model import Building
+from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 if TYPE_CHECKING:  # the planner, grid and labels (numba, scipy) load when a plan is made, not for a mission
+    from sgplan.execution.run import Run
     from sgplan.explain import Explanation
     from sgplan.llm.backends import Backends, MissionGuide
     from sgplan.mission import Mission
@@ -176,21 +179,26 @@ def add_guidance(
     ), guide.name
 
 
-class _Explained(TypedDict):
+class Explained(TypedDict):
+    """The ``explanation`` and ``explanation_method`` of a :class:`PlanResult`."""
+
     explanation: str
     explanation_method: str
 
 
-def _explanation(mission: Mission, building: Building, given: Explanation | None = None,
-                 cells: Callable[[Proposition, float], np.ndarray] | None = None) -> _Explained:
+def explain_for_result(mission: Mission, building: Building, given: Explanation | None = None,
+                       cells: Callable[[Proposition, float, str], np.ndarray] | None = None, *,
+                       reach_radius_m: float | None = None, reach_model: str | None = None) -> Explained:
     """The mission explained in plain English (:func:`sgplan.explain.explain_mission`) as the
     ``explanation`` and ``explanation_method`` of a :class:`PlanResult`: the one place a plan gets it.
     ``given``: the caller's explanation of this mission and building (already said back), used as it is;
-    ``cells``: where each proposition holds (:meth:`Session.proposition_cells`)."""
+    ``cells``: where each proposition holds (:meth:`Session.proposition_cells`), objects reached within
+    ``reach_radius_m`` under ``reach_model`` (the plan's)."""
     if given is None:
         from sgplan.explain import explain_mission
 
-        given = explain_mission(mission, building, cells=cells)
+        given = explain_mission(mission, building, reach_radius_m=reach_radius_m, reach_model=reach_model,
+                                cells=cells)
     return {"explanation": given.text, "explanation_method": given.method}
 
 
@@ -199,8 +207,9 @@ def _explanation(mission: Mission, building: Building, given: Explanation | None
 
 class Session:
     """Plans many missions on one building, keeping between them the occupancy grid of each robot radius,
-    the label raster of each (proposition, reach radius) and the planner's building-only parts (``parts``:
-    the cell graph of each grid, the composite action tables and maps of each grid and reach radius, the
+    the cells of each (proposition, reach radius, reach model) and the planner's building-only parts
+    (``parts``: the cell graph of each grid, the composite action tables and maps of each grid, reach
+    radius and reach model, the
     h_LTL distance field of each target region; :mod:`sgplan.planning.shared`), so a second mission pays
     only for what depends on it. ``builds`` counts what the session built (grids, label masks);
     ``parts.builds`` the parts.
@@ -219,9 +228,16 @@ class Session:
     ) -> None:
         self.building = load_scene(building, data)
         self._grids: dict[float, OccupancyGrid] = {}
-        self._cells: dict[tuple[Proposition, float], np.ndarray] = {}  # flat indices where it holds
+        self._cells: dict[tuple[Proposition, float, str], np.ndarray] = {}  # flat indices where it holds
         self.parts = SharedParts(max_shared_bytes)
         self.builds: Counter[str] = Counter()
+
+    def __repr__(self) -> str:
+        radii = ", ".join(f"{r:g} m" for r in sorted(self._grids)) or "none yet"
+        held_mib, cap_mib = self.parts.nbytes() / 2**20, self.parts.max_bytes / 2**20
+        return (f"<Session {self.building.name!r}: grids for robot radii {radii}, "
+                f"{count(len(self._cells), 'proposition')} located, {count(len(self.parts), 'planner part')} "
+                f"({held_mib:.0f} of at most {cap_mib:.0f} MiB)>")
 
     def radii(self, robot_radius_m: float | None = None, reach_radius_m: float | None = None) -> Radii:
         """The radii a plan uses: given, else the scene's, else the defaults (:func:`resolve_radii`)."""
@@ -238,7 +254,8 @@ class Session:
             self.builds["grid"] += 1
         return self._grids[radius]
 
-    def labels(self, mission: Mission, reach_radius_m: float | None = None) -> np.ndarray:
+    def labels(self, mission: Mission, reach_radius_m: float | None = None,
+               reach_model: str = DEFAULT_REACH_MODEL) -> np.ndarray:
         """The mission's label raster (as :meth:`Mission.labels`), from the cells of each proposition kept
         between missions (flat indices: far smaller than a full mask per proposition)."""
         from sgplan.scene.labels import raster_from_cells
@@ -247,18 +264,19 @@ class Session:
         reach = self.radii(reach_radius_m=reach_radius_m).reach_m
         return raster_from_cells(
             (self.building.num_floors, *self.building.grid_shape),
-            [self.proposition_cells(prop, reach) for prop in mission.ordered_propositions],
+            [self.proposition_cells(prop, reach, reach_model) for prop in mission.ordered_propositions],
         )
 
-    def proposition_cells(self, prop: Proposition, reach_radius_m: float) -> np.ndarray:
-        """Flat indices of the cells where ``prop`` holds at this reach radius (metres), as
-        :func:`sgplan.scene.labels.proposition_cells`; built once per proposition and radius. The label
-        rasters and the explanations of this session's plans read them from here."""
+    def proposition_cells(self, prop: Proposition, reach_radius_m: float,
+                          reach_model: str = DEFAULT_REACH_MODEL) -> np.ndarray:
+        """Flat indices of the cells where ``prop`` holds at this reach radius (metres) and reach model, as
+        :func:`sgplan.scene.labels.proposition_cells`; built once per proposition, radius and model. The
+        label rasters and the explanations of this session's plans read them from here."""
         from sgplan.scene.labels import proposition_cells
 
-        key = (prop, reach_radius_m)
+        key = (prop, reach_radius_m, reach_model)
         if key not in self._cells:
-            self._cells[key] = proposition_cells(self.building, prop, reach_radius_m)
+            self._cells[key] = proposition_cells(self.building, prop, reach_radius_m, reach_model)
             self.builds["label_mask"] += 1
         return self._cells[key]
 
@@ -272,13 +290,14 @@ class Session:
         callback: IterationCallback | None = None,
         explanation: Explanation | None = None,
         termination: Termination | None = None,
+        start_state: int | None = None,
         **option_values: Any,
     ) -> PlanResult:
         """Plan ``mission`` from ``start`` with AMRA*; see :func:`sgplan.plan`."""
         chosen = PlanOptions.from_keywords(options, **option_values)
         try:
             return self._plan(mission, start, chosen, guide=guide, callback=callback, explanation=explanation,
-                              termination=termination)
+                              termination=termination, start_state=start_state)
         finally:
             self.parts.trim()
 
@@ -292,32 +311,31 @@ class Session:
         callback: IterationCallback | None,
         explanation: Explanation | None,
         termination: Termination | None,
+        start_state: int | None,
     ) -> PlanResult:
         from sgplan.jit import announce_compile
         from sgplan.planning.amra import plan as amra_plan
         from sgplan.planning.termination import any_of
 
         t0 = time.perf_counter()
-        staged = self._stage(mission, start, options, guide)
+        staged = self._stage(mission, start, options, guide, start_state)
         prepare_s = time.perf_counter() - t0
         announce_compile()
         # Without kept parts the problem's maps are this plan's alone: freed once the search stops
         # reading them.
         stop_when = any_of(options.termination(), termination)
-        found = amra_plan(staged.problem, options.setup, termination=stop_when, callback=callback,
-                          prebuild_actions=options.prebuild_actions, release_maps=not self.parts.keeps)
-        result = _result(found, staged, options, self.building,
-                         _explanation(staged.mission, self.building, explanation, self.proposition_cells))
-        if found.path is not None:
-            _add_outputs(result, options.verify)
-        result.timings = {
-            "prepare_s": prepare_s, "precompute_s": found.precompute_s, "search_s": found.search_s,
-            "wall_s": time.perf_counter() - t0,
-        }
-        return result
+        try:
+            found = amra_plan(staged.problem, options.setup, termination=stop_when, callback=callback,
+                              prebuild_actions=options.prebuild_actions, release_maps=not self.parts.keeps)
+        except PlanningError as error:
+            raise _with_cause(error, staged.mission, self.building, staged.problem) from None
+        explained = explain_for_result(staged.mission, self.building, explanation, self.proposition_cells,
+                                       reach_radius_m=staged.radii.reach_m,
+                                       reach_model=str(staged.problem.reach_model))
+        return finish_plan(found, staged, options, explained, started=t0, prepare_s=prepare_s)
 
     def _stage(self, mission: Mission, start: StartSpec, options: PlanOptions,
-               guide: MissionGuide | None) -> _Staged:
+               guide: MissionGuide | None, start_state: int | None = None) -> StagedPlan:
         """Everything before the search: the guidance a setup needs, the radii, grid, start cell and the
         planning problem, checked against the scene (an error found there is raised)."""
         from sgplan.planning.setups import get_setup
@@ -329,22 +347,36 @@ class Session:
         radii = self.radii(options.robot_radius_m, options.reach_radius_m)
         grid = self.grid(radii.robot_m)
         start_at, start_from = start_cell(self.building, grid, start)
-        prepared = make_problem(self.building, mission, start_at, options, grid=grid,
-                                labels=self.labels(mission, radii.reach_m), shared=self.parts)
+        labels = self.labels(mission, radii.reach_m, options.effective_reach_model)
+        prepared = make_problem(self.building, mission, start_at, options, grid=grid, labels=labels,
+                                shared=self.parts, start_state=start_state)
         scene_check = _check_in_scene(mission, self.building, prepared.problem)
         log.info(
-            "scene %s: start %s (%s), robot radius %g m (%s), reach %g m (%s), profile %s, %d automaton "
-            "states",
+            "scene %s: start %s (%s), robot radius %g m (%s), reach %g m (%s, %s model), profile %s, %d "
+            "automaton states",
             self.building.name, start_at, start_from, radii.robot_m, radii.robot_from, radii.reach_m,
-            radii.reach_from, options.profile, mission.automaton.num_states,
+            radii.reach_from, prepared.problem.reach_model, options.profile, mission.automaton.num_states,
         )
-        return _Staged(mission, guidance, prepared.problem, radii, start_from, scene_check)
+        return StagedPlan(mission, guidance, prepared.problem, radii, start_from, scene_check)
+
+    def start(self, mission: Mission, start: StartSpec = None, *, options: PlanOptions | None = None,
+              guide: MissionGuide | None = None, **option_values: Any) -> Run:
+        """Start a :class:`~sgplan.execution.run.Run`: ``mission`` carried from ``start`` through the
+        changes of this building (which the run never makes to the session's own building), with progress,
+        monitoring, exact replanning and amendments. Options as :meth:`plan` takes them.
+
+        Cost: this session's grid and labels for the radii (kept), the run's cell numbering (two passes
+        over the grid); the first plan is made when ``run.plan`` is first read."""
+        from sgplan.execution.run import Run
+
+        return Run(self, mission, start, PlanOptions.from_keywords(options, **option_values), guide=guide)
 
 
 @dataclass(frozen=True)
-class _Staged:
-    """A plan's inputs once staged (:meth:`Session._stage`): the mission (with the guidance added, if any),
-    where its guidance came from, the problem, the radii, how the start was chosen, the scene check."""
+class StagedPlan:
+    """A plan's inputs once staged (:meth:`Session._stage`, or a run's plan from its position): the
+    mission (with the guidance added, if any), where its guidance came from, the problem, the radii, how the
+    start was chosen, the scene check's findings."""
 
     mission: Mission
     guidance: str | None
@@ -354,8 +386,22 @@ class _Staged:
     scene_check: list[dict[str, Any]]
 
 
-def _result(found: SearchResult, staged: _Staged, options: PlanOptions, building: Building,
-            explained: _Explained) -> PlanResult:
+def finish_plan(found: SearchResult, staged: StagedPlan, options: PlanOptions, explained: Explained, *,
+                started: float, prepare_s: float) -> PlanResult:
+    """The public result of a search over ``staged``'s problem: the path checked (``options.verify``), its
+    waypoints and events, the timings since ``started`` (a ``time.perf_counter()``)."""
+    result = _result(found, staged, options, staged.problem.building, explained)
+    if found.path is not None:
+        _add_outputs(result, options.verify, staged.problem.start_state)
+    result.timings = {
+        "prepare_s": prepare_s, "precompute_s": found.precompute_s, "search_s": found.search_s,
+        "wall_s": time.perf_counter() - started,
+    }
+    return result
+
+
+def _result(found: SearchResult, staged: StagedPlan, options: PlanOptions, building: Building,
+            explained: Explained) -> PlanResult:
     """The public result of a search (without the outputs :func:`_add_outputs` adds)."""
     from sgplan.result import PlanResult
 
@@ -363,6 +409,7 @@ def _result(found: SearchResult, staged: _Staged, options: PlanOptions, building
     bound = 1.0 if found.status == "optimal" else found.iterations[-1].bound if found.iterations else None
     return PlanResult(
         scene=building.name, status=found.status, setup=found.setup, profile=options.profile,
+        reach_model=str(problem.reach_model),
         cost_m=found.cost_m, bound=bound, path=found.path, start=problem.start, start_from=staged.start_from,
         radii=staged.radii, queues=found.queues, iterations=found.iterations, mission_text=mission.text,
         grounded_text=mission.grounded_text, formula=_formula_text(mission),
@@ -379,8 +426,14 @@ def _check_in_scene(mission: Mission, building: Building, problem: PlanningProbl
     as records."""
     from sgplan.explain.checks import check_mission_in_scene
 
+    profile = problem.profile
+    if problem.start_state is not None:  # check what is left from the start state, its label read
+        a = mission.automaton
+        mission = replace(mission, automaton=type(a)(a.aps, a.table, problem.start_state, a.accepting),
+                          formula=None)
+        profile = "authors"
     check = check_mission_in_scene(mission, building, problem.start, grid=problem.grid, labels=problem.labels,
-                                   profile=problem.profile)
+                                   profile=profile, reach_model=problem.reach_model)
     for finding in check.findings:
         if finding.severity == "warning":
             log.warning(f"warning: {finding.message}")
@@ -390,23 +443,37 @@ def _check_in_scene(mission: Mission, building: Building, problem: PlanningProbl
     return check.to_dict()
 
 
+def _with_cause(error: PlanningError, mission: Mission, building: Building,
+                problem: PlanningProblem) -> PlanningError:
+    """The planner's ``infeasible`` error said with its cause when a place the mission needs cannot be
+    reached from the start (:func:`sgplan.explain.checks.unreachable_finding`: no door, too narrow for this
+    robot); any other error as it is."""
+    if error.status != "infeasible":
+        return error
+    from sgplan.explain.checks import unreachable_finding
+
+    finding = unreachable_finding(mission, building, problem.grid, problem.labels, problem.start)
+    return error if finding is None else PlanningError(finding.message, status="infeasible")
+
+
 def _formula_text(mission: Mission) -> str | None:
     from sgplan.logic import to_infix
 
     return to_infix(mission.formula) if mission.formula is not None else None
 
 
-def _add_outputs(result: PlanResult, verify: bool) -> None:
-    """Check the path (when asked) and add the waypoints and events."""
+def _add_outputs(result: PlanResult, verify: bool, start_state: int | None) -> None:
+    """Check the path (when asked) and add the waypoints and events; ``start_state``: the automaton state
+    at the path's first cell when it resumes a mission (:class:`~sgplan.planning.PlanningProblem`)."""
     from sgplan.outputs.events import path_events
-    from sgplan.outputs.waypoints import leg_costs, path_waypoints, simplify_path
+    from sgplan.outputs.waypoints import leg_costs, path_waypoints
     from sgplan.planning.checker import check_path
 
     assert result.path is not None and result.grid is not None and result.labels is not None
     assert result.mission is not None and result.building is not None
     automaton = result.mission.automaton
     if verify:
-        check = check_path(result.path, result.grid, result.labels, automaton, result.profile)
+        check = check_path(result.path, result.grid, result.labels, automaton, result.profile, start_state)
         if not check.valid:
             raise PlanningError("the path failed the independent check (a bug, please report it): "
                                 + "; ".join(check.problems))
@@ -415,11 +482,10 @@ def _add_outputs(result: PlanResult, verify: bool) -> None:
                                 f"{result.cost_m:.6f} m (a bug, please report it)")
         result.verified = True
     result.waypoints = path_waypoints(result.path, result.grid, result.building)
-    keep = simplify_path(result.path, result.grid, result.labels, automaton)
-    result.waypoints_simplified = path_waypoints(result.path, result.grid, result.building, keep)
+    result.simplify_waypoints()
     costs = np.concatenate([[0.0], np.cumsum(leg_costs(result.path, result.grid))])
     result.events = path_events(result.path, costs, result.labels, automaton, result.building,
-                                result.mission.descriptions)
+                                result.mission.descriptions, start_state=start_state)
 
 
 def plan(
@@ -433,6 +499,7 @@ def plan(
     session: Session | None = None,
     explanation: Explanation | None = None,
     termination: Termination | None = None,
+    start_state: int | None = None,
     **option_values: Any,
 ) -> PlanResult:
     """Plan an optimal path for ``mission`` over ``building`` with AMRA* and check it.
@@ -457,13 +524,17 @@ def plan(
         reused); default a new one that keeps no planner parts.
     explanation:
         the mission's explanation over this building (:func:`sgplan.explain.explain_mission` with the
-        scene's reach radius) when the caller already made it, e.g. to say it back before planning: the
-        result carries it instead of making it again (a few tens of ms); default: made here.
+        plan's reach radius and model) when the caller already made it, e.g. to say it back before
+        planning: the result carries it instead of making it again (a few tens of ms); default: made here.
     termination:
         a further condition that stops the search (:mod:`sgplan.planning.termination`), e.g. a
         :class:`~sgplan.planning.termination.CancelFlag` that another thread sets (status
         ``"cancelled"``, with the best path so far) or a wall-clock
         :class:`~sgplan.planning.termination.Deadline`; checked with the options' budgets.
+    start_state:
+        plan the rest of a mission already under way: the automaton state at ``start``, its label already
+        read (e.g. ``PlanResult.path[k, 3]`` at the path's cell ``k``, or a monitor's state there); the
+        path's rows then carry the states from it on. ``None``: from the automaton's initial state.
 
     Raises
     ------
@@ -479,4 +550,5 @@ def plan(
     elif session.building is not building:
         raise PlanningError("the session plans on another building than the one given")
     return session.plan(mission, start, options=options, guide=guide, callback=callback,
-                        explanation=explanation, termination=termination, **option_values)
+                        explanation=explanation, termination=termination, start_state=start_state,
+                        **option_values)

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from sgplan.english import count
 from sgplan.errors import OutputError
 from sgplan.outputs.events import Event
 from sgplan.outputs.jsontext import finite_or_none, iteration_records, record_json
@@ -51,8 +52,13 @@ class PlanResult:
         cell); ``None`` without a path.
     start, start_from:
         the start cell ``(row, col, floor)`` and how it was chosen (``"room kitchen room_5"``).
+    reach_model:
+        where an object counted as reached: ``"visible"`` or ``"box"`` (:mod:`sgplan.scene.reach`).
     waypoints, waypoints_simplified:
         the path in metres, every cell / the simplified polyline (see :mod:`sgplan.outputs.waypoints`).
+    waypoint_tolerance_m:
+        the clearance the simplified polyline may give up at the inflated obstacles' edge (metres; 0 by
+        default, :meth:`simplify_waypoints` sets another).
     events:
         propositions becoming true and automaton moves along the path (:mod:`sgplan.outputs.events`).
     verified:
@@ -75,6 +81,7 @@ class PlanResult:
     status: str
     setup: str
     profile: str
+    reach_model: str
     cost_m: float
     bound: float | None
     path: np.ndarray | None
@@ -89,6 +96,7 @@ class PlanResult:
     propositions: dict[str, str]
     waypoints: list[Waypoint] = field(default_factory=list)
     waypoints_simplified: list[Waypoint] = field(default_factory=list)
+    waypoint_tolerance_m: float = 0.0
     events: list[Event] = field(default_factory=list)
     verified: bool | None = None
     guidance: str | None = None
@@ -116,12 +124,15 @@ class PlanResult:
         """One line: status, cost, cells, waypoints, setup."""
         if self.path is None:
             return f"{self.status}: no path (setup {self.setup})"
-        return (f"{self.status}: cost {self.cost_m:.4f} m over {len(self.path)} cells, "
-                f"{len(self.waypoints_simplified)} simplified waypoints (setup {self.setup}, "
-                f"{len(self.iterations)} iterations)")
+        return (f"{self.status}: cost {self.cost_m:.4f} m over {count(len(self.path), 'cell')}, "
+                f"{count(len(self.waypoints_simplified), 'simplified waypoint')} (setup {self.setup}, "
+                f"{count(len(self.iterations), 'iteration')})")
 
     def __str__(self) -> str:
         return self.summary()
+
+    def __repr__(self) -> str:
+        return f"<PlanResult {self.scene!r} from {self.start} ({self.start_from}) {self.summary()}>"
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON-ready record (plain dicts, lists, numbers, strings, ``None``; no infinities)."""
@@ -139,6 +150,7 @@ class PlanResult:
             "start_from": self.start_from,
             "setup": self.setup,
             "profile": self.profile,
+            "reach_model": self.reach_model,
             "status": self.status,
             "cost_m": finite_or_none(self.cost_m),
             "bound": self.bound,
@@ -153,6 +165,7 @@ class PlanResult:
             "path": None if self.path is None else self.path.tolist(),
             "waypoints": [w.to_dict() for w in self.waypoints],
             "waypoints_simplified": [w.to_dict() for w in self.waypoints_simplified],
+            "waypoint_tolerance_m": self.waypoint_tolerance_m,
             "events": [e.to_dict() for e in self.events],
             "timings": dict(self.timings),
             "notes": list(self.notes),
@@ -166,6 +179,27 @@ class PlanResult:
     def write_json(self, path: str | Path) -> Path:
         """Write :meth:`to_json` to ``path`` (folders created); returns the path."""
         return write_text(path, self.to_json())
+
+    def simplify_waypoints(self, tolerance_m: float = 0.0) -> list[Waypoint]:
+        """Simplify the path again into :attr:`waypoints_simplified`, letting segments give up
+        ``tolerance_m`` metres of clearance at the inflated obstacles' edge (fewer waypoints where the path
+        hugs a rounded corner; :func:`sgplan.outputs.waypoints.simplify_path`); returns them.
+
+        Raises
+        ------
+        OutputError
+            without a path, or for a tolerance that is negative or not below the robot radius.
+        """
+        from sgplan.outputs.waypoints import path_waypoints, simplify_path
+
+        if (self.path is None or self.grid is None or self.labels is None or self.mission is None
+                or self.building is None):
+            raise OutputError("this result has no path, or no grid, labels, mission and building to simplify")
+        keep = simplify_path(self.path, self.grid, self.labels, self.mission.automaton,
+                             tolerance_m=tolerance_m, building=self.building)
+        self.waypoints_simplified = path_waypoints(self.path, self.grid, self.building, keep)
+        self.waypoint_tolerance_m = float(tolerance_m)
+        return self.waypoints_simplified
 
     def write_waypoints_csv(self, path: str | Path, *, simplified: bool = True) -> Path:
         """The (simplified, by default) waypoints as CSV
@@ -181,11 +215,12 @@ class PlanResult:
             self.waypoints_simplified if simplified else self.waypoints, path, frame_id
         )
 
-    def draw(self, out_dir: str | Path, *, stem: str = "plan_floor", formats: Sequence[str] = ("png",),
-             automaton: bool = True) -> list[Path]:
+    def draw(self, out_dir: str | Path, *, stem: str = "plan_floor", formats: Sequence[str] = ("png", "svg"),
+             automaton: bool = True, axes: str = "metres") -> list[Path]:
         """Draw every floor with the path, the mission and the cost into ``out_dir`` (one picture per floor
-        and format: ``png``, ``svg``), and the mission's automaton beside them (``automaton.dot`` / ``.svg``,
-        unless ``automaton=False``); returns the files."""
+        and format: PNG and SVG, as ``plan --draw``), and the mission's automaton beside them
+        (``automaton.dot`` / ``.svg``, unless ``automaton=False``); returns the files. ``axes`` is
+        ``"metres"`` (the map frame) or ``"cells"`` (:func:`sgplan.scene.draw.draw_floor`)."""
         from sgplan.report.automaton import write_automaton
         from sgplan.scene.draw import MissionView, draw_building
 
@@ -194,9 +229,10 @@ class PlanResult:
             text=self.mission_text or self.formula, explanation=self.explanation,
             cost_m=self.cost_m if self.path is not None else None,
             propositions=tuple(mission.ordered_propositions), reach_radius_m=self.radii.reach_m,
+            reach_model=self.reach_model,
         )
         written = draw_building(building, out_dir, grid=self.grid, path=self.path, mission=view, stem=stem,
-                                formats=formats)
+                                formats=formats, axes=axes)
         if automaton:
             written += write_automaton(mission.automaton, out_dir, names=mission.descriptions)
         return written
@@ -208,7 +244,7 @@ class PlanResult:
 
         building, mission = self._drawable()
         return write_html_report(path, building, self.grid, self, mission, explanation=self.explanation,
-                                 reach_radius_m=self.radii.reach_m)
+                                 reach_radius_m=self.radii.reach_m, reach_model=self.reach_model)
 
     def _drawable(self) -> tuple[Building, Mission]:
         if self.building is None or self.mission is None:

@@ -21,6 +21,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from sgplan.english import count, series
 from sgplan.errors import PlanningError
 from sgplan.scene.fields import is_int, is_number
 from sgplan.scene.grid import OccupancyGrid
@@ -130,9 +131,24 @@ def _find_room(building: Building, name: str) -> Room:
         names = sorted({room.name for room in building.rooms()})
         raise PlanningError(f"start: building {building.name!r} has no room called {name!r} (rooms: "
                             f"{', '.join(names)})", status="invalid-start")
-    listing = ", ".join(f"{room.key} (floor {room.floor})" for room in rooms)
-    raise PlanningError(f"start: {name!r} names {len(rooms)} rooms ({listing}); give a key or say "
-                        f"'{name} on floor N'", status="invalid-start")
+    choices = ", ".join(f"'{spec}' ({about})" for spec, about in _telling_apart(building, rooms))
+    raise PlanningError(f"start: {name!r} names {count(len(rooms), 'room')}; say which, with one of: "
+                        f"{choices}", status="invalid-start")
+
+
+def _telling_apart(building: Building, rooms: list[Room]) -> list[tuple[str, str]]:
+    """For each of ``rooms`` (one category), a start that names it alone -- ``'bathroom on floor 1'`` where
+    it is its floor's only one, else its key -- and what sets it apart (key or floor, neighbours)."""
+    floors = [room.floor for room in rooms]
+    out = []
+    for room in rooms:
+        alone = floors.count(room.floor) == 1
+        neighbours = [f"the {n}" for n in sorted({building.room(id=i).name.replace("_", " ")
+                                                   for i in room.connected_room_ids})]
+        near = f", next to {series(neighbours)}" if neighbours else ", no door to another room"
+        spec = f"{room.name} on floor {room.floor}" if alone else room.key
+        out.append((spec, f"{room.key if alone else f'floor {room.floor}'}{near}"))
+    return out
 
 
 def _room_start(building: Building, grid: OccupancyGrid, room: Room) -> tuple[tuple[int, int, int], str]:

@@ -137,6 +137,24 @@ def test_real_house_imports_with_connected_rooms() -> None:
     assert all(r.connected_room_ids for r in building.rooms())
 
 
+def test_notes_name_objects_as_the_file_does_and_flag_rooms_mostly_shut_off() -> None:
+    """The left-out objects are the file's O records, not sgplan's object_<uuid> (a different object_60 is
+    in the building); the kitchen's galley, behind a gap read as a wall, is flagged."""
+    notes = import_house(scene_example("example_mp3d_scene.house")).notes
+    left_out = next(n for n in notes if "left out" in n)
+    assert "toilet paper (O record 60)" in left_out and "they get no object_<uuid>" in left_out
+    assert "object 60" not in left_out
+    shut = [n for n in notes if "cut off" in n]
+    assert len(shut) == 1 and shut[0].startswith("room_12 kitchen: 680 of its 695 free cells (98%) are cut")
+
+
+def test_a_room_without_a_way_in_is_noted(tmp_path: Path) -> None:
+    walled = import_house(write(tmp_path, house_text(door=False)), SETTINGS).notes
+    # the kitchen's 840 free cells are the largest area; the bedroom's 800 (its bed takes 100) lie apart
+    assert [n.split(":")[0] for n in walled if "cut off" in n] == ["room_2 bedroom"]
+    assert not [n for n in import_house(write(tmp_path, house_text()), SETTINGS).notes if "cut off" in n]
+
+
 def test_reader_agrees_with_spark_dsg_on_the_real_house() -> None:
     real = scene_example("example_mp3d_scene.house")
     mp3d = pytest.importorskip(

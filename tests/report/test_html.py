@@ -5,9 +5,7 @@ from __future__ import annotations
 import base64
 import io
 import json
-import os
 import re
-import shutil
 from dataclasses import replace
 from pathlib import Path
 from types import SimpleNamespace
@@ -20,20 +18,13 @@ from sgplan.errors import OutputError
 from sgplan.outputs.events import Event
 from sgplan.report.html import report_html, write_html_report
 from sgplan.scene.draw_path import path_cells
+from tests.browser import browser as _browser
+from tests.browser import launch, watch
 from tests.plans import REACH_M, DemoPlan
 
 EXPLANATION = (
     "First the bathroom, keeping away from its sink; then a dining chair; then the bedroom upstairs."
 )
-BROWSER_FLAGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--no-first-run",
-]
 
 
 @pytest.fixture(scope="module")
@@ -90,7 +81,8 @@ def test_id_rasters_round_trip(report: Path, demo_plan: DemoPlan) -> None:
             rgba = _data_uri_image(uri).astype(np.int64)
             ids = rgba[..., 0] | rgba[..., 1] << 8 | rgba[..., 2] << 16
             assert (rgba[..., 3] == 255).all()
-            np.testing.assert_array_equal(ids, expected)
+            # Shown in the map frame: pixel (down, across) is cell (row = across, col = cols - 1 - down).
+            np.testing.assert_array_equal(ids, np.flipud(expected.T))
     entities = json.loads(page.split('id="sgplan-entities">')[1].split("</script>")[0])
     teddy = demo_plan.building.objects_named("teddy bear")[0]
     assert entities["objects"][str(teddy.id)] == {
@@ -113,28 +105,6 @@ def test_report_without_path_and_write_errors(demo_plan: DemoPlan, tmp_path: Pat
         write_html_report(blocker / "plan.html", d.building, d.grid, d.result, d.mission, engine="matplotlib")
 
 
-def _browser() -> tuple[object, str]:
-    """Playwright's sync API and a Chromium executable, or skip saying what is missing."""
-    try:
-        from playwright.sync_api import sync_playwright
-    except ImportError:
-        pytest.skip("the Python package playwright is not installed (pip install -e '.[test]')")
-    candidates = [
-        os.environ.get("SGPLAN_CHROMIUM"),
-        "/usr/bin/chromium",
-        shutil.which("chromium"),
-        shutil.which("chromium-browser"),
-        shutil.which("google-chrome"),
-    ]
-    executable = next((c for c in candidates if c and Path(c).is_file()), None)
-    if executable is None:
-        pytest.skip(
-            "no Chromium found (apt-get install chromium, or set SGPLAN_CHROMIUM); "
-            ".ci/run installs it when run as root"
-        )
-    return sync_playwright, executable
-
-
 def test_report_in_headless_chromium(report: Path, demo_plan: DemoPlan) -> None:
     sync_playwright, executable = _browser()
     building = demo_plan.building
@@ -142,22 +112,11 @@ def test_report_in_headless_chromium(report: Path, demo_plan: DemoPlan) -> None:
     floor1 = building.floors[1]
     cells = np.argwhere(floor1.cat_map == teddy.id)
     row, col = (int(v) for v in cells[len(cells) // 2])
-    problems: list[str] = []
     with sync_playwright() as p:  # type: ignore[operator]
-        try:
-            browser = p.chromium.launch(executable_path=executable, args=BROWSER_FLAGS, headless=True)
-        except Exception as error:  # noqa: BLE001 - any launch failure means "no usable browser here"
-            pytest.skip(f"Chromium at {executable} did not start: {str(error).splitlines()[0]}")
+        browser = launch(p, executable)
         try:
             page = browser.new_page(viewport={"width": 1200, "height": 900})
-            page.on(
-                "console",
-                lambda m: (
-                    problems.append(f"console {m.type}: {m.text}") if m.type in ("error", "warning") else None
-                ),
-            )
-            page.on("pageerror", lambda e: problems.append(f"page error: {e}"))
-            page.on("requestfailed", lambda r: problems.append(f"request failed: {r.url}"))
+            problems = watch(page)
             page.goto(report.as_uri())
             page.wait_for_selector(
                 '#floors .floor[data-floor="1"][data-ready="true"]', state="attached", timeout=20_000
@@ -185,15 +144,19 @@ def test_report_in_headless_chromium(report: Path, demo_plan: DemoPlan) -> None:
             box = stage.bounding_box()
             assert box is not None
             rows, cols = floor1.shape
-            page.mouse.move(
-                box["x"] + (col + 0.5) / cols * box["width"], box["y"] + (row + 0.5) / rows * box["height"]
-            )
+            assert box["width"] / box["height"] == pytest.approx(rows / cols, rel=0.01)  # x across, y up
+            across, down = (row + 0.5) / rows, (cols - col - 0.5) / cols
+            page.mouse.move(box["x"] + across * box["width"], box["y"] + down * box["height"])
             tooltip = page.locator("#tooltip")
             assert tooltip.is_visible()
             text = tooltip.inner_text()
             room = building.room(id=teddy.room_id)
+            x_m, y_m = floor1.cell_to_xy((row, col))
             assert f"teddy bear ({teddy.key}, id {teddy.id}, floor 1)" in text
-            assert f"room: {room.name} ({room.key}" in text and f"row {row}, column {col}, floor 1" in text
+            assert f"room: {room.name} ({room.key}" in text
+            assert f"x {x_m:.2f} m, y {y_m:.2f} m (row {row}, column {col}), floor 1" in text
+            ticks = page.locator('.floor[data-floor="1"] svg.axes text.tick')
+            assert ticks.count() >= 6 and ticks.first.is_visible()
 
             reach = page.locator('.floor[data-floor="0"] img.reach')
             assert reach.count() == 1 and reach.evaluate("e => getComputedStyle(e).display") != "none"
@@ -252,6 +215,8 @@ def test_room_names_keep_off_the_start_and_end(report: Path, demo_plan: DemoPlan
     page = report.read_text(encoding="utf-8")
     cells = path_cells(demo_plan.result.path)
     for cell in (cells[0], cells[-1]):
+        cols = demo_plan.building.floors[int(cell[2])].shape[1]
+        x_cell, y_cell = cell[0], cols - 1 - cell[1]  # the map frame: x = row, y = cols - 1 - col
         layer = page.split(f'<div class="floor" data-floor="{cell[2]}"')[1].split("</svg>")[0]
         names = re.findall(
             r'class="room-label" x="([\d.]+)" y="([\d.]+)" font-size="([\d.]+)"[^>]*>([^<]+)<', layer
@@ -259,6 +224,6 @@ def test_room_names_keep_off_the_start_and_end(report: Path, demo_plan: DemoPlan
         assert len(names) >= 5
         for x, y, font, name in names:
             half_w, half_h = 0.31 * float(font) * len(name), 0.65 * float(font)
-            assert abs(float(x) - cell[1]) > half_w or abs(float(y) - cell[0]) > half_h, (
+            assert abs(float(x) - x_cell) > half_w or abs(float(y) - y_cell) > half_h, (
                 f"{name} covers {cell}"
             )

@@ -41,9 +41,8 @@ def test_a_built_two_floor_building_plans_draws_and_round_trips(tmp_path: Path) 
     assert result.status == "optimal" and result.verified and {c[2] for c in result.cells} == {0, 1}
     assert [e.entity for e in result.events if e.kind == "proposition"] == ["sink", "bedroom"]
     assert [p.name for p in result.draw(tmp_path / "png", automaton=False)] == [
-        "plan_floor_0.png",
-        "plan_floor_1.png",
-    ]
+        "plan_floor_0.png", "plan_floor_0.svg", "plan_floor_1.png", "plan_floor_1.svg",
+    ]  # what `plan --draw` writes
     building.initial_cells = [tuple(np.int64(v) for v in building.initial_cells[0])]  # numpy ints write too
     again = read_native_scene(write_native_scene(building, tmp_path / "scene"))
     for room in building.rooms():

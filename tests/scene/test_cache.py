@@ -209,3 +209,22 @@ def test_content_hash_follows_the_contents_wherever_the_arrays_lie() -> None:
     assert cache.content_hash(swapped) != cache.content_hash(base)
     with pytest.raises((pickle.PicklingError, TypeError, AttributeError)):
         cache.content_hash({"f": lambda: 0})
+
+
+def test_a_cached_scene_reports_the_callers_path_and_shares_its_grid(
+    tmp_path: Path, cache_folder: Path, loads: list[Path], grid_builds: list[float],
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """`inspect` showed `gdata/Benevolence`, the path of whoever filled the cache, from another folder."""
+    folder = synthetic_scene().write(tmp_path / "data" / "tiny")
+    (tmp_path / "elsewhere").mkdir()
+    monkeypatch.chdir(tmp_path)
+    first = load_scene(Path("data/tiny"))
+    monkeypatch.chdir(tmp_path / "elsewhere")
+    second = load_scene(Path("../data/tiny"))
+    assert len(loads) == 1  # one real load: the second came from the cache ...
+    assert first.source == Path("data/tiny") and second.source == Path("../data/tiny")  # ... its own path
+    assert second.source.resolve() == folder.resolve()
+    _grid(first, 0.1, grid_builds)
+    _grid(second, 0.1, grid_builds)
+    assert grid_builds == [0.1] and second.source == Path("../data/tiny")  # one grid entry for both paths

@@ -31,7 +31,7 @@ def test_demo_summary_data_and_text() -> None:
     json.dumps(dataclasses.asdict(summary))  # plain data all the way down
 
     text = "\n".join(summary_lines(summary))
-    assert "2 floor(s), 11 rooms, 28 objects" in text
+    assert "2 floors, 11 rooms, 28 objects" in text
     assert f"{kitchen.key} kitchen" in text and "refrigerator object_" in text
     assert "stairs floor 0" in text and "stairs up portal" in text
     assert "objects:" not in "\n".join(summary_lines(summary, objects=False))

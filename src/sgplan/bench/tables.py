@@ -60,14 +60,15 @@ def _triple(cell: PaperCell | None) -> str:
     return "-" if cell is None else f"{_t(cell[0])} / {cell[1]:.2f} / {_t(cell[2])}"
 
 
-def _select(rows: Iterable[Row], **fields: Any) -> list[Row]:
+def select(rows: Iterable[Row], **fields: Any) -> list[Row]:
+    """The rows whose fields equal ``fields``."""
     return [r for r in rows if all(r.get(k) == v for k, v in fields.items())]
 
 
 def table2_case(rows: Sequence[Row]) -> tuple[str, str] | None:
     """The (scene, mission) of the per-setup table: the paper's Table II case when present, else the
     one run with the most setups."""
-    if _select(rows, scene=TABLE2_SCENE, mission=TABLE2_MISSION):
+    if select(rows, scene=TABLE2_SCENE, mission=TABLE2_MISSION):
         return (TABLE2_SCENE, TABLE2_MISSION)
     setups: dict[tuple[str, str], set[str]] = {}
     for r in rows:
@@ -84,9 +85,9 @@ def table2(rows: Sequence[Row], scene: str, mission: str) -> str:
         "| precompute (s) | case wall (s) | peak RSS (MB) |",
         "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
-    case_rows = _select(rows, scene=scene, mission=mission)
-    for setup in [s for s in PAPER_SETUPS if _select(case_rows, setup=s)]:
-        m = means(_select(case_rows, setup=setup))
+    case_rows = select(rows, scene=scene, mission=mission)
+    for setup in [s for s in PAPER_SETUPS if select(case_rows, setup=s)]:
+        m = means(select(case_rows, setup=setup))
         p = paper.get(setup)
         ours = ("-",) * 3 if m is None else (_t(m.first_time_s), f"{m.cost_ratio:.4f}", _t(m.optimal_time_s))
         theirs = ("-",) * 3 if p is None else (f"{p[0]:.4f}", f"{p[1]:.4f}", f"{p[2]:.4f}")
@@ -110,10 +111,10 @@ def table3(rows: Sequence[Row], setups: Sequence[str] = TABLE3_SETUPS) -> str:
     scenes = _scenes(rows)
     head = " | ".join(f"{s} (ours) | n | {s} (paper)" for s in scenes)
     lines = [f"| setup | {head} |", "|---" * (1 + 3 * len(scenes)) + "|"]
-    for setup in [s for s in setups if _select(rows, setup=s)]:
+    for setup in [s for s in setups if select(rows, setup=s)]:
         cells = []
         for scene in scenes:
-            m = means(_select(rows, scene=scene, setup=setup))
+            m = means(select(rows, scene=scene, setup=setup))
             cells.append(f"{_triple(None if m is None else m.triple)} | {0 if m is None else m.n} "
                          f"| {_triple(TABLE3.get((scene, setup)))}")
         lines.append(f"| {setup} | {' | '.join(cells)} |")
@@ -127,8 +128,8 @@ def resources_table(rows: Sequence[Row], setups: Sequence[str] = TABLE3_SETUPS) 
         "|---|---|---|---|---|---|---|---|",
     ]
     for scene in _scenes(rows):
-        for setup in [s for s in setups if _select(rows, setup=s)]:
-            m = means(_select(rows, scene=scene, setup=setup))
+        for setup in [s for s in setups if select(rows, setup=s)]:
+            m = means(select(rows, scene=scene, setup=setup))
             if m is not None:
                 lines.append(f"| {scene} | {setup} | {m.n} | {m.load_s:.2f} | {m.precompute_s:.2f} "
                              f"| {_t(m.optimal_time_s)} | {m.wall_s:.2f} | {m.peak_rss_mb:.0f} |")

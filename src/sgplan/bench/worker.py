@@ -34,9 +34,13 @@ LEVELS = ("anchor", "occupancy", "object", "room", "floor")
 MEASURED = (
     "status", "reason", "start_cell", "cost_m", "first_cost_m", "cost_ratio", "first_time_s",
     "optimal_time_s", "num_iterations", "expansions", *(f"exp_{level}" for level in LEVELS), "load_s",
-    "precompute_s", "search_s", "peak_rss_mb", "guidance", "path_cells", "queues", "iterations", "gallery",
+    "precompute_s", "search_s", "peak_rss_mb", "guidance", "path_cells", "scene_reused", "ltlf_accepts",
+    "queues", "iterations", "gallery", "ltlf_violations",
 )
-"""The fields :func:`measure` reports (``None`` where a case did not get that far)."""
+"""The fields :func:`measure` reports (``None`` where a case did not get that far). ``scene_reused``: the
+worker kept the scene's session (building, grids, action maps, distance fields) from an earlier case;
+``ltlf_accepts`` / ``ltlf_violations``: an ``authors`` path read under ``ltlf``
+(:mod:`sgplan.bench.ltlf_check`)."""
 
 
 def queue_level(queue: str) -> str:
@@ -117,13 +121,14 @@ def _plan_case(case: Case, gallery_dir: str | Path | None, out: dict[str, Any], 
     import sgplan
     from sgplan.outputs.jsontext import finite_or_none, iteration_records
 
+    out["scene_reused"] = scenes.folder == case.scene_dir
     session = scenes.session_for(case.scene_dir)
     mission = sgplan.load_mission(case.mission_dir, profile=case.profile)
     loaded_s = time.perf_counter() - t0
     # Unchecked: the bench measures the planner; the checker's agreement is tested in tests/planning.
     # Action maps built before the search clock starts: the paper's accounting of first-path times.
-    options = sgplan.PlanOptions(setup=case.setup, profile=case.profile, time_limit_s=case.time_limit_s,
-                                 verify=False, prebuild_actions=True)
+    options = sgplan.PlanOptions(setup=case.setup, profile=case.profile, reach_model=case.reach_model,
+                                 time_limit_s=case.time_limit_s, verify=False, prebuild_actions=True)
     result = session.plan(mission, case.start, options=options)
     its = result.iterations
     out.update(
@@ -151,10 +156,29 @@ def _plan_case(case: Case, gallery_dir: str | Path | None, out: dict[str, Any], 
     if result.status == "optimal" and its:
         out["optimal_time_s"] = its[-1].time_s
         out["cost_ratio"] = its[0].cost_m / result.cost_m if result.cost_m > 0 else 1.0
+    if case.profile == "authors" and result.path is not None:
+        out.update(_ltlf_reading(case, result))
     if gallery_dir is not None and result.path is not None:
-        out["gallery"] = [
-            str(p) for p in result.draw(gallery_dir, stem=f"{case.slug}_floor", automaton=False)
-        ]
+        pictures = result.draw(gallery_dir, stem=f"{case.slug}_floor", formats=("png",), automaton=False)
+        out["gallery"] = [str(p) for p in pictures]
+
+
+def _ltlf_reading(case: Case, result: Any) -> dict[str, Any]:
+    """``ltlf_accepts`` and ``ltlf_violations`` of an ``authors`` path (:func:`ltlf_reading`)."""
+    import numpy as np
+
+    import sgplan
+    from sgplan.bench.ltlf_check import ltlf_reading
+    from sgplan.explain.referents import referents_of
+    from sgplan.outputs.waypoints import leg_costs
+
+    path, authors = result.path, result.mission.automaton
+    ltlf = sgplan.load_mission(case.mission_dir, profile="ltlf", guidance=False).automaton
+    entities = referents_of(list(authors.aps), result.mission.propositions, result.building)
+    costs = np.concatenate([[0.0], np.cumsum(leg_costs(path, result.grid))])
+    labels = result.labels[path[:, 2], path[:, 0], path[:, 1]]
+    accepts, violations = ltlf_reading(path, labels, costs, authors, ltlf, lambda p: entities[p].phrase())
+    return {"ltlf_accepts": accepts, "ltlf_violations": [v.to_dict() for v in violations]}
 
 
 PARENT_ENV = "SGPLAN_BENCH_PARENT"

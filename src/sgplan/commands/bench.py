@@ -17,11 +17,13 @@ from typing import TYPE_CHECKING, Any
 from sgplan.commands.common import (
     DEFAULT_PROFILE,
     add_profile_argument,
+    add_reach_model_argument,
     positive_int,
     positive_seconds,
     say,
     split_list,
 )
+from sgplan.english import count
 from sgplan.planning.setups import SETUPS
 
 if TYPE_CHECKING:
@@ -78,6 +80,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "paper's tables were made with authors). With report: the rows to report "
         "(default: the newest row's profile)",
     )
+    add_reach_model_argument(parser, extra_help="; recorded in every row. With report: the rows to report "
+                             "(default: the newest row's among those of --profile)")
     parser.add_argument(
         "--time-limit",
         type=positive_seconds,
@@ -114,7 +118,8 @@ def run(args: argparse.Namespace) -> int:
         from sgplan.bench.report import choose_condition
         from sgplan.bench.results import load_rows
 
-        _print_report(args.out, choose_condition(load_rows(args.out), args.profile, args.time_limit))
+        _print_report(args.out, choose_condition(load_rows(args.out), args.profile, args.time_limit,
+                                                 args.reach_model))
         return 0
     return _sweep(args)
 
@@ -140,7 +145,8 @@ def _cases(args: argparse.Namespace) -> list[Case]:
     else:
         grids = paper_grids(s.name for s in scenes)
     say(f"data: {root}")
-    return expand(scenes, grids, profile=args.profile or DEFAULT_PROFILE, time_limit_s=args.time_limit)
+    return expand(scenes, grids, profile=args.profile or DEFAULT_PROFILE, time_limit_s=args.time_limit,
+                  reach_model=args.reach_model)
 
 
 def _scene_folders(root: Path, names: list[str] | None) -> list[str] | None:
@@ -178,11 +184,12 @@ def _sweep(args: argparse.Namespace) -> int:
     with writing_lock(make_folder(args.out)), _termination_as_interrupt():
         store = ResultStore(args.out)
         executor, summary, (csv_path, json_path) = _run_with_progress(args, cases, store)
-    jobs = executor.jobs or "cluster"
-    say(f"ran {summary.ran} cases in {summary.wall_s:.1f} s wall ({executor.name}, {jobs} jobs); "
-        f"{summary.skipped} were already recorded; results: {csv_path}, {json_path}")
+    jobs = count(executor.jobs, "job") if executor.jobs else "cluster"
+    recorded = f"{summary.skipped} {'was' if summary.skipped == 1 else 'were'} already recorded"
+    say(f"ran {count(summary.ran, 'case')} in {summary.wall_s:.1f} s wall ({executor.name}, {jobs}); "
+        f"{recorded}; results: {csv_path}, {json_path}")
     if not args.no_report:
-        _print_report(args.out, (cases[0].profile, args.time_limit))
+        _print_report(args.out, (cases[0].profile, cases[0].effective_reach_model, args.time_limit))
     return 0
 
 
@@ -219,8 +226,9 @@ def _run_with_progress(
 
         def on_start(to_run: int, already: int) -> None:
             progress.update(task, total=to_run)
-            progress.console.print(f"{len(cases)} cases ({cases[0].profile} profile): {already} already in "
-                                   f"{store.path}, {to_run} to run with the {executor.name} executor")
+            progress.console.print(f"{count(len(cases), 'case')} ({cases[0].profile} profile): {already} "
+                                   f"already in {store.path}, {to_run} to run with the {executor.name} "
+                                   "executor")
 
         def on_row(row: dict[str, Any]) -> None:
             statuses[row["status"]] = statuses.get(row["status"], 0) + 1
@@ -252,7 +260,7 @@ def _run_with_progress(
     return executor, summary, exported
 
 
-def _print_report(folder: str, condition: tuple[str, float | None] | None) -> None:
+def _print_report(folder: str, condition: tuple[str, str, float | None] | None) -> None:
     from sgplan.bench.report import write_report
 
     report = write_report(folder, condition=condition)

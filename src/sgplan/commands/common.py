@@ -1,6 +1,6 @@
 """Argument helpers shared by sub-commands: naming a scene, the Gibson data folder, the semantics profile,
-checked numbers and lists, the options every command takes (``--debug``, ``--quiet``, ``--verbose``), and
-console output through :mod:`logging`."""
+the reach model, checked numbers and lists, the options every command takes (``--debug``, ``--quiet``,
+``--verbose``), and console output through :mod:`logging`."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 from sgplan.datasets import ENV_VAR, SCENES
 from sgplan.limits import MAX_REACH_RADIUS_M, MAX_ROBOT_RADIUS_M, MAX_SECONDS
-from sgplan.planning.setups import PROFILES
+from sgplan.planning.setups import PROFILE_REACH_MODELS, PROFILES, REACH_MODELS
 
 if TYPE_CHECKING:
     from sgplan.options import PlanOptions
@@ -29,8 +29,10 @@ log = logging.getLogger("sgplan")
 def add_scene_arguments(parser: argparse.ArgumentParser, *, positional: bool = False) -> None:
     """Add the scene argument (``SCENE`` or ``--scene``) and ``--data``."""
     help_text = (
-        f"scene folder (authors' building.yaml layout, sgplan's format, or a raw .npz), a Gibson scene name "
-        f"({', '.join(SCENES)}; any case) looked up under --data, or '{DEMO}' for the embedded demo building"
+        f"scene folder (authors' building.yaml layout, sgplan's format, or a raw .npz); a scene of another "
+        "tool, imported on the fly: a Matterport3D .house file, a ROS map.yaml (with rooms.yaml or "
+        "<stem>_rooms.yaml beside it) or a Hydra .json (with its labels file beside it); a Gibson scene name "
+        f"({', '.join(SCENES)}; any case) looked up under --data; or '{DEMO}' for the embedded demo building"
     )
     if positional:
         parser.add_argument("scene", metavar="SCENE", help=help_text)
@@ -64,6 +66,18 @@ def add_profile_argument(parser: argparse.ArgumentParser, *, default: str | None
     )
 
 
+def add_reach_model_argument(parser: argparse.ArgumentParser, *, extra_help: str = "") -> None:
+    """``--reach-model box|visible`` (any case; default: the profile's), stored as the planning option
+    ``reach_model``, the same on every command."""
+    defaults = ", ".join(f"{model} under {profile}" for profile, model in PROFILE_REACH_MODELS.items())
+    parser.add_argument(
+        "--reach-model", dest="reach_model", type=str.lower, choices=REACH_MODELS, default=None,
+        help="where an object counts as reached: visible (within the reach radius and in sight: walls "
+        f"block) or box (the authors' square window, which reaches through walls); default: the profile's "
+        f"({defaults}){extra_help}",
+    )
+
+
 def plan_options(args: argparse.Namespace, **fixed: Any) -> PlanOptions:
     """The planning options (:class:`sgplan.PlanOptions`) a command's arguments give: every option the
     command has an argument for under the option's own name (``--robot-radius`` stores ``robot_radius_m``)
@@ -72,6 +86,13 @@ def plan_options(args: argparse.Namespace, **fixed: Any) -> PlanOptions:
 
     given = {name: value for name in PlanOptions.names() if (value := getattr(args, name, None)) is not None}
     return PlanOptions(**(given | fixed))
+
+
+def add_axes_argument(parser: argparse.ArgumentParser | argparse._ArgumentGroup) -> None:
+    """``--axes metres|cells``: what the pictures' axes say (:mod:`sgplan.scene.draw_axes`)."""
+    parser.add_argument("--axes", choices=("metres", "cells"), default="metres",
+                        help="pictures' axes: metres in the map frame (x right, y up, as RViz shows it; "
+                        "default) or the grid's rows and columns (to read off a --start ROW,COL,FLOOR)")
 
 
 def split_list(values: Iterable[str] | None) -> list[str] | None:
@@ -146,6 +167,11 @@ def positive_seconds(text: str) -> float:
     """argparse type: a number of seconds in (0, :data:`MAX_SECONDS`]."""
     return _number(text, float, allow_zero=False, maximum=MAX_SECONDS,
                    what=f"a number of seconds > 0 and <= {MAX_SECONDS:g}")
+
+
+def non_negative_metres(text: str) -> float:
+    """argparse type: a finite number of metres >= 0."""
+    return _number(text, float, allow_zero=True, what="a finite number of metres >= 0")
 
 
 def robot_radius(text: str) -> float:

@@ -13,8 +13,9 @@ import argparse
 import time
 from pathlib import Path
 
-from sgplan.commands.common import non_negative_int, say
+from sgplan.commands.common import add_axes_argument, non_negative_int, say
 from sgplan.commands.sayback import say_back
+from sgplan.english import count
 from sgplan.errors import MissionError
 
 DEMO_MISSION = (
@@ -24,7 +25,13 @@ DEMO_MISSION = (
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    parser = sub.add_parser("demo", help="run the whole pipeline on the embedded demo building (offline)")
+    parser = sub.add_parser(
+        "demo", help="run the whole pipeline on the embedded demo building (offline)",
+        description="Run the whole pipeline on the embedded demo building, offline, in a few seconds: a "
+        "mission in controlled English is translated (offline, not an LLM), said back, turned into an "
+        "automaton and planned with AMRA*; the optimal path is checked and written as pictures per floor "
+        "(PNG, SVG), an HTML report, waypoints (CSV, ROS path YAML), the mission folder and run.json.",
+    )
     parser.add_argument("--out", metavar="DIR", default="out/demo", help="output folder (default: out/demo)")
     parser.add_argument(
         "--text", default=DEMO_MISSION, help="the mission (controlled English, see docs/offline.md)"
@@ -32,6 +39,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--start-index", type=non_negative_int, default=0, metavar="K", help="initial position K (0-4)"
     )
+    add_axes_argument(parser)
     parser.set_defaults(run=run)
 
 
@@ -52,14 +60,16 @@ def run(args: argparse.Namespace) -> int:
     except OSError as error:
         raise MissionError(f"cannot create the output folder ({error.strerror or error})", out) from None
     building = sgplan.load_scene("demo")
-    say(f"scene: {building.name}, {building.num_floors} floors, {sum(1 for _ in building.rooms())} rooms, "
-        f"{sum(1 for _ in building.objects())} objects (embedded demo building)")
+    rooms, objects = sum(1 for _ in building.rooms()), sum(1 for _ in building.objects())
+    say(f"scene: {building.name}, {count(building.num_floors, 'floor')}, {count(rooms, 'room')}, "
+        f"{count(objects, 'object')} (embedded demo building)")
     print(f"mission: {args.text}")
     backends = open_backends("offline")
     mission = sgplan.mission_from_text(args.text, building, llm=backends)
     print(f"grounded: {mission.grounded_text}")
     print(f"formula:  {mission.formula}")
-    print(f"automaton: {mission.automaton.num_states} states over {len(mission.automaton.aps)} propositions")
+    print(f"automaton: {count(mission.automaton.num_states, 'state')} over "
+          f"{count(len(mission.automaton.aps), 'proposition')}")
     explanation = say_back(mission, building)
     say("planning with AMRA* (setup ALL):")
     result = sgplan.plan(
@@ -74,8 +84,9 @@ def run(args: argparse.Namespace) -> int:
         ),
     )
     print(
-        f"optimal path: {result.cost_m:.3f} m, {len(result.cells)} cells ({len(result.waypoints_simplified)} "
-        f"simplified waypoints), first path after {result.iterations[0].time_s * 1e3:.1f} ms, optimum after "
+        f"optimal path: {result.cost_m:.3f} m, {count(len(result.cells), 'cell')} "
+        f"({count(len(result.waypoints_simplified), 'simplified waypoint')}), first path after "
+        f"{result.iterations[0].time_s * 1e3:.1f} ms, optimum after "
         f"{result.timings['search_s'] * 1e3:.1f} ms of search; verified by the independent checker"
     )
     for event in result.events:
@@ -84,7 +95,7 @@ def run(args: argparse.Namespace) -> int:
                                       hierarchy_text=attribute_hierarchy(building),
                                       building=building)
     written = [
-        *result.draw(out, formats=("png", "svg")), result.write_html(out / "report.html"),
+        *result.draw(out, axes=args.axes), result.write_html(out / "report.html"),
         result.write_waypoints_csv(out / "waypoints.csv"), result.write_ros_path_yaml(out / "ros_path.yaml"),
     ]
     record = result.to_dict()

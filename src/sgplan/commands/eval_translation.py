@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING
 
 from sgplan.commands.common import load_scene_arg, say
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
+from sgplan.english import count
 
 if TYPE_CHECKING:
     from sgplan.logic import Formula
@@ -67,8 +68,8 @@ def run(args: argparse.Namespace) -> int:
         return load_scene_arg(scene, args.data)
 
     say(
-        f"scoring {backends.translator.name} ({backends.description}) on {len(missions)} missions of "
-        f"{args.set}"
+        f"scoring {backends.translator.name} ({backends.description}) on "
+        f"{count(len(missions), 'mission')} of {args.set}"
     )
     score = score_translator(
         backends.translator, missions, building_of, set_path=str(args.set), explain=_explain

@@ -20,6 +20,7 @@ from sgplan.commands.common import (
     say,
 )
 from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
+from sgplan.english import count
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -63,8 +64,8 @@ def run(args: argparse.Namespace) -> int:
     write_guidance(guidance, out)
     entries = sum(len(states) for states in guidance.values())
     print(
-        f"wrote {out}: {entries} entries for {len(guidance)} rooms x {mission.automaton.num_states} "
-        "automaton states"
+        f"wrote {out}: {count(entries, 'entry', 'entries')} for {count(len(guidance), 'room')} x "
+        f"{count(mission.automaton.num_states, 'automaton state')}"
     )
     report = getattr(backends.guide, "report", None)
     if backends.chat is not None and report is not None:

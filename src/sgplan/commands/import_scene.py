@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from sgplan.commands.common import positive_number, reach_radius, robot_radius, say
+from sgplan.english import count
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -82,8 +83,8 @@ def run(args: argparse.Namespace) -> int:
     objects = sum(1 for _ in building.objects())
     rows, cols = building.grid_shape
     print(
-        f"imported {building.name}: {building.num_floors} floor(s), {rooms} rooms, {objects} objects, "
-        f"{rows} x {cols} cells of {building.resolution_m[0]:g} m, {len(building.initial_cells)} start cells "
-        f"-> {folder}"
+        f"imported {building.name}: {count(building.num_floors, 'floor')}, {count(rooms, 'room')}, "
+        f"{count(objects, 'object')}, {rows} x {cols} cells of {building.resolution_m[0]:g} m, "
+        f"{count(len(building.initial_cells), 'start cell')} -> {folder}"
     )
     return 0

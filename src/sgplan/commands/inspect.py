@@ -7,7 +7,7 @@ import dataclasses
 import json
 import sys
 
-from sgplan.commands.common import add_scene_arguments, load_scene_arg, robot_radius, say
+from sgplan.commands.common import add_axes_argument, add_scene_arguments, load_scene_arg, robot_radius, say
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -15,7 +15,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_scene_arguments(parser, positional=True)
     parser.add_argument("--robot-radius", type=robot_radius, default=None, metavar="M",
                         help="robot radius in metres for the free-cell counts (default: the scene's, else 0)")
-    parser.add_argument("--draw", metavar="DIR", default=None, help="write one PNG per floor into DIR")
+    parser.add_argument("--draw", metavar="DIR", default=None,
+                        help="write one PNG and one SVG per floor into DIR")
+    add_axes_argument(parser)
     parser.add_argument("--no-objects", action="store_true", help="leave the object lists out")
     parser.add_argument(
         "--json", metavar="OUT", help="write the summary as JSON ('-': to stdout, instead of the text)"
@@ -48,6 +50,6 @@ def run(args: argparse.Namespace) -> int:
         if not has_maps:
             say("no maps in this scene (raw .npz): nothing to draw")
             return 0
-        for path in draw_building(building, args.draw, grid=grid):
+        for path in draw_building(building, args.draw, grid=grid, axes=args.axes):
             say(f"wrote {path}")
     return 0

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 from sgplan.commands.common import say
 from sgplan.commands.translate import open_backends_from_args
+from sgplan.english import count
 from sgplan.errors import MissionError
 
 if TYPE_CHECKING:
@@ -55,18 +56,16 @@ def mission_from_args(args: argparse.Namespace, building: Building, start: Start
     mission = sgplan.mission_from_text(args.text, building, llm=backends, save_to=save_to)
     if save_to:
         say(f"wrote the mission folder {save_to}")
-    say(f"formula: {mission.formula} ({mission.automaton.num_states} automaton states)")
+    say(f"formula: {mission.formula} ({count(mission.automaton.num_states, 'automaton state')})")
     return mission, backends
 
 
 def _for_start_floor(backends: Backends, building: Building, start: StartSpec) -> Backends:
-    """``backends`` with the offline translator told the start's floor, so that *upstairs* / *downstairs*
-    are read relative to it (a language model's prompt does not carry it)."""
+    """``backends`` with the translator told the start's floor, so that *upstairs* / *downstairs* are read
+    relative to it by a translator that can (``MissionTranslator.starting_on``; a language model's prompt
+    does not carry it)."""
     from dataclasses import replace
 
-    from sgplan.llm.offline import PatternTranslator
     from sgplan.starts import start_floor
 
-    if not isinstance(backends.translator, PatternTranslator):
-        return backends
     return replace(backends, translator=backends.translator.starting_on(start_floor(building, start)))

@@ -25,6 +25,7 @@ from sgplan.commands.common import (
     say,
 )
 from sgplan.commands.sayback import check_before_planning, say_back
+from sgplan.english import count
 from sgplan.errors import MissionError
 
 if TYPE_CHECKING:
@@ -132,7 +133,8 @@ def run(args: argparse.Namespace, ask: Callable[[str], str] | None = None) -> in
     print(f"formula:  {to_infix(translation.formula)}")
     for warning in getattr(translation, "warnings", ()):
         print(f"warning:  {warning}")
-    print(f"automaton: {mission.automaton.num_states} states over {len(mission.automaton.aps)} propositions")
+    print(f"automaton: {count(mission.automaton.num_states, 'state')} over "
+          f"{count(len(mission.automaton.aps), 'proposition')}")
     say_back(mission, building)
     check_before_planning(mission, building, stop=False)
     summary = backends.record.to_json()["summary"]

@@ -21,8 +21,8 @@ def follow(route: np.ndarray, read_first: bool, labels: np.ndarray, traversable:
     ----------
     route:
         ``(m, 3)`` int64 ``[row, col, floor]`` rows, all inside the grid. Between two rows on one floor the
-        robot passed the straight segment's cells (:func:`sgplan.outputs._segments.walk`: corner touches
-        as both side cells) -- a single step (8-neighbours) only its end cell, as the planner's move --
+        robot passed the straight segment's cells (:func:`sgplan.outputs._segments.walk`: the cells whose
+        interior it crosses) -- a single step (8-neighbours) only its end cell, as the planner's move --
         and a repeated cell is not read again; between two floors it took the stairs from one portal
         row to the next.
     read_first:
@@ -50,7 +50,7 @@ def follow(route: np.ndarray, read_first: bool, labels: np.ndarray, traversable:
     extent = 1
     for k in range(1, m):
         extent = max(extent, abs(route[k, 0] - route[k - 1, 0]) + abs(route[k, 1] - route[k - 1, 1]))
-    buffer = np.empty((2 * extent + 1, 2), dtype=np.int64)
+    buffer = np.empty((extent + 1, 2), dtype=np.int64)
     q = state
     count = 0
     broken = broken_r = broken_c = before = at = q_before = -1

@@ -2,12 +2,15 @@
 
 Everything here is computed from the label sets that actually occur on the free cells of the scene's
 occupancy grid (:mod:`sgplan.explain.scene_labels`): rooms are exclusive and an object is reached only
-from the cells its reach window covers. :func:`check_mission_in_scene` finds
+from the cells of its reach region (:mod:`sgplan.scene.reach`). :func:`check_mission_in_scene` finds
 
 - ``unsatisfiable``: no path anywhere in the scene satisfies the mission, whatever the start; the
   smallest set of top-level parts that cannot hold together is named ("Go to the kitchen. Never enter
   the kitchen.");
 - ``unsatisfiable-from-start``: the start cell's own label already makes the mission impossible;
+- ``unreachable-from-start``: a place the mission needs cannot be reached from the start at all, with the
+  cause in words (no door to it, a way in too narrow for this robot and the largest radius that gets
+  through, or no way at any radius: :mod:`sgplan.explain.causes`);
 - ``blocked-by-forbidden``: what the mission needs can be reached from the start only through rooms it
   forbids (those rooms are named);
 - ``impossible-part`` / ``vacuous`` / ``object-outside-room``: a state condition of the formula that no
@@ -15,7 +18,9 @@ from the cells its reach window covers. :func:`check_mission_in_scene` finds
   the bathroom), an object to reach from a room it is not in;
 - ``satisfied-at-start``: the start already satisfies the mission (the optimal plan is to stay).
 
-The first three are errors (:meth:`SceneCheck.raise_errors`), the next three warnings, the last a note.
+The first four are errors (:meth:`SceneCheck.raise_errors`), the next three warnings, the last a note.
+An unsatisfiable mission names why its places cannot be used too (no room for the robot in them, no
+door).
 """
 
 from __future__ import annotations
@@ -28,6 +33,12 @@ from typing import Any, Literal
 import numpy as np
 
 from sgplan.errors import PlanningError, SgplanError, UnsatisfiableMissionError
+from sgplan.explain.causes import (
+    missing_from_start,
+    start_component,
+    why_no_free_cell,
+    why_unreachable,
+)
 from sgplan.explain.patterns import condition_text, pattern_clauses
 from sgplan.explain.referents import Referent, referents_of
 from sgplan.explain.scene_labels import occurring_labels
@@ -51,14 +62,15 @@ from sgplan.logic.formula import (
 from sgplan.logic.infix import to_infix
 from sgplan.logic.ltlf import ltlf_to_dfa
 from sgplan.mission import Mission
+from sgplan.planning.setups import reach_model_for
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 
 FindingKind = Literal[
-    "unsatisfiable", "unsatisfiable-from-start", "blocked-by-forbidden",
+    "unsatisfiable", "unsatisfiable-from-start", "unreachable-from-start", "blocked-by-forbidden",
     "impossible-part", "vacuous", "object-outside-room", "satisfied-at-start",
 ]
-ERRORS = ("unsatisfiable", "unsatisfiable-from-start", "blocked-by-forbidden")
+ERRORS = ("unsatisfiable", "unsatisfiable-from-start", "unreachable-from-start", "blocked-by-forbidden")
 NOTES = ("satisfied-at-start",)
 MAX_CONFLICT_PARTS = 3
 """The largest set of top-level parts searched for a named conflict (beyond it: "the parts together")."""
@@ -93,8 +105,8 @@ class SceneCheck:
         UnsatisfiableMissionError
             ``unsatisfiable`` (status ``"unsatisfiable"``, exit code 4).
         PlanningError
-            ``unsatisfiable-from-start`` (status ``"invalid-start"``) or ``blocked-by-forbidden``
-            (status ``"infeasible"``).
+            ``unsatisfiable-from-start`` (status ``"invalid-start"``), ``unreachable-from-start`` or
+            ``blocked-by-forbidden`` (status ``"infeasible"``).
         """
         for finding in self.of("error"):
             if finding.kind == "unsatisfiable":
@@ -117,6 +129,7 @@ def check_mission_in_scene(
     profile: str = "ltlf",
     robot_radius_m: float | None = None,
     reach_radius_m: float | None = None,
+    reach_model: str | None = None,
 ) -> SceneCheck:
     """Check ``mission`` against ``building`` (and ``start``) before planning; see the module docstring.
 
@@ -133,25 +146,29 @@ def check_mission_in_scene(
         ``"ltlf"`` reads the start cell's label, ``"authors"`` does not.
     robot_radius_m, reach_radius_m:
         radii in metres for building ``grid`` / ``labels`` (default: the scene's).
+    reach_model:
+        where an object counts as reached (``"visible"`` or ``"box"``; default the profile's), for
+        building ``labels`` and for saying why an object is reached from another room.
 
     Returns
     -------
     SceneCheck
         cheap: a few array passes over the grid (no search).
     """
+    model = reach_model_for(profile, reach_model)
     if grid is None or labels is None:
         from sgplan.radii import resolve_radii
         from sgplan.scene.grid import build_occupancy_grid
 
         radii = resolve_radii(building, robot_radius_m, reach_radius_m)
         grid = build_occupancy_grid(building, radii.robot_m) if grid is None else grid
-        labels = mission.labels(building, radii.reach_m) if labels is None else labels
+        labels = mission.labels(building, radii.reach_m, model) if labels is None else labels
     automaton = mission.automaton
     realizable = occurring_labels(labels, grid.traversable, automaton.num_labels)
     if not realizable.any():
         return SceneCheck(())
     entities = referents_of(list(automaton.aps), mission.propositions, building)
-    context = _Context(mission, building, grid, labels, entities, realizable)
+    context = _Context(mission, building, grid, labels, entities, realizable, model)
     # The part analysis recurses over the formula as written: a deeper one (a 500-term conjunction as
     # nested pairs) gets only the whole-mission checks below, which work on the automaton (_readable).
     findings = context.part_findings()
@@ -171,6 +188,7 @@ class _Context:
     labels: np.ndarray
     entities: dict[str, Referent]
     realizable: np.ndarray
+    reach_model: str
 
     def describe(self, name: str) -> Referent:
         return self.entities[name]
@@ -216,8 +234,11 @@ class _Context:
         if not value.any():
             why = f" ({'; '.join(outside)})" if outside else ""
             return [Finding("impossible-part", f"no place in this scene is {self.cond(node)}{why}")]
+        # Seen from another room, an object is reached through a door (in sight) or, in the authors'
+        # window, through a wall.
+        through = "a wall" if self.reach_model == "box" else "a door, in sight of it"
         findings = [
-            Finding("object-outside-room", f"{o}: it is reached from there only through a wall")
+            Finding("object-outside-room", f"{o}: it is reached from there only through {through}")
             for o in outside
         ]
         for k, part in enumerate(parts):
@@ -267,8 +288,21 @@ class _Context:
                 if not small.live_states()[small.initial]:
                     said = " ".join(self._sentences(subset))
                     which = "this part cannot hold" if size == 1 else "these parts cannot all hold"
-                    return f"{head}: {which} in this scene: {said}"
-        return f"{head}: its parts together cannot hold in this scene"
+                    return f"{head}: {which} in this scene: {said}{self._absent_causes(subset)}"
+        return f"{head}: its parts together cannot hold in this scene{self._absent_causes([formula])}"
+
+    def _absent_causes(self, parts: Sequence[Formula]) -> str:
+        """`` Why: ...`` for each place of ``parts`` that holds on no free cell of the scene (nothing when
+        every one does: the conflict is then in the parts themselves)."""
+        aps = list(self.mission.automaton.aps)
+        present = int(np.bitwise_or.reduce(np.flatnonzero(self.realizable))) if self.realizable.any() else 0
+        named = {a for part in parts for a in atoms(part)}
+        causes = [
+            why_no_free_cell(self.building, self.grid, self.describe(p), (self.labels >> i & 1).astype(bool))
+            for i, p in enumerate(aps)
+            if p in named and not present >> i & 1 and self.describe(p).kind != "unknown"
+        ]
+        return "".join(f" Why: {cause}." for cause in causes)
 
     def _sentences(self, parts: Sequence[Formula]) -> list[str]:
         out = []
@@ -309,7 +343,8 @@ class _Context:
     def _blocked(
         self, whole: Automaton, start: tuple[int, int, int], label: int, profile: str
     ) -> Finding | None:
-        """Whether avoiding the forbidden rooms cuts the start off from what the mission needs."""
+        """Whether avoiding the forbidden rooms cuts the start off from what the mission needs (or, when
+        the start is cut off from it anyway, why: :func:`unreachable_finding`)."""
         aps = self.mission.automaton.aps
         forbidden = [i for i in forbidden_bits(whole, np.flatnonzero(self.realizable))
                      if self.describe(aps[i]).kind == "room"]
@@ -319,14 +354,19 @@ class _Context:
 
         def reachable_labels(blocked_ids: list[int]) -> np.ndarray:
             allowed = self.grid.traversable & ~np.isin(self.grid.room_map, blocked_ids)
-            area = _start_component(self.grid, start, allowed)
+            area = start_component(self.grid, start, allowed)
             return occurring_labels(self.labels, area, self.mission.automaton.num_labels)
 
+        def live_on(labels: np.ndarray) -> bool:
+            local = restricted(self.mission.automaton, labels)
+            return bool(local.live_states()[int(local.table[local.initial, label]) if profile == "ltlf"
+                                            else local.initial])
+
         near = reachable_labels(room_ids)
-        local = restricted(self.mission.automaton, near)
-        q0 = int(local.table[local.initial, label]) if profile == "ltlf" else local.initial
-        if local.live_states()[q0]:
+        if live_on(near):
             return None
+        if not live_on(reachable_labels([])):  # cut off with every room open: the rooms are not the cause
+            return unreachable_finding(self.mission, self.building, self.grid, self.labels, start)
         present = np.bitwise_or.reduce(np.flatnonzero(self.realizable))
         near_bits = np.bitwise_or.reduce(np.flatnonzero(near))
         missing = [
@@ -346,6 +386,25 @@ class _Context:
             "blocked-by-forbidden",
             f"from start {start}, {goals} can be reached only through rooms the mission forbids: {rooms}",
         )
+
+
+def unreachable_finding(mission: Mission, building: Building, grid: OccupancyGrid, labels: np.ndarray,
+                        start: tuple[int, int, int]) -> Finding | None:
+    """``unreachable-from-start``, naming why each place the mission needs (not one it forbids) that holds
+    on some free cell but on none reachable from ``start`` cannot be reached (:mod:`sgplan.explain.causes`);
+    ``None`` when there is no such place (the mission fails for another reason)."""
+    automaton = mission.automaton
+    realizable = occurring_labels(labels, grid.traversable, automaton.num_labels)
+    forbidden = set(forbidden_bits(restricted(automaton, realizable), np.flatnonzero(realizable)))
+    entities = referents_of(list(automaton.aps), mission.propositions, building)
+    needed = [i for i in missing_from_start(grid, labels, start, automaton.aps)
+              if i not in forbidden and entities[automaton.aps[i]].kind != "unknown"]
+    if not needed:
+        return None
+    causes = [why_unreachable(building, grid, start, entities[automaton.aps[i]],
+                              (labels >> i & 1).astype(bool)) for i in needed]
+    return Finding("unreachable-from-start",
+                   f"no path from start {start} satisfies the mission: {'; and '.join(causes)}")
 
 
 def _flat_and(formula: Formula) -> list[Formula]:
@@ -378,35 +437,3 @@ def _evaluate(f: Formula, labels: np.ndarray, index: dict[str, int]) -> np.ndarr
     if type(f) in ops:
         return ops[type(f)](*values)
     raise SgplanError(f"internal error: {to_infix(f)} is not a state condition")
-
-
-def _start_component(grid: OccupancyGrid, start: tuple[int, int, int], allowed: np.ndarray) -> np.ndarray:
-    """``allowed`` cells connected to ``start`` by 8-connected moves and stairs links (bool raster)."""
-    from scipy import ndimage  # ~0.3 s to import: only for missions that forbid rooms
-
-    row, col, floor = start
-    if not allowed[floor, row, col]:
-        area = np.zeros_like(allowed)
-        area[floor, row, col] = True
-        return area
-    parts, offset = [], 0
-    for f in range(allowed.shape[0]):
-        lab, count = ndimage.label(allowed[f], structure=np.ones((3, 3), bool))
-        parts.append(np.where(lab > 0, lab + offset, 0))
-        offset += count
-    component = np.concatenate([[0], np.arange(1, offset + 1)])  # union-find parents over component ids
-
-    def root(x: int) -> int:
-        while component[x] != x:
-            component[x] = component[component[x]]
-            x = int(component[x])
-        return x
-
-    for link in grid.stairs:
-        a = int(parts[link.lower_floor][link.lower_cell])
-        b = int(parts[link.upper_floor][link.upper_cell])
-        if a and b:
-            component[root(a)] = root(b)
-    target = root(int(parts[floor][row, col]))
-    roots = np.array([root(i) for i in range(offset + 1)])
-    return np.stack([(p > 0) & (roots[p] == target) for p in parts])

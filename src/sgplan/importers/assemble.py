@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import ndimage
 
+from sgplan.english import count, series
 from sgplan.errors import SceneError
 from sgplan.importers.raster import GridFrame, box_corners, hull_cells
 from sgplan.scene.doors import connections, door_cells
@@ -151,9 +152,9 @@ def paint_objects(
     notes = []
     if dropped:
         notes.append(
-            f"{len(dropped)} object(s) left out: they hang above free floor (or are covered by others), so "
-            "no "
-            f"cell of the map holds them: {', '.join(dropped)}"
+            f"{count(len(dropped), 'object')} left out, named as the source names them (they get no "
+            "object_<uuid>): they hang above free floor (or are covered by others), so no cell of the map "
+            f"holds them: {', '.join(dropped)}"
         )
     return kept, notes
 
@@ -197,22 +198,7 @@ def assemble(
         built[draft.id] = _room(
             draft, cells, frame, floor.ground_z_m, room_uuid, neighbours, doors[draft.floor]
         )
-    for obj, object_id in kept:
-        room = built[obj.room_id]  # type: ignore[index]
-        cells = _cells_of(floors[obj.floor].cat_map, object_id, object_boxes[obj.floor])
-        corners = obj.corners()
-        room.objects[object_id] = SceneObject(
-            id=object_id,
-            uuid=next_uuid,
-            name=obj.name,
-            room_id=room.id,
-            room_uuid=room.uuid,
-            location_m=np.asarray(obj.center_m, dtype=float),
-            size_m=corners.max(axis=0) - corners.min(axis=0),
-            grid_min=(int(cells[:, 0].min()), int(cells[:, 1].min())),
-            grid_max=(int(cells[:, 0].max()), int(cells[:, 1].max())),
-        )
-        next_uuid += 1
+    _put_objects(kept, built, floors, object_boxes, next_uuid)
     building = Building(
         id=1,
         uuid=1,
@@ -242,20 +228,71 @@ def assemble(
             "space is too narrow or lies outside every room (try a smaller --robot-radius or a finer "
             "--resolution)"
         )
-    empty = [
-        r.key
-        for r in building.rooms()
-        if not len(_cells_of(floors[r.floor].room_map, r.id, room_boxes[r.floor]))
-    ]
+    return ImportResult(building, notes + _building_notes(building, room_boxes, settings.robot_radius_m))
+
+
+def _put_objects(kept: Sequence[tuple[ObjectDraft, int]], built: dict[int, Room],
+                 floors: Sequence[FloorDraft], object_boxes: Sequence[Boxes], first_uuid: int) -> None:
+    """Add each kept object (with its id on the category map) to its room, uuids from ``first_uuid``."""
+    for uuid, (obj, object_id) in enumerate(kept, start=first_uuid):
+        room = built[obj.room_id]  # type: ignore[index]
+        cells = _cells_of(floors[obj.floor].cat_map, object_id, object_boxes[obj.floor])
+        corners = obj.corners()
+        room.objects[object_id] = SceneObject(
+            id=object_id,
+            uuid=uuid,
+            name=obj.name,
+            room_id=room.id,
+            room_uuid=room.uuid,
+            location_m=np.asarray(obj.center_m, dtype=float),
+            size_m=corners.max(axis=0) - corners.min(axis=0),
+            grid_min=(int(cells[:, 0].min()), int(cells[:, 1].min())),
+            grid_max=(int(cells[:, 0].max()), int(cells[:, 1].max())),
+        )
+
+
+def _building_notes(building: Building, room_boxes: Sequence[Boxes], robot_radius_m: float) -> list[str]:
+    """Notes on the finished building: rooms without a cell, floors not joined, rooms mostly shut off."""
+    notes = []
+    empty = [r.key for r in building.rooms()
+             if not len(_cells_of(building.floors[r.floor].room_map, r.id, room_boxes[r.floor]))]
     if empty:
-        notes.append(f"room(s) {', '.join(empty)} cover no cell of the grid: missions cannot enter them")
+        notes.append(f"{series(empty)} {'covers' if len(empty) == 1 else 'cover'} no cell of the grid: "
+                     "missions cannot enter them")
     if building.num_floors > 1:
         notes.append(
             f"{building.num_floors} floors, not joined: stairs are not imported, so a path stays on the "
-            "floor "
-            "it starts on"
+            "floor it starts on"
         )
-    return ImportResult(building, notes)
+    return notes + shut_off_notes(building, robot_radius_m)
+
+
+SHUT_OFF_SHARE = 0.5
+"""A room is noted as mostly shut off when more than this share of its free cells lie outside its floor's
+largest free area."""
+
+
+def shut_off_notes(building: Building, robot_radius_m: float) -> list[str]:
+    """A note per room whose free cells mostly lie apart from its floor's largest connected free area at
+    this robot radius: a wall read where the source has an opening, or a room the robot cannot enter."""
+    grid = build_occupancy_grid(building, robot_radius_m)
+    notes = []
+    for floor in building.floors:
+        parts, _ = ndimage.label(grid.traversable[floor.index], structure=np.ones((3, 3), dtype=bool))
+        sizes = np.bincount(parts.ravel())
+        main = int(np.argmax(sizes[1:])) + 1 if len(sizes) > 1 else 0
+        for room in sorted(floor.rooms.values(), key=lambda r: r.id):
+            free = parts[floor.room_map == room.id]
+            free = free[free > 0]
+            apart = int((free != main).sum())
+            if len(free) and apart > SHUT_OFF_SHARE * len(free):
+                notes.append(
+                    f"{room.key} {room.name}: {apart:,} of its {count(len(free), 'free cell')} "
+                    f"({100 * apart / len(free):.0f}%) are cut off from the largest free area of floor "
+                    f"{floor.index} for a robot of radius {robot_radius_m:g} m, so plans reach little or "
+                    "none of it; draw the scene (sgplan inspect SCENE --draw DIR) to see which wall shuts it"
+                )
+    return notes
 
 
 def _uuids(ordered: Sequence[RoomDraft], floors: int) -> tuple[dict[int, int], dict[int, int], int]:

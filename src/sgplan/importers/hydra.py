@@ -34,6 +34,7 @@ import numpy as np
 from scipy import ndimage
 from scipy.spatial import cKDTree
 
+from sgplan.english import count
 from sgplan.errors import SceneError
 from sgplan.importers.assemble import FloorDraft, ImportResult, ObjectDraft, RoomDraft, Settings, assemble
 from sgplan.importers.labelspace import LabelMap
@@ -223,7 +224,8 @@ def _places(graph: Any, layers: dict[str, int], path: Path, notes: list[str]) ->
         )
     if skipped:
         notes.append(
-            f"{skipped} place(s) without a positive free-space distance or a finite position are ignored"
+            f"{count(skipped, 'place')} without a positive free-space distance or a finite position "
+            f"{'is' if skipped == 1 else 'are'} ignored"
         )
     return places
 

@@ -39,6 +39,7 @@ from pathlib import Path
 import numpy as np
 from scipy import ndimage
 
+from sgplan.english import series
 from sgplan.errors import SceneError
 from sgplan.importers import DEFAULT_OPEN_GAP_M
 from sgplan.importers.assemble import FloorDraft, ImportResult, ObjectDraft, RoomDraft, Settings, assemble
@@ -290,9 +291,11 @@ def import_house(
     drawn = {i: r for i, r in house.regions.items() if r.polygons}
     undrawn = sorted(set(house.regions) - set(drawn))
     if undrawn:
+        one = len(undrawn) == 1
         notes.append(
-            f"region(s) {undrawn} have no floor polygon and are left out (their objects join the nearest "
-            "room)"
+            f"{'region' if one else 'regions'} {series([str(r) for r in undrawn])} "
+            f"{'has' if one else 'have'} no floor polygon and {'is' if one else 'are'} left out (their "
+            "objects join the nearest room)"
         )
     if not drawn:
         raise SceneError("no region has a floor polygon (S and V records): nothing to rasterise", house.path)
@@ -476,5 +479,5 @@ def _objects(
             axes=axes,
             half_sizes_m=half,
             room_id=region + 1 if region in drawn else None,
-            source=f"object {index}",
+            source=f"O record {index}",
         )

@@ -33,6 +33,7 @@ import numpy as np
 import yaml
 from PIL import Image, UnidentifiedImageError
 
+from sgplan.english import count
 from sgplan.errors import SceneError
 from sgplan.importers.assemble import FloorDraft, ImportResult, ObjectDraft, RoomDraft, Settings, assemble
 from sgplan.importers.raster import GridFrame, polygon_area_m2, polygon_mask
@@ -188,7 +189,8 @@ def import_ros_map(
         overlap = int((mask & (room_map > 0)).sum())
         if overlap:
             notes.append(
-                f"{label} overlaps earlier rooms on {overlap} cell(s); they stay with the earlier rooms"
+                f"{label} overlaps earlier rooms on {count(overlap, 'cell')}; they stay with the earlier "
+                "rooms"
             )
         room_map[mask & (room_map <= 0)] = k + 1
         rooms.append(RoomDraft(k + 1, name, 0, _number(entry, "height", rooms_path, 2.5)))
@@ -196,7 +198,8 @@ def import_ros_map(
     outside = int(((cat == CatCode.GROUND) & (room_map <= 0)).sum())
     if outside:
         notes.append(
-            f"{outside} free cell(s) of the map lie in no room polygon; the robot will not enter them"
+            f"{count(outside, 'free cell')} of the map {'lies' if outside == 1 else 'lie'} in no room "
+            "polygon; the robot will not enter them"
         )
     objects = [
         _object(entry, k, ids_by_name, rooms_path) for k, entry in enumerate(spec.get("objects") or [])

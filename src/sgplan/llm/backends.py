@@ -2,10 +2,12 @@
 
 Both kinds satisfy two small protocols, so front ends never care which one runs:
 
-- :class:`MissionTranslator`: ``name`` and ``translate(text, building)`` returning a
-  :class:`TranslationLike` (``backend``, ``text``, ``grounded_text``, ``tokens``, ``formula``);
-  implemented by :class:`~sgplan.llm.translation.LLMTranslator` and the offline
-  :class:`~sgplan.llm.offline.PatternTranslator`;
+- :class:`MissionTranslator`: ``name``, ``translate(text, building)`` returning a
+  :class:`TranslationLike` (``backend``, ``text``, ``grounded_text``, ``tokens``, ``formula``), and
+  ``starting_on(floor)`` (the translator for a robot starting on that floor: words such as *upstairs* are
+  read from there by a backend that can, the others return themselves); implemented by
+  :class:`~sgplan.llm.translation.LLMTranslator` and the offline
+  :class:`~sgplan.llm.offline.PatternTranslator`, and scored by :mod:`sgplan.llm.evaluate`;
 - :class:`MissionGuide`: ``name`` and ``guide(building, automaton, ap_actions)`` returning
   ``{room_uuid: {q: [calls]}}``; implemented by :class:`~sgplan.llm.guidance.LLMGuide` and the offline
   :class:`~sgplan.llm.offline.SymbolicGuide`.
@@ -49,12 +51,19 @@ class TranslationLike(Protocol):
 
 
 class MissionTranslator(Protocol):
-    """Text -> grounded, checked formula for a building; raises MissionError when it cannot."""
+    """Text -> grounded, checked formula for a building; raises MissionError when it cannot.
+
+    ``starting_on(floor)``: the same translator for a robot that starts on ``floor`` (``None``: not known),
+    for words relative to the start (*upstairs*, *this floor*); a backend that does not read them returns
+    itself.
+    """
 
     @property
     def name(self) -> str: ...
 
     def translate(self, text: str, building: Building) -> TranslationLike: ...
+
+    def starting_on(self, floor: int | None) -> MissionTranslator: ...
 
 
 class MissionGuide(Protocol):

@@ -8,9 +8,10 @@ The set is a JSONL file, one mission per line::
 infix over ``"enter(room_N)"`` / ``"reach(object_N)"`` (the shorthand ``r4`` / ``o19`` is accepted too).
 A line with ``"formula": null`` and an optional ``"expect_error": "fragment"`` is a mission the backend
 must refuse. An optional ``"start_floor"`` (0 = the lowest) says where the robot starts, for words such as
-"upstairs" (the offline translator reads them relative to it; a language model gets the text only). Other
-fields are kept as they are and ignored. Blank lines and lines starting with ``#``
-are skipped.
+"upstairs" (the offline translator reads them relative to it; a language model gets the text only).
+Optional booleans ``"must_pass"`` and ``"paper"`` mark missions a test requires right and the paper's own
+texts (:class:`~sgplan.llm.offline.evaluation.EvalMission`). Other fields are kept as they are and ignored.
+Blank lines and lines starting with ``#`` are skipped.
 
 A translation is **right** when its automaton accepts exactly the gold's words among those the scene
 allows (one room at a time; an object only from its room:
@@ -29,10 +30,10 @@ from pathlib import Path
 from typing import Any
 
 from sgplan.errors import MissionError, SgplanError
+from sgplan.llm.backends import MissionTranslator
 from sgplan.llm.offline.evaluation import (
     EvalMission,
     EvalResult,
-    Translator,
     evaluate,
     expand_shorthand,
     scene_facts,
@@ -93,7 +94,8 @@ def load_jsonl_set(path: str | Path) -> list[EvalMission]:
                 path,
             )
         missions.append(EvalMission(mission_id, str(entry["scene"]), str(entry["text"]), gold, expect_error,
-                                    must_pass=False, paper=False, note=str(entry.get("note", "")),
+                                    must_pass=bool(entry.get("must_pass", False)),
+                                    paper=bool(entry.get("paper", False)), note=str(entry.get("note", "")),
                                     start_floor=start_floor))
     if not missions:
         raise MissionError("the mission set holds no mission", path)
@@ -137,7 +139,7 @@ def infix_explainer(formula: Formula, building: Building) -> str:
 
 
 def score_translator(
-    translator: Translator,
+    translator: MissionTranslator,
     missions: Iterable[EvalMission],
     building_of: Callable[[str], Building],
     *,

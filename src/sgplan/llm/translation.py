@@ -301,6 +301,11 @@ class LLMTranslator:
     def name(self) -> str:
         return f"llm:{self.backend.model}"
 
+    def starting_on(self, floor: int | None) -> LLMTranslator:
+        """This translator: the prompts do not carry the robot's start floor (see
+        :class:`~sgplan.llm.backends.MissionTranslator`)."""
+        return self
+
     def translate(self, text: str, building: Building) -> LLMTranslation:
         """Ground and translate ``text`` for ``building``; see the module docstring.
 

@@ -17,6 +17,7 @@ from sgplan.errors import FormulaError, MissionError
 from sgplan.logic import Automaton, Formula, atoms, ltlf_to_dfa, parse_infix, parse_prefix, parse_tokens
 from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building
+from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 Guidance = Mapping[Any, Mapping[Any, Sequence[str]]]
 """LLM guidance: ``{room_uuid: {automaton state: ["move(a, b)" | "reach(r, o)", ...]}}``."""
@@ -72,10 +73,12 @@ class Mission:
                 self.source,
             )
 
-    def labels(self, building: Building, reach_radius_m: float | None = None) -> np.ndarray:
-        """``(floors, rows, cols)`` label bitmasks in the automaton's proposition order."""
+    def labels(self, building: Building, reach_radius_m: float | None = None,
+               reach_model: str = DEFAULT_REACH_MODEL) -> np.ndarray:
+        """``(floors, rows, cols)`` label bitmasks in the automaton's proposition order, objects reached
+        under ``reach_model`` (:mod:`sgplan.scene.reach`)."""
         self.check_scene(building)
-        return label_raster(building, self.ordered_propositions, reach_radius_m)
+        return label_raster(building, self.ordered_propositions, reach_radius_m, reach_model)
 
 
 def parse_formula(text: str | Sequence[str], known: set[str] | None = None) -> Formula:

@@ -5,13 +5,27 @@ A :class:`Waypoint` is one cell of it in metres: ``x``, ``y`` (the cell centre, 
 :mod:`sgplan.scene.model` for the axes) and ``z`` (the floor's ground height), with the room it lies in
 and the path cost up to it.
 
-:func:`simplify_path` drops cells that a straight segment can skip. A segment is kept only if every cell
-it crosses (a conservative supercover: corner touches count both side cells) is traversable in the same
-occupancy grid -- so the robot keeps the clearance of the inflated grid -- and leaves the automaton in
-the state the path had there (each crossed cell's label is a self-loop of that state). Following the
-simplified polyline therefore satisfies the mission exactly like the dense path, never costs more (a
-straight segment is no longer than the 8-connected steps it replaces), and changes floor only where the
-path takes the stairs.
+:func:`simplify_path` keeps the corners of the path: from each kept cell, the farthest later cell that a
+straight segment reaches. A segment is kept only if the cells whose interior it crosses
+(:func:`crossed_cells`, an exact line-of-sight test on the inflated grid) are all traversable in the
+occupancy grid the path was planned on, and their labels leave the automaton in the state the path had
+there (self-loops). Following the simplified polyline therefore satisfies the mission exactly like the
+dense path, never costs more (a straight segment is no longer than the 8-connected steps it replaces),
+changes the automaton's state only at kept cells, and changes floor only where the path takes the stairs.
+
+Clearance: a segment lies inside the closed traversable cells, where the robot fits at the cell centre
+(the obstacles were inflated by its radius). Where a segment passes exactly through a cell corner it
+touches the two cells beside the corner in that one point, which may be blocked, and enters neither --
+the planner's own diagonal steps do the same. So with the default ``tolerance_m=0`` a point of the
+polyline is at most half a cell diagonal (``hypot(res_x, res_y) / 2``) from a cell centre the robot may
+occupy, as on the dense path, and no segment enters a cell the planner could not enter.
+
+Tolerance: a robot's own controller cuts the rounded corners of the inflated obstacles anyway, and a
+path that hugs such a corner needs a waypoint every few cells to follow it exactly. With ``tolerance_m``
+> 0 a segment may also cross room cells that only the inflation blocked and that lie within
+``tolerance_m`` of a traversable cell (:func:`passable_cells`): the robot then keeps a clearance of at
+least its radius minus ``tolerance_m`` (and the half cell above). The labels of those cells are checked
+like any other, so the mission guarantee is unchanged.
 """
 
 from __future__ import annotations
@@ -23,9 +37,10 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from sgplan.errors import OutputError
 from sgplan.logic.automaton import Automaton
 from sgplan.scene.grid import OccupancyGrid
-from sgplan.scene.model import Building
+from sgplan.scene.model import Building, CatCode
 
 
 @dataclass(frozen=True)
@@ -126,41 +141,82 @@ def path_waypoints(
 
 
 def crossed_cells(a: tuple[int, int], b: tuple[int, int]) -> np.ndarray:
-    """The cells a straight segment between the centres of cells ``a`` and ``b`` passes through, in order,
-    ``a`` first and ``b`` last, as ``(k, 2)`` ``(row, col)``.
+    """The cells whose interior the straight segment between the centres of cells ``a`` and ``b`` meets,
+    in order, ``a`` first and ``b`` last, as ``(k, 2)`` ``(row, col)``.
 
-    Conservative: where the segment passes exactly through a cell corner, both cells beside the corner
-    are included (before the diagonal cell), so consecutive cells are always 4- or 8-adjacent and no
-    touched cell is left out.
-
-    Exact integer arithmetic (a walk over the grid lines crossed, compiled:
-    :func:`sgplan.outputs._segments.walk`).
+    Exact: where the segment passes through a cell corner, the two cells beside it are touched in one
+    point and left out, and the next cell is the diagonal one (as for the planner's diagonal step), so
+    consecutive cells are always 4- or 8-adjacent. Integer arithmetic (a walk over the grid lines
+    crossed, compiled: :func:`sgplan.outputs._segments.walk`).
     """
     from sgplan.outputs._segments import walk
 
     (r, c), (r1, c1) = (int(a[0]), int(a[1])), (int(b[0]), int(b[1]))
-    out = np.empty((2 * (abs(r1 - r) + abs(c1 - c)) + 1, 2), dtype=np.int64)
+    out = np.empty((abs(r1 - r) + abs(c1 - c) + 1, 2), dtype=np.int64)
     return out[:walk(r, c, r1, c1, out)]
 
 
+def passable_cells(
+    grid: OccupancyGrid, tolerance_m: float = 0.0, building: Building | None = None
+) -> np.ndarray:
+    """``(floors, rows, cols)`` bool: the cells a simplified segment may cross.
+
+    With ``tolerance_m = 0`` the grid's traversable cells; with ``tolerance_m > 0`` also the free ground
+    cells of a room (room id > 0, category GROUND in ``building``) whose centre lies within
+    ``tolerance_m`` metres of a traversable cell's centre: cells that only the inflation blocked.
+
+    Raises
+    ------
+    OutputError
+        for a negative or non-finite tolerance, one not below the grid's robot radius (it is clearance
+        given up), or a tolerance without the ``building``.
+    """
+    if not (math.isfinite(tolerance_m) and tolerance_m >= 0):
+        raise OutputError(f"waypoint tolerance must be a non-negative number of metres, got {tolerance_m}")
+    if tolerance_m == 0:
+        return grid.traversable
+    if tolerance_m >= grid.robot_radius_m:
+        raise OutputError(f"waypoint tolerance {tolerance_m:g} m must be below the robot radius "
+                          f"{grid.robot_radius_m:g} m (it is clearance given up)")
+    if building is None:
+        raise OutputError("a waypoint tolerance needs the building (its free ground cells)")
+    from scipy import ndimage
+
+    ground = np.stack([floor.cat_map == CatCode.GROUND for floor in building.floors])
+    near = np.stack([
+        ndimage.distance_transform_edt(~free, sampling=grid.resolution_m) <= tolerance_m
+        for free in grid.traversable
+    ])
+    return grid.traversable | (near & ground & (grid.room_map > 0))
+
+
 def simplify_path(
-    path: np.ndarray, grid: OccupancyGrid, labels: np.ndarray, automaton: Automaton
+    path: np.ndarray, grid: OccupancyGrid, labels: np.ndarray, automaton: Automaton, *,
+    tolerance_m: float = 0.0, building: Building | None = None,
 ) -> np.ndarray:
     """Indices (ascending, first and last included) of the rows of ``path`` to keep (see the module).
 
-    Greedy: from each kept row, extend the straight segment row by row while it stays valid; every
-    segment between two kept rows lies on one floor. ``labels`` is the ``(floors, rows, cols)`` label
-    raster the path was planned with and ``automaton`` its DFA.
+    From each kept row, the farthest row of the same floor and automaton state that a valid segment
+    reaches is kept next; every segment between two kept rows lies on one floor. ``labels`` is the
+    ``(floors, rows, cols)`` label raster the path was planned with and ``automaton`` its DFA;
+    ``tolerance_m`` (metres) lets segments cut the inflation's edge (:func:`passable_cells`, which needs
+    the ``building`` then).
+
+    Raises
+    ------
+    OutputError
+        for a tolerance :func:`passable_cells` refuses.
     """
     from sgplan.outputs._segments import simplify
 
+    passable = passable_cells(grid, tolerance_m, building)
     rows = np.ascontiguousarray(as_path_array(path))
     if len(rows) <= 2:
         return np.arange(len(rows))
     # Fixed dtypes and layouts: one compiled signature, cached on disk.
-    traversable = np.ascontiguousarray(grid.traversable, dtype=np.bool_)
     table = np.ascontiguousarray(automaton.table, dtype=np.int32)
-    return simplify(rows, traversable, np.ascontiguousarray(labels, dtype=np.uint32), table)
+    return simplify(rows, np.ascontiguousarray(passable, dtype=np.bool_),
+                    np.ascontiguousarray(labels, dtype=np.uint32), table)
 
 
 def densify(path: np.ndarray, keep: np.ndarray, automaton: Automaton, labels: np.ndarray,
@@ -168,15 +224,15 @@ def densify(path: np.ndarray, keep: np.ndarray, automaton: Automaton, labels: np
     """The cells a robot crosses following the kept rows of ``path`` in straight segments, as a path
     ``(m, 4)`` with automaton states replayed from the labels (for checking a simplified path).
 
-    Stairs legs (floor changes) and single steps are kept as the planner's move; longer segments become
-    their :func:`crossed_cells` (side cells of corner touches included, as :func:`simplify_path` checks them).
+    Stairs legs (floor changes) are kept as the planner's move; a segment on one floor becomes its
+    :func:`crossed_cells`.
     """
     rows = as_path_array(path)
     cells = [rows[keep[0], :3]]
     for a, b in itertools.pairwise(keep):
         ra, rb = rows[a], rows[b]
-        if ra[2] != rb[2] or max(abs(int(rb[0] - ra[0])), abs(int(rb[1] - ra[1]))) <= 1:
-            cells.append(rb[:3])  # the stairs, or the planner's own step (a diagonal step may cut a corner)
+        if ra[2] != rb[2]:
+            cells.append(rb[:3])
             continue
         for row, col in crossed_cells((int(ra[0]), int(ra[1])), (int(rb[0]), int(rb[1])))[1:]:
             cells.append(np.array([row, col, ra[2]]))

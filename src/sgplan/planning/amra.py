@@ -345,7 +345,7 @@ def _path_rows(domain: PlanningDomain, cells: np.ndarray) -> np.ndarray:
         q = int(domain.trans[q, labels[i]])
         states[i] = q
     return np.stack(
-        [graph.cell_row[cells], graph.cell_col[cells], graph.cell_floor[cells], states], axis=1
+        [*graph.row_col(cells), graph.cell_floor[cells], states], axis=1
     ).astype(np.int64)
 
 
@@ -355,10 +355,8 @@ def path_cost(domain: PlanningDomain, cells: np.ndarray) -> float:
     a, b = cells[:-1], cells[1:]
     same = graph.cell_floor[a] == graph.cell_floor[b]
     res_x, res_y = (graph.step_cost[1], graph.step_cost[3])
-    steps = np.hypot(
-        (graph.cell_row[b] - graph.cell_row[a])[same] * res_x,
-        (graph.cell_col[b] - graph.cell_col[a])[same] * res_y,
-    )
+    rows, cols = graph.row_col(cells)
+    steps = np.hypot(np.diff(rows)[same] * res_x, np.diff(cols)[same] * res_y)
     total = float(steps.sum())
     for u, v in zip(a[~same], b[~same]):
         j = np.flatnonzero((graph.stairs_from == u) & (graph.stairs_to == v))

@@ -27,12 +27,13 @@ from sgplan.logic.dot import edges
 from sgplan.mission import Mission
 from sgplan.report.automaton import Engine, automaton_svg
 from sgplan.report.chart import chart_svg
-from sgplan.report.floors import entities_json, floors_html
+from sgplan.report.floors import entities_json, floors_html, place_text
 from sgplan.report.outcome import PathEvent, PlanOutcome
 from sgplan.scene.draw_path import path_cells
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.labels import label_raster
 from sgplan.scene.model import Building
+from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 
 def _table(head: Sequence[str], rows: Sequence[Sequence[Any]], table_id: str) -> str:
@@ -72,13 +73,14 @@ def _mission_section(building: Building, mission: Mission, explanation: str | No
     )
 
 
-def _result_section(result: PlanOutcome, cells: np.ndarray) -> str:
+def _result_section(building: Building, result: PlanOutcome, cells: np.ndarray) -> str:
     rows = [
         ("status", result.status),
         ("cost", f"{result.cost_m:.3f} m" if math.isfinite(result.cost_m) else "no path"),
         ("setup", result.setup),
         ("path", f"{len(cells)} cells" if len(cells) else "none"),
-        ("start", f"row {cells[0][0]}, column {cells[0][1]}, floor {cells[0][2]}" if len(cells) else "-"),
+        ("start", f"{place_text(building, int(cells[0][2]), int(cells[0][0]), int(cells[0][1]))}, floor "
+                  f"{cells[0][2]}" if len(cells) else "-"),
     ]
     return '<section id="result"><h2>Result</h2>' + _definitions(rows) + "</section>"
 
@@ -90,11 +92,13 @@ def _map_section(
     cells: np.ndarray,
     events: Sequence[PathEvent],
     reach_radius_m: float | None,
+    reach_model: str,
 ) -> str:
     reach_props = [p for p in mission.ordered_propositions if p.kind == "reach"]
-    reach = label_raster(building, reach_props, reach_radius_m) if reach_props else None
+    reach = label_raster(building, reach_props, reach_radius_m, reach_model) if reach_props else None
     return (
-        '<section id="map"><h2>Floors</h2><p class="hint">Hover the map for rooms and objects. '
+        '<section id="map"><h2>Floors</h2><p class="hint">In the map frame: x to the right, y upwards, '
+        "metres. Hover the map for the place, its room and object. "
         "The path runs from blue (start, green circle) to red (end, red square); arrows show the "
         "direction; gold dots are stairs portals, white diamonds the events (hover them).</p>"
         + floors_html(building, grid, cells, reach, events)
@@ -152,6 +156,7 @@ def report_html(
     *,
     explanation: str | None = None,
     reach_radius_m: float | None = None,
+    reach_model: str = DEFAULT_REACH_MODEL,
     title: str | None = None,
     engine: Engine = "auto",
 ) -> str:
@@ -162,8 +167,8 @@ def report_html(
     sections = [
         f"<header><h1>{html.escape(heading)}</h1></header>",
         _mission_section(building, mission, explanation),
-        _result_section(result, cells),
-        _map_section(building, grid, mission, cells, events, reach_radius_m),
+        _result_section(building, result, cells),
+        _map_section(building, grid, mission, cells, events, reach_radius_m, reach_model),
         _events_section(events),
         _automaton_section(mission, engine),
         _iterations_section(result),
@@ -189,6 +194,7 @@ def write_html_report(
     *,
     explanation: str | None = None,
     reach_radius_m: float | None = None,
+    reach_model: str = DEFAULT_REACH_MODEL,
     title: str | None = None,
     engine: Engine = "auto",
 ) -> Path:
@@ -205,8 +211,9 @@ def write_html_report(
         the mission planned (text, formula, propositions, automaton).
     explanation:
         the mission explained in plain language, shown under the mission.
-    reach_radius_m:
-        the reach radius planned with (default: the building's), for the shaded reach regions.
+    reach_radius_m, reach_model:
+        the reach radius (default: the building's) and reach model (:mod:`sgplan.scene.reach`) planned
+        with, for the shaded reach regions.
     title:
         the page heading (default ``sgplan: <building>``).
     engine:
@@ -224,6 +231,7 @@ def write_html_report(
         mission,
         explanation=explanation,
         reach_radius_m=reach_radius_m,
+        reach_model=reach_model,
         title=title,
         engine=engine,
     )

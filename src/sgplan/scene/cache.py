@@ -85,7 +85,8 @@ def load_authors_scene_cached(path: str | Path) -> Building:
 
     folder = _usable_dir()
     try:
-        yaml_path = authors.locate(path)[1].resolve()
+        scene_folder, yaml_path = authors.locate(path)
+        yaml_path = yaml_path.resolve()
         key = _hash([FORMAT, _code(BUILDING_CODE), str(yaml_path).encode(), yaml_path.read_bytes()])
     except (OSError, authors.SceneError):  # the loader says what is wrong
         folder = None
@@ -94,6 +95,8 @@ def load_authors_scene_cached(path: str | Path) -> Building:
     entry = _read(folder, "building", key)
     if entry is not None and _inputs_unchanged(entry["inputs"]):
         building: Building = entry["building"]
+        # The entry is shared by every path to this scene: the source is the caller's, as the loader's.
+        building.source = scene_folder
         return building
     building, inputs = authors.load_authors_scene_with_inputs(path)
     try:
@@ -111,10 +114,13 @@ def occupancy_grid_cached(
     now, whatever its source) and radius was stored (hashing the building, :func:`content_hash`, costs
     ~10 ms on a Gibson scene, building its grid 0.1-0.2 s)."""
     folder = _usable_dir()
+    source, building.source = building.source, None  # where it was read from does not change its grid
     try:
         content = content_hash(building)
     except (pickle.PicklingError, TypeError, AttributeError, ValueError):  # something unpicklable in it
         folder = None
+    finally:
+        building.source = source
     if folder is None:
         return build(building, robot_radius_m)
     key = _hash([FORMAT, _code(GRID_CODE), content, repr(float(robot_radius_m)).encode()])

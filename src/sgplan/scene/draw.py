@@ -11,12 +11,13 @@ direction of travel (:mod:`sgplan.scene.draw_path`); the start is a green circle
 square. Labels are placed so that they cover neither those markers, nor the stairs portals, nor each
 other (:mod:`sgplan.scene.draw_labels`). Each floor's legend lists what that floor shows.
 
-A :class:`MissionView` adds the mission (text or formula, a one-line explanation) and the cost to the
-title, shades the reach regions of the mission's ``reach`` objects and outlines its ``enter`` rooms.
+A :class:`MissionView` adds the mission (text or formula) and the cost to the title, its explanation
+to a caption under the legend (both wrapped, never cut), shades the reach regions of the mission's
+``reach`` objects and outlines its ``enter`` rooms.
 
-Images use matrix orientation: rows (metric x) downwards, columns (metric y) to the right; the axes
-are ticked in rows and columns (so a ``--start ROW,COL,FLOOR`` can be read off) and a scale bar gives
-metres.
+Pictures are in the map frame as ROS and RViz show it: metric x to the right, metric y upwards
+(:mod:`sgplan.scene.draw_axes`), ticked in metres, or in grid rows and columns with ``axes="cells"``
+(so a ``--start ROW,COL,FLOOR`` can be read off); a scale bar gives metres and cells.
 """
 
 from __future__ import annotations
@@ -39,12 +40,14 @@ from matplotlib.transforms import blended_transform_factory
 
 from sgplan.errors import SceneError
 from sgplan.files import write_file_atomically
+from sgplan.scene.draw_axes import axis_ticks, axis_titles, check_axes
 from sgplan.scene.draw_labels import floor_labels, marker_box, place_labels
 from sgplan.scene.draw_path import PATH_COLOURS, PathCells, draw_path, path_cells
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building, CatCode
 from sgplan.scene.placement import LabelPlacer
+from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 FORMATS = ("png", "svg")
 """The picture formats :func:`draw_building` writes."""
@@ -82,7 +85,7 @@ class MissionView:
     text:
         the mission as the user gave it (natural language or a formula), put in the title.
     explanation:
-        an optional one-line explanation, put under the text.
+        an optional explanation, put in a caption under the legend.
     cost_m:
         the plan's cost in metres, put in the title.
     propositions:
@@ -90,6 +93,8 @@ class MissionView:
         ``enter`` rooms outlined.
     reach_radius_m:
         the global reach radius for ``reach`` propositions without their own (default: the building's).
+    reach_model:
+        where an object counts as reached (:mod:`sgplan.scene.reach`): ``"visible"`` or ``"box"``.
     """
 
     text: str | None = None
@@ -97,6 +102,7 @@ class MissionView:
     cost_m: float | None = None
     propositions: Sequence[Proposition] = ()
     reach_radius_m: float | None = None
+    reach_model: str = DEFAULT_REACH_MODEL
 
 
 def floor_image(building: Building, floor: int, grid: OccupancyGrid | None = None) -> np.ndarray:
@@ -116,15 +122,6 @@ def floor_image(building: Building, floor: int, grid: OccupancyGrid | None = Non
     return image
 
 
-def _nice_step(extent: float, target: int) -> float:
-    """A 1-2-5 step giving at most about ``target`` ticks over ``extent``."""
-    for magnitude in 10.0 ** np.arange(-2, 6):
-        for base in (1, 2, 2.5, 5):
-            if extent / (base * magnitude) <= target:
-                return float(base * magnitude)
-    return float(extent)
-
-
 def _nice_floor(value: float) -> float:
     """The largest 1-2-5 number not above ``value`` (> 0)."""
     magnitude = 10.0 ** np.floor(np.log10(value))
@@ -133,7 +130,10 @@ def _nice_floor(value: float) -> float:
 
 @dataclass(frozen=True)
 class _Frame:
-    """The map's size on paper: inches per cell, map width and height (inches), base font (points)."""
+    """The map's size on paper: inches per cell, map width and height (inches), base font (points).
+
+    ``width_cells`` run along the horizontal axis (the grid's rows, metric x), ``height_cells`` along
+    the vertical one (its columns, metric y)."""
 
     scale: float
     map_w: float
@@ -141,9 +141,9 @@ class _Frame:
     font: float
 
     @classmethod
-    def of(cls, rows: int, cols: int) -> _Frame:
-        scale = max(min(15.0 / cols, 13.0 / rows), 6.5 / max(rows, cols))  # inches per cell
-        map_w, map_h = cols * scale, rows * scale
+    def of(cls, width_cells: int, height_cells: int) -> _Frame:
+        scale = max(min(15.0 / width_cells, 13.0 / height_cells), 6.5 / max(width_cells, height_cells))
+        map_w, map_h = width_cells * scale, height_cells * scale
         return cls(scale, map_w, map_h, float(np.clip(min(map_w, map_h) * 0.85, 6.5, 8.5)))
 
     @property
@@ -151,18 +151,45 @@ class _Frame:
         """Figure width in inches (the map and its side margins)."""
         return _LEFT_IN + self.map_w + _RIGHT_IN
 
+    def chars_per_line(self, font: float) -> int:
+        """How many characters of ``font`` points fit across the figure (a wide average glyph: lines
+        wrapped to it never reach the edges)."""
+        return max(20, int((self.width - 0.3) * 72 / (font * 0.62)))
 
-_LEFT_IN, _RIGHT_IN = 0.65, 0.25
+
+_LEFT_IN, _RIGHT_IN = 0.75, 0.3
 
 
-def _layout(frame: _Frame, title_lines: int, legend_rows: int) -> tuple[Figure, Axes]:
-    """A figure whose map axes has square cells and fixed margins for the title and the legend.
+def _line_in(font: float) -> float:
+    """The height of a text line of ``font`` points, inches."""
+    return font * 1.45 / 72
+
+
+@dataclass(frozen=True)
+class _Texts:
+    """The title lines (bold head, then the mission) and the caption lines (the explanation), wrapped to
+    the figure's width, each with its matplotlib style."""
+
+    title: list[tuple[str, dict[str, Any]]]
+    caption: list[tuple[str, dict[str, Any]]]
+
+    @property
+    def title_in(self) -> float:
+        return sum(_line_in(style["fontsize"]) for _, style in self.title)
+
+    @property
+    def caption_in(self) -> float:
+        return sum(_line_in(style["fontsize"]) for _, style in self.caption)
+
+
+def _layout(frame: _Frame, texts: _Texts, legend_rows: int) -> tuple[Figure, Axes]:
+    """A figure whose map axes has square cells and fixed margins for the title, the legend and the
+    caption.
 
     The axes position is final (no tight_layout later), so label boxes measured now stay right.
     """
-    line_in = (frame.font + 4) * 1.45 / 72
-    top = 0.25 + title_lines * line_in + 0.35  # title, then the scale bar above the map
-    bottom = 0.55 + legend_rows * (frame.font * 2.0 / 72) + 0.1
+    top = 0.25 + texts.title_in + 0.35  # title, then the scale bar above the map
+    bottom = 0.6 + legend_rows * (frame.font * 2.0 / 72) + 0.15 + texts.caption_in + 0.15
     width, height = frame.width, top + frame.map_h + bottom
     fig = Figure(figsize=(width, height), dpi=_DPI)
     FigureCanvasAgg(fig)
@@ -170,28 +197,34 @@ def _layout(frame: _Frame, title_lines: int, legend_rows: int) -> tuple[Figure, 
     return fig, ax
 
 
-def _title_lines(
+def _texts(
     building: Building,
     floor: int,
     mission: MissionView | None,
-    width_chars: int,
+    frame: _Frame,
     title: str | None,
     note: str | None = None,
-) -> list[tuple[str, dict[str, Any]]]:
+) -> _Texts:
+    """The title (head and mission text) and the caption (explanation), wrapped in full: never cut."""
     f = building.floors[floor]
     head = title or f"{building.name} - floor {floor} ({f.name})"
     if mission is not None and mission.cost_m is not None and np.isfinite(mission.cost_m):
         head += f" - cost {mission.cost_m:.2f} m"
     if note:
         head += f" ({note})"
-    lines: list[tuple[str, dict[str, Any]]] = [(head, {"fontweight": "bold"})]
+    big, normal = frame.font + 4, frame.font + 2
+    lines = [(line, {"fontweight": "bold", "fontsize": big})
+             for line in textwrap.wrap(head, frame.chars_per_line(big))]
     if mission is not None and mission.text:
-        for line in textwrap.wrap(f"mission: {mission.text}", width_chars)[:4]:
-            lines.append((line, {}))
+        lines += [(line, {"fontsize": normal})
+                  for line in textwrap.wrap(f"mission: {mission.text}", frame.chars_per_line(normal))]
+    caption = []
     if mission is not None and mission.explanation:
-        for line in textwrap.wrap(mission.explanation, width_chars)[:2]:
-            lines.append((line, {"fontstyle": "italic", "color": "#333333"}))
-    return lines
+        style = {"fontstyle": "italic", "color": "#333333", "fontsize": frame.font + 1}
+        width = frame.chars_per_line(frame.font + 1)
+        for paragraph in mission.explanation.splitlines():
+            caption += [(line, style) for line in textwrap.wrap(paragraph, width)]
+    return _Texts(lines, caption)
 
 
 @dataclass(frozen=True)
@@ -245,7 +278,8 @@ def _outline(ax: Axes, mask: np.ndarray, **style: Any) -> None:
     r0, r1 = max(rows[0] - 1, 0), min(rows[-1] + 2, mask.shape[0])
     c0, c1 = max(cols[0] - 1, 0), min(cols[-1] + 2, mask.shape[1])
     sub = np.pad(mask[r0:r1, c0:c1].astype(float), 1)
-    ax.contour(np.arange(c0 - 1, c1 + 1), np.arange(r0 - 1, r1 + 1), sub, levels=[0.5], **style)
+    # Drawing coordinates are (x, y) = (row, col) (sgplan.scene.draw_axes): the transposed mask.
+    ax.contour(np.arange(r0 - 1, r1 + 1), np.arange(c0 - 1, c1 + 1), sub.T, levels=[0.5], **style)
 
 
 def reach_region(building: Building, floor: int, mission: MissionView) -> np.ndarray:
@@ -253,7 +287,7 @@ def reach_region(building: Building, floor: int, mission: MissionView) -> np.nda
     reach = [p for p in mission.propositions if p.kind == "reach"]
     if not reach:
         return np.zeros(building.floors[floor].shape, dtype=bool)
-    return label_raster(building, reach, mission.reach_radius_m)[floor] > 0
+    return label_raster(building, reach, mission.reach_radius_m, mission.reach_model)[floor] > 0
 
 
 def _draw_mission_regions(
@@ -273,30 +307,34 @@ def _draw_mission_regions(
     return {building.object(uuid=p.uuid).id for p in mission.propositions if p.kind == "reach"}
 
 
-def _draw_ticks(ax: Axes, rows: int, cols: int, font: float) -> None:
-    step = _nice_step(max(rows, cols), 12)
-    ax.set_xticks(np.arange(0, cols, step))
-    ax.set_yticks(np.arange(0, rows, step))
-    # Unlabelled minor ticks on all four sides, a fifth of a step apart, to read a cell off the picture.
-    ax.set_xticks(np.arange(0, cols, step / 5), minor=True)
-    ax.set_yticks(np.arange(0, rows, step / 5), minor=True)
+def _draw_ticks(ax: Axes, building: Building, floor: int, axes: str, font: float) -> None:
+    f = building.floors[floor]
+    rows, cols = f.shape
+    horizontal = axis_ticks(rows, f.origin_m[0], f.resolution_m[0], axes)
+    vertical = axis_ticks(cols, f.origin_m[1], f.resolution_m[1], axes)
+    ax.set_xticks(horizontal.positions, horizontal.labels)
+    ax.set_yticks(vertical.positions, vertical.labels)
+    # Unlabelled minor ticks on all four sides, a fifth of a step apart, to read a place off the picture.
+    ax.set_xticks(horizontal.minor, minor=True)
+    ax.set_yticks(vertical.minor, minor=True)
     ax.tick_params(which="both", top=True, right=True)
     ax.tick_params(labelsize=font, length=3, pad=1.5)
     ax.tick_params(which="minor", length=1.5)
-    ax.set_xlabel("column", fontsize=font, labelpad=1)
-    ax.set_ylabel("row", fontsize=font, labelpad=1)
+    x_title, y_title = axis_titles(axes)
+    ax.set_xlabel(x_title, fontsize=font, labelpad=1)
+    ax.set_ylabel(y_title, fontsize=font, labelpad=1)
     ax.grid(True, color="black", alpha=0.12, lw=0.5)
     ax.set_axisbelow(False)
 
 
-def _draw_scale_bar(ax: Axes, building: Building, cols: int, map_h_in: float, font: float) -> None:
-    """A metre bar above the map's top right corner (in column units: cells are metres / resolution)."""
-    res_col = building.resolution_m[1]
-    metres = _nice_floor(cols * res_col * 0.25)
-    cells = metres / res_col
+def _draw_scale_bar(ax: Axes, building: Building, rows: int, map_h_in: float, font: float) -> None:
+    """A metre bar above the map's top right corner, along metric x (the grid's rows)."""
+    res_row = building.resolution_m[0]
+    metres = _nice_floor(rows * res_row * 0.25)
+    cells = metres / res_row
     transform = blended_transform_factory(ax.transData, ax.transAxes)
     y = 1.0 + 0.1 / map_h_in
-    x1 = cols - 0.5
+    x1 = rows - 0.5
     ax.plot(
         [x1 - cells, x1],
         [y, y],
@@ -325,6 +363,7 @@ def draw_floor(
     path: PathCells | None = None,
     title: str | None = None,
     mission: MissionView | None = None,
+    axes: str = "metres",
 ) -> Figure:
     """A matplotlib figure of one floor (not attached to pyplot; save it with ``fig.savefig``).
 
@@ -338,13 +377,18 @@ def draw_floor(
     title:
         replaces the first title line (default: building, floor index and name).
     mission:
-        adds the mission text, explanation and cost to the title and marks its rooms and objects.
+        adds the mission text and cost to the title, its explanation in a caption, and marks its rooms
+        and objects.
+    axes:
+        ``"metres"`` (map-frame x and y) or ``"cells"`` (grid rows and columns); the picture is in the
+        map frame either way (:mod:`sgplan.scene.draw_axes`).
 
     Raises
     ------
     SceneError
-        for a floor the building lacks, or a malformed path.
+        for a floor the building lacks, a malformed path, or unknown ``axes``.
     """
+    check_axes(axes)
     if not 0 <= floor < building.num_floors:
         raise SceneError(
             f"building {building.name!r} has no floor {floor} (floors 0..{building.num_floors - 1})"
@@ -361,28 +405,28 @@ def draw_floor(
     note = "the path does not come to this floor" if len(cells) and not shown.path else None
     frame = _Frame.of(rows, cols)
     legend_cols = max(3, min(len(handles), int(frame.width / 1.55)))
-    lines = _title_lines(
-        building, floor, mission, int(frame.width * 72 / ((frame.font + 2) * 0.55)), title, note
-    )
-    fig, ax = _layout(frame, len(lines), -(-len(handles) // legend_cols))
+    texts = _texts(building, floor, mission, frame, title, note)
+    fig, ax = _layout(frame, texts, -(-len(handles) // legend_cols))
 
     image = floor_image(building, floor, grid)
     if region is not None:  # blended here: one raster to resample instead of two (drawing time)
         image[region] = (1 - _REACH_ALPHA) * image[region] + _REACH_ALPHA * np.asarray(_REACH)
-    ax.imshow((image * 255).round().astype(np.uint8), interpolation="nearest", aspect="auto", zorder=1)
-    ax.set_xlim(-0.5, cols - 0.5)
-    ax.set_ylim(rows - 0.5, -0.5)
-    _draw_ticks(ax, rows, cols, frame.font)
+    # x = row to the right, y = column upwards: the raster transposed, drawn from the bottom.
+    picture = np.swapaxes((image * 255).round().astype(np.uint8), 0, 1)
+    ax.imshow(picture, interpolation="nearest", aspect="auto", origin="lower", zorder=1)
+    ax.set_xlim(-0.5, rows - 0.5)
+    ax.set_ylim(-0.5, cols - 0.5)
+    _draw_ticks(ax, building, floor, axes, frame.font)
     mission_objects = set()
     if mission is not None and region is not None:
         mission_objects = _draw_mission_regions(ax, building, floor, mission, region)
-    path_xy = draw_path(ax, cells, floor, ax.bbox.width / cols) if len(cells) else np.zeros((0, 2))
+    path_xy = draw_path(ax, cells, floor, ax.bbox.width / rows) if len(cells) else np.zeros((0, 2))
     placer = _draw_markers(ax, portals, cells, floor, path_xy)
     labels = floor_labels(building, floor, portals, mission_objects, frame.font)
     place_labels(ax, fig.canvas.get_renderer(), placer, labels)  # type: ignore[attr-defined]
 
-    _add_legend_and_title(fig, ax, handles, legend_cols, lines, frame.font)
-    _draw_scale_bar(ax, building, cols, frame.map_h, frame.font)
+    _add_legend_and_texts(fig, ax, handles, legend_cols, texts, frame.font)
+    _draw_scale_bar(ax, building, rows, frame.map_h, frame.font)
     return fig
 
 
@@ -419,33 +463,34 @@ def _draw_markers(
     soft = ax.transData.transform(path_xy) if len(path_xy) else np.zeros((0, 2))
     placer = LabelPlacer((x0, y0, x1, y1), gap=3.0, soft_points=soft)
     for (r, c), _ in portals:
-        ax.plot([c], [r], marker="*", ms=15, color=_PORTAL, mec="black", mew=0.8, zorder=6)
+        ax.plot([r], [c], marker="*", ms=15, color=_PORTAL, mec="black", mew=0.8, zorder=6)
         placer.block(marker_box(ax, (r, c), 9.0))
     if len(cells):
         start, end = cells[0], cells[-1]
         if end[2] == floor:
-            ax.plot([end[1]], [end[0]], "s", ms=12, color=_END, mec="black", zorder=6.5)
+            ax.plot([end[0]], [end[1]], "s", ms=12, color=_END, mec="black", zorder=6.5)
             placer.block(marker_box(ax, (end[0], end[1]), 8.0))
         if start[2] == floor:  # drawn last: on top of the end when a path comes back to its start
-            ax.plot([start[1]], [start[0]], "o", ms=10, color=_START, mec="black", zorder=6.6)
+            ax.plot([start[0]], [start[1]], "o", ms=10, color=_START, mec="black", zorder=6.6)
             placer.block(marker_box(ax, (start[0], start[1]), 7.0))
     return placer
 
 
-def _add_legend_and_title(
+def _add_legend_and_texts(
     fig: Figure,
     ax: Axes,
     handles: list[Any],
     legend_cols: int,
-    lines: list[tuple[str, dict[str, Any]]],
+    texts: _Texts,
     font: float,
 ) -> None:
-    """The legend under the map (below the column ticks) and the title lines at the top."""
+    """The legend under the map (below the tick labels), the title lines at the top and the caption
+    lines at the bottom."""
     height = fig.get_figheight()
     ax.legend(
         handles=handles,
         loc="upper center",
-        bbox_to_anchor=(0.5, -0.45 / (ax.get_position().height * height)),
+        bbox_to_anchor=(0.5, -0.5 / (ax.get_position().height * height)),
         ncol=legend_cols,
         fontsize=font,
         frameon=True,
@@ -455,10 +500,13 @@ def _add_legend_and_title(
         columnspacing=1.0,
     )
     top = 1.0 - 0.12 / height
-    line_h = (font + 4) * 1.45 / 72 / height
-    for k, (text, style) in enumerate(lines):
-        size = font + 4 if k == 0 else font + 2
-        fig.text(0.5, top - k * line_h, text, ha="center", va="top", fontsize=size, **style)
+    for text, style in texts.title:
+        fig.text(0.5, top, text, ha="center", va="top", **style)
+        top -= _line_in(style["fontsize"]) / height
+    top = (0.15 + texts.caption_in) / height
+    for text, style in texts.caption:
+        fig.text(0.5, top, text, ha="center", va="top", **style)
+        top -= _line_in(style["fontsize"]) / height
 
 
 def draw_building(
@@ -469,25 +517,28 @@ def draw_building(
     path: PathCells | None = None,
     mission: MissionView | None = None,
     stem: str = "floor",
-    formats: Sequence[str] = ("png",),
+    formats: Sequence[str] = FORMATS,
+    axes: str = "metres",
 ) -> list[Path]:
     """Write one picture per floor and format, ``<out_dir>/<stem>_<k>.<format>``; returns the paths.
 
     ``grid`` shades the ground cells the robot may not enter; ``path`` overlays a path of
     ``(row, col, floor[, ...])`` rows (the planner's ``result.path`` ndarray works as it is);
     ``mission`` adds the mission, its explanation and the cost to the titles and marks its regions;
-    ``formats`` is any of :data:`FORMATS`.
+    ``formats`` is any of :data:`FORMATS` (default: both); ``axes`` is ``"metres"`` or ``"cells"``
+    (:func:`draw_floor`).
 
     Raises
     ------
     SceneError
-        for an unknown format, a malformed path, or if ``out_dir`` cannot be created or written to.
+        for an unknown format or axes, a malformed path, or if ``out_dir`` cannot be created or written to.
     """
     unknown = [fmt for fmt in formats if fmt not in FORMATS]
     if unknown or not formats:
         raise SceneError(
             f"cannot draw format(s) {', '.join(unknown) or '(none)'}: use {' or '.join(FORMATS)}"
         )
+    check_axes(axes)
     cells = path_cells(path) if path is not None else None
     out = Path(out_dir)
     try:
@@ -496,7 +547,7 @@ def draw_building(
         raise SceneError(f"cannot create the drawing folder {out}: {error.strerror}") from None
     written = []
     for floor in range(building.num_floors):
-        fig = draw_floor(building, floor, grid=grid, path=cells, mission=mission)
+        fig = draw_floor(building, floor, grid=grid, path=cells, mission=mission, axes=axes)
         for fmt in formats:
             target = out / f"{stem}_{floor}.{fmt}"
             try:

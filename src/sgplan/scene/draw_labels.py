@@ -57,8 +57,9 @@ class FloorLabel:
 
 
 def marker_box(ax: Axes, cell: tuple[int, int] | np.ndarray, half_px: float) -> Box:
-    """The display box (pixels) of a marker of half-size ``half_px`` drawn at ``cell = (row, col)``."""
-    x, y = ax.transData.transform((float(cell[1]), float(cell[0])))
+    """The display box (pixels) of a marker of half-size ``half_px`` drawn at ``cell = (row, col)``
+    (drawing coordinates ``x = row``, ``y = col``: :mod:`sgplan.scene.draw_axes`)."""
+    x, y = ax.transData.transform((float(cell[0]), float(cell[1])))
     return (x - half_px, y - half_px, x + half_px, y + half_px)
 
 
@@ -120,9 +121,9 @@ def place_labels(ax: Axes, renderer: Any, placer: LabelPlacer, labels: Sequence[
     to_data = ax.transData.inverted()
     dpi_scale = ax.figure.dpi / 72
     for label in labels:
-        r, c = label.anchor
-        anchor = ax.transData.transform((float(c), float(r)))
-        text = ax.text(c, r, label.text, ha="center", va="center", **label.style)
+        r, c = label.anchor  # drawn at (x, y) = (row, col)
+        anchor = ax.transData.transform((float(r), float(c)))
+        text = ax.text(r, c, label.text, ha="center", va="center", **label.style)
         extent = text.get_window_extent(renderer)
         pad = float(label.style["bbox"]["boxstyle"].split("pad=")[1]) * label.style["fontsize"] * dpi_scale
         x0, y0, x1, y1 = placer.place(
@@ -132,11 +133,11 @@ def place_labels(ax: Axes, renderer: Any, placer: LabelPlacer, labels: Sequence[
         text.set_position((float(centre[0]), float(centre[1])))
         if not (x0 <= anchor[0] <= x1 and y0 <= anchor[1] <= y1):
             ax.plot(
-                [c, centre[0]],
-                [r, centre[1]],
+                [r, centre[0]],
+                [c, centre[1]],
                 color=label.style["color"],
                 lw=0.7,
                 alpha=0.8,
                 zorder=label.style["zorder"] - 0.05,
             )
-            ax.plot([c], [r], "o", ms=2.5, color=label.style["color"], zorder=label.style["zorder"] - 0.05)
+            ax.plot([r], [c], "o", ms=2.5, color=label.style["color"], zorder=label.style["zorder"] - 0.05)

@@ -57,7 +57,7 @@ def draw_path(ax: Axes, cells: np.ndarray, floor: int, px_per_cell: float) -> np
     progress = np.arange(n) / max(n - 1, 1)
     on_floor = cells[:, 2] == floor
     same = on_floor[:-1] & on_floor[1:]
-    xy = cells[:, [1, 0]].astype(float)  # (x = column, y = row)
+    xy = cells[:, [0, 1]].astype(float)  # drawing coordinates: (x = row, y = column), sgplan.scene.draw_axes
     segments = list(np.stack([xy[:-1][same], xy[1:][same]], axis=1))
     colours = PATH_COLOURS(progress[:-1][same])
     ax.add_collection(
@@ -69,19 +69,22 @@ def draw_path(ax: Axes, cells: np.ndarray, floor: int, px_per_cell: float) -> np
 
 
 def arrow_marks(
-    xy: np.ndarray, on_floor: np.ndarray, spacing: float, length: float, lane: float
+    xy: np.ndarray, on_floor: np.ndarray, spacing: float, length: float, lane: float, *, y_up: bool = False
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Where direction arrows go along the runs of a path that lie on one floor.
 
     Parameters
     ----------
     xy:
-        ``(n, 2)`` path points ``(x, y)`` in drawing units (here cells: x = column, y = row).
+        ``(n, 2)`` path points ``(x, y)`` in drawing units.
     on_floor:
         ``(n,)`` bool, the points on the floor drawn.
     spacing, length, lane:
         distance between arrows along the path, arrow length, and offset to the right of travel (so the
-        two legs of an out-and-back path are apart), all in drawing units with y growing downwards.
+        two legs of an out-and-back path are apart), all in drawing units.
+    y_up:
+        whether y grows upwards on screen (matplotlib's axes) rather than downwards (SVG), which decides
+        where the right of travel is.
 
     Returns
     -------
@@ -108,8 +111,9 @@ def arrow_marks(
         norm = np.hypot(d[:, 0], d[:, 1])
         keep = norm > 0
         unit = d[keep] / norm[keep, None]
-        # Right of travel on screen (y grows downwards): (x, y) -> (-y, x).
-        points.append((tail[keep] + head[keep]) / 2 + lane * np.column_stack([-unit[:, 1], unit[:, 0]]))
+        # Right of travel on screen: (x, y) -> (-y, x) where y grows downwards, (y, -x) where it grows up.
+        right = np.column_stack([unit[:, 1], -unit[:, 0]] if y_up else [-unit[:, 1], unit[:, 0]])
+        points.append((tail[keep] + head[keep]) / 2 + lane * right)
         vectors.append(unit * length)
         where.append(np.interp(marks[keep], arc, run.astype(float)))
     if not points:
@@ -127,6 +131,7 @@ def _draw_arrows(
         _ARROW_SPACING_PX / px_per_cell,
         _ARROW_LENGTH_PX / px_per_cell,
         _LANE_OFFSET_PX / px_per_cell,
+        y_up=True,
     )
     if not len(pts):
         return

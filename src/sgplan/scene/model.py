@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from sgplan.english import count
 from sgplan.errors import SceneError
 
 Cell = tuple[int, int]
@@ -103,6 +104,11 @@ class Room:
     def is_staircase(self) -> bool:
         return self.name == "staircase"
 
+    def __repr__(self) -> str:
+        doors = ", ".join(f"room_{uuid}" for uuid in self.connected_room_uuids) or "none"
+        return (f"<Room {self.key} {self.name} (id {self.id}, floor {self.floor}): "
+                f"{count(len(self.objects), 'object')}, connected to {doors}>")
+
 
 @dataclass(frozen=True)
 class StairsEnd:
@@ -162,6 +168,11 @@ class Floor:
             [i for i in _positive_values(self.cat_map) if i not in objects],
             [i for i in _positive_values(self.room_map) if i not in rooms],
         )
+
+    def __repr__(self) -> str:
+        rows, cols = self.shape
+        return (f"<Floor {self.index} ({self.name}): {count(len(self.rooms), 'room')}, grid {rows} x {cols} "
+                f"cells of {self.resolution_m[0]:g} m>")
 
     def cell_to_xy(self, cell: Cell) -> tuple[float, float]:
         """Metric centre ``(x, y)`` of a cell."""
@@ -239,6 +250,14 @@ class Building:
                     claim(obj.uuid, f"object {obj.id}")
                     self._objects_by_id[obj.id] = obj
                     self._objects_by_uuid[obj.uuid] = obj
+
+    def __repr__(self) -> str:
+        rows, cols = self.grid_shape
+        rooms, objects = len(self._rooms_by_id), len(self._objects_by_id)
+        where = f" from {self.source}" if self.source is not None else ""
+        return (f"<Building {self.name!r}: {count(self.num_floors, 'floor')}, {count(rooms, 'room')}, "
+                f"{count(objects, 'object')}, grid {rows} x {cols} cells of {self.resolution_m[0]:g} m"
+                f"{where}>")
 
     # -- shape -------------------------------------------------------------------------------------
     @property

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from sgplan.english import count
 from sgplan.scene.grid import OccupancyGrid, build_occupancy_grid, component_sizes
 from sgplan.scene.model import Building, Room
 
@@ -139,7 +140,8 @@ def summary_lines(summary: SceneSummary, *, objects: bool = True) -> list[str]:
     res_x, res_y = summary.resolution_m
     lines = [
         f"building {summary.name}" + (f"  ({summary.source})" if summary.source else ""),
-        f"  {len(summary.floors)} floor(s), {summary.num_rooms} rooms, {summary.num_objects} objects",
+        f"  {count(len(summary.floors), 'floor')}, {count(summary.num_rooms, 'room')}, "
+        f"{count(summary.num_objects, 'object')}",
     ]
     if summary.robot_radius_m is None:
         lines.append("  no maps: no occupancy grid")
@@ -163,13 +165,13 @@ def summary_lines(summary: SceneSummary, *, objects: bool = True) -> list[str]:
                 "cannot start there"
             )
     for floor in summary.floors:
-        head = f"floor {floor.index} ({floor.name}): {len(floor.rooms)} rooms, {floor.num_objects} objects"
+        head = (f"floor {floor.index} ({floor.name}): {count(len(floor.rooms), 'room')}, "
+                f"{count(floor.num_objects, 'object')}")
         if floor.free_cells is not None:
             parts = "; ".join(f"{s:,}" for s in floor.component_sizes)
-            head += (
-                f", {floor.free_cells:,} free cells in {len(floor.component_sizes)}"
-                f"{'+' if len(floor.component_sizes) == 10 else ''} component(s) of [{parts}] cells"
-            )
+            many = "+" if len(floor.component_sizes) == 10 else ""
+            head += (f", {count(floor.free_cells, 'free cell')} in "
+                     f"{count(len(floor.component_sizes), 'component')}{many} of [{parts}] cells")
         lines.append(head)
         for end, cell in (("up", floor.up_portal), ("down", floor.down_portal)):
             if cell is not None:

@@ -1,7 +1,7 @@
 """Scoring a mission translator on a set of missions with gold formulas, by automaton equivalence.
 
-The set is a YAML file (format in tests/llm/data/pattern_missions.yaml): per mission a scene, a text and
-either a gold formula (infix, with the shorthand ``r2`` = ``"enter(room_2)"``, ``o27`` =
+A mission (:class:`EvalMission`, read from a JSONL set by :func:`sgplan.llm.evaluate.load_jsonl_set`) has a
+scene, a text and either a gold formula (infix, with the shorthand ``r2`` = ``"enter(room_2)"``, ``o27`` =
 ``"reach(object_27)"``) or the fragment of the error the translator must raise. A translation is right
 when its LTLf automaton accepts exactly the gold's words among the words with at most one room per cell
 (the only ones a robot can produce) and, given the scene, with every object reached only from its room,
@@ -13,38 +13,20 @@ from __future__ import annotations
 import re
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from pathlib import Path
-from typing import Literal, Protocol
+from typing import TYPE_CHECKING, Literal
 
-import yaml
-
-from sgplan.errors import MissionError, SgplanError
-from sgplan.logic import Always, Atom, Implies, atoms, difference_word, ltlf_to_dfa, parse_infix
+from sgplan.errors import MissionError
+from sgplan.logic import Always, Atom, Implies, atoms, difference_word, ltlf_to_dfa
 from sgplan.logic.formula import And, Formula
 from sgplan.logic.tokens import action_entity
 from sgplan.scene.model import Building
 
+if TYPE_CHECKING:
+    from sgplan.llm.backends import MissionTranslator
+
 Outcome = Literal["right", "refused", "wrong"]
 
 _SHORTHAND = re.compile(r"\b([ro])(\d+)\b")
-
-
-class Translated(Protocol):
-    """What a translator returns, as far as scoring is concerned."""
-
-    @property
-    def formula(self) -> Formula: ...
-
-
-class Translator(Protocol):
-    """What is scored: a named backend turning text into a formula for a building. A backend that can read
-    words relative to the robot's start ("upstairs") also has ``starting_on(floor)`` returning a copy
-    that knows the start floor; it is used for missions that give one."""
-
-    @property
-    def name(self) -> str: ...
-
-    def translate(self, text: str, building: Building) -> Translated: ...
 
 
 @dataclass(frozen=True)
@@ -82,28 +64,6 @@ def expand_shorthand(text: str) -> str:
         lambda m: f'"enter(room_{m.group(2)})"' if m.group(1) == "r" else f'"reach(object_{m.group(2)})"',
         text
     )
-
-
-def load_mission_set(path: str | Path) -> list[EvalMission]:
-    """Read the evaluation set; :class:`MissionError` naming the file and mission on a malformed entry."""
-    path = Path(path)
-    data = yaml.safe_load(path.read_text(encoding="utf-8"))
-    if not isinstance(data, dict) or not isinstance(data.get("missions"), list):
-        raise MissionError("expected a mapping with a 'missions' list", path)
-    out = []
-    for k, entry in enumerate(data["missions"]):
-        if not isinstance(entry, dict) or not {"id", "scene", "text"} <= entry.keys():
-            raise MissionError(f"mission {k} needs id, scene and text", path)
-        if ("gold" in entry) == ("expect_error" in entry):
-            raise MissionError(f"mission {entry['id']!r} needs exactly one of gold and expect_error", path)
-        try:
-            gold = parse_infix(expand_shorthand(str(entry["gold"]))) if "gold" in entry else None
-        except SgplanError as exc:
-            raise MissionError(f"mission {entry['id']!r}: gold formula: {exc}", path) from None
-        out.append(EvalMission(str(entry["id"]), str(entry["scene"]), str(entry["text"]), gold,
-                               entry.get("expect_error"), bool(entry.get("must_pass", False)),
-                               bool(entry.get("paper", False)), str(entry.get("note", ""))))
-    return out
 
 
 def scene_facts(propositions: Iterable[str], building: Building) -> list[Formula]:
@@ -145,7 +105,7 @@ def same_language(a: Formula, b: Formula, building: Building | None = None) -> t
 
 
 def evaluate(
-    translator: Translator, missions: Iterable[EvalMission], building_of: Callable[[str], Building]
+    translator: MissionTranslator, missions: Iterable[EvalMission], building_of: Callable[[str], Building]
 ) -> list[EvalResult]:
     """Translate every mission with ``translator`` and classify the outcome (see :class:`EvalResult`).
 
@@ -156,8 +116,7 @@ def evaluate(
     results = []
     for m in missions:
         building = building_of(m.scene)
-        starting_on = getattr(translator, "starting_on", None)
-        backend = starting_on(m.start_floor) if m.start_floor is not None and starting_on else translator
+        backend = translator.starting_on(m.start_floor) if m.start_floor is not None else translator
         try:
             formula = backend.translate(m.text, building).formula
         except MissionError as exc:

@@ -1,24 +1,36 @@
-"""The fixed vocabulary of the controlled English understood by the offline pattern translator.
+"""The lexicon of the offline translator: every closed word list and phrase table it reads, in one place.
 
-Only words listed here (plus the room and object names of the scene, see :mod:`.names`) carry meaning.
+Only the words listed here (and the room and object names of the scene, :mod:`.nouns`) carry meaning.
 Words in a verb slot that are not listed are accepted as verbs ("vacuum", "flush"), because whatever the
 verb, the goal is the same: be in the room, or within reach of the object. Words that would change the
-meaning of a mission in ways the translator does not model (``leave``, ``skip``, ...) are refused with an
-error instead of being read as ordinary verbs.
+meaning of a mission in ways the translator does not model (``leave``, ``skip``, ...) are refused with a
+reason instead of being read as ordinary verbs (:data:`REFUSED_WORDS`).
+
+Sections: tokens, nouns, determiners, floors, verbs, fillers and remarks, order, negation, conditions,
+qualifiers, chit-chat, phrase aliases. A table's docstring says what the grammar does with it; the rules
+that read it are in :mod:`.syntax`.
 """
 
 from __future__ import annotations
 
 import re
 
+from sgplan.llm.offline.phrases import Phrases, word_set
 
-def word_set(text: str) -> frozenset[str]:
-    """The words of ``text`` (split at white space): the word lists below are written as running text."""
-    return frozenset(text.split())
+# ---------------------------------------------------------------------------------------------- tokens
+NEGATED_STEMS = {"don": "do", "doesn": "does", "didn": "did", "can": "can", "won": "will", "mustn": "must",
+                 "shouldn": "should", "isn": "is", "aren": "are", "haven": "have", "hasn": "has",
+                 "wouldn": "would", "couldn": "could", "shan": "shall", "mayn": "may"}
+"""``don't`` -> ``do not``: the auxiliary of a negated contraction (its stem before ``n't``)."""
 
+BARE_NEGATED = {"dont": "do", "doesnt": "does", "didnt": "did", "cant": "can", "wont": "will",
+                "mustnt": "must", "shouldnt": "should", "isnt": "is", "arent": "are", "havent": "have",
+                "hasnt": "has", "wouldnt": "would", "couldnt": "could", "neednt": "need"}
+"""Negated auxiliaries typed without their apostrophe: read as ``do not`` ... (never as a verb)."""
 
-# Category synonyms: a word or phrase users say -> the scene categories it may denote (underscores of the
-# Gibson categories are spaces here). A synonym only applies to categories the scene actually has.
+SENTENCE_END = frozenset(".;:!?")
+
+# ----------------------------------------------------------------------------------------------- nouns
 SYNONYMS: dict[str, tuple[str, ...]] = {
     "fridge": ("refrigerator",),
     "icebox": ("refrigerator",),
@@ -56,7 +68,33 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     "foyer": ("lobby",),
     "entrance hall": ("lobby",),
     "laundry room": ("utility room",),
+    "utility": ("utility room",),
+    "hob": ("oven",),
+    "fridge freezer": ("refrigerator",),
+    "wash basin": ("sink",),
+    "landing": ("corridor",),
+    "front room": ("living room",),
+    "shower room": ("bathroom",),
 }
+"""Category synonyms: a word or phrase users say -> the scene categories it may denote (underscores of the
+Gibson categories are spaces here). A synonym only applies to categories the scene actually has."""
+
+EVERYDAY_NAMES: dict[str, tuple[str, ...]] = {
+    "loo": ("bathroom", "toilet"),
+    "lavatory": ("bathroom", "toilet"),
+    "wc": ("bathroom", "toilet"),
+    "cloakroom": ("bathroom", "toilet"),
+}
+"""Everyday names of a place no category spells: the first of the categories the scene has (*the loo* is
+the bathrooms, or the toilets in a scene without bathrooms)."""
+
+KIDS_ROOM_NAMES = (("kids", "room"), ("kid", "'s", "room"), ("kids", "'s", "room"),
+                   ("children", "'s", "room"), ("childrens", "room"), ("nursery",), ("playroom",),
+                   ("play", "room"))
+"""Names of the room with the toys: the one room of the scene holding one of :data:`TOYS`."""
+
+TOYS = frozenset({"teddy bear"})
+"""Object classes that mark a child's room."""
 
 IRREGULAR_PLURALS: dict[str, str] = {"shelf": "shelves", "knife": "knives", "person": "people",
                                      "stairs": "stairs"}
@@ -71,18 +109,77 @@ GENERIC_ROOM_WORDS = ("room", "rooms", "place", "places", "area", "areas")
 ANAPHORIC_ONE = ("one", "ones")
 """``the one on floor 0`` / ``the ones with a bed``: the category of the noun phrase being restricted."""
 
-PRONOUNS = ("it", "them", "they", "its")
+PLURAL_LOOKING = frozenset({"stairs"})
+"""Head nouns that look plural but are read as one entity (``the stairs`` is one staircase as a goal);
+to avoid, on a mission confined to some floors, they mean each of them."""
+
+DESCRIPTIVE = word_set(
+    """big small large little tiny huge giant tall short long wide narrow old new older newer nice lovely
+    pretty ugly comfy comfortable cosy cozy fancy favourite favorite usual messy dirty dusty broken shiny
+    spare guest master main whole entire white black red blue green yellow grey gray brown pink purple
+    orange wooden leather glass plastic metal corner front"""
+)
+"""Words that describe a thing without the scene saying which things they fit (*the big couch*, *the red
+vase*): read only where they cannot change which entity is meant, when the phrase names one entity without
+them; otherwise refused, naming the word (never ignored, never guessed). Words of a category of the scene
+(*living* in *living room*) and verbs (*clean*, *empty*) are not among them."""
 
 WHOLE_BUILDING = ("house", "building", "home", "apartment", "flat")
 """``any TV in the house``: the whole building, which restricts nothing."""
 
+
+def plural(word: str) -> str:
+    """English plural of the last word of a (multi-word) name: ``potted plant`` -> ``potted plants``."""
+    head, _, last = word.rpartition(" ")
+    if last in IRREGULAR_PLURALS:
+        out = IRREGULAR_PLURALS[last]
+    elif last in ("tv", "pc"):
+        out = last + "s"
+    elif re.search(r"(s|x|z|ch|sh)$", last):
+        out = last + "es"
+    elif re.search(r"[^aeiou]y$", last):
+        out = last[:-1] + "ies"
+    else:
+        out = last + "s"
+    return f"{head} {out}" if head else out
+
+
+# ----------------------------------------------------------------------------------------- determiners
+PRONOUNS = ("it", "them", "they", "its")
+PLURAL_PRONOUNS = ("them", "they")
+POSSESSIVES = word_set("my your our his her their")
+"""*my / your ...* before a noun are read as *the*: *read my book*."""
+DEMONSTRATIVES = ("that", "this", "these", "those")
+"""Determiners that point back (``the same`` and ``that same`` / ``this same`` too)."""
+PLURAL_DEMONSTRATIVES = ("these", "those")
+DETERMINERS = word_set("the a an any all every each both either this that these those some") | POSSESSIVES
 INDEFINITE = ("a", "an", "any", "some", "either")
 UNIVERSAL = ("all", "every", "each", "both")
+CHOOSING_OF = ("one", "any", "either")
+"""``one of / any of / either of the X``: one of them."""
+DEFINITE = ("the", "this", "that", "these", "those")
+
+ANNOUNCED = word_set("things thing tasks task errands errand jobs job chores chore items item stops stop "
+                     "places spots bits stuff rounds visits checks destinations following these those this")
+"""The last word of what announces a list after a colon (*three things:*, *the following:*, *check these:*);
+a plural head noun of the scene does too (*visit two rooms:*)."""
+ANNOUNCING = word_set("the a few couple of some several my your our today 's following quick little "
+                      "small") | DETERMINERS
+"""Words of an announcement's noun group before its last word (*a few quick things*, *today's tasks*)."""
+HEADS_UP = word_set("remember note important reminder ps also careful warning update oh btw nb")
+"""Words that only ask for attention before a colon (*Remember: never enter the kitchen.*)."""
+ANNOUNCE_TAIL = Phrases((("for", "me"), ("for", "today"), ("today",), ("to", "do"), ("please",),
+                         ("for", "you"), ("to", "check"), ("to", "visit")))
+"""Words after an announcement's noun group (*three things for me:*)."""
 
 NUMBER_WORDS = {
     "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9,
     "ten": 10,
 }
+MAX_REPEATS = 5
+"""``X three times``: at most this many visits are understood."""
+
+# ---------------------------------------------------------------------------------------------- floors
 FLOOR_ORDINALS = {
     "first": 0, "1st": 0, "second": 1, "2nd": 1, "third": 2, "3rd": 2, "fourth": 3, "4th": 3,
     "fifth": 4, "5th": 4,
@@ -92,9 +189,41 @@ FLOOR_NAMED = {"ground": 0, "bottom": 0, "lowest": 0, "basement": 0}
 FLOOR_TOP = ("top", "highest", "upper", "uppermost")
 FLOOR_MIDDLE = ("middle",)
 """``the middle floor``: understood in a building with an odd number of floors (3: floor 1)."""
-
 FLOOR_WORDS = ("floor", "level", "storey", "story")
+FLOOR_PLURALS = (*FLOOR_WORDS, "floors", "levels", "storeys", "stories")
+RELATIVE_FLOORS = {"upstairs": 1, "downstairs": -1}
+"""Floors relative to the robot's start floor (or, in a two-floor building, the upper / lower floor)."""
+START_FLOOR_WORDS = ("this", "current", "my", "our")
+"""``on this floor`` / ``on the current floor``: the robot's start floor."""
+FLOOR_DIRECTIONS = {"above": 1, "up": 1, "higher": 1, "upstairs": 1, "below": -1, "down": -1, "lower": -1,
+                    "downstairs": -1, "beneath": -1, "under": -1}
+"""``the floor above``, ``two floors down``: floors counted from the start floor."""
+FLOOR_PREPOSITIONS = ("on", "in", "at", "of", "from")
+"""Before a floor that qualifies a noun: *the bathroom on floor 1*."""
+BACK_THERE = ("up", "down")
+"""``up there`` / ``down there``: the floor of the place named last."""
+OTHER_FLOOR = Phrases((("any", "other", "floor"), ("another", "floor"), ("a", "different", "floor"),
+                       ("other", "floors"), ("any", "other", "floors"), ("change", "floors"),
+                       ("change", "floor"), ("switch", "floors"), ("any", "other", "level"),
+                       ("another", "level"), ("change", "levels")))
+"""``don't go to any other floor`` / ``don't change floors``: stay on the start floor."""
+STAY = frozenset({"stay", "remain", "keep", "staying", "remaining", "keeping"})
+LEAVE = frozenset({"leave", "leaving"})
+STAY_PREPOSITIONS = ("on", "to", "at", "in", "within")
+"""``stay on / keep to / remain at <floor>``."""
+TIME_SCOPED = frozenset({"until", "till", "before", "after", "once", "when", "whenever", "if", "unless",
+                         "during"})
+"""Words that may limit a *stay on this floor* to part of the mission: such a sentence confines nothing."""
+STAY_AFTER = ("then", "afterwards", "later", "next", "finally")
+"""``then stay on this floor``: for the rest of the mission only, which is not understood."""
+STATED_SUBJECTS = Phrases((("i", "am"), ("we", "are"), ("you", "are"), ("the", "robot", "is"), ("i",),
+                           ("we",), ("you",)))
+"""*I'm* (the tokenizer drops the part after the apostrophe) / *we are* ... before where the robot is."""
+STATED_NOW = ("currently", "now", "still")
+NOW = Phrases((("right", "now"), ("now",), ("currently",), ("at", "once"), ("at", "present")))
+"""*right now* ...; *at the moment* reads *at once* here (:data:`PHRASE_ALIASES`: *the moment* = *once*)."""
 
+# ----------------------------------------------------------------------------------------------- verbs
 POSITIVE_VERBS = word_set(
     """visit visits visiting visited enter enters entering entered go goes going went walk walks walking
     head heads heading move moves moving get gets getting come coming reach reaches reaching reached take
@@ -114,8 +243,14 @@ POSITIVE_VERBS = word_set(
 CARRY_VERBS = word_set("put putting place placing drop dropping bring bringing carry carrying deliver "
                        "delivering take taking took move moving")
 """``put X in Y`` / ``bring X to Y``: the goal is Y (after X when X is a new noun phrase)."""
+ROUTE_VERBS = word_set("from through via past")
+"""``go from X to Y``, ``go through X to Y``: X, then Y."""
+DESTINATION_WORDS = ("to", "into", "onto")
+"""After an object (or a route): where it goes next (*bring the bowl to the table*)."""
+CARRY_DESTINATION_WORDS = ("in", "into", "on", "onto", "to", "inside")
+"""After a carry verb's object: *put the bowl in the sink*."""
 
-REFUSED_VERBS: dict[str, str] = {
+REFUSED_WORDS: dict[str, str] = {
     "leave": "'leave' (the translator cannot express leaving a place; say where to go instead)",
     "exit": "'exit' (say which room to go to instead)",
     "skip": "'skip' (use 'avoid' or 'never enter' to forbid a place)",
@@ -194,6 +329,36 @@ REFUSED_VERBS: dict[str, str] = {
 }
 """Words that would silently change the meaning if read as ordinary words: refused with a reason."""
 
+START_END_VERBS = word_set("start starting begin beginning end ending finish finishing")
+"""``start in X`` / ``end (up) in X``: where the path starts or ends, which a goal cannot say (the start is
+the robot's; an end would need an order): refused outside a condition, where *end up in* is just *go to*."""
+START_END_PARTICLES = ("in", "at", "up", "with")
+REVISIT_VERBS = word_set("return returning back")
+"""``return to X`` / ``go back to X`` after X was visited: a new visit, as with ``again``."""
+MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
+"""In a verb slot without a negation after it: no meaning (*may you go into ...*, *I do want you to ...*)."""
+DONE_WHAT = ("it", "that", "this", "so")
+"""``do it`` / ``do that``: what was done, not a place (refused as a goal)."""
+VERB_IDIOMS = Phrases((("all", "the", "way"), ("a", "look"), ("a", "quick", "look"), ("a", "peek"),
+                       ("a", "glance"), ("a", "quick", "peek"), ("your", "way"), ("my", "way"),
+                       ("its", "way"), ("a", "visit"), ("a", "quick", "visit"), ("a", "trip"),
+                       ("a", "quick", "trip"), ("a", "detour"), ("a", "stop"), ("a", "quick", "stop"),
+                       ("a", "seat"), ("a", "nap"), ("a", "rest")))
+"""Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*."""
+BODY_PART_OWNERS = ("your", "my", "his", "her", "their")
+BODY_PART_LINKS = ("at", "using", "with", "on", "into")
+"""*wash your hands at the sink*, *pop your head into the office*: a body part before a place is part of the
+verb (not *in*: *wash your hands in the bathroom* implies a sink that is not said)."""
+PARTICLES = word_set("on off up down out over")
+SUBJECT_FILLERS = word_set("you we i the robot it ever have has had do does did are is were was already "
+                           "been also first")
+"""Skipped before the verb of a clause that follows a conjunction (*after you have been to X*)."""
+LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through"})
+"""Repeated in a list after *either* / *both*: *either to A or to B*."""
+VERB_STOPS = frozenset({",", "and", "or", "then", "if", "until", "before", "after", "when", "without"})
+"""Words that end the verb words of an action."""
+
+# -------------------------------------------------------------------------------- fillers and remarks
 FILLERS = word_set(
     """please also then eventually first firstly lastly finally afterwards later next
     at some point sometime you should must need needs to have has had be been is are was were can could
@@ -203,72 +368,102 @@ FILLERS = word_set(
 )
 """Words that carry no meaning for the formula wherever they appear between clauses. Order words that do
 carry meaning (*secondly*, *before that*, *but first*, a trailing *first*, *again*) are grammar, not
-fillers (:mod:`.grammar`)."""
+fillers."""
+NOT_FILLERS_HERE = ("do", "and", "then", "next")
+"""Fillers that the filler rule leaves to other rules (*do not*, *and then*, *next to*)."""
 
-POLITE = (("make", "sure"), ("make", "sure", "that"), ("be", "sure", "to"), ("be", "sure", "that"),
-          ("i", "need", "you", "to"), ("i", "want", "you", "to"), ("i", "would", "like", "you", "to"),
-          ("i", "d", "like", "you", "to"), ("we", "need", "you", "to"), ("can", "you"), ("could", "you"),
-          ("would", "you"), ("will", "you"), ("remember", "to"), ("i", "would", "like"), ("i", "need"),
-          ("i", "want"), ("let", "us"), ("let", "'s"), ("for", "me"), ("the", "robot"), ("robot", ","),
-          *((owner, noun, "is", "to") for owner in ("the", "your", "my", "our")
-            for noun in ("task", "job", "goal", "mission", "aim", "objective", "plan", "errand")),
-          *((owner, noun, "is") for owner in ("the", "your", "my", "our")
-            for noun in ("task", "job", "goal", "mission", "aim", "objective", "plan", "errand")),
-          ("all", "you", "need", "to", "do", "is"), ("all", "you", "have", "to", "do", "is"),
-          ("what", "i", "need", "is", "for", "you", "to"), ("i", "would", "like", "it", "if", "you"),
-          ("i", "would", "appreciate", "it", "if", "you"), ("if", "you", "could"), ("if", "you", "would"),
-          ("would", "you", "mind"), ("do", "me", "a", "favor", "and"), ("do", "me", "a", "favour", "and"),
-          ("go", "and"), ("please", "make", "sure"),
-          *((word,) for word in ("task", "goal", "mission", "objective", "errand", "todo", "instructions")))
+_TASK_NOUNS = ("task", "job", "goal", "mission", "aim", "objective", "plan", "errand")
+POLITE = Phrases((
+    ("make", "sure"), ("make", "sure", "that"), ("be", "sure", "to"), ("be", "sure", "that"),
+    ("i", "need", "you", "to"), ("i", "want", "you", "to"), ("i", "would", "like", "you", "to"),
+    ("i", "d", "like", "you", "to"), ("we", "need", "you", "to"), ("can", "you"), ("could", "you"),
+    ("would", "you"), ("will", "you"), ("remember", "to"), ("i", "would", "like"), ("i", "need"),
+    ("i", "want"), ("let", "us"), ("let", "'s"), ("for", "me"), ("the", "robot"), ("robot", ","),
+    # not "the first / next task is to": that says an order
+    *((owner, *main, noun, *be) for owner in ("the", "your", "my", "our")
+      for main in ((), ("main",), ("only",)) for noun in _TASK_NOUNS for be in (("is", "to"), ("is",))),
+    ("all", "you", "need", "to", "do", "is"), ("all", "you", "have", "to", "do", "is"),
+    ("what", "i", "need", "is", "for", "you", "to"), ("i", "would", "like", "it", "if", "you"),
+    ("i", "would", "appreciate", "it", "if", "you"), ("if", "you", "could"), ("if", "you", "would"),
+    ("would", "you", "mind"), ("do", "me", "a", "favor", "and"), ("do", "me", "a", "favour", "and"),
+    ("go", "and"), ("please", "make", "sure"), ("would", "you", "be", "so", "kind", "as", "to"),
+    ("would", "you", "kindly"), ("could", "you", "kindly"), ("would", "you", "please"),
+    ("could", "you", "please"),
+    ("be", "a", "dear", "and"), ("be", "a", "star", "and"), ("do", "us", "a", "favour", "and"),
+    ("do", "us", "a", "favor", "and"),
+    *((word,) for word in ("task", "goal", "mission", "objective", "errand", "todo", "instructions"))))
 """Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
 
-START_END_VERBS = word_set("start starting begin beginning end ending finish finishing")
-"""``start in X`` / ``end (up) in X``: where the path starts or ends, which a goal cannot say (the start is
-the robot's; an end would need an order): refused outside a condition, where *end up in* is just *go to*."""
-
-RELATIVE_FLOORS = {"upstairs": 1, "downstairs": -1}
-"""Floors relative to the robot's start floor (or, in a two-floor building, the upper / lower floor)."""
-
-START_FLOOR_WORDS = ("this", "current", "my", "our")
-"""``on this floor`` / ``on the current floor``: the robot's start floor."""
-
-REVISIT_VERBS = word_set("return returning back")
-"""``return to X`` / ``go back to X`` after X was visited: a new visit, as with ``again``."""
-
-ORDER_MODIFIERS = (
-    ("one", "after", "the", "other"), ("one", "after", "another"), ("in", "that", "order"),
-    ("in", "this", "order"), ("in", "order"), ("in", "sequence"), ("sequentially",), ("one", "by", "one"),
-    ("in", "turn"), ("consecutively",), ("successively",),
-)
-"""Said after a list: its items are done one after the other (in the order written, for explicit lists)."""
-
-TIME_FILLERS = (("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("eventually",), ("later",),
-                ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"),
-                ("any", "order"),
-                ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "order"),
-                ("order", "does", "not", "matter"), ("the", "order", "does", "not", "matter"),
-                ("order", "is", "not", "important"), ("the", "order", "is", "not", "important"),
-                ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"),
-                *((*order, *liking) for order in (("in", "any", "order"), ("in", "whatever", "order"),
-                                                  ("in", "whichever", "order"), ("in", "either", "order"))
-                  for liking in (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "choose"),
-                                 ("you", "please"), ("you", "wish"),
-                                 # "in whatever order is quickest": the planner's optimal order is that
-                                 *(("is", best) for best in ("quickest", "fastest", "shortest", "best",
-                                                             "easiest", "efficient", "cheapest")),
-                                 ("is", "most", "efficient"), ("works", "best"), ("makes", "sense"),
-                                 ("makes", "the", "most", "sense"), ("is", "the", "quickest"),
-                                 ("is", "the", "fastest"), ("is", "the", "shortest"))),
-                ("in", "whichever", "order"))
+_ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "choose"), ("you", "please"),
+                 ("you", "wish"), ("suits", "you"), ("is", "fine"),
+                 *(("is", easy) for easy in ("easiest", "easier", "simplest", "quicker", "faster", "shorter",
+                                             "convenient")),
+                 ("is", "most", "convenient"),
+                 # "in whatever order is quickest": the planner's optimal order is that
+                 *(("is", best) for best in ("quickest", "fastest", "shortest", "best", "easiest",
+                                             "efficient", "cheapest")),
+                 ("is", "most", "efficient"), ("works", "best"), ("makes", "sense"),
+                 ("makes", "the", "most", "sense"), ("is", "the", "quickest"), ("is", "the", "fastest"),
+                 ("is", "the", "shortest"))
+TIME_FILLERS = Phrases((
+    ("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("eventually",), ("later",),
+    ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"), ("any", "order"),
+    ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "order"),
+    ("order", "does", "not", "matter"), ("the", "order", "does", "not", "matter"),
+    ("order", "is", "not", "important"), ("the", "order", "is", "not", "important"),
+    ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"),
+    *((*order, *liking) for order in (("in", "any", "order"), ("in", "whatever", "order"),
+                                      ("in", "whichever", "order"), ("in", "either", "order"),
+                                      ("any", "order"),
+                                      ("whatever", "order"), ("whichever", "order"), ("either", "order"))
+      for liking in _ORDER_LIKING),
+    ("in", "whichever", "order"), ("whatever", "order"), ("either", "order"), ("no", "particular", "order"),
+    ("the", "order", "is", "up", "to", "you"), ("order", "is", "up", "to", "you"),
+    ("i", "do", "not", "care", "about", "the", "order"), ("i", "do", "not", "mind", "the", "order"),
+    ("i", "do", "not", "mind", "about", "the", "order"), ("do", "not", "worry", "about", "the", "order")))
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
+
+CLOSING = Phrases((
+    # sign-offs
+    ("thanks",), ("thank", "you"), ("thanks", "a", "lot"), ("thanks", "so", "much"),
+    ("thank", "you", "so", "much"),
+    ("thank", "you", "very", "much"), ("thanks", "very", "much"), ("many", "thanks"),
+    ("thanks", "a", "bunch"),
+    ("thanks", "a", "million"), ("thanks", "in", "advance"), ("thank", "you", "in", "advance"),
+    ("thanks", "for", "your", "help"), ("thank", "you", "for", "your", "help"), ("thanks", "for", "that"),
+    ("cheers",), ("ta",), ("bye",), ("goodbye",), ("bye", "for", "now"), ("see", "you", "later"),
+    ("much", "appreciated"), ("appreciate", "it"), ("i", "appreciate", "it"),
+    ("i", "would", "appreciate", "it"),
+    ("that", "'s", "all"), ("that", "'s", "all", "for", "now"), ("that", "'s", "it"),
+    ("that", "'s", "it", "for", "now"),
+    ("that", "'s", "everything"), ("that", "is", "all"), ("that", "is", "it"), ("that", "is", "everything"),
+    ("that", "will", "be", "all"), ("that", "would", "be", "all"), ("that", "should", "be", "all"),
+    ("have", "a", "nice", "day"), ("have", "a", "good", "day"), ("have", "a", "great", "day"),
+    ("have", "a", "good", "one"), ("good", "luck"), ("have", "fun"), ("you", "the", "best"),
+    ("you", "are", "the", "best"), ("you", "a", "star"), ("you", "are", "a", "star"), ("great", "job"),
+    ("good", "job"), ("well", "done"), ("over", "and", "out"), ("thanks", "mate"), ("cheers", "mate"),
+    ("thanks", "robot"), ("thank", "you", "robot"), ("thanks", "buddy"),
+    # asides that ask nothing
+    ("no", "rush"), ("no", "hurry"), ("no", "pressure"), ("if", "possible"), ("if", "you", "can"),
+    ("if", "you", "could"), ("when", "you", "can"), ("when", "you", "get", "a", "chance"),
+    ("when", "you", "have", "a", "moment"), ("when", "you", "have", "time"), ("whenever", "you", "can"),
+    ("at", "your", "convenience"), ("take", "your", "time"), ("in", "your", "own", "time"),
+    ("if", "that", "is", "okay"), ("if", "that", "is", "ok"), ("if", "that", "is", "alright"),
+    ("if", "you", "do", "not", "mind"), ("as", "usual"), ("as", "always"), ("no", "need", "to", "rush"),
+    ("that", "would", "be", "great"), ("that", "would", "be", "lovely"), ("that", "would", "be", "perfect"),
+    ("that", "would", "help"), ("if", "that", "makes", "sense"), ("thanks", "heaps"), ("really",), ("oh",),
+    ("you", "know"), ("quick", "one"), ("quick", "question"), ("quick", "request"), ("off", "you", "go")))
+"""Sign-offs (*thanks a lot*, *cheers*, *that's all for now*) and asides that ask nothing (*no rush*, *if
+possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
+of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""
 
 _CHOOSERS = (("either",), ("any",), ("whichever",), ("either", "one"), ("any", "one"), ("whichever", "one"),
              ("any", "of", "them"), ("either", "of", "them"), ("whichever", "of", "them"))
 _FINE = ((), ("is", "fine"), ("is", "ok"), ("is", "okay"), ("is", "good"), ("will", "do"), ("works",),
          ("would", "do"), ("would", "be", "fine"), ("will", "be", "fine"), ("you", "like"), ("you", "want"),
          ("you", "prefer"), ("you", "choose"), ("is", "closer"), ("is", "nearer"))
-CHOICE_AFFIRMATIONS = tuple(
+CHOICE_AFFIRMATIONS = Phrases(tuple(
     chooser + fine for chooser in _CHOOSERS for fine in _FINE
     if chooser + fine not in (("either",), ("any",))  # bare "either" / "any" start a noun phrase
 ) + (
@@ -278,44 +473,199 @@ CHOICE_AFFIRMATIONS = tuple(
     ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"), ("is", "fine"),
     ("your", "choice"), ("your", "pick"), ("take", "your", "pick"), ("you", "pick"), ("you", "choose"),
     ("it", "is", "up", "to", "you"), ("up", "to", "you"), ("i", "do", "not", "care"),
-)
+))
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
 
 _SPAN_NOUNS = ("mission", "task", "trip", "route", "run", "time", "way", "journey", "tour", "job", "thing",
                "path")
-WHOLE_MISSION = (("the", "whole", "time"), ("the", "entire", "time"), ("at", "all", "times"),
-                 ("at", "any", "time"),
-                 ("at", "any", "point"), ("throughout",), ("the", "whole", "way"), ("all", "the", "time"),
-                 ("on", "the", "way"), ("on", "your", "way"), ("along", "the", "way"), ("at", "all"),
-                 ("all", "along"), ("for", "the", "duration"), ("the", "entire", "way"),
-                 *((pre, "the", whole, noun) for pre in ("for", "during", "throughout", "over")
-                   for whole in ("whole", "entire", "full") for noun in _SPAN_NOUNS),
-                 *(("throughout", "the", noun) for noun in _SPAN_NOUNS),
-                 ("while", "you", "do", "it"), ("while", "you", "do", "that"),
-                 ("while", "you", "are", "at", "it"),
-                 ("while", "doing", "so"), ("while", "doing", "that"), ("while", "doing", "it"),
-                 ("in", "the", "process"),
-                 *(("during", "the", noun) for noun in _SPAN_NOUNS))
+WHOLE_MISSION = Phrases((
+    ("the", "whole", "time"), ("the", "entire", "time"), ("at", "all", "times"), ("at", "any", "time"),
+    ("at", "any", "point"), ("throughout",), ("the", "whole", "way"), ("all", "the", "time"),
+    ("on", "the", "way"), ("on", "your", "way"), ("along", "the", "way"), ("at", "all"),
+    ("all", "along"), ("for", "the", "duration"), ("the", "entire", "way"),
+    *((pre, "the", whole, noun) for pre in ("for", "during", "throughout", "over")
+      for whole in ("whole", "entire", "full") for noun in _SPAN_NOUNS),
+    *(("throughout", "the", noun) for noun in _SPAN_NOUNS),
+    ("while", "you", "do", "it"), ("while", "you", "do", "that"), ("while", "you", "are", "at", "it"),
+    ("while", "doing", "so"), ("while", "doing", "that"), ("while", "doing", "it"), ("in", "the", "process"),
+    ("entirely",), ("completely",), ("altogether",), ("at", "all", "costs"),
+    *(("during", "the", noun) for noun in _SPAN_NOUNS)))
 """Said after what to avoid: the prohibition holds for the whole mission (``G !x``), not only at one step."""
+WAYPOINT_OPENERS = ("on", "along")
+"""*On the way, X* opening a sentence is a waypoint, not a whole-mission opener."""
 
+# ----------------------------------------------------------------------------------------------- order
+SEQ_WORDS = Phrases((("and", "then"), ("then",), ("after", "that"), ("afterwards",), ("afterward",),
+                     ("next",), ("finally",), ("subsequently",), ("after", "which"), ("followed", "by"),
+                     ("later",), ("and", "finally"), ("lastly",), ("secondly",), ("thirdly",),
+                     ("fourthly",), ("second", ","), ("third", ","), ("fourth", ",")))
+"""Between clauses: what follows comes after what came before."""
+THEN_NEXT = Phrases((("then",), ("and", "then"), ("finally",), ("and", "finally"), ("after", "that"),
+                     ("afterwards",), ("lastly",)))
+"""After a list joined by commas only: the list is a sequence too ("A, B, then C")."""
+STRICT_SEQ = Phrases(tuple(
+    (*lead, *only) for lead in ((), (",",), ("and",), ("but",), (",", "and"), (",", "but"))
+    for only in (("only", "after", "that"), ("only", "after", "this"), ("only", "then"),
+                 ("only", "afterwards"), ("not", "before", "that"), ("only", "once", "that", "is", "done"),
+                 ("only", "when", "that", "is", "done"), ("only", "after", "you", "have", "done", "that"),
+                 ("only", "once", "you", "have", "done", "that"))))
+"""``A, and only after that B``: B after A, and not before it (strict)."""
+ORDER_MODIFIERS = Phrases((("one", "after", "the", "other"), ("one", "after", "another"),
+                           ("in", "that", "order"), ("in", "this", "order"), ("in", "order"),
+                           ("in", "sequence"), ("sequentially",), ("one", "by", "one"), ("in", "turn"),
+                           ("consecutively",), ("successively",)))
+"""Said after a list: its items are done one after the other (in the order written, for explicit lists)."""
+FIRST = frozenset({"first", "firstly"})
+LAST = ("last", "lastly")
+BEFORE_THAT = ("before", "that")
+ON_THE_WAY = Phrases((("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way")))
+WAY_BACK = frozenset({"back", "up", "down", "out", "home"})
+"""``on your way back (up)``: after what came before, like *then*."""
+ON_THE_WAY_ENDS = ("", ",", "there", "and", "then")
+"""After *on the way* ending an action (looked ahead)."""
+WAYPOINT = Phrases((("via",), ("through",), ("by", "way", "of"), ("passing", "through"),
+                    ("going", "through"), ("passing", "by"), ("going", "past"), ("passing",),
+                    ("by", "going", "through")))
+"""Right after a goal: what follows is on the way there (before it)."""
+AFTER_ALL = Phrases(tuple(
+    (w, *rest) for w in ("after", "once", "when")
+    for rest in (("all",), ("both",), ("all", "that"), ("you", "done", "those"),
+                 ("you", "have", "done", "those"), ("you", "done", "all", "that"),
+                 ("you", "have", "done", "all", "that"), ("you", "done", "all"),
+                 ("you", "have", "done", "all"),
+                 ("you", "done", "both"), ("you", "have", "done", "both"), ("those", "are", "done"),
+                 ("all", "are", "done"), ("all", "that", "is", "done"))))
+"""*after all three (of them)*, *once you've done those*: after every goal said before."""
+DONE = frozenset({"done", "finished", "through"})
+DONE_OPENERS = ("once", "when", "after")
+DONE_FILLERS = frozenset({"that", "this", "are", "all", "both", "of", "them"})
+DONE_BACK = ("that", "this", "it", "them", "everything", "there")
+"""``once you're done with that``: the step before, not a new place."""
+TRIP_NOUNS = frozenset({"trip", "visit", "stop", "detour", "run", "quick", "short", "pass"})
+"""``twice, with a trip / visit / stop to Y in between``: words naming the visit to Y."""
+BETWEEN_TAIL = Phrases((("them",), ("the", "two"), ("the", "two", "visits"), ("each", "visit"), ("visits",)))
+AFTERWARDS = Phrases((("afterwards",), ("afterward",), ("after", "that"), ("after",), ("later",),
+                      ("straight", "after"), ("right", "after")))
+"""In the consequent of a condition ("..., visit Y afterwards"): Y follows X, a response."""
+TRAILING_AFTER = ("after", "afterwards", "afterward")
+"""``..., go to the dining room after.``: no meaning at the end of a clause."""
 
-def plural(word: str) -> str:
-    """English plural of the last word of a (multi-word) name: ``potted plant`` -> ``potted plants``."""
-    head, _, last = word.rpartition(" ")
-    if last in IRREGULAR_PLURALS:
-        out = IRREGULAR_PLURALS[last]
-    elif last in ("tv", "pc"):
-        out = last + "s"
-    elif re.search(r"(s|x|z|ch|sh)$", last):
-        out = last + "es"
-    elif re.search(r"[^aeiou]y$", last):
-        out = last[:-1] + "ies"
-    else:
-        out = last + "s"
-    return f"{head} {out}" if head else out
+# -------------------------------------------------------------------------------------------- negation
+NEG_STARTS = Phrases((
+    ("always", "avoid"), ("always", "stay", "away", "from"), ("always", "keep", "away", "from"),
+    ("always", "stay", "out", "of"), ("always", "keep", "out", "of"), ("never",), ("do", "not"),
+    ("does", "not"), ("must", "not"), ("should", "not"), ("can", "not"), ("cannot",), ("may", "not"),
+    ("will", "not"), ("not",), ("avoid",), ("avoiding",), ("stay", "away", "from"), ("keep", "away", "from"),
+    ("stay", "out", "of"), ("keep", "out", "of"), ("without",), ("while", "avoiding"),
+    ("always", "do", "not"),
+    ("and", "avoid"), ("but", "avoid"), ("but", "never"), ("and", "never"), ("but", "do", "not"),
+    ("and", "do", "not"), ("but", "not"), ("no",), ("neither",), ("nor",), ("and", "nor"),
+    ("keep", "clear", "of"), ("steer", "clear", "of"), ("stay", "clear", "of"),
+    ("under", "no", "circumstances"),
+    ("at", "no", "point"), ("at", "no", "time"), ("keep", "off"), ("stay", "off"), ("always", "keep", "off"),
+    ("always", "stay", "off")))
+"""Words that start a prohibition."""
+GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can", "cannot", "may", "will",
+                        "no", "stay", "keep", "neither", "nor", "steer", "circumstances", "point", "time"})
+"""A negation with one of these words holds for the whole mission (G !x); 'avoid' and 'without' after an
+action only constrain the moment that action is done (F(x & !y)), as in the authors' missions."""
+NEGATION_EVER = ("ever",)
+"""*never ever* / *don't ever*: the same as *never* / *don't*."""
+NEGATING = ("not", "never")
+PARTIAL_PROHIBITION = ("after", "once", "when", "during", "afterwards", "afterward", "later", "again")
+"""After what to avoid: a prohibition for part of the mission, which is refused."""
+PARTIAL_FROM = (("from", "then"), ("from", "now"))
+UNTIL_WORDS = ("until", "before")
+"""After what to avoid: ``!X U Y``."""
+UNTIL_DONE_LINKS = ("is", "are", "has", "have")
+UNTIL_DONE_WORDS = DONE | {"been", "visited"}
+UNTIL_DONE_VERBS = ("visited", "checked", "cleaned")
+"""``until both bathrooms are done / have been visited``."""
+OFF_LIMITS = Phrases(
+    tuple((*be, *said) for be in (("is",), ("are",), ("is", "strictly"), ("are", "strictly"))
+          for said in (("off", "limits"), ("out", "of", "bounds"), ("forbidden",), ("prohibited",),
+                       ("banned",), ("not", "allowed"), ("a", "no", "go"), ("no", "go"),
+                       ("not", "to", "be", "entered"), ("to", "be", "avoided"),
+                       ("not", "to", "be", "touched"),
+                       ("out", "of", "limits")))
+    + tuple((modal, "be", "avoided") for modal in ("should", "must", "has", "have", "will")))
+"""``The kitchen is off limits``: never enter / reach what the sentence names (``G !x``)."""
+COPULAS = frozenset({"is", "are", "was", "were", "should", "must", "will", "has", "have", "seems", "looks",
+                     "might", "may", "can", "could", "needs", "need"})
+"""After a sentence's first noun phrase: a statement ("the bowl is in the kitchen"), never a goal."""
 
+# ------------------------------------------------------------------------------------------ conditions
+CONDITION_WORDS = Phrases((("if",), ("when",), ("in", "case")))
+"""Conditions; *once* is temporal ('once you have been to X' = after X), not a condition."""
+ONLY_IF = ("only", "if")
+WHENEVER = Phrases((("whenever",), ("every", "time"), ("each", "time"), ("any", "time"), ("anytime",)))
+ONLY_AFTER = Phrases((("only", "after"), ("only", "once"), ("not", "before"), ("not", "until")))
+EVER = Phrases((("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"),
+                ("every", "time"), ("each", "time"), ("anytime",)))
+"""In a condition ("if you ever go into X"): it is about each visit of X, a response, not one event."""
+CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "while", "without", "when", "if",
+                           "once", "whenever", "unless"})
+"""Words that would continue a condition past its one action (a comma or *then* ends it)."""
+CONDITION_OPENERS = ("and", "but", "so")
+"""*And whenever ...*, *But if ...*: a new condition, not a continuation."""
+RULE_JOINERS = (",", "and", "but", "also")
+"""Between condition rules of one sentence."""
+UNTIL_OPENERS = ("until", "till")
 
+# ------------------------------------------------------------------------------------------ qualifiers
+QUAL_IN = ("in", "inside", "within", "of", "from")
+SCOPE_IN = ("in", "inside", "within")
+"""``In the living room, ...``: the room of the whole sentence."""
+QUAL_CONTAINS = Phrases((("with",), ("having",), ("containing",), ("that", "has"), ("that", "have"),
+                         ("which", "has"), ("which", "have"), ("that", "contains"), ("which", "contains"),
+                         ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"),
+                         ("that", "only", "has"), ("which", "only", "has"), ("that", "only", "have"),
+                         ("with", "only"), ("that", "has", "only"), ("containing", "only")))
+QUAL_LACKS = Phrases((("that", "does", "not", "have"), ("which", "does", "not", "have"), ("with", "no"),
+                      ("that", "has", "no"), ("that", "does", "not", "contain"),
+                      ("where", "there", "is", "no")))
+QUAL_NEXT = Phrases((("next", "to"), ("adjacent", "to"), ("beside",), ("near",), ("connected", "to"),
+                     ("by",), ("off",), ("close", "to"), ("joined", "to"), ("linked", "to"),
+                     ("attached", "to"),
+                     ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to")))
+QUAL_EXCEPT = Phrases((("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
+                       ("excluding",), ("besides",)))
+IN_IT = ("in", "inside")
+"""``the bedroom that only has a bed in it``: the trailing *in it* repeats the room."""
+ASIDE = Phrases(tuple((",", rel, be, *also) for rel, be in (("which", "is"), ("which", "are"), ("that", "is"),
+                                                             ("that", "are"), ("it", "is"), ("it", "'s"),
+                                                             ("that", "'s"), ("they", "are"))
+                      for also in ((), ("also",), ("located",), ("also", "located"))))
+ASIDE_QUALIFIERS = frozenset({"in", "inside", "on", "next", "beside", "upstairs", "downstairs", "near",
+                              "adjacent", "connected", "attached"})
+"""``the couch, which is in the living room`` / ``the bowl (it's in the kitchen)``: an aside read as the
+qualifier it states."""
+RELATIVE_BE = ("is", "are", "was", "were", "sits", "lives", "stands")
+RELATIVE_PARTICIPLES = ("located", "kept", "stored", "placed", "found", "standing", "sitting")
+"""``the room where the book is (kept)``."""
+STATEMENT_LINKS = ("is", "are", "was", "were")
+"""``it is`` / ``there are``: a statement, not a reference."""
+WHOLE_BUILDING_PREPOSITIONS = ("in", "inside", "throughout")
+WHOLE_BUILDING_DETERMINERS = ("the", "this", "our", "my", "your")
+
+# ------------------------------------------------------------------------------------------- chit-chat
+ARTICLES = frozenset({"a", "an", "the", "my", "your", "our"})
+TALK_NOUNS = frozenset({"plan", "few", "couple", "thing", "things", "favour", "favor", "request", "job",
+                        "task", "tasks", "lot", "bit", "moment", "minute", "second", "question", "list",
+                        "day", "morning", "afternoon", "evening", "idea"})
+"""After an article, only these say nothing (*here's the plan*, *I need a few things done*): any other word
+there could name something to go to (*feed the cat* where the scene has no cat must be refused, not
+skipped)."""
+OPENERS = frozenset({"hi", "hello", "hey", "okay", "ok", "alright", "well", "so", "good", "thanks", "thank",
+                     "i", "we", "here", "right", "cheers", "morning", "evening", "afternoon", "sorry"})
+"""Chit-chat starts with a greeting, an interjection or the speaker (*I'm hungry*, *here's the plan*); a
+sentence starting otherwise may be an order about something the scene lacks (*feed pets*), so it is parsed
+(and refused) instead."""
+GREETINGS = frozenset({"hi", "hello", "hey"})
+"""*Hi there!*: after a greeting, *there* is no place."""
+
+# -------------------------------------------------------------------------------------- phrase aliases
 PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("prior", "to"): ("before",),
     ("ahead", "of"): ("before",),
@@ -356,3 +706,15 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
 }
 """Phrases read as another (``prior to`` is ``before``, ``as soon as`` is ``once``), rewritten on the tokens
 before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase is taken for a verb."""
+
+# ------------------------------------------------------------------------------------ grammar words
+STRUCTURAL = (
+    (SEQ_WORDS + NEG_STARTS + QUAL_CONTAINS + QUAL_LACKS + QUAL_NEXT + QUAL_EXCEPT + ORDER_MODIFIERS).words()
+    | frozenset(QUAL_IN) | CONDITION_WORDS.words() | DETERMINERS
+    | frozenset(FLOOR_WORDS) | frozenset(FLOOR_ORDINALS) | frozenset(FLOOR_NAMED)
+    | frozenset(FLOOR_TOP) | frozenset(FLOOR_MIDDLE) | frozenset(NUMBER_WORDS)
+    | frozenset(PRONOUNS)
+    | frozenset(GENERIC_ROOM_WORDS)
+    | frozenset({"whenever", "only", "than", "zero", "ever", "again", "twice", "once", "times", "anytime"})
+) - POSITIVE_VERBS - {"first", "also", "please", "eventually", "finally"}
+"""Words with a role in the grammar: in the verb slot they signal a sentence that was not understood."""

@@ -1,21 +1,18 @@
-"""The scene's vocabulary: which words name which rooms and objects, and the filters qualifiers apply.
+"""The scene as the translator grounds phrases in it: its rooms and objects, and the filters qualifiers apply.
 
 Every room and object of a :class:`~sgplan.scene.model.Building` becomes an :class:`Entity` keyed by its
 unique ID (``room_<uuid>``, ``object_<uuid>``). Categories are the Gibson names with ``_`` read as a
-space (``dining_room`` -> "dining room"); each is known in the singular, the plural, and through the
-synonyms of :data:`.lexicon.SYNONYMS` that fit a category the scene has (``sofa`` -> couch).
+space (``dining_room`` -> "dining room"); the words that name them are the scene's :class:`.NounLexicon`
+(:attr:`SceneVocabulary.nouns`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Collection, Iterable
 from dataclasses import dataclass
-from typing import Literal
 
-from sgplan.llm.offline.lexicon import GENERIC_ROOM_WORDS, ROOM_MODIFIERS, SYNONYMS, plural
+from sgplan.llm.offline.nouns import Head, Kind, NounLexicon
 from sgplan.scene.model import Building
-
-Kind = Literal["room", "object"]
 
 
 @dataclass(frozen=True)
@@ -43,15 +40,10 @@ class Entity:
         return f"{self.key} ({self.category} in {self.room_key}, floor {self.floor})"
 
 
-@dataclass(frozen=True)
-class Head:
-    """What a head noun denotes: a kind and the categories it covers (empty = every room)."""
-
-    kind: Kind
-    categories: frozenset[str]
-    plural: bool
-    words: int
-    """How many words of the text the head noun spans."""
+def head_word(entities: list[Entity]) -> str:
+    """The category of a group of entities, for messages (``room`` when they differ)."""
+    categories = {e.category for e in entities}
+    return categories.pop() if len(categories) == 1 else entities[0].kind if entities else "room"
 
 
 def category_name(gibson_name: str) -> str:
@@ -60,7 +52,7 @@ def category_name(gibson_name: str) -> str:
 
 
 class SceneVocabulary:
-    """The entities of one building, the noun phrases that name them, and the qualifier filters.
+    """The entities of one building, the head nouns that name them, and the qualifier filters.
 
     Parameters
     ----------
@@ -80,58 +72,16 @@ class SceneVocabulary:
                 entities.append(Entity(obj.key, "object", category_name(obj.name), room.floor, room.key))
         self.entities = tuple(entities)
         self.by_key = {e.key: e for e in entities}
-        self._heads = self._head_table()
-        self._longest = max((len(words) for words in self._heads), default=1)
+        self.nouns = NounLexicon({e.category: e.kind for e in reversed(entities)})
 
-    # -- head nouns --------------------------------------------------------------------------------
-    def _head_table(self) -> dict[tuple[str, ...], Head]:
-        by_kind: dict[str, Kind] = {}
-        for e in self.entities:
-            by_kind.setdefault(e.category, e.kind)
-        names: dict[str, set[str]] = {c: {c} for c in by_kind}
-        for word, targets in SYNONYMS.items():
-            present = {t for t in targets if t in by_kind}
-            kinds = {by_kind[t] for t in present}
-            # A synonym that is itself a category name keeps its literal meaning; one spanning rooms and
-            # objects would be ambiguous in kind, so it is not used.
-            if present and word not in by_kind and len(kinds) == 1:
-                names.setdefault(word, set()).update(present)
-        table: dict[tuple[str, ...], Head] = {}
-        for word, cats in names.items():
-            kind = by_kind[next(iter(cats))]
-            for form, is_plural in ((word, False), (plural(word), True)):
-                key = tuple(form.split())
-                # A word whose plural is itself ("stairs") stays singular: "the stairs" is then one
-                # staircase, ambiguous where there are several, rather than silently all of them.
-                table.setdefault(key, Head(kind, frozenset(cats), is_plural, len(key)))
-        for word in GENERIC_ROOM_WORDS:
-            table.setdefault((word,), Head("room", frozenset(), word.endswith("s"), 1))
-        return table
-
-    def match_head(self, words: list[str], start: int) -> Head | None:
-        """The longest head noun beginning at ``words[start]``, or ``None``."""
-        for n in range(min(self._longest, len(words) - start), 0, -1):
-            head = self._heads.get(tuple(words[start : start + n]))
-            if head is not None:
-                return head
-        return None
-
-    def room_modifier(self, words: list[str], start: int) -> list[Entity]:
-        """``dining`` in "the dining chairs": the first word of a room category (one of
-        :data:`.lexicon.ROOM_MODIFIERS`, not an adjective such as *living*) before an object noun -> the
-        rooms of that category (empty list otherwise)."""
-        if (start + 1 >= len(words) or words[start] not in ROOM_MODIFIERS
-                or self.match_head(words, start) is not None):
-            return []
-        after = self.match_head(words, start + 1)
-        if after is None or after.kind != "object":
-            return []
+    def rooms_named_by(self, modifier: str) -> list[Entity]:
+        """The rooms whose category has several words, the first being ``modifier`` (*dining*)."""
         return [e for e in self.entities
-                if e.kind == "room" and len(e.category.split()) > 1 and e.category.split()[0] == words[start]]
+                if e.kind == "room" and " " in e.category and e.category.split()[0] == modifier]
 
     def category_names(self, kind: Kind) -> list[str]:
         """The categories of one kind present in the scene, sorted."""
-        return sorted({e.category for e in self.entities if e.kind == kind})
+        return self.nouns.category_names(kind)
 
     # -- sets and filters ----------------------------------------------------------------------------
     def of_head(self, head: Head) -> list[Entity]:

@@ -1,8 +1,9 @@
 """Tokens of a mission text, with their character spans, split into sentences.
 
 Text is lower-cased; contractions are expanded (``don't`` -> ``do not``), a possessive ``'s`` becomes
-its own token, parentheses become commas (an aside), and list markers (``1)``, ``(2)``, ``3.`` at the
-start of an item) end a sentence like ``.``, ``;``, ``!``, ``?`` and ``:`` do. Entity IDs (``room_2``,
+its own token, parentheses and dashes between words (an em or en dash, ``--``, a spaced ``-``) become commas
+(an aside), and list markers (``1)``, ``(2)``, ``3.`` at the start of an item) end a sentence like ``.``,
+``;``, ``!``, ``?`` and ``:`` do. Entity IDs (``room_2``,
 ``object_27``) stay single tokens, so already-grounded text is understood too.
 """
 
@@ -11,16 +12,12 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-_WORD = re.compile(r"(?:room|object)_\d+|\d+(?:st|nd|rd|th)?|[a-z]+(?:'[a-z]+)?|'s\b|[,.;:!?()]")
-_NEGATED = {"don": "do", "doesn": "does", "didn": "did", "can": "can", "won": "will", "mustn": "must",
-            "shouldn": "should", "isn": "is", "aren": "are", "haven": "have", "hasn": "has",
-            "wouldn": "would",
-            "couldn": "could", "shan": "shall", "mayn": "may"}
-SENTENCE_END = frozenset(".;:!?")
-_BARE_NEGATED = {"dont": "do", "doesnt": "does", "didnt": "did", "cant": "can", "wont": "will",
-                 "mustnt": "must", "shouldnt": "should", "isnt": "is", "arent": "are", "havent": "have",
-                 "hasnt": "has", "wouldnt": "would", "couldnt": "could", "neednt": "need"}
-"""Negated auxiliaries typed without their apostrophe: read as ``do not`` ... (never as a verb)."""
+from sgplan.llm.offline.lexicon import BARE_NEGATED, NEGATED_STEMS, SENTENCE_END
+
+_WORD = re.compile(r"(?:room|object)_\d+|\d+(?:st|nd|rd|th)?|[a-z]+(?:'[a-z]+)?|'s\b|[,.;:!?()]"
+                   r"|[\u2014\u2013]|--|(?<=\s)-(?=\s)")
+_DASH = "\u2014"
+"""An aside's dash, whatever dash was typed."""
 
 
 @dataclass(frozen=True)
@@ -38,11 +35,13 @@ def tokenize(text: str) -> list[Tok]:
     lowered = text.lower().replace("\u2019", "'")
     for m in _WORD.finditer(lowered):
         word, start, end = m.group(0), m.start(), m.end()
-        if word in _BARE_NEGATED:  # "dont", "cant": typed without the apostrophe
-            out += [Tok(_BARE_NEGATED[word], start, end), Tok("not", start, end)]
+        if word in BARE_NEGATED:  # "dont", "cant": typed without the apostrophe
+            out += [Tok(BARE_NEGATED[word], start, end), Tok("not", start, end)]
         elif word.endswith("n't"):
             stem = word[:-3]
-            out += [Tok(_NEGATED.get(stem + "n", stem), start, end), Tok("not", start, end)]
+            out += [Tok(NEGATED_STEMS.get(stem + "n", stem), start, end), Tok("not", start, end)]
+        elif word in ("\u2013", "--", "-"):
+            out.append(Tok(_DASH, start, end))
         elif word.endswith("'s") and len(word) > 2:
             out += [Tok(word[:-2], start, end - 2), Tok("'s", end - 2, end)]
         elif "'" in word:
@@ -53,22 +52,32 @@ def tokenize(text: str) -> list[Tok]:
 
 
 def sentences(tokens: list[Tok]) -> list[list[Tok]]:
-    """Split at sentence punctuation and list markers; empty sentences are dropped."""
+    """Split at sentence punctuation and list markers (a sentence ending with a colon keeps it, and the
+    items of a list marked after a colon, *three stops: 1) A 2) B 3) C*, are one sentence joined by commas);
+    empty sentences are dropped."""
     parts: list[list[Tok]] = [[]]
+    after_colon = False
     i = 0
     while i < len(tokens):
         tok = tokens[i]
         nxt = tokens[i + 1].text if i + 1 < len(tokens) else ""
         at_item_start = not parts[-1] or parts[-1][-1].text == "("
         if tok.text in SENTENCE_END:
+            if tok.text == ":":  # kept: what comes before a colon may announce the list after it
+                parts[-1].append(tok)
+            after_colon = tok.text == ":"
             parts.append([])
         elif (tok.text.isdigit() and nxt == ")") or (tok.text.isdigit() and nxt == "." and at_item_start):
             if parts[-1] and parts[-1][-1].text == "(":
                 parts[-1].pop()
-            parts.append([])
+            if after_colon and parts[-1]:
+                parts[-1].append(Tok(",", tok.start, tok.end))
+            elif not after_colon:
+                parts.append([])
             i += 1  # the ')' or '.'
-        elif tok.text in "()" and not (i + 1 < len(tokens) and tokens[i + 1].text.isdigit()):
-            # an aside in parentheses reads like one between commas: "the fridge (any order), then ..."
+        elif tok.text == _DASH or (tok.text in ("(", ")") and not (i + 1 < len(tokens)
+                                                                   and tokens[i + 1].text.isdigit())):
+            # an aside in parentheses or dashes reads like one between commas: "the fridge (any order), ..."
             if parts[-1] and parts[-1][-1].text != "," and nxt not in (",", ""):
                 parts[-1].append(Tok(",", tok.start, tok.end))
         else:

@@ -11,9 +11,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
-from sgplan.llm.offline.grammar import NounPhrase, parse_mission
+from sgplan.llm.offline.grounding.discourse import Discourse, Grounded
 from sgplan.llm.offline.lexicon import PRONOUNS
+from sgplan.llm.offline.meaning.mission import mission_formula
 from sgplan.llm.offline.names import SceneVocabulary
+from sgplan.llm.offline.syntax import split_mission
 from sgplan.logic.formula import Formula
 from sgplan.logic.tokens import parse_tokens, to_tokens
 from sgplan.scene.model import Building
@@ -75,7 +77,8 @@ class PatternTranslator:
         self.start_floor = start_floor
 
     def starting_on(self, floor: int | None) -> PatternTranslator:
-        """The same translator for a robot starting on ``floor``."""
+        """The same translator for a robot starting on ``floor`` (``None``: not known), which *upstairs*,
+        *this floor*, *the floor above* are read from (:class:`~sgplan.llm.backends.MissionTranslator`)."""
         return PatternTranslator(floor)
 
     def translate(self, text: str, building: Building) -> Translation:
@@ -89,7 +92,9 @@ class PatternTranslator:
             the candidates as ``room_<uuid> (floor k)`` and says how to disambiguate.
         """
         vocabulary = SceneVocabulary(building)
-        formula, nps = parse_mission(text, vocabulary, self.start_floor)
+        disc = Discourse(vocabulary, text, self.start_floor)
+        formula = mission_formula(split_mission(text, vocabulary.nouns), disc)
+        nps = sorted(disc.references, key=lambda np: np.start)
         tokens = to_tokens(formula)
         # The token list must be exactly what the shared parser reads back; a failure here is a bug.
         parse_tokens(tokens, known=vocabulary.by_key.keys())
@@ -102,7 +107,7 @@ class PatternTranslator:
                            references)
 
 
-def grounded_text(text: str, nps: list[NounPhrase], vocabulary: SceneVocabulary) -> str:
+def grounded_text(text: str, nps: list[Grounded], vocabulary: SceneVocabulary) -> str:
     """``text`` with each outermost noun phrase replaced by its IDs (``room_2 or room_4``, ...).
 
     Objects located through a room keep it: "the vases in the dining room" -> "object_21, object_22 and

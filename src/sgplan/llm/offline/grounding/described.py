@@ -1,0 +1,268 @@
+"""Grounding a phrase with a head noun: its head's entities, narrowed by the context (floors, the rooms of
+the step), by each of its qualifiers in turn, by a demonstrative's antecedent and by an apposition; then
+checked (exactly one for *the*, the number said, at least one).
+
+Each kind of qualifier of the syntax tree has its applier here (:data:`APPLIERS`), which takes the phrase so
+far (:class:`.phrases.Noun`) and returns it narrowed.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.grounding import backref
+from sgplan.llm.offline.grounding.discourse import Discourse, FloorReading, Grounded, Where
+from sgplan.llm.offline.grounding.floors import floors_of, on_floors, same_floor
+from sgplan.llm.offline.grounding.phrases import Noun, check, ground_phrase, grounds, head_entities
+from sgplan.llm.offline.grounding.places import next_to_it, there_floors, there_rooms
+from sgplan.llm.offline.names import Entity, head_word
+from sgplan.llm.offline.registry import Registry
+from sgplan.llm.offline.syntax.tree import (
+    Attachment,
+    Contains,
+    Described,
+    Except,
+    Holds,
+    InRoom,
+    Lacks,
+    Mode,
+    NextTo,
+    OnFloor,
+    Possessive,
+    RelativeFloor,
+    SameFloor,
+    There,
+)
+
+APPLIERS: Registry[Callable[[Any, Noun, Described, Where, Discourse], Noun]] = Registry("qualifier")
+applies = APPLIERS.register
+
+
+@grounds(Described)
+def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
+    """Ground a described phrase (see the module docstring)."""
+    noun = in_context(np, head_entities(np, disc), where, disc)
+    for qualifier in np.qualifiers:
+        noun = APPLIERS(qualifier, noun, np, where, disc)
+    mode: Mode = np.determiner.mode or "the"
+    core = core_text(np, disc)
+    if np.determiner.pointer is not None:
+        noun, mode = demonstrative(np, noun, mode, core, where, disc)
+    noun = scoped(np, noun, mode, core, where, disc)
+    if np.apposition is not None:  # "the bathroom, the one upstairs": the apposition says which
+        which = ground_phrase(np.apposition, Where("qualifier"), disc)
+        noun.entities = [e for e in noun.entities if e in which.entities]
+    if np.descriptive and len(noun.entities) > (np.determiner.count or 1):  # which couch is big is not known
+        rf.refuse(rf.undecided_description(np.descriptive, core, noun.entities, not noun.head.plural))
+    g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, noun.entities, mode,
+                 noun.room_scoped, where.role, np.determiner.count,
+                 noun.head.kind == "room" and not noun.head.categories)
+    check(g, noun.head, np.determiner.count, np.remark_follows, disc)
+    return disc.record(g)
+
+
+def core_text(np: Described, disc: Discourse) -> str:
+    """The phrase as said, without its apposition (for messages)."""
+    end = np.span.end if np.apposition is None else np.apposition.span.start
+    return disc.said(np.span.start, end).rstrip(" ,")
+
+
+def in_context(np: Described, noun: Noun, where: Where, disc: Discourse) -> Noun:
+    """The head's entities narrowed by the words before the noun and by the context: *upstairs*, *the other
+    X*, floor words, the floor of the verb or of a floor move, the floors the mission stays on; then a
+    compound noun (*the kitchen sink*: the sink in the kitchen)."""
+    vocab, entities = disc.vocab, noun.entities
+    before = floors_of(np.floor_before, disc) if np.floor_before is not None else None
+    if np.relative is not None:
+        before = floors_of(RelativeFloor(np.relative), disc, entities)
+    if np.determiner.other:
+        entities = others(entities, np.span.start, disc)
+    if before is not None:
+        entities = on_floors(entities, before, disc)
+    if where.floor is not None:
+        entities = on_floors(entities, where.floor, disc)
+    if where.action_floor is not None and where.role == "goal":  # "go upstairs and check A and B": both there
+        entities = vocab.on_floor(entities, where.action_floor[0])
+    if disc.confined is not None and where.role in ("goal", "condition"):
+        entities = vocab.on_floor(entities, disc.confined)  # "stay on this floor": goals there
+    if np.compound is not None:  # "the kitchen sink": the sink in the kitchen
+        return Noun(np.compound, vocab.inside(vocab.of_head(np.compound), entities), True)
+    return Noun(noun.head, entities, noun.room_scoped)
+
+
+def others(entities: list[Entity], before: int, disc: Discourse) -> list[Entity]:
+    """*the other X*: the X not named before character ``before``; refused when none was."""
+    named = {e.key for g in disc.references if g.start < before for e in g.entities}
+    if not any(e.key in named for e in entities):
+        rf.refuse(rf.no_other(head_word(entities)))
+    return [e for e in entities if e.key not in named]
+
+
+def demonstrative(np: Described, noun: Noun, mode: Mode, said: str, where: Where,
+                  disc: Discourse) -> tuple[Noun, Mode]:
+    """*that bathroom*, *those two bedrooms*, *one of those X*: the entities of the phrase pointed back to
+    (:func:`.backref.resolve`), never a fresh set; refused when it cannot be resolved."""
+    det = np.determiner
+    plural = noun.head.plural or det.quantified is not None or det.pointer in lx.PLURAL_DEMONSTRATIVES
+    got = backref.resolve(said, noun.head, plural, noun.entities, disc.references, np.span.start,
+                          disc.vocab.by_key, where.role == "goal")
+    if isinstance(got, str):
+        rf.refuse(got)
+    if det.count is not None and len(got.entities) != det.count:
+        rf.refuse(rf.demonstrative_size(said, got.antecedent, len(got.entities), det.count))
+    return Noun(noun.head, got.entities, noun.room_scoped or got.room_scoped), det.quantified or got.mode
+
+
+def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc: Discourse) -> Noun:
+    """An object phrase located by the context: the one in the rooms of a condition (*whenever you enter
+    the bathroom, use the sink*) or of the step (*go to the kitchen and open the fridge*)."""
+    vocab, head, entities = disc.vocab, noun.head, noun.entities
+    demo = np.determiner.pointer is not None
+    there = vocab.inside(entities, where.soft_scope) if where.role == "goal" and head.kind == "object" \
+        and not demo else []
+    if not noun.room_scoped and mode == "the" and not head.plural and len(entities) > 1 and len(there) == 1:
+        return Noun(head, there, True)
+    if not noun.room_scoped and 0 < len(there) < len(entities) and np.first_word in ("the", "a", "an"):
+        rooms = " or ".join(f"{r.key} ({r.category})" for r in where.soft_scope)
+        word = head_word(entities)
+        rf.refuse(rf.there_or_anywhere(said, rooms, lx.plural(word) if head.plural else word,
+                                       where.soft_scope[0].category, word))
+    if where.role == "qualifier" or not where.scope or head.kind != "object" or noun.room_scoped or demo:
+        return noun
+    inside = vocab.inside(entities, where.scope)
+    if inside:
+        return Noun(head, inside, True)
+    if where.role == "goal" and entities and not where.lenient:
+        # "go to the lobby and sit on the couch" where the lobby has no couch: another room's couch is not
+        # what was asked for.
+        rooms = " or ".join(f"{r.key} ({r.category})" for r in where.scope)
+        rf.refuse(rf.not_in_this_step(said, rooms, ", ".join(e.describe() for e in entities[:8]),
+                                      head_word(entities)))
+    return noun
+
+
+def inner(np: Any, disc: Discourse) -> Grounded:
+    """A phrase inside a qualifier, grounded as a qualifier."""
+    return ground_phrase(np, Where("qualifier"), disc)
+
+
+@applies(Possessive)
+def possessive(q: Possessive, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*the teddy bear's room*: the rooms holding it; *the kitchen's sink*: the sinks in it."""
+    of_head = disc.vocab.of_head(q.head)
+    if noun.head.kind == "object":
+        return Noun(q.head, disc.vocab.containing(of_head, noun.entities, None), noun.room_scoped)
+    return Noun(q.head, disc.vocab.inside(of_head, noun.entities), True)
+
+
+@applies(OnFloor)
+def on_floor(q: OnFloor, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*on floor 1*, *upstairs*, *up there*, *on the same floor (as X)*."""
+    if isinstance(q.floor, SameFloor) and q.floor.as_phrase is not None:
+        reading = FloorReading(same_floor(inner(q.floor.as_phrase, disc), disc))
+    else:
+        reading = floors_of(q.floor, disc, noun.entities)
+    return Noun(noun.head, on_floors(noun.entities, reading, disc), noun.room_scoped)
+
+
+@applies(There)
+def there(q: There, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*a bathroom there*: on the floor named last; *grab a bottle there*: in the room of the place named
+    last."""
+    if noun.head.kind == "room":
+        floors = there_floors(np.span.start, noun.head, disc, where.action_floor)
+        return Noun(noun.head, on_floors(noun.entities, FloorReading(floors), disc), noun.room_scoped)
+    return Noun(noun.head, disc.vocab.inside(noun.entities, there_rooms(np.span.start, disc)), True)
+
+
+@applies(InRoom)
+def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*the sink in the kitchen*: the objects in that room (the room phrase keeps only the rooms used); *every
+    plant in the office and the kitchen*: those of each room, each of which must hold some."""
+    rooms = [inner(room, disc) for room in q.rooms]
+    said = disc.said(q.span.start, q.span.end)
+    if noun.head.kind != "object" or any(e.kind != "room" for g in rooms for e in g.entities):
+        rf.refuse(rf.object_in_room(said))
+    entities = disc.vocab.inside(noun.entities, [e for g in rooms for e in g.entities])
+    for room in rooms:
+        room.entities = [r for r in room.entities if any(e.room_key == r.key for e in entities)]
+        if len(rooms) > 1 and not room.entities:  # not "... in A, and B": that would be another goal
+            rf.refuse(rf.room_holds_none(said, room.phrase, head_word(noun.entities)))
+    return Noun(noun.head, entities, True)
+
+
+@applies(Holds)
+def holds(q: Holds, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*the room where the book is*: the rooms holding it."""
+    thing = inner(q.thing, disc)
+    if any(e.kind != "object" for e in thing.entities):
+        rf.refuse(rf.room_by_contents(thing.phrase))
+    entities = disc.vocab.containing(noun.entities, thing.entities, None)
+    thing.entities = [o for o in thing.entities if any(o.room_key == r.key for r in entities)]
+    return Noun(noun.head, entities, noun.room_scoped)
+
+
+@applies(Lacks)
+def lacks(q: Lacks, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*the bedroom that doesn't have a book*: the rooms holding none."""
+    thing = inner(q.thing, disc)
+    if noun.head.kind != "room" or any(e.kind != "object" for e in thing.entities):
+        rf.refuse(rf.room_without(disc.said(q.span.start, q.span.end)))
+    return Noun(noun.head, disc.vocab.lacking(noun.entities, thing.entities), noun.room_scoped)
+
+
+@applies(Contains)
+def contains(q: Contains, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*the bedroom with (only) (two) beds*: the rooms holding it (that many; nothing else)."""
+    thing = inner(q.thing, disc)
+    if noun.head.kind != "room" or any(e.kind != "object" for e in thing.entities):
+        rf.refuse(rf.room_with(disc.said(q.span.start, q.span.end)))
+    count = q.count if q.count is not None else thing.count
+    entities = disc.vocab.containing(noun.entities, thing.entities, count, only=q.only)
+    thing.entities = [o for o in thing.entities if any(o.room_key == r.key for r in entities)]
+    return Noun(noun.head, entities, noun.room_scoped)
+
+
+@applies(Attachment)
+def attachment(q: Attachment, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*the bedroom without a plant* / *the bedroom with the book and the vase*, read as descriptions."""
+    thing = inner(q.thing, disc)
+    if q.kind == "without":
+        return Noun(noun.head, disc.vocab.lacking(noun.entities, thing.entities), noun.room_scoped)
+    return Noun(noun.head, disc.vocab.containing(noun.entities, thing.entities, None), noun.room_scoped)
+
+
+@applies(NextTo)
+def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*the kitchen next to the dining room* (connected in the scene graph); an object next to a room is
+    in a room connected to it."""
+    vocab = disc.vocab
+    room = next_to_it(q.it_span, disc) if q.it_span is not None else inner(q.thing, disc)
+    if any(e.kind != "room" for e in room.entities):
+        rf.refuse(rf.next_to_rooms_only(disc.said(q.span.start, q.span.end)))
+    if noun.head.kind == "object":  # "the toilet next to the bedroom": in a room next to it
+        rooms = vocab.next_to([vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in noun.entities)],
+                              room.entities)
+        room.entities = [r for r in room.entities
+                         if any(r.key in vocab.adjacent.get(x.key, ()) for x in rooms)]
+        return Noun(noun.head, vocab.inside(noun.entities, rooms), noun.room_scoped)
+    entities = vocab.next_to(noun.entities, room.entities)
+    room.entities = [r for r in room.entities
+                     if any(r.key in vocab.adjacent.get(e.key, ()) for e in entities)]
+    return Noun(noun.head, entities, noun.room_scoped)
+
+
+@applies(Except)
+def except_for(q: Except, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*all the corridors except the one on floor 0*: all but those (each must be one of them)."""
+    excluded = [inner(thing, disc) for thing in q.things]
+    keys = {e.key for g in excluded for e in g.entities}
+    have = {e.key for e in noun.entities}
+    stray = [g.phrase for g in excluded if not {e.key for e in g.entities} & have]
+    if stray:  # "the dining room but not the kitchen": not an exception, and not understood
+        rf.refuse(rf.not_an_exception(q.said, stray[0], q.restricted))
+    return Noun(noun.head, [e for e in noun.entities if e.key not in keys], noun.room_scoped)
+

@@ -1,0 +1,124 @@
+"""The discourse state of grounding: what the mission has named so far, and the context of a phrase.
+
+:class:`Discourse` is the explicit state that back-references read (*it*, *there*, *that bathroom*, *the
+other one*, *upstairs* after a goal on another floor): every grounded phrase in the order it was read, the
+robot's start floor, the floors the mission stays on, the last step of the previous sentence.
+:class:`Where` is the context one phrase is grounded in: its role, the rooms its objects are looked for
+in, the floor a verb or a floor move put it on.
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, field
+
+from sgplan.llm.offline.meaning.compose import Step
+from sgplan.llm.offline.names import Entity, SceneVocabulary
+from sgplan.llm.offline.nouns import Head
+from sgplan.llm.offline.syntax.tree import Mode, Role
+
+
+@dataclass
+class Grounded:
+    """A grounded noun phrase: the text and span it came from and the entities it denotes.
+
+    ``mode``: ``the`` (exactly one entity), ``any`` (one of them will do), ``all`` (each of them).
+    ``room_scoped``: the objects were located through a room (``the sink in the kitchen``, ``the
+    kitchen's sink``, or the room of the same step), so reaching them also requires being in that room.
+    """
+
+    phrase: str
+    start: int
+    end: int
+    entities: list[Entity]
+    mode: Mode
+    room_scoped: bool
+    role: Role
+    count: int | None = None
+    """How many entities the phrase said ("the two beds"), if it said so."""
+    generic: bool = False
+    """The head noun was *room* / *place* (any room): *the one with ...* after it means any room too."""
+    alternative: bool = False
+    """One alternative of an *or* list (*the kitchen or the bathroom*): a back-reference to it is not
+    determined (see :func:`.backref.choice_refusal`)."""
+    choice_of: str | None = None
+    """A pronoun whose antecedent is a choice: why it is refused if it is made a goal (*put it in Y* only
+    carries it)."""
+    floor: bool = False
+    """A floor named as a place (*the top floor*: its rooms); *there* / *up there* / *on that floor* after it
+    mean that floor."""
+
+
+@dataclass
+class Discourse:
+    """What grounding knows of the mission read so far (see the module docstring)."""
+
+    vocab: SceneVocabulary
+    text: str
+    start_floor: int | None
+    references: list[Grounded] = field(default_factory=list)
+    confined: frozenset[int] | None = None
+    """The floors the mission stays on (*stay on this floor*): goals are grounded there."""
+    last_step: Step = field(default_factory=list)
+    """The last step with goals of the previous sentence (what *done that* refers to)."""
+    announced: Head | None = None
+    """The head noun that announced the list of the sentence being read (*water these plants: the one in
+    the office and ...*): what *the one* is when nothing was named before."""
+
+    def record(self, phrase: Grounded) -> Grounded:
+        """Remember ``phrase`` (a back-reference may point to it) and return it."""
+        self.references.append(phrase)
+        return phrase
+
+    def fork(self) -> Discourse:
+        """A copy to try a reading on, which the original does not see."""
+        return Discourse(self.vocab, self.text, self.start_floor, copy.copy(self.references), self.confined,
+                         self.last_step, self.announced)
+
+    def said(self, start: int, end: int) -> str:
+        """The mission text between two character offsets."""
+        return self.text[start:end]
+
+    def goals_before(self, start: int | None = None) -> list[Grounded]:
+        """The phrases read as goals (with entities), before character ``start`` when given."""
+        return [g for g in self.references
+                if g.role == "goal" and g.entities and (start is None or g.start < start)]
+
+    def last_goal(self) -> Grounded | None:
+        """The goal named last."""
+        goals = self.goals_before()
+        return max(goals, key=lambda g: g.start) if goals else None
+
+
+@dataclass(frozen=True)
+class FloorReading:
+    """The floors some words name, and, when they are counted from the start floor but could be counted from
+    where the goal named before them is (*upstairs* after a goal on another floor), that second reading:
+    the two must pick the same entities (:func:`.floors.on_floors`)."""
+
+    floors: frozenset[int]
+    second: frozenset[int] | None = None
+    said: str = ""
+    after: str = ""
+
+
+@dataclass(frozen=True)
+class Where:
+    """The context a phrase is grounded in.
+
+    ``scope``: the rooms of the step (or of the sentence, *In the kitchen, ...*) its objects are looked for
+    in; ``lenient``: elsewhere too when none is there. ``soft_scope``: the rooms of a condition (a definite
+    object of its consequent that fits several is the one there). ``floor``: the floor a verb said (*go
+    upstairs to ...*: the first phrase only); ``action_floor``: the floors of a floor move (*go upstairs and
+    ...*: every goal) and the character offset where that action starts. ``going_back``: *go back there*.
+    ``objects``: a pronoun must name objects (after *put* / *bring*).
+    """
+
+    role: Role
+    scope: tuple[Entity, ...] = ()
+    lenient: bool = False
+    soft_scope: tuple[Entity, ...] = ()
+    floor: FloorReading | None = None
+    action_floor: tuple[frozenset[int], int] | None = None
+    going_back: bool = False
+    objects: bool = False

@@ -1,0 +1,198 @@
+"""Which floors the floor words of a phrase name, in this building and for this robot.
+
+Floors are numbered from 0 = the lowest. *upstairs* / *downstairs* and the floors counted from the start
+(*the floor above*) need the start floor (or, for *upstairs* / *downstairs*, a two-floor building); said
+after a goal on another floor they could be counted from there too, so both readings are kept
+(:class:`.discourse.FloorReading`) and must agree (:func:`on_floors`). Floors the building does not have
+are refused.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.grounding import backref
+from sgplan.llm.offline.grounding.discourse import Discourse, FloorReading, Grounded
+from sgplan.llm.offline.names import Entity
+from sgplan.llm.offline.syntax.tree import (
+    FloorNumber,
+    FloorOffset,
+    FloorSpec,
+    MiddleFloor,
+    RelativeFloor,
+    StartFloor,
+    StayExtreme,
+    TopFloor,
+    UpThere,
+)
+
+
+def floors_of(spec: FloorSpec, disc: Discourse, candidates: list[Entity] | None = None) -> FloorReading:
+    """The floors ``spec`` names; ``candidates``: the entities of the noun it qualifies (*the downstairs
+    bathroom* in a taller building: the lower of the floors holding bathrooms)."""
+    vocab = disc.vocab
+    if isinstance(spec, FloorNumber):
+        if not 0 <= spec.number < vocab.num_floors:
+            rf.refuse(rf.floor_outside(spec.said, vocab.building_name, vocab.num_floors))
+        return FloorReading(frozenset({spec.number}))
+    if isinstance(spec, TopFloor):
+        return FloorReading(frozenset({vocab.num_floors - 1}))
+    if isinstance(spec, MiddleFloor):
+        if vocab.num_floors % 2 == 0:
+            rf.refuse(rf.no_middle_floor(spec.said, vocab.building_name, vocab.num_floors))
+        return FloorReading(frozenset({vocab.num_floors // 2}))
+    if isinstance(spec, StartFloor):
+        if disc.start_floor is None:
+            every = f"floors 0 to {vocab.num_floors - 1}"
+            rf.refuse(rf.needs_start_floor(spec.said, vocab.building_name, every, spec.to_stay))
+        return FloorReading(frozenset({disc.start_floor}))
+    if isinstance(spec, FloorOffset):
+        return shifted(spec, disc)
+    if isinstance(spec, RelativeFloor):
+        return relative(spec.word, disc, candidates)
+    if isinstance(spec, StayExtreme):
+        return FloorReading(staying(spec.word, disc))
+    if isinstance(spec, UpThere):
+        return FloorReading(up_there(spec.word, disc))
+    assert spec.as_phrase is None, "a floor 'as X' is grounded with X (see .described.on_floor)"
+    return FloorReading(same_floor(None, disc))
+
+
+def listing(disc: Discourse) -> str:
+    """*floors 0 to 2* (or *floor 0*) of the building, for messages."""
+    n = disc.vocab.num_floors
+    return "floor 0" if n == 1 else f"floors 0 to {n - 1}"
+
+
+def on_floors(entities: Iterable[Entity], reading: FloorReading, disc: Discourse) -> list[Entity]:
+    """``entities`` on the floors of ``reading``; when the words could also be read from the floor of the
+    goal named before them, both readings must pick the same entities, else it is refused."""
+    entities = list(entities)
+    out = disc.vocab.on_floor(entities, reading.floors)
+    if reading.second is not None and {e.key for e in disc.vocab.on_floor(entities, reading.second)} != {
+            e.key for e in out}:
+        rf.refuse(rf.readings_differ(reading.said, reading.after, disc.start_floor or 0))
+    return out
+
+
+def second_reading(said: str, disc: Discourse,
+                   relate: Callable[[int], frozenset[int]]) -> FloorReading | None:
+    """Words relative to the start floor said after a goal on another floor could be relative to where
+    that goal took the robot: that reading (``relate``: a floor -> the floors the words mean from there),
+    or ``None`` when the last goal is on the start floor (or there is none); refused when the last goal is
+    on several floors (no second reading to compare)."""
+    last = disc.last_goal()
+    if last is None:
+        return None
+    at = {e.floor for e in last.entities}
+    if at == {disc.start_floor}:
+        return None
+    if len(at) > 1:
+        rf.refuse(rf.relative_to_which(said, last.phrase, ", ".join(str(f) for f in sorted(at)),
+                                       disc.start_floor or 0))
+    return FloorReading(relate(at.pop()), None, said, last.phrase)
+
+
+def relative(word: str, disc: Discourse, candidates: list[Entity] | None) -> FloorReading:
+    """*upstairs* / *downstairs*: the floors above / below the start floor when it is known; in a two-floor
+    building, the upper / lower floor; for a noun (*the downstairs bathroom*) whose candidates lie on
+    exactly two floors, the lower / upper of those, as people name such rooms whatever floor they stand
+    on; otherwise refused, naming the floors."""
+    step, n, start = lx.RELATIVE_FLOORS[word], disc.vocab.num_floors, disc.start_floor
+    on = sorted({e.floor for e in candidates or []})
+    if start is None and n > 2 and len(on) == 2:
+        return FloorReading(frozenset({on[1] if step > 0 else on[0]}))
+    if start is not None:
+        second = second_reading(word, disc,
+                                lambda base: frozenset(f for f in range(n) if (f - base) * step > 0))
+        wanted = frozenset(f for f in range(n) if (f - start) * step > 0)
+        if not wanted:
+            rf.refuse(rf.off_the_building(word, start, disc.vocab.building_name, n))
+        return with_second(wanted, second)
+    if n == 2:
+        return FloorReading(frozenset({1 if step > 0 else 0}))
+    rf.refuse(rf.needs_start_floor(word, disc.vocab.building_name, listing(disc)))
+
+
+def shifted(spec: FloorOffset, disc: Discourse) -> FloorReading:
+    """The floor ``spec.delta`` floors above the start floor (below if negative); refused without a start
+    floor or outside the building."""
+    n, start = disc.vocab.num_floors, disc.start_floor
+    if start is None:
+        rf.refuse(rf.needs_start_floor(spec.said, disc.vocab.building_name, f"floors 0 to {n - 1}"))
+    second = second_reading(spec.said, disc, lambda base: frozenset({base + spec.delta})
+                            if 0 <= base + spec.delta < n else frozenset())
+    floor = start + spec.delta
+    if not 0 <= floor < n:
+        rf.refuse(rf.off_the_building(spec.said, start, disc.vocab.building_name, n))
+    return with_second(frozenset({floor}), second)
+
+
+def with_second(floors: frozenset[int], second: FloorReading | None) -> FloorReading:
+    """``floors``, with the second reading when there is one."""
+    if second is None:
+        return FloorReading(floors)
+    return FloorReading(floors, second.floors, second.said, second.after)
+
+
+def staying(word: str, disc: Discourse) -> frozenset[int]:
+    """*stay downstairs* / *stay upstairs*: the lower / upper floor of a two-floor building, or the start
+    floor when it is the lowest / highest; otherwise it is not clear which floors are meant (refused)."""
+    n, step = disc.vocab.num_floors, lx.RELATIVE_FLOORS[word]
+    extreme = 0 if step < 0 else n - 1
+    if n == 2 or disc.start_floor == extreme:
+        return frozenset({extreme})
+    where = "is not known here" if disc.start_floor is None else f"is floor {disc.start_floor}"
+    rf.refuse(rf.stay_where(word, where, disc.vocab.building_name, n))
+
+
+def up_there(word: str, disc: Discourse) -> frozenset[int]:
+    """*up there* / *down there*: the floor(s) of the goal named last (one floor, not a choice of several)."""
+    last = disc.last_goal()
+    said = f"{word} there"
+    if last is None and disc.confined is not None:  # "stay on the top floor and use the bathroom up there"
+        return disc.confined
+    if last is None:
+        rf.refuse(rf.up_there_of_nothing(word))
+    floor_or_place(said, last, disc)
+    floors = frozenset(e.floor for e in last.entities)
+    determined(said, last, len(floors))
+    return floors
+
+
+def same_floor(ref: Grounded | None, disc: Discourse) -> frozenset[int]:
+    """*on the same floor (as X)* / *on that floor*: the floor of X (``ref``) when said, else of the last goal
+    named; one floor (after a choice across floors the floor depends on the choice, which is refused)."""
+    if ref is None:
+        ref = disc.last_goal()
+        if ref is None:
+            rf.refuse(rf.same_floor_of_nothing())
+        floor_or_place("the same floor' / 'that floor", ref, disc)
+    floors = frozenset(e.floor for e in ref.entities)
+    if len(floors) != 1:
+        rf.refuse(rf.same_floor_of_a_choice(ref.phrase, ", ".join(str(f) for f in sorted(floors))))
+    return floors
+
+
+def floor_or_place(said: str, last: Grounded, disc: Discourse, rooms: bool = False) -> None:
+    """Refuses ``said`` (*there*, *up there*, *on that floor*) when a floor was named as a place before
+    ``last``, the place named last, and the two readings differ: "go to the top floor, then the kitchen,
+    then a bathroom up there" could mean either floor; with ``rooms`` (*there* as rooms: "a book there")
+    the floor and a room on it already differ."""
+    floors = [g for g in disc.references
+              if g.floor and g.role in ("goal", "condition") and g.start < last.start]
+    if last.floor or not floors:
+        return
+    floor = max(floors, key=lambda g: g.start)
+    if rooms or {e.floor for e in floor.entities} != {e.floor for e in last.entities}:
+        rf.refuse(rf.floor_or_place(said, floor.phrase, last.phrase))
+
+
+def determined(said: str, ref: Grounded, places: int) -> None:
+    """Refuses ``said`` (*there*, *up there*, *its*, *next to it*) pointing back to a choice whose
+    alternatives differ in what ``said`` denotes (``places`` of them)."""
+    reason = backref.choice_refusal(said, ref, places)
+    if reason is not None:
+        rf.refuse(reason)

@@ -1,0 +1,281 @@
+"""Grounding a noun phrase: the rooms or objects of the scene it denotes, given what was said before it.
+
+:func:`ground_phrase` takes a phrase of the syntax tree, the context it is read in (:class:`.Where`) and the
+discourse so far (:class:`.Discourse`), records the grounded phrase there (back-references may point to
+it) and returns it. A definite phrase must denote exactly one entity, a phrase must denote at least one;
+otherwise it is refused, listing the candidates and saying how to single one out.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import Any
+
+from sgplan.errors import MissionError
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.grounding import backref
+from sgplan.llm.offline.grounding.discourse import Discourse, Grounded, Where
+from sgplan.llm.offline.grounding.everyday import kids_room
+from sgplan.llm.offline.grounding.floors import determined, floors_of, on_floors
+from sgplan.llm.offline.grounding.places import there_rooms
+from sgplan.llm.offline.names import Entity
+from sgplan.llm.offline.nouns import Head
+from sgplan.llm.offline.registry import Registry
+from sgplan.llm.offline.syntax.tree import (
+    Described,
+    FloorPlace,
+    GroupRepeat,
+    Its,
+    KeyHead,
+    Mode,
+    NounPhrase,
+    OneHead,
+    PhraseList,
+    Pronoun,
+    SameRoom,
+    ThereNP,
+)
+
+
+@dataclass
+class Noun:
+    """A described phrase while its qualifiers are applied: its current head, entities, and whether its
+    objects are located through a room."""
+
+    head: Head
+    entities: list[Entity]
+    room_scoped: bool
+
+
+def ground_list(phrases: PhraseList, where: Where, disc: Discourse) -> list[Grounded]:
+    """The phrases of a list, each grounded (the verb's floor and the pronoun's kind apply to the first); a
+    choice (*or*, *either*) is one phrase of all the alternatives, mode ``any``."""
+    out = []
+    for k, item in enumerate(phrases.items):
+        out.append(ground_phrase(item, where if k == 0 else replace(where, floor=None, objects=False), disc))
+    if "nor" in phrases.joiners or not ("or" in phrases.joiners or phrases.either):
+        return out
+    said = disc.said(phrases.span.start, phrases.span.end)
+    if any(g.mode == "all" and len(g.entities) > 1 for g in out):
+        rf.refuse(rf.group_in_a_choice(said))
+    # Being at an object implies being in its room, so locating some alternatives by their room and others
+    # not changes nothing: the merged phrase locates all of them.
+    for g in out:
+        g.alternative = True
+    return [Grounded(said, phrases.span.start, phrases.span.end, [e for g in out for e in g.entities], "any",
+                     any(g.room_scoped for g in out), where.role)]
+
+
+GROUNDERS: Registry[Callable[[Any, Where, Discourse], Grounded]] = Registry("grounding")
+"""How each kind of phrase of the syntax tree is grounded."""
+grounds = GROUNDERS.register
+
+
+def ground_phrase(np: NounPhrase, where: Where, disc: Discourse) -> Grounded:
+    """Ground one phrase (see the module docstring)."""
+    grounded: Grounded = GROUNDERS(np, where, disc)
+    return grounded
+
+
+@grounds(Pronoun)
+def pronoun(np: Pronoun, where: Where, disc: Discourse) -> Grounded:
+    """*it* / *them* / *they*: the phrase named last that agrees in number (objects only after *put*)."""
+    ref = antecedent(np.word, disc, "object" if where.objects else None)
+    mode: Mode = "all" if np.word in lx.PLURAL_PRONOUNS else ref.mode
+    g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, list(ref.entities), mode,
+                 ref.room_scoped, where.role)
+    g.choice_of = backref.choice_refusal(np.word, ref, len(ref.entities))
+    if g.choice_of is not None and where.role != "goal":  # only a carried goal may leave it open
+        rf.refuse(g.choice_of)
+    return disc.record(g)
+
+
+@grounds(ThereNP)
+def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
+    """*there* as a place: the last place named as a goal (its rooms, inside a qualifier)."""
+    goals = [g for g in disc.references if g.role == "goal" and g.phrase.lower() not in lx.PRONOUNS]
+    if not goals:
+        rf.refuse(rf.there_refers_to_nothing())
+    ref = max(goals, key=lambda g: g.start)
+    determined("there", ref, len({e.room_key for e in ref.entities}))
+    if where.role == "goal" and where.going_back:  # "A, then B, then go back there": B is where it is
+        rf.refuse(rf.back_there(ref.phrase))
+    if where.role != "qualifier" and ref.mode == "all" and len(ref.entities) > 1:
+        rf.refuse(rf.there_is_several(ref.phrase))  # "both bedrooms, then back there": which one?
+    entities = list(ref.entities)
+    if where.role == "qualifier":  # "the clock in there": the room of the last goal
+        entities = list({e.room_key: disc.vocab.by_key[e.room_key] for e in entities}.values())
+    return disc.record(Grounded("there", np.span.start, np.span.end, entities, ref.mode, ref.room_scoped,
+                                where.role))
+
+
+@grounds(GroupRepeat)
+def group_repeat(np: GroupRepeat, where: Where, disc: Discourse) -> Grounded:
+    """*all of them* / *both of them* / *all three of them*: the group named before (its size checked)."""
+    ref = antecedent("them", disc)
+    said = disc.said(np.span.start, np.span.end)
+    if np.count is not None and len(ref.entities) != np.count:
+        rf.refuse(rf.group_size(said, ref.phrase, len(ref.entities), np.count))
+    return disc.record(Grounded(said, np.span.start, np.span.end, list(ref.entities), "all", ref.room_scoped,
+                                "goal"))
+
+
+@grounds(SameRoom)
+def same_room(np: SameRoom, where: Where, disc: Discourse) -> Grounded:
+    """*the sink in the same room*: the room of the place named last."""
+    rooms = there_rooms(np.span.start, disc, f"the same {np.word}")
+    if len(rooms) != 1:
+        rf.refuse(rf.same_room_unclear(np.word, [r.key for r in rooms]))
+    said = disc.said(np.span.start, np.span.end)
+    return disc.record(Grounded(said, np.span.start, np.span.end, rooms, "the", False, where.role))
+
+
+@grounds(Its)
+def its(np: Its, where: Where, disc: Discourse) -> Grounded:
+    """*its sink*: the sink in the room just named (or in the room of the object named); *its bathroom*:
+    the bathroom attached to the room."""
+    ref = antecedent("it", disc)
+    container = [disc.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in ref.entities)]
+    determined("its", ref, len(container))
+    of_head = disc.vocab.of_head(np.head)
+    owned = disc.vocab.next_to(of_head, container) if np.head.kind == "room" else disc.vocab.inside(of_head,
+                                                                                                   container)
+    g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, owned,
+                 "all" if np.head.plural else "the", np.head.kind == "object", where.role)
+    check(g, np.head, None, False, disc)
+    return disc.record(g)
+
+
+@grounds(FloorPlace)
+def floor_place(np: FloorPlace, where: Where, disc: Discourse) -> Grounded:
+    """*the top floor* as a place: any of its rooms as a goal or condition, all of them to avoid."""
+    rooms = on_floors(disc.vocab.of_head(Head("room", frozenset(), True, 1)), floors_of(np.floor, disc), disc)
+    chosen: Mode = "all" if where.role == "avoid" or np.mode == "all" else "any"
+    said = disc.said(np.span.start, np.span.end)
+    return disc.record(Grounded(said, np.span.start, np.span.end, rooms, chosen, False, where.role,
+                                floor=True))
+
+
+def antecedent(pronoun: str, disc: Discourse, kind: str | None = None) -> Grounded:
+    """The phrase a pronoun refers to: the last one mentioned (by position) that agrees in number.
+
+    ``it`` takes a phrase denoting one entity, ``them``/``they`` one denoting several, so in "go to the
+    bedroom with the TV and turn it on" *it* is the TV, and in "take both bowls in the kitchen and put
+    them in the fridge" *them* are the bowls. An object named inside an object phrase to locate it is
+    not the antecedent: in "get the book from the bedroom with the vase, then bring it ..." *it* is the
+    book.
+    """
+    plural = pronoun in lx.PLURAL_PRONOUNS
+    fits = [g for g in sorted(disc.references, key=lambda g: g.start, reverse=True)
+            if (g.mode == "all" and len(g.entities) > 1) == plural and g.phrase.lower() not in lx.PRONOUNS
+            and (kind is None or all(e.kind == kind for e in g.entities))]
+    if not fits:
+        rf.refuse(rf.no_antecedent(pronoun, plural))
+    g = fits[0]
+    # "the book from the bedroom with the vase ... it": the object the phrase is about (its head), not an
+    # object named inside it to locate it
+    outer = [o for o in fits[1:] if o.start <= g.start and g.end <= o.end and all(e.kind == "object"
+                                                                                 for e in o.entities)]
+    return min(outer, key=lambda o: o.start) if outer else g
+
+
+def last_head(disc: Discourse) -> Head | None:
+    """The kind and category of the last room or object named (what *the one* / *the other one* is)."""
+    for g in sorted(disc.references, key=lambda g: g.start, reverse=True):
+        categories = {e.category for e in g.entities}
+        if g.role != "qualifier" and g.generic:  # "the room where the book is, then the one ..."
+            return Head("room", frozenset(), False, 1)
+        if g.role != "qualifier" and g.entities and len(categories) == 1:
+            return Head(g.entities[0].kind, frozenset(categories), False, 1)
+    return None
+
+
+def head_entities(np: Described, disc: Discourse) -> Noun:
+    """The head noun of ``np`` and every entity it may denote (*dining* chairs: those in a dining room)."""
+    vocab = disc.vocab
+    if isinstance(np.head, KeyHead):
+        entity = vocab.by_key.get(np.head.key)
+        if entity is None:
+            rf.refuse(rf.unknown_key(np.head.key))
+        return Noun(Head(entity.kind, frozenset({entity.category}), False, 1), [entity], False)
+    head = resolved_head(np.head, disc)
+    if head.everyday is not None:
+        return Noun(head, [kids_room(vocab, head.everyday)], False)
+    entities = vocab.of_head(head)
+    if np.modifier is not None:  # "the dining chairs": the chairs in the dining room
+        entities = vocab.inside(entities, vocab.rooms_named_by(np.modifier))
+    return Noun(head, entities, np.modifier is not None)
+
+
+def resolved_head(ref: Head | OneHead, disc: Discourse) -> Head:
+    """The head noun, *one* / *ones* read as the kind it stands for (refused when nothing says which)."""
+    if isinstance(ref, Head):
+        return ref
+    given = ref.given if ref.given is not None else (last_head(disc) or disc.announced) if ref.from_context \
+        else None
+    if given is None:
+        rf.refuse(rf.one_without_kind("ones" if ref.plural else "one"))
+    return Head(given.kind, given.categories, ref.plural, 1)
+
+
+def check(g: Grounded, head: Head, count: int | None, remark_follows: bool, disc: Discourse) -> None:
+    """Refuse a phrase that matches nothing, not the number it said, or several where it means one (a
+    choice remark after it, *any one will do*, makes it a choice; *the stairs* to avoid on a mission that
+    stays on some floors is each of them)."""
+    if g.role == "qualifier":
+        if not g.entities:
+            rf.refuse(rf.qualifier_matches_nothing(g.phrase, head.kind, existing(head, disc)))
+        return
+    if not g.entities:
+        kept = rf.not_on_kept_floors(sorted(disc.confined)) if disc.confined is not None and g.role in (
+            "goal", "condition") else ""
+        rf.refuse(rf.matches_nothing(g.phrase, head.kind, kept, existing(head, disc)))
+    if count is not None and len(g.entities) != count:
+        rf.refuse(rf.wrong_count(g.phrase, count, head.kind, len(g.entities),
+                                 ", ".join(e.describe() for e in g.entities)))
+    if g.mode == "the" and len(g.entities) > 1 and head.kind == g.entities[0].kind and not head.plural \
+            and remark_follows:
+        g.mode = "any"  # "the toilet on this floor, any one will do": one of them
+    if (g.mode == "the" and g.role == "avoid" and g.phrase.lower().split()[-1] in lx.PLURAL_LOOKING
+            and disc.confined is not None):
+        # "stay on the top floor and keep off the stairs": the staircases of the floors the mission stays on,
+        # and those elsewhere are forbidden anyway, so every one of them. Without a confinement, all of them
+        # or those of the floors the mission uses differ: asked below.
+        g.mode = "all"
+    if g.mode == "the" and len(g.entities) > 1:
+        listing = ", ".join(f"{e.key} (floor {e.floor})" if e.kind == "room"
+                            else f"{e.key} (in {e.room_key}, floor {e.floor})" for e in g.entities)
+        raise MissionError(rf.ambiguous(g.phrase, len(g.entities), head.kind, listing, hint(g, disc)))
+
+
+def existing(head: Head, disc: Discourse) -> str:
+    """`` (this scene has: ...)`` listing what the head may denote, for a refusal."""
+    found = disc.vocab.of_head(head)
+    if not found:
+        return ""
+    listing = ", ".join(e.describe() for e in found[:8]) + (", ..." if len(found) > 8 else "")
+    return f" (this scene has: {listing})"
+
+
+def hint(g: Grounded, disc: Discourse) -> str:
+    """How to single one entity out: by floor, by a room, by contents or neighbours, or by quantifier."""
+    ents = g.entities
+    word = ents[0].category
+    if len({e.floor for e in ents}) == len(ents):
+        return f"say which floor (e.g. 'the {word} on floor {ents[0].floor}')"
+    if ents[0].kind == "object":
+        if len({e.room_key for e in ents}) == len(ents):
+            room = disc.vocab.by_key[ents[0].room_key]
+            return f"say which room it is in (e.g. 'the {word} in the {room.category} on floor {room.floor}')"
+    else:
+        for e in ents:
+            own = {o.category for o in disc.vocab.entities if o.kind == "object" and o.room_key == e.key}
+            others = {o.category for o in disc.vocab.entities if o.kind == "object" and o.room_key != e.key
+                      and o.room_key in {x.key for x in ents}}
+            unique = sorted(own - others)
+            if unique:
+                return f"say what it contains (e.g. 'the {word} with the {unique[0]}')"
+    return f"say 'any {word}' or 'every {word}', or name it by its ID (e.g. {ents[0].key})"
+

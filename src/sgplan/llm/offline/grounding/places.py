@@ -1,0 +1,72 @@
+"""What *there*, *in there*, *the same room* and *next to it* point back to: the place named last.
+
+*there* after an object (*grab a bottle there*) is the room of the last place named as a goal or a
+condition; after a room (*a bathroom there*) the floor of a floor named last as a place; *next to it* is
+the whole phrase named last, which must be a room. Each is refused when what it points back to is a
+choice whose alternatives differ in what it would denote, or when a floor and a place named after it
+would give two readings.
+"""
+
+from __future__ import annotations
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.grounding.discourse import Discourse, Grounded
+from sgplan.llm.offline.grounding.floors import determined, floor_or_place
+from sgplan.llm.offline.names import Entity, head_word
+from sgplan.llm.offline.nouns import Head
+from sgplan.llm.offline.syntax.tree import Span
+
+
+def places_before(before: int, disc: Discourse) -> list[Grounded]:
+    """The places named as goals or conditions before character ``before`` (not pronouns)."""
+    return [g for g in disc.references if g.role in ("goal", "condition") and g.start < before and g.entities
+            and g.phrase.lower() not in lx.PRONOUNS]
+
+
+def there_rooms(before: int, disc: Discourse, said: str = "there") -> list[Entity]:
+    """The rooms *there* means at character offset ``before``: those of the last place named as a goal or a
+    condition before it (*whenever you enter the kitchen, grab a bottle there*)."""
+    places = places_before(before, disc)
+    if not places:
+        rf.refuse(rf.there_refers_to_nothing())
+    last = max(places, key=lambda g: g.start)
+    floor_or_place(said, last, disc, rooms=True)
+    rooms = [disc.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in last.entities)]
+    if not last.floor:  # a floor is one place: "the top floor ... a book there" is any room of it
+        determined(said, last, len(rooms))
+    return rooms
+
+
+def there_floors(before: int, head: Head, disc: Discourse,
+                 action_floor: tuple[frozenset[int], int] | None) -> frozenset[int]:
+    """The floor(s) *there* after a room (*a bathroom there*) means at character offset ``before``: a floor
+    named last as a place, or the floor of a floor move before it (*go upstairs, then X there*), or the
+    floors the mission stays on. A room or object named last is refused: rooms are not inside rooms, and
+    reading *there* as nothing would silently widen the phrase."""
+    places = places_before(before, disc)
+    last = max(places, key=lambda g: g.start) if places else None
+    if action_floor is not None and (last is None or last.start < action_floor[1]):
+        return action_floor[0]
+    if last is None and disc.confined is not None:  # "keep to the top floor and visit X there"
+        return disc.confined
+    if last is None or not last.floor:
+        what = f"'{last.phrase}'" if last is not None else "nothing"
+        rf.refuse(rf.there_is_not_a_floor(head_word(disc.vocab.of_head(head)), what))
+    return frozenset(e.floor for e in last.entities)
+
+
+def next_to_it(span: Span, disc: Discourse) -> Grounded:
+    """*next to it*: *it* is the last whole phrase named (not one nested in it: in "the bedroom where the
+    teddy bear is" that is the bedroom); it must be a room, since distances between objects are not
+    known."""
+    refs = [g for g in disc.references if g.phrase.lower() not in lx.PRONOUNS and g.entities]
+    outer = [g for g in refs if not any(o is not g and o.start <= g.start and g.end <= o.end
+                                        and (o.start, o.end) != (g.start, g.end) for o in refs)]
+    if not outer:
+        rf.refuse(rf.no_room_antecedent())
+    ref = max(outer, key=lambda g: g.start)
+    determined("next to it", ref, len(ref.entities))
+    if any(e.kind != "room" for e in ref.entities):
+        rf.refuse(rf.next_to_an_object(ref.phrase))
+    return disc.record(Grounded("it", span.start, span.end, list(ref.entities), ref.mode, False, "qualifier"))

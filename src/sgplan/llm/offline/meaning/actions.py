@@ -1,0 +1,170 @@
+"""From an action of the syntax tree to steps of tasks: its phrases grounded in the step's context, the
+list's order (*in that order*, *A, B, then C*, *B first*), *last*, *again* / *twice*, a destination
+(*put X in Y*: X, then Y) and a purpose (*... to turn them off*)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.grounding.discourse import FloorReading, Grounded, Where
+from sgplan.llm.offline.grounding.floors import floors_of
+from sgplan.llm.offline.grounding.phrases import ground_list
+from sgplan.llm.offline.meaning.compose import Step, Task, member_formula
+from sgplan.llm.offline.meaning.context import SentenceContext
+from sgplan.llm.offline.names import Entity
+from sgplan.llm.offline.syntax.tree import Action, Repeat
+
+
+@dataclass
+class ActionSteps:
+    """The steps of an action; ``first_left``: *first* was said right after its phrases without reordering
+    them (*go to A first and B*), so it orders the action itself (:mod:`.body`)."""
+
+    steps: list[Step]
+    first_left: bool = False
+
+
+def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = None, lenient: bool = False,
+             action_floor: tuple[frozenset[int], int] | None = None,
+             floor: FloorReading | None = None) -> ActionSteps:
+    """The steps of ``action``; ``scope``: the rooms of the step it is said in (its objects are looked for
+    there, and, with ``lenient``, elsewhere when none is there); ``action_floor`` / ``floor``: the floors of
+    a floor move before it (every goal there) and of the verb before it (its first phrase there)."""
+    disc, verbs = ctx.disc, action.verbs
+    if verbs.floor is not None:
+        floor = floors_of(verbs.floor, disc)  # "go upstairs to the bathroom": the bathroom on that floor
+    going_back = bool(set(verbs.words) & lx.REVISIT_VERBS)
+    carry = bool(set(verbs.words) & lx.CARRY_VERBS)
+    where = Where("goal", tuple(scope or ctx.scope), lenient, tuple(ctx.soft_scope), floor, action_floor,
+                  going_back, carry)
+    if action.phrases is None:  # "go upstairs and check the laptop": the laptop upstairs
+        assert action.moved is not None and floor is not None
+        return steps_of(action.moved, ctx, scope, lenient, (floor.floors, action.moved.span.start), floor)
+    phrases = ground_list(action.phrases, where, disc)
+    if action.moved is not None:  # "go up to the top floor and check a bathroom (there)": one goal there
+        floors = frozenset(e.floor for e in phrases[0].entities)
+        return steps_of(action.moved, ctx, scope, lenient, (floors, action.moved.span.start))
+    phrases, lead = first_of_list(phrases, action.first)
+    choice_remark(phrases, action.remark, disc.said)
+    steps = ordered_steps(action, phrases, carry, lead, ctx)
+    if action.repeat is not None:
+        repeats(phrases, steps, action.repeat, going_back, ctx)
+    elif going_back and named_before(phrases, ctx):
+        for task in steps[0]:
+            task.revisit = True
+    tail(action, phrases, steps, carry, replace(where, floor=None, action_floor=None, objects=False), ctx)
+    return ActionSteps(steps or [[]], action.first and not lead)
+
+
+def ordered_steps(action: Action, phrases: list[Grounded], carry: bool, lead: bool,
+                  ctx: SentenceContext) -> list[Step]:
+    """The tasks of the phrases, in the steps their order says: one step (any order), one each (*in that
+    order*), the one said *first* before the rest, the one said *last* after the rest."""
+    pronouns_only = all(g.phrase.lower() in lx.PRONOUNS for g in phrases)
+    # "put it in Y": the object is already in hand, the goal is Y, after what came before.
+    steps = [[]] if carry and pronouns_only else tasks_of(phrases, action.ordered)
+    if lead:  # "A and B, B first": B, then A
+        steps = [steps[0][:1], steps[0][1:]]
+    if action.last:
+        if len(steps) != 1:
+            rf.refuse(rf.cannot_understand(lx.REFUSED_WORDS["last"]))
+        ctx.said_last = True  # "the kitchen and the office last": the office after the rest
+        steps = [steps[0][:-1], steps[0][-1:]]
+    return steps
+
+
+def tail(action: Action, phrases: list[Grounded], steps: list[Step], carry: bool, where: Where,
+         ctx: SentenceContext) -> None:
+    """The destination and the purpose of ``action``, added to ``steps``."""
+    if action.destination is not None:
+        routed = carry or bool(set(action.verbs.words) & lx.ROUTE_VERBS) or all(
+            e.kind == "object" for g in phrases for e in g.entities)
+        if routed:  # "put X in Y", "take X to Y", "go from X to Y": X, then Y
+            dest = ground_list(action.destination, replace(where, scope=()), ctx.disc)
+            steps.extend(tasks_of(dest, False))
+        else:  # "go to the kitchen to the office": another goal of the step
+            dest = ground_list(action.destination, replace(where, scope=tuple(ctx.step_rooms(steps[-1]))),
+                               ctx.disc)
+            steps[-1].extend(tasks_of(dest, False)[0])
+    if action.purpose is not None:
+        purpose = ground_list(action.purpose, where, ctx.disc)
+        if not all(g.phrase.lower() in lx.PRONOUNS for g in purpose):
+            steps[-1].extend(tasks_of(purpose, False)[0])
+
+
+def tasks_of(phrases: list[Grounded], ordered: bool) -> list[Step]:
+    """One task per phrase (``any`` or ``all`` of its members): one step, or one step each when ordered."""
+    tasks = []
+    for g in phrases:
+        if g.choice_of is not None:  # "look at a vase, then look at it again": the same vase
+            rf.refuse(g.choice_of)
+        tasks.append(Task("any" if g.mode == "any" else "all", [member_formula(e, g.room_scoped)
+                                                                 for e in g.entities]))
+    if ordered and len(tasks) > 1:
+        return [[t] for t in tasks]
+    return [tasks]
+
+
+def first_of_list(phrases: list[Grounded], first: bool) -> tuple[list[Grounded], bool]:
+    """``A and B, B first``: the list with B moved to the front and once only (and True: B goes first). A
+    phrase that only restates the one before it is dropped (*the chairs, both of them*; *a TV, any TV*); any
+    other phrase named twice in one list is refused: it is not clear what is meant."""
+    keys = [frozenset(e.key for e in g.entities) for g in phrases]
+    phrases = [g for n, g in enumerate(phrases)
+               if not (n and keys[n] == keys[n - 1] and (g.phrase.lower().endswith("them") or (
+                   g.mode == phrases[n - 1].mode == "any" and g.phrase.lower().startswith("any "))))]
+    keys = [frozenset(e.key for e in g.entities) for g in phrases]
+    repeated = [n for n, k in enumerate(keys) if any(k & j for j in keys[:n])]
+    if not repeated:
+        return phrases, False
+    if repeated == [len(phrases) - 1] and first:  # "the clocks, the one in the bedroom first"
+        return [phrases[-1]] + [g for n, g in enumerate(phrases[:-1]) if keys[n] != keys[-1]], True
+    rf.refuse(rf.named_twice(phrases[repeated[0]].phrase))
+
+
+def choice_remark(phrases: list[Grounded], remark: tuple[str, ...] | None,
+                  said: Callable[[int, int], str]) -> None:
+    """*, either one is fine* after a choice only confirms it; after a phrase that means each of several
+    (or after several phrases) it would turn "all" into "one of", so it is refused."""
+    if remark is None:
+        return
+    words = remark[1:] if remark[0] == "," else remark
+    if len(phrases) > 1 or (phrases[0].mode != "any" and len(phrases[0].entities) > 1):
+        rf.refuse(rf.remark_after_each(" ".join(words), said(phrases[0].start, phrases[-1].end)))
+
+
+def named_before(phrases: list[Grounded], ctx: SentenceContext) -> bool:
+    """Whether every entity of ``phrases`` was a goal before them; an object in room X named as a goal was a
+    visit of X too (*a vase in the lobby, ..., the lobby again*), when every object it allowed is in X."""
+    refs = ctx.disc.references
+    return all(
+        any(r.role == "goal" and r.start < phrases[0].start
+            and (e in r.entities or (e.kind == "room" and all(o.kind == "object" and o.room_key == e.key
+                                                              for o in r.entities)))
+            for r in refs)
+        for g in phrases for e in g.entities)
+
+
+def repeats(phrases: list[Grounded], steps: list[Step], repeat: Repeat, going_back: bool,
+            ctx: SentenceContext) -> None:
+    """``X again`` / ``go back to X`` (X named as a goal before): a new visit; ``X twice`` / ``X three
+    times``: the visit and then new visits; ``X twice, with a visit to Y in between``: X, Y, X."""
+    before = named_before(phrases, ctx)
+    if repeat.again and not before:
+        rf.refuse(rf.again_not_a_goal(ctx.disc.said(phrases[0].start, phrases[-1].end)))
+    if repeat.again or (going_back and before):
+        for task in steps[0]:
+            task.revisit = True
+    if repeat.times < 2:
+        return
+    if not any(steps):  # "put it in the sink twice": the repetition would be lost
+        rf.refuse(rf.cannot_understand(f"'{'twice' if repeat.times == 2 else f'{repeat.times} times'}' here"))
+    last = list(steps[-1])
+    if repeat.between is not None and repeat.times == 2:
+        between = [s for s in steps_of(repeat.between, ctx).steps if s]
+        steps.extend([*between, [Task(t.mode, t.members) for t in last]])
+    else:
+        steps.extend([Task(t.mode, t.members, [], True) for t in last] for _ in range(repeat.times - 1))

@@ -1,0 +1,224 @@
+"""From the items of a sentence body to a clause: a sequence of steps and the constraints said with them.
+
+Each kind of item has its reader here (:data:`READERS`), which adds to the clause: an action's tasks to the
+current step (or a new one, before the others, on the way to the goal named last ...), a sequence word a
+new step, a prohibition a constraint or a local avoidance.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import replace
+from typing import Any
+
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.meaning.actions import steps_of
+from sgplan.llm.offline.meaning.compose import Clause, Step
+from sgplan.llm.offline.meaning.context import SentenceContext
+from sgplan.llm.offline.meaning.negations import negation, off_limits, stay_on_floor
+from sgplan.llm.offline.meaning.order import check_restriction_target
+from sgplan.llm.offline.registry import Registry
+from sgplan.llm.offline.syntax.tree import (
+    AfterAll,
+    Body,
+    CommaSequence,
+    DoneWith,
+    GoalsFirst,
+    InlineAfter,
+    InlineBefore,
+    Link,
+    Negation,
+    OffLimits,
+    PlainAction,
+    StayOnFloor,
+    Waypoint,
+)
+
+READERS: Registry[Callable[[Any, Clause, SentenceContext], None]] = Registry("item reader")
+reads = READERS.register
+
+
+def read_body(body: Body, ctx: SentenceContext) -> Clause:
+    """The clause of ``body`` (see the module docstring)."""
+    clause = Clause()
+    for item in body.items:
+        READERS(item, clause, ctx)
+    return clause
+
+
+def new_step(clause: Clause) -> None:
+    """What follows goes in a new step (unless the current one is still empty)."""
+    if clause.steps[-1]:
+        clause.steps.append([])
+
+
+@reads(Link)
+def link(item: Link, clause: Clause, ctx: SentenceContext) -> None:
+    """*then*, *after that* (a new step); *only after that* and *on the way,* also say how the next action
+    is done."""
+    ctx.strict_pending = ctx.strict_pending or item.strict
+    ctx.waypoint_pending = ctx.waypoint_pending or item.waypoint
+    if item.sequence:
+        new_step(clause)
+
+
+@reads(AfterAll)
+def after_all(item: AfterAll, clause: Clause, ctx: SentenceContext) -> None:
+    """*and after all three, X*: X after every goal of the sentence said before (their number checked;
+    refused when an earlier sentence named goals too: after which ones?)."""
+    goals = sum(len(t.members) if t.mode == "all" else 1 for step in clause.steps for t in step)
+    if not goals:
+        rf.refuse(rf.after_all_of_nothing(item.said))
+    if ctx.disc.goals_before(ctx.start):
+        rf.refuse(rf.after_all_of_which(item.said))
+    if item.number is not None and item.number != goals:
+        rf.refuse(rf.after_all_count(item.said, goals, item.number))
+    new_step(clause)
+
+
+@reads(DoneWith)
+@reads(InlineAfter)
+def inline_after(item: DoneWith | InlineAfter, clause: Clause, ctx: SentenceContext) -> None:
+    """*B after A* / *B once you have been to A* / *B when done with A*: A before the current step."""
+    clause.steps[-1:-1] = [s for s in steps_of(item.action, ctx).steps if s]
+
+
+@reads(InlineBefore)
+def inline_before(item: InlineBefore, clause: Clause, ctx: SentenceContext) -> None:
+    """*A before B*: B a step after the current one."""
+    clause.steps.extend(steps_of(item.action, ctx).steps)
+    clause.steps.append([])
+
+
+@reads(GoalsFirst)
+def goals_first(item: GoalsFirst, clause: Clause, ctx: SentenceContext) -> None:
+    """*..., but first X* / *..., and before that X*: X before the steps said so far (*before that* after
+    several steps is refused: before which?)."""
+    if not any(clause.steps):
+        if item.before_that:
+            rf.refuse(rf.done_that_of_nothing())
+        plain_action(PlainAction(item.action, False, False, False, None, item.rest, ""), clause, ctx)
+        return
+    if item.before_that and len(clause.filled()) > 1:
+        rf.refuse(rf.before_which(item.rest))
+    clause.steps[0:0] = [s for s in steps_of(item.action, ctx).steps if s]
+
+
+@reads(CommaSequence)
+def comma_sequence(item: CommaSequence, clause: Clause, ctx: SentenceContext) -> None:
+    """*go to the kitchen, pop up to the office, then ...*: the next action after this step, its objects
+    looked for in this step's rooms first."""
+    if clause.steps[-1]:
+        ctx.carried_rooms = ctx.step_rooms(clause.steps[-1])
+        clause.steps.append([])
+
+
+@reads(Waypoint)
+def waypoint(item: Waypoint, clause: Clause, ctx: SentenceContext) -> None:
+    """*go to Y via X* / *..., passing through X*: X on the way, before the one goal Y just named."""
+    if not clause.steps[-1]:
+        verbs = replace(item.action.verbs, words=(*item.words, *item.action.verbs.words))
+        plain_action(PlainAction(replace(item.action, verbs=verbs), False, False, False, None, item.rest, ""),
+                     clause, ctx)
+        return
+    if len(clause.steps[-1]) != 1:
+        rf.refuse(rf.waypoint_of_which(item.rest))
+    target = clause.steps.pop()
+    clause.steps.extend([s for s in steps_of(item.action, ctx).steps if s])
+    clause.steps.extend([target, []])
+
+
+@reads(StayOnFloor)
+def stay(item: StayOnFloor, clause: Clause, ctx: SentenceContext) -> None:
+    """*stay on this floor* (:func:`.negations.stay_on_floor`)."""
+    stay_on_floor(item, clause, ctx)
+
+
+@reads(OffLimits)
+def off_limits_item(item: OffLimits, clause: Clause, ctx: SentenceContext) -> None:
+    """*X is off limits* (:func:`.negations.off_limits`)."""
+    off_limits(item, clause, ctx)
+
+
+@reads(Negation)
+def negation_item(item: Negation, clause: Clause, ctx: SentenceContext) -> None:
+    """*never enter X*, *avoid X* (:func:`.negations.negation`)."""
+    negation(item, clause, ctx)
+
+
+@reads(PlainAction)
+def plain_action(item: PlainAction, clause: Clause, ctx: SentenceContext) -> None:
+    """An action: its tasks in the current step, its objects looked for in the step's rooms (not when it is
+    moved before the step, or after it: *go to the bedroom, but stop by the couch first*, *come back to
+    X*); then what the words around it say of its order."""
+    later = item.moved_first or item.goes_back or ctx.listed
+    context = [] if later else ctx.step_rooms(clause.steps[-1])
+    # "go to the kitchen, take a bottle, then ...": the kitchen's bottle if it has one
+    lenient = not context and bool(ctx.carried_rooms) and not later
+    done = steps_of(item.action, ctx, context or (ctx.carried_rooms if lenient else []), lenient)
+    steps, ctx.carried_rooms = done.steps, []
+    if ctx.strict_pending:
+        check_restriction_target(steps[0], ctx)
+        for task in steps[0]:
+            task.strict = True
+        ctx.strict_pending = False
+    if ctx.waypoint_pending or item.on_the_way:
+        ctx.waypoint_pending = False
+        insert_on_the_way(clause, steps, ctx)
+        return
+    check_revisits(steps[0], ctx.prior_steps + clause.steps[:-1], ctx)
+    trailing = "first" if done.first_left else item.trailing
+    if trailing is not None:
+        ordered_first(trailing, item, steps, clause, ctx)
+    elif item.action.last:  # "... and the office last": after everything else said
+        if item.more:
+            rf.refuse(rf.last_followed_by(item.more))
+        clause.steps[-1].extend(steps[0])
+        clause.steps.extend([*steps[1:], []])
+    else:
+        if item.goes_back and clause.steps[-1]:
+            clause.steps.append([])  # "go to the kitchen and come back to the couch": after it
+        clause.steps[-1].extend(steps[0])
+        clause.steps.extend(steps[1:])
+
+
+def ordered_first(trailing: str, item: PlainAction, steps: list[Step], clause: Clause,
+                  ctx: SentenceContext) -> None:
+    """*go to B, but go to A first / before that*: A before the steps so far; *go to A first and B*: A, then
+    what follows; *Go to B. Go to A first.* is refused (before which goal?)."""
+    if trailing == "before that" and len(clause.filled()) > 1:
+        rf.refuse(rf.before_which_trailing(item.rest))
+    if any(clause.steps):
+        clause.steps[0:0] = [s for s in steps if s]
+        return
+    if not item.more and ctx.disc.last_step:
+        rf.refuse(rf.trailing_first_later())
+    clause.steps[-1].extend(steps[0])  # "go to A first and (then) B": A, then the rest
+    clause.steps.extend(steps[1:] + [[]])
+
+
+def insert_on_the_way(clause: Clause, steps: list[Step], ctx: SentenceContext) -> None:
+    """Put ``steps`` (said *on the way*) right before the goal named last, in this sentence or the one it
+    continues; refused when that goal is not one place (on the way to which?)."""
+    new = [s for s in steps if s]
+    for holder in (clause.steps, ctx.prior_steps):
+        filled = [k for k, s in enumerate(holder) if s]
+        if filled:
+            k = filled[-1]
+            earlier = ctx.prior_steps is holder and clause.steps != [[]] and any(clause.steps)
+            if len(holder[k]) != 1 or earlier:
+                rf.refuse(rf.on_the_way_to_which())
+            holder[k:k] = new
+            return
+    rf.refuse(rf.on_the_way_to_nothing())
+
+
+def check_revisits(step: Step, earlier: list[Step], ctx: SentenceContext) -> None:
+    """A new visit (*again*, *go back to*, *return to*) must follow an earlier step of the same sequence
+    that went there; otherwise nothing orders the two visits and the mission would be misread."""
+    done = [m for s in earlier for t in s for m in t.members]
+    tasks = [t for s in earlier for t in s]
+    for task in step:
+        if task.revisit and not all(m in done or any(ctx.task_is_in(t, m) for t in tasks)
+                                    for m in task.members):
+            rf.refuse(rf.revisit_without_first_visit())

@@ -1,0 +1,154 @@
+"""From the sentences of a mission to one formula: how sentences join (a new goal, the next steps of the
+sequence, steps before the previous sentence's), where the robot is said to start, the floors the whole
+mission stays on, and the safeguard that no phrase read is left out of the formula.
+
+Sentences are independent goals (joined by AND), except that a sentence starting with *then*, *after
+that*, *finally* ... continues the sequence of the previous one, and one starting with *before that* or
+*first* (after a sentence with goals) comes before it; a sentence ending in *last* comes after all the
+goals before it.
+"""
+
+from __future__ import annotations
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.grounding.attachments import describes
+from sgplan.llm.offline.grounding.discourse import Discourse, Grounded
+from sgplan.llm.offline.grounding.floors import floors_of
+from sgplan.llm.offline.meaning.compose import Clause, conj
+from sgplan.llm.offline.meaning.context import SentenceContext
+from sgplan.llm.offline.meaning.sentences import Meaning, read_sentence_body
+from sgplan.llm.offline.nouns import Head
+from sgplan.llm.offline.syntax import Reader, parse_sentence
+from sgplan.llm.offline.syntax.preamble import stated_start as said_start
+from sgplan.llm.offline.syntax.reader import Match, Refusal
+from sgplan.llm.offline.syntax.tree import MissionSentence, RelativeFloor, StatedStart, StayOnFloor, nodes
+from sgplan.logic.formula import Always, Formula, atoms
+
+
+def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
+    """The formula of the mission whose sentences are ``readers`` (see the module docstring)."""
+    for r in readers:
+        start = said_start(r)
+        if start is not None:
+            stated_start(start, disc)
+    disc.confined = confinement(readers, disc)
+    parts: list[Meaning] = []
+    for r in readers:
+        parsed = parse_sentence(r, lambda a: describes(a, disc))
+        if isinstance(parsed, Refusal):
+            rf.refuse(parsed.message)
+        assert parsed is not None
+        if isinstance(parsed.node, MissionSentence):
+            join(parsed.node, parts, disc)
+    formulas = [p.formula() if isinstance(p, Clause) else p for p in parts]
+    present = [f for f in formulas if f is not None]
+    if not present:
+        rf.refuse(rf.no_goal_at_all())
+    formula = conj(present)
+    check_all_used(formula, disc.references)
+    return formula
+
+
+def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> None:
+    """Read ``sentence`` and join it to the sentences before it (``parts``)."""
+    previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
+    precedes = sentence_precedes(sentence, parts)
+    continues = sentence.lead.sequence
+    ctx = SentenceContext(disc, sentence.span.start, strict_pending=sentence.lead.strict,
+                          waypoint_pending=sentence.lead.waypoint, listed=sentence.announced is not None)
+    disc.announced = sentence.announced.head if sentence.announced is not None else None
+    ctx.prior_steps = previous.steps if continues and previous is not None else []
+    known = len(disc.references)
+    result = read_sentence_body(sentence.body, ctx)
+    if sentence.announced is not None and sentence.announced.head is not None:
+        check_announced(disc.references[known:], sentence.announced.head, sentence.announced.said)
+    if sentence.opener and not (isinstance(result, Clause) and not any(result.steps) and result.constraints
+                                and all(isinstance(c, Always) for c in result.constraints)):
+        rf.refuse(rf.whole_mission_opener(sentence.opener))
+    if ctx.said_last and not continues and not precedes and previous is not None:
+        continues = True  # "Go to the office last.": after the goals of the sentences before
+    if (isinstance(result, Clause) and not any(result.steps) and not result.constraints and previous
+            and sentence.says_order and len(previous.filled()) > 1):
+        rf.refuse(rf.order_after_ordered_goals())
+    if precedes:
+        if previous is None or not isinstance(result, Clause):
+            rf.refuse(rf.precedes_needs_goals())
+        previous.steps[0:0] = result.filled()
+        previous.constraints.extend(result.constraints)
+    elif continues and previous is not None and isinstance(result, Clause):
+        previous.steps.extend(result.steps)
+        previous.constraints.extend(result.constraints)
+    else:
+        parts.append(result)
+    if isinstance(result, Clause) and any(result.steps):
+        disc.last_step = result.filled()[-1]
+
+
+def check_announced(phrases: list[Grounded], head: Head, said: str) -> None:
+    """Every phrase of a list announced as *two rooms:* / *these plants:* must be such a room or object."""
+    for g in phrases:
+        if g.role != "qualifier" and any(e.kind != head.kind or (head.categories and e.category not in
+                                                                 head.categories) for e in g.entities):
+            rf.refuse(rf.not_announced(g.phrase, said))
+
+
+def sentence_precedes(sentence: MissionSentence, parts: list[Meaning]) -> bool:
+    """Whether a sentence starting with *before that* or *first* comes before the previous one (it does
+    after a sentence with goals); refused when it is not clear before which goals."""
+    if sentence.precedes is None:
+        return False
+    said = sentence.precedes.rstrip(" ,")
+    has_goals = [p for p in parts if not isinstance(p, Clause) or any(p.steps)]
+    if not said.lower().endswith("before that") and not has_goals:
+        return False  # "First, go to X": a first sentence
+    if len(has_goals) != 1 or (said.lower().startswith("before") and isinstance(has_goals[0], Clause)
+                               and len(has_goals[0].filled()) > 1):
+        rf.refuse(rf.precedes_which(sentence.precedes))
+    return True
+
+
+def stated_start(start: StatedStart, disc: Discourse) -> None:
+    """A sentence that only says where the robot is (*I'm downstairs right now*): the start floor, used by
+    *upstairs*, *this floor* ...; refused when it contradicts the known start floor, or when *upstairs* /
+    *downstairs* do not name one floor."""
+    n = disc.vocab.num_floors
+    if isinstance(start.floor, RelativeFloor):
+        extreme = 0 if start.floor.word == "downstairs" else n - 1
+        if n != 2 and disc.start_floor != extreme:
+            rf.refuse(rf.stated_floor_unclear(start.floor.word, disc.vocab.building_name, n, extreme))
+        floor = extreme
+    else:
+        floor = min(floors_of(start.floor, disc).floors)
+    if disc.start_floor is not None and disc.start_floor != floor:
+        rf.refuse(rf.stated_floor_contradicts(start.said, floor, disc.start_floor))
+    disc.start_floor = floor
+
+
+def confinement(readers: list[Reader], disc: Discourse) -> frozenset[int] | None:
+    """The floors the whole mission is confined to by *stay on <floor>* / *don't leave <floor>* anywhere in
+    it (read before the rest, so that "go to the toilet, staying on this floor" grounds *the toilet* on
+    that floor); ``None`` when the mission says no such thing. A sentence with *until*, *before*, *if* ...
+    confines nothing (the stay may be for part of the mission)."""
+    confined: frozenset[int] | None = None
+    for r in readers:
+        if set(r.words) & lx.TIME_SCOPED:
+            continue
+        parsed = parse_sentence(r, lambda a: True)
+        if not isinstance(parsed, Match):
+            continue
+        for stay in nodes(parsed.node, StayOnFloor):
+            floors = floors_of(stay.floor, disc).floors
+            confined = floors if confined is None else confined & floors
+    return confined
+
+
+def check_all_used(formula: Formula, phrases: list[Grounded]) -> None:
+    """The second safeguard against a silently dropped clause (the first: every sentence is read to its
+    end): every place the text names as a goal, a place to avoid or a condition must show up in the formula
+    (qualifiers such as *the kitchen* in *the sink in the kitchen* only narrow another phrase). A phrase
+    that vanished is refused, named."""
+    used = set(atoms(formula))
+    for g in phrases:
+        if g.role != "qualifier" and g.entities and not any(e.action in used for e in g.entities):
+            rf.refuse(rf.dropped(g.phrase))

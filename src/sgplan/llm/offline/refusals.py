@@ -1,0 +1,569 @@
+"""Every refusal of the offline translator, worded in one place.
+
+A refusal names the words it could not read and says what would be read instead; most end with
+:data:`REPHRASE`. The syntax returns them as :class:`.syntax.reader.Refusal` values, grounding raises them as
+:class:`~sgplan.errors.MissionError` (:func:`refuse`); nothing else in the translator words a refusal.
+Sections follow the pipeline: tokens and sentences, noun phrases, actions, order, negation, conditions,
+grounding (what a phrase matches), back-references, floors.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import NoReturn
+
+from sgplan.errors import MissionError
+from sgplan.llm.offline.lexicon import plural
+from sgplan.llm.offline.names import Entity, head_word
+
+REPHRASE = "; rephrase the mission (see docs/offline.md for the understood English)"
+
+
+def rephrase(message: str) -> str:
+    """``message`` followed by the pointer to the understood English."""
+    return message + REPHRASE
+
+
+def refuse(message: str) -> NoReturn:
+    """Raise the refusal ``message`` (one of this module's) as a :class:`~sgplan.errors.MissionError`."""
+    raise MissionError(message)
+
+
+# ------------------------------------------------------------------------------ sentences and leftovers
+def left_over(words: str) -> str:
+    return rephrase(f"'{words}' was not understood (the sentence was read only up to there), and no part of "
+                    "a mission is ever dropped")
+
+
+def cannot_understand(what: str) -> str:
+    return rephrase(f"cannot understand {what}")
+
+
+def cannot_understand_word(word: str, rest: str) -> str:
+    return rephrase(f"cannot understand '{word}' in {rest}")
+
+
+def no_goal_at_all() -> str:
+    return rephrase("the mission names no room or object to visit or avoid")
+
+
+def dropped(phrase: str) -> str:
+    return rephrase(f"'{phrase}' was read but is not part of the mission that would be planned, and no part "
+                    "of a mission is ever dropped")
+
+
+def whole_mission_opener(opener: str) -> str:
+    return rephrase(f"'{opener}, ...' is understood only before what to avoid for the whole mission ('"
+                    f"{opener}, keep out of the kitchen')")
+
+
+def order_after_ordered_goals() -> str:
+    return rephrase("'the order does not matter' after goals given in order; say which it is")
+
+
+# ------------------------------------------------------------------------------------------ noun phrases
+def expected_phrase_at_end() -> str:
+    return rephrase("expected a room or object at the end of the sentence")
+
+
+def expected_phrase_after(word: str) -> str:
+    return rephrase(f"expected a room or object after '{word}' at the end of the sentence")
+
+
+def expected_phrase(verbs: str, rest: str) -> str:
+    what = f"after '{verbs}'" if verbs else "here"
+    return rephrase(f"expected a room or object {what}, found {rest}")
+
+
+def unknown_noun(word: str, rooms: Sequence[str], objects: Sequence[str]) -> str:
+    return rephrase(f"no room or object of this scene is called '{word}' (rooms: {', '.join(rooms)}; "
+                    f"objects: {', '.join(objects)})")
+
+
+def unknown_key(key: str) -> str:
+    return rephrase(f"'{key}' is not a room or object of this scene")
+
+
+def one_without_kind(word: str) -> str:
+    return rephrase(f"'{word}' does not refer to a kind of room or object named just before")
+
+
+def ordinal_not_of_a_floor(word: str) -> str:
+    return rephrase(f"ordinals like '{word}' are only understood for floors ('the bathroom on the {word} "
+                    "floor')")
+
+
+def demonstrative_not_before_noun(word: str, after: str) -> str:
+    return rephrase(f"'{word} {after}' refers back to something named before, and is understood only "
+                    f"directly before a room or object ('{word} bathroom'); name it instead")
+
+
+def choosing_a_number(number: str) -> str:
+    return rephrase(f"'{number} ...': choosing a number of them is not understood; say 'any of the ...' or "
+                    "'all the ...'")
+
+
+def nor_outside_negation(said: str) -> str:
+    return rephrase(f"'nor' in '{said}' is understood only in 'never enter / neither A nor B' (each of them "
+                    "forbidden)")
+
+
+def mixes_and_or(said: str) -> str:
+    return rephrase(f"'{said}' mixes 'and' and 'or'; split it into two sentences")
+
+
+def group_in_a_choice(said: str) -> str:
+    return rephrase(f"'{said}' joins a group with 'or'; say 'any of ...'")
+
+
+def announced_count(said: str, count: int, items: int) -> str:
+    follow = "follows" if items == 1 else "follow"
+    return rephrase(f"'{said}' announces {count}, but {items} {follow} after the colon; name them all, or "
+                    f"leave the number out")
+
+
+def not_announced(phrase: str, said: str) -> str:
+    return rephrase(f"'{phrase}' is not one of '{said}' announced before the colon; name the list again")
+
+
+def named_twice(phrase: str) -> str:
+    return rephrase(f"'{phrase}' is named twice in one list")
+
+
+def remark_after_each(remark: str, said: str) -> str:
+    return rephrase(f"'{remark}' after '{said}', which means each of them: say 'any of ...' or 'A or B' for "
+                    "a choice")
+
+
+def only_a_room_holds(said: str) -> str:
+    return rephrase(f"'{said}': only a room can hold an object ('the teddy bear's room')")
+
+
+def only_objects_belong(said: str) -> str:
+    return rephrase(f"'{said}': only objects belong to a room")
+
+
+def object_in_room(said: str) -> str:
+    return rephrase(f"'{said}': say 'the <object> in the <room>' (rooms are not inside rooms, objects not "
+                    "inside objects)")
+
+
+def room_holds_none(said: str, room: str, thing: str) -> str:
+    return rephrase(f"'{said}': '{room}' has no {thing}; to go there as well, name it apart (e.g. '..., then "
+                    f"{room}')")
+
+
+def room_without(said: str) -> str:
+    return rephrase(f"'{said}': say 'the <room> without any <object>'")
+
+
+def room_with(said: str) -> str:
+    return rephrase(f"'{said}': say 'the <room> with the <object>'")
+
+
+def room_by_contents(phrase: str) -> str:
+    return rephrase(f"'{phrase}': a room is described by an object it holds ('the room where the book is')")
+
+
+def where_after_a_room(rest: str) -> str:
+    return rephrase("'where ...' after a room is understood as 'the room where the <object> is'; found "
+                    f"{rest}")
+
+
+def next_to_rooms_only(said: str) -> str:
+    return rephrase(f"'{said}': 'next to' is understood for rooms only (distances between objects are not "
+                    "known); name the room the object is in")
+
+
+def not_an_exception(said: str, stray: str, restricted: str) -> str:
+    return rephrase(f"'{said} {stray}': {stray!r} is not one of {restricted!r}; to forbid it, say 'never "
+                    f"enter {stray}'")
+
+
+def both_contents_or_goal(said: str, thing: str) -> str:
+    return rephrase(f"'{said}': a room with both, or '{thing}' as another goal? Say 'the ... that has both "
+                    f"...', or 'then' before '{thing}'")
+
+
+def same_room_unclear(word: str, keys: Sequence[str]) -> str:
+    return rephrase(f"'the same {word}': the place named before it is {' or '.join(keys)}; name the room")
+
+
+def undecided_description(words: Sequence[str], said: str, entities: Sequence[Entity],
+                          singular: bool) -> str:
+    listing = ", ".join(e.describe() for e in entities[:8]) + (", ..." if len(entities) > 8 else "")
+    things, word = plural(head_word(list(entities))), " ".join(words)
+    return rephrase(f"'{word}' in '{said}': the scene does not say which of its {len(entities)} {things} "
+                    f"{'is' if singular else 'are'} {' and '.join(words)} ({listing}); name the one meant "
+                    f"another way (its room or floor), or leave '{word}' out")
+
+
+def kids_room(said: str, why: str, named: str) -> str:
+    return (f"'{said}' is not a room category of this scene and {why}; candidates: {named}; name the room "
+            "(e.g. by its ID or its contents: 'the bedroom with the ...')")
+
+
+# -------------------------------------------------------------------------------------- what a phrase is
+def matches_nothing(phrase: str, kind: str, kept: str, existing: str) -> str:
+    return rephrase(f"'{phrase}' matches no {kind}{kept}{existing}")
+
+
+def qualifier_matches_nothing(phrase: str, kind: str, existing: str) -> str:
+    return rephrase(f"'{phrase}' matches no {kind} of this scene{existing}")
+
+
+def wrong_count(phrase: str, count: int, kind: str, n: int, listing: str) -> str:
+    return rephrase(f"'{phrase}' should be {count} {kind}s but matches {n}: {listing}")
+
+
+def ambiguous(phrase: str, n: int, kind: str, listing: str, hint: str) -> str:
+    return f"'{phrase}' matches {n} {kind}s: {listing}; {hint}"
+
+
+def not_in_this_step(said: str, where: str, listing: str, noun: str) -> str:
+    return rephrase(f"'{said}' is not in {where} named in the same step; it is at {listing}; say 'then' "
+                    f"between the two, or name its room ('the {noun} in the ...')")
+
+
+def there_or_anywhere(said: str, where: str, noun: str, room: str, single: str) -> str:
+    return rephrase(f"'{said}' after a condition on {where}: the ones there, or any in the building? Say "
+                    f"'the {noun} in the {room}' or 'any {single}'")
+
+
+# --------------------------------------------------------------------------------------------- actions
+def expected_action_after_floor() -> str:
+    return rephrase("expected an action after the floor to go to")
+
+
+def path_start_or_end(verb: str, particle: str) -> str:
+    return rephrase(f"'{verb} {particle} ...': where the path starts or ends cannot be required; put the "
+                    "goals in order with 'then'")
+
+
+def did_is_not_a_place(verb: str, what: str) -> str:
+    return rephrase(f"'{verb} {what}' refers to what was done, not to a place; name the rooms or objects "
+                    "again")
+
+
+def too_many_repeats(number: str) -> str:
+    return rephrase(f"'{number} times': at most 5 repeated visits are understood")
+
+
+def again_not_a_goal(said: str) -> str:
+    return rephrase(f"'{said} again': it was not a goal before")
+
+
+def revisit_without_first_visit() -> str:
+    return rephrase("'again' / 'back to' needs the first visit earlier in the same sequence (e.g. 'go to "
+                    "the kitchen, then the bedroom, then back to the kitchen')")
+
+
+def or_between_actions(rest: str) -> str:
+    return rephrase(f"'or' between actions is not understood at {rest} (say 'visit A or B' with one verb)")
+
+
+# ----------------------------------------------------------------------------------------------- order
+def before_which(rest: str) -> str:
+    return rephrase(f"'before that' at {rest}: it is not clear which of the earlier goals this comes before; "
+                    "put the goals in the order they must be done (with 'then')")
+
+
+def before_which_trailing(rest: str) -> str:
+    return rephrase(f"'before that' at {rest}: it is not clear which of the earlier goals this comes before; "
+                    "put the goals in the order they must be done")
+
+
+def precedes_which(said: str) -> str:
+    return rephrase(f"'{said}': it is not clear which of the earlier goals this comes before; put the goals "
+                    "in the order they must be done (with 'then')")
+
+
+def precedes_needs_goals() -> str:
+    return rephrase("'before that' / 'first' in a later sentence needs a plain list of goals in this "
+                    "sentence and the one before it")
+
+
+def trailing_first_later() -> str:
+    return rephrase("a trailing 'first' in a later sentence: start the sentence with 'Before that' or put "
+                    "the goals in the order they must be done")
+
+
+def last_followed_by(rest: str) -> str:
+    return rephrase(f"'last' followed by {rest}: put the goals in the order they must be done (with 'then'), "
+                    "or say 'finally'")
+
+
+def on_the_way_to_which() -> str:
+    return rephrase("'on the way' after several goals: it is not clear on the way to which; put the goals "
+                    "in the order they must be done (with 'then')")
+
+
+def on_the_way_to_nothing() -> str:
+    return rephrase("'on the way' needs the goal it is on the way to, named before it")
+
+
+def on_your_way_there() -> str:
+    return rephrase("'on your way there': say 'before going to X, ...' or put the goals in order")
+
+
+def waypoint_of_which(rest: str) -> str:
+    return rephrase(f"it is not clear which of the goals {rest} is on the way to; say 'go to X, then Y'")
+
+
+def after_all_of_which(said: str) -> str:
+    return rephrase(f"'{said}': after the goals of this sentence only, or of the whole mission? Say 'then' "
+                    "and name what comes after what")
+
+
+def after_all_count(said: str, goals: int, number: int) -> str:
+    return rephrase(f"'{said}': this sentence names {goals} goals before it, not {number}")
+
+
+def after_all_of_nothing(said: str) -> str:
+    return rephrase(f"'{said}': no goal is named before it in this sentence")
+
+
+def done_that_of_nothing() -> str:
+    return rephrase("'done that' does not refer to any goal named before it")
+
+
+def only_after_needs(what: str = "'only after X, ...'") -> str:
+    return rephrase(f"{what} needs one condition and one step after the comma")
+
+
+def only_after_two_readings(said: str, room: str, thing: str) -> str:
+    return rephrase(f"'only after' about '{said}': it can mean not entering {room} before that, or not "
+                    f"reaching {thing} before that; say 'only enter {room} after ...' or 'reach {thing} only "
+                    "after ...'")
+
+
+def only_before_a_verb(rest: str) -> str:
+    return rephrase(f"'only' before a verb is understood as 'only <do X> after Y'; found {rest}")
+
+
+# -------------------------------------------------------------------------------------------- negation
+def never_go_back() -> str:
+    return rephrase("'never go back / return to X' (after a first visit) is not understood; say 'never "
+                    "enter X' for the whole mission")
+
+
+def partial_prohibition(rest: str) -> str:
+    return rephrase(f"a prohibition for part of the mission ({rest}) is not understood; say 'never enter X' "
+                    "(the whole mission) or 'do not enter X until ...'")
+
+
+def until_needs_one_goal(prefix: bool = False) -> str:
+    return rephrase("'until X, ...' needs one goal X" if prefix else "'... until X' needs one goal X")
+
+
+def until_prohibitions_only() -> str:
+    return rephrase("'until X, ...' is understood with prohibitions only (e.g. 'until you have been to the "
+                    "kitchen, stay out of the office'); put goals in their own sentence")
+
+
+def states_something(said: str) -> str:
+    return rephrase(f"'{said} ...' states something; it is not understood as a goal or a prohibition (say "
+                    "what to do, e.g. 'go to ...', 'never enter ...', '... is off limits')")
+
+
+def stay_for_the_rest(before: str, verb: str) -> str:
+    return rephrase(f"'{before} {verb} ...': staying on a floor for the rest of the mission only is not "
+                    "understood; say 'stay on ... the whole time'")
+
+
+def no_other_floor(said: str) -> str:
+    return rephrase(f"'{said}': the building has no other floor")
+
+
+# ------------------------------------------------------------------------------------------ conditions
+def negative_trigger() -> str:
+    return rephrase("negative triggers ('whenever you do not ...') are not understood")
+
+
+def negative_condition() -> str:
+    return rephrase("negative conditions ('if you do not ...') are not understood")
+
+
+def condition_goes_on(rest: str) -> str:
+    return rephrase(f"the condition goes on with {rest}; a condition is one action (e.g. 'if you go to the "
+                    "kitchen, ...')")
+
+
+def condition_names_nothing() -> str:
+    return rephrase("the condition names no room or object")
+
+
+def trigger_needs_one() -> str:
+    return rephrase("'whenever ...' needs one room or object (or a choice of them) as its trigger")
+
+
+def whenever_goals_only() -> str:
+    return rephrase("'whenever X, ...' is understood with goals only (e.g. 'whenever you enter the kitchen, "
+                    "open the fridge'), not with prohibitions")
+
+
+def response_needs_one() -> str:
+    return rephrase("'if you ever go to X, ... afterwards' is understood with one room or object (or a "
+                    "choice of them) as X")
+
+
+def bare_when() -> str:
+    return rephrase("'when X, Y' can mean 'after X, Y' (in order), 'whenever X, Y' (each time) or 'if X, Y' "
+                    "(X at all); say which")
+
+
+def nothing_to_do(where: str) -> str:
+    return rephrase(f"nothing to do {where}")
+
+
+def several_actions_after_condition() -> str:
+    return rephrase("a condition followed by several actions: it is not clear which of them belong to the "
+                    "condition; put the other goals in a sentence of their own")
+
+
+def several_actions_before_condition(rest: str) -> str:
+    return rephrase(f"several actions before {rest}: it is not clear which of them the condition is about; "
+                    "give the condition its own sentence ('If ..., ...')")
+
+
+# ------------------------------------------------------------------------------------- back-references
+def no_antecedent(pronoun: str, plural: bool) -> str:
+    return rephrase(f"'{pronoun}' does not refer to any {'group of ' if plural else ''}room or object named "
+                    "before it")
+
+
+def no_room_antecedent() -> str:
+    return rephrase("'it' does not refer to any room named before it")
+
+
+def next_to_an_object(phrase: str) -> str:
+    return rephrase(f"'next to it': 'it' is '{phrase}', an object; 'next to' is understood for rooms only "
+                    "(distances between objects are not known)")
+
+
+def there_refers_to_nothing() -> str:
+    return rephrase("'there' does not refer to any place named before it")
+
+
+def back_there(phrase: str) -> str:
+    return rephrase(f"'back there': 'there' is the place named last ('{phrase}'), where the robot just was; "
+                    "name the place to go back to")
+
+
+def there_is_several(phrase: str) -> str:
+    return rephrase(f"'there' refers back to '{phrase}', which is several places; name the one meant")
+
+
+def there_is_not_a_floor(noun: str, what: str) -> str:
+    return rephrase(f"'{noun} there': 'there' refers back to {what}, not a floor (rooms are not inside "
+                    "rooms); name the floor (e.g. 'on floor 1') or the room")
+
+
+def floor_or_place(said: str, floor: str, place: str) -> str:
+    return rephrase(f"'{said}' could refer back to '{floor}' or to '{place}', named after it; name the floor "
+                    "or room again")
+
+
+def group_size(said: str, phrase: str, n: int, count: int) -> str:
+    return rephrase(f"'{said}': '{phrase}' is {n}, not {count}")
+
+
+def demonstrative_size(said: str, antecedent: str, n: int, count: int) -> str:
+    return rephrase(f"'{said}' refers back to '{antecedent}', which is {n}, not {count}")
+
+
+def no_other(noun: str) -> str:
+    return rephrase(f"'the other {noun}': no {noun} was named before it")
+
+
+def choice_back_reference(said: str, phrase: str, alternative: bool) -> str:
+    what = "one alternative of a choice ('... or ...')" if alternative else "a choice"
+    return rephrase(f"'{said}' refers back to '{phrase}', {what}: which one depends on the choice the robot "
+                    "makes; name the room or object instead")
+
+
+def which_room_again(said: str, named: str) -> str:
+    return rephrase(f"'{said}': which one? Rooms named before it: {named}; name the room again")
+
+
+def demonstrative_disagrees(said: str, phrase: str, keys: str) -> str:
+    return rephrase(f"'{said}' refers back to '{phrase}' ({keys}), which does not fit what the phrase says; "
+                    "name the room or object again")
+
+
+def demonstrative_of_several(said: str, phrase: str, keys: str) -> str:
+    return rephrase(f"'{said}' refers back to '{phrase}', which is several ({keys}); say which one")
+
+
+def demonstrative_of_one(said: str, phrase: str, key: str) -> str:
+    return rephrase(f"'{said}' refers back to '{phrase}', which is one ({key}), not several; name the room "
+                    "or object again")
+
+
+def demonstrative_of_nothing(said: str, what: str) -> str:
+    return rephrase(f"'{said}' does not refer back to any {what} named before it (a demonstrative such as "
+                    f"'that' / 'this' / 'the same' names again something already said); name the {what}")
+
+
+# ---------------------------------------------------------------------------------------------- floors
+def floor_outside(said: str, building: str, floors: int) -> str:
+    return rephrase(f"'{said}': the building {building!r} has floors 0 to {floors - 1} (floor 0 is the "
+                    "lowest; 'the first floor' is floor 0)")
+
+
+def no_middle_floor(said: str, building: str, floors: int) -> str:
+    return rephrase(f"'{said}': the building {building!r} has {floors} floors (0 to {floors - 1}), so no "
+                    "middle one; say which floor")
+
+
+def needs_start_floor(said: str, building: str, listing: str, to_stay: bool = False) -> str:
+    which = "say which floor to stay on" if to_stay else "say which floor"
+    return rephrase(f"'{said}' depends on where the robot starts, which is not known here; {which} (the "
+                    f"building {building!r} has {listing})")
+
+
+def off_the_building(said: str, start: int, building: str, floors: int) -> str:
+    return rephrase(f"'{said}': the robot starts on floor {start} and the building {building!r} has floors 0 "
+                    f"to {floors - 1}")
+
+
+def relative_to_which(said: str, phrase: str, floors: str, start: int) -> str:
+    return rephrase(f"'{said}' after '{phrase}' (floors {floors}): relative to the start (floor {start}) or "
+                    "to there? Say which floor")
+
+
+def readings_differ(said: str, after: str, start: int) -> str:
+    return rephrase(f"'{said}' after '{after}': relative to the start (floor {start}) or to there? The two "
+                    "differ here; say which floor")
+
+
+def same_floor_of_a_choice(phrase: str, floors: str) -> str:
+    return rephrase(f"'the same floor' as '{phrase}', which is on floors {floors}: the floor depends on "
+                    "which one is chosen; say which floor, or give each choice its own sentence")
+
+
+def same_floor_of_nothing() -> str:
+    return rephrase("'the same floor' / 'that floor' does not refer to any place named before it")
+
+
+def up_there_of_nothing(word: str) -> str:
+    return rephrase(f"'{word} there' does not refer to any place named before it")
+
+
+def stay_where(word: str, where: str, building: str, floors: int) -> str:
+    return rephrase(f"'stay {word}': the start floor {where} and the building {building!r} has floors 0 to "
+                    f"{floors - 1}; say 'stay on floor k' or 'never go to floor k'")
+
+
+def stated_floor_unclear(word: str, building: str, floors: int, extreme: int) -> str:
+    return rephrase(f"'{word}': the building {building!r} has floors 0 to {floors - 1}; say which floor the "
+                    f"robot is on (e.g. 'I am on floor {extreme}')")
+
+
+def stated_floor_contradicts(said: str, floor: int, start: int) -> str:
+    return rephrase(f"'{said}' says the robot is on floor {floor}, but it starts on floor {start}; say where "
+                    "it really is")
+
+
+def not_on_kept_floors(floors: Sequence[int]) -> str:
+    return f", on the floor(s) the mission stays on ({', '.join(str(f) for f in floors)})"

@@ -1,0 +1,72 @@
+"""The syntax of the offline translator: mission text -> sentences -> typed syntax trees, no scene lookups.
+
+The grammar is a set of small named rules (:class:`.rules.RuleSet`), each reading one construct from a
+position of a sentence and returning a node, ``None`` (not here) or a refusal (:mod:`.reader`); the
+nodes are the dataclasses of :mod:`.tree`. The only thing the syntax knows of the scene is its head nouns
+(:class:`~sgplan.llm.offline.nouns.NounLexicon`), which tell a noun from a verb.
+
+Why not a parsing library: a grammar in Lark with explicit ambiguity was considered and not used. The
+language here is lexical more than structural (hundreds of fixed phrases: *in whichever order you like*,
+*make sure that you*, *at no point*), read longest-first with an order of precedence between rules, which a
+context-free grammar expresses as large alternations with its ambiguity resolved afterwards; the scene
+supplies the nouns, so the grammar would have to be rebuilt per scene; and a refusal must name the words
+that could not be read, which a PEG-style reader of ordered rules gives directly. The few real attachment
+ambiguities (*the bedroom without a plant*) are explicit in the tree instead (:class:`.tree.Attachment`)
+and decided against the scene by the caller of :func:`parse_sentence`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import replace
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline.nouns import NounLexicon
+from sgplan.llm.offline.syntax.colons import at_colons
+from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
+from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
+from sgplan.llm.offline.syntax.sentences import mission_sentence
+from sgplan.llm.offline.syntax.tree import Attachment, Sentence, nodes
+from sgplan.llm.offline.text import rewrite, sentences, tokenize
+
+__all__ = ["Match", "Reader", "Refusal", "parse_sentence", "split_mission"]
+
+
+def split_mission(text: str, nouns: NounLexicon) -> list[Reader]:
+    """The sentences of ``text`` to parse, a list announced before a colon read with it (:mod:`.colons`), and
+    without leading chit-chat: sentences before the first one with content (*Hi!*), and the chit-chat clause
+    before the first comma of that one (*I'm hungry, go ...*). Sentences that say where the robot is (*I'm
+    downstairs right now.*) are kept wherever they are."""
+    tokens = rewrite(tokenize(text), lx.PHRASE_ALIASES)
+    out: list[Reader] = []
+    content = False
+    for r in at_colons([Reader(tuple(toks), text, nouns) for toks in sentences(tokens)]):
+        if stated_start(r) is not None:
+            out.append(r)
+            continue
+        if not content:
+            if is_chitchat(r, 0, len(r)):
+                continue
+            r = replace(r, toks=r.toks[leading_clause(r):])
+            content = True
+        out.append(r)
+    return out
+
+
+def parse_sentence(r: Reader, decide: Callable[[Attachment], bool]) -> Parse[Sentence]:
+    """The syntax tree of one sentence, its attachments decided by ``decide`` (the scene's reading of
+    each :class:`.tree.Attachment`, in text order): the sentence is read again with each decision until
+    none is left open."""
+    choices: dict[int, bool] = {}
+    while True:
+        start = stated_start(r)
+        if start is not None:
+            return Match(start, len(r))
+        tree = mission_sentence(replace(r, choices=dict(choices)))
+        if not isinstance(tree, Match):
+            return tree
+        open_ = next((a for a in nodes(tree.node, Attachment) if a.at not in choices), None)
+        if open_ is None:
+            return tree
+        choices[open_.at] = decide(open_)
+

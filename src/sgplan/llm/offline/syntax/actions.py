@@ -1,0 +1,258 @@
+"""Syntax rules for an action: verb words, the phrases acted on, and what follows them in the action.
+
+*visit the kitchen*, *go upstairs to the bathroom*, *take a look at the clock*, *put the bowl in the
+sink*, *go to the top floor and check a bathroom*, *the kitchen and the office, the office first*, *the
+kitchen twice, with a visit to the office in between*, *go to the kitchen to turn it off*. The verb does
+not change the goal (a room means being in it, an object being within reach of it), so any word is
+accepted as a verb except the refused ones and the words of the grammar.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.syntax.floors import floor_count, floor_offset
+from sgplan.llm.offline.syntax.links import skip_subject
+from sgplan.llm.offline.syntax.phrases import phrase_list
+from sgplan.llm.offline.syntax.qualifiers import remark_ahead
+from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
+from sgplan.llm.offline.syntax.tree import (
+    Action,
+    FloorOffset,
+    FloorPlace,
+    FloorSpec,
+    PhraseList,
+    RelativeFloor,
+    Repeat,
+    Span,
+    VerbWords,
+)
+
+
+def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
+    """Verb words and the phrases acted on at ``i`` (``in_condition``: the action of a condition, where
+    *end up in X* just means being in X), with its tail (:func:`action_tail`)."""
+    start = i
+    verbs = verb_words(r, i, in_condition)
+    if not isinstance(verbs, Match):
+        return verbs
+    i = verbs.end
+    if not r.np_starts(i) and verbs.node.floor is not None and r.word(i) in ("and", ",", "then"):
+        moved = moved_action(r, r.skip(i, ("and", ",", "then")), in_condition)  # "go upstairs and check X"
+        if not isinstance(moved, Match):
+            return moved
+        node = Action(r.span(start, moved.end), verbs.node, None, moved.node, in_condition=in_condition)
+        return Match(node, moved.end)
+    if not r.np_starts(i):
+        return Refusal(rf.expected_phrase(" ".join(verbs.node.words), r.rest(i)))
+    phrases = phrase_list(r, i, "goal")
+    if not isinstance(phrases, Match):
+        return phrases
+    node = Action(r.span(start, phrases.end), verbs.node, phrases.node, in_condition=in_condition)
+    moved = floor_move(r, phrases.end, phrases.node, in_condition)
+    if moved is not None:
+        return moved if isinstance(moved, Refusal) else Match(replace(node, moved=moved.node), moved.end)
+    return action_tail(r, phrases.end, node)
+
+
+def moved_action(r: Reader, i: int, in_condition: bool) -> Parse[Action]:
+    """The action after a floor move (*go upstairs and ...*): every goal of it is on that floor."""
+    if i >= len(r):
+        return Refusal(rf.expected_action_after_floor())
+    return action(r, i, in_condition)
+
+
+def floor_move(r: Reader, i: int, phrases: PhraseList, in_condition: bool) -> Parse[Action]:
+    """After a floor named as the one place to go (*go (up) to the top floor*), a connective and an action:
+    the floor is where that action is done, not a goal of its own (*and check a bathroom (there)*)."""
+    if len(phrases.items) != 1 or not isinstance(phrases.items[0], FloorPlace):
+        return None
+    k = r.skip(i, (",", "and", "then"))
+    if k == i or not (r.word(k) in lx.POSITIVE_VERBS or r.np_starts(k)):
+        return None
+    return moved_action(r, k, in_condition)
+
+
+def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
+    """The words before the phrase: the verb, whatever it is, unless it is refused or a word of the grammar
+    (*always*, *floor*, *next* out of place are refused, not verbs); and a floor said among them (*go
+    upstairs to ...*, *go down two floors to ...*)."""
+    seen: list[str] = []
+    floor: FloorSpec | None = None
+    floor_span: Span | None = None
+    while i < len(r) and (not r.np_starts(i) or verb_idiom(r, i)) and r.word(i) not in lx.VERB_STOPS:
+        w = r.word(i)
+        if floor is not None and (r.phrase(i, lx.WHOLE_MISSION) or r.phrase(i, lx.TIME_FILLERS)):
+            break  # "don't go downstairs at any point"
+        idiom = verb_idiom(r, i)
+        if idiom:  # "go all the way up to", "take a look at", "wash your hands at": part of the verb
+            seen += r.words[i : i + idiom]
+            i += idiom
+            continue
+        refused = refused_verb(r, i, in_condition)
+        if refused is not None:
+            return refused
+        if w in lx.MODALS and r.word(i + 1) not in lx.NEGATING:
+            seen.append(w)  # "may you go into ...", "I do want you to visit ...": no negation
+            i += 1
+            continue
+        if r.phrase(i, lx.NEG_STARTS) is not None:
+            break
+        counted = floor_said(r, i)
+        if counted is not None:  # "go two floors down to the garage": the garage on that floor
+            floor, floor_span, i = counted.node, r.span(i, counted.end), counted.end
+            continue
+        if w in lx.RELATIVE_FLOORS:  # "go upstairs to the bathroom": the bathroom on that floor
+            floor, floor_span = RelativeFloor(w), r.span(i, i + 1)
+        elif w not in lx.POSITIVE_VERBS and (w in lx.STRUCTURAL or not w.isalpha()):
+            return Refusal(rf.cannot_understand_word(w, r.rest(i)))
+        seen.append(w)
+        i += 1
+    return Match(VerbWords(tuple(seen), floor, floor_span), i)
+
+
+def refused_verb(r: Reader, i: int, in_condition: bool) -> Refusal | None:
+    """A verb the translator cannot express (*leave*, *wait*; *start in X*; *do it twice*), refused."""
+    w, nxt = r.word(i), r.word(i + 1)
+    if w in lx.REFUSED_WORDS:
+        return Refusal(rf.cannot_understand(lx.REFUSED_WORDS[w]))
+    if w in lx.START_END_VERBS and nxt in lx.START_END_PARTICLES and not in_condition:
+        return Refusal(rf.path_start_or_end(w, nxt))
+    if w in ("do", "does", "did", "doing") and nxt in lx.DONE_WHAT:
+        return Refusal(rf.did_is_not_a_place(w, nxt))
+    return None
+
+
+def floor_said(r: Reader, i: int) -> Match[FloorOffset] | None:
+    """Floors counted from the start in a verb slot: *the floor above*, *two floors down*, *up a floor*."""
+    offset = floor_offset(r, i)
+    if offset is not None:
+        return offset
+    w = r.word(i)
+    turned = floor_count(r, i + 1) if w in ("up", "down") else None
+    if turned is None or r.word(i + 2) not in lx.FLOOR_PLURALS:
+        return None  # "go down two floors", "go up a floor"
+    said = f"{w} {r.word(i + 1)} {r.word(i + 2)}"
+    return Match(FloorOffset(turned * lx.FLOOR_DIRECTIONS[w], said), i + 3)
+
+
+def verb_idiom(r: Reader, i: int) -> int:
+    """How many words at ``i`` belong to the verb although they look like a noun phrase: *all the way*, *a
+    look* / *your way* (*take a look at*, *make your way to*), a body part before a place (*wash your hands
+    at the sink*); 0 if none."""
+    idiom = r.phrase(i, lx.VERB_IDIOMS)
+    if idiom is not None:
+        return len(idiom)
+    if (r.word(i) in lx.BODY_PART_OWNERS and r.word(i + 1).isalpha() and r.head(i + 1) is None
+            and r.word(i + 2) in lx.BODY_PART_LINKS and r.np_starts(i + 3)):
+        return 2
+    return 0
+
+
+def action_tail(r: Reader, i: int, node: Action) -> Parse[Action]:
+    """What follows the phrases in the same action: *first*, a choice remark, an order remark, *last*,
+    *again* / *twice*, a destination, a purpose, *there*, a time filler."""
+    if r.word(i) in lx.FIRST:
+        node, i = replace(node, first=True), i + 1
+    remark = remark_ahead(r, i)
+    if remark is not None:
+        node, i = replace(node, remark=remark), i + len(remark)
+    comma = 1 if r.word(i) == "," else 0
+    ordered = r.phrase(i + comma, lx.ORDER_MODIFIERS)
+    if ordered is not None:
+        node, i = replace(node, ordered=True), i + comma + len(ordered)
+    elif node.phrases is not None and node.phrases.comma_list and r.phrase(i + comma, lx.THEN_NEXT):
+        node = replace(node, ordered=True)  # "the fridge, the oven, then the couch": as written
+    if r.word(i) in lx.LAST and r.word(i + 1) in ("", ","):
+        node, i = replace(node, last=True), i + 1  # "the kitchen and the office last"
+    repeat = repeats(r, i)
+    if not isinstance(repeat, Match):
+        return repeat
+    if repeat.node is not None:
+        node, i = replace(node, repeat=repeat.node), repeat.end
+    return destination_and_purpose(r, i, node)
+
+
+def repeats(r: Reader, i: int) -> Parse[Repeat | None]:
+    """*again*, *twice* / *two times* / *3 times* (at most :data:`.lexicon.MAX_REPEATS`), and after *twice*
+    *(, ) with a trip to Y in between* / *, visiting Y in between*."""
+    again = r.word(i) == "again"
+    i += 1 if again else 0
+    times = 1
+    n = lx.NUMBER_WORDS.get(r.word(i)) or (int(r.word(i)) if r.word(i).isdigit() else None)
+    if r.word(i) == "twice":
+        times, i = 2, i + 1
+    elif n is not None and r.word(i + 1) == "times":
+        if not 1 <= n <= lx.MAX_REPEATS:
+            return Refusal(rf.too_many_repeats(r.word(i)))
+        times, i = n, i + 2
+    between = in_between(r, i) if times == 2 else None
+    if between is not None:
+        return Match(Repeat(again, times, between.node), between.end)
+    return Match(Repeat(again, times, None) if again or times > 1 else None, i)
+
+
+def in_between(r: Reader, i: int) -> Match[Action] | None:
+    """After *twice*: ``(,) with (a trip / visit / stop) (to) Y in between`` or ``(,) visiting Y in
+    between``: the action of Y; ``None`` when the words are not there."""
+    k = i + (1 if r.word(i) == "," else 0)
+    if r.word(k) == "with":
+        k += 1
+        k += 2 if r.word(k) in ("a", "an") and r.word(k + 1) in lx.TRIP_NOUNS else \
+            1 if r.word(k) in lx.TRIP_NOUNS else 0
+    elif not r.word(k).endswith("ing") or r.word(k) in lx.STRUCTURAL:
+        return None
+    visit = action(r, k)
+    if not isinstance(visit, Match) or visit.node.phrases is None:
+        return None
+    end = visit.end
+    if not (r.at(end, "in", "between") or r.word(end) == "between"):
+        return None
+    end += 2 if r.word(end) == "in" else 1
+    tail = r.phrase(end, lx.BETWEEN_TAIL)
+    return Match(visit.node, end + (len(tail) if tail else 0))
+
+
+def particles(r: Reader, i: int) -> int:
+    """A particle closing an action (*turn it off*, *pick it up*)."""
+    if r.word(i) in lx.PARTICLES and (r.word(i + 1) in ("", ",", "and", "then", "to")
+                                      or r.phrase(i + 1, lx.NEG_STARTS)):
+        return i + 1
+    return i
+
+
+def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
+    """*put X in Y* / *take X to Y* / *go from X to Y* (Y: the destination), *... to turn them off* (a
+    purpose clause), then *there* and a time filler."""
+    i = particles(r, i)
+    carry = bool(set(node.verbs.words) & lx.CARRY_VERBS)
+    into = lx.CARRY_DESTINATION_WORDS if carry else lx.DESTINATION_WORDS
+    if r.word(i) in into and r.np_starts(i + 1):
+        dest = phrase_list(r, i + 1, "goal")
+        if not isinstance(dest, Match):
+            return dest
+        node, i = replace(node, destination=dest.node), dest.end
+    i = particles(r, i)
+    if r.word(i) == "to" and not r.np_starts(i + 1):  # purpose clause: "... to turn them off"
+        verbs = verb_words(r, i + 1, node.in_condition)
+        if not isinstance(verbs, Match):
+            return verbs
+        i = verbs.end
+        if r.np_starts(i):
+            purpose = phrase_list(r, i, "goal")
+            if not isinstance(purpose, Match):
+                return purpose
+            node, i = replace(node, purpose=purpose.node), particles(r, purpose.end)
+        elif not verbs.node.words:
+            return Refusal(rf.cannot_understand(r.rest(i)))
+    i += 1 if r.word(i) == "there" else 0  # "look at the TV there": where the step is
+    filler = r.phrase(i, lx.TIME_FILLERS)
+    i += len(filler) if filler else 0
+    return Match(replace(node, span=Span(node.span.start, r.toks[i - 1].end)), i)
+
+
+def after_conjunction(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
+    """The action after *after*, *before*, *once*, *until*, *if* ...: its subject skipped first."""
+    return action(r, skip_subject(r, i), in_condition)

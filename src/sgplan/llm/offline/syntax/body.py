@@ -1,0 +1,286 @@
+"""Syntax rules for the items of a sentence body: actions, prohibitions, sequence words, *first*, *via*,
+*stay on this floor*, *X is off limits*, *after all three* ...
+
+:func:`body` reads items with the rules of :data:`ITEMS` (tried in order at each position) until the body
+ends: at the end of the sentence, or before a condition (*if*, *whenever*, *only after*), which the
+sentence rules read.
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.syntax.actions import action, after_conjunction
+from sgplan.llm.offline.syntax.links import closing_at, done_words, link
+from sgplan.llm.offline.syntax.negation import negation, off_limits, stay_on_floor
+from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
+from sgplan.llm.offline.syntax.rules import RuleSet
+from sgplan.llm.offline.syntax.tree import (
+    AfterAll,
+    Body,
+    CommaSequence,
+    DoneWith,
+    GoalsFirst,
+    InlineAfter,
+    InlineBefore,
+    Item,
+    PlainAction,
+    Waypoint,
+)
+
+
+class Skip:
+    """Words of a body that say nothing here (a conjunction, a trailing *after*)."""
+
+
+class End:
+    """The body ends here (a condition follows)."""
+
+
+ITEMS: RuleSet[Item | Skip | End] = RuleSet("body item")
+Said = tuple[Item, ...]
+"""The items read before, in the body."""
+ItemParse = Parse[Item | Skip | End]
+
+
+def body(r: Reader, i: int, only_verb: bool = False) -> Parse[Body]:
+    """The items from ``i`` to the end of the body (``only_verb``: the body of *only <do X> after Y*, which
+    ends at *after*)."""
+    items: list[Item] = []
+    while i < len(r):
+        found = ITEMS.first(r, i, tuple(items), only_verb)
+        if not isinstance(found, Match):
+            return found if found is not None else Refusal(rf.cannot_understand(r.rest(i)))
+        if isinstance(found.node, End):
+            break
+        if not isinstance(found.node, Skip):
+            items.append(found.node)
+        i = found.end
+    return Match(Body(tuple(items)), i)
+
+
+@ITEMS.rule("after all of them")
+def after_all(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*(and / ,) after all three / after all of them / once you've done those (,)*."""
+    k = i + (2 if r.at(i, ",", "and") else 1 if r.word(i) in (",", "and") else 0)
+    phrase = r.phrase(k, lx.AFTER_ALL)
+    if phrase is None:
+        return None
+    n = k + len(phrase)
+    number = lx.NUMBER_WORDS.get(r.word(n))
+    n += 1 if number is not None else 0
+    n += 2 if r.at(n, "of", "them") or r.at(n, "of", "those") else 0
+    if number is None and n == k + len(phrase) and phrase[-1] in ("all", "both") and r.np_starts(n):
+        return None  # "after all the bedrooms": an ordinary noun phrase
+    return Match(AfterAll(r.quote(k, n), number), n + (1 if r.word(n) == "," else 0))
+
+
+@ITEMS.rule("only after that")
+def strict_link(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*..., and only after that B*: B strictly after what came before."""
+    return link(r, i) if r.phrase(i, lx.STRICT_SEQ) else None
+
+
+@ITEMS.rule("conjunction before only after")
+def before_only_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*..., but only after X* / *..., but not before X*: the conjunction says nothing."""
+    if r.word(i) in ("but", "and", ",") and r.phrase(i + 1, lx.ONLY_AFTER):
+        return Match(Skip(), i + 1)
+    return None
+
+
+@ITEMS.rule("when done with X")
+def done_with(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*... when done with X*: X before the step it is said in."""
+    done = done_words(r, i)
+    if not done or r.word(i + done) != "with" or not r.np_starts(i + done + 1):
+        return None
+    found = action(r, i + done + 1)
+    return Match(DoneWith(found.node), found.end) if isinstance(found, Match) else found
+
+
+@ITEMS.rule("on the way / once done")
+def way_link(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*on the way, X* / *and on your way back, X* / *once you're done, X*: a sequence link."""
+    way = r.phrase(i + (1 if r.word(i) in ("and", ",") else 0), lx.ON_THE_WAY)
+    if not done_words(r, i) and way is None:
+        return None
+    found = link(r, i)
+    return found if not isinstance(found, Match) or found.node.sequence else None
+
+
+@ITEMS.rule("sign-off or aside")
+def closing(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*thanks a lot*, *cheers*, *if possible*, *no rush* closing a clause: nothing to do (before a condition
+    is looked for: *if possible* is none)."""
+    end = closing_at(r, i)
+    return Match(Skip(), end) if end else None
+
+
+@ITEMS.rule("condition follows")
+def condition_follows(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """The body ends before *if*, *when*, *only if*, *whenever*, *only after* (and, in *only <do X> after
+    Y*, before *after*)."""
+    if (r.at(i, *lx.ONLY_IF) or r.phrase(i, lx.CONDITION_WORDS) or r.phrase(i, lx.ONLY_AFTER)
+            or r.phrase(i, lx.WHENEVER) or (only_verb and r.word(i) in ("after", "once"))):
+        return Match(End(), i)
+    return None
+
+
+@ITEMS.rule("trailing after")
+def trailing_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*..., go to the dining room after.*: nothing more."""
+    return Match(Skip(), i + 1) if r.word(i) in lx.TRAILING_AFTER and r.word(i + 1) in ("", ",") else None
+
+
+@ITEMS.rule("but first")
+def goals_first(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*..., but first (go to) X* / *..., and before that X*: X before the steps said so far."""
+    before_that = r.at(i, *lx.BEFORE_THAT)
+    if not before or not (r.word(i) in lx.FIRST or before_that):
+        return None
+    j = i + (2 if before_that else 1)
+    j += 2 if r.at(j, "of", "all") else 0
+    j += 1 if r.word(j) == "," else 0
+    found = after_conjunction(r, j)
+    if not isinstance(found, Match):
+        return found
+    return Match(GoalsFirst(before_that, found.node, r.rest(i)), found.end)
+
+
+@ITEMS.rule("A, B, then C")
+def comma_sequence(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """At a comma between two actions (*go to the kitchen, pop up to the bedroom, then ...*): a *then*
+    later in the sentence makes the comma-joined actions a sequence too, as people write them."""
+    nxt = r.word(i + 1)
+    if (r.word(i) != "," or not before or not nxt.isalpha() or r.np_starts(i + 1) or nxt in lx.STRUCTURAL
+            or (nxt in lx.FILLERS and nxt not in lx.POSITIVE_VERBS) or nxt in lx.REFUSED_WORDS
+            or r.phrase(i + 1, lx.NEG_STARTS) or r.phrase(i + 1, lx.WAYPOINT)):
+        return None
+    for j in range(i + 1, len(r)):
+        if r.word(j) in ("if", "whenever", "until", "unless", "when", "while", "order", "whichever"):
+            return None  # a condition, or "(in any order)" / "whichever first": not a sequence
+        if r.phrase(j, lx.THEN_NEXT) and r.word(j - 1) in (",", "and"):
+            return Match(CommaSequence(), i + 1)
+    return None
+
+
+@ITEMS.rule("link")
+def link_item(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """Fillers and sequence words (*then*, *after that*, *please*)."""
+    found = link(r, i)
+    if not isinstance(found, Match) or found.end == i:
+        return found if isinstance(found, Refusal) else None
+    return found if found.node.sequence else Match(Skip(), found.end)
+
+
+@ITEMS.rule("stay on this floor")
+def stay_item(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*stay on this floor*, *keep to floor 1* (:func:`.negation.stay_on_floor`)."""
+    return stay_on_floor(r, i, negated=False)
+
+
+@ITEMS.rule("off limits")
+def off_limits_item(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*X is off limits* (:func:`.negation.off_limits`)."""
+    return off_limits(r, i)
+
+
+@ITEMS.rule("negation")
+def negation_item(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*never enter X*, *avoid X*, *without X* (:func:`.negation.negation`)."""
+    return negation(r, i)
+
+
+@ITEMS.rule("after X")
+def inline_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*... after / once X*: X before the step it is said in."""
+    if r.word(i) not in ("after", "once") or r.at(i, "after", "that"):
+        return None
+    found = after_conjunction(r, i + 1)
+    return Match(InlineAfter(found.node), found.end) if isinstance(found, Match) else found
+
+
+@ITEMS.rule("before X")
+def inline_before(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*A before B*: B a step after A."""
+    if r.word(i) != "before":
+        return None
+    found = after_conjunction(r, i + 1)
+    return Match(InlineBefore(found.node), found.end) if isinstance(found, Match) else found
+
+
+@ITEMS.rule("via")
+def waypoint(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*go to Y via X* / *..., passing through X*: X on the way, before the goal Y just named."""
+    k = i + (1 if r.word(i) == "," else 0)
+    words = r.phrase(k, lx.WAYPOINT)
+    if words is None or not before:
+        return None
+    found = action(r, k + len(words))
+    if not isinstance(found, Match):
+        return found
+    return Match(Waypoint(words, found.node, r.rest(k + len(words))), found.end)
+
+
+@ITEMS.rule("conjunction")
+def conjunction(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*and*, *but*, *while*, *as* between actions say nothing more; *or* between actions is refused."""
+    if r.word(i) == "or":
+        return Refusal(rf.or_between_actions(r.rest(i)))
+    return Match(Skip(), i + 1) if r.word(i) in ("and", "but", "while", "as") else None
+
+
+@ITEMS.rule("action")
+def plain_action(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """An action, and what the words around it say of its place: *first* / *before that* after it, *X on
+    the way*, *come back to X*."""
+    if r.word(i) in lx.REFUSED_WORDS:
+        return Refusal(rf.cannot_understand(lx.REFUSED_WORDS[r.word(i)]))
+    found = action(r, i)
+    if not isinstance(found, Match):
+        return found
+    j, on_the_way = found.end, False
+    way = r.phrase(j, lx.ON_THE_WAY)
+    if way is not None:
+        n = j + len(way) + (1 if r.word(j + len(way)) == "there" else 0)
+        if r.word(n) in ("", ",", "and", "then"):
+            j, on_the_way = n, True
+    rest = r.rest(j)
+    trailing_word: Literal["first", "before that"] | None = None
+    if not on_the_way and r.word(j) in lx.FIRST:
+        trailing_word, j = "first", j + 1
+    elif not on_the_way and r.at(j, *lx.BEFORE_THAT) and r.word(j + 2) in ("", ",", "and", "then"):
+        trailing_word, j = "before that", j + 2
+    j += 2 if trailing_word and r.at(j, "of", "all") else 0
+    after = link(r, found.end, sequence_too=False)
+    more = r.rest(after.end) if isinstance(after, Match) and after.end < len(r) else ""
+    return Match(PlainAction(found.node, moved_first(r, i), goes_back(r, i), on_the_way, trailing_word, rest,
+                             more), j)
+
+
+def moved_first(r: Reader, i: int) -> bool:
+    """Whether the action at ``i`` ends with *first* / *before that* / *on the way* (looked ahead, up to the
+    next comma, *then* or *but*): it is then done before the step it is written after."""
+    for j in range(i, len(r)):
+        w = r.word(j)
+        if w in lx.FIRST or (w == "before" and r.word(j + 1) == "that"):
+            return True
+        way = r.phrase(j, lx.ON_THE_WAY)
+        if way is not None and r.word(j + len(way)) in lx.ON_THE_WAY_ENDS:
+            return True  # "check the couch on the way": before the step
+        if w in (",", "then", "but", "after", "before", "if", "until", "when", "whenever"):
+            return False
+    return False
+
+
+def goes_back(r: Reader, i: int) -> bool:
+    """Whether the verb words at ``i`` say *back* / *return* (*come back to the couch*)."""
+    while r.word(i) in lx.POSITIVE_VERBS | lx.REVISIT_VERBS:
+        if r.word(i) in lx.REVISIT_VERBS:
+            return True
+        i += 1
+    return False
+

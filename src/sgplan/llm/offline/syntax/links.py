@@ -1,0 +1,123 @@
+"""Syntax rules for the words between clauses: fillers (*please*, *also*, *at some point*, *could you*),
+sequence words (*then*, *after that*, *finally*, *only after that*, *once you're done*), *on the way,*.
+
+:func:`link` reads a run of such words; the :class:`.tree.Link` it returns says whether they ordered what
+follows after what came before (and how). Only the words listed in the lexicon are skipped, so nothing
+with a meaning is ever dropped here.
+"""
+
+from __future__ import annotations
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
+from sgplan.llm.offline.syntax.tree import Link
+
+
+def link(r: Reader, i: int, sequence_too: bool = True) -> Parse[Link]:
+    """The fillers and, with ``sequence_too``, the sequence words from ``i``; always a match (possibly of
+    no words), except for *on your way there* without what is on the way, which is refused."""
+    sequence = strict = waypoint = False
+    while i < len(r):
+        step = link_word(r, i, sequence_too)
+        if isinstance(step, Refusal):
+            return step
+        if step is None:
+            break
+        kind, i = step
+        sequence = sequence or kind != "filler"
+        strict = strict or kind == "strict"
+        waypoint = waypoint or kind == "waypoint"
+    return Match(Link(sequence, strict, waypoint), i)
+
+
+def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusal | None:
+    """One filler or sequence phrase at ``i``: its kind (``filler``, ``sequence``, ``strict``,
+    ``waypoint``) and where it ends; ``None`` when the words here are not one."""
+    if sequence_too and (strict := r.phrase(i, lx.STRICT_SEQ)) is not None:
+        return "strict", i + len(strict)  # "..., and only after that B": B strictly after
+    closing = closing_at(r, i)
+    if closing:
+        return "filler", closing
+    way = r.phrase(i, lx.ON_THE_WAY)
+    if way is not None:
+        return on_the_way(r, i, way, sequence_too)
+    if sequence_too and (done := done_sequence(r, i)) is not None:
+        return "sequence", done
+    if sequence_too and (seq := r.phrase(i, lx.SEQ_WORDS)) is not None:
+        return "sequence", i + len(seq)
+    said = r.phrase(i, lx.TIME_FILLERS) or r.phrase(i, lx.POLITE)
+    if said is not None:
+        return "filler", i + len(said)
+    w = r.word(i)
+    if w == "," or (w in lx.FILLERS and w not in lx.NOT_FILLERS_HERE):
+        return "filler", i + 1
+    return None
+
+
+def on_the_way(r: Reader, i: int, way: tuple[str, ...],
+               sequence_too: bool) -> tuple[str, int] | Refusal | None:
+    """*On the way (there), stop at X* (X before the goal named last), *on your way back (up)* (after what
+    came before, like *then*); *on your way there* with nothing on the way is refused."""
+    n = len(way) + (1 if r.word(i + len(way)) == "there" else 0)
+    after = r.word(i + n)
+    verb = after in lx.POSITIVE_VERBS and after not in lx.WAY_BACK | {"to", "into"}
+    if sequence_too and (after == "," or verb):
+        return "waypoint", i + n
+    if r.word(i + len(way)) == "there":
+        return Refusal(rf.on_your_way_there())
+    if sequence_too and r.word(i + len(way)) in lx.WAY_BACK:
+        return "sequence", r.skip(i + len(way), lx.WAY_BACK)
+    return None
+
+
+def closing_at(r: Reader, i: int) -> int:
+    """The end of a sign-off or an aside that asks nothing at ``i`` (*thanks a lot*, *if possible*), which
+    must close its clause (a comma or the end of the sentence follows); 0 if there is none."""
+    said = r.phrase(i, lx.CLOSING)
+    return i + len(said) if said is not None and r.word(i + len(said)) in ("", ",") else 0
+
+
+def done_words(r: Reader, i: int) -> int:
+    """How many words at ``i`` say the previous step is over: *once you're done*, *when you have finished*,
+    *after that is done* (0 if they do not); *with X* after them is not counted."""
+    if r.word(i) not in lx.DONE_OPENERS:
+        return 0
+    n = r.skip(i + 1, lx.SUBJECT_FILLERS | lx.DONE_FILLERS) - i
+    return n + 1 if r.word(i + n) in lx.DONE else 0
+
+
+def done_sequence(r: Reader, i: int) -> int | None:
+    """The end of *once you're done (with that) (,)* at ``i`` when it refers back to the step before (a
+    sequence word then); ``None`` when it names what is done (*when done with the garage*) or is not
+    there."""
+    n = done_words(r, i)
+    if not n:
+        return None
+    if r.word(i + n) == "with" and (r.word(i + n + 1) not in lx.DONE_BACK or r.np_starts(i + n + 2)):
+        return None
+    k = i + n + (1 if r.word(i + n) == "with" else 0)
+    return k + (1 if r.word(k) in lx.DONE_BACK else 0)
+
+
+def skip_subject(r: Reader, i: int) -> int:
+    """After a conjunction (*after you have been to X*): the subject and auxiliaries before the verb."""
+    while r.word(i) in lx.SUBJECT_FILLERS and not r.np_starts(i):
+        i += 1
+    return i
+
+
+def comma_or_then(r: Reader, i: int) -> int:
+    """After a condition or a prefix clause: the comma and *then* that close it."""
+    i += 1 if r.word(i) == "," else 0
+    return i + (1 if r.word(i) == "then" else 0)
+
+
+def at_end(r: Reader, i: int) -> Parse[None]:
+    """The end of a clause that must close the sentence: only fillers may follow."""
+    rest = link(r, i, sequence_too=False)
+    if not isinstance(rest, Match):
+        return rest
+    if rest.end < len(r):
+        return Refusal(rf.cannot_understand(r.rest(rest.end)))
+    return Match(None, rest.end)

@@ -1,0 +1,155 @@
+"""Syntax rules for prohibitions: *always avoid X*, *never enter X*, *don't touch X*, *avoid X*, *without
+X*, *neither A nor B*, *keep out of X until Y*, *X is off limits*, *stay on this floor*, *don't leave this
+floor*, *never go upstairs*."""
+
+from __future__ import annotations
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.syntax.actions import action, particles, verb_words
+from sgplan.llm.offline.syntax.floors import floor_words
+from sgplan.llm.offline.syntax.links import skip_subject
+from sgplan.llm.offline.syntax.phrases import phrase_list
+from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
+from sgplan.llm.offline.syntax.tree import (
+    Action,
+    FloorPlace,
+    FloorSpec,
+    Negation,
+    OffLimits,
+    StartFloor,
+    StayExtreme,
+    StayOnFloor,
+    UntilDone,
+)
+
+
+def negation(r: Reader, i: int) -> Parse[Negation]:
+    """A prohibition at ``i`` (after verbs that say nothing before *neither*: *go to neither A nor B*)."""
+    j = r.skip(i, lx.POSITIVE_VERBS)
+    start = j if j > i and r.word(j) == "neither" else i
+    marker = r.phrase(start, lx.NEG_STARTS)
+    if marker is None:
+        return None
+    return negation_after(r, start + len(marker), marker)
+
+
+def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation]:
+    """What follows the words ``marker`` of a prohibition (at ``j``): what is forbidden, and for how long."""
+    j += 1 if r.at(j, ",", "ever") else 0  # "never, ever"
+    j += 1 if r.word(j) in lx.NEGATION_EVER else 0  # "never ever", "don't ever"
+    stay = stay_on_floor(r, j, negated=True)  # "don't leave this floor"
+    if stay is not None:
+        if not isinstance(stay, Match):
+            return stay
+        return Match(Negation(marker, stay.node, None, None, None, False, None), stay.end)
+    verbs = verb_words(r, j, False)
+    if not isinstance(verbs, Match):
+        return verbs
+    if set(verbs.node.words) & lx.REVISIT_VERBS:  # "never go back to X": only after a first visit
+        return Refusal(rf.never_go_back())
+    k, phrases, floor = verbs.end, None, None
+    if verbs.node.floor is not None and not r.np_starts(k):  # "never go upstairs": any room there
+        floor = FloorPlace(r.span(k - 1, k), verbs.node.floor, "all")
+    else:
+        found = phrase_list(r, k, "avoid")
+        if not isinstance(found, Match):
+            return found
+        phrases, k = found.node, found.end
+    k = particles(r, k)
+    whole = r.phrase(k, lx.WHOLE_MISSION)
+    k += len(whole) if whole else 0
+    if r.word(k) in lx.PARTIAL_PROHIBITION or any(r.at(k, *p) for p in lx.PARTIAL_FROM):
+        return Refusal(rf.partial_prohibition(r.rest(k)))
+    until = until_target(r, k)
+    if isinstance(until, Refusal):
+        return until
+    node = Negation(marker, None, verbs.node, phrases, floor, whole is not None,
+                    None if until is None else until.node)
+    return Match(node, k if until is None else until.end)
+
+
+def until_target(r: Reader, k: int) -> Parse[Action | UntilDone]:
+    """*... until / before Y*, *... until you have done that*, *... until both of them are done*."""
+    if r.word(k) not in lx.UNTIL_WORDS:
+        return None
+    k = skip_subject(r, k + 1)
+    if r.word(k) in lx.DONE and ((r.word(k + 1) in lx.DONE_WHAT and not r.np_starts(k + 2))
+                                 or not r.np_starts(k + 1)):
+        k += 1  # "... before you've done that"
+        return Match(UntilDone(), k + (1 if r.word(k) in lx.DONE_WHAT else 0))
+    target = action(r, k)
+    if not isinstance(target, Match):
+        return target
+    k = target.end
+    if r.word(k) in lx.UNTIL_DONE_LINKS and r.word(k + 1) in lx.UNTIL_DONE_WORDS:
+        k += 2  # "until both bathrooms are done"
+        k += 1 if r.word(k) in lx.UNTIL_DONE_VERBS else 0
+    return Match(target.node, k)
+
+
+def stay_on_floor(r: Reader, i: int, negated: bool) -> Parse[StayOnFloor]:
+    """*stay on this floor* / *stay on the ground floor* / *stay downstairs* / *keep to floor 1* (or, after a
+    negation, *leave this floor*, *go to any other floor*, *change floors*)."""
+    said = staying(r, i, negated)
+    if said is None:
+        return Refusal(rf.cannot_understand(lx.REFUSED_WORDS["leave"])) if negated and r.word(i) in lx.LEAVE \
+            else None
+    floor, end, where = said
+    if i > 0 and r.word(i - 1) in lx.STAY_AFTER:
+        return Refusal(rf.stay_for_the_rest(r.word(i - 1), r.word(i)))
+    other = r.phrase(where, lx.OTHER_FLOOR) is not None
+    span = r.span(where, end)
+    whole = r.phrase(end, lx.WHOLE_MISSION)
+    end += len(whole) if whole else 0
+    and_off = None
+    if r.at(end, "and", "off") and r.np_starts(end + 2):  # "stay on the top floor and off the stairs"
+        off = negation_after(r, end + 2, ("off",))
+        if not isinstance(off, Match):
+            return off
+        and_off, end = off.node, off.end
+    return Match(StayOnFloor(floor, span, other, and_off), end)
+
+
+def staying(r: Reader, i: int, negated: bool) -> tuple[FloorSpec, int, int] | None:
+    """The floors of *stay on <floor>* / *stay downstairs* (or *leave <floor>* / *go to any other floor*
+    after a negation) at ``i``: the floor, where the words end, and where the floor words begin."""
+    if negated:  # "don't go to any other floor", "don't change floors"
+        n = i
+        while r.word(n) in lx.POSITIVE_VERBS and r.phrase(n, lx.OTHER_FLOOR) is None:
+            n += 1
+        other = r.phrase(n, lx.OTHER_FLOOR)
+        if other is not None:
+            changed = other[0] in ("change", "switch")  # "change floors": the floors are the ones kept
+            return StartFloor(" ".join(other), to_stay=True), n + len(other), n + (1 if changed else 0)
+    if r.word(i) not in (lx.LEAVE if negated else lx.STAY):
+        return None
+    k = i + 1
+    if r.word(k) in lx.RELATIVE_FLOORS and not negated:
+        return StayExtreme(r.word(k)), k + 1, k
+    k += 1 if r.word(k) in lx.STAY_PREPOSITIONS and not negated else 0
+    where = k
+    k += 1 if r.word(k) == "the" else 0
+    if r.word(k) == "same" and r.word(k + 1) in lx.FLOOR_WORDS:  # "stay on the same floor"
+        return StartFloor(f"the same {r.word(k + 1)}", to_stay=True), k + 2, where
+    said = floor_words(r, k)
+    if said is None or r.head(said.end) is not None:
+        return None  # not a floor, or "stay on the ground floor bathroom"
+    return said.node, said.end, where
+
+
+def off_limits(r: Reader, i: int) -> Parse[OffLimits]:
+    """*The kitchen is off limits* / *the office and the garage are out of bounds* / *X should be avoided*;
+    a sentence that states something else of a place (*the bowl is in the kitchen*) is refused."""
+    if not r.np_starts(i):
+        return None
+    phrases = phrase_list(r, i, "avoid")
+    if not isinstance(phrases, Match):
+        return None
+    said = r.phrase(phrases.end, lx.OFF_LIMITS)
+    if said is None:
+        states = r.word(phrases.end) in lx.COPULAS
+        return Refusal(rf.states_something(r.quote(i, phrases.end + 1))) if states else None
+    end = phrases.end + len(said)
+    whole = r.phrase(end, lx.WHOLE_MISSION)
+    return Match(OffLimits(phrases.node), end + (len(whole) if whole else 0))

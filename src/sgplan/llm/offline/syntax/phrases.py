@@ -1,0 +1,295 @@
+"""Syntax rules for noun phrases and lists of them: *the sink in the kitchen*, *both bedrooms*, *it*,
+*there*, *the kitchen or the dining room*, *neither A nor B*.
+
+A phrase is read from its words and the scene's head nouns only; its qualifiers are the rules of
+:mod:`.qualifiers`. Grounding it (which rooms or objects, refusals of what matches nothing or several) is
+:mod:`..grounding.phrases`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.nouns import Head
+from sgplan.llm.offline.syntax import qualifiers
+from sgplan.llm.offline.syntax.floors import floor_words
+from sgplan.llm.offline.syntax.links import closing_at
+from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
+from sgplan.llm.offline.syntax.rules import RuleSet
+from sgplan.llm.offline.syntax.tree import (
+    Described,
+    Determiner,
+    FloorPlace,
+    FloorSpec,
+    GroupRepeat,
+    HeadRef,
+    Its,
+    KeyHead,
+    Mode,
+    NounPhrase,
+    OneHead,
+    PhraseList,
+    Pronoun,
+    Role,
+    SameRoom,
+    ThereNP,
+)
+
+NOUN_PHRASES: RuleSet[NounPhrase] = RuleSet("noun phrase")
+
+
+def noun_phrase(r: Reader, i: int, role: Role, given: Head | None = None) -> Parse[NounPhrase]:
+    """One noun phrase at ``i`` (``role``: where it occurs); ``given``: what *the one* means here (an
+    apposition's or an exception's head)."""
+    if i >= len(r):
+        return Refusal(rf.expected_phrase_at_end())
+    return NOUN_PHRASES.first(r, i, role, given)
+
+
+@NOUN_PHRASES.rule("there")
+def there_place(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
+    """*get there*: the last place named as a goal."""
+    return Match(ThereNP(r.span(i, i + 1)), i + 1) if r.word(i) == "there" else None
+
+
+@NOUN_PHRASES.rule("all of them")
+def group_repeat(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
+    """*all of them*, *both of them*, *all three of them*, *all three* (a goal): the group named before."""
+    n = 1 if r.word(i) in ("all", "both", "each", "every") else 0
+    said = lx.NUMBER_WORDS.get(r.word(i + n)) if n else None
+    k = i + n + (1 if said else 0)
+    if role != "goal" or not n or (not r.at(k, "of", "them") and not (said and r.word(k) in ("", ","))):
+        return None
+    end = k + (2 if r.at(k, "of", "them") else 0)
+    return Match(GroupRepeat(r.span(i, end), 2 if r.word(i) == "both" else said), end)
+
+
+@NOUN_PHRASES.rule("the same room")
+def same_room(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
+    """*the sink in the same room*: the room of the place named last (inside a qualifier only)."""
+    if role != "qualifier" or not r.at(i, "the", "same") or r.word(i + 2) not in ("room", "place"):
+        return None
+    return Match(SameRoom(r.span(i, i + 3), r.word(i + 2)), i + 3)
+
+
+@NOUN_PHRASES.rule("its")
+def its(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
+    """*its sink*: in the room named just before."""
+    if r.word(i) != "its" or r.head(i + 1) is None:
+        return None
+    head = head_noun(r, i + 1, None)
+    if not isinstance(head, Match):
+        return head
+    assert isinstance(head.node, Head)
+    return Match(Its(r.span(i, head.end), head.node), head.end)
+
+
+@NOUN_PHRASES.rule("pronoun")
+def pronoun(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
+    """*it*, *them*, *they*: the phrase named last that agrees in number."""
+    return Match(Pronoun(r.span(i, i + 1), r.word(i)), i + 1) if r.word(i) in lx.PRONOUNS else None
+
+
+@NOUN_PHRASES.rule("described")
+def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
+    """A determiner, floor words, a head noun and its qualifiers (*the ground floor bathroom with the
+    sink*), or a floor named as a place (*the top floor*)."""
+    first = i
+    one_from_context = (r.word(i) in ("the", "a") and r.word(r.descriptive_end(i + 1)) in lx.ANAPHORIC_ONE
+                        and given is None)
+    other = r.at(i, "the", "other") and r.head(i + 2) is not None
+    if r.at(i, "the", "other", "one") and given is None:
+        one_from_context = other = True  # "the bedroom with the book, then the other one"
+    det = determiner(r, i + 1 if other else i, other)
+    if not isinstance(det, Match):
+        return det
+    i = r.descriptive_end(det.end)
+    said = r.words[det.end : i]
+    relative = r.word(i) if r.word(i) in lx.RELATIVE_FLOORS else None
+    floor_before = None if relative else floor_words(r, i)
+    if relative:
+        i += 1
+    elif floor_before is not None:
+        i = floor_before.end
+        if r.head(i) is None:  # "the top floor": a place
+            return Match(FloorPlace(r.span(first, i), floor_before.node, det.node.mode), i)
+    described_as = (*said, *r.words[i : r.descriptive_end(i)])  # "the big (upstairs) couch"
+    return noun_with_head(r, first, r.descriptive_end(i), role, replace(det.node, descriptive=described_as),
+                          relative, None if floor_before is None else floor_before.node,
+                          OneHead(False, given, one_from_context))
+
+
+def noun_with_head(r: Reader, first: int, i: int, role: Role, det: Determiner, relative: str | None,
+                   floor_before: FloorSpec | None, one: OneHead) -> Parse[NounPhrase]:
+    """The rest of :func:`described` from the head noun on: head, compound, qualifiers, apposition."""
+    modifier = None
+    if r.word(i).startswith(("room_", "object_")):
+        head: Parse[HeadRef] = Match(KeyHead(r.word(i)), i + 1)
+        mode: Mode | None = "the"
+    else:
+        i += 1 if det.other else 0
+        modifier = r.nouns.room_modifier(r.words, i)
+        head = head_noun(r, i + (1 if modifier else 0), one)
+        mode = det.mode
+    if not isinstance(head, Match):
+        return head
+    i, ref = head.end, head.node
+    plural = ref.plural if isinstance(ref, Head | OneHead) else False
+    mode = ("all" if plural else "the") if mode is None else ("all" if mode == "the" and plural else mode)
+    compound = None
+    kind = ref.kind if isinstance(ref, Head) else "room" if isinstance(ref, KeyHead) and \
+        ref.key.startswith("room_") else None
+    if kind == "room" and (after := r.head(i)) is not None and after.kind == "object":
+        compound, i = after, i + after.words  # "the kitchen sink": the sink in the kitchen
+        mode = "all" if after.plural and mode == "the" else mode
+    noun = Described(r.span(first, i), r.word(first), replace(det, mode=mode, descriptive=()), relative,
+                     floor_before, modifier, ref, compound, (), None, False, det.descriptive)
+    return qualifiers.finish(r, first, i, noun, role, compound is not None or modifier is not None)
+
+
+def determiner(r: Reader, i: int, other: bool) -> Parse[Determiner]:
+    """The words before the noun: a demonstrative (*that*, *those two*, *the same*), or a quantifier
+    (*the*, *a*, *any*, *all*, *one of the two*, *every*, *my*), possibly followed by a demonstrative
+    (*one of those*)."""
+    demo = demonstrative(r, i)
+    if demo:  # "that bathroom", "those two bedrooms", "the same sink": resolved later, never fresh
+        count = count_word(r, i + demo)
+        end = i + demo + (1 if count else 0)
+        return Match(Determiner("all" if count else "the", count, pointer=r.word(i), other=other), end)
+    quant = quantifier(r, i)
+    if not isinstance(quant, Match):
+        return quant
+    det, i = quant.node, quant.end
+    demo = demonstrative(r, i) if det.mode is not None else 0
+    if demo:  # "one of those bedrooms": chosen among them
+        count = det.count if det.count is not None else count_word(r, i + demo)
+        end = i + demo + (1 if count is not None and det.count is None else 0)
+        return Match(Determiner(det.mode, count, r.word(i), det.mode, other), end)
+    return Match(replace(det, other=other), i)
+
+
+def quantifier(r: Reader, i: int) -> Parse[Determiner]:
+    """Determiners -> the mode they ask for and the count they say; ``None`` mode: the head's number
+    decides."""
+    w = r.word(i)
+    mode: Mode | None = None
+    count: int | None = None
+    chosen_from = False
+    if w in lx.CHOOSING_OF and r.word(i + 1) == "of":
+        i, mode = i + 2, "any"
+        chosen_from = r.word(i) in ("the", "these", "those")  # "one of the two bathrooms"
+    elif w in lx.INDEFINITE:
+        i, mode = i + 1, "any"
+    elif w in lx.UNIVERSAL:
+        i, mode, count = i + 1, "all", (2 if w == "both" else None)
+        i += 1 if r.word(i) == "of" else 0
+    elif w in lx.DEMONSTRATIVES and r.word(i + 1) not in lx.FLOOR_WORDS:
+        # only the demonstrative path may read "that ..." / "this ...": never a fresh description
+        return Refusal(rf.demonstrative_not_before_noun(w, r.word(i + 1)))
+    elif w in lx.DEFINITE or w in lx.POSSESSIVES:
+        i, mode = i + 1, "the"
+    i += 1 if r.word(i) == "the" and mode is not None else 0
+    n = count_word(r, i) if r.np_starts(i + 1) or r.head(i + 1) else None
+    if n is not None and chosen_from:
+        return Match(Determiner(mode, n), i + 1)  # one of them, and there must be n
+    if n is not None:
+        if mode in (None, "any"):
+            return Refusal(rf.choosing_a_number(r.word(i)))
+        return Match(Determiner("all", n), i + 1)
+    return Match(Determiner(mode, count), i)
+
+
+def count_word(r: Reader, i: int) -> int | None:
+    """The number said at ``i`` (*two*, *3*; not *one of*), or ``None``."""
+    w = r.word(i)
+    if w in lx.NUMBER_WORDS and (w != "one" or r.word(i + 1) != "of"):
+        return lx.NUMBER_WORDS[w]
+    return int(w) if w.isdigit() else None
+
+
+def demonstrative(r: Reader, i: int) -> int:
+    """How many words of a back-pointing determiner start the phrase at ``i`` (*that*, *those*, *the
+    same*, *that same* before a room or object noun, with or without a number); 0 if none."""
+    w, nxt = r.word(i), r.word(i + 1)
+    n = 2 if w in ("the", "that", "this") and nxt == "same" else 1 if w in lx.DEMONSTRATIVES else 0
+    if not n:
+        return 0
+    k = i + n + (1 if r.word(i + n) in lx.NUMBER_WORDS or r.word(i + n).isdigit() else 0)
+    if r.word(k) in lx.FLOOR_WORDS or r.word(k) in lx.ANAPHORIC_ONE:
+        return 0  # "this floor": the start floor; "that one" is refused
+    return n
+
+
+def head_noun(r: Reader, i: int, one: OneHead | None) -> Parse[HeadRef]:
+    """The head noun at ``i``: a category of the scene (or a synonym), *one(s)* (``one`` says of what),
+    or a refusal naming the word."""
+    w = r.word(i)
+    if w in lx.ANAPHORIC_ONE:
+        if one is None or (one.given is None and not one.from_context):
+            return Refusal(rf.one_without_kind(w))
+        return Match(replace(one, plural=w == "ones"), i + 1)
+    if w in lx.REFUSED_WORDS:
+        return Refusal(rf.cannot_understand(lx.REFUSED_WORDS[w]))
+    if w in lx.FLOOR_ORDINALS or w in lx.FLOOR_NAMED or w in lx.FLOOR_TOP:
+        return Refusal(rf.ordinal_not_of_a_floor(w))
+    head = r.head(i)
+    if head is None and i >= len(r):
+        return Refusal(rf.expected_phrase_after(r.word(i - 1)))
+    if head is None:
+        return Refusal(rf.unknown_noun(w, r.nouns.category_names("room"), r.nouns.category_names("object")))
+    return Match(head, i + head.words)
+
+
+def phrase_list(r: Reader, i: int, role: Role) -> Parse[PhraseList]:
+    """``A, B and C`` (each), ``A or B`` / ``either A or B`` / ``either to A or to B`` (one of them),
+    ``neither A nor B`` (each, to avoid)."""
+    first = i
+    either = r.word(i) == "either" and r.word(i + 1) in lx.DETERMINERS
+    # "go either to the couch or to the bed": the preposition is repeated after each conjunction
+    repeated = (r.word(i) in ("either", "both") and r.word(i + 1) in lx.LIST_PREPOSITIONS
+                and r.np_starts(i + 2))
+    preposition = r.word(i + 1) if repeated else None
+    either = either or (preposition is not None and r.word(i) == "either")
+    i += 1 if either or (r.word(i) == "both" and r.word(i + 1) in lx.DETERMINERS) else 0
+    i += 1 if preposition is not None else 0
+    item = noun_phrase(r, i, role)
+    if not isinstance(item, Match):
+        return item
+    items, joiners, i = [item.node], set[str](), item.end
+    while (joined := list_joiner(r, i, preposition)) is not None:
+        joiner, i = joined
+        joiners |= {joiner} if joiner else set()
+        item = noun_phrase(r, i, role)
+        if not isinstance(item, Match):
+            return item
+        items.append(item.node)
+        i = item.end
+    said = r.quote(first, i)
+    if "nor" in joiners and (role != "avoid" or len(joiners) > 1):
+        return Refusal(rf.nor_outside_negation(said))
+    if joiners == {"and", "or"}:
+        return Refusal(rf.mixes_and_or(said))
+    return Match(PhraseList(r.span(first, i), tuple(items), frozenset(joiners), either,
+                            len(items) > 1 and not joiners and not either), i)
+
+
+def list_joiner(r: Reader, i: int, preposition: str | None) -> tuple[str, int] | None:
+    """The conjunction (``""`` for a bare comma) before a further item of a list at ``i`` and where that
+    item starts; ``None`` when the list ends here."""
+    w, nxt = r.word(i), r.word(i + 1)
+    if preposition is not None and w in ("and", "or") and nxt == preposition and r.np_starts(i + 2):
+        return w, i + 2
+    if w == "," and nxt in ("and", "or") and r.np_starts(i + 2):
+        return nxt, i + 2
+    if (w == "," and r.np_starts(i + 1) and not r.phrase(i + 1, lx.NEG_STARTS) and not closing_at(r, i + 1)
+            and not r.phrase(i + 1, lx.TIME_FILLERS) and not r.phrase(i + 1, lx.CHOICE_AFFIRMATIONS)):
+        return "", i + 1
+    if w in ("and", "or", "nor") and r.np_starts(i + 1):
+        return w, i + 1
+    if r.at(i, ",", "nor") and r.np_starts(i + 2):
+        return "nor", i + 2
+    if r.at(i, "as", "well", "as") and r.np_starts(i + 3):
+        return "and", i + 3
+    return None

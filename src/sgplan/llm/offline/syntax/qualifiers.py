@@ -1,0 +1,390 @@
+"""Syntax rules for what follows a head noun: *on floor 1*, *in the kitchen*, *'s room*, *with the bed*,
+*where the book is*, *next to the kitchen*, *except the one on floor 0*, *there*, an apposition (*, the one
+upstairs*) and asides (*, which is in the living room*).
+
+The rules of :data:`QUALIFIERS` are tried in order after the head and after each qualifier read; a rule
+sees the phrase so far (:class:`NounSoFar`): its current head (a possessive changes it), its role and
+whether it is already located in a room.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Literal
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.nouns import Head, Kind
+from sgplan.llm.offline.syntax import phrases
+from sgplan.llm.offline.syntax.floors import floor_count, floor_offset, floor_words
+from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
+from sgplan.llm.offline.syntax.rules import RuleSet
+from sgplan.llm.offline.syntax.tree import (
+    Attachment,
+    Contains,
+    Described,
+    Except,
+    Holds,
+    InRoom,
+    KeyHead,
+    Lacks,
+    NextTo,
+    NounPhrase,
+    OneHead,
+    OnFloor,
+    Possessive,
+    Qualifier,
+    RelativeFloor,
+    Role,
+    SameFloor,
+    There,
+    UpThere,
+)
+
+
+@dataclass(frozen=True)
+class Skipped:
+    """Words of a phrase that say nothing (an aside's *which is*, *in the house*)."""
+
+
+@dataclass(frozen=True)
+class NounSoFar:
+    """The phrase read so far (``noun``, from token ``first``), its current head's kind (``None``: *the
+    one*, whose kind the context decides), role, and whether it is located in a room already."""
+
+    first: int
+    noun: Described
+    kind: Kind | None
+    role: Role
+    room_scoped: bool
+
+
+QUALIFIERS: RuleSet[Qualifier | Skipped] = RuleSet("qualifier")
+
+
+def finish(r: Reader, first: int, i: int, noun: Described, role: Role, room_scoped: bool) -> Parse[Described]:
+    """Read the qualifiers of ``noun`` (which starts at token ``first``) from ``i``, then an apposition and
+    whether a choice remark follows."""
+    kind = head_kind(noun)
+    while True:
+        so_far = NounSoFar(first, replace(noun, span=r.span(first, i)), kind, role, room_scoped)
+        found = QUALIFIERS.first(r, i, so_far)
+        if not isinstance(found, Match):
+            if found is not None:
+                return found
+            break
+        i = found.end
+        if isinstance(found.node, Skipped):
+            continue
+        noun = replace(noun, qualifiers=(*noun.qualifiers, found.node))
+        if isinstance(found.node, Possessive):
+            kind, room_scoped = found.node.head.kind, room_scoped or found.node.head.kind == "object"
+            noun = replace(noun, determiner=replace(noun.determiner,
+                                                     mode="all" if found.node.head.plural else "the"))
+        room_scoped = room_scoped or isinstance(found.node, InRoom) or (
+            isinstance(found.node, There) and kind == "object")
+    appositive = apposition(r, i, noun, role)
+    if isinstance(appositive, Refusal):
+        return appositive
+    if appositive is not None:
+        noun, i = replace(noun, apposition=appositive.node), appositive.end
+    return Match(replace(noun, span=r.span(first, i), remark_follows=remark_ahead(r, i) is not None), i)
+
+
+def head_kind(noun: Described) -> Kind | None:
+    """The kind of the phrase's head as the words say it (``None`` for *the one* from the context)."""
+    if noun.compound is not None:
+        return "object"
+    if isinstance(noun.head, Head):
+        return noun.head.kind
+    if isinstance(noun.head, KeyHead):
+        return "room" if noun.head.key.startswith("room_") else "object"
+    return noun.head.given.kind if noun.head.given is not None else None
+
+
+def current_head(noun: Described) -> Head | None:
+    """The head the phrase is about now (the last possessive's, else its own), when the words say it."""
+    for q in reversed(noun.qualifiers):
+        if isinstance(q, Possessive):
+            return q.head
+    if noun.compound is not None:
+        return noun.compound
+    return noun.head if isinstance(noun.head, Head) else noun.head.given if isinstance(noun.head, OneHead) \
+        else None
+
+
+def remark_ahead(r: Reader, i: int) -> tuple[str, ...] | None:
+    """The words of ``(,) either one is fine`` / ``, any one will do`` / ``, whichever`` at ``i`` (a remark
+    that the choice is the robot's), or ``None``."""
+    comma = 1 if r.word(i) == "," else 0
+    said = r.phrase(i + comma, lx.CHOICE_AFFIRMATIONS)
+    time = r.phrase(i + comma, lx.TIME_FILLERS)  # "whichever first" is about the order
+    if said is None or (said == ("is", "fine") and comma) or (time is not None and len(time) >= len(said)):
+        return None
+    return (",",) * comma + said
+
+
+def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Described]:
+    """*the bathroom, the one upstairs*: a phrase about *the one* that says which."""
+    head = current_head(noun)
+    one = r.descriptive_end(i + 2)  # "the bathroom, the (big) one upstairs"
+    if (role == "qualifier" or noun.determiner.mode != "the" or head is None or head.plural
+            or not head.categories or not isinstance(noun.head, Head) or not r.at(i, ",", "the")
+            or r.word(one) != "one" or r.phrase(one, lx.CHOICE_AFFIRMATIONS)):
+        return None
+    which = phrases.noun_phrase(r, i + 1, "qualifier", Head(head.kind, head.categories, False, 1))
+    if isinstance(which, Match) and not isinstance(which.node, Described):
+        return None
+    return which  # type: ignore[return-value]
+
+
+def skip_in_it(r: Reader, i: int) -> int:
+    """After a room's contents: the trailing *in it* (*the bedroom that only has a bed in it*)."""
+    return i + 2 if r.word(i) in lx.IN_IT and r.word(i + 1) in ("it", "there") else i
+
+
+@QUALIFIERS.rule("aside")
+def aside(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the couch, which is in the living room*: read as the qualifier it states."""
+    said = r.phrase(i, lx.ASIDE)
+    return Match(Skipped(), i + len(said)) if said and r.word(i + len(said)) in lx.ASIDE_QUALIFIERS else None
+
+
+@QUALIFIERS.rule("possessive")
+def possessive(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the teddy bear's room* (the room holding it), *the kitchen's sink* (the sink in it)."""
+    if r.word(i) != "'s" or noun.kind is None:
+        return None
+    head = phrases.head_noun(r, i + 1, None)
+    if not isinstance(head, Match):
+        return head
+    assert isinstance(head.node, Head)
+    said = r.quote(noun.first, head.end)
+    if noun.kind == "object" and head.node.kind != "room":
+        return Refusal(rf.only_a_room_holds(said))
+    if noun.kind == "room" and head.node.kind != "object":
+        return Refusal(rf.only_objects_belong(said))
+    return Match(Possessive(head.node, r.span(noun.first, head.end)), head.end)
+
+
+@QUALIFIERS.rule("floor")
+def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*on floor 1*, *on the second floor*, *upstairs*, *, one floor down*, *up there*, *on the same floor
+    (as X)*, *on that floor*; not *in the ground floor bathroom* (a room named with its floor)."""
+    w = r.word(i)
+    if w in lx.RELATIVE_FLOORS:
+        return Match(OnFloor(RelativeFloor(w)), i + 1)
+    comma = 1 if w == "," else 0
+    if floor_count(r, i + comma) is not None and r.word(i + comma + 1) in lx.FLOOR_PLURALS:
+        offset = floor_offset(r, i + comma)  # "the kitchen (,) one floor down"
+        if offset is not None:
+            return Match(OnFloor(offset.node), offset.end)
+    if w in lx.BACK_THERE and r.word(i + 1) == "there":
+        return Match(OnFloor(UpThere(w)), i + 2)
+    if w not in lx.FLOOR_PREPOSITIONS:
+        return None
+    if r.at(i + 1, "the", "same") and r.word(i + 3) in lx.FLOOR_WORDS:
+        return same_floor(r, i + 4)
+    if r.word(i + 1) == "that" and r.word(i + 2) in lx.FLOOR_WORDS:
+        return same_floor(r, i + 3)
+    said = floor_words(r, i + (2 if r.word(i + 1) == "the" else 1))
+    if said is None or r.head(said.end) is not None:
+        return None  # none, or "in the ground floor bathroom": a room named with its floor
+    return Match(OnFloor(said.node), said.end)
+
+
+def same_floor(r: Reader, i: int) -> Parse[Qualifier | Skipped]:
+    """After *on the same floor* / *on that floor* (at ``i``): *as X* when said."""
+    if r.word(i) == "as" and r.np_starts(i + 1):
+        other = phrases.noun_phrase(r, i + 1, "qualifier")
+        if not isinstance(other, Match):
+            return other
+        return Match(OnFloor(SameFloor(other.node)), other.end)
+    return Match(OnFloor(SameFloor(None)), i)
+
+
+@QUALIFIERS.rule("in the house")
+def whole_building(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*in the house* / *in this building* / *anywhere in the home* (not *in the home office*, a room):
+    the whole building, which restricts nothing."""
+    k = 2 if r.at(i, "anywhere", "in") else 1 if r.word(i) in lx.WHOLE_BUILDING_PREPOSITIONS else 0
+    if (not k or r.word(i + k) not in lx.WHOLE_BUILDING_DETERMINERS
+            or r.word(i + k + 1) not in lx.WHOLE_BUILDING or r.head(i + k + 1) is not None):
+        return None
+    return Match(Skipped(), i + k + 2)
+
+
+@QUALIFIERS.rule("in a room")
+def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the sink in / of / inside the kitchen*: the objects in that room; *every plant in the office and
+    the kitchen*, *all the vases in A and B*: those of each room (a phrase about each of several objects)."""
+    back = noun.role == "qualifier" and r.word(i + 1) in ("it", "there")
+    if (r.word(i) not in lx.QUAL_IN or not r.np_starts(i + 1) or r.phrase(i, lx.ORDER_MODIFIERS)
+            or r.phrase(i, lx.TIME_FILLERS) or back):
+        return None
+    rooms: list[NounPhrase] = []
+    j = i
+    while not rooms or (noun.noun.determiner.mode == "all" and r.word(j) == "and" and r.np_starts(j + 1)):
+        room = phrases.noun_phrase(r, j + 1, "qualifier")
+        if rooms and not (isinstance(room, Match) and names_rooms(room.node)):
+            break  # "every plant in the office and the couch": the couch is another goal
+        if not isinstance(room, Match):
+            return room
+        rooms.append(room.node)
+        j = room.end
+    return Match(InRoom(tuple(rooms), r.span(noun.first, j)), j)
+
+
+@QUALIFIERS.rule("there")
+def there(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*a bathroom there* (on the floor named last), *grab a bottle there* (in the room of the place named
+    last)."""
+    if r.word(i) != "there" or r.word(i + 1) in lx.STATEMENT_LINKS:
+        return None
+    if noun.kind == "room" or (noun.kind is None) or (
+            noun.kind == "object" and noun.role == "goal" and not noun.room_scoped):
+        return Match(There(), i + 1)
+    return None
+
+
+@QUALIFIERS.rule("where X is")
+def holds(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the room where the book is (kept)*, *the room (that) the book is in*, *the room in which the book
+    is*."""
+    if noun.kind == "object":
+        return None
+    tail: tuple[str, ...]
+    if r.word(i) == "where" and r.np_starts(i + 1) and r.word(i + 1) != "there":
+        start, tail = i + 1, ()
+    elif r.at(i, "in", "which") and r.np_starts(i + 2):
+        start, tail = i + 2, ()
+    elif r.word(i) in ("that", "which") and r.np_starts(i + 1):
+        start, tail = i + 1, ("in",)
+    elif r.np_starts(i) and not r.word(i).startswith(("room_", "object_")):
+        start, tail = i, ("in",)
+    else:
+        return None
+    thing = phrases.noun_phrase(r, start, "qualifier")
+    if isinstance(thing, Refusal):
+        return None if tail else thing  # "the room the ...": maybe not a relative clause at all
+    assert thing is not None
+    if r.word(thing.end) not in lx.RELATIVE_BE:
+        return None if tail else Refusal(rf.where_after_a_room(r.rest(thing.end)))
+    end = thing.end + 1
+    end += 1 if r.word(end) in lx.RELATIVE_PARTICIPLES else 0
+    if not r.at(end, *tail):
+        return None if tail else Refusal(rf.where_after_a_room(r.rest(end)))
+    return Match(Holds(thing.node), end + len(tail))
+
+
+@QUALIFIERS.rule("without")
+def without(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the bedroom without a potted plant*: which bedroom, when the plant tells the rooms apart (the scene
+    decides, :class:`.tree.Attachment`); otherwise *without* is what to avoid, after the phrase."""
+    if noun.kind == "object" or r.word(i) != "without" or not r.np_starts(i + 1):
+        return None
+    return attachment(r, i, noun, "without")
+
+
+def attachment(r: Reader, i: int, noun: NounSoFar,
+               kind: Literal["without", "and-contents"]) -> Parse[Qualifier]:
+    """The attachment of the words at ``i`` (*without X* / *and X*) to ``noun``, unless it was decided
+    against, or X does not name objects (then the words are read after the phrase)."""
+    if r.decided(i) is False:
+        return None
+    thing = phrases.noun_phrase(r, i + 1, "qualifier")
+    if not isinstance(thing, Match) or not names_objects(thing.node):
+        return None
+    node = Attachment(i, kind, noun.noun, thing.node, r.span(noun.first, thing.end), r.decided(i) is True)
+    return Match(node, skip_in_it(r, thing.end))
+
+
+def names_rooms(phrase: object) -> bool:
+    """Whether a phrase's words name rooms (*the kitchen*, *room_4*)."""
+    return isinstance(phrase, Described) and head_kind(phrase) == "room" and not phrase.compound and not any(
+        isinstance(q, Possessive) for q in phrase.qualifiers)
+
+
+def names_objects(phrase: object) -> bool:
+    """Whether a phrase's words name objects (so that it may describe a room's contents)."""
+    if not isinstance(phrase, Described):
+        return False
+    kind = head_kind(phrase)
+    for q in phrase.qualifiers:
+        kind = q.head.kind if isinstance(q, Possessive) else kind
+    return kind == "object"
+
+
+@QUALIFIERS.rule("that has no")
+def lacks(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the bedroom that doesn't have a book* / *with no teddy bear*: the rooms holding none."""
+    said = r.phrase(i, lx.QUAL_LACKS)
+    if said is None or not r.np_starts(i + len(said)):
+        return None
+    thing = phrases.noun_phrase(r, i + len(said), "qualifier")
+    if not isinstance(thing, Match):
+        return thing
+    return Match(Lacks(thing.node, r.span(noun.first, thing.end)), skip_in_it(r, thing.end))
+
+
+@QUALIFIERS.rule("with")
+def contains(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the bedroom with / that has / containing (only) (two) beds (in it)*."""
+    said = r.phrase(i, lx.QUAL_CONTAINS)
+    if said is None or not r.np_starts(i + len(said)):
+        return None
+    start = i + len(said)
+    count = phrases.count_word(r, start)
+    start += 1 if count is not None else 0
+    thing = phrases.noun_phrase(r, start, "qualifier")
+    if not isinstance(thing, Match):
+        return thing
+    return Match(Contains(thing.node, r.span(noun.first, thing.end), count, "only" in said),
+                 skip_in_it(r, thing.end))
+
+
+@QUALIFIERS.rule("and more contents")
+def more_contents(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """After *the bedroom with the book*: *and the vase* may say more of its contents, or name another goal
+    (the scene decides, :class:`.tree.Attachment`)."""
+    said = noun.noun.qualifiers
+    if (not said or not isinstance(said[-1], Contains) or r.word(i) != "and" or not r.np_starts(i + 1)
+            or r.word(i + 1) in lx.PRONOUNS):
+        return None
+    return attachment(r, i, noun, "and-contents")
+
+
+@QUALIFIERS.rule("next to")
+def next_to(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*next to / adjacent to / attached to the kitchen*, *next to it*."""
+    said = r.phrase(i, lx.QUAL_NEXT)
+    if said is None or not r.np_starts(i + len(said)):
+        return None
+    start = i + len(said)
+    if r.word(start) == "it":
+        return Match(NextTo(None, r.span(noun.first, start + 1), r.span(start, start + 1)), start + 1)
+    thing = phrases.noun_phrase(r, start, "qualifier")
+    if not isinstance(thing, Match):
+        return thing
+    return Match(NextTo(thing.node, r.span(noun.first, thing.end), None), thing.end)
+
+
+@QUALIFIERS.rule("except")
+def except_for(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*all the corridors except (for) the one on floor 0*, *every room but not the kitchen*."""
+    comma = 1 if r.word(i) == "," else 0
+    said = r.phrase(i + comma, lx.QUAL_EXCEPT)
+    if said is None or not r.np_starts(i + comma + len(said)):
+        return None
+    j, things = i + comma + len(said), []
+    given = current_head(noun.noun)
+    while True:
+        thing = phrases.noun_phrase(r, j, "qualifier", given)
+        if not isinstance(thing, Match):
+            return thing
+        things.append(thing.node)
+        j = thing.end
+        if not (r.word(j) in ("and", "or", ",") and r.np_starts(j + 1)):
+            break
+        j += 1
+    return Match(Except(tuple(things), " ".join(said), r.quote(noun.first, i)), j)

@@ -1,0 +1,343 @@
+"""Syntax rules for a whole sentence: how it opens (*Whenever X, ...*, *If X, ...*, *Until Y, ...*, *After
+X, ...*, *Only after X, ...*, *Before Y, ...*, *On your way to Y, ...*, *In the kitchen, ...*), its body,
+and the condition that may close it (*... if X*, *... whenever X*, *... only after X*).
+
+A sentence is read to its last word, or refused naming the words left over: no part of a mission is ever
+dropped (:func:`mission_sentence`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.syntax.actions import after_conjunction
+from sgplan.llm.offline.syntax.body import body
+from sgplan.llm.offline.syntax.links import at_end, comma_or_then, done_words, link, skip_subject
+from sgplan.llm.offline.syntax.phrases import noun_phrase
+from sgplan.llm.offline.syntax.qualifiers import head_kind
+from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
+from sgplan.llm.offline.syntax.rules import RuleSet
+from sgplan.llm.offline.syntax.tree import (
+    Action,
+    Body,
+    Described,
+    IfRule,
+    MissionSentence,
+    OnlyAfterPost,
+    OnlyAfterSentence,
+    OnlyIfPost,
+    PhraseList,
+    PlainSentence,
+    Postfix,
+    PrefixedSentence,
+    Rule,
+    RuleSentence,
+    RulesPost,
+    SentenceBody,
+    UntilSentence,
+    WheneverRule,
+    nodes,
+)
+
+OPENINGS: RuleSet[SentenceBody] = RuleSet("sentence opening")
+
+
+def mission_sentence(r: Reader) -> Parse[MissionSentence]:
+    """A sentence of the mission, read to its last word (else refused, naming what is left)."""
+    i, opener = 0, None
+    said = r.phrase(0, lx.WHOLE_MISSION)
+    if said is not None and r.word(len(said)) == "," and said[0] not in lx.WAYPOINT_OPENERS:
+        opener, i = r.quote(0, len(said)), len(said) + 1  # "The whole time, keep out of X."
+    precedes = None
+    if r.at(i, *lx.BEFORE_THAT) or r.word(i) in lx.FIRST:
+        i += 2 if r.at(i, *lx.BEFORE_THAT) else 1
+        i += 1 if r.word(i) == "," else 0
+        precedes = r.quote(0, i)
+    lead = link(r, i)
+    if not isinstance(lead, Match):
+        return lead
+    said_body = sentence_body(r, lead.end)
+    if not isinstance(said_body, Match):
+        return said_body
+    rest = link(r, said_body.end, sequence_too=False)
+    if not isinstance(rest, Match):
+        return rest
+    if rest.end < len(r):
+        return Refusal(rf.left_over(r.quote(rest.end, len(r))))
+    if r.announced is not None and r.announced.count is not None:
+        items = sum(len(found.items) for found in nodes(said_body.node, PhraseList))
+        if items != r.announced.count:
+            return Refusal(rf.announced_count(r.announced.said, r.announced.count, items))
+    return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
+                                 r.span(0, len(r)), r.announced), len(r))
+
+
+def sentence_body(r: Reader, i: int) -> Parse[SentenceBody]:
+    """The sentence after its lead words: an opening rule of :data:`OPENINGS`, else a plain body."""
+    condition = r.phrase(i + 1, lx.WHENEVER) or r.phrase(i + 1, lx.CONDITION_WORDS)
+    if r.word(i) in lx.CONDITION_OPENERS and condition:
+        i += 1  # "And whenever you ...", "But if you ...": a new condition, not a continuation
+    found = OPENINGS.first(r, i)
+    return found if found is not None else plain(r, i)
+
+
+@OPENINGS.rule("whenever X, Y")
+def whenever_first(r: Reader, i: int) -> Parse[SentenceBody]:
+    """*Whenever / every time X, Y* and the rules joined to it."""
+    if r.phrase(i, lx.WHENEVER) is None:
+        return None
+    return rules_sentence(r, i)
+
+
+@OPENINGS.rule("when done with X, Y")
+def done_with_first(r: Reader, i: int) -> Parse[SentenceBody]:
+    """*When done with the garage, Y*: the garage, then Y."""
+    done = done_words(r, i)
+    if not done or r.word(i + done) != "with" or not r.np_starts(i + done + 1):
+        return None
+    return prefixed(r, i + done + 1, prefix_last=False)
+
+
+@OPENINGS.rule("if X, Y")
+def condition_first(r: Reader, i: int) -> Parse[SentenceBody]:
+    """*If / when / in case X, Y* and the rules joined to it."""
+    return rules_sentence(r, i) if r.phrase(i, lx.CONDITION_WORDS) is not None else None
+
+
+@OPENINGS.rule("until Y, X")
+def until_first(r: Reader, i: int) -> Parse[SentenceBody]:
+    """*Until / till (you have reached) Y, stay out of X*."""
+    if r.word(i) not in lx.UNTIL_OPENERS and not r.at(i, "up", "until"):
+        return None
+    target = after_conjunction(r, i + (2 if r.word(i) == "up" else 1), in_condition=True)
+    if not isinstance(target, Match):
+        return target
+    rest = body(r, comma_or_then(r, target.end))
+    return rest if not isinstance(rest, Match) else Match(UntilSentence(target.node, rest.node), rest.end)
+
+
+@OPENINGS.rule("only after X, Y")
+def only_after_first(r: Reader, i: int) -> Parse[SentenceBody]:
+    """*Only after / only once / not before / not until X, Y* and the rules joined to it."""
+    if r.phrase(i, lx.ONLY_AFTER) is None:
+        return None
+    before = after_conjunction(r, i + 2)
+    if not isinstance(before, Match):
+        return before
+    rest = body(r, comma_or_then(r, before.end))
+    if not isinstance(rest, Match):
+        return rest
+    rules = more_rules(r, rest.end)
+    if not isinstance(rules, Match):
+        return rules
+    return Match(OnlyAfterSentence(before.node, rest.node, rules.node, True), rules.end)
+
+
+@OPENINGS.rule("after X, Y")
+def after_first(r: Reader, i: int) -> Parse[SentenceBody]:
+    """*After / once X, Y*: X, then Y."""
+    if r.word(i) not in ("after", "once") or r.at(i, "after", "that"):
+        return None
+    return prefixed(r, i + 1, prefix_last=False)
+
+
+@OPENINGS.rule("on your way to Y, X")
+def on_the_way_first(r: Reader, i: int) -> Parse[SentenceBody]:
+    """*On your way to the lobby, check the couch*: the couch, then the lobby."""
+    way = r.phrase(i, lx.ON_THE_WAY)
+    if way is None or r.word(i + len(way)) not in ("to", "into") or not r.np_starts(i + len(way) + 1):
+        return None
+    return prefixed(r, i + len(way), prefix_last=True)
+
+
+@OPENINGS.rule("before Y, X")
+def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
+    """*Before going to Y, X*: X, then Y."""
+    return prefixed(r, i + 1, prefix_last=True) if r.word(i) == "before" else None
+
+
+@OPENINGS.rule("only <do X> after Y")
+def only_verb_after(r: Reader, i: int) -> Parse[SentenceBody]:
+    """*Only enter the living room after you have been to the kitchen*: as *... only after ...*."""
+    if r.word(i) != "only" or r.word(i + 1) not in lx.POSITIVE_VERBS:
+        return None
+    said = body(r, i + 1, only_verb=True)
+    if not isinstance(said, Match):
+        return said
+    if r.word(said.end) not in ("after", "once"):
+        return Refusal(rf.only_before_a_verb(r.rest(said.end)))
+    before = after_conjunction(r, said.end + 1)
+    if not isinstance(before, Match):
+        return before
+    return Match(OnlyAfterSentence(before.node, said.node, (), False), before.end)
+
+
+def prefixed(r: Reader, i: int, prefix_last: bool) -> Parse[SentenceBody]:
+    """The prefix clause at ``i`` (up to its comma), the body after it and a closing condition."""
+    prefix = after_conjunction(r, i)
+    if not isinstance(prefix, Match):
+        return prefix
+    rest = body(r, comma_or_then(r, prefix.end))
+    if not isinstance(rest, Match):
+        return rest
+    post = postfix(r, rest.end, 0)
+    if not isinstance(post, Match):
+        return post
+    return Match(PrefixedSentence(prefix.node, prefix_last, rest.node, post.node), post.end)
+
+
+def plain(r: Reader, i: int) -> Parse[SentenceBody]:
+    """A body, after *In the kitchen,* (the room of the sentence) when said, and a closing condition."""
+    scope = None
+    if r.word(i) in lx.SCOPE_IN and r.np_starts(i + 1):
+        room = noun_phrase(r, i + 1, "qualifier")
+        if isinstance(room, Refusal):
+            return room
+        assert room is not None
+        if r.word(room.end) == "," and isinstance(room.node, Described) and head_kind(room.node) == "room":
+            scope, i = room.node, room.end + 1
+    said = body(r, i)
+    if not isinstance(said, Match):
+        return said
+    post = postfix(r, said.end, said.node.actions)
+    if not isinstance(post, Match):
+        return post
+    return Match(PlainSentence(scope, said.node, post.node), post.end)
+
+
+def rules_sentence(r: Reader, i: int) -> Parse[SentenceBody]:
+    """*Whenever X, Y* / *If X, Y* at ``i``, and the rules joined to it."""
+    first = condition_rule(r, i)
+    if not isinstance(first, Match):
+        return first
+    rules = more_rules(r, first.end)
+    if not isinstance(rules, Match):
+        return rules
+    return Match(RuleSentence((first.node, *rules.node)), rules.end)
+
+
+def more_rules(r: Reader, i: int) -> Parse[tuple[Rule, ...]]:
+    """Further condition rules joined by *and*, *but* or commas from ``i`` (*whenever you enter the kitchen,
+    go to the living room, and whenever ...*; *if X, Y, and if Z, W*). Anything else after them is left to
+    the end check (it is never dropped)."""
+    rules: list[Rule] = []
+    while i < len(r):
+        k = r.skip(i, lx.RULE_JOINERS)
+        if k == i and r.word(i - 1) not in lx.RULE_JOINERS:
+            break
+        rule = condition_rule(r, k)
+        if not isinstance(rule, Match):
+            if rule is None:
+                break
+            return rule
+        rules.append(rule.node)
+        i = rule.end
+    return Match(tuple(rules), i)
+
+
+def antecedent(r: Reader, i: int) -> Parse[Action]:
+    """The condition of the rule at ``i`` (after *whenever* / *if* ...), or ``None`` if no rule starts
+    there."""
+    whenever = r.phrase(i, lx.WHENEVER)
+    word = r.phrase(i, lx.CONDITION_WORDS)
+    if whenever is None and word is None:
+        return None
+    start = i + len(whenever or word or ())
+    return trigger(r, start) if whenever else condition(r, start)
+
+
+def condition_rule(r: Reader, i: int) -> Parse[Rule]:
+    """One rule at ``i``: *whenever X, Y* or *if X, Y* (Y one action)."""
+    said = antecedent(r, i)
+    if not isinstance(said, Match):
+        return said
+    rest = consequent(r, comma_or_then(r, said.end))
+    if not isinstance(rest, Match):
+        return rest
+    return Match(make_rule(r, i, said, rest.node, comma_or_then(r, said.end), rest.end), rest.end)
+
+
+def make_rule(r: Reader, i: int, said: Match[Action], consequent: Body, after_start: int,
+              after_end: int) -> Rule:
+    """The rule at ``i`` with condition ``said`` and ``consequent``; an *if* rule is a response when its
+    condition says *ever* or the words ``[after_start, after_end)`` say *afterwards*."""
+    word = r.phrase(i, lx.CONDITION_WORDS)
+    if r.phrase(i, lx.WHENEVER) is not None or word is None:
+        return WheneverRule(said.node, consequent)
+    start = i + len(word)
+    response = r.says(lx.EVER, start, said.end) or r.says(lx.AFTERWARDS, after_start, after_end)
+    return IfRule(" ".join(word), said.node, consequent, response)
+
+
+def trigger(r: Reader, i: int) -> Parse[Action]:
+    """The place of *whenever you enter the kitchen* (not a negative one)."""
+    k = skip_subject(r, i)
+    if r.word(k) in lx.NEGATING:
+        return Refusal(rf.negative_trigger())
+    return after_conjunction(r, k, in_condition=True)
+
+
+def condition(r: Reader, i: int) -> Parse[Action]:
+    """The condition of *if you go to the kitchen*: one action (*if you ever ...* is kept for the response
+    reading); more (*... and open the fridge*, *... after the office*) is refused."""
+    ever = r.phrase(i, lx.EVER)
+    k = skip_subject(r, i + (len(ever) if ever else 0))
+    if r.word(k) in lx.NEGATING:
+        return Refusal(rf.negative_condition())
+    said = after_conjunction(r, k, in_condition=True)
+    if not isinstance(said, Match):
+        return said
+    if r.word(said.end) in lx.CONDITION_END or r.phrase(said.end, lx.NEG_STARTS):
+        return Refusal(rf.condition_goes_on(r.rest(said.end)))
+    return said
+
+
+def consequent(r: Reader, i: int) -> Parse[Body]:
+    """What a condition asks for: one action; with several it is not clear which belong to it (refused)."""
+    said = body(r, i)
+    if isinstance(said, Match) and said.node.actions > 1:
+        return Refusal(rf.several_actions_after_condition())
+    return said
+
+
+def postfix(r: Reader, i: int, body_actions: int) -> Parse[Postfix]:
+    """A condition closing a body: *only after X*, *only if X*, *whenever X* / *if X* (the body its
+    consequent), or, after *and* / *but*, a rule with its own consequent (*S, and whenever X, T*)."""
+    if i >= len(r):
+        return Match(None, i)
+    joined = r.word(i - 1) in ("and", "but")
+    if body_actions > 1 and not joined and (r.phrase(i, lx.WHENEVER) or r.phrase(i, lx.CONDITION_WORDS)
+                                            or r.at(i, *lx.ONLY_IF)):
+        return Refusal(rf.several_actions_before_condition(r.rest(i)))
+    if r.phrase(i, lx.ONLY_AFTER):
+        return closed(r, after_conjunction(r, i + 2), OnlyAfterPost)
+    if r.at(i, *lx.ONLY_IF):
+        return closed(r, condition(r, i + 2), OnlyIfPost)
+    said = antecedent(r, i)
+    if not isinstance(said, Match):
+        return said if said is not None else Refusal(rf.cannot_understand(r.rest(i)))
+    if joined and r.word(said.end) in (",", "then") and r.word(said.end + 1):
+        own = condition_rule(r, i)  # "S, and whenever X, T": the rule has its own consequent
+        if not isinstance(own, Match):
+            return own
+        first, end, body_is_consequent = own.node, own.end, False
+    else:  # "S whenever X" / "S if X": the body is the consequent
+        first, end, body_is_consequent = make_rule(r, i, said, Body(()), 0, i), said.end, True
+    rules = more_rules(r, end)
+    if not isinstance(rules, Match):
+        return rules
+    return closed(r, Match((first, *rules.node), rules.end),
+                  lambda more: RulesPost(more, body_is_consequent))
+
+
+def closed(r: Reader, found: Parse[Any], make: Callable[[Any], Postfix]) -> Parse[Postfix]:
+    """``make(found.node)`` when ``found`` matched and only fillers follow it to the end of the sentence."""
+    if not isinstance(found, Match):
+        return found
+    end = at_end(r, found.end)
+    if not isinstance(end, Match):
+        return end
+    return Match(make(found.node), end.end)
