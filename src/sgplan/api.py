@@ -313,9 +313,9 @@ class Session:
         termination: Termination | None,
         start_state: int | None,
     ) -> PlanResult:
-        from sgplan.jit import announce_compile
         from sgplan.planning.amra import plan as amra_plan
         from sgplan.planning.termination import any_of
+        from sgplan.runtime.jit import announce_compile
 
         t0 = time.perf_counter()
         staged = self._stage(mission, start, options, guide, start_state)

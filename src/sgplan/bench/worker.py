@@ -242,7 +242,7 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    from sgplan.cli import exit_now, prepare_own_process
+    from sgplan.runtime.process import exit_now, prepare_own_process
 
     prepare_own_process()  # a process of sgplan's own (no BLAS probe, fewer garbage-collector passes)
     exit_now(main())  # results are written: skip the interpreter's teardown

@@ -177,7 +177,7 @@ def _termination_as_interrupt() -> Iterator[None]:
 
 def _sweep(args: argparse.Namespace) -> int:
     from sgplan.bench.results import ResultStore, make_folder, writing_lock
-    from sgplan.jit import announce_compile
+    from sgplan.runtime.jit import announce_compile
 
     cases = _cases(args)
     announce_compile()  # the workers compile on first use; said once here rather than by each of them
