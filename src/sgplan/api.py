@@ -59,7 +59,7 @@ def load_scene(scene: str | Path | Building, data: str | Path | None = None) -> 
 
     ``scene`` is ``"demo"`` (the embedded demo building), a Gibson scene name (``"Benevolence"``, any case)
     looked up under ``data`` (default: ``$SGPLAN_GIBSON_DIR``, else ``../shared/datasets/gibson-3dsg``), a
-    scene folder or file in any supported format (:func:`sgplan.scene.loading.load_scene`), or a
+    scene folder or file in any supported format (:func:`sgplan.formats.load_scene`), or a
     :class:`Building` (returned as it is).
 
     Raises
@@ -68,7 +68,7 @@ def load_scene(scene: str | Path | Building, data: str | Path | None = None) -> 
         when ``scene`` is none of these, or its files are malformed.
     """
     from sgplan.datasets import SCENES, scene_dir
-    from sgplan.scene.loading import load_scene as load_path
+    from sgplan.formats import load_scene as load_path
 
     if isinstance(scene, Building):
         return scene

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from sgplan.errors import SceneError
-from sgplan.scene.loading import load_scene
+from sgplan.formats import load_scene
 from sgplan.scene.native import write_native_scene
 
 from .synthetic import assert_same_building, synthetic_scene
