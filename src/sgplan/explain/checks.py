@@ -57,9 +57,9 @@ from sgplan.logic.formula import (
     atoms,
     depth,
     is_temporal,
+    to_infix,
     walk,
 )
-from sgplan.logic.infix import to_infix
 from sgplan.logic.ltlf import ltlf_to_dfa
 from sgplan.mission import Mission
 from sgplan.planning.setups import reach_model_for
