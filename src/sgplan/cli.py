@@ -15,11 +15,11 @@ import signal
 import sys
 from collections.abc import Sequence
 
-from sgplan import __version__
 from sgplan.commands import REGISTRY
 from sgplan.commands.common import add_common_options, configure_logging
 from sgplan.errors import SgplanError
 from sgplan.runtime.process import exit_now, observed, prepare_own_process
+from sgplan.version import __version__
 
 
 def _build_parser() -> argparse.ArgumentParser:

@@ -262,7 +262,7 @@ def _code(modules: tuple[str, ...]) -> str:
     """A hash of the source of ``modules`` and of the versions the pickles depend on."""
     import numpy
 
-    from sgplan import __version__
+    from sgplan.version import __version__
 
     parts: list[bytes | str] = [__version__, sys.version, numpy.__version__]
     for name in modules:
