@@ -255,8 +255,8 @@ def map_successors(
     floor action also the far portal); it stops early, at that cell and cost, when it accepts. With an
     idempotent table (T(T(q,l),l) = T(q,l)) a stretch of equal labels is read once.
 
-    One flat loop, no helper calls: numba reference-counts the arrays passed to helpers, which in this
-    loop cost more than the work itself.
+    One function, one flat loop with no helper calls: numba reference-counts the arrays passed to helpers,
+    which in this loop cost more than the work itself.
     """
     room = cell_room[c]
     f = cell_floor[c]
@@ -641,8 +641,9 @@ def anchor_path(G, L, S, budget, max_succ):
     A* setup throughout, every setup once w1 = 1): the same expansions in the same order as
     :func:`multi_queue_path`, in one flat loop.
 
-    Flat because numba reference-counts the arrays a helper takes (``inline="always"`` included) with
-    atomic increments its pruning pass does not always remove in this loop. So the record lookups
+    One function, one flat loop, because numba reference-counts the arrays a helper takes
+    (``inline="always"`` included) with atomic increments its pruning pass does not always remove in this
+    loop. So the record lookups
     (:func:`rec_find`, :func:`rec_touch`) are written out here (the link helpers take scalars only and
     stay), and the counters live in locals until the loop returns. The heap is the one heap's
     (:func:`~sgplan.planning._heap.hpop`, :func:`~sgplan.planning._heap.hpush`), called: written out
