@@ -16,7 +16,7 @@ import sys
 from collections.abc import Sequence
 
 from sgplan.commands import REGISTRY
-from sgplan.commands.common import add_common_options, configure_logging
+from sgplan.commands.common import add_common_options, configure_logging, holding_draw_folder
 from sgplan.errors import SgplanError
 from sgplan.runtime.process import exit_now, observed, prepare_own_process
 from sgplan.version import __version__
@@ -59,7 +59,8 @@ def _run(argv: Sequence[str] | None) -> int:
     args = parser.parse_args(argv)
     configure_logging(args)
     try:
-        return int(args.run(args) or 0)
+        with holding_draw_folder(args):
+            return int(args.run(args) or 0)
     except SgplanError as error:
         if args.debug:
             raise

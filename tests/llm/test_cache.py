@@ -255,9 +255,9 @@ def test_damaged_entry_is_reported(
 def test_a_cache_directory_that_is_a_file_is_refused_when_opened(tmp_path: Path) -> None:
     blocker = tmp_path / "not-a-dir"
     blocker.write_text("")
-    with pytest.raises(LLMError, match="is a file, not a folder: give --cache a folder"):
+    with pytest.raises(LLMError, match=r"is a file, not a folder: give --cache a folder"):
         ChatCache(blocker)
-    with pytest.raises(LLMError, match="inside .*not-a-dir, a file, not a folder"):
+    with pytest.raises(LLMError, match=r"inside .*not-a-dir, a file, not a folder"):
         ChatCache(blocker / "below")
 
 
