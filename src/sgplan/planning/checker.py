@@ -8,9 +8,9 @@ recomputes the path's cost in metres.
 
 Its independence is deliberate, and so are the near-copies it keeps: it takes only the profiles' names
 from the planner (:data:`~sgplan.planning.setups.PROFILES`), restates what each profile means (``ltlf``
-reads the start cell's label, ``authors`` does not) and checks a
-profile with its own ``ValueError`` rather than :func:`~sgplan.planning.setups.check_profile`, so that a
-mistake in the planner's semantics cannot also pass the check.
+reads the start cell's label, ``authors`` does not) and checks a profile with its own ``ValueError``
+rather than :func:`~sgplan.planning.setups.check_profile`, so that a mistake in the planner's semantics
+cannot also pass the check.
 """
 
 from __future__ import annotations
