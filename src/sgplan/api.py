@@ -434,12 +434,7 @@ def _check_in_scene(mission: Mission, building: Building, problem: PlanningProbl
         profile = "authors"
     check = check_mission_in_scene(mission, building, problem.start, grid=problem.grid, labels=problem.labels,
                                    profile=profile, reach_model=problem.reach_model)
-    for finding in check.findings:
-        if finding.severity == "warning":
-            log.warning(f"warning: {finding.message}")
-        elif finding.severity == "note":
-            log.info(f"note: {finding.message}")
-    check.raise_errors()
+    check.report()
     return check.to_dict()
 
 
