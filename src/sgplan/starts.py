@@ -159,7 +159,7 @@ def _room_start(building: Building, grid: OccupancyGrid, room: Room) -> tuple[tu
             "stand on",
             status="invalid-start",
         )
-    from scipy import ndimage  # ~0.3 s to import: only for a start given as a room or a point
+    from scipy import ndimage  # slow to import: only for a start given as a room or a point
 
     # The cell deepest inside the room's free area: clear of walls, furniture and doorways.
     depth = ndimage.distance_transform_edt(free)

@@ -33,8 +33,8 @@ if TYPE_CHECKING:
 
 class _HelpNamingTheCaseTimeout(argparse.HelpFormatter):
     """Help that names the ``--case-timeout`` default, read from :mod:`sgplan.bench.executors` only when
-    the help is shown: importing the bench machinery to build the parser cost every sgplan command
-    (``plan`` included) ~20 ms."""
+    the help is shown: importing the bench machinery to build the parser would cost every sgplan command
+    (``plan`` included) its import time."""
 
     def _get_help_string(self, action: argparse.Action) -> str | None:
         if action.dest != "case_timeout":

@@ -23,7 +23,7 @@ RADIUS_STEP_M = 0.005
 
 def start_component(grid: OccupancyGrid, start: tuple[int, int, int], allowed: np.ndarray) -> np.ndarray:
     """``allowed`` cells connected to ``start`` by 8-connected moves and stairs links (bool raster)."""
-    from scipy import ndimage  # ~0.3 s to import: only when a start's reach is in question
+    from scipy import ndimage  # slow to import: only when a start's reach is in question
 
     row, col, floor = start
     if not allowed[floor, row, col]:

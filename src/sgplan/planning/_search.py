@@ -120,7 +120,8 @@ def build_all_maps(G, A, M):
 
 # The hot path (successors, heuristics, expansion, heap tops) takes plain arrays, never the named tuples:
 # numba increfs/decrefs every array of a tuple passed to a helper, and in the branchy search loop those
-# atomic reference counts are not pruned -- they were ~40 % of the search time. The tuple-level entry
+# atomic reference counts are not pruned, and cost a large share of the search time
+# (benchmarks/results/planning_rounds.md, issue 12). The tuple-level entry
 # points (improve_path, start_iteration, successors, h_llm) unpack once and call the array-level cores.
 
 
@@ -550,8 +551,8 @@ def active_queues(num_queues, w1):
     that A* run to the end: the other queues cannot raise the anchor's key (their expansions only add or
     improve states of OPEN_0), so whatever goal they find early, the anchor still has to expand every
     state with f below the optimum before the optimum is proved -- their expansions are overhead (the LLM
-    queues with an uninformative h_LLM flood every state with g below the optimum, up to 4 times: 3x
-    the anchor's expansions on Collierville mission 1, start 1, ALL). Their work pays in the weighted
+    queues with an uninformative h_LLM flood every state with g below the optimum, up to 4 times over:
+    benchmarks/results/planning_rounds.md). Their work pays in the weighted
     iterations, where they find the first paths."""
     return 1 if w1 <= 1.0 else num_queues
 
@@ -798,8 +799,8 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     argument: OPEN_0 holds every inconsistent state, INCONS having been merged at the iteration's start),
     and a "better" g found later can only be float rounding -- the same moves summed in another order,
     1 ulp apart. Sending such states to INCONS (as the weighted iterations must) made the (1, 1) iteration
-    re-expand them and, through their successors' 1-ulp improvements, everything after them: 19,075
-    re-expansions after 29,699 on Allensville mission 3, start 0. The rounding left in the optimum is that
+    re-expand them and, through their successors' 1-ulp improvements, everything after them
+    (benchmarks/results/planning_rounds.md). The rounding left in the optimum is that
     of any Dijkstra or A* over float costs.
 
     In the weighted iterations the anchor follows composite actions while they pay for themselves: while
