@@ -35,7 +35,8 @@ from sgplan.scene.reach import DEFAULT_REACH_MODEL
 if TYPE_CHECKING:  # the planner, grid and labels (numba, scipy) load when a plan is made, not for a mission
     from sgplan.execution.run import Run
     from sgplan.explain import Explanation
-    from sgplan.llm.backends import Backends, MissionGuide
+    from sgplan.llm.backends import Backends
+    from sgplan.llm.protocols import MissionGuide
     from sgplan.mission import Mission
     from sgplan.planning.amra import IterationCallback, SearchResult
     from sgplan.planning.problem import PlanningProblem
