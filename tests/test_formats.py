@@ -1,4 +1,4 @@
-"""load_scene dispatches on what the path is."""
+"""sgplan.formats.load_scene dispatches on what the path is (sgplan's formats, the authors', the importers')."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from sgplan.errors import SceneError
 from sgplan.formats import load_scene
 from sgplan.scene.native import write_native_scene
 
-from .synthetic import assert_same_building, synthetic_scene
+from .scene.synthetic import assert_same_building, synthetic_scene
 
 
 def test_dispatch(tmp_path: Path) -> None:
