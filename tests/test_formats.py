@@ -1,4 +1,4 @@
-"""sgplan.formats.load_scene dispatches on what the path is (sgplan's formats, the authors', the importers')."""
+"""sgplan.formats.load_scene picks the reader by what the path is (sgplan's, the authors', an importer's)."""
 
 from __future__ import annotations
 
