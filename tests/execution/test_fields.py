@@ -1,5 +1,6 @@
-"""One cell numbering across changes (masked graphs) and the distance fields repaired after each change:
-both against what a fresh build of the changed building computes."""
+"""One cell numbering across changes (masked graphs) and the distance fields repaired after each change
+(kept as the columns of one matrix, laid out anew as the labels asked for change): both against what a
+fresh build of the changed building computes."""
 
 from __future__ import annotations
 
@@ -70,8 +71,7 @@ def test_repaired_fields_equal_fields_of_a_fresh_graph(seed, radius, fraction):
     unit = finest_unit(candidates)
     store = FieldStore(invalidate_fraction=fraction, lower_fraction=1.0)
     wanted = [1, 2, 4, 0]
-    for mask in wanted:
-        store.field(graph, graph.gather(labels), mask, unit)
+    store.fields(graph, graph.gather(labels), wanted, unit)
     for _ in range(8):
         try:
             new, delta = state.apply(_random_change(rng, state))
@@ -86,8 +86,9 @@ def test_repaired_fields_equal_fields_of_a_fresh_graph(seed, radius, fraction):
         state, labels = new, new_labels
         assert np.array_equal(in_graph(graph), grid.traversable.reshape(-1)[graph.positions()])
         masks = graph.gather(labels)
-        for mask in wanted[: int(rng.integers(1, 5))]:
-            field = store.field(graph, masks, mask, unit)
+        chosen = [int(m) for m in rng.permutation(wanted)[: int(rng.integers(1, 5))]]
+        matrix = store.fields(graph, masks, chosen, unit)
+        for mask, field in zip(chosen, matrix.T):
             on_graph = np.full(grid.traversable.size, -1, dtype=np.int64)
             on_graph[graph.positions()[in_graph(graph)]] = field[in_graph(graph)]
             fresh = _fresh_field(grid, labels, mask, unit)

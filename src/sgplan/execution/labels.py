@@ -12,6 +12,7 @@ from collections.abc import Callable, Collection
 
 import numpy as np
 
+from sgplan.intsets import members, unique_sorted
 from sgplan.scene.labels import Proposition, proposition_cells, raster_from_cells
 from sgplan.scene.model import Building
 
@@ -62,9 +63,10 @@ class RunLabels:
             bit = raster.dtype.type(1 << i)
             flat[self._cells[i]] &= ~bit
             flat[new] |= bit
-            changed.append(np.setxor1d(self._cells[i], new))
+            changed += [self._cells[i][~members(self._cells[i], new)], new[~members(new, self._cells[i])]]
             self._cells[i] = new
-        positions = np.unique(np.concatenate(changed)) if changed else np.zeros(0, dtype=np.int64)
+        positions = unique_sorted(np.concatenate(changed)) if changed else np.zeros(0, dtype=np.int64)
         if positions.size:
             self.raster = raster
         return positions.astype(np.int64)
+

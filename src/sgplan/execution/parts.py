@@ -2,25 +2,36 @@
 
 A :class:`sgplan.Session` keeps the parts that depend only on the building (:mod:`sgplan.planning.shared`)
 keyed by the grid they were built for. A run's building changes; :class:`RunParts` serves the planning
-problems of the run's *current* building, and on :meth:`RunParts.advance` carries over what a change did
-not void:
+problems of the run's *current* building -- an incremental planning domain -- and on
+:meth:`RunParts.advance` carries over what a change did not void, updating the rest from the cells the
+change touched:
 
 - the cell graph keeps the run's one numbering (:mod:`sgplan.execution.graph`): the change only masks
   or unmasks the cells whose traversability changed;
-- the h_LTL distance fields are repaired from the cells that left or joined the graph or changed label
-  (:mod:`sgplan.execution.fields`), not recomputed;
+- the cells' labels -- bitmasks, compact label ids, label boundaries -- are updated at the cells that
+  changed and around them (:mod:`sgplan.execution.cell_labels`);
+- the robot's connected component is followed across the change (:mod:`sgplan.execution.component`),
+  not flooded anew;
+- the h_LTL distance fields are kept as one matrix and repaired from the cells that left or joined the
+  graph or changed label (:mod:`sgplan.execution.fields`), not recomputed;
 - the composite action tables, their maps and label runs are dropped and rebuilt lazily by the next
   search that needs them (they depend on the start's component and on exact shortest paths that a
   change may lengthen or shorten anywhere on a floor).
+
+Every plan over these parts equals a plan over parts built afresh for the changed building
+(``tests/execution/test_parts.py``, ``test_component.py``, ``test_cell_labels.py``, ``test_fields.py``).
 """
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable, Hashable
 from typing import Any, TypeVar
 
 import numpy as np
 
+from sgplan.execution.cell_labels import CellLabels
+from sgplan.execution.component import Component
 from sgplan.execution.fields import FieldStore
 from sgplan.execution.graph import OutsideNumbering, candidate_graph, masked_graph, remasked
 from sgplan.execution.regrid import GridChange
@@ -44,71 +55,109 @@ class RunParts(SharedParts):
         the run's occupancy grid before any change.
     labels:
         its label raster (``(floors, rows, cols)`` bitmasks of the mission's propositions).
-    building:
-        the building of ``grid`` (which cells could become traversable: :mod:`sgplan.execution.graph`).
+    scene:
+        the building of ``grid`` without its blocks and closed doors (which cells could become
+        traversable: :func:`~sgplan.execution.graph.candidate_graph`).
     max_bytes:
         the cap of the parts rebuilt per version (action tables and maps), as :class:`SharedParts`;
-        the graph and the fields are the run's own and always kept.
+        the graph, the labels, the component and the fields are the run's own and always kept.
     """
 
-    def __init__(self, grid: OccupancyGrid, labels: np.ndarray, building: Building,
+    def __init__(self, grid: OccupancyGrid, labels: np.ndarray, scene: Building,
                  max_bytes: int | None = None) -> None:
         super().__init__(max_bytes)
-        self.grid = grid
-        self.candidates = candidate_graph(grid, building)
-        self.graph = masked_graph(self.candidates, grid.traversable)
+        self._number(grid, labels, candidate_graph(grid, scene))
+
+    def _number(self, grid: OccupancyGrid, labels: np.ndarray, candidates: CellGraph) -> None:
+        """Serve ``grid`` and ``labels`` over the numbering ``candidates``, every per-cell part anew."""
+        self.grid, self.labels, self.candidates = grid, labels, candidates
+        self.graph = masked_graph(candidates, grid.traversable)
+        self.labelling = CellLabels(candidates, self.graph, labels)
+        self.component = Component()
         self.fields = FieldStore()
-        self.labels = labels
-        self.masks = self.graph.gather(labels)
+        self._parts.clear()
+
+    def with_labels(self, labels: np.ndarray) -> RunParts:
+        """Parts for the same grid, numbering and component with other labels (another mission's
+        propositions): the labels and fields anew. Costs a pass over the cells."""
+        other = copy.copy(self)
+        other._parts = type(self._parts)()
+        other.labels, other.labelling = labels, CellLabels(self.candidates, self.graph, labels)
+        other.component, other.fields = copy.copy(self.component), FieldStore()
+        return other
 
     @property
     def keeps(self) -> bool:
         return True
 
+    @property
+    def masks(self) -> np.ndarray:
+        """``(N,)`` the label bitmask of every cell of the numbering."""
+        return self.labelling.masks
+
+    def _serves(self, grid: Hashable, graph: CellGraph | None = None) -> None:
+        if grid is not self.grid or (graph is not None and graph is not self.graph):
+            raise ValueError("the run's parts serve its current grid and cell graph only")
+
     def get(self, name: str, key: Hashable, build: Callable[[], T]) -> T:
         """As :meth:`SharedParts.get`, for the current grid only; the cell graph is the run's masked one."""
-        grid = key[0] if isinstance(key, tuple) else key
-        if grid is not self.grid:
-            raise ValueError(f"the run's parts serve its current grid only, not another ({name})")
+        self._serves(key[0] if isinstance(key, tuple) else key)
         if name == "cell_graph":
             part: Any = self.graph
             return part
         return super().get(name, key, build)
 
-    def distance_field(self, grid: Hashable, graph: CellGraph, cells: np.ndarray, unit_m: float
-                       ) -> np.ndarray | float:
-        """The field to the whole label region ``cells`` belong to (:class:`FieldStore`): equal to the
-        field of ``cells`` (its part reachable from the start) on every cell reachable from the start, the
-        only cells h_LTL reads."""
-        if grid is not self.grid or graph is not self.graph:
-            raise ValueError("the run's parts serve its current grid and cell graph only")
-        return self.fields.field(graph, self.masks, int(self.masks[int(cells[0])]), unit_m)
+    def cell_labels(self, grid: Hashable, graph: CellGraph, labels: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray] | None:
+        """The compact labels kept (:class:`~sgplan.execution.cell_labels.CellLabels`): ids are the run's,
+        so some may be unused."""
+        self._serves(grid, graph)
+        if labels is not self.labels:
+            raise ValueError("the run's parts serve its current labels only")
+        return self.labelling.label_masks, self.labelling.cell_label
+
+    def reachable(self, grid: Hashable, graph: CellGraph, start_cell: int) -> np.ndarray | None:
+        """The component kept (:class:`~sgplan.execution.component.Component`)."""
+        self._serves(grid, graph)
+        return self.component.of(graph, start_cell)
+
+    def label_boundary(self, grid: Hashable, graph: CellGraph) -> np.ndarray | None:
+        self._serves(grid, graph)
+        return self.labelling.boundary
+
+    def label_fields(self, grid: Hashable, graph: CellGraph, masks: np.ndarray, unit_m: float
+                     ) -> np.ndarray | float | None:
+        """The fields kept by bitmask (:class:`~sgplan.execution.fields.FieldStore`), each to its whole
+        region: equal to the field of the region's part reachable from the start on every cell reachable
+        from it, the only cells h_LTL reads."""
+        self._serves(grid, graph)
+        return self.fields.fields(graph, self.labelling.masks, [int(m) for m in masks], unit_m)
 
     def advance(self, grid: OccupancyGrid, change: GridChange, labels: np.ndarray, relabelled: np.ndarray,
-                building: Building) -> None:
+                scene: Building, at: tuple[int, int, int] | None = None) -> None:
         """Serve ``grid`` and ``labels`` from now on: the grid and labels after a scene change whose effect
         on traversability is ``change`` and which changed the labels at the flat raster positions
-        ``relabelled``.
+        ``relabelled``; ``scene``: the changed building without its blocks and closed doors; ``at``: the
+        robot's cell ``(row, col, floor)``, if known (whose component to follow).
 
-        Costs a copy of the graph's padded index and of the cells' bitmasks, and bookkeeping of the changed
-        cells (the fields are repaired when next asked for). A change that made traversable a cell the
-        numbering does not hold (:class:`~sgplan.execution.graph.OutsideNumbering`) numbers the cells anew,
-        with every part rebuilt."""
+        Costs a copy of the graph's padded index, and work over the changed cells and their neighbours
+        (the fields are repaired when next asked for; the component may flood the smaller side of a
+        split). A change that made traversable a cell the numbering does not hold
+        (:class:`~sgplan.execution.graph.OutsideNumbering`) numbers the cells anew, with every part
+        rebuilt."""
         try:
-            self.graph, moved = remasked(self.graph, self.candidates, change)
+            graph, moved = remasked(self.graph, self.candidates, change, in_place=True)
         except OutsideNumbering:
-            self.candidates = candidate_graph(grid, building)
-            self.graph = masked_graph(self.candidates, grid.traversable)
-            self.fields.forget()
-            self.grid, self.labels, self.masks = grid, labels, self.graph.gather(labels)
-            self._parts.clear()
+            self._number(grid, labels, candidate_graph(grid, scene))
             return
         cells = self.candidates.cell_ids(relabelled)
         held = cells >= 0
         cells, positions = cells[held], relabelled[held]
-        masks = self.masks.copy()
-        masks[cells] = labels.reshape(-1)[positions]
-        self.fields.changed(moved, cells, self.masks[cells])
-        self.grid, self.labels, self.masks = grid, labels, masks
+        before = self.labelling.masks[cells]
+        self.graph = graph
+        self.labelling.update(graph, moved, cells, labels.reshape(-1)[positions])
+        self.fields.changed(moved, cells, before)
+        self.component.update(graph, moved, None if at is None else graph.cell_id(*at))
+        self.grid, self.labels = grid, labels
         for slot in [slot for slot in self._parts if slot[0] in _PER_VERSION]:
             del self._parts[slot]

@@ -226,12 +226,18 @@ def _settle(
 
 
 @njit(cache=True)
-def flood(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, start, seen):
-    """Mark in ``seen`` (bool, all cells) every cell reachable from cell ``start`` by steps and stairs."""
+def flood(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, starts, seen):
+    """Mark in ``seen`` (bool, all cells) every cell reachable from the cells ``starts`` by steps and stairs,
+    without passing through cells already marked (a flood that grows a marked region from some of its
+    neighbours). Returns the cells marked."""
     stack = np.empty(cell_pos.shape[0], dtype=np.int32)
-    stack[0] = start
-    seen[start] = True
-    top = 1
+    top = 0
+    for start in starts:
+        if not seen[start]:
+            seen[start] = True
+            stack[top] = start
+            top += 1
+    marked = top
     n_stairs = stairs_from.shape[0]
     while top > 0:
         top -= 1
@@ -243,6 +249,7 @@ def flood(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, 
                 seen[v] = True
                 stack[top] = v
                 top += 1
+                marked += 1
         j = stairs_first[u]
         while j >= 0 and j < n_stairs and stairs_from[j] == u:
             v = stairs_to[j]
@@ -250,7 +257,9 @@ def flood(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, 
                 seen[v] = True
                 stack[top] = v
                 top += 1
+                marked += 1
             j += 1
+    return marked
 
 
 @njit(cache=True)

@@ -22,6 +22,7 @@ import hashlib
 import time
 from collections import namedtuple
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 
@@ -30,7 +31,7 @@ from sgplan.planning._dijkstra import PRED_NONE, PRED_SOURCE, PRED_STAIRS, PRED_
 from sgplan.planning._memory import sparse_zeros
 from sgplan.planning.cells import CellGraph, build_cell_graph
 from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
-from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic, unit_field
+from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic, label_fields
 from sgplan.planning.problem import PlanningProblem
 from sgplan.planning.shared import shared_part
 from sgplan.scene.dilate import within_distance
@@ -215,14 +216,15 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
     start_cell = _check_start(problem, graph)
     automaton = problem.automaton
 
-    masks = graph.gather(problem.labels)
-    if masks.size and (int(masks.max()) >= automaton.num_labels or int(masks.min()) < 0):
+    compacted = None if problem.shared is None else problem.shared.cell_labels(problem.grid, graph,
+                                                                                problem.labels)
+    label_masks, cell_label = compacted if compacted is not None else _labelling(graph, problem.labels,
+                                                                                  automaton)
+    if label_masks.size and (int(label_masks.max()) >= automaton.num_labels or int(label_masks.min()) < 0):
         raise PlanningError(
-            f"label raster holds bitmask {int(masks.max())} but the automaton has only "
+            f"label raster holds bitmask {int(label_masks.max())} but the automaton has only "
             f"{len(automaton.aps)} propositions ({', '.join(automaton.aps)})"
         )
-    label_masks, cell_label = _compact_labels(masks, automaton.num_labels)
-    del masks
     trans = np.ascontiguousarray(automaton.table[:, label_masks], dtype=np.int32)
     accepting = np.asarray(automaton.accepting, dtype=bool)
     dead = _dead_states(np.asarray(automaton.table), accepting)
@@ -248,11 +250,14 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
     if dead[q_start]:
         raise PlanningError("the mission automaton accepts no word at all", status="infeasible")
 
-    reachable = graph.reachable(start_cell)
+    component = None if problem.shared is None else problem.shared.reachable(problem.grid, graph, start_cell)
+    reachable = component if component is not None else graph.reachable(start_cell)
     clock.lap("reachable")
-    ltl = build_ltl_heuristic(graph, cell_label, trans, accepting, q_start, reachable,
-                              distances=lambda cells, unit: _distance_field(problem, graph, cells, unit),
-                              start_cell=start_cell)
+    boundary = None if problem.shared is None else problem.shared.label_boundary(problem.grid, graph)
+    fields = partial(_label_fields, problem, graph, cell_label, label_masks, reachable)
+    ltl = build_ltl_heuristic(graph, cell_label, trans, accepting, q_start, reachable, fields=fields,
+                              start_cell=start_cell, boundary=boundary)
+    del fields
     clock.lap("ltl")
     if not accepting[q_start] and not np.isfinite(ltl.value(start_cell, q_start)):
         raise PlanningError(
@@ -415,7 +420,7 @@ class _Clock:
         self._last = now
 
 
-def _compact_labels(masks: np.ndarray, num_labels: int) -> tuple[np.ndarray, np.ndarray]:
+def compact_labels(masks: np.ndarray, num_labels: int) -> tuple[np.ndarray, np.ndarray]:
     """``(label_masks, cell_label)``: the distinct bitmasks (ascending, int64) and each cell's index into
     them (:func:`label_index_dtype`: a byte a cell on most missions). A lookup table when the automaton's
     label space is small, else a sort."""
@@ -590,13 +595,29 @@ class LabelRuns:
         return int(self.store.count[self.done.astype(bool)].sum()) * 4 + self.done.nbytes
 
 
-def _distance_field(problem: PlanningProblem, graph: CellGraph, cells: np.ndarray, unit_m: float
-                    ) -> np.ndarray | float:
-    """:func:`~sgplan.planning.ltl_heuristic.unit_field` of ``graph``, from the session's parts
-    (:meth:`SharedParts.distance_field`); computed each time without them."""
-    if problem.shared is None:
-        return unit_field(graph, cells, unit_m)
-    return problem.shared.distance_field(problem.grid, graph, cells, unit_m)
+def _labelling(graph: CellGraph, labels: np.ndarray, automaton) -> tuple[np.ndarray, np.ndarray]:
+    """``(label_masks, cell_label)`` of the label raster ``labels`` over the cells of ``graph``
+    (:func:`compact_labels`)."""
+    masks = graph.gather(labels)
+    if masks.size and int(masks.min()) < 0:
+        raise PlanningError(f"label raster holds a negative bitmask ({int(masks.min())})")
+    return compact_labels(masks, max(automaton.num_labels, int(masks.max(initial=0)) + 1))
+
+
+def _label_fields(problem: PlanningProblem, graph: CellGraph, cell_label: np.ndarray, label_masks: np.ndarray,
+                  reachable: np.ndarray, labels: np.ndarray, unit_m: float) -> np.ndarray | float:
+    """The distance fields of the regions of compact labels ``labels`` (h_LTL's ``fields``): kept by the
+    problem's parts when they keep them by label (:meth:`SharedParts.label_fields`), else one
+    :func:`~sgplan.planning.ltl_heuristic.unit_field` per region within ``reachable``, each from the
+    session's parts when there are some (:meth:`SharedParts.distance_field`)."""
+    shared = problem.shared
+    kept = None if shared is None else shared.label_fields(problem.grid, graph, label_masks[labels], unit_m)
+    if kept is not None:
+        return kept
+    if shared is None:
+        return label_fields(graph, cell_label, reachable, labels, unit_m)
+    return label_fields(graph, cell_label, reachable, labels, unit_m,
+                        distances=lambda cells, unit: shared.distance_field(problem.grid, graph, cells, unit))
 
 
 def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:

@@ -70,6 +70,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from sgplan.intsets import unique_sorted
 from sgplan.planning._memory import sparse_zeros
 from sgplan.planning.cells import CellGraph
 
@@ -232,10 +233,11 @@ def build_ltl_heuristic(
     accepting: np.ndarray,
     q_start: int,
     reachable: np.ndarray | None = None,
-    distances: Callable[[np.ndarray, float], np.ndarray | float] | None = None,
+    fields: Callable[[np.ndarray, float], np.ndarray | float] | None = None,
     start_cell: int = -1,
     piece_m: float = PIECE_M,
     max_pieces: int = MAX_PIECES,
+    boundary: np.ndarray | None = None,
 ) -> LtlHeuristic:
     """Tabulate h_LTL for the states reachable from ``q_start``.
 
@@ -255,9 +257,12 @@ def build_ltl_heuristic(
         optional ``(N,)`` bool, the cells reachable from the start: label regions are restricted to them
         (the search never leaves them), which tightens h and makes it ``inf`` when a needed label occurs
         only elsewhere.
-    distances:
-        optional ``distances(cells, unit_m)``: :func:`unit_field` of ``graph`` (the default), e.g. kept by a
-        session (:mod:`sgplan.planning.shared`); ``cells`` are sorted cell indices.
+    fields:
+        optional ``fields(labels, unit_m)``: the distance fields of the regions of the compact labels
+        ``labels`` (ascending), as :func:`label_fields` computes them (the default): an ``(N, len(labels))``
+        uint32 matrix, or the largest distance (a float) when some does not fit. A label's field may be
+        to its whole region instead of its part in ``reachable``: the two agree on every cell reachable
+        from the start, the only cells h reads (e.g. a run's fields, repaired across scene changes).
     start_cell:
         the start's cell index: its neighbours become entry cells of their labels, since the ``authors``
         profile reads the start's label only on the first move. -1: none, which keeps h consistent only
@@ -265,6 +270,9 @@ def build_ltl_heuristic(
     piece_m, max_pieces:
         side of the pieces (metres) and most pieces per label region (:data:`PIECE_M`,
         :data:`MAX_PIECES`); any values keep h consistent, smaller pieces make it tighter and slower.
+    boundary:
+        optional :func:`label_boundary` of ``graph`` and ``cell_label`` (e.g. kept up to date by a run);
+        computed when ``None``.
     """
     accepting = np.asarray(accepting, dtype=bool)
     states = np.flatnonzero(reachable_states(trans, q_start) & ~accepting)
@@ -276,25 +284,21 @@ def build_ltl_heuristic(
     needed = np.flatnonzero(leaves.any(axis=0) & present)
     field_of = np.full(trans.shape[1], -1, dtype=np.int64)
     field_of[needed] = np.arange(len(needed))
-    if distances is None:
-        def distances(cells: np.ndarray, unit: float) -> np.ndarray | float:
-            return unit_field(graph, cells, unit)
+    if fields is None:
+        def fields(labels: np.ndarray, unit: float) -> np.ndarray | float:
+            return label_fields(graph, cell_label, inside, labels, unit)
     unit_m = finest_unit(graph)
     while True:  # a coarser unit only if some distance does not fit in 32 bits
-        # Cell-major: an evaluation reads all the fields of one cell (one cache line).
-        dist = np.empty((graph.num_cells, len(needed)), dtype=np.uint32)
-        for i, label in enumerate(needed):
-            field = distances(np.flatnonzero((cell_label == label) & inside), unit_m)
-            if isinstance(field, float):
-                unit_m *= 2.0 ** np.ceil(np.log2(field / (UNREACHED - 1)))
-                break
-            dist[:, i] = field
-        else:
+        dist = fields(needed, unit_m)
+        if not isinstance(dist, float):
             break
+        unit_m *= 2.0 ** np.ceil(np.log2(dist / (UNREACHED - 1)))
 
     twice = _moves_twice(trans, states)
-    piece_label, piece_cells, piece_ptr = _pieces(graph, cell_label, field_of, inside, twice, start_cell,
-                                                  piece_m, max_pieces)
+    if boundary is None:
+        boundary = label_boundary(graph, cell_label)
+    entry = _entry_cells(graph, cell_label, field_of, inside, twice, start_cell, boundary)
+    piece_label, piece_cells, piece_ptr = _pieces(graph, field_of, entry, piece_m, max_pieces)
     lo, hi = _piece_bounds(dist, piece_cells, piece_ptr)
     between = _piece_lower_bounds(dist, piece_cells, piece_ptr, lo, hi)
     q_row, term_ptr, groups, term_piece, term_add = _terms(trans, accepting, states, field_of, piece_label,
@@ -335,6 +339,27 @@ def unit_costs(graph: CellGraph, unit_m: float) -> tuple[np.ndarray, np.ndarray]
     return np.floor(graph.step_cost / unit_m), np.floor(graph.stairs_cost / unit_m)
 
 
+def label_fields(graph: CellGraph, cell_label: np.ndarray, inside: np.ndarray, labels: np.ndarray,
+                 unit_m: float, distances: Callable[[np.ndarray, float], np.ndarray | float] | None = None
+                 ) -> np.ndarray | float:
+    """``(N, F)`` uint32: column ``i`` is the :func:`unit_field` of the cells of ``inside`` whose compact
+    label is ``labels[i]``; or, when some distance does not fit, the largest one (units, a float).
+
+    Cell-major, as h reads it: an evaluation reads all the fields of one cell (one cache line).
+    ``distances(cells, unit_m)``: :func:`unit_field` of ``graph`` (the default), e.g. kept by a session
+    (:mod:`sgplan.planning.shared`); ``cells`` are sorted cell indices."""
+    if distances is None:
+        def distances(cells: np.ndarray, unit: float) -> np.ndarray | float:
+            return unit_field(graph, cells, unit)
+    dist = np.empty((graph.num_cells, len(labels)), dtype=np.uint32)
+    for i, label in enumerate(labels):
+        field = distances(np.flatnonzero((cell_label == label) & inside), unit_m)
+        if isinstance(field, float):
+            return field
+        dist[:, i] = field
+    return dist
+
+
 def unit_field(graph: CellGraph, cells: np.ndarray, unit_m: float) -> np.ndarray | float:
     """``(N,)`` uint32: each cell's distance to ``cells`` in whole units of ``unit_m`` over the moves'
     costs rounded down (:func:`unit_costs`; the module docstring's fixed point), :data:`UNREACHED` where
@@ -373,21 +398,16 @@ def _moves_twice(trans: np.ndarray, states: np.ndarray) -> np.ndarray:
 
 def _pieces(
     graph: CellGraph,
-    cell_label: np.ndarray,
     field_of: np.ndarray,
-    inside: np.ndarray,
-    twice: np.ndarray,
-    start_cell: int,
+    entry: tuple[np.ndarray, np.ndarray],
     piece_m: float,
     max_pieces: int,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(piece_label, piece_cells, piece_ptr)`` (see :class:`LtlHeuristic`): the entry cells of every
-    measured label, binned into squares of ``piece_m`` (larger for labels that would get more than
-    ``max_pieces``)."""
-    entry = _entry_cells(graph.cell_at, graph.cell_pos, graph.step_offset, graph.stairs_from, graph.stairs_to,
-                         cell_label, field_of, inside, twice, start_cell)
-    cells = np.flatnonzero(entry)
-    field = field_of[cell_label[cells]]
+    """``(piece_label, piece_cells, piece_ptr)`` (see :class:`LtlHeuristic`): the entry cells (``entry``:
+    the cells, ascending, and their compact labels) of every measured label, binned into squares of
+    ``piece_m`` (larger for labels that would get more than ``max_pieces``)."""
+    cells, cell_labels = entry
+    field = field_of[cell_labels]
     side = max(1, round(piece_m / min(graph.resolution_m)))
     labels, cell_lists = [], []
     for f in range(int(field_of.max(initial=-1)) + 1):
@@ -395,12 +415,11 @@ def _pieces(
         bins = side
         while True:
             key = _bin_key(graph, own, bins)
-            uniq, inverse = np.unique(key, return_inverse=True)
-            if len(uniq) <= max_pieces or bins > max(graph.shape[1:]):  # at worst, one piece per floor
+            order = np.argsort(key, kind="stable")  # by square, each in cell order
+            splits = np.flatnonzero(np.diff(key[order])) + 1
+            if len(splits) < max_pieces or bins > max(graph.shape[1:]):  # at worst, one piece per floor
                 break
             bins = int(np.ceil(bins * 1.5))
-        order = np.argsort(inverse, kind="stable")
-        splits = np.cumsum(np.bincount(inverse, minlength=len(uniq)))[:-1]
         for piece in np.split(own[order], splits):
             labels.append(f)
             cell_lists.append(piece)
@@ -419,33 +438,82 @@ def _bin_key(graph: CellGraph, cells: np.ndarray, side: int) -> np.ndarray:
     return graph.cell_floor[cells].astype(np.int64) * per_floor + row // side * per_row + col // side
 
 
+def label_boundary(graph: CellGraph, cell_label: np.ndarray) -> np.ndarray:
+    """``(N,)`` bool: the cells of ``graph`` that a move (a step or stairs) joins to a cell of the graph
+    with another compact label in ``cell_label`` -- where a robot coming from outside a label region
+    enters it. A pass over the cells (compiled)."""
+    boundary = np.zeros(graph.num_cells, dtype=np.bool_)
+    mark_boundary(graph.cell_at, graph.cell_pos, graph.step_offset, graph.stairs_first, graph.stairs_from,
+                  graph.stairs_to, cell_label, np.arange(graph.num_cells, dtype=np.int64), False, boundary)
+    return boundary
+
+
+@njit(cache=True, inline="always")
+def _on_boundary(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, cell_label, x):
+    """Whether cell ``x`` is on a label boundary (:func:`label_boundary`); a cell off the graph (masked,
+    ``cell_at[cell_pos[x]] != x``) is not."""
+    pos = cell_pos[x]
+    if cell_at[pos] != x:
+        return False
+    label = cell_label[x]
+    for k in range(8):
+        y = cell_at[pos + step_offset[k]]
+        if y >= 0 and cell_label[y] != label:
+            return True
+    j = stairs_first[x]
+    while 0 <= j < stairs_from.shape[0] and stairs_from[j] == x:
+        y = stairs_to[j]
+        if cell_at[cell_pos[y]] == y and cell_label[y] != label:
+            return True
+        j += 1
+    return False
+
+
 @njit(cache=True)
-def _entry_cells(cell_at, cell_pos, step_offset, stairs_from, stairs_to, cell_label, field_of, inside, twice,
-                 start_cell):
-    """``(N,)`` bool: the measured-label cells (``field_of >= 0``, inside) where the automaton can change
-    state on a move (see the module docstring)."""
-    n = cell_pos.shape[0]
-    entry = np.zeros(n, dtype=np.bool_)
-    for x in range(n):
-        label = cell_label[x]
-        if not inside[x] or field_of[label] < 0:
+def mark_boundary(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, cell_label, cells,
+                  around, boundary):
+    """Set ``boundary[x]`` (see :func:`label_boundary`) for every cell ``x`` of ``cells`` and, if
+    ``around``, for every cell of the graph a move joins it to (what a change of ``x``'s label or graph
+    membership can affect)."""
+    n_stairs = stairs_from.shape[0]
+    done = np.zeros(boundary.shape[0] if around else 0, dtype=np.bool_)  # each cell once, when around
+    for x in cells:
+        boundary[x] = _on_boundary(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to,
+                                   cell_label, x)
+        if not around:
             continue
-        if twice[label]:
-            entry[x] = True
-            continue
+        done[x] = True
         pos = cell_pos[x]
-        for k in range(8):
-            y = cell_at[pos + step_offset[k]]
-            if y >= 0 and (cell_label[y] != label or y == start_cell):
-                entry[x] = True
+        j = stairs_first[x]
+        for k in range(8 + n_stairs):
+            if k < 8:
+                y = cell_at[pos + step_offset[k]]
+            elif 0 <= j < n_stairs and stairs_from[j] == x:
+                y = stairs_to[j]
+                j += 1
+            else:
                 break
-    for j in range(stairs_from.shape[0]):
-        x = stairs_to[j]
-        if inside[x] and field_of[cell_label[x]] >= 0 and (
-            cell_label[stairs_from[j]] != cell_label[x] or stairs_from[j] == start_cell
-        ):
-            entry[x] = True
-    return entry
+            if y >= 0 and not done[y]:
+                done[y] = True
+                boundary[y] = _on_boundary(cell_at, cell_pos, step_offset, stairs_first, stairs_from,
+                                           stairs_to, cell_label, y)
+
+
+def _entry_cells(graph: CellGraph, cell_label: np.ndarray, field_of: np.ndarray, inside: np.ndarray,
+                 twice: np.ndarray, start_cell: int, boundary: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The measured-label cells (``field_of >= 0``, inside) where the automaton can change state on a move
+    (see the module docstring): those on a label ``boundary``, the start's neighbours, every cell of a
+    label that moves some state twice in a row; ascending, with their compact labels."""
+    cells = np.flatnonzero(boundary)
+    if twice.any():
+        cells = unique_sorted(np.concatenate([cells, np.flatnonzero(twice[cell_label])]))
+    if start_cell >= 0:
+        near = graph.neighbours(np.array([start_cell]))[0]
+        stairs = graph.stairs_to[graph.stairs_from == start_cell]
+        cells = unique_sorted(np.concatenate([cells, near[near >= 0], stairs]).astype(np.int64))
+    labels = cell_label[cells]
+    keep = inside[cells] & (field_of[labels] >= 0)
+    return cells[keep], labels[keep]
 
 
 @njit(cache=True)

@@ -148,6 +148,33 @@ class SharedParts:
         return self.get("distance_field", key, build)
 
 
+    # A session shares what depends on the building only; a run's parts (sgplan.execution.parts) keep the
+    # per-cell facts of its current grid and labels up to date across scene changes and serve them here.
+    # None: the caller computes the part itself.
+
+    def cell_labels(self, grid: Hashable, graph: CellGraph, labels: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray] | None:
+        """``(label_masks, cell_label)`` of the label raster ``labels`` over ``graph``'s cells, as
+        :func:`sgplan.planning.domain.build_domain` compacts them, if kept; else ``None``."""
+        return None
+
+    def reachable(self, grid: Hashable, graph: CellGraph, start_cell: int) -> np.ndarray | None:
+        """``(N,)`` bool: the cells of ``graph`` reachable from ``start_cell``, if kept; else ``None``."""
+        return None
+
+    def label_boundary(self, grid: Hashable, graph: CellGraph) -> np.ndarray | None:
+        """:func:`~sgplan.planning.ltl_heuristic.label_boundary` of ``graph`` and the labels served by
+        :meth:`cell_labels`, if kept; else ``None``."""
+        return None
+
+    def label_fields(self, grid: Hashable, graph: CellGraph, masks: np.ndarray, unit_m: float
+                     ) -> np.ndarray | float | None:
+        """The ``(N, F)`` distance fields (h_LTL's, :func:`~sgplan.planning.ltl_heuristic.label_fields`) of
+        the whole regions of the label bitmasks ``masks``, if kept by bitmask; else ``None`` (a session
+        keeps fields by target cells: :meth:`distance_field`)."""
+        return None
+
+
 def shared_part(parts: SharedParts | None, name: str, key: Hashable, build: Callable[[], T]) -> T:
     """``parts.get(name, key, build)``, or ``build()`` when there is nothing to share with."""
     return build() if parts is None else parts.get(name, key, build)
