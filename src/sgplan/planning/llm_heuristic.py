@@ -77,6 +77,7 @@ def build_llm_heuristic(
         if guidance is not None:
             stats.skip(f"guidance is a {type(guidance).__name__}, not a mapping", entry=True)
         return LlmHeuristic(leg_sum, target, has_target, stats)
+    legs_of: dict[object, tuple[np.ndarray, np.ndarray]] = {}  # a call string recurs across entries
     for room_key, per_state in guidance.items():
         room_uuid = _as_int(room_key)
         if room_uuid not in index or not isinstance(per_state, Mapping):
@@ -90,7 +91,15 @@ def build_llm_heuristic(
                 )
                 continue
             stats.entries += 1
-            legs = [leg for leg in (_leg(call, building, stats) for call in calls) if leg is not None]
+            legs = []
+            for call in calls:
+                leg = legs_of.get(call) if isinstance(call, str) else None
+                if leg is None:  # not seen yet, or unusable (read again: each use is counted)
+                    leg = _leg(call, building, stats)
+                    if leg is not None:
+                        legs_of[call] = leg
+                if leg is not None:
+                    legs.append(leg)
             if legs:
                 r = index[room_uuid]
                 target[r, q] = legs[0][1]
