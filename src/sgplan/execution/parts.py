@@ -14,9 +14,10 @@ change touched:
   not flooded anew;
 - the h_LTL distance fields are kept as one matrix and repaired from the cells that left or joined the
   graph or changed label (:mod:`sgplan.execution.fields`), not recomputed;
-- the composite action tables, their maps and label runs are dropped and rebuilt lazily by the next
-  search that needs them (they depend on the start's component and on exact shortest paths that a
-  change may lengthen or shorten anywhere on a floor).
+- the composite action tables keep their families and indices; the maps and label runs that a change
+  may have altered (those of the rooms or floors it touched, of moved objects, of rooms the robot can
+  reach more of) are forgotten and rebuilt by the next search that needs them
+  (:mod:`sgplan.execution.actions`).
 
 Every plan over these parts equals a plan over parts built afresh for the changed building
 (``tests/execution/test_parts.py``, ``test_component.py``, ``test_cell_labels.py``, ``test_fields.py``).
@@ -25,11 +26,12 @@ Every plan over these parts equals a plan over parts built afresh for the change
 from __future__ import annotations
 
 import copy
-from collections.abc import Callable, Hashable
-from typing import Any, TypeVar
+from collections.abc import Callable, Collection, Hashable
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
+from sgplan.execution.actions import RunActions, with_other_labels
 from sgplan.execution.cell_labels import CellLabels
 from sgplan.execution.component import Component
 from sgplan.execution.fields import FieldStore
@@ -40,11 +42,11 @@ from sgplan.planning.shared import SharedParts
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 
+if TYPE_CHECKING:
+    from sgplan.planning.domain import ActionParts
+    from sgplan.planning.problem import PlanningProblem
+
 T = TypeVar("T")
-
-_PER_VERSION = ("action_tables", "action_maps", "label_runs")
-"""Parts rebuilt lazily after each change (see the module)."""
-
 
 class RunParts(SharedParts):
     """Planner parts for the problems of one run's current grid and labels (see the module).
@@ -58,14 +60,13 @@ class RunParts(SharedParts):
     scene:
         the building of ``grid`` without its blocks and closed doors (which cells could become
         traversable: :func:`~sgplan.execution.graph.candidate_graph`).
-    max_bytes:
-        the cap of the parts rebuilt per version (action tables and maps), as :class:`SharedParts`;
-        the graph, the labels, the component and the fields are the run's own and always kept.
+
+    Every part is the run's own and kept (no byte cap: the run's parts grow with its building, not with
+    the missions planned).
     """
 
-    def __init__(self, grid: OccupancyGrid, labels: np.ndarray, scene: Building,
-                 max_bytes: int | None = None) -> None:
-        super().__init__(max_bytes)
+    def __init__(self, grid: OccupancyGrid, labels: np.ndarray, scene: Building) -> None:
+        super().__init__()
         self._number(grid, labels, candidate_graph(grid, scene))
 
     def _number(self, grid: OccupancyGrid, labels: np.ndarray, candidates: CellGraph) -> None:
@@ -75,6 +76,7 @@ class RunParts(SharedParts):
         self.labelling = CellLabels(candidates, self.graph, labels)
         self.component = Component()
         self.fields = FieldStore()
+        self.actions = RunActions(candidates)
         self._parts.clear()
 
     def with_labels(self, labels: np.ndarray) -> RunParts:
@@ -84,6 +86,7 @@ class RunParts(SharedParts):
         other._parts = type(self._parts)()
         other.labels, other.labelling = labels, CellLabels(self.candidates, self.graph, labels)
         other.component, other.fields = copy.copy(self.component), FieldStore()
+        other.actions = with_other_labels(self.actions)
         return other
 
     @property
@@ -133,12 +136,21 @@ class RunParts(SharedParts):
         self._serves(grid, graph)
         return self.fields.fields(graph, self.labelling.masks, [int(m) for m in masks], unit_m)
 
+    def action_parts(self, problem: PlanningProblem, graph: CellGraph, cell_label: np.ndarray,
+                     reachable: np.ndarray) -> ActionParts | None:
+        """The composite action parts kept across changes (:class:`~sgplan.execution.actions.RunActions`);
+        ``cell_label`` is the run's own (:meth:`cell_labels`)."""
+        self._serves(problem.grid, graph)
+        return self.actions.parts(problem, reachable)
+
     def advance(self, grid: OccupancyGrid, change: GridChange, labels: np.ndarray, relabelled: np.ndarray,
-                scene: Building, at: tuple[int, int, int] | None = None) -> None:
+                scene: Building, at: tuple[int, int, int] | None = None, objects: Collection[int] = ()
+                ) -> None:
         """Serve ``grid`` and ``labels`` from now on: the grid and labels after a scene change whose effect
         on traversability is ``change`` and which changed the labels at the flat raster positions
         ``relabelled``; ``scene``: the changed building without its blocks and closed doors; ``at``: the
-        robot's cell ``(row, col, floor)``, if known (whose component to follow).
+        robot's cell ``(row, col, floor)``, if known (whose component to follow); ``objects``: the uuids of
+        the objects the change moved, added or removed.
 
         Costs a copy of the graph's padded index, and work over the changed cells and their neighbours
         (the fields are repaired when next asked for; the component may flood the smaller side of a
@@ -158,6 +170,5 @@ class RunParts(SharedParts):
         self.labelling.update(graph, moved, cells, labels.reshape(-1)[positions])
         self.fields.changed(moved, cells, before)
         self.component.update(graph, moved, None if at is None else graph.cell_id(*at))
+        self.actions.advance(moved, np.sort(cells), objects)
         self.grid, self.labels = grid, labels
-        for slot in [slot for slot in self._parts if slot[0] in _PER_VERSION]:
-            del self._parts[slot]

@@ -383,7 +383,7 @@ class Run:
         relabelled = self.labels.update(scene.building, objects)
         self.scene, self.grid = scene, grid
         self.parts.advance(grid, GridChange(*overall), self.labels.raster, relabelled, scene.scene(),
-                           at=self.position)
+                           at=self.position, objects=objects)
         self.monitor = self.monitor.rebased(grid, self.labels.raster, scene.building)
         self.changes.extend(typed)
         kept = self._plan_survives(overall[0], overall[1].size == 0 and relabelled.size == 0)

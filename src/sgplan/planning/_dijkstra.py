@@ -71,7 +71,8 @@ def dijkstra(
 ):
     """Fill ``dist`` / ``pred`` / ``order`` (local, see the module docstring); returns cells settled.
 
-    ``sources`` are global cell indices in ``[lo, hi)``. With ``stop_room >= 0`` the run never enters a
+    ``sources`` are global cell indices in ``[lo, hi)``; those off the graph (masked out of ``cell_at``, see
+    :mod:`sgplan.execution.graph`) are left out. With ``stop_room >= 0`` the run never enters a
     cell whose ``cell_room`` differs from ``stop_room`` (sources excepted) and stops early after
     ``stop_count`` cells of that room are settled; with ``stop_room < 0`` it covers ``[lo, hi)`` to
     exhaustion (``cell_room`` is then not read). Every edge cost must be positive (the cell graph checks
@@ -99,7 +100,7 @@ def dijkstra(
     state = np.zeros(6, dtype=np.int64)
     for s in sources:
         local = s - lo
-        if pred[local] == PRED_SOURCE:
+        if pred[local] == PRED_SOURCE or cell_at[cell_pos[s]] != s:  # twice, or masked off the graph
             continue
         dist[local] = 0.0
         pred[local] = PRED_SOURCE

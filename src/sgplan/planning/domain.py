@@ -344,7 +344,13 @@ def _action_parts(
     problem: PlanningProblem, graph: CellGraph, cell_label: np.ndarray, reachable: np.ndarray
 ) -> ActionParts:
     """The composite action tables of the problem's grid (shared by a session), the map store of the
-    start's connected component and the label runs of this labelling (both filled by the search)."""
+    start's connected component and the label runs of this labelling (both filled by the search); or the
+    parts kept by the problem's parts when they keep them across changes (:meth:`SharedParts.action_parts`,
+    a run's)."""
+    shared = problem.shared
+    kept = None if shared is None else shared.action_parts(problem, graph, cell_label, reachable)
+    if kept is not None:
+        return kept
     tables = shared_part(problem.shared, "action_tables", (problem.grid, problem.reach_radius_m),
                          lambda: _action_tables(problem, graph))
     # The maps' early stops depend on which cells the search can stand on: the start's component, named
@@ -528,12 +534,16 @@ class ActionTables:
     ``kactions.map_stop_count`` is a placeholder: the stop counts follow the start's component
     (:class:`MapStore`)."""
 
-    maps: list[ActionMap]
+    families: list[Family]
     kactions: KernelActions
     in_region: np.ndarray
     cell_room: np.ndarray
     room_uuids: list[int]
     num_rooms: int
+
+    @property
+    def maps(self) -> list[ActionMap]:
+        return [family.action for family in self.families]
 
     def nbytes(self) -> int:
         return self.in_region.nbytes + self.cell_room.nbytes + sum(a.nbytes for a in self.kactions)
@@ -624,6 +634,12 @@ def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
     """The composite action families of the problem's grid and reach radius, and their per-room /
     per-floor tables for the kernel."""
     rooms = list(problem.building.rooms())
+    return action_tables(action_families(problem, graph, rooms), room_indices(problem, graph, rooms), rooms,
+                         graph.shape[0])
+
+
+def room_indices(problem: PlanningProblem, graph: CellGraph, rooms: list) -> np.ndarray:
+    """``(N,)``: the index in ``rooms`` of the room holding each cell of ``graph`` (-1: none)."""
     room_lut = np.full(max([room.id for room in rooms], default=0) + 2, -1, dtype=np.int32)
     for i, room in enumerate(rooms):
         room_lut[room.id] = i
@@ -631,38 +647,45 @@ def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
     inside = (room_ids > 0) & (room_ids < len(room_lut) - 1)
     cell_room = np.full(graph.num_cells, -1, dtype=room_index_dtype(len(rooms)))
     cell_room[inside] = room_lut[room_ids[inside]]
-    del room_ids, inside
+    return cell_room
 
-    grid = problem.grid
+
+@dataclass(frozen=True)
+class Family:
+    """One composite action family as the tables hold it: the action, its target cells (cell indices,
+    ascending), the room (index) its paths keep to (-1: its floor), the room whose cells may take it (-1:
+    any cell of the floor, a floor action), and a floor action's far portal and stairs cost."""
+
+    action: ActionMap
+    sources: np.ndarray
+    stop_room: int
+    from_room: int
+    exit_cell: int = -1
+    exit_cost: float = 0.0
+
+
+def object_family(problem: PlanningProblem, graph: CellGraph, rooms: list, r: int, obj) -> Family | None:
+    """The family of reaching ``obj`` from the cells of room ``rooms[r]`` (its room), ``None`` when no cell
+    of ``graph`` reaches it."""
+    room = rooms[r]
+    cells = _reach_region(problem, graph, room, obj)
+    if not cells.size:
+        return None
+    return Family(ActionMap(MAP_OBJECT, obj.uuid, room.floor), cells.astype(np.int64),
+                  -1 if room.is_staircase else r, r)
+
+
+def action_families(problem: PlanningProblem, graph: CellGraph, rooms: list) -> list[Family]:
+    """The composite action families over ``graph``: per room (in the order of ``rooms``) its objects' and
+    its doors' into each connected room, then the stairs of each floor."""
     floors = graph.shape[0]
     room_index = {room.id: i for i, room in enumerate(rooms)}
-    in_region = np.zeros(graph.num_cells, dtype=np.bool_)
-
-    maps: list[ActionMap] = []
-    sources: list[np.ndarray] = []
-    stop_room: list[int] = []
-    exit_cell: list[int] = []
-    exit_cost: list[float] = []
-    room_obj: list[list[int]] = [[] for _ in rooms]
-    room_room: list[list[int]] = [[] for _ in rooms]
-
-    def add(action: ActionMap, cells: np.ndarray, stop: int, exit_to: int = -1, cost: float = 0.0) -> int:
-        maps.append(action)
-        sources.append(cells.astype(np.int64))
-        stop_room.append(stop)
-        exit_cell.append(exit_to)
-        exit_cost.append(cost)
-        return len(maps) - 1
-
+    families: list[Family] = []
     for r, room in enumerate(rooms):
         if room.floor >= floors:
             continue
-        stop = -1 if room.is_staircase else r  # the room a map's paths stop in (-1: none)
-        for obj in room.objects.values():
-            cells = _reach_region(problem, graph, room, obj)
-            if cells.size:
-                in_region[cells] = True
-                room_obj[r].append(add(ActionMap(MAP_OBJECT, obj.uuid, room.floor), cells, stop))
+        reached = (object_family(problem, graph, rooms, r, obj) for obj in room.objects.values())
+        families += [family for family in reached if family is not None]
         if room.is_staircase:
             continue
         for other_id in room.connected_room_ids:
@@ -672,27 +695,38 @@ def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
                 continue
             ids = _cell_ids(graph, room.floor, np.asarray(doors, dtype=np.int64).reshape(-1, 2))
             if ids.size:
-                room_room[r].append(
-                    add(ActionMap(MAP_ROOM, (room.uuid, rooms[other].uuid), room.floor), ids, r)
-                )
-
-    floor_up = np.full(floors, -1, dtype=np.int32)
-    floor_down = np.full(floors, -1, dtype=np.int32)
-    for link in grid.stairs:
+                families.append(Family(ActionMap(MAP_ROOM, (room.uuid, rooms[other].uuid), room.floor),
+                                       ids, r, r))
+    for link in problem.grid.stairs:
         low = graph.cell_id(link.lower_cell[0], link.lower_cell[1], link.lower_floor)
         up = graph.cell_id(link.upper_cell[0], link.upper_cell[1], link.upper_floor)
         if low < 0 or up < 0:
             continue
-        floor_up[link.lower_floor] = add(
-            ActionMap(MAP_FLOOR_UP, link.lower_floor, link.lower_floor), np.array([low]), -1, up, link.cost_m
-        )
-        floor_down[link.upper_floor] = add(
-            ActionMap(MAP_FLOOR_DOWN, link.upper_floor, link.upper_floor),
-            np.array([up]),
-            -1,
-            low,
-            link.cost_m,
-        )
+        families.append(Family(ActionMap(MAP_FLOOR_UP, link.lower_floor, link.lower_floor),
+                               np.array([low], dtype=np.int64), -1, -1, up, link.cost_m))
+        families.append(Family(ActionMap(MAP_FLOOR_DOWN, link.upper_floor, link.upper_floor),
+                               np.array([up], dtype=np.int64), -1, -1, low, link.cost_m))
+    return families
+
+
+def action_tables(families: list[Family], cell_room: np.ndarray, rooms: list, floors: int) -> ActionTables:
+    """The kernel's tables of ``families`` (indexed in list order): per room the object and door families
+    its cells may take, per floor the stairs families, the families' targets, rooms, floors and exits, and
+    which cells lie in some object's reach."""
+    room_obj: list[list[int]] = [[] for _ in rooms]
+    room_room: list[list[int]] = [[] for _ in rooms]
+    floor_up = np.full(floors, -1, dtype=np.int32)
+    floor_down = np.full(floors, -1, dtype=np.int32)
+    in_region = np.zeros(cell_room.shape[0], dtype=np.bool_)
+    for k, family in enumerate(families):
+        kind = family.action.kind
+        if kind == MAP_OBJECT:
+            room_obj[family.from_room].append(k)
+            in_region[family.sources] = True
+        elif kind == MAP_ROOM:
+            room_room[family.from_room].append(k)
+        else:
+            (floor_up if kind == MAP_FLOOR_UP else floor_down)[family.action.floor] = k
 
     def csr(lists: list[list[int]]) -> tuple[np.ndarray, np.ndarray]:
         ptr = np.zeros(len(lists) + 1, dtype=np.int64)
@@ -702,10 +736,9 @@ def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
 
     obj_ptr, obj_map = csr(room_obj)
     room_ptr, room_map = csr(room_room)
-    src_ptr = np.zeros(len(maps) + 1, dtype=np.int64)
-    src_ptr[1:] = np.cumsum([len(s) for s in sources])
-    stop_rooms = np.array(stop_room, dtype=np.int32)
-    map_src = np.concatenate(sources) if sources else np.zeros(0, dtype=np.int64)
+    src_ptr = np.zeros(len(families) + 1, dtype=np.int64)
+    src_ptr[1:] = np.cumsum([len(f.sources) for f in families])
+    map_src = np.concatenate([f.sources for f in families]) if families else np.zeros(0, dtype=np.int64)
     kactions = KernelActions(
         room_obj_ptr=obj_ptr,
         room_obj_map=obj_map,
@@ -713,15 +746,15 @@ def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
         room_room_map=room_map,
         floor_up_map=floor_up,
         floor_down_map=floor_down,
-        map_floor=np.array([m.floor for m in maps], dtype=np.int32),
+        map_floor=np.array([f.action.floor for f in families], dtype=np.int32),
         map_src_ptr=src_ptr,
-        map_src=map_src,
-        map_stop_room=stop_rooms,
-        map_stop_count=np.zeros(len(maps), dtype=np.int64),  # per component: MapStore.stop_count
-        map_exit_cell=np.array(exit_cell, dtype=np.int64),
-        map_exit_cost=np.array(exit_cost, dtype=np.float64),
+        map_src=map_src.astype(np.int64),
+        map_stop_room=np.array([f.stop_room for f in families], dtype=np.int32),
+        map_stop_count=np.zeros(len(families), dtype=np.int64),  # per component: MapStore.stop_count
+        map_exit_cell=np.array([f.exit_cell for f in families], dtype=np.int64),
+        map_exit_cost=np.array([f.exit_cost for f in families], dtype=np.float64),
     )
-    return ActionTables(maps=maps, kactions=kactions, in_region=in_region, cell_room=cell_room,
+    return ActionTables(families=families, kactions=kactions, in_region=in_region, cell_room=cell_room,
                         room_uuids=[room.uuid for room in rooms], num_rooms=len(rooms))
 
 

@@ -35,6 +35,8 @@ import numpy as np
 
 if TYPE_CHECKING:
     from sgplan.planning.cells import CellGraph
+    from sgplan.planning.domain import ActionParts
+    from sgplan.planning.problem import PlanningProblem
 
 T = TypeVar("T")
 
@@ -172,6 +174,14 @@ class SharedParts:
         """The ``(N, F)`` distance fields (h_LTL's, :func:`~sgplan.planning.ltl_heuristic.label_fields`) of
         the whole regions of the label bitmasks ``masks``, if kept by bitmask; else ``None`` (a session
         keeps fields by target cells: :meth:`distance_field`)."""
+        return None
+
+
+    def action_parts(self, problem: PlanningProblem, graph: CellGraph, cell_label: np.ndarray,
+                     reachable: np.ndarray) -> ActionParts | None:
+        """The composite action parts of ``problem`` (:func:`sgplan.planning.domain._action_parts`: tables,
+        maps, label runs) if kept across changes of the building; else ``None`` (a session shares them by
+        key through :meth:`get`)."""
         return None
 
 
