@@ -139,8 +139,8 @@ class RunActions:
         if family.stop_room < 0 or self._spans[family.stop_room, 0] < 0:
             return [(0, int(graph.floor_offset[family.action.floor + 1]) - floor_lo)]
         first, last = (int(v) - floor_lo for v in self._spans[family.stop_room])
-        return [(first, last)] + [(int(c) - floor_lo, int(c) - floor_lo + 1) for c in family.sources.tolist()
-                                  if not first <= c - floor_lo < last]
+        local = family.sources - floor_lo
+        return [(first, last)] + [(c, c + 1) for c in local[(local < first) | (local >= last)].tolist()]
 
     def _families_touching(self, cells: np.ndarray) -> np.ndarray:
         """``(M,)`` bool: the families whose map's cells (room or floor, and targets) hold some of
