@@ -4,6 +4,7 @@ exactly optimal: their cost equals the independent oracle's on the changed build
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -18,6 +19,7 @@ from sgplan.logic import parse_infix
 from sgplan.logic.ltlf import ltlf_to_dfa
 from sgplan.planning import PlanningProblem
 from sgplan.planning.amra import plan
+from sgplan.planning.cells import build_cell_graph
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.labels import Proposition
 from tests.execution.buildings import house
@@ -66,3 +68,21 @@ def test_plans_over_carried_parts_are_optimal_after_changes(seed, formula, setup
             assert error.status in ("infeasible", "invalid-start"), error
             found = math.inf
         assert found == pytest.approx(expected, abs=1e-6)
+        if parts.component.cells is not None:
+            _check_component(parts, grid, labels, start)
+
+
+def _check_component(parts, grid, labels, start):
+    """The run's component is the start's over the cells a live state may enter (the graph without the
+    fatal labels' cells: a room the mission forbids), as a flood over a fresh graph of them finds it."""
+    fatal = np.flatnonzero(parts.fatal.flags)
+    allowed = replace(grid, traversable=grid.traversable & ~np.isin(labels, fatal))
+    row, col, floor = start
+    if not allowed.traversable[floor, row, col]:
+        return
+    fresh = build_cell_graph(allowed)
+    expected = np.zeros(grid.traversable.size, dtype=bool)
+    expected[fresh.positions()[fresh.reachable(fresh.cell_id(row, col, floor))]] = True
+    kept = np.zeros(grid.traversable.size, dtype=bool)
+    kept[parts.graph.positions()[parts.component.cells]] = True
+    assert np.array_equal(kept, expected)

@@ -81,3 +81,51 @@ def in_graph_cells(graph: CellGraph, cells: np.ndarray) -> np.ndarray:
     """Bool per cell of ``cells`` (numbers): whether it is in ``graph`` now."""
     cells = np.asarray(cells, dtype=np.int64)
     return graph.cell_at[graph.cell_pos[cells]] == cells
+
+
+class LabelMask:
+    """The run's graph without the cells of some label bitmasks -- those every move onto which ends the
+    mission (a room it forbids): a search never stands there, so the robot's component and the h_LTL
+    fields are taken over the rest, where they say what the search can do (a goal the robot can reach
+    only through such a room is out of its reach). Kept as a padded index of its own, made once and
+    updated at the cells that change (:meth:`update`).
+    """
+
+    def __init__(self) -> None:
+        self.flags = np.zeros(0, dtype=bool)  # per bitmask: whether its cells are left out
+        self._cell_at: np.ndarray | None = None
+
+    def avoided(self, masks: np.ndarray) -> np.ndarray:
+        """Bool per bitmask of ``masks``: whether its cells are left out."""
+        out = np.zeros(np.shape(masks), dtype=bool)
+        listed = masks < self.flags.size
+        out[listed] = self.flags[masks[listed]]
+        return out
+
+    def set(self, graph: CellGraph, masks: np.ndarray, avoid: np.ndarray) -> bool:
+        """Leave out the cells of the bitmasks ``avoid`` (``masks``: every cell's); whether that changed
+        which are left out (a pass over the cells when it did)."""
+        flags = np.zeros(int(np.max(avoid, initial=-1)) + 1, dtype=bool)
+        flags[np.asarray(avoid, dtype=np.int64)] = True
+        if np.array_equal(flags, self.flags):
+            return False
+        self.flags = flags
+        self._cell_at = None
+        if flags.any():
+            self._cell_at = graph.cell_at.copy()
+            off = np.flatnonzero(self.avoided(masks))
+            self._cell_at[graph.cell_pos[off]] = -1
+        return True
+
+    def update(self, graph: CellGraph, cells: np.ndarray, masks: np.ndarray) -> None:
+        """Follow a change of ``graph`` or of the labels at ``cells`` (numbers; ``masks`` the bitmask of
+        every cell now)."""
+        if self._cell_at is None or not cells.size:
+            return
+        positions = graph.cell_pos[cells]
+        keep = (graph.cell_at[positions] == cells) & ~self.avoided(masks[cells])
+        self._cell_at[positions] = np.where(keep, cells, -1)
+
+    def of(self, graph: CellGraph) -> CellGraph:
+        """``graph`` without the cells left out (``graph`` itself when none are)."""
+        return graph if self._cell_at is None else replace(graph, cell_at=self._cell_at)

@@ -35,8 +35,9 @@ from sgplan.execution.actions import RunActions, with_other_labels
 from sgplan.execution.cell_labels import CellLabels
 from sgplan.execution.component import Component
 from sgplan.execution.fields import FieldStore
-from sgplan.execution.graph import OutsideNumbering, candidate_graph, masked_graph, remasked
+from sgplan.execution.graph import LabelMask, OutsideNumbering, candidate_graph, masked_graph, remasked
 from sgplan.execution.regrid import GridChange
+from sgplan.intsets import unique_sorted
 from sgplan.planning.cells import CellGraph
 from sgplan.planning.shared import SharedParts
 from sgplan.scene.grid import OccupancyGrid
@@ -74,18 +75,19 @@ class RunParts(SharedParts):
         self.grid, self.labels, self.candidates = grid, labels, candidates
         self.graph = masked_graph(candidates, grid.traversable)
         self.labelling = CellLabels(candidates, self.graph, labels)
+        self.fatal = LabelMask()
         self.component = Component()
         self.fields = FieldStore()
         self.actions = RunActions(candidates)
         self._parts.clear()
 
     def with_labels(self, labels: np.ndarray) -> RunParts:
-        """Parts for the same grid, numbering and component with other labels (another mission's
-        propositions): the labels and fields anew. Costs a pass over the cells."""
+        """Parts for the same grid and numbering with other labels (another mission's propositions): the
+        labels, the component and the fields anew. Costs a pass over the cells."""
         other = copy.copy(self)
         other._parts = type(self._parts)()
         other.labels, other.labelling = labels, CellLabels(self.candidates, self.graph, labels)
-        other.component, other.fields = copy.copy(self.component), FieldStore()
+        other.fatal, other.component, other.fields = LabelMask(), Component(), FieldStore()
         other.actions = with_other_labels(self.actions)
         return other
 
@@ -119,21 +121,32 @@ class RunParts(SharedParts):
             raise ValueError("the run's parts serve its current labels only")
         return self.labelling.label_masks, self.labelling.cell_label
 
-    def reachable(self, grid: Hashable, graph: CellGraph, start_cell: int) -> np.ndarray | None:
-        """The component kept (:class:`~sgplan.execution.component.Component`)."""
+    def _avoiding(self, avoid: np.ndarray) -> CellGraph:
+        """The graph without the cells of the bitmasks ``avoid`` (:class:`~sgplan.execution.graph.LabelMask`);
+        the component and the fields start afresh when ``avoid`` changes (another mission's)."""
+        if self.fatal.set(self.graph, self.labelling.masks, avoid):
+            self.component, self.fields = Component(), FieldStore()
+        return self.fatal.of(self.graph)
+
+    def reachable(self, grid: Hashable, graph: CellGraph, start_cell: int, avoid: np.ndarray
+                  ) -> np.ndarray | None:
+        """The component kept (:class:`~sgplan.execution.component.Component`), over the graph without the
+        cells of ``avoid``."""
         self._serves(grid, graph)
+        graph = self._avoiding(avoid)  # first: it may start the component afresh
         return self.component.of(graph, start_cell)
 
     def label_boundary(self, grid: Hashable, graph: CellGraph) -> np.ndarray | None:
         self._serves(grid, graph)
         return self.labelling.boundary
 
-    def label_fields(self, grid: Hashable, graph: CellGraph, masks: np.ndarray, unit_m: float
-                     ) -> np.ndarray | float | None:
+    def label_fields(self, grid: Hashable, graph: CellGraph, masks: np.ndarray, unit_m: float,
+                     avoid: np.ndarray) -> np.ndarray | float | None:
         """The fields kept by bitmask (:class:`~sgplan.execution.fields.FieldStore`), each to its whole
         region: equal to the field of the region's part reachable from the start on every cell reachable
-        from it, the only cells h_LTL reads."""
+        from it, the only cells h_LTL reads; over the graph without the cells of ``avoid``."""
         self._serves(grid, graph)
+        graph = self._avoiding(avoid)  # first: it may start the fields afresh
         return self.fields.fields(graph, self.labelling.masks, [int(m) for m in masks], unit_m)
 
     def action_parts(self, problem: PlanningProblem, graph: CellGraph, cell_label: np.ndarray,
@@ -168,7 +181,13 @@ class RunParts(SharedParts):
         before = self.labelling.masks[cells]
         self.graph = graph
         self.labelling.update(graph, moved, cells, labels.reshape(-1)[positions])
-        self.fields.changed(moved, cells, before)
-        self.component.update(graph, moved, None if at is None else graph.cell_id(*at))
         self.actions.advance(moved, np.sort(cells), objects)
+        # Over the graph without the fatal labels' cells, a relabelled cell may have left or joined it too.
+        switched = cells[self.fatal.avoided(self.labelling.masks[cells]) != self.fatal.avoided(before)]
+        if switched.size:
+            moved = unique_sorted(np.concatenate([moved, switched]))
+        self.fatal.update(graph, moved, self.labelling.masks)
+        avoiding = self.fatal.of(graph)
+        self.fields.changed(moved, cells, before)
+        self.component.update(avoiding, moved, None if at is None else avoiding.cell_id(*at))
         self.grid, self.labels = grid, labels

@@ -197,7 +197,7 @@ def _settle(
                 j = stairs_first[gu]
                 while j >= 0 and j < n_stairs and stairs_from[j] == gu:
                     v = stairs_to[j] - lo
-                    if 0 <= v < n:
+                    if 0 <= v < n and cell_at[cell_pos[v + lo]] == v + lo:  # a portal off the graph: no
                         nd = d + stairs_cost[j]
                         dv = dist[v]
                         if nd < dv or (dv == 0.0 and pred[v] == PRED_NONE):

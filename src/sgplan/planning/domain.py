@@ -31,7 +31,7 @@ from sgplan.planning._dijkstra import PRED_NONE, PRED_SOURCE, PRED_STAIRS, PRED_
 from sgplan.planning._memory import sparse_zeros
 from sgplan.planning.cells import CellGraph, build_cell_graph
 from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
-from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic, label_fields
+from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic, label_fields, reachable_states
 from sgplan.planning.problem import PlanningProblem
 from sgplan.planning.shared import shared_part
 from sgplan.scene.dilate import within_distance
@@ -250,18 +250,21 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
     if dead[q_start]:
         raise PlanningError("the mission automaton accepts no word at all", status="infeasible")
 
-    component = None if problem.shared is None else problem.shared.reachable(problem.grid, graph, start_cell)
+    avoid = label_masks[_fatal_labels(trans, dead, automaton.initial)]
+    component = None if problem.shared is None else problem.shared.reachable(problem.grid, graph, start_cell,
+                                                                              avoid)
     reachable = component if component is not None else graph.reachable(start_cell)
     clock.lap("reachable")
     boundary = None if problem.shared is None else problem.shared.label_boundary(problem.grid, graph)
-    fields = partial(_label_fields, problem, graph, cell_label, label_masks, reachable)
+    fields = partial(_label_fields, problem, graph, cell_label, label_masks, reachable, avoid)
     ltl = build_ltl_heuristic(graph, cell_label, trans, accepting, q_start, reachable, fields=fields,
                               start_cell=start_cell, boundary=boundary)
     del fields
     clock.lap("ltl")
     if not accepting[q_start] and not np.isfinite(ltl.value(start_cell, q_start)):
+        everywhere = reachable if component is None else graph.reachable(start_cell)  # the message's
         raise PlanningError(
-            _infeasible_reason(problem, label_masks[cell_label], reachable, q_start), status="infeasible"
+            _infeasible_reason(problem, label_masks[cell_label], everywhere, q_start), status="infeasible"
         )
 
     room_uuids = [room.uuid for room in problem.building.rooms()]  # room index -> uuid, as cell_room
@@ -614,14 +617,27 @@ def _labelling(graph: CellGraph, labels: np.ndarray, automaton) -> tuple[np.ndar
     return compact_labels(masks, max(automaton.num_labels, int(masks.max(initial=0)) + 1))
 
 
+def _fatal_labels(trans: np.ndarray, dead: np.ndarray, initial: int) -> np.ndarray:
+    """The compact labels that take every live state reachable from ``initial`` to a dead one (a room the
+    mission forbids throughout): a move onto them always ends the mission."""
+    live = np.flatnonzero(reachable_states(trans, initial) & ~dead)
+    if not live.size:
+        return np.zeros(0, dtype=np.int64)
+    return np.flatnonzero(dead[trans[live]].all(axis=0))
+
+
 def _label_fields(problem: PlanningProblem, graph: CellGraph, cell_label: np.ndarray, label_masks: np.ndarray,
-                  reachable: np.ndarray, labels: np.ndarray, unit_m: float) -> np.ndarray | float:
+                  reachable: np.ndarray, avoid: np.ndarray, labels: np.ndarray, unit_m: float
+                  ) -> np.ndarray | float:
     """The distance fields of the regions of compact labels ``labels`` (h_LTL's ``fields``): kept by the
-    problem's parts when they keep them by label (:meth:`SharedParts.label_fields`), else one
+    problem's parts when they keep them by label (:meth:`SharedParts.label_fields`; they may leave out
+    the cells of the bitmasks ``avoid``, which no move of the search enters: :func:`_fatal_labels`), else
+    one
     :func:`~sgplan.planning.ltl_heuristic.unit_field` per region within ``reachable``, each from the
     session's parts when there are some (:meth:`SharedParts.distance_field`)."""
     shared = problem.shared
-    kept = None if shared is None else shared.label_fields(problem.grid, graph, label_masks[labels], unit_m)
+    kept = None if shared is None else shared.label_fields(problem.grid, graph, label_masks[labels], unit_m,
+                                                           avoid)
     if kept is not None:
         return kept
     if shared is None:

@@ -166,6 +166,18 @@ def _units(x):
 
 
 @njit(cache=True, inline="always")
+def _outside(lo, hi, x):
+    """How far field value ``x`` lies outside a piece's values ``[lo, hi]`` (<= 0 inside), all in units,
+    ``inf`` for unreached. A cell that cannot reach the field's region cannot reach a piece cell that
+    can (``inf`` when ``hi`` is finite); when neither can, the field tells nothing (``-inf``). The fields
+    of a run may leave cells out of the graph (execution/fields.py), which is how a cell of the search
+    can be unreached by a measured field."""
+    if x == np.inf:
+        return np.inf if hi < np.inf else -np.inf
+    return max(lo - x, x - hi)
+
+
+@njit(cache=True, inline="always")
 def row_value(dist, unit, term_ptr, term_label, term_add, row, c):
     """h at cell ``c`` in the automaton state of row ``row``, metres: ``unit`` times the min over the row's
     terms (see :class:`LtlHeuristic`), computed in full only where it can matter.
@@ -196,8 +208,7 @@ def row_value(dist, unit, term_ptr, term_label, term_add, row, c):
                 break
             phi = own
             for f in range(width):
-                x = _units(dist[c, f])
-                phi = max(phi, term_add[t, 1 + f] - x, x - term_add[t, 1 + width + f])
+                phi = max(phi, _outside(term_add[t, 1 + f], term_add[t, 1 + width + f], _units(dist[c, f])))
                 if phi + add >= best:  # this term cannot be the minimum
                     break
             best = min(best, phi + add)
@@ -547,7 +558,7 @@ def _piece_lower_bounds(dist, piece_cells, piece_ptr, lo, hi):
             for k in range(num_pieces):
                 phi = 0.0
                 for f in range(num_fields):
-                    phi = max(phi, lo[k, f] - x[f], x[f] - hi[k, f])
+                    phi = max(phi, _outside(lo[k, f], hi[k, f], x[f]))
                 between[j, k] = min(between[j, k], phi)
     return between
 

@@ -160,8 +160,11 @@ class SharedParts:
         :func:`sgplan.planning.domain.build_domain` compacts them, if kept; else ``None``."""
         return None
 
-    def reachable(self, grid: Hashable, graph: CellGraph, start_cell: int) -> np.ndarray | None:
-        """``(N,)`` bool: the cells of ``graph`` reachable from ``start_cell``, if kept; else ``None``."""
+    def reachable(self, grid: Hashable, graph: CellGraph, start_cell: int, avoid: np.ndarray
+                  ) -> np.ndarray | None:
+        """``(N,)`` bool: the cells of ``graph`` reachable from ``start_cell``, if kept; else ``None``. A kept
+        set may leave out what is reachable only through cells of the bitmasks ``avoid`` (labels every move
+        onto which ends the mission: the search never stands there)."""
         return None
 
     def label_boundary(self, grid: Hashable, graph: CellGraph) -> np.ndarray | None:
@@ -169,11 +172,12 @@ class SharedParts:
         :meth:`cell_labels`, if kept; else ``None``."""
         return None
 
-    def label_fields(self, grid: Hashable, graph: CellGraph, masks: np.ndarray, unit_m: float
-                     ) -> np.ndarray | float | None:
+    def label_fields(self, grid: Hashable, graph: CellGraph, masks: np.ndarray, unit_m: float,
+                     avoid: np.ndarray) -> np.ndarray | float | None:
         """The ``(N, F)`` distance fields (h_LTL's, :func:`~sgplan.planning.ltl_heuristic.label_fields`) of
         the whole regions of the label bitmasks ``masks``, if kept by bitmask; else ``None`` (a session
-        keeps fields by target cells: :meth:`distance_field`)."""
+        keeps fields by target cells: :meth:`distance_field`). Kept fields may leave out of the graph the
+        cells of the bitmasks ``avoid`` (labels every move onto which ends the mission)."""
         return None
 
 
