@@ -59,6 +59,7 @@ from sgplan.scene.model import Building
 
 if TYPE_CHECKING:
     from sgplan.api import Session
+    from sgplan.logic.formula import Formula
 
 Verdict = Literal["done", "violated", "in-progress"]
 DEFAULT_MAX_GAP_M = 1.0
@@ -209,6 +210,7 @@ class Monitor:
         self.max_gap_m = float(max_gap_m)
         self.labels = np.ascontiguousarray(labels)
         self._table = np.ascontiguousarray(automaton.table, dtype=np.int32)
+        self._progressions: dict[tuple[int, ...], Formula] = {}  # MissionWords': kept by rebased()
         self.state = automaton.initial if state is None else int(state)
         self.cell: Cell3 | None = None
         if at is not None:
@@ -232,7 +234,7 @@ class Monitor:
     @cached_property
     def words(self) -> MissionWords:
         """The mission's words in this building (what is left, what broke it)."""
-        return MissionWords(self.mission, self.building, self._realizable)
+        return MissionWords(self.mission, self.building, self._realizable, self._progressions)
 
     @classmethod
     def in_session(cls, session: Session, mission: Mission, *, profile: str = "ltlf",
@@ -253,6 +255,7 @@ class Monitor:
                         max_gap_m=self.max_gap_m, state=self.state)
         other.cell, other.poses, other.cells = self.cell, self.poses, self.cells
         other.length_m, other.violation = self.length_m, self.violation
+        other._progressions = self._progressions
         return other
 
     def observe_xy(self, poses: object, *, name: PoseNamer = pose_name) -> MonitorStatus:
