@@ -32,10 +32,10 @@ def mission(demo) -> sgplan.api.Mission:
 
 def test_the_defaults_are_those_of_the_api() -> None:
     assert PlanOptions() == PlanOptions(setup="ALL", profile="ltlf", robot_radius_m=None, reach_radius_m=None,
-                                        time_limit_s=None, max_expansions=None, verify=True,
-                                        prebuild_actions=False)
-    assert PlanOptions.names() == ("setup", "profile", "robot_radius_m", "reach_radius_m", "time_limit_s",
-                                   "max_expansions", "verify", "prebuild_actions")
+                                        reach_model=None, time_limit_s=None, max_expansions=None,
+                                        verify=True, prebuild_actions=False)
+    assert PlanOptions.names() == ("setup", "profile", "robot_radius_m", "reach_radius_m", "reach_model",
+                                   "time_limit_s", "max_expansions", "verify", "prebuild_actions")
 
 
 def test_names_are_normalised_and_numbers_become_plain() -> None:
@@ -46,6 +46,15 @@ def test_names_are_normalised_and_numbers_become_plain() -> None:
     assert options.robot_radius_m == 0.25 and type(options.robot_radius_m) is float
     assert type(options.reach_radius_m) is float and type(options.time_limit_s) is float
     assert options.max_expansions == 10 and type(options.max_expansions) is int
+
+
+def test_the_reach_model_is_the_profiles_unless_chosen() -> None:
+    assert PlanOptions().reach_model is None and PlanOptions().effective_reach_model == "visible"
+    assert PlanOptions(profile="authors").effective_reach_model == "box"
+    chosen = PlanOptions(profile="authors", reach_model=" Visible ")
+    assert chosen.reach_model == "visible" and chosen.effective_reach_model == "visible"
+    assert chosen.replace(reach_model=None).effective_reach_model == "box"
+    assert PlanOptions(reach_model="BOX").to_dict()["reach_model"] == "box"
 
 
 @pytest.mark.parametrize(("given", "message"), [
@@ -64,6 +73,7 @@ def test_names_are_normalised_and_numbers_become_plain() -> None:
     ({"max_expansions": True}, "max_expansions must be a whole number"),
     ({"verify": "yes"}, "verify must be True or False, got 'yes'"),
     ({"prebuild_actions": 1}, "prebuild_actions must be True or False"),
+    ({"reach_model": "sphere"}, "unknown reach model 'sphere'; use one of box, visible"),
 ])
 def test_a_bad_value_is_refused_naming_the_option_and_what_is_allowed(given: dict, message: str) -> None:
     with pytest.raises(PlanningError) as error:
@@ -154,11 +164,12 @@ def test_a_bad_option_fails_before_any_work(demo, mission) -> None:
 def test_the_cli_builds_the_options_from_its_arguments() -> None:
     args = _build_parser().parse_args([
         "plan", "--scene", "demo", "--formula", FORMULA, "--setup", "no_llm", "--profile", "AUTHORS",
-        "--robot-radius", "0.1", "--reach-radius", "0.8", "--time-limit", "3", "--max-expansions", "99",
-        "--verify",
+        "--robot-radius", "0.1", "--reach-radius", "0.8", "--reach-model", "Visible", "--time-limit", "3",
+        "--max-expansions", "99", "--verify",
     ])
     assert plan_options(args) == PlanOptions(setup="NO-LLM", profile="authors", robot_radius_m=0.1,
-                                             reach_radius_m=0.8, time_limit_s=3.0, max_expansions=99)
+                                             reach_radius_m=0.8, reach_model="visible", time_limit_s=3.0,
+                                             max_expansions=99)
     plain = _build_parser().parse_args(["plan", "--scene", "demo", "--formula", FORMULA])
     assert plan_options(plain) == PlanOptions() and plan_options(plain, setup="A*").setup == "A*"
     assert plan_options(argparse.Namespace(profile="authors", scene="demo")) == PlanOptions(profile="authors")

@@ -23,12 +23,14 @@ from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 
+from sgplan.assembly import make_problem
 from sgplan.english import count
 from sgplan.errors import PlanningError, SceneError
 from sgplan.options import PlanOptions
-from sgplan.pipeline import Radii, make_problem, resolve_radii
 from sgplan.planning.shared import SharedParts
+from sgplan.radii import Radii, resolve_radii
 from sgplan.scene.model import Building
+from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 if TYPE_CHECKING:  # the planner, grid and labels (numba, scipy) load when a plan is made, not for a mission
     from sgplan.execution.run import Run
@@ -185,15 +187,18 @@ class Explained(TypedDict):
 
 
 def explain_for_result(mission: Mission, building: Building, given: Explanation | None = None,
-                 cells: Callable[[Proposition, float], np.ndarray] | None = None) -> Explained:
+                       cells: Callable[[Proposition, float, str], np.ndarray] | None = None, *,
+                       reach_radius_m: float | None = None, reach_model: str | None = None) -> Explained:
     """The mission explained in plain English (:func:`sgplan.explain.explain_mission`) as the
     ``explanation`` and ``explanation_method`` of a :class:`PlanResult`: the one place a plan gets it.
     ``given``: the caller's explanation of this mission and building (already said back), used as it is;
-    ``cells``: where each proposition holds (:meth:`Session.proposition_cells`)."""
+    ``cells``: where each proposition holds (:meth:`Session.proposition_cells`), objects reached within
+    ``reach_radius_m`` under ``reach_model`` (the plan's)."""
     if given is None:
         from sgplan.explain import explain_mission
 
-        given = explain_mission(mission, building, cells=cells)
+        given = explain_mission(mission, building, reach_radius_m=reach_radius_m, reach_model=reach_model,
+                                cells=cells)
     return {"explanation": given.text, "explanation_method": given.method}
 
 
@@ -202,8 +207,9 @@ def explain_for_result(mission: Mission, building: Building, given: Explanation 
 
 class Session:
     """Plans many missions on one building, keeping between them the occupancy grid of each robot radius,
-    the label raster of each (proposition, reach radius) and the planner's building-only parts (``parts``:
-    the cell graph of each grid, the composite action tables and maps of each grid and reach radius, the
+    the cells of each (proposition, reach radius, reach model) and the planner's building-only parts
+    (``parts``: the cell graph of each grid, the composite action tables and maps of each grid, reach
+    radius and reach model, the
     h_LTL distance field of each target region; :mod:`sgplan.planning.shared`), so a second mission pays
     only for what depends on it. ``builds`` counts what the session built (grids, label masks);
     ``parts.builds`` the parts.
@@ -222,7 +228,7 @@ class Session:
     ) -> None:
         self.building = load_scene(building, data)
         self._grids: dict[float, OccupancyGrid] = {}
-        self._cells: dict[tuple[Proposition, float], np.ndarray] = {}  # flat indices where it holds
+        self._cells: dict[tuple[Proposition, float, str], np.ndarray] = {}  # flat indices where it holds
         self.parts = SharedParts(max_shared_bytes)
         self.builds: Counter[str] = Counter()
 
@@ -248,27 +254,29 @@ class Session:
             self.builds["grid"] += 1
         return self._grids[radius]
 
-    def labels(self, mission: Mission, reach_radius_m: float | None = None) -> np.ndarray:
+    def labels(self, mission: Mission, reach_radius_m: float | None = None,
+               reach_model: str = DEFAULT_REACH_MODEL) -> np.ndarray:
         """The mission's label raster (as :meth:`Mission.labels`), from the cells of each proposition kept
-        between missions (sparse: a few MB at most where full masks took ~6 MB each on a Gibson scene)."""
+        between missions (flat indices: far smaller than a full mask per proposition)."""
         from sgplan.scene.labels import raster_from_cells
 
         mission.check_scene(self.building)
         reach = self.radii(reach_radius_m=reach_radius_m).reach_m
         return raster_from_cells(
             (self.building.num_floors, *self.building.grid_shape),
-            [self.proposition_cells(prop, reach) for prop in mission.ordered_propositions],
+            [self.proposition_cells(prop, reach, reach_model) for prop in mission.ordered_propositions],
         )
 
-    def proposition_cells(self, prop: Proposition, reach_radius_m: float) -> np.ndarray:
-        """Flat indices of the cells where ``prop`` holds at this reach radius (metres), as
-        :func:`sgplan.scene.labels.proposition_cells`; built once per proposition and radius. The label
-        rasters and the explanations of this session's plans read them from here."""
+    def proposition_cells(self, prop: Proposition, reach_radius_m: float,
+                          reach_model: str = DEFAULT_REACH_MODEL) -> np.ndarray:
+        """Flat indices of the cells where ``prop`` holds at this reach radius (metres) and reach model, as
+        :func:`sgplan.scene.labels.proposition_cells`; built once per proposition, radius and model. The
+        label rasters and the explanations of this session's plans read them from here."""
         from sgplan.scene.labels import proposition_cells
 
-        key = (prop, reach_radius_m)
+        key = (prop, reach_radius_m, reach_model)
         if key not in self._cells:
-            self._cells[key] = proposition_cells(self.building, prop, reach_radius_m)
+            self._cells[key] = proposition_cells(self.building, prop, reach_radius_m, reach_model)
             self.builds["label_mask"] += 1
         return self._cells[key]
 
@@ -321,7 +329,9 @@ class Session:
                               prebuild_actions=options.prebuild_actions, release_maps=not self.parts.keeps)
         except PlanningError as error:
             raise _with_cause(error, staged.mission, self.building, staged.problem) from None
-        explained = explain_for_result(staged.mission, self.building, explanation, self.proposition_cells)
+        explained = explain_for_result(staged.mission, self.building, explanation, self.proposition_cells,
+                                       reach_radius_m=staged.radii.reach_m,
+                                       reach_model=str(staged.problem.reach_model))
         return finish_plan(found, staged, options, explained, started=t0, prepare_s=prepare_s)
 
     def _stage(self, mission: Mission, start: StartSpec, options: PlanOptions,
@@ -337,15 +347,15 @@ class Session:
         radii = self.radii(options.robot_radius_m, options.reach_radius_m)
         grid = self.grid(radii.robot_m)
         start_at, start_from = start_cell(self.building, grid, start)
-        prepared = make_problem(self.building, mission, start_at, options, grid=grid,
-                                labels=self.labels(mission, radii.reach_m), shared=self.parts,
-                                start_state=start_state)
+        labels = self.labels(mission, radii.reach_m, options.effective_reach_model)
+        prepared = make_problem(self.building, mission, start_at, options, grid=grid, labels=labels,
+                                shared=self.parts, start_state=start_state)
         scene_check = _check_in_scene(mission, self.building, prepared.problem)
         log.info(
-            "scene %s: start %s (%s), robot radius %g m (%s), reach %g m (%s), profile %s, %d automaton "
-            "states",
+            "scene %s: start %s (%s), robot radius %g m (%s), reach %g m (%s, %s model), profile %s, %d "
+            "automaton states",
             self.building.name, start_at, start_from, radii.robot_m, radii.robot_from, radii.reach_m,
-            radii.reach_from, options.profile, mission.automaton.num_states,
+            radii.reach_from, prepared.problem.reach_model, options.profile, mission.automaton.num_states,
         )
         return StagedPlan(mission, guidance, prepared.problem, radii, start_from, scene_check)
 
@@ -399,6 +409,7 @@ def _result(found: SearchResult, staged: StagedPlan, options: PlanOptions, build
     bound = 1.0 if found.status == "optimal" else found.iterations[-1].bound if found.iterations else None
     return PlanResult(
         scene=building.name, status=found.status, setup=found.setup, profile=options.profile,
+        reach_model=str(problem.reach_model),
         cost_m=found.cost_m, bound=bound, path=found.path, start=problem.start, start_from=staged.start_from,
         radii=staged.radii, queues=found.queues, iterations=found.iterations, mission_text=mission.text,
         grounded_text=mission.grounded_text, formula=_formula_text(mission),
@@ -422,7 +433,7 @@ def _check_in_scene(mission: Mission, building: Building, problem: PlanningProbl
                           formula=None)
         profile = "authors"
     check = check_mission_in_scene(mission, building, problem.start, grid=problem.grid, labels=problem.labels,
-                                   profile=profile)
+                                   profile=profile, reach_model=problem.reach_model)
     for finding in check.findings:
         if finding.severity == "warning":
             log.warning(f"warning: {finding.message}")
@@ -500,9 +511,8 @@ def plan(
         ``(row, col, floor)``, a metric :class:`~sgplan.starts.Point` ``(x_m, y_m, floor)`` (or a triple with
         float x/y), or a room (``"kitchen"``, ``"room_5"``); see :mod:`sgplan.starts`.
     options, **option_values:
-        the planning options (:class:`sgplan.PlanOptions`: ``setup``, ``profile``, ``robot_radius_m``,
-        ``reach_radius_m``, ``time_limit_s``, ``max_expansions``, ``verify``, ``prebuild_actions``), as a
-        value, as keywords (``setup="NO-LLM"``), or both (the keywords replace the value's fields). A
+        the planning options (:class:`sgplan.PlanOptions`, which states and checks them), as a value, as
+        keywords (``setup="NO-LLM"``), or both (the keywords replace the value's fields). A
         setup using LLM guidance on a mission without guidance gets it from ``guide`` (default: the
         offline symbolic guide, which is not an LLM); ``PlanResult.guidance`` says which. When a budget
         runs out the result has status ``"timeout"`` with the best path so far (its ``bound``) or none:
@@ -514,8 +524,8 @@ def plan(
         reused); default a new one that keeps no planner parts.
     explanation:
         the mission's explanation over this building (:func:`sgplan.explain.explain_mission` with the
-        scene's reach radius) when the caller already made it, e.g. to say it back before planning: the
-        result carries it instead of making it again (a few tens of ms); default: made here.
+        plan's reach radius and model) when the caller already made it, e.g. to say it back before
+        planning: the result carries it instead of making it again (a few tens of ms); default: made here.
     termination:
         a further condition that stops the search (:mod:`sgplan.planning.termination`), e.g. a
         :class:`~sgplan.planning.termination.CancelFlag` that another thread sets (status

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Any
 
 from sgplan.errors import PlanningError
 from sgplan.limits import MAX_REACH_RADIUS_M, MAX_ROBOT_RADIUS_M, MAX_SECONDS
-from sgplan.planning.setups import check_profile, get_setup
+from sgplan.planning.setups import check_profile, get_setup, reach_model_for
 
 if TYPE_CHECKING:
     from sgplan.planning.termination import Termination
@@ -50,6 +50,11 @@ class PlanOptions:
         ``[0, MAX_ROBOT_RADIUS_M]``, reach radius in ``(0, MAX_REACH_RADIUS_M]`` (:mod:`sgplan.limits`);
         that the reach radius is not below the robot radius is checked when the scene's values are known
         (:func:`sgplan.radii.resolve_radii`).
+    reach_model:
+        where an object counts as reached (:mod:`sgplan.scene.reach`, docs/semantics.md): ``"visible"``
+        (within the reach radius and in sight: walls block) or ``"box"`` (the authors' square window);
+        given in any case, stored in lower case; ``None`` (default): the profile's (``ltlf`` visible,
+        ``authors`` box), :attr:`effective_reach_model`.
     time_limit_s, max_expansions:
         search budgets: seconds of search (``(0, MAX_SECONDS]``) and expansions (``>= 0``); ``None``: no
         limit. When one runs out the plan has status ``"timeout"`` with the best path so far.
@@ -64,6 +69,7 @@ class PlanOptions:
     profile: str = "ltlf"
     robot_radius_m: float | None = None
     reach_radius_m: float | None = None
+    reach_model: str | None = None
     time_limit_s: float | None = None
     max_expansions: int | None = None
     verify: bool = True
@@ -79,6 +85,8 @@ class PlanOptions:
                                             zero=True, unit="metres"))
         self._set("reach_radius_m", _number("reach_radius_m", self.reach_radius_m, 0.0, MAX_REACH_RADIUS_M,
                                             zero=False, unit="metres"))
+        if self.reach_model is not None:
+            self._set("reach_model", reach_model_for(self.profile, self.reach_model))
         self._set("time_limit_s", _number("time_limit_s", self.time_limit_s, 0.0, MAX_SECONDS, zero=False,
                                           unit="seconds"))
         expansions = self.max_expansions
@@ -91,6 +99,11 @@ class PlanOptions:
             value = getattr(self, name)
             if not isinstance(value, bool):
                 raise PlanningError(f"planning option {name} must be True or False, got {value!r}")
+
+    @property
+    def effective_reach_model(self) -> str:
+        """The reach model a plan with these options uses: :attr:`reach_model`, else the profile's."""
+        return reach_model_for(self.profile, self.reach_model)
 
     def _set(self, name: str, value: Any) -> None:
         object.__setattr__(self, name, value)  # normalising a frozen dataclass's own field while it is made

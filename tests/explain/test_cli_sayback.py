@@ -44,10 +44,10 @@ def test_plan_finds_where_each_proposition_holds_once_for_the_explanation_and_th
     built: list[str] = []
     real = labels.proposition_cells
 
-    def counted(building: Building, prop: labels.Proposition, reach_radius_m: float | None = None
-                ) -> np.ndarray:
+    def counted(building: Building, prop: labels.Proposition, reach_radius_m: float | None = None,
+                reach_model: str = "visible") -> np.ndarray:
         built.append(prop.name)
-        return real(building, prop, reach_radius_m)
+        return real(building, prop, reach_radius_m, reach_model)
 
     for module in (labels, sgplan.explain.scene_labels):  # wherever it is called from
         monkeypatch.setattr(module, "proposition_cells", counted)

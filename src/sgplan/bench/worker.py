@@ -119,7 +119,7 @@ def measure(case: Case, gallery_dir: str | Path | None = None, scenes: SceneKeep
 def _plan_case(case: Case, gallery_dir: str | Path | None, out: dict[str, Any], t0: float,
                scenes: SceneKeeper) -> None:
     import sgplan
-    from sgplan.pipeline import finite_or_none, iteration_records
+    from sgplan.outputs.jsontext import finite_or_none, iteration_records
 
     out["scene_reused"] = scenes.folder == case.scene_dir
     session = scenes.session_for(case.scene_dir)
@@ -127,8 +127,8 @@ def _plan_case(case: Case, gallery_dir: str | Path | None, out: dict[str, Any], 
     loaded_s = time.perf_counter() - t0
     # Unchecked: the bench measures the planner; the checker's agreement is tested in tests/planning.
     # Action maps built before the search clock starts: the paper's accounting of first-path times.
-    options = sgplan.PlanOptions(setup=case.setup, profile=case.profile, time_limit_s=case.time_limit_s,
-                                 verify=False, prebuild_actions=True)
+    options = sgplan.PlanOptions(setup=case.setup, profile=case.profile, reach_model=case.reach_model,
+                                 time_limit_s=case.time_limit_s, verify=False, prebuild_actions=True)
     result = session.plan(mission, case.start, options=options)
     its = result.iterations
     out.update(

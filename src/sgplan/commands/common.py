@@ -1,6 +1,6 @@
 """Argument helpers shared by sub-commands: naming a scene, the Gibson data folder, the semantics profile,
-checked numbers and lists, the options every command takes (``--debug``, ``--quiet``, ``--verbose``), and
-console output through :mod:`logging`."""
+the reach model, checked numbers and lists, the options every command takes (``--debug``, ``--quiet``,
+``--verbose``), and console output through :mod:`logging`."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 from sgplan.datasets import ENV_VAR, SCENES
 from sgplan.limits import MAX_REACH_RADIUS_M, MAX_ROBOT_RADIUS_M, MAX_SECONDS
-from sgplan.planning.setups import PROFILES
+from sgplan.planning.setups import PROFILE_REACH_MODELS, PROFILES, REACH_MODELS
 
 if TYPE_CHECKING:
     from sgplan.options import PlanOptions
@@ -63,6 +63,18 @@ def add_profile_argument(parser: argparse.ArgumentParser, *, default: str | None
         help=f"semantics: ltlf (default; start label read, missing automaton edges reject) or authors (the "
         "authors' C++ and the paper's numbers: start label not read, missing edges keep the "
         f"state){extra_help}",
+    )
+
+
+def add_reach_model_argument(parser: argparse.ArgumentParser, *, extra_help: str = "") -> None:
+    """``--reach-model box|visible`` (any case; default: the profile's), stored as the planning option
+    ``reach_model``, the same on every command."""
+    defaults = ", ".join(f"{model} under {profile}" for profile, model in PROFILE_REACH_MODELS.items())
+    parser.add_argument(
+        "--reach-model", dest="reach_model", type=str.lower, choices=REACH_MODELS, default=None,
+        help="where an object counts as reached: visible (within the reach radius and in sight: walls "
+        f"block) or box (the authors' square window, which reaches through walls); default: the profile's "
+        f"({defaults}){extra_help}",
     )
 
 

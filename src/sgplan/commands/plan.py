@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 from sgplan.commands.common import (
     add_axes_argument,
     add_profile_argument,
+    add_reach_model_argument,
     add_scene_arguments,
     load_scene_arg,
     log,
@@ -81,8 +82,8 @@ def add_start_arguments(parser: argparse.ArgumentParser) -> argparse._MutuallyEx
 
 
 def add_planning_arguments(parser: argparse.ArgumentParser) -> None:
-    """The planning options' arguments (setup, profile, radii, budgets), stored under the options' names
-    (:func:`sgplan.commands.common.plan_options` reads them)."""
+    """The planning options' arguments (setup, profile, radii, reach model, budgets), stored under the
+    options' names (:func:`sgplan.commands.common.plan_options` reads them)."""
     parser.add_argument(
         "--setup", default="ALL", help=f"planner setup, any case: {', '.join(SETUPS)} (default ALL)"
     )
@@ -91,6 +92,7 @@ def add_planning_arguments(parser: argparse.ArgumentParser) -> None:
                         help="robot radius (default: the scene's)")
     parser.add_argument("--reach-radius", dest="reach_radius_m", type=reach_radius, metavar="M",
                         help="object reach radius (default: the scene's)")
+    add_reach_model_argument(parser)
     parser.add_argument("--time-limit", dest="time_limit_s", type=positive_seconds, metavar="S",
                         help="search time budget in seconds")
     parser.add_argument("--max-expansions", type=positive_int, metavar="N", help="search expansion budget")
@@ -193,7 +195,8 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
     session = sgplan.Session(building, max_shared_bytes=0)
     # Said back before any guidance call or search; on stderr when stdout carries the JSON.
     explanation = say_back(mission, building, confirm=args.confirm,
-                           stream=sys.stderr if args.json == "-" else sys.stdout, session=session)
+                           stream=sys.stderr if args.json == "-" else sys.stdout, session=session,
+                           reach_radius_m=options.reach_radius_m, reach_model=options.effective_reach_model)
     guide = None
     if get_setup(options.setup).uses_llm and mission.guidance is None:
         if backends is None:
@@ -244,7 +247,8 @@ def _trajectory_end(args: argparse.Namespace, session: Session, mission: Mission
 
     trajectory = read_trajectory(args.after)
     monitor = Monitor.in_session(session, mission, profile=options.profile,
-                                 robot_radius_m=options.robot_radius_m, reach_radius_m=options.reach_radius_m)
+                                 robot_radius_m=options.robot_radius_m, reach_radius_m=options.reach_radius_m,
+                                 reach_model=options.effective_reach_model)
     try:
         status = monitor.observe_xy(trajectory.poses, name=trajectory.pose_name)
     except TrajectoryError as error:

@@ -18,19 +18,22 @@ from sgplan.errors import ConfirmationError
 
 if TYPE_CHECKING:
     from sgplan.api import Session
+    from sgplan.assembly import PreparedProblem
     from sgplan.explain import Explanation
     from sgplan.explain.checks import SceneCheck
     from sgplan.mission import Mission
-    from sgplan.pipeline import PreparedProblem
     from sgplan.scene.model import Building
 
 
 def say_back(mission: Mission, building: Building, record: dict[str, Any] | None = None, *,
              confirm: bool = False, ask: Callable[[str], str] | None = None,
-             stream: TextIO | None = None, session: Session | None = None) -> Explanation:
+             stream: TextIO | None = None, session: Session | None = None,
+             reach_radius_m: float | None = None, reach_model: str | None = None) -> Explanation:
     """Print the explanation of ``mission`` (to ``stream``, default stdout), store it as
     ``record["explanation"]``, and with ``confirm`` ask before going on (``ask``: default ``input`` on a
-    terminal). With ``session`` (of ``building``), where the propositions hold is kept there for the plan.
+    terminal). With ``session`` (of ``building``), where the propositions hold is kept there for the plan;
+    objects are reached within ``reach_radius_m`` (default the scene's) under ``reach_model`` (the plan's;
+    default :func:`~sgplan.explain.explain_mission`'s).
 
     Raises
     ------
@@ -39,7 +42,7 @@ def say_back(mission: Mission, building: Building, record: dict[str, Any] | None
     """
     from sgplan.explain import explain_mission
 
-    explanation = explain_mission(mission, building,
+    explanation = explain_mission(mission, building, reach_radius_m=reach_radius_m, reach_model=reach_model,
                                   cells=None if session is None else session.proposition_cells)
     print(explanation.text, file=stream or sys.stdout, flush=True)
     if record is not None:
@@ -67,9 +70,9 @@ def _confirm(ask: Callable[[str], str] | None) -> None:
 
 def check_folder_fits(folder: str | Path, mission: Mission, building: Building, *, force: bool = False,
                       record: dict[str, Any] | None = None) -> None:
-    """Refuse a mission folder made for another scene (see :func:`sgplan.identity.ensure_folder_fits_scene`);
-    with ``force`` say so and go on."""
-    from sgplan.identity import ensure_folder_fits_scene
+    """Refuse a mission folder made for another scene (see
+    :func:`sgplan.mission.identity.ensure_folder_fits_scene`); with ``force`` say so and go on."""
+    from sgplan.mission.identity import ensure_folder_fits_scene
 
     fit = ensure_folder_fits_scene(folder, mission.propositions, building, force=force)
     for note in fit.notes:
@@ -94,7 +97,7 @@ def check_before_planning(mission: Mission, building: Building, prepared: Prepar
         problem = prepared.problem
         check = check_mission_in_scene(
             mission, building, problem.start, grid=problem.grid, labels=problem.labels,
-            profile=problem.profile,
+            profile=problem.profile, reach_model=problem.reach_model,
         )
     for finding in check.findings:
         if finding.severity != "error":

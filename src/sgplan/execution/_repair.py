@@ -31,7 +31,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from sgplan.heap import heap_pop, heap_push
+from sgplan.planning._heap import HREC, hpop, hpush
 
 UNREACHED = np.int64(np.iinfo(np.uint32).max)
 
@@ -97,9 +97,8 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
     # reference counts on every iteration): phase 1 pushes a cell at most once, phase 2 the lost cells, the
     # seeds and each lowering. Lazily committed: only the part used costs memory.
     capacity = max(n, max_lost + seeds.shape[0] + max_lowered) + 16
-    keys = np.empty(capacity, dtype=np.float64)
-    ties = np.zeros(capacity, dtype=np.float64)
-    values = np.empty(capacity, dtype=np.int64)
+    heap = np.empty(capacity * HREC, dtype=np.int64)
+    keys = heap.view(np.float64)  # the same memory: keys and ties as floats (sgplan.planning._heap)
     size = 0
     near = np.empty(8 + stairs_from.shape[0], dtype=np.int64)
     cost = np.empty(8 + stairs_from.shape[0], dtype=np.int64)
@@ -118,7 +117,7 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
                 mark[s] = _TARGET
             elif dist[s] != UNREACHED and mark[s] == 0:
                 mark[s] = _PENDING
-                size = heap_push(keys, ties, values, size, np.float64(dist[s]), 0.0, s)
+                size = hpush(keys, heap, 0, size, np.float64(dist[s]), 0.0, s)
         elif dist[s] != UNREACHED:
             mark[s] = _LOST
             count = _neighbours(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from,
@@ -127,12 +126,12 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
                 y = near[i]
                 if mark[y] == 0 and dist[y] != UNREACHED:
                     mark[y] = _PENDING
-                    size = heap_push(keys, ties, values, size, np.float64(dist[y]), 0.0, y)
+                    size = hpush(keys, heap, 0, size, np.float64(dist[y]), 0.0, y)
     lost = np.empty(64, dtype=np.int64)
     num_lost = 0
     while size > 0:
-        x = values[0]
-        size = heap_pop(keys, ties, values, size)
+        x = heap[2]
+        size = hpop(keys, heap, 0, size)
         if mark[x] != _PENDING:
             continue
         dx = np.int64(dist[x])
@@ -163,7 +162,7 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
             y = near[i]
             if mark[y] == 0 and dist[y] != UNREACHED and np.int64(dist[y]) == dx + cost[i]:
                 mark[y] = _PENDING
-                size = heap_push(keys, ties, values, size, np.float64(dist[y]), 0.0, y)
+                size = hpush(keys, heap, 0, size, np.float64(dist[y]), 0.0, y)
     # Phase 2: the lost and changed cells take what their neighbours offer, then lower what they can.
     for i in range(num_lost):
         dist[lost[i]] = UNREACHED
@@ -188,12 +187,12 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
                 continue
             for j in range(count):  # queued only if it can lower a neighbour (a rejoined cell often cannot)
                 if dx + cost[j] < np.int64(dist[near[j]]):
-                    size = heap_push(keys, ties, values, size, np.float64(dx), 0.0, x)
+                    size = hpush(keys, heap, 0, size, np.float64(dx), 0.0, x)
                     break
     while size > 0:
         key = keys[0]
-        x = values[0]
-        size = heap_pop(keys, ties, values, size)
+        x = heap[2]
+        size = hpop(keys, heap, 0, size)
         dx = np.int64(dist[x])
         if np.float64(dx) < key:
             continue
@@ -208,6 +207,6 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
                     return RECOMPUTE
                 dist[y] = nd
                 lowered += 1
-                size = heap_push(keys, ties, values, size, np.float64(nd), 0.0, y)
+                size = hpush(keys, heap, 0, size, np.float64(nd), 0.0, y)
     counts[0], counts[1] = num_lost, lowered
     return outcome

@@ -43,7 +43,8 @@ def _scene_findings(run: Run) -> list[str]:
     formula = run.monitor.words.residual(run.state).formula
     rest = Mission(Automaton(a.aps, a.table, run.state, a.accepting), run.mission.propositions, formula)
     check = check_mission_in_scene(rest, run.building, run.position, grid=run.grid,
-                                   labels=run.labels.raster, profile="authors")
+                                   labels=run.labels.raster, profile="authors",
+                                   reach_model=run.options.effective_reach_model)
     return [finding.message for finding in check.of("error")]
 
 

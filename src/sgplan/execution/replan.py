@@ -28,6 +28,7 @@ def plan_from(run: Run, cell: tuple[int, int, int], state: int, explained: Expla
     from sgplan.api import StagedPlan, finish_plan
     from sgplan.planning.amra import plan as amra_plan
     from sgplan.planning.setups import get_setup
+    from sgplan.planning.termination import any_of
 
     t0 = time.perf_counter()
     options, mission = run.options, run.mission
@@ -36,11 +37,12 @@ def plan_from(run: Run, cell: tuple[int, int, int], state: int, explained: Expla
         building=run.building, grid=run.grid, labels=run.labels.raster, automaton=mission.automaton,
         start=cell, start_state=state, profile=options.profile,
         guidance=mission.guidance if uses_guidance else None,
-        reach_radius_m=run.radii.reach_m, ap_descriptions=mission.descriptions, shared=run.parts,
+        reach_radius_m=run.radii.reach_m, reach_model=options.effective_reach_model,
+        ap_descriptions=mission.descriptions, shared=run.parts,
     )
     guidance = "mission" if mission.guidance is not None else None
     staged = StagedPlan(mission, guidance, problem, run.radii, "the run's position", [])
     prepare_s = time.perf_counter() - t0
-    found = amra_plan(problem, options.setup, termination=options.termination(),
+    found = amra_plan(problem, options.setup, termination=any_of(options.termination(), run.stop_when),
                       prebuild_actions=options.prebuild_actions)
     return finish_plan(found, staged, options, explained, started=t0, prepare_s=prepare_s)

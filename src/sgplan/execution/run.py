@@ -47,6 +47,7 @@ if TYPE_CHECKING:
     from sgplan.llm.backends import MissionGuide
     from sgplan.mission import Mission
     from sgplan.options import PlanOptions
+    from sgplan.planning.termination import Termination
     from sgplan.result import PlanResult
     from sgplan.scene.model import Building
     from sgplan.starts import StartSpec
@@ -151,6 +152,9 @@ class Run:
         self.history: list[RunEvent] = []
         self.why: str | None = None
         self._callbacks: list[Callable[[RunEvent], None]] = []
+        self.stop_when: Termination | None = None
+        """A further condition that stops the run's searches besides the options' budgets (e.g. a
+        service's request deadline and a cancel flag, :mod:`sgplan.planning.termination`)."""
         self._plan: PlanResult | None = None
         self._on_plan = 0  # the robot's row on the current plan's path
         self._stale = True
@@ -208,7 +212,9 @@ class Run:
             mission.check_scene(self.building)
         self.mission = mission
         self._explained: Explained | None = None
-        self.labels = RunLabels(self.building, mission.ordered_propositions, self.radii.reach_m, cells)
+        self._mission_data: dict[str, Any] | None = None  # to_dict's form of the mission, made once
+        self.labels = RunLabels(self.building, mission.ordered_propositions, self.radii.reach_m,
+                                self.options.effective_reach_model, cells)
 
     def _follow_status(self) -> None:
         """The status after the monitor moved, with the events it calls for."""
@@ -278,7 +284,9 @@ class Run:
         from sgplan.execution.replan import plan_from
 
         if self._explained is None:
-            self._explained = explain_for_result(self.mission, self.building)
+            self._explained = explain_for_result(self.mission, self.building,
+                                                 reach_radius_m=self.radii.reach_m,
+                                                 reach_model=self.options.effective_reach_model)
         try:
             return plan_from(self, self.position, self.state, self._explained)
         except PlanningError as error:
@@ -380,7 +388,7 @@ class Run:
         from sgplan.execution.regrid import GridChange
 
         overall = _net_change(self.grid, grid, np.concatenate(blocked), np.concatenate(freed))
-        relabelled = self.labels.update(scene.building, objects)
+        relabelled = self.labels.update(scene.building, objects, _changed_cells(deltas))
         self.scene, self.grid = scene, grid
         self.parts.advance(grid, GridChange(*overall), self.labels.raster, relabelled, scene.scene(),
                            at=self.position, objects=objects)
@@ -463,7 +471,8 @@ class Run:
         row, col, floor = self.position
         rows, cols = self.building.grid_shape
         at = (floor * rows + row) * cols + col
-        return {p.name: bool(np.isin(at, proposition_cells(self.building, p, self.radii.reach_m)))
+        model = self.options.effective_reach_model
+        return {p.name: bool(np.isin(at, proposition_cells(self.building, p, self.radii.reach_m, model)))
                 for p in mission.ordered_propositions}
 
     def _adopt(self, mission: Mission) -> None:
@@ -491,7 +500,7 @@ class Run:
         return {
             "format": FORMAT, "version": VERSION, "scene": scene_reference(self.session.building),
             "options": self.options.to_dict(), "start": list(self.start), "start_from": self.start_from,
-            "mission": mission_to_dict(self.mission), "changes": [c.to_dict() for c in self.changes],
+            "mission": self._saved_mission(mission_to_dict), "changes": [c.to_dict() for c in self.changes],
             "amendments": list(self.amendments), "position": list(self.position), "state": self.state,
             "status": self._status, "why": self.why,
             "monitor": {"poses": self.monitor.poses, "cells": self.monitor.cells,
@@ -499,6 +508,13 @@ class Run:
                         "violation": self.monitor.violation.to_dict() if self.monitor.violation else None},
             "history": [event.to_dict() for event in self.history],
         }
+
+    def _saved_mission(self, to_dict: Callable[[Mission], dict[str, Any]]) -> dict[str, Any]:
+        """The mission as :meth:`to_dict` saves it, made once per mission (a service saves a run after
+        every pose report; writing the automaton's HOA each time cost more than the report)."""
+        if self._mission_data is None:
+            self._mission_data = to_dict(self.mission)
+        return self._mission_data
 
     @classmethod
     def from_dict(cls, data: dict[str, Any], session: Session | None = None) -> Run:
@@ -515,6 +531,12 @@ class Run:
         from sgplan.execution.run_io import restore
 
         return restore(cls, data, session)
+
+
+def _changed_cells(deltas: list[SceneDelta]) -> dict[int, np.ndarray]:
+    """Floor -> the flat positions whose category some of ``deltas`` changed."""
+    floors = {floor for delta in deltas for floor in delta.cells}
+    return {floor: np.concatenate([d.cells[floor] for d in deltas if floor in d.cells]) for floor in floors}
 
 
 def _net_change(old: Any, new: Any, blocked: np.ndarray, freed: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

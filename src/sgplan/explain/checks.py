@@ -2,7 +2,7 @@
 
 Everything here is computed from the label sets that actually occur on the free cells of the scene's
 occupancy grid (:mod:`sgplan.explain.scene_labels`): rooms are exclusive and an object is reached only
-from the cells its reach window covers. :func:`check_mission_in_scene` finds
+from the cells of its reach region (:mod:`sgplan.scene.reach`). :func:`check_mission_in_scene` finds
 
 - ``unsatisfiable``: no path anywhere in the scene satisfies the mission, whatever the start; the
   smallest set of top-level parts that cannot hold together is named ("Go to the kitchen. Never enter
@@ -62,6 +62,7 @@ from sgplan.logic.formula import (
 from sgplan.logic.infix import to_infix
 from sgplan.logic.ltlf import ltlf_to_dfa
 from sgplan.mission import Mission
+from sgplan.planning.setups import reach_model_for
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 
@@ -128,6 +129,7 @@ def check_mission_in_scene(
     profile: str = "ltlf",
     robot_radius_m: float | None = None,
     reach_radius_m: float | None = None,
+    reach_model: str | None = None,
 ) -> SceneCheck:
     """Check ``mission`` against ``building`` (and ``start``) before planning; see the module docstring.
 
@@ -139,30 +141,34 @@ def check_mission_in_scene(
         ``(row, col, floor)``; without it only the start-independent checks run.
     grid, labels:
         the occupancy grid and label raster the plan will use (e.g. from
-        :func:`sgplan.pipeline.make_problem`); built from the radii when not given.
+        :func:`sgplan.assembly.make_problem`); built from the radii when not given.
     profile:
         ``"ltlf"`` reads the start cell's label, ``"authors"`` does not.
     robot_radius_m, reach_radius_m:
         radii in metres for building ``grid`` / ``labels`` (default: the scene's).
+    reach_model:
+        where an object counts as reached (``"visible"`` or ``"box"``; default the profile's), for
+        building ``labels`` and for saying why an object is reached from another room.
 
     Returns
     -------
     SceneCheck
         cheap: a few array passes over the grid (no search).
     """
+    model = reach_model_for(profile, reach_model)
     if grid is None or labels is None:
-        from sgplan.pipeline import resolve_radii
+        from sgplan.radii import resolve_radii
         from sgplan.scene.grid import build_occupancy_grid
 
         radii = resolve_radii(building, robot_radius_m, reach_radius_m)
         grid = build_occupancy_grid(building, radii.robot_m) if grid is None else grid
-        labels = mission.labels(building, radii.reach_m) if labels is None else labels
+        labels = mission.labels(building, radii.reach_m, model) if labels is None else labels
     automaton = mission.automaton
     realizable = occurring_labels(labels, grid.traversable, automaton.num_labels)
     if not realizable.any():
         return SceneCheck(())
     entities = referents_of(list(automaton.aps), mission.propositions, building)
-    context = _Context(mission, building, grid, labels, entities, realizable)
+    context = _Context(mission, building, grid, labels, entities, realizable, model)
     # The part analysis recurses over the formula as written: a deeper one (a 500-term conjunction as
     # nested pairs) gets only the whole-mission checks below, which work on the automaton (_readable).
     findings = context.part_findings()
@@ -182,6 +188,7 @@ class _Context:
     labels: np.ndarray
     entities: dict[str, Referent]
     realizable: np.ndarray
+    reach_model: str
 
     def describe(self, name: str) -> Referent:
         return self.entities[name]
@@ -227,8 +234,11 @@ class _Context:
         if not value.any():
             why = f" ({'; '.join(outside)})" if outside else ""
             return [Finding("impossible-part", f"no place in this scene is {self.cond(node)}{why}")]
+        # Seen from another room, an object is reached through a door (in sight) or, in the authors'
+        # window, through a wall.
+        through = "a wall" if self.reach_model == "box" else "a door, in sight of it"
         findings = [
-            Finding("object-outside-room", f"{o}: it is reached from there only through a wall")
+            Finding("object-outside-room", f"{o}: it is reached from there only through {through}")
             for o in outside
         ]
         for k, part in enumerate(parts):

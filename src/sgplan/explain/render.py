@@ -26,6 +26,7 @@ from sgplan.logic.ltlf import ltlf_to_dfa, possible_labels
 from sgplan.mission import Mission
 from sgplan.scene.labels import Proposition
 from sgplan.scene.model import Building
+from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 Method = Literal["patterns", "automaton"]
 
@@ -121,7 +122,8 @@ def _reads_as(formula: Formula, automaton: Automaton, realizable: np.ndarray) ->
 
 def explain_mission(
     mission: Mission, building: Building, *, reach_radius_m: float | None = None,
-    cells: Callable[[Proposition, float], np.ndarray] | None = None,
+    reach_model: str | None = None,
+    cells: Callable[[Proposition, float, str], np.ndarray] | None = None,
 ) -> Explanation:
     """Explain ``mission`` over ``building`` (see the module docstring).
 
@@ -134,8 +136,11 @@ def explain_mission(
         occur (rooms exclusive, objects reached only near them).
     reach_radius_m:
         the object reach radius (metres); default the scene's, else sgplan's default.
+    reach_model:
+        where an object counts as reached (:mod:`sgplan.scene.reach`): ``"visible"`` or ``"box"``;
+        default (``None``) sgplan's, ``"visible"``.
     cells:
-        where each proposition holds at a reach radius (flat cell indices, e.g.
+        where each proposition holds at a reach radius and model (flat cell indices, e.g.
         :meth:`sgplan.Session.proposition_cells`, kept for the plan); default
         :func:`sgplan.scene.labels.proposition_cells`.
 
@@ -155,7 +160,8 @@ def explain_mission(
     realizable: np.ndarray | None = None
     if all(p is not None for p in props):
         try:
-            realizable = realizable_labels(props, building, reach_radius_m, cells=cells)  # type: ignore[arg-type]
+            realizable = realizable_labels(props, building, reach_radius_m,  # type: ignore[arg-type]
+                                           reach_model=reach_model or DEFAULT_REACH_MODEL, cells=cells)
         except SgplanError:
             realizable = None  # entities the scene lacks: their phrases say so
     if realizable is None:

@@ -16,11 +16,9 @@ that a domain's product states and action codes fit.
 Action codes stored with each state's parent: 0..7 an occupancy step (``cells.STEPS`` index), 8 stairs,
 ``ACT_MAP + k`` composite action family ``k`` (``PlanningDomain.maps[k]``).
 
-Heaps (one per queue, all in one flat buffer) store entries of three words, ``(key, g, state)``:
-the same buffer is passed twice, as float64 and as int64 views. They are 4-ary (half the depth of a
-binary heap; a node's children share one or two cache lines), ordered by key, ties by larger g first
-(deeper states first: shorter weighted searches, bounds unchanged), lazy (stale entries are skipped
-when they reach the top).
+Heaps: one per queue, all in one flat buffer (queue ``i`` at entry offset ``i * capacity``), the heap of
+:mod:`sgplan.planning._heap` with entries ``(key, g, state)`` (ties to the larger g: deeper states first,
+shorter weighted searches, bounds unchanged); stale entries are skipped when they reach the top.
 
 The loop is re-entrant: :func:`improve_path` returns after a budget of expansions (so the Python driver
 can check the clock and report progress) or when a heap, INCONS or the page pool needs more room; all
@@ -37,6 +35,7 @@ import numpy as np
 from numba import njit
 
 from sgplan.planning._dijkstra import PRED_SOURCE, dijkstra, label_runs, next_cell
+from sgplan.planning._heap import HREC, hpop, hpush
 from sgplan.planning.ltl_heuristic import fill_row, row_value
 
 FOUND, EXHAUSTED, BUDGET, GROW = 0, 1, 2, 3
@@ -49,13 +48,11 @@ PAGE_BITS = 9
 PAGE = 1 << PAGE_BITS  # cells per page (records of one automaton state)
 PAGE_MASK = PAGE - 1
 REC = 2  # words per state record
-HREC = 3  # words per heap entry
 # link fields (see the module docstring)
 TAG_SHIFT, TAG_MASK = 5, 0xFF
 ACT_SHIFT, ACT_MASK = 13, 0xFFFF
 PARENT_SHIFT, PARENT_LIMIT = 29, 1 << 34
 KEEP_CLOSED = (1 << ACT_SHIFT) - 1  # the closed bits and the tag of a link
-ARITY = 4  # heap fan-out
 # An h_LTL row is filled after (cells / FILL_FRACTION) evaluations (see h_ltl). A cell of a fill costs
 # about one evaluation (ltl_heuristic.row_value), so filling after as many evaluations as cells pays at
 # most twice what the row's evaluations would cost, and a row the search meets less often is never filled.
@@ -78,7 +75,7 @@ the anchor, anchor expansions of states reached by a composite action]``; ``expa
 ``h_evals (rows,)`` h_LTL values computed per unfilled row (:func:`h_ltl`)."""
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def build_map(G, A, M, k):
     """Make composite action family ``k`` ready for this problem: its exact shortest paths
     (multi-source Dijkstra on its floor; skipped when the shared store has them already, see
@@ -113,7 +110,7 @@ def build_map(G, A, M, k):
     M.done[k] = 1
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def build_all_maps(G, A, M):
     """Build every action family not built yet."""
     for k in range(M.done.shape[0]):
@@ -127,7 +124,7 @@ def build_all_maps(G, A, M):
 # points (improve_path, start_iteration, successors, h_llm) unpack once and call the array-level cores.
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def ensure_maps(G, A, M, c, level, max_level):
     """Build (once) every composite action map that expanding cell ``c`` at ``level`` may follow."""
     room = G.cell_room[c]
@@ -213,7 +210,7 @@ def step_successors(
     return n
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def map_successors(
     floor_offset,
     cell_floor,
@@ -318,7 +315,7 @@ def map_successors(
     return n
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def successors(G, A, M, L, c, q, level, max_level, out_c, out_q, out_cost, out_act):
     """Write the successors of (c, q) at ``level`` (0 = anchor: union of levels 1..max_level) into the
     ``out_*`` buffers, building the maps they need first; returns their number. Successor q may be dead."""
@@ -405,7 +402,7 @@ def h_llm_core(cell_room, cell_pos, cell_floor, centre_x, centre_y, centre_z, ac
     return llm_sum[room, q] + np.sqrt(dx * dx + dy * dy + dz * dz)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def h_llm(G, L, c, q):
     """h_LLM at (cell c, state q), metres (0 where guidance has nothing)."""
     return h_llm_core(G.cell_room, G.cell_pos, G.cell_floor, G.centre_x, G.centre_y, G.centre_z, L.accepting,
@@ -514,7 +511,7 @@ def q_bits(num_q):
     return b
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def read_record(ptab, pool, poolf, s):
     """``(g, parent, action)`` of product state ``s``; action -1 if ``s`` was never reached."""
     qb = q_bits(ptab.shape[0])
@@ -524,7 +521,7 @@ def read_record(ptab, pool, poolf, s):
     return poolf[r], link_parent(pool[r + 1]), link_action(pool[r + 1])
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def parent_chain(ptab, pool, poolf, goal, limit):
     """The product states from the start to ``goal`` along the parent pointers, and the action that led to
     each (``-1`` for the start): ``(states, actions)``; ``states`` is empty when the chain is longer than
@@ -552,72 +549,7 @@ def parent_chain(ptab, pool, poolf, goal, limit):
     return states[:count][::-1].copy(), actions[:count][::-1].copy()
 
 
-# ---- heaps -----------------------------------------------------------------------------------------
-
-
-@njit(cache=True, inline="always")
-def _before(key_a, g_a, key_b, g_b):
-    return key_a < key_b or (key_a == key_b and g_a > g_b)
-
-
-@njit(cache=True, inline="always")
-def _move_entry(hi, to, src):
-    """Copy the heap entry at word ``src`` to word ``to`` (through the integer view: bit-exact)."""
-    hi[to] = hi[src]
-    hi[to + 1] = hi[src + 1]
-    hi[to + 2] = hi[src + 2]
-
-
-@njit(cache=True, inline="always")
-def _put_entry(hf, hi, d, key, g, value):
-    """Write the heap entry ``(key, g, value)`` at word ``d``."""
-    hf[d] = key
-    hf[d + 1] = g
-    hi[d + 2] = value
-
-
-@njit(cache=True, inline="always")
-def hpush(hf, hi, base, size, key, g, value):
-    """Insert ``(key, g, value)`` into the heap of ``size`` entries at entry offset ``base`` (room for one
-    more is the caller's business); returns the new size."""
-    i = size
-    while i > 0:
-        parent = (i - 1) // ARITY
-        a = (base + parent) * HREC
-        if not _before(key, g, hf[a], hf[a + 1]):
-            break
-        _move_entry(hi, (base + i) * HREC, a)
-        i = parent
-    _put_entry(hf, hi, (base + i) * HREC, key, g, value)
-    return size + 1
-
-
-@njit(cache=True, inline="always")
-def hpop(hf, hi, base, size):
-    """Remove the top entry (read it at ``base`` first); returns the new size."""
-    size -= 1
-    if size <= 0:
-        return 0
-    last = (base + size) * HREC
-    key, g, value = hf[last], hf[last + 1], hi[last + 2]
-    i = 0
-    while True:
-        first = ARITY * i + 1
-        if first >= size:
-            break
-        best = first
-        b = (base + first) * HREC
-        bk, bg = hf[b], hf[b + 1]
-        for child in range(first + 1, min(first + ARITY, size)):
-            e = (base + child) * HREC
-            if _before(hf[e], hf[e + 1], bk, bg):
-                best, bk, bg = child, hf[e], hf[e + 1]
-        if not _before(bk, bg, key, g):
-            break
-        _move_entry(hi, (base + i) * HREC, (base + best) * HREC)
-        i = best
-    _put_entry(hf, hi, (base + i) * HREC, key, g, value)
-    return size
+# ---- the queues' tops ------------------------------------------------------------------------------
 
 
 @njit(cache=True, inline="always")
@@ -652,7 +584,7 @@ def active_queues(num_queues, w1):
     return 1 if w1 <= 1.0 else num_queues
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
     """Begin AMRA* iteration number ``iteration`` with weights (w1, w2): OPEN_0 = (valid OPEN_0) + INCONS,
     re-keyed; every other queue gets the OPEN_0 states of its level; all closed sets are cleared. The
@@ -731,18 +663,19 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
     return bound
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def anchor_path(G, L, S, budget, max_succ):
     """:func:`improve_path` for an iteration that runs the anchor queue alone over occupancy moves (the
     A* setup throughout, every setup once w1 = 1): the same expansions in the same order as
     :func:`multi_queue_path`, in one flat loop.
 
     Flat because numba reference-counts the arrays a helper takes (``inline="always"`` included) with
-    atomic increments its pruning pass does not remove in this loop: calling the heap and record helpers
-    cost ~20 % of the A* search. So the heap pop (:func:`hpop`) and push (:func:`hpush`), the record
-    lookups (:func:`rec_find`, :func:`rec_touch`) are written out here (the link helpers take scalars
-    only and stay), and the counters live in locals until the loop returns. test_search_core checks that both
-    loops leave identical search memory.
+    atomic increments its pruning pass does not always remove in this loop. So the record lookups
+    (:func:`rec_find`, :func:`rec_touch`) are written out here (the link helpers take scalars only and
+    stay), and the counters live in locals until the loop returns. The heap is the one heap's
+    (:func:`~sgplan.planning._heap.hpop`, :func:`~sgplan.planning._heap.hpush`), called: written out
+    here it was no faster (benchmarks/results/heap_inlining.md). test_search_core checks that both loops
+    leave identical search memory.
     """
     cell_at, cell_pos, step_offset = G.cell_at, G.cell_pos, G.step_offset
     step_cost, stairs_first, stairs_from = G.step_cost, G.stairs_first, G.stairs_from
@@ -795,36 +728,7 @@ def anchor_path(G, L, S, budget, max_succ):
             ):
                 status = GROW
                 break
-        # Pop (hpop).
-        size -= 1
-        if size > 0:
-            last = size * HREC
-            key, g, value = hf[last], hf[last + 1], hi[last + 2]
-            i = 0
-            while True:
-                first = ARITY * i + 1
-                if first >= size:
-                    break
-                best = first
-                b = first * HREC
-                bk, bg = hf[b], hf[b + 1]
-                for child in range(first + 1, min(first + ARITY, size)):
-                    e = child * HREC
-                    ek = hf[e]
-                    if ek < bk or (ek == bk and hf[e + 1] > bg):
-                        best, bk, bg = child, ek, hf[e + 1]
-                if not (bk < key or (bk == key and bg > g)):
-                    break
-                d = i * HREC
-                o = best * HREC
-                hi[d] = hi[o]
-                hi[d + 1] = hi[o + 1]
-                hi[d + 2] = hi[o + 2]
-                i = best
-            d = i * HREC
-            hf[d] = key
-            hf[d + 1] = g
-            hi[d + 2] = value
+        size = hpop(hf, hi, 0, size)  # the top entry: stale or about to be expanded
         if stale:
             continue
 
@@ -892,25 +796,7 @@ def anchor_path(G, L, S, budget, max_succ):
                 incons[n_incons] = ns
                 n_incons += 1
                 continue
-            # Push (hpush).
-            key = gn + w1 * h0
-            i = size
-            while i > 0:
-                parent = (i - 1) // ARITY
-                a = parent * HREC
-                pk = hf[a]
-                if not (key < pk or (key == pk and gn > hf[a + 1])):
-                    break
-                d = i * HREC
-                hi[d] = hi[a]
-                hi[d + 1] = hi[a + 1]
-                hi[d + 2] = hi[a + 2]
-                i = parent
-            d = i * HREC
-            hf[d] = key
-            hf[d + 1] = gn
-            hi[d + 2] = ns
-            size += 1
+            size = hpush(hf, hi, 0, size, gn + w1 * h0, gn, ns)
     hsize[0] = size
     iscal[I_PAGES] = pages
     iscal[I_NINCONS] = n_incons
@@ -919,7 +805,7 @@ def anchor_path(G, L, S, budget, max_succ):
     return status, done
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     """AMRA* ImprovePath, round robin over the queues, until the bound holds or a limit is hit.
 
@@ -960,10 +846,17 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     return multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     """:func:`improve_path` in general: any queues, composite actions (the loop that :func:`anchor_path`
-    specialises)."""
+    specialises).
+
+    One function, as AMRA*'s ImprovePath reads: pick a queue, pop, close, generate (the successor
+    generators are helpers), relax each successor into the queues. What is left inline is the loop's
+    bookkeeping over about fifty arrays unpacked once from the named tuples and a few counters; a helper
+    for a step would take a dozen of them, each reference-counted on every call in this loop (the note
+    above the array-level cores), or the tuples themselves, which costs more still.
+    """
     # Unpack once (see the note above the array-level cores).
     cell_at, cell_pos, step_offset = G.cell_at, G.cell_pos, G.step_offset
     step_cost, stairs_first, stairs_from = G.step_cost, G.stairs_first, G.stairs_from
@@ -1188,7 +1081,7 @@ def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_suc
                     hsize[j] = hpush(hf, hi, j * capacity, hsize[j], fj, gn, ns)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def init_start(ptab, pool, poolf, iscal, incons, start_cell, q_start):
     """Record the start state (g 0, no parent) in fresh search memory and put it in INCONS."""
     r = rec_touch(ptab, iscal, start_cell, q_start)

@@ -34,8 +34,8 @@ from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
 from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic, label_fields, reachable_states
 from sgplan.planning.problem import PlanningProblem
 from sgplan.planning.shared import shared_part
-from sgplan.scene.dilate import within_distance
-from sgplan.scene.model import CatCode
+from sgplan.scene.model import CatCode, Room
+from sgplan.scene.reach import object_reach_cells
 
 # Arrays handed to the compiled search, grouped by role (numba accepts named tuples of arrays).
 KernelGraph = namedtuple(
@@ -215,60 +215,30 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
     clock.lap("cells")
     start_cell = _check_start(problem, graph)
     automaton = problem.automaton
-
-    compacted = None if problem.shared is None else problem.shared.cell_labels(problem.grid, graph,
-                                                                                problem.labels)
-    label_masks, cell_label = compacted if compacted is not None else _labelling(graph, problem.labels,
-                                                                                  automaton)
-    if label_masks.size and (int(label_masks.max()) >= automaton.num_labels or int(label_masks.min()) < 0):
-        raise PlanningError(
-            f"label raster holds bitmask {int(label_masks.max())} but the automaton has only "
-            f"{len(automaton.aps)} propositions ({', '.join(automaton.aps)})"
-        )
-    trans = np.ascontiguousarray(automaton.table[:, label_masks], dtype=np.int32)
-    accepting = np.asarray(automaton.accepting, dtype=bool)
-    dead = _dead_states(np.asarray(automaton.table), accepting)
+    logic = _CellLogic.of(problem, graph)
     clock.lap("labels")
+    q_start = _start_state(problem, logic, start_cell)
 
-    start_mask = int(label_masks[cell_label[start_cell]])
-    if problem.start_state is not None:
-        q_start = int(problem.start_state)
-        if dead[q_start]:
-            raise PlanningError(f"automaton state {q_start} at the start can no longer accept: the "
-                                "mission is violated", status="infeasible")
-    elif problem.profile == "ltlf":
-        q_start = int(automaton.table[automaton.initial, start_mask])
-        if dead[q_start]:
-            true_aps = [problem.ap_name(i) for i in range(len(automaton.aps)) if start_mask >> i & 1]
-            raise PlanningError(
-                f"start {problem.start} violates the mission: with {_listing(true_aps)} true there the "
-                "automaton can no longer accept; start elsewhere",
-                status="invalid-start",
-            )
-    else:
-        q_start = int(automaton.initial)
-    if dead[q_start]:
-        raise PlanningError("the mission automaton accepts no word at all", status="infeasible")
-
-    avoid = label_masks[_fatal_labels(trans, dead, automaton.initial)]
+    avoid = logic.label_masks[_fatal_labels(logic.trans, logic.dead, automaton.initial)]
     component = None if problem.shared is None else problem.shared.reachable(problem.grid, graph, start_cell,
                                                                               avoid)
     reachable = component if component is not None else graph.reachable(start_cell)
     clock.lap("reachable")
     boundary = None if problem.shared is None else problem.shared.label_boundary(problem.grid, graph)
-    fields = partial(_label_fields, problem, graph, cell_label, label_masks, reachable, avoid)
-    ltl = build_ltl_heuristic(graph, cell_label, trans, accepting, q_start, reachable, fields=fields,
-                              start_cell=start_cell, boundary=boundary)
+    fields = partial(_label_fields, problem, graph, logic.cell_label, logic.label_masks, reachable, avoid)
+    ltl = build_ltl_heuristic(graph, logic.cell_label, logic.trans, logic.accepting, q_start, reachable,
+                              fields=fields, start_cell=start_cell, boundary=boundary)
     del fields
     clock.lap("ltl")
-    if not accepting[q_start] and not np.isfinite(ltl.value(start_cell, q_start)):
+    if not logic.accepting[q_start] and not np.isfinite(ltl.value(start_cell, q_start)):
         everywhere = reachable if component is None else graph.reachable(start_cell)  # the message's
         raise PlanningError(
-            _infeasible_reason(problem, label_masks[cell_label], everywhere, q_start), status="infeasible"
+            _infeasible_reason(problem, logic.label_masks[logic.cell_label], everywhere, q_start),
+            status="infeasible",
         )
 
     room_uuids = [room.uuid for room in problem.building.rooms()]  # room index -> uuid, as cell_room
-    parts = (_action_parts(problem, graph, cell_label, reachable) if max_level >= 2
+    parts = (_action_parts(problem, graph, logic.cell_label, reachable) if max_level >= 2
              else _no_actions(graph, len(room_uuids)))
     del reachable
     clock.lap("action_tables")
@@ -278,13 +248,97 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
         if problem.guidance is not None
         else None
     )
-    empty = build_llm_heuristic({}, problem.building, room_uuids, automaton.num_states)
-    guide = llm if llm is not None else empty
+    guide = llm if llm is not None else build_llm_heuristic({}, problem.building, room_uuids,
+                                                            automaton.num_states)
+    return PlanningDomain(
+        graph=graph,
+        cell_label=logic.cell_label,
+        label_masks=logic.label_masks,
+        trans=logic.trans,
+        accepting=logic.accepting,
+        start_cell=start_cell,
+        q_start=q_start,
+        ltl=ltl,
+        llm=llm,
+        room_uuids=room_uuids,
+        maps=parts.maps,
+        kgraph=_kernel_graph(graph, logic.cell_label, parts),
+        kactions=parts.kactions,
+        kmaps=parts.kmaps,
+        klogic=_kernel_logic(logic, ltl, guide),
+        precompute_s=time.perf_counter() - t0,
+        max_level=max_level,
+        timings=clock.laps,
+    )
+
+
+@dataclass(frozen=True)
+class _CellLogic:
+    """The automaton over the cells' labels: ``label_masks`` (compact label -> proposition bitmask),
+    ``cell_label`` (per cell, its compact label), ``trans (Q, labels)`` the automaton table over compact
+    labels, ``accepting`` and ``dead`` (no accepting state reachable) per automaton state."""
+
+    label_masks: np.ndarray
+    cell_label: np.ndarray
+    trans: np.ndarray
+    accepting: np.ndarray
+    dead: np.ndarray
+
+    @classmethod
+    def of(cls, problem: PlanningProblem, graph: CellGraph) -> _CellLogic:
+        """Read the problem's label raster at every cell and compact it to the labels that occur (or take
+        the compact labels the problem's parts keep: :meth:`SharedParts.cell_labels`, a run's)."""
+        automaton = problem.automaton
+        compacted = None if problem.shared is None else problem.shared.cell_labels(problem.grid, graph,
+                                                                                    problem.labels)
+        label_masks, cell_label = compacted if compacted is not None else _labelling(graph, problem.labels,
+                                                                                      automaton)
+        if label_masks.size and int(label_masks.max()) >= automaton.num_labels:
+            raise PlanningError(
+                f"label raster holds bitmask {int(label_masks.max())} but the automaton has only "
+                f"{len(automaton.aps)} propositions ({', '.join(automaton.aps)})"
+            )
+        trans = np.ascontiguousarray(automaton.table[:, label_masks], dtype=np.int32)
+        accepting = np.asarray(automaton.accepting, dtype=bool)
+        dead = _dead_states(np.asarray(automaton.table), accepting)
+        return cls(label_masks, cell_label, trans, accepting, dead)
+
+
+def _start_state(problem: PlanningProblem, logic: _CellLogic, start_cell: int) -> int:
+    """The automaton state at the start: the problem's ``start_state`` when it resumes a mission
+    part-way, else the start cell's label read under ``ltlf`` (not under ``authors``); refused when no
+    accepting state can be reached from it."""
+    automaton = problem.automaton
+    start_mask = int(logic.label_masks[logic.cell_label[start_cell]])
+    if problem.start_state is not None:
+        q_start = int(problem.start_state)
+        if logic.dead[q_start]:
+            raise PlanningError(f"automaton state {q_start} at the start can no longer accept: the "
+                                "mission is violated", status="infeasible")
+    elif problem.profile == "ltlf":
+        q_start = int(automaton.table[automaton.initial, start_mask])
+        if logic.dead[q_start]:
+            true_aps = [problem.ap_name(i) for i in range(len(automaton.aps)) if start_mask >> i & 1]
+            raise PlanningError(
+                f"start {problem.start} violates the mission: with {_listing(true_aps)} true there the "
+                "automaton can no longer accept; start elsewhere",
+                status="invalid-start",
+            )
+    else:
+        q_start = int(automaton.initial)
+    if logic.dead[q_start]:
+        raise PlanningError("the mission automaton accepts no word at all", status="infeasible")
+    return q_start
+
+
+def _kernel_logic(logic: _CellLogic, ltl: LtlHeuristic, guide: LlmHeuristic) -> KernelLogic:
+    """The automaton and heuristic arrays the compiled search reads."""
+    trans = logic.trans
     idempotent = bool(np.all(trans[trans, np.arange(trans.shape[1])[None, :]] == trans))
-    klogic = KernelLogic(
+    return KernelLogic(
         trans=trans,
-        accepting=accepting,
-        dead=dead,
+        accepting=logic.accepting,
+        dead=logic.dead,
         idempotent=np.array([idempotent]),
         hmap=ltl.hmap,
         q_row=ltl.q_row,
@@ -298,7 +352,12 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
         llm_target=guide.target,
         llm_valid=guide.has_target,
     )
-    kgraph = KernelGraph(
+
+
+def _kernel_graph(graph: CellGraph, cell_label: np.ndarray, parts: ActionParts) -> KernelGraph:
+    """The cell graph's arrays the compiled search reads, with the cells' labels, rooms and object
+    regions."""
+    return KernelGraph(
         cell_at=graph.cell_at,
         cell_pos=graph.cell_pos,
         step_offset=graph.step_offset,
@@ -315,26 +374,6 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
         centre_x=graph.centre_tables[0],
         centre_y=graph.centre_tables[1],
         centre_z=graph.centre_tables[2],
-    )
-    return PlanningDomain(
-        graph=graph,
-        cell_label=cell_label,
-        label_masks=label_masks,
-        trans=trans,
-        accepting=accepting,
-        start_cell=start_cell,
-        q_start=q_start,
-        ltl=ltl,
-        llm=llm,
-        room_uuids=room_uuids,
-        maps=parts.maps,
-        kgraph=kgraph,
-        kactions=parts.kactions,
-        kmaps=parts.kmaps,
-        klogic=klogic,
-        precompute_s=time.perf_counter() - t0,
-        max_level=max_level,
-        timings=clock.laps,
     )
 
 
@@ -354,17 +393,18 @@ def _action_parts(
     kept = None if shared is None else shared.action_parts(problem, graph, cell_label, reachable)
     if kept is not None:
         return kept
-    tables = shared_part(problem.shared, "action_tables", (problem.grid, problem.reach_radius_m),
+    reach = (problem.reach_radius_m, problem.reach_model)
+    tables = shared_part(problem.shared, "action_tables", (problem.grid, *reach),
                          lambda: _action_tables(problem, graph))
     # The maps' early stops depend on which cells the search can stand on: the start's component, named
     # by its lowest cell.
     component = int(np.argmax(reachable))
-    store = shared_part(problem.shared, "action_maps", (problem.grid, problem.reach_radius_m, component),
+    store = shared_part(problem.shared, "action_maps", (problem.grid, *reach, component),
                         lambda: MapStore.empty(tables, graph, reachable))
     # Label runs follow which cells share a label: shared by the problems with the same cell labels.
     labelling = hashlib.blake2b(np.ascontiguousarray(cell_label).data, digest_size=16).digest()  # no copy
     runs = shared_part(problem.shared, "label_runs",
-                       (problem.grid, problem.reach_radius_m, component, labelling),
+                       (problem.grid, *reach, component, labelling),
                        lambda: LabelRuns.empty(store))
     kmaps = KernelMaps(
         done=runs.done,
@@ -680,18 +720,22 @@ class Family:
     exit_cost: float = 0.0
 
 
-def object_family(problem: PlanningProblem, graph: CellGraph, rooms: list, r: int, obj) -> Family | None:
+def object_family(problem: PlanningProblem, graph: CellGraph, rooms: list[Room], r: int, obj,
+                  in_room: np.ndarray | None = None) -> Family | None:
     """The family of reaching ``obj`` from the cells of room ``rooms[r]`` (its room), ``None`` when no cell
-    of ``graph`` reaches it."""
+    of ``graph`` reaches it; ``in_room``: the room's traversable cells (:func:`_room_cells`), computed when
+    ``None``."""
     room = rooms[r]
-    cells = _reach_region(problem, graph, room, obj)
+    if in_room is None:
+        in_room = _room_cells(problem, room)
+    cells = _reach_region(problem, graph, room, obj, in_room)
     if not cells.size:
         return None
     return Family(ActionMap(MAP_OBJECT, obj.uuid, room.floor), cells.astype(np.int64),
                   -1 if room.is_staircase else r, r)
 
 
-def action_families(problem: PlanningProblem, graph: CellGraph, rooms: list) -> list[Family]:
+def action_families(problem: PlanningProblem, graph: CellGraph, rooms: list[Room]) -> list[Family]:
     """The composite action families over ``graph``: per room (in the order of ``rooms``) its objects' and
     its doors' into each connected room, then the stairs of each floor."""
     floors = graph.shape[0]
@@ -700,7 +744,8 @@ def action_families(problem: PlanningProblem, graph: CellGraph, rooms: list) -> 
     for r, room in enumerate(rooms):
         if room.floor >= floors:
             continue
-        reached = (object_family(problem, graph, rooms, r, obj) for obj in room.objects.values())
+        in_room = _room_cells(problem, room) if room.objects else None  # once per room, not per object
+        reached = (object_family(problem, graph, rooms, r, obj, in_room) for obj in room.objects.values())
         families += [family for family in reached if family is not None]
         if room.is_staircase:
             continue
@@ -743,15 +788,8 @@ def action_tables(families: list[Family], cell_room: np.ndarray, rooms: list, fl
             room_room[family.from_room].append(k)
         else:
             (floor_up if kind == MAP_FLOOR_UP else floor_down)[family.action.floor] = k
-
-    def csr(lists: list[list[int]]) -> tuple[np.ndarray, np.ndarray]:
-        ptr = np.zeros(len(lists) + 1, dtype=np.int64)
-        ptr[1:] = np.cumsum([len(x) for x in lists])
-        flat = np.array([m for x in lists for m in x], dtype=np.int32)
-        return ptr, flat
-
-    obj_ptr, obj_map = csr(room_obj)
-    room_ptr, room_map = csr(room_room)
+    obj_ptr, obj_map = _csr(room_obj)
+    room_ptr, room_map = _csr(room_room)
     src_ptr = np.zeros(len(families) + 1, dtype=np.int64)
     src_ptr[1:] = np.cumsum([len(f.sources) for f in families])
     map_src = np.concatenate([f.sources for f in families]) if families else np.zeros(0, dtype=np.int64)
@@ -772,6 +810,14 @@ def action_tables(families: list[Family], cell_room: np.ndarray, rooms: list, fl
     )
     return ActionTables(families=families, kactions=kactions, in_region=in_region, cell_room=cell_room,
                         room_uuids=[room.uuid for room in rooms], num_rooms=len(rooms))
+
+
+def _csr(lists: list[list[int]]) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets and concatenation of ``lists`` (int64 offsets, int32 items)."""
+    ptr = np.zeros(len(lists) + 1, dtype=np.int64)
+    ptr[1:] = np.cumsum([len(x) for x in lists])
+    flat = np.array([m for x in lists for m in x], dtype=np.int32)
+    return ptr, flat
 
 
 _CHUNK = 1 << 20
@@ -803,25 +849,19 @@ def _cell_ids(graph: CellGraph, floor: int, cells: np.ndarray) -> np.ndarray:
     return np.unique(ids[ids >= 0])
 
 
-def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj) -> np.ndarray:
-    """Cell indices of ``room`` from which ``obj`` is within the reach radius (Euclidean, metres, to the
-    nearest footprint cell). Empty if the object has no footprint on its floor's category map."""
+def _room_cells(problem: PlanningProblem, room) -> np.ndarray:
+    """``(rows, cols)`` bool: the traversable cells of ``room`` on its floor."""
+    return (problem.grid.room_map[room.floor] == room.id) & problem.grid.traversable[room.floor]
+
+
+def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj, in_room: np.ndarray) -> np.ndarray:
+    """Cell indices of ``room`` from which ``obj`` is reached: the cells of its ``reach`` label at the
+    problem's reach radius and model (:func:`sgplan.scene.reach.object_reach_cells`) among the room's
+    traversable cells ``in_room``."""
     floor = problem.building.floors[room.floor]
     if not floor.has_maps:
         return np.zeros(0, dtype=np.int64)
-    res = problem.grid.resolution_m
+    flat = object_reach_cells(floor, obj, problem.reach_radius_m, str(problem.reach_model), among=in_room)
     rows, cols = floor.shape
-    pad = (
-        int(np.ceil(problem.reach_radius_m / res[0])) + 1,
-        int(np.ceil(problem.reach_radius_m / res[1])) + 1,
-    )
-    r0, c0 = max(obj.grid_min[0] - pad[0], 0), max(obj.grid_min[1] - pad[1], 0)
-    r1, c1 = min(obj.grid_max[0] + pad[0] + 1, rows), min(obj.grid_max[1] + pad[1] + 1, cols)
-    footprint = floor.cat_map[r0:r1, c0:c1] == obj.id
-    if not footprint.any():
-        return np.zeros(0, dtype=np.int64)
-    near = within_distance(footprint, res, problem.reach_radius_m)
-    near &= floor.room_map[r0:r1, c0:c1] == room.id
-    rr, cc = np.nonzero(near)
-    ids = graph.cell_ids((room.floor * rows + rr + r0) * cols + cc + c0)
+    ids = graph.cell_ids(room.floor * rows * cols + flat)
     return ids[ids >= 0]

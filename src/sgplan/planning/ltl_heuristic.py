@@ -216,7 +216,7 @@ def row_value(dist, unit, term_ptr, term_label, term_add, row, c):
         last = pick
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def fill_row(hmap, ready, dist, unit, term_ptr, term_label, term_add, row):
     """Fill ``hmap[row]`` with :func:`row_value` at every cell (the same bits) and mark it ready."""
     for c in range(hmap.shape[1]):
@@ -295,16 +295,7 @@ def build_ltl_heuristic(
     needed = np.flatnonzero(leaves.any(axis=0) & present)
     field_of = np.full(trans.shape[1], -1, dtype=np.int64)
     field_of[needed] = np.arange(len(needed))
-    if fields is None:
-        def fields(labels: np.ndarray, unit: float) -> np.ndarray | float:
-            return label_fields(graph, cell_label, inside, labels, unit)
-    unit_m = finest_unit(graph)
-    while True:  # a coarser unit only if some distance does not fit in 32 bits
-        dist = fields(needed, unit_m)
-        if not isinstance(dist, float):
-            break
-        unit_m *= 2.0 ** np.ceil(np.log2(dist / (UNREACHED - 1)))
-
+    dist, unit_m = _label_fields(graph, cell_label, needed, inside, fields)
     twice = _moves_twice(trans, states)
     if boundary is None:
         boundary = label_boundary(graph, cell_label)
@@ -335,6 +326,25 @@ def build_ltl_heuristic(
         piece_cells=piece_cells,
         piece_ptr=piece_ptr,
     )
+
+
+def _label_fields(
+    graph: CellGraph, cell_label: np.ndarray, needed: np.ndarray, inside: np.ndarray,
+    fields: Callable[[np.ndarray, float], np.ndarray | float] | None,
+) -> tuple[np.ndarray, float]:
+    """``(N, len(needed))`` uint32 distance fields of the regions of the compact labels ``needed`` (by
+    ``fields``, :func:`label_fields` over the cells ``inside`` by default), in units of the returned
+    ``unit_m``: the finest unit (:func:`finest_unit`) unless some distance does not fit in 32 bits, then
+    the coarsest power of two times it that fits."""
+    if fields is None:
+        def fields(labels: np.ndarray, unit: float) -> np.ndarray | float:
+            return label_fields(graph, cell_label, inside, labels, unit)
+    unit_m = finest_unit(graph)
+    while True:  # a coarser unit only if some distance does not fit in 32 bits
+        dist = fields(needed, unit_m)
+        if not isinstance(dist, float):
+            return dist, unit_m
+        unit_m *= 2.0 ** np.ceil(np.log2(dist / (UNREACHED - 1)))
 
 
 def finest_unit(graph: CellGraph) -> float:
@@ -382,7 +392,7 @@ def unit_field(graph: CellGraph, cells: np.ndarray, unit_m: float) -> np.ndarray
     return out if largest < UNREACHED else largest
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _whole_units(field, out):
     """``out[i]`` = the whole number ``field[i]``, :data:`UNREACHED` for ``inf``, where it fits below
     :data:`UNREACHED`; returns the largest finite value."""
@@ -480,7 +490,7 @@ def _on_boundary(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stai
     return False
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def mark_boundary(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, cell_label, cells,
                   around, boundary):
     """Set ``boundary[x]`` (see :func:`label_boundary`) for every cell ``x`` of ``cells`` and, if
@@ -527,7 +537,7 @@ def _entry_cells(graph: CellGraph, cell_label: np.ndarray, field_of: np.ndarray,
     return cells[keep], labels[keep]
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _piece_bounds(dist, piece_cells, piece_ptr):
     """``(lo, hi)`` ``(K, F)``: smallest and largest value of each field over each piece (float64 units)."""
     num_pieces, num_fields = piece_ptr.shape[0] - 1, dist.shape[1]
@@ -543,7 +553,7 @@ def _piece_bounds(dist, piece_cells, piece_ptr):
     return lo, hi
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _piece_lower_bounds(dist, piece_cells, piece_ptr, lo, hi):
     """``(K, K)``: ``LB[j, k]`` = min over the cells ``y`` of piece ``j`` of ``phi_k(y)`` (the module
     docstring's bound on the distance from ``y`` to piece ``k``, units)."""

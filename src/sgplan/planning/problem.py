@@ -10,7 +10,7 @@ import numpy as np
 
 from sgplan.errors import PlanningError
 from sgplan.logic.automaton import Automaton
-from sgplan.planning.setups import check_profile
+from sgplan.planning.setups import check_profile, reach_model_for
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 
@@ -42,6 +42,10 @@ class PlanningProblem:
         optional LLM guidance ``{room_uuid: {q: [call strings]}}`` (llm_heuristic.yaml content).
     reach_radius_m:
         radius (metres) defining the object level's "object reached" regions.
+    reach_model:
+        where an object counts as reached (:mod:`sgplan.scene.reach`: ``"visible"`` or ``"box"``), for the
+        object level's regions as for the labels; ``None`` (default): the profile's
+        (:data:`~sgplan.planning.setups.PROFILE_REACH_MODELS`). The labels must be made with the same model.
     ap_descriptions:
         optional names for messages, e.g. ``{"p1": "enter(room_2)"}``.
     shared:
@@ -62,6 +66,7 @@ class PlanningProblem:
     profile: str = "ltlf"
     guidance: Mapping | None = None
     reach_radius_m: float = 0.6
+    reach_model: str | None = None
     ap_descriptions: Mapping[str, str] = field(default_factory=dict)
     shared: SharedParts | None = None
     start_state: int | None = None
@@ -82,6 +87,7 @@ class PlanningProblem:
             raise PlanningError(
                 f"reach radius must be a positive number of metres, got {self.reach_radius_m}"
             )
+        self.reach_model = reach_model_for(self.profile, self.reach_model)
         self.start = tuple(int(v) for v in self.start)  # type: ignore[assignment]
 
     def ap_name(self, index: int) -> str:

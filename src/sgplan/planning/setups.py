@@ -1,4 +1,5 @@
-"""The words a plan is configured with: the paper's planner setups and the semantics profiles.
+"""The words a plan is configured with: the paper's planner setups, the semantics profiles and the reach
+models.
 
 Plain data, no numpy or numba: the options (:class:`sgplan.PlanOptions`) and the CLI's parser check setup and
 profile names with it without loading the search.
@@ -13,6 +14,13 @@ from sgplan.errors import PlanningError
 PROFILES = ("ltlf", "authors")
 """``ltlf``: the start cell's label is read (q_start = T(initial, label(start))); ``authors``: it is not
 (q_start = initial), as in the authors' planner. Missing-edge behaviour is the automaton table's."""
+
+REACH_MODELS = ("box", "visible")
+"""Where an object counts as reached (:mod:`sgplan.scene.reach`): ``box``, the authors' square window;
+``visible``, within the radius and in sight (walls block)."""
+PROFILE_REACH_MODELS = {"ltlf": "visible", "authors": "box"}
+"""The reach model of each profile when none is chosen: ``authors`` keeps the paper's window, so that its
+numbers stay reproducible."""
 
 LEVEL_NAMES = ("anchor", "occupancy", "object", "room", "floor")
 LTL, LLM = 0, 1
@@ -81,3 +89,20 @@ def check_profile(profile: str) -> str:
     if profile not in PROFILES:
         raise PlanningError(f"unknown semantics profile {profile!r}; use one of {', '.join(PROFILES)}")
     return profile
+
+
+def reach_model_for(profile: str, name: str | None = None) -> str:
+    """The reach model ``name`` (any case) if given, else the one of ``profile``
+    (:data:`PROFILE_REACH_MODELS`).
+
+    Raises
+    ------
+    PlanningError
+        for an unknown model or profile, listing the known ones.
+    """
+    if name is None:
+        return PROFILE_REACH_MODELS[check_profile(profile)]
+    model = str(name).strip().lower()
+    if model not in REACH_MODELS:
+        raise PlanningError(f"unknown reach model {name!r}; use one of {', '.join(REACH_MODELS)}")
+    return model
