@@ -40,10 +40,11 @@ os.environ.setdefault("SGPLAN_NO_CACHE", "1")
 KINDS = ("close_door", "reopen_door", "block", "move_object")
 
 
-def peak_rss_mib() -> float:
+def rss_mib(field: str = "VmHWM") -> float:
+    """This process's peak (``VmHWM``) or current (``VmRSS``) resident memory, MiB."""
     with open("/proc/self/status") as status:
         for line in status:
-            if line.startswith("VmHWM:"):
+            if line.startswith(field + ":"):
                 return int(line.split()[1]) / 1024
     return float("nan")
 
@@ -225,7 +226,9 @@ def monitoring(scene: str = "Collierville", mission_index: int = 2) -> tuple[int
 
 
 def successive(count: int = 1000, scene: str = "Benevolence") -> dict:
-    """``count`` changes on one run (a door closed and opened in turn), each followed by a replan."""
+    """``count`` changes on one run (a door closed and opened in turn), each followed by a replan. Run in a
+    process of its own (:func:`successive_apart`), so that its peak RSS is the run's: one scene, its
+    session and the run."""
     import sgplan
     from sgplan.datasets import find_gibson_root
     from sgplan.execution.changes import CloseDoor, OpenDoor
@@ -236,16 +239,26 @@ def successive(count: int = 1000, scene: str = "Benevolence") -> dict:
     run = sgplan.Session(building).start(mission, 0, setup="A*")
     rest = run.plan.path
     door = next_door(run, rest[len(rest) // 2 :])
-    latencies = []
+    latencies, rss_100 = [], float("nan")
     for k in range(count):
         change = (CloseDoor if k % 2 == 0 else OpenDoor)(door)
         t0 = time.perf_counter()
         run.change([change])
         assert run.plan is not None
         latencies.append(time.perf_counter() - t0)
+        if k == 99:
+            rss_100 = rss_mib("VmRSS")
     first, last = statistics.median(latencies[:100]), statistics.median(latencies[-100:])
     return {"changes": count, "first100_ms": first * 1e3, "last100_ms": last * 1e3, "ratio": last / first,
-            "peak_rss_mib": peak_rss_mib(), "door": door}
+            "rss_100_mib": rss_100, "rss_end_mib": rss_mib("VmRSS"), "peak_rss_mib": rss_mib(), "door": door}
+
+
+def successive_apart(count: int) -> dict:
+    """:func:`successive` in a new interpreter (spawned: nothing of this process's scenes in it)."""
+    import multiprocessing
+
+    with multiprocessing.get_context("spawn").Pool(1) as pool:
+        return pool.apply(successive, (count,))
 
 
 def table(rows: list[dict]) -> list[str]:
@@ -276,7 +289,7 @@ def main() -> None:
     parser.add_argument("--out", type=Path)
     parser.add_argument("--quiet", action="store_true")
     args = parser.parse_args()
-    started = time.time()
+    started, load_before = time.time(), os.getloadavg()
     rows: list[dict] = []
     for scene in args.scenes:
         for mission in args.missions:
@@ -288,15 +301,19 @@ def main() -> None:
     lines += ["", f"Monitoring a {poses:,}-pose trajectory (Collierville mission 2, metric poses): "
               f"{monitor_s * 1e3:.1f} ms (best of 5)."]
     if args.successive:
-        result = successive(args.successive)
+        result = successive_apart(args.successive)
         lines += [f"{result['changes']} successive changes on one run (Benevolence mission 4, A*, the door "
                   f"{result['door'][0]}/{result['door'][1]} closed and opened in turn, a replan after each): "
                   f"median replan {result['first100_ms']:.1f} ms over the first 100, "
-                  f"{result['last100_ms']:.1f} ms over the last 100 (x{result['ratio']:.2f}); "
-                  f"peak RSS of the whole benchmark process {result['peak_rss_mib']:.0f} MiB."]
+                  f"{result['last100_ms']:.1f} ms over the last 100 (x{result['ratio']:.2f}); in a process "
+                  f"of its own (one scene, its session, the run): RSS {result['rss_100_mib']:.0f} MiB after "
+                  f"100 changes, {result['rss_end_mib']:.0f} MiB after {result['changes']}, peak "
+                  f"{result['peak_rss_mib']:.0f} MiB."]
     disagree = [r for r in rows if not r["agree"]]
     seconds = time.time() - started
-    lines += ["", f"{len(rows)} scenarios, {len(disagree)} cost disagreements; {seconds:.0f} s."]
+    load = ", ".join(f"{x:.1f}" for x in (*load_before, *os.getloadavg()))
+    lines += ["", f"{len(rows)} scenarios, {len(disagree)} cost disagreements; {seconds:.0f} s; load average "
+              f"(1, 5, 15 min) before and after: {load}."]
     text = "\n".join(lines)
     print(text)
     if args.out:

@@ -20,8 +20,8 @@ from collections import Counter
 
 import numpy as np
 
-from sgplan.execution._repair import EXACT, RECOMPUTE, repair_field
-from sgplan.execution.graph import in_graph
+from sgplan.execution._repair import EXACT, LOWER_BOUND, RECOMPUTE, repair_field
+from sgplan.execution.graph import in_graph_cells
 from sgplan.intsets import unique_sorted
 from sgplan.planning.cells import CellGraph
 from sgplan.planning.ltl_heuristic import unit_costs, unit_field
@@ -31,18 +31,25 @@ class FieldStore:
     """Distance fields by label bitmask, at one unit, kept as the columns of one matrix and repaired
     lazily after changes.
 
-    A repair that would invalidate more than ``invalidate_fraction`` of the cells leaves the field a lower
-    bound instead (still 1-Lipschitz over the moves, so h_LTL stays consistent and the search exact, only
-    less informed; :func:`~sgplan.execution._repair.repair_field`); one that would lower more than
-    ``lower_fraction`` of them recomputes the field. ``exact`` says which fields are exact.
+    A repair that would invalidate more than ``invalidate_fraction`` of the cells, or lower more than
+    ``lower_fraction`` of them, recomputes the field instead: a repair costs several times a full
+    Dijkstra per cell it touches (a heap, two phases), so past a few percent of the cells the Dijkstra is
+    the cheaper way (``benchmarks/results/replanning.md``). With ``bound``, a repair past
+    ``invalidate_fraction`` leaves the field a lower bound instead (still 1-Lipschitz over the moves, so
+    h_LTL stays consistent and the search exact, :func:`~sgplan.execution._repair.repair_field`): cheaper
+    at the change, but the search after it is less informed (on the Gibson scenes it expanded up to 2.6
+    times the states of one with exact fields) and stays so until the field is recomputed; off by
+    default. ``exact`` says which fields are exact.
     ``counts`` tallies ``computed`` (whole fields), ``repaired`` (exactly), ``bounded`` (left lower
     bounds), ``reused`` (handed out as they were) and ``laid_out`` (the matrix laid out anew), for tests
     and benchmarks.
     """
 
-    def __init__(self, invalidate_fraction: float = 0.005, lower_fraction: float = 0.03) -> None:
+    def __init__(self, invalidate_fraction: float = 0.02, lower_fraction: float = 0.03,
+                 bound: bool = False) -> None:
         self.invalidate_fraction = invalidate_fraction
         self.lower_fraction = lower_fraction
+        self.bound = bound
         self._matrix = np.zeros((0, 0), dtype=np.uint32)
         self._columns: list[int] = []  # the bitmask of each column of the matrix
         self._aside: dict[int, np.ndarray] = {}  # fields of bitmasks not asked for by the last plan
@@ -92,7 +99,8 @@ class FieldStore:
             if mask in self._pending and not self._pending[mask]:
                 self.counts["reused"] += 1
             elif mask not in self._pending or not self._repair(graph, masks, mask, column, unit_m):
-                field = unit_field(graph, np.flatnonzero((masks == mask) & in_graph(graph)), unit_m)
+                region = np.flatnonzero(masks == mask)
+                field = unit_field(graph, region[in_graph_cells(graph, region)], unit_m)
                 self.counts["computed"] += 1
                 if not isinstance(field, np.ndarray):
                     self.forget()
@@ -136,7 +144,7 @@ class FieldStore:
                                stairs.astype(np.int64), masks, mask, kept, self.exact[mask], seeds,
                                int(self.invalidate_fraction * graph.num_cells),
                                int(self.lower_fraction * graph.num_cells), done)
-        if outcome == RECOMPUTE:
+        if outcome == RECOMPUTE or (outcome == LOWER_BOUND and not self.bound):
             return False
         self.exact[mask] = self.exact[mask] and outcome == EXACT
         self.counts["repaired" if outcome == EXACT else "bounded"] += 1

@@ -287,14 +287,8 @@ def build_ltl_heuristic(
     """
     accepting = np.asarray(accepting, dtype=bool)
     states = np.flatnonzero(reachable_states(trans, q_start) & ~accepting)
-    leaves = trans[states] != states[:, None]
     inside = reachable if reachable is not None else np.ones(graph.num_cells, dtype=bool)
-    present = np.zeros(trans.shape[1], dtype=bool)
-    present[cell_label[inside]] = True
-    # Labels that leave some state and occur where the search can go: one distance field each.
-    needed = np.flatnonzero(leaves.any(axis=0) & present)
-    field_of = np.full(trans.shape[1], -1, dtype=np.int64)
-    field_of[needed] = np.arange(len(needed))
+    needed, field_of = _measured_labels(trans, states, cell_label, inside)
     dist, unit_m = _label_fields(graph, cell_label, needed, inside, fields)
     twice = _moves_twice(trans, states)
     if boundary is None:
@@ -305,11 +299,7 @@ def build_ltl_heuristic(
     between = _piece_lower_bounds(dist, piece_cells, piece_ptr, lo, hi)
     q_row, term_ptr, groups, term_piece, term_add = _terms(trans, accepting, states, field_of, piece_label,
                                                            between)
-    width = dist.shape[1]
-    term_data = np.empty((len(term_piece), 1 + 2 * width), dtype=np.float64)
-    term_data[:, 0] = term_add
-    term_data[:, 1 : 1 + width] = lo[term_piece]
-    term_data[:, 1 + width :] = hi[term_piece]
+    term_data = _term_data(term_add, lo[term_piece], hi[term_piece])
     rows = len(term_ptr) - 1
     return LtlHeuristic(
         q_row=q_row,
@@ -326,6 +316,31 @@ def build_ltl_heuristic(
         piece_cells=piece_cells,
         piece_ptr=piece_ptr,
     )
+
+
+def _measured_labels(trans: np.ndarray, states: np.ndarray, cell_label: np.ndarray, inside: np.ndarray
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """``(needed, field_of)``: the compact labels that leave some state of ``states`` and occur on a cell
+    ``inside`` (where the search can go), ascending -- one distance field each --, and per compact label
+    its field's column (-1: none)."""
+    leaves = trans[states] != states[:, None]
+    present = np.zeros(trans.shape[1], dtype=bool)
+    present[cell_label[inside]] = True
+    needed = np.flatnonzero(leaves.any(axis=0) & present)
+    field_of = np.full(trans.shape[1], -1, dtype=np.int64)
+    field_of[needed] = np.arange(len(needed))
+    return needed, field_of
+
+
+def _term_data(term_add: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """``(T, 1 + 2F)`` per term its added cost, then its piece's smallest and largest value of each field:
+    one row per term, as :func:`row_value` reads it."""
+    width = lo.shape[1]
+    term_data = np.empty((len(term_add), 1 + 2 * width), dtype=np.float64)
+    term_data[:, 0] = term_add
+    term_data[:, 1 : 1 + width] = lo
+    term_data[:, 1 + width :] = hi
+    return term_data
 
 
 def _label_fields(
