@@ -31,22 +31,21 @@ class FieldStore:
     """Distance fields by label bitmask, at one unit, kept as the columns of one matrix and repaired
     lazily after changes.
 
-    A repair that would invalidate more than ``invalidate_fraction`` of the cells, or lower more than
-    ``lower_fraction`` of them, recomputes the field instead: a repair costs several times a full
-    Dijkstra per cell it touches (a heap, two phases), so past a few percent of the cells the Dijkstra is
-    the cheaper way (``benchmarks/results/replanning.md``). With ``bound``, a repair past
-    ``invalidate_fraction`` leaves the field a lower bound instead (still 1-Lipschitz over the moves, so
-    h_LTL stays consistent and the search exact, :func:`~sgplan.execution._repair.repair_field`): cheaper
-    at the change, but the search after it is less informed (on the Gibson scenes it expanded up to 2.6
-    times the states of one with exact fields) and stays so until the field is recomputed; off by
-    default. ``exact`` says which fields are exact.
+    A repair that would lower more than ``lower_fraction`` of the cells recomputes the field instead (a
+    repair costs more per cell it touches than a full Dijkstra: a heap, two phases). One that would
+    invalidate more than ``invalidate_fraction`` of them leaves the field a lower bound when ``bound``
+    (still 1-Lipschitz over the moves, so h_LTL stays consistent and the search exact,
+    :func:`~sgplan.execution._repair.repair_field`; the search after it is less informed until the field
+    is recomputed), else recomputes it. Bounding is the default: on the Gibson replanning benchmark the
+    recomputed fields cost more than the states the bounded ones made the search expand
+    (``benchmarks/results/replanning.md``, ``--exact-fields``). ``exact`` says which fields are exact.
     ``counts`` tallies ``computed`` (whole fields), ``repaired`` (exactly), ``bounded`` (left lower
     bounds), ``reused`` (handed out as they were) and ``laid_out`` (the matrix laid out anew), for tests
     and benchmarks.
     """
 
-    def __init__(self, invalidate_fraction: float = 0.02, lower_fraction: float = 0.03,
-                 bound: bool = False) -> None:
+    def __init__(self, invalidate_fraction: float = 0.005, lower_fraction: float = 0.03,
+                 bound: bool = True) -> None:
         self.invalidate_fraction = invalidate_fraction
         self.lower_fraction = lower_fraction
         self.bound = bound
