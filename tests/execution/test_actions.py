@@ -4,11 +4,13 @@ ones before the search rebuilds anything, and all of them after."""
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from sgplan.errors import PlanningError, SceneError
+from sgplan.errors import PlanningError
 from sgplan.execution.parts import RunParts
 from sgplan.execution.regrid import regrid
 from sgplan.execution.world import SceneState
@@ -20,7 +22,7 @@ from sgplan.scene.grid import build_occupancy_grid
 from tests.execution.buildings import house
 from tests.execution.test_fields import label_raster
 from tests.execution.test_parts import PROPS, _free_cell
-from tests.execution.test_world import _random_change
+from tests.execution.test_world import random_changes
 
 AUTOMATON = ltlf_to_dfa(parse_infix("F p0 & F p1"), aps=("p0", "p1", "p2"))
 
@@ -58,14 +60,9 @@ def test_kept_action_maps_equal_fresh_ones_after_any_sequence_of_changes(seed, r
     grid = build_occupancy_grid(state.building, radius)
     labels = label_raster(state.building, PROPS, 0.3)
     parts = RunParts(grid, labels, state.building)
-    for step in range(6):
-        if step:
-            try:
-                new, delta = state.apply(_random_change(rng, state))
-            except SceneError:
-                continue
-            state = new
-            grid, change = regrid(grid, state.building, delta.cells)
+    for step in itertools.chain([None], random_changes(rng, state, grid, 5)):
+        if step is not None:
+            state, delta, grid, change = step
             new_labels = label_raster(state.building, PROPS, 0.3)
             relabelled = np.flatnonzero(new_labels != labels)
             labels = new_labels

@@ -7,10 +7,8 @@ import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
 
-from sgplan.errors import SceneError
 from sgplan.execution.cell_labels import CellLabels
 from sgplan.execution.graph import candidate_graph, masked_graph, remasked
-from sgplan.execution.regrid import regrid
 from sgplan.execution.world import SceneState
 from sgplan.planning.domain import compact_labels
 from sgplan.planning.ltl_heuristic import label_boundary
@@ -18,7 +16,7 @@ from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.labels import Proposition
 from tests.execution.buildings import house
 from tests.execution.test_fields import label_raster
-from tests.execution.test_world import _random_change
+from tests.execution.test_world import random_changes
 
 PROPS = [Proposition("reach", 10), Proposition("enter", 6), Proposition("reach", 13),
          Proposition("reach", 11)]
@@ -33,14 +31,9 @@ def test_cell_labels_follow_any_sequence_of_changes(seed, radius):
     graph = masked_graph(candidates, grid.traversable)
     labels = label_raster(state.building, PROPS, 0.3)
     kept = CellLabels(candidates, graph, labels)
-    for _ in range(10):
-        try:
-            state, delta = state.apply(_random_change(rng, state))
-        except SceneError:
-            continue
-        grid, change = regrid(grid, state.building, delta.cells)
+    for now, _, _, change in random_changes(rng, state, grid, 10):
         graph, moved = remasked(graph, candidates, change)
-        new_labels = label_raster(state.building, PROPS, 0.3)
+        new_labels = label_raster(now.building, PROPS, 0.3)
         relabelled = np.flatnonzero(new_labels != labels)
         cells = candidates.cell_ids(relabelled)
         cells, positions = cells[cells >= 0], relabelled[cells >= 0]

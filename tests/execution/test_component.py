@@ -7,7 +7,6 @@ import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
 
-from sgplan.errors import SceneError
 from sgplan.execution.changes import CloseDoor, OpenDoor
 from sgplan.execution.component import Component
 from sgplan.execution.graph import candidate_graph, in_graph, masked_graph, remasked
@@ -15,7 +14,7 @@ from sgplan.execution.regrid import regrid
 from sgplan.execution.world import SceneState
 from sgplan.scene.grid import build_occupancy_grid
 from tests.execution.buildings import house
-from tests.execution.test_world import _random_change
+from tests.execution.test_world import random_changes
 
 
 def _setup(radius):
@@ -38,13 +37,7 @@ def test_the_component_follows_any_sequence_of_changes(seed, radius):
     anchor = int(rng.choice(np.flatnonzero(in_graph(graph))))
     component.of(graph, anchor)
     expected_floods = 1
-    for _ in range(10):
-        try:
-            new, delta = state.apply(_random_change(rng, state))
-        except SceneError:
-            continue
-        state = new
-        grid, change = regrid(grid, state.building, delta.cells)
+    for _, _, _, change in random_changes(rng, state, grid, 10):
         graph, moved = remasked(graph, candidates, change)
         component.update(graph, moved, anchor)
         if not in_graph(graph)[anchor]:  # the robot stood where an obstacle is now: another robot

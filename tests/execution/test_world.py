@@ -138,6 +138,19 @@ def test_added_and_removed_objects():
     assert np.array_equal(_cats(removed.building), _cats(state.building))
 
 
+def random_changes(rng, state, grid, count):
+    """Up to ``count`` random changes applied one after the other (one that cannot apply is skipped): per
+    change applied, ``(state, delta, grid, change)``: the scene after it, its delta, the grid regridded
+    and the grid's change."""
+    for _ in range(count):
+        try:
+            state, delta = state.apply(_random_change(rng, state))
+        except SceneError:
+            continue
+        grid, change = regrid(grid, state.building, delta.cells)
+        yield state, delta, grid, change
+
+
 def _random_change(rng, state):
     building = state.building
     floor = int(rng.integers(building.num_floors))
