@@ -403,7 +403,7 @@ def test_stop_count_ignores_room_cells_cut_off_from_the_sources() -> None:
 
 @settings(max_examples=20, deadline=None)
 @given(seed=st.integers(0, 2**31 - 1), bits=st.sampled_from([1, 5, 22, 30]))
-def testcompact_labels_equal_numpy_unique(seed: int, bits: int) -> None:
+def test_compact_labels_equal_numpy_unique(seed: int, bits: int) -> None:
     """Label ids by lookup table (small label spaces) or by sort (large ones) are np.unique's."""
     rng = np.random.default_rng(seed)
     masks = rng.choice(rng.integers(0, 2**bits, size=7), size=500).astype(np.uint32)
