@@ -30,6 +30,18 @@ BARE_NEGATED = {"dont": "do", "doesnt": "does", "didnt": "did", "cant": "can", "
 
 SENTENCE_END = frozenset(".;:!?")
 
+SYMBOLS: dict[str, tuple[str, ...]] = {
+    "+": ("and",), "&": ("and",), "w/": ("with",), "w/o": ("without",), "@": ("at",),
+}
+"""Notations read as words (an arrow, ``->``, ``>``, ``→``, is *then*): ``A + B`` is *A and B*, ``bdrm w/
+bed`` *bedroom with bed*. Every other symbol is a token the grammar refuses by name (``A / B``: and, or?)."""
+
+CLOCK_PREPOSITIONS = ("at", "by", "before", "after", "until", "till", "around", "about")
+"""Before a clock time (*at 6 pm*): quoted with it in the refusal."""
+
+LINE_CONTINUES = frozenset({",", "and", "or", "then", "but", "with", "to", "of", "in", "the", "a", "an"})
+"""A line ending with one of these goes on in the next line (a wrapped sentence, not a new one)."""
+
 # ----------------------------------------------------------------------------------------------- nouns
 SYNONYMS: dict[str, tuple[str, ...]] = {
     "fridge": ("refrigerator",),
@@ -78,6 +90,24 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
 }
 """Category synonyms: a word or phrase users say -> the scene categories it may denote (underscores of the
 Gibson categories are spaces here). A synonym only applies to categories the scene actually has."""
+
+ABBREVIATIONS: dict[str, tuple[str, ...]] = {
+    "lr": ("living room",), "liv rm": ("living room",), "lvng rm": ("living room",),
+    "lvg rm": ("living room",),
+    "dr": ("dining room",), "din rm": ("dining room",), "dng rm": ("dining room",),
+    "br": ("bedroom", "bathroom"), "bdr": ("bedroom",), "bd": ("bedroom",), "mbr": ("bedroom",),
+    "bth": ("bathroom",), "bthr": ("bathroom",),
+    "kit": ("kitchen",), "kitch": ("kitchen",), "ktch": ("kitchen",),
+    "ofc": ("home office",), "offc": ("home office",), "ofis": ("home office",),
+    "hwy": ("corridor",), "hllwy": ("corridor",), "corr": ("corridor",),
+    "kbd": ("keyboard",), "kybd": ("keyboard",), "tbl": ("dining table", "table"), "frdg": ("refrigerator",),
+    "frig": ("refrigerator",), "micro": ("microwave",), "mw": ("microwave",), "tele": ("tv",),
+    "plt": ("potted plant",), "chr": ("chair",),
+}
+"""Abbreviations people type for rooms and objects (*LR*, *bdrm*, *kbd*, *tbl*): read as the categories they
+may denote, like :data:`SYNONYMS` (only those the scene has; one that could be several is refused as
+ambiguous, naming them). The scene's own names give more (:mod:`.nouns`): the letters of a name without its
+vowels (*bthrm*, *ktchn*) and *rm* for *room* (*bathrm*, *dining rm*)."""
 
 EVERYDAY_NAMES: dict[str, tuple[str, ...]] = {
     "loo": ("bathroom", "toilet"),
@@ -166,6 +196,27 @@ a plural head noun of the scene does too (*visit two rooms:*)."""
 ANNOUNCING = word_set("the a few couple of some several my your our today 's following quick little "
                       "small") | DETERMINERS
 """Words of an announcement's noun group before its last word (*a few quick things*, *today's tasks*)."""
+LIST_NOUNS = word_set("list lists checklist todo do round rounds run runs tour route schedule agenda routine "
+                      "plan steps step sequence order tasks task jobs job chores chore errands errand checks "
+                      "check stops visits things items duties rota program programme")
+"""Words that name a list in its heading (*Morning round*, *Evening checks*, *To do:*, *Top floor tasks*)."""
+LABEL_STOPS = word_set("until till before after only except never not no if unless when whenever then first "
+                       "last again twice once but or nor without stay remain keep staying avoid leave there")
+"""Words a list's label never holds: a heading with one of them is a sentence of its own."""
+ORDER_FILLERS = word_set(", do them these this it all the items steps things list")
+"""Words of a sentence after a list that only says its order (*Do them in this order.*)."""
+EVENT_WORDS = Phrases(tuple((w,) for w in (
+    "breakfast", "brunch", "lunch", "lunchtime", "dinner", "dinnertime", "supper", "tea", "teatime",
+    "morning", "afternoon", "evening", "night", "tonight", "today", "tomorrow", "weekend", "noon", "midday",
+    "midnight", "bedtime", "monday", "tuesday", "wednesday", "thursday", "friday", "saturday", "sunday",
+    "work", "school", "class", "meeting", "party", "guests", "visitors", "dawn", "dusk", "sunset", "sunrise",
+    "now", "later", "soon", "daily", "weekly")) + (("the", "weekend"), ("the", "morning"),
+                                                    ("the", "evening"), ("the", "afternoon"),
+                                                    ("the", "meeting"), ("the", "party"), ("the", "guests"),
+                                                    ("the", "day"), ("the", "night")))
+"""Times of day, meals and events: *Before lunch, ...*, *After dinner, ...*, *Tonight, ...* only say when,
+which a mission cannot require; said at the start of a sentence they are set aside (said back), never read
+as the goal of *before / after*. A clock time (*at 6 pm*) or a delay (*in ten minutes*) is refused."""
 HEADS_UP = word_set("remember note important reminder ps also careful warning update oh btw nb")
 """Words that only ask for attention before a colon (*Remember: never enter the kitchen.*)."""
 ANNOUNCE_TAIL = Phrases((("for", "me"), ("for", "today"), ("today",), ("to", "do"), ("please",),
@@ -185,12 +236,12 @@ FLOOR_ORDINALS = {
     "fifth": 4, "5th": 4,
 }
 """``the first floor`` is the lowest floor (index 0): ordinals count floors from the lowest, US style."""
-FLOOR_NAMED = {"ground": 0, "bottom": 0, "lowest": 0, "basement": 0}
+FLOOR_NAMED = {"ground": 0, "bottom": 0, "lowest": 0, "basement": 0, "gnd": 0, "grnd": 0}
 FLOOR_TOP = ("top", "highest", "upper", "uppermost")
-FLOOR_MIDDLE = ("middle",)
+FLOOR_MIDDLE = ("middle", "mid")
 """``the middle floor``: understood in a building with an odd number of floors (3: floor 1)."""
-FLOOR_WORDS = ("floor", "level", "storey", "story")
-FLOOR_PLURALS = (*FLOOR_WORDS, "floors", "levels", "storeys", "stories")
+FLOOR_WORDS = ("floor", "level", "storey", "story", "flr", "fl", "lvl")
+FLOOR_PLURALS = (*FLOOR_WORDS, "floors", "levels", "storeys", "stories", "flrs")
 RELATIVE_FLOORS = {"upstairs": 1, "downstairs": -1}
 """Floors relative to the robot's start floor (or, in a two-floor building, the upper / lower floor)."""
 START_FLOOR_WORDS = ("this", "current", "my", "our")
@@ -371,6 +422,10 @@ carry meaning (*secondly*, *before that*, *but first*, a trailing *first*, *agai
 fillers."""
 NOT_FILLERS_HERE = ("do", "and", "then", "next")
 """Fillers that the filler rule leaves to other rules (*do not*, *and then*, *next to*)."""
+HESITATIONS = word_set("um umm uh uhh uhm er erm ehm hmm hm ah ahh like yeah yep so well basically actually "
+                       "anyway alright right just literally")
+"""Hesitations and discourse words of spoken and dictated missions (*um, go to the kitchen and then like go
+sit on the couch*): no meaning between clauses, like :data:`FILLERS`."""
 
 _TASK_NOUNS = ("task", "job", "goal", "mission", "aim", "objective", "plan", "errand")
 POLITE = Phrases((
@@ -405,13 +460,11 @@ _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "c
                  ("is", "most", "efficient"), ("works", "best"), ("makes", "sense"),
                  ("makes", "the", "most", "sense"), ("is", "the", "quickest"), ("is", "the", "fastest"),
                  ("is", "the", "shortest"))
-TIME_FILLERS = Phrases((
-    ("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("eventually",), ("later",),
+ANY_ORDER = Phrases((
     ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"), ("any", "order"),
     ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "order"),
     ("order", "does", "not", "matter"), ("the", "order", "does", "not", "matter"),
     ("order", "is", "not", "important"), ("the", "order", "is", "not", "important"),
-    ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"),
     *((*order, *liking) for order in (("in", "any", "order"), ("in", "whatever", "order"),
                                       ("in", "whichever", "order"), ("in", "either", "order"),
                                       ("any", "order"),
@@ -421,6 +474,11 @@ TIME_FILLERS = Phrases((
     ("the", "order", "is", "up", "to", "you"), ("order", "is", "up", "to", "you"),
     ("i", "do", "not", "care", "about", "the", "order"), ("i", "do", "not", "mind", "the", "order"),
     ("i", "do", "not", "mind", "about", "the", "order"), ("do", "not", "worry", "about", "the", "order")))
+"""Remarks that leave the order to the robot (the default of a set of goals; a numbered list is in order
+unless one of these is said with it)."""
+TIME_FILLERS = Phrases((
+    ("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("eventually",), ("later",),
+    ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"))) + ANY_ORDER
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
 
@@ -476,6 +534,9 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
 ))
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
+BARE_CHOOSERS = ("either", "any", "whichever")
+CLAUSE_ENDS = frozenset({"", ",", "then", "and", "but"})
+"""After ``, either`` / ``, any``: no noun follows, so the word is a choice remark (*DR vase, any*)."""
 
 _SPAN_NOUNS = ("mission", "task", "trip", "route", "run", "time", "way", "journey", "tour", "job", "thing",
                "path")
@@ -570,7 +631,29 @@ GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can"
                         "no", "stay", "keep", "neither", "nor", "steer", "circumstances", "point", "time"})
 """A negation with one of these words holds for the whole mission (G !x); 'avoid' and 'without' after an
 action only constrain the moment that action is done (F(x & !y)), as in the authors' missions."""
+AVOID_VERBS = word_set(
+    """disturb disturbing bother bothering wake waking knock knocking bump bumping step stepping set setting
+    trip tripping break breaking lean leaning spill spilling block blocking approach approaching cross
+    crossing trouble troubling mess messing near nearing pass wander wandering stray straying venture
+    venturing sneak sneaking wash move handle handling hit hitting damage damaging scratch knock stand
+    standing climb climbing tread treading pop popping nip swing swinging poke poking cut cutting roam
+    roaming dash dashing hurry hurrying rush rushing detour detouring stroll strolling"""
+) | POSITIVE_VERBS
+"""Verbs a prohibition is read with (*don't touch / disturb / go near X*): not being at X keeps each of them
+from happening. A negation before any other verb is refused, naming it (*don't xyzzy the sink*): read as
+*never at X* it could reverse what was asked."""
+FORGET_VERBS = word_set("forget forgetting neglect neglecting miss missing skip skipping overlook "
+                        "overlooking omit omitting ignore ignoring fail failing")
+"""Verbs that negate a goal: *don't forget the sink*, *never miss the kitchen*, *don't fail to visit X* ask
+for X (it is a goal, not a place to avoid)."""
+FORGOTTEN_LINKS = word_set("to about out of visiting going checking")
+"""After a goal-negating verb: *don't forget to / about X*, *don't fail to visit X*."""
 NEGATION_EVER = ("ever",)
+NEGATION_NEUTRAL = (FILLERS | DETERMINERS | VERB_IDIOMS.words() | HESITATIONS | MODALS | POLITE.words()
+                    | frozenset(RELATIVE_FLOORS) | frozenset({"even", "ever"}))
+"""Words between a negation and what it forbids that are no verb of their own (*don't even go into X*)."""
+NEGATION_JOINERS = ("and", "but")
+"""Before a negation (*... and don't touch X*): not quoted with it."""
 """*never ever* / *don't ever*: the same as *never* / *don't*."""
 NEGATING = ("not", "never")
 PARTIAL_PROHIBITION = ("after", "once", "when", "during", "afterwards", "afterward", "later", "again")
@@ -631,6 +714,8 @@ QUAL_NEXT = Phrases((("next", "to"), ("adjacent", "to"), ("beside",), ("near",),
                      ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to")))
 QUAL_EXCEPT = Phrases((("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
                        ("excluding",), ("besides",)))
+ONLY_FOLLOWERS = ("after", "if", "once", "when", "before")
+"""After *only*: *only after X*, *only if X* ... (not *the bedroom with a bed only*: its contents)."""
 IN_IT = ("in", "inside")
 """``the bedroom that only has a bed in it``: the trailing *in it* repeats the room."""
 ASIDE = Phrases(tuple((",", rel, be, *also) for rel, be in (("which", "is"), ("which", "are"), ("that", "is"),
@@ -697,6 +782,11 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("where", "you", "find"): ("containing",),
     ("holding",): ("containing",),
     ("and", "also"): ("and",),
+    ("set", "foot", "in"): ("enter",),
+    ("set", "foot", "into"): ("enter",),
+    ("set", "foot", "on"): ("enter",),
+    ("go", "near"): ("go", "into"),
+    ("come", "near"): ("go", "into"),
     # "take the stairs down to the ground floor": the stairs are the way there, not a goal; where to is
     # said after them
     **{("take", "the", stairs, way, "to"): ("go", way, "to")

@@ -75,6 +75,15 @@ def expected_phrase(verbs: str, rest: str) -> str:
     return rephrase(f"expected a room or object {what}, found {rest}")
 
 
+def symbol(sym: str, rest: str) -> str:
+    return rephrase(f"cannot read '{sym}' in {rest}; say what it means in words ('and', 'or', 'then')")
+
+
+def clock_time(said: str) -> str:
+    return rephrase(f"'{said}': the time of day something is done cannot be required (a plan has no clock); "
+                    "leave the time out, or plan it when it is time")
+
+
 def unknown_noun(word: str, rooms: Sequence[str], objects: Sequence[str]) -> str:
     return rephrase(f"no room or object of this scene is called '{word}' (rooms: {', '.join(rooms)}; "
                     f"objects: {', '.join(objects)})")
@@ -345,6 +354,12 @@ def only_before_a_verb(rest: str) -> str:
 def never_go_back() -> str:
     return rephrase("'never go back / return to X' (after a first visit) is not understood; say 'never "
                     "enter X' for the whole mission")
+
+
+def unknown_negated_verb(said: str, verb: str) -> str:
+    return rephrase(f"'{said}': a prohibition is read only with a verb of going or touching ('never "
+                    f"enter / touch / use X') or of a goal not to miss ('don't forget X'), and '{verb}' is "
+                    "neither")
 
 
 def partial_prohibition(rest: str) -> str:

@@ -65,6 +65,9 @@ class Discourse:
     """The head noun that announced the list of the sentence being read (*water these plants: the one in
     the office and ...*): what *the one* is when nothing was named before."""
 
+    set_aside: list[str] = field(default_factory=list)
+    """Words of the mission set aside unread (context, a list's heading), as typed: said back."""
+
     def record(self, phrase: Grounded) -> Grounded:
         """Remember ``phrase`` (a back-reference may point to it) and return it."""
         self.references.append(phrase)
@@ -73,7 +76,7 @@ class Discourse:
     def fork(self) -> Discourse:
         """A copy to try a reading on, which the original does not see."""
         return Discourse(self.vocab, self.text, self.start_floor, copy.copy(self.references), self.confined,
-                         self.last_step, self.announced)
+                         self.last_step, self.announced, list(self.set_aside))
 
     def said(self, start: int, end: int) -> str:
         """The mission text between two character offsets."""

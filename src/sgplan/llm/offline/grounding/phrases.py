@@ -52,10 +52,16 @@ class Noun:
 def ground_list(phrases: PhraseList, where: Where, disc: Discourse) -> list[Grounded]:
     """The phrases of a list, each grounded (the verb's floor and the pronoun's kind apply to the first); a
     choice (*or*, *either*) is one phrase of all the alternatives, mode ``any``."""
-    out = []
+    out: list[Grounded] = []
+    choice = "or" in phrases.joiners or phrases.either
     for k, item in enumerate(phrases.items):
-        out.append(ground_phrase(item, where if k == 0 else replace(where, floor=None, objects=False), disc))
-    if "nor" in phrases.joiners or not ("or" in phrases.joiners or phrases.either):
+        here = where if k == 0 else replace(where, floor=None, objects=False)
+        rooms = [e for g in out for e in g.entities if e.kind == "room"]
+        if rooms and not choice and where.role == "goal" and not here.scope:
+            # "the dining room, any vase": an object after a room of the list is looked for there first
+            here = replace(here, scope=tuple(dict.fromkeys(rooms)), lenient=True)
+        out.append(ground_phrase(item, here, disc))
+    if "nor" in phrases.joiners or not choice:
         return out
     said = disc.said(phrases.span.start, phrases.span.end)
     if any(g.mode == "all" and len(g.entities) > 1 for g in out):

@@ -22,7 +22,15 @@ from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import Reader, parse_sentence
 from sgplan.llm.offline.syntax.preamble import stated_start as said_start
 from sgplan.llm.offline.syntax.reader import Match, Refusal
-from sgplan.llm.offline.syntax.tree import MissionSentence, RelativeFloor, StatedStart, StayOnFloor, nodes
+from sgplan.llm.offline.syntax.tree import (
+    MissionSentence,
+    PhraseList,
+    RelativeFloor,
+    SetAside,
+    StatedStart,
+    StayOnFloor,
+    nodes,
+)
 from sgplan.logic.formula import Always, Formula, atoms
 
 
@@ -34,13 +42,20 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
             stated_start(start, disc)
     disc.confined = confinement(readers, disc)
     parts: list[Meaning] = []
+    listed: dict[int, list[MissionSentence]] = {}
     for r in readers:
         parsed = parse_sentence(r, lambda a: describes(a, disc))
         if isinstance(parsed, Refusal):
             rf.refuse(parsed.message)
         assert parsed is not None
+        if isinstance(parsed.node, SetAside):
+            disc.set_aside.append(parsed.node.said)
         if isinstance(parsed.node, MissionSentence):
+            if parsed.node.announced is not None:
+                listed.setdefault(parsed.node.announced.at, []).append(parsed.node)
             join(parsed.node, parts, disc)
+    for said in listed.values():
+        check_count(said)
     formulas = [p.formula() if isinstance(p, Clause) else p for p in parts]
     present = [f for f in formulas if f is not None]
     if not present:
@@ -54,7 +69,7 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
     """Read ``sentence`` and join it to the sentences before it (``parts``)."""
     previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
     precedes = sentence_precedes(sentence, parts)
-    continues = sentence.lead.sequence
+    continues = sentence.lead.sequence or sentence.after_item
     ctx = SentenceContext(disc, sentence.span.start, strict_pending=sentence.lead.strict,
                           waypoint_pending=sentence.lead.waypoint, listed=sentence.announced is not None)
     disc.announced = sentence.announced.head if sentence.announced is not None else None
@@ -83,6 +98,16 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
         parts.append(result)
     if isinstance(result, Clause) and any(result.steps):
         disc.last_step = result.filled()[-1]
+
+
+def check_count(sentences: list[MissionSentence]) -> None:
+    """The number an announcement said (*three things:*) must be the number of phrases of its list (one
+    sentence, or the items of a numbered or bulleted list)."""
+    announced = sentences[0].announced
+    assert announced is not None
+    items = sum(len(found.items) for s in sentences for found in nodes(s.body, PhraseList))
+    if announced.count is not None and items != announced.count:
+        rf.refuse(rf.announced_count(announced.said, announced.count, items))
 
 
 def check_announced(phrases: list[Grounded], head: Head, said: str) -> None:

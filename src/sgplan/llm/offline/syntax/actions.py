@@ -17,7 +17,7 @@ from sgplan.llm.offline.syntax.floors import floor_count, floor_offset
 from sgplan.llm.offline.syntax.links import skip_subject
 from sgplan.llm.offline.syntax.phrases import phrase_list
 from sgplan.llm.offline.syntax.qualifiers import remark_ahead
-from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
+from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal, unreadable
 from sgplan.llm.offline.syntax.tree import (
     Action,
     FloorOffset,
@@ -107,7 +107,7 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
         if w in lx.RELATIVE_FLOORS:  # "go upstairs to the bathroom": the bathroom on that floor
             floor, floor_span = RelativeFloor(w), r.span(i, i + 1)
         elif w not in lx.POSITIVE_VERBS and (w in lx.STRUCTURAL or not w.isalpha()):
-            return Refusal(rf.cannot_understand_word(w, r.rest(i)))
+            return unreadable(r, i)
         seen.append(w)
         i += 1
     return Match(VerbWords(tuple(seen), floor, floor_span), i)

@@ -17,6 +17,7 @@ from sgplan.llm.offline.syntax.tree import (
     FloorSpec,
     Negation,
     OffLimits,
+    PlainAction,
     StartFloor,
     StayExtreme,
     StayOnFloor,
@@ -24,14 +25,29 @@ from sgplan.llm.offline.syntax.tree import (
 )
 
 
-def negation(r: Reader, i: int) -> Parse[Negation]:
-    """A prohibition at ``i`` (after verbs that say nothing before *neither*: *go to neither A nor B*)."""
+def negation(r: Reader, i: int) -> Parse[Negation | PlainAction]:
+    """A prohibition at ``i`` (after verbs that say nothing before *neither*: *go to neither A nor B*); a
+    negated goal (*don't forget the sink*) is that goal."""
     j = r.skip(i, lx.POSITIVE_VERBS)
     start = j if j > i and r.word(j) == "neither" else i
     marker = r.phrase(start, lx.NEG_STARTS)
     if marker is None:
         return None
-    return negation_after(r, start + len(marker), marker)
+    forgot = negated_goal(r, start + len(marker), marker)
+    return forgot if forgot is not None else negation_after(r, start + len(marker), marker)
+
+
+def negated_goal(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[PlainAction]:
+    """*don't forget (to water) the plant*, *never miss the kitchen*, *don't fail to visit X*: the goal the
+    words negate (not a place to avoid)."""
+    k = r.skip(j, lx.NEGATION_EVER)
+    if r.word(k) not in lx.FORGET_VERBS or marker[-1] not in lx.NEGATING:
+        return None
+    k = r.skip(k + 1, lx.FORGOTTEN_LINKS)
+    goal = action(r, k)
+    if not isinstance(goal, Match):
+        return goal
+    return Match(PlainAction(goal.node, False, False, False, None, r.rest(goal.end), ""), goal.end)
 
 
 def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation]:
@@ -48,6 +64,11 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
         return verbs
     if set(verbs.node.words) & lx.REVISIT_VERBS:  # "never go back to X": only after a first visit
         return Refusal(rf.never_go_back())
+    unknown = next((k for k in range(j, verbs.end) if r.word(k) in verbs.node.words
+                    and r.word(k) not in lx.AVOID_VERBS and r.word(k) not in lx.NEGATION_NEUTRAL), None)
+    if unknown is not None:  # "don't xyzzy the sink": read as "never at the sink", it could reverse the ask
+        said = r.quote(j - len(marker) + (1 if marker[0] in lx.NEGATION_JOINERS else 0), unknown + 1)
+        return Refusal(rf.unknown_negated_verb(said, r.word(unknown)))
     k, phrases, floor = verbs.end, None, None
     if verbs.node.floor is not None and not r.np_starts(k):  # "never go upstairs": any room there
         floor = FloorPlace(r.span(k - 1, k), verbs.node.floor, "all")
@@ -82,7 +103,9 @@ def until_target(r: Reader, k: int) -> Parse[Action | UntilDone]:
     if not isinstance(target, Match):
         return target
     k = target.end
-    if r.word(k) in lx.UNTIL_DONE_LINKS and r.word(k + 1) in lx.UNTIL_DONE_WORDS:
+    if r.word(k) in lx.DONE:
+        k += 1  # "until DR done"
+    elif r.word(k) in lx.UNTIL_DONE_LINKS and r.word(k + 1) in lx.UNTIL_DONE_WORDS:
         k += 2  # "until both bathrooms are done"
         k += 1 if r.word(k) in lx.UNTIL_DONE_VERBS else 0
     return Match(target.node, k)

@@ -16,7 +16,7 @@ from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import qualifiers
 from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.links import closing_at
-from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
+from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal, unreadable
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.tree import (
     Described,
@@ -36,6 +36,7 @@ from sgplan.llm.offline.syntax.tree import (
     SameRoom,
     ThereNP,
 )
+from sgplan.llm.offline.text import is_clock_time
 
 NOUN_PHRASES: RuleSet[NounPhrase] = RuleSet("noun phrase")
 
@@ -141,6 +142,9 @@ def noun_with_head(r: Reader, first: int, i: int, role: Role, det: Determiner, r
     compound = None
     kind = ref.kind if isinstance(ref, Head) else "room" if isinstance(ref, KeyHead) and \
         ref.key.startswith("room_") else None
+    floor_then = floor_words(r, i) if kind == "room" and floor_before is None else None
+    if floor_then is not None and (after := r.head(floor_then.end)) is not None and after.kind == "object":
+        floor_before, i = floor_then.node, floor_then.end  # "the bathrm mid flr sink": that floor's bathroom
     if kind == "room" and (after := r.head(i)) is not None and after.kind == "object":
         compound, i = after, i + after.words  # "the kitchen sink": the sink in the kitchen
         mode = "all" if after.plural and mode == "the" else mode
@@ -237,6 +241,8 @@ def head_noun(r: Reader, i: int, one: OneHead | None) -> Parse[HeadRef]:
     head = r.head(i)
     if head is None and i >= len(r):
         return Refusal(rf.expected_phrase_after(r.word(i - 1)))
+    if head is None and (not w[:1].isalpha() or is_clock_time(w)):
+        return unreadable(r, i)
     if head is None:
         return Refusal(rf.unknown_noun(w, r.nouns.category_names("room"), r.nouns.category_names("object")))
     return Match(head, i + head.words)
@@ -284,7 +290,8 @@ def list_joiner(r: Reader, i: int, preposition: str | None) -> tuple[str, int] |
     if w == "," and nxt in ("and", "or") and r.np_starts(i + 2):
         return nxt, i + 2
     if (w == "," and r.np_starts(i + 1) and not r.phrase(i + 1, lx.NEG_STARTS) and not closing_at(r, i + 1)
-            and not r.phrase(i + 1, lx.TIME_FILLERS) and not r.phrase(i + 1, lx.CHOICE_AFFIRMATIONS)):
+            and not r.phrase(i + 1, lx.TIME_FILLERS) and not r.phrase(i + 1, lx.CHOICE_AFFIRMATIONS)
+            and not (nxt in lx.BARE_CHOOSERS and r.word(i + 2) in lx.CLAUSE_ENDS)):
         return "", i + 1
     if w in ("and", "or", "nor") and r.np_starts(i + 1):
         return w, i + 1

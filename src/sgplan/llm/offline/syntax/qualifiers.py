@@ -37,6 +37,7 @@ from sgplan.llm.offline.syntax.tree import (
     RelativeFloor,
     Role,
     SameFloor,
+    StartFloor,
     There,
     UpThere,
 )
@@ -118,6 +119,8 @@ def remark_ahead(r: Reader, i: int) -> tuple[str, ...] | None:
     that the choice is the robot's), or ``None``."""
     comma = 1 if r.word(i) == "," else 0
     said = r.phrase(i + comma, lx.CHOICE_AFFIRMATIONS)
+    if said is None and comma and r.word(i + 1) in lx.BARE_CHOOSERS and r.word(i + 2) in lx.CLAUSE_ENDS:
+        said = (r.word(i + 1),)  # "LR tv (either)", "DR vase, any": no noun follows, so a remark
     time = r.phrase(i + comma, lx.TIME_FILLERS)  # "whichever first" is about the order
     if said is None or (said == ("is", "fine") and comma) or (time is not None and len(time) >= len(said)):
         return None
@@ -190,6 +193,16 @@ def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     said = floor_words(r, i + (2 if r.word(i + 1) == "the" else 1))
     if said is None or r.head(said.end) is not None:
         return None  # none, or "in the ground floor bathroom": a room named with its floor
+    return Match(OnFloor(said.node), said.end)
+
+
+@QUALIFIERS.rule("floor without a preposition")
+def floor_after(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*bathrm top flr*, *the bathroom floor 0*: the floor said right after the noun, as notes are written
+    (not *the bathroom top floor bedroom*: a floor before another noun names that one)."""
+    said = floor_words(r, i)
+    if said is None or isinstance(said.node, StartFloor) or r.head(said.end) is not None:
+        return None
     return Match(OnFloor(said.node), said.end)
 
 
@@ -339,8 +352,10 @@ def contains(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     thing = phrases.noun_phrase(r, start, "qualifier")
     if not isinstance(thing, Match):
         return thing
-    return Match(Contains(thing.node, r.span(noun.first, thing.end), count, "only" in said),
-                 skip_in_it(r, thing.end))
+    end = skip_in_it(r, thing.end)
+    only = "only" in said or (r.word(end) == "only" and r.word(end + 1) not in lx.ONLY_FOLLOWERS)
+    end += 1 if only and "only" not in said else 0  # "bdrm w/ bed only"
+    return Match(Contains(thing.node, r.span(noun.first, thing.end), count, only), end)
 
 
 @QUALIFIERS.rule("and more contents")

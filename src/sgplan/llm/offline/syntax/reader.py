@@ -11,13 +11,14 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Generic, TypeVar
+from typing import Generic, Literal, TypeVar
 
 from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.nouns import Head, NounLexicon
 from sgplan.llm.offline.phrases import Phrases
 from sgplan.llm.offline.syntax.tree import Announced, Span
-from sgplan.llm.offline.text import Tok
+from sgplan.llm.offline.text import Tok, is_clock_time
 
 N = TypeVar("N", covariant=True)
 
@@ -53,7 +54,15 @@ class Reader:
     nouns: NounLexicon
     choices: Mapping[int, bool] = field(default_factory=dict)
     announced: Announced | None = None
-    """What a colon before this sentence announced of its list (:mod:`.colons`)."""
+    """What a colon before this sentence announced of its list (:mod:`.lists`)."""
+    marker: Literal["number", "bullet"] | None = None
+    """The list marker the sentence started with (:class:`~sgplan.llm.offline.text.Part`)."""
+    new_line: bool = False
+    """The sentence starts a line of the text."""
+    after_item: bool = False
+    """An item of an ordered list after its first one (:mod:`.lists`)."""
+    aside: bool = False
+    """Words set aside unread (a list's heading): said back, not parsed (:mod:`.lists`)."""
     words: tuple[str, ...] = field(init=False)
 
     def __post_init__(self) -> None:
@@ -136,3 +145,15 @@ class Reader:
     def decided(self, at: int) -> bool | None:
         """How the attachment at token ``at`` is read (:attr:`choices`), ``None`` if not decided yet."""
         return self.choices.get(at)
+
+
+def unreadable(r: Reader, i: int) -> Refusal:
+    """The refusal of the word at ``i`` where it cannot be read: a clock time (*at 6 pm*), a symbol (*A / B*),
+    a word of the grammar out of place."""
+    w = r.word(i)
+    if is_clock_time(w):
+        before = i - 1 if r.word(i - 1) in lx.CLOCK_PREPOSITIONS else i
+        return Refusal(rf.clock_time(r.quote(before, i + 1)))
+    if not w[:1].isalnum():
+        return Refusal(rf.symbol(w, r.rest(max(i - 1, 0))))
+    return Refusal(rf.cannot_understand_word(w, r.rest(i)))

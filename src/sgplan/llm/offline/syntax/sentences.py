@@ -29,7 +29,6 @@ from sgplan.llm.offline.syntax.tree import (
     OnlyAfterPost,
     OnlyAfterSentence,
     OnlyIfPost,
-    PhraseList,
     PlainSentence,
     Postfix,
     PrefixedSentence,
@@ -39,7 +38,6 @@ from sgplan.llm.offline.syntax.tree import (
     SentenceBody,
     UntilSentence,
     WheneverRule,
-    nodes,
 )
 
 OPENINGS: RuleSet[SentenceBody] = RuleSet("sentence opening")
@@ -67,12 +65,8 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
         return rest
     if rest.end < len(r):
         return Refusal(rf.left_over(r.quote(rest.end, len(r))))
-    if r.announced is not None and r.announced.count is not None:
-        items = sum(len(found.items) for found in nodes(said_body.node, PhraseList))
-        if items != r.announced.count:
-            return Refusal(rf.announced_count(r.announced.said, r.announced.count, items))
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
-                                 r.span(0, len(r)), r.announced), len(r))
+                                 r.span(0, len(r)), r.announced, r.after_item), len(r))
 
 
 def sentence_body(r: Reader, i: int) -> Parse[SentenceBody]:

@@ -613,6 +613,10 @@ class Announced:
     prefix: tuple[Tok, ...]
     count: int | None
     head: Head | None
+    at: int = 0
+    """The character offset of the announcement (one announcement may head several list items)."""
+    scope: bool = False
+    """The words before the colon name the room of what follows (*Kitchen: the fridge, then the sink*)."""
 
 
 @dataclass(frozen=True)
@@ -621,7 +625,10 @@ class MissionSentence:
 
     ``opener``: *The whole time,* (the sentence must then be whole-mission avoidance only). ``precedes``:
     *Before that,* / *First,* (its goals go before the previous sentence's). ``lead``: the sequence words
-    it starts with (*Then ...*). ``says_order``: the word *order* occurs (*The order doesn't matter.*)."""
+    it starts with (*Then ...*). ``says_order``: the word *order* occurs (*The order doesn't matter.*).
+    ``after_item``: an item of an ordered list after its first one (it continues the sequence, as *Then
+    ...* does). ``floor_scope``: *On the top floor, ...* / *While you're upstairs, ...* (or a list's heading,
+    *Top floor tasks:*): the goals of the sentence are on that floor."""
 
     opener: str | None
     precedes: str | None
@@ -630,6 +637,8 @@ class MissionSentence:
     says_order: bool
     span: Span
     announced: Announced | None = None
+    after_item: bool = False
+    floor_scope: FloorSpec | None = None
 
 
 @dataclass(frozen=True)
@@ -640,7 +649,15 @@ class StatedStart:
     said: str
 
 
-Sentence = MissionSentence | StatedStart
+@dataclass(frozen=True)
+class SetAside:
+    """Words that ask nothing of the robot and are not read (*We're hosting dinner tonight.*, a list's heading
+    *Shopping list check*), said back as not part of the mission (``said``: as typed)."""
+
+    said: str
+
+
+Sentence = MissionSentence | StatedStart | SetAside
 
 
 T = TypeVar("T")
