@@ -28,6 +28,10 @@ BARE_NEGATED = {"dont": "do", "doesnt": "does", "didnt": "did", "cant": "can", "
                 "hasnt": "has", "wouldnt": "would", "couldnt": "could", "neednt": "need"}
 """Negated auxiliaries typed without their apostrophe: read as ``do not`` ... (never as a verb)."""
 
+CONTRACTIONS = {"re": "are", "m": "am", "ve": "have", "ll": "will", "d": "would"}
+"""``we're`` -> ``we are``: the verb of a contracted auxiliary (``'s`` is a token of its own: *is* or a
+possessive)."""
+
 SENTENCE_END = frozenset(".;:!?")
 
 SYMBOLS: dict[str, tuple[str, ...]] = {
@@ -83,6 +87,17 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     "utility": ("utility room",),
     "hob": ("oven",),
     "fridge freezer": ("refrigerator",),
+    "coffee cup": ("cup",),
+    "teacup": ("cup",),
+    "tea cup": ("cup",),
+    "coffee mug": ("cup",),
+    "water bottle": ("bottle",),
+    "flower vase": ("vase",),
+    "dinner table": ("dining table",),
+    "pot plant": ("potted plant",),
+    "tv screen": ("tv",),
+    "armchair": ("chair",),
+    "bathtub": ("bathtub", "bath"),
     "wash basin": ("sink",),
     "landing": ("corridor",),
     "front room": ("living room",),
@@ -205,18 +220,6 @@ LABEL_STOPS = word_set("until till before after only except never not no if unle
 """Words a list's label never holds: a heading with one of them is a sentence of its own."""
 ORDER_FILLERS = word_set(", do them these this it all the items steps things list")
 """Words of a sentence after a list that only says its order (*Do them in this order.*)."""
-EVENT_WORDS = Phrases(tuple((w,) for w in (
-    "breakfast", "brunch", "lunch", "lunchtime", "dinner", "dinnertime", "supper", "tea", "teatime",
-    "morning", "afternoon", "evening", "night", "tonight", "today", "tomorrow", "weekend", "noon", "midday",
-    "midnight", "bedtime", "monday", "tuesday", "wednesday", "thursday", "friday", "saturday", "sunday",
-    "work", "school", "class", "meeting", "party", "guests", "visitors", "dawn", "dusk", "sunset", "sunrise",
-    "now", "later", "soon", "daily", "weekly")) + (("the", "weekend"), ("the", "morning"),
-                                                    ("the", "evening"), ("the", "afternoon"),
-                                                    ("the", "meeting"), ("the", "party"), ("the", "guests"),
-                                                    ("the", "day"), ("the", "night")))
-"""Times of day, meals and events: *Before lunch, ...*, *After dinner, ...*, *Tonight, ...* only say when,
-which a mission cannot require; said at the start of a sentence they are set aside (said back), never read
-as the goal of *before / after*. A clock time (*at 6 pm*) or a delay (*in ten minutes*) is refused."""
 HEADS_UP = word_set("remember note important reminder ps also careful warning update oh btw nb")
 """Words that only ask for attention before a colon (*Remember: never enter the kitchen.*)."""
 ANNOUNCE_TAIL = Phrases((("for", "me"), ("for", "today"), ("today",), ("to", "do"), ("please",),
@@ -304,7 +307,6 @@ CARRY_DESTINATION_WORDS = ("in", "into", "on", "onto", "to", "inside")
 REFUSED_WORDS: dict[str, str] = {
     "leave": "'leave' (the translator cannot express leaving a place; say where to go instead)",
     "exit": "'exit' (say which room to go to instead)",
-    "skip": "'skip' (use 'avoid' or 'never enter' to forbid a place)",
     "ignore": "'ignore' (use 'avoid' or 'never enter' to forbid a place)",
     "bypass": "'bypass' (use 'avoid' to forbid a place)",
     "dodge": "'dodge' (use 'avoid' to forbid a place)",
@@ -401,6 +403,15 @@ BODY_PART_LINKS = ("at", "using", "with", "on", "into")
 """*wash your hands at the sink*, *pop your head into the office*: a body part before a place is part of the
 verb (not *in*: *wash your hands in the bathroom* implies a sink that is not said)."""
 PARTICLES = word_set("on off up down out over")
+CHECK_THAT = ("that", "if", "whether")
+CHECK_VERBS = word_set("check checking see seeing ensure ensuring verify verifying confirm confirming make "
+                       "sure look looking")
+"""*check that / if X is Y*: X is the goal (the state is what the check sees there)."""
+UP_DOWN = {"up": "upstairs", "down": "downstairs"}
+FLOOR_CHANGES = frozenset({"up", "down", "upstairs", "downstairs"})
+"""In the verb words of an action (*then head down to the kitchen*): it leaves the floor a sentence's
+opening put its goals on (*While you're on the top floor, ...*)."""
+"""*go up and X* / *come down and X*: upstairs / downstairs, and X there."""
 SUBJECT_FILLERS = word_set("you we i the robot it ever have has had do does did are is were was already "
                            "been also first")
 """Skipped before the verb of a clause that follows a conjunction (*after you have been to X*)."""
@@ -422,8 +433,10 @@ carry meaning (*secondly*, *before that*, *but first*, a trailing *first*, *agai
 fillers."""
 NOT_FILLERS_HERE = ("do", "and", "then", "next")
 """Fillers that the filler rule leaves to other rules (*do not*, *and then*, *next to*)."""
-HESITATIONS = word_set("um umm uh uhh uhm er erm ehm hmm hm ah ahh like yeah yep so well basically actually "
-                       "anyway alright right just literally")
+SOUNDS = word_set("um umm uh uhh uhm er erm ehm hmm hm ah ahh mm mmm")
+"""Hesitation sounds of spoken missions (*go to the uh bedroom*): no word at all, removed before parsing."""
+HESITATIONS = SOUNDS | word_set("like yeah yep so well basically actually anyway alright right just "
+                                "literally")
 """Hesitations and discourse words of spoken and dictated missions (*um, go to the kitchen and then like go
 sit on the couch*): no meaning between clauses, like :data:`FILLERS`."""
 
@@ -441,6 +454,22 @@ POLITE = Phrases((
     ("what", "i", "need", "is", "for", "you", "to"), ("i", "would", "like", "it", "if", "you"),
     ("i", "would", "appreciate", "it", "if", "you"), ("if", "you", "could"), ("if", "you", "would"),
     ("would", "you", "mind"), ("do", "me", "a", "favor", "and"), ("do", "me", "a", "favour", "and"),
+    *((*ask, *you) for ask in (("would", "it", "be", "possible"), ("is", "it", "possible"),
+                               ("would", "it", "be", "okay"), ("would", "it", "be", "ok"))
+      for you in (("for", "you", "to"), ("to",))),
+    *(("i", *wonder, "if", "you", modal)
+      for wonder in (("was", "wondering"), ("wonder",), ("am", "wondering"))
+      for modal in ("could", "would", "might", "can")),
+    *(("i", "would", *really, *feel, "if", "you", *modal)
+      for really in ((), ("really",), ("so",))
+      for feel in (("be", "grateful"), ("appreciate", "it"), ("love", "it"), ("like", "it"),
+                   ("be", "thankful"))
+      for modal in ((), ("could",), ("would",))),
+    ("do", "you", "think", "you", "could"), ("any", "chance", "you", "could"),
+    ("could", "i", "ask", "you", "to"),
+    ("can", "i", "ask", "you", "to"), ("would", "you", "be", "able", "to"), ("could", "you", "possibly"),
+    ("can", "you", "possibly"), ("would", "you", "be", "willing", "to"), ("i", "would", "like", "you", "to"),
+    ("if", "you", "could", "please"), ("please", "could", "you"), ("please", "can", "you"),
     ("go", "and"), ("please", "make", "sure"), ("would", "you", "be", "so", "kind", "as", "to"),
     ("would", "you", "kindly"), ("could", "you", "kindly"), ("would", "you", "please"),
     ("could", "you", "please"),
@@ -478,6 +507,7 @@ ANY_ORDER = Phrases((
 unless one of these is said with it)."""
 TIME_FILLERS = Phrases((
     ("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("eventually",), ("later",),
+    ("real", "quick"), ("real", "fast"), ("quickly",), ("asap",), ("right", "away"), ("straight", "away"),
     ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"))) + ANY_ORDER
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
@@ -511,7 +541,23 @@ CLOSING = Phrases((
     ("if", "you", "do", "not", "mind"), ("as", "usual"), ("as", "always"), ("no", "need", "to", "rush"),
     ("that", "would", "be", "great"), ("that", "would", "be", "lovely"), ("that", "would", "be", "perfect"),
     ("that", "would", "help"), ("if", "that", "makes", "sense"), ("thanks", "heaps"), ("really",), ("oh",),
-    ("you", "know"), ("quick", "one"), ("quick", "question"), ("quick", "request"), ("off", "you", "go")))
+    ("you", "know"), ("quick", "one"), ("quick", "question"), ("quick", "request"), ("off", "you", "go"),
+    *(("if", "it", be, *no, "too", "much", "trouble") for be in ("is", "'s", "would", "will")
+      for no in (("not",), ("no",), ("not", "be"))),
+    ("if", "it", "is", "no", "trouble"), ("if", "it", "'s", "no", "trouble"),
+    ("when", "you", "get", "a", "moment"), ("when", "you", "get", "a", "minute"),
+    *((when, "you", have, "a", moment) for when in ("when", "whenever") for have in ("have", "get")
+      for moment in ("minute", "second", "moment", "chance")),
+    ("whenever", "you", "get", "a", "chance"), ("whenever", "you", "get", "a", "moment"),
+    ("when", "you", "are", "free"), ("when", "you", "are", "ready"), ("if", "you", "get", "a", "chance"),
+    ("if", "you", "have", "a", "moment"), ("at", "your", "earliest", "convenience"),
+    ("sorry", "to", "bother", "you"), ("sorry", "to", "be", "a", "pain"), ("i", "hate", "to", "ask"),
+    ("i", "hate", "to", "bother", "you"), ("hope", "you", "are", "well"),
+    ("hope", "you", "are", "doing", "well"),
+    ("if", "you", "would", "be", "so", "kind"), ("real", "quick"), ("quickly",), ("please",),
+    ("thank", "you", "so", "much", "in", "advance"), ("thanks", "so", "much", "in", "advance"),
+    ("thanks", "a", "lot", "in", "advance"), ("if", "that", "is", "alright"), ("no", "worries"),
+    ("when", "convenient"), ("when", "you", "can", "manage", "it")))
 """Sign-offs (*thanks a lot*, *cheers*, *that's all for now*) and asides that ask nothing (*no rush*, *if
 possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
 of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""
@@ -600,6 +646,8 @@ AFTER_ALL = Phrases(tuple(
 """*after all three (of them)*, *once you've done those*: after every goal said before."""
 DONE = frozenset({"done", "finished", "through"})
 DONE_OPENERS = ("once", "when", "after")
+DONE_WITH = ("with", "in", "at")
+"""*once you're done with / in / at X*: X is what is done (before what follows)."""
 DONE_FILLERS = frozenset({"that", "this", "are", "all", "both", "of", "them"})
 DONE_BACK = ("that", "this", "it", "them", "everything", "there")
 """``once you're done with that``: the step before, not a new place."""
@@ -623,12 +671,16 @@ NEG_STARTS = Phrases((
     ("and", "avoid"), ("but", "avoid"), ("but", "never"), ("and", "never"), ("but", "do", "not"),
     ("and", "do", "not"), ("but", "not"), ("no",), ("neither",), ("nor",), ("and", "nor"),
     ("keep", "clear", "of"), ("steer", "clear", "of"), ("stay", "clear", "of"),
+    ("kept", "out", "of"), ("stayed", "out", "of"), ("kept", "away", "from"), ("stayed", "away", "from"),
+    ("skip",), ("skipping",), ("give", "a", "miss"),
+    ("avoided",), ("kept", "clear", "of"), ("stayed", "clear", "of"),
     ("under", "no", "circumstances"),
     ("at", "no", "point"), ("at", "no", "time"), ("keep", "off"), ("stay", "off"), ("always", "keep", "off"),
     ("always", "stay", "off")))
 """Words that start a prohibition."""
 GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can", "cannot", "may", "will",
-                        "no", "stay", "keep", "neither", "nor", "steer", "circumstances", "point", "time"})
+                        "no", "stay", "keep", "neither", "nor", "steer", "circumstances", "point", "time",
+                        "kept", "stayed", "avoided", "skip", "skipping"})
 """A negation with one of these words holds for the whole mission (G !x); 'avoid' and 'without' after an
 action only constrain the moment that action is done (F(x & !y)), as in the authors' missions."""
 AVOID_VERBS = word_set(
@@ -701,6 +753,8 @@ QUAL_IN = ("in", "inside", "within", "of", "from")
 SCOPE_IN = ("in", "inside", "within")
 """``In the living room, ...``: the room of the whole sentence."""
 QUAL_CONTAINS = Phrases((("with",), ("having",), ("containing",), ("that", "has"), ("that", "have"),
+                         ("with", "just"), ("that", "just", "has"), ("which", "just", "has"),
+                         ("with", "nothing", "but"), ("with", "only", "just"),
                          ("which", "has"), ("which", "have"), ("that", "contains"), ("which", "contains"),
                          ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"),
                          ("that", "only", "has"), ("which", "only", "has"), ("that", "only", "have"),
@@ -714,6 +768,8 @@ QUAL_NEXT = Phrases((("next", "to"), ("adjacent", "to"), ("beside",), ("near",),
                      ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to")))
 QUAL_EXCEPT = Phrases((("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
                        ("excluding",), ("besides",)))
+ONLY_WORDS = frozenset({"only", "just", "but"})
+"""In a room's contents (*with only / just the bed*, *with nothing but a bed*): nothing else is in it."""
 ONLY_FOLLOWERS = ("after", "if", "once", "when", "before")
 """After *only*: *only after X*, *only if X* ... (not *the bedroom with a bed only*: its contents)."""
 IN_IT = ("in", "inside")
@@ -734,6 +790,63 @@ STATEMENT_LINKS = ("is", "are", "was", "were")
 WHOLE_BUILDING_PREPOSITIONS = ("in", "inside", "throughout")
 WHOLE_BUILDING_DETERMINERS = ("the", "this", "our", "my", "your")
 
+# --------------------------------------------------------------------------------------------- context
+EVENT_WORDS = word_set(
+    """breakfast brunch lunch lunchtime dinner dinnertime supper tea teatime morning afternoon evening night
+    tonight today tomorrow weekend noon midday midnight bedtime monday tuesday wednesday thursday friday
+    saturday sunday work school class meeting party guests visitors dawn dusk sunset sunrise now later soon
+    daily weekly mornings evenings nights day week"""
+)
+"""Times of day, meals and events: *Before lunch, ...*, *After dinner, ...*, *Tonight, ...* only say when,
+which a mission cannot require; said at the start of a sentence they are set aside (said back), never read
+as the goal of *before / after*. A clock time (*at 6 pm*) or a delay (*in ten minutes*) is refused."""
+TIME_WORDS = word_set("this next tomorrow today tonight later soon early late right now for the at some "
+                      "point sometime first thing in a bit while before after by during around") | EVENT_WORDS
+"""Words of a time expression (*later this afternoon*, *at some point this evening*, *first thing
+tomorrow*); one with an event word (:data:`EVENT_WORDS`) only says when."""
+EVENT_VERBS = word_set("arrive arrives come comes leave leaves get gets back home start starts finish "
+                       "finishes end ends wake wakes up go goes out begin begins")
+"""In a time expression of an event (*before the guests arrive*, *after I get back*)."""
+FEW = ("few", "couple", "several")
+TIME_UNITS = word_set("second seconds minute minutes min mins hour hours hr hrs sec secs")
+"""*in ten minutes*, *wait 5 min*: a delay, which a mission cannot require (refused)."""
+TIME_OPENERS = ("before", "after", "by", "during", "for", "at", "around", "this", "tonight", "today",
+                "tomorrow", "later", "right", "first", "sometime", "some", "next", "early", "in")
+"""Words a time expression that opens a sentence starts with (*Before lunch, ...*, *Tonight, ...*)."""
+SUBJECT_PRONOUNS = word_set("i we he she they it there that this everyone everybody someone somebody "
+                            "nobody everything something nothing")
+"""The subject of a statement (*We're hosting dinner tonight*, *It's laundry day*, *I think ...*): a sentence
+starting with one of them asks nothing of the robot, unless it is a polite wrapper (*I need you to ...*)."""
+STATEMENT_VERBS = word_set("is are was were am be been being 's has have had will would shall can could "
+                           "might may must should do does did keeps keep kept seems seem looks look gets got "
+                           "needs need")
+"""Verbs right after a subject that make a sentence a statement (*the cat keeps ...*, *my mum's staying*)."""
+STATED_VERBS = word_set(
+    """arrive arrives arrived come comes coming came leave leaves leaving left made make makes making
+    went goes going think thinks thought know knows knew love loves loved hate hates like likes said says
+    told tells broke broken fell fallen ate eaten slept sleeps sleeping napping stays staying stayed lives
+    lived works working worked visiting visits moved moving arriving returns returned starts started begins
+    began finished"""
+)
+"""Verbs of statements about other people or things (*the guests arrive at seven*, *the kids made a mess*):
+after a subject of no room or object, a statement."""
+NEED_WORDS = word_set("need needs needed want wants wanted should must ought require requires")
+"""A statement of a need (*the plants need watering*): about a room or object of the scene it may ask for a
+goal that is not said, so it is refused; about anything else it is set aside."""
+PEOPLE = word_set("i we he she they")
+"""The people of an event (*after I get back*, *before we leave*): not the robot, not a place."""
+DEICTIC_SUBJECTS = ("it", "there", "this", "that")
+"""Subjects that are a statement's only with a verb of being after them (*it's laundry day*, not *this
+bathroom*)."""
+SEQUENCE_TIMES = ("later", "soon", "now")
+"""Time words that alone order the steps (*Later, go to X*) rather than say when."""
+NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")}
+STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
+LOCATIVE = word_set("in into on onto at inside under beside near by behind")
+"""Prepositions of place: a statement that places an object of the scene is no mere context."""
+"""Between a statement and an order in one sentence (*Grandpa's napping, so stay out of there*)."""
+
+
 # ------------------------------------------------------------------------------------------- chit-chat
 ARTICLES = frozenset({"a", "an", "the", "my", "your", "our"})
 TALK_NOUNS = frozenset({"plan", "few", "couple", "thing", "things", "favour", "favor", "request", "job",
@@ -743,10 +856,13 @@ TALK_NOUNS = frozenset({"plan", "few", "couple", "thing", "things", "favour", "f
 there could name something to go to (*feed the cat* where the scene has no cat must be refused, not
 skipped)."""
 OPENERS = frozenset({"hi", "hello", "hey", "okay", "ok", "alright", "well", "so", "good", "thanks", "thank",
-                     "i", "we", "here", "right", "cheers", "morning", "evening", "afternoon", "sorry"})
+                     "i", "we", "here", "right", "cheers", "morning", "evening", "afternoon", "sorry",
+                     "alexa", "siri", "google", "robot", "buddy", "yo", "yeah"})
 """Chit-chat starts with a greeting, an interjection or the speaker (*I'm hungry*, *here's the plan*); a
 sentence starting otherwise may be an order about something the scene lacks (*feed pets*), so it is parsed
 (and refused) instead."""
+AUXILIARIES = frozenset({"am", "are", "is", "was", "were", "have", "has", "will", "would"})
+"""In chit-chat (*hope you're well*): no role, although *are* is a word of the grammar elsewhere."""
 GREETINGS = frozenset({"hi", "hello", "hey"})
 """*Hi there!*: after a greeting, *there* is no place."""
 
@@ -756,6 +872,8 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("ahead", "of"): ("before",),
     ("in", "advance", "of"): ("before",),
     ("as", "soon", "as"): ("once",),
+    ("as", "soon", "as", "possible"): ("asap",),
+    ("as", "soon", "as", "you", "can"): ("asap",),
     ("the", "moment"): ("once",),
     ("right", "after"): ("after",),
     ("straight", "after"): ("after",),
@@ -782,6 +900,18 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("where", "you", "find"): ("containing",),
     ("holding",): ("containing",),
     ("and", "also"): ("and",),
+    ("any", "one", "of"): ("one", "of"),
+    ("just", "one", "of"): ("one", "of"),
+    ("only", "one", "of"): ("one", "of"),
+    ("try", "not", "to"): ("do", "not"),
+    ("try", "to", "avoid"): ("avoid",),
+    ("try", "and", "avoid"): ("avoid",),
+    ("try", "to", "stay", "out", "of"): ("stay", "out", "of"),
+    ("try", "to", "keep", "out", "of"): ("keep", "out", "of"),
+    ("try", "to", "stay", "away", "from"): ("stay", "away", "from"),
+    ("either", "way"): ("also",),
+    ("in", "any", "case"): ("also",),
+    ("regardless",): ("also",),
     ("set", "foot", "in"): ("enter",),
     ("set", "foot", "into"): ("enter",),
     ("set", "foot", "on"): ("enter",),
@@ -808,3 +938,22 @@ STRUCTURAL = (
     | frozenset({"whenever", "only", "than", "zero", "ever", "again", "twice", "once", "times", "anytime"})
 ) - POSITIVE_VERBS - {"first", "also", "please", "eventually", "finally"}
 """Words with a role in the grammar: in the verb slot they signal a sentence that was not understood."""
+
+
+def _words_of(value: object) -> frozenset[str]:
+    """The words of a lexicon table: its strings, phrases and keys, split at spaces."""
+    if isinstance(value, str):
+        return frozenset(value.split())
+    if isinstance(value, Phrases):
+        return value.words()
+    if isinstance(value, dict):
+        return _words_of(tuple(value)) | _words_of(tuple(value.values()))
+    if isinstance(value, (tuple, frozenset, set, list)):
+        return frozenset().union(*(_words_of(v) for v in value)) if value else frozenset()
+    return frozenset()
+
+
+LEXICON_WORDS = frozenset().union(*(_words_of(v) for k, v in list(globals().items())
+                                    if k.isupper() and not k.startswith("_")))
+"""Every word of every table above: the words the translator knows, besides the scene's names (what *did you
+mean* suggests from, with those names; :mod:`.spelling`)."""

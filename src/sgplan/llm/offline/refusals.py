@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from typing import NoReturn
 
 from sgplan.errors import MissionError
-from sgplan.llm.offline.lexicon import plural
+from sgplan.llm.offline.lexicon import TIME_UNITS, plural
 from sgplan.llm.offline.names import Entity, head_word
 
 REPHRASE = "; rephrase the mission (see docs/offline.md for the understood English)"
@@ -31,6 +31,9 @@ def refuse(message: str) -> NoReturn:
 
 # ------------------------------------------------------------------------------ sentences and leftovers
 def left_over(words: str) -> str:
+    if set(words.lower().split()) & TIME_UNITS:
+        return rephrase(f"'{words}': a delay or a duration cannot be required (a plan has no clock); "
+                        "leave it out")
     return rephrase(f"'{words}' was not understood (the sentence was read only up to there), and no part of "
                     "a mission is ever dropped")
 
@@ -55,6 +58,11 @@ def dropped(phrase: str) -> str:
 def whole_mission_opener(opener: str) -> str:
     return rephrase(f"'{opener}, ...' is understood only before what to avoid for the whole mission ('"
                     f"{opener}, keep out of the kitchen')")
+
+
+def scope_unused(room: str) -> str:
+    return rephrase(f"'in {room}, ...': nothing said after it is in {room}; say 'go to {room}, then ...' if "
+                    "it is a place to go")
 
 
 def order_after_ordered_goals() -> str:
@@ -367,6 +375,11 @@ def partial_prohibition(rest: str) -> str:
                     "(the whole mission) or 'do not enter X until ...'")
 
 
+def until_a_time(said: str) -> str:
+    return rephrase(f"'{said}': a prohibition until a time or an event cannot be required (a plan has no "
+                    "clock); say until which room or object is reached, or forbid it for the whole mission")
+
+
 def until_needs_one_goal(prefix: bool = False) -> str:
     return rephrase("'until X, ...' needs one goal X" if prefix else "'... until X' needs one goal X")
 
@@ -458,6 +471,11 @@ def next_to_an_object(phrase: str) -> str:
 
 def there_refers_to_nothing() -> str:
     return rephrase("'there' does not refer to any place named before it")
+
+
+def there_goal_or_mention(goal: str, mention: str) -> str:
+    return rephrase(f"'there' could be '{goal}', the last place to go, or '{mention}', named after it in "
+                    "what was set aside; name the place")
 
 
 def back_there(phrase: str) -> str:

@@ -1,9 +1,9 @@
 """Tokens of a mission text, with their character spans, split into sentences and list items.
 
-Text is lower-cased; contractions are expanded (``don't`` -> ``do not``), a possessive ``'s`` becomes
-its own token, parentheses and dashes between words (an em or en dash, ``--``, a spaced ``-``) become commas
-(an aside). Entity IDs (``room_2``, ``object_27``) stay single tokens, so already-grounded text is
-understood too.
+Text is lower-cased; contractions are expanded (``don't`` -> ``do not``, ``we're`` -> ``we are``), a
+possessive ``'s`` becomes its own token, parentheses and dashes between words (an em or en dash, ``--``, a
+spaced ``-``) become commas (an aside). Entity IDs (``room_2``, ``object_27``) stay single tokens, so
+already-grounded text is understood too.
 
 Notations are read as the words they stand for (:data:`.lexicon.SYMBOLS`): an arrow (``->``, ``>``, ``→``)
 is *then*, ``+`` and ``&`` are *and*, ``w/`` is *with*; a clock time (``6 pm``, ``18:30``) is one token. Any
@@ -21,7 +21,14 @@ import re
 from dataclasses import dataclass
 from typing import Literal
 
-from sgplan.llm.offline.lexicon import BARE_NEGATED, LINE_CONTINUES, NEGATED_STEMS, SENTENCE_END, SYMBOLS
+from sgplan.llm.offline.lexicon import (
+    BARE_NEGATED,
+    CONTRACTIONS,
+    LINE_CONTINUES,
+    NEGATED_STEMS,
+    SENTENCE_END,
+    SYMBOLS,
+)
 
 _WORD = re.compile(
     r"(?P<id>(?:room|object)_\d+)"
@@ -104,7 +111,9 @@ def tokenize(text: str) -> list[Tok]:
         elif word.endswith("'s") and len(word) > 2:
             out += [Tok(word[:-2], start, end - 2), Tok("'s", end - 2, end)]
         elif "'" in word and kind == "word":
-            out.append(Tok(word.split("'")[0], start, end))  # you're, we'll: the suffix adds nothing
+            stem, suffix = word.split("'", 1)  # you're, we'll, I'd: the verb they stand for
+            verb = [Tok(CONTRACTIONS[suffix], start, end)] if suffix in CONTRACTIONS else []
+            out += [Tok(stem, start, end), *verb]
         else:
             out.append(Tok(word, start, end))
     return out

@@ -48,7 +48,7 @@ class Translation:
 
     ``tokens`` is the LLM prefix token list (e.g. ``['AND', 'EVENTUALLY', 'enter(room_2)', ...]``),
     ``formula`` the same as a formula tree, ``grounded_text`` the text with every reference replaced by
-    its IDs, ``backend`` the name of what produced it.
+    its IDs, ``backend`` the name of what produced it, ``set_aside`` the words not read (context).
     """
 
     backend: str
@@ -57,6 +57,9 @@ class Translation:
     tokens: tuple[str, ...]
     formula: Formula
     references: tuple[Reference, ...]
+    set_aside: tuple[str, ...] = ()
+    """Words of the text set aside unread because they ask nothing (context: *We're hosting dinner tonight.*;
+    a list's heading), as typed; the explanation says them back."""
 
 
 class PatternTranslator:
@@ -104,7 +107,7 @@ class PatternTranslator:
             for np in nps
         )
         return Translation(self.name, text, grounded_text(text, nps, vocabulary), tuple(tokens), formula,
-                           references)
+                           references, tuple(disc.set_aside))
 
 
 def grounded_text(text: str, nps: list[Grounded], vocabulary: SceneVocabulary) -> str:

@@ -18,7 +18,7 @@ from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding import backref
 from sgplan.llm.offline.grounding.discourse import Discourse, Grounded, Where
 from sgplan.llm.offline.grounding.everyday import kids_room
-from sgplan.llm.offline.grounding.floors import determined, floors_of, on_floors
+from sgplan.llm.offline.grounding.floors import determined, floors_of, on_floors, one_floor
 from sgplan.llm.offline.grounding.places import there_rooms
 from sgplan.llm.offline.names import Entity
 from sgplan.llm.offline.nouns import Head
@@ -47,6 +47,9 @@ class Noun:
     head: Head
     entities: list[Entity]
     room_scoped: bool
+    guessed: str | None = None
+    """Floor words counted from a start floor that is not known, read because the entities they could
+    name lie on one floor (checked once the qualifiers are applied, :func:`.described.ground_described`)."""
 
 
 def ground_list(phrases: PhraseList, where: Where, disc: Discourse) -> list[Grounded]:
@@ -95,6 +98,7 @@ def pronoun(np: Pronoun, where: Where, disc: Discourse) -> Grounded:
     g.choice_of = backref.choice_refusal(np.word, ref, len(ref.entities))
     if g.choice_of is not None and where.role != "goal":  # only a carried goal may leave it open
         rf.refuse(g.choice_of)
+    g.mentioned = ref in disc.mentions
     return disc.record(g)
 
 
@@ -102,6 +106,13 @@ def pronoun(np: Pronoun, where: Where, disc: Discourse) -> Grounded:
 def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
     """*there* as a place: the last place named as a goal (its rooms, inside a qualifier)."""
     goals = [g for g in disc.references if g.role == "goal" and g.phrase.lower() not in lx.PRONOUNS]
+    mentioned = [g for g in disc.mentions if g.start < np.span.start and len({e.room_key for e in g.entities})
+                 == 1]  # not "the bedroom" among two
+    if mentioned and (not goals or max(g.start for g in goals) < mentioned[-1].start):
+        if goals:  # "Go to the kitchen. The dog sleeps in the office. Go there.": which of the two?
+            last = max(goals, key=lambda g: g.start)
+            rf.refuse(rf.there_goal_or_mention(last.phrase, mentioned[-1].phrase))
+        goals = mentioned[-1:]  # "Grandpa's napping in the bedroom, so stay out of there"
     if not goals:
         rf.refuse(rf.there_refers_to_nothing())
     ref = max(goals, key=lambda g: g.start)
@@ -157,7 +168,9 @@ def its(np: Its, where: Where, disc: Discourse) -> Grounded:
 @grounds(FloorPlace)
 def floor_place(np: FloorPlace, where: Where, disc: Discourse) -> Grounded:
     """*the top floor* as a place: any of its rooms as a goal or condition, all of them to avoid."""
-    rooms = on_floors(disc.vocab.of_head(Head("room", frozenset(), True, 1)), floors_of(np.floor, disc), disc)
+    reading = floors_of(np.floor, disc)
+    rooms = on_floors(disc.vocab.of_head(Head("room", frozenset(), True, 1)), reading, disc)
+    one_floor(rooms, reading.said if reading.unknown else None, disc)
     chosen: Mode = "all" if where.role == "avoid" or np.mode == "all" else "any"
     said = disc.said(np.span.start, np.span.end)
     return disc.record(Grounded(said, np.span.start, np.span.end, rooms, chosen, False, where.role,
@@ -174,9 +187,13 @@ def antecedent(pronoun: str, disc: Discourse, kind: str | None = None) -> Ground
     book.
     """
     plural = pronoun in lx.PLURAL_PRONOUNS
-    fits = [g for g in sorted(disc.references, key=lambda g: g.start, reverse=True)
-            if (g.mode == "all" and len(g.entities) > 1) == plural and g.phrase.lower() not in lx.PRONOUNS
-            and (kind is None or all(e.kind == kind for e in g.entities))]
+
+    def agreeing(named: list[Grounded]) -> list[Grounded]:
+        return [g for g in sorted(named, key=lambda g: g.start, reverse=True)
+                if (g.mode == "all" and len(g.entities) > 1) == plural and g.phrase.lower() not in lx.PRONOUNS
+                and (kind is None or all(e.kind == kind for e in g.entities))]
+    # what was read first; else what was set aside ("The vase in the hall is dusty. Dust it.")
+    fits = agreeing(disc.references) or agreeing(disc.mentions)
     if not fits:
         rf.refuse(rf.no_antecedent(pronoun, plural))
     g = fits[0]
@@ -188,12 +205,14 @@ def antecedent(pronoun: str, disc: Discourse, kind: str | None = None) -> Ground
 
 
 def last_head(disc: Discourse) -> Head | None:
-    """The kind and category of the last room or object named (what *the one* / *the other one* is)."""
-    for g in sorted(disc.references, key=lambda g: g.start, reverse=True):
+    """The kind and category of the last room or object named (what *the one* / *the other one* is), in
+    words read or set aside (*The plants are looking sad. Water the one in the office*)."""
+    named = [g for g in disc.references if g.role != "qualifier"] + disc.mentions
+    for g in sorted(named, key=lambda g: g.start, reverse=True):
         categories = {e.category for e in g.entities}
-        if g.role != "qualifier" and g.generic:  # "the room where the book is, then the one ..."
+        if g.generic:  # "the room where the book is, then the one ..."
             return Head("room", frozenset(), False, 1)
-        if g.role != "qualifier" and g.entities and len(categories) == 1:
+        if g.entities and len(categories) == 1:
             return Head(g.entities[0].kind, frozenset(categories), False, 1)
     return None
 

@@ -28,7 +28,7 @@ class ActionSteps:
 
 
 def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = None, lenient: bool = False,
-             action_floor: tuple[frozenset[int], int] | None = None,
+             action_floor: tuple[FloorReading, int] | None = None,
              floor: FloorReading | None = None) -> ActionSteps:
     """The steps of ``action``; ``scope``: the rooms of the step it is said in (its objects are looked for
     there, and, with ``lenient``, elsewhere when none is there); ``action_floor`` / ``floor``: the floors of
@@ -38,14 +38,16 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
         floor = floors_of(verbs.floor, disc)  # "go upstairs to the bathroom": the bathroom on that floor
     going_back = bool(set(verbs.words) & lx.REVISIT_VERBS)
     carry = bool(set(verbs.words) & lx.CARRY_VERBS)
-    where = Where("goal", tuple(scope or ctx.scope), lenient, tuple(ctx.soft_scope), floor, action_floor,
-                  going_back, carry)
+    if set(verbs.words) & lx.FLOOR_CHANGES:  # "then head down to the kitchen (for X)": off the scope's floor
+        ctx.floor_scope = None
+    where = Where("goal", tuple(scope or ctx.scope), lenient, tuple(ctx.soft_scope), floor,
+                  action_floor or ctx.floor_scope, going_back, carry)
     if action.phrases is None:  # "go upstairs and check the laptop": the laptop upstairs
         assert action.moved is not None and floor is not None
-        return steps_of(action.moved, ctx, scope, lenient, (floor.floors, action.moved.span.start), floor)
+        return steps_of(action.moved, ctx, scope, lenient, (floor, action.moved.span.start), floor)
     phrases = ground_list(action.phrases, where, disc)
     if action.moved is not None:  # "go up to the top floor and check a bathroom (there)": one goal there
-        floors = frozenset(e.floor for e in phrases[0].entities)
+        floors = FloorReading(frozenset(e.floor for e in phrases[0].entities))
         return steps_of(action.moved, ctx, scope, lenient, (floors, action.moved.span.start))
     phrases, lead = first_of_list(phrases, action.first)
     choice_remark(phrases, action.remark, disc.said)
@@ -63,7 +65,7 @@ def ordered_steps(action: Action, phrases: list[Grounded], carry: bool, lead: bo
                   ctx: SentenceContext) -> list[Step]:
     """The tasks of the phrases, in the steps their order says: one step (any order), one each (*in that
     order*), the one said *first* before the rest, the one said *last* after the rest."""
-    pronouns_only = all(g.phrase.lower() in lx.PRONOUNS for g in phrases)
+    pronouns_only = all(g.phrase.lower() in lx.PRONOUNS and not g.mentioned for g in phrases)
     # "put it in Y": the object is already in hand, the goal is Y, after what came before.
     steps = [[]] if carry and pronouns_only else tasks_of(phrases, action.ordered)
     if lead:  # "A and B, B first": B, then A

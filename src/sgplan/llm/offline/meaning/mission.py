@@ -10,11 +10,13 @@ goals before it.
 
 from __future__ import annotations
 
+from sgplan.errors import MissionError
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding.attachments import describes
-from sgplan.llm.offline.grounding.discourse import Discourse, Grounded
+from sgplan.llm.offline.grounding.discourse import Discourse, Grounded, Where
 from sgplan.llm.offline.grounding.floors import floors_of
+from sgplan.llm.offline.grounding.phrases import ground_phrase
 from sgplan.llm.offline.meaning.compose import Clause, conj
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.sentences import Meaning, read_sentence_body
@@ -49,7 +51,7 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
             rf.refuse(parsed.message)
         assert parsed is not None
         if isinstance(parsed.node, SetAside):
-            disc.set_aside.append(parsed.node.said)
+            set_aside(parsed.node, disc)
         if isinstance(parsed.node, MissionSentence):
             if parsed.node.announced is not None:
                 listed.setdefault(parsed.node.announced.at, []).append(parsed.node)
@@ -73,6 +75,8 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
     ctx = SentenceContext(disc, sentence.span.start, strict_pending=sentence.lead.strict,
                           waypoint_pending=sentence.lead.waypoint, listed=sentence.announced is not None)
     disc.announced = sentence.announced.head if sentence.announced is not None else None
+    if sentence.floor_scope is not None:  # "While you're upstairs, ...": its goals there
+        ctx.floor_scope = (floors_of(sentence.floor_scope, disc), sentence.span.start)
     ctx.prior_steps = previous.steps if continues and previous is not None else []
     known = len(disc.references)
     result = read_sentence_body(sentence.body, ctx)
@@ -98,6 +102,18 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
         parts.append(result)
     if isinstance(result, Clause) and any(result.steps):
         disc.last_step = result.filled()[-1]
+
+
+def set_aside(said: SetAside, disc: Discourse) -> None:
+    """Words set aside: said back; the rooms and objects they name are kept as mentions (each grounded on its
+    own; one that names nothing here is left out)."""
+    disc.set_aside.append(said.said)
+    for phrase in said.mentions:
+        try:
+            named = ground_phrase(phrase, Where("qualifier"), disc.fork())
+        except MissionError:
+            continue  # a phrase that names nothing here: nothing to point back to
+        disc.mentions.append(named)
 
 
 def check_count(sentences: list[MissionSentence]) -> None:

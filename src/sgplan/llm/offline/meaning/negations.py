@@ -42,7 +42,8 @@ def negation(item: Negation, clause: Clause, ctx: SentenceContext, said_whole: b
     else:
         assert item.phrases is not None and item.verbs is not None
         floor = floors_of(item.verbs.floor, ctx.disc) if item.verbs.floor is not None else None
-        phrases = ground_list(item.phrases, Where("avoid", tuple(rooms), floor=floor), ctx.disc)
+        where = Where("avoid", tuple(rooms), floor=floor, action_floor=ctx.floor_scope)
+        phrases = ground_list(item.phrases, where, ctx.disc)
     is_global = declared or item.whole
     entities = [e for g in phrases for e in g.entities]
     if item.until is not None:

@@ -22,6 +22,7 @@ from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import NounLexicon
+from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement
 from sgplan.llm.offline.syntax.lists import read_lists
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
@@ -34,10 +35,11 @@ __all__ = ["Match", "Reader", "Refusal", "parse_sentence", "split_mission"]
 
 def split_mission(text: str, nouns: NounLexicon) -> list[Reader]:
     """The sentences of ``text`` to parse, its lists and what a colon announced read with them
-    (:mod:`.lists`), and without leading chit-chat: sentences before the first one with content (*Hi!*), and
-    the chit-chat clause before the first comma of that one (*I'm hungry, go ...*). Sentences that say where
-    the robot is (*I'm downstairs right now.*) and those set aside are kept wherever they are."""
-    tokens = rewrite(tokenize(text), lx.PHRASE_ALIASES)
+    (:mod:`.lists`), its context set aside (:mod:`.context`), and without leading chit-chat: sentences before
+    the first one with content (*Hi!*), and the chit-chat clause before the first comma of that one (*I'm
+    hungry, go ...*). Sentences that say where the robot is (*I'm downstairs right now.*) and those set aside
+    are kept wherever they are."""
+    tokens = [t for t in rewrite(tokenize(text), lx.PHRASE_ALIASES) if t.text not in lx.SOUNDS]
     out: list[Reader] = []
     content = False
     parts = sentences(tokens)
@@ -46,12 +48,14 @@ def split_mission(text: str, nouns: NounLexicon) -> list[Reader]:
             out.append(r)
             continue
         if not content:
-            if is_chitchat(r, 0, len(r)):
-                continue
-            r = replace(r, toks=r.toks[leading_clause(r):])
+            if is_chitchat(r, 0, len(r)) and statement(r, 0, len(r)) is None:
+                continue  # "Hi!", "Okay, here's the plan." (a statement is said back: "We're hosting dinner")
+            cut = leading_clause(r)
+            if cut and statement(r, 0, cut - 1) is None:
+                r = replace(r, toks=r.toks[cut:])  # "Okay, go to ..." ("I'm hungry, ..." is said back)
             content = True
         out.append(r)
-    return out
+    return set_aside_context(out)
 
 
 def parse_sentence(r: Reader, decide: Callable[[Attachment], bool]) -> Parse[Sentence]:
@@ -59,7 +63,7 @@ def parse_sentence(r: Reader, decide: Callable[[Attachment], bool]) -> Parse[Sen
     each :class:`.tree.Attachment`, in text order): the sentence is read again with each decision until
     none is left open."""
     if r.aside:
-        return Match(SetAside(r.quote(0, len(r))), len(r))
+        return Match(SetAside(r.quote(0, len(r)), mentions(r)), len(r))
     choices: dict[int, bool] = {}
     while True:
         start = stated_start(r)

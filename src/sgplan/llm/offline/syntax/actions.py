@@ -39,6 +39,10 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     if not isinstance(verbs, Match):
         return verbs
     i = verbs.end
+    if (r.word(i) in lx.CHECK_THAT and set(verbs.node.words) & lx.CHECK_VERBS and r.word(i + 1) in lx.ARTICLES
+            and {"is", "are"} & set(r.words[i + 2:])):
+        i += 1  # "check that the couch is tidy": the couch (its state is seen there); not "check that vase"
+    verbs = Match(turned(r, verbs.node, i), i)
     if not r.np_starts(i) and verbs.node.floor is not None and r.word(i) in ("and", ",", "then"):
         moved = moved_action(r, r.skip(i, ("and", ",", "then")), in_condition)  # "go upstairs and check X"
         if not isinstance(moved, Match):
@@ -54,7 +58,28 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     moved = floor_move(r, phrases.end, phrases.node, in_condition)
     if moved is not None:
         return moved if isinstance(moved, Refusal) else Match(replace(node, moved=moved.node), moved.end)
-    return action_tail(r, phrases.end, node)
+    checked = r.word(start) in lx.CHECK_VERBS
+    return action_tail(r, state_said(r, phrases.end) if checked else phrases.end, node)
+
+
+def turned(r: Reader, verbs: VerbWords, i: int) -> VerbWords:
+    """*go up and X*, *come down and X*: a floor move to the floors above / below, when the verb words end
+    with *up* / *down* before a connective."""
+    if verbs.floor is None and verbs.words and verbs.words[-1] in lx.UP_DOWN and r.word(i) in ("and", ","):
+        return replace(verbs, floor=RelativeFloor(lx.UP_DOWN[verbs.words[-1]]), floor_span=r.span(i - 1, i))
+    return verbs
+
+
+def state_said(r: Reader, i: int) -> int:
+    """After *check that the couch*: the state the check is about (*is tidy*, *is switched off*), which
+    the translator does not read (being there is what a check needs)."""
+    if r.word(i) not in ("is", "are"):
+        return i
+    k = r.skip(i + 1, lx.FILLERS)
+    while k < min(i + 4, len(r)) and r.word(k).isalpha() and r.word(k) not in lx.STRUCTURAL \
+            and r.head(k) is None and r.word(k) not in ("and", "then"):
+        k += 1
+    return k if k > i + 1 and r.word(k) in lx.CLAUSE_ENDS else i
 
 
 def moved_action(r: Reader, i: int, in_condition: bool) -> Parse[Action]:

@@ -95,7 +95,7 @@ def before_only_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemP
 def done_with(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """*... when done with X*: X before the step it is said in."""
     done = done_words(r, i)
-    if not done or r.word(i + done) != "with" or not r.np_starts(i + done + 1):
+    if not done or r.word(i + done) not in lx.DONE_WITH or not r.np_starts(i + done + 1):
         return None
     found = action(r, i + done + 1)
     return Match(DoneWith(found.node), found.end) if isinstance(found, Match) else found

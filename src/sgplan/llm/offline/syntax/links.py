@@ -50,7 +50,7 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     if said is not None:
         return "filler", i + len(said)
     w = r.word(i)
-    if w == "," or (w in lx.FILLERS and w not in lx.NOT_FILLERS_HERE):
+    if w == "," or (w in lx.FILLERS and w not in lx.NOT_FILLERS_HERE) or w in lx.HESITATIONS:
         return "filler", i + 1
     return None
 
@@ -94,9 +94,9 @@ def done_sequence(r: Reader, i: int) -> int | None:
     n = done_words(r, i)
     if not n:
         return None
-    if r.word(i + n) == "with" and (r.word(i + n + 1) not in lx.DONE_BACK or r.np_starts(i + n + 2)):
+    if r.word(i + n) in lx.DONE_WITH and (r.word(i + n + 1) not in lx.DONE_BACK or r.np_starts(i + n + 2)):
         return None
-    k = i + n + (1 if r.word(i + n) == "with" else 0)
+    k = i + n + (1 if r.word(i + n) in lx.DONE_WITH else 0)
     return k + (1 if r.word(k) in lx.DONE_BACK else 0)
 
 

@@ -170,8 +170,10 @@ def verb_prefix(r: Reader) -> Announced | None:
     last = len(r) - 1
     if last < 0 or not (r.word(last) in lx.POSITIVE_VERBS or r.phrase(last, lx.NEG_STARTS)):
         return None
-    if any(r.np_starts(k) or r.word(k) in lx.REFUSED_WORDS for k in range(len(r))):
-        return None
+    if any(r.np_starts(k) or not (r.word(k) in lx.AVOID_VERBS or r.word(k) in lx.FILLERS
+                                  or r.word(k) in lx.NEG_STARTS.words() or r.word(k) in lx.POLITE.words())
+           for k in range(len(r))):
+        return None  # a word of its own (*Shopping run:*): a label, not a verb for each item
     return Announced(r.quote(0, len(r)), r.toks, None, None, r.toks[0].start)
 
 

@@ -35,7 +35,8 @@ def is_chitchat(r: Reader, start: int, end: int) -> bool:
                 continue
             return False
         if (w.startswith(("room_", "object_")) or w in lx.POSITIVE_VERBS or w in lx.REFUSED_WORDS
-                or w in lx.RELATIVE_FLOORS or w in lx.STRUCTURAL or w.isdigit() or r.head(k) is not None):
+                or w in lx.RELATIVE_FLOORS or (w in lx.STRUCTURAL and w not in lx.AUXILIARIES) or w.isdigit()
+                or r.head(k) is not None):
             return False
         k += 1
     return True

@@ -353,9 +353,11 @@ def contains(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if not isinstance(thing, Match):
         return thing
     end = skip_in_it(r, thing.end)
-    only = "only" in said or (r.word(end) == "only" and r.word(end + 1) not in lx.ONLY_FOLLOWERS)
-    end += 1 if only and "only" not in said else 0  # "bdrm w/ bed only"
-    return Match(Contains(thing.node, r.span(noun.first, thing.end), count, only), end)
+    trailing = r.word(end) == "only" and r.word(end + 1) not in lx.ONLY_FOLLOWERS  # "bdrm w/ bed only"
+    # "with only / just the bed": nothing else; "with only / just one bed": exactly one
+    only = (bool(set(said) & lx.ONLY_WORDS) or trailing) and count is None
+    said_as = Contains(thing.node, r.span(noun.first, thing.end), count, only)
+    return Match(said_as, end + (1 if trailing else 0))
 
 
 @QUALIFIERS.rule("and more contents")

@@ -15,6 +15,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import after_conjunction
 from sgplan.llm.offline.syntax.body import body
+from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.links import at_end, comma_or_then, done_words, link, skip_subject
 from sgplan.llm.offline.syntax.phrases import noun_phrase
 from sgplan.llm.offline.syntax.qualifiers import head_kind
@@ -24,6 +25,7 @@ from sgplan.llm.offline.syntax.tree import (
     Action,
     Body,
     Described,
+    FloorSpec,
     IfRule,
     MissionSentence,
     OnlyAfterPost,
@@ -32,6 +34,7 @@ from sgplan.llm.offline.syntax.tree import (
     PlainSentence,
     Postfix,
     PrefixedSentence,
+    RelativeFloor,
     Rule,
     RuleSentence,
     RulesPost,
@@ -45,6 +48,10 @@ OPENINGS: RuleSet[SentenceBody] = RuleSet("sentence opening")
 
 def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     """A sentence of the mission, read to its last word (else refused, naming what is left)."""
+    delay = next((k for k in range(1, len(r)) if r.word(k) in lx.TIME_UNITS and (
+        r.word(k - 1).isdigit() or r.word(k - 1) in lx.NUMBER_WORDS or r.word(k - 1) in lx.FEW)), None)
+    if delay is not None:  # "wait 5 min", "in ten minutes", "for a few minutes"
+        return Refusal(rf.left_over(r.quote(max(delay - 2, 0), delay + 1)))
     i, opener = 0, None
     said = r.phrase(0, lx.WHOLE_MISSION)
     if said is not None and r.word(len(said)) == "," and said[0] not in lx.WAYPOINT_OPENERS:
@@ -57,7 +64,8 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     lead = link(r, i)
     if not isinstance(lead, Match):
         return lead
-    said_body = sentence_body(r, lead.end)
+    floor, start = floor_opening(r, lead.end)
+    said_body = sentence_body(r, start)
     if not isinstance(said_body, Match):
         return said_body
     rest = link(r, said_body.end, sequence_too=False)
@@ -66,7 +74,25 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     if rest.end < len(r):
         return Refusal(rf.left_over(r.quote(rest.end, len(r))))
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
-                                 r.span(0, len(r)), r.announced, r.after_item), len(r))
+                                 r.span(0, len(r)), r.announced, r.after_item, floor), len(r))
+
+
+def floor_opening(r: Reader, i: int) -> tuple[FloorSpec | None, int]:
+    """*On the top floor, ...*, *Upstairs, ...*, *While you're upstairs, ...*, *While you're (up) on floor 2,
+    ...*: the floor of the sentence's goals, and where its body starts; *While you're in the kitchen, ...* is
+    *In the kitchen, ...* (the body starts at *in*)."""
+    k = skip_subject(r, i + 1) if r.word(i) == "while" else i
+    if k > i and r.word(k) in lx.BACK_THERE and r.word(k + 1) in lx.FLOOR_PREPOSITIONS:
+        k += 1  # "while you're up on the top floor"
+    if r.word(k) in lx.RELATIVE_FLOORS and r.word(k + 1) == ",":
+        return RelativeFloor(r.word(k)), k + 2
+    j = k + 1 if r.word(k) in lx.FLOOR_PREPOSITIONS else k
+    said = floor_words(r, j + (1 if r.word(j) == "the" else 0)) if j > k else None
+    if said is not None and r.word(said.end) == ",":
+        return said.node, said.end + 1
+    if k > i and r.word(k) in lx.SCOPE_IN and r.np_starts(k + 1):
+        return None, k  # "while you're in the kitchen, ...": the room of the sentence
+    return None, i
 
 
 def sentence_body(r: Reader, i: int) -> Parse[SentenceBody]:
@@ -90,7 +116,7 @@ def whenever_first(r: Reader, i: int) -> Parse[SentenceBody]:
 def done_with_first(r: Reader, i: int) -> Parse[SentenceBody]:
     """*When done with the garage, Y*: the garage, then Y."""
     done = done_words(r, i)
-    if not done or r.word(i + done) != "with" or not r.np_starts(i + done + 1):
+    if not done or r.word(i + done) not in lx.DONE_WITH or not r.np_starts(i + done + 1):
         return None
     return prefixed(r, i + done + 1, prefix_last=False)
 

@@ -652,9 +652,12 @@ class StatedStart:
 @dataclass(frozen=True)
 class SetAside:
     """Words that ask nothing of the robot and are not read (*We're hosting dinner tonight.*, a list's heading
-    *Shopping list check*), said back as not part of the mission (``said``: as typed)."""
+    *Shopping list check*), said back as not part of the mission (``said``: as typed); ``mentions``: the rooms
+    and objects they name, which *there* may point back to (*Grandpa's napping in the bedroom, so stay out of
+    there*)."""
 
     said: str
+    mentions: tuple[NounPhrase, ...] = ()
 
 
 Sentence = MissionSentence | StatedStart | SetAside
