@@ -15,6 +15,8 @@ test_polite = corpus_test("style_polite")
 test_times_and_places = corpus_test("style_timeplace")
 test_voice = corpus_test("style_voice")
 test_dictation = corpus_test("style_dictation")
+test_lists = corpus_test("style_lists")
+test_constraints = corpus_test("style_constraints")
 
 
 def test_context_is_set_aside_and_said_back(demo: Building) -> None:

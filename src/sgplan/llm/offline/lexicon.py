@@ -32,6 +32,12 @@ CONTRACTIONS = {"re": "are", "m": "am", "ve": "have", "ll": "will", "d": "would"
 """``we're`` -> ``we are``: the verb of a contracted auxiliary (``'s`` is a token of its own: *is* or a
 possessive)."""
 
+BARE_CONTRACTIONS = {"youre": ("you", "are"), "theyre": ("they", "are"), "im": ("i", "am"),
+                     "ive": ("i", "have"), "youve": ("you", "have"), "weve": ("we", "have"),
+                     "thats": ("that", "'s"), "theres": ("there", "'s"), "youll": ("you", "will"),
+                     "itll": ("it", "will"), "lets": ("let", "'s"), "whats": ("what", "'s")}
+"""Contractions typed without their apostrophe (*then youre done*): read as the words they stand for."""
+
 SENTENCE_END = frozenset(".;:!?")
 
 SYMBOLS: dict[str, tuple[str, ...]] = {
@@ -244,6 +250,9 @@ FLOOR_TOP = ("top", "highest", "upper", "uppermost")
 FLOOR_MIDDLE = ("middle", "mid")
 """``the middle floor``: understood in a building with an odd number of floors (3: floor 1)."""
 FLOOR_WORDS = ("floor", "level", "storey", "story", "flr", "fl", "lvl")
+FLOOR_NAMES = (frozenset(FLOOR_ORDINALS) | frozenset(FLOOR_NAMED) | frozenset(FLOOR_TOP)
+               | frozenset(FLOOR_MIDDLE))
+"""The words that name a floor before *floor* (*ground*, *top*, *second*)."""
 FLOOR_PLURALS = (*FLOOR_WORDS, "floors", "levels", "storeys", "stories", "flrs")
 RELATIVE_FLOORS = {"upstairs": 1, "downstairs": -1}
 """Floors relative to the robot's start floor (or, in a two-floor building, the upper / lower floor)."""
@@ -382,9 +391,11 @@ REFUSED_WORDS: dict[str, str] = {
 }
 """Words that would silently change the meaning if read as ordinary words: refused with a reason."""
 
-START_END_VERBS = word_set("start starting begin beginning end ending finish finishing")
-"""``start in X`` / ``end (up) in X``: where the path starts or ends, which a goal cannot say (the start is
-the robot's; an end would need an order): refused outside a condition, where *end up in* is just *go to*."""
+START_VERBS = word_set("start starting begin beginning")
+"""``start in X``: where the path starts, which is the robot's: refused (outside a condition, where it is just
+being in X)."""
+END_VERBS = word_set("end ending finish finishing")
+"""``end (up) in X`` / ``finish at X``: X after the rest (the plan ends once the mission is done: there)."""
 START_END_PARTICLES = ("in", "at", "up", "with")
 REVISIT_VERBS = word_set("return returning back")
 """``return to X`` / ``go back to X`` after X was visited: a new visit, as with ``again``."""
@@ -557,7 +568,10 @@ CLOSING = Phrases((
     ("if", "you", "would", "be", "so", "kind"), ("real", "quick"), ("quickly",), ("please",),
     ("thank", "you", "so", "much", "in", "advance"), ("thanks", "so", "much", "in", "advance"),
     ("thanks", "a", "lot", "in", "advance"), ("if", "that", "is", "alright"), ("no", "worries"),
-    ("when", "convenient"), ("when", "you", "can", "manage", "it")))
+    ("when", "convenient"), ("when", "you", "can", "manage", "it"), ("no", "idea", "where"), ("no", "idea"),
+    ("and", "then", "you", "are", "done"), ("then", "you", "are", "done"), ("you", "are", "done"),
+    ("and", "you", "are", "done"), ("and", "that", "is", "it"), ("and", "that", "'s", "it"),
+    ("and", "that", "'s", "all"), ("and", "that", "is", "all")))
 """Sign-offs (*thanks a lot*, *cheers*, *that's all for now*) and asides that ask nothing (*no rush*, *if
 possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
 of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""
@@ -580,6 +594,15 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
 ))
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
+ONE_SUFFICES = Phrases(tuple(
+    (*lead, *one, *enough) for lead in ((), ("just",), ("only",), ("getting", "to"), ("reaching",))
+    for one in (("one", "of", "them"), ("one",), ("any", "one", "of", "them"))
+    for enough in ((), ("is", "enough"), ("will", "do"), ("is", "fine"), ("is", "ok"), ("is", "okay"),
+                   ("would", "do"), ("suffices",))
+    if lead or enough or len(one) > 1))
+"""After a phrase that means each of several (*the vases in the lobby, just one of them*, *check the apples,
+getting to one of them is enough*): one of them will do, which makes it a choice (said outright, unlike
+*either one*, which is refused there)."""
 BARE_CHOOSERS = ("either", "any", "whichever")
 CLAUSE_ENDS = frozenset({"", ",", "then", "and", "but"})
 """After ``, either`` / ``, any``: no noun follows, so the word is a choice remark (*DR vase, any*)."""
@@ -629,7 +652,7 @@ BEFORE_THAT = ("before", "that")
 ON_THE_WAY = Phrases((("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way")))
 WAY_BACK = frozenset({"back", "up", "down", "out", "home"})
 """``on your way back (up)``: after what came before, like *then*."""
-ON_THE_WAY_ENDS = ("", ",", "there", "and", "then")
+ON_THE_WAY_ENDS = ("", ",", "there", "and", "then", "but")
 """After *on the way* ending an action (looked ahead)."""
 WAYPOINT = Phrases((("via",), ("through",), ("by", "way", "of"), ("passing", "through"),
                     ("going", "through"), ("passing", "by"), ("going", "past"), ("passing",),

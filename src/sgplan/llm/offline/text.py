@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 from sgplan.llm.offline.lexicon import (
+    BARE_CONTRACTIONS,
     BARE_NEGATED,
     CONTRACTIONS,
     LINE_CONTINUES,
@@ -105,6 +106,8 @@ def tokenize(text: str) -> list[Tok]:
             out += [Tok(w, start, end) for w in SYMBOLS.get(word, ("then",))]
         elif word in BARE_NEGATED:  # "dont", "cant": typed without the apostrophe
             out += [Tok(BARE_NEGATED[word], start, end), Tok("not", start, end)]
+        elif word in BARE_CONTRACTIONS:  # "youre", "thats"
+            out += [Tok(w, start, end) for w in BARE_CONTRACTIONS[word]]
         elif word.endswith("n't"):
             stem = word[:-3]
             out += [Tok(NEGATED_STEMS.get(stem + "n", stem), start, end), Tok("not", start, end)]

@@ -123,7 +123,7 @@ class Where:
     object of its consequent that fits several is the one there). ``floor``: the floor a verb said (*go
     upstairs to ...*: the first phrase only); ``action_floor``: the floors of a floor move (*go upstairs and
     ...*: every goal) and the character offset where that action starts. ``going_back``: *go back there*.
-    ``objects``: a pronoun must name objects (after *put* / *bring*).
+    ``objects``: a pronoun must name objects (after *put* / *bring*). ``revisit``: see the field.
     """
 
     role: Role
@@ -134,3 +134,5 @@ class Where:
     action_floor: tuple[FloorReading, int] | None = None
     going_back: bool = False
     objects: bool = False
+    revisit: bool = False
+    """*again* / *go back to*: a definite phrase that fits several is the one named before as a goal."""

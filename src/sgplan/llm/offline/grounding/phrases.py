@@ -263,6 +263,9 @@ def check(g: Grounded, head: Head, count: int | None, remark_follows: bool, disc
     if g.mode == "the" and len(g.entities) > 1 and head.kind == g.entities[0].kind and not head.plural \
             and remark_follows:
         g.mode = "any"  # "the toilet on this floor, any one will do": one of them
+    if g.mode == "the" and len(g.entities) > 1 and one_room_of_a_kind(g.entities):
+        # "sit at the dining table" where the dining room holds four: any of them serves (to avoid, each)
+        g.mode = "all" if g.role == "avoid" else "any"
     if (g.mode == "the" and g.role == "avoid" and g.phrase.lower().split()[-1] in lx.PLURAL_LOOKING
             and disc.confined is not None):
         # "stay on the top floor and keep off the stairs": the staircases of the floors the mission stays on,
@@ -273,6 +276,13 @@ def check(g: Grounded, head: Head, count: int | None, remark_follows: bool, disc
         listing = ", ".join(f"{e.key} (floor {e.floor})" if e.kind == "room"
                             else f"{e.key} (in {e.room_key}, floor {e.floor})" for e in g.entities)
         raise MissionError(rf.ambiguous(g.phrase, len(g.entities), head.kind, listing, hint(g, disc)))
+
+
+def one_room_of_a_kind(entities: list[Entity]) -> bool:
+    """Whether ``entities`` are objects of one category in one room (the parts of one dining table, the
+    vases of a lobby): where a phrase names one of them, the words cannot tell which, and any serves."""
+    kinds = {(e.room_key, e.category) for e in entities}
+    return all(e.kind == "object" for e in entities) and len(kinds) == 1
 
 
 def existing(head: Head, disc: Discourse) -> str:

@@ -40,8 +40,9 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
     carry = bool(set(verbs.words) & lx.CARRY_VERBS)
     if set(verbs.words) & lx.FLOOR_CHANGES:  # "then head down to the kitchen (for X)": off the scope's floor
         ctx.floor_scope = None
+    again = going_back or (action.repeat is not None and action.repeat.again)
     where = Where("goal", tuple(scope or ctx.scope), lenient, tuple(ctx.soft_scope), floor,
-                  action_floor or ctx.floor_scope, going_back, carry)
+                  action_floor or ctx.floor_scope, going_back, carry, again)
     if action.phrases is None:  # "go upstairs and check the laptop": the laptop upstairs
         assert action.moved is not None and floor is not None
         return steps_of(action.moved, ctx, scope, lenient, (floor, action.moved.span.start), floor)
@@ -130,10 +131,20 @@ def first_of_list(phrases: list[Grounded], first: bool) -> tuple[list[Grounded],
 def choice_remark(phrases: list[Grounded], remark: tuple[str, ...] | None,
                   said: Callable[[int, int], str]) -> None:
     """*, either one is fine* after a choice only confirms it; after a phrase that means each of several
-    (or after several phrases) it would turn "all" into "one of", so it is refused."""
+    (or after several phrases) it would turn "all" into "one of", so it is refused. *, just one of them* / *,
+    any of the three* say outright that one will do: the phrase is a choice (of that many, when said)."""
     if remark is None:
         return
-    words = remark[1:] if remark[0] == "," else remark
+    words = tuple(w for w in remark if w != ",")
+    count = next((lx.NUMBER_WORDS.get(w) or int(w) for w in words
+                  if w.isdigit() or (w in lx.NUMBER_WORDS and w != "one")), None)
+    choose = count is not None or any(words[k:k + len(p)] == p for p in lx.ONE_SUFFICES
+                                      for k in range(len(words)))
+    if len(phrases) == 1 and choose and (count is None or count == len(phrases[0].entities)):
+        phrases[0].mode = "any"  # "check the vases in the lobby, just one of them": any of them
+        return
+    if count is not None and len(phrases) == 1:  # "a TV in the office, any of the two" (there are three)
+        rf.refuse(rf.group_size(" ".join(words), phrases[0].phrase, len(phrases[0].entities), count))
     if len(phrases) > 1 or (phrases[0].mode != "any" and len(phrases[0].entities) > 1):
         rf.refuse(rf.remark_after_each(" ".join(words), said(phrases[0].start, phrases[-1].end)))
 

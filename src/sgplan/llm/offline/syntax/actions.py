@@ -54,7 +54,8 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     phrases = phrase_list(r, i, "goal")
     if not isinstance(phrases, Match):
         return phrases
-    node = Action(r.span(start, phrases.end), verbs.node, phrases.node, in_condition=in_condition)
+    ends = bool(set(verbs.node.words) & lx.END_VERBS) and not in_condition  # "end up in X": X after the rest
+    node = Action(r.span(start, phrases.end), verbs.node, phrases.node, in_condition=in_condition, last=ends)
     moved = floor_move(r, phrases.end, phrases.node, in_condition)
     if moved is not None:
         return moved if isinstance(moved, Refusal) else Match(replace(node, moved=moved.node), moved.end)
@@ -143,7 +144,7 @@ def refused_verb(r: Reader, i: int, in_condition: bool) -> Refusal | None:
     w, nxt = r.word(i), r.word(i + 1)
     if w in lx.REFUSED_WORDS:
         return Refusal(rf.cannot_understand(lx.REFUSED_WORDS[w]))
-    if w in lx.START_END_VERBS and nxt in lx.START_END_PARTICLES and not in_condition:
+    if w in lx.START_VERBS and nxt in lx.START_END_PARTICLES and not in_condition:
         return Refusal(rf.path_start_or_end(w, nxt))
     if w in ("do", "does", "did", "doing") and nxt in lx.DONE_WHAT:
         return Refusal(rf.did_is_not_a_place(w, nxt))

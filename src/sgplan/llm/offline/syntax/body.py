@@ -246,7 +246,7 @@ def plain_action(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     way = r.phrase(j, lx.ON_THE_WAY)
     if way is not None:
         n = j + len(way) + (1 if r.word(j + len(way)) == "there" else 0)
-        if r.word(n) in ("", ",", "and", "then"):
+        if r.word(n) in lx.ON_THE_WAY_ENDS:
             j, on_the_way = n, True
     rest = r.rest(j)
     trailing_word: Literal["first", "before that"] | None = None

@@ -137,7 +137,9 @@ def statement(r: Reader, start: int, end: int) -> str | None:
             or r.phrase(start, lx.CLOSING)):
         return None  # a clause about the robot ("I'd be grateful if you ...") may ask something of it
     k = subject_end(r, start, end)
-    if (k is None or r.phrase(k, lx.OFF_LIMITS) or r.phrase(start - 1, lx.ASIDE) or locates(r, start, k, end)
+    aside_of = r.phrase(start - 1, lx.ASIDE)  # "the couch, it's in the kitchen": a qualifier of the couch
+    qualifies = aside_of is not None and r.word(start - 1 + len(aside_of)) in lx.ASIDE_QUALIFIERS
+    if (k is None or r.phrase(k, lx.OFF_LIMITS) or qualifies or locates(r, start, k, end)
             or any(w in lx.LIST_NOUNS for w in r.words[start:k]) or r.word(k + 1) == "to"):
         # "the kitchen is off limits", "the couch, it's in the kitchen", "the bowl is in the sink", "the next
         # task is to ...": not mere context
@@ -172,9 +174,9 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         if not plain_word(r, start + 1):
             return None  # "the kitchen and the office": goals
         return next((j for j in range(start + 2, min(start + 5, end)) if finite_verb(r.word(j))), None)
-    if (w.isalpha() and r.head(start) is None and w not in lx.LEXICON_WORDS
+    if (w.isalpha() and r.head(start) is None and (w not in lx.LEXICON_WORDS or w in lx.RELATIVE_FLOORS)
             and r.word(start + 1) in lx.STATEMENT_VERBS):
-        return start + 1  # "Grandpa's napping", "Sarah is coming"
+        return start + 1  # "Grandpa's napping", "Sarah is coming", "downstairs needs to look nice"
     return None
 
 

@@ -157,8 +157,8 @@ def announcement(r: Reader) -> Announced | None:
     while start > 0 and (r.word(start - 1) in lx.ANNOUNCING or r.word(start - 1).isdigit()
                          or r.word(start - 1) in lx.NUMBER_WORDS):
         start -= 1
-    if any(r.np_starts(k) for k in range(start)):
-        return None  # a phrase before the noun group: not only an announcement
+    if any(r.np_starts(k) or not verb_word(r, k) for k in range(start)):
+        return None  # a phrase before the noun group (*Top floor jobs:*): not only an announcement
     count = next((lx.NUMBER_WORDS.get(w) or int(w) for w in r.words[start:end]
                   if w.isdigit() or w in lx.NUMBER_WORDS), None)
     return Announced(r.quote(start, end), r.toks[:start], count, head if head is not None and head.plural
@@ -170,11 +170,15 @@ def verb_prefix(r: Reader) -> Announced | None:
     last = len(r) - 1
     if last < 0 or not (r.word(last) in lx.POSITIVE_VERBS or r.phrase(last, lx.NEG_STARTS)):
         return None
-    if any(r.np_starts(k) or not (r.word(k) in lx.AVOID_VERBS or r.word(k) in lx.FILLERS
-                                  or r.word(k) in lx.NEG_STARTS.words() or r.word(k) in lx.POLITE.words())
-           for k in range(len(r))):
+    if any(r.np_starts(k) or not verb_word(r, k) for k in range(len(r))):
         return None  # a word of its own (*Shopping run:*): a label, not a verb for each item
     return Announced(r.quote(0, len(r)), r.toks, None, None, r.toks[0].start)
+
+
+def verb_word(r: Reader, k: int) -> bool:
+    """Whether the word at ``k`` may be read before each item of a list: a verb, a negation, a filler."""
+    w = r.word(k)
+    return w in lx.AVOID_VERBS or w in lx.FILLERS or w in lx.NEG_STARTS.words() or w in lx.POLITE.words()
 
 
 def label_end(r: Reader) -> int | None:

@@ -96,7 +96,10 @@ def until_target(r: Reader, k: int) -> Parse[Action | UntilDone]:
         return None
     if r.word(k + 1) in lx.EVENT_WORDS or (r.at(k + 1, "the") and r.word(k + 2) in lx.EVENT_WORDS):
         return Refusal(rf.until_a_time(r.quote(k, k + (2 if r.word(k + 1) in lx.EVENT_WORDS else 3))))
-    k = skip_subject(r, k + 1)
+    said = skip_subject(r, k + 1)
+    if said > k + 1 and r.word(said) in ("", ","):
+        return Match(UntilDone(), said)  # "don't set foot in the kitchen until you have"
+    k = said
     if r.word(k) in lx.DONE and ((r.word(k + 1) in lx.DONE_WHAT and not r.np_starts(k + 2))
                                  or not r.np_starts(k + 1)):
         k += 1  # "... before you've done that"

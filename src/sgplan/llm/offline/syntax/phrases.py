@@ -290,8 +290,7 @@ def list_joiner(r: Reader, i: int, preposition: str | None) -> tuple[str, int] |
     if w == "," and nxt in ("and", "or") and r.np_starts(i + 2):
         return nxt, i + 2
     if (w == "," and r.np_starts(i + 1) and not r.phrase(i + 1, lx.NEG_STARTS) and not closing_at(r, i + 1)
-            and not r.phrase(i + 1, lx.TIME_FILLERS) and not r.phrase(i + 1, lx.CHOICE_AFFIRMATIONS)
-            and not (nxt in lx.BARE_CHOOSERS and r.word(i + 2) in lx.CLAUSE_ENDS)):
+            and not r.phrase(i + 1, lx.TIME_FILLERS) and qualifiers.remark_ahead(r, i) is None):
         return "", i + 1
     if w in ("and", "or", "nor") and r.np_starts(i + 1):
         return w, i + 1

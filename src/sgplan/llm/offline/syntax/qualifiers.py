@@ -115,9 +115,26 @@ def current_head(noun: Described) -> Head | None:
 
 
 def remark_ahead(r: Reader, i: int) -> tuple[str, ...] | None:
-    """The words of ``(,) either one is fine`` / ``, any one will do`` / ``, whichever`` at ``i`` (a remark
-    that the choice is the robot's), or ``None``."""
+    """The words of ``(,) either one is fine`` / ``, any one will do`` / ``, whichever`` / ``, just one of
+    them`` / ``, any of the three`` at ``i`` (remarks that the choice is the robot's, one after another), or
+    ``None``."""
+    said = one_remark(r, i)
+    k = i + len(said) if said is not None else i
+    while said is not None and (more := one_remark(r, k)) is not None:
+        said, k = said + more, k + len(more)  # "just one of them, any is fine"
+    return said
+
+
+def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
+    """One choice remark at ``i`` (see :func:`remark_ahead`)."""
     comma = 1 if r.word(i) == "," else 0
+    suffices = r.phrase(i + comma, lx.ONE_SUFFICES)
+    after = i + comma + len(suffices or ())
+    if suffices is not None and (r.word(after) in lx.CLAUSE_ENDS or one_remark(r, after) is not None):
+        return (",",) * comma + suffices
+    w, of, the, n = (r.word(i + comma + k) for k in range(4))
+    if w in lx.CHOOSING_OF and of == "of" and the in ("the", "all") and (n in lx.NUMBER_WORDS or n.isdigit()):
+        return (",",) * comma + (w, of, the, n)  # "a TV in the office, any of the three"
     said = r.phrase(i + comma, lx.CHOICE_AFFIRMATIONS)
     if said is None and comma and r.word(i + 1) in lx.BARE_CHOOSERS and r.word(i + 2) in lx.CLAUSE_ENDS:
         said = (r.word(i + 1),)  # "LR tv (either)", "DR vase, any": no noun follows, so a remark

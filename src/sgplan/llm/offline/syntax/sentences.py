@@ -283,13 +283,15 @@ def condition_rule(r: Reader, i: int) -> Parse[Rule]:
 def make_rule(r: Reader, i: int, said: Match[Action], consequent: Body, after_start: int,
               after_end: int) -> Rule:
     """The rule at ``i`` with condition ``said`` and ``consequent``; an *if* rule is a response when its
-    condition says *ever* or the words ``[after_start, after_end)`` say *afterwards*."""
+    condition says *ever*, and its consequent follows the condition when the words ``[after_start,
+    after_end)`` say *afterwards*."""
     word = r.phrase(i, lx.CONDITION_WORDS)
     if r.phrase(i, lx.WHENEVER) is not None or word is None:
         return WheneverRule(said.node, consequent)
     start = i + len(word)
-    response = r.says(lx.EVER, start, said.end) or r.says(lx.AFTERWARDS, after_start, after_end)
-    return IfRule(" ".join(word), said.node, consequent, response)
+    response = r.says(lx.EVER, start, said.end)
+    return IfRule(" ".join(word), said.node, consequent, response,
+                  r.says(lx.AFTERWARDS, after_start, after_end))
 
 
 def trigger(r: Reader, i: int) -> Parse[Action]:

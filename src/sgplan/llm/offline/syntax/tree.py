@@ -518,12 +518,14 @@ class WheneverRule:
 @dataclass(frozen=True)
 class IfRule:
     """*if X, Y* / *Y if X* (``word``: *if*, *when*, *in case*); ``response``: said of every visit of X
-    (*if you ever ...*, *... afterwards*), read like *whenever*."""
+    (*if you ever ...*, *at any point*), read like *whenever*; ``afterwards``: Y is said to follow X (*if you
+    go into X, check Y afterwards*: after that visit of X)."""
 
     word: str
     condition: Action
     consequent: Body
     response: bool
+    afterwards: bool = False
 
 
 Rule = WheneverRule | IfRule
