@@ -17,6 +17,7 @@ test_voice = corpus_test("style_voice")
 test_dictation = corpus_test("style_dictation")
 test_lists = corpus_test("style_lists")
 test_constraints = corpus_test("style_constraints")
+test_nonnative = corpus_test("style_nonnative")
 
 
 def test_context_is_set_aside_and_said_back(demo: Building) -> None:

@@ -310,8 +310,9 @@ ROUTE_VERBS = word_set("from through via past")
 """``go from X to Y``, ``go through X to Y``: X, then Y."""
 DESTINATION_WORDS = ("to", "into", "onto")
 """After an object (or a route): where it goes next (*bring the bowl to the table*)."""
-CARRY_DESTINATION_WORDS = ("in", "into", "on", "onto", "to", "inside")
-"""After a carry verb's object: *put the bowl in the sink*."""
+CARRY_DESTINATION_WORDS = ("in", "into", "on", "onto", "to", "inside", "until", "till")
+"""After a carry verb's object: *put the bowl in the sink*; *bring the bowl until the table* (as learners
+write *to*)."""
 
 REFUSED_WORDS: dict[str, str] = {
     "leave": "'leave' (the translator cannot express leaving a place; say where to go instead)",
@@ -428,6 +429,8 @@ SUBJECT_FILLERS = word_set("you we i the robot it ever have has had do does did 
 """Skipped before the verb of a clause that follows a conjunction (*after you have been to X*)."""
 LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through"})
 """Repeated in a list after *either* / *both*: *either to A or to B*."""
+PLACE_PREPOSITIONS = frozenset({"to", "into", "in", "at", "on", "by", "through", "past", "inside"})
+"""Before a place (*go first to the kitchen*)."""
 VERB_STOPS = frozenset({",", "and", "or", "then", "if", "until", "before", "after", "when", "without"})
 """Words that end the verb words of an action."""
 
@@ -577,7 +580,8 @@ possible*, *when you get a chance*): skipped where they close a clause, that is 
 of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""
 
 _CHOOSERS = (("either",), ("any",), ("whichever",), ("either", "one"), ("any", "one"), ("whichever", "one"),
-             ("any", "of", "them"), ("either", "of", "them"), ("whichever", "of", "them"))
+             ("any", "of", "them"), ("either", "of", "them"), ("whichever", "of", "them"), ("whatever",),
+             ("whatever", "one"))
 _FINE = ((), ("is", "fine"), ("is", "ok"), ("is", "okay"), ("is", "good"), ("will", "do"), ("works",),
          ("would", "do"), ("would", "be", "fine"), ("will", "be", "fine"), ("you", "like"), ("you", "want"),
          ("you", "prefer"), ("you", "choose"), ("is", "closer"), ("is", "nearer"))
@@ -587,6 +591,8 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
 ) + (
     ("no", "matter", "which"), ("no", "matter", "which", "one"),
     ("it", "does", "not", "matter", "which"), ("does", "not", "matter", "which"),
+    ("is", "not", "important", "which"), ("it", "is", "not", "important", "which"),
+    ("not", "important", "which"), ("no", "matter", "which", "one"),
     ("does", "not", "matter", "which", "one"), ("it", "does", "not", "matter", "which", "one"),
     ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"), ("is", "fine"),
     ("your", "choice"), ("your", "pick"), ("take", "your", "pick"), ("you", "pick"), ("you", "choose"),
@@ -681,6 +687,8 @@ AFTERWARDS = Phrases((("afterwards",), ("afterward",), ("after", "that"), ("afte
                       ("straight", "after"), ("right", "after")))
 """In the consequent of a condition ("..., visit Y afterwards"): Y follows X, a response."""
 TRAILING_AFTER = ("after", "afterwards", "afterward")
+AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over", "again", ","})
+"""After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
 """``..., go to the dining room after.``: no meaning at the end of a clause."""
 
 # -------------------------------------------------------------------------------------------- negation
@@ -801,6 +809,8 @@ ASIDE = Phrases(tuple((",", rel, be, *also) for rel, be in (("which", "is"), ("w
                                                              ("that", "are"), ("it", "is"), ("it", "'s"),
                                                              ("that", "'s"), ("they", "are"))
                       for also in ((), ("also",), ("located",), ("also", "located"))))
+RELATIVE_THAT = Phrases((("that", "is"), ("which", "is"), ("that", "are"), ("which", "are"), ("who", "is")))
+"""*the bathroom that is next to the bedroom*: a relative clause stating a qualifier."""
 ASIDE_QUALIFIERS = frozenset({"in", "inside", "on", "next", "beside", "upstairs", "downstairs", "near",
                               "adjacent", "connected", "attached"})
 """``the couch, which is in the living room`` / ``the bowl (it's in the kitchen)``: an aside read as the
@@ -810,7 +820,7 @@ RELATIVE_PARTICIPLES = ("located", "kept", "stored", "placed", "found", "standin
 """``the room where the book is (kept)``."""
 STATEMENT_LINKS = ("is", "are", "was", "were")
 """``it is`` / ``there are``: a statement, not a reference."""
-WHOLE_BUILDING_PREPOSITIONS = ("in", "inside", "throughout")
+WHOLE_BUILDING_PREPOSITIONS = ("in", "inside", "throughout", "of", "around")
 WHOLE_BUILDING_DETERMINERS = ("the", "this", "our", "my", "your")
 
 # --------------------------------------------------------------------------------------------- context
@@ -924,6 +934,13 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("holding",): ("containing",),
     ("and", "also"): ("and",),
     ("any", "one", "of"): ("one", "of"),
+    ("near", "of"): ("near",),
+    ("next", "of"): ("next", "to"),
+    ("close", "of"): ("close", "to"),
+    ("i", "want", "that", "you"): ("i", "want", "you", "to"),
+    ("i", "would", "like", "that", "you"): ("i", "would", "like", "you", "to"),
+    ("without", "to"): ("without",),
+    ("for", "to"): ("to",),
     ("just", "one", "of"): ("one", "of"),
     ("only", "one", "of"): ("one", "of"),
     ("try", "not", "to"): ("do", "not"),

@@ -280,6 +280,11 @@ def or_between_actions(rest: str) -> str:
 
 
 # ----------------------------------------------------------------------------------------------- order
+def after_before_or_then(said: str) -> str:
+    return rephrase(f"'{said}': after what was said before it, or before it? Say 'then' (what follows comes "
+                    "after) or put 'after ...' first ('after you ..., go to ...')")
+
+
 def before_which(rest: str) -> str:
     return rephrase(f"'before that' at {rest}: it is not clear which of the earlier goals this comes before; "
                     "put the goals in the order they must be done (with 'then')")

@@ -191,7 +191,7 @@ def there(q: There, noun: Noun, np: Described, where: Where, disc: Discourse) ->
 def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
     """*the sink in the kitchen*: the objects in that room (the room phrase keeps only the rooms used); *every
     plant in the office and the kitchen*: those of each room, each of which must hold some."""
-    rooms = [inner(room, disc) for room in q.rooms]
+    rooms = [ground_phrase(room, Where("qualifier", rooms=True), disc) for room in q.rooms]
     said = disc.said(q.span.start, q.span.end)
     if noun.head.kind != "object" or any(e.kind != "room" for g in rooms for e in g.entities):
         rf.refuse(rf.object_in_room(said))

@@ -136,3 +136,5 @@ class Where:
     objects: bool = False
     revisit: bool = False
     """*again* / *go back to*: a definite phrase that fits several is the one named before as a goal."""
+    rooms: bool = False
+    """A pronoun must name a room (*the toilet of it*, *the sink in it*)."""

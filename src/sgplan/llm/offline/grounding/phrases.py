@@ -91,7 +91,7 @@ def ground_phrase(np: NounPhrase, where: Where, disc: Discourse) -> Grounded:
 @grounds(Pronoun)
 def pronoun(np: Pronoun, where: Where, disc: Discourse) -> Grounded:
     """*it* / *them* / *they*: the phrase named last that agrees in number (objects only after *put*)."""
-    ref = antecedent(np.word, disc, "object" if where.objects else None)
+    ref = antecedent(np.word, disc, "object" if where.objects else "room" if where.rooms else None)
     mode: Mode = "all" if np.word in lx.PLURAL_PRONOUNS else ref.mode
     g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, list(ref.entities), mode,
                  ref.room_scoped, where.role)

@@ -55,7 +55,8 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     if not isinstance(phrases, Match):
         return phrases
     ends = bool(set(verbs.node.words) & lx.END_VERBS) and not in_condition  # "end up in X": X after the rest
-    node = Action(r.span(start, phrases.end), verbs.node, phrases.node, in_condition=in_condition, last=ends)
+    node = Action(r.span(start, phrases.end), verbs.node, phrases.node, in_condition=in_condition, last=ends,
+                  first=verbs.node.first, repeat=Repeat(True, 1, None) if verbs.node.again else None)
     moved = floor_move(r, phrases.end, phrases.node, in_condition)
     if moved is not None:
         return moved if isinstance(moved, Refusal) else Match(replace(node, moved=moved.node), moved.end)
@@ -108,8 +109,16 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
     seen: list[str] = []
     floor: FloorSpec | None = None
     floor_span: Span | None = None
-    while i < len(r) and (not r.np_starts(i) or verb_idiom(r, i)) and r.word(i) not in lx.VERB_STOPS:
+    first = again = False
+    while i < len(r) and (not r.np_starts(i) or verb_idiom(r, i)) and (
+            r.word(i) not in lx.VERB_STOPS or said_first(r, i)):
         w = r.word(i)
+        if said_first(r, i):  # "go first to the kitchen", "go before to the kitchen, after to ..."
+            first, i = True, i + 1
+            continue
+        if w == "again" and r.word(i + 1) in lx.PLACE_PREPOSITIONS:  # "(go) again to the kitchen"
+            again, i = True, i + 1
+            continue
         if floor is not None and (r.phrase(i, lx.WHOLE_MISSION) or r.phrase(i, lx.TIME_FILLERS)):
             break  # "don't go downstairs at any point"
         idiom = verb_idiom(r, i)
@@ -136,7 +145,13 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
             return unreadable(r, i)
         seen.append(w)
         i += 1
-    return Match(VerbWords(tuple(seen), floor, floor_span), i)
+    return Match(VerbWords(tuple(seen), floor, floor_span, first, again), i)
+
+
+def said_first(r: Reader, i: int) -> bool:
+    """*first* / *before* among the verb words, before the preposition of the place (*go first to X*)."""
+    return bool(r.word(i - 1)) and (r.word(i) in lx.FIRST or r.word(i) == "before") \
+        and r.word(i + 1) in lx.PLACE_PREPOSITIONS
 
 
 def refused_verb(r: Reader, i: int, in_condition: bool) -> Refusal | None:

@@ -46,10 +46,14 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
         return "sequence", done
     if sequence_too and (seq := r.phrase(i, lx.SEQ_WORDS)) is not None:
         return "sequence", i + len(seq)
+    if sequence_too and (after := after_as_then(r, i)) is not None:
+        return after
     said = r.phrase(i, lx.TIME_FILLERS) or r.phrase(i, lx.POLITE)
     if said is not None:
         return "filler", i + len(said)
     w = r.word(i)
+    if w in lx.FIRST and r.word(i + 1) in lx.PLACE_PREPOSITIONS and r.word(i - 1) not in ("", ","):
+        return None  # "go first to the kitchen": the action's (it comes first)
     if w == "," or (w in lx.FILLERS and w not in lx.NOT_FILLERS_HERE) or w in lx.HESITATIONS:
         return "filler", i + 1
     return None
@@ -69,6 +73,32 @@ def on_the_way(r: Reader, i: int, way: tuple[str, ...],
     if sequence_too and r.word(i + len(way)) in lx.WAY_BACK:
         return "sequence", r.skip(i + len(way), lx.WAY_BACK)
     return None
+
+
+def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
+    """*go first to the kitchen, after to the bedroom*, *and after you touch the toilet*: *after* between
+    clauses, with no place after it, is *then* (as learners of English write it); *, after you go to X* at the
+    end of a sentence could also mean before it, which is refused."""
+    if r.word(i) != "after" or r.word(i - 1) not in (",", "and"):
+        return None
+    nxt = r.word(i + 1)
+    if nxt in lx.AFTER_AS_THEN or (nxt in lx.POSITIVE_VERBS and not nxt.endswith("ing")
+                                   and not has_main_clause(r, i + 1)):
+        return "sequence", i + 1  # "after to the bedroom", "after go up in the dining room", "after again"
+    k = skip_subject(r, i + 1)
+    verb = r.word(k) in lx.POSITIVE_VERBS or r.word(k) in lx.AVOID_VERBS
+    if k > i + 1 and verb and not has_main_clause(r, k):
+        if r.word(i - 1) == "and":
+            return "sequence", k  # "and after you touch the toilet": and then
+        return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), k + 4))))
+    return None
+
+
+def has_main_clause(r: Reader, i: int) -> bool:
+    """Whether a clause after *after you ...* at ``i`` is followed by its main clause (*after you go to X,
+    check Y*: a comma then an order, not a remark such as *, whatever one*)."""
+    return any(r.word(k) == "," and (r.word(k + 1) in lx.AVOID_VERBS - {"to", "in", "at", "on", "into"}
+                                     or r.phrase(k + 1, lx.NEG_STARTS) is not None) for k in range(i, len(r)))
 
 
 def closing_at(r: Reader, i: int) -> int:

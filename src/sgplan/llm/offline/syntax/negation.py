@@ -78,6 +78,7 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
             return found
         phrases, k = found.node, found.end
     k = particles(r, k)
+    k += 1 if r.word(k) in lx.NEGATING + lx.NEGATION_EVER and marker[-1] in lx.NEGATING else 0  # "... never"
     whole = r.phrase(k, lx.WHOLE_MISSION)
     k += len(whole) if whole else 0
     if r.word(k) in lx.PARTIAL_PROHIBITION or any(r.at(k, *p) for p in lx.PARTIAL_FROM):

@@ -277,6 +277,29 @@ def there(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     return None
 
 
+@QUALIFIERS.rule("where is X")
+def where_is(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the bedroom where is the book* (as learners write *where the book is*): the rooms holding it; *where
+    is only the bed*: holding nothing else."""
+    if noun.kind == "object" or r.word(i) != "where" or r.word(i + 1) not in lx.RELATIVE_BE:
+        return None
+    k = i + 2 + (1 if r.word(i + 2) in lx.ONLY_WORDS else 0)
+    if not r.np_starts(k) or r.word(k) == "there":
+        return None
+    thing = phrases.noun_phrase(r, k, "qualifier")
+    if not isinstance(thing, Match):
+        return thing
+    return Match(Contains(thing.node, r.span(noun.first, thing.end), None, k > i + 2), thing.end)
+
+
+@QUALIFIERS.rule("that is X")
+def relative_be(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the bathroom that is near (of) the bedrooms*, *the bedroom which is upstairs*: the qualifier the
+    relative clause states."""
+    said = r.phrase(i, lx.RELATIVE_THAT)
+    return Match(Skipped(), i + len(said)) if said and r.word(i + len(said)) in lx.ASIDE_QUALIFIERS else None
+
+
 @QUALIFIERS.rule("where X is")
 def holds(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*the room where the book is (kept)*, *the room (that) the book is in*, *the room in which the book

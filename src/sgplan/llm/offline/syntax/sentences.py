@@ -212,7 +212,7 @@ def prefixed(r: Reader, i: int, prefix_last: bool) -> Parse[SentenceBody]:
 def plain(r: Reader, i: int) -> Parse[SentenceBody]:
     """A body, after *In the kitchen,* (the room of the sentence) when said, and a closing condition."""
     scope = None
-    if r.word(i) in lx.SCOPE_IN and r.np_starts(i + 1):
+    if r.word(i) in lx.SCOPE_IN and r.np_starts(i + 1) and r.word(i - 1) not in lx.POSITIVE_VERBS:
         room = noun_phrase(r, i + 1, "qualifier")
         if isinstance(room, Refusal):
             return room

@@ -332,6 +332,10 @@ class VerbWords:
     words: tuple[str, ...]
     floor: FloorSpec | None
     floor_span: Span | None
+    first: bool = False
+    """*go first to X*, *go before to X* (as learners write *first*): the action comes first."""
+    again: bool = False
+    """*go again to X*: a new visit of X (as *X again*)."""
 
 
 @dataclass(frozen=True)
