@@ -285,6 +285,12 @@ def after_before_or_then(said: str) -> str:
                     "after) or put 'after ...' first ('after you ..., go to ...')")
 
 
+def out_of_text_order(later: str, earlier: str) -> str:
+    return rephrase(f"'{later.split(',')[0]}' is said before '{earlier.split(',')[0]}' but would be done "
+                    "after it, and no word says so; put the goals in the order they must be done (with "
+                    "'then'), or say 'first' / 'before' / 'in any order'")
+
+
 def before_which(rest: str) -> str:
     return rephrase(f"'before that' at {rest}: it is not clear which of the earlier goals this comes before; "
                     "put the goals in the order they must be done (with 'then')")

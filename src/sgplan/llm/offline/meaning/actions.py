@@ -12,7 +12,7 @@ from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding.discourse import FloorReading, Grounded, Where
 from sgplan.llm.offline.grounding.floors import floors_of
 from sgplan.llm.offline.grounding.phrases import ground_list
-from sgplan.llm.offline.meaning.compose import Step, Task, member_formula
+from sgplan.llm.offline.meaning.compose import Step, Task, member_formula, moved
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.names import Entity
 from sgplan.llm.offline.syntax.tree import Action, Repeat
@@ -70,7 +70,7 @@ def ordered_steps(action: Action, phrases: list[Grounded], carry: bool, lead: bo
     # "put it in Y": the object is already in hand, the goal is Y, after what came before.
     steps = [[]] if carry and pronouns_only else tasks_of(phrases, action.ordered)
     if lead:  # "A and B, B first": B, then A
-        steps = [steps[0][:1], steps[0][1:]]
+        steps = [moved([steps[0][:1]])[0], steps[0][1:]]
     if action.last:
         if len(steps) != 1:
             rf.refuse(rf.cannot_understand(lx.REFUSED_WORDS["last"]))
@@ -105,7 +105,7 @@ def tasks_of(phrases: list[Grounded], ordered: bool) -> list[Step]:
         if g.choice_of is not None:  # "look at a vase, then look at it again": the same vase
             rf.refuse(g.choice_of)
         tasks.append(Task("any" if g.mode == "any" else "all", [member_formula(e, g.room_scoped)
-                                                                 for e in g.entities]))
+                                                                 for e in g.entities], said_at=g.start))
     if ordered and len(tasks) > 1:
         return [[t] for t in tasks]
     return [tasks]
@@ -178,6 +178,7 @@ def repeats(phrases: list[Grounded], steps: list[Step], repeat: Repeat, going_ba
     last = list(steps[-1])
     if repeat.between is not None and repeat.times == 2:
         between = [s for s in steps_of(repeat.between, ctx).steps if s]
-        steps.extend([*between, [Task(t.mode, t.members) for t in last]])
+        steps.extend([*between, [Task(t.mode, t.members, said_at=t.said_at, moved=True) for t in last]])
     else:
-        steps.extend([Task(t.mode, t.members, [], True) for t in last] for _ in range(repeat.times - 1))
+        steps.extend([Task(t.mode, t.members, [], True, said_at=t.said_at, moved=True) for t in last]
+                     for _ in range(repeat.times - 1))

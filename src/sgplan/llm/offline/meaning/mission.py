@@ -17,7 +17,7 @@ from sgplan.llm.offline.grounding.attachments import describes
 from sgplan.llm.offline.grounding.discourse import Discourse, Grounded, Where
 from sgplan.llm.offline.grounding.floors import floors_of
 from sgplan.llm.offline.grounding.phrases import ground_phrase
-from sgplan.llm.offline.meaning.compose import Clause, conj
+from sgplan.llm.offline.meaning.compose import Clause, check_text_order, conj, moved
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.sentences import Meaning, read_sentence_body
 from sgplan.llm.offline.nouns import Head
@@ -58,6 +58,9 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
             join(parsed.node, parts, disc)
     for said in listed.values():
         check_count(said)
+    for part in parts:
+        if isinstance(part, Clause):
+            check_text_order(part, disc.said)
     formulas = [p.formula() if isinstance(p, Clause) else p for p in parts]
     present = [f for f in formulas if f is not None]
     if not present:
@@ -93,7 +96,7 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
     if precedes:
         if previous is None or not isinstance(result, Clause):
             rf.refuse(rf.precedes_needs_goals())
-        previous.steps[0:0] = result.filled()
+        previous.steps[0:0] = moved(result.steps)
         previous.constraints.extend(result.constraints)
     elif continues and previous is not None and isinstance(result, Clause):
         previous.steps.extend(result.steps)

@@ -73,7 +73,7 @@ def until(forbidden: Formula, target: object, clause: Clause, ctx: SentenceConte
     if not any(clause.steps) and not ctx.prior_steps:
         # "Keep out of X until you have seen Y, then Z": Y (which the until requires) is the step that *then*
         # follows
-        clause.steps[-1].append(Task(t.mode, list(t.members)))
+        clause.steps[-1].append(Task(t.mode, list(t.members), said_at=t.said_at))
 
 
 def previous_step(clause: Clause, ctx: SentenceContext) -> Step:

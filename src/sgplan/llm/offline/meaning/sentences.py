@@ -15,7 +15,7 @@ from sgplan.llm.offline.grounding.discourse import Where
 from sgplan.llm.offline.grounding.phrases import ground_phrase
 from sgplan.llm.offline.meaning.actions import steps_of
 from sgplan.llm.offline.meaning.body import read_body
-from sgplan.llm.offline.meaning.compose import Clause, Task, conj, disj
+from sgplan.llm.offline.meaning.compose import Clause, Task, conj, disj, moved
 from sgplan.llm.offline.meaning.conditions import condition_of, require, rule_formula
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.order import only_after
@@ -88,7 +88,7 @@ def prefixed(sentence: PrefixedSentence, ctx: SentenceContext) -> Meaning:
     prefix = steps_of(sentence.prefix, ctx).steps
     body = read_body(sentence.body, ctx)
     if sentence.prefix_last:
-        body.steps.extend(prefix)
+        body.steps.extend(moved(prefix))
     else:
         body.steps[:0] = prefix
     return postfix(body, sentence.postfix, ctx)
