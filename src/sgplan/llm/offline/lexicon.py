@@ -299,7 +299,8 @@ POSITIVE_VERBS = word_set(
     carrying deliver delivering return returning explore exploring see seeing pet mop mopping scrub
     scrubbing fill filling close closing empty emptying sweep sweeping play playing cook cooking
     lie lying rest resting sleep sleeping shower showering bathe use off up down out over from for
-    """
+    read reading watch watching examine examining fix fixing straighten straightening hoover hoovering
+    polish polishing arrange arranging organize organizing organise organising"""
 )
 """Verb-slot words known to mean "go to / interact with" the noun phrase that follows."""
 

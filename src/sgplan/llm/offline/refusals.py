@@ -24,6 +24,16 @@ def rephrase(message: str) -> str:
     return message + REPHRASE
 
 
+def with_suggestions(message: str, did_you_mean: str) -> str:
+    """``message`` with the suggestions for the mission's unknown words (*did you mean ...?*) before its
+    pointer to the understood English."""
+    if not did_you_mean:
+        return message
+    if message.endswith(REPHRASE):
+        return f"{message[: -len(REPHRASE)]}; {did_you_mean}{REPHRASE}"
+    return f"{message}; {did_you_mean}"
+
+
 def refuse(message: str) -> NoReturn:
     """Raise the refusal ``message`` (one of this module's) as a :class:`~sgplan.errors.MissionError`."""
     raise MissionError(message)
@@ -40,6 +50,10 @@ def left_over(words: str) -> str:
 
 def cannot_understand(what: str) -> str:
     return rephrase(f"cannot understand {what}")
+
+
+def not_a_verb(words: str) -> str:
+    return rephrase(f"cannot understand '{words}': it is no verb or room or object the translator knows")
 
 
 def cannot_understand_word(word: str, rest: str) -> str:

@@ -19,6 +19,7 @@ from sgplan.llm.offline.grounding import backref
 from sgplan.llm.offline.grounding.discourse import Discourse, Grounded, Where
 from sgplan.llm.offline.grounding.everyday import kids_room
 from sgplan.llm.offline.grounding.floors import determined, floors_of, on_floors, one_floor
+from sgplan.llm.offline.grounding.hints import hint
 from sgplan.llm.offline.grounding.places import there_rooms
 from sgplan.llm.offline.names import Entity
 from sgplan.llm.offline.nouns import Head
@@ -275,7 +276,8 @@ def check(g: Grounded, head: Head, count: int | None, remark_follows: bool, disc
     if g.mode == "the" and len(g.entities) > 1:
         listing = ", ".join(f"{e.key} (floor {e.floor})" if e.kind == "room"
                             else f"{e.key} (in {e.room_key}, floor {e.floor})" for e in g.entities)
-        raise MissionError(rf.ambiguous(g.phrase, len(g.entities), head.kind, listing, hint(g, disc)))
+        said = hint(g.entities, disc.vocab)
+        raise MissionError(rf.ambiguous(g.phrase, len(g.entities), head.kind, listing, said))
 
 
 def one_room_of_a_kind(entities: list[Entity]) -> bool:
@@ -292,25 +294,3 @@ def existing(head: Head, disc: Discourse) -> str:
         return ""
     listing = ", ".join(e.describe() for e in found[:8]) + (", ..." if len(found) > 8 else "")
     return f" (this scene has: {listing})"
-
-
-def hint(g: Grounded, disc: Discourse) -> str:
-    """How to single one entity out: by floor, by a room, by contents or neighbours, or by quantifier."""
-    ents = g.entities
-    word = ents[0].category
-    if len({e.floor for e in ents}) == len(ents):
-        return f"say which floor (e.g. 'the {word} on floor {ents[0].floor}')"
-    if ents[0].kind == "object":
-        if len({e.room_key for e in ents}) == len(ents):
-            room = disc.vocab.by_key[ents[0].room_key]
-            return f"say which room it is in (e.g. 'the {word} in the {room.category} on floor {room.floor}')"
-    else:
-        for e in ents:
-            own = {o.category for o in disc.vocab.entities if o.kind == "object" and o.room_key == e.key}
-            others = {o.category for o in disc.vocab.entities if o.kind == "object" and o.room_key != e.key
-                      and o.room_key in {x.key for x in ents}}
-            unique = sorted(own - others)
-            if unique:
-                return f"say what it contains (e.g. 'the {word} with the {unique[0]}')"
-    return f"say 'any {word}' or 'every {word}', or name it by its ID (e.g. {ents[0].key})"
-

@@ -22,6 +22,7 @@ from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import NounLexicon
+from sgplan.llm.offline.spelling import Spelling
 from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement
 from sgplan.llm.offline.syntax.lists import read_lists
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
@@ -33,7 +34,7 @@ from sgplan.llm.offline.text import rewrite, sentences, tokenize
 __all__ = ["Match", "Reader", "Refusal", "parse_sentence", "split_mission"]
 
 
-def split_mission(text: str, nouns: NounLexicon) -> list[Reader]:
+def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = None) -> list[Reader]:
     """The sentences of ``text`` to parse, its lists and what a colon announced read with them
     (:mod:`.lists`), its context set aside (:mod:`.context`), and without leading chit-chat: sentences before
     the first one with content (*Hi!*), and the chit-chat clause before the first comma of that one (*I'm
@@ -43,7 +44,10 @@ def split_mission(text: str, nouns: NounLexicon) -> list[Reader]:
     out: list[Reader] = []
     content = False
     parts = sentences(tokens)
-    for r in read_lists([Reader(p.toks, text, nouns, marker=p.marker, new_line=p.new_line) for p in parts]):
+    spelling = spelling or Spelling(nouns)
+    readers = [Reader(p.toks, text, nouns, marker=p.marker, new_line=p.new_line, spelling=spelling)
+               for p in parts]
+    for r in read_lists(readers):
         if stated_start(r) is not None or r.aside:
             out.append(r)
             continue

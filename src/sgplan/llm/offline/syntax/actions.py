@@ -143,9 +143,28 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
             floor, floor_span = RelativeFloor(w), r.span(i, i + 1)
         elif w not in lx.POSITIVE_VERBS and (w in lx.STRUCTURAL or not w.isalpha()):
             return unreadable(r, i)
+        odd = odd_verb(r, i)
+        if odd is not None:
+            return odd
         seen.append(w)
         i += 1
     return Match(VerbWords(tuple(seen), floor, floor_span, first, again), i)
+
+
+def odd_verb(r: Reader, i: int) -> Refusal | None:
+    """An unknown word in the verb slot is taken for a verb (whatever the verb, the goal is the same), unless
+    it cannot be one: it looks like a room or object of the scene (*then bathrom sink*: a misspelt noun, whose
+    loss would widen the goal), it has no vowel (*bthrm*, an abbreviation not known), or it follows another
+    unknown word (*lvng rm couch*)."""
+    spelling, w = r.spelling, r.word(i)
+    if spelling is None or spelling.is_known(w) or w.endswith("ly"):
+        return None
+    if spelling.scene_noun_like(w) is not None or not set(w) & set("aeiouy"):
+        return Refusal(rf.not_a_verb(w))  # the refusal then says which name it looks like
+    before = r.word(i - 1)
+    if before.isalpha() and not spelling.is_known(before) and not before.endswith("ly"):
+        return Refusal(rf.not_a_verb(f"{before} {w}"))
+    return None
 
 
 def said_first(r: Reader, i: int) -> bool:

@@ -17,6 +17,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.nouns import Head, NounLexicon
 from sgplan.llm.offline.phrases import Phrases
+from sgplan.llm.offline.spelling import Spelling
 from sgplan.llm.offline.syntax.tree import Announced, Span
 from sgplan.llm.offline.text import Tok, is_clock_time
 
@@ -63,6 +64,8 @@ class Reader:
     """An item of an ordered list after its first one (:mod:`.lists`)."""
     aside: bool = False
     """Words set aside unread (a list's heading): said back, not parsed (:mod:`.lists`)."""
+    spelling: Spelling | None = None
+    """The words the scene's missions use: an unknown word that looks like a noun is no verb."""
     words: tuple[str, ...] = field(init=False)
 
     def __post_init__(self) -> None:
