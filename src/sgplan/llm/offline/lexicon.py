@@ -634,6 +634,7 @@ WAYPOINT_OPENERS = ("on", "along")
 
 # ----------------------------------------------------------------------------------------------- order
 SEQ_WORDS = Phrases((("and", "then"), ("then",), ("after", "that"), ("afterwards",), ("afterward",),
+                     ("last", ","), ("and", "last"), ("last",),
                      ("next",), ("finally",), ("subsequently",), ("after", "which"), ("followed", "by"),
                      ("later",), ("and", "finally"), ("lastly",), ("secondly",), ("thirdly",),
                      ("fourthly",), ("second", ","), ("third", ","), ("fourth", ",")))
@@ -876,6 +877,8 @@ SEQUENCE_TIMES = ("later", "soon", "now")
 """Time words that alone order the steps (*Later, go to X*) rather than say when."""
 NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")}
 STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
+ORDER_JOINERS = ("so", "but")
+"""Before an order, a clause boundary even without a comma (*my son is asleep so don't go up there*)."""
 LOCATIVE = word_set("in into on onto at inside under beside near by behind")
 """Prepositions of place: a statement that places an object of the scene is no mere context."""
 """Between a statement and an order in one sentence (*Grandpa's napping, so stay out of there*)."""
@@ -934,6 +937,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("where", "you", "find"): ("containing",),
     ("holding",): ("containing",),
     ("and", "also"): ("and",),
+    ("after", ","): ("afterwards", ","),
     ("any", "one", "of"): ("one", "of"),
     ("near", "of"): ("near",),
     ("next", "of"): ("next", "to"),

@@ -50,7 +50,8 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
     if action.moved is not None:  # "go up to the top floor and check a bathroom (there)": one goal there
         floors = FloorReading(frozenset(e.floor for e in phrases[0].entities))
         return steps_of(action.moved, ctx, scope, lenient, (floors, action.moved.span.start))
-    phrases, lead = first_of_list(phrases, action.first)
+    said_after = action.first and not action.verbs.first and action.phrases.comma_list
+    phrases, lead = first_of_list(phrases, action.first, said_after)
     choice_remark(phrases, action.remark, disc.said)
     steps = ordered_steps(action, phrases, carry, lead, ctx)
     if action.repeat is not None:
@@ -111,16 +112,20 @@ def tasks_of(phrases: list[Grounded], ordered: bool) -> list[Step]:
     return [tasks]
 
 
-def first_of_list(phrases: list[Grounded], first: bool) -> tuple[list[Grounded], bool]:
-    """``A and B, B first``: the list with B moved to the front and once only (and True: B goes first). A
-    phrase that only restates the one before it is dropped (*the chairs, both of them*; *a TV, any TV*); any
-    other phrase named twice in one list is refused: it is not clear what is meant."""
+def first_of_list(phrases: list[Grounded], first: bool,
+                  last_first: bool = False) -> tuple[list[Grounded], bool]:
+    """``A and B, B first``: the list with B moved to the front and once only (and True: B goes first); so
+    is ``A, B first`` (``last_first``: *first* after a list joined by commas only). A phrase that only
+    restates the one before it is dropped (*the chairs, both of them*; *a TV, any TV*); any other phrase
+    named twice in one list is refused: it is not clear what is meant."""
     keys = [frozenset(e.key for e in g.entities) for g in phrases]
     phrases = [g for n, g in enumerate(phrases)
                if not (n and keys[n] == keys[n - 1] and (g.phrase.lower().endswith("them") or (
                    g.mode == phrases[n - 1].mode == "any" and g.phrase.lower().startswith("any "))))]
     keys = [frozenset(e.key for e in g.entities) for g in phrases]
     repeated = [n for n, k in enumerate(keys) if any(k & j for j in keys[:n])]
+    if not repeated and last_first and len(phrases) > 1:  # "go to the office, the kitchen first"
+        return [phrases[-1], *phrases[:-1]], True
     if not repeated:
         return phrases, False
     if repeated == [len(phrases) - 1] and first:  # "the clocks, the one in the bedroom first"

@@ -60,14 +60,27 @@ def split(r: Reader) -> list[Reader]:
 
 
 def comma_clauses(r: Reader) -> list[tuple[int, int]]:
-    """The ``[start, end)`` of the clauses between the commas of ``r`` (a time expression closing a clause is
-    a clause of its own: *go to the kitchen tonight*, *check the laptop before dinner, then ...*)."""
+    """The ``[start, end)`` of the clauses between the commas of ``r``, and before *so* / *but* followed by
+    an order (*my son is asleep upstairs so don't go up there*); a time expression closing a clause is a
+    clause of its own (*go to the kitchen tonight*, *check the laptop before dinner, then ...*)."""
     cuts = [k for k, w in enumerate(r.words) if w == ","]
+    joins = [k for k, w in enumerate(r.words) if w in lx.ORDER_JOINERS and k and r.word(k - 1) != ","
+             and starts_order(r, k + 1)]
+    starts = sorted({0, *(c + 1 for c in cuts), *joins})
+    ends = sorted({*cuts, *joins, len(r)})
     out: list[tuple[int, int]] = []
-    for start, end in zip([0, *(c + 1 for c in cuts)], [*cuts, len(r)]):
+    for start, end in zip(starts, ends):
         tail = time_tail(r, start, end)
         out += [(start, tail), (tail, end)] if tail is not None else [(start, end)]
     return [(a, b) for a, b in out if b > a]
+
+
+def starts_order(r: Reader, k: int) -> bool:
+    """Whether the words at ``k`` start an order: a prohibition, a polite wrapper, a verb."""
+    w = r.word(k)
+    return (r.phrase(k, lx.NEG_STARTS) is not None or r.phrase(k, lx.POLITE) is not None or w == "please"
+            or (w in lx.POSITIVE_VERBS and w not in lx.PLACE_PREPOSITIONS and w not in lx.PARTICLES
+                and not w.endswith(("ing", "ed"))))
 
 
 def aside(r: Reader, start: int, end: int) -> Reader:
@@ -174,9 +187,10 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         if not plain_word(r, start + 1):
             return None  # "the kitchen and the office": goals
         return next((j for j in range(start + 2, min(start + 5, end)) if finite_verb(r.word(j))), None)
+    verb = r.word(start + 1)
     if (w.isalpha() and r.head(start) is None and (w not in lx.LEXICON_WORDS or w in lx.RELATIVE_FLOORS)
-            and r.word(start + 1) in lx.STATEMENT_VERBS):
-        return start + 1  # "Grandpa's napping", "Sarah is coming", "downstairs needs to look nice"
+            and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
+        return start + 1  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
     return None
 
 

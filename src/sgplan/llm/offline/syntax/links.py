@@ -91,6 +91,9 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
         if r.word(i - 1) == "and":
             return "sequence", k  # "and after you touch the toilet": and then
         return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), k + 4))))
+    if r.np_starts(i + 1) and r.word(i + 1) not in lx.DETERMINERS - lx.ARTICLES and not has_main_clause(r, i):
+        # "go to the office and after the kitchen": the kitchen after (as learners write) or before?
+        return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), i + 5))))
     return None
 
 

@@ -40,6 +40,7 @@ from sgplan.llm.offline.syntax.tree import (
     RulesPost,
     SentenceBody,
     UntilSentence,
+    UpThere,
     WheneverRule,
 )
 
@@ -86,6 +87,8 @@ def floor_opening(r: Reader, i: int) -> tuple[FloorSpec | None, int]:
         k += 1  # "while you're up on the top floor"
     if r.word(k) in lx.RELATIVE_FLOORS and r.word(k + 1) == ",":
         return RelativeFloor(r.word(k)), k + 2
+    if k > i and r.word(k) in lx.BACK_THERE and r.at(k + 1, "there", ","):
+        return UpThere(r.word(k)), k + 3  # "while you're up there, ...": the floor of the goal named last
     j = k + 1 if r.word(k) in lx.FLOOR_PREPOSITIONS else k
     said = floor_words(r, j + (1 if r.word(j) == "the" else 0)) if j > k else None
     if said is not None and r.word(said.end) == ",":
