@@ -523,6 +523,7 @@ unless one of these is said with it)."""
 TIME_FILLERS = Phrases((
     ("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("eventually",), ("later",),
     ("real", "quick"), ("real", "fast"), ("quickly",), ("asap",), ("right", "away"), ("straight", "away"),
+    ("now",), ("immediately",), ("straightaway",),
     ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"))) + ANY_ORDER
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
@@ -705,7 +706,7 @@ NEG_STARTS = Phrases((
     ("and", "do", "not"), ("but", "not"), ("no",), ("neither",), ("nor",), ("and", "nor"),
     ("keep", "clear", "of"), ("steer", "clear", "of"), ("stay", "clear", "of"),
     ("kept", "out", "of"), ("stayed", "out", "of"), ("kept", "away", "from"), ("stayed", "away", "from"),
-    ("skip",), ("skipping",), ("give", "a", "miss"),
+    ("skip",), ("skipping",),
     ("avoided",), ("kept", "clear", "of"), ("stayed", "clear", "of"),
     ("under", "no", "circumstances"),
     ("at", "no", "point"), ("at", "no", "time"), ("keep", "off"), ("stay", "off"), ("always", "keep", "off"),
@@ -938,6 +939,9 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("holding",): ("containing",),
     ("and", "also"): ("and",),
     ("after", ","): ("afterwards", ","),
+    ("finish", "with"): ("end", "at"),
+    ("end", "with"): ("end", "at"),
+    ("finishing", "with"): ("ending", "at"),
     ("any", "one", "of"): ("one", "of"),
     ("near", "of"): ("near",),
     ("next", "of"): ("next", "to"),

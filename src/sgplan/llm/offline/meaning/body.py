@@ -151,7 +151,7 @@ def plain_action(item: PlainAction, clause: Clause, ctx: SentenceContext) -> Non
     """An action: its tasks in the current step, its objects looked for in the step's rooms (not when it is
     moved before the step, or after it: *go to the bedroom, but stop by the couch first*, *come back to
     X*); then what the words around it say of its order."""
-    later = item.moved_first or item.goes_back or ctx.listed
+    later = item.moved_first or item.goes_back or ctx.listed or item.action.last
     context = [] if later else ctx.step_rooms(clause.steps[-1])
     # "go to the kitchen, take a bottle, then ...": the kitchen's bottle if it has one
     lenient = not context and bool(ctx.carried_rooms) and not later

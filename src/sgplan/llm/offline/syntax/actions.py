@@ -75,7 +75,7 @@ def turned(r: Reader, verbs: VerbWords, i: int) -> VerbWords:
 def state_said(r: Reader, i: int) -> int:
     """After *check that the couch*: the state the check is about (*is tidy*, *is switched off*), which
     the translator does not read (being there is what a check needs)."""
-    if r.word(i) not in ("is", "are"):
+    if r.word(i) not in ("is", "are", "'s"):
         return i
     k = r.skip(i + 1, lx.FILLERS)
     while k < min(i + 4, len(r)) and r.word(k).isalpha() and r.word(k) not in lx.STRUCTURAL \

@@ -68,6 +68,9 @@ def on_the_way(r: Reader, i: int, way: tuple[str, ...],
     verb = after in lx.POSITIVE_VERBS and after not in lx.WAY_BACK | {"to", "into"}
     if sequence_too and (after == "," or verb):
         return "waypoint", i + n
+    if (sequence_too and n == len(way) and after in ("to", "into") and r.np_starts(i + n + 1)
+            and r.word(i - 1) not in ("", ",", "and", "then")):
+        return "sequence", i + n  # "swing by X on your way to the kitchen": X, then the kitchen
     if r.word(i + len(way)) == "there":
         return Refusal(rf.on_your_way_there())
     if sequence_too and r.word(i + len(way)) in lx.WAY_BACK:

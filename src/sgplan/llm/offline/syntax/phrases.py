@@ -289,6 +289,8 @@ def list_joiner(r: Reader, i: int, preposition: str | None) -> tuple[str, int] |
     w, nxt = r.word(i), r.word(i + 1)
     if preposition is not None and w in ("and", "or") and nxt == preposition and r.np_starts(i + 2):
         return w, i + 2
+    if closing_at(r, i + (1 if w == "," else 0)):
+        return None  # "the couch, and that's it": a sign-off, not an item
     if w == "," and nxt in ("and", "or") and r.np_starts(i + 2):
         return nxt, i + 2
     if (w == "," and r.np_starts(i + 1) and not r.phrase(i + 1, lx.NEG_STARTS) and not closing_at(r, i + 1)

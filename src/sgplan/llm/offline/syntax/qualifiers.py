@@ -173,8 +173,8 @@ def aside(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
 @QUALIFIERS.rule("possessive")
 def possessive(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*the teddy bear's room* (the room holding it), *the kitchen's sink* (the sink in it)."""
-    if r.word(i) != "'s" or noun.kind is None:
-        return None
+    if r.word(i) != "'s" or noun.kind is None or r.head(i + 1) is None:
+        return None  # not "the oven's off": there 's is "is"
     head = phrases.head_noun(r, i + 1, None)
     if not isinstance(head, Match):
         return head
