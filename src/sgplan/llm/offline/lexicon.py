@@ -39,6 +39,9 @@ BARE_CONTRACTIONS = {"youre": ("you", "are"), "theyre": ("they", "are"), "im": (
 """Contractions typed without their apostrophe (*then youre done*): read as the words they stand for."""
 
 SENTENCE_END = frozenset(".;:!?")
+NUMBERED = frozenset({"floor", "level", "flr", "fl", "lvl", "storey", "story", "step", "item", "number",
+                      "no"})
+"""Before a number and ``)`` (*(floor 1)*): the number is theirs, not a list marker."""
 
 SYMBOLS: dict[str, tuple[str, ...]] = {
     "+": ("and",), "&": ("and",), "w/": ("with",), "w/o": ("without",), "@": ("at",),
@@ -46,6 +49,8 @@ SYMBOLS: dict[str, tuple[str, ...]] = {
 """Notations read as words (an arrow, ``->``, ``>``, ``→``, is *then*): ``A + B`` is *A and B*, ``bdrm w/
 bed`` *bedroom with bed*. Every other symbol is a token the grammar refuses by name (``A / B``: and, or?)."""
 
+DASHES = frozenset({"-", "--", "\u2013", "\u2014"})
+"""The dashes of an aside (*the kitchen -- the one downstairs -- and ...*), read as commas."""
 CLOCK_PREPOSITIONS = ("at", "by", "before", "after", "until", "till", "around", "about")
 """Before a clock time (*at 6 pm*): quoted with it in the refusal."""
 
@@ -576,7 +581,7 @@ CLOSING = Phrases((
     ("when", "convenient"), ("when", "you", "can", "manage", "it"), ("no", "idea", "where"), ("no", "idea"),
     ("and", "then", "you", "are", "done"), ("then", "you", "are", "done"), ("you", "are", "done"),
     ("and", "you", "are", "done"), ("and", "that", "is", "it"), ("and", "that", "'s", "it"),
-    ("and", "that", "'s", "all"), ("and", "that", "is", "all")))
+    ("and", "that", "'s", "all"), ("and", "that", "is", "all"), ("done",), ("the", "end"), ("finished",)))
 """Sign-offs (*thanks a lot*, *cheers*, *that's all for now*) and asides that ask nothing (*no rush*, *if
 possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
 of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""

@@ -139,6 +139,11 @@ def nor_outside_negation(said: str) -> str:
                     "forbidden)")
 
 
+def dash_between_goals(said: str) -> str:
+    return rephrase(f"'{said}': a dash between goals could mean 'then' or 'and'; write '->' or 'then' for an "
+                    "order, 'and' for a set")
+
+
 def mixes_and_or(said: str) -> str:
     return rephrase(f"'{said}' mixes 'and' and 'or'; split it into two sentences")
 

@@ -27,6 +27,7 @@ from sgplan.llm.offline.lexicon import (
     CONTRACTIONS,
     LINE_CONTINUES,
     NEGATED_STEMS,
+    NUMBERED,
     SENTENCE_END,
     SYMBOLS,
 )
@@ -152,7 +153,8 @@ def sentences(tokens: list[Tok]) -> list[Part]:
             close()
         elif tok.text == BULLET and not current:
             marker = "bullet"
-        elif (tok.text.isdigit() and nxt == ")") or (tok.text.isdigit() and nxt == "." and at_item_start):
+        elif tok.text.isdigit() and ((nxt == ")" and not (current and current[-1].text in NUMBERED))
+                                     or (nxt == "." and at_item_start)):
             if current and current[-1].text == "(":
                 current.pop()
             close()

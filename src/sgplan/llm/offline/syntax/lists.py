@@ -91,18 +91,38 @@ def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order |
     what it announces of each item, the order it says and the floor it puts the items on (as words opening
     each item)."""
     said = replace(heading, toks=heading.toks[:-1]) if heading.word(len(heading) - 1) == ":" else heading
+    said, remark = without_order_remark(said)  # "Visit these rooms in order:"
+    order = order_said(remark, 0, len(remark)) if remark is not None else None
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
-        return [], None, None, ()  # "Here's the plan:", "Remember:": they ask nothing
-    announced = announcement(said) or verb_prefix(said)
-    if announced is not None:
-        return [], announced, None, ()
+        return [], None, order, ()  # "Here's the plan:", "Remember:": they ask nothing
+    announced = announcement(said) or verb_prefix(said) or room_heading(labelled(said))
+    if announced is not None:  # a room heading ("Kitchen stuff:") is the room of each item
+        return [], None if announced.scope else announced, order, announced.prefix if announced.scope else ()
     label = label_end(said)
     if label is None:
         return [said], None, None, ()  # an ordinary sentence before the list: read (or refused) as one
     out = [replace(said, toks=said.toks[:label], aside=True)] if names_more(said, label) else []
     if label < len(said) - 1:  # "Checklist, stay on this floor": a sentence of its own
         out.append(replace(said, toks=said.toks[label + 1:]))
-    return out, None, order_said(said, 0, label), floor_scope(said, 0, label)
+    return out, None, order or order_said(said, 0, label), floor_scope(said, 0, label)
+
+
+def without_order_remark(r: Reader) -> tuple[Reader, Reader | None]:
+    """``r`` without the order remark it ends with (*Do these in any order*), and that remark."""
+    for k in range(len(r)):
+        if (r.phrase(k, lx.ANY_ORDER) or r.phrase(k, lx.ORDER_MODIFIERS)) and only_order_remark(
+                replace(r, toks=r.toks[k:], marker=None)) is not None:
+            cut = k - (1 if r.word(k - 1) == "," else 0)
+            return replace(r, toks=r.toks[:cut]), replace(r, toks=r.toks[k:])
+    return r, None
+
+
+def labelled(r: Reader) -> Reader:
+    """``r`` without the words naming a list it ends with (*Kitchen stuff* -> *Kitchen*)."""
+    end = len(r)
+    while end > 1 and r.word(end - 1) in lx.LIST_NOUNS | {"stuff"}:
+        end -= 1
+    return replace(r, toks=r.toks[:end])
 
 
 def colon(r: Reader, after: Reader | None) -> list[Reader]:
@@ -110,10 +130,13 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
     announcement is read with the sentence after it (:func:`merged`)."""
     if r.word(len(r) - 1) != ":":
         return [r]
-    said = replace(r, toks=r.toks[:-1])
+    said, remark = without_order_remark(replace(r, toks=r.toks[:-1]))
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
-        return []  # "Here's the plan:", "Remember:": they ask nothing
-    announced = announcement(said) or room_heading(said)
+        said = replace(said, toks=())  # "Here's the plan:", "Remember:": they ask nothing
+    announced = announcement(said) or room_heading(said) if said.toks else None
+    if remark is not None and after is not None:  # "Do these in order: A, B": the remark after the list
+        announced = replace(announced or Announced(remark.quote(0, len(remark)), (), None, None,
+                                                   remark.toks[0].start, scope=True), suffix=remark.toks)
     if announced is not None and after is not None:
         return [replace(said, toks=(), announced=announced)]
     return [said] if said.toks else []
@@ -138,7 +161,7 @@ def merged(readers: list[Reader]) -> list[Reader]:
         if out and out[-1].announced is not None and not out[-1].toks:
             announced = out[-1].announced
             kept = None if announced.scope else announced
-            out[-1] = replace(r, toks=announced.prefix + r.toks, announced=kept)
+            out[-1] = replace(r, toks=announced.prefix + r.toks + announced.suffix, announced=kept)
             continue
         out.append(r)
     return [r for r in out if r.toks]

@@ -267,6 +267,10 @@ def phrase_list(r: Reader, i: int, role: Role) -> Parse[PhraseList]:
         return item
     items, joiners, i = [item.node], set[str](), item.end
     while (joined := list_joiner(r, i, preposition)) is not None:
+        restates = r.word(joined[1]) in lx.ARTICLES and r.word(joined[1] + 1) in lx.ANAPHORIC_ONE
+        if not joined[0] and not restates and r.text[r.toks[i].start:r.toks[i].end].strip() in lx.DASHES:
+            # "kitchen - office - couch": a route, or a set? (a dash between asides is read as a comma)
+            return Refusal(rf.dash_between_goals(r.quote(first, min(len(r), joined[1] + 2))))
         joiner, i = joined
         joiners |= {joiner} if joiner else set()
         item = noun_phrase(r, i, role)

@@ -215,10 +215,16 @@ def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
 
 @QUALIFIERS.rule("floor without a preposition")
 def floor_after(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
-    """*bathrm top flr*, *the bathroom floor 0*: the floor said right after the noun, as notes are written
-    (not *the bathroom top floor bedroom*: a floor before another noun names that one)."""
-    said = floor_words(r, i)
-    if said is None or isinstance(said.node, StartFloor) or r.head(said.end) is not None:
+    """*bathrm top flr*, *the bathroom floor 0*, *bathroom (floor 1)*, *bathroom (upstairs)*: the floor said
+    right after the noun, as notes are written (not *the bathroom top floor bedroom*: a floor before another
+    noun names that one)."""
+    aside = r.word(i) == "," and r.word(i + 1) != ","
+    k = i + (1 if aside else 0)
+    if aside and r.word(k) in lx.RELATIVE_FLOORS and r.word(k + 1) in lx.CLAUSE_ENDS:
+        return Match(OnFloor(RelativeFloor(r.word(k))), k + 1)
+    said = floor_words(r, k)
+    if (said is None or isinstance(said.node, StartFloor) or r.head(said.end) is not None
+            or (aside and r.word(said.end) not in lx.CLAUSE_ENDS)):
         return None
     return Match(OnFloor(said.node), said.end)
 

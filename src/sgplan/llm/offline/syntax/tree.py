@@ -623,6 +623,8 @@ class Announced:
     """The character offset of the announcement (one announcement may head several list items)."""
     scope: bool = False
     """The words before the colon name the room of what follows (*Kitchen: the fridge, then the sink*)."""
+    suffix: tuple[Tok, ...] = ()
+    """An order remark said before the colon, read after the list (*Do these in order: A, B*)."""
 
 
 @dataclass(frozen=True)
