@@ -278,7 +278,7 @@ def there(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if r.word(i) != "there" or r.word(i + 1) in lx.STATEMENT_LINKS:
         return None
     if noun.kind == "room" or (noun.kind is None) or (
-            noun.kind == "object" and noun.role == "goal" and not noun.room_scoped):
+            noun.kind == "object" and noun.role in ("goal", "avoid") and not noun.room_scoped):
         return Match(There(), i + 1)
     return None
 
