@@ -26,7 +26,7 @@ import scaling
 
 def build_case(target_m: float = 2.0, goals: int = 9, seed: int = 0):
     """The scaling benchmark's unordered ``goals`` case: (problem, seconds to build the domain)."""
-    from sgplan.mission import mission_from_formula
+    from sgplan import mission_from_formula  # the public one: any source tree has it
     from sgplan.pipeline import make_problem, resolve_radii
     from sgplan.scene.grid import build_occupancy_grid
 
@@ -79,6 +79,7 @@ def closed_per_state(state, iteration: int) -> np.ndarray:
 def run_astar(problem):
     """Plain A* (weights (1, 1)); returns (result, captured search state)."""
     from sgplan.planning import _search, plan
+    from sgplan.planning.schedule import WeightSchedule
 
     captured = {}
     original = _search.improve_path
@@ -89,7 +90,7 @@ def run_astar(problem):
 
     _search.improve_path = spy
     try:
-        result = plan(problem, "A*", weights=(1.0, 1.0), prebuild_actions=False)
+        result = plan(problem, "A*", schedule=WeightSchedule((1.0, 1.0)), prebuild_actions=False)
     finally:
         _search.improve_path = original
     return result, captured["S"]

@@ -28,6 +28,7 @@ from sgplan.datasets import SCENES, find_gibson_root
 from sgplan.errors import PlanningError
 from sgplan.llm.guidance import Guidance, route_break, validate_call
 from sgplan.mission import load_mission_folder
+from sgplan.options import PlanOptions
 from sgplan.pipeline import make_problem
 from sgplan.planning import plan
 from sgplan.scene.authors import load_authors_scene
@@ -98,7 +99,8 @@ def main() -> int:
 
 def _run(out: list, building: Building, mission, start: int, setup: str = "ALL") -> None:
     try:
-        problem = make_problem(building, mission, building.initial_cells[start], profile="authors").problem
+        options = PlanOptions(profile="authors")
+        problem = make_problem(building, mission, building.initial_cells[start], options).problem
         result = plan(problem, setup)
     except PlanningError:
         return  # invalid start or infeasible: nothing to compare

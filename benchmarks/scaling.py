@@ -72,10 +72,9 @@ def run_case(
     """One case in this process; returns seconds and peak RSS per part, and sizes."""
     import numpy as np
 
-    from sgplan.mission import mission_from_formula
+    from sgplan import mission_from_formula  # the public one: any source tree has it
     from sgplan.pipeline import make_problem, resolve_radii
-    from sgplan.planning import plan
-    from sgplan.planning.amra import get_setup
+    from sgplan.planning import get_setup, plan
     from sgplan.scene.grid import build_occupancy_grid
 
     row: dict = {"target_m": target_m, "floors": floors, "goals": goals, "order": order}

@@ -5,8 +5,10 @@
   reference-algorithm.md §11);
 - ``ltlf``: sgplan's default (missing edges reject AND the start label is read).
 
-Prints one Markdown table of optimal costs (metres; ``invalid-start`` / ``infeasible`` otherwise) and marks
-the cases where the readings disagree. Needs the Gibson data (see sgplan.datasets).
+Prints one Markdown table of optimal costs (metres; ``invalid-start`` / ``infeasible`` otherwise) and
+marks the cases where the readings disagree. All three use the authors' ``box`` reach model, so that only
+the reading changes (benchmarks/reach_model_table.py compares the reach models). Needs the Gibson data
+(see sgplan.datasets).
 
     .venv/bin/python benchmarks/semantics_profiles.py [--scenes Allensville Benevolence]
 """
@@ -27,13 +29,15 @@ READINGS = {"authors": ("authors", "authors"), "strict": ("ltlf", "authors"), "l
 def solve(building, folder: Path, start: tuple[int, int, int], reading: str) -> str:
     from sgplan.errors import PlanningError
     from sgplan.mission import load_mission_folder
+    from sgplan.options import PlanOptions
     from sgplan.pipeline import make_problem
     from sgplan.planning import plan
 
     hoa_profile, plan_profile = READINGS[reading]
     mission = load_mission_folder(folder, profile=hoa_profile)
     try:
-        problem = make_problem(building, mission, start, profile=plan_profile).problem
+        options = PlanOptions(profile=plan_profile, reach_model="box")
+        problem = make_problem(building, mission, start, options).problem
         return f"{plan(problem, 'ALL').cost_m:.4f}"
     except PlanningError as error:
         return error.status

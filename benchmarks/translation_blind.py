@@ -27,12 +27,12 @@ from collections.abc import Callable
 from functools import cache
 from pathlib import Path
 
+from sgplan import mission_from_formula  # the public one: any source tree has it
 from sgplan.datasets import find_gibson_root
 from sgplan.explain import explain_mission
 from sgplan.llm.evaluate import TranslationScore, load_jsonl_set, score_translator
 from sgplan.llm.offline import PatternTranslator
 from sgplan.logic import Formula, to_infix
-from sgplan.mission import mission_from_formula
 from sgplan.scene.authors import load_authors_scene
 from sgplan.scene.demo import demo_building
 from sgplan.scene.model import Building

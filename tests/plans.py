@@ -5,8 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import lru_cache
 
-from sgplan.mission import Mission, mission_from_formula
-from sgplan.planning.amra import PlanResult, plan
+from sgplan.mission import Mission, compile_mission
+from sgplan.planning.amra import SearchResult, plan
 from sgplan.planning.problem import PlanningProblem
 from sgplan.scene.demo import demo_building
 from sgplan.scene.grid import OccupancyGrid, build_occupancy_grid
@@ -30,14 +30,14 @@ class DemoPlan:
     building: Building
     grid: OccupancyGrid
     mission: Mission
-    result: PlanResult
+    result: SearchResult
 
 
 @lru_cache(maxsize=1)
 def demo_plan() -> DemoPlan:
     """The demo building, its grid, the mission above and its optimal plan from initial position 0."""
     building = demo_building()
-    mission = mission_from_formula(FORMULA, text=TEXT)
+    mission = compile_mission(FORMULA, text=TEXT)
     grid = build_occupancy_grid(building, building.robot_radius_m or 0.0)
     problem = PlanningProblem(
         building=building,

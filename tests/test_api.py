@@ -250,10 +250,10 @@ def test_a_plan_finds_where_each_proposition_holds_once_for_its_explanation_and_
     built: list[str] = []
     real = labels.proposition_cells
 
-    def counted(building: sgplan.api.Building, prop: labels.Proposition, reach_radius_m: float | None = None
-                ) -> np.ndarray:
+    def counted(building: sgplan.api.Building, prop: labels.Proposition, reach_radius_m: float | None = None,
+                reach_model: str = "visible") -> np.ndarray:
         built.append(prop.name)
-        return real(building, prop, reach_radius_m)
+        return real(building, prop, reach_radius_m, reach_model)
 
     for module in (labels, sgplan.explain.scene_labels):
         monkeypatch.setattr(module, "proposition_cells", counted)

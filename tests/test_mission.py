@@ -8,7 +8,7 @@ import pytest
 
 from sgplan.errors import MissionError
 from sgplan.logic import equivalent, ltlf_to_dfa
-from sgplan.mission import load_mission_folder, mission_from_formula, parse_formula, save_mission_folder
+from sgplan.mission import compile_mission, load_mission_folder, parse_formula, save_mission_folder
 from sgplan.scene.demo import demo_building
 from sgplan.scene.labels import Proposition
 
@@ -40,7 +40,7 @@ def test_formula_mission_round_trips_through_a_folder(tmp_path: Path) -> None:
     obj = next(building.objects())
     tokens = ["AND", "EVENTUALLY", "AND", f"enter({room.key})", f"reach({obj.key})",
               "ALWAYS", "NOT", f"enter({other.key})"]
-    mission = mission_from_formula(tokens, text="go", grounded_text="go uuid",
+    mission = compile_mission(tokens, text="go", grounded_text="go uuid",
                                    guidance={room.uuid: {0: [f"reach({room.uuid}, {obj.uuid})"]}})
     mission.check_scene(building)
     assert mission.labels(building).shape == (building.num_floors, *building.grid_shape)
@@ -65,13 +65,13 @@ def test_parse_formula_accepts_three_syntaxes() -> None:
 
 def test_unknown_proposition_names_need_a_meaning() -> None:
     with pytest.raises(MissionError, match="'kitchen' is neither"):
-        mission_from_formula("F kitchen")
-    mission = mission_from_formula("F kitchen", {"kitchen": Proposition("enter", 2)})
+        compile_mission("F kitchen")
+    mission = compile_mission("F kitchen", {"kitchen": Proposition("enter", 2)})
     assert mission.propositions["kitchen"].uuid == 2
 
 
 def test_mission_naming_absent_entities_is_refused() -> None:
-    mission = mission_from_formula('F "enter(room_999)"')
+    mission = compile_mission('F "enter(room_999)"')
     with pytest.raises(MissionError, match=r"enter\(room_999\)"):
         mission.check_scene(demo_building())
 
@@ -79,7 +79,7 @@ def test_mission_naming_absent_entities_is_refused() -> None:
 def test_bad_folders(tmp_path: Path) -> None:
     with pytest.raises(MissionError, match="does not exist"):
         load_mission_folder(tmp_path / "nope")
-    folder = save_mission_folder(mission_from_formula('F "enter(room_2)"'), tmp_path / "m")
+    folder = save_mission_folder(compile_mission('F "enter(room_2)"'), tmp_path / "m")
     (folder / "ap_desc.yaml").write_text("p1: {type: kTeleport, uuid: 2}\n")
     with pytest.raises(MissionError, match="unknown type 'kTeleport'"):
         load_mission_folder(folder)

@@ -12,7 +12,6 @@ from pathlib import Path
 import pytest
 
 from sgplan.cli import GC_YOUNG_THRESHOLD
-from sgplan.commands.common import SETUP_NAMES
 
 HEAVY = ("numba", "scipy", "PIL", "matplotlib", "rich", "openai", "sgplan.planning.amra")
 
@@ -73,16 +72,11 @@ def test_inspect_without_drawing_loads_no_plotting_or_planner() -> None:
 
 def test_planning_package_names_still_resolve_lazily() -> None:
     import sgplan.planning as planning
-    from sgplan.planning.amra import SETUPS, plan
+    from sgplan.planning.amra import plan
+    from sgplan.planning.setups import SETUPS
 
     assert planning.plan is plan and planning.SETUPS is SETUPS
     assert {"plan", "PlanningProblem", "SETUPS"} <= set(dir(planning))
-
-
-def test_setup_names_of_the_cli_are_the_planners() -> None:
-    from sgplan.planning.amra import SETUPS
-
-    assert set(SETUP_NAMES) == set(SETUPS)
 
 
 def test_console_script_exits_fast_with_outputs_complete_and_atexit_run(tmp_path: Path) -> None:

@@ -29,6 +29,8 @@ if TYPE_CHECKING:
         mission_from_text,
         plan,
     )
+    from sgplan.execution.run import Run
+    from sgplan.options import PlanOptions
     from sgplan.result import PlanResult
     from sgplan.scene.builder import BuildingBuilder
     from sgplan.starts import Point
@@ -43,13 +45,15 @@ _LAZY = {
     "add_guidance": "sgplan.api",
     "plan": "sgplan.api",
     "Session": "sgplan.api",
+    "PlanOptions": "sgplan.options",
+    "Run": "sgplan.execution.run",
     "PlanResult": "sgplan.result",
     "Point": "sgplan.starts",
     "BuildingBuilder": "sgplan.scene.builder",
 }
 __all__ = [
-    "BuildingBuilder", "PlanResult", "Point", "Session", "SgplanError", "__version__", "add_guidance",
-    "load_mission", "load_scene", "mission_from_formula", "mission_from_text", "plan",
+    "BuildingBuilder", "PlanOptions", "PlanResult", "Point", "Run", "Session", "SgplanError", "__version__",
+    "add_guidance", "load_mission", "load_scene", "mission_from_formula", "mission_from_text", "plan",
 ]
 
 

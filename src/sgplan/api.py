@@ -17,7 +17,7 @@ import logging
 import time
 from collections import Counter
 from collections.abc import Callable, Mapping
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypedDict
 
@@ -25,16 +25,20 @@ import numpy as np
 
 from sgplan.english import count
 from sgplan.errors import PlanningError, SceneError
+from sgplan.options import PlanOptions
 from sgplan.pipeline import Radii, make_problem, resolve_radii
 from sgplan.planning.shared import SharedParts
 from sgplan.scene.model import Building
+from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 if TYPE_CHECKING:  # the planner, grid and labels (numba, scipy) load when a plan is made, not for a mission
+    from sgplan.execution.run import Run
     from sgplan.explain import Explanation
     from sgplan.llm.backends import Backends, MissionGuide
     from sgplan.mission import Mission
-    from sgplan.planning.amra import IterationCallback
+    from sgplan.planning.amra import IterationCallback, SearchResult
     from sgplan.planning.problem import PlanningProblem
+    from sgplan.planning.termination import Termination
     from sgplan.result import PlanResult
     from sgplan.scene.grid import OccupancyGrid
     from sgplan.scene.labels import Proposition
@@ -107,11 +111,10 @@ def mission_from_formula(
     ``enter(room_<uuid>)`` / ``reach(object_<uuid>)``, or over names given a meaning by ``aps`` (an
     ``ap_desc.yaml`` file or a mapping). With ``building``, its propositions are checked against it now.
     """
-    from sgplan.mission import mission_from_formula as from_formula
-    from sgplan.mission import read_ap_desc
+    from sgplan.mission import compile_mission, read_ap_desc
 
     meanings = read_ap_desc(aps) if isinstance(aps, (str, Path)) else aps
-    mission = from_formula(formula, meanings, text=text)
+    mission = compile_mission(formula, meanings, text=text)
     if building is not None:
         mission.check_scene(building)
     return mission
@@ -175,21 +178,26 @@ def add_guidance(
     ), guide.name
 
 
-class _Explained(TypedDict):
+class Explained(TypedDict):
+    """The ``explanation`` and ``explanation_method`` of a :class:`PlanResult`."""
+
     explanation: str
     explanation_method: str
 
 
-def _explanation(mission: Mission, building: Building, given: Explanation | None = None,
-                 cells: Callable[[Proposition, float], np.ndarray] | None = None) -> _Explained:
+def explain_for_result(mission: Mission, building: Building, given: Explanation | None = None,
+                       cells: Callable[[Proposition, float, str], np.ndarray] | None = None, *,
+                       reach_radius_m: float | None = None, reach_model: str | None = None) -> Explained:
     """The mission explained in plain English (:func:`sgplan.explain.explain_mission`) as the
     ``explanation`` and ``explanation_method`` of a :class:`PlanResult`: the one place a plan gets it.
     ``given``: the caller's explanation of this mission and building (already said back), used as it is;
-    ``cells``: where each proposition holds (:meth:`Session.proposition_cells`)."""
+    ``cells``: where each proposition holds (:meth:`Session.proposition_cells`), objects reached within
+    ``reach_radius_m`` under ``reach_model`` (the plan's)."""
     if given is None:
         from sgplan.explain import explain_mission
 
-        given = explain_mission(mission, building, cells=cells)
+        given = explain_mission(mission, building, reach_radius_m=reach_radius_m, reach_model=reach_model,
+                                cells=cells)
     return {"explanation": given.text, "explanation_method": given.method}
 
 
@@ -198,8 +206,9 @@ def _explanation(mission: Mission, building: Building, given: Explanation | None
 
 class Session:
     """Plans many missions on one building, keeping between them the occupancy grid of each robot radius,
-    the label raster of each (proposition, reach radius) and the planner's building-only parts (``parts``:
-    the cell graph of each grid, the composite action tables and maps of each grid and reach radius, the
+    the cells of each (proposition, reach radius, reach model) and the planner's building-only parts
+    (``parts``: the cell graph of each grid, the composite action tables and maps of each grid, reach
+    radius and reach model, the
     h_LTL distance field of each target region; :mod:`sgplan.planning.shared`), so a second mission pays
     only for what depends on it. ``builds`` counts what the session built (grids, label masks);
     ``parts.builds`` the parts.
@@ -218,7 +227,7 @@ class Session:
     ) -> None:
         self.building = load_scene(building, data)
         self._grids: dict[float, OccupancyGrid] = {}
-        self._cells: dict[tuple[Proposition, float], np.ndarray] = {}  # flat indices where it holds
+        self._cells: dict[tuple[Proposition, float, str], np.ndarray] = {}  # flat indices where it holds
         self.parts = SharedParts(max_shared_bytes)
         self.builds: Counter[str] = Counter()
 
@@ -244,7 +253,8 @@ class Session:
             self.builds["grid"] += 1
         return self._grids[radius]
 
-    def labels(self, mission: Mission, reach_radius_m: float | None = None) -> np.ndarray:
+    def labels(self, mission: Mission, reach_radius_m: float | None = None,
+               reach_model: str = DEFAULT_REACH_MODEL) -> np.ndarray:
         """The mission's label raster (as :meth:`Mission.labels`), from the cells of each proposition kept
         between missions (sparse: a few MB at most where full masks took ~6 MB each on a Gibson scene)."""
         from sgplan.scene.labels import raster_from_cells
@@ -253,18 +263,19 @@ class Session:
         reach = self.radii(reach_radius_m=reach_radius_m).reach_m
         return raster_from_cells(
             (self.building.num_floors, *self.building.grid_shape),
-            [self.proposition_cells(prop, reach) for prop in mission.ordered_propositions],
+            [self.proposition_cells(prop, reach, reach_model) for prop in mission.ordered_propositions],
         )
 
-    def proposition_cells(self, prop: Proposition, reach_radius_m: float) -> np.ndarray:
-        """Flat indices of the cells where ``prop`` holds at this reach radius (metres), as
-        :func:`sgplan.scene.labels.proposition_cells`; built once per proposition and radius. The label
-        rasters and the explanations of this session's plans read them from here."""
+    def proposition_cells(self, prop: Proposition, reach_radius_m: float,
+                          reach_model: str = DEFAULT_REACH_MODEL) -> np.ndarray:
+        """Flat indices of the cells where ``prop`` holds at this reach radius (metres) and reach model, as
+        :func:`sgplan.scene.labels.proposition_cells`; built once per proposition, radius and model. The
+        label rasters and the explanations of this session's plans read them from here."""
         from sgplan.scene.labels import proposition_cells
 
-        key = (prop, reach_radius_m)
+        key = (prop, reach_radius_m, reach_model)
         if key not in self._cells:
-            self._cells[key] = proposition_cells(self.building, prop, reach_radius_m)
+            self._cells[key] = proposition_cells(self.building, prop, reach_radius_m, reach_model)
             self.builds["label_mask"] += 1
         return self._cells[key]
 
@@ -273,26 +284,19 @@ class Session:
         mission: Mission,
         start: StartSpec = None,
         *,
-        setup: str = "ALL",
-        profile: str = "ltlf",
-        robot_radius_m: float | None = None,
-        reach_radius_m: float | None = None,
-        time_limit_s: float | None = None,
-        max_expansions: int | None = None,
-        verify: bool = True,
+        options: PlanOptions | None = None,
         guide: MissionGuide | None = None,
         callback: IterationCallback | None = None,
-        prebuild_actions: bool = False,
         explanation: Explanation | None = None,
+        termination: Termination | None = None,
+        start_state: int | None = None,
+        **option_values: Any,
     ) -> PlanResult:
         """Plan ``mission`` from ``start`` with AMRA*; see :func:`sgplan.plan`."""
+        chosen = PlanOptions.from_keywords(options, **option_values)
         try:
-            return self._plan(
-                mission, start, setup=setup, profile=profile, robot_radius_m=robot_radius_m,
-                reach_radius_m=reach_radius_m, time_limit_s=time_limit_s, max_expansions=max_expansions,
-                verify=verify, guide=guide, callback=callback, prebuild_actions=prebuild_actions,
-                explanation=explanation,
-            )
+            return self._plan(mission, start, chosen, guide=guide, callback=callback, explanation=explanation,
+                              termination=termination, start_state=start_state)
         finally:
             self.parts.trim()
 
@@ -300,74 +304,118 @@ class Session:
         self,
         mission: Mission,
         start: StartSpec,
+        options: PlanOptions,
         *,
-        setup: str,
-        profile: str,
-        robot_radius_m: float | None,
-        reach_radius_m: float | None,
-        time_limit_s: float | None,
-        max_expansions: int | None,
-        verify: bool,
         guide: MissionGuide | None,
         callback: IterationCallback | None,
-        prebuild_actions: bool,
         explanation: Explanation | None,
+        termination: Termination | None,
+        start_state: int | None,
     ) -> PlanResult:
         from sgplan.jit import announce_compile
-        from sgplan.planning.amra import get_setup
         from sgplan.planning.amra import plan as amra_plan
-        from sgplan.result import PlanResult
-        from sgplan.starts import start_cell
+        from sgplan.planning.termination import any_of
 
         t0 = time.perf_counter()
-        spec = get_setup(setup)
-        guidance = "mission" if mission.guidance is not None else None
-        if spec.uses_llm:
-            mission, guidance = add_guidance(mission, self.building, guide)
-        radii = self.radii(robot_radius_m, reach_radius_m)
-        grid = self.grid(radii.robot_m)
-        start_at, start_from = start_cell(self.building, grid, start)
-        prepared = make_problem(
-            self.building, mission, start_at, profile=profile, robot_radius_m=radii.robot_m,
-            reach_radius_m=radii.reach_m, grid=grid, labels=self.labels(mission, radii.reach_m),
-            shared=self.parts,
-        )
-        scene_check = _check_in_scene(mission, self.building, prepared.problem)
+        staged = self._stage(mission, start, options, guide, start_state)
         prepare_s = time.perf_counter() - t0
-        log.info(
-            "scene %s: start %s (%s), robot radius %g m (%s), reach %g m (%s), profile %s, %d automaton "
-            "states",
-            self.building.name, start_at, start_from, radii.robot_m, radii.robot_from, radii.reach_m,
-            radii.reach_from, profile, mission.automaton.num_states,
-        )
         announce_compile()
         # Without kept parts the problem's maps are this plan's alone: freed once the search stops
         # reading them.
+        stop_when = any_of(options.termination(), termination)
         try:
-            found = amra_plan(prepared.problem, spec.name, time_limit_s=time_limit_s,
-                              max_expansions=max_expansions, callback=callback,
-                              prebuild_actions=prebuild_actions, release_maps=not self.parts.keeps)
+            found = amra_plan(staged.problem, options.setup, termination=stop_when, callback=callback,
+                              prebuild_actions=options.prebuild_actions, release_maps=not self.parts.keeps)
         except PlanningError as error:
-            raise _with_cause(error, mission, self.building, prepared.problem) from None
-        result = PlanResult(
-            scene=self.building.name, status=found.status, setup=found.setup, profile=profile,
-            cost_m=found.cost_m, bound=found.iterations[-1].bound if found.iterations else None,
-            path=found.path, start=start_at, start_from=start_from, radii=radii, queues=found.queues,
-            iterations=found.iterations, mission_text=mission.text, grounded_text=mission.grounded_text,
-            formula=_formula_text(mission), propositions=mission.descriptions, guidance=guidance,
-            notes=list(mission.notes), building=self.building, grid=grid, labels=prepared.problem.labels,
-            mission=mission, scene_check=scene_check,
-            **_explanation(mission, self.building, explanation, self.proposition_cells),
+            raise _with_cause(error, staged.mission, self.building, staged.problem) from None
+        explained = explain_for_result(staged.mission, self.building, explanation, self.proposition_cells,
+                                       reach_radius_m=staged.radii.reach_m,
+                                       reach_model=str(staged.problem.reach_model))
+        return finish_plan(found, staged, options, explained, started=t0, prepare_s=prepare_s)
+
+    def _stage(self, mission: Mission, start: StartSpec, options: PlanOptions,
+               guide: MissionGuide | None, start_state: int | None = None) -> StagedPlan:
+        """Everything before the search: the guidance a setup needs, the radii, grid, start cell and the
+        planning problem, checked against the scene (an error found there is raised)."""
+        from sgplan.planning.setups import get_setup
+        from sgplan.starts import start_cell
+
+        guidance = "mission" if mission.guidance is not None else None
+        if get_setup(options.setup).uses_llm:
+            mission, guidance = add_guidance(mission, self.building, guide)
+        radii = self.radii(options.robot_radius_m, options.reach_radius_m)
+        grid = self.grid(radii.robot_m)
+        start_at, start_from = start_cell(self.building, grid, start)
+        labels = self.labels(mission, radii.reach_m, options.effective_reach_model)
+        prepared = make_problem(self.building, mission, start_at, options, grid=grid, labels=labels,
+                                shared=self.parts, start_state=start_state)
+        scene_check = _check_in_scene(mission, self.building, prepared.problem)
+        log.info(
+            "scene %s: start %s (%s), robot radius %g m (%s), reach %g m (%s, %s model), profile %s, %d "
+            "automaton states",
+            self.building.name, start_at, start_from, radii.robot_m, radii.robot_from, radii.reach_m,
+            radii.reach_from, prepared.problem.reach_model, options.profile, mission.automaton.num_states,
         )
-        if found.status == "optimal":
-            result.bound = 1.0
-        if found.path is not None:
-            _add_outputs(result, verify)
-        result.timings = {
-            "prepare_s": prepare_s, "precompute_s": found.precompute_s, "search_s": found.search_s,
-            "wall_s": time.perf_counter() - t0,
-        }
-        return result
+        return StagedPlan(mission, guidance, prepared.problem, radii, start_from, scene_check)
+
+    def start(self, mission: Mission, start: StartSpec = None, *, options: PlanOptions | None = None,
+              guide: MissionGuide | None = None, **option_values: Any) -> Run:
+        """Start a :class:`~sgplan.execution.run.Run`: ``mission`` carried from ``start`` through the
+        changes of this building (which the run never makes to the session's own building), with progress,
+        monitoring, exact replanning and amendments. Options as :meth:`plan` takes them.
+
+        Cost: this session's grid and labels for the radii (kept), the run's cell numbering (two passes
+        over the grid); the first plan is made when ``run.plan`` is first read."""
+        from sgplan.execution.run import Run
+
+        return Run(self, mission, start, PlanOptions.from_keywords(options, **option_values), guide=guide)
+
+
+@dataclass(frozen=True)
+class StagedPlan:
+    """A plan's inputs once staged (:meth:`Session._stage`, or a run's plan from its position): the
+    mission (with the guidance added, if any), where its guidance came from, the problem, the radii, how the
+    start was chosen, the scene check's findings."""
+
+    mission: Mission
+    guidance: str | None
+    problem: PlanningProblem
+    radii: Radii
+    start_from: str
+    scene_check: list[dict[str, Any]]
+
+
+def finish_plan(found: SearchResult, staged: StagedPlan, options: PlanOptions, explained: Explained, *,
+                started: float, prepare_s: float) -> PlanResult:
+    """The public result of a search over ``staged``'s problem: the path checked (``options.verify``), its
+    waypoints and events, the timings since ``started`` (a ``time.perf_counter()``)."""
+    result = _result(found, staged, options, staged.problem.building, explained)
+    if found.path is not None:
+        _add_outputs(result, options.verify, staged.problem.start_state)
+    result.timings = {
+        "prepare_s": prepare_s, "precompute_s": found.precompute_s, "search_s": found.search_s,
+        "wall_s": time.perf_counter() - started,
+    }
+    return result
+
+
+def _result(found: SearchResult, staged: StagedPlan, options: PlanOptions, building: Building,
+            explained: Explained) -> PlanResult:
+    """The public result of a search (without the outputs :func:`_add_outputs` adds)."""
+    from sgplan.result import PlanResult
+
+    mission, problem = staged.mission, staged.problem
+    bound = 1.0 if found.status == "optimal" else found.iterations[-1].bound if found.iterations else None
+    return PlanResult(
+        scene=building.name, status=found.status, setup=found.setup, profile=options.profile,
+        reach_model=str(problem.reach_model),
+        cost_m=found.cost_m, bound=bound, path=found.path, start=problem.start, start_from=staged.start_from,
+        radii=staged.radii, queues=found.queues, iterations=found.iterations, mission_text=mission.text,
+        grounded_text=mission.grounded_text, formula=_formula_text(mission),
+        propositions=mission.descriptions, guidance=staged.guidance, notes=list(mission.notes),
+        building=building, grid=problem.grid, labels=problem.labels, mission=mission,
+        scene_check=staged.scene_check, **explained,
+    )
 
 
 def _check_in_scene(mission: Mission, building: Building, problem: PlanningProblem) -> list[dict[str, Any]]:
@@ -377,8 +425,14 @@ def _check_in_scene(mission: Mission, building: Building, problem: PlanningProbl
     as records."""
     from sgplan.explain.checks import check_mission_in_scene
 
+    profile = problem.profile
+    if problem.start_state is not None:  # check what is left from the start state, its label read
+        a = mission.automaton
+        mission = replace(mission, automaton=type(a)(a.aps, a.table, problem.start_state, a.accepting),
+                          formula=None)
+        profile = "authors"
     check = check_mission_in_scene(mission, building, problem.start, grid=problem.grid, labels=problem.labels,
-                                   profile=problem.profile)
+                                   profile=profile, reach_model=problem.reach_model)
     for finding in check.findings:
         if finding.severity == "warning":
             log.warning(f"warning: {finding.message}")
@@ -407,8 +461,9 @@ def _formula_text(mission: Mission) -> str | None:
     return to_infix(mission.formula) if mission.formula is not None else None
 
 
-def _add_outputs(result: PlanResult, verify: bool) -> None:
-    """Check the path (when asked) and add the waypoints and events."""
+def _add_outputs(result: PlanResult, verify: bool, start_state: int | None) -> None:
+    """Check the path (when asked) and add the waypoints and events; ``start_state``: the automaton state
+    at the path's first cell when it resumes a mission (:class:`~sgplan.planning.PlanningProblem`)."""
     from sgplan.outputs.events import path_events
     from sgplan.outputs.waypoints import leg_costs, path_waypoints
     from sgplan.planning.checker import check_path
@@ -417,7 +472,7 @@ def _add_outputs(result: PlanResult, verify: bool) -> None:
     assert result.mission is not None and result.building is not None
     automaton = result.mission.automaton
     if verify:
-        check = check_path(result.path, result.grid, result.labels, automaton, result.profile)
+        check = check_path(result.path, result.grid, result.labels, automaton, result.profile, start_state)
         if not check.valid:
             raise PlanningError("the path failed the independent check (a bug, please report it): "
                                 + "; ".join(check.problems))
@@ -429,7 +484,7 @@ def _add_outputs(result: PlanResult, verify: bool) -> None:
     result.simplify_waypoints()
     costs = np.concatenate([[0.0], np.cumsum(leg_costs(result.path, result.grid))])
     result.events = path_events(result.path, costs, result.labels, automaton, result.building,
-                                result.mission.descriptions)
+                                result.mission.descriptions, start_state=start_state)
 
 
 def plan(
@@ -437,18 +492,14 @@ def plan(
     mission: Mission,
     start: StartSpec = None,
     *,
-    setup: str = "ALL",
-    profile: str = "ltlf",
-    robot_radius_m: float | None = None,
-    reach_radius_m: float | None = None,
-    time_limit_s: float | None = None,
-    max_expansions: int | None = None,
-    verify: bool = True,
+    options: PlanOptions | None = None,
     guide: MissionGuide | None = None,
     callback: IterationCallback | None = None,
     session: Session | None = None,
-    prebuild_actions: bool = False,
     explanation: Explanation | None = None,
+    termination: Termination | None = None,
+    start_state: int | None = None,
+    **option_values: Any,
 ) -> PlanResult:
     """Plan an optimal path for ``mission`` over ``building`` with AMRA* and check it.
 
@@ -458,38 +509,40 @@ def plan(
         ``None`` (the scene's first initial position), an initial position index, a cell
         ``(row, col, floor)``, a metric :class:`~sgplan.starts.Point` ``(x_m, y_m, floor)`` (or a triple with
         float x/y), or a room (``"kitchen"``, ``"room_5"``); see :mod:`sgplan.starts`.
-    setup:
-        the paper's planner setup: ALL (default), NO-LLM, A*, OCC, OBJ, ROOM, FLR (any case). A setup using
-        LLM guidance on a mission without guidance gets it from ``guide`` (default: the offline symbolic
-        guide, which is not an LLM); ``PlanResult.guidance`` says which.
-    profile:
-        ``"ltlf"`` (start label read, missing automaton edges reject) or ``"authors"`` (docs/semantics.md).
-    robot_radius_m, reach_radius_m:
-        metres; default the scene's, else 0 and 0.6.
-    time_limit_s, max_expansions:
-        search budgets; when one runs out the result has status ``"timeout"`` with the best path so far
-        (its ``bound``) or none. No exception: the caller decides.
-    verify:
-        check the path and its cost with the independent checker (``PlanResult.verified``).
+    options, **option_values:
+        the planning options (:class:`sgplan.PlanOptions`: ``setup``, ``profile``, ``robot_radius_m``,
+        ``reach_radius_m``, ``reach_model``, ``time_limit_s``, ``max_expansions``, ``verify``,
+        ``prebuild_actions``), as a
+        value, as keywords (``setup="NO-LLM"``), or both (the keywords replace the value's fields). A
+        setup using LLM guidance on a mission without guidance gets it from ``guide`` (default: the
+        offline symbolic guide, which is not an LLM); ``PlanResult.guidance`` says which. When a budget
+        runs out the result has status ``"timeout"`` with the best path so far (its ``bound``) or none:
+        no exception, the caller decides.
     callback:
         called with each AMRA* iteration record as it finishes.
     session:
         plan within this :class:`Session` (its grids, labels, action maps and distance fields are
         reused); default a new one that keeps no planner parts.
-    prebuild_actions:
-        build every composite action map before the search starts (the paper's accounting: the first
-        path comes milliseconds after the search starts); default ``False`` builds each map when the
-        search first needs it, which makes the whole plan about 0.6x as long on the Gibson scenes
-        (A* never builds any).
     explanation:
         the mission's explanation over this building (:func:`sgplan.explain.explain_mission` with the
-        scene's reach radius) when the caller already made it, e.g. to say it back before planning: the
-        result carries it instead of making it again (a few tens of ms); default: made here.
+        plan's reach radius and model) when the caller already made it, e.g. to say it back before
+        planning: the result carries it instead of making it again (a few tens of ms); default: made here.
+    termination:
+        a further condition that stops the search (:mod:`sgplan.planning.termination`), e.g. a
+        :class:`~sgplan.planning.termination.CancelFlag` that another thread sets (status
+        ``"cancelled"``, with the best path so far) or a wall-clock
+        :class:`~sgplan.planning.termination.Deadline`; checked with the options' budgets.
+    start_state:
+        plan the rest of a mission already under way: the automaton state at ``start``, its label already
+        read (e.g. ``PlanResult.path[k, 3]`` at the path's cell ``k``, or a monitor's state there); the
+        path's rows then carry the states from it on. ``None``: from the automaton's initial state.
 
     Raises
     ------
+    TypeError
+        a keyword that is no planning option (the message names the options).
     PlanningError
-        ``status="invalid-start"`` / ``"infeasible"`` with the reason, or ``"error"`` (bad setup, radii).
+        ``status="invalid-start"`` / ``"infeasible"`` with the reason, or ``"error"`` (a bad option value).
     SceneError, MissionError
         the mission names entities the building lacks.
     """
@@ -497,9 +550,6 @@ def plan(
         session = Session(building, max_shared_bytes=0)
     elif session.building is not building:
         raise PlanningError("the session plans on another building than the one given")
-    return session.plan(
-        mission, start, setup=setup, profile=profile, robot_radius_m=robot_radius_m,
-        reach_radius_m=reach_radius_m, time_limit_s=time_limit_s, max_expansions=max_expansions,
-        verify=verify, guide=guide, callback=callback, prebuild_actions=prebuild_actions,
-        explanation=explanation,
-    )
+    return session.plan(mission, start, options=options, guide=guide, callback=callback,
+                        explanation=explanation, termination=termination, start_state=start_state,
+                        **option_values)

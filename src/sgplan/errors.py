@@ -123,3 +123,14 @@ class TrajectoryError(SgplanError):
         where = [str(self.path)] if self.path is not None else []
         where += [f"line {line}"] if line is not None else []
         super().__init__(": ".join([*where, message]))
+
+
+class MissionViolatedError(PlanningError):
+    """What a robot already did breaks the mission: no continuation can satisfy it (``plan --after`` a
+    trajectory that entered a forbidden room). Status ``"violated"``, CLI exit code 6, as ``sgplan
+    monitor`` gives for a violated trajectory."""
+
+    exit_code = 6
+
+    def __init__(self, message: str) -> None:
+        super().__init__(message, status="violated")

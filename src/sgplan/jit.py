@@ -39,9 +39,11 @@ def kernels_cached() -> bool | None:
         from sgplan import heap
         from sgplan.outputs import _segments
         from sgplan.planning import _dijkstra, _search
+        from sgplan.scene import _sight
 
         kernels = [
-            value for module in (heap, _dijkstra, _search, _segments) for value in vars(module).values()
+            value for module in (heap, _dijkstra, _search, _segments, _sight)
+            for value in vars(module).values()
             if isinstance(value, CPUDispatcher) and getattr(value, "_cache", None) is not None
         ]
         files = [getattr(kernel, "_cache")._cache_file for kernel in kernels]  # noqa: B009 - private in numba

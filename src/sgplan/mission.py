@@ -49,6 +49,7 @@ from sgplan.safeio import load_yaml, quote, read_text
 from sgplan.scene.fields import is_int, is_number
 from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building
+from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 Guidance = Mapping[Any, Mapping[Any, Sequence[str]]]
 """LLM guidance: ``{room_uuid: {automaton state: ["move(a, b)" | "reach(r, o)", ...]}}``."""
@@ -110,10 +111,12 @@ class Mission:
                 self.source,
             )
 
-    def labels(self, building: Building, reach_radius_m: float | None = None) -> np.ndarray:
-        """``(floors, rows, cols)`` label bitmasks in the automaton's proposition order."""
+    def labels(self, building: Building, reach_radius_m: float | None = None,
+               reach_model: str = DEFAULT_REACH_MODEL) -> np.ndarray:
+        """``(floors, rows, cols)`` label bitmasks in the automaton's proposition order, objects reached
+        under ``reach_model`` (:mod:`sgplan.scene.reach`)."""
         self.check_scene(building)
-        return label_raster(building, self.ordered_propositions, reach_radius_m)
+        return label_raster(building, self.ordered_propositions, reach_radius_m, reach_model)
 
 
 # -- building missions -------------------------------------------------------------------------------
@@ -136,7 +139,7 @@ def parse_formula(text: str | Sequence[str], known: set[str] | None = None) -> F
             raise infix_error from None
 
 
-def mission_from_formula(
+def compile_mission(
     formula: Formula | str | Sequence[str],
     propositions: Mapping[str, Proposition] | None = None,
     *,
@@ -145,7 +148,8 @@ def mission_from_formula(
     guidance: Guidance | None = None,
     set_aside: Sequence[str] = (),
 ) -> Mission:
-    """A mission whose automaton is the minimal DFA of ``formula`` (LTLf).
+    """A mission whose automaton is the minimal DFA of ``formula`` (LTLf), compiled here; the public
+    :func:`sgplan.mission_from_formula` builds on it (it also reads an ``ap_desc.yaml`` and checks the scene).
 
     Proposition names are either action tokens (``enter(room_2)``, then ``propositions`` may be
     omitted) or names given a meaning by ``propositions`` (e.g. ``p1`` from an ap_desc.yaml). ``set_aside``:

@@ -18,8 +18,8 @@ import numpy as np
 from sgplan.english import count
 from sgplan.errors import OutputError
 from sgplan.outputs.events import Event
-from sgplan.outputs.files import write_ros_path_yaml, write_waypoints_csv
 from sgplan.outputs.jsontext import record_json
+from sgplan.outputs.robot_files import write_ros_path_yaml, write_waypoints_csv
 from sgplan.outputs.waypoints import Waypoint
 from sgplan.pipeline import Radii, finite_or_none, iteration_records
 
@@ -39,8 +39,9 @@ class PlanResult:
     scene:
         the building's name.
     status:
-        ``"optimal"`` (``cost_m`` is the exact optimum) or ``"timeout"`` (a budget ran out: the best path
-        so far, within ``bound`` times the optimum, or no path).
+        ``"optimal"`` (``cost_m`` is the exact optimum), ``"timeout"`` (a budget ran out) or
+        ``"cancelled"`` (a cancel flag was set): the best path so far, within ``bound`` times the optimum,
+        or no path.
     cost_m:
         path cost in metres (``inf`` without a path).
     bound:
@@ -51,6 +52,8 @@ class PlanResult:
         cell); ``None`` without a path.
     start, start_from:
         the start cell ``(row, col, floor)`` and how it was chosen (``"room kitchen room_5"``).
+    reach_model:
+        where an object counted as reached: ``"visible"`` or ``"box"`` (:mod:`sgplan.scene.reach`).
     waypoints, waypoints_simplified:
         the path in metres, every cell / the simplified polyline (see :mod:`sgplan.outputs.waypoints`).
     waypoint_tolerance_m:
@@ -78,6 +81,7 @@ class PlanResult:
     status: str
     setup: str
     profile: str
+    reach_model: str
     cost_m: float
     bound: float | None
     path: np.ndarray | None
@@ -146,6 +150,7 @@ class PlanResult:
             "start_from": self.start_from,
             "setup": self.setup,
             "profile": self.profile,
+            "reach_model": self.reach_model,
             "status": self.status,
             "cost_m": finite_or_none(self.cost_m),
             "bound": self.bound,
@@ -198,14 +203,14 @@ class PlanResult:
 
     def write_waypoints_csv(self, path: str | Path, *, simplified: bool = True) -> Path:
         """The (simplified, by default) waypoints as CSV
-        (:func:`sgplan.outputs.files.write_waypoints_csv`)."""
+        (:func:`sgplan.outputs.robot_files.write_waypoints_csv`)."""
         return write_waypoints_csv(self.waypoints_simplified if simplified else self.waypoints, path)
 
     def write_ros_path_yaml(
         self, path: str | Path, *, simplified: bool = True, frame_id: str = "map"
     ) -> Path:
         """The (simplified) waypoints as ROS ``nav_msgs/Path`` per floor stretch
-        (:func:`sgplan.outputs.files.write_ros_path_yaml`)."""
+        (:func:`sgplan.outputs.robot_files.write_ros_path_yaml`)."""
         return write_ros_path_yaml(
             self.waypoints_simplified if simplified else self.waypoints, path, frame_id
         )
@@ -224,6 +229,7 @@ class PlanResult:
             text=self.mission_text or self.formula, explanation=self.explanation,
             cost_m=self.cost_m if self.path is not None else None,
             propositions=tuple(mission.ordered_propositions), reach_radius_m=self.radii.reach_m,
+            reach_model=self.reach_model,
         )
         written = draw_building(building, out_dir, grid=self.grid, path=self.path, mission=view, stem=stem,
                                 formats=formats, axes=axes)
@@ -238,7 +244,7 @@ class PlanResult:
 
         building, mission = self._drawable()
         return write_html_report(path, building, self.grid, self, mission, explanation=self.explanation,
-                                 reach_radius_m=self.radii.reach_m)
+                                 reach_radius_m=self.radii.reach_m, reach_model=self.reach_model)
 
     def _drawable(self) -> tuple[Building, Mission]:
         if self.building is None or self.mission is None:

@@ -12,7 +12,7 @@ from sgplan.bench.cases import Grid, discover, expand
 from sgplan.bench.executors import LocalExecutor
 from sgplan.bench.results import ResultStore
 from sgplan.bench.sweep import run_sweep
-from sgplan.mission import mission_from_formula, save_mission_folder
+from sgplan.mission import compile_mission, save_mission_folder
 from sgplan.scene.demo import demo_building
 from sgplan.scene.native import write_native_scene
 
@@ -41,7 +41,7 @@ def data_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     building.initial_cells = [*building.initial_cells, (0, 0, 0)]
     scene = write_native_scene(building, root / SCENE)
     for name, formula in MISSIONS.items():
-        guided, _ = add_guidance(mission_from_formula(formula), building)
+        guided, _ = add_guidance(compile_mission(formula), building)
         save_mission_folder(guided, scene / "missions" / name)
     return root
 

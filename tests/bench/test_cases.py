@@ -21,11 +21,25 @@ def test_expand_is_a_deduplicated_union_in_paper_order(data_dir: Path) -> None:
              Grid(missions=("1",), starts=(0,), setups=("all", "NO_LLM"))]
     cases = expand(scenes, grids, profile="ltlf", time_limit_s=5)
     assert [c.setup for c in cases] == ["ALL", "NO-LLM", "A*"]
-    assert cases[0].key == f"{SCENE}/1/0/ALL/ltlf/tl=5"
+    assert cases[0].key == f"{SCENE}/1/0/ALL/ltlf/tl=5/reach=visible"
     assert Case.from_dict(cases[2].to_dict()) == cases[2] and cases[2].slug == f"{SCENE}_m1_s0_Astar"
     # time limits that differ only past the 6th digit are different cases
     near = [Case(SCENE, "1", 0, "ALL", "authors", "s", "m", t).key for t in (1.0000001, 1.0000002, 0.25)]
     assert near == [f"{SCENE}/1/0/ALL/authors/tl={t}" for t in ("1.0000001", "1.0000002", "0.25")]
+
+
+def test_the_key_names_the_reach_model_unless_it_is_the_box(data_dir: Path) -> None:
+    """Rows made before there was a choice used the box model: their keys (no reach part) still resume
+    box cases, and an ltlf row of then is not taken for a visible one of now."""
+    def key(profile: str, model: str | None) -> str:
+        return Case(SCENE, "1", 0, "ALL", profile, "s", "m", None, model).key
+
+    assert key("authors", None) == key("authors", "box") == key("ltlf", "box").replace("ltlf", "authors")
+    assert key("ltlf", None) == key("ltlf", "visible") == f"{SCENE}/1/0/ALL/ltlf/tl=none/reach=visible"
+    assert key("authors", "visible").endswith("/authors/tl=none/reach=visible")
+    cases = expand(discover(data_dir), [Grid(missions=("1",), starts=(0,), setups=("ALL",))],
+                   profile="authors", reach_model="visible")
+    assert [c.effective_reach_model for c in cases] == ["visible"]
 
 
 def test_paper_grids_add_table2_only_with_benevolence() -> None:

@@ -87,27 +87,43 @@ def test_the_report_never_mixes_profiles_or_time_limits(tmp_path: Path) -> None:
     rows = authors + ltlf + limited
     latest = write_report(tmp_path, rows)  # default: the condition of the newest row (ltlf)
     text = (tmp_path / "report.md").read_text()
-    assert "| ALL | 3 |" in latest.table2 and "profile ltlf, no time limit" in text
+    assert "| ALL | 3 |" in latest.table2 and "profile ltlf, reach model box, no time limit" in text
     assert (
-        "2 cases under profile authors, no time limit" in text
-        and "1 case under profile authors, time limit 5 s" in text
+        "2 cases under profile authors, reach model box, no time limit" in text
+        and "1 case under profile authors, reach model box, time limit 5 s" in text
     )
-    chosen = write_report(tmp_path, rows, condition=("authors", 5.0))
+    chosen = write_report(tmp_path, rows, condition=("authors", "box", 5.0))
     assert "| ALL | 1 |" in chosen.table2
-    with pytest.raises(BenchError, match="no results under profile ltlf, time limit 9 s"):
-        write_report(tmp_path, rows, condition=("ltlf", 9.0))
+    with pytest.raises(BenchError, match="no results under profile ltlf, reach model box, time limit 9 s"):
+        write_report(tmp_path, rows, condition=("ltlf", "box", 9.0))
+
+
+def test_the_report_never_mixes_reach_models(tmp_path: Path) -> None:
+    """Rows made before the choice existed (no reach_model field) used the box model."""
+    old = [_row("Benevolence", "1", k, "ALL", 20.0, profile="ltlf", finished_at="2026-01-01T10:00:00",
+                key=f"Benevolence/1/{k}/ALL/ltlf") for k in (0, 1)]
+    new = [_row("Benevolence", "1", k, "ALL", 21.0, profile="ltlf", reach_model="visible",
+                finished_at="2026-01-02T10:00:00", key=f"Benevolence/1/{k}/ALL/ltlf/reach=visible")
+           for k in (0, 1, 2)]
+    latest = write_report(tmp_path, old + new)
+    text = (tmp_path / "report.md").read_text()
+    assert "| ALL | 3 |" in latest.table2 and "profile ltlf, reach model visible, no time limit" in text
+    assert "2 cases under profile ltlf, reach model box, no time limit" in text
+    assert choose_condition(old + new, reach_model="box") == ("ltlf", "box", None)
 
 
 def test_report_rows_are_chosen_by_profile_and_time_limit() -> None:
     rows = [_row("B", "1", 0, "ALL", 1.0, finished_at="2026-01-01"),
             _row("B", "1", 0, "ALL", 1.0, profile="ltlf", time_limit_s=0.1234567, finished_at="2026-01-03"),
             _row("B", "1", 0, "ALL", 1.0, time_limit_s=5.0, finished_at="2026-01-02")]
-    assert choose_condition(rows) == ("ltlf", 0.1234567)
-    assert choose_condition(rows, profile="authors") == ("authors", 5.0)  # the newest authors row's limit
-    assert choose_condition(rows, time_limit_s=0.1234567) == ("ltlf", 0.1234567)
+    assert choose_condition(rows) == ("ltlf", "box", 0.1234567)
+    assert choose_condition(rows, profile="authors") == ("authors", "box", 5.0)  # the newest authors limit
+    assert choose_condition(rows, time_limit_s=0.1234567) == ("ltlf", "box", 0.1234567)
     with pytest.raises(BenchError, match=r"no results with profile ltlf, time limit 5 s; recorded: .*"
-                                         r"profile ltlf, time limit 0.1234567 s"):
+                                         r"profile ltlf, reach model box, time limit 0.1234567 s"):
         choose_condition(rows, "ltlf", 5.0)
+    with pytest.raises(BenchError, match=r"no results with profile ltlf, reach model visible; recorded"):
+        choose_condition(rows, "ltlf", reach_model="visible")
 
 
 def test_report_of_an_empty_results_file_says_what_to_do(

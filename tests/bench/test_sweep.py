@@ -20,6 +20,7 @@ from sgplan.bench.results import COLUMNS, RESULTS_JSONL, ResultStore, writing_lo
 from sgplan.bench.sweep import pending_cases, run_sweep
 from sgplan.bench.worker import PARENT_ENV
 from sgplan.mission import load_mission_folder
+from sgplan.options import PlanOptions
 from sgplan.pipeline import make_problem
 from sgplan.planning import plan
 from sgplan.scene.loading import load_scene
@@ -31,9 +32,8 @@ FAKE_WORKER = [sys.executable, str(Path(__file__).with_name("fake_worker.py"))]
 def _direct_cost(case: Case) -> float:
     building = load_scene(case.scene_dir)
     mission = load_mission_folder(case.mission_dir, profile=case.profile)
-    problem = make_problem(
-        building, mission, building.initial_cells[case.start], profile=case.profile
-    ).problem
+    options = PlanOptions(profile=case.profile, reach_model=case.reach_model)
+    problem = make_problem(building, mission, building.initial_cells[case.start], options).problem
     return plan(problem, case.setup).cost_m
 
 
@@ -54,6 +54,7 @@ def test_local_executor_gives_the_costs_of_plan(swept: tuple[list[Case], ResultS
         )
         assert row["peak_rss_mb"] > 50 and row["wall_s"] > row["load_s"] > 0 and row["precompute_s"] > 0
         assert row["guidance"] == "mission" and row["profile"] == "authors" and row["executor"] == "local"
+        assert row["reach_model"] == "box"  # the authors profile's
         assert len(row["iterations"]) == row["num_iterations"] and len(row["queues"]) == len(
             row["iterations"][0]["expansions"]
         )
@@ -68,6 +69,22 @@ def test_infeasible_and_invalid_starts_are_recorded_with_reasons(
     assert infeasible["status"] == "unsatisfiable" and "Never enter the bathroom" in infeasible["reason"]
     assert invalid["status"] == "invalid-start" and "lies in no room" in invalid["reason"]
     assert infeasible["cost_m"] is None and invalid.get("first_time_s") is None
+
+
+def test_a_sweep_with_a_chosen_reach_model_records_it_and_plans_with_it(data_dir: Path,
+                                                                       tmp_path: Path) -> None:
+    """Mission 2 reaches the teddy bear: the visible model's optimum, recorded as such, is a plan's."""
+    from sgplan.bench.cases import Grid, discover, expand
+
+    grid = [Grid(missions=("2",), starts=(0,), setups=("NO-LLM",))]
+    cases = expand(discover(data_dir), grid, profile="authors", reach_model="visible")
+    store = ResultStore(tmp_path / "out")
+    run_sweep(cases, store, LocalExecutor(1, timeout_s=300))
+    (row,) = store.rows()
+    assert row["reach_model"] == "visible" and row["key"].endswith("/reach=visible")
+    assert row["status"] == "optimal" and row["cost_m"] == pytest.approx(_direct_cost(cases[0]), abs=1e-9)
+    boxed = Case.from_dict({**cases[0].to_dict(), "reach_model": None})
+    assert _direct_cost(boxed) < row["cost_m"]  # the authors' window reaches the bear through a wall
 
 
 def test_results_files_have_one_row_per_case_and_stable_columns(

@@ -13,7 +13,8 @@ from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError, TrajectoryError
 from sgplan.execution.monitor import Monitor, MonitorStatus
-from sgplan.mission import Mission, mission_from_formula
+from sgplan.mission import Mission
+from sgplan.mission import compile_mission as mission_from_formula
 from sgplan.outputs.waypoints import crossed_cells, densify, simplify_path
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.labels import Proposition

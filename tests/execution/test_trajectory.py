@@ -11,7 +11,7 @@ import pytest
 from sgplan.errors import TrajectoryError
 from sgplan.execution.monitor import Monitor
 from sgplan.execution.trajectory import Trajectory, read_trajectory, recorded_mismatches
-from sgplan.outputs.files import write_waypoints_csv
+from sgplan.outputs.robot_files import write_waypoints_csv
 from sgplan.outputs.waypoints import path_waypoints, simplify_path
 from tests.plans import REACH_M, demo_plan
 

@@ -8,7 +8,7 @@ import pytest
 
 from sgplan.errors import PlanningError, UnsatisfiableMissionError
 from sgplan.explain.checks import check_mission_in_scene
-from sgplan.mission import mission_from_formula
+from sgplan.mission import compile_mission
 from sgplan.pipeline import make_problem
 from sgplan.planning.amra import plan
 from sgplan.scene.demo import demo_building
@@ -17,8 +17,9 @@ BUILDING = demo_building()
 START = BUILDING.initial_cells[0]
 
 
-def _check(formula: str, start: tuple[int, int, int] | None = START):  # type: ignore[no-untyped-def]
-    return check_mission_in_scene(mission_from_formula(formula), BUILDING, start)
+def _check(formula: str, start: tuple[int, int, int] | None = START,  # type: ignore[no-untyped-def]
+           reach_model: str | None = None):
+    return check_mission_in_scene(compile_mission(formula), BUILDING, start, reach_model=reach_model)
 
 
 def _kinds(check) -> list[str]:  # type: ignore[no-untyped-def]
@@ -38,11 +39,14 @@ def test_contradiction_is_unsatisfiable_from_any_start_and_names_the_conflict() 
 
 
 def test_object_reached_from_a_room_it_is_not_in() -> None:
-    # The bathroom sink's reach window crosses the wall into the kitchen: possible, but said.
+    # The bathroom sink is in sight through the door from a corner of the kitchen: possible, but said.
     check = _check('F("enter(room_4)" & "reach(object_21)")')
     assert _kinds(check) == ["object-outside-room"]
-    assert "is not in the kitchen (room_4, floor 0): it is reached from there only through a wall" in (
-        check.findings[0].message)
+    assert ("is not in the kitchen (room_4, floor 0): it is reached from there only through a door, in sight "
+            "of it") in check.findings[0].message
+    # The authors' window also crosses the wall beside it.
+    check = _check('F("enter(room_4)" & "reach(object_21)")', reach_model="box")
+    assert "it is reached from there only through a wall" in check.findings[0].message
     # The upstairs sink (object_41) is out of reach from the kitchen: nothing satisfies the mission.
     check = _check('F("enter(room_4)" & "reach(object_41)")')
     assert _kinds(check) == ["unsatisfiable", "impossible-part"]
@@ -77,7 +81,7 @@ def test_goal_reachable_only_through_a_forbidden_room_names_it() -> None:
 
 
 def test_blocked_agrees_with_the_planner() -> None:
-    mission = mission_from_formula('F "enter(room_11)" & G !"enter(room_8)"')
+    mission = compile_mission('F "enter(room_11)" & G !"enter(room_8)"')
     prepared = make_problem(BUILDING, mission, START)
     with pytest.raises(PlanningError) as error:
         plan(prepared.problem, "NO-LLM")

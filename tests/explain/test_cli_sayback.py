@@ -12,7 +12,7 @@ import yaml
 from sgplan.cli import main
 from sgplan.commands.sayback import check_before_planning, say_back
 from sgplan.errors import ConfirmationError
-from sgplan.mission import mission_from_formula, save_mission_folder
+from sgplan.mission import compile_mission, save_mission_folder
 from sgplan.scene.demo import demo_building
 
 GOAL = 'F("enter(room_5)" & F "enter(room_11)") & G !"enter(room_6)"'
@@ -44,10 +44,10 @@ def test_plan_finds_where_each_proposition_holds_once_for_the_explanation_and_th
     built: list[str] = []
     real = labels.proposition_cells
 
-    def counted(building: Building, prop: labels.Proposition, reach_radius_m: float | None = None
-                ) -> np.ndarray:
+    def counted(building: Building, prop: labels.Proposition, reach_radius_m: float | None = None,
+                reach_model: str = "visible") -> np.ndarray:
         built.append(prop.name)
-        return real(building, prop, reach_radius_m)
+        return real(building, prop, reach_radius_m, reach_model)
 
     for module in (labels, sgplan.explain.scene_labels):  # wherever it is called from
         monkeypatch.setattr(module, "proposition_cells", counted)
@@ -80,7 +80,7 @@ def test_confirm_without_a_terminal_errors_instead_of_blocking(capsys: pytest.Ca
 
 
 def test_confirm_asks_and_stops_unless_yes() -> None:
-    mission, building = mission_from_formula(GOAL), demo_building()
+    mission, building = compile_mission(GOAL), demo_building()
     asked: list[str] = []
     say_back(mission, building, confirm=True, ask=lambda q: asked.append(q) or "yes")
     assert asked == ["Plan this mission? [y/N] "]
@@ -107,7 +107,7 @@ def test_translate_prints_the_explanation_and_writes_scene_record(
 
 
 def _folder_for_another_scene(tmp_path: Path) -> Path:
-    folder = save_mission_folder(mission_from_formula(GOAL), tmp_path / "m", building=demo_building())
+    folder = save_mission_folder(compile_mission(GOAL), tmp_path / "m", building=demo_building())
     record = yaml.safe_load((folder / "scene.yaml").read_text())
     record.update(scene="elsewhere", graph_sha256="0" * 64)
     record["entities"]["room_5"] = {"category": "kitchen", "floor": 1}
@@ -130,14 +130,14 @@ def test_mission_folder_of_another_scene_is_refused_unless_forced(
 
 
 def test_own_mission_folder_plans(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    folder = save_mission_folder(mission_from_formula(GOAL), tmp_path / "m", building=demo_building())
+    folder = save_mission_folder(compile_mission(GOAL), tmp_path / "m", building=demo_building())
     assert main(["plan", "--scene", "demo", "--mission-dir", str(folder), "--setup", "NO-LLM"]) == 0
     assert EXPLAINED in capsys.readouterr().out
 
 
 def test_translate_warns_when_the_mission_cannot_be_planned(capsys: pytest.CaptureFixture[str]) -> None:
     # What `translate` runs after writing the folder: the scene checks without a start, never raising.
-    mission = mission_from_formula('F "enter(room_4)" & G !"enter(room_4)"')
+    mission = compile_mission('F "enter(room_4)" & G !"enter(room_4)"')
     check = check_before_planning(mission, demo_building(), stop=False)
     assert [f.kind for f in check.findings] == ["unsatisfiable"]
     assert "warning: it cannot be planned: no path in scene 'demo-house'" in capsys.readouterr().err

@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from sgplan.explain import Entity, explain_formula, explain_mission
+from sgplan.explain import Referent, explain_formula, explain_mission
 from sgplan.logic import (
     Always,
     And,
@@ -27,16 +27,16 @@ from sgplan.logic import (
     equivalent,
     parse_infix,
 )
-from sgplan.mission import load_mission_folder, mission_from_formula
+from sgplan.mission import compile_mission, load_mission_folder
 from sgplan.scene.demo import demo_building
 
 GOLDEN = Path(__file__).parent / "golden"
 
 ENTITIES = {
-    "a": Entity("a", "room", "room_1", "kitchen", 0),
-    "b": Entity("b", "room", "room_2", "kitchen", 1),
-    "c": Entity("c", "object", "object_3", "sink", 0, "room_1", "kitchen"),
-    "d": Entity("d", "object", "object_4", "sink", 0, "room_1", "kitchen"),
+    "a": Referent("a", "room", "room_1", "kitchen", 0),
+    "b": Referent("b", "room", "room_2", "kitchen", 1),
+    "c": Referent("c", "object", "object_3", "sink", 0, "room_1", "kitchen"),
+    "d": Referent("d", "object", "object_4", "sink", 0, "room_1", "kitchen"),
 }
 
 
@@ -200,7 +200,7 @@ DEMO_FORMULAS = {
 
 @pytest.mark.parametrize("name", sorted(DEMO_FORMULAS))
 def test_demo_golden(name: str) -> None:
-    _golden(name, explain_mission(mission_from_formula(DEMO_FORMULAS[name]), demo_building()).text)
+    _golden(name, explain_mission(compile_mission(DEMO_FORMULAS[name]), demo_building()).text)
 
 
 @pytest.mark.parametrize("scene", ["Allensville", "Benevolence", "Collierville"])

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from sgplan.api import add_guidance
-from sgplan.mission import mission_from_formula, save_mission_folder
+from sgplan.mission import compile_mission, save_mission_folder
 from sgplan.scene.authors import load_authors_scene
 from sgplan.scene.demo import demo_building
 from sgplan.scene.native import write_native_scene
@@ -23,7 +23,7 @@ def templates(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     authors = synthetic_scene().write(root / "authors")
     native = write_native_scene(load_authors_scene(authors), root / "native")
     building = demo_building()
-    mission, _ = add_guidance(mission_from_formula(MISSION_FORMULA), building)
+    mission, _ = add_guidance(compile_mission(MISSION_FORMULA), building)
     mission_dir = save_mission_folder(mission, root / "mission")
     npz = root / "3DSceneGraph_Tiny.npz"
     write_npz(npz, scene_graph_dict())

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from sgplan.mission import mission_from_formula
+from sgplan.mission import compile_mission
 from sgplan.pipeline import make_problem
 from sgplan.planning.amra import plan
 from sgplan.scene.grid import build_occupancy_grid
@@ -23,7 +23,7 @@ def planned_and_exact_cost(
     building: Building, formula: str, start: tuple[int, int, int]
 ) -> tuple[float, float]:
     """The NO-LLM planner's cost and the oracle's, for ``formula`` from ``start`` (the scene's radii)."""
-    mission = mission_from_formula(formula)
+    mission = compile_mission(formula)
     problem = make_problem(building, mission, start).problem
     expected = optimal_cost(problem.grid, problem.labels, problem.automaton, start, problem.profile)
     result = plan(problem, "NO-LLM")

@@ -24,7 +24,7 @@ from sgplan.llm.guidance import (
     validate_call,
 )
 from sgplan.llm.records import RunRecord
-from sgplan.mission import mission_from_formula, read_guidance, write_guidance
+from sgplan.mission import compile_mission, read_guidance, write_guidance
 from sgplan.scene.demo import demo_building
 
 from .fake_openai_server import RecordedRequest, Step, error_body
@@ -45,7 +45,7 @@ def demo():
 
 @pytest.fixture(scope="module")
 def mission():
-    return mission_from_formula(FORMULA)
+    return compile_mission(FORMULA)
 
 
 def room_of(request: RecordedRequest) -> int:
@@ -254,7 +254,7 @@ def test_a_broken_route_is_counted_and_kept(fake_llm, llm_client, demo, mission)
 
 
 def test_the_remaining_mission_avoids_labels_the_scene_makes_implausible(demo) -> None:
-    a = mission_from_formula('F "enter(room_5)" & F "enter(room_7)" & F "reach(object_32)"').automaton
+    a = compile_mission('F "enter(room_5)" & F "enter(room_7)" & F "reach(object_32)"').automaton
     assert demo.object(uuid=32).room_uuid not in (5, 7)
     costs = label_costs(a, demo)
     assert "enter room_7 and reach object_32" in remaining_text(

@@ -10,6 +10,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from sgplan.mission import load_mission_folder
+from sgplan.options import PlanOptions
 from sgplan.pipeline import make_problem
 from sgplan.planning import PlanningProblem
 from sgplan.scene.authors import load_authors_scene
@@ -41,4 +42,5 @@ def load_case(
     """The planning problem of ``name`` mission ``mission`` from initial position ``start_index``."""
     building = scene(root, name)
     loaded = load_mission_folder(root / name / "missions" / str(mission), profile=profile)
-    return make_problem(building, loaded, building.initial_cells[start_index], profile=profile).problem
+    start = building.initial_cells[start_index]
+    return make_problem(building, loaded, start, PlanOptions(profile=profile)).problem

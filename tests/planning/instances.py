@@ -8,6 +8,7 @@ from sgplan.logic import parse_infix
 from sgplan.logic.automaton import Automaton
 from sgplan.logic.ltlf import ltlf_to_dfa
 from sgplan.planning import PlanningProblem
+from sgplan.planning.setups import reach_model_for
 from sgplan.scene.grid import OccupancyGrid, StairsLink, build_occupancy_grid
 from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building, CatCode, Floor, Room
@@ -89,7 +90,7 @@ def random_problem(seed: int, profile: str = "ltlf", guidance: str = "random") -
     )
     aps = ("p0", "p1", "p2")
     formula = FORMULAS[int(rng.integers(len(FORMULAS)))]
-    labels = label_raster(building, props, 0.5)
+    labels = label_raster(building, props, 0.5, reach_model_for(profile))  # the profile's, as the problem's
     free = np.argwhere(grid.traversable)
     floor, row, col = free[int(rng.integers(len(free)))]
     guide = None

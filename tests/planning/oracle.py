@@ -24,19 +24,21 @@ def optimal_cost(
     automaton: Automaton,
     start: tuple[int, int, int],
     profile: str = "ltlf",
+    start_state: int | None = None,
 ) -> float:
     """Minimum cost (metres) of a path from ``start`` = (row, col, floor) accepted by the automaton.
 
     ``inf`` when no such path exists. Under ``"ltlf"`` the start cell's label is read first; under
-    ``"authors"`` it is not.
+    ``"authors"`` it is not. ``start_state``: the automaton state at ``start`` with its label already read
+    (a mission resumed part-way); the profile then plays no part.
     """
     _, rows, cols = grid.traversable.shape
     res_x, res_y = grid.resolution_m
     row0, col0, floor0 = start
     table = automaton.table
     q0 = (
-        int(table[automaton.initial, int(labels[floor0, row0, col0])])
-        if profile == "ltlf"
+        int(start_state) if start_state is not None
+        else int(table[automaton.initial, int(labels[floor0, row0, col0])]) if profile == "ltlf"
         else automaton.initial
     )
 

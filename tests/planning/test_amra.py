@@ -11,8 +11,9 @@ from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError
 from sgplan.planning import SETUPS, PlanningProblem, get_setup, plan
-from sgplan.planning.amra import LLM, LTL
 from sgplan.planning.checker import check_path
+from sgplan.planning.setups import LLM, LTL
+from sgplan.planning.termination import ExpansionLimit
 from sgplan.scene.grid import StairsLink
 
 from .instances import RES, automaton, marks, open_building, open_grid, random_problem
@@ -89,7 +90,7 @@ def test_iteration_records_and_callback() -> None:
 
 def test_expansion_budget_gives_timeout() -> None:
     problem = _problem("F(p0 & F p1)", {0: [(4, 11, 0)], 1: [(0, 0, 0)]}, start=(0, 11, 0))
-    result = plan(problem, "NO-LLM", max_expansions=1)
+    result = plan(problem, "NO-LLM", termination=ExpansionLimit(1))
     assert result.status == "timeout"
     assert result.expansions <= 1
 

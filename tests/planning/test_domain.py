@@ -13,7 +13,7 @@ from sgplan.errors import PlanningError
 from sgplan.planning import PlanningProblem
 from sgplan.planning._search import ACT_MAP, successors
 from sgplan.planning.amra import path_cost
-from sgplan.planning.domain import MAP_FLOOR_DOWN, MAP_FLOOR_UP
+from sgplan.planning.domain import MAP_FLOOR_DOWN, MAP_FLOOR_UP, MAP_OBJECT
 from sgplan.scene.grid import StairsLink
 from sgplan.scene.model import CatCode
 from tests.scene.distances import grid_distances
@@ -219,3 +219,31 @@ def test_the_a_star_setup_plans_on_a_level_one_domain_and_no_llm_upgrades_it(see
     assert a_star.status == no_llm.status
     if a_star.status == "optimal":
         assert a_star.cost_m == pytest.approx(no_llm.cost_m, abs=1e-9)
+
+
+@pytest.mark.parametrize("model", ["box", "visible"])
+def test_object_level_regions_are_the_reach_labels_in_the_room(model: str) -> None:
+    """One source of truth: an object action's target cells are the cells of the object's ``reach`` label
+    (problem's radius and reach model) inside its room and on the grid."""
+    from sgplan.scene.demo import demo_building
+    from sgplan.scene.grid import build_occupancy_grid
+    from sgplan.scene.labels import Proposition, proposition_cells
+
+    building = demo_building()
+    grid = build_occupancy_grid(building, building.robot_radius_m or 0.0)
+    labels = np.zeros(grid.shape, dtype=np.uint8)
+    labels[building.initial_cells[1][2], building.initial_cells[1][0], building.initial_cells[1][1]] = 1
+    problem = PlanningProblem(building, grid, labels, automaton("F p0", ("p0",)), building.initial_cells[0],
+                              reach_radius_m=0.6, reach_model=model)
+    domain = problem.domain
+    graph, ptr, sources = domain.graph, domain.kactions.map_src_ptr, domain.kactions.map_src
+    objects = [(m, action) for m, action in enumerate(domain.maps) if action.kind == MAP_OBJECT]
+    assert len(objects) == sum(1 for _ in building.objects())
+    room_of_cell = graph.gather(grid.room_map)
+    for m, action in objects:
+        obj = building.object(uuid=action.entity)
+        cells = graph.cell_ids(proposition_cells(building, Proposition("reach", obj.uuid), 0.6, model))
+        cells = cells[cells >= 0]
+        expected = np.sort(cells[room_of_cell[cells] == obj.room_id])
+        np.testing.assert_array_equal(np.sort(sources[ptr[m]:ptr[m + 1]]), expected)
+        assert domain.kgraph.in_object_region[expected].all()

@@ -340,7 +340,7 @@ def test_unordered_goals_solved_optimally_with_any_pieces(
     from sgplan.planning import plan
 
     goals = 3 + seed % 2
-    problem = _instance(seed, And(tuple(Eventually(Atom(f"a{i}")) for i in range(goals))), "ltlf")
+    problem = _instance(seed, And(tuple(Eventually(Atom(f"a{i}")) for i in range(goals))), "ltlf", "visible")
     problem.guidance = None
     row, col, floor = problem.start
     expected = optimal_cost(problem.grid, problem.labels, problem.automaton, (row, col, floor), "ltlf")

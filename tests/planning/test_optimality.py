@@ -1,7 +1,8 @@
 """Optimality: AMRA*'s last iteration equals an independent exact product-graph Dijkstra.
 
 Random small buildings x random LTLf formulas x random starts x every setup, with random (adversarial)
-LLM guidance, under both semantics profiles. Every returned path must also pass the independent checker.
+LLM guidance, under both semantics profiles and both reach models (the labels and the object level's
+regions). Every returned path must also pass the independent checker.
 """
 
 from __future__ import annotations
@@ -16,9 +17,10 @@ from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError
 from sgplan.logic import Always, And, Atom, Eventually, Formula, Next, Not, Or, Until, ltlf_to_dfa
-from sgplan.planning.amra import SETUPS, plan
+from sgplan.planning.amra import plan
 from sgplan.planning.checker import check_path
 from sgplan.planning.problem import PlanningProblem
+from sgplan.planning.setups import SETUPS
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.labels import Proposition, label_raster
 from tests.scene.small_buildings import random_small_building
@@ -57,7 +59,7 @@ def mission_style() -> st.SearchStrategy[Formula]:
     return st.lists(part, min_size=1, max_size=4).map(lambda ps: ps[0] if len(ps) == 1 else And(tuple(ps)))
 
 
-def _instance(seed: int, formula: Formula, profile: str):
+def _instance(seed: int, formula: Formula, profile: str, reach_model: str):
     rng = np.random.default_rng(seed)
     building = random_small_building(rng)
     rooms = [r for r in building.rooms()]
@@ -67,13 +69,13 @@ def _instance(seed: int, formula: Formula, profile: str):
     aps = tuple(f"a{i}" for i in range(NUM_PROPS))
     automaton = ltlf_to_dfa(formula, aps=aps)
     grid = build_occupancy_grid(building, building.robot_radius_m or 0.0)
-    labels = label_raster(building, props, building.reach_radius_m)
+    labels = label_raster(building, props, building.reach_radius_m, reach_model)
     free = np.argwhere(grid.traversable)
     floor, row, col = (int(v) for v in free[int(rng.integers(len(free)))])
     guidance = _adversarial_guidance(rng, building, automaton.num_states)
     problem = PlanningProblem(building=building, grid=grid, labels=labels, automaton=automaton,
                               start=(row, col, floor), profile=profile, guidance=guidance,
-                              reach_radius_m=building.reach_radius_m)
+                              reach_radius_m=building.reach_radius_m, reach_model=reach_model)
     return problem
 
 
@@ -122,15 +124,21 @@ def _check_all_setups(problem: PlanningProblem) -> None:
 _SETTINGS = settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 
+_MODELS = st.sampled_from(["box", "visible"])
+
+
 @_SETTINGS
-@given(seed=st.integers(0, 2**32 - 1), formula=formulas(), profile=st.sampled_from(["ltlf", "authors"]))
+@given(seed=st.integers(0, 2**32 - 1), formula=formulas(), profile=st.sampled_from(["ltlf", "authors"]),
+       reach_model=_MODELS)
 def test_random_formulas_are_solved_optimally_by_every_setup(
-    seed: int, formula: Formula, profile: str
+    seed: int, formula: Formula, profile: str, reach_model: str
 ) -> None:
-    _check_all_setups(_instance(seed, formula, profile))
+    _check_all_setups(_instance(seed, formula, profile, reach_model))
 
 
 @_SETTINGS
-@given(seed=st.integers(0, 2**32 - 1), formula=mission_style())
-def test_mission_shaped_formulas_are_solved_optimally_by_every_setup(seed: int, formula: Formula) -> None:
-    _check_all_setups(_instance(seed, formula, "ltlf"))
+@given(seed=st.integers(0, 2**32 - 1), formula=mission_style(), reach_model=_MODELS)
+def test_mission_shaped_formulas_are_solved_optimally_by_every_setup(
+    seed: int, formula: Formula, reach_model: str
+) -> None:
+    _check_all_setups(_instance(seed, formula, "ltlf", reach_model))

@@ -16,9 +16,10 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError
-from sgplan.planning import PlanningProblem, amra, plan
+from sgplan.planning import PlanningProblem, plan, search_memory
 from sgplan.planning import _search as core
 from sgplan.planning.checker import check_path
+from sgplan.planning.schedule import WeightSchedule
 
 from .instances import automaton, marks, open_building, open_grid, random_problem
 from .oracle import optimal_cost
@@ -85,7 +86,7 @@ def test_closed_bits_belong_to_their_iteration() -> None:
 def test_a_schedule_longer_than_the_iteration_tags_is_refused() -> None:
     problem = random_problem(3)
     with pytest.raises(PlanningError, match="iterations"):
-        plan(problem, "A*", weights=(10.0, 20.0), decay=0.99)
+        plan(problem, "A*", schedule=WeightSchedule((10.0, 20.0), decay=0.99))
 
 
 @_FEW
@@ -95,12 +96,13 @@ def test_a_one_page_pool_grows_to_the_same_optimum(seed: int, setup: str) -> Non
     default = _plan_or_none(problem, setup)
     if default is None:
         return
-    original = amra._new_state
+    original = search_memory.new_state
     try:
-        amra._new_state = lambda domain, k, pages=1: original(domain, k, pages=1)  # type: ignore[assignment]
+        one_page = lambda domain, k, pages=1: original(domain, k, pages=1)  # noqa: E731
+        search_memory.new_state = one_page  # type: ignore[assignment]
         small = plan(problem, setup)
     finally:
-        amra._new_state = original  # type: ignore[assignment]
+        search_memory.new_state = original  # type: ignore[assignment]
     assert small.cost_m == pytest.approx(_oracle(problem), abs=1e-9)
     assert small.cost_m == default.cost_m and small.expansions == default.expansions
     assert check_path(small.path, problem.grid, problem.labels, problem.automaton, problem.profile).valid
@@ -115,7 +117,7 @@ def test_reusing_work_across_iterations_keeps_the_fresh_optimum(seed: int, setup
     anytime = _plan_or_none(problem, setup)
     if anytime is None or anytime.cost_m == 0:  # no path, or the start is accepting (one record)
         return
-    fresh = plan(problem, setup, weights=(1.0, 1.0))
+    fresh = plan(problem, setup, schedule=WeightSchedule((1.0, 1.0)))
     expected = _oracle(problem)
     assert anytime.cost_m == pytest.approx(expected, abs=1e-9)
     assert fresh.cost_m == pytest.approx(expected, abs=1e-9)
@@ -175,10 +177,10 @@ def test_at_w1_one_the_anchor_is_the_plain_a_star(seed: int) -> None:
     """From w1 = 1 the anchor follows occupancy moves only: NO-LLM's single (1, 1) search is A*'s,
     expansion for expansion; with LLM guidance every w1 = 1 iteration runs the anchor alone."""
     problem = random_problem(seed)
-    astar = _plan_or_none(problem, "A*", weights=(1.0, 1.0))
+    astar = _plan_or_none(problem, "A*", schedule=WeightSchedule((1.0, 1.0)))
     if astar is None or astar.cost_m == 0:
         return
-    nollm = plan(problem, "NO-LLM", weights=(1.0, 1.0))
+    nollm = plan(problem, "NO-LLM", schedule=WeightSchedule((1.0, 1.0)))
     assert nollm.expansions == astar.expansions and nollm.cost_m == astar.cost_m
     everything = plan(problem, "ALL")
     weighted = [it for it in everything.iterations if it.w1 > 1]
@@ -195,8 +197,8 @@ def test_iterations_at_w1_one_are_one_a_star_search(seed: int) -> None:
     """(1, 4) -> (1, 2) -> (1, 1) expands exactly what a single (1, 1) search does: at w1 = 1 a closed
     state is final, so the later iterations only continue the first one."""
     problem = random_problem(seed)
-    single = plan(problem, "A*", weights=(1.0, 1.0))
-    stepped = plan(problem, "A*", weights=(1.0, 4.0))
+    single = plan(problem, "A*", schedule=WeightSchedule((1.0, 1.0)))
+    stepped = plan(problem, "A*", schedule=WeightSchedule((1.0, 4.0)))
     assert [(it.w1, it.w2) for it in stepped.iterations] == [(1, 4), (1, 2), (1, 1)]
     assert stepped.expansions == single.expansions
     assert stepped.cost_m == single.cost_m == pytest.approx(_oracle(problem), abs=1e-9)
@@ -223,7 +225,7 @@ def _run_kernel(kernel, domain, state, q_level, q_htype, max_level: int):
                          max_level, 10**9, 16)
         if code != core.GROW:
             return code, state
-        state = amra._reserve(state, 2 * int(state.hsize.max(initial=0)) + 16, free_pages=16)
+        state = search_memory.reserve(state, 2 * int(state.hsize.max(initial=0)) + 16, free_pages=16)
 
 
 @_FEW
@@ -240,12 +242,13 @@ def test_the_flat_anchor_loop_is_the_general_loop(seed: int) -> None:
     if domain.accepting[domain.q_start]:
         return
     q_level, q_htype = np.zeros(1, dtype=np.int32), np.zeros(1, dtype=np.int32)
-    states = [amra._new_state(domain, 1, pages=1), amra._new_state(domain, 1, pages=1)]
+    states = [search_memory.new_state(domain, 1, pages=1), search_memory.new_state(domain, 1, pages=1)]
     flat = lambda G, A, M, L, S, ql, qh, ml, budget, succ: core.anchor_path(G, L, S, budget, succ)  # noqa: E731
     for started, (w1, w2) in enumerate([(10.0, 20.0), (2.5, 5.0), (1.0, 1.25), (1.0, 1.0)], start=1):
         codes = []
         for i, kernel in enumerate((flat, core.multi_queue_path)):
-            state = amra._reserve(states[i], int(states[i].hsize[0] + states[i].iscal[core.I_NINCONS]) + 16)
+            room = int(states[i].hsize[0] + states[i].iscal[core.I_NINCONS]) + 16
+            state = search_memory.reserve(states[i], room)
             core.start_iteration(domain.kgraph, domain.klogic, state, q_level, q_htype, w1, w2, started)
             code, states[i] = _run_kernel(kernel, domain, state, q_level, q_htype, 1)
             codes.append(code)
@@ -273,10 +276,11 @@ def test_a_pool_the_system_will_not_map_falls_back_to_a_smaller_one(monkeypatch)
             raise MemoryError
         return np.zeros(shape, dtype)
 
-    monkeypatch.setattr(amra, "sparse_zeros", picky)
-    assert amra._pool_buffer(1000).shape[0] == 62 * page_words
+    monkeypatch.setattr(search_memory, "sparse_zeros", picky)
+    assert search_memory.pool_buffer(1000).shape[0] == 62 * page_words
     assert asked == [1000, 500, 250, 125, 62]
     asked.clear()
-    monkeypatch.setattr(amra, "sparse_zeros", lambda shape, dtype: (_ for _ in ()).throw(MemoryError))
+    refuse = lambda shape, dtype: (_ for _ in ()).throw(MemoryError)  # noqa: E731
+    monkeypatch.setattr(search_memory, "sparse_zeros", refuse)
     with pytest.raises(MemoryError):
-        amra._pool_buffer(1000)
+        search_memory.pool_buffer(1000)

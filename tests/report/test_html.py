@@ -5,9 +5,7 @@ from __future__ import annotations
 import base64
 import io
 import json
-import os
 import re
-import shutil
 from dataclasses import replace
 from pathlib import Path
 from types import SimpleNamespace
@@ -20,20 +18,13 @@ from sgplan.errors import OutputError
 from sgplan.outputs.events import Event
 from sgplan.report.html import report_html, write_html_report
 from sgplan.scene.draw_path import path_cells
+from tests.browser import browser as _browser
+from tests.browser import launch, watch
 from tests.plans import REACH_M, DemoPlan
 
 EXPLANATION = (
     "First the bathroom, keeping away from its sink; then a dining chair; then the bedroom upstairs."
 )
-BROWSER_FLAGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--no-first-run",
-]
 
 
 @pytest.fixture(scope="module")
@@ -114,28 +105,6 @@ def test_report_without_path_and_write_errors(demo_plan: DemoPlan, tmp_path: Pat
         write_html_report(blocker / "plan.html", d.building, d.grid, d.result, d.mission, engine="matplotlib")
 
 
-def _browser() -> tuple[object, str]:
-    """Playwright's sync API and a Chromium executable, or skip saying what is missing."""
-    try:
-        from playwright.sync_api import sync_playwright
-    except ImportError:
-        pytest.skip("the Python package playwright is not installed (pip install -e '.[test]')")
-    candidates = [
-        os.environ.get("SGPLAN_CHROMIUM"),
-        "/usr/bin/chromium",
-        shutil.which("chromium"),
-        shutil.which("chromium-browser"),
-        shutil.which("google-chrome"),
-    ]
-    executable = next((c for c in candidates if c and Path(c).is_file()), None)
-    if executable is None:
-        pytest.skip(
-            "no Chromium found (apt-get install chromium, or set SGPLAN_CHROMIUM); "
-            ".ci/run installs it when run as root"
-        )
-    return sync_playwright, executable
-
-
 def test_report_in_headless_chromium(report: Path, demo_plan: DemoPlan) -> None:
     sync_playwright, executable = _browser()
     building = demo_plan.building
@@ -143,22 +112,11 @@ def test_report_in_headless_chromium(report: Path, demo_plan: DemoPlan) -> None:
     floor1 = building.floors[1]
     cells = np.argwhere(floor1.cat_map == teddy.id)
     row, col = (int(v) for v in cells[len(cells) // 2])
-    problems: list[str] = []
     with sync_playwright() as p:  # type: ignore[operator]
-        try:
-            browser = p.chromium.launch(executable_path=executable, args=BROWSER_FLAGS, headless=True)
-        except Exception as error:  # noqa: BLE001 - any launch failure means "no usable browser here"
-            pytest.skip(f"Chromium at {executable} did not start: {str(error).splitlines()[0]}")
+        browser = launch(p, executable)
         try:
             page = browser.new_page(viewport={"width": 1200, "height": 900})
-            page.on(
-                "console",
-                lambda m: (
-                    problems.append(f"console {m.type}: {m.text}") if m.type in ("error", "warning") else None
-                ),
-            )
-            page.on("pageerror", lambda e: problems.append(f"page error: {e}"))
-            page.on("requestfailed", lambda r: problems.append(f"request failed: {r.url}"))
+            problems = watch(page)
             page.goto(report.as_uri())
             page.wait_for_selector(
                 '#floors .floor[data-floor="1"][data-ready="true"]', state="attached", timeout=20_000

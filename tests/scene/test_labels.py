@@ -16,9 +16,9 @@ from sgplan.scene.labels import (
     Proposition,
     label_raster,
     proposition_cells,
-    reach_half_widths,
 )
 from sgplan.scene.model import Building
+from sgplan.scene.reach import reach_half_widths
 from tests.scene.small_buildings import random_small_building
 
 
@@ -39,7 +39,8 @@ def test_proposition_names_and_parsing() -> None:
 
 
 def _oracle(building: Building, props: list[Proposition], reach_m: float) -> np.ndarray:
-    """Direct transcription of §2.4: a square window around every object cell (loops; tiny grids only)."""
+    """Direct transcription of §2.4 (the ``box`` reach model): a square window around every object cell
+    (loops; tiny grids only)."""
     floors, (rows, cols) = building.num_floors, building.grid_shape
     out = np.zeros((floors, rows, cols), dtype=np.uint32)
     for bit, prop in enumerate(props):
@@ -62,12 +63,12 @@ def test_label_raster_matches_definition(seed: int, reach: float, own: float) ->
     props = [Proposition("enter", r.uuid) for r in building.rooms()]
     objects = list(building.objects())
     props += [Proposition("reach", o.uuid, own if i % 2 else None) for i, o in enumerate(objects)]
-    labels = label_raster(building, props, reach)
+    labels = label_raster(building, props, reach, "box")
     smallest = np.uint8 if len(props) <= 8 else np.uint16 if len(props) <= 16 else np.uint32
     assert labels.dtype == smallest and labels.shape == (building.num_floors, *building.grid_shape)
     np.testing.assert_array_equal(labels, _oracle(building, props, reach))
     for bit, prop in enumerate(props[:8]):  # the sparse form Session keeps: the same cells, ascending
-        cells = proposition_cells(building, prop, reach)
+        cells = proposition_cells(building, prop, reach, "box")
         np.testing.assert_array_equal(cells, np.flatnonzero(labels.reshape(-1) >> bit & 1))
 
 
@@ -75,10 +76,11 @@ def test_demo_labels() -> None:
     building = demo_building()
     stairs = building.rooms_named("staircase")[0]
     fridge = building.objects_named("refrigerator")[0]
-    labels = label_raster(building, [Proposition("enter", stairs.uuid), Proposition("reach", fridge.uuid)])
+    labels = label_raster(building, [Proposition("enter", stairs.uuid), Proposition("reach", fridge.uuid)],
+                          reach_model="box")
     # The staircase is drawn (and entered) on both floors.
     assert [(labels[f] & 1).any() for f in (0, 1)] == [True, True]
-    # The reach window uses the building's default radius and truncates like the authors' C++:
+    # The box model's window uses the building's default radius and truncates like the authors' C++:
     # int(0.6 / 0.05) is 11, not 12, in floating point. It sees through walls.
     assert reach_half_widths(building.resolution_m, 0.6) == (11, 11)
     reach = (labels[0] & 2) > 0

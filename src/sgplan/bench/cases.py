@@ -49,7 +49,8 @@ class Case:
     """One benchmark case: plan ``mission`` of ``scene`` from initial position ``start`` with ``setup``.
 
     ``scene_dir`` / ``mission_dir`` are absolute paths (they must exist on the machine that runs the
-    case); ``time_limit_s`` is the planner's search budget in seconds (``None`` = none).
+    case); ``time_limit_s`` is the planner's search budget in seconds (``None`` = none); ``reach_model``
+    the reach model chosen (``None``: the profile's, :attr:`effective_reach_model`).
     """
 
     scene: str
@@ -60,12 +61,24 @@ class Case:
     scene_dir: str
     mission_dir: str
     time_limit_s: float | None = None
+    reach_model: str | None = None
+
+    @property
+    def effective_reach_model(self) -> str:
+        """The reach model the case plans with: :attr:`reach_model`, else the profile's."""
+        from sgplan.planning.setups import reach_model_for
+
+        return reach_model_for(self.profile, self.reach_model)
 
     @property
     def key(self) -> str:
-        """The resume key: every field that can change the outcome (not the paths, which may move)."""
+        """The resume key: every field that can change the outcome (not the paths, which may move). The
+        reach model is named unless it is ``box``, the model of every row made before there was a choice,
+        so that those rows still resume."""
         limit = "none" if self.time_limit_s is None else exact_number(self.time_limit_s)
-        return f"{self.scene}/{self.mission}/{self.start}/{self.setup}/{self.profile}/tl={limit}"
+        model = self.effective_reach_model
+        reach = "" if model == "box" else f"/reach={model}"
+        return f"{self.scene}/{self.mission}/{self.start}/{self.setup}/{self.profile}/tl={limit}{reach}"
 
     @property
     def slug(self) -> str:
@@ -157,16 +170,18 @@ def expand(
     *,
     profile: str = "authors",
     time_limit_s: float | None = None,
+    reach_model: str | None = None,
 ) -> list[Case]:
     """Every case of the union of ``grids`` over ``scenes``, without duplicates, in a stable order
-    (scene, mission, start, then the paper's setup order).
+    (scene, mission, start, then the paper's setup order), under ``profile`` with ``reach_model`` (default:
+    the profile's) and ``time_limit_s``.
 
     Raises
     ------
     BenchError
         a grid names a mission, start index or setup that a selected scene does not have.
     """
-    from sgplan.planning.amra import get_setup  # the planner (numba) only when cases are made
+    from sgplan.planning.setups import get_setup
 
     by_name = {s.name: s for s in scenes}
     seen: dict[str, Case] = {}
@@ -195,7 +210,7 @@ def expand(
                         case = Case(
                             scene=name, mission=mission, start=int(start), setup=setup, profile=profile,
                             scene_dir=str(scene.folder), mission_dir=str(scene.folder / "missions" / mission),
-                            time_limit_s=time_limit_s,
+                            time_limit_s=time_limit_s, reach_model=reach_model,
                         )
                         seen.setdefault(case.key, case)
     order = {name: k for k, name in enumerate(PAPER_SETUPS)}

@@ -29,25 +29,27 @@ class Report:
     table3: str = ""
 
 
-Condition = tuple[str, float | None]
-"""What makes numbers comparable: (semantics profile, search time limit in seconds or ``None``)."""
+Condition = tuple[str, str, float | None]
+"""What makes numbers comparable: (semantics profile, reach model, search time limit in seconds or
+``None``)."""
 
 
 def condition_of(row: dict[str, Any]) -> Condition:
-    return (row["profile"], row.get("time_limit_s"))
+    # Rows made before there was a choice of reach model used the authors' window.
+    return (row["profile"], row.get("reach_model") or "box", row.get("time_limit_s"))
 
 
 def _describe(condition: Condition) -> str:
-    profile, limit = condition
-    return f"profile {profile}, " + (
+    profile, reach_model, limit = condition
+    return f"profile {profile}, reach model {reach_model}, " + (
         "no time limit" if limit is None else f"time limit {exact_number(limit)} s"
     )
 
 
 def choose_condition(rows: Sequence[dict[str, Any]], profile: str | None = None,
-                     time_limit_s: float | None = None) -> Condition:
-    """The condition of the newest row among those with the given ``profile`` and ``time_limit_s``
-    (``None``: any).
+                     time_limit_s: float | None = None, reach_model: str | None = None) -> Condition:
+    """The condition of the newest row among those with the given ``profile``, ``time_limit_s`` and
+    ``reach_model`` (``None``: any).
 
     Raises
     ------
@@ -55,10 +57,12 @@ def choose_condition(rows: Sequence[dict[str, Any]], profile: str | None = None,
         no row matches.
     """
     matching = [r for r in rows if (profile is None or r["profile"] == profile)
-                and (time_limit_s is None or r.get("time_limit_s") == time_limit_s)]
+                and (time_limit_s is None or r.get("time_limit_s") == time_limit_s)
+                and (reach_model is None or condition_of(r)[1] == reach_model)]
     if not matching:
         recorded = sorted({_describe(condition_of(r)) for r in rows})
         parts = ([f"profile {profile}"] if profile else []) + (
+            [f"reach model {reach_model}"] if reach_model else []) + (
             [] if time_limit_s is None else [f"time limit {exact_number(time_limit_s)} s"])
         wanted = ", ".join(parts)
         raise BenchError(f"no results with {wanted}; recorded: {'; '.join(recorded) or 'none'}")
@@ -72,9 +76,9 @@ def write_report(folder: str | Path, rows: Sequence[dict[str, Any]] | None = Non
     wall time.
 
     Tables and figures cover one ``condition`` (default: the newest row's, :func:`choose_condition`), so
-    that means never mix semantics profiles or time limits; rows of other conditions are counted in a note.
-    Every sentence that states a finding (what the comparison with the paper shows, which paths break the
-    mission as written) is computed from these rows (:mod:`sgplan.bench.findings`).
+    that means never mix semantics profiles, reach models or time limits; rows of other conditions are
+    counted in a note. Every sentence that states a finding (what the comparison with the paper shows, which
+    paths break the mission as written) is computed from these rows (:mod:`sgplan.bench.findings`).
 
     Raises
     ------
@@ -128,7 +132,7 @@ def _head(rows: Sequence[dict[str, Any]], condition: Condition, others: Counter[
         text += [
             "",
             "Not in this report (other conditions; choose with `sgplan bench report --profile P "
-            "--time-limit S`): "
+            "--reach-model R --time-limit S`): "
             + "; ".join(f"{count(n, 'case')} under {c}" for c, n in sorted(others.items())) + ".",
         ]
     if sweeps:

@@ -42,7 +42,7 @@ REQUIRED = ("key", "scene", "mission", "start", "setup", "profile", "status")
 """Fields every stored row must have (the report groups and keys rows by them)."""
 
 COLUMNS = (
-    "key", "scene", "mission", "start", "setup", "profile", "time_limit_s", "status", "reason",
+    "key", "scene", "mission", "start", "setup", "profile", "reach_model", "time_limit_s", "status", "reason",
     "start_cell", "cost_m", "first_cost_m", "cost_ratio", "first_time_s", "optimal_time_s",
     "num_iterations", "expansions", *(f"exp_{level}" for level in LEVELS),
     "load_s", "precompute_s", "search_s", "wall_s", "peak_rss_mb", "guidance", "path_cells",
@@ -56,7 +56,8 @@ def make_row(case: Case, measured: dict[str, Any], *, wall_s: float | None, exec
     """A result row: the case's fields, the worker's measurements, and the parent's wall time."""
     row: dict[str, Any] = {
         "key": case.key, "scene": case.scene, "mission": case.mission, "start": case.start,
-        "setup": case.setup, "profile": case.profile, "time_limit_s": case.time_limit_s,
+        "setup": case.setup, "profile": case.profile, "reach_model": case.effective_reach_model,
+        "time_limit_s": case.time_limit_s,
     }
     row.update(dict.fromkeys(MEASURED))
     row.update(measured)

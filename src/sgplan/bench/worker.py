@@ -127,8 +127,9 @@ def _plan_case(case: Case, gallery_dir: str | Path | None, out: dict[str, Any], 
     loaded_s = time.perf_counter() - t0
     # Unchecked: the bench measures the planner; the checker's agreement is tested in tests/planning.
     # Action maps built before the search clock starts: the paper's accounting of first-path times.
-    result = session.plan(mission, case.start, setup=case.setup, profile=case.profile,
-                          time_limit_s=case.time_limit_s, verify=False, prebuild_actions=True)
+    options = sgplan.PlanOptions(setup=case.setup, profile=case.profile, reach_model=case.reach_model,
+                                 time_limit_s=case.time_limit_s, verify=False, prebuild_actions=True)
+    result = session.plan(mission, case.start, options=options)
     its = result.iterations
     out.update(
         status=result.status,
@@ -168,12 +169,12 @@ def _ltlf_reading(case: Case, result: Any) -> dict[str, Any]:
 
     import sgplan
     from sgplan.bench.ltlf_check import ltlf_reading
-    from sgplan.explain.entities import entities_of
+    from sgplan.explain.referents import referents_of
     from sgplan.outputs.waypoints import leg_costs
 
     path, authors = result.path, result.mission.automaton
     ltlf = sgplan.load_mission(case.mission_dir, profile="ltlf", guidance=False).automaton
-    entities = entities_of(list(authors.aps), result.mission.propositions, result.building)
+    entities = referents_of(list(authors.aps), result.mission.propositions, result.building)
     costs = np.concatenate([[0.0], np.cumsum(leg_costs(path, result.grid))])
     labels = result.labels[path[:, 2], path[:, 0], path[:, 1]]
     accepts, violations = ltlf_reading(path, labels, costs, authors, ltlf, lambda p: entities[p].phrase())

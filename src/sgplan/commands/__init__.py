@@ -11,10 +11,12 @@ from sgplan.commands import (
     inspect,
     monitor,
     plan,
+    serve,
+    simulate,
     translate,
 )
 
 REGISTRY = [
     demo.register, inspect.register, plan.register, translate.register, guide.register, bench.register,
-    import_scene.register, eval_translation.register, monitor.register,
+    import_scene.register, eval_translation.register, monitor.register, simulate.register, serve.register,
 ]

@@ -16,14 +16,15 @@ from typing import TYPE_CHECKING, Any
 
 from sgplan.commands.common import (
     DEFAULT_PROFILE,
-    SETUP_NAMES,
     add_profile_argument,
+    add_reach_model_argument,
     positive_int,
     positive_seconds,
     say,
     split_list,
 )
 from sgplan.english import count
+from sgplan.planning.setups import SETUPS
 
 if TYPE_CHECKING:
     from sgplan.bench.cases import Case
@@ -70,7 +71,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--starts", metavar="LIST", help="initial-position indices, e.g. 0,2-4 (default: all)"
     )
     parser.add_argument("--setups", nargs="+", metavar="NAME",
-                        help=f"planner setups among {', '.join(SETUP_NAMES)}, any case "
+                        help=f"planner setups among {', '.join(SETUPS)}, any case "
                         "(default: ALL NO-LLM A*)")
     add_profile_argument(
         parser,
@@ -79,6 +80,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "paper's tables were made with authors). With report: the rows to report "
         "(default: the newest row's profile)",
     )
+    add_reach_model_argument(parser, extra_help="; recorded in every row. With report: the rows to report "
+                             "(default: the newest row's among those of --profile)")
     parser.add_argument(
         "--time-limit",
         type=positive_seconds,
@@ -115,7 +118,8 @@ def run(args: argparse.Namespace) -> int:
         from sgplan.bench.report import choose_condition
         from sgplan.bench.results import load_rows
 
-        _print_report(args.out, choose_condition(load_rows(args.out), args.profile, args.time_limit))
+        _print_report(args.out, choose_condition(load_rows(args.out), args.profile, args.time_limit,
+                                                 args.reach_model))
         return 0
     return _sweep(args)
 
@@ -141,7 +145,8 @@ def _cases(args: argparse.Namespace) -> list[Case]:
     else:
         grids = paper_grids(s.name for s in scenes)
     say(f"data: {root}")
-    return expand(scenes, grids, profile=args.profile or DEFAULT_PROFILE, time_limit_s=args.time_limit)
+    return expand(scenes, grids, profile=args.profile or DEFAULT_PROFILE, time_limit_s=args.time_limit,
+                  reach_model=args.reach_model)
 
 
 def _scene_folders(root: Path, names: list[str] | None) -> list[str] | None:
@@ -184,7 +189,7 @@ def _sweep(args: argparse.Namespace) -> int:
     say(f"ran {count(summary.ran, 'case')} in {summary.wall_s:.1f} s wall ({executor.name}, {jobs}); "
         f"{recorded}; results: {csv_path}, {json_path}")
     if not args.no_report:
-        _print_report(args.out, (cases[0].profile, args.time_limit))
+        _print_report(args.out, (cases[0].profile, cases[0].effective_reach_model, args.time_limit))
     return 0
 
 
@@ -255,7 +260,7 @@ def _run_with_progress(
     return executor, summary, exported
 
 
-def _print_report(folder: str, condition: tuple[str, float | None] | None) -> None:
+def _print_report(folder: str, condition: tuple[str, str, float | None] | None) -> None:
     from sgplan.bench.report import write_report
 
     report = write_report(folder, condition=condition)

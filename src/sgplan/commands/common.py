@@ -1,6 +1,6 @@
 """Argument helpers shared by sub-commands: naming a scene, the Gibson data folder, the semantics profile,
-checked numbers and lists, the options every command takes (``--debug``, ``--quiet``, ``--verbose``), and
-console output through :mod:`logging`."""
+the reach model, checked numbers and lists, the options every command takes (``--debug``, ``--quiet``,
+``--verbose``), and console output through :mod:`logging`."""
 
 from __future__ import annotations
 
@@ -13,19 +13,16 @@ from typing import TYPE_CHECKING, Any
 
 from sgplan.datasets import ENV_VAR, SCENES
 from sgplan.limits import MAX_REACH_RADIUS_M, MAX_ROBOT_RADIUS_M, MAX_SECONDS
+from sgplan.planning.setups import PROFILE_REACH_MODELS, PROFILES, REACH_MODELS
 
 if TYPE_CHECKING:
+    from sgplan.options import PlanOptions
     from sgplan.scene.model import Building
 
 DEMO = "demo"
 DEFAULT_PROFILE = "ltlf"
 """The semantics profile of every command (plan, guide, bench): LTL over finite traces, the start cell's
 label read. ``--profile authors`` reproduces the authors' C++ (and the paper's numbers) for comparison."""
-PROFILES = ("ltlf", "authors")
-SETUP_NAMES = ("ALL", "NO-LLM", "A*", "OCC", "OBJ", "ROOM", "FLR")
-"""The planner setups' names (``sgplan.planning.amra.SETUPS``, a test keeps both the same) for the options'
-help: building the parser must not import the planner (numba, scipy), which only ``plan`` and ``bench``
-use. ``--setup`` values are checked by ``get_setup`` when the command runs."""
 log = logging.getLogger("sgplan")
 
 
@@ -67,6 +64,28 @@ def add_profile_argument(parser: argparse.ArgumentParser, *, default: str | None
         "authors' C++ and the paper's numbers: start label not read, missing edges keep the "
         f"state){extra_help}",
     )
+
+
+def add_reach_model_argument(parser: argparse.ArgumentParser, *, extra_help: str = "") -> None:
+    """``--reach-model box|visible`` (any case; default: the profile's), stored as the planning option
+    ``reach_model``, the same on every command."""
+    defaults = ", ".join(f"{model} under {profile}" for profile, model in PROFILE_REACH_MODELS.items())
+    parser.add_argument(
+        "--reach-model", dest="reach_model", type=str.lower, choices=REACH_MODELS, default=None,
+        help="where an object counts as reached: visible (within the reach radius and in sight: walls "
+        f"block) or box (the authors' square window, which reaches through walls); default: the profile's "
+        f"({defaults}){extra_help}",
+    )
+
+
+def plan_options(args: argparse.Namespace, **fixed: Any) -> PlanOptions:
+    """The planning options (:class:`sgplan.PlanOptions`) a command's arguments give: every option the
+    command has an argument for under the option's own name (``--robot-radius`` stores ``robot_radius_m``)
+    and the user gave, then ``fixed`` ones; checked as the API checks them."""
+    from sgplan.options import PlanOptions
+
+    given = {name: value for name in PlanOptions.names() if (value := getattr(args, name, None)) is not None}
+    return PlanOptions(**(given | fixed))
 
 
 def add_axes_argument(parser: argparse.ArgumentParser | argparse._ArgumentGroup) -> None:

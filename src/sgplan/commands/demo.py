@@ -76,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
         building,
         mission,
         args.start_index,
-        setup="ALL",
+        options=sgplan.PlanOptions(setup="ALL"),
         guide=backends.guide,
         explanation=explanation,
         callback=lambda it: say(

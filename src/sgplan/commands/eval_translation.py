@@ -52,9 +52,9 @@ def _indented(label: str, text: str) -> str:
 def _explain(formula: Formula, building: Building) -> str:
     """What a formula asks in plain words over the scene (:func:`sgplan.explain.explain_mission`)."""
     from sgplan.explain import explain_mission
-    from sgplan.mission import mission_from_formula
+    from sgplan.mission import compile_mission
 
-    return explain_mission(mission_from_formula(formula), building).text
+    return explain_mission(compile_mission(formula), building).text
 
 
 def run(args: argparse.Namespace) -> int:

@@ -15,6 +15,7 @@ from sgplan.commands.common import (
     add_profile_argument,
     add_scene_arguments,
     load_scene_arg,
+    plan_options,
     positive_int,
     say,
 )
@@ -45,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
     from sgplan.mission import load_mission_folder, write_guidance
 
     building = load_scene_arg(args.scene, args.data)
-    mission = load_mission_folder(args.mission_dir, profile=args.profile, guidance=False)
+    mission = load_mission_folder(args.mission_dir, profile=plan_options(args).profile, guidance=False)
     mission.check_scene(building)
     options: dict[str, object] = {}
     if args.llm != "offline":

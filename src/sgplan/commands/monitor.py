@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 
 from sgplan.commands.common import (
     add_profile_argument,
+    add_reach_model_argument,
     add_scene_arguments,
     load_scene_arg,
     log,
@@ -30,6 +31,7 @@ from sgplan.commands.sayback import check_folder_fits, say_back
 from sgplan.commands.translate import add_llm_arguments
 from sgplan.english import count
 from sgplan.errors import TrajectoryError
+from sgplan.planning.setups import reach_model_for
 
 if TYPE_CHECKING:
     from sgplan.execution.monitor import MonitorStatus
@@ -60,6 +62,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="robot radius (default: the scene's): which cells count as obstacles")
     parser.add_argument("--reach-radius", type=reach_radius, metavar="M",
                         help="object reach radius (default: the scene's)")
+    add_reach_model_argument(parser)
     parser.add_argument("--max-gap", type=positive_number, metavar="M", default=None,
                         help="report consecutive poses farther apart than this (metres; default 1)")
     parser.add_argument("--json", metavar="OUT", help="write the verdict as JSON ('-': to stdout)")
@@ -81,14 +84,17 @@ def run(args: argparse.Namespace) -> int:
     trajectory = read_trajectory(args.trajectory)
     x_m, y_m, floor = trajectory.poses[0]
     mission, _ = mission_from_args(args, building, Point(x_m, y_m, int(floor)))
+    reach_model = reach_model_for(args.profile, args.reach_model)
     record: dict[str, Any] = {"scene": building.name, "trajectory": str(trajectory.path),
-                              "profile": args.profile, "mission_text": mission.text}
+                              "profile": args.profile, "reach_model": reach_model,
+                              "mission_text": mission.text}
     if args.mission_dir:
         check_folder_fits(args.mission_dir, mission, building, force=args.force, record=record)
     session = sgplan.Session(building, max_shared_bytes=0)
-    say_back(mission, building, record, stream=out, session=session)
+    say_back(mission, building, record, stream=out, session=session, reach_radius_m=args.reach_radius,
+             reach_model=reach_model)
     monitor = Monitor.in_session(session, mission, profile=args.profile, robot_radius_m=args.robot_radius,
-                                 reach_radius_m=args.reach_radius,
+                                 reach_radius_m=args.reach_radius, reach_model=reach_model,
                                  max_gap_m=DEFAULT_MAX_GAP_M if args.max_gap is None else args.max_gap)
     try:
         status = monitor.observe_xy(trajectory.poses, name=trajectory.pose_name)

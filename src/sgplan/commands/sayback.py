@@ -27,10 +27,13 @@ if TYPE_CHECKING:
 
 def say_back(mission: Mission, building: Building, record: dict[str, Any] | None = None, *,
              confirm: bool = False, ask: Callable[[str], str] | None = None,
-             stream: TextIO | None = None, session: Session | None = None) -> Explanation:
+             stream: TextIO | None = None, session: Session | None = None,
+             reach_radius_m: float | None = None, reach_model: str | None = None) -> Explanation:
     """Print the explanation of ``mission`` (to ``stream``, default stdout), store it as
     ``record["explanation"]``, and with ``confirm`` ask before going on (``ask``: default ``input`` on a
-    terminal). With ``session`` (of ``building``), where the propositions hold is kept there for the plan.
+    terminal). With ``session`` (of ``building``), where the propositions hold is kept there for the plan;
+    objects are reached within ``reach_radius_m`` (default the scene's) under ``reach_model`` (the plan's;
+    default :func:`~sgplan.explain.explain_mission`'s).
 
     Raises
     ------
@@ -39,7 +42,7 @@ def say_back(mission: Mission, building: Building, record: dict[str, Any] | None
     """
     from sgplan.explain import explain_mission
 
-    explanation = explain_mission(mission, building,
+    explanation = explain_mission(mission, building, reach_radius_m=reach_radius_m, reach_model=reach_model,
                                   cells=None if session is None else session.proposition_cells)
     print(explanation.text, file=stream or sys.stdout, flush=True)
     if record is not None:
@@ -94,7 +97,7 @@ def check_before_planning(mission: Mission, building: Building, prepared: Prepar
         problem = prepared.problem
         check = check_mission_in_scene(
             mission, building, problem.start, grid=problem.grid, labels=problem.labels,
-            profile=problem.profile,
+            profile=problem.profile, reach_model=problem.reach_model,
         )
     for finding in check.findings:
         if finding.severity != "error":

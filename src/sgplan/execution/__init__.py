@@ -1,6 +1,8 @@
-"""Carrying a mission through a run: the runtime monitor of the poses a robot drove, trajectory files.
+"""Carrying a mission through a changing building: the runtime monitor of the poses a robot drove,
+trajectory files, scene changes and their effect on the planner's parts, exact replanning from any
+(position, automaton state), amendments, and the run that holds it all. See docs/execution.md.
 
-See docs/execution.md. Typical use::
+Typical use::
 
     from sgplan.execution.monitor import Monitor
     monitor = Monitor.in_session(sgplan.Session(building), mission)

@@ -52,7 +52,7 @@ from sgplan.execution.poses import (
 from sgplan.execution.words import MissionWords
 from sgplan.explain.scene_labels import occurring_labels
 from sgplan.mission import Mission
-from sgplan.planning.problem import PROFILES
+from sgplan.planning.setups import PROFILES, reach_model_for
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 
@@ -224,14 +224,15 @@ class Monitor:
     @classmethod
     def in_session(cls, session: Session, mission: Mission, *, profile: str = "ltlf",
                    robot_radius_m: float | None = None, reach_radius_m: float | None = None,
-                   max_gap_m: float = DEFAULT_MAX_GAP_M, state: int | None = None,
-                   at: Cell3 | None = None) -> Monitor:
-        """A monitor on the session's grid and label raster for these radii (the scene's by default, as
-        :meth:`sgplan.Session.plan` uses them); the other parameters are :class:`Monitor`'s."""
+                   reach_model: str | None = None, max_gap_m: float = DEFAULT_MAX_GAP_M,
+                   state: int | None = None, at: Cell3 | None = None) -> Monitor:
+        """A monitor on the session's grid and label raster for these radii and reach model (the scene's
+        radii and the profile's model by default, as :meth:`sgplan.Session.plan` uses them); the other
+        parameters are :class:`Monitor`'s."""
         radii = session.radii(robot_radius_m, reach_radius_m)
-        return cls(session.building, mission, session.grid(radii.robot_m),
-                   session.labels(mission, radii.reach_m), profile=profile, max_gap_m=max_gap_m, state=state,
-                   at=at)
+        labels = session.labels(mission, radii.reach_m, reach_model_for(profile, reach_model))
+        return cls(session.building, mission, session.grid(radii.robot_m), labels, profile=profile,
+                   max_gap_m=max_gap_m, state=state, at=at)
 
     def rebased(self, grid: OccupancyGrid, labels: np.ndarray, building: Building | None = None) -> Monitor:
         """This monitor's progress (state, last cell, counts, violation) on a changed scene: its new grid,

@@ -3,7 +3,7 @@
 Two shapes are read (docs/execution.md, "Trajectory files"):
 
 - the CSV that ``sgplan plan --waypoints`` writes (dense or simplified; columns
-  :data:`sgplan.outputs.files.CSV_COLUMNS`), or any CSV with a header naming at least ``x_m``, ``y_m``
+  :data:`sgplan.outputs.robot_files.CSV_COLUMNS`), or any CSV with a header naming at least ``x_m``, ``y_m``
   and ``floor``. Of the other columns, ``q`` (the automaton state after the pose), ``cost_m`` (metres
   from the first pose) and ``row``, ``col`` (the pose's cell) are optional and checked against what the
   monitor recomputes (:func:`recorded_mismatches`); the rest are ignored;

@@ -16,8 +16,8 @@ from typing import Literal
 
 import numpy as np
 
-from sgplan.explain.entities import Entity, entities_of
 from sgplan.explain.patterns import pattern_clauses
+from sgplan.explain.referents import Referent, referents_of
 from sgplan.explain.render import explain_formula
 from sgplan.logic.automaton import Automaton
 from sgplan.logic.formula import And, Const, Formula
@@ -87,7 +87,7 @@ class MissionWords:
         self.automaton = mission.automaton
         self.realizable = realizable
         aps = self.automaton.aps
-        self.entities: dict[str, Entity] = entities_of(list(aps), mission.propositions, building)
+        self.entities: dict[str, Referent] = referents_of(list(aps), mission.propositions, building)
         rooms = [ap for ap in aps if mission.propositions[ap].kind == "enter"]
         self.exclusive = [rooms] if len(rooms) > 1 else []
         self._residuals: dict[int, Residual] = {}
@@ -156,7 +156,7 @@ class MissionWords:
                 for e in self._of(label)]
         return " and ".join(said) if said else "in none of the places the mission names"
 
-    def _of(self, label: int) -> list[Entity]:
+    def _of(self, label: int) -> list[Referent]:
         return [self.entities[ap] for i, ap in enumerate(self.automaton.aps) if label >> i & 1]
 
     def step(self, before: int, label: int) -> str:

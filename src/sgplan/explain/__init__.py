@@ -8,7 +8,7 @@ Typical use::
 See docs/explain.md.
 """
 
-from sgplan.explain.entities import Entity, entities_of, entity_of
+from sgplan.explain.referents import Referent, referent_of, referents_of
 from sgplan.explain.render import Explanation, explain_formula, explain_mission
 
-__all__ = ["Entity", "Explanation", "entities_of", "entity_of", "explain_formula", "explain_mission"]
+__all__ = ["Referent", "Explanation", "referents_of", "referent_of", "explain_formula", "explain_mission"]

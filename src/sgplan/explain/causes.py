@@ -13,7 +13,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from sgplan.explain.entities import Entity
+from sgplan.explain.referents import Referent
 from sgplan.scene.grid import OccupancyGrid, build_occupancy_grid
 from sgplan.scene.model import Building
 
@@ -70,7 +70,7 @@ def _largest_radius(
     return low
 
 
-def _doors(building: Building, entity: Entity) -> str | None:
+def _doors(building: Building, entity: Referent) -> str | None:
     """``it has no door to any other room`` when the entity's room (or the room holding the object) has
     no connection in the scene graph."""
     key = entity.key if entity.kind == "room" else entity.room_key
@@ -86,7 +86,7 @@ def _metres(radius_m: float) -> str:
     return f"{np.floor(radius_m * 1000) / 1000:g} m"
 
 
-def why_no_free_cell(building: Building, grid: OccupancyGrid, entity: Entity, holds: np.ndarray) -> str:
+def why_no_free_cell(building: Building, grid: OccupancyGrid, entity: Referent, holds: np.ndarray) -> str:
     """Why no cell where ``entity``'s proposition ``holds`` (a ``(floors, rows, cols)`` bool raster) is
     free for the grid's robot, and the largest robot radius that fits there."""
     radius = grid.robot_radius_m
@@ -99,7 +99,7 @@ def why_no_free_cell(building: Building, grid: OccupancyGrid, entity: Entity, ho
     return "; ".join(parts + ([door] if door else []))
 
 
-def why_unreachable(building: Building, grid: OccupancyGrid, start: tuple[int, int, int], entity: Entity,
+def why_unreachable(building: Building, grid: OccupancyGrid, start: tuple[int, int, int], entity: Referent,
                     holds: np.ndarray) -> str:
     """Why no cell where ``entity``'s proposition ``holds`` is reachable from ``start``: no door, and
     the largest robot radius that would get there (or none)."""

@@ -2,7 +2,7 @@
 
 Everything here is computed from the label sets that actually occur on the free cells of the scene's
 occupancy grid (:mod:`sgplan.explain.scene_labels`): rooms are exclusive and an object is reached only
-from the cells its reach window covers. :func:`check_mission_in_scene` finds
+from the cells of its reach region (:mod:`sgplan.scene.reach`). :func:`check_mission_in_scene` finds
 
 - ``unsatisfiable``: no path anywhere in the scene satisfies the mission, whatever the start; the
   smallest set of top-level parts that cannot hold together is named ("Go to the kitchen. Never enter
@@ -39,8 +39,8 @@ from sgplan.explain.causes import (
     why_no_free_cell,
     why_unreachable,
 )
-from sgplan.explain.entities import Entity, entities_of
 from sgplan.explain.patterns import condition_text, pattern_clauses
+from sgplan.explain.referents import Referent, referents_of
 from sgplan.explain.scene_labels import occurring_labels
 from sgplan.explain.stages import forbidden_bits, restricted
 from sgplan.logic.automaton import Automaton
@@ -62,6 +62,7 @@ from sgplan.logic.formula import (
 from sgplan.logic.infix import to_infix
 from sgplan.logic.ltlf import ltlf_to_dfa
 from sgplan.mission import Mission
+from sgplan.planning.setups import reach_model_for
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 
@@ -128,6 +129,7 @@ def check_mission_in_scene(
     profile: str = "ltlf",
     robot_radius_m: float | None = None,
     reach_radius_m: float | None = None,
+    reach_model: str | None = None,
 ) -> SceneCheck:
     """Check ``mission`` against ``building`` (and ``start``) before planning; see the module docstring.
 
@@ -144,25 +146,29 @@ def check_mission_in_scene(
         ``"ltlf"`` reads the start cell's label, ``"authors"`` does not.
     robot_radius_m, reach_radius_m:
         radii in metres for building ``grid`` / ``labels`` (default: the scene's).
+    reach_model:
+        where an object counts as reached (``"visible"`` or ``"box"``; default the profile's), for
+        building ``labels`` and for saying why an object is reached from another room.
 
     Returns
     -------
     SceneCheck
         cheap: a few array passes over the grid (no search).
     """
+    model = reach_model_for(profile, reach_model)
     if grid is None or labels is None:
         from sgplan.pipeline import resolve_radii
         from sgplan.scene.grid import build_occupancy_grid
 
         radii = resolve_radii(building, robot_radius_m, reach_radius_m)
         grid = build_occupancy_grid(building, radii.robot_m) if grid is None else grid
-        labels = mission.labels(building, radii.reach_m) if labels is None else labels
+        labels = mission.labels(building, radii.reach_m, model) if labels is None else labels
     automaton = mission.automaton
     realizable = occurring_labels(labels, grid.traversable, automaton.num_labels)
     if not realizable.any():
         return SceneCheck(())
-    entities = entities_of(list(automaton.aps), mission.propositions, building)
-    context = _Context(mission, building, grid, labels, entities, realizable)
+    entities = referents_of(list(automaton.aps), mission.propositions, building)
+    context = _Context(mission, building, grid, labels, entities, realizable, model)
     # The part analysis recurses over the formula as written: a deeper one (a 500-term conjunction as
     # nested pairs) gets only the whole-mission checks below, which work on the automaton (_readable).
     findings = context.part_findings()
@@ -180,10 +186,11 @@ class _Context:
     building: Building
     grid: OccupancyGrid
     labels: np.ndarray
-    entities: dict[str, Entity]
+    entities: dict[str, Referent]
     realizable: np.ndarray
+    reach_model: str
 
-    def describe(self, name: str) -> Entity:
+    def describe(self, name: str) -> Referent:
         return self.entities[name]
 
     def cond(self, f: Formula) -> str:
@@ -227,8 +234,11 @@ class _Context:
         if not value.any():
             why = f" ({'; '.join(outside)})" if outside else ""
             return [Finding("impossible-part", f"no place in this scene is {self.cond(node)}{why}")]
+        # Seen from another room, an object is reached through a door (in sight) or, in the authors'
+        # window, through a wall.
+        through = "a wall" if self.reach_model == "box" else "a door, in sight of it"
         findings = [
-            Finding("object-outside-room", f"{o}: it is reached from there only through a wall")
+            Finding("object-outside-room", f"{o}: it is reached from there only through {through}")
             for o in outside
         ]
         for k, part in enumerate(parts):
@@ -386,7 +396,7 @@ def unreachable_finding(mission: Mission, building: Building, grid: OccupancyGri
     automaton = mission.automaton
     realizable = occurring_labels(labels, grid.traversable, automaton.num_labels)
     forbidden = set(forbidden_bits(restricted(automaton, realizable), np.flatnonzero(realizable)))
-    entities = entities_of(list(automaton.aps), mission.propositions, building)
+    entities = referents_of(list(automaton.aps), mission.propositions, building)
     needed = [i for i in missing_from_start(grid, labels, start, automaton.aps)
               if i not in forbidden and entities[automaton.aps[i]].kind != "unknown"]
     if not needed:

@@ -2,7 +2,7 @@
 
 :func:`pattern_clauses` turns a formula into one English clause per top-level conjunct, or returns
 ``None`` when some part has no pattern here (then the caller explains the automaton instead). Each
-clause is an imperative sentence that names every proposition it covers through its :class:`Entity`.
+clause is an imperative sentence that names every proposition it covers through its :class:`Referent`.
 
 Readings (finite paths; "moment" = a cell of the path; the first cell is the start):
 
@@ -36,7 +36,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 
-from sgplan.explain.entities import Entity, group_phrase
+from sgplan.explain.referents import Referent, group_phrase
 from sgplan.logic.formula import (
     Always,
     And,
@@ -52,7 +52,7 @@ from sgplan.logic.formula import (
     is_temporal,
 )
 
-Describe = Callable[[str], Entity]
+Describe = Callable[[str], Referent]
 
 
 class _NoPattern(Exception):
@@ -62,7 +62,7 @@ class _NoPattern(Exception):
 def pattern_clauses(formula: Formula, describe: Describe) -> list[str] | None:
     """One clause per top-level conjunct of ``formula`` (capitalised, ending with "."), or ``None``.
 
-    ``describe`` maps a proposition name to its :class:`Entity`.
+    ``describe`` maps a proposition name to its :class:`Referent`.
     """
     reader = _Reader(describe)
     try:
@@ -146,7 +146,7 @@ class _Reader:
         self.describe = describe
 
     # -- state conditions (no temporal operator) ---------------------------------------------------
-    def entity(self, atom: Atom) -> Entity:
+    def entity(self, atom: Atom) -> Referent:
         return self.describe(atom.name)
 
     def at(self, atom: Atom) -> str:
@@ -154,7 +154,7 @@ class _Reader:
         e = self.entity(atom)
         return f"{'within reach of' if e.kind == 'object' else 'in'} {e.phrase()}"
 
-    def _same_kind_atoms(self, f: Formula) -> list[Entity] | None:
+    def _same_kind_atoms(self, f: Formula) -> list[Referent] | None:
         """The entities of a disjunction of two or more atoms of one kind, else ``None``."""
         items = _disjuncts(f)
         if len(items) < 2 or not all(isinstance(i, Atom) for i in items):
@@ -163,9 +163,9 @@ class _Reader:
         kinds = {e.kind for e in entities}
         return entities if len(kinds) == 1 and len({e.key for e in entities}) == len(entities) else None
 
-    def choice(self, entities: Sequence[Entity]) -> str:
+    def choice(self, entities: Sequence[Referent]) -> str:
         """Alternatives grouped by category, in order of first appearance of each category."""
-        groups: dict[tuple[str, str | None], list[Entity]] = {}
+        groups: dict[tuple[str, str | None], list[Referent]] = {}
         for e in entities:
             groups.setdefault((e.kind, e.category if e.kind != "unknown" else e.key), []).append(e)
         return " or ".join(group_phrase(g) for g in groups.values())
@@ -226,7 +226,7 @@ class _Reader:
     def _joint_goal(self, literals: list[Formula]) -> str | None:
         """``reach A and B at the same moment while in R while not ...`` for a conjunction of literals
         and choices among atoms of one kind."""
-        positive: list[list[Entity]] = []
+        positive: list[list[Referent]] = []
         for item in literals:
             if isinstance(item, Atom):
                 positive.append([self.entity(item)])
@@ -295,9 +295,9 @@ class _Reader:
         """A conjunction of negated places as what not to do (``entering the kitchen (...) or coming within
         reach of a tv (...)``), else ``None``. ``!(o & r)`` with ``r`` the room of object ``o`` reads
         ``coming within reach of o while in r``."""
-        rooms: list[Entity] = []
-        objects: list[Entity] = []
-        in_room: dict[str, tuple[Entity, list[Entity]]] = {}
+        rooms: list[Referent] = []
+        objects: list[Referent] = []
+        in_room: dict[str, tuple[Referent, list[Referent]]] = {}
         for item in _conjuncts(s):
             if not isinstance(item, Not):
                 return None

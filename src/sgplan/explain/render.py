@@ -16,8 +16,8 @@ from typing import Any, Literal
 import numpy as np
 
 from sgplan.errors import SgplanError
-from sgplan.explain.entities import Entity, entities_of
 from sgplan.explain.patterns import pattern_clauses
+from sgplan.explain.referents import Referent, referents_of
 from sgplan.explain.scene_labels import realizable_labels
 from sgplan.explain.stages import restricted, stage_lines
 from sgplan.logic.automaton import Automaton
@@ -27,6 +27,7 @@ from sgplan.logic.ltlf import ltlf_to_dfa, possible_labels
 from sgplan.mission import Mission
 from sgplan.scene.labels import Proposition
 from sgplan.scene.model import Building
+from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 Method = Literal["patterns", "automaton"]
 
@@ -71,7 +72,7 @@ def _numbered(clauses: list[str]) -> list[str]:
 
 def explain_formula(
     formula: Formula | None,
-    describe: Callable[[str], Entity] | Mapping[str, Entity],
+    describe: Callable[[str], Referent] | Mapping[str, Referent],
     *,
     automaton: Automaton | None = None,
     realizable: np.ndarray | None = None,
@@ -83,7 +84,7 @@ def explain_formula(
     formula:
         the mission formula; ``None`` to explain ``automaton`` alone.
     describe:
-        proposition name -> :class:`Entity` (a mapping or a function).
+        proposition name -> :class:`Referent` (a mapping or a function).
     automaton:
         the DFA actually planned with; default ``ltlf_to_dfa(formula)``. When both are given and differ
         on the ``realizable`` labels, the automaton is explained (it is what gets planned).
@@ -124,7 +125,8 @@ def _reads_as(formula: Formula, automaton: Automaton, realizable: np.ndarray) ->
 
 def explain_mission(
     mission: Mission, building: Building, *, reach_radius_m: float | None = None,
-    cells: Callable[[Proposition, float], np.ndarray] | None = None,
+    reach_model: str | None = None,
+    cells: Callable[[Proposition, float, str], np.ndarray] | None = None,
 ) -> Explanation:
     """Explain ``mission`` over ``building`` (see the module docstring).
 
@@ -137,8 +139,11 @@ def explain_mission(
         occur (rooms exclusive, objects reached only near them).
     reach_radius_m:
         the object reach radius (metres); default the scene's, else sgplan's default.
+    reach_model:
+        where an object counts as reached (:mod:`sgplan.scene.reach`): ``"visible"`` or ``"box"``;
+        default (``None``) sgplan's, ``"visible"``.
     cells:
-        where each proposition holds at a reach radius (flat cell indices, e.g.
+        where each proposition holds at a reach radius and model (flat cell indices, e.g.
         :meth:`sgplan.Session.proposition_cells`, kept for the plan); default
         :func:`sgplan.scene.labels.proposition_cells`.
 
@@ -153,12 +158,13 @@ def explain_mission(
     )
     if extra:  # propositions the automaton ignores (e.g. an authors' HOA dropped them): read them too
         automaton = automaton.with_aps((*automaton.aps, *extra))
-    entities = entities_of(list(automaton.aps), mission.propositions, building)
+    entities = referents_of(list(automaton.aps), mission.propositions, building)
     props = [mission.propositions.get(p) for p in automaton.aps]
     realizable: np.ndarray | None = None
     if all(p is not None for p in props):
         try:
-            realizable = realizable_labels(props, building, reach_radius_m, cells=cells)  # type: ignore[arg-type]
+            realizable = realizable_labels(props, building, reach_radius_m,  # type: ignore[arg-type]
+                                           reach_model=reach_model or DEFAULT_REACH_MODEL, cells=cells)
         except SgplanError:
             realizable = None  # entities the scene lacks: their phrases say so
     if realizable is None:

@@ -1,8 +1,8 @@
 """The label sets a scene can actually produce for a mission's propositions.
 
 A label (bitmask over the automaton's propositions) is *realizable* when some cell carries it: rooms
-are exclusive (a cell lies in one room), and an object is reached only from the cells its reach window
-covers (:func:`sgplan.scene.labels.label_raster`, the one source of truth for labels). Which cells count
+are exclusive (a cell lies in one room), and an object is reached only from the cells of its reach region
+(:func:`sgplan.scene.labels.label_raster`, the one source of truth for labels). Which cells count
 is the caller's choice: every cell inside a room (the explanation: independent of the robot's size), or
 the free cells of an occupancy grid (the pre-planning checks).
 """
@@ -17,6 +17,7 @@ import numpy as np
 from sgplan.errors import MissionError
 from sgplan.scene.labels import MAX_PROPOSITIONS, Proposition, proposition_cells, raster_from_cells
 from sgplan.scene.model import Building
+from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 
 def occurring_labels(labels: np.ndarray, where: np.ndarray, num_labels: int) -> np.ndarray:
@@ -37,14 +38,15 @@ def in_room_cells(building: Building) -> np.ndarray:
 
 
 def realizable_labels(propositions: Sequence[Proposition], building: Building,
-                      reach_radius_m: float | None = None, *,
-                      cells: Callable[[Proposition, float], np.ndarray] | None = None) -> np.ndarray:
+                      reach_radius_m: float | None = None, *, reach_model: str = DEFAULT_REACH_MODEL,
+                      cells: Callable[[Proposition, float, str], np.ndarray] | None = None) -> np.ndarray:
     """``(2**len(propositions),)`` bool: the labels (bit ``i`` = ``propositions[i]``) that some in-room
     cell of ``building`` carries (reach radius: the given one, else the scene's, else the default of
-    :mod:`sgplan.pipeline`).
+    :mod:`sgplan.pipeline`; objects reached under ``reach_model``).
 
-    The labels are those of :func:`~sgplan.scene.labels.label_raster`, made from ``cells(prop, radius)``:
-    the flat cell indices of one proposition, as :func:`~sgplan.scene.labels.proposition_cells` (the
+    The labels are those of :func:`~sgplan.scene.labels.label_raster`, made from
+    ``cells(prop, radius, reach_model)``: the flat cell indices of one proposition, as
+    :func:`~sgplan.scene.labels.proposition_cells` (the
     default) gives them, or a :class:`sgplan.Session`'s, which keeps them for the plan that follows
     (finding them is most of the cost: ~10 ms for four objects on a Gibson scene).
 
@@ -64,5 +66,6 @@ def realizable_labels(propositions: Sequence[Proposition], building: Building,
     radius = resolve_radii(building).reach_m if reach_radius_m is None else reach_radius_m
     cells_of = cells or partial(proposition_cells, building)
     floors, (rows, cols) = building.num_floors, building.grid_shape
-    labels = raster_from_cells((floors * rows * cols,), [cells_of(prop, radius) for prop in propositions])
+    labels = raster_from_cells((floors * rows * cols,),
+                               [cells_of(prop, radius, reach_model) for prop in propositions])
     return occurring_labels(labels, in_room_cells(building).reshape(-1), 1 << len(propositions))

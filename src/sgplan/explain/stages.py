@@ -16,7 +16,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from sgplan.explain.entities import Entity
+from sgplan.explain.referents import Referent
 from sgplan.logic.automaton import Automaton
 from sgplan.logic.minimize import minimize
 
@@ -48,7 +48,7 @@ def _steps_to_accept(a: Automaton, labels: np.ndarray) -> np.ndarray:
 
 
 class _Words:
-    def __init__(self, entities: Mapping[str, Entity], aps: tuple[str, ...]) -> None:
+    def __init__(self, entities: Mapping[str, Referent], aps: tuple[str, ...]) -> None:
         self.entities = [entities[p] for p in aps]
 
     def label(self, label: int) -> str:
@@ -108,7 +108,7 @@ def forbidden_bits(a: Automaton, labels: np.ndarray) -> list[int]:
     return out
 
 
-def stage_lines(automaton: Automaton, entities: Mapping[str, Entity], realizable: np.ndarray | None = None
+def stage_lines(automaton: Automaton, entities: Mapping[str, Referent], realizable: np.ndarray | None = None
                 ) -> list[str]:
     """The automaton explanation as lines of text (see the module docstring).
 

@@ -63,7 +63,7 @@ from sgplan.logic import (
     to_tokens,
 )
 from sgplan.logic.tokens import action_entity, as_token_list
-from sgplan.mission import Mission, mission_from_formula, save_mission_folder
+from sgplan.mission import Mission, compile_mission, save_mission_folder
 from sgplan.scene.model import Building
 
 if TYPE_CHECKING:
@@ -135,7 +135,7 @@ def _accepts_nothing(formula: Formula) -> bool:
     Raises :class:`FormulaError` when the automaton is too large to build, so that it is repaired too.
     """
     try:
-        automaton = mission_from_formula(formula).automaton
+        automaton = compile_mission(formula).automaton
     except AutomatonError as exc:
         raise FormulaError(f"{exc}; write a shorter formula for the same mission") from None
     return not np.isfinite(distances_to_accept(automaton)[automaton.initial])
@@ -347,7 +347,7 @@ class LLMTranslator:
 
 def mission_of(translation: TranslationLike) -> Mission:
     """The mission (minimal DFA, propositions) of a translation from any translator backend."""
-    return mission_from_formula(
+    return compile_mission(
         translation.formula, text=translation.text, grounded_text=translation.grounded_text,
         set_aside=translation.set_aside,
     )

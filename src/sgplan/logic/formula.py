@@ -258,3 +258,17 @@ def check_nesting(formula: Formula) -> Formula:
             f"in); sgplan builds automata for at most {MAX_NESTING} levels"
         )
     return formula
+
+
+def rename_atoms(formula: Formula, names: dict[str, str]) -> Formula:
+    """``formula`` with each atom named in ``names`` renamed (e.g. ``p1`` -> ``enter(room_2)``), its
+    structure kept; atoms not in ``names`` stay."""
+    if isinstance(formula, Atom):
+        return Atom(names.get(formula.name, formula.name))
+    if isinstance(formula, _Unary):
+        return type(formula)(rename_atoms(formula.arg, names))
+    if isinstance(formula, _Binary):
+        return type(formula)(rename_atoms(formula.left, names), rename_atoms(formula.right, names))
+    if isinstance(formula, _Nary):
+        return type(formula)(tuple(rename_atoms(arg, names) for arg in formula.args))
+    return formula

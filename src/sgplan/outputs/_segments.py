@@ -8,6 +8,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from sgplan.scene._sight import next_crossed
+
 
 @njit(cache=True)
 def walk(r: int, c: int, r1: int, c1: int, out: np.ndarray) -> int:
@@ -15,11 +17,10 @@ def walk(r: int, c: int, r1: int, c1: int, out: np.ndarray) -> int:
     ``(r1, c1)`` meets into ``out[:k]`` (``(k, 2)`` int64 rows, in order, both ends included); returns
     ``k``. ``out`` holds at least ``|r1 - r| + |c1 - c| + 1`` rows.
 
-    Exact integer arithmetic: from a cell centre the segment crosses its ``m``-th row line at
-    ``t = (2m - 1) / (2 |d_row|)`` and its ``n``-th column line at ``t = (2n - 1) / (2 |d_col|)``; the
-    times are compared by cross-multiplying (a missing axis never comes first). Where both come at once
-    the segment passes through a cell corner, touching the two cells beside it in one point only, and
-    goes on into the diagonal cell, exactly like the planner's own diagonal step.
+    The steps come from :func:`sgplan.scene._sight.next_crossed` (exact integer arithmetic), the rule the
+    reach model's line of sight follows too: where the segment passes through a cell corner it
+    touches the two cells beside it in one point only and goes on into the diagonal cell, exactly like
+    the planner's own diagonal step.
     """
     dr, dc = abs(r1 - r), abs(c1 - c)
     sr = 1 if r1 > r else -1
@@ -28,14 +29,7 @@ def walk(r: int, c: int, r1: int, c1: int, out: np.ndarray) -> int:
     k = 1
     m = n = 1  # the next row / column line to cross
     while m <= dr or n <= dc:
-        row_time = (2 * m - 1) * dc if m <= dr else -1  # both times scaled by 2 * dr * dc
-        col_time = (2 * n - 1) * dr if n <= dc else -1
-        if col_time < 0 or (row_time >= 0 and row_time <= col_time):
-            r += sr
-            m += 1
-        if row_time < 0 or (col_time >= 0 and col_time <= row_time):
-            c += sc
-            n += 1
+        r, c, m, n = next_crossed(r, c, m, n, dr, dc, sr, sc)
         out[k, 0], out[k, 1] = r, c
         k += 1
     return k

@@ -80,6 +80,7 @@ def path_events(
     automaton: Automaton,
     building: Building,
     descriptions: Mapping[str, str] | None = None,
+    start_state: int | None = None,
 ) -> list[Event]:
     """The events of ``path`` in order (a proposition true at the start counts as becoming true there).
 
@@ -96,11 +97,15 @@ def path_events(
         the mission DFA; its initial state precedes the start row.
     descriptions:
         proposition name -> token (``Mission.descriptions``); names are used as they are without it.
+    start_state:
+        the state before the start row for a path that resumes a mission (the state the robot was in
+        there); default the automaton's initial state.
     """
     rows = np.asarray(path, dtype=np.int64)
     masks = labels[rows[:, 2], rows[:, 0], rows[:, 1]].astype(np.int64)
     previous_mask = np.concatenate([[0], masks[:-1]])
-    previous_q = np.concatenate([[automaton.initial], rows[:-1, 3]])
+    before = automaton.initial if start_state is None else int(start_state)
+    previous_q = np.concatenate([[before], rows[:-1, 3]])
     descriptions = descriptions or {}
     events = []
     for k in np.flatnonzero((masks & ~previous_mask) | (rows[:, 3] != previous_q)).tolist():

@@ -1,6 +1,6 @@
 """Metric waypoints of a planned path, and a simplified variant with fewer points.
 
-A path is the planner's ``(n, 4)`` ``[row, col, floor, q]`` rows (:class:`sgplan.planning.amra.PlanResult`).
+A path is the planner's ``(n, 4)`` ``[row, col, floor, q]`` rows (:class:`sgplan.planning.amra.SearchResult`).
 A :class:`Waypoint` is one cell of it in metres: ``x``, ``y`` (the cell centre, see
 :mod:`sgplan.scene.model` for the axes) and ``z`` (the floor's ground height), with the room it lies in
 and the path cost up to it.

@@ -3,7 +3,7 @@
 Typical use::
 
     problem = PlanningProblem(building, grid, labels, automaton, start=(row, col, floor), guidance=guide)
-    result = plan(problem, setup="ALL")       # PlanResult: status, cost_m, path, iterations, timings
+    result = plan(problem, setup="ALL")       # SearchResult: status, cost_m, path, iterations, timings
 """
 
 from __future__ import annotations
@@ -12,25 +12,36 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from sgplan.planning.amra import SETUPS, IterationRecord, PlanResult, Setup, get_setup, plan
-    from sgplan.planning.problem import PROFILES, PlanningProblem
+    from sgplan.planning.amra import IterationRecord, SearchResult, plan
+    from sgplan.planning.problem import PlanningProblem
+    from sgplan.planning.schedule import WeightSchedule
+    from sgplan.planning.setups import PROFILES, SETUPS, Setup, get_setup
+    from sgplan.planning.termination import CancelFlag, Deadline, ExpansionLimit, TimeLimit
 
 # Loaded on first use, as in ``sgplan/__init__.py``: importing one module of this package (the checker,
 # the problem) must not load the search and its compiled kernels (numba, ~0.5 s).
 _LAZY = {
-    "SETUPS": "sgplan.planning.amra", "IterationRecord": "sgplan.planning.amra",
-    "PlanResult": "sgplan.planning.amra", "Setup": "sgplan.planning.amra",
-    "get_setup": "sgplan.planning.amra", "plan": "sgplan.planning.amra",
-    "PROFILES": "sgplan.planning.problem", "PlanningProblem": "sgplan.planning.problem",
+    "IterationRecord": "sgplan.planning.amra", "SearchResult": "sgplan.planning.amra",
+    "plan": "sgplan.planning.amra", "PlanningProblem": "sgplan.planning.problem",
+    "WeightSchedule": "sgplan.planning.schedule",
+    "CancelFlag": "sgplan.planning.termination", "Deadline": "sgplan.planning.termination",
+    "ExpansionLimit": "sgplan.planning.termination", "TimeLimit": "sgplan.planning.termination",
+    "PROFILES": "sgplan.planning.setups", "SETUPS": "sgplan.planning.setups",
+    "Setup": "sgplan.planning.setups", "get_setup": "sgplan.planning.setups",
 }
 
 __all__ = [
     "PROFILES",
     "SETUPS",
+    "CancelFlag",
+    "Deadline",
+    "ExpansionLimit",
     "IterationRecord",
-    "PlanResult",
     "PlanningProblem",
+    "SearchResult",
     "Setup",
+    "TimeLimit",
+    "WeightSchedule",
     "get_setup",
     "plan",
 ]

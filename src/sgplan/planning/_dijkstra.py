@@ -51,7 +51,7 @@ def next_cell(cell_at, cell_pos, step_offset, x, code):
     return cell_at[cell_pos[x] + step_offset[code - PRED_STEP]]
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _ring_grow(keys, values):
     """Copies of the bucket arrays ``(B, cap)`` with twice the capacity (each bucket's entries kept)."""
     nb, cap = keys.shape
@@ -64,7 +64,7 @@ def _ring_grow(keys, values):
     return new_keys, new_values
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def dijkstra(
     cell_at, cell_pos, step_offset, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost,
     lo, hi, use_stairs, sources, cell_room, stop_room, stop_count, dist, pred, order,
@@ -121,7 +121,7 @@ def dijkstra(
     return state[4]
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _settle(
     cell_at, cell_pos, step_offset, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost,
     lo, n, use_stairs, cell_room,
@@ -225,7 +225,7 @@ def _settle(
     return grow
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def flood(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, start, seen):
     """Mark in ``seen`` (bool, all cells) every cell reachable from cell ``start`` by steps and stairs."""
     stack = np.empty(cell_pos.shape[0], dtype=np.int32)
@@ -253,7 +253,7 @@ def flood(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, 
             j += 1
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def label_runs(cell_at, cell_pos, step_offset, pred, n, cell_label, lo, run, stack):
     """``run[x] = j + 1`` where local ``j`` is the last cell of the same-label stretch that starts at ``x``
     and follows ``pred`` towards the sources, for every reached ``x < n`` (``run`` all zeros before; a run

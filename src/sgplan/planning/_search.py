@@ -78,7 +78,7 @@ the anchor, anchor expansions of states reached by a composite action]``; ``expa
 ``h_evals (rows,)`` h_LTL values computed per unfilled row (:func:`h_ltl`)."""
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def build_map(G, A, M, k):
     """Make composite action family ``k`` ready for this problem: its exact shortest paths
     (multi-source Dijkstra on its floor; skipped when the shared store has them already, see
@@ -113,7 +113,7 @@ def build_map(G, A, M, k):
     M.done[k] = 1
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def build_all_maps(G, A, M):
     """Build every action family not built yet."""
     for k in range(M.done.shape[0]):
@@ -127,7 +127,7 @@ def build_all_maps(G, A, M):
 # points (improve_path, start_iteration, successors, h_llm) unpack once and call the array-level cores.
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def ensure_maps(G, A, M, c, level, max_level):
     """Build (once) every composite action map that expanding cell ``c`` at ``level`` may follow."""
     room = G.cell_room[c]
@@ -213,7 +213,7 @@ def step_successors(
     return n
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def map_successors(
     floor_offset,
     cell_floor,
@@ -318,7 +318,7 @@ def map_successors(
     return n
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def successors(G, A, M, L, c, q, level, max_level, out_c, out_q, out_cost, out_act):
     """Write the successors of (c, q) at ``level`` (0 = anchor: union of levels 1..max_level) into the
     ``out_*`` buffers, building the maps they need first; returns their number. Successor q may be dead."""
@@ -405,7 +405,7 @@ def h_llm_core(cell_room, cell_pos, cell_floor, centre_x, centre_y, centre_z, ac
     return llm_sum[room, q] + np.sqrt(dx * dx + dy * dy + dz * dz)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def h_llm(G, L, c, q):
     """h_LLM at (cell c, state q), metres (0 where guidance has nothing)."""
     return h_llm_core(G.cell_room, G.cell_pos, G.cell_floor, G.centre_x, G.centre_y, G.centre_z, L.accepting,
@@ -514,7 +514,7 @@ def q_bits(num_q):
     return b
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def read_record(ptab, pool, poolf, s):
     """``(g, parent, action)`` of product state ``s``; action -1 if ``s`` was never reached."""
     qb = q_bits(ptab.shape[0])
@@ -624,7 +624,7 @@ def active_queues(num_queues, w1):
     return 1 if w1 <= 1.0 else num_queues
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
     """Begin AMRA* iteration number ``iteration`` with weights (w1, w2): OPEN_0 = (valid OPEN_0) + INCONS,
     re-keyed; every other queue gets the OPEN_0 states of its level; all closed sets are cleared. The
@@ -703,7 +703,7 @@ def start_iteration(G, L, S, q_level, q_htype, w1, w2, iteration):
     return bound
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def anchor_path(G, L, S, budget, max_succ):
     """:func:`improve_path` for an iteration that runs the anchor queue alone over occupancy moves (the
     A* setup throughout, every setup once w1 = 1): the same expansions in the same order as
@@ -891,7 +891,7 @@ def anchor_path(G, L, S, budget, max_succ):
     return status, done
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     """AMRA* ImprovePath, round robin over the queues, until the bound holds or a limit is hit.
 
@@ -932,7 +932,7 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     return multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     """:func:`improve_path` in general: any queues, composite actions (the loop that :func:`anchor_path`
     specialises)."""
@@ -1160,7 +1160,7 @@ def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_suc
                     hsize[j] = hpush(hf, hi, j * capacity, hsize[j], fj, gn, ns)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def init_start(ptab, pool, poolf, iscal, incons, start_cell, q_start):
     """Record the start state (g 0, no parent) in fresh search memory and put it in INCONS."""
     r = rec_touch(ptab, iscal, start_cell, q_start)

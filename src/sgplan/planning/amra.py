@@ -1,9 +1,10 @@
-"""AMRA* over the hierarchical domain: setups, weight schedule, budgets, results (the Python driver).
+"""AMRA* over the hierarchical domain: the Python driver.
 
-The compiled loop is in :mod:`sgplan.planning._search`; this module owns the iteration schedule
-(weights (10, 20) halving to (1, 1), reference-algorithm.md §6; at most 255 iterations), the queue layout
-of each setup (§7.2), the search memory (a record pool reserved once, lazily committed), time/expansion
-budgets, per-iteration records and path recovery.
+:func:`plan` runs the iterations of a weight schedule (:mod:`sgplan.planning.schedule`) with the queues of a
+setup (:mod:`sgplan.planning.setups`) over the compiled loop (:mod:`sgplan.planning._search`), in chunks of
+at most :data:`CHUNK_EXPANSIONS` expansions between which it grows the search memory
+(:mod:`sgplan.planning.search_memory`) and polls a termination condition
+(:mod:`sgplan.planning.termination`); it records each iteration and recovers the path at the end.
 
 Goal tracking (departing from the authors' inert test, §12.9): every generated state whose automaton
 state is accepting is a goal; the best one's g is compared with ``w2 * min key(anchor)`` after every
@@ -20,59 +21,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from sgplan.errors import PlanningError
-from sgplan.planning import _search
-from sgplan.planning._memory import sparse_zeros
+from sgplan.planning import _search, search_memory
 from sgplan.planning._search import ACT_MAP, BUDGET, GROW, SearchState
 from sgplan.planning.domain import PlanningDomain, _infeasible_reason
 from sgplan.planning.problem import PlanningProblem
-
-LEVEL_NAMES = ("anchor", "occupancy", "object", "room", "floor")
-LTL, LLM = 0, 1
-
-
-@dataclass(frozen=True)
-class Setup:
-    """A planner configuration: the highest level used and the (level, heuristic) queues, anchor first."""
-
-    name: str
-    max_level: int
-    queues: tuple[tuple[int, int], ...]
-
-    @property
-    def uses_llm(self) -> bool:
-        return any(h == LLM for _, h in self.queues)
-
-    @property
-    def queue_names(self) -> tuple[str, ...]:
-        return tuple(f"{'LTL' if h == LTL else 'LLM'}/{LEVEL_NAMES[level]}" for level, h in self.queues)
-
-
-# Queue layouts (reference-algorithm.md §7.2), with every (level, LTL) queue merged into the anchor: such a
-# queue has the anchor's heuristic, so it holds the anchor's states under the anchor's keys, and since the
-# anchor expansion generates every level's successors (and closes the state at every level), expanding a
-# state there again only repeats work -- in NO-LLM each state was expanded by up to five queues. What
-# remains is the anchor (level 0 = union of levels 1..max_level, h_LTL) and the LLM-guided level queues.
-_LLM_LEVELS = tuple((level, LLM) for level in range(1, 5))
-SETUPS: dict[str, Setup] = {
-    "ALL": Setup("ALL", 4, ((0, LTL),) + _LLM_LEVELS),
-    "NO-LLM": Setup("NO-LLM", 4, ((0, LTL),)),
-    "A*": Setup("A*", 1, ((0, LTL),)),
-    "OCC": Setup("OCC", 4, ((0, LTL), (1, LLM))),
-    "OBJ": Setup("OBJ", 4, ((0, LTL), (2, LLM))),
-    "ROOM": Setup("ROOM", 4, ((0, LTL), (3, LLM))),
-    "FLR": Setup("FLR", 4, ((0, LTL), (4, LLM))),
-}
-"""The paper's setups (reference-algorithm.md §7.2), (level, LTL) queues merged into the anchor (above)."""
-_ALIASES = {"NO_LLM": "NO-LLM", "NOLLM": "NO-LLM", "ASTAR": "A*", "A_STAR": "A*", "A-STAR": "A*"}
-
-
-def get_setup(name: str) -> Setup:
-    """The setup called ``name`` (case-insensitive; ``NO_LLM`` / ``A_STAR`` also accepted)."""
-    key = str(name).strip().upper()
-    key = _ALIASES.get(key, key)
-    if key not in SETUPS:
-        raise PlanningError(f"unknown setup {name!r}; use one of {', '.join(SETUPS)}")
-    return SETUPS[key]
+from sgplan.planning.schedule import PAPER_SCHEDULE, WeightSchedule
+from sgplan.planning.setups import Setup, get_setup
+from sgplan.planning.termination import Progress, Stop, Termination
 
 
 @dataclass(frozen=True)
@@ -89,14 +44,16 @@ class IterationRecord:
 
 
 @dataclass(eq=False)
-class PlanResult:
-    """Outcome of :func:`plan`.
+class SearchResult:
+    """Outcome of :func:`plan` (the search's own; the public result of :func:`sgplan.plan` is
+    :class:`sgplan.PlanResult`).
 
     Attributes
     ----------
     status:
-        ``"optimal"`` (the (1, 1) iteration finished: ``cost_m`` is the exact optimum) or ``"timeout"``
-        (a budget ran out: the best path so far, or none).
+        ``"optimal"`` (the final iteration finished: ``cost_m`` is the exact optimum), ``"timeout"`` (a time,
+        deadline or expansion limit ran out) or ``"cancelled"`` (a cancel flag was set); a stopped search
+        keeps the best path so far, or none.
     cost_m:
         cost of ``path`` in metres (``inf`` without a path).
     path:
@@ -107,8 +64,11 @@ class PlanResult:
     precompute_s, search_s:
         seconds to build the domain (once per problem), and of search (including lazily built actions).
     search_bytes:
-        bytes of search memory in use at the end (:func:`state_bytes`): state records of the pages the
-        search touched, the page table, heap and INCONS entries -- not cells x automaton states.
+        bytes of search memory in use at the end (:func:`~sgplan.planning.search_memory.state_bytes`):
+        state records of the pages the search touched, the page table, heap and INCONS entries -- not
+        cells x automaton states.
+    stop_reason:
+        why a stopped search stopped (:class:`~sgplan.planning.termination.Stop`), ``None`` otherwise.
     """
 
     status: str
@@ -121,6 +81,7 @@ class PlanResult:
     precompute_s: float
     search_s: float
     search_bytes: int = 0
+    stop_reason: str | None = None
 
     @property
     def expansions(self) -> int:
@@ -129,20 +90,22 @@ class PlanResult:
 
 IterationCallback = Callable[[IterationRecord], None]
 
+CHUNK_EXPANSIONS = 4096
+"""Expansions of one call of the compiled search at most. Between two calls the driver grows the search
+memory when asked and polls the termination condition, so a cancel or a limit takes effect within one
+chunk; small enough for that, large enough that the calls cost nothing next to the search."""
+
 
 def plan(
     problem: PlanningProblem,
     setup: str = "ALL",
     *,
-    time_limit_s: float | None = None,
-    max_expansions: int | None = None,
+    termination: Termination | None = None,
     callback: IterationCallback | None = None,
-    weights: tuple[float, float] = (10.0, 20.0),
-    final_weights: tuple[float, float] = (1.0, 1.0),
-    decay: float = 0.5,
+    schedule: WeightSchedule = PAPER_SCHEDULE,
     prebuild_actions: bool = True,
     release_maps: bool = False,
-) -> PlanResult:
+) -> SearchResult:
     """Plan an optimal path for ``problem`` with AMRA* in configuration ``setup``.
 
     Parameters
@@ -150,27 +113,28 @@ def plan(
     problem:
         the planning problem; its domain is built on first use and reused by later calls.
     setup:
-        a name of :data:`SETUPS` (ALL, NO-LLM, A*, OCC, OBJ, ROOM, FLR).
-    time_limit_s, max_expansions:
-        budgets for the search (seconds of search, total expansions); when one runs out the result has
-        status ``"timeout"`` and the best path found so far.
+        a name of :data:`~sgplan.planning.setups.SETUPS` (ALL, NO-LLM, A*, OCC, OBJ, ROOM, FLR).
+    termination:
+        when to stop before the optimum (:mod:`sgplan.planning.termination`: a time or expansion limit, a
+        deadline, a cancel flag, any of them together), polled before the domain is built, before the
+        search and before every chunk of at most :data:`CHUNK_EXPANSIONS` expansions; the result then has
+        its status (``"timeout"`` or ``"cancelled"``), its ``stop_reason`` and the best path found so far.
+        ``None``: run to the optimum.
     callback:
         called with each :class:`IterationRecord` as soon as its iteration finishes.
-    weights, final_weights, decay:
-        the schedule: (w1, w2) start at ``weights`` and are multiplied by ``decay`` (floored at
-        ``final_weights``) after each iteration; the iteration run at ``final_weights`` is the last.
+    schedule:
+        the iterations' weights (:class:`~sgplan.planning.schedule.WeightSchedule`; the paper's by default).
     prebuild_actions:
         build every composite action map before the search clock starts (the authors' accounting, and
         a first path within milliseconds); ``False`` builds them lazily inside the search, which saves
-        1-3 s of precomputation on large scenes when only the optimum matters. Setups without composite
+        precomputation on large scenes when only the optimum matters. Setups without composite
         actions (A*, ``max_level`` 1) never build them.
     release_maps:
         the caller plans on ``problem`` only this once (its domain and action maps are no one else's, as
         in :func:`sgplan.plan` without a keeping session): the maps' distances and label runs are freed
         when the first iteration with w1 = 1 starts, since from then on the anchor searches alone on
-        occupancy moves (:func:`sgplan.planning._search.improve_path`) and never reads them (22 MB of
-        the 254 MB peak of Collierville mission 5, ALL). A later plan on the problem still works: it
-        rebuilds the maps it needs.
+        occupancy moves (:func:`sgplan.planning._search.improve_path`) and never reads them. A later plan
+        on the problem still works: it rebuilds the maps it needs.
 
     Raises
     ------
@@ -180,122 +144,159 @@ def plan(
         setup or a setup that needs LLM guidance the problem does not carry.
     """
     spec = get_setup(setup)
-    if (
-        not (0 < decay < 1)
-        or min(final_weights) < 1
-        or weights[0] < final_weights[0]
-        or weights[1] < final_weights[1]
-    ):
-        raise PlanningError(f"bad weight schedule {weights} -> {final_weights} with decay {decay}")
-    if _schedule_length(weights, final_weights, decay) > MAX_ITERATIONS:
-        raise PlanningError(
-            f"weight schedule {weights} -> {final_weights} with decay {decay} has more than {MAX_ITERATIONS}"
-            " iterations (the search tags closed states with the iteration in 8 bits); lower the decay factor"
-        )
-    domain = problem.domain_for(spec.max_level)  # A*: no composite action tables
-    if spec.uses_llm and domain.llm is None:
-        raise PlanningError(f"setup {spec.name} needs LLM guidance; give the problem guidance or use NO-LLM")
-    too_big = _search.check_layout(domain.graph.num_cells, domain.num_states, len(domain.kactions.map_floor))
-    if too_big is not None:
-        raise PlanningError(f"{too_big}: split the building or simplify the mission")
-    if prebuild_actions and spec.max_level >= 2:
-        domain.build_actions()
-    q_level = np.array([level for level, _ in spec.queues], dtype=np.int32)
-    q_htype = np.array([h for _, h in spec.queues], dtype=np.int32)
-    acts = domain.kactions
-    max_succ = int(
-        10 + np.diff(acts.room_obj_ptr).max(initial=0) + np.diff(acts.room_room_ptr).max(initial=0) + 2
-    )
-    warm_s = _warm_up(domain, q_level, q_htype, spec.max_level, max_succ)
-    result = PlanResult(
-        status="optimal", setup=spec.name, profile=problem.profile, cost_m=float("inf"), path=None,
-        iterations=[], queues=spec.queue_names, precompute_s=domain.precompute_s + warm_s, search_s=0.0,
-    )
-    if domain.accepting[domain.q_start]:
-        result.cost_m = 0.0
-        result.path = _path_rows(domain, np.array([domain.start_cell]))
-        result.iterations.append(
-            IterationRecord(*weights, 0.0, weights[0] * weights[1], 0.0, (0,) * len(spec.queues))
-        )
-        return result
+    stop = _poll(termination, Progress())
+    if stop is not None:  # before any precomputation
+        return _stopped_before_search(problem, spec, stop)
+    search = _Search(problem, spec, prebuild_actions)
+    if search.start_accepts:
+        return search.accepting_start(schedule.first)
+    stop = _poll(termination, Progress())
+    for w1, w2 in () if stop is not None else schedule:
+        if release_maps and w1 <= 1.0:
+            search.domain.release_map_fields()
+        stop = search.run_iteration(w1, w2, termination)
+        if stop is not None:
+            break
+        record = search.record(w1, w2)
+        search.result.iterations.append(record)
+        if callback is not None:
+            callback(record)
+    return search.finish(stop)
 
-    state = _new_state(domain, len(spec.queues))
-    chunk = 4096
-    w1, w2 = float(weights[0]), float(weights[1])
-    started = 0
-    expansions = 0
-    bound = 0.0  # a lower bound on the optimum, from the last iteration's start (see _search.start_iteration)
-    while True:
+
+def _poll(termination: Termination | None, progress: Progress) -> Stop | None:
+    return None if termination is None else termination.check(progress)
+
+
+def _stopped_before_search(problem: PlanningProblem, spec: Setup, stop: Stop) -> SearchResult:
+    return SearchResult(
+        status=stop.status, setup=spec.name, profile=problem.profile, cost_m=float("inf"), path=None,
+        iterations=[], queues=spec.queue_names, precompute_s=0.0, search_s=0.0, stop_reason=stop.reason,
+    )
+
+
+class _Search:
+    """One AMRA* search on a problem's domain: the search memory, the clock and counters the driver keeps
+    between calls of the compiled loop, and the result it fills in."""
+
+    def __init__(self, problem: PlanningProblem, spec: Setup, prebuild_actions: bool) -> None:
+        domain = problem.domain_for(spec.max_level)  # A*: no composite action tables
+        if spec.uses_llm and domain.llm is None:
+            raise PlanningError(
+                f"setup {spec.name} needs LLM guidance; give the problem guidance or use NO-LLM"
+            )
+        num_maps = len(domain.kactions.map_floor)
+        too_big = _search.check_layout(domain.graph.num_cells, domain.num_states, num_maps)
+        if too_big is not None:
+            raise PlanningError(f"{too_big}: split the building or simplify the mission")
+        if prebuild_actions and spec.max_level >= 2:
+            domain.build_actions()
+        self.problem, self.domain, self.spec = problem, domain, spec
+        self.q_level = np.array([level for level, _ in spec.queues], dtype=np.int32)
+        self.q_htype = np.array([h for _, h in spec.queues], dtype=np.int32)
+        acts = domain.kactions
+        self.max_succ = int(
+            10 + np.diff(acts.room_obj_ptr).max(initial=0) + np.diff(acts.room_room_ptr).max(initial=0) + 2
+        )
+        warm_s = _warm_up(domain, self.q_level, self.q_htype, spec.max_level, self.max_succ)
+        self.result = SearchResult(
+            status="optimal", setup=spec.name, profile=problem.profile, cost_m=float("inf"), path=None,
+            iterations=[], queues=spec.queue_names, precompute_s=domain.precompute_s + warm_s, search_s=0.0,
+        )
+        self.start_accepts = bool(domain.accepting[domain.q_start])
+        self.state = search_memory.new_state(domain, len(spec.queues))
+        self.expansions = 0
+        self.started = 0  # iterations begun in the compiled search (one whose bound holds begins none)
+        self.bound = 0.0  # a lower bound on the optimum from the last iteration's start (start_iteration)
+
+    @property
+    def progress(self) -> Progress:
+        return Progress(search_s=self.result.search_s, expansions=self.expansions)
+
+    def accepting_start(self, weights: tuple[float, float]) -> SearchResult:
+        """The result when the start itself is accepting: the one-cell path, at cost 0."""
+        domain = self.domain
+        self.result.cost_m = 0.0
+        self.result.path = _path_rows(domain, np.array([domain.start_cell]))
+        self.result.iterations.append(
+            IterationRecord(*weights, 0.0, weights[0] * weights[1], 0.0, (0,) * len(self.spec.queues))
+        )
+        return self.result
+
+    def run_iteration(self, w1: float, w2: float, termination: Termination | None) -> Stop | None:
+        """Run the iteration with weights (w1, w2) to its end, or until ``termination`` says stop (polled
+        before each chunk); returns that :class:`Stop`, or ``None`` when the iteration finished.
+
+        Raises :class:`PlanningError` (``"infeasible"``) when the search exhausts every state without a goal.
+        """
         # An iteration whose bound already holds (best goal <= w2 x the lower bound: it would stop before
         # its first expansion) is recorded without re-keying the queues; ARA*'s own shortcut.
-        if release_maps and w1 <= 1.0:
-            domain.release_map_fields()
-        if not (state.fscal[0] <= w2 * bound):
-            started += 1
-            state = _reserve(state, int(state.hsize[0] + state.iscal[_search.I_NINCONS]) + max_succ)
-            t0 = time.perf_counter()
-            bound = _search.start_iteration(
-                domain.kgraph, domain.klogic, state, q_level, q_htype, w1, w2, started
-            )
-            result.search_s += time.perf_counter() - t0
-        while not (state.fscal[0] <= w2 * bound):
-            budget = chunk if max_expansions is None else max(0, min(chunk, max_expansions - expansions))
-            t0 = time.perf_counter()
-            code, done = _search.improve_path(
-                domain.kgraph, domain.kactions, domain.kmaps, domain.klogic, state, q_level, q_htype,
-                spec.max_level, budget, max_succ,
-            )
-            result.search_s += time.perf_counter() - t0
-            expansions += int(done)
-            if code == GROW:
-                state = _reserve(state, 2 * int(state.hsize.max(initial=0)) + max_succ, free_pages=max_succ)
-                continue
-            if code != BUDGET:
+        if not (self.state.fscal[0] <= w2 * self.bound):
+            self._begin(w1, w2)
+        while not (self.state.fscal[0] <= w2 * self.bound):
+            stop = _poll(termination, self.progress)
+            if stop is not None:
+                return stop
+            left = termination.expansions_left(self.progress) if termination is not None else None
+            code = self._improve(CHUNK_EXPANSIONS if left is None else min(CHUNK_EXPANSIONS, left))
+            if code not in (BUDGET, GROW):  # FOUND, or EXHAUSTED
                 break
-            over_time = time_limit_s is not None and result.search_s >= time_limit_s
-            if over_time or (max_expansions is not None and expansions >= max_expansions):
-                result.status = "timeout"
-                break
-        if result.status == "timeout":
-            break
-        if not np.isfinite(state.fscal[0]):
+        if not np.isfinite(self.state.fscal[0]):
+            domain = self.domain
             raise PlanningError(
                 _infeasible_reason(
-                    problem, domain.label_masks[domain.cell_label],
+                    self.problem, domain.label_masks[domain.cell_label],
                     np.isfinite(domain.graph.distances(np.array([domain.start_cell]))), domain.q_start,
                 ) + " (proved by exhaustive search)",
                 status="infeasible",
             )
-        record = IterationRecord(
-            w1, w2, float(state.fscal[0]), w1 * w2, result.search_s, tuple(int(x) for x in state.expansions)
+        return None
+
+    def _begin(self, w1: float, w2: float) -> None:
+        """Start an iteration in the compiled search: OPEN re-keyed for (w1, w2), INCONS merged."""
+        self.started += 1
+        self.state = search_memory.reserve(
+            self.state, int(self.state.hsize[0] + self.state.iscal[_search.I_NINCONS]) + self.max_succ
         )
-        result.iterations.append(record)
-        if callback is not None:
-            callback(record)
-        if w1 <= final_weights[0] and w2 <= final_weights[1]:
-            break
-        w1, w2 = max(w1 * decay, final_weights[0]), max(w2 * decay, final_weights[1])
+        t0 = time.perf_counter()
+        self.bound = _search.start_iteration(self.domain.kgraph, self.domain.klogic, self.state, self.q_level,
+                                             self.q_htype, w1, w2, self.started)
+        self.result.search_s += time.perf_counter() - t0
 
-    result.search_bytes = state_bytes(state)
-    if np.isfinite(state.fscal[0]):
-        cells = _recover_cells(domain, state, int(state.iscal[0]))
-        result.path = _path_rows(domain, cells)
-        result.cost_m = path_cost(domain, cells)
-    return result
+    def _improve(self, budget: int) -> int:
+        """One chunk of at most ``budget`` expansions of the compiled search; its return code, after growing
+        the search memory if it asked for room."""
+        domain = self.domain
+        t0 = time.perf_counter()
+        code, done = _search.improve_path(
+            domain.kgraph, domain.kactions, domain.kmaps, domain.klogic, self.state, self.q_level,
+            self.q_htype, self.spec.max_level, budget, self.max_succ,
+        )
+        self.result.search_s += time.perf_counter() - t0
+        self.expansions += int(done)
+        if code == GROW:
+            self.state = search_memory.reserve(
+                self.state, 2 * int(self.state.hsize.max(initial=0)) + self.max_succ, free_pages=self.max_succ
+            )
+        return int(code)
 
+    def record(self, w1: float, w2: float) -> IterationRecord:
+        """The record of the iteration that just finished at weights (w1, w2)."""
+        state = self.state
+        expansions = tuple(int(x) for x in state.expansions)
+        return IterationRecord(w1, w2, float(state.fscal[0]), w1 * w2, self.result.search_s, expansions)
 
-MAX_ITERATIONS = _search.TAG_MASK
-"""The longest weight schedule (closed sets are tagged with the iteration number modulo 256)."""
-
-
-def _schedule_length(weights: tuple[float, float], final: tuple[float, float], decay: float) -> int:
-    """Iterations in the schedule ``weights`` -> ``final`` (each weight times ``decay``, floored)."""
-    w1, w2, n = float(weights[0]), float(weights[1]), 1
-    while not (w1 <= final[0] and w2 <= final[1]):
-        w1, w2, n = max(w1 * decay, final[0]), max(w2 * decay, final[1]), n + 1
-        if n > MAX_ITERATIONS:
-            break
-    return n
+    def finish(self, stop: Stop | None) -> SearchResult:
+        """The result: the status (the stop's, if any), the search memory used, the best path found."""
+        result, state = self.result, self.state
+        if stop is not None:
+            result.status, result.stop_reason = stop.status, stop.reason
+        result.search_bytes = search_memory.state_bytes(state)
+        if np.isfinite(state.fscal[0]):
+            cells = _recover_cells(self.domain, state, int(state.iscal[_search.I_GOAL]))
+            result.path = _path_rows(self.domain, cells)
+            result.cost_m = path_cost(self.domain, cells)
+        return result
 
 
 def _warm_up(
@@ -303,101 +304,12 @@ def _warm_up(
 ) -> float:
     """Load (or compile) the search kernels on an empty search, so that no JIT time counts as search."""
     t0 = time.perf_counter()
-    scratch = _new_state(domain, len(q_level), pages=1)
+    scratch = search_memory.new_state(domain, len(q_level), pages=1)
     scratch.iscal[2] = 0
     _search.start_iteration(domain.kgraph, domain.klogic, scratch, q_level, q_htype, 1.0, 1.0, 1)
-    _search.improve_path(
-        domain.kgraph,
-        domain.kactions,
-        domain.kmaps,
-        domain.klogic,
-        scratch,
-        q_level,
-        q_htype,
-        max_level,
-        0,
-        max_succ,
-    )
+    _search.improve_path(domain.kgraph, domain.kactions, domain.kmaps, domain.klogic, scratch, q_level,
+                         q_htype, max_level, 0, max_succ)
     return time.perf_counter() - t0
-
-
-def _new_state(domain: PlanningDomain, num_queues: int, pages: int | None = None) -> SearchState:
-    """Fresh search memory with the start state in INCONS (so the first iteration opens it).
-
-    The pool has ``pages`` page slots, grown on demand; by default a slot for every (automaton state,
-    block) pair, or as many as the operating system lets us map (:func:`_pool_buffer`). The reservation
-    is lazily committed, so the slots a search never uses cost no memory, and a pool that never grows is
-    never copied: each doubling wrote and page-faulted the used part again (10-17 % of the search on the
-    larger Gibson cases), and at its peak held both copies (+1 GB on 9 unordered goals)."""
-    num_q = domain.num_states
-    blocks = -(-domain.graph.num_cells // _search.PAGE)
-    pool = _pool_buffer(num_q * blocks if pages is None else pages)
-    capacity = int(min(domain.graph.num_cells * num_q + 16, 1 << 20))
-    hbuf = sparse_zeros(num_queues * capacity * _search.HREC, np.int64)
-    state = SearchState(
-        ptab=np.full((num_q, blocks), -1, dtype=np.int32),
-        pool=pool,
-        poolf=pool.view(np.float64),
-        hbuf=hbuf,
-        hbuff=hbuf.view(np.float64),
-        hsize=np.zeros(num_queues, dtype=np.int64),
-        incons=np.empty(capacity, dtype=np.int64),
-        fscal=np.array([np.inf, 1.0, 1.0]),
-        iscal=np.array([-1, 1, 1, 0, 0, 0, 0], dtype=np.int64),
-        expansions=np.zeros(num_queues, dtype=np.int64),
-        h_evals=np.zeros(domain.klogic.h_ready.shape[0], dtype=np.int64),
-    )
-    _search.init_start(state.ptab, state.pool, state.poolf, state.iscal, state.incons,
-                       domain.start_cell, domain.q_start)
-    return state
-
-
-def _pool_buffer(pages: int) -> np.ndarray:
-    """A lazily committed pool of ``pages`` page slots, or of as many as can be mapped (halving on
-    MemoryError, down to one; the search grows it later if it needs more)."""
-    while True:
-        try:
-            return sparse_zeros(pages * _search.PAGE * _search.REC, np.int64)
-        except MemoryError:
-            if pages <= 1:
-                raise
-            pages //= 2
-
-
-def _reserve(state: SearchState, capacity: int, free_pages: int = 0) -> SearchState:
-    """``state`` with heaps and INCONS able to hold at least ``capacity`` entries each, and at least
-    ``free_pages`` unused page slots in the pool (each grown by doubling, contents kept)."""
-    rec = _search.HREC
-    num_queues = state.hsize.shape[0]
-    old_cap = state.hbuf.shape[0] // (rec * num_queues)
-    new = old_cap
-    while new < capacity:
-        new *= 2
-    if new != old_cap:
-        hbuf = sparse_zeros(num_queues * new * rec, np.int64)
-        for i in range(num_queues):  # heap i moves from entry offset i * old_cap to i * new
-            size, to, at = int(state.hsize[i]) * rec, i * new * rec, i * old_cap * rec
-            hbuf[to : to + size] = state.hbuf[at : at + size]
-        state = state._replace(hbuf=hbuf, hbuff=hbuf.view(np.float64))
-    if state.incons.shape[0] < capacity:
-        incons = np.empty(max(capacity, 2 * state.incons.shape[0]), dtype=np.int64)
-        incons[: state.iscal[2]] = state.incons[: state.iscal[2]]
-        state = state._replace(incons=incons)
-    page_words = _search.PAGE * _search.REC
-    used, slots = int(state.iscal[_search.I_PAGES]), state.pool.shape[0] // page_words
-    if used + free_pages > slots:
-        pool = sparse_zeros(max(2 * slots, used + free_pages) * page_words, np.int64)
-        pool[: used * page_words] = state.pool[: used * page_words]
-        state = state._replace(pool=pool, poolf=pool.view(np.float64))
-    return state
-
-
-def state_bytes(state: SearchState) -> int:
-    """Bytes of search memory that can be committed: used pool pages, page table, heap and INCONS
-    entries in use (the rest of the lazily committed buffers is never touched)."""
-    used = int(state.iscal[_search.I_PAGES]) * _search.PAGE * _search.REC * 8
-    heaps = int(state.hsize.sum()) * _search.HREC * 8
-    return used + state.ptab.nbytes + heaps + int(state.iscal[2]) * 8
 
 
 def _recover_cells(domain: PlanningDomain, state: SearchState, goal: int) -> np.ndarray:
@@ -433,7 +345,7 @@ def _path_rows(domain: PlanningDomain, cells: np.ndarray) -> np.ndarray:
         q = int(domain.trans[q, labels[i]])
         states[i] = q
     return np.stack(
-        [graph.cell_row[cells], graph.cell_col[cells], graph.cell_floor[cells], states], axis=1
+        [*graph.row_col(cells), graph.cell_floor[cells], states], axis=1
     ).astype(np.int64)
 
 
@@ -443,10 +355,8 @@ def path_cost(domain: PlanningDomain, cells: np.ndarray) -> float:
     a, b = cells[:-1], cells[1:]
     same = graph.cell_floor[a] == graph.cell_floor[b]
     res_x, res_y = (graph.step_cost[1], graph.step_cost[3])
-    steps = np.hypot(
-        (graph.cell_row[b] - graph.cell_row[a])[same] * res_x,
-        (graph.cell_col[b] - graph.cell_col[a])[same] * res_y,
-    )
+    rows, cols = graph.row_col(cells)
+    steps = np.hypot(np.diff(rows)[same] * res_x, np.diff(cols)[same] * res_y)
     total = float(steps.sum())
     for u, v in zip(a[~same], b[~same]):
         j = np.flatnonzero((graph.stairs_from == u) & (graph.stairs_to == v))

@@ -141,6 +141,13 @@ class CellGraph:
         col -= 1
         return col.astype(np.int32, copy=False)
 
+    def row_col(self, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(rows, cols)`` int64 of the given cells only (:attr:`cell_row` / :attr:`cell_col` compute every
+        cell's)."""
+        _, prows, pcols = self.padded_shape
+        row, col = np.divmod(self.cell_pos[np.asarray(cells, dtype=np.int64)].astype(np.int64), pcols)
+        return row % prows - 1, col - 1
+
     def positions(self) -> np.ndarray:
         """``(N,)`` flat raster position ``(floor * rows + row) * cols + col`` of every cell (int32 when the
         raster allows, else int64), computed on each call."""
@@ -220,7 +227,7 @@ class CellGraph:
 _NO_ROOMS = np.zeros(0, dtype=np.int16)  # the dtype of a domain's cell_room: one compiled dijkstra for both
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _room_ids(traversable, room_map, present):
     """Mark in ``present`` (at ``id + 32768``) the room id of every traversable cell."""
     floors, rows, cols = traversable.shape
@@ -231,7 +238,7 @@ def _room_ids(traversable, room_map, present):
                     present[room_map[f, r, c] + 32768] = True
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _tabulate(traversable, room_map, room_group, num_groups, cell_at, cell_pos, cell_floor, floor_offset):
     """Number the traversable cells of ``traversable`` (floors, rows, cols) by (floor, room group, raster
     order) into ``cell_pos`` / ``cell_floor`` / ``floor_offset``, and fill the padded raster index

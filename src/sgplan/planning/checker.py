@@ -14,9 +14,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from sgplan.logic.automaton import Automaton
+from sgplan.planning.setups import PROFILES
 from sgplan.scene.grid import OccupancyGrid
-
-PROFILES = ("ltlf", "authors")
 
 
 @dataclass(frozen=True)
@@ -38,6 +37,7 @@ def check_path(
     labels: np.ndarray,
     automaton: Automaton,
     profile: str = "ltlf",
+    start_state: int | None = None,
 ) -> PathCheck:
     """Check a path against the grid, the labels and the automaton.
 
@@ -55,6 +55,9 @@ def check_path(
         the mission automaton.
     profile:
         ``"ltlf"`` (start label read) or ``"authors"`` (start label not read).
+    start_state:
+        a path that resumes a mission: the automaton state at its first cell, that cell's label already
+        read (``profile`` then plays no part); ``None``: from the initial state, as ``profile`` says.
 
     Returns
     -------
@@ -79,7 +82,7 @@ def check_path(
     cost_m, move_problems = _moves_cost(path, grid)
     problems += move_problems
 
-    expected = _expected_states(labels[floors, rows, cols], automaton, profile)
+    expected = _expected_states(labels[floors, rows, cols], automaton, profile, start_state)
     wrong = np.flatnonzero(expected != states)
     problems += [
         f"cell {k} {tuple(path[k, :3])} has state {states[k]}, the automaton gives {expected[k]}"
@@ -118,12 +121,13 @@ def _moves_cost(path: np.ndarray, grid: OccupancyGrid) -> tuple[float, list[str]
     return total, problems
 
 
-def _expected_states(path_labels: np.ndarray, automaton: Automaton, profile: str) -> np.ndarray:
+def _expected_states(path_labels: np.ndarray, automaton: Automaton, profile: str,
+                     start_state: int | None) -> np.ndarray:
     """Automaton state after each cell of the path, from the labels alone."""
-    q = automaton.initial
+    q = automaton.initial if start_state is None else int(start_state)
     expected = np.empty(len(path_labels), dtype=np.int64)
     for k, label in enumerate(path_labels):
-        if k > 0 or profile == "ltlf":
+        if k > 0 or (profile == "ltlf" and start_state is None):
             q = int(automaton.table[q, int(label)])
         expected[k] = q
     return expected

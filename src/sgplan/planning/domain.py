@@ -33,8 +33,8 @@ from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
 from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic, unit_field
 from sgplan.planning.problem import PlanningProblem
 from sgplan.planning.shared import shared_part
-from sgplan.scene.dilate import within_distance
 from sgplan.scene.model import CatCode
+from sgplan.scene.reach import object_reach_cells
 
 # Arrays handed to the compiled search, grouped by role (numba accepts named tuples of arrays).
 KernelGraph = namedtuple(
@@ -229,7 +229,12 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
     clock.lap("labels")
 
     start_mask = int(label_masks[cell_label[start_cell]])
-    if problem.profile == "ltlf":
+    if problem.start_state is not None:
+        q_start = int(problem.start_state)
+        if dead[q_start]:
+            raise PlanningError(f"automaton state {q_start} at the start can no longer accept: the "
+                                "mission is violated", status="infeasible")
+    elif problem.profile == "ltlf":
         q_start = int(automaton.table[automaton.initial, start_mask])
         if dead[q_start]:
             true_aps = [problem.ap_name(i) for i in range(len(automaton.aps)) if start_mask >> i & 1]
@@ -335,17 +340,18 @@ def _action_parts(
 ) -> ActionParts:
     """The composite action tables of the problem's grid (shared by a session), the map store of the
     start's connected component and the label runs of this labelling (both filled by the search)."""
-    tables = shared_part(problem.shared, "action_tables", (problem.grid, problem.reach_radius_m),
+    reach = (problem.reach_radius_m, problem.reach_model)
+    tables = shared_part(problem.shared, "action_tables", (problem.grid, *reach),
                          lambda: _action_tables(problem, graph))
     # The maps' early stops depend on which cells the search can stand on: the start's component, named
     # by its lowest cell.
     component = int(np.argmax(reachable))
-    store = shared_part(problem.shared, "action_maps", (problem.grid, problem.reach_radius_m, component),
+    store = shared_part(problem.shared, "action_maps", (problem.grid, *reach, component),
                         lambda: MapStore.empty(tables, graph, reachable))
     # Label runs follow which cells share a label: shared by the problems with the same cell labels.
     labelling = hashlib.blake2b(np.ascontiguousarray(cell_label).data, digest_size=16).digest()  # no copy
     runs = shared_part(problem.shared, "label_runs",
-                       (problem.grid, problem.reach_radius_m, component, labelling),
+                       (problem.grid, *reach, component, labelling),
                        lambda: LabelRuns.empty(store))
     kmaps = KernelMaps(
         done=runs.done,
@@ -587,20 +593,11 @@ class LabelRuns:
 
 def _distance_field(problem: PlanningProblem, graph: CellGraph, cells: np.ndarray, unit_m: float
                     ) -> np.ndarray | float:
-    """:func:`~sgplan.planning.ltl_heuristic.unit_field` of ``graph``, kept by the session (read-only) by
-    grid, unit and target cells; computed each time when the session keeps nothing."""
-    if problem.shared is None or not problem.shared.keeps:
+    """:func:`~sgplan.planning.ltl_heuristic.unit_field` of ``graph``, from the session's parts
+    (:meth:`SharedParts.distance_field`); computed each time without them."""
+    if problem.shared is None:
         return unit_field(graph, cells, unit_m)
-    cells = np.ascontiguousarray(cells, dtype=np.int64)
-    key = (problem.grid, unit_m, len(cells), hashlib.blake2b(cells.tobytes(), digest_size=16).digest())
-
-    def build() -> np.ndarray | float:
-        field = unit_field(graph, cells, unit_m)
-        if isinstance(field, np.ndarray):
-            field.flags.writeable = False
-        return field
-
-    return problem.shared.get("distance_field", key, build)
+    return problem.shared.distance_field(problem.grid, graph, cells, unit_m)
 
 
 def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
@@ -641,8 +638,9 @@ def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
         if room.floor >= floors:
             continue
         stop = -1 if room.is_staircase else r  # the room a map's paths stop in (-1: none)
+        in_room = _room_cells(problem, room) if room.objects else np.zeros(0, dtype=np.bool_)
         for obj in room.objects.values():
-            cells = _reach_region(problem, graph, room, obj)
+            cells = _reach_region(problem, graph, room, obj, in_room)
             if cells.size:
                 in_region[cells] = True
                 room_obj[r].append(add(ActionMap(MAP_OBJECT, obj.uuid, room.floor), cells, stop))
@@ -737,25 +735,19 @@ def _cell_ids(graph: CellGraph, floor: int, cells: np.ndarray) -> np.ndarray:
     return np.unique(ids[ids >= 0])
 
 
-def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj) -> np.ndarray:
-    """Cell indices of ``room`` from which ``obj`` is within the reach radius (Euclidean, metres, to the
-    nearest footprint cell). Empty if the object has no footprint on its floor's category map."""
+def _room_cells(problem: PlanningProblem, room) -> np.ndarray:
+    """``(rows, cols)`` bool: the traversable cells of ``room`` on its floor."""
+    return (problem.grid.room_map[room.floor] == room.id) & problem.grid.traversable[room.floor]
+
+
+def _reach_region(problem: PlanningProblem, graph: CellGraph, room, obj, in_room: np.ndarray) -> np.ndarray:
+    """Cell indices of ``room`` from which ``obj`` is reached: the cells of its ``reach`` label at the
+    problem's reach radius and model (:func:`sgplan.scene.reach.object_reach_cells`) among the room's
+    traversable cells ``in_room``."""
     floor = problem.building.floors[room.floor]
     if not floor.has_maps:
         return np.zeros(0, dtype=np.int64)
-    res = problem.grid.resolution_m
+    flat = object_reach_cells(floor, obj, problem.reach_radius_m, str(problem.reach_model), among=in_room)
     rows, cols = floor.shape
-    pad = (
-        int(np.ceil(problem.reach_radius_m / res[0])) + 1,
-        int(np.ceil(problem.reach_radius_m / res[1])) + 1,
-    )
-    r0, c0 = max(obj.grid_min[0] - pad[0], 0), max(obj.grid_min[1] - pad[1], 0)
-    r1, c1 = min(obj.grid_max[0] + pad[0] + 1, rows), min(obj.grid_max[1] + pad[1] + 1, cols)
-    footprint = floor.cat_map[r0:r1, c0:c1] == obj.id
-    if not footprint.any():
-        return np.zeros(0, dtype=np.int64)
-    near = within_distance(footprint, res, problem.reach_radius_m)
-    near &= floor.room_map[r0:r1, c0:c1] == room.id
-    rr, cc = np.nonzero(near)
-    ids = graph.cell_ids((room.floor * rows + rr + r0) * cols + cc + c0)
+    ids = graph.cell_ids(room.floor * rows * cols + flat)
     return ids[ids >= 0]

@@ -204,7 +204,7 @@ def row_value(dist, unit, term_ptr, term_label, term_add, row, c):
         last = pick
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def fill_row(hmap, ready, dist, unit, term_ptr, term_label, term_add, row):
     """Fill ``hmap[row]`` with :func:`row_value` at every cell (the same bits) and mark it ready."""
     for c in range(hmap.shape[1]):
@@ -346,7 +346,7 @@ def unit_field(graph: CellGraph, cells: np.ndarray, unit_m: float) -> np.ndarray
     return out if largest < UNREACHED else largest
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _whole_units(field, out):
     """``out[i]`` = the whole number ``field[i]``, :data:`UNREACHED` for ``inf``, where it fits below
     :data:`UNREACHED`; returns the largest finite value."""
@@ -415,12 +415,11 @@ def _bin_key(graph: CellGraph, cells: np.ndarray, side: int) -> np.ndarray:
     _, rows, cols = graph.shape
     per_row = cols // side + 1
     per_floor = (rows // side + 1) * per_row
-    return (graph.cell_floor[cells].astype(np.int64) * per_floor
-            + (graph.cell_row[cells] // side).astype(np.int64) * per_row
-            + graph.cell_col[cells] // side)
+    row, col = graph.row_col(cells)
+    return graph.cell_floor[cells].astype(np.int64) * per_floor + row // side * per_row + col // side
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _entry_cells(cell_at, cell_pos, step_offset, stairs_from, stairs_to, cell_label, field_of, inside, twice,
                  start_cell):
     """``(N,)`` bool: the measured-label cells (``field_of >= 0``, inside) where the automaton can change
@@ -449,7 +448,7 @@ def _entry_cells(cell_at, cell_pos, step_offset, stairs_from, stairs_to, cell_la
     return entry
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _piece_bounds(dist, piece_cells, piece_ptr):
     """``(lo, hi)`` ``(K, F)``: smallest and largest value of each field over each piece (float64 units)."""
     num_pieces, num_fields = piece_ptr.shape[0] - 1, dist.shape[1]
@@ -465,7 +464,7 @@ def _piece_bounds(dist, piece_cells, piece_ptr):
     return lo, hi
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _piece_lower_bounds(dist, piece_cells, piece_ptr, lo, hi):
     """``(K, K)``: ``LB[j, k]`` = min over the cells ``y`` of piece ``j`` of ``phi_k(y)`` (the module
     docstring's bound on the distance from ``y`` to piece ``k``, units)."""

@@ -10,6 +10,7 @@ import numpy as np
 
 from sgplan.errors import PlanningError
 from sgplan.logic.automaton import Automaton
+from sgplan.planning.setups import check_profile, reach_model_for
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 
@@ -17,9 +18,6 @@ if TYPE_CHECKING:
     from sgplan.planning.domain import PlanningDomain
     from sgplan.planning.shared import SharedParts
 
-PROFILES = ("ltlf", "authors")
-"""``ltlf``: the start cell's label is read (q_start = T(initial, label(start))); ``authors``: it is not
-(q_start = initial), as in the authors' planner. Missing-edge behaviour is the automaton table's."""
 
 
 @dataclass(eq=False)
@@ -39,16 +37,25 @@ class PlanningProblem:
     start:
         ``(row, col, floor)`` start cell.
     profile:
-        ``"ltlf"`` (default) or ``"authors"``, see :data:`PROFILES`.
+        ``"ltlf"`` (default) or ``"authors"``, see :data:`sgplan.planning.setups.PROFILES`.
     guidance:
         optional LLM guidance ``{room_uuid: {q: [call strings]}}`` (llm_heuristic.yaml content).
     reach_radius_m:
         radius (metres) defining the object level's "object reached" regions.
+    reach_model:
+        where an object counts as reached (:mod:`sgplan.scene.reach`: ``"visible"`` or ``"box"``), for the
+        object level's regions as for the labels; ``None`` (default): the profile's
+        (:data:`~sgplan.planning.setups.PROFILE_REACH_MODELS`). The labels must be made with the same model.
     ap_descriptions:
         optional names for messages, e.g. ``{"p1": "enter(room_2)"}``.
     shared:
         parts that depend only on the building, shared with the other problems of a
         :class:`sgplan.Session` (:mod:`sgplan.planning.shared`); ``None``: built for this problem alone.
+    start_state:
+        resume a mission part-way: the automaton state at the start cell, its label already read (e.g. a
+        plan's state at one of its path cells, or a monitor's). ``None`` (default): the automaton's
+        initial state, the start's label read or not as ``profile`` says. Either way the search reads the
+        label of every cell it enters.
     """
 
     building: Building
@@ -59,14 +66,16 @@ class PlanningProblem:
     profile: str = "ltlf"
     guidance: Mapping | None = None
     reach_radius_m: float = 0.6
+    reach_model: str | None = None
     ap_descriptions: Mapping[str, str] = field(default_factory=dict)
     shared: SharedParts | None = None
+    start_state: int | None = None
 
     def __post_init__(self) -> None:
-        if self.profile not in PROFILES:
-            raise PlanningError(
-                f"unknown semantics profile {self.profile!r}; use one of {', '.join(PROFILES)}"
-            )
+        check_profile(self.profile)
+        if self.start_state is not None and not 0 <= int(self.start_state) < self.automaton.num_states:
+            raise PlanningError(f"start state {self.start_state} does not exist (automaton states 0.."
+                                f"{self.automaton.num_states - 1})")
         if tuple(self.labels.shape) != tuple(self.grid.shape):
             raise PlanningError(
                 f"label raster has shape {tuple(self.labels.shape)}, the grid {tuple(self.grid.shape)} "
@@ -78,6 +87,7 @@ class PlanningProblem:
             raise PlanningError(
                 f"reach radius must be a positive number of metres, got {self.reach_radius_m}"
             )
+        self.reach_model = reach_model_for(self.profile, self.reach_model)
         self.start = tuple(int(v) for v in self.start)  # type: ignore[assignment]
 
     def ap_name(self, index: int) -> str:

@@ -25,12 +25,16 @@ A problem without a :class:`SharedParts` builds every part itself (:func:`shared
 
 from __future__ import annotations
 
+import hashlib
 import os
 from collections import Counter, OrderedDict
 from collections.abc import Callable, Hashable
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from sgplan.planning.cells import CellGraph
 
 T = TypeVar("T")
 
@@ -121,6 +125,27 @@ class SharedParts:
 
     def __len__(self) -> int:
         return len(self._parts)
+
+    def distance_field(self, grid: Hashable, graph: CellGraph, cells: np.ndarray, unit_m: float
+                       ) -> np.ndarray | float:
+        """The ``distance_field`` part: :func:`~sgplan.planning.ltl_heuristic.unit_field` of ``graph`` (the
+        cell graph of ``grid``) to ``cells`` (sorted cell indices) in units of ``unit_m``, kept read-only
+        by grid, unit and target cells. A subclass may serve it otherwise (a run repairs its fields across
+        scene changes, :mod:`sgplan.execution.parts`)."""
+        from sgplan.planning.ltl_heuristic import unit_field
+
+        if not self.keeps:
+            return unit_field(graph, cells, unit_m)
+        cells = np.ascontiguousarray(cells, dtype=np.int64)
+        key = (grid, unit_m, len(cells), hashlib.blake2b(cells.tobytes(), digest_size=16).digest())
+
+        def build() -> np.ndarray | float:
+            field = unit_field(graph, cells, unit_m)
+            if isinstance(field, np.ndarray):
+                field.flags.writeable = False
+            return field
+
+        return self.get("distance_field", key, build)
 
 
 def shared_part(parts: SharedParts | None, name: str, key: Hashable, build: Callable[[], T]) -> T:

@@ -71,9 +71,11 @@ def _svg_xy(rows: np.ndarray | int, cols: np.ndarray | int, num_cols: int) -> np
     return np.column_stack([np.atleast_1d(rows), num_cols - 1 - np.atleast_1d(cols)]).astype(float)
 
 
-def _floor_svg(building: Building, floor: int, cells: np.ndarray, events: Sequence[PathEvent] = ()) -> str:
+def floor_svg(building: Building, floor: int, cells: np.ndarray, events: Sequence[PathEvent] = ()) -> str:
     """The SVG overlay of one floor in the map frame (:func:`_svg_xy`): room names, the path with its
-    arrows, then the portals, events, end and start on top."""
+    arrows, then the portals, events, end and start on top. ``cells``: the path's ``(n, 3)``
+    ``(row, col, floor)`` rows (empty: no path). The report draws each floor with it, and the live page of
+    ``sgplan serve`` swaps it in when a path changes."""
     f = building.floors[floor]
     rows, cols = f.shape
     unit = rows / 1000  # cells per CSS pixel: the map is shown about 1000 px wide
@@ -247,7 +249,7 @@ def floors_html(
             f'<div class="stage" style="aspect-ratio: {rows} / {cols}">'
             f'<img class="map" alt="floor {k} map" src="{image}">'
             + (f'<img class="reach" alt="reach regions on floor {k}" src="{reach_uri}">' if reach_uri else "")
-            + _floor_svg(building, k, cells, events)
+            + floor_svg(building, k, cells, events)
             + _axes_svg(building, k)
             + f'<img class="ids rooms" hidden alt="" src="{_id_image(f.room_map)}">'
             f'<img class="ids objects" hidden alt="" src="{_id_image(objects)}">'

@@ -33,6 +33,7 @@ from sgplan.scene.draw_path import path_cells
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.labels import label_raster
 from sgplan.scene.model import Building
+from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 
 def _table(head: Sequence[str], rows: Sequence[Sequence[Any]], table_id: str) -> str:
@@ -91,9 +92,10 @@ def _map_section(
     cells: np.ndarray,
     events: Sequence[PathEvent],
     reach_radius_m: float | None,
+    reach_model: str,
 ) -> str:
     reach_props = [p for p in mission.ordered_propositions if p.kind == "reach"]
-    reach = label_raster(building, reach_props, reach_radius_m) if reach_props else None
+    reach = label_raster(building, reach_props, reach_radius_m, reach_model) if reach_props else None
     return (
         '<section id="map"><h2>Floors</h2><p class="hint">In the map frame: x to the right, y upwards, '
         "metres. Hover the map for the place, its room and object. "
@@ -154,6 +156,7 @@ def report_html(
     *,
     explanation: str | None = None,
     reach_radius_m: float | None = None,
+    reach_model: str = DEFAULT_REACH_MODEL,
     title: str | None = None,
     engine: Engine = "auto",
 ) -> str:
@@ -165,7 +168,7 @@ def report_html(
         f"<header><h1>{html.escape(heading)}</h1></header>",
         _mission_section(building, mission, explanation),
         _result_section(building, result, cells),
-        _map_section(building, grid, mission, cells, events, reach_radius_m),
+        _map_section(building, grid, mission, cells, events, reach_radius_m, reach_model),
         _events_section(events),
         _automaton_section(mission, engine),
         _iterations_section(result),
@@ -191,6 +194,7 @@ def write_html_report(
     *,
     explanation: str | None = None,
     reach_radius_m: float | None = None,
+    reach_model: str = DEFAULT_REACH_MODEL,
     title: str | None = None,
     engine: Engine = "auto",
 ) -> Path:
@@ -207,8 +211,9 @@ def write_html_report(
         the mission planned (text, formula, propositions, automaton).
     explanation:
         the mission explained in plain language, shown under the mission.
-    reach_radius_m:
-        the reach radius planned with (default: the building's), for the shaded reach regions.
+    reach_radius_m, reach_model:
+        the reach radius (default: the building's) and reach model (:mod:`sgplan.scene.reach`) planned
+        with, for the shaded reach regions.
     title:
         the page heading (default ``sgplan: <building>``).
     engine:
@@ -226,6 +231,7 @@ def write_html_report(
         mission,
         explanation=explanation,
         reach_radius_m=reach_radius_m,
+        reach_model=reach_model,
         title=title,
         engine=engine,
     )

@@ -1,6 +1,6 @@
 """What the report reads of a plan: structural types, so both plan result classes fit.
 
-``sgplan.planning.amra.PlanResult`` (the planner's) and ``sgplan.result.PlanResult`` (the public API's,
+``sgplan.planning.amra.SearchResult`` (the planner's) and ``sgplan.result.PlanResult`` (the public API's,
 which also has events) both satisfy :class:`PlanOutcome`.
 """
 
@@ -33,7 +33,7 @@ class PathEvent(Protocol):
 
 
 class PlanOutcome(Protocol):
-    """What the report reads of a plan result (both ``sgplan.planning.amra.PlanResult`` and
+    """What the report reads of a plan result (both ``sgplan.planning.amra.SearchResult`` and
     ``sgplan.result.PlanResult`` fit): the path rows ``(row, col, floor, ...)`` or ``None``, the cost in
     metres, the status, the setup and the iterations."""
 

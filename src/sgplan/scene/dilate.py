@@ -31,17 +31,37 @@ def box_dilate(mask: np.ndarray, half: tuple[int, int]) -> np.ndarray:
     return _runs_any(rows, half[1], half[1], axis=1)
 
 
+def radius_widths(
+    resolution_m: tuple[float, float], radius_m: float, max_rows: int, max_cols: int
+) -> np.ndarray:
+    """``widest[k]`` for row offsets ``k = 0 .. min(int(radius_m / res_r) + 1, max_rows)``: the largest
+    column offset (at most ``min(int(radius_m / res_c) + 1, max_cols)``) whose cell centre lies within
+    ``radius_m`` metres of the centre at offset ``(0, 0)``, or -1 when not even column offset 0 does;
+    int64. Every column offset up to ``widest[k]`` lies within the radius too.
+
+    "Within" is ``sqrt((dr * res_r) ** 2 + (dc * res_c) ** 2) <= radius_m`` in float64: the one test of
+    :func:`within_distance` and of the ``visible`` reach model (:mod:`sgplan.scene.reach`).
+    """
+    res_r, res_c = float(resolution_m[0]), float(resolution_m[1])
+    reach_r = min(int(radius_m / res_r) + 1, max_rows)
+    reach_c = np.arange(min(int(radius_m / res_c) + 1, max_cols) + 1)
+    offsets = np.arange(reach_r + 1)
+    inside = np.sqrt((offsets[:, None] * res_r) ** 2 + (reach_c[None, :] * res_c) ** 2) <= radius_m
+    # The distance grows with the column offset, so "inside" is a prefix of each row.
+    widest = np.where(inside[:, 0], inside.shape[1] - 1 - np.argmax(inside[:, ::-1], axis=1), -1)
+    return widest.astype(np.int64)
+
+
 def within_distance(footprint: np.ndarray, resolution_m: tuple[float, float], radius_m: float) -> np.ndarray:
     """Cells whose centre lies within ``radius_m`` metres (Euclidean, cell centres, ``resolution_m`` =
     metres per row and per column) of a True cell of ``footprint``; bool, same shape.
 
     Equals ``scipy.ndimage.distance_transform_edt(~footprint, sampling=resolution_m) <= radius_m`` when
-    ``footprint`` has a True cell (the distance is computed the same way: ``sqrt((dr*res_r)**2 +
-    (dc*res_c)**2)`` in float64). Separable: the column distance to the nearest True cell of each row
-    first, then one integer test per row offset within the radius, on the rows holding True cells only.
+    ``footprint`` has a True cell (the distance is computed the same way, :func:`radius_widths`).
+    Separable: the column distance to the nearest True cell of each row first, then one integer test per
+    row offset within the radius, on the rows holding True cells only.
     """
     footprint = np.asarray(footprint, dtype=bool)
-    res_r, res_c = float(resolution_m[0]), float(resolution_m[1])
     rows, cols = footprint.shape
     out = np.zeros(footprint.shape, dtype=bool)
     used = np.flatnonzero(footprint.any(axis=1))
@@ -54,19 +74,12 @@ def within_distance(footprint: np.ndarray, resolution_m: tuple[float, float], ra
     left = np.maximum.accumulate(np.where(part, col, -big), axis=1)
     right = np.minimum.accumulate(np.where(part, col, big)[:, ::-1], axis=1)[:, ::-1]
     dc = np.minimum(col - left, right - col)  # columns to the nearest True cell of the row
-    # Half-width of the kernel in each row offset: the widest column offset within the radius, tested with
-    # the same float expression as the EDT's distance.
-    reach_r = min(int(radius_m / res_r) + 1, rows)
-    reach_c = np.arange(min(int(radius_m / res_c) + 1, cols) + 1)
-    offsets = np.arange(-reach_r, reach_r + 1)
-    inside = np.sqrt((offsets[:, None] * res_r) ** 2 + (reach_c[None, :] * res_c) ** 2) <= radius_m
-    # Per row offset the widest column offset k with every offset 0..k inside (-1: none; the distance
-    # grows with k, so "inside" is a prefix).
-    widest = np.where(inside[:, 0], inside.shape[1] - 1 - np.argmax(inside[:, ::-1], axis=1), -1)
-    for dr, k in zip(offsets.tolist(), widest.tolist()):
+    widest = radius_widths(resolution_m, radius_m, rows, cols)
+    for offset, k in enumerate(widest.tolist()):
         if k < 0:
             continue
-        lo, hi = max(first - dr, 0), min(last - dr, rows)  # rows i whose row i + dr holds True cells
-        if lo < hi:
-            out[lo:hi] |= dc[lo + dr - first:hi + dr - first] <= k
+        for dr in {offset, -offset}:
+            lo, hi = max(first - dr, 0), min(last - dr, rows)  # rows i whose row i + dr holds True cells
+            if lo < hi:
+                out[lo:hi] |= dc[lo + dr - first:hi + dr - first] <= k
     return out

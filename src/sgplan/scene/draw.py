@@ -47,6 +47,7 @@ from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.labels import Proposition, label_raster
 from sgplan.scene.model import Building, CatCode
 from sgplan.scene.placement import LabelPlacer
+from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 FORMATS = ("png", "svg")
 """The picture formats :func:`draw_building` writes."""
@@ -92,6 +93,8 @@ class MissionView:
         ``enter`` rooms outlined.
     reach_radius_m:
         the global reach radius for ``reach`` propositions without their own (default: the building's).
+    reach_model:
+        where an object counts as reached (:mod:`sgplan.scene.reach`): ``"visible"`` or ``"box"``.
     """
 
     text: str | None = None
@@ -99,6 +102,7 @@ class MissionView:
     cost_m: float | None = None
     propositions: Sequence[Proposition] = ()
     reach_radius_m: float | None = None
+    reach_model: str = DEFAULT_REACH_MODEL
 
 
 def floor_image(building: Building, floor: int, grid: OccupancyGrid | None = None) -> np.ndarray:
@@ -283,7 +287,7 @@ def reach_region(building: Building, floor: int, mission: MissionView) -> np.nda
     reach = [p for p in mission.propositions if p.kind == "reach"]
     if not reach:
         return np.zeros(building.floors[floor].shape, dtype=bool)
-    return label_raster(building, reach, mission.reach_radius_m)[floor] > 0
+    return label_raster(building, reach, mission.reach_radius_m, mission.reach_model)[floor] > 0
 
 
 def _draw_mission_regions(

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from sgplan.errors import SceneError
-from sgplan.scene.footprint import FootprintVariant, footprint_kernel, inflate
+from sgplan.scene.footprint import FootprintKernel, FootprintVariant, footprint_kernel, inflate
 from sgplan.scene.model import Building, CatCode, Cell
 
 
@@ -175,21 +175,12 @@ def build_occupancy_grid(
     if not np.isfinite(robot_radius_m) or robot_radius_m < 0:
         raise SceneError(f"robot radius must be a non-negative number of metres, got {robot_radius_m}")
     floor0 = building.floors[0]
-    kernel = (
-        footprint_kernel(robot_radius_m, floor0.origin_m, floor0.resolution_m, footprint)
-        if robot_radius_m > 0
-        else None
-    )
+    kernel = grid_kernel(building, robot_radius_m, footprint)
     shape = (building.num_floors, *building.grid_shape)
     traversable = np.empty(shape, dtype=bool)
     room_map = np.empty(shape, dtype=np.int16)
     for floor in building.floors:
-        cat = floor.cat_map
-        obstacles = cat != CatCode.GROUND
-        if kernel is not None:
-            stairs = (cat == CatCode.STAIRS_UP) | (cat == CatCode.STAIRS_DOWN)
-            obstacles = inflate(obstacles & ~stairs, kernel) | stairs
-        traversable[floor.index] = ~obstacles & (floor.room_map > 0)
+        traversable[floor.index] = free_cells(floor.cat_map, floor.room_map, kernel)
         room_map[floor.index] = floor.room_map
     links = stairs_links(building)
     for link in links:
@@ -209,6 +200,29 @@ def build_occupancy_grid(
         stairs=links,
         robot_radius_m=float(robot_radius_m),
     )
+
+
+def grid_kernel(
+    building: Building, robot_radius_m: float, footprint: FootprintVariant = "app"
+) -> FootprintKernel | None:
+    """The inflation kernel of :func:`build_occupancy_grid` (quantised in floor 0's frame), ``None`` for a
+    robot of radius 0."""
+    if robot_radius_m <= 0:
+        return None
+    floor0 = building.floors[0]
+    return footprint_kernel(robot_radius_m, floor0.origin_m, floor0.resolution_m, footprint)
+
+
+def free_cells(cat_map: np.ndarray, room_map: np.ndarray, kernel: FootprintKernel | None) -> np.ndarray:
+    """The occupancy rule on one floor (or a window of one), stairs portals aside: ``(rows, cols)`` bool,
+    True where the cell is GROUND, clear of the obstacles other than stairs inflated with ``kernel`` (not
+    inflated when ``None``), and in a room. On a window, cells beyond it count as free, so only the cells
+    at least the kernel's reach inside the window are exact."""
+    obstacles = cat_map != CatCode.GROUND
+    if kernel is not None:
+        stairs = (cat_map == CatCode.STAIRS_UP) | (cat_map == CatCode.STAIRS_DOWN)
+        obstacles = inflate(obstacles & ~stairs, kernel) | stairs
+    return ~obstacles & (room_map > 0)
 
 
 def component_sizes(grid: OccupancyGrid) -> list[np.ndarray]:

@@ -1,13 +1,10 @@
 """Atomic propositions over a building and their label rasters (reference-algorithm.md §2.4).
 
 A :class:`Proposition` is ``enter(room_<uuid>)`` -- true on the cells of that room -- or
-``reach(object_<uuid>)`` -- true on the cells within the reach radius of that object. A label raster
-holds, for every cell of every floor (obstacles and outside cells included), the bitmask of the
+``reach(object_<uuid>)`` -- true on the cells from which that object is within the reach radius, under
+a reach model (:mod:`sgplan.scene.reach`: ``visible`` by default, the authors' ``box`` window). A label
+raster holds, for every cell of every floor (obstacles and outside cells included), the bitmask of the
 propositions true there: bit ``i`` is ``propositions[i]``.
-
-The reach region is the authors' one: an axis-aligned square (Chebyshev) window of ``int(d / res_x)``
-rows and ``int(d / res_y)`` columns (each at least 1) around every cell of the object's footprint on the
-category map. It ignores walls and rooms: the robot "reaches" an object seen through a wall.
 """
 
 from __future__ import annotations
@@ -20,8 +17,8 @@ from typing import Literal
 import numpy as np
 
 from sgplan.errors import FormulaError, MissionError, SceneError
-from sgplan.scene.dilate import box_dilate
 from sgplan.scene.model import Building
+from sgplan.scene.reach import DEFAULT_REACH_MODEL, object_reach_cells
 
 PropositionKind = Literal["enter", "reach"]
 MAX_PROPOSITIONS = 32
@@ -92,30 +89,9 @@ def _check_known(building: Building, propositions: Sequence[Proposition]) -> Non
         )
 
 
-def reach_half_widths(resolution_m: tuple[float, float], reach_radius_m: float) -> tuple[int, int]:
-    """Half-widths ``(rows, cols)`` in cells of the reach window: ``int(d / res)``, at least 1 each."""
-    return (
-        max(1, int(reach_radius_m / resolution_m[0])),
-        max(1, int(reach_radius_m / resolution_m[1])),
-    )
-
-
-def _reach_cells(cat_map: np.ndarray, object_id: int, half: tuple[int, int]) -> np.ndarray:
-    """Flat indices (into ``cat_map``) of the cells whose square window of ``half`` cells holds a cell of
-    ``object_id``; int64, ascending."""
-    footprint = cat_map == object_id
-    rows, cols = np.nonzero(footprint.any(axis=1))[0], np.nonzero(footprint.any(axis=0))[0]
-    if len(rows) == 0:
-        return np.zeros(0, dtype=np.int64)
-    # Work in the object's bounding box grown by the window: the rest of the floor is outside.
-    r0, r1 = max(0, rows[0] - half[0]), min(cat_map.shape[0], rows[-1] + half[0] + 1)
-    c0, c1 = max(0, cols[0] - half[1]), min(cat_map.shape[1], cols[-1] + half[1] + 1)
-    rr, cc = np.nonzero(box_dilate(footprint[r0:r1, c0:c1], half))
-    return (rr + r0).astype(np.int64) * cat_map.shape[1] + (cc + c0)
-
-
 def proposition_cells(
-    building: Building, prop: Proposition, reach_radius_m: float | None = None
+    building: Building, prop: Proposition, reach_radius_m: float | None = None,
+    reach_model: str = DEFAULT_REACH_MODEL,
 ) -> np.ndarray:
     """Flat indices into a ``(floors, rows, cols)`` raster of the cells where ``prop`` holds, ascending;
     int32 when the raster has fewer than 2**31 cells (4 bytes a cell: a session keeps them), else int64.
@@ -141,10 +117,9 @@ def proposition_cells(
             raise MissionError(
                 f"{prop.name}: no reach radius (give the proposition one or pass a positive reach_radius_m)"
             )
-        object_id = building.object(uuid=prop.uuid).id
-        half = reach_half_widths(building.resolution_m, radius)
+        obj = building.object(uuid=prop.uuid)
         for floor in building.floors:
-            parts.append(_reach_cells(floor.cat_map, object_id, half) + floor.index * rows * cols)
+            parts.append(object_reach_cells(floor, obj, radius, reach_model) + floor.index * rows * cols)
     dtype = np.int32 if building.num_floors * rows * cols < 2**31 else np.int64
     return np.concatenate(parts).astype(dtype) if parts else np.zeros(0, dtype=dtype)
 
@@ -170,6 +145,7 @@ def label_raster(
     building: Building,
     propositions: Sequence[Proposition],
     reach_radius_m: float | None = None,
+    reach_model: str = DEFAULT_REACH_MODEL,
 ) -> np.ndarray:
     """The label of every cell: ``(floors, rows, cols)``, bit ``i`` = ``propositions[i]`` holds; the
     smallest unsigned dtype with a bit per proposition (:func:`label_dtype`: a raster is a byte a cell
@@ -184,6 +160,8 @@ def label_raster(
     reach_radius_m:
         the global reach radius (metres) for ``reach`` propositions without their own; defaults to the
         building's ``reach_radius_m``.
+    reach_model:
+        where an object counts as reached (:mod:`sgplan.scene.reach`): ``"visible"`` or ``"box"``.
 
     Raises
     ------
@@ -199,5 +177,5 @@ def label_raster(
     _check_known(building, propositions)
     return raster_from_cells(
         (building.num_floors, *building.grid_shape),
-        [proposition_cells(building, prop, reach_radius_m) for prop in propositions],
+        [proposition_cells(building, prop, reach_radius_m, reach_model) for prop in propositions],
     )

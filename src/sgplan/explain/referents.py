@@ -1,8 +1,9 @@
 """What a proposition names in the scene: category, floor and id, as English noun phrases.
 
-An :class:`Entity` is the scene-side meaning of one proposition (``enter(room_11)`` -> the kitchen,
-room_11 on floor 0). The explanation renderers only see entities, never the user's text, so what they
-print is what the planner will use.
+A :class:`Referent` is the scene-side meaning of one proposition, the entity it refers to
+(``enter(room_11)`` -> the kitchen, room_11 on floor 0). The explanation renderers only see referents,
+never the user's text, so what they print is what the planner will use. (The offline translator's
+vocabulary has its own :class:`sgplan.llm.offline.names.Entity`: a room or object as words name it.)
 """
 
 from __future__ import annotations
@@ -15,11 +16,11 @@ from sgplan.errors import FormulaError
 from sgplan.scene.labels import Proposition
 from sgplan.scene.model import Building
 
-EntityKind = Literal["room", "object", "unknown"]
+ReferentKind = Literal["room", "object", "unknown"]
 
 
 @dataclass(frozen=True)
-class Entity:
+class Referent:
     """One proposition's meaning in a scene.
 
     Attributes
@@ -41,7 +42,7 @@ class Entity:
     """
 
     proposition: str
-    kind: EntityKind
+    kind: ReferentKind
     key: str
     category: str | None = None
     floor: int | None = None
@@ -72,37 +73,37 @@ def _category(name: str) -> str:
     return name.replace("_", " ")
 
 
-def entity_of(name: str, proposition: Proposition | None, building: Building | None) -> Entity:
+def referent_of(name: str, proposition: Proposition | None, building: Building | None) -> Referent:
     """The entity ``proposition`` (named ``name`` in the formula) denotes in ``building``."""
     if proposition is None:
         try:
             proposition = Proposition.parse(name)
         except FormulaError:  # not an action token: a bare name with no meaning in the scene
-            return Entity(name, "unknown", name)
+            return Referent(name, "unknown", name)
     key = f"{'room' if proposition.kind == 'enter' else 'object'}_{proposition.uuid}"
     if building is None:
-        return Entity(name, "room" if proposition.kind == "enter" else "object", key)
+        return Referent(name, "room" if proposition.kind == "enter" else "object", key)
     if proposition.kind == "enter":
         if not building.has_room(proposition.uuid):
-            return Entity(name, "unknown", key)
+            return Referent(name, "unknown", key)
         room = building.room(uuid=proposition.uuid)
-        return Entity(name, "room", key, _category(room.name), room.floor)
+        return Referent(name, "room", key, _category(room.name), room.floor)
     if not building.has_object(proposition.uuid):
-        return Entity(name, "unknown", key)
+        return Referent(name, "unknown", key)
     obj = building.object(uuid=proposition.uuid)
     room = building.room(id=obj.room_id)
-    return Entity(name, "object", key, _category(obj.name), room.floor, room.key, _category(room.name))
+    return Referent(name, "object", key, _category(obj.name), room.floor, room.key, _category(room.name))
 
 
-def entities_of(
+def referents_of(
     names: Sequence[str], propositions: Mapping[str, Proposition] | None, building: Building | None
-) -> dict[str, Entity]:
-    """``{name: Entity}`` for every proposition name, in the given order."""
+) -> dict[str, Referent]:
+    """``{name: Referent}`` for every proposition name, in the given order."""
     meaning = propositions or {}
-    return {name: entity_of(name, meaning.get(name), building) for name in names}
+    return {name: referent_of(name, meaning.get(name), building) for name in names}
 
 
-def group_phrase(entities: Sequence[Entity], article: str = "a") -> str:
+def group_phrase(entities: Sequence[Referent], article: str = "a") -> str:
     """Alternatives of one kind and category as one phrase: ``a bedroom (room_5 or room_6, floor 1)``.
 
     Entities sharing their location print it once; otherwise each id carries its own

@@ -1,0 +1,211 @@
+"""Repairing a distance field after the graph or its targets changed, locally (numba).
+
+A field holds, for every cell, its distance to a target region in whole units over moves whose costs are
+whole units (:func:`sgplan.planning.ltl_heuristic.unit_field`), ``UNREACHED`` where no target can be
+reached. When some cells leave or join the graph (a door closes, a block is lifted) or the target region
+(an object moves), :func:`repair_field` brings the field to the new graph and targets, touching only the
+cells whose distance changes and their neighbours -- the classic two-phase update of dynamic shortest
+paths (Ramalingam and Reps):
+
+1. **Invalidate.** A cell keeps its old distance if some neighbour still supports it: a neighbour in the
+   graph, not invalidated, whose old distance plus the move's cost equals the cell's old distance (a
+   shortest path through it still exists). Cells are examined in increasing old distance, starting from
+   the changed cells and the neighbours of the cells that left the graph; a cell without support is
+   invalidated and the cells it may have supported (its neighbours whose old distance is exactly its own
+   plus the move) are examined in turn. Distances are whole numbers, so "equals" is exact.
+2. **Recompute.** The invalidated cells and the changed cells still in the graph are given the best
+   distance their neighbours offer (0 for a target) and a Dijkstra from them lowers every distance that a
+   new path shortens -- through joined cells, new targets, or back into the invalidated cells.
+
+The result equals a full recomputation of the field on the new graph; the tests compare the two on random
+buildings and changes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from sgplan.heap import heap_grow, heap_pop, heap_push
+
+UNREACHED = np.int64(np.iinfo(np.uint32).max)
+
+EXACT, LOWER_BOUND, RECOMPUTE = 0, 1, 2
+"""What :func:`repair_field` made of a field."""
+
+_PENDING, _KEPT, _LOST, _TARGET = 1, 2, 3, 4
+"""Phase-1 marks of a cell: waiting to be examined, keeps its distance, invalidated, a target now."""
+
+
+@njit(cache=True, inline="always")
+def _in_graph(cell_at, cell_pos, c):
+    return cell_at[cell_pos[c]] == c
+
+
+@njit(cache=True, inline="always")
+def _push(keys, ties, values, size, key, value):
+    """Push onto a growable heap; returns the (possibly new) arrays and the size."""
+    if size + 1 >= keys.shape[0]:
+        keys, ties, values = heap_grow(keys, ties, values, size)
+    size = heap_push(keys, ties, values, size, key, 0.0, value)
+    return keys, ties, values, size
+
+
+@njit(cache=True, inline="always")
+def _neighbours(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from, stairs_to,
+                stairs_units, x, out_cell, out_cost):
+    """Fill ``out_cell`` / ``out_cost`` with the graph neighbours of cell ``x`` (which need not be in the
+    graph itself) and the moves' costs; returns how many."""
+    count = 0
+    pos = cell_pos[x]
+    for k in range(8):
+        y = cell_at[pos + step_offset[k]]
+        if y >= 0:
+            out_cell[count] = y
+            out_cost[count] = step_units[k]
+            count += 1
+    j = stairs_first[x]
+    while 0 <= j < stairs_from.shape[0] and stairs_from[j] == x:
+        y = stairs_to[j]
+        if _in_graph(cell_at, cell_pos, y):
+            out_cell[count] = y
+            out_cost[count] = stairs_units[j]
+            count += 1
+        j += 1
+    return count
+
+
+@njit(cache=True)
+def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from, stairs_to,
+                 stairs_units, cell_mask, target, dist, seeds, max_lost, max_lowered, counts):
+    """Repair ``dist`` (uint32 units, in place) for the graph of ``cell_at`` and the targets ``{c in the
+    graph: cell_mask[c] == target}``, given ``seeds``: every cell whose graph or target membership changed
+    since ``dist`` was right, or a lower bound (more cells do no harm). ``step_units`` / ``stairs_units``
+    are the moves' costs in whole units (int64, >= 1).
+
+    Returns :data:`EXACT` (``dist`` is the field of the new graph and targets, if it was exact before);
+    :data:`LOWER_BOUND` when more than ``max_lost`` cells would have to be invalidated: phase 1 is then
+    skipped and only phase 2 runs, which leaves every distance a lower bound that is still 1-Lipschitz
+    over the moves (what h_LTL's consistency needs), exact where it did not grow; or :data:`RECOMPUTE`
+    when phase 2 would lower more than ``max_lowered`` cells or some distance does not fit below
+    ``UNREACHED``: ``dist`` is then half-done and must be recomputed. ``counts[0]`` / ``counts[1]``
+    receive the cells invalidated / lowered.
+
+    Cost: the cells examined and lowered (at most the two limits) and their neighbours, times the log of
+    the heap.
+    """
+    n = cell_pos.shape[0]
+    mark = np.zeros(n, dtype=np.uint8)
+    keys = np.empty(1024, dtype=np.float64)
+    ties = np.zeros(1024, dtype=np.float64)
+    values = np.empty(1024, dtype=np.int64)
+    size = 0
+    near = np.empty(8 + stairs_from.shape[0], dtype=np.int64)
+    cost = np.empty(8 + stairs_from.shape[0], dtype=np.int64)
+    # Phase 1: invalidate, in increasing old distance -- skipped when more reachable cells left the graph
+    # than may be invalidated (each of them loses its distance).
+    gone = 0
+    for s in seeds:
+        if not _in_graph(cell_at, cell_pos, s) and dist[s] != UNREACHED:
+            gone += 1
+    outcome = EXACT if gone <= max_lost else LOWER_BOUND
+    for s in seeds:
+        if outcome == LOWER_BOUND:
+            break
+        if _in_graph(cell_at, cell_pos, s):
+            if cell_mask[s] == target:
+                mark[s] = _TARGET
+            elif dist[s] != UNREACHED and mark[s] == 0:
+                mark[s] = _PENDING
+                keys, ties, values, size = _push(keys, ties, values, size, np.float64(dist[s]), s)
+        elif dist[s] != UNREACHED:
+            mark[s] = _LOST
+            count = _neighbours(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from,
+                                stairs_to, stairs_units, s, near, cost)
+            for i in range(count):
+                y = near[i]
+                if mark[y] == 0 and dist[y] != UNREACHED:
+                    mark[y] = _PENDING
+                    keys, ties, values, size = _push(keys, ties, values, size, np.float64(dist[y]), y)
+    lost = np.empty(64, dtype=np.int64)
+    num_lost = 0
+    while size > 0:
+        x = values[0]
+        size = heap_pop(keys, ties, values, size)
+        if mark[x] != _PENDING:
+            continue
+        dx = np.int64(dist[x])
+        count = _neighbours(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from, stairs_to,
+                            stairs_units, x, near, cost)
+        supported = False
+        for i in range(count):
+            y = near[i]
+            if mark[y] != _LOST and dist[y] != UNREACHED and np.int64(dist[y]) + cost[i] == dx:
+                supported = True
+                break
+        if supported:
+            mark[x] = _KEPT
+            continue
+        mark[x] = _LOST
+        if num_lost >= max_lost:  # too much to invalidate: keep the old distances as lower bounds
+            size = 0
+            num_lost = 0
+            outcome = LOWER_BOUND
+            break
+        if num_lost == lost.shape[0]:
+            grown = np.empty(2 * num_lost, dtype=np.int64)
+            grown[:num_lost] = lost
+            lost = grown
+        lost[num_lost] = x
+        num_lost += 1
+        for i in range(count):
+            y = near[i]
+            if mark[y] == 0 and dist[y] != UNREACHED and np.int64(dist[y]) == dx + cost[i]:
+                mark[y] = _PENDING
+                keys, ties, values, size = _push(keys, ties, values, size, np.float64(dist[y]), y)
+    # Phase 2: the lost and changed cells take what their neighbours offer, then lower what they can.
+    for i in range(num_lost):
+        dist[lost[i]] = UNREACHED
+    for s in seeds:
+        if not _in_graph(cell_at, cell_pos, s):
+            dist[s] = UNREACHED
+    lowered = 0
+    for phase in range(2):
+        total = num_lost if phase == 0 else seeds.shape[0]
+        for i in range(total):
+            x = lost[i] if phase == 0 else seeds[i]
+            if not _in_graph(cell_at, cell_pos, x):
+                continue
+            best = np.int64(0) if cell_mask[x] == target else UNREACHED
+            if best != 0:
+                count = _neighbours(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from,
+                                    stairs_to, stairs_units, x, near, cost)
+                for j in range(count):
+                    dy = np.int64(dist[near[j]])
+                    if dy != UNREACHED and dy + cost[j] < best:
+                        best = dy + cost[j]
+            if best < np.int64(dist[x]):
+                dist[x] = best
+            if dist[x] != UNREACHED:
+                keys, ties, values, size = _push(keys, ties, values, size, np.float64(dist[x]), x)
+    while size > 0:
+        key = keys[0]
+        x = values[0]
+        size = heap_pop(keys, ties, values, size)
+        dx = np.int64(dist[x])
+        if np.float64(dx) < key:
+            continue
+        count = _neighbours(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from, stairs_to,
+                            stairs_units, x, near, cost)
+        for i in range(count):
+            y = near[i]
+            nd = dx + cost[i]
+            if nd < np.int64(dist[y]):
+                if nd >= UNREACHED or lowered >= max_lowered:
+                    counts[0], counts[1] = num_lost, lowered
+                    return RECOMPUTE
+                dist[y] = nd
+                lowered += 1
+                keys, ties, values, size = _push(keys, ties, values, size, np.float64(nd), y)
+    counts[0], counts[1] = num_lost, lowered
+    return outcome
