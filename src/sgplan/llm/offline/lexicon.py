@@ -778,6 +778,9 @@ ONLY_AFTER = Phrases((("only", "after"), ("only", "once"), ("not", "before"), ("
 EVER = Phrases((("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"),
                 ("every", "time"), ("each", "time"), ("anytime",)))
 """In a condition ("if you ever go into X"): it is about each visit of X, a response, not one event."""
+AT_THAT_PLACE = Phrases((("there",), ("in", "it"), ("on", "it")))
+"""In the consequent of such a condition ("..., look at the chair in there"): at the place of the condition,
+which leaves open whether once or on each visit."""
 CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "while", "without", "when", "if",
                            "once", "whenever", "unless"})
 """Words that would continue a condition past its one action (a comma or *then* ends it)."""

@@ -465,6 +465,21 @@ def response_needs_one() -> str:
                     "choice of them) as X")
 
 
+def once_or_each_visit(said: str) -> str:
+    return rephrase(f"'{said}' can mean once or on each visit (with 'ever' / 'at any point' and 'there'); "
+                    "say 'every time you go into X, ...' or 'if you go into X, ... afterwards'")
+
+
+def before_then(said: str) -> str:
+    return rephrase(f"in '{said}' it is not clear whether what follows 'then' comes before or after the place "
+                    "named after 'before'; say it in order ('A, then B, then X' or 'A, then X, then B')")
+
+
+def before_near(said: str) -> str:
+    return rephrase(f"'{said}' can mean 'stay out of it until then' or 'go there afterwards'; say 'do not go "
+                    "into X until ...' or '..., then go to X'")
+
+
 def bare_when() -> str:
     return rephrase("'when X, Y' can mean 'after X, Y' (in order), 'whenever X, Y' (each time) or 'if X, Y' "
                     "(X at all); say which")

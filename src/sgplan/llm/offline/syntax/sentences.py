@@ -27,6 +27,7 @@ from sgplan.llm.offline.syntax.tree import (
     Described,
     FloorSpec,
     IfRule,
+    Link,
     MissionSentence,
     OnlyAfterPost,
     OnlyAfterSentence,
@@ -178,8 +179,18 @@ def on_the_way_first(r: Reader, i: int) -> Parse[SentenceBody]:
 
 @OPENINGS.rule("before Y, X")
 def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
-    """*Before going to Y, X*: X, then Y."""
-    return prefixed(r, i + 1, prefix_last=True) if r.word(i) == "before" else None
+    """*Before going to Y, X*: X, then Y. Not *before Y, A, then B* (does B come before Y too?), nor *before
+    you go (anywhere) near Y, X* (stay out of Y until X, or go there after X?)."""
+    if r.word(i) != "before":
+        return None
+    end = next((k for k in range(i, len(r)) if r.word(k) == ","), len(r))
+    if any(r.word(k) == "into" and "near" in r.quote(k, k + 1).lower() for k in range(i, end)):
+        return Refusal(rf.before_near(r.quote(i, end)))  # "go near", "anywhere near" are read as "into"
+    said = prefixed(r, i + 1, prefix_last=True)
+    if r.word(i + 1) != "to" and isinstance(said, Match) and isinstance(said.node, PrefixedSentence) and any(
+            isinstance(item, Link) and item.sequence for item in said.node.body.items):
+        return Refusal(rf.before_then(r.quote(i, said.end)))
+    return said
 
 
 @OPENINGS.rule("only <do X> after Y")
@@ -280,21 +291,25 @@ def condition_rule(r: Reader, i: int) -> Parse[Rule]:
     rest = consequent(r, comma_or_then(r, said.end))
     if not isinstance(rest, Match):
         return rest
-    return Match(make_rule(r, i, said, rest.node, comma_or_then(r, said.end), rest.end), rest.end)
+    rule = make_rule(r, i, said, rest.node, comma_or_then(r, said.end), rest.end)
+    return rule if isinstance(rule, Refusal) else Match(rule, rest.end)
 
 
 def make_rule(r: Reader, i: int, said: Match[Action], consequent: Body, after_start: int,
-              after_end: int) -> Rule:
+              after_end: int) -> Rule | Refusal:
     """The rule at ``i`` with condition ``said`` and ``consequent``; an *if* rule is a response when its
     condition says *ever*, and its consequent follows the condition when the words ``[after_start,
-    after_end)`` say *afterwards*."""
+    after_end)`` say *afterwards*. *If you ever go into X, look at Y in there* is refused: once, or on
+    each visit of X?"""
     word = r.phrase(i, lx.CONDITION_WORDS)
     if r.phrase(i, lx.WHENEVER) is not None or word is None:
         return WheneverRule(said.node, consequent)
     start = i + len(word)
     response = r.says(lx.EVER, start, said.end)
-    return IfRule(" ".join(word), said.node, consequent, response,
-                  r.says(lx.AFTERWARDS, after_start, after_end))
+    afterwards = r.says(lx.AFTERWARDS, after_start, after_end)
+    if response and not afterwards and r.says(lx.AT_THAT_PLACE, after_start, after_end):
+        return Refusal(rf.once_or_each_visit(r.quote(i, after_end)))
+    return IfRule(" ".join(word), said.node, consequent, response, afterwards)
 
 
 def trigger(r: Reader, i: int) -> Parse[Action]:
