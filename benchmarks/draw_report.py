@@ -21,11 +21,12 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
+from sgplan.assembly import make_problem
 from sgplan.datasets import SCENES, find_gibson_root
 from sgplan.errors import PlanningError
 from sgplan.mission import load_mission_folder
 from sgplan.planning.amra import plan
-from sgplan.planning.problem import PlanningProblem
+from sgplan.radii import resolve_radii
 from sgplan.report.automaton import automaton_svg, graphviz_available
 from sgplan.report.html import report_html
 from sgplan.scene.authors import load_authors_scene
@@ -46,18 +47,11 @@ def main() -> int:
     for scene in SCENES:
         building = load_authors_scene(root / scene)
         mission = load_mission_folder(root / scene / "missions" / "1")
-        reach = building.reach_radius_m or 0.6
-        grid = build_occupancy_grid(building, building.robot_radius_m or 0.0)
-        labels = mission.labels(building, reach)
+        radii = resolve_radii(building)
+        grid = build_occupancy_grid(building, radii.robot_m)
+        labels = mission.labels(building, radii.reach_m)
         for start in building.initial_cells:
-            problem = PlanningProblem(
-                building=building,
-                grid=grid,
-                labels=labels,
-                automaton=mission.automaton,
-                start=start,
-                reach_radius_m=reach,
-            )
+            problem = make_problem(building, mission, start, grid=grid, labels=labels).problem
             try:
                 result = plan(problem, "NO-LLM")
                 break
@@ -70,7 +64,7 @@ def main() -> int:
             text=mission.text,
             cost_m=result.cost_m,
             propositions=mission.ordered_propositions,
-            reach_radius_m=reach,
+            reach_radius_m=radii.reach_m,
         )
         out = args.out / scene
         out.mkdir(parents=True, exist_ok=True)
@@ -86,7 +80,7 @@ def main() -> int:
         t0 = time.perf_counter()
         automaton_svg(mission.automaton, names=mission.descriptions)
         t1 = time.perf_counter()
-        page = report_html(building, grid, result, mission, reach_radius_m=reach)
+        page = report_html(building, grid, result, mission, reach_radius_m=radii.reach_m)
         t2 = time.perf_counter()
         (out / "report.html").write_text(page, encoding="utf-8")
         print(f"{scene:13s} {'-':>5s}  {'':24s}|  {t1 - t0:11.2f}  {t2 - t1:8.2f}  {len(page) / 1e3:9.0f}")

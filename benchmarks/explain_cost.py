@@ -23,12 +23,12 @@ from typing import Any
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
+from sgplan.assembly import make_problem
 from sgplan.datasets import SCENES, find_gibson_root
 from sgplan.explain import explain_mission
 from sgplan.explain.checks import check_mission_in_scene
-from sgplan.identity import ensure_folder_fits_scene
 from sgplan.mission import load_mission_folder
-from sgplan.pipeline import make_problem
+from sgplan.mission.identity import ensure_folder_fits_scene
 from sgplan.scene.loading import load_scene
 
 

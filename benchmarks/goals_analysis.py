@@ -27,7 +27,8 @@ import scaling
 def build_case(target_m: float = 2.0, goals: int = 9, seed: int = 0):
     """The scaling benchmark's unordered ``goals`` case: (problem, seconds to build the domain)."""
     from sgplan import mission_from_formula  # the public one: any source tree has it
-    from sgplan.pipeline import make_problem, resolve_radii
+    from sgplan.assembly import make_problem
+    from sgplan.radii import resolve_radii
     from sgplan.scene.grid import build_occupancy_grid
 
     building = scaling._building(target_m * 1e6, 1, rooms=max(4, goals), seed=seed)

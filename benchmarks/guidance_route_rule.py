@@ -24,12 +24,12 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
+from sgplan.assembly import make_problem
 from sgplan.datasets import SCENES, find_gibson_root
 from sgplan.errors import PlanningError
 from sgplan.llm.guidance import Guidance, route_break, validate_call
 from sgplan.mission import load_mission_folder
 from sgplan.options import PlanOptions
-from sgplan.pipeline import make_problem
 from sgplan.planning import plan
 from sgplan.scene.authors import load_authors_scene
 from sgplan.scene.model import Building

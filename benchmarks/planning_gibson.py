@@ -24,7 +24,7 @@ import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
+sys.path.append(str(REPO))  # after PYTHONPATH: a variant's own tests/ (planning_vs_dijkstra.py) come first
 
 # (scene, mission, start, setup) -> authors' C++: search s to optimum, whole-process wall s, peak RSS GB.
 REFERENCE = {

@@ -9,13 +9,20 @@ and peak RSS; then the median and worst ratio per setup. Needs the Gibson data a
 so if none exists).
 
 Before/after in one run: export an older tree and pass it as a variant; the variants run back to back on
-each case, so machine load hits them alike (report ratios, the machine is shared):
+each case, so machine load hits them alike (report ratios, the machine is shared). A variant whose folder
+holds ``tests/`` beside ``src/`` loads its cases with its own ``tests/planning/gibson_cases.py`` (export
+both: the case loader follows the source tree's API); otherwise with this checkout's:
 
-    git archive <commit> src | tar -x -C /tmp/sgplan-before
+    git archive <commit> src tests | tar -x -C /tmp/sgplan-before
     .venv/bin/python benchmarks/planning_vs_dijkstra.py \
         --variant before=/tmp/sgplan-before/src --variant after=src
 
     .venv/bin/python benchmarks/planning_vs_dijkstra.py                       # this tree, starts 0-1
+    .venv/bin/python benchmarks/planning_vs_dijkstra.py --repeat-sgplan 3 ...  # fastest of 3 per variant
+    .venv/bin/python benchmarks/planning_vs_dijkstra.py --from-json a.json b.json  # summarise saved runs
+
+With several variants it also says, against the first, on how many cases the status, cost or expansions
+differ (a refactoring must leave none) and the ratio of their searches to the optimum.
     .venv/bin/python benchmarks/planning_vs_dijkstra.py --scenes Allensville --setups A* --json out.json
 """
 
@@ -40,8 +47,10 @@ CHILD = REPO / "benchmarks" / "planning_gibson.py"
 
 
 def run_child(src: Path, scene: str, mission: int, start: int, setup: str) -> dict:
-    """One sgplan process on one case with ``src`` first on the import path; adds its wall seconds."""
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(src), str(REPO)]))
+    """One sgplan process on one case with ``src`` first on the import path, then the tests beside it (if
+    any), then this checkout's; adds its wall seconds."""
+    own_tests = [str(src.parent)] if (src.parent / "tests" / "planning" / "gibson_cases.py").is_file() else []
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(src), *own_tests, str(REPO)]))
     t0 = time.perf_counter()
     out = subprocess.run(
         [sys.executable, str(CHILD), "--profile", "authors", "--one", scene, str(mission), str(start), setup],
@@ -78,6 +87,38 @@ def summary(rows: list[dict], variants: list[str], setups: list[str]) -> None:
             )
 
 
+def agreement(rows: list[dict], variants: list[str], setups: list[str]) -> int:
+    """Each variant against the first on the same cases: cases whose status, cost or expansions differ (a
+    refactoring must leave none), and per setup the ratio of the search to the optimum (this variant / the
+    first) over the cases both solved: median, geometric mean, total. Returns the number of differences."""
+    if len(variants) < 2:
+        return 0
+    by_case: dict[tuple, dict[str, dict]] = {}
+    for r in rows:
+        by_case.setdefault((r["scene"], r["mission"], r["start"], r["setup"]), {})[r["variant"]] = r
+    first = variants[0]
+    differing = 0
+    print(f"\nagainst {first} (ratio = search to the optimum / {first}'s)")
+    for variant in variants[1:]:
+        pairs = [(v[first], v[variant]) for v in by_case.values() if first in v and variant in v]
+        bad = [a for a, b in pairs if (a.get("status"), a.get("cost"), a.get("expansions"))
+               != (b.get("status"), b.get("cost"), b.get("expansions"))]
+        differing += len(bad)
+        print(f"{variant}: {len(pairs)} cases, {len(bad)} differ in status, cost or expansions"
+              + "".join(f"; {a['scene']} m{a['mission']} s{a['start']} {a['setup']}" for a in bad[:10]))
+        for setup in setups:
+            solved = [(a["opt_s"], b["opt_s"]) for a, b in pairs
+                      if a["setup"] == setup and "opt_s" in a and "opt_s" in b]
+            if not solved:
+                continue
+            ratios = [b / a for a, b in solved]
+            total_a, total_b = sum(a for a, _ in solved), sum(b for _, b in solved)
+            print(f"  {setup:<7} {len(solved):>3} solved: median {statistics.median(ratios):.3f}, "
+                  f"geometric mean {statistics.geometric_mean(ratios):.3f}, total {total_b / total_a:.3f} "
+                  f"({total_b:.2f} / {total_a:.2f} s)")
+    return differing
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--scenes", nargs="+", default=list(SCENES))
@@ -87,8 +128,21 @@ def main() -> int:
     parser.add_argument("--variant", action="append", metavar="NAME=SRC",
                         help="a source tree to time (repeatable); default: this tree's src")
     parser.add_argument("--repeat", type=int, default=3, help="reference runs per case (the fastest counts)")
+    parser.add_argument("--repeat-sgplan", type=int, default=1, metavar="N",
+                        help="sgplan processes per case and variant, the variants taking turns (the fastest "
+                        "search to the optimum counts)")
     parser.add_argument("--json", type=Path, help="also write every row to this file")
+    parser.add_argument("--from-json", type=Path, nargs="+", metavar="FILE",
+                        help="run nothing: summarise the rows of earlier --json files")
     args = parser.parse_args()
+    if args.from_json:
+        rows = [row for path in args.from_json for row in json.loads(path.read_text())]
+        names = list(dict.fromkeys(r["variant"] for r in rows))
+        setups = list(dict.fromkeys(r["setup"] for r in rows))
+        summary(rows, names, setups)
+        bad = [r for r in rows if not r["agree"]]
+        print(f"\n{len(rows)} runs; cost disagreements with the reference: {len(bad)}")
+        return 1 if agreement(rows, names, setups) or bad else 0
     try:
         find_compiler()
     except NoCompilerError as error:
@@ -115,8 +169,12 @@ def main() -> int:
                 ref = min((solve(problem) for _ in range(args.repeat)), key=lambda r: r["search_s"])
                 del problem
                 for setup in args.setups:
-                    for variant, src in variants.items():
-                        row = run_child(src, scene, mission, start, setup)
+                    runs: dict[str, list[dict]] = {variant: [] for variant in variants}
+                    for _ in range(args.repeat_sgplan):
+                        for variant, src in variants.items():
+                            runs[variant].append(run_child(src, scene, mission, start, setup))
+                    for variant in variants:
+                        row = min(runs[variant], key=lambda r: r.get("opt_s", float("inf")))
                         row.update(
                             variant=variant,
                             scene=scene,
@@ -158,9 +216,10 @@ def main() -> int:
         f"\n{len(rows)} runs in {time.perf_counter() - t_start:.0f} s; "
         f"cost disagreements with the reference: {len(bad)}"
     )
+    differing = agreement(rows, list(variants), args.setups)
     if args.json:
         args.json.write_text(json.dumps(rows, indent=1, default=str))
-    return 1 if bad else 0
+    return 1 if bad or differing else 0
 
 
 if __name__ == "__main__":

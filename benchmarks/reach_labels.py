@@ -58,8 +58,8 @@ def label_seconds(building, model: str) -> float:
 
 def domain_seconds(building, grid, mission, model: str) -> float:
     from sgplan import PlanOptions
+    from sgplan.assembly import make_problem
     from sgplan.errors import PlanningError
-    from sgplan.pipeline import make_problem
 
     options = PlanOptions(reach_model=model)
     labels = mission.labels(building, None, model)

@@ -48,8 +48,8 @@ def solve_case(session, folder: Path, start: int, profile: str, model: str, orac
     """``(sgplan's outcome, the solver's verdict)`` of one case under one reach model. ``oracles`` caches
     the solver's cost per (start cell, labelling, automaton)."""
     from sgplan import PlanOptions, load_mission
+    from sgplan.assembly import make_problem
     from sgplan.errors import PlanningError
-    from sgplan.pipeline import make_problem
     from sgplan.starts import start_cell
 
     mission = load_mission(folder, profile=profile)

@@ -73,7 +73,11 @@ def run_case(
     import numpy as np
 
     from sgplan import mission_from_formula  # the public one: any source tree has it
-    from sgplan.pipeline import make_problem, resolve_radii
+    try:
+        from sgplan.assembly import make_problem
+        from sgplan.radii import resolve_radii
+    except ImportError:  # a source tree from before the layout round
+        from sgplan.pipeline import make_problem, resolve_radii  # type: ignore[no-redef]
     from sgplan.planning import get_setup, plan
     from sgplan.scene.grid import build_occupancy_grid
 

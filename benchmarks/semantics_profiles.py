@@ -27,10 +27,10 @@ READINGS = {"authors": ("authors", "authors"), "strict": ("ltlf", "authors"), "l
 
 
 def solve(building, folder: Path, start: tuple[int, int, int], reading: str) -> str:
+    from sgplan.assembly import make_problem
     from sgplan.errors import PlanningError
     from sgplan.mission import load_mission_folder
     from sgplan.options import PlanOptions
-    from sgplan.pipeline import make_problem
     from sgplan.planning import plan
 
     hoa_profile, plan_profile = READINGS[reading]

@@ -23,11 +23,12 @@ from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 
+from sgplan.assembly import make_problem
 from sgplan.english import count
 from sgplan.errors import PlanningError, SceneError
 from sgplan.options import PlanOptions
-from sgplan.pipeline import Radii, make_problem, resolve_radii
 from sgplan.planning.shared import SharedParts
+from sgplan.radii import Radii, resolve_radii
 from sgplan.scene.model import Building
 from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
@@ -256,7 +257,7 @@ class Session:
     def labels(self, mission: Mission, reach_radius_m: float | None = None,
                reach_model: str = DEFAULT_REACH_MODEL) -> np.ndarray:
         """The mission's label raster (as :meth:`Mission.labels`), from the cells of each proposition kept
-        between missions (sparse: a few MB at most where full masks took ~6 MB each on a Gibson scene)."""
+        between missions (flat indices: far smaller than a full mask per proposition)."""
         from sgplan.scene.labels import raster_from_cells
 
         mission.check_scene(self.building)
@@ -510,10 +511,8 @@ def plan(
         ``(row, col, floor)``, a metric :class:`~sgplan.starts.Point` ``(x_m, y_m, floor)`` (or a triple with
         float x/y), or a room (``"kitchen"``, ``"room_5"``); see :mod:`sgplan.starts`.
     options, **option_values:
-        the planning options (:class:`sgplan.PlanOptions`: ``setup``, ``profile``, ``robot_radius_m``,
-        ``reach_radius_m``, ``reach_model``, ``time_limit_s``, ``max_expansions``, ``verify``,
-        ``prebuild_actions``), as a
-        value, as keywords (``setup="NO-LLM"``), or both (the keywords replace the value's fields). A
+        the planning options (:class:`sgplan.PlanOptions`, which states and checks them), as a value, as
+        keywords (``setup="NO-LLM"``), or both (the keywords replace the value's fields). A
         setup using LLM guidance on a mission without guidance gets it from ``guide`` (default: the
         offline symbolic guide, which is not an LLM); ``PlanResult.guidance`` says which. When a budget
         runs out the result has status ``"timeout"`` with the best path so far (its ``bound``) or none:

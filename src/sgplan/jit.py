@@ -36,13 +36,12 @@ def kernels_cached() -> bool | None:
     try:
         from numba.core.registry import CPUDispatcher
 
-        from sgplan import heap
         from sgplan.outputs import _segments
-        from sgplan.planning import _dijkstra, _search
+        from sgplan.planning import _dijkstra, _heap, _search
         from sgplan.scene import _sight
 
         kernels = [
-            value for module in (heap, _dijkstra, _search, _segments, _sight)
+            value for module in (_heap, _dijkstra, _search, _segments, _sight)
             for value in vars(module).values()
             if isinstance(value, CPUDispatcher) and getattr(value, "_cache", None) is not None
         ]

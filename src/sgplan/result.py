@@ -18,10 +18,10 @@ import numpy as np
 from sgplan.english import count
 from sgplan.errors import OutputError
 from sgplan.outputs.events import Event
-from sgplan.outputs.jsontext import record_json
+from sgplan.outputs.jsontext import finite_or_none, iteration_records, record_json
 from sgplan.outputs.robot_files import write_ros_path_yaml, write_waypoints_csv
 from sgplan.outputs.waypoints import Waypoint
-from sgplan.pipeline import Radii, finite_or_none, iteration_records
+from sgplan.radii import Radii
 
 if TYPE_CHECKING:
     from sgplan.mission import Mission

@@ -23,7 +23,6 @@ import numpy as np
 
 from sgplan.english import count, series
 from sgplan.errors import PlanningError
-from sgplan.pipeline import resolve_start
 from sgplan.scene.fields import is_int, is_number
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building, Room
@@ -61,7 +60,7 @@ def start_cell(
     if start is None or (is_int(start) and not isinstance(start, Sequence)):
         index = None if start is None else int(start)
         try:
-            cell = resolve_start(building, index=index)
+            cell = initial_cell(building, index=index)
         except PlanningError as error:
             raise PlanningError(str(error), status="invalid-start") from None
         return cell, f"initial position {index or 0}"
@@ -88,7 +87,7 @@ def start_floor(building: Building, start: StartSpec = None) -> int | None:
     that :func:`start_cell` would refuse is refused there, not here."""
     try:
         if start is None or (is_int(start) and not isinstance(start, Sequence)):
-            return resolve_start(building, index=None if start is None else int(start))[2]
+            return initial_cell(building, index=None if start is None else int(start))[2]
         if isinstance(start, str):
             return _find_room(building, start).floor
         if isinstance(start, Sequence) and len(start) == 3 and is_int(start[2]):
@@ -97,6 +96,22 @@ def start_floor(building: Building, start: StartSpec = None) -> int | None:
     except PlanningError:
         return None
     return None
+
+
+def initial_cell(building: Building, index: int | None = None) -> tuple[int, int, int]:
+    """The scene's initial cell ``(row, col, floor)`` number ``index`` (initial_positions.yaml), or its
+    first one."""
+    cells = building.initial_cells
+    if not cells:
+        raise PlanningError(
+            f"scene {building.name!r} has no initial positions: give a start cell (row, col, floor)"
+        )
+    k = 0 if index is None else index
+    if not 0 <= k < len(cells):
+        raise PlanningError(
+            f"start index {k} is out of range: scene {building.name!r} has {len(cells)} initial positions"
+        )
+    return cells[k]
 
 
 def _find_room(building: Building, name: str) -> Room:

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 
+from sgplan.assembly import make_problem
 from sgplan.bench.cases import BenchError, Case
 from sgplan.bench.executors import WORKER_ENV, LocalExecutor, worker_command
 from sgplan.bench.results import COLUMNS, RESULTS_JSONL, ResultStore, writing_lock
@@ -21,7 +22,6 @@ from sgplan.bench.sweep import pending_cases, run_sweep
 from sgplan.bench.worker import PARENT_ENV
 from sgplan.mission import load_mission_folder
 from sgplan.options import PlanOptions
-from sgplan.pipeline import make_problem
 from sgplan.planning import plan
 from sgplan.scene.loading import load_scene
 from tests.bench.conftest import BAD_START, SCENE

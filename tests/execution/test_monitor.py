@@ -13,8 +13,7 @@ from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError, TrajectoryError
 from sgplan.execution.monitor import Monitor, MonitorStatus
-from sgplan.mission import Mission
-from sgplan.mission import compile_mission as mission_from_formula
+from sgplan.mission import Mission, compile_mission
 from sgplan.outputs.waypoints import crossed_cells, densify, simplify_path
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.labels import Proposition
@@ -121,7 +120,7 @@ def test_in_progress_says_what_is_left():
 
 
 def test_a_violation_names_the_step_that_broke_the_mission():
-    mission = mission_from_formula(BEDROOM_NO_STAIRS)
+    mission = compile_mission(BEDROOM_NO_STAIRS)
     mon = monitor(mission)
     status = mon.observe_cells(path()[:, :3])
     rooms = demo_plan().grid.room_map[path()[:, 2], path()[:, 0], path()[:, 1]]
@@ -138,7 +137,7 @@ def test_a_violation_names_the_step_that_broke_the_mission():
 
 
 def test_a_broken_until_names_its_clause():
-    mission = mission_from_formula('!"enter(room_9)" U "enter(room_4)"')  # the upstairs corridor first
+    mission = compile_mission('!"enter(room_9)" U "enter(room_4)"')  # the upstairs corridor first
     status = monitor(mission).observe_cells(path()[:, :3])
     assert status.violation is not None and status.violation.text == (
         "entered the corridor (room_9, floor 1), which the mission forbids: go to the kitchen (room_4, "
@@ -146,7 +145,7 @@ def test_a_broken_until_names_its_clause():
 
 
 def test_the_profiles_differ_on_the_first_pose():
-    mission = mission_from_formula('F "enter(room_11)" & G !"enter(room_2)"')  # the start is in room_2
+    mission = compile_mission('F "enter(room_11)" & G !"enter(room_2)"')  # the start is in room_2
     start = path()[:1, :3]
     ltlf = monitor(mission).observe_cells(start)
     assert ltlf.verdict == "violated" and ltlf.violation is not None and ltlf.violation.pose == 0
@@ -266,7 +265,7 @@ def test_states_equal_the_automaton_stepped_over_every_cell_passed(seed, formula
     rng = np.random.default_rng(seed)
     building = random_small_building(rng)
     grid = build_occupancy_grid(building, 0.0)
-    mission = mission_from_formula(formula, _random_meanings(building, rng))
+    mission = compile_mission(formula, _random_meanings(building, rng))
     labels = mission.labels(building, 0.5)
     poses = _random_poses(grid, rng)
     mon = Monitor(building, mission, grid, labels, profile=profile)
@@ -315,7 +314,7 @@ def _random_poses(grid, rng: np.random.Generator) -> np.ndarray:
 
 
 def test_a_monitor_resumed_past_saving_is_violated_without_naming_a_step():
-    mission = mission_from_formula(BEDROOM_NO_STAIRS)
+    mission = compile_mission(BEDROOM_NO_STAIRS)
     broken = monitor(mission).observe_cells(path()[:, :3])
     resumed = monitor(mission, state=broken.state, at=tuple(int(v) for v in path()[-1, :3]))
     status = resumed.observe_cells(path()[-3:, :3])
@@ -334,6 +333,6 @@ def test_a_mission_without_a_formula_is_said_back_from_its_automaton():
 
 
 def test_done_with_nothing_left_to_keep():
-    status = monitor(mission_from_formula('F "enter(room_11)"')).observe_cells(path()[:, :3])
+    status = monitor(compile_mission('F "enter(room_11)"')).observe_cells(path()[:, :3])
     assert status.verdict == "done" and status.left == ""
     assert status.summary() == "done: the mission is satisfied"

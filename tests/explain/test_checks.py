@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import pytest
 
+from sgplan.assembly import make_problem
 from sgplan.errors import PlanningError, UnsatisfiableMissionError
 from sgplan.explain.checks import check_mission_in_scene
 from sgplan.mission import compile_mission
-from sgplan.pipeline import make_problem
 from sgplan.planning.amra import plan
 from sgplan.scene.demo import demo_building
 

@@ -14,7 +14,7 @@ from hypothesis.extra import numpy as hnp
 import sgplan
 from sgplan.errors import MissionError, SceneError
 from sgplan.explain.scene_labels import in_room_cells, occurring_labels, realizable_labels
-from sgplan.pipeline import resolve_radii
+from sgplan.radii import resolve_radii
 from sgplan.scene.labels import Proposition, label_raster, proposition_cells
 
 

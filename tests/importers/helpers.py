@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 
+from sgplan.assembly import make_problem
 from sgplan.mission import compile_mission
-from sgplan.pipeline import make_problem
 from sgplan.planning.amra import plan
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.model import Building, Room

@@ -1,7 +1,7 @@
 """The shipped Gibson missions as planning problems, and their reference optima.
 
 Built with the product's own loaders (:func:`sgplan.mission.load_mission_folder`,
-:func:`sgplan.pipeline.make_problem`); used by the tests and benchmarks/planning_gibson.py.
+:func:`sgplan.assembly.make_problem`); used by the tests and benchmarks/planning_gibson.py.
 """
 
 from __future__ import annotations
@@ -9,9 +9,9 @@ from __future__ import annotations
 from functools import lru_cache
 from pathlib import Path
 
+from sgplan.assembly import make_problem
 from sgplan.mission import load_mission_folder
 from sgplan.options import PlanOptions
-from sgplan.pipeline import make_problem
 from sgplan.planning import PlanningProblem
 from sgplan.scene.authors import load_authors_scene
 from sgplan.scene.model import Building

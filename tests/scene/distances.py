@@ -15,7 +15,7 @@ import numpy as np
 from numba import njit
 
 from sgplan.errors import PlanningError
-from sgplan.heap import heap_grow, heap_pop, heap_push
+from sgplan.planning._heap import HREC, grown, hpop, hpush
 from sgplan.scene.grid import OccupancyGrid
 
 GridCell3 = tuple[int, int, int]
@@ -29,23 +29,23 @@ def _dijkstra(traversable, rows, cols, sources, res_x, res_y, link_a, link_b, li
     plane = rows * cols
     dist = np.full(n, np.inf)
     done = np.zeros(n, dtype=np.bool_)
-    keys = np.empty(1024 + sources.shape[0], dtype=np.float64)
-    ties = np.zeros(keys.shape[0], dtype=np.float64)
-    values = np.empty(keys.shape[0], dtype=np.int64)
+    heap = np.empty((1024 + sources.shape[0]) * HREC, dtype=np.int64)
+    keys = heap.view(np.float64)
     size = np.int64(0)  # typed, not a literal: one compiled heap specialization
     for s in sources:
         if dist[s] > 0.0:
             dist[s] = 0.0
-            size = heap_push(keys, ties, values, size, 0.0, 0.0, s)
+            size = hpush(keys, heap, 0, size, 0.0, 0.0, s)
     diagonal = np.sqrt(res_x * res_x + res_y * res_y)
     while size > 0:
-        d, cell = keys[0], values[0]
-        size = heap_pop(keys, ties, values, size)
+        d, cell = keys[0], heap[2]
+        size = hpop(keys, heap, 0, size)
         if done[cell]:
             continue
         done[cell] = True
-        if size + 8 + link_a.shape[0] > keys.shape[0]:
-            keys, ties, values = heap_grow(keys, ties, values, size)
+        if (size + 8 + link_a.shape[0]) * HREC > heap.shape[0]:
+            heap = grown(heap, size)
+            keys = heap.view(np.float64)
         rem = cell % plane
         r = rem // cols
         c = rem % cols
@@ -66,7 +66,7 @@ def _dijkstra(traversable, rows, cols, sources, res_x, res_y, link_a, link_b, li
                 nd = d + step
                 if nd < dist[nxt]:
                     dist[nxt] = nd
-                    size = heap_push(keys, ties, values, size, nd, 0.0, nxt)
+                    size = hpush(keys, heap, 0, size, nd, 0.0, nxt)
         for k in range(link_a.shape[0]):
             if link_a[k] == cell:
                 other = link_b[k]
@@ -77,7 +77,7 @@ def _dijkstra(traversable, rows, cols, sources, res_x, res_y, link_a, link_b, li
             nd = d + link_cost[k]
             if not done[other] and nd < dist[other]:
                 dist[other] = nd
-                size = heap_push(keys, ties, values, size, nd, 0.0, other)
+                size = hpush(keys, heap, 0, size, nd, 0.0, other)
     return dist
 
 

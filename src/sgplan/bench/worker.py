@@ -119,7 +119,7 @@ def measure(case: Case, gallery_dir: str | Path | None = None, scenes: SceneKeep
 def _plan_case(case: Case, gallery_dir: str | Path | None, out: dict[str, Any], t0: float,
                scenes: SceneKeeper) -> None:
     import sgplan
-    from sgplan.pipeline import finite_or_none, iteration_records
+    from sgplan.outputs.jsontext import finite_or_none, iteration_records
 
     out["scene_reused"] = scenes.folder == case.scene_dir
     session = scenes.session_for(case.scene_dir)

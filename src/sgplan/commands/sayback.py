@@ -18,10 +18,10 @@ from sgplan.errors import ConfirmationError
 
 if TYPE_CHECKING:
     from sgplan.api import Session
+    from sgplan.assembly import PreparedProblem
     from sgplan.explain import Explanation
     from sgplan.explain.checks import SceneCheck
     from sgplan.mission import Mission
-    from sgplan.pipeline import PreparedProblem
     from sgplan.scene.model import Building
 
 
@@ -70,9 +70,9 @@ def _confirm(ask: Callable[[str], str] | None) -> None:
 
 def check_folder_fits(folder: str | Path, mission: Mission, building: Building, *, force: bool = False,
                       record: dict[str, Any] | None = None) -> None:
-    """Refuse a mission folder made for another scene (see :func:`sgplan.identity.ensure_folder_fits_scene`);
-    with ``force`` say so and go on."""
-    from sgplan.identity import ensure_folder_fits_scene
+    """Refuse a mission folder made for another scene (see
+    :func:`sgplan.mission.identity.ensure_folder_fits_scene`); with ``force`` say so and go on."""
+    from sgplan.mission.identity import ensure_folder_fits_scene
 
     fit = ensure_folder_fits_scene(folder, mission.propositions, building, force=force)
     for note in fit.notes:

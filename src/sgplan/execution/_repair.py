@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from sgplan.heap import heap_grow, heap_pop, heap_push
+from sgplan.planning._heap import HREC, grown, hpop, hpush
 
 UNREACHED = np.int64(np.iinfo(np.uint32).max)
 
@@ -43,12 +43,14 @@ def _in_graph(cell_at, cell_pos, c):
 
 
 @njit(cache=True, inline="always")
-def _push(keys, ties, values, size, key, value):
-    """Push onto a growable heap; returns the (possibly new) arrays and the size."""
-    if size + 1 >= keys.shape[0]:
-        keys, ties, values = heap_grow(keys, ties, values, size)
-    size = heap_push(keys, ties, values, size, key, 0.0, value)
-    return keys, ties, values, size
+def _push(heap, keys, size, key, value):
+    """Push onto a growable heap (:mod:`sgplan.planning._heap`; ``keys`` is the buffer's float64 view);
+    returns the (possibly new) buffer, its view and the size."""
+    if (size + 1) * HREC > heap.shape[0]:
+        heap = grown(heap, size)
+        keys = heap.view(np.float64)
+    size = hpush(keys, heap, 0, size, key, 0.0, value)
+    return heap, keys, size
 
 
 @njit(cache=True, inline="always")
@@ -96,9 +98,8 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
     """
     n = cell_pos.shape[0]
     mark = np.zeros(n, dtype=np.uint8)
-    keys = np.empty(1024, dtype=np.float64)
-    ties = np.zeros(1024, dtype=np.float64)
-    values = np.empty(1024, dtype=np.int64)
+    heap = np.empty(1024 * HREC, dtype=np.int64)
+    keys = heap.view(np.float64)
     size = 0
     near = np.empty(8 + stairs_from.shape[0], dtype=np.int64)
     cost = np.empty(8 + stairs_from.shape[0], dtype=np.int64)
@@ -117,7 +118,7 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
                 mark[s] = _TARGET
             elif dist[s] != UNREACHED and mark[s] == 0:
                 mark[s] = _PENDING
-                keys, ties, values, size = _push(keys, ties, values, size, np.float64(dist[s]), s)
+                heap, keys, size = _push(heap, keys, size, np.float64(dist[s]), s)
         elif dist[s] != UNREACHED:
             mark[s] = _LOST
             count = _neighbours(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from,
@@ -126,12 +127,12 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
                 y = near[i]
                 if mark[y] == 0 and dist[y] != UNREACHED:
                     mark[y] = _PENDING
-                    keys, ties, values, size = _push(keys, ties, values, size, np.float64(dist[y]), y)
+                    heap, keys, size = _push(heap, keys, size, np.float64(dist[y]), y)
     lost = np.empty(64, dtype=np.int64)
     num_lost = 0
     while size > 0:
-        x = values[0]
-        size = heap_pop(keys, ties, values, size)
+        x = heap[2]
+        size = hpop(keys, heap, 0, size)
         if mark[x] != _PENDING:
             continue
         dx = np.int64(dist[x])
@@ -162,7 +163,7 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
             y = near[i]
             if mark[y] == 0 and dist[y] != UNREACHED and np.int64(dist[y]) == dx + cost[i]:
                 mark[y] = _PENDING
-                keys, ties, values, size = _push(keys, ties, values, size, np.float64(dist[y]), y)
+                heap, keys, size = _push(heap, keys, size, np.float64(dist[y]), y)
     # Phase 2: the lost and changed cells take what their neighbours offer, then lower what they can.
     for i in range(num_lost):
         dist[lost[i]] = UNREACHED
@@ -187,11 +188,11 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
             if best < np.int64(dist[x]):
                 dist[x] = best
             if dist[x] != UNREACHED:
-                keys, ties, values, size = _push(keys, ties, values, size, np.float64(dist[x]), x)
+                heap, keys, size = _push(heap, keys, size, np.float64(dist[x]), x)
     while size > 0:
         key = keys[0]
-        x = values[0]
-        size = heap_pop(keys, ties, values, size)
+        x = heap[2]
+        size = hpop(keys, heap, 0, size)
         dx = np.int64(dist[x])
         if np.float64(dx) < key:
             continue
@@ -206,6 +207,6 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
                     return RECOMPUTE
                 dist[y] = nd
                 lowered += 1
-                keys, ties, values, size = _push(keys, ties, values, size, np.float64(nd), y)
+                heap, keys, size = _push(heap, keys, size, np.float64(nd), y)
     counts[0], counts[1] = num_lost, lowered
     return outcome

@@ -141,7 +141,7 @@ def check_mission_in_scene(
         ``(row, col, floor)``; without it only the start-independent checks run.
     grid, labels:
         the occupancy grid and label raster the plan will use (e.g. from
-        :func:`sgplan.pipeline.make_problem`); built from the radii when not given.
+        :func:`sgplan.assembly.make_problem`); built from the radii when not given.
     profile:
         ``"ltlf"`` reads the start cell's label, ``"authors"`` does not.
     robot_radius_m, reach_radius_m:
@@ -157,7 +157,7 @@ def check_mission_in_scene(
     """
     model = reach_model_for(profile, reach_model)
     if grid is None or labels is None:
-        from sgplan.pipeline import resolve_radii
+        from sgplan.radii import resolve_radii
         from sgplan.scene.grid import build_occupancy_grid
 
         radii = resolve_radii(building, robot_radius_m, reach_radius_m)

@@ -42,7 +42,7 @@ def realizable_labels(propositions: Sequence[Proposition], building: Building,
                       cells: Callable[[Proposition, float, str], np.ndarray] | None = None) -> np.ndarray:
     """``(2**len(propositions),)`` bool: the labels (bit ``i`` = ``propositions[i]``) that some in-room
     cell of ``building`` carries (reach radius: the given one, else the scene's, else the default of
-    :mod:`sgplan.pipeline`; objects reached under ``reach_model``).
+    :mod:`sgplan.radii`; objects reached under ``reach_model``).
 
     The labels are those of :func:`~sgplan.scene.labels.label_raster`, made from
     ``cells(prop, radius, reach_model)``: the flat cell indices of one proposition, as
@@ -57,7 +57,7 @@ def realizable_labels(propositions: Sequence[Proposition], building: Building,
     MissionError
         more propositions than a label holds, or a reach proposition without a radius.
     """
-    from sgplan.pipeline import resolve_radii
+    from sgplan.radii import resolve_radii
 
     if len(propositions) > MAX_PROPOSITIONS:  # as label_raster: a label is at most a uint32 bitmask
         raise MissionError(

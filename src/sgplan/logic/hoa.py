@@ -20,6 +20,7 @@ Two profiles say what a missing edge means:
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
 
@@ -180,15 +181,46 @@ def parse_hoa(text: str, profile: Profile = "ltlf", path: str | Path | None = No
     """
     if profile not in ("ltlf", "authors"):
         raise AutomatonError(f"unknown automaton profile {profile!r}; use 'ltlf' or 'authors'", path)
-    source = Path(path) if path is not None else None
-    tokens = _Tokens(text, source)
-    header = tokens.take()
-    if header[1] != "HOA:":
-        raise tokens.error(f"expected 'HOA: v1' at the start, found {quote(header[1])}", header)
-    tokens.expect("ident", "the version v1")
+    tokens = _Tokens(text, Path(path) if path is not None else None)
+    header = _parse_header(tokens)
+    labels = np.arange(1 << len(header.aps), dtype=np.int64)
+    body = _parse_body(tokens, len(header.aps), labels)
+    n = _state_count(header, body, tokens.path)
+    accepting = _accepting_states(n, body, tokens)
+    table = _transition_table(n, labels.size, body.edges, profile, tokens)
+    assert header.initial is not None  # _parse_header refuses a header without Start:
+    return Automaton.from_partial(tuple(header.aps), table, header.initial, accepting)
+
+
+@dataclass
+class _Header:
+    """What the header says: ``States:`` (``None`` if absent), ``Start:`` and ``AP:``."""
+
     num_states: int | None = None
     initial: int | None = None
-    aps: list[str] | None = None
+    aps: list[str] = field(default_factory=list)
+
+
+_Edge = tuple[int, np.ndarray, int, set[int], tuple[str, str, int]]
+"""``(state, labels it is taken on (bool per label), target, marks, its token)``."""
+
+
+@dataclass
+class _Body:
+    """The states and edges of the body: each state's marks, the declared states, the edges."""
+
+    state_marks: dict[int, set[int]] = field(default_factory=dict)
+    declared: set[int] = field(default_factory=set)
+    edges: list[_Edge] = field(default_factory=list)
+
+
+def _parse_header(tokens: _Tokens) -> _Header:
+    """The header, up to and including ``--BODY--``; checks the version, the acceptance and the size."""
+    first = tokens.take()
+    if first[1] != "HOA:":
+        raise tokens.error(f"expected 'HOA: v1' at the start, found {quote(first[1])}", first)
+    tokens.expect("ident", "the version v1")
+    header = _Header()
     while True:
         item = tokens.take()
         kind, name, _ = item
@@ -196,108 +228,138 @@ def parse_hoa(text: str, profile: Profile = "ltlf", path: str | Path | None = No
             break
         if kind != "header":
             raise tokens.error(f"expected a header line or --BODY--, found {quote(name)}", item)
-        if name == "States:":
-            num_states = int(tokens.expect("int", "the number of states"))
-            if num_states < 1 or num_states > MAX_HOA_TABLE:
-                raise tokens.error(f"States: {num_states} is not between 1 and {MAX_HOA_TABLE:,}", item)
-        elif name == "Start:":
-            if initial is not None:
-                raise tokens.error("several Start: lines (several initial states) are not supported", item)
-            initial = int(tokens.expect("int", "the initial state"))
-            if tokens.peek()[1] == "&":
-                raise tokens.error("a conjunction of initial states (alternation) is not supported", item)
-        elif name == "AP:":
-            count = int(tokens.expect("int", "the number of APs"))
-            if count > MAX_HOA_APS:
-                raise tokens.error(f"AP: declares {count} propositions; sgplan reads at most {MAX_HOA_APS} "
-                                   f"(the transition table has 2^APs columns per state)", item)
-            aps = [tokens.expect("string", f"{count} quoted AP names")[1:-1] for _ in range(count)]
-            if len(set(aps)) != count:
-                raise tokens.error(f"the AP: line names a proposition twice: {quote(aps)}", item)
-        elif name == "Acceptance:":
-            acceptance = []
-            while tokens.peek()[0] not in ("header", "marker", "eof"):
-                acceptance.append(tokens.take()[1])
-            if "".join(acceptance) != "1Inf(0)":
-                written = tokens.lines[item[2] - 1].split("Acceptance:", 1)[-1].strip()
-                raise tokens.error(
-                    f"acceptance '{written}' is not supported; sgplan reads Buchi automata "
-                    f"('Acceptance: 1 Inf(0)', accepting states marked {{0}})",
-                    item,
-                )
-        elif name in ("Alias:", "controllable-AP:"):
-            raise tokens.error(f"header {name} is not supported", item)
-        else:  # name:, tool:, acc-name:, properties:, and unknown headers carry no semantics we need
-            while tokens.peek()[0] not in ("header", "marker", "eof"):
-                tokens.take()
-    if aps is None:
-        aps = []
-    if initial is None:
+        _header_line(tokens, item, header)
+    if header.initial is None:
         raise tokens.error("the header has no Start: line")
-    if num_states is not None and num_states << len(aps) > MAX_HOA_TABLE:
+    if header.num_states is not None and header.num_states << len(header.aps) > MAX_HOA_TABLE:
         raise tokens.error(
-            f"States: {num_states} over {len(aps)} APs is a table of {num_states << len(aps):,} "
-            f"entries, more than the {MAX_HOA_TABLE:,} sgplan builds"
+            f"States: {header.num_states} over {len(header.aps)} APs is a table of "
+            f"{header.num_states << len(header.aps):,} entries, more than the {MAX_HOA_TABLE:,} sgplan builds"
         )
-    labels = np.arange(1 << len(aps), dtype=np.int64)
-    edges: list[tuple[int, np.ndarray, int, set[int], tuple[str, str, int]]] = []
-    state_marks: dict[int, set[int]] = {}
-    declared: set[int] = set()
+    return header
+
+
+def _header_line(tokens: _Tokens, item: tuple[str, str, int], header: _Header) -> None:
+    """Read the header line that starts with ``item`` into ``header``."""
+    name = item[1]
+    if name == "States:":
+        header.num_states = int(tokens.expect("int", "the number of states"))
+        if header.num_states < 1 or header.num_states > MAX_HOA_TABLE:
+            raise tokens.error(f"States: {header.num_states} is not between 1 and {MAX_HOA_TABLE:,}", item)
+    elif name == "Start:":
+        if header.initial is not None:
+            raise tokens.error("several Start: lines (several initial states) are not supported", item)
+        header.initial = int(tokens.expect("int", "the initial state"))
+        if tokens.peek()[1] == "&":
+            raise tokens.error("a conjunction of initial states (alternation) is not supported", item)
+    elif name == "AP:":
+        count = int(tokens.expect("int", "the number of APs"))
+        if count > MAX_HOA_APS:
+            raise tokens.error(f"AP: declares {count} propositions; sgplan reads at most {MAX_HOA_APS} "
+                               f"(the transition table has 2^APs columns per state)", item)
+        header.aps = [tokens.expect("string", f"{count} quoted AP names")[1:-1] for _ in range(count)]
+        if len(set(header.aps)) != count:
+            raise tokens.error(f"the AP: line names a proposition twice: {quote(header.aps)}", item)
+    elif name == "Acceptance:":
+        acceptance = []
+        while tokens.peek()[0] not in ("header", "marker", "eof"):
+            acceptance.append(tokens.take()[1])
+        if "".join(acceptance) != "1Inf(0)":
+            written = tokens.lines[item[2] - 1].split("Acceptance:", 1)[-1].strip()
+            raise tokens.error(
+                f"acceptance '{written}' is not supported; sgplan reads Buchi automata "
+                f"('Acceptance: 1 Inf(0)', accepting states marked {{0}})",
+                item,
+            )
+    elif name in ("Alias:", "controllable-AP:"):
+        raise tokens.error(f"header {name} is not supported", item)
+    else:  # name:, tool:, acc-name:, properties:, and unknown headers carry no semantics we need
+        while tokens.peek()[0] not in ("header", "marker", "eof"):
+            tokens.take()
+
+
+def _parse_body(tokens: _Tokens, num_aps: int, labels: np.ndarray) -> _Body:
+    """The body, up to and including ``--END--``: every ``State:`` with its marks and edges."""
+    body = _Body()
     while True:
         item = tokens.take()
         if item[1] == "--END--":
-            break
+            return body
         if item[1] != "State:":
             raise tokens.error(f"expected 'State:' or '--END--', found {quote(item[1])}", item)
         if tokens.peek()[1] == "[":
             raise tokens.error("state labels are not supported; label the edges", item)
         state = int(tokens.expect("int", "a state number"))
-        if state in declared:
+        if state in body.declared:
             raise tokens.error(f"state {state} is declared twice", item)
-        declared.add(state)
+        body.declared.add(state)
         if tokens.peek()[0] == "string":
             tokens.take()
-        state_marks[state] = _parse_marks(tokens)
+        body.state_marks[state] = _parse_marks(tokens)
         while tokens.peek()[1] not in ("State:", "--END--") and tokens.peek()[0] != "eof":
-            edge = tokens.take()
-            if edge[1] != "[":
-                raise tokens.error(
-                    f"expected an edge '[label] target', found {quote(edge[1])} (implicit labels "
-                    f"are not supported)",
-                    edge,
-                )
-            members = _parse_label(tokens, len(aps), labels)
-            target = int(tokens.expect("int", "the edge's target state"))
-            if tokens.peek()[1] == "&":
-                raise tokens.error("universal branching (target1&target2) is not supported", edge)
-            edges.append((state, members, target, _parse_marks(tokens), edge))
+            body.edges.append(_parse_edge(tokens, state, num_aps, labels))
         if tokens.peek()[0] == "eof":
             raise tokens.error("the body ends without --END--")
-    n = num_states if num_states is not None else max(declared | {e[2] for e in edges} | {initial}) + 1
-    if n << len(aps) > MAX_HOA_TABLE:
-        raise AutomatonError(f"the automaton uses {n:,} states over {len(aps)} APs, a table of more than "
-                             f"{MAX_HOA_TABLE:,} entries", source)
-    for value, what in [(initial, "Start:")] + [(e[2], "an edge target") for e in edges] + \
-            [(s, "State:") for s in declared]:
+
+
+def _parse_edge(tokens: _Tokens, state: int, num_aps: int, labels: np.ndarray) -> _Edge:
+    """One edge ``[label] target {marks}`` of ``state``."""
+    edge = tokens.take()
+    if edge[1] != "[":
+        raise tokens.error(
+            f"expected an edge '[label] target', found {quote(edge[1])} (implicit labels are not supported)",
+            edge,
+        )
+    members = _parse_label(tokens, num_aps, labels)
+    target = int(tokens.expect("int", "the edge's target state"))
+    if tokens.peek()[1] == "&":
+        raise tokens.error("universal branching (target1&target2) is not supported", edge)
+    return (state, members, target, _parse_marks(tokens), edge)
+
+
+def _state_count(header: _Header, body: _Body, source: Path | None) -> int:
+    """The number of states (``States:``, else one past the highest named), checked against every state
+    number the automaton names and the table size."""
+    assert header.initial is not None  # _parse_header refuses a header without Start:
+    edges, declared = body.edges, body.declared
+    n = header.num_states if header.num_states is not None else max(
+        declared | {e[2] for e in edges} | {header.initial}) + 1
+    if n << len(header.aps) > MAX_HOA_TABLE:
+        raise AutomatonError(f"the automaton uses {n:,} states over {len(header.aps)} APs, a table of more "
+                             f"than {MAX_HOA_TABLE:,} entries", source)
+    named = [(header.initial, "Start:")] + [(e[2], "an edge target") for e in edges] + \
+        [(s, "State:") for s in declared]
+    for value, what in named:
         if not 0 <= value < n:
             raise AutomatonError(f"{what} names state {value} but the automaton has {n} states (0..{n - 1})",
                                  source)
+    return n
+
+
+def _accepting_states(n: int, body: _Body, tokens: _Tokens) -> np.ndarray:
+    """``(n,)`` bool: the states marked 0, or with a self-loop marked 0."""
     accepting = np.zeros(n, bool)
-    for state, marks in state_marks.items():
+    for state, marks in body.state_marks.items():
         accepting[state] |= 0 in marks
-    for state, _, target, marks, edge in edges:
+    for state, _, target, marks, edge in body.edges:
         if 0 in marks:
             if target != state:
                 raise tokens.error("an acceptance mark on an edge between different states is not supported",
                                    edge)
             accepting[state] = True
+    return accepting
+
+
+def _transition_table(n: int, num_labels: int, edges: list[_Edge], profile: Profile,
+                      tokens: _Tokens) -> np.ndarray:
+    """``(n, num_labels)`` targets, -1 where no edge is given (``ltlf``: completed later with a rejecting
+    sink), the state itself under ``authors`` (a missing edge keeps the state; self-loops are implied)."""
     if profile == "authors":
-        table = np.repeat(np.arange(n, dtype=np.int32)[:, None], labels.size, axis=1)
-        assigned = np.zeros((n, labels.size), bool)
+        table = np.repeat(np.arange(n, dtype=np.int32)[:, None], num_labels, axis=1)
         edges = [e for e in edges if e[0] != e[2]]
     else:
-        table = np.full((n, labels.size), -1, np.int32)
-        assigned = np.zeros((n, labels.size), bool)
+        table = np.full((n, num_labels), -1, np.int32)
+    assigned = np.zeros((n, num_labels), bool)
     for state, members, target, _, edge in edges:
         clash = members & assigned[state] & (table[state] != target)
         if clash.any():
@@ -309,7 +371,7 @@ def parse_hoa(text: str, profile: Profile = "ltlf", path: str | Path | None = No
             )
         table[state, members] = target
         assigned[state] |= members
-    return Automaton.from_partial(tuple(aps), table, initial, accepting)
+    return table
 
 
 def read_hoa(path: str | Path, profile: Profile = "ltlf") -> Automaton:

@@ -20,7 +20,12 @@ encoder. Any JSON reader sees the same document (:func:`json.loads` gives what i
 from __future__ import annotations
 
 import json
-from typing import Any
+import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from sgplan.planning.amra import IterationRecord
 
 _ROW = json.JSONEncoder(allow_nan=False, separators=(", ", ": "))
 """Encodes one row on one line (no indent: the C encoder)."""
@@ -48,3 +53,19 @@ def record_json(record: dict[str, Any]) -> str:
             text = json.dumps(value, indent=1, allow_nan=False).replace("\n", "\n ")
             items.append(f" {name}: {text}")
     return "{\n" + ",\n".join(items) + "\n}\n"
+
+
+def iteration_records(iterations: Sequence[IterationRecord]) -> list[dict[str, Any]]:
+    """JSON-ready records of AMRA* iterations: weights, ``cost_m`` (metres), suboptimality bound w1*w2,
+    cumulative search seconds and cumulative expansions per queue (``PlanResult.queues`` order).
+    The one shape of iterations in every sgplan output (``plan --json``, demo's run.json, bench rows)."""
+    return [
+        {"w1": it.w1, "w2": it.w2, "cost_m": it.cost_m, "bound": it.bound, "time_s": it.time_s,
+         "expansions": list(it.expansions)}
+        for it in iterations
+    ]
+
+
+def finite_or_none(value: float) -> float | None:
+    """``value``, or ``None`` for an infinite / NaN one (JSON has no infinity)."""
+    return value if math.isfinite(value) else None

@@ -29,8 +29,10 @@ algorithm with buckets no wider than the shortest edge). Settling a bucket in in
 consecutive cells close in memory, which on large grids is most of the time (2-3x faster than a heap,
 whose exact distance order scatters the reads along the whole wavefront). Steps reach at most
 ``max step / delta + 1`` buckets ahead, so a small ring suffices; stairs moves, with arbitrary and rare
-costs, wait in a small binary heap and join their bucket when it comes up. The distances are the same
-float64 sums a heap-based Dijkstra computes.
+costs, wait in a small heap (:mod:`sgplan.planning._heap`) and join their bucket when it comes up. The
+distances are the same float64 sums a heap-based Dijkstra computes (the order in which stairs entries of
+equal keys join a bucket can change the settling order and the move codes of equal-cost ties, never a
+distance; only whole-building runs take stairs, and they keep the distances alone).
 """
 
 from __future__ import annotations
@@ -38,7 +40,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from sgplan.heap import heap_grow, heap_pop, heap_push
+from sgplan.planning._heap import HREC, grown, hpop, hpush
 
 PRED_NONE, PRED_SOURCE, PRED_STEP, PRED_STAIRS = 0, 1, 2, 10
 """``pred`` codes (module docstring): not reached, a source, ``PRED_STEP + k`` a step by move k, stairs."""
@@ -91,9 +93,8 @@ def dijkstra(
     bkeys = np.empty((num_buckets, cap), dtype=np.float64)
     bvals = np.empty((num_buckets, cap), dtype=np.int32)
     bcount = np.zeros(num_buckets, dtype=np.int64)
-    skeys = np.empty(64, dtype=np.float64)  # the stairs heap
-    sties = np.zeros(64, dtype=np.float64)
-    svals = np.empty(64, dtype=np.int64)
+    sbuf = np.empty(64 * HREC, dtype=np.int64)  # the stairs heap (sgplan.planning._heap), ties all 0
+    sbuff = sbuf.view(np.float64)
     # Scalars shared with _settle: [current bucket, position in it, entries in the ring, stairs heap
     # size, cells settled, cells of stop_room settled].
     state = np.zeros(6, dtype=np.int64)
@@ -112,12 +113,13 @@ def dijkstra(
     while _settle(
         cell_at, cell_pos, step_offset, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost,
         lo, n, use_stairs, cell_room,
-        stop_room, stop_count, dist, pred, order, delta, bkeys, bvals, bcount, skeys, sties, svals, state,
+        stop_room, stop_count, dist, pred, order, delta, bkeys, bvals, bcount, sbuff, sbuf, state,
     ):
         if bcount.max() + 16 > bkeys.shape[1]:
             bkeys, bvals = _ring_grow(bkeys, bvals)
-        if state[3] + 16 > skeys.shape[0]:
-            skeys, sties, svals = heap_grow(skeys, sties, svals, state[3])
+        if (state[3] + 16) * HREC > sbuf.shape[0]:
+            sbuf = grown(sbuf, state[3])
+            sbuff = sbuf.view(np.float64)
     return state[4]
 
 
@@ -125,7 +127,7 @@ def dijkstra(
 def _settle(
     cell_at, cell_pos, step_offset, step_cost, stairs_first, stairs_from, stairs_to, stairs_cost,
     lo, n, use_stairs, cell_room,
-    stop_room, stop_count, dist, pred, order, delta, bkeys, bvals, bcount, skeys, sties, svals, state,
+    stop_room, stop_count, dist, pred, order, delta, bkeys, bvals, bcount, sbuff, sbuf, state,
 ):
     """The loop of :func:`dijkstra`; returns True when a queue needs more room first, False when the run
     is over.
@@ -133,6 +135,11 @@ def _settle(
     No "settled" flags: entries are pushed only on a strict improvement, so a cell has at most one entry
     with key ``dist[cell]`` (the rest are stale, ``key > dist``), and a settled cell is never improved
     (every later key plus an edge exceeds its distance).
+
+    One function: the bucket walk, the stairs merge and the relaxation share the ring, the stairs heap and
+    six counters, kept in locals for the whole run (written back to ``state`` on return); a helper per
+    settled cell would take a dozen arrays, each reference-counted on every call, which numba does not
+    prune in this loop (as in the search, :mod:`sgplan.planning._search`).
     """
     num_buckets, cap = bkeys.shape
     mask = num_buckets - 1
@@ -149,17 +156,17 @@ def _settle(
     while True:
         slot = cur & mask
         # Stairs entries whose bucket has come up join it (they are never earlier than the current one).
-        while ssize > 0 and int(skeys[0] / delta) <= cur and bcount[slot] < limit:
-            bkeys[slot, bcount[slot]] = skeys[0]
-            bvals[slot, bcount[slot]] = svals[0]
+        while ssize > 0 and int(sbuff[0] / delta) <= cur and bcount[slot] < limit:
+            bkeys[slot, bcount[slot]] = sbuff[0]
+            bvals[slot, bcount[slot]] = sbuf[2]
             bcount[slot] += 1
             pending += 1
-            ssize = heap_pop(skeys, sties, svals, ssize)
+            ssize = hpop(sbuff, sbuf, 0, ssize)
         full = False
         for b in range(num_buckets):
             full |= bcount[b] > limit
         while pos < bcount[slot]:
-            if full or ssize + 8 > skeys.shape[0]:
+            if full or (ssize + 8) * HREC > sbuf.shape[0]:
                 break
             d = bkeys[slot, pos]
             u = bvals[slot, pos]
@@ -202,12 +209,12 @@ def _settle(
                         if nd < dv or (dv == 0.0 and pred[v] == PRED_NONE):
                             dist[v] = nd
                             pred[v] = PRED_STAIRS
-                            ssize = heap_push(skeys, sties, svals, ssize, nd, 0.0, v)
+                            ssize = hpush(sbuff, sbuf, 0, ssize, nd, 0.0, v)
                     j += 1
         if stopped:
             grow = False
             break
-        if pos < bcount[slot] or (ssize > 0 and int(skeys[0] / delta) <= cur):
+        if pos < bcount[slot] or (ssize > 0 and int(sbuff[0] / delta) <= cur):
             grow = True  # stopped for room (in the bucket loop or the stairs merge)
             break
         # The bucket is exhausted: on to the next non-empty one.
@@ -217,7 +224,7 @@ def _settle(
             if ssize == 0:
                 grow = False
                 break
-            cur = max(cur + 1, int(skeys[0] / delta))
+            cur = max(cur + 1, int(sbuff[0] / delta))
         else:
             cur += 1
     state[0], state[1], state[2], state[3] = cur, pos, pending, ssize

@@ -16,11 +16,9 @@ that a domain's product states and action codes fit.
 Action codes stored with each state's parent: 0..7 an occupancy step (``cells.STEPS`` index), 8 stairs,
 ``ACT_MAP + k`` composite action family ``k`` (``PlanningDomain.maps[k]``).
 
-Heaps (one per queue, all in one flat buffer) store entries of three words, ``(key, g, state)``:
-the same buffer is passed twice, as float64 and as int64 views. They are 4-ary (half the depth of a
-binary heap; a node's children share one or two cache lines), ordered by key, ties by larger g first
-(deeper states first: shorter weighted searches, bounds unchanged), lazy (stale entries are skipped
-when they reach the top).
+Heaps: one per queue, all in one flat buffer (queue ``i`` at entry offset ``i * capacity``), the heap of
+:mod:`sgplan.planning._heap` with entries ``(key, g, state)`` (ties to the larger g: deeper states first,
+shorter weighted searches, bounds unchanged); stale entries are skipped when they reach the top.
 
 The loop is re-entrant: :func:`improve_path` returns after a budget of expansions (so the Python driver
 can check the clock and report progress) or when a heap, INCONS or the page pool needs more room; all
@@ -37,6 +35,7 @@ import numpy as np
 from numba import njit
 
 from sgplan.planning._dijkstra import PRED_SOURCE, dijkstra, label_runs, next_cell
+from sgplan.planning._heap import HREC, hpop, hpush
 from sgplan.planning.ltl_heuristic import fill_row, row_value
 
 FOUND, EXHAUSTED, BUDGET, GROW = 0, 1, 2, 3
@@ -49,13 +48,11 @@ PAGE_BITS = 9
 PAGE = 1 << PAGE_BITS  # cells per page (records of one automaton state)
 PAGE_MASK = PAGE - 1
 REC = 2  # words per state record
-HREC = 3  # words per heap entry
 # link fields (see the module docstring)
 TAG_SHIFT, TAG_MASK = 5, 0xFF
 ACT_SHIFT, ACT_MASK = 13, 0xFFFF
 PARENT_SHIFT, PARENT_LIMIT = 29, 1 << 34
 KEEP_CLOSED = (1 << ACT_SHIFT) - 1  # the closed bits and the tag of a link
-ARITY = 4  # heap fan-out
 # An h_LTL row is filled after (cells / FILL_FRACTION) evaluations (see h_ltl). A cell of a fill costs
 # about one evaluation (ltl_heuristic.row_value), so filling after as many evaluations as cells pays at
 # most twice what the row's evaluations would cost, and a row the search meets less often is never filled.
@@ -524,72 +521,7 @@ def read_record(ptab, pool, poolf, s):
     return poolf[r], link_parent(pool[r + 1]), link_action(pool[r + 1])
 
 
-# ---- heaps -----------------------------------------------------------------------------------------
-
-
-@njit(cache=True, inline="always")
-def _before(key_a, g_a, key_b, g_b):
-    return key_a < key_b or (key_a == key_b and g_a > g_b)
-
-
-@njit(cache=True, inline="always")
-def _move_entry(hi, to, src):
-    """Copy the heap entry at word ``src`` to word ``to`` (through the integer view: bit-exact)."""
-    hi[to] = hi[src]
-    hi[to + 1] = hi[src + 1]
-    hi[to + 2] = hi[src + 2]
-
-
-@njit(cache=True, inline="always")
-def _put_entry(hf, hi, d, key, g, value):
-    """Write the heap entry ``(key, g, value)`` at word ``d``."""
-    hf[d] = key
-    hf[d + 1] = g
-    hi[d + 2] = value
-
-
-@njit(cache=True, inline="always")
-def hpush(hf, hi, base, size, key, g, value):
-    """Insert ``(key, g, value)`` into the heap of ``size`` entries at entry offset ``base`` (room for one
-    more is the caller's business); returns the new size."""
-    i = size
-    while i > 0:
-        parent = (i - 1) // ARITY
-        a = (base + parent) * HREC
-        if not _before(key, g, hf[a], hf[a + 1]):
-            break
-        _move_entry(hi, (base + i) * HREC, a)
-        i = parent
-    _put_entry(hf, hi, (base + i) * HREC, key, g, value)
-    return size + 1
-
-
-@njit(cache=True, inline="always")
-def hpop(hf, hi, base, size):
-    """Remove the top entry (read it at ``base`` first); returns the new size."""
-    size -= 1
-    if size <= 0:
-        return 0
-    last = (base + size) * HREC
-    key, g, value = hf[last], hf[last + 1], hi[last + 2]
-    i = 0
-    while True:
-        first = ARITY * i + 1
-        if first >= size:
-            break
-        best = first
-        b = (base + first) * HREC
-        bk, bg = hf[b], hf[b + 1]
-        for child in range(first + 1, min(first + ARITY, size)):
-            e = (base + child) * HREC
-            if _before(hf[e], hf[e + 1], bk, bg):
-                best, bk, bg = child, hf[e], hf[e + 1]
-        if not _before(bk, bg, key, g):
-            break
-        _move_entry(hi, (base + i) * HREC, (base + best) * HREC)
-        i = best
-    _put_entry(hf, hi, (base + i) * HREC, key, g, value)
-    return size
+# ---- the queues' tops ------------------------------------------------------------------------------
 
 
 @njit(cache=True, inline="always")
@@ -710,11 +642,12 @@ def anchor_path(G, L, S, budget, max_succ):
     :func:`multi_queue_path`, in one flat loop.
 
     Flat because numba reference-counts the arrays a helper takes (``inline="always"`` included) with
-    atomic increments its pruning pass does not remove in this loop: calling the heap and record helpers
-    cost ~20 % of the A* search. So the heap pop (:func:`hpop`) and push (:func:`hpush`), the record
-    lookups (:func:`rec_find`, :func:`rec_touch`) are written out here (the link helpers take scalars
-    only and stay), and the counters live in locals until the loop returns. test_search_core checks that both
-    loops leave identical search memory.
+    atomic increments its pruning pass does not always remove in this loop. So the record lookups
+    (:func:`rec_find`, :func:`rec_touch`) are written out here (the link helpers take scalars only and
+    stay), and the counters live in locals until the loop returns. The heap is the one heap's
+    (:func:`~sgplan.planning._heap.hpop`, :func:`~sgplan.planning._heap.hpush`), called: written out
+    here it was no faster (benchmarks/results/heap_inlining.md). test_search_core checks that both loops
+    leave identical search memory.
     """
     cell_at, cell_pos, step_offset = G.cell_at, G.cell_pos, G.step_offset
     step_cost, stairs_first, stairs_from = G.step_cost, G.stairs_first, G.stairs_from
@@ -767,36 +700,7 @@ def anchor_path(G, L, S, budget, max_succ):
             ):
                 status = GROW
                 break
-        # Pop (hpop).
-        size -= 1
-        if size > 0:
-            last = size * HREC
-            key, g, value = hf[last], hf[last + 1], hi[last + 2]
-            i = 0
-            while True:
-                first = ARITY * i + 1
-                if first >= size:
-                    break
-                best = first
-                b = first * HREC
-                bk, bg = hf[b], hf[b + 1]
-                for child in range(first + 1, min(first + ARITY, size)):
-                    e = child * HREC
-                    ek = hf[e]
-                    if ek < bk or (ek == bk and hf[e + 1] > bg):
-                        best, bk, bg = child, ek, hf[e + 1]
-                if not (bk < key or (bk == key and bg > g)):
-                    break
-                d = i * HREC
-                o = best * HREC
-                hi[d] = hi[o]
-                hi[d + 1] = hi[o + 1]
-                hi[d + 2] = hi[o + 2]
-                i = best
-            d = i * HREC
-            hf[d] = key
-            hf[d + 1] = g
-            hi[d + 2] = value
+        size = hpop(hf, hi, 0, size)  # the top entry: stale or about to be expanded
         if stale:
             continue
 
@@ -864,25 +768,7 @@ def anchor_path(G, L, S, budget, max_succ):
                 incons[n_incons] = ns
                 n_incons += 1
                 continue
-            # Push (hpush).
-            key = gn + w1 * h0
-            i = size
-            while i > 0:
-                parent = (i - 1) // ARITY
-                a = parent * HREC
-                pk = hf[a]
-                if not (key < pk or (key == pk and gn > hf[a + 1])):
-                    break
-                d = i * HREC
-                hi[d] = hi[a]
-                hi[d + 1] = hi[a + 1]
-                hi[d + 2] = hi[a + 2]
-                i = parent
-            d = i * HREC
-            hf[d] = key
-            hf[d + 1] = gn
-            hi[d + 2] = ns
-            size += 1
+            size = hpush(hf, hi, 0, size, gn + w1 * h0, gn, ns)
     hsize[0] = size
     iscal[I_PAGES] = pages
     iscal[I_NINCONS] = n_incons
@@ -935,7 +821,14 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
 @njit(cache=True, nogil=True)
 def multi_queue_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     """:func:`improve_path` in general: any queues, composite actions (the loop that :func:`anchor_path`
-    specialises)."""
+    specialises).
+
+    One function, as AMRA*'s ImprovePath reads: pick a queue, pop, close, generate (the successor
+    generators are helpers), relax each successor into the queues. What is left inline is the loop's
+    bookkeeping over about fifty arrays unpacked once from the named tuples and a few counters; a helper
+    for a step would take a dozen of them, each reference-counted on every call in this loop (the note
+    above the array-level cores), or the tuples themselves, which costs more still.
+    """
     # Unpack once (see the note above the array-level cores).
     cell_at, cell_pos, step_offset = G.cell_at, G.cell_pos, G.step_offset
     step_cost, stairs_first, stairs_from = G.step_cost, G.stairs_first, G.stairs_from

@@ -33,7 +33,7 @@ from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
 from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic, unit_field
 from sgplan.planning.problem import PlanningProblem
 from sgplan.planning.shared import shared_part
-from sgplan.scene.model import CatCode
+from sgplan.scene.model import CatCode, Room
 from sgplan.scene.reach import object_reach_cells
 
 # Arrays handed to the compiled search, grouped by role (numba accepts named tuples of arrays).
@@ -214,53 +214,24 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
     clock.lap("cells")
     start_cell = _check_start(problem, graph)
     automaton = problem.automaton
-
-    masks = graph.gather(problem.labels)
-    if masks.size and (int(masks.max()) >= automaton.num_labels or int(masks.min()) < 0):
-        raise PlanningError(
-            f"label raster holds bitmask {int(masks.max())} but the automaton has only "
-            f"{len(automaton.aps)} propositions ({', '.join(automaton.aps)})"
-        )
-    label_masks, cell_label = _compact_labels(masks, automaton.num_labels)
-    del masks
-    trans = np.ascontiguousarray(automaton.table[:, label_masks], dtype=np.int32)
-    accepting = np.asarray(automaton.accepting, dtype=bool)
-    dead = _dead_states(np.asarray(automaton.table), accepting)
+    logic = _CellLogic.of(problem, graph)
     clock.lap("labels")
-
-    start_mask = int(label_masks[cell_label[start_cell]])
-    if problem.start_state is not None:
-        q_start = int(problem.start_state)
-        if dead[q_start]:
-            raise PlanningError(f"automaton state {q_start} at the start can no longer accept: the "
-                                "mission is violated", status="infeasible")
-    elif problem.profile == "ltlf":
-        q_start = int(automaton.table[automaton.initial, start_mask])
-        if dead[q_start]:
-            true_aps = [problem.ap_name(i) for i in range(len(automaton.aps)) if start_mask >> i & 1]
-            raise PlanningError(
-                f"start {problem.start} violates the mission: with {_listing(true_aps)} true there the "
-                "automaton can no longer accept; start elsewhere",
-                status="invalid-start",
-            )
-    else:
-        q_start = int(automaton.initial)
-    if dead[q_start]:
-        raise PlanningError("the mission automaton accepts no word at all", status="infeasible")
+    q_start = _start_state(problem, logic, start_cell)
 
     reachable = graph.reachable(start_cell)
     clock.lap("reachable")
-    ltl = build_ltl_heuristic(graph, cell_label, trans, accepting, q_start, reachable,
+    ltl = build_ltl_heuristic(graph, logic.cell_label, logic.trans, logic.accepting, q_start, reachable,
                               distances=lambda cells, unit: _distance_field(problem, graph, cells, unit),
                               start_cell=start_cell)
     clock.lap("ltl")
-    if not accepting[q_start] and not np.isfinite(ltl.value(start_cell, q_start)):
+    if not logic.accepting[q_start] and not np.isfinite(ltl.value(start_cell, q_start)):
         raise PlanningError(
-            _infeasible_reason(problem, label_masks[cell_label], reachable, q_start), status="infeasible"
+            _infeasible_reason(problem, logic.label_masks[logic.cell_label], reachable, q_start),
+            status="infeasible",
         )
 
     room_uuids = [room.uuid for room in problem.building.rooms()]  # room index -> uuid, as cell_room
-    parts = (_action_parts(problem, graph, cell_label, reachable) if max_level >= 2
+    parts = (_action_parts(problem, graph, logic.cell_label, reachable) if max_level >= 2
              else _no_actions(graph, len(room_uuids)))
     del reachable
     clock.lap("action_tables")
@@ -270,13 +241,95 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
         if problem.guidance is not None
         else None
     )
-    empty = build_llm_heuristic({}, problem.building, room_uuids, automaton.num_states)
-    guide = llm if llm is not None else empty
+    guide = llm if llm is not None else build_llm_heuristic({}, problem.building, room_uuids,
+                                                            automaton.num_states)
+    return PlanningDomain(
+        graph=graph,
+        cell_label=logic.cell_label,
+        label_masks=logic.label_masks,
+        trans=logic.trans,
+        accepting=logic.accepting,
+        start_cell=start_cell,
+        q_start=q_start,
+        ltl=ltl,
+        llm=llm,
+        room_uuids=room_uuids,
+        maps=parts.maps,
+        kgraph=_kernel_graph(graph, logic.cell_label, parts),
+        kactions=parts.kactions,
+        kmaps=parts.kmaps,
+        klogic=_kernel_logic(logic, ltl, guide),
+        precompute_s=time.perf_counter() - t0,
+        max_level=max_level,
+        timings=clock.laps,
+    )
+
+
+@dataclass(frozen=True)
+class _CellLogic:
+    """The automaton over the cells' labels: ``label_masks`` (compact label -> proposition bitmask),
+    ``cell_label`` (per cell, its compact label), ``trans (Q, labels)`` the automaton table over compact
+    labels, ``accepting`` and ``dead`` (no accepting state reachable) per automaton state."""
+
+    label_masks: np.ndarray
+    cell_label: np.ndarray
+    trans: np.ndarray
+    accepting: np.ndarray
+    dead: np.ndarray
+
+    @classmethod
+    def of(cls, problem: PlanningProblem, graph: CellGraph) -> _CellLogic:
+        """Read the problem's label raster at every cell and compact it to the labels that occur."""
+        automaton = problem.automaton
+        masks = graph.gather(problem.labels)
+        if masks.size and (int(masks.max()) >= automaton.num_labels or int(masks.min()) < 0):
+            raise PlanningError(
+                f"label raster holds bitmask {int(masks.max())} but the automaton has only "
+                f"{len(automaton.aps)} propositions ({', '.join(automaton.aps)})"
+            )
+        label_masks, cell_label = _compact_labels(masks, automaton.num_labels)
+        del masks
+        trans = np.ascontiguousarray(automaton.table[:, label_masks], dtype=np.int32)
+        accepting = np.asarray(automaton.accepting, dtype=bool)
+        dead = _dead_states(np.asarray(automaton.table), accepting)
+        return cls(label_masks, cell_label, trans, accepting, dead)
+
+
+def _start_state(problem: PlanningProblem, logic: _CellLogic, start_cell: int) -> int:
+    """The automaton state at the start: the problem's ``start_state`` when it resumes a mission
+    part-way, else the start cell's label read under ``ltlf`` (not under ``authors``); refused when no
+    accepting state can be reached from it."""
+    automaton = problem.automaton
+    start_mask = int(logic.label_masks[logic.cell_label[start_cell]])
+    if problem.start_state is not None:
+        q_start = int(problem.start_state)
+        if logic.dead[q_start]:
+            raise PlanningError(f"automaton state {q_start} at the start can no longer accept: the "
+                                "mission is violated", status="infeasible")
+    elif problem.profile == "ltlf":
+        q_start = int(automaton.table[automaton.initial, start_mask])
+        if logic.dead[q_start]:
+            true_aps = [problem.ap_name(i) for i in range(len(automaton.aps)) if start_mask >> i & 1]
+            raise PlanningError(
+                f"start {problem.start} violates the mission: with {_listing(true_aps)} true there the "
+                "automaton can no longer accept; start elsewhere",
+                status="invalid-start",
+            )
+    else:
+        q_start = int(automaton.initial)
+    if logic.dead[q_start]:
+        raise PlanningError("the mission automaton accepts no word at all", status="infeasible")
+    return q_start
+
+
+def _kernel_logic(logic: _CellLogic, ltl: LtlHeuristic, guide: LlmHeuristic) -> KernelLogic:
+    """The automaton and heuristic arrays the compiled search reads."""
+    trans = logic.trans
     idempotent = bool(np.all(trans[trans, np.arange(trans.shape[1])[None, :]] == trans))
-    klogic = KernelLogic(
+    return KernelLogic(
         trans=trans,
-        accepting=accepting,
-        dead=dead,
+        accepting=logic.accepting,
+        dead=logic.dead,
         idempotent=np.array([idempotent]),
         hmap=ltl.hmap,
         q_row=ltl.q_row,
@@ -290,7 +343,12 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
         llm_target=guide.target,
         llm_valid=guide.has_target,
     )
-    kgraph = KernelGraph(
+
+
+def _kernel_graph(graph: CellGraph, cell_label: np.ndarray, parts: ActionParts) -> KernelGraph:
+    """The cell graph's arrays the compiled search reads, with the cells' labels, rooms and object
+    regions."""
+    return KernelGraph(
         cell_at=graph.cell_at,
         cell_pos=graph.cell_pos,
         step_offset=graph.step_offset,
@@ -307,26 +365,6 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
         centre_x=graph.centre_tables[0],
         centre_y=graph.centre_tables[1],
         centre_z=graph.centre_tables[2],
-    )
-    return PlanningDomain(
-        graph=graph,
-        cell_label=cell_label,
-        label_masks=label_masks,
-        trans=trans,
-        accepting=accepting,
-        start_cell=start_cell,
-        q_start=q_start,
-        ltl=ltl,
-        llm=llm,
-        room_uuids=room_uuids,
-        maps=parts.maps,
-        kgraph=kgraph,
-        kactions=parts.kactions,
-        kmaps=parts.kmaps,
-        klogic=klogic,
-        precompute_s=time.perf_counter() - t0,
-        max_level=max_level,
-        timings=clock.laps,
     )
 
 
@@ -602,8 +640,65 @@ def _distance_field(problem: PlanningProblem, graph: CellGraph, cells: np.ndarra
 
 def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
     """The composite action families of the problem's grid and reach radius, and their per-room /
-    per-floor tables for the kernel."""
+    per-floor tables for the kernel. Families are numbered room by room (each room's object families,
+    then its door families), then floor by floor (up, down): the search's action codes follow it."""
     rooms = list(problem.building.rooms())
+    families = _Families()
+    in_region = np.zeros(graph.num_cells, dtype=np.bool_)
+    room_obj, room_room = _room_families(problem, graph, rooms, families, in_region)
+    floor_up, floor_down = _floor_families(problem, graph, families)
+    obj_ptr, obj_map = _csr(room_obj)
+    room_ptr, room_map = _csr(room_room)
+    kactions = KernelActions(
+        room_obj_ptr=obj_ptr,
+        room_obj_map=obj_map,
+        room_room_ptr=room_ptr,
+        room_room_map=room_map,
+        floor_up_map=floor_up,
+        floor_down_map=floor_down,
+        map_floor=np.array([m.floor for m in families.maps], dtype=np.int32),
+        map_src_ptr=families.source_ptr(),
+        map_src=np.concatenate(families.sources) if families.sources else np.zeros(0, dtype=np.int64),
+        map_stop_room=np.array(families.stop_room, dtype=np.int32),
+        map_stop_count=np.zeros(len(families.maps), dtype=np.int64),  # per component: MapStore.stop_count
+        map_exit_cell=np.array(families.exit_cell, dtype=np.int64),
+        map_exit_cost=np.array(families.exit_cost, dtype=np.float64),
+    )
+    return ActionTables(maps=families.maps, kactions=kactions, in_region=in_region,
+                        cell_room=_cell_rooms(problem, graph, rooms),
+                        room_uuids=[room.uuid for room in rooms], num_rooms=len(rooms))
+
+
+@dataclass
+class _Families:
+    """The composite action families as they are added: each one's map key, source cells, the room its
+    paths stay in (-1: none) and, for floor actions, the stairs it ends with (exit cell and cost)."""
+
+    maps: list[ActionMap] = field(default_factory=list)
+    sources: list[np.ndarray] = field(default_factory=list)
+    stop_room: list[int] = field(default_factory=list)
+    exit_cell: list[int] = field(default_factory=list)
+    exit_cost: list[float] = field(default_factory=list)
+
+    def add(self, action: ActionMap, cells: np.ndarray, stop: int, exit_to: int = -1,
+            cost: float = 0.0) -> int:
+        """Add a family; its number."""
+        self.maps.append(action)
+        self.sources.append(cells.astype(np.int64))
+        self.stop_room.append(stop)
+        self.exit_cell.append(exit_to)
+        self.exit_cost.append(cost)
+        return len(self.maps) - 1
+
+    def source_ptr(self) -> np.ndarray:
+        """CSR offsets of each family's source cells in their concatenation."""
+        ptr = np.zeros(len(self.maps) + 1, dtype=np.int64)
+        ptr[1:] = np.cumsum([len(s) for s in self.sources])
+        return ptr
+
+
+def _cell_rooms(problem: PlanningProblem, graph: CellGraph, rooms: list[Room]) -> np.ndarray:
+    """``(N,)`` the index in ``rooms`` of each cell's room, -1 outside every room."""
     room_lut = np.full(max([room.id for room in rooms], default=0) + 2, -1, dtype=np.int32)
     for i, room in enumerate(rooms):
         room_lut[room.id] = i
@@ -611,29 +706,17 @@ def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
     inside = (room_ids > 0) & (room_ids < len(room_lut) - 1)
     cell_room = np.full(graph.num_cells, -1, dtype=room_index_dtype(len(rooms)))
     cell_room[inside] = room_lut[room_ids[inside]]
-    del room_ids, inside
+    return cell_room
 
-    grid = problem.grid
+
+def _room_families(problem: PlanningProblem, graph: CellGraph, rooms: list[Room], families: _Families,
+                   in_region: np.ndarray) -> tuple[list[list[int]], list[list[int]]]:
+    """Add every room's object families (to an object's reach region; marked in ``in_region``) and door
+    families (through the doors into a connected non-staircase room); per room, their numbers."""
     floors = graph.shape[0]
     room_index = {room.id: i for i, room in enumerate(rooms)}
-    in_region = np.zeros(graph.num_cells, dtype=np.bool_)
-
-    maps: list[ActionMap] = []
-    sources: list[np.ndarray] = []
-    stop_room: list[int] = []
-    exit_cell: list[int] = []
-    exit_cost: list[float] = []
     room_obj: list[list[int]] = [[] for _ in rooms]
     room_room: list[list[int]] = [[] for _ in rooms]
-
-    def add(action: ActionMap, cells: np.ndarray, stop: int, exit_to: int = -1, cost: float = 0.0) -> int:
-        maps.append(action)
-        sources.append(cells.astype(np.int64))
-        stop_room.append(stop)
-        exit_cell.append(exit_to)
-        exit_cost.append(cost)
-        return len(maps) - 1
-
     for r, room in enumerate(rooms):
         if room.floor >= floors:
             continue
@@ -643,7 +726,7 @@ def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
             cells = _reach_region(problem, graph, room, obj, in_room)
             if cells.size:
                 in_region[cells] = True
-                room_obj[r].append(add(ActionMap(MAP_OBJECT, obj.uuid, room.floor), cells, stop))
+                room_obj[r].append(families.add(ActionMap(MAP_OBJECT, obj.uuid, room.floor), cells, stop))
         if room.is_staircase:
             continue
         for other_id in room.connected_room_ids:
@@ -654,56 +737,39 @@ def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
             ids = _cell_ids(graph, room.floor, np.asarray(doors, dtype=np.int64).reshape(-1, 2))
             if ids.size:
                 room_room[r].append(
-                    add(ActionMap(MAP_ROOM, (room.uuid, rooms[other].uuid), room.floor), ids, r)
+                    families.add(ActionMap(MAP_ROOM, (room.uuid, rooms[other].uuid), room.floor), ids, r)
                 )
+    return room_obj, room_room
 
+
+def _floor_families(problem: PlanningProblem, graph: CellGraph,
+                    families: _Families) -> tuple[np.ndarray, np.ndarray]:
+    """Add the floor families of every staircase (to this floor's portal, then the stairs, up and down);
+    per floor, the number of its up and down family (-1: none)."""
+    floors = graph.shape[0]
     floor_up = np.full(floors, -1, dtype=np.int32)
     floor_down = np.full(floors, -1, dtype=np.int32)
-    for link in grid.stairs:
+    for link in problem.grid.stairs:
         low = graph.cell_id(link.lower_cell[0], link.lower_cell[1], link.lower_floor)
         up = graph.cell_id(link.upper_cell[0], link.upper_cell[1], link.upper_floor)
         if low < 0 or up < 0:
             continue
-        floor_up[link.lower_floor] = add(
+        floor_up[link.lower_floor] = families.add(
             ActionMap(MAP_FLOOR_UP, link.lower_floor, link.lower_floor), np.array([low]), -1, up, link.cost_m
         )
-        floor_down[link.upper_floor] = add(
-            ActionMap(MAP_FLOOR_DOWN, link.upper_floor, link.upper_floor),
-            np.array([up]),
-            -1,
-            low,
+        floor_down[link.upper_floor] = families.add(
+            ActionMap(MAP_FLOOR_DOWN, link.upper_floor, link.upper_floor), np.array([up]), -1, low,
             link.cost_m,
         )
+    return floor_up, floor_down
 
-    def csr(lists: list[list[int]]) -> tuple[np.ndarray, np.ndarray]:
-        ptr = np.zeros(len(lists) + 1, dtype=np.int64)
-        ptr[1:] = np.cumsum([len(x) for x in lists])
-        flat = np.array([m for x in lists for m in x], dtype=np.int32)
-        return ptr, flat
 
-    obj_ptr, obj_map = csr(room_obj)
-    room_ptr, room_map = csr(room_room)
-    src_ptr = np.zeros(len(maps) + 1, dtype=np.int64)
-    src_ptr[1:] = np.cumsum([len(s) for s in sources])
-    stop_rooms = np.array(stop_room, dtype=np.int32)
-    map_src = np.concatenate(sources) if sources else np.zeros(0, dtype=np.int64)
-    kactions = KernelActions(
-        room_obj_ptr=obj_ptr,
-        room_obj_map=obj_map,
-        room_room_ptr=room_ptr,
-        room_room_map=room_map,
-        floor_up_map=floor_up,
-        floor_down_map=floor_down,
-        map_floor=np.array([m.floor for m in maps], dtype=np.int32),
-        map_src_ptr=src_ptr,
-        map_src=map_src,
-        map_stop_room=stop_rooms,
-        map_stop_count=np.zeros(len(maps), dtype=np.int64),  # per component: MapStore.stop_count
-        map_exit_cell=np.array(exit_cell, dtype=np.int64),
-        map_exit_cost=np.array(exit_cost, dtype=np.float64),
-    )
-    return ActionTables(maps=maps, kactions=kactions, in_region=in_region, cell_room=cell_room,
-                        room_uuids=[room.uuid for room in rooms], num_rooms=len(rooms))
+def _csr(lists: list[list[int]]) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets and concatenation of ``lists`` (int64 offsets, int32 items)."""
+    ptr = np.zeros(len(lists) + 1, dtype=np.int64)
+    ptr[1:] = np.cumsum([len(x) for x in lists])
+    flat = np.array([m for x in lists for m in x], dtype=np.int32)
+    return ptr, flat
 
 
 _CHUNK = 1 << 20

@@ -276,22 +276,7 @@ def build_ltl_heuristic(
     needed = np.flatnonzero(leaves.any(axis=0) & present)
     field_of = np.full(trans.shape[1], -1, dtype=np.int64)
     field_of[needed] = np.arange(len(needed))
-    if distances is None:
-        def distances(cells: np.ndarray, unit: float) -> np.ndarray | float:
-            return unit_field(graph, cells, unit)
-    unit_m = finest_unit(graph)
-    while True:  # a coarser unit only if some distance does not fit in 32 bits
-        # Cell-major: an evaluation reads all the fields of one cell (one cache line).
-        dist = np.empty((graph.num_cells, len(needed)), dtype=np.uint32)
-        for i, label in enumerate(needed):
-            field = distances(np.flatnonzero((cell_label == label) & inside), unit_m)
-            if isinstance(field, float):
-                unit_m *= 2.0 ** np.ceil(np.log2(field / (UNREACHED - 1)))
-                break
-            dist[:, i] = field
-        else:
-            break
-
+    dist, unit_m = _label_fields(graph, cell_label, needed, inside, distances)
     twice = _moves_twice(trans, states)
     piece_label, piece_cells, piece_ptr = _pieces(graph, cell_label, field_of, inside, twice, start_cell,
                                                   piece_m, max_pieces)
@@ -320,6 +305,30 @@ def build_ltl_heuristic(
         piece_cells=piece_cells,
         piece_ptr=piece_ptr,
     )
+
+
+def _label_fields(
+    graph: CellGraph, cell_label: np.ndarray, needed: np.ndarray, inside: np.ndarray,
+    distances: Callable[[np.ndarray, float], np.ndarray | float] | None,
+) -> tuple[np.ndarray, float]:
+    """``(N, len(needed))`` uint32 distance fields to the cells (``inside``) of each needed label, in
+    units of the returned ``unit_m``: the finest unit (:func:`finest_unit`) unless some distance does not
+    fit in 32 bits, then the coarsest power of two times it that fits."""
+    if distances is None:
+        def distances(cells: np.ndarray, unit: float) -> np.ndarray | float:
+            return unit_field(graph, cells, unit)
+    unit_m = finest_unit(graph)
+    while True:  # a coarser unit only if some distance does not fit in 32 bits
+        # Cell-major: an evaluation reads all the fields of one cell (one cache line).
+        dist = np.empty((graph.num_cells, len(needed)), dtype=np.uint32)
+        for i, label in enumerate(needed):
+            field = distances(np.flatnonzero((cell_label == label) & inside), unit_m)
+            if isinstance(field, float):
+                unit_m *= 2.0 ** np.ceil(np.log2(field / (UNREACHED - 1)))
+                break
+            dist[:, i] = field
+        else:
+            return dist, unit_m
 
 
 def finest_unit(graph: CellGraph) -> float:

@@ -280,6 +280,21 @@ def _build(
     reach_radius_m: float | None,
 ) -> Building:
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
+    _check_specs(floor_specs, cell_m)
+    plan = _Planner(rng, cell_m, dims)
+    layout = _Layout.of(plan, floor_specs)
+    stair_rooms: dict[int, _PlacedRoom] = {}
+    floors = [_plan_floor(plan, layout, f, stair_rooms) for f in range(len(floor_specs))]
+    plans = [floor.plan for floor in floors]
+    for floor in floors:
+        for placed in floor.plan.rooms:
+            _place_objects(rng, floor.plan.cat, floor.reserved, placed, cell_m)
+    for k, stair in sorted(stair_rooms.items()):
+        plans[k].rooms.append(stair)
+    return _assemble(name, plans, stair_rooms, plan, cell_m, rng, dims, robot_radius_m, reach_radius_m)
+
+
+def _check_specs(floor_specs: Sequence[Sequence[RoomSpec]], cell_m: float) -> None:
     if not floor_specs:
         raise SceneError("a synthetic building needs at least one floor")
     if not (np.isfinite(cell_m) and cell_m > 0):
@@ -293,93 +308,136 @@ def _build(
             unknown = [o for o in spec.objects if o not in OBJECT_SIZES_M]
             if unknown:
                 raise SceneError(f"unknown object class(es) {unknown} for a {spec.category}")
-    plan = _Planner(rng, cell_m, dims)
-    num_floors = len(floor_specs)
-    # Staircase k (floors k and k+1) uses slot k % 2: top-left, then bottom-left, alternating.
-    slots = [
-        (
-            any(k % 2 == 0 for k in (f - 1, f) if 0 <= k < num_floors - 1),
-            any(k % 2 == 1 for k in (f - 1, f) if 0 <= k < num_floors - 1),
+
+
+_Band = list[tuple[RoomSpec, int]]
+"""Rooms of one band (top or bottom of the corridor) with their widths in cells."""
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """Where everything goes: the grid shape, the first column inside the outer wall and the inner width
+    (the same on every floor), per floor the staircase slots (top, bottom) and the two bands of rooms,
+    and the room ids (each floor's first id; each staircase's id)."""
+
+    floor_specs: Sequence[Sequence[RoomSpec]]
+    shape: tuple[int, int]
+    c_start: int
+    inner_width: int
+    slots: list[tuple[bool, bool]]
+    bands: list[tuple[_Band, _Band]]
+    base_ids: np.ndarray
+    stair_ids: list[int]
+
+    @classmethod
+    def of(cls, plan: _Planner, floor_specs: Sequence[Sequence[RoomSpec]]) -> _Layout:
+        num_floors = len(floor_specs)
+        # Staircase k (floors k and k+1) uses slot k % 2: top-left, then bottom-left, alternating.
+        slots = [
+            (
+                any(k % 2 == 0 for k in (f - 1, f) if 0 <= k < num_floors - 1),
+                any(k % 2 == 1 for k in (f - 1, f) if 0 <= k < num_floors - 1),
+            )
+            for f in range(num_floors)
+        ]
+        bands = [plan.split_bands(specs, slots[f]) for f, specs in enumerate(floor_specs)]
+        inner_width = max(
+            max(plan.band_width(top, slots[f][0]), plan.band_width(bottom, slots[f][1]))
+            for f, (top, bottom) in enumerate(bands)
         )
-        for f in range(num_floors)
-    ]
-    bands = [plan.split_bands(specs, slots[f]) for f, specs in enumerate(floor_specs)]
-    inner_width = max(
-        max(plan.band_width(top, slots[f][0]), plan.band_width(bottom, slots[f][1]))
-        for f, (top, bottom) in enumerate(bands)
-    )
-    c_start = plan.margin + plan.outer
-    cols = c_start + inner_width + plan.outer + plan.margin
-    shape = (plan.rows, cols)
+        c_start = plan.margin + plan.outer
+        cols = c_start + inner_width + plan.outer + plan.margin
+        # Room ids floor by floor: the corridor, the rooms in placement order, then the staircase going up.
+        per_floor = [1 + len(specs) + (f < num_floors - 1) for f, specs in enumerate(floor_specs)]
+        base_ids = np.cumsum([1] + per_floor)
+        stair_ids = [int(base_ids[k]) + 1 + len(floor_specs[k]) for k in range(num_floors - 1)]
+        return cls(floor_specs, (plan.rows, cols), c_start, inner_width, slots, bands, base_ids, stair_ids)
 
-    # Room ids floor by floor: the corridor, the rooms in placement order, then the staircase going up.
-    base_ids = np.cumsum([1] + [1 + len(specs) + (f < num_floors - 1) for f, specs in enumerate(floor_specs)])
-    stair_ids = [int(base_ids[k]) + 1 + len(floor_specs[k]) for k in range(num_floors - 1)]
-    stair_rooms: dict[int, _PlacedRoom] = {}
-    plans: list[_FloorPlan] = []
-    reserved_all: list[np.ndarray] = []
-    for f in range(num_floors):
-        cat = np.full(shape, CatCode.OUTSIDE, dtype=np.int16)
-        room = np.full(shape, NO_ROOM, dtype=np.int16)
-        reserved = np.zeros(shape, dtype=bool)
-        cat[plan.margin : shape[0] - plan.margin, plan.margin : shape[1] - plan.margin] = CatCode.WALL
-        corridor_id = int(base_ids[f])
-        next_room_id = corridor_id + 1
-        corridor_box = _Box(plan.corridor_rows[0], plan.corridor_rows[1], c_start, c_start + inner_width)
-        rooms = [_PlacedRoom(corridor_id, "corridor", f, corridor_box)]
-        cat[corridor_box.slices()] = CatCode.GROUND
-        room[corridor_box.slices()] = corridor_id
-        reserved[corridor_box.slices()] = True
-        for side, band_box in ((0, plan.top), (1, plan.bottom)):
-            c = c_start
-            entries: list[tuple[str, RoomSpec | int, int]] = []
-            if slots[f][side]:
-                k = f if (f < num_floors - 1 and f % 2 == side) else f - 1
-                entries.append(("stairs", k, plan.stairs_width))
-            band = bands[f][side]
-            # Rooms share the slack in proportion to their widths, so that both bands end at one wall.
-            free = inner_width - plan.band_width(band, slots[f][side])
-            total = sum(width for _, width in band)
-            extra = [free * width // total for _, width in band] if band else []
-            if extra:
-                extra[-1] += free - sum(extra)
-            for (spec, width), more in zip(band, extra):
-                entries.append(("room", spec, width + more))
-            previous: _PlacedRoom | None = None
-            for kind, what, width in entries:
-                box = _Box(band_box.r0, band_box.r1, c, c + width)
-                c += width + plan.inner
-                if isinstance(what, int):  # a staircase slot: the floor it climbs from
-                    placed = _place_stairs(
-                        plan, cat, room, reserved, box, side, f, what, stair_ids, stair_rooms
-                    )
-                else:
-                    placed = _PlacedRoom(next_room_id, what.category, f, box, what.objects)
-                    next_room_id += 1
-                    cat[box.slices()] = CatCode.GROUND
-                    room[box.slices()] = placed.id
-                    rooms.append(placed)
-                    if rng.random() < dims.corridor_door_probability:
-                        _open_to_corridor(plan, cat, room, reserved, box, side, placed.id, corridor_id)
-                    beside_room = previous is not None and previous.category != "staircase"
-                    if beside_room and rng.random() < dims.internal_door_probability:
-                        assert previous is not None
-                        r0, r1 = plan.door_span(box.r0, box.r1)
-                        opening = _Box(r0, r1, previous.box.c1, box.c0)
-                        _paint_door(cat, room, opening, previous.id, placed.id, split_rows=False)
-                        _reserve_front(reserved, opening, 0, plan.door + 1)
-                if kind == "stairs":
-                    _open_to_corridor(plan, cat, room, reserved, box, side, placed.id, corridor_id)
-                previous = placed
-        plans.append(_FloorPlan(cat, room, rooms))
-        reserved_all.append(reserved)
 
-    for f, fp in enumerate(plans):
-        for placed in fp.rooms:
-            _place_objects(rng, fp.cat, reserved_all[f], placed, cell_m)
-    for k, stair in sorted(stair_rooms.items()):
-        plans[k].rooms.append(stair)
-    return _assemble(name, plans, stair_rooms, plan, cell_m, rng, dims, robot_radius_m, reach_radius_m)
+@dataclass
+class _FloorCanvas:
+    """One floor as it is painted: category and room rasters, the cells kept clear of objects, the rooms
+    placed so far, the corridor's id and the next room id."""
+
+    plan: _FloorPlan
+    reserved: np.ndarray
+    corridor_id: int
+    next_room_id: int
+
+
+def _plan_floor(plan: _Planner, layout: _Layout, f: int, stair_rooms: dict[int, _PlacedRoom]) -> _FloorCanvas:
+    """Paint floor ``f``: the corridor, then each band's staircase slot and rooms, left to right."""
+    shape = layout.shape
+    cat = np.full(shape, CatCode.OUTSIDE, dtype=np.int16)
+    room = np.full(shape, NO_ROOM, dtype=np.int16)
+    reserved = np.zeros(shape, dtype=bool)
+    cat[plan.margin : shape[0] - plan.margin, plan.margin : shape[1] - plan.margin] = CatCode.WALL
+    corridor_id = int(layout.base_ids[f])
+    corridor_box = _Box(plan.corridor_rows[0], plan.corridor_rows[1], layout.c_start,
+                        layout.c_start + layout.inner_width)
+    canvas = _FloorCanvas(_FloorPlan(cat, room, [_PlacedRoom(corridor_id, "corridor", f, corridor_box)]),
+                          reserved, corridor_id, corridor_id + 1)
+    cat[corridor_box.slices()] = CatCode.GROUND
+    room[corridor_box.slices()] = corridor_id
+    reserved[corridor_box.slices()] = True
+    for side, band_box in ((0, plan.top), (1, plan.bottom)):
+        _plan_band(plan, layout, canvas, f, side, band_box, stair_rooms)
+    return canvas
+
+
+def _band_entries(plan: _Planner, layout: _Layout, f: int,
+                  side: int) -> list[tuple[str, RoomSpec | int, int]]:
+    """What band ``side`` of floor ``f`` holds, left to right: its staircase slot (the floor the stairs
+    climb from), then its rooms, each ``(kind, what, width in cells)``; the rooms share the slack in
+    proportion to their widths, so that both bands end at one wall."""
+    entries: list[tuple[str, RoomSpec | int, int]] = []
+    num_floors = len(layout.floor_specs)
+    if layout.slots[f][side]:
+        k = f if (f < num_floors - 1 and f % 2 == side) else f - 1
+        entries.append(("stairs", k, plan.stairs_width))
+    band = layout.bands[f][side]
+    free = layout.inner_width - plan.band_width(band, layout.slots[f][side])
+    total = sum(width for _, width in band)
+    extra = [free * width // total for _, width in band] if band else []
+    if extra:
+        extra[-1] += free - sum(extra)
+    for (spec, width), more in zip(band, extra):
+        entries.append(("room", spec, width + more))
+    return entries
+
+
+def _plan_band(plan: _Planner, layout: _Layout, canvas: _FloorCanvas, f: int, side: int, band_box: _Box,
+               stair_rooms: dict[int, _PlacedRoom]) -> None:
+    """Paint band ``side`` of floor ``f``: its staircase and rooms, with their doors to the corridor and,
+    by chance, between neighbouring rooms."""
+    rng, dims = plan.rng, plan.dims
+    cat, room, reserved = canvas.plan.cat, canvas.plan.room, canvas.reserved
+    c = layout.c_start
+    previous: _PlacedRoom | None = None
+    for kind, what, width in _band_entries(plan, layout, f, side):
+        box = _Box(band_box.r0, band_box.r1, c, c + width)
+        c += width + plan.inner
+        if isinstance(what, int):  # a staircase slot: the floor it climbs from
+            placed = _place_stairs(plan, cat, room, reserved, box, side, f, what, layout.stair_ids,
+                                   stair_rooms)
+        else:
+            placed = _PlacedRoom(canvas.next_room_id, what.category, f, box, what.objects)
+            canvas.next_room_id += 1
+            cat[box.slices()] = CatCode.GROUND
+            room[box.slices()] = placed.id
+            canvas.plan.rooms.append(placed)
+            if rng.random() < dims.corridor_door_probability:
+                _open_to_corridor(plan, cat, room, reserved, box, side, placed.id, canvas.corridor_id)
+            beside_room = previous is not None and previous.category != "staircase"
+            if beside_room and rng.random() < dims.internal_door_probability:
+                assert previous is not None
+                r0, r1 = plan.door_span(box.r0, box.r1)
+                opening = _Box(r0, r1, previous.box.c1, box.c0)
+                _paint_door(cat, room, opening, previous.id, placed.id, split_rows=False)
+                _reserve_front(reserved, opening, 0, plan.door + 1)
+        if kind == "stairs":
+            _open_to_corridor(plan, cat, room, reserved, box, side, placed.id, canvas.corridor_id)
+        previous = placed
 
 
 def _open_to_corridor(
@@ -450,104 +508,28 @@ def _assemble(
     reach_radius_m: float | None,
 ) -> Building:
     rows, cols = plans[0].cat.shape
-    origin = (-rows * cell_m / 2.0, -cols * cell_m / 2.0)
     gaps = rng.uniform(*dims.floor_gap_m, size=max(0, len(plans) - 1))
     ground_z = np.concatenate([[0.0], np.cumsum(gaps)])
+    frame = _Frame((-rows * cell_m / 2.0, -cols * cell_m / 2.0), cell_m, ground_z)
     all_rooms = sorted((r for fp in plans for r in fp.rooms), key=lambda r: r.id)
-
-    # uuids as the authors assign them: building 1, rooms in id order with each floor's uuid right after
-    # its first room, then objects.
-    next_uuid = 2
-    room_uuid: dict[int, int] = {}
-    floor_uuid: dict[int, int] = {}
-    for placed in all_rooms:
-        room_uuid[placed.id] = next_uuid
-        next_uuid += 1
-        if placed.floor not in floor_uuid:
-            floor_uuid[placed.floor] = next_uuid
-            next_uuid += 1
-    for f in range(len(plans)):  # a floor holding no room of its own (impossible here, but keep uuids unique)
-        if f not in floor_uuid:
-            floor_uuid[f] = next_uuid
-            next_uuid += 1
-
-    doors = [door_cells(fp.room, fp.cat) for fp in plans]
-    connected: dict[int, set[int]] = {r.id: set() for r in all_rooms} | connections(doors)
-
-    half_h = 1.4
-    rooms: dict[int, Room] = {}
-    next_object_id = 1
-    for placed in all_rooms:
-        box = placed.box
-        center = ((box.r0 + box.r1) / 2.0, (box.c0 + box.c1) / 2.0)
-        z = ground_z[placed.floor]
-        room = Room(
-            id=placed.id,
-            uuid=room_uuid[placed.id],
-            name=placed.category,
-            floor=placed.floor,
-            location_m=np.array([origin[0] + center[0] * cell_m, origin[1] + center[1] * cell_m, z + half_h]),
-            size_m=np.array([(box.r1 - box.r0) * cell_m, (box.c1 - box.c0) * cell_m, 2 * half_h]),
-            grid_min=(box.r0, box.c0),
-            grid_max=(box.r1 - 1, box.c1 - 1),
-            connected_room_ids=tuple(sorted(connected[placed.id])),
-            connected_room_uuids=tuple(room_uuid[i] for i in sorted(connected[placed.id])),
-            door_cells={
-                b: cells for floor_doors in doors for (a, b), cells in floor_doors.items() if a == placed.id
-            },
-        )
-        rooms[placed.id] = room
-    for placed in all_rooms:
-        for obj_name, obox in placed.placed_objects:
-            height = OBJECT_SIZES_M[obj_name][2]
-            obj = SceneObject(
-                id=next_object_id,
-                uuid=next_uuid,
-                name=obj_name,
-                room_id=placed.id,
-                room_uuid=room_uuid[placed.id],
-                location_m=np.array(
-                    [
-                        origin[0] + (obox.r0 + obox.r1) / 2.0 * cell_m,
-                        origin[1] + (obox.c0 + obox.c1) / 2.0 * cell_m,
-                        ground_z[placed.floor] + height / 2.0,
-                    ]
-                ),
-                size_m=np.array([(obox.r1 - obox.r0) * cell_m, (obox.c1 - obox.c0) * cell_m, height]),
-                grid_min=(obox.r0, obox.c0),
-                grid_max=(obox.r1 - 1, obox.c1 - 1),
-            )
-            plans[placed.floor].cat[obox.slices()] = obj.id
-            rooms[placed.id].objects[obj.id] = obj
-            next_object_id += 1
-            next_uuid += 1
-
+    uuids = _Uuids.of(all_rooms, len(plans))
+    rooms = _scene_rooms(all_rooms, plans, uuids, frame)
+    _add_objects(all_rooms, plans, rooms, uuids, frame)
     floors = [
         Floor(
             index=f,
             name=chr(ord("A") + f),
-            uuid=floor_uuid[f],
-            origin_m=origin,
+            uuid=uuids.floor[f],
+            origin_m=frame.origin_m,
             resolution_m=(cell_m, cell_m),
-            ground_z_m=float(ground_z[f]),
+            ground_z_m=float(frame.ground_z[f]),
             cat_map=fp.cat,
             room_map=fp.room,
             rooms={r.id: rooms[r.id] for r in sorted(fp.rooms, key=lambda r: r.id)},
         )
         for f, fp in enumerate(plans)
     ]
-    # Stairs: portals on the landings; cost = 1.5 x the real 3-D distance (two flights of a U-shaped
-    # stair), which exceeds the distance in the heuristic frame (whose floor gap is the smallest one).
-    for k, stair in sorted(stair_rooms.items()):
-        side_lower = 0 if k % 2 == 0 else 1
-        landing = min(plan.landing, stair.box.r1 - stair.box.r0 - 1)
-        lower = _landing_portal(stair.box, side_lower, landing)
-        upper = _landing_portal(stair.upper_box or stair.box, side_lower, landing)
-        d_xy = np.hypot((lower[0] - upper[0]) * cell_m, (lower[1] - upper[1]) * cell_m)
-        cost = 1.5 * float(np.hypot(d_xy, ground_z[k + 1] - ground_z[k]))
-        uuid = room_uuid[stair.id]
-        floors[k].up_stairs = StairsEnd(room_id=stair.id, room_uuid=uuid, portal=lower, cost_m=cost)
-        floors[k + 1].down_stairs = StairsEnd(room_id=stair.id, room_uuid=uuid, portal=upper, cost_m=cost)
+    _link_stairs(floors, stair_rooms, plan, uuids, frame)
     return Building(
         id=1,
         uuid=1,
@@ -556,6 +538,118 @@ def _assemble(
         robot_radius_m=robot_radius_m,
         reach_radius_m=reach_radius_m,
     )
+
+
+@dataclass(frozen=True)
+class _Frame:
+    """Grid cells to metres: the origin (metres, of cell (0, 0)), the cell size and each floor's height."""
+
+    origin_m: tuple[float, float]
+    cell_m: float
+    ground_z: np.ndarray
+
+    def xy(self, row: float, col: float) -> tuple[float, float]:
+        """The metric point of a (fractional) cell position."""
+        return self.origin_m[0] + row * self.cell_m, self.origin_m[1] + col * self.cell_m
+
+
+@dataclass
+class _Uuids:
+    """uuids as the authors assign them: building 1, rooms in id order with each floor's uuid right after
+    its first room, then objects (``next`` is the next free one)."""
+
+    room: dict[int, int]
+    floor: dict[int, int]
+    next: int
+
+    @classmethod
+    def of(cls, all_rooms: list[_PlacedRoom], num_floors: int) -> _Uuids:
+        made = cls({}, {}, 2)
+        for placed in all_rooms:
+            made.room[placed.id] = made.take()
+            if placed.floor not in made.floor:
+                made.floor[placed.floor] = made.take()
+        for f in range(num_floors):  # a floor holding no room of its own (impossible here; uuids unique)
+            if f not in made.floor:
+                made.floor[f] = made.take()
+        return made
+
+    def take(self) -> int:
+        self.next += 1
+        return self.next - 1
+
+
+def _scene_rooms(all_rooms: list[_PlacedRoom], plans: list[_FloorPlan], uuids: _Uuids,
+                 frame: _Frame) -> dict[int, Room]:
+    """The scene's rooms (no objects yet), with their connections and door cells, by id."""
+    doors = [door_cells(fp.room, fp.cat) for fp in plans]
+    connected: dict[int, set[int]] = {r.id: set() for r in all_rooms} | connections(doors)
+    half_h = 1.4
+    rooms: dict[int, Room] = {}
+    cell_m = frame.cell_m
+    for placed in all_rooms:
+        box = placed.box
+        x, y = frame.xy((box.r0 + box.r1) / 2.0, (box.c0 + box.c1) / 2.0)
+        rooms[placed.id] = Room(
+            id=placed.id,
+            uuid=uuids.room[placed.id],
+            name=placed.category,
+            floor=placed.floor,
+            location_m=np.array([x, y, frame.ground_z[placed.floor] + half_h]),
+            size_m=np.array([(box.r1 - box.r0) * cell_m, (box.c1 - box.c0) * cell_m, 2 * half_h]),
+            grid_min=(box.r0, box.c0),
+            grid_max=(box.r1 - 1, box.c1 - 1),
+            connected_room_ids=tuple(sorted(connected[placed.id])),
+            connected_room_uuids=tuple(uuids.room[i] for i in sorted(connected[placed.id])),
+            door_cells={
+                b: cells for floor_doors in doors for (a, b), cells in floor_doors.items() if a == placed.id
+            },
+        )
+    return rooms
+
+
+def _add_objects(all_rooms: list[_PlacedRoom], plans: list[_FloorPlan], rooms: dict[int, Room],
+                 uuids: _Uuids, frame: _Frame) -> None:
+    """Give every placed object its id and uuid (room by room), paint it into its floor's category raster
+    and add it to its room."""
+    next_object_id = 1
+    cell_m = frame.cell_m
+    for placed in all_rooms:
+        for obj_name, obox in placed.placed_objects:
+            height = OBJECT_SIZES_M[obj_name][2]
+            x, y = frame.xy((obox.r0 + obox.r1) / 2.0, (obox.c0 + obox.c1) / 2.0)
+            obj = SceneObject(
+                id=next_object_id,
+                uuid=uuids.take(),
+                name=obj_name,
+                room_id=placed.id,
+                room_uuid=uuids.room[placed.id],
+                location_m=np.array([x, y, frame.ground_z[placed.floor] + height / 2.0]),
+                size_m=np.array([(obox.r1 - obox.r0) * cell_m, (obox.c1 - obox.c0) * cell_m, height]),
+                grid_min=(obox.r0, obox.c0),
+                grid_max=(obox.r1 - 1, obox.c1 - 1),
+            )
+            plans[placed.floor].cat[obox.slices()] = obj.id
+            rooms[placed.id].objects[obj.id] = obj
+            next_object_id += 1
+
+
+def _link_stairs(floors: list[Floor], stair_rooms: dict[int, _PlacedRoom], plan: _Planner, uuids: _Uuids,
+                 frame: _Frame) -> None:
+    """The stairs between floors k and k + 1: portals on the landings; cost = 1.5 x the real 3-D distance
+    (two flights of a U-shaped stair), which exceeds the distance in the heuristic frame (whose floor gap
+    is the smallest one)."""
+    cell_m, ground_z = frame.cell_m, frame.ground_z
+    for k, stair in sorted(stair_rooms.items()):
+        side_lower = 0 if k % 2 == 0 else 1
+        landing = min(plan.landing, stair.box.r1 - stair.box.r0 - 1)
+        lower = _landing_portal(stair.box, side_lower, landing)
+        upper = _landing_portal(stair.upper_box or stair.box, side_lower, landing)
+        d_xy = np.hypot((lower[0] - upper[0]) * cell_m, (lower[1] - upper[1]) * cell_m)
+        cost = 1.5 * float(np.hypot(d_xy, ground_z[k + 1] - ground_z[k]))
+        uuid = uuids.room[stair.id]
+        floors[k].up_stairs = StairsEnd(room_id=stair.id, room_uuid=uuid, portal=lower, cost_m=cost)
+        floors[k + 1].down_stairs = StairsEnd(room_id=stair.id, room_uuid=uuid, portal=upper, cost_m=cost)
 
 
 # --- public entry points -----------------------------------------------------------------------------

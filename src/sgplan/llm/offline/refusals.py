@@ -471,8 +471,9 @@ def once_or_each_visit(said: str) -> str:
 
 
 def before_then(said: str) -> str:
-    return rephrase(f"in '{said}' it is not clear whether what follows 'then' comes before or after the place "
-                    "named after 'before'; say it in order ('A, then B, then X' or 'A, then X, then B')")
+    return rephrase(f"in '{said}' it is not clear whether what follows 'then' comes before or after the "
+                    "place named after 'before'; say it in order ('A, then B, then X' or 'A, then X, then "
+                    "B')")
 
 
 def before_near(said: str) -> str:

@@ -308,7 +308,7 @@ def make_rule(r: Reader, i: int, said: Match[Action], consequent: Body, after_st
     response = r.says(lx.EVER, start, said.end)
     afterwards = r.says(lx.AFTERWARDS, after_start, after_end)
     if response and not afterwards and r.says(lx.AT_THAT_PLACE, after_start, after_end):
-        return Refusal(rf.once_or_each_visit(r.quote(i, after_end)))
+        return Refusal(rf.once_or_each_visit(r.quote(min(i, after_start), max(said.end, after_end))))
     return IfRule(" ".join(word), said.node, consequent, response, afterwards)
 
 
@@ -365,7 +365,10 @@ def postfix(r: Reader, i: int, body_actions: int) -> Parse[Postfix]:
             return own
         first, end, body_is_consequent = own.node, own.end, False
     else:  # "S whenever X" / "S if X": the body is the consequent
-        first, end, body_is_consequent = make_rule(r, i, said, Body(()), 0, i), said.end, True
+        rule = make_rule(r, i, said, Body(()), 0, i)
+        if isinstance(rule, Refusal):
+            return rule
+        first, end, body_is_consequent = rule, said.end, True
     rules = more_rules(r, end)
     if not isinstance(rules, Match):
         return rules

@@ -8,8 +8,8 @@ import pytest
 
 from sgplan.cli import main
 from sgplan.errors import SceneMismatchError
-from sgplan.identity import check_folder_scene, ensure_folder_fits_scene, scene_graph_hash
 from sgplan.mission import read_ap_desc
+from sgplan.mission.identity import check_folder_scene, ensure_folder_fits_scene, scene_graph_hash
 from sgplan.scene.demo import demo_building
 
 SCENES = ("Allensville", "Benevolence", "Collierville")
