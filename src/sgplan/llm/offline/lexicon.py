@@ -305,7 +305,7 @@ POSITIVE_VERBS = word_set(
     scrubbing fill filling close closing empty emptying sweep sweeping play playing cook cooking
     lie lying rest resting sleep sleeping shower showering bathe use off up down out over from for
     read reading watch watching examine examining fix fixing straighten straightening hoover hoovering
-    polish polishing arrange arranging organize organizing organise organising"""
+    polish polishing arrange arranging organize organizing organise organising give giving"""
 )
 """Verb-slot words known to mean "go to / interact with" the noun phrase that follows."""
 
@@ -416,6 +416,12 @@ VERB_IDIOMS = Phrases((("all", "the", "way"), ("a", "look"), ("a", "quick", "loo
                        ("a", "quick", "trip"), ("a", "detour"), ("a", "stop"), ("a", "quick", "stop"),
                        ("a", "seat"), ("a", "nap"), ("a", "rest")))
 """Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*."""
+GIVE_VERBS = frozenset({"give", "giving"})
+"""*give X a look*: read only with what is given after X (:data:`GIVEN_LOOKS`), never alone (*give X to Y*)."""
+GIVEN_LOOKS = Phrases(tuple((*quick, what) for quick in ((), ("quick",), ("good",), ("little",), ("proper",))
+                            for what in ("look", "check", "glance", "peek", "clean", "wipe", "dust",
+                                         "visit", "tidy", "scrub", "wash", "polish")))
+"""What *give X ...* gives X, after *a* (*give the toilet a quick look*): acting on X there."""
 BODY_PART_OWNERS = ("your", "my", "his", "her", "their")
 BODY_PART_LINKS = ("at", "using", "with", "on", "into")
 """*wash your hands at the sink*, *pop your head into the office*: a body part before a place is part of the
@@ -499,7 +505,8 @@ POLITE = Phrases((
 """Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
 
 _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "choose"), ("you", "please"),
-                 ("you", "wish"), ("suits", "you"), ("is", "fine"),
+                 ("you", "wish"), ("suits", "you"), ("is", "fine"), ("works",), ("suits",), ("'s", "fine"),
+                 ("is", "ok"), ("is", "okay"), ("'s", "ok"), ("'s", "okay"), ("works", "for", "you"),
                  *(("is", easy) for easy in ("easiest", "easier", "simplest", "quicker", "faster", "shorter",
                                              "convenient")),
                  ("is", "most", "convenient"),
@@ -552,7 +559,9 @@ CLOSING = Phrases((
     ("have", "a", "good", "one"), ("good", "luck"), ("have", "fun"), ("you", "the", "best"),
     ("you", "are", "the", "best"), ("you", "a", "star"), ("you", "are", "a", "star"), ("great", "job"),
     ("good", "job"), ("well", "done"), ("over", "and", "out"), ("thanks", "mate"), ("cheers", "mate"),
-    ("thanks", "robot"), ("thank", "you", "robot"), ("thanks", "buddy"),
+    ("thanks", "robot"), ("thank", "you", "robot"), ("thanks", "buddy"), ("thanks", "a", "ton"),
+    ("thanks", "loads"), ("ta", "very", "much"), ("ta", "muchly"), ("cheers", "for", "that"), ("lol",),
+    ("just", "to", "be", "sure"), ("just", "want", "to", "be", "sure"), ("i", "just", "want", "to", "be", "sure"),
     # asides that ask nothing
     ("no", "rush"), ("no", "hurry"), ("no", "pressure"), ("if", "possible"), ("if", "you", "can"),
     ("if", "you", "could"), ("when", "you", "can"), ("when", "you", "get", "a", "chance"),
@@ -592,6 +601,7 @@ _CHOOSERS = (("either",), ("any",), ("whichever",), ("either", "one"), ("any", "
 _FINE = ((), ("is", "fine"), ("is", "ok"), ("is", "okay"), ("is", "good"), ("will", "do"), ("works",),
          ("would", "do"), ("would", "be", "fine"), ("will", "be", "fine"), ("you", "like"), ("you", "want"),
          ("you", "prefer"), ("you", "choose"), ("is", "closer"), ("is", "nearer"))
+_FINE += tuple(("'s", *fine[1:]) for fine in _FINE if fine[:1] == ("is",))  # "either one's fine"
 CHOICE_AFFIRMATIONS = Phrases(tuple(
     chooser + fine for chooser in _CHOOSERS for fine in _FINE
     if chooser + fine not in (("either",), ("any",))  # bare "either" / "any" start a noun phrase
@@ -903,13 +913,14 @@ there could name something to go to (*feed the cat* where the scene has no cat m
 skipped)."""
 OPENERS = frozenset({"hi", "hello", "hey", "okay", "ok", "alright", "well", "so", "good", "thanks", "thank",
                      "i", "we", "here", "right", "cheers", "morning", "evening", "afternoon", "sorry",
-                     "alexa", "siri", "google", "robot", "buddy", "yo", "yeah"})
+                     "alexa", "siri", "google", "robot", "buddy", "yo", "yeah", "hiya", "heya", "howdy",
+                     "yes", "yep"})
 """Chit-chat starts with a greeting, an interjection or the speaker (*I'm hungry*, *here's the plan*); a
 sentence starting otherwise may be an order about something the scene lacks (*feed pets*), so it is parsed
 (and refused) instead."""
 AUXILIARIES = frozenset({"am", "are", "is", "was", "were", "have", "has", "will", "would"})
 """In chit-chat (*hope you're well*): no role, although *are* is a word of the grammar elsewhere."""
-GREETINGS = frozenset({"hi", "hello", "hey"})
+GREETINGS = frozenset({"hi", "hello", "hey", "hiya", "heya", "howdy"})
 """*Hi there!*: after a greeting, *there* is no place."""
 
 # -------------------------------------------------------------------------------------- phrase aliases
@@ -925,6 +936,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("straight", "after"): ("after",),
     ("immediately", "after"): ("after",),
     ("start", "with"): ("first",),
+    ("first", "things", "first"): ("first",),
     ("begin", "with"): ("first",),
     ("start", "off", "with"): ("first",),
     ("to", "start", ","): ("first", ","),

@@ -92,6 +92,10 @@ def expected_phrase_after(word: str) -> str:
     return rephrase(f"expected a room or object after '{word}' at the end of the sentence")
 
 
+def give_without_look(said: str) -> str:
+    return rephrase(f"'{said}' is read only as 'give X a look' (or a check, a clean); say what to do with X")
+
+
 def expected_phrase(verbs: str, rest: str) -> str:
     what = f"after '{verbs}'" if verbs else "here"
     return rephrase(f"expected a room or object {what}, found {rest}")

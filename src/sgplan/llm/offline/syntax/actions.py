@@ -61,7 +61,16 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     if moved is not None:
         return moved if isinstance(moved, Refusal) else Match(replace(node, moved=moved.node), moved.end)
     checked = r.word(start) in lx.CHECK_VERBS
-    return action_tail(r, state_said(r, phrases.end) if checked else phrases.end, node)
+    end = given(r, phrases.end) if set(verbs.node.words) & lx.GIVE_VERBS else phrases.end
+    if end is None:
+        return Refusal(rf.give_without_look(r.quote(start, phrases.end)))
+    return action_tail(r, state_said(r, end) if checked else end, node)
+
+
+def given(r: Reader, i: int) -> int | None:
+    """The end of what *give X* gives X at ``i`` (*a quick look*), or ``None`` if it gives X nothing read."""
+    looks = r.phrase(i + 1, lx.GIVEN_LOOKS) if r.word(i) in ("a", "an") else None
+    return None if looks is None else i + 1 + len(looks)
 
 
 def turned(r: Reader, verbs: VerbWords, i: int) -> VerbWords:
