@@ -417,7 +417,8 @@ VERB_IDIOMS = Phrases((("all", "the", "way"), ("a", "look"), ("a", "quick", "loo
                        ("a", "seat"), ("a", "nap"), ("a", "rest")))
 """Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*."""
 GIVE_VERBS = frozenset({"give", "giving"})
-"""*give X a look*: read only with what is given after X (:data:`GIVEN_LOOKS`), never alone (*give X to Y*)."""
+"""*give X a look*: read only with what is given after X (:data:`GIVEN_LOOKS`), never alone (*give X to
+Y*)."""
 GIVEN_LOOKS = Phrases(tuple((*quick, what) for quick in ((), ("quick",), ("good",), ("little",), ("proper",))
                             for what in ("look", "check", "glance", "peek", "clean", "wipe", "dust",
                                          "visit", "tidy", "scrub", "wash", "polish")))
@@ -561,7 +562,8 @@ CLOSING = Phrases((
     ("good", "job"), ("well", "done"), ("over", "and", "out"), ("thanks", "mate"), ("cheers", "mate"),
     ("thanks", "robot"), ("thank", "you", "robot"), ("thanks", "buddy"), ("thanks", "a", "ton"),
     ("thanks", "loads"), ("ta", "very", "much"), ("ta", "muchly"), ("cheers", "for", "that"), ("lol",),
-    ("just", "to", "be", "sure"), ("just", "want", "to", "be", "sure"), ("i", "just", "want", "to", "be", "sure"),
+    ("just", "to", "be", "sure"), ("just", "want", "to", "be", "sure"),
+    ("i", "just", "want", "to", "be", "sure"),
     # asides that ask nothing
     ("no", "rush"), ("no", "hurry"), ("no", "pressure"), ("if", "possible"), ("if", "you", "can"),
     ("if", "you", "could"), ("when", "you", "can"), ("when", "you", "get", "a", "chance"),
