@@ -95,7 +95,8 @@ def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order |
     order = order_said(remark, 0, len(remark)) if remark is not None else None
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
         return [], None, order, ()  # "Here's the plan:", "Remember:": they ask nothing
-    announced = announcement(said) or verb_prefix(said) or room_heading(labelled(said))
+    announced = (announcement(said) or verb_prefix(said) or room_heading(labelled(said))
+                 or floor_heading(said))
     if announced is not None:  # a room heading ("Kitchen stuff:") is the room of each item
         return [], None if announced.scope else announced, order, announced.prefix if announced.scope else ()
     label = label_end(said)
@@ -133,7 +134,7 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
     said, remark = without_order_remark(replace(r, toks=r.toks[:-1]))
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
         said = replace(said, toks=())  # "Here's the plan:", "Remember:": they ask nothing
-    announced = announcement(said) or room_heading(said) if said.toks else None
+    announced = announcement(said) or room_heading(said) or floor_heading(said) if said.toks else None
     if remark is not None and after is not None:  # "Do these in order: A, B": the remark after the list
         announced = replace(announced or Announced(remark.quote(0, len(remark)), (), None, None,
                                                    remark.toks[0].start, scope=True), suffix=remark.toks)
@@ -152,6 +153,19 @@ def room_heading(r: Reader) -> Announced | None:
     said = r.toks
     prefix = (Tok("in", said[0].start, said[0].start), *said, Tok(",", said[-1].end, said[-1].end))
     return Announced(r.quote(0, len(r)), prefix, None, None, said[0].start, scope=True)
+
+
+def floor_heading(r: Reader) -> Announced | None:
+    """*Top floor: the bathroom, then ...*, *Upstairs:*, *On floor 2:*: a floor (and nothing else) before a
+    colon is the floor of the sentences after it, as *On the top floor, ...* is."""
+    k = 1 if r.word(0) in ("on", "at") else 0
+    k += 1 if r.word(k) == "the" else 0
+    scope = floor_scope(r, k, k + 1)
+    relative = r.word(k) in lx.RELATIVE_FLOORS
+    said_end = k + 1 if relative else k + len(scope) - 2  # the scope is "on <floor words> ," or "upstairs ,"
+    if not scope or said_end != len(r) or (relative and k > 0):
+        return None
+    return Announced(r.quote(0, len(r)), scope, None, None, r.toks[0].start, scope=True)
 
 
 def merged(readers: list[Reader]) -> list[Reader]:
