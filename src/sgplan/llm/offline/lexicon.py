@@ -674,6 +674,10 @@ ORDER_MODIFIERS = Phrases((("one", "after", "the", "other"), ("one", "after", "a
 """Said after a list: its items are done one after the other (in the order written, for explicit lists)."""
 FIRST = frozenset({"first", "firstly"})
 LAST = ("last", "lastly")
+ORDER_HEADS = frozenset({"first", "firstly", "then", "next", "finally", "last", "lastly", "afterwards",
+                         "after", "before", "second", "secondly", "third", "thirdly"})
+"""Before a colon (*Then: the kitchen*, *Before that: the office*): words of the order, read as if a comma
+stood there, never dropped as a heading."""
 BEFORE_THAT = ("before", "that")
 ON_THE_WAY = Phrases((("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way")))
 WAY_BACK = frozenset({"back", "up", "down", "out", "home"})

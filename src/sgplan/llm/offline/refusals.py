@@ -92,6 +92,11 @@ def expected_phrase_after(word: str) -> str:
     return rephrase(f"expected a room or object after '{word}' at the end of the sentence")
 
 
+def order_without_goal(said: str) -> str:
+    return rephrase(f"'{said}' says where in the order but names no goal; say the goal in the same sentence "
+                    "('Last, the office.', 'Then the kitchen.')")
+
+
 def give_without_look(said: str) -> str:
     return rephrase(f"'{said}' is read only as 'give X a look' (or a check, a clean); say what to do with X")
 

@@ -93,6 +93,8 @@ def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order |
     said = replace(heading, toks=heading.toks[:-1]) if heading.word(len(heading) - 1) == ":" else heading
     said, remark = without_order_remark(said)  # "Visit these rooms in order:"
     order = order_said(remark, 0, len(remark)) if remark is not None else None
+    if set(said.words) & lx.ORDER_HEADS and all(w in lx.FILLERS for w in said.words):
+        return [said], None, None, ()  # "Then:" before a list: read alone (and refused), never dropped
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
         return [], None, order, ()  # "Here's the plan:", "Remember:": they ask nothing
     announced = (announcement(said) or verb_prefix(said) or room_heading(labelled(said))
@@ -132,6 +134,11 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
     if r.word(len(r) - 1) != ":":
         return [r]
     said, remark = without_order_remark(replace(r, toks=r.toks[:-1]))
+    if said.toks and set(said.words) & lx.ORDER_HEADS:  # "Then: the kitchen" reads "Then, the kitchen"
+        comma = Tok(",", said.toks[-1].end, said.toks[-1].end)
+        announced = Announced(said.quote(0, len(said)), (*said.toks, comma), None, None, said.toks[0].start,
+                              scope=True)
+        return [replace(said, toks=(), announced=announced)] if after is not None else [said]
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
         said = replace(said, toks=())  # "Here's the plan:", "Remember:": they ask nothing
     announced = announcement(said) or room_heading(said) or floor_heading(said) if said.toks else None

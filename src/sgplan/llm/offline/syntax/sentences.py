@@ -70,6 +70,9 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     said_body = sentence_body(r, start)
     if not isinstance(said_body, Match):
         return said_body
+    if (precedes is not None or lead.node.sequence or r.word(0) in lx.LAST) and isinstance(
+            said_body.node, PlainSentence) and not said_body.node.body.items:
+        return Refusal(rf.order_without_goal(r.quote(0, len(r))))  # "Last: the office" is not set aside
     rest = link(r, said_body.end, sequence_too=False)
     if not isinstance(rest, Match):
         return rest
