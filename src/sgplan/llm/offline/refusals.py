@@ -92,6 +92,11 @@ def expected_phrase_after(word: str) -> str:
     return rephrase(f"expected a room or object after '{word}' at the end of the sentence")
 
 
+def trailing_after(said: str) -> str:
+    return rephrase(f"in '{said}' it is not clear which goals come after which; say 'then' before the goal "
+                    "that comes after ('A, then B')")
+
+
 def order_without_goal(said: str) -> str:
     return rephrase(f"'{said}' says where in the order but names no goal; say the goal in the same sentence "
                     "('Last, the office.', 'Then the kitchen.')")

@@ -26,6 +26,7 @@ from sgplan.llm.offline.syntax.tree import (
     InlineAfter,
     InlineBefore,
     Item,
+    Link,
     PlainAction,
     Waypoint,
 )
@@ -131,8 +132,17 @@ def condition_follows(r: Reader, i: int, before: Said, only_verb: bool) -> ItemP
 
 @ITEMS.rule("trailing after")
 def trailing_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
-    """*..., go to the dining room after.*: nothing more."""
-    return Match(Skip(), i + 1) if r.word(i) in lx.TRAILING_AFTER and r.word(i + 1) in ("", ",") else None
+    """*Go to the dining room after.*: nothing more in the body (a sentence that ends so follows the one
+    before it, :func:`.sentences.mission_sentence`). After two goals of the body (*the office and the
+    kitchen afterwards*, *A, then B after*) it could be about the last or all of them: refused."""
+    if r.word(i) not in lx.TRAILING_AFTER or r.word(i + 1) not in ("", ","):
+        return None
+    actions = [item for item in before if isinstance(item, PlainAction)]
+    phrases = actions[-1].action.phrases if actions else None
+    then_said = len(before) > 1 and isinstance(before[-2], Link) and before[-2].sequence  # "then B after"
+    if (len(actions) > 1 and not then_said) or (phrases is not None and len(phrases.items) > 1):
+        return Refusal(rf.trailing_after(r.quote(0, i + 1)))
+    return Match(Skip(), i + 1)
 
 
 @ITEMS.rule("but first")

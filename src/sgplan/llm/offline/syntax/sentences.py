@@ -73,6 +73,9 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     if (precedes is not None or lead.node.sequence or r.word(0) in lx.LAST) and isinstance(
             said_body.node, PlainSentence) and not said_body.node.body.items:
         return Refusal(rf.order_without_goal(r.quote(0, len(r))))  # "Last: the office" is not set aside
+    if (precedes is None and not lead.node.sequence and isinstance(said_body.node, PlainSentence)
+            and r.word(len(r) - 1) in lx.TRAILING_AFTER):
+        lead = Match(Link(True), lead.end)  # "Go to the office. Visit the kitchen afterwards.": as "Then ..."
     rest = link(r, said_body.end, sequence_too=False)
     if not isinstance(rest, Match):
         return rest
