@@ -92,6 +92,11 @@ def expected_phrase_after(word: str) -> str:
     return rephrase(f"expected a room or object after '{word}' at the end of the sentence")
 
 
+def restated_first(said: str) -> str:
+    return rephrase(f"'{said}' names again a goal said before: is it to be done first only, or twice? Say "
+                    "the goals once, in the order they must be done")
+
+
 def trailing_after(said: str) -> str:
     return rephrase(f"in '{said}' it is not clear which goals come after which; say 'then' before the goal "
                     "that comes after ('A, then B')")

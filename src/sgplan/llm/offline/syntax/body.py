@@ -59,7 +59,25 @@ def body(r: Reader, i: int, only_verb: bool = False) -> Parse[Body]:
         if not isinstance(found.node, Skip):
             items.append(found.node)
         i = found.end
-    return Match(Body(tuple(items)), i)
+    restated = restated_first(r, items)
+    return Refusal(rf.restated_first(restated)) if restated else Match(Body(tuple(items)), i)
+
+
+def restated_first(r: Reader, items: list[Item]) -> str | None:
+    """The words of a goal said again with *first* after the body put it in a sequence (*A, then B, but do B
+    first*: B before A only, or B twice?), or ``None``. Without a sequence (*A and B, B first*) it only says
+    the order."""
+    said: set[str] = set()
+    ordered = False
+    for item in items:
+        ordered = ordered or (isinstance(item, Link) and item.sequence)
+        if not isinstance(item, PlainAction) or item.action.phrases is None:
+            continue
+        words = {r.text[np.span.start:np.span.end].lower() for np in item.action.phrases.items}
+        if item.action.first and ordered and words & said:
+            return r.text[item.action.span.start:item.action.span.end]
+        said |= words
+    return None
 
 
 @ITEMS.rule("after all of them")
