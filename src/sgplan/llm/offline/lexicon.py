@@ -710,10 +710,10 @@ BETWEEN_TAIL = Phrases((("them",), ("the", "two"), ("the", "two", "visits"), ("e
 AFTERWARDS = Phrases((("afterwards",), ("afterward",), ("after", "that"), ("after",), ("later",),
                       ("straight", "after"), ("right", "after")))
 """In the consequent of a condition ("..., visit Y afterwards"): Y follows X, a response."""
-TRAILING_AFTER = ("after", "afterwards", "afterward")
+TRAILING_AFTER = ("after", "afterwards", "afterward", "later")
+"""``..., go to the dining room after.``: at the end of a clause, after what was said before it."""
 AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over", "again", ","})
 """After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
-"""``..., go to the dining room after.``: no meaning at the end of a clause."""
 
 # -------------------------------------------------------------------------------------------- negation
 NEG_STARTS = Phrases((

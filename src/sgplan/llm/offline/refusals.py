@@ -92,6 +92,12 @@ def expected_phrase_after(word: str) -> str:
     return rephrase(f"expected a room or object after '{word}' at the end of the sentence")
 
 
+def times_in_order(times: list[str]) -> str:
+    said = " and ".join(f"'{t}'" for t in times)
+    return rephrase(f"{said} may put the goals in an order of times, and a plan has no clock; leave the "
+                    "times out and say the order in words ('A, then B')")
+
+
 def restated_first(said: str) -> str:
     return rephrase(f"'{said}' names again a goal said before: is it to be done first only, or twice? Say "
                     "the goals once, in the order they must be done")

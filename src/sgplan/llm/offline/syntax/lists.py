@@ -136,9 +136,9 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
     said, remark = without_order_remark(replace(r, toks=r.toks[:-1]))
     if said.toks and set(said.words) & lx.ORDER_HEADS:  # "Then: the kitchen" reads "Then, the kitchen"
         comma = Tok(",", said.toks[-1].end, said.toks[-1].end)
-        announced = Announced(said.quote(0, len(said)), (*said.toks, comma), None, None, said.toks[0].start,
-                              scope=True)
-        return [replace(said, toks=(), announced=announced)] if after is not None else [said]
+        order = Announced(said.quote(0, len(said)), (*said.toks, comma), None, None, said.toks[0].start,
+                          scope=True)
+        return [replace(said, toks=(), announced=order)] if after is not None else [said]
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
         said = replace(said, toks=())  # "Here's the plan:", "Remember:": they ask nothing
     announced = announcement(said) or room_heading(said) or floor_heading(said) if said.toks else None
