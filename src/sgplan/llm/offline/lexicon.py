@@ -697,7 +697,7 @@ AFTER_ALL = Phrases(tuple(
                  ("you", "done", "both"), ("you", "have", "done", "both"), ("those", "are", "done"),
                  ("all", "are", "done"), ("all", "that", "is", "done"))))
 """*after all three (of them)*, *once you've done those*: after every goal said before."""
-DONE = frozenset({"done", "finished", "through"})
+DONE = frozenset({"done", "finished", "through", "finishing"})
 DONE_OPENERS = ("once", "when", "after")
 DONE_WITH = ("with", "in", "at")
 """*once you're done with / in / at X*: X is what is done (before what follows)."""

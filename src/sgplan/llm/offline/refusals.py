@@ -92,6 +92,11 @@ def expected_phrase_after(word: str) -> str:
     return rephrase(f"expected a room or object after '{word}' at the end of the sentence")
 
 
+def before_bare_verb(said: str) -> str:
+    return rephrase(f"'{said}' can mean 'before you go there' or 'before that, go there'; say 'then' or "
+                    "'before that'")
+
+
 def times_in_order(times: list[str]) -> str:
     said = " and ".join(f"'{t}'" for t in times)
     return rephrase(f"{said} may put the goals in an order of times, and a plan has no clock; leave the "

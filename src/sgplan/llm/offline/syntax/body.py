@@ -233,9 +233,14 @@ def inline_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
 
 @ITEMS.rule("before X")
 def inline_before(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
-    """*A before B*: B a step after A."""
+    """*A before B*: B a step after A. Not *A, (but) before go to B*, which learners write for *before that,
+    go to B* (B first): refused."""
     if r.word(i) != "before":
         return None
+    nxt = r.word(i + 1)
+    if (r.word(i - 1) in (",", "and", "but") and nxt in lx.POSITIVE_VERBS and not nxt.endswith("ing")
+            and not r.np_starts(i + 1) and nxt not in lx.VERB_STOPS):
+        return Refusal(rf.before_bare_verb(r.quote(i, i + 2)))
     found = after_conjunction(r, i + 1)
     return Match(InlineBefore(found.node), found.end) if isinstance(found, Match) else found
 

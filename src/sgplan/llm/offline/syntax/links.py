@@ -128,8 +128,8 @@ def done_sequence(r: Reader, i: int) -> int | None:
     sequence word then); ``None`` when it names what is done (*when done with the garage*) or is not
     there."""
     n = done_words(r, i)
-    if not n:
-        return None
+    if not n or r.np_starts(i + n):
+        return None  # "after finishing the kitchen": the kitchen is what is done
     if r.word(i + n) in lx.DONE_WITH and (r.word(i + n + 1) not in lx.DONE_BACK or r.np_starts(i + n + 2)):
         return None
     k = i + n + (1 if r.word(i + n) in lx.DONE_WITH else 0)
