@@ -716,6 +716,9 @@ AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over",
 """After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
 
 # -------------------------------------------------------------------------------------------- negation
+NEED_WORDS = frozenset({"need", "needs", "have", "has", "got"})
+"""After a negation, before *to* (*you don't need to / have to go to X*, *no need to X*): X is not needed,
+which forbids nothing."""
 NEG_STARTS = Phrases((
     ("always", "avoid"), ("always", "stay", "away", "from"), ("always", "keep", "away", "from"),
     ("always", "stay", "out", "of"), ("always", "keep", "out", "of"), ("never",), ("do", "not"),

@@ -92,6 +92,11 @@ def expected_phrase_after(word: str) -> str:
     return rephrase(f"expected a room or object after '{word}' at the end of the sentence")
 
 
+def not_needed(said: str) -> str:
+    return rephrase(f"'{said}' says a goal is not needed, which neither asks for it nor forbids it; leave "
+                    "it out, or say 'never enter X' to forbid it")
+
+
 def before_bare_verb(said: str) -> str:
     return rephrase(f"'{said}' can mean 'before you go there' or 'before that, go there'; say 'then' or "
                     "'before that'")

@@ -54,6 +54,9 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
     """What follows the words ``marker`` of a prohibition (at ``j``): what is forbidden, and for how long."""
     j += 1 if r.at(j, ",", "ever") else 0  # "never, ever"
     j += 1 if r.word(j) in lx.NEGATION_EVER else 0  # "never ever", "don't ever"
+    needed = r.word(j) in lx.NEED_WORDS and r.word(j + 1) == "to"  # "no need to X": X free, not forbidden
+    if needed or (marker == ("not",) and r.word(j - 2) in lx.NEED_WORDS):  # "you need not (needn't) go"
+        return Refusal(rf.not_needed(r.quote(j - len(marker) - (0 if needed else 1), min(j + 4, len(r)))))
     stay = stay_on_floor(r, j, negated=True)  # "don't leave this floor"
     if stay is not None:
         if not isinstance(stay, Match):
