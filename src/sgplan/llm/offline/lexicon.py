@@ -597,6 +597,15 @@ CLOSING = Phrases((
 possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
 of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""
 
+CONDITION_OPENERS_OF_ASIDES = ("if", "when", "whenever")
+"""Asides of :data:`CLOSING` that start like a condition (*if you can*, *when you get a chance*): before a
+noun phrase they are still asides (a condition needs a verb)."""
+CORRECTIONS = Phrases((("i", "mean"), ("i", "meant"), ("no", "wait"), ("wait", "no"), ("scratch", "that"),
+                       ("make", "that"), ("correction",), ("or", "rather"), ("actually", "no"),
+                       ("no", "sorry"), ("sorry", "no"), ("i", "said", "wrong"), ("my", "mistake"),
+                       ("my", "bad"), ("let", "me", "rephrase")))
+"""Words with which a speaker takes back what they said (*go to the kitchen, sorry, I mean the office*):
+which part stands is not read; refused."""
 _CHOOSERS = (("either",), ("any",), ("whichever",), ("either", "one"), ("any", "one"), ("whichever", "one"),
              ("any", "of", "them"), ("either", "of", "them"), ("whichever", "of", "them"), ("whatever",),
              ("whatever", "one"))

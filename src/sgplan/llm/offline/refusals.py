@@ -92,6 +92,11 @@ def expected_phrase_after(word: str) -> str:
     return rephrase(f"expected a room or object after '{word}' at the end of the sentence")
 
 
+def self_correction(said: str) -> str:
+    return rephrase(f"'{said}' takes back something said before it, and the translator does not read which "
+                    "part stands; say the mission again as it should be done")
+
+
 def not_needed(said: str) -> str:
     return rephrase(f"'{said}' says a goal is not needed, which neither asks for it nor forbids it; leave "
                     "it out, or say 'never enter X' to forbid it")

@@ -43,6 +43,9 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
         start = said_start(r)
         if start is not None:
             stated_start(start, disc)
+    correction = taken_back(readers)
+    if correction is not None:  # "go to the kitchen, sorry, I mean the office": which part stands?
+        rf.refuse(rf.self_correction(correction))
     times = [r.quote(0, len(r)) for r in readers if r.aside and is_time(r, 0, len(r))
              and r.words not in lx.NOW_SAID and r.words != ("today",)]  # "Today, ... Right now, ...": none
     if len(times) > 1:  # "Before dinner, A. After dinner, B.": an order of times, which no formula keeps
@@ -172,6 +175,17 @@ def stated_start(start: StatedStart, disc: Discourse) -> None:
     if disc.start_floor is not None and disc.start_floor != floor:
         rf.refuse(rf.stated_floor_contradicts(start.said, floor, disc.start_floor))
     disc.start_floor = floor
+
+
+def taken_back(readers: list[Reader]) -> str | None:
+    """The words with which the speaker takes back something said before them (:data:`.lexicon.CORRECTIONS`),
+    or ``None``."""
+    for n, r in enumerate(readers):
+        for k in range(len(r)):
+            said = r.phrase(k, lx.CORRECTIONS)
+            if said is not None and (n or k):
+                return r.quote(k, k + len(said))
+    return None
 
 
 def confinement(readers: list[Reader], disc: Discourse) -> frozenset[int] | None:

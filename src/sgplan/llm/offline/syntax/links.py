@@ -109,9 +109,15 @@ def has_main_clause(r: Reader, i: int) -> bool:
 
 def closing_at(r: Reader, i: int) -> int:
     """The end of a sign-off or an aside that asks nothing at ``i`` (*thanks a lot*, *if possible*), which
-    must close its clause (a comma or the end of the sentence follows); 0 if there is none."""
+    must close its clause (a comma or the end of the sentence follows; for an aside starting with *if* /
+    *when*, a noun phrase may follow too: *then if you can the oven*, as no condition has no verb); 0 if there
+    is none."""
     said = r.phrase(i, lx.CLOSING)
-    return i + len(said) if said is not None and r.word(i + len(said)) in ("", ",") else 0
+    if said is None:
+        return 0
+    end = i + len(said)
+    closes = r.word(end) in ("", ",") or (said[0] in lx.CONDITION_OPENERS_OF_ASIDES and r.np_starts(end))
+    return end if closes else 0
 
 
 def done_words(r: Reader, i: int) -> int:
