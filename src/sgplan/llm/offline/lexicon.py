@@ -597,6 +597,11 @@ CLOSING = Phrases((
 possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
 of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""
 
+THING_SUBJECTS = frozenset({"it", "they", "there", "this", "that", "these", "those"})
+"""The subject of a condition about the state of something (*if it is open*, *if there is time*): refused,
+never skipped to read the verb after it as the robot's."""
+WISH_VERBS = frozenset({"want", "wish", "like", "prefer", "feel", "fancy"})
+"""The verb of a condition on what the robot would like (*if you want, the office*): an optional goal."""
 CONDITION_OPENERS_OF_ASIDES = ("if", "when", "whenever")
 """Asides of :data:`CLOSING` that start like a condition (*if you can*, *when you get a chance*): before a
 noun phrase they are still asides (a condition needs a verb)."""

@@ -92,6 +92,16 @@ def expected_phrase_after(word: str) -> str:
     return rephrase(f"expected a room or object after '{word}' at the end of the sentence")
 
 
+def state_condition(said: str) -> str:
+    return rephrase(f"'{said}' is a condition on the state of something, which the robot cannot check; only "
+                    "where the robot goes can be a condition ('if you go into X, ...')")
+
+
+def optional_condition(said: str) -> str:
+    return rephrase(f"'{said}' makes a goal optional, which cannot be expressed; leave the goal out or make "
+                    "it a goal")
+
+
 def self_correction(said: str) -> str:
     return rephrase(f"'{said}' takes back something said before it, and the translator does not read which "
                     "part stands; say the mission again as it should be done")

@@ -286,6 +286,13 @@ def antecedent(r: Reader, i: int) -> Parse[Action]:
     if whenever is None and word is None:
         return None
     start = i + len(whenever or word or ())
+    ever = r.phrase(start, lx.EVER)
+    j = start + (len(ever) if ever else 0)
+    k = skip_subject(r, j)
+    if set(r.words[j:k]) & lx.THING_SUBJECTS:  # "if it is open, ...": a state, not where the robot is
+        return Refusal(rf.state_condition(r.quote(i, min(k + 2, len(r)))))
+    if r.word(k) in lx.WISH_VERBS:  # "and if you want the office": an optional goal
+        return Refusal(rf.optional_condition(r.quote(i, k + 1)))
     return trigger(r, start) if whenever else condition(r, start)
 
 
