@@ -124,20 +124,24 @@ def path_waypoints(
     index = np.arange(len(rows)) if keep is None else np.asarray(keep, dtype=np.int64)
     chosen = rows[index]
     cost = np.concatenate([[0.0], np.cumsum(leg_costs(chosen, grid))]) if len(chosen) else np.zeros(0)
+    row, col, floor = chosen[:, 0], chosen[:, 1], chosen[:, 2]
+    # The same float64 operations as OccupancyGrid.cell_xyz, a whole column at once.
+    x_m = grid.origin_m[0] + (row + 0.5) * grid.resolution_m[0]
+    y_m = grid.origin_m[1] + (col + 0.5) * grid.resolution_m[1]
+    ground = np.array([f.ground_z_m for f in building.floors], dtype=np.float64)
+    frame = np.asarray(grid.floor_z_m, dtype=np.float64)
+    z_m = np.where(np.isfinite(ground), ground, frame[: len(ground)])[floor]
     rooms = {room.id: room for room in building.rooms()}
-    points = []
-    for k, (row, col, floor, q), cost_m in zip(index.tolist(), chosen.tolist(), cost.tolist()):
-        x_m, y_m, frame_z = grid.cell_xyz(floor, (row, col))
-        ground = building.floors[floor].ground_z_m
-        room = rooms.get(int(grid.room_map[floor, row, col]))
-        points.append(
-            Waypoint(
-                index=k, x_m=x_m, y_m=y_m, z_m=float(ground) if math.isfinite(ground) else frame_z,
-                floor=floor, row=row, col=col, room=room.key if room else None,
-                room_name=room.name if room else None, q=q, cost_m=cost_m,
-            )
-        )
-    return points
+    room_ids = grid.room_map[floor, row, col].tolist()
+    named = {rid: (rooms[rid].key, rooms[rid].name) if rid in rooms else (None, None)
+             for rid in set(room_ids)}
+    return [
+        Waypoint(index=k, x_m=x, y_m=y, z_m=z, floor=f, row=r, col=c, room=named[rid][0],
+                 room_name=named[rid][1], q=q, cost_m=cost_m)
+        for k, x, y, z, f, r, c, rid, q, cost_m in zip(
+            index.tolist(), x_m.tolist(), y_m.tolist(), z_m.tolist(), floor.tolist(), row.tolist(),
+            col.tolist(), room_ids, chosen[:, 3].tolist(), cost.tolist())
+    ]
 
 
 def crossed_cells(a: tuple[int, int], b: tuple[int, int]) -> np.ndarray:

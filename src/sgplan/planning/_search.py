@@ -521,6 +521,34 @@ def read_record(ptab, pool, poolf, s):
     return poolf[r], link_parent(pool[r + 1]), link_action(pool[r + 1])
 
 
+@njit(cache=True, nogil=True)
+def parent_chain(ptab, pool, poolf, goal, limit):
+    """The product states from the start to ``goal`` along the parent pointers, and the action that led to
+    each (``-1`` for the start): ``(states, actions)``; ``states`` is empty when the chain is longer than
+    ``limit`` (the pointers form a cycle: a bug)."""
+    states = np.empty(64, dtype=np.int64)
+    actions = np.empty(64, dtype=np.int64)
+    count = 0
+    s = goal
+    while True:
+        if count == states.shape[0]:
+            if count > limit:
+                return states[:0], actions[:0]
+            grown_s = np.empty(2 * count, dtype=np.int64)
+            grown_a = np.empty(2 * count, dtype=np.int64)
+            grown_s[:count] = states
+            grown_a[:count] = actions
+            states, actions = grown_s, grown_a
+        _, parent, action = read_record(ptab, pool, poolf, s)
+        states[count] = s
+        actions[count] = action if parent >= 0 else -1
+        count += 1
+        if parent < 0:
+            break
+        s = parent
+    return states[:count][::-1].copy(), actions[:count][::-1].copy()
+
+
 # ---- the queues' tops ------------------------------------------------------------------------------
 
 
