@@ -3,7 +3,8 @@
 Both kinds satisfy two small protocols, so front ends never care which one runs:
 
 - :class:`MissionTranslator`: ``name``, ``translate(text, building)`` returning a
-  :class:`TranslationLike` (``backend``, ``text``, ``grounded_text``, ``tokens``, ``formula``), and
+  :class:`TranslationLike` (``backend``, ``text``, ``grounded_text``, ``tokens``, ``formula``, and
+  ``set_aside``: the words of the text not read because they ask nothing), and
   ``starting_on(floor)`` (the translator for a robot starting on that floor: words such as *upstairs* are
   read from there by a backend that can, the others return themselves); implemented by
   :class:`~sgplan.llm.translation.LLMTranslator` and the offline
@@ -48,6 +49,8 @@ class TranslationLike(Protocol):
     def tokens(self) -> Sequence[str]: ...
     @property
     def formula(self) -> Formula: ...
+    @property
+    def set_aside(self) -> tuple[str, ...]: ...
 
 
 class MissionTranslator(Protocol):
