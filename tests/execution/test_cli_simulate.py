@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from sgplan.cli import main
@@ -84,3 +85,29 @@ def test_plan_after_a_violating_trajectory_exits_6(tmp_path, capsys):
                  "--setup", "A*"])
     assert code == VIOLATED_EXIT
     assert "the trajectory violated" in capsys.readouterr().err
+
+
+def test_the_pictures_draw_abandoned_plans_and_changed_cells_where_they_are(tmp_path):
+    """In the map-frame picture a cell's data coordinates are (row, col): an abandoned plan is drawn on its
+    own cells and a closed door on the door's cells (they were drawn transposed, through walls)."""
+    import sgplan
+    from sgplan.execution.changes import read_changes
+    from sgplan.execution.drawing import simulation_figure
+    from sgplan.execution.simulate import simulate
+
+    changes = _changes(tmp_path, "version: 1\nchanges:\n"
+                       "  - {kind: close_door, rooms: [kitchen, corridor on floor 0], when: {after_m: 3}}\n")
+    building = sgplan.load_scene("demo")
+    session = sgplan.Session(building)
+    run = session.start(sgplan.mission_from_formula(FORMULA, building), "bathroom on floor 0", setup="A*")
+    sim = simulate(run, read_changes(changes))
+    assert len(sim.plans) >= 2 and sim.changed.get(0)
+    fig = simulation_figure(sim, 0)
+    ax = fig.axes[0]
+    dashed = [line for line in ax.get_lines() if line.get_linestyle() == "--" and len(line.get_xdata())]
+    first = sim.plans[0][sim.plans[0][:, 2] == 0]
+    assert dashed and np.array_equal(np.c_[dashed[0].get_xdata(), dashed[0].get_ydata()], first[:, :2])
+    door = np.concatenate(sim.changed[0])
+    rows, cols = np.divmod(door, building.grid_shape[1])
+    (points,) = [c.get_offsets() for c in ax.collections if len(c.get_offsets()) == len(door)]
+    assert np.array_equal(np.asarray(points), np.c_[rows, cols])

@@ -3,7 +3,8 @@
 The text is derived from the formula's structure (:mod:`sgplan.explain.patterns`) when every part of
 it has a reading, else from the automaton (:mod:`sgplan.explain.stages`); never from the user's text.
 Every entity is named by category, id and floor, so a misread reference (the bathroom grounded where the
-kitchen was meant) shows on screen before anything is planned.
+kitchen was meant) shows on screen before anything is planned; words of the text that the translator set
+aside unread (*We're hosting dinner tonight.*) are said back as not part of the mission.
 """
 
 from __future__ import annotations
@@ -32,6 +33,8 @@ Method = Literal["patterns", "automaton"]
 
 HEADER = "The mission, as it will be planned:"
 AUTOMATON_HEADER = "The mission, as it will be planned (read from its automaton; it has no simpler reading):"
+SET_ASIDE = "Not part of the mission:"
+"""Before each part of the mission's text that its translator set aside unread (:attr:`Mission.set_aside`)."""
 DIFFERS_HEADER = (
     "The mission, as it will be planned (read from its automaton, which accepts other paths than its "
     "formula, e.g. under the authors' semantics):"
@@ -167,4 +170,8 @@ def explain_mission(
     if realizable is None:
         rooms = [p for p, prop in zip(automaton.aps, props) if prop is not None and prop.kind == "enter"]
         realizable = possible_labels(automaton.aps, [rooms])
-    return explain_formula(mission.formula, entities, automaton=automaton, realizable=realizable)
+    explained = explain_formula(mission.formula, entities, automaton=automaton, realizable=realizable)
+    if not mission.set_aside:
+        return explained
+    aside = [f"{SET_ASIDE} '{said}'" for said in mission.set_aside]
+    return Explanation("\n".join([explained.text, *aside]), explained.method)

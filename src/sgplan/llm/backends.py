@@ -5,8 +5,9 @@ runs:
 
 - :class:`~sgplan.llm.protocols.MissionTranslator`: ``name``, ``translate(text, building)`` returning a
   :class:`~sgplan.llm.protocols.TranslationLike` (``backend``, ``text``, ``grounded_text``, ``tokens``,
-  ``formula``), and ``starting_on(floor)`` (the translator for a robot starting on that floor: words such
-  as *upstairs* are read from there by a backend that can, the others return themselves); implemented by
+  ``formula``, and ``set_aside``: the words of the text not read because they ask nothing), and
+  ``starting_on(floor)`` (the translator for a robot starting on that floor: words such as *upstairs* are
+  read from there by a backend that can, the others return themselves); implemented by
   :class:`~sgplan.llm.translation.LLMTranslator` and the offline
   :class:`~sgplan.llm.offline.PatternTranslator`, and scored by :mod:`sgplan.llm.evaluate`;
 - :class:`~sgplan.llm.protocols.MissionGuide`: ``name`` and ``guide(building, automaton, ap_actions)``

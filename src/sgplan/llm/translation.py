@@ -103,6 +103,8 @@ class LLMTranslation:
     warnings: tuple[str, ...]
     votes: tuple[int, ...]
     repairs: int
+    set_aside: tuple[str, ...] = ()
+    """Words of the text not read (a language model reads all of it: none)."""
 
 
 def reply_token_list(reply: str) -> list[str]:
@@ -346,7 +348,8 @@ class LLMTranslator:
 def mission_of(translation: TranslationLike) -> Mission:
     """The mission (minimal DFA, propositions) of a translation from any translator backend."""
     return compile_mission(
-        translation.formula, text=translation.text, grounded_text=translation.grounded_text
+        translation.formula, text=translation.text, grounded_text=translation.grounded_text,
+        set_aside=translation.set_aside,
     )
 
 

@@ -39,6 +39,9 @@ class Mission:
     source: Path | None = None
     notes: list[str] = field(default_factory=list)
     """Non-fatal remarks found while loading (e.g. unused propositions)."""
+    set_aside: tuple[str, ...] = ()
+    """Words of the mission text the translator did not read because they ask nothing (*We're hosting dinner
+    tonight.*), as typed: the explanation says them back as not part of the mission."""
 
     def __post_init__(self) -> None:
         missing = [ap for ap in self.automaton.aps if ap not in self.propositions]
@@ -105,12 +108,14 @@ def compile_mission(
     text: str | None = None,
     grounded_text: str | None = None,
     guidance: Guidance | None = None,
+    set_aside: Sequence[str] = (),
 ) -> Mission:
     """A mission whose automaton is the minimal DFA of ``formula`` (LTLf), compiled here; the public
     :func:`sgplan.mission_from_formula` builds on it (it also reads an ``ap_desc.yaml`` and checks the scene).
 
     Proposition names are either action tokens (``enter(room_2)``, then ``propositions`` may be
-    omitted) or names given a meaning by ``propositions`` (e.g. ``p1`` from an ap_desc.yaml).
+    omitted) or names given a meaning by ``propositions`` (e.g. ``p1`` from an ap_desc.yaml). ``set_aside``:
+    words of ``text`` a translator did not read (:attr:`Mission.set_aside`).
     At most one ``enter(room)`` proposition holds at a cell, so those labels are pruned.
     """
     if not isinstance(formula, Formula):
@@ -135,4 +140,5 @@ def compile_mission(
         text=text,
         grounded_text=grounded_text,
         guidance=guidance,
+        set_aside=tuple(set_aside),
     )

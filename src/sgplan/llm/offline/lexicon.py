@@ -28,7 +28,34 @@ BARE_NEGATED = {"dont": "do", "doesnt": "does", "didnt": "did", "cant": "can", "
                 "hasnt": "has", "wouldnt": "would", "couldnt": "could", "neednt": "need"}
 """Negated auxiliaries typed without their apostrophe: read as ``do not`` ... (never as a verb)."""
 
+CONTRACTIONS = {"re": "are", "m": "am", "ve": "have", "ll": "will", "d": "would"}
+"""``we're`` -> ``we are``: the verb of a contracted auxiliary (``'s`` is a token of its own: *is* or a
+possessive)."""
+
+BARE_CONTRACTIONS = {"youre": ("you", "are"), "theyre": ("they", "are"), "im": ("i", "am"),
+                     "ive": ("i", "have"), "youve": ("you", "have"), "weve": ("we", "have"),
+                     "thats": ("that", "'s"), "theres": ("there", "'s"), "youll": ("you", "will"),
+                     "itll": ("it", "will"), "lets": ("let", "'s"), "whats": ("what", "'s")}
+"""Contractions typed without their apostrophe (*then youre done*): read as the words they stand for."""
+
 SENTENCE_END = frozenset(".;:!?")
+NUMBERED = frozenset({"floor", "level", "flr", "fl", "lvl", "storey", "story", "step", "item", "number",
+                      "no"})
+"""Before a number and ``)`` (*(floor 1)*): the number is theirs, not a list marker."""
+
+SYMBOLS: dict[str, tuple[str, ...]] = {
+    "+": ("and",), "&": ("and",), "w/": ("with",), "w/o": ("without",), "@": ("at",),
+}
+"""Notations read as words (an arrow, ``->``, ``>``, ``→``, is *then*): ``A + B`` is *A and B*, ``bdrm w/
+bed`` *bedroom with bed*. Every other symbol is a token the grammar refuses by name (``A / B``: and, or?)."""
+
+DASHES = frozenset({"-", "--", "\u2013", "\u2014"})
+"""The dashes of an aside (*the kitchen -- the one downstairs -- and ...*), read as commas."""
+CLOCK_PREPOSITIONS = ("at", "by", "before", "after", "until", "till", "around", "about")
+"""Before a clock time (*at 6 pm*): quoted with it in the refusal."""
+
+LINE_CONTINUES = frozenset({",", "and", "or", "then", "but", "with", "to", "of", "in", "the", "a", "an"})
+"""A line ending with one of these goes on in the next line (a wrapped sentence, not a new one)."""
 
 # ----------------------------------------------------------------------------------------------- nouns
 SYNONYMS: dict[str, tuple[str, ...]] = {
@@ -71,6 +98,17 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     "utility": ("utility room",),
     "hob": ("oven",),
     "fridge freezer": ("refrigerator",),
+    "coffee cup": ("cup",),
+    "teacup": ("cup",),
+    "tea cup": ("cup",),
+    "coffee mug": ("cup",),
+    "water bottle": ("bottle",),
+    "flower vase": ("vase",),
+    "dinner table": ("dining table",),
+    "pot plant": ("potted plant",),
+    "tv screen": ("tv",),
+    "armchair": ("chair",),
+    "bathtub": ("bathtub", "bath"),
     "wash basin": ("sink",),
     "landing": ("corridor",),
     "front room": ("living room",),
@@ -78,6 +116,24 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
 }
 """Category synonyms: a word or phrase users say -> the scene categories it may denote (underscores of the
 Gibson categories are spaces here). A synonym only applies to categories the scene actually has."""
+
+ABBREVIATIONS: dict[str, tuple[str, ...]] = {
+    "lr": ("living room",), "liv rm": ("living room",), "lvng rm": ("living room",),
+    "lvg rm": ("living room",),
+    "dr": ("dining room",), "din rm": ("dining room",), "dng rm": ("dining room",),
+    "br": ("bedroom", "bathroom"), "bdr": ("bedroom",), "bd": ("bedroom",), "mbr": ("bedroom",),
+    "bth": ("bathroom",), "bthr": ("bathroom",),
+    "kit": ("kitchen",), "kitch": ("kitchen",), "ktch": ("kitchen",),
+    "ofc": ("home office",), "offc": ("home office",), "ofis": ("home office",),
+    "hwy": ("corridor",), "hllwy": ("corridor",), "corr": ("corridor",),
+    "kbd": ("keyboard",), "kybd": ("keyboard",), "tbl": ("dining table", "table"), "frdg": ("refrigerator",),
+    "frig": ("refrigerator",), "micro": ("microwave",), "mw": ("microwave",), "tele": ("tv",),
+    "plt": ("potted plant",), "chr": ("chair",),
+}
+"""Abbreviations people type for rooms and objects (*LR*, *bdrm*, *kbd*, *tbl*): read as the categories they
+may denote, like :data:`SYNONYMS` (only those the scene has; one that could be several is refused as
+ambiguous, naming them). The scene's own names give more (:mod:`.nouns`): the letters of a name without its
+vowels (*bthrm*, *ktchn*) and *rm* for *room* (*bathrm*, *dining rm*)."""
 
 EVERYDAY_NAMES: dict[str, tuple[str, ...]] = {
     "loo": ("bathroom", "toilet"),
@@ -166,6 +222,15 @@ a plural head noun of the scene does too (*visit two rooms:*)."""
 ANNOUNCING = word_set("the a few couple of some several my your our today 's following quick little "
                       "small") | DETERMINERS
 """Words of an announcement's noun group before its last word (*a few quick things*, *today's tasks*)."""
+LIST_NOUNS = word_set("list lists checklist todo do round rounds run runs tour route schedule agenda routine "
+                      "plan steps step sequence order tasks task jobs job chores chore errands errand checks "
+                      "check stops visits things items duties rota program programme")
+"""Words that name a list in its heading (*Morning round*, *Evening checks*, *To do:*, *Top floor tasks*)."""
+LABEL_STOPS = word_set("until till before after only except never not no if unless when whenever then first "
+                       "last again twice once but or nor without stay remain keep staying avoid leave there")
+"""Words a list's label never holds: a heading with one of them is a sentence of its own."""
+ORDER_FILLERS = word_set(", do them these this it all the items steps things list")
+"""Words of a sentence after a list that only says its order (*Do them in this order.*)."""
 HEADS_UP = word_set("remember note important reminder ps also careful warning update oh btw nb")
 """Words that only ask for attention before a colon (*Remember: never enter the kitchen.*)."""
 ANNOUNCE_TAIL = Phrases((("for", "me"), ("for", "today"), ("today",), ("to", "do"), ("please",),
@@ -185,12 +250,15 @@ FLOOR_ORDINALS = {
     "fifth": 4, "5th": 4,
 }
 """``the first floor`` is the lowest floor (index 0): ordinals count floors from the lowest, US style."""
-FLOOR_NAMED = {"ground": 0, "bottom": 0, "lowest": 0, "basement": 0}
+FLOOR_NAMED = {"ground": 0, "bottom": 0, "lowest": 0, "basement": 0, "gnd": 0, "grnd": 0}
 FLOOR_TOP = ("top", "highest", "upper", "uppermost")
-FLOOR_MIDDLE = ("middle",)
+FLOOR_MIDDLE = ("middle", "mid")
 """``the middle floor``: understood in a building with an odd number of floors (3: floor 1)."""
-FLOOR_WORDS = ("floor", "level", "storey", "story")
-FLOOR_PLURALS = (*FLOOR_WORDS, "floors", "levels", "storeys", "stories")
+FLOOR_WORDS = ("floor", "level", "storey", "story", "flr", "fl", "lvl")
+FLOOR_NAMES = (frozenset(FLOOR_ORDINALS) | frozenset(FLOOR_NAMED) | frozenset(FLOOR_TOP)
+               | frozenset(FLOOR_MIDDLE))
+"""The words that name a floor before *floor* (*ground*, *top*, *second*)."""
+FLOOR_PLURALS = (*FLOOR_WORDS, "floors", "levels", "storeys", "stories", "flrs")
 RELATIVE_FLOORS = {"upstairs": 1, "downstairs": -1}
 """Floors relative to the robot's start floor (or, in a two-floor building, the upper / lower floor)."""
 START_FLOOR_WORDS = ("this", "current", "my", "our")
@@ -236,7 +304,8 @@ POSITIVE_VERBS = word_set(
     carrying deliver delivering return returning explore exploring see seeing pet mop mopping scrub
     scrubbing fill filling close closing empty emptying sweep sweeping play playing cook cooking
     lie lying rest resting sleep sleeping shower showering bathe use off up down out over from for
-    """
+    read reading watch watching examine examining fix fixing straighten straightening hoover hoovering
+    polish polishing arrange arranging organize organizing organise organising give giving"""
 )
 """Verb-slot words known to mean "go to / interact with" the noun phrase that follows."""
 
@@ -247,13 +316,13 @@ ROUTE_VERBS = word_set("from through via past")
 """``go from X to Y``, ``go through X to Y``: X, then Y."""
 DESTINATION_WORDS = ("to", "into", "onto")
 """After an object (or a route): where it goes next (*bring the bowl to the table*)."""
-CARRY_DESTINATION_WORDS = ("in", "into", "on", "onto", "to", "inside")
-"""After a carry verb's object: *put the bowl in the sink*."""
+CARRY_DESTINATION_WORDS = ("in", "into", "on", "onto", "to", "inside", "until", "till")
+"""After a carry verb's object: *put the bowl in the sink*; *bring the bowl until the table* (as learners
+write *to*)."""
 
 REFUSED_WORDS: dict[str, str] = {
     "leave": "'leave' (the translator cannot express leaving a place; say where to go instead)",
     "exit": "'exit' (say which room to go to instead)",
-    "skip": "'skip' (use 'avoid' or 'never enter' to forbid a place)",
     "ignore": "'ignore' (use 'avoid' or 'never enter' to forbid a place)",
     "bypass": "'bypass' (use 'avoid' to forbid a place)",
     "dodge": "'dodge' (use 'avoid' to forbid a place)",
@@ -329,9 +398,11 @@ REFUSED_WORDS: dict[str, str] = {
 }
 """Words that would silently change the meaning if read as ordinary words: refused with a reason."""
 
-START_END_VERBS = word_set("start starting begin beginning end ending finish finishing")
-"""``start in X`` / ``end (up) in X``: where the path starts or ends, which a goal cannot say (the start is
-the robot's; an end would need an order): refused outside a condition, where *end up in* is just *go to*."""
+START_VERBS = word_set("start starting begin beginning")
+"""``start in X``: where the path starts, which is the robot's: refused (outside a condition, where it is just
+being in X)."""
+END_VERBS = word_set("end ending finish finishing")
+"""``end (up) in X`` / ``finish at X``: X after the rest (the plan ends once the mission is done: there)."""
 START_END_PARTICLES = ("in", "at", "up", "with")
 REVISIT_VERBS = word_set("return returning back")
 """``return to X`` / ``go back to X`` after X was visited: a new visit, as with ``again``."""
@@ -345,16 +416,34 @@ VERB_IDIOMS = Phrases((("all", "the", "way"), ("a", "look"), ("a", "quick", "loo
                        ("a", "quick", "trip"), ("a", "detour"), ("a", "stop"), ("a", "quick", "stop"),
                        ("a", "seat"), ("a", "nap"), ("a", "rest")))
 """Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*."""
+GIVE_VERBS = frozenset({"give", "giving"})
+"""*give X a look*: read only with what is given after X (:data:`GIVEN_LOOKS`), never alone (*give X to
+Y*)."""
+GIVEN_LOOKS = Phrases(tuple((*quick, what) for quick in ((), ("quick",), ("good",), ("little",), ("proper",))
+                            for what in ("look", "check", "glance", "peek", "clean", "wipe", "dust",
+                                         "visit", "tidy", "scrub", "wash", "polish")))
+"""What *give X ...* gives X, after *a* (*give the toilet a quick look*): acting on X there."""
 BODY_PART_OWNERS = ("your", "my", "his", "her", "their")
 BODY_PART_LINKS = ("at", "using", "with", "on", "into")
 """*wash your hands at the sink*, *pop your head into the office*: a body part before a place is part of the
 verb (not *in*: *wash your hands in the bathroom* implies a sink that is not said)."""
 PARTICLES = word_set("on off up down out over")
+CHECK_THAT = ("that", "if", "whether")
+CHECK_VERBS = word_set("check checking see seeing ensure ensuring verify verifying confirm confirming make "
+                       "sure look looking")
+"""*check that / if X is Y*: X is the goal (the state is what the check sees there)."""
+UP_DOWN = {"up": "upstairs", "down": "downstairs"}
+FLOOR_CHANGES = frozenset({"up", "down", "upstairs", "downstairs"})
+"""In the verb words of an action (*then head down to the kitchen*): it leaves the floor a sentence's
+opening put its goals on (*While you're on the top floor, ...*)."""
+"""*go up and X* / *come down and X*: upstairs / downstairs, and X there."""
 SUBJECT_FILLERS = word_set("you we i the robot it ever have has had do does did are is were was already "
                            "been also first")
 """Skipped before the verb of a clause that follows a conjunction (*after you have been to X*)."""
 LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through"})
 """Repeated in a list after *either* / *both*: *either to A or to B*."""
+PLACE_PREPOSITIONS = frozenset({"to", "into", "in", "at", "on", "by", "through", "past", "inside"})
+"""Before a place (*go first to the kitchen*)."""
 VERB_STOPS = frozenset({",", "and", "or", "then", "if", "until", "before", "after", "when", "without"})
 """Words that end the verb words of an action."""
 
@@ -371,6 +460,12 @@ carry meaning (*secondly*, *before that*, *but first*, a trailing *first*, *agai
 fillers."""
 NOT_FILLERS_HERE = ("do", "and", "then", "next")
 """Fillers that the filler rule leaves to other rules (*do not*, *and then*, *next to*)."""
+SOUNDS = word_set("um umm uh uhh uhm er erm ehm hmm hm ah ahh mm mmm")
+"""Hesitation sounds of spoken missions (*go to the uh bedroom*): no word at all, removed before parsing."""
+HESITATIONS = SOUNDS | word_set("like yeah yep so well basically actually anyway alright right just "
+                                "literally")
+"""Hesitations and discourse words of spoken and dictated missions (*um, go to the kitchen and then like go
+sit on the couch*): no meaning between clauses, like :data:`FILLERS`."""
 
 _TASK_NOUNS = ("task", "job", "goal", "mission", "aim", "objective", "plan", "errand")
 POLITE = Phrases((
@@ -386,6 +481,22 @@ POLITE = Phrases((
     ("what", "i", "need", "is", "for", "you", "to"), ("i", "would", "like", "it", "if", "you"),
     ("i", "would", "appreciate", "it", "if", "you"), ("if", "you", "could"), ("if", "you", "would"),
     ("would", "you", "mind"), ("do", "me", "a", "favor", "and"), ("do", "me", "a", "favour", "and"),
+    *((*ask, *you) for ask in (("would", "it", "be", "possible"), ("is", "it", "possible"),
+                               ("would", "it", "be", "okay"), ("would", "it", "be", "ok"))
+      for you in (("for", "you", "to"), ("to",))),
+    *(("i", *wonder, "if", "you", modal)
+      for wonder in (("was", "wondering"), ("wonder",), ("am", "wondering"))
+      for modal in ("could", "would", "might", "can")),
+    *(("i", "would", *really, *feel, "if", "you", *modal)
+      for really in ((), ("really",), ("so",))
+      for feel in (("be", "grateful"), ("appreciate", "it"), ("love", "it"), ("like", "it"),
+                   ("be", "thankful"))
+      for modal in ((), ("could",), ("would",))),
+    ("do", "you", "think", "you", "could"), ("any", "chance", "you", "could"),
+    ("could", "i", "ask", "you", "to"),
+    ("can", "i", "ask", "you", "to"), ("would", "you", "be", "able", "to"), ("could", "you", "possibly"),
+    ("can", "you", "possibly"), ("would", "you", "be", "willing", "to"), ("i", "would", "like", "you", "to"),
+    ("if", "you", "could", "please"), ("please", "could", "you"), ("please", "can", "you"),
     ("go", "and"), ("please", "make", "sure"), ("would", "you", "be", "so", "kind", "as", "to"),
     ("would", "you", "kindly"), ("could", "you", "kindly"), ("would", "you", "please"),
     ("could", "you", "please"),
@@ -395,7 +506,8 @@ POLITE = Phrases((
 """Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
 
 _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "choose"), ("you", "please"),
-                 ("you", "wish"), ("suits", "you"), ("is", "fine"),
+                 ("you", "wish"), ("suits", "you"), ("is", "fine"), ("works",), ("suits",), ("'s", "fine"),
+                 ("is", "ok"), ("is", "okay"), ("'s", "ok"), ("'s", "okay"), ("works", "for", "you"),
                  *(("is", easy) for easy in ("easiest", "easier", "simplest", "quicker", "faster", "shorter",
                                              "convenient")),
                  ("is", "most", "convenient"),
@@ -405,13 +517,11 @@ _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "c
                  ("is", "most", "efficient"), ("works", "best"), ("makes", "sense"),
                  ("makes", "the", "most", "sense"), ("is", "the", "quickest"), ("is", "the", "fastest"),
                  ("is", "the", "shortest"))
-TIME_FILLERS = Phrases((
-    ("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("eventually",), ("later",),
+ANY_ORDER = Phrases((
     ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"), ("any", "order"),
     ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "order"),
     ("order", "does", "not", "matter"), ("the", "order", "does", "not", "matter"),
     ("order", "is", "not", "important"), ("the", "order", "is", "not", "important"),
-    ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"),
     *((*order, *liking) for order in (("in", "any", "order"), ("in", "whatever", "order"),
                                       ("in", "whichever", "order"), ("in", "either", "order"),
                                       ("any", "order"),
@@ -421,6 +531,13 @@ TIME_FILLERS = Phrases((
     ("the", "order", "is", "up", "to", "you"), ("order", "is", "up", "to", "you"),
     ("i", "do", "not", "care", "about", "the", "order"), ("i", "do", "not", "mind", "the", "order"),
     ("i", "do", "not", "mind", "about", "the", "order"), ("do", "not", "worry", "about", "the", "order")))
+"""Remarks that leave the order to the robot (the default of a set of goals; a numbered list is in order
+unless one of these is said with it)."""
+TIME_FILLERS = Phrases((
+    ("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("eventually",), ("later",),
+    ("real", "quick"), ("real", "fast"), ("quickly",), ("asap",), ("right", "away"), ("straight", "away"),
+    ("now",), ("immediately",), ("straightaway",),
+    ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"))) + ANY_ORDER
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
 
@@ -443,7 +560,10 @@ CLOSING = Phrases((
     ("have", "a", "good", "one"), ("good", "luck"), ("have", "fun"), ("you", "the", "best"),
     ("you", "are", "the", "best"), ("you", "a", "star"), ("you", "are", "a", "star"), ("great", "job"),
     ("good", "job"), ("well", "done"), ("over", "and", "out"), ("thanks", "mate"), ("cheers", "mate"),
-    ("thanks", "robot"), ("thank", "you", "robot"), ("thanks", "buddy"),
+    ("thanks", "robot"), ("thank", "you", "robot"), ("thanks", "buddy"), ("thanks", "a", "ton"),
+    ("thanks", "loads"), ("ta", "very", "much"), ("ta", "muchly"), ("cheers", "for", "that"), ("lol",),
+    ("just", "to", "be", "sure"), ("just", "want", "to", "be", "sure"),
+    ("i", "just", "want", "to", "be", "sure"),
     # asides that ask nothing
     ("no", "rush"), ("no", "hurry"), ("no", "pressure"), ("if", "possible"), ("if", "you", "can"),
     ("if", "you", "could"), ("when", "you", "can"), ("when", "you", "get", "a", "chance"),
@@ -453,22 +573,59 @@ CLOSING = Phrases((
     ("if", "you", "do", "not", "mind"), ("as", "usual"), ("as", "always"), ("no", "need", "to", "rush"),
     ("that", "would", "be", "great"), ("that", "would", "be", "lovely"), ("that", "would", "be", "perfect"),
     ("that", "would", "help"), ("if", "that", "makes", "sense"), ("thanks", "heaps"), ("really",), ("oh",),
-    ("you", "know"), ("quick", "one"), ("quick", "question"), ("quick", "request"), ("off", "you", "go")))
+    ("you", "know"), ("quick", "one"), ("quick", "question"), ("quick", "request"), ("off", "you", "go"),
+    *(("if", "it", be, *no, "too", "much", "trouble") for be in ("is", "'s", "would", "will")
+      for no in (("not",), ("no",), ("not", "be"))),
+    ("if", "it", "is", "no", "trouble"), ("if", "it", "'s", "no", "trouble"),
+    ("when", "you", "get", "a", "moment"), ("when", "you", "get", "a", "minute"),
+    *((when, "you", have, "a", moment) for when in ("when", "whenever") for have in ("have", "get")
+      for moment in ("minute", "second", "moment", "chance")),
+    ("whenever", "you", "get", "a", "chance"), ("whenever", "you", "get", "a", "moment"),
+    ("when", "you", "are", "free"), ("when", "you", "are", "ready"), ("if", "you", "get", "a", "chance"),
+    ("if", "you", "have", "a", "moment"), ("at", "your", "earliest", "convenience"),
+    ("sorry", "to", "bother", "you"), ("sorry", "to", "be", "a", "pain"), ("i", "hate", "to", "ask"),
+    ("i", "hate", "to", "bother", "you"), ("hope", "you", "are", "well"),
+    ("hope", "you", "are", "doing", "well"),
+    ("if", "you", "would", "be", "so", "kind"), ("real", "quick"), ("quickly",), ("please",),
+    ("thank", "you", "so", "much", "in", "advance"), ("thanks", "so", "much", "in", "advance"),
+    ("thanks", "a", "lot", "in", "advance"), ("if", "that", "is", "alright"), ("no", "worries"),
+    ("when", "convenient"), ("when", "you", "can", "manage", "it"), ("no", "idea", "where"), ("no", "idea"),
+    ("and", "then", "you", "are", "done"), ("then", "you", "are", "done"), ("you", "are", "done"),
+    ("and", "you", "are", "done"), ("and", "that", "is", "it"), ("and", "that", "'s", "it"),
+    ("and", "that", "'s", "all"), ("and", "that", "is", "all"), ("done",), ("the", "end"), ("finished",)))
 """Sign-offs (*thanks a lot*, *cheers*, *that's all for now*) and asides that ask nothing (*no rush*, *if
 possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
 of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""
 
+THING_SUBJECTS = frozenset({"it", "they", "there", "this", "that", "these", "those"})
+"""The subject of a condition about the state of something (*if it is open*, *if there is time*): refused,
+never skipped to read the verb after it as the robot's."""
+WISH_VERBS = frozenset({"want", "wish", "like", "prefer", "feel", "fancy"})
+"""The verb of a condition on what the robot would like (*if you want, the office*): an optional goal."""
+CONDITION_OPENERS_OF_ASIDES = ("if", "when", "whenever")
+"""Asides of :data:`CLOSING` that start like a condition (*if you can*, *when you get a chance*): before a
+noun phrase they are still asides (a condition needs a verb)."""
+CORRECTIONS = Phrases((("i", "mean"), ("i", "meant"), ("no", "wait"), ("wait", "no"), ("scratch", "that"),
+                       ("make", "that"), ("correction",), ("or", "rather"), ("actually", "no"),
+                       ("no", "sorry"), ("sorry", "no"), ("i", "said", "wrong"), ("my", "mistake"),
+                       ("my", "bad"), ("let", "me", "rephrase")))
+"""Words with which a speaker takes back what they said (*go to the kitchen, sorry, I mean the office*):
+which part stands is not read; refused."""
 _CHOOSERS = (("either",), ("any",), ("whichever",), ("either", "one"), ("any", "one"), ("whichever", "one"),
-             ("any", "of", "them"), ("either", "of", "them"), ("whichever", "of", "them"))
+             ("any", "of", "them"), ("either", "of", "them"), ("whichever", "of", "them"), ("whatever",),
+             ("whatever", "one"))
 _FINE = ((), ("is", "fine"), ("is", "ok"), ("is", "okay"), ("is", "good"), ("will", "do"), ("works",),
          ("would", "do"), ("would", "be", "fine"), ("will", "be", "fine"), ("you", "like"), ("you", "want"),
          ("you", "prefer"), ("you", "choose"), ("is", "closer"), ("is", "nearer"))
+_FINE += tuple(("'s", *fine[1:]) for fine in _FINE if fine[:1] == ("is",))  # "either one's fine"
 CHOICE_AFFIRMATIONS = Phrases(tuple(
     chooser + fine for chooser in _CHOOSERS for fine in _FINE
     if chooser + fine not in (("either",), ("any",))  # bare "either" / "any" start a noun phrase
 ) + (
     ("no", "matter", "which"), ("no", "matter", "which", "one"),
     ("it", "does", "not", "matter", "which"), ("does", "not", "matter", "which"),
+    ("is", "not", "important", "which"), ("it", "is", "not", "important", "which"),
+    ("not", "important", "which"), ("no", "matter", "which", "one"),
     ("does", "not", "matter", "which", "one"), ("it", "does", "not", "matter", "which", "one"),
     ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"), ("is", "fine"),
     ("your", "choice"), ("your", "pick"), ("take", "your", "pick"), ("you", "pick"), ("you", "choose"),
@@ -476,6 +633,18 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
 ))
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
+ONE_SUFFICES = Phrases(tuple(
+    (*lead, *one, *enough) for lead in ((), ("just",), ("only",), ("getting", "to"), ("reaching",))
+    for one in (("one", "of", "them"), ("one",), ("any", "one", "of", "them"))
+    for enough in ((), ("is", "enough"), ("will", "do"), ("is", "fine"), ("is", "ok"), ("is", "okay"),
+                   ("would", "do"), ("suffices",))
+    if lead or enough or len(one) > 1))
+"""After a phrase that means each of several (*the vases in the lobby, just one of them*, *check the apples,
+getting to one of them is enough*): one of them will do, which makes it a choice (said outright, unlike
+*either one*, which is refused there)."""
+BARE_CHOOSERS = ("either", "any", "whichever")
+CLAUSE_ENDS = frozenset({"", ",", "then", "and", "but"})
+"""After ``, either`` / ``, any``: no noun follows, so the word is a choice remark (*DR vase, any*)."""
 
 _SPAN_NOUNS = ("mission", "task", "trip", "route", "run", "time", "way", "journey", "tour", "job", "thing",
                "path")
@@ -497,6 +666,7 @@ WAYPOINT_OPENERS = ("on", "along")
 
 # ----------------------------------------------------------------------------------------------- order
 SEQ_WORDS = Phrases((("and", "then"), ("then",), ("after", "that"), ("afterwards",), ("afterward",),
+                     ("last", ","), ("and", "last"), ("last",),
                      ("next",), ("finally",), ("subsequently",), ("after", "which"), ("followed", "by"),
                      ("later",), ("and", "finally"), ("lastly",), ("secondly",), ("thirdly",),
                      ("fourthly",), ("second", ","), ("third", ","), ("fourth", ",")))
@@ -518,11 +688,15 @@ ORDER_MODIFIERS = Phrases((("one", "after", "the", "other"), ("one", "after", "a
 """Said after a list: its items are done one after the other (in the order written, for explicit lists)."""
 FIRST = frozenset({"first", "firstly"})
 LAST = ("last", "lastly")
+ORDER_HEADS = frozenset({"first", "firstly", "then", "next", "finally", "last", "lastly", "afterwards",
+                         "after", "before", "second", "secondly", "third", "thirdly"})
+"""Before a colon (*Then: the kitchen*, *Before that: the office*): words of the order, read as if a comma
+stood there, never dropped as a heading."""
 BEFORE_THAT = ("before", "that")
 ON_THE_WAY = Phrases((("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way")))
 WAY_BACK = frozenset({"back", "up", "down", "out", "home"})
 """``on your way back (up)``: after what came before, like *then*."""
-ON_THE_WAY_ENDS = ("", ",", "there", "and", "then")
+ON_THE_WAY_ENDS = ("", ",", "there", "and", "then", "but")
 """After *on the way* ending an action (looked ahead)."""
 WAYPOINT = Phrases((("via",), ("through",), ("by", "way", "of"), ("passing", "through"),
                     ("going", "through"), ("passing", "by"), ("going", "past"), ("passing",),
@@ -537,8 +711,10 @@ AFTER_ALL = Phrases(tuple(
                  ("you", "done", "both"), ("you", "have", "done", "both"), ("those", "are", "done"),
                  ("all", "are", "done"), ("all", "that", "is", "done"))))
 """*after all three (of them)*, *once you've done those*: after every goal said before."""
-DONE = frozenset({"done", "finished", "through"})
+DONE = frozenset({"done", "finished", "through", "finishing"})
 DONE_OPENERS = ("once", "when", "after")
+DONE_WITH = ("with", "in", "at")
+"""*once you're done with / in / at X*: X is what is done (before what follows)."""
 DONE_FILLERS = frozenset({"that", "this", "are", "all", "both", "of", "them"})
 DONE_BACK = ("that", "this", "it", "them", "everything", "there")
 """``once you're done with that``: the step before, not a new place."""
@@ -548,10 +724,15 @@ BETWEEN_TAIL = Phrases((("them",), ("the", "two"), ("the", "two", "visits"), ("e
 AFTERWARDS = Phrases((("afterwards",), ("afterward",), ("after", "that"), ("after",), ("later",),
                       ("straight", "after"), ("right", "after")))
 """In the consequent of a condition ("..., visit Y afterwards"): Y follows X, a response."""
-TRAILING_AFTER = ("after", "afterwards", "afterward")
-"""``..., go to the dining room after.``: no meaning at the end of a clause."""
+TRAILING_AFTER = ("after", "afterwards", "afterward", "later")
+"""``..., go to the dining room after.``: at the end of a clause, after what was said before it."""
+AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over", "again", ","})
+"""After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
 
 # -------------------------------------------------------------------------------------------- negation
+NEED_WORDS = frozenset({"need", "needs", "have", "has", "got"})
+"""After a negation, before *to* (*you don't need to / have to go to X*, *no need to X*): X is not needed,
+which forbids nothing."""
 NEG_STARTS = Phrases((
     ("always", "avoid"), ("always", "stay", "away", "from"), ("always", "keep", "away", "from"),
     ("always", "stay", "out", "of"), ("always", "keep", "out", "of"), ("never",), ("do", "not"),
@@ -562,15 +743,41 @@ NEG_STARTS = Phrases((
     ("and", "avoid"), ("but", "avoid"), ("but", "never"), ("and", "never"), ("but", "do", "not"),
     ("and", "do", "not"), ("but", "not"), ("no",), ("neither",), ("nor",), ("and", "nor"),
     ("keep", "clear", "of"), ("steer", "clear", "of"), ("stay", "clear", "of"),
+    ("kept", "out", "of"), ("stayed", "out", "of"), ("kept", "away", "from"), ("stayed", "away", "from"),
+    ("skip",), ("skipping",),
+    ("avoided",), ("kept", "clear", "of"), ("stayed", "clear", "of"),
     ("under", "no", "circumstances"),
     ("at", "no", "point"), ("at", "no", "time"), ("keep", "off"), ("stay", "off"), ("always", "keep", "off"),
     ("always", "stay", "off")))
 """Words that start a prohibition."""
 GLOBAL_NEG = frozenset({"always", "never", "do", "does", "must", "should", "can", "cannot", "may", "will",
-                        "no", "stay", "keep", "neither", "nor", "steer", "circumstances", "point", "time"})
+                        "no", "stay", "keep", "neither", "nor", "steer", "circumstances", "point", "time",
+                        "kept", "stayed", "avoided", "skip", "skipping"})
 """A negation with one of these words holds for the whole mission (G !x); 'avoid' and 'without' after an
 action only constrain the moment that action is done (F(x & !y)), as in the authors' missions."""
+AVOID_VERBS = word_set(
+    """disturb disturbing bother bothering wake waking knock knocking bump bumping step stepping set setting
+    trip tripping break breaking lean leaning spill spilling block blocking approach approaching cross
+    crossing trouble troubling mess messing near nearing pass wander wandering stray straying venture
+    venturing sneak sneaking wash move handle handling hit hitting damage damaging scratch knock stand
+    standing climb climbing tread treading pop popping nip swing swinging poke poking cut cutting roam
+    roaming dash dashing hurry hurrying rush rushing detour detouring stroll strolling"""
+) | POSITIVE_VERBS
+"""Verbs a prohibition is read with (*don't touch / disturb / go near X*): not being at X keeps each of them
+from happening. A negation before any other verb is refused, naming it (*don't xyzzy the sink*): read as
+*never at X* it could reverse what was asked."""
+FORGET_VERBS = word_set("forget forgetting neglect neglecting miss missing skip skipping overlook "
+                        "overlooking omit omitting ignore ignoring fail failing")
+"""Verbs that negate a goal: *don't forget the sink*, *never miss the kitchen*, *don't fail to visit X* ask
+for X (it is a goal, not a place to avoid)."""
+FORGOTTEN_LINKS = word_set("to about out of visiting going checking")
+"""After a goal-negating verb: *don't forget to / about X*, *don't fail to visit X*."""
 NEGATION_EVER = ("ever",)
+NEGATION_NEUTRAL = (FILLERS | DETERMINERS | VERB_IDIOMS.words() | HESITATIONS | MODALS | POLITE.words()
+                    | frozenset(RELATIVE_FLOORS) | frozenset({"even", "ever"}))
+"""Words between a negation and what it forbids that are no verb of their own (*don't even go into X*)."""
+NEGATION_JOINERS = ("and", "but")
+"""Before a negation (*... and don't touch X*): not quoted with it."""
 """*never ever* / *don't ever*: the same as *never* / *don't*."""
 NEGATING = ("not", "never")
 PARTIAL_PROHIBITION = ("after", "once", "when", "during", "afterwards", "afterward", "later", "again")
@@ -604,6 +811,9 @@ ONLY_AFTER = Phrases((("only", "after"), ("only", "once"), ("not", "before"), ("
 EVER = Phrases((("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"),
                 ("every", "time"), ("each", "time"), ("anytime",)))
 """In a condition ("if you ever go into X"): it is about each visit of X, a response, not one event."""
+AT_THAT_PLACE = Phrases((("there",), ("in", "it"), ("on", "it")))
+"""In the consequent of such a condition ("..., look at the chair in there"): at the place of the condition,
+which leaves open whether once or on each visit."""
 CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "while", "without", "when", "if",
                            "once", "whenever", "unless"})
 """Words that would continue a condition past its one action (a comma or *then* ends it)."""
@@ -618,6 +828,8 @@ QUAL_IN = ("in", "inside", "within", "of", "from")
 SCOPE_IN = ("in", "inside", "within")
 """``In the living room, ...``: the room of the whole sentence."""
 QUAL_CONTAINS = Phrases((("with",), ("having",), ("containing",), ("that", "has"), ("that", "have"),
+                         ("with", "just"), ("that", "just", "has"), ("which", "just", "has"),
+                         ("with", "nothing", "but"), ("with", "only", "just"),
                          ("which", "has"), ("which", "have"), ("that", "contains"), ("which", "contains"),
                          ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"),
                          ("that", "only", "has"), ("which", "only", "has"), ("that", "only", "have"),
@@ -631,12 +843,18 @@ QUAL_NEXT = Phrases((("next", "to"), ("adjacent", "to"), ("beside",), ("near",),
                      ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to")))
 QUAL_EXCEPT = Phrases((("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
                        ("excluding",), ("besides",)))
+ONLY_WORDS = frozenset({"only", "just", "but"})
+"""In a room's contents (*with only / just the bed*, *with nothing but a bed*): nothing else is in it."""
+ONLY_FOLLOWERS = ("after", "if", "once", "when", "before")
+"""After *only*: *only after X*, *only if X* ... (not *the bedroom with a bed only*: its contents)."""
 IN_IT = ("in", "inside")
 """``the bedroom that only has a bed in it``: the trailing *in it* repeats the room."""
 ASIDE = Phrases(tuple((",", rel, be, *also) for rel, be in (("which", "is"), ("which", "are"), ("that", "is"),
                                                              ("that", "are"), ("it", "is"), ("it", "'s"),
                                                              ("that", "'s"), ("they", "are"))
                       for also in ((), ("also",), ("located",), ("also", "located"))))
+RELATIVE_THAT = Phrases((("that", "is"), ("which", "is"), ("that", "are"), ("which", "are"), ("who", "is")))
+"""*the bathroom that is next to the bedroom*: a relative clause stating a qualifier."""
 ASIDE_QUALIFIERS = frozenset({"in", "inside", "on", "next", "beside", "upstairs", "downstairs", "near",
                               "adjacent", "connected", "attached"})
 """``the couch, which is in the living room`` / ``the bowl (it's in the kitchen)``: an aside read as the
@@ -646,8 +864,67 @@ RELATIVE_PARTICIPLES = ("located", "kept", "stored", "placed", "found", "standin
 """``the room where the book is (kept)``."""
 STATEMENT_LINKS = ("is", "are", "was", "were")
 """``it is`` / ``there are``: a statement, not a reference."""
-WHOLE_BUILDING_PREPOSITIONS = ("in", "inside", "throughout")
+WHOLE_BUILDING_PREPOSITIONS = ("in", "inside", "throughout", "of", "around")
 WHOLE_BUILDING_DETERMINERS = ("the", "this", "our", "my", "your")
+
+# --------------------------------------------------------------------------------------------- context
+EVENT_WORDS = word_set(
+    """breakfast brunch lunch lunchtime dinner dinnertime supper tea teatime morning afternoon evening night
+    tonight today tomorrow weekend noon midday midnight bedtime monday tuesday wednesday thursday friday
+    saturday sunday work school class meeting party guests visitors dawn dusk sunset sunrise now later soon
+    daily weekly mornings evenings nights day week"""
+)
+"""Times of day, meals and events: *Before lunch, ...*, *After dinner, ...*, *Tonight, ...* only say when,
+which a mission cannot require; said at the start of a sentence they are set aside (said back), never read
+as the goal of *before / after*. A clock time (*at 6 pm*) or a delay (*in ten minutes*) is refused."""
+TIME_WORDS = word_set("this next tomorrow today tonight later soon early late right now for the at some "
+                      "point sometime first thing in a bit while before after by during around") | EVENT_WORDS
+"""Words of a time expression (*later this afternoon*, *at some point this evening*, *first thing
+tomorrow*); one with an event word (:data:`EVENT_WORDS`) only says when."""
+EVENT_VERBS = word_set("arrive arrives come comes leave leaves get gets back home start starts finish "
+                       "finishes end ends wake wakes up go goes out begin begins")
+"""In a time expression of an event (*before the guests arrive*, *after I get back*)."""
+FEW = ("few", "couple", "several")
+TIME_UNITS = word_set("second seconds minute minutes min mins hour hours hr hrs sec secs")
+"""*in ten minutes*, *wait 5 min*: a delay, which a mission cannot require (refused)."""
+TIME_OPENERS = ("before", "after", "by", "during", "for", "at", "around", "this", "tonight", "today",
+                "tomorrow", "later", "right", "first", "sometime", "some", "next", "early", "in")
+"""Words a time expression that opens a sentence starts with (*Before lunch, ...*, *Tonight, ...*)."""
+SUBJECT_PRONOUNS = word_set("i we he she they it there that this everyone everybody someone somebody "
+                            "nobody everything something nothing")
+"""The subject of a statement (*We're hosting dinner tonight*, *It's laundry day*, *I think ...*): a sentence
+starting with one of them asks nothing of the robot, unless it is a polite wrapper (*I need you to ...*)."""
+STATEMENT_VERBS = word_set("is are was were am be been being 's has have had will would shall can could "
+                           "might may must should do does did keeps keep kept seems seem looks look gets got "
+                           "needs need")
+"""Verbs right after a subject that make a sentence a statement (*the cat keeps ...*, *my mum's staying*)."""
+STATED_VERBS = word_set(
+    """arrive arrives arrived come comes coming came leave leaves leaving left made make makes making
+    went goes going think thinks thought know knows knew love loves loved hate hates like likes said says
+    told tells broke broken fell fallen ate eaten slept sleeps sleeping napping stays staying stayed lives
+    lived works working worked visiting visits moved moving arriving returns returned starts started begins
+    began finished"""
+)
+"""Verbs of statements about other people or things (*the guests arrive at seven*, *the kids made a mess*):
+after a subject of no room or object, a statement."""
+NEED_WORDS = word_set("need needs needed want wants wanted should must ought require requires")
+"""A statement of a need (*the plants need watering*): about a room or object of the scene it may ask for a
+goal that is not said, so it is refused; about anything else it is set aside."""
+PEOPLE = word_set("i we he she they")
+"""The people of an event (*after I get back*, *before we leave*): not the robot, not a place."""
+DEICTIC_SUBJECTS = ("it", "there", "this", "that")
+"""Subjects that are a statement's only with a verb of being after them (*it's laundry day*, not *this
+bathroom*)."""
+SEQUENCE_TIMES = ("later", "soon", "now")
+"""Time words that alone order the steps (*Later, go to X*) rather than say when."""
+NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")}
+STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
+ORDER_JOINERS = ("so", "but")
+"""Before an order, a clause boundary even without a comma (*my son is asleep so don't go up there*)."""
+LOCATIVE = word_set("in into on onto at inside under beside near by behind")
+"""Prepositions of place: a statement that places an object of the scene is no mere context."""
+"""Between a statement and an order in one sentence (*Grandpa's napping, so stay out of there*)."""
+
 
 # ------------------------------------------------------------------------------------------- chit-chat
 ARTICLES = frozenset({"a", "an", "the", "my", "your", "our"})
@@ -658,11 +935,15 @@ TALK_NOUNS = frozenset({"plan", "few", "couple", "thing", "things", "favour", "f
 there could name something to go to (*feed the cat* where the scene has no cat must be refused, not
 skipped)."""
 OPENERS = frozenset({"hi", "hello", "hey", "okay", "ok", "alright", "well", "so", "good", "thanks", "thank",
-                     "i", "we", "here", "right", "cheers", "morning", "evening", "afternoon", "sorry"})
+                     "i", "we", "here", "right", "cheers", "morning", "evening", "afternoon", "sorry",
+                     "alexa", "siri", "google", "robot", "buddy", "yo", "yeah", "hiya", "heya", "howdy",
+                     "yes", "yep"})
 """Chit-chat starts with a greeting, an interjection or the speaker (*I'm hungry*, *here's the plan*); a
 sentence starting otherwise may be an order about something the scene lacks (*feed pets*), so it is parsed
 (and refused) instead."""
-GREETINGS = frozenset({"hi", "hello", "hey"})
+AUXILIARIES = frozenset({"am", "are", "is", "was", "were", "have", "has", "will", "would"})
+"""In chit-chat (*hope you're well*): no role, although *are* is a word of the grammar elsewhere."""
+GREETINGS = frozenset({"hi", "hello", "hey", "hiya", "heya", "howdy"})
 """*Hi there!*: after a greeting, *there* is no place."""
 
 # -------------------------------------------------------------------------------------- phrase aliases
@@ -671,11 +952,14 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("ahead", "of"): ("before",),
     ("in", "advance", "of"): ("before",),
     ("as", "soon", "as"): ("once",),
+    ("as", "soon", "as", "possible"): ("asap",),
+    ("as", "soon", "as", "you", "can"): ("asap",),
     ("the", "moment"): ("once",),
     ("right", "after"): ("after",),
     ("straight", "after"): ("after",),
     ("immediately", "after"): ("after",),
     ("start", "with"): ("first",),
+    ("first", "things", "first"): ("first",),
     ("begin", "with"): ("first",),
     ("start", "off", "with"): ("first",),
     ("to", "start", ","): ("first", ","),
@@ -697,6 +981,34 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("where", "you", "find"): ("containing",),
     ("holding",): ("containing",),
     ("and", "also"): ("and",),
+    ("after", ","): ("afterwards", ","),
+    ("finish", "with"): ("end", "at"),
+    ("end", "with"): ("end", "at"),
+    ("finishing", "with"): ("ending", "at"),
+    ("any", "one", "of"): ("one", "of"),
+    ("near", "of"): ("near",),
+    ("next", "of"): ("next", "to"),
+    ("close", "of"): ("close", "to"),
+    ("i", "want", "that", "you"): ("i", "want", "you", "to"),
+    ("i", "would", "like", "that", "you"): ("i", "would", "like", "you", "to"),
+    ("without", "to"): ("without",),
+    ("for", "to"): ("to",),
+    ("just", "one", "of"): ("one", "of"),
+    ("only", "one", "of"): ("one", "of"),
+    ("try", "not", "to"): ("do", "not"),
+    ("try", "to", "avoid"): ("avoid",),
+    ("try", "and", "avoid"): ("avoid",),
+    ("try", "to", "stay", "out", "of"): ("stay", "out", "of"),
+    ("try", "to", "keep", "out", "of"): ("keep", "out", "of"),
+    ("try", "to", "stay", "away", "from"): ("stay", "away", "from"),
+    ("either", "way"): ("also",),
+    ("in", "any", "case"): ("also",),
+    ("regardless",): ("also",),
+    ("set", "foot", "in"): ("enter",),
+    ("set", "foot", "into"): ("enter",),
+    ("set", "foot", "on"): ("enter",),
+    ("go", "near"): ("go", "into"),
+    ("come", "near"): ("go", "into"),
     # "take the stairs down to the ground floor": the stairs are the way there, not a goal; where to is
     # said after them
     **{("take", "the", stairs, way, "to"): ("go", way, "to")
@@ -718,3 +1030,22 @@ STRUCTURAL = (
     | frozenset({"whenever", "only", "than", "zero", "ever", "again", "twice", "once", "times", "anytime"})
 ) - POSITIVE_VERBS - {"first", "also", "please", "eventually", "finally"}
 """Words with a role in the grammar: in the verb slot they signal a sentence that was not understood."""
+
+
+def _words_of(value: object) -> frozenset[str]:
+    """The words of a lexicon table: its strings, phrases and keys, split at spaces."""
+    if isinstance(value, str):
+        return frozenset(value.split())
+    if isinstance(value, Phrases):
+        return value.words()
+    if isinstance(value, dict):
+        return _words_of(tuple(value)) | _words_of(tuple(value.values()))
+    if isinstance(value, (tuple, frozenset, set, list)):
+        return frozenset().union(*(_words_of(v) for v in value)) if value else frozenset()
+    return frozenset()
+
+
+LEXICON_WORDS = frozenset().union(*(_words_of(v) for k, v in list(globals().items())
+                                    if k.isupper() and not k.startswith("_")))
+"""Every word of every table above: the words the translator knows, besides the scene's names (what *did you
+mean* suggests from, with those names; :mod:`.spelling`)."""

@@ -54,6 +54,8 @@ class NounLexicon:
             # objects would be ambiguous in kind, so it is not used.
             if present and word not in self.kinds and len({self.kinds[t] for t in present}) == 1:
                 names.setdefault(word, set()).update(present)
+        for word, cats in abbreviations(self.kinds).items():
+            names.setdefault(word, set()).update(cats)
         for word, preferred in lx.EVERYDAY_NAMES.items():
             chosen = next((t for t in preferred if t in self.kinds), None)
             if chosen is not None and word not in self.kinds:
@@ -72,6 +74,10 @@ class NounLexicon:
             said = " ".join(name).replace(" 's", "'s")
             table[name] = Head("room", frozenset(), False, len(name), everyday=said)
         return table
+
+    def words(self) -> frozenset[str]:
+        """Every word of every head noun of the scene (its names, synonyms and abbreviations)."""
+        return frozenset(w for key in self._heads for w in key)
 
     def match(self, words: Sequence[str], start: int) -> Head | None:
         """The longest head noun beginning at ``words[start]``, or ``None``."""
@@ -98,3 +104,33 @@ class NounLexicon:
     def category_names(self, kind: Kind) -> list[str]:
         """The categories of one kind present in the scene, sorted."""
         return sorted(c for c, k in self.kinds.items() if k == kind)
+
+
+def abbreviations(kinds: Mapping[str, Kind]) -> dict[str, set[str]]:
+    """The abbreviations of the scene's categories: those of :data:`.lexicon.ABBREVIATIONS` for the
+    categories the scene has (of one kind), the letters of a one-word name without its vowels after the
+    first (*bthrm*, *ktchn*, *bdrm*), and *rm* for the *room* of a name (*bathrm*, *living rm*). An
+    abbreviation that is a word of the grammar, or a name of the scene, is none."""
+    taken = lx.STRUCTURAL | lx.POSITIVE_VERBS | lx.FILLERS | frozenset(lx.REFUSED_WORDS) | lx.HESITATIONS | {
+        w for c in kinds for w in c.split()}
+    out: dict[str, set[str]] = {}
+    for word, targets in lx.ABBREVIATIONS.items():
+        present = {t for t in targets if t in kinds}
+        if present and len({kinds[t] for t in present}) == 1:
+            out.setdefault(word, set()).update(present)
+    for category in kinds:
+        forms = {_skeleton(category)} if " " not in category else set()
+        if category.endswith("room"):
+            stem = category[: -len("room")].strip()
+            forms |= {f"{stem}rm", f"{stem} rm"} if " " in category else {f"{stem}rm"}
+        for form in forms - {category}:
+            if len(form) >= 3 and form not in taken:
+                out.setdefault(form, set()).add(category)
+    return {w: c for w, c in out.items() if len({kinds[x] for x in c}) == 1}
+
+
+def _skeleton(word: str) -> str:
+    """``bathroom`` -> ``bthrm``: the word without its vowels after the first letter (and without doubled
+    letters)."""
+    kept = word[0] + "".join(c for c in word[1:] if c not in "aeiou")
+    return "".join(c for k, c in enumerate(kept) if k == 0 or c != kept[k - 1])

@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from typing import NoReturn
 
 from sgplan.errors import MissionError
-from sgplan.llm.offline.lexicon import plural
+from sgplan.llm.offline.lexicon import TIME_UNITS, plural
 from sgplan.llm.offline.names import Entity, head_word
 
 REPHRASE = "; rephrase the mission (see docs/offline.md for the understood English)"
@@ -24,6 +24,16 @@ def rephrase(message: str) -> str:
     return message + REPHRASE
 
 
+def with_suggestions(message: str, did_you_mean: str) -> str:
+    """``message`` with the suggestions for the mission's unknown words (*did you mean ...?*) before its
+    pointer to the understood English."""
+    if not did_you_mean:
+        return message
+    if message.endswith(REPHRASE):
+        return f"{message[: -len(REPHRASE)]}; {did_you_mean}{REPHRASE}"
+    return f"{message}; {did_you_mean}"
+
+
 def refuse(message: str) -> NoReturn:
     """Raise the refusal ``message`` (one of this module's) as a :class:`~sgplan.errors.MissionError`."""
     raise MissionError(message)
@@ -31,12 +41,19 @@ def refuse(message: str) -> NoReturn:
 
 # ------------------------------------------------------------------------------ sentences and leftovers
 def left_over(words: str) -> str:
+    if set(words.lower().split()) & TIME_UNITS:
+        return rephrase(f"'{words}': a delay or a duration cannot be required (a plan has no clock); "
+                        "leave it out")
     return rephrase(f"'{words}' was not understood (the sentence was read only up to there), and no part of "
                     "a mission is ever dropped")
 
 
 def cannot_understand(what: str) -> str:
     return rephrase(f"cannot understand {what}")
+
+
+def not_a_verb(words: str) -> str:
+    return rephrase(f"cannot understand '{words}': it is no verb or room or object the translator knows")
 
 
 def cannot_understand_word(word: str, rest: str) -> str:
@@ -57,6 +74,11 @@ def whole_mission_opener(opener: str) -> str:
                     f"{opener}, keep out of the kitchen')")
 
 
+def scope_unused(room: str) -> str:
+    return rephrase(f"'in {room}, ...': nothing said after it is in {room}; say 'go to {room}, then ...' if "
+                    "it is a place to go")
+
+
 def order_after_ordered_goals() -> str:
     return rephrase("'the order does not matter' after goals given in order; say which it is")
 
@@ -70,9 +92,68 @@ def expected_phrase_after(word: str) -> str:
     return rephrase(f"expected a room or object after '{word}' at the end of the sentence")
 
 
+def state_condition(said: str) -> str:
+    return rephrase(f"'{said}' is a condition on the state of something, which the robot cannot check; only "
+                    "where the robot goes can be a condition ('if you go into X, ...')")
+
+
+def optional_condition(said: str) -> str:
+    return rephrase(f"'{said}' makes a goal optional, which cannot be expressed; leave the goal out or make "
+                    "it a goal")
+
+
+def self_correction(said: str) -> str:
+    return rephrase(f"'{said}' takes back something said before it, and the translator does not read which "
+                    "part stands; say the mission again as it should be done")
+
+
+def not_needed(said: str) -> str:
+    return rephrase(f"'{said}' says a goal is not needed, which neither asks for it nor forbids it; leave "
+                    "it out, or say 'never enter X' to forbid it")
+
+
+def before_bare_verb(said: str) -> str:
+    return rephrase(f"'{said}' can mean 'before you go there' or 'before that, go there'; say 'then' or "
+                    "'before that'")
+
+
+def times_in_order(times: list[str]) -> str:
+    said = " and ".join(f"'{t}'" for t in times)
+    return rephrase(f"{said} may put the goals in an order of times, and a plan has no clock; leave the "
+                    "times out and say the order in words ('A, then B')")
+
+
+def restated_first(said: str) -> str:
+    return rephrase(f"'{said}' names again a goal said before: is it to be done first only, or twice? Say "
+                    "the goals once, in the order they must be done")
+
+
+def trailing_after(said: str) -> str:
+    return rephrase(f"in '{said}' it is not clear which goals come after which; say 'then' before the goal "
+                    "that comes after ('A, then B')")
+
+
+def order_without_goal(said: str) -> str:
+    return rephrase(f"'{said}' says where in the order but names no goal; say the goal in the same sentence "
+                    "('Last, the office.', 'Then the kitchen.')")
+
+
+def give_without_look(said: str) -> str:
+    return rephrase(f"'{said}' is read only as 'give X a look' (or a check, a clean); say what to do with X")
+
+
 def expected_phrase(verbs: str, rest: str) -> str:
     what = f"after '{verbs}'" if verbs else "here"
     return rephrase(f"expected a room or object {what}, found {rest}")
+
+
+def symbol(sym: str, rest: str) -> str:
+    return rephrase(f"cannot read '{sym}' in {rest}; say what it means in words ('and', 'or', 'then')")
+
+
+def clock_time(said: str) -> str:
+    return rephrase(f"'{said}': the time of day something is done cannot be required (a plan has no clock); "
+                    "leave the time out, or plan it when it is time")
 
 
 def unknown_noun(word: str, rooms: Sequence[str], objects: Sequence[str]) -> str:
@@ -106,6 +187,11 @@ def choosing_a_number(number: str) -> str:
 def nor_outside_negation(said: str) -> str:
     return rephrase(f"'nor' in '{said}' is understood only in 'never enter / neither A nor B' (each of them "
                     "forbidden)")
+
+
+def dash_between_goals(said: str) -> str:
+    return rephrase(f"'{said}': a dash between goals could mean 'then' or 'and'; write '->' or 'then' for an "
+                    "order, 'and' for a set")
 
 
 def mixes_and_or(said: str) -> str:
@@ -263,6 +349,17 @@ def or_between_actions(rest: str) -> str:
 
 
 # ----------------------------------------------------------------------------------------------- order
+def after_before_or_then(said: str) -> str:
+    return rephrase(f"'{said}': after what was said before it, or before it? Say 'then' (what follows comes "
+                    "after) or put 'after ...' first ('after you ..., go to ...')")
+
+
+def out_of_text_order(later: str, earlier: str) -> str:
+    return rephrase(f"'{later.split(',')[0]}' is said before '{earlier.split(',')[0]}' but would be done "
+                    "after it, and no word says so; put the goals in the order they must be done (with "
+                    "'then'), or say 'first' / 'before' / 'in any order'")
+
+
 def before_which(rest: str) -> str:
     return rephrase(f"'before that' at {rest}: it is not clear which of the earlier goals this comes before; "
                     "put the goals in the order they must be done (with 'then')")
@@ -347,9 +444,20 @@ def never_go_back() -> str:
                     "enter X' for the whole mission")
 
 
+def unknown_negated_verb(said: str, verb: str) -> str:
+    return rephrase(f"'{said}': a prohibition is read only with a verb of going or touching ('never "
+                    f"enter / touch / use X') or of a goal not to miss ('don't forget X'), and '{verb}' is "
+                    "neither")
+
+
 def partial_prohibition(rest: str) -> str:
     return rephrase(f"a prohibition for part of the mission ({rest}) is not understood; say 'never enter X' "
                     "(the whole mission) or 'do not enter X until ...'")
+
+
+def until_a_time(said: str) -> str:
+    return rephrase(f"'{said}': a prohibition until a time or an event cannot be required (a plan has no "
+                    "clock); say until which room or object is reached, or forbid it for the whole mission")
 
 
 def until_needs_one_goal(prefix: bool = False) -> str:
@@ -407,6 +515,22 @@ def response_needs_one() -> str:
                     "choice of them) as X")
 
 
+def once_or_each_visit(said: str) -> str:
+    return rephrase(f"'{said}' can mean once or on each visit (with 'ever' / 'at any point' and 'there'); "
+                    "say 'every time you go into X, ...' or 'if you go into X, ... afterwards'")
+
+
+def before_then(said: str) -> str:
+    return rephrase(f"in '{said}' it is not clear whether what follows 'then' comes before or after the "
+                    "place named after 'before'; say it in order ('A, then B, then X' or 'A, then X, then "
+                    "B')")
+
+
+def before_near(said: str) -> str:
+    return rephrase(f"'{said}' can mean 'stay out of it until then' or 'go there afterwards'; say 'do not go "
+                    "into X until ...' or '..., then go to X'")
+
+
 def bare_when() -> str:
     return rephrase("'when X, Y' can mean 'after X, Y' (in order), 'whenever X, Y' (each time) or 'if X, Y' "
                     "(X at all); say which")
@@ -443,6 +567,11 @@ def next_to_an_object(phrase: str) -> str:
 
 def there_refers_to_nothing() -> str:
     return rephrase("'there' does not refer to any place named before it")
+
+
+def there_goal_or_mention(goal: str, mention: str) -> str:
+    return rephrase(f"'there' could be '{goal}', the last place to go, or '{mention}', named after it in "
+                    "what was set aside; name the place")
 
 
 def back_there(phrase: str) -> str:

@@ -1,23 +1,58 @@
-"""Tokens of a mission text, with their character spans, split into sentences.
+"""Tokens of a mission text, with their character spans, split into sentences and list items.
 
-Text is lower-cased; contractions are expanded (``don't`` -> ``do not``), a possessive ``'s`` becomes
-its own token, parentheses and dashes between words (an em or en dash, ``--``, a spaced ``-``) become commas
-(an aside), and list markers (``1)``, ``(2)``, ``3.`` at the start of an item) end a sentence like ``.``,
-``;``, ``!``, ``?`` and ``:`` do. Entity IDs (``room_2``,
-``object_27``) stay single tokens, so already-grounded text is understood too.
+Text is lower-cased; contractions are expanded (``don't`` -> ``do not``, ``we're`` -> ``we are``), a
+possessive ``'s`` becomes its own token, parentheses and dashes between words (an em or en dash, ``--``, a
+spaced ``-``) become commas (an aside). Entity IDs (``room_2``, ``object_27``) stay single tokens, so
+already-grounded text is understood too.
+
+Notations are read as the words they stand for (:data:`.lexicon.SYMBOLS`): an arrow (``->``, ``>``, ``→``)
+is *then*, ``+`` and ``&`` are *and*, ``w/`` is *with*; a clock time (``6 pm``, ``18:30``) is one token. Any
+other symbol is kept as a token of its own, so that the grammar refuses it by name: nothing typed is ever
+dropped unread, except quotation marks and the hyphen inside a word (*ground-floor*), which change nothing.
+
+A sentence ends at ``.``, ``;``, ``!``, ``?``, ``:`` and at a line break; a list item (a line or a
+sentence starting with ``1.``, ``2)``, ``(3)``, or a bullet ``-``, ``*``, ``•`` at the start of a line)
+starts one, and says which kind of list it belongs to (:class:`Part`).
 """
 
 from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from typing import Literal
 
-from sgplan.llm.offline.lexicon import BARE_NEGATED, NEGATED_STEMS, SENTENCE_END
+from sgplan.llm.offline.lexicon import (
+    BARE_CONTRACTIONS,
+    BARE_NEGATED,
+    CONTRACTIONS,
+    LINE_CONTINUES,
+    NEGATED_STEMS,
+    NUMBERED,
+    SENTENCE_END,
+    SYMBOLS,
+)
 
-_WORD = re.compile(r"(?:room|object)_\d+|\d+(?:st|nd|rd|th)?|[a-z]+(?:'[a-z]+)?|'s\b|[,.;:!?()]"
-                   r"|[\u2014\u2013]|--|(?<=\s)-(?=\s)")
+_WORD = re.compile(
+    r"(?P<id>(?:room|object)_\d+)"
+    r"|(?P<clock>(?:[01]?\d|2[0-3])(?::[0-5]\d(?:\s?[ap]\.?m\b\.?)?|\s?[ap]\.?m\b\.?))"  # 6 pm, 18:30
+    r"|(?P<times>\d+x\b|\bx\d+\b)"  # 2x / x2: that many times
+    r"|(?P<number>\d+(?:st|nd|rd|th)?)"
+    r"|(?P<with>w/o\b|w/)"
+    r"|(?P<word>[a-z]+(?:'[a-z]+)?|'s\b)"
+    r"|(?P<bullet>^[ \t]*[-*\u2022\u00b7\u2023\u25e6\u25aa](?=[ \t]))"  # at the start of a line
+    r"|(?P<arrow>-+>|=+>|>+|[\u2192\u21d2\u27f6\u2794\u279c\u27a1])"
+    r"|(?P<punct>[,.;:!?()\[\]{}])|(?P<dash>[\u2014\u2013]|--|(?<=\s)-(?=\s))|(?P<ellipsis>\u2026)"
+    r"|(?P<newline>\n)"
+    r"|(?P<silent>(?<=\w)-(?=\w)|[\"'`\u201c\u201d\u2018])"  # a hyphen inside a word, quotation marks
+    r"|(?P<symbol>[^\s\w])",  # any other symbol: a token of its own, refused by the grammar
+    re.M,
+)
 _DASH = "\u2014"
 """An aside's dash, whatever dash was typed."""
+BULLET = "\u2022"
+"""The token of a bullet starting a list item, whatever bullet was typed."""
+LINE_BREAK = "\n"
+_BRACKETS = {"[": "(", "{": "(", "]": ")", "}": ")"}
 
 
 @dataclass(frozen=True)
@@ -29,61 +64,112 @@ class Tok:
     end: int
 
 
+@dataclass(frozen=True)
+class Part:
+    """The tokens of one sentence; ``marker``: the list marker it started with (``"number"``: *1.*, *2)*;
+    ``"bullet"``: *-*, *•*), if any; ``new_line``: it starts a line of the text (a heading or an item may
+    be a line without punctuation)."""
+
+    toks: tuple[Tok, ...]
+    marker: Literal["number", "bullet"] | None = None
+    new_line: bool = False
+
+
+def is_clock_time(word: str) -> bool:
+    """Whether a token is a clock time (*6pm*, *18:30*)."""
+    return any(c.isdigit() for c in word) and (":" in word or word.rstrip(".").endswith(("am", "pm", "a.m",
+                                                                                          "p.m")))
+
+
 def tokenize(text: str) -> list[Tok]:
-    """Words and punctuation of ``text`` with contractions expanded (see the module docstring)."""
+    """Words and punctuation of ``text`` with contractions expanded and notations read (see the module
+    docstring)."""
     out: list[Tok] = []
     lowered = text.lower().replace("\u2019", "'")
     for m in _WORD.finditer(lowered):
-        word, start, end = m.group(0), m.start(), m.end()
-        if word in BARE_NEGATED:  # "dont", "cant": typed without the apostrophe
+        word, start, end, kind = m.group(0), m.start(), m.end(), m.lastgroup
+        if kind == "silent":
+            continue  # quotation marks, a hyphen inside a word: they change nothing
+        if kind == "bullet":
+            out.append(Tok(BULLET, end - 1, end))
+        elif kind == "dash":
+            out.append(Tok(_DASH, start, end))
+        elif kind == "ellipsis":
+            out.append(Tok(".", start, end))
+        elif kind == "punct":
+            out.append(Tok(_BRACKETS.get(word, word), start, end))
+        elif kind == "clock":
+            out.append(Tok(re.sub(r"\s", "", word), start, end))
+        elif kind == "times":
+            n = int(word.strip("x"))
+            out += [Tok(w, start, end) for w in (("twice",) if n == 2 else (str(n), "times"))]
+        elif kind in ("with", "arrow", "symbol") and (word in SYMBOLS or kind == "arrow"):
+            out += [Tok(w, start, end) for w in SYMBOLS.get(word, ("then",))]
+        elif word in BARE_NEGATED:  # "dont", "cant": typed without the apostrophe
             out += [Tok(BARE_NEGATED[word], start, end), Tok("not", start, end)]
+        elif word in BARE_CONTRACTIONS:  # "youre", "thats"
+            out += [Tok(w, start, end) for w in BARE_CONTRACTIONS[word]]
         elif word.endswith("n't"):
             stem = word[:-3]
             out += [Tok(NEGATED_STEMS.get(stem + "n", stem), start, end), Tok("not", start, end)]
-        elif word in ("\u2013", "--", "-"):
-            out.append(Tok(_DASH, start, end))
         elif word.endswith("'s") and len(word) > 2:
             out += [Tok(word[:-2], start, end - 2), Tok("'s", end - 2, end)]
-        elif "'" in word:
-            out.append(Tok(word.split("'")[0], start, end))  # you're, we'll: the suffix adds nothing
+        elif "'" in word and kind == "word":
+            stem, suffix = word.split("'", 1)  # you're, we'll, I'd: the verb they stand for
+            verb = [Tok(CONTRACTIONS[suffix], start, end)] if suffix in CONTRACTIONS else []
+            out += [Tok(stem, start, end), *verb]
         else:
             out.append(Tok(word, start, end))
     return out
 
 
-def sentences(tokens: list[Tok]) -> list[list[Tok]]:
-    """Split at sentence punctuation and list markers (a sentence ending with a colon keeps it, and the
-    items of a list marked after a colon, *three stops: 1) A 2) B 3) C*, are one sentence joined by commas);
-    empty sentences are dropped."""
-    parts: list[list[Tok]] = [[]]
-    after_colon = False
+def sentences(tokens: list[Tok]) -> list[Part]:
+    """Split at sentence punctuation, line breaks and list markers (a sentence ending with a colon keeps it:
+    what comes before a colon may announce the list after it); a line break inside a sentence that goes on
+    (after a comma or *and*) joins the lines; empty sentences are dropped."""
+    parts: list[Part] = []
+    current: list[Tok] = []
+    marker: Literal["number", "bullet"] | None = None
+    new_line = True
+
+    def close() -> None:
+        nonlocal current, marker, new_line
+        if current:
+            parts.append(Part(tuple(current), marker, new_line))
+            current, marker, new_line = [], None, False
+
     i = 0
     while i < len(tokens):
         tok = tokens[i]
         nxt = tokens[i + 1].text if i + 1 < len(tokens) else ""
-        at_item_start = not parts[-1] or parts[-1][-1].text == "("
-        if tok.text in SENTENCE_END:
+        at_item_start = not current or current[-1].text == "("
+        if tok.text == LINE_BREAK:
+            if not current or current[-1].text not in LINE_CONTINUES:
+                close()
+                new_line = True
+        elif tok.text in SENTENCE_END:
             if tok.text == ":":  # kept: what comes before a colon may announce the list after it
-                parts[-1].append(tok)
-            after_colon = tok.text == ":"
-            parts.append([])
-        elif (tok.text.isdigit() and nxt == ")") or (tok.text.isdigit() and nxt == "." and at_item_start):
-            if parts[-1] and parts[-1][-1].text == "(":
-                parts[-1].pop()
-            if after_colon and parts[-1]:
-                parts[-1].append(Tok(",", tok.start, tok.end))
-            elif not after_colon:
-                parts.append([])
+                current.append(tok)
+            close()
+        elif tok.text == BULLET and not current:
+            marker = "bullet"
+        elif tok.text.isdigit() and ((nxt == ")" and not (current and current[-1].text in NUMBERED))
+                                     or (nxt == "." and at_item_start)):
+            if current and current[-1].text == "(":
+                current.pop()
+            close()
+            marker = "number"
             i += 1  # the ')' or '.'
         elif tok.text == _DASH or (tok.text in ("(", ")") and not (i + 1 < len(tokens)
                                                                    and tokens[i + 1].text.isdigit())):
             # an aside in parentheses or dashes reads like one between commas: "the fridge (any order), ..."
-            if parts[-1] and parts[-1][-1].text != "," and nxt not in (",", ""):
-                parts[-1].append(Tok(",", tok.start, tok.end))
+            if current and current[-1].text != "," and nxt not in (",", "", LINE_BREAK):
+                current.append(Tok(",", tok.start, tok.end))
         else:
-            parts[-1].append(tok)
+            current.append(tok)
         i += 1
-    return [p for p in parts if p]
+    close()
+    return parts
 
 
 def rewrite(tokens: list[Tok], aliases: dict[tuple[str, ...], tuple[str, ...]]) -> list[Tok]:
@@ -104,3 +190,4 @@ def rewrite(tokens: list[Tok], aliases: dict[tuple[str, ...], tuple[str, ...]]) 
             out.append(tokens[i])
             i += 1
     return out
+

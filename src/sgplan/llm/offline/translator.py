@@ -11,11 +11,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
+from sgplan.errors import MissionError
+from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding.discourse import Discourse, Grounded
 from sgplan.llm.offline.lexicon import PRONOUNS
 from sgplan.llm.offline.meaning.mission import mission_formula
 from sgplan.llm.offline.names import SceneVocabulary
+from sgplan.llm.offline.spelling import Spelling
 from sgplan.llm.offline.syntax import split_mission
+from sgplan.llm.offline.text import tokenize
 from sgplan.logic.formula import Formula
 from sgplan.logic.tokens import parse_tokens, to_tokens
 from sgplan.scene.model import Building
@@ -48,7 +52,7 @@ class Translation:
 
     ``tokens`` is the LLM prefix token list (e.g. ``['AND', 'EVENTUALLY', 'enter(room_2)', ...]``),
     ``formula`` the same as a formula tree, ``grounded_text`` the text with every reference replaced by
-    its IDs, ``backend`` the name of what produced it.
+    its IDs, ``backend`` the name of what produced it, ``set_aside`` the words not read (context).
     """
 
     backend: str
@@ -57,6 +61,9 @@ class Translation:
     tokens: tuple[str, ...]
     formula: Formula
     references: tuple[Reference, ...]
+    set_aside: tuple[str, ...] = ()
+    """Words of the text set aside unread because they ask nothing (context: *We're hosting dinner tonight.*;
+    a list's heading), as typed; the explanation says them back."""
 
 
 class PatternTranslator:
@@ -93,7 +100,12 @@ class PatternTranslator:
         """
         vocabulary = SceneVocabulary(building)
         disc = Discourse(vocabulary, text, self.start_floor)
-        formula = mission_formula(split_mission(text, vocabulary.nouns), disc)
+        spelling = Spelling(vocabulary.nouns)
+        try:
+            formula = mission_formula(split_mission(text, vocabulary.nouns, spelling), disc)
+        except MissionError as refusal:  # name every unknown word at once, with what it looks like
+            raise MissionError(rf.with_suggestions(str(refusal), spelling.did_you_mean(
+                t.text for t in tokenize(text)))) from None
         nps = sorted(disc.references, key=lambda np: np.start)
         tokens = to_tokens(formula)
         # The token list must be exactly what the shared parser reads back; a failure here is a bug.
@@ -104,7 +116,7 @@ class PatternTranslator:
             for np in nps
         )
         return Translation(self.name, text, grounded_text(text, nps, vocabulary), tuple(tokens), formula,
-                           references)
+                           references, tuple(disc.set_aside))
 
 
 def grounded_text(text: str, nps: list[Grounded], vocabulary: SceneVocabulary) -> str:

@@ -15,7 +15,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding import backref
 from sgplan.llm.offline.grounding.discourse import Discourse, FloorReading, Grounded, Where
-from sgplan.llm.offline.grounding.floors import floors_of, on_floors, same_floor
+from sgplan.llm.offline.grounding.floors import floors_of, on_floors, one_floor, same_floor
 from sgplan.llm.offline.grounding.phrases import Noun, check, ground_phrase, grounds, head_entities
 from sgplan.llm.offline.grounding.places import next_to_it, there_floors, there_rooms
 from sgplan.llm.offline.names import Entity, head_word
@@ -45,8 +45,10 @@ applies = APPLIERS.register
 def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
     """Ground a described phrase (see the module docstring)."""
     noun = in_context(np, head_entities(np, disc), where, disc)
+    guessed = noun.guessed
     for qualifier in np.qualifiers:
         noun = APPLIERS(qualifier, noun, np, where, disc)
+        guessed = noun.guessed or guessed
     mode: Mode = np.determiner.mode or "the"
     core = core_text(np, disc)
     if np.determiner.pointer is not None:
@@ -55,6 +57,11 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
     if np.apposition is not None:  # "the bathroom, the one upstairs": the apposition says which
         which = ground_phrase(np.apposition, Where("qualifier"), disc)
         noun.entities = [e for e in noun.entities if e in which.entities]
+    one_floor(noun.entities, guessed, disc)  # "the TV upstairs in the bedroom": the bedrooms' one TV
+    if where.revisit and mode == "the" and len(noun.entities) > 1:  # "then back to the bathroom again"
+        before = {e.key for g in disc.goals_before(np.span.start) for e in g.entities}
+        if len(visited := [e for e in noun.entities if e.key in before]) == 1:
+            noun.entities = visited
     if np.descriptive and len(noun.entities) > (np.determiner.count or 1):  # which couch is big is not known
         rf.refuse(rf.undecided_description(np.descriptive, core, noun.entities, not noun.head.plural))
     g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, noun.entities, mode,
@@ -80,22 +87,23 @@ def in_context(np: Described, noun: Noun, where: Where, disc: Discourse) -> Noun
         before = floors_of(RelativeFloor(np.relative), disc, entities)
     if np.determiner.other:
         entities = others(entities, np.span.start, disc)
-    if before is not None:
-        entities = on_floors(entities, before, disc)
-    if where.floor is not None:
-        entities = on_floors(entities, where.floor, disc)
-    if where.action_floor is not None and where.role == "goal":  # "go upstairs and check A and B": both there
-        entities = vocab.on_floor(entities, where.action_floor[0])
+    # "go upstairs and check A and B": both there
+    moved = where.action_floor is not None and where.role in ("goal", "avoid")
+    action = where.action_floor[0] if moved and where.action_floor is not None else None
+    readings = [f for f in (before, where.floor, action) if f is not None]
+    for reading in readings:
+        entities = on_floors(entities, reading, disc)
     if disc.confined is not None and where.role in ("goal", "condition"):
         entities = vocab.on_floor(entities, disc.confined)  # "stay on this floor": goals there
+    guessed = next((f.said for f in readings if f.unknown), None)
     if np.compound is not None:  # "the kitchen sink": the sink in the kitchen
-        return Noun(np.compound, vocab.inside(vocab.of_head(np.compound), entities), True)
-    return Noun(noun.head, entities, noun.room_scoped)
+        return Noun(np.compound, vocab.inside(vocab.of_head(np.compound), entities), True, guessed)
+    return Noun(noun.head, entities, noun.room_scoped, guessed)
 
 
 def others(entities: list[Entity], before: int, disc: Discourse) -> list[Entity]:
     """*the other X*: the X not named before character ``before``; refused when none was."""
-    named = {e.key for g in disc.references if g.start < before for e in g.entities}
+    named = {e.key for g in disc.references + disc.mentions if g.start < before for e in g.entities}
     if not any(e.key in named for e in entities):
         rf.refuse(rf.no_other(head_word(entities)))
     return [e for e in entities if e.key not in named]
@@ -165,7 +173,8 @@ def on_floor(q: OnFloor, noun: Noun, np: Described, where: Where, disc: Discours
         reading = FloorReading(same_floor(inner(q.floor.as_phrase, disc), disc))
     else:
         reading = floors_of(q.floor, disc, noun.entities)
-    return Noun(noun.head, on_floors(noun.entities, reading, disc), noun.room_scoped)
+    return Noun(noun.head, on_floors(noun.entities, reading, disc), noun.room_scoped,
+                reading.said if reading.unknown else None)
 
 
 @applies(There)
@@ -182,7 +191,7 @@ def there(q: There, noun: Noun, np: Described, where: Where, disc: Discourse) ->
 def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
     """*the sink in the kitchen*: the objects in that room (the room phrase keeps only the rooms used); *every
     plant in the office and the kitchen*: those of each room, each of which must hold some."""
-    rooms = [inner(room, disc) for room in q.rooms]
+    rooms = [ground_phrase(room, Where("qualifier", rooms=True), disc) for room in q.rooms]
     said = disc.said(q.span.start, q.span.end)
     if noun.head.kind != "object" or any(e.kind != "room" for g in rooms for e in g.entities):
         rf.refuse(rf.object_in_room(said))

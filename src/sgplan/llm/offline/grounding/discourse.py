@@ -44,6 +44,9 @@ class Grounded:
     choice_of: str | None = None
     """A pronoun whose antecedent is a choice: why it is refused if it is made a goal (*put it in Y* only
     carries it)."""
+    mentioned: bool = False
+    """A pronoun whose antecedent was named only in words set aside (*I think the bottle upstairs is empty, so
+    take it to the kitchen*): the thing is not in hand, so it is a goal too."""
     floor: bool = False
     """A floor named as a place (*the top floor*: its rooms); *there* / *up there* / *on that floor* after it
     mean that floor."""
@@ -65,6 +68,12 @@ class Discourse:
     """The head noun that announced the list of the sentence being read (*water these plants: the one in
     the office and ...*): what *the one* is when nothing was named before."""
 
+    set_aside: list[str] = field(default_factory=list)
+    """Words of the mission set aside unread (context, a list's heading), as typed: said back."""
+    mentions: list[Grounded] = field(default_factory=list)
+    """The rooms and objects named in words set aside (*Grandpa's napping in the bedroom*): *there* may point
+    back to them."""
+
     def record(self, phrase: Grounded) -> Grounded:
         """Remember ``phrase`` (a back-reference may point to it) and return it."""
         self.references.append(phrase)
@@ -73,7 +82,7 @@ class Discourse:
     def fork(self) -> Discourse:
         """A copy to try a reading on, which the original does not see."""
         return Discourse(self.vocab, self.text, self.start_floor, copy.copy(self.references), self.confined,
-                         self.last_step, self.announced)
+                         self.last_step, self.announced, list(self.set_aside), list(self.mentions))
 
     def said(self, start: int, end: int) -> str:
         """The mission text between two character offsets."""
@@ -94,12 +103,15 @@ class Discourse:
 class FloorReading:
     """The floors some words name, and, when they are counted from the start floor but could be counted from
     where the goal named before them is (*upstairs* after a goal on another floor), that second reading:
-    the two must pick the same entities (:func:`.floors.on_floors`)."""
+    the two must pick the same entities (:func:`.floors.on_floors`). ``unknown``: the words count from a start
+    floor that is not known (then ``floors`` are all those they could name, and they are read only where
+    they cannot change which entity is meant)."""
 
     floors: frozenset[int]
     second: frozenset[int] | None = None
     said: str = ""
     after: str = ""
+    unknown: bool = False
 
 
 @dataclass(frozen=True)
@@ -111,7 +123,7 @@ class Where:
     object of its consequent that fits several is the one there). ``floor``: the floor a verb said (*go
     upstairs to ...*: the first phrase only); ``action_floor``: the floors of a floor move (*go upstairs and
     ...*: every goal) and the character offset where that action starts. ``going_back``: *go back there*.
-    ``objects``: a pronoun must name objects (after *put* / *bring*).
+    ``objects``: a pronoun must name objects (after *put* / *bring*). ``revisit``: see the field.
     """
 
     role: Role
@@ -119,6 +131,10 @@ class Where:
     lenient: bool = False
     soft_scope: tuple[Entity, ...] = ()
     floor: FloorReading | None = None
-    action_floor: tuple[frozenset[int], int] | None = None
+    action_floor: tuple[FloorReading, int] | None = None
     going_back: bool = False
     objects: bool = False
+    revisit: bool = False
+    """*again* / *go back to*: a definite phrase that fits several is the one named before as a goal."""
+    rooms: bool = False
+    """A pronoun must name a room (*the toilet of it*, *the sink in it*)."""

@@ -1,7 +1,9 @@
 """Which floors the floor words of a phrase name, in this building and for this robot.
 
 Floors are numbered from 0 = the lowest. *upstairs* / *downstairs* and the floors counted from the start
-(*the floor above*) need the start floor (or, for *upstairs* / *downstairs*, a two-floor building); said
+(*the floor above*) need the start floor (or, for *upstairs* / *downstairs*, a two-floor building); without
+it they are read only where they cannot change which entity is meant (the phrase's entities on the floors
+the words could name lie on one floor: *the TV upstairs in the bedroom* where the bedrooms' TV is one); said
 after a goal on another floor they could be counted from there too, so both readings are kept
 (:class:`.discourse.FloorReading`) and must agree (:func:`on_floors`). Floors the building does not have
 are refused.
@@ -77,6 +79,13 @@ def on_floors(entities: Iterable[Entity], reading: FloorReading, disc: Discourse
     return out
 
 
+def one_floor(entities: list[Entity], guessed: str | None, disc: Discourse) -> None:
+    """Floor words counted from an unknown start floor (``guessed``, as said) are read only when the entities
+    they leave lie on one floor: the start floor would tell which otherwise (refused)."""
+    if guessed is not None and len({e.floor for e in entities}) > 1:
+        rf.refuse(rf.needs_start_floor(guessed, disc.vocab.building_name, listing(disc)))
+
+
 def second_reading(said: str, disc: Discourse,
                    relate: Callable[[int], frozenset[int]]) -> FloorReading | None:
     """Words relative to the start floor said after a goal on another floor could be relative to where
@@ -113,15 +122,19 @@ def relative(word: str, disc: Discourse, candidates: list[Entity] | None) -> Flo
         return with_second(wanted, second)
     if n == 2:
         return FloorReading(frozenset({1 if step > 0 else 0}))
-    rf.refuse(rf.needs_start_floor(word, disc.vocab.building_name, listing(disc)))
+    # any start: the floors above the lowest / below the highest, read where they cannot change the entity
+    return FloorReading(frozenset(range(1, n) if step > 0 else range(n - 1)), said=word, unknown=True)
 
 
 def shifted(spec: FloorOffset, disc: Discourse) -> FloorReading:
     """The floor ``spec.delta`` floors above the start floor (below if negative); refused without a start
     floor or outside the building."""
     n, start = disc.vocab.num_floors, disc.start_floor
-    if start is None:
-        rf.refuse(rf.needs_start_floor(spec.said, disc.vocab.building_name, f"floors 0 to {n - 1}"))
+    if start is None:  # any start: the floors it could name, read where they cannot change the entity
+        possible = frozenset(f for f in range(n) if 0 <= f - spec.delta < n)
+        if not possible:
+            rf.refuse(rf.needs_start_floor(spec.said, disc.vocab.building_name, f"floors 0 to {n - 1}"))
+        return FloorReading(possible, said=spec.said, unknown=True)
     second = second_reading(spec.said, disc, lambda base: frozenset({base + spec.delta})
                             if 0 <= base + spec.delta < n else frozenset())
     floor = start + spec.delta

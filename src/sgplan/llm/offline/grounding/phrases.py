@@ -18,7 +18,8 @@ from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding import backref
 from sgplan.llm.offline.grounding.discourse import Discourse, Grounded, Where
 from sgplan.llm.offline.grounding.everyday import kids_room
-from sgplan.llm.offline.grounding.floors import determined, floors_of, on_floors
+from sgplan.llm.offline.grounding.floors import determined, floors_of, on_floors, one_floor
+from sgplan.llm.offline.grounding.hints import hint
 from sgplan.llm.offline.grounding.places import there_rooms
 from sgplan.llm.offline.names import Entity
 from sgplan.llm.offline.nouns import Head
@@ -47,15 +48,24 @@ class Noun:
     head: Head
     entities: list[Entity]
     room_scoped: bool
+    guessed: str | None = None
+    """Floor words counted from a start floor that is not known, read because the entities they could
+    name lie on one floor (checked once the qualifiers are applied, :func:`.described.ground_described`)."""
 
 
 def ground_list(phrases: PhraseList, where: Where, disc: Discourse) -> list[Grounded]:
     """The phrases of a list, each grounded (the verb's floor and the pronoun's kind apply to the first); a
     choice (*or*, *either*) is one phrase of all the alternatives, mode ``any``."""
-    out = []
+    out: list[Grounded] = []
+    choice = "or" in phrases.joiners or phrases.either
     for k, item in enumerate(phrases.items):
-        out.append(ground_phrase(item, where if k == 0 else replace(where, floor=None, objects=False), disc))
-    if "nor" in phrases.joiners or not ("or" in phrases.joiners or phrases.either):
+        here = where if k == 0 else replace(where, floor=None, objects=False)
+        rooms = [e for g in out for e in g.entities if e.kind == "room"]
+        if rooms and not choice and where.role == "goal" and not here.scope:
+            # "the dining room, any vase": an object after a room of the list is looked for there first
+            here = replace(here, scope=tuple(dict.fromkeys(rooms)), lenient=True)
+        out.append(ground_phrase(item, here, disc))
+    if "nor" in phrases.joiners or not choice:
         return out
     said = disc.said(phrases.span.start, phrases.span.end)
     if any(g.mode == "all" and len(g.entities) > 1 for g in out):
@@ -82,13 +92,14 @@ def ground_phrase(np: NounPhrase, where: Where, disc: Discourse) -> Grounded:
 @grounds(Pronoun)
 def pronoun(np: Pronoun, where: Where, disc: Discourse) -> Grounded:
     """*it* / *them* / *they*: the phrase named last that agrees in number (objects only after *put*)."""
-    ref = antecedent(np.word, disc, "object" if where.objects else None)
+    ref = antecedent(np.word, disc, "object" if where.objects else "room" if where.rooms else None)
     mode: Mode = "all" if np.word in lx.PLURAL_PRONOUNS else ref.mode
     g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, list(ref.entities), mode,
                  ref.room_scoped, where.role)
     g.choice_of = backref.choice_refusal(np.word, ref, len(ref.entities))
     if g.choice_of is not None and where.role != "goal":  # only a carried goal may leave it open
         rf.refuse(g.choice_of)
+    g.mentioned = ref in disc.mentions
     return disc.record(g)
 
 
@@ -96,6 +107,13 @@ def pronoun(np: Pronoun, where: Where, disc: Discourse) -> Grounded:
 def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
     """*there* as a place: the last place named as a goal (its rooms, inside a qualifier)."""
     goals = [g for g in disc.references if g.role == "goal" and g.phrase.lower() not in lx.PRONOUNS]
+    mentioned = [g for g in disc.mentions if g.start < np.span.start and len({e.room_key for e in g.entities})
+                 == 1]  # not "the bedroom" among two
+    if mentioned and (not goals or max(g.start for g in goals) < mentioned[-1].start):
+        if goals:  # "Go to the kitchen. The dog sleeps in the office. Go there.": which of the two?
+            last = max(goals, key=lambda g: g.start)
+            rf.refuse(rf.there_goal_or_mention(last.phrase, mentioned[-1].phrase))
+        goals = mentioned[-1:]  # "Grandpa's napping in the bedroom, so stay out of there"
     if not goals:
         rf.refuse(rf.there_refers_to_nothing())
     ref = max(goals, key=lambda g: g.start)
@@ -151,7 +169,9 @@ def its(np: Its, where: Where, disc: Discourse) -> Grounded:
 @grounds(FloorPlace)
 def floor_place(np: FloorPlace, where: Where, disc: Discourse) -> Grounded:
     """*the top floor* as a place: any of its rooms as a goal or condition, all of them to avoid."""
-    rooms = on_floors(disc.vocab.of_head(Head("room", frozenset(), True, 1)), floors_of(np.floor, disc), disc)
+    reading = floors_of(np.floor, disc)
+    rooms = on_floors(disc.vocab.of_head(Head("room", frozenset(), True, 1)), reading, disc)
+    one_floor(rooms, reading.said if reading.unknown else None, disc)
     chosen: Mode = "all" if where.role == "avoid" or np.mode == "all" else "any"
     said = disc.said(np.span.start, np.span.end)
     return disc.record(Grounded(said, np.span.start, np.span.end, rooms, chosen, False, where.role,
@@ -168,9 +188,13 @@ def antecedent(pronoun: str, disc: Discourse, kind: str | None = None) -> Ground
     book.
     """
     plural = pronoun in lx.PLURAL_PRONOUNS
-    fits = [g for g in sorted(disc.references, key=lambda g: g.start, reverse=True)
-            if (g.mode == "all" and len(g.entities) > 1) == plural and g.phrase.lower() not in lx.PRONOUNS
-            and (kind is None or all(e.kind == kind for e in g.entities))]
+
+    def agreeing(named: list[Grounded]) -> list[Grounded]:
+        return [g for g in sorted(named, key=lambda g: g.start, reverse=True)
+                if (g.mode == "all" and len(g.entities) > 1) == plural and g.phrase.lower() not in lx.PRONOUNS
+                and (kind is None or all(e.kind == kind for e in g.entities))]
+    # what was read first; else what was set aside ("The vase in the hall is dusty. Dust it.")
+    fits = agreeing(disc.references) or agreeing(disc.mentions)
     if not fits:
         rf.refuse(rf.no_antecedent(pronoun, plural))
     g = fits[0]
@@ -182,12 +206,14 @@ def antecedent(pronoun: str, disc: Discourse, kind: str | None = None) -> Ground
 
 
 def last_head(disc: Discourse) -> Head | None:
-    """The kind and category of the last room or object named (what *the one* / *the other one* is)."""
-    for g in sorted(disc.references, key=lambda g: g.start, reverse=True):
+    """The kind and category of the last room or object named (what *the one* / *the other one* is), in
+    words read or set aside (*The plants are looking sad. Water the one in the office*)."""
+    named = [g for g in disc.references if g.role != "qualifier"] + disc.mentions
+    for g in sorted(named, key=lambda g: g.start, reverse=True):
         categories = {e.category for e in g.entities}
-        if g.role != "qualifier" and g.generic:  # "the room where the book is, then the one ..."
+        if g.generic:  # "the room where the book is, then the one ..."
             return Head("room", frozenset(), False, 1)
-        if g.role != "qualifier" and g.entities and len(categories) == 1:
+        if g.entities and len(categories) == 1:
             return Head(g.entities[0].kind, frozenset(categories), False, 1)
     return None
 
@@ -238,6 +264,9 @@ def check(g: Grounded, head: Head, count: int | None, remark_follows: bool, disc
     if g.mode == "the" and len(g.entities) > 1 and head.kind == g.entities[0].kind and not head.plural \
             and remark_follows:
         g.mode = "any"  # "the toilet on this floor, any one will do": one of them
+    if g.mode == "the" and len(g.entities) > 1 and one_room_of_a_kind(g.entities):
+        # "sit at the dining table" where the dining room holds four: any of them serves (to avoid, each)
+        g.mode = "all" if g.role == "avoid" else "any"
     if (g.mode == "the" and g.role == "avoid" and g.phrase.lower().split()[-1] in lx.PLURAL_LOOKING
             and disc.confined is not None):
         # "stay on the top floor and keep off the stairs": the staircases of the floors the mission stays on,
@@ -247,7 +276,15 @@ def check(g: Grounded, head: Head, count: int | None, remark_follows: bool, disc
     if g.mode == "the" and len(g.entities) > 1:
         listing = ", ".join(f"{e.key} (floor {e.floor})" if e.kind == "room"
                             else f"{e.key} (in {e.room_key}, floor {e.floor})" for e in g.entities)
-        raise MissionError(rf.ambiguous(g.phrase, len(g.entities), head.kind, listing, hint(g, disc)))
+        said = hint(g.entities, disc.vocab)
+        raise MissionError(rf.ambiguous(g.phrase, len(g.entities), head.kind, listing, said))
+
+
+def one_room_of_a_kind(entities: list[Entity]) -> bool:
+    """Whether ``entities`` are objects of one category in one room (the parts of one dining table, the
+    vases of a lobby): where a phrase names one of them, the words cannot tell which, and any serves."""
+    kinds = {(e.room_key, e.category) for e in entities}
+    return all(e.kind == "object" for e in entities) and len(kinds) == 1
 
 
 def existing(head: Head, disc: Discourse) -> str:
@@ -257,25 +294,3 @@ def existing(head: Head, disc: Discourse) -> str:
         return ""
     listing = ", ".join(e.describe() for e in found[:8]) + (", ..." if len(found) > 8 else "")
     return f" (this scene has: {listing})"
-
-
-def hint(g: Grounded, disc: Discourse) -> str:
-    """How to single one entity out: by floor, by a room, by contents or neighbours, or by quantifier."""
-    ents = g.entities
-    word = ents[0].category
-    if len({e.floor for e in ents}) == len(ents):
-        return f"say which floor (e.g. 'the {word} on floor {ents[0].floor}')"
-    if ents[0].kind == "object":
-        if len({e.room_key for e in ents}) == len(ents):
-            room = disc.vocab.by_key[ents[0].room_key]
-            return f"say which room it is in (e.g. 'the {word} in the {room.category} on floor {room.floor}')"
-    else:
-        for e in ents:
-            own = {o.category for o in disc.vocab.entities if o.kind == "object" and o.room_key == e.key}
-            others = {o.category for o in disc.vocab.entities if o.kind == "object" and o.room_key != e.key
-                      and o.room_key in {x.key for x in ents}}
-            unique = sorted(own - others)
-            if unique:
-                return f"say what it contains (e.g. 'the {word} with the {unique[0]}')"
-    return f"say 'any {word}' or 'every {word}', or name it by its ID (e.g. {ents[0].key})"
-

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
-from sgplan.llm.offline.grounding.discourse import Discourse, Grounded
+from sgplan.llm.offline.grounding.discourse import Discourse, FloorReading, Grounded
 from sgplan.llm.offline.grounding.floors import determined, floor_or_place
 from sgplan.llm.offline.names import Entity, head_word
 from sgplan.llm.offline.nouns import Head
@@ -39,7 +39,7 @@ def there_rooms(before: int, disc: Discourse, said: str = "there") -> list[Entit
 
 
 def there_floors(before: int, head: Head, disc: Discourse,
-                 action_floor: tuple[frozenset[int], int] | None) -> frozenset[int]:
+                 action_floor: tuple[FloorReading, int] | None) -> frozenset[int]:
     """The floor(s) *there* after a room (*a bathroom there*) means at character offset ``before``: a floor
     named last as a place, or the floor of a floor move before it (*go upstairs, then X there*), or the
     floors the mission stays on. A room or object named last is refused: rooms are not inside rooms, and
@@ -47,7 +47,7 @@ def there_floors(before: int, head: Head, disc: Discourse,
     places = places_before(before, disc)
     last = max(places, key=lambda g: g.start) if places else None
     if action_floor is not None and (last is None or last.start < action_floor[1]):
-        return action_floor[0]
+        return action_floor[0].floors
     if last is None and disc.confined is not None:  # "keep to the top floor and visit X there"
         return disc.confined
     if last is None or not last.floor:

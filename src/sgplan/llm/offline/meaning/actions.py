@@ -12,7 +12,7 @@ from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding.discourse import FloorReading, Grounded, Where
 from sgplan.llm.offline.grounding.floors import floors_of
 from sgplan.llm.offline.grounding.phrases import ground_list
-from sgplan.llm.offline.meaning.compose import Step, Task, member_formula
+from sgplan.llm.offline.meaning.compose import Step, Task, member_formula, moved
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.names import Entity
 from sgplan.llm.offline.syntax.tree import Action, Repeat
@@ -28,7 +28,7 @@ class ActionSteps:
 
 
 def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = None, lenient: bool = False,
-             action_floor: tuple[frozenset[int], int] | None = None,
+             action_floor: tuple[FloorReading, int] | None = None,
              floor: FloorReading | None = None) -> ActionSteps:
     """The steps of ``action``; ``scope``: the rooms of the step it is said in (its objects are looked for
     there, and, with ``lenient``, elsewhere when none is there); ``action_floor`` / ``floor``: the floors of
@@ -38,16 +38,20 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
         floor = floors_of(verbs.floor, disc)  # "go upstairs to the bathroom": the bathroom on that floor
     going_back = bool(set(verbs.words) & lx.REVISIT_VERBS)
     carry = bool(set(verbs.words) & lx.CARRY_VERBS)
-    where = Where("goal", tuple(scope or ctx.scope), lenient, tuple(ctx.soft_scope), floor, action_floor,
-                  going_back, carry)
+    if set(verbs.words) & lx.FLOOR_CHANGES:  # "then head down to the kitchen (for X)": off the scope's floor
+        ctx.floor_scope = None
+    again = going_back or (action.repeat is not None and action.repeat.again)
+    where = Where("goal", tuple(scope or ctx.scope), lenient, tuple(ctx.soft_scope), floor,
+                  action_floor or ctx.floor_scope, going_back, carry, again)
     if action.phrases is None:  # "go upstairs and check the laptop": the laptop upstairs
         assert action.moved is not None and floor is not None
-        return steps_of(action.moved, ctx, scope, lenient, (floor.floors, action.moved.span.start), floor)
+        return steps_of(action.moved, ctx, scope, lenient, (floor, action.moved.span.start), floor)
     phrases = ground_list(action.phrases, where, disc)
     if action.moved is not None:  # "go up to the top floor and check a bathroom (there)": one goal there
-        floors = frozenset(e.floor for e in phrases[0].entities)
+        floors = FloorReading(frozenset(e.floor for e in phrases[0].entities))
         return steps_of(action.moved, ctx, scope, lenient, (floors, action.moved.span.start))
-    phrases, lead = first_of_list(phrases, action.first)
+    said_after = action.first and not action.verbs.first and action.phrases.comma_list
+    phrases, lead = first_of_list(phrases, action.first, said_after)
     choice_remark(phrases, action.remark, disc.said)
     steps = ordered_steps(action, phrases, carry, lead, ctx)
     if action.repeat is not None:
@@ -63,11 +67,11 @@ def ordered_steps(action: Action, phrases: list[Grounded], carry: bool, lead: bo
                   ctx: SentenceContext) -> list[Step]:
     """The tasks of the phrases, in the steps their order says: one step (any order), one each (*in that
     order*), the one said *first* before the rest, the one said *last* after the rest."""
-    pronouns_only = all(g.phrase.lower() in lx.PRONOUNS for g in phrases)
+    pronouns_only = all(g.phrase.lower() in lx.PRONOUNS and not g.mentioned for g in phrases)
     # "put it in Y": the object is already in hand, the goal is Y, after what came before.
     steps = [[]] if carry and pronouns_only else tasks_of(phrases, action.ordered)
     if lead:  # "A and B, B first": B, then A
-        steps = [steps[0][:1], steps[0][1:]]
+        steps = [moved([steps[0][:1]])[0], steps[0][1:]]
     if action.last:
         if len(steps) != 1:
             rf.refuse(rf.cannot_understand(lx.REFUSED_WORDS["last"]))
@@ -102,22 +106,26 @@ def tasks_of(phrases: list[Grounded], ordered: bool) -> list[Step]:
         if g.choice_of is not None:  # "look at a vase, then look at it again": the same vase
             rf.refuse(g.choice_of)
         tasks.append(Task("any" if g.mode == "any" else "all", [member_formula(e, g.room_scoped)
-                                                                 for e in g.entities]))
+                                                                 for e in g.entities], said_at=g.start))
     if ordered and len(tasks) > 1:
         return [[t] for t in tasks]
     return [tasks]
 
 
-def first_of_list(phrases: list[Grounded], first: bool) -> tuple[list[Grounded], bool]:
-    """``A and B, B first``: the list with B moved to the front and once only (and True: B goes first). A
-    phrase that only restates the one before it is dropped (*the chairs, both of them*; *a TV, any TV*); any
-    other phrase named twice in one list is refused: it is not clear what is meant."""
+def first_of_list(phrases: list[Grounded], first: bool,
+                  last_first: bool = False) -> tuple[list[Grounded], bool]:
+    """``A and B, B first``: the list with B moved to the front and once only (and True: B goes first); so
+    is ``A, B first`` (``last_first``: *first* after a list joined by commas only). A phrase that only
+    restates the one before it is dropped (*the chairs, both of them*; *a TV, any TV*); any other phrase
+    named twice in one list is refused: it is not clear what is meant."""
     keys = [frozenset(e.key for e in g.entities) for g in phrases]
     phrases = [g for n, g in enumerate(phrases)
                if not (n and keys[n] == keys[n - 1] and (g.phrase.lower().endswith("them") or (
                    g.mode == phrases[n - 1].mode == "any" and g.phrase.lower().startswith("any "))))]
     keys = [frozenset(e.key for e in g.entities) for g in phrases]
     repeated = [n for n, k in enumerate(keys) if any(k & j for j in keys[:n])]
+    if not repeated and last_first and len(phrases) > 1:  # "go to the office, the kitchen first"
+        return [phrases[-1], *phrases[:-1]], True
     if not repeated:
         return phrases, False
     if repeated == [len(phrases) - 1] and first:  # "the clocks, the one in the bedroom first"
@@ -128,10 +136,20 @@ def first_of_list(phrases: list[Grounded], first: bool) -> tuple[list[Grounded],
 def choice_remark(phrases: list[Grounded], remark: tuple[str, ...] | None,
                   said: Callable[[int, int], str]) -> None:
     """*, either one is fine* after a choice only confirms it; after a phrase that means each of several
-    (or after several phrases) it would turn "all" into "one of", so it is refused."""
+    (or after several phrases) it would turn "all" into "one of", so it is refused. *, just one of them* / *,
+    any of the three* say outright that one will do: the phrase is a choice (of that many, when said)."""
     if remark is None:
         return
-    words = remark[1:] if remark[0] == "," else remark
+    words = tuple(w for w in remark if w != ",")
+    count = next((lx.NUMBER_WORDS.get(w) or int(w) for w in words
+                  if w.isdigit() or (w in lx.NUMBER_WORDS and w != "one")), None)
+    choose = count is not None or any(words[k:k + len(p)] == p for p in lx.ONE_SUFFICES
+                                      for k in range(len(words)))
+    if len(phrases) == 1 and choose and (count is None or count == len(phrases[0].entities)):
+        phrases[0].mode = "any"  # "check the vases in the lobby, just one of them": any of them
+        return
+    if count is not None and len(phrases) == 1:  # "a TV in the office, any of the two" (there are three)
+        rf.refuse(rf.group_size(" ".join(words), phrases[0].phrase, len(phrases[0].entities), count))
     if len(phrases) > 1 or (phrases[0].mode != "any" and len(phrases[0].entities) > 1):
         rf.refuse(rf.remark_after_each(" ".join(words), said(phrases[0].start, phrases[-1].end)))
 
@@ -165,6 +183,7 @@ def repeats(phrases: list[Grounded], steps: list[Step], repeat: Repeat, going_ba
     last = list(steps[-1])
     if repeat.between is not None and repeat.times == 2:
         between = [s for s in steps_of(repeat.between, ctx).steps if s]
-        steps.extend([*between, [Task(t.mode, t.members) for t in last]])
+        steps.extend([*between, [Task(t.mode, t.members, said_at=t.said_at, moved=True) for t in last]])
     else:
-        steps.extend([Task(t.mode, t.members, [], True) for t in last] for _ in range(repeat.times - 1))
+        steps.extend([Task(t.mode, t.members, [], True, said_at=t.said_at, moved=True) for t in last]
+                     for _ in range(repeat.times - 1))

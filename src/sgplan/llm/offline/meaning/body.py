@@ -13,7 +13,7 @@ from typing import Any
 
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.meaning.actions import steps_of
-from sgplan.llm.offline.meaning.compose import Clause, Step
+from sgplan.llm.offline.meaning.compose import Clause, Step, moved
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.negations import negation, off_limits, stay_on_floor
 from sgplan.llm.offline.meaning.order import check_restriction_target
@@ -80,7 +80,7 @@ def after_all(item: AfterAll, clause: Clause, ctx: SentenceContext) -> None:
 @reads(InlineAfter)
 def inline_after(item: DoneWith | InlineAfter, clause: Clause, ctx: SentenceContext) -> None:
     """*B after A* / *B once you have been to A* / *B when done with A*: A before the current step."""
-    clause.steps[-1:-1] = [s for s in steps_of(item.action, ctx).steps if s]
+    clause.steps[-1:-1] = moved(steps_of(item.action, ctx).steps)
 
 
 @reads(InlineBefore)
@@ -101,7 +101,7 @@ def goals_first(item: GoalsFirst, clause: Clause, ctx: SentenceContext) -> None:
         return
     if item.before_that and len(clause.filled()) > 1:
         rf.refuse(rf.before_which(item.rest))
-    clause.steps[0:0] = [s for s in steps_of(item.action, ctx).steps if s]
+    clause.steps[0:0] = moved(steps_of(item.action, ctx).steps)
 
 
 @reads(CommaSequence)
@@ -124,7 +124,7 @@ def waypoint(item: Waypoint, clause: Clause, ctx: SentenceContext) -> None:
     if len(clause.steps[-1]) != 1:
         rf.refuse(rf.waypoint_of_which(item.rest))
     target = clause.steps.pop()
-    clause.steps.extend([s for s in steps_of(item.action, ctx).steps if s])
+    clause.steps.extend(moved(steps_of(item.action, ctx).steps))
     clause.steps.extend([target, []])
 
 
@@ -151,7 +151,7 @@ def plain_action(item: PlainAction, clause: Clause, ctx: SentenceContext) -> Non
     """An action: its tasks in the current step, its objects looked for in the step's rooms (not when it is
     moved before the step, or after it: *go to the bedroom, but stop by the couch first*, *come back to
     X*); then what the words around it say of its order."""
-    later = item.moved_first or item.goes_back or ctx.listed
+    later = item.moved_first or item.goes_back or ctx.listed or item.action.last
     context = [] if later else ctx.step_rooms(clause.steps[-1])
     # "go to the kitchen, take a bottle, then ...": the kitchen's bottle if it has one
     lenient = not context and bool(ctx.carried_rooms) and not later
@@ -189,7 +189,7 @@ def ordered_first(trailing: str, item: PlainAction, steps: list[Step], clause: C
     if trailing == "before that" and len(clause.filled()) > 1:
         rf.refuse(rf.before_which_trailing(item.rest))
     if any(clause.steps):
-        clause.steps[0:0] = [s for s in steps if s]
+        clause.steps[0:0] = moved(steps)
         return
     if not item.more and ctx.disc.last_step:
         rf.refuse(rf.trailing_first_later())
@@ -200,7 +200,7 @@ def ordered_first(trailing: str, item: PlainAction, steps: list[Step], clause: C
 def insert_on_the_way(clause: Clause, steps: list[Step], ctx: SentenceContext) -> None:
     """Put ``steps`` (said *on the way*) right before the goal named last, in this sentence or the one it
     continues; refused when that goal is not one place (on the way to which?)."""
-    new = [s for s in steps if s]
+    new = moved(steps)
     for holder in (clause.steps, ctx.prior_steps):
         filled = [k for k, s in enumerate(holder) if s]
         if filled:

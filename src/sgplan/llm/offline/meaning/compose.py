@@ -18,10 +18,12 @@ rest of the sequence happens after it"; the rest then happens after the last of 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
+from sgplan.errors import MissionError
+from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.names import Entity
 from sgplan.logic.formula import And, Atom, Eventually, Formula, Not, Or, Until
 
@@ -38,6 +40,11 @@ class Task:
     strict: bool = False
     """Said with *only after that* / *only then*: not done before the previous step (see
     :func:`strict_formulas`)."""
+    said_at: int = -1
+    """The character offset of the phrase the task was read from (-1: none), for :func:`check_text_order`."""
+    moved: bool = False
+    """An explicit word placed the task out of the order of the text (*before that*, *first*, *via*, *after
+    X*, *twice with Y in between*)."""
 
 
 Step = list[Task]
@@ -114,6 +121,30 @@ class Clause:
     def filled(self) -> list[Step]:
         """The steps that have tasks."""
         return [s for s in self.steps if s]
+
+
+def moved(steps: Sequence[Step]) -> list[Step]:
+    """``steps`` with their tasks marked as placed by an explicit word (:attr:`Task.moved`), those without a
+    task dropped."""
+    for step in steps:
+        for task in step:
+            task.moved = True
+    return [s for s in steps if s]
+
+
+def check_text_order(clause: Clause, said: Callable[[int, int], str]) -> None:
+    """The guard of the order of goals: a goal done after another that the text states after it is read out
+    of the text's order, which only an explicit word (*before*, *first*, *after X*, *via*, ...) may do
+    (:attr:`Task.moved`); any other inversion is a misreading, refused naming both (``said``: the text
+    between two offsets)."""
+    done: list[Task] = []
+    for step in clause.filled():
+        for later in step:
+            for earlier in done:
+                if (0 <= later.said_at < earlier.said_at and not later.moved and not earlier.moved):
+                    raise MissionError(rf.out_of_text_order(said(later.said_at, later.said_at + 40),
+                                                            said(earlier.said_at, earlier.said_at + 40)))
+        done += step
 
 
 def member_formula(entity: Entity, room_scoped: bool) -> Formula:

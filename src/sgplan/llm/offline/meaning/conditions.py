@@ -63,16 +63,19 @@ def whenever(trigger: Task, body: Clause) -> Formula:
 
 
 def conditional(rule: IfRule, condition: Formula, tasks: list[Task], body: Clause) -> Formula:
-    """*if X, Y*: ``F X -> Y``. When the condition says *ever* / *at any point* or the consequent
-    *afterwards*, people mean a response to each visit of X, as with *whenever*; that needs one place as X
-    (else it is refused). A bare *when X, Y* may mean either, or a plain sequence, so it is refused."""
-    if not rule.response and rule.word == "when":
+    """*if X, Y*: ``F X -> Y``; *if X, Y afterwards*: ``F X -> F(X & F Y)`` (Y after that visit of X).
+    When the condition says *ever* / *at any point* (or *when X, Y afterwards*), people mean a response to
+    each visit of X, as with *whenever*; that needs one place as X (else it is refused). A bare *when X, Y*
+    may mean either, or a plain sequence, so it is refused."""
+    if rule.response or (rule.word == "when" and rule.afterwards):
+        if len(tasks) != 1:
+            rf.refuse(rf.response_needs_one())
+        return whenever(tasks[0], body)
+    if rule.word == "when":
         rf.refuse(rf.bare_when())
-    if not rule.response:
-        return Implies(condition, require(body, "for the condition"))
-    if len(tasks) != 1:
-        rf.refuse(rf.response_needs_one())
-    return whenever(tasks[0], body)
+    if rule.afterwards:  # "if you go into the living room, check the fridge afterwards": after that visit
+        body = Clause(steps=[list(tasks), *body.steps], constraints=body.constraints)
+    return Implies(condition, require(body, "for the condition"))
 
 
 def require(clause: Clause, where: str) -> Formula:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from sgplan.llm.offline.grounding.discourse import Discourse
+from sgplan.llm.offline.grounding.discourse import Discourse, FloorReading
 from sgplan.llm.offline.meaning.compose import Step, Task
 from sgplan.llm.offline.names import Entity
 from sgplan.logic.formula import And, Atom, Formula, atoms
@@ -36,6 +36,9 @@ class SentenceContext:
     """The sentence ended with *last* (*visit the office last*): its last step follows all else."""
     soft_scope: list[Entity] = field(default_factory=list)
     """The rooms of the condition whose consequent is being read."""
+    floor_scope: tuple[FloorReading, int] | None = None
+    """*While you're upstairs, ...* / *On the top floor, ...* / a list's heading *Top floor tasks*: the floors
+    of the sentence's goals (and places to avoid), and where the sentence starts."""
     listed: bool = False
     """The sentence is a list announced before a colon (*three things: A, B and C*): its actions are
     independent tasks, an object of one is not looked for in the room of another."""

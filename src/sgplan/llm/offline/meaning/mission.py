@@ -10,19 +10,30 @@ goals before it.
 
 from __future__ import annotations
 
+from sgplan.errors import MissionError
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding.attachments import describes
-from sgplan.llm.offline.grounding.discourse import Discourse, Grounded
+from sgplan.llm.offline.grounding.discourse import Discourse, Grounded, Where
 from sgplan.llm.offline.grounding.floors import floors_of
-from sgplan.llm.offline.meaning.compose import Clause, conj
+from sgplan.llm.offline.grounding.phrases import ground_phrase
+from sgplan.llm.offline.meaning.compose import Clause, check_text_order, conj, moved
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.sentences import Meaning, read_sentence_body
 from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import Reader, parse_sentence
+from sgplan.llm.offline.syntax.context import is_time
 from sgplan.llm.offline.syntax.preamble import stated_start as said_start
 from sgplan.llm.offline.syntax.reader import Match, Refusal
-from sgplan.llm.offline.syntax.tree import MissionSentence, RelativeFloor, StatedStart, StayOnFloor, nodes
+from sgplan.llm.offline.syntax.tree import (
+    MissionSentence,
+    PhraseList,
+    RelativeFloor,
+    SetAside,
+    StatedStart,
+    StayOnFloor,
+    nodes,
+)
 from sgplan.logic.formula import Always, Formula, atoms
 
 
@@ -32,15 +43,32 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
         start = said_start(r)
         if start is not None:
             stated_start(start, disc)
+    correction = taken_back(readers)
+    if correction is not None:  # "go to the kitchen, sorry, I mean the office": which part stands?
+        rf.refuse(rf.self_correction(correction))
+    times = [r.quote(0, len(r)) for r in readers if r.aside and is_time(r, 0, len(r))
+             and r.words not in lx.NOW_SAID and r.words != ("today",)]  # "Today, ... Right now, ...": none
+    if len(times) > 1:  # "Before dinner, A. After dinner, B.": an order of times, which no formula keeps
+        rf.refuse(rf.times_in_order(times))
     disc.confined = confinement(readers, disc)
     parts: list[Meaning] = []
+    listed: dict[int, list[MissionSentence]] = {}
     for r in readers:
         parsed = parse_sentence(r, lambda a: describes(a, disc))
         if isinstance(parsed, Refusal):
             rf.refuse(parsed.message)
         assert parsed is not None
+        if isinstance(parsed.node, SetAside):
+            set_aside(parsed.node, disc)
         if isinstance(parsed.node, MissionSentence):
+            if parsed.node.announced is not None:
+                listed.setdefault(parsed.node.announced.at, []).append(parsed.node)
             join(parsed.node, parts, disc)
+    for said in listed.values():
+        check_count(said)
+    for part in parts:
+        if isinstance(part, Clause):
+            check_text_order(part, disc.said)
     formulas = [p.formula() if isinstance(p, Clause) else p for p in parts]
     present = [f for f in formulas if f is not None]
     if not present:
@@ -54,10 +82,12 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
     """Read ``sentence`` and join it to the sentences before it (``parts``)."""
     previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
     precedes = sentence_precedes(sentence, parts)
-    continues = sentence.lead.sequence
+    continues = sentence.lead.sequence or sentence.after_item
     ctx = SentenceContext(disc, sentence.span.start, strict_pending=sentence.lead.strict,
                           waypoint_pending=sentence.lead.waypoint, listed=sentence.announced is not None)
     disc.announced = sentence.announced.head if sentence.announced is not None else None
+    if sentence.floor_scope is not None:  # "While you're upstairs, ...": its goals there
+        ctx.floor_scope = (floors_of(sentence.floor_scope, disc), sentence.span.start)
     ctx.prior_steps = previous.steps if continues and previous is not None else []
     known = len(disc.references)
     result = read_sentence_body(sentence.body, ctx)
@@ -74,7 +104,7 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
     if precedes:
         if previous is None or not isinstance(result, Clause):
             rf.refuse(rf.precedes_needs_goals())
-        previous.steps[0:0] = result.filled()
+        previous.steps[0:0] = moved(result.steps)
         previous.constraints.extend(result.constraints)
     elif continues and previous is not None and isinstance(result, Clause):
         previous.steps.extend(result.steps)
@@ -83,6 +113,28 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
         parts.append(result)
     if isinstance(result, Clause) and any(result.steps):
         disc.last_step = result.filled()[-1]
+
+
+def set_aside(said: SetAside, disc: Discourse) -> None:
+    """Words set aside: said back; the rooms and objects they name are kept as mentions (each grounded on its
+    own; one that names nothing here is left out)."""
+    disc.set_aside.append(said.said)
+    for phrase in said.mentions:
+        try:
+            named = ground_phrase(phrase, Where("qualifier"), disc.fork())
+        except MissionError:
+            continue  # a phrase that names nothing here: nothing to point back to
+        disc.mentions.append(named)
+
+
+def check_count(sentences: list[MissionSentence]) -> None:
+    """The number an announcement said (*three things:*) must be the number of phrases of its list (one
+    sentence, or the items of a numbered or bulleted list)."""
+    announced = sentences[0].announced
+    assert announced is not None
+    items = sum(len(found.items) for s in sentences for found in nodes(s.body, PhraseList))
+    if announced.count is not None and items != announced.count:
+        rf.refuse(rf.announced_count(announced.said, announced.count, items))
 
 
 def check_announced(phrases: list[Grounded], head: Head, said: str) -> None:
@@ -123,6 +175,17 @@ def stated_start(start: StatedStart, disc: Discourse) -> None:
     if disc.start_floor is not None and disc.start_floor != floor:
         rf.refuse(rf.stated_floor_contradicts(start.said, floor, disc.start_floor))
     disc.start_floor = floor
+
+
+def taken_back(readers: list[Reader]) -> str | None:
+    """The words with which the speaker takes back something said before them (:data:`.lexicon.CORRECTIONS`),
+    or ``None``."""
+    for n, r in enumerate(readers):
+        for k in range(len(r)):
+            said = r.phrase(k, lx.CORRECTIONS)
+            if said is not None and (n or k):
+                return r.quote(k, k + len(said))
+    return None
 
 
 def confinement(readers: list[Reader], disc: Discourse) -> frozenset[int] | None:

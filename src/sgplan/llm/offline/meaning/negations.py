@@ -42,7 +42,8 @@ def negation(item: Negation, clause: Clause, ctx: SentenceContext, said_whole: b
     else:
         assert item.phrases is not None and item.verbs is not None
         floor = floors_of(item.verbs.floor, ctx.disc) if item.verbs.floor is not None else None
-        phrases = ground_list(item.phrases, Where("avoid", tuple(rooms), floor=floor), ctx.disc)
+        where = Where("avoid", tuple(rooms), floor=floor, action_floor=ctx.floor_scope)
+        phrases = ground_list(item.phrases, where, ctx.disc)
     is_global = declared or item.whole
     entities = [e for g in phrases for e in g.entities]
     if item.until is not None:
@@ -72,7 +73,7 @@ def until(forbidden: Formula, target: object, clause: Clause, ctx: SentenceConte
     if not any(clause.steps) and not ctx.prior_steps:
         # "Keep out of X until you have seen Y, then Z": Y (which the until requires) is the step that *then*
         # follows
-        clause.steps[-1].append(Task(t.mode, list(t.members)))
+        clause.steps[-1].append(Task(t.mode, list(t.members), said_at=t.said_at))
 
 
 def previous_step(clause: Clause, ctx: SentenceContext) -> Step:

@@ -15,7 +15,7 @@ from sgplan.llm.offline.grounding.discourse import Where
 from sgplan.llm.offline.grounding.phrases import ground_phrase
 from sgplan.llm.offline.meaning.actions import steps_of
 from sgplan.llm.offline.meaning.body import read_body
-from sgplan.llm.offline.meaning.compose import Clause, Task, conj, disj
+from sgplan.llm.offline.meaning.compose import Clause, Task, conj, disj, moved
 from sgplan.llm.offline.meaning.conditions import condition_of, require, rule_formula
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.order import only_after
@@ -88,7 +88,7 @@ def prefixed(sentence: PrefixedSentence, ctx: SentenceContext) -> Meaning:
     prefix = steps_of(sentence.prefix, ctx).steps
     body = read_body(sentence.body, ctx)
     if sentence.prefix_last:
-        body.steps.extend(prefix)
+        body.steps.extend(moved(prefix))
     else:
         body.steps[:0] = prefix
     return postfix(body, sentence.postfix, ctx)
@@ -96,10 +96,18 @@ def prefixed(sentence: PrefixedSentence, ctx: SentenceContext) -> Meaning:
 
 @reads(PlainSentence)
 def plain(sentence: PlainSentence, ctx: SentenceContext) -> Meaning:
-    """A body, in the room of *In the kitchen,* when said, with its closing condition."""
-    if sentence.scope is not None:
-        ctx.scope = list(ground_phrase(sentence.scope, Where("qualifier"), ctx.disc).entities)
-    return postfix(read_body(sentence.body, ctx), sentence.postfix, ctx)
+    """A body, in the room of *In the kitchen,* when said (which must then locate something said after it),
+    with its closing condition."""
+    if sentence.scope is None:
+        return postfix(read_body(sentence.body, ctx), sentence.postfix, ctx)
+    room = ground_phrase(sentence.scope, Where("qualifier"), ctx.disc)
+    ctx.scope, known = list(room.entities), len(ctx.disc.references)
+    meaning = postfix(read_body(sentence.body, ctx), sentence.postfix, ctx)
+    keys = {e.key for e in room.entities}
+    if not any(g.role != "qualifier" and any(e.room_key in keys for e in g.entities)
+               for g in ctx.disc.references[known:]):
+        rf.refuse(rf.scope_unused(room.phrase))  # "In the garage, go to the office": the garage is not lost
+    return meaning
 
 
 def postfix(body: Clause, post: Postfix, ctx: SentenceContext) -> Meaning:

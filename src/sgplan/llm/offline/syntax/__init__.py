@@ -22,41 +22,52 @@ from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import NounLexicon
-from sgplan.llm.offline.syntax.colons import at_colons
+from sgplan.llm.offline.spelling import Spelling
+from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement
+from sgplan.llm.offline.syntax.lists import read_lists
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.sentences import mission_sentence
-from sgplan.llm.offline.syntax.tree import Attachment, Sentence, nodes
+from sgplan.llm.offline.syntax.tree import Attachment, Sentence, SetAside, nodes
 from sgplan.llm.offline.text import rewrite, sentences, tokenize
 
 __all__ = ["Match", "Reader", "Refusal", "parse_sentence", "split_mission"]
 
 
-def split_mission(text: str, nouns: NounLexicon) -> list[Reader]:
-    """The sentences of ``text`` to parse, a list announced before a colon read with it (:mod:`.colons`), and
-    without leading chit-chat: sentences before the first one with content (*Hi!*), and the chit-chat clause
-    before the first comma of that one (*I'm hungry, go ...*). Sentences that say where the robot is (*I'm
-    downstairs right now.*) are kept wherever they are."""
-    tokens = rewrite(tokenize(text), lx.PHRASE_ALIASES)
+def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = None) -> list[Reader]:
+    """The sentences of ``text`` to parse, its lists and what a colon announced read with them
+    (:mod:`.lists`), its context set aside (:mod:`.context`), and without leading chit-chat: sentences before
+    the first one with content (*Hi!*), and the chit-chat clause before the first comma of that one (*I'm
+    hungry, go ...*). Sentences that say where the robot is (*I'm downstairs right now.*) and those set aside
+    are kept wherever they are."""
+    tokens = [t for t in rewrite(tokenize(text), lx.PHRASE_ALIASES) if t.text not in lx.SOUNDS]
     out: list[Reader] = []
     content = False
-    for r in at_colons([Reader(tuple(toks), text, nouns) for toks in sentences(tokens)]):
-        if stated_start(r) is not None:
+    parts = sentences(tokens)
+    spelling = spelling or Spelling(nouns)
+    readers = [Reader(p.toks, text, nouns, marker=p.marker, new_line=p.new_line, spelling=spelling)
+               for p in parts]
+    for r in read_lists(readers):
+        if stated_start(r) is not None or r.aside:
             out.append(r)
             continue
         if not content:
-            if is_chitchat(r, 0, len(r)):
-                continue
-            r = replace(r, toks=r.toks[leading_clause(r):])
+            if is_chitchat(r, 0, len(r)) and statement(r, 0, len(r)) is None:
+                continue  # "Hi!", "Okay, here's the plan." (a statement is said back: "We're hosting dinner")
+            cut = leading_clause(r)
+            if cut and statement(r, 0, cut - 1) is None:
+                r = replace(r, toks=r.toks[cut:])  # "Okay, go to ..." ("I'm hungry, ..." is said back)
             content = True
         out.append(r)
-    return out
+    return set_aside_context(out)
 
 
 def parse_sentence(r: Reader, decide: Callable[[Attachment], bool]) -> Parse[Sentence]:
     """The syntax tree of one sentence, its attachments decided by ``decide`` (the scene's reading of
     each :class:`.tree.Attachment`, in text order): the sentence is read again with each decision until
     none is left open."""
+    if r.aside:
+        return Match(SetAside(r.quote(0, len(r)), mentions(r)), len(r))
     choices: dict[int, bool] = {}
     while True:
         start = stated_start(r)

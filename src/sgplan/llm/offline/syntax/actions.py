@@ -17,7 +17,7 @@ from sgplan.llm.offline.syntax.floors import floor_count, floor_offset
 from sgplan.llm.offline.syntax.links import skip_subject
 from sgplan.llm.offline.syntax.phrases import phrase_list
 from sgplan.llm.offline.syntax.qualifiers import remark_ahead
-from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
+from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal, unreadable
 from sgplan.llm.offline.syntax.tree import (
     Action,
     FloorOffset,
@@ -39,6 +39,10 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     if not isinstance(verbs, Match):
         return verbs
     i = verbs.end
+    if (r.word(i) in lx.CHECK_THAT and set(verbs.node.words) & lx.CHECK_VERBS and r.word(i + 1) in lx.ARTICLES
+            and {"is", "are"} & set(r.words[i + 2:])):
+        i += 1  # "check that the couch is tidy": the couch (its state is seen there); not "check that vase"
+    verbs = Match(turned(r, verbs.node, i), i)
     if not r.np_starts(i) and verbs.node.floor is not None and r.word(i) in ("and", ",", "then"):
         moved = moved_action(r, r.skip(i, ("and", ",", "then")), in_condition)  # "go upstairs and check X"
         if not isinstance(moved, Match):
@@ -50,11 +54,43 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     phrases = phrase_list(r, i, "goal")
     if not isinstance(phrases, Match):
         return phrases
-    node = Action(r.span(start, phrases.end), verbs.node, phrases.node, in_condition=in_condition)
+    ends = bool(set(verbs.node.words) & lx.END_VERBS) and not in_condition  # "end up in X": X after the rest
+    node = Action(r.span(start, phrases.end), verbs.node, phrases.node, in_condition=in_condition, last=ends,
+                  first=verbs.node.first, repeat=Repeat(True, 1, None) if verbs.node.again else None)
     moved = floor_move(r, phrases.end, phrases.node, in_condition)
     if moved is not None:
         return moved if isinstance(moved, Refusal) else Match(replace(node, moved=moved.node), moved.end)
-    return action_tail(r, phrases.end, node)
+    checked = r.word(start) in lx.CHECK_VERBS
+    end = given(r, phrases.end) if set(verbs.node.words) & lx.GIVE_VERBS else phrases.end
+    if end is None:
+        return Refusal(rf.give_without_look(r.quote(start, phrases.end)))
+    return action_tail(r, state_said(r, end) if checked else end, node)
+
+
+def given(r: Reader, i: int) -> int | None:
+    """The end of what *give X* gives X at ``i`` (*a quick look*), or ``None`` if it gives X nothing read."""
+    looks = r.phrase(i + 1, lx.GIVEN_LOOKS) if r.word(i) in ("a", "an") else None
+    return None if looks is None else i + 1 + len(looks)
+
+
+def turned(r: Reader, verbs: VerbWords, i: int) -> VerbWords:
+    """*go up and X*, *come down and X*: a floor move to the floors above / below, when the verb words end
+    with *up* / *down* before a connective."""
+    if verbs.floor is None and verbs.words and verbs.words[-1] in lx.UP_DOWN and r.word(i) in ("and", ","):
+        return replace(verbs, floor=RelativeFloor(lx.UP_DOWN[verbs.words[-1]]), floor_span=r.span(i - 1, i))
+    return verbs
+
+
+def state_said(r: Reader, i: int) -> int:
+    """After *check that the couch*: the state the check is about (*is tidy*, *is switched off*), which
+    the translator does not read (being there is what a check needs)."""
+    if r.word(i) not in ("is", "are", "'s"):
+        return i
+    k = r.skip(i + 1, lx.FILLERS)
+    while k < min(i + 4, len(r)) and r.word(k).isalpha() and r.word(k) not in lx.STRUCTURAL \
+            and r.head(k) is None and r.word(k) not in ("and", "then"):
+        k += 1
+    return k if k > i + 1 and r.word(k) in lx.CLAUSE_ENDS else i
 
 
 def moved_action(r: Reader, i: int, in_condition: bool) -> Parse[Action]:
@@ -82,8 +118,16 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
     seen: list[str] = []
     floor: FloorSpec | None = None
     floor_span: Span | None = None
-    while i < len(r) and (not r.np_starts(i) or verb_idiom(r, i)) and r.word(i) not in lx.VERB_STOPS:
+    first = again = False
+    while i < len(r) and (not r.np_starts(i) or verb_idiom(r, i)) and (
+            r.word(i) not in lx.VERB_STOPS or said_first(r, i)):
         w = r.word(i)
+        if said_first(r, i):  # "go first to the kitchen", "go before to the kitchen, after to ..."
+            first, i = True, i + 1
+            continue
+        if w == "again" and r.word(i + 1) in lx.PLACE_PREPOSITIONS:  # "(go) again to the kitchen"
+            again, i = True, i + 1
+            continue
         if floor is not None and (r.phrase(i, lx.WHOLE_MISSION) or r.phrase(i, lx.TIME_FILLERS)):
             break  # "don't go downstairs at any point"
         idiom = verb_idiom(r, i)
@@ -107,10 +151,35 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
         if w in lx.RELATIVE_FLOORS:  # "go upstairs to the bathroom": the bathroom on that floor
             floor, floor_span = RelativeFloor(w), r.span(i, i + 1)
         elif w not in lx.POSITIVE_VERBS and (w in lx.STRUCTURAL or not w.isalpha()):
-            return Refusal(rf.cannot_understand_word(w, r.rest(i)))
+            return unreadable(r, i)
+        odd = odd_verb(r, i)
+        if odd is not None:
+            return odd
         seen.append(w)
         i += 1
-    return Match(VerbWords(tuple(seen), floor, floor_span), i)
+    return Match(VerbWords(tuple(seen), floor, floor_span, first, again), i)
+
+
+def odd_verb(r: Reader, i: int) -> Refusal | None:
+    """An unknown word in the verb slot is taken for a verb (whatever the verb, the goal is the same), unless
+    it cannot be one: it looks like a room or object of the scene (*then bathrom sink*: a misspelt noun, whose
+    loss would widen the goal), it has no vowel (*bthrm*, an abbreviation not known), or it follows another
+    unknown word (*lvng rm couch*)."""
+    spelling, w = r.spelling, r.word(i)
+    if spelling is None or spelling.is_known(w) or w.endswith("ly"):
+        return None
+    if spelling.scene_noun_like(w) is not None or not set(w) & set("aeiouy"):
+        return Refusal(rf.not_a_verb(w))  # the refusal then says which name it looks like
+    before = r.word(i - 1)
+    if before.isalpha() and not spelling.is_known(before) and not before.endswith("ly"):
+        return Refusal(rf.not_a_verb(f"{before} {w}"))
+    return None
+
+
+def said_first(r: Reader, i: int) -> bool:
+    """*first* / *before* among the verb words, before the preposition of the place (*go first to X*)."""
+    return bool(r.word(i - 1)) and (r.word(i) in lx.FIRST or r.word(i) == "before") \
+        and r.word(i + 1) in lx.PLACE_PREPOSITIONS
 
 
 def refused_verb(r: Reader, i: int, in_condition: bool) -> Refusal | None:
@@ -118,7 +187,7 @@ def refused_verb(r: Reader, i: int, in_condition: bool) -> Refusal | None:
     w, nxt = r.word(i), r.word(i + 1)
     if w in lx.REFUSED_WORDS:
         return Refusal(rf.cannot_understand(lx.REFUSED_WORDS[w]))
-    if w in lx.START_END_VERBS and nxt in lx.START_END_PARTICLES and not in_condition:
+    if w in lx.START_VERBS and nxt in lx.START_END_PARTICLES and not in_condition:
         return Refusal(rf.path_start_or_end(w, nxt))
     if w in ("do", "does", "did", "doing") and nxt in lx.DONE_WHAT:
         return Refusal(rf.did_is_not_a_place(w, nxt))
@@ -249,7 +318,8 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
             return Refusal(rf.cannot_understand(r.rest(i)))
     i += 1 if r.word(i) == "there" else 0  # "look at the TV there": where the step is
     filler = r.phrase(i, lx.TIME_FILLERS)
-    i += len(filler) if filler else 0
+    if filler and not (filler[0] in lx.TRAILING_AFTER and r.word(i + len(filler)) in ("", ",")):
+        i += len(filler)  # not "... the office later": that says an order (.body.trailing_after)
     return Match(replace(node, span=Span(node.span.start, r.toks[i - 1].end)), i)
 
 

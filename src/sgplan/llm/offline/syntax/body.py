@@ -26,6 +26,7 @@ from sgplan.llm.offline.syntax.tree import (
     InlineAfter,
     InlineBefore,
     Item,
+    Link,
     PlainAction,
     Waypoint,
 )
@@ -58,7 +59,25 @@ def body(r: Reader, i: int, only_verb: bool = False) -> Parse[Body]:
         if not isinstance(found.node, Skip):
             items.append(found.node)
         i = found.end
-    return Match(Body(tuple(items)), i)
+    restated = restated_first(r, items)
+    return Refusal(rf.restated_first(restated)) if restated else Match(Body(tuple(items)), i)
+
+
+def restated_first(r: Reader, items: list[Item]) -> str | None:
+    """The words of a goal said again with *first* after the body put it in a sequence (*A, then B, but do B
+    first*: B before A only, or B twice?), or ``None``. Without a sequence (*A and B, B first*) it only says
+    the order."""
+    said: set[str] = set()
+    ordered = False
+    for item in items:
+        ordered = ordered or (isinstance(item, Link) and item.sequence)
+        if not isinstance(item, PlainAction) or item.action.phrases is None:
+            continue
+        words = {r.text[np.span.start:np.span.end].lower() for np in item.action.phrases.items}
+        if item.action.first and ordered and words & said:
+            return r.text[item.action.span.start:item.action.span.end]
+        said |= words
+    return None
 
 
 @ITEMS.rule("after all of them")
@@ -95,7 +114,7 @@ def before_only_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemP
 def done_with(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """*... when done with X*: X before the step it is said in."""
     done = done_words(r, i)
-    if not done or r.word(i + done) != "with" or not r.np_starts(i + done + 1):
+    if not done or r.word(i + done) not in lx.DONE_WITH or not r.np_starts(i + done + 1):
         return None
     found = action(r, i + done + 1)
     return Match(DoneWith(found.node), found.end) if isinstance(found, Match) else found
@@ -131,8 +150,17 @@ def condition_follows(r: Reader, i: int, before: Said, only_verb: bool) -> ItemP
 
 @ITEMS.rule("trailing after")
 def trailing_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
-    """*..., go to the dining room after.*: nothing more."""
-    return Match(Skip(), i + 1) if r.word(i) in lx.TRAILING_AFTER and r.word(i + 1) in ("", ",") else None
+    """*Go to the dining room after.*: nothing more in the body (a sentence that ends so follows the one
+    before it, :func:`.sentences.mission_sentence`). After two goals of the body (*the office and the
+    kitchen afterwards*, *A, then B after*) it could be about the last or all of them: refused."""
+    if r.word(i) not in lx.TRAILING_AFTER or r.word(i + 1) not in ("", ","):
+        return None
+    actions = [item for item in before if isinstance(item, PlainAction)]
+    phrases = actions[-1].action.phrases if actions else None
+    then_said = len(before) > 1 and isinstance(before[-2], Link) and before[-2].sequence  # "then B after"
+    if (len(actions) > 1 and not then_said) or (phrases is not None and len(phrases.items) > 1):
+        return Refusal(rf.trailing_after(r.quote(0, i + 1)))
+    return Match(Skip(), i + 1)
 
 
 @ITEMS.rule("but first")
@@ -205,9 +233,14 @@ def inline_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
 
 @ITEMS.rule("before X")
 def inline_before(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
-    """*A before B*: B a step after A."""
+    """*A before B*: B a step after A. Not *A, (but) before go to B*, which learners write for *before that,
+    go to B* (B first): refused."""
     if r.word(i) != "before":
         return None
+    nxt = r.word(i + 1)
+    if (r.word(i - 1) in (",", "and", "but") and nxt in lx.POSITIVE_VERBS and not nxt.endswith("ing")
+            and not r.np_starts(i + 1) and nxt not in lx.VERB_STOPS):
+        return Refusal(rf.before_bare_verb(r.quote(i, i + 2)))
     found = after_conjunction(r, i + 1)
     return Match(InlineBefore(found.node), found.end) if isinstance(found, Match) else found
 
@@ -246,7 +279,7 @@ def plain_action(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     way = r.phrase(j, lx.ON_THE_WAY)
     if way is not None:
         n = j + len(way) + (1 if r.word(j + len(way)) == "there" else 0)
-        if r.word(n) in ("", ",", "and", "then"):
+        if r.word(n) in lx.ON_THE_WAY_ENDS:
             j, on_the_way = n, True
     rest = r.rest(j)
     trailing_word: Literal["first", "before that"] | None = None

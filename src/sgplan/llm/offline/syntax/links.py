@@ -46,11 +46,15 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
         return "sequence", done
     if sequence_too and (seq := r.phrase(i, lx.SEQ_WORDS)) is not None:
         return "sequence", i + len(seq)
+    if sequence_too and (after := after_as_then(r, i)) is not None:
+        return after
     said = r.phrase(i, lx.TIME_FILLERS) or r.phrase(i, lx.POLITE)
     if said is not None:
         return "filler", i + len(said)
     w = r.word(i)
-    if w == "," or (w in lx.FILLERS and w not in lx.NOT_FILLERS_HERE):
+    if w in lx.FIRST and r.word(i + 1) in lx.PLACE_PREPOSITIONS and r.word(i - 1) not in ("", ","):
+        return None  # "go first to the kitchen": the action's (it comes first)
+    if w == "," or (w in lx.FILLERS and w not in lx.NOT_FILLERS_HERE) or w in lx.HESITATIONS:
         return "filler", i + 1
     return None
 
@@ -64,6 +68,9 @@ def on_the_way(r: Reader, i: int, way: tuple[str, ...],
     verb = after in lx.POSITIVE_VERBS and after not in lx.WAY_BACK | {"to", "into"}
     if sequence_too and (after == "," or verb):
         return "waypoint", i + n
+    if (sequence_too and n == len(way) and after in ("to", "into") and r.np_starts(i + n + 1)
+            and r.word(i - 1) not in ("", ",", "and", "then")):
+        return "sequence", i + n  # "swing by X on your way to the kitchen": X, then the kitchen
     if r.word(i + len(way)) == "there":
         return Refusal(rf.on_your_way_there())
     if sequence_too and r.word(i + len(way)) in lx.WAY_BACK:
@@ -71,11 +78,46 @@ def on_the_way(r: Reader, i: int, way: tuple[str, ...],
     return None
 
 
+def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
+    """*go first to the kitchen, after to the bedroom*, *and after you touch the toilet*: *after* between
+    clauses, with no place after it, is *then* (as learners of English write it); *, after you go to X* at the
+    end of a sentence could also mean before it, which is refused."""
+    if r.word(i) != "after" or r.word(i - 1) not in (",", "and"):
+        return None
+    nxt = r.word(i + 1)
+    if nxt in lx.AFTER_AS_THEN or (nxt in lx.POSITIVE_VERBS and not nxt.endswith("ing")
+                                   and not has_main_clause(r, i + 1)):
+        return "sequence", i + 1  # "after to the bedroom", "after go up in the dining room", "after again"
+    k = skip_subject(r, i + 1)
+    verb = r.word(k) in lx.POSITIVE_VERBS or r.word(k) in lx.AVOID_VERBS
+    if k > i + 1 and verb and not has_main_clause(r, k):
+        if r.word(i - 1) == "and":
+            return "sequence", k  # "and after you touch the toilet": and then
+        return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), k + 4))))
+    if r.np_starts(i + 1) and r.word(i + 1) not in lx.DETERMINERS - lx.ARTICLES and not has_main_clause(r, i):
+        # "go to the office and after the kitchen": the kitchen after (as learners write) or before?
+        return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), i + 5))))
+    return None
+
+
+def has_main_clause(r: Reader, i: int) -> bool:
+    """Whether a clause after *after you ...* at ``i`` is followed by its main clause (*after you go to X,
+    check Y*: a comma then an order, not a remark such as *, whatever one*)."""
+    return any(r.word(k) == "," and (r.word(k + 1) in lx.AVOID_VERBS - {"to", "in", "at", "on", "into"}
+                                     or r.phrase(k + 1, lx.NEG_STARTS) is not None) for k in range(i, len(r)))
+
+
 def closing_at(r: Reader, i: int) -> int:
     """The end of a sign-off or an aside that asks nothing at ``i`` (*thanks a lot*, *if possible*), which
-    must close its clause (a comma or the end of the sentence follows); 0 if there is none."""
+    must close its clause (a comma or the end of the sentence follows; for an aside starting with *if* /
+    *when*, a noun phrase may follow too: *then if you can the oven*, as no condition has no verb); 0 if there
+    is none."""
     said = r.phrase(i, lx.CLOSING)
-    return i + len(said) if said is not None and r.word(i + len(said)) in ("", ",") else 0
+    if said is None:
+        return 0
+    end = i + len(said)
+    closes = r.word(end) in ("", ",") or (said[0] in lx.CONDITION_OPENERS_OF_ASIDES and r.np_starts(end))
+    return end if closes else 0
 
 
 def done_words(r: Reader, i: int) -> int:
@@ -92,11 +134,11 @@ def done_sequence(r: Reader, i: int) -> int | None:
     sequence word then); ``None`` when it names what is done (*when done with the garage*) or is not
     there."""
     n = done_words(r, i)
-    if not n:
+    if not n or r.np_starts(i + n):
+        return None  # "after finishing the kitchen": the kitchen is what is done
+    if r.word(i + n) in lx.DONE_WITH and (r.word(i + n + 1) not in lx.DONE_BACK or r.np_starts(i + n + 2)):
         return None
-    if r.word(i + n) == "with" and (r.word(i + n + 1) not in lx.DONE_BACK or r.np_starts(i + n + 2)):
-        return None
-    k = i + n + (1 if r.word(i + n) == "with" else 0)
+    k = i + n + (1 if r.word(i + n) in lx.DONE_WITH else 0)
     return k + (1 if r.word(k) in lx.DONE_BACK else 0)
 
 

@@ -17,6 +17,7 @@ from sgplan.llm.offline.syntax.tree import (
     FloorSpec,
     Negation,
     OffLimits,
+    PlainAction,
     StartFloor,
     StayExtreme,
     StayOnFloor,
@@ -24,20 +25,38 @@ from sgplan.llm.offline.syntax.tree import (
 )
 
 
-def negation(r: Reader, i: int) -> Parse[Negation]:
-    """A prohibition at ``i`` (after verbs that say nothing before *neither*: *go to neither A nor B*)."""
+def negation(r: Reader, i: int) -> Parse[Negation | PlainAction]:
+    """A prohibition at ``i`` (after verbs that say nothing before *neither*: *go to neither A nor B*); a
+    negated goal (*don't forget the sink*) is that goal."""
     j = r.skip(i, lx.POSITIVE_VERBS)
     start = j if j > i and r.word(j) == "neither" else i
     marker = r.phrase(start, lx.NEG_STARTS)
     if marker is None:
         return None
-    return negation_after(r, start + len(marker), marker)
+    forgot = negated_goal(r, start + len(marker), marker)
+    return forgot if forgot is not None else negation_after(r, start + len(marker), marker)
+
+
+def negated_goal(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[PlainAction]:
+    """*don't forget (to water) the plant*, *never miss the kitchen*, *don't fail to visit X*: the goal the
+    words negate (not a place to avoid)."""
+    k = r.skip(j, lx.NEGATION_EVER)
+    if r.word(k) not in lx.FORGET_VERBS or marker[-1] not in lx.NEGATING:
+        return None
+    k = r.skip(k + 1, lx.FORGOTTEN_LINKS)
+    goal = action(r, k)
+    if not isinstance(goal, Match):
+        return goal
+    return Match(PlainAction(goal.node, False, False, False, None, r.rest(goal.end), ""), goal.end)
 
 
 def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation]:
     """What follows the words ``marker`` of a prohibition (at ``j``): what is forbidden, and for how long."""
     j += 1 if r.at(j, ",", "ever") else 0  # "never, ever"
     j += 1 if r.word(j) in lx.NEGATION_EVER else 0  # "never ever", "don't ever"
+    needed = r.word(j) in lx.NEED_WORDS and r.word(j + 1) == "to"  # "no need to X": X free, not forbidden
+    if needed or (marker == ("not",) and r.word(j - 2) in lx.NEED_WORDS):  # "you need not (needn't) go"
+        return Refusal(rf.not_needed(r.quote(j - len(marker) - (0 if needed else 1), min(j + 4, len(r)))))
     stay = stay_on_floor(r, j, negated=True)  # "don't leave this floor"
     if stay is not None:
         if not isinstance(stay, Match):
@@ -48,6 +67,11 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
         return verbs
     if set(verbs.node.words) & lx.REVISIT_VERBS:  # "never go back to X": only after a first visit
         return Refusal(rf.never_go_back())
+    unknown = next((k for k in range(j, verbs.end) if r.word(k) in verbs.node.words
+                    and r.word(k) not in lx.AVOID_VERBS and r.word(k) not in lx.NEGATION_NEUTRAL), None)
+    if unknown is not None:  # "don't xyzzy the sink": read as "never at the sink", it could reverse the ask
+        said = r.quote(j - len(marker) + (1 if marker[0] in lx.NEGATION_JOINERS else 0), unknown + 1)
+        return Refusal(rf.unknown_negated_verb(said, r.word(unknown)))
     k, phrases, floor = verbs.end, None, None
     if verbs.node.floor is not None and not r.np_starts(k):  # "never go upstairs": any room there
         floor = FloorPlace(r.span(k - 1, k), verbs.node.floor, "all")
@@ -57,6 +81,7 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
             return found
         phrases, k = found.node, found.end
     k = particles(r, k)
+    k += 1 if r.word(k) in lx.NEGATING + lx.NEGATION_EVER and marker[-1] in lx.NEGATING else 0  # "... never"
     whole = r.phrase(k, lx.WHOLE_MISSION)
     k += len(whole) if whole else 0
     if r.word(k) in lx.PARTIAL_PROHIBITION or any(r.at(k, *p) for p in lx.PARTIAL_FROM):
@@ -73,7 +98,12 @@ def until_target(r: Reader, k: int) -> Parse[Action | UntilDone]:
     """*... until / before Y*, *... until you have done that*, *... until both of them are done*."""
     if r.word(k) not in lx.UNTIL_WORDS:
         return None
-    k = skip_subject(r, k + 1)
+    if r.word(k + 1) in lx.EVENT_WORDS or (r.at(k + 1, "the") and r.word(k + 2) in lx.EVENT_WORDS):
+        return Refusal(rf.until_a_time(r.quote(k, k + (2 if r.word(k + 1) in lx.EVENT_WORDS else 3))))
+    said = skip_subject(r, k + 1)
+    if said > k + 1 and r.word(said) in ("", ","):
+        return Match(UntilDone(), said)  # "don't set foot in the kitchen until you have"
+    k = said
     if r.word(k) in lx.DONE and ((r.word(k + 1) in lx.DONE_WHAT and not r.np_starts(k + 2))
                                  or not r.np_starts(k + 1)):
         k += 1  # "... before you've done that"
@@ -82,7 +112,9 @@ def until_target(r: Reader, k: int) -> Parse[Action | UntilDone]:
     if not isinstance(target, Match):
         return target
     k = target.end
-    if r.word(k) in lx.UNTIL_DONE_LINKS and r.word(k + 1) in lx.UNTIL_DONE_WORDS:
+    if r.word(k) in lx.DONE:
+        k += 1  # "until DR done"
+    elif r.word(k) in lx.UNTIL_DONE_LINKS and r.word(k + 1) in lx.UNTIL_DONE_WORDS:
         k += 2  # "until both bathrooms are done"
         k += 1 if r.word(k) in lx.UNTIL_DONE_VERBS else 0
     return Match(target.node, k)

@@ -16,7 +16,7 @@ from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import qualifiers
 from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.links import closing_at
-from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
+from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal, unreadable
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.tree import (
     Described,
@@ -36,6 +36,7 @@ from sgplan.llm.offline.syntax.tree import (
     SameRoom,
     ThereNP,
 )
+from sgplan.llm.offline.text import is_clock_time
 
 NOUN_PHRASES: RuleSet[NounPhrase] = RuleSet("noun phrase")
 
@@ -141,6 +142,9 @@ def noun_with_head(r: Reader, first: int, i: int, role: Role, det: Determiner, r
     compound = None
     kind = ref.kind if isinstance(ref, Head) else "room" if isinstance(ref, KeyHead) and \
         ref.key.startswith("room_") else None
+    floor_then = floor_words(r, i) if kind == "room" and floor_before is None else None
+    if floor_then is not None and (after := r.head(floor_then.end)) is not None and after.kind == "object":
+        floor_before, i = floor_then.node, floor_then.end  # "the bathrm mid flr sink": that floor's bathroom
     if kind == "room" and (after := r.head(i)) is not None and after.kind == "object":
         compound, i = after, i + after.words  # "the kitchen sink": the sink in the kitchen
         mode = "all" if after.plural and mode == "the" else mode
@@ -194,6 +198,8 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
     n = count_word(r, i) if r.np_starts(i + 1) or r.head(i + 1) else None
     if n is not None and chosen_from:
         return Match(Determiner(mode, n), i + 1)  # one of them, and there must be n
+    if n == 1 and mode is None and r.word(i) == "one":
+        return Match(Determiner("any", None), i + 1)  # "sit on one chair": any chair
     if n is not None:
         if mode in (None, "any"):
             return Refusal(rf.choosing_a_number(r.word(i)))
@@ -237,6 +243,8 @@ def head_noun(r: Reader, i: int, one: OneHead | None) -> Parse[HeadRef]:
     head = r.head(i)
     if head is None and i >= len(r):
         return Refusal(rf.expected_phrase_after(r.word(i - 1)))
+    if head is None and (not w[:1].isalpha() or is_clock_time(w)):
+        return unreadable(r, i)
     if head is None:
         return Refusal(rf.unknown_noun(w, r.nouns.category_names("room"), r.nouns.category_names("object")))
     return Match(head, i + head.words)
@@ -259,6 +267,10 @@ def phrase_list(r: Reader, i: int, role: Role) -> Parse[PhraseList]:
         return item
     items, joiners, i = [item.node], set[str](), item.end
     while (joined := list_joiner(r, i, preposition)) is not None:
+        restates = r.word(joined[1]) in lx.ARTICLES and r.word(joined[1] + 1) in lx.ANAPHORIC_ONE
+        if not joined[0] and not restates and r.text[r.toks[i].start:r.toks[i].end].strip() in lx.DASHES:
+            # "kitchen - office - couch": a route, or a set? (a dash between asides is read as a comma)
+            return Refusal(rf.dash_between_goals(r.quote(first, min(len(r), joined[1] + 2))))
         joiner, i = joined
         joiners |= {joiner} if joiner else set()
         item = noun_phrase(r, i, role)
@@ -281,10 +293,12 @@ def list_joiner(r: Reader, i: int, preposition: str | None) -> tuple[str, int] |
     w, nxt = r.word(i), r.word(i + 1)
     if preposition is not None and w in ("and", "or") and nxt == preposition and r.np_starts(i + 2):
         return w, i + 2
+    if closing_at(r, i + (1 if w == "," else 0)):
+        return None  # "the couch, and that's it": a sign-off, not an item
     if w == "," and nxt in ("and", "or") and r.np_starts(i + 2):
         return nxt, i + 2
     if (w == "," and r.np_starts(i + 1) and not r.phrase(i + 1, lx.NEG_STARTS) and not closing_at(r, i + 1)
-            and not r.phrase(i + 1, lx.TIME_FILLERS) and not r.phrase(i + 1, lx.CHOICE_AFFIRMATIONS)):
+            and not r.phrase(i + 1, lx.TIME_FILLERS) and qualifiers.remark_ahead(r, i) is None):
         return "", i + 1
     if w in ("and", "or", "nor") and r.np_starts(i + 1):
         return w, i + 1

@@ -35,21 +35,24 @@ def is_chitchat(r: Reader, start: int, end: int) -> bool:
                 continue
             return False
         if (w.startswith(("room_", "object_")) or w in lx.POSITIVE_VERBS or w in lx.REFUSED_WORDS
-                or w in lx.RELATIVE_FLOORS or w in lx.STRUCTURAL or w.isdigit() or r.head(k) is not None):
+                or w in lx.RELATIVE_FLOORS or (w in lx.STRUCTURAL and w not in lx.AUXILIARIES) or w.isdigit()
+                or r.head(k) is not None):
             return False
         k += 1
     return True
 
 
 def leading_clause(r: Reader) -> int:
-    """How many words of a sentence's leading clause (up to and including its first comma) are chit-chat
-    to skip (*I'm hungry, go to the fridge*); 0 if none or if nothing would be left."""
-    if "," not in r.words:
-        return 0
-    comma = r.words.index(",")
-    if comma == 0 or comma == len(r) - 1:
-        return 0
-    return comma + 1 if is_chitchat(r, 0, comma) else 0
+    """How many words of a sentence's leading clauses (each up to and including its comma) are chit-chat to
+    skip (*I'm hungry, go to the fridge*, *Alexa, sorry, robot, go ...*); 0 if none or if nothing would be
+    left."""
+    start = 0
+    while "," in r.words[start:]:
+        comma = r.words.index(",", start)
+        if comma == start or comma == len(r) - 1 or not is_chitchat(r, start, comma):
+            break
+        start = comma + 1
+    return start
 
 
 def stated_start(r: Reader) -> StatedStart | None:

@@ -37,6 +37,7 @@ from sgplan.llm.offline.syntax.tree import (
     RelativeFloor,
     Role,
     SameFloor,
+    StartFloor,
     There,
     UpThere,
 )
@@ -114,10 +115,29 @@ def current_head(noun: Described) -> Head | None:
 
 
 def remark_ahead(r: Reader, i: int) -> tuple[str, ...] | None:
-    """The words of ``(,) either one is fine`` / ``, any one will do`` / ``, whichever`` at ``i`` (a remark
-    that the choice is the robot's), or ``None``."""
+    """The words of ``(,) either one is fine`` / ``, any one will do`` / ``, whichever`` / ``, just one of
+    them`` / ``, any of the three`` at ``i`` (remarks that the choice is the robot's, one after another), or
+    ``None``."""
+    said = one_remark(r, i)
+    k = i + len(said) if said is not None else i
+    while said is not None and (more := one_remark(r, k)) is not None:
+        said, k = said + more, k + len(more)  # "just one of them, any is fine"
+    return said
+
+
+def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
+    """One choice remark at ``i`` (see :func:`remark_ahead`)."""
     comma = 1 if r.word(i) == "," else 0
+    suffices = r.phrase(i + comma, lx.ONE_SUFFICES)
+    after = i + comma + len(suffices or ())
+    if suffices is not None and (r.word(after) in lx.CLAUSE_ENDS or one_remark(r, after) is not None):
+        return (",",) * comma + suffices
+    w, of, the, n = (r.word(i + comma + k) for k in range(4))
+    if w in lx.CHOOSING_OF and of == "of" and the in ("the", "all") and (n in lx.NUMBER_WORDS or n.isdigit()):
+        return (",",) * comma + (w, of, the, n)  # "a TV in the office, any of the three"
     said = r.phrase(i + comma, lx.CHOICE_AFFIRMATIONS)
+    if said is None and comma and r.word(i + 1) in lx.BARE_CHOOSERS and r.word(i + 2) in lx.CLAUSE_ENDS:
+        said = (r.word(i + 1),)  # "LR tv (either)", "DR vase, any": no noun follows, so a remark
     time = r.phrase(i + comma, lx.TIME_FILLERS)  # "whichever first" is about the order
     if said is None or (said == ("is", "fine") and comma) or (time is not None and len(time) >= len(said)):
         return None
@@ -153,8 +173,8 @@ def aside(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
 @QUALIFIERS.rule("possessive")
 def possessive(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*the teddy bear's room* (the room holding it), *the kitchen's sink* (the sink in it)."""
-    if r.word(i) != "'s" or noun.kind is None:
-        return None
+    if r.word(i) != "'s" or noun.kind is None or r.head(i + 1) is None:
+        return None  # not "the oven's off": there 's is "is"
     head = phrases.head_noun(r, i + 1, None)
     if not isinstance(head, Match):
         return head
@@ -190,6 +210,22 @@ def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     said = floor_words(r, i + (2 if r.word(i + 1) == "the" else 1))
     if said is None or r.head(said.end) is not None:
         return None  # none, or "in the ground floor bathroom": a room named with its floor
+    return Match(OnFloor(said.node), said.end)
+
+
+@QUALIFIERS.rule("floor without a preposition")
+def floor_after(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*bathrm top flr*, *the bathroom floor 0*, *bathroom (floor 1)*, *bathroom (upstairs)*: the floor said
+    right after the noun, as notes are written (not *the bathroom top floor bedroom*: a floor before another
+    noun names that one)."""
+    aside = r.word(i) == "," and r.word(i + 1) != ","
+    k = i + (1 if aside else 0)
+    if aside and r.word(k) in lx.RELATIVE_FLOORS and r.word(k + 1) in lx.CLAUSE_ENDS:
+        return Match(OnFloor(RelativeFloor(r.word(k))), k + 1)
+    said = floor_words(r, k)
+    if (said is None or isinstance(said.node, StartFloor) or r.head(said.end) is not None
+            or (aside and r.word(said.end) not in lx.CLAUSE_ENDS)):
+        return None
     return Match(OnFloor(said.node), said.end)
 
 
@@ -242,9 +278,32 @@ def there(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if r.word(i) != "there" or r.word(i + 1) in lx.STATEMENT_LINKS:
         return None
     if noun.kind == "room" or (noun.kind is None) or (
-            noun.kind == "object" and noun.role == "goal" and not noun.room_scoped):
+            noun.kind == "object" and noun.role in ("goal", "avoid") and not noun.room_scoped):
         return Match(There(), i + 1)
     return None
+
+
+@QUALIFIERS.rule("where is X")
+def where_is(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the bedroom where is the book* (as learners write *where the book is*): the rooms holding it; *where
+    is only the bed*: holding nothing else."""
+    if noun.kind == "object" or r.word(i) != "where" or r.word(i + 1) not in lx.RELATIVE_BE:
+        return None
+    k = i + 2 + (1 if r.word(i + 2) in lx.ONLY_WORDS else 0)
+    if not r.np_starts(k) or r.word(k) == "there":
+        return None
+    thing = phrases.noun_phrase(r, k, "qualifier")
+    if not isinstance(thing, Match):
+        return thing
+    return Match(Contains(thing.node, r.span(noun.first, thing.end), None, k > i + 2), thing.end)
+
+
+@QUALIFIERS.rule("that is X")
+def relative_be(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the bathroom that is near (of) the bedrooms*, *the bedroom which is upstairs*: the qualifier the
+    relative clause states."""
+    said = r.phrase(i, lx.RELATIVE_THAT)
+    return Match(Skipped(), i + len(said)) if said and r.word(i + len(said)) in lx.ASIDE_QUALIFIERS else None
 
 
 @QUALIFIERS.rule("where X is")
@@ -339,8 +398,12 @@ def contains(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     thing = phrases.noun_phrase(r, start, "qualifier")
     if not isinstance(thing, Match):
         return thing
-    return Match(Contains(thing.node, r.span(noun.first, thing.end), count, "only" in said),
-                 skip_in_it(r, thing.end))
+    end = skip_in_it(r, thing.end)
+    trailing = r.word(end) == "only" and r.word(end + 1) not in lx.ONLY_FOLLOWERS  # "bdrm w/ bed only"
+    # "with only / just the bed": nothing else; "with only / just one bed": exactly one
+    only = (bool(set(said) & lx.ONLY_WORDS) or trailing) and count is None
+    said_as = Contains(thing.node, r.span(noun.first, thing.end), count, only)
+    return Match(said_as, end + (1 if trailing else 0))
 
 
 @QUALIFIERS.rule("and more contents")

@@ -11,13 +11,15 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Generic, TypeVar
+from typing import Generic, Literal, TypeVar
 
 from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.nouns import Head, NounLexicon
 from sgplan.llm.offline.phrases import Phrases
+from sgplan.llm.offline.spelling import Spelling
 from sgplan.llm.offline.syntax.tree import Announced, Span
-from sgplan.llm.offline.text import Tok
+from sgplan.llm.offline.text import Tok, is_clock_time
 
 N = TypeVar("N", covariant=True)
 
@@ -53,7 +55,17 @@ class Reader:
     nouns: NounLexicon
     choices: Mapping[int, bool] = field(default_factory=dict)
     announced: Announced | None = None
-    """What a colon before this sentence announced of its list (:mod:`.colons`)."""
+    """What a colon before this sentence announced of its list (:mod:`.lists`)."""
+    marker: Literal["number", "bullet"] | None = None
+    """The list marker the sentence started with (:class:`~sgplan.llm.offline.text.Part`)."""
+    new_line: bool = False
+    """The sentence starts a line of the text."""
+    after_item: bool = False
+    """An item of an ordered list after its first one (:mod:`.lists`)."""
+    aside: bool = False
+    """Words set aside unread (a list's heading): said back, not parsed (:mod:`.lists`)."""
+    spelling: Spelling | None = None
+    """The words the scene's missions use: an unknown word that looks like a noun is no verb."""
     words: tuple[str, ...] = field(init=False)
 
     def __post_init__(self) -> None:
@@ -110,6 +122,8 @@ class Reader:
                     and self.phrase(i, lx.WHENEVER) is None)  # "every time you ...": a condition
         if w in lx.FLOOR_WORDS and (nxt.isdigit() or nxt in lx.NUMBER_WORDS or nxt == "zero"):
             return True  # "floor 2" as a place
+        if w in lx.FLOOR_NAMES and nxt in lx.FLOOR_WORDS and self.head(i + 2) is not None:
+            return True  # "top floor bathroom", "ground-floor bathroom" (notes leave the article out)
         if w in lx.NUMBER_WORDS or w.isdigit():
             if nxt in lx.FLOOR_PLURALS and self.word(i + 2) in lx.FLOOR_DIRECTIONS:
                 return False  # "two floors up": where, not what
@@ -136,3 +150,15 @@ class Reader:
     def decided(self, at: int) -> bool | None:
         """How the attachment at token ``at`` is read (:attr:`choices`), ``None`` if not decided yet."""
         return self.choices.get(at)
+
+
+def unreadable(r: Reader, i: int) -> Refusal:
+    """The refusal of the word at ``i`` where it cannot be read: a clock time (*at 6 pm*), a symbol (*A / B*),
+    a word of the grammar out of place."""
+    w = r.word(i)
+    if is_clock_time(w):
+        before = i - 1 if r.word(i - 1) in lx.CLOCK_PREPOSITIONS else i
+        return Refusal(rf.clock_time(r.quote(before, i + 1)))
+    if not w[:1].isalnum():
+        return Refusal(rf.symbol(w, r.rest(max(i - 1, 0))))
+    return Refusal(rf.cannot_understand_word(w, r.rest(i)))

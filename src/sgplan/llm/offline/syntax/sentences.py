@@ -15,6 +15,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import after_conjunction
 from sgplan.llm.offline.syntax.body import body
+from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.links import at_end, comma_or_then, done_words, link, skip_subject
 from sgplan.llm.offline.syntax.phrases import noun_phrase
 from sgplan.llm.offline.syntax.qualifiers import head_kind
@@ -24,22 +25,24 @@ from sgplan.llm.offline.syntax.tree import (
     Action,
     Body,
     Described,
+    FloorSpec,
     IfRule,
+    Link,
     MissionSentence,
     OnlyAfterPost,
     OnlyAfterSentence,
     OnlyIfPost,
-    PhraseList,
     PlainSentence,
     Postfix,
     PrefixedSentence,
+    RelativeFloor,
     Rule,
     RuleSentence,
     RulesPost,
     SentenceBody,
     UntilSentence,
+    UpThere,
     WheneverRule,
-    nodes,
 )
 
 OPENINGS: RuleSet[SentenceBody] = RuleSet("sentence opening")
@@ -47,6 +50,10 @@ OPENINGS: RuleSet[SentenceBody] = RuleSet("sentence opening")
 
 def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     """A sentence of the mission, read to its last word (else refused, naming what is left)."""
+    delay = next((k for k in range(1, len(r)) if r.word(k) in lx.TIME_UNITS and (
+        r.word(k - 1).isdigit() or r.word(k - 1) in lx.NUMBER_WORDS or r.word(k - 1) in lx.FEW)), None)
+    if delay is not None:  # "wait 5 min", "in ten minutes", "for a few minutes"
+        return Refusal(rf.left_over(r.quote(max(delay - 2, 0), delay + 1)))
     i, opener = 0, None
     said = r.phrase(0, lx.WHOLE_MISSION)
     if said is not None and r.word(len(said)) == "," and said[0] not in lx.WAYPOINT_OPENERS:
@@ -59,20 +66,43 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     lead = link(r, i)
     if not isinstance(lead, Match):
         return lead
-    said_body = sentence_body(r, lead.end)
+    floor, start = floor_opening(r, lead.end)
+    said_body = sentence_body(r, start)
     if not isinstance(said_body, Match):
         return said_body
+    if (precedes is not None or lead.node.sequence or r.word(0) in lx.LAST) and isinstance(
+            said_body.node, PlainSentence) and not said_body.node.body.items:
+        return Refusal(rf.order_without_goal(r.quote(0, len(r))))  # "Last: the office" is not set aside
+    if (precedes is None and not lead.node.sequence and isinstance(said_body.node, PlainSentence)
+            and r.word(len(r) - 1) in lx.TRAILING_AFTER):
+        lead = Match(Link(True), lead.end)  # "Go to the office. Visit the kitchen afterwards.": as "Then ..."
     rest = link(r, said_body.end, sequence_too=False)
     if not isinstance(rest, Match):
         return rest
     if rest.end < len(r):
         return Refusal(rf.left_over(r.quote(rest.end, len(r))))
-    if r.announced is not None and r.announced.count is not None:
-        items = sum(len(found.items) for found in nodes(said_body.node, PhraseList))
-        if items != r.announced.count:
-            return Refusal(rf.announced_count(r.announced.said, r.announced.count, items))
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
-                                 r.span(0, len(r)), r.announced), len(r))
+                                 r.span(0, len(r)), r.announced, r.after_item, floor), len(r))
+
+
+def floor_opening(r: Reader, i: int) -> tuple[FloorSpec | None, int]:
+    """*On the top floor, ...*, *Upstairs, ...*, *While you're upstairs, ...*, *While you're (up) on floor 2,
+    ...*: the floor of the sentence's goals, and where its body starts; *While you're in the kitchen, ...* is
+    *In the kitchen, ...* (the body starts at *in*)."""
+    k = skip_subject(r, i + 1) if r.word(i) == "while" else i
+    if k > i and r.word(k) in lx.BACK_THERE and r.word(k + 1) in lx.FLOOR_PREPOSITIONS:
+        k += 1  # "while you're up on the top floor"
+    if r.word(k) in lx.RELATIVE_FLOORS and r.word(k + 1) == ",":
+        return RelativeFloor(r.word(k)), k + 2
+    if k > i and r.word(k) in lx.BACK_THERE and r.at(k + 1, "there", ","):
+        return UpThere(r.word(k)), k + 3  # "while you're up there, ...": the floor of the goal named last
+    j = k + 1 if r.word(k) in lx.FLOOR_PREPOSITIONS else k
+    said = floor_words(r, j + (1 if r.word(j) == "the" else 0)) if j > k else None
+    if said is not None and r.word(said.end) == ",":
+        return said.node, said.end + 1
+    if k > i and r.word(k) in lx.SCOPE_IN and r.np_starts(k + 1):
+        return None, k  # "while you're in the kitchen, ...": the room of the sentence
+    return None, i
 
 
 def sentence_body(r: Reader, i: int) -> Parse[SentenceBody]:
@@ -96,7 +126,7 @@ def whenever_first(r: Reader, i: int) -> Parse[SentenceBody]:
 def done_with_first(r: Reader, i: int) -> Parse[SentenceBody]:
     """*When done with the garage, Y*: the garage, then Y."""
     done = done_words(r, i)
-    if not done or r.word(i + done) != "with" or not r.np_starts(i + done + 1):
+    if not done or r.word(i + done) not in lx.DONE_WITH or not r.np_starts(i + done + 1):
         return None
     return prefixed(r, i + done + 1, prefix_last=False)
 
@@ -155,8 +185,18 @@ def on_the_way_first(r: Reader, i: int) -> Parse[SentenceBody]:
 
 @OPENINGS.rule("before Y, X")
 def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
-    """*Before going to Y, X*: X, then Y."""
-    return prefixed(r, i + 1, prefix_last=True) if r.word(i) == "before" else None
+    """*Before going to Y, X*: X, then Y. Not *before Y, A, then B* (does B come before Y too?), nor *before
+    you go (anywhere) near Y, X* (stay out of Y until X, or go there after X?)."""
+    if r.word(i) != "before":
+        return None
+    end = next((k for k in range(i, len(r)) if r.word(k) == ","), len(r))
+    if any(r.word(k) == "into" and "near" in r.quote(k, k + 1).lower() for k in range(i, end)):
+        return Refusal(rf.before_near(r.quote(i, end)))  # "go near", "anywhere near" are read as "into"
+    said = prefixed(r, i + 1, prefix_last=True)
+    if r.word(i + 1) != "to" and isinstance(said, Match) and isinstance(said.node, PrefixedSentence) and any(
+            isinstance(item, Link) and item.sequence for item in said.node.body.items):
+        return Refusal(rf.before_then(r.quote(i, said.end)))
+    return said
 
 
 @OPENINGS.rule("only <do X> after Y")
@@ -192,7 +232,7 @@ def prefixed(r: Reader, i: int, prefix_last: bool) -> Parse[SentenceBody]:
 def plain(r: Reader, i: int) -> Parse[SentenceBody]:
     """A body, after *In the kitchen,* (the room of the sentence) when said, and a closing condition."""
     scope = None
-    if r.word(i) in lx.SCOPE_IN and r.np_starts(i + 1):
+    if r.word(i) in lx.SCOPE_IN and r.np_starts(i + 1) and r.word(i - 1) not in lx.POSITIVE_VERBS:
         room = noun_phrase(r, i + 1, "qualifier")
         if isinstance(room, Refusal):
             return room
@@ -246,6 +286,13 @@ def antecedent(r: Reader, i: int) -> Parse[Action]:
     if whenever is None and word is None:
         return None
     start = i + len(whenever or word or ())
+    ever = r.phrase(start, lx.EVER)
+    j = start + (len(ever) if ever else 0)
+    k = skip_subject(r, j)
+    if set(r.words[j:k]) & lx.THING_SUBJECTS:  # "if it is open, ...": a state, not where the robot is
+        return Refusal(rf.state_condition(r.quote(i, min(k + 2, len(r)))))
+    if r.word(k) in lx.WISH_VERBS:  # "and if you want the office": an optional goal
+        return Refusal(rf.optional_condition(r.quote(i, k + 1)))
     return trigger(r, start) if whenever else condition(r, start)
 
 
@@ -257,19 +304,25 @@ def condition_rule(r: Reader, i: int) -> Parse[Rule]:
     rest = consequent(r, comma_or_then(r, said.end))
     if not isinstance(rest, Match):
         return rest
-    return Match(make_rule(r, i, said, rest.node, comma_or_then(r, said.end), rest.end), rest.end)
+    rule = make_rule(r, i, said, rest.node, comma_or_then(r, said.end), rest.end)
+    return rule if isinstance(rule, Refusal) else Match(rule, rest.end)
 
 
 def make_rule(r: Reader, i: int, said: Match[Action], consequent: Body, after_start: int,
-              after_end: int) -> Rule:
+              after_end: int) -> Rule | Refusal:
     """The rule at ``i`` with condition ``said`` and ``consequent``; an *if* rule is a response when its
-    condition says *ever* or the words ``[after_start, after_end)`` say *afterwards*."""
+    condition says *ever*, and its consequent follows the condition when the words ``[after_start,
+    after_end)`` say *afterwards*. *If you ever go into X, look at Y in there* is refused: once, or on
+    each visit of X?"""
     word = r.phrase(i, lx.CONDITION_WORDS)
     if r.phrase(i, lx.WHENEVER) is not None or word is None:
         return WheneverRule(said.node, consequent)
     start = i + len(word)
-    response = r.says(lx.EVER, start, said.end) or r.says(lx.AFTERWARDS, after_start, after_end)
-    return IfRule(" ".join(word), said.node, consequent, response)
+    response = r.says(lx.EVER, start, said.end)
+    afterwards = r.says(lx.AFTERWARDS, after_start, after_end)
+    if response and not afterwards and r.says(lx.AT_THAT_PLACE, after_start, after_end):
+        return Refusal(rf.once_or_each_visit(r.quote(min(i, after_start), max(said.end, after_end))))
+    return IfRule(" ".join(word), said.node, consequent, response, afterwards)
 
 
 def trigger(r: Reader, i: int) -> Parse[Action]:
@@ -325,7 +378,10 @@ def postfix(r: Reader, i: int, body_actions: int) -> Parse[Postfix]:
             return own
         first, end, body_is_consequent = own.node, own.end, False
     else:  # "S whenever X" / "S if X": the body is the consequent
-        first, end, body_is_consequent = make_rule(r, i, said, Body(()), 0, i), said.end, True
+        rule = make_rule(r, i, said, Body(()), 0, i)
+        if isinstance(rule, Refusal):
+            return rule
+        first, end, body_is_consequent = rule, said.end, True
     rules = more_rules(r, end)
     if not isinstance(rules, Match):
         return rules

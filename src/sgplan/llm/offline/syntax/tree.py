@@ -332,6 +332,10 @@ class VerbWords:
     words: tuple[str, ...]
     floor: FloorSpec | None
     floor_span: Span | None
+    first: bool = False
+    """*go first to X*, *go before to X* (as learners write *first*): the action comes first."""
+    again: bool = False
+    """*go again to X*: a new visit of X (as *X again*)."""
 
 
 @dataclass(frozen=True)
@@ -518,12 +522,14 @@ class WheneverRule:
 @dataclass(frozen=True)
 class IfRule:
     """*if X, Y* / *Y if X* (``word``: *if*, *when*, *in case*); ``response``: said of every visit of X
-    (*if you ever ...*, *... afterwards*), read like *whenever*."""
+    (*if you ever ...*, *at any point*), read like *whenever*; ``afterwards``: Y is said to follow X (*if you
+    go into X, check Y afterwards*: after that visit of X)."""
 
     word: str
     condition: Action
     consequent: Body
     response: bool
+    afterwards: bool = False
 
 
 Rule = WheneverRule | IfRule
@@ -613,6 +619,12 @@ class Announced:
     prefix: tuple[Tok, ...]
     count: int | None
     head: Head | None
+    at: int = 0
+    """The character offset of the announcement (one announcement may head several list items)."""
+    scope: bool = False
+    """The words before the colon name the room of what follows (*Kitchen: the fridge, then the sink*)."""
+    suffix: tuple[Tok, ...] = ()
+    """An order remark said before the colon, read after the list (*Do these in order: A, B*)."""
 
 
 @dataclass(frozen=True)
@@ -621,7 +633,10 @@ class MissionSentence:
 
     ``opener``: *The whole time,* (the sentence must then be whole-mission avoidance only). ``precedes``:
     *Before that,* / *First,* (its goals go before the previous sentence's). ``lead``: the sequence words
-    it starts with (*Then ...*). ``says_order``: the word *order* occurs (*The order doesn't matter.*)."""
+    it starts with (*Then ...*). ``says_order``: the word *order* occurs (*The order doesn't matter.*).
+    ``after_item``: an item of an ordered list after its first one (it continues the sequence, as *Then
+    ...* does). ``floor_scope``: *On the top floor, ...* / *While you're upstairs, ...* (or a list's heading,
+    *Top floor tasks:*): the goals of the sentence are on that floor."""
 
     opener: str | None
     precedes: str | None
@@ -630,6 +645,8 @@ class MissionSentence:
     says_order: bool
     span: Span
     announced: Announced | None = None
+    after_item: bool = False
+    floor_scope: FloorSpec | None = None
 
 
 @dataclass(frozen=True)
@@ -640,7 +657,18 @@ class StatedStart:
     said: str
 
 
-Sentence = MissionSentence | StatedStart
+@dataclass(frozen=True)
+class SetAside:
+    """Words that ask nothing of the robot and are not read (*We're hosting dinner tonight.*, a list's heading
+    *Shopping list check*), said back as not part of the mission (``said``: as typed); ``mentions``: the rooms
+    and objects they name, which *there* may point back to (*Grandpa's napping in the bedroom, so stay out of
+    there*)."""
+
+    said: str
+    mentions: tuple[NounPhrase, ...] = ()
+
+
+Sentence = MissionSentence | StatedStart | SetAside
 
 
 T = TypeVar("T")

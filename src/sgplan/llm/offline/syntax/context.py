@@ -1,0 +1,222 @@
+"""Words that only give context, set aside before parsing: statements (*We're hosting dinner tonight.*, *The
+plants are looking sad.*, *..., the floor's still wet*) and times (*Before lunch, ...*, *Tonight, ...*,
+*... after dinner*).
+
+People tell a robot why and when as well as what. Such words ask nothing a mission can require, so they
+are not read; they are kept as :class:`.tree.SetAside` sentences, which the translator says back (*Not
+part of the mission: 'We're hosting dinner tonight.'*): nothing is dropped silently. The rooms and objects
+a statement names are kept as mentions, which *there* may point back to (*Grandpa's napping in the
+bedroom, so stay out of there*).
+
+Set aside are: a sentence or a comma clause (first or last of its sentence) that starts with a subject
+(*I, we, it, there, the guests, my mum, Grandpa*) and a verb, unless it is a polite wrapper (*I need you
+to ...*), says what is off limits (*the kitchen is off limits*), or states a need about a room or object of
+the scene (*the plants need watering*: that may ask for a goal, and is refused by the parser); and a time of
+day, meal or event opening or closing a sentence (*Before lunch,*, *... tonight*). A clock time is refused
+(:func:`.reader.unreadable`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline.syntax.phrases import noun_phrase
+from sgplan.llm.offline.syntax.preamble import stated_start
+from sgplan.llm.offline.syntax.reader import Match, Reader
+from sgplan.llm.offline.syntax.tree import Described, NounPhrase
+
+
+def set_aside_context(readers: list[Reader]) -> list[Reader]:
+    """``readers`` with the context of each sentence split off as readers set aside (see the module
+    docstring)."""
+    out: list[Reader] = []
+    for r in readers:
+        out += [r] if r.aside or stated_start(r) is not None else split(r)
+    return out
+
+
+def split(r: Reader) -> list[Reader]:
+    """A sentence, its leading and trailing context clauses set aside, and the times said between its
+    clauses."""
+    if event_note(r, 0, len(r)) or is_time(r, 0, len(r)):
+        return [aside(r, 0, len(r))]
+    clauses = comma_clauses(r)
+    first, last = 0, len(clauses)
+    while first < last and is_context(r, *clauses[first], leading=True):
+        first += 1
+    while last > first and is_context(r, *clauses[last - 1], leading=False):
+        last -= 1
+    if first == last or (first > 0 and mere_talk(r, clauses[first][0], clauses[last - 1][1])):
+        return [aside(r, 0, len(r))]
+    kept = [aside(r, clauses[0][0], clauses[first - 1][1])] if first else []
+    start = skip_joiner(r, clauses[first][0]) if first else 0
+    middle = [c for c in clauses[first:last] if is_time(r, *c)]  # "check the laptop before dinner, then ..."
+    words = [k for k in range(start, clauses[last - 1][1]) if not any(a <= k < b for a, b in middle)]
+    kept += [replace(r, toks=tuple(r.toks[k] for k in words))] + [aside(r, a, b) for a, b in middle]
+    if last < len(clauses):
+        kept.append(aside(r, clauses[last][0], len(r)))
+    return kept
+
+
+def comma_clauses(r: Reader) -> list[tuple[int, int]]:
+    """The ``[start, end)`` of the clauses between the commas of ``r``, and before *so* / *but* followed by
+    an order (*my son is asleep upstairs so don't go up there*); a time expression closing a clause is a
+    clause of its own (*go to the kitchen tonight*, *check the laptop before dinner, then ...*)."""
+    cuts = [k for k, w in enumerate(r.words) if w == ","]
+    joins = [k for k, w in enumerate(r.words) if w in lx.ORDER_JOINERS and k and r.word(k - 1) != ","
+             and starts_order(r, k + 1)]
+    starts = sorted({0, *(c + 1 for c in cuts), *joins})
+    ends = sorted({*cuts, *joins, len(r)})
+    out: list[tuple[int, int]] = []
+    for start, end in zip(starts, ends):
+        tail = time_tail(r, start, end)
+        out += [(start, tail), (tail, end)] if tail is not None else [(start, end)]
+    return [(a, b) for a, b in out if b > a]
+
+
+def starts_order(r: Reader, k: int) -> bool:
+    """Whether the words at ``k`` start an order: a prohibition, a polite wrapper, a verb."""
+    w = r.word(k)
+    return (r.phrase(k, lx.NEG_STARTS) is not None or r.phrase(k, lx.POLITE) is not None or w == "please"
+            or (w in lx.POSITIVE_VERBS and w not in lx.PLACE_PREPOSITIONS and w not in lx.PARTICLES
+                and not w.endswith(("ing", "ed"))))
+
+
+def aside(r: Reader, start: int, end: int) -> Reader:
+    """The words ``[start, end)`` of ``r`` as a reader set aside."""
+    return replace(r, toks=r.toks[start:end], aside=True)
+
+
+def skip_joiner(r: Reader, i: int) -> int:
+    """After a clause set aside: *so* / *but* / *and* before the order (*..., so stay out of there*)."""
+    return i + 1 if r.word(i) in lx.STATEMENT_JOINERS else i
+
+
+def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
+    """Whether the clause ``[start, end)`` only gives context: a time (opening or closing the sentence), or a
+    statement that is not a need about the scene (see the module docstring)."""
+    return (is_time(r, start, end) or statement(r, skip_joiner(r, start), end) == "aside"
+            or event_note(r, start, end))
+
+
+def event_note(r: Reader, start: int, end: int) -> bool:
+    """*Movie night later!*, *Big day tomorrow*: words about an event, with no room, object, verb or word of
+    the grammar."""
+    words = r.words[start:end]
+    if not any(w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES for w in words):
+        return False
+    return not any(r.head(k) is not None or r.word(k) in lx.POSITIVE_VERBS or r.word(k) in lx.REFUSED_WORDS
+                   or (r.word(k) in lx.STRUCTURAL and r.word(k) not in lx.TIME_WORDS)
+                   or not r.word(k).isalpha() for k in range(start, end))
+
+
+def mere_talk(r: Reader, start: int, end: int) -> bool:
+    """Whether the words ``[start, end)`` (what is left after a statement) name nothing and ask nothing (*I
+    left my bag somewhere, no idea where, ...*)."""
+    return not any(r.head(k) is not None or r.word(k) in lx.POSITIVE_VERBS or r.phrase(k, lx.NEG_STARTS)
+                   or r.word(k).startswith(("room_", "object_")) or r.word(k) in lx.RELATIVE_FLOORS
+                   for k in range(start, end))
+
+
+def is_time(r: Reader, start: int, end: int) -> bool:
+    """*Before lunch*, *this morning*, *at some point this evening*, *tonight*, *right now*: a time of day,
+    meal or event (not *later* or *now* alone, which order the steps)."""
+    words = r.words[start:end]
+    event = words[:1] in (("before",), ("after",), ("by",))  # "before the guests arrive", "after I get back"
+    said = [w in lx.TIME_WORDS or (event and (w in lx.EVENT_VERBS or w in lx.PEOPLE)) for w in words]
+    if not words or not all(said):
+        return False
+    events = [w for w in words
+              if (w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES) or (event and w in lx.PEOPLE)]
+    return bool(events) or tuple(words) in lx.NOW_SAID
+
+
+def time_tail(r: Reader, start: int, end: int) -> int | None:
+    """Where a time expression closing the clause ``[start, end)`` starts (*go to the kitchen tonight*, *...
+    before dinner*), or ``None``."""
+    if is_time(r, start, end):
+        return None  # the whole clause is one
+    for k in range(max(start + 1, end - 4), end):
+        if r.word(k) in lx.TIME_OPENERS and r.word(k - 1) not in lx.UNTIL_WORDS and is_time(r, k, end):
+            return k
+    return None
+
+
+def statement(r: Reader, start: int, end: int) -> str | None:
+    """``"aside"`` when the clause ``[start, end)`` is a statement to set aside, ``"need"`` for a need about a
+    room or object of the scene (left to the parser, which refuses it), ``None`` when it is no statement."""
+    if (start >= end or "you" in r.words[start:end] or r.phrase(start, lx.POLITE)
+            or r.phrase(start, lx.CLOSING)):
+        return None  # a clause about the robot ("I'd be grateful if you ...") may ask something of it
+    k = subject_end(r, start, end)
+    aside_of = r.phrase(start - 1, lx.ASIDE)  # "the couch, it's in the kitchen": a qualifier of the couch
+    qualifies = aside_of is not None and r.word(start - 1 + len(aside_of)) in lx.ASIDE_QUALIFIERS
+    if (k is None or r.phrase(k, lx.OFF_LIMITS) or qualifies or locates(r, start, k, end)
+            or any(w in lx.LIST_NOUNS for w in r.words[start:k]) or r.word(k + 1) == "to"):
+        # "the kitchen is off limits", "the couch, it's in the kitchen", "the bowl is in the sink", "the next
+        # task is to ...": not mere context
+        return None
+    needs = any(w in lx.NEED_WORDS for w in r.words[k:end])
+    names = any(r.head(j) is not None for j in range(start, end))
+    return "need" if needs and names else "aside"
+
+
+def locates(r: Reader, start: int, verb: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` (its verb at ``verb``) says where an object of the scene is (*the
+    bowl is in the kitchen*, *I left my book in the bedroom*; not *the vase in the hall is dusty*): that may
+    tell which one is meant, so it is left to the parser (which refuses it)."""
+    objects = [j for j in range(start, end) if (h := r.head(j)) is not None and h.kind == "object"]
+    return bool(objects) and any(r.word(j) in lx.LOCATIVE and r.np_starts(j + 1)
+                                 for j in range(max(objects[0] + 1, verb), end))
+
+
+def subject_end(r: Reader, start: int, end: int) -> int | None:
+    """Where the verb after the subject of a statement starts (*we* | *'re hosting*, *the cat* | *keeps*, *my
+    mum* | *'s staying*), or ``None`` when the clause does not start with a subject and a verb."""
+    w = r.word(start)
+    if w in lx.SUBJECT_PRONOUNS:
+        verb = r.word(start + 1)
+        if w in lx.DEICTIC_SUBJECTS and verb not in lx.STATEMENT_VERBS:
+            return None
+        return start + 1 if start + 1 < end and verb not in lx.CLAUSE_ENDS else None
+    if w in lx.DETERMINERS or w in lx.POSSESSIVES:
+        said = noun_phrase(r, start, "qualifier") if r.np_starts(start) else None
+        if isinstance(said, Match) and said.end < end and r.word(said.end) in lx.STATEMENT_VERBS:
+            return said.end  # "the plants are looking sad"
+        if not plain_word(r, start + 1):
+            return None  # "the kitchen and the office": goals
+        return next((j for j in range(start + 2, min(start + 5, end)) if finite_verb(r.word(j))), None)
+    verb = r.word(start + 1)
+    if (w.isalpha() and r.head(start) is None and (w not in lx.LEXICON_WORDS or w in lx.RELATIVE_FLOORS)
+            and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
+        return start + 1  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
+    return None
+
+
+def plain_word(r: Reader, i: int) -> bool:
+    """Whether the word at ``i`` is a word of no role in the grammar (the noun of *the guests*, *my mum*)."""
+    w = r.word(i)
+    return w.isalpha() and (w not in lx.STRUCTURAL or w in lx.FLOOR_WORDS) and w not in lx.POSITIVE_VERBS \
+        and r.head(i) is None  # "the floor's still wet": the floor of a room
+
+
+def finite_verb(word: str) -> bool:
+    """Whether ``word`` is the verb of a statement after its subject (*the guests arrive*, *the kids
+    made*)."""
+    return word in lx.STATEMENT_VERBS or word in lx.STATED_VERBS
+
+
+def mentions(r: Reader) -> tuple[NounPhrase, ...]:
+    """The rooms and objects a statement names (*the bedroom with the teddy bear*), which *there* may point
+    back to."""
+    found: list[NounPhrase] = []
+    k = 0
+    while k < len(r):
+        said = noun_phrase(r, k, "qualifier") if r.np_starts(k) and r.word(k) not in lx.PRONOUNS else None
+        if isinstance(said, Match) and isinstance(said.node, Described):
+            found.append(said.node)
+            k = said.end
+        else:
+            k += 1
+    return tuple(found)

@@ -1,0 +1,317 @@
+"""Lists: numbered or bulleted items (*1. the lobby*, *- the fridge*), what their heading says (*Morning
+round*, *Top floor tasks:*, *Any order is fine:*), and lists announced before a colon (*three things: A, B
+and C*, *visit two rooms: the kitchen and the office*, *never enter these: ...*).
+
+**Items.** Each item is a sentence of its own. The items of a numbered list are done in the order written
+(each continues the sequence of the one before it, as a sentence starting with *Then* does); a bulleted
+list is a set, done in any order. An order remark in the heading (*in order*, *any order is fine*) or in a
+sentence right after the list (*The order doesn't matter.*) says otherwise. An item that says
+*eventually* / *at some point* first is not ordered after the one before it.
+
+**Headings.** The sentence before a list's first item heads it when it ends with a colon or stands on a
+line of its own. A heading that announces the list (*three things:*, *visit these rooms:*, *never enter
+these:*) is read with each item: its verb or negation before each, its number and noun checked against the
+items (:class:`.tree.Announced`). A heading that only labels the list (*Morning round*, *Shopping list
+check*, *Please do these, in order:*) is set aside, except what it says of the order and of the floor the
+items are on (*Top floor tasks*: every goal of the list is on the top floor); a clause after its comma
+(*Checklist, stay on this floor:*) is read as a sentence. Words before a colon that ask nothing (*Here's
+the plan:*, *Remember:*) are dropped. Any other colon ends a sentence, as ``.`` does.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Literal
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline.syntax.floors import floor_words
+from sgplan.llm.offline.syntax.phrases import noun_phrase
+from sgplan.llm.offline.syntax.preamble import is_chitchat
+from sgplan.llm.offline.syntax.qualifiers import head_kind
+from sgplan.llm.offline.syntax.reader import Match, Reader
+from sgplan.llm.offline.syntax.tree import Announced, Described
+from sgplan.llm.offline.text import Tok
+
+Order = Literal["ordered", "any"]
+
+
+def read_lists(readers: list[Reader]) -> list[Reader]:
+    """``readers`` (sentences, some ending with a colon, some list items) with each list's heading read
+    and its items ordered (see the module docstring)."""
+    out: list[Reader] = []
+    k = 0
+    while k < len(readers):
+        r = readers[k]
+        heading = r if r.marker is None and heads(r, readers, k) else None
+        first = k + (1 if heading is not None else 0)
+        run = list_run(readers, first) if heading is not None or r.marker is not None else []
+        if not run:
+            out += colon(r, readers[k + 1] if k + 1 < len(readers) else None)
+            k += 1
+            continue
+        after = readers[first + len(run)] if first + len(run) < len(readers) else None
+        remark = only_order_remark(after) if after is not None and after.marker is None else None
+        out += list_items(heading, run, remark)
+        k = first + len(run) + (1 if remark else 0)
+    return merged(out)
+
+
+def list_run(readers: list[Reader], k: int) -> list[Reader]:
+    """The items of the list starting at ``readers[k]`` (consecutive sentences with a list marker)."""
+    end = k
+    while end < len(readers) and readers[end].marker is not None:
+        end += 1
+    return readers[k:end]
+
+
+def heads(r: Reader, readers: list[Reader], k: int) -> bool:
+    """Whether ``r`` (``readers[k]``) heads the list after it: it ends with a colon, or it stands on a line of
+    its own right before the list's first item."""
+    after = readers[k + 1] if k + 1 < len(readers) else None
+    if after is None or after.marker is None:
+        return False
+    return r.word(len(r) - 1) == ":" or (r.new_line and after.new_line)
+
+
+def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) -> list[Reader]:
+    """The sentences of a list: its heading read (see :func:`heading_of`) and its items, each after the one
+    before it when the list is in order (see the module docstring)."""
+    out, announced, said_order, scope = heading_of(heading) if heading is not None else ([], None, None, ())
+    order = remark or said_order or ("ordered" if any(r.marker == "number" for r in run) else "any")
+    prefix = scope + (announced.prefix if announced is not None else ())
+    for n, item in enumerate(run):
+        after = order == "ordered" and n > 0 and not (item.word(0) == "eventually"
+                                                      or item.at(0, "at", "some", "point"))
+        out.append(replace(item, toks=prefix + item.toks, announced=announced, after_item=after))
+    return out
+
+
+def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order | None, tuple[Tok, ...]]:
+    """What a list's heading says: the sentences to read from it (a label said back, a clause of its own),
+    what it announces of each item, the order it says and the floor it puts the items on (as words opening
+    each item)."""
+    said = replace(heading, toks=heading.toks[:-1]) if heading.word(len(heading) - 1) == ":" else heading
+    said, remark = without_order_remark(said)  # "Visit these rooms in order:"
+    order = order_said(remark, 0, len(remark)) if remark is not None else None
+    if set(said.words) & lx.ORDER_HEADS and all(w in lx.FILLERS for w in said.words):
+        return [said], None, None, ()  # "Then:" before a list: read alone (and refused), never dropped
+    if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
+        return [], None, order, ()  # "Here's the plan:", "Remember:": they ask nothing
+    announced = (announcement(said) or verb_prefix(said) or room_heading(labelled(said))
+                 or floor_heading(said))
+    if announced is not None:  # a room heading ("Kitchen stuff:") is the room of each item
+        return [], None if announced.scope else announced, order, announced.prefix if announced.scope else ()
+    label = label_end(said)
+    if label is None:
+        return [said], None, None, ()  # an ordinary sentence before the list: read (or refused) as one
+    out = [replace(said, toks=said.toks[:label], aside=True)] if names_more(said, label) else []
+    if label < len(said) - 1:  # "Checklist, stay on this floor": a sentence of its own
+        out.append(replace(said, toks=said.toks[label + 1:]))
+    return out, None, order or order_said(said, 0, label), floor_scope(said, 0, label)
+
+
+def without_order_remark(r: Reader) -> tuple[Reader, Reader | None]:
+    """``r`` without the order remark it ends with (*Do these in any order*), and that remark."""
+    for k in range(len(r)):
+        if (r.phrase(k, lx.ANY_ORDER) or r.phrase(k, lx.ORDER_MODIFIERS)) and only_order_remark(
+                replace(r, toks=r.toks[k:], marker=None)) is not None:
+            cut = k - (1 if r.word(k - 1) == "," else 0)
+            return replace(r, toks=r.toks[:cut]), replace(r, toks=r.toks[k:])
+    return r, None
+
+
+def labelled(r: Reader) -> Reader:
+    """``r`` without the words naming a list it ends with (*Kitchen stuff* -> *Kitchen*)."""
+    end = len(r)
+    while end > 1 and r.word(end - 1) in lx.LIST_NOUNS | {"stuff"}:
+        end -= 1
+    return replace(r, toks=r.toks[:end])
+
+
+def colon(r: Reader, after: Reader | None) -> list[Reader]:
+    """A sentence that is no list's heading: before a colon, words that ask nothing are dropped, and an
+    announcement is read with the sentence after it (:func:`merged`)."""
+    if r.word(len(r) - 1) != ":":
+        return [r]
+    said, remark = without_order_remark(replace(r, toks=r.toks[:-1]))
+    if said.toks and set(said.words) & lx.ORDER_HEADS:  # "Then: the kitchen" reads "Then, the kitchen"
+        comma = Tok(",", said.toks[-1].end, said.toks[-1].end)
+        order = Announced(said.quote(0, len(said)), (*said.toks, comma), None, None, said.toks[0].start,
+                          scope=True)
+        return [replace(said, toks=(), announced=order)] if after is not None else [said]
+    if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
+        said = replace(said, toks=())  # "Here's the plan:", "Remember:": they ask nothing
+    announced = announcement(said) or room_heading(said) or floor_heading(said) if said.toks else None
+    if remark is not None and after is not None:  # "Do these in order: A, B": the remark after the list
+        announced = replace(announced or Announced(remark.quote(0, len(remark)), (), None, None,
+                                                   remark.toks[0].start, scope=True), suffix=remark.toks)
+    if announced is not None and after is not None:
+        return [replace(said, toks=(), announced=announced)]
+    return [said] if said.toks else []
+
+
+def room_heading(r: Reader) -> Announced | None:
+    """*Kitchen: the fridge, then the sink*, *DR: any tbl -> ...*: a room before a colon is the room of the
+    sentence after it, as *In the kitchen, ...* is."""
+    room = noun_phrase(r, 0, "qualifier") if r.np_starts(0) else None
+    if not (isinstance(room, Match) and room.end == len(r) and isinstance(room.node, Described)
+            and head_kind(room.node) == "room"):
+        return None
+    said = r.toks
+    prefix = (Tok("in", said[0].start, said[0].start), *said, Tok(",", said[-1].end, said[-1].end))
+    return Announced(r.quote(0, len(r)), prefix, None, None, said[0].start, scope=True)
+
+
+def floor_heading(r: Reader) -> Announced | None:
+    """*Top floor: the bathroom, then ...*, *Upstairs:*, *On floor 2:*: a floor (and nothing else) before a
+    colon is the floor of the sentences after it, as *On the top floor, ...* is."""
+    k = 1 if r.word(0) in ("on", "at") else 0
+    k += 1 if r.word(k) == "the" else 0
+    scope = floor_scope(r, k, k + 1)
+    relative = r.word(k) in lx.RELATIVE_FLOORS
+    said_end = k + 1 if relative else k + len(scope) - 2  # the scope is "on <floor words> ," or "upstairs ,"
+    if not scope or said_end != len(r) or (relative and k > 0):
+        return None
+    return Announced(r.quote(0, len(r)), scope, None, None, r.toks[0].start, scope=True)
+
+
+def merged(readers: list[Reader]) -> list[Reader]:
+    """``readers`` with each announcement (a reader without tokens) read with the sentence after it."""
+    out: list[Reader] = []
+    for r in readers:
+        if out and out[-1].announced is not None and not out[-1].toks:
+            announced = out[-1].announced
+            kept = None if announced.scope else announced
+            out[-1] = replace(r, toks=announced.prefix + r.toks + announced.suffix, announced=kept)
+            continue
+        out.append(r)
+    return [r for r in out if r.toks]
+
+
+def announcement(r: Reader) -> Announced | None:
+    """What the words of ``r`` announce of the list after its colon, or ``None`` when they do not end with a
+    noun group that counts or names the items."""
+    end = len(r)
+    while end > 0 and any(r.words[end - len(t):end] == t for t in lx.ANNOUNCE_TAIL):
+        end -= next(len(t) for t in lx.ANNOUNCE_TAIL if r.words[end - len(t):end] == t)
+    head = r.nouns.match(r.words, end - 1)
+    if end == 0 or not (r.word(end - 1) in lx.ANNOUNCED or (head is not None and head.plural)):
+        return None
+    start = end - 1
+    while start > 0 and (r.word(start - 1) in lx.ANNOUNCING or r.word(start - 1).isdigit()
+                         or r.word(start - 1) in lx.NUMBER_WORDS):
+        start -= 1
+    if any(r.np_starts(k) or not verb_word(r, k) for k in range(start)):
+        return None  # a phrase before the noun group (*Top floor jobs:*): not only an announcement
+    count = next((lx.NUMBER_WORDS.get(w) or int(w) for w in r.words[start:end]
+                  if w.isdigit() or w in lx.NUMBER_WORDS), None)
+    return Announced(r.quote(start, end), r.toks[:start], count, head if head is not None and head.plural
+                     and r.word(end - 1) not in lx.ANNOUNCED else None, r.toks[0].start)
+
+
+def verb_prefix(r: Reader) -> Announced | None:
+    """*Never enter:*, *Please visit:*, *Avoid:* before a list: the verb (or the negation) of each item."""
+    last = len(r) - 1
+    if last < 0 or not (r.word(last) in lx.POSITIVE_VERBS or r.phrase(last, lx.NEG_STARTS)):
+        return None
+    if any(r.np_starts(k) or not verb_word(r, k) for k in range(len(r))):
+        return None  # a word of its own (*Shopping run:*): a label, not a verb for each item
+    return Announced(r.quote(0, len(r)), r.toks, None, None, r.toks[0].start)
+
+
+def verb_word(r: Reader, k: int) -> bool:
+    """Whether the word at ``k`` may be read before each item of a list: a verb, a negation, a filler."""
+    w = r.word(k)
+    return w in lx.AVOID_VERBS or w in lx.FILLERS or w in lx.NEG_STARTS.words() or w in lx.POLITE.words()
+
+
+def label_end(r: Reader) -> int | None:
+    """Where the words that only label a list end (at the comma before a clause of its own, or at the end of
+    ``r``): clauses of no room or object, no prohibition, condition or order word but an order remark, with
+    a word naming a list, an order remark or a floor among them (*Morning round*, *Top floor tasks*, *Please
+    do these, in order*); ``None`` when ``r`` does not start with such words."""
+    named, k, end = False, 0, 0
+    while k < len(r):
+        clause = r.words.index(",", k) if "," in r.words[k:] else len(r)
+        said = label_clause(r, k, clause)
+        if said is None:
+            break
+        named, end, k = named or said, clause, clause + 1
+    return end if named and end else None
+
+
+def label_clause(r: Reader, start: int, end: int) -> bool | None:
+    """Whether the words ``[start, end)`` name a list, an order or a floor (``None``: they say more than a
+    label does)."""
+    named, k = False, start
+    while k < end:
+        remark = r.phrase(k, lx.ANY_ORDER) or r.phrase(k, lx.ORDER_MODIFIERS)
+        floor = floor_words(r, k)
+        if remark or floor is not None:
+            named, k = True, k + len(remark) if remark else floor.end  # type: ignore[union-attr]
+            continue
+        w = r.word(k)
+        if (r.head(k) is not None or w.startswith(("room_", "object_")) or w in lx.REFUSED_WORDS
+                or r.phrase(k, lx.NEG_STARTS) or r.phrase(k, lx.CONDITION_WORDS) or r.phrase(k, lx.WHENEVER)
+                or w in lx.LABEL_STOPS or not w.isalpha()):
+            return None
+        named = named or w in lx.LIST_NOUNS or w in lx.RELATIVE_FLOORS
+        k += 1
+    return named
+
+
+def names_more(r: Reader, end: int) -> bool:
+    """Whether a list's label says more than which list it is, its order and its floor (*Shopping list
+    check*: said back as set aside), unlike *Tasks*, *To do*, *Any order is fine*."""
+    k = 0
+    while k < end:
+        remark = r.phrase(k, lx.ANY_ORDER) or r.phrase(k, lx.ORDER_MODIFIERS)
+        floor = floor_words(r, k)
+        if remark or floor is not None:
+            k += len(remark) if remark else floor.end - k  # type: ignore[union-attr]
+            continue
+        w = r.word(k)
+        if not (w in lx.LIST_NOUNS or w in lx.FILLERS or w in lx.ANNOUNCING or w in lx.RELATIVE_FLOORS
+                or w in (",", "is", "are", "fine", "these", "this")):
+            return True
+        k += 1
+    return False
+
+
+def order_said(r: Reader, start: int, end: int) -> Order | None:
+    """The order a remark among the words ``[start, end)`` says: ``"ordered"`` (*in order*, *in this
+    order*), ``"any"`` (*any order is fine*), or ``None``."""
+    for k in range(start, end):
+        if r.phrase(k, lx.ANY_ORDER):
+            return "any"
+        if r.phrase(k, lx.ORDER_MODIFIERS):
+            return "ordered"
+    return None
+
+
+def only_order_remark(r: Reader) -> Order | None:
+    """The order said by a sentence after a list that says nothing else (*The order doesn't matter.*, *In
+    this order.*), else ``None``."""
+    k = 0
+    while k < len(r):
+        remark = r.phrase(k, lx.ANY_ORDER) or r.phrase(k, lx.ORDER_MODIFIERS)
+        if remark:
+            k += len(remark)
+        elif r.word(k) in lx.FILLERS or r.word(k) in lx.ORDER_FILLERS:
+            k += 1
+        else:
+            return None
+    return order_said(r, 0, len(r))
+
+
+def floor_scope(r: Reader, start: int, end: int) -> tuple[Tok, ...]:
+    """The words of the floor a heading puts its items on (*Top floor tasks*, *Upstairs run*), as an
+    opening of each item (*on the top floor, ...*), or nothing."""
+    for k in range(start, end):
+        if r.word(k) in lx.RELATIVE_FLOORS:
+            return r.toks[k], Tok(",", r.toks[k].end, r.toks[k].end)
+        found = floor_words(r, k)
+        if found is not None:
+            on = Tok("on", r.toks[k].start, r.toks[k].start)
+            return on, *r.toks[k:found.end], Tok(",", r.toks[found.end - 1].end, r.toks[found.end - 1].end)
+    return ()
