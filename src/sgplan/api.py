@@ -33,7 +33,6 @@ from sgplan.scene.model import Building
 from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 if TYPE_CHECKING:  # the planner, grid and labels (numba, scipy) load when a plan is made, not for a mission
-    from sgplan.execution.run import Run
     from sgplan.explain import Explanation
     from sgplan.llm.backends import Backends
     from sgplan.llm.protocols import MissionGuide
@@ -359,18 +358,6 @@ class Session:
             radii.reach_from, prepared.problem.reach_model, options.profile, mission.automaton.num_states,
         )
         return StagedPlan(mission, guidance, prepared.problem, radii, start_from, scene_check)
-
-    def start(self, mission: Mission, start: StartSpec = None, *, options: PlanOptions | None = None,
-              guide: MissionGuide | None = None, **option_values: Any) -> Run:
-        """Start a :class:`~sgplan.execution.run.Run`: ``mission`` carried from ``start`` through the
-        changes of this building (which the run never makes to the session's own building), with progress,
-        monitoring, exact replanning and amendments. Options as :meth:`plan` takes them.
-
-        Cost: this session's grid and labels for the radii (kept), the run's cell numbering (two passes
-        over the grid); the first plan is made when ``run.plan`` is first read."""
-        from sgplan.execution.run import Run
-
-        return Run(self, mission, start, PlanOptions.from_keywords(options, **option_values), guide=guide)
 
 
 @dataclass(frozen=True)
