@@ -109,7 +109,7 @@ def main() -> None:
         print(f"| {name} | {statistics.median(ts):.1f} |")
     profile = cProfile.Profile()
     profile.enable()
-    for name, request in cases:
+    for _, request in cases:
         answer(service, request)
     profile.disable()
     stats: Any = pstats.Stats(profile).stats
