@@ -130,7 +130,8 @@ def path_waypoints(
     z_m = np.where(np.isfinite(ground), ground, np.asarray(grid.floor_z_m, dtype=np.float64))[floor]
     room_ids = grid.room_map[floor, row, col]
     rooms = {room.id: room for room in building.rooms()}
-    keys, names = {}, {}
+    keys: dict[int, str | None] = {}
+    names: dict[int, str | None] = {}
     for room_id in np.unique(room_ids).tolist():
         room = rooms.get(room_id)
         keys[room_id], names[room_id] = (room.key, room.name) if room else (None, None)
