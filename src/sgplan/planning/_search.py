@@ -521,6 +521,31 @@ def read_record(ptab, pool, poolf, s):
     return poolf[r], link_parent(pool[r + 1]), link_action(pool[r + 1])
 
 
+@njit(cache=True, nogil=True)
+def parent_chain(ptab, pool, poolf, goal, limit):
+    """The product states on the parent pointers from ``goal`` back to a state without a parent, start
+    first, and the action that reached each (-1 for the first): two int64 arrays, empty when the chain
+    is longer than ``limit`` states (the pointers would form a cycle)."""
+    states = np.empty(64, dtype=np.int64)
+    actions = np.empty(64, dtype=np.int64)
+    n = 0
+    s = goal
+    while True:
+        if n == states.shape[0]:
+            states = np.concatenate((states, np.empty(n, dtype=np.int64)))
+            actions = np.concatenate((actions, np.empty(n, dtype=np.int64)))
+        _, parent, action = read_record(ptab, pool, poolf, s)
+        states[n] = s
+        actions[n] = action if parent >= 0 else -1
+        n += 1
+        if parent < 0:
+            break
+        if n > limit:
+            return states[:0].copy(), actions[:0].copy()
+        s = parent
+    return states[:n][::-1].copy(), actions[:n][::-1].copy()
+
+
 # ---- the queues' tops ------------------------------------------------------------------------------
 
 

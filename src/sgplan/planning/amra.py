@@ -315,22 +315,17 @@ def _warm_up(
 def _recover_cells(domain: PlanningDomain, state: SearchState, goal: int) -> np.ndarray:
     """Cell indices of the path to ``goal``, composite actions replayed cell by cell."""
     qb = int(_search.q_bits(domain.num_states))
-    chain = [(goal, -1)]
-    while True:
-        _, parent, action = _search.read_record(state.ptab, state.pool, state.poolf, chain[-1][0])
-        if parent < 0:
-            break
-        chain[-1] = (chain[-1][0], int(action))
-        chain.append((int(parent), -1))
-        if len(chain) > int(state.iscal[_search.I_PAGES]) * _search.PAGE + 1:
-            raise PlanningError("internal error: the parent pointers form a cycle")
-    chain.reverse()
-    cells = [chain[0][0] >> qb]
-    for child, code in chain[1:]:
+    limit = int(state.iscal[_search.I_PAGES]) * _search.PAGE + 1
+    states, actions = _search.parent_chain(state.ptab, state.pool, state.poolf, goal, limit)
+    if len(states) == 0:
+        raise PlanningError("internal error: the parent pointers form a cycle")
+    chain = (states >> qb).tolist()
+    cells = chain[:1]
+    for child, code in zip(chain[1:], actions[1:].tolist(), strict=True):
         if code < ACT_MAP:
-            cells.append(child >> qb)
+            cells.append(child)
         else:
-            cells += domain.action_cells(code - ACT_MAP, cells[-1], child >> qb)
+            cells += domain.action_cells(code - ACT_MAP, cells[-1], child)
     return np.array(cells, dtype=np.int64)
 
 
