@@ -5,7 +5,7 @@ the scene; every (Gibson mission, initial position 0-4) pair that has a plan is 
 (warm: kernels loaded, the session's grid, labels and parts built). Then the plan worker's job of
 ``POST /api/plan`` (:func:`sgplan.serve.planning.plan_on_host`, the answer's dict and its JSON text, as
 the route sends it) runs ``--repeat`` times over all pairs: the wall time per request (p50, p95, per
-mission) and, in a second pass under cProfile, the cumulative time per request of the planner's parts
+mission), the process's CPU time per request, and, in a second pass under cProfile, the cumulative time per request of the planner's parts
 (a function's time includes the parts it calls; cProfile's own overhead inflates them alike).
 
     .venv/bin/python benchmarks/serve_plan_breakdown.py --scene Benevolence --setup 'A*' --repeat 3
@@ -93,17 +93,20 @@ def main() -> None:
             continue
         cases.append((name, request))
     times: dict[str, list[float]] = {name: [] for name, _ in cases}
+    cpu0 = time.process_time()
     for _ in range(args.repeat):
         for name, request in cases:
             t0 = time.perf_counter()
             answer(service, request)
             times[name].append(1000 * (time.perf_counter() - t0))
+    cpu_ms = 1000 * (time.process_time() - cpu0) / (args.repeat * len(cases))
     every = [t for ts in times.values() for t in ts]
     print(f"Command: `.venv/bin/python benchmarks/serve_plan_breakdown.py --scene {args.scene} --setup "
           f"'{args.setup}' --repeat {args.repeat}`; load average {os.getloadavg()[0]:.1f} on "
           f"{os.cpu_count()} cores; {len(cases)} (mission, start) pairs with a plan\n")
     print(f"warm plan request in process: p50 {statistics.median(every):.1f} ms, "
-          f"p95 {statistics.quantiles(every, n=20)[-1]:.1f} ms over {len(every)} requests\n")
+          f"p95 {statistics.quantiles(every, n=20)[-1]:.1f} ms over {len(every)} requests; CPU time of the "
+          f"process {cpu_ms:.1f} ms per request (less sensitive to the machine's load than wall time)\n")
     print("| mission | p50 ms |\n|---|---|")
     for name, ts in times.items():
         print(f"| {name} | {statistics.median(ts):.1f} |")
