@@ -5,8 +5,9 @@ the scene; every (Gibson mission, initial position 0-4) pair that has a plan is 
 (warm: kernels loaded, the session's grid, labels and parts built). Then the plan worker's job of
 ``POST /api/plan`` (:func:`sgplan.serve.planning.plan_on_host`, the answer's dict and its JSON text, as
 the route sends it) runs ``--repeat`` times over all pairs: the wall time per request (p50, p95, per
-mission), the process's CPU time per request, and, in a second pass under cProfile, the cumulative time per request of the planner's parts
-(a function's time includes the parts it calls; cProfile's own overhead inflates them alike).
+mission), the process's CPU time per request, and, in a second pass under cProfile, the cumulative time
+per request of the planner's parts (a function's time includes the parts it calls; cProfile's own
+overhead inflates them alike).
 
     .venv/bin/python benchmarks/serve_plan_breakdown.py --scene Benevolence --setup 'A*' --repeat 3
 
