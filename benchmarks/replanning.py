@@ -38,12 +38,14 @@ sys.path.insert(0, str(REPO))
 os.environ.setdefault("SGPLAN_NO_CACHE", "1")
 
 KINDS = ("close_door", "reopen_door", "block", "move_object")
+_clock = time.perf_counter  # what measure() times replans and fresh plans with (--cpu: process_time)
 
 
-def peak_rss_mib() -> float:
+def rss_mib(field: str = "VmHWM") -> float:
+    """This process's peak (``VmHWM``) or current (``VmRSS``) resident memory, MiB."""
     with open("/proc/self/status") as status:
         for line in status:
-            if line.startswith("VmHWM:"):
+            if line.startswith(field + ":"):
                 return int(line.split()[1]) / 1024
     return float("nan")
 
@@ -127,22 +129,29 @@ def move_next_goal(run, rest):
 
 
 def measure(run, change, options):
-    """(replan seconds, remaining cost, fresh seconds, fresh cost) after ``change``."""
+    """(replan seconds, remaining cost, fresh seconds, fresh cost, replan expansions, fresh expansions)
+    after ``change`` (expansions 0 where there is no plan)."""
     import sgplan
     from sgplan.errors import MissionError, PlanningError
 
-    t0 = time.perf_counter()
+    t0 = _clock()
     run.change([change])
     plan = run.plan
-    replan_s = time.perf_counter() - t0
+    replan_s = _clock() - t0
     cost = run.remaining_cost_m if plan is not None else math.inf
-    t0 = time.perf_counter()
+    t0 = _clock()
     try:
-        fresh = sgplan.Session(run.building).plan(run.mission, run.position, options=options,
-                                                  start_state=run.state).cost_m
+        result = sgplan.Session(run.building).plan(run.mission, run.position, options=options,
+                                                   start_state=run.state)
+        fresh = result.cost_m
     except (PlanningError, MissionError):
-        fresh = math.inf
-    return replan_s, cost, time.perf_counter() - t0, fresh
+        result, fresh = None, math.inf
+    return (replan_s, cost, _clock() - t0, fresh, _expansions(plan), _expansions(result))
+
+
+def _expansions(result) -> int:
+    """The states a plan's search expanded (all queues, all iterations); 0 without a plan."""
+    return sum(result.iterations[-1].expansions) if result is not None and result.iterations else 0
 
 
 def scenarios(scene, mission_index, start, setup, rows, verbose):
@@ -187,16 +196,17 @@ def record(run, case: dict, kind: str, change, rows: list[dict], verbose: bool) 
     from sgplan.errors import SceneError
 
     try:
-        replan_s, cost, fresh_s, fresh = measure(run, change, run.options)
+        replan_s, cost, fresh_s, fresh, expanded, fresh_expanded = measure(run, change, run.options)
     except SceneError:
         return False
     agree = (math.isinf(cost) and math.isinf(fresh)) or abs(cost - fresh) <= 1e-6
     rows.append({**case, "kind": kind, "replan_s": replan_s, "fresh_s": fresh_s, "cost": cost, "fresh": fresh,
-                 "agree": agree})
+                 "agree": agree, "expanded": expanded, "fresh_expanded": fresh_expanded})
     if verbose:
         where = f"{case['scene']} {case['mission']}/{case['start']} {case['setup']} @{case['point']:.2f}"
         print(f"{where} {kind}: replan {replan_s * 1e3:.1f} ms, fresh {fresh_s * 1e3:.0f} ms, "
-              f"cost {cost:.4f} / {fresh:.4f}{'' if agree else '  DISAGREE'}", flush=True)
+              f"cost {cost:.4f} / {fresh:.4f}{'' if agree else '  DISAGREE'}, expansions {expanded} / "
+              f"{fresh_expanded}", flush=True)
     return True
 
 
@@ -225,7 +235,9 @@ def monitoring(scene: str = "Collierville", mission_index: int = 2) -> tuple[int
 
 
 def successive(count: int = 1000, scene: str = "Benevolence") -> dict:
-    """``count`` changes on one run (a door closed and opened in turn), each followed by a replan."""
+    """``count`` changes on one run (a door closed and opened in turn), each followed by a replan. Run in a
+    process of its own (:func:`successive_apart`), so that its peak RSS is the run's: one scene, its
+    session and the run."""
     import sgplan
     from sgplan.datasets import find_gibson_root
     from sgplan.execution.changes import CloseDoor, OpenDoor
@@ -236,21 +248,32 @@ def successive(count: int = 1000, scene: str = "Benevolence") -> dict:
     run = sgplan.Session(building).start(mission, 0, setup="A*")
     rest = run.plan.path
     door = next_door(run, rest[len(rest) // 2 :])
-    latencies = []
+    latencies, rss_100 = [], float("nan")
     for k in range(count):
         change = (CloseDoor if k % 2 == 0 else OpenDoor)(door)
         t0 = time.perf_counter()
         run.change([change])
         assert run.plan is not None
         latencies.append(time.perf_counter() - t0)
+        if k == 99:
+            rss_100 = rss_mib("VmRSS")
     first, last = statistics.median(latencies[:100]), statistics.median(latencies[-100:])
     return {"changes": count, "first100_ms": first * 1e3, "last100_ms": last * 1e3, "ratio": last / first,
-            "peak_rss_mib": peak_rss_mib(), "door": door}
+            "rss_100_mib": rss_100, "rss_end_mib": rss_mib("VmRSS"), "peak_rss_mib": rss_mib(), "door": door}
+
+
+def successive_apart(count: int) -> dict:
+    """:func:`successive` in a new interpreter (spawned: nothing of this process's scenes in it)."""
+    import multiprocessing
+
+    with multiprocessing.get_context("spawn").Pool(1) as pool:
+        return pool.apply(successive, (count,))
 
 
 def table(rows: list[dict]) -> list[str]:
     lines = ["| setup | change | scenarios | costs agree | replan median (ms) | replan p95 (ms) | "
-             "fresh median (ms) | replan / fresh median |", "|---|---|---|---|---|---|---|---|"]
+             "fresh median (ms) | replan / fresh median | expansions replan / fresh |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for setup in sorted({r["setup"] for r in rows}):
         for kind in (*KINDS, "all"):
             sel = [r for r in rows if r["setup"] == setup and (kind == "all" or r["kind"] == kind)]
@@ -259,9 +282,10 @@ def table(rows: list[dict]) -> list[str]:
             replan = np.array([r["replan_s"] for r in sel]) * 1e3
             fresh = np.array([r["fresh_s"] for r in sel]) * 1e3
             agree = sum(r["agree"] for r in sel)
+            expanded = sum(r["expanded"] for r in sel) / max(sum(r["fresh_expanded"] for r in sel), 1)
             lines.append(f"| {setup} | {kind} | {len(sel)} | {agree}/{len(sel)} | {np.median(replan):.1f} | "
                          f"{np.percentile(replan, 95):.1f} | {np.median(fresh):.0f} | "
-                         f"{np.median(replan / fresh):.3f} |")
+                         f"{np.median(replan / fresh):.3f} | {expanded:.2f} |")
     return lines
 
 
@@ -273,10 +297,23 @@ def main() -> None:
     parser.add_argument("--starts", nargs="+", type=int, default=[0, 1])
     parser.add_argument("--setups", nargs="+", default=["A*", "ALL"])
     parser.add_argument("--successive", type=int, default=1000)
+    parser.add_argument("--exact-fields", action="store_true",
+                        help="runs recompute an h_LTL field a repair would leave a lower bound (FieldStore)")
+    parser.add_argument("--cpu", action="store_true",
+                        help="time replans and fresh plans in CPU seconds of this process, not wall clock "
+                             "(steadier on a machine shared with other work)")
     parser.add_argument("--out", type=Path)
     parser.add_argument("--quiet", action="store_true")
     args = parser.parse_args()
-    started = time.time()
+    if args.exact_fields:
+        import functools
+
+        from sgplan.execution import fields, parts
+
+        parts.FieldStore = functools.partial(fields.FieldStore, invalidate_fraction=0.02, bound=False)
+    global _clock
+    _clock = time.process_time if args.cpu else time.perf_counter
+    started, load_before = time.time(), os.getloadavg()
     rows: list[dict] = []
     for scene in args.scenes:
         for mission in args.missions:
@@ -288,15 +325,19 @@ def main() -> None:
     lines += ["", f"Monitoring a {poses:,}-pose trajectory (Collierville mission 2, metric poses): "
               f"{monitor_s * 1e3:.1f} ms (best of 5)."]
     if args.successive:
-        result = successive(args.successive)
+        result = successive_apart(args.successive)
         lines += [f"{result['changes']} successive changes on one run (Benevolence mission 4, A*, the door "
                   f"{result['door'][0]}/{result['door'][1]} closed and opened in turn, a replan after each): "
                   f"median replan {result['first100_ms']:.1f} ms over the first 100, "
-                  f"{result['last100_ms']:.1f} ms over the last 100 (x{result['ratio']:.2f}); "
-                  f"peak RSS of the whole benchmark process {result['peak_rss_mib']:.0f} MiB."]
+                  f"{result['last100_ms']:.1f} ms over the last 100 (x{result['ratio']:.2f}); in a process "
+                  f"of its own (one scene, its session, the run): RSS {result['rss_100_mib']:.0f} MiB after "
+                  f"100 changes, {result['rss_end_mib']:.0f} MiB after {result['changes']}, peak "
+                  f"{result['peak_rss_mib']:.0f} MiB."]
     disagree = [r for r in rows if not r["agree"]]
     seconds = time.time() - started
-    lines += ["", f"{len(rows)} scenarios, {len(disagree)} cost disagreements; {seconds:.0f} s."]
+    load = ", ".join(f"{x:.1f}" for x in (*load_before, *os.getloadavg()))
+    lines += ["", f"{len(rows)} scenarios, {len(disagree)} cost disagreements; {seconds:.0f} s; load average "
+              f"(1, 5, 15 min) before and after: {load}."]
     text = "\n".join(lines)
     print(text)
     if args.out:

@@ -3,26 +3,28 @@ exactly optimal: their cost equals the independent oracle's on the changed build
 
 from __future__ import annotations
 
+import itertools
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from sgplan.errors import PlanningError, SceneError
+from sgplan.errors import PlanningError
 from sgplan.execution.parts import RunParts
-from sgplan.execution.regrid import regrid
 from sgplan.execution.world import SceneState
 from sgplan.logic import parse_infix
 from sgplan.logic.ltlf import ltlf_to_dfa
 from sgplan.planning import PlanningProblem
 from sgplan.planning.amra import plan
+from sgplan.planning.cells import build_cell_graph
 from sgplan.scene.grid import build_occupancy_grid
 from sgplan.scene.labels import Proposition
 from tests.execution.buildings import house
 from tests.execution.test_fields import label_raster
-from tests.execution.test_world import _random_change
+from tests.execution.test_world import random_changes
 from tests.planning.oracle import optimal_cost
 
 PROPS = [Proposition("reach", 10), Proposition("enter", 9), Proposition("enter", 6)]
@@ -45,13 +47,9 @@ def test_plans_over_carried_parts_are_optimal_after_changes(seed, formula, setup
     grid = build_occupancy_grid(state.building, 0.0)
     labels = label_raster(state.building, PROPS, 0.3)
     parts = RunParts(grid, labels, state.building)
-    for step in range(5):
-        if step:
-            try:
-                state, delta = state.apply(_random_change(rng, state))
-            except SceneError:
-                continue
-            grid, change = regrid(grid, state.building, delta.cells)
+    for step in itertools.chain([None], random_changes(rng, state, grid, 4)):
+        if step is not None:
+            state, _, grid, change = step
             new_labels = label_raster(state.building, PROPS, 0.3)
             relabelled = np.flatnonzero(new_labels != labels)
             labels = new_labels
@@ -66,3 +64,21 @@ def test_plans_over_carried_parts_are_optimal_after_changes(seed, formula, setup
             assert error.status in ("infeasible", "invalid-start"), error
             found = math.inf
         assert found == pytest.approx(expected, abs=1e-6)
+        if parts.component.cells is not None:
+            _check_component(parts, grid, labels, start)
+
+
+def _check_component(parts, grid, labels, start):
+    """The run's component is the start's over the cells a live state may enter (the graph without the
+    fatal labels' cells: a room the mission forbids), as a flood over a fresh graph of them finds it."""
+    fatal = np.flatnonzero(parts.fatal.flags)
+    allowed = replace(grid, traversable=grid.traversable & ~np.isin(labels, fatal))
+    row, col, floor = start
+    if not allowed.traversable[floor, row, col]:
+        return
+    fresh = build_cell_graph(allowed)
+    expected = np.zeros(grid.traversable.size, dtype=bool)
+    expected[fresh.positions()[fresh.reachable(fresh.cell_id(row, col, floor))]] = True
+    kept = np.zeros(grid.traversable.size, dtype=bool)
+    kept[parts.graph.positions()[parts.component.cells]] = True
+    assert np.array_equal(kept, expected)

@@ -138,6 +138,19 @@ def test_added_and_removed_objects():
     assert np.array_equal(_cats(removed.building), _cats(state.building))
 
 
+def random_changes(rng, state, grid, count):
+    """Up to ``count`` random changes applied one after the other (one that cannot apply is skipped): per
+    change applied, ``(state, delta, grid, change)``: the scene after it, its delta, the grid regridded
+    and the grid's change."""
+    for _ in range(count):
+        try:
+            state, delta = state.apply(_random_change(rng, state))
+        except SceneError:
+            continue
+        grid, change = regrid(grid, state.building, delta.cells)
+        yield state, delta, grid, change
+
+
 def _random_change(rng, state):
     building = state.building
     floor = int(rng.integers(building.num_floors))
@@ -214,3 +227,22 @@ def test_an_objects_reach_changes_with_the_cells_a_removed_neighbour_leaves_it()
     state, _ = SceneState.of(flat()).apply(AddObject("lamp", (2.4, 5.0), 0, (0.2, 0.4)))
     state, delta = state.apply(RemoveObject("lamp"))
     assert delta.objects == {9, 7}  # the lamp, and the bed that fills part of where it stood
+
+
+@given(st.integers(0, 2**32 - 1))
+def test_a_doors_cells_are_those_of_either_room_beside_the_other(seed):
+    """boundary_cells: exactly the cells of room a with an 8-neighbour in room b and those of b beside a,
+    on random room maps (rooms touching the map's edge too)."""
+    from sgplan.execution.areas import boundary_cells
+
+    rng = np.random.default_rng(seed)
+    room_map = rng.integers(0, 4, size=(int(rng.integers(1, 12)), int(rng.integers(1, 12))))
+    rows, cols = room_map.shape
+    expected = []
+    for r in range(rows):
+        for c in range(cols):
+            other = {1: 2, 2: 1}.get(int(room_map[r, c]))
+            near = room_map[max(r - 1, 0) : r + 2, max(c - 1, 0) : c + 2]
+            if other is not None and (near == other).any():
+                expected.append(r * cols + c)
+    assert boundary_cells(room_map, 1, 2).tolist() == expected

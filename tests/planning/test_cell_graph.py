@@ -22,7 +22,7 @@ from sgplan.planning._dijkstra import (
     next_cell,
 )
 from sgplan.planning.cells import STEPS, build_cell_graph
-from sgplan.planning.domain import _compact_labels, label_index_dtype, room_index_dtype, stop_counts
+from sgplan.planning.domain import compact_labels, label_index_dtype, room_index_dtype, stop_counts
 from sgplan.scene.grid import OccupancyGrid, StairsLink
 
 
@@ -407,7 +407,7 @@ def test_compact_labels_equal_numpy_unique(seed: int, bits: int) -> None:
     """Label ids by lookup table (small label spaces) or by sort (large ones) are np.unique's."""
     rng = np.random.default_rng(seed)
     masks = rng.choice(rng.integers(0, 2**bits, size=7), size=500).astype(np.uint32)
-    label_masks, cell_label = _compact_labels(masks, 2**bits)
+    label_masks, cell_label = compact_labels(masks, 2**bits)
     expected_masks, expected_ids = np.unique(masks, return_inverse=True)
     assert np.array_equal(label_masks, expected_masks) and label_masks.dtype == np.int64
     assert np.array_equal(cell_label, expected_ids) and cell_label.dtype == np.uint8  # 7 labels at most
@@ -419,6 +419,6 @@ def test_label_and_room_index_dtypes_hold_every_id() -> None:
     for count, dtype in cases:
         assert label_index_dtype(count) == dtype and np.iinfo(dtype).max >= count - 1
     masks = np.arange(300, dtype=np.uint32)
-    label_masks, cell_label = _compact_labels(masks, 512)
+    label_masks, cell_label = compact_labels(masks, 512)
     assert cell_label.dtype == np.uint16 and np.array_equal(label_masks[cell_label], masks)
     assert room_index_dtype(32767) == np.int16 and room_index_dtype(32768) == np.int32

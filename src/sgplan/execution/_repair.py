@@ -15,7 +15,12 @@ paths (Ramalingam and Reps):
    plus the move) are examined in turn. Distances are whole numbers, so "equals" is exact.
 2. **Recompute.** The invalidated cells and the changed cells still in the graph are given the best
    distance their neighbours offer (0 for a target) and a Dijkstra from them lowers every distance that a
-   new path shortens -- through joined cells, new targets, or back into the invalidated cells.
+   new path shortens -- through joined cells, new targets, or back into the invalidated cells. Only the
+   cells that can lower a neighbour start it.
+
+A cell that leaves the graph keeps its last distance (nothing reads a masked cell); when it joins again it
+is examined in phase 1 like every changed cell (kept only if a neighbour supports its distance), so a door
+closed and opened again costs a scan of its cells, not a Dijkstra over them, when nothing else changed.
 
 The result equals a full recomputation of the field on the new graph; the tests compare the two on random
 buildings and changes.
@@ -26,7 +31,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from sgplan.planning._heap import HREC, grown, hpop, hpush
+from sgplan.planning._heap import HREC, hpop, hpush
 
 UNREACHED = np.int64(np.iinfo(np.uint32).max)
 
@@ -40,17 +45,6 @@ _PENDING, _KEPT, _LOST, _TARGET = 1, 2, 3, 4
 @njit(cache=True, inline="always")
 def _in_graph(cell_at, cell_pos, c):
     return cell_at[cell_pos[c]] == c
-
-
-@njit(cache=True, inline="always")
-def _push(heap, keys, size, key, value):
-    """Push onto a growable heap (:mod:`sgplan.planning._heap`; ``keys`` is the buffer's float64 view);
-    returns the (possibly new) buffer, its view and the size."""
-    if (size + 1) * HREC > heap.shape[0]:
-        heap = grown(heap, size)
-        keys = heap.view(np.float64)
-    size = hpush(keys, heap, 0, size, key, 0.0, value)
-    return heap, keys, size
 
 
 @njit(cache=True, inline="always")
@@ -79,14 +73,15 @@ def _neighbours(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs
 
 @njit(cache=True)
 def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from, stairs_to,
-                 stairs_units, cell_mask, target, dist, seeds, max_lost, max_lowered, counts):
+                 stairs_units, cell_mask, target, dist, exact, seeds, max_lost, max_lowered, counts):
     """Repair ``dist`` (uint32 units, in place) for the graph of ``cell_at`` and the targets ``{c in the
     graph: cell_mask[c] == target}``, given ``seeds``: every cell whose graph or target membership changed
     since ``dist`` was right, or a lower bound (more cells do no harm). ``step_units`` / ``stairs_units``
-    are the moves' costs in whole units (int64, >= 1).
+    are the moves' costs in whole units (int64, >= 1). ``exact``: whether ``dist`` was the exact field of
+    the graph before (else a lower bound, 1-Lipschitz over its moves).
 
-    Returns :data:`EXACT` (``dist`` is the field of the new graph and targets, if it was exact before);
-    :data:`LOWER_BOUND` when more than ``max_lost`` cells would have to be invalidated: phase 1 is then
+    Returns :data:`EXACT` (``dist`` is the field of the new graph and targets); :data:`LOWER_BOUND` when
+    ``dist`` was not exact or more than ``max_lost`` cells would have to be invalidated: phase 1 is then
     skipped and only phase 2 runs, which leaves every distance a lower bound that is still 1-Lipschitz
     over the moves (what h_LTL's consistency needs), exact where it did not grow; or :data:`RECOMPUTE`
     when phase 2 would lower more than ``max_lowered`` cells or some distance does not fit below
@@ -98,8 +93,12 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
     """
     n = cell_pos.shape[0]
     mark = np.zeros(n, dtype=np.uint8)
-    heap = np.empty(1024 * HREC, dtype=np.int64)
-    keys = heap.view(np.float64)
+    # Room for every push, so the heap never grows (an array re-bound in these loops would cost atomic
+    # reference counts on every iteration): phase 1 pushes a cell at most once, phase 2 the lost cells, the
+    # seeds and each lowering. Lazily committed: only the part used costs memory.
+    capacity = max(n, max_lost + seeds.shape[0] + max_lowered) + 16
+    heap = np.empty(capacity * HREC, dtype=np.int64)
+    keys = heap.view(np.float64)  # the same memory: keys and ties as floats (sgplan.planning._heap)
     size = 0
     near = np.empty(8 + stairs_from.shape[0], dtype=np.int64)
     cost = np.empty(8 + stairs_from.shape[0], dtype=np.int64)
@@ -109,7 +108,7 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
     for s in seeds:
         if not _in_graph(cell_at, cell_pos, s) and dist[s] != UNREACHED:
             gone += 1
-    outcome = EXACT if gone <= max_lost else LOWER_BOUND
+    outcome = EXACT if exact and gone <= max_lost else LOWER_BOUND
     for s in seeds:
         if outcome == LOWER_BOUND:
             break
@@ -118,7 +117,7 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
                 mark[s] = _TARGET
             elif dist[s] != UNREACHED and mark[s] == 0:
                 mark[s] = _PENDING
-                heap, keys, size = _push(heap, keys, size, np.float64(dist[s]), s)
+                size = hpush(keys, heap, 0, size, np.float64(dist[s]), 0.0, s)
         elif dist[s] != UNREACHED:
             mark[s] = _LOST
             count = _neighbours(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from,
@@ -127,7 +126,7 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
                 y = near[i]
                 if mark[y] == 0 and dist[y] != UNREACHED:
                     mark[y] = _PENDING
-                    heap, keys, size = _push(heap, keys, size, np.float64(dist[y]), y)
+                    size = hpush(keys, heap, 0, size, np.float64(dist[y]), 0.0, y)
     lost = np.empty(64, dtype=np.int64)
     num_lost = 0
     while size > 0:
@@ -163,13 +162,10 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
             y = near[i]
             if mark[y] == 0 and dist[y] != UNREACHED and np.int64(dist[y]) == dx + cost[i]:
                 mark[y] = _PENDING
-                heap, keys, size = _push(heap, keys, size, np.float64(dist[y]), y)
+                size = hpush(keys, heap, 0, size, np.float64(dist[y]), 0.0, y)
     # Phase 2: the lost and changed cells take what their neighbours offer, then lower what they can.
     for i in range(num_lost):
         dist[lost[i]] = UNREACHED
-    for s in seeds:
-        if not _in_graph(cell_at, cell_pos, s):
-            dist[s] = UNREACHED
     lowered = 0
     for phase in range(2):
         total = num_lost if phase == 0 else seeds.shape[0]
@@ -177,18 +173,22 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
             x = lost[i] if phase == 0 else seeds[i]
             if not _in_graph(cell_at, cell_pos, x):
                 continue
+            count = _neighbours(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from,
+                                stairs_to, stairs_units, x, near, cost)
             best = np.int64(0) if cell_mask[x] == target else UNREACHED
-            if best != 0:
-                count = _neighbours(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from,
-                                    stairs_to, stairs_units, x, near, cost)
-                for j in range(count):
-                    dy = np.int64(dist[near[j]])
-                    if dy != UNREACHED and dy + cost[j] < best:
-                        best = dy + cost[j]
+            for j in range(count):
+                dy = np.int64(dist[near[j]])
+                if dy != UNREACHED and dy + cost[j] < best:
+                    best = dy + cost[j]
             if best < np.int64(dist[x]):
                 dist[x] = best
-            if dist[x] != UNREACHED:
-                heap, keys, size = _push(heap, keys, size, np.float64(dist[x]), x)
+            dx = np.int64(dist[x])
+            if dx == UNREACHED:
+                continue
+            for j in range(count):  # queued only if it can lower a neighbour (a rejoined cell often cannot)
+                if dx + cost[j] < np.int64(dist[near[j]]):
+                    size = hpush(keys, heap, 0, size, np.float64(dx), 0.0, x)
+                    break
     while size > 0:
         key = keys[0]
         x = heap[2]
@@ -207,6 +207,6 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
                     return RECOMPUTE
                 dist[y] = nd
                 lowered += 1
-                heap, keys, size = _push(heap, keys, size, np.float64(nd), y)
+                size = hpush(keys, heap, 0, size, np.float64(nd), 0.0, y)
     counts[0], counts[1] = num_lost, lowered
     return outcome

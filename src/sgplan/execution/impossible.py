@@ -23,7 +23,7 @@ def _unreachable_goals(run: Run) -> list[str]:
     if rest is None:
         return []
     graph = run.parts.graph
-    reachable = graph.reachable(graph.cell_id(*run.position))
+    reachable = graph.reachable(graph.cell_id(*run.position))  # through any room: the words say which
     offered = np.bitwise_or.reduce(run.parts.masks[reachable]) if reachable.any() else 0
     needed = sorted({name for step in rest.to_make_true for name in step})
     names = []

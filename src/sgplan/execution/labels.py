@@ -14,6 +14,7 @@ from collections.abc import Callable, Collection, Mapping
 
 import numpy as np
 
+from sgplan.intsets import members, unique_sorted
 from sgplan.scene.labels import Proposition, proposition_cells, raster_from_cells
 from sgplan.scene.model import Building
 from sgplan.scene.reach import reach_window
@@ -93,9 +94,10 @@ class RunLabels:
             bit = raster.dtype.type(1 << i)
             flat[self._cells[i]] &= ~bit
             flat[new] |= bit
-            touched.append(np.setxor1d(self._cells[i], new))
+            touched += [self._cells[i][~members(self._cells[i], new)], new[~members(new, self._cells[i])]]
             self._cells[i] = new
-        positions = np.unique(np.concatenate(touched)) if touched else np.zeros(0, dtype=np.int64)
+        positions = unique_sorted(np.concatenate(touched)) if touched else np.zeros(0, dtype=np.int64)
         if positions.size:
             self.raster = raster
         return positions.astype(np.int64)
+

@@ -31,6 +31,7 @@ A missing automaton edge is the mission's business (load it with the same profil
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
@@ -58,6 +59,7 @@ from sgplan.scene.model import Building
 
 if TYPE_CHECKING:
     from sgplan.api import Session
+    from sgplan.logic.formula import Formula
 
 Verdict = Literal["done", "violated", "in-progress"]
 DEFAULT_MAX_GAP_M = 1.0
@@ -208,10 +210,7 @@ class Monitor:
         self.max_gap_m = float(max_gap_m)
         self.labels = np.ascontiguousarray(labels)
         self._table = np.ascontiguousarray(automaton.table, dtype=np.int32)
-        # What the robot can produce: the labels of the cells it may enter.
-        realizable = occurring_labels(self.labels, grid.traversable, automaton.num_labels)
-        self._dead = ~automaton.live_states(realizable)
-        self.words = MissionWords(mission, building, realizable)
+        self._progressions: dict[tuple[int, ...], Formula] = {}  # MissionWords': kept by rebased()
         self.state = automaton.initial if state is None else int(state)
         self.cell: Cell3 | None = None
         if at is not None:
@@ -220,6 +219,22 @@ class Monitor:
         self.poses = self.cells = 0
         self.length_m = 0.0
         self.violation: Violation | None = None
+
+    @cached_property
+    def _realizable(self) -> np.ndarray:
+        """What the robot can produce: the labels of the cells it may enter (made on first use: a monitor
+        rebased on every scene change of a run reads them only when it reads poses or says words)."""
+        return occurring_labels(self.labels, self.grid.traversable, self.mission.automaton.num_labels)
+
+    @cached_property
+    def _dead(self) -> np.ndarray:
+        """``(Q,)`` bool: the states from which no word of :attr:`_realizable` labels accepts."""
+        return ~self.mission.automaton.live_states(self._realizable)
+
+    @cached_property
+    def words(self) -> MissionWords:
+        """The mission's words in this building (what is left, what broke it)."""
+        return MissionWords(self.mission, self.building, self._realizable, self._progressions)
 
     @classmethod
     def in_session(cls, session: Session, mission: Mission, *, profile: str = "ltlf",
@@ -241,6 +256,7 @@ class Monitor:
                         max_gap_m=self.max_gap_m, state=self.state)
         other.cell, other.poses, other.cells = self.cell, self.poses, self.cells
         other.length_m, other.violation = self.length_m, self.violation
+        other._progressions = self._progressions
         return other
 
     def observe_xy(self, poses: object, *, name: PoseNamer = pose_name) -> MonitorStatus:

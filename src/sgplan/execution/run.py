@@ -40,6 +40,7 @@ from sgplan.execution.monitor import Monitor, MonitorStatus
 from sgplan.execution.parts import RunParts
 from sgplan.execution.regrid import regrid
 from sgplan.execution.world import SceneDelta, SceneState
+from sgplan.intsets import members, unique_sorted
 
 if TYPE_CHECKING:
     from sgplan.api import Explained, Session
@@ -141,7 +142,7 @@ class Run:
         self.scene = SceneState.of(session.building)
         self.grid = session.grid(self.radii.robot_m)
         self._set_mission(mission, session.proposition_cells, check=state is None)
-        self.parts = RunParts(self.grid, self.labels.raster, self.building)
+        self.parts = RunParts(self.grid, self.labels.raster, self.scene.scene())
         self.start, self.start_from = start_cell(session.building, self.grid, start)
         self.monitor = Monitor(session.building, self.mission, self.grid, self.labels.raster,
                                profile=self.options.profile, state=state,
@@ -389,7 +390,8 @@ class Run:
         overall = _net_change(self.grid, grid, np.concatenate(blocked), np.concatenate(freed))
         relabelled = self.labels.update(scene.building, objects, _changed_cells(deltas))
         self.scene, self.grid = scene, grid
-        self.parts.advance(grid, GridChange(*overall), self.labels.raster, relabelled, scene.building)
+        self.parts.advance(grid, GridChange(*overall), self.labels.raster, relabelled, scene.scene(),
+                           at=self.position, objects=objects)
         self.monitor = self.monitor.rebased(grid, self.labels.raster, scene.building)
         self.changes.extend(typed)
         kept = self._plan_survives(overall[0], overall[1].size == 0 and relabelled.size == 0)
@@ -408,7 +410,7 @@ class Run:
         if path is not None and nothing_gained and not self._stale:
             _, rows, cols = self.grid.shape
             rest = path[self._on_plan :]
-            crossed = np.isin((rest[:, 2] * rows + rest[:, 0]) * cols + rest[:, 1], blocked)
+            crossed = members((rest[:, 2] * rows + rest[:, 0]) * cols + rest[:, 1], blocked)
             if not crossed.any():
                 return True
         self._stale = True
@@ -476,7 +478,7 @@ class Run:
     def _adopt(self, mission: Mission) -> None:
         """Make ``mission`` (whose initial state is the robot's state now, a live one) the run's mission."""
         self._set_mission(mission)
-        self.parts = RunParts(self.grid, self.labels.raster, self.building)
+        self.parts = self.parts.with_labels(self.labels.raster)
         self.monitor = Monitor(self.building, self.mission, self.grid, self.labels.raster,
                                profile=self.options.profile, state=self.mission.automaton.initial,
                                at=self.position)
@@ -540,7 +542,7 @@ def _changed_cells(deltas: list[SceneDelta]) -> dict[int, np.ndarray]:
 def _net_change(old: Any, new: Any, blocked: np.ndarray, freed: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The cells (flat grid positions) traversable in ``old`` and not in ``new``, and the reverse, among the
     cells some change in between touched."""
-    touched = np.union1d(blocked, freed)
+    touched = unique_sorted(np.concatenate([blocked, freed]))
     before = old.traversable.reshape(-1)[touched]
     after = new.traversable.reshape(-1)[touched]
     return touched[before & ~after], touched[~before & after]

@@ -80,10 +80,15 @@ class MissionWords:
         the mission monitored and its scene (for the entities' names).
     realizable:
         ``(num_labels,)`` bool: the label sets the robot can produce (the monitor's own).
+    progressions:
+        the mission's formula progressed over words (label tuples), shared by the words of one mission in
+        several scenes (a run's, as the building changes): progression reads no scene.
     """
 
-    def __init__(self, mission: Mission, building: Building, realizable: np.ndarray) -> None:
+    def __init__(self, mission: Mission, building: Building, realizable: np.ndarray,
+                 progressions: dict[tuple[int, ...], Formula] | None = None) -> None:
         self.mission = mission
+        self.progressions = {} if progressions is None else progressions
         self.automaton = mission.automaton
         self.realizable = realizable
         aps = self.automaton.aps
@@ -105,8 +110,11 @@ class MissionWords:
         word = self._word_to(state)
         residual = None
         if formula is not None and word is not None:
-            letters = [self.automaton.props_of(label) for label in word]
-            residual = progress(formula, letters, exclusive=self.exclusive)
+            residual = self.progressions.get(tuple(word))
+            if residual is None:
+                letters = [self.automaton.props_of(label) for label in word]
+                residual = progress(formula, letters, exclusive=self.exclusive)
+                self.progressions[tuple(word)] = residual
             if isinstance(residual, Const):
                 return Residual(residual, (), "nothing")
         continuing = started_in(self.automaton, state)

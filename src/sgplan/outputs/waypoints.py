@@ -123,26 +123,22 @@ def path_waypoints(
     chosen = rows[index]
     cost = np.concatenate([[0.0], np.cumsum(leg_costs(chosen, grid))]) if len(chosen) else np.zeros(0)
     row, col, floor = chosen[:, 0], chosen[:, 1], chosen[:, 2]
-    # The same float operations as OccupancyGrid.cell_xyz, a column at a time.
+    # The same float64 operations as OccupancyGrid.cell_xyz, a whole column at once.
     x_m = grid.origin_m[0] + (row + 0.5) * grid.resolution_m[0]
     y_m = grid.origin_m[1] + (col + 0.5) * grid.resolution_m[1]
     ground = np.array([f.ground_z_m for f in building.floors], dtype=np.float64)
-    z_m = np.where(np.isfinite(ground), ground, np.asarray(grid.floor_z_m, dtype=np.float64))[floor]
-    room_ids = grid.room_map[floor, row, col]
+    frame = np.asarray(grid.floor_z_m, dtype=np.float64)
+    z_m = np.where(np.isfinite(ground), ground, frame[: len(ground)])[floor]
     rooms = {room.id: room for room in building.rooms()}
-    keys: dict[int, str | None] = {}
-    names: dict[int, str | None] = {}
-    for room_id in np.unique(room_ids).tolist():
-        room = rooms.get(room_id)
-        keys[room_id], names[room_id] = (room.key, room.name) if room else (None, None)
-    room_list = room_ids.tolist()
+    room_ids = grid.room_map[floor, row, col].tolist()
+    named = {rid: (rooms[rid].key, rooms[rid].name) if rid in rooms else (None, None)
+             for rid in set(room_ids)}
     return [
-        Waypoint(*values)
-        for values in zip(
+        Waypoint(index=k, x_m=x, y_m=y, z_m=z, floor=f, row=r, col=c, room=named[rid][0],
+                 room_name=named[rid][1], q=q, cost_m=cost_m)
+        for k, x, y, z, f, r, c, rid, q, cost_m in zip(
             index.tolist(), x_m.tolist(), y_m.tolist(), z_m.tolist(), floor.tolist(), row.tolist(),
-            col.tolist(), [keys[r] for r in room_list], [names[r] for r in room_list],
-            chosen[:, 3].tolist(), cost.tolist(), strict=True,
-        )
+            col.tolist(), room_ids, chosen[:, 3].tolist(), cost.tolist())
     ]
 
 

@@ -73,7 +73,8 @@ def dijkstra(
 ):
     """Fill ``dist`` / ``pred`` / ``order`` (local, see the module docstring); returns cells settled.
 
-    ``sources`` are global cell indices in ``[lo, hi)``. With ``stop_room >= 0`` the run never enters a
+    ``sources`` are global cell indices in ``[lo, hi)``; those off the graph (masked out of ``cell_at``, see
+    :mod:`sgplan.execution.graph`) are left out. With ``stop_room >= 0`` the run never enters a
     cell whose ``cell_room`` differs from ``stop_room`` (sources excepted) and stops early after
     ``stop_count`` cells of that room are settled; with ``stop_room < 0`` it covers ``[lo, hi)`` to
     exhaustion (``cell_room`` is then not read). Every edge cost must be positive (the cell graph checks
@@ -100,7 +101,7 @@ def dijkstra(
     state = np.zeros(6, dtype=np.int64)
     for s in sources:
         local = s - lo
-        if pred[local] == PRED_SOURCE:
+        if pred[local] == PRED_SOURCE or cell_at[cell_pos[s]] != s:  # twice, or masked off the graph
             continue
         dist[local] = 0.0
         pred[local] = PRED_SOURCE
@@ -203,7 +204,7 @@ def _settle(
                 j = stairs_first[gu]
                 while j >= 0 and j < n_stairs and stairs_from[j] == gu:
                     v = stairs_to[j] - lo
-                    if 0 <= v < n:
+                    if 0 <= v < n and cell_at[cell_pos[v + lo]] == v + lo:  # a portal off the graph: no
                         nd = d + stairs_cost[j]
                         dv = dist[v]
                         if nd < dv or (dv == 0.0 and pred[v] == PRED_NONE):
@@ -233,12 +234,18 @@ def _settle(
 
 
 @njit(cache=True, nogil=True)
-def flood(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, start, seen):
-    """Mark in ``seen`` (bool, all cells) every cell reachable from cell ``start`` by steps and stairs."""
+def flood(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, starts, seen):
+    """Mark in ``seen`` (bool, all cells) every cell reachable from the cells ``starts`` by steps and stairs,
+    without passing through cells already marked (a flood that grows a marked region from some of its
+    neighbours). Returns the cells marked."""
     stack = np.empty(cell_pos.shape[0], dtype=np.int32)
-    stack[0] = start
-    seen[start] = True
-    top = 1
+    top = 0
+    for start in starts:
+        if not seen[start]:
+            seen[start] = True
+            stack[top] = start
+            top += 1
+    marked = top
     n_stairs = stairs_from.shape[0]
     while top > 0:
         top -= 1
@@ -250,6 +257,7 @@ def flood(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, 
                 seen[v] = True
                 stack[top] = v
                 top += 1
+                marked += 1
         j = stairs_first[u]
         while j >= 0 and j < n_stairs and stairs_from[j] == u:
             v = stairs_to[j]
@@ -257,7 +265,9 @@ def flood(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, 
                 seen[v] = True
                 stack[top] = v
                 top += 1
+                marked += 1
             j += 1
+    return marked
 
 
 @njit(cache=True, nogil=True)

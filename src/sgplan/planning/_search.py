@@ -523,27 +523,30 @@ def read_record(ptab, pool, poolf, s):
 
 @njit(cache=True, nogil=True)
 def parent_chain(ptab, pool, poolf, goal, limit):
-    """The product states on the parent pointers from ``goal`` back to a state without a parent, start
-    first, and the action that reached each (-1 for the first): two int64 arrays, empty when the chain
-    is longer than ``limit`` states (the pointers would form a cycle)."""
+    """The product states from the start to ``goal`` along the parent pointers, and the action that led to
+    each (``-1`` for the start): ``(states, actions)``; ``states`` is empty when the chain is longer than
+    ``limit`` (the pointers form a cycle: a bug)."""
     states = np.empty(64, dtype=np.int64)
     actions = np.empty(64, dtype=np.int64)
-    n = 0
+    count = 0
     s = goal
     while True:
-        if n == states.shape[0]:
-            states = np.concatenate((states, np.empty(n, dtype=np.int64)))
-            actions = np.concatenate((actions, np.empty(n, dtype=np.int64)))
+        if count == states.shape[0]:
+            if count > limit:
+                return states[:0], actions[:0]
+            grown_s = np.empty(2 * count, dtype=np.int64)
+            grown_a = np.empty(2 * count, dtype=np.int64)
+            grown_s[:count] = states
+            grown_a[:count] = actions
+            states, actions = grown_s, grown_a
         _, parent, action = read_record(ptab, pool, poolf, s)
-        states[n] = s
-        actions[n] = action if parent >= 0 else -1
-        n += 1
+        states[count] = s
+        actions[count] = action if parent >= 0 else -1
+        count += 1
         if parent < 0:
             break
-        if n > limit:
-            return states[:0].copy(), actions[:0].copy()
         s = parent
-    return states[:n][::-1].copy(), actions[:n][::-1].copy()
+    return states[:count][::-1].copy(), actions[:count][::-1].copy()
 
 
 # ---- the queues' tops ------------------------------------------------------------------------------

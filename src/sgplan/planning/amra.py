@@ -317,16 +317,18 @@ def _recover_cells(domain: PlanningDomain, state: SearchState, goal: int) -> np.
     qb = int(_search.q_bits(domain.num_states))
     limit = int(state.iscal[_search.I_PAGES]) * _search.PAGE + 1
     states, actions = _search.parent_chain(state.ptab, state.pool, state.poolf, goal, limit)
-    if len(states) == 0:
+    if states.size == 0:
         raise PlanningError("internal error: the parent pointers form a cycle")
-    chain = (states >> qb).tolist()
-    cells = chain[:1]
-    for child, code in zip(chain[1:], actions[1:].tolist(), strict=True):
+    cells = states >> qb
+    if not (actions >= ACT_MAP).any():
+        return cells
+    out = [int(cells[0])]
+    for cell, code in zip(cells[1:].tolist(), actions[1:].tolist()):
         if code < ACT_MAP:
-            cells.append(child)
+            out.append(cell)
         else:
-            cells += domain.action_cells(code - ACT_MAP, cells[-1], child)
-    return np.array(cells, dtype=np.int64)
+            out += domain.action_cells(code - ACT_MAP, out[-1], cell)
+    return np.array(out, dtype=np.int64)
 
 
 def _path_rows(domain: PlanningDomain, cells: np.ndarray) -> np.ndarray:

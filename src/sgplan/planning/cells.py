@@ -220,7 +220,7 @@ class CellGraph:
         """``(N,)`` bool: the cells reachable from cell ``start`` (steps and stairs); a flood fill."""
         seen = np.zeros(self.num_cells, dtype=np.bool_)
         flood(self.cell_at, self.cell_pos, self.step_offset, self.stairs_first, self.stairs_from,
-              self.stairs_to, start, seen)
+              self.stairs_to, np.array([start], dtype=np.int64), seen)
         return seen
 
 

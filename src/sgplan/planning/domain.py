@@ -22,6 +22,7 @@ import hashlib
 import time
 from collections import namedtuple
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 
@@ -30,7 +31,7 @@ from sgplan.planning._dijkstra import PRED_NONE, PRED_SOURCE, PRED_STAIRS, PRED_
 from sgplan.planning._memory import sparse_zeros
 from sgplan.planning.cells import CellGraph, build_cell_graph
 from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
-from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic, unit_field
+from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic, label_fields, reachable_states
 from sgplan.planning.problem import PlanningProblem
 from sgplan.planning.shared import shared_part
 from sgplan.scene.model import CatCode, Room
@@ -218,15 +219,21 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
     clock.lap("labels")
     q_start = _start_state(problem, logic, start_cell)
 
-    reachable = graph.reachable(start_cell)
+    avoid = logic.label_masks[_fatal_labels(logic.trans, logic.dead, automaton.initial)]
+    component = None if problem.shared is None else problem.shared.reachable(problem.grid, graph, start_cell,
+                                                                              avoid)
+    reachable = component if component is not None else graph.reachable(start_cell)
     clock.lap("reachable")
+    boundary = None if problem.shared is None else problem.shared.label_boundary(problem.grid, graph)
+    fields = partial(_label_fields, problem, graph, logic.cell_label, logic.label_masks, reachable, avoid)
     ltl = build_ltl_heuristic(graph, logic.cell_label, logic.trans, logic.accepting, q_start, reachable,
-                              distances=lambda cells, unit: _distance_field(problem, graph, cells, unit),
-                              start_cell=start_cell)
+                              fields=fields, start_cell=start_cell, boundary=boundary)
+    del fields
     clock.lap("ltl")
     if not logic.accepting[q_start] and not np.isfinite(ltl.value(start_cell, q_start)):
+        everywhere = reachable if component is None else graph.reachable(start_cell)  # the message's
         raise PlanningError(
-            _infeasible_reason(problem, logic.label_masks[logic.cell_label], reachable, q_start),
+            _infeasible_reason(problem, logic.label_masks[logic.cell_label], everywhere, q_start),
             status="infeasible",
         )
 
@@ -279,16 +286,18 @@ class _CellLogic:
 
     @classmethod
     def of(cls, problem: PlanningProblem, graph: CellGraph) -> _CellLogic:
-        """Read the problem's label raster at every cell and compact it to the labels that occur."""
+        """Read the problem's label raster at every cell and compact it to the labels that occur (or take
+        the compact labels the problem's parts keep: :meth:`SharedParts.cell_labels`, a run's)."""
         automaton = problem.automaton
-        masks = graph.gather(problem.labels)
-        if masks.size and (int(masks.max()) >= automaton.num_labels or int(masks.min()) < 0):
+        compacted = None if problem.shared is None else problem.shared.cell_labels(problem.grid, graph,
+                                                                                    problem.labels)
+        label_masks, cell_label = compacted if compacted is not None else _labelling(graph, problem.labels,
+                                                                                      automaton)
+        if label_masks.size and int(label_masks.max()) >= automaton.num_labels:
             raise PlanningError(
-                f"label raster holds bitmask {int(masks.max())} but the automaton has only "
+                f"label raster holds bitmask {int(label_masks.max())} but the automaton has only "
                 f"{len(automaton.aps)} propositions ({', '.join(automaton.aps)})"
             )
-        label_masks, cell_label = _compact_labels(masks, automaton.num_labels)
-        del masks
         trans = np.ascontiguousarray(automaton.table[:, label_masks], dtype=np.int32)
         accepting = np.asarray(automaton.accepting, dtype=bool)
         dead = _dead_states(np.asarray(automaton.table), accepting)
@@ -377,7 +386,13 @@ def _action_parts(
     problem: PlanningProblem, graph: CellGraph, cell_label: np.ndarray, reachable: np.ndarray
 ) -> ActionParts:
     """The composite action tables of the problem's grid (shared by a session), the map store of the
-    start's connected component and the label runs of this labelling (both filled by the search)."""
+    start's connected component and the label runs of this labelling (both filled by the search); or the
+    parts kept by the problem's parts when they keep them across changes (:meth:`SharedParts.action_parts`,
+    a run's)."""
+    shared = problem.shared
+    kept = None if shared is None else shared.action_parts(problem, graph, cell_label, reachable)
+    if kept is not None:
+        return kept
     reach = (problem.reach_radius_m, problem.reach_model)
     tables = shared_part(problem.shared, "action_tables", (problem.grid, *reach),
                          lambda: _action_tables(problem, graph))
@@ -454,7 +469,7 @@ class _Clock:
         self._last = now
 
 
-def _compact_labels(masks: np.ndarray, num_labels: int) -> tuple[np.ndarray, np.ndarray]:
+def compact_labels(masks: np.ndarray, num_labels: int) -> tuple[np.ndarray, np.ndarray]:
     """``(label_masks, cell_label)``: the distinct bitmasks (ascending, int64) and each cell's index into
     them (:func:`label_index_dtype`: a byte a cell on most missions). A lookup table when the automaton's
     label space is small, else a sort."""
@@ -562,12 +577,16 @@ class ActionTables:
     ``kactions.map_stop_count`` is a placeholder: the stop counts follow the start's component
     (:class:`MapStore`)."""
 
-    maps: list[ActionMap]
+    families: list[Family]
     kactions: KernelActions
     in_region: np.ndarray
     cell_room: np.ndarray
     room_uuids: list[int]
     num_rooms: int
+
+    @property
+    def maps(self) -> list[ActionMap]:
+        return [family.action for family in self.families]
 
     def nbytes(self) -> int:
         return self.in_region.nbytes + self.cell_room.nbytes + sum(a.nbytes for a in self.kactions)
@@ -629,76 +648,54 @@ class LabelRuns:
         return int(self.store.count[self.done.astype(bool)].sum()) * 4 + self.done.nbytes
 
 
-def _distance_field(problem: PlanningProblem, graph: CellGraph, cells: np.ndarray, unit_m: float
-                    ) -> np.ndarray | float:
-    """:func:`~sgplan.planning.ltl_heuristic.unit_field` of ``graph``, from the session's parts
-    (:meth:`SharedParts.distance_field`); computed each time without them."""
-    if problem.shared is None:
-        return unit_field(graph, cells, unit_m)
-    return problem.shared.distance_field(problem.grid, graph, cells, unit_m)
+def _labelling(graph: CellGraph, labels: np.ndarray, automaton) -> tuple[np.ndarray, np.ndarray]:
+    """``(label_masks, cell_label)`` of the label raster ``labels`` over the cells of ``graph``
+    (:func:`compact_labels`)."""
+    masks = graph.gather(labels)
+    if masks.size and int(masks.min()) < 0:
+        raise PlanningError(f"label raster holds a negative bitmask ({int(masks.min())})")
+    return compact_labels(masks, max(automaton.num_labels, int(masks.max(initial=0)) + 1))
+
+
+def _fatal_labels(trans: np.ndarray, dead: np.ndarray, initial: int) -> np.ndarray:
+    """The compact labels that take every live state reachable from ``initial`` to a dead one (a room the
+    mission forbids throughout): a move onto them always ends the mission."""
+    live = np.flatnonzero(reachable_states(trans, initial) & ~dead)
+    if not live.size:
+        return np.zeros(0, dtype=np.int64)
+    return np.flatnonzero(dead[trans[live]].all(axis=0))
+
+
+def _label_fields(problem: PlanningProblem, graph: CellGraph, cell_label: np.ndarray, label_masks: np.ndarray,
+                  reachable: np.ndarray, avoid: np.ndarray, labels: np.ndarray, unit_m: float
+                  ) -> np.ndarray | float:
+    """The distance fields of the regions of compact labels ``labels`` (h_LTL's ``fields``): kept by the
+    problem's parts when they keep them by label (:meth:`SharedParts.label_fields`; they may leave out
+    the cells of the bitmasks ``avoid``, which no move of the search enters: :func:`_fatal_labels`), else
+    one
+    :func:`~sgplan.planning.ltl_heuristic.unit_field` per region within ``reachable``, each from the
+    session's parts when there are some (:meth:`SharedParts.distance_field`)."""
+    shared = problem.shared
+    kept = None if shared is None else shared.label_fields(problem.grid, graph, label_masks[labels], unit_m,
+                                                           avoid)
+    if kept is not None:
+        return kept
+    if shared is None:
+        return label_fields(graph, cell_label, reachable, labels, unit_m)
+    return label_fields(graph, cell_label, reachable, labels, unit_m,
+                        distances=lambda cells, unit: shared.distance_field(problem.grid, graph, cells, unit))
 
 
 def _action_tables(problem: PlanningProblem, graph: CellGraph) -> ActionTables:
     """The composite action families of the problem's grid and reach radius, and their per-room /
-    per-floor tables for the kernel. Families are numbered room by room (each room's object families,
-    then its door families), then floor by floor (up, down): the search's action codes follow it."""
+    per-floor tables for the kernel."""
     rooms = list(problem.building.rooms())
-    families = _Families()
-    in_region = np.zeros(graph.num_cells, dtype=np.bool_)
-    room_obj, room_room = _room_families(problem, graph, rooms, families, in_region)
-    floor_up, floor_down = _floor_families(problem, graph, families)
-    obj_ptr, obj_map = _csr(room_obj)
-    room_ptr, room_map = _csr(room_room)
-    kactions = KernelActions(
-        room_obj_ptr=obj_ptr,
-        room_obj_map=obj_map,
-        room_room_ptr=room_ptr,
-        room_room_map=room_map,
-        floor_up_map=floor_up,
-        floor_down_map=floor_down,
-        map_floor=np.array([m.floor for m in families.maps], dtype=np.int32),
-        map_src_ptr=families.source_ptr(),
-        map_src=np.concatenate(families.sources) if families.sources else np.zeros(0, dtype=np.int64),
-        map_stop_room=np.array(families.stop_room, dtype=np.int32),
-        map_stop_count=np.zeros(len(families.maps), dtype=np.int64),  # per component: MapStore.stop_count
-        map_exit_cell=np.array(families.exit_cell, dtype=np.int64),
-        map_exit_cost=np.array(families.exit_cost, dtype=np.float64),
-    )
-    return ActionTables(maps=families.maps, kactions=kactions, in_region=in_region,
-                        cell_room=_cell_rooms(problem, graph, rooms),
-                        room_uuids=[room.uuid for room in rooms], num_rooms=len(rooms))
+    return action_tables(action_families(problem, graph, rooms), room_indices(problem, graph, rooms), rooms,
+                         graph.shape[0])
 
 
-@dataclass
-class _Families:
-    """The composite action families as they are added: each one's map key, source cells, the room its
-    paths stay in (-1: none) and, for floor actions, the stairs it ends with (exit cell and cost)."""
-
-    maps: list[ActionMap] = field(default_factory=list)
-    sources: list[np.ndarray] = field(default_factory=list)
-    stop_room: list[int] = field(default_factory=list)
-    exit_cell: list[int] = field(default_factory=list)
-    exit_cost: list[float] = field(default_factory=list)
-
-    def add(self, action: ActionMap, cells: np.ndarray, stop: int, exit_to: int = -1,
-            cost: float = 0.0) -> int:
-        """Add a family; its number."""
-        self.maps.append(action)
-        self.sources.append(cells.astype(np.int64))
-        self.stop_room.append(stop)
-        self.exit_cell.append(exit_to)
-        self.exit_cost.append(cost)
-        return len(self.maps) - 1
-
-    def source_ptr(self) -> np.ndarray:
-        """CSR offsets of each family's source cells in their concatenation."""
-        ptr = np.zeros(len(self.maps) + 1, dtype=np.int64)
-        ptr[1:] = np.cumsum([len(s) for s in self.sources])
-        return ptr
-
-
-def _cell_rooms(problem: PlanningProblem, graph: CellGraph, rooms: list[Room]) -> np.ndarray:
-    """``(N,)`` the index in ``rooms`` of each cell's room, -1 outside every room."""
+def room_indices(problem: PlanningProblem, graph: CellGraph, rooms: list) -> np.ndarray:
+    """``(N,)``: the index in ``rooms`` of the room holding each cell of ``graph`` (-1: none)."""
     room_lut = np.full(max([room.id for room in rooms], default=0) + 2, -1, dtype=np.int32)
     for i, room in enumerate(rooms):
         room_lut[room.id] = i
@@ -709,24 +706,47 @@ def _cell_rooms(problem: PlanningProblem, graph: CellGraph, rooms: list[Room]) -
     return cell_room
 
 
-def _room_families(problem: PlanningProblem, graph: CellGraph, rooms: list[Room], families: _Families,
-                   in_region: np.ndarray) -> tuple[list[list[int]], list[list[int]]]:
-    """Add every room's object families (to an object's reach region; marked in ``in_region``) and door
-    families (through the doors into a connected non-staircase room); per room, their numbers."""
+@dataclass(frozen=True)
+class Family:
+    """One composite action family as the tables hold it: the action, its target cells (cell indices,
+    ascending), the room (index) its paths keep to (-1: its floor), the room whose cells may take it (-1:
+    any cell of the floor, a floor action), and a floor action's far portal and stairs cost."""
+
+    action: ActionMap
+    sources: np.ndarray
+    stop_room: int
+    from_room: int
+    exit_cell: int = -1
+    exit_cost: float = 0.0
+
+
+def object_family(problem: PlanningProblem, graph: CellGraph, rooms: list[Room], r: int, obj,
+                  in_room: np.ndarray | None = None) -> Family | None:
+    """The family of reaching ``obj`` from the cells of room ``rooms[r]`` (its room), ``None`` when no cell
+    of ``graph`` reaches it; ``in_room``: the room's traversable cells (:func:`_room_cells`), computed when
+    ``None``."""
+    room = rooms[r]
+    if in_room is None:
+        in_room = _room_cells(problem, room)
+    cells = _reach_region(problem, graph, room, obj, in_room)
+    if not cells.size:
+        return None
+    return Family(ActionMap(MAP_OBJECT, obj.uuid, room.floor), cells.astype(np.int64),
+                  -1 if room.is_staircase else r, r)
+
+
+def action_families(problem: PlanningProblem, graph: CellGraph, rooms: list[Room]) -> list[Family]:
+    """The composite action families over ``graph``: per room (in the order of ``rooms``) its objects' and
+    its doors' into each connected room, then the stairs of each floor."""
     floors = graph.shape[0]
     room_index = {room.id: i for i, room in enumerate(rooms)}
-    room_obj: list[list[int]] = [[] for _ in rooms]
-    room_room: list[list[int]] = [[] for _ in rooms]
+    families: list[Family] = []
     for r, room in enumerate(rooms):
         if room.floor >= floors:
             continue
-        stop = -1 if room.is_staircase else r  # the room a map's paths stop in (-1: none)
-        in_room = _room_cells(problem, room) if room.objects else np.zeros(0, dtype=np.bool_)
-        for obj in room.objects.values():
-            cells = _reach_region(problem, graph, room, obj, in_room)
-            if cells.size:
-                in_region[cells] = True
-                room_obj[r].append(families.add(ActionMap(MAP_OBJECT, obj.uuid, room.floor), cells, stop))
+        in_room = _room_cells(problem, room) if room.objects else None  # once per room, not per object
+        reached = (object_family(problem, graph, rooms, r, obj, in_room) for obj in room.objects.values())
+        families += [family for family in reached if family is not None]
         if room.is_staircase:
             continue
         for other_id in room.connected_room_ids:
@@ -736,32 +756,60 @@ def _room_families(problem: PlanningProblem, graph: CellGraph, rooms: list[Room]
                 continue
             ids = _cell_ids(graph, room.floor, np.asarray(doors, dtype=np.int64).reshape(-1, 2))
             if ids.size:
-                room_room[r].append(
-                    families.add(ActionMap(MAP_ROOM, (room.uuid, rooms[other].uuid), room.floor), ids, r)
-                )
-    return room_obj, room_room
-
-
-def _floor_families(problem: PlanningProblem, graph: CellGraph,
-                    families: _Families) -> tuple[np.ndarray, np.ndarray]:
-    """Add the floor families of every staircase (to this floor's portal, then the stairs, up and down);
-    per floor, the number of its up and down family (-1: none)."""
-    floors = graph.shape[0]
-    floor_up = np.full(floors, -1, dtype=np.int32)
-    floor_down = np.full(floors, -1, dtype=np.int32)
+                families.append(Family(ActionMap(MAP_ROOM, (room.uuid, rooms[other].uuid), room.floor),
+                                       ids, r, r))
     for link in problem.grid.stairs:
         low = graph.cell_id(link.lower_cell[0], link.lower_cell[1], link.lower_floor)
         up = graph.cell_id(link.upper_cell[0], link.upper_cell[1], link.upper_floor)
         if low < 0 or up < 0:
             continue
-        floor_up[link.lower_floor] = families.add(
-            ActionMap(MAP_FLOOR_UP, link.lower_floor, link.lower_floor), np.array([low]), -1, up, link.cost_m
-        )
-        floor_down[link.upper_floor] = families.add(
-            ActionMap(MAP_FLOOR_DOWN, link.upper_floor, link.upper_floor), np.array([up]), -1, low,
-            link.cost_m,
-        )
-    return floor_up, floor_down
+        families.append(Family(ActionMap(MAP_FLOOR_UP, link.lower_floor, link.lower_floor),
+                               np.array([low], dtype=np.int64), -1, -1, up, link.cost_m))
+        families.append(Family(ActionMap(MAP_FLOOR_DOWN, link.upper_floor, link.upper_floor),
+                               np.array([up], dtype=np.int64), -1, -1, low, link.cost_m))
+    return families
+
+
+def action_tables(families: list[Family], cell_room: np.ndarray, rooms: list, floors: int) -> ActionTables:
+    """The kernel's tables of ``families`` (indexed in list order): per room the object and door families
+    its cells may take, per floor the stairs families, the families' targets, rooms, floors and exits, and
+    which cells lie in some object's reach."""
+    room_obj: list[list[int]] = [[] for _ in rooms]
+    room_room: list[list[int]] = [[] for _ in rooms]
+    floor_up = np.full(floors, -1, dtype=np.int32)
+    floor_down = np.full(floors, -1, dtype=np.int32)
+    in_region = np.zeros(cell_room.shape[0], dtype=np.bool_)
+    for k, family in enumerate(families):
+        kind = family.action.kind
+        if kind == MAP_OBJECT:
+            room_obj[family.from_room].append(k)
+            in_region[family.sources] = True
+        elif kind == MAP_ROOM:
+            room_room[family.from_room].append(k)
+        else:
+            (floor_up if kind == MAP_FLOOR_UP else floor_down)[family.action.floor] = k
+    obj_ptr, obj_map = _csr(room_obj)
+    room_ptr, room_map = _csr(room_room)
+    src_ptr = np.zeros(len(families) + 1, dtype=np.int64)
+    src_ptr[1:] = np.cumsum([len(f.sources) for f in families])
+    map_src = np.concatenate([f.sources for f in families]) if families else np.zeros(0, dtype=np.int64)
+    kactions = KernelActions(
+        room_obj_ptr=obj_ptr,
+        room_obj_map=obj_map,
+        room_room_ptr=room_ptr,
+        room_room_map=room_map,
+        floor_up_map=floor_up,
+        floor_down_map=floor_down,
+        map_floor=np.array([f.action.floor for f in families], dtype=np.int32),
+        map_src_ptr=src_ptr,
+        map_src=map_src.astype(np.int64),
+        map_stop_room=np.array([f.stop_room for f in families], dtype=np.int32),
+        map_stop_count=np.zeros(len(families), dtype=np.int64),  # per component: MapStore.stop_count
+        map_exit_cell=np.array([f.exit_cell for f in families], dtype=np.int64),
+        map_exit_cost=np.array([f.exit_cost for f in families], dtype=np.float64),
+    )
+    return ActionTables(families=families, kactions=kactions, in_region=in_region, cell_room=cell_room,
+                        room_uuids=[room.uuid for room in rooms], num_rooms=len(rooms))
 
 
 def _csr(lists: list[list[int]]) -> tuple[np.ndarray, np.ndarray]:

@@ -77,6 +77,7 @@ def build_llm_heuristic(
         if guidance is not None:
             stats.skip(f"guidance is a {type(guidance).__name__}, not a mapping", entry=True)
         return LlmHeuristic(leg_sum, target, has_target, stats)
+    legs_of: dict[object, tuple[np.ndarray, np.ndarray, float]] = {}  # a call recurs across entries
     for room_key, per_state in guidance.items():
         room_uuid = _as_int(room_key)
         if room_uuid not in index or not isinstance(per_state, Mapping):
@@ -90,12 +91,20 @@ def build_llm_heuristic(
                 )
                 continue
             stats.entries += 1
-            legs = [leg for leg in (_leg(call, building, stats) for call in calls) if leg is not None]
+            legs = []
+            for call in calls:
+                leg = legs_of.get(call) if isinstance(call, str) else None
+                if leg is None:  # not seen yet, or unusable (read again: each use is counted)
+                    leg = _leg(call, building, stats)
+                    if leg is not None:
+                        legs_of[call] = leg
+                if leg is not None:
+                    legs.append(leg)
             if legs:
                 r = index[room_uuid]
                 target[r, q] = legs[0][1]
                 has_target[r, q] = True
-                leg_sum[r, q] = sum(float(np.linalg.norm(b - a)) for a, b in legs[1:])
+                leg_sum[r, q] = sum(length for _, _, length in legs[1:])
                 stats.calls_used += len(legs)
     return LlmHeuristic(leg_sum, target, has_target, stats)
 
@@ -110,8 +119,10 @@ def _as_int(value: object) -> int | None:
     return None
 
 
-def _leg(call: object, building: Building, stats: GuidanceStats) -> tuple[np.ndarray, np.ndarray] | None:
-    """The (from, to) centres of one call, or None (counted) if it is unusable."""
+def _leg(call: object, building: Building, stats: GuidanceStats
+         ) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """The (from, to) centres of one call and the metres between them, or None (counted) if it is
+    unusable."""
     match = _CALL.match(call) if isinstance(call, str) else None
     if match is None:
         stats.skip(f"call {call!r} is not move(room, room) or reach(room, object)")
@@ -128,4 +139,5 @@ def _leg(call: object, building: Building, stats: GuidanceStats) -> tuple[np.nda
         return None
     start = np.asarray(building.room(uuid=a).location_m, dtype=np.float64)
     end = building.room(uuid=b).location_m if kind == "move" else building.object(uuid=b).location_m
-    return start, np.asarray(end, dtype=np.float64)
+    end = np.asarray(end, dtype=np.float64)
+    return start, end, float(np.linalg.norm(end - start))

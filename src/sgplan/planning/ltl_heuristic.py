@@ -70,6 +70,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from sgplan.intsets import unique_sorted
 from sgplan.planning._memory import sparse_zeros
 from sgplan.planning.cells import CellGraph
 
@@ -165,6 +166,18 @@ def _units(x):
 
 
 @njit(cache=True, inline="always")
+def _outside(lo, hi, x):
+    """How far field value ``x`` lies outside a piece's values ``[lo, hi]`` (<= 0 inside), all in units,
+    ``inf`` for unreached. A cell that cannot reach the field's region cannot reach a piece cell that
+    can (``inf`` when ``hi`` is finite); when neither can, the field tells nothing (``-inf``). The fields
+    of a run may leave cells out of the graph (execution/fields.py), which is how a cell of the search
+    can be unreached by a measured field."""
+    if x == np.inf:
+        return np.inf if hi < np.inf else -np.inf
+    return max(lo - x, x - hi)
+
+
+@njit(cache=True, inline="always")
 def row_value(dist, unit, term_ptr, term_label, term_add, row, c):
     """h at cell ``c`` in the automaton state of row ``row``, metres: ``unit`` times the min over the row's
     terms (see :class:`LtlHeuristic`), computed in full only where it can matter.
@@ -195,8 +208,7 @@ def row_value(dist, unit, term_ptr, term_label, term_add, row, c):
                 break
             phi = own
             for f in range(width):
-                x = _units(dist[c, f])
-                phi = max(phi, term_add[t, 1 + f] - x, x - term_add[t, 1 + width + f])
+                phi = max(phi, _outside(term_add[t, 1 + f], term_add[t, 1 + width + f], _units(dist[c, f])))
                 if phi + add >= best:  # this term cannot be the minimum
                     break
             best = min(best, phi + add)
@@ -232,10 +244,11 @@ def build_ltl_heuristic(
     accepting: np.ndarray,
     q_start: int,
     reachable: np.ndarray | None = None,
-    distances: Callable[[np.ndarray, float], np.ndarray | float] | None = None,
+    fields: Callable[[np.ndarray, float], np.ndarray | float] | None = None,
     start_cell: int = -1,
     piece_m: float = PIECE_M,
     max_pieces: int = MAX_PIECES,
+    boundary: np.ndarray | None = None,
 ) -> LtlHeuristic:
     """Tabulate h_LTL for the states reachable from ``q_start``.
 
@@ -255,9 +268,12 @@ def build_ltl_heuristic(
         optional ``(N,)`` bool, the cells reachable from the start: label regions are restricted to them
         (the search never leaves them), which tightens h and makes it ``inf`` when a needed label occurs
         only elsewhere.
-    distances:
-        optional ``distances(cells, unit_m)``: :func:`unit_field` of ``graph`` (the default), e.g. kept by a
-        session (:mod:`sgplan.planning.shared`); ``cells`` are sorted cell indices.
+    fields:
+        optional ``fields(labels, unit_m)``: the distance fields of the regions of the compact labels
+        ``labels`` (ascending), as :func:`label_fields` computes them (the default): an ``(N, len(labels))``
+        uint32 matrix, or the largest distance (a float) when some does not fit. A label's field may be
+        to its whole region instead of its part in ``reachable``: the two agree on every cell reachable
+        from the start, the only cells h reads (e.g. a run's fields, repaired across scene changes).
     start_cell:
         the start's cell index: its neighbours become entry cells of their labels, since the ``authors``
         profile reads the start's label only on the first move. -1: none, which keeps h consistent only
@@ -265,30 +281,25 @@ def build_ltl_heuristic(
     piece_m, max_pieces:
         side of the pieces (metres) and most pieces per label region (:data:`PIECE_M`,
         :data:`MAX_PIECES`); any values keep h consistent, smaller pieces make it tighter and slower.
+    boundary:
+        optional :func:`label_boundary` of ``graph`` and ``cell_label`` (e.g. kept up to date by a run);
+        computed when ``None``.
     """
     accepting = np.asarray(accepting, dtype=bool)
     states = np.flatnonzero(reachable_states(trans, q_start) & ~accepting)
-    leaves = trans[states] != states[:, None]
     inside = reachable if reachable is not None else np.ones(graph.num_cells, dtype=bool)
-    present = np.zeros(trans.shape[1], dtype=bool)
-    present[cell_label[inside]] = True
-    # Labels that leave some state and occur where the search can go: one distance field each.
-    needed = np.flatnonzero(leaves.any(axis=0) & present)
-    field_of = np.full(trans.shape[1], -1, dtype=np.int64)
-    field_of[needed] = np.arange(len(needed))
-    dist, unit_m = _label_fields(graph, cell_label, needed, inside, distances)
+    needed, field_of = _measured_labels(trans, states, cell_label, inside)
+    dist, unit_m = _label_fields(graph, cell_label, needed, inside, fields)
     twice = _moves_twice(trans, states)
-    piece_label, piece_cells, piece_ptr = _pieces(graph, cell_label, field_of, inside, twice, start_cell,
-                                                  piece_m, max_pieces)
+    if boundary is None:
+        boundary = label_boundary(graph, cell_label)
+    entry = _entry_cells(graph, cell_label, field_of, inside, twice, start_cell, boundary)
+    piece_label, piece_cells, piece_ptr = _pieces(graph, field_of, entry, piece_m, max_pieces)
     lo, hi = _piece_bounds(dist, piece_cells, piece_ptr)
     between = _piece_lower_bounds(dist, piece_cells, piece_ptr, lo, hi)
     q_row, term_ptr, groups, term_piece, term_add = _terms(trans, accepting, states, field_of, piece_label,
                                                            between)
-    width = dist.shape[1]
-    term_data = np.empty((len(term_piece), 1 + 2 * width), dtype=np.float64)
-    term_data[:, 0] = term_add
-    term_data[:, 1 : 1 + width] = lo[term_piece]
-    term_data[:, 1 + width :] = hi[term_piece]
+    term_data = _term_data(term_add, lo[term_piece], hi[term_piece])
     rows = len(term_ptr) - 1
     return LtlHeuristic(
         q_row=q_row,
@@ -307,28 +318,48 @@ def build_ltl_heuristic(
     )
 
 
+def _measured_labels(trans: np.ndarray, states: np.ndarray, cell_label: np.ndarray, inside: np.ndarray
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """``(needed, field_of)``: the compact labels that leave some state of ``states`` and occur on a cell
+    ``inside`` (where the search can go), ascending -- one distance field each --, and per compact label
+    its field's column (-1: none)."""
+    leaves = trans[states] != states[:, None]
+    present = np.zeros(trans.shape[1], dtype=bool)
+    present[cell_label[inside]] = True
+    needed = np.flatnonzero(leaves.any(axis=0) & present)
+    field_of = np.full(trans.shape[1], -1, dtype=np.int64)
+    field_of[needed] = np.arange(len(needed))
+    return needed, field_of
+
+
+def _term_data(term_add: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """``(T, 1 + 2F)`` per term its added cost, then its piece's smallest and largest value of each field:
+    one row per term, as :func:`row_value` reads it."""
+    width = lo.shape[1]
+    term_data = np.empty((len(term_add), 1 + 2 * width), dtype=np.float64)
+    term_data[:, 0] = term_add
+    term_data[:, 1 : 1 + width] = lo
+    term_data[:, 1 + width :] = hi
+    return term_data
+
+
 def _label_fields(
     graph: CellGraph, cell_label: np.ndarray, needed: np.ndarray, inside: np.ndarray,
-    distances: Callable[[np.ndarray, float], np.ndarray | float] | None,
+    fields: Callable[[np.ndarray, float], np.ndarray | float] | None,
 ) -> tuple[np.ndarray, float]:
-    """``(N, len(needed))`` uint32 distance fields to the cells (``inside``) of each needed label, in
-    units of the returned ``unit_m``: the finest unit (:func:`finest_unit`) unless some distance does not
-    fit in 32 bits, then the coarsest power of two times it that fits."""
-    if distances is None:
-        def distances(cells: np.ndarray, unit: float) -> np.ndarray | float:
-            return unit_field(graph, cells, unit)
+    """``(N, len(needed))`` uint32 distance fields of the regions of the compact labels ``needed`` (by
+    ``fields``, :func:`label_fields` over the cells ``inside`` by default), in units of the returned
+    ``unit_m``: the finest unit (:func:`finest_unit`) unless some distance does not fit in 32 bits, then
+    the coarsest power of two times it that fits."""
+    if fields is None:
+        def fields(labels: np.ndarray, unit: float) -> np.ndarray | float:
+            return label_fields(graph, cell_label, inside, labels, unit)
     unit_m = finest_unit(graph)
     while True:  # a coarser unit only if some distance does not fit in 32 bits
-        # Cell-major: an evaluation reads all the fields of one cell (one cache line).
-        dist = np.empty((graph.num_cells, len(needed)), dtype=np.uint32)
-        for i, label in enumerate(needed):
-            field = distances(np.flatnonzero((cell_label == label) & inside), unit_m)
-            if isinstance(field, float):
-                unit_m *= 2.0 ** np.ceil(np.log2(field / (UNREACHED - 1)))
-                break
-            dist[:, i] = field
-        else:
+        dist = fields(needed, unit_m)
+        if not isinstance(dist, float):
             return dist, unit_m
+        unit_m *= 2.0 ** np.ceil(np.log2(dist / (UNREACHED - 1)))
 
 
 def finest_unit(graph: CellGraph) -> float:
@@ -342,6 +373,27 @@ def unit_costs(graph: CellGraph, unit_m: float) -> tuple[np.ndarray, np.ndarray]
     """``(step, stairs)``: the cost of every move of ``graph`` in whole units of ``unit_m``, rounded down
     (float64 whole numbers, >= 1 when ``unit_m <= finest_unit(graph)``)."""
     return np.floor(graph.step_cost / unit_m), np.floor(graph.stairs_cost / unit_m)
+
+
+def label_fields(graph: CellGraph, cell_label: np.ndarray, inside: np.ndarray, labels: np.ndarray,
+                 unit_m: float, distances: Callable[[np.ndarray, float], np.ndarray | float] | None = None
+                 ) -> np.ndarray | float:
+    """``(N, F)`` uint32: column ``i`` is the :func:`unit_field` of the cells of ``inside`` whose compact
+    label is ``labels[i]``; or, when some distance does not fit, the largest one (units, a float).
+
+    Cell-major, as h reads it: an evaluation reads all the fields of one cell (one cache line).
+    ``distances(cells, unit_m)``: :func:`unit_field` of ``graph`` (the default), e.g. kept by a session
+    (:mod:`sgplan.planning.shared`); ``cells`` are sorted cell indices."""
+    if distances is None:
+        def distances(cells: np.ndarray, unit: float) -> np.ndarray | float:
+            return unit_field(graph, cells, unit)
+    dist = np.empty((graph.num_cells, len(labels)), dtype=np.uint32)
+    for i, label in enumerate(labels):
+        field = distances(np.flatnonzero((cell_label == label) & inside), unit_m)
+        if isinstance(field, float):
+            return field
+        dist[:, i] = field
+    return dist
 
 
 def unit_field(graph: CellGraph, cells: np.ndarray, unit_m: float) -> np.ndarray | float:
@@ -382,21 +434,16 @@ def _moves_twice(trans: np.ndarray, states: np.ndarray) -> np.ndarray:
 
 def _pieces(
     graph: CellGraph,
-    cell_label: np.ndarray,
     field_of: np.ndarray,
-    inside: np.ndarray,
-    twice: np.ndarray,
-    start_cell: int,
+    entry: tuple[np.ndarray, np.ndarray],
     piece_m: float,
     max_pieces: int,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(piece_label, piece_cells, piece_ptr)`` (see :class:`LtlHeuristic`): the entry cells of every
-    measured label, binned into squares of ``piece_m`` (larger for labels that would get more than
-    ``max_pieces``)."""
-    entry = _entry_cells(graph.cell_at, graph.cell_pos, graph.step_offset, graph.stairs_from, graph.stairs_to,
-                         cell_label, field_of, inside, twice, start_cell)
-    cells = np.flatnonzero(entry)
-    field = field_of[cell_label[cells]]
+    """``(piece_label, piece_cells, piece_ptr)`` (see :class:`LtlHeuristic`): the entry cells (``entry``:
+    the cells, ascending, and their compact labels) of every measured label, binned into squares of
+    ``piece_m`` (larger for labels that would get more than ``max_pieces``)."""
+    cells, cell_labels = entry
+    field = field_of[cell_labels]
     side = max(1, round(piece_m / min(graph.resolution_m)))
     labels, cell_lists = [], []
     for f in range(int(field_of.max(initial=-1)) + 1):
@@ -404,12 +451,11 @@ def _pieces(
         bins = side
         while True:
             key = _bin_key(graph, own, bins)
-            uniq, inverse = np.unique(key, return_inverse=True)
-            if len(uniq) <= max_pieces or bins > max(graph.shape[1:]):  # at worst, one piece per floor
+            order = np.argsort(key, kind="stable")  # by square, each in cell order
+            splits = np.flatnonzero(np.diff(key[order])) + 1
+            if len(splits) < max_pieces or bins > max(graph.shape[1:]):  # at worst, one piece per floor
                 break
             bins = int(np.ceil(bins * 1.5))
-        order = np.argsort(inverse, kind="stable")
-        splits = np.cumsum(np.bincount(inverse, minlength=len(uniq)))[:-1]
         for piece in np.split(own[order], splits):
             labels.append(f)
             cell_lists.append(piece)
@@ -428,33 +474,82 @@ def _bin_key(graph: CellGraph, cells: np.ndarray, side: int) -> np.ndarray:
     return graph.cell_floor[cells].astype(np.int64) * per_floor + row // side * per_row + col // side
 
 
+def label_boundary(graph: CellGraph, cell_label: np.ndarray) -> np.ndarray:
+    """``(N,)`` bool: the cells of ``graph`` that a move (a step or stairs) joins to a cell of the graph
+    with another compact label in ``cell_label`` -- where a robot coming from outside a label region
+    enters it. A pass over the cells (compiled)."""
+    boundary = np.zeros(graph.num_cells, dtype=np.bool_)
+    mark_boundary(graph.cell_at, graph.cell_pos, graph.step_offset, graph.stairs_first, graph.stairs_from,
+                  graph.stairs_to, cell_label, np.arange(graph.num_cells, dtype=np.int64), False, boundary)
+    return boundary
+
+
+@njit(cache=True, inline="always")
+def _on_boundary(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, cell_label, x):
+    """Whether cell ``x`` is on a label boundary (:func:`label_boundary`); a cell off the graph (masked,
+    ``cell_at[cell_pos[x]] != x``) is not."""
+    pos = cell_pos[x]
+    if cell_at[pos] != x:
+        return False
+    label = cell_label[x]
+    for k in range(8):
+        y = cell_at[pos + step_offset[k]]
+        if y >= 0 and cell_label[y] != label:
+            return True
+    j = stairs_first[x]
+    while 0 <= j < stairs_from.shape[0] and stairs_from[j] == x:
+        y = stairs_to[j]
+        if cell_at[cell_pos[y]] == y and cell_label[y] != label:
+            return True
+        j += 1
+    return False
+
+
 @njit(cache=True, nogil=True)
-def _entry_cells(cell_at, cell_pos, step_offset, stairs_from, stairs_to, cell_label, field_of, inside, twice,
-                 start_cell):
-    """``(N,)`` bool: the measured-label cells (``field_of >= 0``, inside) where the automaton can change
-    state on a move (see the module docstring)."""
-    n = cell_pos.shape[0]
-    entry = np.zeros(n, dtype=np.bool_)
-    for x in range(n):
-        label = cell_label[x]
-        if not inside[x] or field_of[label] < 0:
+def mark_boundary(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to, cell_label, cells,
+                  around, boundary):
+    """Set ``boundary[x]`` (see :func:`label_boundary`) for every cell ``x`` of ``cells`` and, if
+    ``around``, for every cell of the graph a move joins it to (what a change of ``x``'s label or graph
+    membership can affect)."""
+    n_stairs = stairs_from.shape[0]
+    done = np.zeros(boundary.shape[0] if around else 0, dtype=np.bool_)  # each cell once, when around
+    for x in cells:
+        boundary[x] = _on_boundary(cell_at, cell_pos, step_offset, stairs_first, stairs_from, stairs_to,
+                                   cell_label, x)
+        if not around:
             continue
-        if twice[label]:
-            entry[x] = True
-            continue
+        done[x] = True
         pos = cell_pos[x]
-        for k in range(8):
-            y = cell_at[pos + step_offset[k]]
-            if y >= 0 and (cell_label[y] != label or y == start_cell):
-                entry[x] = True
+        j = stairs_first[x]
+        for k in range(8 + n_stairs):
+            if k < 8:
+                y = cell_at[pos + step_offset[k]]
+            elif 0 <= j < n_stairs and stairs_from[j] == x:
+                y = stairs_to[j]
+                j += 1
+            else:
                 break
-    for j in range(stairs_from.shape[0]):
-        x = stairs_to[j]
-        if inside[x] and field_of[cell_label[x]] >= 0 and (
-            cell_label[stairs_from[j]] != cell_label[x] or stairs_from[j] == start_cell
-        ):
-            entry[x] = True
-    return entry
+            if y >= 0 and not done[y]:
+                done[y] = True
+                boundary[y] = _on_boundary(cell_at, cell_pos, step_offset, stairs_first, stairs_from,
+                                           stairs_to, cell_label, y)
+
+
+def _entry_cells(graph: CellGraph, cell_label: np.ndarray, field_of: np.ndarray, inside: np.ndarray,
+                 twice: np.ndarray, start_cell: int, boundary: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The measured-label cells (``field_of >= 0``, inside) where the automaton can change state on a move
+    (see the module docstring): those on a label ``boundary``, the start's neighbours, every cell of a
+    label that moves some state twice in a row; ascending, with their compact labels."""
+    cells = np.flatnonzero(boundary)
+    if twice.any():
+        cells = unique_sorted(np.concatenate([cells, np.flatnonzero(twice[cell_label])]))
+    if start_cell >= 0:
+        near = graph.neighbours(np.array([start_cell]))[0]
+        stairs = graph.stairs_to[graph.stairs_from == start_cell]
+        cells = unique_sorted(np.concatenate([cells, near[near >= 0], stairs]).astype(np.int64))
+    labels = cell_label[cells]
+    keep = inside[cells] & (field_of[labels] >= 0)
+    return cells[keep], labels[keep]
 
 
 @njit(cache=True, nogil=True)
@@ -488,7 +583,7 @@ def _piece_lower_bounds(dist, piece_cells, piece_ptr, lo, hi):
             for k in range(num_pieces):
                 phi = 0.0
                 for f in range(num_fields):
-                    phi = max(phi, lo[k, f] - x[f], x[f] - hi[k, f])
+                    phi = max(phi, _outside(lo[k, f], hi[k, f], x[f]))
                 between[j, k] = min(between[j, k], phi)
     return between
 
