@@ -66,7 +66,9 @@ def answers(client: TestClient, full: bool = False) -> list[dict[str, Any]]:
 
 
 def service_client(scenes: SceneRegistry, state: Path) -> TestClient:
-    config = ServeConfig(scenes=("demo",), state_dir=state).checked()
+    # The longest request time limit: the first plan of a process whose numba cache is cold compiles the
+    # kernels within its request, which on a loaded machine can outlast the default limit (a 408).
+    config = ServeConfig(scenes=("demo",), state_dir=state, request_time_limit_s=3600).checked()
     return TestClient(create_app(service=MissionService.start(config, scenes)))
 
 
