@@ -106,7 +106,7 @@ class RunActions:
         touched = self._families_touching(moved)
         # A cell that left or joined the graph can change what an object of its room is visible from
         # (the visible reach model): those objects' targets are made anew too, not only the moved ones'.
-        self._objects |= set(objects) | {f.action.entity for f, hit in zip(self.tables.families, touched)
+        self._objects |= set(objects) | {int(f.action.entity) for f, hit in zip(self.tables.families, touched)
                                          if hit and f.action.kind == MAP_OBJECT}
         for k, family in enumerate(self.tables.families):
             if family.action.kind == MAP_OBJECT and family.action.entity in self._objects:
