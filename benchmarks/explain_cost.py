@@ -27,9 +27,9 @@ from sgplan.assembly import make_problem
 from sgplan.datasets import SCENES, find_gibson_root
 from sgplan.explain import explain_mission
 from sgplan.explain.checks import check_mission_in_scene
+from sgplan.formats import load_scene
 from sgplan.mission import load_mission_folder
 from sgplan.mission.identity import ensure_folder_fits_scene
-from sgplan.scene.loading import load_scene
 
 
 def best_of(repeat: int, fn: Callable[..., Any], *args: Any, **kwargs: Any) -> tuple[float, Any]:

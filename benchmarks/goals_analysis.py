@@ -28,6 +28,7 @@ def build_case(target_m: float = 2.0, goals: int = 9, seed: int = 0):
     """The scaling benchmark's unordered ``goals`` case: (problem, seconds to build the domain)."""
     from sgplan import mission_from_formula  # the public one: any source tree has it
     from sgplan.assembly import make_problem
+    from sgplan.planning.domain import domain_of
     from sgplan.radii import resolve_radii
     from sgplan.scene.grid import build_occupancy_grid
 
@@ -43,7 +44,7 @@ def build_case(target_m: float = 2.0, goals: int = 9, seed: int = 0):
     centre = free[np.argmin(((free - free.mean(axis=0)) ** 2).sum(axis=1))]
     problem.start = (int(centre[0]), int(centre[1]), 0)
     t0 = time.perf_counter()
-    _ = problem.domain
+    _ = domain_of(problem)
     return problem, time.perf_counter() - t0, radii
 
 
@@ -98,8 +99,10 @@ def run_astar(problem):
 
 
 def main() -> None:
+    from sgplan.planning.domain import domain_of
+
     problem, domain_s, radii = build_case()
-    domain = problem.domain
+    domain = domain_of(problem)
     ltl = domain.ltl
     print(f"free cells {domain.graph.num_cells}, Q {domain.num_states}, leaving labels "
           f"{len(ltl.leaving_labels)}, domain {domain_s:.2f} s ({domain.timings}), reach {radii.reach_m} m, "

@@ -5,7 +5,7 @@ Each listed function is wrapped to record ``time.perf_counter()`` and ``VmRSS`` 
 ``/proc/self/status`` when it starts and ends; the table prints them in order with the seconds since the
 previous mark. Numba's cached kernels are listed too (seconds to load each, RSS after), since the first
 load also initialises numba's compiler (~0.1 s, ~45 MB). Like the console script, it sets the process up
-with :func:`sgplan.cli.prepare_own_process` (no BLAS probe, fewer garbage-collector passes);
+with :func:`sgplan.runtime.process.prepare_own_process` (no BLAS probe, fewer garbage-collector passes);
 ``--library-process`` leaves it as a program importing sgplan would have it.
 
     .venv/bin/python benchmarks/plan_parts.py plan --scene Benevolence --setup 'A*' --profile authors \\
@@ -85,12 +85,13 @@ def _watch_kernel_loads() -> None:
 def main() -> int:
     mark("interpreter up")
     import sgplan.cli
+    from sgplan.runtime.process import prepare_own_process
 
     argv = sys.argv[1:]
     if "--library-process" in argv:
         argv.remove("--library-process")
     else:
-        sgplan.cli.prepare_own_process()  # as sgplan.cli.main does in the console script
+        prepare_own_process()  # as sgplan.cli.main does in the console script
 
     mark("sgplan.cli imported")
     for module_name, attr in PARTS:

@@ -60,6 +60,7 @@ def domain_seconds(building, grid, mission, model: str) -> float:
     from sgplan import PlanOptions
     from sgplan.assembly import make_problem
     from sgplan.errors import PlanningError
+    from sgplan.planning.domain import domain_of
 
     options = PlanOptions(reach_model=model)
     labels = mission.labels(building, None, model)
@@ -67,7 +68,7 @@ def domain_seconds(building, grid, mission, model: str) -> float:
         if grid.traversable[start[2], start[0], start[1]]:
             problem = make_problem(building, mission, start, options, grid=grid, labels=labels).problem
             try:
-                return problem.domain.timings["action_tables"]
+                return domain_of(problem).timings["action_tables"]
             except PlanningError:
                 continue
     return float("nan")

@@ -172,7 +172,7 @@ def scenarios(scene, mission_index, start, setup, rows, verbose):
     if base.path is None or len(base.path) < 8:
         return
     for fraction in (0.25, 0.5, 0.75):
-        run = session.start(mission, start, options=options)
+        run = sgplan.Run(session, mission, start, options=options)
         run.observe(base.path[1 : int(len(base.path) * fraction), :3], metric=False)
         if run.plan is None or run.remaining_path is None or len(run.remaining_path) < 4:
             continue
@@ -245,7 +245,7 @@ def successive(count: int = 1000, scene: str = "Benevolence") -> dict:
     root = find_gibson_root()
     building = sgplan.load_scene(scene)
     mission = sgplan.load_mission(root / scene / "missions" / "4")
-    run = sgplan.Session(building).start(mission, 0, setup="A*")
+    run = sgplan.Run(sgplan.Session(building), mission, 0, setup="A*")
     rest = run.plan.path
     door = next_door(run, rest[len(rest) // 2 :])
     latencies, rss_100 = [], float("nan")

@@ -39,6 +39,7 @@ import subprocess
 import sys
 import tempfile
 from pathlib import Path
+from typing import Any
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -124,7 +125,7 @@ def run_case(
     t0 = time.perf_counter()
     # The domain for the setup's levels, as the planner builds it (older source trees: the full one).
     max_level = get_setup(setup).max_level
-    domain = problem.domain_for(max_level) if hasattr(problem, "domain_for") else problem.domain
+    domain = _domain_of(problem, max_level)
     part("domain", t0)
     for name, seconds in getattr(domain, "timings", {}).items():
         row[f"dom_{name}_s"] = seconds
@@ -299,3 +300,13 @@ def main() -> int:
 
 if __name__ == "__main__":
     sys.exit(main())
+
+
+def _domain_of(problem: Any, max_level: int) -> Any:
+    """The problem's domain up to ``max_level`` in whichever source tree runs (``--variant``): built by
+    ``sgplan.planning.domain.domain_of`` now, by the problem itself (``domain_for`` / ``domain``) before."""
+    try:
+        from sgplan.planning.domain import domain_of
+    except ImportError:
+        return problem.domain_for(max_level) if hasattr(problem, "domain_for") else problem.domain
+    return domain_of(problem, max_level)

@@ -10,10 +10,10 @@ from pathlib import Path
 import pytest
 
 import sgplan
-from sgplan import jit
 from sgplan.cli import main
 from sgplan.commands.bench import _scene_folders
 from sgplan.commands.common import split_list
+from sgplan.runtime import jit
 
 FORMULA = ["--formula", 'F "enter(room_4)"', "--setup", "NO-LLM"]
 

@@ -166,11 +166,7 @@ def test_documented_commands_use_no_option_kept_only_for_old_scripts() -> None:
     assert stale == []
 
 
-MEASUREMENT_LOG = {"docs/planning.md"}
-"""Pages that still log measurement rounds with their machine's load (to move to benchmarks/results/)."""
-
-
-@pytest.mark.parametrize("doc", [d for d in DOCS if _name(d) not in MEASUREMENT_LOG], ids=_name)
+@pytest.mark.parametrize("doc", DOCS, ids=_name)
 def test_docs_carry_no_notes_about_the_machine_load_of_the_day(doc: Path) -> None:
     """Measurements and the conditions of their run belong in benchmarks/results/, with the command."""
     text = doc.read_text(encoding="utf-8")

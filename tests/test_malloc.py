@@ -1,4 +1,4 @@
-"""sgplan.malloc: a freed multi-MB array leaves the resident set at once (in a fresh process each)."""
+"""sgplan.runtime.malloc: a freed multi-MB array leaves the resident set at once (in a fresh process each)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import sys
 
 import pytest
 
-from sgplan.malloc import return_freed_memory_promptly
+from sgplan.runtime.malloc import return_freed_memory_promptly
 
 # Frees a 16 MB array (which raises glibc's dynamic mmap threshold), then fills 6 MB arrays, each followed
 # by a small one that stays (as a plan's longer-lived arrays do), frees the 6 MB ones and prints the MiB
@@ -16,7 +16,7 @@ from sgplan.malloc import return_freed_memory_promptly
 _PROBE = """
 import sys
 import numpy as np
-from sgplan.malloc import return_freed_memory_promptly
+from sgplan.runtime.malloc import return_freed_memory_promptly
 if sys.argv[1] == "fixed":
     assert return_freed_memory_promptly()
 def rss():

@@ -113,7 +113,7 @@ def test_a_run_relabels_an_object_when_an_obstacle_appears_in_its_reach(demo: sg
     from sgplan.execution.changes import Area, Block
 
     mission = sgplan.mission_from_formula(f'F "{CHAIR}"', demo)
-    run = sgplan.Session(demo).start(mission, 0, reach_model=model)
+    run = sgplan.Run(sgplan.Session(demo), mission, 0, reach_model=model)
     chair = demo.object(uuid=29)
     floor = demo.floors[demo.room(uuid=chair.room_uuid).floor]
     x, y = floor.cell_to_xy((chair.grid_max[0] + 4, (chair.grid_min[1] + chair.grid_max[1]) // 2))

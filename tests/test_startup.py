@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from sgplan.cli import GC_YOUNG_THRESHOLD
+from sgplan.runtime.process import GC_YOUNG_THRESHOLD
 
 HEAVY = ("numba", "scipy", "PIL", "matplotlib", "rich", "openai", "sgplan.planning.amra")
 
@@ -185,7 +185,7 @@ def test_the_blas_hook_is_one_shot_and_falls_back_when_numba_differs() -> None:
     module cannot be found where expected, the hook steps aside (the normal finders take over)."""
     code = (
         "import json, sys\n"
-        "from sgplan.jit import _SkipBlasProbe, skip_blas_probe\n"
+        "from sgplan.runtime.jit import _SkipBlasProbe, skip_blas_probe\n"
         "first, second = skip_blas_probe(), skip_blas_probe()\n"
         "hook = next(f for f in sys.meta_path if isinstance(f, _SkipBlasProbe))\n"
         "sys.meta_path.remove(hook)\n"

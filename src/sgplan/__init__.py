@@ -18,6 +18,7 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 from sgplan.errors import SgplanError
+from sgplan.version import __version__
 
 if TYPE_CHECKING:
     from sgplan.api import (
@@ -35,7 +36,6 @@ if TYPE_CHECKING:
     from sgplan.scene.builder import BuildingBuilder
     from sgplan.starts import Point
 
-__version__ = "0.1.0"
 
 _LAZY = {
     "load_scene": "sgplan.api",

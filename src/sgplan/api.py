@@ -33,9 +33,9 @@ from sgplan.scene.model import Building
 from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 if TYPE_CHECKING:  # the planner, grid and labels (numba, scipy) load when a plan is made, not for a mission
-    from sgplan.execution.run import Run
     from sgplan.explain import Explanation
-    from sgplan.llm.backends import Backends, MissionGuide
+    from sgplan.llm.backends import Backends
+    from sgplan.llm.protocols import MissionGuide
     from sgplan.mission import Mission
     from sgplan.planning.amra import IterationCallback, SearchResult
     from sgplan.planning.problem import PlanningProblem
@@ -59,7 +59,7 @@ def load_scene(scene: str | Path | Building, data: str | Path | None = None) -> 
 
     ``scene`` is ``"demo"`` (the embedded demo building), a Gibson scene name (``"Benevolence"``, any case)
     looked up under ``data`` (default: ``$SGPLAN_GIBSON_DIR``, else ``../shared/datasets/gibson-3dsg``), a
-    scene folder or file in any supported format (:func:`sgplan.scene.loading.load_scene`), or a
+    scene folder or file in any supported format (:func:`sgplan.formats.load_scene`), or a
     :class:`Building` (returned as it is).
 
     Raises
@@ -68,7 +68,7 @@ def load_scene(scene: str | Path | Building, data: str | Path | None = None) -> 
         when ``scene`` is none of these, or its files are malformed.
     """
     from sgplan.datasets import SCENES, scene_dir
-    from sgplan.scene.loading import load_scene as load_path
+    from sgplan.formats import load_scene as load_path
 
     if isinstance(scene, Building):
         return scene
@@ -313,9 +313,9 @@ class Session:
         termination: Termination | None,
         start_state: int | None,
     ) -> PlanResult:
-        from sgplan.jit import announce_compile
         from sgplan.planning.amra import plan as amra_plan
         from sgplan.planning.termination import any_of
+        from sgplan.runtime.jit import announce_compile
 
         t0 = time.perf_counter()
         staged = self._stage(mission, start, options, guide, start_state)
@@ -358,18 +358,6 @@ class Session:
             radii.reach_from, prepared.problem.reach_model, options.profile, mission.automaton.num_states,
         )
         return StagedPlan(mission, guidance, prepared.problem, radii, start_from, scene_check)
-
-    def start(self, mission: Mission, start: StartSpec = None, *, options: PlanOptions | None = None,
-              guide: MissionGuide | None = None, **option_values: Any) -> Run:
-        """Start a :class:`~sgplan.execution.run.Run`: ``mission`` carried from ``start`` through the
-        changes of this building (which the run never makes to the session's own building), with progress,
-        monitoring, exact replanning and amendments. Options as :meth:`plan` takes them.
-
-        Cost: this session's grid and labels for the radii (kept), the run's cell numbering (two passes
-        over the grid); the first plan is made when ``run.plan`` is first read."""
-        from sgplan.execution.run import Run
-
-        return Run(self, mission, start, PlanOptions.from_keywords(options, **option_values), guide=guide)
 
 
 @dataclass(frozen=True)
@@ -434,12 +422,7 @@ def _check_in_scene(mission: Mission, building: Building, problem: PlanningProbl
         profile = "authors"
     check = check_mission_in_scene(mission, building, problem.start, grid=problem.grid, labels=problem.labels,
                                    profile=profile, reach_model=problem.reach_model)
-    for finding in check.findings:
-        if finding.severity == "warning":
-            log.warning(f"warning: {finding.message}")
-        elif finding.severity == "note":
-            log.info(f"note: {finding.message}")
-    check.raise_errors()
+    check.report()
     return check.to_dict()
 
 

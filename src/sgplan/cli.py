@@ -11,18 +11,15 @@ instead. ``--debug``, ``--quiet`` and ``--verbose`` go before or after the sub-c
 from __future__ import annotations
 
 import argparse
-import atexit
-import contextlib
-import gc
-import os
 import signal
 import sys
 from collections.abc import Sequence
 
-from sgplan import __version__
 from sgplan.commands import REGISTRY
-from sgplan.commands.common import add_common_options, configure_logging
+from sgplan.commands.common import add_common_options, configure_logging, holding_draw_folder
 from sgplan.errors import SgplanError
+from sgplan.runtime.process import exit_now, observed, prepare_own_process
+from sgplan.version import __version__
 
 
 def _build_parser() -> argparse.ArgumentParser:
@@ -46,60 +43,15 @@ def main(argv: Sequence[str] | None = None, *, fast_exit: bool | None = None) ->
     ``fast_exit`` (default: when ``argv`` is ``None``, i.e. when run as the console script) says that the
     process is sgplan's own: then it is set up by :func:`prepare_own_process` first, and it ends here
     through :func:`exit_now` instead of returning: every output file is already written atomically and
-    closed by then, so only the interpreter's teardown is skipped (0.3-0.8 s after a plan: freeing numba's
-    compiled code and every imported module one by one).
+    closed by then, so only the interpreter's teardown is skipped (:func:`sgplan.runtime.process.exit_now`).
     """
     own_process = (argv is None) if fast_exit is None else fast_exit
     if own_process:
         prepare_own_process()
     code = _run(argv)
-    if own_process and not _observed():
+    if own_process and not observed():
         exit_now(code)
     return code
-
-
-GC_YOUNG_THRESHOLD = 300_000
-"""Net allocations between two runs of the cyclic garbage collector in sgplan's own processes (Python's
-default: 700); see :func:`prepare_own_process`."""
-
-
-def prepare_own_process() -> None:
-    """Set up a process that is sgplan's own (the console script, a bench worker), never one that merely
-    imports sgplan: the choices below are the process owner's.
-
-    - numba skips its BLAS probe (:func:`sgplan.jit.skip_blas_probe`: no scipy.linalg import, 0.1-0.25 s).
-    - The cyclic garbage collector runs after :data:`GC_YOUNG_THRESHOLD` net allocations instead of 700.
-      A plan's garbage is almost all acyclic (numpy arrays, containers: freed by reference counting),
-      while numba's registries and the imports create some 10^5-10^6 long-lived objects that every
-      collection walks again: with the default, a plan spent 60-110 ms in ~260 collections that freed
-      ~2,000 objects (at 100,000: ~20 collections, ~35 ms; at 300,000: ~2, ~10 ms). The collector still
-      runs, so cyclic garbage stays bounded (a plan leaves ~35,000 objects, a few MB, uncollected).
-    - glibc returns every freed array of 4 MiB or more to the system at once
-      (:func:`sgplan.malloc.return_freed_memory_promptly`: 12-22 MB less peak RSS on the large plans).
-    """
-    from sgplan.jit import skip_blas_probe
-    from sgplan.malloc import return_freed_memory_promptly
-
-    skip_blas_probe()
-    return_freed_memory_promptly()
-    gc.set_threshold(GC_YOUNG_THRESHOLD, *gc.get_threshold()[1:])
-
-
-def _observed() -> bool:
-    """Whether a profiler or tracer (cProfile, coverage, a debugger) runs, which writes its results at the
-    interpreter's normal exit: then the process ends normally."""
-    return sys.getprofile() is not None or sys.gettrace() is not None
-
-
-def exit_now(code: int) -> None:
-    """End the process with ``code`` at once: run the ``atexit`` handlers (logging's flush among them),
-    flush stdout and stderr, then :func:`os._exit`, skipping the teardown of modules and objects.
-    Only for the end of a process whose outputs are complete (nothing else may be left to run)."""
-    atexit._run_exitfuncs()
-    for stream in (sys.stdout, sys.stderr):
-        with contextlib.suppress(OSError, ValueError):  # a closed or broken pipe: nothing left to save
-            stream.flush()
-    os._exit(code)
 
 
 def _run(argv: Sequence[str] | None) -> int:
@@ -107,7 +59,8 @@ def _run(argv: Sequence[str] | None) -> int:
     args = parser.parse_args(argv)
     configure_logging(args)
     try:
-        return int(args.run(args) or 0)
+        with holding_draw_folder(args):
+            return int(args.run(args) or 0)
     except SgplanError as error:
         if args.debug:
             raise

@@ -80,6 +80,61 @@ def folder_lock(folder: Path) -> Iterator[None]:
             fcntl.flock(handle, fcntl.LOCK_UN)
 
 
+class FolderInUse(Exception):
+    """Another process holds the folder (:func:`claim_folder`); ``holder_pid`` is its process id, if it
+    could be read."""
+
+    def __init__(self, folder: Path, holder_pid: int | None) -> None:
+        super().__init__(f"{folder} is in use by process {holder_pid or 'unknown'}")
+        self.folder = folder
+        self.holder_pid = holder_pid
+
+
+def claim_file(folder: Path) -> Path:
+    """The lock file of :func:`claim_folder`: ``.<name>.writer.lock`` beside the folder (not inside it, where
+    it would be one more file among the outputs), holding the pid of the folder's last writer."""
+    folder = folder.resolve()
+    return folder.parent / f".{folder.name}.writer.lock"
+
+
+@contextlib.contextmanager
+def claim_folder(folder: Path) -> Iterator[None]:
+    """Hold ``folder`` (created if missing) for this process's writes for the length of the block, or
+    refuse at once if another process holds it: several processes writing the same file names into one
+    folder would silently overwrite each other's files.
+
+    The claim is an exclusive ``flock`` on :func:`claim_file` beside the folder, which holds the holder's
+    pid (for the refusal to name it). The kernel drops the lock when the block ends or the process dies,
+    so a crashed holder never leaves the folder claimed; the file itself stays (removing it would let a
+    waiting process lock a file no longer in the folder).
+
+    Raises
+    ------
+    FolderInUse
+        Another process holds the folder.
+    OSError
+        The folder cannot be made or written (callers add which option named it).
+    """
+    folder.mkdir(parents=True, exist_ok=True)
+    fd = os.open(claim_file(folder), os.O_RDWR | os.O_CREAT, 0o666)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise FolderInUse(folder, _pid_in(fd)) from None
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
+        yield
+    finally:
+        os.close(fd)  # releases the lock
+
+
+def _pid_in(fd: int) -> int | None:
+    """The pid written in a claim file, or ``None`` (not written yet, or not a number)."""
+    text = os.pread(fd, 32, 0).decode("ascii", "replace").strip()
+    return int(text) if text.isdigit() else None
+
+
 def rebuild_folder(folder: Path, build: Callable[[Path], None], carry_over: Callable[[str], bool]) -> None:
     """Replace ``folder`` by a new version, whole: readers see the old folder or the new one, never a mix.
 

@@ -25,7 +25,7 @@ from sgplan.english import count, series
 from sgplan.errors import PlanningError
 from sgplan.scene.fields import is_int, is_number
 from sgplan.scene.grid import OccupancyGrid
-from sgplan.scene.model import Building, Room
+from sgplan.scene.model import Building, Room, category_words
 
 _ON_FLOOR = re.compile(r"^(.*?)\s+on\s+floor\s+(\d+)$", re.IGNORECASE)
 SNAP_M = 0.5
@@ -143,7 +143,7 @@ def _telling_apart(building: Building, rooms: list[Room]) -> list[tuple[str, str
     out = []
     for room in rooms:
         alone = floors.count(room.floor) == 1
-        neighbours = [f"the {n}" for n in sorted({building.room(id=i).name.replace("_", " ")
+        neighbours = [f"the {n}" for n in sorted({category_words(building.room(id=i).name)
                                                    for i in room.connected_room_ids})]
         near = f", next to {series(neighbours)}" if neighbours else ", no door to another room"
         spec = f"{room.name} on floor {room.floor}" if alone else room.key
@@ -159,7 +159,7 @@ def _room_start(building: Building, grid: OccupancyGrid, room: Room) -> tuple[tu
             "stand on",
             status="invalid-start",
         )
-    from scipy import ndimage  # ~0.3 s to import: only for a start given as a room or a point
+    from scipy import ndimage  # slow to import: only for a start given as a room or a point
 
     # The cell deepest inside the room's free area: clear of walls, furniture and doorways.
     depth = ndimage.distance_transform_edt(free)

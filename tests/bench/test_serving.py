@@ -160,9 +160,10 @@ def test_the_command_uses_long_lived_workers_unless_told(
 
 
 def test_a_worker_process_is_set_up_as_sgplans_own(data_dir: Path, tmp_path: Path) -> None:
-    """``python -m sgplan.bench.worker`` runs :func:`sgplan.cli.prepare_own_process`: numba skips its BLAS
-    probe (no scipy.linalg) and the garbage collector runs less often; the answers are unchanged."""
-    from sgplan.cli import GC_YOUNG_THRESHOLD
+    """``python -m sgplan.bench.worker`` runs :func:`sgplan.runtime.process.prepare_own_process`: numba
+    skips its BLAS probe (no scipy.linalg) and the garbage collector runs less often; the answers are
+    unchanged."""
+    from sgplan.runtime.process import GC_YOUNG_THRESHOLD
 
     state = tmp_path / "state.json"
     boot = (

@@ -20,10 +20,10 @@ from sgplan.bench.executors import WORKER_ENV, LocalExecutor, worker_command
 from sgplan.bench.results import COLUMNS, RESULTS_JSONL, ResultStore, writing_lock
 from sgplan.bench.sweep import pending_cases, run_sweep
 from sgplan.bench.worker import PARENT_ENV
+from sgplan.formats import load_scene
 from sgplan.mission import load_mission_folder
 from sgplan.options import PlanOptions
 from sgplan.planning import plan
-from sgplan.scene.loading import load_scene
 from tests.bench.conftest import BAD_START, SCENE
 
 FAKE_WORKER = [sys.executable, str(Path(__file__).with_name("fake_worker.py"))]

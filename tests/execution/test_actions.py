@@ -18,6 +18,7 @@ from sgplan.logic import parse_infix
 from sgplan.logic.ltlf import ltlf_to_dfa
 from sgplan.planning import PlanningProblem
 from sgplan.planning._dijkstra import PRED_NONE
+from sgplan.planning.domain import domain_of
 from sgplan.scene.grid import build_occupancy_grid
 from tests.execution.buildings import house
 from tests.execution.test_fields import label_raster
@@ -74,7 +75,7 @@ def test_kept_action_maps_equal_fresh_ones_after_any_sequence_of_changes(seed, r
                                       shared=parts)
         fresh_problem = PlanningProblem(state.building, grid, labels, AUTOMATON, start, reach_radius_m=0.3)
         try:
-            run_domain, fresh_domain = run_problem.domain_for(4), fresh_problem.domain_for(4)
+            run_domain, fresh_domain = domain_of(run_problem, 4), domain_of(fresh_problem, 4)
         except PlanningError:
             continue
         ready = np.flatnonzero(run_domain.kmaps.done == 1)
@@ -99,13 +100,13 @@ def test_a_closed_door_forgets_only_the_maps_of_its_rooms_and_floor():
     labels = label_raster(state.building, PROPS, 0.3)
     parts = RunParts(grid, labels, state.building)
     start = (7, 7, 0)
-    PlanningProblem(state.building, grid, labels, AUTOMATON, start, reach_radius_m=0.3,
-                    shared=parts).domain_for(4).build_actions()
+    domain_of(PlanningProblem(state.building, grid, labels, AUTOMATON, start, reach_radius_m=0.3,
+                              shared=parts), 4).build_actions()
     state, delta = state.apply(CloseDoor(("kitchen", "bedroom")))
     grid, change = regrid(grid, state.building, delta.cells)
     parts.advance(grid, change, labels, np.zeros(0, np.int64), state.scene())
-    domain = PlanningProblem(state.building, grid, labels, AUTOMATON, start, reach_radius_m=0.3,
-                             shared=parts).domain_for(4)
+    domain = domain_of(PlanningProblem(state.building, grid, labels, AUTOMATON, start, reach_radius_m=0.3,
+                                       shared=parts), 4)
     kept = {action: bool(done) for action, done in zip(domain.maps, domain.kmaps.done)}
     objects = {state.building.object(uuid=a.entity).name: k for a, k in kept.items() if a.kind == MAP_OBJECT}
     assert not objects["sink"] and not objects["bed"]  # in the kitchen and the bedroom

@@ -99,7 +99,8 @@ def test_the_pictures_draw_abandoned_plans_and_changed_cells_where_they_are(tmp_
                        "  - {kind: close_door, rooms: [kitchen, corridor on floor 0], when: {after_m: 3}}\n")
     building = sgplan.load_scene("demo")
     session = sgplan.Session(building)
-    run = session.start(sgplan.mission_from_formula(FORMULA, building), "bathroom on floor 0", setup="A*")
+    run = sgplan.Run(session, sgplan.mission_from_formula(FORMULA, building), "bathroom on floor 0",
+                     setup="A*")
     sim = simulate(run, read_changes(changes))
     assert len(sim.plans) >= 2 and sim.changed.get(0)
     fig = simulation_figure(sim, 0)

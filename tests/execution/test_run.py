@@ -86,7 +86,7 @@ CHANGES = {
 @pytest.mark.parametrize("setup", ["A*", "ALL", "NO-LLM"])
 @pytest.mark.parametrize("kind", list(CHANGES))
 def test_a_replan_after_each_kind_of_change_equals_a_fresh_plan(building, mission, kind, setup):
-    run = sgplan.Session(building).start(mission, building.initial_cells[0], setup=setup)
+    run = sgplan.Run(sgplan.Session(building), mission, building.initial_cells[0], setup=setup)
     _check(run)
     run.observe(run.plan.path[:6, :3], metric=False)
     for change in CHANGES[kind]:
@@ -100,7 +100,7 @@ def test_a_newer_scene_graph_replans_like_a_fresh_plan(building, mission, tmp_pa
 
     newer, _ = SceneState.of(building).apply(MoveObject("sink", (2.0, 2.5)))
     write_native_scene(newer.building, tmp_path / "newer")
-    run = sgplan.Session(building).start(mission, building.initial_cells[0], setup="A*")
+    run = sgplan.Run(sgplan.Session(building), mission, building.initial_cells[0], setup="A*")
     assert run.plan is not None
     report = run.change([NewSceneGraph(str(tmp_path / "newer"))])
     assert "moved the sink (object_10" in report.describe()
@@ -111,7 +111,7 @@ def test_a_newer_scene_graph_replans_like_a_fresh_plan(building, mission, tmp_pa
 @given(st.integers(0, 2**32 - 1), st.sampled_from(["A*", "NO-LLM"]))
 def test_sequences_of_changes_while_driving_replan_exactly(building, mission, seed, setup):
     rng = np.random.default_rng(seed)
-    run = sgplan.Session(building).start(mission, building.initial_cells[0], setup=setup)
+    run = sgplan.Run(sgplan.Session(building), mission, building.initial_cells[0], setup=setup)
     for _ in range(6):
         rest = run.remaining_path
         if run.status != "in-progress" or rest is None:
@@ -125,7 +125,7 @@ def test_sequences_of_changes_while_driving_replan_exactly(building, mission, se
 
 
 def test_a_cut_off_goal_is_impossible_with_why_and_a_reopened_door_makes_it_plannable(building, mission):
-    run = sgplan.Session(building).start(mission, building.initial_cells[0], setup="A*")
+    run = sgplan.Run(sgplan.Session(building), mission, building.initial_cells[0], setup="A*")
     events = []
     run.subscribe(events.append)
     run.change([CloseDoor(("office", "corridor on floor 1"))])
@@ -139,14 +139,14 @@ def test_a_cut_off_goal_is_impossible_with_why_and_a_reopened_door_makes_it_plan
 
 
 def test_forbidden_rooms_on_the_only_way_are_named(building, mission):
-    run = sgplan.Session(building).start(mission, building.initial_cells[0], setup="A*")
+    run = sgplan.Run(sgplan.Session(building), mission, building.initial_cells[0], setup="A*")
     run.change([CloseDoor(("kitchen", "corridor on floor 0"))])  # the kitchen only through the bedroom
     assert run.plan is None and run.status == "impossible"
     assert "bedroom" in run.why
 
 
 def test_progress_done_and_the_plan_kept_while_followed(building, mission):
-    run = sgplan.Session(building).start(mission, building.initial_cells[0], setup="A*")
+    run = sgplan.Run(sgplan.Session(building), mission, building.initial_cells[0], setup="A*")
     kinds = []
     run.subscribe(lambda event: kinds.append(event.kind))
     plan = run.plan
@@ -157,7 +157,7 @@ def test_progress_done_and_the_plan_kept_while_followed(building, mission):
 
 
 def test_a_block_away_from_the_plan_keeps_it_and_one_on_it_does_not(building, mission):
-    run = sgplan.Session(building).start(mission, building.initial_cells[0], setup="A*")
+    run = sgplan.Run(sgplan.Session(building), mission, building.initial_cells[0], setup="A*")
     plan = run.plan
     report = run.change([Block(Area(1, box_m=(3.0, 0.3, 3.8, 1.0)))])  # an office corner
     assert report.plan_kept and run.plan is plan
@@ -168,7 +168,7 @@ def test_a_block_away_from_the_plan_keeps_it_and_one_on_it_does_not(building, mi
 
 
 def test_a_violated_mission_stays_violated(building, mission):
-    run = sgplan.Session(building).start(mission, building.initial_cells[0], setup="A*")
+    run = sgplan.Run(sgplan.Session(building), mission, building.initial_cells[0], setup="A*")
     bedroom_id = building.room(uuid=6).id
     bedroom = np.argwhere(run.grid.traversable[0] & (run.grid.room_map[0] == bedroom_id))[0]
     status = run.observe((int(bedroom[0]), int(bedroom[1]), 0), metric=False)
@@ -177,7 +177,7 @@ def test_a_violated_mission_stays_violated(building, mission):
 
 
 def test_changes_apply_all_or_none_and_name_the_bad_one(building, mission):
-    run = sgplan.Session(building).start(mission, building.initial_cells[0], setup="A*")
+    run = sgplan.Run(sgplan.Session(building), mission, building.initial_cells[0], setup="A*")
     with pytest.raises(SceneError, match=r"change 2: close door: .* is closed already"):
         run.change([CloseDoor(("kitchen", "corridor on floor 0")),
                     CloseDoor(("corridor on floor 0", "kitchen"))])
@@ -190,7 +190,7 @@ def test_changes_apply_all_or_none_and_name_the_bad_one(building, mission):
 
 
 def test_amendments_join_the_rest_or_are_refused_naming_the_conflict(building, mission):
-    run = sgplan.Session(building).start(mission, building.initial_cells[0], setup="A*")
+    run = sgplan.Run(sgplan.Session(building), mission, building.initial_cells[0], setup="A*")
     run.observe(run.plan.path[:4, :3], metric=False)
     before = run.remaining_cost_m
     accepted = run.amend("from now on, also avoid the kitchen")
@@ -205,7 +205,7 @@ def test_amendments_join_the_rest_or_are_refused_naming_the_conflict(building, m
 
 def test_a_run_survives_saving_and_loading(building, mission):
     session = sgplan.Session(building)
-    run = session.start(mission, building.initial_cells[0], setup="A*")
+    run = sgplan.Run(session, mission, building.initial_cells[0], setup="A*")
     run.observe(run.plan.path[:5, :3], metric=False)
     run.change([MoveObject("sink", (2.0, 2.5)), Block(Area(0, box_m=(0.0, 4.0, 0.7, 4.3)), "cart")])
     run.amend('G !"reach(object_12)"')
@@ -229,7 +229,7 @@ def test_a_newer_scene_graph_that_opens_a_wall_renumbers_and_replans_exactly(bui
     cat[14:16, 30:34] = 0  # a gap in the wall between the corridor and the bedroom (x 1.4-1.6 m, y 3-3.4 m)
     floors[0] = replace(floors[0], cat_map=cat)
     write_native_scene(replace(building, floors=floors), tmp_path / "newer")
-    run = sgplan.Session(building).start(mission, building.initial_cells[0], setup="A*")
+    run = sgplan.Run(sgplan.Session(building), mission, building.initial_cells[0], setup="A*")
     assert run.plan is not None
     run.change([NewSceneGraph(str(tmp_path / "newer"))])
     _check(run)
@@ -255,7 +255,7 @@ def test_an_amendment_joins_a_mission_folder_with_its_own_proposition_names(buil
     save_mission_folder(mission, tmp_path / "m", building=building)
     folder = sgplan.load_mission(tmp_path / "m")
     assert set(folder.automaton.aps) <= {"p1", "p2", "p3"}
-    run = sgplan.Session(building).start(folder, building.initial_cells[0], setup="A*")
+    run = sgplan.Run(sgplan.Session(building), folder, building.initial_cells[0], setup="A*")
     run.observe(run.plan.path[:3, :3], metric=False)
     amended = run.amend('G !"reach(object_12)"')
     assert amended.accepted, amended.reason

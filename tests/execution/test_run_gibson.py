@@ -30,7 +30,7 @@ def test_replans_on_benevolence_equal_fresh_plans_and_the_oracle(gibson_root, se
     mission = sgplan.load_mission(gibson_root / "Benevolence" / "missions" / "2")
     # Mission 2 needs the kitchen's bowls, which stand beyond the visible model's 0.7 m reach of every free
     # cell (docs/semantics.md): planned with the authors' box window.
-    run = sgplan.Session(building).start(mission, 2, setup=setup, reach_model="box")
+    run = sgplan.Run(sgplan.Session(building), mission, 2, setup=setup, reach_model="box")
     path = run.plan.path
     run.observe(path[1 : int(len(path) * 0.3), :3], metric=False)
     rest = run.remaining_path

@@ -214,7 +214,7 @@ _SCENES: dict[str, object] = {}
 
 
 def _scene(root: Path, name: str):  # type: ignore[no-untyped-def]
-    from sgplan.scene.loading import load_scene
+    from sgplan.formats import load_scene
 
     if name not in _SCENES:
         _SCENES[name] = load_scene(root / name)

@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from sgplan.errors import SceneError
+from sgplan.formats import load_scene
 from sgplan.importers.assemble import Settings
 from sgplan.importers.hydra import import_dsg
 from sgplan.importers.labelspace import read_label_map
-from sgplan.scene.loading import load_scene
 from tests.shared_data import scene_example
 
 from .helpers import free_cells, planned_and_exact_cost

@@ -9,9 +9,9 @@ from pathlib import Path
 import pytest
 
 from sgplan.errors import SceneError
+from sgplan.formats import load_scene
 from sgplan.importers.assemble import Settings
 from sgplan.importers.mp3d import import_house, read_house
-from sgplan.scene.loading import load_scene
 from sgplan.scene.native import read_native_scene, write_native_scene
 from tests.shared_data import scene_example
 

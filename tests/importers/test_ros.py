@@ -9,10 +9,10 @@ import pytest
 from PIL import Image
 
 from sgplan.errors import SceneError
+from sgplan.formats import load_scene
 from sgplan.importers.assemble import Settings
 from sgplan.importers.detect import import_scene
 from sgplan.importers.ros import import_ros_map, read_map
-from sgplan.scene.loading import load_scene
 from sgplan.scene.model import CatCode
 
 from .helpers import free_cells, planned_and_exact_cost, room_named

@@ -252,11 +252,20 @@ def test_damaged_entry_is_reported(
         cache.get(GOLDEN_KEY, request)
 
 
-def test_unwritable_cache_directory(tmp_path: Path) -> None:
+def test_a_cache_directory_that_is_a_file_is_refused_when_opened(tmp_path: Path) -> None:
     blocker = tmp_path / "not-a-dir"
     blocker.write_text("")
+    with pytest.raises(LLMError, match=r"is a file, not a folder: give --cache a folder"):
+        ChatCache(blocker)
+    with pytest.raises(LLMError, match=r"inside .*not-a-dir, a file, not a folder"):
+        ChatCache(blocker / "below")
+
+
+def test_unwritable_cache_directory(tmp_path: Path) -> None:
+    cache = ChatCache(tmp_path / "cache")
+    (tmp_path / "cache").write_text("")  # made a file after the cache was opened
     with pytest.raises(LLMError, match="cannot write LLM cache entry"):
-        ChatCache(blocker).put(GOLDEN_KEY, cache_request(MODEL, MESSAGES, PARAMS), result(), endpoint="t")
+        cache.put(GOLDEN_KEY, cache_request(MODEL, MESSAGES, PARAMS), result(), endpoint="t")
 
 
 # -- choosing a backend ---------------------------------------------------------------------------------

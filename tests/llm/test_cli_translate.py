@@ -147,6 +147,20 @@ def test_user_errors_are_one_line_exit_2(extra: list[str], fragment: str, tmp_pa
     assert err[-1].startswith("sgplan: error:") and fragment in err[-1] and "Traceback" not in "\n".join(err)
 
 
+@pytest.mark.parametrize("command", ["translate", "plan"])
+@pytest.mark.parametrize("cache", ["FILE", "FILE/inside"])
+def test_a_cache_that_is_a_file_is_refused_before_any_call(
+    fake_llm, llm_args, command: str, cache: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "FILE").write_text("not a folder")
+    argv = [command, "--scene", "demo", "--text", TEXT, *llm_args, "--cache", str(tmp_path / cache)]
+    argv += ["--out", str(tmp_path / "m")] if command == "translate" else ["--start-index", "0"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()[-1]
+    assert err.startswith(f"sgplan: error: LLM cache {tmp_path / cache}") and "not a folder" in err
+    assert fake_llm.requests == []  # refused before the server heard of it
+
+
 def test_server_errors_are_one_line_exit_2(
     fake_llm, llm_args, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -205,8 +205,8 @@ def test_llm_guide_has_the_offline_guides_contract(fake_llm, llm_client, demo, m
 @pytest.mark.gibson
 def test_authors_gpt4_guidance_replayed_through_the_pipeline(fake_llm, llm_client, gibson_root: Path) -> None:
     """Benevolence mission 1: the shipped GPT-4 calls are served back; the validator drops the bad ones."""
+    from sgplan.formats import load_scene
     from sgplan.mission import load_mission_folder
-    from sgplan.scene.loading import load_scene
 
     building = load_scene(gibson_root / "Benevolence")
     folder = gibson_root / "Benevolence" / "missions" / "1"

@@ -339,7 +339,7 @@ def test_reply_parsing_helpers() -> None:
 def test_benevolence_mission_is_translated_and_checked_against_the_scene(
     fake_llm, llm_client, gibson_root, tmp_path
 ) -> None:
-    from sgplan.scene.loading import load_scene
+    from sgplan.formats import load_scene
 
     building = load_scene(gibson_root / "Benevolence")
     bathroom = next(r for r in building.rooms() if r.name == "bathroom")

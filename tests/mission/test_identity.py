@@ -30,7 +30,7 @@ def test_folder_without_any_record_cannot_be_checked(tmp_path: Path) -> None:
 
 @pytest.mark.gibson
 def test_shipped_folders_fit_only_their_own_scene(gibson_root: Path) -> None:
-    from sgplan.scene.loading import load_scene
+    from sgplan.formats import load_scene
 
     buildings = {name: load_scene(gibson_root / name) for name in SCENES}
     refused = 0

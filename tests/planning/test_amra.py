@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 from sgplan.errors import PlanningError
 from sgplan.planning import SETUPS, PlanningProblem, get_setup, plan
 from sgplan.planning.checker import check_path
+from sgplan.planning.domain import domain_of
 from sgplan.planning.setups import LLM, LTL
 from sgplan.planning.termination import ExpansionLimit
 from sgplan.scene.grid import StairsLink
@@ -154,5 +155,5 @@ def test_released_maps_change_no_result(seed: int) -> None:
         assert mine.cost_m == pytest.approx(expected, abs=1e-9)
         assert check_path(mine.path, released.grid, released.labels, released.automaton, "ltlf").valid
         assert mine.iterations[-1].w1 == 1.0  # so the maps were freed (A*: still, from NO-LLM)
-        assert released.domain_for(1).kmaps.dist.size == 0 and released.domain_for(1).max_level == 1, name
-    assert kept.domain.kmaps.dist.size > 0  # kept by default
+        assert domain_of(released, 1).kmaps.dist.size == 0 and domain_of(released, 1).max_level == 1, name
+    assert domain_of(kept).kmaps.dist.size > 0  # kept by default

@@ -13,7 +13,7 @@ from sgplan.errors import PlanningError
 from sgplan.planning import PlanningProblem
 from sgplan.planning._search import ACT_MAP, successors
 from sgplan.planning.amra import path_cost
-from sgplan.planning.domain import MAP_FLOOR_DOWN, MAP_FLOOR_UP, MAP_OBJECT
+from sgplan.planning.domain import MAP_FLOOR_DOWN, MAP_FLOOR_UP, MAP_OBJECT, domain_of
 from sgplan.scene.grid import StairsLink
 from sgplan.scene.model import CatCode
 from tests.scene.distances import grid_distances
@@ -30,7 +30,7 @@ def _problem(start, formula="F p0", floors=1, stairs=(), grid=None, building=Non
 
 def _status(problem: PlanningProblem) -> PlanningError:
     with pytest.raises(PlanningError) as info:
-        problem.domain  # noqa: B018 - building the domain validates
+        domain_of(problem)
     return info.value
 
 
@@ -55,7 +55,7 @@ def test_start_in_inflated_region_names_clearance() -> None:
 def test_start_label_leading_to_sink_names_propositions() -> None:
     error = _status(_problem((0, 0, 0), formula="G !p1 & F p0", ap_descriptions={"p1": "enter(room_7)"}))
     assert error.status == "invalid-start" and "p1 (enter(room_7))" in str(error)
-    assert _problem((0, 0, 0), formula="G !p1 & F p0", profile="authors").domain.q_start == 0
+    assert domain_of(_problem((0, 0, 0), formula="G !p1 & F p0", profile="authors")).q_start == 0
 
 
 def test_unreachable_proposition_is_infeasible() -> None:
@@ -92,8 +92,8 @@ def test_bad_inputs() -> None:
 
 def test_cell_graph_distances_match_scene_dijkstra() -> None:
     problem = random_problem(23)
-    graph = problem.domain.graph
-    source = problem.domain.start_cell
+    graph = domain_of(problem).graph
+    source = domain_of(problem).start_cell
     ours = graph.distances(np.array([source]))
     theirs = grid_distances(problem.grid, [problem.start])
     floor, row, col = graph.cell_floor, graph.cell_row, graph.cell_col
@@ -103,7 +103,7 @@ def test_cell_graph_distances_match_scene_dijkstra() -> None:
 def test_floor_actions_take_the_stairs() -> None:
     link = StairsLink(lower_floor=0, lower_cell=(2, 6), upper_cell=(2, 6), cost_m=4.0)
     problem = _problem((2, 0, 0), floors=2, stairs=(link,))
-    domain = problem.domain
+    domain = domain_of(problem)
     kinds = {m.kind for m in domain.maps}
     assert {MAP_FLOOR_UP, MAP_FLOOR_DOWN} <= kinds
     edges = _edges(domain, domain.start_cell, domain.q_start, level=4)
@@ -130,7 +130,7 @@ def test_composite_actions_are_exact_move_sequences(seed: int) -> None:
     floor for floor actions, over the cells of the action's room (and its sources) for the others."""
     problem = random_problem(seed, guidance="none")
     try:
-        domain = problem.domain
+        domain = domain_of(problem)
     except PlanningError:
         return
     rng = np.random.default_rng(seed)
@@ -182,18 +182,18 @@ def test_level_one_domain_skips_the_action_tables_and_adds_them_later(seed: int)
     successors; asking it for level 4 afterwards gives the families and successors of a full domain."""
     lean, full = random_problem(seed, guidance="none"), random_problem(seed, guidance="none")
     try:
-        domain = lean.domain_for(1)
+        domain = domain_of(lean, 1)
     except PlanningError:
         return
     assert domain.max_level == 1 and domain.maps == [] and domain.kmaps.dist.size == 0
     assert not domain.kgraph.in_object_region.any()
-    reference = full.domain
+    reference = domain_of(full)
     rng = np.random.default_rng(seed)
     cells = rng.integers(domain.graph.num_cells, size=20)
     for cell in cells:
         q = int(rng.integers(domain.num_states))
         assert _edges(domain, int(cell), q, max_level=1) == _edges(reference, int(cell), q, max_level=1)
-    assert lean.domain_for(4) is domain and domain.max_level == 4
+    assert domain_of(lean, 4) is domain and domain.max_level == 4
     assert domain.maps == reference.maps
     assert np.array_equal(domain.kgraph.cell_room, reference.kgraph.cell_room)
     for cell in cells:
@@ -213,9 +213,9 @@ def test_the_a_star_setup_plans_on_a_level_one_domain_and_no_llm_upgrades_it(see
         a_star = plan(problem, "A*")
     except PlanningError:
         return
-    assert problem.domain_for(1).max_level == 1 and problem.domain_for(1).maps == []
+    assert domain_of(problem, 1).max_level == 1 and domain_of(problem, 1).maps == []
     no_llm = plan(problem, "NO-LLM")
-    assert problem.domain_for(1).max_level == 4 and problem.domain_for(1).maps == full.domain.maps
+    assert domain_of(problem, 1).max_level == 4 and domain_of(problem, 1).maps == domain_of(full).maps
     assert a_star.status == no_llm.status
     if a_star.status == "optimal":
         assert a_star.cost_m == pytest.approx(no_llm.cost_m, abs=1e-9)
@@ -235,7 +235,7 @@ def test_object_level_regions_are_the_reach_labels_in_the_room(model: str) -> No
     labels[building.initial_cells[1][2], building.initial_cells[1][0], building.initial_cells[1][1]] = 1
     problem = PlanningProblem(building, grid, labels, automaton("F p0", ("p0",)), building.initial_cells[0],
                               reach_radius_m=0.6, reach_model=model)
-    domain = problem.domain
+    domain = domain_of(problem)
     graph, ptr, sources = domain.graph, domain.kactions.map_src_ptr, domain.kactions.map_src
     objects = [(m, action) for m, action in enumerate(domain.maps) if action.kind == MAP_OBJECT]
     assert len(objects) == sum(1 for _ in building.objects())

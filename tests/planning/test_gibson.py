@@ -9,6 +9,7 @@ import pytest
 from sgplan.errors import PlanningError
 from sgplan.planning import plan
 from sgplan.planning.checker import check_path
+from sgplan.planning.domain import domain_of
 
 from .gibson_cases import STAY_COSTS, load_case
 
@@ -50,7 +51,7 @@ def test_collierville_runs_across_floors(gibson_root) -> None:
 )
 def test_start_in_collision(gibson_root, scene, start, clearance) -> None:
     with pytest.raises(PlanningError) as info:
-        load_case(gibson_root, scene, 1, start).domain  # noqa: B018
+        domain_of(load_case(gibson_root, scene, 1, start))
     assert info.value.status == "invalid-start" and clearance in str(info.value)
 
 
@@ -75,5 +76,5 @@ def test_ltlf_rejecting_missing_edges_changes_the_optimum(gibson_root) -> None:
 def test_ltlf_reads_the_start_label(gibson_root, scene, mission, start, named) -> None:
     # Allensville 3 constrains the first letter; Collierville 1 forbids the corridor the start lies in.
     with pytest.raises(PlanningError) as info:
-        load_case(gibson_root, scene, mission, start, "ltlf").domain  # noqa: B018
+        domain_of(load_case(gibson_root, scene, mission, start, "ltlf"))
     assert info.value.status == "invalid-start" and named in str(info.value)

@@ -14,6 +14,7 @@ from sgplan.errors import PlanningError
 from sgplan.logic import And, Atom, Eventually
 from sgplan.planning import PlanningProblem
 from sgplan.planning._search import h_llm
+from sgplan.planning.domain import domain_of
 from sgplan.planning.llm_heuristic import build_llm_heuristic
 from sgplan.planning.ltl_heuristic import (
     UNIT_M,
@@ -41,7 +42,7 @@ def test_ltl_value_is_exact_on_open_floor() -> None:
     # On an obstacle-free floor the geodesic label distances make h exact for a sequence of two goals: the
     # optimum with every move's cost rounded down to whole units of the fields, within a unit a move of it.
     problem = _open_problem("F(p1 & F p0)", {0: [(2, 10, 0)], 1: [(0, 5, 0)]})
-    domain = problem.domain
+    domain = domain_of(problem)
     ltl = domain.ltl
     h = ltl.value(domain.start_cell, domain.q_start)
     assert ltl.unit_m == UNIT_M
@@ -55,7 +56,7 @@ def test_distance_fields_are_whole_units_of_the_rounded_down_move_costs() -> Non
     # consistent in the real costs), UNREACHED where its region cannot be reached, and a coarser unit is
     # taken when a distance would not fit in 32 bits.
     problem = _open_problem("F p0", {0: [(2, 10, 0)]})
-    graph = problem.domain.graph
+    graph = domain_of(problem).graph
     target = np.array([graph.cell_id(2, 10, 0)])
     field = unit_field(graph, target, UNIT_M)
     assert field is not None and field.dtype == np.uint32 and field[target[0]] == 0
@@ -79,7 +80,7 @@ def test_a_distance_too_long_for_the_unit_takes_a_coarser_one(monkeypatch: pytes
     from sgplan.planning import ltl_heuristic
 
     problem = _open_problem("F(p1 & F p0)", {0: [(2, 10, 0)], 1: [(0, 5, 0)]})
-    domain = problem.domain
+    domain = domain_of(problem)
     monkeypatch.setattr(ltl_heuristic, "UNIT_M", 2.0**-40)
     graph = domain.graph
     ltl = build_ltl_heuristic(graph, domain.cell_label, domain.trans, domain.accepting, domain.q_start,
@@ -105,7 +106,7 @@ def _possible(domain) -> np.ndarray:
 def _check_consistency(problem: PlanningProblem, rng: np.random.Generator, samples: int) -> int:
     """Check h(x) <= c(x, x') + h(x') on the anchor-level edges of sampled states that a search can meet;
     returns edges checked."""
-    domain = problem.domain
+    domain = domain_of(problem)
     domain.build_actions()
     graph = domain.graph
     possible = _possible(domain) & ~domain.accepting[:, None]
@@ -129,7 +130,7 @@ def _check_consistency(problem: PlanningProblem, rng: np.random.Generator, sampl
 def test_ltl_consistent_and_admissible_on_random_instances(seed: int, profile: str) -> None:
     problem = random_problem(seed, profile, guidance="none")
     try:
-        domain = problem.domain
+        domain = domain_of(problem)
     except PlanningError:
         return
     _check_consistency(problem, np.random.default_rng(seed), 40)
@@ -146,13 +147,13 @@ def test_ltl_consistent_on_benevolence(gibson_root) -> None:
     rng = np.random.default_rng(0)
     assert _check_consistency(problem, rng, 400) > 1000
     # The stairs portals, where the authors' own heuristic violated consistency by millimetres.
-    graph = problem.domain.graph
-    possible = _possible(problem.domain) & ~problem.domain.accepting[:, None]
+    graph = domain_of(problem).graph
+    possible = _possible(domain_of(problem)) & ~domain_of(problem).accepting[:, None]
     for portal in graph.stairs_from:
-        for q in np.flatnonzero(possible[:, problem.domain.cell_label[portal]]):
-            h = problem.domain.ltl.value(int(portal), int(q))
-            for end, nq, cost, _ in _edges(problem.domain, int(portal), int(q)):
-                assert h <= cost + problem.domain.ltl.value(end, nq) + 1e-9
+        for q in np.flatnonzero(possible[:, domain_of(problem).cell_label[portal]]):
+            h = domain_of(problem).ltl.value(int(portal), int(q))
+            for end, nq, cost, _ in _edges(domain_of(problem), int(portal), int(q)):
+                assert h <= cost + domain_of(problem).ltl.value(end, nq) + 1e-9
 
 
 def test_llm_cost_model_and_robustness() -> None:
@@ -179,7 +180,7 @@ def test_llm_cost_model_and_robustness() -> None:
 def test_llm_value_online() -> None:
     problem = _open_problem("F p0", {0: [(2, 10, 0)]})
     problem.guidance = {10: {0: ["move(10, 10)"]}}
-    domain = problem.domain
+    domain = domain_of(problem)
     cell = domain.start_cell
     expected = float(np.linalg.norm(domain.graph.cell_xyz[cell] - problem.building.room(uuid=10).location_m))
     assert h_llm(domain.kgraph, domain.klogic, cell, 0) == pytest.approx(expected)
@@ -202,7 +203,7 @@ def test_ltl_rows_filled_on_demand_match_the_eager_minimum(seed: int) -> None:
 
     problem = random_problem(seed, guidance="none")
     try:
-        ltl = problem.domain.ltl
+        ltl = domain_of(problem).ltl
         plan(problem, "A*")
     except PlanningError:
         return
@@ -284,7 +285,7 @@ def test_ltl_value_sees_through_a_wide_region() -> None:
     problem = PlanningProblem(building, open_grid(building),
                               marks((1, 1, 18), {0: [(0, c, 0) for c in range(3, 13)], 1: [(0, 16, 0)]}),
                               automaton("F(p0 & F p1)", ("p0", "p1")), (0, 0, 0))
-    domain = problem.domain
+    domain = domain_of(problem)
     assert domain.ltl.value(domain.start_cell, domain.q_start) == pytest.approx(16 * RES, abs=16 * UNIT_M)
     paper = _paper_rows(domain.ltl, domain.trans)[domain.q_start, domain.start_cell]
     assert paper == pytest.approx(7 * RES, abs=7 * UNIT_M)
@@ -302,7 +303,7 @@ def test_ltl_consistent_on_every_move_and_above_the_paper_bound(
     oracle's optimum; and h >= the paper's bound everywhere."""
     problem = random_problem(seed, profile, guidance="none")
     try:
-        domain = problem.domain
+        domain = domain_of(problem)
     except PlanningError:
         return
     graph = domain.graph
@@ -345,7 +346,7 @@ def test_unordered_goals_solved_optimally_with_any_pieces(
     row, col, floor = problem.start
     expected = optimal_cost(problem.grid, problem.labels, problem.automaton, (row, col, floor), "ltlf")
     try:
-        domain = problem.domain
+        domain = domain_of(problem)
     except PlanningError:
         assert math.isinf(expected)
         return

@@ -19,6 +19,7 @@ from sgplan.errors import PlanningError
 from sgplan.planning import PlanningProblem, plan, search_memory
 from sgplan.planning import _search as core
 from sgplan.planning.checker import check_path
+from sgplan.planning.domain import domain_of
 from sgplan.planning.schedule import WeightSchedule
 
 from .instances import automaton, marks, open_building, open_grid, random_problem
@@ -152,7 +153,7 @@ def test_an_iteration_whose_bound_already_holds_costs_no_expansion() -> None:
 def test_lazy_h_values_equal_the_filled_rows(seed: int) -> None:
     problem = random_problem(seed, guidance="none")
     try:
-        domain = problem.domain
+        domain = domain_of(problem)
     except PlanningError:
         return
     L = domain.klogic
@@ -218,7 +219,7 @@ def test_search_memory_is_sparse_in_automaton_states() -> None:
                               automaton("F p0 & F p1 & F p2 & F p3", ("p0", "p1", "p2", "p3")), (20, 0, 0))
     result = plan(problem, "A*")
     assert math.isfinite(result.cost_m) and result.cost_m == pytest.approx(_oracle(problem), abs=1e-9)
-    dense = problem.domain.graph.num_cells * problem.domain.num_states * core.REC * 8
+    dense = domain_of(problem).graph.num_cells * domain_of(problem).num_states * core.REC * 8
     assert 0 < result.search_bytes < dense / 20
 
 
@@ -240,7 +241,7 @@ def test_the_flat_anchor_loop_is_the_general_loop(seed: int) -> None:
     included)."""
     problem = random_problem(seed)
     try:
-        domain = problem.domain
+        domain = domain_of(problem)
     except PlanningError:
         return
     if domain.accepting[domain.q_start]:

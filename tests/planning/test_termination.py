@@ -185,7 +185,7 @@ def test_a_search_cancelled_before_it_starts_builds_nothing() -> None:
     cancel.cancel()
     result = plan(problem, "NO-LLM", termination=cancel)
     assert result.status == "cancelled" and result.path is None and result.iterations == []
-    assert result.precompute_s == 0.0 and "_domain" not in problem.__dict__  # no domain was built
+    assert result.precompute_s == 0.0 and problem.built_domain is None  # no domain was built
 
 
 def test_the_public_plan_takes_a_termination_with_the_options_budgets() -> None:

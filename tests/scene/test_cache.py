@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from sgplan.formats import load_scene
 from sgplan.scene import authors, cache, grid
-from sgplan.scene.loading import load_scene
 from tests.scene.synthetic import SyntheticScene, assert_same_building, synthetic_scene
 
 

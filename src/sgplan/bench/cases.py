@@ -119,7 +119,7 @@ def discover(data: str | Path, scenes: Sequence[str] | None = None) -> list[Data
     BenchError
         ``data`` is not a folder, holds no scene, or a named scene is missing / has no missions.
     """
-    from sgplan.scene.loading import load_scene
+    from sgplan.formats import load_scene
 
     root = Path(data).expanduser()
     if not root.is_dir():

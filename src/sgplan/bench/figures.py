@@ -17,7 +17,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from sgplan.bench.cases import PAPER_SETUPS
-from sgplan.bench.worker import LEVELS, queue_level
+from sgplan.planning.setups import LEVEL_NAMES, queue_level_name
 
 Row = dict[str, Any]
 SETUP_COLOURS = {
@@ -89,9 +89,9 @@ def _per_iteration_levels(row: Row) -> tuple[np.ndarray, list[str]]:
     and the levels present (in hierarchy order)."""
     cumulative = np.array([it["expansions"] for it in row["iterations"]], dtype=np.int64)
     per_iteration = np.diff(cumulative, axis=0, prepend=0)
-    levels = [lv for lv in LEVELS if any(queue_level(q) == lv for q in row["queues"])]
+    levels = [lv for lv in LEVEL_NAMES if any(queue_level_name(q) == lv for q in row["queues"])]
     grouped = np.stack(
-        [per_iteration[:, [i for i, q in enumerate(row["queues"]) if queue_level(q) == lv]].sum(axis=1)
+        [per_iteration[:, [i for i, q in enumerate(row["queues"]) if queue_level_name(q) == lv]].sum(axis=1)
          for lv in levels], axis=1)
     return grouped, levels
 

@@ -23,8 +23,9 @@ from pathlib import Path
 from typing import Any
 
 from sgplan.bench.cases import BenchError, Case
-from sgplan.bench.worker import LEVELS, MEASURED
+from sgplan.bench.worker import MEASURED
 from sgplan.files import write_texts_atomically
+from sgplan.planning.setups import LEVEL_NAMES
 from sgplan.safeio import clip, quote, read_bytes
 from sgplan.scene.fields import is_int, is_number
 
@@ -44,7 +45,7 @@ REQUIRED = ("key", "scene", "mission", "start", "setup", "profile", "status")
 COLUMNS = (
     "key", "scene", "mission", "start", "setup", "profile", "reach_model", "time_limit_s", "status", "reason",
     "start_cell", "cost_m", "first_cost_m", "cost_ratio", "first_time_s", "optimal_time_s",
-    "num_iterations", "expansions", *(f"exp_{level}" for level in LEVELS),
+    "num_iterations", "expansions", *(f"exp_{level}" for level in LEVEL_NAMES),
     "load_s", "precompute_s", "search_s", "wall_s", "peak_rss_mb", "guidance", "path_cells",
     "scene_reused", "ltlf_accepts", "executor", "host", "finished_at",
 )

@@ -1,7 +1,7 @@
 """A long-lived worker process (``python -m sgplan.bench.worker --serve``) that runs many cases in turn.
 
 The local executor keeps one per job, so a case does not pay an interpreter start, the imports, the
-compiled kernels' loading and the scene's loading again (about 1-2 s a case on the Gibson scenes). A case
+compiled kernels' loading and the scene's loading again (benchmarks/results/comment_measurements.md). A case
 is still measured the same way and isolated from the sweep: the parent times each request (``wall_s``)
 and kills the worker after the per-case wall timeout; a worker that crashed, timed out or answered
 nonsense is never asked again, and the next case gets a fresh one.

@@ -27,13 +27,11 @@ from typing import Any
 
 from sgplan.bench.cases import Case
 from sgplan.errors import PlanningError, SgplanError
-
-LEVELS = ("anchor", "occupancy", "object", "room", "floor")
-"""Hierarchy levels, in the order of the ``exp_<level>`` result columns."""
+from sgplan.planning.setups import LEVEL_NAMES, get_setup
 
 MEASURED = (
     "status", "reason", "start_cell", "cost_m", "first_cost_m", "cost_ratio", "first_time_s",
-    "optimal_time_s", "num_iterations", "expansions", *(f"exp_{level}" for level in LEVELS), "load_s",
+    "optimal_time_s", "num_iterations", "expansions", *(f"exp_{level}" for level in LEVEL_NAMES), "load_s",
     "precompute_s", "search_s", "peak_rss_mb", "guidance", "path_cells", "scene_reused", "ltlf_accepts",
     "queues", "iterations", "gallery", "ltlf_violations",
 )
@@ -41,11 +39,6 @@ MEASURED = (
 worker kept the scene's session (building, grids, action maps, distance fields) from an earlier case;
 ``ltlf_accepts`` / ``ltlf_violations``: an ``authors`` path read under ``ltlf``
 (:mod:`sgplan.bench.ltlf_check`)."""
-
-
-def queue_level(queue: str) -> str:
-    """The hierarchy level of a queue name such as ``"LLM/room"`` (``PlanResult.queues``)."""
-    return queue.rsplit("/", 1)[-1]
 
 
 def _peak_rss_mb() -> float:
@@ -149,10 +142,8 @@ def _plan_case(case: Case, gallery_dir: str | Path | None, out: dict[str, Any], 
     )
     if its:
         out.update(first_time_s=its[0].time_s, first_cost_m=its[0].cost_m)
-        for level in LEVELS:
-            out[f"exp_{level}"] = sum(
-                n for q, n in zip(result.queues, its[-1].expansions) if queue_level(q) == level
-            )
+        by_level = get_setup(case.setup).expansions_by_level(its[-1].expansions)
+        out.update({f"exp_{level}": n for level, n in by_level.items()})
     if result.status == "optimal" and its:
         out["optimal_time_s"] = its[-1].time_s
         out["cost_ratio"] = its[0].cost_m / result.cost_m if result.cost_m > 0 else 1.0
@@ -242,7 +233,7 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    from sgplan.cli import exit_now, prepare_own_process
+    from sgplan.runtime.process import exit_now, prepare_own_process
 
     prepare_own_process()  # a process of sgplan's own (no BLAS probe, fewer garbage-collector passes)
     exit_now(main())  # results are written: skip the interpreter's teardown

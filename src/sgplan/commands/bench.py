@@ -33,8 +33,8 @@ if TYPE_CHECKING:
 
 class _HelpNamingTheCaseTimeout(argparse.HelpFormatter):
     """Help that names the ``--case-timeout`` default, read from :mod:`sgplan.bench.executors` only when
-    the help is shown: importing the bench machinery to build the parser cost every sgplan command
-    (``plan`` included) ~20 ms."""
+    the help is shown: importing the bench machinery to build the parser would cost every sgplan command
+    (``plan`` included) its import time."""
 
     def _get_help_string(self, action: argparse.Action) -> str | None:
         if action.dest != "case_timeout":
@@ -177,7 +177,7 @@ def _termination_as_interrupt() -> Iterator[None]:
 
 def _sweep(args: argparse.Namespace) -> int:
     from sgplan.bench.results import ResultStore, make_folder, writing_lock
-    from sgplan.jit import announce_compile
+    from sgplan.runtime.jit import announce_compile
 
     cases = _cases(args)
     announce_compile()  # the workers compile on first use; said once here rather than by each of them

@@ -5,13 +5,16 @@ the reach model, checked numbers and lists, the options every command takes (``-
 from __future__ import annotations
 
 import argparse
+import contextlib
 import logging
 import math
 import sys
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from sgplan.datasets import ENV_VAR, SCENES
+from sgplan.errors import OutputError
 from sgplan.limits import MAX_REACH_RADIUS_M, MAX_ROBOT_RADIUS_M, MAX_SECONDS
 from sgplan.planning.setups import PROFILE_REACH_MODELS, PROFILES, REACH_MODELS
 
@@ -201,3 +204,33 @@ def write_json_record(target: str | None, record: dict[str, Any]) -> None:
     from sgplan.result import write_text
 
     write_text(target, text)
+
+
+@contextlib.contextmanager
+def holding_draw_folder(args: argparse.Namespace) -> Iterator[None]:
+    """Hold the command's ``--draw`` folder (if it has one) for the whole command, from before any work:
+    a second process drawing into the same folder meanwhile is refused at its start, naming the first
+    (:func:`sgplan.files.claim_folder`), instead of both silently overwriting each other's drawings.
+
+    Raises
+    ------
+    OutputError
+        The folder is held by another process, or cannot be made.
+    """
+    folder = getattr(args, "draw", None)
+    with contextlib.ExitStack() as held:
+        if folder:
+            from sgplan.files import FolderInUse, claim_folder
+
+            try:
+                held.enter_context(claim_folder(Path(folder)))
+            except FolderInUse as busy:
+                holder = busy.holder_pid or "unknown"
+                raise OutputError(
+                    f"--draw {folder}: another sgplan process (pid {holder}) is drawing into this folder "
+                    "now; wait for it to finish or choose another --draw folder"
+                ) from None
+            except OSError as error:
+                reason = "it is a file" if isinstance(error, FileExistsError) else error.strerror or error
+                raise OutputError(f"--draw {folder}: cannot use this folder: {reason}") from None
+        yield

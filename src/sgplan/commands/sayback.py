@@ -2,7 +2,7 @@
 
 Three small steps, each one call from a command: :func:`say_back` prints the mission's explanation
 (and asks, with ``--confirm``), :func:`check_folder_fits` refuses a mission folder made for another
-scene, :func:`check_before_planning` runs the scene-aware checks once the grid is built. Each stores
+scene, :func:`check_before_planning` runs the scene-aware checks that need no start. Each stores
 what it found in the command's JSON record when one is given.
 """
 
@@ -18,7 +18,6 @@ from sgplan.errors import ConfirmationError
 
 if TYPE_CHECKING:
     from sgplan.api import Session
-    from sgplan.assembly import PreparedProblem
     from sgplan.explain import Explanation
     from sgplan.explain.checks import SceneCheck
     from sgplan.mission import Mission
@@ -83,29 +82,15 @@ def check_folder_fits(folder: str | Path, mission: Mission, building: Building, 
         }
 
 
-def check_before_planning(mission: Mission, building: Building, prepared: PreparedProblem | None = None,
-                          record: dict[str, Any] | None = None, *, stop: bool = True) -> SceneCheck:
-    """Run :func:`sgplan.explain.checks.check_mission_in_scene` on the problem about to be planned (or,
-    without ``prepared``, on the scene alone, start-independent checks only); print the findings (stderr),
-    store them all as ``record["scene_check"]``, and with ``stop`` raise the first error (see
-    :meth:`SceneCheck.raise_errors`); without it an error is printed as a warning."""
+def check_before_planning(mission: Mission, building: Building, record: dict[str, Any] | None = None, *,
+                          stop: bool = True) -> SceneCheck:
+    """Run the start-independent scene checks (:func:`sgplan.explain.checks.check_mission_in_scene`) on a
+    mission about to be saved or planned, say the findings (:meth:`SceneCheck.report`: with ``stop`` the
+    first error is raised, without it said as a warning) and store them as ``record["scene_check"]``."""
     from sgplan.explain.checks import check_mission_in_scene
 
-    if prepared is None:
-        check = check_mission_in_scene(mission, building)
-    else:
-        problem = prepared.problem
-        check = check_mission_in_scene(
-            mission, building, problem.start, grid=problem.grid, labels=problem.labels,
-            profile=problem.profile, reach_model=problem.reach_model,
-        )
-    for finding in check.findings:
-        if finding.severity != "error":
-            say(f"{finding.severity}: {finding.message}")
-        elif not stop:
-            say(f"warning: it cannot be planned: {finding.message}")
+    check = check_mission_in_scene(mission, building)
     if record is not None:
         record["scene_check"] = check.to_dict()
-    if stop:
-        check.raise_errors()
+    check.report(stop=stop)
     return check

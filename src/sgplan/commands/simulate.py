@@ -62,7 +62,7 @@ def run(args: argparse.Namespace) -> int:
         check_folder_fits(args.mission_dir, mission, building, force=args.force, record=record)
     session = sgplan.Session(building)
     say_back(mission, building, record, stream=out, session=session)
-    the_run = session.start(mission, start_spec(args), options=options)
+    the_run = sgplan.Run(session, mission, start_spec(args), options)
     sim = simulate(the_run, schedule)
     print("timeline (metres driven):", file=out)
     for moment in sim.timeline:

@@ -98,20 +98,38 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
     # seeds and each lowering. Lazily committed: only the part used costs memory.
     capacity = max(n, max_lost + seeds.shape[0] + max_lowered) + 16
     heap = np.empty(capacity * HREC, dtype=np.int64)
-    keys = heap.view(np.float64)  # the same memory: keys and ties as floats (sgplan.planning._heap)
-    size = 0
     near = np.empty(8 + stairs_from.shape[0], dtype=np.int64)
     cost = np.empty(8 + stairs_from.shape[0], dtype=np.int64)
-    # Phase 1: invalidate, in increasing old distance -- skipped when more reachable cells left the graph
-    # than may be invalidated (each of them loses its distance).
+    # Phase 1 is skipped when more reachable cells left the graph than may be invalidated (each of them
+    # loses its distance).
     gone = 0
     for s in seeds:
         if not _in_graph(cell_at, cell_pos, s) and dist[s] != UNREACHED:
             gone += 1
-    outcome = EXACT if exact and gone <= max_lost else LOWER_BOUND
+    lost = np.empty(max(1, min(max_lost, n)), dtype=np.int64)
+    num_lost = -1
+    if exact and gone <= max_lost:
+        num_lost = _invalidate(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from,
+                               stairs_to, stairs_units, cell_mask, target, dist, seeds, max_lost, mark, heap,
+                               near, cost, lost)
+    outcome = EXACT if num_lost >= 0 else LOWER_BOUND
+    num_lost = max(num_lost, 0)
+    counts[0] = num_lost
+    finished = _lower(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from, stairs_to,
+                      stairs_units, cell_mask, target, dist, seeds, max_lowered, heap, near, cost,
+                      lost[:num_lost], counts)
+    return outcome if finished else RECOMPUTE
+
+
+@njit(cache=True)
+def _invalidate(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from, stairs_to,
+                stairs_units, cell_mask, target, dist, seeds, max_lost, mark, heap, near, cost, lost):
+    """Phase 1 of :func:`repair_field`: mark the cells that no neighbour supports any more ``_LOST`` and
+    list them in ``lost``, in increasing old distance from the seeds; returns how many, or -1 when more
+    than ``max_lost`` would be (then every old distance stays, as a lower bound)."""
+    keys = heap.view(np.float64)  # the same memory: keys and ties as floats (sgplan.planning._heap)
+    size = 0
     for s in seeds:
-        if outcome == LOWER_BOUND:
-            break
         if _in_graph(cell_at, cell_pos, s):
             if cell_mask[s] == target:
                 mark[s] = _TARGET
@@ -127,7 +145,6 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
                 if mark[y] == 0 and dist[y] != UNREACHED:
                     mark[y] = _PENDING
                     size = hpush(keys, heap, 0, size, np.float64(dist[y]), 0.0, y)
-    lost = np.empty(64, dtype=np.int64)
     num_lost = 0
     while size > 0:
         x = heap[2]
@@ -148,14 +165,7 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
             continue
         mark[x] = _LOST
         if num_lost >= max_lost:  # too much to invalidate: keep the old distances as lower bounds
-            size = 0
-            num_lost = 0
-            outcome = LOWER_BOUND
-            break
-        if num_lost == lost.shape[0]:
-            grown = np.empty(2 * num_lost, dtype=np.int64)
-            grown[:num_lost] = lost
-            lost = grown
+            return -1
         lost[num_lost] = x
         num_lost += 1
         for i in range(count):
@@ -163,12 +173,23 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
             if mark[y] == 0 and dist[y] != UNREACHED and np.int64(dist[y]) == dx + cost[i]:
                 mark[y] = _PENDING
                 size = hpush(keys, heap, 0, size, np.float64(dist[y]), 0.0, y)
-    # Phase 2: the lost and changed cells take what their neighbours offer, then lower what they can.
-    for i in range(num_lost):
+    return num_lost
+
+
+@njit(cache=True)
+def _lower(cell_at, cell_pos, step_offset, step_units, stairs_first, stairs_from, stairs_to, stairs_units,
+           cell_mask, target, dist, seeds, max_lowered, heap, near, cost, lost, counts):
+    """Phase 2 of :func:`repair_field`: the ``lost`` cells (made ``UNREACHED``) and the seeds take the best
+    distance their neighbours offer, then a Dijkstra from them lowers every distance a new path shortens.
+    ``counts[1]`` receives the cells lowered; returns False when it gave up (more than ``max_lowered``, or
+    a distance that does not fit below ``UNREACHED``), True when done."""
+    keys = heap.view(np.float64)
+    size = 0
+    for i in range(lost.shape[0]):
         dist[lost[i]] = UNREACHED
     lowered = 0
     for phase in range(2):
-        total = num_lost if phase == 0 else seeds.shape[0]
+        total = lost.shape[0] if phase == 0 else seeds.shape[0]
         for i in range(total):
             x = lost[i] if phase == 0 else seeds[i]
             if not _in_graph(cell_at, cell_pos, x):
@@ -203,10 +224,10 @@ def repair_field(cell_at, cell_pos, step_offset, step_units, stairs_first, stair
             nd = dx + cost[i]
             if nd < np.int64(dist[y]):
                 if nd >= UNREACHED or lowered >= max_lowered:
-                    counts[0], counts[1] = num_lost, lowered
-                    return RECOMPUTE
+                    counts[1] = lowered
+                    return False
                 dist[y] = nd
                 lowered += 1
                 size = hpush(keys, heap, 0, size, np.float64(nd), 0.0, y)
-    counts[0], counts[1] = num_lost, lowered
-    return outcome
+    counts[1] = lowered
+    return True

@@ -35,6 +35,7 @@ import numpy as np
 from sgplan.planning.cells import CellGraph
 from sgplan.planning.domain import (
     MAP_OBJECT,
+    ActionMap,
     ActionParts,
     ActionTables,
     KernelMaps,
@@ -106,8 +107,9 @@ class RunActions:
         touched = self._families_touching(moved)
         # A cell that left or joined the graph can change what an object of its room is visible from
         # (the visible reach model): those objects' targets are made anew too, not only the moved ones'.
-        self._objects |= set(objects) | {f.action.entity for f, hit in zip(self.tables.families, touched)
-                                         if hit and f.action.kind == MAP_OBJECT}
+        near = {_object_uuid(f.action) for f, hit in zip(self.tables.families, touched)
+                if hit and f.action.kind == MAP_OBJECT}
+        self._objects |= set(objects) | near
         for k, family in enumerate(self.tables.families):
             if family.action.kind == MAP_OBJECT and family.action.entity in self._objects:
                 touched[k] = True
@@ -217,3 +219,10 @@ def with_other_labels(actions: RunActions) -> RunActions:
     other.tables, other.store, other._spans = actions.tables, actions.store, actions._spans
     other._objects = set(actions._objects)
     return other
+
+
+def _object_uuid(action: ActionMap) -> int:
+    """The uuid of an object action's object (``ActionMap.entity`` holds a uuid for ``MAP_OBJECT``)."""
+    entity = action.entity
+    assert isinstance(entity, int), entity
+    return entity

@@ -53,7 +53,7 @@ from sgplan.execution.poses import (
 from sgplan.execution.words import MissionWords
 from sgplan.explain.scene_labels import occurring_labels
 from sgplan.mission import Mission
-from sgplan.planning.setups import PROFILES, reach_model_for
+from sgplan.planning.setups import check_profile, reach_model_for
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 
@@ -197,8 +197,7 @@ class Monitor:
     def __init__(self, building: Building, mission: Mission, grid: OccupancyGrid, labels: np.ndarray, *,
                  profile: str = "ltlf", max_gap_m: float = DEFAULT_MAX_GAP_M, state: int | None = None,
                  at: Cell3 | None = None) -> None:
-        if profile not in PROFILES:
-            raise PlanningError(f"unknown semantics profile {profile!r}; use one of {', '.join(PROFILES)}")
+        check_profile(profile)
         if tuple(labels.shape) != grid.shape:
             raise PlanningError(f"label raster has shape {tuple(labels.shape)}, the grid {grid.shape} "
                                 "(floors, rows, cols); build both from the same building")

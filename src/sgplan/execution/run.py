@@ -2,7 +2,7 @@
 scene changes, exact replanning and amendments (docs/execution.md).
 
 >>> session = sgplan.Session(sgplan.load_scene("demo"))                          # doctest: +SKIP
->>> run = session.start(mission, start="kitchen", setup="A*")                   # doctest: +SKIP
+>>> run = sgplan.Run(session, mission, start="kitchen", setup="A*")              # doctest: +SKIP
 >>> run.plan.cost_m                            # the optimal plan from here     # doctest: +SKIP
 >>> run.observe(run.plan.path[:40, :3], metric=False)  # the robot drove 40 cells  # doctest: +SKIP
 >>> run.change([CloseDoor(("kitchen", "corridor"))]); run.plan.cost_m  # replanned  # doctest: +SKIP
@@ -103,8 +103,8 @@ class Amendment:
 
 
 class Run:
-    """A mission carried through a changing building from a start (see the module). Made by
-    :meth:`sgplan.Session.start`.
+    """A mission carried through a changing building from a start (see the module):
+    ``sgplan.Run(session, mission, start, setup="A*")``.
 
     Parameters
     ----------
@@ -115,8 +115,9 @@ class Run:
         the mission.
     start:
         where the robot starts, as :func:`sgplan.plan` takes it.
-    options:
-        the planning options (:class:`sgplan.PlanOptions`) of every plan of the run.
+    options, option_values:
+        the planning options (:class:`sgplan.PlanOptions`) of every plan of the run, as
+        :func:`sgplan.plan` takes them: a value, or keywords (``setup="A*"``), or both.
     guide:
         where a setup using LLM guidance gets it when the mission carries none (default: the offline
         symbolic guide).
@@ -131,12 +132,12 @@ class Run:
 
     def __init__(self, session: Session, mission: Mission, start: StartSpec = None,
                  options: PlanOptions | None = None, *, guide: MissionGuide | None = None,
-                 state: int | None = None) -> None:
+                 state: int | None = None, **option_values: Any) -> None:
         from sgplan.options import PlanOptions
         from sgplan.starts import start_cell
 
         self.session = session
-        self.options = options if options is not None else PlanOptions()
+        self.options = PlanOptions.from_keywords(options, **option_values)
         self.guide = guide
         self.radii = session.radii(self.options.robot_radius_m, self.options.reach_radius_m)
         self.scene = SceneState.of(session.building)

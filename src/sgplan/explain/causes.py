@@ -43,7 +43,7 @@ def component_of(components: np.ndarray, start: tuple[int, int, int]) -> np.ndar
 def connected_components(grid: OccupancyGrid, allowed: np.ndarray) -> np.ndarray:
     """``(floors, rows, cols)`` int64: 0 outside ``allowed``, else an id shared by exactly the ``allowed``
     cells connected by 8-connected moves and ``grid``'s stairs links."""
-    from scipy import ndimage  # ~0.3 s to import: only when a start's reach is in question
+    from scipy import ndimage  # slow to import: only when a start's reach is in question
 
     parts, offset = [], 0
     for f in range(allowed.shape[0]):

@@ -26,6 +26,7 @@ door).
 from __future__ import annotations
 
 import itertools
+import logging
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
@@ -58,14 +59,16 @@ from sgplan.logic.formula import (
     atoms,
     depth,
     is_temporal,
+    to_infix,
     walk,
 )
-from sgplan.logic.infix import to_infix
 from sgplan.logic.ltlf import ltlf_to_dfa
 from sgplan.mission import Mission
 from sgplan.planning.setups import reach_model_for
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
+
+log = logging.getLogger("sgplan")
 
 FindingKind = Literal[
     "unsatisfiable", "unsatisfiable-from-start", "unreachable-from-start", "blocked-by-forbidden",
@@ -114,6 +117,26 @@ class SceneCheck:
                 raise UnsatisfiableMissionError(finding.message)
             status = "invalid-start" if finding.kind == "unsatisfiable-from-start" else "infeasible"
             raise PlanningError(finding.message, status=status)
+
+    def report(self, *, stop: bool = True) -> None:
+        """Say the findings on the ``sgplan`` logger: a warning at WARNING (``warning: ...``), a note at
+        INFO (``note: ...``); then, with ``stop``, raise the first error (:meth:`raise_errors`), else log
+        each error as a warning that the mission cannot be planned.
+
+        Raises
+        ------
+        PlanningError
+            With ``stop``, as :meth:`raise_errors`.
+        """
+        for finding in self.findings:
+            if finding.severity == "warning":
+                log.warning(f"warning: {finding.message}")
+            elif finding.severity == "note":
+                log.info(f"note: {finding.message}")
+            elif not stop:
+                log.warning(f"warning: it cannot be planned: {finding.message}")
+        if stop:
+            self.raise_errors()
 
     def to_dict(self) -> list[dict[str, Any]]:
         """JSON-ready ``[{"kind", "severity", "message"}, ...]``."""

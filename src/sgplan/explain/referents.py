@@ -14,7 +14,7 @@ from typing import Literal
 
 from sgplan.errors import FormulaError
 from sgplan.scene.labels import Proposition
-from sgplan.scene.model import Building
+from sgplan.scene.model import Building, category_words
 
 ReferentKind = Literal["room", "object", "unknown"]
 
@@ -69,10 +69,6 @@ class Referent:
         return f"the {self.category} ({self.key}{', ' + where if where else ''})"
 
 
-def _category(name: str) -> str:
-    return name.replace("_", " ")
-
-
 def referent_of(name: str, proposition: Proposition | None, building: Building | None) -> Referent:
     """The entity ``proposition`` (named ``name`` in the formula) denotes in ``building``."""
     if proposition is None:
@@ -87,12 +83,13 @@ def referent_of(name: str, proposition: Proposition | None, building: Building |
         if not building.has_room(proposition.uuid):
             return Referent(name, "unknown", key)
         room = building.room(uuid=proposition.uuid)
-        return Referent(name, "room", key, _category(room.name), room.floor)
+        return Referent(name, "room", key, category_words(room.name), room.floor)
     if not building.has_object(proposition.uuid):
         return Referent(name, "unknown", key)
     obj = building.object(uuid=proposition.uuid)
     room = building.room(id=obj.room_id)
-    return Referent(name, "object", key, _category(obj.name), room.floor, room.key, _category(room.name))
+    return Referent(name, "object", key, category_words(obj.name), room.floor, room.key,
+                    category_words(room.name))
 
 
 def referents_of(

@@ -24,7 +24,7 @@ def occurring_labels(labels: np.ndarray, where: np.ndarray, num_labels: int) -> 
     """``(num_labels,)`` bool: the labels of ``labels`` (any shape) that occur where ``where`` is True."""
     values = labels[where]
     if values.size and int(values.min()) >= 0 and int(values.max()) < max(num_labels, 1 << 16):
-        # Counting is linear; sorting (np.unique) a scene's million cells took ~50 ms per call.
+        # Counting is linear; sorting (np.unique) a scene's million cells is not, and this runs per check.
         return np.bincount(values.astype(np.intp, copy=False), minlength=num_labels)[:num_labels] > 0
     present = np.zeros(num_labels, bool)
     values = np.unique(values)
@@ -48,7 +48,7 @@ def realizable_labels(propositions: Sequence[Proposition], building: Building,
     ``cells(prop, radius, reach_model)``: the flat cell indices of one proposition, as
     :func:`~sgplan.scene.labels.proposition_cells` (the
     default) gives them, or a :class:`sgplan.Session`'s, which keeps them for the plan that follows
-    (finding them is most of the cost: ~10 ms for four objects on a Gibson scene).
+    (finding them is most of the cost).
 
     Raises
     ------

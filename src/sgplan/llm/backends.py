@@ -1,17 +1,18 @@
 """Choosing the translator and guide backends from a CLI-style spec: ``"openai:MODEL"`` or ``"offline"``.
 
-Both kinds satisfy two small protocols, so front ends never care which one runs:
+Both kinds satisfy two small protocols (:mod:`sgplan.llm.protocols`), so front ends never care which one
+runs:
 
-- :class:`MissionTranslator`: ``name``, ``translate(text, building)`` returning a
-  :class:`TranslationLike` (``backend``, ``text``, ``grounded_text``, ``tokens``, ``formula``, and
-  ``set_aside``: the words of the text not read because they ask nothing), and
+- :class:`~sgplan.llm.protocols.MissionTranslator`: ``name``, ``translate(text, building)`` returning a
+  :class:`~sgplan.llm.protocols.TranslationLike` (``backend``, ``text``, ``grounded_text``, ``tokens``,
+  ``formula``, and ``set_aside``: the words of the text not read because they ask nothing), and
   ``starting_on(floor)`` (the translator for a robot starting on that floor: words such as *upstairs* are
   read from there by a backend that can, the others return themselves); implemented by
   :class:`~sgplan.llm.translation.LLMTranslator` and the offline
   :class:`~sgplan.llm.offline.PatternTranslator`, and scored by :mod:`sgplan.llm.evaluate`;
-- :class:`MissionGuide`: ``name`` and ``guide(building, automaton, ap_actions)`` returning
-  ``{room_uuid: {q: [calls]}}``; implemented by :class:`~sgplan.llm.guidance.LLMGuide` and the offline
-  :class:`~sgplan.llm.offline.SymbolicGuide`.
+- :class:`~sgplan.llm.protocols.MissionGuide`: ``name`` and ``guide(building, automaton, ap_actions)``
+  returning ``{room_uuid: {q: [calls]}}``; implemented by :class:`~sgplan.llm.guidance.LLMGuide` and the
+  offline :class:`~sgplan.llm.offline.SymbolicGuide`.
 
 ``openai:MODEL`` talks to any OpenAI-compatible server (``base_url``; key and other settings from the
 environment or an LLM config file, see docs/llm.md). With a cache directory every call is recorded there
@@ -21,62 +22,18 @@ and answered from it when already recorded; ``replay`` answers only from the cac
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal, Protocol
+from typing import Any, Literal
 
 from sgplan.errors import LLMError
 from sgplan.llm.client import ChatBackend
+from sgplan.llm.protocols import MissionGuide, MissionTranslator
 from sgplan.llm.records import RunRecord
-from sgplan.logic import Automaton, Formula
-from sgplan.scene.model import Building
 
 OFFLINE = "offline"
 OPENAI_PREFIX = "openai:"
-
-
-class TranslationLike(Protocol):
-    """What every translator returns (read-only: the translators return frozen dataclasses)."""
-
-    @property
-    def backend(self) -> str: ...
-    @property
-    def text(self) -> str: ...
-    @property
-    def grounded_text(self) -> str: ...
-    @property
-    def tokens(self) -> Sequence[str]: ...
-    @property
-    def formula(self) -> Formula: ...
-    @property
-    def set_aside(self) -> tuple[str, ...]: ...
-
-
-class MissionTranslator(Protocol):
-    """Text -> grounded, checked formula for a building; raises MissionError when it cannot.
-
-    ``starting_on(floor)``: the same translator for a robot that starts on ``floor`` (``None``: not known),
-    for words relative to the start (*upstairs*, *this floor*); a backend that does not read them returns
-    itself.
-    """
-
-    @property
-    def name(self) -> str: ...
-
-    def translate(self, text: str, building: Building) -> TranslationLike: ...
-
-    def starting_on(self, floor: int | None) -> MissionTranslator: ...
-
-
-class MissionGuide(Protocol):
-    """Automaton -> ``{room_uuid: {q: ["move(a, b)" | "reach(r, o)", ...]}}`` for a building."""
-
-    @property
-    def name(self) -> str: ...
-
-    def guide(self, building: Building, automaton: Automaton,
-              ap_actions: Mapping[str, str] | None = None) -> Mapping[int, Mapping[int, list[str]]]: ...
 
 
 @dataclass

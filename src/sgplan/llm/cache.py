@@ -75,10 +75,22 @@ def _hash_request(request: dict[str, Any]) -> str:
 
 
 class ChatCache:
-    """The entries of one cache directory (created on first write). Safe for concurrent threads/processes."""
+    """The entries of one cache directory (created on first write). Safe for concurrent threads/processes.
+
+    Raises
+    ------
+    LLMError
+        ``directory`` (or the nearest part of it that exists) is not a folder: said before any call is
+        made, so a bad ``--cache`` never costs a round trip to the server first.
+    """
 
     def __init__(self, directory: str | Path) -> None:
         self.directory = Path(directory)
+        existing = next((p for p in (self.directory, *self.directory.parents) if p.exists()), None)
+        if existing is not None and not existing.is_dir():
+            what = "is a file" if existing == self.directory else f"lies inside {existing}, a file"
+            raise LLMError(f"LLM cache {self.directory} {what}, not a folder: give --cache a folder "
+                           "(it is created on the first recorded call)")
 
     def path(self, key: str) -> Path:
         return self.directory / f"{key}.json"

@@ -228,7 +228,7 @@ class OpenAIChatClient:
         rng: random.Random | None = None,
         notify: Callable[[str], None] | None = None,
     ) -> None:
-        # Imported here, not at module level: the SDK takes ~0.6 s to import, and offline runs (replay,
+        # Imported here, not at module level: the SDK is slow to import, and offline runs (replay,
         # rule-based backends) never need it.
         import openai
 

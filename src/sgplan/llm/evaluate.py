@@ -30,7 +30,6 @@ from pathlib import Path
 from typing import Any
 
 from sgplan.errors import MissionError, SgplanError
-from sgplan.llm.backends import MissionTranslator
 from sgplan.llm.offline.evaluation import (
     EvalMission,
     EvalResult,
@@ -38,6 +37,7 @@ from sgplan.llm.offline.evaluation import (
     expand_shorthand,
     scene_facts,
 )
+from sgplan.llm.protocols import MissionTranslator
 from sgplan.logic import atoms, parse_infix, to_infix
 from sgplan.logic.formula import Formula
 from sgplan.scene.model import Building

@@ -67,7 +67,7 @@ from sgplan.mission import Mission, compile_mission, save_mission_folder
 from sgplan.scene.model import Building
 
 if TYPE_CHECKING:
-    from sgplan.llm.backends import MissionTranslator, TranslationLike
+    from sgplan.llm.protocols import MissionTranslator, TranslationLike
 
 SAMPLING_TEMPERATURE = 0.7
 """Temperature of the translation calls when several samples are voted on and none is given."""
@@ -305,7 +305,7 @@ class LLMTranslator:
 
     def starting_on(self, floor: int | None) -> LLMTranslator:
         """This translator: the prompts do not carry the robot's start floor (see
-        :class:`~sgplan.llm.backends.MissionTranslator`)."""
+        :class:`~sgplan.llm.protocols.MissionTranslator`)."""
         return self
 
     def translate(self, text: str, building: Building) -> LLMTranslation:

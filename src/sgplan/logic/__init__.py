@@ -30,9 +30,10 @@ from sgplan.logic.formula import (
     Until,
     WeakNext,
     atoms,
+    to_infix,
 )
 from sgplan.logic.hoa import parse_hoa, read_hoa, write_hoa
-from sgplan.logic.infix import parse_infix, to_infix
+from sgplan.logic.infix import parse_infix
 from sgplan.logic.ltlf import DEFAULT_MAX_ENTRIES, ltlf_to_dfa, possible_labels
 from sgplan.logic.minimize import minimize, product
 from sgplan.logic.normal import nnf

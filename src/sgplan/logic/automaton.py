@@ -120,7 +120,7 @@ class Automaton:
 
     def state_graph(self) -> csr_matrix:
         """Sparse ``(n, n)`` matrix with entry ``[q, r]`` = number of labels leading from ``q`` to ``r``."""
-        from scipy.sparse import csr_matrix  # scipy.sparse costs ~0.1 s to import: only when used
+        from scipy.sparse import csr_matrix  # scipy.sparse is slow to import: only when used
 
         n = self.num_states
         rows = np.repeat(np.arange(n), self.num_labels)
@@ -129,8 +129,8 @@ class Automaton:
     def reachable_states(self, labels: np.ndarray | None = None) -> np.ndarray:
         """``(n,)`` bool: the states some word leads to from the initial state; with ``labels`` (label
         values, or a ``(num_labels,)`` bool mask), some word of those labels only."""
-        # A fixpoint over the dense table (a few hundred states at most): no scipy.sparse (~0.15 s, ~30 MB
-        # to import) for a graph this small.
+        # A fixpoint over the dense table (a few hundred states at most): no scipy.sparse (slow to import,
+        # and memory) for a graph this small.
         table = self.table if labels is None else self.table[:, np.asarray(labels)]
         mask = np.zeros(self.num_states, bool)
         mask[self.initial] = True

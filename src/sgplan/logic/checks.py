@@ -20,9 +20,9 @@ from sgplan.logic.formula import (
     Release,
     WeakNext,
     is_temporal,
+    to_infix,
     walk,
 )
-from sgplan.logic.infix import to_infix
 from sgplan.logic.normal import nnf
 
 

@@ -12,8 +12,10 @@ path); ``WeakNext`` is its dual (true at the last cell) and appears mainly as th
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from typing import Literal
 
 from sgplan.errors import FormulaError
 
@@ -37,8 +39,6 @@ class Formula:
         return Or((self, other))
 
     def __str__(self) -> str:
-        from sgplan.logic.infix import to_infix
-
         return to_infix(self)
 
 
@@ -272,3 +272,78 @@ def rename_atoms(formula: Formula, names: dict[str, str]) -> Formula:
     if isinstance(formula, _Nary):
         return type(formula)(tuple(rename_atoms(arg, names) for arg in formula.args))
     return formula
+
+
+# Writing a formula as infix text lives with the tree (``str(formula)`` uses it); reading it back is
+# :mod:`sgplan.logic.infix`, which shares these two tables.
+Dialect = Literal["sgplan", "spot"]
+INFIX_KEYWORDS = frozenset({"true", "false", "U", "R", "W", "M", "xor", "X", "F", "G"})
+"""Words of the infix syntax that a proposition's name must not be (such a name is written quoted)."""
+PLAIN_ATOM = re.compile(r"[a-z_][A-Za-z0-9_]*\Z")
+"""A proposition's name that infix text writes without quotes."""
+
+_BINARY_SYMBOL = {Implies: "->", Equiv: "<->", Until: "U", Release: "R", And: "&", Or: "|"}
+
+
+def _atom_text(name: str) -> str:
+    return name if PLAIN_ATOM.match(name) and name not in INFIX_KEYWORDS else f'"{name}"'
+
+
+def to_infix(formula: Formula, dialect: Dialect = "sgplan") -> str:
+    """Spot-style infix text; every binary sub-formula of a binary operator is parenthesised.
+
+    ``parse_infix(to_infix(f, d), d) == f`` whenever every ``&``/``|`` of ``f`` has two operands (as the
+    parsers produce them); n-ary ones print flat and read back left-nested.
+    """
+    strong, weak = ("X[!]", "X") if dialect == "spot" else ("X", None)
+    symbols: dict[type, str | None] = {Not: "!", Next: strong, WeakNext: weak, Eventually: "F", Always: "G"}
+
+    def unfold(f: Formula) -> Formula:
+        # Without a weak-next symbol, weak next is written !X!f.
+        return Not(Next(Not(f.arg))) if isinstance(f, WeakNext) and weak is None else f
+
+    def leaf(f: Formula) -> str:
+        if isinstance(f, Const):
+            return "true" if f.value else "false"
+        return _atom_text(f.name)  # type: ignore[attr-defined]
+
+    root = unfold(formula)
+    if isinstance(root, (Const, Atom)):
+        return leaf(root)
+    # Depth-first with an explicit stack (a formula from a file may nest deeper than Python recurses).
+    # A frame is (node, its children, the texts of the children written so far).
+    frames: list[tuple[Formula, list[Formula], list[str]]] = [
+        (root, [unfold(c) for c in root.children()], [])
+    ]
+    while True:
+        node, children, done = frames[-1]
+        if len(done) < len(children):
+            child = children[len(done)]
+            if isinstance(child, (Const, Atom)):
+                done.append(leaf(child))
+            else:
+                frames.append((child, [unfold(c) for c in child.children()], []))
+            continue
+        frames.pop()
+        text = _node_text(node, children, done, symbols)
+        if not frames:
+            return text
+        frames[-1][2].append(text)
+
+
+_BINARY_NODES = (And, Or, Implies, Equiv, Until, Release)
+
+
+def _node_text(
+    node: Formula, children: list[Formula], texts: list[str], symbols: dict[type, str | None]
+) -> str:
+    """The infix text of an operator node from its children's texts (a binary child is parenthesised)."""
+    if isinstance(node, (Not, Next, WeakNext, Eventually, Always)):
+        symbol, inner = symbols[type(node)], texts[0]
+        if isinstance(children[0], _BINARY_NODES):
+            return f"{symbol}({inner})"
+        return f"{symbol}{inner}" if symbol == "!" else f"{symbol} {inner}"
+    parts = [
+        f"({text})" if isinstance(child, _BINARY_NODES) else text for child, text in zip(children, texts)
+    ]
+    return f" {_BINARY_SYMBOL[type(node)]} ".join(parts)

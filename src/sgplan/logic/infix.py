@@ -14,16 +14,16 @@ Spot's LTLf reads ``X`` as the weak next and writes the strong one ``X[!]``. Cho
 from __future__ import annotations
 
 import re
-from typing import Literal
 
 from sgplan.errors import FormulaError
 from sgplan.logic.formula import (
     FALSE,
+    INFIX_KEYWORDS,
     TRUE,
     Always,
     And,
     Atom,
-    Const,
+    Dialect,
     Equiv,
     Eventually,
     Formula,
@@ -31,13 +31,9 @@ from sgplan.logic.formula import (
     Next,
     Not,
     Or,
-    Release,
-    Until,
     WeakNext,
 )
 from sgplan.logic.prefix import LBT_OPERATORS
-
-Dialect = Literal["sgplan", "spot"]
 
 _LEX = re.compile(
     r"""\s*(?:
@@ -51,8 +47,6 @@ _LEX = re.compile(
 )
 _SYMBOL_ALIASES = {"<=>": "<->", "=>": "->", "-->": "->", "&&": "&", "||": "|", "~": "!", "<>": "F",
                    "[]": "G", "xor": "^"}
-_KEYWORDS = {"true", "false", "U", "R", "W", "M", "xor", "X", "F", "G"}
-_PLAIN_ATOM = re.compile(r"[a-z_][A-Za-z0-9_]*\Z")
 
 
 def _lex(text: str) -> list[tuple[str, str, int]]:
@@ -84,7 +78,7 @@ def _lex(text: str) -> list[tuple[str, str, int]]:
             out.append(("op", _SYMBOL_ALIASES.get(value, value), start))
         elif value in ("true", "false"):
             out.append(("const", value, start))
-        elif value in _KEYWORDS or value == "xor":
+        elif value in INFIX_KEYWORDS or value == "xor":
             out.append(("op", _SYMBOL_ALIASES.get(value, value), start))
         else:
             # Spot reads GFa as G F a: peel leading F/G/X letters off an identifier.
@@ -201,70 +195,3 @@ def parse_infix(text: str, dialect: Dialect = "sgplan") -> Formula:
         raise FormulaError("the formula nests too deeply to parse") from None
     parser.expect_end()
     return formula
-
-
-_BINARY_SYMBOL = {Implies: "->", Equiv: "<->", Until: "U", Release: "R", And: "&", Or: "|"}
-
-
-def _atom_text(name: str) -> str:
-    return name if _PLAIN_ATOM.match(name) and name not in _KEYWORDS else f'"{name}"'
-
-
-def to_infix(formula: Formula, dialect: Dialect = "sgplan") -> str:
-    """Spot-style infix text; every binary sub-formula of a binary operator is parenthesised.
-
-    ``parse_infix(to_infix(f, d), d) == f`` whenever every ``&``/``|`` of ``f`` has two operands (as the
-    parsers produce them); n-ary ones print flat and read back left-nested.
-    """
-    strong, weak = ("X[!]", "X") if dialect == "spot" else ("X", None)
-    symbols: dict[type, str | None] = {Not: "!", Next: strong, WeakNext: weak, Eventually: "F", Always: "G"}
-
-    def unfold(f: Formula) -> Formula:
-        # Without a weak-next symbol, weak next is written !X!f.
-        return Not(Next(Not(f.arg))) if isinstance(f, WeakNext) and weak is None else f
-
-    def leaf(f: Formula) -> str:
-        if isinstance(f, Const):
-            return "true" if f.value else "false"
-        return _atom_text(f.name)  # type: ignore[attr-defined]
-
-    root = unfold(formula)
-    if isinstance(root, (Const, Atom)):
-        return leaf(root)
-    # Depth-first with an explicit stack (a formula from a file may nest deeper than Python recurses).
-    # A frame is (node, its children, the texts of the children written so far).
-    frames: list[tuple[Formula, list[Formula], list[str]]] = [
-        (root, [unfold(c) for c in root.children()], [])
-    ]
-    while True:
-        node, children, done = frames[-1]
-        if len(done) < len(children):
-            child = children[len(done)]
-            if isinstance(child, (Const, Atom)):
-                done.append(leaf(child))
-            else:
-                frames.append((child, [unfold(c) for c in child.children()], []))
-            continue
-        frames.pop()
-        text = _node_text(node, children, done, symbols)
-        if not frames:
-            return text
-        frames[-1][2].append(text)
-
-
-_BINARY_NODES = (And, Or, Implies, Equiv, Until, Release)
-
-
-def _node_text(
-    node: Formula, children: list[Formula], texts: list[str], symbols: dict[type, str | None]
-) -> str:
-    """The infix text of an operator node from its children's texts (a binary child is parenthesised)."""
-    if isinstance(node, (Not, Next, WeakNext, Eventually, Always)):
-        symbol, inner = symbols[type(node)], texts[0]
-        if isinstance(children[0], _BINARY_NODES):
-            return f"{symbol}({inner})"
-        return f"{symbol}{inner}" if symbol == "!" else f"{symbol} {inner}"
-    parts = [
-        f"({text})" if isinstance(child, _BINARY_NODES) else text for child, text in zip(children, texts)
-    ]
-    return f" {_BINARY_SYMBOL[type(node)]} ".join(parts)

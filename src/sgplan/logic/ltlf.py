@@ -55,8 +55,8 @@ from sgplan.logic.formula import (
     WeakNext,
     atoms,
     check_nesting,
+    to_infix,
 )
-from sgplan.logic.infix import to_infix
 from sgplan.logic.minimize import minimize, product
 from sgplan.logic.normal import nnf
 from sgplan.safeio import quote

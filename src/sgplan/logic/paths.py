@@ -101,7 +101,7 @@ def _to_accept(a: Automaton, w: np.ndarray) -> tuple[np.ndarray, np.ndarray, dic
         return np.full(n, np.inf), np.full(n, -9999), {}
     src, dst, cost, lab = _cheapest_edges(a, w)
     # Dijkstra from the accepting states on the reversed graph: predecessors there are next states here.
-    from scipy.sparse import csr_matrix  # scipy.sparse costs ~0.1 s to import: only when used
+    from scipy.sparse import csr_matrix  # scipy.sparse is slow to import: only when used
     from scipy.sparse.csgraph import dijkstra
 
     reverse = csr_matrix((cost, (dst, src)), shape=(n, n))

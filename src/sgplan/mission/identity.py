@@ -30,7 +30,7 @@ import yaml
 from sgplan.errors import MissionError, SceneMismatchError
 from sgplan.safeio import load_yaml
 from sgplan.scene.labels import Proposition
-from sgplan.scene.model import Building
+from sgplan.scene.model import Building, category_words
 
 SCENE_RECORD_NAME = "scene.yaml"
 FORMAT = "sgplan-scene-identity/1"
@@ -49,12 +49,8 @@ def scene_graph_hash(building: Building) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
-def _normal(category: str) -> str:
-    return category.replace("_", " ").strip().lower()
-
-
 def _a(category: str) -> str:
-    word = _normal(category)
+    word = category_words(category)
     return f"{'an' if word[:1] in 'aeiou' else 'a'} {word}"
 
 
@@ -196,7 +192,7 @@ def _differences(recorded: Mapping[str, Any], here: Mapping[str, dict[str, Any]]
         said_then = f"{_a(str(then.get('category')))} on floor {then.get('floor')}"
         said_now = f"{_a(now['category'])} on floor {now['floor']}"
         if (
-            _normal(str(then.get("category"))) != _normal(now["category"])
+            category_words(str(then.get("category"))) != category_words(now["category"])
             or then.get("floor") != now["floor"]
         ):
             out.append(f"{key} was {said_then}, but in {scene!r} it is {said_now}")

@@ -19,7 +19,7 @@ if TYPE_CHECKING:
     from sgplan.planning.termination import CancelFlag, Deadline, ExpansionLimit, TimeLimit
 
 # Loaded on first use, as in ``sgplan/__init__.py``: importing one module of this package (the checker,
-# the problem) must not load the search and its compiled kernels (numba, ~0.5 s).
+# the problem) must not load the search and its compiled kernels (numba is slow to load).
 _LAZY = {
     "IterationRecord": "sgplan.planning.amra", "SearchResult": "sgplan.planning.amra",
     "plan": "sgplan.planning.amra", "PlanningProblem": "sgplan.planning.problem",

@@ -26,10 +26,11 @@ The priority queue is not a heap but a ring of buckets of width ``delta`` = the 
 ``1 - 1e-9``, a margin far above float64 rounding): no edge leads from a cell of the lowest bucket to
 another cell of that bucket, so all its cells are final and may be settled in any order (Dial's
 algorithm with buckets no wider than the shortest edge). Settling a bucket in insertion order keeps
-consecutive cells close in memory, which on large grids is most of the time (2-3x faster than a heap,
-whose exact distance order scatters the reads along the whole wavefront). Steps reach at most
-``max step / delta + 1`` buckets ahead, so a small ring suffices; stairs moves, with arbitrary and rare
-costs, wait in a small heap (:mod:`sgplan.planning._heap`) and join their bucket when it comes up. The
+consecutive cells close in memory, which on large grids is most of the time (faster than a heap, whose
+exact distance order scatters the reads along the whole wavefront; measured in
+benchmarks/results/comment_measurements.md). Steps reach at most ``max step / delta + 1`` buckets
+ahead, so a small ring suffices; stairs moves, with arbitrary and rare costs, wait in a small heap
+(:mod:`sgplan.planning._heap`) and join their bucket when it comes up. The
 distances are the same float64 sums a heap-based Dijkstra computes (the order in which stairs entries of
 equal keys join a bucket can change the settling order and the move codes of equal-cost ties, never a
 distance; only whole-building runs take stairs, and they keep the distances alone).

@@ -120,7 +120,8 @@ def build_all_maps(G, A, M):
 
 # The hot path (successors, heuristics, expansion, heap tops) takes plain arrays, never the named tuples:
 # numba increfs/decrefs every array of a tuple passed to a helper, and in the branchy search loop those
-# atomic reference counts are not pruned -- they were ~40 % of the search time. The tuple-level entry
+# atomic reference counts are not pruned, and cost a large share of the search time
+# (benchmarks/results/planning_rounds.md, issue 12). The tuple-level entry
 # points (improve_path, start_iteration, successors, h_llm) unpack once and call the array-level cores.
 
 
@@ -255,8 +256,8 @@ def map_successors(
     floor action also the far portal); it stops early, at that cell and cost, when it accepts. With an
     idempotent table (T(T(q,l),l) = T(q,l)) a stretch of equal labels is read once.
 
-    One flat loop, no helper calls: numba reference-counts the arrays passed to helpers, which in this
-    loop cost more than the work itself.
+    One function, one flat loop with no helper calls: numba reference-counts the arrays passed to helpers,
+    which in this loop cost more than the work itself.
     """
     room = cell_room[c]
     f = cell_floor[c]
@@ -578,8 +579,8 @@ def active_queues(num_queues, w1):
     that A* run to the end: the other queues cannot raise the anchor's key (their expansions only add or
     improve states of OPEN_0), so whatever goal they find early, the anchor still has to expand every
     state with f below the optimum before the optimum is proved -- their expansions are overhead (the LLM
-    queues with an uninformative h_LLM flood every state with g below the optimum, up to 4 times: 3x
-    the anchor's expansions on Collierville mission 1, start 1, ALL). Their work pays in the weighted
+    queues with an uninformative h_LLM flood every state with g below the optimum, up to 4 times over:
+    benchmarks/results/planning_rounds.md). Their work pays in the weighted
     iterations, where they find the first paths."""
     return 1 if w1 <= 1.0 else num_queues
 
@@ -669,8 +670,9 @@ def anchor_path(G, L, S, budget, max_succ):
     A* setup throughout, every setup once w1 = 1): the same expansions in the same order as
     :func:`multi_queue_path`, in one flat loop.
 
-    Flat because numba reference-counts the arrays a helper takes (``inline="always"`` included) with
-    atomic increments its pruning pass does not always remove in this loop. So the record lookups
+    One function, one flat loop, because numba reference-counts the arrays a helper takes
+    (``inline="always"`` included) with atomic increments its pruning pass does not always remove in this
+    loop. So the record lookups
     (:func:`rec_find`, :func:`rec_touch`) are written out here (the link helpers take scalars only and
     stay), and the counters live in locals until the loop returns. The heap is the one heap's
     (:func:`~sgplan.planning._heap.hpop`, :func:`~sgplan.planning._heap.hpush`), called: written out
@@ -825,8 +827,8 @@ def improve_path(G, A, M, L, S, q_level, q_htype, max_level, budget, max_succ):
     argument: OPEN_0 holds every inconsistent state, INCONS having been merged at the iteration's start),
     and a "better" g found later can only be float rounding -- the same moves summed in another order,
     1 ulp apart. Sending such states to INCONS (as the weighted iterations must) made the (1, 1) iteration
-    re-expand them and, through their successors' 1-ulp improvements, everything after them: 19,075
-    re-expansions after 29,699 on Allensville mission 3, start 0. The rounding left in the optimum is that
+    re-expand them and, through their successors' 1-ulp improvements, everything after them
+    (benchmarks/results/planning_rounds.md). The rounding left in the optimum is that
     of any Dijkstra or A* over float costs.
 
     In the weighted iterations the anchor follows composite actions while they pay for themselves: while

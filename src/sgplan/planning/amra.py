@@ -23,7 +23,7 @@ import numpy as np
 from sgplan.errors import PlanningError
 from sgplan.planning import _search, search_memory
 from sgplan.planning._search import ACT_MAP, BUDGET, GROW, SearchState
-from sgplan.planning.domain import PlanningDomain, _infeasible_reason
+from sgplan.planning.domain import PlanningDomain, _infeasible_reason, domain_of
 from sgplan.planning.problem import PlanningProblem
 from sgplan.planning.schedule import PAPER_SCHEDULE, WeightSchedule
 from sgplan.planning.setups import Setup, get_setup
@@ -180,7 +180,7 @@ class _Search:
     between calls of the compiled loop, and the result it fills in."""
 
     def __init__(self, problem: PlanningProblem, spec: Setup, prebuild_actions: bool) -> None:
-        domain = problem.domain_for(spec.max_level)  # A*: no composite action tables
+        domain = domain_of(problem, spec.max_level)  # A*: no composite action tables
         if spec.uses_llm and domain.llm is None:
             raise PlanningError(
                 f"setup {spec.name} needs LLM guidance; give the problem guidance or use NO-LLM"

@@ -19,14 +19,14 @@ between portal cells.
 Memory: 4 bytes per padded raster position (``cell_at``) plus 5 per cell (``cell_pos`` int32,
 ``cell_floor`` uint8), against 40 per cell for a per-cell table of the 8 neighbours (32 bytes) with a
 sort key and an int32 floor. The index costs less whenever more than 4 / 35 = 11.4 % of the padded
-raster is traversable: Gibson scenes are 19-27 % (Collierville 9.9 MB instead of 20.4 MB), the synthetic
-16M-cell building 55 % (116 MB instead of 376 MB). On a very sparse raster it costs more, since it pays
+raster is traversable, as the Gibson scenes and the synthetic scaling buildings are
+(benchmarks/results/cell_graph_raster_index.md). On a very sparse raster it costs more, since it pays
 for every blocked position: at 5 % traversable 85 bytes a cell instead of 40, at 1 % 405. It is still the
 default: the grid itself (``traversable`` 1 byte, ``room_map`` 2 bytes) and the label raster (1-4 bytes)
 already take 4-7 bytes per raster position, so the index at most about doubles what the rasters cost and
 never changes the order of a building's memory, while every expansion and every Dijkstra step reads its
-8 moves from 3 neighbouring raster rows shared with the cells around it (the Dijkstra fields came out
-1.2-1.5x faster, the search unchanged) and a position is found by one read instead of a binary search.
+8 moves from 3 neighbouring raster rows shared with the cells around it (faster Dijkstra fields, the
+search unchanged: cell_graph_raster_index.md) and a position is found by one read, not a binary search.
 """
 
 from __future__ import annotations

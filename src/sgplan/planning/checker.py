@@ -5,6 +5,12 @@ checks that consecutive cells are joined by legal moves (an 8-connected step on 
 between two portals), that every cell may be entered, that the automaton states follow from the cell
 labels under the chosen semantics profile, and that the path ends in an accepting state; and it
 recomputes the path's cost in metres.
+
+Its independence is deliberate, and so are the near-copies it keeps: it takes only the profiles' names
+from the planner (:data:`~sgplan.planning.setups.PROFILES`), restates what each profile means (``ltlf``
+reads the start cell's label, ``authors`` does not) and checks a profile with its own ``ValueError``
+rather than :func:`~sgplan.planning.setups.check_profile`, so that a mistake in the planner's semantics
+cannot also pass the check.
 """
 
 from __future__ import annotations

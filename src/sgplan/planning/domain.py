@@ -196,6 +196,26 @@ class PlanningDomain:
         return spent
 
 
+def domain_of(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain:
+    """The precomputed planning domain of ``problem`` for a plan using levels up to ``max_level``, built on
+    first use and then kept on the problem (``problem.built_domain``) for every plan of it: built without
+    the composite action tables when ``max_level < 2`` (the A* setup); a later call with a higher level
+    adds them (:meth:`PlanningDomain.ensure_level`).
+
+    Raises
+    ------
+    PlanningError
+        ``status="invalid-start"`` or ``status="infeasible"``, see :func:`build_domain`.
+    """
+    built: PlanningDomain | None = problem.built_domain
+    if built is None:
+        built = build_domain(problem, max_level)
+        problem.built_domain = built
+    else:
+        built.ensure_level(problem, max_level)
+    return built
+
+
 def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain:
     """Validate the start and precompute everything the search needs at planning levels up to
     ``max_level`` except the action maps (built lazily by the search); below level 2 the composite

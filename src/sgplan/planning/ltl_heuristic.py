@@ -4,8 +4,8 @@ The paper's construction (eq. for g(l, q)) bounds the cost to go by the exact di
 region of the next label ``l`` plus a cost to go ``G(l, q')`` computed between label regions, with the
 region-to-region cost ``min over cells of l of d_l'``. That lets the robot "teleport" inside each region it
 passes: it arrives at the point nearest to where it came from and leaves from the point nearest to where it
-goes next. With several goals the slack adds up (9 unordered goals, 0.6 m reach: h(start) = 0.52 x the
-optimum, benchmarks/goals_analysis.py), and A* floods a wide band of every automaton state.
+goes next. With several goals the slack adds up (unordered goals: benchmarks/goals_analysis.py,
+benchmarks/results/comment_measurements.md), and A* floods a wide band of every automaton state.
 
 Here the regions are cut into **pieces**, and the cost to go remembers the piece where the robot entered a
 region. Only the cells where the automaton can change state matter as entry points: the *entry cells* of
@@ -52,8 +52,8 @@ property by an ulp) but the exact shortest path over the same graph with every m
 to whole units (:func:`unit_costs`): that ``d_f`` is 1-Lipschitz in the rounded costs, which are <= the
 real ones, and 0 on its region, which is all the proofs use. h is computed from sums and maxima of whole
 units (exact in float64 below 2^53) and converted to metres by a power of two (exact), so it has no
-rounding slack at all; it gives up at most a unit (2.4e-7 m) per move of a path in tightness. The 8
-fields of Collierville mission 5 take 16 MB instead of 32.
+rounding slack at all; it gives up at most a unit (2.4e-7 m) per move of a path in tightness. A field of
+whole units in 4 bytes takes half the memory of a float64 one.
 
 Only automaton states reachable from the start state get a row. The search computes values cell by cell
 (:func:`row_value`) and fills a whole row (:func:`fill_row`) only once it has evaluated it often

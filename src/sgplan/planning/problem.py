@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -15,7 +15,6 @@ from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 
 if TYPE_CHECKING:
-    from sgplan.planning.domain import PlanningDomain
     from sgplan.planning.shared import SharedParts
 
 
@@ -70,6 +69,9 @@ class PlanningProblem:
     ap_descriptions: Mapping[str, str] = field(default_factory=dict)
     shared: SharedParts | None = None
     start_state: int | None = None
+    built_domain: Any = field(default=None, init=False, repr=False)
+    """The planning domain :func:`sgplan.planning.domain.domain_of` built for this problem, shared by
+    every plan of it (``None`` until then). Typed loosely: the domain sits above the problem."""
 
     def __post_init__(self) -> None:
         check_profile(self.profile)
@@ -95,36 +97,3 @@ class PlanningProblem:
         ap = self.automaton.aps[index]
         described = self.ap_descriptions.get(ap)
         return f"{ap} ({described})" if described and described != ap else ap
-
-    @property
-    def domain(self) -> PlanningDomain:
-        """The precomputed planning domain for every level (built on first use, then shared by every
-        plan call): :meth:`domain_for` level 4.
-
-        Raises
-        ------
-        PlanningError
-            ``status="invalid-start"`` or ``status="infeasible"``, see :func:`build_domain`.
-        """
-        return self.domain_for(4)
-
-    def domain_for(self, max_level: int) -> PlanningDomain:
-        """The precomputed planning domain for a plan using levels up to ``max_level``, built on first use
-        and then shared by every plan call: built without the composite action tables when
-        ``max_level < 2`` (the A* setup); a later call with a higher level adds them
-        (:meth:`PlanningDomain.ensure_level`).
-
-        Raises
-        ------
-        PlanningError
-            ``status="invalid-start"`` or ``status="infeasible"``, see :func:`build_domain`.
-        """
-        from sgplan.planning.domain import build_domain
-
-        built: PlanningDomain | None = self.__dict__.get("_domain")
-        if built is None:
-            built = build_domain(self, max_level)
-            self.__dict__["_domain"] = built
-        else:
-            built.ensure_level(self, max_level)
-        return built

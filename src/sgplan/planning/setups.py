@@ -7,6 +7,7 @@ profile names with it without loading the search.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 from sgplan.errors import PlanningError
@@ -23,8 +24,23 @@ PROFILE_REACH_MODELS = {"ltlf": "visible", "authors": "box"}
 numbers stay reproducible."""
 
 LEVEL_NAMES = ("anchor", "occupancy", "object", "room", "floor")
+"""The hierarchy levels by number: 0 the anchor (the union of the others), 1 occupancy .. 4 floor; also the
+order of the bench's ``exp_<level>`` result columns."""
 LTL, LLM = 0, 1
 """Heuristic kinds of a queue: h_LTL (consistent) and h_LLM (guidance, inadmissible)."""
+_HEURISTIC_NAMES = ("LTL", "LLM")
+
+
+def queue_name(level: int, heuristic: int) -> str:
+    """The name of the queue of ``level`` under ``heuristic``, e.g. ``"LLM/room"`` (``PlanResult.queues``,
+    the bench's result files); :func:`queue_level_name` reads the level back."""
+    return f"{_HEURISTIC_NAMES[heuristic]}/{LEVEL_NAMES[level]}"
+
+
+def queue_level_name(name: str) -> str:
+    """The level of a queue named by :func:`queue_name` (``"LLM/room"`` -> ``"room"``), for result files
+    read back, whose queues may be those of an earlier version's setups."""
+    return name.rsplit("/", 1)[-1]
 
 
 @dataclass(frozen=True)
@@ -41,7 +57,15 @@ class Setup:
 
     @property
     def queue_names(self) -> tuple[str, ...]:
-        return tuple(f"{'LTL' if h == LTL else 'LLM'}/{LEVEL_NAMES[level]}" for level, h in self.queues)
+        return tuple(queue_name(level, h) for level, h in self.queues)
+
+    def expansions_by_level(self, expansions: Sequence[int]) -> dict[str, int]:
+        """Expansions per queue (in :attr:`queues` order) summed by level, every level of
+        :data:`LEVEL_NAMES` present (0 where no queue has it)."""
+        by_level = dict.fromkeys(LEVEL_NAMES, 0)
+        for (level, _), n in zip(self.queues, expansions):
+            by_level[LEVEL_NAMES[level]] += int(n)
+        return by_level
 
 
 # Queue layouts (reference-algorithm.md §7.2), with every (level, LTL) queue merged into the anchor: such a

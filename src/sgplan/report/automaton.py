@@ -131,16 +131,11 @@ def _layers(a: Automaton, shown: np.ndarray) -> dict[int, tuple[int, int]]:
 
 
 def _matplotlib_svg(a: Automaton, names: Mapping[str, str] | None, hide_sinks: bool, numbered: bool) -> str:
+    """The automaton drawn by matplotlib (no Graphviz): states in layers, as SVG text; a one-line note
+    instead when it has more than :data:`MATPLOTLIB_MAX_STATES` states."""
     shown = shown_states(a, hide_sinks)
     if shown.sum() > MATPLOTLIB_MAX_STATES:
-        note = (
-            f"{int(shown.sum())} states, {len(edges(a, hide_sinks))} edges: too large to draw without "
-            "Graphviz (install the graphviz package); the DOT file and the transition table list every edge."
-        )
-        return (
-            '<svg xmlns="http://www.w3.org/2000/svg" width="900" height="40" viewBox="0 0 900 40">'
-            f'<text x="4" y="24" font-size="13">{html.escape(note)}</text></svg>'
-        )
+        return _too_large_svg(int(shown.sum()), len(edges(a, hide_sinks)))
     place = _layers(a, shown)
     columns = max(c for c, _ in place.values()) + 1
     tallest = max(r for _, r in place.values()) + 1
@@ -160,7 +155,35 @@ def _matplotlib_svg(a: Automaton, names: Mapping[str, str] | None, hide_sinks: b
     ax.set_aspect("equal")
     ax.set_axis_off()
     xy = {q: (dx * c, dy * r) for q, (c, r) in place.items()}
-    radius = 0.28
+    _draw_states(ax, a, xy)
+    pairs = {(q, r) for q, r, _ in edges(a, hide_sinks)}
+    for q, r, guard in guards:
+        _draw_edge(ax, xy, q, r, guard, bend_apart=(r, q) in pairs)
+    buffer = io.StringIO()
+    with rc_context({"svg.fonttype": "none"}):  # text stays text: smaller, searchable, selectable
+        fig.savefig(buffer, format="svg", bbox_inches="tight", pad_inches=0.1)  # guards may overhang the axes
+    return buffer.getvalue()
+
+
+def _too_large_svg(states: int, edge_count: int) -> str:
+    """A one-line SVG saying that the automaton is too large to draw without Graphviz."""
+    note = (
+        f"{states} states, {edge_count} edges: too large to draw without "
+        "Graphviz (install the graphviz package); the DOT file and the transition table list every edge."
+    )
+    return (
+        '<svg xmlns="http://www.w3.org/2000/svg" width="900" height="40" viewBox="0 0 900 40">'
+        f'<text x="4" y="24" font-size="13">{html.escape(note)}</text></svg>'
+    )
+
+
+_STATE_RADIUS = 0.28
+"""A state's circle, in the drawing's units (a layer is at least 2 apart)."""
+
+
+def _draw_states(ax: Any, a: Automaton, xy: Mapping[int, tuple[float, float]]) -> None:
+    """Each state a circle (accepting: a double one) with its number; an arrow into the initial one."""
+    radius = _STATE_RADIUS
     for q, (x, y) in xy.items():
         ax.add_patch(Circle((x, y), radius, fc="white", ec="black", lw=1.2, zorder=3))
         if a.accepting[q]:
@@ -168,55 +191,54 @@ def _matplotlib_svg(a: Automaton, names: Mapping[str, str] | None, hide_sinks: b
         ax.text(x, y, str(q), ha="center", va="center", fontsize=10, zorder=4)
     x, y = xy[a.initial]
     ax.add_patch(FancyArrowPatch((x - 0.8, y), (x - radius, y), arrowstyle="-|>", mutation_scale=12))
-    pairs = {(q, r) for q, r, _ in edges(a, hide_sinks)}
-    for q, r, guard in guards:
-        style: dict[str, Any] = {
-            "fontsize": 7,
-            "ha": "center",
-            "va": "center",
-            "multialignment": "left",
-            "zorder": 5,
-            "bbox": {"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.85},
-        }
-        if q == r:  # a loop above the state
-            x, y = xy[q][0], xy[q][1] - radius
-            ax.add_patch(
-                FancyArrowPatch(
-                    (x - 0.12, y),
-                    (x + 0.12, y),
-                    connectionstyle="arc3,rad=-2.2",
-                    arrowstyle="-|>",
-                    mutation_scale=10,
-                    lw=0.9,
-                    zorder=2,
-                )
-            )
-            ax.text(x, y - 0.3, guard, **{**style, "va": "bottom"})
-            continue
-        # Bend edges with a partner the other way, so the two are apart (rad > 0 bends to the right).
-        rad = 0.25 if (r, q) in pairs else 0.12
-        p0, p1 = xy[q], xy[r]
+
+
+def _draw_edge(ax: Any, xy: Mapping[int, tuple[float, float]], q: int, r: int, guard: str, *,
+               bend_apart: bool) -> None:
+    """The edge ``q -> r`` with its guard: a loop above the state, or an arc (bent further when the
+    edge ``r -> q`` is drawn too, so the two are apart) labelled at its midpoint."""
+    style: dict[str, Any] = {
+        "fontsize": 7,
+        "ha": "center",
+        "va": "center",
+        "multialignment": "left",
+        "zorder": 5,
+        "bbox": {"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.85},
+    }
+    if q == r:  # a loop above the state
+        x, y = xy[q][0], xy[q][1] - _STATE_RADIUS
         ax.add_patch(
             FancyArrowPatch(
-                p0,
-                p1,
-                connectionstyle=f"arc3,rad={rad}",
+                (x - 0.12, y),
+                (x + 0.12, y),
+                connectionstyle="arc3,rad=-2.2",
                 arrowstyle="-|>",
-                mutation_scale=11,
+                mutation_scale=10,
                 lw=0.9,
-                shrinkA=14,
-                shrinkB=14,
                 zorder=2,
             )
         )
-        ddx, ddy = p1[0] - p0[0], p1[1] - p0[1]
-        # The arc's midpoint: half way to arc3's control point (display y grows down here: flip the sign).
-        mid_x, mid_y = (p0[0] + p1[0]) / 2 - 0.5 * rad * ddy, (p0[1] + p1[1]) / 2 + 0.5 * rad * ddx
-        ax.text(mid_x, mid_y, guard, **style)
-    buffer = io.StringIO()
-    with rc_context({"svg.fonttype": "none"}):  # text stays text: smaller, searchable, selectable
-        fig.savefig(buffer, format="svg", bbox_inches="tight", pad_inches=0.1)  # guards may overhang the axes
-    return buffer.getvalue()
+        ax.text(x, y - 0.3, guard, **{**style, "va": "bottom"})
+        return
+    rad = 0.25 if bend_apart else 0.12  # rad > 0 bends to the right
+    p0, p1 = xy[q], xy[r]
+    ax.add_patch(
+        FancyArrowPatch(
+            p0,
+            p1,
+            connectionstyle=f"arc3,rad={rad}",
+            arrowstyle="-|>",
+            mutation_scale=11,
+            lw=0.9,
+            shrinkA=14,
+            shrinkB=14,
+            zorder=2,
+        )
+    )
+    ddx, ddy = p1[0] - p0[0], p1[1] - p0[1]
+    # The arc's midpoint: half way to arc3's control point (display y grows down here: flip the sign).
+    mid_x, mid_y = (p0[0] + p1[0]) / 2 - 0.5 * rad * ddy, (p0[1] + p1[1]) / 2 + 0.5 * rad * ddx
+    ax.text(mid_x, mid_y, guard, **style)
 
 
 def write_automaton(

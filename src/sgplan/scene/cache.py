@@ -1,8 +1,8 @@
 """An on-disk cache of what sgplan derives from a scene folder: the loaded building and its occupancy grids.
 
-Loading a Gibson scene parses ~170 KB of YAML and decodes its PNG maps (0.2-0.3 s), and its occupancy
-grid inflates every obstacle (0.1-0.2 s); every CLI call and bench case paid both. Like numba's cache
-of compiled code, entries live in the user's cache folder and are found by a hash of everything they
+Loading a Gibson scene parses its YAML and decodes its PNG maps, and its occupancy grid inflates every
+obstacle; every CLI call and bench case paid both (benchmarks/results/comment_measurements.md). Like numba's
+cache of compiled code, entries live in the user's cache folder and are found by a hash of everything they
 were made from, so a stale entry is never used:
 
 - a building entry is keyed by the scene's ``building.yaml`` (path and bytes) and the source code of the
@@ -112,7 +112,7 @@ def occupancy_grid_cached(
 ) -> OccupancyGrid:
     """``build(building, robot_radius_m)``, from the cache when a grid of this building (exactly as it is
     now, whatever its source) and radius was stored (hashing the building, :func:`content_hash`, costs
-    ~10 ms on a Gibson scene, building its grid 0.1-0.2 s)."""
+    far less than building its grid)."""
     folder = _usable_dir()
     source, building.source = building.source, None  # where it was read from does not change its grid
     try:
@@ -135,8 +135,8 @@ def occupancy_grid_cached(
 def content_hash(obj: object) -> bytes:
     """SHA-256 of ``obj`` as pickled (protocol 5): equal for equal contents, whatever their source. The
     arrays' bytes are hashed where they lie instead of being copied into the pickle first (out-of-band
-    buffers), and SHA-256 runs in hardware on most CPUs: ~10 ms for a Gibson building where
-    blake2b over a full pickle took ~25 ms.
+    buffers), and SHA-256 runs in hardware on most CPUs (faster here than blake2b over a full pickle;
+    benchmarks/results/comment_measurements.md).
 
     Raises
     ------
@@ -262,7 +262,7 @@ def _code(modules: tuple[str, ...]) -> str:
     """A hash of the source of ``modules`` and of the versions the pickles depend on."""
     import numpy
 
-    from sgplan import __version__
+    from sgplan.version import __version__
 
     parts: list[bytes | str] = [__version__, sys.version, numpy.__version__]
     for name in modules:

@@ -1,6 +1,6 @@
 """Binary dilations of small 2-D masks in plain numpy: the reach regions of objects.
 
-scipy.ndimage would do both, but importing it costs every plan ~0.2 s and ~26 MB; these masks are an
+scipy.ndimage would do both, but importing it costs every plan time and memory; these masks are an
 object's bounding box grown by the reach radius (a few thousand cells), where numpy is as fast.
 """
 

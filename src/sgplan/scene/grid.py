@@ -230,7 +230,7 @@ def component_sizes(grid: OccupancyGrid) -> list[np.ndarray]:
 
     Stairs are not followed: this describes each floor on its own.
     """
-    from scipy import ndimage  # ~0.2 s to import: only for this summary, not for planning
+    from scipy import ndimage  # slow to import: only for this summary, not for planning
 
     eight = np.ones((3, 3), dtype=bool)
     sizes = []

@@ -19,7 +19,7 @@ from __future__ import annotations
 import re
 
 from sgplan.errors import SceneError
-from sgplan.scene.model import Building, Room, SceneObject
+from sgplan.scene.model import Building, Room, SceneObject, category_words
 
 _ON_FLOOR = re.compile(r"^(.*?)\s+on\s+floor\s+(\d+)$", re.IGNORECASE)
 _IN_ROOM = re.compile(r"^(.*?)\s+in\s+(?:the\s+)?(.+)$", re.IGNORECASE)
@@ -27,8 +27,8 @@ _KEY = re.compile(r"^(room|object)_(\d+)$")
 
 
 def _category(name: str) -> str:
-    """A category as people write it: lower case, underscores as spaces, no leading article."""
-    text = " ".join(name.replace("_", " ").lower().split())
+    """A category as people write it (:func:`~sgplan.scene.model.category_words`), no leading article."""
+    text = category_words(name)
     return text[4:] if text.startswith("the ") else text
 
 

@@ -33,6 +33,13 @@ Cell = tuple[int, int]
 """A grid cell ``(row, col)`` on one floor."""
 
 
+def category_words(name: str) -> str:
+    """A room's or object's category as people write it: ``dining_room`` -> ``dining room`` (lower case,
+    underscores as spaces, runs of spaces as one). The one spelling every message, say-back and name
+    lookup uses."""
+    return " ".join(name.replace("_", " ").lower().split())
+
+
 class CatCode(enum.IntEnum):
     """Non-object values of a decoded category map (the authors' PNG value minus 5)."""
 

@@ -22,7 +22,7 @@ from sgplan.logic.tokens import action_entity
 from sgplan.scene.model import Building
 
 if TYPE_CHECKING:
-    from sgplan.llm.backends import MissionTranslator
+    from sgplan.llm.protocols import MissionTranslator
 
 Outcome = Literal["right", "refused", "wrong"]
 

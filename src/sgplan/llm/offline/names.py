@@ -12,7 +12,7 @@ from collections.abc import Collection, Iterable
 from dataclasses import dataclass
 
 from sgplan.llm.offline.nouns import Head, Kind, NounLexicon
-from sgplan.scene.model import Building
+from sgplan.scene.model import Building, category_words
 
 
 @dataclass(frozen=True)
@@ -46,11 +46,6 @@ def head_word(entities: list[Entity]) -> str:
     return categories.pop() if len(categories) == 1 else entities[0].kind if entities else "room"
 
 
-def category_name(gibson_name: str) -> str:
-    """``dining_room`` -> ``dining room``; lower case."""
-    return gibson_name.replace("_", " ").strip().lower()
-
-
 class SceneVocabulary:
     """The entities of one building, the head nouns that name them, and the qualifier filters.
 
@@ -66,10 +61,10 @@ class SceneVocabulary:
         entities: list[Entity] = []
         self.adjacent: dict[str, frozenset[str]] = {}
         for room in building.rooms():
-            entities.append(Entity(room.key, "room", category_name(room.name), room.floor, room.key))
+            entities.append(Entity(room.key, "room", category_words(room.name), room.floor, room.key))
             self.adjacent[room.key] = frozenset(f"room_{u}" for u in room.connected_room_uuids)
             for obj in room.objects.values():
-                entities.append(Entity(obj.key, "object", category_name(obj.name), room.floor, room.key))
+                entities.append(Entity(obj.key, "object", category_words(obj.name), room.floor, room.key))
         self.entities = tuple(entities)
         self.by_key = {e.key: e for e in entities}
         self.nouns = NounLexicon({e.category: e.kind for e in reversed(entities)})

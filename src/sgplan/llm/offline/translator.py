@@ -85,7 +85,7 @@ class PatternTranslator:
 
     def starting_on(self, floor: int | None) -> PatternTranslator:
         """The same translator for a robot starting on ``floor`` (``None``: not known), which *upstairs*,
-        *this floor*, *the floor above* are read from (:class:`~sgplan.llm.backends.MissionTranslator`)."""
+        *this floor*, *the floor above* are read from (:class:`~sgplan.llm.protocols.MissionTranslator`)."""
         return PatternTranslator(floor)
 
     def translate(self, text: str, building: Building) -> Translation:

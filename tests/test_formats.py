@@ -1,4 +1,4 @@
-"""load_scene dispatches on what the path is."""
+"""sgplan.formats.load_scene picks the reader by what the path is (sgplan's, the authors', an importer's)."""
 
 from __future__ import annotations
 
@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from sgplan.errors import SceneError
-from sgplan.scene.loading import load_scene
+from sgplan.formats import load_scene
 from sgplan.scene.native import write_native_scene
 
-from .synthetic import assert_same_building, synthetic_scene
+from .scene.synthetic import assert_same_building, synthetic_scene
 
 
 def test_dispatch(tmp_path: Path) -> None:

@@ -1,4 +1,8 @@
-"""One entry point for reading a scene in any supported format: :func:`load_scene`."""
+"""Format dispatch: which reader reads a scene path, :func:`load_scene`.
+
+It sits above both :mod:`sgplan.scene` (sgplan's own formats and the authors') and :mod:`sgplan.importers`
+(other tools' formats, which build on :mod:`sgplan.scene`), so neither of them imports the other's side.
+"""
 
 from __future__ import annotations
 
@@ -41,9 +45,9 @@ def load_scene(path: str | Path) -> Building:
         return load_authors_scene_cached(path)
     if kind == "native" and path.is_dir():
         # Every importer reads a file, never a folder: no need to load them (their rasterising imports
-        # scipy.spatial and with it scipy.linalg, ~0.1-0.3 s, which a bench worker paid per native scene).
+        # scipy.spatial and with it scipy.linalg, which a bench worker would pay per native scene).
         return read_native_scene(path)
-    from sgplan.importers.detect import detect_kind, import_scene  # importers sit above scene/
+    from sgplan.importers.detect import detect_kind, import_scene  # scipy: only for a source to import
 
     source = detect_kind(path)
     if source is not None:

@@ -1,7 +1,7 @@
 """Numba housekeeping for the planner's kernels.
 
 - Whether they are compiled and cached yet, so a front end can say why the first run on a machine is
-  silent for ~15 s (numba compiles the kernels once and caches them on disk). Detection reads numba's
+  silent for a while (numba compiles the kernels once and caches them on disk). Detection reads numba's
   on-disk cache index for every cached kernel of the planner; it uses numba internals, so any surprise
   from them means "unknown" and no notice, never an error.
 - :func:`skip_blas_probe`, for sgplan's own processes only: numba's first kernel load does not import
@@ -75,12 +75,12 @@ def announce_compile() -> bool:
 
 # Numba's registry of array functions (numba.np.arraymath, imported the first time a kernel is compiled or
 # loaded from the cache) probes once whether a BLAS exists by importing scipy.linalg.cython_blas, which
-# imports all of scipy.linalg: 0.1-0.25 s and ~15 MB per process. sgplan's kernels call no BLAS (no np.dot,
-# @, np.linalg, np.correlate or np.convolve), so a process that runs only sgplan's kernels can let the probe
-# fail fast. The answer only decides how numba compiles np.correlate / np.convolve later (a plain loop
-# instead of BLAS); np.dot and np.linalg still import scipy when they are compiled. That is a choice for
-# the process's owner: only sgplan's own entry points (the CLI, the bench worker) make it, never
-# ``import sgplan`` inside a user's program.
+# imports all of scipy.linalg (time and memory per process: benchmarks/results/runtime.md). sgplan's kernels
+# call no BLAS (no np.dot, @, np.linalg, np.correlate or np.convolve), so a process that runs only sgplan's
+# kernels can let the probe fail fast. The answer only decides how numba compiles np.correlate / np.convolve
+# later (a plain loop instead of BLAS); np.dot and np.linalg still import scipy when they are compiled. That
+# is a choice for the process's owner: only sgplan's own entry points (the CLI, the bench worker) make it,
+# never ``import sgplan`` inside a user's program.
 _ARRAYMATH = "numba.np.arraymath"
 _BLAS = "scipy.linalg.cython_blas"
 
@@ -88,8 +88,8 @@ _BLAS = "scipy.linalg.cython_blas"
 class _SkipBlasProbe:
     """One-shot import hook (a meta path finder and loader): runs numba's arraymath module with
     ``sys.modules[_BLAS] = None`` (an import of it then raises ImportError at once, without importing
-    scipy.linalg), then restores sys.modules. (Not derived from importlib.abc: importing that costs
-    ~5 ms of importlib.resources.)"""
+    scipy.linalg), then restores sys.modules. (Not derived from importlib.abc: importing that loads
+    importlib.resources, a cost on every start.)"""
 
     def __init__(self) -> None:
         self._inner: Loader | None = None

@@ -4,10 +4,10 @@ glibc serves allocations from 128 kB up with their own ``mmap`` (returned to the
 raises that threshold to the size of every such block freed (up to 32 MB) and its heap-trim threshold to
 twice that. After the first few freed arrays of a plan (a cell graph's scratch, a distance field's
 buffers), arrays of a few MB come from the heap, and once freed their pages stay resident unless they
-happen to sit at its top: in a Collierville plan ~12-22 MB of RSS at the peak was such freed memory
-(issue 12). A fixed threshold turns that adjustment off, so every freed array of at least
-:data:`MMAP_THRESHOLD_BYTES` is unmapped at once. Values and results are untouched; it costs a page fault
-per 4 kB on each fresh array above the threshold (see :data:`MMAP_THRESHOLD_BYTES`).
+happen to sit at its top, so the peak RSS of a large plan carries such freed memory (issue 12;
+benchmarks/results/runtime.md). A fixed threshold turns that adjustment off, so every freed array of at
+least :data:`MMAP_THRESHOLD_BYTES` is unmapped at once. Values and results are untouched; it costs a page
+fault per 4 kB on each fresh array above the threshold (see :data:`MMAP_THRESHOLD_BYTES`).
 """
 
 from __future__ import annotations
@@ -18,8 +18,8 @@ import platform
 
 MMAP_THRESHOLD_BYTES = 4 << 20
 """Allocations at least this large get their own mapping. 4 MiB (a distance field of 500,000 cells)
-saved as much peak RSS as 1 MiB or 256 kB on Collierville 5 and Benevolence 3, with about as many page
-faults as glibc's default (1 MiB: +70-120 %, as every fresh multi-MB temporary is faulted in again)."""
+saves as much peak RSS as a lower threshold with about as many page faults as glibc's default: a lower
+one faults every fresh multi-MB temporary in again (benchmarks/results/runtime.md)."""
 _M_MMAP_THRESHOLD = -3  # mallopt parameter of glibc's malloc.h
 
 

@@ -1,0 +1,52 @@
+"""Setting up and ending a process that is sgplan's own (the console script, a bench worker), never one
+that merely imports sgplan: the choices here are the process owner's."""
+
+from __future__ import annotations
+
+import atexit
+import contextlib
+import gc
+import os
+import sys
+
+GC_YOUNG_THRESHOLD = 300_000
+"""Net allocations between two runs of the cyclic garbage collector in sgplan's own processes (Python's
+default: 700); see :func:`prepare_own_process`."""
+
+
+def prepare_own_process() -> None:
+    """Set up a process that is sgplan's own.
+
+    - numba skips its BLAS probe (:func:`sgplan.runtime.jit.skip_blas_probe`: no scipy.linalg import).
+    - The cyclic garbage collector runs after :data:`GC_YOUNG_THRESHOLD` net allocations instead of 700.
+      A plan's garbage is almost all acyclic (numpy arrays, containers: freed by reference counting),
+      while numba's registries and the imports create some 10^5-10^6 long-lived objects that every
+      collection walks again, so the default spends much of a short plan re-walking them
+      (benchmarks/results/runtime.md). The collector still runs, so cyclic garbage stays bounded.
+    - glibc returns every large freed array to the system at once
+      (:func:`sgplan.runtime.malloc.return_freed_memory_promptly`).
+    """
+    from sgplan.runtime.jit import skip_blas_probe
+    from sgplan.runtime.malloc import return_freed_memory_promptly
+
+    skip_blas_probe()
+    return_freed_memory_promptly()
+    gc.set_threshold(GC_YOUNG_THRESHOLD, *gc.get_threshold()[1:])
+
+
+def observed() -> bool:
+    """Whether a profiler or tracer (cProfile, coverage, a debugger) runs, which writes its results at the
+    interpreter's normal exit: then the process must end normally, not through :func:`exit_now`."""
+    return sys.getprofile() is not None or sys.gettrace() is not None
+
+
+def exit_now(code: int) -> None:
+    """End the process with ``code`` at once: run the ``atexit`` handlers (logging's flush among them),
+    flush stdout and stderr, then :func:`os._exit`, skipping the teardown of modules and objects (freeing
+    numba's compiled code and every imported module one by one).
+    Only for the end of a process whose outputs are complete (nothing else may be left to run)."""
+    atexit._run_exitfuncs()
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(OSError, ValueError):  # a closed or broken pipe: nothing left to save
+            stream.flush()
+    os._exit(code)

@@ -1,0 +1,54 @@
+"""The layer contract of pyproject.toml (``[tool.importlinter]``) holds for sgplan, and breaks the build
+when a lower layer imports a higher one: the same check ``.ci/run`` makes with ``lint-imports``."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+pytest.importorskip("importlinter", reason="import-linter (the test extra) checks the layers")
+
+
+def _lint_imports(source_root: Path, config: Path) -> subprocess.CompletedProcess[str]:
+    """``lint-imports`` on the sgplan package found first on ``source_root``."""
+    lint_imports = Path(sys.executable).with_name("lint-imports")  # the test extra's console script
+    return subprocess.run(
+        [str(lint_imports), "--no-cache", str(config)], capture_output=True, text=True, timeout=300,
+        env={**os.environ, "PYTHONPATH": str(source_root)}, cwd=source_root,
+    )
+
+
+def test_the_layers_and_the_acyclic_contract_hold() -> None:
+    done = _lint_imports(ROOT / "src", ROOT / "pyproject.toml")
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "Contracts: 2 kept, 0 broken." in done.stdout
+
+
+@pytest.mark.parametrize(
+    ("module", "upward", "said"),
+    [
+        # scene/ reading a format of importers/ (the import this round removed), even lazily
+        ("scene/model.py", "def _later():\n    from sgplan.importers import detect\n",
+         "sgplan.scene is not allowed to import sgplan.importers"),
+        # the bench worker borrowing the CLI's helpers (the 10-file circle this round removed)
+        ("bench/worker.py", "from sgplan.cli import main as _main\n",
+         "sgplan.bench is not allowed to import sgplan.cli"),
+    ],
+)
+def test_an_upward_import_breaks_the_contract(module: str, upward: str, said: str, tmp_path: Path) -> None:
+    shutil.copytree(ROOT / "src" / "sgplan", tmp_path / "sgplan",
+                    ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
+    target = tmp_path / "sgplan" / module
+    target.write_text(target.read_text() + "\n\n" + upward)
+    config = tmp_path / "layers.toml"
+    config.write_text((ROOT / "pyproject.toml").read_text())
+    done = _lint_imports(tmp_path, config)
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert said in done.stdout and "BROKEN" in done.stdout
