@@ -721,11 +721,15 @@ DONE_BACK = ("that", "this", "it", "them", "everything", "there")
 TRIP_NOUNS = frozenset({"trip", "visit", "stop", "detour", "run", "quick", "short", "pass"})
 """``twice, with a trip / visit / stop to Y in between``: words naming the visit to Y."""
 BETWEEN_TAIL = Phrases((("them",), ("the", "two"), ("the", "two", "visits"), ("each", "visit"), ("visits",)))
-AFTERWARDS = Phrases((("afterwards",), ("afterward",), ("after", "that"), ("after",), ("later",),
-                      ("straight", "after"), ("right", "after")))
-"""In the consequent of a condition ("..., visit Y afterwards"): Y follows X, a response."""
-TRAILING_AFTER = ("after", "afterwards", "afterward", "later")
-"""``..., go to the dining room after.``: at the end of a clause, after what was said before it."""
+AFTERWARDS = Phrases((("afterwards",), ("afterward",), ("after", "that"), ("after", "it"), ("after",),
+                      ("later",), ("straight", "after"), ("right", "after")))
+"""In the consequent of a condition ("..., visit Y afterwards"): Y follows that visit of X."""
+TRAILING_AFTER = Phrases((("after",), ("afterwards",), ("afterward",), ("later",), ("after", "that"),
+                          ("after", "it"), ("after", "this")))
+"""``..., go to the dining room after / after that.``: at the end of a clause, after what was said before it
+(*after it* there is the step before, not the place just named)."""
+AFTER_THAT = Phrases((("after", "that"), ("after", "it"), ("after", "this")))
+"""*after that / it / this*: after the step before, never a place named *it*."""
 AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over", "again", ","})
 """After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
 
@@ -810,10 +814,7 @@ WHENEVER = Phrases((("whenever",), ("every", "time"), ("each", "time"), ("any", 
 ONLY_AFTER = Phrases((("only", "after"), ("only", "once"), ("not", "before"), ("not", "until")))
 EVER = Phrases((("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"),
                 ("every", "time"), ("each", "time"), ("anytime",)))
-"""In a condition ("if you ever go into X"): it is about each visit of X, a response, not one event."""
-AT_THAT_PLACE = Phrases((("there",), ("in", "it"), ("on", "it")))
-"""In the consequent of such a condition ("..., look at the chair in there"): at the place of the condition,
-which leaves open whether once or on each visit."""
+"""In a condition ("if you ever go into X"): nothing more than *if* (each visit is *whenever*)."""
 CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "while", "without", "when", "if",
                            "once", "whenever", "unless"})
 """Words that would continue a condition past its one action (a comma or *then* ends it)."""

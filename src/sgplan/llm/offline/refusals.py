@@ -511,13 +511,8 @@ def whenever_goals_only() -> str:
 
 
 def response_needs_one() -> str:
-    return rephrase("'if you ever go to X, ... afterwards' is understood with one room or object (or a "
+    return rephrase("'when you go to X, ... afterwards' is understood with one room or object (or a "
                     "choice of them) as X")
-
-
-def once_or_each_visit(said: str) -> str:
-    return rephrase(f"'{said}' can mean once or on each visit (with 'ever' / 'at any point' and 'there'); "
-                    "say 'every time you go into X, ...' or 'if you go into X, ... afterwards'")
 
 
 def before_then(said: str) -> str:

@@ -74,7 +74,7 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
             said_body.node, PlainSentence) and not said_body.node.body.items:
         return Refusal(rf.order_without_goal(r.quote(0, len(r))))  # "Last: the office" is not set aside
     if (precedes is None and not lead.node.sequence and isinstance(said_body.node, PlainSentence)
-            and r.word(len(r) - 1) in lx.TRAILING_AFTER):
+            and (r.trailing_after(len(r) - 1) or r.trailing_after(len(r) - 2))):
         lead = Match(Link(True), lead.end)  # "Go to the office. Visit the kitchen afterwards.": as "Then ..."
     rest = link(r, said_body.end, sequence_too=False)
     if not isinstance(rest, Match):
@@ -169,7 +169,7 @@ def only_after_first(r: Reader, i: int) -> Parse[SentenceBody]:
 @OPENINGS.rule("after X, Y")
 def after_first(r: Reader, i: int) -> Parse[SentenceBody]:
     """*After / once X, Y*: X, then Y."""
-    if r.word(i) not in ("after", "once") or r.at(i, "after", "that"):
+    if r.word(i) not in ("after", "once") or r.phrase(i, lx.AFTER_THAT):
         return None
     return prefixed(r, i + 1, prefix_last=False)
 
@@ -310,19 +310,13 @@ def condition_rule(r: Reader, i: int) -> Parse[Rule]:
 
 def make_rule(r: Reader, i: int, said: Match[Action], consequent: Body, after_start: int,
               after_end: int) -> Rule | Refusal:
-    """The rule at ``i`` with condition ``said`` and ``consequent``; an *if* rule is a response when its
-    condition says *ever*, and its consequent follows the condition when the words ``[after_start,
-    after_end)`` say *afterwards*. *If you ever go into X, look at Y in there* is refused: once, or on
-    each visit of X?"""
+    """The rule at ``i`` with condition ``said`` and ``consequent``; the consequent follows the condition
+    when the words ``[after_start, after_end)`` say *afterwards*."""
     word = r.phrase(i, lx.CONDITION_WORDS)
     if r.phrase(i, lx.WHENEVER) is not None or word is None:
         return WheneverRule(said.node, consequent)
-    start = i + len(word)
-    response = r.says(lx.EVER, start, said.end)
     afterwards = r.says(lx.AFTERWARDS, after_start, after_end)
-    if response and not afterwards and r.says(lx.AT_THAT_PLACE, after_start, after_end):
-        return Refusal(rf.once_or_each_visit(r.quote(min(i, after_start), max(said.end, after_end))))
-    return IfRule(" ".join(word), said.node, consequent, response, afterwards)
+    return IfRule(" ".join(word), said.node, consequent, afterwards)
 
 
 def trigger(r: Reader, i: int) -> Parse[Action]:
@@ -334,8 +328,8 @@ def trigger(r: Reader, i: int) -> Parse[Action]:
 
 
 def condition(r: Reader, i: int) -> Parse[Action]:
-    """The condition of *if you go to the kitchen*: one action (*if you ever ...* is kept for the response
-    reading); more (*... and open the fridge*, *... after the office*) is refused."""
+    """The condition of *if you go to the kitchen*: one action (*ever* / *at any point* skipped: *if* is
+    about one visit); more (*... and open the fridge*, *... after the office*) is refused."""
     ever = r.phrase(i, lx.EVER)
     k = skip_subject(r, i + (len(ever) if ever else 0))
     if r.word(k) in lx.NEGATING:
