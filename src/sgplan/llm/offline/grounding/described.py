@@ -50,6 +50,8 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
         noun = APPLIERS(qualifier, noun, np, where, disc)
         guessed = noun.guessed or guessed
     mode: Mode = np.determiner.mode or "the"
+    if any(isinstance(q, InRoom) and q.choice for q in np.qualifiers):
+        mode = "any"  # "the chair in the living room or the dining room": one of either room
     core = core_text(np, disc)
     if np.determiner.pointer is not None:
         noun, mode = demonstrative(np, noun, mode, core, where, disc)

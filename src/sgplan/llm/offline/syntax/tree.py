@@ -247,10 +247,12 @@ class OnFloor:
 @dataclass(frozen=True)
 class InRoom:
     """*in / of / inside the kitchen* after an object: the objects in that room; after a phrase about each of
-    several objects, *in the office and the kitchen*: those of both rooms."""
+    several objects, *in the office and the kitchen*: those of both rooms; ``choice``: *in A or B*, one
+    object of either room."""
 
     rooms: tuple[NounPhrase, ...]
     span: Span
+    choice: bool = False
 
 
 @dataclass(frozen=True)
