@@ -815,6 +815,9 @@ ONLY_AFTER = Phrases((("only", "after"), ("only", "once"), ("not", "before"), ("
 EVER = Phrases((("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"),
                 ("every", "time"), ("each", "time"), ("anytime",)))
 """In a condition ("if you ever go into X"): nothing more than *if* (each visit is *whenever*)."""
+ALSO_AFTER = ("too", "also", "as well")
+"""After *that X* in a step at another room (*go to the office and water that plant too*): another X, the
+one of that room."""
 CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "while", "without", "when", "if",
                            "once", "whenever", "unless"})
 """Words that would continue a condition past its one action (a comma or *then* ends it)."""

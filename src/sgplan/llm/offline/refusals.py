@@ -629,6 +629,11 @@ def demonstrative_of_nothing(said: str, what: str) -> str:
                     f"'that' / 'this' / 'the same' names again something already said); name the {what}")
 
 
+def demonstrative_or_step_room(said: str, antecedent: str, room: str, here: str) -> str:
+    return rephrase(f"'{said}' after going to {room}: the one named before ('{antecedent}') or the one "
+                    f"there ({here})? say 'the same {said.split()[-1]}' or name it with its room")
+
+
 # ---------------------------------------------------------------------------------------------- floors
 def floor_outside(said: str, building: str, floors: int) -> str:
     return rephrase(f"'{said}': the building {building!r} has floors 0 to {floors - 1} (floor 0 is the "
