@@ -815,6 +815,8 @@ ONLY_AFTER = Phrases((("only", "after"), ("only", "once"), ("not", "before"), ("
 EVER = Phrases((("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"),
                 ("every", "time"), ("each", "time"), ("anytime",)))
 """In a condition ("if you ever go into X"): nothing more than *if* (each visit is *whenever*)."""
+OBLIGED = Phrases((("must",), ("have", "to"), ("has", "to"), ("need", "to"), ("needs", "to")))
+"""*Before you enter Y, you must X*: an obligation, so Y is not entered before X (not only X, then Y)."""
 ALSO_AFTER = ("too", "also", "as well")
 """After *that X* in a step at another room (*go to the office and water that plant too*): another X, the
 one of that room."""

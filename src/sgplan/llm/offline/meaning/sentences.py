@@ -84,9 +84,13 @@ def only_after_first(sentence: OnlyAfterSentence, ctx: SentenceContext) -> Meani
 
 @reads(PrefixedSentence)
 def prefixed(sentence: PrefixedSentence, ctx: SentenceContext) -> Meaning:
-    """*After X, Y* (X first) / *Before Y, X* and *On your way to Y, X* (Y last)."""
+    """*After X, Y* (X first) / *Before Y, X* and *On your way to Y, X* (Y last); *before Y, you must X*:
+    Y, and not before X (``!Y U X``); Y is the step a following *then* comes after."""
     prefix = steps_of(sentence.prefix, ctx).steps
     body = read_body(sentence.body, ctx)
+    if sentence.strict:
+        strict = only_after(body, Clause(steps=prefix), ctx)
+        return postfix(Clause(steps=prefix, constraints=[strict]), sentence.postfix, ctx)
     if sentence.prefix_last:
         body.steps.extend(moved(prefix))
     else:

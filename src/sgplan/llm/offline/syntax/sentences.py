@@ -9,6 +9,7 @@ dropped (:func:`mission_sentence`).
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
 from typing import Any
 
 from sgplan.llm.offline import lexicon as lx
@@ -185,17 +186,21 @@ def on_the_way_first(r: Reader, i: int) -> Parse[SentenceBody]:
 
 @OPENINGS.rule("before Y, X")
 def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
-    """*Before going to Y, X*: X, then Y. Not *before Y, A, then B* (does B come before Y too?), nor *before
-    you go (anywhere) near Y, X* (stay out of Y until X, or go there after X?)."""
+    """*Before going to Y, X*: X, then Y; *before you enter Y, you must / have to / need to X*: Y, and not
+    before X. Not *before Y, A, then B* (does B come before Y too?), nor *before you go (anywhere) near Y, X*
+    (stay out of Y until X, or go there after X?)."""
     if r.word(i) != "before":
         return None
     end = next((k for k in range(i, len(r)) if r.word(k) == ","), len(r))
     if any(r.word(k) == "into" and "near" in r.quote(k, k + 1).lower() for k in range(i, end)):
         return Refusal(rf.before_near(r.quote(i, end)))  # "go near", "anywhere near" are read as "into"
     said = prefixed(r, i + 1, prefix_last=True)
-    if r.word(i + 1) != "to" and isinstance(said, Match) and isinstance(said.node, PrefixedSentence) and any(
-            isinstance(item, Link) and item.sequence for item in said.node.body.items):
+    if not isinstance(said, Match) or not isinstance(said.node, PrefixedSentence):
+        return said
+    if r.word(i + 1) != "to" and any(isinstance(item, Link) and item.sequence for item in said.node.body.items):
         return Refusal(rf.before_then(r.quote(i, said.end)))
+    if r.says(lx.OBLIGED, i + 1, said.end):
+        return Match(replace(said.node, strict=True), said.end)  # "before you enter Y, you must go to X"
     return said
 
 

@@ -565,12 +565,14 @@ class OnlyAfterSentence:
 @dataclass(frozen=True)
 class PrefixedSentence:
     """*After X, Y* / *Once X, Y* / *When done with X, Y* (``before`` False), *Before Y, X* / *On your way to
-    Y, X* (``before`` True: the prefix comes last)."""
+    Y, X* (``before`` True: the prefix comes last); ``strict``: *before Y, you must X*: Y, and not before
+    X."""
 
     prefix: Action
     prefix_last: bool
     body: Body
     postfix: Postfix
+    strict: bool = False
 
 
 @dataclass(frozen=True)
