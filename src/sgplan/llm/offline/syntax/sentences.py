@@ -197,7 +197,8 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
     said = prefixed(r, i + 1, prefix_last=True)
     if not isinstance(said, Match) or not isinstance(said.node, PrefixedSentence):
         return said
-    if r.word(i + 1) != "to" and any(isinstance(item, Link) and item.sequence for item in said.node.body.items):
+    items = said.node.body.items
+    if r.word(i + 1) != "to" and any(isinstance(item, Link) and item.sequence for item in items):
         return Refusal(rf.before_then(r.quote(i, said.end)))
     if r.says(lx.OBLIGED, i + 1, said.end):
         return Match(replace(said.node, strict=True), said.end)  # "before you enter Y, you must go to X"
