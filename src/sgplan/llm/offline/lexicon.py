@@ -694,6 +694,8 @@ ORDER_HEADS = frozenset({"first", "firstly", "then", "next", "finally", "last", 
 stood there, never dropped as a heading."""
 BEFORE_THAT = ("before", "that")
 ON_THE_WAY = Phrases((("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way")))
+WAY_TOWARDS = frozenset({"up", "down", "over", "out"})
+"""*on your way up to X*: the way to X all the same."""
 WAY_BACK = frozenset({"back", "up", "down", "out", "home"})
 """``on your way back (up)``: after what came before, like *then*."""
 ON_THE_WAY_ENDS = ("", ",", "there", "and", "then", "but")

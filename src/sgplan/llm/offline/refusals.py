@@ -375,6 +375,11 @@ def precedes_which(said: str) -> str:
                     "in the order they must be done (with 'then')")
 
 
+def follows_nothing(said: str) -> str:
+    return rephrase(f"'{said}' says it comes after the sentence before, which has no goals to follow (a "
+                    "condition or a prohibition); say the order within one sentence ('A, then B')")
+
+
 def precedes_needs_goals() -> str:
     return rephrase("'before that' / 'first' in a later sentence needs a plain list of goals in this "
                     "sentence and the one before it")

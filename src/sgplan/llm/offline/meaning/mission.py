@@ -101,6 +101,8 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
     if (isinstance(result, Clause) and not any(result.steps) and not result.constraints and previous
             and sentence.says_order and len(previous.filled()) > 1):
         rf.refuse(rf.order_after_ordered_goals())
+    if continues and parts and previous is None:  # after a rule or a constraint: the order would be lost
+        rf.refuse(rf.follows_nothing(disc.said(sentence.span.start, sentence.span.end)))
     if precedes:
         if previous is None or not isinstance(result, Clause):
             rf.refuse(rf.precedes_needs_goals())

@@ -33,9 +33,11 @@ from sgplan.llm.offline.syntax.tree import (
     OnlyAfterPost,
     OnlyAfterSentence,
     OnlyIfPost,
+    PlainAction,
     PlainSentence,
     Postfix,
     PrefixedSentence,
+    Pronoun,
     RelativeFloor,
     Rule,
     RuleSentence,
@@ -75,7 +77,8 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
             said_body.node, PlainSentence) and not said_body.node.body.items:
         return Refusal(rf.order_without_goal(r.quote(0, len(r))))  # "Last: the office" is not set aside
     if (precedes is None and not lead.node.sequence and isinstance(said_body.node, PlainSentence)
-            and (r.trailing_after(len(r) - 1) or r.trailing_after(len(r) - 2))):
+            and (r.trailing_after(len(r) - 1) or r.trailing_after(len(r) - 2)
+                 or carries_it(said_body.node.body))):
         lead = Match(Link(True), lead.end)  # "Go to the office. Visit the kitchen afterwards.": as "Then ..."
     rest = link(r, said_body.end, sequence_too=False)
     if not isinstance(rest, Match):
@@ -84,6 +87,15 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
         return Refusal(rf.left_over(r.quote(rest.end, len(r))))
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
                                  r.span(0, len(r)), r.announced, r.after_item, floor), len(r))
+
+
+def carries_it(said: Body) -> bool:
+    """Whether ``said`` starts by carrying what was named before (*Bring it to the table.*, a list item
+    *bring them to the kitchen*): it was taken in the sentence before, so the destination follows it."""
+    first = said.items[0] if said.items else None
+    return (isinstance(first, PlainAction) and first.action.phrases is not None
+            and bool(set(first.action.verbs.words) & lx.CARRY_VERBS)
+            and all(isinstance(p, Pronoun) for p in first.action.phrases.items))
 
 
 def floor_opening(r: Reader, i: int) -> tuple[FloorSpec | None, int]:
@@ -177,11 +189,12 @@ def after_first(r: Reader, i: int) -> Parse[SentenceBody]:
 
 @OPENINGS.rule("on your way to Y, X")
 def on_the_way_first(r: Reader, i: int) -> Parse[SentenceBody]:
-    """*On your way to the lobby, check the couch*: the couch, then the lobby."""
+    """*On your way (up / down / over) to the lobby, check the couch*: the couch, then the lobby."""
     way = r.phrase(i, lx.ON_THE_WAY)
-    if way is None or r.word(i + len(way)) not in ("to", "into") or not r.np_starts(i + len(way) + 1):
+    j = i + len(way or ()) + (r.word(i + len(way or ())) in lx.WAY_TOWARDS)
+    if way is None or r.word(j) not in ("to", "into") or not r.np_starts(j + 1):
         return None
-    return prefixed(r, i + len(way), prefix_last=True)
+    return prefixed(r, j, prefix_last=True)
 
 
 @OPENINGS.rule("before Y, X")
