@@ -927,6 +927,11 @@ SEQUENCE_TIMES = ("later", "soon", "now")
 """Time words that alone order the steps (*Later, go to X*) rather than say when."""
 NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")}
 STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
+REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "i"), ("so", "we"), ("so", "that"),
+                   *(("to", *check, whether) for check in (("see",), ("check",), ("find", "out"))
+                     for whether in (("if",), ("whether",))), ("to", "make", "sure"), ("to", "test")))
+"""A reason for an order, set aside to its clause's end (*... because the coffee's in there*, *... so I know
+you made it*, *... to see if the paint's dry*): it asks nothing."""
 ORDER_JOINERS = ("so", "but")
 """Before an order, a clause boundary even without a comma (*my son is asleep so don't go up there*)."""
 LOCATIVE = word_set("in into on onto at inside under beside near by behind")
