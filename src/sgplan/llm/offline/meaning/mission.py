@@ -181,9 +181,9 @@ def stated_start(start: StatedStart, disc: Discourse) -> None:
 
 def taken_back(readers: list[Reader]) -> str | None:
     """The words with which the speaker takes back something said before them (:data:`.lexicon.CORRECTIONS`),
-    or ``None``."""
+    or ``None``; those read as replacing a phrase (:mod:`.syntax.corrections`) are set aside."""
     for n, r in enumerate(readers):
-        for k in range(len(r)):
+        for k in range(len(r) if not r.aside else 0):
             said = r.phrase(k, lx.CORRECTIONS)
             if said is not None and (n or k):
                 return r.quote(k, k + len(said))
