@@ -47,12 +47,21 @@ def test_quiet_verbose_and_debug_go_before_or_after_the_command(
 def test_the_compile_notice_is_said_when_kernels_are_cold(monkeypatch: pytest.MonkeyPatch,
                                                           capsys: pytest.CaptureFixture[str]) -> None:
     assert jit.kernels_cached() in (True, False, None)
+    monkeypatch.setattr(jit, "_seen_cached", False)
     monkeypatch.setattr(jit, "kernels_cached", lambda: False)
     assert main(["plan", "--scene", "demo", *FORMULA]) == 0
     assert jit.NOTICE in capsys.readouterr().err
     monkeypatch.setattr(jit, "kernels_cached", lambda: True)
     assert main(["plan", "--scene", "demo", *FORMULA]) == 0
     assert jit.NOTICE not in capsys.readouterr().err
+
+
+def test_the_kernel_cache_is_read_until_it_is_found_cached(monkeypatch: pytest.MonkeyPatch) -> None:
+    probes: list[bool | None] = [None, True, False]
+    monkeypatch.setattr(jit, "_seen_cached", False)
+    monkeypatch.setattr(jit, "kernels_cached", lambda: probes.pop(0))
+    assert [jit.announce_compile() for _ in range(3)] == [False, False, False]
+    assert probes == [False]  # "unknown" probes again, "cached" ends the probing for this process
 
 
 def test_plan_takes_the_llm_options_and_names_in_any_case(capsys: pytest.CaptureFixture[str]) -> None:

@@ -202,6 +202,22 @@ def test_waypoints_are_metric_and_in_rooms() -> None:
     assert record == dataclasses.asdict(w) and all(type(v) in (int, float, str) for v in record.values())
 
 
+def test_every_waypoint_is_its_cell_centre_room_and_cost_exactly() -> None:
+    """The columns computed at once equal, bit for bit, the per-cell definitions: the grid's cell centre,
+    the floor's ground height, the room holding the cell, the cost of the legs so far."""
+    r = demo_result()
+    assert r.path is not None and r.grid is not None and r.building is not None
+    rooms = {room.id: room for room in r.building.rooms()}
+    costs = np.concatenate([[0.0], np.cumsum(leg_costs(r.path, r.grid))]).tolist()
+    for k, (w, (row, col, floor, q)) in enumerate(zip(r.waypoints, r.path.tolist(), strict=True)):
+        x_m, y_m, _ = r.grid.cell_xyz(floor, (row, col))
+        room = rooms.get(int(r.grid.room_map[floor, row, col]))
+        expected = (k, x_m, y_m, r.building.floors[floor].ground_z_m, floor, row, col,
+                    room.key if room else None, room.name if room else None, q, costs[k])
+        assert dataclasses.astuple(w) == expected
+        assert [type(v) for v in dataclasses.astuple(w)] == [type(v) for v in expected]
+
+
 def test_events_say_where_each_proposition_became_true_and_the_automaton_moved() -> None:
     r = demo_result()
     props = [e for e in r.events if e.kind == "proposition"]

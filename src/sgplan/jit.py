@@ -54,11 +54,22 @@ def kernels_cached() -> bool | None:
         return None
 
 
+_seen_cached = False
+"""Whether :func:`announce_compile` found the kernels cached in this process already: once they are, they
+stay so (a process does not change its own sources), so later plans skip reading numba's index files."""
+
+
 def announce_compile() -> bool:
-    """Log :data:`NOTICE` (level INFO) when the kernels are known not to be cached; returns whether it did."""
-    if kernels_cached() is False:
+    """Log :data:`NOTICE` (level INFO) when the kernels are known not to be cached; returns whether it did.
+    Once they were found cached, later calls in this process return False at once."""
+    global _seen_cached
+    if _seen_cached:
+        return False
+    cached = kernels_cached()
+    if cached is False:
         log.info(NOTICE)
         return True
+    _seen_cached = cached is True
     return False
 
 

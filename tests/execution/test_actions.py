@@ -7,7 +7,7 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from sgplan.errors import PlanningError
@@ -54,6 +54,8 @@ def _agree(kept, fresh):
 
 @settings(max_examples=20, deadline=None)
 @given(st.integers(0, 2**32 - 1), st.sampled_from([0.0, 0.15]))
+@example(204, 0.0)  # a desk removed beside a plant moved there: the plant is visible from more cells
+@example(36, 0.0)
 def test_kept_action_maps_equal_fresh_ones_after_any_sequence_of_changes(seed, radius):
     rng = np.random.default_rng(seed)
     state = SceneState.of(house(robot_radius_m=radius))

@@ -4,13 +4,17 @@ rooms the mission forbids."""
 
 from __future__ import annotations
 
+import dataclasses
 import re
 from functools import cache
 
+import numpy as np
 import pytest
 
 import sgplan
 from sgplan.errors import PlanningError, UnsatisfiableMissionError
+from sgplan.explain.causes import component_of, components_without, start_component
+from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
 from tests import shared_data
 
@@ -86,3 +90,45 @@ def test_the_benevolence_utility_room_names_its_causes() -> None:
             "0.1 m; it has no door to any other room; the way in lets a robot of radius up to") in str(error)
     largest = _largest_said(str(error))
     assert sgplan.plan(building, mission, robot_radius_m=largest).status == "optimal"
+
+
+def _flood(grid: OccupancyGrid, start: tuple[int, int, int], allowed: np.ndarray) -> np.ndarray:
+    """The oracle: a breadth-first flood over 8-neighbours and stairs links."""
+    area = np.zeros_like(allowed)
+    row, col, floor = start
+    area[floor, row, col] = True
+    if not allowed[floor, row, col]:
+        return area
+    stairs = {}
+    for link in grid.stairs:
+        lower, upper = (link.lower_floor, *link.lower_cell), (link.upper_floor, *link.upper_cell)
+        stairs[lower], stairs[upper] = upper, lower
+    todo = [(floor, row, col)]
+    while todo:
+        f, r, c = todo.pop()
+        steps = [(f, r + dr, c + dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1)]
+        for g, s, t in [*steps, *([stairs[(f, r, c)]] if (f, r, c) in stairs else [])]:
+            if (0 <= s < allowed.shape[1] and 0 <= t < allowed.shape[2] and allowed[g, s, t]
+                    and not area[g, s, t]):
+                area[g, s, t] = True
+                todo.append((g, s, t))
+    return area
+
+
+def test_the_start_component_without_rooms_is_the_flood_and_kept_per_grid_and_rooms() -> None:
+    building = sgplan.load_scene("demo")
+    grid = sgplan.Session(building).grid()
+    kitchen, stairs_room = (building.rooms_named(name)[0].id for name in ("kitchen", "staircase"))
+    starts = [tuple(int(v) for v in np.argwhere(grid.traversable[f])[k]) + (f,)
+              for f in range(grid.shape[0]) for k in (0, 500, 2000)]
+    for rooms in ([], [kitchen], [stairs_room, kitchen]):
+        allowed = grid.traversable & ~np.isin(grid.room_map, rooms)
+        components = components_without(grid, rooms)
+        for start in starts:
+            expected = _flood(grid, start, allowed)  # type: ignore[arg-type]
+            assert np.array_equal(component_of(components, start), expected)  # type: ignore[arg-type]
+            assert np.array_equal(start_component(grid, start, allowed), expected)  # type: ignore[arg-type]
+    assert components_without(grid, [kitchen]) is components_without(grid, [kitchen, kitchen])
+    assert components_without(grid, [kitchen]) is not components_without(grid, [stairs_room])
+    other = dataclasses.replace(grid, traversable=grid.traversable.copy())
+    assert components_without(other, [kitchen]) is not components_without(grid, [kitchen])

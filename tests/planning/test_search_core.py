@@ -40,13 +40,17 @@ def _plan_or_none(problem: PlanningProblem, setup: str, **kw):
         return None
 
 
-def test_page_table_hands_out_one_slot_per_touched_state_block() -> None:
-    num_q, cells = 7, 5000
+def _empty_records(num_q: int, cells: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """A page table, a pool with a slot for every (state, block), its float view, and the counters."""
     blocks = -(-cells // core.PAGE)
     ptab = np.full((num_q, blocks), -1, dtype=np.int32)
     pool = np.zeros(num_q * blocks * core.PAGE * core.REC, dtype=np.int64)
-    poolf = pool.view(np.float64)
-    iscal = np.array([-1, 1, 0, 0, 0, 0, 0], dtype=np.int64)
+    return ptab, pool, pool.view(np.float64), np.array([-1, 1, 0, 0, 0, 0, 0], dtype=np.int64)
+
+
+def test_page_table_hands_out_one_slot_per_touched_state_block() -> None:
+    num_q, cells = 7, 5000
+    ptab, pool, poolf, iscal = _empty_records(num_q, cells)
     rng = np.random.default_rng(3)
     written: dict[tuple[int, int], float] = {}
     for c, q in zip(rng.integers(cells, size=300), rng.integers(num_q, size=300)):
@@ -284,3 +288,22 @@ def test_a_pool_the_system_will_not_map_falls_back_to_a_smaller_one(monkeypatch)
     monkeypatch.setattr(search_memory, "sparse_zeros", refuse)
     with pytest.raises(MemoryError):
         search_memory.pool_buffer(1000)
+
+
+def test_the_parent_chain_is_the_walk_of_the_records_from_the_goal() -> None:
+    num_q, cells = 3, 3000
+    ptab, pool, poolf, iscal = _empty_records(num_q, cells)
+    qb = core.q_bits(num_q)
+    rng = np.random.default_rng(5)
+    picked = zip(rng.permutation(cells)[:200], rng.integers(num_q, size=200))
+    walk = [(int(c) << qb) | int(q) for c, q in picked]
+    for k, s in enumerate(walk):  # the start has no parent; each later state's parent is the one before
+        r = core.rec_touch(ptab, iscal, s >> qb, s & ((1 << qb) - 1))
+        poolf[r] = float(k)
+        if k:
+            pool[r + 1] = core.with_parent(pool[r + 1], walk[k - 1], 7 + k % 3)
+    states, actions = core.parent_chain(ptab, pool, poolf, walk[-1], len(walk) + 1)
+    expected = [-1] + [7 + k % 3 for k in range(1, len(walk))]
+    assert states.tolist() == walk and actions.tolist() == expected
+    states, actions = core.parent_chain(ptab, pool, poolf, walk[-1], 50)  # more states than allowed
+    assert len(states) == len(actions) == 0

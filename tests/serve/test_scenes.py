@@ -17,9 +17,20 @@ def test_sessions_are_lent_one_plan_at_a_time() -> None:
             pass
     with host.planner(wait_s=0.01) as again:  # given back
         assert again in (first, second)
+    with host.planner() as one:
+        pass
+    for _ in range(3):  # one plan at a time: always the session used last, whose planner parts are warm
+        with host.planner() as next_one:
+            assert next_one is one
+    assert host.sessions[0] is host.session and len(set(map(id, host.sessions))) == 2
 
 
 def test_a_building_is_served_once() -> None:
     building = sgplan.load_scene("demo")
     with pytest.raises(ServeError, match="two scenes are called 'demo-house'"):
         SceneRegistry([SceneHost(building), SceneHost(building)])
+
+
+def test_every_planner_session_is_warm_from_the_start() -> None:
+    host = SceneRegistry.load(["demo"], planners=2)["demo"]
+    assert [session.builds["grid"] for session in host.sessions] == [1, 1]

@@ -9,9 +9,10 @@ reach (the map stops once it has settled them). So after a change :class:`RunAct
 
 - the **tables** -- every family over the run's whole numbering (:mod:`sgplan.execution.graph`), its
   targets including those masked now (the map's Dijkstra leaves out the targets off the graph), so a
-  closed door or a block never adds or removes a family and every index stays; a moved or removed object
-  gets its family's targets and room anew in place; only an added object appends a family (and starts
-  the maps afresh: their arrays have a row per family);
+  closed door or a block never adds or removes a family and every index stays; a moved or removed object,
+  and every object of a room where cells left or joined the graph (what an object is visible from may
+  have changed), gets its family's targets and room anew in place; only an added object appends a family
+  (and starts the maps afresh: their arrays have a row per family);
 - the **maps** of every family whose room (floor) holds no cell that left or joined the graph, none of
   whose targets did, whose object did not move, and whose room the robot cannot reach more of than when
   the map stopped (a map that stopped later than it needs to is still exact);
@@ -102,8 +103,11 @@ class RunActions:
         maps and label runs they may have altered (see the module)."""
         if self.tables is None:
             return
-        self._objects |= set(objects)
         touched = self._families_touching(moved)
+        # A cell that left or joined the graph can change what an object of its room is visible from
+        # (the visible reach model): those objects' targets are made anew too, not only the moved ones'.
+        self._objects |= set(objects) | {f.action.entity for f, hit in zip(self.tables.families, touched)
+                                         if hit and f.action.kind == MAP_OBJECT}
         for k, family in enumerate(self.tables.families):
             if family.action.kind == MAP_OBJECT and family.action.entity in self._objects:
                 touched[k] = True

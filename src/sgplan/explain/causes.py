@@ -9,6 +9,8 @@ already failed: a few grid builds, a fraction of a second on a Gibson scene.
 
 from __future__ import annotations
 
+import threading
+from collections import OrderedDict
 from collections.abc import Callable, Sequence
 
 import numpy as np
@@ -23,13 +25,26 @@ RADIUS_STEP_M = 0.005
 
 def start_component(grid: OccupancyGrid, start: tuple[int, int, int], allowed: np.ndarray) -> np.ndarray:
     """``allowed`` cells connected to ``start`` by 8-connected moves and stairs links (bool raster)."""
-    from scipy import ndimage  # ~0.3 s to import: only when a start's reach is in question
+    return component_of(connected_components(grid, allowed), start)
 
+
+def component_of(components: np.ndarray, start: tuple[int, int, int]) -> np.ndarray:
+    """The cells of ``start``'s component in a :func:`connected_components` raster (bool raster; only
+    ``start`` itself when it lies outside every component)."""
     row, col, floor = start
-    if not allowed[floor, row, col]:
-        area = np.zeros_like(allowed)
+    target = components[floor, row, col]
+    if target == 0:
+        area = np.zeros(components.shape, dtype=bool)
         area[floor, row, col] = True
         return area
+    return components == target
+
+
+def connected_components(grid: OccupancyGrid, allowed: np.ndarray) -> np.ndarray:
+    """``(floors, rows, cols)`` int64: 0 outside ``allowed``, else an id shared by exactly the ``allowed``
+    cells connected by 8-connected moves and ``grid``'s stairs links."""
+    from scipy import ndimage  # ~0.3 s to import: only when a start's reach is in question
+
     parts, offset = [], 0
     for f in range(allowed.shape[0]):
         lab, count = ndimage.label(allowed[f], structure=np.ones((3, 3), bool))
@@ -48,9 +63,35 @@ def start_component(grid: OccupancyGrid, start: tuple[int, int, int], allowed: n
         b = int(parts[link.upper_floor][link.upper_cell])
         if a and b:
             component[root(a)] = root(b)
-    target = root(int(parts[floor][row, col]))
     roots = np.array([root(i) for i in range(offset + 1)])
-    return np.stack([(p > 0) & (roots[p] == target) for p in parts])
+    return np.stack([roots[p] for p in parts])
+
+
+_KEPT_COMPONENTS = 8
+"""How many :func:`components_without` rasters are kept (the last used): a served scene's missions avoid
+a few room sets, each raster one int per cell of the grid."""
+_components_kept: OrderedDict[tuple[int, tuple[int, ...]], tuple[OccupancyGrid, np.ndarray]] = OrderedDict()
+_components_lock = threading.Lock()
+
+
+def components_without(grid: OccupancyGrid, room_ids: Sequence[int]) -> np.ndarray:
+    """:func:`connected_components` of ``grid``'s traversable cells outside the rooms ``room_ids``, kept
+    for the last few (grid, rooms) asked: a warm service's checks of one mission from many starts label
+    the grid once. Keyed by the grid object itself (a grid is never changed once built) and the room set."""
+    key = (id(grid), tuple(sorted(set(room_ids))))
+    with _components_lock:
+        kept = _components_kept.get(key)
+        if kept is not None and kept[0] is grid:
+            _components_kept.move_to_end(key)
+            return kept[1]
+    components = connected_components(grid, grid.traversable & ~np.isin(grid.room_map, key[1]))
+    components.flags.writeable = False  # shared between callers
+    with _components_lock:
+        _components_kept[key] = (grid, components)
+        _components_kept.move_to_end(key)
+        while len(_components_kept) > _KEPT_COMPONENTS:
+            _components_kept.popitem(last=False)
+    return components
 
 
 def _largest_radius(

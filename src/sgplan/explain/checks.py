@@ -34,8 +34,9 @@ import numpy as np
 
 from sgplan.errors import PlanningError, SgplanError, UnsatisfiableMissionError
 from sgplan.explain.causes import (
+    component_of,
+    components_without,
     missing_from_start,
-    start_component,
     why_no_free_cell,
     why_unreachable,
 )
@@ -353,8 +354,7 @@ class _Context:
         room_ids = [self.building.room(uuid=self.mission.propositions[aps[i]].uuid).id for i in forbidden]
 
         def reachable_labels(blocked_ids: list[int]) -> np.ndarray:
-            allowed = self.grid.traversable & ~np.isin(self.grid.room_map, blocked_ids)
-            area = start_component(self.grid, start, allowed)
+            area = component_of(components_without(self.grid, blocked_ids), start)
             return occurring_labels(self.labels, area, self.mission.automaton.num_labels)
 
         def live_on(labels: np.ndarray) -> bool:

@@ -34,10 +34,14 @@ class SceneHost:
         self.building = building
         self.session = Session(building, max_shared_bytes=max_shared_bytes)
         """The say-back's and the runs' session (runs plan on parts of their own), and the first planner."""
-        self._free: queue.Queue[Session] = queue.Queue()
-        self._free.put(self.session)
-        for _ in range(planners - 1):
-            self._free.put(Session(building, max_shared_bytes=max_shared_bytes))
+        # Last in, first out: a lone client's plans all go to the session it warmed last (the planner's
+        # parts of its missions kept there), not round the sessions; concurrent plans take the others.
+        self._free: queue.LifoQueue[Session] = queue.LifoQueue()
+        self.sessions = (self.session, *(Session(building, max_shared_bytes=max_shared_bytes)
+                                         for _ in range(planners - 1)))
+        """Every planner session, the first one first."""
+        for session in reversed(self.sessions):  # the first is lent first
+            self._free.put(session)
 
     @contextmanager
     def planner(self, wait_s: float | None = None) -> Iterator[Session]:
@@ -157,9 +161,8 @@ class SceneRegistry:
         hosts, aliases = [], {}
         for spec in specs:
             host = SceneHost(load_scene(spec, data), planners=planners)
-            for _ in range(planners):
-                with host.planner() as session:
-                    session.grid()
+            for session in host.sessions:
+                session.grid()
             hosts.append(host)
             aliases[str(spec)] = host.name
         return cls(hosts, aliases)
