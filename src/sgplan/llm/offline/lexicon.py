@@ -816,7 +816,7 @@ WHENEVER = Phrases((("whenever",), ("every", "time"), ("each", "time"), ("any", 
 ONLY_AFTER = Phrases((("only", "after"), ("only", "once"), ("not", "before"), ("not", "until")))
 EVER = Phrases((("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"),
                 ("every", "time"), ("each", "time"), ("anytime",)))
-"""In a condition ("if you ever go into X"): nothing more than *if* (each visit is *whenever*)."""
+"""In a condition ("if you ever go into X"): once or on each visit? Writers read it both ways: refused."""
 OBLIGED = Phrases((("must",), ("have", "to"), ("has", "to"), ("need", "to"), ("needs", "to")))
 """*Before you enter Y, you must X*: an obligation, so Y is not entered before X (not only X, then Y)."""
 ALSO_AFTER = ("too", "also", "as well")
@@ -927,7 +927,8 @@ SEQUENCE_TIMES = ("later", "soon", "now")
 """Time words that alone order the steps (*Later, go to X*) rather than say when."""
 NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")}
 STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
-REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "i"), ("so", "we"), ("so", "that"),
+REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"),
+                   *(("so", who, what) for who in ("i", "we") for what in ("know", "can", "see")),
                    *(("to", *check, whether) for check in (("see",), ("check",), ("find", "out"))
                      for whether in (("if",), ("whether",))), ("to", "make", "sure"), ("to", "test")))
 """A reason for an order, set aside to its clause's end (*... because the coffee's in there*, *... so I know

@@ -376,8 +376,8 @@ def precedes_which(said: str) -> str:
 
 
 def follows_nothing(said: str) -> str:
-    return rephrase(f"'{said}' says it comes after the sentence before, which has no goals to follow (a "
-                    "condition or a prohibition); say the order within one sentence ('A, then B')")
+    return rephrase(f"'{said}' says it comes after the sentence before, which has no goals to follow (only "
+                    "conditions or prohibitions); say the order within one sentence ('A, then B')")
 
 
 def precedes_needs_goals() -> str:
@@ -518,6 +518,11 @@ def whenever_goals_only() -> str:
 def response_needs_one() -> str:
     return rephrase("'when you go to X, ... afterwards' is understood with one room or object (or a "
                     "choice of them) as X")
+
+
+def once_or_each_visit(said: str) -> str:
+    return rephrase(f"'{said}' is read by some as once and by others as on each visit; say 'every time you "
+                    "go into X, ...' (each visit) or 'if you go into X, ... afterwards' (after that visit)")
 
 
 def before_then(said: str) -> str:

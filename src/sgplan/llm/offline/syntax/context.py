@@ -81,12 +81,14 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
 def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
     """The reason a clause gives for its order (*... because the coffee's in there*, *... so I know you made
     it*, *... to make sure they're sturdy*): from the reason word to the clause's end or its next *then*;
-    ``None`` when there is none, or when it says what not to do (left to the parser)."""
+    ``None`` when there is none, or when it says what not to do or asks something (*because I need you to
+    ...*: left to the parser)."""
     k = next((k for k in range(start, end) if r.phrase(k, lx.REASONS)), None)
     if k is None:
         return None
     stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
-    if any(r.phrase(j, lx.NEG_STARTS) for j in range(k, stop)):
+    said = range(k + len(r.phrase(k, lx.REASONS) or ()), stop)
+    if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) for j in said):
         return None
     return k, stop
 

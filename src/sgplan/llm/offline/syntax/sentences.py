@@ -330,10 +330,13 @@ def condition_rule(r: Reader, i: int) -> Parse[Rule]:
 def make_rule(r: Reader, i: int, said: Match[Action], consequent: Body, after_start: int,
               after_end: int) -> Rule | Refusal:
     """The rule at ``i`` with condition ``said`` and ``consequent``; the consequent follows the condition
-    when the words ``[after_start, after_end)`` say *afterwards*."""
+    when the words ``[after_start, after_end)`` say *afterwards*. *If you ever / at any point go into X, Y*
+    is refused: people read it as once and as on each visit of X alike."""
     word = r.phrase(i, lx.CONDITION_WORDS)
     if r.phrase(i, lx.WHENEVER) is not None or word is None:
         return WheneverRule(said.node, consequent)
+    if r.says(lx.EVER, i + len(word), said.end):
+        return Refusal(rf.once_or_each_visit(r.quote(i, said.end)))
     afterwards = r.says(lx.AFTERWARDS, after_start, after_end)
     return IfRule(" ".join(word), said.node, consequent, afterwards)
 
@@ -347,8 +350,8 @@ def trigger(r: Reader, i: int) -> Parse[Action]:
 
 
 def condition(r: Reader, i: int) -> Parse[Action]:
-    """The condition of *if you go to the kitchen*: one action (*ever* / *at any point* skipped: *if* is
-    about one visit); more (*... and open the fridge*, *... after the office*) is refused."""
+    """The condition of *if you go to the kitchen*: one action (*ever* skipped here, refused by
+    :func:`make_rule`); more (*... and open the fridge*, *... after the office*) is refused."""
     ever = r.phrase(i, lx.EVER)
     k = skip_subject(r, i + (len(ever) if ever else 0))
     if r.word(k) in lx.NEGATING:

@@ -523,9 +523,9 @@ class WheneverRule:
 
 @dataclass(frozen=True)
 class IfRule:
-    """*if X, Y* / *Y if X* (``word``: *if*, *when*, *in case*), said of one visit of X even with *ever* / *at
-    any point* (each visit is *whenever* / *every time*); ``afterwards``: Y is said to follow X (*if you go
-    into X, check Y afterwards*: after that visit of X)."""
+    """*if X, Y* / *Y if X* (``word``: *if*, *when*, *in case*), said of one visit of X (each visit is
+    *whenever* / *every time*); ``afterwards``: Y is said to follow X (*if you go into X, check Y
+    afterwards*: after that visit of X)."""
 
     word: str
     condition: Action
