@@ -694,6 +694,8 @@ ORDER_HEADS = frozenset({"first", "firstly", "then", "next", "finally", "last", 
 stood there, never dropped as a heading."""
 BEFORE_THAT = ("before", "that")
 ON_THE_WAY = Phrases((("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way")))
+WAY_TOWARDS = frozenset({"up", "down", "over", "out"})
+"""*on your way up to X*: the way to X all the same."""
 WAY_BACK = frozenset({"back", "up", "down", "out", "home"})
 """``on your way back (up)``: after what came before, like *then*."""
 ON_THE_WAY_ENDS = ("", ",", "there", "and", "then", "but")
@@ -721,11 +723,15 @@ DONE_BACK = ("that", "this", "it", "them", "everything", "there")
 TRIP_NOUNS = frozenset({"trip", "visit", "stop", "detour", "run", "quick", "short", "pass"})
 """``twice, with a trip / visit / stop to Y in between``: words naming the visit to Y."""
 BETWEEN_TAIL = Phrases((("them",), ("the", "two"), ("the", "two", "visits"), ("each", "visit"), ("visits",)))
-AFTERWARDS = Phrases((("afterwards",), ("afterward",), ("after", "that"), ("after",), ("later",),
-                      ("straight", "after"), ("right", "after")))
-"""In the consequent of a condition ("..., visit Y afterwards"): Y follows X, a response."""
-TRAILING_AFTER = ("after", "afterwards", "afterward", "later")
-"""``..., go to the dining room after.``: at the end of a clause, after what was said before it."""
+AFTERWARDS = Phrases((("afterwards",), ("afterward",), ("after", "that"), ("after", "it"), ("after",),
+                      ("later",), ("straight", "after"), ("right", "after")))
+"""In the consequent of a condition ("..., visit Y afterwards"): Y follows that visit of X."""
+TRAILING_AFTER = Phrases((("after",), ("afterwards",), ("afterward",), ("later",), ("after", "that"),
+                          ("after", "it"), ("after", "this")))
+"""``..., go to the dining room after / after that.``: at the end of a clause, after what was said before it
+(*after it* there is the step before, not the place just named)."""
+AFTER_THAT = Phrases((("after", "that"), ("after", "it"), ("after", "this")))
+"""*after that / it / this*: after the step before, never a place named *it*."""
 AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over", "again", ","})
 """After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
 
@@ -810,10 +816,12 @@ WHENEVER = Phrases((("whenever",), ("every", "time"), ("each", "time"), ("any", 
 ONLY_AFTER = Phrases((("only", "after"), ("only", "once"), ("not", "before"), ("not", "until")))
 EVER = Phrases((("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"),
                 ("every", "time"), ("each", "time"), ("anytime",)))
-"""In a condition ("if you ever go into X"): it is about each visit of X, a response, not one event."""
-AT_THAT_PLACE = Phrases((("there",), ("in", "it"), ("on", "it")))
-"""In the consequent of such a condition ("..., look at the chair in there"): at the place of the condition,
-which leaves open whether once or on each visit."""
+"""In a condition ("if you ever go into X"): once or on each visit? Writers read it both ways: refused."""
+OBLIGED = Phrases((("must",), ("have", "to"), ("has", "to"), ("need", "to"), ("needs", "to")))
+"""*Before you enter Y, you must X*: an obligation, so Y is not entered before X (not only X, then Y)."""
+ALSO_AFTER = ("too", "also", "as well")
+"""After *that X* in a step at another room (*go to the office and water that plant too*): another X, the
+one of that room."""
 CONDITION_END = frozenset({"after", "before", "and", "or", "until", "but", "while", "without", "when", "if",
                            "once", "whenever", "unless"})
 """Words that would continue a condition past its one action (a comma or *then* ends it)."""
@@ -919,6 +927,12 @@ SEQUENCE_TIMES = ("later", "soon", "now")
 """Time words that alone order the steps (*Later, go to X*) rather than say when."""
 NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")}
 STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
+REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"),
+                   *(("so", who, what) for who in ("i", "we") for what in ("know", "can", "see")),
+                   *(("to", *check, whether) for check in (("see",), ("check",), ("find", "out"))
+                     for whether in (("if",), ("whether",))), ("to", "make", "sure"), ("to", "test")))
+"""A reason for an order, set aside to its clause's end (*... because the coffee's in there*, *... so I know
+you made it*, *... to see if the paint's dry*): it asks nothing."""
 ORDER_JOINERS = ("so", "but")
 """Before an order, a clause boundary even without a comma (*my son is asleep so don't go up there*)."""
 LOCATIVE = word_set("in into on onto at inside under beside near by behind")

@@ -375,6 +375,11 @@ def precedes_which(said: str) -> str:
                     "in the order they must be done (with 'then')")
 
 
+def follows_nothing(said: str) -> str:
+    return rephrase(f"'{said}' says it comes after the sentence before, which has no goals to follow (only "
+                    "conditions or prohibitions); say the order within one sentence ('A, then B')")
+
+
 def precedes_needs_goals() -> str:
     return rephrase("'before that' / 'first' in a later sentence needs a plain list of goals in this "
                     "sentence and the one before it")
@@ -511,13 +516,13 @@ def whenever_goals_only() -> str:
 
 
 def response_needs_one() -> str:
-    return rephrase("'if you ever go to X, ... afterwards' is understood with one room or object (or a "
+    return rephrase("'when you go to X, ... afterwards' is understood with one room or object (or a "
                     "choice of them) as X")
 
 
 def once_or_each_visit(said: str) -> str:
-    return rephrase(f"'{said}' can mean once or on each visit (with 'ever' / 'at any point' and 'there'); "
-                    "say 'every time you go into X, ...' or 'if you go into X, ... afterwards'")
+    return rephrase(f"'{said}' is read by some as once and by others as on each visit; say 'every time you "
+                    "go into X, ...' (each visit) or 'if you go into X, ... afterwards' (after that visit)")
 
 
 def before_then(said: str) -> str:
@@ -632,6 +637,11 @@ def demonstrative_of_one(said: str, phrase: str, key: str) -> str:
 def demonstrative_of_nothing(said: str, what: str) -> str:
     return rephrase(f"'{said}' does not refer back to any {what} named before it (a demonstrative such as "
                     f"'that' / 'this' / 'the same' names again something already said); name the {what}")
+
+
+def demonstrative_or_step_room(said: str, antecedent: str, room: str, here: str) -> str:
+    return rephrase(f"'{said}' after going to {room}: the one named before ('{antecedent}') or the one "
+                    f"there ({here})? say 'the same {said.split()[-1]}' or name it with its room")
 
 
 # ---------------------------------------------------------------------------------------------- floors

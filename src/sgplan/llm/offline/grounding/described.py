@@ -50,6 +50,8 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
         noun = APPLIERS(qualifier, noun, np, where, disc)
         guessed = noun.guessed or guessed
     mode: Mode = np.determiner.mode or "the"
+    if any(isinstance(q, InRoom) and q.choice for q in np.qualifiers):
+        mode = "any"  # "the chair in the living room or the dining room": one of either room
     core = core_text(np, disc)
     if np.determiner.pointer is not None:
         noun, mode = demonstrative(np, noun, mode, core, where, disc)
@@ -121,7 +123,27 @@ def demonstrative(np: Described, noun: Noun, mode: Mode, said: str, where: Where
         rf.refuse(got)
     if det.count is not None and len(got.entities) != det.count:
         rf.refuse(rf.demonstrative_size(said, got.antecedent, len(got.entities), det.count))
+    if (here := of_the_step_room(np, noun, got, said, where, disc)) is not None:
+        return Noun(noun.head, here, True), "the"
     return Noun(noun.head, got.entities, noun.room_scoped or got.room_scoped), det.quantified or got.mode
+
+
+def of_the_step_room(np: Described, noun: Noun, got: backref.Resolved, said: str, where: Where,
+                     disc: Discourse) -> list[Entity] | None:
+    """*go to the office and water that plant too*: the plant of the office, the room of the step, not the
+    one named before (which is elsewhere); without *too* / *also* / *as well* either is meant, so it is
+    refused. None when the step names no room, its room holds no such object, or the one pointed back to
+    is in it."""
+    rooms = (*where.scope, *where.soft_scope) if where.role == "goal" and noun.head.kind == "object" else ()
+    here = disc.vocab.inside(noun.entities, rooms)
+    if not here or disc.vocab.inside(got.entities, rooms) or np.determiner.pointer != "that":
+        return None
+    after = disc.said(np.span.end, len(disc.text)).lower().lstrip(" ,")
+    if len(here) == 1 and after.startswith(lx.ALSO_AFTER):
+        return here
+    room = " or ".join(f"the {r.category} ({r.key})" for r in rooms)
+    rf.refuse(rf.demonstrative_or_step_room(said, got.antecedent, room, ", ".join(e.key for e in here)))
+    return None
 
 
 def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc: Discourse) -> Noun:

@@ -13,7 +13,7 @@ from typing import Any
 
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.meaning.actions import steps_of
-from sgplan.llm.offline.meaning.compose import Clause, Step, moved
+from sgplan.llm.offline.meaning.compose import Clause, Step, Task, moved
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.negations import negation, off_limits, stay_on_floor
 from sgplan.llm.offline.meaning.order import check_restriction_target
@@ -166,8 +166,11 @@ def plain_action(item: PlainAction, clause: Clause, ctx: SentenceContext) -> Non
         ctx.waypoint_pending = False
         insert_on_the_way(clause, steps, ctx)
         return
-    check_revisits(steps[0], ctx.prior_steps + clause.steps[:-1], ctx)
     trailing = "first" if done.first_left else item.trailing
+    again = any(t.revisit for t in steps[0]) and trailing is None and not item.action.last
+    if (item.goes_back or again) and clause.steps[-1]:
+        clause.steps.append([])  # "go to the kitchen and come back to the couch", "B and A again": after it
+    check_revisits(steps[0], ctx.prior_steps + clause.steps[:-1], ctx)
     if trailing is not None:
         ordered_first(trailing, item, steps, clause, ctx)
     elif item.action.last:  # "... and the office last": after everything else said
@@ -176,8 +179,6 @@ def plain_action(item: PlainAction, clause: Clause, ctx: SentenceContext) -> Non
         clause.steps[-1].extend(steps[0])
         clause.steps.extend([*steps[1:], []])
     else:
-        if item.goes_back and clause.steps[-1]:
-            clause.steps.append([])  # "go to the kitchen and come back to the couch": after it
         clause.steps[-1].extend(steps[0])
         clause.steps.extend(steps[1:])
 
@@ -215,10 +216,17 @@ def insert_on_the_way(clause: Clause, steps: list[Step], ctx: SentenceContext) -
 
 def check_revisits(step: Step, earlier: list[Step], ctx: SentenceContext) -> None:
     """A new visit (*again*, *go back to*, *return to*) must follow an earlier step of the same sequence
-    that went there; otherwise nothing orders the two visits and the mission would be misread."""
-    done = [m for s in earlier for t in s for m in t.members]
-    tasks = [t for s in earlier for t in s]
+    that went there; otherwise nothing orders the two visits and the mission would be misread. When another
+    goal lies between the two visits (*A, then B, then A again*), that goal separates them, as *then* does
+    anywhere (``F(A & F(B & F A))``); only a visit right after the last (*A, then A again*) must leave
+    first."""
+    def went(tasks: list[Task], task: Task) -> bool:
+        done = [m for t in tasks for m in t.members]
+        return all(m in done or any(ctx.task_is_in(t, m) for t in tasks) for m in task.members)
+
+    filled = [s for s in earlier if s]
     for task in step:
-        if task.revisit and not all(m in done or any(ctx.task_is_in(t, m) for t in tasks)
-                                    for m in task.members):
+        if task.revisit and not went([t for s in filled for t in s], task):
             rf.refuse(rf.revisit_without_first_visit())
+        if task.revisit and not went(filled[-1], task):
+            task.revisit = False  # the goal in between separates the two visits

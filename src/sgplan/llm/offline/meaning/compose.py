@@ -12,8 +12,9 @@ rest of the sequence happens after it"; the rest then happens after the last of 
 "do all of these, then ..." means (``F(a & F c) & F(b & F c)`` holds iff ``c`` follows both ``a`` and
 ``b``). ``avoid`` are the local negations of the task ("visit the bathroom and avoid the sink" ->
 ``F(enter(bathroom) & !reach(sink))``, the convention of the authors' missions). A ``revisit`` task
-("... then the kitchen again", "twice") is a new visit: the robot is somewhere else first,
-``F(!m & F(m & avoid & R))``, so it cannot be satisfied by staying where the previous step ended.
+("twice", "... then the kitchen again" right after the kitchen) is a new visit: the robot is somewhere
+else first, ``F(!m & F(m & avoid & R))``, so it cannot be satisfied by staying where the previous step
+ended (with another goal in between, that goal separates the visits: not a ``revisit``).
 """
 
 from __future__ import annotations

@@ -1,6 +1,7 @@
 """From condition rules to formulas: *whenever X, Y* is the response ``G(X -> F Y)``; *if X, Y* is
-``F X -> Y``, or the response when it speaks of every visit of X (*if you ever ...*, *... afterwards*); a
-bare *when X, Y* is refused (after X? whenever X? if X?).
+``F X -> Y`` (*if* is said of one visit, each visit is *whenever* / *every time*; *if you ever / at any
+point ...* is refused by the parser: read both ways); *when X, Y afterwards* is the response; a bare *when
+X, Y* is refused (after X? whenever X? if X?).
 
 A condition is one action that happened at some time during the path; its consequent is one action, and
 goals only (a prohibition scoped to *whenever* is not expressible this way, so it is refused).
@@ -63,11 +64,10 @@ def whenever(trigger: Task, body: Clause) -> Formula:
 
 
 def conditional(rule: IfRule, condition: Formula, tasks: list[Task], body: Clause) -> Formula:
-    """*if X, Y*: ``F X -> Y``; *if X, Y afterwards*: ``F X -> F(X & F Y)`` (Y after that visit of X).
-    When the condition says *ever* / *at any point* (or *when X, Y afterwards*), people mean a response to
-    each visit of X, as with *whenever*; that needs one place as X (else it is refused). A bare *when X, Y*
-    may mean either, or a plain sequence, so it is refused."""
-    if rule.response or (rule.word == "when" and rule.afterwards):
+    """*if X, Y*: ``F X -> Y``; *if X, Y afterwards*: ``F X -> F(X & F Y)`` (Y after that visit of
+    X). *When X, Y afterwards* is a response to each visit of X, as with *whenever*; that needs one place as
+    X (else it is refused). A bare *when X, Y* may mean either, or a plain sequence, so it is refused."""
+    if rule.word == "when" and rule.afterwards:
         if len(tasks) != 1:
             rf.refuse(rf.response_needs_one())
         return whenever(tasks[0], body)

@@ -101,6 +101,8 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
     if (isinstance(result, Clause) and not any(result.steps) and not result.constraints and previous
             and sentence.says_order and len(previous.filled()) > 1):
         rf.refuse(rf.order_after_ordered_goals())
+    if continues and parts and previous is None:  # after a rule or a constraint: the order would be lost
+        rf.refuse(rf.follows_nothing(disc.said(sentence.span.start, sentence.span.end)))
     if precedes:
         if previous is None or not isinstance(result, Clause):
             rf.refuse(rf.precedes_needs_goals())
@@ -179,9 +181,9 @@ def stated_start(start: StatedStart, disc: Discourse) -> None:
 
 def taken_back(readers: list[Reader]) -> str | None:
     """The words with which the speaker takes back something said before them (:data:`.lexicon.CORRECTIONS`),
-    or ``None``."""
+    or ``None``; those read as replacing a phrase (:mod:`.syntax.corrections`) are set aside."""
     for n, r in enumerate(readers):
-        for k in range(len(r)):
+        for k in range(len(r) if not r.aside else 0):
             said = r.phrase(k, lx.CORRECTIONS)
             if said is not None and (n or k):
                 return r.quote(k, k + len(said))

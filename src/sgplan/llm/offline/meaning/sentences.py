@@ -71,7 +71,8 @@ def until_first(sentence: UntilSentence, ctx: SentenceContext) -> Meaning:
 
 @reads(OnlyAfterSentence)
 def only_after_first(sentence: OnlyAfterSentence, ctx: SentenceContext) -> Meaning:
-    """*Only after X, Y* / *only <do Y> after X*: Y, and not before X; and the rules joined to it."""
+    """*Only after X, Y* / *only <do Y> after X*: Y, and not before X; and the rules joined to it. Without
+    rules, Y is the step a following *then* comes after."""
     if sentence.said_first:
         before = Clause(steps=steps_of(sentence.before, ctx).steps)
         body = read_body(sentence.body, ctx)
@@ -79,14 +80,20 @@ def only_after_first(sentence: OnlyAfterSentence, ctx: SentenceContext) -> Meani
         body = read_body(sentence.body, ctx)
         before = Clause(steps=steps_of(sentence.before, ctx).steps)
     first = only_after(before, body, ctx)
+    if not sentence.rules:
+        return Clause(steps=body.steps, constraints=[first])
     return conj([first, *(rule_formula(rule, ctx) for rule in sentence.rules)])
 
 
 @reads(PrefixedSentence)
 def prefixed(sentence: PrefixedSentence, ctx: SentenceContext) -> Meaning:
-    """*After X, Y* (X first) / *Before Y, X* and *On your way to Y, X* (Y last)."""
+    """*After X, Y* (X first) / *Before Y, X* and *On your way to Y, X* (Y last); *before Y, you must X*:
+    Y, and not before X (``!Y U X``); Y is the step a following *then* comes after."""
     prefix = steps_of(sentence.prefix, ctx).steps
     body = read_body(sentence.body, ctx)
+    if sentence.strict:
+        strict = only_after(body, Clause(steps=prefix), ctx)
+        return postfix(Clause(steps=prefix, constraints=[strict]), sentence.postfix, ctx)
     if sentence.prefix_last:
         body.steps.extend(moved(prefix))
     else:

@@ -24,6 +24,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import NounLexicon
 from sgplan.llm.offline.spelling import Spelling
 from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement
+from sgplan.llm.offline.syntax.corrections import corrected
 from sgplan.llm.offline.syntax.lists import read_lists
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
@@ -58,7 +59,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
             if cut and statement(r, 0, cut - 1) is None:
                 r = replace(r, toks=r.toks[cut:])  # "Okay, go to ..." ("I'm hungry, ..." is said back)
             content = True
-        out.append(r)
+        out += corrected(r)  # "go to the kitchen, no wait, the dining room": the dining room
     return set_aside_context(out)
 
 

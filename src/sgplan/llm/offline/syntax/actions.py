@@ -318,7 +318,7 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
             return Refusal(rf.cannot_understand(r.rest(i)))
     i += 1 if r.word(i) == "there" else 0  # "look at the TV there": where the step is
     filler = r.phrase(i, lx.TIME_FILLERS)
-    if filler and not (filler[0] in lx.TRAILING_AFTER and r.word(i + len(filler)) in ("", ",")):
+    if filler and not r.trailing_after(i):
         i += len(filler)  # not "... the office later": that says an order (.body.trailing_after)
     return Match(replace(node, span=Span(node.span.start, r.toks[i - 1].end)), i)
 

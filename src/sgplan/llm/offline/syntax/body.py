@@ -153,14 +153,15 @@ def trailing_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemPars
     """*Go to the dining room after.*: nothing more in the body (a sentence that ends so follows the one
     before it, :func:`.sentences.mission_sentence`). After two goals of the body (*the office and the
     kitchen afterwards*, *A, then B after*) it could be about the last or all of them: refused."""
-    if r.word(i) not in lx.TRAILING_AFTER or r.word(i + 1) not in ("", ","):
+    length = r.trailing_after(i)
+    if not length:
         return None
     actions = [item for item in before if isinstance(item, PlainAction)]
     phrases = actions[-1].action.phrases if actions else None
     then_said = len(before) > 1 and isinstance(before[-2], Link) and before[-2].sequence  # "then B after"
     if (len(actions) > 1 and not then_said) or (phrases is not None and len(phrases.items) > 1):
-        return Refusal(rf.trailing_after(r.quote(0, i + 1)))
-    return Match(Skip(), i + 1)
+        return Refusal(rf.trailing_after(r.quote(0, i + length)))
+    return Match(Skip(), i + length)
 
 
 @ITEMS.rule("but first")
@@ -225,7 +226,7 @@ def negation_item(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse
 @ITEMS.rule("after X")
 def inline_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """*... after / once X*: X before the step it is said in."""
-    if r.word(i) not in ("after", "once") or r.at(i, "after", "that"):
+    if r.word(i) not in ("after", "once") or r.phrase(i, lx.AFTER_THAT):
         return None
     found = after_conjunction(r, i + 1)
     return Match(InlineAfter(found.node), found.end) if isinstance(found, Match) else found

@@ -51,7 +51,8 @@ def split(r: Reader) -> list[Reader]:
         return [aside(r, 0, len(r))]
     kept = [aside(r, clauses[0][0], clauses[first - 1][1])] if first else []
     start = skip_joiner(r, clauses[first][0]) if first else 0
-    middle = [c for c in clauses[first:last] if is_time(r, *c)]  # "check the laptop before dinner, then ..."
+    # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
+    middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c)]
     words = [k for k in range(start, clauses[last - 1][1]) if not any(a <= k < b for a, b in middle)]
     kept += [replace(r, toks=tuple(r.toks[k] for k in words))] + [aside(r, a, b) for a, b in middle]
     if last < len(clauses):
@@ -71,8 +72,30 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
     out: list[tuple[int, int]] = []
     for start, end in zip(starts, ends):
         tail = time_tail(r, start, end)
-        out += [(start, tail), (tail, end)] if tail is not None else [(start, end)]
+        reason = reason_span(r, start, end) if tail is None else None
+        out += ([(start, tail), (tail, end)] if tail is not None
+                else [(start, reason[0]), reason, (reason[1], end)] if reason is not None else [(start, end)])
     return [(a, b) for a, b in out if b > a]
+
+
+def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
+    """The reason a clause gives for its order (*... because the coffee's in there*, *... so I know you made
+    it*, *... to make sure they're sturdy*): from the reason word to the clause's end or its next *then*;
+    ``None`` when there is none, or when it says what not to do or asks something (*because I need you to
+    ...*: left to the parser)."""
+    k = next((k for k in range(start, end) if r.phrase(k, lx.REASONS)), None)
+    if k is None:
+        return None
+    stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
+    said = range(k + len(r.phrase(k, lx.REASONS) or ()), stop)
+    if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) for j in said):
+        return None
+    return k, stop
+
+
+def is_reason(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` is a reason (:func:`reason_span`) from its first word."""
+    return reason_span(r, start, end) == (start, end)
 
 
 def starts_order(r: Reader, k: int) -> bool:
@@ -97,7 +120,7 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
     """Whether the clause ``[start, end)`` only gives context: a time (opening or closing the sentence), or a
     statement that is not a need about the scene (see the module docstring)."""
     return (is_time(r, start, end) or statement(r, skip_joiner(r, start), end) == "aside"
-            or event_note(r, start, end))
+            or event_note(r, start, end) or is_reason(r, start, end))
 
 
 def event_note(r: Reader, start: int, end: int) -> bool:

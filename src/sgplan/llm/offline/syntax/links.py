@@ -62,17 +62,21 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
 def on_the_way(r: Reader, i: int, way: tuple[str, ...],
                sequence_too: bool) -> tuple[str, int] | Refusal | None:
     """*On the way (there), stop at X* (X before the goal named last), *on your way back (up)* (after what
-    came before, like *then*); *on your way there* with nothing on the way is refused."""
+    came before, like *then*), not *on your way up to Y* (a destination: a sentence opener); *on your way
+    there* with nothing on the way is refused."""
     n = len(way) + (1 if r.word(i + len(way)) == "there" else 0)
     after = r.word(i + n)
     verb = after in lx.POSITIVE_VERBS and after not in lx.WAY_BACK | {"to", "into"}
     if sequence_too and (after == "," or verb):
         return "waypoint", i + n
-    if (sequence_too and n == len(way) and after in ("to", "into") and r.np_starts(i + n + 1)
+    to = i + n + (after in lx.WAY_TOWARDS and r.word(i + n + 1) in ("to", "into"))  # "on your way up to"
+    if (sequence_too and n == len(way) and r.word(to) in ("to", "into") and r.np_starts(to + 1)
             and r.word(i - 1) not in ("", ",", "and", "then")):
-        return "sequence", i + n  # "swing by X on your way to the kitchen": X, then the kitchen
+        return "sequence", to  # "swing by X on your way (up) to the kitchen": X, then the kitchen
     if r.word(i + len(way)) == "there":
         return Refusal(rf.on_your_way_there())
+    if to > i + n and r.np_starts(to + 1):
+        return None  # "On your way up to X, grab Y": Y, then X (.sentences.on_the_way_first)
     if sequence_too and r.word(i + len(way)) in lx.WAY_BACK:
         return "sequence", r.skip(i + len(way), lx.WAY_BACK)
     return None

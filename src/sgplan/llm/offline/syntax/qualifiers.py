@@ -253,22 +253,33 @@ def whole_building(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skip
 @QUALIFIERS.rule("in a room")
 def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*the sink in / of / inside the kitchen*: the objects in that room; *every plant in the office and
-    the kitchen*, *all the vases in A and B*: those of each room (a phrase about each of several objects)."""
+    the kitchen*, *all the vases in A and B*: those of each room (a phrase about each of several objects);
+    *a chair in (either) A or (in) B*: those of either room (the choice is of rooms, as people mean it)."""
     back = noun.role == "qualifier" and r.word(i + 1) in ("it", "there")
     if (r.word(i) not in lx.QUAL_IN or not r.np_starts(i + 1) or r.phrase(i, lx.ORDER_MODIFIERS)
             or r.phrase(i, lx.TIME_FILLERS) or back):
         return None
     rooms: list[NounPhrase] = []
-    j = i
-    while not rooms or (noun.noun.determiner.mode == "all" and r.word(j) == "and" and r.np_starts(j + 1)):
-        room = phrases.noun_phrase(r, j + 1, "qualifier")
+    j = i + (1 if r.at(i + 1, "either") and r.np_starts(i + 2) else 0)
+    while not rooms or (k := more_rooms(r, j, noun)):
+        start = j + (k if rooms else 1)
+        room = phrases.noun_phrase(r, start, "qualifier")
         if rooms and not (isinstance(room, Match) and names_rooms(room.node)):
             break  # "every plant in the office and the couch": the couch is another goal
         if not isinstance(room, Match):
             return room
         rooms.append(room.node)
         j = room.end
-    return Match(InRoom(tuple(rooms), r.span(noun.first, j)), j)
+    choice = len(rooms) > 1 and noun.noun.determiner.mode != "all"
+    return Match(InRoom(tuple(rooms), r.span(noun.first, j), choice), j)
+
+
+def more_rooms(r: Reader, j: int, noun: NounSoFar) -> int:
+    """How many words join another room to the rooms of an object at ``j``: *or (in)*, or *and* after a
+    phrase about each of several objects (*every plant in A and B*); 0 if none does."""
+    k = 2 if r.word(j) == "or" and r.word(j + 1) in lx.QUAL_IN else 1
+    joined = r.word(j) == "or" or (noun.noun.determiner.mode == "all" and r.word(j) == "and")
+    return k if joined and r.np_starts(j + k) else 0
 
 
 @QUALIFIERS.rule("there")

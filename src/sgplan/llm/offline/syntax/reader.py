@@ -90,6 +90,12 @@ class Reader:
         """Whether a phrase of ``table`` lies within the tokens ``[start, end)``."""
         return any(self.at(j, *p) for j in range(start, end) for p in table if j + len(p) <= end)
 
+    def trailing_after(self, i: int) -> int:
+        """The length of *after / afterwards / after that* at ``i`` closing a clause (before a comma or the
+        end), else 0."""
+        said = self.phrase(i, lx.TRAILING_AFTER)
+        return len(said) if said and self.word(i + len(said)) in ("", ",") else 0
+
     def head(self, i: int) -> Head | None:
         """The head noun starting at ``i``."""
         return self.nouns.match(self.words, i)

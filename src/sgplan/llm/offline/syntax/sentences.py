@@ -9,6 +9,7 @@ dropped (:func:`mission_sentence`).
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
 from typing import Any
 
 from sgplan.llm.offline import lexicon as lx
@@ -32,9 +33,11 @@ from sgplan.llm.offline.syntax.tree import (
     OnlyAfterPost,
     OnlyAfterSentence,
     OnlyIfPost,
+    PlainAction,
     PlainSentence,
     Postfix,
     PrefixedSentence,
+    Pronoun,
     RelativeFloor,
     Rule,
     RuleSentence,
@@ -74,7 +77,8 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
             said_body.node, PlainSentence) and not said_body.node.body.items:
         return Refusal(rf.order_without_goal(r.quote(0, len(r))))  # "Last: the office" is not set aside
     if (precedes is None and not lead.node.sequence and isinstance(said_body.node, PlainSentence)
-            and r.word(len(r) - 1) in lx.TRAILING_AFTER):
+            and (r.trailing_after(len(r) - 1) or r.trailing_after(len(r) - 2)
+                 or carries_it(said_body.node.body))):
         lead = Match(Link(True), lead.end)  # "Go to the office. Visit the kitchen afterwards.": as "Then ..."
     rest = link(r, said_body.end, sequence_too=False)
     if not isinstance(rest, Match):
@@ -83,6 +87,15 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
         return Refusal(rf.left_over(r.quote(rest.end, len(r))))
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
                                  r.span(0, len(r)), r.announced, r.after_item, floor), len(r))
+
+
+def carries_it(said: Body) -> bool:
+    """Whether ``said`` starts by carrying what was named before (*Bring it to the table.*, a list item
+    *bring them to the kitchen*): it was taken in the sentence before, so the destination follows it."""
+    first = said.items[0] if said.items else None
+    return (isinstance(first, PlainAction) and first.action.phrases is not None
+            and bool(set(first.action.verbs.words) & lx.CARRY_VERBS)
+            and all(isinstance(p, Pronoun) for p in first.action.phrases.items))
 
 
 def floor_opening(r: Reader, i: int) -> tuple[FloorSpec | None, int]:
@@ -169,33 +182,39 @@ def only_after_first(r: Reader, i: int) -> Parse[SentenceBody]:
 @OPENINGS.rule("after X, Y")
 def after_first(r: Reader, i: int) -> Parse[SentenceBody]:
     """*After / once X, Y*: X, then Y."""
-    if r.word(i) not in ("after", "once") or r.at(i, "after", "that"):
+    if r.word(i) not in ("after", "once") or r.phrase(i, lx.AFTER_THAT):
         return None
     return prefixed(r, i + 1, prefix_last=False)
 
 
 @OPENINGS.rule("on your way to Y, X")
 def on_the_way_first(r: Reader, i: int) -> Parse[SentenceBody]:
-    """*On your way to the lobby, check the couch*: the couch, then the lobby."""
+    """*On your way (up / down / over) to the lobby, check the couch*: the couch, then the lobby."""
     way = r.phrase(i, lx.ON_THE_WAY)
-    if way is None or r.word(i + len(way)) not in ("to", "into") or not r.np_starts(i + len(way) + 1):
+    j = i + len(way or ()) + (r.word(i + len(way or ())) in lx.WAY_TOWARDS)
+    if way is None or r.word(j) not in ("to", "into") or not r.np_starts(j + 1):
         return None
-    return prefixed(r, i + len(way), prefix_last=True)
+    return prefixed(r, j, prefix_last=True)
 
 
 @OPENINGS.rule("before Y, X")
 def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
-    """*Before going to Y, X*: X, then Y. Not *before Y, A, then B* (does B come before Y too?), nor *before
-    you go (anywhere) near Y, X* (stay out of Y until X, or go there after X?)."""
+    """*Before going to Y, X*: X, then Y; *before you enter Y, you must / have to / need to X*: Y, and not
+    before X. Not *before Y, A, then B* (does B come before Y too?), nor *before you go (anywhere) near Y, X*
+    (stay out of Y until X, or go there after X?)."""
     if r.word(i) != "before":
         return None
     end = next((k for k in range(i, len(r)) if r.word(k) == ","), len(r))
     if any(r.word(k) == "into" and "near" in r.quote(k, k + 1).lower() for k in range(i, end)):
         return Refusal(rf.before_near(r.quote(i, end)))  # "go near", "anywhere near" are read as "into"
     said = prefixed(r, i + 1, prefix_last=True)
-    if r.word(i + 1) != "to" and isinstance(said, Match) and isinstance(said.node, PrefixedSentence) and any(
-            isinstance(item, Link) and item.sequence for item in said.node.body.items):
+    if not isinstance(said, Match) or not isinstance(said.node, PrefixedSentence):
+        return said
+    items = said.node.body.items
+    if r.word(i + 1) != "to" and any(isinstance(item, Link) and item.sequence for item in items):
         return Refusal(rf.before_then(r.quote(i, said.end)))
+    if r.says(lx.OBLIGED, i + 1, said.end):
+        return Match(replace(said.node, strict=True), said.end)  # "before you enter Y, you must go to X"
     return said
 
 
@@ -310,19 +329,16 @@ def condition_rule(r: Reader, i: int) -> Parse[Rule]:
 
 def make_rule(r: Reader, i: int, said: Match[Action], consequent: Body, after_start: int,
               after_end: int) -> Rule | Refusal:
-    """The rule at ``i`` with condition ``said`` and ``consequent``; an *if* rule is a response when its
-    condition says *ever*, and its consequent follows the condition when the words ``[after_start,
-    after_end)`` say *afterwards*. *If you ever go into X, look at Y in there* is refused: once, or on
-    each visit of X?"""
+    """The rule at ``i`` with condition ``said`` and ``consequent``; the consequent follows the condition
+    when the words ``[after_start, after_end)`` say *afterwards*. *If you ever / at any point go into X, Y*
+    is refused: people read it as once and as on each visit of X alike."""
     word = r.phrase(i, lx.CONDITION_WORDS)
     if r.phrase(i, lx.WHENEVER) is not None or word is None:
         return WheneverRule(said.node, consequent)
-    start = i + len(word)
-    response = r.says(lx.EVER, start, said.end)
+    if r.says(lx.EVER, i + len(word), said.end):
+        return Refusal(rf.once_or_each_visit(r.quote(i, said.end)))
     afterwards = r.says(lx.AFTERWARDS, after_start, after_end)
-    if response and not afterwards and r.says(lx.AT_THAT_PLACE, after_start, after_end):
-        return Refusal(rf.once_or_each_visit(r.quote(min(i, after_start), max(said.end, after_end))))
-    return IfRule(" ".join(word), said.node, consequent, response, afterwards)
+    return IfRule(" ".join(word), said.node, consequent, afterwards)
 
 
 def trigger(r: Reader, i: int) -> Parse[Action]:
@@ -334,8 +350,8 @@ def trigger(r: Reader, i: int) -> Parse[Action]:
 
 
 def condition(r: Reader, i: int) -> Parse[Action]:
-    """The condition of *if you go to the kitchen*: one action (*if you ever ...* is kept for the response
-    reading); more (*... and open the fridge*, *... after the office*) is refused."""
+    """The condition of *if you go to the kitchen*: one action (*ever* skipped here, refused by
+    :func:`make_rule`); more (*... and open the fridge*, *... after the office*) is refused."""
     ever = r.phrase(i, lx.EVER)
     k = skip_subject(r, i + (len(ever) if ever else 0))
     if r.word(k) in lx.NEGATING:

@@ -247,10 +247,12 @@ class OnFloor:
 @dataclass(frozen=True)
 class InRoom:
     """*in / of / inside the kitchen* after an object: the objects in that room; after a phrase about each of
-    several objects, *in the office and the kitchen*: those of both rooms."""
+    several objects, *in the office and the kitchen*: those of both rooms; ``choice``: *in A or B*, one
+    object of either room."""
 
     rooms: tuple[NounPhrase, ...]
     span: Span
+    choice: bool = False
 
 
 @dataclass(frozen=True)
@@ -521,14 +523,13 @@ class WheneverRule:
 
 @dataclass(frozen=True)
 class IfRule:
-    """*if X, Y* / *Y if X* (``word``: *if*, *when*, *in case*); ``response``: said of every visit of X
-    (*if you ever ...*, *at any point*), read like *whenever*; ``afterwards``: Y is said to follow X (*if you
-    go into X, check Y afterwards*: after that visit of X)."""
+    """*if X, Y* / *Y if X* (``word``: *if*, *when*, *in case*), said of one visit of X (each visit is
+    *whenever* / *every time*); ``afterwards``: Y is said to follow X (*if you go into X, check Y
+    afterwards*: after that visit of X)."""
 
     word: str
     condition: Action
     consequent: Body
-    response: bool
     afterwards: bool = False
 
 
@@ -564,12 +565,14 @@ class OnlyAfterSentence:
 @dataclass(frozen=True)
 class PrefixedSentence:
     """*After X, Y* / *Once X, Y* / *When done with X, Y* (``before`` False), *Before Y, X* / *On your way to
-    Y, X* (``before`` True: the prefix comes last)."""
+    Y, X* (``before`` True: the prefix comes last); ``strict``: *before Y, you must X*: Y, and not before
+    X."""
 
     prefix: Action
     prefix_last: bool
     body: Body
     postfix: Postfix
+    strict: bool = False
 
 
 @dataclass(frozen=True)
