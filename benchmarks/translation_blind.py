@@ -29,6 +29,7 @@ from pathlib import Path
 
 from sgplan import mission_from_formula  # the public one: any source tree has it
 from sgplan.datasets import find_gibson_root
+from sgplan.errors import SgplanError
 from sgplan.explain import explain_mission
 from sgplan.llm.evaluate import TranslationScore, load_jsonl_set, score_translator
 from sgplan.llm.offline import PatternTranslator
@@ -43,7 +44,12 @@ DEFAULT_OUT = REPO / "benchmarks" / "results" / "translation_blind.md"
 
 
 def explain(formula: Formula, building: Building) -> str:
-    return explain_mission(mission_from_formula(formula), building).text
+    """The formula in plain words, or in infix with the reason when it cannot be made a mission (an
+    automaton too large to build)."""
+    try:
+        return explain_mission(mission_from_formula(formula), building).text
+    except SgplanError as exc:
+        return f"{to_infix(formula)}\n(not explained: {exc})"
 
 
 def report(score: TranslationScore, set_path: Path, out_name: str) -> str:
