@@ -848,7 +848,12 @@ QUAL_LACKS = Phrases((("that", "does", "not", "have"), ("which", "does", "not", 
 QUAL_NEXT = Phrases((("next", "to"), ("adjacent", "to"), ("beside",), ("near",), ("connected", "to"),
                      ("by",), ("off",), ("close", "to"), ("joined", "to"), ("linked", "to"),
                      ("attached", "to"),
-                     ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to")))
+                     ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to"),
+                     ("outside",), ("outside", "of"), ("just", "outside"), ("right", "outside"),
+                     ("just", "outside", "of"), ("right", "outside", "of"), ("just", "off"), ("right", "off"),
+                     ("just", "next", "to"), ("right", "next", "to"), ("right", "by"), ("just", "by")))
+"""*the hallway outside / just off / next to the kitchen*: a room located by a room connected to it (the
+neighbour only locates it, it is no goal)."""
 QUAL_EXCEPT = Phrases((("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
                        ("excluding",), ("besides",)))
 ONLY_WORDS = frozenset({"only", "just", "but"})

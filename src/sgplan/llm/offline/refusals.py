@@ -565,8 +565,8 @@ def no_room_antecedent() -> str:
     return rephrase("'it' does not refer to any room named before it")
 
 
-def next_to_an_object(phrase: str) -> str:
-    return rephrase(f"'next to it': 'it' is '{phrase}', an object; 'next to' is understood for rooms only "
+def next_to_an_object(said: str, phrase: str) -> str:
+    return rephrase(f"'{said}': 'it' is '{phrase}', an object; 'next to' is understood for rooms only "
                     "(distances between objects are not known)")
 
 

@@ -289,11 +289,13 @@ class Contains:
 @dataclass(frozen=True)
 class NextTo:
     """*next to the kitchen* / *next to it*: connected to that room (rooms), in a room connected to it
-    (objects). ``thing`` is ``None`` for *it* (the whole phrase named last)."""
+    (objects). ``thing`` is ``None`` for *it* (the whole phrase named last); ``relation`` is the words that
+    said it (*next to*, *just off*, *outside*), for refusals."""
 
     thing: NounPhrase | None
     span: Span
     it_span: Span | None
+    relation: str
 
 
 @dataclass(frozen=True)
