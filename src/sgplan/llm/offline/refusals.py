@@ -138,6 +138,11 @@ def order_without_goal(said: str) -> str:
                     "('Last, the office.', 'Then the kitchen.')")
 
 
+def carried_nothing(said: str) -> str:
+    return rephrase(f"'{said}' carries something, but no object is named before it; say what to carry "
+                    "('bring the <object> to ...')")
+
+
 def give_without_look(said: str) -> str:
     return rephrase(f"'{said}' is read only as 'give X a look' (or a check, a clean); say what to do with X")
 

@@ -359,7 +359,8 @@ class Action:
     <action>*): every goal of it is on that floor; then ``phrases`` is the floor (or ``None`` after
     *upstairs*). ``first``: *first* right after the phrases. ``ordered``: an order remark (*in that order*,
     or *then* after a list joined by commas). ``destination``: *to / in / on Y* after the phrases (carried
-    things go there next). ``purpose``: *... to turn them off*.
+    things go there next). ``purpose``: *... to turn them off*. ``carried_on``: *bring to Y* with no object
+    (what was taken before goes to Y: the phrases come after it).
     """
 
     span: Span
@@ -374,6 +375,7 @@ class Action:
     destination: PhraseList | None = None
     purpose: PhraseList | None = None
     in_condition: bool = False
+    carried_on: bool = False
 
 
 # -------------------------------------------------------------------------------------------- body items
