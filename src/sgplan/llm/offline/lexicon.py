@@ -312,6 +312,10 @@ POSITIVE_VERBS = word_set(
 CARRY_VERBS = word_set("put putting place placing drop dropping bring bringing carry carrying deliver "
                        "delivering take taking took move moving")
 """``put X in Y`` / ``bring X to Y``: the goal is Y (after X when X is a new noun phrase)."""
+CARRY_ON_VERBS = word_set("bring bringing brought carry carrying carried deliver delivering delivered take "
+                          "taking")
+"""*take an apple and bring to the kitchen*: said with no object, the thing taken before is carried there, so
+the destination comes after it (not *move to*, *put in*, *drop in*: those also mean going)."""
 ROUTE_VERBS = word_set("from through via past")
 """``go from X to Y``, ``go through X to Y``: X, then Y."""
 DESTINATION_WORDS = ("to", "into", "onto")
@@ -848,7 +852,12 @@ QUAL_LACKS = Phrases((("that", "does", "not", "have"), ("which", "does", "not", 
 QUAL_NEXT = Phrases((("next", "to"), ("adjacent", "to"), ("beside",), ("near",), ("connected", "to"),
                      ("by",), ("off",), ("close", "to"), ("joined", "to"), ("linked", "to"),
                      ("attached", "to"),
-                     ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to")))
+                     ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to"),
+                     ("outside",), ("outside", "of"), ("just", "outside"), ("right", "outside"),
+                     ("just", "outside", "of"), ("right", "outside", "of"), ("just", "off"), ("right", "off"),
+                     ("just", "next", "to"), ("right", "next", "to"), ("right", "by"), ("just", "by")))
+"""*the hallway outside / just off / next to the kitchen*: a room located by a room connected to it (the
+neighbour only locates it, it is no goal)."""
 QUAL_EXCEPT = Phrases((("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
                        ("excluding",), ("besides",)))
 ONLY_WORDS = frozenset({"only", "just", "but"})

@@ -138,6 +138,11 @@ def order_without_goal(said: str) -> str:
                     "('Last, the office.', 'Then the kitchen.')")
 
 
+def carried_nothing(said: str) -> str:
+    return rephrase(f"'{said}' carries something, but no object is named before it; say what to carry "
+                    "('bring the <object> to ...')")
+
+
 def give_without_look(said: str) -> str:
     return rephrase(f"'{said}' is read only as 'give X a look' (or a check, a clean); say what to do with X")
 
@@ -565,8 +570,8 @@ def no_room_antecedent() -> str:
     return rephrase("'it' does not refer to any room named before it")
 
 
-def next_to_an_object(phrase: str) -> str:
-    return rephrase(f"'next to it': 'it' is '{phrase}', an object; 'next to' is understood for rooms only "
+def next_to_an_object(said: str, phrase: str) -> str:
+    return rephrase(f"'{said}': 'it' is '{phrase}', an object; 'next to' is understood for rooms only "
                     "(distances between objects are not known)")
 
 

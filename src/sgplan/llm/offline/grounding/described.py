@@ -271,7 +271,7 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     """*the kitchen next to the dining room* (connected in the scene graph); an object next to a room is
     in a room connected to it."""
     vocab = disc.vocab
-    room = next_to_it(q.it_span, disc) if q.it_span is not None else inner(q.thing, disc)
+    room = next_to_it(q.it_span, f"{q.relation} it", disc) if q.it_span is not None else inner(q.thing, disc)
     if any(e.kind != "room" for e in room.entities):
         rf.refuse(rf.next_to_rooms_only(disc.said(q.span.start, q.span.end)))
     if noun.head.kind == "object":  # "the toilet next to the bedroom": in a room next to it

@@ -70,6 +70,11 @@ def ordered_steps(action: Action, phrases: list[Grounded], carry: bool, lead: bo
     pronouns_only = all(g.phrase.lower() in lx.PRONOUNS and not g.mentioned for g in phrases)
     # "put it in Y": the object is already in hand, the goal is Y, after what came before.
     steps = [[]] if carry and pronouns_only else tasks_of(phrases, action.ordered)
+    if action.carried_on:  # "take an apple and bring to Y": as "bring it to Y", Y after the apple
+        if not any(e.kind == "object" for g in ctx.disc.references if g.start < action.span.start
+                   for e in g.entities):
+            rf.refuse(rf.carried_nothing(ctx.disc.said(action.span.start, action.span.end)))
+        steps = [[], *steps]
     if lead:  # "A and B, B first": B, then A
         steps = [moved([steps[0][:1]])[0], steps[0][1:]]
     if action.last:

@@ -55,8 +55,11 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     if not isinstance(phrases, Match):
         return phrases
     ends = bool(set(verbs.node.words) & lx.END_VERBS) and not in_condition  # "end up in X": X after the rest
+    carried_on = (r.word(i - 2) in lx.CARRY_ON_VERBS  # "(take X and) bring to Y", not "take a seat on"
+                  and r.word(i - 1) in lx.CARRY_DESTINATION_WORDS and len(verbs.node.words) >= 2)
     node = Action(r.span(start, phrases.end), verbs.node, phrases.node, in_condition=in_condition, last=ends,
-                  first=verbs.node.first, repeat=Repeat(True, 1, None) if verbs.node.again else None)
+                  first=verbs.node.first, repeat=Repeat(True, 1, None) if verbs.node.again else None,
+                  carried_on=carried_on)
     moved = floor_move(r, phrases.end, phrases.node, in_condition)
     if moved is not None:
         return moved if isinstance(moved, Refusal) else Match(replace(node, moved=moved.node), moved.end)

@@ -430,17 +430,18 @@ def more_contents(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipp
 
 @QUALIFIERS.rule("next to")
 def next_to(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
-    """*next to / adjacent to / attached to the kitchen*, *next to it*."""
+    """*next to / adjacent to / attached to / outside / just off the kitchen*, *next to it*."""
     said = r.phrase(i, lx.QUAL_NEXT)
     if said is None or not r.np_starts(i + len(said)):
         return None
-    start = i + len(said)
+    start, relation = i + len(said), " ".join(said)
     if r.word(start) == "it":
-        return Match(NextTo(None, r.span(noun.first, start + 1), r.span(start, start + 1)), start + 1)
+        it = NextTo(None, r.span(noun.first, start + 1), r.span(start, start + 1), relation)
+        return Match(it, start + 1)
     thing = phrases.noun_phrase(r, start, "qualifier")
     if not isinstance(thing, Match):
         return thing
-    return Match(NextTo(thing.node, r.span(noun.first, thing.end), None), thing.end)
+    return Match(NextTo(thing.node, r.span(noun.first, thing.end), None, relation), thing.end)
 
 
 @QUALIFIERS.rule("except")

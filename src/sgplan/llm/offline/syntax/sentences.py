@@ -91,11 +91,12 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
 
 def carries_it(said: Body) -> bool:
     """Whether ``said`` starts by carrying what was named before (*Bring it to the table.*, a list item
-    *bring them to the kitchen*): it was taken in the sentence before, so the destination follows it."""
+    *bring them to the kitchen*, *Carry to the table.*): it was taken in the sentence before, so the
+    destination follows it."""
     first = said.items[0] if said.items else None
     return (isinstance(first, PlainAction) and first.action.phrases is not None
             and bool(set(first.action.verbs.words) & lx.CARRY_VERBS)
-            and all(isinstance(p, Pronoun) for p in first.action.phrases.items))
+            and (first.action.carried_on or all(isinstance(p, Pronoun) for p in first.action.phrases.items)))
 
 
 def floor_opening(r: Reader, i: int) -> tuple[FloorSpec | None, int]:

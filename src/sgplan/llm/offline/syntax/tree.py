@@ -289,11 +289,13 @@ class Contains:
 @dataclass(frozen=True)
 class NextTo:
     """*next to the kitchen* / *next to it*: connected to that room (rooms), in a room connected to it
-    (objects). ``thing`` is ``None`` for *it* (the whole phrase named last)."""
+    (objects). ``thing`` is ``None`` for *it* (the whole phrase named last); ``relation`` is the words that
+    said it (*next to*, *just off*, *outside*), for refusals."""
 
     thing: NounPhrase | None
     span: Span
     it_span: Span | None
+    relation: str
 
 
 @dataclass(frozen=True)
@@ -357,7 +359,8 @@ class Action:
     <action>*): every goal of it is on that floor; then ``phrases`` is the floor (or ``None`` after
     *upstairs*). ``first``: *first* right after the phrases. ``ordered``: an order remark (*in that order*,
     or *then* after a list joined by commas). ``destination``: *to / in / on Y* after the phrases (carried
-    things go there next). ``purpose``: *... to turn them off*.
+    things go there next). ``purpose``: *... to turn them off*. ``carried_on``: *bring to Y* with no object
+    (what was taken before goes to Y: the phrases come after it).
     """
 
     span: Span
@@ -372,6 +375,7 @@ class Action:
     destination: PhraseList | None = None
     purpose: PhraseList | None = None
     in_condition: bool = False
+    carried_on: bool = False
 
 
 # -------------------------------------------------------------------------------------------- body items
