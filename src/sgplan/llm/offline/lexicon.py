@@ -740,9 +740,20 @@ AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over",
 """After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
 
 # -------------------------------------------------------------------------------------------- negation
-NEED_WORDS = frozenset({"need", "needs", "have", "has", "got"})
+NEGATED_NEED_WORDS = frozenset({"need", "needs", "have", "has", "got"})
 """After a negation, before *to* (*you don't need to / have to go to X*, *no need to X*): X is not needed,
 which forbids nothing."""
+NOT_NEEDED = Phrases((("no", "need", "to"), ("there", "is", "no", "need", "to"),
+                     ("no", "need", "for", "you", "to"), ("you", "do", "not", "need", "to"),
+                     ("you", "do", "not", "have", "to"), ("you", "need", "not"), ("do", "not", "need", "to"),
+                     ("you", "will", "not", "need", "to"), ("there", "'s", "no", "need", "to"),
+                     ("it", "is", "not", "necessary", "to")))
+"""A clause that says a goal is not needed (*No need to go into the office.*, *..., you don't have to check
+the oven*): it asks nothing, so it is set aside and said back (:mod:`.syntax.not_needed`)."""
+NOT_NEEDED_STOPS = word_set("if unless until till only when whenever except but then before after first once "
+                            "while so or otherwise instead")
+"""Words that make a not-needed clause say more than *not needed* (*no need to go there unless ...*,
+*... before the office*): such a clause is parsed, and so refused."""
 NEG_STARTS = Phrases((
     ("always", "avoid"), ("always", "stay", "away", "from"), ("always", "keep", "away", "from"),
     ("always", "stay", "out", "of"), ("always", "keep", "out", "of"), ("never",), ("do", "not"),

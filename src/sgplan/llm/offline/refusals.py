@@ -60,8 +60,10 @@ def cannot_understand_word(word: str, rest: str) -> str:
     return rephrase(f"cannot understand '{word}' in {rest}")
 
 
-def no_goal_at_all() -> str:
-    return rephrase("the mission names no room or object to visit or avoid")
+def no_goal_at_all(set_aside: list[str]) -> str:
+    aside = "; ".join(f"'{s}'" for s in set_aside)
+    return rephrase("the mission names no room or object to visit or avoid" + (
+        f" (set aside as asking nothing: {aside})" if set_aside else ""))
 
 
 def dropped(phrase: str) -> str:

@@ -186,8 +186,10 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
         chosen_from = r.word(i) in ("the", "these", "those")  # "one of the two bathrooms"
     elif w in lx.INDEFINITE:
         i, mode = i + 1, "any"
-    elif w in lx.UNIVERSAL:
-        i, mode, count = i + 1, "all", (2 if w == "both" else None)
+    elif w in lx.UNIVERSAL or (w == "the" and r.word(i + 1) == "both"):
+        # "the both bedrooms", as learners write it (the article of their language): both
+        i += 1 if w == "the" else 0
+        i, mode, count = i + 1, "all", (2 if r.word(i) == "both" else None)
         i += 1 if r.word(i) == "of" else 0
     elif w in lx.DEMONSTRATIVES and r.word(i + 1) not in lx.FLOOR_WORDS:
         # only the demonstrative path may read "that ..." / "this ...": never a fresh description
@@ -195,7 +197,8 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
     elif w in lx.DEFINITE or w in lx.POSSESSIVES:
         i, mode = i + 1, "the"
     i += 1 if r.word(i) == "the" and mode is not None else 0
-    n = count_word(r, i) if r.np_starts(i + 1) or r.head(i + 1) else None
+    noun_next = r.np_starts(i + 1) or r.head(i + 1) or r.nouns.room_modifier(r.words, i + 1)
+    n = count_word(r, i) if noun_next else None  # "all three (dining) chairs"
     if n is not None and chosen_from:
         return Match(Determiner(mode, n), i + 1)  # one of them, and there must be n
     if n == 1 and mode is None and r.word(i) == "one":

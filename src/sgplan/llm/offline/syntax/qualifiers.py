@@ -207,6 +207,8 @@ def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
         return same_floor(r, i + 4)
     if r.word(i + 1) == "that" and r.word(i + 2) in lx.FLOOR_WORDS:
         return same_floor(r, i + 3)
+    if r.at(i + 1, "that", "same") and r.word(i + 3) in lx.FLOOR_WORDS:
+        return same_floor(r, i + 4)  # "on that same floor": no fresh floor, the one named last
     said = floor_words(r, i + (2 if r.word(i + 1) == "the" else 1))
     if said is None or r.head(said.end) is not None:
         return None  # none, or "in the ground floor bathroom": a room named with its floor
@@ -301,12 +303,15 @@ def where_is(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if noun.kind == "object" or r.word(i) != "where" or r.word(i + 1) not in lx.RELATIVE_BE:
         return None
     k = i + 2 + (1 if r.word(i + 2) in lx.ONLY_WORDS else 0)
+    count = phrases.count_word(r, k)  # "where are two beds": exactly two
+    k += 1 if count is not None else 0
     if not r.np_starts(k) or r.word(k) == "there":
         return None
     thing = phrases.noun_phrase(r, k, "qualifier")
     if not isinstance(thing, Match):
         return thing
-    return Match(Contains(thing.node, r.span(noun.first, thing.end), None, k > i + 2), thing.end)
+    only = r.word(i + 2) in lx.ONLY_WORDS and count is None
+    return Match(Contains(thing.node, r.span(noun.first, thing.end), count, only), thing.end)
 
 
 @QUALIFIERS.rule("that is X")

@@ -14,10 +14,17 @@ from typing import Any
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
-from sgplan.llm.offline.syntax.actions import after_conjunction
+from sgplan.llm.offline.syntax.actions import action, after_conjunction
 from sgplan.llm.offline.syntax.body import body
 from sgplan.llm.offline.syntax.floors import floor_words
-from sgplan.llm.offline.syntax.links import at_end, comma_or_then, done_words, link, skip_subject
+from sgplan.llm.offline.syntax.links import (
+    at_end,
+    comma_or_then,
+    done_words,
+    link,
+    skip_subject,
+    skip_until_subject,
+)
 from sgplan.llm.offline.syntax.phrases import noun_phrase
 from sgplan.llm.offline.syntax.qualifiers import head_kind
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
@@ -156,7 +163,7 @@ def until_first(r: Reader, i: int) -> Parse[SentenceBody]:
     """*Until / till (you have reached) Y, stay out of X*."""
     if r.word(i) not in lx.UNTIL_OPENERS and not r.at(i, "up", "until"):
         return None
-    target = after_conjunction(r, i + (2 if r.word(i) == "up" else 1), in_condition=True)
+    target = action(r, skip_until_subject(r, i + (2 if r.word(i) == "up" else 1)), in_condition=True)
     if not isinstance(target, Match):
         return target
     rest = body(r, comma_or_then(r, target.end))
