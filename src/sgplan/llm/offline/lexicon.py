@@ -782,7 +782,8 @@ AVOID_VERBS = word_set(
     crossing trouble troubling mess messing near nearing pass wander wandering stray straying venture
     venturing sneak sneaking wash move handle handling hit hitting damage damaging scratch knock stand
     standing climb climbing tread treading pop popping nip swing swinging poke poking cut cutting roam
-    roaming dash dashing hurry hurrying rush rushing detour detouring stroll strolling"""
+    roaming dash dashing hurry hurrying rush rushing detour detouring stroll strolling
+    allowed permitted"""
 ) | POSITIVE_VERBS
 """Verbs a prohibition is read with (*don't touch / disturb / go near X*): not being at X keeps each of them
 from happening. A negation before any other verb is refused, naming it (*don't xyzzy the sink*): read as

@@ -109,6 +109,11 @@ def self_correction(said: str) -> str:
                     "part stands; say the mission again as it should be done")
 
 
+def where_after_no_room(said: str) -> str:
+    return rephrase(f"'{said}' follows no single room, so it is not clear where it is done; say 'in the "
+                    "<room>, ...' or name the room of the object")
+
+
 def not_needed(said: str) -> str:
     return rephrase(f"'{said}' says a goal is not needed, which neither asks for it nor forbids it; leave "
                     "it out, or say 'never enter X' to forbid it")

@@ -15,6 +15,7 @@ from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import action, after_conjunction
 from sgplan.llm.offline.syntax.links import closing_at, done_words, link
 from sgplan.llm.offline.syntax.negation import negation, off_limits, stay_on_floor
+from sgplan.llm.offline.syntax.qualifiers import names_rooms
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.tree import (
@@ -194,6 +195,24 @@ def comma_sequence(r: Reader, i: int, before: Said, only_verb: bool) -> ItemPars
         if r.phrase(j, lx.THEN_NEXT) and r.word(j - 1) in (",", "and"):
             return Match(CommaSequence(), i + 1)
     return None
+
+
+@ITEMS.rule("where you X")
+def where_you(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*enter the bathroom on floor 0, where you check the sink*: in that room, X (as *and check the sink
+    there*: the action's objects are looked for in the room). After anything but one room (*the couch,
+    where you ...*, *the kitchen and the office, where you ...*) it is refused: in which room?"""
+    if not r.at(i, ",", "where", "you"):
+        return None
+    k = r.skip(i + 3, lx.MODALS)
+    k += 2 if r.word(k) in lx.NEGATED_NEED_WORDS and r.word(k + 1) == "to" else 0  # "where you need to"
+    if k >= len(r) or r.np_starts(k) or r.word(k) in lx.STRUCTURAL:
+        return None
+    last = before[-1] if before else None
+    phrases = last.action.phrases if isinstance(last, PlainAction) else None
+    if phrases is None or len(phrases.items) != 1 or not names_rooms(phrases.items[0]):
+        return Refusal(rf.where_after_no_room(r.quote(i + 1, min(len(r), k + 3))))
+    return Match(Skip(), k)
 
 
 @ITEMS.rule("link")

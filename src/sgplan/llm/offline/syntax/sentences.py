@@ -228,8 +228,12 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
 
 @OPENINGS.rule("only <do X> after Y")
 def only_verb_after(r: Reader, i: int) -> Parse[SentenceBody]:
-    """*Only enter the living room after you have been to the kitchen*: as *... only after ...*."""
-    if r.word(i) != "only" or r.word(i + 1) not in lx.POSITIVE_VERBS:
+    """*Only enter the living room after you have been to the kitchen*, *only pop into X once you've been to
+    Y* (any verb, as in any action): as *... only after ...*."""
+    w = r.word(i + 1)
+    verb = w in lx.POSITIVE_VERBS or (w.isalpha() and not r.np_starts(i + 1) and w not in lx.STRUCTURAL
+                                      and w not in lx.ONLY_FOLLOWERS)
+    if r.word(i) != "only" or not verb:
         return None
     said = body(r, i + 1, only_verb=True)
     if not isinstance(said, Match):
@@ -396,8 +400,9 @@ def postfix(r: Reader, i: int, body_actions: int) -> Parse[Postfix]:
     said = antecedent(r, i)
     if not isinstance(said, Match):
         return said if said is not None else Refusal(rf.cannot_understand(r.rest(i)))
-    if joined and r.word(said.end) in (",", "then") and r.word(said.end + 1):
-        own = condition_rule(r, i)  # "S, and whenever X, T": the rule has its own consequent
+    if joined and said.end < len(r) and (r.word(said.end) not in (",", "then") or r.word(said.end + 1)):
+        # "S, and whenever X(,) T": the rule has its own consequent (spoken, often with no comma)
+        own = condition_rule(r, i)
         if not isinstance(own, Match):
             return own
         first, end, body_is_consequent = own.node, own.end, False
