@@ -634,7 +634,8 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
     ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"), ("is", "fine"),
     ("your", "choice"), ("your", "pick"), ("take", "your", "pick"), ("you", "pick"), ("you", "choose"),
     ("it", "is", "up", "to", "you"), ("up", "to", "you"), ("i", "do", "not", "care"),
-))
+) + tuple(("which", *one, "you", want) for one in ((), ("one",))  # "which one you want", as learners say it
+        for want in ("want", "like", "prefer", "choose")))
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
 ONE_SUFFICES = Phrases(tuple(
@@ -867,7 +868,8 @@ QUAL_NEXT = Phrases((("next", "to"), ("adjacent", "to"), ("beside",), ("near",),
                      ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to"),
                      ("outside",), ("outside", "of"), ("just", "outside"), ("right", "outside"),
                      ("just", "outside", "of"), ("right", "outside", "of"), ("just", "off"), ("right", "off"),
-                     ("just", "next", "to"), ("right", "next", "to"), ("right", "by"), ("just", "by")))
+                     ("just", "next", "to"), ("right", "next", "to"), ("right", "by"), ("just", "by"),
+                     ("next", "of"), ("near", "of"), ("close", "of")))
 """*the hallway outside / just off / next to the kitchen*: a room located by a room connected to it (the
 neighbour only locates it, it is no goal)."""
 QUAL_EXCEPT = Phrases((("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),

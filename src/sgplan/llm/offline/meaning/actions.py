@@ -125,7 +125,7 @@ def first_of_list(phrases: list[Grounded], first: bool,
     named twice in one list is refused: it is not clear what is meant."""
     keys = [frozenset(e.key for e in g.entities) for g in phrases]
     phrases = [g for n, g in enumerate(phrases)
-               if not (n and keys[n] == keys[n - 1] and (g.phrase.lower().endswith("them") or (
+               if not (n and keys[n] == keys[n - 1] and (restates_group(g.phrase) or (
                    g.mode == phrases[n - 1].mode == "any" and g.phrase.lower().startswith("any "))))]
     keys = [frozenset(e.key for e in g.entities) for g in phrases]
     repeated = [n for n, k in enumerate(keys) if any(k & j for j in keys[:n])]
@@ -136,6 +136,14 @@ def first_of_list(phrases: list[Grounded], first: bool,
     if repeated == [len(phrases) - 1] and first:  # "the clocks, the one in the bedroom first"
         return [phrases[-1]] + [g for n, g in enumerate(phrases[:-1]) if keys[n] != keys[-1]], True
     rf.refuse(rf.named_twice(phrases[repeated[0]].phrase))
+
+
+def restates_group(phrase: str) -> bool:
+    """Whether a phrase only names the group before it again: *both of them*, *all three of them*, *all
+    three* (*office TVs, all three*)."""
+    words = phrase.lower().split()
+    counted = len(words) == 2 and (words[1] in lx.NUMBER_WORDS or words[1].isdigit())
+    return words[-1] == "them" or (counted and words[0] in lx.UNIVERSAL)
 
 
 def choice_remark(phrases: list[Grounded], remark: tuple[str, ...] | None,

@@ -290,7 +290,7 @@ def conjunction(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
 def plain_action(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """An action, and what the words around it say of its place: *first* / *before that* after it, *X on
     the way*, *come back to X*."""
-    if r.word(i) in lx.REFUSED_WORDS:
+    if r.word(i) in lx.REFUSED_WORDS and not r.np_starts(i):  # not "other bdrm": a phrase
         return Refusal(rf.cannot_understand(lx.REFUSED_WORDS[r.word(i)]))
     found = action(r, i)
     if not isinstance(found, Match):

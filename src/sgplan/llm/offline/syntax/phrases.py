@@ -103,7 +103,9 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     other = r.at(i, "the", "other") and r.head(i + 2) is not None
     if r.at(i, "the", "other", "one") and given is None:
         one_from_context = other = True  # "the bedroom with the book, then the other one"
-    det = determiner(r, i + 1 if other else i, other)
+    bare_other = r.word(i) == "other" and r.head(i + 1) is not None  # "then other bdrm", as notes say it
+    other = other or bare_other
+    det = determiner(r, i if bare_other or not other else i + 1, other)
     if not isinstance(det, Match):
         return det
     i = r.descriptive_end(det.end)
@@ -270,7 +272,8 @@ def phrase_list(r: Reader, i: int, role: Role) -> Parse[PhraseList]:
         return item
     items, joiners, i = [item.node], set[str](), item.end
     while (joined := list_joiner(r, i, preposition)) is not None:
-        restates = r.word(joined[1]) in lx.ARTICLES and r.word(joined[1] + 1) in lx.ANAPHORIC_ONE
+        restates = ((r.word(joined[1]) in lx.ARTICLES and r.word(joined[1] + 1) in lx.ANAPHORIC_ONE)
+                    or isinstance(group_repeat(r, joined[1], role, None), Match))  # "the vases - all four"
         if not joined[0] and not restates and r.text[r.toks[i].start:r.toks[i].end].strip() in lx.DASHES:
             # "kitchen - office - couch": a route, or a set? (a dash between asides is read as a comma)
             return Refusal(rf.dash_between_goals(r.quote(first, min(len(r), joined[1] + 2))))
