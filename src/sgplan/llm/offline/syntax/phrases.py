@@ -93,6 +93,18 @@ def pronoun(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhra
     return Match(Pronoun(r.span(i, i + 1), r.word(i)), i + 1) if r.word(i) in lx.PRONOUNS else None
 
 
+@NOUN_PHRASES.rule("the two in X")
+def counted_ones(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
+    """*the two in the lounge* after *the plant in the bedroom*: the ones of the kind named last (as *the
+    ones in the lounge*), and there must be that many."""
+    n = count_word(r, i + 1) if r.word(i) == "the" and given is None else None
+    if n is None or n < 2 or r.word(i + 2) not in lx.QUAL_IN or not r.np_starts(i + 3):
+        return None
+    ones, det = OneHead(True, None, True), Determiner("all", n)
+    noun = Described(r.span(i, i + 2), "the", det, None, None, None, ones, None, (), None, False)
+    return qualifiers.finish(r, i, i + 2, noun, role, False)
+
+
 @NOUN_PHRASES.rule("described")
 def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
     """A determiner, floor words, a head noun and its qualifiers (*the ground floor bathroom with the
