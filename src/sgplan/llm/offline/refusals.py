@@ -183,7 +183,7 @@ def one_without_kind(word: str) -> str:
 
 def ordinal_not_of_a_floor(word: str) -> str:
     return rephrase(f"ordinals like '{word}' are only understood for floors ('the bathroom on the {word} "
-                    "floor')")
+                    f"floor') and for what was named before ('back to the {word} one')")
 
 
 def demonstrative_not_before_noun(word: str, after: str) -> str:
@@ -616,6 +616,16 @@ def group_size(said: str, phrase: str, n: int, count: int) -> str:
 
 def demonstrative_size(said: str, antecedent: str, n: int, count: int) -> str:
     return rephrase(f"'{said}' refers back to '{antecedent}', which is {n}, not {count}")
+
+
+def ordinal_of_several(said: str, phrase: str) -> str:
+    return rephrase(f"'{said}': '{phrase}' names several at once, so which came first is not said; name it "
+                    "again ('the bed in the ...')")
+
+
+def ordinal_of_too_few(said: str, named: int) -> str:
+    before = "only one was" if named == 1 else f"only {named} were"
+    return rephrase(f"'{said}' counts what was named before it, and {before}; name it ('the bed in the ...')")
 
 
 def no_other(noun: str) -> str:

@@ -34,6 +34,7 @@ from sgplan.llm.offline.syntax.tree import (
     Possessive,
     RelativeFloor,
     SameFloor,
+    Span,
     There,
 )
 
@@ -89,6 +90,8 @@ def in_context(np: Described, noun: Noun, where: Where, disc: Discourse) -> Noun
         before = floors_of(RelativeFloor(np.relative), disc, entities)
     if np.determiner.other:
         entities = others(entities, np.span.start, disc)
+    if np.determiner.ordinal is not None:
+        entities = nth_named(entities, np.determiner.ordinal, np.span, disc)
     # "go upstairs and check A and B": both there
     moved = where.action_floor is not None and where.role in ("goal", "avoid")
     action = where.action_floor[0] if moved and where.action_floor is not None else None
@@ -109,6 +112,24 @@ def others(entities: list[Entity], before: int, disc: Discourse) -> list[Entity]
     if not any(e.key in named for e in entities):
         rf.refuse(rf.no_other(head_word(entities)))
     return [e for e in entities if e.key not in named]
+
+
+def nth_named(entities: list[Entity], n: int, span: Span, disc: Discourse) -> list[Entity]:
+    """*the first bed*, *back to the first one*: the ``n``-th of ``entities`` named before ``span`` (in the
+    order first named, goals and places only). Refused unless two or more were named, each on its own (*both
+    bedrooms, then the first one*: which came first?)."""
+    keys, said = {e.key for e in entities}, disc.said(span.start, span.end)
+    named = [g for g in sorted(disc.references, key=lambda g: g.start) if g.start < span.start
+             and g.role != "qualifier" and g.entities and all(e.key in keys for e in g.entities)]
+    several = next((g for g in named if len(g.entities) > 1), None)
+    if several is not None:
+        rf.refuse(rf.ordinal_of_several(said, several.phrase))
+    order = list(dict.fromkeys(g.entities[0].key for g in named))
+    if not order:  # "the first bathroom" with none named: perhaps its floor
+        rf.refuse(rf.ordinal_not_of_a_floor(said.split()[1].lower()))
+    if len(order) < 2 or n > len(order):
+        rf.refuse(rf.ordinal_of_too_few(said, len(order)))
+    return [e for e in entities if e.key == order[n - 1]]
 
 
 def demonstrative(np: Described, noun: Noun, mode: Mode, said: str, where: Where,

@@ -117,9 +117,16 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
         one_from_context = other = True  # "the bedroom with the book, then the other one"
     bare_other = r.word(i) == "other" and r.head(i + 1) is not None  # "then other bdrm", as notes say it
     other = other or bare_other
+    ordinal = lx.FLOOR_ORDINALS.get(r.word(i + 1)) if r.word(i) == "the" and given is None else None
+    if ordinal is not None and (r.head(i + 2) is not None or r.word(i + 2) in lx.ANAPHORIC_ONE):
+        one_from_context = r.word(i + 2) in lx.ANAPHORIC_ONE  # "back to the first one / bedroom"
+    else:
+        ordinal = None  # "the first floor": a floor (floor_words)
     det = determiner(r, i if bare_other or not other else i + 1, other)
     if not isinstance(det, Match):
         return det
+    if ordinal is not None:
+        det = Match(replace(det.node, ordinal=ordinal + 1), det.end + 1)
     i = r.descriptive_end(det.end)
     said = r.words[det.end : i]
     relative = r.word(i) if r.word(i) in lx.RELATIVE_FLOORS else None

@@ -186,6 +186,8 @@ class Determiner:
     other: bool = False
     descriptive: tuple[str, ...] = ()
     """Descriptive words read with the determiner (:attr:`Described.descriptive`)."""
+    ordinal: int | None = None
+    """*the first / second X*, *back to the first one* (1, 2 ...): the X named that many-th before."""
 
 
 @dataclass(frozen=True)
