@@ -639,7 +639,8 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
 ONE_SUFFICES = Phrases(tuple(
-    (*lead, *one, *enough) for lead in ((), ("just",), ("only",), ("getting", "to"), ("reaching",))
+    (*lead, *one, *enough) for lead in ((), ("just",), ("only",), ("getting", "to"), ("reaching",),
+                                        ("pick",), ("just", "pick"), ("choose",), ("just", "choose"))
     for one in (("one", "of", "them"), ("one",), ("any", "one", "of", "them"))
     for enough in ((), ("is", "enough"), ("will", "do"), ("is", "fine"), ("is", "ok"), ("is", "okay"),
                    ("would", "do"), ("suffices",))
@@ -647,6 +648,8 @@ ONE_SUFFICES = Phrases(tuple(
 """After a phrase that means each of several (*the vases in the lobby, just one of them*, *check the apples,
 getting to one of them is enough*): one of them will do, which makes it a choice (said outright, unlike
 *either one*, which is refused there)."""
+PICK_VERBS = frozenset({"pick", "choose"})
+"""In a remark that one will do (*just pick one*): said after one place, it picks something else (refused)."""
 BARE_CHOOSERS = ("either", "any", "whichever")
 CLAUSE_ENDS = frozenset({"", ",", "then", "and", "but"})
 """After ``, either`` / ``, any``: no noun follows, so the word is a choice remark (*DR vase, any*)."""
@@ -858,7 +861,8 @@ QUAL_CONTAINS = Phrases((("with",), ("having",), ("containing",), ("that", "has"
                          ("which", "has"), ("which", "have"), ("that", "contains"), ("which", "contains"),
                          ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"),
                          ("that", "only", "has"), ("which", "only", "has"), ("that", "only", "have"),
-                         ("with", "only"), ("that", "has", "only"), ("containing", "only")))
+                         ("with", "only"), ("that", "has", "only"), ("containing", "only"),
+                         ("which", "has", "only"), ("which", "have", "only"), ("that", "have", "only")))
 QUAL_LACKS = Phrases((("that", "does", "not", "have"), ("which", "does", "not", "have"), ("with", "no"),
                       ("that", "has", "no"), ("that", "does", "not", "contain"),
                       ("where", "there", "is", "no")))

@@ -618,6 +618,11 @@ def demonstrative_size(said: str, antecedent: str, n: int, count: int) -> str:
     return rephrase(f"'{said}' refers back to '{antecedent}', which is {n}, not {count}")
 
 
+def pick_from_one(remark: str, phrase: str) -> str:
+    return rephrase(f"'{remark}' after '{phrase}', which is one place: one of what? Name the room or object "
+                    "to choose from ('any chair in the kitchen')")
+
+
 def ordinal_of_several(said: str, phrase: str) -> str:
     return rephrase(f"'{said}': '{phrase}' names several at once, so which came first is not said; name it "
                     "again ('the bed in the ...')")

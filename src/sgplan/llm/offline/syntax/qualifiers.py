@@ -209,6 +209,8 @@ def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
         return same_floor(r, i + 3)
     if r.at(i + 1, "that", "same") and r.word(i + 3) in lx.FLOOR_WORDS:
         return same_floor(r, i + 4)  # "on that same floor": no fresh floor, the one named last
+    if r.word(i + 1) == "same" and r.word(i + 2) in lx.FLOOR_WORDS:
+        return same_floor(r, i + 3)  # "the bathroom of same floor", the article left out as learners do
     said = floor_words(r, i + (2 if r.word(i + 1) == "the" else 1))
     if said is None or r.head(said.end) is not None:
         return None  # none, or "in the ground floor bathroom": a room named with its floor
