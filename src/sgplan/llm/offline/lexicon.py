@@ -205,6 +205,11 @@ PRONOUNS = ("it", "them", "they", "its")
 PLURAL_PRONOUNS = ("them", "they")
 POSSESSIVES = word_set("my your our his her their")
 """*my / your ...* before a noun are read as *the*: *read my book*."""
+OWNERS = ("his", "her", "their")
+"""*her room*, *his bedroom*: a room said before to be someone's (*My sister is staying in the bedroom with
+the two beds. Check her room.*), never a fresh room (whose?)."""
+RESIDING = word_set("stay stays staying stayed sleep sleeps sleeping slept live lives living lived")
+"""In a statement naming a room: the room is someone's (*my sister is staying in the bedroom*: *her room*)."""
 DEMONSTRATIVES = ("that", "this", "these", "those")
 """Determiners that point back (``the same`` and ``that same`` / ``this same`` too)."""
 PLURAL_DEMONSTRATIVES = ("these", "those")

@@ -618,6 +618,11 @@ def demonstrative_size(said: str, antecedent: str, n: int, count: int) -> str:
     return rephrase(f"'{said}' refers back to '{antecedent}', which is {n}, not {count}")
 
 
+def whose_room(said: str, rooms: list[str]) -> str:
+    named = f"rooms said before: {', '.join(rooms)}" if rooms else "no room was said to be someone's"
+    return rephrase(f"'{said}': whose room? ({named}); name the room ('the bedroom with the two beds')")
+
+
 def pick_from_one(remark: str, phrase: str) -> str:
     return rephrase(f"'{remark}' after '{phrase}', which is one place: one of what? Name the room or object "
                     "to choose from ('any chair in the kitchen')")

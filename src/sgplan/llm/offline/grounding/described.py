@@ -138,6 +138,8 @@ def demonstrative(np: Described, noun: Noun, mode: Mode, said: str, where: Where
     (:func:`.backref.resolve`), never a fresh set; refused when it cannot be resolved."""
     det = np.determiner
     plural = noun.head.plural or det.quantified is not None or det.pointer in lx.PLURAL_DEMONSTRATIVES
+    if det.pointer in lx.OWNERS:
+        return Noun(noun.head, owners_room(np, noun, said, disc), False), "the"
     got = backref.resolve(said, noun.head, plural, noun.entities, disc.references, np.span.start,
                           disc.vocab.by_key, where.role == "goal")
     if isinstance(got, str):
@@ -147,6 +149,30 @@ def demonstrative(np: Described, noun: Noun, mode: Mode, said: str, where: Where
     if (here := of_the_step_room(np, noun, got, said, where, disc)) is not None:
         return Noun(noun.head, here, True), "the"
     return Noun(noun.head, got.entities, noun.room_scoped or got.room_scoped), det.quantified or got.mode
+
+
+def owners_room(np: Described, noun: Noun, said: str, disc: Discourse) -> list[Entity]:
+    """*her room*: the room an earlier *her room* named, else the one room a statement set aside says
+    someone stays, sleeps or lives in (*My sister is staying in the bedroom with the two beds.*); refused
+    otherwise (whose room?). A room named as a goal, or as where someone just is (*Grandma is in the
+    kitchen*), is not taken for it."""
+    word, fits = said.split()[0].lower(), {e.key for e in noun.entities}
+    same = [g for g in disc.references if g.end <= np.span.start and g.phrase.split()[0].lower() == word]
+    told = [g for g in disc.mentions if g.end <= np.span.start and lives_there(disc.text, g.start)]
+    for named in (same[-1:], told):
+        rooms = {e.key: e for g in named for e in g.entities if e.kind == "room" and e.key in fits}
+        if len(rooms) == 1:
+            return list(rooms.values())
+        if rooms:
+            rf.refuse(rf.whose_room(said, sorted(rooms)))
+    rf.refuse(rf.whose_room(said, []))
+
+
+def lives_there(text: str, start: int) -> bool:
+    """Whether the words of the sentence before character ``start`` say someone stays, sleeps or lives
+    there (*my sister is staying in ...*)."""
+    sentence = text[:start].replace("!", ".").replace("?", ".").replace("\n", ".").rsplit(".", 1)[-1]
+    return bool(set(sentence.lower().replace("'", " ").split()) & lx.RESIDING)
 
 
 def of_the_step_room(np: Described, noun: Noun, got: backref.Resolved, said: str, where: Where,

@@ -183,6 +183,8 @@ def determiner(r: Reader, i: int, other: bool) -> Parse[Determiner]:
         count = count_word(r, i + demo)
         end = i + demo + (1 if count else 0)
         return Match(Determiner("all" if count else "the", count, pointer=r.word(i), other=other), end)
+    if r.word(i) in lx.OWNERS and (room := r.head(i + 1)) is not None and room.kind == "room":
+        return Match(Determiner("the", None, pointer=r.word(i), other=other), i + 1)  # "her room"
     quant = quantifier(r, i)
     if not isinstance(quant, Match):
         return quant
