@@ -23,6 +23,7 @@ from dataclasses import replace
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import NounLexicon
 from sgplan.llm.offline.spelling import Spelling
+from sgplan.llm.offline.syntax.appositions import join_appositions
 from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement
 from sgplan.llm.offline.syntax.corrections import corrected
 from sgplan.llm.offline.syntax.lists import read_lists
@@ -61,7 +62,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
                 r = replace(r, toks=r.toks[cut:])  # "Okay, go to ..." ("I'm hungry, ..." is said back)
             content = True
         out += corrected(r)  # "go to the kitchen, no wait, the dining room": the dining room
-    return split_not_needed(set_aside_context(out))
+    return join_appositions(split_not_needed(set_aside_context(out)))
 
 
 def parse_sentence(r: Reader, decide: Callable[[Attachment], bool]) -> Parse[Sentence]:
