@@ -623,6 +623,11 @@ def whose_room(said: str, rooms: list[str]) -> str:
     return rephrase(f"'{said}': whose room? ({named}); name the room ('the bedroom with the two beds')")
 
 
+def times_of_what(said: str) -> str:
+    return rephrase(f"'{said}': how many times is said for several places or twice; say it after one place "
+                    "('visit the kitchen twice, then the office')")
+
+
 def pick_from_one(remark: str, phrase: str) -> str:
     return rephrase(f"'{remark}' after '{phrase}', which is one place: one of what? Name the room or object "
                     "to choose from ('any chair in the kitchen')")

@@ -12,7 +12,7 @@ from typing import Literal
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
-from sgplan.llm.offline.syntax.actions import action, after_conjunction
+from sgplan.llm.offline.syntax.actions import action, after_conjunction, times_before_place
 from sgplan.llm.offline.syntax.links import closing_at, done_words, link
 from sgplan.llm.offline.syntax.negation import negation, off_limits, stay_on_floor
 from sgplan.llm.offline.syntax.qualifiers import names_rooms
@@ -290,7 +290,8 @@ def conjunction(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
 def plain_action(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """An action, and what the words around it say of its place: *first* / *before that* after it, *X on
     the way*, *come back to X*."""
-    if r.word(i) in lx.REFUSED_WORDS and not r.np_starts(i):  # not "other bdrm": a phrase
+    if r.word(i) in lx.REFUSED_WORDS and not r.np_starts(i) and times_before_place(r, i) is None:
+        # not "other bdrm" (a phrase), not "go twice to X" (the verb's)
         return Refusal(rf.cannot_understand(lx.REFUSED_WORDS[r.word(i)]))
     found = action(r, i)
     if not isinstance(found, Match):

@@ -342,6 +342,8 @@ class VerbWords:
     """*go first to X*, *go before to X* (as learners write *first*): the action comes first."""
     again: bool = False
     """*go again to X*: a new visit of X (as *X again*)."""
+    times: int = 1
+    """*go twice / two times to X* (as learners place it): X that many times (as *X twice*)."""
 
 
 @dataclass(frozen=True)
