@@ -110,7 +110,8 @@ def stay_on_floor(other_rooms: int = 11) -> None:
     """'Stay on this floor' in a three-floor building forbids every room of the other floors (11 in
     Benevolence seen from floor 0): many propositions, of which few labels are possible (one room at a
     time)."""
-    print(f"\n| stay on one floor ({other_rooms} rooms forbidden) + ordered goals | APs | states | labels | ms |")
+    print(f"\n| stay on one floor ({other_rooms} rooms forbidden) + ordered goals | APs | states | labels "
+          "| ms |")
     print("|---|---|---|---|---|")
     rooms = [f"room_{i}" for i in range(other_rooms)]
     for goals in range(1, 8):
