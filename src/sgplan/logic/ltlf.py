@@ -362,6 +362,7 @@ def ltlf_to_dfa(
         raise _too_big(formula, 1, num_labels, max_entries, "at least")
     allowed = possible_labels(aps, exclusive)
     if possible is not None:
+        possible = np.asarray(possible, dtype=bool)
         if possible.shape != allowed.shape:
             raise ValueError(f"possible has shape {possible.shape}, expected {allowed.shape} (2**len(aps))")
         allowed &= possible
