@@ -39,6 +39,14 @@ from sgplan.execution.labels import RunLabels
 from sgplan.execution.monitor import Monitor, MonitorStatus
 from sgplan.execution.parts import RunParts
 from sgplan.execution.regrid import regrid
+from sgplan.execution.run_io import (
+    FORMAT,
+    VERSION,
+    mission_from_dict,
+    mission_to_dict,
+    saved_session,
+    scene_reference,
+)
 from sgplan.execution.world import SceneDelta, SceneState
 from sgplan.intsets import members, unique_sorted
 
@@ -55,9 +63,6 @@ if TYPE_CHECKING:
 RunStatus = Literal["in-progress", "done", "violated", "impossible"]
 IMPOSSIBLE_EXIT = 7
 """Exit code of a command whose run ended impossible (beside the monitor's 5 in progress, 6 violated)."""
-FORMAT = "sgplan-run"
-VERSION = 1
-"""The ``format`` and ``version`` of :meth:`Run.to_dict`."""
 
 
 @dataclass(frozen=True)
@@ -496,8 +501,6 @@ class Run:
 
         Cost: the mission's automaton table and the changes as data (no plan is stored: a restored run
         plans again from the same cell and state)."""
-        from sgplan.execution.run_io import mission_to_dict, scene_reference
-
         return {
             "format": FORMAT, "version": VERSION, "scene": scene_reference(self.session.building),
             "options": self.options.to_dict(), "start": list(self.start), "start_from": self.start_from,
@@ -529,9 +532,22 @@ class Run:
         SgplanError
             another format or version, a session on another building, a change that no longer applies.
         """
-        from sgplan.execution.run_io import restore
+        from sgplan.options import PlanOptions
 
-        return restore(cls, data, session)
+        session = saved_session(data, session)
+        run = cls(session, mission_from_dict(data["mission"]), tuple(data["position"]),
+                  PlanOptions.from_dict(data["options"]), state=int(data["state"]))
+        changes = [change_from_dict(c, f"saved change {i}") for i, c in enumerate(data["changes"], 1)]
+        if changes:
+            run.change(changes)
+        run.history = [RunEvent(e["kind"], e["message"], dict(e["details"])) for e in data["history"]]
+        run.start, run.start_from = tuple(data["start"]), data["start_from"]
+        run.amendments = list(data["amendments"])
+        counts = data["monitor"]
+        run.monitor.poses, run.monitor.cells, run.monitor.length_m = counts["poses"], counts["cells"], \
+            counts["length_m"]
+        run.restore_status(data["status"], data.get("why"))
+        return run
 
 
 def _changed_cells(deltas: list[SceneDelta]) -> dict[int, np.ndarray]:
