@@ -39,6 +39,7 @@ from sgplan.execution.labels import RunLabels
 from sgplan.execution.monitor import Monitor, MonitorStatus
 from sgplan.execution.parts import RunParts
 from sgplan.execution.regrid import regrid
+from sgplan.execution.replan import plan_from
 from sgplan.execution.run_io import (
     FORMAT,
     VERSION,
@@ -287,7 +288,6 @@ class Run:
         """A plan from the robot's cell and state; :class:`PlanningError` (status ``infeasible``) when
         there is none. Other planning errors (a bug, a bad option) are raised as they are."""
         from sgplan.api import explain_for_result
-        from sgplan.execution.replan import plan_from
 
         if self._explained is None:
             self._explained = explain_for_result(self.mission, self.building,
