@@ -19,22 +19,24 @@ continuation can satisfy it any more: the monitor names the step that broke it) 
 could still be satisfied in principle, but not from here in this building: :attr:`Run.why` says why;
 the run stays usable, and a change that reopens the way makes it plannable again).
 
-Events (:class:`RunEvent`: ``changed``, ``replanned``, ``progress``, ``done``, ``violated``,
-``impossible``, ``amended``, ``refused``) go to the callbacks given with :meth:`Run.subscribe`, as they
-happen, and into :attr:`Run.history`.
+Events (:class:`~sgplan.execution.events.RunEvent`: ``changed``, ``replanned``, ``progress``, ``done``,
+``violated``, ``impossible``, ``amended``, ``refused``) go to the callbacks given with
+:meth:`Run.subscribe`, as they happen, and into :attr:`Run.history`.
 """
 
 from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
 from sgplan.errors import PlanningError, SceneError
 from sgplan.execution.changes import Change, change_from_dict
+from sgplan.execution.events import RunEvent
+from sgplan.execution.impossible import why_impossible
 from sgplan.execution.labels import RunLabels
 from sgplan.execution.monitor import Monitor, MonitorStatus
 from sgplan.execution.parts import RunParts
@@ -64,20 +66,6 @@ if TYPE_CHECKING:
 RunStatus = Literal["in-progress", "done", "violated", "impossible"]
 IMPOSSIBLE_EXIT = 7
 """Exit code of a command whose run ended impossible (beside the monitor's 5 in progress, 6 violated)."""
-
-
-@dataclass(frozen=True)
-class RunEvent:
-    """Something that happened to a run: its ``kind``, a sentence, JSON-safe ``details`` and, apart
-    (not saved: it differs between two runs of the same thing), the ``seconds`` it took."""
-
-    kind: str
-    message: str
-    details: dict[str, Any] = field(default_factory=dict)
-    seconds: float | None = None
-
-    def to_dict(self) -> dict[str, Any]:
-        return {"kind": self.kind, "message": self.message, "details": self.details}
 
 
 @dataclass(frozen=True)
@@ -309,8 +297,6 @@ class Run:
                    plannable_again=was_impossible)
 
     def _impossible(self, message: str, seconds: float) -> None:
-        from sgplan.execution.impossible import why_impossible
-
         self._plan, self._stale = None, True
         self.why = why_impossible(self, message)
         self._status = "impossible"
@@ -457,8 +443,6 @@ class Run:
             try:
                 plan = self._search()
             except PlanningError as error:
-                from sgplan.execution.impossible import why_impossible
-
                 reason = why_impossible(self, str(error))
                 (self.mission, self.labels, self.monitor, self.parts, self._status, self.why, self._plan,
                  self._stale, self._on_plan) = before

@@ -4,10 +4,13 @@ view, so they sit below :class:`sgplan.execution.run.Run`, which calls them."""
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Protocol
 
 if TYPE_CHECKING:
+    from sgplan.execution.events import RunEvent
     from sgplan.execution.labels import RunLabels
+    from sgplan.execution.monitor import Monitor
     from sgplan.execution.parts import RunParts
     from sgplan.mission import Mission
     from sgplan.options import PlanOptions
@@ -52,3 +55,19 @@ class RunView(Protocol):
     @property
     def stop_when(self) -> Termination | None:
         """A further condition that stops the run's searches besides the options' budgets."""
+
+    @property
+    def position(self) -> tuple[int, int, int]:
+        """The robot's cell ``(row, col, floor)``."""
+
+    @property
+    def state(self) -> int:
+        """The mission's automaton state at the robot's cell (after reading its label)."""
+
+    @property
+    def monitor(self) -> Monitor:
+        """The monitor of the poses the robot drove, with the words of the mission's automaton states."""
+
+    @property
+    def history(self) -> Sequence[RunEvent]:
+        """The run's events so far, oldest first."""
