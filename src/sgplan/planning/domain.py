@@ -75,30 +75,25 @@ class KeptParts(Protocol):
                     ) -> tuple[np.ndarray, np.ndarray]:
         """``(label_masks, cell_label)`` of the label raster ``labels`` over ``graph``'s cells, as
         :func:`build_domain` compacts them."""
-        ...
 
     def reachable(self, grid: Hashable, graph: CellGraph, start_cell: int, avoid: np.ndarray) -> np.ndarray:
         """``(N,)`` bool: the cells of ``graph`` reachable from ``start_cell``. It may leave out what is
         reachable only through cells of the bitmasks ``avoid`` (labels every move onto which ends the
         mission: the search never stands there)."""
-        ...
 
     def label_boundary(self, grid: Hashable, graph: CellGraph) -> np.ndarray:
         """:func:`~sgplan.planning.ltl_heuristic.label_boundary` of ``graph`` and the labels served by
         :meth:`cell_labels`."""
-        ...
 
     def label_fields(self, grid: Hashable, graph: CellGraph, masks: np.ndarray, unit_m: float,
                      avoid: np.ndarray) -> np.ndarray | float:
         """The ``(N, F)`` distance fields (h_LTL's, :func:`~sgplan.planning.ltl_heuristic.label_fields`) of
         the whole regions of the label bitmasks ``masks``; they may leave out of the graph the cells of the
         bitmasks ``avoid`` (labels every move onto which ends the mission)."""
-        ...
 
     def action_parts(self, problem: PlanningProblem, graph: CellGraph, cell_label: np.ndarray,
                      reachable: np.ndarray) -> ActionParts:
         """The composite action parts of ``problem`` (:func:`_action_parts`: tables, maps, label runs)."""
-        ...
 
 
 def _kept_parts(problem: PlanningProblem) -> KeptParts | None:
