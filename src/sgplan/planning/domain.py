@@ -33,7 +33,13 @@ from sgplan.planning._dijkstra import PRED_NONE, PRED_SOURCE, PRED_STAIRS, PRED_
 from sgplan.planning._memory import sparse_zeros
 from sgplan.planning.cells import CellGraph, build_cell_graph
 from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
-from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic, label_fields, reachable_states
+from sgplan.planning.ltl_heuristic import (
+    LtlHeuristic,
+    build_ltl_heuristic,
+    label_boundary,
+    label_fields,
+    reachable_states,
+)
 from sgplan.planning.problem import PlanningProblem
 from sgplan.planning.shared import shared_part
 from sgplan.scene.model import CatCode, Room
@@ -284,7 +290,9 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
     component = None if kept is None else kept.reachable(problem.grid, graph, start_cell, avoid)
     reachable = component if component is not None else graph.reachable(start_cell)
     clock.lap("reachable")
-    boundary = None if kept is None else kept.label_boundary(problem.grid, graph)
+    boundary = kept.label_boundary(problem.grid, graph) if kept is not None else shared_part(
+        problem.shared, "label_boundary", (problem.grid, _labelling_digest(logic.cell_label)),
+        lambda: label_boundary(graph, logic.cell_label))
     fields = partial(_label_fields, problem, graph, logic.cell_label, logic.label_masks, reachable, avoid)
     ltl = build_ltl_heuristic(graph, logic.cell_label, logic.trans, logic.accepting, q_start, reachable,
                               fields=fields, start_cell=start_cell, boundary=boundary)
@@ -437,6 +445,12 @@ def _kernel_graph(graph: CellGraph, cell_label: np.ndarray, parts: ActionParts) 
     )
 
 
+def _labelling_digest(cell_label: np.ndarray) -> bytes:
+    """A digest of the cells' compact labels: the key part of what depends on which cells share a label
+    (label runs, the label boundary), so that problems with the same labelling share it."""
+    return hashlib.blake2b(np.ascontiguousarray(cell_label).data, digest_size=16).digest()  # no copy
+
+
 ActionParts = namedtuple("ActionParts", "maps kactions kmaps cell_room in_region")
 """What :func:`build_domain` hands the kernel for the composite actions: the families, their tables,
 their maps (this problem's view of the shared store), and the per-cell room index / object-region flag."""
@@ -461,9 +475,8 @@ def _action_parts(
     store = shared_part(problem.shared, "action_maps", (problem.grid, *reach, component),
                         lambda: MapStore.empty(tables, graph, reachable))
     # Label runs follow which cells share a label: shared by the problems with the same cell labels.
-    labelling = hashlib.blake2b(np.ascontiguousarray(cell_label).data, digest_size=16).digest()  # no copy
     runs = shared_part(problem.shared, "label_runs",
-                       (problem.grid, *reach, component, labelling),
+                       (problem.grid, *reach, component, _labelling_digest(cell_label)),
                        lambda: LabelRuns.empty(store))
     kmaps = KernelMaps(
         done=runs.done,

@@ -13,7 +13,9 @@ by every planning problem of the session. The parts kept (:mod:`sgplan.planning.
   cells' labels: shared by problems whose cells carry the same labels, e.g. one mission from several
   starts or setups);
 - ``distance_field``: the exact distance from every cell to a set of target cells, the terms of h_LTL
-  (key: grid, the target cells).
+  (key: grid, the target cells);
+- ``label_boundary``: the cells where a move enters another label region, where h_LTL's fields are
+  combined (key: grid, a digest of the cells' labels).
 
 Memory is bounded: :meth:`SharedParts.trim` (a :class:`Session` calls it after each plan) drops the least
 recently used parts until the bytes they hold (``nbytes`` of each part, measured then, since action maps
