@@ -136,8 +136,8 @@ def test_a_second_mission_on_a_session_builds_only_what_depends_on_it(
 ) -> None:
     """Work counted, not timed: the grid, the cell graph, the masks of propositions already seen, the
     action tables, every action map, every h_LTL distance field and the label runs and label boundary of
-    each labelling are built once per session (the A* setup builds no action tables, maps or label runs at all); the plans
-    are those of fresh calls (same cost and path)."""
+    each labelling are built once per session (the A* setup builds no action tables, maps or label runs at
+    all); the plans are those of fresh calls (same cost and path)."""
     actions = setup != "A*"
     action_parts = {"action_tables": 1, "action_maps": 1, "label_runs": 1} if actions else {}
     session = sgplan.Session(demo)
