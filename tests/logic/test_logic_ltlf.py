@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 from sgplan.errors import AutomatonError, FormulaError
 from sgplan.logic import (
     Atom,
+    Automaton,
     Next,
     equivalent,
     ltlf_to_dfa,
@@ -102,6 +103,46 @@ def test_exclusive_groups_send_impossible_labels_to_a_sink():
     rng = np.random.default_rng(0)
     words = rng.choice(np.flatnonzero(possible), size=(500, 6))
     assert np.array_equal(run_words(full, words), run_words(pruned, words))
+
+
+def _pruned_by_hand(full: Automaton, possible: np.ndarray) -> Automaton:
+    """``full`` with every impossible label sent to a new rejecting sink, minimised: the dense reference."""
+    sink = full.num_states
+    table = np.vstack([full.table, np.full((1, full.num_labels), sink)])
+    table[:, ~possible] = sink
+    return minimize(Automaton(full.aps, table, full.initial, np.append(full.accepting, False)))
+
+
+@settings(max_examples=60, deadline=None)
+@given(formula=formulas(APS, max_leaves=8), groups=st.sampled_from([
+    [["p0", "p1"]], [["p0", "p1", "p2"]], [["p1", "p3"], ["p0", "p2", "p4"]], [list(APS)],
+]), keep=st.lists(st.booleans(), min_size=32, max_size=32))
+def test_pruned_dfa_is_exactly_the_dense_one_pruned_by_hand(formula, groups, keep):
+    """The builder works over the possible labels and one column for the rest; the result must be the
+    very table (same numbering) of pruning the unpruned dense DFA by hand and minimising it."""
+    possible = possible_labels(APS, groups) & np.array(keep)
+    built = ltlf_to_dfa(formula, aps=APS, exclusive=groups, possible=np.array(keep))
+    expected = _pruned_by_hand(ltlf_to_dfa(formula, aps=APS), possible)
+    assert built.num_states == expected.num_states
+    assert np.array_equal(built.table, expected.table) and np.array_equal(built.accepting, expected.accepting)
+
+
+def test_staying_on_one_floor_of_three_builds_fast_with_eighteen_propositions():
+    """'Stay on this floor' forbids every room of the other floors: with the goals, 18 propositions
+    (262,144 labels) of which few are possible, since the robot is in one room at a time."""
+    other_floors = [f"room_{i}" for i in range(11)]
+    goals = ["a", "b", "c", "room_20", "d", "room_21", "room_22"]
+    sequence = "F(a & F(b & F(room_20 & F(c & F(room_21 & F(room_22 | d))))))"
+    formula = parse_infix(f"{sequence} & G !({' | '.join(other_floors)})")
+    start = time.perf_counter()
+    dfa = ltlf_to_dfa(formula, aps=[*goals, *other_floors],
+                      exclusive=[[*other_floors, "room_20", "room_21", "room_22"]])
+    assert time.perf_counter() - start < 2.0
+    assert dfa.num_labels == 2**18 and dfa.num_states == 8
+    word = [dfa.label_of(["a"]), dfa.label_of(["b"]), dfa.label_of(["room_20"]), dfa.label_of(["c"]),
+            dfa.label_of(["room_21"]), dfa.label_of(["d"])]
+    assert dfa.accepts(word)
+    assert not dfa.accepts([*word[:3], dfa.label_of(["room_3"]), *word[3:]])
 
 
 def test_twelve_unordered_goals_are_refused_early_with_the_predicted_size():
