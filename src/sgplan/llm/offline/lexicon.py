@@ -649,7 +649,9 @@ ONE_SUFFICES = Phrases(tuple(
     for one in (("one", "of", "them"), ("one",), ("any", "one", "of", "them"))
     for enough in ((), ("is", "enough"), ("will", "do"), ("is", "fine"), ("is", "ok"), ("is", "okay"),
                    ("would", "do"), ("suffices",))
-    if lead or enough or len(one) > 1))
+    if lead or enough or len(one) > 1) + tuple(  # "the vases - any of them will do -" (not bare)
+    ("any", "of", "them", *enough) for enough in (("will", "do"), ("is", "enough"), ("is", "fine"),
+                                                  ("would", "do"), ("suffices",))))
 """After a phrase that means each of several (*the vases in the lobby, just one of them*, *check the apples,
 getting to one of them is enough*): one of them will do, which makes it a choice (said outright, unlike
 *either one*, which is refused there)."""
