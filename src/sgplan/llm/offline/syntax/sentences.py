@@ -37,6 +37,7 @@ from sgplan.llm.offline.syntax.tree import (
     IfRule,
     Link,
     MissionSentence,
+    Negation,
     OnlyAfterPost,
     OnlyAfterSentence,
     OnlyIfPost,
@@ -273,10 +274,31 @@ def plain(r: Reader, i: int) -> Parse[SentenceBody]:
     said = body(r, i)
     if not isinstance(said, Match):
         return said
-    post = postfix(r, said.end, said.node.actions)
+    tail = trailing_prohibitions(r, said.end)
+    post = postfix(replace(r, toks=r.toks[:tail.end]) if tail else r, said.end, said.node.actions)
     if not isinstance(post, Match):
         return post
-    return Match(PlainSentence(scope, said.node, post.node), post.end)
+    if tail is None:
+        return Match(PlainSentence(scope, said.node, post.node), post.end)
+    return Match(PlainSentence(scope, said.node, post.node, tail.node), len(r))
+
+
+def trailing_prohibitions(r: Reader, i: int) -> Match[Body] | None:
+    """After a closing condition at ``i`` (*X, but only after Y*): *, and stay out of Z (the whole time)* /
+    *, and never enter Z* closing the sentence, as a body of whole-mission prohibitions only (``end``: where
+    the condition ends); ``None`` when there is none (then the condition must close the sentence)."""
+    if not (r.phrase(i, lx.ONLY_AFTER) or r.at(i, *lx.ONLY_IF)):
+        return None
+    for k in range(len(r) - 1, i, -1):
+        if not r.at(k, ",", "and"):
+            continue
+        said = body(r, k + 2)
+        if not isinstance(said, Match) or said.end != len(r) or not said.node.items:
+            return None
+        whole = all(isinstance(item, Negation) and item.until is None
+                    and (item.whole or lx.GLOBAL_NEG & set(item.marker)) for item in said.node.items)
+        return Match(said.node, k) if whole else None
+    return None
 
 
 def rules_sentence(r: Reader, i: int) -> Parse[SentenceBody]:

@@ -590,6 +590,9 @@ class PlainSentence:
     scope: NounPhrase | None
     body: Body
     postfix: Postfix
+    prohibitions: Body | None = None
+    """Whole-mission prohibitions said after the condition (*X, but only after Y, and stay out of Z the whole
+    time*): they hold beside it."""
 
 
 @dataclass(frozen=True)
