@@ -902,6 +902,8 @@ ASIDE_QUALIFIERS = frozenset({"in", "inside", "on", "next", "beside", "upstairs"
 """``the couch, which is in the living room`` / ``the bowl (it's in the kitchen)``: an aside read as the
 qualifier it states."""
 RELATIVE_BE = ("is", "are", "was", "were", "sits", "lives", "stands")
+PLURAL_BE = ("are", "were")
+"""After several things in a relative clause (*the bedroom where the book and the vase are*)."""
 RELATIVE_PARTICIPLES = ("located", "kept", "stored", "placed", "found", "standing", "sitting")
 """``the room where the book is (kept)``."""
 STATEMENT_LINKS = ("is", "are", "was", "were")

@@ -274,12 +274,14 @@ def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse)
 
 @applies(Holds)
 def holds(q: Holds, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
-    """*the room where the book is*: the rooms holding it."""
-    thing = inner(q.thing, disc)
-    if any(e.kind != "object" for e in thing.entities):
-        rf.refuse(rf.room_by_contents(thing.phrase))
-    entities = disc.vocab.containing(noun.entities, thing.entities, None)
-    thing.entities = [o for o in thing.entities if any(o.room_key == r.key for r in entities)]
+    """*the room where the book is*: the rooms holding it (and each of the others said with it)."""
+    entities = noun.entities
+    for said in (q.thing, *q.also):
+        thing = inner(said, disc)
+        if any(e.kind != "object" for e in thing.entities):
+            rf.refuse(rf.room_by_contents(thing.phrase))
+        entities = disc.vocab.containing(entities, thing.entities, None)
+        thing.entities = [o for o in thing.entities if any(o.room_key == r.key for r in entities)]
     return Noun(noun.head, entities, noun.room_scoped)
 
 

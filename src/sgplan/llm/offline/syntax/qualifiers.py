@@ -345,13 +345,22 @@ def holds(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if isinstance(thing, Refusal):
         return None if tail else thing  # "the room the ...": maybe not a relative clause at all
     assert thing is not None
+    also: list[NounPhrase] = []
+    while not tail and r.word(thing.end) == "and" and r.np_starts(thing.end + 1):
+        more = phrases.noun_phrase(r, thing.end + 1, "qualifier")  # "where the book and the vase are"
+        if not isinstance(more, Match):
+            return more
+        also.append(more.node)
+        thing = Match(thing.node, more.end)
+    if also and r.word(thing.end) not in lx.PLURAL_BE:
+        return Refusal(rf.where_after_a_room(r.rest(thing.end)))
     if r.word(thing.end) not in lx.RELATIVE_BE:
         return None if tail else Refusal(rf.where_after_a_room(r.rest(thing.end)))
     end = thing.end + 1
     end += 1 if r.word(end) in lx.RELATIVE_PARTICIPLES else 0
     if not r.at(end, *tail):
         return None if tail else Refusal(rf.where_after_a_room(r.rest(end)))
-    return Match(Holds(thing.node), end + len(tail))
+    return Match(Holds(thing.node, tuple(also)), end + len(tail))
 
 
 @QUALIFIERS.rule("without")

@@ -265,9 +265,11 @@ class There:
 
 @dataclass(frozen=True)
 class Holds:
-    """*the room where the book is*: the rooms holding that object."""
+    """*the room where the book is*: the rooms holding that object; ``also``: the others said with it (*the
+    bedroom where the book and the vase are*: holding each)."""
 
     thing: NounPhrase
+    also: tuple[NounPhrase, ...] = ()
 
 
 @dataclass(frozen=True)
