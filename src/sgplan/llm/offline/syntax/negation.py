@@ -86,7 +86,7 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
         phrases, k = found.node, found.end
     k = particles(r, k)
     k += 1 if r.word(k) in lx.NEGATING + lx.NEGATION_EVER and marker[-1] in lx.NEGATING else 0  # "... never"
-    whole = r.phrase(k, lx.WHOLE_MISSION)
+    whole = whole_mission(r, k)
     k += len(whole) if whole else 0
     if r.word(k) in lx.PARTIAL_PROHIBITION or any(r.at(k, *p) for p in lx.PARTIAL_FROM):
         return Refusal(rf.partial_prohibition(r.rest(k)))
@@ -96,6 +96,12 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
     node = Negation(marker, None, verbs.node, phrases, floor, whole is not None,
                     None if until is None else until.node)
     return Match(node, k if until is None else until.end)
+
+
+def whole_mission(r: Reader, k: int) -> tuple[str, ...] | None:
+    """*the whole time*, *at all times* ... after what to avoid or where to stay, and *always* there as
+    learners place it (*stay in this floor always*, *keep out of X always*): the words, or ``None``."""
+    return r.phrase(k, lx.WHOLE_MISSION) or (("always",) if r.word(k) == "always" else None)
 
 
 def concord_verb_words(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[VerbWords]:
@@ -153,7 +159,7 @@ def stay_on_floor(r: Reader, i: int, negated: bool) -> Parse[StayOnFloor]:
         return Refusal(rf.stay_for_the_rest(r.word(i - 1), r.word(i)))
     other = r.phrase(where, lx.OTHER_FLOOR) is not None
     span = r.span(where, end)
-    whole = r.phrase(end, lx.WHOLE_MISSION)
+    whole = whole_mission(r, end)
     end += len(whole) if whole else 0
     and_off = None
     if r.at(end, "and", "off") and r.np_starts(end + 2):  # "stay on the top floor and off the stairs"
@@ -204,5 +210,5 @@ def off_limits(r: Reader, i: int) -> Parse[OffLimits]:
         states = r.word(phrases.end) in lx.COPULAS
         return Refusal(rf.states_something(r.quote(i, phrases.end + 1))) if states else None
     end = phrases.end + len(said)
-    whole = r.phrase(end, lx.WHOLE_MISSION)
+    whole = whole_mission(r, end)
     return Match(OffLimits(phrases.node), end + (len(whole) if whole else 0))

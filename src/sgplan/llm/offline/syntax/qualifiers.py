@@ -194,6 +194,9 @@ def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     w = r.word(i)
     if w in lx.RELATIVE_FLOORS:
         return Match(OnFloor(RelativeFloor(w)), i + 1)
+    k = i + 1 + (1 if r.word(i + 1) == "the" else 0)
+    if w in lx.FLOOR_PREPOSITIONS and r.word(k) in lx.RELATIVE_FLOORS and r.head(k + 1) is None:
+        return Match(OnFloor(RelativeFloor(r.word(k))), k + 1)  # "the bathroom of the upstairs" (learners)
     comma = 1 if w == "," else 0
     if floor_count(r, i + comma) is not None and r.word(i + comma + 1) in lx.FLOOR_PLURALS:
         offset = floor_offset(r, i + comma)  # "the kitchen (,) one floor down"
