@@ -903,6 +903,9 @@ ASIDE_QUALIFIERS = frozenset({"in", "inside", "on", "next", "beside", "upstairs"
 qualifier it states."""
 RELATIVE_BE = ("is", "are", "was", "were", "sits", "lives", "stands")
 PLURAL_BE = ("are", "were")
+PERMISSION_WORDS = ("allowed", "permitted", "welcome")
+"""*you are allowed / welcome to go into X* gives leave, which neither asks for X nor forbids it (refused);
+after a negation they forbid (*you are not allowed into X*)."""
 """After several things in a relative clause (*the bedroom where the book and the vase are*)."""
 RELATIVE_PARTICIPLES = ("located", "kept", "stored", "placed", "found", "standing", "sitting")
 """``the room where the book is (kept)``."""

@@ -623,6 +623,11 @@ def whose_room(said: str, rooms: list[str]) -> str:
     return rephrase(f"'{said}': whose room? ({named}); name the room ('the bedroom with the two beds')")
 
 
+def permission_only(said: str) -> str:
+    return rephrase(f"'{said}' gives permission, which neither asks for the place nor forbids it; say 'go to "
+                    "X' if it is a goal, or leave it out")
+
+
 def times_of_what(said: str) -> str:
     return rephrase(f"'{said}': how many times is said for several places or twice; say it after one place "
                     "('visit the kitchen twice, then the office')")

@@ -146,6 +146,8 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
         refused = refused_verb(r, i, in_condition)
         if refused is not None:
             return refused
+        if w in lx.PERMISSION_WORDS and r.word(i - 1) in lx.COPULAS:  # "you are allowed to go into X"
+            return Refusal(rf.permission_only(r.quote(i, min(len(r), i + 5))))
         if w in lx.MODALS and r.word(i + 1) not in lx.NEGATING:
             seen.append(w)  # "may you go into ...", "I do want you to visit ...": no negation
             i += 1
