@@ -903,6 +903,8 @@ ASIDE_QUALIFIERS = frozenset({"in", "inside", "on", "next", "beside", "upstairs"
 qualifier it states."""
 RELATIVE_BE = ("is", "are", "was", "were", "sits", "lives", "stands")
 PLURAL_BE = ("are", "were")
+FINDING_VERBS = word_set("find see spot notice")
+"""*<room>, where you can find / see X*: says where X is, or asks for X? (refused)"""
 PERMISSION_WORDS = ("allowed", "permitted", "welcome")
 """*you are allowed / welcome to go into X* gives leave, which neither asks for X nor forbids it (refused);
 after a negation they forbid (*you are not allowed into X*)."""

@@ -109,6 +109,11 @@ def self_correction(said: str) -> str:
                     "part stands; say the mission again as it should be done")
 
 
+def where_you_find(said: str) -> str:
+    return rephrase(f"'{said}' may only say what is there, or ask for it; say 'and check the ...' if it is a "
+                    "goal, or leave it out")
+
+
 def where_after_no_room(said: str) -> str:
     return rephrase(f"'{said}' follows no single room, so it is not clear where it is done; say 'in the "
                     "<room>, ...' or name the room of the object")

@@ -208,6 +208,8 @@ def where_you(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     k += 2 if r.word(k) in lx.NEGATED_NEED_WORDS and r.word(k + 1) == "to" else 0  # "where you need to"
     if k >= len(r) or r.np_starts(k) or r.word(k) in lx.STRUCTURAL:
         return None
+    if r.word(k) in lx.FINDING_VERBS:  # "the kitchen, where you can find the bowl": a hint, or a goal?
+        return Refusal(rf.where_you_find(r.quote(i + 1, min(len(r), k + 3))))
     last = before[-1] if before else None
     phrases = last.action.phrases if isinstance(last, PlainAction) else None
     if phrases is None or len(phrases.items) != 1 or not names_rooms(phrases.items[0]):
