@@ -93,10 +93,12 @@ def tail(action: Action, phrases: list[Grounded], steps: list[Step], carry: bool
             e.kind == "object" for g in phrases for e in g.entities)
         if routed:  # "put X in Y", "take X to Y", "go from X to Y": X, then Y
             dest = ground_list(action.destination, replace(where, scope=()), ctx.disc)
+            choice_remark(dest, action.destination_remark, ctx.disc.said)
             steps.extend(tasks_of(dest, False))
         else:  # "go to the kitchen to the office": another goal of the step
             dest = ground_list(action.destination, replace(where, scope=tuple(ctx.step_rooms(steps[-1]))),
                                ctx.disc)
+            choice_remark(dest, action.destination_remark, ctx.disc.said)
             steps[-1].extend(tasks_of(dest, False)[0])
     if action.purpose is not None:
         purpose = ground_list(action.purpose, where, ctx.disc)

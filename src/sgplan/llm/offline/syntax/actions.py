@@ -334,6 +334,9 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
         if not isinstance(dest, Match):
             return dest
         node, i = replace(node, destination=dest.node), dest.end
+        remark = remark_ahead(r, i)  # "put it on the table of the dining room, which one you want"
+        if remark is not None:
+            node, i = replace(node, destination_remark=remark), i + len(remark)
     i = particles(r, i)
     if r.word(i) == "to" and not r.np_starts(i + 1):  # purpose clause: "... to turn them off"
         verbs = verb_words(r, i + 1, node.in_condition)

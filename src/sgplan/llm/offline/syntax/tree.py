@@ -382,6 +382,8 @@ class Action:
     purpose: PhraseList | None = None
     in_condition: bool = False
     carried_on: bool = False
+    destination_remark: tuple[str, ...] | None = None
+    """A choice remark after the destination (*put it on the table in the dining room, any one*)."""
 
 
 # -------------------------------------------------------------------------------------------- body items
