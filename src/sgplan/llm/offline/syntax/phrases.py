@@ -209,6 +209,8 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
         chosen_from = r.word(i) in ("the", "these", "those")  # "one of the two bathrooms"
     elif w in lx.INDEFINITE:
         i, mode = i + 1, "any"
+    elif w in ("each", "every") and (r.at(i + 1, "one", "of") or r.at(i + 1, "single", "one", "of")):
+        i, mode = i + (3 if r.word(i + 1) == "one" else 4), "all"  # "every (single) one of the vases"
     elif w in lx.UNIVERSAL or (w == "the" and r.word(i + 1) == "both"):
         # "the both bedrooms", as learners write it (the article of their language): both
         i += 1 if w == "the" else 0
