@@ -816,7 +816,7 @@ NEGATING = ("not", "never")
 PARTIAL_PROHIBITION = ("after", "once", "when", "during", "afterwards", "afterward", "later", "again")
 """After what to avoid: a prohibition for part of the mission, which is refused."""
 PARTIAL_FROM = (("from", "then"), ("from", "now"))
-UNTIL_WORDS = ("until", "before")
+UNTIL_WORDS = ("until", "before", "till")
 """After what to avoid: ``!X U Y``."""
 UNTIL_DONE_LINKS = ("is", "are", "has", "have")
 UNTIL_DONE_WORDS = DONE | {"been", "visited"}

@@ -158,6 +158,8 @@ def skip_until_subject(r: Reader, i: int) -> int:
     (*until you have not seen the couch*, *till you not have been in X*: how French, Italian and Spanish
     writers say *until you have seen it*, their *tant que ... ne ... pas*; in English the negated reading
     asks for nothing that can happen, so the positive one is the only one meant)."""
+    if r.at(i, "to", "have") or r.at(i, "to", "be"):
+        return skip_subject(r, i + 1)  # "before to have seen the couch" (French "avant d'avoir vu")
     k = skip_subject(r, i)
     if k > i and r.word(k) == "not":
         return skip_subject(r, k + 1)

@@ -125,8 +125,9 @@ def until_target(r: Reader, k: int) -> Parse[Action | UntilDone]:
         return None
     if r.word(k + 1) in lx.EVENT_WORDS or (r.at(k + 1, "the") and r.word(k + 2) in lx.EVENT_WORDS):
         return Refusal(rf.until_a_time(r.quote(k, k + (2 if r.word(k + 1) in lx.EVENT_WORDS else 3))))
-    if r.word(k + 1) in ("that", "this") and r.word(k + 2) in ("", ","):
+    if r.word(k + 1) in ("that", "this", "then") and r.word(k + 2) in ("", ","):
         return Match(UntilDone(), k + 2)  # "you are not allowed into X before that": the step named last
+    k += 1 if r.word(k) in ("until", "till") and r.word(k + 1) == "after" else 0  # "until after you ..."
     said = skip_until_subject(r, k + 1)
     if said > k + 1 and r.word(said) in ("", ","):
         return Match(UntilDone(), said)  # "don't set foot in the kitchen until you have"
