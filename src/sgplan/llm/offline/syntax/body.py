@@ -15,6 +15,7 @@ from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import action, after_conjunction, times_before_place
 from sgplan.llm.offline.syntax.links import closing_at, done_words, link
 from sgplan.llm.offline.syntax.negation import negation, off_limits, stay_on_floor
+from sgplan.llm.offline.syntax.phrases import there_then_verb
 from sgplan.llm.offline.syntax.qualifiers import names_rooms
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
@@ -210,11 +211,27 @@ def where_you(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
         return None
     if r.word(k) in lx.FINDING_VERBS:  # "the kitchen, where you can find the bowl": a hint, or a goal?
         return Refusal(rf.where_you_find(r.quote(i + 1, min(len(r), k + 3))))
-    last = before[-1] if before else None
-    phrases = last.action.phrases if isinstance(last, PlainAction) else None
-    if phrases is None or len(phrases.items) != 1 or not names_rooms(phrases.items[0]):
+    if not after_one_room(before):
         return Refusal(rf.where_after_no_room(r.quote(i + 1, min(len(r), k + 3))))
     return Match(Skip(), k)
+
+
+@ITEMS.rule("and there X")
+def and_there(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*go to the kitchen and there take the bowl*: *there* before the verb, as *take the bowl there* (in that
+    room: the step's room context); after anything but one room it is refused (where is there?)."""
+    if r.word(i - 1) != "and" or not there_then_verb(r, i):
+        return None
+    if not after_one_room(before[:-1] if before and isinstance(before[-1], Link) else before):
+        return Refusal(rf.where_after_no_room(r.quote(i, min(len(r), i + 4))))
+    return Match(Skip(), i + 1)
+
+
+def after_one_room(before: Said) -> bool:
+    """Whether the item said last is an action on one room (*go to the kitchen*)."""
+    last = before[-1] if before else None
+    phrases = last.action.phrases if isinstance(last, PlainAction) else None
+    return phrases is not None and len(phrases.items) == 1 and names_rooms(phrases.items[0])
 
 
 @ITEMS.rule("link")

@@ -316,6 +316,14 @@ def phrase_list(r: Reader, i: int, role: Role) -> Parse[PhraseList]:
                             len(items) > 1 and not joiners and not either), i)
 
 
+def there_then_verb(r: Reader, i: int) -> bool:
+    """*there* at ``i`` before a verb (*go to the kitchen and there take the bowl*): the place of the next
+    action, not an item of the list."""
+    nxt = r.word(i + 1)
+    return (r.word(i) == "there" and nxt.isalpha() and not r.np_starts(i + 1)
+            and nxt not in lx.STATEMENT_LINKS and nxt not in lx.STRUCTURAL)
+
+
 def list_joiner(r: Reader, i: int, preposition: str | None) -> tuple[str, int] | None:
     """The conjunction (``""`` for a bare comma) before a further item of a list at ``i`` and where that
     item starts; ``None`` when the list ends here."""
@@ -329,7 +337,7 @@ def list_joiner(r: Reader, i: int, preposition: str | None) -> tuple[str, int] |
     if (w == "," and r.np_starts(i + 1) and not r.phrase(i + 1, lx.NEG_STARTS) and not closing_at(r, i + 1)
             and not r.phrase(i + 1, lx.TIME_FILLERS) and qualifiers.remark_ahead(r, i) is None):
         return "", i + 1
-    if w in ("and", "or", "nor") and r.np_starts(i + 1):
+    if w in ("and", "or", "nor") and r.np_starts(i + 1) and not there_then_verb(r, i + 1):
         return w, i + 1
     if r.at(i, ",", "nor") and r.np_starts(i + 2):
         return "nor", i + 2
