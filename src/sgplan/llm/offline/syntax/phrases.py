@@ -57,8 +57,10 @@ def there_place(r: Reader, i: int, role: Role, given: Head | None) -> Parse[Noun
 
 @NOUN_PHRASES.rule("all of them")
 def group_repeat(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
-    """*all of them*, *both of them*, *all three of them*, *all three* (a goal): the group named before."""
+    """*all of them*, *both of them*, *all three of them*, *all three*, *the two of them* (a goal): the group
+    named before."""
     n = 1 if r.word(i) in ("all", "both", "each", "every") else 0
+    n = 1 if r.word(i) == "the" and count_word(r, i + 1) and r.at(i + 2, "of", "them") else n
     said = lx.NUMBER_WORDS.get(r.word(i + n)) if n else None
     k = i + n + (1 if said else 0)
     if role != "goal" or not n or (not r.at(k, "of", "them") and not (said and r.word(k) in ("", ","))):
@@ -98,7 +100,9 @@ def counted_ones(r: Reader, i: int, role: Role, given: Head | None) -> Parse[Nou
     """*the two in the lounge* after *the plant in the bedroom*: the ones of the kind named last (as *the
     ones in the lounge*), and there must be that many."""
     n = count_word(r, i + 1) if r.word(i) == "the" and given is None else None
-    if n is None or n < 2 or r.word(i + 2) not in lx.QUAL_IN or not r.np_starts(i + 3):
+    if n is None or n < 2 or r.word(i + 2) not in lx.QUAL_IN or r.word(i + 2) == "of":
+        return None  # not "the two of the vases" / "the two of them" (both)
+    if not r.np_starts(i + 3):
         return None
     ones, det = OneHead(True, None, True), Determiner("all", n)
     noun = Described(r.span(i, i + 2), "the", det, None, None, None, ones, None, (), None, False)
@@ -222,6 +226,9 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
     elif w in lx.DEFINITE or w in lx.POSSESSIVES:
         i, mode = i + 1, "the"
     i += 1 if r.word(i) == "the" and mode is not None else 0
+    n = count_word(r, i) if mode == "the" and r.at(i + 1, "of", "the") else None
+    if n is not None:
+        return Match(Determiner("all", n), i + 3)  # "the two of the vases": both
     noun_next = r.np_starts(i + 1) or r.head(i + 1) or r.nouns.room_modifier(r.words, i + 1)
     n = count_word(r, i) if noun_next else None  # "all three (dining) chairs"
     if n is not None and chosen_from:
