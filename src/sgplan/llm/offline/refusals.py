@@ -648,6 +648,11 @@ def ordinal_of_several(said: str, phrase: str) -> str:
                     "again ('the bed in the ...')")
 
 
+def ordinal_of_unordered(said: str, first: str, second: str) -> str:
+    return rephrase(f"'{said}': '{first}' and '{second}' were named in no order, so the first named may "
+                    "not be the first visited; name it again")
+
+
 def ordinal_of_too_few(said: str, named: int) -> str:
     before = "only one was" if named == 1 else f"only {named} were"
     return rephrase(f"'{said}' counts what was named before it, and {before}; name it ('the bed in the ...')")

@@ -9,6 +9,7 @@ far (:class:`.phrases.Noun`) and returns it narrowed.
 from __future__ import annotations
 
 from collections.abc import Callable
+from itertools import pairwise
 from typing import Any
 
 from sgplan.llm.offline import lexicon as lx
@@ -124,6 +125,10 @@ def nth_named(entities: list[Entity], n: int, span: Span, disc: Discourse) -> li
     several = next((g for g in named if len(g.entities) > 1), None)
     if several is not None:
         rf.refuse(rf.ordinal_of_several(said, several.phrase))
+    together = next(((a, b) for a, b in pairwise(named) if a.entities != b.entities
+                     and not said_in_order(disc.text[a.end:b.start])), None)
+    if together is not None:  # "the bedroom and the other one, then the first one": named or visited first?
+        rf.refuse(rf.ordinal_of_unordered(said, together[0].phrase, together[1].phrase))
     order = list(dict.fromkeys(g.entities[0].key for g in named))
     if not order:  # "the first bathroom" with none named: perhaps its floor
         rf.refuse(rf.ordinal_not_of_a_floor(said.split()[1].lower()))
@@ -166,6 +171,13 @@ def owners_room(np: Described, noun: Noun, said: str, disc: Discourse) -> list[E
         if rooms:
             rf.refuse(rf.whose_room(said, sorted(rooms)))
     rf.refuse(rf.whose_room(said, []))
+
+
+def said_in_order(between: str) -> bool:
+    """Whether the words ``between`` two phrases put the second after the first (*then*, *after that*), so
+    that the one named first is also the one done first (sentences alone are in no order)."""
+    words = between.lower().replace(",", " , ").split()
+    return any(tuple(words[k:k + len(p)]) == p for p in lx.SEQ_WORDS for k in range(len(words)))
 
 
 def lives_there(text: str, start: int) -> bool:
