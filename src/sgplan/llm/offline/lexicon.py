@@ -210,6 +210,23 @@ OWNERS = ("his", "her", "their")
 the two beds. Check her room.*), never a fresh room (whose?)."""
 RESIDING = word_set("stay stays staying stayed sleep sleeps sleeping slept live lives living lived")
 """In a statement naming a room: the room is someone's (*my sister is staying in the bedroom*: *her room*)."""
+_FEMALE_PEOPLE = word_set("she sister daughter mum mom mother wife grandma granny nan aunt auntie niece "
+                          "girlfriend woman girl lady")
+_MALE_PEOPLE = word_set("he brother son dad father husband grandpa grandad granddad uncle nephew boyfriend "
+                        "man boy")
+_GROUPS_OF_PEOPLE = word_set("they kids children parents guests guest friend friends cousin partner baby "
+                             "family roommate flatmate")
+
+
+def owners(pronoun: str) -> frozenset[str]:
+    """Who *her / his / their room* may stand for (a statement must name one of them). Kept out of
+    :data:`LEXICON_WORDS`: a person's word is no word of the grammar (*Grandma is in the kitchen* is a
+    statement set aside)."""
+    if pronoun == "her":
+        return _FEMALE_PEOPLE
+    if pronoun == "his":
+        return _MALE_PEOPLE
+    return _FEMALE_PEOPLE | _MALE_PEOPLE | _GROUPS_OF_PEOPLE
 DEMONSTRATIVES = ("that", "this", "these", "those")
 """Determiners that point back (``the same`` and ``that same`` / ``this same`` too)."""
 PLURAL_DEMONSTRATIVES = ("these", "those")

@@ -163,7 +163,7 @@ def owners_room(np: Described, noun: Noun, said: str, disc: Discourse) -> list[E
     kitchen*), is not taken for it."""
     word, fits = said.split()[0].lower(), {e.key for e in noun.entities}
     same = [g for g in disc.references if g.end <= np.span.start and g.phrase.split()[0].lower() == word]
-    told = [g for g in disc.mentions if g.end <= np.span.start and lives_there(disc.text, g.start)]
+    told = [g for g in disc.mentions if g.end <= np.span.start and lives_there(disc.text, g.start, word)]
     for named in (same[-1:], told):
         rooms = {e.key: e for g in named for e in g.entities if e.kind == "room" and e.key in fits}
         if len(rooms) == 1:
@@ -180,11 +180,13 @@ def said_in_order(between: str) -> bool:
     return any(tuple(words[k:k + len(p)]) == p for p in lx.SEQ_WORDS for k in range(len(words)))
 
 
-def lives_there(text: str, start: int) -> bool:
-    """Whether the words of the sentence before character ``start`` say someone stays, sleeps or lives
-    there (*my sister is staying in ...*)."""
+def lives_there(text: str, start: int, owner: str) -> bool:
+    """Whether the words of the sentence before character ``start`` say that someone ``owner`` (*her*,
+    *his*, *their*) can stand for stays, sleeps or lives there (*my sister is staying in ...*: her room, not
+    his)."""
     sentence = text[:start].replace("!", ".").replace("?", ".").replace("\n", ".").rsplit(".", 1)[-1]
-    return bool(set(sentence.lower().replace("'", " ").split()) & lx.RESIDING)
+    words = set(sentence.lower().replace("'", " ").split())
+    return bool(words & lx.RESIDING) and bool(words & lx.owners(owner))
 
 
 def of_the_step_room(np: Described, noun: Noun, got: backref.Resolved, said: str, where: Where,
