@@ -8,6 +8,7 @@ far (:class:`.phrases.Noun`) and returns it narrowed.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from itertools import pairwise
 from typing import Any
@@ -126,7 +127,7 @@ def nth_named(entities: list[Entity], n: int, span: Span, disc: Discourse) -> li
     if several is not None:
         rf.refuse(rf.ordinal_of_several(said, several.phrase))
     together = next(((a, b) for a, b in pairwise(named) if a.entities != b.entities
-                     and not said_in_order(disc.text[a.end:b.start])), None)
+                     and not said_in_order(disc.text[a.end:b.start], disc.text)), None)
     if together is not None:  # "the bedroom and the other one, then the first one": named or visited first?
         rf.refuse(rf.ordinal_of_unordered(said, together[0].phrase, together[1].phrase))
     order = list(dict.fromkeys(g.entities[0].key for g in named))
@@ -173,11 +174,13 @@ def owners_room(np: Described, noun: Noun, said: str, disc: Discourse) -> list[E
     rf.refuse(rf.whose_room(said, []))
 
 
-def said_in_order(between: str) -> bool:
-    """Whether the words ``between`` two phrases put the second after the first (*then*, *after that*), so
-    that the one named first is also the one done first (sentences alone are in no order)."""
+def said_in_order(between: str, text: str) -> bool:
+    """Whether the words ``between`` two phrases of the mission ``text`` put the second after the first
+    (*then*, *after that*, the next item of a numbered list when no order remark is made anywhere), so that
+    the one named first is also the one done first (sentences alone are in no order)."""
     words = between.lower().replace(",", " , ").split()
-    return any(tuple(words[k:k + len(p)]) == p for p in lx.SEQ_WORDS for k in range(len(words)))
+    numbered = re.search(r"\n\s*\(?\d+[.)]", between) is not None and "order" not in text.lower()
+    return numbered or any(tuple(words[k:k + len(p)]) == p for p in lx.SEQ_WORDS for k in range(len(words)))
 
 
 def lives_there(text: str, start: int, owner: str) -> bool:
