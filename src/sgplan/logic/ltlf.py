@@ -320,6 +320,18 @@ def _conjunct_dfa(
     return minimal_table(Table(np.stack(rows), 0, accepting))
 
 
+def _allowed_labels(aps: Sequence[str], exclusive: Collection[Collection[str]],
+                    possible: np.ndarray | None) -> np.ndarray:
+    """``(2**len(aps),)`` bool: the labels that ``exclusive`` allows and ``possible`` (if given) keeps."""
+    allowed = possible_labels(aps, exclusive)
+    if possible is not None:
+        possible = np.asarray(possible, dtype=bool)
+        if possible.shape != allowed.shape:
+            raise ValueError(f"possible has shape {possible.shape}, expected {allowed.shape} (2**len(aps))")
+        allowed &= possible
+    return allowed
+
+
 def ltlf_to_dfa(
     formula: Formula,
     aps: Sequence[str] | None = None,
@@ -376,12 +388,7 @@ def ltlf_to_dfa(
     num_labels = 1 << len(aps)
     if num_labels > MAX_TABLE_ENTRIES:
         raise _table_too_big(formula, 1, num_labels)
-    allowed = possible_labels(aps, exclusive)
-    if possible is not None:
-        possible = np.asarray(possible, dtype=bool)
-        if possible.shape != allowed.shape:
-            raise ValueError(f"possible has shape {possible.shape}, expected {allowed.shape} (2**len(aps))")
-        allowed &= possible
+    allowed = _allowed_labels(aps, exclusive, possible)
     # Progression, minimisation and products run over the possible labels (one column each) and one
     # column for all the others; the dense table is made once, at the end.
     prog = _Progression(aps, np.flatnonzero(allowed))
