@@ -17,10 +17,11 @@ def test_series_joins_with_commas_and_a_final_and() -> None:
 
 
 def test_the_indefinite_article_follows_the_sound_of_the_noun() -> None:
-    nouns = ["apple", "oven", "empty room", "umbrella", "bowl", "utility room", "unicorn", "one-way door"]
+    nouns = ["apple", "oven", "empty room", "umbrella", "bowl", "utility room", "unicorn", "one-way door",
+             "utensil", "urinal", "hour glass", "house"]
     assert [a_or_an(n) for n in nouns] == [
         "an apple", "an oven", "an empty room", "an umbrella", "a bowl", "a utility room", "a unicorn",
-        "a one-way door",
+        "a one-way door", "a utensil", "a urinal", "an hour glass", "a house",
     ]
 
 

@@ -18,15 +18,17 @@ def count(n: int, noun: str, plural: str | None = None) -> str:
     return f"{n:,} {noun if n == 1 else plural or noun + 's'}"
 
 
-# Vowel-letter words said with a consonant sound ("a utility room", "a unicorn", "a one-way door").
-_CONSONANT_SOUND = ("uni", "use", "usu", "uti", "eu", "one", "once")
+# Words whose first letter misleads: vowel letters said with a consonant sound ("a utility room", "a
+# urinal", "a one-way door") and a silent h ("an hour").
+_CONSONANT_SOUND = ("uni", "use", "usu", "uti", "ute", "uri", "ura", "usb", "eu", "one", "once")
+_VOWEL_SOUND = ("hour", "honest", "honour", "honor", "heir")
 
 
 def a_or_an(noun: str) -> str:
     """``noun`` with its indefinite article, by the sound of its first letters (``an apple``, ``a utility
-    room``); good for the category names of scenes, not for every English word."""
+    room``, ``an hour``); good for the category names of scenes, not for every English word."""
     word = noun.lower()
-    vowel = word[:1] in "aeiou" and not word.startswith(_CONSONANT_SOUND)
+    vowel = (word[:1] in "aeiou" and not word.startswith(_CONSONANT_SOUND)) or word.startswith(_VOWEL_SOUND)
     return f"{'an' if vowel else 'a'} {noun}"
 
 

@@ -22,7 +22,8 @@ from sgplan.logic import (
     parse_prefix,
     possible_labels,
 )
-from tests.logic.oracle import formulas, holds, random_formula, random_words, run_words
+from sgplan.logic.rows import unique_rows
+from tests.logic.oracle import formulas, holds, random_formula, random_words, reference_minimize, run_words
 
 APS = ("p0", "p1", "p2", "p3", "p4")
 WORDS_PER_LENGTH = 500
@@ -64,6 +65,8 @@ def test_dfa_is_minimal_and_canonical(formula):
     assert np.array_equal(again.table, dfa.table) and again.initial == dfa.initial == 0
     # Every state is reachable and no two states are equivalent (Moore's fixpoint is the identity).
     assert dfa.reachable_states().all()
+    reference = reference_minimize(dfa)  # the textbook algorithm gives the same numbering
+    assert np.array_equal(reference.table, dfa.table) and np.array_equal(reference.accepting, dfa.accepting)
 
 
 def test_empty_word_is_rejected_even_by_valid_formulas():
@@ -110,7 +113,7 @@ def _pruned_by_hand(full: Automaton, possible: np.ndarray) -> Automaton:
     sink = full.num_states
     table = np.vstack([full.table, np.full((1, full.num_labels), sink)])
     table[:, ~possible] = sink
-    return minimize(Automaton(full.aps, table, full.initial, np.append(full.accepting, False)))
+    return reference_minimize(Automaton(full.aps, table, full.initial, np.append(full.accepting, False)))
 
 
 @settings(max_examples=60, deadline=None)
@@ -179,3 +182,22 @@ def test_aps_order_and_superset():
     assert wide.aps == ("a", "x", "b") and equivalent(wide, formula)
     with pytest.raises(FormulaError, match="proposition 'b' of the formula is not among"):
         ltlf_to_dfa(formula, aps=["a"])
+
+
+def test_a_dense_table_beyond_its_cap_is_refused_with_what_to_do():
+    """Work over the possible labels is small (21 exclusive rooms: 22 possible labels), but the automaton
+    stores all 2**21 labels for each state: 4 states would need 8,388,608 entries."""
+    rooms = [f"room_{i}" for i in range(21)]
+    formula = parse_infix(f"F(room_0 & F room_1) & G !({' | '.join(rooms[2:])})")
+    with pytest.raises(AutomatonError, match=r"more than the 8,000,000 an automaton may hold; use fewer"):
+        ltlf_to_dfa(formula, aps=rooms, exclusive=[rooms])
+    twenty = parse_infix(f"F(room_0 & F room_1) & G !({' | '.join(rooms[2:20])})")
+    assert ltlf_to_dfa(twenty, aps=rooms[:20], exclusive=[rooms[:20]]).num_labels == 2**20  # 4 x 2**20 fit
+
+
+def test_unique_rows_of_wide_and_empty_rows():
+    rows = np.array([[1, 2, 3], [0, 0, 0], [1, 2, 3]])
+    first, inverse = unique_rows(rows)
+    assert np.array_equal(rows[first[inverse]], rows) and inverse[0] == inverse[2] != inverse[1]
+    first, inverse = unique_rows(np.zeros((3, 0), np.int32))
+    assert first.tolist() == [0] and inverse.tolist() == [0, 0, 0]

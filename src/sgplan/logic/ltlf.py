@@ -24,12 +24,15 @@ Construction (docs/logic.md has the semantics):
 
    ``psi`` is kept as the unique minimal DNF over the formula's literals and temporal sub-formulas
    (see :class:`_Progression`), so finitely many states arise. ``delta``/``lam`` are computed once per
-   temporal sub-formula as arrays over all labels.
+   temporal sub-formula as arrays over the possible labels.
    The initial state is ``(phi, False)``: the empty word satisfies no formula.
 3. The conjuncts' minimal DFAs are multiplied pairwise (vectorised) and minimised after each step.
 
-Labels that the ``exclusive`` groups rule out (two propositions of one group true together) lead to the
-rejecting sink ``(false, False)``; the DFA is minimal for the language restricted to possible labels.
+Labels that the ``exclusive`` groups rule out (two propositions of one group true together), and those
+``possible`` leaves out, lead to the rejecting sink ``(false, False)``; the DFA is minimal for the
+language restricted to possible labels. Steps 2 and 3 work on a compact alphabet, one column per possible
+label and one for all the others (:class:`_Alphabet`), and the dense ``2**len(aps)`` table is made once at
+the end: a mission over many rooms, of which the robot is in one at a time, stays cheap to build.
 """
 
 from __future__ import annotations
@@ -63,8 +66,12 @@ from sgplan.logic.normal import nnf
 from sgplan.logic.rows import unique_rows
 from sgplan.safeio import quote
 
-DEFAULT_MAX_ENTRIES = 8_000_000
-"""Default limit on ``num_states * 2**len(aps)`` (dense table entries, 4 bytes each)."""
+DEFAULT_MAX_ENTRIES = 1_000_000
+"""Default limit on the builder's work: ``num_states`` x the number of possible labels (plus one column for
+all impossible ones); every label is possible unless ``exclusive`` or ``possible`` rule some out."""
+
+MAX_TABLE_ENTRIES = 8_000_000
+"""Limit on the automaton's dense table, ``num_states * 2**len(aps)`` entries of 4 bytes (32 MB)."""
 
 
 def possible_labels(aps: Sequence[str], exclusive: Collection[Collection[str]] = ()) -> np.ndarray:
@@ -246,6 +253,14 @@ def _too_big(formula: Formula, states: int, num_labels: int, max_entries: int, h
     )
 
 
+def _table_too_big(formula: Formula, states: int, num_labels: int) -> AutomatonError:
+    return AutomatonError(
+        f"the automaton of {to_infix(formula)} has {states:,} states x {num_labels:,} labels = "
+        f"{states * num_labels:,} table entries, more than the {MAX_TABLE_ENTRIES:,} an automaton may hold; "
+        f"use fewer propositions (rooms and objects) in the mission"
+    )
+
+
 class _Alphabet(NamedTuple):
     """The columns the builder works on: one per possible label, and one for all the others.
 
@@ -277,8 +292,7 @@ def _alphabet(possible: np.ndarray) -> _Alphabet:
 
 
 def _conjunct_dfa(
-    phi: Formula, prog: _Progression, alphabet: _Alphabet, num_labels: int, max_entries: int,
-    original: Formula,
+    phi: Formula, prog: _Progression, alphabet: _Alphabet, max_entries: int, original: Formula,
 ) -> Table:
     state_of: dict[int, int] = {}  # key 2 * formula id + acceptance bit -> state index
     keys: list[int] = []
@@ -288,8 +302,8 @@ def _conjunct_dfa(
         if index is None:
             index = state_of[key] = len(keys)
             keys.append(key)
-            if len(keys) * num_labels > max_entries:
-                raise _too_big(original, len(keys), num_labels, max_entries, "more than")
+            if len(keys) * alphabet.size > max_entries:
+                raise _too_big(original, len(keys), alphabet.size, max_entries, "more than")
         return index
 
     state(2 * prog.intern_dnf(prog.to_dnf(phi)))
@@ -304,6 +318,18 @@ def _conjunct_dfa(
         rows.append(row)
     accepting = np.array([k & 1 for k in keys], bool)
     return minimal_table(Table(np.stack(rows), 0, accepting))
+
+
+def _allowed_labels(aps: Sequence[str], exclusive: Collection[Collection[str]],
+                    possible: np.ndarray | None) -> np.ndarray:
+    """``(2**len(aps),)`` bool: the labels that ``exclusive`` allows and ``possible`` (if given) keeps."""
+    allowed = possible_labels(aps, exclusive)
+    if possible is not None:
+        possible = np.asarray(possible, dtype=bool)
+        if possible.shape != allowed.shape:
+            raise ValueError(f"possible has shape {possible.shape}, expected {allowed.shape} (2**len(aps))")
+        allowed &= possible
+    return allowed
 
 
 def ltlf_to_dfa(
@@ -326,7 +352,8 @@ def ltlf_to_dfa(
         groups of propositions of which at most one holds at a time (e.g. all ``enter(room_*)``);
         labels violating a group go to the rejecting sink.
     max_entries:
-        refuse (early) automata whose table would exceed ``num_states * 2**len(aps)`` entries.
+        refuse (early) automata whose table over the possible labels would exceed ``num_states`` x
+        (possible labels + 1) entries (``num_states * 2**len(aps)`` when every label is possible).
     possible:
         ``(2**len(aps),)`` bool, the labels that can occur (e.g. those realizable in a scene); the others
         lead to the rejecting sink, as labels ruled out by ``exclusive`` do. Progression runs over the
@@ -342,7 +369,8 @@ def ltlf_to_dfa(
     FormulaError
         a proposition of the formula is missing from ``aps``.
     AutomatonError
-        the automaton would exceed ``max_entries``; the message gives the predicted size.
+        the automaton would exceed ``max_entries``, or its dense table :data:`MAX_TABLE_ENTRIES`; the
+        message gives the predicted size.
 
     Example
     -------
@@ -358,26 +386,25 @@ def ltlf_to_dfa(
             f"proposition {quote(missing[0])} of the formula is not among the automaton's {quote(list(aps))}"
         )
     num_labels = 1 << len(aps)
-    if num_labels > max_entries:
-        raise _too_big(formula, 1, num_labels, max_entries, "at least")
-    allowed = possible_labels(aps, exclusive)
-    if possible is not None:
-        possible = np.asarray(possible, dtype=bool)
-        if possible.shape != allowed.shape:
-            raise ValueError(f"possible has shape {possible.shape}, expected {allowed.shape} (2**len(aps))")
-        allowed &= possible
+    if num_labels > MAX_TABLE_ENTRIES:
+        raise _table_too_big(formula, 1, num_labels)
+    allowed = _allowed_labels(aps, exclusive, possible)
     # Progression, minimisation and products run over the possible labels (one column each) and one
     # column for all the others; the dense table is made once, at the end.
     prog = _Progression(aps, np.flatnonzero(allowed))
     alphabet = _alphabet(allowed)
     normal = check_nesting(nnf(formula))  # progression recurses over the normal form
     conjuncts = list(normal.args) if isinstance(normal, And) else [normal]
-    parts = [_conjunct_dfa(c, prog, alphabet, num_labels, max_entries, formula) for c in conjuncts]
+    if alphabet.size > max_entries:
+        raise _too_big(formula, 1, alphabet.size, max_entries, "at least")
+    parts = [_conjunct_dfa(c, prog, alphabet, max_entries, formula) for c in conjuncts]
     sizes = [p.table.shape[0] for p in parts]
     result = parts[0]
     for k, part in enumerate(parts[1:], start=1):
-        if result.table.shape[0] * sizes[k] * num_labels > max_entries:
+        if result.table.shape[0] * sizes[k] * alphabet.size > max_entries:
             predicted = result.table.shape[0] * int(np.prod(sizes[k:], dtype=np.float64))
-            raise _too_big(formula, predicted, num_labels, max_entries, "up to")
+            raise _too_big(formula, predicted, alphabet.size, max_entries, "up to")
         result = product_table(result, part, np.logical_and)
+    if result.table.shape[0] * num_labels > MAX_TABLE_ENTRIES:
+        raise _table_too_big(formula, result.table.shape[0], num_labels)
     return Automaton(tuple(aps), result.table[:, alphabet.expand], result.initial, result.accepting)
