@@ -198,7 +198,7 @@ def staying(r: Reader, i: int, negated: bool) -> tuple[FloorSpec, int, int] | No
     return said.node, said.end, where
 
 
-def off_limits(r: Reader, i: int) -> Parse[OffLimits]:
+def off_limits(r: Reader, i: int) -> Parse[OffLimits | Negation]:
     """*The kitchen is off limits* / *the office and the garage are out of bounds* / *X should be avoided*;
     a sentence that states something else of a place (*the bowl is in the kitchen*) is refused."""
     if not r.np_starts(i):
@@ -211,5 +211,11 @@ def off_limits(r: Reader, i: int) -> Parse[OffLimits]:
         states = r.word(phrases.end) in lx.COPULAS
         return Refusal(rf.states_something(r.quote(i, phrases.end + 1))) if states else None
     end = phrases.end + len(said)
+    until = until_target(r, end)
+    if isinstance(until, Refusal):
+        return until
+    if until is not None:  # "the kitchen is off limits until you've checked the couch": never X until Y
+        return Match(Negation(("never",), None, VerbWords((), None, None), phrases.node, None, False,
+                              until.node), until.end)
     whole = whole_mission(r, end)
     return Match(OffLimits(phrases.node), end + (len(whole) if whole else 0))
