@@ -317,10 +317,10 @@ class Session:
         from sgplan.planning.termination import any_of
         from sgplan.runtime.jit import announce_compile
 
+        announce_compile()  # before staging, whose scene checks run kernels too
         t0 = time.perf_counter()
         staged = self._stage(mission, start, options, guide, start_state)
         prepare_s = time.perf_counter() - t0
-        announce_compile()
         # Without kept parts the problem's maps are this plan's alone: freed once the search stops
         # reading them.
         stop_when = any_of(options.termination(), termination)
