@@ -13,6 +13,7 @@ and the label raster of each proposition and reach radius between them.
 
 from __future__ import annotations
 
+import difflib
 import logging
 import time
 from collections import Counter
@@ -87,8 +88,10 @@ def load_scene(scene: str | Path | Building, data: str | Path | None = None) -> 
     names = {name.lower(): name for name in SCENES}
     if spec.lower() in names:
         return load_path(scene_dir(names[spec.lower()], data))
+    close = difflib.get_close_matches(spec.lower(), [*names, DEMO], n=1, cutoff=0.75)
+    hint = f"; did you mean {names.get(close[0], close[0])!r}?" if close else ""
     raise SceneError(f"scene {spec!r} is neither an existing path, a Gibson scene name ({', '.join(SCENES)}) "
-                     f"nor '{DEMO}'")
+                     f"nor '{DEMO}'{hint}")
 
 
 # -- missions ----------------------------------------------------------------------------------------
