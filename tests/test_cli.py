@@ -110,6 +110,20 @@ def test_plan_gibson_mission_folder_authors_profile(
     assert "cost 18.8181 m" in capsys.readouterr().out  # reference-algorithm.md §11, stay column
 
 
+@pytest.mark.gibson
+def test_a_gibson_mission_folder_not_found_here_points_to_the_data_found(
+    gibson_root: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The README's ``../shared/...`` path from a clone that is not beside the data."""
+    monkeypatch.setenv("SGPLAN_GIBSON_DIR", str(gibson_root))
+    monkeypatch.chdir(tmp_path)
+    given = "../shared/datasets/gibson-3dsg/Benevolence/missions/1"
+    assert main(["plan", "--scene", "Benevolence", "--mission-dir", given]) == 2
+    expected = gibson_root / "Benevolence" / "missions" / "1"
+    assert capsys.readouterr().err.strip() == (f"sgplan: error: {given}: mission folder does not exist; the "
+                                               f"Gibson data sgplan finds holds it at {expected}")
+
+
 @pytest.mark.parametrize(
     ("argv", "fragment"),
     [

@@ -142,6 +142,13 @@ def test_no_two_inequivalent_small_formulas_read_alike() -> None:
             ),
         ),
         (
+            "F(a & F b) & F(c & F b)",
+            (
+                "Go to the kitchen (room_1, floor 0) and reach the sink (object_3, in the kitchen room_1, "
+                "floor 0), in any order, then go to the kitchen (room_2, floor 1)."
+            ),
+        ),
+        (
             "F((c & a) | (d & a))",
             (
                 "Reach a sink (object_3 or object_4, in the kitchen room_1, floor 0) while in "

@@ -201,9 +201,11 @@ def test_dropped_connection_is_retried(fake_llm: FakeOpenAIServer, llm_config: L
 def test_unreachable_server(llm_config: LLMConfig, fake_llm: FakeOpenAIServer) -> None:
     client, slept = make_client(llm_config)
     fake_llm.stop()
-    with pytest.raises(LLMError, match=r"127\.0\.0\.1.*failed after 3 attempts: connection failed"):
+    with pytest.raises(LLMError, match=r"127\.0\.0\.1.*failed after 3 attempts: connection failed") as error:
         client.complete(ASK)
     assert len(slept) == 2
+    hint = f"is a server running at {llm_config.endpoint}? (--base-url, or base_url in the LLM config)"
+    assert str(error.value).endswith(hint)
 
 
 # -- malformed replies ----------------------------------------------------------------------------------

@@ -72,7 +72,8 @@ def test_unknown_proposition_names_need_a_meaning() -> None:
 
 def test_mission_naming_absent_entities_is_refused() -> None:
     mission = compile_mission('F "enter(room_999)"')
-    with pytest.raises(MissionError, match=r"enter\(room_999\)"):
+    with pytest.raises(MissionError, match=r"does not have: enter\(room_999\) \(its rooms: room_2, room_4, .*"
+                                           r"room_14; `sgplan inspect` lists them with their objects\)"):
         mission.check_scene(demo_building())
 
 

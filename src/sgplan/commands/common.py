@@ -203,7 +203,7 @@ def write_json_record(target: str | None, record: dict[str, Any]) -> None:
         return
     from sgplan.result import write_text
 
-    write_text(target, text)
+    say(f"wrote {write_text(target, text)}")
 
 
 @contextlib.contextmanager

@@ -19,7 +19,7 @@ from sgplan.commands.common import (
     positive_int,
     say,
 )
-from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
+from sgplan.commands.translate import add_llm_arguments, backend_note, open_backends_from_args
 from sgplan.english import count
 
 
@@ -52,7 +52,7 @@ def run(args: argparse.Namespace) -> int:
     if args.llm != "offline":
         options.update(max_concurrency=args.max_concurrency, mission_text=mission.grounded_text)
     backends = open_backends_from_args(args, **options)
-    say(f"guidance from {backends.guide.name} ({backends.description})")
+    say(f"guidance from {backends.guide.name} ({backend_note(backends)})")
     out = Path(args.out) if args.out else Path(args.mission_dir) / "llm_heuristic.yaml"
     try:
         guidance = backends.guide.guide(building, mission.automaton, mission.descriptions)

@@ -4,12 +4,13 @@ folder, a formula, or natural language translated with ``--llm``."""
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from sgplan.commands.common import say
-from sgplan.commands.translate import open_backends_from_args
+from sgplan.commands.translate import backend_note, open_backends_from_args
 from sgplan.english import count
-from sgplan.errors import MissionError
+from sgplan.errors import MissionError, SgplanError
 
 if TYPE_CHECKING:
     from sgplan.llm.backends import Backends
@@ -48,11 +49,12 @@ def mission_from_args(args: argparse.Namespace, building: Building, start: Start
         if value is not None and not value.strip():
             raise MissionError(f"{option} is empty: give a {option[2:].replace('-dir', ' folder')}")
     if args.mission_dir is not None:
+        _check_mission_dir(args.mission_dir)
         return sgplan.load_mission(args.mission_dir, profile=args.profile), None
     if args.formula is not None:
         return sgplan.mission_from_formula(args.formula, aps=args.aps), None
     backends = _for_start_floor(open_backends_from_args(args), building, start)
-    say(f"translating with {backends.translator.name} ({backends.description})")
+    say(f"translating with {backends.translator.name} ({backend_note(backends)})")
     mission = sgplan.mission_from_text(args.text, building, llm=backends, save_to=save_to)
     if save_to:
         say(f"wrote the mission folder {save_to}")
@@ -69,3 +71,22 @@ def _for_start_floor(backends: Backends, building: Building, start: StartSpec) -
     from sgplan.starts import start_floor
 
     return replace(backends, translator=backends.translator.starting_on(start_floor(building, start)))
+
+
+def _check_mission_dir(path: str) -> None:
+    """Point a Gibson mission folder given by a path that does not exist here (the README's
+    ``../shared/...`` from a clone elsewhere) to where the Gibson data sgplan finds holds it."""
+    from sgplan.datasets import SCENES, find_gibson_root
+
+    folder = Path(path).expanduser()
+    parts = folder.parts
+    if folder.exists() or len(parts) < 3 or parts[-3] not in SCENES or parts[-2] != "missions":
+        return
+    try:
+        root = find_gibson_root()
+    except SgplanError:
+        return
+    found = None if root is None else root / parts[-3] / "missions" / parts[-1]
+    if found is not None and found.is_dir():
+        raise MissionError(f"mission folder does not exist; the Gibson data sgplan finds holds it at {found}",
+                           folder)

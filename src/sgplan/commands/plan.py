@@ -37,7 +37,7 @@ from sgplan.commands.common import (
 )
 from sgplan.commands.missions import add_mission_arguments, mission_from_args
 from sgplan.commands.sayback import check_folder_fits, say_back
-from sgplan.commands.translate import add_llm_arguments, open_backends_from_args
+from sgplan.commands.translate import add_llm_arguments, backend_note, open_backends_from_args
 from sgplan.errors import MissionError, SgplanError
 from sgplan.planning.setups import SETUPS, get_setup
 
@@ -202,7 +202,7 @@ def _plan(args: argparse.Namespace) -> tuple[PlanResult, dict[str, Any]]:
         if backends is None:
             backends = open_backends_from_args(args, mission_text=mission.grounded_text or mission.text)
         guide = backends.guide
-        say(f"setup {options.setup} needs guidance: asking {guide.name} ({backends.description})")
+        say(f"setup {options.setup} needs guidance: asking {guide.name} ({backend_note(backends)})")
 
     def progress(it: Any) -> None:
         say(f"  (w1, w2) = ({it.w1:g}, {it.w2:g})  cost {it.cost_m:.4f} m  bound x{it.bound:g}  "

@@ -83,6 +83,11 @@ def open_backends_from_args(args: argparse.Namespace, **options: Any) -> Backend
     )
 
 
+def backend_note(backends: Backends) -> str:
+    """What answers, for progress lines: ``offline, not a language model`` or ``language model M``."""
+    return "offline, not a language model" if backends.chat is None else backends.description
+
+
 def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("translate", help="translate a natural-language mission into a mission folder")
     add_scene_arguments(parser)
@@ -110,7 +115,7 @@ def run(args: argparse.Namespace, ask: Callable[[str], str] | None = None) -> in
         raise MissionError("--text is empty: give the mission in natural language")
     building = load_scene_arg(args.scene, args.data)
     backends = open_backends_from_args(args)
-    say(f"translating with {backends.translator.name} ({backends.description})")
+    say(f"translating with {backends.translator.name} ({backend_note(backends)})")
     if ask is None and sys.stdin.isatty() and sys.stderr.isatty():
         ask = input
     text = args.text

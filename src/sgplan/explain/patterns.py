@@ -66,9 +66,40 @@ def pattern_clauses(formula: Formula, describe: Describe) -> list[str] | None:
     """
     reader = _Reader(describe)
     try:
-        return [_sentence(reader.clause(part)) for part in _conjuncts(_simplify(formula))]
+        return [_sentence(clause) for clause in _clauses(reader, _conjuncts(_simplify(formula)))]
     except _NoPattern:
         return None
+
+
+def _clauses(reader: _Reader, parts: list[Formula]) -> list[str]:
+    """One clause per part, but goals that share what must follow them (``F(a & F c) & F(b & F c)``:
+    *a and b, in any order, then c*) as one clause where the first of them stands."""
+    shared: dict[Formula, list[Formula]] = {}
+    for part in parts:
+        then = _goal_then(part)
+        if then is not None:
+            shared.setdefault(then[1], []).append(then[0])
+    out, said = [], set()
+    for part in parts:
+        then = _goal_then(part)
+        if then is None or len(shared[then[1]]) < 2:
+            out.append(reader.clause(part))
+        elif then[1] not in said:
+            said.add(then[1])
+            goals = " and ".join(reader.goal(goal) for goal in shared[then[1]])
+            out.append(f"{goals}, in any order, then {reader.eventually(then[1])}")
+    return out
+
+
+def _goal_then(part: Formula) -> tuple[Formula, Formula] | None:
+    """``(s, c)`` for ``F(s & F c)`` with ``s`` a state condition, else ``None``."""
+    if not isinstance(part, Eventually) or not isinstance(part.arg, And):
+        return None
+    here = [p for p in _conjuncts(part.arg) if not is_temporal(p)]
+    later = [p for p in _conjuncts(part.arg) if is_temporal(p)]
+    if not here or len(later) != 1 or not isinstance(later[0], Eventually):
+        return None
+    return (here[0] if len(here) == 1 else And(tuple(here))), later[0].arg
 
 
 def condition_text(formula: Formula, describe: Describe) -> str:

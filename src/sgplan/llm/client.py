@@ -307,7 +307,8 @@ class OpenAIChatClient:
             except openai.APITimeoutError:
                 problem = f"no answer within the {self.config.timeout_s:g} s timeout"
             except openai.APIConnectionError as exc:
-                problem = f"connection failed ({one_line(exc.__cause__ or exc)})"
+                problem = (f"connection failed ({one_line(exc.__cause__ or exc)}); is a server running at "
+                           f"{self.config.endpoint}? (--base-url, or base_url in the LLM config)")
             else:
                 body = _parse_body(raw.text, raw.headers.get("content-type", ""), self._where(attempt))
                 return _result_from_body(

@@ -64,15 +64,16 @@ class Mission:
     def check_scene(self, building: Building) -> None:
         """Raise :class:`MissionError` naming every proposition whose room/object the building lacks."""
         bad = [
-            f"{ap} = {p.name}"
+            p.name if ap == p.name else f"{ap} = {p.name}"
             for ap, p in self.propositions.items()
             if ap in self.automaton.aps
             and not (building.has_room(p.uuid) if p.kind == "enter" else building.has_object(p.uuid))
         ]
         if bad:
+            rooms = ", ".join(room.key for room in building.rooms())
             raise MissionError(
                 f"mission propositions name entities that building {building.name!r} does not have: "
-                f"{'; '.join(bad)}",
+                f"{'; '.join(bad)} (its rooms: {rooms}; `sgplan inspect` lists them with their objects)",
                 self.source,
             )
 
