@@ -224,7 +224,8 @@ ANNOUNCING = word_set("the a few couple of some several my your our today 's fol
 """Words of an announcement's noun group before its last word (*a few quick things*, *today's tasks*)."""
 LIST_NOUNS = word_set("list lists checklist todo do round rounds run runs tour route schedule agenda routine "
                       "plan steps step sequence order tasks task jobs job chores chore errands errand checks "
-                      "check stops visits things items duties rota program programme")
+                      "check stops visits things items duties rota program programme rules rule dos donts "
+                      "rundown")
 """Words that name a list in its heading (*Morning round*, *Evening checks*, *To do:*, *Top floor tasks*)."""
 LABEL_STOPS = word_set("until till before after only except never not no if unless when whenever then first "
                        "last again twice once but or nor without stay remain keep staying avoid leave there")
@@ -596,7 +597,17 @@ CLOSING = Phrases((
     ("when", "convenient"), ("when", "you", "can", "manage", "it"), ("no", "idea", "where"), ("no", "idea"),
     ("and", "then", "you", "are", "done"), ("then", "you", "are", "done"), ("you", "are", "done"),
     ("and", "you", "are", "done"), ("and", "that", "is", "it"), ("and", "that", "'s", "it"),
-    ("and", "that", "'s", "all"), ("and", "that", "is", "all"), ("done",), ("the", "end"), ("finished",)))
+    ("and", "that", "'s", "all"), ("and", "that", "is", "all"), ("done",), ("the", "end"), ("finished",),
+    # sign-offs of everyday speech: thanks to a person, thanks made stronger, praise, a warning word
+    *((thanks, who) for thanks in ("thanks", "cheers", "ta") for who in ("man", "dude", "pal", "love", "mate",
+                                                                       "buddy", "bud", "hun", "dear")),
+    *((*thanks, "ever", "so", "much") for thanks in (("thanks",), ("thank", "you"))),
+    *((*thanks, "a", "lot") for thanks in (("cheers",), ("ta",))),
+    ("thx",), ("ty",), ("tyvm",), ("cheers", "then"), ("mind",), ("mind", "you"), ("if", "that", "is", "fine"),
+    # praise only with thanks after it: "Is the kitchen lovely?" asks something
+    *((praise, *comma, thanks) for praise in ("lovely", "brilliant", "perfect", "great", "awesome", "super")
+      for comma in ((), (",",)) for thanks in ("thanks", "cheers", "ta")),
+    *(("if", "that", "'s", fine) for fine in ("alright", "ok", "okay", "fine"))))
 """Sign-offs (*thanks a lot*, *cheers*, *that's all for now*) and asides that ask nothing (*no rush*, *if
 possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
 of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""
@@ -960,13 +971,13 @@ skipped)."""
 OPENERS = frozenset({"hi", "hello", "hey", "okay", "ok", "alright", "well", "so", "good", "thanks", "thank",
                      "i", "we", "here", "right", "cheers", "morning", "evening", "afternoon", "sorry",
                      "alexa", "siri", "google", "robot", "buddy", "yo", "yeah", "hiya", "heya", "howdy",
-                     "yes", "yep"})
+                     "yes", "yep", "oi", "oy", "ahoy"})
 """Chit-chat starts with a greeting, an interjection or the speaker (*I'm hungry*, *here's the plan*); a
 sentence starting otherwise may be an order about something the scene lacks (*feed pets*), so it is parsed
 (and refused) instead."""
 AUXILIARIES = frozenset({"am", "are", "is", "was", "were", "have", "has", "will", "would"})
 """In chit-chat (*hope you're well*): no role, although *are* is a word of the grammar elsewhere."""
-GREETINGS = frozenset({"hi", "hello", "hey", "hiya", "heya", "howdy"})
+GREETINGS = frozenset({"hi", "hello", "hey", "hiya", "heya", "howdy", "oi", "oy", "yo", "ahoy"})
 """*Hi there!*: after a greeting, *there* is no place."""
 
 # -------------------------------------------------------------------------------------- phrase aliases
@@ -1027,6 +1038,19 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("either", "way"): ("also",),
     ("in", "any", "case"): ("also",),
     ("regardless",): ("also",),
+    # contractions and spellings of speech: "till" / "til" is "until"; "'s got" is "has"
+    ("till",): ("until",),
+    ("til",): ("until",),
+    ("'s", "got"): ("has",),
+    ("has", "got"): ("has",),
+    ("have", "got"): ("have",),
+    ("has", "not", "got"): ("does", "not", "have"),
+    ("have", "not", "got"): ("do", "not", "have"),
+    ("'s", "only", "got"): ("only", "has"),
+    ("has", "only", "got"): ("only", "has"),
+    ("'s", "just", "got"): ("only", "has"),
+    ("has", "just", "got"): ("only", "has"),
+    ("oh", "and"): ("and",),
     ("set", "foot", "in"): ("enter",),
     ("set", "foot", "into"): ("enter",),
     ("set", "foot", "on"): ("enter",),
