@@ -419,7 +419,8 @@ VERB_IDIOMS = Phrases((("all", "the", "way"), ("a", "look"), ("a", "quick", "loo
                        ("a", "glance"), ("a", "quick", "peek"), ("your", "way"), ("my", "way"),
                        ("its", "way"), ("a", "visit"), ("a", "quick", "visit"), ("a", "trip"),
                        ("a", "quick", "trip"), ("a", "detour"), ("a", "stop"), ("a", "quick", "stop"),
-                       ("a", "seat"), ("a", "nap"), ("a", "rest")))
+                       ("a", "seat"), ("a", "nap"), ("a", "rest"), ("a", "good", "look"), ("a", "proper", "look"),
+                       ("a", "little", "look"), ("a", "quick", "glance"), ("a", "little", "peek")))
 """Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*."""
 GIVE_VERBS = frozenset({"give", "giving"})
 """*give X a look*: read only with what is given after X (:data:`GIVEN_LOOKS`), never alone (*give X to
@@ -535,7 +536,13 @@ ANY_ORDER = Phrases((
     ("in", "whichever", "order"), ("whatever", "order"), ("either", "order"), ("no", "particular", "order"),
     ("the", "order", "is", "up", "to", "you"), ("order", "is", "up", "to", "you"),
     ("i", "do", "not", "care", "about", "the", "order"), ("i", "do", "not", "mind", "the", "order"),
-    ("i", "do", "not", "mind", "about", "the", "order"), ("do", "not", "worry", "about", "the", "order")))
+    ("i", "do", "not", "mind", "about", "the", "order"), ("do", "not", "worry", "about", "the", "order"),
+    *((*the, "order", *really) for the in ((), ("the",))
+      for really in (("does", "not", "really", "matter"), ("really", "does", "not", "matter"),
+                     ("is", "not", "really", "important"), ("does", "not", "matter", "much"),
+                     ("does", "not", "matter", "at", "all"))),
+    ("i", "do", "not", "really", "mind", "the", "order"), ("i", "do", "not", "really", "care", "about", "the",
+                                                           "order")))
 """Remarks that leave the order to the robot (the default of a set of goals; a numbered list is in order
 unless one of these is said with it)."""
 TIME_FILLERS = Phrases((
@@ -643,6 +650,8 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
     ("not", "important", "which"), ("no", "matter", "which", "one"),
     ("does", "not", "matter", "which", "one"), ("it", "does", "not", "matter", "which", "one"),
     ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"), ("is", "fine"),
+    ("do", "not", "mind", "which"), ("do", "not", "mind", "which", "one"), ("do", "not", "care", "which"),
+    ("i", "do", "not", "mind", "which", "one"), ("i", "do", "not", "really", "mind", "which"),
     ("your", "choice"), ("your", "pick"), ("take", "your", "pick"), ("you", "pick"), ("you", "choose"),
     ("it", "is", "up", "to", "you"), ("up", "to", "you"), ("i", "do", "not", "care"),
 ))
@@ -906,7 +915,8 @@ EVENT_WORDS = word_set(
 which a mission cannot require; said at the start of a sentence they are set aside (said back), never read
 as the goal of *before / after*. A clock time (*at 6 pm*) or a delay (*in ten minutes*) is refused."""
 TIME_WORDS = word_set("this next tomorrow today tonight later soon early late right now for the at some "
-                      "point sometime first thing in a bit while before after by during around") | EVENT_WORDS
+                      "point sometime first thing in a bit while before after by during around all long"
+                      ) | EVENT_WORDS
 """Words of a time expression (*later this afternoon*, *at some point this evening*, *first thing
 tomorrow*); one with an event word (:data:`EVENT_WORDS`) only says when."""
 EVENT_VERBS = word_set("arrive arrives come comes leave leaves get gets back home start starts finish "
@@ -916,7 +926,7 @@ FEW = ("few", "couple", "several")
 TIME_UNITS = word_set("second seconds minute minutes min mins hour hours hr hrs sec secs")
 """*in ten minutes*, *wait 5 min*: a delay, which a mission cannot require (refused)."""
 TIME_OPENERS = ("before", "after", "by", "during", "for", "at", "around", "this", "tonight", "today",
-                "tomorrow", "later", "right", "first", "sometime", "some", "next", "early", "in")
+                "tomorrow", "later", "right", "first", "sometime", "some", "next", "early", "in", "all")
 """Words a time expression that opens a sentence starts with (*Before lunch, ...*, *Tonight, ...*)."""
 SUBJECT_PRONOUNS = word_set("i we he she they it there that this everyone everybody someone somebody "
                             "nobody everything something nothing")
@@ -945,7 +955,11 @@ DEICTIC_SUBJECTS = ("it", "there", "this", "that")
 bathroom*)."""
 SEQUENCE_TIMES = ("later", "soon", "now")
 """Time words that alone order the steps (*Later, go to X*) rather than say when."""
-NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")}
+WHOLE_PERIODS = {("all", period) for period in ("day", "morning", "afternoon", "evening", "night", "week",
+                                                 "weekend")} | {("all", "day", "long"), ("all", "night", "long")}
+"""*Don't go in the bathroom all day*: the whole mission's time, which orders nothing."""
+NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")} | WHOLE_PERIODS
+"""Times that say when the whole mission is (now, a whole period), so that they put no goals in an order."""
 STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
 REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"),
                    *(("so", who, what) for who in ("i", "we") for what in ("know", "can", "see")),
@@ -1051,6 +1065,17 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("'s", "just", "got"): ("only", "has"),
     ("has", "just", "got"): ("only", "has"),
     ("oh", "and"): ("and",),
+    # light verbs: "have / having a look at X" is "take a look at X" (wherever the verb stands)
+    **{(have, "a", *quick, look): (take, "a", *quick, look)
+       for have, take in (("have", "take"), ("having", "taking"), ("had", "took"))
+       for quick in ((), ("quick",), ("little",), ("good",), ("proper",)) for look in ("look", "peek", "glance")},
+    # times that only give context: "first thing (in the morning)" opens the day, that is first; "before bed
+    # tonight" is bedtime (not the bed)
+    ("first", "thing"): ("first",),
+    ("first", "thing", "in", "the", "morning"): ("first",),
+    ("before", "bed", "tonight"): ("before", "bedtime", "tonight"),
+    ("before", "going", "to", "bed"): ("before", "bedtime"),
+    ("before", "you", "go", "to", "bed"): ("before", "bedtime"),
     ("set", "foot", "in"): ("enter",),
     ("set", "foot", "into"): ("enter",),
     ("set", "foot", "on"): ("enter",),
