@@ -630,9 +630,15 @@ noun phrase they are still asides (a condition needs a verb)."""
 CORRECTIONS = Phrases((("i", "mean"), ("i", "meant"), ("no", "wait"), ("wait", "no"), ("scratch", "that"),
                        ("make", "that"), ("correction",), ("or", "rather"), ("actually", "no"),
                        ("no", "sorry"), ("sorry", "no"), ("i", "said", "wrong"), ("my", "mistake"),
-                       ("my", "bad"), ("let", "me", "rephrase")))
+                       ("my", "bad"), ("let", "me", "rephrase"),
+                       # a bare "sorry" or "no" between commas: "the garage, sorry, the office"
+                       ("sorry", ","), ("no", ","), ("oops", ","), ("whoops", ","), ("er", "no"), ("no", "no"),
+                       ("hang", "on"), ("wait", "a", "sec"), ("wait", "a", "second"), ("sorry", "i", "mean")))
 """Words with which a speaker takes back what they said (*go to the kitchen, sorry, I mean the office*):
 which part stands is not read; refused."""
+UNFINISHED = DETERMINERS | frozenset({"to", "into", "in", "on", "at", "of", "through", "from", "by"})
+"""Words no clause ends with: one broken off after them at a dash is started again (*don't take the- don't go
+...*)."""
 _CHOOSERS = (("either",), ("any",), ("whichever",), ("either", "one"), ("any", "one"), ("whichever", "one"),
              ("any", "of", "them"), ("either", "of", "them"), ("whichever", "of", "them"), ("whatever",),
              ("whatever", "one"))

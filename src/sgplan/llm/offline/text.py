@@ -2,7 +2,7 @@
 
 Text is lower-cased; contractions are expanded (``don't`` -> ``do not``, ``we're`` -> ``we are``), a
 possessive ``'s`` becomes its own token, parentheses and dashes between words (an em or en dash, ``--``, a
-spaced ``-``) become commas (an aside). Entity IDs (``room_2``, ``object_27``) stay single tokens, so
+spaced ``-``, a ``-`` right after a word that breaks it off: *the- the office*) become commas (an aside). Entity IDs (``room_2``, ``object_27``) stay single tokens, so
 already-grounded text is understood too.
 
 Notations are read as the words they stand for (:data:`.lexicon.SYMBOLS`): an arrow (``->``, ``>``, ``→``)
@@ -41,7 +41,7 @@ _WORD = re.compile(
     r"|(?P<word>[a-z]+(?:'[a-z]+)?|'s\b)"
     r"|(?P<bullet>^[ \t]*[-*\u2022\u00b7\u2023\u25e6\u25aa](?=[ \t]))"  # at the start of a line
     r"|(?P<arrow>-+>|=+>|>+|[\u2192\u21d2\u27f6\u2794\u279c\u27a1])"
-    r"|(?P<punct>[,.;:!?()\[\]{}])|(?P<dash>[\u2014\u2013]|--|(?<=\s)-(?=\s))|(?P<ellipsis>\u2026)"
+    r"|(?P<punct>[,.;:!?()\[\]{}])|(?P<dash>[\u2014\u2013]|--|(?<=\s)-(?=\s)|(?<=\w)-(?=\s))|(?P<ellipsis>\u2026)"
     r"|(?P<newline>\n)"
     r"|(?P<silent>(?<=\w)-(?=\w)|[\"'`\u201c\u201d\u2018])"  # a hyphen inside a word, quotation marks
     r"|(?P<symbol>[^\s\w])",  # any other symbol: a token of its own, refused by the grammar
