@@ -970,9 +970,17 @@ STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
 REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"),
                    *(("so", who, what) for who in ("i", "we") for what in ("know", "can", "see")),
                    *(("to", *check, whether) for check in (("see",), ("check",), ("find", "out"))
-                     for whether in (("if",), ("whether",))), ("to", "make", "sure"), ("to", "test")))
+                     for whether in (("if",), ("whether",))), ("to", "make", "sure"), ("to", "test"),
+                   # "to check it's clean": a check of the state of what was just named, not a goal ("to
+                   # check that the oven is off" names the oven: people mean it as a goal, so it is read)
+                   *(("to", check, *who) for check in ("check", "see", "confirm", "verify", "ensure")
+                     for who in (("it", "is"), ("it", "'s"), ("they", "are"), ("it", "has"), ("they", "have"),
+                                 ("nothing", "is"), ("everything", "is"), ("everything", "'s")))))
 """A reason for an order, set aside to its clause's end (*... because the coffee's in there*, *... so I know
 you made it*, *... to see if the paint's dry*): it asks nothing."""
+ROOM_PARTS = word_set("floor floors door doors wall walls window windows carpet carpets rug ceiling tiles paint "
+                      "lights light heating")
+"""The parts of a room a statement is about (*the lobby floor is still wet*): context, not the room as a goal."""
 ORDER_JOINERS = ("so", "but")
 """Before an order, a clause boundary even without a comma (*my son is asleep so don't go up there*)."""
 LOCATIVE = word_set("in into on onto at inside under beside near by behind")

@@ -43,8 +43,10 @@ def split(r: Reader) -> list[Reader]:
         return [aside(r, 0, len(r))]
     clauses = comma_clauses(r)
     first, last = 0, len(clauses)
-    while first < last and is_context(r, *clauses[first], leading=True):
+    while first < last and (is_context(r, *clauses[first], leading=True) or closing_only(r, *clauses[first])):
         first += 1
+    while first > 0 and closing_only(r, *clauses[first - 1]):
+        first -= 1  # "Oh, and the dog's asleep in there, so ...": a remark before context is context too
     while last > first and is_context(r, *clauses[last - 1], leading=False):
         last -= 1
     if first == last or (first > 0 and mere_talk(r, clauses[first][0], clauses[last - 1][1])):
@@ -83,14 +85,28 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
     it*, *... to make sure they're sturdy*): from the reason word to the clause's end or its next *then*;
     ``None`` when there is none, or when it says what not to do or asks something (*because I need you to
     ...*: left to the parser)."""
-    k = next((k for k in range(start, end) if r.phrase(k, lx.REASONS)), None)
+    k = next((k for k in range(start, end) if r.phrase(k, lx.REASONS) or purpose(r, k, end)), None)
     if k is None:
         return None
     stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
-    said = range(k + len(r.phrase(k, lx.REASONS) or ()), stop)
+    said = range(k + len(r.phrase(k, lx.REASONS) or ("for",)), stop)
     if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) for j in said):
         return None
     return k, stop
+
+
+def purpose(r: Reader, k: int, end: int) -> bool:
+    """Whether *for ...* at ``k`` says what an order is for, up to the clause's end or its *then*, with words
+    of no role in the grammar (*for popcorn*, *for the guests*, *for Mum's party*): not a room or object of
+    the scene, not the speaker (*for me*), not a duration (*for ten minutes*, *for a sec*)."""
+    if r.word(k) != "for" or k == 0:
+        return False
+    stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
+    said = range(k + 1, stop)
+    return 0 < len(said) <= 4 and all(
+        (w := r.word(j)) in lx.ARTICLES or w in lx.POSSESSIVES or w == "'s" or w in lx.EVENT_WORDS
+        or (w.isalpha() and w not in lx.LEXICON_WORDS and r.head(j) is None) for j in said) and not any(
+        r.word(j) in lx.TIME_UNITS or r.word(j) in lx.SEQUENCE_TIMES for j in said)
 
 
 def is_reason(r: Reader, start: int, end: int) -> bool:
@@ -121,6 +137,15 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
     statement that is not a need about the scene (see the module docstring)."""
     return (is_time(r, start, end) or statement(r, skip_joiner(r, start), end) == "aside"
             or event_note(r, start, end) or is_reason(r, start, end))
+
+
+def closing_only(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` is only a remark that asks nothing (*Oh*, *Right*, *Thanks*)."""
+    k = skip_joiner(r, start)
+    while k < end and (said := r.phrase(k, lx.CLOSING) or (r.word(k),) if r.word(k) in lx.HESITATIONS else
+                       r.phrase(k, lx.CLOSING)):
+        k += len(said)
+    return start < k == end
 
 
 def event_note(r: Reader, start: int, end: int) -> bool:
@@ -207,11 +232,15 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         said = noun_phrase(r, start, "qualifier") if r.np_starts(start) else None
         if isinstance(said, Match) and said.end < end and r.word(said.end) in lx.STATEMENT_VERBS:
             return said.end  # "the plants are looking sad"
+        if (isinstance(said, Match) and r.word(said.end) in lx.ROOM_PARTS
+                and r.word(said.end + 1) in lx.STATEMENT_VERBS):
+            return said.end + 1  # "the lobby floor is still wet": about a part of the room
         if not plain_word(r, start + 1):
             return None  # "the kitchen and the office": goals
         return next((j for j in range(start + 2, min(start + 5, end)) if finite_verb(r.word(j))), None)
     verb = r.word(start + 1)
-    if (w.isalpha() and r.head(start) is None and (w not in lx.LEXICON_WORDS or w in lx.RELATIVE_FLOORS)
+    if (w.isalpha() and r.head(start) is None
+            and (w not in lx.LEXICON_WORDS or w in lx.RELATIVE_FLOORS or w in lx.EVENT_WORDS)
             and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
         return start + 1  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
     return None
