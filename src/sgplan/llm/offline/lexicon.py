@@ -231,6 +231,11 @@ LABEL_STOPS = word_set("until till before after only except never not no if unle
                        "last again twice once but or nor without stay remain keep staying avoid leave there")
 """Words a list's label never holds: a heading with one of them is a sentence of its own."""
 ORDER_FILLERS = word_set(", do them these this it all the items steps things list")
+LIST_JOINERS = frozenset({",", "and", "or", "then", "after", "before", "first", "last", "finally", "again",
+                          "also", "too", "both", "all", "every", "each", "once", "when", "whenever", "if",
+                          "until"})
+"""Words that make a sentence more than one plain goal (a list, an order, a condition of its own): *In that
+order.* after it is not read."""
 """Words of a sentence after a list that only says its order (*Do them in this order.*)."""
 HEADS_UP = word_set("remember note important reminder ps also careful warning update oh btw nb")
 """Words that only ask for attention before a colon (*Remember: never enter the kitchen.*)."""
@@ -1079,6 +1084,12 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("'s", "just", "got"): ("only", "has"),
     ("has", "just", "got"): ("only", "has"),
     ("oh", "and"): ("and",),
+    # operator shorthand of words that are no room or object: "chk" is "check", "GF" the ground floor
+    ("chk",): ("check",),
+    ("chck",): ("check",),
+    ("pls",): ("please",),
+    ("plz",): ("please",),
+    ("gf",): ("ground", "floor"),
     # light verbs: "have / having a look at X" is "take a look at X" (wherever the verb stands)
     **{(have, "a", *quick, look): (take, "a", *quick, look)
        for have, take in (("have", "take"), ("having", "taking"), ("had", "took"))

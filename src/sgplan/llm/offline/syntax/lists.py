@@ -5,7 +5,8 @@ and C*, *visit two rooms: the kitchen and the office*, *never enter these: ...*)
 **Items.** Each item is a sentence of its own. The items of a numbered list are done in the order written
 (each continues the sequence of the one before it, as a sentence starting with *Then* does); a bulleted
 list is a set, done in any order. An order remark in the heading (*in order*, *any order is fine*) or in a
-sentence right after the list (*The order doesn't matter.*) says otherwise. An item that says
+sentence right after the list (*The order doesn't matter.*) says otherwise. *In that order.* after sentences
+of one goal each (*Fridge. Oven. Microwave. In that order.*) orders them as a numbered list is. An item that says
 *eventually* / *at some point* first is not ordered after the one before it.
 
 **Headings.** The sentence before a list's first item heads it when it ends with a colon or stands on a
@@ -46,7 +47,9 @@ def read_lists(readers: list[Reader]) -> list[Reader]:
         first = k + (1 if heading is not None else 0)
         run = list_run(readers, first) if heading is not None or r.marker is not None else []
         if not run:
-            out += colon(r, readers[k + 1] if k + 1 < len(readers) else None)
+            ordered = ordered_before(out) if r.marker is None and only_order_remark(r) == "ordered" else None
+            out = ordered if ordered is not None else out + colon(r, readers[k + 1] if k + 1 < len(readers)
+                                                                  else None)
             k += 1
             continue
         after = readers[first + len(run)] if first + len(run) < len(readers) else None
@@ -54,6 +57,19 @@ def read_lists(readers: list[Reader]) -> list[Reader]:
         out += list_items(heading, run, remark)
         k = first + len(run) + (1 if remark else 0)
     return merged(out)
+
+
+def ordered_before(out: list[Reader]) -> list[Reader] | None:
+    """``out`` (the sentences before *In that order.*) with each sentence of one goal after the one before
+    it (*Fridge. Oven. Microwave. In that order.*); ``None`` (the remark is left to the parser, which refuses
+    it) unless every sentence before it, but prohibitions and words set aside, is one plain goal: with a
+    list or an order of its own, which order is meant is not known."""
+    goals = [n for n, r in enumerate(out) if not r.aside and r.phrase(0, lx.NEG_STARTS) is None]
+    plain = all(out[n].marker is None and out[n].announced is None and not set(out[n].words) & lx.LIST_JOINERS
+                for n in goals)
+    if len(goals) < 2 or not plain:
+        return None
+    return [replace(r, after_item=True) if n in goals[1:] else r for n, r in enumerate(out)]
 
 
 def list_run(readers: list[Reader], k: int) -> list[Reader]:
