@@ -32,10 +32,12 @@ CONTRACTIONS = {"re": "are", "m": "am", "ve": "have", "ll": "will", "d": "would"
 """``we're`` -> ``we are``: the verb of a contracted auxiliary (``'s`` is a token of its own: *is* or a
 possessive)."""
 
+IS_CONTRACTED = frozenset({"that", "there", "here", "what", "where", "who", "how"})
+"""Words whose ``'s`` is *is* (*that's*, *there's a few*), never a possessive."""
 BARE_CONTRACTIONS = {"youre": ("you", "are"), "theyre": ("they", "are"), "im": ("i", "am"),
                      "ive": ("i", "have"), "youve": ("you", "have"), "weve": ("we", "have"),
-                     "thats": ("that", "'s"), "theres": ("there", "'s"), "youll": ("you", "will"),
-                     "itll": ("it", "will"), "lets": ("let", "'s"), "whats": ("what", "'s")}
+                     "thats": ("that", "is"), "theres": ("there", "is"), "youll": ("you", "will"),
+                     "itll": ("it", "will"), "lets": ("let", "'s"), "whats": ("what", "is")}
 """Contractions typed without their apostrophe (*then youre done*): read as the words they stand for."""
 
 SENTENCE_END = frozenset(".;:!?")
@@ -489,6 +491,9 @@ POLITE = Phrases((
     *((owner, *main, noun, *be) for owner in ("the", "your", "my", "our")
       for main in ((), ("main",), ("only",)) for noun in _TASK_NOUNS for be in (("is", "to"), ("is",))),
     ("all", "you", "need", "to", "do", "is"), ("all", "you", "have", "to", "do", "is"),
+    # "(the) main thing is to ...": what the mission is, said as a remark
+    *((*the, main, "thing", "is", *to) for the in ((), ("the",)) for main in ("main", "only", "big")
+      for to in (("to",), ())),
     ("what", "i", "need", "is", "for", "you", "to"), ("i", "would", "like", "it", "if", "you"),
     ("i", "would", "appreciate", "it", "if", "you"), ("if", "you", "could"), ("if", "you", "would"),
     ("would", "you", "mind"), ("do", "me", "a", "favor", "and"), ("do", "me", "a", "favour", "and"),
@@ -572,6 +577,7 @@ CLOSING = Phrases((
     ("that", "'s", "all"), ("that", "'s", "all", "for", "now"), ("that", "'s", "it"),
     ("that", "'s", "it", "for", "now"),
     ("that", "'s", "everything"), ("that", "is", "all"), ("that", "is", "it"), ("that", "is", "everything"),
+    ("that", "is", "all", "for", "now"), ("that", "is", "it", "for", "now"),
     ("that", "will", "be", "all"), ("that", "would", "be", "all"), ("that", "should", "be", "all"),
     ("have", "a", "nice", "day"), ("have", "a", "good", "day"), ("have", "a", "great", "day"),
     ("have", "a", "good", "one"), ("good", "luck"), ("have", "fun"), ("you", "the", "best"),
@@ -1075,6 +1081,9 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("till",): ("until",),
     ("til",): ("until",),
     ("'s", "got"): ("has",),
+    ("is", "got"): ("has",),
+    ("is", "only", "got"): ("only", "has"),
+    ("is", "just", "got"): ("only", "has"),
     ("has", "got"): ("has",),
     ("have", "got"): ("have",),
     ("has", "not", "got"): ("does", "not", "have"),

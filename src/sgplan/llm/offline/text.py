@@ -25,6 +25,7 @@ from sgplan.llm.offline.lexicon import (
     BARE_CONTRACTIONS,
     BARE_NEGATED,
     CONTRACTIONS,
+    IS_CONTRACTED,
     LINE_CONTINUES,
     NEGATED_STEMS,
     NUMBERED,
@@ -113,7 +114,8 @@ def tokenize(text: str) -> list[Tok]:
             stem = word[:-3]
             out += [Tok(NEGATED_STEMS.get(stem + "n", stem), start, end), Tok("not", start, end)]
         elif word.endswith("'s") and len(word) > 2:
-            out += [Tok(word[:-2], start, end - 2), Tok("'s", end - 2, end)]
+            said = "is" if word[:-2] in IS_CONTRACTED else "'s"  # "that's", "there's": never a possessive
+            out += [Tok(word[:-2], start, end - 2), Tok(said, end - 2, end)]
         elif "'" in word and kind == "word":
             stem, suffix = word.split("'", 1)  # you're, we'll, I'd: the verb they stand for
             verb = [Tok(CONTRACTIONS[suffix], start, end)] if suffix in CONTRACTIONS else []

@@ -98,8 +98,19 @@ def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) 
     for n, item in enumerate(run):
         after = order == "ordered" and n > 0 and not (item.word(0) == "eventually"
                                                       or item.at(0, "at", "some", "point"))
-        out.append(replace(item, toks=prefix + item.toks, announced=announced, after_item=after))
+        said = prefix[len(scope):] if scope[:1] and scope[0].text == "in" and outside_room(item) else prefix
+        out.append(replace(item, toks=said + item.toks, announced=announced, after_item=after))
     return out
+
+
+def outside_room(item: Reader) -> bool:
+    """Whether a list item is about more than the room of its heading (*Living room list: ... - don't go
+    through the dining room*, *- stay on this floor*): a stay, or a prohibition whose first place is a room."""
+    if item.word(0) in lx.STAY:
+        return True
+    negation = item.phrase(0, lx.NEG_STARTS)
+    place = next((h for k in range(len(item)) if (h := item.head(k)) is not None), None)
+    return negation is not None and place is not None and place.kind == "room"
 
 
 def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order | None, tuple[Tok, ...]]:
