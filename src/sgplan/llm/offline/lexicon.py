@@ -937,13 +937,14 @@ TIME_WORDS = word_set("this next tomorrow today tonight later soon early late ri
 """Words of a time expression (*later this afternoon*, *at some point this evening*, *first thing
 tomorrow*); one with an event word (:data:`EVENT_WORDS`) only says when."""
 EVENT_VERBS = word_set("arrive arrives come comes leave leaves get gets back home start starts finish "
-                       "finishes end ends wake wakes up go goes out begin begins")
+                       "finishes end ends wake wakes up go goes out begin begins gone away asleep sleeping "
+                       "napping here working 's")
 """In a time expression of an event (*before the guests arrive*, *after I get back*)."""
 FEW = ("few", "couple", "several")
 TIME_UNITS = word_set("second seconds minute minutes min mins hour hours hr hrs sec secs")
 """*in ten minutes*, *wait 5 min*: a delay, which a mission cannot require (refused)."""
 TIME_OPENERS = ("before", "after", "by", "during", "for", "at", "around", "this", "tonight", "today",
-                "tomorrow", "later", "right", "first", "sometime", "some", "next", "early", "in", "all")
+                "tomorrow", "later", "right", "first", "sometime", "some", "next", "early", "in", "all", "while")
 """Words a time expression that opens a sentence starts with (*Before lunch, ...*, *Tonight, ...*)."""
 SUBJECT_PRONOUNS = word_set("i we he she they it there that this everyone everybody someone somebody "
                             "nobody everything something nothing")
@@ -965,6 +966,12 @@ after a subject of no room or object, a statement."""
 NEED_WORDS = word_set("need needs needed want wants wanted should must ought require requires")
 """A statement of a need (*the plants need watering*): about a room or object of the scene it may ask for a
 goal that is not said, so it is refused; about anything else it is set aside."""
+PEOPLE_NOUNS = word_set("""cleaner cleaners plumber plumbers builder builders electrician kids children family
+    mum mom dad grandma grandpa granny nan baby neighbour neighbours neighbor neighbors friend friends boss wife
+    husband partner sister brother parents folks delivery courier postman""")
+"""People of an event (*before the cleaners come*, *while my mum's here*): not the robot, not a place."""
+HOW_MANY = word_set("a few couple several some lots loads plenty of them one more")
+"""Words of a clause that only says how many there are (*there's a few*, *there are a couple of them*)."""
 PEOPLE = word_set("i we he she they")
 """The people of an event (*after I get back*, *before we leave*): not the robot, not a place."""
 DEICTIC_SUBJECTS = ("it", "there", "this", "that")

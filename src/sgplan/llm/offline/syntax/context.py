@@ -54,8 +54,9 @@ def split(r: Reader) -> list[Reader]:
     kept = [aside(r, clauses[0][0], clauses[first - 1][1])] if first else []
     start = skip_joiner(r, clauses[first][0]) if first else 0
     # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
-    middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c)]
-    words = [k for k in range(start, clauses[last - 1][1]) if not any(a <= k < b for a, b in middle)]
+    middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c) or counted(r, *c)]
+    words = [k for k in range(start, clauses[last - 1][1])
+             if not any(a <= k < b or (k == a - 1 and r.word(k) == ",") for a, b in middle)]
     kept += [replace(r, toks=tuple(r.toks[k] for k in words))] + [aside(r, a, b) for a, b in middle]
     if last < len(clauses):
         kept.append(aside(r, clauses[last][0], len(r)))
@@ -107,6 +108,13 @@ def purpose(r: Reader, k: int, end: int) -> bool:
         (w := r.word(j)) in lx.ARTICLES or w in lx.POSSESSIVES or w == "'s" or w in lx.EVENT_WORDS
         or (w.isalpha() and w not in lx.LEXICON_WORDS and r.head(j) is None) for j in said) and not any(
         r.word(j) in lx.TIME_UNITS or r.word(j) in lx.SEQUENCE_TIMES for j in said)
+
+
+def counted(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` only says how many there are (*there's a few*, *there are two of
+    them*): what to do with them is said around it (*..., any one's fine*)."""
+    return (r.word(start) == "there" and r.word(start + 1) in ("is", "are") and end > start + 2
+            and all(w in lx.HOW_MANY or w in lx.NUMBER_WORDS or w.isdigit() for w in r.words[start + 2:end]))
 
 
 def is_reason(r: Reader, start: int, end: int) -> bool:
@@ -171,12 +179,13 @@ def is_time(r: Reader, start: int, end: int) -> bool:
     """*Before lunch*, *this morning*, *at some point this evening*, *tonight*, *right now*: a time of day,
     meal or event (not *later* or *now* alone, which order the steps)."""
     words = r.words[start:end]
-    event = words[:1] in (("before",), ("after",), ("by",))  # "before the guests arrive", "after I get back"
-    said = [w in lx.TIME_WORDS or (event and (w in lx.EVENT_VERBS or w in lx.PEOPLE)) for w in words]
+    event = words[:1] in (("before",), ("after",), ("by",), ("while",))  # "before the guests arrive"
+    said = [w in lx.TIME_WORDS or (event and (w in lx.EVENT_VERBS or w in lx.PEOPLE or w in lx.PEOPLE_NOUNS
+                                              or w in lx.POSSESSIVES or w in lx.AUXILIARIES)) for w in words]
     if not words or not all(said):
         return False
-    events = [w for w in words
-              if (w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES) or (event and w in lx.PEOPLE)]
+    events = [w for w in words if (w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES)
+              or (event and (w in lx.PEOPLE or w in lx.PEOPLE_NOUNS))]
     return bool(events) or tuple(words) in lx.NOW_SAID
 
 
@@ -240,7 +249,8 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         return next((j for j in range(start + 2, min(start + 5, end)) if finite_verb(r.word(j))), None)
     verb = r.word(start + 1)
     if (w.isalpha() and r.head(start) is None
-            and (w not in lx.LEXICON_WORDS or w in lx.RELATIVE_FLOORS or w in lx.EVENT_WORDS)
+            and (w not in lx.LEXICON_WORDS or w in lx.RELATIVE_FLOORS or w in lx.EVENT_WORDS
+                 or w in lx.PEOPLE_NOUNS)
             and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
         return start + 1  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
     return None
