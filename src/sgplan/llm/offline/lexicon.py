@@ -982,7 +982,9 @@ SEQUENCE_TIMES = ("later", "soon", "now")
 WHOLE_PERIODS = {("all", period) for period in ("day", "morning", "afternoon", "evening", "night", "week",
                                                  "weekend")} | {("all", "day", "long"), ("all", "night", "long")}
 """*Don't go in the bathroom all day*: the whole mission's time, which orders nothing."""
-NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")} | WHOLE_PERIODS
+GREETING_TIMES = {(*good, period) for good in ((), ("good",)) for period in ("morning", "afternoon", "evening")}
+"""*Morning!*, *Good evening*: a greeting, said back, which orders nothing."""
+NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")} | WHOLE_PERIODS | GREETING_TIMES
 """Times that say when the whole mission is (now, a whole period), so that they put no goals in an order."""
 STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
 REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"),

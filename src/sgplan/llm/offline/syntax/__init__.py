@@ -37,10 +37,10 @@ __all__ = ["Match", "Reader", "Refusal", "parse_sentence", "split_mission"]
 
 def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = None) -> list[Reader]:
     """The sentences of ``text`` to parse, its lists and what a colon announced read with them
-    (:mod:`.lists`), its context set aside (:mod:`.context`), and without leading chit-chat: sentences before
-    the first one with content (*Hi!*), and the chit-chat clause before the first comma of that one (*I'm
-    hungry, go ...*). Sentences that say where the robot is (*I'm downstairs right now.*) and those set aside
-    are kept wherever they are."""
+    (:mod:`.lists`), its context set aside (:mod:`.context`), and its leading chit-chat set aside (said back,
+    never read): sentences before the first one with content (*Hi!*), and the chit-chat clause before the
+    first comma of that one (*Okay, go ...*). Sentences that say where the robot is (*I'm downstairs right
+    now.*) and those set aside are kept wherever they are."""
     tokens = [t for t in rewrite(tokenize(text), lx.PHRASE_ALIASES) if t.text not in lx.SOUNDS]
     out: list[Reader] = []
     content = False
@@ -54,10 +54,12 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
             continue
         if not content:
             if is_chitchat(r, 0, len(r)) and statement(r, 0, len(r)) is None:
-                continue  # "Hi!", "Okay, here's the plan." (a statement is said back: "We're hosting dinner")
+                out.append(replace(r, aside=True))  # "Hi!", "Okay, here's the plan.": said back
+                continue
             cut = leading_clause(r)
             if cut and statement(r, 0, cut - 1) is None:
-                r = replace(r, toks=r.toks[cut:])  # "Okay, go to ..." ("I'm hungry, ..." is said back)
+                out.append(replace(r, toks=r.toks[:cut - 1], aside=True))  # "Okay, go to ...": "Okay"
+                r = replace(r, toks=r.toks[cut:])  # ("I'm hungry, ..." is said back as a statement)
             content = True
         out += corrected(r)  # "go to the kitchen, no wait, the dining room": the dining room
     return set_aside_context(out)

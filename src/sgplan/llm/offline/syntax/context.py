@@ -42,6 +42,8 @@ def split(r: Reader) -> list[Reader]:
     if event_note(r, 0, len(r)) or is_time(r, 0, len(r)):
         return [aside(r, 0, len(r))]
     clauses = comma_clauses(r)
+    if closing_only(r, 0, len(r)):
+        return [aside(r, 0, len(r))]  # "Thanks a lot!", "Lovely, cheers.": a sign-off, said back
     first, last = 0, len(clauses)
     while first < last and (is_context(r, *clauses[first], leading=True) or closing_only(r, *clauses[first])):
         first += 1
@@ -148,10 +150,11 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
 
 
 def closing_only(r: Reader, start: int, end: int) -> bool:
-    """Whether the clause ``[start, end)`` is only a remark that asks nothing (*Oh*, *Right*, *Thanks*)."""
+    """Whether the words ``[start, end)`` are only remarks that ask nothing (*Oh*, *Right*, *Thanks*, *Lovely,
+    cheers*)."""
     k = skip_joiner(r, start)
-    while k < end and (said := r.phrase(k, lx.CLOSING) or (r.word(k),) if r.word(k) in lx.HESITATIONS else
-                       r.phrase(k, lx.CLOSING)):
+    while k < end and (said := r.phrase(k, lx.CLOSING) or ((r.word(k),) if r.word(k) in lx.HESITATIONS
+                                                           or r.word(k) == "," else None)):
         k += len(said)
     return start < k == end
 
