@@ -1,4 +1,5 @@
-"""DFA sizes and construction times: the 15 shipped missions, goal-count scaling, largest random formulas.
+"""DFA sizes and construction times: the 15 shipped missions, goal-count scaling, "stay on this floor"
+with many rooms, largest random formulas.
 
 Usage: ``python benchmarks/logic_dfa_sizes.py [--random N] [--seed S]``. Times are the best of 5 runs
 (milliseconds, single thread). "pruned" builds with every mission's enter(room) propositions mutually
@@ -105,6 +106,24 @@ def largest_random(count: int, seed: int) -> None:
         print(f"| {states} | {num_aps} | {ms:.1f} | `{text[:90]}{'...' if len(text) > 90 else ''}` |")
 
 
+def stay_on_floor(other_rooms: int = 11) -> None:
+    """'Stay on this floor' in a three-floor building forbids every room of the other floors (11 in
+    Benevolence seen from floor 0): many propositions, of which few labels are possible (one room at a
+    time)."""
+    print(f"\n| stay on one floor ({other_rooms} rooms forbidden) + ordered goals | APs | states | labels "
+          "| ms |")
+    print("|---|---|---|---|---|")
+    rooms = [f"room_{i}" for i in range(other_rooms)]
+    for goals in range(1, 8):
+        names = [f"g{i}" for i in range(goals)]
+        sequence = names[-1]
+        for name in reversed(names[:-1]):
+            sequence = f"{name} & F({sequence})"
+        formula = parse_infix(f"F({sequence}) & G !({' | '.join(rooms)})")
+        dfa, ms = best_ms(partial(ltlf_to_dfa, formula, aps=[*names, *rooms], exclusive=[rooms]))
+        print(f"| {goals} | {len(names) + other_rooms} | {dfa.num_states} | {dfa.num_labels:,} | {ms:.1f} |")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--random", type=int, default=300, help="number of random formulas")
@@ -116,6 +135,7 @@ def main() -> None:
     else:
         missions(root)
     scaling()
+    stay_on_floor()
     largest_random(args.random, args.seed)
 
 

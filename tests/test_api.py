@@ -135,9 +135,9 @@ def test_a_second_mission_on_a_session_builds_only_what_depends_on_it(
     demo, setup: str, prebuild: bool
 ) -> None:
     """Work counted, not timed: the grid, the cell graph, the masks of propositions already seen, the
-    action tables, every action map, every h_LTL distance field and the label runs of each labelling are
-    built once per session (the A* setup builds no action tables, maps or label runs at all); the plans
-    are those of fresh calls (same cost and path)."""
+    action tables, every action map, every h_LTL distance field and the label runs and label boundary of
+    each labelling are built once per session (the A* setup builds no action tables, maps or label runs at
+    all); the plans are those of fresh calls (same cost and path)."""
     actions = setup != "A*"
     action_parts = {"action_tables": 1, "action_maps": 1, "label_runs": 1} if actions else {}
     session = sgplan.Session(demo)
@@ -147,14 +147,14 @@ def test_a_second_mission_on_a_session_builds_only_what_depends_on_it(
     fields = set(session.parts.kept("distance_field"))
     built = (dict(session.builds), dict(session.parts.builds))
     assert built == ({"grid": 1, "label_mask": len(first.ordered_propositions)},
-                     {"cell_graph": 1, **action_parts, "distance_field": len(fields)})
+                     {"cell_graph": 1, **action_parts, "label_boundary": 1, "distance_field": len(fields)})
     maps_a = _maps_built(session).copy()
     b = session.plan(second, 0, setup=setup, prebuild_actions=prebuild)
     new_props = set(second.ordered_propositions) - set(first.ordered_propositions)
     assert session.builds == {"grid": 1, "label_mask": built[0]["label_mask"] + len(new_props)}
     new_fields = set(session.parts.kept("distance_field")) - fields
     runs = {"label_runs": 2} if actions else {}
-    assert session.parts.builds == {"cell_graph": 1, **action_parts, **runs,
+    assert session.parts.builds == {"cell_graph": 1, **action_parts, **runs, "label_boundary": 2,
                                     "distance_field": len(fields) + len(new_fields)}
     fresh_maps = []
     for kept, mission in ((a, first), (b, second)):
@@ -171,7 +171,7 @@ def test_a_second_mission_on_a_session_builds_only_what_depends_on_it(
     assert actions == maps_a.any()
     again = session.plan(first, 0, setup=setup, prebuild_actions=prebuild)  # nothing new at all
     assert session.parts.builds["distance_field"] == len(fields) + len(new_fields)
-    assert sum(session.parts.builds.values()) == (5 if actions else 1) + len(fields) + len(new_fields)
+    assert sum(session.parts.builds.values()) == (7 if actions else 3) + len(fields) + len(new_fields)
     assert again.cost_m == a.cost_m and np.array_equal(np.asarray(again.path), np.asarray(a.path))
     session.plan(first, 0, setup="NO-LLM", robot_radius_m=0.2)  # another grid: its own cell graph and maps
     assert session.builds["grid"] == 2

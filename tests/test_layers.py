@@ -25,6 +25,17 @@ def _lint_imports(source_root: Path, config: Path) -> subprocess.CompletedProces
     )
 
 
+def _lint_imports_with(module: str, addition: str, tmp_path: Path) -> subprocess.CompletedProcess[str]:
+    """``lint-imports`` on a copy of sgplan in ``tmp_path`` whose ``module`` ends with ``addition``."""
+    shutil.copytree(ROOT / "src" / "sgplan", tmp_path / "sgplan",
+                    ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
+    target = tmp_path / "sgplan" / module
+    target.write_text(target.read_text() + "\n\n" + addition)
+    config = tmp_path / "layers.toml"
+    config.write_text((ROOT / "pyproject.toml").read_text())
+    return _lint_imports(tmp_path, config)
+
+
 def test_the_layers_and_the_acyclic_contract_hold() -> None:
     done = _lint_imports(ROOT / "src", ROOT / "pyproject.toml")
     assert done.returncode == 0, done.stdout + done.stderr
@@ -43,12 +54,24 @@ def test_the_layers_and_the_acyclic_contract_hold() -> None:
     ],
 )
 def test_an_upward_import_breaks_the_contract(module: str, upward: str, said: str, tmp_path: Path) -> None:
-    shutil.copytree(ROOT / "src" / "sgplan", tmp_path / "sgplan",
-                    ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
-    target = tmp_path / "sgplan" / module
-    target.write_text(target.read_text() + "\n\n" + upward)
-    config = tmp_path / "layers.toml"
-    config.write_text((ROOT / "pyproject.toml").read_text())
-    done = _lint_imports(tmp_path, config)
+    done = _lint_imports_with(module, upward, tmp_path)
     assert done.returncode == 1, done.stdout + done.stderr
     assert said in done.stdout and "BROKEN" in done.stdout
+
+
+@pytest.mark.parametrize(
+    ("module", "back", "said"),
+    [
+        # the session's parts naming the domain that uses them (the type-only cycle this round cut)
+        ("planning/shared.py", "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n"
+         "    from sgplan.planning.domain import ActionParts\n", "No cycles are allowed in sgplan.planning"),
+        # a run's helper importing the run that calls it, even inside a function
+        ("execution/impossible.py", "def _later():\n    from sgplan.execution.run import Run\n",
+         "No cycles are allowed in sgplan.execution"),
+    ],
+)
+def test_an_import_cycle_in_a_package_breaks_the_contract(module: str, back: str, said: str,
+                                                          tmp_path: Path) -> None:
+    done = _lint_imports_with(module, back, tmp_path)
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert said in done.stdout, done.stdout

@@ -203,6 +203,17 @@ def test_amendments_join_the_rest_or_are_refused_naming_the_conflict(building, m
     assert run.remaining_cost_m >= before - 1e-9
 
 
+def test_an_amendment_whose_joined_automaton_is_too_large_is_refused_before_it_is_built():
+    from sgplan.execution.amend import combine
+    from sgplan.mission import compile_mission
+
+    rooms = [f'"enter(room_{i})"' for i in range(20)]
+    mission = compile_mission(f"F({rooms[0]} & F {rooms[1]}) & G !({' | '.join(rooms[2:12])})")
+    amendment = compile_mission(f"F({rooms[12]} & F {rooms[13]}) & G !({' | '.join(rooms[14:])})")
+    with pytest.raises(MissionError, match=r"more than the 8,000,000 an automaton may hold; amend with"):
+        combine(mission, 0, amendment, {}, None)
+
+
 def test_a_run_survives_saving_and_loading(building, mission):
     session = sgplan.Session(building)
     run = sgplan.Run(session, mission, building.initial_cells[0], setup="A*")

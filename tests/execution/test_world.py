@@ -70,7 +70,8 @@ def test_closing_a_door_cuts_the_rooms_apart_and_opening_it_restores_them():
     (MoveObject("sink", (0.0, 0.0)), "moved to (0, 0) m would leave floor 0's map"),
     (MoveObject("sink", (1.5, 1.0)), "would stand in a wall at cell"),
     (MoveObject("sink", (3.1, 5.0)), "would overlap the bed (object_7, in the bedroom room_5, floor 0)"),
-    (AddObject("crate", (30.0, 1.0), 0, (0.3, 0.3)), "covers no cell of floor 0's map"),
+    (AddObject("crate", (30.0, 1.0), 0, (0.3, 0.3)), "a crate of 0.3 x 0.3 m at (30, 1) m covers no cell"),
+    (AddObject("ottoman", (30.0, 1.0), 0, (0.3, 0.3)), "an ottoman of 0.3 x 0.3 m at (30, 1) m covers no"),
     (AddObject("trolley", (1.5, 4.0), 0, (0.4, 0.4)), "would stand in a wall"),
     (RemoveObject("chair"), "has no object called 'chair' (objects: bed, plant, sink)"),
 ])

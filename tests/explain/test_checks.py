@@ -61,6 +61,19 @@ def test_a_local_avoidance_the_scene_makes_vacuous_is_a_warning() -> None:
     check.raise_errors()  # a warning only
 
 
+def test_avoiding_a_place_the_robot_can_never_be_at_is_said_shortly() -> None:
+    """'Stay on this floor' lists every room of the other floors, some of which the robot may not fit
+    into: the warning says so, not every other room of the list."""
+    # With a reach radius barely above the robot's, no free cell is within reach of the microwave.
+    mission = compile_mission('F("enter(room_11)" & !"reach(object_18)" & !"enter(room_4)")')
+    check = check_mission_in_scene(mission, BUILDING, START, reach_radius_m=0.16)
+    messages = [f.message for f in check.findings]
+    microwave = "the microwave (object_18, in the kitchen room_4, floor 0)"
+    assert messages[0] == (f"'not within reach of {microwave}' changes nothing: no place of this scene the "
+                           f"robot can be at is within reach of {microwave}")
+    assert _kinds(check) == ["vacuous", "vacuous"]
+
+
 def test_start_inside_a_forbidden_room_is_unsatisfiable_from_this_start_only() -> None:
     check = _check('F "enter(room_11)" & G !"enter(room_2)"')
     assert _kinds(check) == ["unsatisfiable-from-start"]

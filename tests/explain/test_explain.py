@@ -7,15 +7,18 @@ import itertools
 from collections import defaultdict
 from pathlib import Path
 
+import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from sgplan.explain import Referent, explain_formula, explain_mission
+from sgplan.explain.stages import restricted
 from sgplan.logic import (
     Always,
     And,
     Atom,
+    Automaton,
     Equiv,
     Eventually,
     Formula,
@@ -25,10 +28,12 @@ from sgplan.logic import (
     Or,
     Until,
     equivalent,
+    ltlf_to_dfa,
     parse_infix,
 )
 from sgplan.mission import compile_mission, load_mission_folder
 from sgplan.scene.demo import demo_building
+from tests.logic.oracle import reference_minimize
 
 GOLDEN = Path(__file__).parent / "golden"
 
@@ -229,3 +234,20 @@ def test_authors_semantics_are_explained_from_the_automaton(gibson_root: Path) -
     assert explanation.method == "automaton"
     assert "accepts other paths than its formula" in explanation.text.splitlines()[0]
     assert "the living room (room_16, floor 1) (never matters by itself here)" in explanation.text
+
+
+@settings(max_examples=60, deadline=None)
+@given(formulas(("a", "b", "c", "d"), 8), st.lists(st.booleans(), min_size=16, max_size=16))
+def test_restricting_to_realizable_labels_equals_the_dense_one(formula: Formula, keep: list[bool]) -> None:
+    """``restricted`` minimises over the realizable columns only; it must give the very table of sending
+    every unrealizable label where the first realizable one goes and minimising the dense table."""
+    realizable = np.array(keep)
+    if not realizable.any():
+        realizable[5] = True
+    dfa = ltlf_to_dfa(formula, aps=("a", "b", "c", "d"))
+    dense = dfa.table.copy()
+    dense[:, ~realizable] = dense[:, [np.flatnonzero(realizable)[0]]]
+    expected = reference_minimize(Automaton(dfa.aps, dense, dfa.initial, dfa.accepting))
+    got = restricted(dfa, realizable)
+    assert np.array_equal(got.table, expected.table) and np.array_equal(got.accepting, expected.accepting)
+    assert got.initial == expected.initial

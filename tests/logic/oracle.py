@@ -4,6 +4,7 @@
   definitions (quantifiers over positions), vectorised over words only.
 - :func:`random_formula` / :func:`formulas`: random formulas (plain ``random`` and hypothesis).
 - :func:`run_words`: run a DFA over a batch of words.
+- :func:`reference_minimize`: the minimal DFA in canonical numbering, by table filling.
 """
 
 from __future__ import annotations
@@ -122,3 +123,37 @@ def formulas(aps: tuple[str, ...], max_leaves: int = 8) -> st.SearchStrategy[For
 def random_words(rng: np.random.Generator, num_aps: int, count: int, length: int) -> np.ndarray:
     """``(count, length)`` uniformly random labels over ``num_aps`` propositions."""
     return rng.integers(0, 1 << num_aps, size=(count, length))
+
+
+def reference_minimize(a: Automaton) -> Automaton:
+    """The minimal DFA of ``a`` in sgplan's canonical numbering (breadth-first from the initial state,
+    successors by increasing label), by the textbook table-filling algorithm with plain loops: an
+    independent check of :func:`sgplan.logic.minimize` (partition refinement over the whole table). For
+    small automata only (quadratic in states, times labels)."""
+    reachable = [a.initial]
+    for q in reachable:  # grows while it is read
+        for label in range(a.num_labels):
+            if int(a.table[q, label]) not in reachable:
+                reachable.append(int(a.table[q, label]))
+    apart = {(p, q) for p in reachable for q in reachable if a.accepting[p] != a.accepting[q]}
+    changed = True
+    while changed:
+        changed = False
+        for p in reachable:
+            for q in reachable:
+                if (p, q) not in apart and any(
+                    (int(a.table[p, label]), int(a.table[q, label])) in apart for label in range(a.num_labels)
+                ):
+                    apart.add((p, q))
+                    changed = True
+    first_equal = {q: next(p for p in reachable if (p, q) not in apart) for q in reachable}
+    order = [first_equal[a.initial]]
+    for q in order:
+        for label in range(a.num_labels):
+            r = first_equal[int(a.table[q, label])]
+            if r not in order:
+                order.append(r)
+    number = {q: k for k, q in enumerate(order)}
+    table = np.array([[number[first_equal[int(a.table[q, label])]] for label in range(a.num_labels)]
+                      for q in order])
+    return Automaton(a.aps, table, 0, a.accepting[order])

@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 from sgplan.errors import AutomatonError, FormulaError
 from sgplan.logic import (
     Atom,
+    Automaton,
     Next,
     equivalent,
     ltlf_to_dfa,
@@ -21,7 +22,8 @@ from sgplan.logic import (
     parse_prefix,
     possible_labels,
 )
-from tests.logic.oracle import formulas, holds, random_formula, random_words, run_words
+from sgplan.logic.rows import unique_rows
+from tests.logic.oracle import formulas, holds, random_formula, random_words, reference_minimize, run_words
 
 APS = ("p0", "p1", "p2", "p3", "p4")
 WORDS_PER_LENGTH = 500
@@ -63,6 +65,8 @@ def test_dfa_is_minimal_and_canonical(formula):
     assert np.array_equal(again.table, dfa.table) and again.initial == dfa.initial == 0
     # Every state is reachable and no two states are equivalent (Moore's fixpoint is the identity).
     assert dfa.reachable_states().all()
+    reference = reference_minimize(dfa)  # the textbook algorithm gives the same numbering
+    assert np.array_equal(reference.table, dfa.table) and np.array_equal(reference.accepting, dfa.accepting)
 
 
 def test_empty_word_is_rejected_even_by_valid_formulas():
@@ -104,6 +108,46 @@ def test_exclusive_groups_send_impossible_labels_to_a_sink():
     assert np.array_equal(run_words(full, words), run_words(pruned, words))
 
 
+def _pruned_by_hand(full: Automaton, possible: np.ndarray) -> Automaton:
+    """``full`` with every impossible label sent to a new rejecting sink, minimised: the dense reference."""
+    sink = full.num_states
+    table = np.vstack([full.table, np.full((1, full.num_labels), sink)])
+    table[:, ~possible] = sink
+    return reference_minimize(Automaton(full.aps, table, full.initial, np.append(full.accepting, False)))
+
+
+@settings(max_examples=60, deadline=None)
+@given(formula=formulas(APS, max_leaves=8), groups=st.sampled_from([
+    [["p0", "p1"]], [["p0", "p1", "p2"]], [["p1", "p3"], ["p0", "p2", "p4"]], [list(APS)],
+]), keep=st.lists(st.booleans(), min_size=32, max_size=32))
+def test_pruned_dfa_is_exactly_the_dense_one_pruned_by_hand(formula, groups, keep):
+    """The builder works over the possible labels and one column for the rest; the result must be the
+    very table (same numbering) of pruning the unpruned dense DFA by hand and minimising it."""
+    possible = possible_labels(APS, groups) & np.array(keep)
+    built = ltlf_to_dfa(formula, aps=APS, exclusive=groups, possible=np.array(keep))
+    expected = _pruned_by_hand(ltlf_to_dfa(formula, aps=APS), possible)
+    assert built.num_states == expected.num_states
+    assert np.array_equal(built.table, expected.table) and np.array_equal(built.accepting, expected.accepting)
+
+
+def test_staying_on_one_floor_of_three_builds_fast_with_eighteen_propositions():
+    """'Stay on this floor' forbids every room of the other floors: with the goals, 18 propositions
+    (262,144 labels) of which few are possible, since the robot is in one room at a time."""
+    other_floors = [f"room_{i}" for i in range(11)]
+    goals = ["a", "b", "c", "room_20", "d", "room_21", "room_22"]
+    sequence = "F(a & F(b & F(room_20 & F(c & F(room_21 & F(room_22 | d))))))"
+    formula = parse_infix(f"{sequence} & G !({' | '.join(other_floors)})")
+    start = time.perf_counter()
+    dfa = ltlf_to_dfa(formula, aps=[*goals, *other_floors],
+                      exclusive=[[*other_floors, "room_20", "room_21", "room_22"]])
+    assert time.perf_counter() - start < 2.0
+    assert dfa.num_labels == 2**18 and dfa.num_states == 8
+    word = [dfa.label_of(["a"]), dfa.label_of(["b"]), dfa.label_of(["room_20"]), dfa.label_of(["c"]),
+            dfa.label_of(["room_21"]), dfa.label_of(["d"])]
+    assert dfa.accepts(word)
+    assert not dfa.accepts([*word[:3], dfa.label_of(["room_3"]), *word[3:]])
+
+
 def test_twelve_unordered_goals_are_refused_early_with_the_predicted_size():
     goals = " & ".join(f"F p{i}" for i in range(12))
     start = time.perf_counter()
@@ -138,3 +182,22 @@ def test_aps_order_and_superset():
     assert wide.aps == ("a", "x", "b") and equivalent(wide, formula)
     with pytest.raises(FormulaError, match="proposition 'b' of the formula is not among"):
         ltlf_to_dfa(formula, aps=["a"])
+
+
+def test_a_dense_table_beyond_its_cap_is_refused_with_what_to_do():
+    """Work over the possible labels is small (21 exclusive rooms: 22 possible labels), but the automaton
+    stores all 2**21 labels for each state: 4 states would need 8,388,608 entries."""
+    rooms = [f"room_{i}" for i in range(21)]
+    formula = parse_infix(f"F(room_0 & F room_1) & G !({' | '.join(rooms[2:])})")
+    with pytest.raises(AutomatonError, match=r"more than the 8,000,000 an automaton may hold; use fewer"):
+        ltlf_to_dfa(formula, aps=rooms, exclusive=[rooms])
+    twenty = parse_infix(f"F(room_0 & F room_1) & G !({' | '.join(rooms[2:20])})")
+    assert ltlf_to_dfa(twenty, aps=rooms[:20], exclusive=[rooms[:20]]).num_labels == 2**20  # 4 x 2**20 fit
+
+
+def test_unique_rows_of_wide_and_empty_rows():
+    rows = np.array([[1, 2, 3], [0, 0, 0], [1, 2, 3]])
+    first, inverse = unique_rows(rows)
+    assert np.array_equal(rows[first[inverse]], rows) and inverse[0] == inverse[2] != inverse[1]
+    first, inverse = unique_rows(np.zeros((3, 0), np.int32))
+    assert first.tolist() == [0] and inverse.tolist() == [0, 0, 0]

@@ -21,6 +21,7 @@ import numpy as np
 from sgplan.errors import FormulaError, MissionError
 from sgplan.logic.automaton import Automaton
 from sgplan.logic.formula import And, Formula, rename_atoms
+from sgplan.logic.ltlf import MAX_TABLE_ENTRIES
 from sgplan.logic.minimize import product
 from sgplan.logic.progression import progress
 from sgplan.mission import Mission
@@ -61,7 +62,8 @@ def combine(mission: Mission, state: int, amendment: Mission, cell_label: Mappin
     Raises
     ------
     MissionError
-        when the propositions of the two missions give one token two meanings (two reach radii).
+        when the propositions of the two missions give one token two meanings (two reach radii), or the
+        joined automaton would exceed :data:`~sgplan.logic.ltlf.MAX_TABLE_ENTRIES`.
     """
     left, left_meaning = _by_token(mission)
     right, right_meaning = _by_token(amendment)
@@ -69,6 +71,13 @@ def combine(mission: Mission, state: int, amendment: Mission, cell_label: Mappin
         if token in left_meaning and left_meaning[token] != prop:
             raise MissionError(f"the amendment's {token} means {prop}, the mission's {left_meaning[token]}")
     aps = tuple(dict.fromkeys(left.aps + right.aps))
+    entries = (left.num_states * right.num_states) << len(aps)  # the product before it is minimised
+    if entries > MAX_TABLE_ENTRIES:
+        raise MissionError(
+            f"the mission with the amendment would need {left.num_states} x {right.num_states} states x "
+            f"{1 << len(aps):,} labels = {entries:,} table entries, more than the {MAX_TABLE_ENTRIES:,} an "
+            f"automaton may hold; amend with fewer new rooms or objects, or plan a new mission"
+        )
     left, right = left.with_aps(aps), right.with_aps(aps)
     label = right.label_of(token for token, holds in cell_label.items() if holds)
     now = Automaton(aps, left.table, state, left.accepting)

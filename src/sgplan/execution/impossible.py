@@ -11,10 +11,10 @@ from sgplan.logic.automaton import Automaton
 from sgplan.logic.paths import remaining_mission
 
 if TYPE_CHECKING:
-    from sgplan.execution.run import Run
+    from sgplan.execution.view import RunView
 
 
-def _unreachable_goals(run: Run) -> list[str]:
+def _unreachable_goals(run: RunView) -> list[str]:
     """The places the rest of the mission must visit that no cell reachable from the robot offers."""
     from sgplan.explain.referents import referent_of
 
@@ -34,7 +34,7 @@ def _unreachable_goals(run: Run) -> list[str]:
     return names
 
 
-def _scene_findings(run: Run) -> list[str]:
+def _scene_findings(run: RunView) -> list[str]:
     """The errors the scene checks find in the rest of the mission from the robot's cell."""
     from sgplan.explain.checks import check_mission_in_scene
     from sgplan.mission import Mission
@@ -48,7 +48,7 @@ def _scene_findings(run: Run) -> list[str]:
     return [finding.message for finding in check.of("error")]
 
 
-def why_impossible(run: Run, planner_says: str) -> str:
+def why_impossible(run: RunView, planner_says: str) -> str:
     """Why no path satisfies the rest of ``run``'s mission from the robot's cell, in a sentence or two;
     ``planner_says``: the planner's own reason, used when nothing more specific is found.
 

@@ -39,6 +39,7 @@ from sgplan.execution.graph import LabelMask, OutsideNumbering, candidate_graph,
 from sgplan.execution.regrid import GridChange
 from sgplan.intsets import unique_sorted
 from sgplan.planning.cells import CellGraph
+from sgplan.planning.domain import KeptParts
 from sgplan.planning.shared import SharedParts
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.model import Building
@@ -49,7 +50,7 @@ if TYPE_CHECKING:
 
 T = TypeVar("T")
 
-class RunParts(SharedParts):
+class RunParts(SharedParts, KeptParts):
     """Planner parts for the problems of one run's current grid and labels (see the module).
 
     Parameters
@@ -113,7 +114,7 @@ class RunParts(SharedParts):
         return super().get(name, key, build)
 
     def cell_labels(self, grid: Hashable, graph: CellGraph, labels: np.ndarray
-                    ) -> tuple[np.ndarray, np.ndarray] | None:
+                    ) -> tuple[np.ndarray, np.ndarray]:
         """The compact labels kept (:class:`~sgplan.execution.cell_labels.CellLabels`): ids are the run's,
         so some may be unused."""
         self._serves(grid, graph)
@@ -128,20 +129,19 @@ class RunParts(SharedParts):
             self.component, self.fields = Component(), FieldStore()
         return self.fatal.of(self.graph)
 
-    def reachable(self, grid: Hashable, graph: CellGraph, start_cell: int, avoid: np.ndarray
-                  ) -> np.ndarray | None:
+    def reachable(self, grid: Hashable, graph: CellGraph, start_cell: int, avoid: np.ndarray) -> np.ndarray:
         """The component kept (:class:`~sgplan.execution.component.Component`), over the graph without the
         cells of ``avoid``."""
         self._serves(grid, graph)
         graph = self._avoiding(avoid)  # first: it may start the component afresh
         return self.component.of(graph, start_cell)
 
-    def label_boundary(self, grid: Hashable, graph: CellGraph) -> np.ndarray | None:
+    def label_boundary(self, grid: Hashable, graph: CellGraph) -> np.ndarray:
         self._serves(grid, graph)
         return self.labelling.boundary
 
     def label_fields(self, grid: Hashable, graph: CellGraph, masks: np.ndarray, unit_m: float,
-                     avoid: np.ndarray) -> np.ndarray | float | None:
+                     avoid: np.ndarray) -> np.ndarray | float:
         """The fields kept by bitmask (:class:`~sgplan.execution.fields.FieldStore`), each to its whole
         region: equal to the field of the region's part reachable from the start on every cell reachable
         from it, the only cells h_LTL reads; over the graph without the cells of ``avoid``."""
@@ -150,7 +150,7 @@ class RunParts(SharedParts):
         return self.fields.fields(graph, self.labelling.masks, [int(m) for m in masks], unit_m)
 
     def action_parts(self, problem: PlanningProblem, graph: CellGraph, cell_label: np.ndarray,
-                     reachable: np.ndarray) -> ActionParts | None:
+                     reachable: np.ndarray) -> ActionParts:
         """The composite action parts kept across changes (:class:`~sgplan.execution.actions.RunActions`);
         ``cell_label`` is the run's own (:meth:`cell_labels`)."""
         self._serves(problem.grid, graph)

@@ -11,11 +11,11 @@ from sgplan.planning.problem import PlanningProblem
 
 if TYPE_CHECKING:
     from sgplan.api import Explained
-    from sgplan.execution.run import Run
+    from sgplan.execution.view import RunView
     from sgplan.result import PlanResult
 
 
-def plan_from(run: Run, cell: tuple[int, int, int], state: int, explained: Explained) -> PlanResult:
+def plan_from(run: RunView, cell: tuple[int, int, int], state: int, explained: Explained) -> PlanResult:
     """The optimal plan of ``run``'s mission from ``cell`` ``(row, col, floor)`` in automaton ``state``
     (the state after reading ``cell``'s label) in the run's current building; ``explained``: the
     mission's explanation, made once per mission by the run.

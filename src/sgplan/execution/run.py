@@ -19,26 +19,37 @@ continuation can satisfy it any more: the monitor names the step that broke it) 
 could still be satisfied in principle, but not from here in this building: :attr:`Run.why` says why;
 the run stays usable, and a change that reopens the way makes it plannable again).
 
-Events (:class:`RunEvent`: ``changed``, ``replanned``, ``progress``, ``done``, ``violated``,
-``impossible``, ``amended``, ``refused``) go to the callbacks given with :meth:`Run.subscribe`, as they
-happen, and into :attr:`Run.history`.
+Events (:class:`~sgplan.execution.events.RunEvent`: ``changed``, ``replanned``, ``progress``, ``done``,
+``violated``, ``impossible``, ``amended``, ``refused``) go to the callbacks given with
+:meth:`Run.subscribe`, as they happen, and into :attr:`Run.history`.
 """
 
 from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
 from sgplan.errors import PlanningError, SceneError
 from sgplan.execution.changes import Change, change_from_dict
+from sgplan.execution.events import RunEvent
+from sgplan.execution.impossible import why_impossible
 from sgplan.execution.labels import RunLabels
 from sgplan.execution.monitor import Monitor, MonitorStatus
 from sgplan.execution.parts import RunParts
 from sgplan.execution.regrid import regrid
+from sgplan.execution.replan import plan_from
+from sgplan.execution.run_io import (
+    FORMAT,
+    VERSION,
+    mission_from_dict,
+    mission_to_dict,
+    saved_session,
+    scene_reference,
+)
 from sgplan.execution.world import SceneDelta, SceneState
 from sgplan.intsets import members, unique_sorted
 
@@ -55,23 +66,6 @@ if TYPE_CHECKING:
 RunStatus = Literal["in-progress", "done", "violated", "impossible"]
 IMPOSSIBLE_EXIT = 7
 """Exit code of a command whose run ended impossible (beside the monitor's 5 in progress, 6 violated)."""
-FORMAT = "sgplan-run"
-VERSION = 1
-"""The ``format`` and ``version`` of :meth:`Run.to_dict`."""
-
-
-@dataclass(frozen=True)
-class RunEvent:
-    """Something that happened to a run: its ``kind``, a sentence, JSON-safe ``details`` and, apart
-    (not saved: it differs between two runs of the same thing), the ``seconds`` it took."""
-
-    kind: str
-    message: str
-    details: dict[str, Any] = field(default_factory=dict)
-    seconds: float | None = None
-
-    def to_dict(self) -> dict[str, Any]:
-        return {"kind": self.kind, "message": self.message, "details": self.details}
 
 
 @dataclass(frozen=True)
@@ -282,7 +276,6 @@ class Run:
         """A plan from the robot's cell and state; :class:`PlanningError` (status ``infeasible``) when
         there is none. Other planning errors (a bug, a bad option) are raised as they are."""
         from sgplan.api import explain_for_result
-        from sgplan.execution.replan import plan_from
 
         if self._explained is None:
             self._explained = explain_for_result(self.mission, self.building,
@@ -304,8 +297,6 @@ class Run:
                    plannable_again=was_impossible)
 
     def _impossible(self, message: str, seconds: float) -> None:
-        from sgplan.execution.impossible import why_impossible
-
         self._plan, self._stale = None, True
         self.why = why_impossible(self, message)
         self._status = "impossible"
@@ -452,8 +443,6 @@ class Run:
             try:
                 plan = self._search()
             except PlanningError as error:
-                from sgplan.execution.impossible import why_impossible
-
                 reason = why_impossible(self, str(error))
                 (self.mission, self.labels, self.monitor, self.parts, self._status, self.why, self._plan,
                  self._stale, self._on_plan) = before
@@ -496,8 +485,6 @@ class Run:
 
         Cost: the mission's automaton table and the changes as data (no plan is stored: a restored run
         plans again from the same cell and state)."""
-        from sgplan.execution.run_io import mission_to_dict, scene_reference
-
         return {
             "format": FORMAT, "version": VERSION, "scene": scene_reference(self.session.building),
             "options": self.options.to_dict(), "start": list(self.start), "start_from": self.start_from,
@@ -529,9 +516,22 @@ class Run:
         SgplanError
             another format or version, a session on another building, a change that no longer applies.
         """
-        from sgplan.execution.run_io import restore
+        from sgplan.options import PlanOptions
 
-        return restore(cls, data, session)
+        session = saved_session(data, session)
+        run = cls(session, mission_from_dict(data["mission"]), tuple(data["position"]),
+                  PlanOptions.from_dict(data["options"]), state=int(data["state"]))
+        changes = [change_from_dict(c, f"saved change {i}") for i, c in enumerate(data["changes"], 1)]
+        if changes:
+            run.change(changes)
+        run.history = [RunEvent(e["kind"], e["message"], dict(e["details"])) for e in data["history"]]
+        run.start, run.start_from = tuple(data["start"]), data["start_from"]
+        run.amendments = list(data["amendments"])
+        counts = data["monitor"]
+        run.monitor.poses, run.monitor.cells, run.monitor.length_m = counts["poses"], counts["cells"], \
+            counts["length_m"]
+        run.restore_status(data["status"], data.get("why"))
+        return run
 
 
 def _changed_cells(deltas: list[SceneDelta]) -> dict[int, np.ndarray]:

@@ -1,12 +1,14 @@
-"""A run as JSON-safe data and back: the scene it runs on (by reference), the mission (its automaton as
-HOA text, its propositions, formula and guidance), the options, the changes and amendments, the robot's
-cell and automaton state, the monitor's counts and the events."""
+"""The pieces of a run's JSON-safe form, which :meth:`sgplan.execution.run.Run.to_dict` and
+:meth:`~sgplan.execution.run.Run.from_dict` assemble with the options, the changes and amendments, the
+robot's cell and automaton state, the monitor's counts and the events: the format and its version, the
+scene the run goes on (by reference) and the mission (its automaton as HOA text, its propositions,
+formula and guidance)."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, Any
 
 from sgplan.errors import SgplanError
 from sgplan.logic import parse_hoa, parse_infix, to_infix, write_hoa
@@ -16,9 +18,10 @@ from sgplan.scene.model import Building
 
 if TYPE_CHECKING:
     from sgplan.api import Session
-    from sgplan.execution.run import Run
 
-R = TypeVar("R", bound="Run")
+FORMAT = "sgplan-run"
+VERSION = 1
+"""The ``format`` and ``version`` of a saved run (:meth:`sgplan.execution.run.Run.to_dict`)."""
 
 
 class RunFileError(SgplanError):
@@ -66,12 +69,16 @@ def mission_from_dict(data: Mapping[str, Any]) -> Mission:
                    notes=list(data.get("notes") or []))
 
 
-def restore(cls: type[R], data: Mapping[str, Any], session: Session | None) -> R:
-    """The run of ``cls`` saved in ``data`` (:meth:`sgplan.execution.run.Run.from_dict`)."""
+def saved_session(data: Mapping[str, Any], session: Session | None) -> Session:
+    """The session a saved run (:meth:`sgplan.execution.run.Run.to_dict`'s ``data``) goes on: ``session``
+    when given, else a new one on the saved scene.
+
+    Raises
+    ------
+    RunFileError
+        ``data`` is not a saved run of this format and version, or ``session`` is on another scene.
+    """
     from sgplan.api import Session, load_scene
-    from sgplan.execution.changes import change_from_dict
-    from sgplan.execution.run import FORMAT, VERSION, RunEvent
-    from sgplan.options import PlanOptions
 
     if not isinstance(data, Mapping) or data.get("format") != FORMAT:
         raise RunFileError(f"not a saved run (format {FORMAT!r} expected)")
@@ -79,21 +86,9 @@ def restore(cls: type[R], data: Mapping[str, Any], session: Session | None) -> R
         raise RunFileError(f"saved run version {data.get('version')!r} is not supported (this sgplan reads "
                            f"version {VERSION})")
     if session is None:
-        session = Session(load_scene(data["scene"]))
-    elif scene_reference(session.building) != data["scene"] and Path(str(data["scene"])).name != \
+        return Session(load_scene(data["scene"]))
+    if scene_reference(session.building) != data["scene"] and Path(str(data["scene"])).name != \
             Path(scene_reference(session.building)).name:
         raise RunFileError(f"the run was saved on scene {data['scene']!r}, the session's is "
                            f"{scene_reference(session.building)!r}")
-    run = cls(session, mission_from_dict(data["mission"]), tuple(data["position"]),
-              PlanOptions.from_dict(data["options"]), state=int(data["state"]))
-    changes = [change_from_dict(c, f"saved change {i}") for i, c in enumerate(data["changes"], 1)]
-    if changes:
-        run.change(changes)
-    run.history = [RunEvent(e["kind"], e["message"], dict(e["details"])) for e in data["history"]]
-    run.start, run.start_from = tuple(data["start"]), data["start_from"]
-    run.amendments = list(data["amendments"])
-    counts = data["monitor"]
-    run.monitor.poses, run.monitor.cells, run.monitor.length_m = counts["poses"], counts["cells"], \
-        counts["length_m"]
-    run.restore_status(data["status"], data.get("why"))
-    return run
+    return session

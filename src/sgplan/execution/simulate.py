@@ -19,7 +19,8 @@ from sgplan.outputs.waypoints import leg_costs
 from sgplan.scene.lookup import find_room
 
 if TYPE_CHECKING:
-    from sgplan.execution.run import Run, RunEvent
+    from sgplan.execution.events import RunEvent
+    from sgplan.execution.run import Run
 
 
 @dataclass(frozen=True)

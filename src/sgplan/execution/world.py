@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from sgplan.english import a_or_an
 from sgplan.errors import SceneError
 from sgplan.execution.areas import (
     area_cells,
@@ -401,7 +402,7 @@ def _add_object(state: SceneState, change: AddObject) -> tuple[SceneState, Scene
     plan = state._floor(change.floor)
     (x, y), (sx, sy) = change.at_xy_m, change.size_m
     cells = area_cells(plan, Area(change.floor, box_m=(x - sx / 2, y - sy / 2, x + sx / 2, y + sy / 2)))
-    what = f"a {change.category} of {sx:g} x {sy:g} m at ({x:g}, {y:g}) m"
+    what = f"{a_or_an(change.category)} of {sx:g} x {sy:g} m at ({x:g}, {y:g}) m"
     if cells.size == 0:
         raise SceneError(f"{what} covers no cell of floor {change.floor}'s map ({map_extent_m(plan)})")
     ids = [o.id for o in state.building.objects()] + [0]

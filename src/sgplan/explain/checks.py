@@ -270,6 +270,10 @@ class _Context:
             # a redundant positive one ("the sink, in the bathroom") is just precise.
             if not (isinstance(part, Not) and isinstance(part.arg, Atom)):
                 continue
+            if not _evaluate(part.arg, present, index).any():  # a place no robot position is in
+                findings.append(Finding("vacuous", f"'{self.cond(part)}' changes nothing: no place of this "
+                                        f"scene the robot can be at is {self.cond(part.arg)}"))
+                continue
             others = parts[:k] + parts[k + 1:]
             rest = others[0] if len(others) == 1 else And(tuple(others))
             if not (_evaluate(rest, present, index) & ~_evaluate(part, present, index)).any():

@@ -12,6 +12,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Literal
 
+from sgplan.english import a_or_an
 from sgplan.errors import FormulaError
 from sgplan.scene.labels import Proposition
 from sgplan.scene.model import Building, category_words
@@ -115,6 +116,11 @@ def group_phrase(entities: Sequence[Referent], article: str = "a") -> str:
     if len(wheres) == 1:
         where = wheres.pop()
         keys = " or ".join(e.key for e in entities)
-        return f"{article} {first.category} ({keys}{', ' + where if where else ''})"
+        return f"{_with_article(article, first.category)} ({keys}{', ' + where if where else ''})"
     items = [f"{e.key}, {e.where}" if e.where else e.key for e in entities]
-    return f"{article} {first.category} ({', or '.join(items)})"
+    return f"{_with_article(article, first.category)} ({', or '.join(items)})"
+
+
+def _with_article(article: str, category: str | None) -> str:
+    """``a``/``an`` by the category's sound; any other article (``the``, ``every``) as given."""
+    return a_or_an(str(category)) if article == "a" else f"{article} {category}"

@@ -119,7 +119,7 @@ def _reads_as(formula: Formula, automaton: Automaton, realizable: np.ndarray) ->
     """Whether ``formula`` and ``automaton`` accept the same words over the realizable labels."""
     if any(p not in automaton.aps for p in atoms(formula)) or not realizable.any():
         return False
-    own = ltlf_to_dfa(formula, aps=automaton.aps)
+    own = ltlf_to_dfa(formula, aps=automaton.aps, possible=realizable)
     return equivalent(restricted(own, realizable), restricted(automaton, realizable))
 
 

@@ -18,7 +18,7 @@ import numpy as np
 
 from sgplan.explain.referents import Referent
 from sgplan.logic.automaton import Automaton
-from sgplan.logic.minimize import minimize
+from sgplan.logic.minimize import Table, minimal_table
 
 MAX_WAYS = 3
 """How many shortest ways to complete the mission are listed."""
@@ -31,9 +31,12 @@ def restricted(automaton: Automaton, realizable: np.ndarray) -> Automaton:
     states; minimising then gives a form that depends only on the language over realizable labels.
     """
     labels = np.flatnonzero(realizable)
-    table = np.array(automaton.table, copy=True)
-    table[:, ~realizable] = table[:, [labels[0]]]
-    return minimize(Automaton(automaton.aps, table, automaton.initial, automaton.accepting))
+    # Minimised over the realizable columns only (breadth-first numbering by increasing label is the
+    # same there), then every unrealizable label copies the first realizable one's column.
+    small = minimal_table(Table(automaton.table[:, labels], automaton.initial, automaton.accepting))
+    column = np.zeros(automaton.num_labels, np.int64)
+    column[labels] = np.arange(labels.size)
+    return Automaton(automaton.aps, small.table[:, column], small.initial, small.accepting)
 
 
 def _steps_to_accept(a: Automaton, labels: np.ndarray) -> np.ndarray:

@@ -24,17 +24,21 @@ Construction (docs/logic.md has the semantics):
 
    ``psi`` is kept as the unique minimal DNF over the formula's literals and temporal sub-formulas
    (see :class:`_Progression`), so finitely many states arise. ``delta``/``lam`` are computed once per
-   temporal sub-formula as arrays over all labels.
+   temporal sub-formula as arrays over the possible labels.
    The initial state is ``(phi, False)``: the empty word satisfies no formula.
 3. The conjuncts' minimal DFAs are multiplied pairwise (vectorised) and minimised after each step.
 
-Labels that the ``exclusive`` groups rule out (two propositions of one group true together) lead to the
-rejecting sink ``(false, False)``; the DFA is minimal for the language restricted to possible labels.
+Labels that the ``exclusive`` groups rule out (two propositions of one group true together), and those
+``possible`` leaves out, lead to the rejecting sink ``(false, False)``; the DFA is minimal for the
+language restricted to possible labels. Steps 2 and 3 work on a compact alphabet, one column per possible
+label and one for all the others (:class:`_Alphabet`), and the dense ``2**len(aps)`` table is made once at
+the end: a mission over many rooms, of which the robot is in one at a time, stays cheap to build.
 """
 
 from __future__ import annotations
 
 from collections.abc import Collection, Sequence
+from typing import NamedTuple
 
 import numpy as np
 
@@ -57,12 +61,17 @@ from sgplan.logic.formula import (
     check_nesting,
     to_infix,
 )
-from sgplan.logic.minimize import minimize, product
+from sgplan.logic.minimize import Table, minimal_table, product_table
 from sgplan.logic.normal import nnf
+from sgplan.logic.rows import unique_rows
 from sgplan.safeio import quote
 
 DEFAULT_MAX_ENTRIES = 1_000_000
-"""Default limit on ``num_states * 2**len(aps)`` (dense table entries, 4 bytes each)."""
+"""Default limit on the builder's work: ``num_states`` x the number of possible labels (plus one column for
+all impossible ones); every label is possible unless ``exclusive`` or ``possible`` rule some out."""
+
+MAX_TABLE_ENTRIES = 8_000_000
+"""Limit on the automaton's dense table, ``num_states * 2**len(aps)`` entries of 4 bytes (32 MB)."""
 
 
 def possible_labels(aps: Sequence[str], exclusive: Collection[Collection[str]] = ()) -> np.ndarray:
@@ -161,17 +170,18 @@ class _Progression:
         """Per label, the id of the ``&`` (``conj``) or ``|`` of the parts' DNFs."""
         if len(parts) == 1:
             return parts[0]
-        columns, inverse = np.unique(np.stack(parts), axis=1, return_inverse=True)
-        out = np.empty(columns.shape[1], np.int64)
-        for k in range(columns.shape[1]):
-            key = (conj, *columns[:, k].tolist())
+        by_label = np.stack(parts, axis=1)
+        first, inverse = unique_rows(by_label)
+        out = np.empty(first.size, np.int64)
+        for k, label in enumerate(first):
+            key = (conj, *by_label[label].tolist())
             did = self.combined.get(key)
             if did is None:
                 operands = [self.dnfs[i] for i in key[1:]]
                 did = self.intern_dnf(self.dnf_and(operands) if conj else self.dnf_or(operands))
                 self.combined[key] = did
             out[k] = did
-        return out[inverse.ravel()]
+        return out[inverse]
 
     def step(self, f: Formula) -> tuple[np.ndarray, np.ndarray]:
         """``(delta DNF ids, lam)`` of an NNF formula for every label."""
@@ -243,11 +253,47 @@ def _too_big(formula: Formula, states: int, num_labels: int, max_entries: int, h
     )
 
 
+def _table_too_big(formula: Formula, states: int, num_labels: int) -> AutomatonError:
+    return AutomatonError(
+        f"the automaton of {to_infix(formula)} has {states:,} states x {num_labels:,} labels = "
+        f"{states * num_labels:,} table entries, more than the {MAX_TABLE_ENTRIES:,} an automaton may hold; "
+        f"use fewer propositions (rooms and objects) in the mission"
+    )
+
+
+class _Alphabet(NamedTuple):
+    """The columns the builder works on: one per possible label, and one for all the others.
+
+    Columns follow the order of each column's first label, so breadth-first numbering by increasing
+    column (:func:`sgplan.logic.minimize.minimal_table`) equals numbering by increasing label.
+    """
+
+    label_column: np.ndarray
+    """``(num_possible,)`` the column of each possible label (in increasing label order)."""
+    other_column: int | None
+    """the column of every impossible label, or None when all labels are possible."""
+    expand: np.ndarray
+    """``(2**len(aps),)`` the column of every label."""
+
+    @property
+    def size(self) -> int:
+        return int(self.label_column.size) + (self.other_column is not None)
+
+
+def _alphabet(possible: np.ndarray) -> _Alphabet:
+    labels = np.flatnonzero(possible)
+    if possible.all():
+        return _Alphabet(labels, None, labels)
+    first_other = int(np.argmin(possible))
+    firsts = np.sort(np.append(labels, first_other))
+    every = np.where(possible, np.arange(possible.size), first_other)
+    return _Alphabet(np.searchsorted(firsts, labels), int(np.searchsorted(firsts, first_other)),
+                     np.searchsorted(firsts, every))
+
+
 def _conjunct_dfa(
-    phi: Formula, prog: _Progression, possible: np.ndarray, aps: tuple[str, ...], max_entries: int,
-    original: Formula,
-) -> Automaton:
-    num_labels = possible.size
+    phi: Formula, prog: _Progression, alphabet: _Alphabet, max_entries: int, original: Formula,
+) -> Table:
     state_of: dict[int, int] = {}  # key 2 * formula id + acceptance bit -> state index
     keys: list[int] = []
 
@@ -256,22 +302,34 @@ def _conjunct_dfa(
         if index is None:
             index = state_of[key] = len(keys)
             keys.append(key)
-            if len(keys) * num_labels > max_entries:
-                raise _too_big(original, len(keys), num_labels, max_entries, "more than")
+            if len(keys) * alphabet.size > max_entries:
+                raise _too_big(original, len(keys), alphabet.size, max_entries, "more than")
         return index
 
-    sink = 2 * prog.false_id
     state(2 * prog.intern_dnf(prog.to_dnf(phi)))
     rows: list[np.ndarray] = []
     while len(rows) < len(keys):
         delta, lam = prog.step_state(keys[len(rows)] >> 1)
-        targets = 2 * delta + lam
-        unique, inverse = np.unique(targets, return_inverse=True)
-        row = np.full(num_labels, state(sink) if not possible.all() else 0, np.int32)
-        row[possible] = np.array([state(int(k)) for k in unique], np.int32)[inverse.ravel()]
+        unique, inverse = np.unique(2 * delta + lam, return_inverse=True)
+        row = np.empty(alphabet.size, np.int32)
+        row[alphabet.label_column] = np.array([state(int(k)) for k in unique], np.int32)[inverse.ravel()]
+        if alphabet.other_column is not None:
+            row[alphabet.other_column] = state(2 * prog.false_id)  # the rejecting sink
         rows.append(row)
     accepting = np.array([k & 1 for k in keys], bool)
-    return minimize(Automaton(aps, np.stack(rows), 0, accepting))
+    return minimal_table(Table(np.stack(rows), 0, accepting))
+
+
+def _allowed_labels(aps: Sequence[str], exclusive: Collection[Collection[str]],
+                    possible: np.ndarray | None) -> np.ndarray:
+    """``(2**len(aps),)`` bool: the labels that ``exclusive`` allows and ``possible`` (if given) keeps."""
+    allowed = possible_labels(aps, exclusive)
+    if possible is not None:
+        possible = np.asarray(possible, dtype=bool)
+        if possible.shape != allowed.shape:
+            raise ValueError(f"possible has shape {possible.shape}, expected {allowed.shape} (2**len(aps))")
+        allowed &= possible
+    return allowed
 
 
 def ltlf_to_dfa(
@@ -279,6 +337,7 @@ def ltlf_to_dfa(
     aps: Sequence[str] | None = None,
     exclusive: Collection[Collection[str]] = (),
     max_entries: int = DEFAULT_MAX_ENTRIES,
+    possible: np.ndarray | None = None,
 ) -> Automaton:
     """The minimal complete DFA accepting exactly the finite words that satisfy ``formula`` (LTLf).
 
@@ -293,7 +352,12 @@ def ltlf_to_dfa(
         groups of propositions of which at most one holds at a time (e.g. all ``enter(room_*)``);
         labels violating a group go to the rejecting sink.
     max_entries:
-        refuse (early) automata whose table would exceed ``num_states * 2**len(aps)`` entries.
+        refuse (early) automata whose table over the possible labels would exceed ``num_states`` x
+        (possible labels + 1) entries (``num_states * 2**len(aps)`` when every label is possible).
+    possible:
+        ``(2**len(aps),)`` bool, the labels that can occur (e.g. those realizable in a scene); the others
+        lead to the rejecting sink, as labels ruled out by ``exclusive`` do. Progression runs over the
+        possible labels only, so a small ``possible`` keeps building fast for many propositions.
 
     Returns
     -------
@@ -305,7 +369,8 @@ def ltlf_to_dfa(
     FormulaError
         a proposition of the formula is missing from ``aps``.
     AutomatonError
-        the automaton would exceed ``max_entries``; the message gives the predicted size.
+        the automaton would exceed ``max_entries``, or its dense table :data:`MAX_TABLE_ENTRIES`; the
+        message gives the predicted size.
 
     Example
     -------
@@ -321,17 +386,25 @@ def ltlf_to_dfa(
             f"proposition {quote(missing[0])} of the formula is not among the automaton's {quote(list(aps))}"
         )
     num_labels = 1 << len(aps)
-    if num_labels > max_entries:
-        raise _too_big(formula, 1, num_labels, max_entries, "at least")
-    possible = possible_labels(aps, exclusive)
-    prog = _Progression(aps, np.flatnonzero(possible))
+    if num_labels > MAX_TABLE_ENTRIES:
+        raise _table_too_big(formula, 1, num_labels)
+    allowed = _allowed_labels(aps, exclusive, possible)
+    # Progression, minimisation and products run over the possible labels (one column each) and one
+    # column for all the others; the dense table is made once, at the end.
+    prog = _Progression(aps, np.flatnonzero(allowed))
+    alphabet = _alphabet(allowed)
     normal = check_nesting(nnf(formula))  # progression recurses over the normal form
     conjuncts = list(normal.args) if isinstance(normal, And) else [normal]
-    parts = [_conjunct_dfa(c, prog, possible, tuple(aps), max_entries, formula) for c in conjuncts]
+    if alphabet.size > max_entries:
+        raise _too_big(formula, 1, alphabet.size, max_entries, "at least")
+    parts = [_conjunct_dfa(c, prog, alphabet, max_entries, formula) for c in conjuncts]
+    sizes = [p.table.shape[0] for p in parts]
     result = parts[0]
     for k, part in enumerate(parts[1:], start=1):
-        if result.num_states * part.num_states * num_labels > max_entries:
-            predicted = result.num_states * int(np.prod([p.num_states for p in parts[k:]], dtype=np.float64))
-            raise _too_big(formula, predicted, num_labels, max_entries, "up to")
-        result = product(result, part, np.logical_and)
-    return result
+        if result.table.shape[0] * sizes[k] * alphabet.size > max_entries:
+            predicted = result.table.shape[0] * int(np.prod(sizes[k:], dtype=np.float64))
+            raise _too_big(formula, predicted, alphabet.size, max_entries, "up to")
+        result = product_table(result, part, np.logical_and)
+    if result.table.shape[0] * num_labels > MAX_TABLE_ENTRIES:
+        raise _table_too_big(formula, result.table.shape[0], num_labels)
+    return Automaton(tuple(aps), result.table[:, alphabet.expand], result.initial, result.accepting)

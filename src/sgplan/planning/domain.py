@@ -21,8 +21,10 @@ from __future__ import annotations
 import hashlib
 import time
 from collections import namedtuple
+from collections.abc import Hashable
 from dataclasses import dataclass, field
 from functools import partial
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
@@ -31,7 +33,13 @@ from sgplan.planning._dijkstra import PRED_NONE, PRED_SOURCE, PRED_STAIRS, PRED_
 from sgplan.planning._memory import sparse_zeros
 from sgplan.planning.cells import CellGraph, build_cell_graph
 from sgplan.planning.llm_heuristic import LlmHeuristic, build_llm_heuristic
-from sgplan.planning.ltl_heuristic import LtlHeuristic, build_ltl_heuristic, label_fields, reachable_states
+from sgplan.planning.ltl_heuristic import (
+    LtlHeuristic,
+    build_ltl_heuristic,
+    label_boundary,
+    label_fields,
+    reachable_states,
+)
 from sgplan.planning.problem import PlanningProblem
 from sgplan.planning.shared import shared_part
 from sgplan.scene.model import CatCode, Room
@@ -60,6 +68,44 @@ KernelLogic = namedtuple(
 )
 
 MAP_OBJECT, MAP_ROOM, MAP_FLOOR_UP, MAP_FLOOR_DOWN = 0, 1, 2, 3
+
+
+@runtime_checkable
+class KeptParts(Protocol):
+    """Per-cell parts of a problem's current grid and labels that its ``shared`` parts keep up to date
+    across changes of the building (a run's: :class:`sgplan.execution.parts.RunParts`), served to the
+    domain instead of being computed for the problem. A session's
+    :class:`~sgplan.planning.shared.SharedParts` share parts by key only and serve none of these."""
+
+    def cell_labels(self, grid: Hashable, graph: CellGraph, labels: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray]:
+        """``(label_masks, cell_label)`` of the label raster ``labels`` over ``graph``'s cells, as
+        :func:`build_domain` compacts them."""
+
+    def reachable(self, grid: Hashable, graph: CellGraph, start_cell: int, avoid: np.ndarray) -> np.ndarray:
+        """``(N,)`` bool: the cells of ``graph`` reachable from ``start_cell``. It may leave out what is
+        reachable only through cells of the bitmasks ``avoid`` (labels every move onto which ends the
+        mission: the search never stands there)."""
+
+    def label_boundary(self, grid: Hashable, graph: CellGraph) -> np.ndarray:
+        """:func:`~sgplan.planning.ltl_heuristic.label_boundary` of ``graph`` and the labels served by
+        :meth:`cell_labels`."""
+
+    def label_fields(self, grid: Hashable, graph: CellGraph, masks: np.ndarray, unit_m: float,
+                     avoid: np.ndarray) -> np.ndarray | float:
+        """The ``(N, F)`` distance fields (h_LTL's, :func:`~sgplan.planning.ltl_heuristic.label_fields`) of
+        the whole regions of the label bitmasks ``masks``; they may leave out of the graph the cells of the
+        bitmasks ``avoid`` (labels every move onto which ends the mission)."""
+
+    def action_parts(self, problem: PlanningProblem, graph: CellGraph, cell_label: np.ndarray,
+                     reachable: np.ndarray) -> ActionParts:
+        """The composite action parts of ``problem`` (:func:`_action_parts`: tables, maps, label runs)."""
+
+
+def _kept_parts(problem: PlanningProblem) -> KeptParts | None:
+    """The problem's parts as :class:`KeptParts`, if they keep them; else ``None`` (the domain computes
+    them, sharing with a session what depends on the building only)."""
+    return problem.shared if isinstance(problem.shared, KeptParts) else None
 
 
 @dataclass(frozen=True)
@@ -240,11 +286,13 @@ def build_domain(problem: PlanningProblem, max_level: int = 4) -> PlanningDomain
     q_start = _start_state(problem, logic, start_cell)
 
     avoid = logic.label_masks[_fatal_labels(logic.trans, logic.dead, automaton.initial)]
-    component = None if problem.shared is None else problem.shared.reachable(problem.grid, graph, start_cell,
-                                                                              avoid)
+    kept = _kept_parts(problem)
+    component = None if kept is None else kept.reachable(problem.grid, graph, start_cell, avoid)
     reachable = component if component is not None else graph.reachable(start_cell)
     clock.lap("reachable")
-    boundary = None if problem.shared is None else problem.shared.label_boundary(problem.grid, graph)
+    boundary = kept.label_boundary(problem.grid, graph) if kept is not None else shared_part(
+        problem.shared, "label_boundary", (problem.grid, _labelling_digest(logic.cell_label)),
+        lambda: label_boundary(graph, logic.cell_label))
     fields = partial(_label_fields, problem, graph, logic.cell_label, logic.label_masks, reachable, avoid)
     ltl = build_ltl_heuristic(graph, logic.cell_label, logic.trans, logic.accepting, q_start, reachable,
                               fields=fields, start_cell=start_cell, boundary=boundary)
@@ -307,10 +355,10 @@ class _CellLogic:
     @classmethod
     def of(cls, problem: PlanningProblem, graph: CellGraph) -> _CellLogic:
         """Read the problem's label raster at every cell and compact it to the labels that occur (or take
-        the compact labels the problem's parts keep: :meth:`SharedParts.cell_labels`, a run's)."""
+        the compact labels the problem's parts keep: :meth:`KeptParts.cell_labels`, a run's)."""
         automaton = problem.automaton
-        compacted = None if problem.shared is None else problem.shared.cell_labels(problem.grid, graph,
-                                                                                    problem.labels)
+        kept = _kept_parts(problem)
+        compacted = None if kept is None else kept.cell_labels(problem.grid, graph, problem.labels)
         label_masks, cell_label = compacted if compacted is not None else _labelling(graph, problem.labels,
                                                                                       automaton)
         if label_masks.size and int(label_masks.max()) >= automaton.num_labels:
@@ -397,6 +445,12 @@ def _kernel_graph(graph: CellGraph, cell_label: np.ndarray, parts: ActionParts) 
     )
 
 
+def _labelling_digest(cell_label: np.ndarray) -> bytes:
+    """A digest of the cells' compact labels: the key part of what depends on which cells share a label
+    (label runs, the label boundary), so that problems with the same labelling share it."""
+    return hashlib.blake2b(np.ascontiguousarray(cell_label).data, digest_size=16).digest()  # no copy
+
+
 ActionParts = namedtuple("ActionParts", "maps kactions kmaps cell_room in_region")
 """What :func:`build_domain` hands the kernel for the composite actions: the families, their tables,
 their maps (this problem's view of the shared store), and the per-cell room index / object-region flag."""
@@ -407,12 +461,11 @@ def _action_parts(
 ) -> ActionParts:
     """The composite action tables of the problem's grid (shared by a session), the map store of the
     start's connected component and the label runs of this labelling (both filled by the search); or the
-    parts kept by the problem's parts when they keep them across changes (:meth:`SharedParts.action_parts`,
+    parts kept by the problem's parts when they keep them across changes (:meth:`KeptParts.action_parts`,
     a run's)."""
-    shared = problem.shared
-    kept = None if shared is None else shared.action_parts(problem, graph, cell_label, reachable)
+    kept = _kept_parts(problem)
     if kept is not None:
-        return kept
+        return kept.action_parts(problem, graph, cell_label, reachable)
     reach = (problem.reach_radius_m, problem.reach_model)
     tables = shared_part(problem.shared, "action_tables", (problem.grid, *reach),
                          lambda: _action_tables(problem, graph))
@@ -422,9 +475,8 @@ def _action_parts(
     store = shared_part(problem.shared, "action_maps", (problem.grid, *reach, component),
                         lambda: MapStore.empty(tables, graph, reachable))
     # Label runs follow which cells share a label: shared by the problems with the same cell labels.
-    labelling = hashlib.blake2b(np.ascontiguousarray(cell_label).data, digest_size=16).digest()  # no copy
     runs = shared_part(problem.shared, "label_runs",
-                       (problem.grid, *reach, component, labelling),
+                       (problem.grid, *reach, component, _labelling_digest(cell_label)),
                        lambda: LabelRuns.empty(store))
     kmaps = KernelMaps(
         done=runs.done,
@@ -690,16 +742,15 @@ def _label_fields(problem: PlanningProblem, graph: CellGraph, cell_label: np.nda
                   reachable: np.ndarray, avoid: np.ndarray, labels: np.ndarray, unit_m: float
                   ) -> np.ndarray | float:
     """The distance fields of the regions of compact labels ``labels`` (h_LTL's ``fields``): kept by the
-    problem's parts when they keep them by label (:meth:`SharedParts.label_fields`; they may leave out
+    problem's parts when they keep them by label (:meth:`KeptParts.label_fields`; they may leave out
     the cells of the bitmasks ``avoid``, which no move of the search enters: :func:`_fatal_labels`), else
     one
     :func:`~sgplan.planning.ltl_heuristic.unit_field` per region within ``reachable``, each from the
     session's parts when there are some (:meth:`SharedParts.distance_field`)."""
-    shared = problem.shared
-    kept = None if shared is None else shared.label_fields(problem.grid, graph, label_masks[labels], unit_m,
-                                                           avoid)
+    kept = _kept_parts(problem)
     if kept is not None:
-        return kept
+        return kept.label_fields(problem.grid, graph, label_masks[labels], unit_m, avoid)
+    shared = problem.shared
     if shared is None:
         return label_fields(graph, cell_label, reachable, labels, unit_m)
     return label_fields(graph, cell_label, reachable, labels, unit_m,

@@ -50,6 +50,8 @@ class PlanningProblem:
     shared:
         parts that depend only on the building, shared with the other problems of a
         :class:`sgplan.Session` (:mod:`sgplan.planning.shared`); ``None``: built for this problem alone.
+        Parts that are also :class:`~sgplan.planning.domain.KeptParts` (a run's) serve the per-cell parts
+        they keep up to date across changes of the building.
     start_state:
         resume a mission part-way: the automaton state at the start cell, its label already read (e.g. a
         plan's state at one of its path cells, or a monitor's). ``None`` (default): the automaton's

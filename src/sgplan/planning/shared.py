@@ -13,14 +13,18 @@ by every planning problem of the session. The parts kept (:mod:`sgplan.planning.
   cells' labels: shared by problems whose cells carry the same labels, e.g. one mission from several
   starts or setups);
 - ``distance_field``: the exact distance from every cell to a set of target cells, the terms of h_LTL
-  (key: grid, the target cells).
+  (key: grid, the target cells);
+- ``label_boundary``: the cells where a move enters another label region, where h_LTL's fields are
+  combined (key: grid, a digest of the cells' labels).
 
 Memory is bounded: :meth:`SharedParts.trim` (a :class:`Session` calls it after each plan) drops the least
 recently used parts until the bytes they hold (``nbytes`` of each part, measured then, since action maps
 grow as searches fill them) are within ``max_bytes``. A dropped part is rebuilt by the next problem that
 needs it. Problems already holding a dropped part keep it alive until they are freed.
 
-A problem without a :class:`SharedParts` builds every part itself (:func:`shared_part`).
+A problem without a :class:`SharedParts` builds every part itself (:func:`shared_part`). Parts that keep
+more, up to date across changes of the building (a run's), also serve the domain's
+:class:`~sgplan.planning.domain.KeptParts`.
 """
 
 from __future__ import annotations
@@ -35,8 +39,6 @@ import numpy as np
 
 if TYPE_CHECKING:
     from sgplan.planning.cells import CellGraph
-    from sgplan.planning.domain import ActionParts
-    from sgplan.planning.problem import PlanningProblem
 
 T = TypeVar("T")
 
@@ -148,45 +150,6 @@ class SharedParts:
             return field
 
         return self.get("distance_field", key, build)
-
-
-    # A session shares what depends on the building only; a run's parts (sgplan.execution.parts) keep the
-    # per-cell facts of its current grid and labels up to date across scene changes and serve them here.
-    # None: the caller computes the part itself.
-
-    def cell_labels(self, grid: Hashable, graph: CellGraph, labels: np.ndarray
-                    ) -> tuple[np.ndarray, np.ndarray] | None:
-        """``(label_masks, cell_label)`` of the label raster ``labels`` over ``graph``'s cells, as
-        :func:`sgplan.planning.domain.build_domain` compacts them, if kept; else ``None``."""
-        return None
-
-    def reachable(self, grid: Hashable, graph: CellGraph, start_cell: int, avoid: np.ndarray
-                  ) -> np.ndarray | None:
-        """``(N,)`` bool: the cells of ``graph`` reachable from ``start_cell``, if kept; else ``None``. A kept
-        set may leave out what is reachable only through cells of the bitmasks ``avoid`` (labels every move
-        onto which ends the mission: the search never stands there)."""
-        return None
-
-    def label_boundary(self, grid: Hashable, graph: CellGraph) -> np.ndarray | None:
-        """:func:`~sgplan.planning.ltl_heuristic.label_boundary` of ``graph`` and the labels served by
-        :meth:`cell_labels`, if kept; else ``None``."""
-        return None
-
-    def label_fields(self, grid: Hashable, graph: CellGraph, masks: np.ndarray, unit_m: float,
-                     avoid: np.ndarray) -> np.ndarray | float | None:
-        """The ``(N, F)`` distance fields (h_LTL's, :func:`~sgplan.planning.ltl_heuristic.label_fields`) of
-        the whole regions of the label bitmasks ``masks``, if kept by bitmask; else ``None`` (a session
-        keeps fields by target cells: :meth:`distance_field`). Kept fields may leave out of the graph the
-        cells of the bitmasks ``avoid`` (labels every move onto which ends the mission)."""
-        return None
-
-
-    def action_parts(self, problem: PlanningProblem, graph: CellGraph, cell_label: np.ndarray,
-                     reachable: np.ndarray) -> ActionParts | None:
-        """The composite action parts of ``problem`` (:func:`sgplan.planning.domain._action_parts`: tables,
-        maps, label runs) if kept across changes of the building; else ``None`` (a session shares them by
-        key through :meth:`get`)."""
-        return None
 
 
 def shared_part(parts: SharedParts | None, name: str, key: Hashable, build: Callable[[], T]) -> T:

@@ -46,8 +46,8 @@ if TYPE_CHECKING:
     from starlette.requests import Request
     from starlette.responses import Response
 
+    from sgplan.execution.events import RunEvent as EngineEvent
     from sgplan.execution.run import Run
-    from sgplan.execution.run import RunEvent as EngineEvent
     from sgplan.serve.missions import MissionBook
     from sgplan.serve.models import AmendRequest, ChangesRequest, ObserveRequest
     from sgplan.serve.pool import WorkPool
@@ -382,7 +382,7 @@ class RunBook:
 
     def cancel(self, run_id: str) -> dict[str, Any]:
         """End the run: a search of it still running stops at its next poll; 409 if it has ended."""
-        from sgplan.execution.run import RunEvent as EngineEvent
+        from sgplan.execution.events import RunEvent as EngineEvent
 
         live = self._live(run_id)
         running = live.budget
