@@ -1026,6 +1026,8 @@ sentence starting otherwise may be an order about something the scene lacks (*fe
 AUXILIARIES = frozenset({"am", "are", "is", "was", "were", "have", "has", "will", "would"})
 """In chit-chat (*hope you're well*): no role, although *are* is a word of the grammar elsewhere."""
 GREETINGS = frozenset({"hi", "hello", "hey", "hiya", "heya", "howdy", "oi", "oy", "yo", "ahoy"})
+INTERJECTIONS = HESITATIONS | GREETINGS | frozenset({"ok", "okay", "oh", "oops", "hmm"})
+"""Words before a statement that say nothing (*ok I dropped my keys somewhere, ...*)."""
 """*Hi there!*: after a greeting, *there* is no place."""
 
 # -------------------------------------------------------------------------------------- phrase aliases

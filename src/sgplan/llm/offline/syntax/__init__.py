@@ -24,7 +24,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import NounLexicon
 from sgplan.llm.offline.spelling import Spelling
 from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement
-from sgplan.llm.offline.syntax.corrections import corrected
+from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
 from sgplan.llm.offline.syntax.lists import read_lists
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
@@ -48,7 +48,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     spelling = spelling or Spelling(nouns)
     readers = [Reader(p.toks, text, nouns, marker=p.marker, new_line=p.new_line, spelling=spelling)
                for p in parts]
-    for r in read_lists(readers):
+    for r in joined_appositions(read_lists(readers)):
         if stated_start(r) is not None or r.aside:
             out.append(r)
             continue

@@ -145,7 +145,8 @@ def skip_joiner(r: Reader, i: int) -> int:
 def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
     """Whether the clause ``[start, end)`` only gives context: a time (opening or closing the sentence), or a
     statement that is not a need about the scene (see the module docstring)."""
-    return (is_time(r, start, end) or statement(r, skip_joiner(r, start), end) == "aside"
+    said = skip_joiner(r, r.skip(start, lx.INTERJECTIONS))  # "ok I dropped my keys somewhere, ..."
+    return (is_time(r, start, end) or statement(r, said, end) == "aside"
             or event_note(r, start, end) or is_reason(r, start, end))
 
 

@@ -13,6 +13,10 @@ with the same first word (*don't take the- don't go through the living room*), o
 dash (*the plant in the- the plant in the office*), is a restart: the broken words are set aside and said back, and the sentence
 is read from the restart.
 
+A sentence that is only *the one(s) ...* right after one that ends with a noun phrase says which one that
+is (*water the plant. the one in the living room.*): it is read as an apposition of that phrase (*the plant,
+the one in the living room*).
+
 A sentence opening with words it says again at the end of its next clause (*floor one, the office on floor
 one, check ...*; *kitchen, go to the kitchen*) is a restatement: the first saying is set aside and said back.
 """
@@ -47,6 +51,28 @@ def corrected(r: Reader) -> list[Reader]:
             fixed = replaced(r, k, k + len(said))
             return [r] if fixed is None else [*corrected(fixed[0]), fixed[1]]
     return [r]
+
+
+def joined_appositions(readers: list[Reader]) -> list[Reader]:
+    """``readers`` with each sentence that is only *the one(s) ...* joined to the sentence before it, after
+    a comma (see the module docstring)."""
+    out: list[Reader] = []
+    for r in readers:
+        before = out[-1] if out else None
+        if (before is not None and not before.aside and not r.aside and r.marker is None
+                and r.word(0) == "the" and r.word(1) in lx.ANAPHORIC_ONE and len(r) > 2
+                and isinstance(noun_phrase(r, 0, "goal"), Match) and ends_with_phrase(before)):
+            comma = Tok(",", before.toks[-1].end, before.toks[-1].end)
+            out[-1] = replace(before, toks=(*before.toks, comma, *r.toks))
+            continue
+        out.append(r)
+    return out
+
+
+def ends_with_phrase(r: Reader) -> bool:
+    """Whether the sentence ``r`` ends with a noun phrase of a head noun (*water the plant*)."""
+    return any(phrase_to(r, j, len(r)) is not None for j in range(max(0, len(r) - 6), len(r))
+               if r.head(j) is not None or r.word(j) in lx.DETERMINERS)
 
 
 def restarted(r: Reader) -> tuple[Reader, Reader] | None:
