@@ -124,7 +124,7 @@ ABBREVIATIONS: dict[str, tuple[str, ...]] = {
     "lvg rm": ("living room",),
     "dr": ("dining room",), "din rm": ("dining room",), "dng rm": ("dining room",),
     "br": ("bedroom", "bathroom"), "bdr": ("bedroom",), "bd": ("bedroom",), "mbr": ("bedroom",),
-    "bth": ("bathroom",), "bthr": ("bathroom",),
+    "bth": ("bathroom",), "bthr": ("bathroom",), "bath": ("bathroom",), "baths": ("bathroom",),
     "kit": ("kitchen",), "kitch": ("kitchen",), "ktch": ("kitchen",),
     "ofc": ("home office",), "offc": ("home office",), "ofis": ("home office",),
     "hwy": ("corridor",), "hllwy": ("corridor",), "corr": ("corridor",),
@@ -931,6 +931,8 @@ EVENT_WORDS = word_set(
 """Times of day, meals and events: *Before lunch, ...*, *After dinner, ...*, *Tonight, ...* only say when,
 which a mission cannot require; said at the start of a sentence they are set aside (said back), never read
 as the goal of *before / after*. A clock time (*at 6 pm*) or a delay (*in ten minutes*) is refused."""
+NAMED_DAYS = ("day", "night", "week", "weekend")
+"""After a thing, a day named for it (*Plant day!*): context, not the thing as a goal."""
 TIME_WORDS = word_set("this next tomorrow today tonight later soon early late right now for the at some "
                       "point sometime first thing in a bit while before after by during around all long"
                       ) | EVENT_WORDS

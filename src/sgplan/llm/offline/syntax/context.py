@@ -162,10 +162,13 @@ def closing_only(r: Reader, start: int, end: int) -> bool:
 
 def event_note(r: Reader, start: int, end: int) -> bool:
     """*Movie night later!*, *Big day tomorrow*: words about an event, with no room, object, verb or word of
-    the grammar."""
+    the grammar; or a day named after a thing (*Plant day!*), which asks nothing."""
     words = r.words[start:end]
     if not any(w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES for w in words):
         return False
+    head = r.head(start)
+    if head is not None and start + head.words == end - 1 and words[-1] in lx.NAMED_DAYS:
+        return True  # "Plant day!", "Laundry day" (not "Kitchen tonight": a goal and a time)
     return not any(r.head(k) is not None or r.word(k) in lx.POSITIVE_VERBS or r.word(k) in lx.REFUSED_WORDS
                    or (r.word(k) in lx.STRUCTURAL and r.word(k) not in lx.TIME_WORDS)
                    or not r.word(k).isalpha() for k in range(start, end))
