@@ -426,8 +426,9 @@ VERB_IDIOMS = Phrases((("all", "the", "way"), ("a", "look"), ("a", "quick", "loo
                        ("a", "glance"), ("a", "quick", "peek"), ("your", "way"), ("my", "way"),
                        ("its", "way"), ("a", "visit"), ("a", "quick", "visit"), ("a", "trip"),
                        ("a", "quick", "trip"), ("a", "detour"), ("a", "stop"), ("a", "quick", "stop"),
-                       ("a", "seat"), ("a", "nap"), ("a", "rest"), ("a", "good", "look"), ("a", "proper", "look"),
-                       ("a", "little", "look"), ("a", "quick", "glance"), ("a", "little", "peek")))
+                       ("a", "seat"), ("a", "nap"), ("a", "rest"), ("a", "good", "look"),
+                       ("a", "proper", "look"), ("a", "little", "look"), ("a", "quick", "glance"),
+                       ("a", "little", "peek")))
 """Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*."""
 GIVE_VERBS = frozenset({"give", "giving"})
 """*give X a look*: read only with what is given after X (:data:`GIVEN_LOOKS`), never alone (*give X to
@@ -621,7 +622,8 @@ CLOSING = Phrases((
                                                                        "buddy", "bud", "hun", "dear")),
     *((*thanks, "ever", "so", "much") for thanks in (("thanks",), ("thank", "you"))),
     *((*thanks, "a", "lot") for thanks in (("cheers",), ("ta",))),
-    ("thx",), ("ty",), ("tyvm",), ("cheers", "then"), ("mind",), ("mind", "you"), ("if", "that", "is", "fine"),
+    ("thx",), ("ty",), ("tyvm",), ("cheers", "then"), ("mind",), ("mind", "you"),
+    ("if", "that", "is", "fine"),
     # praise only with thanks after it: "Is the kitchen lovely?" asks something
     *((praise, *comma, thanks) for praise in ("lovely", "brilliant", "perfect", "great", "awesome", "super")
       for comma in ((), (",",)) for thanks in ("thanks", "cheers", "ta")),
@@ -643,8 +645,9 @@ CORRECTIONS = Phrases((("i", "mean"), ("i", "meant"), ("no", "wait"), ("wait", "
                        ("no", "sorry"), ("sorry", "no"), ("i", "said", "wrong"), ("my", "mistake"),
                        ("my", "bad"), ("let", "me", "rephrase"),
                        # a bare "sorry" or "no" between commas: "the garage, sorry, the office"
-                       ("sorry", ","), ("no", ","), ("oops", ","), ("whoops", ","), ("er", "no"), ("no", "no"),
-                       ("hang", "on"), ("wait", "a", "sec"), ("wait", "a", "second"), ("sorry", "i", "mean")))
+                       ("sorry", ","), ("no", ","), ("oops", ","), ("whoops", ","), ("er", "no"),
+                       ("no", "no"), ("hang", "on"), ("wait", "a", "sec"), ("wait", "a", "second"),
+                       ("sorry", "i", "mean")))
 """Words with which a speaker takes back what they said (*go to the kitchen, sorry, I mean the office*):
 which part stands is not read; refused."""
 UNFINISHED = DETERMINERS | frozenset({"to", "into", "in", "on", "at", "of", "through", "from", "by"})
@@ -946,7 +949,8 @@ FEW = ("few", "couple", "several")
 TIME_UNITS = word_set("second seconds minute minutes min mins hour hours hr hrs sec secs")
 """*in ten minutes*, *wait 5 min*: a delay, which a mission cannot require (refused)."""
 TIME_OPENERS = ("before", "after", "by", "during", "for", "at", "around", "this", "tonight", "today",
-                "tomorrow", "later", "right", "first", "sometime", "some", "next", "early", "in", "all", "while")
+                "tomorrow", "later", "right", "first", "sometime", "some", "next", "early", "in", "all",
+                "while")
 """Words a time expression that opens a sentence starts with (*Before lunch, ...*, *Tonight, ...*)."""
 SUBJECT_PRONOUNS = word_set("i we he she they it there that this everyone everybody someone somebody "
                             "nobody everything something nothing")
@@ -968,9 +972,9 @@ after a subject of no room or object, a statement."""
 NEED_WORDS = word_set("need needs needed want wants wanted should must ought require requires")
 """A statement of a need (*the plants need watering*): about a room or object of the scene it may ask for a
 goal that is not said, so it is refused; about anything else it is set aside."""
-PEOPLE_NOUNS = word_set("""cleaner cleaners plumber plumbers builder builders electrician kids children family
-    mum mom dad grandma grandpa granny nan baby neighbour neighbours neighbor neighbors friend friends boss wife
-    husband partner sister brother parents folks delivery courier postman""")
+PEOPLE_NOUNS = word_set("""cleaner cleaners plumber plumbers builder builders electrician kids children
+    family mum mom dad grandma grandpa granny nan baby neighbour neighbours neighbor neighbors friend friends
+    boss wife husband partner sister brother parents folks delivery courier postman""")
 """People of an event (*before the cleaners come*, *while my mum's here*): not the robot, not a place."""
 HOW_MANY = word_set("a few couple several some lots loads plenty of them one more")
 """Words of a clause that only says how many there are (*there's a few*, *there are a couple of them*)."""
@@ -981,10 +985,12 @@ DEICTIC_SUBJECTS = ("it", "there", "this", "that")
 bathroom*)."""
 SEQUENCE_TIMES = ("later", "soon", "now")
 """Time words that alone order the steps (*Later, go to X*) rather than say when."""
-WHOLE_PERIODS = {("all", period) for period in ("day", "morning", "afternoon", "evening", "night", "week",
-                                                 "weekend")} | {("all", "day", "long"), ("all", "night", "long")}
+WHOLE_PERIODS = ({("all", period) for period in ("day", "morning", "afternoon", "evening", "night", "week",
+                                                  "weekend")}
+                 | {("all", "day", "long"), ("all", "night", "long")})
 """*Don't go in the bathroom all day*: the whole mission's time, which orders nothing."""
-GREETING_TIMES = {(*good, period) for good in ((), ("good",)) for period in ("morning", "afternoon", "evening")}
+GREETING_TIMES = {(*good, period) for good in ((), ("good",))
+                  for period in ("morning", "afternoon", "evening")}
 """*Morning!*, *Good evening*: a greeting, said back, which orders nothing."""
 NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")} | WHOLE_PERIODS | GREETING_TIMES
 """Times that say when the whole mission is (now, a whole period), so that they put no goals in an order."""
@@ -1000,9 +1006,10 @@ REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"),
                                  ("nothing", "is"), ("everything", "is"), ("everything", "'s")))))
 """A reason for an order, set aside to its clause's end (*... because the coffee's in there*, *... so I know
 you made it*, *... to see if the paint's dry*): it asks nothing."""
-ROOM_PARTS = word_set("floor floors door doors wall walls window windows carpet carpets rug ceiling tiles paint "
-                      "lights light heating")
-"""The parts of a room a statement is about (*the lobby floor is still wet*): context, not the room as a goal."""
+ROOM_PARTS = word_set("floor floors door doors wall walls window windows carpet carpets rug ceiling tiles "
+                      "paint lights light heating")
+"""The parts of a room a statement is about (*the lobby floor is still wet*): context, not the room as a
+goal."""
 ORDER_JOINERS = ("so", "but")
 """Before an order, a clause boundary even without a comma (*my son is asleep so don't go up there*)."""
 LOCATIVE = word_set("in into on onto at inside under beside near by behind")
@@ -1115,7 +1122,8 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     # light verbs: "have / having a look at X" is "take a look at X" (wherever the verb stands)
     **{(have, "a", *quick, look): (take, "a", *quick, look)
        for have, take in (("have", "take"), ("having", "taking"), ("had", "took"))
-       for quick in ((), ("quick",), ("little",), ("good",), ("proper",)) for look in ("look", "peek", "glance")},
+       for quick in ((), ("quick",), ("little",), ("good",), ("proper",))
+       for look in ("look", "peek", "glance")},
     # times that only give context: "first thing (in the morning)" opens the day, that is first; "before bed
     # tonight" is bedtime (not the bed)
     ("first", "thing"): ("first",),

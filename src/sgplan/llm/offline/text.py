@@ -1,9 +1,10 @@
 """Tokens of a mission text, with their character spans, split into sentences and list items.
 
 Text is lower-cased; contractions are expanded (``don't`` -> ``do not``, ``we're`` -> ``we are``), a
-possessive ``'s`` becomes its own token, parentheses and dashes between words (an em or en dash, ``--``, a
-spaced ``-``, a ``-`` right after a word that breaks it off: *the- the office*) become commas (an aside). Entity IDs (``room_2``, ``object_27``) stay single tokens, so
-already-grounded text is understood too.
+possessive ``'s`` becomes its own token (``'s`` after *that*, *there*, *here* ... is *is*), parentheses and
+dashes between words (an em or en dash, ``--``, a spaced ``-``, a ``-`` right after a word that breaks it
+off: *the- the office*) become commas (an aside). Entity IDs (``room_2``, ``object_27``) stay single tokens,
+so already-grounded text is understood too.
 
 Notations are read as the words they stand for (:data:`.lexicon.SYMBOLS`): an arrow (``->``, ``>``, ``→``)
 is *then*, ``+`` and ``&`` are *and*, ``w/`` is *with*; a clock time (``6 pm``, ``18:30``) is one token. Any

@@ -237,7 +237,7 @@ def action_tail(r: Reader, i: int, node: Action) -> Parse[Action]:
         node, i = replace(node, ordered=True), i + comma + len(ordered)
     elif node.phrases is not None and node.phrases.comma_list and (r.phrase(i + comma, lx.THEN_NEXT)
                                                                    or action_then_ahead(r, i)):
-        node = replace(node, ordered=True)  # "the fridge, the oven, (go up to the office,) then ...": as written
+        node = replace(node, ordered=True)  # "the fridge, the oven, (go up to X,) then ...": as written
     if r.word(i) in lx.LAST and r.word(i + 1) in ("", ","):
         node, i = replace(node, last=True), i + 1  # "the kitchen and the office last"
     repeat = repeats(r, i)

@@ -9,9 +9,9 @@ the clause, or no noun phrase ends right before it, the correction stays in the 
 (which part stands is not known).
 
 A clause broken off after a word that cannot end one (*the*, *to*, *into*), at a dash, and started again
-with the same first word (*don't take the- don't go through the living room*), or with the word before the
-dash (*the plant in the- the plant in the office*), is a restart: the broken words are set aside and said back, and the sentence
-is read from the restart.
+with the same first word (*don't take the- don't go through the living room*), or with the words before
+the dash (*the plant in the- the plant in the office*), is a restart: the broken words are set aside and said
+back, and the sentence is read from the restart.
 
 A sentence that is only *the one(s) ...* right after one that ends with a noun phrase says which one that
 is (*water the plant. the one in the living room.*): it is read as an apposition of that phrase (*the plant,

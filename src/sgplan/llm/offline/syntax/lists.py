@@ -5,9 +5,9 @@ and C*, *visit two rooms: the kitchen and the office*, *never enter these: ...*)
 **Items.** Each item is a sentence of its own. The items of a numbered list are done in the order written
 (each continues the sequence of the one before it, as a sentence starting with *Then* does); a bulleted
 list is a set, done in any order. An order remark in the heading (*in order*, *any order is fine*) or in a
-sentence right after the list (*The order doesn't matter.*) says otherwise. *In that order.* after sentences
-of one goal each (*Fridge. Oven. Microwave. In that order.*) orders them as a numbered list is. An item that says
-*eventually* / *at some point* first is not ordered after the one before it.
+sentence right after the list (*The order doesn't matter.*) says otherwise. *In that order.* after
+sentences of one goal each (*Fridge. Oven. Microwave. In that order.*) orders them as a numbered list is. An
+item that says *eventually* / *at some point* first is not ordered after the one before it.
 
 **Headings.** The sentence before a list's first item heads it when it ends with a colon or stands on a
 line of its own. A heading that announces the list (*three things:*, *visit these rooms:*, *never enter
@@ -105,7 +105,8 @@ def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) 
 
 def outside_room(item: Reader) -> bool:
     """Whether a list item is about more than the room of its heading (*Living room list: ... - don't go
-    through the dining room*, *- stay on this floor*): a stay, or a prohibition whose first place is a room."""
+    through the dining room*, *- stay on this floor*): a stay, or a prohibition whose first place is a
+    room."""
     if item.word(0) in lx.STAY:
         return True
     negation = item.phrase(0, lx.NEG_STARTS)
