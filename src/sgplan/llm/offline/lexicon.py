@@ -239,7 +239,8 @@ LIST_JOINERS = frozenset({",", "and", "or", "then", "after", "before", "first", 
 """Words that make a sentence more than one plain goal (a list, an order, a condition of its own): *In that
 order.* after it is not read."""
 """Words of a sentence after a list that only says its order (*Do them in this order.*)."""
-HEADS_UP = word_set("remember note important reminder ps also careful warning update oh btw nb")
+HEADS_UP = word_set("remember note important reminder ps also careful warning update oh btw nb urgent fyi "
+                    "priority")
 """Words that only ask for attention before a colon (*Remember: never enter the kitchen.*)."""
 ANNOUNCE_TAIL = Phrases((("for", "me"), ("for", "today"), ("today",), ("to", "do"), ("please",),
                          ("for", "you"), ("to", "check"), ("to", "visit")))
@@ -622,7 +623,11 @@ CLOSING = Phrases((
                                                                        "buddy", "bud", "hun", "dear")),
     *((*thanks, "ever", "so", "much") for thanks in (("thanks",), ("thank", "you"))),
     *((*thanks, "a", "lot") for thanks in (("cheers",), ("ta",))),
-    ("thx",), ("ty",), ("tyvm",), ("cheers", "then"), ("mind",), ("mind", "you"),
+    ("thx",), ("ty",), ("tyvm",), ("cheers", "then"), ("mind",), ("mind", "you"), ("much", "obliged"),
+    ("nice", "one"), ("legend",), ("you", "are", "a", "legend"), ("love", "you"), ("love", "ya"), ("x",), ("xx",),
+    ("xxx",), ("urgent",), ("please", "and", "thanks"),
+    *(("when", "you", "have", got, "a", sec) for got in ("got", "get") for sec in ("sec", "mo", "min")),
+    *(("when", "you", "have", "a", sec) for sec in ("sec", "mo", "min")),
     ("if", "that", "is", "fine"),
     # praise only with thanks after it: "Is the kitchen lovely?" asks something
     *((praise, *comma, thanks) for praise in ("lovely", "brilliant", "perfect", "great", "awesome", "super")
@@ -1035,7 +1040,7 @@ sentence starting otherwise may be an order about something the scene lacks (*fe
 AUXILIARIES = frozenset({"am", "are", "is", "was", "were", "have", "has", "will", "would"})
 """In chit-chat (*hope you're well*): no role, although *are* is a word of the grammar elsewhere."""
 GREETINGS = frozenset({"hi", "hello", "hey", "hiya", "heya", "howdy", "oi", "oy", "yo", "ahoy"})
-INTERJECTIONS = HESITATIONS | GREETINGS | frozenset({"ok", "okay", "oh", "oops", "hmm"})
+INTERJECTIONS = HESITATIONS | GREETINGS | frozenset({"ok", "okay", "oh", "oops", "hmm", "fyi", "btw", "ps"})
 """Words before a statement that say nothing (*ok I dropped my keys somewhere, ...*)."""
 """*Hi there!*: after a greeting, *there* is no place."""
 
@@ -1113,6 +1118,16 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("'s", "just", "got"): ("only", "has"),
     ("has", "just", "got"): ("only", "has"),
     ("oh", "and"): ("and",),
+    # remarks that start a sentence: "P.S." / "btw" / "by the way" add to the mission ("also"); "no worries if
+    # not" makes a goal optional, which is refused as "optionally" is
+    ("p", ".", "s", "."): ("also",),
+    ("ps",): ("also",),
+    ("btw",): ("also",),
+    ("by", "the", "way"): ("also",),
+    ("no", "worries", "if", "not"): ("optionally",),
+    ("no", "problem", "if", "not"): ("optionally",),
+    ("if", "not", ",", "no", "worries"): ("optionally",),
+    ("if", "not", ",", "no", "problem"): ("optionally",),
     # operator shorthand of words that are no room or object: "chk" is "check", "GF" the ground floor
     ("chk",): ("check",),
     ("chck",): ("check",),

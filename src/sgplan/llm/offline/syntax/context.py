@@ -32,13 +32,15 @@ def set_aside_context(readers: list[Reader]) -> list[Reader]:
     docstring)."""
     out: list[Reader] = []
     for r in readers:
-        out += [r] if r.aside or stated_start(r) is not None else split(r)
+        said_before = any(not o.aside for o in out)
+        out += [r] if r.aside or stated_start(r) is not None else split(r, said_before)
     return out
 
 
-def split(r: Reader) -> list[Reader]:
+def split(r: Reader, said_before: bool = False) -> list[Reader]:
     """A sentence, its leading and trailing context clauses set aside, and the times said between its
-    clauses."""
+    clauses; ``said_before``: sentences with content came before it (then *it* after a statement that names
+    a room or object could be read as what they named last: not set aside, so refused)."""
     if event_note(r, 0, len(r)) or is_time(r, 0, len(r)):
         return [aside(r, 0, len(r))]
     clauses = comma_clauses(r)
@@ -53,6 +55,9 @@ def split(r: Reader) -> list[Reader]:
         last -= 1
     if first == last or (first > 0 and mere_talk(r, clauses[first][0], clauses[last - 1][1])):
         return [aside(r, 0, len(r))]
+    if said_before and first and mentions(aside(r, 0, clauses[first - 1][1])) and any(
+            w in lx.PRONOUNS for w in r.words[clauses[first][0]:]):
+        return [r]  # "the lobby floor is wet, so avoid it": 'it' would be read as the goal named last: refused
     kept = [aside(r, clauses[0][0], clauses[first - 1][1])] if first else []
     start = skip_joiner(r, clauses[first][0]) if first else 0
     # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
