@@ -57,7 +57,7 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         return [aside(r, 0, len(r))]
     if said_before and first and mentions(aside(r, 0, clauses[first - 1][1])) and any(
             w in lx.PRONOUNS for w in r.words[clauses[first][0]:]):
-        return [r]  # "the lobby floor is wet, so avoid it": 'it' would be read as the goal named last: refused
+        return [r]  # "the lobby floor is wet, so avoid it": 'it' would be the goal named last: refused
     kept = [aside(r, clauses[0][0], clauses[first - 1][1])] if first else []
     start = skip_joiner(r, clauses[first][0]) if first else 0
     # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
