@@ -679,6 +679,8 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
     ("i", "do", "not", "mind", "which", "one"), ("i", "do", "not", "really", "mind", "which"),
     ("your", "choice"), ("your", "pick"), ("take", "your", "pick"), ("you", "pick"), ("you", "choose"),
     ("it", "is", "up", "to", "you"), ("up", "to", "you"), ("i", "do", "not", "care"),
+    *((*just, pick, one) for just in ((), ("just",)) for pick in ("pick", "choose")
+      for one in ("one", "any", "whichever")),
 ))
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""

@@ -222,7 +222,8 @@ def statement(r: Reader, start: int, end: int) -> str | None:
     aside_of = r.phrase(start - 1, lx.ASIDE)  # "the couch, it's in the kitchen": a qualifier of the couch
     qualifies = aside_of is not None and r.word(start - 1 + len(aside_of)) in lx.ASIDE_QUALIFIERS
     if (k is None or r.phrase(k, lx.OFF_LIMITS) or qualifies or locates(r, start, k, end)
-            or any(w in lx.LIST_NOUNS for w in r.words[start:k]) or r.word(k + 1) == "to"):
+            or any(w in lx.LIST_NOUNS for w in r.words[start:k])
+            or (r.word(k) in lx.STATEMENT_LINKS and r.word(k + 1) == "to")):
         # "the kitchen is off limits", "the couch, it's in the kitchen", "the bowl is in the sink", "the next
         # task is to ...": not mere context
         return None
