@@ -240,7 +240,7 @@ LIST_JOINERS = frozenset({",", "and", "or", "then", "after", "before", "first", 
 order.* after it is not read."""
 """Words of a sentence after a list that only says its order (*Do them in this order.*)."""
 HEADS_UP = word_set("remember note important reminder ps also careful warning update oh btw nb urgent fyi "
-                    "priority")
+                    "priority quick favour favor question request")
 """Words that only ask for attention before a colon (*Remember: never enter the kitchen.*)."""
 ANNOUNCE_TAIL = Phrases((("for", "me"), ("for", "today"), ("today",), ("to", "do"), ("please",),
                          ("for", "you"), ("to", "check"), ("to", "visit")))
@@ -625,7 +625,12 @@ CLOSING = Phrases((
     *((*thanks, "a", "lot") for thanks in (("cheers",), ("ta",))),
     ("thx",), ("ty",), ("tyvm",), ("cheers", "then"), ("mind",), ("mind", "you"), ("much", "obliged"),
     ("nice", "one"), ("legend",), ("you", "are", "a", "legend"), ("love", "you"), ("love", "ya"), ("x",),
-    ("xx",), ("xxx",), ("urgent",), ("please", "and", "thanks"),
+    ("xx",), ("xxx",), ("urgent",), ("please", "and", "thanks"), ("cheers", "in", "advance"),
+    ("ta", "in", "advance"),
+    *((*and_, "that", be, "about", "it") for and_ in ((), ("and",)) for be in ("is", "'s")),
+    *((*ask, "me", "a", favour)
+      for ask in (("could", "you", "do"), ("can", "you", "do"), ("would", "you", "do"), ("do",))
+      for favour in ("favour", "favor")),
     *(("when", "you", "have", got, "a", sec) for got in ("got", "get") for sec in ("sec", "mo", "min")),
     *(("when", "you", "have", "a", sec) for sec in ("sec", "mo", "min")),
     ("if", "that", "is", "fine"),
@@ -1002,7 +1007,7 @@ GREETING_TIMES = {(*good, period) for good in ((), ("good",))
 NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")} | WHOLE_PERIODS | GREETING_TIMES
 """Times that say when the whole mission is (now, a whole period), so that they put no goals in an order."""
 STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
-REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"),
+REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"), ("since",),
                    *(("so", who, what) for who in ("i", "we") for what in ("know", "can", "see")),
                    *(("to", *check, whether) for check in (("see",), ("check",), ("find", "out"))
                      for whether in (("if",), ("whether",))), ("to", "make", "sure"), ("to", "test"),
@@ -1028,7 +1033,7 @@ LOCATIVE = word_set("in into on onto at inside under beside near by behind")
 ARTICLES = frozenset({"a", "an", "the", "my", "your", "our"})
 TALK_NOUNS = frozenset({"plan", "few", "couple", "thing", "things", "favour", "favor", "request", "job",
                         "task", "tasks", "lot", "bit", "moment", "minute", "second", "question", "list",
-                        "day", "morning", "afternoon", "evening", "idea"})
+                        "day", "morning", "afternoon", "evening", "idea", "deal", "drill", "lowdown", "hand"})
 """After an article, only these say nothing (*here's the plan*, *I need a few things done*): any other word
 there could name something to go to (*feed the cat* where the scene has no cat must be refused, not
 skipped)."""
