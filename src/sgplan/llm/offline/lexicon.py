@@ -436,7 +436,9 @@ GIVE_VERBS = frozenset({"give", "giving"})
 Y*)."""
 GIVEN_LOOKS = Phrases(tuple((*quick, what) for quick in ((), ("quick",), ("good",), ("little",), ("proper",))
                             for what in ("look", "check", "glance", "peek", "clean", "wipe", "dust",
-                                         "visit", "tidy", "scrub", "wash", "polish")))
+                                         "visit", "tidy", "scrub", "wash", "polish", "hoover", "sweep",
+                                         "mop", "spray"))
+                     + tuple((*quick, "once", "over") for quick in ((), ("quick",), ("good",))))
 """What *give X ...* gives X, after *a* (*give the toilet a quick look*): acting on X there."""
 BODY_PART_OWNERS = ("your", "my", "his", "her", "their")
 BODY_PART_LINKS = ("at", "using", "with", "on", "into")
@@ -533,6 +535,7 @@ _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "c
                  *(("is", best) for best in ("quickest", "fastest", "shortest", "best", "easiest",
                                              "efficient", "cheapest")),
                  ("is", "most", "efficient"), ("works", "best"), ("makes", "sense"),
+                 ("is", "fine", "by", "me"), ("is", "fine", "with", "me"), ("is", "ok", "by", "me"), ("is", "okay", "by", "me"),
                  ("makes", "the", "most", "sense"), ("is", "the", "quickest"), ("is", "the", "fastest"),
                  ("is", "the", "shortest"))
 ANY_ORDER = Phrases((
@@ -554,7 +557,16 @@ ANY_ORDER = Phrases((
                      ("is", "not", "really", "important"), ("does", "not", "matter", "much"),
                      ("does", "not", "matter", "at", "all"))),
     ("i", "do", "not", "really", "mind", "the", "order"), ("i", "do", "not", "really", "care", "about", "the",
-                                                           "order")))
+                                                           "order"),
+    # "whichever's quickest", "however you like", "doesn't matter which order", "the order's up to you"
+    *((chooser, be, best) for chooser in ("whichever", "whatever") for be in ("is", "'s")
+      for best in ("quickest", "easiest", "fastest", "shortest", "simplest", "best")),
+    *(("however", "you", like) for like in ("like", "want", "prefer", "wish", "please")),
+    *((*it, *does, "matter", "which", "order") for it in ((), ("it",))
+      for does in (("does", "not"), ("doesnt",))),
+    ("no", "matter", "which", "order"), ("do", "not", "mind", "which", "order"),
+    ("i", "do", "not", "mind", "which", "order"), ("the", "order", "'s", "up", "to", "you"),
+    ("order", "'s", "up", "to", "you")))
 """Remarks that leave the order to the robot (the default of a set of goals; a numbered list is in order
 unless one of these is said with it)."""
 TIME_FILLERS = Phrases((
