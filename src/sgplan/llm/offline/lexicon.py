@@ -535,7 +535,8 @@ _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "c
                  *(("is", best) for best in ("quickest", "fastest", "shortest", "best", "easiest",
                                              "efficient", "cheapest")),
                  ("is", "most", "efficient"), ("works", "best"), ("makes", "sense"),
-                 ("is", "fine", "by", "me"), ("is", "fine", "with", "me"), ("is", "ok", "by", "me"), ("is", "okay", "by", "me"),
+                 ("is", "fine", "by", "me"), ("is", "fine", "with", "me"), ("is", "ok", "by", "me"),
+                 ("is", "okay", "by", "me"),
                  ("makes", "the", "most", "sense"), ("is", "the", "quickest"), ("is", "the", "fastest"),
                  ("is", "the", "shortest"))
 ANY_ORDER = Phrases((
