@@ -47,6 +47,7 @@ NUMBERED = frozenset({"floor", "level", "flr", "fl", "lvl", "storey", "story", "
 
 SYMBOLS: dict[str, tuple[str, ...]] = {
     "+": ("and",), "&": ("and",), "w/": ("with",), "w/o": ("without",), "@": ("at",),
+    "b/c": ("because",), "b4": ("before",),
 }
 """Notations read as words (an arrow, ``->``, ``>``, ``→``, is *then*): ``A + B`` is *A and B*, ``bdrm w/
 bed`` *bedroom with bed*. Every other symbol is a token the grammar refuses by name (``A / B``: and, or?)."""
@@ -639,6 +640,7 @@ CLOSING = Phrases((
     ("thx",), ("ty",), ("tyvm",), ("cheers", "then"), ("mind",), ("mind", "you"), ("much", "obliged"),
     ("nice", "one"), ("legend",), ("you", "are", "a", "legend"), ("love", "you"), ("love", "ya"), ("x",),
     ("xx",), ("xxx",), ("urgent",), ("please", "and", "thanks"), ("cheers", "in", "advance"),
+    ("let", "me", "know"),
     ("ta", "in", "advance"),
     *((*and_, "that", be, "about", "it") for and_ in ((), ("and",)) for be in ("is", "'s")),
     *((*ask, "me", "a", favour)
@@ -1154,6 +1156,14 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("pls",): ("please",),
     ("plz",): ("please",),
     ("gf",): ("ground", "floor"),
+    ("u",): ("you",),
+    ("ur",): ("your",),
+    ("thru",): ("through",),
+    ("tonite",): ("tonight",),
+    ("tmrw",): ("tomorrow",),
+    ("tmr",): ("tomorrow",),
+    ("rn",): ("right", "now"),
+    ("lmk",): ("let", "me", "know"),
     # light verbs: "have / having a look at X" is "take a look at X" (wherever the verb stands)
     **{(have, "a", *quick, look): (take, "a", *quick, look)
        for have, take in (("have", "take"), ("having", "taking"), ("had", "took"))

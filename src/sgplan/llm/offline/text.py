@@ -7,9 +7,10 @@ off: *the- the office*) become commas (an aside). Entity IDs (``room_2``, ``obje
 so already-grounded text is understood too.
 
 Notations are read as the words they stand for (:data:`.lexicon.SYMBOLS`): an arrow (``->``, ``>``, ``→``)
-is *then*, ``+`` and ``&`` are *and*, ``w/`` is *with*; a clock time (``6 pm``, ``18:30``) is one token. Any
-other symbol is kept as a token of its own, so that the grammar refuses it by name: nothing typed is ever
-dropped unread, except quotation marks and the hyphen inside a word (*ground-floor*), which change nothing.
+is *then*, ``+`` and ``&`` are *and*, ``w/`` is *with*, ``b/c`` *because*, ``b4`` *before*; a clock time
+(``6 pm``, ``18:30``) is one token. Any other symbol is kept as a token of its own, so that the grammar
+refuses it by name: nothing typed is ever dropped unread, except quotation marks and the hyphen inside a word
+(*ground-floor*), which change nothing.
 
 A sentence ends at ``.``, ``;``, ``!``, ``?``, ``:`` and at a line break; a list item (a line or a
 sentence starting with ``1.``, ``2)``, ``(3)``, or a bullet ``-``, ``*``, ``•`` at the start of a line)
@@ -39,7 +40,7 @@ _WORD = re.compile(
     r"|(?P<clock>(?:[01]?\d|2[0-3])(?::[0-5]\d(?:\s?[ap]\.?m\b\.?)?|\s?[ap]\.?m\b\.?))"  # 6 pm, 18:30
     r"|(?P<times>\d+x\b|\bx\d+\b)"  # 2x / x2: that many times
     r"|(?P<number>\d+(?:st|nd|rd|th)?)"
-    r"|(?P<with>w/o\b|w/)"
+    r"|(?P<with>w/o\b|w/|b/c\b|\bb4\b)"
     r"|(?P<word>[a-z]+(?:'[a-z]+)?|'s\b)"
     r"|(?P<bullet>^[ \t]*[-*\u2022\u00b7\u2023\u25e6\u25aa](?=[ \t]))"  # at the start of a line
     r"|(?P<arrow>-+>|=+>|>+|[\u2192\u21d2\u27f6\u2794\u279c\u27a1])"
