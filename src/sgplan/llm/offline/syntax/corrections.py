@@ -35,6 +35,8 @@ from sgplan.llm.offline.text import Tok
 _AROUND = frozenset({",", "sorry"})
 """Words between the old phrase, the correction and the new phrase (*the office, sorry, I mean ...*)."""
 _CLAUSE_ENDS = ("", ",", "and", "then")
+_WITHIN = ("in", "on", "inside", "at", "of")
+"""Before a place said again inside the phrase that restates it (*the office on floor one*)."""
 _OPENING = lx.HESITATIONS | lx.GREETINGS | frozenset({",", "okay", "ok", "robot"})
 """Words before what a sentence restates (*um okay floor one, the office on floor one*)."""
 
@@ -102,8 +104,12 @@ def restated(r: Reader) -> tuple[Reader, Reader] | None:
     comma = r.words.index(",", start)
     said = r.words[start:comma]
     clause_end = r.words.index(",", comma + 1) if "," in r.words[comma + 1:] else len(r)
-    if not said or comma + 1 + len(said) > clause_end or r.words[clause_end - len(said):clause_end] != said:
+    again = clause_end - len(said)
+    if not said or comma + 1 > again or r.words[again:clause_end] != said:
         return None
+    within = again - (2 if r.word(again - 1) in lx.ARTICLES else 1)
+    if not (r.word(within) in _WITHIN or all(w in lx.POSITIVE_VERBS for w in r.words[comma + 1:again])):
+        return None  # "bedroom, the bathroom next to the bedroom": two places, not one said again
     if any(w in lx.POSITIVE_VERBS or r.phrase(k, lx.NEG_STARTS) for k, w in enumerate(said, start)):
         return None  # "go to the kitchen, go to the kitchen": a goal said twice, not a place restated
     kept = replace(r, toks=r.toks[:start] + r.toks[comma + 1:])
