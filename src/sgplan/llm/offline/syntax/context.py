@@ -25,6 +25,7 @@ from sgplan.llm.offline.syntax.phrases import noun_phrase
 from sgplan.llm.offline.syntax.preamble import stated_start
 from sgplan.llm.offline.syntax.reader import Match, Reader
 from sgplan.llm.offline.syntax.tree import Described, NounPhrase
+from sgplan.llm.offline.text import is_clock_time
 
 
 def set_aside_context(readers: list[Reader]) -> list[Reader]:
@@ -98,8 +99,9 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
         return None
     stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
     said = range(k + len(r.phrase(k, lx.REASONS) or ("for",)), stop)
-    if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) for j in said):
-        return None
+    if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) or is_clock_time(r.word(j))
+           or r.word(j) in lx.TIME_UNITS for j in said):
+        return None  # what not to do, a question to the robot, a clock time or a delay: left to the parser
     return k, stop
 
 
