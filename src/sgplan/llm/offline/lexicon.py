@@ -298,7 +298,8 @@ STATED_SUBJECTS = Phrases((("i", "am"), ("we", "are"), ("you", "are"), ("the", "
                            ("we",), ("you",)))
 """*I'm* (the tokenizer drops the part after the apostrophe) / *we are* ... before where the robot is."""
 STATED_NOW = ("currently", "now", "still")
-NOW = Phrases((("right", "now"), ("now",), ("currently",), ("at", "once"), ("at", "present")))
+NOW = Phrases((("right", "now"), ("now",), ("currently",), ("at", "once"), ("at", "present"), ("with", "you"),
+               ("with", "you", "now")))
 """*right now* ...; *at the moment* reads *at once* here (:data:`PHRASE_ALIASES`: *the moment* = *once*)."""
 
 # ----------------------------------------------------------------------------------------------- verbs

@@ -47,6 +47,9 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     clauses = comma_clauses(r)
     if closing_only(r, 0, len(r)):
         return [aside(r, 0, len(r))]  # "Thanks a lot!", "Lovely, cheers.": a sign-off, said back
+    opening = replace(r, toks=r.toks[:clauses[0][1]])
+    if len(clauses) > 1 and stated_start(opening) is not None:  # "I'm on the middle floor - stay on it, ..."
+        return [opening, *split(replace(r, toks=r.toks[skip_joiner(r, clauses[1][0]):]), said_before)]
     first, last = 0, len(clauses)
     while first < last and (is_context(r, *clauses[first], leading=True) or closing_only(r, *clauses[first])):
         first += 1
