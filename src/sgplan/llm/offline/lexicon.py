@@ -641,7 +641,10 @@ CLOSING = Phrases((
     ("thx",), ("ty",), ("tyvm",), ("cheers", "then"), ("mind",), ("mind", "you"), ("much", "obliged"),
     ("nice", "one"), ("legend",), ("you", "are", "a", "legend"), ("love", "you"), ("love", "ya"), ("x",),
     ("xx",), ("xxx",), ("urgent",), ("please", "and", "thanks"), ("cheers", "in", "advance"),
-    ("let", "me", "know"),
+    ("let", "me", "know"), ("thank", "you", "kindly"), ("thanks", "kindly"), ("thanks", "again"),
+    ("thank", "you", "again"), ("see", "ya"), ("see", "you"), ("see", "you", "soon"), ("catch", "you", "later"),
+    ("take", "care"), ("appreciate", "you"), ("appreciate", "ya"), ("good", "robot"),
+    ("you", "rock"),
     ("ta", "in", "advance"),
     *((*and_, "that", be, "about", "it") for and_ in ((), ("and",)) for be in ("is", "'s")),
     *((*ask, "me", "a", favour)
