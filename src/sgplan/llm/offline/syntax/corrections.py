@@ -8,7 +8,8 @@ the mission*). Only that shape is read: when the words after the correction are 
 the clause, or no noun phrase ends right before it, the correction stays in the sentence and is refused
 (which part stands is not known).
 
-A clause broken off after a word that cannot end one (*the*, *to*, *into*), at a dash, and started again
+A clause broken off after a word that cannot end one (*the*, *to*, *into*), at a dash or a pause (a comma,
+*uh*), and started again
 with the same first word (*don't take the- don't go through the living room*), or with the words before
 the dash (*the plant in the- the plant in the office*), is a restart: the broken words are set aside and said
 back, and the sentence is read from the restart.
@@ -80,18 +81,17 @@ def ends_with_phrase(r: Reader) -> bool:
 def restarted(r: Reader) -> tuple[Reader, Reader] | None:
     """The sentence read from a restart (see the module docstring), and the broken words set aside;
     ``None`` when it has no restart."""
-    for dash in range(1, len(r) - 1):
-        broken = r.word(dash - 1) in lx.UNFINISHED and r.word(dash) == "," and r.text[
-            r.toks[dash].start:r.toks[dash].end].strip() in lx.DASHES
-        if not broken:
-            continue
-        start = max((k + 1 for k in range(dash) if r.word(k) in lx.CLAUSE_ENDS and r.word(k)), default=0)
+    for cut in range(1, len(r) - 1):
+        if r.word(cut - 1) not in lx.UNFINISHED or r.word(cut) != ",":
+            continue  # a clause never ends with "the" or "to": a comma (a dash, a pause) after it breaks it
+        again = r.skip(cut, {","})
+        start = max((k + 1 for k in range(cut) if r.word(k) in lx.CLAUSE_ENDS and r.word(k)), default=0)
         # a stutter says again the words broken off: "the plant in the- the plant in the office"
-        start = next((k for k in range(start, dash) if r.words[k:dash] == r.words[dash + 1:2 * dash + 1 - k]),
+        start = next((k for k in range(start, cut) if r.words[k:cut] == r.words[again:again + cut - k]),
                      start)
-        if r.word(start) == r.word(dash + 1):
-            kept = replace(r, toks=r.toks[:start] + r.toks[dash + 1:])
-            return kept, replace(r, toks=r.toks[start:dash + 1], aside=True)
+        if r.word(start) == r.word(again):
+            kept = replace(r, toks=r.toks[:start] + r.toks[again:])
+            return kept, replace(r, toks=r.toks[start:again], aside=True)
     return None
 
 
