@@ -651,8 +651,10 @@ CLOSING = Phrases((
     *((*ask, "me", "a", favour)
       for ask in (("could", "you", "do"), ("can", "you", "do"), ("would", "you", "do"), ("do",))
       for favour in ("favour", "favor")),
-    *(("when", "you", "have", got, "a", sec) for got in ("got", "get") for sec in ("sec", "mo", "min")),
-    *(("when", "you", "have", "a", sec) for sec in ("sec", "mo", "min")),
+    *((when, "you", *have, "a", sec) for when in ("when", "whenever")
+      for have in (("have", "got"), ("have", "get"), ("have",), ("get",), ("got",))
+      for sec in ("sec", "mo", "min")),
+    ("whenever", "you", "are", "ready"), ("whenever", "you", "are", "free"),
     ("if", "that", "is", "fine"),
     # praise only with thanks after it: "Is the kitchen lovely?" asks something
     *((praise, *comma, thanks) for praise in ("lovely", "brilliant", "perfect", "great", "awesome", "super")
@@ -1149,6 +1151,8 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     # not" makes a goal optional, which is refused as "optionally" is
     ("p", ".", "s", "."): ("also",),
     ("ps",): ("also",),
+    ("one", "more", "thing"): ("also",),
+    ("just", "one", "more", "thing"): ("also",),
     ("btw",): ("also",),
     ("by", "the", "way"): ("also",),
     ("no", "worries", "if", "not"): ("optionally",),
