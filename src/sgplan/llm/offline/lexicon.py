@@ -515,6 +515,11 @@ POLITE = Phrases((
                    ("be", "thankful"))
       for modal in ((), ("could",), ("would",))),
     ("do", "you", "think", "you", "could"), ("any", "chance", "you", "could"),
+    *(("i", "would", "be", *very, glad, "if", "you", *modal)  # "I'd be ever so grateful if you could"
+      for very in (("ever", "so"), ("very",), ("so",), ("really",), ("most",))
+      for glad in ("grateful", "thankful") for modal in ((), ("could",), ("would",))),
+    ("is", "there", "any", "chance", "you", "could"), ("is", "there", "a", "chance", "you", "could"),
+    *(("would", "it", "be", "too", "much", "to", "ask", *you, "to") for you in ((), ("for", "you"))),
     ("could", "i", "ask", "you", "to"),
     ("can", "i", "ask", "you", "to"), ("would", "you", "be", "able", "to"), ("could", "you", "possibly"),
     ("can", "you", "possibly"), ("would", "you", "be", "willing", "to"), ("i", "would", "like", "you", "to"),
