@@ -214,6 +214,24 @@ def test_an_amendment_whose_joined_automaton_is_too_large_is_refused_before_it_i
         combine(mission, 0, amendment, {}, None)
 
 
+@pytest.mark.parametrize("changes", [
+    [CloseDoor(("kitchen", "corridor on floor 0"))],
+    [Block(Area(0, box_m=(0.2, 1.0, 1.2, 1.4)), "trolley")],
+    [MoveObject("sink", (2.0, 2.5))],
+], ids=["close_door", "block", "move_object"])
+def test_what_is_left_after_a_change_is_what_a_fresh_monitor_says(building, mission, changes):
+    """The words of what is left after a change equal those of a monitor made afresh on the changed
+    scene (the run rebases its monitor and keeps the formula's progressions)."""
+    from sgplan.execution.monitor import Monitor
+
+    run = sgplan.Run(sgplan.Session(building), mission, building.initial_cells[0], setup="A*")
+    run.observe(run.plan.path[:4, :3], metric=False)
+    said = run.left()
+    run.change(changes)
+    fresh = Monitor(run.building, run.mission, run.grid, run.labels.raster, state=run.state)
+    assert run.left() == fresh.words.residual(run.state).text() == said
+
+
 def test_a_run_survives_saving_and_loading(building, mission):
     session = sgplan.Session(building)
     run = sgplan.Run(session, mission, building.initial_cells[0], setup="A*")
