@@ -84,7 +84,7 @@ def restarted(r: Reader) -> tuple[Reader, Reader] | None:
     for cut in range(1, len(r) - 1):
         if r.word(cut - 1) not in lx.UNFINISHED or r.word(cut) != ",":
             continue  # a clause never ends with "the" or "to": a comma (a dash, a pause) after it breaks it
-        again = r.skip(cut, {","})
+        again = r.skip(cut, (",",))
         start = max((k + 1 for k in range(cut) if r.word(k) in lx.CLAUSE_ENDS and r.word(k)), default=0)
         # a stutter says again the words broken off: "the plant in the- the plant in the office"
         start = next((k for k in range(start, cut) if r.words[k:cut] == r.words[again:again + cut - k]),
