@@ -62,8 +62,12 @@ def test_load_scene_accepts_names_in_any_case_paths_and_buildings(demo, tmp_path
     from sgplan.scene.native import write_native_scene
 
     assert sgplan.load_scene(write_native_scene(demo, tmp_path / "d")).name == demo.name
-    with pytest.raises(SceneError, match="neither an existing path"):
+    with pytest.raises(SceneError, match="neither an existing path") as error:
         sgplan.load_scene("no-such-scene")
+    assert "did you mean" not in str(error.value)
+    for typo, meant in (("Benevolance", "Benevolence"), ("colliervile", "Collierville"), ("demoo", "demo")):
+        with pytest.raises(SceneError, match=f"; did you mean '{meant}'\\?$"):
+            sgplan.load_scene(typo)
 
 
 def test_gibson_scene_names_in_any_case(gibson_root: Path) -> None:
@@ -96,6 +100,8 @@ def test_starts_by_cell_point_room_and_index(demo) -> None:
     assert error.value.status == "invalid-start"
     with pytest.raises(PlanningError, match=r"no free cell lies within 0.5 m"):
         session.plan(mission, sgplan.Point(*demo.floors[0].cell_to_xy((0, 0)), 0))
+    with pytest.raises(PlanningError, match=r"lies off floor 0's grid \(x -5.25..5.25 m, y -5.15..5.15 m\)"):
+        session.plan(mission, sgplan.Point(20.0, 2.0, 0))
     with pytest.raises(PlanningError, match=r"floors 0..1"):
         session.plan(mission, sgplan.Point(0.0, 0.0, 5))
     with pytest.raises(PlanningError, match="no room called 'garage'"):

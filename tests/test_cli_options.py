@@ -4,7 +4,10 @@ one spelling of lists, profiles and names; inspect --json and its start-cell fla
 from __future__ import annotations
 
 import json
+import os
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -54,6 +57,21 @@ def test_the_compile_notice_is_said_when_kernels_are_cold(monkeypatch: pytest.Mo
     monkeypatch.setattr(jit, "kernels_cached", lambda: True)
     assert main(["plan", "--scene", "demo", *FORMULA]) == 0
     assert jit.NOTICE not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", ["demo", "plan"])
+def test_the_compile_notice_is_the_first_thing_a_planning_command_says(command: str, tmp_path: Path) -> None:
+    """Said before anything else runs: once one kernel is compiled (the scene checks run some), the cache
+    index makes the others look cached and the notice would never come."""
+    argv = ["demo", "--out", str(tmp_path)] if command == "demo" else ["plan", "--scene", "demo", *FORMULA]
+    code = ("import sys; import sgplan.runtime.jit as jit; jit.kernels_cached = lambda: False; "
+            f"from sgplan.cli import main; sys.exit(main({argv!r}, fast_exit=False))")
+    done = subprocess.run([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          text=True, timeout=300, env={**os.environ, "PYTHONUNBUFFERED": "1"},
+                          stdin=subprocess.DEVNULL)
+    assert done.returncode == 0, done.stdout
+    said = done.stdout.splitlines()
+    assert said[0] == jit.NOTICE and len(said) > 3 and jit.NOTICE not in said[1:]
 
 
 def test_the_kernel_cache_is_read_until_it_is_found_cached(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -13,6 +13,7 @@ and the label raster of each proposition and reach radius between them.
 
 from __future__ import annotations
 
+import difflib
 import logging
 import time
 from collections import Counter
@@ -87,8 +88,10 @@ def load_scene(scene: str | Path | Building, data: str | Path | None = None) -> 
     names = {name.lower(): name for name in SCENES}
     if spec.lower() in names:
         return load_path(scene_dir(names[spec.lower()], data))
+    close = difflib.get_close_matches(spec.lower(), [*names, DEMO], n=1, cutoff=0.75)
+    hint = f"; did you mean {names.get(close[0], close[0])!r}?" if close else ""
     raise SceneError(f"scene {spec!r} is neither an existing path, a Gibson scene name ({', '.join(SCENES)}) "
-                     f"nor '{DEMO}'")
+                     f"nor '{DEMO}'{hint}")
 
 
 # -- missions ----------------------------------------------------------------------------------------
@@ -317,10 +320,10 @@ class Session:
         from sgplan.planning.termination import any_of
         from sgplan.runtime.jit import announce_compile
 
+        announce_compile()  # before staging, whose scene checks run kernels too
         t0 = time.perf_counter()
         staged = self._stage(mission, start, options, guide, start_state)
         prepare_s = time.perf_counter() - t0
-        announce_compile()
         # Without kept parts the problem's maps are this plan's alone: freed once the search stops
         # reading them.
         stop_when = any_of(options.termination(), termination)

@@ -124,8 +124,10 @@ class PlanResult:
         """One line: status, cost, cells, waypoints, setup."""
         if self.path is None:
             return f"{self.status}: no path (setup {self.setup})"
+        along = (f" ({self.waypoints_simplified[-1].cost_m:.4f} m of straight segments)"
+                 if len(self.waypoints_simplified) > 1 else "")
         return (f"{self.status}: cost {self.cost_m:.4f} m over {count(len(self.path), 'cell')}, "
-                f"{count(len(self.waypoints_simplified), 'simplified waypoint')} (setup {self.setup}, "
+                f"{count(len(self.waypoints_simplified), 'simplified waypoint')}{along} (setup {self.setup}, "
                 f"{count(len(self.iterations), 'iteration')})")
 
     def __str__(self) -> str:

@@ -178,7 +178,8 @@ def _point_start(building: Building, grid: OccupancyGrid, x_m: float, y_m: float
     _, rows, cols = grid.shape
     if not (0 <= row < rows and 0 <= col < cols):
         raise PlanningError(
-            f"start point ({x_m:g}, {y_m:g}) m lies off floor {floor}'s grid", status="invalid-start"
+            f"start point ({x_m:g}, {y_m:g}) m lies off floor {floor}'s grid "
+            f"({building.floors[floor].extent_text()})", status="invalid-start"
         )
     where = f"point ({x_m:g}, {y_m:g}) m floor {floor}"
     if grid.traversable[floor, row, col]:

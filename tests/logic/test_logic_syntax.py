@@ -160,6 +160,8 @@ def test_ap_mapping_must_cover_every_action():
         ("F(p1 & p2", "the parenthesis opened at character 1 is not closed: found the end of the formula", 9),
         ("p1 &", "the formula ends at character 4 where an operand is expected", 4),
         ("p1 p2", "unexpected 'p2' at character 3 after a complete formula", 3),
+        ("F enter(room_5)", "unexpected '(' at character 7 after a complete formula; a proposition with "
+         'parentheses goes in double quotes, e.g. "enter(...)"', 7),
         ("p1 & )", "unexpected ')' at character 5 where an operand is expected", 5),
         ("a $ b", "unexpected character '$' at character 2", 2),
         ('"abc', "the quoted proposition at character 0 is never closed", 0),

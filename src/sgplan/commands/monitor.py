@@ -11,6 +11,7 @@ Exit codes: 0 done (the mission is satisfied); 5 in progress (not yet satisfied,
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 import time
 from typing import TYPE_CHECKING, Any, TextIO
@@ -64,7 +65,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="object reach radius (default: the scene's)")
     add_reach_model_argument(parser)
     parser.add_argument("--max-gap", type=positive_number, metavar="M", default=None,
-                        help="report consecutive poses farther apart than this (metres; default 1)")
+                        help="report consecutive poses farther apart than this (metres; default 1, none "
+                             "for a plan --waypoints file, whose straight segments are the path's)")
     parser.add_argument("--json", metavar="OUT", help="write the verdict as JSON ('-': to stdout)")
     parser.add_argument("--force", action="store_true",
                         help="monitor with a --mission-dir even if it was made for another scene")
@@ -74,7 +76,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     import sgplan
-    from sgplan.execution.monitor import DEFAULT_MAX_GAP_M, Monitor
+    from sgplan.execution.monitor import Monitor
     from sgplan.execution.trajectory import read_trajectory, recorded_mismatches
     from sgplan.starts import Point
 
@@ -95,7 +97,7 @@ def run(args: argparse.Namespace) -> int:
              reach_model=reach_model)
     monitor = Monitor.in_session(session, mission, profile=args.profile, robot_radius_m=args.robot_radius,
                                  reach_radius_m=args.reach_radius, reach_model=reach_model,
-                                 max_gap_m=DEFAULT_MAX_GAP_M if args.max_gap is None else args.max_gap)
+                                 max_gap_m=_max_gap_m(args, trajectory))
     try:
         status = monitor.observe_xy(trajectory.poses, name=trajectory.pose_name)
     except TrajectoryError as error:
@@ -108,6 +110,16 @@ def run(args: argparse.Namespace) -> int:
                    "wall_s": time.perf_counter() - t0}
         write_json_record(args.json, record)
     return EXIT_CODES[status.verdict]
+
+
+def _max_gap_m(args: argparse.Namespace, trajectory: Trajectory) -> float:
+    """``--max-gap``; else none for sgplan's own waypoints (their segments are the path's), else the
+    default tolerance."""
+    from sgplan.execution.monitor import DEFAULT_MAX_GAP_M
+
+    if args.max_gap is not None:
+        return float(args.max_gap)
+    return math.inf if trajectory.from_sgplan else DEFAULT_MAX_GAP_M
 
 
 def _report(status: MonitorStatus, trajectory: Trajectory, mismatches: list[str], num_states: int,

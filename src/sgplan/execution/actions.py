@@ -28,7 +28,7 @@ changed building.
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Collection
+from collections.abc import Collection, Mapping
 
 import numpy as np
 
@@ -48,6 +48,7 @@ from sgplan.planning.domain import (
     stop_counts,
 )
 from sgplan.planning.problem import PlanningProblem
+from sgplan.scene.reach import sight_may_change
 
 
 class RunActions:
@@ -62,6 +63,7 @@ class RunActions:
         self.store: MapStore | None = None
         self.runs: LabelRuns | None = None
         self._objects: set[int] = set()  # uuids of the objects whose families need new targets
+        self._sight: dict[int, list[np.ndarray]] = {}  # floor -> cells that changed category since
         self._spans: np.ndarray | None = None  # per room, the [first, last + 1) cells of its block
         self.counts: Counter[str] = Counter()
 
@@ -78,7 +80,9 @@ class RunActions:
                                         self.candidates.shape[0])
             self._spans = _room_spans(self.tables.cell_room, self.tables.num_rooms)
             self.counts["tables"] += 1
-        elif self._objects:
+        else:
+            self._sight_changes(problem)
+        if self._objects:
             self._refresh_objects(problem)
         tables = self.tables
         stop = stop_counts(tables.cell_room, reachable, tables.num_rooms, tables.kactions.map_stop_room)
@@ -98,23 +102,47 @@ class RunActions:
         return ActionParts(maps=tables.maps, kactions=kactions, kmaps=kmaps, cell_room=tables.cell_room,
                            in_region=tables.in_region)
 
-    def advance(self, moved: np.ndarray, relabelled: np.ndarray, objects: Collection[int]) -> None:
+    def advance(self, moved: np.ndarray, relabelled: np.ndarray, objects: Collection[int],
+                changed: Mapping[int, np.ndarray] | None = None) -> None:
         """Follow a change: ``moved`` the cells (numbers) that left or joined the graph, ``relabelled``
-        those whose label changed, ``objects`` the uuids of the objects moved, added or removed. Forgets the
-        maps and label runs they may have altered (see the module)."""
+        those whose label changed, ``objects`` the uuids of the objects moved, added or removed,
+        ``changed`` the cells (floor -> flat positions) whose category changed. Forgets the maps and label
+        runs they may have altered (see the module)."""
         if self.tables is None:
             return
+        for floor, cells in (changed or {}).items():
+            self._sight.setdefault(floor, []).append(cells)
         touched = self._families_touching(moved)
         # A cell that left or joined the graph can change what an object of its room is visible from
         # (the visible reach model): those objects' targets are made anew too, not only the moved ones'.
         near = {_object_uuid(f.action) for f, hit in zip(self.tables.families, touched)
                 if hit and f.action.kind == MAP_OBJECT}
-        self._objects |= set(objects) | near
+        self._renew(set(objects) | near, touched)
+        self.forget(np.flatnonzero(self._families_touching(relabelled)), maps=False)
+
+    def _renew(self, objects: set[int], touched: np.ndarray | None = None) -> None:
+        """Give ``objects`` (uuids) new targets at the next :meth:`parts` and forget their families' maps,
+        with those of ``touched`` (a bool per family)."""
+        assert self.tables is not None
+        self._objects |= objects
+        touched = np.zeros(len(self.tables.families), bool) if touched is None else touched
         for k, family in enumerate(self.tables.families):
             if family.action.kind == MAP_OBJECT and family.action.entity in self._objects:
                 touched[k] = True
         self.forget(np.flatnonzero(touched), maps=True)
-        self.forget(np.flatnonzero(self._families_touching(relabelled)), maps=False)
+
+    def _sight_changes(self, problem: PlanningProblem) -> None:
+        """The objects whose lines of sight the category changes since the last :meth:`parts` may have
+        blocked or opened (any room: a wall-side object is seen across a door), renewed; the problem gives
+        the reach radius and model this needs."""
+        if not self._sight:
+            return
+        changed = {floor: np.concatenate(cells) for floor, cells in self._sight.items()}
+        self._sight.clear()
+        building = problem.building
+        self._renew({obj.uuid for obj in building.objects()
+                     if sight_may_change(building, obj, changed, problem.reach_radius_m,
+                                         str(problem.reach_model))})
 
     def forget(self, families: np.ndarray, maps: bool) -> None:
         """Clear the label runs of ``families`` (indices) and, if ``maps``, their maps too, where they were
@@ -218,6 +246,7 @@ def with_other_labels(actions: RunActions) -> RunActions:
     other = RunActions(actions.candidates)
     other.tables, other.store, other._spans = actions.tables, actions.store, actions._spans
     other._objects = set(actions._objects)
+    other._sight = {floor: list(cells) for floor, cells in actions._sight.items()}
     return other
 
 

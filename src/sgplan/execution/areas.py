@@ -46,12 +46,6 @@ def area_cells(floor: Floor, area: Area) -> np.ndarray:
     return np.sort((rr.ravel() * cols + cc.ravel()).astype(np.int64))
 
 
-def map_extent_m(floor: Floor) -> str:
-    """``x a..b m, y c..d m``: the metric extent of a floor's grid, for messages."""
-    (rows, cols), (x, y), (rx, ry) = floor.shape, floor.origin_m, floor.resolution_m
-    return f"x {x:.2f}..{x + rows * rx:.2f} m, y {y:.2f}..{y + cols * ry:.2f} m"
-
-
 def boundary_cells(room_map: np.ndarray, room_a: int, room_b: int) -> np.ndarray:
     """The cells of rooms ``room_a`` and ``room_b`` (ids) that have an 8-neighbour in the other room: both
     sides of their shared boundary, so that no move leads from one room straight into the other once they

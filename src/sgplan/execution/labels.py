@@ -17,7 +17,7 @@ import numpy as np
 from sgplan.intsets import members, unique_sorted
 from sgplan.scene.labels import Proposition, proposition_cells, raster_from_cells
 from sgplan.scene.model import Building
-from sgplan.scene.reach import reach_window
+from sgplan.scene.reach import sight_may_change
 
 
 class RunLabels:
@@ -62,19 +62,10 @@ class RunLabels:
         changed, or (``visible``) a cell within its object's reach window changed category."""
         if prop.uuid in objects:
             return True
-        if self.reach_model != "visible" or not building.has_object(prop.uuid):
+        if not building.has_object(prop.uuid):
             return False
-        obj = building.object(uuid=prop.uuid)
-        floor = building.room(uuid=obj.room_uuid).floor
-        cells = changed.get(floor)
-        if cells is None or not cells.size:
-            return False
-        window = reach_window(building.floors[floor], obj, prop.reach_radius_m or self.reach_radius_m)
-        if window is None:
-            return False
-        (r0, r1), (c0, c1) = window
-        rows, cols = np.divmod(cells, building.grid_shape[1])
-        return bool(((rows >= r0) & (rows < r1) & (cols >= c0) & (cols < c1)).any())
+        return sight_may_change(building, building.object(uuid=prop.uuid), changed,
+                                prop.reach_radius_m or self.reach_radius_m, self.reach_model)
 
     def update(self, building: Building, objects: Collection[int],
                changed: Mapping[int, np.ndarray] | None = None) -> np.ndarray:

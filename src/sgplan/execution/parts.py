@@ -26,7 +26,7 @@ Every plan over these parts equals a plan over parts built afresh for the change
 from __future__ import annotations
 
 import copy
-from collections.abc import Callable, Collection, Hashable
+from collections.abc import Callable, Collection, Hashable, Mapping
 from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
@@ -157,13 +157,14 @@ class RunParts(SharedParts, KeptParts):
         return self.actions.parts(problem, reachable)
 
     def advance(self, grid: OccupancyGrid, change: GridChange, labels: np.ndarray, relabelled: np.ndarray,
-                scene: Building, at: tuple[int, int, int] | None = None, objects: Collection[int] = ()
-                ) -> None:
+                scene: Building, at: tuple[int, int, int] | None = None, objects: Collection[int] = (),
+                changed: Mapping[int, np.ndarray] | None = None) -> None:
         """Serve ``grid`` and ``labels`` from now on: the grid and labels after a scene change whose effect
         on traversability is ``change`` and which changed the labels at the flat raster positions
         ``relabelled``; ``scene``: the changed building without its blocks and closed doors; ``at``: the
         robot's cell ``(row, col, floor)``, if known (whose component to follow); ``objects``: the uuids of
-        the objects the change moved, added or removed.
+        the objects the change moved, added or removed; ``changed``: the cells (floor -> flat positions)
+        whose category changed (lines of sight to objects may cross them).
 
         Costs a copy of the graph's padded index, and work over the changed cells and their neighbours
         (the fields are repaired when next asked for; the component may flood the smaller side of a
@@ -181,7 +182,7 @@ class RunParts(SharedParts, KeptParts):
         before = self.labelling.masks[cells]
         self.graph = graph
         self.labelling.update(graph, moved, cells, labels.reshape(-1)[positions])
-        self.actions.advance(moved, np.sort(cells), objects)
+        self.actions.advance(moved, np.sort(cells), objects, changed)
         # Over the graph without the fatal labels' cells, a relabelled cell may have left or joined it too.
         switched = cells[self.fatal.avoided(self.labelling.masks[cells]) != self.fatal.avoided(before)]
         if switched.size:

@@ -380,10 +380,11 @@ class Run:
         from sgplan.execution.regrid import GridChange
 
         overall = _net_change(self.grid, grid, np.concatenate(blocked), np.concatenate(freed))
-        relabelled = self.labels.update(scene.building, objects, _changed_cells(deltas))
+        changed = _changed_cells(deltas)
+        relabelled = self.labels.update(scene.building, objects, changed)
         self.scene, self.grid = scene, grid
         self.parts.advance(grid, GridChange(*overall), self.labels.raster, relabelled, scene.scene(),
-                           at=self.position, objects=objects)
+                           at=self.position, objects=objects, changed=changed)
         self.monitor = self.monitor.rebased(grid, self.labels.raster, scene.building)
         self.changes.extend(typed)
         kept = self._plan_survives(overall[0], overall[1].size == 0 and relabelled.size == 0)

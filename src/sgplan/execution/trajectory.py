@@ -22,6 +22,7 @@ import numpy as np
 
 from sgplan.errors import TrajectoryError
 from sgplan.execution.poses import metric_cells
+from sgplan.outputs.robot_files import CSV_COLUMNS
 from sgplan.safeio import quote, read_text
 from sgplan.scene.grid import OccupancyGrid
 
@@ -48,12 +49,17 @@ class Trajectory:
     recorded:
         the optional columns present (:data:`CHECKED`), each ``(n,)``: ``q``, ``row``, ``col`` int64,
         ``cost_m`` float64.
+    from_sgplan:
+        the header is that of ``sgplan plan --waypoints`` (:data:`sgplan.outputs.robot_files.CSV_COLUMNS`):
+        the straight line between two poses is then the path's own segment, checked legal when it was
+        written, so any distance between them is expected.
     """
 
     path: Path | None
     poses: np.ndarray
     lines: np.ndarray
     recorded: dict[str, np.ndarray]
+    from_sgplan: bool = False
 
     def pose_name(self, k: int) -> str:
         """``pose 12 (line 14)``: how messages name pose ``k``."""
@@ -107,7 +113,7 @@ def read_trajectory(path: str | Path) -> Trajectory:
     for name in recorded:
         if name != "cost_m":
             recorded[name] = recorded[name].astype(np.int64)
-    return Trajectory(path, poses, line_array, recorded)
+    return Trajectory(path, poses, line_array, recorded, from_sgplan=tuple(header) == CSV_COLUMNS)
 
 
 def _is_number(text: str) -> bool:

@@ -29,7 +29,6 @@ from sgplan.execution.areas import (
     cells_box,
     fill_from_nearest,
     footprint_cells,
-    map_extent_m,
 )
 from sgplan.execution.changes import (
     AddObject,
@@ -223,7 +222,7 @@ class SceneState:
         row, col = plan.xy_to_cell(*xy)
         if not (0 <= row < plan.shape[0] and 0 <= col < plan.shape[1]):
             raise SceneError(f"{what}: ({xy[0]:g}, {xy[1]:g}) m lies off floor {floor}'s map "
-                             f"({map_extent_m(plan)})")
+                             f"({plan.extent_text()})")
         room_id = int(plan.room_map[row, col])
         if room_id <= 0:
             raise SceneError(f"{what}: ({xy[0]:g}, {xy[1]:g}) m on floor {floor} lies in no room")
@@ -312,7 +311,7 @@ def _area(state: SceneState, area: Area) -> np.ndarray:
     floor = state._floor(area.floor)
     cells = area_cells(floor, area)
     if cells.size == 0:
-        raise SceneError(f"{area.describe()} lies outside floor {area.floor}'s map ({map_extent_m(floor)})")
+        raise SceneError(f"{area.describe()} lies outside floor {area.floor}'s map ({floor.extent_text()})")
     return cells
 
 
@@ -388,7 +387,7 @@ def _move_object(state: SceneState, change: MoveObject) -> tuple[SceneState, Sce
     rows, cols = centre[0] + d_row, centre[1] + d_col
     if not ((rows >= 0) & (rows < plan.shape[0]) & (cols >= 0) & (cols < plan.shape[1])).all():
         raise SceneError(f"{phrase} moved to ({change.to_xy_m[0]:g}, {change.to_xy_m[1]:g}) m would leave "
-                         f"floor {floor}'s map ({map_extent_m(plan)})")
+                         f"floor {floor}'s map ({plan.extent_text()})")
     above_m = float(obj.location_m[2]) - state.building.floors[old_floor].ground_z_m
     moved = _placed(state, obj, np.sort(rows * plan.shape[1] + cols), floor, change.to_xy_m, cats[floor],
                     f"{phrase} moved to ({change.to_xy_m[0]:g}, {change.to_xy_m[1]:g}) m", above_m)
@@ -404,7 +403,7 @@ def _add_object(state: SceneState, change: AddObject) -> tuple[SceneState, Scene
     cells = area_cells(plan, Area(change.floor, box_m=(x - sx / 2, y - sy / 2, x + sx / 2, y + sy / 2)))
     what = f"{a_or_an(change.category)} of {sx:g} x {sy:g} m at ({x:g}, {y:g}) m"
     if cells.size == 0:
-        raise SceneError(f"{what} covers no cell of floor {change.floor}'s map ({map_extent_m(plan)})")
+        raise SceneError(f"{what} covers no cell of floor {change.floor}'s map ({plan.extent_text()})")
     ids = [o.id for o in state.building.objects()] + [0]
     if max(ids) >= MAX_OBJECT_ID:
         raise SceneError(f"the building has object ids up to {max(ids)}; no id is left in the category maps")

@@ -106,7 +106,12 @@ class _Parser:
     def expect_end(self) -> None:
         kind, value, pos = self.peek()
         if kind != "end":
-            raise FormulaError(f"unexpected {value!r} at character {pos} after a complete formula", pos)
+            before = self.tokens[self.i - 1] if self.i else None
+            hint = ""
+            if value == "(" and before is not None and before[0] == "atom":
+                hint = (f"; a proposition with parentheses goes in double quotes, e.g. "
+                        f"\"{before[1]}(...)\"")
+            raise FormulaError(f"unexpected {value!r} at character {pos} after a complete formula{hint}", pos)
 
     def binary(self, ops: tuple[str, ...], next_level, right_assoc: bool) -> Formula:
         left = next_level()

@@ -55,21 +55,23 @@ def kernels_cached() -> bool | None:
 
 
 _seen_cached = False
-"""Whether :func:`announce_compile` found the kernels cached in this process already: once they are, they
-stay so (a process does not change its own sources), so later plans skip reading numba's index files."""
+"""Whether :func:`announce_compile` found the kernels cached, or said they are not, in this process
+already: either way they are compiled and cached from then on (a process does not change its own
+sources), so later plans skip reading numba's index files and say nothing."""
 
 
 def announce_compile() -> bool:
     """Log :data:`NOTICE` (level INFO) when the kernels are known not to be cached; returns whether it did.
-    Once they were found cached, later calls in this process return False at once."""
+    Once they were found cached, or the notice was said, later calls in this process return False at once
+    (the kernels compile once per process)."""
     global _seen_cached
     if _seen_cached:
         return False
     cached = kernels_cached()
+    _seen_cached = cached is not None
     if cached is False:
         log.info(NOTICE)
         return True
-    _seen_cached = cached is True
     return False
 
 

@@ -188,6 +188,11 @@ class Floor:
             self.origin_m[1] + (cell[1] + 0.5) * self.resolution_m[1],
         )
 
+    def extent_text(self) -> str:
+        """``x a..b m, y c..d m``: the metric extent of the floor's grid, for messages."""
+        (rows, cols), (x, y), (rx, ry) = self.shape, self.origin_m, self.resolution_m
+        return f"x {x:.2f}..{x + rows * rx:.2f} m, y {y:.2f}..{y + cols * ry:.2f} m"
+
     def xy_to_cell(self, x_m: float, y_m: float) -> Cell:
         """The cell containing metric point ``(x, y)`` (may lie outside the grid)."""
         return (

@@ -34,10 +34,12 @@ indices into a ``(rows, cols)`` floor raster, ascending.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 
 from sgplan.scene.dilate import box_dilate, radius_widths, within_distance
-from sgplan.scene.model import CatCode, Floor, SceneObject
+from sgplan.scene.model import Building, CatCode, Floor, SceneObject
 
 DEFAULT_REACH_MODEL = "visible"
 """sgplan's model, the one of its default ``ltlf`` profile. The models' names, and which one each semantics
@@ -114,6 +116,25 @@ def reach_window(floor: Floor, obj: SceneObject, reach_radius_m: float, model: s
     height, width = floor.shape
     return ((max(0, int(rows[0]) - pad[0]), min(height, int(rows[-1]) + pad[0] + 1)),
             (max(0, int(cols[0]) - pad[1]), min(width, int(cols[-1]) + pad[1] + 1)))
+
+
+def sight_may_change(building: Building, obj: SceneObject, changed: Mapping[int, np.ndarray],
+                     reach_radius_m: float, model: str) -> bool:
+    """Whether cells that changed category (``changed``: floor -> flat positions ``row * cols + col``) can
+    change where ``obj`` is reached from without it moving: under ``visible``, one of them lies in its
+    :func:`reach_window` (it may block or open a line of sight); under ``box``, never."""
+    if model != "visible":
+        return False
+    floor = building.room(uuid=obj.room_uuid).floor
+    cells = changed.get(floor)
+    if cells is None or not cells.size:
+        return False
+    window = reach_window(building.floors[floor], obj, reach_radius_m, model)
+    if window is None:
+        return False
+    (r0, r1), (c0, c1) = window
+    rows, cols = np.divmod(cells, building.grid_shape[1])
+    return bool(((rows >= r0) & (rows < r1) & (cols >= c0) & (cols < c1)).any())
 
 
 def _visible(cat: np.ndarray, room: np.ndarray, obj: SceneObject, resolution_m: tuple[float, float],
