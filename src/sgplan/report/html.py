@@ -32,7 +32,7 @@ from sgplan.report.outcome import PathEvent, PlanOutcome
 from sgplan.scene.draw_path import path_cells
 from sgplan.scene.grid import OccupancyGrid
 from sgplan.scene.labels import label_raster
-from sgplan.scene.model import Building
+from sgplan.scene.model import Building, category_words
 from sgplan.scene.reach import DEFAULT_REACH_MODEL
 
 
@@ -47,14 +47,18 @@ def _table(head: Sequence[str], rows: Sequence[Sequence[Any]], table_id: str) ->
     )
 
 
-def _proposition_rows(building: Building, mission: Mission) -> list[tuple[str, str, str]]:
+def _propositions_table(building: Building, mission: Mission) -> str:
+    """Each proposition, its action token when it has another name (a mission folder's ``p1``), and the
+    room or object it names."""
     rows = []
     for ap in mission.automaton.aps:
         p = mission.propositions[ap]
         entity = building.room(uuid=p.uuid) if p.kind == "enter" else building.object(uuid=p.uuid)
         floor = entity.floor if p.kind == "enter" else building.floor_of_object(entity)  # type: ignore[union-attr,arg-type]
-        rows.append((ap, p.name, f"{entity.name} ({entity.key}, floor {floor})"))
-    return rows
+        rows.append((ap, p.name, f"{category_words(entity.name)} ({entity.key}, floor {floor})"))
+    if all(ap == name for ap, name, _ in rows):
+        return _table(("proposition", "in the scene"), [(ap, where) for ap, _, where in rows], "propositions")
+    return _table(("name", "meaning", "in the scene"), rows, "propositions")
 
 
 def _mission_section(building: Building, mission: Mission, explanation: str | None) -> str:
@@ -68,7 +72,7 @@ def _mission_section(building: Building, mission: Mission, explanation: str | No
         + _definitions(rows)
         + (f'<p id="explanation">{html.escape(explanation)}</p>' if explanation else "")
         + "<h3>Propositions</h3>"
-        + _table(("name", "meaning", "in the scene"), _proposition_rows(building, mission), "propositions")
+        + _propositions_table(building, mission)
         + "</section>"
     )
 

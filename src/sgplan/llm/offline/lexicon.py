@@ -32,10 +32,12 @@ CONTRACTIONS = {"re": "are", "m": "am", "ve": "have", "ll": "will", "d": "would"
 """``we're`` -> ``we are``: the verb of a contracted auxiliary (``'s`` is a token of its own: *is* or a
 possessive)."""
 
+IS_CONTRACTED = frozenset({"that", "there", "here", "what", "where", "who", "how"})
+"""Words whose ``'s`` is *is* (*that's*, *there's a few*), never a possessive."""
 BARE_CONTRACTIONS = {"youre": ("you", "are"), "theyre": ("they", "are"), "im": ("i", "am"),
                      "ive": ("i", "have"), "youve": ("you", "have"), "weve": ("we", "have"),
-                     "thats": ("that", "'s"), "theres": ("there", "'s"), "youll": ("you", "will"),
-                     "itll": ("it", "will"), "lets": ("let", "'s"), "whats": ("what", "'s")}
+                     "thats": ("that", "is"), "theres": ("there", "is"), "youll": ("you", "will"),
+                     "itll": ("it", "will"), "lets": ("let", "'s"), "whats": ("what", "is")}
 """Contractions typed without their apostrophe (*then youre done*): read as the words they stand for."""
 
 SENTENCE_END = frozenset(".;:!?")
@@ -45,6 +47,7 @@ NUMBERED = frozenset({"floor", "level", "flr", "fl", "lvl", "storey", "story", "
 
 SYMBOLS: dict[str, tuple[str, ...]] = {
     "+": ("and",), "&": ("and",), "w/": ("with",), "w/o": ("without",), "@": ("at",),
+    "b/c": ("because",), "b4": ("before",),
 }
 """Notations read as words (an arrow, ``->``, ``>``, ``→``, is *then*): ``A + B`` is *A and B*, ``bdrm w/
 bed`` *bedroom with bed*. Every other symbol is a token the grammar refuses by name (``A / B``: and, or?)."""
@@ -122,7 +125,8 @@ ABBREVIATIONS: dict[str, tuple[str, ...]] = {
     "lvg rm": ("living room",),
     "dr": ("dining room",), "din rm": ("dining room",), "dng rm": ("dining room",),
     "br": ("bedroom", "bathroom"), "bdr": ("bedroom",), "bd": ("bedroom",), "mbr": ("bedroom",),
-    "bth": ("bathroom",), "bthr": ("bathroom",),
+    "bth": ("bathroom",), "bthr": ("bathroom",), "bath": ("bathroom",), "baths": ("bathroom",),
+    "teddy": ("teddy bear",), "teddies": ("teddy bear",),
     "kit": ("kitchen",), "kitch": ("kitchen",), "ktch": ("kitchen",),
     "ofc": ("home office",), "offc": ("home office",), "ofis": ("home office",),
     "hwy": ("corridor",), "hllwy": ("corridor",), "corr": ("corridor",),
@@ -246,14 +250,21 @@ ANNOUNCING = word_set("the a few couple of some several my your our today 's fol
 """Words of an announcement's noun group before its last word (*a few quick things*, *today's tasks*)."""
 LIST_NOUNS = word_set("list lists checklist todo do round rounds run runs tour route schedule agenda routine "
                       "plan steps step sequence order tasks task jobs job chores chore errands errand checks "
-                      "check stops visits things items duties rota program programme")
+                      "check stops visits things items duties rota program programme rules rule dos donts "
+                      "rundown")
 """Words that name a list in its heading (*Morning round*, *Evening checks*, *To do:*, *Top floor tasks*)."""
 LABEL_STOPS = word_set("until till before after only except never not no if unless when whenever then first "
                        "last again twice once but or nor without stay remain keep staying avoid leave there")
 """Words a list's label never holds: a heading with one of them is a sentence of its own."""
 ORDER_FILLERS = word_set(", do them these this it all the items steps things list")
+LIST_JOINERS = frozenset({",", "and", "or", "then", "after", "before", "first", "last", "finally", "again",
+                          "also", "too", "both", "all", "every", "each", "once", "when", "whenever", "if",
+                          "until"})
+"""Words that make a sentence more than one plain goal (a list, an order, a condition of its own): *In that
+order.* after it is not read."""
 """Words of a sentence after a list that only says its order (*Do them in this order.*)."""
-HEADS_UP = word_set("remember note important reminder ps also careful warning update oh btw nb")
+HEADS_UP = word_set("remember note important reminder ps also careful warning update oh btw nb urgent fyi "
+                    "priority quick favour favor question request")
 """Words that only ask for attention before a colon (*Remember: never enter the kitchen.*)."""
 ANNOUNCE_TAIL = Phrases((("for", "me"), ("for", "today"), ("today",), ("to", "do"), ("please",),
                          ("for", "you"), ("to", "check"), ("to", "visit")))
@@ -310,7 +321,8 @@ STATED_SUBJECTS = Phrases((("i", "am"), ("we", "are"), ("you", "are"), ("the", "
                            ("we",), ("you",)))
 """*I'm* (the tokenizer drops the part after the apostrophe) / *we are* ... before where the robot is."""
 STATED_NOW = ("currently", "now", "still")
-NOW = Phrases((("right", "now"), ("now",), ("currently",), ("at", "once"), ("at", "present")))
+NOW = Phrases((("right", "now"), ("now",), ("currently",), ("at", "once"), ("at", "present"), ("with", "you"),
+               ("with", "you", "now")))
 """*right now* ...; *at the moment* reads *at once* here (:data:`PHRASE_ALIASES`: *the moment* = *once*)."""
 
 # ----------------------------------------------------------------------------------------------- verbs
@@ -440,14 +452,18 @@ VERB_IDIOMS = Phrases((("all", "the", "way"), ("a", "look"), ("a", "quick", "loo
                        ("a", "glance"), ("a", "quick", "peek"), ("your", "way"), ("my", "way"),
                        ("its", "way"), ("a", "visit"), ("a", "quick", "visit"), ("a", "trip"),
                        ("a", "quick", "trip"), ("a", "detour"), ("a", "stop"), ("a", "quick", "stop"),
-                       ("a", "seat"), ("a", "nap"), ("a", "rest")))
+                       ("a", "seat"), ("a", "nap"), ("a", "rest"), ("a", "good", "look"),
+                       ("a", "proper", "look"), ("a", "little", "look"), ("a", "quick", "glance"),
+                       ("a", "little", "peek")))
 """Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*."""
 GIVE_VERBS = frozenset({"give", "giving"})
 """*give X a look*: read only with what is given after X (:data:`GIVEN_LOOKS`), never alone (*give X to
 Y*)."""
 GIVEN_LOOKS = Phrases(tuple((*quick, what) for quick in ((), ("quick",), ("good",), ("little",), ("proper",))
                             for what in ("look", "check", "glance", "peek", "clean", "wipe", "dust",
-                                         "visit", "tidy", "scrub", "wash", "polish")))
+                                         "visit", "tidy", "scrub", "wash", "polish", "hoover", "sweep",
+                                         "mop", "spray"))
+                     + tuple((*quick, "once", "over") for quick in ((), ("quick",), ("good",))))
 """What *give X ...* gives X, after *a* (*give the toilet a quick look*): acting on X there."""
 BODY_PART_OWNERS = ("your", "my", "his", "her", "their")
 BODY_PART_LINKS = ("at", "using", "with", "on", "into")
@@ -504,6 +520,9 @@ POLITE = Phrases((
     *((owner, *main, noun, *be) for owner in ("the", "your", "my", "our")
       for main in ((), ("main",), ("only",)) for noun in _TASK_NOUNS for be in (("is", "to"), ("is",))),
     ("all", "you", "need", "to", "do", "is"), ("all", "you", "have", "to", "do", "is"),
+    # "(the) main thing is to ...": what the mission is, said as a remark
+    *((*the, main, "thing", "is", *to) for the in ((), ("the",)) for main in ("main", "only", "big")
+      for to in (("to",), ())),
     ("what", "i", "need", "is", "for", "you", "to"), ("i", "would", "like", "it", "if", "you"),
     ("i", "would", "appreciate", "it", "if", "you"), ("if", "you", "could"), ("if", "you", "would"),
     ("would", "you", "mind"), ("do", "me", "a", "favor", "and"), ("do", "me", "a", "favour", "and"),
@@ -519,6 +538,11 @@ POLITE = Phrases((
                    ("be", "thankful"))
       for modal in ((), ("could",), ("would",))),
     ("do", "you", "think", "you", "could"), ("any", "chance", "you", "could"),
+    *(("i", "would", "be", *very, glad, "if", "you", *modal)  # "I'd be ever so grateful if you could"
+      for very in (("ever", "so"), ("very",), ("so",), ("really",), ("most",))
+      for glad in ("grateful", "thankful") for modal in ((), ("could",), ("would",))),
+    ("is", "there", "any", "chance", "you", "could"), ("is", "there", "a", "chance", "you", "could"),
+    *(("would", "it", "be", "too", "much", "to", "ask", *you, "to") for you in ((), ("for", "you"))),
     ("could", "i", "ask", "you", "to"),
     ("can", "i", "ask", "you", "to"), ("would", "you", "be", "able", "to"), ("could", "you", "possibly"),
     ("can", "you", "possibly"), ("would", "you", "be", "willing", "to"), ("i", "would", "like", "you", "to"),
@@ -541,6 +565,8 @@ _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "c
                  *(("is", best) for best in ("quickest", "fastest", "shortest", "best", "easiest",
                                              "efficient", "cheapest")),
                  ("is", "most", "efficient"), ("works", "best"), ("makes", "sense"),
+                 ("is", "fine", "by", "me"), ("is", "fine", "with", "me"), ("is", "ok", "by", "me"),
+                 ("is", "okay", "by", "me"),
                  ("makes", "the", "most", "sense"), ("is", "the", "quickest"), ("is", "the", "fastest"),
                  ("is", "the", "shortest"))
 ANY_ORDER = Phrases((
@@ -556,7 +582,22 @@ ANY_ORDER = Phrases((
     ("in", "whichever", "order"), ("whatever", "order"), ("either", "order"), ("no", "particular", "order"),
     ("the", "order", "is", "up", "to", "you"), ("order", "is", "up", "to", "you"),
     ("i", "do", "not", "care", "about", "the", "order"), ("i", "do", "not", "mind", "the", "order"),
-    ("i", "do", "not", "mind", "about", "the", "order"), ("do", "not", "worry", "about", "the", "order")))
+    ("i", "do", "not", "mind", "about", "the", "order"), ("do", "not", "worry", "about", "the", "order"),
+    *((*the, "order", *really) for the in ((), ("the",))
+      for really in (("does", "not", "really", "matter"), ("really", "does", "not", "matter"),
+                     ("is", "not", "really", "important"), ("does", "not", "matter", "much"),
+                     ("does", "not", "matter", "at", "all"))),
+    ("i", "do", "not", "really", "mind", "the", "order"), ("i", "do", "not", "really", "care", "about", "the",
+                                                           "order"),
+    # "whichever's quickest", "however you like", "doesn't matter which order", "the order's up to you"
+    *((chooser, be, best) for chooser in ("whichever", "whatever") for be in ("is", "'s")
+      for best in ("quickest", "easiest", "fastest", "shortest", "simplest", "best")),
+    *(("however", "you", like) for like in ("like", "want", "prefer", "wish", "please")),
+    *((*it, *does, "matter", "which", "order") for it in ((), ("it",))
+      for does in (("does", "not"), ("doesnt",))),
+    ("no", "matter", "which", "order"), ("do", "not", "mind", "which", "order"),
+    ("i", "do", "not", "mind", "which", "order"), ("the", "order", "'s", "up", "to", "you"),
+    ("order", "'s", "up", "to", "you")))
 """Remarks that leave the order to the robot (the default of a set of goals; a numbered list is in order
 unless one of these is said with it)."""
 TIME_FILLERS = Phrases((
@@ -581,6 +622,7 @@ CLOSING = Phrases((
     ("that", "'s", "all"), ("that", "'s", "all", "for", "now"), ("that", "'s", "it"),
     ("that", "'s", "it", "for", "now"),
     ("that", "'s", "everything"), ("that", "is", "all"), ("that", "is", "it"), ("that", "is", "everything"),
+    ("that", "is", "all", "for", "now"), ("that", "is", "it", "for", "now"),
     ("that", "will", "be", "all"), ("that", "would", "be", "all"), ("that", "should", "be", "all"),
     ("have", "a", "nice", "day"), ("have", "a", "good", "day"), ("have", "a", "great", "day"),
     ("have", "a", "good", "one"), ("good", "luck"), ("have", "fun"), ("you", "the", "best"),
@@ -618,7 +660,34 @@ CLOSING = Phrases((
     ("when", "convenient"), ("when", "you", "can", "manage", "it"), ("no", "idea", "where"), ("no", "idea"),
     ("and", "then", "you", "are", "done"), ("then", "you", "are", "done"), ("you", "are", "done"),
     ("and", "you", "are", "done"), ("and", "that", "is", "it"), ("and", "that", "'s", "it"),
-    ("and", "that", "'s", "all"), ("and", "that", "is", "all"), ("done",), ("the", "end"), ("finished",)))
+    ("and", "that", "'s", "all"), ("and", "that", "is", "all"), ("done",), ("the", "end"), ("finished",),
+    # sign-offs of everyday speech: thanks to a person, thanks made stronger, praise, a warning word
+    *((thanks, who) for thanks in ("thanks", "cheers", "ta") for who in ("man", "dude", "pal", "love", "mate",
+                                                                       "buddy", "bud", "hun", "dear")),
+    *((*thanks, "ever", "so", "much") for thanks in (("thanks",), ("thank", "you"))),
+    *((*thanks, "a", "lot") for thanks in (("cheers",), ("ta",))),
+    ("thx",), ("ty",), ("tyvm",), ("cheers", "then"), ("mind",), ("mind", "you"), ("much", "obliged"),
+    ("nice", "one"), ("legend",), ("you", "are", "a", "legend"), ("love", "you"), ("love", "ya"), ("x",),
+    ("xx",), ("xxx",), ("urgent",), ("please", "and", "thanks"), ("cheers", "in", "advance"),
+    ("let", "me", "know"), ("thank", "you", "kindly"), ("thanks", "kindly"), ("thanks", "again"),
+    ("thank", "you", "again"), ("see", "ya"), ("see", "you"), ("see", "you", "soon"),
+    ("catch", "you", "later"),
+    ("take", "care"), ("appreciate", "you"), ("appreciate", "ya"), ("good", "robot"),
+    ("you", "rock"),
+    ("ta", "in", "advance"),
+    *((*and_, "that", be, "about", "it") for and_ in ((), ("and",)) for be in ("is", "'s")),
+    *((*ask, "me", "a", favour)
+      for ask in (("could", "you", "do"), ("can", "you", "do"), ("would", "you", "do"), ("do",))
+      for favour in ("favour", "favor")),
+    *((when, "you", *have, "a", sec) for when in ("when", "whenever")
+      for have in (("have", "got"), ("have", "get"), ("have",), ("get",), ("got",))
+      for sec in ("sec", "mo", "min")),
+    ("whenever", "you", "are", "ready"), ("whenever", "you", "are", "free"),
+    ("if", "that", "is", "fine"),
+    # praise only with thanks after it: "Is the kitchen lovely?" asks something
+    *((praise, *comma, thanks) for praise in ("lovely", "brilliant", "perfect", "great", "awesome", "super")
+      for comma in ((), (",",)) for thanks in ("thanks", "cheers", "ta")),
+    *(("if", "that", "'s", fine) for fine in ("alright", "ok", "okay", "fine"))))
 """Sign-offs (*thanks a lot*, *cheers*, *that's all for now*) and asides that ask nothing (*no rush*, *if
 possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
 of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""
@@ -634,9 +703,16 @@ noun phrase they are still asides (a condition needs a verb)."""
 CORRECTIONS = Phrases((("i", "mean"), ("i", "meant"), ("no", "wait"), ("wait", "no"), ("scratch", "that"),
                        ("make", "that"), ("correction",), ("or", "rather"), ("actually", "no"),
                        ("no", "sorry"), ("sorry", "no"), ("i", "said", "wrong"), ("my", "mistake"),
-                       ("my", "bad"), ("let", "me", "rephrase")))
+                       ("my", "bad"), ("let", "me", "rephrase"),
+                       # a bare "sorry" or "no" between commas: "the garage, sorry, the office"
+                       ("sorry", ","), ("no", ","), ("oops", ","), ("whoops", ","), ("er", "no"),
+                       ("no", "no"), ("hang", "on"), ("wait", "a", "sec"), ("wait", "a", "second"),
+                       ("sorry", "i", "mean")))
 """Words with which a speaker takes back what they said (*go to the kitchen, sorry, I mean the office*):
 which part stands is not read; refused."""
+UNFINISHED = DETERMINERS | frozenset({"to", "into", "in", "on", "at", "of", "through", "from", "by"})
+"""Words no clause ends with: one broken off after them at a dash is started again (*don't take the- don't go
+...*)."""
 _CHOOSERS = (("either",), ("any",), ("whichever",), ("either", "one"), ("any", "one"), ("whichever", "one"),
              ("any", "of", "them"), ("either", "of", "them"), ("whichever", "of", "them"), ("whatever",),
              ("whatever", "one"))
@@ -654,8 +730,12 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
     ("not", "important", "which"), ("no", "matter", "which", "one"),
     ("does", "not", "matter", "which", "one"), ("it", "does", "not", "matter", "which", "one"),
     ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"), ("is", "fine"),
+    ("do", "not", "mind", "which"), ("do", "not", "mind", "which", "one"), ("do", "not", "care", "which"),
+    ("i", "do", "not", "mind", "which", "one"), ("i", "do", "not", "really", "mind", "which"),
     ("your", "choice"), ("your", "pick"), ("take", "your", "pick"), ("you", "pick"), ("you", "choose"),
     ("it", "is", "up", "to", "you"), ("up", "to", "you"), ("i", "do", "not", "care"),
+    *((*just, pick, one) for just in ((), ("just",)) for pick in ("pick", "choose")
+      for one in ("one", "any", "whichever")),
 ) + tuple(("which", *one, "you", want) for one in ((), ("one",))  # "which one you want", as learners say it
         for want in ("want", "like", "prefer", "choose")))
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
@@ -943,18 +1023,23 @@ EVENT_WORDS = word_set(
 """Times of day, meals and events: *Before lunch, ...*, *After dinner, ...*, *Tonight, ...* only say when,
 which a mission cannot require; said at the start of a sentence they are set aside (said back), never read
 as the goal of *before / after*. A clock time (*at 6 pm*) or a delay (*in ten minutes*) is refused."""
+NAMED_DAYS = ("day", "night", "week", "weekend")
+"""After a thing, a day named for it (*Plant day!*): context, not the thing as a goal."""
 TIME_WORDS = word_set("this next tomorrow today tonight later soon early late right now for the at some "
-                      "point sometime first thing in a bit while before after by during around") | EVENT_WORDS
+                      "point sometime first thing in a bit while before after by during around all long"
+                      ) | EVENT_WORDS
 """Words of a time expression (*later this afternoon*, *at some point this evening*, *first thing
 tomorrow*); one with an event word (:data:`EVENT_WORDS`) only says when."""
 EVENT_VERBS = word_set("arrive arrives come comes leave leaves get gets back home start starts finish "
-                       "finishes end ends wake wakes up go goes out begin begins")
+                       "finishes end ends wake wakes up go goes out begin begins gone away asleep sleeping "
+                       "napping here working 's")
 """In a time expression of an event (*before the guests arrive*, *after I get back*)."""
 FEW = ("few", "couple", "several")
 TIME_UNITS = word_set("second seconds minute minutes min mins hour hours hr hrs sec secs")
 """*in ten minutes*, *wait 5 min*: a delay, which a mission cannot require (refused)."""
 TIME_OPENERS = ("before", "after", "by", "during", "for", "at", "around", "this", "tonight", "today",
-                "tomorrow", "later", "right", "first", "sometime", "some", "next", "early", "in")
+                "tomorrow", "later", "right", "first", "sometime", "some", "next", "early", "in", "all",
+                "while")
 """Words a time expression that opens a sentence starts with (*Before lunch, ...*, *Tonight, ...*)."""
 SUBJECT_PRONOUNS = word_set("i we he she they it there that this everyone everybody someone somebody "
                             "nobody everything something nothing")
@@ -976,6 +1061,12 @@ after a subject of no room or object, a statement."""
 NEED_WORDS = word_set("need needs needed want wants wanted should must ought require requires")
 """A statement of a need (*the plants need watering*): about a room or object of the scene it may ask for a
 goal that is not said, so it is refused; about anything else it is set aside."""
+PEOPLE_NOUNS = word_set("""cleaner cleaners plumber plumbers builder builders electrician kids children
+    family mum mom dad grandma grandpa granny nan baby neighbour neighbours neighbor neighbors friend friends
+    boss wife husband partner sister brother parents folks delivery courier postman""")
+"""People of an event (*before the cleaners come*, *while my mum's here*): not the robot, not a place."""
+HOW_MANY = word_set("a few couple several some lots loads plenty of them one more")
+"""Words of a clause that only says how many there are (*there's a few*, *there are a couple of them*)."""
 PEOPLE = word_set("i we he she they")
 """The people of an event (*after I get back*, *before we leave*): not the robot, not a place."""
 DEICTIC_SUBJECTS = ("it", "there", "this", "that")
@@ -983,14 +1074,31 @@ DEICTIC_SUBJECTS = ("it", "there", "this", "that")
 bathroom*)."""
 SEQUENCE_TIMES = ("later", "soon", "now")
 """Time words that alone order the steps (*Later, go to X*) rather than say when."""
-NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")}
+WHOLE_PERIODS = ({("all", period) for period in ("day", "morning", "afternoon", "evening", "night", "week",
+                                                  "weekend")}
+                 | {("all", "day", "long"), ("all", "night", "long")})
+"""*Don't go in the bathroom all day*: the whole mission's time, which orders nothing."""
+GREETING_TIMES = {(*good, period) for good in ((), ("good",))
+                  for period in ("morning", "afternoon", "evening")}
+"""*Morning!*, *Good evening*: a greeting, said back, which orders nothing."""
+NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")} | WHOLE_PERIODS | GREETING_TIMES
+"""Times that say when the whole mission is (now, a whole period), so that they put no goals in an order."""
 STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
-REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"),
+REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"), ("since",),
                    *(("so", who, what) for who in ("i", "we") for what in ("know", "can", "see")),
                    *(("to", *check, whether) for check in (("see",), ("check",), ("find", "out"))
-                     for whether in (("if",), ("whether",))), ("to", "make", "sure"), ("to", "test")))
+                     for whether in (("if",), ("whether",))), ("to", "make", "sure"), ("to", "test"),
+                   # "to check it's clean": a check of the state of what was just named, not a goal ("to
+                   # check that the oven is off" names the oven: people mean it as a goal, so it is read)
+                   *(("to", check, *who) for check in ("check", "see", "confirm", "verify", "ensure")
+                     for who in (("it", "is"), ("it", "'s"), ("they", "are"), ("it", "has"), ("they", "have"),
+                                 ("nothing", "is"), ("everything", "is"), ("everything", "'s")))))
 """A reason for an order, set aside to its clause's end (*... because the coffee's in there*, *... so I know
 you made it*, *... to see if the paint's dry*): it asks nothing."""
+ROOM_PARTS = word_set("floor floors door doors wall walls window windows carpet carpets rug ceiling tiles "
+                      "paint lights light heating")
+"""The parts of a room a statement is about (*the lobby floor is still wet*): context, not the room as a
+goal."""
 ORDER_JOINERS = ("so", "but")
 """Before an order, a clause boundary even without a comma (*my son is asleep so don't go up there*)."""
 LOCATIVE = word_set("in into on onto at inside under beside near by behind")
@@ -1002,20 +1110,22 @@ LOCATIVE = word_set("in into on onto at inside under beside near by behind")
 ARTICLES = frozenset({"a", "an", "the", "my", "your", "our"})
 TALK_NOUNS = frozenset({"plan", "few", "couple", "thing", "things", "favour", "favor", "request", "job",
                         "task", "tasks", "lot", "bit", "moment", "minute", "second", "question", "list",
-                        "day", "morning", "afternoon", "evening", "idea"})
+                        "day", "morning", "afternoon", "evening", "idea", "deal", "drill", "lowdown", "hand"})
 """After an article, only these say nothing (*here's the plan*, *I need a few things done*): any other word
 there could name something to go to (*feed the cat* where the scene has no cat must be refused, not
 skipped)."""
 OPENERS = frozenset({"hi", "hello", "hey", "okay", "ok", "alright", "well", "so", "good", "thanks", "thank",
                      "i", "we", "here", "right", "cheers", "morning", "evening", "afternoon", "sorry",
                      "alexa", "siri", "google", "robot", "buddy", "yo", "yeah", "hiya", "heya", "howdy",
-                     "yes", "yep"})
+                     "yes", "yep", "oi", "oy", "ahoy"})
 """Chit-chat starts with a greeting, an interjection or the speaker (*I'm hungry*, *here's the plan*); a
 sentence starting otherwise may be an order about something the scene lacks (*feed pets*), so it is parsed
 (and refused) instead."""
 AUXILIARIES = frozenset({"am", "are", "is", "was", "were", "have", "has", "will", "would"})
 """In chit-chat (*hope you're well*): no role, although *are* is a word of the grammar elsewhere."""
-GREETINGS = frozenset({"hi", "hello", "hey", "hiya", "heya", "howdy"})
+GREETINGS = frozenset({"hi", "hello", "hey", "hiya", "heya", "howdy", "oi", "oy", "yo", "ahoy"})
+INTERJECTIONS = HESITATIONS | GREETINGS | frozenset({"ok", "okay", "oh", "oops", "hmm", "fyi", "btw", "ps"})
+"""Words before a statement that say nothing (*ok I dropped my keys somewhere, ...*)."""
 """*Hi there!*: after a greeting, *there* is no place."""
 
 # -------------------------------------------------------------------------------------- phrase aliases
@@ -1076,6 +1186,74 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("either", "way"): ("also",),
     ("in", "any", "case"): ("also",),
     ("regardless",): ("also",),
+    # contractions and spellings of speech: "till" / "til" is "until"; "'s got" is "has"
+    ("till",): ("until",),
+    ("til",): ("until",),
+    ("'s", "got"): ("has",),
+    ("is", "got"): ("has",),
+    ("is", "only", "got"): ("only", "has"),
+    ("is", "just", "got"): ("only", "has"),
+    ("has", "got"): ("has",),
+    ("have", "got"): ("have",),
+    ("has", "not", "got"): ("does", "not", "have"),
+    ("have", "not", "got"): ("do", "not", "have"),
+    ("'s", "only", "got"): ("only", "has"),
+    ("has", "only", "got"): ("only", "has"),
+    ("'s", "just", "got"): ("only", "has"),
+    ("has", "just", "got"): ("only", "has"),
+    ("oh", "and"): ("and",),
+    # remarks that start a sentence: "P.S." / "btw" / "by the way" add to the mission ("also"); "no worries if
+    # not" makes a goal optional, which is refused as "optionally" is
+    ("p", ".", "s", "."): ("also",),
+    ("ps",): ("also",),
+    ("one", "more", "thing"): ("also",),
+    # punctuation dictated as words ("go to the kitchen comma then the office period")
+    ("comma",): (",",),
+    ("full", "stop"): (".",),
+    ("period",): (".",),
+    ("question", "mark"): ("?",),
+    ("exclamation", "mark"): ("!",),
+    ("exclamation", "point"): ("!",),
+    ("new", "line"): (".",),
+    ("new", "paragraph"): (".",),
+    ("just", "one", "more", "thing"): ("also",),
+    ("btw",): ("also",),
+    ("by", "the", "way"): ("also",),
+    ("no", "worries", "if", "not"): ("optionally",),
+    ("no", "problem", "if", "not"): ("optionally",),
+    ("if", "not", ",", "no", "worries"): ("optionally",),
+    ("if", "not", ",", "no", "problem"): ("optionally",),
+    # operator shorthand of words that are no room or object: "chk" is "check", "GF" the ground floor
+    ("chk",): ("check",),
+    ("chck",): ("check",),
+    ("pls",): ("please",),
+    ("plz",): ("please",),
+    ("gf",): ("ground", "floor"),
+    ("upstrs",): ("upstairs",),
+    ("dwnstrs",): ("downstairs",),
+    ("downstrs",): ("downstairs",),
+    ("dnstrs",): ("downstairs",),
+    ("nxt",): ("next",),
+    ("u",): ("you",),
+    ("ur",): ("your",),
+    ("thru",): ("through",),
+    ("tonite",): ("tonight",),
+    ("tmrw",): ("tomorrow",),
+    ("tmr",): ("tomorrow",),
+    ("rn",): ("right", "now"),
+    ("lmk",): ("let", "me", "know"),
+    # light verbs: "have / having a look at X" is "take a look at X" (wherever the verb stands)
+    **{(have, "a", *quick, look): (take, "a", *quick, look)
+       for have, take in (("have", "take"), ("having", "taking"), ("had", "took"))
+       for quick in ((), ("quick",), ("little",), ("good",), ("proper",))
+       for look in ("look", "peek", "glance")},
+    # times that only give context: "first thing (in the morning)" opens the day, that is first; "before bed
+    # tonight" is bedtime (not the bed)
+    ("first", "thing"): ("first",),
+    ("first", "thing", "in", "the", "morning"): ("first",),
+    ("before", "bed", "tonight"): ("before", "bedtime", "tonight"),
+    ("before", "going", "to", "bed"): ("before", "bedtime"),
+    ("before", "you", "go", "to", "bed"): ("before", "bedtime"),
     ("set", "foot", "in"): ("enter",),
     ("set", "foot", "into"): ("enter",),
     ("set", "foot", "on"): ("enter",),

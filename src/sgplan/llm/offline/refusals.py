@@ -356,6 +356,11 @@ def again_not_a_goal(said: str) -> str:
     return rephrase(f"'{said} again': it was not a goal before")
 
 
+def again_after_choice(said: str) -> str:
+    return rephrase(f"'{said} again' after a choice among them: each of them, or the one chosen before? Say "
+                    "'each of the ... again' to visit every one, or name the one to visit again")
+
+
 def revisit_without_first_visit() -> str:
     return rephrase("'again' / 'back to' needs the first visit earlier in the same sequence (e.g. 'go to "
                     "the kitchen, then the bedroom, then back to the kitchen')")

@@ -1,14 +1,16 @@
 """Tokens of a mission text, with their character spans, split into sentences and list items.
 
 Text is lower-cased; contractions are expanded (``don't`` -> ``do not``, ``we're`` -> ``we are``), a
-possessive ``'s`` becomes its own token, parentheses and dashes between words (an em or en dash, ``--``, a
-spaced ``-``) become commas (an aside). Entity IDs (``room_2``, ``object_27``) stay single tokens, so
-already-grounded text is understood too.
+possessive ``'s`` becomes its own token (``'s`` after *that*, *there*, *here* ... is *is*), parentheses and
+dashes between words (an em or en dash, ``--``, a spaced ``-``, a ``-`` right after a word that breaks it
+off: *the- the office*) become commas (an aside). Entity IDs (``room_2``, ``object_27``) stay single tokens,
+so already-grounded text is understood too.
 
 Notations are read as the words they stand for (:data:`.lexicon.SYMBOLS`): an arrow (``->``, ``>``, ``→``)
-is *then*, ``+`` and ``&`` are *and*, ``w/`` is *with*; a clock time (``6 pm``, ``18:30``) is one token. Any
-other symbol is kept as a token of its own, so that the grammar refuses it by name: nothing typed is ever
-dropped unread, except quotation marks and the hyphen inside a word (*ground-floor*), which change nothing.
+is *then*, ``+`` and ``&`` are *and*, ``w/`` is *with*, ``b/c`` *because*, ``b4`` *before*; a clock time
+(``6 pm``, ``18:30``) is one token. Any other symbol is kept as a token of its own, so that the grammar
+refuses it by name: nothing typed is ever dropped unread, except quotation marks and the hyphen inside a word
+(*ground-floor*), which change nothing.
 
 A sentence ends at ``.``, ``;``, ``!``, ``?``, ``:`` and at a line break; a list item (a line or a
 sentence starting with ``1.``, ``2)``, ``(3)``, or a bullet ``-``, ``*``, ``•`` at the start of a line)
@@ -25,6 +27,7 @@ from sgplan.llm.offline.lexicon import (
     BARE_CONTRACTIONS,
     BARE_NEGATED,
     CONTRACTIONS,
+    IS_CONTRACTED,
     LINE_CONTINUES,
     NEGATED_STEMS,
     NUMBERED,
@@ -37,11 +40,11 @@ _WORD = re.compile(
     r"|(?P<clock>(?:[01]?\d|2[0-3])(?::[0-5]\d(?:\s?[ap]\.?m\b\.?)?|\s?[ap]\.?m\b\.?))"  # 6 pm, 18:30
     r"|(?P<times>\d+x\b|\bx\d+\b)"  # 2x / x2: that many times
     r"|(?P<number>\d+(?:st|nd|rd|th)?)"
-    r"|(?P<with>w/o\b|w/)"
+    r"|(?P<with>w/o\b|w/|b/c\b|\bb4\b)"
     r"|(?P<word>[a-z]+(?:'[a-z]+)?|'s\b)"
     r"|(?P<bullet>^[ \t]*[-*\u2022\u00b7\u2023\u25e6\u25aa](?=[ \t]))"  # at the start of a line
     r"|(?P<arrow>-+>|=+>|>+|[\u2192\u21d2\u27f6\u2794\u279c\u27a1])"
-    r"|(?P<punct>[,.;:!?()\[\]{}])|(?P<dash>[\u2014\u2013]|--|(?<=\s)-(?=\s))|(?P<ellipsis>\u2026)"
+    r"|(?P<punct>[,.;:!?()\[\]{}])|(?P<dash>[\u2014\u2013]|--|(?<=\s)-(?=\s)|(?<=\w)-(?=\s))|(?P<ellipsis>\u2026)"
     r"|(?P<newline>\n)"
     r"|(?P<silent>(?<=\w)-(?=\w)|[\"'`\u201c\u201d\u2018])"  # a hyphen inside a word, quotation marks
     r"|(?P<symbol>[^\s\w])",  # any other symbol: a token of its own, refused by the grammar
@@ -113,7 +116,8 @@ def tokenize(text: str) -> list[Tok]:
             stem = word[:-3]
             out += [Tok(NEGATED_STEMS.get(stem + "n", stem), start, end), Tok("not", start, end)]
         elif word.endswith("'s") and len(word) > 2:
-            out += [Tok(word[:-2], start, end - 2), Tok("'s", end - 2, end)]
+            said = "is" if word[:-2] in IS_CONTRACTED else "'s"  # "that's", "there's": never a possessive
+            out += [Tok(word[:-2], start, end - 2), Tok(said, end - 2, end)]
         elif "'" in word and kind == "word":
             stem, suffix = word.split("'", 1)  # you're, we'll, I'd: the verb they stand for
             verb = [Tok(CONTRACTIONS[suffix], start, end)] if suffix in CONTRACTIONS else []

@@ -171,6 +171,12 @@ def choice_remark(phrases: list[Grounded], remark: tuple[str, ...] | None,
         rf.refuse(rf.remark_after_each(" ".join(words), said(phrases[0].start, phrases[-1].end)))
 
 
+def chosen_before(phrase: Grounded, ctx: SentenceContext) -> bool:
+    """Whether ``phrase`` (each of several) names again a goal that was a choice among the same entities."""
+    return any(r.role == "goal" and r.start < phrase.start and r.mode == "any"
+               and set(phrase.entities) <= set(r.entities) for r in ctx.disc.references)
+
+
 def named_before(phrases: list[Grounded], ctx: SentenceContext) -> bool:
     """Whether every entity of ``phrases`` was a goal before them; an object in room X named as a goal was a
     visit of X too (*a vase in the lobby, ..., the lobby again*), when every object it allowed is in X."""
@@ -190,6 +196,10 @@ def repeats(phrases: list[Grounded], steps: list[Step], repeat: Repeat, going_ba
     before = named_before(phrases, ctx)
     if repeat.again and not before:
         rf.refuse(rf.again_not_a_goal(ctx.disc.said(phrases[0].start, phrases[-1].end)))
+    chosen = next((g for g in phrases if repeat.again and g.mode != "any" and len(g.entities) > 1
+                   and chosen_before(g, ctx)), None)
+    if chosen is not None:  # "the TV (either one), ..., then back to the TVs again": each, or the one chosen?
+        rf.refuse(rf.again_after_choice(ctx.disc.said(chosen.start, chosen.end)))
     if repeat.again or (going_back and before):
         for task in steps[0]:
             task.revisit = True

@@ -25,7 +25,7 @@ from sgplan.llm.offline.nouns import NounLexicon
 from sgplan.llm.offline.spelling import Spelling
 from sgplan.llm.offline.syntax.appositions import join_appositions
 from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement
-from sgplan.llm.offline.syntax.corrections import corrected
+from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
 from sgplan.llm.offline.syntax.lists import read_lists
 from sgplan.llm.offline.syntax.not_needed import split_not_needed
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
@@ -39,10 +39,10 @@ __all__ = ["Match", "Reader", "Refusal", "parse_sentence", "split_mission"]
 
 def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = None) -> list[Reader]:
     """The sentences of ``text`` to parse, its lists and what a colon announced read with them
-    (:mod:`.lists`), its context set aside (:mod:`.context`), and without leading chit-chat: sentences before
-    the first one with content (*Hi!*), and the chit-chat clause before the first comma of that one (*I'm
-    hungry, go ...*). Sentences that say where the robot is (*I'm downstairs right now.*) and those set aside
-    are kept wherever they are."""
+    (:mod:`.lists`), its context set aside (:mod:`.context`), and its leading chit-chat set aside (said back,
+    never read): sentences before the first one with content (*Hi!*), and the chit-chat clause before the
+    first comma of that one (*Okay, go ...*). Sentences that say where the robot is (*I'm downstairs right
+    now.*) and those set aside are kept wherever they are."""
     tokens = [t for t in rewrite(tokenize(text), lx.PHRASE_ALIASES) if t.text not in lx.SOUNDS]
     out: list[Reader] = []
     content = False
@@ -50,16 +50,18 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     spelling = spelling or Spelling(nouns)
     readers = [Reader(p.toks, text, nouns, marker=p.marker, new_line=p.new_line, spelling=spelling)
                for p in parts]
-    for r in read_lists(readers):
+    for r in joined_appositions(read_lists(readers)):
         if stated_start(r) is not None or r.aside:
             out.append(r)
             continue
         if not content:
             if is_chitchat(r, 0, len(r)) and statement(r, 0, len(r)) is None:
-                continue  # "Hi!", "Okay, here's the plan." (a statement is said back: "We're hosting dinner")
+                out.append(replace(r, aside=True))  # "Hi!", "Okay, here's the plan.": said back
+                continue
             cut = leading_clause(r)
             if cut and statement(r, 0, cut - 1) is None:
-                r = replace(r, toks=r.toks[cut:])  # "Okay, go to ..." ("I'm hungry, ..." is said back)
+                out.append(replace(r, toks=r.toks[:cut - 1], aside=True))  # "Okay, go to ...": "Okay"
+                r = replace(r, toks=r.toks[cut:])  # ("I'm hungry, ..." is said back as a statement)
             content = True
         out += corrected(r)  # "go to the kitchen, no wait, the dining room": the dining room
     return join_appositions(split_not_needed(set_aside_context(out)))

@@ -256,8 +256,9 @@ def action_tail(r: Reader, i: int, node: Action) -> Parse[Action]:
     ordered = r.phrase(i + comma, lx.ORDER_MODIFIERS)
     if ordered is not None:
         node, i = replace(node, ordered=True), i + comma + len(ordered)
-    elif node.phrases is not None and node.phrases.comma_list and r.phrase(i + comma, lx.THEN_NEXT):
-        node = replace(node, ordered=True)  # "the fridge, the oven, then the couch": as written
+    elif node.phrases is not None and node.phrases.comma_list and (r.phrase(i + comma, lx.THEN_NEXT)
+                                                                   or action_then_ahead(r, i)):
+        node = replace(node, ordered=True)  # "the fridge, the oven, (go up to X,) then ...": as written
     if r.word(i) in lx.LAST and r.word(i + 1) in ("", ","):
         node, i = replace(node, last=True), i + 1  # "the kitchen and the office last"
     repeat = repeats(r, i)
@@ -273,6 +274,22 @@ def action_tail(r: Reader, i: int, node: Action) -> Parse[Action]:
     if repeat.node is not None:
         node, i = replace(node, repeat=repeat.node), repeat.end
     return destination_and_purpose(r, i, node)
+
+
+def action_then_ahead(r: Reader, i: int) -> bool:
+    """Whether a comma at ``i`` joins an action (*..., pop up to the bedroom, then ...*) to a sequence that a
+    *then* later in the sentence makes: comma-joined steps before a *then* are done as written."""
+    nxt = r.word(i + 1)
+    if (r.word(i) != "," or not nxt.isalpha() or r.np_starts(i + 1) or nxt in lx.STRUCTURAL
+            or (nxt in lx.FILLERS and nxt not in lx.POSITIVE_VERBS) or nxt in lx.REFUSED_WORDS
+            or r.phrase(i + 1, lx.NEG_STARTS) or r.phrase(i + 1, lx.WAYPOINT)):
+        return False
+    for j in range(i + 1, len(r)):
+        if r.word(j) in ("if", "whenever", "until", "unless", "when", "while", "order", "whichever"):
+            return False  # a condition, or "(in any order)" / "whichever first": not a sequence
+        if r.phrase(j, lx.THEN_NEXT) and r.word(j - 1) in (",", "and"):
+            return True
+    return False
 
 
 def repeats(r: Reader, i: int) -> Parse[Repeat | None]:

@@ -12,7 +12,7 @@ from typing import Literal
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
-from sgplan.llm.offline.syntax.actions import action, after_conjunction, times_before_place
+from sgplan.llm.offline.syntax.actions import action, action_then_ahead, after_conjunction, times_before_place
 from sgplan.llm.offline.syntax.links import closing_at, done_words, link
 from sgplan.llm.offline.syntax.negation import negation, off_limits, stay_on_floor
 from sgplan.llm.offline.syntax.phrases import there_then_verb
@@ -185,17 +185,7 @@ def goals_first(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
 def comma_sequence(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """At a comma between two actions (*go to the kitchen, pop up to the bedroom, then ...*): a *then*
     later in the sentence makes the comma-joined actions a sequence too, as people write them."""
-    nxt = r.word(i + 1)
-    if (r.word(i) != "," or not before or not nxt.isalpha() or r.np_starts(i + 1) or nxt in lx.STRUCTURAL
-            or (nxt in lx.FILLERS and nxt not in lx.POSITIVE_VERBS) or nxt in lx.REFUSED_WORDS
-            or r.phrase(i + 1, lx.NEG_STARTS) or r.phrase(i + 1, lx.WAYPOINT)):
-        return None
-    for j in range(i + 1, len(r)):
-        if r.word(j) in ("if", "whenever", "until", "unless", "when", "while", "order", "whichever"):
-            return None  # a condition, or "(in any order)" / "whichever first": not a sequence
-        if r.phrase(j, lx.THEN_NEXT) and r.word(j - 1) in (",", "and"):
-            return Match(CommaSequence(), i + 1)
-    return None
+    return Match(CommaSequence(), i + 1) if before and action_then_ahead(r, i) else None
 
 
 @ITEMS.rule("where you X")

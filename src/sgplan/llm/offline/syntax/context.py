@@ -25,6 +25,7 @@ from sgplan.llm.offline.syntax.phrases import noun_phrase
 from sgplan.llm.offline.syntax.preamble import stated_start
 from sgplan.llm.offline.syntax.reader import Match, Reader
 from sgplan.llm.offline.syntax.tree import Described, NounPhrase
+from sgplan.llm.offline.text import is_clock_time
 
 
 def set_aside_context(readers: list[Reader]) -> list[Reader]:
@@ -32,28 +33,41 @@ def set_aside_context(readers: list[Reader]) -> list[Reader]:
     docstring)."""
     out: list[Reader] = []
     for r in readers:
-        out += [r] if r.aside or stated_start(r) is not None else split(r)
+        said_before = any(not o.aside for o in out)
+        out += [r] if r.aside or stated_start(r) is not None else split(r, said_before)
     return out
 
 
-def split(r: Reader) -> list[Reader]:
+def split(r: Reader, said_before: bool = False) -> list[Reader]:
     """A sentence, its leading and trailing context clauses set aside, and the times said between its
-    clauses."""
+    clauses; ``said_before``: sentences with content came before it (then *it* after a statement that names
+    a room or object could be read as what they named last: not set aside, so refused)."""
     if event_note(r, 0, len(r)) or is_time(r, 0, len(r)):
         return [aside(r, 0, len(r))]
     clauses = comma_clauses(r)
+    if closing_only(r, 0, len(r)):
+        return [aside(r, 0, len(r))]  # "Thanks a lot!", "Lovely, cheers.": a sign-off, said back
+    opening = replace(r, toks=r.toks[:clauses[0][1]])
+    if len(clauses) > 1 and stated_start(opening) is not None:  # "I'm on the middle floor - stay on it, ..."
+        return [opening, *split(replace(r, toks=r.toks[skip_joiner(r, clauses[1][0]):]), said_before)]
     first, last = 0, len(clauses)
-    while first < last and is_context(r, *clauses[first], leading=True):
+    while first < last and (is_context(r, *clauses[first], leading=True) or closing_only(r, *clauses[first])):
         first += 1
+    while first > 0 and closing_only(r, *clauses[first - 1]):
+        first -= 1  # "Oh, and the dog's asleep in there, so ...": a remark before context is context too
     while last > first and is_context(r, *clauses[last - 1], leading=False):
         last -= 1
     if first == last or (first > 0 and mere_talk(r, clauses[first][0], clauses[last - 1][1])):
         return [aside(r, 0, len(r))]
+    if said_before and first and mentions(aside(r, 0, clauses[first - 1][1])) and any(
+            w in lx.PRONOUNS for w in r.words[clauses[first][0]:]):
+        return [r]  # "the lobby floor is wet, so avoid it": 'it' would be the goal named last: refused
     kept = [aside(r, clauses[0][0], clauses[first - 1][1])] if first else []
     start = skip_joiner(r, clauses[first][0]) if first else 0
     # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
-    middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c)]
-    words = [k for k in range(start, clauses[last - 1][1]) if not any(a <= k < b for a, b in middle)]
+    middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c) or counted(r, *c)]
+    words = [k for k in range(start, clauses[last - 1][1])
+             if not any(a <= k < b or (k == a - 1 and r.word(k) == ",") for a, b in middle)]
     kept += [replace(r, toks=tuple(r.toks[k] for k in words))] + [aside(r, a, b) for a, b in middle]
     if last < len(clauses):
         kept.append(aside(r, clauses[last][0], len(r)))
@@ -83,14 +97,36 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
     it*, *... to make sure they're sturdy*): from the reason word to the clause's end or its next *then*;
     ``None`` when there is none, or when it says what not to do or asks something (*because I need you to
     ...*: left to the parser)."""
-    k = next((k for k in range(start, end) if r.phrase(k, lx.REASONS)), None)
+    k = next((k for k in range(start, end) if r.phrase(k, lx.REASONS) or purpose(r, k, end)), None)
     if k is None:
         return None
     stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
-    said = range(k + len(r.phrase(k, lx.REASONS) or ()), stop)
-    if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) for j in said):
-        return None
+    said = range(k + len(r.phrase(k, lx.REASONS) or ("for",)), stop)
+    if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) or is_clock_time(r.word(j))
+           or r.word(j) in lx.TIME_UNITS for j in said):
+        return None  # what not to do, a question to the robot, a clock time or a delay: left to the parser
     return k, stop
+
+
+def purpose(r: Reader, k: int, end: int) -> bool:
+    """Whether *for ...* at ``k`` says what an order is for, up to the clause's end or its *then*, with words
+    of no role in the grammar (*for popcorn*, *for the guests*, *for Mum's party*): not a room or object of
+    the scene, not the speaker (*for me*), not a duration (*for ten minutes*, *for a sec*)."""
+    if r.word(k) != "for" or k == 0:
+        return False
+    stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
+    said = range(k + 1, stop)
+    return 0 < len(said) <= 4 and all(
+        (w := r.word(j)) in lx.ARTICLES or w in lx.POSSESSIVES or w == "'s" or w in lx.EVENT_WORDS
+        or (w.isalpha() and w not in lx.LEXICON_WORDS and r.head(j) is None) for j in said) and not any(
+        r.word(j) in lx.TIME_UNITS or r.word(j) in lx.SEQUENCE_TIMES for j in said)
+
+
+def counted(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` only says how many there are (*there's a few*, *there are two of
+    them*): what to do with them is said around it (*..., any one's fine*)."""
+    return (r.word(start) == "there" and r.word(start + 1) in ("is", "are") and end > start + 2
+            and all(w in lx.HOW_MANY or w in lx.NUMBER_WORDS or w.isdigit() for w in r.words[start + 2:end]))
 
 
 def is_reason(r: Reader, start: int, end: int) -> bool:
@@ -119,16 +155,30 @@ def skip_joiner(r: Reader, i: int) -> int:
 def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
     """Whether the clause ``[start, end)`` only gives context: a time (opening or closing the sentence), or a
     statement that is not a need about the scene (see the module docstring)."""
-    return (is_time(r, start, end) or statement(r, skip_joiner(r, start), end) == "aside"
+    said = skip_joiner(r, r.skip(start, lx.INTERJECTIONS))  # "ok I dropped my keys somewhere, ..."
+    return (is_time(r, start, end) or statement(r, said, end) == "aside"
             or event_note(r, start, end) or is_reason(r, start, end))
+
+
+def closing_only(r: Reader, start: int, end: int) -> bool:
+    """Whether the words ``[start, end)`` are only remarks that ask nothing (*Oh*, *Right*, *Thanks*, *Lovely,
+    cheers*)."""
+    k = skip_joiner(r, start)
+    while k < end and (said := r.phrase(k, lx.CLOSING) or ((r.word(k),) if r.word(k) in lx.HESITATIONS
+                                                           or r.word(k) == "," else None)):
+        k += len(said)
+    return start < k == end
 
 
 def event_note(r: Reader, start: int, end: int) -> bool:
     """*Movie night later!*, *Big day tomorrow*: words about an event, with no room, object, verb or word of
-    the grammar."""
+    the grammar; or a day named after a thing (*Plant day!*), which asks nothing."""
     words = r.words[start:end]
     if not any(w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES for w in words):
         return False
+    head = r.head(start)
+    if head is not None and start + head.words == end - 1 and words[-1] in lx.NAMED_DAYS:
+        return True  # "Plant day!", "Laundry day" (not "Kitchen tonight": a goal and a time)
     return not any(r.head(k) is not None or r.word(k) in lx.POSITIVE_VERBS or r.word(k) in lx.REFUSED_WORDS
                    or (r.word(k) in lx.STRUCTURAL and r.word(k) not in lx.TIME_WORDS)
                    or not r.word(k).isalpha() for k in range(start, end))
@@ -146,12 +196,13 @@ def is_time(r: Reader, start: int, end: int) -> bool:
     """*Before lunch*, *this morning*, *at some point this evening*, *tonight*, *right now*: a time of day,
     meal or event (not *later* or *now* alone, which order the steps)."""
     words = r.words[start:end]
-    event = words[:1] in (("before",), ("after",), ("by",))  # "before the guests arrive", "after I get back"
-    said = [w in lx.TIME_WORDS or (event and (w in lx.EVENT_VERBS or w in lx.PEOPLE)) for w in words]
+    event = words[:1] in (("before",), ("after",), ("by",), ("while",))  # "before the guests arrive"
+    said = [w in lx.TIME_WORDS or (event and (w in lx.EVENT_VERBS or w in lx.PEOPLE or w in lx.PEOPLE_NOUNS
+                                              or w in lx.POSSESSIVES or w in lx.AUXILIARIES)) for w in words]
     if not words or not all(said):
         return False
-    events = [w for w in words
-              if (w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES) or (event and w in lx.PEOPLE)]
+    events = [w for w in words if (w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES)
+              or (event and (w in lx.PEOPLE or w in lx.PEOPLE_NOUNS))]
     return bool(events) or tuple(words) in lx.NOW_SAID
 
 
@@ -176,7 +227,8 @@ def statement(r: Reader, start: int, end: int) -> str | None:
     aside_of = r.phrase(start - 1, lx.ASIDE)  # "the couch, it's in the kitchen": a qualifier of the couch
     qualifies = aside_of is not None and r.word(start - 1 + len(aside_of)) in lx.ASIDE_QUALIFIERS
     if (k is None or r.phrase(k, lx.OFF_LIMITS) or qualifies or locates(r, start, k, end)
-            or any(w in lx.LIST_NOUNS for w in r.words[start:k]) or r.word(k + 1) == "to"):
+            or any(w in lx.LIST_NOUNS for w in r.words[start:k])
+            or (r.word(k) in lx.STATEMENT_LINKS and r.word(k + 1) == "to")):
         # "the kitchen is off limits", "the couch, it's in the kitchen", "the bowl is in the sink", "the next
         # task is to ...": not mere context
         return None
@@ -207,11 +259,16 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         said = noun_phrase(r, start, "qualifier") if r.np_starts(start) else None
         if isinstance(said, Match) and said.end < end and r.word(said.end) in lx.STATEMENT_VERBS:
             return said.end  # "the plants are looking sad"
+        if (isinstance(said, Match) and r.word(said.end) in lx.ROOM_PARTS
+                and r.word(said.end + 1) in lx.STATEMENT_VERBS):
+            return said.end + 1  # "the lobby floor is still wet": about a part of the room
         if not plain_word(r, start + 1):
             return None  # "the kitchen and the office": goals
         return next((j for j in range(start + 2, min(start + 5, end)) if finite_verb(r.word(j))), None)
     verb = r.word(start + 1)
-    if (w.isalpha() and r.head(start) is None and (w not in lx.LEXICON_WORDS or w in lx.RELATIVE_FLOORS)
+    if (w.isalpha() and r.head(start) is None
+            and (w not in lx.LEXICON_WORDS or w in lx.RELATIVE_FLOORS or w in lx.EVENT_WORDS
+                 or w in lx.PEOPLE_NOUNS)
             and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
         return start + 1  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
     return None

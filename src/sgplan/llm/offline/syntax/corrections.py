@@ -7,6 +7,19 @@ with the new phrase only; the old phrase and the correction words are set aside 
 the mission*). Only that shape is read: when the words after the correction are not one noun phrase closing
 the clause, or no noun phrase ends right before it, the correction stays in the sentence and is refused
 (which part stands is not known).
+
+A clause broken off after a word that cannot end one (*the*, *to*, *into*), at a dash or a pause (a comma,
+*uh*), and started again
+with the same first word (*don't take the- don't go through the living room*), or with the words before
+the dash (*the plant in the- the plant in the office*), is a restart: the broken words are set aside and said
+back, and the sentence is read from the restart.
+
+A sentence that is only *the one(s) ...* right after one that ends with a noun phrase says which one that
+is (*water the plant. the one in the living room.*): it is read as an apposition of that phrase (*the plant,
+the one in the living room*).
+
+A sentence opening with words it says again at the end of its next clause (*floor one, the office on floor
+one, check ...*; *kitchen, go to the kitchen*) is a restatement: the first saying is set aside and said back.
 """
 
 from __future__ import annotations
@@ -18,21 +31,89 @@ from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax.phrases import noun_phrase
 from sgplan.llm.offline.syntax.reader import Match, Reader
 from sgplan.llm.offline.syntax.tree import Described, NounPhrase
+from sgplan.llm.offline.text import Tok
 
 _AROUND = frozenset({",", "sorry"})
 """Words between the old phrase, the correction and the new phrase (*the office, sorry, I mean ...*)."""
 _CLAUSE_ENDS = ("", ",", "and", "then")
+_WITHIN = ("in", "on", "inside", "at", "of")
+"""Before a place said again inside the phrase that restates it (*the office on floor one*)."""
+_OPENING = lx.HESITATIONS | lx.GREETINGS | frozenset({",", "okay", "ok", "robot"})
+"""Words before what a sentence restates (*um okay floor one, the office on floor one*)."""
 
 
 def corrected(r: Reader) -> list[Reader]:
     """``r`` with each self-correction applied (the sentence to read, then the words set aside), or ``[r]``
     when it has none that can be read."""
+    restart = restarted(r) or restated(r)
+    if restart is not None:
+        return [*corrected(restart[0]), restart[1]]
     for k in range(1, len(r)):
         said = r.phrase(k, lx.CORRECTIONS)
         if said is not None:
             fixed = replaced(r, k, k + len(said))
             return [r] if fixed is None else [*corrected(fixed[0]), fixed[1]]
     return [r]
+
+
+def joined_appositions(readers: list[Reader]) -> list[Reader]:
+    """``readers`` with each sentence that is only *the one(s) ...* joined to the sentence before it, after
+    a comma (see the module docstring)."""
+    out: list[Reader] = []
+    for r in readers:
+        before = out[-1] if out else None
+        if (before is not None and not before.aside and not r.aside and r.marker is None
+                and r.word(0) == "the" and r.word(1) in lx.ANAPHORIC_ONE and len(r) > 2
+                and isinstance(noun_phrase(r, 0, "goal"), Match) and ends_with_phrase(before)):
+            comma = Tok(",", before.toks[-1].end, before.toks[-1].end)
+            out[-1] = replace(before, toks=(*before.toks, comma, *r.toks))
+            continue
+        out.append(r)
+    return out
+
+
+def ends_with_phrase(r: Reader) -> bool:
+    """Whether the sentence ``r`` ends with a noun phrase of a head noun (*water the plant*)."""
+    return any(phrase_to(r, j, len(r)) is not None for j in range(max(0, len(r) - 6), len(r))
+               if r.head(j) is not None or r.word(j) in lx.DETERMINERS)
+
+
+def restarted(r: Reader) -> tuple[Reader, Reader] | None:
+    """The sentence read from a restart (see the module docstring), and the broken words set aside;
+    ``None`` when it has no restart."""
+    for cut in range(1, len(r) - 1):
+        if r.word(cut - 1) not in lx.UNFINISHED or r.word(cut) != ",":
+            continue  # a clause never ends with "the" or "to": a comma (a dash, a pause) after it breaks it
+        again = r.skip(cut, (",",))
+        start = max((k + 1 for k in range(cut) if r.word(k) in lx.CLAUSE_ENDS and r.word(k)), default=0)
+        # a stutter says again the words broken off: "the plant in the- the plant in the office"
+        start = next((k for k in range(start, cut) if r.words[k:cut] == r.words[again:again + cut - k]),
+                     start)
+        if r.word(start) == r.word(again):
+            kept = replace(r, toks=r.toks[:start] + r.toks[again:])
+            return kept, replace(r, toks=r.toks[start:again], aside=True)
+    return None
+
+
+def restated(r: Reader) -> tuple[Reader, Reader] | None:
+    """The sentence without the words it opens with and says again at the end of its next clause (see the
+    module docstring), and those words set aside; ``None`` when it opens otherwise."""
+    start = r.skip(0, _OPENING)
+    if "," not in r.words[start:]:
+        return None
+    comma = r.words.index(",", start)
+    said = r.words[start:comma]
+    clause_end = r.words.index(",", comma + 1) if "," in r.words[comma + 1:] else len(r)
+    again = clause_end - len(said)
+    if not said or comma + 1 > again or r.words[again:clause_end] != said:
+        return None
+    within = again - (2 if r.word(again - 1) in lx.ARTICLES else 1)
+    if not (r.word(within) in _WITHIN or all(w in lx.POSITIVE_VERBS for w in r.words[comma + 1:again])):
+        return None  # "bedroom, the bathroom next to the bedroom": two places, not one said again
+    if any(w in lx.POSITIVE_VERBS or r.phrase(k, lx.NEG_STARTS) for k, w in enumerate(said, start)):
+        return None  # "go to the kitchen, go to the kitchen": a goal said twice, not a place restated
+    kept = replace(r, toks=r.toks[:start] + r.toks[comma + 1:])
+    return kept, replace(r, toks=r.toks[start:comma + 1], aside=True)
 
 
 def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
@@ -45,13 +126,28 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     if old is None:
         return None
     start_new = r.skip(after, _AROUND)  # "the one upstairs": one of the old phrase's kind
+    while (more := r.phrase(start_new, lx.CORRECTIONS)) is not None:  # "sorry, I mean"
+        start_new = r.skip(start_new + len(more), _AROUND)
     head = old.head if isinstance(old, Described) and isinstance(old.head, Head) else None
     new = noun_phrase(r, start_new, "goal", head)
     if not isinstance(new, Match) or r.word(new.end) not in _CLAUSE_ENDS:
         return None
     start = r.toks.index(next(t for t in r.toks if t.start == old.span.start))
-    kept = replace(r, toks=r.toks[:start] + r.toks[start_new:])
+    named, rest = one_named(r, start, end, start_new)
+    kept = replace(r, toks=r.toks[:start] + named + r.toks[rest:])
     return kept, replace(r, toks=r.toks[start:start_new], aside=True)
+
+
+def one_named(r: Reader, start: int, end: int, start_new: int) -> tuple[tuple[Tok, ...], int]:
+    """The words to read in place of *the one* of a new phrase (the taken-back phrase ``[start, end)``'s
+    determiner and head noun: *the bathroom downstairs, no sorry, the one upstairs* is *the bathroom
+    upstairs*), and where the new phrase's own words go on; no words and ``start_new`` otherwise."""
+    one = next((k for k in range(start_new, start_new + 3) if r.word(k) in lx.ANAPHORIC_ONE), None)
+    noun = next(((k, h) for k in range(start, end) if (h := r.head(k)) is not None), None)
+    if one is None or noun is None or not all(r.word(k) in lx.DETERMINERS for k in range(start_new, one)):
+        return (), start_new
+    k, head = noun
+    return (*r.toks[start_new:one], *r.toks[k : k + head.words]), one + 1
 
 
 def phrase_to(r: Reader, i: int, end: int) -> NounPhrase | None:

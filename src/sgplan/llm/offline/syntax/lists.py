@@ -5,8 +5,9 @@ and C*, *visit two rooms: the kitchen and the office*, *never enter these: ...*)
 **Items.** Each item is a sentence of its own. The items of a numbered list are done in the order written
 (each continues the sequence of the one before it, as a sentence starting with *Then* does); a bulleted
 list is a set, done in any order. An order remark in the heading (*in order*, *any order is fine*) or in a
-sentence right after the list (*The order doesn't matter.*) says otherwise. An item that says
-*eventually* / *at some point* first is not ordered after the one before it.
+sentence right after the list (*The order doesn't matter.*) says otherwise. *In that order.* after
+sentences of one goal each (*Fridge. Oven. Microwave. In that order.*) orders them as a numbered list is. An
+item that says *eventually* / *at some point* first is not ordered after the one before it.
 
 **Headings.** The sentence before a list's first item heads it when it ends with a colon or stands on a
 line of its own. A heading that announces the list (*three things:*, *visit these rooms:*, *never enter
@@ -46,7 +47,9 @@ def read_lists(readers: list[Reader]) -> list[Reader]:
         first = k + (1 if heading is not None else 0)
         run = list_run(readers, first) if heading is not None or r.marker is not None else []
         if not run:
-            out += colon(r, readers[k + 1] if k + 1 < len(readers) else None)
+            ordered = ordered_before(out) if r.marker is None and only_order_remark(r) == "ordered" else None
+            out = ordered if ordered is not None else out + colon(r, readers[k + 1] if k + 1 < len(readers)
+                                                                  else None)
             k += 1
             continue
         after = readers[first + len(run)] if first + len(run) < len(readers) else None
@@ -54,6 +57,19 @@ def read_lists(readers: list[Reader]) -> list[Reader]:
         out += list_items(heading, run, remark)
         k = first + len(run) + (1 if remark else 0)
     return merged(out)
+
+
+def ordered_before(out: list[Reader]) -> list[Reader] | None:
+    """``out`` (the sentences before *In that order.*) with each sentence of one goal after the one before
+    it (*Fridge. Oven. Microwave. In that order.*); ``None`` (the remark is left to the parser, which refuses
+    it) unless every sentence before it, but prohibitions and words set aside, is one plain goal: with a
+    list or an order of its own, which order is meant is not known."""
+    goals = [n for n, r in enumerate(out) if not r.aside and r.phrase(0, lx.NEG_STARTS) is None]
+    plain = all(out[n].marker is None and out[n].announced is None and not set(out[n].words) & lx.LIST_JOINERS
+                for n in goals)
+    if len(goals) < 2 or not plain:
+        return None
+    return [replace(r, after_item=True) if n in goals[1:] else r for n, r in enumerate(out)]
 
 
 def list_run(readers: list[Reader], k: int) -> list[Reader]:
@@ -82,8 +98,20 @@ def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) 
     for n, item in enumerate(run):
         after = order == "ordered" and n > 0 and not (item.word(0) == "eventually"
                                                       or item.at(0, "at", "some", "point"))
-        out.append(replace(item, toks=prefix + item.toks, announced=announced, after_item=after))
+        said = prefix[len(scope):] if scope[:1] and scope[0].text == "in" and outside_room(item) else prefix
+        out.append(replace(item, toks=said + item.toks, announced=announced, after_item=after))
     return out
+
+
+def outside_room(item: Reader) -> bool:
+    """Whether a list item is about more than the room of its heading (*Living room list: ... - don't go
+    through the dining room*, *- stay on this floor*): a stay, or a prohibition whose first place is a
+    room."""
+    if item.word(0) in lx.STAY:
+        return True
+    negation = item.phrase(0, lx.NEG_STARTS)
+    place = next((h for k in range(len(item)) if (h := item.head(k)) is not None), None)
+    return negation is not None and place is not None and place.kind == "room"
 
 
 def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order | None, tuple[Tok, ...]]:
@@ -141,7 +169,11 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
         return [replace(said, toks=(), announced=order)] if after is not None else [said]
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
         said = replace(said, toks=())  # "Here's the plan:", "Remember:": they ask nothing
-    announced = announcement(said) or room_heading(said) or floor_heading(said) if said.toks else None
+    announced = (announcement(said) or verb_prefix(said) or room_heading(said) or floor_heading(said)
+                 if said.toks else None)
+    if announced is None and said.toks and label_end(said) == len(said):
+        # a label of what follows: "Route for today:" is said back, "Rules:" says nothing
+        said = replace(said, aside=True) if names_more(said, len(said)) else replace(said, toks=())
     if remark is not None and after is not None:  # "Do these in order: A, B": the remark after the list
         announced = replace(announced or Announced(remark.quote(0, len(remark)), (), None, None,
                                                    remark.toks[0].start, scope=True), suffix=remark.toks)

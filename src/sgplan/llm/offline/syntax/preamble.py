@@ -20,7 +20,8 @@ def is_chitchat(r: Reader, start: int, end: int) -> bool:
     """Whether the words ``[start, end)`` carry no mission content: they start with a greeting, an
     interjection or the speaker (:data:`.lexicon.OPENERS`), and have no room or object noun of the scene,
     no ID, no verb the grammar reads as an action or refuses, no upstairs / downstairs, no word with a role
-    in the grammar, and no article before anything but a word of talk (*the plan*)."""
+    in the grammar, and no article before anything but a word of talk or of a list (*the plan*, *the
+    route*)."""
     if end <= start or r.word(start) not in lx.OPENERS:
         return False
     k = start
@@ -30,7 +31,7 @@ def is_chitchat(r: Reader, start: int, end: int) -> bool:
             k += len(closing) if closing is not None else 1  # "Hi there, quick one": nothing said either
             continue
         if w in lx.ARTICLES:
-            if k + 1 < end and r.word(k + 1) in lx.TALK_NOUNS:
+            if k + 1 < end and (r.word(k + 1) in lx.TALK_NOUNS or r.word(k + 1) in lx.LIST_NOUNS):
                 k += 1
                 continue
             return False
