@@ -160,7 +160,8 @@ def choice_remark(phrases: list[Grounded], remark: tuple[str, ...] | None,
                   if w.isdigit() or (w in lx.NUMBER_WORDS and w != "one")), None)
     choose = count is not None or any(words[k:k + len(p)] == p for p in lx.ONE_SUFFICES
                                       for k in range(len(words)))
-    if set(words) & lx.PICK_VERBS and len(phrases) == 1 and len(phrases[0].entities) == 1:
+    picked = bool(set(words) & lx.PICK_VERBS) and words[-1] == "one"  # not "lobby, pick any vase"
+    if picked and len(phrases) == 1 and len(phrases[0].entities) == 1:
         rf.refuse(rf.pick_from_one(" ".join(words), phrases[0].phrase))  # "the kitchen, pick one": of what?
     if len(phrases) == 1 and choose and (count is None or count == len(phrases[0].entities)):
         phrases[0].mode = "any"  # "check the vases in the lobby, just one of them": any of them
