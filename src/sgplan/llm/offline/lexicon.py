@@ -209,6 +209,28 @@ PRONOUNS = ("it", "them", "they", "its")
 PLURAL_PRONOUNS = ("them", "they")
 POSSESSIVES = word_set("my your our his her their")
 """*my / your ...* before a noun are read as *the*: *read my book*."""
+OWNERS = ("his", "her", "their")
+"""*her room*, *his bedroom*: a room said before to be someone's (*My sister is staying in the bedroom with
+the two beds. Check her room.*), never a fresh room (whose?)."""
+RESIDING = word_set("stay stays staying stayed sleep sleeps sleeping slept live lives living lived")
+"""In a statement naming a room: the room is someone's (*my sister is staying in the bedroom*: *her room*)."""
+_FEMALE_PEOPLE = word_set("she sister daughter mum mom mother wife grandma granny nan aunt auntie niece "
+                          "girlfriend woman girl lady")
+_MALE_PEOPLE = word_set("he brother son dad father husband grandpa grandad granddad uncle nephew boyfriend "
+                        "man boy")
+_GROUPS_OF_PEOPLE = word_set("they kids children parents guests guest friend friends cousin partner baby "
+                             "family roommate flatmate")
+
+
+def owners(pronoun: str) -> frozenset[str]:
+    """Who *her / his / their room* may stand for (a statement must name one of them). Kept out of
+    :data:`LEXICON_WORDS`: a person's word is no word of the grammar (*Grandma is in the kitchen* is a
+    statement set aside)."""
+    if pronoun == "her":
+        return _FEMALE_PEOPLE
+    if pronoun == "his":
+        return _MALE_PEOPLE
+    return _FEMALE_PEOPLE | _MALE_PEOPLE | _GROUPS_OF_PEOPLE
 DEMONSTRATIVES = ("that", "this", "these", "those")
 """Determiners that point back (``the same`` and ``that same`` / ``this same`` too)."""
 PLURAL_DEMONSTRATIVES = ("these", "those")
@@ -714,18 +736,24 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
     ("it", "is", "up", "to", "you"), ("up", "to", "you"), ("i", "do", "not", "care"),
     *((*just, pick, one) for just in ((), ("just",)) for pick in ("pick", "choose")
       for one in ("one", "any", "whichever")),
-))
+) + tuple(("which", *one, "you", want) for one in ((), ("one",))  # "which one you want", as learners say it
+        for want in ("want", "like", "prefer", "choose")))
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
 ONE_SUFFICES = Phrases(tuple(
-    (*lead, *one, *enough) for lead in ((), ("just",), ("only",), ("getting", "to"), ("reaching",))
+    (*lead, *one, *enough) for lead in ((), ("just",), ("only",), ("getting", "to"), ("reaching",),
+                                        ("pick",), ("just", "pick"), ("choose",), ("just", "choose"))
     for one in (("one", "of", "them"), ("one",), ("any", "one", "of", "them"))
     for enough in ((), ("is", "enough"), ("will", "do"), ("is", "fine"), ("is", "ok"), ("is", "okay"),
                    ("would", "do"), ("suffices",))
-    if lead or enough or len(one) > 1))
+    if lead or enough or len(one) > 1) + tuple(  # "the vases - any of them will do -" (not bare)
+    ("any", "of", "them", *enough) for enough in (("will", "do"), ("is", "enough"), ("is", "fine"),
+                                                  ("would", "do"), ("suffices",))))
 """After a phrase that means each of several (*the vases in the lobby, just one of them*, *check the apples,
 getting to one of them is enough*): one of them will do, which makes it a choice (said outright, unlike
 *either one*, which is refused there)."""
+PICK_VERBS = frozenset({"pick", "choose"})
+"""In a remark that one will do (*just pick one*): said after one place, it picks something else (refused)."""
 BARE_CHOOSERS = ("either", "any", "whichever")
 CLAUSE_ENDS = frozenset({"", ",", "then", "and", "but"})
 """After ``, either`` / ``, any``: no noun follows, so the word is a choice remark (*DR vase, any*)."""
@@ -820,9 +848,20 @@ AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over",
 """After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
 
 # -------------------------------------------------------------------------------------------- negation
-NEED_WORDS = frozenset({"need", "needs", "have", "has", "got"})
+NEGATED_NEED_WORDS = frozenset({"need", "needs", "have", "has", "got"})
 """After a negation, before *to* (*you don't need to / have to go to X*, *no need to X*): X is not needed,
 which forbids nothing."""
+NOT_NEEDED = Phrases((("no", "need", "to"), ("there", "is", "no", "need", "to"),
+                     ("no", "need", "for", "you", "to"), ("you", "do", "not", "need", "to"),
+                     ("you", "do", "not", "have", "to"), ("you", "need", "not"), ("do", "not", "need", "to"),
+                     ("you", "will", "not", "need", "to"), ("there", "'s", "no", "need", "to"),
+                     ("it", "is", "not", "necessary", "to")))
+"""A clause that says a goal is not needed (*No need to go into the office.*, *..., you don't have to check
+the oven*): it asks nothing, so it is set aside and said back (:mod:`.syntax.not_needed`)."""
+NOT_NEEDED_STOPS = word_set("if unless until till only when whenever except but then before after first once "
+                            "while so or otherwise instead")
+"""Words that make a not-needed clause say more than *not needed* (*no need to go there unless ...*,
+*... before the office*): such a clause is parsed, and so refused."""
 NEG_STARTS = Phrases((
     ("always", "avoid"), ("always", "stay", "away", "from"), ("always", "keep", "away", "from"),
     ("always", "stay", "out", "of"), ("always", "keep", "out", "of"), ("never",), ("do", "not"),
@@ -851,7 +890,8 @@ AVOID_VERBS = word_set(
     crossing trouble troubling mess messing near nearing pass wander wandering stray straying venture
     venturing sneak sneaking wash move handle handling hit hitting damage damaging scratch knock stand
     standing climb climbing tread treading pop popping nip swing swinging poke poking cut cutting roam
-    roaming dash dashing hurry hurrying rush rushing detour detouring stroll strolling"""
+    roaming dash dashing hurry hurrying rush rushing detour detouring stroll strolling
+    allowed permitted"""
 ) | POSITIVE_VERBS
 """Verbs a prohibition is read with (*don't touch / disturb / go near X*): not being at X keeps each of them
 from happening. A negation before any other verb is refused, naming it (*don't xyzzy the sink*): read as
@@ -873,7 +913,7 @@ NEGATING = ("not", "never")
 PARTIAL_PROHIBITION = ("after", "once", "when", "during", "afterwards", "afterward", "later", "again")
 """After what to avoid: a prohibition for part of the mission, which is refused."""
 PARTIAL_FROM = (("from", "then"), ("from", "now"))
-UNTIL_WORDS = ("until", "before")
+UNTIL_WORDS = ("until", "before", "till")
 """After what to avoid: ``!X U Y``."""
 UNTIL_DONE_LINKS = ("is", "are", "has", "have")
 UNTIL_DONE_WORDS = DONE | {"been", "visited"}
@@ -925,7 +965,8 @@ QUAL_CONTAINS = Phrases((("with",), ("having",), ("containing",), ("that", "has"
                          ("which", "has"), ("which", "have"), ("that", "contains"), ("which", "contains"),
                          ("where", "there", "is"), ("where", "there", "are"), ("that", "holds"),
                          ("that", "only", "has"), ("which", "only", "has"), ("that", "only", "have"),
-                         ("with", "only"), ("that", "has", "only"), ("containing", "only")))
+                         ("with", "only"), ("that", "has", "only"), ("containing", "only"),
+                         ("which", "has", "only"), ("which", "have", "only"), ("that", "have", "only")))
 QUAL_LACKS = Phrases((("that", "does", "not", "have"), ("which", "does", "not", "have"), ("with", "no"),
                       ("that", "has", "no"), ("that", "does", "not", "contain"),
                       ("where", "there", "is", "no")))
@@ -935,7 +976,8 @@ QUAL_NEXT = Phrases((("next", "to"), ("adjacent", "to"), ("beside",), ("near",),
                      ("that", "connects", "to"), ("leading", "to"), ("that", "leads", "to"),
                      ("outside",), ("outside", "of"), ("just", "outside"), ("right", "outside"),
                      ("just", "outside", "of"), ("right", "outside", "of"), ("just", "off"), ("right", "off"),
-                     ("just", "next", "to"), ("right", "next", "to"), ("right", "by"), ("just", "by")))
+                     ("just", "next", "to"), ("right", "next", "to"), ("right", "by"), ("just", "by"),
+                     ("next", "of"), ("near", "of"), ("close", "of")))
 """*the hallway outside / just off / next to the kitchen*: a room located by a room connected to it (the
 neighbour only locates it, it is no goal)."""
 QUAL_EXCEPT = Phrases((("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
@@ -957,6 +999,13 @@ ASIDE_QUALIFIERS = frozenset({"in", "inside", "on", "next", "beside", "upstairs"
 """``the couch, which is in the living room`` / ``the bowl (it's in the kitchen)``: an aside read as the
 qualifier it states."""
 RELATIVE_BE = ("is", "are", "was", "were", "sits", "lives", "stands")
+PLURAL_BE = ("are", "were")
+FINDING_VERBS = word_set("find see spot notice")
+"""*<room>, where you can find / see X*: says where X is, or asks for X? (refused)"""
+PERMISSION_WORDS = ("allowed", "permitted", "welcome")
+"""*you are allowed / welcome to go into X* gives leave, which neither asks for X nor forbids it (refused);
+after a negation they forbid (*you are not allowed into X*)."""
+"""After several things in a relative clause (*the bedroom where the book and the vase are*)."""
 RELATIVE_PARTICIPLES = ("located", "kept", "stored", "placed", "found", "standing", "sitting")
 """``the room where the book is (kept)``."""
 STATEMENT_LINKS = ("is", "are", "was", "were")

@@ -60,8 +60,10 @@ def cannot_understand_word(word: str, rest: str) -> str:
     return rephrase(f"cannot understand '{word}' in {rest}")
 
 
-def no_goal_at_all() -> str:
-    return rephrase("the mission names no room or object to visit or avoid")
+def no_goal_at_all(set_aside: list[str]) -> str:
+    aside = "; ".join(f"'{s}'" for s in set_aside)
+    return rephrase("the mission names no room or object to visit or avoid" + (
+        f" (set aside as asking nothing: {aside})" if set_aside else ""))
 
 
 def dropped(phrase: str) -> str:
@@ -105,6 +107,16 @@ def optional_condition(said: str) -> str:
 def self_correction(said: str) -> str:
     return rephrase(f"'{said}' takes back something said before it, and the translator does not read which "
                     "part stands; say the mission again as it should be done")
+
+
+def where_you_find(said: str) -> str:
+    return rephrase(f"'{said}' may only say what is there, or ask for it; say 'and check the ...' if it is a "
+                    "goal, or leave it out")
+
+
+def where_after_no_room(said: str) -> str:
+    return rephrase(f"'{said}' follows no single room, so it is not clear where it is done; say 'in the "
+                    "<room>, ...' or name the room of the object")
 
 
 def not_needed(said: str) -> str:
@@ -176,7 +188,7 @@ def one_without_kind(word: str) -> str:
 
 def ordinal_not_of_a_floor(word: str) -> str:
     return rephrase(f"ordinals like '{word}' are only understood for floors ('the bathroom on the {word} "
-                    "floor')")
+                    f"floor') and for what was named before ('back to the {word} one')")
 
 
 def demonstrative_not_before_noun(word: str, after: str) -> str:
@@ -614,6 +626,41 @@ def group_size(said: str, phrase: str, n: int, count: int) -> str:
 
 def demonstrative_size(said: str, antecedent: str, n: int, count: int) -> str:
     return rephrase(f"'{said}' refers back to '{antecedent}', which is {n}, not {count}")
+
+
+def whose_room(said: str, rooms: list[str]) -> str:
+    named = f"rooms said before: {', '.join(rooms)}" if rooms else "no room was said to be someone's"
+    return rephrase(f"'{said}': whose room? ({named}); name the room ('the bedroom with the two beds')")
+
+
+def permission_only(said: str) -> str:
+    return rephrase(f"'{said}' gives permission, which neither asks for the place nor forbids it; say 'go to "
+                    "X' if it is a goal, or leave it out")
+
+
+def times_of_what(said: str) -> str:
+    return rephrase(f"'{said}': how many times is said for several places or twice; say it after one place "
+                    "('visit the kitchen twice, then the office')")
+
+
+def pick_from_one(remark: str, phrase: str) -> str:
+    return rephrase(f"'{remark}' after '{phrase}', which is one place: one of what? Name the room or object "
+                    "to choose from ('any chair in the kitchen')")
+
+
+def ordinal_of_several(said: str, phrase: str) -> str:
+    return rephrase(f"'{said}': '{phrase}' names several at once, so which came first is not said; name it "
+                    "again ('the bed in the ...')")
+
+
+def ordinal_of_unordered(said: str, first: str, second: str) -> str:
+    return rephrase(f"'{said}': '{first}' and '{second}' were named in no order, so the first named may "
+                    "not be the first visited; name it again")
+
+
+def ordinal_of_too_few(said: str, named: int) -> str:
+    before = "only one was" if named == 1 else f"only {named} were"
+    return rephrase(f"'{said}' counts what was named before it, and {before}; name it ('the bed in the ...')")
 
 
 def no_other(noun: str) -> str:

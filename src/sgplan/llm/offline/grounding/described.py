@@ -8,7 +8,9 @@ far (:class:`.phrases.Noun`) and returns it narrowed.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
+from itertools import pairwise
 from typing import Any
 
 from sgplan.llm.offline import lexicon as lx
@@ -34,6 +36,7 @@ from sgplan.llm.offline.syntax.tree import (
     Possessive,
     RelativeFloor,
     SameFloor,
+    Span,
     There,
 )
 
@@ -89,6 +92,8 @@ def in_context(np: Described, noun: Noun, where: Where, disc: Discourse) -> Noun
         before = floors_of(RelativeFloor(np.relative), disc, entities)
     if np.determiner.other:
         entities = others(entities, np.span.start, disc)
+    if np.determiner.ordinal is not None:
+        entities = nth_named(entities, np.determiner.ordinal, np.span, disc)
     # "go upstairs and check A and B": both there
     moved = where.action_floor is not None and where.role in ("goal", "avoid")
     action = where.action_floor[0] if moved and where.action_floor is not None else None
@@ -111,12 +116,36 @@ def others(entities: list[Entity], before: int, disc: Discourse) -> list[Entity]
     return [e for e in entities if e.key not in named]
 
 
+def nth_named(entities: list[Entity], n: int, span: Span, disc: Discourse) -> list[Entity]:
+    """*the first bed*, *back to the first one*: the ``n``-th of ``entities`` named before ``span`` (in the
+    order first named, goals and places only). Refused unless two or more were named, each on its own (*both
+    bedrooms, then the first one*: which came first?)."""
+    keys, said = {e.key for e in entities}, disc.said(span.start, span.end)
+    named = [g for g in sorted(disc.references, key=lambda g: g.start) if g.start < span.start
+             and g.role != "qualifier" and g.entities and all(e.key in keys for e in g.entities)]
+    several = next((g for g in named if len(g.entities) > 1), None)
+    if several is not None:
+        rf.refuse(rf.ordinal_of_several(said, several.phrase))
+    together = next(((a, b) for a, b in pairwise(named) if a.entities != b.entities
+                     and not said_in_order(disc.text[a.end:b.start], disc.text)), None)
+    if together is not None:  # "the bedroom and the other one, then the first one": named or visited first?
+        rf.refuse(rf.ordinal_of_unordered(said, together[0].phrase, together[1].phrase))
+    order = list(dict.fromkeys(g.entities[0].key for g in named))
+    if not order:  # "the first bathroom" with none named: perhaps its floor
+        rf.refuse(rf.ordinal_not_of_a_floor(said.split()[1].lower()))
+    if len(order) < 2 or n > len(order):
+        rf.refuse(rf.ordinal_of_too_few(said, len(order)))
+    return [e for e in entities if e.key == order[n - 1]]
+
+
 def demonstrative(np: Described, noun: Noun, mode: Mode, said: str, where: Where,
                   disc: Discourse) -> tuple[Noun, Mode]:
     """*that bathroom*, *those two bedrooms*, *one of those X*: the entities of the phrase pointed back to
     (:func:`.backref.resolve`), never a fresh set; refused when it cannot be resolved."""
     det = np.determiner
     plural = noun.head.plural or det.quantified is not None or det.pointer in lx.PLURAL_DEMONSTRATIVES
+    if det.pointer in lx.OWNERS:
+        return Noun(noun.head, owners_room(np, noun, said, disc), False), "the"
     got = backref.resolve(said, noun.head, plural, noun.entities, disc.references, np.span.start,
                           disc.vocab.by_key, where.role == "goal")
     if isinstance(got, str):
@@ -126,6 +155,41 @@ def demonstrative(np: Described, noun: Noun, mode: Mode, said: str, where: Where
     if (here := of_the_step_room(np, noun, got, said, where, disc)) is not None:
         return Noun(noun.head, here, True), "the"
     return Noun(noun.head, got.entities, noun.room_scoped or got.room_scoped), det.quantified or got.mode
+
+
+def owners_room(np: Described, noun: Noun, said: str, disc: Discourse) -> list[Entity]:
+    """*her room*: the room an earlier *her room* named, else the one room a statement set aside says
+    someone stays, sleeps or lives in (*My sister is staying in the bedroom with the two beds.*); refused
+    otherwise (whose room?). A room named as a goal, or as where someone just is (*Grandma is in the
+    kitchen*), is not taken for it."""
+    word, fits = said.split()[0].lower(), {e.key for e in noun.entities}
+    same = [g for g in disc.references if g.end <= np.span.start and g.phrase.split()[0].lower() == word]
+    told = [g for g in disc.mentions if g.end <= np.span.start and lives_there(disc.text, g.start, word)]
+    for named in (same[-1:], told):
+        rooms = {e.key: e for g in named for e in g.entities if e.kind == "room" and e.key in fits}
+        if len(rooms) == 1:
+            return list(rooms.values())
+        if rooms:
+            rf.refuse(rf.whose_room(said, sorted(rooms)))
+    rf.refuse(rf.whose_room(said, []))
+
+
+def said_in_order(between: str, text: str) -> bool:
+    """Whether the words ``between`` two phrases of the mission ``text`` put the second after the first
+    (*then*, *after that*, the next item of a numbered list when no order remark is made anywhere), so that
+    the one named first is also the one done first (sentences alone are in no order)."""
+    words = between.lower().replace(",", " , ").split()
+    numbered = re.search(r"\n\s*\(?\d+[.)]", between) is not None and "order" not in text.lower()
+    return numbered or any(tuple(words[k:k + len(p)]) == p for p in lx.SEQ_WORDS for k in range(len(words)))
+
+
+def lives_there(text: str, start: int, owner: str) -> bool:
+    """Whether the words of the sentence before character ``start`` say that someone ``owner`` (*her*,
+    *his*, *their*) can stand for stays, sleeps or lives there (*my sister is staying in ...*: her room, not
+    his)."""
+    sentence = text[:start].replace("!", ".").replace("?", ".").replace("\n", ".").rsplit(".", 1)[-1]
+    words = set(sentence.lower().replace("'", " ").split())
+    return bool(words & lx.RESIDING) and bool(words & lx.owners(owner))
 
 
 def of_the_step_room(np: Described, noun: Noun, got: backref.Resolved, said: str, where: Where,
@@ -227,12 +291,14 @@ def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse)
 
 @applies(Holds)
 def holds(q: Holds, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
-    """*the room where the book is*: the rooms holding it."""
-    thing = inner(q.thing, disc)
-    if any(e.kind != "object" for e in thing.entities):
-        rf.refuse(rf.room_by_contents(thing.phrase))
-    entities = disc.vocab.containing(noun.entities, thing.entities, None)
-    thing.entities = [o for o in thing.entities if any(o.room_key == r.key for r in entities)]
+    """*the room where the book is*: the rooms holding it (and each of the others said with it)."""
+    entities = noun.entities
+    for said in (q.thing, *q.also):
+        thing = inner(said, disc)
+        if any(e.kind != "object" for e in thing.entities):
+            rf.refuse(rf.room_by_contents(thing.phrase))
+        entities = disc.vocab.containing(entities, thing.entities, None)
+        thing.entities = [o for o in thing.entities if any(o.room_key == r.key for r in entities)]
     return Noun(noun.head, entities, noun.room_scoped)
 
 

@@ -28,6 +28,7 @@ from sgplan.llm.offline.syntax.tree import (
     Described,
     FloorPlace,
     GroupRepeat,
+    InRoom,
     Its,
     KeyHead,
     Mode,
@@ -64,6 +65,9 @@ def ground_list(phrases: PhraseList, where: Where, disc: Discourse) -> list[Grou
         if rooms and not choice and where.role == "goal" and not here.scope:
             # "the dining room, any vase": an object after a room of the list is looked for there first
             here = replace(here, scope=tuple(dict.fromkeys(rooms)), lenient=True)
+        shared = [] if choice or where.role != "goal" or here.scope else shared_room(phrases, k, disc)
+        if shared:  # "the sink and the toilet in the bathroom": the sink is looked for there first
+            here = replace(here, scope=tuple(shared), lenient=True)
         out.append(ground_phrase(item, here, disc))
     if "nor" in phrases.joiners or not choice:
         return out
@@ -76,6 +80,28 @@ def ground_list(phrases: PhraseList, where: Where, disc: Discourse) -> list[Grou
         g.alternative = True
     return [Grounded(said, phrases.span.start, phrases.span.end, [e for g in out for e in g.entities], "any",
                      any(g.room_scoped for g in out), where.role)]
+
+
+def shared_room(phrases: PhraseList, k: int, disc: Discourse) -> list[Entity]:
+    """The room that the last item of an *and* list is located in (*the sink and the toilet in the
+    ground-floor bathroom*), for item ``k`` before it that has no room of its own: the words may locate both,
+    so it is looked for there first (and elsewhere when the room holds none: *the fridge and the toilet in
+    the bathroom*); ``[]`` when there is none, or the item is plural (*the clocks and the bed in the
+    bedroom*: every clock, or those of the bedroom? Each clock, as before)."""
+    last, item = phrases.items[-1], phrases.items[k]
+    if (phrases.joiners != {"and"} or k == len(phrases.items) - 1 or not isinstance(item, Described)
+            or not isinstance(last, Described) or not isinstance(item.head, Head) or item.head.plural):
+        return []  # not "the clocks, the one in the bedroom first"
+    if any(isinstance(q, InRoom) for q in item.qualifiers) or item.compound is not None:
+        return []
+    located = [q for q in last.qualifiers if isinstance(q, InRoom) and len(q.rooms) == 1 and not q.choice]
+    if len(located) != 1:
+        return []
+    try:
+        room = ground_phrase(located[0].rooms[0], Where("qualifier"), disc.fork())
+    except MissionError:
+        return []  # refused where the last item is grounded, with its reason
+    return [e for e in room.entities if e.kind == "room"]
 
 
 GROUNDERS: Registry[Callable[[Any, Where, Discourse], Grounded]] = Registry("grounding")

@@ -93,10 +93,12 @@ def tail(action: Action, phrases: list[Grounded], steps: list[Step], carry: bool
             e.kind == "object" for g in phrases for e in g.entities)
         if routed:  # "put X in Y", "take X to Y", "go from X to Y": X, then Y
             dest = ground_list(action.destination, replace(where, scope=()), ctx.disc)
+            choice_remark(dest, action.destination_remark, ctx.disc.said)
             steps.extend(tasks_of(dest, False))
         else:  # "go to the kitchen to the office": another goal of the step
             dest = ground_list(action.destination, replace(where, scope=tuple(ctx.step_rooms(steps[-1]))),
                                ctx.disc)
+            choice_remark(dest, action.destination_remark, ctx.disc.said)
             steps[-1].extend(tasks_of(dest, False)[0])
     if action.purpose is not None:
         purpose = ground_list(action.purpose, where, ctx.disc)
@@ -125,7 +127,7 @@ def first_of_list(phrases: list[Grounded], first: bool,
     named twice in one list is refused: it is not clear what is meant."""
     keys = [frozenset(e.key for e in g.entities) for g in phrases]
     phrases = [g for n, g in enumerate(phrases)
-               if not (n and keys[n] == keys[n - 1] and (g.phrase.lower().endswith("them") or (
+               if not (n and keys[n] == keys[n - 1] and (restates_group(g.phrase) or (
                    g.mode == phrases[n - 1].mode == "any" and g.phrase.lower().startswith("any "))))]
     keys = [frozenset(e.key for e in g.entities) for g in phrases]
     repeated = [n for n, k in enumerate(keys) if any(k & j for j in keys[:n])]
@@ -136,6 +138,14 @@ def first_of_list(phrases: list[Grounded], first: bool,
     if repeated == [len(phrases) - 1] and first:  # "the clocks, the one in the bedroom first"
         return [phrases[-1]] + [g for n, g in enumerate(phrases[:-1]) if keys[n] != keys[-1]], True
     rf.refuse(rf.named_twice(phrases[repeated[0]].phrase))
+
+
+def restates_group(phrase: str) -> bool:
+    """Whether a phrase only names the group before it again: *both of them*, *all three of them*, *all
+    three* (*office TVs, all three*)."""
+    words = phrase.lower().split()
+    counted = len(words) == 2 and (words[1] in lx.NUMBER_WORDS or words[1].isdigit())
+    return words[-1] == "them" or (counted and words[0] in lx.UNIVERSAL)
 
 
 def choice_remark(phrases: list[Grounded], remark: tuple[str, ...] | None,
@@ -150,6 +160,9 @@ def choice_remark(phrases: list[Grounded], remark: tuple[str, ...] | None,
                   if w.isdigit() or (w in lx.NUMBER_WORDS and w != "one")), None)
     choose = count is not None or any(words[k:k + len(p)] == p for p in lx.ONE_SUFFICES
                                       for k in range(len(words)))
+    picked = bool(set(words) & lx.PICK_VERBS) and words[-1] == "one"  # not "lobby, pick any vase"
+    if picked and len(phrases) == 1 and len(phrases[0].entities) == 1:
+        rf.refuse(rf.pick_from_one(" ".join(words), phrases[0].phrase))  # "the kitchen, pick one": of what?
     if len(phrases) == 1 and choose and (count is None or count == len(phrases[0].entities)):
         phrases[0].mode = "any"  # "check the vases in the lobby, just one of them": any of them
         return

@@ -33,6 +33,7 @@ from sgplan.llm.offline.syntax.tree import (
     StayOnFloor,
     Waypoint,
 )
+from sgplan.logic import And
 
 READERS: Registry[Callable[[Any, Clause, SentenceContext], None]] = Registry("item reader")
 reads = READERS.register
@@ -222,7 +223,10 @@ def check_revisits(step: Step, earlier: list[Step], ctx: SentenceContext) -> Non
     first."""
     def went(tasks: list[Task], task: Task) -> bool:
         done = [m for t in tasks for m in t.members]
-        return all(m in done or any(ctx.task_is_in(t, m) for t in tasks) for m in task.members)
+        # reaching "the bed in the bedroom" (the bed, in its room) was a visit of the bed
+        covered = [a for m in done if isinstance(m, And) for a in m.args]
+        return all(m in done or m in covered or any(ctx.task_is_in(t, m) for t in tasks)
+                   for m in task.members)
 
     filled = [s for s in earlier if s]
     for task in step:

@@ -72,7 +72,7 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
     formulas = [p.formula() if isinstance(p, Clause) else p for p in parts]
     present = [f for f in formulas if f is not None]
     if not present:
-        rf.refuse(rf.no_goal_at_all())
+        rf.refuse(rf.no_goal_at_all(disc.set_aside))
     formula = conj(present)
     check_all_used(formula, disc.references)
     return formula

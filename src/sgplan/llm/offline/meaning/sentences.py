@@ -21,6 +21,7 @@ from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.order import only_after
 from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
+    Body,
     OnlyAfterPost,
     OnlyAfterSentence,
     OnlyIfPost,
@@ -104,9 +105,10 @@ def prefixed(sentence: PrefixedSentence, ctx: SentenceContext) -> Meaning:
 @reads(PlainSentence)
 def plain(sentence: PlainSentence, ctx: SentenceContext) -> Meaning:
     """A body, in the room of *In the kitchen,* when said (which must then locate something said after it),
-    with its closing condition."""
+    with its closing condition and the whole-mission prohibitions said after it."""
     if sentence.scope is None:
-        return postfix(read_body(sentence.body, ctx), sentence.postfix, ctx)
+        return with_prohibitions(postfix(read_body(sentence.body, ctx), sentence.postfix, ctx),
+                                 sentence.prohibitions, ctx)
     room = ground_phrase(sentence.scope, Where("qualifier"), ctx.disc)
     ctx.scope, known = list(room.entities), len(ctx.disc.references)
     meaning = postfix(read_body(sentence.body, ctx), sentence.postfix, ctx)
@@ -114,7 +116,19 @@ def plain(sentence: PlainSentence, ctx: SentenceContext) -> Meaning:
     if not any(g.role != "qualifier" and any(e.room_key in keys for e in g.entities)
                for g in ctx.disc.references[known:]):
         rf.refuse(rf.scope_unused(room.phrase))  # "In the garage, go to the office": the garage is not lost
-    return meaning
+    return with_prohibitions(meaning, sentence.prohibitions, ctx)
+
+
+def with_prohibitions(meaning: Meaning, prohibitions: Body | None, ctx: SentenceContext) -> Meaning:
+    """``meaning`` and the whole-mission prohibitions said after its condition (*..., but only after Y, and
+    stay out of Z the whole time*), which hold beside it."""
+    if prohibitions is None:
+        return meaning
+    said = read_body(prohibitions, ctx).constraints
+    if isinstance(meaning, Clause):
+        meaning.constraints.extend(said)
+        return meaning
+    return conj([meaning, *said])
 
 
 def postfix(body: Clause, post: Postfix, ctx: SentenceContext) -> Meaning:

@@ -26,8 +26,10 @@ from sgplan.llm.offline.spelling import Spelling
 from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement
 from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
 from sgplan.llm.offline.syntax.lists import read_lists
+from sgplan.llm.offline.syntax.not_needed import split_not_needed
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
+from sgplan.llm.offline.syntax.remark_sentences import join_remarks
 from sgplan.llm.offline.syntax.sentences import mission_sentence
 from sgplan.llm.offline.syntax.tree import Attachment, Sentence, SetAside, nodes
 from sgplan.llm.offline.text import rewrite, sentences, tokenize
@@ -62,7 +64,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
                 r = replace(r, toks=r.toks[cut:])  # ("I'm hungry, ..." is said back as a statement)
             content = True
         out += corrected(r)  # "go to the kitchen, no wait, the dining room": the dining room
-    return set_aside_context(out)
+    return join_remarks(split_not_needed(set_aside_context(out)))
 
 
 def parse_sentence(r: Reader, decide: Callable[[Attachment], bool]) -> Parse[Sentence]:

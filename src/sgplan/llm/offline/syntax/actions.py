@@ -122,14 +122,19 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
     floor: FloorSpec | None = None
     floor_span: Span | None = None
     first = again = False
-    while i < len(r) and (not r.np_starts(i) or verb_idiom(r, i)) and (
-            r.word(i) not in lx.VERB_STOPS or said_first(r, i)):
+    times = 1
+    while i < len(r) and (((not r.np_starts(i) or verb_idiom(r, i)) and (
+            r.word(i) not in lx.VERB_STOPS or said_first(r, i))) or times_before_place(r, i)):
         w = r.word(i)
         if said_first(r, i):  # "go first to the kitchen", "go before to the kitchen, after to ..."
             first, i = True, i + 1
             continue
         if w == "again" and r.word(i + 1) in lx.PLACE_PREPOSITIONS:  # "(go) again to the kitchen"
             again, i = True, i + 1
+            continue
+        said_times = times_before_place(r, i)
+        if said_times is not None:  # "go two times to the kitchen", as learners place it
+            times, i = said_times
             continue
         if floor is not None and (r.phrase(i, lx.WHOLE_MISSION) or r.phrase(i, lx.TIME_FILLERS)):
             break  # "don't go downstairs at any point"
@@ -141,6 +146,8 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
         refused = refused_verb(r, i, in_condition)
         if refused is not None:
             return refused
+        if w in lx.PERMISSION_WORDS and r.word(i - 1) in lx.COPULAS:  # "you are allowed to go into X"
+            return Refusal(rf.permission_only(r.quote(i, min(len(r), i + 5))))
         if w in lx.MODALS and r.word(i + 1) not in lx.NEGATING:
             seen.append(w)  # "may you go into ...", "I do want you to visit ...": no negation
             i += 1
@@ -160,7 +167,7 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
             return odd
         seen.append(w)
         i += 1
-    return Match(VerbWords(tuple(seen), floor, floor_span, first, again), i)
+    return Match(VerbWords(tuple(seen), floor, floor_span, first, again, times), i)
 
 
 def odd_verb(r: Reader, i: int) -> Refusal | None:
@@ -183,6 +190,20 @@ def said_first(r: Reader, i: int) -> bool:
     """*first* / *before* among the verb words, before the preposition of the place (*go first to X*)."""
     return bool(r.word(i - 1)) and (r.word(i) in lx.FIRST or r.word(i) == "before") \
         and r.word(i + 1) in lx.PLACE_PREPOSITIONS
+
+
+def times_before_place(r: Reader, i: int) -> tuple[int, int] | None:
+    """*twice* / *two times* (at most :data:`.lexicon.MAX_REPEATS`) after a verb, right before a place
+    preposition (*go two times to X*): how many times, and where the words end; ``None`` otherwise."""
+    if r.word(i - 1) in ("", ",") or not r.word(i - 1).isalpha():
+        return None
+    n = 2 if r.word(i) == "twice" else None
+    k = i + 1
+    if n is None and r.word(i + 1) == "times":
+        n, k = lx.NUMBER_WORDS.get(r.word(i)) or (int(r.word(i)) if r.word(i).isdigit() else None), i + 2
+    if n is None or n < 2 or r.word(k) not in lx.PLACE_PREPOSITIONS:
+        return None
+    return n, k
 
 
 def refused_verb(r: Reader, i: int, in_condition: bool) -> Refusal | None:
@@ -243,6 +264,13 @@ def action_tail(r: Reader, i: int, node: Action) -> Parse[Action]:
     repeat = repeats(r, i)
     if not isinstance(repeat, Match):
         return repeat
+    if node.verbs.times > lx.MAX_REPEATS:
+        return Refusal(rf.too_many_repeats(str(node.verbs.times)))
+    if node.verbs.times > 1:  # "go two times to the kitchen": one place, that many visits
+        several = node.phrases is not None and len(node.phrases.items) > 1
+        if repeat.node is not None or several:
+            return Refusal(rf.times_of_what(r.text[node.span.start:r.toks[i - 1].end]))
+        node = replace(node, repeat=Repeat(False, node.verbs.times, None))
     if repeat.node is not None:
         node, i = replace(node, repeat=repeat.node), repeat.end
     return destination_and_purpose(r, i, node)
@@ -323,6 +351,9 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
         if not isinstance(dest, Match):
             return dest
         node, i = replace(node, destination=dest.node), dest.end
+        remark = remark_ahead(r, i)  # "put it on the table of the dining room, which one you want"
+        if remark is not None:
+            node, i = replace(node, destination_remark=remark), i + len(remark)
     i = particles(r, i)
     if r.word(i) == "to" and not r.np_starts(i + 1):  # purpose clause: "... to turn them off"
         verbs = verb_words(r, i + 1, node.in_condition)

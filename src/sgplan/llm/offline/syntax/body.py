@@ -12,9 +12,11 @@ from typing import Literal
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
-from sgplan.llm.offline.syntax.actions import action, action_then_ahead, after_conjunction
+from sgplan.llm.offline.syntax.actions import action, action_then_ahead, after_conjunction, times_before_place
 from sgplan.llm.offline.syntax.links import closing_at, done_words, link
 from sgplan.llm.offline.syntax.negation import negation, off_limits, stay_on_floor
+from sgplan.llm.offline.syntax.phrases import there_then_verb
+from sgplan.llm.offline.syntax.qualifiers import names_rooms
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.tree import (
@@ -186,6 +188,42 @@ def comma_sequence(r: Reader, i: int, before: Said, only_verb: bool) -> ItemPars
     return Match(CommaSequence(), i + 1) if before and action_then_ahead(r, i) else None
 
 
+@ITEMS.rule("where you X")
+def where_you(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*enter the bathroom on floor 0, where you check the sink*: in that room, X (as *and check the sink
+    there*: the action's objects are looked for in the room). After anything but one room (*the couch,
+    where you ...*, *the kitchen and the office, where you ...*) it is refused: in which room?"""
+    if not r.at(i, ",", "where", "you"):
+        return None
+    k = r.skip(i + 3, lx.MODALS)
+    k += 2 if r.word(k) in lx.NEGATED_NEED_WORDS and r.word(k + 1) == "to" else 0  # "where you need to"
+    if k >= len(r) or r.np_starts(k) or r.word(k) in lx.STRUCTURAL:
+        return None
+    if r.word(k) in lx.FINDING_VERBS:  # "the kitchen, where you can find the bowl": a hint, or a goal?
+        return Refusal(rf.where_you_find(r.quote(i + 1, min(len(r), k + 3))))
+    if not after_one_room(before):
+        return Refusal(rf.where_after_no_room(r.quote(i + 1, min(len(r), k + 3))))
+    return Match(Skip(), k)
+
+
+@ITEMS.rule("and there X")
+def and_there(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*go to the kitchen and there take the bowl*: *there* before the verb, as *take the bowl there* (in that
+    room: the step's room context); after anything but one room it is refused (where is there?)."""
+    if r.word(i - 1) != "and" or not there_then_verb(r, i):
+        return None
+    if not after_one_room(before[:-1] if before and isinstance(before[-1], Link) else before):
+        return Refusal(rf.where_after_no_room(r.quote(i, min(len(r), i + 4))))
+    return Match(Skip(), i + 1)
+
+
+def after_one_room(before: Said) -> bool:
+    """Whether the item said last is an action on one room (*go to the kitchen*)."""
+    last = before[-1] if before else None
+    phrases = last.action.phrases if isinstance(last, PlainAction) else None
+    return phrases is not None and len(phrases.items) == 1 and names_rooms(phrases.items[0])
+
+
 @ITEMS.rule("link")
 def link_item(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """Fillers and sequence words (*then*, *after that*, *please*)."""
@@ -261,7 +299,8 @@ def conjunction(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
 def plain_action(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """An action, and what the words around it say of its place: *first* / *before that* after it, *X on
     the way*, *come back to X*."""
-    if r.word(i) in lx.REFUSED_WORDS:
+    if r.word(i) in lx.REFUSED_WORDS and not r.np_starts(i) and times_before_place(r, i) is None:
+        # not "other bdrm" (a phrase), not "go twice to X" (the verb's)
         return Refusal(rf.cannot_understand(lx.REFUSED_WORDS[r.word(i)]))
     found = action(r, i)
     if not isinstance(found, Match):

@@ -153,6 +153,19 @@ def skip_subject(r: Reader, i: int) -> int:
     return i
 
 
+def skip_until_subject(r: Reader, i: int) -> int:
+    """After *until* / *till*: the subject and auxiliaries, and a *not* between them that negates nothing
+    (*until you have not seen the couch*, *till you not have been in X*: how French, Italian and Spanish
+    writers say *until you have seen it*, their *tant que ... ne ... pas*; in English the negated reading
+    asks for nothing that can happen, so the positive one is the only one meant)."""
+    if r.at(i, "to", "have") or r.at(i, "to", "be"):
+        return skip_subject(r, i + 1)  # "before to have seen the couch" (French "avant d'avoir vu")
+    k = skip_subject(r, i)
+    if k > i and r.word(k) == "not":
+        return skip_subject(r, k + 1)
+    return k
+
+
 def comma_or_then(r: Reader, i: int) -> int:
     """After a condition or a prefix clause: the comma and *then* that close it."""
     i += 1 if r.word(i) == "," else 0

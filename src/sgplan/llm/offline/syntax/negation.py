@@ -4,11 +4,13 @@ floor*, *never go upstairs*."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import action, particles, verb_words
 from sgplan.llm.offline.syntax.floors import floor_words
-from sgplan.llm.offline.syntax.links import skip_subject
+from sgplan.llm.offline.syntax.links import skip_until_subject
 from sgplan.llm.offline.syntax.phrases import phrase_list
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.tree import (
@@ -22,6 +24,7 @@ from sgplan.llm.offline.syntax.tree import (
     StayExtreme,
     StayOnFloor,
     UntilDone,
+    VerbWords,
 )
 
 
@@ -54,15 +57,16 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
     """What follows the words ``marker`` of a prohibition (at ``j``): what is forbidden, and for how long."""
     j += 1 if r.at(j, ",", "ever") else 0  # "never, ever"
     j += 1 if r.word(j) in lx.NEGATION_EVER else 0  # "never ever", "don't ever"
-    needed = r.word(j) in lx.NEED_WORDS and r.word(j + 1) == "to"  # "no need to X": X free, not forbidden
-    if needed or (marker == ("not",) and r.word(j - 2) in lx.NEED_WORDS):  # "you need not (needn't) go"
+    # "no need to X": X free, not forbidden; "you need not (needn't) go"
+    needed = r.word(j) in lx.NEGATED_NEED_WORDS and r.word(j + 1) == "to"
+    if needed or (marker == ("not",) and r.word(j - 2) in lx.NEGATED_NEED_WORDS):
         return Refusal(rf.not_needed(r.quote(j - len(marker) - (0 if needed else 1), min(j + 4, len(r)))))
     stay = stay_on_floor(r, j, negated=True)  # "don't leave this floor"
     if stay is not None:
         if not isinstance(stay, Match):
             return stay
         return Match(Negation(marker, stay.node, None, None, None, False, None), stay.end)
-    verbs = verb_words(r, j, False)
+    verbs = concord_verb_words(r, j, marker)
     if not isinstance(verbs, Match):
         return verbs
     if set(verbs.node.words) & lx.REVISIT_VERBS:  # "never go back to X": only after a first visit
@@ -82,7 +86,7 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
         phrases, k = found.node, found.end
     k = particles(r, k)
     k += 1 if r.word(k) in lx.NEGATING + lx.NEGATION_EVER and marker[-1] in lx.NEGATING else 0  # "... never"
-    whole = r.phrase(k, lx.WHOLE_MISSION)
+    whole = whole_mission(r, k)
     k += len(whole) if whole else 0
     if r.word(k) in lx.PARTIAL_PROHIBITION or any(r.at(k, *p) for p in lx.PARTIAL_FROM):
         return Refusal(rf.partial_prohibition(r.rest(k)))
@@ -94,13 +98,37 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
     return Match(node, k if until is None else until.end)
 
 
+def whole_mission(r: Reader, k: int) -> tuple[str, ...] | None:
+    """*the whole time*, *at all times* ... after what to avoid or where to stay, and *always* there as
+    learners place it (*stay in this floor always*, *keep out of X always*): the words, or ``None``."""
+    return r.phrase(k, lx.WHOLE_MISSION) or (("always",) if r.word(k) == "always" else None)
+
+
+def concord_verb_words(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[VerbWords]:
+    """The verb of a prohibition at ``j``, and a second *never* after it, as writers of languages with
+    negative concord say it (*don't enter never in the kitchen*: *ne ... jamais*, *no ... nunca*): one
+    negation, never a double one that would ask for the place."""
+    verbs = verb_words(r, j, False)
+    if not isinstance(verbs, Match) or marker[-1] not in lx.NEGATING or r.word(verbs.end) != "never":
+        return verbs
+    more = verb_words(r, verbs.end + 1, False)
+    if not isinstance(more, Match):
+        return more
+    floor = more.node if more.node.floor is not None else verbs.node
+    return Match(replace(verbs.node, words=verbs.node.words + more.node.words, floor=floor.floor,
+                         floor_span=floor.floor_span), more.end)
+
+
 def until_target(r: Reader, k: int) -> Parse[Action | UntilDone]:
     """*... until / before Y*, *... until you have done that*, *... until both of them are done*."""
     if r.word(k) not in lx.UNTIL_WORDS:
         return None
     if r.word(k + 1) in lx.EVENT_WORDS or (r.at(k + 1, "the") and r.word(k + 2) in lx.EVENT_WORDS):
         return Refusal(rf.until_a_time(r.quote(k, k + (2 if r.word(k + 1) in lx.EVENT_WORDS else 3))))
-    said = skip_subject(r, k + 1)
+    if r.word(k + 1) in ("that", "this", "then") and r.word(k + 2) in ("", ","):
+        return Match(UntilDone(), k + 2)  # "you are not allowed into X before that": the step named last
+    k += 1 if r.word(k) in ("until", "till") and r.word(k + 1) == "after" else 0  # "until after you ..."
+    said = skip_until_subject(r, k + 1)
     if said > k + 1 and r.word(said) in ("", ","):
         return Match(UntilDone(), said)  # "don't set foot in the kitchen until you have"
     k = said
@@ -132,7 +160,7 @@ def stay_on_floor(r: Reader, i: int, negated: bool) -> Parse[StayOnFloor]:
         return Refusal(rf.stay_for_the_rest(r.word(i - 1), r.word(i)))
     other = r.phrase(where, lx.OTHER_FLOOR) is not None
     span = r.span(where, end)
-    whole = r.phrase(end, lx.WHOLE_MISSION)
+    whole = whole_mission(r, end)
     end += len(whole) if whole else 0
     and_off = None
     if r.at(end, "and", "off") and r.np_starts(end + 2):  # "stay on the top floor and off the stairs"
@@ -170,7 +198,7 @@ def staying(r: Reader, i: int, negated: bool) -> tuple[FloorSpec, int, int] | No
     return said.node, said.end, where
 
 
-def off_limits(r: Reader, i: int) -> Parse[OffLimits]:
+def off_limits(r: Reader, i: int) -> Parse[OffLimits | Negation]:
     """*The kitchen is off limits* / *the office and the garage are out of bounds* / *X should be avoided*;
     a sentence that states something else of a place (*the bowl is in the kitchen*) is refused."""
     if not r.np_starts(i):
@@ -183,5 +211,11 @@ def off_limits(r: Reader, i: int) -> Parse[OffLimits]:
         states = r.word(phrases.end) in lx.COPULAS
         return Refusal(rf.states_something(r.quote(i, phrases.end + 1))) if states else None
     end = phrases.end + len(said)
-    whole = r.phrase(end, lx.WHOLE_MISSION)
+    until = until_target(r, end)
+    if isinstance(until, Refusal):
+        return until
+    if until is not None:  # "the kitchen is off limits until you've checked the couch": never X until Y
+        return Match(Negation(("never",), None, VerbWords((), None, None), phrases.node, None, False,
+                              until.node), until.end)
+    whole = whole_mission(r, end)
     return Match(OffLimits(phrases.node), end + (len(whole) if whole else 0))

@@ -57,8 +57,10 @@ def there_place(r: Reader, i: int, role: Role, given: Head | None) -> Parse[Noun
 
 @NOUN_PHRASES.rule("all of them")
 def group_repeat(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
-    """*all of them*, *both of them*, *all three of them*, *all three* (a goal): the group named before."""
+    """*all of them*, *both of them*, *all three of them*, *all three*, *the two of them* (a goal): the group
+    named before."""
     n = 1 if r.word(i) in ("all", "both", "each", "every") else 0
+    n = 1 if r.word(i) == "the" and count_word(r, i + 1) and r.at(i + 2, "of", "them") else n
     said = lx.NUMBER_WORDS.get(r.word(i + n)) if n else None
     k = i + n + (1 if said else 0)
     if role != "goal" or not n or (not r.at(k, "of", "them") and not (said and r.word(k) in ("", ","))):
@@ -93,6 +95,20 @@ def pronoun(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhra
     return Match(Pronoun(r.span(i, i + 1), r.word(i)), i + 1) if r.word(i) in lx.PRONOUNS else None
 
 
+@NOUN_PHRASES.rule("the two in X")
+def counted_ones(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
+    """*the two in the lounge* after *the plant in the bedroom*: the ones of the kind named last (as *the
+    ones in the lounge*), and there must be that many."""
+    n = count_word(r, i + 1) if r.word(i) == "the" and given is None else None
+    if n is None or n < 2 or r.word(i + 2) not in lx.QUAL_IN or r.word(i + 2) == "of":
+        return None  # not "the two of the vases" / "the two of them" (both)
+    if not r.np_starts(i + 3):
+        return None
+    ones, det = OneHead(True, None, True), Determiner("all", n)
+    noun = Described(r.span(i, i + 2), "the", det, None, None, None, ones, None, (), None, False)
+    return qualifiers.finish(r, i, i + 2, noun, role, False)
+
+
 @NOUN_PHRASES.rule("described")
 def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
     """A determiner, floor words, a head noun and its qualifiers (*the ground floor bathroom with the
@@ -103,9 +119,18 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     other = r.at(i, "the", "other") and r.head(i + 2) is not None
     if r.at(i, "the", "other", "one") and given is None:
         one_from_context = other = True  # "the bedroom with the book, then the other one"
-    det = determiner(r, i + 1 if other else i, other)
+    bare_other = r.word(i) == "other" and r.head(i + 1) is not None  # "then other bdrm", as notes say it
+    other = other or bare_other
+    ordinal = lx.FLOOR_ORDINALS.get(r.word(i + 1)) if r.word(i) == "the" and given is None else None
+    if ordinal is not None and (r.head(i + 2) is not None or r.word(i + 2) in lx.ANAPHORIC_ONE):
+        one_from_context = r.word(i + 2) in lx.ANAPHORIC_ONE  # "back to the first one / bedroom"
+    else:
+        ordinal = None  # "the first floor": a floor (floor_words)
+    det = determiner(r, i if bare_other or not other else i + 1, other)
     if not isinstance(det, Match):
         return det
+    if ordinal is not None:
+        det = Match(replace(det.node, ordinal=ordinal + 1), det.end + 1)
     i = r.descriptive_end(det.end)
     said = r.words[det.end : i]
     relative = r.word(i) if r.word(i) in lx.RELATIVE_FLOORS else None
@@ -162,6 +187,8 @@ def determiner(r: Reader, i: int, other: bool) -> Parse[Determiner]:
         count = count_word(r, i + demo)
         end = i + demo + (1 if count else 0)
         return Match(Determiner("all" if count else "the", count, pointer=r.word(i), other=other), end)
+    if r.word(i) in lx.OWNERS and (room := r.head(i + 1)) is not None and room.kind == "room":
+        return Match(Determiner("the", None, pointer=r.word(i), other=other), i + 1)  # "her room"
     quant = quantifier(r, i)
     if not isinstance(quant, Match):
         return quant
@@ -186,8 +213,12 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
         chosen_from = r.word(i) in ("the", "these", "those")  # "one of the two bathrooms"
     elif w in lx.INDEFINITE:
         i, mode = i + 1, "any"
-    elif w in lx.UNIVERSAL:
-        i, mode, count = i + 1, "all", (2 if w == "both" else None)
+    elif w in ("each", "every") and (r.at(i + 1, "one", "of") or r.at(i + 1, "single", "one", "of")):
+        i, mode = i + (3 if r.word(i + 1) == "one" else 4), "all"  # "every (single) one of the vases"
+    elif w in lx.UNIVERSAL or (w == "the" and r.word(i + 1) == "both"):
+        # "the both bedrooms", as learners write it (the article of their language): both
+        i += 1 if w == "the" else 0
+        i, mode, count = i + 1, "all", (2 if r.word(i) == "both" else None)
         i += 1 if r.word(i) == "of" else 0
     elif w in lx.DEMONSTRATIVES and r.word(i + 1) not in lx.FLOOR_WORDS:
         # only the demonstrative path may read "that ..." / "this ...": never a fresh description
@@ -195,7 +226,11 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
     elif w in lx.DEFINITE or w in lx.POSSESSIVES:
         i, mode = i + 1, "the"
     i += 1 if r.word(i) == "the" and mode is not None else 0
-    n = count_word(r, i) if r.np_starts(i + 1) or r.head(i + 1) else None
+    n = count_word(r, i) if mode == "the" and r.at(i + 1, "of", "the") else None
+    if n is not None:
+        return Match(Determiner("all", n), i + 3)  # "the two of the vases": both
+    noun_next = r.np_starts(i + 1) or r.head(i + 1) or r.nouns.room_modifier(r.words, i + 1)
+    n = count_word(r, i) if noun_next else None  # "all three (dining) chairs"
     if n is not None and chosen_from:
         return Match(Determiner(mode, n), i + 1)  # one of them, and there must be n
     if n == 1 and mode is None and r.word(i) == "one":
@@ -267,7 +302,8 @@ def phrase_list(r: Reader, i: int, role: Role) -> Parse[PhraseList]:
         return item
     items, joiners, i = [item.node], set[str](), item.end
     while (joined := list_joiner(r, i, preposition)) is not None:
-        restates = r.word(joined[1]) in lx.ARTICLES and r.word(joined[1] + 1) in lx.ANAPHORIC_ONE
+        restates = ((r.word(joined[1]) in lx.ARTICLES and r.word(joined[1] + 1) in lx.ANAPHORIC_ONE)
+                    or isinstance(group_repeat(r, joined[1], role, None), Match))  # "the vases - all four"
         if not joined[0] and not restates and r.text[r.toks[i].start:r.toks[i].end].strip() in lx.DASHES:
             # "kitchen - office - couch": a route, or a set? (a dash between asides is read as a comma)
             return Refusal(rf.dash_between_goals(r.quote(first, min(len(r), joined[1] + 2))))
@@ -287,6 +323,14 @@ def phrase_list(r: Reader, i: int, role: Role) -> Parse[PhraseList]:
                             len(items) > 1 and not joiners and not either), i)
 
 
+def there_then_verb(r: Reader, i: int) -> bool:
+    """*there* at ``i`` before a verb (*go to the kitchen and there take the bowl*): the place of the next
+    action, not an item of the list."""
+    nxt = r.word(i + 1)
+    return (r.word(i) == "there" and nxt.isalpha() and not r.np_starts(i + 1)
+            and nxt not in lx.STATEMENT_LINKS and nxt not in lx.STRUCTURAL)
+
+
 def list_joiner(r: Reader, i: int, preposition: str | None) -> tuple[str, int] | None:
     """The conjunction (``""`` for a bare comma) before a further item of a list at ``i`` and where that
     item starts; ``None`` when the list ends here."""
@@ -300,7 +344,7 @@ def list_joiner(r: Reader, i: int, preposition: str | None) -> tuple[str, int] |
     if (w == "," and r.np_starts(i + 1) and not r.phrase(i + 1, lx.NEG_STARTS) and not closing_at(r, i + 1)
             and not r.phrase(i + 1, lx.TIME_FILLERS) and qualifiers.remark_ahead(r, i) is None):
         return "", i + 1
-    if w in ("and", "or", "nor") and r.np_starts(i + 1):
+    if w in ("and", "or", "nor") and r.np_starts(i + 1) and not there_then_verb(r, i + 1):
         return w, i + 1
     if r.at(i, ",", "nor") and r.np_starts(i + 2):
         return "nor", i + 2

@@ -194,6 +194,9 @@ def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     w = r.word(i)
     if w in lx.RELATIVE_FLOORS:
         return Match(OnFloor(RelativeFloor(w)), i + 1)
+    k = i + 1 + (1 if r.word(i + 1) == "the" else 0)
+    if w in lx.FLOOR_PREPOSITIONS and r.word(k) in lx.RELATIVE_FLOORS and r.head(k + 1) is None:
+        return Match(OnFloor(RelativeFloor(r.word(k))), k + 1)  # "the bathroom of the upstairs" (learners)
     comma = 1 if w == "," else 0
     if floor_count(r, i + comma) is not None and r.word(i + comma + 1) in lx.FLOOR_PLURALS:
         offset = floor_offset(r, i + comma)  # "the kitchen (,) one floor down"
@@ -207,6 +210,10 @@ def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
         return same_floor(r, i + 4)
     if r.word(i + 1) == "that" and r.word(i + 2) in lx.FLOOR_WORDS:
         return same_floor(r, i + 3)
+    if r.at(i + 1, "that", "same") and r.word(i + 3) in lx.FLOOR_WORDS:
+        return same_floor(r, i + 4)  # "on that same floor": no fresh floor, the one named last
+    if r.word(i + 1) == "same" and r.word(i + 2) in lx.FLOOR_WORDS:
+        return same_floor(r, i + 3)  # "the bathroom of same floor", the article left out as learners do
     said = floor_words(r, i + (2 if r.word(i + 1) == "the" else 1))
     if said is None or r.head(said.end) is not None:
         return None  # none, or "in the ground floor bathroom": a room named with its floor
@@ -301,12 +308,15 @@ def where_is(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if noun.kind == "object" or r.word(i) != "where" or r.word(i + 1) not in lx.RELATIVE_BE:
         return None
     k = i + 2 + (1 if r.word(i + 2) in lx.ONLY_WORDS else 0)
+    count = phrases.count_word(r, k)  # "where are two beds": exactly two
+    k += 1 if count is not None else 0
     if not r.np_starts(k) or r.word(k) == "there":
         return None
     thing = phrases.noun_phrase(r, k, "qualifier")
     if not isinstance(thing, Match):
         return thing
-    return Match(Contains(thing.node, r.span(noun.first, thing.end), None, k > i + 2), thing.end)
+    only = r.word(i + 2) in lx.ONLY_WORDS and count is None
+    return Match(Contains(thing.node, r.span(noun.first, thing.end), count, only), thing.end)
 
 
 @QUALIFIERS.rule("that is X")
@@ -338,13 +348,22 @@ def holds(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if isinstance(thing, Refusal):
         return None if tail else thing  # "the room the ...": maybe not a relative clause at all
     assert thing is not None
+    also: list[NounPhrase] = []
+    while not tail and r.word(thing.end) == "and" and r.np_starts(thing.end + 1):
+        more = phrases.noun_phrase(r, thing.end + 1, "qualifier")  # "where the book and the vase are"
+        if not isinstance(more, Match):
+            return more
+        also.append(more.node)
+        thing = Match(thing.node, more.end)
+    if also and r.word(thing.end) not in lx.PLURAL_BE:
+        return Refusal(rf.where_after_a_room(r.rest(thing.end)))
     if r.word(thing.end) not in lx.RELATIVE_BE:
         return None if tail else Refusal(rf.where_after_a_room(r.rest(thing.end)))
     end = thing.end + 1
     end += 1 if r.word(end) in lx.RELATIVE_PARTICIPLES else 0
     if not r.at(end, *tail):
         return None if tail else Refusal(rf.where_after_a_room(r.rest(end)))
-    return Match(Holds(thing.node), end + len(tail))
+    return Match(Holds(thing.node, tuple(also)), end + len(tail))
 
 
 @QUALIFIERS.rule("without")

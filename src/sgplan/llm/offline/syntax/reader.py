@@ -130,6 +130,8 @@ class Reader:
             return True  # "floor 2" as a place
         if w in lx.FLOOR_NAMES and nxt in lx.FLOOR_WORDS and self.head(i + 2) is not None:
             return True  # "top floor bathroom", "ground-floor bathroom" (notes leave the article out)
+        if w == "other" and self.head(i + 1) is not None:
+            return True  # "-> other bdrm": the other bedroom, the article left out as notes do
         if w in lx.NUMBER_WORDS or w.isdigit():
             if nxt in lx.FLOOR_PLURALS and self.word(i + 2) in lx.FLOOR_DIRECTIONS:
                 return False  # "two floors up": where, not what

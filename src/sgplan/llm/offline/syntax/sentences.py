@@ -14,10 +14,17 @@ from typing import Any
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
-from sgplan.llm.offline.syntax.actions import after_conjunction
+from sgplan.llm.offline.syntax.actions import action, after_conjunction
 from sgplan.llm.offline.syntax.body import body
 from sgplan.llm.offline.syntax.floors import floor_words
-from sgplan.llm.offline.syntax.links import at_end, comma_or_then, done_words, link, skip_subject
+from sgplan.llm.offline.syntax.links import (
+    at_end,
+    comma_or_then,
+    done_words,
+    link,
+    skip_subject,
+    skip_until_subject,
+)
 from sgplan.llm.offline.syntax.phrases import noun_phrase
 from sgplan.llm.offline.syntax.qualifiers import head_kind
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
@@ -30,6 +37,7 @@ from sgplan.llm.offline.syntax.tree import (
     IfRule,
     Link,
     MissionSentence,
+    Negation,
     OnlyAfterPost,
     OnlyAfterSentence,
     OnlyIfPost,
@@ -156,7 +164,7 @@ def until_first(r: Reader, i: int) -> Parse[SentenceBody]:
     """*Until / till (you have reached) Y, stay out of X*."""
     if r.word(i) not in lx.UNTIL_OPENERS and not r.at(i, "up", "until"):
         return None
-    target = after_conjunction(r, i + (2 if r.word(i) == "up" else 1), in_condition=True)
+    target = action(r, skip_until_subject(r, i + (2 if r.word(i) == "up" else 1)), in_condition=True)
     if not isinstance(target, Match):
         return target
     rest = body(r, comma_or_then(r, target.end))
@@ -221,8 +229,12 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
 
 @OPENINGS.rule("only <do X> after Y")
 def only_verb_after(r: Reader, i: int) -> Parse[SentenceBody]:
-    """*Only enter the living room after you have been to the kitchen*: as *... only after ...*."""
-    if r.word(i) != "only" or r.word(i + 1) not in lx.POSITIVE_VERBS:
+    """*Only enter the living room after you have been to the kitchen*, *only pop into X once you've been to
+    Y* (any verb, as in any action): as *... only after ...*."""
+    w = r.word(i + 1)
+    verb = w in lx.POSITIVE_VERBS or (w.isalpha() and not r.np_starts(i + 1) and w not in lx.STRUCTURAL
+                                      and w not in lx.ONLY_FOLLOWERS)
+    if r.word(i) != "only" or not verb:
         return None
     said = body(r, i + 1, only_verb=True)
     if not isinstance(said, Match):
@@ -262,10 +274,31 @@ def plain(r: Reader, i: int) -> Parse[SentenceBody]:
     said = body(r, i)
     if not isinstance(said, Match):
         return said
-    post = postfix(r, said.end, said.node.actions)
+    tail = trailing_prohibitions(r, said.end)
+    post = postfix(replace(r, toks=r.toks[:tail.end]) if tail else r, said.end, said.node.actions)
     if not isinstance(post, Match):
         return post
-    return Match(PlainSentence(scope, said.node, post.node), post.end)
+    if tail is None:
+        return Match(PlainSentence(scope, said.node, post.node), post.end)
+    return Match(PlainSentence(scope, said.node, post.node, tail.node), len(r))
+
+
+def trailing_prohibitions(r: Reader, i: int) -> Match[Body] | None:
+    """After a closing condition at ``i`` (*X, but only after Y*): *, and stay out of Z (the whole time)* /
+    *, and never enter Z* closing the sentence, as a body of whole-mission prohibitions only (``end``: where
+    the condition ends); ``None`` when there is none (then the condition must close the sentence)."""
+    if not (r.phrase(i, lx.ONLY_AFTER) or r.at(i, *lx.ONLY_IF)):
+        return None
+    for k in range(len(r) - 1, i, -1):
+        if not r.at(k, ",", "and"):
+            continue
+        said = body(r, k + 2)
+        if not isinstance(said, Match) or said.end != len(r) or not said.node.items:
+            return None
+        whole = all(isinstance(item, Negation) and item.until is None
+                    and (item.whole or lx.GLOBAL_NEG & set(item.marker)) for item in said.node.items)
+        return Match(said.node, k) if whole else None
+    return None
 
 
 def rules_sentence(r: Reader, i: int) -> Parse[SentenceBody]:
@@ -389,8 +422,9 @@ def postfix(r: Reader, i: int, body_actions: int) -> Parse[Postfix]:
     said = antecedent(r, i)
     if not isinstance(said, Match):
         return said if said is not None else Refusal(rf.cannot_understand(r.rest(i)))
-    if joined and r.word(said.end) in (",", "then") and r.word(said.end + 1):
-        own = condition_rule(r, i)  # "S, and whenever X, T": the rule has its own consequent
+    if joined and said.end < len(r) and (r.word(said.end) not in (",", "then") or r.word(said.end + 1)):
+        # "S, and whenever X(,) T": the rule has its own consequent (spoken, often with no comma)
+        own = condition_rule(r, i)
         if not isinstance(own, Match):
             return own
         first, end, body_is_consequent = own.node, own.end, False

@@ -186,6 +186,8 @@ class Determiner:
     other: bool = False
     descriptive: tuple[str, ...] = ()
     """Descriptive words read with the determiner (:attr:`Described.descriptive`)."""
+    ordinal: int | None = None
+    """*the first / second X*, *back to the first one* (1, 2 ...): the X named that many-th before."""
 
 
 @dataclass(frozen=True)
@@ -263,9 +265,11 @@ class There:
 
 @dataclass(frozen=True)
 class Holds:
-    """*the room where the book is*: the rooms holding that object."""
+    """*the room where the book is*: the rooms holding that object; ``also``: the others said with it (*the
+    bedroom where the book and the vase are*: holding each)."""
 
     thing: NounPhrase
+    also: tuple[NounPhrase, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -340,6 +344,8 @@ class VerbWords:
     """*go first to X*, *go before to X* (as learners write *first*): the action comes first."""
     again: bool = False
     """*go again to X*: a new visit of X (as *X again*)."""
+    times: int = 1
+    """*go twice / two times to X* (as learners place it): X that many times (as *X twice*)."""
 
 
 @dataclass(frozen=True)
@@ -376,6 +382,8 @@ class Action:
     purpose: PhraseList | None = None
     in_condition: bool = False
     carried_on: bool = False
+    destination_remark: tuple[str, ...] | None = None
+    """A choice remark after the destination (*put it on the table in the dining room, any one*)."""
 
 
 # -------------------------------------------------------------------------------------------- body items
@@ -586,6 +594,9 @@ class PlainSentence:
     scope: NounPhrase | None
     body: Body
     postfix: Postfix
+    prohibitions: Body | None = None
+    """Whole-mission prohibitions said after the condition (*X, but only after Y, and stay out of Z the whole
+    time*): they hold beside it."""
 
 
 @dataclass(frozen=True)
