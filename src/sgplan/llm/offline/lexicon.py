@@ -358,6 +358,17 @@ CARRY_DESTINATION_WORDS = ("in", "into", "on", "onto", "to", "inside", "until", 
 """After a carry verb's object: *put the bowl in the sink*; *bring the bowl until the table* (as learners
 write *to*)."""
 
+CAUTION_PAIRS = frozenset({("take", "care"), ("watch", "out"), ("look", "out"), ("never", "mind")})
+"""Two words that say how to behave near a place, or to disregard it (*take care in the kitchen*, *watch
+out for the vase*, *never mind the office*): no goal and no prohibition, so refused, not read as a visit."""
+
+CAUTION_VERBS = frozenset({"mind", "beware"})
+"""Verbs of caution before a place (*mind the stairs*): refused like :data:`CAUTION_PAIRS`."""
+
+BE_FINE = frozenset({"sure", "certain"})
+"""*be sure to ...*: a wrapper, not a manner of being (:func:`.syntax.actions.refused_verb`)."""
+
+
 REFUSED_WORDS: dict[str, str] = {
     "leave": "'leave' (the translator cannot express leaving a place; say where to go instead)",
     "exit": "'exit' (say which room to go to instead)",

@@ -119,6 +119,12 @@ def where_after_no_room(said: str) -> str:
                     "<room>, ...' or name the room of the object")
 
 
+def caution_not_goal(said: str) -> str:
+    return rephrase(f"'{said}' says how to behave near a place (or to disregard it), which neither asks to "
+                    "go there nor forbids it; say 'go to X' for a goal, or 'avoid X' / 'never enter X' to "
+                    "keep away")
+
+
 def not_needed(said: str) -> str:
     return rephrase(f"'{said}' says a goal is not needed, which neither asks for it nor forbids it; leave "
                     "it out, or say 'never enter X' to forbid it")

@@ -211,11 +211,24 @@ def refused_verb(r: Reader, i: int, in_condition: bool) -> Refusal | None:
     w, nxt = r.word(i), r.word(i + 1)
     if w in lx.REFUSED_WORDS:
         return Refusal(rf.cannot_understand(lx.REFUSED_WORDS[w]))
+    if (w, nxt) in lx.CAUTION_PAIRS or (w in lx.CAUTION_VERBS and r.np_starts(i + 1)):
+        return Refusal(rf.caution_not_goal(r.quote(i, min(len(r), i + 3))))
+    if r.word(i - 1) == "be" and _manner(r, i):  # "be careful in X" ("be" is read before the verb slot)
+        return Refusal(rf.caution_not_goal(r.quote(i - 1, min(len(r), i + 2))))
+    if w == "be" and _manner(r, i + 1):
+        return Refusal(rf.caution_not_goal(r.quote(i, min(len(r), i + 3))))
     if w in lx.START_VERBS and nxt in lx.START_END_PARTICLES and not in_condition:
         return Refusal(rf.path_start_or_end(w, nxt))
     if w in ("do", "does", "did", "doing") and nxt in lx.DONE_WHAT:
         return Refusal(rf.did_is_not_a_place(w, nxt))
     return None
+
+
+def _manner(r: Reader, i: int) -> bool:
+    """Whether the word at ``i``, after *be*, says a manner (*careful*, *quiet*) rather than a place (*be in
+    the kitchen*) or a wrapper (*be sure to*)."""
+    w = r.word(i)
+    return w.isalpha() and w not in lx.PLACE_PREPOSITIONS and w not in lx.BE_FINE and not r.np_starts(i)
 
 
 def floor_said(r: Reader, i: int) -> Match[FloorOffset] | None:

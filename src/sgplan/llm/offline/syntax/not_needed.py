@@ -2,7 +2,9 @@
 have to open it.*
 
 Such a clause neither asks for its goal nor forbids it, so it is no part of the mission: it is set aside
-like context (:class:`.tree.SetAside`) and said back as not part of the mission, never dropped silently. A
+like context (:class:`.tree.SetAside`) and said back as not part of the mission, never dropped silently --
+unless it names a room, an object or a floor (*no need to go into the living room*): careful readers take
+that one as "keep out of it" as often as "it is not needed", so it is parsed, and refused. A
 clause is set aside whole (a sentence, or the words between commas), and only when it says nothing but
 that: with a condition or an order word in it (*no need to go there unless ...*, *... before the office*),
 or an *and* before anything but a room or object (*no need to go to the kitchen and check the oven*: is the
@@ -51,5 +53,7 @@ def only_not_needed(r: Reader, start: int, end: int) -> bool:
     if marker is None or start + len(marker) >= end or closing_at(r, start) == end:
         return False  # not "no need to rush": a remark of its own, skipped (lexicon.CLOSING)
     said = range(start + len(marker), end)
+    if any(r.head(k) is not None or r.word(k) in lx.RELATIVE_FLOORS for k in said):
+        return False  # "no need to go into the living room": keep out of it, or only not needed? Refused
     return not any(r.word(k) in lx.NOT_NEEDED_STOPS or (r.word(k) == "and" and not r.np_starts(k + 1))
                    for k in said)
