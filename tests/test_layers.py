@@ -68,6 +68,13 @@ def test_an_upward_import_breaks_the_contract(module: str, upward: str, said: st
         # a run's helper importing the run that calls it, even inside a function
         ("execution/impossible.py", "def _later():\n    from sgplan.execution.run import Run\n",
          "No cycles are allowed in sgplan.execution"),
+        # the translator's noun-phrase slot importing the rules registered in it (the cycle cut last)
+        ("llm/offline/syntax/noun_slot.py",
+         "def _later():\n    from sgplan.llm.offline.syntax import phrases\n",
+         "No cycles are allowed in sgplan.llm.offline.syntax"),
+        # the discourse state naming the meaning's composition (Task and Step moved down to tasks.py)
+        ("llm/offline/grounding/discourse.py", "from sgplan.llm.offline.meaning.compose import conj\n",
+         "No cycles are allowed in sgplan.llm.offline"),
     ],
 )
 def test_an_import_cycle_in_a_package_breaks_the_contract(module: str, back: str, said: str,

@@ -21,7 +21,7 @@ from sgplan.llm.offline.meaning.body import READERS
 from sgplan.llm.offline.meaning.sentences import SENTENCES
 from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.body import ITEMS
-from sgplan.llm.offline.syntax.phrases import NOUN_PHRASES
+from sgplan.llm.offline.syntax.noun_slot import NOUN_PHRASES
 from sgplan.llm.offline.syntax.qualifiers import QUALIFIERS
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.sentences import OPENINGS

@@ -12,10 +12,10 @@ from __future__ import annotations
 import copy
 from dataclasses import dataclass, field
 
-from sgplan.llm.offline.meaning.compose import Step
 from sgplan.llm.offline.names import Entity, SceneVocabulary
 from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax.tree import Mode, Role
+from sgplan.llm.offline.tasks import Step
 
 
 @dataclass

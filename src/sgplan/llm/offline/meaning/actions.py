@@ -12,10 +12,11 @@ from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding.discourse import FloorReading, Grounded, Where
 from sgplan.llm.offline.grounding.floors import floors_of
 from sgplan.llm.offline.grounding.phrases import ground_list
-from sgplan.llm.offline.meaning.compose import Step, Task, member_formula, moved
+from sgplan.llm.offline.meaning.compose import member_formula, moved
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.names import Entity
 from sgplan.llm.offline.syntax.tree import Action, Repeat
+from sgplan.llm.offline.tasks import Step, Task
 
 
 @dataclass

@@ -13,7 +13,7 @@ from typing import Any
 
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.meaning.actions import steps_of
-from sgplan.llm.offline.meaning.compose import Clause, Step, Task, moved
+from sgplan.llm.offline.meaning.compose import Clause, moved
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.negations import negation, off_limits, stay_on_floor
 from sgplan.llm.offline.meaning.order import check_restriction_target
@@ -33,6 +33,7 @@ from sgplan.llm.offline.syntax.tree import (
     StayOnFloor,
     Waypoint,
 )
+from sgplan.llm.offline.tasks import Step, Task
 from sgplan.logic import And
 
 READERS: Registry[Callable[[Any, Clause, SentenceContext], None]] = Registry("item reader")

@@ -21,34 +21,12 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Literal
 
 from sgplan.errors import MissionError
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.names import Entity
+from sgplan.llm.offline.tasks import Step, Task
 from sgplan.logic.formula import And, Atom, Eventually, Formula, Not, Or, Until
-
-
-@dataclass
-class Task:
-    """One goal: ``any`` of ``members`` or ``all`` of them, each with the local negations ``avoid``;
-    ``revisit``: reached anew, after being elsewhere (see the module docstring)."""
-
-    mode: Literal["any", "all"]
-    members: list[Formula]
-    avoid: list[Formula] = field(default_factory=list)
-    revisit: bool = False
-    strict: bool = False
-    """Said with *only after that* / *only then*: not done before the previous step (see
-    :func:`strict_formulas`)."""
-    said_at: int = -1
-    """The character offset of the phrase the task was read from (-1: none), for :func:`check_text_order`."""
-    moved: bool = False
-    """An explicit word placed the task out of the order of the text (*before that*, *first*, *via*, *after
-    X*, *twice with Y in between*)."""
-
-
-Step = list[Task]
 
 
 def conj(parts: Sequence[Formula]) -> Formula:

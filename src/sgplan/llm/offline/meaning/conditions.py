@@ -12,9 +12,10 @@ from __future__ import annotations
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.meaning.actions import steps_of
 from sgplan.llm.offline.meaning.body import read_body
-from sgplan.llm.offline.meaning.compose import Clause, Task, disj, sequence_formula
+from sgplan.llm.offline.meaning.compose import Clause, disj, sequence_formula
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.syntax.tree import Action, Body, IfRule, Rule, WheneverRule
+from sgplan.llm.offline.tasks import Task
 from sgplan.logic.formula import Always, Formula, Implies
 
 

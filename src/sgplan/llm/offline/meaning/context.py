@@ -10,8 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from sgplan.llm.offline.grounding.discourse import Discourse, FloorReading
-from sgplan.llm.offline.meaning.compose import Step, Task
 from sgplan.llm.offline.names import Entity
+from sgplan.llm.offline.tasks import Step, Task
 from sgplan.logic.formula import And, Atom, Formula, atoms
 from sgplan.logic.tokens import action_entity
 

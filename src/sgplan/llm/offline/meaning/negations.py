@@ -15,10 +15,11 @@ from sgplan.llm.offline.grounding.discourse import Grounded, Where
 from sgplan.llm.offline.grounding.floors import floors_of
 from sgplan.llm.offline.grounding.phrases import ground_list, ground_phrase
 from sgplan.llm.offline.meaning.actions import steps_of
-from sgplan.llm.offline.meaning.compose import Clause, Step, Task, conj, disj
+from sgplan.llm.offline.meaning.compose import Clause, conj, disj
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.names import Entity
 from sgplan.llm.offline.syntax.tree import Negation, OffLimits, StayOnFloor, UntilDone
+from sgplan.llm.offline.tasks import Step, Task
 from sgplan.logic.formula import Always, Atom, Formula, Not, Until, atoms
 from sgplan.logic.tokens import action_entity
 

@@ -8,8 +8,9 @@ offering both phrasings, unless the room itself is a goal of the same step.
 from __future__ import annotations
 
 from sgplan.llm.offline import refusals as rf
-from sgplan.llm.offline.meaning.compose import Clause, Task, conj, disj, goal_eventually
+from sgplan.llm.offline.meaning.compose import Clause, conj, disj, goal_eventually
 from sgplan.llm.offline.meaning.context import SentenceContext
+from sgplan.llm.offline.tasks import Task
 from sgplan.logic.formula import And, Atom, Formula, Not, Until
 
 

@@ -15,7 +15,7 @@ from sgplan.llm.offline.grounding.discourse import Where
 from sgplan.llm.offline.grounding.phrases import ground_phrase
 from sgplan.llm.offline.meaning.actions import steps_of
 from sgplan.llm.offline.meaning.body import read_body
-from sgplan.llm.offline.meaning.compose import Clause, Task, conj, disj, moved
+from sgplan.llm.offline.meaning.compose import Clause, conj, disj, moved
 from sgplan.llm.offline.meaning.conditions import condition_of, require, rule_formula
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.order import only_after
@@ -32,6 +32,7 @@ from sgplan.llm.offline.syntax.tree import (
     RulesPost,
     UntilSentence,
 )
+from sgplan.llm.offline.tasks import Task
 from sgplan.logic.formula import Always, Formula, Implies, Until
 
 Meaning = Clause | Formula

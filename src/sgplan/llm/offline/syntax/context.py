@@ -21,7 +21,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
-from sgplan.llm.offline.syntax.phrases import noun_phrase
+from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.preamble import stated_start
 from sgplan.llm.offline.syntax.reader import Match, Reader
 from sgplan.llm.offline.syntax.tree import Described, NounPhrase

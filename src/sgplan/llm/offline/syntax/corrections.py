@@ -28,7 +28,7 @@ from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import Head
-from sgplan.llm.offline.syntax.phrases import noun_phrase
+from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.reader import Match, Reader
 from sgplan.llm.offline.syntax.tree import Described, NounPhrase
 from sgplan.llm.offline.text import Tok

@@ -26,7 +26,7 @@ from typing import Literal
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.syntax.floors import floor_words
-from sgplan.llm.offline.syntax.phrases import noun_phrase
+from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.preamble import is_chitchat
 from sgplan.llm.offline.syntax.qualifiers import head_kind
 from sgplan.llm.offline.syntax.reader import Match, Reader

@@ -16,8 +16,8 @@ from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import qualifiers
 from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.links import closing_at
-from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal, unreadable
-from sgplan.llm.offline.syntax.rules import RuleSet
+from sgplan.llm.offline.syntax.noun_slot import NOUN_PHRASES, count_word, head_noun, noun_phrase
+from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.tree import (
     Described,
     Determiner,
@@ -36,17 +36,6 @@ from sgplan.llm.offline.syntax.tree import (
     SameRoom,
     ThereNP,
 )
-from sgplan.llm.offline.text import is_clock_time
-
-NOUN_PHRASES: RuleSet[NounPhrase] = RuleSet("noun phrase")
-
-
-def noun_phrase(r: Reader, i: int, role: Role, given: Head | None = None) -> Parse[NounPhrase]:
-    """One noun phrase at ``i`` (``role``: where it occurs); ``given``: what *the one* means here (an
-    apposition's or an exception's head)."""
-    if i >= len(r):
-        return Refusal(rf.expected_phrase_at_end())
-    return NOUN_PHRASES.first(r, i, role, given)
 
 
 @NOUN_PHRASES.rule("there")
@@ -242,14 +231,6 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
     return Match(Determiner(mode, count), i)
 
 
-def count_word(r: Reader, i: int) -> int | None:
-    """The number said at ``i`` (*two*, *3*; not *one of*), or ``None``."""
-    w = r.word(i)
-    if w in lx.NUMBER_WORDS and (w != "one" or r.word(i + 1) != "of"):
-        return lx.NUMBER_WORDS[w]
-    return int(w) if w.isdigit() else None
-
-
 def demonstrative(r: Reader, i: int) -> int:
     """How many words of a back-pointing determiner start the phrase at ``i`` (*that*, *those*, *the
     same*, *that same* before a room or object noun, with or without a number); 0 if none."""
@@ -261,28 +242,6 @@ def demonstrative(r: Reader, i: int) -> int:
     if r.word(k) in lx.FLOOR_WORDS or r.word(k) in lx.ANAPHORIC_ONE:
         return 0  # "this floor": the start floor; "that one" is refused
     return n
-
-
-def head_noun(r: Reader, i: int, one: OneHead | None) -> Parse[HeadRef]:
-    """The head noun at ``i``: a category of the scene (or a synonym), *one(s)* (``one`` says of what),
-    or a refusal naming the word."""
-    w = r.word(i)
-    if w in lx.ANAPHORIC_ONE:
-        if one is None or (one.given is None and not one.from_context):
-            return Refusal(rf.one_without_kind(w))
-        return Match(replace(one, plural=w == "ones"), i + 1)
-    if w in lx.REFUSED_WORDS:
-        return Refusal(rf.cannot_understand(lx.REFUSED_WORDS[w]))
-    if w in lx.FLOOR_ORDINALS or w in lx.FLOOR_NAMED or w in lx.FLOOR_TOP:
-        return Refusal(rf.ordinal_not_of_a_floor(w))
-    head = r.head(i)
-    if head is None and i >= len(r):
-        return Refusal(rf.expected_phrase_after(r.word(i - 1)))
-    if head is None and (not w[:1].isalpha() or is_clock_time(w)):
-        return unreadable(r, i)
-    if head is None:
-        return Refusal(rf.unknown_noun(w, r.nouns.category_names("room"), r.nouns.category_names("object")))
-    return Match(head, i + head.words)
 
 
 def phrase_list(r: Reader, i: int, role: Role) -> Parse[PhraseList]:

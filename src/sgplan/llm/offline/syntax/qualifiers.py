@@ -15,8 +15,8 @@ from typing import Literal
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.nouns import Head, Kind
-from sgplan.llm.offline.syntax import phrases
 from sgplan.llm.offline.syntax.floors import floor_count, floor_offset, floor_words
+from sgplan.llm.offline.syntax.noun_slot import count_word, head_noun, noun_phrase
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.tree import (
@@ -152,7 +152,7 @@ def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Describe
             or not head.categories or not isinstance(noun.head, Head) or not r.at(i, ",", "the")
             or r.word(one) != "one" or r.phrase(one, lx.CHOICE_AFFIRMATIONS)):
         return None
-    which = phrases.noun_phrase(r, i + 1, "qualifier", Head(head.kind, head.categories, False, 1))
+    which = noun_phrase(r, i + 1, "qualifier", Head(head.kind, head.categories, False, 1))
     if isinstance(which, Match) and not isinstance(which.node, Described):
         return None
     return which  # type: ignore[return-value]
@@ -175,7 +175,7 @@ def possessive(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]
     """*the teddy bear's room* (the room holding it), *the kitchen's sink* (the sink in it)."""
     if r.word(i) != "'s" or noun.kind is None or r.head(i + 1) is None:
         return None  # not "the oven's off": there 's is "is"
-    head = phrases.head_noun(r, i + 1, None)
+    head = head_noun(r, i + 1, None)
     if not isinstance(head, Match):
         return head
     assert isinstance(head.node, Head)
@@ -239,7 +239,7 @@ def floor_after(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped
 def same_floor(r: Reader, i: int) -> Parse[Qualifier | Skipped]:
     """After *on the same floor* / *on that floor* (at ``i``): *as X* when said."""
     if r.word(i) == "as" and r.np_starts(i + 1):
-        other = phrases.noun_phrase(r, i + 1, "qualifier")
+        other = noun_phrase(r, i + 1, "qualifier")
         if not isinstance(other, Match):
             return other
         return Match(OnFloor(SameFloor(other.node)), other.end)
@@ -270,7 +270,7 @@ def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     j = i + (1 if r.at(i + 1, "either") and r.np_starts(i + 2) else 0)
     while not rooms or (k := more_rooms(r, j, noun)):
         start = j + (k if rooms else 1)
-        room = phrases.noun_phrase(r, start, "qualifier")
+        room = noun_phrase(r, start, "qualifier")
         if rooms and not (isinstance(room, Match) and names_rooms(room.node)):
             break  # "every plant in the office and the couch": the couch is another goal
         if not isinstance(room, Match):
@@ -308,11 +308,11 @@ def where_is(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if noun.kind == "object" or r.word(i) != "where" or r.word(i + 1) not in lx.RELATIVE_BE:
         return None
     k = i + 2 + (1 if r.word(i + 2) in lx.ONLY_WORDS else 0)
-    count = phrases.count_word(r, k)  # "where are two beds": exactly two
+    count = count_word(r, k)  # "where are two beds": exactly two
     k += 1 if count is not None else 0
     if not r.np_starts(k) or r.word(k) == "there":
         return None
-    thing = phrases.noun_phrase(r, k, "qualifier")
+    thing = noun_phrase(r, k, "qualifier")
     if not isinstance(thing, Match):
         return thing
     only = r.word(i + 2) in lx.ONLY_WORDS and count is None
@@ -344,13 +344,13 @@ def holds(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
         start, tail = i, ("in",)
     else:
         return None
-    thing = phrases.noun_phrase(r, start, "qualifier")
+    thing = noun_phrase(r, start, "qualifier")
     if isinstance(thing, Refusal):
         return None if tail else thing  # "the room the ...": maybe not a relative clause at all
     assert thing is not None
     also: list[NounPhrase] = []
     while not tail and r.word(thing.end) == "and" and r.np_starts(thing.end + 1):
-        more = phrases.noun_phrase(r, thing.end + 1, "qualifier")  # "where the book and the vase are"
+        more = noun_phrase(r, thing.end + 1, "qualifier")  # "where the book and the vase are"
         if not isinstance(more, Match):
             return more
         also.append(more.node)
@@ -381,7 +381,7 @@ def attachment(r: Reader, i: int, noun: NounSoFar,
     against, or X does not name objects (then the words are read after the phrase)."""
     if r.decided(i) is False:
         return None
-    thing = phrases.noun_phrase(r, i + 1, "qualifier")
+    thing = noun_phrase(r, i + 1, "qualifier")
     if not isinstance(thing, Match) or not names_objects(thing.node):
         return None
     node = Attachment(i, kind, noun.noun, thing.node, r.span(noun.first, thing.end), r.decided(i) is True)
@@ -410,7 +410,7 @@ def lacks(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     said = r.phrase(i, lx.QUAL_LACKS)
     if said is None or not r.np_starts(i + len(said)):
         return None
-    thing = phrases.noun_phrase(r, i + len(said), "qualifier")
+    thing = noun_phrase(r, i + len(said), "qualifier")
     if not isinstance(thing, Match):
         return thing
     return Match(Lacks(thing.node, r.span(noun.first, thing.end)), skip_in_it(r, thing.end))
@@ -423,9 +423,9 @@ def contains(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if said is None or not r.np_starts(i + len(said)):
         return None
     start = i + len(said)
-    count = phrases.count_word(r, start)
+    count = count_word(r, start)
     start += 1 if count is not None else 0
-    thing = phrases.noun_phrase(r, start, "qualifier")
+    thing = noun_phrase(r, start, "qualifier")
     if not isinstance(thing, Match):
         return thing
     end = skip_in_it(r, thing.end)
@@ -457,7 +457,7 @@ def next_to(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if r.word(start) == "it":
         it = NextTo(None, r.span(noun.first, start + 1), r.span(start, start + 1), relation)
         return Match(it, start + 1)
-    thing = phrases.noun_phrase(r, start, "qualifier")
+    thing = noun_phrase(r, start, "qualifier")
     if not isinstance(thing, Match):
         return thing
     return Match(NextTo(thing.node, r.span(noun.first, thing.end), None, relation), thing.end)
@@ -473,7 +473,7 @@ def except_for(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]
     j, things = i + comma + len(said), []
     given = current_head(noun.noun)
     while True:
-        thing = phrases.noun_phrase(r, j, "qualifier", given)
+        thing = noun_phrase(r, j, "qualifier", given)
         if not isinstance(thing, Match):
             return thing
         things.append(thing.node)

@@ -25,7 +25,7 @@ from sgplan.llm.offline.syntax.links import (
     skip_subject,
     skip_until_subject,
 )
-from sgplan.llm.offline.syntax.phrases import noun_phrase
+from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.qualifiers import head_kind
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
