@@ -495,6 +495,10 @@ SUBJECT_FILLERS = word_set("you we i the robot it ever have has had do does did 
 """Skipped before the verb of a clause that follows a conjunction (*after you have been to X*)."""
 LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through"})
 """Repeated in a list after *either* / *both*: *either to A or to B*."""
+OBJECT_PLACING = frozenset({"at", "on", "under", "beside", "behind", "above", "below", "near", "by"})
+"""Before an object, after an object: placed by it (*the chair at the desk*), which the scene cannot tell."""
+REPEATED_PREPOSITIONS = LIST_PREPOSITIONS | {"from", "of", "in", "at"}
+"""Said again before a further item of a list they began (*keep away from A and from B*)."""
 PLACE_PREPOSITIONS = frozenset({"to", "into", "in", "at", "on", "by", "through", "past", "inside"})
 """Before a place (*go first to the kitchen*)."""
 VERB_STOPS = frozenset({",", "and", "or", "then", "if", "until", "before", "after", "when", "without"})

@@ -497,6 +497,12 @@ def until_needs_one_goal(prefix: bool = False) -> str:
     return rephrase("'until X, ...' needs one goal X" if prefix else "'... until X' needs one goal X")
 
 
+def until_what_it_forbids() -> str:
+    return rephrase("'... until X' where X is the very place forbidden (as when 'it' points back to it): "
+                    "name what must come first, e.g. 'don't enter the kitchen until you have picked up the "
+                    "bowl'")
+
+
 def until_prohibitions_only() -> str:
     return rephrase("'until X, ...' is understood with prohibitions only (e.g. 'until you have been to the "
                     "kitchen, stay out of the office'); put goals in their own sentence")

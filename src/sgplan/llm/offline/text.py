@@ -99,6 +99,8 @@ def tokenize(text: str) -> list[Tok]:
             out.append(Tok(_DASH, start, end))
         elif kind == "ellipsis":
             out.append(Tok(".", start, end))
+        elif kind == "punct" and word == "!" and _prefixes_a_word(lowered, start, end):
+            out.append(Tok("avoid", start, end))  # an operator's "!kit": not the kitchen
         elif kind == "punct":
             out.append(Tok(_BRACKETS.get(word, word), start, end))
         elif kind == "clock":
@@ -125,6 +127,13 @@ def tokenize(text: str) -> list[Tok]:
         else:
             out.append(Tok(word, start, end))
     return out
+
+
+def _prefixes_a_word(text: str, start: int, end: int) -> bool:
+    """Whether the ``!`` at ``start`` is written onto the word after it, with nothing before it but a space
+    or a separator (``!kit``, ``lobby. !kit``): a negation, as in logic, not the end of a sentence."""
+    before = text[start - 1] if start else " "
+    return end < len(text) and text[end].isalpha() and (before.isspace() or before in ".,;:(")
 
 
 def sentences(tokens: list[Tok]) -> list[Part]:

@@ -26,7 +26,15 @@ from sgplan.errors import MissionError
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.names import Entity
 from sgplan.llm.offline.tasks import Step, Task
-from sgplan.logic.formula import And, Atom, Eventually, Formula, Not, Or, Until
+from sgplan.logic.formula import And, Atom, Eventually, Formula, Not, Or, Until, atoms
+
+
+def until_formula(forbidden: Formula, end: Formula) -> Until:
+    """``forbidden U end``, refused when ``end`` names what ``forbidden`` keeps out (``!X U X``: a back
+    reference bound to the forbidden place itself, never what a person means)."""
+    if set(atoms(forbidden)) & set(atoms(end)):
+        rf.refuse(rf.until_what_it_forbids())
+    return Until(forbidden, end)
 
 
 def conj(parts: Sequence[Formula]) -> Formula:

@@ -15,12 +15,12 @@ from sgplan.llm.offline.grounding.discourse import Grounded, Where
 from sgplan.llm.offline.grounding.floors import floors_of
 from sgplan.llm.offline.grounding.phrases import ground_list, ground_phrase
 from sgplan.llm.offline.meaning.actions import steps_of
-from sgplan.llm.offline.meaning.compose import Clause, conj, disj
+from sgplan.llm.offline.meaning.compose import Clause, conj, disj, until_formula
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.names import Entity
 from sgplan.llm.offline.syntax.tree import Negation, OffLimits, StayOnFloor, UntilDone
 from sgplan.llm.offline.tasks import Step, Task
-from sgplan.logic.formula import Always, Atom, Formula, Not, Until, atoms
+from sgplan.logic.formula import Always, Atom, Formula, Not, atoms
 from sgplan.logic.tokens import action_entity
 
 
@@ -70,7 +70,7 @@ def until(forbidden: Formula, target: object, clause: Clause, ctx: SentenceConte
         rf.refuse(rf.until_needs_one_goal())
     t = tasks[0]
     ends = [disj(t.members)] if t.mode == "any" else t.members
-    clause.constraints.extend(Until(forbidden, end) for end in ends)
+    clause.constraints.extend(until_formula(forbidden, end) for end in ends)
     if not any(clause.steps) and not ctx.prior_steps:
         # "Keep out of X until you have seen Y, then Z": Y (which the until requires) is the step that *then*
         # follows

@@ -15,7 +15,7 @@ from sgplan.llm.offline.grounding.discourse import Where
 from sgplan.llm.offline.grounding.phrases import ground_phrase
 from sgplan.llm.offline.meaning.actions import steps_of
 from sgplan.llm.offline.meaning.body import read_body
-from sgplan.llm.offline.meaning.compose import Clause, conj, disj, moved
+from sgplan.llm.offline.meaning.compose import Clause, conj, disj, moved, until_formula
 from sgplan.llm.offline.meaning.conditions import condition_of, require, rule_formula
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.order import only_after
@@ -33,7 +33,7 @@ from sgplan.llm.offline.syntax.tree import (
     UntilSentence,
 )
 from sgplan.llm.offline.tasks import Task
-from sgplan.logic.formula import Always, Formula, Implies, Until
+from sgplan.logic.formula import Always, Formula, Implies
 
 Meaning = Clause | Formula
 SENTENCES: Registry[Callable[[Any, SentenceContext], Meaning]] = Registry("sentence reader")
@@ -66,7 +66,7 @@ def until_first(sentence: UntilSentence, ctx: SentenceContext) -> Meaning:
         rf.refuse(rf.until_prohibitions_only())
     target = tasks[0]
     ends = [disj(target.members)] if target.mode == "any" else target.members
-    untils: list[Formula] = [Until(c.arg, end) for c in body.constraints if isinstance(c, Always)
+    untils: list[Formula] = [until_formula(c.arg, end) for c in body.constraints if isinstance(c, Always)
                              for end in ends]
     return Clause(steps=[[target]], constraints=untils)
 

@@ -50,7 +50,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     spelling = spelling or Spelling(nouns)
     readers = [Reader(p.toks, text, nouns, marker=p.marker, new_line=p.new_line, spelling=spelling)
                for p in parts]
-    for r in joined_appositions(read_lists(readers)):
+    for r in joined_appositions(read_lists(_greeting_before_heading(readers))):
         if stated_start(r) is not None or r.aside:
             out.append(r)
             continue
@@ -65,6 +65,24 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
             content = True
         out += corrected(r)  # "go to the kitchen, no wait, the dining room": the dining room
     return join_remarks(split_not_needed(set_aside_context(out)))
+
+
+def _greeting_before_heading(readers: list[Reader]) -> list[Reader]:
+    """A heading of the first sentences that opens with chit-chat (*Hey buddy - dining room: ...*, *Hi,
+    kitchen: ...*): the chit-chat set aside first, so that the rest is read as the heading it is."""
+    out: list[Reader] = []
+    for k, r in enumerate(readers):
+        if r.aside or not r.words or r.words[-1] != ":":
+            out.append(r)
+            continue
+        cut = next((j for j, w in enumerate(r.words) if w in (",", "\u2014")), 0)
+        if cut and is_chitchat(r, 0, cut) and statement(r, 0, cut) is None:
+            out += [replace(r, toks=r.toks[:cut], aside=True), replace(r, toks=r.toks[cut + 1:])]
+        else:
+            out.append(r)
+        out += readers[k + 1:]
+        break
+    return out
 
 
 def parse_sentence(r: Reader, decide: Callable[[Attachment], bool]) -> Parse[Sentence]:

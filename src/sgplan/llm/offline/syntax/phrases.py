@@ -260,7 +260,9 @@ def phrase_list(r: Reader, i: int, role: Role) -> Parse[PhraseList]:
     if not isinstance(item, Match):
         return item
     items, joiners, i = [item.node], set[str](), item.end
-    while (joined := list_joiner(r, i, preposition)) is not None:
+    # "keep away from the kitchen and from the lobby": the preposition before the list said again
+    again = preposition or (r.word(first - 1) if r.word(first - 1) in lx.REPEATED_PREPOSITIONS else None)
+    while (joined := list_joiner(r, i, again)) is not None:
         restates = ((r.word(joined[1]) in lx.ARTICLES and r.word(joined[1] + 1) in lx.ANAPHORIC_ONE)
                     or isinstance(group_repeat(r, joined[1], role, None), Match))  # "the vases - all four"
         if not joined[0] and not restates and r.text[r.toks[i].start:r.toks[i].end].strip() in lx.DASHES:

@@ -463,6 +463,22 @@ def next_to(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     return Match(NextTo(thing.node, r.span(noun.first, thing.end), None, relation), thing.end)
 
 
+@QUALIFIERS.rule("at an object")
+def at_an_object(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the chair at the dining table*, *a vase on the shelf*: an object placed by another object, which the
+    scene cannot tell (it knows rooms, not what stands by what): refused, never read as a second goal."""
+    if noun.kind != "object" or r.word(i) not in lx.OBJECT_PLACING:
+        return None
+    if any(w in lx.CARRY_VERBS for w in r.words[max(0, noun.first - 3):noun.first]):
+        return None  # "put the cup on the table": where it is carried, read by the action
+
+    k = i + 1 + (1 if r.word(i + 1) in lx.DETERMINERS else 0)
+    head = r.head(k)
+    if head is None or head.kind != "object":
+        return None
+    return Refusal(rf.next_to_rooms_only(r.quote(noun.first, min(len(r), k + head.words))))
+
+
 @QUALIFIERS.rule("except")
 def except_for(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*all the corridors except (for) the one on floor 0*, *every room but not the kitchen*."""
