@@ -26,8 +26,12 @@ if TYPE_CHECKING:
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    parser = sub.add_parser("eval-translation",
-                            help="score a language backend on a JSONL set of missions with gold formulas")
+    parser = sub.add_parser(
+        "eval-translation", help="score a language backend on a JSONL set of missions with gold formulas",
+        description="Score a translation backend on missions with gold formulas: each translation is right "
+        "(the same language under the scene's facts), wrong, or refused. Exit codes: 0 no wrong "
+        "translation, 1 some translation wrong, 2 an error, 70 a bug.",
+    )
     parser.add_argument("--set", required=True, metavar="FILE.jsonl",
                         help="missions, one JSON object per line: id, scene, text, formula (see docs/llm.md)")
     parser.add_argument(

@@ -25,7 +25,10 @@ from sgplan.english import count
 
 def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser(
-        "guide", help="write room-level guidance (llm_heuristic.yaml) for a mission folder"
+        "guide", help="write room-level guidance (llm_heuristic.yaml) for a mission folder",
+        description="Write the guidance the LLM-guided setups read (ALL, OCC, OBJ, ROOM, FLR; "
+        "llm_heuristic.yaml: per room and automaton state, the move/reach calls suggested) for a mission "
+        "folder, from a language model or offline. Exit codes: 0 written, 2 an error, 70 a bug.",
     )
     add_scene_arguments(parser)
     parser.add_argument(

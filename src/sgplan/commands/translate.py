@@ -89,7 +89,13 @@ def backend_note(backends: Backends) -> str:
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    parser = sub.add_parser("translate", help="translate a natural-language mission into a mission folder")
+    parser = sub.add_parser(
+        "translate", help="translate a natural-language mission into a mission folder",
+        description="Translate a mission in English into a mission folder (formula, automaton, propositions; "
+        "with a language model, its record too), said back in words first. --llm offline (the default) is "
+        "sgplan's rule-based translator, which refuses what it cannot read with certainty. Exit codes: 0 "
+        "written, 2 an error or a refusal (the reason is printed), 70 a bug.",
+    )
     add_scene_arguments(parser)
     parser.add_argument("--text", required=True, help="the mission in natural language")
     parser.add_argument("--out", required=True, metavar="MISSION_DIR",
