@@ -301,3 +301,31 @@ def test_allensville_objects_are_not_reached_from_the_bedroom() -> None:
             counts[model] = int(((floor.room_map[rows, cols] == bedroom.id)
                                  & grid.traversable[bedroom.floor, rows, cols]).sum())
         assert counts["box"] > 0 and counts["visible"] == 0, (uuid, counts)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(0, 2**32 - 1))
+def test_sight_may_change_is_the_reach_window_test(seed: int) -> None:
+    """The bounding-box pre-filter of ``sight_may_change`` never skips an object whose reach window holds a
+    changed cell (the footprint lies in the box the scene records), and the answer is the window's."""
+    from sgplan.scene.reach import reach_window, sight_may_change
+
+    building = demo_building()
+    rng = np.random.default_rng(seed)
+    rows, cols = building.grid_shape
+    near = list(building.objects())[int(rng.integers(len(list(building.objects()))))]
+    floor = building.room(uuid=near.room_uuid).floor
+    # cells around one object, so that some windows hold them and some do not
+    r = rng.integers(near.grid_min[0] - 20, near.grid_max[0] + 21, size=int(rng.integers(1, 6)))
+    c = rng.integers(near.grid_min[1] - 20, near.grid_max[1] + 21, size=r.size)
+    cells = np.clip(r, 0, rows - 1) * cols + np.clip(c, 0, cols - 1)
+    for obj in building.objects():
+        if building.room(uuid=obj.room_uuid).floor != floor:
+            assert not sight_may_change(building, obj, {floor: cells}, 0.6, "visible")
+            continue
+        window = reach_window(building.floors[floor], obj, 0.6, "visible")
+        r, c = np.divmod(cells, cols)
+        inside = window is not None and bool(((r >= window[0][0]) & (r < window[0][1])
+                                              & (c >= window[1][0]) & (c < window[1][1])).any())
+        assert sight_may_change(building, obj, {floor: cells}, 0.6, "visible") == inside
+        assert not sight_may_change(building, obj, {floor: cells}, 0.6, "box")

@@ -129,11 +129,18 @@ def sight_may_change(building: Building, obj: SceneObject, changed: Mapping[int,
     cells = changed.get(floor)
     if cells is None or not cells.size:
         return False
+    rows, cols = np.divmod(cells, building.grid_shape[1])
+    # The bounding box the scene records, grown by the reach, holds the window: most objects stop here,
+    # before their footprint is looked up on the floor's map.
+    pad = [int(reach_radius_m / res) + 2 for res in building.floors[floor].resolution_m]
+    (r0, c0), (r1, c1) = obj.grid_min, obj.grid_max
+    near = (rows >= r0 - pad[0]) & (rows <= r1 + pad[0]) & (cols >= c0 - pad[1]) & (cols <= c1 + pad[1])
+    if not near.any():
+        return False
     window = reach_window(building.floors[floor], obj, reach_radius_m, model)
     if window is None:
         return False
     (r0, r1), (c0, c1) = window
-    rows, cols = np.divmod(cells, building.grid_shape[1])
     return bool(((rows >= r0) & (rows < r1) & (cols >= c0) & (cols < c1)).any())
 
 
