@@ -74,14 +74,13 @@ def pattern_clauses(formula: Formula, describe: Describe) -> list[str] | None:
 def _clauses(reader: _Reader, parts: list[Formula]) -> list[str]:
     """One clause per part, but goals that share what must follow them (``F(a & F c) & F(b & F c)``:
     *a and b, in any order, then c*) as one clause where the first of them stands."""
+    thens = [_goal_then(part) for part in parts]
     shared: dict[Formula, list[Formula]] = {}
-    for part in parts:
-        then = _goal_then(part)
+    for then in thens:
         if then is not None:
             shared.setdefault(then[1], []).append(then[0])
     out, said = [], set()
-    for part in parts:
-        then = _goal_then(part)
+    for part, then in zip(parts, thens):
         if then is None or len(shared[then[1]]) < 2:
             out.append(reader.clause(part))
         elif then[1] not in said:

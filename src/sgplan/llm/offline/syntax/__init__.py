@@ -68,8 +68,9 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
 
 
 def _greeting_before_heading(readers: list[Reader]) -> list[Reader]:
-    """A heading of the first sentences that opens with chit-chat (*Hey buddy - dining room: ...*, *Hi,
-    kitchen: ...*): the chit-chat set aside first, so that the rest is read as the heading it is."""
+    """The mission's first heading (a sentence ending with a colon), when it opens with chit-chat (*Hey
+    buddy - dining room: ...*, *Hi, kitchen: ...*): the chit-chat set aside first, so that the rest is read
+    as the heading it is."""
     out: list[Reader] = []
     for k, r in enumerate(readers):
         if r.aside or not r.words or r.words[-1] != ":":
