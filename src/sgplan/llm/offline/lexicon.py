@@ -168,6 +168,9 @@ GENERIC_ROOM_WORDS = ("room", "rooms", "place", "places", "area", "areas")
 
 ANAPHORIC_ONE = ("one", "ones")
 """``the one on floor 0`` / ``the ones with a bed``: the category of the noun phrase being restricted."""
+ONE_NOT_A_NOUN = frozenset({"of", "after", "another", "by", "at", "more", "floor", "floors", "level", "time"})
+"""After *the <room> one*: *one* is a number, not a noun (*the lobby, one of them*, *the bathrooms one after
+another*, *the bathroom one floor up*); else *the living room one* is the kind named last, in that room."""
 
 PLURAL_LOOKING = frozenset({"stairs"})
 """Head nouns that look plural but are read as one entity (``the stairs`` is one staircase as a goal);
@@ -357,6 +360,9 @@ DESTINATION_WORDS = ("to", "into", "onto")
 CARRY_DESTINATION_WORDS = ("in", "into", "on", "onto", "to", "inside", "until", "till")
 """After a carry verb's object: *put the bowl in the sink*; *bring the bowl until the table* (as learners
 write *to*)."""
+CARRY_BESIDE = Phrases((("by",), ("next", "to"), ("beside",), ("near",), ("right", "by"), ("right", "next", "to"),
+                        ("just", "by"), ("close", "to")))
+"""After a carry verb's object: *put the cup by the keyboard*: the keyboard is where it goes (a goal)."""
 
 CAUTION_PAIRS = frozenset({("take", "care"), ("watch", "out"), ("look", "out"), ("never", "mind")})
 """Two words that say how to behave near a place, or to disregard it (*take care in the kitchen*, *watch
@@ -974,6 +980,8 @@ UNTIL_OPENERS = ("until", "till")
 QUAL_IN = ("in", "inside", "within", "of", "from")
 SCOPE_IN = ("in", "inside", "within")
 """``In the living room, ...``: the room of the whole sentence."""
+DIRECTION_BEFORE_IN = ("up", "down", "over", "out", "back")
+"""*the teddy bear up in the bedroom*: a direction before *in* after an object; the room says where."""
 QUAL_CONTAINS = Phrases((("with",), ("having",), ("containing",), ("that", "has"), ("that", "have"),
                          ("with", "just"), ("that", "just", "has"), ("which", "just", "has"),
                          ("with", "nothing", "but"), ("with", "only", "just"),
@@ -982,6 +990,15 @@ QUAL_CONTAINS = Phrases((("with",), ("having",), ("containing",), ("that", "has"
                          ("that", "only", "has"), ("which", "only", "has"), ("that", "only", "have"),
                          ("with", "only"), ("that", "has", "only"), ("containing", "only"),
                          ("which", "has", "only"), ("which", "have", "only"), ("that", "have", "only")))
+RELATIVE_PRONOUNS = ("that", "which", "where", "who")
+"""Open a relative clause about a room's contents in any tense or form of *have* (:data:`HAVE_FORMS`)."""
+HAVE_FORMS = word_set("has have had having holds hold held contains contain contained keeps keep got")
+"""*the bathroom which has / is having / has got / had / holds a vase*: the verbs of a room's contents."""
+HAVE_AUXILIARIES = word_set("is are was were has have had does do did 's")
+"""Before a form of *have* (*is having*, *has got*) or *not* (*does not have*, *is not having*)."""
+SINGLE_COUNT = Phrases((("a", "single"), ("one", "single"), ("just", "the", "one"), ("only", "the", "one"),
+                        ("just", "a", "single"), ("only", "a", "single"), ("the", "one", "single"), ("the", "one")))
+"""*the bathroom with a single sink / that has just the one sink*: exactly one."""
 QUAL_LACKS = Phrases((("that", "does", "not", "have"), ("which", "does", "not", "have"), ("with", "no"),
                       ("that", "has", "no"), ("that", "does", "not", "contain"),
                       ("where", "there", "is", "no")))

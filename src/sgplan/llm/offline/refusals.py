@@ -284,6 +284,17 @@ def next_to_rooms_only(said: str) -> str:
                     "known); name the room the object is in")
 
 
+def negated_count(said: str) -> str:
+    return rephrase(f"'{said}': a room that does not have a number of things (none, or another number?) is "
+                    "not understood; say 'the ... with no X' or 'the ... with two X'")
+
+
+def anchor_in_several_rooms(said: str, anchor: str, rooms: Sequence[Entity]) -> str:
+    listing = ", ".join(r.describe() for r in rooms)
+    return rephrase(f"'{said}': an object by another is read as one in that object's room, and '{anchor}' "
+                    f"is in {len(rooms)} rooms ({listing}); name the room the object is in")
+
+
 def not_an_exception(said: str, stray: str, restricted: str) -> str:
     return rephrase(f"'{said} {stray}': {stray!r} is not one of {restricted!r}; to forbid it, say 'never "
                     f"enter {stray}'")

@@ -338,6 +338,8 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     in a room connected to it."""
     vocab = disc.vocab
     room = next_to_it(q.it_span, f"{q.relation} it", disc) if q.it_span is not None else inner(q.thing, disc)
+    if noun.head.kind == "object" and room.entities and all(e.kind == "object" for e in room.entities):
+        return by_an_object(q, noun, room, disc)
     if any(e.kind != "room" for e in room.entities):
         rf.refuse(rf.next_to_rooms_only(disc.said(q.span.start, q.span.end)))
     if noun.head.kind == "object":  # "the toilet next to the bedroom": in a room next to it
@@ -350,6 +352,19 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     room.entities = [r for r in room.entities
                      if any(r.key in vocab.adjacent.get(e.key, ()) for e in entities)]
     return Noun(noun.head, entities, noun.room_scoped)
+
+
+def by_an_object(q: NextTo, noun: Noun, anchor: Grounded, disc: Discourse) -> Noun:
+    """*the vase off the dining table*, *the plant by the couch*, *any chair at the dining table*: the scene
+    knows rooms, not what stands by what, so an object placed by another is one in the anchor's room; that
+    is certain only when the anchor lies in one room (else refused: which room?)."""
+    rooms = list(dict.fromkeys(e.room_key for e in anchor.entities))
+    said = disc.said(q.span.start, q.span.end)
+    if len(rooms) > 1:
+        rf.refuse(rf.anchor_in_several_rooms(said, anchor.phrase, [disc.vocab.by_key[k] for k in rooms]))
+    keys = {e.key for e in anchor.entities}
+    return Noun(noun.head, [e for e in disc.vocab.inside(noun.entities, [disc.vocab.by_key[rooms[0]]])
+                            if e.key not in keys], noun.room_scoped)
 
 
 @applies(Except)

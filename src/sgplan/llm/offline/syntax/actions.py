@@ -359,8 +359,9 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
     i = particles(r, i)
     carry = bool(set(node.verbs.words) & lx.CARRY_VERBS)
     into = lx.CARRY_DESTINATION_WORDS if carry else lx.DESTINATION_WORDS
-    if r.word(i) in into and r.np_starts(i + 1):
-        dest = phrase_list(r, i + 1, "goal")
+    beside = r.phrase(i, lx.CARRY_BESIDE) if carry else None  # "put the cup by the keyboard"
+    if (r.word(i) in into or beside) and r.np_starts(i + len(beside or ("in",))):
+        dest = phrase_list(r, i + len(beside or ("in",)), "goal")
         if not isinstance(dest, Match):
             return dest
         node, i = replace(node, destination=dest.node), dest.end

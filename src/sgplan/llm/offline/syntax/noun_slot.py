@@ -38,6 +38,16 @@ def count_word(r: Reader, i: int) -> int | None:
     return int(w) if w.isdigit() else None
 
 
+def exact_count(r: Reader, i: int) -> tuple[int | None, int]:
+    """The number of things a room's contents say at ``i`` (*two*, *a single*, *just the one*) and where the
+    noun starts, or ``None`` and ``i``."""
+    single = r.phrase(i, lx.SINGLE_COUNT)
+    if single is not None and r.head(i + len(single)) is not None:
+        return 1, i + len(single)
+    count = count_word(r, i)
+    return (count, i + 1) if count is not None else (None, i)
+
+
 def head_noun(r: Reader, i: int, one: OneHead | None) -> Parse[HeadRef]:
     """The head noun at ``i``: a category of the scene (or a synonym), *one(s)* (``one`` says of what),
     or a refusal naming the word."""

@@ -25,6 +25,7 @@ from sgplan.llm.offline.syntax.tree import (
     FloorSpec,
     GroupRepeat,
     HeadRef,
+    InRoom,
     Its,
     KeyHead,
     Mode,
@@ -122,6 +123,8 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
         det = Match(replace(det.node, ordinal=ordinal + 1), det.end + 1)
     i = r.descriptive_end(det.end)
     said = r.words[det.end : i]
+    if given is None and (one := room_one(r, first, i, role, replace(det.node, descriptive=said))):
+        return one
     relative = r.word(i) if r.word(i) in lx.RELATIVE_FLOORS else None
     floor_before = None if relative else floor_words(r, i)
     if relative:
@@ -131,9 +134,35 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
         if r.head(i) is None:  # "the top floor": a place
             return Match(FloorPlace(r.span(first, i), floor_before.node, det.node.mode), i)
     described_as = (*said, *r.words[i : r.descriptive_end(i)])  # "the big (upstairs) couch"
+    # "the downstairs one", "the top floor one": of the kind named last, on that floor
+    floor_one = bool(relative or floor_before) and given is None and anaphoric_one(r, r.descriptive_end(i))
     return noun_with_head(r, first, r.descriptive_end(i), role, replace(det.node, descriptive=described_as),
                           relative, None if floor_before is None else floor_before.node,
-                          OneHead(False, given, one_from_context))
+                          OneHead(False, given, one_from_context or floor_one))
+
+
+def anaphoric_one(r: Reader, i: int) -> bool:
+    """Whether *one(s)* at ``i`` is a noun (*the living room one*), not a number (*one of them*, *one after
+    another*, *one floor up*)."""
+    return r.word(i) in lx.ANAPHORIC_ONE and r.word(i + 1) not in lx.ONE_NOT_A_NOUN
+
+
+def room_one(r: Reader, first: int, i: int, role: Role, det: Determiner) -> Parse[NounPhrase]:
+    """*the living room one*, *the office ones* (at ``i``, the room's head): the kind named last, in that
+    room, as *the one in the living room*; ``None`` when no room and *one* are at ``i``."""
+    room = r.head(i) if not det.other and det.pointer is None else None
+    if room is None or room.kind != "room" or room.plural or not anaphoric_one(r, i + room.words):
+        return None
+    end = i + room.words
+    room_np = Described(r.span(i, end), r.word(i), Determiner("the", None), None, None, None, room, None, (),
+                        None, False)
+    plural = r.word(end) == "ones"
+    mode = ("all" if plural else "the") if det.mode is None else ("all" if det.mode == "the" and plural
+                                                                   else det.mode)
+    noun = Described(r.span(first, end + 1), r.word(first), replace(det, mode=mode, descriptive=()), None,
+                     None, None, OneHead(plural, None, True), None,
+                     (InRoom((room_np,), r.span(first, end + 1)),), None, False, det.descriptive)
+    return qualifiers.finish(r, first, end + 1, noun, role, True)
 
 
 def noun_with_head(r: Reader, first: int, i: int, role: Role, det: Determiner, relative: str | None,

@@ -16,7 +16,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.nouns import Head, Kind
 from sgplan.llm.offline.syntax.floors import floor_count, floor_offset, floor_words
-from sgplan.llm.offline.syntax.noun_slot import count_word, head_noun, noun_phrase
+from sgplan.llm.offline.syntax.noun_slot import count_word, exact_count, head_noun, noun_phrase
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.tree import (
@@ -262,6 +262,8 @@ def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*the sink in / of / inside the kitchen*: the objects in that room; *every plant in the office and
     the kitchen*, *all the vases in A and B*: those of each room (a phrase about each of several objects);
     *a chair in (either) A or (in) B*: those of either room (the choice is of rooms, as people mean it)."""
+    if r.word(i) in lx.DIRECTION_BEFORE_IN and r.word(i + 1) in lx.SCOPE_IN and not carried(r, noun):
+        i += 1  # "the one up in the bedroom": the room says where, the direction adds nothing
     back = noun.role == "qualifier" and r.word(i + 1) in ("it", "there")
     if (r.word(i) not in lx.QUAL_IN or not r.np_starts(i + 1) or r.phrase(i, lx.ORDER_MODIFIERS)
             or r.phrase(i, lx.TIME_FILLERS) or back):
@@ -275,6 +277,8 @@ def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
             break  # "every plant in the office and the couch": the couch is another goal
         if not isinstance(room, Match):
             return room
+        if not rooms and names_objects(room.node) and (noun.kind == "room" or carried(r, noun)):
+            return None  # "put the cup (from the hall) in the sink": where it goes, read by the action
         rooms.append(room.node)
         j = room.end
     choice = len(rooms) > 1 and noun.noun.determiner.mode != "all"
@@ -422,9 +426,7 @@ def contains(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     said = r.phrase(i, lx.QUAL_CONTAINS)
     if said is None or not r.np_starts(i + len(said)):
         return None
-    start = i + len(said)
-    count = count_word(r, start)
-    start += 1 if count is not None else 0
+    count, start = exact_count(r, i + len(said))
     thing = noun_phrase(r, start, "qualifier")
     if not isinstance(thing, Match):
         return thing
@@ -434,6 +436,38 @@ def contains(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     only = (bool(set(said) & lx.ONLY_WORDS) or trailing) and count is None
     said_as = Contains(thing.node, r.span(noun.first, thing.end), count, only)
     return Match(said_as, end + (1 if trailing else 0))
+
+
+@QUALIFIERS.rule("relative have")
+def relative_have(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """A room's contents said by a relative clause in any form of *have* that the phrases of *with* do not
+    list: *which is having a vase*, *that has got two sinks*, *which had just the one sink*, *that is not
+    having a vase*, *which hasn't got a plant* (the rooms holding none)."""
+    k = i + (1 if r.word(i) == "," else 0)
+    if noun.kind == "object" or r.word(k) not in lx.RELATIVE_PRONOUNS:
+        return None
+    k += 1 + (1 if r.word(k + 1) in lx.ONLY_WORDS else 0)
+    only = r.word(k - 1) in lx.ONLY_WORDS
+    negated = r.word(k) in lx.HAVE_AUXILIARIES and r.word(k + 1) == "not"
+    k += 2 if negated else 1 if r.word(k) in lx.HAVE_AUXILIARIES and r.word(k + 1) in lx.HAVE_FORMS else 0
+    if r.word(k) not in lx.HAVE_FORMS and not (negated and r.word(k - 1) in lx.HAVE_FORMS):
+        return None  # "the room that is in ..." / "that was cleaned": no contents
+    k += 1 if r.word(k) in lx.HAVE_FORMS else 0
+    k += 1 if r.word(k) == "got" else 0  # "that has got", "which hasn't got"
+    only = only or r.word(k) in lx.ONLY_WORDS
+    k += 1 if r.word(k) in lx.ONLY_WORDS else 0
+    count, start = exact_count(r, k)
+    if not r.np_starts(start):
+        return None
+    if negated and (only or count is not None):
+        return Refusal(rf.negated_count(r.quote(i, start)))
+    thing = noun_phrase(r, start, "qualifier")
+    if not isinstance(thing, Match):
+        return thing
+    if negated:
+        return Match(Lacks(thing.node, r.span(noun.first, thing.end)), skip_in_it(r, thing.end))
+    said_as = Contains(thing.node, r.span(noun.first, thing.end), count, only and count is None)
+    return Match(said_as, skip_in_it(r, thing.end))
 
 
 @QUALIFIERS.rule("and more contents")
@@ -454,6 +488,8 @@ def next_to(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if said is None or not r.np_starts(i + len(said)):
         return None
     start, relation = i + len(said), " ".join(said)
+    if noun.kind == "object" and carried(r, noun) and said in lx.CARRY_BESIDE:
+        return None  # "put the cup by the keyboard": where it goes (.actions.destination_and_purpose)
     if r.word(start) == "it":
         it = NextTo(None, r.span(noun.first, start + 1), r.span(start, start + 1), relation)
         return Match(it, start + 1)
@@ -465,18 +501,25 @@ def next_to(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
 
 @QUALIFIERS.rule("at an object")
 def at_an_object(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
-    """*the chair at the dining table*, *a vase on the shelf*: an object placed by another object, which the
-    scene cannot tell (it knows rooms, not what stands by what): refused, never read as a second goal."""
-    if noun.kind != "object" or r.word(i) not in lx.OBJECT_PLACING:
+    """*the chair at the dining table*, *a vase on the table*, *the book under the bed*: an object placed by
+    another object, read as one in that object's room (grounding decides, :func:`next_to`'s node); not after
+    a carry verb (*put the cup on the table*: where it is carried, read by the action)."""
+    if noun.kind != "object" or r.word(i) not in lx.OBJECT_PLACING or carried(r, noun):
         return None
-    if any(w in lx.CARRY_VERBS for w in r.words[max(0, noun.first - 3):noun.first]):
-        return None  # "put the cup on the table": where it is carried, read by the action
-
     k = i + 1 + (1 if r.word(i + 1) in lx.DETERMINERS else 0)
     head = r.head(k)
     if head is None or head.kind != "object":
         return None
-    return Refusal(rf.next_to_rooms_only(r.quote(noun.first, min(len(r), k + head.words))))
+    thing = noun_phrase(r, i + 1, "qualifier")
+    if not isinstance(thing, Match):
+        return thing
+    return Match(NextTo(thing.node, r.span(noun.first, thing.end), None, r.word(i)), thing.end)
+
+
+def carried(r: Reader, noun: NounSoFar) -> bool:
+    """Whether a carry verb just before the phrase takes it somewhere (*put the cup by the keyboard*): then
+    what follows says where it goes, not which object it is."""
+    return any(w in lx.CARRY_VERBS for w in r.words[max(0, noun.first - 3):noun.first])
 
 
 @QUALIFIERS.rule("except")
