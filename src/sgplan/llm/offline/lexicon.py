@@ -360,8 +360,8 @@ DESTINATION_WORDS = ("to", "into", "onto")
 CARRY_DESTINATION_WORDS = ("in", "into", "on", "onto", "to", "inside", "until", "till")
 """After a carry verb's object: *put the bowl in the sink*; *bring the bowl until the table* (as learners
 write *to*)."""
-CARRY_BESIDE = Phrases((("by",), ("next", "to"), ("beside",), ("near",), ("right", "by"), ("right", "next", "to"),
-                        ("just", "by"), ("close", "to")))
+CARRY_BESIDE = Phrases((("by",), ("next", "to"), ("beside",), ("near",), ("right", "by"),
+                        ("right", "next", "to"), ("just", "by"), ("close", "to")))
 """After a carry verb's object: *put the cup by the keyboard*: the keyboard is where it goes (a goal)."""
 
 CAUTION_PAIRS = frozenset({("take", "care"), ("watch", "out"), ("look", "out"), ("never", "mind")})
@@ -997,7 +997,8 @@ HAVE_FORMS = word_set("has have had having holds hold held contains contain cont
 HAVE_AUXILIARIES = word_set("is are was were has have had does do did 's")
 """Before a form of *have* (*is having*, *has got*) or *not* (*does not have*, *is not having*)."""
 SINGLE_COUNT = Phrases((("a", "single"), ("one", "single"), ("just", "the", "one"), ("only", "the", "one"),
-                        ("just", "a", "single"), ("only", "a", "single"), ("the", "one", "single"), ("the", "one")))
+                        ("just", "a", "single"), ("only", "a", "single"), ("the", "one", "single"),
+                        ("the", "one")))
 """*the bathroom with a single sink / that has just the one sink*: exactly one."""
 QUAL_LACKS = Phrases((("that", "does", "not", "have"), ("which", "does", "not", "have"), ("with", "no"),
                       ("that", "has", "no"), ("that", "does", "not", "contain"),
