@@ -4,6 +4,18 @@ as its case says."""
 
 from __future__ import annotations
 
+from sgplan.explain import explain_mission
+from sgplan.llm.offline import PatternTranslator
+from sgplan.llm.translation import mission_of
+from sgplan.scene.model import Building
 from tests.llm.offline.corpus import corpus_test
 
 test_references_read_or_refused = corpus_test("references")
+
+
+def test_a_thing_the_scene_does_not_hold_is_said_back_as_set_aside(demo: Building) -> None:
+    translation = PatternTranslator().translate(
+        "Water the plant in the office, then rinse the watering can out at the kitchen sink.", demo)
+    assert translation.set_aside == ("the watering can",)
+    said = explain_mission(mission_of(translation), demo).text.splitlines()
+    assert said[-1] == "Not part of the mission: 'the watering can'"

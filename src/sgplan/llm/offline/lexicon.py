@@ -363,6 +363,12 @@ write *to*)."""
 CARRY_BESIDE = Phrases((("by",), ("next", "to"), ("beside",), ("near",), ("right", "by"),
                         ("right", "next", "to"), ("just", "by"), ("close", "to")))
 """After a carry verb's object: *put the cup by the keyboard*: the keyboard is where it goes (a goal)."""
+HANDLED_AT = ("at", "in", "on", "into", "inside", "under")
+"""*rinse the watering can at the sink*, *heat my leftovers in the microwave*: before the scene's object
+where a thing it does not hold is handled."""
+FETCH_VERBS = CARRY_VERBS | word_set("get getting grab grabbing fetch fetching find finding pick picking "
+                                     "collect collecting retrieve retrieving gather gathering")
+"""Before a thing the scene does not hold (*put my keys on the table*): the robot would have to find it."""
 
 CAUTION_PAIRS = frozenset({("take", "care"), ("watch", "out"), ("look", "out"), ("never", "mind")})
 """Two words that say how to behave near a place, or to disregard it (*take care in the kitchen*, *watch
@@ -1070,6 +1076,11 @@ EVENT_VERBS = word_set("arrive arrives come comes leave leaves get gets back hom
 FEW = ("few", "couple", "several")
 TIME_UNITS = word_set("second seconds minute minutes min mins hour hours hr hrs sec secs")
 """*in ten minutes*, *wait 5 min*: a delay, which a mission cannot require (refused)."""
+THING_STOPS = (DETERMINERS | frozenset(PRONOUNS) | frozenset(NUMBER_WORDS) | TIME_UNITS | PARTICLES
+               | frozenset(HANDLED_AT)
+               | word_set("and or nor then but if when whenever once while until till before after not no "
+                          "never to from of for with without through via past there here"))
+"""Words that end the name of a thing the scene does not hold (:data:`HANDLED_AT`): grammar, not a name."""
 TIME_OPENERS = ("before", "after", "by", "during", "for", "at", "around", "this", "tonight", "today",
                 "tomorrow", "later", "right", "first", "sometime", "some", "next", "early", "in", "all",
                 "while")

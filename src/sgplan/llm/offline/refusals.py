@@ -284,6 +284,11 @@ def next_to_rooms_only(said: str) -> str:
                     "known); name the room the object is in")
 
 
+def thing_to_find(thing: str, said: str) -> str:
+    return rephrase(f"'{said}': the scene has no '{thing}', and the robot would have to find it itself; "
+                    "name a room or object of the scene")
+
+
 def negated_count(said: str) -> str:
     return rephrase(f"'{said}': a room that does not have a number of things (none, or another number?) is "
                     "not understood; say 'the ... with no X' or 'the ... with two X'")

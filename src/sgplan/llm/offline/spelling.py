@@ -18,6 +18,9 @@ from sgplan.llm.offline.nouns import NounLexicon
 
 CUTOFF = 0.8
 """How close (difflib's ratio, 0 to 1) a known word must be to be suggested for an unknown one."""
+LOOSE_CUTOFF = 0.7
+"""How close a word must be to a word of the scene's names to be taken for a misspelling of it where the
+alternative is setting it aside (:meth:`Spelling.may_be_a_misspelt_name`)."""
 MIN_LENGTH = 4
 """Shorter words are not corrected (*a*, *to*, *tv*: short words all look alike)."""
 SUFFIXES = ("s", "es", "d", "ed", "n", "en", "ing", "er", "ly")
@@ -40,6 +43,7 @@ class Spelling:
         self.names = sorted({w for c in nouns.kinds for w in c.split() if len(w) >= MIN_LENGTH})
         words = self.names + [w for w in lx.AVOID_VERBS | frozenset(lx.FLOOR_WORDS) if len(w) >= MIN_LENGTH]
         self.suggestable = sorted(set(words))
+        self.noun_words = sorted(w for w in nouns.words() if w.isalpha() and len(w) >= 3)
 
     def is_known(self, word: str) -> bool:
         """Whether ``word`` is a word of the lexicon or of the scene (numbers and IDs are)."""
@@ -64,6 +68,14 @@ class Spelling:
             return None
         found = difflib.get_close_matches(word, self.names, n=1, cutoff=CUTOFF)
         return found[0] if found else None
+
+    def may_be_a_misspelt_name(self, word: str) -> bool:
+        """Whether ``word`` (of any length) looks like a word of the scene's names, synonyms or abbreviations
+        (*vse*, *bwol*), by a looser measure than :meth:`scene_noun_like`: used where reading it as a thing
+        the scene does not hold would silently drop it."""
+        if self.is_known(word) or self.is_english(word):
+            return False  # "watering" is "water" with an ending, not a misspelt name
+        return bool(difflib.get_close_matches(word, self.noun_words, n=1, cutoff=LOOSE_CUTOFF))
 
     def did_you_mean(self, words: Iterable[str]) -> str:
         """*did you mean 'kitchen' for 'kitchn', 'living' for 'livng'?* for every unknown word of ``words``

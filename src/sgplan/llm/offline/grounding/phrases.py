@@ -28,6 +28,7 @@ from sgplan.llm.offline.syntax.tree import (
     Described,
     FloorPlace,
     GroupRepeat,
+    HandledAt,
     InRoom,
     Its,
     KeyHead,
@@ -190,6 +191,16 @@ def its(np: Its, where: Where, disc: Discourse) -> Grounded:
                  "all" if np.head.plural else "the", np.head.kind == "object", where.role)
     check(g, np.head, None, False, disc)
     return disc.record(g)
+
+
+@grounds(HandledAt)
+def handled_at(np: HandledAt, where: Where, disc: Discourse) -> Grounded:
+    """*rinse the watering can at the kitchen sink*: the object where the thing is handled; the thing, which
+    the scene does not hold, is said back as set aside."""
+    thing = disc.said(np.thing.start, np.thing.end)
+    if thing not in disc.set_aside:
+        disc.set_aside.append(thing)
+    return ground_phrase(np.at, where, disc)
 
 
 @grounds(FloorPlace)

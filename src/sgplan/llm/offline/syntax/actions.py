@@ -252,7 +252,8 @@ def verb_idiom(r: Reader, i: int) -> int:
     if idiom is not None:
         return len(idiom)
     if (r.word(i) in lx.BODY_PART_OWNERS and r.word(i + 1).isalpha() and r.head(i + 1) is None
-            and r.word(i + 2) in lx.BODY_PART_LINKS and r.np_starts(i + 3)):
+            and r.word(i + 2) in lx.BODY_PART_LINKS and r.np_starts(i + 3)
+            and not set(r.words[max(0, i - 2):i]) & lx.FETCH_VERBS):  # not "put my keys on the table"
         return 2
     return 0
 

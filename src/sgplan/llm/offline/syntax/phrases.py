@@ -24,6 +24,7 @@ from sgplan.llm.offline.syntax.tree import (
     FloorPlace,
     FloorSpec,
     GroupRepeat,
+    HandledAt,
     HeadRef,
     InRoom,
     Its,
@@ -97,6 +98,37 @@ def counted_ones(r: Reader, i: int, role: Role, given: Head | None) -> Parse[Nou
     ones, det = OneHead(True, None, True), Determiner("all", n)
     noun = Described(r.span(i, i + 2), "the", det, None, None, None, ones, None, (), None, False)
     return qualifiers.finish(r, i, i + 2, noun, role, False)
+
+
+@NOUN_PHRASES.rule("a thing handled at an object")
+def handled_at(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
+    """*rinse the watering can (out) at the kitchen sink*, *fill a glass at the sink*, *heat my leftovers in
+    the microwave*: a thing the scene does not hold, handled at one of its objects, which is the goal (the
+    thing is said back as set aside); after a verb that fetches or carries it (*put my keys on the table*)
+    the robot would have to find it: refused, saying so."""
+    if role != "goal" or given is not None or r.word(i) not in lx.DETERMINERS:
+        return None
+    j = i + 1
+    while j < i + 4 and foreign_word(r, j):
+        j += 1
+    k = j + (1 if r.word(j) in lx.PARTICLES and r.word(j + 1) in lx.HANDLED_AT else 0)
+    if j == i + 1 or r.word(k) not in lx.HANDLED_AT or not r.np_starts(k + 1):
+        return None
+    at = noun_phrase(r, k + 1, role)
+    if not isinstance(at, Match) or not qualifiers.names_objects(at.node):
+        return None
+    if set(r.words[max(0, i - 2):i]) & lx.FETCH_VERBS:
+        return Refusal(rf.thing_to_find(r.quote(i + 1, j), r.quote(i, at.end)))
+    return Match(HandledAt(r.span(i, at.end), r.span(i, j), at.node), at.end)
+
+
+def foreign_word(r: Reader, i: int) -> bool:
+    """Whether the word at ``i`` may name a thing the scene does not hold: a word, no head noun of the
+    scene, no word of the grammar, and not a misspelt name of the scene (*the vse on the table* is refused,
+    never read as the table)."""
+    w = r.word(i)
+    return (w.isalpha() and r.head(i) is None and w not in lx.THING_STOPS
+            and (r.spelling is None or not r.spelling.may_be_a_misspelt_name(w)))
 
 
 @NOUN_PHRASES.rule("described")

@@ -215,7 +215,18 @@ class Described:
     """Words describing the thing that the scene does not know (*big* in *the big couch*)."""
 
 
-NounPhrase = Pronoun | ThereNP | GroupRepeat | SameRoom | Its | FloorPlace | Described
+@dataclass(frozen=True)
+class HandledAt:
+    """*rinse the watering can at the kitchen sink*, *heat my leftovers in the microwave*: a thing the scene
+    does not hold (``thing``: its words), handled at one of the scene's objects (``at``), which is the goal;
+    the thing is said back as not part of the mission."""
+
+    span: Span
+    thing: Span
+    at: NounPhrase
+
+
+NounPhrase = Pronoun | ThereNP | GroupRepeat | SameRoom | Its | FloorPlace | Described | HandledAt
 
 
 @dataclass(frozen=True)
