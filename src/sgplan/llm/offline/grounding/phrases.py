@@ -179,16 +179,23 @@ def same_room(np: SameRoom, where: Where, disc: Discourse) -> Grounded:
 
 @grounds(Its)
 def its(np: Its, where: Where, disc: Discourse) -> Grounded:
-    """*its sink*: the sink in the room just named (or in the room of the object named); *its bathroom*:
-    the bathroom attached to the room."""
+    """*its sink*, *one of its chairs*: the sinks / chairs in the room just named (or in the room of the
+    object named); *its bathroom*: the bathroom attached to the room (of the object); *its room* after an
+    object: the room holding it."""
     ref = antecedent("it", disc)
     container = [disc.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in ref.entities)]
     determined("its", ref, len(container))
     of_head = disc.vocab.of_head(np.head)
-    owned = disc.vocab.next_to(of_head, container) if np.head.kind == "room" else disc.vocab.inside(of_head,
-                                                                                                   container)
-    g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, owned,
-                 "all" if np.head.plural else "the", np.head.kind == "object", where.role)
+    holding = [room for room in container if room in of_head]
+    if np.head.kind == "room" and holding and all(e.kind == "object" for e in ref.entities):
+        owned = holding  # "the teddy bear ... its room": the room holding it (not "its bathroom")
+    elif np.head.kind == "room":
+        owned = disc.vocab.next_to(of_head, container)
+    else:
+        owned = disc.vocab.inside(of_head, container)
+    mode: Mode = np.mode or ("all" if np.head.plural else "the")
+    g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, owned, mode,
+                 np.head.kind == "object", where.role)
     check(g, np.head, None, False, disc)
     return disc.record(g)
 

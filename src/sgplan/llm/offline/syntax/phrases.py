@@ -70,14 +70,21 @@ def same_room(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
 
 @NOUN_PHRASES.rule("its")
 def its(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
-    """*its sink*: in the room named just before."""
-    if r.word(i) != "its" or r.head(i + 1) is None:
+    """*its sink*: in the room named just before; *one of its chairs* (any), *both / all of its sinks*."""
+    k = i
+    mode_said: Mode | None = None
+    if r.word(i + 1) == "of" and r.word(i + 2) == "its":
+        mode_said = "any" if r.word(i) in lx.CHOOSING_OF else "all" if r.word(i) in lx.UNIVERSAL else None
+        if mode_said is None:
+            return None
+        k = i + 2
+    if r.word(k) != "its" or r.head(k + 1) is None:
         return None
-    head = head_noun(r, i + 1, None)
+    head = head_noun(r, k + 1, None)
     if not isinstance(head, Match):
         return head
     assert isinstance(head.node, Head)
-    return Match(Its(r.span(i, head.end), head.node), head.end)
+    return Match(Its(r.span(i, head.end), head.node, mode_said), head.end)
 
 
 @NOUN_PHRASES.rule("pronoun")

@@ -187,6 +187,16 @@ def possessive(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]
     return Match(Possessive(head.node, r.span(noun.first, head.end)), head.end)
 
 
+@QUALIFIERS.rule("object room")
+def object_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the teddy bear room*, *the TV room*: the room holding it, as *the teddy bear's room*."""
+    head = r.head(i)
+    if (noun.kind != "object" or noun.room_scoped or r.word(i) not in lx.GENERIC_ROOM_WORDS or head is None
+            or head.kind != "room" or head.categories):
+        return None
+    return Match(Possessive(head, r.span(noun.first, i + head.words)), i + head.words)
+
+
 @QUALIFIERS.rule("floor")
 def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*on floor 1*, *on the second floor*, *upstairs*, *, one floor down*, *up there*, *on the same floor

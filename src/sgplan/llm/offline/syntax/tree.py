@@ -134,10 +134,12 @@ class SameRoom:
 
 @dataclass(frozen=True)
 class Its:
-    """*its X*: the X in (or, for a room, attached to) the room of the thing named just before."""
+    """*its X*: the X in (or, for a room, attached to) the room of the thing named just before; ``mode``:
+    what a quantifier before it asks (*one of its chairs*: any), ``None`` when the head's number decides."""
 
     span: Span
     head: Head
+    mode: Mode | None = None
 
 
 @dataclass(frozen=True)
