@@ -160,7 +160,7 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
         return det
     if ordinal is not None:
         det = Match(replace(det.node, ordinal=ordinal + 1), det.end + 1)
-    i = r.descriptive_end(det.end)
+    i = description_end(r, det.end)
     said = r.words[det.end : i]
     if given is None and (one := room_one(r, first, i, role, replace(det.node, descriptive=said))):
         return one
@@ -178,6 +178,20 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     return noun_with_head(r, first, r.descriptive_end(i), role, replace(det.node, descriptive=described_as),
                           relative, None if floor_before is None else floor_before.node,
                           OneHead(False, given, one_from_context or floor_one))
+
+
+def description_end(r: Reader, i: int) -> int:
+    """Where the words describing the thing end at ``i``: the lexicon's descriptive words (*big*, *comfy*)
+    and words neither the scene nor the lexicon knows right before a head noun (*the paperback book*, *the
+    fruit bowl*), which describe it as those do (read only where they cannot change which entity is meant,
+    :func:`..grounding.described.ground_described`); ``i`` when no head noun follows them."""
+    j = r.descriptive_end(i)
+    k = j
+    while k < j + 2 and foreign_word(r, k) and r.spelling is not None and not r.spelling.is_known(r.word(k)):
+        k += 1  # a word of the grammar (*upstairs*, *dining*, *other*) is never a mere description
+    if k == j or (r.descriptive_end(k) == k and r.head(k) is None):
+        return j
+    return description_end(r, k)
 
 
 def anaphoric_one(r: Reader, i: int) -> bool:
