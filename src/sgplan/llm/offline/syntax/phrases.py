@@ -143,8 +143,7 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     """A determiner, floor words, a head noun and its qualifiers (*the ground floor bathroom with the
     sink*), or a floor named as a place (*the top floor*)."""
     first = i
-    one_from_context = (r.word(i) in ("the", "a") and r.word(r.descriptive_end(i + 1)) in lx.ANAPHORIC_ONE
-                        and given is None)
+    one_from_context = given is None and ones_of_context(r, i)
     other = r.at(i, "the", "other") and r.head(i + 2) is not None
     if r.at(i, "the", "other", "one") and given is None:
         one_from_context = other = True  # "the bedroom with the book, then the other one"
@@ -178,6 +177,13 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     return noun_with_head(r, first, r.descriptive_end(i), role, replace(det.node, descriptive=described_as),
                           relative, None if floor_before is None else floor_before.node,
                           OneHead(False, given, one_from_context or floor_one))
+
+
+def ones_of_context(r: Reader, i: int) -> bool:
+    """Whether *the (big) one(s)* (also after *either / one / both of*) starts at ``i``: of the kind named
+    last (*the ones in the living room*, *either of the ones in the living room*)."""
+    lead = 2 if r.word(i) in (*lx.CHOOSING_OF, *lx.UNIVERSAL) and r.at(i + 1, "of", "the") else 0
+    return r.word(i + lead) in ("the", "a") and r.word(r.descriptive_end(i + lead + 1)) in lx.ANAPHORIC_ONE
 
 
 def description_end(r: Reader, i: int) -> int:
