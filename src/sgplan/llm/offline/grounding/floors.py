@@ -162,11 +162,18 @@ def staying(word: str, disc: Discourse) -> frozenset[int]:
 
 
 def up_there(word: str, disc: Discourse) -> frozenset[int]:
-    """*up there* / *down there*: the floor(s) of the goal named last (one floor, not a choice of several)."""
+    """*up there* / *down there*: the floor(s) of the goal named last (one floor, not a choice of several);
+    with no goal before it, of the place a sentence set aside named last (*The guest rooms are on the top
+    floor. Check the bathroom up there.*)."""
     last = disc.last_goal()
     said = f"{word} there"
     if last is None and disc.confined is not None:  # "stay on the top floor and use the bathroom up there"
         return disc.confined
+    mentioned = disc.mentions[-1] if disc.mentions else None
+    if mentioned is not None and (last is None or last.start < mentioned.start):
+        if last is not None:  # "Check the kitchen. The bedrooms are upstairs. ... up there": which?
+            rf.refuse(rf.there_goal_or_mention(last.phrase, mentioned.phrase))
+        last = mentioned
     if last is None:
         rf.refuse(rf.up_there_of_nothing(word))
     floor_or_place(said, last, disc)
