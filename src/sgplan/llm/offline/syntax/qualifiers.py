@@ -315,6 +315,17 @@ def there(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     return None
 
 
+@QUALIFIERS.rule("here")
+def here(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the toilet down here*, *the bathroom here*, *both beds up here*: on the floor where the speaker and
+    the robot are, as *on this floor* (the start floor); not after a carry verb (*bring the bowl here*:
+    where it goes)."""
+    k = i + (1 if r.word(i) in lx.BACK_THERE else 0)
+    if r.word(k) != "here" or carried(r, noun):
+        return None
+    return Match(OnFloor(StartFloor(r.quote(i, k + 1))), k + 1)
+
+
 @QUALIFIERS.rule("where is X")
 def where_is(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*the bedroom where is the book* (as learners write *where the book is*): the rooms holding it; *where
