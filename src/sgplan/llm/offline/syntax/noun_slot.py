@@ -39,13 +39,14 @@ def count_word(r: Reader, i: int) -> int | None:
 
 
 def exact_count(r: Reader, i: int) -> tuple[int | None, int]:
-    """The number of things a room's contents say at ``i`` (*two*, *a single*, *just the one*) and where the
-    noun starts, or ``None`` and ``i``."""
+    """The number of things a room's contents say at ``i`` (*two*, *only one*, *a single*, *just the one*)
+    and where the noun starts, or ``None`` and ``i``."""
     single = r.phrase(i, lx.SINGLE_COUNT)
     if single is not None and r.head(i + len(single)) is not None:
         return 1, i + len(single)
-    count = count_word(r, i)
-    return (count, i + 1) if count is not None else (None, i)
+    k = i + (1 if r.word(i) in lx.ONLY_WORDS else 0)  # "where there is only one sink": exactly one
+    count = count_word(r, k)
+    return (count, k + 1) if count is not None else (None, i)
 
 
 def head_noun(r: Reader, i: int, one: OneHead | None) -> Parse[HeadRef]:

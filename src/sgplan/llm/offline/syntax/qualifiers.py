@@ -445,9 +445,11 @@ def lacks(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
 def contains(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*the bedroom with / that has / containing (only) (two) beds (in it)*."""
     said = r.phrase(i, lx.QUAL_CONTAINS)
-    if said is None or not r.np_starts(i + len(said)):
+    if said is None:
         return None
-    count, start = exact_count(r, i + len(said))
+    count, start = exact_count(r, i + len(said))  # "where there is only one sink"
+    if not r.np_starts(start):
+        return None
     thing = noun_phrase(r, start, "qualifier")
     if not isinstance(thing, Match):
         return thing
