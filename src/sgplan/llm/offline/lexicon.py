@@ -505,7 +505,7 @@ opening put its goals on (*While you're on the top floor, ...*)."""
 SUBJECT_FILLERS = word_set("you we i the robot it ever have has had do does did are is were was already "
                            "been also first")
 """Skipped before the verb of a clause that follows a conjunction (*after you have been to X*)."""
-LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through"})
+LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through", "on", "onto"})
 """Repeated in a list after *either* / *both*: *either to A or to B*."""
 OBJECT_PLACING = frozenset({"at", "on", "under", "beside", "behind", "above", "below", "near", "by"})
 """Before an object, after an object: placed by it (*the chair at the desk*), which the scene cannot tell."""
