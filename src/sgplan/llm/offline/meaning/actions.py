@@ -12,6 +12,7 @@ from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding.discourse import FloorReading, Grounded, Where
 from sgplan.llm.offline.grounding.floors import floors_of
 from sgplan.llm.offline.grounding.phrases import ground_list
+from sgplan.llm.offline.grounding.restated import members_restated
 from sgplan.llm.offline.meaning.compose import member_formula, moved
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.names import Entity
@@ -126,6 +127,7 @@ def first_of_list(phrases: list[Grounded], first: bool,
     is ``A, B first`` (``last_first``: *first* after a list joined by commas only). A phrase that only
     restates the one before it is dropped (*the chairs, both of them*; *a TV, any TV*); any other phrase
     named twice in one list is refused: it is not clear what is meant."""
+    phrases = members_restated(phrases)  # "both plants, the one by the couch and the one in the office"
     keys = [frozenset(e.key for e in g.entities) for g in phrases]
     phrases = [g for n, g in enumerate(phrases)
                if not (n and keys[n] == keys[n - 1] and (restates_group(g.phrase) or (
