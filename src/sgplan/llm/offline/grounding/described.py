@@ -279,6 +279,10 @@ def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse)
     plant in the office and the kitchen*: those of each room, each of which must hold some."""
     rooms = [ground_phrase(room, Where("qualifier", rooms=True), disc) for room in q.rooms]
     said = disc.said(q.span.start, q.span.end)
+    anchor = rooms[0] if len(rooms) == 1 else None
+    if noun.head.kind == "object" and anchor and anchor.entities and all(e.kind == "object"
+                                                                        for e in anchor.entities):
+        return by_an_object(said, noun, anchor, disc)  # "the bowl in the sink", "the book from the table"
     if noun.head.kind != "object" or any(e.kind != "room" for g in rooms for e in g.entities):
         rf.refuse(rf.object_in_room(said))
     entities = disc.vocab.inside(noun.entities, [e for g in rooms for e in g.entities])
@@ -339,7 +343,7 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     vocab = disc.vocab
     room = next_to_it(q.it_span, f"{q.relation} it", disc) if q.it_span is not None else inner(q.thing, disc)
     if noun.head.kind == "object" and room.entities and all(e.kind == "object" for e in room.entities):
-        return by_an_object(q, noun, room, disc)
+        return by_an_object(disc.said(q.span.start, q.span.end), noun, room, disc)
     if any(e.kind != "room" for e in room.entities):
         rf.refuse(rf.next_to_rooms_only(disc.said(q.span.start, q.span.end)))
     if noun.head.kind == "object":  # "the toilet next to the bedroom": in a room next to it
@@ -354,12 +358,11 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     return Noun(noun.head, entities, noun.room_scoped)
 
 
-def by_an_object(q: NextTo, noun: Noun, anchor: Grounded, disc: Discourse) -> Noun:
-    """*the vase off the dining table*, *the plant by the couch*, *any chair at the dining table*: the scene
-    knows rooms, not what stands by what, so an object placed by another is one in the anchor's room; that
-    is certain only when the anchor lies in one room (else refused: which room?)."""
+def by_an_object(said: str, noun: Noun, anchor: Grounded, disc: Discourse) -> Noun:
+    """*the vase off the dining table*, *the plant by the couch*, *the bowl in the sink* (``said``): the
+    scene knows rooms, not what stands by what, so an object placed by another is one in the anchor's room;
+    that is certain only when the anchor lies in one room (else refused: which room?)."""
     rooms = list(dict.fromkeys(e.room_key for e in anchor.entities))
-    said = disc.said(q.span.start, q.span.end)
     if len(rooms) > 1:
         rf.refuse(rf.anchor_in_several_rooms(said, anchor.phrase, [disc.vocab.by_key[k] for k in rooms]))
     keys = {e.key for e in anchor.entities}

@@ -287,7 +287,8 @@ def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
             break  # "every plant in the office and the couch": the couch is another goal
         if not isinstance(room, Match):
             return room
-        if not rooms and names_objects(room.node) and (noun.kind == "room" or carried(r, noun)):
+        if not rooms and names_objects(room.node) and (noun.kind == "room" or (
+                carried(r, noun) and r.word(i) in lx.CARRY_DESTINATION_WORDS)):
             return None  # "put the cup (from the hall) in the sink": where it goes, read by the action
         rooms.append(room.node)
         j = room.end
