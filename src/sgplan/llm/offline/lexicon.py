@@ -360,6 +360,9 @@ DESTINATION_WORDS = ("to", "into", "onto")
 CARRY_DESTINATION_WORDS = ("in", "into", "on", "onto", "to", "inside", "until", "till")
 """After a carry verb's object: *put the bowl in the sink*; *bring the bowl until the table* (as learners
 write *to*)."""
+PLACING_VERBS = word_set("put putting place placing drop dropping move moving")
+"""Carry verbs that say where the thing is put: after them, *on / in / by Y* (an object) is where it goes;
+after *take / bring / carry* it could also say where the thing is, and is read so only before *to Z*."""
 CARRY_BESIDE = Phrases((("by",), ("next", "to"), ("beside",), ("near",), ("right", "by"),
                         ("right", "next", "to"), ("just", "by"), ("close", "to")))
 """After a carry verb's object: *put the cup by the keyboard*: the keyboard is where it goes (a goal)."""

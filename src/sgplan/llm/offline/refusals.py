@@ -284,6 +284,11 @@ def next_to_rooms_only(said: str) -> str:
                     "known); name the room the object is in")
 
 
+def placed_or_where_it_is(said: str, anchor: str) -> str:
+    return rephrase(f"'{said}': is '{anchor}' where it is, or where it goes? Say 'put ... {anchor}' for "
+                    "where it goes, or name the room it is in")
+
+
 def thing_to_find(thing: str, said: str) -> str:
     return rephrase(f"'{said}': the scene has no '{thing}', and the robot would have to find it itself; "
                     "name a room or object of the scene")

@@ -287,9 +287,12 @@ def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
             break  # "every plant in the office and the couch": the couch is another goal
         if not isinstance(room, Match):
             return room
-        if not rooms and names_objects(room.node) and (noun.kind == "room" or (
-                carried(r, noun) and r.word(i) in lx.CARRY_DESTINATION_WORDS)):
-            return None  # "put the cup (from the hall) in the sink": where it goes, read by the action
+        if not rooms and names_objects(room.node) and noun.kind == "room":
+            return None  # "put the cup from the hall in the sink": a room is in no object
+        if not rooms and names_objects(room.node) and r.word(i) in lx.CARRY_DESTINATION_WORDS:
+            goes = goes_there(r, noun, i, room.end)  # "put the cup in the sink": where it goes
+            if goes is not False:
+                return goes
         rooms.append(room.node)
         j = room.end
     choice = len(rooms) > 1 and noun.noun.determiner.mode != "all"
@@ -512,14 +515,16 @@ def next_to(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if said is None or not r.np_starts(i + len(said)):
         return None
     start, relation = i + len(said), " ".join(said)
-    if noun.kind == "object" and carried(r, noun) and said in lx.CARRY_BESIDE:
-        return None  # "put the cup by the keyboard": where it goes (.actions.destination_and_purpose)
     if r.word(start) == "it":
         it = NextTo(None, r.span(noun.first, start + 1), r.span(start, start + 1), relation)
         return Match(it, start + 1)
     thing = noun_phrase(r, start, "qualifier")
     if not isinstance(thing, Match):
         return thing
+    if noun.kind == "object" and said in lx.CARRY_BESIDE and names_objects(thing.node):
+        goes = goes_there(r, noun, i + len(said) - 1, thing.end)  # "put the cup by the keyboard"
+        if goes is not False:
+            return goes
     return Match(NextTo(thing.node, r.span(noun.first, thing.end), None, relation), thing.end)
 
 
@@ -528,7 +533,7 @@ def at_an_object(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skippe
     """*the chair at the dining table*, *a vase on the table*, *the book under the bed*: an object placed by
     another object, read as one in that object's room (grounding decides, :func:`next_to`'s node); not after
     a carry verb (*put the cup on the table*: where it is carried, read by the action)."""
-    if noun.kind != "object" or r.word(i) not in lx.OBJECT_PLACING or carried(r, noun):
+    if noun.kind != "object" or r.word(i) not in lx.OBJECT_PLACING:
         return None
     k = i + 1 + (1 if r.word(i + 1) in lx.DETERMINERS else 0)
     head = r.head(k)
@@ -537,13 +542,28 @@ def at_an_object(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skippe
     thing = noun_phrase(r, i + 1, "qualifier")
     if not isinstance(thing, Match):
         return thing
+    goes = goes_there(r, noun, i, thing.end)
+    if goes is not False:
+        return goes
     return Match(NextTo(thing.node, r.span(noun.first, thing.end), None, r.word(i)), thing.end)
 
 
 def carried(r: Reader, noun: NounSoFar) -> bool:
-    """Whether a carry verb just before the phrase takes it somewhere (*put the cup by the keyboard*): then
-    what follows says where it goes, not which object it is."""
+    """Whether a carry verb just before the phrase may take it somewhere (*put the cup by the keyboard*)."""
     return any(w in lx.CARRY_VERBS for w in r.words[max(0, noun.first - 3):noun.first])
+
+
+def goes_there(r: Reader, noun: NounSoFar, i: int, end: int) -> Refusal | Literal[False] | None:
+    """After a carried object, the object phrase from ``i`` to ``end`` (*on the table*, *by the couch*):
+    ``False`` when it says which object is carried (not carried, or a destination follows: *bring the bowl on
+    the table to the couch*); ``None`` when it is where the object goes (after *put / place / drop ...*, or
+    when the object's room was said; read by the action); a refusal when it could be either (*bring the bowl
+    by the couch*)."""
+    if not carried(r, noun) or r.word(end) in lx.DESTINATION_WORDS:
+        return False
+    if noun.room_scoped or any(w in lx.PLACING_VERBS for w in r.words[max(0, noun.first - 3):noun.first]):
+        return None  # "bring the bottle from the bathroom in the sink": its room said, this is where it goes
+    return Refusal(rf.placed_or_where_it_is(r.quote(noun.first, end), r.quote(i + 1, end)))
 
 
 @QUALIFIERS.rule("except")
