@@ -61,7 +61,7 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
     noun = scoped(np, noun, mode, core, where, disc)
     if np.apposition is not None:  # "the bathroom, the one upstairs": the apposition says which
         which = ground_phrase(np.apposition, Where("qualifier"), disc)
-        noun.entities = [e for e in noun.entities if e in which.entities]
+        noun.entities = [e for e in noun.entities if (e in which.entities) != np.apposition_excludes]
     one_floor(noun.entities, guessed, disc)  # "the TV upstairs in the bedroom": the bedrooms' one TV
     if where.revisit and mode == "the" and len(noun.entities) > 1:  # "then back to the bathroom again"
         before = {e.key for g in disc.goals_before(np.span.start) for e in g.entities}
@@ -90,7 +90,7 @@ def in_context(np: Described, noun: Noun, where: Where, disc: Discourse) -> Noun
     before = floors_of(np.floor_before, disc) if np.floor_before is not None else None
     if np.relative is not None:
         before = floors_of(RelativeFloor(np.relative), disc, entities)
-    if np.determiner.other:
+    if np.determiner.other and not np.apposition_excludes:  # "the other X, not the one ...": it says which
         entities = others(entities, np.span.start, disc)
     if np.determiner.ordinal is not None:
         entities = nth_named(entities, np.determiner.ordinal, np.span, disc)

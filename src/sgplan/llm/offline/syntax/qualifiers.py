@@ -84,11 +84,12 @@ def finish(r: Reader, first: int, i: int, noun: Described, role: Role, room_scop
                                                      mode="all" if found.node.head.plural else "the"))
         room_scoped = room_scoped or isinstance(found.node, InRoom) or (
             isinstance(found.node, There) and kind == "object")
-    appositive = apposition(r, i, noun, role)
+    excludes = r.at(i, ",", "not", "the")  # "the other bathroom, not the one with the vase"
+    appositive = apposition(r, i + (1 if excludes else 0), noun, role)
     if isinstance(appositive, Refusal):
         return appositive
     if appositive is not None:
-        noun, i = replace(noun, apposition=appositive.node), appositive.end
+        noun, i = replace(noun, apposition=appositive.node, apposition_excludes=excludes), appositive.end
     return Match(replace(noun, span=r.span(first, i), remark_follows=remark_ahead(r, i) is not None), i)
 
 
@@ -145,11 +146,13 @@ def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
 
 
 def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Described]:
-    """*the bathroom, the one upstairs*: a phrase about *the one* that says which."""
+    """*the bathroom, the one upstairs*: a phrase about *the one* that says which (at ``i``: the comma, or
+    *not* in *, not the one with the vase*)."""
     head = current_head(noun)
     one = r.descriptive_end(i + 2)  # "the bathroom, the (big) one upstairs"
     if (role == "qualifier" or noun.determiner.mode != "the" or head is None or head.plural
-            or not head.categories or not isinstance(noun.head, Head) or not r.at(i, ",", "the")
+            or not head.categories or not isinstance(noun.head, Head) or r.word(i) not in (",", "not")
+            or r.word(i + 1) != "the"
             or r.word(one) != "one" or r.phrase(one, lx.CHOICE_AFFIRMATIONS)):
         return None
     which = noun_phrase(r, i + 1, "qualifier", Head(head.kind, head.categories, False, 1))

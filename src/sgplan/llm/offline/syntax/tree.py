@@ -215,6 +215,8 @@ class Described:
     """A choice remark follows the phrase (*, any one will do*): a definite phrase may then be a choice."""
     descriptive: tuple[str, ...] = ()
     """Words describing the thing that the scene does not know (*big* in *the big couch*)."""
+    apposition_excludes: bool = False
+    """The apposition says which it is not (*the bathroom, not the one with the vase*)."""
 
 
 @dataclass(frozen=True)
