@@ -306,7 +306,8 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
     n = count_word(r, i) if mode == "the" and r.at(i + 1, "of", "the") else None
     if n is not None:
         return Match(Determiner("all", n), i + 3)  # "the two of the vases": both
-    noun_next = r.np_starts(i + 1) or r.head(i + 1) or r.nouns.room_modifier(r.words, i + 1)
+    noun_next = ((r.np_starts(i + 1) and r.word(i + 1) not in lx.RELATIVE_PRONOUNS)  # not "the one that is"
+                 or r.head(i + 1) or r.nouns.room_modifier(r.words, i + 1))
     n = count_word(r, i) if noun_next else None  # "all three (dining) chairs"
     if n is not None and chosen_from:
         return Match(Determiner(mode, n), i + 1)  # one of them, and there must be n
