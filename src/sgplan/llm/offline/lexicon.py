@@ -239,6 +239,9 @@ DEMONSTRATIVES = ("that", "this", "these", "those")
 PLURAL_DEMONSTRATIVES = ("these", "those")
 DETERMINERS = word_set("the a an any all every each both either this that these those some") | POSSESSIVES
 INDEFINITE = ("a", "an", "any", "some", "either")
+CONTACT_SUBJECTS = ("you", "i", "we")
+"""Right after a noun (*the chair you want*, *the bowl I left*): the subject of a relative clause without
+*that* (refused: *in X* after it could be where the thing is or another goal)."""
 UNIVERSAL = ("all", "every", "each", "both")
 CHOOSING_OF = ("one", "any", "either")
 """``one of / any of / either of the X``: one of them."""

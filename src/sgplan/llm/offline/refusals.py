@@ -239,6 +239,12 @@ def named_twice(phrase: str) -> str:
     return rephrase(f"'{phrase}' is named twice in one list")
 
 
+def contact_clause(said: str) -> str:
+    return rephrase(f"'{said} ...': a clause about the thing inside the phrase is not understood (what "
+                    "follows could say where it is, or be another goal); say which one by its room or "
+                    "contents")
+
+
 def remark_after_each(remark: str, said: str) -> str:
     return rephrase(f"'{remark}' after '{said}', which means each of them: say 'any of ...' or 'A or B' for "
                     "a choice")

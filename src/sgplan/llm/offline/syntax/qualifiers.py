@@ -569,6 +569,17 @@ def goes_there(r: Reader, noun: NounSoFar, i: int, end: int) -> Refusal | Litera
     return Refusal(rf.placed_or_where_it_is(r.quote(noun.first, end), r.quote(i + 1, end)))
 
 
+@QUALIFIERS.rule("contact clause")
+def contact_clause(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the chair you want in the dining room*, *the bowl I left in the kitchen*: a relative clause without
+    *that*, about the thing; read as a clause of its own it would make *in the dining room* another goal, so
+    it is refused, naming the words."""
+    nxt = r.word(i + 1)
+    if r.word(i) not in lx.CONTACT_SUBJECTS or not nxt.isalpha() or nxt in lx.STATEMENT_VERBS:
+        return None
+    return Refusal(rf.contact_clause(r.quote(noun.first, min(len(r), i + 2))))
+
+
 @QUALIFIERS.rule("except")
 def except_for(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*all the corridors except (for) the one on floor 0*, *every room but not the kitchen*."""
