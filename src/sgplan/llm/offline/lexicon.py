@@ -569,6 +569,9 @@ POLITE = Phrases((
     ("do", "us", "a", "favor", "and"),
     *((word,) for word in ("task", "goal", "mission", "objective", "errand", "todo", "instructions"))))
 """Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
+POLITE = POLITE + Phrases((("whatever", "you", "do"), ("whatever", "happens"), ("above", "all"),
+                           ("most", "importantly"), ("more", "importantly")))
+"""Emphatic openers of an order (*whatever you do, don't ...*, *above all, ...*): no meaning."""
 
 _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "choose"), ("you", "please"),
                  ("you", "wish"), ("suits", "you"), ("is", "fine"), ("works",), ("suits",), ("'s", "fine"),
@@ -706,6 +709,33 @@ CLOSING = Phrases((
 """Sign-offs (*thanks a lot*, *cheers*, *that's all for now*) and asides that ask nothing (*no rush*, *if
 possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
 of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""
+
+EXCLAMATIONS = word_set("gosh golly jeez geez gee blimey crikey wow whoa yikes phew ugh argh oof ooh aw")
+"""Exclamations of everyday speech (*Oh gosh, ...*, *Phew!*): they ask nothing, like the sounds of
+:data:`HESITATIONS`, but are said back (set aside) rather than dropped."""
+_NUISANCES = ("bug", "bother", "trouble", "pester", "disturb", "interrupt", "nag", "hassle")
+CLOSING = CLOSING + Phrases((
+    # apologies for asking: "sorry to bug you", "sorry for the hassle", "apologies for the bother"
+    *((sorry, "to", nuisance, *you) for sorry in ("sorry", "apologies") for nuisance in _NUISANCES
+      for you in ((), ("you",), ("you", "again"))),
+    *((sorry, "for", *the, trouble) for sorry in ("sorry", "apologies")
+      for the in ((), ("the",), ("all", "the"))
+      for trouble in ("bother", "trouble", "hassle", "interruption", "fuss", "mess")),
+    ("sorry", "about", "this"), ("sorry", "about", "that"), ("sorry", "in", "advance"),
+    # exclamations, alone or after "oh": "oh gosh", "oh my goodness", "oh dear", "oh boy"
+    *((*oh, word) for oh in ((), ("oh",)) for word in EXCLAMATIONS),
+    *((*oh, "my", word) for oh in ((), ("oh",))
+      for word in ("god", "gosh", "goodness", "word", "lord", "days")),
+    ("oh", "dear"), ("oh", "boy"), ("oh", "man"), ("dear", "me"), ("good", "grief"), ("goodness", "me"),
+    # getting started: "so let's get a head start", "let's get going", "let's do this"
+    *(("let", "'s", "get", *going) for going in (("a", "head", "start"), ("started",), ("going",),
+                                                 ("cracking",), ("moving",), ("on", "with", "it"))),
+    ("let", "'s", "do", "this"), ("here", "goes"), ("here", "we", "go"),
+    # tag questions closing an order: "never go in there, okay?", "..., alright?", "..., yeah?"
+    ("okay",), ("ok",), ("alright",), ("all", "right"), ("got", "it"), ("you", "got", "it"),
+    ("sound", "good"), ("sounds", "good"), ("yeah",)))
+"""More of :data:`CLOSING`: apologies for asking, exclamations, words of getting started and tag
+questions, which ask nothing wherever they close a clause."""
 
 THING_SUBJECTS = frozenset({"it", "they", "there", "this", "that", "these", "those"})
 """The subject of a condition about the state of something (*if it is open*, *if there is time*): refused,
@@ -1136,11 +1166,13 @@ OPENERS = frozenset({"hi", "hello", "hey", "okay", "ok", "alright", "well", "so"
 """Chit-chat starts with a greeting, an interjection or the speaker (*I'm hungry*, *here's the plan*); a
 sentence starting otherwise may be an order about something the scene lacks (*feed pets*), so it is parsed
 (and refused) instead."""
+OPENERS = OPENERS | {"oh"} | EXCLAMATIONS  # "Oh gosh, ...", "Phew, ...": a remark that opens chit-chat too
 AUXILIARIES = frozenset({"am", "are", "is", "was", "were", "have", "has", "will", "would"})
 """In chit-chat (*hope you're well*): no role, although *are* is a word of the grammar elsewhere."""
 GREETINGS = frozenset({"hi", "hello", "hey", "hiya", "heya", "howdy", "oi", "oy", "yo", "ahoy"})
 INTERJECTIONS = HESITATIONS | GREETINGS | frozenset({"ok", "okay", "oh", "oops", "hmm", "fyi", "btw", "ps"})
 """Words before a statement that say nothing (*ok I dropped my keys somewhere, ...*)."""
+INTERJECTIONS = INTERJECTIONS | EXCLAMATIONS  # "gosh, the cat's been sick again, ..."
 """*Hi there!*: after a greeting, *there* is no place."""
 
 # -------------------------------------------------------------------------------------- phrase aliases
@@ -1314,3 +1346,10 @@ LEXICON_WORDS = frozenset().union(*(_words_of(v) for k, v in list(globals().item
                                     if k.isupper() and not k.startswith("_")))
 """Every word of every table above: the words the translator knows, besides the scene's names (what *did you
 mean* suggests from, with those names; :mod:`.spelling`)."""
+_NOUN_TABLES = ("SYNONYMS", "IRREGULAR_PLURALS", "EVERYDAY_NAMES", "PEOPLE_NOUNS")
+NOUN_WORDS = (frozenset().union(*(_words_of(globals()[k]) for k in _NOUN_TABLES))
+              - frozenset().union(*(_words_of(v) for k, v in list(globals().items())
+                                    if k.isupper() and not k.startswith("_") and k not in _NOUN_TABLES
+                                    and k != "LEXICON_WORDS")))
+"""Words the lexicon knows only as nouns (*people*, *laundry*, *coffee*): a bare subject of a statement
+(*Laundry's done*, *people are still asleep*) may be one; a word of any other table may have a role."""

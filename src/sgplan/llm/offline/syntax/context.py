@@ -24,6 +24,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.preamble import stated_start
 from sgplan.llm.offline.syntax.reader import Match, Reader
+from sgplan.llm.offline.syntax.stated_place import bind_statement_pronoun
 from sgplan.llm.offline.syntax.tree import Described, NounPhrase
 from sgplan.llm.offline.text import is_clock_time
 
@@ -42,6 +43,8 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     """A sentence, its leading and trailing context clauses set aside, and the times said between its
     clauses; ``said_before``: sentences with content came before it (then *it* after a statement that names
     a room or object could be read as what they named last: not set aside, so refused)."""
+    if said_before and r.says(lx.CORRECTIONS, 0, len(r)):
+        return [r]  # "Oh, I meant the kitchen": takes back what was said before; corrections.py reads it
     if event_note(r, 0, len(r)) or is_time(r, 0, len(r)):
         return [aside(r, 0, len(r))]
     clauses = comma_clauses(r)
@@ -53,22 +56,23 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     first, last = 0, len(clauses)
     while first < last and (is_context(r, *clauses[first], leading=True) or closing_only(r, *clauses[first])):
         first += 1
-    while first > 0 and closing_only(r, *clauses[first - 1]):
-        first -= 1  # "Oh, and the dog's asleep in there, so ...": a remark before context is context too
-    while last > first and is_context(r, *clauses[last - 1], leading=False):
-        last -= 1
+    while last > first and (is_context(r, *clauses[last - 1], leading=False)
+                            or closing_only(r, *clauses[last - 1])):
+        last -= 1  # "..., the cat's asleep in there", "..., okay?", "..., sorry about this": said back
     if first == last or (first > 0 and mere_talk(r, clauses[first][0], clauses[last - 1][1])):
         return [aside(r, 0, len(r))]
-    if said_before and first and mentions(aside(r, 0, clauses[first - 1][1])) and any(
-            w in lx.PRONOUNS for w in r.words[clauses[first][0]:]):
-        return [r]  # "the lobby floor is wet, so avoid it": 'it' would be the goal named last: refused
-    kept = [aside(r, clauses[0][0], clauses[first - 1][1])] if first else []
+    named = mentions(aside(r, 0, clauses[first - 1][1])) if first else ()
     start = skip_joiner(r, clauses[first][0]) if first else 0
     # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
     middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c) or counted(r, *c)]
     words = [k for k in range(start, clauses[last - 1][1])
              if not any(a <= k < b or (k == a - 1 and r.word(k) == ",") for a, b in middle)]
-    kept += [replace(r, toks=tuple(r.toks[k] for k in words))] + [aside(r, a, b) for a, b in middle]
+    subject = skip_joiner(r, r.skip(clauses[first - 1][0], lx.INTERJECTIONS)) if first else 0
+    order = bind_statement_pronoun(r, subject, [clauses[first][0], *words], named) if first else None
+    if order is None and said_before and named and any(w in lx.PRONOUNS for w in r.words[clauses[first][0]:]):
+        return [r]  # "the lobby floor is wet, so avoid it": 'it' would be the goal named last: refused
+    kept = [aside(r, clauses[0][0], clauses[first - 1][1])] if first else []
+    kept += [order or replace(r, toks=tuple(r.toks[k] for k in words))] + [aside(r, a, b) for a, b in middle]
     if last < len(clauses):
         kept.append(aside(r, clauses[last][0], len(r)))
     return kept
@@ -189,6 +193,7 @@ def mere_talk(r: Reader, start: int, end: int) -> bool:
     left my bag somewhere, no idea where, ...*)."""
     return not any(r.head(k) is not None or r.word(k) in lx.POSITIVE_VERBS or r.phrase(k, lx.NEG_STARTS)
                    or r.word(k).startswith(("room_", "object_")) or r.word(k) in lx.RELATIVE_FLOORS
+                   or r.word(k) in lx.REFUSED_WORDS or r.word(k) in lx.PRONOUNS  # "so leave it alone"
                    for k in range(start, end))
 
 
@@ -232,6 +237,12 @@ def statement(r: Reader, start: int, end: int) -> str | None:
         # "the kitchen is off limits", "the couch, it's in the kitchen", "the bowl is in the sink", "the next
         # task is to ...": not mere context
         return None
+    if any(r.word(j) == "and" and r.word(j + 1) not in lx.SUBJECT_PRONOUNS and starts_order(r, j + 1)
+           for j in range(k, end)):
+        return None  # "the bathroom is wet and avoid it": an order after the statement, never set aside
+    if r.word(start) in lx.DEICTIC_SUBJECTS and r.np_starts(k + 1) and any(
+            r.head(j) is not None for j in range(k + 1, min(k + 4, end))):
+        return None  # "Actually, it was the kitchen": says which place is meant, never context
     needs = any(w in lx.NEED_WORDS for w in r.words[k:end])
     names = any(r.head(j) is not None for j in range(start, end))
     return "need" if needs and names else "aside"
@@ -262,12 +273,17 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         if (isinstance(said, Match) and r.word(said.end) in lx.ROOM_PARTS
                 and r.word(said.end + 1) in lx.STATEMENT_VERBS):
             return said.end + 1  # "the lobby floor is still wet": about a part of the room
+        if (r.word(start + 1) in lx.ROOM_PARTS and r.word(start + 2) in ("in", "of")
+                and r.np_starts(start + 3)):
+            room = noun_phrase(r, start + 3, "qualifier")  # "the floor in the lobby is wet": a part of it
+            if isinstance(room, Match) and r.word(room.end) in lx.STATEMENT_VERBS:
+                return room.end
         if not plain_word(r, start + 1):
             return None  # "the kitchen and the office": goals
         return next((j for j in range(start + 2, min(start + 5, end)) if finite_verb(r.word(j))), None)
     verb = r.word(start + 1)
     if (w.isalpha() and r.head(start) is None
-            and (w not in lx.LEXICON_WORDS or w in lx.RELATIVE_FLOORS or w in lx.EVENT_WORDS
+            and (plain_subject(r, start) or w in lx.RELATIVE_FLOORS or w in lx.EVENT_WORDS
                  or w in lx.PEOPLE_NOUNS)
             and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
         return start + 1  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
@@ -279,6 +295,13 @@ def plain_word(r: Reader, i: int) -> bool:
     w = r.word(i)
     return w.isalpha() and (w not in lx.STRUCTURAL or w in lx.FLOOR_WORDS) and w not in lx.POSITIVE_VERBS \
         and r.head(i) is None  # "the floor's still wet": the floor of a room
+
+
+def plain_subject(r: Reader, i: int) -> bool:
+    """Whether the word at ``i`` can be a bare noun subject (*Laundry's done*, *people are asleep*): a word of
+    no role in the grammar, which the lexicon knows as a noun if at all."""
+    w = r.word(i)
+    return plain_word(r, i) and (w not in lx.LEXICON_WORDS or w in lx.NOUN_WORDS)
 
 
 def finite_verb(word: str) -> bool:
