@@ -131,6 +131,7 @@ ABBREVIATIONS: dict[str, tuple[str, ...]] = {
     "ofc": ("home office",), "offc": ("home office",), "ofis": ("home office",),
     "hwy": ("corridor",), "hllwy": ("corridor",), "corr": ("corridor",),
     "kbd": ("keyboard",), "kybd": ("keyboard",), "tbl": ("dining table", "table"), "frdg": ("refrigerator",),
+    "kb": ("keyboard",), "kbrd": ("keyboard",),
     "frig": ("refrigerator",), "micro": ("microwave",), "mw": ("microwave",), "tele": ("tv",),
     "plt": ("potted plant",), "chr": ("chair",),
 }
@@ -1315,6 +1316,10 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
 }
 """Phrases read as another (``prior to`` is ``before``, ``as soon as`` is ``once``), rewritten on the tokens
 before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase is taken for a verb."""
+PHRASE_ALIASES.update({
+    # operator shorthand for the order: "order n/a", "any ord."
+    ("order", "n", "/", "a"): ("in", "any", "order"), ("any", "ord"): ("in", "any", "order"),
+})
 
 # ------------------------------------------------------------------------------------ grammar words
 STRUCTURAL = (
