@@ -6,7 +6,9 @@ between the old and the new noun phrase, means the new one in the old one's plac
 with the new phrase only; the old phrase and the correction words are set aside and said back (*not part of
 the mission*). Only that shape is read: when the words after the correction are not one noun phrase closing
 the clause, or no noun phrase ends right before it, the correction stays in the sentence and is refused
-(which part stands is not known).
+(which part stands is not known). The old place may be denied in the same words before the new one (*the
+kitchen, no sorry, not the kitchen, the living room*), and then the clause may have been broken off after
+*and* before the correction (*go to the kitchen and... no sorry, not the kitchen, the living room*).
 
 A clause broken off after a word that cannot end one (*the*, *to*, *into*), at a dash or a pause (a comma,
 *uh*), and started again
@@ -122,12 +124,18 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     end = k
     while end > 0 and r.word(end - 1) in _AROUND:
         end -= 1
-    old = next((found for j in range(max(0, end - 10), end) if (found := phrase_to(r, j, end))), None)
-    if old is None:
-        return None
     start_new = r.skip(after, _AROUND)  # "the one upstairs": one of the old phrase's kind
     while (more := r.phrase(start_new, lx.CORRECTIONS)) is not None:  # "sorry, I mean"
         start_new = r.skip(start_new + len(more), _AROUND)
+    old = next((found for j in range(max(0, end - 10), end) if (found := phrase_to(r, j, end))), None)
+    if old is None and r.word(end - 1) in ("and", "then"):  # "the kitchen and... no sorry, not the kitchen,"
+        end -= 1
+        old = next((found for j in range(max(0, end - 10), end) if (found := phrase_to(r, j, end))), None)
+        if old is None or denied(r, old, start_new) == start_new:
+            return None  # broken off after 'and': only a denial of the old place says it is taken back
+    if old is None:
+        return None
+    start_new = denied(r, old, start_new)
     head = old.head if isinstance(old, Described) and isinstance(old.head, Head) else None
     new = noun_phrase(r, start_new, "goal", head)
     if not isinstance(new, Match) or r.word(new.end) not in _CLAUSE_ENDS:
@@ -136,6 +144,15 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     named, rest = one_named(r, start, end, start_new)
     kept = replace(r, toks=r.toks[:start] + named + r.toks[rest:])
     return kept, replace(r, toks=r.toks[start:start_new], aside=True)
+
+
+def denied(r: Reader, old: NounPhrase, i: int) -> int:
+    """Where the new phrase starts after the old one is denied at ``i`` in the same words (*no sorry, not
+    the kitchen, the living room*), or ``i`` when it is not."""
+    said = tuple(t.text for t in r.toks if old.span.start <= t.start and t.end <= old.span.end)
+    if r.word(i) == "not" and r.words[i + 1:i + 1 + len(said)] == said and r.word(i + 1 + len(said)) == ",":
+        return r.skip(i + 1 + len(said), _AROUND)
+    return i
 
 
 def one_named(r: Reader, start: int, end: int, start_new: int) -> tuple[tuple[Tok, ...], int]:
