@@ -571,8 +571,24 @@ POLITE = Phrases((
     *((word,) for word in ("task", "goal", "mission", "objective", "errand", "todo", "instructions"))))
 """Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
 POLITE = POLITE + Phrases((("whatever", "you", "do"), ("whatever", "happens"), ("above", "all"),
-                           ("most", "importantly"), ("more", "importantly")))
-"""Emphatic openers of an order (*whatever you do, don't ...*, *above all, ...*): no meaning."""
+                           ("most", "importantly"), ("more", "importantly"),
+                           # "the main job's just to ...", "main thing's simply to ..."
+                           *((*owner, *main, noun, be, just, "to") for owner in ((), ("the",), ("your",))
+                             for main in ((), ("main",), ("only",)) for noun in (*_TASK_NOUNS, "thing")
+                             for be in ("is", "'s") for just in ("just", "simply", "only")),
+                           *((*owner, "main", noun, "'s", "to") for owner in ((), ("the",))
+                             for noun in (*_TASK_NOUNS, "thing")),
+                           # "I just need you to ...", "all I need is for you to ..."
+                           *((who, just, want, "you", "to") for who in ("i", "we")
+                             for just in ("just", "only", "really") for want in ("need", "want")),
+                           *(("all", who, want, "is", "for", "you", "to") for who in ("i", "we")
+                             for want in ("need", "want", "ask")),
+                           *(("all", who, want, "you", "to", "do", "is", *to) for who in ("i", "we")
+                             for want in ("need", "want") for to in ((), ("to",))),
+                           # spoken to an assistant: "Alexa, tell the robot to ..."
+                           *((tell, "the", "robot", "to") for tell in ("tell", "ask", "get"))))
+"""Emphatic openers of an order (*whatever you do, don't ...*, *above all, ...*) and wrappers of one (*the
+main job's just to ...*, *I just need you to ...*, *tell the robot to ...*): no meaning."""
 
 _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "choose"), ("you", "please"),
                  ("you", "wish"), ("suits", "you"), ("is", "fine"), ("works",), ("suits",), ("'s", "fine"),
@@ -732,6 +748,7 @@ CLOSING = CLOSING + Phrases((
     *(("let", "'s", "get", *going) for going in (("a", "head", "start"), ("started",), ("going",),
                                                  ("cracking",), ("moving",), ("on", "with", "it"))),
     ("let", "'s", "do", "this"), ("here", "goes"), ("here", "we", "go"),
+    *(("bless", who) for who in ("her", "him", "them", "you", "it")),
     # tag questions closing an order: "never go in there, okay?", "..., alright?", "..., yeah?"
     ("okay",), ("ok",), ("alright",), ("all", "right"), ("got", "it"), ("you", "got", "it"),
     ("sound", "good"), ("sounds", "good"), ("yeah",)))
@@ -1111,6 +1128,10 @@ PEOPLE_NOUNS = word_set("""cleaner cleaners plumber plumbers builder builders el
     family mum mom dad grandma grandpa granny nan baby neighbour neighbours neighbor neighbors friend friends
     boss wife husband partner sister brother parents folks delivery courier postman""")
 """People of an event (*before the cleaners come*, *while my mum's here*): not the robot, not a place."""
+PEOPLE_NOUNS = PEOPLE_NOUNS | word_set("""inlaws relatives relations son sons daughter daughters niece nephew
+    aunt uncle cousin cousins grandson granddaughter grandkids grandparents flatmate roommate housemate lodger
+    tenant landlord nanny babysitter gardener vet""")
+"""More people (*In-laws coming round!*, *my niece can't decide*)."""
 HOW_MANY = word_set("a few couple several some lots loads plenty of them one more")
 """Words of a clause that only says how many there are (*there's a few*, *there are a couple of them*)."""
 PEOPLE = word_set("i we he she they")
@@ -1317,6 +1338,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
 """Phrases read as another (``prior to`` is ``before``, ``as soon as`` is ``once``), rewritten on the tokens
 before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase is taken for a verb."""
 PHRASE_ALIASES.update({
+    ("in", "laws"): ("inlaws",),  # "In-laws coming round!": people, not "in"
     # operator shorthand for the order: "order n/a", "any ord."
     ("order", "n", "/", "a"): ("in", "any", "order"), ("any", "ord"): ("in", "any", "order"),
 })
