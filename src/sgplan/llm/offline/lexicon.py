@@ -1097,6 +1097,10 @@ EVENT_VERBS = word_set("arrive arrives come comes leave leaves get gets back hom
                        "finishes end ends wake wakes up go goes out begin begins gone away asleep sleeping "
                        "napping here working 's")
 """In a time expression of an event (*before the guests arrive*, *after I get back*)."""
+EVENT_VERBS = EVENT_VERBS | word_set("over done finished ready served up awake")
+"""(*once lunch is over*, *when dinner's ready*)."""
+EVENT_OPENERS = ("before", "after", "by", "while", "once", "when")
+"""The words a time expression of an event starts with (*before the guests arrive*, *once lunch is over*)."""
 FEW = ("few", "couple", "several")
 TIME_UNITS = word_set("second seconds minute minutes min mins hour hours hr hrs sec secs")
 """*in ten minutes*, *wait 5 min*: a delay, which a mission cannot require (refused)."""
@@ -1339,6 +1343,10 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
 before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase is taken for a verb."""
 PHRASE_ALIASES.update({
     ("in", "laws"): ("inlaws",),  # "In-laws coming round!": people, not "in"
+    # bedtime and the start of the day said otherwise: "before you turn in", "start the day by ..."
+    **{("before", who, *turn_in): ("before", "bedtime") for who in ("you", "i", "we", "everyone")
+       for turn_in in (("turn", "in"), ("head", "to", "bed"), ("go", "to", "sleep"), ("hit", "the", "sack"))},
+    ("start", "the", "day", "by"): ("start", "by"), ("to", "start", "the", "day"): ("first",),
     # operator shorthand for the order: "order n/a", "any ord."
     ("order", "n", "/", "a"): ("in", "any", "order"), ("any", "ord"): ("in", "any", "order"),
 })

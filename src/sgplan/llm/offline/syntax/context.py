@@ -201,9 +201,10 @@ def is_time(r: Reader, start: int, end: int) -> bool:
     """*Before lunch*, *this morning*, *at some point this evening*, *tonight*, *right now*: a time of day,
     meal or event (not *later* or *now* alone, which order the steps)."""
     words = r.words[start:end]
-    event = words[:1] in (("before",), ("after",), ("by",), ("while",))  # "before the guests arrive"
+    event = words[:1] in tuple((w,) for w in lx.EVENT_OPENERS)  # "before the guests arrive"
     said = [w in lx.TIME_WORDS or (event and (w in lx.EVENT_VERBS or w in lx.PEOPLE or w in lx.PEOPLE_NOUNS
-                                              or w in lx.POSSESSIVES or w in lx.AUXILIARIES)) for w in words]
+                                              or w in lx.POSSESSIVES or w in lx.AUXILIARIES or k == 0))
+            for k, w in enumerate(words)]
     if not words or not all(said):
         return False
     events = [w for w in words if (w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES)
