@@ -14,7 +14,8 @@ A clause broken off after a word that cannot end one (*the*, *to*, *into*), at a
 *uh*), and started again
 with the same first word (*don't take the- don't go through the living room*), or with the words before
 the dash (*the plant in the- the plant in the office*), is a restart: the broken words are set aside and said
-back, and the sentence is read from the restart.
+back, and the sentence is read from the restart. So is a clause broken off inside a word that the words after
+it say whole (*grab the mic- er, check the microwave*), whatever they start with.
 
 A sentence that is only *the one(s) ...* right after one that ends with a noun phrase says which one that
 is (*water the plant. the one in the living room.*): it is read as an apposition of that phrase (*the plant,
@@ -84,10 +85,14 @@ def restarted(r: Reader) -> tuple[Reader, Reader] | None:
     """The sentence read from a restart (see the module docstring), and the broken words set aside;
     ``None`` when it has no restart."""
     for cut in range(1, len(r) - 1):
-        if r.word(cut - 1) not in lx.UNFINISHED or r.word(cut) != ",":
+        broken = broken_word(r, cut)
+        if (r.word(cut - 1) not in lx.UNFINISHED and not broken) or r.word(cut) != ",":
             continue  # a clause never ends with "the" or "to": a comma (a dash, a pause) after it breaks it
         again = r.skip(cut, (",",))
         start = max((k + 1 for k in range(cut) if r.word(k) in lx.CLAUSE_ENDS and r.word(k)), default=0)
+        if broken:  # "grab the mic- er, check the microwave": the clause is said again, whatever its verb
+            return (replace(r, toks=r.toks[:start] + r.toks[again:]),
+                    replace(r, toks=r.toks[start:again], aside=True))
         # a stutter says again the words broken off: "the plant in the- the plant in the office"
         start = next((k for k in range(start, cut) if r.words[k:cut] == r.words[again:again + cut - k]),
                      start)
@@ -95,6 +100,15 @@ def restarted(r: Reader) -> tuple[Reader, Reader] | None:
             kept = replace(r, toks=r.toks[:start] + r.toks[again:])
             return kept, replace(r, toks=r.toks[start:again], aside=True)
     return None
+
+
+def broken_word(r: Reader, cut: int) -> bool:
+    """Whether the word before the comma at ``cut`` was broken off by a dash (*the mic- er, the microwave*): a
+    word no table knows, written onto the dash, that begins a longer word said after it."""
+    w, tok = r.word(cut - 1), r.toks[cut - 1]
+    return (r.word(cut) == "," and r.text[tok.end:tok.end + 1] == "-" and w.isalpha()
+            and w not in lx.LEXICON_WORDS and r.head(cut - 1) is None
+            and any(later.startswith(w) and later != w for later in r.words[cut:]))
 
 
 def restated(r: Reader) -> tuple[Reader, Reader] | None:
