@@ -748,6 +748,8 @@ CLOSING = CLOSING + Phrases((
     *(("let", "'s", "get", *going) for going in (("a", "head", "start"), ("started",), ("going",),
                                                  ("cracking",), ("moving",), ("on", "with", "it"))),
     ("let", "'s", "do", "this"), ("here", "goes"), ("here", "we", "go"),
+    ("just", "in", "case"), ("to", "be", "safe"), ("to", "be", "on", "the", "safe", "side"),
+    ("better", "safe", "than", "sorry"), ("just", "to", "be", "safe"), ("just", "to", "check"),
     *(("bless", who) for who in ("her", "him", "them", "you", "it")),
     # tag questions closing an order: "never go in there, okay?", "..., alright?", "..., yeah?"
     ("okay",), ("ok",), ("alright",), ("all", "right"), ("got", "it"), ("you", "got", "it"),
@@ -1166,6 +1168,14 @@ REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"), ("sinc
                                  ("nothing", "is"), ("everything", "is"), ("everything", "'s")))))
 """A reason for an order, set aside to its clause's end (*... because the coffee's in there*, *... so I know
 you made it*, *... to see if the paint's dry*): it asks nothing."""
+AFTER_ORDER_REASONS = Phrases((*(("as", who) for who in ("i", "we", "it", "they", "she", "he", "there", "the",
+                                                        "my", "our", "everyone", "nobody")),
+                                ("in", "case"), ("just", "in", "case")))
+"""Reasons only after an order in the same sentence (*check the laptop as it needs charging*, *check the
+oven in case it was left on*): opening a sentence they may say when or if (*as we leave*, *in case of ...*),
+which is left to the parser."""
+COMPARED = ("same", "such", "as", "so", "far", "much", "many", "long")
+"""Before *as* in a comparison (*the same floor as*, *as far as*), where it gives no reason."""
 ROOM_PARTS = word_set("floor floors door doors wall walls window windows carpet carpets rug ceiling tiles "
                       "paint lights light heating")
 """The parts of a room a statement is about (*the lobby floor is still wet*): context, not the room as a

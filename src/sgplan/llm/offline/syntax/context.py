@@ -101,15 +101,23 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
     it*, *... to make sure they're sturdy*): from the reason word to the clause's end or its next *then*;
     ``None`` when there is none, or when it says what not to do or asks something (*because I need you to
     ...*: left to the parser)."""
-    k = next((k for k in range(start, end) if r.phrase(k, lx.REASONS) or purpose(r, k, end)), None)
+    k = next((k for k in range(start, end) if r.phrase(k, lx.REASONS) or purpose(r, k, end)
+              or after_order_reason(r, k)), None)
     if k is None:
         return None
     stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
-    said = range(k + len(r.phrase(k, lx.REASONS) or ("for",)), stop)
+    said = range(k + len(r.phrase(k, lx.REASONS) or r.phrase(k, lx.AFTER_ORDER_REASONS) or ("for",)), stop)
     if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) or is_clock_time(r.word(j))
            or r.word(j) in lx.TIME_UNITS for j in said):
         return None  # what not to do, a question to the robot, a clock time or a delay: left to the parser
     return k, stop
+
+
+def after_order_reason(r: Reader, k: int) -> bool:
+    """Whether a reason of :data:`.lexicon.AFTER_ORDER_REASONS` starts at ``k`` after an order of the same
+    sentence (*check the laptop as it needs charging*), not a comparison (*the same floor as the bed*)."""
+    return (r.phrase(k, lx.AFTER_ORDER_REASONS) is not None and any(starts_order(r, j) for j in range(k))
+            and not any(w in lx.COMPARED for w in r.words[max(0, k - 4):k]))
 
 
 def purpose(r: Reader, k: int, end: int) -> bool:
