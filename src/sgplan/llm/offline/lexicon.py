@@ -748,6 +748,13 @@ CLOSING = CLOSING + Phrases((
     *(("let", "'s", "get", *going) for going in (("a", "head", "start"), ("started",), ("going",),
                                                  ("cracking",), ("moving",), ("on", "with", "it"))),
     ("let", "'s", "do", "this"), ("here", "goes"), ("here", "we", "go"),
+    # leaving and signing off: "wish me luck", "talk later", "off to work now", "much love"
+    ("wish", "me", "luck"), ("talk", "later"), ("talk", "soon"), ("speak", "soon"), ("speak", "later"),
+    ("much", "love"), ("lots", "of", "love"), ("long", "story"), ("long", "story", "short"),
+    *((*i_am, "off", "to", *place, *now) for i_am in ((), ("i", "am"), ("we", "are"))
+      for place in (("work",), ("school",), ("the", "shops"), ("the", "gym")) for now in ((), ("now",))),
+    *((*i_will, "be", "back", when) for i_will in ((), ("i", "will"), ("we", "will"))
+      for when in ("soon", "later", "tonight")), ("back", "soon"), ("back", "later"),
     ("just", "in", "case"), ("to", "be", "safe"), ("to", "be", "on", "the", "safe", "side"),
     ("better", "safe", "than", "sorry"), ("just", "to", "be", "safe"), ("just", "to", "check"),
     *(("bless", who) for who in ("her", "him", "them", "you", "it")),
