@@ -1181,6 +1181,11 @@ AFTER_ORDER_REASONS = Phrases((*(("as", who) for who in ("i", "we", "it", "they"
 """Reasons only after an order in the same sentence (*check the laptop as it needs charging*, *check the
 oven in case it was left on*): opening a sentence they may say when or if (*as we leave*, *in case of ...*),
 which is left to the parser."""
+APOLOGY_WORDS = ("sorry", "oops", "whoops", "apologies")
+CORRECTING_WORDS = word_set("mean meant means wrong mistake instead rather actually not other else said "
+                            "say wanted want need needed")
+"""After *Sorry,* words that may say what was meant (*Sorry, I meant ...*, *Sorry, wrong one*): the sentence
+is then a correction, not an apology."""
 COMPARED = ("same", "such", "as", "so", "far", "much", "many", "long")
 """Before *as* in a comparison (*the same floor as*, *as far as*), where it gives no reason."""
 ROOM_PARTS = word_set("floor floors door doors wall walls window windows carpet carpets rug ceiling tiles "

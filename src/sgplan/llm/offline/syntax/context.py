@@ -44,7 +44,9 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     clauses; ``said_before``: sentences with content came before it (then *it* after a statement that names
     a room or object could be read as what they named last: not set aside, so refused)."""
     if said_before and r.says(lx.CORRECTIONS, 0, len(r)):
-        return [r]  # "Oh, I meant the kitchen": takes back what was said before; corrections.py reads it
+        # "Oh, I meant the kitchen": takes back what was said before (corrections.py reads or refuses it);
+        # "Sorry, I forgot something.": an apology before a statement that names nothing, said back
+        return [aside(r, 0, len(r))] if apology(r) else [r]
     if event_note(r, 0, len(r)) or is_time(r, 0, len(r)):
         return [aside(r, 0, len(r))]
     clauses = comma_clauses(r)
@@ -76,6 +78,18 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     if last < len(clauses):
         kept.append(aside(r, clauses[last][0], len(r)))
     return kept
+
+
+def apology(r: Reader) -> bool:
+    """Whether the sentence is a bare apology word (*sorry*, *oops*) and a comma before a statement that
+    names nothing and says nothing of what was meant (*Sorry, I forgot something.*): no room, object, floor,
+    pronoun, number or word of correcting (:data:`.lexicon.CORRECTING_WORDS`)."""
+    if r.word(0) not in lx.APOLOGY_WORDS or r.word(1) != "," or statement(r, 2, len(r)) != "aside":
+        return False
+    return not any(r.head(k) is not None or w in lx.PRONOUNS or w in lx.ANAPHORIC_ONE
+                   or w in lx.RELATIVE_FLOORS or w in lx.FLOOR_WORDS or w in lx.NUMBER_WORDS or w.isdigit()
+                   or w in lx.CORRECTING_WORDS or w in lx.DEICTIC_SUBJECTS or r.phrase(k, lx.CORRECTIONS)
+                   for k, w in enumerate(r.words[2:], 2))
 
 
 def comma_clauses(r: Reader) -> list[tuple[int, int]]:
