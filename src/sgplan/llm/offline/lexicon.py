@@ -755,6 +755,10 @@ CLOSING = CLOSING + Phrases((
       for place in (("work",), ("school",), ("the", "shops"), ("the", "gym")) for now in ((), ("now",))),
     *((*i_will, "be", "back", when) for i_will in ((), ("i", "will"), ("we", "will"))
       for when in ("soon", "later", "tonight")), ("back", "soon"), ("back", "later"),
+    *(("you", "are", *a, praise) for a in ((), ("a",), ("an",))
+      for praise in ("lifesaver", "gem", "angel", "diamond", "hero", "saint", "champ", "legend", "star",
+                     "treasure", "amazing", "brilliant", "awesome", "wonderful", "great")),
+    ("tia",), ("owe", "you", "one"), ("i", "owe", "you", "one"), ("i", "owe", "you"),
     ("just", "in", "case"), ("to", "be", "safe"), ("to", "be", "on", "the", "safe", "side"),
     ("better", "safe", "than", "sorry"), ("just", "to", "be", "safe"), ("just", "to", "check"),
     *(("bless", who) for who in ("her", "him", "them", "you", "it")),
@@ -1365,6 +1369,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
 before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase is taken for a verb."""
 PHRASE_ALIASES.update({
     ("in", "laws"): ("inlaws",),  # "In-laws coming round!": people, not "in"
+    ("cos",): ("because",), ("coz",): ("because",), ("cuz",): ("because",), ("bc",): ("because",),
     # bedtime and the start of the day said otherwise: "before you turn in", "start the day by ..."
     **{("before", who, *turn_in): ("before", "bedtime") for who in ("you", "i", "we", "everyone")
        for turn_in in (("turn", "in"), ("head", "to", "bed"), ("go", "to", "sleep"), ("hit", "the", "sack"))},
