@@ -585,6 +585,11 @@ POLITE = POLITE + Phrases((("whatever", "you", "do"), ("whatever", "happens"), (
                              for want in ("need", "want", "ask")),
                            *(("all", who, want, "you", "to", "do", "is", *to) for who in ("i", "we")
                              for want in ("need", "want") for to in ((), ("to",))),
+                           # "be an angel and ...", "would you be a sweetheart and ..."
+                           *((*would, "be", a, dear, "and")
+                             for would in ((), ("would", "you"), ("could", "you")) for a in ("a", "an")
+                             for dear in ("angel", "sweetheart", "darling", "doll", "love", "gem", "treasure",
+                                          "dear", "star", "sport")),
                            # spoken to an assistant: "Alexa, tell the robot to ..."
                            *((tell, "the", "robot", "to") for tell in ("tell", "ask", "get"))))
 """Emphatic openers of an order (*whatever you do, don't ...*, *above all, ...*) and wrappers of one (*the
@@ -759,6 +764,13 @@ CLOSING = CLOSING + Phrases((
       for praise in ("lifesaver", "gem", "angel", "diamond", "hero", "saint", "champ", "legend", "star",
                      "treasure", "amazing", "brilliant", "awesome", "wonderful", "great")),
     ("tia",), ("owe", "you", "one"), ("i", "owe", "you", "one"), ("i", "owe", "you"),
+    # openers of talk and asides of time: "listen up,", "tell you what,", "at your leisure", "whenever"
+    ("let", "me", "think"), ("listen",), ("listen", "up"), ("you", "know", "what"),
+    ("tell", "you", "what"), ("at", "your", "leisure"), ("whenever",),
+    *((when, "you", "get", way, "to", "it") for when in ("when", "whenever") for way in ("round", "around")),
+    *(("if", "you", "get", "a", moment) for moment in ("minute", "sec", "second", "moment", "mo")),
+    *(("if", "it", be, "not", "too", "much", bother) for be in ("is", "'s")
+      for bother in ("bother", "trouble", "hassle")),
     ("just", "in", "case"), ("to", "be", "safe"), ("to", "be", "on", "the", "safe", "side"),
     ("better", "safe", "than", "sorry"), ("just", "to", "be", "safe"), ("just", "to", "check"),
     *(("bless", who) for who in ("her", "him", "them", "you", "it")),
