@@ -765,6 +765,15 @@ CLOSING = CLOSING + Phrases((
                      "treasure", "amazing", "brilliant", "awesome", "wonderful", "great")),
     ("tia",), ("owe", "you", "one"), ("i", "owe", "you", "one"), ("i", "owe", "you"),
     # openers of talk and asides of time: "listen up,", "tell you what,", "at your leisure", "whenever"
+    *((*i, "would", *really, "appreciate", "it") for i in ((), ("i",), ("we",))
+      for really in ((), ("really",))),
+    *(("would", "be", great) for great in ("great", "lovely", "amazing", "perfect", "brilliant", "helpful")),
+    *(("hope", "that", be, fine) for be in ("is", "'s")
+      for fine in ("ok", "okay", "alright", "fine", "clear")),
+    ("hope", "that", "makes", "sense"), ("hope", "this", "makes", "sense"),
+    *(("any", "questions", *comma, "just", "ask") for comma in ((), (",",))),
+    *(("let", "me", "know", "if", "you", have, *any, "questions") for have in ("have", "get")
+      for any in ((), ("any",))),
     ("let", "me", "think"), ("listen",), ("listen", "up"), ("you", "know", "what"),
     ("tell", "you", "what"), ("at", "your", "leisure"), ("whenever",),
     *((when, "you", "get", way, "to", "it") for when in ("when", "whenever") for way in ("round", "around")),

@@ -182,6 +182,7 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
     """Whether the clause ``[start, end)`` only gives context: a time (opening or closing the sentence), or a
     statement that is not a need about the scene (see the module docstring)."""
     said = skip_joiner(r, r.skip(start, lx.INTERJECTIONS))  # "ok I dropped my keys somewhere, ..."
+    said = said + 1 if r.word(said) in lx.EVENT_WORDS and r.word(said + 1) in lx.SUBJECT_PRONOUNS else said
     return (is_time(r, start, end) or statement(r, said, end) == "aside"
             or event_note(r, start, end) or is_reason(r, start, end))
 
