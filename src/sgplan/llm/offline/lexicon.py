@@ -774,6 +774,21 @@ CLOSING = CLOSING + Phrases((
     *(("any", "questions", *comma, "just", "ask") for comma in ((), (",",))),
     *(("let", "me", "know", "if", "you", have, *any, "questions") for have in ("have", "get")
       for any in ((), ("any",))),
+    # letters and notes: "Dear robot,", "Kind regards", "Many thanks in advance", "Excuse me,", "it's me"
+    *(("dear", who) for who in ("robot", "helper", "assistant", "bot")),
+    *((*kind, "regards") for kind in ((), ("kind",), ("best",), ("warm",), ("warmest",))),
+    ("best", "wishes"), ("greetings",), ("all", "the", "best"), ("many", "thanks", "in", "advance"),
+    ("love",), ("with", "love"), ("best",), ("cheers", "again"),
+    ("thank", "you", "very", "very", "much"), ("thanks", "very", "very", "much"), ("excuse", "me"),
+    ("pardon",), ("pardon", "me"), ("attention", "please"), ("attention",),
+    *(("have", "a", good, when) for good in ("good", "nice", "great", "lovely")
+      for when in ("evening", "night", "weekend", "afternoon", "morning", "one")),
+    *((*it_is, *my, who, *again) for it_is in (("it", "is"), ("this", "is"), ("its",))
+      for my in ((), ("your",))
+      for who in ("me", "us", "mum", "mom", "dad", "mummy", "daddy", "grandma", "grandpa", "nan", "granny")
+      for again in ((), ("again",), ("here",), ("speaking",))),
+    *((*it, *very, "important") for it in ((), ("it", "is"), ("is",))
+      for very in ((), ("very",), ("really",))),
     ("let", "me", "think"), ("listen",), ("listen", "up"), ("you", "know", "what"),
     ("tell", "you", "what"), ("at", "your", "leisure"), ("whenever",),
     *((when, "you", "get", way, "to", "it") for when in ("when", "whenever") for way in ("round", "around")),

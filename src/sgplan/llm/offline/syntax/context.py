@@ -192,9 +192,20 @@ def closing_only(r: Reader, start: int, end: int) -> bool:
     cheers*)."""
     k = skip_joiner(r, start)
     while k < end and (said := r.phrase(k, lx.CLOSING) or ((r.word(k),) if r.word(k) in lx.HESITATIONS
-                                                           or r.word(k) == "," else None)):
+                                                           or r.word(k) == "," or signature(r, k) else None)):
         k += len(said)
     return start < k == end
+
+
+def signature(r: Reader, k: int) -> bool:
+    """Whether the word at ``k`` is the name a sign-off is signed with (*Regards, Tom*, *Thanks, Anna!*): a
+    capitalised word the translator does not know, last in its sentence, after sign-offs and a comma."""
+    w, tok = r.word(k), r.toks[k] if k < len(r) else None
+    rest = [j for j in range(k + 1, len(r)) if r.word(j).isalpha()]
+    return (tok is not None and w.isalpha() and r.text[tok.start].isupper()
+            and (w not in lx.LEXICON_WORDS or w in lx.PEOPLE_NOUNS) and r.head(k) is None
+            and r.word(k - 1) == "," and closing_only(r, 0, k - 1)
+            and (not rest or closing_only(r, rest[0], len(r))))
 
 
 def event_note(r: Reader, start: int, end: int) -> bool:
