@@ -1226,6 +1226,10 @@ CORRECTING_WORDS = word_set("mean meant means wrong mistake instead rather actua
                             "say wanted want need needed")
 """After *Sorry,* words that may say what was meant (*Sorry, I meant ...*, *Sorry, wrong one*): the sentence
 is then a correction, not an apology."""
+STATES = word_set("wet slippery busy occupied closed locked flooded painted drying messy dirty filthy "
+                  "cluttered noisy dark cold freezing hot smelly blocked broken")
+"""States a note gives a place without a verb (*office wet - avoid it*, *NB: lobby busy*): context."""
+NOW_WORDS = word_set("now atm rn today still again")
 COMPARED = ("same", "such", "as", "so", "far", "much", "many", "long")
 """Before *as* in a comparison (*the same floor as*, *as far as*), where it gives no reason."""
 ROOM_PARTS = word_set("floor floors door doors wall walls window windows carpet carpets rug ceiling tiles "

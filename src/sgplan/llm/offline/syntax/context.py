@@ -316,6 +316,10 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         if not plain_word(r, start + 1):
             return None  # "the kitchen and the office": goals
         return next((j for j in range(start + 2, min(start + 5, end)) if finite_verb(r.word(j))), None)
+    if r.head(start) is not None:  # "office wet - avoid it", "NB: lobby busy rn": a note's statement
+        said = noun_phrase(r, start, "qualifier")
+        state = said.end if isinstance(said, Match) else end
+        return state if r.word(state) in lx.STATES and r.skip(state + 1, lx.NOW_WORDS) == end else None
     verb = r.word(start + 1)
     if (w.isalpha() and r.head(start) is None
             and (plain_subject(r, start) or w in lx.RELATIVE_FLOORS or w in lx.EVENT_WORDS
