@@ -1230,6 +1230,10 @@ STATES = word_set("wet slippery busy occupied closed locked flooded painted dryi
                   "cluttered noisy dark cold freezing hot smelly blocked broken")
 """States a note gives a place without a verb (*office wet - avoid it*, *NB: lobby busy*): context."""
 NOW_WORDS = word_set("now atm rn today still again")
+PRAISE = word_set("cool great perfect lovely nice sweet awesome brilliant excellent super fab fantastic "
+                  "wonderful splendid marvellous ace grand good ok okay alright")
+"""Praise said as a sentence of its own (*Perfect.*, *Cool cool.*): said back; never skipped inside a clause
+(*Is the kitchen lovely?* asks something)."""
 COMPARED = ("same", "such", "as", "so", "far", "much", "many", "long")
 """Before *as* in a comparison (*the same floor as*, *as far as*), where it gives no reason."""
 ROOM_PARTS = word_set("floor floors door doors wall walls window windows carpet carpets rug ceiling tiles "

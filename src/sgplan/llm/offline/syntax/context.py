@@ -47,6 +47,9 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         # "Oh, I meant the kitchen": takes back what was said before (corrections.py reads or refuses it);
         # "Sorry, I forgot something.": an apology before a statement that names nothing, said back
         return [aside(r, 0, len(r))] if apology(r) else [r]
+    praise = [w for w in r.words if w.isalpha()]
+    if praise and all(w in lx.PRAISE or w in lx.HESITATIONS for w in praise):
+        return [aside(r, 0, len(r))]  # "Perfect.", "Cool cool.": a sentence of praise only, said back
     if event_note(r, 0, len(r)) or is_time(r, 0, len(r)):
         return [aside(r, 0, len(r))]
     clauses = comma_clauses(r)

@@ -41,6 +41,9 @@ _AROUND = frozenset({",", "sorry"})
 _CLAUSE_ENDS = ("", ",", "and", "then")
 _WITHIN = ("in", "on", "inside", "at", "of")
 """Before a place said again inside the phrase that restates it (*the office on floor one*)."""
+_PAUSED_AFTER = frozenset({"the", "a", "an", "to", "into", "of", "through", "from"})
+"""Words after which a comma is a pause, never the end of a clause (*go to the... kitchen*); not *in*, *on*
+(particles end clauses: *go in, then ...*), nor *her*, *that* (*bless her, ...*, *check that, then ...*)."""
 _OPENING = lx.HESITATIONS | lx.GREETINGS | frozenset({",", "okay", "ok", "robot"})
 """Words before what a sentence restates (*um okay floor one, the office on floor one*)."""
 
@@ -51,6 +54,7 @@ def corrected(r: Reader) -> list[Reader]:
     restart = restarted(r) or restated(r)
     if restart is not None:
         return [*corrected(restart[0]), restart[1]]
+    r = unpaused(r)
     for k in range(1, len(r)):
         said = r.phrase(k, lx.CORRECTIONS)
         if said is not None:
@@ -100,6 +104,17 @@ def restarted(r: Reader) -> tuple[Reader, Reader] | None:
             kept = replace(r, toks=r.toks[:start] + r.toks[again:])
             return kept, replace(r, toks=r.toks[start:again], aside=True)
     return None
+
+
+def unpaused(r: Reader) -> Reader:
+    """``r`` without the commas of a pause right after a word no clause ends with, when the clause goes on
+    after it (*go to the... kitchen*, *go to the, uh, kitchen*): a pause, not a break."""
+    def pause(k: int) -> bool:
+        before = next((r.word(j) for j in range(k, -1, -1) if r.word(j) != ","), "")
+        after = r.word(r.skip(k, (",",)))
+        return after.isalpha() and after not in lx.CLAUSE_ENDS and before in _PAUSED_AFTER
+    kept = [t for k, t in enumerate(r.toks) if not (t.text == "," and pause(k))]
+    return r if len(kept) == len(r.toks) else replace(r, toks=tuple(kept))
 
 
 def broken_word(r: Reader, cut: int) -> bool:
