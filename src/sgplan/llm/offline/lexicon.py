@@ -778,7 +778,7 @@ CLOSING = CLOSING + Phrases((
     *(("dear", who) for who in ("robot", "helper", "assistant", "bot")),
     *((*kind, "regards") for kind in ((), ("kind",), ("best",), ("warm",), ("warmest",))),
     ("best", "wishes"), ("greetings",), ("all", "the", "best"), ("many", "thanks", "in", "advance"),
-    ("love",), ("with", "love"), ("best",), ("cheers", "again"),
+    ("love",), ("with", "love"), ("cheers", "again"),
     ("thank", "you", "very", "very", "much"), ("thanks", "very", "very", "much"), ("excuse", "me"),
     ("pardon",), ("pardon", "me"), ("attention", "please"), ("attention",),
     *(("have", "a", good, when) for good in ("good", "nice", "great", "lovely")
