@@ -13,7 +13,13 @@ Set aside are: a sentence or a comma clause (first or last of its sentence) that
 to ...*), says what is off limits (*the kitchen is off limits*), or states a need about a room or object of
 the scene (*the plants need watering*: that may ask for a goal, and is refused by the parser); and a time of
 day, meal or event opening or closing a sentence (*Before lunch,*, *... tonight*). A clock time is refused
-(:func:`.reader.unreadable`).
+(:func:`.reader.unreadable`). A subject is known by its shape: a pronoun, a phrase with a determiner, or a
+bare noun the grammar has no role for (*Laundry's done*, *people are asleep*), or a place and its state in a
+note (*office wet*). Remarks (:data:`.lexicon.CLOSING`) around the context or closing the sentence are set
+aside with it, and so is a sentence of praise only (*Perfect.*) or a bare apology before a statement that
+names nothing (*Sorry, I forgot something.*); a reason after an order (*... as it needs charging*) is set
+aside where it stands. After a statement that names one place, the pronoun of the order is bound to it
+(:mod:`.stated_place`).
 """
 
 from __future__ import annotations
