@@ -847,6 +847,9 @@ DONE_WITH = ("with", "in", "at")
 DONE_FILLERS = frozenset({"that", "this", "are", "all", "both", "of", "them"})
 DONE_BACK = ("that", "this", "it", "them", "everything", "there")
 """``once you're done with that``: the step before, not a new place."""
+DONE_BACK_ENDS = frozenset({",", "", "then", "go", "and"})
+"""After *once you've done that*: the words that show *that* is the step before (*..., go to X*), not the
+start of a noun phrase (*once you've done that room*)."""
 TRIP_NOUNS = frozenset({"trip", "visit", "stop", "detour", "run", "quick", "short", "pass"})
 """``twice, with a trip / visit / stop to Y in between``: words naming the visit to Y."""
 BETWEEN_TAIL = Phrases((("them",), ("the", "two"), ("the", "two", "visits"), ("each", "visit"), ("visits",)))

@@ -13,7 +13,7 @@ from typing import Literal
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import action, action_then_ahead, after_conjunction, times_before_place
-from sgplan.llm.offline.syntax.links import closing_at, done_words, link
+from sgplan.llm.offline.syntax.links import closing_at, done_closing, done_words, link
 from sgplan.llm.offline.syntax.negation import negation, off_limits, stay_on_floor
 from sgplan.llm.offline.syntax.phrases import there_then_verb
 from sgplan.llm.offline.syntax.qualifiers import names_rooms
@@ -116,8 +116,9 @@ def before_only_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemP
 def done_with(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """*... when done with X*: X before the step it is said in."""
     done = done_words(r, i)
-    if not done or r.word(i + done) not in lx.DONE_WITH or not r.np_starts(i + done + 1):
-        return None
+    if (not done or r.word(i + done) not in lx.DONE_WITH or not r.np_starts(i + done + 1)
+            or done_closing(r, i)):
+        return None  # not "... once you're finished with that.": a closing order
     found = action(r, i + done + 1)
     return Match(DoneWith(found.node), found.end) if isinstance(found, Match) else found
 
@@ -126,8 +127,8 @@ def done_with(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
 def way_link(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """*on the way, X* / *and on your way back, X* / *once you're done, X*: a sequence link."""
     way = r.phrase(i + (1 if r.word(i) in ("and", ",") else 0), lx.ON_THE_WAY)
-    if not done_words(r, i) and way is None:
-        return None
+    if (not done_words(r, i) and way is None) or done_closing(r, i):
+        return None  # "... when you're done.": a closing order (:func:`trailing_after`)
     found = link(r, i)
     return found if not isinstance(found, Match) or found.node.sequence else None
 
@@ -143,7 +144,9 @@ def closing(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
 @ITEMS.rule("condition follows")
 def condition_follows(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """The body ends before *if*, *when*, *only if*, *whenever*, *only after* (and, in *only <do X> after
-    Y*, before *after*)."""
+    Y*, before *after*); not before a closing *when you're done* (:func:`trailing_after`)."""
+    if done_closing(r, i):
+        return None
     if (r.at(i, *lx.ONLY_IF) or r.phrase(i, lx.CONDITION_WORDS) or r.phrase(i, lx.ONLY_AFTER)
             or r.phrase(i, lx.WHENEVER) or (only_verb and r.word(i) in ("after", "once"))):
         return Match(End(), i)
@@ -152,10 +155,11 @@ def condition_follows(r: Reader, i: int, before: Said, only_verb: bool) -> ItemP
 
 @ITEMS.rule("trailing after")
 def trailing_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
-    """*Go to the dining room after.*: nothing more in the body (a sentence that ends so follows the one
-    before it, :func:`.sentences.mission_sentence`). After two goals of the body (*the office and the
-    kitchen afterwards*, *A, then B after*) it could be about the last or all of them: refused."""
-    length = r.trailing_after(i)
+    """*Go to the dining room after.*, *... when you're done.*: nothing more in the body (a sentence that
+    ends so follows the one before it, :func:`.sentences.mission_sentence`). After two goals of the body
+    (*the office and the kitchen afterwards*, *A, then B after*) it could be about the last or all of them:
+    refused."""
+    length = r.trailing_after(i) or done_closing(r, i)
     if not length:
         return None
     actions = [item for item in before if isinstance(item, PlainAction)]

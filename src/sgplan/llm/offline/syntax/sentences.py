@@ -20,6 +20,7 @@ from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.links import (
     at_end,
     comma_or_then,
+    done_closing,
     done_words,
     link,
     skip_subject,
@@ -85,7 +86,7 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
             said_body.node, PlainSentence) and not said_body.node.body.items:
         return Refusal(rf.order_without_goal(r.quote(0, len(r))))  # "Last: the office" is not set aside
     if (precedes is None and not lead.node.sequence and isinstance(said_body.node, PlainSentence)
-            and (r.trailing_after(len(r) - 1) or r.trailing_after(len(r) - 2)
+            and (r.trailing_after(len(r) - 1) or r.trailing_after(len(r) - 2) or closes_done(r)
                  or carries_it(said_body.node.body))):
         lead = Match(Link(True), lead.end)  # "Go to the office. Visit the kitchen afterwards.": as "Then ..."
     rest = link(r, said_body.end, sequence_too=False)
@@ -95,6 +96,12 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
         return Refusal(rf.left_over(r.quote(rest.end, len(r))))
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
                                  r.span(0, len(r)), r.announced, r.after_item, floor), len(r))
+
+
+def closes_done(r: Reader) -> bool:
+    """Whether the sentence ends in *when you're done* / *once you've finished* (*Go to the office when
+    you're done.*): it follows the sentence before it."""
+    return any(done_closing(r, k) for k in range(1, len(r)))
 
 
 def carries_it(said: Body) -> bool:
