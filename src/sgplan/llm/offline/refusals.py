@@ -445,12 +445,18 @@ def after_all_of_which(said: str) -> str:
                     "and name what comes after what")
 
 
-def after_all_count(said: str, goals: int, number: int) -> str:
-    return rephrase(f"'{said}': this sentence names {goals} goals before it, not {number}")
+def after_all_count(said: str, goals: int, number: int, sentence: bool = True) -> str:
+    where = "this sentence names {} goals before it" if sentence else "the sentence before it names {} goals"
+    return rephrase(f"'{said}': {where.format(goals)}, not {number}")
 
 
-def after_all_of_nothing(said: str) -> str:
-    return rephrase(f"'{said}': no goal is named before it in this sentence")
+def after_all_of_nothing(said: str, sentence: bool = True) -> str:
+    return rephrase(f"'{said}': no goal is named before it" + (" in this sentence" if sentence else ""))
+
+
+def after_all_of_sentences(said: str) -> str:
+    return rephrase(f"'{said}': after the goals of the sentence before it, or of every sentence before it? "
+                    "Say it in one sentence ('A and B, and after both, C') or name what comes after what")
 
 
 def done_that_of_nothing() -> str:

@@ -68,7 +68,7 @@ def link(item: Link, clause: Clause, ctx: SentenceContext) -> None:
 def after_all(item: AfterAll, clause: Clause, ctx: SentenceContext) -> None:
     """*and after all three, X*: X after every goal of the sentence said before (their number checked;
     refused when an earlier sentence named goals too: after which ones?)."""
-    goals = sum(len(t.members) if t.mode == "all" else 1 for step in clause.steps for t in step)
+    goals = clause.goal_count()
     if not goals:
         rf.refuse(rf.after_all_of_nothing(item.said))
     if ctx.disc.goals_before(ctx.start):

@@ -95,6 +95,8 @@ def after_all(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     n += 2 if r.at(n, "of", "them") or r.at(n, "of", "those") else 0
     if number is None and n == k + len(phrase) and phrase[-1] in ("all", "both") and r.np_starts(n):
         return None  # "after all the bedrooms": an ordinary noun phrase
+    if number is None and phrase[-1] == "both":
+        number = 2  # "once you've done both": two goals, checked as a number said
     return Match(AfterAll(r.quote(k, n), number), n + (1 if r.word(n) == "," else 0))
 
 

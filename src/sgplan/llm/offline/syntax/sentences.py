@@ -15,7 +15,7 @@ from typing import Any
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import action, after_conjunction
-from sgplan.llm.offline.syntax.body import body
+from sgplan.llm.offline.syntax.body import after_all, body
 from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.links import (
     at_end,
@@ -32,6 +32,7 @@ from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.tree import (
     Action,
+    AfterAll,
     Body,
     Described,
     FloorSpec,
@@ -75,9 +76,14 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
         i += 2 if r.at(i, *lx.BEFORE_THAT) else 1
         i += 1 if r.word(i) == "," else 0
         precedes = r.quote(0, i)
+    opened = after_all_opening(r, i)
+    if opened is not None:
+        i = opened.end
     lead = link(r, i)
     if not isinstance(lead, Match):
         return lead
+    if opened is not None:
+        lead = Match(Link(True), lead.end)
     floor, start = floor_opening(r, lead.end)
     said_body = sentence_body(r, start)
     if not isinstance(said_body, Match):
@@ -95,7 +101,15 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     if rest.end < len(r):
         return Refusal(rf.left_over(r.quote(rest.end, len(r))))
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
-                                 r.span(0, len(r)), r.announced, r.after_item, floor), len(r))
+                                 r.span(0, len(r)), r.announced, r.after_item, floor,
+                                 opened.node if opened is not None else None), len(r))
+
+
+def after_all_opening(r: Reader, i: int) -> Match[AfterAll] | None:
+    """*After all that, ...* / *Once you've done both, ...* / *When all three are done, ...* opening the
+    sentence at ``i`` (the same words as in a sentence: :func:`.body.after_all`), or ``None``."""
+    found = after_all(r, i, (), False)
+    return found if isinstance(found, Match) and isinstance(found.node, AfterAll) else None
 
 
 def closes_done(r: Reader) -> bool:

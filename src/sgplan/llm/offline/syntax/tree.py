@@ -654,7 +654,8 @@ class MissionSentence:
     it starts with (*Then ...*). ``says_order``: the word *order* occurs (*The order doesn't matter.*).
     ``after_item``: an item of an ordered list after its first one (it continues the sequence, as *Then
     ...* does). ``floor_scope``: *On the top floor, ...* / *While you're upstairs, ...* (or a list's heading,
-    *Top floor tasks:*): the goals of the sentence are on that floor."""
+    *Top floor tasks:*): the goals of the sentence are on that floor. ``after_all``: *After all that, ...*
+    / *Once you've done both, ...* (it continues the sequence after every goal of the sentence before)."""
 
     opener: str | None
     precedes: str | None
@@ -665,6 +666,7 @@ class MissionSentence:
     announced: Announced | None = None
     after_item: bool = False
     floor_scope: FloorSpec | None = None
+    after_all: AfterAll | None = None
 
 
 @dataclass(frozen=True)
