@@ -454,6 +454,12 @@ def after_all_of_nothing(said: str, sentence: bool = True) -> str:
     return rephrase(f"'{said}': no goal is named before it" + (" in this sentence" if sentence else ""))
 
 
+def after_clause_between(said: str, before: str) -> str:
+    return rephrase(f"'{said}' between two clauses: is it done after '{before}', or only before what "
+                    "follows it, or before both? Say it in order with 'then' ('A, then X, then B'), or give "
+                    "it its own sentence ('After X, B.')")
+
+
 def after_all_of_sentences(said: str) -> str:
     return rephrase(f"'{said}': after the goals of the sentence before it, or of every sentence before it? "
                     "Say it in one sentence ('A and B, and after both, C') or name what comes after what")

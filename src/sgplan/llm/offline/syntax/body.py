@@ -263,7 +263,20 @@ def inline_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     if r.word(i) not in ("after", "once") or r.phrase(i, lx.AFTER_THAT):
         return None
     found = after_conjunction(r, i + 1)
-    return Match(InlineAfter(found.node), found.end) if isinstance(found, Match) else found
+    if not isinstance(found, Match):
+        return found
+    if between_clauses(r, i, found.end, before):
+        return Refusal(rf.after_clause_between(r.quote(i - 1, found.end), r.quote(0, i - 1).rstrip(" ,")))
+    return Match(InlineAfter(found.node), found.end)
+
+
+def between_clauses(r: Reader, i: int, end: int, before: Said) -> bool:
+    """Whether *after / once X* at ``i`` (ending at ``end``) stands between two clauses, after a goal and a
+    conjunction: *A, and once you've been to X, B* (X before B only, or before A too?) or, at the end, *A
+    and after going to X* (X after A, as learners write *and then*, or before it?)."""
+    joined = r.word(i - 1) in ("and", "but") or (r.word(i - 1) == "," and r.word(end) == ",")
+    said = any(isinstance(item, PlainAction) for item in before)
+    return joined and said and ((r.word(end) == "," and end + 1 < len(r)) or end == len(r))
 
 
 @ITEMS.rule("before X")
