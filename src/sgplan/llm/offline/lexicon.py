@@ -1185,6 +1185,8 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("together", "with"): ("and",),
     ("plus",): ("and",),
     ("anywhere", "near"): ("into",),
+    ("up", "here"): ("on", "this", "floor"),
+    ("down", "here"): ("on", "this", "floor"),
     ("where", "you", "can", "find"): ("containing",),
     ("where", "you", "will", "find"): ("containing",),
     ("where", "you", "find"): ("containing",),
