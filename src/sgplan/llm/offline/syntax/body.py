@@ -167,9 +167,25 @@ def trailing_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemPars
     actions = [item for item in before if isinstance(item, PlainAction)]
     phrases = actions[-1].action.phrases if actions else None
     then_said = len(before) > 1 and isinstance(before[-2], Link) and before[-2].sequence  # "then B after"
-    if (len(actions) > 1 and not then_said) or (phrases is not None and len(phrases.items) > 1):
+    if ((len(actions) > 1 and not then_said and not after_one_goal(before[:-1]) and not actions[-1].goes_back)
+            or (phrases is not None and len(phrases.items) > 1)):
         return Refusal(rf.trailing_after(r.quote(0, i + length)))
     return Match(Skip(), i + length)
+
+
+def after_one_goal(before: Said) -> bool:
+    """Whether the last step of ``before`` is one action with one phrase, after a sequence word (*A, then
+    B, and C afterwards*: after B is after A too, so both readings of *afterwards* agree)."""
+    last: list[PlainAction] = []
+    for item in reversed(before):
+        if (isinstance(item, Link) and item.sequence) or isinstance(item, CommaSequence):
+            break
+        if isinstance(item, PlainAction):
+            last.append(item)
+    else:
+        return False
+    phrases = last[0].action.phrases if len(last) == 1 else None
+    return phrases is not None and len(phrases.items) == 1
 
 
 @ITEMS.rule("but first")
@@ -185,6 +201,22 @@ def goals_first(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     if not isinstance(found, Match):
         return found
     return Match(GoalsFirst(before_that, found.node, r.rest(i)), found.end)
+
+
+@ITEMS.rule("A, then B, and C afterwards")
+def and_then_afterwards(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*A, then B, and C afterwards* / *..., and C when you're done*: after one goal that ends a sequence
+    (:func:`after_one_goal`), the conjunction before a clause closing the sentence with *afterwards* is a
+    sequence word, since C comes after B either way."""
+    n = 2 if r.at(i, ",", "and") else 1 if r.word(i) in (",", "and") else 0
+    if not n or not after_one_goal(before):
+        return None
+    for k in range(i + n + 1, len(r)):
+        if r.word(k) in (",", "then", "and", "or"):
+            return None
+        if r.trailing_after(k) == len(r) - k or done_closing(r, k):
+            return Match(Link(True), i + n)
+    return None
 
 
 @ITEMS.rule("A, B, then C")
