@@ -372,6 +372,7 @@ BE_FINE = frozenset({"sure", "certain"})
 REFUSED_WORDS: dict[str, str] = {
     "leave": "'leave' (the translator cannot express leaving a place; say where to go instead)",
     "exit": "'exit' (say which room to go to instead)",
+    "between": "'between' (between which steps? Say the order with 'then': 'A, then B, then A again')",
     "ignore": "'ignore' (use 'avoid' or 'never enter' to forbid a place)",
     "bypass": "'bypass' (use 'avoid' to forbid a place)",
     "dodge": "'dodge' (use 'avoid' to forbid a place)",

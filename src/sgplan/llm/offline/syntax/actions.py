@@ -194,14 +194,15 @@ def said_first(r: Reader, i: int) -> bool:
 
 def times_before_place(r: Reader, i: int) -> tuple[int, int] | None:
     """*twice* / *two times* (at most :data:`.lexicon.MAX_REPEATS`) after a verb, right before a place
-    preposition (*go two times to X*): how many times, and where the words end; ``None`` otherwise."""
+    preposition or a noun phrase (*go two times to X*, *visit two times X*, as learners place it): how many
+    times, and where the words end; ``None`` otherwise."""
     if r.word(i - 1) in ("", ",") or not r.word(i - 1).isalpha():
         return None
     n = 2 if r.word(i) == "twice" else None
     k = i + 1
     if n is None and r.word(i + 1) == "times":
         n, k = lx.NUMBER_WORDS.get(r.word(i)) or (int(r.word(i)) if r.word(i).isdigit() else None), i + 2
-    if n is None or n < 2 or r.word(k) not in lx.PLACE_PREPOSITIONS:
+    if n is None or n < 2 or (r.word(k) not in lx.PLACE_PREPOSITIONS and not r.np_starts(k)):
         return None
     return n, k
 
@@ -283,7 +284,10 @@ def action_tail(r: Reader, i: int, node: Action) -> Parse[Action]:
         several = node.phrases is not None and len(node.phrases.items) > 1
         if repeat.node is not None or several:
             return Refusal(rf.times_of_what(r.text[node.span.start:r.toks[i - 1].end]))
-        node = replace(node, repeat=Repeat(False, node.verbs.times, None))
+        between = in_between(r, i) if node.verbs.times == 2 else None  # "visit two times X, in between Y"
+        node = replace(node, repeat=Repeat(False, 2, between.node) if between else
+                       Repeat(False, node.verbs.times, None))
+        i = between.end if between else i
     if repeat.node is not None:
         node, i = replace(node, repeat=repeat.node), repeat.end
     return destination_and_purpose(r, i, node)
@@ -325,9 +329,15 @@ def repeats(r: Reader, i: int) -> Parse[Repeat | None]:
 
 
 def in_between(r: Reader, i: int) -> Match[Action] | None:
-    """After *twice*: ``(,) with (a trip / visit / stop) (to) Y in between`` or ``(,) visiting Y in
-    between``: the action of Y; ``None`` when the words are not there."""
+    """After *twice*: ``(,) with (a trip / visit / stop) (to) Y in between``, ``(,) visiting Y in
+    between`` or ``(,) (and) in between (,) Y``: the action of Y; ``None`` when the words are not there."""
     k = i + (1 if r.word(i) == "," else 0)
+    k += 1 if r.at(k, "and", "in", "between") or r.at(k, "and", "between") else 0
+    lead = 2 if r.at(k, "in", "between") else 1 if r.word(k) == "between" else 0
+    if lead:  # "the kitchen twice, and in between go to the office"
+        k += lead + (1 if r.word(k + lead) == "," else 0)
+        said = action(r, k)
+        return said if isinstance(said, Match) and said.node.phrases is not None else None
     if r.word(k) == "with":
         k += 1
         k += 2 if r.word(k) in ("a", "an") and r.word(k + 1) in lx.TRIP_NOUNS else \
