@@ -413,9 +413,13 @@ def precedes_needs_goals() -> str:
                     "sentence and the one before it")
 
 
-def trailing_first_later() -> str:
-    return rephrase("a trailing 'first' in a later sentence: start the sentence with 'Before that' or put "
+def trailing_first_later(word: str = "first") -> str:
+    return rephrase(f"a trailing '{word}' in a later sentence: start the sentence with 'Before that' or put "
                     "the goals in the order they must be done")
+
+
+def before_that_of_nothing(said: str) -> str:
+    return rephrase(f"'{said}': no goal is named before it")
 
 
 def last_followed_by(rest: str) -> str:
