@@ -882,9 +882,13 @@ NOT_NEEDED = Phrases((("no", "need", "to"), ("there", "is", "no", "need", "to"),
                      ("no", "need", "for", "you", "to"), ("you", "do", "not", "need", "to"),
                      ("you", "do", "not", "have", "to"), ("you", "need", "not"), ("do", "not", "need", "to"),
                      ("you", "will", "not", "need", "to"), ("there", "'s", "no", "need", "to"),
-                     ("it", "is", "not", "necessary", "to")))
+                     ("it", "is", "not", "necessary", "to"),
+                     ("do", "not", "bother"), ("no", "need", "for")))
 """A clause that says a goal is not needed (*No need to go into the office.*, *..., you don't have to check
 the oven*): it asks nothing, so it is set aside and said back (:mod:`.syntax.not_needed`)."""
+NOT_NEEDED_VERBS = frozenset({"bother"})
+"""After a negation (*don't bother going to X*, *don't bother with X*): X is not needed, which forbids
+nothing."""
 NOT_NEEDED_STOPS = word_set("if unless until till only when whenever except but then before after first once "
                             "while so or otherwise instead")
 """Words that make a not-needed clause say more than *not needed* (*no need to go there unless ...*,
