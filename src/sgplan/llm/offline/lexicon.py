@@ -486,6 +486,10 @@ BODY_PART_LINKS = ("at", "using", "with", "on", "into")
 """*wash your hands at the sink*, *pop your head into the office*: a body part before a place is part of the
 verb (not *in*: *wash your hands in the bathroom* implies a sink that is not said)."""
 PARTICLES = word_set("on off up down out over")
+AWAY_VERBS = word_set("put puts putting tidy tidies tidying pack packs packing stow stows stowing store "
+                      "stores storing")
+"""Before *away* (*put away the bowl*, *put the bowl away*): the verb's particle; the object is reached (where
+it is put away is not said)."""
 CHECK_THAT = ("that", "if", "whether")
 CHECK_VERBS = word_set("check checking see seeing ensure ensuring verify verifying confirm confirming make "
                        "sure look looking")

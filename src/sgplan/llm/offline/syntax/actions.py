@@ -160,6 +160,8 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
             continue
         if w in lx.RELATIVE_FLOORS:  # "go upstairs to the bathroom": the bathroom on that floor
             floor, floor_span = RelativeFloor(w), r.span(i, i + 1)
+        elif w == "away" and r.word(i - 1) in lx.AWAY_VERBS:
+            pass  # "put away the bowl": the verb's particle, not "stay away from"
         elif w not in lx.POSITIVE_VERBS and (w in lx.STRUCTURAL or not w.isalpha()):
             return unreadable(r, i)
         odd = odd_verb(r, i)
@@ -357,7 +359,8 @@ def in_between(r: Reader, i: int) -> Match[Action] | None:
 
 def particles(r: Reader, i: int) -> int:
     """A particle closing an action (*turn it off*, *pick it up*)."""
-    if r.word(i) in lx.PARTICLES and (r.word(i + 1) in ("", ",", "and", "then", "to")
+    particle = r.word(i) in lx.PARTICLES or (r.word(i) == "away" and bool(set(r.words[:i]) & lx.AWAY_VERBS))
+    if particle and (r.word(i + 1) in ("", ",", "and", "then", "to")
                                       or r.phrase(i + 1, lx.NEG_STARTS)):
         return i + 1
     return i
