@@ -870,7 +870,7 @@ AFTERWARDS = Phrases((("afterwards",), ("afterward",), ("after", "that"), ("afte
                       ("later",), ("straight", "after"), ("right", "after")))
 """In the consequent of a condition ("..., visit Y afterwards"): Y follows that visit of X."""
 TRAILING_AFTER = Phrases((("after",), ("afterwards",), ("afterward",), ("later",), ("after", "that"),
-                          ("after", "it"), ("after", "this")))
+                          ("after", "it"), ("after", "this"), ("next",)))
 """``..., go to the dining room after / after that.``: at the end of a clause, after what was said before it
 (*after it* there is the step before, not the place just named)."""
 AFTER_THAT = Phrases((("after", "that"), ("after", "it"), ("after", "this")))
@@ -1199,6 +1199,9 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("beforehand",): ("before", "that"),
     ("previously",): ("before", "that"),
     ("at", "the", "end", ","): ("finally", ","),
+    ("at", "the", "end"): ("last",),
+    ("at", "the", "very", "end"): ("last",),
+    ("last", "but", "not", "least"): ("finally",),
     ("after", "this"): ("after", "that"),
     ("following", "that"): ("after", "that"),
     ("following", "this"): ("after", "that"),
