@@ -143,12 +143,35 @@ def until_target(r: Reader, k: int) -> Parse[Action | UntilDone]:
     if not isinstance(target, Match):
         return target
     k = target.end
-    if r.word(k) in lx.DONE:
+    passive = passive_end(r, k)
+    if passive > k:
+        k = passive
+    elif r.word(k) in lx.DONE:
         k += 1  # "until DR done"
     elif r.word(k) in lx.UNTIL_DONE_LINKS and r.word(k + 1) in lx.UNTIL_DONE_WORDS:
         k += 2  # "until both bathrooms are done"
         k += 1 if r.word(k) in lx.UNTIL_DONE_VERBS else 0
     return Match(target.node, k)
+
+
+def participle(w: str) -> bool:
+    """Whether ``w`` is the past participle of a verb of the grammar (*checked*, *picked*, *grabbed*,
+    *tidied*, *used*), not any word in *-ed* (*red*)."""
+    if not w.endswith("ed"):
+        return False
+    stems = {w[:-2], w[:-1], w[:-3], w[:-3] + "y"}  # checked, used, grabbed, tidied
+    return bool(stems & lx.POSITIVE_VERBS)
+
+
+def passive_end(r: Reader, k: int) -> int:
+    """After the target of *until*: the end of a passive that closes the clause (*until the oven is checked*,
+    *until the cup has been picked up*, *until cup grabbed*), else ``k``."""
+    j = k + (1 if r.word(k) in lx.UNTIL_DONE_LINKS else 0)
+    j += 1 if r.word(j) == "been" else 0
+    if not participle(r.word(j)):
+        return k
+    j += 1 if r.word(j + 1) in lx.PARTICLES else 0
+    return j + 1 if r.word(j + 1) in ("", ",", "then", "and") else k
 
 
 def stay_on_floor(r: Reader, i: int, negated: bool) -> Parse[StayOnFloor]:
