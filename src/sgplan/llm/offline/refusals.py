@@ -504,6 +504,11 @@ def partial_prohibition(rest: str) -> str:
                     "(the whole mission) or 'do not enter X until ...'")
 
 
+def order_by_a_time(said: str) -> str:
+    return rephrase(f"'{said}' orders the steps by a time or an event, not by a place (a plan has no clock); "
+                    "leave the time out, or set it apart with a comma ('Before lunch, check ...')")
+
+
 def until_a_time(said: str) -> str:
     return rephrase(f"'{said}': a prohibition until a time or an event cannot be required (a plan has no "
                     "clock); say until which room or object is reached, or forbid it for the whole mission")

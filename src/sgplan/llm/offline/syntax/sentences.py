@@ -214,7 +214,17 @@ def after_first(r: Reader, i: int) -> Parse[SentenceBody]:
     """*After / once X, Y*: X, then Y."""
     if r.word(i) not in ("after", "once") or r.phrase(i, lx.AFTER_THAT):
         return None
+    if at_time(r, i + 1):
+        return Refusal(rf.order_by_a_time(r.quote(i, at_time(r, i + 1))))
     return prefixed(r, i + 1, prefix_last=False)
+
+
+def at_time(r: Reader, i: int) -> int:
+    """The end of a time or an event named at ``i`` after *before* / *after* / *once* opening a sentence
+    (*lunch*, *the guests*), which orders nothing the plan knows (with a comma after it, it is set aside
+    before the sentence is read); 0 when there is none."""
+    k = i + (1 if r.word(i) in lx.ARTICLES else 0)
+    return k + 1 if r.word(k) in lx.EVENT_WORDS else 0
 
 
 @OPENINGS.rule("on your way to Y, X")
@@ -234,6 +244,8 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
     (stay out of Y until X, or go there after X?)."""
     if r.word(i) != "before":
         return None
+    if at_time(r, i + 1):
+        return Refusal(rf.order_by_a_time(r.quote(i, at_time(r, i + 1))))
     end = next((k for k in range(i, len(r)) if r.word(k) == ","), len(r))
     if any(r.word(k) == "into" and "near" in r.quote(k, k + 1).lower() for k in range(i, end)):
         return Refusal(rf.before_near(r.quote(i, end)))  # "go near", "anywhere near" are read as "into"
