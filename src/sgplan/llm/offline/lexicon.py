@@ -908,6 +908,9 @@ NEG_STARTS = Phrases((
     ("and", "do", "not"), ("but", "not"), ("no",), ("neither",), ("nor",), ("and", "nor"),
     ("keep", "clear", "of"), ("steer", "clear", "of"), ("stay", "clear", "of"),
     ("kept", "out", "of"), ("stayed", "out", "of"), ("kept", "away", "from"), ("stayed", "away", "from"),
+    ("staying", "out", "of"), ("keeping", "out", "of"), ("staying", "away", "from"),
+    ("keeping", "away", "from"), ("staying", "clear", "of"), ("keeping", "clear", "of"),
+    ("steering", "clear", "of"),
     ("skip",), ("skipping",),
     ("avoided",), ("kept", "clear", "of"), ("stayed", "clear", "of"),
     ("under", "no", "circumstances"),
@@ -925,7 +928,7 @@ AVOID_VERBS = word_set(
     crossing trouble troubling mess messing near nearing pass wander wandering stray straying venture
     venturing sneak sneaking wash move handle handling hit hitting damage damaging scratch knock stand
     standing climb climbing tread treading pop popping nip swing swinging poke poking cut cutting roam
-    roaming dash dashing hurry hurrying rush rushing detour detouring stroll strolling
+    roaming dash dashing hurry hurrying rush rushing detour detouring stroll strolling via
     allowed permitted"""
 ) | POSITIVE_VERBS
 """Verbs a prohibition is read with (*don't touch / disturb / go near X*): not being at X keeps each of them

@@ -68,9 +68,11 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     if delay is not None:  # "wait 5 min", "in ten minutes", "for a few minutes"
         return Refusal(rf.left_over(r.quote(max(delay - 2, 0), delay + 1)))
     i, opener = 0, None
-    said = r.phrase(0, lx.WHOLE_MISSION)
-    if said is not None and r.word(len(said)) == "," and said[0] not in lx.WAYPOINT_OPENERS:
-        opener, i = r.quote(0, len(said)), len(said) + 1  # "The whole time, keep out of X."
+    lead_and = 1 if r.word(0) in ("and", "but", "also") else 0  # "And the whole time, ..."
+    said = r.phrase(lead_and, lx.WHOLE_MISSION)
+    if said is not None and r.word(lead_and + len(said)) == "," and said[0] not in lx.WAYPOINT_OPENERS:
+        i = lead_and + len(said) + 1  # "The whole time, keep out of X."
+        opener = r.quote(0, i - 1)
     precedes = None
     if r.at(i, *lx.BEFORE_THAT) or r.word(i) in lx.FIRST:
         i += 2 if r.at(i, *lx.BEFORE_THAT) else 1
