@@ -68,7 +68,8 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     if delay is not None:  # "wait 5 min", "in ten minutes", "for a few minutes"
         return Refusal(rf.left_over(r.quote(max(delay - 2, 0), delay + 1)))
     i, opener = 0, None
-    lead_and = 1 if r.word(0) in ("and", "but", "also") else 0  # "And the whole time, ..."
+    # "And the whole time, ..."; not "And while you're at it, ...", which also adds goals (as *also*)
+    lead_and = 1 if r.word(0) in ("and", "but", "also") and r.word(1) != "while" else 0
     said = r.phrase(lead_and, lx.WHOLE_MISSION)
     if said is not None and r.word(lead_and + len(said)) == "," and said[0] not in lx.WAYPOINT_OPENERS:
         i = lead_and + len(said) + 1  # "The whole time, keep out of X."
