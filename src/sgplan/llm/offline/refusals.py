@@ -458,6 +458,12 @@ def after_all_of_nothing(said: str, sentence: bool = True) -> str:
     return rephrase(f"'{said}': no goal is named before it" + (" in this sentence" if sentence else ""))
 
 
+def bulleted_among_numbered(said: str) -> str:
+    return rephrase(f"'{said}': a bulleted item among numbered ones is in no order the numbers give "
+                    "(before, after or with the numbered item above it?); number every step, or say the "
+                    "order in words")
+
+
 def after_clause_between(said: str, before: str) -> str:
     return rephrase(f"'{said}' between two clauses: is it done after '{before}', or only before what "
                     "follows it, or before both? Say it in order with 'then' ('A, then X, then B'), or give "
