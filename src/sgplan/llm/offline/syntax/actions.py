@@ -71,9 +71,17 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
 
 
 def given(r: Reader, i: int) -> int | None:
-    """The end of what *give X* gives X at ``i`` (*a quick look*), or ``None`` if it gives X nothing read."""
-    looks = r.phrase(i + 1, lx.GIVEN_LOOKS) if r.word(i) in ("a", "an") else None
-    return None if looks is None else i + 1 + len(looks)
+    """The end of what *give X* gives X at ``i`` (*a quick look*; any chore said as one word closing the
+    clause, *a flush*, *a good rinse*), or ``None`` if it gives X nothing read (*give X some water*, *give X
+    to Y*, *give X a bowl*: a room or object of the scene is given, not a chore)."""
+    if r.word(i) not in ("a", "an"):
+        return None
+    looks = r.phrase(i + 1, lx.GIVEN_LOOKS)
+    if looks is not None:
+        return i + 1 + len(looks)
+    k = i + 1 + (1 if r.word(i + 1) in lx.GIVEN_MANNER else 0)
+    chore = r.word(k).isalpha() and r.word(k) not in lx.STRUCTURAL and r.head(k) is None
+    return k + 1 if chore and r.word(k + 1) in lx.GIVEN_ENDS else None
 
 
 def turned(r: Reader, verbs: VerbWords, i: int) -> VerbWords:
