@@ -196,3 +196,17 @@ def test_the_blas_hook_is_one_shot_and_falls_back_when_numba_differs() -> None:
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert json.loads(out.stdout.strip().splitlines()[-1]) == [True, False, True, False, True]
+
+
+
+def test_a_reader_that_stops_early_ends_the_command_quietly(monkeypatch: pytest.MonkeyPatch,
+                                                            capfd: pytest.CaptureFixture[str]) -> None:
+    """`sgplan inspect demo | head -1`: the closed pipe is the shell's business (exit 141), not a bug."""
+    from sgplan.cli import main
+
+    read_end, write_end = os.pipe()
+    os.close(read_end)  # the reader has left: every write to the pipe fails with EPIPE
+    with open(write_end, "w", buffering=1) as gone:
+        monkeypatch.setattr(sys, "stdout", gone)
+        assert main(["inspect", "demo"], fast_exit=False) == 141
+    assert "error" not in capfd.readouterr().err

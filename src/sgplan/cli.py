@@ -70,6 +70,9 @@ def _run(argv: Sequence[str] | None) -> int:
             raise
         print(f"sgplan: error: {error}", file=sys.stderr)
         return error.exit_code
+    except BrokenPipeError:  # the reader of stdout left (`sgplan inspect demo | head`): not an error of ours
+        _silence_stdout()
+        return 128 + signal.SIGPIPE  # what the shell reports for a pipe's writer it stopped
     except KeyboardInterrupt as stop:
         print("sgplan: interrupted", file=sys.stderr)
         return 128 + int(getattr(stop, "signum", None) or signal.SIGINT)  # the shell's convention
@@ -86,6 +89,15 @@ COMPILING_COMMANDS = frozenset({"demo", "plan", "simulate", "monitor"})
 INTERNAL_ERROR = 70
 """Exit code of an unexpected exception (a bug in sgplan): sysexits' EX_SOFTWARE, distinct from 2 (bad input,
 SgplanError) and 3 (a search budget ran out)."""
+
+
+def _silence_stdout() -> None:
+    """Point stdout at /dev/null, so that flushing what is left of it at exit raises nothing more."""
+    import os
+
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    os.close(devnull)
 
 
 def _internal_error_line(args: argparse.Namespace, error: BaseException) -> str:

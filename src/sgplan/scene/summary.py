@@ -164,6 +164,9 @@ def summary_lines(summary: SceneSummary, *, objects: bool = True) -> list[str]:
                 f"by the robot radius {summary.robot_radius_m:g} m) or outside every room: a plan "
                 "cannot start there"
             )
+    if summary.floors:
+        lines.append("  rooms and objects by key (room_<uuid>, object_<uuid>: the names missions and "
+                     "formulas use); '(id N)' is the room's id in the scene's maps")
     for floor in summary.floors:
         head = (f"floor {floor.index} ({floor.name}): {count(len(floor.rooms), 'room')}, "
                 f"{count(floor.num_objects, 'object')}")
