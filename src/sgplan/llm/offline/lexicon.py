@@ -1250,6 +1250,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("be", "careful", "to", "avoid"): ("avoid",),
     ("take", "care", "to", "avoid"): ("avoid",),
     ("whatever", "you", "do", ","): ("please",),
+    ("whatever", "you", "do"): ("please",),
     ("try", "to", "avoid"): ("avoid",),
     ("try", "and", "avoid"): ("avoid",),
     ("try", "to", "stay", "out", "of"): ("stay", "out", "of"),

@@ -153,9 +153,10 @@ def floor_opening(r: Reader, i: int) -> tuple[FloorSpec | None, int]:
 
 def sentence_body(r: Reader, i: int) -> Parse[SentenceBody]:
     """The sentence after its lead words: an opening rule of :data:`OPENINGS`, else a plain body."""
-    condition = r.phrase(i + 1, lx.WHENEVER) or r.phrase(i + 1, lx.CONDITION_WORDS)
+    comma = r.skip(i + 1, frozenset({","})) - i - 1  # "And, uh, whenever you ...": the sound is dropped
+    condition = r.phrase(i + 1 + comma, lx.WHENEVER) or r.phrase(i + 1 + comma, lx.CONDITION_WORDS)
     if r.word(i) in lx.CONDITION_OPENERS and condition:
-        i += 1  # "And whenever you ...", "But if you ...": a new condition, not a continuation
+        i += 1 + comma  # "And whenever you ...", "But if you ...": a new condition, not a continuation
     found = OPENINGS.first(r, i)
     return found if found is not None else plain(r, i)
 
