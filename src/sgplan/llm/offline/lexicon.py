@@ -481,6 +481,10 @@ GIVEN_LOOKS = Phrases(tuple((*quick, what) for quick in ((), ("quick",), ("good"
                                          "mop", "spray"))
                      + tuple((*quick, "once", "over") for quick in ((), ("quick",), ("good",))))
 """What *give X ...* gives X, after *a* (*give the toilet a quick look*): acting on X there."""
+THERE_SAID = Phrases((("there",), ("while", "you", "are", "there"), ("while", "you", "are", "in", "there"),
+                     ("while", "there"), ("while", "you", "are", "at", "it", "there")))
+"""After an action, closing its clause: where the step is (*look at the clock while you're in there*)."""
+CLAUSE_ENDS = frozenset({"", ",", "and", "then", "but"})
 GIVEN_MANNER = frozenset({"quick", "good", "little", "proper", "gentle", "thorough", "light", "fast"})
 """Between *a* and a chore said as a noun (*give the couch a good fluff*)."""
 GIVEN_ENDS = frozenset({"", ",", "and", "then", "but", "please", "too", "as", "before", "after", "first"})

@@ -401,7 +401,8 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
             node, i = replace(node, purpose=purpose.node), particles(r, purpose.end)
         elif not verbs.node.words:
             return Refusal(rf.cannot_understand(r.rest(i)))
-    i += 1 if r.word(i) == "there" else 0  # "look at the TV there": where the step is
+    there = r.phrase(i, lx.THERE_SAID)  # "look at the TV there / while you're (in) there": where the step is
+    i += len(there) if there and (len(there) == 1 or r.word(i + len(there)) in lx.CLAUSE_ENDS) else 0
     filler = r.phrase(i, lx.TIME_FILLERS)
     if filler and not r.trailing_after(i):
         i += len(filler)  # not "... the office later": that says an order (.body.trailing_after)
