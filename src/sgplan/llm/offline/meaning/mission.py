@@ -87,7 +87,8 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
     precedes = sentence_precedes(sentence, parts)
     continues = sentence.lead.sequence or sentence.after_item
     ctx = SentenceContext(disc, sentence.span.start, strict_pending=sentence.lead.strict,
-                          waypoint_pending=sentence.lead.waypoint, listed=sentence.announced is not None)
+                          waypoint_pending=sentence.lead.waypoint,
+                          listed=sentence.announced is not None or sentence.order_free)
     disc.announced = sentence.announced.head if sentence.announced is not None else None
     if sentence.floor_scope is not None:  # "While you're upstairs, ...": its goals there
         ctx.floor_scope = (floors_of(sentence.floor_scope, disc), sentence.span.start)

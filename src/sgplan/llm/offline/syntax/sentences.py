@@ -105,7 +105,13 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
         return Refusal(rf.left_over(r.quote(rest.end, len(r))))
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
                                  r.span(0, len(r)), r.announced, r.after_item, floor,
-                                 opened.node if opened is not None else None), len(r))
+                                 opened.node if opened is not None else None, order_free(r)), len(r))
+
+
+def order_free(r: Reader) -> bool:
+    """Whether *in either / any order* closes a clause of the sentence (before a comma or its end)."""
+    return any((said := r.phrase(k, lx.ANY_ORDER)) is not None and r.word(k + len(said)) in ("", ",")
+               for k in range(len(r)))
 
 
 def after_all_opening(r: Reader, i: int) -> Match[AfterAll] | None:

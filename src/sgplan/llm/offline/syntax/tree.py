@@ -655,7 +655,9 @@ class MissionSentence:
     ``after_item``: an item of an ordered list after its first one (it continues the sequence, as *Then
     ...* does). ``floor_scope``: *On the top floor, ...* / *While you're upstairs, ...* (or a list's heading,
     *Top floor tasks:*): the goals of the sentence are on that floor. ``after_all``: *After all that, ...*
-    / *Once you've done both, ...* (it continues the sequence after every goal of the sentence before)."""
+    / *Once you've done both, ...* (it continues the sequence after every goal of the sentence before).
+    ``order_free``: *in either order* closes a clause of it (its actions are independent tasks: an object of
+    one is not looked for in the room of another)."""
 
     opener: str | None
     precedes: str | None
@@ -667,6 +669,7 @@ class MissionSentence:
     after_item: bool = False
     floor_scope: FloorSpec | None = None
     after_all: AfterAll | None = None
+    order_free: bool = False
 
 
 @dataclass(frozen=True)
