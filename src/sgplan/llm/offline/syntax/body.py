@@ -8,6 +8,7 @@ sentence rules read.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Literal
 
 from sgplan.llm.offline import lexicon as lx
@@ -98,6 +99,20 @@ def after_all(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     if number is None and phrase[-1] == "both":
         number = 2  # "once you've done both": two goals, checked as a number said
     return Match(AfterAll(r.quote(k, n), number), n + (1 if r.word(n) == "," else 0))
+
+
+@ITEMS.rule("the whole time, avoid X")
+def whole_time_first(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*..., and while you're out and about, avoid X* / *..., and the whole time, keep out of X*: words of
+    the whole mission before a prohibition, inside a sentence, make it hold for the whole mission."""
+    k = i + (2 if r.at(i, ",", "and") else 1 if r.word(i) in (",", "and", "but") else 0)
+    said = r.phrase(k, lx.WHOLE_MISSION)
+    if not before or said is None or r.word(k + len(said)) != "," or said[0] in lx.WAYPOINT_OPENERS:
+        return None
+    found = negation(r, k + len(said) + 1)
+    if not isinstance(found, Match):
+        return found
+    return Match(replace(found.node, whole=True), found.end)
 
 
 @ITEMS.rule("only after that")
