@@ -30,6 +30,7 @@ from sgplan.llm.offline.syntax.tree import (
     InlineBefore,
     Item,
     Link,
+    Negation,
     PlainAction,
     Waypoint,
 )
@@ -110,8 +111,8 @@ def whole_time_first(r: Reader, i: int, before: Said, only_verb: bool) -> ItemPa
     if not before or said is None or r.word(k + len(said)) != "," or said[0] in lx.WAYPOINT_OPENERS:
         return None
     found = negation(r, k + len(said) + 1)
-    if not isinstance(found, Match):
-        return found
+    if not isinstance(found, Match) or not isinstance(found.node, Negation):
+        return found  # not a prohibition ("don't forget X"): read as it is
     return Match(replace(found.node, whole=True), found.end)
 
 
