@@ -373,6 +373,11 @@ BE_FINE = frozenset({"sure", "certain"})
 REFUSED_WORDS: dict[str, str] = {
     "leave": "'leave' (the translator cannot express leaving a place; say where to go instead)",
     "exit": "'exit' (say which room to go to instead)",
+    "between": "'between' (between which steps? Say the order with 'then': 'A, then B, then A again')",
+    "meanwhile": "'meanwhile' (while doing what? Say the order with 'then', or 'on the way')",
+    "meantime": "'in the meantime' (while doing what? Say the order with 'then', or 'on the way')",
+    "simultaneously": "'simultaneously' (the robot does one thing at a time; say the order with 'then')",
+    "earlier": "'earlier' (before which step? Say 'before that' or 'first')",
     "ignore": "'ignore' (use 'avoid' or 'never enter' to forbid a place)",
     "bypass": "'bypass' (use 'avoid' to forbid a place)",
     "dodge": "'dodge' (use 'avoid' to forbid a place)",
@@ -477,11 +482,23 @@ GIVEN_LOOKS = Phrases(tuple((*quick, what) for quick in ((), ("quick",), ("good"
                                          "mop", "spray"))
                      + tuple((*quick, "once", "over") for quick in ((), ("quick",), ("good",))))
 """What *give X ...* gives X, after *a* (*give the toilet a quick look*): acting on X there."""
+THERE_SAID = Phrases((("there",), ("while", "you", "are", "there"), ("while", "you", "are", "in", "there"),
+                     ("while", "there"), ("while", "you", "are", "at", "it", "there")))
+"""After an action, closing its clause: where the step is (*look at the clock while you're in there*)."""
+CLAUSE_ENDS = frozenset({"", ",", "and", "then", "but"})
+GIVEN_MANNER = frozenset({"quick", "good", "little", "proper", "gentle", "thorough", "light", "fast"})
+"""Between *a* and a chore said as a noun (*give the couch a good fluff*)."""
+GIVEN_ENDS = frozenset({"", ",", "and", "then", "but", "please", "too", "as", "before", "after", "first"})
+"""After *give X a <chore>*: the clause ends (a word after the chore may make it a thing: *a new flower*)."""
 BODY_PART_OWNERS = ("your", "my", "his", "her", "their")
 BODY_PART_LINKS = ("at", "using", "with", "on", "into")
 """*wash your hands at the sink*, *pop your head into the office*: a body part before a place is part of the
 verb (not *in*: *wash your hands in the bathroom* implies a sink that is not said)."""
 PARTICLES = word_set("on off up down out over")
+AWAY_VERBS = word_set("put puts putting tidy tidies tidying pack packs packing stow stows stowing store "
+                      "stores storing")
+"""Before *away* (*put away the bowl*, *put the bowl away*): the verb's particle; the object is reached (where
+it is put away is not said)."""
 CHECK_THAT = ("that", "if", "whether")
 CHECK_VERBS = word_set("check checking see seeing ensure ensuring verify verifying confirm confirming make "
                        "sure look looking")
@@ -882,6 +899,10 @@ WHOLE_MISSION = Phrases((
     *(("throughout", "the", noun) for noun in _SPAN_NOUNS),
     ("while", "you", "do", "it"), ("while", "you", "do", "that"), ("while", "you", "are", "at", "it"),
     ("while", "doing", "so"), ("while", "doing", "that"), ("while", "doing", "it"), ("in", "the", "process"),
+    ("while", "you", "are", "doing", "it"), ("while", "you", "are", "doing", "that"),
+    ("while", "you", "are", "doing", "this"), ("while", "you", "are", "about", "it"),
+    ("while", "you", "are", "out"), ("while", "you", "are", "out", "and", "about"),
+    ("while", "you", "are", "out", "there"), ("while", "you", "are", "going", "round"),
     ("entirely",), ("completely",), ("altogether",), ("at", "all", "costs"),
     *(("during", "the", noun) for noun in _SPAN_NOUNS)))
 """Said after what to avoid: the prohibition holds for the whole mission (``G !x``), not only at one step."""
@@ -944,6 +965,9 @@ DONE_WITH = ("with", "in", "at")
 DONE_FILLERS = frozenset({"that", "this", "are", "all", "both", "of", "them"})
 DONE_BACK = ("that", "this", "it", "them", "everything", "there")
 """``once you're done with that``: the step before, not a new place."""
+DONE_BACK_ENDS = frozenset({",", "", "then", "go", "and"})
+"""After *once you've done that*: the words that show *that* is the step before (*..., go to X*), not the
+start of a noun phrase (*once you've done that room*)."""
 TRIP_NOUNS = frozenset({"trip", "visit", "stop", "detour", "run", "quick", "short", "pass"})
 """``twice, with a trip / visit / stop to Y in between``: words naming the visit to Y."""
 BETWEEN_TAIL = Phrases((("them",), ("the", "two"), ("the", "two", "visits"), ("each", "visit"), ("visits",)))
@@ -951,7 +975,7 @@ AFTERWARDS = Phrases((("afterwards",), ("afterward",), ("after", "that"), ("afte
                       ("later",), ("straight", "after"), ("right", "after")))
 """In the consequent of a condition ("..., visit Y afterwards"): Y follows that visit of X."""
 TRAILING_AFTER = Phrases((("after",), ("afterwards",), ("afterward",), ("later",), ("after", "that"),
-                          ("after", "it"), ("after", "this")))
+                          ("after", "it"), ("after", "this"), ("next",)))
 """``..., go to the dining room after / after that.``: at the end of a clause, after what was said before it
 (*after it* there is the step before, not the place just named)."""
 AFTER_THAT = Phrases((("after", "that"), ("after", "it"), ("after", "this")))
@@ -967,9 +991,13 @@ NOT_NEEDED = Phrases((("no", "need", "to"), ("there", "is", "no", "need", "to"),
                      ("no", "need", "for", "you", "to"), ("you", "do", "not", "need", "to"),
                      ("you", "do", "not", "have", "to"), ("you", "need", "not"), ("do", "not", "need", "to"),
                      ("you", "will", "not", "need", "to"), ("there", "'s", "no", "need", "to"),
-                     ("it", "is", "not", "necessary", "to")))
+                     ("it", "is", "not", "necessary", "to"),
+                     ("do", "not", "bother"), ("no", "need", "for")))
 """A clause that says a goal is not needed (*No need to go into the office.*, *..., you don't have to check
 the oven*): it asks nothing, so it is set aside and said back (:mod:`.syntax.not_needed`)."""
+NOT_NEEDED_VERBS = frozenset({"bother"})
+"""After a negation (*don't bother going to X*, *don't bother with X*): X is not needed, which forbids
+nothing."""
 NOT_NEEDED_STOPS = word_set("if unless until till only when whenever except but then before after first once "
                             "while so or otherwise instead")
 """Words that make a not-needed clause say more than *not needed* (*no need to go there unless ...*,
@@ -985,6 +1013,9 @@ NEG_STARTS = Phrases((
     ("and", "do", "not"), ("but", "not"), ("no",), ("neither",), ("nor",), ("and", "nor"),
     ("keep", "clear", "of"), ("steer", "clear", "of"), ("stay", "clear", "of"),
     ("kept", "out", "of"), ("stayed", "out", "of"), ("kept", "away", "from"), ("stayed", "away", "from"),
+    ("staying", "out", "of"), ("keeping", "out", "of"), ("staying", "away", "from"),
+    ("keeping", "away", "from"), ("staying", "clear", "of"), ("keeping", "clear", "of"),
+    ("steering", "clear", "of"),
     ("skip",), ("skipping",),
     ("avoided",), ("kept", "clear", "of"), ("stayed", "clear", "of"),
     ("under", "no", "circumstances"),
@@ -1002,7 +1033,7 @@ AVOID_VERBS = word_set(
     crossing trouble troubling mess messing near nearing pass wander wandering stray straying venture
     venturing sneak sneaking wash move handle handling hit hitting damage damaging scratch knock stand
     standing climb climbing tread treading pop popping nip swing swinging poke poking cut cutting roam
-    roaming dash dashing hurry hurrying rush rushing detour detouring stroll strolling
+    roaming dash dashing hurry hurrying rush rushing detour detouring stroll strolling via
     allowed permitted"""
 ) | POSITIVE_VERBS
 """Verbs a prohibition is read with (*don't touch / disturb / go near X*): not being at X keeps each of them
@@ -1292,15 +1323,40 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("to", "start", "with", ","): ("first", ","),
     ("to", "begin", "with", ","): ("first", ","),
     ("first", "of", "all"): ("first",),
+    ("before", "anything", "else"): ("first",),
+    ("before", "everything", "else"): ("first",),
+    ("first", "and", "foremost"): ("first",),
     ("first", "off"): ("first",),
     ("last", "of", "all"): ("finally",),
     ("to", "finish", ","): ("finally", ","),
     ("to", "finish", "off", ","): ("finally", ","),
     ("to", "wrap", "up", ","): ("finally", ","),
+    ("every", "time", "when"): ("every", "time"),
+    ("each", "time", "when"): ("each", "time"),
+    ("any", "time", "when"): ("any", "time"),
+    ("should", "you"): ("if", "you"),
+    ("in", "the", "end"): ("finally",),
+    ("ultimately",): ("finally",),
+    ("thereafter",): ("after", "that"),
+    ("beforehand",): ("before", "that"),
+    ("previously",): ("before", "that"),
+    ("at", "the", "end", ","): ("finally", ","),
+    ("at", "the", "end"): ("last",),
+    ("at", "the", "very", "end"): ("last",),
+    ("last", "but", "not", "least"): ("finally",),
+    ("after", "this"): ("after", "that"),
+    ("following", "that"): ("after", "that"),
+    ("following", "this"): ("after", "that"),
+    ("after", "doing", "that"): ("after", "that"),
+    ("after", "doing", "this"): ("after", "that"),
+    ("with", "that", "done"): ("after", "that"),
+    ("with", "that", "out", "of", "the", "way"): ("after", "that"),
     ("along", "with"): ("and",),
     ("together", "with"): ("and",),
     ("plus",): ("and",),
     ("anywhere", "near"): ("into",),
+    ("up", "here"): ("on", "this", "floor"),
+    ("down", "here"): ("on", "this", "floor"),
     ("where", "you", "can", "find"): ("containing",),
     ("where", "you", "will", "find"): ("containing",),
     ("where", "you", "find"): ("containing",),
@@ -1321,6 +1377,15 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("just", "one", "of"): ("one", "of"),
     ("only", "one", "of"): ("one", "of"),
     ("try", "not", "to"): ("do", "not"),
+    ("be", "careful", "not", "to"): ("do", "not"),
+    ("take", "care", "not", "to"): ("do", "not"),
+    ("be", "sure", "not", "to"): ("do", "not"),
+    ("mind", "you", "do", "not"): ("do", "not"),
+    ("mind", "not", "to"): ("do", "not"),
+    ("be", "careful", "to", "avoid"): ("avoid",),
+    ("take", "care", "to", "avoid"): ("avoid",),
+    ("whatever", "you", "do", ","): ("please",),
+    ("whatever", "you", "do"): ("please",),
     ("try", "to", "avoid"): ("avoid",),
     ("try", "and", "avoid"): ("avoid",),
     ("try", "to", "stay", "out", "of"): ("stay", "out", "of"),

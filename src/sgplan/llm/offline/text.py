@@ -14,7 +14,8 @@ refuses it by name: nothing typed is ever dropped unread, except quotation marks
 lower case, where it is a pause, read as a dash (*the clock in the living room... no wait, the one ...*).
 
 A sentence ends at ``.``, ``;``, ``!``, ``?``, ``:`` and at a line break; a list item (a line or a
-sentence starting with ``1.``, ``2)``, ``(3)``, or a bullet ``-``, ``*``, ``•`` at the start of a line)
+sentence starting with ``1.``, ``2)``, ``(3)``, or a bullet ``-``, ``*``, ``•`` or an empty box ``[ ]``, ``☐``
+at the start of a line)
 starts one, and says which kind of list it belongs to (:class:`Part`).
 """
 
@@ -43,7 +44,7 @@ _WORD = re.compile(
     r"|(?P<number>\d+(?:st|nd|rd|th)?)"
     r"|(?P<with>w/o\b|w/|b/c\b|\bb4\b)"
     r"|(?P<word>[a-z]+(?:'[a-z]+)?|'s\b)"
-    r"|(?P<bullet>^[ \t]*[-*\u2022\u00b7\u2023\u25e6\u25aa](?=[ \t]))"  # at the start of a line
+    r"|(?P<bullet>^[ \t]*(?:[-*\u2022\u00b7\u2023\u25e6\u25aa]|\[ ?\]|\u2610)(?=[ \t]))"  # at a line start
     r"|(?P<arrow>-+>|=+>|>+|[\u2192\u21d2\u27f6\u2794\u279c\u27a1])"
     r"|(?P<ellipsis>\u2026|\.{2,})"
     r"|(?P<punct>[,.;:!?()\[\]{}])|(?P<dash>[\u2014\u2013]|--|(?<=\s)-(?=\s)|(?<=\w)-(?=\s))"
