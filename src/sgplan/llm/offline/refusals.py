@@ -432,6 +432,12 @@ def on_the_way_to_which() -> str:
                     "in the order they must be done (with 'then')")
 
 
+def on_the_way_to_several(count: int) -> str:
+    return rephrase(f"'on your way to' a destination of {count} places: is it a goal to visit each of "
+                    "them, or only the direction you are heading? Name the place to go to last ('then go to "
+                    "X'), or leave the destination out")
+
+
 def on_the_way_to_nothing() -> str:
     return rephrase("'on the way' needs the goal it is on the way to, named before it")
 

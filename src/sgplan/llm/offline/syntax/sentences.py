@@ -244,7 +244,10 @@ def on_the_way_first(r: Reader, i: int) -> Parse[SentenceBody]:
     j = i + len(way or ()) + (r.word(i + len(way or ())) in lx.WAY_TOWARDS)
     if way is None or r.word(j) not in ("to", "into") or not r.np_starts(j + 1):
         return None
-    return prefixed(r, j, prefix_last=True)
+    said = prefixed(r, j, prefix_last=True)
+    if not isinstance(said, Match) or not isinstance(said.node, PrefixedSentence):
+        return said
+    return Match(replace(said.node, on_the_way=True), said.end)
 
 
 @OPENINGS.rule("before Y, X")

@@ -578,13 +578,14 @@ class OnlyAfterSentence:
 class PrefixedSentence:
     """*After X, Y* / *Once X, Y* / *When done with X, Y* (``before`` False), *Before Y, X* / *On your way to
     Y, X* (``before`` True: the prefix comes last); ``strict``: *before Y, you must X*: Y, and not before
-    X."""
+    X; ``on_the_way``: Y is where the robot is heading (*on your way to Y*)."""
 
     prefix: Action
     prefix_last: bool
     body: Body
     postfix: Postfix
     strict: bool = False
+    on_the_way: bool = False
 
 
 @dataclass(frozen=True)
