@@ -24,10 +24,10 @@ def test_context_is_set_aside_and_said_back(demo: Building) -> None:
     text = ("We're hosting dinner tonight. Water the plant in the office, then check the couch. The guests "
             "arrive at seven, so no rush.")
     translation = PatternTranslator().translate(text, demo)
-    assert translation.set_aside == ("We're hosting dinner tonight", "The guests arrive at seven")
+    assert translation.set_aside == ("We're hosting dinner tonight", "The guests arrive at seven, so no rush")
     said = explain_mission(mission_of(translation), demo).text.splitlines()
     assert said[-2:] == ["Not part of the mission: 'We're hosting dinner tonight'",
-                         "Not part of the mission: 'The guests arrive at seven'"]
+                         "Not part of the mission: 'The guests arrive at seven, so no rush'"]
 
 
 def test_a_list_heading_that_says_more_than_a_label_is_said_back(demo: Building) -> None:

@@ -131,6 +131,7 @@ ABBREVIATIONS: dict[str, tuple[str, ...]] = {
     "ofc": ("home office",), "offc": ("home office",), "ofis": ("home office",),
     "hwy": ("corridor",), "hllwy": ("corridor",), "corr": ("corridor",),
     "kbd": ("keyboard",), "kybd": ("keyboard",), "tbl": ("dining table", "table"), "frdg": ("refrigerator",),
+    "kb": ("keyboard",), "kbrd": ("keyboard",),
     "frig": ("refrigerator",), "micro": ("microwave",), "mw": ("microwave",), "tele": ("tv",),
     "plt": ("potted plant",), "chr": ("chair",),
 }
@@ -390,6 +391,11 @@ BE_FINE = frozenset({"sure", "certain"})
 REFUSED_WORDS: dict[str, str] = {
     "leave": "'leave' (the translator cannot express leaving a place; say where to go instead)",
     "exit": "'exit' (say which room to go to instead)",
+    "between": "'between' (between which steps? Say the order with 'then': 'A, then B, then A again')",
+    "meanwhile": "'meanwhile' (while doing what? Say the order with 'then', or 'on the way')",
+    "meantime": "'in the meantime' (while doing what? Say the order with 'then', or 'on the way')",
+    "simultaneously": "'simultaneously' (the robot does one thing at a time; say the order with 'then')",
+    "earlier": "'earlier' (before which step? Say 'before that' or 'first')",
     "ignore": "'ignore' (use 'avoid' or 'never enter' to forbid a place)",
     "bypass": "'bypass' (use 'avoid' to forbid a place)",
     "dodge": "'dodge' (use 'avoid' to forbid a place)",
@@ -494,11 +500,23 @@ GIVEN_LOOKS = Phrases(tuple((*quick, what) for quick in ((), ("quick",), ("good"
                                          "mop", "spray"))
                      + tuple((*quick, "once", "over") for quick in ((), ("quick",), ("good",))))
 """What *give X ...* gives X, after *a* (*give the toilet a quick look*): acting on X there."""
+THERE_SAID = Phrases((("there",), ("while", "you", "are", "there"), ("while", "you", "are", "in", "there"),
+                     ("while", "there"), ("while", "you", "are", "at", "it", "there")))
+"""After an action, closing its clause: where the step is (*look at the clock while you're in there*)."""
+CLAUSE_ENDS = frozenset({"", ",", "and", "then", "but"})
+GIVEN_MANNER = frozenset({"quick", "good", "little", "proper", "gentle", "thorough", "light", "fast"})
+"""Between *a* and a chore said as a noun (*give the couch a good fluff*)."""
+GIVEN_ENDS = frozenset({"", ",", "and", "then", "but", "please", "too", "as", "before", "after", "first"})
+"""After *give X a <chore>*: the clause ends (a word after the chore may make it a thing: *a new flower*)."""
 BODY_PART_OWNERS = ("your", "my", "his", "her", "their")
 BODY_PART_LINKS = ("at", "using", "with", "on", "into")
 """*wash your hands at the sink*, *pop your head into the office*: a body part before a place is part of the
 verb (not *in*: *wash your hands in the bathroom* implies a sink that is not said)."""
 PARTICLES = word_set("on off up down out over")
+AWAY_VERBS = word_set("put puts putting tidy tidies tidying pack packs packing stow stows stowing store "
+                      "stores storing")
+"""Before *away* (*put away the bowl*, *put the bowl away*): the verb's particle; the object is reached (where
+it is put away is not said)."""
 CHECK_THAT = ("that", "if", "whether")
 CHECK_VERBS = word_set("check checking see seeing ensure ensuring verify verifying confirm confirming make "
                        "sure look looking")
@@ -587,6 +605,30 @@ POLITE = Phrases((
     ("do", "us", "a", "favor", "and"),
     *((word,) for word in ("task", "goal", "mission", "objective", "errand", "todo", "instructions"))))
 """Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
+POLITE = POLITE + Phrases((("whatever", "you", "do"), ("whatever", "happens"), ("above", "all"),
+                           ("most", "importantly"), ("more", "importantly"),
+                           # "the main job's just to ...", "main thing's simply to ..."
+                           *((*owner, *main, noun, be, just, "to") for owner in ((), ("the",), ("your",))
+                             for main in ((), ("main",), ("only",)) for noun in (*_TASK_NOUNS, "thing")
+                             for be in ("is", "'s") for just in ("just", "simply", "only")),
+                           *((*owner, "main", noun, "'s", "to") for owner in ((), ("the",))
+                             for noun in (*_TASK_NOUNS, "thing")),
+                           # "I just need you to ...", "all I need is for you to ..."
+                           *((who, just, want, "you", "to") for who in ("i", "we")
+                             for just in ("just", "only", "really") for want in ("need", "want")),
+                           *(("all", who, want, "is", "for", "you", "to") for who in ("i", "we")
+                             for want in ("need", "want", "ask")),
+                           *(("all", who, want, "you", "to", "do", "is", *to) for who in ("i", "we")
+                             for want in ("need", "want") for to in ((), ("to",))),
+                           # "be an angel and ...", "would you be a sweetheart and ..."
+                           *((*would, "be", a, dear, "and")
+                             for would in ((), ("would", "you"), ("could", "you")) for a in ("a", "an")
+                             for dear in ("angel", "sweetheart", "darling", "doll", "love", "gem", "treasure",
+                                          "dear", "star", "sport")),
+                           # spoken to an assistant: "Alexa, tell the robot to ..."
+                           *((tell, "the", "robot", "to") for tell in ("tell", "ask", "get"))))
+"""Emphatic openers of an order (*whatever you do, don't ...*, *above all, ...*) and wrappers of one (*the
+main job's just to ...*, *I just need you to ...*, *tell the robot to ...*): no meaning."""
 
 _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "choose"), ("you", "please"),
                  ("you", "wish"), ("suits", "you"), ("is", "fine"), ("works",), ("suits",), ("'s", "fine"),
@@ -725,6 +767,78 @@ CLOSING = Phrases((
 possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
 of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""
 
+EXCLAMATIONS = word_set("gosh golly jeez geez gee blimey crikey wow whoa yikes phew ugh argh oof ooh aw")
+"""Exclamations of everyday speech (*Oh gosh, ...*, *Phew!*): they ask nothing, like the sounds of
+:data:`HESITATIONS`, but are said back (set aside) rather than dropped."""
+_NUISANCES = ("bug", "bother", "trouble", "pester", "disturb", "interrupt", "nag", "hassle")
+CLOSING = CLOSING + Phrases((
+    # apologies for asking: "sorry to bug you", "sorry for the hassle", "apologies for the bother"
+    *((sorry, "to", nuisance, *you) for sorry in ("sorry", "apologies") for nuisance in _NUISANCES
+      for you in ((), ("you",), ("you", "again"))),
+    *((sorry, "for", *the, trouble) for sorry in ("sorry", "apologies")
+      for the in ((), ("the",), ("all", "the"))
+      for trouble in ("bother", "trouble", "hassle", "interruption", "fuss", "mess")),
+    ("sorry", "about", "this"), ("sorry", "about", "that"), ("sorry", "in", "advance"),
+    # exclamations, alone or after "oh": "oh gosh", "oh my goodness", "oh dear", "oh boy"
+    *((*oh, word) for oh in ((), ("oh",)) for word in EXCLAMATIONS),
+    *((*oh, "my", word) for oh in ((), ("oh",))
+      for word in ("god", "gosh", "goodness", "word", "lord", "days")),
+    ("oh", "dear"), ("oh", "boy"), ("oh", "man"), ("dear", "me"), ("good", "grief"), ("goodness", "me"),
+    # getting started: "so let's get a head start", "let's get going", "let's do this"
+    *(("let", "'s", "get", *going) for going in (("a", "head", "start"), ("started",), ("going",),
+                                                 ("cracking",), ("moving",), ("on", "with", "it"))),
+    ("let", "'s", "do", "this"), ("here", "goes"), ("here", "we", "go"),
+    # leaving and signing off: "wish me luck", "talk later", "off to work now", "much love"
+    ("wish", "me", "luck"), ("talk", "later"), ("talk", "soon"), ("speak", "soon"), ("speak", "later"),
+    ("much", "love"), ("lots", "of", "love"), ("long", "story"), ("long", "story", "short"),
+    *((*i_am, "off", "to", *place, *now) for i_am in ((), ("i", "am"), ("we", "are"))
+      for place in (("work",), ("school",), ("the", "shops"), ("the", "gym")) for now in ((), ("now",))),
+    *((*i_will, "be", "back", when) for i_will in ((), ("i", "will"), ("we", "will"))
+      for when in ("soon", "later", "tonight")), ("back", "soon"), ("back", "later"),
+    *(("you", "are", *a, praise) for a in ((), ("a",), ("an",))
+      for praise in ("lifesaver", "gem", "angel", "diamond", "hero", "saint", "champ", "legend", "star",
+                     "treasure", "amazing", "brilliant", "awesome", "wonderful", "great")),
+    ("tia",), ("owe", "you", "one"), ("i", "owe", "you", "one"), ("i", "owe", "you"),
+    # openers of talk and asides of time: "listen up,", "tell you what,", "at your leisure", "whenever"
+    *((*i, "would", *really, "appreciate", "it") for i in ((), ("i",), ("we",))
+      for really in ((), ("really",))),
+    *(("would", "be", great) for great in ("great", "lovely", "amazing", "perfect", "brilliant", "helpful")),
+    *(("hope", "that", be, fine) for be in ("is", "'s")
+      for fine in ("ok", "okay", "alright", "fine", "clear")),
+    ("hope", "that", "makes", "sense"), ("hope", "this", "makes", "sense"),
+    *(("any", "questions", *comma, "just", "ask") for comma in ((), (",",))),
+    *(("let", "me", "know", "if", "you", have, *any, "questions") for have in ("have", "get")
+      for any in ((), ("any",))),
+    # letters and notes: "Dear robot,", "Kind regards", "Many thanks in advance", "Excuse me,", "it's me"
+    *(("dear", who) for who in ("robot", "helper", "assistant", "bot")),
+    *((*kind, "regards") for kind in ((), ("kind",), ("best",), ("warm",), ("warmest",))),
+    ("best", "wishes"), ("greetings",), ("all", "the", "best"), ("many", "thanks", "in", "advance"),
+    ("love",), ("with", "love"), ("cheers", "again"),
+    ("thank", "you", "very", "very", "much"), ("thanks", "very", "very", "much"), ("excuse", "me"),
+    ("pardon",), ("pardon", "me"), ("attention", "please"), ("attention",),
+    *(("have", "a", good, when) for good in ("good", "nice", "great", "lovely")
+      for when in ("evening", "night", "weekend", "afternoon", "morning", "one")),
+    *((*it_is, *my, who, *again) for it_is in (("it", "is"), ("this", "is"), ("its",))
+      for my in ((), ("your",))
+      for who in ("me", "us", "mum", "mom", "dad", "mummy", "daddy", "grandma", "grandpa", "nan", "granny")
+      for again in ((), ("again",), ("here",), ("speaking",))),
+    *((*it, *very, "important") for it in ((), ("it", "is"), ("is",))
+      for very in ((), ("very",), ("really",))),
+    ("let", "me", "think"), ("listen",), ("listen", "up"), ("you", "know", "what"),
+    ("tell", "you", "what"), ("at", "your", "leisure"), ("whenever",),
+    *((when, "you", "get", way, "to", "it") for when in ("when", "whenever") for way in ("round", "around")),
+    *(("if", "you", "get", "a", moment) for moment in ("minute", "sec", "second", "moment", "mo")),
+    *(("if", "it", be, "not", "too", "much", bother) for be in ("is", "'s")
+      for bother in ("bother", "trouble", "hassle")),
+    ("just", "in", "case"), ("to", "be", "safe"), ("to", "be", "on", "the", "safe", "side"),
+    ("better", "safe", "than", "sorry"), ("just", "to", "be", "safe"), ("just", "to", "check"),
+    *(("bless", who) for who in ("her", "him", "them", "you", "it")),
+    # tag questions closing an order: "never go in there, okay?", "..., alright?", "..., yeah?"
+    ("okay",), ("ok",), ("alright",), ("all", "right"), ("got", "it"), ("you", "got", "it"),
+    ("sound", "good"), ("sounds", "good"), ("yeah",)))
+"""More of :data:`CLOSING`: apologies for asking, exclamations, words of getting started and tag
+questions, which ask nothing wherever they close a clause."""
+
 THING_SUBJECTS = frozenset({"it", "they", "there", "this", "that", "these", "those"})
 """The subject of a condition about the state of something (*if it is open*, *if there is time*): refused,
 never skipped to read the verb after it as the robot's."""
@@ -803,6 +917,10 @@ WHOLE_MISSION = Phrases((
     *(("throughout", "the", noun) for noun in _SPAN_NOUNS),
     ("while", "you", "do", "it"), ("while", "you", "do", "that"), ("while", "you", "are", "at", "it"),
     ("while", "doing", "so"), ("while", "doing", "that"), ("while", "doing", "it"), ("in", "the", "process"),
+    ("while", "you", "are", "doing", "it"), ("while", "you", "are", "doing", "that"),
+    ("while", "you", "are", "doing", "this"), ("while", "you", "are", "about", "it"),
+    ("while", "you", "are", "out"), ("while", "you", "are", "out", "and", "about"),
+    ("while", "you", "are", "out", "there"), ("while", "you", "are", "going", "round"),
     ("entirely",), ("completely",), ("altogether",), ("at", "all", "costs"),
     *(("during", "the", noun) for noun in _SPAN_NOUNS)))
 """Said after what to avoid: the prohibition holds for the whole mission (``G !x``), not only at one step."""
@@ -865,6 +983,9 @@ DONE_WITH = ("with", "in", "at")
 DONE_FILLERS = frozenset({"that", "this", "are", "all", "both", "of", "them"})
 DONE_BACK = ("that", "this", "it", "them", "everything", "there")
 """``once you're done with that``: the step before, not a new place."""
+DONE_BACK_ENDS = frozenset({",", "", "then", "go", "and"})
+"""After *once you've done that*: the words that show *that* is the step before (*..., go to X*), not the
+start of a noun phrase (*once you've done that room*)."""
 TRIP_NOUNS = frozenset({"trip", "visit", "stop", "detour", "run", "quick", "short", "pass"})
 """``twice, with a trip / visit / stop to Y in between``: words naming the visit to Y."""
 BETWEEN_TAIL = Phrases((("them",), ("the", "two"), ("the", "two", "visits"), ("each", "visit"), ("visits",)))
@@ -872,7 +993,7 @@ AFTERWARDS = Phrases((("afterwards",), ("afterward",), ("after", "that"), ("afte
                       ("later",), ("straight", "after"), ("right", "after")))
 """In the consequent of a condition ("..., visit Y afterwards"): Y follows that visit of X."""
 TRAILING_AFTER = Phrases((("after",), ("afterwards",), ("afterward",), ("later",), ("after", "that"),
-                          ("after", "it"), ("after", "this")))
+                          ("after", "it"), ("after", "this"), ("next",)))
 """``..., go to the dining room after / after that.``: at the end of a clause, after what was said before it
 (*after it* there is the step before, not the place just named)."""
 AFTER_THAT = Phrases((("after", "that"), ("after", "it"), ("after", "this")))
@@ -888,9 +1009,13 @@ NOT_NEEDED = Phrases((("no", "need", "to"), ("there", "is", "no", "need", "to"),
                      ("no", "need", "for", "you", "to"), ("you", "do", "not", "need", "to"),
                      ("you", "do", "not", "have", "to"), ("you", "need", "not"), ("do", "not", "need", "to"),
                      ("you", "will", "not", "need", "to"), ("there", "'s", "no", "need", "to"),
-                     ("it", "is", "not", "necessary", "to")))
+                     ("it", "is", "not", "necessary", "to"),
+                     ("do", "not", "bother"), ("no", "need", "for")))
 """A clause that says a goal is not needed (*No need to go into the office.*, *..., you don't have to check
 the oven*): it asks nothing, so it is set aside and said back (:mod:`.syntax.not_needed`)."""
+NOT_NEEDED_VERBS = frozenset({"bother"})
+"""After a negation (*don't bother going to X*, *don't bother with X*): X is not needed, which forbids
+nothing."""
 NOT_NEEDED_STOPS = word_set("if unless until till only when whenever except but then before after first once "
                             "while so or otherwise instead")
 """Words that make a not-needed clause say more than *not needed* (*no need to go there unless ...*,
@@ -906,6 +1031,9 @@ NEG_STARTS = Phrases((
     ("and", "do", "not"), ("but", "not"), ("no",), ("neither",), ("nor",), ("and", "nor"),
     ("keep", "clear", "of"), ("steer", "clear", "of"), ("stay", "clear", "of"),
     ("kept", "out", "of"), ("stayed", "out", "of"), ("kept", "away", "from"), ("stayed", "away", "from"),
+    ("staying", "out", "of"), ("keeping", "out", "of"), ("staying", "away", "from"),
+    ("keeping", "away", "from"), ("staying", "clear", "of"), ("keeping", "clear", "of"),
+    ("steering", "clear", "of"),
     ("skip",), ("skipping",),
     ("avoided",), ("kept", "clear", "of"), ("stayed", "clear", "of"),
     ("under", "no", "circumstances"),
@@ -923,7 +1051,7 @@ AVOID_VERBS = word_set(
     crossing trouble troubling mess messing near nearing pass wander wandering stray straying venture
     venturing sneak sneaking wash move handle handling hit hitting damage damaging scratch knock stand
     standing climb climbing tread treading pop popping nip swing swinging poke poking cut cutting roam
-    roaming dash dashing hurry hurrying rush rushing detour detouring stroll strolling
+    roaming dash dashing hurry hurrying rush rushing detour detouring stroll strolling via
     allowed permitted"""
 ) | POSITIVE_VERBS
 """Verbs a prohibition is read with (*don't touch / disturb / go near X*): not being at X keeps each of them
@@ -1079,6 +1207,10 @@ EVENT_VERBS = word_set("arrive arrives come comes leave leaves get gets back hom
                        "finishes end ends wake wakes up go goes out begin begins gone away asleep sleeping "
                        "napping here working 's")
 """In a time expression of an event (*before the guests arrive*, *after I get back*)."""
+EVENT_VERBS = EVENT_VERBS | word_set("over done finished ready served up awake")
+"""(*once lunch is over*, *when dinner's ready*)."""
+EVENT_OPENERS = ("before", "after", "by", "while", "once", "when")
+"""The words a time expression of an event starts with (*before the guests arrive*, *once lunch is over*)."""
 FEW = ("few", "couple", "several")
 TIME_UNITS = word_set("second seconds minute minutes min mins hour hours hr hrs sec secs")
 """*in ten minutes*, *wait 5 min*: a delay, which a mission cannot require (refused)."""
@@ -1115,6 +1247,10 @@ PEOPLE_NOUNS = word_set("""cleaner cleaners plumber plumbers builder builders el
     family mum mom dad grandma grandpa granny nan baby neighbour neighbours neighbor neighbors friend friends
     boss wife husband partner sister brother parents folks delivery courier postman""")
 """People of an event (*before the cleaners come*, *while my mum's here*): not the robot, not a place."""
+PEOPLE_NOUNS = PEOPLE_NOUNS | word_set("""inlaws relatives relations son sons daughter daughters niece nephew
+    aunt uncle cousin cousins grandson granddaughter grandkids grandparents flatmate roommate housemate lodger
+    tenant landlord nanny babysitter gardener vet""")
+"""More people (*In-laws coming round!*, *my niece can't decide*)."""
 HOW_MANY = word_set("a few couple several some lots loads plenty of them one more")
 """Words of a clause that only says how many there are (*there's a few*, *there are a couple of them*)."""
 PEOPLE = word_set("i we he she they")
@@ -1145,6 +1281,27 @@ REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"), ("sinc
                                  ("nothing", "is"), ("everything", "is"), ("everything", "'s")))))
 """A reason for an order, set aside to its clause's end (*... because the coffee's in there*, *... so I know
 you made it*, *... to see if the paint's dry*): it asks nothing."""
+AFTER_ORDER_REASONS = Phrases((*(("as", who) for who in ("i", "we", "it", "they", "she", "he", "there", "the",
+                                                        "my", "our", "everyone", "nobody")),
+                                ("in", "case"), ("just", "in", "case")))
+"""Reasons only after an order in the same sentence (*check the laptop as it needs charging*, *check the
+oven in case it was left on*): opening a sentence they may say when or if (*as we leave*, *in case of ...*),
+which is left to the parser."""
+APOLOGY_WORDS = ("sorry", "oops", "whoops", "apologies")
+CORRECTING_WORDS = word_set("mean meant means wrong mistake instead rather actually not other else said "
+                            "say wanted want need needed")
+"""After *Sorry,* words that may say what was meant (*Sorry, I meant ...*, *Sorry, wrong one*): the sentence
+is then a correction, not an apology."""
+STATES = word_set("wet slippery busy occupied closed locked flooded painted drying messy dirty filthy "
+                  "cluttered noisy dark cold freezing hot smelly blocked broken")
+"""States a note gives a place without a verb (*office wet - avoid it*, *NB: lobby busy*): context."""
+NOW_WORDS = word_set("now atm rn today still again")
+PRAISE = word_set("cool great perfect lovely nice sweet awesome brilliant excellent super fab fantastic "
+                  "wonderful splendid marvellous ace grand good ok okay alright")
+"""Praise said as a sentence of its own (*Perfect.*, *Cool cool.*): said back; never skipped inside a clause
+(*Is the kitchen lovely?* asks something)."""
+COMPARED = ("same", "such", "as", "so", "far", "much", "many", "long")
+"""Before *as* in a comparison (*the same floor as*, *as far as*), where it gives no reason."""
 ROOM_PARTS = word_set("floor floors door doors wall walls window windows carpet carpets rug ceiling tiles "
                       "paint lights light heating")
 """The parts of a room a statement is about (*the lobby floor is still wet*): context, not the room as a
@@ -1171,11 +1328,13 @@ OPENERS = frozenset({"hi", "hello", "hey", "okay", "ok", "alright", "well", "so"
 """Chit-chat starts with a greeting, an interjection or the speaker (*I'm hungry*, *here's the plan*); a
 sentence starting otherwise may be an order about something the scene lacks (*feed pets*), so it is parsed
 (and refused) instead."""
+OPENERS = OPENERS | {"oh"} | EXCLAMATIONS  # "Oh gosh, ...", "Phew, ...": a remark that opens chit-chat too
 AUXILIARIES = frozenset({"am", "are", "is", "was", "were", "have", "has", "will", "would"})
 """In chit-chat (*hope you're well*): no role, although *are* is a word of the grammar elsewhere."""
 GREETINGS = frozenset({"hi", "hello", "hey", "hiya", "heya", "howdy", "oi", "oy", "yo", "ahoy"})
 INTERJECTIONS = HESITATIONS | GREETINGS | frozenset({"ok", "okay", "oh", "oops", "hmm", "fyi", "btw", "ps"})
 """Words before a statement that say nothing (*ok I dropped my keys somewhere, ...*)."""
+INTERJECTIONS = INTERJECTIONS | EXCLAMATIONS  # "gosh, the cat's been sick again, ..."
 """*Hi there!*: after a greeting, *there* is no place."""
 
 # -------------------------------------------------------------------------------------- phrase aliases
@@ -1199,15 +1358,40 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("to", "start", "with", ","): ("first", ","),
     ("to", "begin", "with", ","): ("first", ","),
     ("first", "of", "all"): ("first",),
+    ("before", "anything", "else"): ("first",),
+    ("before", "everything", "else"): ("first",),
+    ("first", "and", "foremost"): ("first",),
     ("first", "off"): ("first",),
     ("last", "of", "all"): ("finally",),
     ("to", "finish", ","): ("finally", ","),
     ("to", "finish", "off", ","): ("finally", ","),
     ("to", "wrap", "up", ","): ("finally", ","),
+    ("every", "time", "when"): ("every", "time"),
+    ("each", "time", "when"): ("each", "time"),
+    ("any", "time", "when"): ("any", "time"),
+    ("should", "you"): ("if", "you"),
+    ("in", "the", "end"): ("finally",),
+    ("ultimately",): ("finally",),
+    ("thereafter",): ("after", "that"),
+    ("beforehand",): ("before", "that"),
+    ("previously",): ("before", "that"),
+    ("at", "the", "end", ","): ("finally", ","),
+    ("at", "the", "end"): ("last",),
+    ("at", "the", "very", "end"): ("last",),
+    ("last", "but", "not", "least"): ("finally",),
+    ("after", "this"): ("after", "that"),
+    ("following", "that"): ("after", "that"),
+    ("following", "this"): ("after", "that"),
+    ("after", "doing", "that"): ("after", "that"),
+    ("after", "doing", "this"): ("after", "that"),
+    ("with", "that", "done"): ("after", "that"),
+    ("with", "that", "out", "of", "the", "way"): ("after", "that"),
     ("along", "with"): ("and",),
     ("together", "with"): ("and",),
     ("plus",): ("and",),
     ("anywhere", "near"): ("into",),
+    ("up", "here"): ("on", "this", "floor"),
+    ("down", "here"): ("on", "this", "floor"),
     ("where", "you", "can", "find"): ("containing",),
     ("where", "you", "will", "find"): ("containing",),
     ("where", "you", "find"): ("containing",),
@@ -1228,6 +1412,15 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("just", "one", "of"): ("one", "of"),
     ("only", "one", "of"): ("one", "of"),
     ("try", "not", "to"): ("do", "not"),
+    ("be", "careful", "not", "to"): ("do", "not"),
+    ("take", "care", "not", "to"): ("do", "not"),
+    ("be", "sure", "not", "to"): ("do", "not"),
+    ("mind", "you", "do", "not"): ("do", "not"),
+    ("mind", "not", "to"): ("do", "not"),
+    ("be", "careful", "to", "avoid"): ("avoid",),
+    ("take", "care", "to", "avoid"): ("avoid",),
+    ("whatever", "you", "do", ","): ("please",),
+    ("whatever", "you", "do"): ("please",),
     ("try", "to", "avoid"): ("avoid",),
     ("try", "and", "avoid"): ("avoid",),
     ("try", "to", "stay", "out", "of"): ("stay", "out", "of"),
@@ -1318,6 +1511,16 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
 }
 """Phrases read as another (``prior to`` is ``before``, ``as soon as`` is ``once``), rewritten on the tokens
 before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase is taken for a verb."""
+PHRASE_ALIASES.update({
+    ("in", "laws"): ("inlaws",),  # "In-laws coming round!": people, not "in"
+    ("cos",): ("because",), ("coz",): ("because",), ("cuz",): ("because",), ("bc",): ("because",),
+    # bedtime and the start of the day said otherwise: "before you turn in", "start the day by ..."
+    **{("before", who, *turn_in): ("before", "bedtime") for who in ("you", "i", "we", "everyone")
+       for turn_in in (("turn", "in"), ("head", "to", "bed"), ("go", "to", "sleep"), ("hit", "the", "sack"))},
+    ("start", "the", "day", "by"): ("start", "by"), ("to", "start", "the", "day"): ("first",),
+    # operator shorthand for the order: "order n/a", "any ord."
+    ("order", "n", "/", "a"): ("in", "any", "order"), ("any", "ord"): ("in", "any", "order"),
+})
 
 # ------------------------------------------------------------------------------------ grammar words
 STRUCTURAL = (
@@ -1349,3 +1552,10 @@ LEXICON_WORDS = frozenset().union(*(_words_of(v) for k, v in list(globals().item
                                     if k.isupper() and not k.startswith("_")))
 """Every word of every table above: the words the translator knows, besides the scene's names (what *did you
 mean* suggests from, with those names; :mod:`.spelling`)."""
+_NOUN_TABLES = ("SYNONYMS", "IRREGULAR_PLURALS", "EVERYDAY_NAMES", "PEOPLE_NOUNS")
+NOUN_WORDS = (frozenset().union(*(_words_of(globals()[k]) for k in _NOUN_TABLES))
+              - frozenset().union(*(_words_of(v) for k, v in list(globals().items())
+                                    if k.isupper() and not k.startswith("_") and k not in _NOUN_TABLES
+                                    and k != "LEXICON_WORDS")))
+"""Words the lexicon knows only as nouns (*people*, *laundry*, *coffee*): a bare subject of a statement
+(*Laundry's done*, *people are still asleep*) may be one; a word of any other table may have a role."""

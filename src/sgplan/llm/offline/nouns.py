@@ -109,8 +109,10 @@ class NounLexicon:
 def abbreviations(kinds: Mapping[str, Kind]) -> dict[str, set[str]]:
     """The abbreviations of the scene's categories: those of :data:`.lexicon.ABBREVIATIONS` for the
     categories the scene has (of one kind), the letters of a one-word name without its vowels after the
-    first (*bthrm*, *ktchn*, *bdrm*), and *rm* for the *room* of a name (*bathrm*, *living rm*). An
-    abbreviation that is a word of the grammar, or a name of the scene, is none."""
+    first (*bthrm*, *ktchn*, *bdrm*), the initials of a name of several words (*ho*, *dt*, *lr*), and *rm*
+    for the *room* of a name (*bathrm*, *living rm*). An abbreviation that is a word of the grammar, or a
+    name of the scene, is none; two letters are one only as the initials of a name no word of the lexicon
+    has (nor *am* / *pm*)."""
     taken = lx.STRUCTURAL | lx.POSITIVE_VERBS | lx.FILLERS | frozenset(lx.REFUSED_WORDS) | lx.HESITATIONS | {
         w for c in kinds for w in c.split()}
     out: dict[str, set[str]] = {}
@@ -119,12 +121,13 @@ def abbreviations(kinds: Mapping[str, Kind]) -> dict[str, set[str]]:
         if present and len({kinds[t] for t in present}) == 1:
             out.setdefault(word, set()).update(present)
     for category in kinds:
-        forms = {_skeleton(category)} if " " not in category else set()
+        forms = {_skeleton(category)} if " " not in category else {_initials(category)}
         if category.endswith("room"):
             stem = category[: -len("room")].strip()
             forms |= {f"{stem}rm", f"{stem} rm"} if " " in category else {f"{stem}rm"}
         for form in forms - {category}:
-            if len(form) >= 3 and form not in taken:
+            short = form == _initials(category) and form not in lx.LEXICON_WORDS | {"am", "pm"}  # not "6 pm"
+            if (len(form) >= 3 or short) and form not in taken:
                 out.setdefault(form, set()).add(category)
     return {w: c for w, c in out.items() if len({kinds[x] for x in c}) == 1}
 
@@ -134,3 +137,8 @@ def _skeleton(word: str) -> str:
     letters)."""
     kept = word[0] + "".join(c for c in word[1:] if c not in "aeiou")
     return "".join(c for k, c in enumerate(kept) if k == 0 or c != kept[k - 1])
+
+
+def _initials(name: str) -> str:
+    """``home office`` -> ``ho``: the first letter of each word of a name."""
+    return "".join(w[0] for w in name.split())

@@ -440,9 +440,13 @@ def precedes_needs_goals() -> str:
                     "sentence and the one before it")
 
 
-def trailing_first_later() -> str:
-    return rephrase("a trailing 'first' in a later sentence: start the sentence with 'Before that' or put "
+def trailing_first_later(word: str = "first") -> str:
+    return rephrase(f"a trailing '{word}' in a later sentence: start the sentence with 'Before that' or put "
                     "the goals in the order they must be done")
+
+
+def before_that_of_nothing(said: str) -> str:
+    return rephrase(f"'{said}': no goal is named before it")
 
 
 def last_followed_by(rest: str) -> str:
@@ -453,6 +457,12 @@ def last_followed_by(rest: str) -> str:
 def on_the_way_to_which() -> str:
     return rephrase("'on the way' after several goals: it is not clear on the way to which; put the goals "
                     "in the order they must be done (with 'then')")
+
+
+def on_the_way_to_several(count: int) -> str:
+    return rephrase(f"'on your way to' a destination of {count} places: is it a goal to visit each of "
+                    "them, or only the direction you are heading? Name the place to go to last ('then go to "
+                    "X'), or leave the destination out")
 
 
 def on_the_way_to_nothing() -> str:
@@ -472,12 +482,30 @@ def after_all_of_which(said: str) -> str:
                     "and name what comes after what")
 
 
-def after_all_count(said: str, goals: int, number: int) -> str:
-    return rephrase(f"'{said}': this sentence names {goals} goals before it, not {number}")
+def after_all_count(said: str, goals: int, number: int, sentence: bool = True) -> str:
+    where = "this sentence names {} goals before it" if sentence else "the sentence before it names {} goals"
+    return rephrase(f"'{said}': {where.format(goals)}, not {number}")
 
 
-def after_all_of_nothing(said: str) -> str:
-    return rephrase(f"'{said}': no goal is named before it in this sentence")
+def after_all_of_nothing(said: str, sentence: bool = True) -> str:
+    return rephrase(f"'{said}': no goal is named before it" + (" in this sentence" if sentence else ""))
+
+
+def bulleted_among_numbered(said: str) -> str:
+    return rephrase(f"'{said}': a bulleted item among numbered ones is in no order the numbers give "
+                    "(before, after or with the numbered item above it?); number every step, or say the "
+                    "order in words")
+
+
+def after_clause_between(said: str, before: str) -> str:
+    return rephrase(f"'{said}' between two clauses: is it done after '{before}', or only before what "
+                    "follows it, or before both? Say it in order with 'then' ('A, then X, then B'), or give "
+                    "it its own sentence ('After X, B.')")
+
+
+def after_all_of_sentences(said: str) -> str:
+    return rephrase(f"'{said}': after the goals of the sentence before it, or of every sentence before it? "
+                    "Say it in one sentence ('A and B, and after both, C') or name what comes after what")
 
 
 def done_that_of_nothing() -> str:
@@ -513,6 +541,11 @@ def unknown_negated_verb(said: str, verb: str) -> str:
 def partial_prohibition(rest: str) -> str:
     return rephrase(f"a prohibition for part of the mission ({rest}) is not understood; say 'never enter X' "
                     "(the whole mission) or 'do not enter X until ...'")
+
+
+def order_by_a_time(said: str) -> str:
+    return rephrase(f"'{said}' orders the steps by a time or an event, not by a place (a plan has no clock); "
+                    "leave the time out, or set it apart with a comma ('Before lunch, check ...')")
 
 
 def until_a_time(said: str) -> str:

@@ -10,10 +10,12 @@ Notations are read as the words they stand for (:data:`.lexicon.SYMBOLS`): an ar
 is *then*, ``+`` and ``&`` are *and*, ``w/`` is *with*, ``b/c`` *because*, ``b4`` *before*; a clock time
 (``6 pm``, ``18:30``) is one token. Any other symbol is kept as a token of its own, so that the grammar
 refuses it by name: nothing typed is ever dropped unread, except quotation marks and the hyphen inside a word
-(*ground-floor*), which change nothing.
+(*ground-floor*), which change nothing. An ellipsis (``...``, ``…``) ends a sentence, except before a word in
+lower case, where it is a pause, read as a dash (*the clock in the living room... no wait, the one ...*).
 
 A sentence ends at ``.``, ``;``, ``!``, ``?``, ``:`` and at a line break; a list item (a line or a
-sentence starting with ``1.``, ``2)``, ``(3)``, or a bullet ``-``, ``*``, ``•`` at the start of a line)
+sentence starting with ``1.``, ``2)``, ``(3)``, or a bullet ``-``, ``*``, ``•`` or an empty box ``[ ]``, ``☐``
+at the start of a line)
 starts one, and says which kind of list it belongs to (:class:`Part`).
 """
 
@@ -42,9 +44,10 @@ _WORD = re.compile(
     r"|(?P<number>\d+(?:st|nd|rd|th)?)"
     r"|(?P<with>w/o\b|w/|b/c\b|\bb4\b)"
     r"|(?P<word>[a-z]+(?:'[a-z]+)?|'s\b)"
-    r"|(?P<bullet>^[ \t]*[-*\u2022\u00b7\u2023\u25e6\u25aa](?=[ \t]))"  # at the start of a line
+    r"|(?P<bullet>^[ \t]*(?:[-*\u2022\u00b7\u2023\u25e6\u25aa]|\[ ?\]|\u2610)(?=[ \t]))"  # at a line start
     r"|(?P<arrow>-+>|=+>|>+|[\u2192\u21d2\u27f6\u2794\u279c\u27a1])"
-    r"|(?P<punct>[,.;:!?()\[\]{}])|(?P<dash>[\u2014\u2013]|--|(?<=\s)-(?=\s)|(?<=\w)-(?=\s))|(?P<ellipsis>\u2026)"
+    r"|(?P<ellipsis>\u2026|\.{2,})"
+    r"|(?P<punct>[,.;:!?()\[\]{}])|(?P<dash>[\u2014\u2013]|--|(?<=\s)-(?=\s)|(?<=\w)-(?=\s))"
     r"|(?P<newline>\n)"
     r"|(?P<silent>(?<=\w)-(?=\w)|[\"'`\u201c\u201d\u2018])"  # a hyphen inside a word, quotation marks
     r"|(?P<symbol>[^\s\w])",  # any other symbol: a token of its own, refused by the grammar
@@ -97,8 +100,8 @@ def tokenize(text: str) -> list[Tok]:
             out.append(Tok(BULLET, end - 1, end))
         elif kind == "dash":
             out.append(Tok(_DASH, start, end))
-        elif kind == "ellipsis":
-            out.append(Tok(".", start, end))
+        elif kind == "ellipsis":  # a pause before words that go on in lower case ("the kitchen... no wait,")
+            out.append(Tok(_DASH if re.match(r"\s*[a-z]", text[end:]) else ".", start, end))
         elif kind == "punct" and word == "!" and _prefixes_a_word(lowered, start, end):
             out.append(Tok("avoid", start, end))  # an operator's "!kit": not the kitchen
         elif kind == "punct":

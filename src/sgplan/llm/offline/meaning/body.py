@@ -68,7 +68,7 @@ def link(item: Link, clause: Clause, ctx: SentenceContext) -> None:
 def after_all(item: AfterAll, clause: Clause, ctx: SentenceContext) -> None:
     """*and after all three, X*: X after every goal of the sentence said before (their number checked;
     refused when an earlier sentence named goals too: after which ones?)."""
-    goals = sum(len(t.members) if t.mode == "all" else 1 for step in clause.steps for t in step)
+    goals = clause.goal_count()
     if not goals:
         rf.refuse(rf.after_all_of_nothing(item.said))
     if ctx.disc.goals_before(ctx.start):
@@ -191,6 +191,9 @@ def ordered_first(trailing: str, item: PlainAction, steps: list[Step], clause: C
     what follows; *Go to B. Go to A first.* is refused (before which goal?)."""
     if trailing == "before that" and len(clause.filled()) > 1:
         rf.refuse(rf.before_which_trailing(item.rest))
+    if trailing == "before that" and not any(clause.steps):  # "Go to B. Go to A before that.": as 'first'
+        rf.refuse(rf.trailing_first_later(trailing) if ctx.disc.last_step else
+                  rf.before_that_of_nothing(item.rest.strip("'")))
     if any(clause.steps):
         clause.steps[0:0] = moved(steps)
         return

@@ -109,6 +109,10 @@ class Clause:
         """The steps that have tasks."""
         return [s for s in self.steps if s]
 
+    def goal_count(self) -> int:
+        """How many goals the steps name (each member of an *all* task, one for a choice)."""
+        return sum(len(t.members) if t.mode == "all" else 1 for step in self.steps for t in step)
+
 
 def moved(steps: Sequence[Step]) -> list[Step]:
     """``steps`` with their tasks marked as placed by an explicit word (:attr:`Task.moved`), those without a

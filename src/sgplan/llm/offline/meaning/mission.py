@@ -26,6 +26,7 @@ from sgplan.llm.offline.syntax.context import is_time
 from sgplan.llm.offline.syntax.preamble import stated_start as said_start
 from sgplan.llm.offline.syntax.reader import Match, Refusal
 from sgplan.llm.offline.syntax.tree import (
+    AfterAll,
     MissionSentence,
     PhraseList,
     RelativeFloor,
@@ -81,10 +82,13 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
 def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> None:
     """Read ``sentence`` and join it to the sentences before it (``parts``)."""
     previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
+    if sentence.after_all is not None:
+        check_after_all(sentence.after_all, parts)
     precedes = sentence_precedes(sentence, parts)
     continues = sentence.lead.sequence or sentence.after_item
     ctx = SentenceContext(disc, sentence.span.start, strict_pending=sentence.lead.strict,
-                          waypoint_pending=sentence.lead.waypoint, listed=sentence.announced is not None)
+                          waypoint_pending=sentence.lead.waypoint,
+                          listed=sentence.announced is not None or sentence.order_free)
     disc.announced = sentence.announced.head if sentence.announced is not None else None
     if sentence.floor_scope is not None:  # "While you're upstairs, ...": its goals there
         ctx.floor_scope = (floors_of(sentence.floor_scope, disc), sentence.span.start)
@@ -115,6 +119,20 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
         parts.append(result)
     if isinstance(result, Clause) and any(result.steps):
         disc.last_step = result.filled()[-1]
+
+
+def check_after_all(said: AfterAll, parts: list[Meaning]) -> None:
+    """*After all that, X.* / *Once you've done both, X.*: X comes after every goal of the sentence before
+    (:func:`join` continues its sequence), which must be the only one with goals (else: after which?) and
+    name as many goals as a number said."""
+    has_goals = [p for p in parts if not isinstance(p, Clause) or any(p.steps)]
+    if not has_goals:
+        rf.refuse(rf.after_all_of_nothing(said.said, sentence=False))
+    if len(has_goals) > 1 or has_goals[0] is not parts[-1] or not isinstance(has_goals[0], Clause):
+        rf.refuse(rf.after_all_of_sentences(said.said))
+    goals = has_goals[0].goal_count()
+    if said.number is not None and said.number != goals:
+        rf.refuse(rf.after_all_count(said.said, goals, said.number, sentence=False))
 
 
 def set_aside(said: SetAside, disc: Discourse) -> None:

@@ -92,6 +92,9 @@ def prefixed(sentence: PrefixedSentence, ctx: SentenceContext) -> Meaning:
     """*After X, Y* (X first) / *Before Y, X* and *On your way to Y, X* (Y last); *before Y, you must X*:
     Y, and not before X (``!Y U X``); Y is the step a following *then* comes after."""
     prefix = steps_of(sentence.prefix, ctx).steps
+    goals = sum(len(task.members) if task.mode == "all" else 1 for step in prefix for task in step)
+    if sentence.on_the_way and goals > 1:
+        rf.refuse(rf.on_the_way_to_several(goals))  # "on your way up to the bedrooms": both, or a direction?
     body = read_body(sentence.body, ctx)
     if sentence.strict:
         strict = only_after(body, Clause(steps=prefix), ctx)

@@ -71,9 +71,17 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
 
 
 def given(r: Reader, i: int) -> int | None:
-    """The end of what *give X* gives X at ``i`` (*a quick look*), or ``None`` if it gives X nothing read."""
-    looks = r.phrase(i + 1, lx.GIVEN_LOOKS) if r.word(i) in ("a", "an") else None
-    return None if looks is None else i + 1 + len(looks)
+    """The end of what *give X* gives X at ``i`` (*a quick look*; any chore said as one word closing the
+    clause, *a flush*, *a good rinse*), or ``None`` if it gives X nothing read (*give X some water*, *give X
+    to Y*, *give X a bowl*: a room or object of the scene is given, not a chore)."""
+    if r.word(i) not in ("a", "an"):
+        return None
+    looks = r.phrase(i + 1, lx.GIVEN_LOOKS)
+    if looks is not None:
+        return i + 1 + len(looks)
+    k = i + 1 + (1 if r.word(i + 1) in lx.GIVEN_MANNER else 0)
+    chore = r.word(k).isalpha() and r.word(k) not in lx.STRUCTURAL and r.head(k) is None
+    return k + 1 if chore and r.word(k + 1) in lx.GIVEN_ENDS else None
 
 
 def turned(r: Reader, verbs: VerbWords, i: int) -> VerbWords:
@@ -160,6 +168,8 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
             continue
         if w in lx.RELATIVE_FLOORS:  # "go upstairs to the bathroom": the bathroom on that floor
             floor, floor_span = RelativeFloor(w), r.span(i, i + 1)
+        elif w == "away" and r.word(i - 1) in lx.AWAY_VERBS:
+            pass  # "put away the bowl": the verb's particle, not "stay away from"
         elif w not in lx.POSITIVE_VERBS and (w in lx.STRUCTURAL or not w.isalpha()):
             return unreadable(r, i)
         odd = odd_verb(r, i)
@@ -194,14 +204,15 @@ def said_first(r: Reader, i: int) -> bool:
 
 def times_before_place(r: Reader, i: int) -> tuple[int, int] | None:
     """*twice* / *two times* (at most :data:`.lexicon.MAX_REPEATS`) after a verb, right before a place
-    preposition (*go two times to X*): how many times, and where the words end; ``None`` otherwise."""
+    preposition or a noun phrase (*go two times to X*, *visit two times X*, as learners place it): how many
+    times, and where the words end; ``None`` otherwise."""
     if r.word(i - 1) in ("", ",") or not r.word(i - 1).isalpha():
         return None
     n = 2 if r.word(i) == "twice" else None
     k = i + 1
     if n is None and r.word(i + 1) == "times":
         n, k = lx.NUMBER_WORDS.get(r.word(i)) or (int(r.word(i)) if r.word(i).isdigit() else None), i + 2
-    if n is None or n < 2 or r.word(k) not in lx.PLACE_PREPOSITIONS:
+    if n is None or n < 2 or (r.word(k) not in lx.PLACE_PREPOSITIONS and not r.np_starts(k)):
         return None
     return n, k
 
@@ -284,7 +295,10 @@ def action_tail(r: Reader, i: int, node: Action) -> Parse[Action]:
         several = node.phrases is not None and len(node.phrases.items) > 1
         if repeat.node is not None or several:
             return Refusal(rf.times_of_what(r.text[node.span.start:r.toks[i - 1].end]))
-        node = replace(node, repeat=Repeat(False, node.verbs.times, None))
+        between = in_between(r, i) if node.verbs.times == 2 else None  # "visit two times X, in between Y"
+        node = replace(node, repeat=Repeat(False, 2, between.node) if between else
+                       Repeat(False, node.verbs.times, None))
+        i = between.end if between else i
     if repeat.node is not None:
         node, i = replace(node, repeat=repeat.node), repeat.end
     return destination_and_purpose(r, i, node)
@@ -326,9 +340,15 @@ def repeats(r: Reader, i: int) -> Parse[Repeat | None]:
 
 
 def in_between(r: Reader, i: int) -> Match[Action] | None:
-    """After *twice*: ``(,) with (a trip / visit / stop) (to) Y in between`` or ``(,) visiting Y in
-    between``: the action of Y; ``None`` when the words are not there."""
+    """After *twice*: ``(,) with (a trip / visit / stop) (to) Y in between``, ``(,) visiting Y in
+    between`` or ``(,) (and) in between (,) Y``: the action of Y; ``None`` when the words are not there."""
     k = i + (1 if r.word(i) == "," else 0)
+    k += 1 if r.at(k, "and", "in", "between") or r.at(k, "and", "between") else 0
+    lead = 2 if r.at(k, "in", "between") else 1 if r.word(k) == "between" else 0
+    if lead:  # "the kitchen twice, and in between go to the office"
+        k += lead + (1 if r.word(k + lead) == "," else 0)
+        said = action(r, k)
+        return said if isinstance(said, Match) and said.node.phrases is not None else None
     if r.word(k) == "with":
         k += 1
         k += 2 if r.word(k) in ("a", "an") and r.word(k + 1) in lx.TRIP_NOUNS else \
@@ -348,7 +368,8 @@ def in_between(r: Reader, i: int) -> Match[Action] | None:
 
 def particles(r: Reader, i: int) -> int:
     """A particle closing an action (*turn it off*, *pick it up*)."""
-    if r.word(i) in lx.PARTICLES and (r.word(i + 1) in ("", ",", "and", "then", "to")
+    particle = r.word(i) in lx.PARTICLES or (r.word(i) == "away" and bool(set(r.words[:i]) & lx.AWAY_VERBS))
+    if particle and (r.word(i + 1) in ("", ",", "and", "then", "to")
                                       or r.phrase(i + 1, lx.NEG_STARTS)):
         return i + 1
     return i
@@ -382,7 +403,8 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
             node, i = replace(node, purpose=purpose.node), particles(r, purpose.end)
         elif not verbs.node.words:
             return Refusal(rf.cannot_understand(r.rest(i)))
-    i += 1 if r.word(i) == "there" else 0  # "look at the TV there": where the step is
+    there = r.phrase(i, lx.THERE_SAID)  # "look at the TV there / while you're (in) there": where the step is
+    i += len(there) if there and (len(there) == 1 or r.word(i + len(there)) in lx.CLAUSE_ENDS) else 0
     filler = r.phrase(i, lx.TIME_FILLERS)
     if filler and not r.trailing_after(i):
         i += len(filler)  # not "... the office later": that says an order (.body.trailing_after)

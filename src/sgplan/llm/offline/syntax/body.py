@@ -8,12 +8,13 @@ sentence rules read.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Literal
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import action, action_then_ahead, after_conjunction, times_before_place
-from sgplan.llm.offline.syntax.links import closing_at, done_words, link
+from sgplan.llm.offline.syntax.links import closing_at, done_closing, done_words, link
 from sgplan.llm.offline.syntax.negation import negation, off_limits, stay_on_floor
 from sgplan.llm.offline.syntax.phrases import there_then_verb
 from sgplan.llm.offline.syntax.qualifiers import names_rooms
@@ -29,6 +30,7 @@ from sgplan.llm.offline.syntax.tree import (
     InlineBefore,
     Item,
     Link,
+    Negation,
     PlainAction,
     Waypoint,
 )
@@ -95,7 +97,23 @@ def after_all(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     n += 2 if r.at(n, "of", "them") or r.at(n, "of", "those") else 0
     if number is None and n == k + len(phrase) and phrase[-1] in ("all", "both") and r.np_starts(n):
         return None  # "after all the bedrooms": an ordinary noun phrase
+    if number is None and phrase[-1] == "both":
+        number = 2  # "once you've done both": two goals, checked as a number said
     return Match(AfterAll(r.quote(k, n), number), n + (1 if r.word(n) == "," else 0))
+
+
+@ITEMS.rule("the whole time, avoid X")
+def whole_time_first(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*..., and while you're out and about, avoid X* / *..., and the whole time, keep out of X*: words of
+    the whole mission before a prohibition, inside a sentence, make it hold for the whole mission."""
+    k = i + (2 if r.at(i, ",", "and") else 1 if r.word(i) in (",", "and", "but") else 0)
+    said = r.phrase(k, lx.WHOLE_MISSION)
+    if not before or said is None or r.word(k + len(said)) != "," or said[0] in lx.WAYPOINT_OPENERS:
+        return None
+    found = negation(r, k + len(said) + 1)
+    if not isinstance(found, Match) or not isinstance(found.node, Negation):
+        return found  # not a prohibition ("don't forget X"): read as it is
+    return Match(replace(found.node, whole=True), found.end)
 
 
 @ITEMS.rule("only after that")
@@ -116,8 +134,9 @@ def before_only_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemP
 def done_with(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """*... when done with X*: X before the step it is said in."""
     done = done_words(r, i)
-    if not done or r.word(i + done) not in lx.DONE_WITH or not r.np_starts(i + done + 1):
-        return None
+    if (not done or r.word(i + done) not in lx.DONE_WITH or not r.np_starts(i + done + 1)
+            or done_closing(r, i)):
+        return None  # not "... once you're finished with that.": a closing order
     found = action(r, i + done + 1)
     return Match(DoneWith(found.node), found.end) if isinstance(found, Match) else found
 
@@ -126,8 +145,8 @@ def done_with(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
 def way_link(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """*on the way, X* / *and on your way back, X* / *once you're done, X*: a sequence link."""
     way = r.phrase(i + (1 if r.word(i) in ("and", ",") else 0), lx.ON_THE_WAY)
-    if not done_words(r, i) and way is None:
-        return None
+    if (not done_words(r, i) and way is None) or done_closing(r, i):
+        return None  # "... when you're done.": a closing order (:func:`trailing_after`)
     found = link(r, i)
     return found if not isinstance(found, Match) or found.node.sequence else None
 
@@ -143,7 +162,9 @@ def closing(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
 @ITEMS.rule("condition follows")
 def condition_follows(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """The body ends before *if*, *when*, *only if*, *whenever*, *only after* (and, in *only <do X> after
-    Y*, before *after*)."""
+    Y*, before *after*); not before a closing *when you're done* (:func:`trailing_after`)."""
+    if done_closing(r, i):
+        return None
     if (r.at(i, *lx.ONLY_IF) or r.phrase(i, lx.CONDITION_WORDS) or r.phrase(i, lx.ONLY_AFTER)
             or r.phrase(i, lx.WHENEVER) or (only_verb and r.word(i) in ("after", "once"))):
         return Match(End(), i)
@@ -152,18 +173,35 @@ def condition_follows(r: Reader, i: int, before: Said, only_verb: bool) -> ItemP
 
 @ITEMS.rule("trailing after")
 def trailing_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
-    """*Go to the dining room after.*: nothing more in the body (a sentence that ends so follows the one
-    before it, :func:`.sentences.mission_sentence`). After two goals of the body (*the office and the
-    kitchen afterwards*, *A, then B after*) it could be about the last or all of them: refused."""
-    length = r.trailing_after(i)
+    """*Go to the dining room after.*, *... when you're done.*: nothing more in the body (a sentence that
+    ends so follows the one before it, :func:`.sentences.mission_sentence`). After two goals of the body
+    (*the office and the kitchen afterwards*, *A, then B after*) it could be about the last or all of them:
+    refused."""
+    length = r.trailing_after(i) or done_closing(r, i)
     if not length:
         return None
     actions = [item for item in before if isinstance(item, PlainAction)]
     phrases = actions[-1].action.phrases if actions else None
     then_said = len(before) > 1 and isinstance(before[-2], Link) and before[-2].sequence  # "then B after"
-    if (len(actions) > 1 and not then_said) or (phrases is not None and len(phrases.items) > 1):
+    if ((len(actions) > 1 and not then_said and not after_one_goal(before[:-1]) and not actions[-1].goes_back)
+            or (phrases is not None and len(phrases.items) > 1)):
         return Refusal(rf.trailing_after(r.quote(0, i + length)))
     return Match(Skip(), i + length)
+
+
+def after_one_goal(before: Said) -> bool:
+    """Whether the last step of ``before`` is one action with one phrase, after a sequence word (*A, then
+    B, and C afterwards*: after B is after A too, so both readings of *afterwards* agree)."""
+    last: list[PlainAction] = []
+    for item in reversed(before):
+        if (isinstance(item, Link) and item.sequence) or isinstance(item, CommaSequence):
+            break
+        if isinstance(item, PlainAction):
+            last.append(item)
+    else:
+        return False
+    phrases = last[0].action.phrases if len(last) == 1 else None
+    return phrases is not None and len(phrases.items) == 1
 
 
 @ITEMS.rule("but first")
@@ -179,6 +217,22 @@ def goals_first(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     if not isinstance(found, Match):
         return found
     return Match(GoalsFirst(before_that, found.node, r.rest(i)), found.end)
+
+
+@ITEMS.rule("A, then B, and C afterwards")
+def and_then_afterwards(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*A, then B, and C afterwards* / *..., and C when you're done*: after one goal that ends a sequence
+    (:func:`after_one_goal`), the conjunction before a clause closing the sentence with *afterwards* is a
+    sequence word, since C comes after B either way."""
+    n = 2 if r.at(i, ",", "and") else 1 if r.word(i) in (",", "and") else 0
+    if not n or not after_one_goal(before):
+        return None
+    for k in range(i + n + 1, len(r)):
+        if r.word(k) in (",", "then", "and", "or"):
+            return None
+        if r.trailing_after(k) == len(r) - k or done_closing(r, k):
+            return Match(Link(True), i + n)
+    return None
 
 
 @ITEMS.rule("A, B, then C")
@@ -257,7 +311,20 @@ def inline_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     if r.word(i) not in ("after", "once") or r.phrase(i, lx.AFTER_THAT):
         return None
     found = after_conjunction(r, i + 1)
-    return Match(InlineAfter(found.node), found.end) if isinstance(found, Match) else found
+    if not isinstance(found, Match):
+        return found
+    if between_clauses(r, i, found.end, before):
+        return Refusal(rf.after_clause_between(r.quote(i - 1, found.end), r.quote(0, i - 1).rstrip(" ,")))
+    return Match(InlineAfter(found.node), found.end)
+
+
+def between_clauses(r: Reader, i: int, end: int, before: Said) -> bool:
+    """Whether *after / once X* at ``i`` (ending at ``end``) stands between two clauses, after a goal and a
+    conjunction: *A, and once you've been to X, B* (X before B only, or before A too?) or, at the end, *A
+    and after going to X* (X after A, as learners write *and then*, or before it?)."""
+    joined = r.word(i - 1) in ("and", "but") or (r.word(i - 1) == "," and r.word(end) == ",")
+    said = any(isinstance(item, PlainAction) for item in before)
+    return joined and said and ((r.word(end) == "," and end + 1 < len(r)) or end == len(r))
 
 
 @ITEMS.rule("before X")

@@ -13,7 +13,13 @@ Set aside are: a sentence or a comma clause (first or last of its sentence) that
 to ...*), says what is off limits (*the kitchen is off limits*), or states a need about a room or object of
 the scene (*the plants need watering*: that may ask for a goal, and is refused by the parser); and a time of
 day, meal or event opening or closing a sentence (*Before lunch,*, *... tonight*). A clock time is refused
-(:func:`.reader.unreadable`).
+(:func:`.reader.unreadable`). A subject is known by its shape: a pronoun, a phrase with a determiner, or a
+bare noun the grammar has no role for (*Laundry's done*, *people are asleep*), or a place and its state in a
+note (*office wet*). Remarks (:data:`.lexicon.CLOSING`) around the context or closing the sentence are set
+aside with it, and so is a sentence of praise only (*Perfect.*) or a bare apology before a statement that
+names nothing (*Sorry, I forgot something.*); a reason after an order (*... as it needs charging*) is set
+aside where it stands. After a statement that names one place, the pronoun of the order is bound to it
+(:mod:`.stated_place`).
 """
 
 from __future__ import annotations
@@ -24,6 +30,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.preamble import stated_start
 from sgplan.llm.offline.syntax.reader import Match, Reader
+from sgplan.llm.offline.syntax.stated_place import bind_statement_pronoun
 from sgplan.llm.offline.syntax.tree import Described, NounPhrase
 from sgplan.llm.offline.text import is_clock_time
 
@@ -42,6 +49,13 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     """A sentence, its leading and trailing context clauses set aside, and the times said between its
     clauses; ``said_before``: sentences with content came before it (then *it* after a statement that names
     a room or object could be read as what they named last: not set aside, so refused)."""
+    if said_before and r.says(lx.CORRECTIONS, 0, len(r)):
+        # "Oh, I meant the kitchen": takes back what was said before (corrections.py reads or refuses it);
+        # "Sorry, I forgot something.": an apology before a statement that names nothing, said back
+        return [aside(r, 0, len(r))] if apology(r) else [r]
+    praise = [w for w in r.words if w.isalpha()]
+    if praise and all(w in lx.PRAISE or w in lx.HESITATIONS for w in praise):
+        return [aside(r, 0, len(r))]  # "Perfect.", "Cool cool.": a sentence of praise only, said back
     if event_note(r, 0, len(r)) or is_time(r, 0, len(r)):
         return [aside(r, 0, len(r))]
     clauses = comma_clauses(r)
@@ -53,25 +67,38 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     first, last = 0, len(clauses)
     while first < last and (is_context(r, *clauses[first], leading=True) or closing_only(r, *clauses[first])):
         first += 1
-    while first > 0 and closing_only(r, *clauses[first - 1]):
-        first -= 1  # "Oh, and the dog's asleep in there, so ...": a remark before context is context too
-    while last > first and is_context(r, *clauses[last - 1], leading=False):
-        last -= 1
+    while last > first and (is_context(r, *clauses[last - 1], leading=False)
+                            or closing_only(r, *clauses[last - 1])):
+        last -= 1  # "..., the cat's asleep in there", "..., okay?", "..., sorry about this": said back
     if first == last or (first > 0 and mere_talk(r, clauses[first][0], clauses[last - 1][1])):
         return [aside(r, 0, len(r))]
-    if said_before and first and mentions(aside(r, 0, clauses[first - 1][1])) and any(
-            w in lx.PRONOUNS for w in r.words[clauses[first][0]:]):
-        return [r]  # "the lobby floor is wet, so avoid it": 'it' would be the goal named last: refused
-    kept = [aside(r, clauses[0][0], clauses[first - 1][1])] if first else []
+    named = mentions(aside(r, 0, clauses[first - 1][1])) if first else ()
     start = skip_joiner(r, clauses[first][0]) if first else 0
     # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
     middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c) or counted(r, *c)]
     words = [k for k in range(start, clauses[last - 1][1])
              if not any(a <= k < b or (k == a - 1 and r.word(k) == ",") for a, b in middle)]
-    kept += [replace(r, toks=tuple(r.toks[k] for k in words))] + [aside(r, a, b) for a, b in middle]
+    subject = skip_joiner(r, r.skip(clauses[first - 1][0], lx.INTERJECTIONS)) if first else 0
+    order = bind_statement_pronoun(r, subject, [clauses[first][0], *words], named) if first else None
+    if order is None and said_before and named and any(w in lx.PRONOUNS for w in r.words[clauses[first][0]:]):
+        return [r]  # "the lobby floor is wet, so avoid it": 'it' would be the goal named last: refused
+    kept = [aside(r, clauses[0][0], clauses[first - 1][1])] if first else []
+    kept += [order or replace(r, toks=tuple(r.toks[k] for k in words))] + [aside(r, a, b) for a, b in middle]
     if last < len(clauses):
         kept.append(aside(r, clauses[last][0], len(r)))
     return kept
+
+
+def apology(r: Reader) -> bool:
+    """Whether the sentence is a bare apology word (*sorry*, *oops*) and a comma before a statement that
+    names nothing and says nothing of what was meant (*Sorry, I forgot something.*): no room, object, floor,
+    pronoun, number or word of correcting (:data:`.lexicon.CORRECTING_WORDS`)."""
+    if r.word(0) not in lx.APOLOGY_WORDS or r.word(1) != "," or statement(r, 2, len(r)) != "aside":
+        return False
+    return not any(r.head(k) is not None or w in lx.PRONOUNS or w in lx.ANAPHORIC_ONE
+                   or w in lx.RELATIVE_FLOORS or w in lx.FLOOR_WORDS or w in lx.NUMBER_WORDS or w.isdigit()
+                   or w in lx.CORRECTING_WORDS or w in lx.DEICTIC_SUBJECTS or r.phrase(k, lx.CORRECTIONS)
+                   for k, w in enumerate(r.words[2:], 2))
 
 
 def comma_clauses(r: Reader) -> list[tuple[int, int]]:
@@ -97,15 +124,23 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
     it*, *... to make sure they're sturdy*): from the reason word to the clause's end or its next *then*;
     ``None`` when there is none, or when it says what not to do or asks something (*because I need you to
     ...*: left to the parser)."""
-    k = next((k for k in range(start, end) if r.phrase(k, lx.REASONS) or purpose(r, k, end)), None)
+    k = next((k for k in range(start, end) if r.phrase(k, lx.REASONS) or purpose(r, k, end)
+              or after_order_reason(r, k)), None)
     if k is None:
         return None
     stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
-    said = range(k + len(r.phrase(k, lx.REASONS) or ("for",)), stop)
+    said = range(k + len(r.phrase(k, lx.REASONS) or r.phrase(k, lx.AFTER_ORDER_REASONS) or ("for",)), stop)
     if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) or is_clock_time(r.word(j))
            or r.word(j) in lx.TIME_UNITS for j in said):
         return None  # what not to do, a question to the robot, a clock time or a delay: left to the parser
     return k, stop
+
+
+def after_order_reason(r: Reader, k: int) -> bool:
+    """Whether a reason of :data:`.lexicon.AFTER_ORDER_REASONS` starts at ``k`` after an order of the same
+    sentence (*check the laptop as it needs charging*), not a comparison (*the same floor as the bed*)."""
+    return (r.phrase(k, lx.AFTER_ORDER_REASONS) is not None and any(starts_order(r, j) for j in range(k))
+            and not any(w in lx.COMPARED for w in r.words[max(0, k - 4):k]))
 
 
 def purpose(r: Reader, k: int, end: int) -> bool:
@@ -156,6 +191,7 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
     """Whether the clause ``[start, end)`` only gives context: a time (opening or closing the sentence), or a
     statement that is not a need about the scene (see the module docstring)."""
     said = skip_joiner(r, r.skip(start, lx.INTERJECTIONS))  # "ok I dropped my keys somewhere, ..."
+    said = said + 1 if r.word(said) in lx.EVENT_WORDS and r.word(said + 1) in lx.SUBJECT_PRONOUNS else said
     return (is_time(r, start, end) or statement(r, said, end) == "aside"
             or event_note(r, start, end) or is_reason(r, start, end))
 
@@ -165,9 +201,20 @@ def closing_only(r: Reader, start: int, end: int) -> bool:
     cheers*)."""
     k = skip_joiner(r, start)
     while k < end and (said := r.phrase(k, lx.CLOSING) or ((r.word(k),) if r.word(k) in lx.HESITATIONS
-                                                           or r.word(k) == "," else None)):
+                                                           or r.word(k) == "," or signature(r, k) else None)):
         k += len(said)
     return start < k == end
+
+
+def signature(r: Reader, k: int) -> bool:
+    """Whether the word at ``k`` is the name a sign-off is signed with (*Regards, Tom*, *Thanks, Anna!*): a
+    capitalised word the translator does not know, last in its sentence, after sign-offs and a comma."""
+    w, tok = r.word(k), r.toks[k] if k < len(r) else None
+    rest = [j for j in range(k + 1, len(r)) if r.word(j).isalpha()]
+    return (tok is not None and w.isalpha() and r.text[tok.start].isupper()
+            and (w not in lx.LEXICON_WORDS or w in lx.PEOPLE_NOUNS) and r.head(k) is None
+            and r.word(k - 1) == "," and closing_only(r, 0, k - 1)
+            and (not rest or closing_only(r, rest[0], len(r))))
 
 
 def event_note(r: Reader, start: int, end: int) -> bool:
@@ -189,6 +236,7 @@ def mere_talk(r: Reader, start: int, end: int) -> bool:
     left my bag somewhere, no idea where, ...*)."""
     return not any(r.head(k) is not None or r.word(k) in lx.POSITIVE_VERBS or r.phrase(k, lx.NEG_STARTS)
                    or r.word(k).startswith(("room_", "object_")) or r.word(k) in lx.RELATIVE_FLOORS
+                   or r.word(k) in lx.REFUSED_WORDS or r.word(k) in lx.PRONOUNS  # "so leave it alone"
                    for k in range(start, end))
 
 
@@ -196,9 +244,10 @@ def is_time(r: Reader, start: int, end: int) -> bool:
     """*Before lunch*, *this morning*, *at some point this evening*, *tonight*, *right now*: a time of day,
     meal or event (not *later* or *now* alone, which order the steps)."""
     words = r.words[start:end]
-    event = words[:1] in (("before",), ("after",), ("by",), ("while",))  # "before the guests arrive"
+    event = words[:1] in tuple((w,) for w in lx.EVENT_OPENERS)  # "before the guests arrive"
     said = [w in lx.TIME_WORDS or (event and (w in lx.EVENT_VERBS or w in lx.PEOPLE or w in lx.PEOPLE_NOUNS
-                                              or w in lx.POSSESSIVES or w in lx.AUXILIARIES)) for w in words]
+                                              or w in lx.POSSESSIVES or w in lx.AUXILIARIES or k == 0))
+            for k, w in enumerate(words)]
     if not words or not all(said):
         return False
     events = [w for w in words if (w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES)
@@ -232,6 +281,12 @@ def statement(r: Reader, start: int, end: int) -> str | None:
         # "the kitchen is off limits", "the couch, it's in the kitchen", "the bowl is in the sink", "the next
         # task is to ...": not mere context
         return None
+    if any(r.word(j) == "and" and r.word(j + 1) not in lx.SUBJECT_PRONOUNS and starts_order(r, j + 1)
+           for j in range(k, end)):
+        return None  # "the bathroom is wet and avoid it": an order after the statement, never set aside
+    if r.word(start) in lx.DEICTIC_SUBJECTS and r.np_starts(k + 1) and any(
+            r.head(j) is not None for j in range(k + 1, min(k + 4, end))):
+        return None  # "Actually, it was the kitchen": says which place is meant, never context
     needs = any(w in lx.NEED_WORDS for w in r.words[k:end])
     names = any(r.head(j) is not None for j in range(start, end))
     return "need" if needs and names else "aside"
@@ -262,12 +317,21 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         if (isinstance(said, Match) and r.word(said.end) in lx.ROOM_PARTS
                 and r.word(said.end + 1) in lx.STATEMENT_VERBS):
             return said.end + 1  # "the lobby floor is still wet": about a part of the room
+        if (r.word(start + 1) in lx.ROOM_PARTS and r.word(start + 2) in ("in", "of")
+                and r.np_starts(start + 3)):
+            room = noun_phrase(r, start + 3, "qualifier")  # "the floor in the lobby is wet": a part of it
+            if isinstance(room, Match) and r.word(room.end) in lx.STATEMENT_VERBS:
+                return room.end
         if not plain_word(r, start + 1):
             return None  # "the kitchen and the office": goals
         return next((j for j in range(start + 2, min(start + 5, end)) if finite_verb(r.word(j))), None)
+    if r.head(start) is not None:  # "office wet - avoid it", "NB: lobby busy rn": a note's statement
+        said = noun_phrase(r, start, "qualifier")
+        state = said.end if isinstance(said, Match) else end
+        return state if r.word(state) in lx.STATES and r.skip(state + 1, lx.NOW_WORDS) == end else None
     verb = r.word(start + 1)
     if (w.isalpha() and r.head(start) is None
-            and (w not in lx.LEXICON_WORDS or w in lx.RELATIVE_FLOORS or w in lx.EVENT_WORDS
+            and (plain_subject(r, start) or w in lx.RELATIVE_FLOORS or w in lx.EVENT_WORDS
                  or w in lx.PEOPLE_NOUNS)
             and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
         return start + 1  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
@@ -279,6 +343,13 @@ def plain_word(r: Reader, i: int) -> bool:
     w = r.word(i)
     return w.isalpha() and (w not in lx.STRUCTURAL or w in lx.FLOOR_WORDS) and w not in lx.POSITIVE_VERBS \
         and r.head(i) is None  # "the floor's still wet": the floor of a room
+
+
+def plain_subject(r: Reader, i: int) -> bool:
+    """Whether the word at ``i`` can be a bare noun subject (*Laundry's done*, *people are asleep*): a word of
+    no role in the grammar, which the lexicon knows as a noun if at all."""
+    w = r.word(i)
+    return plain_word(r, i) and (w not in lx.LEXICON_WORDS or w in lx.NOUN_WORDS)
 
 
 def finite_verb(word: str) -> bool:

@@ -6,13 +6,16 @@ between the old and the new noun phrase, means the new one in the old one's plac
 with the new phrase only; the old phrase and the correction words are set aside and said back (*not part of
 the mission*). Only that shape is read: when the words after the correction are not one noun phrase closing
 the clause, or no noun phrase ends right before it, the correction stays in the sentence and is refused
-(which part stands is not known).
+(which part stands is not known). The old place may be denied in the same words before the new one (*the
+kitchen, no sorry, not the kitchen, the living room*), and then the clause may have been broken off after
+*and* before the correction (*go to the kitchen and... no sorry, not the kitchen, the living room*).
 
 A clause broken off after a word that cannot end one (*the*, *to*, *into*), at a dash or a pause (a comma,
 *uh*), and started again
 with the same first word (*don't take the- don't go through the living room*), or with the words before
 the dash (*the plant in the- the plant in the office*), is a restart: the broken words are set aside and said
-back, and the sentence is read from the restart.
+back, and the sentence is read from the restart. So is a clause broken off inside a word that the words after
+it say whole (*grab the mic- er, check the microwave*), whatever they start with.
 
 A sentence that is only *the one(s) ...* right after one that ends with a noun phrase says which one that
 is (*water the plant. the one in the living room.*): it is read as an apposition of that phrase (*the plant,
@@ -38,6 +41,9 @@ _AROUND = frozenset({",", "sorry"})
 _CLAUSE_ENDS = ("", ",", "and", "then")
 _WITHIN = ("in", "on", "inside", "at", "of")
 """Before a place said again inside the phrase that restates it (*the office on floor one*)."""
+_PAUSED_AFTER = frozenset({"the", "a", "an", "to", "into", "of", "through", "from"})
+"""Words after which a comma is a pause, never the end of a clause (*go to the... kitchen*); not *in*, *on*
+(particles end clauses: *go in, then ...*), nor *her*, *that* (*bless her, ...*, *check that, then ...*)."""
 _OPENING = lx.HESITATIONS | lx.GREETINGS | frozenset({",", "okay", "ok", "robot"})
 """Words before what a sentence restates (*um okay floor one, the office on floor one*)."""
 
@@ -48,6 +54,7 @@ def corrected(r: Reader) -> list[Reader]:
     restart = restarted(r) or restated(r)
     if restart is not None:
         return [*corrected(restart[0]), restart[1]]
+    r = unpaused(r)
     for k in range(1, len(r)):
         said = r.phrase(k, lx.CORRECTIONS)
         if said is not None:
@@ -82,10 +89,14 @@ def restarted(r: Reader) -> tuple[Reader, Reader] | None:
     """The sentence read from a restart (see the module docstring), and the broken words set aside;
     ``None`` when it has no restart."""
     for cut in range(1, len(r) - 1):
-        if r.word(cut - 1) not in lx.UNFINISHED or r.word(cut) != ",":
+        broken = broken_word(r, cut)
+        if (r.word(cut - 1) not in lx.UNFINISHED and not broken) or r.word(cut) != ",":
             continue  # a clause never ends with "the" or "to": a comma (a dash, a pause) after it breaks it
         again = r.skip(cut, (",",))
         start = max((k + 1 for k in range(cut) if r.word(k) in lx.CLAUSE_ENDS and r.word(k)), default=0)
+        if broken:  # "grab the mic- er, check the microwave": the clause is said again, whatever its verb
+            return (replace(r, toks=r.toks[:start] + r.toks[again:]),
+                    replace(r, toks=r.toks[start:again], aside=True))
         # a stutter says again the words broken off: "the plant in the- the plant in the office"
         start = next((k for k in range(start, cut) if r.words[k:cut] == r.words[again:again + cut - k]),
                      start)
@@ -93,6 +104,26 @@ def restarted(r: Reader) -> tuple[Reader, Reader] | None:
             kept = replace(r, toks=r.toks[:start] + r.toks[again:])
             return kept, replace(r, toks=r.toks[start:again], aside=True)
     return None
+
+
+def unpaused(r: Reader) -> Reader:
+    """``r`` without the commas of a pause right after a word no clause ends with, when the clause goes on
+    after it (*go to the... kitchen*, *go to the, uh, kitchen*): a pause, not a break."""
+    def pause(k: int) -> bool:
+        before = next((r.word(j) for j in range(k, -1, -1) if r.word(j) != ","), "")
+        after = r.word(r.skip(k, (",",)))
+        return after.isalpha() and after not in lx.CLAUSE_ENDS and before in _PAUSED_AFTER
+    kept = [t for k, t in enumerate(r.toks) if not (t.text == "," and pause(k))]
+    return r if len(kept) == len(r.toks) else replace(r, toks=tuple(kept))
+
+
+def broken_word(r: Reader, cut: int) -> bool:
+    """Whether the word before the comma at ``cut`` was broken off by a dash (*the mic- er, the microwave*): a
+    word no table knows, written onto the dash, that begins a longer word said after it."""
+    w, tok = r.word(cut - 1), r.toks[cut - 1]
+    return (r.word(cut) == "," and r.text[tok.end:tok.end + 1] == "-" and w.isalpha()
+            and w not in lx.LEXICON_WORDS and r.head(cut - 1) is None
+            and any(later.startswith(w) and later != w for later in r.words[cut:]))
 
 
 def restated(r: Reader) -> tuple[Reader, Reader] | None:
@@ -122,12 +153,18 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     end = k
     while end > 0 and r.word(end - 1) in _AROUND:
         end -= 1
-    old = next((found for j in range(max(0, end - 10), end) if (found := phrase_to(r, j, end))), None)
-    if old is None:
-        return None
     start_new = r.skip(after, _AROUND)  # "the one upstairs": one of the old phrase's kind
     while (more := r.phrase(start_new, lx.CORRECTIONS)) is not None:  # "sorry, I mean"
         start_new = r.skip(start_new + len(more), _AROUND)
+    old = next((found for j in range(max(0, end - 10), end) if (found := phrase_to(r, j, end))), None)
+    if old is None and r.word(end - 1) in ("and", "then"):  # "the kitchen and... no sorry, not the kitchen,"
+        end -= 1
+        old = next((found for j in range(max(0, end - 10), end) if (found := phrase_to(r, j, end))), None)
+        if old is None or denied(r, old, start_new) == start_new:
+            return None  # broken off after 'and': only a denial of the old place says it is taken back
+    if old is None:
+        return None
+    start_new = denied(r, old, start_new)
     head = old.head if isinstance(old, Described) and isinstance(old.head, Head) else None
     new = noun_phrase(r, start_new, "goal", head)
     if not isinstance(new, Match) or r.word(new.end) not in _CLAUSE_ENDS:
@@ -136,6 +173,15 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     named, rest = one_named(r, start, end, start_new)
     kept = replace(r, toks=r.toks[:start] + named + r.toks[rest:])
     return kept, replace(r, toks=r.toks[start:start_new], aside=True)
+
+
+def denied(r: Reader, old: NounPhrase, i: int) -> int:
+    """Where the new phrase starts after the old one is denied at ``i`` in the same words (*no sorry, not
+    the kitchen, the living room*), or ``i`` when it is not."""
+    said = tuple(t.text for t in r.toks if old.span.start <= t.start and t.end <= old.span.end)
+    if r.word(i) == "not" and r.words[i + 1:i + 1 + len(said)] == said and r.word(i + 1 + len(said)) == ",":
+        return r.skip(i + 1 + len(said), _AROUND)
+    return i
 
 
 def one_named(r: Reader, start: int, end: int, start_new: int) -> tuple[tuple[Tok, ...], int]:

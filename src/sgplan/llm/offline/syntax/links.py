@@ -138,12 +138,24 @@ def done_sequence(r: Reader, i: int) -> int | None:
     sequence word then); ``None`` when it names what is done (*when done with the garage*) or is not
     there."""
     n = done_words(r, i)
-    if not n or r.np_starts(i + n):
-        return None  # "after finishing the kitchen": the kitchen is what is done
+    back = r.word(i + n) in lx.DONE_BACK and r.word(i + n + 1) in lx.DONE_BACK_ENDS
+    if not n or (r.np_starts(i + n) and not back):
+        return None  # "after finishing the kitchen": the kitchen is what is done; not "done that, ..."
     if r.word(i + n) in lx.DONE_WITH and (r.word(i + n + 1) not in lx.DONE_BACK or r.np_starts(i + n + 2)):
         return None
     k = i + n + (1 if r.word(i + n) in lx.DONE_WITH else 0)
     return k + (1 if r.word(k) in lx.DONE_BACK else 0)
+
+
+def done_closing(r: Reader, i: int) -> int:
+    """The length of *when you're done* / *once you've finished (with that)* at ``i`` ending the sentence
+    (what it ends comes after what was said before, as with a closing *afterwards*), else 0."""
+    n = done_words(r, i)
+    if n and r.word(i + n) in lx.DONE_WITH and r.word(i + n + 1) in lx.DONE_BACK:
+        n += 2  # "once you're finished with that"
+    elif n and r.word(i + n) in lx.DONE_BACK:
+        n += 1  # "once you're finished there"
+    return n if n and i + n == len(r) else 0
 
 
 def skip_subject(r: Reader, i: int) -> int:

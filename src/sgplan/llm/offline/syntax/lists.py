@@ -25,6 +25,7 @@ from dataclasses import replace
 from typing import Literal
 
 from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.preamble import is_chitchat
@@ -94,6 +95,8 @@ def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) 
     before it when the list is in order (see the module docstring)."""
     out, announced, said_order, scope = heading_of(heading) if heading is not None else ([], None, None, ())
     order = remark or said_order or ("ordered" if any(r.marker == "number" for r in run) else "any")
+    if order == "ordered" and not remark and not said_order:
+        check_no_bulleted_goal(run)
     prefix = scope + (announced.prefix if announced is not None else ())
     for n, item in enumerate(run):
         after = order == "ordered" and n > 0 and not (item.word(0) == "eventually"
@@ -101,6 +104,15 @@ def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) 
         said = prefix[len(scope):] if scope[:1] and scope[0].text == "in" and outside_room(item) else prefix
         out.append(replace(item, toks=said + item.toks, announced=announced, after_item=after))
     return out
+
+
+def check_no_bulleted_goal(run: list[Reader]) -> None:
+    """A list in order by its numbers may hold bulleted prohibitions (*1. A 2. B - never enter C*), but a
+    bulleted goal among numbered items (*1. Kitchen - check the oven - open the fridge 2. Office*) is a
+    sub-item, in no order the numbers give: refused, naming it."""
+    for item in run:
+        if item.marker == "bullet" and item.phrase(0, lx.NEG_STARTS) is None and item.word(0) not in lx.STAY:
+            rf.refuse(rf.bulleted_among_numbered(item.quote(0, len(item))))
 
 
 def outside_room(item: Reader) -> bool:

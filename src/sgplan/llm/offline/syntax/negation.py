@@ -58,7 +58,8 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
     j += 1 if r.at(j, ",", "ever") else 0  # "never, ever"
     j += 1 if r.word(j) in lx.NEGATION_EVER else 0  # "never ever", "don't ever"
     # "no need to X": X free, not forbidden; "you need not (needn't) go"
-    needed = r.word(j) in lx.NEGATED_NEED_WORDS and r.word(j + 1) == "to"
+    needed = ((r.word(j) in lx.NEGATED_NEED_WORDS and r.word(j + 1) in ("to", "for"))
+              or r.word(j) in lx.NOT_NEEDED_VERBS)  # "no need for X", "don't bother going to X"
     if needed or (marker == ("not",) and r.word(j - 2) in lx.NEGATED_NEED_WORDS):
         return Refusal(rf.not_needed(r.quote(j - len(marker) - (0 if needed else 1), min(j + 4, len(r)))))
     stay = stay_on_floor(r, j, negated=True)  # "don't leave this floor"
@@ -132,7 +133,9 @@ def until_target(r: Reader, k: int) -> Parse[Action | UntilDone]:
     if said > k + 1 and r.word(said) in ("", ","):
         return Match(UntilDone(), said)  # "don't set foot in the kitchen until you have"
     k = said
-    if r.word(k) in lx.DONE and ((r.word(k + 1) in lx.DONE_WHAT and not r.np_starts(k + 2))
+    if r.word(k) in lx.DONE and r.word(k + 1) in lx.DONE_WITH and r.np_starts(k + 2):
+        k += 2  # "until you're done in the kitchen": until the kitchen
+    elif r.word(k) in lx.DONE and ((r.word(k + 1) in lx.DONE_WHAT and not r.np_starts(k + 2))
                                  or not r.np_starts(k + 1)):
         k += 1  # "... before you've done that"
         return Match(UntilDone(), k + (1 if r.word(k) in lx.DONE_WHAT else 0))
@@ -140,12 +143,35 @@ def until_target(r: Reader, k: int) -> Parse[Action | UntilDone]:
     if not isinstance(target, Match):
         return target
     k = target.end
-    if r.word(k) in lx.DONE:
+    passive = passive_end(r, k)
+    if passive > k:
+        k = passive
+    elif r.word(k) in lx.DONE:
         k += 1  # "until DR done"
     elif r.word(k) in lx.UNTIL_DONE_LINKS and r.word(k + 1) in lx.UNTIL_DONE_WORDS:
         k += 2  # "until both bathrooms are done"
         k += 1 if r.word(k) in lx.UNTIL_DONE_VERBS else 0
     return Match(target.node, k)
+
+
+def participle(w: str) -> bool:
+    """Whether ``w`` is the past participle of a verb of the grammar (*checked*, *picked*, *grabbed*,
+    *tidied*, *used*), not any word in *-ed* (*red*)."""
+    if not w.endswith("ed"):
+        return False
+    stems = {w[:-2], w[:-1], w[:-3], w[:-3] + "y"}  # checked, used, grabbed, tidied
+    return bool(stems & lx.POSITIVE_VERBS)
+
+
+def passive_end(r: Reader, k: int) -> int:
+    """After the target of *until*: the end of a passive that closes the clause (*until the oven is checked*,
+    *until the cup has been picked up*, *until cup grabbed*), else ``k``."""
+    j = k + (1 if r.word(k) in lx.UNTIL_DONE_LINKS else 0)
+    j += 1 if r.word(j) == "been" else 0
+    if not participle(r.word(j)):
+        return k
+    j += 1 if r.word(j + 1) in lx.PARTICLES else 0
+    return j + 1 if r.word(j + 1) in ("", ",", "then", "and") else k
 
 
 def stay_on_floor(r: Reader, i: int, negated: bool) -> Parse[StayOnFloor]:

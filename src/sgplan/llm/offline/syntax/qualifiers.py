@@ -324,13 +324,12 @@ def there(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
 
 @QUALIFIERS.rule("here")
 def here(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
-    """*the toilet down here*, *the bathroom here*, *both beds up here*: on the floor where the speaker and
-    the robot are, as *on this floor* (the start floor); not after a carry verb (*bring the bowl here*:
-    where it goes)."""
-    k = i + (1 if r.word(i) in lx.BACK_THERE else 0)
-    if r.word(k) != "here" or carried(r, noun):
+    """*the bathroom here*: on the floor where the speaker and the robot are, as *on this floor* (the start
+    floor; *up here* / *down here* are read as *on this floor* before parsing, `lexicon.PHRASE_ALIASES`); not
+    after a carry verb (*bring the bowl here*: where it goes)."""
+    if r.word(i) != "here" or carried(r, noun):
         return None
-    return Match(OnFloor(StartFloor(r.quote(i, k + 1))), k + 1)
+    return Match(OnFloor(StartFloor("here")), i + 1)
 
 
 @QUALIFIERS.rule("where is X")

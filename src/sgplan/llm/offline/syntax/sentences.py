@@ -15,11 +15,12 @@ from typing import Any
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import action, after_conjunction
-from sgplan.llm.offline.syntax.body import body
+from sgplan.llm.offline.syntax.body import after_all, body
 from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.links import (
     at_end,
     comma_or_then,
+    done_closing,
     done_words,
     link,
     skip_subject,
@@ -31,6 +32,7 @@ from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.tree import (
     Action,
+    AfterAll,
     Body,
     Described,
     FloorSpec,
@@ -66,17 +68,25 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     if delay is not None:  # "wait 5 min", "in ten minutes", "for a few minutes"
         return Refusal(rf.left_over(r.quote(max(delay - 2, 0), delay + 1)))
     i, opener = 0, None
-    said = r.phrase(0, lx.WHOLE_MISSION)
-    if said is not None and r.word(len(said)) == "," and said[0] not in lx.WAYPOINT_OPENERS:
-        opener, i = r.quote(0, len(said)), len(said) + 1  # "The whole time, keep out of X."
+    # "And the whole time, ..."; not "And while you're at it, ...", which also adds goals (as *also*)
+    lead_and = 1 if r.word(0) in ("and", "but", "also") and r.word(1) != "while" else 0
+    said = r.phrase(lead_and, lx.WHOLE_MISSION)
+    if said is not None and r.word(lead_and + len(said)) == "," and said[0] not in lx.WAYPOINT_OPENERS:
+        i = lead_and + len(said) + 1  # "The whole time, keep out of X."
+        opener = r.quote(0, i - 1)
     precedes = None
     if r.at(i, *lx.BEFORE_THAT) or r.word(i) in lx.FIRST:
         i += 2 if r.at(i, *lx.BEFORE_THAT) else 1
         i += 1 if r.word(i) == "," else 0
         precedes = r.quote(0, i)
+    opened = after_all_opening(r, i)
+    if opened is not None:
+        i = opened.end
     lead = link(r, i)
     if not isinstance(lead, Match):
         return lead
+    if opened is not None:
+        lead = Match(Link(True), lead.end)
     floor, start = floor_opening(r, lead.end)
     said_body = sentence_body(r, start)
     if not isinstance(said_body, Match):
@@ -85,7 +95,7 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
             said_body.node, PlainSentence) and not said_body.node.body.items:
         return Refusal(rf.order_without_goal(r.quote(0, len(r))))  # "Last: the office" is not set aside
     if (precedes is None and not lead.node.sequence and isinstance(said_body.node, PlainSentence)
-            and (r.trailing_after(len(r) - 1) or r.trailing_after(len(r) - 2)
+            and (r.trailing_after(len(r) - 1) or r.trailing_after(len(r) - 2) or closes_done(r)
                  or carries_it(said_body.node.body))):
         lead = Match(Link(True), lead.end)  # "Go to the office. Visit the kitchen afterwards.": as "Then ..."
     rest = link(r, said_body.end, sequence_too=False)
@@ -94,7 +104,27 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     if rest.end < len(r):
         return Refusal(rf.left_over(r.quote(rest.end, len(r))))
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
-                                 r.span(0, len(r)), r.announced, r.after_item, floor), len(r))
+                                 r.span(0, len(r)), r.announced, r.after_item, floor,
+                                 opened.node if opened is not None else None, order_free(r)), len(r))
+
+
+def order_free(r: Reader) -> bool:
+    """Whether *in either / any order* closes a clause of the sentence (before a comma or its end)."""
+    return any((said := r.phrase(k, lx.ANY_ORDER)) is not None and r.word(k + len(said)) in ("", ",")
+               for k in range(len(r)))
+
+
+def after_all_opening(r: Reader, i: int) -> Match[AfterAll] | None:
+    """*After all that, ...* / *Once you've done both, ...* / *When all three are done, ...* opening the
+    sentence at ``i`` (the same words as in a sentence: :func:`.body.after_all`), or ``None``."""
+    found = after_all(r, i, (), False)
+    return found if isinstance(found, Match) and isinstance(found.node, AfterAll) else None
+
+
+def closes_done(r: Reader) -> bool:
+    """Whether the sentence ends in *when you're done* / *once you've finished* (*Go to the office when
+    you're done.*): it follows the sentence before it."""
+    return any(done_closing(r, k) for k in range(1, len(r)))
 
 
 def carries_it(said: Body) -> bool:
@@ -129,9 +159,10 @@ def floor_opening(r: Reader, i: int) -> tuple[FloorSpec | None, int]:
 
 def sentence_body(r: Reader, i: int) -> Parse[SentenceBody]:
     """The sentence after its lead words: an opening rule of :data:`OPENINGS`, else a plain body."""
-    condition = r.phrase(i + 1, lx.WHENEVER) or r.phrase(i + 1, lx.CONDITION_WORDS)
+    comma = r.skip(i + 1, frozenset({","})) - i - 1  # "And, uh, whenever you ...": the sound is dropped
+    condition = r.phrase(i + 1 + comma, lx.WHENEVER) or r.phrase(i + 1 + comma, lx.CONDITION_WORDS)
     if r.word(i) in lx.CONDITION_OPENERS and condition:
-        i += 1  # "And whenever you ...", "But if you ...": a new condition, not a continuation
+        i += 1 + comma  # "And whenever you ...", "But if you ...": a new condition, not a continuation
     found = OPENINGS.first(r, i)
     return found if found is not None else plain(r, i)
 
@@ -193,7 +224,17 @@ def after_first(r: Reader, i: int) -> Parse[SentenceBody]:
     """*After / once X, Y*: X, then Y."""
     if r.word(i) not in ("after", "once") or r.phrase(i, lx.AFTER_THAT):
         return None
+    if at_time(r, i + 1):
+        return Refusal(rf.order_by_a_time(r.quote(i, at_time(r, i + 1))))
     return prefixed(r, i + 1, prefix_last=False)
+
+
+def at_time(r: Reader, i: int) -> int:
+    """The end of a time or an event named at ``i`` after *before* / *after* / *once* opening a sentence
+    (*lunch*, *the guests*), which orders nothing the plan knows (with a comma after it, it is set aside
+    before the sentence is read); 0 when there is none."""
+    k = i + (1 if r.word(i) in lx.ARTICLES else 0)
+    return k + 1 if r.word(k) in lx.EVENT_WORDS else 0
 
 
 @OPENINGS.rule("on your way to Y, X")
@@ -203,7 +244,10 @@ def on_the_way_first(r: Reader, i: int) -> Parse[SentenceBody]:
     j = i + len(way or ()) + (r.word(i + len(way or ())) in lx.WAY_TOWARDS)
     if way is None or r.word(j) not in ("to", "into") or not r.np_starts(j + 1):
         return None
-    return prefixed(r, j, prefix_last=True)
+    said = prefixed(r, j, prefix_last=True)
+    if not isinstance(said, Match) or not isinstance(said.node, PrefixedSentence):
+        return said
+    return Match(replace(said.node, on_the_way=True), said.end)
 
 
 @OPENINGS.rule("before Y, X")
@@ -213,6 +257,8 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
     (stay out of Y until X, or go there after X?)."""
     if r.word(i) != "before":
         return None
+    if at_time(r, i + 1):
+        return Refusal(rf.order_by_a_time(r.quote(i, at_time(r, i + 1))))
     end = next((k for k in range(i, len(r)) if r.word(k) == ","), len(r))
     if any(r.word(k) == "into" and "near" in r.quote(k, k + 1).lower() for k in range(i, end)):
         return Refusal(rf.before_near(r.quote(i, end)))  # "go near", "anywhere near" are read as "into"

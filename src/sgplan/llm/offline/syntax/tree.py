@@ -593,13 +593,14 @@ class OnlyAfterSentence:
 class PrefixedSentence:
     """*After X, Y* / *Once X, Y* / *When done with X, Y* (``before`` False), *Before Y, X* / *On your way to
     Y, X* (``before`` True: the prefix comes last); ``strict``: *before Y, you must X*: Y, and not before
-    X."""
+    X; ``on_the_way``: Y is where the robot is heading (*on your way to Y*)."""
 
     prefix: Action
     prefix_last: bool
     body: Body
     postfix: Postfix
     strict: bool = False
+    on_the_way: bool = False
 
 
 @dataclass(frozen=True)
@@ -669,7 +670,10 @@ class MissionSentence:
     it starts with (*Then ...*). ``says_order``: the word *order* occurs (*The order doesn't matter.*).
     ``after_item``: an item of an ordered list after its first one (it continues the sequence, as *Then
     ...* does). ``floor_scope``: *On the top floor, ...* / *While you're upstairs, ...* (or a list's heading,
-    *Top floor tasks:*): the goals of the sentence are on that floor."""
+    *Top floor tasks:*): the goals of the sentence are on that floor. ``after_all``: *After all that, ...*
+    / *Once you've done both, ...* (it continues the sequence after every goal of the sentence before).
+    ``order_free``: *in either order* closes a clause of it (its actions are independent tasks: an object of
+    one is not looked for in the room of another)."""
 
     opener: str | None
     precedes: str | None
@@ -680,6 +684,8 @@ class MissionSentence:
     announced: Announced | None = None
     after_item: bool = False
     floor_scope: FloorSpec | None = None
+    after_all: AfterAll | None = None
+    order_free: bool = False
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,30 @@
+"""The offline translator on what surrounds the instructions: statements of any wording, exclamations,
+apologies and tag questions set aside and said back, and a statement naming a place followed by *so* and
+an order about it (``corpus/context.jsonl``, our own phrasings)."""
+
+from __future__ import annotations
+
+from sgplan.explain import explain_mission
+from sgplan.llm.offline import PatternTranslator
+from sgplan.llm.translation import mission_of
+from sgplan.scene.model import Building
+from tests.llm.offline.corpus import corpus_test
+
+test_context = corpus_test("context")
+
+
+def test_statements_and_remarks_set_aside_are_said_back(demo: Building) -> None:
+    text = ("Oh gosh, check the oven. Laundry's done, so let's get cracking. "
+            "The bathroom downstairs is being painted, so keep out of it.")
+    translation = PatternTranslator().translate(text, demo)
+    assert translation.set_aside == ("Oh gosh", "Laundry's done, so let's get cracking",
+                                     "The bathroom downstairs is being painted")
+    said = explain_mission(mission_of(translation), demo).text.splitlines()
+    assert "Not part of the mission: 'Laundry's done, so let's get cracking'" in said
+
+
+def test_the_pronoun_after_a_statement_is_the_place_it_names(demo: Building) -> None:
+    text = "Check the oven. The bathroom downstairs is being painted, so keep out of it."
+    translation = PatternTranslator().translate(text, demo)
+    avoided = [r for r in translation.references if r.role == "avoid"]
+    assert [(r.phrase, r.keys) for r in avoided] == [("The bathroom downstairs", ("room_5",))]
