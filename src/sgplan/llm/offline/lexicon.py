@@ -629,6 +629,13 @@ POLITE = POLITE + Phrases((("whatever", "you", "do"), ("whatever", "happens"), (
                            *((tell, "the", "robot", "to") for tell in ("tell", "ask", "get"))))
 """Emphatic openers of an order (*whatever you do, don't ...*, *above all, ...*) and wrappers of one (*the
 main job's just to ...*, *I just need you to ...*, *tell the robot to ...*): no meaning."""
+_HEDGED_ENDS = frozenset({("could",), ("can",), ("would",),
+                          ("could", "you"), ("can", "you"), ("would", "you")})
+POLITE = POLITE + Phrases((*phrase, hedge) for phrase in POLITE
+                           if phrase[-1:] in _HEDGED_ENDS or phrase[-2:] in _HEDGED_ENDS
+                           for hedge in ("possibly", "maybe", "perhaps", "just"))
+"""*I was wondering if you could possibly ...*, *would you maybe ...*: a hedge right after a polite wrapper's
+modal is part of the wrapper (elsewhere *possibly X* / *maybe X* asks for an optional goal: refused)."""
 
 _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "choose"), ("you", "please"),
                  ("you", "wish"), ("suits", "you"), ("is", "fine"), ("works",), ("suits",), ("'s", "fine"),

@@ -49,6 +49,9 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
             return moved
         node = Action(r.span(start, moved.end), verbs.node, None, moved.node, in_condition=in_condition)
         return Match(node, moved.end)
+    back = went_back(r, verbs.node, i, in_condition)
+    if back is not None:
+        return back
     if not r.np_starts(i):
         return Refusal(rf.expected_phrase(" ".join(verbs.node.words), r.rest(i)))
     phrases = phrase_list(r, i, "goal")
@@ -68,6 +71,22 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     if end is None:
         return Refusal(rf.give_without_look(r.quote(start, phrases.end)))
     return action_tail(r, state_said(r, end) if checked else end, node)
+
+
+def went_back(r: Reader, verbs: VerbWords, i: int, in_condition: bool) -> Parse[Action]:
+    """*go / come back and check the oven (again)*: the action after *and*, with *back* among its verbs (a
+    new visit of what was a goal before, as *go back to X*); ``None`` when the verb words do not end with
+    *back* before *and* and a verb (not *go back and forth*)."""
+    if not verbs.words or verbs.words[-1] not in lx.REVISIT_VERBS or r.word(i) not in ("and", ","):
+        return None
+    k = r.skip(i, ("and", ","))
+    if r.word(k) not in lx.POSITIVE_VERBS:
+        return None
+    then = action(r, k, in_condition)
+    if not isinstance(then, Match):
+        return then
+    words = replace(then.node.verbs, words=verbs.words + then.node.verbs.words)
+    return Match(replace(then.node, verbs=words), then.end)
 
 
 def given(r: Reader, i: int) -> int | None:
