@@ -1483,6 +1483,8 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("dwnstrs",): ("downstairs",),
     ("downstrs",): ("downstairs",),
     ("dnstrs",): ("downstairs",),
+    ("upstair",): ("upstairs",),  # learners' singular
+    ("downstair",): ("downstairs",),
     ("nxt",): ("next",),
     ("u",): ("you",),
     ("ur",): ("your",),

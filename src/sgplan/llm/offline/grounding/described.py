@@ -63,12 +63,14 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
         which = ground_phrase(np.apposition, Where("qualifier"), disc)
         noun.entities = [e for e in noun.entities if (e in which.entities) != np.apposition_excludes]
     one_floor(noun.entities, guessed, disc)  # "the TV upstairs in the bedroom": the bedrooms' one TV
+    # which couch is big is not known; nor which bathroom is the "downstair" one, even where only one of
+    # them was visited before: a description must leave one entity before "back to" narrows by the visits
+    if np.descriptive and len(noun.entities) > (np.determiner.count or 1):
+        rf.refuse(rf.undecided_description(np.descriptive, core, noun.entities, not noun.head.plural))
     if where.revisit and mode == "the" and len(noun.entities) > 1:  # "then back to the bathroom again"
         before = {e.key for g in disc.goals_before(np.span.start) for e in g.entities}
         if len(visited := [e for e in noun.entities if e.key in before]) == 1:
             noun.entities = visited
-    if np.descriptive and len(noun.entities) > (np.determiner.count or 1):  # which couch is big is not known
-        rf.refuse(rf.undecided_description(np.descriptive, core, noun.entities, not noun.head.plural))
     g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, noun.entities, mode,
                  noun.room_scoped, where.role, np.determiner.count,
                  noun.head.kind == "room" and not noun.head.categories)
