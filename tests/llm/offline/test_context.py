@@ -28,3 +28,14 @@ def test_the_pronoun_after_a_statement_is_the_place_it_names(demo: Building) -> 
     translation = PatternTranslator().translate(text, demo)
     avoided = [r for r in translation.references if r.role == "avoid"]
     assert [(r.phrase, r.keys) for r in avoided] == [("The bathroom downstairs", ("room_5",))]
+
+
+def test_praise_times_guesses_and_purposes_set_aside_are_said_back(demo: Building) -> None:
+    text = ("I lost my glasses, most likely somewhere upstairs. This evening stay on the ground floor: "
+            "check the oven, you know, to switch it off. Lovely, thank you.")
+    translation = PatternTranslator().translate(text, demo)
+    assert translation.set_aside == ("I lost my glasses, most likely somewhere upstairs", "This evening",
+                                     "you know, to switch it off", "Lovely, thank you")
+    said = explain_mission(mission_of(translation), demo).text.splitlines()
+    assert "Not part of the mission: 'This evening'" in said
+    assert "Not part of the mission: 'Lovely, thank you'" in said

@@ -425,6 +425,8 @@ REFUSED_WORDS: dict[str, str] = {
     "maybe": "'maybe' (optional goals cannot be expressed; leave the goal out or make it a goal)",
     "perhaps": "'perhaps' (optional goals cannot be expressed; leave the goal out or make it a goal)",
     "possibly": "'possibly' (optional goals cannot be expressed; leave the goal out or make it a goal)",
+    "probably": "'probably' (optional goals cannot be expressed; leave the goal out or make it a goal)",
+    "likely": "'likely' (optional goals cannot be expressed; leave the goal out or make it a goal)",
     "optionally": "'optionally' (optional goals cannot be expressed; leave the goal out or make it a goal)",
     "hopefully": "'hopefully' (optional goals cannot be expressed; leave the goal out or make it a goal)",
     "ideally": "'ideally' (preferences cannot be expressed; say what must happen)",
@@ -1216,6 +1218,9 @@ EVENT_VERBS = word_set("arrive arrives come comes leave leaves get gets back hom
 """In a time expression of an event (*before the guests arrive*, *after I get back*)."""
 EVENT_VERBS = EVENT_VERBS | word_set("over done finished ready served up awake")
 """(*once lunch is over*, *when dinner's ready*)."""
+DAY_OPENERS = ("this", "tonight", "today", "tomorrow")
+"""The words a time of day that opens an order without a comma starts with (*This evening stay ...*,
+*Tonight check ...*; not *the guests arrive*, an event)."""
 EVENT_OPENERS = ("before", "after", "by", "while", "once", "when")
 """The words a time expression of an event starts with (*before the guests arrive*, *once lunch is over*)."""
 FEW = ("few", "couple", "several")
@@ -1302,6 +1307,17 @@ is then a correction, not an apology."""
 STATES = word_set("wet slippery busy occupied closed locked flooded painted drying messy dirty filthy "
                   "cluttered noisy dark cold freezing hot smelly blocked broken")
 """States a note gives a place without a verb (*office wet - avoid it*, *NB: lobby busy*): context."""
+STATEMENT_HEDGES = word_set("probably maybe perhaps possibly likely definitely surely somewhere")
+"""Words that open a clause adding a guess to the statement before it (*I lost my glasses, probably somewhere
+upstairs*): with no verb, place, object or pronoun after them it is part of that context."""
+HEDGE_INTENSIFIERS = word_set("most very quite pretty almost")
+"""Before a hedge of :data:`STATEMENT_HEDGES` (*most likely*, *quite possibly*)."""
+GOING_VERBS = word_set("go come get head move walk run travel proceed return pop nip stop pass drive "
+                       "navigate arrive stay remain keep")
+"""Verbs of going or staying: after *, to* they may say where to go (*..., to go upstairs*), never a mere
+purpose (:func:`.syntax.context.purpose_infinitive`)."""
+PURPOSE_TAILS = word_set("off up out it them yourself myself")
+"""After the verb of a purpose *, to rinse off* / *, to check it*: words that name nothing."""
 NOW_WORDS = word_set("now atm rn today still again")
 PRAISE = word_set("cool great perfect lovely nice sweet awesome brilliant excellent super fab fantastic "
                   "wonderful splendid marvellous ace grand good ok okay alright")

@@ -17,8 +17,10 @@ day, meal or event opening or closing a sentence (*Before lunch,*, *... tonight*
 bare noun the grammar has no role for (*Laundry's done*, *people are asleep*), or a place and its state in a
 note (*office wet*). Remarks (:data:`.lexicon.CLOSING`) around the context or closing the sentence are set
 aside with it, and so is a sentence of praise only (*Perfect.*) or a bare apology before a statement that
-names nothing (*Sorry, I forgot something.*); a reason after an order (*... as it needs charging*) is set
-aside where it stands. After a statement that names one place, the pronoun of the order is bound to it
+names nothing (*Sorry, I forgot something.*), praise before a sign-off (*Lovely, thank you.*), a guess added
+to a statement (*..., probably somewhere upstairs*) and a time of day opening an order without a comma
+(*This evening stay ...*); a reason or a purpose after an order (*... as it needs charging*, *..., to rinse
+off*) is set aside where it stands. After a statement that names one place, the pronoun of the order is bound to it
 (:mod:`.stated_place`).
 """
 
@@ -65,7 +67,8 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     if len(clauses) > 1 and stated_start(opening) is not None:  # "I'm on the middle floor - stay on it, ..."
         return [opening, *split(replace(r, toks=r.toks[skip_joiner(r, clauses[1][0]):]), said_before)]
     first, last = 0, len(clauses)
-    while first < last and (is_context(r, *clauses[first], leading=True) or closing_only(r, *clauses[first])):
+    while first < last and (is_context(r, *clauses[first], leading=True) or closing_only(r, *clauses[first])
+                            or (first > 0 and hedged_addition(r, *clauses[first]))):
         first += 1
     while last > first and (is_context(r, *clauses[last - 1], leading=False)
                             or closing_only(r, *clauses[last - 1])):
@@ -112,6 +115,10 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
     ends = sorted({*cuts, *joins, len(r)})
     out: list[tuple[int, int]] = []
     for start, end in zip(starts, ends):
+        head = time_head(r, start, end)
+        if head is not None:  # "This evening stay on this floor", "Tonight check the oven"
+            out.append((start, head))
+            start = head
         tail = time_tail(r, start, end)
         reason = reason_span(r, start, end) if tail is None else None
         out += ([(start, tail), (tail, end)] if tail is not None
@@ -125,7 +132,7 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
     ``None`` when there is none, or when it says what not to do or asks something (*because I need you to
     ...*: left to the parser)."""
     k = next((k for k in range(start, end) if r.phrase(k, lx.REASONS) or purpose(r, k, end)
-              or after_order_reason(r, k)), None)
+              or purpose_infinitive(r, k, end) or after_order_reason(r, k)), None)
     if k is None:
         return None
     stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
@@ -155,6 +162,18 @@ def purpose(r: Reader, k: int, end: int) -> bool:
         (w := r.word(j)) in lx.ARTICLES or w in lx.POSSESSIVES or w == "'s" or w in lx.EVENT_WORDS
         or (w.isalpha() and w not in lx.LEXICON_WORDS and r.head(j) is None) for j in said) and not any(
         r.word(j) in lx.TIME_UNITS or r.word(j) in lx.SEQUENCE_TIMES for j in said)
+
+
+def purpose_infinitive(r: Reader, k: int, end: int) -> bool:
+    """Whether *to* at ``k``, opening a clause after a comma, says what an order is for (*..., you know, to
+    rinse off*, *..., to check it*): a verb that is not one of going or staying (*, to go upstairs* may say
+    where to go) and at most two words that name nothing (:data:`.lexicon.PURPOSE_TAILS`) up to the clause's
+    end."""
+    verb = r.word(k + 1)
+    return (r.word(k) == "to" and k > 0 and r.word(k - 1) == "," and end - (k + 2) <= 2
+            and verb.isalpha() and verb not in lx.GOING_VERBS and r.head(k + 1) is None
+            and (verb in lx.POSITIVE_VERBS or verb not in lx.LEXICON_WORDS)
+            and all(w in lx.PURPOSE_TAILS for w in r.words[k + 2:end]))
 
 
 def counted(r: Reader, start: int, end: int) -> bool:
@@ -196,14 +215,36 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
             or event_note(r, start, end) or is_reason(r, start, end))
 
 
+def hedged_addition(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)``, after a statement set aside, only adds a guess to it (*I lost my
+    glasses, probably somewhere upstairs*, *..., most likely downstairs*): a hedge
+    (:data:`.lexicon.STATEMENT_HEDGES`), then words that name nothing and ask nothing (:func:`mere_talk`,
+    upstairs and downstairs allowed) and have no role in the grammar (*outside*, *in*: where, or a goal?)."""
+    start += r.word(start) in lx.HEDGE_INTENSIFIERS  # "most likely", "quite possibly"
+    return (r.word(start) in lx.STATEMENT_HEDGES and end > start + 1
+            and mere_talk(r, start + 1, end, floors=False)
+            and not any(r.word(k) in lx.STRUCTURAL or r.phrase(k, lx.POLITE) for k in range(start + 1, end)))
+
+
 def closing_only(r: Reader, start: int, end: int) -> bool:
     """Whether the words ``[start, end)`` are only remarks that ask nothing (*Oh*, *Right*, *Thanks*, *Lovely,
     cheers*)."""
     k = skip_joiner(r, start)
-    while k < end and (said := r.phrase(k, lx.CLOSING) or ((r.word(k),) if r.word(k) in lx.HESITATIONS
-                                                           or r.word(k) == "," or signature(r, k) else None)):
+    while k < end and (said := ((r.word(k),) if praise_before_closing(r, k, end) else None)
+                       or r.phrase(k, lx.CLOSING) or ((r.word(k),) if r.word(k) in lx.HESITATIONS
+                                                      or r.word(k) == "," or signature(r, k) else None)):
         k += len(said)
     return start < k == end
+
+
+def praise_before_closing(r: Reader, k: int, end: int) -> bool:
+    """Whether the word at ``k`` is praise (:data:`.lexicon.PRAISE`) that only remarks before more of them
+    (*Lovely, thank you.*, *Great, thank you so much!*, *Perfect - cheers*): praise alone is no remark
+    inside a clause (*Is the kitchen lovely?* asks something)."""
+    j = k + 1
+    while j < end and (r.word(j) in lx.PRAISE or r.word(j) == ","):
+        j += 1
+    return r.word(k) in lx.PRAISE and j < end and closing_only(r, j, end)
 
 
 def signature(r: Reader, k: int) -> bool:
@@ -231,11 +272,12 @@ def event_note(r: Reader, start: int, end: int) -> bool:
                    or not r.word(k).isalpha() for k in range(start, end))
 
 
-def mere_talk(r: Reader, start: int, end: int) -> bool:
+def mere_talk(r: Reader, start: int, end: int, floors: bool = True) -> bool:
     """Whether the words ``[start, end)`` (what is left after a statement) name nothing and ask nothing (*I
-    left my bag somewhere, no idea where, ...*)."""
+    left my bag somewhere, no idea where, ...*); ``floors``: *upstairs* / *downstairs* count as naming."""
     return not any(r.head(k) is not None or r.word(k) in lx.POSITIVE_VERBS or r.phrase(k, lx.NEG_STARTS)
-                   or r.word(k).startswith(("room_", "object_")) or r.word(k) in lx.RELATIVE_FLOORS
+                   or r.word(k).startswith(("room_", "object_"))
+                   or (floors and r.word(k) in lx.RELATIVE_FLOORS)
                    or r.word(k) in lx.REFUSED_WORDS or r.word(k) in lx.PRONOUNS  # "so leave it alone"
                    for k in range(start, end))
 
@@ -264,6 +306,17 @@ def time_tail(r: Reader, start: int, end: int) -> int | None:
         if r.word(k) in lx.TIME_OPENERS and r.word(k - 1) not in lx.UNTIL_WORDS and is_time(r, k, end):
             return k
     return None
+
+
+def time_head(r: Reader, start: int, end: int) -> int | None:
+    """Where the order after a time of day opening the clause ``[start, end)`` without a comma starts (*This
+    evening stay on this floor*, *Tonight check the oven*), or ``None``; only a day's time (opening with
+    :data:`.lexicon.DAY_OPENERS`): an event (*before dinner go ...*, *the guests arrive ...*) is left to the
+    parser, as are *later* and *now*, which order the steps."""
+    if r.word(start) not in lx.DAY_OPENERS:
+        return None
+    return next((k for k in range(start + 1, min(start + 5, end))
+                 if is_time(r, start, k) and (starts_order(r, k) or r.word(k) in lx.STAY)), None)
 
 
 def statement(r: Reader, start: int, end: int) -> str | None:
