@@ -768,6 +768,9 @@ CLOSING = Phrases((
       for sec in ("sec", "mo", "min")),
     ("whenever", "you", "are", "ready"), ("whenever", "you", "are", "free"),
     ("if", "that", "is", "fine"),
+    *(("if", "you", would, "not", "mind") for would in ("would", "could")),
+    *((when, "suits", *you) for when in ("whenever", "when", "whatever") for you in ((), ("you",))),
+    *(("when", "it", "suits", *you) for you in ((), ("you",))), ("whenever", "is", "convenient"),
     # praise only with thanks after it: "Is the kitchen lovely?" asks something
     *((praise, *comma, thanks) for praise in ("lovely", "brilliant", "perfect", "great", "awesome", "super")
       for comma in ((), (",",)) for thanks in ("thanks", "cheers", "ta")),
@@ -1300,6 +1303,16 @@ AFTER_ORDER_REASONS = Phrases((*(("as", who) for who in ("i", "we", "it", "they"
 oven in case it was left on*): opening a sentence they may say when or if (*as we leave*, *in case of ...*),
 which is left to the parser."""
 APOLOGY_WORDS = ("sorry", "oops", "whoops", "apologies")
+CLOSING_TAILS = Phrases((("at", "all"), ("indeed",), ("with", "it"), ("with", "you"), ("with", "that"),
+                         ("with", "this"), ("by", "me"), ("for", "me")))
+"""Words that only make a remark of :data:`CLOSING` stronger or say to whom (*no rush at all*, *thank you very
+much indeed*, *take your time with it*, *if that's okay with you*): part of the remark, right after it."""
+UNSURE = Phrases((("not", "sure"), ("not", "certain"), ("can", "not", "remember"), ("can", "not", "recall"),
+                  ("do", "not", "remember"), ("do", "not", "know"), ("dunno",), ("no", "idea"),
+                  ("just", "wondering"), ("wondering",), ("not", "sure", "but")))
+"""A speaker's doubt said without its subject (*Not sure if I turned it off.*, *Can't remember whether the
+oven's on*): before *if* / *whether* the clause after it is a statement like any other."""
+
 CORRECTING_WORDS = word_set("mean meant means wrong mistake instead rather actually not other else said "
                             "say wanted want need needed")
 """After *Sorry,* words that may say what was meant (*Sorry, I meant ...*, *Sorry, wrong one*): the sentence

@@ -85,6 +85,11 @@ def order_after_ordered_goals() -> str:
     return rephrase("'the order does not matter' after goals given in order; say which it is")
 
 
+def apology_about_place(words: str) -> str:
+    return rephrase(f"'{words}': an apology about a room or object says nothing of what to do there (it is "
+                    "no goal); say what to do ('go to X'), or 'avoid X' to keep away")
+
+
 # ------------------------------------------------------------------------------------------ noun phrases
 def expected_phrase_at_end() -> str:
     return rephrase("expected a room or object at the end of the sentence")

@@ -20,8 +20,9 @@ aside with it, and so is a sentence of praise only (*Perfect.*) or a bare apolog
 names nothing (*Sorry, I forgot something.*), praise before a sign-off (*Lovely, thank you.*), a guess added
 to a statement (*..., probably somewhere upstairs*) and a time of day opening an order without a comma
 (*This evening stay ...*); a reason or a purpose after an order (*... as it needs charging*, *..., to rinse
-off*) is set aside where it stands. After a statement that names one place, the pronoun of the order is bound to it
-(:mod:`.stated_place`).
+off*) is set aside where it stands. After a statement that names one place, the pronoun of the order is
+bound to it (:mod:`.stated_place`). An apology about a room or object (*Sorry about the kitchen.*) is
+refused.
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.preamble import stated_start
 from sgplan.llm.offline.syntax.reader import Match, Reader
@@ -61,6 +63,10 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     if event_note(r, 0, len(r)) or is_time(r, 0, len(r)):
         return [aside(r, 0, len(r))]
     clauses = comma_clauses(r)
+    for a, b in clauses:
+        if (r.word(a) in lx.APOLOGY_WORDS and r.word(a + 1) in ("for", "about")
+                and any(r.head(k) is not None for k in range(a, b))):  # "Sorry about the kitchen."
+            rf.refuse(rf.apology_about_place(r.quote(a, b)))
     if closing_only(r, 0, len(r)):
         return [aside(r, 0, len(r))]  # "Thanks a lot!", "Lovely, cheers.": a sign-off, said back
     opening = replace(r, toks=r.toks[:clauses[0][1]])
@@ -211,6 +217,8 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
     statement that is not a need about the scene (see the module docstring)."""
     said = skip_joiner(r, r.skip(start, lx.INTERJECTIONS))  # "ok I dropped my keys somewhere, ..."
     said = said + 1 if r.word(said) in lx.EVENT_WORDS and r.word(said + 1) in lx.SUBJECT_PRONOUNS else said
+    doubt = r.phrase(said, lx.UNSURE)  # "Not sure if I turned it off": the statement after 'if'
+    said = said + len(doubt) + 1 if doubt and r.word(said + len(doubt)) in lx.CHECK_THAT[1:] else said
     return (is_time(r, start, end) or statement(r, said, end) == "aside"
             or event_note(r, start, end) or is_reason(r, start, end))
 
@@ -231,10 +239,23 @@ def closing_only(r: Reader, start: int, end: int) -> bool:
     cheers*)."""
     k = skip_joiner(r, start)
     while k < end and (said := ((r.word(k),) if praise_before_closing(r, k, end) else None)
-                       or r.phrase(k, lx.CLOSING) or ((r.word(k),) if r.word(k) in lx.HESITATIONS
-                                                      or r.word(k) == "," or signature(r, k) else None)):
+                       or r.phrase(k, lx.CLOSING) or apology_for(r, k, end)
+                       or ((r.word(k),) if r.word(k) in lx.HESITATIONS
+                           or r.word(k) == "," or signature(r, k) else None)):
         k += len(said)
+        k += len(r.phrase(k, lx.CLOSING_TAILS) or ()) if said != (",",) else 0  # "no rush at all"
     return start < k == end
+
+
+def apology_for(r: Reader, k: int, end: int) -> tuple[str, ...] | None:
+    """The words of an apology for something that names nothing and asks nothing, up to ``end`` (*Sorry for
+    the late notice*, *apologies about the short notice*), else ``None``; *sorry about the kitchen* names a
+    room (what of it?) and is no remark."""
+    if (r.word(k) not in lx.APOLOGY_WORDS or r.word(k + 1) not in ("for", "about") or end - k > 7
+            or not mere_talk(r, k + 2, end)
+            or any(r.word(j) in lx.STRUCTURAL and r.word(j) not in lx.ARTICLES for j in range(k + 2, end))):
+        return None
+    return tuple(r.words[k:end])
 
 
 def praise_before_closing(r: Reader, k: int, end: int) -> bool:
