@@ -39,3 +39,9 @@ def test_praise_times_guesses_and_purposes_set_aside_are_said_back(demo: Buildin
     said = explain_mission(mission_of(translation), demo).text.splitlines()
     assert "Not part of the mission: 'This evening'" in said
     assert "Not part of the mission: 'Lovely, thank you'" in said
+
+
+def test_remarks_after_a_joiner_are_said_back(demo: Building) -> None:
+    text = "Check the oven, as usual. Sit on the couch, as discussed."
+    translation = PatternTranslator().translate(text, demo)
+    assert translation.set_aside == ("as usual", "as discussed")

@@ -1302,6 +1302,25 @@ AFTER_ORDER_REASONS = Phrases((*(("as", who) for who in ("i", "we", "it", "they"
 """Reasons only after an order in the same sentence (*check the laptop as it needs charging*, *check the
 oven in case it was left on*): opening a sentence they may say when or if (*as we leave*, *in case of ...*),
 which is left to the parser."""
+AFTER_ORDER_REASONS = AFTER_ORDER_REASONS + Phrases((
+    ("seeing", "as"), ("seeing", "that"), ("given", "that"), ("now", "that"), ("considering", "that")))
+"""(*check the oven, seeing as we're cooking tonight*, *... now that dinner is done*)."""
+_PAST_TALK = ("discussed", "agreed", "promised", "planned", "requested", "asked", "arranged", "instructed",
+              "mentioned", "said")
+CLOSING = CLOSING + Phrases((
+    # what was said before: "as discussed", "like I asked", "same as always"
+    *((as_, said) for as_ in ("as", "like") for said in _PAST_TALK),
+    *((as_, who, said) for as_ in ("as", "like") for who in ("i", "we") for said in _PAST_TALK),
+    *((*the, "same", "as", *when) for the in ((), ("the",))
+      for when in (("always",), ("usual",), ("yesterday",), ("last", "time"), ("last", "week"))),
+    ("like", "always"), ("like", "usual"),
+    # encouragement: "you know the drill", "you've got this", "over to you"
+    ("you", "know", "the", "drill"), *(("you", be, "doing", great) for be in ("are", "'re")
+                                        for great in ("great", "well", "amazing", "brilliant")),
+    ("you", "have", "got", "this"), ("you", "got", "this"), ("you", "can", "do", "it"), ("over", "to", "you"),
+    ("all", "yours"), ("it", "is", "all", "yours")))
+"""More of :data:`CLOSING`: what was said before (*as discussed*, *like I asked*, *same as always*) and
+encouragement (*you know the drill*, *you've got this*), which ask nothing wherever they close a clause."""
 APOLOGY_WORDS = ("sorry", "oops", "whoops", "apologies")
 CLOSING_TAILS = Phrases((("at", "all"), ("indeed",), ("with", "it"), ("with", "you"), ("with", "that"),
                          ("with", "this"), ("by", "me"), ("for", "me")))

@@ -90,6 +90,11 @@ def apology_about_place(words: str) -> str:
                     "no goal); say what to do ('go to X'), or 'avoid X' to keep away")
 
 
+def reason_before_pronoun(reason: str, pronoun: str) -> str:
+    return rephrase(f"'{reason}' names a place before '{pronoun}': is '{pronoun}' that place, or what the "
+                    "order before it named? Name the place again")
+
+
 # ------------------------------------------------------------------------------------------ noun phrases
 def expected_phrase_at_end() -> str:
     return rephrase("expected a room or object at the end of the sentence")

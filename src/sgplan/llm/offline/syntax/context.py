@@ -87,6 +87,10 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c) or counted(r, *c)]
     words = [k for k in range(start, clauses[last - 1][1])
              if not any(a <= k < b or (k == a - 1 and r.word(k) == ",") for a, b in middle)]
+    naming = [(a, b) for a, b in middle if any(r.head(k) is not None for k in range(a, b))]
+    pronoun = next((k for k in words if naming and k > naming[0][0] and r.word(k) in lx.PRONOUNS), None)
+    if pronoun is not None:  # "check the oven, because the kitchen is wet, avoid it": which is 'it'?
+        rf.refuse(rf.reason_before_pronoun(r.quote(*naming[0]), r.word(pronoun)))
     subject = skip_joiner(r, r.skip(clauses[first - 1][0], lx.INTERJECTIONS)) if first else 0
     order = bind_statement_pronoun(r, subject, [clauses[first][0], *words], named) if first else None
     if order is None and said_before and named and any(w in lx.PRONOUNS for w in r.words[clauses[first][0]:]):
@@ -237,7 +241,7 @@ def hedged_addition(r: Reader, start: int, end: int) -> bool:
 def closing_only(r: Reader, start: int, end: int) -> bool:
     """Whether the words ``[start, end)`` are only remarks that ask nothing (*Oh*, *Right*, *Thanks*, *Lovely,
     cheers*)."""
-    k = skip_joiner(r, start)
+    k = start if r.phrase(start, lx.CLOSING) else skip_joiner(r, start)  # "as usual", "so no rush"
     while k < end and (said := ((r.word(k),) if praise_before_closing(r, k, end) else None)
                        or r.phrase(k, lx.CLOSING) or apology_for(r, k, end)
                        or ((r.word(k),) if r.word(k) in lx.HESITATIONS
