@@ -1321,6 +1321,21 @@ CLOSING = CLOSING + Phrases((
     ("all", "yours"), ("it", "is", "all", "yours")))
 """More of :data:`CLOSING`: what was said before (*as discussed*, *like I asked*, *same as always*) and
 encouragement (*you know the drill*, *you've got this*), which ask nothing wherever they close a clause."""
+CLOSING = CLOSING + Phrases((
+    # notice given before a statement: "Heads up, the dog is loose.", "Just so you know, ..."
+    *((*just, *a, "heads", "up") for just in ((), ("just",)) for a in ((), ("a",))),
+    ("just", "so", "you", "know"), ("so", "you", "know"), ("for", "your", "information"),
+    ("for", "the", "record"), ("quick", "note"), ("just", "a", "note"), ("a", "note"), ("fair", "warning"),
+    ("just", "fyi")))
+"""More of :data:`CLOSING`: notice given before a statement, which asks nothing itself."""
+_THAT = ((), ("that",))
+NOTICE_THAT = Phrases((*((*please, "note", *that) for please in ((), ("please",)) for that in _THAT),
+                       *((*please, "be", "aware", "that") for please in ((), ("please",))),
+                       *((verb, "in", "mind", *that) for verb in ("bear", "keep") for that in _THAT),
+                       ("remember", "that"), ("know", "that")))
+"""Words that open a statement to be noted (*Note that the kitchen is wet.*, *Bear in mind the dog is
+asleep*): the statement after them is context like any other (*remember* without *that* may ask to go:
+left to the parser)."""
 APOLOGY_WORDS = ("sorry", "oops", "whoops", "apologies")
 CLOSING_TAILS = Phrases((("at", "all"), ("indeed",), ("with", "it"), ("with", "you"), ("with", "that"),
                          ("with", "this"), ("by", "me"), ("for", "me")))

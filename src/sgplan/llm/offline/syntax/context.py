@@ -223,6 +223,7 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
     said = said + 1 if r.word(said) in lx.EVENT_WORDS and r.word(said + 1) in lx.SUBJECT_PRONOUNS else said
     doubt = r.phrase(said, lx.UNSURE)  # "Not sure if I turned it off": the statement after 'if'
     said = said + len(doubt) + 1 if doubt and r.word(said + len(doubt)) in lx.CHECK_THAT[1:] else said
+    said += len(r.phrase(said, lx.NOTICE_THAT) or ())  # "Note that the kitchen is wet"
     return (is_time(r, start, end) or statement(r, said, end) == "aside"
             or event_note(r, start, end) or is_reason(r, start, end))
 
