@@ -1326,8 +1326,13 @@ CLOSING = CLOSING + Phrases((
     *((*just, *a, "heads", "up") for just in ((), ("just",)) for a in ((), ("a",))),
     ("just", "so", "you", "know"), ("so", "you", "know"), ("for", "your", "information"),
     ("for", "the", "record"), ("quick", "note"), ("just", "a", "note"), ("a", "note"), ("fair", "warning"),
-    ("just", "fyi")))
-"""More of :data:`CLOSING`: notice given before a statement, which asks nothing itself."""
+    ("just", "fyi"),
+    # thinking aloud: "Hmm let me see, ...", "Where was I?", "what else... oh yeah, ..."
+    *(("let", "me", "see", *now) for now in ((), ("now",))),
+    *((*now, "where", "was", "i") for now in ((), ("now",))),
+    ("what", "else"), ("what", "was", "i", "saying"), ("what", "am", "i", "forgetting"), ("oh", "yes"),
+    ("ah", "yes")))
+"""More of :data:`CLOSING`: notice given before a statement and thinking aloud, which ask nothing."""
 _THAT = ((), ("that",))
 NOTICE_THAT = Phrases((*((*please, "note", *that) for please in ((), ("please",)) for that in _THAT),
                        *((*please, "be", "aware", "that") for please in ((), ("please",))),
