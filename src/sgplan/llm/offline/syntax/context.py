@@ -182,6 +182,7 @@ def purpose_infinitive(r: Reader, k: int, end: int) -> bool:
     verb = r.word(k + 1)
     return (r.word(k) == "to" and k > 0 and r.word(k - 1) == "," and end - (k + 2) <= 2
             and verb.isalpha() and verb not in lx.GOING_VERBS and r.head(k + 1) is None
+            and not misspelt_name(r, k + 1, end)
             and (verb in lx.POSITIVE_VERBS or verb not in lx.LEXICON_WORDS)
             and all(w in lx.PURPOSE_TAILS for w in r.words[k + 2:end]))
 
@@ -235,8 +236,14 @@ def hedged_addition(r: Reader, start: int, end: int) -> bool:
     upstairs and downstairs allowed) and have no role in the grammar (*outside*, *in*: where, or a goal?)."""
     start += r.word(start) in lx.HEDGE_INTENSIFIERS  # "most likely", "quite possibly"
     return (r.word(start) in lx.STATEMENT_HEDGES and end > start + 1
-            and mere_talk(r, start + 1, end, floors=False)
+            and mere_talk(r, start + 1, end, floors=False) and not misspelt_name(r, start + 1, end)
             and not any(r.word(k) in lx.STRUCTURAL or r.phrase(k, lx.POLITE) for k in range(start + 1, end)))
+
+
+def misspelt_name(r: Reader, start: int, end: int) -> bool:
+    """Whether a word of ``[start, end)`` may be a misspelt name of the scene (*to kitchn*): never set aside,
+    so that it is refused with its *did you mean*."""
+    return r.spelling is not None and any(r.spelling.may_be_a_misspelt_name(w) for w in r.words[start:end])
 
 
 def closing_only(r: Reader, start: int, end: int) -> bool:
@@ -257,7 +264,7 @@ def apology_for(r: Reader, k: int, end: int) -> tuple[str, ...] | None:
     the late notice*, *apologies about the short notice*), else ``None``; *sorry about the kitchen* names a
     room (what of it?) and is no remark."""
     if (r.word(k) not in lx.APOLOGY_WORDS or r.word(k + 1) not in ("for", "about") or end - k > 7
-            or not mere_talk(r, k + 2, end)
+            or not mere_talk(r, k + 2, end) or misspelt_name(r, k + 2, end)
             or any(r.word(j) in lx.STRUCTURAL and r.word(j) not in lx.ARTICLES for j in range(k + 2, end))):
         return None
     return tuple(r.words[k:end])
