@@ -21,7 +21,9 @@ names nothing (*Sorry, I forgot something.*), praise before a sign-off (*Lovely,
 to a statement (*..., probably somewhere upstairs*) and a time of day opening an order without a comma
 (*This evening stay ...*); a reason or a purpose after an order (*... as it needs charging*, *..., to rinse
 off*) is set aside where it stands. After a statement that names one place, the pronoun of the order is
-bound to it (:mod:`.stated_place`). An apology about a room or object (*Sorry about the kitchen.*) is
+bound to it (:mod:`.stated_place`). A statement may open with notice (*Note that ...*) or be the speaker's
+doubt without *I* (*Not sure if ...*). An apology about a room or object (*Sorry about the kitchen.*) and
+a reason naming a place between an order and a pronoun (*..., because the kitchen is wet, avoid it*) are
 refused.
 """
 
