@@ -24,6 +24,7 @@ from sgplan.llm.offline.names import Entity, head_word
 from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
     Attachment,
+    ByUnlisted,
     Contains,
     Described,
     Except,
@@ -358,6 +359,14 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     room.entities = [r for r in room.entities
                      if any(r.key in vocab.adjacent.get(e.key, ()) for e in entities)]
     return Noun(noun.head, entities, noun.room_scoped)
+
+
+@applies(ByUnlisted)
+def by_unlisted(q: ByUnlisted, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*the bowl on the counter*: the scene holds no counter, so the words are said back as set aside; which
+    bowl is meant is decided as for descriptive words (:func:`ground_described`)."""
+    disc.put_aside(disc.said(q.span.start, q.span.end))
+    return noun
 
 
 def by_an_object(said: str, noun: Noun, anchor: Grounded, disc: Discourse) -> Noun:

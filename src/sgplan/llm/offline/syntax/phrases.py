@@ -16,7 +16,7 @@ from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import qualifiers
 from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.links import closing_at
-from sgplan.llm.offline.syntax.noun_slot import NOUN_PHRASES, count_word, head_noun, noun_phrase
+from sgplan.llm.offline.syntax.noun_slot import NOUN_PHRASES, count_word, foreign_word, head_noun, noun_phrase
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.tree import (
     Described,
@@ -127,15 +127,6 @@ def handled_at(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounP
     if set(r.words[max(0, i - 2):i]) & lx.FETCH_VERBS:
         return Refusal(rf.thing_to_find(r.quote(i + 1, j), r.quote(i, at.end)))
     return Match(HandledAt(r.span(i, at.end), r.span(i, j), at.node), at.end)
-
-
-def foreign_word(r: Reader, i: int) -> bool:
-    """Whether the word at ``i`` may name a thing the scene does not hold: a word, no head noun of the
-    scene, no word of the grammar, and not a misspelt name of the scene (*the vse on the table* is refused,
-    never read as the table)."""
-    w = r.word(i)
-    return (w.isalpha() and r.head(i) is None and w not in lx.THING_STOPS
-            and (r.spelling is None or not r.spelling.may_be_a_misspelt_name(w)))
 
 
 @NOUN_PHRASES.rule("described")
