@@ -768,6 +768,11 @@ def demonstrative_of_nothing(said: str, what: str) -> str:
                     f"'that' / 'this' / 'the same' names again something already said); name the {what}")
 
 
+def demonstrative_read_or_told(said: str, read: str, told: str) -> str:
+    return rephrase(f"'{said}' could be '{read}', named before as part of the mission, or '{told}', named "
+                    "after it in what was set aside; name it")
+
+
 def demonstrative_or_step_room(said: str, antecedent: str, room: str, here: str) -> str:
     return rephrase(f"'{said}' after going to {room}: the one named before ('{antecedent}') or the one "
                     f"there ({here})? say 'the same {said.split()[-1]}' or name it with its room")
