@@ -184,11 +184,21 @@ def description_end(r: Reader, i: int) -> int:
     :func:`..grounding.described.ground_described`); ``i`` when no head noun follows them."""
     j = r.descriptive_end(i)
     k = j
-    while k < j + 2 and foreign_word(r, k) and r.spelling is not None and not r.spelling.is_known(r.word(k)):
-        k += 1  # a word of the grammar (*upstairs*, *dining*, *other*) is never a mere description
+    while k < j + 3 and describing_word(r, k):
+        k += 1  # "the old paperback book": the lexicon's words and unknown ones, mixed
     if k == j or (r.descriptive_end(k) == k and r.head(k) is None):
         return j
     return description_end(r, k)
+
+
+def describing_word(r: Reader, i: int) -> bool:
+    """Whether the word at ``i`` may describe a head noun that follows: a descriptive word of the lexicon that
+    names nothing of the scene (*old*), or a word neither the scene nor the lexicon knows (*paperback*; a word
+    of the grammar, *upstairs*, *dining*, *other*, is never a mere description)."""
+    w = r.word(i)
+    if w in lx.DESCRIPTIVE:
+        return not r.nouns.names_word(w) and r.head(i) is None
+    return foreign_word(r, i) and r.spelling is not None and not r.spelling.is_known(w)
 
 
 def anaphoric_one(r: Reader, i: int) -> bool:
