@@ -153,15 +153,27 @@ def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Describe
     *not* in *, not the one with the vase*)."""
     head = current_head(noun)
     one = r.descriptive_end(i + 2)  # "the bathroom, the (big) one upstairs"
-    if (role == "qualifier" or noun.determiner.mode != "the" or head is None or head.plural
+    if (noun.determiner.mode != "the" or head is None or head.plural
             or not head.categories or not isinstance(noun.head, Head) or r.word(i) not in (",", "not")
             or r.word(i + 1) != "the"
             or r.word(one) != "one" or r.phrase(one, lx.CHOICE_AFFIRMATIONS)):
         return None
+    if role == "qualifier" and head.kind != "room":
+        return None
     which = noun_phrase(r, i + 1, "qualifier", Head(head.kind, head.categories, False, 1))
     if isinstance(which, Match) and not isinstance(which.node, Described):
         return None
+    if role == "qualifier" and isinstance(which, Match) and not says_contents(which.node):
+        return None  # "the toilet in the bathroom, the one upstairs": the toilet's, or the bathroom's?
     return which  # type: ignore[return-value]
+
+
+def says_contents(which: NounPhrase) -> bool:
+    """Whether an apposition says only what a room holds (*the one with the vase*, *not the one that has two
+    sinks*): inside a room qualifier of an object (*the toilet in the other bathroom, not the one with the
+    vase*) it can only be about the room, as no object holds another."""
+    return (isinstance(which, Described) and bool(which.qualifiers)
+            and all(isinstance(q, Holds | Contains | Lacks) for q in which.qualifiers))
 
 
 def skip_in_it(r: Reader, i: int) -> int:
