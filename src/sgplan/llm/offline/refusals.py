@@ -779,9 +779,10 @@ def demonstrative_or_step_room(said: str, antecedent: str, room: str, here: str)
 
 
 # ---------------------------------------------------------------------------------------------- floors
-def floor_outside(said: str, building: str, floors: int) -> str:
+def floor_outside(said: str, building: str, floors: int, british: bool = False) -> str:
+    first = ("floor 1, counted from the ground floor the mission names" if british else "floor 0")
     return rephrase(f"'{said}': the building {building!r} has floors 0 to {floors - 1} (floor 0 is the "
-                    "lowest; 'the first floor' is floor 0)")
+                    f"lowest; 'the first floor' is {first})")
 
 
 def no_middle_floor(said: str, building: str, floors: int) -> str:
