@@ -12,7 +12,6 @@ are refused.
 from __future__ import annotations
 
 import re
-
 from collections.abc import Callable, Iterable
 
 from sgplan.llm.offline import lexicon as lx
@@ -31,7 +30,6 @@ from sgplan.llm.offline.syntax.tree import (
     TopFloor,
     UpThere,
 )
-
 
 _GROUND_FLOOR = re.compile(r"\b(?:ground|gnd|grnd)[\s-]*(?:floor|level|storey|flr|fl)\b", re.IGNORECASE)
 
