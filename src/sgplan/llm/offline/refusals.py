@@ -151,6 +151,11 @@ def trailing_after(said: str) -> str:
                     "that comes after ('A, then B')")
 
 
+def strict_closing(said: str, words: str) -> str:
+    return rephrase(f"'{said}': '{words}' closing the clause is not understood (which goal must wait, "
+                    f"and for which?); put it before the goal that waits ('A, and {words} B')")
+
+
 def order_without_goal(said: str) -> str:
     return rephrase(f"'{said}' says where in the order but names no goal; say the goal in the same sentence "
                     "('Last, the office.', 'Then the kitchen.')")
