@@ -1080,7 +1080,7 @@ NEGATION_JOINERS = ("and", "but")
 NEGATING = ("not", "never")
 PARTIAL_PROHIBITION = ("after", "once", "when", "during", "afterwards", "afterward", "later", "again")
 """After what to avoid: a prohibition for part of the mission, which is refused."""
-PARTIAL_FROM = (("from", "then"), ("from", "now"))
+PARTIAL_FROM = (("from", "then"), ("from", "now"), ("at", "some", "point"))
 UNTIL_WORDS = ("until", "before", "till")
 """After what to avoid: ``!X U Y``."""
 UNTIL_DONE_LINKS = ("is", "are", "has", "have")
@@ -1393,6 +1393,11 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("after", "doing", "this"): ("after", "that"),
     ("with", "that", "done"): ("after", "that"),
     ("with", "that", "out", "of", "the", "way"): ("after", "that"),
+    # a visit said again: "then the lounge once more" / "one more time" is "again"; "at least once" asks what
+    # any goal asks (one visit or more), so it says nothing ("at least twice" stays refused)
+    ("once", "more"): ("again",),
+    ("one", "more", "time"): ("again",),
+    ("at", "least", "once"): ("at", "some", "point"),
     ("along", "with"): ("and",),
     ("together", "with"): ("and",),
     ("plus",): ("and",),
