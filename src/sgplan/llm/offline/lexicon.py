@@ -1398,6 +1398,15 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("once", "more"): ("again",),
     ("one", "more", "time"): ("again",),
     ("at", "least", "once"): ("at", "some", "point"),
+    # the return said as a time, closing with a comma: "when you come back (down), X" / "once you're back,
+    # X" / "after you get back downstairs, X" is "on your way back (down), X" (X after what came before: the
+    # floor is where X is, which X's own words must single out); naming where ("when you come back to the
+    # kitchen, X") it is not this phrase
+    **{(when, "you", *verb, "back", *said, ","): ("on", "your", "way", "back", *way, ",")
+       for when in ("when", "once", "after")
+       for verb in (("come",), ("get",), ("are",), ("have", "come"), ("have", "got"), ("got",), ("came",))
+       for said, way in (((), ()), (("down",), ("down",)), (("up",), ("up",)), (("downstairs",), ("down",)),
+                         (("upstairs",), ("up",)))},
     ("along", "with"): ("and",),
     ("together", "with"): ("and",),
     ("plus",): ("and",),
