@@ -156,6 +156,12 @@ def strict_closing(said: str, words: str) -> str:
                     f"and for which?); put it before the goal that waits ('A, and {words} B')")
 
 
+def before_floor_move(said: str) -> str:
+    return rephrase(f"'{said}' orders the goals by a move between floors, not by a goal (on which floor is what "
+                    "follows?); say the goals in order with their floors ('check the oven, then go upstairs to "
+                    "the office')")
+
+
 def order_without_goal(said: str) -> str:
     return rephrase(f"'{said}' says where in the order but names no goal; say the goal in the same sentence "
                     "('Last, the office.', 'Then the kitchen.')")

@@ -265,6 +265,11 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
     said = prefixed(r, i + 1, prefix_last=True)
     if not isinstance(said, Match) or not isinstance(said.node, PrefixedSentence):
         return said
+    move = said.node.prefix
+    if move.verbs.floor is not None and move.phrases is None:
+        # "before you go upstairs, check the bathroom": the goals are done before the move, on the floor
+        # left (the move would single them out on the floor reached), and where the move ends is no goal
+        return Refusal(rf.before_floor_move(r.quote(i, end)))
     items = said.node.body.items
     if r.word(i + 1) != "to" and any(isinstance(item, Link) and item.sequence for item in items):
         return Refusal(rf.before_then(r.quote(i, said.end)))
