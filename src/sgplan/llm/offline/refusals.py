@@ -829,6 +829,11 @@ def up_there_of_nothing(word: str) -> str:
     return rephrase(f"'{word} there' does not refer to any place named before it")
 
 
+def up_there_not_so(said: str, last: str) -> str:
+    return rephrase(f"'{said}' after '{last}', which is not {said.split()[0]}stairs from where the robot "
+                    f"starts: the floor of '{last}', or another? Name the floor ('on floor 1')")
+
+
 def stay_where(word: str, where: str, building: str, floors: int) -> str:
     return rephrase(f"'stay {word}': the start floor {where} and the building {building!r} has floors 0 to "
                     f"{floors - 1}; say 'stay on floor k' or 'never go to floor k'")
