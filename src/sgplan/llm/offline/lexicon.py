@@ -1398,6 +1398,10 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("once", "more"): ("again",),
     ("one", "more", "time"): ("again",),
     ("at", "least", "once"): ("at", "some", "point"),
+    # an ordinal counting the steps with no comma after it ("first the oven, second the laptop, third the
+    # couch") is the ordinal with a comma ("second, ..."), before an article only (not "second bedroom")
+    **{(nth, article): (nth, ",", article) for nth in ("second", "third", "fourth", "fifth")
+       for article in ("the", "a", "an")},
     # the return said as a time, closing with a comma: "when you come back (down), X" / "once you're back,
     # X" / "after you get back downstairs, X" is "on your way back (down), X" (X after what came before: the
     # floor is where X is, which X's own words must single out); naming where ("when you come back to the
