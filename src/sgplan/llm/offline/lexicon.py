@@ -1087,6 +1087,8 @@ UNTIL_DONE_LINKS = ("is", "are", "has", "have")
 UNTIL_DONE_WORDS = DONE | {"been", "visited"}
 UNTIL_DONE_VERBS = ("visited", "checked", "cleaned")
 """``until both bathrooms are done / have been visited``."""
+IRREGULAR_PARTICIPLES = word_set("made set put shut swept fed taken brought seen")
+"""Past participles of chores not in *-ed* (*until the bed is made*, *once the table is set, ...*)."""
 OFF_LIMITS = Phrases(
     tuple((*be, *said) for be in (("is",), ("are",), ("is", "strictly"), ("are", "strictly"))
           for said in (("off", "limits"), ("out", "of", "bounds"), ("forbidden",), ("prohibited",),

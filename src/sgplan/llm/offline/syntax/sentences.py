@@ -26,6 +26,7 @@ from sgplan.llm.offline.syntax.links import (
     skip_subject,
     skip_until_subject,
 )
+from sgplan.llm.offline.syntax.negation import passive_end
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.qualifiers import head_kind
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
@@ -299,11 +300,12 @@ def only_verb_after(r: Reader, i: int) -> Parse[SentenceBody]:
 
 
 def prefixed(r: Reader, i: int, prefix_last: bool) -> Parse[SentenceBody]:
-    """The prefix clause at ``i`` (up to its comma), the body after it and a closing condition."""
+    """The prefix clause at ``i`` (up to its comma; a passive of the grammar's verbs may close it: *once the
+    oven is checked, ...*), the body after it and a closing condition."""
     prefix = after_conjunction(r, i)
     if not isinstance(prefix, Match):
         return prefix
-    rest = body(r, comma_or_then(r, prefix.end))
+    rest = body(r, comma_or_then(r, passive_end(r, prefix.end)))
     if not isinstance(rest, Match):
         return rest
     post = postfix(r, rest.end, 0)
