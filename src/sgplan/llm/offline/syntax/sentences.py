@@ -75,6 +75,8 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     if said is not None and r.word(lead_and + len(said)) == "," and said[0] not in lx.WAYPOINT_OPENERS:
         i = lead_and + len(said) + 1  # "The whole time, keep out of X."
         opener = r.quote(0, i - 1)
+    if i == 0 and r.word(0) in ("and", "but", "so") and ordered_opening(r, 1):
+        i = 1  # "And after that, X." / "But before that, X." / "And once you're done, X.": as without "and"
     precedes = None
     if r.at(i, *lx.BEFORE_THAT) or r.word(i) in lx.FIRST:
         i += 2 if r.at(i, *lx.BEFORE_THAT) else 1
@@ -107,6 +109,14 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
                                  r.span(0, len(r)), r.announced, r.after_item, floor,
                                  opened.node if opened is not None else None, order_free(r)), len(r))
+
+
+def ordered_opening(r: Reader, i: int) -> bool:
+    """Whether the words at ``i`` open a sentence with its place in the order (*after that*, *before that*,
+    *first*, *once you're done*, *after all that*)."""
+    lead = link(r, i)
+    return (r.at(i, *lx.BEFORE_THAT) or r.word(i) in lx.FIRST or after_all_opening(r, i) is not None
+            or (isinstance(lead, Match) and lead.node.sequence))
 
 
 def order_free(r: Reader) -> bool:
