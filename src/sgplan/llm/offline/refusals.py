@@ -157,9 +157,9 @@ def strict_closing(said: str, words: str) -> str:
 
 
 def before_floor_move(said: str) -> str:
-    return rephrase(f"'{said}' orders the goals by a move between floors, not by a goal (on which floor is what "
-                    "follows?); say the goals in order with their floors ('check the oven, then go upstairs to "
-                    "the office')")
+    return rephrase(f"'{said}' orders the goals by a move between floors, not by a goal (on which floor is "
+                    "what follows?); say the goals in order with their floors ('check the oven, then go "
+                    "upstairs to the office')")
 
 
 def order_without_goal(said: str) -> str:

@@ -360,8 +360,8 @@ def repeats(r: Reader, i: int) -> Parse[Repeat | None]:
 
 def in_between(r: Reader, i: int) -> Match[Action] | None:
     """After *twice*: ``(,) with (a trip / visit / stop) (to) Y in between``, ``(,) (and) (go to) Y in
-    between`` (*visiting Y*, *the office*, *pop into the office*) or ``(,) (and) in between (,) Y``: the action
-    of Y; ``None`` when the words are not there."""
+    between`` (*visiting Y*, *the office*, *pop into the office*) or ``(,) (and) in between (,) Y``: the
+    action of Y; ``None`` when the words are not there."""
     k = i + (1 if r.word(i) == "," else 0)
     k += 1 if r.word(k) == "and" else 0
     lead = 2 if r.at(k, "in", "between") else 1 if r.word(k) == "between" else 0
