@@ -1404,6 +1404,9 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     # couch") is the ordinal with a comma ("second, ..."), before an article only (not "second bedroom")
     **{(nth, article): (nth, ",", article) for nth in ("second", "third", "fourth", "fifth")
        for article in ("the", "a", "an")},
+    # steps numbered in words: "Step 1: ..., Step 2: ..." / "step one" are the ordinals ("first: ...")
+    **{("step", said): (nth,) for n, nth in enumerate(("first", "second", "third", "fourth"), 1)
+       for said in (str(n), ("one", "two", "three", "four")[n - 1])},
     # the return said as a time, closing with a comma: "when you come back (down), X" / "once you're back,
     # X" / "after you get back downstairs, X" is "on your way back (down), X" (X after what came before: the
     # floor is where X is, which X's own words must single out); naming where ("when you come back to the
