@@ -156,6 +156,11 @@ def strict_closing(said: str, words: str) -> str:
                     f"and for which?); put it before the goal that waits ('A, and {words} B')")
 
 
+def first_mid_sentence(said: str) -> str:
+    return rephrase(f"'{said}': 'first' after a comma could put what follows before everything said so far, "
+                    "or only before what comes next; say 'but first, X' or 'X, then ...'")
+
+
 def before_floor_move(said: str) -> str:
     return rephrase(f"'{said}' orders the goals by a move between floors, not by a goal (on which floor is "
                     "what follows?); say the goals in order with their floors ('check the oven, then go "

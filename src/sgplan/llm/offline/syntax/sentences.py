@@ -315,7 +315,8 @@ def prefixed(r: Reader, i: int, prefix_last: bool) -> Parse[SentenceBody]:
     prefix = after_conjunction(r, i)
     if not isinstance(prefix, Match):
         return prefix
-    rest = body(r, comma_or_then(r, passive_end(r, prefix.end)))
+    passive = passive_end(r, prefix.end)  # "once the oven is checked, ..." (not "... checked and X, ...")
+    rest = body(r, comma_or_then(r, passive if r.word(passive) in (",", "then") else prefix.end))
     if not isinstance(rest, Match):
         return rest
     post = postfix(r, rest.end, 0)
