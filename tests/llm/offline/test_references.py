@@ -19,3 +19,10 @@ def test_a_thing_the_scene_does_not_hold_is_said_back_as_set_aside(demo: Buildin
     assert translation.set_aside == ("the watering can",)
     said = explain_mission(mission_of(translation), demo).text.splitlines()
     assert said[-1] == "Not part of the mission: 'the watering can'"
+
+
+def test_a_place_the_scene_does_not_hold_is_said_back_as_set_aside(demo: Building) -> None:
+    translation = PatternTranslator().translate("Look at the laptop on the desk and then the couch.", demo)
+    assert translation.set_aside == ("on the desk",)
+    said = explain_mission(mission_of(translation), demo).text.splitlines()
+    assert said[-1] == "Not part of the mission: 'on the desk'"

@@ -533,6 +533,9 @@ LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through", "on", "ont
 """Repeated in a list after *either* / *both*: *either to A or to B*."""
 OBJECT_PLACING = frozenset({"at", "on", "under", "beside", "behind", "above", "below", "near", "by"})
 """Before an object, after an object: placed by it (*the chair at the desk*), which the scene cannot tell."""
+AFTER_UNLISTED_THING = word_set("and then in upstairs downstairs there please first too for")
+"""After *on the counter* (a thing the scene does not hold, after an object): where the words naming that
+thing end (any other word may go on naming it: *on the counter top*, *on the side of the couch*)."""
 REPEATED_PREPOSITIONS = LIST_PREPOSITIONS | {"from", "of", "in", "at"}
 """Said again before a further item of a list they began (*keep away from A and from B*)."""
 PLACE_PREPOSITIONS = frozenset({"to", "into", "in", "at", "on", "by", "through", "past", "inside"})

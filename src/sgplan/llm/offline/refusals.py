@@ -784,15 +784,21 @@ def demonstrative_of_nothing(said: str, what: str) -> str:
                     f"'that' / 'this' / 'the same' names again something already said); name the {what}")
 
 
+def demonstrative_read_or_told(said: str, read: str, told: str) -> str:
+    return rephrase(f"'{said}' could be '{read}', named before as part of the mission, or '{told}', named "
+                    "after it in what was set aside; name it")
+
+
 def demonstrative_or_step_room(said: str, antecedent: str, room: str, here: str) -> str:
     return rephrase(f"'{said}' after going to {room}: the one named before ('{antecedent}') or the one "
                     f"there ({here})? say 'the same {said.split()[-1]}' or name it with its room")
 
 
 # ---------------------------------------------------------------------------------------------- floors
-def floor_outside(said: str, building: str, floors: int) -> str:
+def floor_outside(said: str, building: str, floors: int, british: bool = False) -> str:
+    first = ("floor 1, counted from the ground floor the mission names" if british else "floor 0")
     return rephrase(f"'{said}': the building {building!r} has floors 0 to {floors - 1} (floor 0 is the "
-                    "lowest; 'the first floor' is floor 0)")
+                    f"lowest; 'the first floor' is {first})")
 
 
 def no_middle_floor(said: str, building: str, floors: int) -> str:

@@ -69,6 +69,14 @@ def _fitting(np: Grounded, head: Head, by_key: dict[str, Entity]) -> list[Entity
     return ents
 
 
+def last_fitting(head: Head, named: Sequence[Grounded], before: int,
+                 by_key: dict[str, Entity]) -> Grounded | None:
+    """The phrase of ``named`` ending last before character ``before`` that ``head`` may point back to."""
+    fits = [np for np in named if np.end <= before and np.phrase.lower() not in _PRONOUN_PHRASES
+            and _fitting(np, head, by_key) is not None]
+    return max(fits, key=lambda np: (np.end, -np.start), default=None)
+
+
 def resolve(said: str, head: Head, plural: bool, described: list[Entity], references: Sequence[Grounded],
             before: int, by_key: dict[str, Entity], goal: bool = False) -> Resolved | str:
     """The phrase ``said`` (a demonstrative with ``head``, starting at character ``before``) resolved

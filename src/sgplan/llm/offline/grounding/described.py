@@ -24,6 +24,7 @@ from sgplan.llm.offline.names import Entity, head_word
 from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
     Attachment,
+    ByUnlisted,
     Contains,
     Described,
     Except,
@@ -148,8 +149,8 @@ def demonstrative(np: Described, noun: Noun, mode: Mode, said: str, where: Where
     plural = noun.head.plural or det.quantified is not None or det.pointer in lx.PLURAL_DEMONSTRATIVES
     if det.pointer in lx.OWNERS:
         return Noun(noun.head, owners_room(np, noun, said, disc), False), "the"
-    got = backref.resolve(said, noun.head, plural, noun.entities, disc.references, np.span.start,
-                          disc.vocab.by_key, where.role == "goal")
+    got = backref.resolve(said, noun.head, plural, noun.entities, pointed_in(said, noun, np.span.start, disc),
+                          np.span.start, disc.vocab.by_key, where.role == "goal")
     if isinstance(got, str):
         rf.refuse(got)
     if det.count is not None and len(got.entities) != det.count:
@@ -157,6 +158,20 @@ def demonstrative(np: Described, noun: Noun, mode: Mode, said: str, where: Where
     if (here := of_the_step_room(np, noun, got, said, where, disc)) is not None:
         return Noun(noun.head, here, True), "the"
     return Noun(noun.head, got.entities, noun.room_scoped or got.room_scoped), det.quantified or got.mode
+
+
+def pointed_in(said: str, noun: Noun, start: int, disc: Discourse) -> list[Grounded]:
+    """Where the demonstrative ``said`` (at character ``start``) points back: the phrases read, or, when none
+    of them fits it, the rooms and objects named in words set aside (*The baby is napping in the bedroom
+    with the vase, so avoid that room*), as *it* does; refused when a fitting one was set aside after the
+    last fitting one read (which of the two?)."""
+    read = backref.last_fitting(noun.head, disc.references, start, disc.vocab.by_key)
+    told = backref.last_fitting(noun.head, disc.mentions, start, disc.vocab.by_key)
+    if told is None:
+        return disc.references
+    if read is not None and read.end < told.start:
+        rf.refuse(rf.demonstrative_read_or_told(said, read.phrase, told.phrase))
+    return disc.references if read is not None else disc.mentions
 
 
 def owners_room(np: Described, noun: Noun, said: str, disc: Discourse) -> list[Entity]:
@@ -358,6 +373,14 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     room.entities = [r for r in room.entities
                      if any(r.key in vocab.adjacent.get(e.key, ()) for e in entities)]
     return Noun(noun.head, entities, noun.room_scoped)
+
+
+@applies(ByUnlisted)
+def by_unlisted(q: ByUnlisted, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*the bowl on the counter*: the scene holds no counter, so the words are said back as set aside; which
+    bowl is meant is decided as for descriptive words (:func:`ground_described`)."""
+    disc.put_aside(disc.said(q.span.start, q.span.end))
+    return noun
 
 
 def by_an_object(said: str, noun: Noun, anchor: Grounded, disc: Discourse) -> Noun:

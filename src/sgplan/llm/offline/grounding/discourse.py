@@ -79,6 +79,11 @@ class Discourse:
         self.references.append(phrase)
         return phrase
 
+    def put_aside(self, said: str) -> None:
+        """Say back ``said`` (words of the mission, as typed) as set aside unread, once."""
+        if said not in self.set_aside:
+            self.set_aside.append(said)
+
     def fork(self) -> Discourse:
         """A copy to try a reading on, which the original does not see."""
         return Discourse(self.vocab, self.text, self.start_floor, copy.copy(self.references), self.confined,

@@ -11,6 +11,7 @@ are refused.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Iterable
 
 from sgplan.llm.offline import lexicon as lx
@@ -30,15 +31,26 @@ from sgplan.llm.offline.syntax.tree import (
     UpThere,
 )
 
+_GROUND_FLOOR = re.compile(r"\b(?:ground|gnd|grnd)[\s-]*(?:floor|level|storey|flr|fl)\b", re.IGNORECASE)
+
+
+def british_ordinal(said: str, text: str) -> bool:
+    """Whether the ordinal floor ``said`` (*the first floor*) counts from the ground floor, British style:
+    where the mission ``text`` also names the ground floor (*the first-floor corridor, then the ground-floor
+    loo*), whose writer does not name one floor two ways; elsewhere ordinals count US style (first = 0)."""
+    return said.split()[0] in lx.FLOOR_ORDINALS and _GROUND_FLOOR.search(text) is not None
+
 
 def floors_of(spec: FloorSpec, disc: Discourse, candidates: list[Entity] | None = None) -> FloorReading:
     """The floors ``spec`` names; ``candidates``: the entities of the noun it qualifies (*the downstairs
     bathroom* in a taller building: the lower of the floors holding bathrooms)."""
     vocab = disc.vocab
     if isinstance(spec, FloorNumber):
-        if not 0 <= spec.number < vocab.num_floors:
-            rf.refuse(rf.floor_outside(spec.said, vocab.building_name, vocab.num_floors))
-        return FloorReading(frozenset({spec.number}))
+        british = british_ordinal(spec.said, disc.text)
+        number = spec.number + (1 if british else 0)
+        if not 0 <= number < vocab.num_floors:
+            rf.refuse(rf.floor_outside(spec.said, vocab.building_name, vocab.num_floors, british))
+        return FloorReading(frozenset({number}))
     if isinstance(spec, TopFloor):
         return FloorReading(frozenset({vocab.num_floors - 1}))
     if isinstance(spec, MiddleFloor):

@@ -204,9 +204,7 @@ def its(np: Its, where: Where, disc: Discourse) -> Grounded:
 def handled_at(np: HandledAt, where: Where, disc: Discourse) -> Grounded:
     """*rinse the watering can at the kitchen sink*: the object where the thing is handled; the thing, which
     the scene does not hold, is said back as set aside."""
-    thing = disc.said(np.thing.start, np.thing.end)
-    if thing not in disc.set_aside:
-        disc.set_aside.append(thing)
+    disc.put_aside(disc.said(np.thing.start, np.thing.end))
     return ground_phrase(np.at, where, disc)
 
 

@@ -69,3 +69,12 @@ def head_noun(r: Reader, i: int, one: OneHead | None) -> Parse[HeadRef]:
     if head is None:
         return Refusal(rf.unknown_noun(w, r.nouns.category_names("room"), r.nouns.category_names("object")))
     return Match(head, i + head.words)
+
+
+def foreign_word(r: Reader, i: int) -> bool:
+    """Whether the word at ``i`` may name a thing the scene does not hold: a word, no head noun of the
+    scene, no word of the grammar, and not a misspelt name of the scene (*the vse on the table* is refused,
+    never read as the table)."""
+    w = r.word(i)
+    return (w.isalpha() and r.head(i) is None and w not in lx.THING_STOPS
+            and (r.spelling is None or not r.spelling.may_be_a_misspelt_name(w)))

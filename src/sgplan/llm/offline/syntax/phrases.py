@@ -16,7 +16,7 @@ from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import qualifiers
 from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.links import closing_at
-from sgplan.llm.offline.syntax.noun_slot import NOUN_PHRASES, count_word, head_noun, noun_phrase
+from sgplan.llm.offline.syntax.noun_slot import NOUN_PHRASES, count_word, foreign_word, head_noun, noun_phrase
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.tree import (
     Described,
@@ -129,15 +129,6 @@ def handled_at(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounP
     return Match(HandledAt(r.span(i, at.end), r.span(i, j), at.node), at.end)
 
 
-def foreign_word(r: Reader, i: int) -> bool:
-    """Whether the word at ``i`` may name a thing the scene does not hold: a word, no head noun of the
-    scene, no word of the grammar, and not a misspelt name of the scene (*the vse on the table* is refused,
-    never read as the table)."""
-    w = r.word(i)
-    return (w.isalpha() and r.head(i) is None and w not in lx.THING_STOPS
-            and (r.spelling is None or not r.spelling.may_be_a_misspelt_name(w)))
-
-
 @NOUN_PHRASES.rule("described")
 def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
     """A determiner, floor words, a head noun and its qualifiers (*the ground floor bathroom with the
@@ -193,11 +184,21 @@ def description_end(r: Reader, i: int) -> int:
     :func:`..grounding.described.ground_described`); ``i`` when no head noun follows them."""
     j = r.descriptive_end(i)
     k = j
-    while k < j + 2 and foreign_word(r, k) and r.spelling is not None and not r.spelling.is_known(r.word(k)):
-        k += 1  # a word of the grammar (*upstairs*, *dining*, *other*) is never a mere description
+    while k < j + 3 and describing_word(r, k):
+        k += 1  # "the old paperback book": the lexicon's words and unknown ones, mixed
     if k == j or (r.descriptive_end(k) == k and r.head(k) is None):
         return j
     return description_end(r, k)
+
+
+def describing_word(r: Reader, i: int) -> bool:
+    """Whether the word at ``i`` may describe a head noun that follows: a descriptive word of the lexicon that
+    names nothing of the scene (*old*), or a word neither the scene nor the lexicon knows (*paperback*; a word
+    of the grammar, *upstairs*, *dining*, *other*, is never a mere description)."""
+    w = r.word(i)
+    if w in lx.DESCRIPTIVE:
+        return not r.nouns.names_word(w) and r.head(i) is None
+    return foreign_word(r, i) and r.spelling is not None and not r.spelling.is_known(w)
 
 
 def anaphoric_one(r: Reader, i: int) -> bool:

@@ -16,11 +16,12 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.nouns import Head, Kind
 from sgplan.llm.offline.syntax.floors import floor_count, floor_offset, floor_words
-from sgplan.llm.offline.syntax.noun_slot import count_word, exact_count, head_noun, noun_phrase
+from sgplan.llm.offline.syntax.noun_slot import count_word, exact_count, foreign_word, head_noun, noun_phrase
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.tree import (
     Attachment,
+    ByUnlisted,
     Contains,
     Described,
     Except,
@@ -78,6 +79,8 @@ def finish(r: Reader, first: int, i: int, noun: Described, role: Role, room_scop
         if isinstance(found.node, Skipped):
             continue
         noun = replace(noun, qualifiers=(*noun.qualifiers, found.node))
+        if isinstance(found.node, ByUnlisted):  # "the bowl on the counter": the scene decides which bowl
+            noun = replace(noun, descriptive=(*noun.descriptive, found.node.words))
         if isinstance(found.node, Possessive):
             kind, room_scoped = found.node.head.kind, room_scoped or found.node.head.kind == "object"
             noun = replace(noun, determiner=replace(noun.determiner,
@@ -150,15 +153,27 @@ def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Describe
     *not* in *, not the one with the vase*)."""
     head = current_head(noun)
     one = r.descriptive_end(i + 2)  # "the bathroom, the (big) one upstairs"
-    if (role == "qualifier" or noun.determiner.mode != "the" or head is None or head.plural
+    if (noun.determiner.mode != "the" or head is None or head.plural
             or not head.categories or not isinstance(noun.head, Head) or r.word(i) not in (",", "not")
             or r.word(i + 1) != "the"
             or r.word(one) != "one" or r.phrase(one, lx.CHOICE_AFFIRMATIONS)):
         return None
+    if role == "qualifier" and head.kind != "room":
+        return None
     which = noun_phrase(r, i + 1, "qualifier", Head(head.kind, head.categories, False, 1))
     if isinstance(which, Match) and not isinstance(which.node, Described):
         return None
+    if role == "qualifier" and isinstance(which, Match) and not says_contents(which.node):
+        return None  # "the toilet in the bathroom, the one upstairs": the toilet's, or the bathroom's?
     return which  # type: ignore[return-value]
+
+
+def says_contents(which: NounPhrase) -> bool:
+    """Whether an apposition says only what a room holds (*the one with the vase*, *not the one that has two
+    sinks*): inside a room qualifier of an object (*the toilet in the other bathroom, not the one with the
+    vase*) it can only be about the room, as no object holds another."""
+    return (isinstance(which, Described) and bool(which.qualifiers)
+            and all(isinstance(q, Holds | Contains | Lacks) for q in which.qualifiers))
 
 
 def skip_in_it(r: Reader, i: int) -> int:
@@ -548,6 +563,23 @@ def at_an_object(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skippe
     if goes is not False:
         return goes
     return Match(NextTo(thing.node, r.span(noun.first, thing.end), None, r.word(i)), thing.end)
+
+
+@QUALIFIERS.rule("by a thing not in the scene")
+def by_unlisted(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the bowl on the counter*, *the book on the shelf in the office*: an object placed by one word the
+    scene does not hold (no misspelt name of it, :func:`.noun_slot.foreign_word`), at the end of the phrase;
+    a description of the object (:func:`finish` adds the words to its descriptive words: read only where
+    the scene leaves one such object). Not after a carry verb (*put the cup on the shelf*: where it goes,
+    which the scene cannot hold)."""
+    if noun.kind != "object" or r.word(i) not in lx.OBJECT_PLACING or carried(r, noun):
+        return None
+    k = i + 2 if r.word(i + 1) in lx.DETERMINERS else i + 1
+    if k == i + 1 or not foreign_word(r, k) or r.spelling is None or r.spelling.is_known(r.word(k)):
+        return None
+    if r.word(k + 1).isalpha() and r.word(k + 1) not in lx.AFTER_UNLISTED_THING:
+        return None  # "on the side of the couch", "on the counter top": more than one word said it
+    return Match(ByUnlisted(" ".join(r.words[i:k + 1]), r.span(i, k + 1)), k + 1)
 
 
 def carried(r: Reader, noun: NounSoFar) -> bool:

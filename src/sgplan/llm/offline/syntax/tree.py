@@ -318,6 +318,16 @@ class NextTo:
 
 
 @dataclass(frozen=True)
+class ByUnlisted:
+    """*the bowl on the counter*, *the book on the shelf in the office*: placed by a thing the scene does not
+    hold (``words``, as typed, ``span``): a description of the object (read only where the scene leaves one
+    such object), the words said back as set aside."""
+
+    words: str
+    span: Span
+
+
+@dataclass(frozen=True)
 class Except:
     """*except (for) the one on floor 0*: all but those."""
 
@@ -343,7 +353,8 @@ class Attachment:
     taken: bool
 
 
-Qualifier = Possessive | OnFloor | InRoom | There | Holds | Lacks | Contains | NextTo | Except | Attachment
+Qualifier = (Possessive | OnFloor | InRoom | There | Holds | Lacks | Contains | NextTo | ByUnlisted | Except
+             | Attachment)
 
 
 # ----------------------------------------------------------------------------------------------- actions
