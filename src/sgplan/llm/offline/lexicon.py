@@ -1088,13 +1088,15 @@ NEGATION_JOINERS = ("and", "but")
 NEGATING = ("not", "never")
 PARTIAL_PROHIBITION = ("after", "once", "when", "during", "afterwards", "afterward", "later", "again")
 """After what to avoid: a prohibition for part of the mission, which is refused."""
-PARTIAL_FROM = (("from", "then"), ("from", "now"))
+PARTIAL_FROM = (("from", "then"), ("from", "now"), ("at", "some", "point"))
 UNTIL_WORDS = ("until", "before", "till")
 """After what to avoid: ``!X U Y``."""
 UNTIL_DONE_LINKS = ("is", "are", "has", "have")
 UNTIL_DONE_WORDS = DONE | {"been", "visited"}
 UNTIL_DONE_VERBS = ("visited", "checked", "cleaned")
 """``until both bathrooms are done / have been visited``."""
+IRREGULAR_PARTICIPLES = word_set("made set put shut swept fed taken brought seen")
+"""Past participles of chores not in *-ed* (*until the bed is made*, *once the table is set, ...*)."""
 OFF_LIMITS = Phrases(
     tuple((*be, *said) for be in (("is",), ("are",), ("is", "strictly"), ("are", "strictly"))
           for said in (("off", "limits"), ("out", "of", "bounds"), ("forbidden",), ("prohibited",),
@@ -1464,6 +1466,27 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("after", "doing", "this"): ("after", "that"),
     ("with", "that", "done"): ("after", "that"),
     ("with", "that", "out", "of", "the", "way"): ("after", "that"),
+    # a visit said again: "then the lounge once more" / "one more time" is "again"; "at least once" asks what
+    # any goal asks (one visit or more), so it says nothing ("at least twice" stays refused)
+    ("once", "more"): ("again",),
+    ("one", "more", "time"): ("again",),
+    ("at", "least", "once"): ("at", "some", "point"),
+    # an ordinal counting the steps with no comma after it ("first the oven, second the laptop, third the
+    # couch") is the ordinal with a comma ("second, ..."), before an article only (not "second bedroom")
+    **{(nth, article): (nth, ",", article) for nth in ("second", "third", "fourth", "fifth")
+       for article in ("the", "a", "an")},
+    # steps numbered in words: "Step 1: ..., Step 2: ..." / "step one" are the ordinals ("first: ...")
+    **{("step", said): (nth,) for n, nth in enumerate(("first", "second", "third", "fourth"), 1)
+       for said in (str(n), ("one", "two", "three", "four")[n - 1])},
+    # the return said as a time, closing with a comma: "when you come back (down), X" / "once you're back,
+    # X" / "after you get back downstairs, X" is "on your way back (down), X" (X after what came before: the
+    # floor is where X is, which X's own words must single out); naming where ("when you come back to the
+    # kitchen, X") it is not this phrase
+    **{(when, "you", *verb, "back", *said, ","): ("on", "your", "way", "back", *way, ",")
+       for when in ("when", "once", "after")
+       for verb in (("come",), ("get",), ("are",), ("have", "come"), ("have", "got"), ("got",), ("came",))
+       for said, way in (((), ()), (("down",), ("down",)), (("up",), ("up",)), (("downstairs",), ("down",)),
+                         (("upstairs",), ("up",)))},
     ("along", "with"): ("and",),
     ("together", "with"): ("and",),
     ("plus",): ("and",),

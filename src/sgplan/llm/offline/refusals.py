@@ -161,6 +161,22 @@ def trailing_after(said: str) -> str:
                     "that comes after ('A, then B')")
 
 
+def strict_closing(said: str, words: str) -> str:
+    return rephrase(f"'{said}': '{words}' closing the clause is not understood (which goal must wait, "
+                    f"and for which?); put it before the goal that waits ('A, and {words} B')")
+
+
+def first_mid_sentence(said: str) -> str:
+    return rephrase(f"'{said}': 'first' after a comma could put what follows before everything said so far, "
+                    "or only before what comes next; say 'but first, X' or 'X, then ...'")
+
+
+def before_floor_move(said: str) -> str:
+    return rephrase(f"'{said}' orders the goals by a move between floors, not by a goal (on which floor is "
+                    "what follows?); say the goals in order with their floors ('check the oven, then go "
+                    "upstairs to the office')")
+
+
 def order_without_goal(said: str) -> str:
     return rephrase(f"'{said}' says where in the order but names no goal; say the goal in the same sentence "
                     "('Last, the office.', 'Then the kitchen.')")
@@ -832,6 +848,11 @@ def same_floor_of_nothing() -> str:
 
 def up_there_of_nothing(word: str) -> str:
     return rephrase(f"'{word} there' does not refer to any place named before it")
+
+
+def up_there_not_so(said: str, last: str) -> str:
+    return rephrase(f"'{said}' after '{last}', which is not {said.split()[0]}stairs from where the robot "
+                    f"starts: the floor of '{last}', or another? Name the floor ('on floor 1')")
 
 
 def stay_where(word: str, where: str, building: str, floors: int) -> str:

@@ -45,6 +45,7 @@ _WORD = re.compile(
     r"|(?P<with>w/o\b|w/|b/c\b|\bb4\b)"
     r"|(?P<word>[a-z]+(?:'[a-z]+)?|'s\b)"
     r"|(?P<bullet>^[ \t]*(?:[-*\u2022\u00b7\u2023\u25e6\u25aa]|\[ ?\]|\u2610)(?=[ \t]))"  # at a line start
+    r"|(?P<ticked>\[[x\u2713\u2714]\])"  # a ticked box: one token, refused (done already, or a task?)
     r"|(?P<arrow>-+>|=+>|>+|[\u2192\u21d2\u27f6\u2794\u279c\u27a1])"
     r"|(?P<ellipsis>\u2026|\.{2,})"
     r"|(?P<punct>[,.;:!?()\[\]{}])|(?P<dash>[\u2014\u2013]|--|(?<=\s)-(?=\s)|(?<=\w)-(?=\s))"

@@ -191,6 +191,12 @@ def up_there(word: str, disc: Discourse) -> frozenset[int]:
     floor_or_place(said, last, disc)
     floors = frozenset(e.floor for e in last.entities)
     determined(said, last, len(floors))
+    # "Check the oven. While you're up there, ...": a floor not up (down) from the start floor, or, that
+    # unknown, from any floor, is not what the words say: the floor meant is in doubt
+    start = disc.start_floor
+    low, high = (start, start) if start is not None else (0, disc.vocab.num_floors - 1)
+    if min(floors) <= low if word == "up" else max(floors) >= high:
+        rf.refuse(rf.up_there_not_so(said, last.phrase))
     return floors
 
 

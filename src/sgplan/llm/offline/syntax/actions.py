@@ -359,10 +359,11 @@ def repeats(r: Reader, i: int) -> Parse[Repeat | None]:
 
 
 def in_between(r: Reader, i: int) -> Match[Action] | None:
-    """After *twice*: ``(,) with (a trip / visit / stop) (to) Y in between``, ``(,) visiting Y in
-    between`` or ``(,) (and) in between (,) Y``: the action of Y; ``None`` when the words are not there."""
+    """After *twice*: ``(,) with (a trip / visit / stop) (to) Y in between``, ``(,) (and) (go to) Y in
+    between`` (*visiting Y*, *the office*, *pop into the office*) or ``(,) (and) in between (,) Y``: the
+    action of Y; ``None`` when the words are not there."""
     k = i + (1 if r.word(i) == "," else 0)
-    k += 1 if r.at(k, "and", "in", "between") or r.at(k, "and", "between") else 0
+    k += 1 if r.word(k) == "and" else 0
     lead = 2 if r.at(k, "in", "between") else 1 if r.word(k) == "between" else 0
     if lead:  # "the kitchen twice, and in between go to the office"
         k += lead + (1 if r.word(k + lead) == "," else 0)
@@ -372,7 +373,7 @@ def in_between(r: Reader, i: int) -> Match[Action] | None:
         k += 1
         k += 2 if r.word(k) in ("a", "an") and r.word(k + 1) in lx.TRIP_NOUNS else \
             1 if r.word(k) in lx.TRIP_NOUNS else 0
-    elif not r.word(k).endswith("ing") or r.word(k) in lx.STRUCTURAL:
+    elif r.word(k) in lx.STRUCTURAL and not r.np_starts(k):
         return None
     visit = action(r, k)
     if not isinstance(visit, Match) or visit.node.phrases is None:

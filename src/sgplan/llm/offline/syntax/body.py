@@ -118,8 +118,17 @@ def whole_time_first(r: Reader, i: int, before: Said, only_verb: bool) -> ItemPa
 
 @ITEMS.rule("only after that")
 def strict_link(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
-    """*..., and only after that B*: B strictly after what came before."""
-    return link(r, i) if r.phrase(i, lx.STRICT_SEQ) else None
+    """*..., and only after that B*: B strictly after what came before. Closing its clause (*..., and go to
+    B only after that.*) it is refused: which goal waits is not said where the reading expects it."""
+    said = r.phrase(i, lx.STRICT_SEQ)
+    if said is None:
+        return None
+    after = r.word(i + len(said))
+    opens = r.word(i - 1) in ("", ",", "and", "but", "then") or said[0] != "only"
+    if after == "" or (after == "," and not opens):
+        words = " ".join(w for w in said if w not in (",", "and", "but"))
+        return Refusal(rf.strict_closing(r.quote(0, i + len(said)), words))
+    return link(r, i)
 
 
 @ITEMS.rule("conjunction before only after")

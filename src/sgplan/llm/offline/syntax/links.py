@@ -54,6 +54,9 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     w = r.word(i)
     if w in lx.FIRST and r.word(i + 1) in lx.PLACE_PREPOSITIONS and r.word(i - 1) not in ("", ","):
         return None  # "go first to the kitchen": the action's (it comes first)
+    if w in lx.FIRST and i > 1 and r.word(i - 1) == "," and (r.np_starts(i + 1)
+                                                             or r.word(i + 1) in lx.POSITIVE_VERBS):
+        return Refusal(rf.first_mid_sentence(r.quote(0, i + 1)))  # "check X, first the oven": first of all?
     if w == "," or (w in lx.FILLERS and w not in lx.NOT_FILLERS_HERE) or w in lx.HESITATIONS:
         return "filler", i + 1
     return None

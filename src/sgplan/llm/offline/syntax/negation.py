@@ -156,7 +156,9 @@ def until_target(r: Reader, k: int) -> Parse[Action | UntilDone]:
 
 def participle(w: str) -> bool:
     """Whether ``w`` is the past participle of a verb of the grammar (*checked*, *picked*, *grabbed*,
-    *tidied*, *used*), not any word in *-ed* (*red*)."""
+    *tidied*, *used*, and the irregular *made*, *set* ...), not any word in *-ed* (*red*)."""
+    if w in lx.IRREGULAR_PARTICIPLES:
+        return True
     if not w.endswith("ed"):
         return False
     stems = {w[:-2], w[:-1], w[:-3], w[:-3] + "y"}  # checked, used, grabbed, tidied

@@ -26,6 +26,7 @@ from sgplan.llm.offline.syntax.links import (
     skip_subject,
     skip_until_subject,
 )
+from sgplan.llm.offline.syntax.negation import passive_end
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.qualifiers import head_kind
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
@@ -74,6 +75,8 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     if said is not None and r.word(lead_and + len(said)) == "," and said[0] not in lx.WAYPOINT_OPENERS:
         i = lead_and + len(said) + 1  # "The whole time, keep out of X."
         opener = r.quote(0, i - 1)
+    if i == 0 and r.word(0) in ("and", "but", "so") and ordered_opening(r, 1):
+        i = 1  # "And after that, X." / "But before that, X." / "And once you're done, X.": as without "and"
     precedes = None
     if r.at(i, *lx.BEFORE_THAT) or r.word(i) in lx.FIRST:
         i += 2 if r.at(i, *lx.BEFORE_THAT) else 1
@@ -106,6 +109,14 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
                                  r.span(0, len(r)), r.announced, r.after_item, floor,
                                  opened.node if opened is not None else None, order_free(r)), len(r))
+
+
+def ordered_opening(r: Reader, i: int) -> bool:
+    """Whether the words at ``i`` open a sentence with its place in the order (*after that*, *before that*,
+    *first*, *once you're done*, *after all that*)."""
+    lead = link(r, i)
+    return (r.at(i, *lx.BEFORE_THAT) or r.word(i) in lx.FIRST or after_all_opening(r, i) is not None
+            or (isinstance(lead, Match) and lead.node.sequence))
 
 
 def order_free(r: Reader) -> bool:
@@ -265,6 +276,11 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
     said = prefixed(r, i + 1, prefix_last=True)
     if not isinstance(said, Match) or not isinstance(said.node, PrefixedSentence):
         return said
+    move = said.node.prefix
+    if move.verbs.floor is not None and move.phrases is None:
+        # "before you go upstairs, check the bathroom": the goals are done before the move, on the floor
+        # left (the move would single them out on the floor reached), and where the move ends is no goal
+        return Refusal(rf.before_floor_move(r.quote(i, end)))
     items = said.node.body.items
     if r.word(i + 1) != "to" and any(isinstance(item, Link) and item.sequence for item in items):
         return Refusal(rf.before_then(r.quote(i, said.end)))
@@ -294,11 +310,13 @@ def only_verb_after(r: Reader, i: int) -> Parse[SentenceBody]:
 
 
 def prefixed(r: Reader, i: int, prefix_last: bool) -> Parse[SentenceBody]:
-    """The prefix clause at ``i`` (up to its comma), the body after it and a closing condition."""
+    """The prefix clause at ``i`` (up to its comma; a passive of the grammar's verbs may close it: *once the
+    oven is checked, ...*), the body after it and a closing condition."""
     prefix = after_conjunction(r, i)
     if not isinstance(prefix, Match):
         return prefix
-    rest = body(r, comma_or_then(r, prefix.end))
+    passive = passive_end(r, prefix.end)  # "once the oven is checked, ..." (not "... checked and X, ...")
+    rest = body(r, comma_or_then(r, passive if r.word(passive) in (",", "then") else prefix.end))
     if not isinstance(rest, Match):
         return rest
     post = postfix(r, rest.end, 0)
