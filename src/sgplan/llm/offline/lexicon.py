@@ -350,8 +350,12 @@ POSITIVE_VERBS = word_set(
 )
 """Verb-slot words known to mean "go to / interact with" the noun phrase that follows."""
 
+APPLIANCE_VERBS = word_set("heat heating warm warming reheat reheating cook cooking defrost defrosting toast "
+                           "toasting")
+"""*heat the bowl (up) in the microwave*: the bowl, then the microwave, as *put X in Y* (not the bowl that is
+in the microwave)."""
 CARRY_VERBS = word_set("put putting place placing drop dropping bring bringing carry carrying deliver "
-                       "delivering take taking took move moving")
+                       "delivering take taking took move moving") | APPLIANCE_VERBS
 """``put X in Y`` / ``bring X to Y``: the goal is Y (after X when X is a new noun phrase)."""
 CARRY_ON_VERBS = word_set("bring bringing brought carry carrying carried deliver delivering delivered take "
                           "taking")
@@ -364,7 +368,7 @@ DESTINATION_WORDS = ("to", "into", "onto")
 CARRY_DESTINATION_WORDS = ("in", "into", "on", "onto", "to", "inside", "until", "till")
 """After a carry verb's object: *put the bowl in the sink*; *bring the bowl until the table* (as learners
 write *to*)."""
-PLACING_VERBS = word_set("put putting place placing drop dropping move moving")
+PLACING_VERBS = word_set("put putting place placing drop dropping move moving") | APPLIANCE_VERBS
 """Carry verbs that say where the thing is put: after them, *on / in / by Y* (an object) is where it goes;
 after *take / bring / carry* it could also say where the thing is, and is read so only before *to Z*."""
 CARRY_BESIDE = Phrases((("by",), ("next", "to"), ("beside",), ("near",), ("right", "by"),
@@ -373,8 +377,9 @@ CARRY_BESIDE = Phrases((("by",), ("next", "to"), ("beside",), ("near",), ("right
 HANDLED_AT = ("at", "in", "on", "into", "inside", "under")
 """*rinse the watering can at the sink*, *heat my leftovers in the microwave*: before the scene's object
 where a thing it does not hold is handled."""
-FETCH_VERBS = CARRY_VERBS | word_set("get getting grab grabbing fetch fetching find finding pick picking "
-                                     "collect collecting retrieve retrieving gather gathering")
+FETCH_VERBS = (CARRY_VERBS - APPLIANCE_VERBS) | word_set(
+    "get getting grab grabbing fetch fetching find finding pick picking collect collecting retrieve "
+    "retrieving gather gathering")
 """Before a thing the scene does not hold (*put my keys on the table*): the robot would have to find it."""
 
 CAUTION_PAIRS = frozenset({("take", "care"), ("watch", "out"), ("look", "out"), ("never", "mind")})

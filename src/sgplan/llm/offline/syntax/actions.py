@@ -401,6 +401,8 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
     i = particles(r, i)
     carry = bool(set(node.verbs.words) & lx.CARRY_VERBS)
     into = lx.CARRY_DESTINATION_WORDS if carry else lx.DESTINATION_WORDS
+    if carry and (r.word(i) in lx.PARTICLES or r.word(i) == "away") and r.word(i + 1) in into:
+        i += 1  # "put the bowl down in the sink", "heat the bowl up in the microwave": the verb's particle
     beside = r.phrase(i, lx.CARRY_BESIDE) if carry else None  # "put the cup by the keyboard"
     if (r.word(i) in into or beside) and r.np_starts(i + len(beside or ("in",))):
         dest = phrase_list(r, i + len(beside or ("in",)), "goal")
