@@ -395,6 +395,8 @@ BE_FINE = frozenset({"sure", "certain"})
 
 REFUSED_WORDS: dict[str, str] = {
     "leave": "'leave' (the translator cannot express leaving a place; say where to go instead)",
+    "depending": "'if so / if yes / depending on' (what the robot finds there is not known when the "
+                 "plan is made; say what to do in every case)",
     "exit": "'exit' (say which room to go to instead)",
     "between": "'between' (between which steps? Say the order with 'then': 'A, then B, then A again')",
     "meanwhile": "'meanwhile' (while doing what? Say the order with 'then', or 'on the way')",
@@ -1568,6 +1570,9 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("just", "one", "more", "thing"): ("also",),
     ("btw",): ("also",),
     ("by", "the", "way"): ("also",),
+    ("if", "so"): ("depending",),  # "check if the oven is hot, and if so turn it off": sensing
+    ("if", "yes"): ("depending",),
+    ("through", "to"): ("to",),  # British "take it through to the living room": to it
     ("no", "worries", "if", "not"): ("optionally",),
     ("no", "problem", "if", "not"): ("optionally",),
     ("if", "not", ",", "no", "worries"): ("optionally",),

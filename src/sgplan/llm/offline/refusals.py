@@ -491,12 +491,22 @@ def on_the_way_to_several(count: int) -> str:
                     "X'), or leave the destination out")
 
 
+def way_back_from_mid(said: str) -> str:
+    return rephrase(f"'{said} ...' after what it is said with: done after that place, or before it? Open the "
+                    "sentence with it ('On your way back from X, check Y': X, then Y) or say 'then'")
+
+
 def on_the_way_to_nothing() -> str:
     return rephrase("'on the way' needs the goal it is on the way to, named before it")
 
 
 def on_your_way_there() -> str:
     return rephrase("'on your way there': say 'before going to X, ...' or put the goals in order")
+
+
+def carried_through(said: str) -> str:
+    return rephrase(f"'{said} ...': the way it is carried, after it is picked up, is not read; say where it "
+                    "goes ('take it to X') and, if it matters, 'then go through Y'")
 
 
 def waypoint_of_which(rest: str) -> str:
@@ -676,6 +686,17 @@ def several_actions_before_condition(rest: str) -> str:
 
 
 # ------------------------------------------------------------------------------------- back-references
+def not_after_comma(said: str) -> str:
+    return rephrase(f"'{said}' after a comma: which one is meant (instead of it), or a place to keep away "
+                    "from? Say 'never enter X' / 'avoid X' to keep away")
+
+
+def antecedent_of_several(pronoun: str, phrases: list[str]) -> str:
+    named = ", ".join(f"'{p}'" for p in dict.fromkeys(phrases))
+    return rephrase(f"'{pronoun}' could be any of {named}, named in a sentence that is not part of the "
+                    "mission; name the one meant")
+
+
 def no_antecedent(pronoun: str, plural: bool) -> str:
     return rephrase(f"'{pronoun}' does not refer to any {'group of ' if plural else ''}room or object named "
                     "before it")

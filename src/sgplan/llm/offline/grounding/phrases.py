@@ -239,6 +239,11 @@ def antecedent(pronoun: str, disc: Discourse, kind: str | None = None) -> Ground
     fits = agreeing(disc.references) or agreeing(disc.mentions)
     if not fits:
         rf.refuse(rf.no_antecedent(pronoun, plural))
+    if not agreeing(disc.references):  # only what was set aside: it must name one thing
+        outermost = {tuple(e.key for e in g.entities) for g in fits
+                     if not any(o is not g and o.start <= g.start and g.end <= o.end for o in fits)}
+        if len(outermost) > 1:  # "The teddy bear keeps falling off the couch, check on it": which?
+            rf.refuse(rf.antecedent_of_several(pronoun, [g.phrase for g in reversed(fits)]))
     g = fits[0]
     # "the book from the bedroom with the vase ... it": the object the phrase is about (its head), not an
     # object named inside it to locate it

@@ -357,6 +357,8 @@ def waypoint(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     words = r.phrase(k, lx.WAYPOINT)
     if words is None or not before:
         return None
+    if r.word(k - 1) in lx.PRONOUNS and lx.CARRY_VERBS & set(r.words[max(0, k - 4):k]):
+        return Refusal(rf.carried_through(r.quote(k - 1, k + len(words))))  # "carry it through X": after it
     found = action(r, k + len(words))
     if not isinstance(found, Match):
         return found

@@ -32,6 +32,7 @@ from dataclasses import replace
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
+from sgplan.llm.offline.syntax.qualifiers import head_kind
 from sgplan.llm.offline.syntax.reader import Match, Reader
 from sgplan.llm.offline.syntax.tree import Described, NounPhrase
 from sgplan.llm.offline.text import Tok
@@ -169,6 +170,9 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     new = noun_phrase(r, start_new, "goal", head)
     if not isinstance(new, Match) or r.word(new.end) not in _CLAUSE_ENDS:
         return None
+    kinds = {head_kind(p) for p in (old, new.node) if isinstance(p, Described)} - {None}
+    if len(kinds) > 1:
+        return None  # "the toilet in the top-floor bathroom, no wait, the bathroom downstairs": which part?
     start = r.toks.index(next(t for t in r.toks if t.start == old.span.start))
     named, rest = one_named(r, start, end, start_new)
     kept = replace(r, toks=r.toks[:start] + named + r.toks[rest:])

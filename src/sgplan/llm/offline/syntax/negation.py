@@ -36,6 +36,9 @@ def negation(r: Reader, i: int) -> Parse[Negation | PlainAction]:
     marker = r.phrase(start, lx.NEG_STARTS)
     if marker is None:
         return None
+    if marker == ("not",) and r.word(start - 1) == "," and r.np_starts(
+            start + 1 + (r.word(start + 1) in lx.PLACE_PREPOSITIONS)):
+        return Refusal(rf.not_after_comma(r.quote(start, len(r))))  # "Go to the kitchen, not the office"
     forgot = negated_goal(r, start + len(marker), marker)
     return forgot if forgot is not None else negation_after(r, start + len(marker), marker)
 

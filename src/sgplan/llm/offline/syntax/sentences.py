@@ -261,6 +261,19 @@ def on_the_way_first(r: Reader, i: int) -> Parse[SentenceBody]:
     return Match(replace(said.node, on_the_way=True), said.end)
 
 
+@OPENINGS.rule("on your way back from X, Y")
+def way_back_from_first(r: Reader, i: int) -> Parse[SentenceBody]:
+    """*On your way back (up / down) from the office, check the oven*: the office, then the oven."""
+    way = r.phrase(i, lx.ON_THE_WAY)
+    j = i + len(way or ())
+    if way is None or r.word(j) != "back":
+        return None
+    j += 1 + (r.word(j + 1) in lx.WAY_TOWARDS)
+    if r.word(j) != "from" or not r.np_starts(j + 1):
+        return None
+    return prefixed(r, j + 1, prefix_last=False)
+
+
 @OPENINGS.rule("before Y, X")
 def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
     """*Before going to Y, X*: X, then Y; *before you enter Y, you must / have to / need to X*: Y, and not
