@@ -30,6 +30,7 @@ from sgplan.llm.offline.syntax.tree import (
     Negation,
     OffLimits,
     PlainAction,
+    Pronoun,
     StayOnFloor,
     Waypoint,
 )
@@ -170,7 +171,7 @@ def plain_action(item: PlainAction, clause: Clause, ctx: SentenceContext) -> Non
         return
     trailing = "first" if done.first_left else item.trailing
     again = any(t.revisit for t in steps[0]) and trailing is None and not item.action.last
-    if (item.goes_back or again) and clause.steps[-1]:
+    if (item.goes_back or again or acts_on_it(item)) and clause.steps[-1]:
         clause.steps.append([])  # "go to the kitchen and come back to the couch", "B and A again": after it
     check_revisits(steps[0], ctx.prior_steps + clause.steps[:-1], ctx)
     if trailing is not None:
@@ -183,6 +184,13 @@ def plain_action(item: PlainAction, clause: Clause, ctx: SentenceContext) -> Non
     else:
         clause.steps[-1].extend(steps[0])
         clause.steps.extend(steps[1:])
+
+
+def acts_on_it(item: PlainAction) -> bool:
+    """Whether the action acts on *it* / *them*, named by an action before it in the same clause (*grab the
+    bowl, wipe it at the sink, and bring it to the couch*): done after that action, whatever joins them."""
+    phrases = item.action.phrases
+    return phrases is not None and any(isinstance(p, Pronoun) for p in phrases.items)
 
 
 def ordered_first(trailing: str, item: PlainAction, steps: list[Step], clause: Clause,
