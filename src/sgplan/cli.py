@@ -18,7 +18,7 @@ from collections.abc import Sequence
 from sgplan.commands import REGISTRY
 from sgplan.commands.common import add_common_options, configure_logging, holding_draw_folder
 from sgplan.errors import SgplanError
-from sgplan.runtime.process import exit_now, observed, prepare_own_process
+from sgplan.runtime.process import exit_now, interrupts_handled, observed, prepare_own_process
 from sgplan.version import __version__
 
 
@@ -48,13 +48,18 @@ def main(argv: Sequence[str] | None = None, *, fast_exit: bool | None = None) ->
     own_process = (argv is None) if fast_exit is None else fast_exit
     if own_process:
         prepare_own_process()
-    code = _run(argv)
+    code = _run(argv, own_process=own_process)
     if own_process and not observed():
         exit_now(code)
     return code
 
 
-def _run(argv: Sequence[str] | None) -> int:
+def _run(argv: Sequence[str] | None, *, own_process: bool) -> int:
+    """Run the command of ``argv``; its exit code. A command that sets ``termination_as_interrupt`` in
+    its parser's defaults (a sweep, which must stop its workers and export on the way out) treats SIGTERM
+    and SIGHUP like Ctrl-C. In sgplan's own process every interrupt is held once the command is over
+    (:func:`~sgplan.runtime.process.interrupts_handled`): a signal landing in the exit path changes
+    neither the exit code nor the output."""
     parser = _build_parser()
     args = parser.parse_args(argv)
     configure_logging(args)
@@ -63,7 +68,8 @@ def _run(argv: Sequence[str] | None) -> int:
 
         announce_compile()  # before any kernel runs: once one is compiled, the others look cached too
     try:
-        with holding_draw_folder(args):
+        termination = getattr(args, "termination_as_interrupt", False)
+        with interrupts_handled(termination=termination, hold_after=own_process), holding_draw_folder(args):
             return int(args.run(args) or 0)
     except SgplanError as error:
         if args.debug:

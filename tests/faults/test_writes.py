@@ -167,3 +167,45 @@ def test_signal_at_a_random_point_of_a_sweep(data_dir: Path, tmp_path_factory: p
         final = [json.loads(line) for line in (out / "results.jsonl").read_text().splitlines()]
         assert len({row["key"] for row in final}) == 10
 
+
+
+_SIGNAL_AT = """
+import atexit, os, signal, sys
+import sgplan.commands.bench as bench
+sig, point = int(sys.argv[1]), sys.argv[2]
+if point == "exit":  # the last atexit handler to run: the exit path, every output complete
+    atexit.register(os.kill, os.getpid(), sig)
+else:  # as the sweep's closing line is said: rows and export done, the report and the exit to come
+    say = bench.say
+    def signalling_say(message):
+        say(message)
+        if message.startswith("ran "):
+            os.kill(os.getpid(), sig)
+    bench.say = signalling_say
+from sgplan.cli import main
+main(sys.argv[3:], fast_exit=True)
+"""
+
+
+@pytest.mark.parametrize("point", ["after-export", "exit"])
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM, signal.SIGHUP])
+def test_signal_once_the_sweep_is_complete(data_dir: Path, tmp_path: Path, point: str,  # noqa: F811
+                                           sig: signal.Signals) -> None:
+    """The points that the random test above hits only when the machine is slow, chosen: a signal after the
+    results are exported killed the sweep by the signal's default action (exit -15, not 143), and one in
+    the exit path raised inside an atexit handler (a printed traceback)."""
+    env = {**os.environ, WORKER_ENV: shlex.join(FAKE_WORKER),
+           **({"PYTHONPATH": PYTHONPATH} if PYTHONPATH else {})}
+    bench = [
+        "bench", "--data", str(data_dir), "--out", str(tmp_path), "--missions", "1", "--setups", "ALL", "A*",
+        "--jobs", "1", "--starts", "0-4", "--no-report",
+    ]
+    run = subprocess.run([sys.executable, "-c", _SIGNAL_AT, str(int(sig)), point, *bench], env=env,
+                         capture_output=True, timeout=300)
+    stderr = run.stderr.decode()
+    assert run.returncode in (0, 128 + sig), (run.returncode, stderr[-2000:])
+    assert "Traceback" not in stderr, stderr[-2000:]
+    rows = [json.loads(line) for line in (tmp_path / "results.jsonl").read_text().splitlines()]
+    assert len({row["key"] for row in rows}) == 10
+    exported = json.loads((tmp_path / "results.json").read_text())
+    assert {row["key"] for row in exported} == {row["key"] for row in rows}

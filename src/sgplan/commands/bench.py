@@ -7,10 +7,7 @@
 from __future__ import annotations
 
 import argparse
-import contextlib
 import os
-import signal
-from collections.abc import Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -110,7 +107,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--retry", action="store_true", help="also re-run cases recorded as error, crashed or wall-timeout"
     )
     parser.add_argument("--no-report", action="store_true", help="do not write the report after the sweep")
-    parser.set_defaults(run=run)
+    # SIGTERM and SIGHUP stop a sweep like Ctrl-C: its workers are stopped and its results exported.
+    parser.set_defaults(run=run, termination_as_interrupt=True)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -158,30 +156,13 @@ def _scene_folders(root: Path, names: list[str] | None) -> list[str] | None:
     return [folders.get(name.lower(), name) for name in names]
 
 
-@contextlib.contextmanager
-def _termination_as_interrupt() -> Iterator[None]:
-    """Treat SIGTERM and SIGHUP like Ctrl-C while sweeping, so the workers are stopped and the results
-    exported on the way out."""
-    def interrupt(signum: int, frame: object) -> None:
-        stop = KeyboardInterrupt()
-        stop.signum = signum  # type: ignore[attr-defined]  # the exit status says which signal
-        raise stop
-
-    previous = {sig: signal.signal(sig, interrupt) for sig in (signal.SIGTERM, signal.SIGHUP)}
-    try:
-        yield
-    finally:
-        for sig, handler in previous.items():
-            signal.signal(sig, handler)
-
-
 def _sweep(args: argparse.Namespace) -> int:
     from sgplan.bench.results import ResultStore, make_folder, writing_lock
     from sgplan.runtime.jit import announce_compile
 
     cases = _cases(args)
     announce_compile()  # the workers compile on first use; said once here rather than by each of them
-    with writing_lock(make_folder(args.out)), _termination_as_interrupt():
+    with writing_lock(make_folder(args.out)):
         store = ResultStore(args.out)
         executor, summary, (csv_path, json_path) = _run_with_progress(args, cases, store)
     jobs = count(executor.jobs, "job") if executor.jobs else "cluster"

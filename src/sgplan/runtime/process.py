@@ -7,7 +7,9 @@ import atexit
 import contextlib
 import gc
 import os
+import signal
 import sys
+from collections.abc import Iterator
 
 GC_YOUNG_THRESHOLD = 300_000
 """Net allocations between two runs of the cyclic garbage collector in sgplan's own processes (Python's
@@ -40,11 +42,57 @@ def observed() -> bool:
     return sys.getprofile() is not None or sys.gettrace() is not None
 
 
+INTERRUPTS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+"""The signals by which a user stops sgplan (Ctrl-C, ``kill``, a closed terminal)."""
+
+
+def _raise_interrupt(signum: int, frame: object) -> None:
+    stop = KeyboardInterrupt()
+    stop.signum = signum  # type: ignore[attr-defined]  # the exit status says which signal
+    raise stop
+
+
+def hold_interrupts() -> None:
+    """Ignore :data:`INTERRUPTS` for the rest of the process. For the end of a process whose outputs are
+    complete, so that a late signal can neither raise in the exit path (a ``KeyboardInterrupt`` inside an
+    ``atexit`` handler prints a traceback) nor kill it by its default action (exit -signal).
+
+    The disposition is set (``SIG_IGN``), not the signal mask: a mask is per thread, and the kernel hands
+    a signal sent to the process to any thread that does not block it. Main thread only.
+    """
+    for sig in INTERRUPTS:
+        signal.signal(sig, signal.SIG_IGN)
+
+
+@contextlib.contextmanager
+def interrupts_handled(*, termination: bool, hold_after: bool) -> Iterator[None]:
+    """Inside the block, with ``termination``, SIGTERM and SIGHUP raise ``KeyboardInterrupt`` like Ctrl-C
+    (with a ``signum`` attribute), so that the caller's cleanup runs and it can exit with 128 + signal.
+
+    With ``hold_after`` (sgplan's own process, which ends right after the block, see :func:`exit_now`)
+    the interrupts are ignored from the block's end on (:func:`hold_interrupts`) instead of getting their
+    earlier handlers back: a signal arriving between the block's end and the process's end would
+    otherwise kill it by its default action or raise where nothing catches it, after every output was
+    complete. Without it, the earlier handlers come back.
+    """
+    previous = {sig: signal.signal(sig, _raise_interrupt) for sig in INTERRUPTS[1:]} if termination else {}
+    try:
+        yield
+    finally:
+        if hold_after:
+            hold_interrupts()
+        else:
+            for sig, handler in previous.items():
+                signal.signal(sig, handler)
+
+
 def exit_now(code: int) -> None:
-    """End the process with ``code`` at once: run the ``atexit`` handlers (logging's flush among them),
-    flush stdout and stderr, then :func:`os._exit`, skipping the teardown of modules and objects (freeing
-    numba's compiled code and every imported module one by one).
+    """End the process with ``code`` at once: hold the interrupts (:func:`hold_interrupts`), run the
+    ``atexit`` handlers (logging's flush among them), flush stdout and stderr, then :func:`os._exit`,
+    skipping the teardown of modules and objects (freeing numba's compiled code and every imported module
+    one by one).
     Only for the end of a process whose outputs are complete (nothing else may be left to run)."""
+    hold_interrupts()
     atexit._run_exitfuncs()
     for stream in (sys.stdout, sys.stderr):
         with contextlib.suppress(OSError, ValueError):  # a closed or broken pipe: nothing left to save
