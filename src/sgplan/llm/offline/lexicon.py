@@ -393,8 +393,14 @@ BE_FINE = frozenset({"sure", "certain"})
 """*be sure to ...*: a wrapper, not a manner of being (:func:`.syntax.actions.refused_verb`)."""
 
 
+SUPERLATIVES = word_set("best worst most least")
+"""Words that compare the things of a kind (with any word of 6 letters or more ending in *-est*, but
+:data:`NOT_SUPERLATIVE`): which one is heaviest, ripest, cleanest is not in the scene."""
+NOT_SUPERLATIVE = word_set("interest forest honest modest harvest request guest guests chest")
+
 REFUSED_WORDS: dict[str, str] = {
     "leave": "'leave' (the translator cannot express leaving a place; say where to go instead)",
+    "him": "'him' (a person cannot be planned for; for a thing, say 'it')",
     "depending": "'if so / if yes / depending on' (what the robot finds there is not known when the "
                  "plan is made; say what to do in every case)",
     "exit": "'exit' (say which room to go to instead)",
@@ -701,6 +707,9 @@ TIME_FILLERS = Phrases((
     ("it", "does", "not", "matter"), ("is", "fine"), ("at", "any", "point"))) + ANY_ORDER
 """Phrases that say nothing beyond the default (every goal is 'eventually', sets are done in any order, a
 choice is anyone's)."""
+ANY_TIME = frozenset({("at", "some", "point"), ("at", "any", "time"), ("sometime",), ("at", "any", "point")})
+"""Time fillers that free a goal from the order around it: after steps said in order (*A, then B, and at some
+point C*), is C anywhere in that order, or after B? Refused there."""
 
 CLOSING = Phrases((
     # sign-offs
@@ -821,7 +830,7 @@ CLOSING = CLOSING + Phrases((
       for praise in ("lifesaver", "gem", "angel", "diamond", "hero", "saint", "champ", "legend", "star",
                      "treasure", "amazing", "brilliant", "awesome", "wonderful", "great")),
     ("tia",), ("owe", "you", "one"), ("i", "owe", "you", "one"), ("i", "owe", "you"),
-    # openers of talk and asides of time: "listen up,", "tell you what,", "at your leisure", "whenever"
+    # openers of talk and asides of time: "listen up,", "tell you what,", "at your leisure"
     *((*i, "would", *really, "appreciate", "it") for i in ((), ("i",), ("we",))
       for really in ((), ("really",))),
     *(("would", "be", great) for great in ("great", "lovely", "amazing", "perfect", "brilliant", "helpful")),
@@ -847,7 +856,7 @@ CLOSING = CLOSING + Phrases((
     *((*it, *very, "important") for it in ((), ("it", "is"), ("is",))
       for very in ((), ("very",), ("really",))),
     ("let", "me", "think"), ("listen",), ("listen", "up"), ("you", "know", "what"),
-    ("tell", "you", "what"), ("at", "your", "leisure"), ("whenever",),
+    ("tell", "you", "what"), ("at", "your", "leisure"),
     *((when, "you", "get", way, "to", "it") for when in ("when", "whenever") for way in ("round", "around")),
     *(("if", "you", "get", "a", moment) for moment in ("minute", "sec", "second", "moment", "mo")),
     *(("if", "it", be, "not", "too", "much", bother) for be in ("is", "'s")

@@ -685,12 +685,22 @@ def several_actions_before_condition(rest: str) -> str:
                     "give the condition its own sentence ('If ..., ...')")
 
 
-# ------------------------------------------------------------------------------------- back-references
+def any_time_in_sequence(said: str) -> str:
+    return rephrase(f"'{said}': the last goal anywhere in that order, or after the rest? Say it in a "
+                    "sentence of its own ('At any point, sit on X.') or put it in the order with 'then'")
+
+
+def superlative(word: str) -> str:
+    return rephrase(f"'{word}' compares things the scene does not measure; name the one meant (by its room "
+                    "or what is near it)")
+
+
 def not_after_comma(said: str) -> str:
     return rephrase(f"'{said}' after a comma: which one is meant (instead of it), or a place to keep away "
                     "from? Say 'never enter X' / 'avoid X' to keep away")
 
 
+# ------------------------------------------------------------------------------------- back-references
 def antecedent_of_several(pronoun: str, phrases: list[str]) -> str:
     named = ", ".join(f"'{p}'" for p in dict.fromkeys(phrases))
     return rephrase(f"'{pronoun}' could be any of {named}, named in a sentence that is not part of the "

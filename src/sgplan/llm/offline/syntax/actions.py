@@ -15,6 +15,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.floors import floor_count, floor_offset
 from sgplan.llm.offline.syntax.links import skip_subject
+from sgplan.llm.offline.syntax.noun_slot import superlative
 from sgplan.llm.offline.syntax.phrases import phrase_list
 from sgplan.llm.offline.syntax.qualifiers import remark_ahead
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal, unreadable
@@ -205,6 +206,8 @@ def odd_verb(r: Reader, i: int) -> Refusal | None:
     loss would widen the goal), it has no vowel (*bthrm*, an abbreviation not known), or it follows another
     unknown word (*lvng rm couch*)."""
     spelling, w = r.spelling, r.word(i)
+    if superlative(w):  # "grab heaviest bottle": a comparison, not a verb
+        return Refusal(rf.superlative(w))
     if spelling is None or spelling.is_known(w) or w.endswith("ly"):
         return None
     if spelling.scene_noun_like(w) is not None or not set(w) & set("aeiouy"):

@@ -49,6 +49,8 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     if sequence_too and (after := after_as_then(r, i)) is not None:
         return after
     said = r.phrase(i, lx.TIME_FILLERS) or r.phrase(i, lx.POLITE)
+    if said in lx.ANY_TIME and r.word(i - 1) in (",", "and") and set(r.words[:i]) & {"then", "after"}:
+        return Refusal(rf.any_time_in_sequence(r.quote(0, i + len(said))))  # "A, then B, and at some point C"
     if said is not None:
         return "filler", i + len(said)
     w = r.word(i)

@@ -78,3 +78,10 @@ def foreign_word(r: Reader, i: int) -> bool:
     w = r.word(i)
     return (w.isalpha() and r.head(i) is None and w not in lx.THING_STOPS
             and (r.spelling is None or not r.spelling.may_be_a_misspelt_name(w)))
+
+
+def superlative(word: str) -> bool:
+    """Whether ``word`` compares things (*heaviest*, *ripest*, *cleanest*, *most*): no scene says which."""
+    if word in lx.SUPERLATIVES:
+        return True
+    return len(word) > 5 and word.endswith("est") and word not in lx.NOT_SUPERLATIVE

@@ -16,7 +16,14 @@ from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import qualifiers
 from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.links import closing_at
-from sgplan.llm.offline.syntax.noun_slot import NOUN_PHRASES, count_word, foreign_word, head_noun, noun_phrase
+from sgplan.llm.offline.syntax.noun_slot import (
+    NOUN_PHRASES,
+    count_word,
+    foreign_word,
+    head_noun,
+    noun_phrase,
+    superlative,
+)
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.tree import (
     Described,
@@ -276,6 +283,9 @@ def determiner(r: Reader, i: int, other: bool) -> Parse[Determiner]:
         count = det.count if det.count is not None else count_word(r, i + demo)
         end = i + demo + (1 if count is not None and det.count is None else 0)
         return Match(Determiner(det.mode, count, r.word(i), det.mode, other), end)
+    compared = next((w for w in r.words[i:description_end(r, i)] if superlative(w)), None)
+    if compared is not None:  # "the heaviest bottle", "the ripest apple": a comparison the scene cannot make
+        return Refusal(rf.superlative(compared))
     return Match(replace(det, other=other), i)
 
 
