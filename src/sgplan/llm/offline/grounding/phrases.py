@@ -236,10 +236,11 @@ def antecedent(pronoun: str, disc: Discourse, kind: str | None = None) -> Ground
                 if (g.mode == "all" and len(g.entities) > 1) == plural and g.phrase.lower() not in lx.PRONOUNS
                 and (kind is None or all(e.kind == kind for e in g.entities))]
     # what was read first; else what was set aside ("The vase in the hall is dusty. Dust it.")
-    fits = agreeing(disc.references) or agreeing(disc.mentions)
+    read = agreeing(disc.references)
+    fits = read or agreeing(disc.mentions)
     if not fits:
         rf.refuse(rf.no_antecedent(pronoun, plural))
-    if not agreeing(disc.references):  # only what was set aside: it must name one thing
+    if not read:  # only what was set aside: it must name one thing
         outermost = {tuple(e.key for e in g.entities) for g in fits
                      if not any(o is not g and o.start <= g.start and g.end <= o.end for o in fits)}
         if len(outermost) > 1:  # "The teddy bear keeps falling off the couch, check on it": which?

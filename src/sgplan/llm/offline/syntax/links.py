@@ -82,9 +82,9 @@ def on_the_way(r: Reader, i: int, way: tuple[str, ...],
         return Refusal(rf.on_your_way_there())
     if to > i + n and r.np_starts(to + 1):
         return None  # "On your way up to X, grab Y": Y, then X (.sentences.on_the_way_first)
-    if r.word(r.skip(i + len(way), lx.WAY_BACK)) == "from":  # "On your way back from X, Y": X, then Y
-        said = r.quote(i, r.skip(i + len(way), lx.WAY_BACK) + 1)
-        return None if i == 0 else Refusal(rf.way_back_from_mid(said))
+    back_end = r.skip(i + len(way), lx.WAY_BACK)
+    if r.word(back_end) == "from":  # "On your way back from X, Y": X, then Y
+        return None if i == 0 else Refusal(rf.way_back_from_mid(r.quote(i, back_end + 1)))
     if sequence_too and r.word(i + len(way)) in lx.WAY_BACK:
         return "sequence", r.skip(i + len(way), lx.WAY_BACK)
     return None
