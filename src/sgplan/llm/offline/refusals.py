@@ -533,6 +533,11 @@ def bulleted_among_numbered(said: str) -> str:
                     "order in words")
 
 
+def line_of_sentences(heading: str, said: str) -> str:
+    return rephrase(f"'{said}' shares a line with the sentence before it under '{heading}': which of them are "
+                    "steps of that order is not known; put each step on a line of its own, or number them")
+
+
 def after_clause_between(said: str, before: str) -> str:
     return rephrase(f"'{said}' between two clauses: is it done after '{before}', or only before what "
                     "follows it, or before both? Say it in order with 'then' ('A, then X, then B'), or give "

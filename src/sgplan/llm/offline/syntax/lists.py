@@ -45,8 +45,10 @@ def read_lists(readers: list[Reader]) -> list[Reader]:
     while k < len(readers):
         r = readers[k]
         heading = r if r.marker is None and heads(r, readers, k) else None
+        lines = line_items(readers, k) if heading is None else []
+        heading = r if lines else heading
         first = k + (1 if heading is not None else 0)
-        run = list_run(readers, first) if heading is not None or r.marker is not None else []
+        run = lines or (list_run(readers, first) if heading is not None or r.marker is not None else [])
         if not run:
             ordered = ordered_before(out) if r.marker is None and only_order_remark(r) == "ordered" else None
             out = ordered if ordered is not None else out + colon(r, readers[k + 1] if k + 1 < len(readers)
@@ -79,6 +81,27 @@ def list_run(readers: list[Reader], k: int) -> list[Reader]:
     while end < len(readers) and readers[end].marker is not None:
         end += 1
     return readers[k:end]
+
+
+def line_items(readers: list[Reader], k: int) -> list[Reader]:
+    """The lines without list markers after ``readers[k]`` when it ends with a colon and its words say an
+    order (*ok list, in that order:* over a line per goal): each is an item of that list, as a bulleted one
+    is; ``[]`` when the heading says no order or fewer than two lines follow it. A line holding several
+    sentences under such a heading is refused: which of them are steps of the order is not known."""
+    heading = readers[k]
+    if heading.marker is not None or heading.word(len(heading) - 1) != ":":
+        return []
+    run: list[Reader] = []
+    for r in readers[k + 1:]:
+        if r.marker is not None or r.word(len(r) - 1) == ":":  # a list, or a heading of its own
+            break
+        run.append(r)
+    if len(run) < 2 or not run[0].new_line or heading_of(heading)[2] is None:
+        return []
+    for r in run:
+        if not r.new_line:
+            rf.refuse(rf.line_of_sentences(heading.quote(0, len(heading)), r.quote(0, len(r))))
+    return run
 
 
 def heads(r: Reader, readers: list[Reader], k: int) -> bool:
