@@ -197,6 +197,8 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
     if r.word(len(r) - 1) != ":":
         return [r]
     said, remark = without_order_remark(replace(r, toks=r.toks[:-1]))
+    if after is not None and (split := room_heading_after_step(said)) is not None:
+        return split  # "DR: wipe a table -> kit: bottle": the kitchen heads the words after its colon
     if said.toks and set(said.words) & lx.ORDER_HEADS:  # "Then: the kitchen" reads "Then, the kitchen"
         comma = Tok(",", said.toks[-1].end, said.toks[-1].end)
         order = Announced(said.quote(0, len(said)), (*said.toks, comma), None, None, said.toks[0].start,
@@ -227,6 +229,19 @@ def room_heading(r: Reader) -> Announced | None:
     said = r.toks
     prefix = (Tok("in", said[0].start, said[0].start), *said, Tok(",", said[-1].end, said[-1].end))
     return Announced(r.quote(0, len(r)), prefix, None, None, said[0].start, scope=True)
+
+
+def room_heading_after_step(r: Reader) -> list[Reader] | None:
+    """*wipe a table -> kit:* (the words before a colon, inside a line of steps): a step, then a room that
+    heads what follows the colon, as a line of its own would (*DR: wipe a table -> kit: bottle* is the table,
+    then the kitchen's bottle); ``None`` unless the words end with *then* (an arrow) and a room."""
+    join = max((k for k in range(1, len(r)) if r.word(k) == "then"), default=None)
+    tail = replace(r, toks=r.toks[join + 1:]) if join is not None else None
+    heading = room_heading(tail) if tail is not None and tail.toks else None
+    if join is None or heading is None:
+        return None
+    return [replace(r, toks=r.toks[:join]),
+            replace(r, toks=(), announced=replace(heading, prefix=(r.toks[join], *heading.prefix)))]
 
 
 def floor_heading(r: Reader) -> Announced | None:
