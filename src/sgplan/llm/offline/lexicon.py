@@ -1031,6 +1031,8 @@ AFTER_THAT = Phrases((("after", "that"), ("after", "it"), ("after", "this")))
 """*after that / it / this*: after the step before, never a place named *it*."""
 AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over", "again", ","})
 """After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
+BASE_VERBS_IN_ING = word_set("bring ring sing sting swing string wring fling cling")
+"""Verbs whose plain form ends in *-ing* (*and after bring it ...* is no gerund)."""
 
 # -------------------------------------------------------------------------------------------- negation
 NEGATED_NEED_WORDS = frozenset({"need", "needs", "have", "has", "got"})

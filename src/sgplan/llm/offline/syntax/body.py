@@ -14,7 +14,7 @@ from typing import Literal
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import action, action_then_ahead, after_conjunction, times_before_place
-from sgplan.llm.offline.syntax.links import closing_at, done_closing, done_words, link
+from sgplan.llm.offline.syntax.links import closing_at, done_closing, done_words, is_gerund, link
 from sgplan.llm.offline.syntax.negation import negation, off_limits, stay_on_floor
 from sgplan.llm.offline.syntax.phrases import there_then_verb
 from sgplan.llm.offline.syntax.qualifiers import names_rooms
@@ -343,7 +343,7 @@ def inline_before(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse
     if r.word(i) != "before":
         return None
     nxt = r.word(i + 1)
-    if (r.word(i - 1) in (",", "and", "but") and nxt in lx.POSITIVE_VERBS and not nxt.endswith("ing")
+    if (r.word(i - 1) in (",", "and", "but") and nxt in lx.POSITIVE_VERBS and not is_gerund(nxt)
             and not r.np_starts(i + 1) and nxt not in lx.VERB_STOPS):
         return Refusal(rf.before_bare_verb(r.quote(i, i + 2)))
     found = after_conjunction(r, i + 1)

@@ -97,7 +97,7 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
     if r.word(i) != "after" or r.word(i - 1) not in (",", "and"):
         return None
     nxt = r.word(i + 1)
-    if nxt in lx.AFTER_AS_THEN or (nxt in lx.POSITIVE_VERBS and not nxt.endswith("ing")
+    if nxt in lx.AFTER_AS_THEN or (nxt in lx.POSITIVE_VERBS and not is_gerund(nxt)
                                    and not has_main_clause(r, i + 1)):
         return "sequence", i + 1  # "after to the bedroom", "after go up in the dining room", "after again"
     k = skip_subject(r, i + 1)
@@ -110,6 +110,11 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
         # "go to the office and after the kitchen": the kitchen after (as learners write) or before?
         return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), i + 5))))
     return None
+
+
+def is_gerund(word: str) -> bool:
+    """Whether ``word`` is a verb's *-ing* form (*going*), not a plain form ending so (*bring*)."""
+    return word.endswith("ing") and word not in lx.BASE_VERBS_IN_ING
 
 
 def has_main_clause(r: Reader, i: int) -> bool:
