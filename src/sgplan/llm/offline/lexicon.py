@@ -521,6 +521,8 @@ THERE_SAID = Phrases((("there",), ("while", "you", "are", "there"), ("while", "y
 CLAUSE_ENDS = frozenset({"", ",", "and", "then", "but"})
 GIVEN_MANNER = frozenset({"quick", "good", "little", "proper", "gentle", "thorough", "light", "fast"})
 """Between *a* and a chore said as a noun (*give the couch a good fluff*)."""
+GIVEN_AGAIN = frozenset({"another"})
+"""*give X another splash / look*: the chore given again (a new visit of X, as *X again*)."""
 GIVEN_ENDS = frozenset({"", ",", "and", "then", "but", "please", "too", "as", "before", "after", "first"})
 """After *give X a <chore>*: the clause ends (a word after the chore may make it a thing: *a new flower*)."""
 BODY_PART_OWNERS = ("your", "my", "his", "her", "their")

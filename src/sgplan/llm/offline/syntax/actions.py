@@ -71,6 +71,8 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     end = given(r, phrases.end) if set(verbs.node.words) & lx.GIVE_VERBS else phrases.end
     if end is None:
         return Refusal(rf.give_without_look(r.quote(start, phrases.end)))
+    if end > phrases.end and r.word(phrases.end) in lx.GIVEN_AGAIN:  # "give X another splash": X again
+        node = replace(node, repeat=Repeat(True, 1, None))
     return action_tail(r, state_said(r, end) if checked else end, node)
 
 
@@ -92,9 +94,9 @@ def went_back(r: Reader, verbs: VerbWords, i: int, in_condition: bool) -> Parse[
 
 def given(r: Reader, i: int) -> int | None:
     """The end of what *give X* gives X at ``i`` (*a quick look*; any chore said as one word closing the
-    clause, *a flush*, *a good rinse*), or ``None`` if it gives X nothing read (*give X some water*, *give X
+    clause, *a flush*, *a good rinse*; *another* one is a new visit of X), or ``None`` if it gives X nothing read (*give X some water*, *give X
     to Y*, *give X a bowl*: a room or object of the scene is given, not a chore)."""
-    if r.word(i) not in ("a", "an"):
+    if r.word(i) not in ("a", "an") and r.word(i) not in lx.GIVEN_AGAIN:
         return None
     looks = r.phrase(i + 1, lx.GIVEN_LOOKS)
     if looks is not None:
