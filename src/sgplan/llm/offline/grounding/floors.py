@@ -118,7 +118,8 @@ def second_reading(said: str, disc: Discourse,
 
 def relative(word: str, disc: Discourse, candidates: list[Entity] | None) -> FloorReading:
     """*upstairs* / *downstairs*: the floors above / below the start floor when it is known; in a two-floor
-    building, the upper / lower floor; for a noun (*the downstairs bathroom*) whose candidates lie on
+    building, the upper / lower floor (after a goal on another floor, where the start has no floor that
+    way, from that goal's floor: *go up to X, then come back down*); for a noun (*the downstairs bathroom*) whose candidates lie on
     exactly two floors, the lower / upper of those, as people name such rooms whatever floor they stand
     on; otherwise refused, naming the floors."""
     step, n, start = lx.RELATIVE_FLOORS[word], disc.vocab.num_floors, disc.start_floor
@@ -129,6 +130,8 @@ def relative(word: str, disc: Discourse, candidates: list[Entity] | None) -> Flo
         second = second_reading(word, disc,
                                 lambda base: frozenset(f for f in range(n) if (f - base) * step > 0))
         wanted = frozenset(f for f in range(n) if (f - start) * step > 0)
+        if not wanted and second is not None and second.floors:
+            return FloorReading(second.floors)  # "go upstairs ..., then come back down": down from there
         if not wanted:
             rf.refuse(rf.off_the_building(word, start, disc.vocab.building_name, n))
         return with_second(wanted, second)
