@@ -977,6 +977,8 @@ STRICT_SEQ = Phrases(tuple(
                  ("only", "when", "that", "is", "done"), ("only", "after", "you", "have", "done", "that"),
                  ("only", "once", "you", "have", "done", "that"))))
 """``A, and only after that B``: B after A, and not before it (strict)."""
+STRICT_WORDS = frozenset({"only", "once", "when", "until", "unless", "if", "not", "never", "do"})
+"""Words that, in a clause closing with *only after that*, make which goal waits unclear."""
 ORDER_MODIFIERS = Phrases((("one", "after", "the", "other"), ("one", "after", "another"),
                            ("in", "that", "order"), ("in", "this", "order"), ("in", "order"),
                            ("in", "sequence"), ("sequentially",), ("one", "by", "one"), ("in", "turn"),

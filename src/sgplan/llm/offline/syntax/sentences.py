@@ -58,6 +58,7 @@ from sgplan.llm.offline.syntax.tree import (
     UpThere,
     WheneverRule,
 )
+from sgplan.llm.offline.text import Tok
 
 OPENINGS: RuleSet[SentenceBody] = RuleSet("sentence opening")
 
@@ -68,6 +69,7 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
         r.word(k - 1).isdigit() or r.word(k - 1) in lx.NUMBER_WORDS or r.word(k - 1) in lx.FEW)), None)
     if delay is not None:  # "wait 5 min", "in ten minutes", "for a few minutes"
         return Refusal(rf.left_over(r.quote(max(delay - 2, 0), delay + 1)))
+    r = strict_order_first(r)
     i, opener = 0, None
     # "And the whole time, ..."; not "And while you're at it, ...", which also adds goals (as *also*)
     lead_and = 1 if r.word(0) in ("and", "but", "also") and r.word(1) != "while" else 0
@@ -109,6 +111,26 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
                                  r.span(0, len(r)), r.announced, r.after_item, floor,
                                  opened.node if opened is not None else None, order_free(r)), len(r))
+
+
+def strict_order_first(r: Reader) -> Reader:
+    """A sentence of one clause that closes with its strict order (*Go into the dining room only after
+    that.*, *Sit on the couch only then.*, *Only go into the dining room after that.*) with the order words
+    moved before the clause, as *Only after that, go into the dining room.* says it: the clause is the one
+    goal that waits. ``r`` itself when it is not such a sentence (a comma, a joiner or an order word in the
+    clause leaves which goal waits open: refused by the body's rules)."""
+    closing = next((k for k in range(len(r)) if (said := r.phrase(k, lx.STRICT_SEQ)) is not None
+                    and said[0] == "only" and k + len(said) == len(r)), None)
+    if closing is not None:
+        start, end, order = 0, closing, r.toks[closing:]
+    elif r.word(0) == "only" and len(r) > 3 and r.phrase(len(r) - 2, lx.AFTER_THAT) is not None:
+        start, end, order = 1, len(r) - 2, (r.toks[0], *r.toks[len(r) - 2:])
+    else:
+        return r
+    if start == end or set(r.words[start:end]) & (lx.LIST_JOINERS | lx.STRICT_WORDS):
+        return r
+    comma = Tok(",", order[-1].end, order[-1].end)
+    return replace(r, toks=(*order, comma, *r.toks[start:end]))
 
 
 def ordered_opening(r: Reader, i: int) -> bool:
