@@ -1035,6 +1035,8 @@ AFTER_THAT = Phrases((("after", "that"), ("after", "it"), ("after", "this")))
 """*after that / it / this*: after the step before, never a place named *it*."""
 AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over", "again", ","})
 """After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
+FLOOR_MOVE_VERBS = word_set("go come head pop nip run walk move get travel proceed")
+"""Verbs of a sentence that only moves between floors (*Go upstairs.*: the floor of the goals after it)."""
 BASE_VERBS_IN_ING = word_set("bring ring sing sting swing string wring fling cling")
 """Verbs whose plain form ends in *-ing* (*and after bring it ...* is no gerund)."""
 

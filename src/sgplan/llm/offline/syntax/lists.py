@@ -258,9 +258,17 @@ def floor_heading(r: Reader) -> Announced | None:
 
 
 def merged(readers: list[Reader]) -> list[Reader]:
-    """``readers`` with each announcement (a reader without tokens) read with the sentence after it."""
+    """``readers`` with each announcement (a reader without tokens) read with the sentence after it, and
+    each sentence that only moves between floors (*Go upstairs.*, *1. Head back down*) read with the one after
+    it, as *go upstairs, then ...* (the move says on which floor the goals after it are; in a list in no
+    order it is left alone, and refused)."""
     out: list[Reader] = []
     for r in readers:
+        if (out and only_floor_move(out[-1]) and not r.aside and r.toks
+                and (r.marker is None or r.after_item)):  # not in a bulleted list: in no order
+            then = Tok("then", r.toks[0].start, r.toks[0].start)
+            out[-1] = replace(out[-1], toks=(*out[-1].toks, Tok(",", then.start, then.start), then, *r.toks))
+            continue
         if out and out[-1].announced is not None and not out[-1].toks:
             announced = out[-1].announced
             kept = None if announced.scope else announced
@@ -268,6 +276,15 @@ def merged(readers: list[Reader]) -> list[Reader]:
             continue
         out.append(r)
     return [r for r in out if r.toks]
+
+
+def only_floor_move(r: Reader) -> bool:
+    """Whether ``r`` only says to go up or down a floor (*Go upstairs*, *Come back down*, *Please head
+    downstairs*): a verb of going, then *upstairs* / *downstairs* / *up* / *down* closing it."""
+    words = [w for w in r.words if w not in (".", "!")]
+    return (len(words) >= 2 and (words[-1] in lx.RELATIVE_FLOORS or words[-1] in lx.UP_DOWN)
+            and words[0] in lx.FLOOR_MOVE_VERBS | {"please"}
+            and all(w in lx.FLOOR_MOVE_VERBS or w in ("back", "please") for w in words[:-1]))
 
 
 def announcement(r: Reader) -> Announced | None:
