@@ -670,7 +670,10 @@ _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "c
                  ("is", "fine", "by", "me"), ("is", "fine", "with", "me"), ("is", "ok", "by", "me"),
                  ("is", "okay", "by", "me"),
                  ("makes", "the", "most", "sense"), ("is", "the", "quickest"), ("is", "the", "fastest"),
-                 ("is", "the", "shortest"))
+                 ("is", "the", "shortest"),
+                 ("you", "fancy"), ("you", "think", "best"), ("you", "think", "is", "best"), ("you", "see", "fit"),
+                 ("you", "feel", "like"), ("you", "reckon", "is", "best"), ("is", "handiest"),
+                 ("you", "find", "easiest"))
 ANY_ORDER = Phrases((
     ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"), ("any", "order"),
     ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "order"),

@@ -533,6 +533,11 @@ def bulleted_among_numbered(said: str) -> str:
                     "order in words")
 
 
+def order_remark_after_then(said: str) -> str:
+    return rephrase(f"'{said}': 'then' puts the goals in order and the remark leaves the order free; which "
+                    "holds? Say 'A and B, in any order' or 'A, then B'")
+
+
 def line_of_sentences(heading: str, said: str) -> str:
     return rephrase(f"'{said}' shares a line with the sentence before it under '{heading}': which of them are "
                     "steps of that order is not known; put each step on a line of its own, or number them")

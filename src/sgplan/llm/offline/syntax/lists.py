@@ -206,8 +206,8 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
         return [replace(said, toks=(), announced=order)] if after is not None else [said]
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
         said = replace(said, toks=())  # "Here's the plan:", "Remember:": they ask nothing
-    announced = (announcement(said) or verb_prefix(said) or room_heading(said) or floor_heading(said)
-                 if said.toks else None)
+    announced = (announcement(said) or verb_prefix(said) or room_heading(labelled(said)) or floor_heading(said)
+                 if said.toks else None)  # "Kitchen jobs: the oven, then ...": the kitchen's oven
     if announced is None and said.toks and label_end(said) == len(said):
         # a label of what follows: "Route for today:" is said back, "Rules:" says nothing
         said = replace(said, aside=True) if names_more(said, len(said)) else replace(said, toks=())

@@ -70,6 +70,9 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     if delay is not None:  # "wait 5 min", "in ten minutes", "for a few minutes"
         return Refusal(rf.left_over(r.quote(max(delay - 2, 0), delay + 1)))
     r = strict_order_first(r)
+    contradicted = order_remark_after_then(r)
+    if contradicted is not None:
+        return contradicted
     i, opener = 0, None
     # "And the whole time, ..."; not "And while you're at it, ...", which also adds goals (as *also*)
     lead_and = 1 if r.word(0) in ("and", "but", "also") and r.word(1) != "while" else 0
@@ -145,6 +148,21 @@ def order_free(r: Reader) -> bool:
     """Whether *in either / any order* closes a clause of the sentence (before a comma or its end)."""
     return any((said := r.phrase(k, lx.ANY_ORDER)) is not None and r.word(k + len(said)) in ("", ",")
                for k in range(len(r)))
+
+
+def order_remark_after_then(r: Reader) -> Refusal | None:
+    """*Go to the kitchen, then the office, in any order*: a remark leaving the order free right after one
+    goal said after *then* contradicts it (the order, or the remark?): refused. After several goals (*..., then
+    the office and the bedroom in any order*) the remark is about them, and read."""
+    for k in range(len(r)):
+        said = r.phrase(k, lx.ANY_ORDER)
+        if said is None or r.word(k + len(said)) not in ("", ","):
+            continue
+        start = k - (1 if r.word(k - 1) == "," else 0)
+        then = max((j for j in range(start) if r.phrase(j, lx.THEN_NEXT) is not None), default=None)
+        if then is not None and not set(r.words[then + 1:start]) & (lx.LIST_JOINERS - {"then"}):
+            return Refusal(rf.order_remark_after_then(r.quote(0, k + len(said))))
+    return None
 
 
 def after_all_opening(r: Reader, i: int) -> Match[AfterAll] | None:
