@@ -116,7 +116,9 @@ def heads(r: Reader, readers: list[Reader], k: int) -> bool:
 def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) -> list[Reader]:
     """The sentences of a list: its heading read (see :func:`heading_of`) and its items, each after the one
     before it when the list is in order (see the module docstring)."""
-    out, announced, said_order, scope = heading_of(heading) if heading is not None else ([], None, None, ())
+    label = room_label(heading, run) if heading is not None else None
+    out, announced, said_order, scope = (([label], None, None, ()) if label is not None else heading_of(heading)
+                                         if heading is not None else ([], None, None, ()))
     order = remark or said_order or ("ordered" if any(r.marker == "number" for r in run) else "any")
     if order == "ordered" and not remark and not said_order:
         check_no_bulleted_goal(run)
@@ -127,6 +129,23 @@ def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) 
         said = prefix[len(scope):] if scope[:1] and scope[0].text == "in" and outside_room(item) else prefix
         out.append(replace(item, toks=said + item.toks, announced=announced, after_item=after))
     return out
+
+
+def room_label(heading: Reader, run: list[Reader]) -> Reader | None:
+    """A heading that names a room before a word of its own, not a list's (*Kitchen tidy*, *Garage trip:*),
+    over items one of which names that room (*1. fetch the chair from the garage*): the room is where that
+    item goes, the heading a label, set aside and said back (``None`` otherwise: *Kitchen jobs:* is the room
+    of each item, and a heading whose room no item names is read as it was)."""
+    said = replace(heading, toks=heading.toks[:-1]) if heading.word(len(heading) - 1) == ":" else heading
+    head = said.head(0)
+    rest = said.words[head.words:] if head is not None else []
+    if (head is None or head.kind != "room" or not 0 < len(rest) <= 2
+            or any(not w.isalpha() or w in lx.STRUCTURAL or w in lx.LIST_NOUNS or said.head(head.words + n)
+                   for n, w in enumerate(rest))):
+        return None
+    named = any((h := item.head(k)) is not None and h.kind == "room" and h.categories == head.categories
+                for item in run for k in range(len(item)))
+    return replace(said, aside=True) if named else None
 
 
 def check_no_bulleted_goal(run: list[Reader]) -> None:
