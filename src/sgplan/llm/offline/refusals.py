@@ -538,6 +538,11 @@ def order_remark_after_then(said: str) -> str:
                     "holds? Say 'A and B, in any order' or 'A, then B'")
 
 
+def aside_after_prefix(prefix: str, aside: str) -> str:
+    return rephrase(f"'({aside})' after '{prefix}': is it what is done there (before what follows) or a step "
+                    "of its own? Say it without the parentheses, in order with 'then'")
+
+
 def line_of_sentences(heading: str, said: str) -> str:
     return rephrase(f"'{said}' shares a line with the sentence before it under '{heading}': which of them are "
                     "steps of that order is not known; put each step on a line of its own, or number them")

@@ -369,6 +369,11 @@ def prefixed(r: Reader, i: int, prefix_last: bool) -> Parse[SentenceBody]:
     if not isinstance(prefix, Match):
         return prefix
     passive = passive_end(r, prefix.end)  # "once the oven is checked, ..." (not "... checked and X, ...")
+    if (r.word(prefix.end) == "," and r.text[r.toks[prefix.end].start:r.toks[prefix.end].start + 1] == "("
+            and r.word(prefix.end + 1) in lx.POSITIVE_VERBS):
+        # "When you're done in the kitchen (check the microwave), ...": what is done there, or a step after?
+        close = next((k for k in range(prefix.end + 1, len(r)) if r.word(k) == ","), len(r))
+        return Refusal(rf.aside_after_prefix(r.quote(i, prefix.end), r.quote(prefix.end + 1, close)))
     rest = body(r, comma_or_then(r, passive if r.word(passive) in (",", "then") else prefix.end))
     if not isinstance(rest, Match):
         return rest
