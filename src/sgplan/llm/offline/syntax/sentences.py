@@ -538,7 +538,9 @@ def postfix(r: Reader, i: int, body_actions: int) -> Parse[Postfix]:
                                             or r.at(i, *lx.ONLY_IF)):
         return Refusal(rf.several_actions_before_condition(r.rest(i)))
     if r.phrase(i, lx.ONLY_AFTER):
-        return closed(r, after_conjunction(r, i + 2), OnlyAfterPost)
+        found = after_conjunction(r, i + 2)  # a passive may close it: "only after the plant is watered"
+        return closed(r, Match(found.node, passive_end(r, found.end)) if isinstance(found, Match) else found,
+                      OnlyAfterPost)
     if r.at(i, *lx.ONLY_IF):
         return closed(r, condition(r, i + 2), OnlyIfPost)
     said = antecedent(r, i)
