@@ -671,7 +671,8 @@ _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "c
                  ("is", "okay", "by", "me"),
                  ("makes", "the", "most", "sense"), ("is", "the", "quickest"), ("is", "the", "fastest"),
                  ("is", "the", "shortest"),
-                 ("you", "fancy"), ("you", "think", "best"), ("you", "think", "is", "best"), ("you", "see", "fit"),
+                 ("you", "fancy"), ("you", "think", "best"), ("you", "think", "is", "best"),
+                 ("you", "see", "fit"),
                  ("you", "feel", "like"), ("you", "reckon", "is", "best"), ("is", "handiest"),
                  ("you", "find", "easiest"))
 ANY_ORDER = Phrases((

@@ -119,7 +119,8 @@ def second_reading(said: str, disc: Discourse,
 def relative(word: str, disc: Discourse, candidates: list[Entity] | None) -> FloorReading:
     """*upstairs* / *downstairs*: the floors above / below the start floor when it is known; in a two-floor
     building, the upper / lower floor (after a goal on another floor, where the start has no floor that
-    way, from that goal's floor: *go up to X, then come back down*); for a noun (*the downstairs bathroom*) whose candidates lie on
+    way, from that goal's floor: *go up to X, then come back down*); for a noun (*the downstairs
+    bathroom*) whose candidates lie on
     exactly two floors, the lower / upper of those, as people name such rooms whatever floor they stand
     on; otherwise refused, naming the floors."""
     step, n, start = lx.RELATIVE_FLOORS[word], disc.vocab.num_floors, disc.start_floor

@@ -30,6 +30,7 @@ from sgplan.llm.offline.syntax.tree import (
     Span,
     VerbWords,
 )
+from sgplan.llm.offline.text import Tok
 
 
 def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
@@ -94,8 +95,9 @@ def went_back(r: Reader, verbs: VerbWords, i: int, in_condition: bool) -> Parse[
 
 def given(r: Reader, i: int) -> int | None:
     """The end of what *give X* gives X at ``i`` (*a quick look*; any chore said as one word closing the
-    clause, *a flush*, *a good rinse*; *another* one is a new visit of X), or ``None`` if it gives X nothing read (*give X some water*, *give X
-    to Y*, *give X a bowl*: a room or object of the scene is given, not a chore)."""
+    clause, *a flush*, *a good rinse*; *another* one is a new visit of X), or ``None`` if it gives X nothing
+    read (*give X some water*, *give X to Y*, *give X a bowl*: a room or object of the scene is given, not a
+    chore)."""
     if r.word(i) not in ("a", "an") and r.word(i) not in lx.GIVEN_AGAIN:
         return None
     looks = r.phrase(i + 1, lx.GIVEN_LOOKS)
@@ -441,3 +443,22 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
 def after_conjunction(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     """The action after *after*, *before*, *once*, *until*, *if* ...: its subject skipped first."""
     return action(r, skip_subject(r, i), in_condition)
+
+
+def left_things_put(readers: list[Reader]) -> list[Reader]:
+    """``readers`` with *leave it / them* before where it goes (*on*, *in*, *next to*, *by* ... Y) read as
+    *put it*, when a verb of fetching or carrying comes before it in its sentence or the one before (*grab the
+    book, then leave it next to the TV*): the thing carried is put there. Without one (*look at the bowl but
+    leave it on the table*: do not move it?) *leave* stays refused."""
+    out: list[Reader] = []
+    for n, r in enumerate(readers):
+        before = (readers[n - 1].words if n else ()) + r.words
+        offset = len(before) - len(r)
+        for k in range(len(r)):
+            if (r.word(k) in lx.LEAVE and r.word(k + 1) in ("it", "them")
+                    and (r.word(k + 2) in lx.CARRY_DESTINATION_WORDS or r.phrase(k + 2, lx.CARRY_BESIDE))
+                    and set(before[:offset + k]) & lx.FETCH_VERBS):
+                put = Tok("put", r.toks[k].start, r.toks[k].end)
+                r = replace(r, toks=(*r.toks[:k], put, *r.toks[k + 1:]))
+        out.append(r)
+    return out

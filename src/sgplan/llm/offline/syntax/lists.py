@@ -26,6 +26,7 @@ from typing import Literal
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.syntax.actions import left_things_put
 from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.preamble import is_chitchat
@@ -59,7 +60,7 @@ def read_lists(readers: list[Reader]) -> list[Reader]:
         remark = only_order_remark(after) if after is not None and after.marker is None else None
         out += list_items(heading, run, remark)
         k = first + len(run) + (1 if remark else 0)
-    return merged(out)
+    return left_things_put(merged(out))  # an item may leave what the item before it fetched
 
 
 def ordered_before(out: list[Reader]) -> list[Reader] | None:
@@ -117,8 +118,8 @@ def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) 
     """The sentences of a list: its heading read (see :func:`heading_of`) and its items, each after the one
     before it when the list is in order (see the module docstring)."""
     label = room_label(heading, run) if heading is not None else None
-    out, announced, said_order, scope = (([label], None, None, ()) if label is not None else heading_of(heading)
-                                         if heading is not None else ([], None, None, ()))
+    out, announced, said_order, scope = ([], None, None, ()) if heading is None else (
+        ([label], None, None, ()) if label is not None else heading_of(heading))
     order = remark or said_order or ("ordered" if any(r.marker == "number" for r in run) else "any")
     if order == "ordered" and not remark and not said_order:
         check_no_bulleted_goal(run)
@@ -225,8 +226,9 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
         return [replace(said, toks=(), announced=order)] if after is not None else [said]
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
         said = replace(said, toks=())  # "Here's the plan:", "Remember:": they ask nothing
-    announced = (announcement(said) or verb_prefix(said) or room_heading(labelled(said)) or floor_heading(said)
-                 if said.toks else None)  # "Kitchen jobs: the oven, then ...": the kitchen's oven
+    # "Kitchen jobs: the oven, then ...": the kitchen's oven
+    announced = (announcement(said) or verb_prefix(said) or room_heading(labelled(said))
+                 or floor_heading(said) if said.toks else None)
     if announced is None and said.toks and label_end(said) == len(said):
         # a label of what follows: "Route for today:" is said back, "Rules:" says nothing
         said = replace(said, aside=True) if names_more(said, len(said)) else replace(said, toks=())

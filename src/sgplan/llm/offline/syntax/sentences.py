@@ -152,8 +152,8 @@ def order_free(r: Reader) -> bool:
 
 def order_remark_after_then(r: Reader) -> Refusal | None:
     """*Go to the kitchen, then the office, in any order*: a remark leaving the order free right after one
-    goal said after *then* contradicts it (the order, or the remark?): refused. After several goals (*..., then
-    the office and the bedroom in any order*) the remark is about them, and read."""
+    goal said after *then* contradicts it (the order, or the remark?): refused. After several goals (*...,
+    then the office and the bedroom in any order*) the remark is about them, and read."""
     for k in range(len(r)):
         said = r.phrase(k, lx.ANY_ORDER)
         if said is None or r.word(k + len(said)) not in ("", ","):
