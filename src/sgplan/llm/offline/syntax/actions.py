@@ -288,6 +288,10 @@ def verb_idiom(r: Reader, i: int) -> int:
     idiom = r.phrase(i, lx.VERB_IDIOMS)
     if idiom is not None:
         return len(idiom)
+    beside = r.phrase(i, lx.CARRY_BESIDE) if r.word(i - 1) in lx.BESIDE_VERBS else None
+    thing = r.head(i + len(beside) + (1 if r.word(i + len(beside)) in lx.ARTICLES else 0)) if beside else None
+    if beside is not None and thing is not None and thing.kind == "object":
+        return len(beside)  # "park next to the bed": the bed is where to be (a room next to X is another)
     if (r.word(i) in lx.BODY_PART_OWNERS and r.word(i + 1).isalpha() and r.head(i + 1) is None
             and r.word(i + 2) in lx.BODY_PART_LINKS and r.np_starts(i + 3)
             and not set(r.words[max(0, i - 2):i]) & lx.FETCH_VERBS):  # not "put my keys on the table"
