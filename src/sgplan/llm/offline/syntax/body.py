@@ -287,6 +287,18 @@ def after_one_room(before: Said) -> bool:
     return phrases is not None and len(phrases.items) == 1 and names_rooms(phrases.items[0])
 
 
+@ITEMS.rule("in between")
+def in_between_link(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*A, then B, and in between (,) Y*: Y right before B, as *on the way, Y* puts it (B one goal after a
+    sequence word; after a step of several goals the waypoint rule refuses). Not after *twice*
+    (:func:`.actions.in_between`)."""
+    k = r.skip(i, (",", "and"))
+    if k == i or not r.at(k, "in", "between") or not any(isinstance(item, Link) and item.sequence
+                                                           for item in before):
+        return None
+    return Match(Link(True, waypoint=True), k + 2 + (1 if r.word(k + 2) == "," else 0))
+
+
 @ITEMS.rule("link")
 def link_item(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """Fillers and sequence words (*then*, *after that*, *please*)."""

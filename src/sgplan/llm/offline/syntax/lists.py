@@ -285,6 +285,10 @@ def merged(readers: list[Reader]) -> list[Reader]:
     order it is left alone, and refused)."""
     out: list[Reader] = []
     for r in readers:
+        if out and between_after_twice(out[-1], r):  # "Visit X two times; between, go to Y": X, Y, X
+            comma = Tok(",", r.toks[0].start, r.toks[0].start)
+            out[-1] = replace(out[-1], toks=(*out[-1].toks, comma, *r.toks))
+            continue
         if (out and only_floor_move(out[-1]) and not r.aside and r.toks
                 and (r.marker is None or r.after_item)):  # not in a bulleted list: in no order
             then = Tok("then", r.toks[0].start, r.toks[0].start)
@@ -297,6 +301,15 @@ def merged(readers: list[Reader]) -> list[Reader]:
             continue
         out.append(r)
     return [r for r in out if r.toks]
+
+
+def between_after_twice(before: Reader, r: Reader) -> bool:
+    """Whether ``r`` opens with *(and) (in) between* and ``before`` says to visit something twice (*Visit the
+    kitchen two times; between, go to the office.*): the visit between the two, as in one sentence."""
+    k = 1 if r.word(0) == "and" else 0
+    twice = "twice" in before.words or any(before.at(n, "two", "times") or before.at(n, "2", "times")
+                                           for n in range(len(before)))
+    return twice and not r.aside and r.marker is None and (r.word(k) == "between" or r.at(k, "in", "between"))
 
 
 def only_floor_move(r: Reader) -> bool:
