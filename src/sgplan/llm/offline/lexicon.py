@@ -506,6 +506,10 @@ VERB_IDIOMS = Phrases((("all", "the", "way"), ("a", "look"), ("a", "quick", "loo
                        ("a", "proper", "look"), ("a", "little", "look"), ("a", "quick", "glance"),
                        ("a", "little", "peek")))
 """Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*."""
+BACK_TO_START_ENDS = frozenset({"", ",", "and", "then", "here", "again", "please"})
+"""After *come back* / *and back* with no place: the robot would return to where it started."""
+CHORE_PHRASALS = Phrases((("top", "up"), ("topping", "up"), ("top", "off")))
+"""Chore verbs whose first word is also a word of floors (*top up the plant*, not *the top floor*)."""
 GIVE_VERBS = frozenset({"give", "giving"})
 """*give X a look*: read only with what is given after X (:data:`GIVEN_LOOKS`), never alone (*give X to
 Y*)."""

@@ -533,6 +533,11 @@ def bulleted_among_numbered(said: str) -> str:
                     "order in words")
 
 
+def back_to_start(said: str) -> str:
+    return rephrase(f"'{said}' names no place: coming back to where the robot started cannot be required (a "
+                    "plan ends at its last goal); leave it out, or name the place to come back to")
+
+
 def order_remark_after_then(said: str) -> str:
     return rephrase(f"'{said}': 'then' puts the goals in order and the remark leaves the order free; which "
                     "holds? Say 'A and B, in any order' or 'A, then B'")

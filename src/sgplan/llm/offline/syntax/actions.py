@@ -54,6 +54,8 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     back = went_back(r, verbs.node, i, in_condition)
     if back is not None:
         return back
+    if not r.np_starts(i) and "back" in verbs.node.words and r.word(i) in lx.BACK_TO_START_ENDS:
+        return Refusal(rf.back_to_start(r.quote(start, i + (1 if r.word(i) in ("here", "again") else 0))))
     if not r.np_starts(i):
         return Refusal(rf.expected_phrase(" ".join(verbs.node.words), r.rest(i)))
     phrases = phrase_list(r, i, "goal")
@@ -285,7 +287,7 @@ def verb_idiom(r: Reader, i: int) -> int:
     """How many words at ``i`` belong to the verb although they look like a noun phrase: *all the way*, *a
     look* / *your way* (*take a look at*, *make your way to*), a body part before a place (*wash your hands
     at the sink*); 0 if none."""
-    idiom = r.phrase(i, lx.VERB_IDIOMS)
+    idiom = r.phrase(i, lx.VERB_IDIOMS) or r.phrase(i, lx.CHORE_PHRASALS)
     if idiom is not None:
         return len(idiom)
     beside = r.phrase(i, lx.CARRY_BESIDE) if r.word(i - 1) in lx.BESIDE_VERBS else None
