@@ -168,6 +168,8 @@ def sentences(tokens: list[Tok]) -> list[Part]:
             if tok.text == ":":  # kept: what comes before a colon may announce the list after it
                 current.append(tok)
             close()
+        elif tok.text == "#" and not current and new_line:
+            pass  # "## Office errand": a heading's marks (Markdown), not words
         elif tok.text == BULLET and not current:
             marker = "bullet"
         elif tok.text.isdigit() and ((nxt == ")" and not (current and current[-1].text in NUMBERED))

@@ -128,7 +128,10 @@ def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) 
         after = order == "ordered" and n > 0 and not (item.word(0) == "eventually"
                                                       or item.at(0, "at", "some", "point"))
         said = prefix[len(scope):] if scope[:1] and scope[0].text == "in" and outside_room(item) else prefix
-        out.append(replace(item, toks=said + item.toks, announced=announced, after_item=after))
+        lead = len(item.phrase(0, lx.SEQ_WORDS) or ())  # "- then the plant": the scope after "then"
+        lead += 1 if lead and item.word(lead) == "," else 0
+        out.append(replace(item, toks=item.toks[:lead] + said + item.toks[lead:], announced=announced,
+                           after_item=after))
     return out
 
 
