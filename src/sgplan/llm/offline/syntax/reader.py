@@ -101,12 +101,17 @@ class Reader:
         return self.nouns.match(self.words, i)
 
     def span(self, i: int, j: int) -> Span:
-        """The characters of the tokens ``[i, j)``."""
-        return Span(self.toks[i].start, self.toks[j - 1].end)
+        """The characters of the tokens ``[i, j)`` (of all of them, when words were moved: see :meth:`quote`)."""
+        said = self.toks[i:j]
+        return Span(min(t.start for t in said), max(t.end for t in said))
 
     def quote(self, i: int, j: int) -> str:
-        """The mission text of the tokens ``[i, j)``."""
-        return self.text[self.toks[i].start : self.toks[j - 1].end] if j > i else ""
+        """The mission text of the tokens ``[i, j)`` (from the first character of any of them to the last:
+        words moved before others, *Only after that, go ...* for *Go ... only after that*, are quoted whole)."""
+        if j <= i:
+            return ""
+        said = self.toks[i:j]
+        return self.text[min(t.start for t in said) : max(t.end for t in said)]
 
     def rest(self, i: int) -> str:
         """The words from ``i`` (at most six), quoted, or "the end of the sentence"."""
