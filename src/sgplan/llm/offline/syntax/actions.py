@@ -54,7 +54,8 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     back = went_back(r, verbs.node, i, in_condition)
     if back is not None:
         return back
-    if not r.np_starts(i) and "back" in verbs.node.words and r.word(i) in lx.BACK_TO_START_ENDS:
+    if (not r.np_starts(i) and "back" in verbs.node.words and r.word(i) in lx.BACK_TO_START_ENDS
+            and set(verbs.node.words) <= lx.FLOOR_MOVE_VERBS | lx.UP_DOWN.keys() | {"back", "here"}):
         return Refusal(rf.back_to_start(r.quote(start, i + (1 if r.word(i) in ("here", "again") else 0))))
     if not r.np_starts(i):
         return Refusal(rf.expected_phrase(" ".join(verbs.node.words), r.rest(i)))
