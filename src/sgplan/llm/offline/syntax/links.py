@@ -102,11 +102,17 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
         return "sequence", i + 1  # "after to the bedroom", "after go up in the dining room", "after again"
     k = skip_subject(r, i + 1)
     verb = r.word(k) in lx.POSITIVE_VERBS or r.word(k) in lx.AVOID_VERBS
+    # "First the living room, after the dining room": after a sentence opening with "first" (and no other
+    # order word), "after" is the next step of the count (before it, what "first" names would not be first)
+    counted = (r.word(0) in lx.FIRST and r.word(i - 1) == ","
+               and not any(r.phrase(j, lx.SEQ_WORDS) for j in range(1, i)))
     if k > i + 1 and verb and not has_main_clause(r, k):
-        if r.word(i - 1) == "and":
+        if r.word(i - 1) == "and" or counted:
             return "sequence", k  # "and after you touch the toilet": and then
         return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), k + 4))))
     if r.np_starts(i + 1) and r.word(i + 1) not in lx.DETERMINERS - lx.ARTICLES and not has_main_clause(r, i):
+        if counted:
+            return "sequence", i + 1
         # "go to the office and after the kitchen": the kitchen after (as learners write) or before?
         return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), i + 5))))
     return None
