@@ -327,10 +327,10 @@ STAY_AFTER = ("then", "afterwards", "later", "next", "finally")
 STATED_SUBJECTS = Phrases((("i", "am"), ("we", "are"), ("you", "are"), ("the", "robot", "is"), ("i",),
                            ("we",), ("you",)))
 """*I'm* (the tokenizer drops the part after the apostrophe) / *we are* ... before where the robot is."""
-STATED_NOW = ("currently", "now", "still")
+STATED_NOW = ("currently", "now", "still", "already")
 NOW = Phrases((("right", "now"), ("now",), ("currently",), ("at", "once"), ("at", "present"), ("with", "you"),
-               ("with", "you", "now")))
-"""*right now* ...; *at the moment* reads *at once* here (:data:`PHRASE_ALIASES`: *the moment* = *once*)."""
+               ("with", "you", "now"), ("already",)))
+"""*right now*, *already* ...; *at the moment* reads *at once* here (:data:`PHRASE_ALIASES`: *the moment* = *once*)."""
 
 # ----------------------------------------------------------------------------------------------- verbs
 POSITIVE_VERBS = word_set(
