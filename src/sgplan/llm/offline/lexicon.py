@@ -683,6 +683,7 @@ ANY_ORDER = Phrases((
     ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"), ("any", "order"),
     ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "order"),
     ("order", "does", "not", "matter"), ("the", "order", "does", "not", "matter"),
+    *((*it, "does", "not", "matter", "which", *one, "first") for it in ((), ("it",)) for one in ((), ("one",))),
     ("order", "is", "not", "important"), ("the", "order", "is", "not", "important"),
     *((*order, *liking) for order in (("in", "any", "order"), ("in", "whatever", "order"),
                                       ("in", "whichever", "order"), ("in", "either", "order"),
