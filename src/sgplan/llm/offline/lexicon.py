@@ -330,7 +330,8 @@ STATED_SUBJECTS = Phrases((("i", "am"), ("we", "are"), ("you", "are"), ("the", "
 STATED_NOW = ("currently", "now", "still", "already")
 NOW = Phrases((("right", "now"), ("now",), ("currently",), ("at", "once"), ("at", "present"), ("with", "you"),
                ("with", "you", "now"), ("already",)))
-"""*right now*, *already* ...; *at the moment* reads *at once* here (:data:`PHRASE_ALIASES`: *the moment* = *once*)."""
+"""*right now*, *already* ...; *at the moment* reads *at once* here (:data:`PHRASE_ALIASES`: *the moment* =
+*once*)."""
 
 # ----------------------------------------------------------------------------------------------- verbs
 POSITIVE_VERBS = word_set(
@@ -683,7 +684,8 @@ ANY_ORDER = Phrases((
     ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"), ("any", "order"),
     ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "order"),
     ("order", "does", "not", "matter"), ("the", "order", "does", "not", "matter"),
-    *((*it, "does", "not", "matter", "which", *one, "first") for it in ((), ("it",)) for one in ((), ("one",))),
+    *((*it, "does", "not", "matter", "which", *one, "first")
+      for it in ((), ("it",)) for one in ((), ("one",))),
     ("order", "is", "not", "important"), ("the", "order", "is", "not", "important"),
     *((*order, *liking) for order in (("in", "any", "order"), ("in", "whatever", "order"),
                                       ("in", "whichever", "order"), ("in", "either", "order"),

@@ -101,13 +101,14 @@ class Reader:
         return self.nouns.match(self.words, i)
 
     def span(self, i: int, j: int) -> Span:
-        """The characters of the tokens ``[i, j)`` (of all of them, when words were moved: see :meth:`quote`)."""
+        """The characters of the tokens ``[i, j)`` (of all of them, when words were moved: :meth:`quote`)."""
         said = self.toks[i:j]
         return Span(min(t.start for t in said), max(t.end for t in said))
 
     def quote(self, i: int, j: int) -> str:
         """The mission text of the tokens ``[i, j)`` (from the first character of any of them to the last:
-        words moved before others, *Only after that, go ...* for *Go ... only after that*, are quoted whole)."""
+        words moved before others, *Only after that, go ...* for *Go ... only after that*, are quoted
+        whole)."""
         if j <= i:
             return ""
         said = self.toks[i:j]
