@@ -1048,6 +1048,9 @@ AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over",
 """After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
 FLOOR_MOVE_VERBS = word_set("go come head pop nip run walk move get travel proceed")
 """Verbs of a sentence that only moves between floors (*Go upstairs.*: the floor of the goals after it)."""
+ADDENDUM_OPENERS = frozenset({"also", "and", "plus"})
+"""A line opening so after a list of lines (*Also check the TV.*, *P.S. ...*, *Oh and ...*) adds to it, in
+no order the list says."""
 BESIDE_VERBS = word_set("park parking stand standing stop go come move pull up sit")
 """Before *next to / beside / near X* (an object): X is where to be (*park next to the bed*)."""
 BASE_VERBS_IN_ING = word_set("bring ring sing sting swing string wring fling cling")

@@ -94,8 +94,8 @@ def line_items(readers: list[Reader], k: int) -> list[Reader]:
         return []
     run: list[Reader] = []
     for r in readers[k + 1:]:
-        if r.marker is not None or r.word(len(r) - 1) == ":":  # a list, or a heading of its own
-            break
+        if r.marker is not None or r.word(len(r) - 1) == ":" or (run and r.word(0) in lx.ADDENDUM_OPENERS):
+            break  # a list, a heading of its own, or a line added after the list ("Also check the TV.")
         run.append(r)
     if len(run) < 2 or not run[0].new_line or heading_of(heading)[2] is None:
         return []
