@@ -456,14 +456,15 @@ def after_conjunction(r: Reader, i: int, in_condition: bool = False) -> Parse[Ac
 def left_things_put(readers: list[Reader]) -> list[Reader]:
     """``readers`` with *leave it / them* before where it goes (*on*, *in*, *next to*, *by* ... Y) read as
     *put it*, when a verb of fetching or carrying comes before it in its sentence or the one before (*grab the
-    book, then leave it next to the TV*): the thing carried is put there. Without one (*look at the bowl but
-    leave it on the table*: do not move it?) *leave* stays refused."""
+    book, then leave it next to the TV*): the thing carried is put there. Without one (*look at the bowl and
+    leave it on the table*: do not move it?), or after *but* / a negation, *leave* stays refused."""
     out: list[Reader] = []
     for n, r in enumerate(readers):
         before = (readers[n - 1].words if n else ()) + r.words
         offset = len(before) - len(r)
         for k in range(len(r)):
             if (r.word(k) in lx.LEAVE and r.word(k + 1) in ("it", "them")
+                    and r.word(k - 1) not in lx.LEAVE_AS_IS
                     and (r.word(k + 2) in lx.CARRY_DESTINATION_WORDS or r.phrase(k + 2, lx.CARRY_BESIDE))
                     and set(before[:offset + k]) & lx.FETCH_VERBS):
                 put = Tok("put", r.toks[k].start, r.toks[k].end)
