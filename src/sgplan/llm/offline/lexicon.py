@@ -1673,6 +1673,12 @@ PHRASE_ALIASES.update({
     # operator shorthand for the order: "order n/a", "any ord."
     ("order", "n", "/", "a"): ("in", "any", "order"), ("any", "ord"): ("in", "any", "order"),
 })
+PHRASE_ALIASES.update({  # a move between floors said with the stairs: "take the stairs up" is "go upstairs"
+    **{(verb, *stairs, way): ("go", UP_DOWN[way]) for verb in ("take", "use")
+       for stairs in (("the", "stairs"), ("the", "staircase")) for way in ("up", "down")},
+    **{(verb, way, "the", stairs): (verb, UP_DOWN[way]) for verb in ("go", "head", "walk", "run", "come")
+       for way in ("up", "down") for stairs in ("stairs", "staircase")},
+})
 
 # ------------------------------------------------------------------------------------ grammar words
 STRUCTURAL = (
