@@ -1048,6 +1048,9 @@ AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over",
 """After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
 FLOOR_MOVE_VERBS = word_set("go come head pop nip run walk move get travel proceed")
 """Verbs of a sentence that only moves between floors (*Go upstairs.*: the floor of the goals after it)."""
+VISIT_PARTICIPLES = frozenset({"visited", "entered"})
+"""A passive closing a condition on a place (*if the living room is visited / entered*): the robot was
+there."""
 LEAVE_AS_IS = frozenset({"but", "not", "never", "just", "simply"})
 """Before *leave it on X*: it may say not to move it (*grab the cup but leave it on the table*): refused."""
 ADDENDUM_OPENERS = frozenset({"also", "and", "plus"})

@@ -119,8 +119,8 @@ def second_reading(said: str, disc: Discourse,
 def relative(word: str, disc: Discourse, candidates: list[Entity] | None) -> FloorReading:
     """*upstairs* / *downstairs*: the floors above / below the start floor when it is known; in a two-floor
     building, the upper / lower floor (after a goal on another floor, where the start has no floor that
-    way, from that goal's floor: *go up to X, then come back down*, and the reverse); for a noun (*the downstairs
-    bathroom*) whose candidates lie on
+    way, from that goal's floor: *go up to X, then come back down*, and the reverse); for a noun (*the
+    downstairs bathroom*) whose candidates lie on
     exactly two floors, the lower / upper of those, as people name such rooms whatever floor they stand
     on; otherwise refused, naming the floors."""
     step, n, start = lx.RELATIVE_FLOORS[word], disc.vocab.num_floors, disc.start_floor
@@ -135,7 +135,7 @@ def relative(word: str, disc: Discourse, candidates: list[Entity] | None) -> Flo
             return FloorReading(second.floors)  # "go upstairs ..., then come back down": down from there
         if not wanted:
             rf.refuse(rf.off_the_building(word, start, disc.vocab.building_name, n))
-        # "the upstairs bathroom" after a goal on the top floor: from there it names nothing, so from the start
+        # "the upstairs bathroom" after a goal on the top floor: from there it names nothing; from the start
         return with_second(wanted, second if second is not None and second.floors else None)
     if n == 2:
         return FloorReading(frozenset({1 if step > 0 else 0}))

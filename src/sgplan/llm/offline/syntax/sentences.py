@@ -515,6 +515,9 @@ def condition(r: Reader, i: int) -> Parse[Action]:
     said = after_conjunction(r, k, in_condition=True)
     if not isinstance(said, Match):
         return said
+    visited = said.end + (1 if r.word(said.end) in lx.UNTIL_DONE_LINKS else 0)
+    if r.word(visited) in lx.VISIT_PARTICIPLES and r.word(visited + 1) in ("", ",", "then"):
+        said = Match(said.node, visited + 1)  # if LR visited -> ...: the robot was there
     if r.word(said.end) in lx.CONDITION_END or r.phrase(said.end, lx.NEG_STARTS):
         return Refusal(rf.condition_goes_on(r.rest(said.end)))
     return said
