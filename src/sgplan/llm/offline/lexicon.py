@@ -1048,6 +1048,9 @@ AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over",
 """After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
 FLOOR_MOVE_VERBS = word_set("go come head pop nip run walk move get travel proceed")
 """Verbs of a sentence that only moves between floors (*Go upstairs.*: the floor of the goals after it)."""
+MAX_LABEL_WORDS = 4
+"""A list's heading of words the grammar has no role for (*Kids' stuff:*, *Shopping prep:*) is its name
+(set aside and said back) up to this many words; a longer one is read as a sentence."""
 VISIT_PARTICIPLES = frozenset({"visited", "entered"})
 """A passive closing a condition on a place (*if the living room is visited / entered*): the robot was
 there."""

@@ -188,6 +188,9 @@ def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order |
     if announced is not None:  # a room heading ("Kitchen stuff:") is the room of each item
         return [], None if announced.scope else announced, order, announced.prefix if announced.scope else ()
     label = label_end(said)
+    if label is None and 0 < len(said) <= lx.MAX_LABEL_WORDS and label_clause(said, 0, len(said)) is False \
+            and not set(said.words) & (lx.POSITIVE_VERBS | lx.AVOID_VERBS):
+        return [replace(said, aside=True)], None, None, ()  # "Kids' stuff:", "Shopping prep:": a list's name
     if label is None:
         return [said], None, None, ()  # an ordinary sentence before the list: read (or refused) as one
     out = [replace(said, toks=said.toks[:label], aside=True)] if names_more(said, label) else []
