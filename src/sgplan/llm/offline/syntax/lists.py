@@ -136,19 +136,23 @@ def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) 
 
 
 def room_label(heading: Reader, run: list[Reader]) -> Reader | None:
-    """A heading that names a room before a word of its own, not a list's (*Kitchen tidy*, *Garage trip:*),
-    over items one of which names that room (*1. fetch the chair from the garage*): the room is where that
-    item goes, the heading a label, set aside and said back (``None`` otherwise: *Kitchen jobs:* is the room
-    of each item, and a heading whose room no item names is read as it was)."""
+    """A heading that names a room before a word of its own (*Kitchen tidy*, *Garage trip:*) over items one
+    of which names that room (*1. fetch the chair from the garage*), or before a word naming a list (*Lobby
+    check*, *Office run:*) over items that name that room and another one (*1. Lobby 2. Either bedroom*):
+    the room is where an item goes, the heading a label, set aside and said back (``None`` otherwise:
+    *Kitchen jobs: - the oven* is the room of each item, and a heading whose room no item names is read as
+    it was)."""
     said = replace(heading, toks=heading.toks[:-1]) if heading.word(len(heading) - 1) == ":" else heading
     head = said.head(0)
     rest = said.words[head.words:] if head is not None else []
     if (head is None or head.kind != "room" or not 0 < len(rest) <= 2
-            or any(not w.isalpha() or w in lx.STRUCTURAL or w in lx.LIST_NOUNS or said.head(head.words + n)
-                   for n, w in enumerate(rest))):
+            or any(not w.isalpha() or (w in lx.STRUCTURAL and w not in lx.LIST_NOUNS)
+                   or said.head(head.words + n) for n, w in enumerate(rest))):
         return None
-    named = any((h := item.head(k)) is not None and h.kind == "room" and h.categories == head.categories
-                for item in run for k in range(len(item)))
+    rooms = [h.categories for item in run for k in range(len(item))
+             if (h := item.head(k)) is not None and h.kind == "room"]
+    listed = all(w in lx.LIST_NOUNS for w in rest)
+    named = head.categories in rooms and (not listed or any(c != head.categories for c in rooms))
     return replace(said, aside=True) if named else None
 
 
