@@ -1048,6 +1048,8 @@ AFTER_AS_THEN = frozenset({"to", "into", "in", "at", "on", "up", "down", "over",
 """After *, after* / *and after*: no place follows, so *after* is *then* (*go first to A, after to B*)."""
 FLOOR_MOVE_VERBS = word_set("go come head pop nip run walk move get travel proceed")
 """Verbs of a sentence that only moves between floors (*Go upstairs.*: the floor of the goals after it)."""
+LIGHT_PREFIX = frozenset({"please", "do", "kindly", "also"})
+"""An announcement's words before its list (*Please do these:*) that say nothing before a prohibition item."""
 MAX_LABEL_WORDS = 4
 """A list's heading of words the grammar has no role for (*Kids' stuff:*, *Shopping prep:*) is its name
 (set aside and said back) up to this many words; a longer one is read as a sentence."""
@@ -1678,6 +1680,10 @@ PHRASE_ALIASES.update({
     ("start", "the", "day", "by"): ("start", "by"), ("to", "start", "the", "day"): ("first",),
     # operator shorthand for the order: "order n/a", "any ord."
     ("order", "n", "/", "a"): ("in", "any", "order"), ("any", "ord"): ("in", "any", "order"),
+})
+PHRASE_ALIASES.update({  # an emphatic "do" before a prohibition: "do stay away from X" is "stay away from X"
+    ("do", *keep): keep for keep in (("stay", "away"), ("stay", "out"), ("keep", "away"), ("keep", "out"),
+                                     ("avoid",), ("stay", "clear"), ("keep", "clear"), ("steer", "clear"))
 })
 PHRASE_ALIASES.update({  # a move between floors said with the stairs: "take the stairs up" is "go upstairs"
     **{(verb, *stairs, way): ("go", UP_DOWN[way]) for verb in ("take", "use")

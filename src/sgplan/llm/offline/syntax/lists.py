@@ -117,7 +117,7 @@ def heads(r: Reader, readers: list[Reader], k: int) -> bool:
 def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) -> list[Reader]:
     """The sentences of a list: its heading read (see :func:`heading_of`) and its items, each after the one
     before it when the list is in order (see the module docstring)."""
-    label = room_label(heading, run) if heading is not None else None
+    label = place_label(heading, run) if heading is not None else None
     out, announced, said_order, scope = ([], None, None, ()) if heading is None else (
         ([label], None, None, ()) if label is not None else heading_of(heading))
     order = remark or said_order or ("ordered" if any(r.marker == "number" for r in run) else "any")
@@ -128,6 +128,8 @@ def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) 
         after = order == "ordered" and n > 0 and not (item.word(0) == "eventually"
                                                       or item.at(0, "at", "some", "point"))
         said = prefix[len(scope):] if scope[:1] and scope[0].text == "in" and outside_room(item) else prefix
+        if set(t.text for t in said[len(scope):]) <= lx.LIGHT_PREFIX and keeps_out(item):
+            said = said[:len(scope)]  # "Please do these: ... - stay out of X": no "do" before it
         lead = len(item.phrase(0, lx.SEQ_WORDS) or ())  # "- then the plant": the scope after "then"
         lead += 1 if lead and item.word(lead) == "," else 0
         out.append(replace(item, toks=item.toks[:lead] + said + item.toks[lead:], announced=announced,
@@ -135,24 +137,26 @@ def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) 
     return out
 
 
-def room_label(heading: Reader, run: list[Reader]) -> Reader | None:
+def place_label(heading: Reader, run: list[Reader]) -> Reader | None:
     """A heading that names a room before a word of its own (*Kitchen tidy*, *Garage trip:*) over items one
     of which names that room (*1. fetch the chair from the garage*), or before a word naming a list (*Lobby
-    check*, *Office run:*) over items that name that room and another one (*1. Lobby 2. Either bedroom*):
-    the room is where an item goes, the heading a label, set aside and said back (``None`` otherwise:
-    *Kitchen jobs: - the oven* is the room of each item, and a heading whose room no item names is read as
-    it was)."""
+    check*, *Office run:*) over items that name that room and another one (*1. Lobby 2. Either bedroom*),
+    or a kind of object before a word naming a list (*Plant round:*) over items naming that kind: the place
+    is where an item goes, the heading a label, set aside and said back (``None`` otherwise: *Kitchen jobs:
+    - the oven* is the room of each item, and a heading whose place no item names is read as it was)."""
     said = replace(heading, toks=heading.toks[:-1]) if heading.word(len(heading) - 1) == ":" else heading
     head = said.head(0)
     rest = said.words[head.words:] if head is not None else []
-    if (head is None or head.kind != "room" or not 0 < len(rest) <= 2
+    if (head is None or not 0 < len(rest) <= 2
             or any(not w.isalpha() or (w in lx.STRUCTURAL and w not in lx.LIST_NOUNS)
                    or said.head(head.words + n) for n, w in enumerate(rest))):
         return None
-    rooms = [h.categories for item in run for k in range(len(item))
-             if (h := item.head(k)) is not None and h.kind == "room"]
+    places = [h.categories for item in run for k in range(len(item))
+              if (h := item.head(k)) is not None and h.kind == head.kind]
     listed = all(w in lx.LIST_NOUNS for w in rest)
-    named = head.categories in rooms and (not listed or any(c != head.categories for c in rooms))
+    if head.kind != "room":  # "Plant round: 1. water the plant in ...": a round of plants
+        return replace(said, aside=True) if listed and head.categories in places else None
+    named = head.categories in places and (not listed or any(c != head.categories for c in places))
     return replace(said, aside=True) if named else None
 
 
@@ -163,6 +167,12 @@ def check_no_bulleted_goal(run: list[Reader]) -> None:
     for item in run:
         if item.marker == "bullet" and item.phrase(0, lx.NEG_STARTS) is None and item.word(0) not in lx.STAY:
             rf.refuse(rf.bulleted_among_numbered(item.quote(0, len(item))))
+
+
+def keeps_out(item: Reader) -> bool:
+    """Whether a list item is a prohibition or a stay (*- never enter X*, *- stay out of X*, *- stay on this
+    floor*)."""
+    return item.phrase(0, lx.NEG_STARTS) is not None or item.word(0) in lx.STAY
 
 
 def outside_room(item: Reader) -> bool:
