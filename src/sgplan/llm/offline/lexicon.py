@@ -1685,6 +1685,9 @@ PHRASE_ALIASES.update({  # an emphatic "do" before a prohibition: "do stay away 
     ("do", *keep): keep for keep in (("stay", "away"), ("stay", "out"), ("keep", "away"), ("keep", "out"),
                                      ("avoid",), ("stay", "clear"), ("keep", "clear"), ("steer", "clear"))
 })
+PHRASE_ALIASES.update({  # "stay up here on this floor": the floor said twice
+    (here, "here", "on", "this", "floor"): ("on", "this", "floor") for here in ("up", "down", "right")
+})
 PHRASE_ALIASES.update({  # a move between floors said with the stairs: "take the stairs up" is "go upstairs"
     **{(verb, *stairs, way): ("go", UP_DOWN[way]) for verb in ("take", "use")
        for stairs in (("the", "stairs"), ("the", "staircase")) for way in ("up", "down")},
