@@ -533,6 +533,11 @@ def bulleted_among_numbered(said: str) -> str:
                     "order in words")
 
 
+def prohibition_in_between(said: str) -> str:
+    return rephrase(f"'{said}': a prohibition between two goals only (not before the first, nor after the "
+                    "last) cannot be expressed here; say 'never enter X' for the whole mission")
+
+
 def back_to_start(said: str) -> str:
     return rephrase(f"'{said}' names no place: coming back to where the robot started cannot be required (a "
                     "plan ends at its last goal); leave it out, or name the place to come back to")

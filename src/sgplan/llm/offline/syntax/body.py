@@ -296,7 +296,10 @@ def in_between_link(r: Reader, i: int, before: Said, only_verb: bool) -> ItemPar
     if k == i or not r.at(k, "in", "between") or not any(isinstance(item, Link) and item.sequence
                                                            for item in before):
         return None
-    return Match(Link(True, waypoint=True), k + 2 + (1 if r.word(k + 2) == "," else 0))
+    end = k + 2 + (1 if r.word(k + 2) == "," else 0)
+    if r.phrase(end, lx.NEG_STARTS) is not None or r.word(end) in lx.STAY:  # for part of the mission only
+        return Refusal(rf.prohibition_in_between(r.quote(k, min(len(r), end + 4))))
+    return Match(Link(True, waypoint=True), end)
 
 
 @ITEMS.rule("link")
