@@ -1061,8 +1061,9 @@ LEAVE_AS_IS = frozenset({"but", "not", "never", "just", "simply"})
 ADDENDUM_OPENERS = frozenset({"also", "and", "plus"})
 """A line opening so after a list of lines (*Also check the TV.*, *P.S. ...*, *Oh and ...*) adds to it, in
 no order the list says."""
-BESIDE_VERBS = word_set("park parking stand standing stop go come move pull up sit")
-"""Before *next to / beside / near X* (an object): X is where to be (*park next to the bed*)."""
+BESIDE_VERBS = word_set("park parking stand standing stop pull up sit")
+"""Before *next to / beside / near X* (an object): X is where to be (*park next to the bed*); not a verb
+that takes *to* (*come next to X* may be *next, come to X*)."""
 BASE_VERBS_IN_ING = word_set("bring ring sing sting swing string wring fling cling")
 """Verbs whose plain form ends in *-ing* (*and after bring it ...* is no gerund)."""
 
