@@ -554,9 +554,9 @@ def aside_after_prefix(prefix: str, aside: str) -> str:
 
 
 def line_of_sentences(heading: str, said: str) -> str:
-    return rephrase(f"'{said}' shares a line with the sentence before it under '{heading}': which of them "
-                    "are steps of that order is not known; put each step on a line of its own, or number "
-                    "them")
+    return rephrase(f"'{said}' shares a line with a sentence, or stands without a list marker among marked "
+                    f"items, under '{heading}': which of them are steps of that order is not known; put each "
+                    "step on a line of its own, or number them")
 
 
 def after_clause_between(said: str, before: str) -> str:

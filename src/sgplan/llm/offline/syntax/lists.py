@@ -88,7 +88,8 @@ def line_items(readers: list[Reader], k: int) -> list[Reader]:
     """The lines without list markers after ``readers[k]`` when it ends with a colon and its words say an
     order (*ok list, in that order:* over a line per goal): each is an item of that list, as a bulleted one
     is; ``[]`` when the heading says no order or fewer than two lines follow it. A line holding several
-    sentences under such a heading is refused: which of them are steps of the order is not known."""
+    sentences under such a heading, and lines with and without list markers under one that orders them,
+    are refused: which of them are steps of the order is not known."""
     heading = readers[k]
     if heading.marker is not None or heading.word(len(heading) - 1) != ":":
         return []
@@ -97,6 +98,9 @@ def line_items(readers: list[Reader], k: int) -> list[Reader]:
         if r.marker is not None or r.word(len(r) - 1) == ":" or (run and r.word(0) in lx.ADDENDUM_OPENERS):
             break  # a list, a heading of its own, or a line added after the list ("Also check the TV.")
         run.append(r)
+    marked = k + 1 + len(run) < len(readers) and readers[k + 1 + len(run)].marker is not None
+    if run and run[0].new_line and marked and heading_of(heading)[2] == "ordered":
+        rf.refuse(rf.line_of_sentences(heading.quote(0, len(heading)), run[-1].quote(0, len(run[-1]))))
     if len(run) < 2 or not run[0].new_line or heading_of(heading)[2] is None:
         return []
     for r in run:
