@@ -321,6 +321,11 @@ def placed_or_where_it_is(said: str, anchor: str) -> str:
                     "where it goes, or name the room it is in")
 
 
+def carried_in_purpose(said: str) -> str:
+    return rephrase(f"{said}: what is carried after 'to' is not read in its order (the thing, then where it "
+                    "goes); say it as a step of its own ('go to X, then put ...')")
+
+
 def thing_to_find(thing: str, said: str) -> str:
     return rephrase(f"'{said}': the scene has no '{thing}', and the robot would have to find it itself; "
                     "name a room or object of the scene")

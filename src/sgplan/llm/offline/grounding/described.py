@@ -112,8 +112,14 @@ def in_context(np: Described, noun: Noun, where: Where, disc: Discourse) -> Noun
 
 
 def others(entities: list[Entity], before: int, disc: Discourse) -> list[Entity]:
-    """*the other X*: the X not named before character ``before``; refused when none was."""
-    named = {e.key for g in disc.references + disc.mentions if g.start < before for e in g.entities}
+    """*the other X*: the X not named before character ``before``: by a goal or a place to avoid naming
+    only such X (*this floor* names its bedrooms among other rooms, and no bedroom in particular), or by a
+    qualifier or words set aside naming one (a heading *Bathroom rounds* names no bathroom in particular);
+    refused when none was."""
+    fits = {e.key for e in entities}
+    named = {e.key for g in disc.references + disc.mentions if g.start < before and g.entities
+             and all(e.key in fits for e in g.entities)
+             and (len(g.entities) == 1 or (g.role != "qualifier" and g in disc.references)) for e in g.entities}
     if not any(e.key in named for e in entities):
         rf.refuse(rf.no_other(head_word(entities)))
     return [e for e in entities if e.key not in named]

@@ -142,9 +142,9 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     sink*), or a floor named as a place (*the top floor*)."""
     first = i
     one_from_context = given is None and ones_of_context(r, i)
-    other = r.at(i, "the", "other") and r.head(i + 2) is not None
-    if r.at(i, "the", "other", "one") and given is None:
-        one_from_context = other = True  # "the bedroom with the book, then the other one"
+    other = r.at(i, "the", "other") and other_of_a_head(r, i + 2)
+    if r.at(i, "the", "other", "one"):  # "the bedroom with the book, then the other one"
+        one_from_context, other = given is None, True  # (given: "the kitchen, no wait, the other one")
     bare_other = r.word(i) == "other" and r.head(i + 1) is not None  # "then other bdrm", as notes say it
     other = other or bare_other
     ordinal = lx.FLOOR_ORDINALS.get(r.word(i + 1)) if r.word(i) == "the" and given is None else None
@@ -157,8 +157,9 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
         return det
     if ordinal is not None:
         det = Match(replace(det.node, ordinal=ordinal + 1), det.end + 1)
-    i = description_end(r, det.end)
-    said = r.words[det.end : i]
+    start = det.end + (1 if other and r.word(det.end) == "other" else 0)  # "the other upstairs bedroom"
+    i = description_end(r, start)
+    said = r.words[start:i]
     if given is None and (one := room_one(r, first, i, role, replace(det.node, descriptive=said))):
         return one
     relative = r.word(i) if r.word(i) in lx.RELATIVE_FLOORS else None
@@ -175,6 +176,16 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     return noun_with_head(r, first, r.descriptive_end(i), role, replace(det.node, descriptive=described_as),
                           relative, None if floor_before is None else floor_before.node,
                           OneHead(False, given, one_from_context or floor_one))
+
+
+def other_of_a_head(r: Reader, i: int) -> bool:
+    """Whether a head noun follows *other* (at ``i``), after floor words if any (*the other upstairs
+    bedroom*, *the other top-floor bathroom*)."""
+    if r.word(i) in lx.RELATIVE_FLOORS:
+        i += 1
+    elif (floor := floor_words(r, i)) is not None:
+        i = floor.end
+    return r.head(i) is not None
 
 
 def ones_of_context(r: Reader, i: int) -> bool:
@@ -240,7 +251,6 @@ def noun_with_head(r: Reader, first: int, i: int, role: Role, det: Determiner, r
         head: Parse[HeadRef] = Match(KeyHead(r.word(i)), i + 1)
         mode: Mode | None = "the"
     else:
-        i += 1 if det.other else 0
         modifier = r.nouns.room_modifier(r.words, i)
         head = head_noun(r, i + (1 if modifier else 0), one)
         mode = det.mode
