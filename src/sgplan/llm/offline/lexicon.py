@@ -1598,6 +1598,8 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("dnstrs",): ("downstairs",),
     ("upstair",): ("upstairs",),  # learners' singular
     ("downstair",): ("downstairs",),
+    # "the TV in the office, then any in the living room": any one of the kind named last
+    ("any", "in"): ("any", "one", "in"), ("any", "on"): ("any", "one", "on"),
     ("nxt",): ("next",),
     ("u",): ("you",),
     ("ur",): ("your",),

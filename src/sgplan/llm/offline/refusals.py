@@ -797,6 +797,12 @@ def ordinal_of_too_few(said: str, named: int) -> str:
     return rephrase(f"'{said}' counts what was named before it, and {before}; name it ('the bed in the ...')")
 
 
+def its_of_which(said: str, phrases: list[str]) -> str:
+    named = " or ".join(f"'{p}'" for p in phrases)
+    return rephrase(f"'{said}': 'its' could be of {named}, and these differ here; name it ('the ... in the "
+                    "...')")
+
+
 def no_other(noun: str) -> str:
     return rephrase(f"'the other {noun}': no {noun} was named before it")
 

@@ -183,16 +183,13 @@ def its(np: Its, where: Where, disc: Discourse) -> Grounded:
     object named); *its bathroom*: the bathroom attached to the room (of the object); *its room* after an
     object: the room holding it."""
     ref = antecedent("it", disc)
-    container = [disc.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in ref.entities)]
-    determined("its", ref, len(container))
-    of_head = disc.vocab.of_head(np.head)
-    holding = [room for room in container if room in of_head]
-    if np.head.kind == "room" and holding and all(e.kind == "object" for e in ref.entities):
-        owned = holding  # "the teddy bear ... its room": the room holding it (not "its bathroom")
-    elif np.head.kind == "room":
-        owned = disc.vocab.next_to(of_head, container)
-    else:
-        owned = disc.vocab.inside(of_head, container)
+    # "the bathroom next to the bedroom with the chair ... its toilet": of the phrases nested there, the one
+    # whose room has a toilet (the chair's has none); refused when several have one
+    chain = [ref, *(o for o in disc.references if o is not ref and o.start <= ref.start and ref.end <= o.end)]
+    readings = {tuple(e.key for e in got): got for g in chain if (got := owned_by(np, g, disc))}
+    owned = next(iter(readings.values())) if len(readings) == 1 else owned_by(np, ref, disc)
+    if len(readings) > 1:
+        rf.refuse(rf.its_of_which(disc.said(np.span.start, np.span.end), [g.phrase for g in chain]))
     mode: Mode = np.mode or ("all" if np.head.plural else "the")
     g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, owned, mode,
                  np.head.kind == "object", where.role)
@@ -251,6 +248,20 @@ def antecedent(pronoun: str, disc: Discourse, kind: str | None = None) -> Ground
     outer = [o for o in fits[1:] if o.start <= g.start and g.end <= o.end and all(e.kind == "object"
                                                                                  for e in o.entities)]
     return min(outer, key=lambda o: o.start) if outer else g
+
+
+def owned_by(np: Its, ref: Grounded, disc: Discourse) -> list[Entity]:
+    """What *its <head>* names when *it* is ``ref``: the heads in its room (the room of the object), the room
+    attached to it, or (*its room* after an object) the room holding it."""
+    container = [disc.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in ref.entities)]
+    determined("its", ref, len(container))
+    of_head = disc.vocab.of_head(np.head)
+    holding = [room for room in container if room in of_head]
+    if np.head.kind == "room" and holding and all(e.kind == "object" for e in ref.entities):
+        return holding  # "the teddy bear ... its room": the room holding it (not "its bathroom")
+    if np.head.kind == "room":
+        return disc.vocab.next_to(of_head, container)
+    return disc.vocab.inside(of_head, container)
 
 
 def last_head(disc: Discourse) -> Head | None:

@@ -189,9 +189,12 @@ def other_of_a_head(r: Reader, i: int) -> bool:
 
 
 def ones_of_context(r: Reader, i: int) -> bool:
-    """Whether *the (big) one(s)* (also after *either / one / both of*) starts at ``i``: of the kind named
-    last (*the ones in the living room*, *either of the ones in the living room*)."""
+    """Whether *the (big) one(s)* (also after *either / one / both of*) or *any one* starts at ``i``: of the
+    kind named last (*the ones in the living room*, *either of the ones in the living room*, *then any one
+    in the office*; *any in the office* is read as that, `lexicon.PHRASE_ALIASES`)."""
     lead = 2 if r.word(i) in (*lx.CHOOSING_OF, *lx.UNIVERSAL) and r.at(i + 1, "of", "the") else 0
+    if qualifiers.any_one_located(r, i):
+        return True
     return r.word(i + lead) in ("the", "a") and r.word(r.descriptive_end(i + lead + 1)) in lx.ANAPHORIC_ONE
 
 

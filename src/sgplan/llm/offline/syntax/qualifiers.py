@@ -91,6 +91,14 @@ def finish(r: Reader, first: int, i: int, noun: Described, role: Role, room_scop
     appositive = apposition(r, i + (1 if excludes else 0), noun, role)
     if isinstance(appositive, Refusal):
         return appositive
+    if appositive is not None and listed_on(r, appositive.end) and not excludes:
+        # "the plant in the bedroom, the one in the office, and the one in the hall": which plant, or the
+        # next item of a list? The scene decides (:class:`.tree.Attachment`)
+        if r.decided(i) is False:
+            appositive = None
+        elif r.decided(i) is None:
+            noun = replace(noun, qualifiers=(*noun.qualifiers, Attachment(
+                i, "apposition", noun, appositive.node, r.span(first, appositive.end), False)))
     if appositive is not None:
         noun, i = replace(noun, apposition=appositive.node, apposition_excludes=excludes), appositive.end
     return Match(replace(noun, span=r.span(first, i), remark_follows=remark_ahead(r, i) is not None), i)
@@ -140,12 +148,20 @@ def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
     if w in lx.CHOOSING_OF and of == "of" and the in ("the", "all") and (n in lx.NUMBER_WORDS or n.isdigit()):
         return (",",) * comma + (w, of, the, n)  # "a TV in the office, any of the three"
     said = r.phrase(i + comma, lx.CHOICE_AFFIRMATIONS)
+    if said is not None and any_one_located(r, i + comma):
+        return None  # "a vase, any one in the living room": which ones, not a remark
     if said is None and comma and r.word(i + 1) in lx.BARE_CHOOSERS and r.word(i + 2) in lx.CLAUSE_ENDS:
         said = (r.word(i + 1),)  # "LR tv (either)", "DR vase, any": no noun follows, so a remark
     time = r.phrase(i + comma, lx.TIME_FILLERS)  # "whichever first" is about the order
     if said is None or (said == ("is", "fine") and comma) or (time is not None and len(time) >= len(said)):
         return None
     return (",",) * comma + said
+
+
+def any_one_located(r: Reader, i: int) -> bool:
+    """Whether *any one* at ``i`` is a phrase of the kind named last, located (*then any one in the office*,
+    *a vase, any one upstairs*), not the remark *(, any one)* closing a choice."""
+    return r.at(i, "any", "one") and (r.word(i + 2) in (*lx.SCOPE_IN, "on") or r.word(i + 2) in lx.RELATIVE_FLOORS)
 
 
 def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Described]:
@@ -166,6 +182,12 @@ def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Describe
     if role == "qualifier" and isinstance(which, Match) and not says_contents(which.node):
         return None  # "the toilet in the bathroom, the one upstairs": the toilet's, or the bathroom's?
     return which  # type: ignore[return-value]
+
+
+def listed_on(r: Reader, i: int) -> bool:
+    """Whether a list goes on at ``i`` with *and* / *or* and a noun phrase (*..., and the one in the hall*)."""
+    k = i + (1 if r.word(i) == "," else 0)
+    return r.word(k) in ("and", "or") and r.np_starts(k + 1)
 
 
 def says_contents(which: NounPhrase) -> bool:

@@ -341,12 +341,14 @@ class Except:
 class Attachment:
     """Words whose attachment the scene decides, at token ``at``: ``kind`` ``"without"`` (*the bedroom
     without a plant*: which bedroom, or what to avoid there?) or ``"and-contents"`` (*the bedroom with the
-    book and the vase*: a room with both, or the vase as another goal?). ``prefix`` is the phrase up to
-    those words, ``thing`` the object phrase that would describe it. Read as described (``taken``), the
-    words are a qualifier; otherwise the phrase ends before them."""
+    book and the vase*: a room with both, or the vase as another goal?) or ``"apposition"`` (*the plant in
+    the bedroom, the one in the office, and ...*: which plant, or the next item of the list?). ``prefix`` is
+    the phrase up to those words, ``thing`` the object phrase that would describe it (the apposition). Read
+    as described (``taken``), the words are a qualifier (the apposition); otherwise the phrase ends before
+    them."""
 
     at: int
-    kind: Literal["without", "and-contents"]
+    kind: Literal["without", "and-contents", "apposition"]
     prefix: Described
     thing: NounPhrase
     span: Span
