@@ -117,9 +117,10 @@ def others(entities: list[Entity], before: int, disc: Discourse) -> list[Entity]
     qualifier or words set aside naming one (a heading *Bathroom rounds* names no bathroom in particular);
     refused when none was."""
     fits = {e.key for e in entities}
-    named = {e.key for g in disc.references + disc.mentions if g.start < before and g.entities
-             and all(e.key in fits for e in g.entities)
-             and (len(g.entities) == 1 or (g.role != "qualifier" and g in disc.references)) for e in g.entities}
+    read = [g for g in disc.references if g.role != "qualifier" or len(g.entities) == 1]
+    told = [g for g in disc.mentions if len(g.entities) == 1]
+    named = {e.key for g in read + told if g.start < before and g.entities
+             and all(e.key in fits for e in g.entities) for e in g.entities}
     if not any(e.key in named for e in entities):
         rf.refuse(rf.no_other(head_word(entities)))
     return [e for e in entities if e.key not in named]

@@ -191,7 +191,8 @@ def denied(r: Reader, old: NounPhrase, i: int) -> int:
 def one_named(r: Reader, start: int, end: int, start_new: int) -> tuple[tuple[Tok, ...], int]:
     """The words to read in place of *the one* of a new phrase (the taken-back phrase ``[start, end)``'s
     determiner and head noun: *the bathroom downstairs, no sorry, the one upstairs* is *the bathroom
-    upstairs*, *the other one* is *the other bathroom*), and where the new phrase's own words go on; no words and ``start_new`` otherwise."""
+    upstairs*, *the other one* is *the other bathroom*), and where the new phrase's own words go on; no
+    words and ``start_new`` otherwise."""
     one = next((k for k in range(start_new, start_new + 3) if r.word(k) in lx.ANAPHORIC_ONE), None)
     noun = next(((k, h) for k in range(start, end) if (h := r.head(k)) is not None), None)
     if one is None or noun is None or not all(r.word(k) in lx.DETERMINERS or r.word(k) == "other"
@@ -199,7 +200,8 @@ def one_named(r: Reader, start: int, end: int, start_new: int) -> tuple[tuple[To
         return (), start_new
     k, head = noun
     at = r.toks[one]  # the head's words where "one" was said, so that the phrase quotes what was said
-    return (*r.toks[start_new:one], *(Tok(t.text, at.start, at.end) for t in r.toks[k : k + head.words])), one + 1
+    head_words = (Tok(t.text, at.start, at.end) for t in r.toks[k : k + head.words])
+    return (*r.toks[start_new:one], *head_words), one + 1
 
 
 def phrase_to(r: Reader, i: int, end: int) -> NounPhrase | None:

@@ -161,7 +161,8 @@ def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
 def any_one_located(r: Reader, i: int) -> bool:
     """Whether *any one* at ``i`` is a phrase of the kind named last, located (*then any one in the office*,
     *a vase, any one upstairs*), not the remark *(, any one)* closing a choice."""
-    return r.at(i, "any", "one") and (r.word(i + 2) in (*lx.SCOPE_IN, "on") or r.word(i + 2) in lx.RELATIVE_FLOORS)
+    located = r.word(i + 2) in (*lx.SCOPE_IN, "on") or r.word(i + 2) in lx.RELATIVE_FLOORS
+    return r.at(i, "any", "one") and located
 
 
 def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Described]:
@@ -185,7 +186,7 @@ def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Describe
 
 
 def listed_on(r: Reader, i: int) -> bool:
-    """Whether a list goes on at ``i`` with *and* / *or* and a noun phrase (*..., and the one in the hall*)."""
+    """Whether a list goes on at ``i`` with *and* / *or* and a noun phrase (*, and the one in the hall*)."""
     k = i + (1 if r.word(i) == "," else 0)
     return r.word(k) in ("and", "or") and r.np_starts(k + 1)
 
