@@ -10,9 +10,11 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable
+from dataclasses import replace
 from itertools import pairwise
 from typing import Any
 
+from sgplan.errors import MissionError
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding import backref
@@ -33,6 +35,7 @@ from sgplan.llm.offline.syntax.tree import (
     Lacks,
     Mode,
     NextTo,
+    NounPhrase,
     OnFloor,
     Possessive,
     RelativeFloor,
@@ -195,6 +198,8 @@ def owners_room(np: Described, noun: Noun, said: str, disc: Discourse) -> list[E
             return list(rooms.values())
         if rooms:
             rf.refuse(rf.whose_room(said, sorted(rooms)))
+    if np.apposition is not None:  # "his room, the one with the teddy bear": the apposition says which
+        return noun.entities
     rf.refuse(rf.whose_room(said, []))
 
 
@@ -301,7 +306,8 @@ def there(q: There, noun: Noun, np: Described, where: Where, disc: Discourse) ->
 def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
     """*the sink in the kitchen*: the objects in that room (the room phrase keeps only the rooms used); *every
     plant in the office and the kitchen*: those of each room, each of which must hold some."""
-    rooms = [ground_phrase(room, Where("qualifier", rooms=True), disc) for room in q.rooms]
+    rooms = [owners_room_holding(room, noun, disc)
+             or ground_phrase(room, Where("qualifier", rooms=True), disc) for room in q.rooms]
     said = disc.said(q.span.start, q.span.end)
     anchor = rooms[0] if len(rooms) == 1 else None
     if noun.head.kind == "object" and anchor and anchor.entities and all(e.kind == "object"
@@ -315,6 +321,28 @@ def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse)
         if len(rooms) > 1 and not room.entities:  # not "... in A, and B": that would be another goal
             rf.refuse(rf.room_holds_none(said, room.phrase, head_word(noun.entities)))
     return Noun(noun.head, entities, True)
+
+
+def owners_room_holding(room: NounPhrase, noun: Noun, disc: Discourse) -> Grounded | None:
+    """*the teddy bear in her bedroom* where nothing said before tells whose room it is: the one room of that
+    kind that holds such an object (the speaker places it there); ``None`` when the phrase is no owner's room,
+    or what was said before decides it (:func:`owners_room`). Refused when the objects lie in several such
+    rooms, or in none."""
+    if (not isinstance(room, Described) or room.determiner.pointer not in lx.OWNERS
+            or noun.head.kind != "object"):
+        return None
+    try:
+        ground_phrase(room, Where("qualifier", rooms=True), disc.fork())
+        return None
+    except MissionError as told:
+        anyone = replace(room, determiner=replace(room.determiner, pointer=None, mode="any"))
+        got = ground_phrase(anyone, Where("qualifier", rooms=True), disc.fork())
+        holding = disc.vocab.containing(got.entities, noun.entities, None)
+        if len(holding) != 1:
+            raise told
+    got = ground_phrase(anyone, Where("qualifier", rooms=True), disc)
+    got.entities, got.mode = holding, "the"
+    return got
 
 
 @applies(Holds)

@@ -171,7 +171,8 @@ def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Describe
     head = current_head(noun)
     one = r.descriptive_end(i + 2)  # "the bathroom, the (big) one upstairs"
     if (noun.determiner.mode != "the" or head is None or head.plural
-            or not head.categories or not isinstance(noun.head, Head) or r.word(i) not in (",", "not")
+            or not (head.categories or noun.determiner.pointer in lx.OWNERS)  # "his room, the one with X"
+            or not isinstance(noun.head, Head) or r.word(i) not in (",", "not")
             or r.word(i + 1) != "the"
             or r.word(one) != "one" or r.phrase(one, lx.CHOICE_AFFIRMATIONS)):
         return None
