@@ -546,6 +546,14 @@ SUBJECT_FILLERS = word_set("you we i the robot it ever have has had do does did 
 """Skipped before the verb of a clause that follows a conjunction (*after you have been to X*)."""
 LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through", "on", "onto"})
 """Repeated in a list after *either* / *both*: *either to A or to B*."""
+SHORT_STAYS = Phrases(tuple(("for", "a", *little, spell) for little in ((), ("little",), ("quick",))
+                            for spell in ("bit", "while", "sec", "second", "moment")))
+"""*sit on the couch for a bit / a (little) while / a sec / a moment*: how long to stay at a goal, said
+casually; the plan reaches it and says the words back as not part of the mission (a time said in minutes or
+more, *for a minute*, *for ten minutes*, is not among them: refused as a duration)."""
+STAY_TIMED_CLAUSES = word_set("once until till before after unless while")
+"""Words of a clause that make a short stay in it the time of something else (*until you've sat on the couch
+for a bit*): refused."""
 OBJECT_PLACING = frozenset({"at", "on", "under", "beside", "behind", "above", "below", "near", "by"})
 """Before an object, after an object: placed by it (*the chair at the desk*), which the scene cannot tell."""
 AFTER_UNLISTED_THING = word_set("and then in upstairs downstairs there please first too for")

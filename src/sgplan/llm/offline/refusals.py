@@ -797,6 +797,12 @@ def ordinal_of_too_few(said: str, named: int) -> str:
     return rephrase(f"'{said}' counts what was named before it, and {before}; name it ('the bed in the ...')")
 
 
+def short_stay_not_a_goal(said: str, phrase: str) -> str:
+    return rephrase(f"'{phrase} {said}': '{said}' is read only after a goal (the plan reaches it and does "
+                    "not time the stay); a place kept away from, or a condition, for a while only is not "
+                    "understood")
+
+
 def its_of_which(said: str, phrases: list[str]) -> str:
     named = " or ".join(f"'{p}'" for p in phrases)
     return rephrase(f"'{said}': 'its' could be of {named}, and these differ here; name it ('the ... in the "

@@ -40,6 +40,7 @@ from sgplan.llm.offline.syntax.tree import (
     Possessive,
     RelativeFloor,
     SameFloor,
+    ShortStay,
     Span,
     There,
 )
@@ -415,6 +416,18 @@ def by_unlisted(q: ByUnlisted, noun: Noun, np: Described, where: Where, disc: Di
     """*the bowl on the counter*: the scene holds no counter, so the words are said back as set aside; which
     bowl is meant is decided as for descriptive words (:func:`ground_described`)."""
     disc.put_aside(disc.said(q.span.start, q.span.end))
+    return noun
+
+
+@applies(ShortStay)
+def short_stay(q: ShortStay, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*sit on the couch for a bit*: a goal is reached, how long the robot stays is not planned; the words are
+    said back as set aside. After a place to avoid or a condition (*stay off the couch for a bit*: only for a
+    while?) refused."""
+    said = disc.said(q.span.start, q.span.end)
+    if where.role != "goal":
+        rf.refuse(rf.short_stay_not_a_goal(said, disc.said(np.span.start, q.span.start).rstrip()))
+    disc.put_aside(said)
     return noun
 
 

@@ -38,6 +38,7 @@ from sgplan.llm.offline.syntax.tree import (
     RelativeFloor,
     Role,
     SameFloor,
+    ShortStay,
     StartFloor,
     There,
     UpThere,
@@ -622,6 +623,20 @@ def goes_there(r: Reader, noun: NounSoFar, i: int, end: int) -> Refusal | Litera
     if noun.room_scoped or any(w in lx.PLACING_VERBS for w in r.words[max(0, noun.first - 3):noun.first]):
         return None  # "bring the bottle from the bathroom in the sink": its room said, this is where it goes
     return Refusal(rf.placed_or_where_it_is(r.quote(noun.first, end), r.quote(i + 1, end)))
+
+
+@QUALIFIERS.rule("short stay")
+def short_stay(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*sit on the couch for a bit*, *look at the TV for a few minutes*: how long to stay, closing the clause
+    (read where the phrase is a goal, :func:`..grounding.described.short_stay`)."""
+    said = r.phrase(i, lx.SHORT_STAYS)
+    if said is None or noun.role == "qualifier" or r.word(i + len(said)) not in (*lx.CLAUSE_ENDS, "then"):
+        return None  # (inside a qualifier, the stay is at the phrase it qualifies)
+    start = max((k + 1 for k in range(i) if r.word(k) == ","), default=0)
+    if any(r.phrase(k, table) for k in range(start, i) for table in (lx.CONDITION_WORDS, lx.WHENEVER)) or set(
+            r.words[start:i]) & lx.STAY_TIMED_CLAUSES:  # "if you sit on the couch for a bit, ..."
+        return Refusal(rf.short_stay_not_a_goal(" ".join(said), r.quote(noun.first, i)))
+    return Match(ShortStay(r.span(i, i + len(said))), i + len(said))
 
 
 @QUALIFIERS.rule("contact clause")

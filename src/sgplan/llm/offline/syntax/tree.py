@@ -328,6 +328,14 @@ class ByUnlisted:
 
 
 @dataclass(frozen=True)
+class ShortStay:
+    """*(sit on the couch) for a bit / a while / a few minutes*: how long to stay at the goal, said casually
+    (``span``); said back as set aside, the goal is reached."""
+
+    span: Span
+
+
+@dataclass(frozen=True)
 class Except:
     """*except (for) the one on floor 0*: all but those."""
 
@@ -356,7 +364,7 @@ class Attachment:
 
 
 Qualifier = (Possessive | OnFloor | InRoom | There | Holds | Lacks | Contains | NextTo | ByUnlisted | Except
-             | Attachment)
+             | Attachment | ShortStay)
 
 
 # ----------------------------------------------------------------------------------------------- actions
