@@ -515,6 +515,8 @@ GIVEN_LOOKS = Phrases(tuple((*quick, what) for quick in ((), ("quick",), ("good"
                                          "mop", "spray"))
                      + tuple((*quick, "once", "over") for quick in ((), ("quick",), ("good",))))
 """What *give X ...* gives X, after *a* (*give the toilet a quick look*): acting on X there."""
+THERE_POINTING = frozenset({"out", "over"})
+"""Before *there* after an object (*both plants out there*, *the vase over there*): *there* as it is."""
 THERE_SAID = Phrases((("there",), ("while", "you", "are", "there"), ("while", "you", "are", "in", "there"),
                      ("while", "there"), ("while", "you", "are", "at", "it", "there")))
 """After an action, closing its clause: where the step is (*look at the clock while you're in there*)."""

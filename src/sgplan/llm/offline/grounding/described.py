@@ -313,7 +313,7 @@ def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse)
     anchor = rooms[0] if len(rooms) == 1 else None
     if noun.head.kind == "object" and anchor and anchor.entities and all(e.kind == "object"
                                                                         for e in anchor.entities):
-        return by_an_object(said, noun, anchor, disc)  # "the bowl in the sink", "the book from the table"
+        return by_an_object(said, noun, anchor, where, disc)  # "the bowl in the sink", "the book from it"
     if noun.head.kind != "object" or any(e.kind != "room" for g in rooms for e in g.entities):
         rf.refuse(rf.object_in_room(said))
     entities = disc.vocab.inside(noun.entities, [e for g in rooms for e in g.entities])
@@ -396,7 +396,7 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     vocab = disc.vocab
     room = next_to_it(q.it_span, f"{q.relation} it", disc) if q.it_span is not None else inner(q.thing, disc)
     if noun.head.kind == "object" and room.entities and all(e.kind == "object" for e in room.entities):
-        return by_an_object(disc.said(q.span.start, q.span.end), noun, room, disc)
+        return by_an_object(disc.said(q.span.start, q.span.end), noun, room, where, disc)
     if any(e.kind != "room" for e in room.entities):
         rf.refuse(rf.next_to_rooms_only(disc.said(q.span.start, q.span.end)))
     if noun.head.kind == "object":  # "the toilet next to the bedroom": in a room next to it
@@ -431,11 +431,15 @@ def short_stay(q: ShortStay, noun: Noun, np: Described, where: Where, disc: Disc
     return noun
 
 
-def by_an_object(said: str, noun: Noun, anchor: Grounded, disc: Discourse) -> Noun:
+def by_an_object(said: str, noun: Noun, anchor: Grounded, where: Where, disc: Discourse) -> Noun:
     """*the vase off the dining table*, *the plant by the couch*, *the bowl in the sink* (``said``): the
     scene knows rooms, not what stands by what, so an object placed by another is one in the anchor's room;
-    that is certain only when the anchor lies in one room (else refused: which room?)."""
+    that is certain only when the anchor lies in one room, or in one room of the step (*go to the bedroom
+    with the teddy bear and check the clock by the bed*); else refused: which room?"""
     rooms = list(dict.fromkeys(e.room_key for e in anchor.entities))
+    here = [k for k in rooms if k in {r.key for r in where.scope}]
+    if len(rooms) > 1 and len(here) == 1:
+        rooms, anchor.entities = here, [e for e in anchor.entities if e.room_key == here[0]]
     if len(rooms) > 1:
         rf.refuse(rf.anchor_in_several_rooms(said, anchor.phrase, [disc.vocab.by_key[k] for k in rooms]))
     keys = {e.key for e in anchor.entities}

@@ -352,8 +352,10 @@ def more_rooms(r: Reader, j: int, noun: NounSoFar) -> int:
 
 @QUALIFIERS.rule("there")
 def there(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
-    """*a bathroom there* (on the floor named last), *grab a bottle there* (in the room of the place named
-    last)."""
+    """*a bathroom there* (on the floor named last), *grab a bottle there* / *out there* / *over there* (in
+    the room of the place named last)."""
+    if r.word(i) in lx.THERE_POINTING and r.word(i + 1) == "there" and noun.kind == "object":
+        i += 1  # "the cup in the hallway and both plants out there": in the hallway
     if r.word(i) != "there" or r.word(i + 1) in lx.STATEMENT_LINKS:
         return None
     if noun.kind == "room" or (noun.kind is None) or (
