@@ -169,6 +169,9 @@ GENERIC_ROOM_WORDS = ("room", "rooms", "place", "places", "area", "areas")
 
 ANAPHORIC_ONE = ("one", "ones")
 """``the one on floor 0`` / ``the ones with a bed``: the category of the noun phrase being restricted."""
+ORDINAL_ALONE_BEFORE = frozenset({"", ",", "again", "and", "then", "too", "once"})
+"""After *the first* / *the second* with no noun (*then back to the first (again)*): the one named that
+many-th before, as *the first one*."""
 ONE_NOT_A_NOUN = frozenset({"of", "after", "another", "by", "at", "more", "floor", "floors", "level", "time"})
 """After *the <room> one*: *one* is a number, not a noun (*the lobby, one of them*, *the bathrooms one after
 another*, *the bathroom one floor up*); else *the living room one* is the kind named last, in that room."""
@@ -1608,6 +1611,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("dnstrs",): ("downstairs",),
     ("upstair",): ("upstairs",),  # learners' singular
     ("downstair",): ("downstairs",),
+    ("to", "1st"): ("to", "the", "first"), ("to", "2nd"): ("to", "the", "second"),  # "-> back to 1st"
     # "the TV in the office, then any in the living room": any one of the kind named last
     ("any", "in"): ("any", "one", "in"), ("any", "on"): ("any", "one", "on"),
     ("nxt",): ("next",),

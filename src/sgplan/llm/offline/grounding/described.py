@@ -208,7 +208,7 @@ def said_in_order(between: str, text: str) -> bool:
     """Whether the words ``between`` two phrases of the mission ``text`` put the second after the first
     (*then*, *after that*, the next item of a numbered list when no order remark is made anywhere), so that
     the one named first is also the one done first (sentences alone are in no order)."""
-    words = between.lower().replace(",", " , ").split()
+    words = between.lower().replace(",", " , ").replace("->", " then ").replace("\u2192", " then ").split()
     numbered = re.search(r"\n\s*\(?\d+[.)]", between) is not None and "order" not in text.lower()
     return numbered or any(tuple(words[k:k + len(p)]) == p for p in lx.SEQ_WORDS for k in range(len(words)))
 

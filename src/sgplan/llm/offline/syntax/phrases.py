@@ -147,11 +147,8 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
         one_from_context, other = given is None, True  # (given: "the kitchen, no wait, the other one")
     bare_other = r.word(i) == "other" and r.head(i + 1) is not None  # "then other bdrm", as notes say it
     other = other or bare_other
-    ordinal = lx.FLOOR_ORDINALS.get(r.word(i + 1)) if r.word(i) == "the" and given is None else None
-    if ordinal is not None and (r.head(i + 2) is not None or r.word(i + 2) in lx.ANAPHORIC_ONE):
-        one_from_context = r.word(i + 2) in lx.ANAPHORIC_ONE  # "back to the first one / bedroom"
-    else:
-        ordinal = None  # "the first floor": a floor (floor_words)
+    ordinal, counted_one = named_ordinal(r, i, given)
+    one_from_context = one_from_context or counted_one
     det = determiner(r, i if bare_other or not other else i + 1, other)
     if not isinstance(det, Match):
         return det
@@ -176,6 +173,17 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     return noun_with_head(r, first, r.descriptive_end(i), role, replace(det.node, descriptive=described_as),
                           relative, None if floor_before is None else floor_before.node,
                           OneHead(False, given, one_from_context or floor_one))
+
+
+def named_ordinal(r: Reader, i: int, given: Head | None) -> tuple[int | None, bool]:
+    """*the first / second ...* at ``i`` counting what was named before (*back to the first bedroom*), and
+    whether it is of the kind named last (*the first one*, *back to the first (again)*); ``None`` for a
+    floor (*the first floor*: :func:`.floors.floor_words`)."""
+    ordinal = lx.FLOOR_ORDINALS.get(r.word(i + 1)) if r.word(i) == "the" and given is None else None
+    one = r.word(i + 2) in lx.ANAPHORIC_ONE or r.word(i + 2) in lx.ORDINAL_ALONE_BEFORE
+    if ordinal is None or not (one or r.head(i + 2) is not None):
+        return None, False
+    return ordinal, one
 
 
 def other_of_a_head(r: Reader, i: int) -> bool:
