@@ -797,6 +797,11 @@ def ordinal_of_too_few(said: str, named: int) -> str:
     return rephrase(f"'{said}' counts what was named before it, and {before}; name it ('the bed in the ...')")
 
 
+def between_rooms_only(said: str) -> str:
+    return rephrase(f"'{said}': 'between' is read for a room between two or more rooms (connected to each); "
+                    "name the rooms")
+
+
 def short_stay_not_a_goal(said: str, phrase: str) -> str:
     return rephrase(f"'{phrase} {said}': '{said}' is read only after a goal (the plan reaches it and does "
                     "not time the stay); a place kept away from, or a condition, for a while only is not "

@@ -26,6 +26,7 @@ from sgplan.llm.offline.names import Entity, head_word
 from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
     Attachment,
+    Between,
     ByUnlisted,
     Contains,
     Described,
@@ -409,6 +410,23 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     room.entities = [r for r in room.entities
                      if any(r.key in vocab.adjacent.get(e.key, ()) for e in entities)]
     return Noun(noun.head, entities, noun.room_scoped)
+
+
+@applies(Between)
+def between(q: Between, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*the bathroom between the bedrooms*: the rooms connected to each of the two or more rooms named (to
+    each of a group, *the bedrooms*; to one of a phrase naming one, *the bathroom*)."""
+    named = [inner(thing, disc) for thing in q.things]
+    rooms = [e for g in named for e in g.entities]
+    said_rooms = sum(len(g.entities) if g.mode == "all" else 1 for g in named)
+    if said_rooms < 2 or any(e.kind != "room" for e in rooms):
+        rf.refuse(rf.between_rooms_only(disc.said(q.span.start, q.span.end)))
+    adjacent = disc.vocab.adjacent
+
+    def connects(room: Entity) -> bool:
+        near = adjacent.get(room.key, frozenset())
+        return all((all if g.mode == "all" else any)(e.key in near for e in g.entities) for g in named)
+    return Noun(noun.head, [e for e in noun.entities if connects(e)], noun.room_scoped)
 
 
 @applies(ByUnlisted)

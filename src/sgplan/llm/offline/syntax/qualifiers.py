@@ -21,6 +21,7 @@ from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.tree import (
     Attachment,
+    Between,
     ByUnlisted,
     Contains,
     Described,
@@ -570,6 +571,23 @@ def next_to(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
         if goes is not False:
             return goes
     return Match(NextTo(thing.node, r.span(noun.first, thing.end), None, relation), thing.end)
+
+
+@QUALIFIERS.rule("between")
+def between(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the bathroom between the bedrooms*, *the hall between the kitchen and the office*: a room connected
+    to each of them (:func:`..grounding.described.between`)."""
+    if r.word(i) != "between" or noun.kind != "room" or not r.np_starts(i + 1):
+        return None
+    things, j = [], i + 1
+    while True:
+        thing = noun_phrase(r, j, "qualifier")
+        if not isinstance(thing, Match):
+            return thing
+        things.append(thing.node)
+        if r.word(thing.end) != "and" or not r.np_starts(thing.end + 1):
+            return Match(Between(tuple(things), r.span(noun.first, thing.end)), thing.end)
+        j = thing.end + 1
 
 
 @QUALIFIERS.rule("at an object")

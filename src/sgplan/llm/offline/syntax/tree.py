@@ -318,6 +318,15 @@ class NextTo:
 
 
 @dataclass(frozen=True)
+class Between:
+    """*the bathroom between the bedrooms* / *between the kitchen and the hall*: a room connected to each of
+    the rooms ``things`` name (two or more)."""
+
+    things: tuple[NounPhrase, ...]
+    span: Span
+
+
+@dataclass(frozen=True)
 class ByUnlisted:
     """*the bowl on the counter*, *the book on the shelf in the office*: placed by a thing the scene does not
     hold (``words``, as typed, ``span``): a description of the object (read only where the scene leaves one
@@ -364,7 +373,7 @@ class Attachment:
 
 
 Qualifier = (Possessive | OnFloor | InRoom | There | Holds | Lacks | Contains | NextTo | ByUnlisted | Except
-             | Attachment | ShortStay)
+             | Attachment | ShortStay | Between)
 
 
 # ----------------------------------------------------------------------------------------------- actions
