@@ -783,8 +783,8 @@ CLOSING = Phrases((
     *((*thanks, "ever", "so", "much") for thanks in (("thanks",), ("thank", "you"))),
     *((*thanks, "a", "lot") for thanks in (("cheers",), ("ta",))),
     ("thx",), ("ty",), ("tyvm",), ("cheers", "then"), ("mind",), ("mind", "you"), ("much", "obliged"),
-    ("nice", "one"), ("legend",), ("you", "are", "a", "legend"), ("love", "you"), ("love", "ya"), ("x",),
-    ("xx",), ("xxx",), ("urgent",), ("please", "and", "thanks"), ("cheers", "in", "advance"),
+    ("nice", "one"), ("legend",), ("you", "are", "a", "legend"), ("love", "you"), ("love", "ya"),
+    ("urgent",), ("please", "and", "thanks"), ("cheers", "in", "advance"),
     ("let", "me", "know"), ("thank", "you", "kindly"), ("thanks", "kindly"), ("thanks", "again"),
     ("thank", "you", "again"), ("see", "ya"), ("see", "you"), ("see", "you", "soon"),
     ("catch", "you", "later"),
@@ -1376,6 +1376,10 @@ NOTICE_THAT = Phrases((*((*please, "note", *that) for please in ((), ("please",)
 asleep*): the statement after them is context like any other (*remember* without *that* may ask to go:
 left to the parser)."""
 APOLOGY_WORDS = ("sorry", "oops", "whoops", "apologies")
+KISSES = frozenset({"x", "xx", "xxx"})
+"""Kisses signing off a message (*Love, Dad x*): a remark only as the last word of a sentence, as *x* is also
+operators' shorthand for *not* (*x kitchen*)."""
+
 CLOSING_TAILS = Phrases((("at", "all"), ("indeed",), ("with", "it"), ("with", "you"), ("with", "that"),
                          ("with", "this"), ("by", "me"), ("for", "me")))
 """Words that only make a remark of :data:`CLOSING` stronger or say to whom (*no rush at all*, *thank you very
