@@ -99,7 +99,7 @@ def in_context(np: Described, noun: Noun, where: Where, disc: Discourse) -> Noun
     if np.relative is not None:
         before = floors_of(RelativeFloor(np.relative), disc, entities)
     if np.determiner.other and not np.apposition_excludes:  # "the other X, not the one ...": it says which
-        entities = others(entities, np.span.start, disc)
+        entities = others(entities, np.span.start, disc, np.apposition is not None)
     if np.determiner.ordinal is not None:
         entities = nth_named(entities, np.determiner.ordinal, np.span, disc)
     # "go upstairs and check A and B": both there
@@ -116,17 +116,20 @@ def in_context(np: Described, noun: Noun, where: Where, disc: Discourse) -> Noun
     return Noun(noun.head, entities, noun.room_scoped, guessed)
 
 
-def others(entities: list[Entity], before: int, disc: Discourse) -> list[Entity]:
+def others(entities: list[Entity], before: int, disc: Discourse, said_which: bool = False) -> list[Entity]:
     """*the other X*: the X not named before character ``before``: by a goal or a place to avoid naming
     only such X (*this floor* names its bedrooms among other rooms, and no bedroom in particular), or by a
     qualifier or words set aside naming one (a heading *Bathroom rounds* names no bathroom in particular);
-    refused when none was."""
+    refused when none was, unless an apposition says which (``said_which``: *the other bedroom - the one with
+    the plant*)."""
     fits = {e.key for e in entities}
     read = [g for g in disc.references if g.role != "qualifier" or len(g.entities) == 1]
     told = [g for g in disc.mentions if len(g.entities) == 1]
     named = {e.key for g in read + told if g.start < before and g.entities
              and all(e.key in fits for e in g.entities) for e in g.entities}
     if not any(e.key in named for e in entities):
+        if said_which:
+            return entities
         rf.refuse(rf.no_other(head_word(entities)))
     return [e for e in entities if e.key not in named]
 
