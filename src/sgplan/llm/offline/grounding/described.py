@@ -53,7 +53,7 @@ applies = APPLIERS.register
 @grounds(Described)
 def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
     """Ground a described phrase (see the module docstring)."""
-    noun = in_context(np, head_entities(np, disc), where, disc)
+    noun = in_context(np, head_entities(np, disc, where.rooms), where, disc)
     guessed = noun.guessed
     for qualifier in np.qualifiers:
         noun = APPLIERS(qualifier, noun, np, where, disc)

@@ -264,10 +264,14 @@ def owned_by(np: Its, ref: Grounded, disc: Discourse) -> list[Entity]:
     return disc.vocab.inside(of_head, container)
 
 
-def last_head(disc: Discourse) -> Head | None:
+def last_head(disc: Discourse, rooms: bool = False) -> Head | None:
     """The kind and category of the last room or object named (what *the one* / *the other one* is), in
-    words read or set aside (*The plants are looking sad. Water the one in the office*)."""
-    named = [g for g in disc.references if g.role != "qualifier"] + disc.mentions
+    words read or set aside (*The plants are looking sad. Water the one in the office*); with ``rooms``, of
+    the last room named, in a qualifier too (*the sink in the downstairs bathroom, then the sink in the
+    upstairs one*)."""
+    named = [g for g in disc.references if g.role != "qualifier" or rooms] + disc.mentions
+    if rooms:
+        named = [g for g in named if g.entities and all(e.kind == "room" for e in g.entities)]
     for g in sorted(named, key=lambda g: g.start, reverse=True):
         categories = {e.category for e in g.entities}
         if g.generic:  # "the room where the book is, then the one ..."
@@ -277,15 +281,16 @@ def last_head(disc: Discourse) -> Head | None:
     return None
 
 
-def head_entities(np: Described, disc: Discourse) -> Noun:
-    """The head noun of ``np`` and every entity it may denote (*dining* chairs: those in a dining room)."""
+def head_entities(np: Described, disc: Discourse, rooms: bool = False) -> Noun:
+    """The head noun of ``np`` and every entity it may denote (*dining* chairs: those in a dining room);
+    ``rooms``: it must name rooms (*the one* is then of the last room named)."""
     vocab = disc.vocab
     if isinstance(np.head, KeyHead):
         entity = vocab.by_key.get(np.head.key)
         if entity is None:
             rf.refuse(rf.unknown_key(np.head.key))
         return Noun(Head(entity.kind, frozenset({entity.category}), False, 1), [entity], False)
-    head = resolved_head(np.head, disc)
+    head = resolved_head(np.head, disc, rooms)
     if head.everyday is not None:
         return Noun(head, [kids_room(vocab, head.everyday)], False)
     entities = vocab.of_head(head)
@@ -294,12 +299,12 @@ def head_entities(np: Described, disc: Discourse) -> Noun:
     return Noun(head, entities, np.modifier is not None)
 
 
-def resolved_head(ref: Head | OneHead, disc: Discourse) -> Head:
+def resolved_head(ref: Head | OneHead, disc: Discourse, rooms: bool = False) -> Head:
     """The head noun, *one* / *ones* read as the kind it stands for (refused when nothing says which)."""
     if isinstance(ref, Head):
         return ref
-    given = ref.given if ref.given is not None else (last_head(disc) or disc.announced) if ref.from_context \
-        else None
+    given = ref.given if ref.given is not None else (last_head(disc, rooms) or disc.announced) \
+        if ref.from_context else None
     if given is None:
         rf.refuse(rf.one_without_kind("ones" if ref.plural else "one"))
     return Head(given.kind, given.categories, ref.plural, 1)

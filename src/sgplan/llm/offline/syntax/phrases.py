@@ -165,11 +165,12 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
         i += 1
     elif floor_before is not None:
         i = floor_before.end
-        if r.head(i) is None:  # "the top floor": a place
+        if r.head(i) is None and not qualifiers.anaphoric_one(r, i):  # "the top floor": a place
             return Match(FloorPlace(r.span(first, i), floor_before.node, det.node.mode), i)
     described_as = (*said, *r.words[i : r.descriptive_end(i)])  # "the big (upstairs) couch"
     # "the downstairs one", "the top floor one": of the kind named last, on that floor
-    floor_one = bool(relative or floor_before) and given is None and anaphoric_one(r, r.descriptive_end(i))
+    floor_one = (bool(relative or floor_before) and given is None
+                 and qualifiers.anaphoric_one(r, r.descriptive_end(i)))
     return noun_with_head(r, first, r.descriptive_end(i), role, replace(det.node, descriptive=described_as),
                           relative, None if floor_before is None else floor_before.node,
                           OneHead(False, given, one_from_context or floor_one))
@@ -231,17 +232,11 @@ def describing_word(r: Reader, i: int) -> bool:
     return len(w) > 2 and foreign_word(r, i) and r.spelling is not None and not r.spelling.is_known(w)
 
 
-def anaphoric_one(r: Reader, i: int) -> bool:
-    """Whether *one(s)* at ``i`` is a noun (*the living room one*), not a number (*one of them*, *one after
-    another*, *one floor up*)."""
-    return r.word(i) in lx.ANAPHORIC_ONE and r.word(i + 1) not in lx.ONE_NOT_A_NOUN
-
-
 def room_one(r: Reader, first: int, i: int, role: Role, det: Determiner) -> Parse[NounPhrase]:
     """*the living room one*, *the office ones* (at ``i``, the room's head): the kind named last, in that
     room, as *the one in the living room*; ``None`` when no room and *one* are at ``i``."""
     room = r.head(i) if not det.other and det.pointer is None else None
-    if room is None or room.kind != "room" or room.plural or not anaphoric_one(r, i + room.words):
+    if room is None or room.kind != "room" or room.plural or not qualifiers.anaphoric_one(r, i + room.words):
         return None
     end = i + room.words
     room_np = Described(r.span(i, end), r.word(i), Determiner("the", None), None, None, None, room, None, (),

@@ -241,6 +241,12 @@ def object_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped
     return Match(Possessive(head, r.span(noun.first, i + head.words)), i + head.words)
 
 
+def anaphoric_one(r: Reader, i: int) -> bool:
+    """Whether *one(s)* at ``i`` is a noun (*the living room one*, *the upstairs one*), not a number (*one of
+    them*, *one after another*, *one floor up*)."""
+    return r.word(i) in lx.ANAPHORIC_ONE and r.word(i + 1) not in lx.ONE_NOT_A_NOUN
+
+
 @QUALIFIERS.rule("floor")
 def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*on floor 1*, *on the second floor*, *upstairs*, *, one floor down*, *up there*, *on the same floor
@@ -249,7 +255,8 @@ def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if w in lx.RELATIVE_FLOORS:
         return Match(OnFloor(RelativeFloor(w)), i + 1)
     k = i + 1 + (1 if r.word(i + 1) == "the" else 0)
-    if w in lx.FLOOR_PREPOSITIONS and r.word(k) in lx.RELATIVE_FLOORS and r.head(k + 1) is None:
+    if (w in lx.FLOOR_PREPOSITIONS and r.word(k) in lx.RELATIVE_FLOORS and r.head(k + 1) is None
+            and not anaphoric_one(r, k + 1)):  # not "the sink in the upstairs one": a room
         return Match(OnFloor(RelativeFloor(r.word(k))), k + 1)  # "the bathroom of the upstairs" (learners)
     comma = 1 if w == "," else 0
     if floor_count(r, i + comma) is not None and r.word(i + comma + 1) in lx.FLOOR_PLURALS:
@@ -269,8 +276,8 @@ def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if r.word(i + 1) == "same" and r.word(i + 2) in lx.FLOOR_WORDS:
         return same_floor(r, i + 3)  # "the bathroom of same floor", the article left out as learners do
     said = floor_words(r, i + (2 if r.word(i + 1) == "the" else 1))
-    if said is None or r.head(said.end) is not None:
-        return None  # none, or "in the ground floor bathroom": a room named with its floor
+    if said is None or r.head(said.end) is not None or anaphoric_one(r, said.end):
+        return None  # none, or "in the ground floor bathroom / one": a room named with its floor
     return Match(OnFloor(said.node), said.end)
 
 
