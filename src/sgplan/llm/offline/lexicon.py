@@ -1211,8 +1211,10 @@ ASIDE = Phrases(tuple((",", rel, be, *also) for rel, be in (("which", "is"), ("w
                                                              ("that", "are"), ("it", "is"), ("it", "'s"),
                                                              ("that", "'s"), ("they", "are"))
                       for also in ((), ("also",), ("located",), ("also", "located"))))
-RELATIVE_THAT = Phrases((("that", "is"), ("which", "is"), ("that", "are"), ("which", "are"), ("who", "is")))
-"""*the bathroom that is next to the bedroom*: a relative clause stating a qualifier."""
+RELATIVE_THAT = Phrases((("that", "is"), ("which", "is"), ("that", "are"), ("which", "are"), ("who", "is"),
+                        ("what", "is"), ("what", "are")))
+"""*the bathroom that is next to the bedroom*: a relative clause stating a qualifier (*the clock what is in
+the bedroom*, as learners write *that*)."""
 ASIDE_QUALIFIERS = frozenset({"in", "inside", "on", "next", "beside", "upstairs", "downstairs", "near",
                               "adjacent", "connected", "attached"})
 """``the couch, which is in the living room`` / ``the bowl (it's in the kitchen)``: an aside read as the
