@@ -169,6 +169,8 @@ GENERIC_ROOM_WORDS = ("room", "rooms", "place", "places", "area", "areas")
 
 ANAPHORIC_ONE = ("one", "ones")
 """``the one on floor 0`` / ``the ones with a bed``: the category of the noun phrase being restricted."""
+RESTATED_CHOOSERS = frozenset({"any", "either"})
+"""*a TV, any TV*, *a bed in the bedroom, either bed*: the choice said again, free."""
 ORDINAL_ALONE_BEFORE = frozenset({"", ",", "again", "and", "then", "too", "once"})
 """After *the first* / *the second* with no noun (*then back to the first (again)*): the one named that
 many-th before, as *the first one*."""
