@@ -1654,6 +1654,11 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
        for stairs in ("stairs", "staircase") for way in ("down", "up")},
     **{(verb, way, "the", "stairs", "to"): ("go", way, "to")
        for verb in ("go", "walk", "head") for way in ("down", "up")},
+    # "take the stairs up and look at the TV": a move between floors (the stairs are the way): "go upstairs"
+    **{("take", "the", stairs, way): ("go", f"{way}stairs")
+       for stairs in ("stairs", "staircase") for way in ("down", "up")},
+    **{(verb, way, "the", "stairs"): ("go", f"{way}stairs")
+       for verb in ("go", "walk", "head") for way in ("down", "up")},
 }
 """Phrases read as another (``prior to`` is ``before``, ``as soon as`` is ``once``), rewritten on the tokens
 before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase is taken for a verb."""
