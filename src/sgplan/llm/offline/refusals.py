@@ -797,6 +797,10 @@ def ordinal_of_too_few(said: str, named: int) -> str:
     return rephrase(f"'{said}' counts what was named before it, and {before}; name it ('the bed in the ...')")
 
 
+def placed_on_a_room(said: str, phrase: str) -> str:
+    return rephrase(f"'{said}': 'it' is '{phrase}', which is no object; name what the thing is on")
+
+
 def between_rooms_only(said: str) -> str:
     return rephrase(f"'{said}': 'between' is read for a room between two or more rooms (connected to each); "
                     "name the rooms")

@@ -19,8 +19,15 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding import backref
 from sgplan.llm.offline.grounding.discourse import Discourse, FloorReading, Grounded, Where
-from sgplan.llm.offline.grounding.floors import floors_of, on_floors, one_floor, same_floor
-from sgplan.llm.offline.grounding.phrases import Noun, check, ground_phrase, grounds, head_entities
+from sgplan.llm.offline.grounding.floors import determined, floors_of, on_floors, one_floor, same_floor
+from sgplan.llm.offline.grounding.phrases import (
+    Noun,
+    antecedent,
+    check,
+    ground_phrase,
+    grounds,
+    head_entities,
+)
 from sgplan.llm.offline.grounding.places import next_to_it, there_floors, there_rooms
 from sgplan.llm.offline.names import Entity, head_word
 from sgplan.llm.offline.registry import Registry
@@ -398,6 +405,8 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     """*the kitchen next to the dining room* (connected in the scene graph); an object next to a room is
     in a room connected to it."""
     vocab = disc.vocab
+    if q.it_span is not None and q.relation in lx.OBJECT_PLACING:  # "wipe a table, then the bowl on it"
+        return by_an_object(disc.said(q.span.start, q.span.end), noun, placed_on_it(q, disc), where, disc)
     room = next_to_it(q.it_span, f"{q.relation} it", disc) if q.it_span is not None else inner(q.thing, disc)
     if noun.head.kind == "object" and room.entities and all(e.kind == "object" for e in room.entities):
         return by_an_object(disc.said(q.span.start, q.span.end), noun, room, where, disc)
@@ -430,6 +439,19 @@ def between(q: Between, noun: Noun, np: Described, where: Where, disc: Discourse
         near = adjacent.get(room.key, frozenset())
         return all((all if g.mode == "all" else any)(e.key in near for e in g.entities) for g in named)
     return Noun(noun.head, [e for e in noun.entities if connects(e)], noun.room_scoped)
+
+
+def placed_on_it(q: NextTo, disc: Discourse) -> Grounded:
+    """*the bowl on it*: *it* is the object named last (:func:`.phrases.antecedent`), which must be an object;
+    a choice of them (*one of the tables*) only when they all lie in one room."""
+    assert q.it_span is not None
+    said = f"{q.relation} it"
+    ref = antecedent("it", disc)
+    if any(e.kind != "object" for e in ref.entities):
+        rf.refuse(rf.placed_on_a_room(said, ref.phrase))
+    determined(said, ref, len({e.room_key for e in ref.entities}))
+    return disc.record(Grounded("it", q.it_span.start, q.it_span.end, list(ref.entities), ref.mode, False,
+                                "qualifier"))
 
 
 @applies(ByUnlisted)

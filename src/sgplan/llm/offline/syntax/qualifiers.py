@@ -599,11 +599,13 @@ def between(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
 
 @QUALIFIERS.rule("at an object")
 def at_an_object(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
-    """*the chair at the dining table*, *a vase on the table*, *the book under the bed*: an object placed by
-    another object, read as one in that object's room (grounding decides, :func:`next_to`'s node); not after
-    a carry verb (*put the cup on the table*: where it is carried, read by the action)."""
+    """*the chair at the dining table*, *a vase on the table*, *the book under the bed*, *the bowl on it*: an
+    object placed by another object, read as one in that object's room (grounding decides, :func:`next_to`'s
+    node); not after a carry verb (*put the cup on the table*: where it is carried, read by the action)."""
     if noun.kind != "object" or r.word(i) not in lx.OBJECT_PLACING:
         return None
+    if r.word(i + 1) == "it" and r.word(i + 2) in lx.CLAUSE_ENDS and not carried(r, noun):
+        return Match(NextTo(None, r.span(noun.first, i + 2), r.span(i + 1, i + 2), r.word(i)), i + 2)
     k = i + 1 + (1 if r.word(i + 1) in lx.DETERMINERS else 0)
     head = r.head(k)
     if head is None or head.kind != "object":
