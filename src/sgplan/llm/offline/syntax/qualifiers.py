@@ -140,8 +140,9 @@ def remark_ahead(r: Reader, i: int) -> tuple[str, ...] | None:
 
 
 def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
-    """One choice remark at ``i`` (see :func:`remark_ahead`)."""
-    comma = 1 if r.word(i) == "," else 0
+    """One choice remark at ``i`` (see :func:`remark_ahead`), after a comma or two (*the vases, uh, any one of
+    them*: the sound is dropped, its commas stay)."""
+    comma = 2 if r.at(i, ",", ",") else 1 if r.word(i) == "," else 0
     suffices = r.phrase(i + comma, lx.ONE_SUFFICES)
     after = i + comma + len(suffices or ())
     if suffices is not None and (r.word(after) in lx.CLAUSE_ENDS or one_remark(r, after) is not None):
