@@ -169,6 +169,11 @@ GENERIC_ROOM_WORDS = ("room", "rooms", "place", "places", "area", "areas")
 
 ANAPHORIC_ONE = ("one", "ones")
 """``the one on floor 0`` / ``the ones with a bed``: the category of the noun phrase being restricted."""
+RESTATED_CHOOSERS = frozenset({"any", "either"})
+"""*a TV, any TV*, *a bed in the bedroom, either bed*: the choice said again, free."""
+ORDINAL_ALONE_BEFORE = frozenset({"", ",", "again", "and", "then", "too", "once"})
+"""After *the first* / *the second* with no noun (*then back to the first (again)*): the one named that
+many-th before, as *the first one*."""
 ONE_NOT_A_NOUN = frozenset({"of", "after", "another", "by", "at", "more", "floor", "floors", "level", "time"})
 """After *the <room> one*: *one* is a number, not a noun (*the lobby, one of them*, *the bathrooms one after
 another*, *the bathroom one floor up*); else *the living room one* is the kind named last, in that room."""
@@ -520,6 +525,8 @@ GIVEN_LOOKS = Phrases(tuple((*quick, what) for quick in ((), ("quick",), ("good"
                                          "mop", "spray"))
                      + tuple((*quick, "once", "over") for quick in ((), ("quick",), ("good",))))
 """What *give X ...* gives X, after *a* (*give the toilet a quick look*): acting on X there."""
+THERE_POINTING = frozenset({"out", "over"})
+"""Before *there* after an object (*both plants out there*, *the vase over there*): *there* as it is."""
 THERE_SAID = Phrases((("there",), ("while", "you", "are", "there"), ("while", "you", "are", "in", "there"),
                      ("while", "there"), ("while", "you", "are", "at", "it", "there")))
 """After an action, closing its clause: where the step is (*look at the clock while you're in there*)."""
@@ -553,6 +560,14 @@ SUBJECT_FILLERS = word_set("you we i the robot it ever have has had do does did 
 """Skipped before the verb of a clause that follows a conjunction (*after you have been to X*)."""
 LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through", "on", "onto"})
 """Repeated in a list after *either* / *both*: *either to A or to B*."""
+SHORT_STAYS = Phrases(tuple(("for", "a", *little, spell) for little in ((), ("little",), ("quick",))
+                            for spell in ("bit", "while", "sec", "second", "moment")))
+"""*sit on the couch for a bit / a (little) while / a sec / a moment*: how long to stay at a goal, said
+casually; the plan reaches it and says the words back as not part of the mission (a time said in minutes or
+more, *for a minute*, *for ten minutes*, is not among them: refused as a duration)."""
+STAY_TIMED_CLAUSES = word_set("once until till before after unless while")
+"""Words of a clause that make a short stay in it the time of something else (*until you've sat on the couch
+for a bit*): refused."""
 OBJECT_PLACING = frozenset({"at", "on", "under", "beside", "behind", "above", "below", "near", "by"})
 """Before an object, after an object: placed by it (*the chair at the desk*), which the scene cannot tell."""
 AFTER_UNLISTED_THING = word_set("and then in upstairs downstairs there please first too for")
@@ -1233,8 +1248,10 @@ ASIDE = Phrases(tuple((",", rel, be, *also) for rel, be in (("which", "is"), ("w
                                                              ("that", "are"), ("it", "is"), ("it", "'s"),
                                                              ("that", "'s"), ("they", "are"))
                       for also in ((), ("also",), ("located",), ("also", "located"))))
-RELATIVE_THAT = Phrases((("that", "is"), ("which", "is"), ("that", "are"), ("which", "are"), ("who", "is")))
-"""*the bathroom that is next to the bedroom*: a relative clause stating a qualifier."""
+RELATIVE_THAT = Phrases((("that", "is"), ("which", "is"), ("that", "are"), ("which", "are"), ("who", "is"),
+                        ("what", "is"), ("what", "are")))
+"""*the bathroom that is next to the bedroom*: a relative clause stating a qualifier (*the clock what is in
+the bedroom*, as learners write *that*)."""
 ASIDE_QUALIFIERS = frozenset({"in", "inside", "on", "next", "beside", "upstairs", "downstairs", "near",
                               "adjacent", "connected", "attached"})
 """``the couch, which is in the living room`` / ``the bowl (it's in the kitchen)``: an aside read as the
@@ -1637,6 +1654,9 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("dnstrs",): ("downstairs",),
     ("upstair",): ("upstairs",),  # learners' singular
     ("downstair",): ("downstairs",),
+    ("to", "1st"): ("to", "the", "first"), ("to", "2nd"): ("to", "the", "second"),  # "-> back to 1st"
+    # "the TV in the office, then any in the living room": any one of the kind named last
+    ("any", "in"): ("any", "one", "in"), ("any", "on"): ("any", "one", "on"),
     ("nxt",): ("next",),
     ("u",): ("you",),
     ("ur",): ("your",),
@@ -1669,6 +1689,11 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
        for stairs in ("stairs", "staircase") for way in ("down", "up")},
     **{(verb, way, "the", "stairs", "to"): ("go", way, "to")
        for verb in ("go", "walk", "head") for way in ("down", "up")},
+    # "take the stairs up and look at the TV": a move between floors (the stairs are the way): "go upstairs"
+    **{("take", "the", stairs, way): ("go", f"{way}stairs")
+       for stairs in ("stairs", "staircase") for way in ("down", "up")},
+    **{(verb, way, "the", "stairs"): ("go", f"{way}stairs")
+       for verb in ("go", "walk", "head") for way in ("down", "up")},
 }
 """Phrases read as another (``prior to`` is ``before``, ``as soon as`` is ``once``), rewritten on the tokens
 before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase is taken for a verb."""
@@ -1688,12 +1713,6 @@ PHRASE_ALIASES.update({  # an emphatic "do" before a prohibition: "do stay away 
 })
 PHRASE_ALIASES.update({  # "stay up here on this floor": the floor said twice
     (here, "here", "on", "this", "floor"): ("on", "this", "floor") for here in ("up", "down", "right")
-})
-PHRASE_ALIASES.update({  # a move between floors said with the stairs: "take the stairs up" is "go upstairs"
-    **{(verb, *stairs, way): ("go", UP_DOWN[way]) for verb in ("take", "use")
-       for stairs in (("the", "stairs"), ("the", "staircase")) for way in ("up", "down")},
-    **{(verb, way, "the", stairs): (verb, UP_DOWN[way]) for verb in ("go", "head", "walk", "run", "come")
-       for way in ("up", "down") for stairs in ("stairs", "staircase")},
 })
 
 # ------------------------------------------------------------------------------------ grammar words

@@ -321,6 +321,11 @@ def placed_or_where_it_is(said: str, anchor: str) -> str:
                     "where it goes, or name the room it is in")
 
 
+def carried_in_purpose(said: str) -> str:
+    return rephrase(f"{said}: what is carried after 'to' is not read in its order (the thing, then where it "
+                    "goes); say it as a step of its own ('go to X, then put ...')")
+
+
 def thing_to_find(thing: str, said: str) -> str:
     return rephrase(f"'{said}': the scene has no '{thing}', and the robot would have to find it itself; "
                     "name a room or object of the scene")
@@ -816,6 +821,27 @@ def ordinal_of_unordered(said: str, first: str, second: str) -> str:
 def ordinal_of_too_few(said: str, named: int) -> str:
     before = "only one was" if named == 1 else f"only {named} were"
     return rephrase(f"'{said}' counts what was named before it, and {before}; name it ('the bed in the ...')")
+
+
+def placed_on_a_room(said: str, phrase: str) -> str:
+    return rephrase(f"'{said}': 'it' is '{phrase}', which is no object; name what the thing is on")
+
+
+def between_rooms_only(said: str) -> str:
+    return rephrase(f"'{said}': 'between' is read for a room between two or more rooms (connected to each); "
+                    "name the rooms")
+
+
+def short_stay_not_a_goal(said: str, phrase: str) -> str:
+    return rephrase(f"'{phrase} {said}': '{said}' is read only after a goal (the plan reaches it and does "
+                    "not time the stay); a place kept away from, or a condition, for a while only is not "
+                    "understood")
+
+
+def its_of_which(said: str, phrases: list[str]) -> str:
+    named = " or ".join(f"'{p}'" for p in phrases)
+    return rephrase(f"'{said}': 'its' could be of {named}, and these differ here; name it ('the ... in the "
+                    "...')")
 
 
 def no_other(noun: str) -> str:

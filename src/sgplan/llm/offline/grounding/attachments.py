@@ -5,6 +5,8 @@
 - *the bedroom with the book and the vase*: more of its contents when the rooms with the book are several
   and the vase narrows them; when one room is left and it holds the vase too, it could also be another
   goal, which is refused; otherwise the vase is another goal.
+- *the plant in the bedroom, the one in the office, and ...*: an apposition (which plant) when it names one
+  the phrase does; otherwise (no plant is in both) the next item of the list.
 
 The decision reads the phrase itself (its head and the qualifiers before the open words) and what was
 named before the sentence, on a copy of the discourse: deciding records nothing.
@@ -29,6 +31,8 @@ def describes(attachment: Attachment, disc: Discourse) -> bool:
     trial = disc.fork()
     rooms = ground_phrase(attachment.prefix, Where("qualifier"), trial).entities
     thing = ground_phrase(attachment.thing, Where("qualifier"), trial)
+    if attachment.kind == "apposition":
+        return bool(set(rooms) & set(thing.entities))
     if any(e.kind != "object" for e in thing.entities):
         return False
     if attachment.kind == "without":

@@ -10,20 +10,30 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable
+from dataclasses import replace
 from itertools import pairwise
 from typing import Any
 
+from sgplan.errors import MissionError
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding import backref
 from sgplan.llm.offline.grounding.discourse import Discourse, FloorReading, Grounded, Where
-from sgplan.llm.offline.grounding.floors import floors_of, on_floors, one_floor, same_floor
-from sgplan.llm.offline.grounding.phrases import Noun, check, ground_phrase, grounds, head_entities
+from sgplan.llm.offline.grounding.floors import determined, floors_of, on_floors, one_floor, same_floor
+from sgplan.llm.offline.grounding.phrases import (
+    Noun,
+    antecedent,
+    check,
+    ground_phrase,
+    grounds,
+    head_entities,
+)
 from sgplan.llm.offline.grounding.places import next_to_it, there_floors, there_rooms
 from sgplan.llm.offline.names import Entity, head_word
 from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
     Attachment,
+    Between,
     ByUnlisted,
     Contains,
     Described,
@@ -33,10 +43,12 @@ from sgplan.llm.offline.syntax.tree import (
     Lacks,
     Mode,
     NextTo,
+    NounPhrase,
     OnFloor,
     Possessive,
     RelativeFloor,
     SameFloor,
+    ShortStay,
     Span,
     There,
 )
@@ -48,7 +60,7 @@ applies = APPLIERS.register
 @grounds(Described)
 def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
     """Ground a described phrase (see the module docstring)."""
-    noun = in_context(np, head_entities(np, disc), where, disc)
+    noun = in_context(np, head_entities(np, disc, where.rooms), where, disc)
     guessed = noun.guessed
     for qualifier in np.qualifiers:
         noun = APPLIERS(qualifier, noun, np, where, disc)
@@ -94,7 +106,7 @@ def in_context(np: Described, noun: Noun, where: Where, disc: Discourse) -> Noun
     if np.relative is not None:
         before = floors_of(RelativeFloor(np.relative), disc, entities)
     if np.determiner.other and not np.apposition_excludes:  # "the other X, not the one ...": it says which
-        entities = others(entities, np.span.start, disc)
+        entities = others(entities, np.span.start, disc, np.apposition is not None)
     if np.determiner.ordinal is not None:
         entities = nth_named(entities, np.determiner.ordinal, np.span, disc)
     # "go upstairs and check A and B": both there
@@ -111,10 +123,20 @@ def in_context(np: Described, noun: Noun, where: Where, disc: Discourse) -> Noun
     return Noun(noun.head, entities, noun.room_scoped, guessed)
 
 
-def others(entities: list[Entity], before: int, disc: Discourse) -> list[Entity]:
-    """*the other X*: the X not named before character ``before``; refused when none was."""
-    named = {e.key for g in disc.references + disc.mentions if g.start < before for e in g.entities}
+def others(entities: list[Entity], before: int, disc: Discourse, said_which: bool = False) -> list[Entity]:
+    """*the other X*: the X not named before character ``before``: by a goal or a place to avoid naming
+    only such X (*this floor* names its bedrooms among other rooms, and no bedroom in particular), or by a
+    qualifier or words set aside naming one (a heading *Bathroom rounds* names no bathroom in particular);
+    refused when none was, unless an apposition says which (``said_which``: *the other bedroom - the one with
+    the plant*)."""
+    fits = {e.key for e in entities}
+    read = [g for g in disc.references if g.role != "qualifier" or len(g.entities) == 1]
+    told = [g for g in disc.mentions if len(g.entities) == 1]
+    named = {e.key for g in read + told if g.start < before and g.entities
+             and all(e.key in fits for e in g.entities) for e in g.entities}
     if not any(e.key in named for e in entities):
+        if said_which:
+            return entities
         rf.refuse(rf.no_other(head_word(entities)))
     return [e for e in entities if e.key not in named]
 
@@ -188,6 +210,8 @@ def owners_room(np: Described, noun: Noun, said: str, disc: Discourse) -> list[E
             return list(rooms.values())
         if rooms:
             rf.refuse(rf.whose_room(said, sorted(rooms)))
+    if np.apposition is not None:  # "his room, the one with the teddy bear": the apposition says which
+        return noun.entities
     rf.refuse(rf.whose_room(said, []))
 
 
@@ -195,7 +219,7 @@ def said_in_order(between: str, text: str) -> bool:
     """Whether the words ``between`` two phrases of the mission ``text`` put the second after the first
     (*then*, *after that*, the next item of a numbered list when no order remark is made anywhere), so that
     the one named first is also the one done first (sentences alone are in no order)."""
-    words = between.lower().replace(",", " , ").split()
+    words = between.lower().replace(",", " , ").replace("->", " then ").replace("\u2192", " then ").split()
     numbered = re.search(r"\n\s*\(?\d+[.)]", between) is not None and "order" not in text.lower()
     return numbered or any(tuple(words[k:k + len(p)]) == p for p in lx.SEQ_WORDS for k in range(len(words)))
 
@@ -294,12 +318,13 @@ def there(q: There, noun: Noun, np: Described, where: Where, disc: Discourse) ->
 def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
     """*the sink in the kitchen*: the objects in that room (the room phrase keeps only the rooms used); *every
     plant in the office and the kitchen*: those of each room, each of which must hold some."""
-    rooms = [ground_phrase(room, Where("qualifier", rooms=True), disc) for room in q.rooms]
+    rooms = [owners_room_holding(room, noun, disc)
+             or ground_phrase(room, Where("qualifier", rooms=True), disc) for room in q.rooms]
     said = disc.said(q.span.start, q.span.end)
     anchor = rooms[0] if len(rooms) == 1 else None
     if noun.head.kind == "object" and anchor and anchor.entities and all(e.kind == "object"
                                                                         for e in anchor.entities):
-        return by_an_object(said, noun, anchor, disc)  # "the bowl in the sink", "the book from the table"
+        return by_an_object(said, noun, anchor, where, disc)  # "the bowl in the sink", "the book from it"
     if noun.head.kind != "object" or any(e.kind != "room" for g in rooms for e in g.entities):
         rf.refuse(rf.object_in_room(said))
     entities = disc.vocab.inside(noun.entities, [e for g in rooms for e in g.entities])
@@ -308,6 +333,28 @@ def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse)
         if len(rooms) > 1 and not room.entities:  # not "... in A, and B": that would be another goal
             rf.refuse(rf.room_holds_none(said, room.phrase, head_word(noun.entities)))
     return Noun(noun.head, entities, True)
+
+
+def owners_room_holding(room: NounPhrase, noun: Noun, disc: Discourse) -> Grounded | None:
+    """*the teddy bear in her bedroom* where nothing said before tells whose room it is: the one room of that
+    kind that holds such an object (the speaker places it there); ``None`` when the phrase is no owner's room,
+    or what was said before decides it (:func:`owners_room`). Refused when the objects lie in several such
+    rooms, or in none."""
+    if (not isinstance(room, Described) or room.determiner.pointer not in lx.OWNERS
+            or noun.head.kind != "object"):
+        return None
+    try:
+        ground_phrase(room, Where("qualifier", rooms=True), disc.fork())
+        return None
+    except MissionError as told:
+        anyone = replace(room, determiner=replace(room.determiner, pointer=None, mode="any"))
+        got = ground_phrase(anyone, Where("qualifier", rooms=True), disc.fork())
+        holding = disc.vocab.containing(got.entities, noun.entities, None)
+        if len(holding) != 1:
+            raise told
+    got = ground_phrase(anyone, Where("qualifier", rooms=True), disc)
+    got.entities, got.mode = holding, "the"
+    return got
 
 
 @applies(Holds)
@@ -358,9 +405,11 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     """*the kitchen next to the dining room* (connected in the scene graph); an object next to a room is
     in a room connected to it."""
     vocab = disc.vocab
+    if q.it_span is not None and q.relation in lx.OBJECT_PLACING:  # "wipe a table, then the bowl on it"
+        return by_an_object(disc.said(q.span.start, q.span.end), noun, placed_on_it(q, disc), where, disc)
     room = next_to_it(q.it_span, f"{q.relation} it", disc) if q.it_span is not None else inner(q.thing, disc)
     if noun.head.kind == "object" and room.entities and all(e.kind == "object" for e in room.entities):
-        return by_an_object(disc.said(q.span.start, q.span.end), noun, room, disc)
+        return by_an_object(disc.said(q.span.start, q.span.end), noun, room, where, disc)
     if any(e.kind != "room" for e in room.entities):
         rf.refuse(rf.next_to_rooms_only(disc.said(q.span.start, q.span.end)))
     if noun.head.kind == "object":  # "the toilet next to the bedroom": in a room next to it
@@ -375,6 +424,36 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     return Noun(noun.head, entities, noun.room_scoped)
 
 
+@applies(Between)
+def between(q: Between, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*the bathroom between the bedrooms*: the rooms connected to each of the two or more rooms named (to
+    each of a group, *the bedrooms*; to one of a phrase naming one, *the bathroom*)."""
+    named = [inner(thing, disc) for thing in q.things]
+    rooms = [e for g in named for e in g.entities]
+    said_rooms = sum(len(g.entities) if g.mode == "all" else 1 for g in named)
+    if said_rooms < 2 or any(e.kind != "room" for e in rooms):
+        rf.refuse(rf.between_rooms_only(disc.said(q.span.start, q.span.end)))
+    adjacent = disc.vocab.adjacent
+
+    def connects(room: Entity) -> bool:
+        near = adjacent.get(room.key, frozenset())
+        return all((all if g.mode == "all" else any)(e.key in near for e in g.entities) for g in named)
+    return Noun(noun.head, [e for e in noun.entities if connects(e)], noun.room_scoped)
+
+
+def placed_on_it(q: NextTo, disc: Discourse) -> Grounded:
+    """*the bowl on it*: *it* is the object named last (:func:`.phrases.antecedent`), which must be an object;
+    a choice of them (*one of the tables*) only when they all lie in one room."""
+    assert q.it_span is not None
+    said = f"{q.relation} it"
+    ref = antecedent("it", disc)
+    if any(e.kind != "object" for e in ref.entities):
+        rf.refuse(rf.placed_on_a_room(said, ref.phrase))
+    determined(said, ref, len({e.room_key for e in ref.entities}))
+    return disc.record(Grounded("it", q.it_span.start, q.it_span.end, list(ref.entities), ref.mode, False,
+                                "qualifier"))
+
+
 @applies(ByUnlisted)
 def by_unlisted(q: ByUnlisted, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
     """*the bowl on the counter*: the scene holds no counter, so the words are said back as set aside; which
@@ -383,11 +462,27 @@ def by_unlisted(q: ByUnlisted, noun: Noun, np: Described, where: Where, disc: Di
     return noun
 
 
-def by_an_object(said: str, noun: Noun, anchor: Grounded, disc: Discourse) -> Noun:
+@applies(ShortStay)
+def short_stay(q: ShortStay, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
+    """*sit on the couch for a bit*: a goal is reached, how long the robot stays is not planned; the words are
+    said back as set aside. After a place to avoid or a condition (*stay off the couch for a bit*: only for a
+    while?) refused."""
+    said = disc.said(q.span.start, q.span.end)
+    if where.role != "goal":
+        rf.refuse(rf.short_stay_not_a_goal(said, disc.said(np.span.start, q.span.start).rstrip()))
+    disc.put_aside(said)
+    return noun
+
+
+def by_an_object(said: str, noun: Noun, anchor: Grounded, where: Where, disc: Discourse) -> Noun:
     """*the vase off the dining table*, *the plant by the couch*, *the bowl in the sink* (``said``): the
     scene knows rooms, not what stands by what, so an object placed by another is one in the anchor's room;
-    that is certain only when the anchor lies in one room (else refused: which room?)."""
+    that is certain only when the anchor lies in one room, or in one room of the step (*go to the bedroom
+    with the teddy bear and check the clock by the bed*); else refused: which room?"""
     rooms = list(dict.fromkeys(e.room_key for e in anchor.entities))
+    here = [k for k in rooms if k in {r.key for r in where.scope}]
+    if len(rooms) > 1 and len(here) == 1:
+        rooms, anchor.entities = here, [e for e in anchor.entities if e.room_key == here[0]]
     if len(rooms) > 1:
         rf.refuse(rf.anchor_in_several_rooms(said, anchor.phrase, [disc.vocab.by_key[k] for k in rooms]))
     keys = {e.key for e in anchor.entities}

@@ -183,16 +183,13 @@ def its(np: Its, where: Where, disc: Discourse) -> Grounded:
     object named); *its bathroom*: the bathroom attached to the room (of the object); *its room* after an
     object: the room holding it."""
     ref = antecedent("it", disc)
-    container = [disc.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in ref.entities)]
-    determined("its", ref, len(container))
-    of_head = disc.vocab.of_head(np.head)
-    holding = [room for room in container if room in of_head]
-    if np.head.kind == "room" and holding and all(e.kind == "object" for e in ref.entities):
-        owned = holding  # "the teddy bear ... its room": the room holding it (not "its bathroom")
-    elif np.head.kind == "room":
-        owned = disc.vocab.next_to(of_head, container)
-    else:
-        owned = disc.vocab.inside(of_head, container)
+    # "the bathroom next to the bedroom with the chair ... its toilet": of the phrases nested there, the one
+    # whose room has a toilet (the chair's has none); refused when several have one
+    chain = [ref, *(o for o in disc.references if o is not ref and o.start <= ref.start and ref.end <= o.end)]
+    readings = {tuple(e.key for e in got): got for g in chain if (got := owned_by(np, g, disc))}
+    owned = next(iter(readings.values())) if len(readings) == 1 else owned_by(np, ref, disc)
+    if len(readings) > 1:
+        rf.refuse(rf.its_of_which(disc.said(np.span.start, np.span.end), [g.phrase for g in chain]))
     mode: Mode = np.mode or ("all" if np.head.plural else "the")
     g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, owned, mode,
                  np.head.kind == "object", where.role)
@@ -253,10 +250,28 @@ def antecedent(pronoun: str, disc: Discourse, kind: str | None = None) -> Ground
     return min(outer, key=lambda o: o.start) if outer else g
 
 
-def last_head(disc: Discourse) -> Head | None:
+def owned_by(np: Its, ref: Grounded, disc: Discourse) -> list[Entity]:
+    """What *its <head>* names when *it* is ``ref``: the heads in its room (the room of the object), the room
+    attached to it, or (*its room* after an object) the room holding it."""
+    container = [disc.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in ref.entities)]
+    determined("its", ref, len(container))
+    of_head = disc.vocab.of_head(np.head)
+    holding = [room for room in container if room in of_head]
+    if np.head.kind == "room" and holding and all(e.kind == "object" for e in ref.entities):
+        return holding  # "the teddy bear ... its room": the room holding it (not "its bathroom")
+    if np.head.kind == "room":
+        return disc.vocab.next_to(of_head, container)
+    return disc.vocab.inside(of_head, container)
+
+
+def last_head(disc: Discourse, rooms: bool = False) -> Head | None:
     """The kind and category of the last room or object named (what *the one* / *the other one* is), in
-    words read or set aside (*The plants are looking sad. Water the one in the office*)."""
-    named = [g for g in disc.references if g.role != "qualifier"] + disc.mentions
+    words read or set aside (*The plants are looking sad. Water the one in the office*); with ``rooms``, of
+    the last room named, in a qualifier too (*the sink in the downstairs bathroom, then the sink in the
+    upstairs one*)."""
+    named = [g for g in disc.references if g.role != "qualifier" or rooms] + disc.mentions
+    if rooms:
+        named = [g for g in named if g.entities and all(e.kind == "room" for e in g.entities)]
     for g in sorted(named, key=lambda g: g.start, reverse=True):
         categories = {e.category for e in g.entities}
         if g.generic:  # "the room where the book is, then the one ..."
@@ -266,15 +281,16 @@ def last_head(disc: Discourse) -> Head | None:
     return None
 
 
-def head_entities(np: Described, disc: Discourse) -> Noun:
-    """The head noun of ``np`` and every entity it may denote (*dining* chairs: those in a dining room)."""
+def head_entities(np: Described, disc: Discourse, rooms: bool = False) -> Noun:
+    """The head noun of ``np`` and every entity it may denote (*dining* chairs: those in a dining room);
+    ``rooms``: it must name rooms (*the one* is then of the last room named)."""
     vocab = disc.vocab
     if isinstance(np.head, KeyHead):
         entity = vocab.by_key.get(np.head.key)
         if entity is None:
             rf.refuse(rf.unknown_key(np.head.key))
         return Noun(Head(entity.kind, frozenset({entity.category}), False, 1), [entity], False)
-    head = resolved_head(np.head, disc)
+    head = resolved_head(np.head, disc, rooms)
     if head.everyday is not None:
         return Noun(head, [kids_room(vocab, head.everyday)], False)
     entities = vocab.of_head(head)
@@ -283,12 +299,12 @@ def head_entities(np: Described, disc: Discourse) -> Noun:
     return Noun(head, entities, np.modifier is not None)
 
 
-def resolved_head(ref: Head | OneHead, disc: Discourse) -> Head:
+def resolved_head(ref: Head | OneHead, disc: Discourse, rooms: bool = False) -> Head:
     """The head noun, *one* / *ones* read as the kind it stands for (refused when nothing says which)."""
     if isinstance(ref, Head):
         return ref
-    given = ref.given if ref.given is not None else (last_head(disc) or disc.announced) if ref.from_context \
-        else None
+    given = ref.given if ref.given is not None else (last_head(disc, rooms) or disc.announced) \
+        if ref.from_context else None
     if given is None:
         rf.refuse(rf.one_without_kind("ones" if ref.plural else "one"))
     return Head(given.kind, given.categories, ref.plural, 1)

@@ -102,8 +102,9 @@ def tail(action: Action, phrases: list[Grounded], steps: list[Step], carry: bool
                                ctx.disc)
             choice_remark(dest, action.destination_remark, ctx.disc.said)
             steps[-1].extend(tasks_of(dest, False)[0])
-    if action.purpose is not None:
-        purpose = ground_list(action.purpose, where, ctx.disc)
+    if action.purpose is not None:  # "go to the bathroom downstairs to check the toilet": the toilet there
+        own = tuple(ctx.step_rooms(steps[-1]))
+        purpose = ground_list(action.purpose, replace(where, scope=own or where.scope), ctx.disc)
         if not all(g.phrase.lower() in lx.PRONOUNS for g in purpose):
             steps[-1].extend(tasks_of(purpose, False)[0])
 
@@ -130,8 +131,8 @@ def first_of_list(phrases: list[Grounded], first: bool,
     phrases = members_restated(phrases)  # "both plants, the one by the couch and the one in the office"
     keys = [frozenset(e.key for e in g.entities) for g in phrases]
     phrases = [g for n, g in enumerate(phrases)
-               if not (n and keys[n] == keys[n - 1] and (restates_group(g.phrase) or (
-                   g.mode == phrases[n - 1].mode == "any" and g.phrase.lower().startswith("any "))))]
+               if not (n and keys[n] == keys[n - 1] and restates_group(g.phrase))
+               and not (n and keys[n] >= keys[n - 1] and restates_choice(g, phrases[n - 1]))]
     keys = [frozenset(e.key for e in g.entities) for g in phrases]
     repeated = [n for n, k in enumerate(keys) if any(k & j for j in keys[:n])]
     if not repeated and last_first and len(phrases) > 1:  # "go to the office, the kitchen first"
@@ -141,6 +142,12 @@ def first_of_list(phrases: list[Grounded], first: bool,
     if repeated == [len(phrases) - 1] and first:  # "the clocks, the one in the bedroom first"
         return [phrases[-1]] + [g for n, g in enumerate(phrases[:-1]) if keys[n] != keys[-1]], True
     rf.refuse(rf.named_twice(phrases[repeated[0]].phrase))
+
+
+def restates_choice(g: Grounded, before: Grounded) -> bool:
+    """Whether ``g`` only says again that the choice before it is free: *a TV, any TV*, *a bed in the
+    bedroom with the TV, either bed* (of the same kind, naming those of the choice and maybe more)."""
+    return g.mode == before.mode == "any" and g.phrase.lower().split()[0] in lx.RESTATED_CHOOSERS
 
 
 def restates_group(phrase: str) -> bool:

@@ -60,7 +60,7 @@ def corrected(r: Reader) -> list[Reader]:
         said = r.phrase(k, lx.CORRECTIONS)
         if said is not None:
             fixed = replaced(r, k, k + len(said))
-            return [r] if fixed is None else [*corrected(fixed[0]), fixed[1]]
+            return [r] if fixed is None else [fixed[1], *corrected(fixed[0])]
     return [r]
 
 
@@ -191,13 +191,17 @@ def denied(r: Reader, old: NounPhrase, i: int) -> int:
 def one_named(r: Reader, start: int, end: int, start_new: int) -> tuple[tuple[Tok, ...], int]:
     """The words to read in place of *the one* of a new phrase (the taken-back phrase ``[start, end)``'s
     determiner and head noun: *the bathroom downstairs, no sorry, the one upstairs* is *the bathroom
-    upstairs*), and where the new phrase's own words go on; no words and ``start_new`` otherwise."""
+    upstairs*, *the other one* is *the other bathroom*), and where the new phrase's own words go on; no
+    words and ``start_new`` otherwise."""
     one = next((k for k in range(start_new, start_new + 3) if r.word(k) in lx.ANAPHORIC_ONE), None)
     noun = next(((k, h) for k in range(start, end) if (h := r.head(k)) is not None), None)
-    if one is None or noun is None or not all(r.word(k) in lx.DETERMINERS for k in range(start_new, one)):
+    if one is None or noun is None or not all(r.word(k) in lx.DETERMINERS or r.word(k) == "other"
+                                              for k in range(start_new, one)):
         return (), start_new
     k, head = noun
-    return (*r.toks[start_new:one], *r.toks[k : k + head.words]), one + 1
+    at = r.toks[one]  # the head's words where "one" was said, so that the phrase quotes what was said
+    head_words = (Tok(t.text, at.start, at.end) for t in r.toks[k : k + head.words])
+    return (*r.toks[start_new:one], *head_words), one + 1
 
 
 def phrase_to(r: Reader, i: int, end: int) -> NounPhrase | None:

@@ -57,6 +57,8 @@ def head_noun(r: Reader, i: int, one: OneHead | None) -> Parse[HeadRef]:
         if one is None or (one.given is None and not one.from_context):
             return Refusal(rf.one_without_kind(w))
         return Match(replace(one, plural=w == "ones"), i + 1)
+    if one is not None and one.from_context and w in lx.ORDINAL_ALONE_BEFORE:
+        return Match(one, i)  # "back to the first": an ordinal alone, of the kind named last
     if w in lx.REFUSED_WORDS:
         return Refusal(rf.cannot_understand(lx.REFUSED_WORDS[w]))
     if w in lx.FLOOR_ORDINALS or w in lx.FLOOR_NAMED or w in lx.FLOOR_TOP:

@@ -142,23 +142,21 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     sink*), or a floor named as a place (*the top floor*)."""
     first = i
     one_from_context = given is None and ones_of_context(r, i)
-    other = r.at(i, "the", "other") and r.head(i + 2) is not None
-    if r.at(i, "the", "other", "one") and given is None:
-        one_from_context = other = True  # "the bedroom with the book, then the other one"
+    other = r.at(i, "the", "other") and other_of_a_head(r, i + 2)
+    if r.at(i, "the", "other", "one"):  # "the bedroom with the book, then the other one"
+        one_from_context, other = given is None, True  # (given: "the kitchen, no wait, the other one")
     bare_other = r.word(i) == "other" and r.head(i + 1) is not None  # "then other bdrm", as notes say it
     other = other or bare_other
-    ordinal = lx.FLOOR_ORDINALS.get(r.word(i + 1)) if r.word(i) == "the" and given is None else None
-    if ordinal is not None and (r.head(i + 2) is not None or r.word(i + 2) in lx.ANAPHORIC_ONE):
-        one_from_context = r.word(i + 2) in lx.ANAPHORIC_ONE  # "back to the first one / bedroom"
-    else:
-        ordinal = None  # "the first floor": a floor (floor_words)
+    ordinal, counted_one = named_ordinal(r, i, given)
+    one_from_context = one_from_context or counted_one
     det = determiner(r, i if bare_other or not other else i + 1, other)
     if not isinstance(det, Match):
         return det
     if ordinal is not None:
         det = Match(replace(det.node, ordinal=ordinal + 1), det.end + 1)
-    i = description_end(r, det.end)
-    said = r.words[det.end : i]
+    start = det.end + (1 if other and r.word(det.end) == "other" else 0)  # "the other upstairs bedroom"
+    i = description_end(r, start)
+    said = r.words[start:i]
     if given is None and (one := room_one(r, first, i, role, replace(det.node, descriptive=said))):
         return one
     relative = r.word(i) if r.word(i) in lx.RELATIVE_FLOORS else None
@@ -167,20 +165,45 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
         i += 1
     elif floor_before is not None:
         i = floor_before.end
-        if r.head(i) is None:  # "the top floor": a place
+        if r.head(i) is None and not qualifiers.anaphoric_one(r, i):  # "the top floor": a place
             return Match(FloorPlace(r.span(first, i), floor_before.node, det.node.mode), i)
     described_as = (*said, *r.words[i : r.descriptive_end(i)])  # "the big (upstairs) couch"
     # "the downstairs one", "the top floor one": of the kind named last, on that floor
-    floor_one = bool(relative or floor_before) and given is None and anaphoric_one(r, r.descriptive_end(i))
+    floor_one = (bool(relative or floor_before) and given is None
+                 and qualifiers.anaphoric_one(r, r.descriptive_end(i)))
     return noun_with_head(r, first, r.descriptive_end(i), role, replace(det.node, descriptive=described_as),
                           relative, None if floor_before is None else floor_before.node,
                           OneHead(False, given, one_from_context or floor_one))
 
 
+def named_ordinal(r: Reader, i: int, given: Head | None) -> tuple[int | None, bool]:
+    """*the first / second ...* at ``i`` counting what was named before (*back to the first bedroom*), and
+    whether it is of the kind named last (*the first one*, *back to the first (again)*); ``None`` for a
+    floor (*the first floor*: :func:`.floors.floor_words`)."""
+    ordinal = lx.FLOOR_ORDINALS.get(r.word(i + 1)) if r.word(i) == "the" and given is None else None
+    one = r.word(i + 2) in lx.ANAPHORIC_ONE or r.word(i + 2) in lx.ORDINAL_ALONE_BEFORE
+    if ordinal is None or not (one or r.head(i + 2) is not None):
+        return None, False
+    return ordinal, one
+
+
+def other_of_a_head(r: Reader, i: int) -> bool:
+    """Whether a head noun follows *other* (at ``i``), after floor words if any (*the other upstairs
+    bedroom*, *the other top-floor bathroom*)."""
+    if r.word(i) in lx.RELATIVE_FLOORS:
+        i += 1
+    elif (floor := floor_words(r, i)) is not None:
+        i = floor.end
+    return r.head(i) is not None
+
+
 def ones_of_context(r: Reader, i: int) -> bool:
-    """Whether *the (big) one(s)* (also after *either / one / both of*) starts at ``i``: of the kind named
-    last (*the ones in the living room*, *either of the ones in the living room*)."""
+    """Whether *the (big) one(s)* (also after *either / one / both of*) or *any one* starts at ``i``: of the
+    kind named last (*the ones in the living room*, *either of the ones in the living room*, *then any one
+    in the office*; *any in the office* is read as that, `lexicon.PHRASE_ALIASES`)."""
     lead = 2 if r.word(i) in (*lx.CHOOSING_OF, *lx.UNIVERSAL) and r.at(i + 1, "of", "the") else 0
+    if qualifiers.any_one_located(r, i):
+        return True
     return r.word(i + lead) in ("the", "a") and r.word(r.descriptive_end(i + lead + 1)) in lx.ANAPHORIC_ONE
 
 
@@ -209,17 +232,11 @@ def describing_word(r: Reader, i: int) -> bool:
     return len(w) > 2 and foreign_word(r, i) and r.spelling is not None and not r.spelling.is_known(w)
 
 
-def anaphoric_one(r: Reader, i: int) -> bool:
-    """Whether *one(s)* at ``i`` is a noun (*the living room one*), not a number (*one of them*, *one after
-    another*, *one floor up*)."""
-    return r.word(i) in lx.ANAPHORIC_ONE and r.word(i + 1) not in lx.ONE_NOT_A_NOUN
-
-
 def room_one(r: Reader, first: int, i: int, role: Role, det: Determiner) -> Parse[NounPhrase]:
     """*the living room one*, *the office ones* (at ``i``, the room's head): the kind named last, in that
     room, as *the one in the living room*; ``None`` when no room and *one* are at ``i``."""
     room = r.head(i) if not det.other and det.pointer is None else None
-    if room is None or room.kind != "room" or room.plural or not anaphoric_one(r, i + room.words):
+    if room is None or room.kind != "room" or room.plural or not qualifiers.anaphoric_one(r, i + room.words):
         return None
     end = i + room.words
     room_np = Described(r.span(i, end), r.word(i), Determiner("the", None), None, None, None, room, None, (),
@@ -241,7 +258,6 @@ def noun_with_head(r: Reader, first: int, i: int, role: Role, det: Determiner, r
         head: Parse[HeadRef] = Match(KeyHead(r.word(i)), i + 1)
         mode: Mode | None = "the"
     else:
-        i += 1 if det.other else 0
         modifier = r.nouns.room_modifier(r.words, i)
         head = head_noun(r, i + (1 if modifier else 0), one)
         mode = det.mode

@@ -21,6 +21,7 @@ from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.tree import (
     Attachment,
+    Between,
     ByUnlisted,
     Contains,
     Described,
@@ -38,6 +39,7 @@ from sgplan.llm.offline.syntax.tree import (
     RelativeFloor,
     Role,
     SameFloor,
+    ShortStay,
     StartFloor,
     There,
     UpThere,
@@ -91,6 +93,14 @@ def finish(r: Reader, first: int, i: int, noun: Described, role: Role, room_scop
     appositive = apposition(r, i + (1 if excludes else 0), noun, role)
     if isinstance(appositive, Refusal):
         return appositive
+    if appositive is not None and listed_on(r, appositive.end) and not excludes:
+        # "the plant in the bedroom, the one in the office, and the one in the hall": which plant, or the
+        # next item of a list? The scene decides (:class:`.tree.Attachment`)
+        if r.decided(i) is False:
+            appositive = None
+        elif r.decided(i) is None:
+            noun = replace(noun, qualifiers=(*noun.qualifiers, Attachment(
+                i, "apposition", noun, appositive.node, r.span(first, appositive.end), False)))
     if appositive is not None:
         noun, i = replace(noun, apposition=appositive.node, apposition_excludes=excludes), appositive.end
     return Match(replace(noun, span=r.span(first, i), remark_follows=remark_ahead(r, i) is not None), i)
@@ -130,8 +140,9 @@ def remark_ahead(r: Reader, i: int) -> tuple[str, ...] | None:
 
 
 def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
-    """One choice remark at ``i`` (see :func:`remark_ahead`)."""
-    comma = 1 if r.word(i) == "," else 0
+    """One choice remark at ``i`` (see :func:`remark_ahead`), after a comma or two (*the vases, uh, any one of
+    them*: the sound is dropped, its commas stay)."""
+    comma = 2 if r.at(i, ",", ",") else 1 if r.word(i) == "," else 0
     suffices = r.phrase(i + comma, lx.ONE_SUFFICES)
     after = i + comma + len(suffices or ())
     if suffices is not None and (r.word(after) in lx.CLAUSE_ENDS or one_remark(r, after) is not None):
@@ -140,6 +151,8 @@ def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
     if w in lx.CHOOSING_OF and of == "of" and the in ("the", "all") and (n in lx.NUMBER_WORDS or n.isdigit()):
         return (",",) * comma + (w, of, the, n)  # "a TV in the office, any of the three"
     said = r.phrase(i + comma, lx.CHOICE_AFFIRMATIONS)
+    if said is not None and any_one_located(r, i + comma):
+        return None  # "a vase, any one in the living room": which ones, not a remark
     if said is None and comma and r.word(i + 1) in lx.BARE_CHOOSERS and r.word(i + 2) in lx.CLAUSE_ENDS:
         said = (r.word(i + 1),)  # "LR tv (either)", "DR vase, any": no noun follows, so a remark
     time = r.phrase(i + comma, lx.TIME_FILLERS)  # "whichever first" is about the order
@@ -148,13 +161,21 @@ def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
     return (",",) * comma + said
 
 
+def any_one_located(r: Reader, i: int) -> bool:
+    """Whether *any one* at ``i`` is a phrase of the kind named last, located (*then any one in the office*,
+    *a vase, any one upstairs*), not the remark *(, any one)* closing a choice."""
+    located = r.word(i + 2) in (*lx.SCOPE_IN, "on") or r.word(i + 2) in lx.RELATIVE_FLOORS
+    return r.at(i, "any", "one") and located
+
+
 def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Described]:
     """*the bathroom, the one upstairs*: a phrase about *the one* that says which (at ``i``: the comma, or
     *not* in *, not the one with the vase*)."""
     head = current_head(noun)
     one = r.descriptive_end(i + 2)  # "the bathroom, the (big) one upstairs"
     if (noun.determiner.mode != "the" or head is None or head.plural
-            or not head.categories or not isinstance(noun.head, Head) or r.word(i) not in (",", "not")
+            or not (head.categories or noun.determiner.pointer in lx.OWNERS)  # "his room, the one with X"
+            or not isinstance(noun.head, Head) or r.word(i) not in (",", "not")
             or r.word(i + 1) != "the"
             or r.word(one) != "one" or r.phrase(one, lx.CHOICE_AFFIRMATIONS)):
         return None
@@ -166,6 +187,12 @@ def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Describe
     if role == "qualifier" and isinstance(which, Match) and not says_contents(which.node):
         return None  # "the toilet in the bathroom, the one upstairs": the toilet's, or the bathroom's?
     return which  # type: ignore[return-value]
+
+
+def listed_on(r: Reader, i: int) -> bool:
+    """Whether a list goes on at ``i`` with *and* / *or* and a noun phrase (*, and the one in the hall*)."""
+    k = i + (1 if r.word(i) == "," else 0)
+    return r.word(k) in ("and", "or") and r.np_starts(k + 1)
 
 
 def says_contents(which: NounPhrase) -> bool:
@@ -215,6 +242,12 @@ def object_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped
     return Match(Possessive(head, r.span(noun.first, i + head.words)), i + head.words)
 
 
+def anaphoric_one(r: Reader, i: int) -> bool:
+    """Whether *one(s)* at ``i`` is a noun (*the living room one*, *the upstairs one*), not a number (*one of
+    them*, *one after another*, *one floor up*)."""
+    return r.word(i) in lx.ANAPHORIC_ONE and r.word(i + 1) not in lx.ONE_NOT_A_NOUN
+
+
 @QUALIFIERS.rule("floor")
 def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*on floor 1*, *on the second floor*, *upstairs*, *, one floor down*, *up there*, *on the same floor
@@ -223,7 +256,8 @@ def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if w in lx.RELATIVE_FLOORS:
         return Match(OnFloor(RelativeFloor(w)), i + 1)
     k = i + 1 + (1 if r.word(i + 1) == "the" else 0)
-    if w in lx.FLOOR_PREPOSITIONS and r.word(k) in lx.RELATIVE_FLOORS and r.head(k + 1) is None:
+    if (w in lx.FLOOR_PREPOSITIONS and r.word(k) in lx.RELATIVE_FLOORS and r.head(k + 1) is None
+            and not anaphoric_one(r, k + 1)):  # not "the sink in the upstairs one": a room
         return Match(OnFloor(RelativeFloor(r.word(k))), k + 1)  # "the bathroom of the upstairs" (learners)
     comma = 1 if w == "," else 0
     if floor_count(r, i + comma) is not None and r.word(i + comma + 1) in lx.FLOOR_PLURALS:
@@ -243,8 +277,8 @@ def on_floor(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if r.word(i + 1) == "same" and r.word(i + 2) in lx.FLOOR_WORDS:
         return same_floor(r, i + 3)  # "the bathroom of same floor", the article left out as learners do
     said = floor_words(r, i + (2 if r.word(i + 1) == "the" else 1))
-    if said is None or r.head(said.end) is not None:
-        return None  # none, or "in the ground floor bathroom": a room named with its floor
+    if said is None or r.head(said.end) is not None or anaphoric_one(r, said.end):
+        return None  # none, or "in the ground floor bathroom / one": a room named with its floor
     return Match(OnFloor(said.node), said.end)
 
 
@@ -327,8 +361,10 @@ def more_rooms(r: Reader, j: int, noun: NounSoFar) -> int:
 
 @QUALIFIERS.rule("there")
 def there(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
-    """*a bathroom there* (on the floor named last), *grab a bottle there* (in the room of the place named
-    last)."""
+    """*a bathroom there* (on the floor named last), *grab a bottle there* / *out there* / *over there* (in
+    the room of the place named last)."""
+    if r.word(i) in lx.THERE_POINTING and r.word(i + 1) == "there" and noun.kind == "object":
+        i += 1  # "the cup in the hallway and both plants out there": in the hallway
     if r.word(i) != "there" or r.word(i + 1) in lx.STATEMENT_LINKS:
         return None
     if noun.kind == "room" or (noun.kind is None) or (
@@ -545,13 +581,32 @@ def next_to(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     return Match(NextTo(thing.node, r.span(noun.first, thing.end), None, relation), thing.end)
 
 
+@QUALIFIERS.rule("between")
+def between(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the bathroom between the bedrooms*, *the hall between the kitchen and the office*: a room connected
+    to each of them (:func:`..grounding.described.between`)."""
+    if r.word(i) != "between" or noun.kind != "room" or not r.np_starts(i + 1):
+        return None
+    things, j = [], i + 1
+    while True:
+        thing = noun_phrase(r, j, "qualifier")
+        if not isinstance(thing, Match):
+            return thing
+        things.append(thing.node)
+        if r.word(thing.end) != "and" or not r.np_starts(thing.end + 1):
+            return Match(Between(tuple(things), r.span(noun.first, thing.end)), thing.end)
+        j = thing.end + 1
+
+
 @QUALIFIERS.rule("at an object")
 def at_an_object(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
-    """*the chair at the dining table*, *a vase on the table*, *the book under the bed*: an object placed by
-    another object, read as one in that object's room (grounding decides, :func:`next_to`'s node); not after
-    a carry verb (*put the cup on the table*: where it is carried, read by the action)."""
+    """*the chair at the dining table*, *a vase on the table*, *the book under the bed*, *the bowl on it*: an
+    object placed by another object, read as one in that object's room (grounding decides, :func:`next_to`'s
+    node); not after a carry verb (*put the cup on the table*: where it is carried, read by the action)."""
     if noun.kind != "object" or r.word(i) not in lx.OBJECT_PLACING:
         return None
+    if r.word(i + 1) == "it" and r.word(i + 2) in lx.CLAUSE_ENDS and not carried(r, noun):
+        return Match(NextTo(None, r.span(noun.first, i + 2), r.span(i + 1, i + 2), r.word(i)), i + 2)
     k = i + 1 + (1 if r.word(i + 1) in lx.DETERMINERS else 0)
     head = r.head(k)
     if head is None or head.kind != "object":
@@ -598,6 +653,20 @@ def goes_there(r: Reader, noun: NounSoFar, i: int, end: int) -> Refusal | Litera
     if noun.room_scoped or any(w in lx.PLACING_VERBS for w in r.words[max(0, noun.first - 3):noun.first]):
         return None  # "bring the bottle from the bathroom in the sink": its room said, this is where it goes
     return Refusal(rf.placed_or_where_it_is(r.quote(noun.first, end), r.quote(i + 1, end)))
+
+
+@QUALIFIERS.rule("short stay")
+def short_stay(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*sit on the couch for a bit*, *look at the TV for a few minutes*: how long to stay, closing the clause
+    (read where the phrase is a goal, :func:`..grounding.described.short_stay`)."""
+    said = r.phrase(i, lx.SHORT_STAYS)
+    if said is None or noun.role == "qualifier" or r.word(i + len(said)) not in (*lx.CLAUSE_ENDS, "then"):
+        return None  # (inside a qualifier, the stay is at the phrase it qualifies)
+    start = max((k + 1 for k in range(i) if r.word(k) == ","), default=0)
+    if any(r.phrase(k, table) for k in range(start, i) for table in (lx.CONDITION_WORDS, lx.WHENEVER)) or set(
+            r.words[start:i]) & lx.STAY_TIMED_CLAUSES:  # "if you sit on the couch for a bit, ..."
+        return Refusal(rf.short_stay_not_a_goal(" ".join(said), r.quote(noun.first, i)))
+    return Match(ShortStay(r.span(i, i + len(said))), i + len(said))
 
 
 @QUALIFIERS.rule("contact clause")

@@ -318,12 +318,29 @@ class NextTo:
 
 
 @dataclass(frozen=True)
+class Between:
+    """*the bathroom between the bedrooms* / *between the kitchen and the hall*: a room connected to each of
+    the rooms ``things`` name (two or more)."""
+
+    things: tuple[NounPhrase, ...]
+    span: Span
+
+
+@dataclass(frozen=True)
 class ByUnlisted:
     """*the bowl on the counter*, *the book on the shelf in the office*: placed by a thing the scene does not
     hold (``words``, as typed, ``span``): a description of the object (read only where the scene leaves one
     such object), the words said back as set aside."""
 
     words: str
+    span: Span
+
+
+@dataclass(frozen=True)
+class ShortStay:
+    """*(sit on the couch) for a bit / a while / a few minutes*: how long to stay at the goal, said casually
+    (``span``); said back as set aside, the goal is reached."""
+
     span: Span
 
 
@@ -341,12 +358,14 @@ class Except:
 class Attachment:
     """Words whose attachment the scene decides, at token ``at``: ``kind`` ``"without"`` (*the bedroom
     without a plant*: which bedroom, or what to avoid there?) or ``"and-contents"`` (*the bedroom with the
-    book and the vase*: a room with both, or the vase as another goal?). ``prefix`` is the phrase up to
-    those words, ``thing`` the object phrase that would describe it. Read as described (``taken``), the
-    words are a qualifier; otherwise the phrase ends before them."""
+    book and the vase*: a room with both, or the vase as another goal?) or ``"apposition"`` (*the plant in
+    the bedroom, the one in the office, and ...*: which plant, or the next item of the list?). ``prefix`` is
+    the phrase up to those words, ``thing`` the object phrase that would describe it (the apposition). Read
+    as described (``taken``), the words are a qualifier (the apposition); otherwise the phrase ends before
+    them."""
 
     at: int
-    kind: Literal["without", "and-contents"]
+    kind: Literal["without", "and-contents", "apposition"]
     prefix: Described
     thing: NounPhrase
     span: Span
@@ -354,7 +373,7 @@ class Attachment:
 
 
 Qualifier = (Possessive | OnFloor | InRoom | There | Holds | Lacks | Contains | NextTo | ByUnlisted | Except
-             | Attachment)
+             | Attachment | ShortStay | Between)
 
 
 # ----------------------------------------------------------------------------------------------- actions
