@@ -1425,6 +1425,17 @@ OPENERS = frozenset({"hi", "hello", "hey", "okay", "ok", "alright", "well", "so"
 sentence starting otherwise may be an order about something the scene lacks (*feed pets*), so it is parsed
 (and refused) instead."""
 OPENERS = OPENERS | {"oh"} | EXCLAMATIONS  # "Oh gosh, ...", "Phew, ...": a remark that opens chit-chat too
+FRAGMENT_HEADS = (TALK_NOUNS | LIST_NOUNS | EVENT_WORDS | frozenset(NAMED_DAYS)
+                  | word_set("time party occasion emergency visit stuff business")) - word_set(
+    "do dos donts order sequence steps step now later soon first")
+"""The head of a sentence with no verb that only sets the scene (*Time for the evening round.*, *Quick errands
+before I get home.*, *Busy day.*; :mod:`.syntax.fragments`): a word of talk, of a list or of a time, never
+one that orders (*Reverse order.*, *Later.*)."""
+FRAGMENT_ARTICLES = word_set("a an the my our another some")
+FRAGMENT_MODIFIERS = word_set("quick little good big small busy usual routine long short lovely")
+"""Words of the lexicon that may still stand before the head of such a fragment (*a quick one*, *a little
+favour*); *last* too, in a sentence before any goal (*Last thing before you charge.*)."""
+FRAGMENT_TIMES = word_set("late early lately today tonight tomorrow")
 AUXILIARIES = frozenset({"am", "are", "is", "was", "were", "have", "has", "will", "would"})
 """In chit-chat (*hope you're well*): no role, although *are* is a word of the grammar elsewhere."""
 GREETINGS = frozenset({"hi", "hello", "hey", "hiya", "heya", "howdy", "oi", "oy", "yo", "ahoy"})

@@ -27,6 +27,7 @@ from sgplan.llm.offline.syntax.context import mentions, set_aside_context, state
 from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
 from sgplan.llm.offline.syntax.lists import read_lists
 from sgplan.llm.offline.syntax.not_needed import split_not_needed
+from sgplan.llm.offline.syntax.fragments import context_fragment
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.remark_sentences import join_remarks
@@ -53,6 +54,9 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     for r in joined_appositions(read_lists(_greeting_before_heading(readers))):
         if stated_start(r) is not None or r.aside:
             out.append(r)
+            continue
+        if context_fragment(r, opener=not content):
+            out.append(replace(r, aside=True))  # "Time for the evening round.": said back
             continue
         if not content:
             if is_chitchat(r, 0, len(r)) and statement(r, 0, len(r)) is None:
