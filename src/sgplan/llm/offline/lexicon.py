@@ -1363,6 +1363,26 @@ NOTICE_THAT = Phrases((*((*please, "note", *that) for please in ((), ("please",)
 asleep*): the statement after them is context like any other (*remember* without *that* may ask to go:
 left to the parser)."""
 APOLOGY_WORDS = ("sorry", "oops", "whoops", "apologies")
+_FINE = (("okay",), ("ok",), ("alright",), ("all", "right"), ("fine",), ("convenient",), ("possible",),
+         ("no", "trouble"), ("no", "bother"), ("no", "problem"), ("not", "a", "problem"),
+         ("not", "too", "much", "bother"), ("not", "too", "much", "trouble"))
+CLOSING = CLOSING + Phrases((
+    # the robot's leave asked as a condition on nothing it could sense: "if it's okay with you", "whenever
+    # it's convenient", "if that would be alright" (the person after it is :data:`CLOSING_TAILS`)
+    *((when, it, *be, *fine) for when in ("if", "when", "whenever") for it in ("it", "that", "this")
+      for be in (("is",), ("'s",), ("would", "be"), ("will", "be")) for fine in _FINE),
+    # nothing urgent: "just a routine check, nothing urgent", "..., I promise"
+    *(("nothing", what) for what in ("urgent", "major", "serious", "big", "fancy", "special")),
+    ("no", "big", "deal"), ("i", "promise"), ("i", "swear")))
+"""More of :data:`CLOSING`: leave asked as a condition (*if it's okay with you*, *whenever it's
+convenient*), *nothing urgent*, *I promise*, which ask nothing wherever they close a clause. A condition on
+the state of a thing (*if it is not locked*) is no remark: refused as a condition the robot cannot sense."""
+WELL_WISHING = word_set("hope hoping trust")
+"""A wish said without its subject (*hope you're charged up*, *hope your day's going ok*, *trust all is
+well*): a remark when the words after it name nothing and ask nothing
+(:func:`.syntax.context.well_wishing`)."""
+WISH_STOPS = word_set("then after before first last next finally again once twice when whenever if until")
+"""Words of order or condition, which a wish never holds (*hope you're going first*: refused)."""
 CLOSING_TAILS = Phrases((("at", "all"), ("indeed",), ("with", "it"), ("with", "you"), ("with", "that"),
                          ("with", "this"), ("by", "me"), ("for", "me")))
 """Words that only make a remark of :data:`CLOSING` stronger or say to whom (*no rush at all*, *thank you very

@@ -25,9 +25,9 @@ from sgplan.llm.offline.nouns import NounLexicon
 from sgplan.llm.offline.spelling import Spelling
 from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement
 from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
+from sgplan.llm.offline.syntax.fragments import context_fragment
 from sgplan.llm.offline.syntax.lists import read_lists
 from sgplan.llm.offline.syntax.not_needed import split_not_needed
-from sgplan.llm.offline.syntax.fragments import context_fragment
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.remark_sentences import join_remarks

@@ -253,7 +253,7 @@ def closing_only(r: Reader, start: int, end: int) -> bool:
     cheers*)."""
     k = start if r.phrase(start, lx.CLOSING) else skip_joiner(r, start)  # "as usual", "so no rush"
     while k < end and (said := ((r.word(k),) if praise_before_closing(r, k, end) else None)
-                       or r.phrase(k, lx.CLOSING) or apology_for(r, k, end)
+                       or r.phrase(k, lx.CLOSING) or apology_for(r, k, end) or well_wishing(r, k, end)
                        or ((r.word(k),) if r.word(k) in lx.HESITATIONS
                            or r.word(k) == "," or signature(r, k) else None)):
         k += len(said)
@@ -268,6 +268,26 @@ def apology_for(r: Reader, k: int, end: int) -> tuple[str, ...] | None:
     if (r.word(k) not in lx.APOLOGY_WORDS or r.word(k + 1) not in ("for", "about") or end - k > 7
             or not mere_talk(r, k + 2, end) or misspelt_name(r, k + 2, end)
             or any(r.word(j) in lx.STRUCTURAL and r.word(j) not in lx.ARTICLES for j in range(k + 2, end))):
+        return None
+    return tuple(r.words[k:end])
+
+
+def well_wishing(r: Reader, k: int, end: int) -> tuple[str, ...] | None:
+    """The words of a wish said without its subject, up to ``end`` (*hope you're charged up*, *hope your
+    day's going ok*, *trust all is well*), when they name nothing (no room, object, floor or misspelt name)
+    and ask nothing (no order, no negation, no verb the grammar reads but a participle: *hope you go to ...*
+    is no remark), else ``None``."""
+    said = range(k + 1, end)
+    if r.word(k) not in lx.WELL_WISHING or not 0 < len(said) <= 8 or misspelt_name(r, k + 1, end):
+        return None
+    if any(r.head(j) is not None or r.word(j) in lx.RELATIVE_FLOORS or r.phrase(j, lx.NEG_STARTS)
+           or r.phrase(j, lx.SEQ_WORDS) or r.word(j) in lx.WISH_STOPS
+           or r.word(j).startswith(("room_", "object_")) or not (r.word(j).isalpha() or r.word(j) == "'s")
+           or (r.word(j) in lx.POSITIVE_VERBS and r.word(j) not in lx.PARTICLES
+               and not r.word(j).endswith(("ing", "ed")))
+           or (r.word(j) in lx.STRUCTURAL and r.word(j) not in lx.AUXILIARIES | lx.DETERMINERS
+               and r.word(j) not in lx.PRONOUNS)
+           for j in said):
         return None
     return tuple(r.words[k:end])
 
