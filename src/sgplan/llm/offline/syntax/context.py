@@ -45,10 +45,31 @@ def set_aside_context(readers: list[Reader]) -> list[Reader]:
     """``readers`` with the context of each sentence split off as readers set aside (see the module
     docstring)."""
     out: list[Reader] = []
-    for r in readers:
+    for k, r in enumerate(readers):
         said_before = any(not o.aside for o in out)
+        if not r.aside and met_need(r, readers[k + 1:]):
+            out.append(aside(r, 0, len(r)))  # "The vases need dusting. ... dust the vase in the hall ...
+            continue
         out += [r] if r.aside or stated_start(r) is not None else split(r, said_before)
     return out
+
+
+def met_need(r: Reader, later: list[Reader]) -> bool:
+    """Whether the sentence ``r`` only states a need about things of the scene (*The vases need dusting.*,
+    *Mum's visiting so the vases need dusting.*) that the sentences after it name again, each of its kinds
+    (*... dust the vase in the bedroom*): the orders say the work, the need only why. A need that nothing
+    after it names (or only a pronoun does: *... dust them*) is left to the parser, which refuses it."""
+    joins = [j for j in range(1, len(r))
+             if r.word(j) in lx.STATEMENT_JOINERS and statement(r, 0, j) == "aside"]
+    start = joins[0] + 1 if joins else 0
+    end = time_tail(r, start, len(r)) or len(r)  # "... need a clean before the weekend"
+    if (statement(r, start, end) != "need" or "," in r.words
+            or any(w in lx.PRONOUNS or w in lx.WISH_STOPS for w in r.words[start:end])):
+        return False
+    kinds = [h.categories for j in range(start, end) if (h := r.head(j)) is not None]
+    named = [h.categories for o in later if not o.aside
+             for j in range(len(o)) if (h := o.head(j)) is not None]
+    return bool(kinds) and all(any(kind & other for other in named) for kind in kinds)
 
 
 def split(r: Reader, said_before: bool = False) -> list[Reader]:
