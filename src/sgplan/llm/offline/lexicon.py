@@ -1456,6 +1456,8 @@ FRAGMENT_MODIFIERS = word_set("quick little good big small busy usual routine lo
 """Words of the lexicon that may still stand before the head of such a fragment (*a quick one*, *a little
 favour*); *last* too, in a sentence before any goal (*Last thing before you charge.*)."""
 FRAGMENT_TIMES = word_set("late early lately today tonight tomorrow")
+FRAGMENT_PEOPLE = word_set("you me us")
+"""Whom such a fragment is for (*A little job for you.*)."""
 AUXILIARIES = frozenset({"am", "are", "is", "was", "were", "have", "has", "will", "would"})
 """In chit-chat (*hope you're well*): no role, although *are* is a word of the grammar elsewhere."""
 GREETINGS = frozenset({"hi", "hello", "hey", "hiya", "heya", "howdy", "oi", "oy", "yo", "ahoy"})

@@ -4,14 +4,14 @@ get home.*, *Just a routine check, nothing urgent.*, *Working late again.*, *Bus
 People open a message with a fragment that names the occasion, not a task. Such a sentence is known by its
 shape, not by its words: a noun phrase whose head is a word of talk, of a list or of a time (*thing*,
 *errands*, *round*, *check*, *day*, *party*: :data:`.lexicon.FRAGMENT_HEADS`) with any words before it that
-the grammar has no role for (*quick*, *routine*, *evening*), or a verb in *-ing* the grammar does not know
-(*working*), then only tails that ask nothing: *for* / *of* and another such phrase, a time (*this weekend*,
-*late*), an event said with its subject (*before I get home*, *while the kids are around*) and, after a
-comma, remarks and statements (*nothing urgent*, *I promise*, *sorry*). Nothing in it may name a room or
-object of the scene (or be a misspelling of one), a floor, *upstairs*, a number, a pronoun or a word of the
-grammar's order or negation; *again* and *last* (which could repeat or order a goal) only in a sentence
-before any goal. A bare noun the grammar does not know (*Bins.*) is not a fragment: it may be a goal the
-scene lacks, and is refused by the parser.
+the grammar has no role for (*quick*, *routine*, *evening*, *cleaning*), or a verb in *-ing* the grammar does
+not know (*working*), then only tails that ask nothing: *for* / *of* and another such phrase or a person (*for
+you*), a time (*this weekend*, *late*), an event said with its subject (*before I get home*, *while the kids
+are around*) and, after a comma, remarks and statements (*nothing urgent*, *I promise*, *sorry*). Nothing in
+it may name a room or object of the scene (or be a misspelling of one), a floor, *upstairs*, a number, a
+pronoun or a word of the grammar's order or negation; *again* and *last* (which could repeat or order a goal)
+only in a sentence before any goal. A bare noun the grammar does not know (*Bins.*) is not a fragment: it may
+be a goal the scene lacks, and is refused by the parser.
 """
 
 from __future__ import annotations
@@ -56,7 +56,7 @@ def modifier(r: Reader, j: int, opener: bool) -> bool:
     for, a bare noun the lexicon knows (*laundry*), a time or event (*evening*), or *last* in an opener."""
     w = r.word(j)
     return w.isalpha() and not (r.spelling is not None and r.spelling.may_be_a_misspelt_name(w)) and (
-        w not in lx.LEXICON_WORDS or w in lx.NOUN_WORDS or w in lx.EVENT_WORDS
+        w not in lx.LEXICON_WORDS or w in lx.NOUN_WORDS or w in lx.EVENT_WORDS or w.endswith("ing")
         or w in lx.FRAGMENT_MODIFIERS or (opener and w == "last"))
 
 
@@ -72,6 +72,8 @@ def gerund(r: Reader, k: int) -> int | None:
 def tail(r: Reader, k: int, opener: bool) -> int | None:
     """The end of what follows a fragment's phrase at ``k`` and asks nothing, or ``None``."""
     w = r.word(k)
+    if w == "for" and (r.word(k + 1) in lx.FRAGMENT_PEOPLE or r.word(k + 1) in lx.PEOPLE_NOUNS):
+        return k + 2  # "a little job for you", "a quick one for Mum"
     if w in ("for", "of"):
         return talk_phrase(r, k + 1, opener)
     if w in lx.FRAGMENT_TIMES or (opener and w == "again"):
