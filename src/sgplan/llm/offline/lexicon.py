@@ -1247,6 +1247,13 @@ DAY_OPENERS = ("this", "tonight", "today", "tomorrow")
 *Tonight check ...*; not *the guests arrive*, an event)."""
 EVENT_OPENERS = ("before", "after", "by", "while", "once", "when")
 """The words a time expression of an event starts with (*before the guests arrive*, *once lunch is over*)."""
+VAGUE_DURATIONS = Phrases(tuple(("for", *a, what) for a in (("a",), ("a", "little"), ("a", "quick"))
+                                for what in ("bit", "sec", "second", "moment", "minute", "mo", "while",
+                                             "tick")))
+"""How long a visit lasts, said without a number (*sit on the couch for a bit*): set aside after an order of
+a visit (:func:`.syntax.context.duration_span`); with a number (*for ten minutes*) a delay, refused."""
+WAIT_VERBS = word_set("wait waiting hang hanging rest resting stop stopping linger lingering")
+"""Verbs of staying put: a duration after them (*wait in the hall for a bit*) is what is asked, so refused."""
 FEW = ("few", "couple", "several")
 TIME_UNITS = word_set("second seconds minute minutes min mins hour hours hr hrs sec secs")
 """*in ten minutes*, *wait 5 min*: a delay, which a mission cannot require (refused)."""

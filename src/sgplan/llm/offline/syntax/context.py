@@ -107,7 +107,8 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     named = mentions(aside(r, 0, clauses[first - 1][1])) if first else ()
     start = skip_joiner(r, clauses[first][0]) if first else 0
     # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
-    middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c) or counted(r, *c)]
+    middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c) or counted(r, *c)
+              or duration_span(r, 0, len(r)) == c]
     words = [k for k in range(start, clauses[last - 1][1])
              if not any(a <= k < b or (k == a - 1 and r.word(k) == ",") for a, b in middle)]
     naming = [(a, b) for a, b in middle if any(r.head(k) is not None for k in range(a, b))]
@@ -153,7 +154,7 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
             out.append((start, head))
             start = head
         tail = time_tail(r, start, end)
-        reason = reason_span(r, start, end) if tail is None else None
+        reason = (reason_span(r, start, end) or duration_span(r, start, end)) if tail is None else None
         out += ([(start, tail), (tail, end)] if tail is not None
                 else [(start, reason[0]), reason, (reason[1], end)] if reason is not None else [(start, end)])
     return [(a, b) for a, b in out if b > a]
@@ -220,6 +221,20 @@ def counted(r: Reader, start: int, end: int) -> bool:
 def is_reason(r: Reader, start: int, end: int) -> bool:
     """Whether the clause ``[start, end)`` is a reason (:func:`reason_span`) from its first word."""
     return reason_span(r, start, end) == (start, end)
+
+
+def duration_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
+    """A vague duration after a visit in the clause ``[start, end)`` (*sit on the couch for a bit*, *... for a
+    sec, then ...*, :data:`.lexicon.VAGUE_DURATIONS`), before the clause's end, *and* or *then*: how long a
+    visit lasts, which no plan can hold (set aside, said back); ``None`` when there is none, or after a verb
+    of staying or a prohibition anywhere before it in the sentence (*wait in the hall for a bit*, *don't go in
+    the kitchen for a while*: refused) or with a number (*for ten minutes*: refused)."""
+    k = next((k for k in range(max(start, 2), end) if r.phrase(k, lx.VAGUE_DURATIONS)), None)
+    if k is None or any(w in lx.STAY or w in lx.WAIT_VERBS or r.phrase(j, lx.NEG_STARTS)
+                        for j, w in enumerate(r.words[:k])):
+        return None  # "wait in the hall for a bit", "don't go in the kitchen for a while": asked, refused
+    stop = k + len(r.phrase(k, lx.VAGUE_DURATIONS) or ())
+    return (k, stop) if stop == end or r.word(stop) in ("and", "then", ",") else None
 
 
 def starts_order(r: Reader, k: int) -> bool:
