@@ -1324,6 +1324,13 @@ REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"), ("sinc
                                  ("nothing", "is"), ("everything", "is"), ("everything", "'s")))))
 """A reason for an order, set aside to its clause's end (*... because the coffee's in there*, *... so I know
 you made it*, *... to see if the paint's dry*): it asks nothing."""
+_CHECKED_STATE = (("it", "is"), ("it", "'s"), ("they", "are"), ("it", "has"), ("they", "have"),
+                  ("nothing", "is"), ("nothing", "'s"), ("everything", "is"), ("everything", "'s"))
+REASONS = REASONS + Phrases(tuple((*just, *checking, *that, *who) for just in ((), ("just",))
+                                  for checking in (("checking",), ("making", "sure"), ("double", "checking"))
+                                  for that in ((), ("that",)) for who in _CHECKED_STATE))
+"""The same reason said as what the speaker is doing (*..., just checking nothing's chipped*, *..., making
+sure it's off*): the state of what was just named, set aside like *to check it's ...*."""
 AFTER_ORDER_REASONS = Phrases((*(("as", who) for who in ("i", "we", "it", "they", "she", "he", "there", "the",
                                                         "my", "our", "everyone", "nobody")),
                                 ("in", "case"), ("just", "in", "case")))
@@ -1676,6 +1683,7 @@ before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase
 PHRASE_ALIASES.update({
     ("in", "laws"): ("inlaws",),  # "In-laws coming round!": people, not "in"
     ("cos",): ("because",), ("coz",): ("because",), ("cuz",): ("because",), ("bc",): ("because",),
+    ("tho",): ("though",), ("altho",): ("although",),
     # bedtime and the start of the day said otherwise: "before you turn in", "start the day by ..."
     **{("before", who, *turn_in): ("before", "bedtime") for who in ("you", "i", "we", "everyone")
        for turn_in in (("turn", "in"), ("head", "to", "bed"), ("go", "to", "sleep"), ("hit", "the", "sack"))},

@@ -97,7 +97,8 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         return [opening, *split(replace(r, toks=r.toks[skip_joiner(r, clauses[1][0]):]), said_before)]
     first, last = 0, len(clauses)
     while first < last and (is_context(r, *clauses[first], leading=True) or closing_only(r, *clauses[first])
-                            or (first > 0 and hedged_addition(r, *clauses[first]))):
+                            or (first > 0 and hedged_addition(r, *clauses[first]))
+                            or (first == 0 and praise_before_order(r, *clauses[0]))):
         first += 1
     while last > first and (is_context(r, *clauses[last - 1], leading=False)
                             or closing_only(r, *clauses[last - 1])):
@@ -306,6 +307,16 @@ def apology_for(r: Reader, k: int, end: int) -> tuple[str, ...] | None:
             or any(r.word(j) in lx.STRUCTURAL and r.word(j) not in lx.ARTICLES for j in range(k + 2, end))):
         return None
     return tuple(r.words[k:end])
+
+
+def praise_before_order(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` opening the sentence is only praise (*Lovely, now go up ...*,
+    *Great - check the oven*) before a comma and an order: an interjection, not a thing called lovely (*Is
+    the kitchen lovely?* asks something)."""
+    words = r.words[start:end]
+    after = r.skip(r.skip(end, (",",)), lx.SEQUENCE_TIMES)  # "Lovely, now go ..."
+    return (start == 0 and r.word(end) == "," and any(w in lx.PRAISE for w in words)
+            and all(w in lx.PRAISE or w in lx.HESITATIONS for w in words) and starts_order(r, after))
 
 
 def well_wishing(r: Reader, k: int, end: int) -> tuple[str, ...] | None:
