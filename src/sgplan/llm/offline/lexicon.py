@@ -770,8 +770,8 @@ CLOSING = Phrases((
     *((*thanks, "ever", "so", "much") for thanks in (("thanks",), ("thank", "you"))),
     *((*thanks, "a", "lot") for thanks in (("cheers",), ("ta",))),
     ("thx",), ("ty",), ("tyvm",), ("cheers", "then"), ("mind",), ("mind", "you"), ("much", "obliged"),
-    ("nice", "one"), ("legend",), ("you", "are", "a", "legend"), ("love", "you"), ("love", "ya"), ("x",),
-    ("xx",), ("xxx",), ("urgent",), ("please", "and", "thanks"), ("cheers", "in", "advance"),
+    ("nice", "one"), ("legend",), ("you", "are", "a", "legend"), ("love", "you"), ("love", "ya"),
+    ("urgent",), ("please", "and", "thanks"), ("cheers", "in", "advance"),
     ("let", "me", "know"), ("thank", "you", "kindly"), ("thanks", "kindly"), ("thanks", "again"),
     ("thank", "you", "again"), ("see", "ya"), ("see", "you"), ("see", "you", "soon"),
     ("catch", "you", "later"),
@@ -1248,10 +1248,10 @@ DAY_OPENERS = ("this", "tonight", "today", "tomorrow")
 EVENT_OPENERS = ("before", "after", "by", "while", "once", "when")
 """The words a time expression of an event starts with (*before the guests arrive*, *once lunch is over*)."""
 VAGUE_DURATIONS = Phrases(tuple(("for", *a, what) for a in (("a",), ("a", "little"), ("a", "quick"))
-                                for what in ("bit", "sec", "second", "moment", "minute", "mo", "while",
-                                             "tick")))
+                                for what in ("bit", "sec", "moment", "mo", "while", "tick")))
 """How long a visit lasts, said without a number (*sit on the couch for a bit*): set aside after an order of
-a visit (:func:`.syntax.context.duration_span`); with a number (*for ten minutes*) a delay, refused."""
+a visit (:func:`.syntax.context.duration_span`); with a number or a unit of the clock (*for ten minutes*,
+*for a minute*) a delay, refused."""
 WAIT_VERBS = word_set("wait waiting hang hanging rest resting stop stopping linger lingering")
 """Verbs of staying put: a duration after them (*wait in the hall for a bit*) is what is asked, so refused."""
 FEW = ("few", "couple", "several")
@@ -1377,6 +1377,9 @@ NOTICE_THAT = Phrases((*((*please, "note", *that) for please in ((), ("please",)
 asleep*): the statement after them is context like any other (*remember* without *that* may ask to go:
 left to the parser)."""
 APOLOGY_WORDS = ("sorry", "oops", "whoops", "apologies")
+KISSES = frozenset({"x", "xx", "xxx"})
+"""Kisses signing off a message (*Love, Dad x*): a remark only as the last word of a sentence, as *x* is also
+operators' shorthand for *not* (*x kitchen*)."""
 _FINE = (("okay",), ("ok",), ("alright",), ("all", "right"), ("fine",), ("convenient",), ("possible",),
          ("no", "trouble"), ("no", "bother"), ("no", "problem"), ("not", "a", "problem"),
          ("not", "too", "much", "bother"), ("not", "too", "much", "trouble"))

@@ -203,14 +203,15 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
 def odd_verb(r: Reader, i: int) -> Refusal | None:
     """An unknown word in the verb slot is taken for a verb (whatever the verb, the goal is the same), unless
     it cannot be one: it looks like a room or object of the scene (*then bathrom sink*: a misspelt noun, whose
-    loss would widen the goal), it has no vowel (*bthrm*, an abbreviation not known), or it follows another
-    unknown word (*lvng rm couch*)."""
+    loss would widen the goal), it has no vowel (*bthrm*, an abbreviation not known), it has one or two
+    letters (*x kitchen*: operators' shorthand for *not*, known only as a kiss ending a message), or it
+    follows another unknown word (*lvng rm couch*)."""
     spelling, w = r.spelling, r.word(i)
     if superlative(w):  # "grab heaviest bottle": a comparison, not a verb
         return Refusal(rf.superlative(w))
-    if spelling is None or spelling.is_known(w) or w.endswith("ly"):
+    if spelling is None or (spelling.is_known(w) and w not in lx.KISSES) or w.endswith("ly"):
         return None
-    if spelling.scene_noun_like(w) is not None or not set(w) & set("aeiouy"):
+    if len(w) < 3 or spelling.scene_noun_like(w) is not None or not set(w) & set("aeiouy"):
         return Refusal(rf.not_a_verb(w))  # the refusal then says which name it looks like
     before = r.word(i - 1)
     if before.isalpha() and not spelling.is_known(before) and not before.endswith("ly"):

@@ -201,11 +201,12 @@ def description_end(r: Reader, i: int) -> int:
 def describing_word(r: Reader, i: int) -> bool:
     """Whether the word at ``i`` may describe a head noun that follows: a descriptive word of the lexicon that
     names nothing of the scene (*old*), or a word neither the scene nor the lexicon knows (*paperback*; a word
-    of the grammar, *upstairs*, *dining*, *other*, is never a mere description)."""
+    of the grammar, *upstairs*, *dining*, *other*, is never a mere description; nor is a word of one or two
+    letters, *x*, *w*: operators' shorthand, as in *x kitchen*)."""
     w = r.word(i)
     if w in lx.DESCRIPTIVE:
         return not r.nouns.names_word(w) and r.head(i) is None
-    return foreign_word(r, i) and r.spelling is not None and not r.spelling.is_known(w)
+    return len(w) > 2 and foreign_word(r, i) and r.spelling is not None and not r.spelling.is_known(w)
 
 
 def anaphoric_one(r: Reader, i: int) -> bool:
