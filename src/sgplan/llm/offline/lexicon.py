@@ -327,10 +327,12 @@ STAY_AFTER = ("then", "afterwards", "later", "next", "finally")
 STATED_SUBJECTS = Phrases((("i", "am"), ("we", "are"), ("you", "are"), ("the", "robot", "is"), ("i",),
                            ("we",), ("you",)))
 """*I'm* (the tokenizer drops the part after the apostrophe) / *we are* ... before where the robot is."""
-STATED_NOW = ("currently", "now", "still")
+STATED_NOW = ("currently", "now", "still", "already")
 NOW = Phrases((("right", "now"), ("now",), ("currently",), ("at", "once"), ("at", "present"), ("with", "you"),
                ("with", "you", "now")))
 """*right now* ...; *at the moment* reads *at once* here (:data:`PHRASE_ALIASES`: *the moment* = *once*)."""
+NOW = NOW + Phrases((("already",), ("now", "already"), ("by", "now")))
+"""*You're upstairs already, so ...*: where the robot is, said as where it has got to."""
 
 # ----------------------------------------------------------------------------------------------- verbs
 POSITIVE_VERBS = word_set(
@@ -1242,7 +1244,7 @@ EVENT_VERBS = word_set("arrive arrives come comes leave leaves get gets back hom
 """In a time expression of an event (*before the guests arrive*, *after I get back*)."""
 EVENT_VERBS = EVENT_VERBS | word_set("over done finished ready served up awake")
 """(*once lunch is over*, *when dinner's ready*)."""
-DAY_OPENERS = ("this", "tonight", "today", "tomorrow")
+DAY_OPENERS = ("this", "tonight", "today", "tomorrow", "for")  # "for now" (not "for the kitchen": no time)
 """The words a time of day that opens an order without a comma starts with (*This evening stay ...*,
 *Tonight check ...*; not *the guests arrive*, an event)."""
 EVENT_OPENERS = ("before", "after", "by", "while", "once", "when")
