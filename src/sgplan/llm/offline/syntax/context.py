@@ -54,10 +54,17 @@ def set_aside_context(readers: list[Reader]) -> list[Reader]:
     return out
 
 
+def negated(r: Reader, k: int) -> bool:
+    """Whether a prohibition or a negation comes before the word at ``k`` in its sentence (*avoid the
+    bathroom*, *never enter the kitchen*, *not the office*)."""
+    return any(r.phrase(j, lx.NEG_STARTS) or r.word(j) in ("not", "no", "never", "without") for j in range(k))
+
+
 def met_need(r: Reader, later: list[Reader]) -> bool:
     """Whether the sentence ``r`` only states a need about things of the scene (*The vases need dusting.*,
-    *Mum's visiting so the vases need dusting.*) that the sentences after it name again, each of its kinds
-    (*... dust the vase in the bedroom*): the orders say the work, the need only why. A need that nothing
+    *Mum's visiting so the vases need dusting.*) that the sentences after it name again as goals, each of its
+    kinds (*... dust the vase in the bedroom*; not after a negation: *avoid the bathroom downstairs*): the
+    orders say the work, the need only why. A need that nothing
     after it names (or only a pronoun does: *... dust them*) is left to the parser, which refuses it."""
     joins = [j for j in range(1, len(r))
              if r.word(j) in lx.STATEMENT_JOINERS and statement(r, 0, j) == "aside"]
@@ -68,7 +75,7 @@ def met_need(r: Reader, later: list[Reader]) -> bool:
         return False
     kinds = [h.categories for j in range(start, end) if (h := r.head(j)) is not None]
     named = [h.categories for o in later if not o.aside
-             for j in range(len(o)) if (h := o.head(j)) is not None]
+             for j in range(len(o)) if (h := o.head(j)) is not None and not negated(o, j)]
     return bool(kinds) and all(any(kind & other for other in named) for kind in kinds)
 
 
