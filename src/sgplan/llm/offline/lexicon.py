@@ -1296,6 +1296,10 @@ PEOPLE_NOUNS = PEOPLE_NOUNS | word_set("""inlaws relatives relations son sons da
     aunt uncle cousin cousins grandson granddaughter grandkids grandparents flatmate roommate housemate lodger
     tenant landlord nanny babysitter gardener vet""")
 """More people (*In-laws coming round!*, *my niece can't decide*)."""
+PEOPLE_NOUNS = PEOPLE_NOUNS | word_set("child kid toddler teenager teen hubby missus")
+"""More people (*my little one* is read *my child*: :data:`PHRASE_ALIASES`)."""
+STATED_VERBS = STATED_VERBS | word_set("want wants wanted wish wishes asked asks swears swore reckons")
+"""More verbs of statements about people (*My son wants it.*, *she asked for it*)."""
 HOW_MANY = word_set("a few couple several some lots loads plenty of them one more")
 """Words of a clause that only says how many there are (*there's a few*, *there are a couple of them*)."""
 PEOPLE = word_set("i we he she they")
@@ -1690,6 +1694,9 @@ PHRASE_ALIASES.update({
     ("in", "laws"): ("inlaws",),  # "In-laws coming round!": people, not "in"
     ("cos",): ("because",), ("coz",): ("because",), ("cuz",): ("because",), ("bc",): ("because",),
     ("tho",): ("though",), ("altho",): ("although",),
+    # "my little one" is a child (not the smaller of two things, as "the little one" may be)
+    **{(my, "little", one): (my, child) for my in ("my", "our", "your")
+       for one, child in (("one", "child"), ("ones", "children"))},
     # bedtime and the start of the day said otherwise: "before you turn in", "start the day by ..."
     **{("before", who, *turn_in): ("before", "bedtime") for who in ("you", "i", "we", "everyone")
        for turn_in in (("turn", "in"), ("head", "to", "bed"), ("go", "to", "sleep"), ("hit", "the", "sack"))},
