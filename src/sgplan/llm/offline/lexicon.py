@@ -1435,6 +1435,8 @@ GOING_VERBS = word_set("go come get head move walk run travel proceed return pop
 purpose (:func:`.syntax.context.purpose_infinitive`)."""
 PURPOSE_TAILS = word_set("off up out it them yourself myself")
 """After the verb of a purpose *, to rinse off* / *, to check it*: words that name nothing."""
+OWN_PARTS_OF = word_set("your its")
+"""Whose parts a purpose is about when it is the robot's upkeep (*... to wash your wheels*)."""
 NOW_WORDS = word_set("now atm rn today still again")
 PRAISE = word_set("cool great perfect lovely nice sweet awesome brilliant excellent super fab fantastic "
                   "wonderful splendid marvellous ace grand good ok okay alright")

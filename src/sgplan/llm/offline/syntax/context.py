@@ -212,11 +212,26 @@ def purpose_infinitive(r: Reader, k: int, end: int) -> bool:
     where to go) and at most two words that name nothing (:data:`.lexicon.PURPOSE_TAILS`) up to the clause's
     end."""
     verb = r.word(k + 1)
+    if own_upkeep(r, k, end):
+        return True
     return (r.word(k) == "to" and k > 0 and r.word(k - 1) == "," and end - (k + 2) <= 2
             and verb.isalpha() and verb not in lx.GOING_VERBS and r.head(k + 1) is None
             and not misspelt_name(r, k + 1, end)
             and (verb in lx.POSITIVE_VERBS or verb not in lx.LEXICON_WORDS)
             and all(w in lx.PURPOSE_TAILS for w in r.words[k + 2:end]))
+
+
+def own_upkeep(r: Reader, k: int, end: int) -> bool:
+    """Whether *to* at ``k`` says a purpose about the robot's own parts, up to the clause's end or its *then*
+    (*head to the kitchen afterwards to wash your wheels*, *stop at the sink to clean your wheels*): a verb
+    that is not one of going, *your* / *its*, and one or two words that name nothing of the scene."""
+    stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
+    words = range(k + 3, stop)
+    return (r.word(k) == "to" and k > 0 and r.word(k + 1).isalpha() and r.word(k + 1) not in lx.GOING_VERBS
+            and r.word(k + 1) not in lx.STRUCTURAL and r.word(k + 2) in lx.OWN_PARTS_OF
+            and 1 <= len(words) <= 2
+            and all(r.word(j).isalpha() and r.word(j) not in lx.LEXICON_WORDS and r.head(j) is None
+                    for j in words) and not misspelt_name(r, k + 3, stop))
 
 
 def counted(r: Reader, start: int, end: int) -> bool:
