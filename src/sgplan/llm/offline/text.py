@@ -9,9 +9,10 @@ so already-grounded text is understood too.
 Notations are read as the words they stand for (:data:`.lexicon.SYMBOLS`): an arrow (``->``, ``>``, ``→``)
 is *then*, ``+`` and ``&`` are *and*, ``w/`` is *with*, ``b/c`` *because*, ``b4`` *before*; a clock time
 (``6 pm``, ``18:30``) is one token. Any other symbol is kept as a token of its own, so that the grammar
-refuses it by name: nothing typed is ever dropped unread, except quotation marks and the hyphen inside a word
-(*ground-floor*), which change nothing. An ellipsis (``...``, ``…``) ends a sentence, except before a word in
-lower case, where it is a pause, read as a dash (*the clock in the living room... no wait, the one ...*).
+refuses it by name: nothing typed is ever dropped unread, except quotation marks, the hyphen inside a word
+(*ground-floor*) and Markdown's bold marks (``**never**``), which change nothing. An ellipsis (``...``,
+``…``) ends a sentence, except before a word in lower case, where it is a pause, read as a dash (*the clock
+in the living room... no wait, the one ...*).
 
 A sentence ends at ``.``, ``;``, ``!``, ``?``, ``:`` and at a line break; a list item (a line or a
 sentence starting with ``1.``, ``2)``, ``(3)``, or a bullet ``-``, ``*``, ``•`` or an empty box ``[ ]``, ``☐``
@@ -50,7 +51,8 @@ _WORD = re.compile(
     r"|(?P<ellipsis>\u2026|\.{2,})"
     r"|(?P<punct>[,.;:!?()\[\]{}])|(?P<dash>[\u2014\u2013]|--|(?<=\s)-(?=\s)|(?<=\w)-(?=\s))"
     r"|(?P<newline>\n)"
-    r"|(?P<silent>(?<=\w)-(?=\w)|[\"'`\u201c\u201d\u2018])"  # a hyphen inside a word, quotation marks
+    r"|(?P<silent>(?<=\w)-(?=\w)|[\"'`\u201c\u201d\u2018]"  # a hyphen inside a word, quotation marks,
+    r"|\*\*|__)"  # Markdown's bold marks
     r"|(?P<symbol>[^\s\w])",  # any other symbol: a token of its own, refused by the grammar
     re.M,
 )
