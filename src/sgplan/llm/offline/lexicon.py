@@ -1696,6 +1696,13 @@ PHRASE_ALIASES.update({
     ("in", "laws"): ("inlaws",),  # "In-laws coming round!": people, not "in"
     ("cos",): ("because",), ("coz",): ("because",), ("cuz",): ("because",), ("bc",): ("because",),
     ("tho",): ("though",), ("altho",): ("although",),
+    # a prohibition wrapped as a wish: "I'd rather you didn't go into X", "I'd prefer it if you stayed out"
+    **{(*who, *wish, "you", *did): ("do", "not") for who in (("i", "would"), ("we", "would"))
+       for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"))
+       for did in (("did", "not"), ("not",), ("did", "not", "ever"))},
+    **{(*who, *wish, "you", stayed): (stay,) for who in (("i", "would"), ("we", "would"))
+       for wish in (("rather",), ("prefer", "it", "if"), ("prefer", "if"))
+       for stayed, stay in (("stayed", "stay"), ("kept", "keep"), ("steered", "steer"))},
     # "my little one" is a child (not the smaller of two things, as "the little one" may be)
     **{(my, "little", one): (my, child) for my in ("my", "our", "your")
        for one, child in (("one", "child"), ("ones", "children"))},
