@@ -432,6 +432,18 @@ def time_tail(r: Reader, start: int, end: int) -> int | None:
     return None
 
 
+def timed_heading(r: Reader) -> list[Reader]:
+    """The words before a colon that announce how many things follow, without the time of day or event they
+    end with (*A couple of things before I get back:*, *Three jobs for tonight:*), after that time set aside
+    (said back; first, so that the heading stays right before what it announces); ``[r]`` otherwise."""
+    if not r.words or r.words[-1] != ":" or r.aside:
+        return [r]
+    tail = time_tail(r, 0, len(r) - 1)
+    if tail is None or not any(w in lx.NUMBER_WORDS or w in lx.FEW or w.isdigit() for w in r.words[:tail]):
+        return [r]  # only an announcement of how many (a label with its time is said back whole)
+    return [aside(r, tail, len(r) - 1), replace(r, toks=r.toks[:tail] + r.toks[-1:])]
+
+
 def time_head(r: Reader, start: int, end: int) -> int | None:
     """Where the order after a time of day opening the clause ``[start, end)`` without a comma starts (*This
     evening stay on this floor*, *Tonight check the oven*), or ``None``; only a day's time (opening with
