@@ -1386,15 +1386,16 @@ APOLOGY_WORDS = ("sorry", "oops", "whoops", "apologies")
 KISSES = frozenset({"x", "xx", "xxx"})
 """Kisses signing off a message (*Love, Dad x*): a remark only as the last word of a sentence, as *x* is also
 operators' shorthand for *not* (*x kitchen*)."""
-_FINE = (*((fine, to, "you") for fine in ("okay", "ok", "alright", "fine") for to in ("with", "by", "for")),
-         ("all", "right", "with", "you"), ("convenient",), ("possible",), ("no", "trouble"), ("no", "bother"),
-         ("no", "problem"), ("not", "a", "problem"), ("not", "too", "much", "bother"),
-         ("not", "too", "much", "trouble"))
+_LEAVE_GIVEN: tuple[tuple[str, ...], ...] = (
+    *((fine, to, "you") for fine in ("okay", "ok", "alright", "fine") for to in ("with", "by", "for")),
+    ("all", "right", "with", "you"), ("convenient",), ("possible",), ("no", "trouble"), ("no", "bother"),
+    ("no", "problem"), ("not", "a", "problem"), ("not", "too", "much", "bother"),
+    ("not", "too", "much", "trouble"))
 CLOSING = CLOSING + Phrases((
     # the robot's leave asked as a condition on nothing it could sense: "if it's okay with you", "whenever
     # it's convenient" (not "if it's okay", which after "check the oven" may ask what the robot finds)
     *((when, it, *be, *fine) for when in ("if", "when", "whenever") for it in ("it", "that", "this")
-      for be in (("is",), ("'s",), ("would", "be"), ("will", "be")) for fine in _FINE),
+      for be in (("is",), ("'s",), ("would", "be"), ("will", "be")) for fine in _LEAVE_GIVEN),
     # nothing urgent: "just a routine check, nothing urgent", "..., I promise"
     *(("nothing", what) for what in ("urgent", "major", "serious", "big", "fancy", "special")),
     ("no", "big", "deal"), ("i", "promise"), ("i", "swear")))

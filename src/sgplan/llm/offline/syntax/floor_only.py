@@ -28,6 +28,6 @@ def floor_only(r: Reader) -> Reader:
             first == 0 and (r.word(floor_end) != "only" or floor_end + 1 != end)):
         return r
     said = r.toks[first]
-    verb = (Tok("stay", said.start, said.start),)
+    verb: tuple[Tok, ...] = (Tok("stay", said.start, said.start),)
     verb += () if r.word(at) in lx.RELATIVE_FLOORS else (Tok("on", said.start, said.start),)
     return replace(r, toks=verb + r.toks[first:floor_end] + r.toks[end:])

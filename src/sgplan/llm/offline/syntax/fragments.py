@@ -92,9 +92,9 @@ def tail(r: Reader, k: int, opener: bool) -> int | None:
         return timed  # "this weekend", "this evening"
     if w == ",":  # "..., nothing urgent", "..., I promise"
         stop = next((i for i in range(k + 1, len(r)) if r.word(i) == ","), len(r))
-        said = (closing_only(r, k + 1, stop) or statement(r, k + 1, stop) == "aside"
-                or (stop == k + 2 and r.word(k + 1) in lx.APOLOGY_WORDS))  # "..., sorry"
-        return stop if stop > k + 1 and said else None
+        remark = (closing_only(r, k + 1, stop) or statement(r, k + 1, stop) == "aside"
+                  or (stop == k + 2 and r.word(k + 1) in lx.APOLOGY_WORDS))  # "..., sorry"
+        return stop if stop > k + 1 and remark else None
     return None
 
 
