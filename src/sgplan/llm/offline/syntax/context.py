@@ -477,7 +477,10 @@ def statement(r: Reader, start: int, end: int) -> str | None:
             r.head(j) is not None for j in range(k + 1, min(k + 4, end))):
         return None  # "Actually, it was the kitchen": says which place is meant, never context
     needs = any(w in lx.NEED_WORDS for w in r.words[k:end])
-    names = any(r.head(j) is not None for j in range(start, end))
+    said = r.words[start:end]
+    wanted_at = any(w in lx.PRONOUNS for w in said) and any(  # "my son wants it upstairs": a goal, maybe
+        w in lx.RELATIVE_FLOORS or w in lx.WANTED_WHERE or w in lx.FLOOR_WORDS for w in said)
+    names = wanted_at or any(r.head(j) is not None for j in range(start, end))
     return "need" if needs and names else "aside"
 
 
