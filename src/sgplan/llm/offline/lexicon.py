@@ -1698,7 +1698,7 @@ before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase
 PHRASE_ALIASES.update({
     ("in", "laws"): ("inlaws",),  # "In-laws coming round!": people, not "in"
     ("cos",): ("because",), ("coz",): ("because",), ("cuz",): ("because",), ("bc",): ("because",),
-    ("tho",): ("though",), ("altho",): ("although",),
+    ("tho",): ("though",), ("altho",): ("although",), ("em",): ("them",),
     # a prohibition wrapped as a wish: "I'd rather you didn't go into X", "I'd prefer it if you stayed out"
     **{(*who, *wish, "you", *did): ("do", "not") for who in (("i", "would"), ("we", "would"))
        for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"))
