@@ -476,8 +476,9 @@ def statement(r: Reader, start: int, end: int) -> str | None:
     if r.word(start) in lx.DEICTIC_SUBJECTS and r.np_starts(k + 1) and any(
             r.head(j) is not None for j in range(k + 1, min(k + 4, end))):
         return None  # "Actually, it was the kitchen": says which place is meant, never context
-    needs = any(w in lx.NEED_WORDS for w in r.words[k:end])
-    said = r.words[start:end]
+    need = next((j for j in range(k, end) if r.word(j) in lx.NEED_WORDS), None)
+    needs = need is not None
+    said = r.words[need + 1:end] if need is not None else ()  # what is needed, and where
     wanted_at = any(w in lx.PRONOUNS for w in said) and any(  # "my son wants it upstairs": a goal, maybe
         w in lx.RELATIVE_FLOORS or w in lx.WANTED_WHERE or w in lx.FLOOR_WORDS for w in said)
     names = wanted_at or any(r.head(j) is not None for j in range(start, end))
