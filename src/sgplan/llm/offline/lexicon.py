@@ -40,6 +40,10 @@ BARE_CONTRACTIONS = {"youre": ("you", "are"), "theyre": ("they", "are"), "im": (
                      "itll": ("it", "will"), "lets": ("let", "'s"), "whats": ("what", "is")}
 """Contractions typed without their apostrophe (*then youre done*): read as the words they stand for."""
 
+WOULD_SUBJECTS = frozenset({"i", "you", "we", "they", "he", "she", "it", "that", "who", "what", "where",
+                            "how", "there", "here", "this", "u"})
+"""Before *'d* these are *would* / *had* (*I'd*, *you'd*); after any other word *'d* writes a past participle
+in a note (*microwave chk'd*: checked)."""
 SENTENCE_END = frozenset(".;:!?")
 NUMBERED = frozenset({"floor", "level", "flr", "fl", "lvl", "storey", "story", "step", "item", "number",
                       "no"})

@@ -1,6 +1,7 @@
 """Tokens of a mission text, with their character spans, split into sentences and list items.
 
-Text is lower-cased; contractions are expanded (``don't`` -> ``do not``, ``we're`` -> ``we are``), a
+Text is lower-cased; contractions are expanded (``don't`` -> ``do not``, ``we're`` -> ``we are``; ``'d``
+after a word that is no subject writes a past participle in a note: ``chk'd`` -> ``checked``), a
 possessive ``'s`` becomes its own token (``'s`` after *that*, *there*, *here* ... is *is*), parentheses and
 dashes between words (an em or en dash, ``--``, a spaced ``-``, a ``-`` right after a word that breaks it
 off: *the- the office*) become commas (an aside). Entity IDs (``room_2``, ``object_27``) stay single tokens,
@@ -34,8 +35,10 @@ from sgplan.llm.offline.lexicon import (
     LINE_CONTINUES,
     NEGATED_STEMS,
     NUMBERED,
+    PHRASE_ALIASES,
     SENTENCE_END,
     SYMBOLS,
+    WOULD_SUBJECTS,
 )
 
 _WORD = re.compile(
@@ -90,6 +93,14 @@ def is_clock_time(word: str) -> bool:
                                                                                           "p.m")))
 
 
+def past_participle(stem: str) -> str:
+    """The past participle a note writes as ``stem'd`` (*chk'd* is *checked*, *clean'd* *cleaned*): the word
+    the stem stands for (:data:`.lexicon.PHRASE_ALIASES`), or the stem, with *-ed*."""
+    said = PHRASE_ALIASES.get((stem,), (stem,))
+    verb = said[0] if len(said) == 1 else stem
+    return verb + ("d" if verb.endswith("e") else "ed")
+
+
 def tokenize(text: str) -> list[Tok]:
     """Words and punctuation of ``text`` with contractions expanded and notations read (see the module
     docstring)."""
@@ -126,6 +137,8 @@ def tokenize(text: str) -> list[Tok]:
         elif word.endswith("'s") and len(word) > 2:
             said = "is" if word[:-2] in IS_CONTRACTED else "'s"  # "that's", "there's": never a possessive
             out += [Tok(word[:-2], start, end - 2), Tok(said, end - 2, end)]
+        elif word.endswith("'d") and word[:-2] not in WOULD_SUBJECTS:
+            out.append(Tok(past_participle(word[:-2]), start, end))  # a note's "microwave chk'd": checked
         elif "'" in word and kind == "word":
             stem, suffix = word.split("'", 1)  # you're, we'll, I'd: the verb they stand for
             verb = [Tok(CONTRACTIONS[suffix], start, end)] if suffix in CONTRACTIONS else []
