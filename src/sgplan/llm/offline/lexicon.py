@@ -1710,6 +1710,8 @@ PHRASE_ALIASES.update({
     **{(*who, *wish, "you", stayed): (stay,) for who in (("i", "would"), ("we", "would"))
        for wish in (("rather",), ("prefer", "it", "if"), ("prefer", "if"))
        for stayed, stay in (("stayed", "stay"), ("kept", "keep"), ("steered", "steer"))},
+    # an order made emphatic: "do stay away from X", "please do avoid X" (as "do check X" is read)
+    **{("do", verb): (verb,) for verb in ("stay", "keep", "avoid", "steer", "remember")},
     # "my little one" is a child (not the smaller of two things, as "the little one" may be)
     **{(my, "little", one): (my, child) for my in ("my", "our", "your")
        for one, child in (("one", "child"), ("ones", "children"))},
