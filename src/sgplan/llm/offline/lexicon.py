@@ -1703,6 +1703,15 @@ PHRASE_ALIASES.update({
     ("in", "laws"): ("inlaws",),  # "In-laws coming round!": people, not "in"
     ("cos",): ("because",), ("coz",): ("because",), ("cuz",): ("because",), ("bc",): ("because",),
     ("tho",): ("though",), ("altho",): ("although",), ("em",): ("them",),
+    # bedtime and the start of the day said otherwise: "before you turn in", "start the day by ..."
+    **{("before", who, *turn_in): ("before", "bedtime") for who in ("you", "i", "we", "everyone")
+       for turn_in in (("turn", "in"), ("head", "to", "bed"), ("go", "to", "sleep"), ("hit", "the", "sack"))},
+    ("start", "the", "day", "by"): ("start", "by"), ("to", "start", "the", "day"): ("first",),
+    # operator shorthand for the order: "order n/a", "any ord."
+    ("order", "n", "/", "a"): ("in", "any", "order"), ("any", "ord"): ("in", "any", "order"),
+})
+
+_SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
     # a prohibition wrapped as a wish: "I'd rather you didn't go into X", "I'd prefer it if you stayed out"
     **{(*who, *wish, "you", *did): ("do", "not") for who in (("i", "would"), ("we", "would"))
        for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"))
@@ -1715,13 +1724,9 @@ PHRASE_ALIASES.update({
     # "my little one" is a child (not the smaller of two things, as "the little one" may be)
     **{(my, "little", one): (my, child) for my in ("my", "our", "your")
        for one, child in (("one", "child"), ("ones", "children"))},
-    # bedtime and the start of the day said otherwise: "before you turn in", "start the day by ..."
-    **{("before", who, *turn_in): ("before", "bedtime") for who in ("you", "i", "we", "everyone")
-       for turn_in in (("turn", "in"), ("head", "to", "bed"), ("go", "to", "sleep"), ("hit", "the", "sack"))},
-    ("start", "the", "day", "by"): ("start", "by"), ("to", "start", "the", "day"): ("first",),
-    # operator shorthand for the order: "order n/a", "any ord."
-    ("order", "n", "/", "a"): ("in", "any", "order"), ("any", "ord"): ("in", "any", "order"),
-})
+}
+PHRASE_ALIASES.update(_SAID_OTHERWISE)
+"""More of :data:`PHRASE_ALIASES`: wishes that forbid, emphatic orders, *my little one*."""
 
 # ------------------------------------------------------------------------------------ grammar words
 STRUCTURAL = (
