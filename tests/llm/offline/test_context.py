@@ -45,3 +45,14 @@ def test_remarks_after_a_joiner_are_said_back(demo: Building) -> None:
     text = "Check the oven, as usual. Sit on the couch, as discussed."
     translation = PatternTranslator().translate(text, demo)
     assert translation.set_aside == ("as usual", "as discussed")
+
+
+def test_fragments_wishes_needs_and_durations_set_aside_are_said_back(demo: Building) -> None:
+    text = ("Time for the evening round. Hope you're charged up! The plants need watering. "
+            "Water the plant in the office, if that's okay with you. Sit on the couch for a bit.")
+    translation = PatternTranslator().translate(text, demo)
+    assert translation.set_aside == ("Time for the evening round", "Hope you're charged up",
+                                     "The plants need watering", "if that's okay with you", "for a bit")
+    said = explain_mission(mission_of(translation), demo).text.splitlines()
+    assert "Not part of the mission: 'Time for the evening round'" in said
+    assert "Not part of the mission: 'The plants need watering'" in said

@@ -40,6 +40,10 @@ BARE_CONTRACTIONS = {"youre": ("you", "are"), "theyre": ("they", "are"), "im": (
                      "itll": ("it", "will"), "lets": ("let", "'s"), "whats": ("what", "is")}
 """Contractions typed without their apostrophe (*then youre done*): read as the words they stand for."""
 
+WOULD_SUBJECTS = frozenset({"i", "you", "we", "they", "he", "she", "it", "that", "who", "what", "where",
+                            "how", "there", "here", "this", "u"})
+"""Before *'d* these are *would* / *had* (*I'd*, *you'd*); after any other word *'d* writes a past participle
+in a note (*microwave chk'd*: checked)."""
 SENTENCE_END = frozenset(".;:!?")
 NUMBERED = frozenset({"floor", "level", "flr", "fl", "lvl", "storey", "story", "step", "item", "number",
                       "no"})
@@ -334,9 +338,10 @@ STATED_SUBJECTS = Phrases((("i", "am"), ("we", "are"), ("you", "are"), ("the", "
 """*I'm* (the tokenizer drops the part after the apostrophe) / *we are* ... before where the robot is."""
 STATED_NOW = ("currently", "now", "still", "already")
 NOW = Phrases((("right", "now"), ("now",), ("currently",), ("at", "once"), ("at", "present"), ("with", "you"),
-               ("with", "you", "now"), ("already",)))
-"""*right now*, *already* ...; *at the moment* reads *at once* here (:data:`PHRASE_ALIASES`: *the moment* =
-*once*)."""
+               ("with", "you", "now")))
+"""*right now* ...; *at the moment* reads *at once* here (:data:`PHRASE_ALIASES`: *the moment* = *once*)."""
+NOW = NOW + Phrases((("already",), ("now", "already"), ("by", "now")))
+"""*You're upstairs already, so ...*: where the robot is, said as where it has got to."""
 
 # ----------------------------------------------------------------------------------------------- verbs
 POSITIVE_VERBS = word_set(
@@ -1294,7 +1299,7 @@ EVENT_VERBS = word_set("arrive arrives come comes leave leaves get gets back hom
 """In a time expression of an event (*before the guests arrive*, *after I get back*)."""
 EVENT_VERBS = EVENT_VERBS | word_set("over done finished ready served up awake")
 """(*once lunch is over*, *when dinner's ready*)."""
-DAY_OPENERS = ("this", "tonight", "today", "tomorrow")
+DAY_OPENERS = ("this", "tonight", "today", "tomorrow", "for")  # "for now" (not "for the kitchen": no time)
 """The words a time of day that opens an order without a comma starts with (*This evening stay ...*,
 *Tonight check ...*; not *the guests arrive*, an event)."""
 EVENT_OPENERS = ("before", "after", "by", "while", "once", "when")
@@ -1339,6 +1344,12 @@ PEOPLE_NOUNS = PEOPLE_NOUNS | word_set("""inlaws relatives relations son sons da
     aunt uncle cousin cousins grandson granddaughter grandkids grandparents flatmate roommate housemate lodger
     tenant landlord nanny babysitter gardener vet""")
 """More people (*In-laws coming round!*, *my niece can't decide*)."""
+PEOPLE_NOUNS = PEOPLE_NOUNS | word_set("child kid toddler teenager teen hubby missus")
+"""More people (*my little one* is read *my child*: :data:`PHRASE_ALIASES`)."""
+STATED_VERBS = STATED_VERBS | word_set("want wants wanted wish wishes asked asks swears swore reckons")
+"""More verbs of statements about people (*My son wants it.*, *she asked for it*)."""
+WANTED_WHERE = word_set("here there back down up upstairs downstairs")
+"""Where a thing is wanted (*she wants it back*, *he needs it upstairs*): a need that may ask for a goal."""
 HOW_MANY = word_set("a few couple several some lots loads plenty of them one more")
 """Words of a clause that only says how many there are (*there's a few*, *there are a couple of them*)."""
 PEOPLE = word_set("i we he she they")
@@ -1369,6 +1380,13 @@ REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"), ("sinc
                                  ("nothing", "is"), ("everything", "is"), ("everything", "'s")))))
 """A reason for an order, set aside to its clause's end (*... because the coffee's in there*, *... so I know
 you made it*, *... to see if the paint's dry*): it asks nothing."""
+_CHECKED_STATE = (("it", "is"), ("it", "'s"), ("they", "are"), ("it", "has"), ("they", "have"),
+                  ("nothing", "is"), ("nothing", "'s"), ("everything", "is"), ("everything", "'s"))
+REASONS = REASONS + Phrases(tuple((*just, *checking, *that, *who) for just in ((), ("just",))
+                                  for checking in (("checking",), ("making", "sure"), ("double", "checking"))
+                                  for that in ((), ("that",)) for who in _CHECKED_STATE))
+"""The same reason said as what the speaker is doing (*..., just checking nothing's chipped*, *..., making
+sure it's off*): the state of what was just named, set aside like *to check it's ...*."""
 AFTER_ORDER_REASONS = Phrases((*(("as", who) for who in ("i", "we", "it", "they", "she", "he", "there", "the",
                                                         "my", "our", "everyone", "nobody")),
                                 ("in", "case"), ("just", "in", "case")))
@@ -1418,7 +1436,28 @@ APOLOGY_WORDS = ("sorry", "oops", "whoops", "apologies")
 KISSES = frozenset({"x", "xx", "xxx"})
 """Kisses signing off a message (*Love, Dad x*): a remark only as the last word of a sentence, as *x* is also
 operators' shorthand for *not* (*x kitchen*)."""
-
+_LEAVE_GIVEN: tuple[tuple[str, ...], ...] = (
+    *((fine, to, "you") for fine in ("okay", "ok", "alright", "fine") for to in ("with", "by", "for")),
+    ("all", "right", "with", "you"), ("convenient",), ("possible",), ("no", "trouble"), ("no", "bother"),
+    ("no", "problem"), ("not", "a", "problem"), ("not", "too", "much", "bother"),
+    ("not", "too", "much", "trouble"))
+CLOSING = CLOSING + Phrases((
+    # the robot's leave asked as a condition on nothing it could sense: "if it's okay with you", "whenever
+    # it's convenient" (not "if it's okay", which after "check the oven" may ask what the robot finds)
+    *((when, it, *be, *fine) for when in ("if", "when", "whenever") for it in ("it", "that", "this")
+      for be in (("is",), ("'s",), ("would", "be"), ("will", "be")) for fine in _LEAVE_GIVEN),
+    # nothing urgent: "just a routine check, nothing urgent", "..., I promise"
+    *(("nothing", what) for what in ("urgent", "major", "serious", "big", "fancy", "special")),
+    ("no", "big", "deal"), ("i", "promise"), ("i", "swear")))
+"""More of :data:`CLOSING`: leave asked as a condition (*if it's okay with you*, *whenever it's
+convenient*), *nothing urgent*, *I promise*, which ask nothing wherever they close a clause. A condition on
+the state of a thing (*if it is not locked*) is no remark: refused as a condition the robot cannot sense."""
+WELL_WISHING = word_set("hope hoping trust")
+"""A wish said without its subject (*hope you're charged up*, *hope your day's going ok*, *trust all is
+well*): a remark when the words after it name nothing and ask nothing
+(:func:`.syntax.context.well_wishing`)."""
+WISH_STOPS = word_set("then after before first last next finally again once twice when whenever if until")
+"""Words of order or condition, which a wish never holds (*hope you're going first*: refused)."""
 CLOSING_TAILS = Phrases((("at", "all"), ("indeed",), ("with", "it"), ("with", "you"), ("with", "that"),
                          ("with", "this"), ("by", "me"), ("for", "me")))
 """Words that only make a remark of :data:`CLOSING` stronger or say to whom (*no rush at all*, *thank you very
@@ -1447,6 +1486,8 @@ GOING_VERBS = word_set("go come get head move walk run travel proceed return pop
 purpose (:func:`.syntax.context.purpose_infinitive`)."""
 PURPOSE_TAILS = word_set("off up out it them yourself myself")
 """After the verb of a purpose *, to rinse off* / *, to check it*: words that name nothing."""
+OWN_PARTS_OF = word_set("your its")
+"""Whose parts a purpose is about when it is the robot's upkeep (*... to wash your wheels*)."""
 NOW_WORDS = word_set("now atm rn today still again")
 PRAISE = word_set("cool great perfect lovely nice sweet awesome brilliant excellent super fab fantastic "
                   "wonderful splendid marvellous ace grand good ok okay alright")
@@ -1481,6 +1522,19 @@ OPENERS = frozenset({"hi", "hello", "hey", "okay", "ok", "alright", "well", "so"
 sentence starting otherwise may be an order about something the scene lacks (*feed pets*), so it is parsed
 (and refused) instead."""
 OPENERS = OPENERS | {"oh"} | EXCLAMATIONS  # "Oh gosh, ...", "Phew, ...": a remark that opens chit-chat too
+FRAGMENT_HEADS = (TALK_NOUNS | LIST_NOUNS | EVENT_WORDS | frozenset(NAMED_DAYS)
+                  | word_set("time party occasion emergency visit stuff business")) - word_set(
+    "do dos donts order sequence steps step now later soon first")
+"""The head of a sentence with no verb that only sets the scene (*Time for the evening round.*, *Quick errands
+before I get home.*, *Busy day.*; :mod:`.syntax.fragments`): a word of talk, of a list or of a time, never
+one that orders (*Reverse order.*, *Later.*)."""
+FRAGMENT_ARTICLES = word_set("a an the my our another some")
+FRAGMENT_MODIFIERS = word_set("quick little good big small busy usual routine long short lovely")
+"""Words of the lexicon that may still stand before the head of such a fragment (*a quick one*, *a little
+favour*); *last* too, in a sentence before any goal (*Last thing before you charge.*)."""
+FRAGMENT_TIMES = word_set("late early lately today tonight tomorrow")
+FRAGMENT_PEOPLE = word_set("you me us")
+"""Whom such a fragment is for (*A little job for you.*)."""
 AUXILIARIES = frozenset({"am", "are", "is", "was", "were", "have", "has", "will", "would"})
 """In chit-chat (*hope you're well*): no role, although *are* is a word of the grammar elsewhere."""
 GREETINGS = frozenset({"hi", "hello", "hey", "hiya", "heya", "howdy", "oi", "oy", "yo", "ahoy"})
@@ -1700,6 +1754,7 @@ before parsing (:func:`.text.rewrite`), so that no unknown word of such a phrase
 PHRASE_ALIASES.update({
     ("in", "laws"): ("inlaws",),  # "In-laws coming round!": people, not "in"
     ("cos",): ("because",), ("coz",): ("because",), ("cuz",): ("because",), ("bc",): ("because",),
+    ("tho",): ("though",), ("altho",): ("although",), ("em",): ("them",),
     # bedtime and the start of the day said otherwise: "before you turn in", "start the day by ..."
     **{("before", who, *turn_in): ("before", "bedtime") for who in ("you", "i", "we", "everyone")
        for turn_in in (("turn", "in"), ("head", "to", "bed"), ("go", "to", "sleep"), ("hit", "the", "sack"))},
@@ -1714,6 +1769,23 @@ PHRASE_ALIASES.update({  # an emphatic "do" before a prohibition: "do stay away 
 PHRASE_ALIASES.update({  # "stay up here on this floor": the floor said twice
     (here, "here", "on", "this", "floor"): ("on", "this", "floor") for here in ("up", "down", "right")
 })
+
+_SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
+    # a prohibition wrapped as a wish: "I'd rather you didn't go into X", "I'd prefer it if you stayed out"
+    **{(*who, *wish, "you", *did): ("do", "not") for who in (("i", "would"), ("we", "would"))
+       for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"))
+       for did in (("did", "not"), ("not",), ("did", "not", "ever"))},
+    **{(*who, *wish, "you", stayed): (stay,) for who in (("i", "would"), ("we", "would"))
+       for wish in (("rather",), ("prefer", "it", "if"), ("prefer", "if"))
+       for stayed, stay in (("stayed", "stay"), ("kept", "keep"), ("steered", "steer"))},
+    # an order made emphatic: "do stay away from X", "please do avoid X" (as "do check X" is read)
+    **{("do", verb): (verb,) for verb in ("stay", "keep", "avoid", "steer", "remember")},
+    # "my little one" is a child (not the smaller of two things, as "the little one" may be)
+    **{(my, "little", one): (my, child) for my in ("my", "our", "your")
+       for one, child in (("one", "child"), ("ones", "children"))},
+}
+PHRASE_ALIASES.update(_SAID_OTHERWISE)
+"""More of :data:`PHRASE_ALIASES`: wishes that forbid, emphatic orders, *my little one*."""
 
 # ------------------------------------------------------------------------------------ grammar words
 STRUCTURAL = (

@@ -1,6 +1,7 @@
 """Tokens of a mission text, with their character spans, split into sentences and list items.
 
-Text is lower-cased; contractions are expanded (``don't`` -> ``do not``, ``we're`` -> ``we are``), a
+Text is lower-cased; contractions are expanded (``don't`` -> ``do not``, ``we're`` -> ``we are``; ``'d``
+after a word that is no subject writes a past participle in a note: ``chk'd`` -> ``checked``), a
 possessive ``'s`` becomes its own token (``'s`` after *that*, *there*, *here* ... is *is*), parentheses and
 dashes between words (an em or en dash, ``--``, a spaced ``-``, a ``-`` right after a word that breaks it
 off: *the- the office*) become commas (an aside). Entity IDs (``room_2``, ``object_27``) stay single tokens,
@@ -9,9 +10,10 @@ so already-grounded text is understood too.
 Notations are read as the words they stand for (:data:`.lexicon.SYMBOLS`): an arrow (``->``, ``>``, ``→``)
 is *then*, ``+`` and ``&`` are *and*, ``w/`` is *with*, ``b/c`` *because*, ``b4`` *before*; a clock time
 (``6 pm``, ``18:30``) is one token. Any other symbol is kept as a token of its own, so that the grammar
-refuses it by name: nothing typed is ever dropped unread, except quotation marks and the hyphen inside a word
-(*ground-floor*), which change nothing. An ellipsis (``...``, ``…``) ends a sentence, except before a word in
-lower case, where it is a pause, read as a dash (*the clock in the living room... no wait, the one ...*).
+refuses it by name: nothing typed is ever dropped unread, except quotation marks, the hyphen inside a word
+(*ground-floor*) and Markdown's bold marks (``**never**``), which change nothing. An ellipsis (``...``,
+``…``) ends a sentence, except before a word in lower case, where it is a pause, read as a dash (*the clock
+in the living room... no wait, the one ...*).
 
 A sentence ends at ``.``, ``;``, ``!``, ``?``, ``:`` and at a line break; a list item (a line or a
 sentence starting with ``1.``, ``2)``, ``(3)``, or a bullet ``-``, ``*``, ``•`` or an empty box ``[ ]``, ``☐``
@@ -33,8 +35,10 @@ from sgplan.llm.offline.lexicon import (
     LINE_CONTINUES,
     NEGATED_STEMS,
     NUMBERED,
+    PHRASE_ALIASES,
     SENTENCE_END,
     SYMBOLS,
+    WOULD_SUBJECTS,
 )
 
 _WORD = re.compile(
@@ -50,7 +54,8 @@ _WORD = re.compile(
     r"|(?P<ellipsis>\u2026|\.{2,})"
     r"|(?P<punct>[,.;:!?()\[\]{}])|(?P<dash>[\u2014\u2013]|--|(?<=\s)-(?=\s)|(?<=\w)-(?=\s))"
     r"|(?P<newline>\n)"
-    r"|(?P<silent>(?<=\w)-(?=\w)|[\"'`\u201c\u201d\u2018])"  # a hyphen inside a word, quotation marks
+    r"|(?P<silent>(?<=\w)-(?=\w)|[\"'`\u201c\u201d\u2018]"  # a hyphen inside a word, quotation marks,
+    r"|\*\*|__)"  # Markdown's bold marks
     r"|(?P<symbol>[^\s\w])",  # any other symbol: a token of its own, refused by the grammar
     re.M,
 )
@@ -86,6 +91,14 @@ def is_clock_time(word: str) -> bool:
     """Whether a token is a clock time (*6pm*, *18:30*)."""
     return any(c.isdigit() for c in word) and (":" in word or word.rstrip(".").endswith(("am", "pm", "a.m",
                                                                                           "p.m")))
+
+
+def past_participle(stem: str) -> str:
+    """The past participle a note writes as ``stem'd`` (*chk'd* is *checked*, *clean'd* *cleaned*): the word
+    the stem stands for (:data:`.lexicon.PHRASE_ALIASES`), or the stem, with *-ed*."""
+    said = PHRASE_ALIASES.get((stem,), (stem,))
+    verb = said[0] if len(said) == 1 else stem
+    return verb + ("d" if verb.endswith("e") else "ed")
 
 
 def tokenize(text: str) -> list[Tok]:
@@ -124,6 +137,8 @@ def tokenize(text: str) -> list[Tok]:
         elif word.endswith("'s") and len(word) > 2:
             said = "is" if word[:-2] in IS_CONTRACTED else "'s"  # "that's", "there's": never a possessive
             out += [Tok(word[:-2], start, end - 2), Tok(said, end - 2, end)]
+        elif word.endswith("'d") and word[:-2] not in WOULD_SUBJECTS:
+            out.append(Tok(past_participle(word[:-2]), start, end))  # a note's "microwave chk'd": checked
         elif "'" in word and kind == "word":
             stem, suffix = word.split("'", 1)  # you're, we'll, I'd: the verb they stand for
             verb = [Tok(CONTRACTIONS[suffix], start, end)] if suffix in CONTRACTIONS else []

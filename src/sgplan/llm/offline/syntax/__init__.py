@@ -23,8 +23,10 @@ from dataclasses import replace
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import NounLexicon
 from sgplan.llm.offline.spelling import Spelling
-from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement
+from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement, timed_heading
 from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
+from sgplan.llm.offline.syntax.floor_only import floor_only
+from sgplan.llm.offline.syntax.fragments import context_fragment
 from sgplan.llm.offline.syntax.lists import read_lists
 from sgplan.llm.offline.syntax.not_needed import split_not_needed
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
@@ -50,9 +52,14 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     spelling = spelling or Spelling(nouns)
     readers = [Reader(p.toks, text, nouns, marker=p.marker, new_line=p.new_line, spelling=spelling)
                for p in parts]
+    readers = [floor_only(r) for r in readers]  # "this flr only": "stay on this flr"
+    readers = [said for r in readers for said in timed_heading(r)]  # "A couple of things before dinner:"
     for r in joined_appositions(read_lists(_greeting_before_heading(readers))):
         if stated_start(r) is not None or r.aside:
             out.append(r)
+            continue
+        if context_fragment(r, opener=not content):
+            out.append(replace(r, aside=True))  # "Time for the evening round.": said back
             continue
         if not content:
             if is_chitchat(r, 0, len(r)) and statement(r, 0, len(r)) is None:

@@ -45,10 +45,38 @@ def set_aside_context(readers: list[Reader]) -> list[Reader]:
     """``readers`` with the context of each sentence split off as readers set aside (see the module
     docstring)."""
     out: list[Reader] = []
-    for r in readers:
+    for k, r in enumerate(readers):
         said_before = any(not o.aside for o in out)
+        if not r.aside and met_need(r, readers[k + 1:]):
+            out.append(aside(r, 0, len(r)))  # "The vases need dusting. ... dust the vase in the hall ...
+            continue
         out += [r] if r.aside or stated_start(r) is not None else split(r, said_before)
     return out
+
+
+def negated(r: Reader, k: int) -> bool:
+    """Whether a prohibition or a negation comes before the word at ``k`` in its sentence (*avoid the
+    bathroom*, *never enter the kitchen*, *not the office*)."""
+    return any(r.phrase(j, lx.NEG_STARTS) or r.word(j) in ("not", "no", "never", "without") for j in range(k))
+
+
+def met_need(r: Reader, later: list[Reader]) -> bool:
+    """Whether the sentence ``r`` only states a need about things of the scene (*The vases need dusting.*,
+    *Mum's visiting so the vases need dusting.*) that the sentences after it name again as goals, each of its
+    kinds (*... dust the vase in the bedroom*; not after a negation: *avoid the bathroom downstairs*): the
+    orders say the work, the need only why. A need that nothing
+    after it names (or only a pronoun does: *... dust them*) is left to the parser, which refuses it."""
+    joins = [j for j in range(1, len(r))
+             if r.word(j) in lx.STATEMENT_JOINERS and statement(r, 0, j) == "aside"]
+    start = joins[0] + 1 if joins else 0
+    end = time_tail(r, start, len(r)) or len(r)  # "... need a clean before the weekend"
+    if (statement(r, start, end) != "need" or "," in r.words
+            or any(w in lx.PRONOUNS or w in lx.WISH_STOPS for w in r.words[start:end])):
+        return False
+    kinds = [h.categories for j in range(start, end) if (h := r.head(j)) is not None]
+    named = [h.categories for o in later if not o.aside
+             for j in range(len(o)) if (h := o.head(j)) is not None and not negated(o, j)]
+    return bool(kinds) and all(any(kind & other for other in named) for kind in kinds)
 
 
 def split(r: Reader, said_before: bool = False) -> list[Reader]:
@@ -76,7 +104,8 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         return [opening, *split(replace(r, toks=r.toks[skip_joiner(r, clauses[1][0]):]), said_before)]
     first, last = 0, len(clauses)
     while first < last and (is_context(r, *clauses[first], leading=True) or closing_only(r, *clauses[first])
-                            or (first > 0 and hedged_addition(r, *clauses[first]))):
+                            or (first > 0 and hedged_addition(r, *clauses[first]))
+                            or (first == 0 and praise_before_order(r, *clauses[0]))):
         first += 1
     while last > first and (is_context(r, *clauses[last - 1], leading=False)
                             or closing_only(r, *clauses[last - 1])):
@@ -182,11 +211,26 @@ def purpose_infinitive(r: Reader, k: int, end: int) -> bool:
     where to go) and at most two words that name nothing (:data:`.lexicon.PURPOSE_TAILS`) up to the clause's
     end."""
     verb = r.word(k + 1)
+    if own_upkeep(r, k, end):
+        return True
     return (r.word(k) == "to" and k > 0 and r.word(k - 1) == "," and end - (k + 2) <= 2
             and verb.isalpha() and verb not in lx.GOING_VERBS and r.head(k + 1) is None
             and not misspelt_name(r, k + 1, end)
             and (verb in lx.POSITIVE_VERBS or verb not in lx.LEXICON_WORDS)
             and all(w in lx.PURPOSE_TAILS for w in r.words[k + 2:end]))
+
+
+def own_upkeep(r: Reader, k: int, end: int) -> bool:
+    """Whether *to* at ``k`` says a purpose about the robot's own parts, up to the clause's end or its *then*
+    (*head to the kitchen afterwards to wash your wheels*, *stop at the sink to clean your wheels*): a verb
+    that is not one of going, *your* / *its*, and one or two words that name nothing of the scene."""
+    stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
+    words = range(k + 3, stop)
+    return (r.word(k) == "to" and k > 0 and r.word(k + 1).isalpha() and r.word(k + 1) not in lx.GOING_VERBS
+            and r.word(k + 1) not in lx.STRUCTURAL and r.word(k + 2) in lx.OWN_PARTS_OF
+            and 1 <= len(words) <= 2
+            and all(r.word(j).isalpha() and r.word(j) not in lx.LEXICON_WORDS and r.head(j) is None
+                    for j in words) and not misspelt_name(r, k + 3, stop))
 
 
 def counted(r: Reader, start: int, end: int) -> bool:
@@ -253,7 +297,7 @@ def closing_only(r: Reader, start: int, end: int) -> bool:
     cheers*)."""
     k = start if r.phrase(start, lx.CLOSING) else skip_joiner(r, start)  # "as usual", "so no rush"
     while k < end and (said := ((r.word(k),) if praise_before_closing(r, k, end) else None)
-                       or r.phrase(k, lx.CLOSING) or apology_for(r, k, end)
+                       or r.phrase(k, lx.CLOSING) or apology_for(r, k, end) or well_wishing(r, k, end)
                        or ((r.word(k),) if r.word(k) in lx.HESITATIONS or r.word(k) == "," or signature(r, k)
                            or (r.word(k) in lx.KISSES and k == len(r) - 1) else None)):
         k += len(said)
@@ -268,6 +312,36 @@ def apology_for(r: Reader, k: int, end: int) -> tuple[str, ...] | None:
     if (r.word(k) not in lx.APOLOGY_WORDS or r.word(k + 1) not in ("for", "about") or end - k > 7
             or not mere_talk(r, k + 2, end) or misspelt_name(r, k + 2, end)
             or any(r.word(j) in lx.STRUCTURAL and r.word(j) not in lx.ARTICLES for j in range(k + 2, end))):
+        return None
+    return tuple(r.words[k:end])
+
+
+def praise_before_order(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` opening the sentence is only praise (*Lovely, now go up ...*,
+    *Great - check the oven*) before a comma and an order: an interjection, not a thing called lovely (*Is
+    the kitchen lovely?* asks something)."""
+    words = r.words[start:end]
+    after = r.skip(r.skip(end, (",",)), lx.SEQUENCE_TIMES)  # "Lovely, now go ..."
+    return (start == 0 and r.word(end) == "," and any(w in lx.PRAISE for w in words)
+            and all(w in lx.PRAISE or w in lx.HESITATIONS for w in words) and starts_order(r, after))
+
+
+def well_wishing(r: Reader, k: int, end: int) -> tuple[str, ...] | None:
+    """The words of a wish said without its subject, up to ``end`` (*hope you're charged up*, *hope your
+    day's going ok*, *trust all is well*), when they name nothing (no room, object, floor or misspelt name)
+    and ask nothing (no order, no negation, no verb the grammar reads but a participle: *hope you go to ...*
+    is no remark), else ``None``."""
+    said = range(k + 1, end)
+    if r.word(k) not in lx.WELL_WISHING or not 0 < len(said) <= 8 or misspelt_name(r, k + 1, end):
+        return None
+    if any(r.head(j) is not None or r.word(j) in lx.RELATIVE_FLOORS or r.phrase(j, lx.NEG_STARTS)
+           or r.phrase(j, lx.SEQ_WORDS) or r.word(j) in lx.WISH_STOPS
+           or r.word(j).startswith(("room_", "object_")) or not (r.word(j).isalpha() or r.word(j) == "'s")
+           or (r.word(j) in lx.POSITIVE_VERBS and r.word(j) not in lx.PARTICLES
+               and not r.word(j).endswith(("ing", "ed")))
+           or (r.word(j) in lx.STRUCTURAL and r.word(j) not in lx.AUXILIARIES | lx.DETERMINERS
+               and r.word(j) not in lx.PRONOUNS)
+           for j in said):
         return None
     return tuple(r.words[k:end])
 
@@ -343,6 +417,18 @@ def time_tail(r: Reader, start: int, end: int) -> int | None:
     return None
 
 
+def timed_heading(r: Reader) -> list[Reader]:
+    """The words before a colon that announce how many things follow, without the time of day or event they
+    end with (*A couple of things before I get back:*, *Three jobs for tonight:*), after that time set aside
+    (said back; first, so that the heading stays right before what it announces); ``[r]`` otherwise."""
+    if not r.words or r.words[-1] != ":" or r.aside:
+        return [r]
+    tail = time_tail(r, 0, len(r) - 1)
+    if tail is None or not any(w in lx.NUMBER_WORDS or w in lx.FEW or w.isdigit() for w in r.words[:tail]):
+        return [r]  # only an announcement of how many (a label with its time is said back whole)
+    return [aside(r, tail, len(r) - 1), replace(r, toks=r.toks[:tail] + r.toks[-1:])]
+
+
 def time_head(r: Reader, start: int, end: int) -> int | None:
     """Where the order after a time of day opening the clause ``[start, end)`` without a comma starts (*This
     evening stay on this floor*, *Tonight check the oven*), or ``None``; only a day's time (opening with
@@ -375,8 +461,12 @@ def statement(r: Reader, start: int, end: int) -> str | None:
     if r.word(start) in lx.DEICTIC_SUBJECTS and r.np_starts(k + 1) and any(
             r.head(j) is not None for j in range(k + 1, min(k + 4, end))):
         return None  # "Actually, it was the kitchen": says which place is meant, never context
-    needs = any(w in lx.NEED_WORDS for w in r.words[k:end])
-    names = any(r.head(j) is not None for j in range(start, end))
+    need = next((j for j in range(k, end) if r.word(j) in lx.NEED_WORDS), None)
+    needs = need is not None
+    said = r.words[need + 1:end] if need is not None else ()  # what is needed, and where
+    wanted_at = any(w in lx.PRONOUNS for w in said) and any(  # "my son wants it upstairs": a goal, maybe
+        w in lx.RELATIVE_FLOORS or w in lx.WANTED_WHERE or w in lx.FLOOR_WORDS for w in said)
+    names = wanted_at or any(r.head(j) is not None for j in range(start, end))
     return "need" if needs and names else "aside"
 
 

@@ -60,8 +60,21 @@ def corrected(r: Reader) -> list[Reader]:
         said = r.phrase(k, lx.CORRECTIONS)
         if said is not None:
             fixed = replaced(r, k, k + len(said))
-            return [r] if fixed is None else [fixed[1], *corrected(fixed[0])]
+            if fixed is not None and other_than_taken_back(*fixed):
+                return [fixed[1], *corrected(fixed[0])]  # "the bedroom with the plant, no wait, the other"
+            return [r] if fixed is None else [*corrected(fixed[0]), fixed[1]]
     return [r]
+
+
+def other_than_taken_back(kept: Reader, taken_back: Reader) -> bool:
+    """Whether the new phrase of a correction is *the other one* / *the other X* of the phrase taken back (its
+    words set aside as ``taken_back``) and no *it* / *them* follows it: then the phrase taken back is said
+    before the sentence, so that *other* is read against it (the X not named: refused when that is not one).
+    A place pointed back to after it (*there*, *up there*, *that room*) is the new phrase, the goal named
+    after the phrase taken back; *it* is refused, never bound to what was taken back."""
+    start = next(k for k, t in enumerate(kept.toks) if t.start >= taken_back.toks[-1].end)
+    return (kept.word(start) in lx.DETERMINERS and kept.word(start + 1) == "other"
+            and not any(w in lx.PRONOUNS for w in kept.words[start:]))
 
 
 def joined_appositions(readers: list[Reader]) -> list[Reader]:
@@ -167,14 +180,15 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
         return None
     start_new = denied(r, old, start_new)
     head = old.head if isinstance(old, Described) and isinstance(old.head, Head) else None
-    new = noun_phrase(r, start_new, "goal", head)
-    if not isinstance(new, Match) or r.word(new.end) not in _CLAUSE_ENDS:
+    start = r.toks.index(next(t for t in r.toks if t.start == old.span.start))
+    named, rest = one_named(r, start, end, start_new)
+    said = replace(r, toks=r.toks[:start_new] + named + r.toks[rest:])  # "the other one": "the other X"
+    new = noun_phrase(said, start_new, "goal", head)
+    if not isinstance(new, Match) or said.word(new.end) not in _CLAUSE_ENDS:
         return None
     kinds = {head_kind(p) for p in (old, new.node) if isinstance(p, Described)} - {None}
     if len(kinds) > 1:
         return None  # "the toilet in the top-floor bathroom, no wait, the bathroom downstairs": which part?
-    start = r.toks.index(next(t for t in r.toks if t.start == old.span.start))
-    named, rest = one_named(r, start, end, start_new)
     kept = replace(r, toks=r.toks[:start] + named + r.toks[rest:])
     return kept, replace(r, toks=r.toks[start:start_new], aside=True)
 
