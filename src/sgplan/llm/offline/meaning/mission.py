@@ -54,6 +54,7 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
     disc.confined = confinement(readers, disc)
     parts: list[Meaning] = []
     listed: dict[int, list[MissionSentence]] = {}
+    run: list[Clause] = []  # the clauses of the list items in no order read last
     for r in readers:
         parsed = parse_sentence(r, lambda a: describes(a, disc))
         if isinstance(parsed, Refusal):
@@ -64,7 +65,7 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
         if isinstance(parsed.node, MissionSentence):
             if parsed.node.announced is not None:
                 listed.setdefault(parsed.node.announced.at, []).append(parsed.node)
-            join(parsed.node, parts, disc)
+            join(parsed.node, parts, disc, run)
     for said in listed.values():
         check_count(said)
     for part in parts:
@@ -79,16 +80,20 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
     return formula
 
 
-def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> None:
-    """Read ``sentence`` and join it to the sentences before it (``parts``)."""
-    previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
+def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: list[Clause]) -> None:
+    """Read ``sentence`` and join it to the sentences before it (``parts``); ``run``: the clauses of the list
+    items in no order read right before it (updated)."""
     if sentence.after_all is not None:
         check_after_all(sentence.after_all, parts)
     precedes = sentence_precedes(sentence, parts)
     continues = sentence.lead.sequence or sentence.after_item
+    if continues and len(run) > 1:
+        after_list_items(run, parts, disc.said(sentence.span.start, sentence.span.end))
+    previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
     ctx = SentenceContext(disc, sentence.span.start, strict_pending=sentence.lead.strict,
                           waypoint_pending=sentence.lead.waypoint,
-                          listed=sentence.announced is not None or sentence.order_free)
+                          listed=(sentence.announced is not None and not sentence.marked)
+                          or sentence.order_free)
     disc.announced = sentence.announced.head if sentence.announced is not None else None
     if sentence.floor_scope is not None:  # "While you're upstairs, ...": its goals there
         ctx.floor_scope = (floors_of(sentence.floor_scope, disc), sentence.span.start)
@@ -119,6 +124,20 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse) -> No
         parts.append(result)
     if isinstance(result, Clause) and any(result.steps):
         disc.last_step = result.filled()[-1]
+    in_no_order = sentence.marked and not sentence.after_item and parts and parts[-1] is result
+    run[:] = [*run, result] if in_no_order and isinstance(result, Clause) else []
+
+
+def after_list_items(run: list[Clause], parts: list[Meaning], said: str) -> None:
+    """*- A - B* (a list in no order), then *Then C* (a line or an item of its own): C comes after every item,
+    as after *A and B.*; the items, the last parts, are joined into one clause whose one step holds their
+    goals (an item may only keep out of a place). Refused when an item has steps of its own (after all of
+    them, or after the last?)."""
+    if any(len(c.filled()) > 1 for c in run) or parts[-len(run):] != run:
+        rf.refuse(rf.after_all_of_sentences(said))
+    joined = Clause([[task for c in run for step in c.filled() for task in step]],
+                    [f for c in run for f in c.constraints])
+    parts[-len(run):] = [joined]
 
 
 def check_after_all(said: AfterAll, parts: list[Meaning]) -> None:

@@ -113,7 +113,8 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
         return Refusal(rf.left_over(r.quote(rest.end, len(r))))
     return Match(MissionSentence(opener, precedes, lead.node, said_body.node, "order" in r.words,
                                  r.span(0, len(r)), r.announced, r.after_item, floor,
-                                 opened.node if opened is not None else None, order_free(r)), len(r))
+                                 opened.node if opened is not None else None, order_free(r),
+                                 r.marker is not None), len(r))
 
 
 def strict_order_first(r: Reader) -> Reader:

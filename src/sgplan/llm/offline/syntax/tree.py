@@ -703,7 +703,9 @@ class MissionSentence:
     *Top floor tasks:*): the goals of the sentence are on that floor. ``after_all``: *After all that, ...*
     / *Once you've done both, ...* (it continues the sequence after every goal of the sentence before).
     ``order_free``: *in either order* closes a clause of it (its actions are independent tasks: an object of
-    one is not looked for in the room of another)."""
+    one is not looked for in the room of another). ``marked``: an item on a line of its own after a list
+    marker (*- go to the dining room and sit on a chair*): its actions are one item of the list, so an
+    object is looked for in the room its line goes to, whatever announced the list."""
 
     opener: str | None
     precedes: str | None
@@ -716,6 +718,7 @@ class MissionSentence:
     floor_scope: FloorSpec | None = None
     after_all: AfterAll | None = None
     order_free: bool = False
+    marked: bool = False
 
 
 @dataclass(frozen=True)
