@@ -940,7 +940,7 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
     ("is", "not", "important", "which"), ("it", "is", "not", "important", "which"),
     ("not", "important", "which"), ("no", "matter", "which", "one"),
     ("does", "not", "matter", "which", "one"), ("it", "does", "not", "matter", "which", "one"),
-    ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"), ("is", "fine"),
+    ("i", "do", "not", "care", "which"), ("i", "do", "not", "mind", "which"),
     ("do", "not", "mind", "which"), ("do", "not", "mind", "which", "one"), ("do", "not", "care", "which"),
     ("i", "do", "not", "mind", "which", "one"), ("i", "do", "not", "really", "mind", "which"),
     ("your", "choice"), ("your", "pick"), ("take", "your", "pick"), ("you", "pick"), ("you", "choose"),

@@ -156,7 +156,7 @@ def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
     if said is None and comma and r.word(i + 1) in lx.BARE_CHOOSERS and r.word(i + 2) in lx.CLAUSE_ENDS:
         said = (r.word(i + 1),)  # "LR tv (either)", "DR vase, any": no noun follows, so a remark
     time = r.phrase(i + comma, lx.TIME_FILLERS)  # "whichever first" is about the order
-    if said is None or (said == ("is", "fine") and comma) or (time is not None and len(time) >= len(said)):
+    if said is None or (time is not None and len(time) >= len(said)):
         return None
     return (",",) * comma + said
 

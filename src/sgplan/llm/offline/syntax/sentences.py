@@ -370,6 +370,9 @@ def prefixed(r: Reader, i: int, prefix_last: bool) -> Parse[SentenceBody]:
     if not isinstance(prefix, Match):
         return prefix
     passive = passive_end(r, prefix.end)  # "once the oven is checked, ..." (not "... checked and X, ...")
+    state = state_said(r, prefix.node) if passive == prefix.end else None
+    if state is not None:  # "once the kitchen is fine, ..."
+        return Refusal(rf.state_condition(r.quote(i, min(state + 2, len(r)))))
     if (r.word(prefix.end) == "," and r.text[r.toks[prefix.end].start:r.toks[prefix.end].start + 1] == "("
             and r.word(prefix.end + 1) in lx.POSITIVE_VERBS):
         # "When you're done in the kitchen (check the microwave), ...": what is done there, or a step after?
@@ -519,9 +522,21 @@ def condition(r: Reader, i: int) -> Parse[Action]:
     visited = said.end + (1 if r.word(said.end) in lx.UNTIL_DONE_LINKS else 0)
     if r.word(visited) in lx.VISIT_PARTICIPLES and r.word(visited + 1) in ("", ",", "then"):
         said = Match(said.node, visited + 1)  # if LR visited -> ...: the robot was there
+    elif (state := state_said(r, said.node)) is not None:  # "if the kitchen is ok, ..."
+        return Refusal(rf.state_condition(r.quote(i, min(state + 2, len(r)))))
     if r.word(said.end) in lx.CONDITION_END or r.phrase(said.end, lx.NEG_STARTS):
         return Refusal(rf.condition_goes_on(r.rest(said.end)))
     return said
+
+
+def state_said(r: Reader, said: Action) -> int | None:
+    """Where the copula is when ``said``, read as a visit from a bare noun phrase, is its subject (*if the
+    kitchen is ok*, *once the kitchen's fine*): a state of the place, which the robot cannot sense (whatever
+    words after the copula the action's tail took as fillers); ``None`` otherwise."""
+    if said.verbs.words or said.phrases is None:
+        return None
+    end = next((k for k, t in enumerate(r.toks) if t.start >= said.phrases.span.end), len(r))
+    return end if r.word(end) in lx.COPULAS or r.word(end) == "'s" else None
 
 
 def consequent(r: Reader, i: int) -> Parse[Body]:
