@@ -560,6 +560,14 @@ FLOOR_CHANGES = frozenset({"up", "down", "upstairs", "downstairs"})
 """In the verb words of an action (*then head down to the kitchen*): it leaves the floor a sentence's
 opening put its goals on (*While you're on the top floor, ...*)."""
 """*go up and X* / *come down and X*: upstairs / downstairs, and X there."""
+NOT_A_SEQUENCE = frozenset({"if", "whenever", "until", "unless", "when", "while", "order", "whichever"})
+"""Words that make a sentence's comma-joined actions no sequence as written: a condition, or *(in any
+order)* / *whichever first*."""
+CARRIED_ALL = frozenset({"everything", "all"})
+"""What a carry verb takes when it takes what was fetched before (*bring everything down to the lobby*, *take
+it all to X*): its destination comes after every goal of the sentence (as *... last*)."""
+PERSONAL_SUBJECTS = frozenset({"you", "we", "i"})
+"""The subject of a clause said to the robot (*..., you begin with X*), before its order words."""
 SUBJECT_FILLERS = word_set("you we i the robot it ever have has had do does did are is were was already "
                            "been also first")
 """Skipped before the verb of a clause that follows a conjunction (*after you have been to X*)."""

@@ -726,6 +726,11 @@ def superlative(word: str) -> str:
                     "or what is near it)")
 
 
+def not_the_one(said: str) -> str:
+    return rephrase(f"'{said}': which one is meant (instead of one named before), or a place to keep away "
+                    "from? Name the one meant, or say 'never enter X' / 'avoid X' to keep away")
+
+
 def not_after_comma(said: str) -> str:
     return rephrase(f"'{said}' after a comma: which one is meant (instead of it), or a place to keep away "
                     "from? Say 'never enter X' / 'avoid X' to keep away")
@@ -754,6 +759,16 @@ def next_to_an_object(said: str, phrase: str) -> str:
 
 def there_refers_to_nothing() -> str:
     return rephrase("'there' does not refer to any place named before it")
+
+
+def counted_floor(said: str) -> str:
+    return rephrase(f"'{said}': a floor is one place, not things to count; name the rooms or objects on it "
+                    "('both bathrooms on the top floor')")
+
+
+def there_goal_or_kept_out(goal: str, kept_out: str) -> str:
+    return rephrase(f"'there' could be '{goal}', the last place to go, or '{kept_out}', a place to keep out "
+                    "of named after it; name the place")
 
 
 def there_goal_or_mention(goal: str, mention: str) -> str:

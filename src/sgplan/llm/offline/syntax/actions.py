@@ -63,6 +63,7 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     if not isinstance(phrases, Match):
         return phrases
     ends = bool(set(verbs.node.words) & lx.END_VERBS) and not in_condition  # "end up in X": X after the rest
+    ends = ends or bool(set(verbs.node.words) & lx.CARRY_VERBS and set(verbs.node.words) & lx.CARRIED_ALL)
     carried_on = (r.word(i - 2) in lx.CARRY_ON_VERBS  # "(take X and) bring to Y", not "take a seat on"
                   and r.word(i - 1) in lx.CARRY_DESTINATION_WORDS and len(verbs.node.words) >= 2)
     node = Action(r.span(start, phrases.end), verbs.node, phrases.node, in_condition=in_condition, last=ends,
@@ -216,6 +217,8 @@ def odd_verb(r: Reader, i: int) -> Refusal | None:
     spelling, w = r.spelling, r.word(i)
     if superlative(w):  # "grab heaviest bottle": a comparison, not a verb
         return Refusal(rf.superlative(w))
+    if w in lx.PERSONAL_SUBJECTS and r.word(i + 1) in lx.FIRST and r.word(i - 1) == ",":
+        return Refusal(rf.first_mid_sentence(r.quote(0, i + 2)))  # "X, we start with Y": "we first Y"
     if spelling is None or (spelling.is_known(w) and w not in lx.KISSES) or w.endswith("ly"):
         return None
     if len(w) < 3 or spelling.scene_noun_like(w) is not None or not set(w) & set("aeiouy"):
@@ -341,17 +344,33 @@ def action_tail(r: Reader, i: int, node: Action) -> Parse[Action]:
 def action_then_ahead(r: Reader, i: int) -> bool:
     """Whether a comma at ``i`` joins an action (*..., pop up to the bedroom, then ...*) to a sequence that a
     *then* later in the sentence makes: comma-joined steps before a *then* are done as written."""
-    nxt = r.word(i + 1)
-    if (r.word(i) != "," or not nxt.isalpha() or r.np_starts(i + 1) or nxt in lx.STRUCTURAL
-            or (nxt in lx.FILLERS and nxt not in lx.POSITIVE_VERBS) or nxt in lx.REFUSED_WORDS
-            or r.phrase(i + 1, lx.NEG_STARTS) or r.phrase(i + 1, lx.WAYPOINT)):
-        return False
-    for j in range(i + 1, len(r)):
-        if r.word(j) in ("if", "whenever", "until", "unless", "when", "while", "order", "whichever"):
-            return False  # a condition, or "(in any order)" / "whichever first": not a sequence
-        if r.phrase(j, lx.THEN_NEXT) and r.word(j - 1) in (",", "and"):
-            return True
-    return False
+    later = range(i + 1, len(r))
+    return (r.word(i) == "," and action_starts(r, i + 1) and any(said_then(r, j) for j in later)
+            and not any(r.word(j) in lx.NOT_A_SEQUENCE for j in later))
+
+
+def action_after_then(r: Reader, i: int) -> bool:
+    """Whether a comma (and an *and* after it) at ``i`` joins an action to a sequence that a *then* earlier in
+    the sentence made (*A, then B, C, and bring everything to D*): such steps go on as written."""
+    k = i + 2 if r.at(i, ",", "and") else i + 1
+    if r.word(k) in lx.PLACE_PREPOSITIONS or r.word(k) == "between":
+        return False  # "A, then B, and in between, C": not a step of the sequence (.body.in_between)
+    return (r.word(i) == "," and action_starts(r, k) and any(said_then(r, j) for j in range(i))
+            and not any(r.word(j) in lx.NOT_A_SEQUENCE for j in range(len(r))))
+
+
+def action_starts(r: Reader, i: int) -> bool:
+    """Whether the word at ``i`` is an action's verb (not a noun phrase, a word of the grammar, a prohibition
+    or a waypoint)."""
+    w = r.word(i)
+    return not (not w.isalpha() or r.np_starts(i) or w in lx.STRUCTURAL or (w in lx.FILLERS and w not in
+                lx.POSITIVE_VERBS) or w in lx.REFUSED_WORDS or r.phrase(i, lx.NEG_STARTS)
+                or r.phrase(i, lx.WAYPOINT))
+
+
+def said_then(r: Reader, j: int) -> bool:
+    """Whether *then* / *next* at ``j`` follows a comma or *and* (a step of a sequence)."""
+    return r.phrase(j, lx.THEN_NEXT) is not None and r.word(j - 1) in (",", "and")
 
 
 def repeats(r: Reader, i: int) -> Parse[Repeat | None]:

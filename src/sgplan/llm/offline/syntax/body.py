@@ -13,8 +13,14 @@ from typing import Literal
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
-from sgplan.llm.offline.syntax.actions import action, action_then_ahead, after_conjunction, times_before_place
-from sgplan.llm.offline.syntax.links import closing_at, done_closing, done_words, is_gerund, link
+from sgplan.llm.offline.syntax.actions import (
+    action,
+    action_after_then,
+    action_then_ahead,
+    after_conjunction,
+    times_before_place,
+)
+from sgplan.llm.offline.syntax.links import closing_at, done_closing, done_words, is_gerund, link, near_said
 from sgplan.llm.offline.syntax.negation import negation, off_limits, stay_on_floor
 from sgplan.llm.offline.syntax.phrases import there_then_verb
 from sgplan.llm.offline.syntax.qualifiers import names_rooms
@@ -246,9 +252,11 @@ def and_then_afterwards(r: Reader, i: int, before: Said, only_verb: bool) -> Ite
 
 @ITEMS.rule("A, B, then C")
 def comma_sequence(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
-    """At a comma between two actions (*go to the kitchen, pop up to the bedroom, then ...*): a *then*
-    later in the sentence makes the comma-joined actions a sequence too, as people write them."""
-    return Match(CommaSequence(), i + 1) if before and action_then_ahead(r, i) else None
+    """At a comma between two actions (*go to the kitchen, pop up to the bedroom, then ...*, *A, then B, C,
+    and D*): a *then* in the sentence makes the comma-joined actions a sequence too, as people write them."""
+    if not before or not (action_then_ahead(r, i) or action_after_then(r, i)):
+        return None
+    return Match(CommaSequence(), i + (2 if r.at(i, ",", "and") else 1))
 
 
 @ITEMS.rule("where you X")
@@ -362,6 +370,8 @@ def inline_before(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse
             and not r.np_starts(i + 1) and nxt not in lx.VERB_STOPS):
         return Refusal(rf.before_bare_verb(r.quote(i, i + 2)))
     found = after_conjunction(r, i + 1)
+    if isinstance(found, Match) and near_said(r, i, found.end):
+        return Refusal(rf.before_near(r.quote(i, found.end)))  # "check X before you go anywhere near Y"
     return Match(InlineBefore(found.node), found.end) if isinstance(found, Match) else found
 
 

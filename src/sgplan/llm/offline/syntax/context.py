@@ -271,8 +271,18 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
     doubt = r.phrase(said, lx.UNSURE)  # "Not sure if I turned it off": the statement after 'if'
     said = said + len(doubt) + 1 if doubt and r.word(said + len(doubt)) in lx.CHECK_THAT[1:] else said
     said += len(r.phrase(said, lx.NOTICE_THAT) or ())  # "Note that the kitchen is wet"
+    if orders_a_named_thing(r, start, end):
+        return False  # "visit both bedrooms, we start with the kitchen": an order, never context
     return (is_time(r, start, end) or statement(r, said, end) == "aside"
             or event_note(r, start, end) or is_reason(r, start, end))
+
+
+def orders_a_named_thing(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` says the order of a room or object of the scene (a word of the
+    order, :data:`.lexicon.ORDER_HEADS`, and a noun of the scene or *one*: *we start with the kitchen*, read
+    *we first the kitchen*; *... the one upstairs*), which a statement set aside would drop."""
+    return (any(r.word(k) in lx.ORDER_HEADS for k in range(start, end))
+            and any(r.head(k) is not None or r.word(k) in lx.ANAPHORIC_ONE for k in range(start, end)))
 
 
 def hedged_addition(r: Reader, start: int, end: int) -> bool:

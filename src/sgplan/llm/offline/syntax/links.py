@@ -56,8 +56,9 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     w = r.word(i)
     if w in lx.FIRST and r.word(i + 1) in lx.PLACE_PREPOSITIONS and r.word(i - 1) not in ("", ","):
         return None  # "go first to the kitchen": the action's (it comes first)
-    if w in lx.FIRST and i > 1 and r.word(i - 1) == "," and (r.np_starts(i + 1)
-                                                             or r.word(i + 1) in lx.POSITIVE_VERBS):
+    said_before = i - 1 - (r.word(i - 1) in lx.PERSONAL_SUBJECTS)  # "visit X, you begin with Y"
+    if w in lx.FIRST and i > 1 and r.word(said_before) == "," and (r.np_starts(i + 1)
+                                                                   or r.word(i + 1) in lx.POSITIVE_VERBS):
         return Refusal(rf.first_mid_sentence(r.quote(0, i + 1)))  # "check X, first the oven": first of all?
     if w == "," or (w in lx.FILLERS and w not in lx.NOT_FILLERS_HERE) or w in lx.HESITATIONS:
         return "filler", i + 1
@@ -116,6 +117,12 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
         # "go to the office and after the kitchen": the kitchen after (as learners write) or before?
         return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), i + 5))))
     return None
+
+
+def near_said(r: Reader, start: int, end: int) -> bool:
+    """Whether *near* was said in ``[start, end)`` where the lexicon reads it as *into* (*go (anywhere) near
+    Y*): after *before*, it may mean staying out of Y until then, or going there after (refused)."""
+    return any(r.word(k) == "into" and "near" in r.quote(k, k + 1).lower() for k in range(start, end))
 
 
 def is_gerund(word: str) -> bool:

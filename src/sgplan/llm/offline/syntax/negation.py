@@ -12,6 +12,7 @@ from sgplan.llm.offline.syntax.actions import action, particles, verb_words
 from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.links import skip_until_subject
 from sgplan.llm.offline.syntax.phrases import phrase_list
+from sgplan.llm.offline.syntax.qualifiers import anaphoric_one
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.tree import (
     Action,
@@ -39,6 +40,8 @@ def negation(r: Reader, i: int) -> Parse[Negation | PlainAction]:
     if marker == ("not",) and r.word(start - 1) == "," and r.np_starts(
             start + 1 + (r.word(start + 1) in lx.PLACE_PREPOSITIONS)):
         return Refusal(rf.not_after_comma(r.quote(start, len(r))))  # "Go to the kitchen, not the office"
+    if marker == ("not",) and start == 0 and any(anaphoric_one(r, k) for k in range(1, min(len(r), 6))):
+        return Refusal(rf.not_the_one(r.quote(0, len(r))))  # "Check the sink. Not the kitchen one."
     forgot = negated_goal(r, start + len(marker), marker)
     return forgot if forgot is not None else negation_after(r, start + len(marker), marker)
 

@@ -166,6 +166,8 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     elif floor_before is not None:
         i = floor_before.end
         if r.head(i) is None and not qualifiers.anaphoric_one(r, i):  # "the top floor": a place
+            if det.node.count is not None:  # "(both top floor btw)": a floor counted as things
+                return Refusal(rf.counted_floor(r.quote(first, i)))
             return Match(FloorPlace(r.span(first, i), floor_before.node, det.node.mode), i)
     described_as = (*said, *r.words[i : r.descriptive_end(i)])  # "the big (upstairs) couch"
     # "the downstairs one", "the top floor one": of the kind named last, on that floor

@@ -23,6 +23,7 @@ from sgplan.llm.offline.syntax.links import (
     done_closing,
     done_words,
     link,
+    near_said,
     skip_subject,
     skip_until_subject,
 )
@@ -325,8 +326,8 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
     if at_time(r, i + 1):
         return Refusal(rf.order_by_a_time(r.quote(i, at_time(r, i + 1))))
     end = next((k for k in range(i, len(r)) if r.word(k) == ","), len(r))
-    if any(r.word(k) == "into" and "near" in r.quote(k, k + 1).lower() for k in range(i, end)):
-        return Refusal(rf.before_near(r.quote(i, end)))  # "go near", "anywhere near" are read as "into"
+    if near_said(r, i, end):
+        return Refusal(rf.before_near(r.quote(i, end)))
     said = prefixed(r, i + 1, prefix_last=True)
     if not isinstance(said, Match) or not isinstance(said.node, PrefixedSentence):
         return said
