@@ -1177,7 +1177,7 @@ UNTIL_DONE_VERBS = ("visited", "checked", "cleaned")
 IRREGULAR_PARTICIPLES = word_set("made set put shut swept fed taken brought seen")
 """Past participles of chores not in *-ed* (*until the bed is made*, *once the table is set, ...*)."""
 OFF_LIMITS = Phrases(
-    tuple((*be, *said) for be in (("is",), ("are",), ("is", "strictly"), ("are", "strictly"))
+    tuple((*be, *said) for be in ((), ("is",), ("are",), ("is", "strictly"), ("are", "strictly"))
           for said in (("off", "limits"), ("out", "of", "bounds"), ("forbidden",), ("prohibited",),
                        ("banned",), ("not", "allowed"), ("a", "no", "go"), ("no", "go"),
                        ("not", "to", "be", "entered"), ("to", "be", "avoided"),
@@ -1185,6 +1185,12 @@ OFF_LIMITS = Phrases(
                        ("out", "of", "limits")))
     + tuple((modal, "be", "avoided") for modal in ("should", "must", "has", "have", "will")))
 """``The kitchen is off limits``: never enter / reach what the sentence names (``G !x``)."""
+BARE_PROHIBITIONS = frozenset({("never",), ("keep", "out"), ("stay", "out"), ("avoid",), ("off", "limits"),
+                               ("no", "entry"), ("no", "go"), ("out", "of", "bounds"), ("forbidden",),
+                               ("do", "not", "enter"), ("not", "allowed"), ("keep", "away"), ("avoid", "it"),
+                               ("stay", "away"), ("no", "entering")})
+"""A sentence that only says to keep out, under a room heading (*LR: never.*, *bathrms fl2: keep out*):
+that room is off limits."""
 COPULAS = frozenset({"is", "are", "was", "were", "should", "must", "will", "has", "have", "seems", "looks",
                      "might", "may", "can", "could", "needs", "need"})
 """After a sentence's first noun phrase: a statement ("the bowl is in the kitchen"), never a goal."""

@@ -321,10 +321,21 @@ def merged(readers: list[Reader]) -> list[Reader]:
         if out and out[-1].announced is not None and not out[-1].toks:
             announced = out[-1].announced
             kept = None if announced.scope else announced
-            out[-1] = replace(r, toks=announced.prefix + r.toks + announced.suffix, announced=kept)
+            out[-1] = (heading_kept_out(announced, r)
+                       or replace(r, toks=announced.prefix + r.toks + announced.suffix, announced=kept))
             continue
         out.append(r)
     return [r for r in out if r.toks]
+
+
+def heading_kept_out(heading: Announced, r: Reader) -> Reader | None:
+    """A room heading over nothing but a word of keeping out (*LR: never.*, *bathrms fl2: keep out*, *office
+    - off limits*): that room is off limits, as *LR off limits* says; ``None`` otherwise."""
+    said = heading.prefix
+    if not (heading.scope and said[:1] and said[0].text == "in" and r.words in lx.BARE_PROHIBITIONS):
+        return None
+    room, end = said[1:-1], said[-2].end
+    return replace(r, toks=(*room, Tok("off", end, end), Tok("limits", end, end)), announced=None)
 
 
 def between_after_twice(before: Reader, r: Reader) -> bool:
