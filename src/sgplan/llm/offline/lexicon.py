@@ -1723,6 +1723,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("upstair",): ("upstairs",),  # learners' singular
     ("downstair",): ("downstairs",),
     ("to", "1st"): ("to", "the", "first"), ("to", "2nd"): ("to", "the", "second"),  # "-> back to 1st"
+    ("1st", ","): ("first", ","), ("1st", "then"): ("first", "then"),  # "empty rm 1st, only then kit"
     # "the TV in the office, then any in the living room": any one of the kind named last
     ("any", "in"): ("any", "one", "in"), ("any", "on"): ("any", "one", "on"),
     ("nxt",): ("next",),
