@@ -254,6 +254,8 @@ CONTACT_SUBJECTS = ("you", "i", "we")
 *that* (refused: *in X* after it could be where the thing is or another goal)."""
 UNIVERSAL = ("all", "every", "each", "both")
 CHOOSING_OF = ("one", "any", "either")
+CHOICE_WORDS = frozenset({"a", "an", "any", "either", "one", "some", "whichever"})
+"""Words before a noun that leave the choice of the entity to the robot (*a plant*, *any TV*)."""
 """``one of / any of / either of the X``: one of them."""
 DEFINITE = ("the", "this", "that", "these", "those")
 

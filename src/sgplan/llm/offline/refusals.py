@@ -761,6 +761,11 @@ def there_refers_to_nothing() -> str:
     return rephrase("'there' does not refer to any place named before it")
 
 
+def antecedent_or_kept_out(pronoun: str, before: str, locating: str) -> str:
+    return rephrase(f"'{pronoun}' could be '{before}', or '{locating}', named to say which place to keep out "
+                    f"of; name the thing instead of '{pronoun}'")
+
+
 def counted_floor(said: str) -> str:
     return rephrase(f"'{said}': a floor is one place, not things to count; name the rooms or objects on it "
                     "('both bathrooms on the top floor')")

@@ -80,9 +80,10 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
     # them was visited before: a description must leave one entity before "back to" narrows by the visits
     if np.descriptive and len(noun.entities) > (np.determiner.count or 1):
         rf.refuse(rf.undecided_description(np.descriptive, core, noun.entities, not noun.head.plural))
-    if where.revisit and mode == "the" and len(noun.entities) > 1:  # "then back to the bathroom again"
+    if where.revisit and mode in ("the", "any") and len(noun.entities) > 1:  # "then back to the bathroom"
         before = {e.key for g in disc.goals_before(np.span.start) for e in g.entities}
-        if len(visited := [e for e in noun.entities if e.key in before]) == 1:
+        visited = [e for e in noun.entities if e.key in before]
+        if len(visited) == 1 or (mode == "any" and visited):  # "back to a TV": one of those of the visit
             noun.entities = visited
     g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, noun.entities, mode,
                  noun.room_scoped, where.role, np.determiner.count,

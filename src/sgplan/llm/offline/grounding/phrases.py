@@ -247,6 +247,11 @@ def antecedent(pronoun: str, disc: Discourse, kind: str | None = None) -> Ground
         if len(outermost) > 1:  # "The teddy bear keeps falling off the couch, check on it": which?
             rf.refuse(rf.antecedent_of_several(pronoun, [g.phrase for g in reversed(fits)]))
     g = fits[0]
+    kept_out = [o for o in fits[1:] if o.start <= g.start and g.end <= o.end and o.role == "avoid"]
+    others = [f for f in fits[1:] if not any(o.start <= f.start and f.end <= o.end for o in kept_out)
+              and not any(o is not f and o.start <= f.start and f.end <= o.end for o in fits)]
+    if kept_out and others:  # "get the laptop, but don't go into the bedroom with the teddy bear until you've
+        rf.refuse(rf.antecedent_or_kept_out(pronoun, others[0].phrase, g.phrase))  # got it": which?
     # "the book from the bedroom with the vase ... it": the object the phrase is about (its head), not an
     # object named inside it to locate it
     outer = [o for o in fits[1:] if o.start <= g.start and g.end <= o.end and all(e.kind == "object"

@@ -161,7 +161,16 @@ def place_label(heading: Reader, run: list[Reader]) -> Reader | None:
     if head.kind != "room":  # "Plant round: 1. water the plant in ...": a round of plants
         return replace(said, aside=True) if listed and head.categories in places else None
     named = head.categories in places and (not listed or any(c != head.categories for c in places))
-    return replace(said, aside=True) if named else None
+    return replace(said, aside=True) if named and not any(widened(item) for item in run) else None
+
+
+def widened(item: Reader) -> bool:
+    """Whether a list item names no room but a choice or several of a kind (*any of the TVs*, *a plant*, *the
+    vases*), which the heading's room would narrow if it were the items' room (*Office stuff: - any of the
+    TVs - the office chair*: the office's TVs): then the heading is no mere label."""
+    heads = [(k, h) for k in range(len(item)) if (h := item.head(k)) is not None]
+    return not any(h.kind == "room" for _, h in heads) and any(
+        h.plural or item.word(k - 1) in lx.CHOICE_WORDS for k, h in heads)
 
 
 def check_no_bulleted_goal(run: list[Reader]) -> None:
