@@ -28,11 +28,11 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import left_things_put
 from sgplan.llm.offline.syntax.floors import floor_words
+from sgplan.llm.offline.syntax.fragments import context_fragment
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.preamble import is_chitchat
 from sgplan.llm.offline.syntax.qualifiers import head_kind
 from sgplan.llm.offline.syntax.reader import Match, Reader
-from sgplan.llm.offline.syntax.fragments import context_fragment
 from sgplan.llm.offline.syntax.tree import Announced, Described
 from sgplan.llm.offline.text import Tok
 
@@ -251,10 +251,10 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
     if r.word(len(r) - 1) != ":":
         return [r]
     said, remark = without_order_remark(replace(r, toks=r.toks[:-1]))
-    if said.toks and context_fragment(said, opener=False):
-        return [replace(said, aside=True)]  # "Quick errands before I'm back: ...": said back
     if after is not None and (split := room_heading_after_step(said)) is not None:
         return split  # "DR: wipe a table -> kit: bottle": the kitchen heads the words after its colon
+    if len(said) > 2 and context_fragment(said, opener=False):
+        return [replace(said, aside=True)]  # "Quick errands before I'm back: ...": said back
     if said.toks and set(said.words) & lx.ORDER_HEADS:  # "Then: the kitchen" reads "Then, the kitchen"
         comma = Tok(",", said.toks[-1].end, said.toks[-1].end)
         order = Announced(said.quote(0, len(said)), (*said.toks, comma), None, None, said.toks[0].start,
