@@ -1726,6 +1726,8 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("downstair",): ("downstairs",),
     ("to", "1st"): ("to", "the", "first"), ("to", "2nd"): ("to", "the", "second"),  # "-> back to 1st"
     ("1st", ","): ("first", ","), ("1st", "then"): ("first", "then"),  # "empty rm 1st, only then kit"
+    ("whilst",): ("while",),  # British: "... whilst you're about it"
+    ("thanks", "a", "mil"): ("thanks", "a", "million"),
     # "the TV in the office, then any in the living room": any one of the kind named last
     ("any", "in"): ("any", "one", "in"), ("any", "on"): ("any", "one", "on"),
     ("nxt",): ("next",),
