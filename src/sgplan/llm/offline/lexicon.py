@@ -723,6 +723,7 @@ ANY_ORDER = Phrases((
                                       ("whatever", "order"), ("whichever", "order"), ("either", "order"))
       for liking in _ORDER_LIKING),
     ("in", "whichever", "order"), ("whatever", "order"), ("either", "order"), ("no", "particular", "order"),
+    *(("in", "which", "order", *liking) for liking in _ORDER_LIKING),  # learners: "in which order you want"
     ("the", "order", "is", "up", "to", "you"), ("order", "is", "up", "to", "you"),
     ("i", "do", "not", "care", "about", "the", "order"), ("i", "do", "not", "mind", "the", "order"),
     ("i", "do", "not", "mind", "about", "the", "order"), ("do", "not", "worry", "about", "the", "order"),
@@ -819,6 +820,7 @@ CLOSING = Phrases((
     ("thank", "you", "again"), ("see", "ya"), ("see", "you"), ("see", "you", "soon"),
     ("catch", "you", "later"),
     ("take", "care"), ("appreciate", "you"), ("appreciate", "ya"), ("good", "robot"),
+    *((stop, "what", "you", "are", "doing") for stop in ("stop", "drop", "pause", "leave")),
     ("you", "rock"),
     ("ta", "in", "advance"),
     *((*and_, "that", be, "about", "it") for and_ in ((), ("and",)) for be in ("is", "'s")),
