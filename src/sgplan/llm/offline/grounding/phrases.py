@@ -144,9 +144,8 @@ def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
     if not goals:
         rf.refuse(rf.there_refers_to_nothing())
     ref = max(goals, key=lambda g: g.start)
-    kept_out = [g for g in disc.references if g.role == "avoid" and ref.start < g.start < np.span.start
-                and where.role == "avoid"]
-    if kept_out:  # "look at the vase. Skip the kitchen, don't go in there": the kitchen, or the vase's room?
+    kept_out = [g for g in disc.references if g.role == "avoid" and ref.start < g.start < np.span.start]
+    if where.role == "avoid" and kept_out:  # "look at the vase. Skip the kitchen, don't go in there": which?
         rf.refuse(rf.there_goal_or_kept_out(ref.phrase, kept_out[-1].phrase))
     determined("there", ref, len({e.room_key for e in ref.entities}))
     if where.role == "goal" and where.going_back:  # "A, then B, then go back there": B is where it is

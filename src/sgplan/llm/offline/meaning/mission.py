@@ -124,7 +124,7 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: 
         parts.append(result)
     if isinstance(result, Clause) and any(result.steps):
         disc.last_step = result.filled()[-1]
-    in_no_order = sentence.marked and not sentence.after_item and parts and parts[-1] is result
+    in_no_order = sentence.marked and not sentence.after_item and bool(parts) and parts[-1] is result
     run[:] = [*run, result] if in_no_order and isinstance(result, Clause) else []
 
 
