@@ -1259,6 +1259,9 @@ QUAL_NEXT = Phrases((("next", "to"), ("adjacent", "to"), ("beside",), ("near",),
                      ("next", "of"), ("near", "of"), ("close", "of")))
 """*the hallway outside / just off / next to the kitchen*: a room located by a room connected to it (the
 neighbour only locates it, it is no goal)."""
+NEXT_DOOR = Phrases((("next", "door"), ("right", "next", "door"), ("just", "next", "door")))
+"""*the bathroom next door*: next to the room of the place named last (a door joins rooms, so after an object
+it is the object's room)."""
 QUAL_EXCEPT = Phrases((("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
                        ("excluding",), ("besides",)))
 ONLY_WORDS = frozenset({"only", "just", "but"})

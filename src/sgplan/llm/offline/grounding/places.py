@@ -56,17 +56,21 @@ def there_floors(before: int, head: Head, disc: Discourse,
     return frozenset(e.floor for e in last.entities)
 
 
-def next_to_it(span: Span, said: str, disc: Discourse) -> Grounded:
+def next_to_it(span: Span, said: str, disc: Discourse, door: bool = False) -> Grounded:
     """*next to it* / *just off it* (``said``): *it* is the last whole phrase named (not one nested in it:
     in "the bedroom where the teddy bear is" that is the bedroom); it must be a room, since distances
-    between objects are not known."""
+    between objects are not known. With ``door`` (*next door*) an object stands for its room: a door joins
+    rooms, so *the bed ..., then the bathroom next door* is next to the bed's room."""
     refs = [g for g in disc.references if g.phrase.lower() not in lx.PRONOUNS and g.entities]
     outer = [g for g in refs if not any(o is not g and o.start <= g.start and g.end <= o.end
                                         and (o.start, o.end) != (g.start, g.end) for o in refs)]
     if not outer:
-        rf.refuse(rf.no_room_antecedent())
+        rf.refuse(rf.next_door_to_nothing(said) if door else rf.no_room_antecedent())
     ref = max(outer, key=lambda g: g.start)
-    determined(said, ref, len(ref.entities))
-    if any(e.kind != "room" for e in ref.entities):
+    entities = list(ref.entities)
+    if door:  # the rooms of the objects named: several rooms of a choice are refused just below
+        entities = [disc.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in entities)]
+    determined(said, ref, len(entities))
+    if any(e.kind != "room" for e in entities):
         rf.refuse(rf.next_to_an_object(said, ref.phrase))
-    return disc.record(Grounded("it", span.start, span.end, list(ref.entities), ref.mode, False, "qualifier"))
+    return disc.record(Grounded("it", span.start, span.end, entities, ref.mode, False, "qualifier"))

@@ -581,6 +581,24 @@ def next_to(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     return Match(NextTo(thing.node, r.span(noun.first, thing.end), None, relation), thing.end)
 
 
+@QUALIFIERS.rule("next door")
+def next_door(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the bathroom next door*: next to the room of the place named last; *next door to X* is *next to X*."""
+    said = r.phrase(i, lx.NEXT_DOOR)
+    if said is None:
+        return None
+    end = i + len(said)
+    if r.word(end) == "to" and r.word(end + 1) == "it":
+        it = r.span(end + 1, end + 2)
+        return Match(NextTo(None, r.span(noun.first, end + 2), it, "next door to"), end + 2)
+    if r.word(end) == "to" and r.np_starts(end + 1):
+        thing = noun_phrase(r, end + 1, "qualifier")
+        if not isinstance(thing, Match):
+            return thing
+        return Match(NextTo(thing.node, r.span(noun.first, thing.end), None, "next door to"), thing.end)
+    return Match(NextTo(None, r.span(noun.first, end), r.span(i, end), " ".join(said)), end)
+
+
 @QUALIFIERS.rule("between")
 def between(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """*the bathroom between the bedrooms*, *the hall between the kitchen and the office*: a room connected
