@@ -394,6 +394,10 @@ FETCH_VERBS = (CARRY_VERBS - APPLIANCE_VERBS) | word_set(
     "get getting grab grabbing fetch fetching find finding pick picking collect collecting retrieve "
     "retrieving gather gathering")
 """Before a thing the scene does not hold (*put my keys on the table*): the robot would have to find it."""
+TAKING_OUT_VERBS = word_set("get getting got grab grabbing grabbed fetch fetching fetched take taking took "
+                            "pull pulling pulled")
+"""*grab the bottle out of the bathroom*: before a thing taken, *out of X* says where it is (*from X*); after
+other verbs (*keep the vase out of the kitchen*) it may say where it must not be, and is not read."""
 
 CAUTION_PAIRS = frozenset({("take", "care"), ("watch", "out"), ("look", "out"), ("never", "mind")})
 """Two words that say how to behave near a place, or to disregard it (*take care in the kitchen*, *watch

@@ -326,6 +326,8 @@ def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     *a chair in (either) A or (in) B*: those of either room (the choice is of rooms, as people mean it)."""
     if r.word(i) in lx.DIRECTION_BEFORE_IN and r.word(i + 1) in lx.SCOPE_IN and not carried(r, noun):
         i += 1  # "the one up in the bedroom": the room says where, the direction adds nothing
+    if r.at(i, "out", "of") and noun.kind == "object" and r.word(noun.first - 1) in lx.TAKING_OUT_VERBS:
+        i += 1  # "grab the bottle out of the bathroom": where it is taken from
     back = noun.role == "qualifier" and r.word(i + 1) in ("it", "there")
     if (r.word(i) not in lx.QUAL_IN or not r.np_starts(i + 1) or r.phrase(i, lx.ORDER_MODIFIERS)
             or r.phrase(i, lx.TIME_FILLERS) or back):
