@@ -257,6 +257,8 @@ CHOOSING_OF = ("one", "any", "either")
 CHOICE_WORDS = frozenset({"a", "an", "any", "either", "one", "some", "whichever"})
 """Words before a noun that leave the choice of the entity to the robot (*a plant*, *any TV*)."""
 """``one of / any of / either of the X``: one of them."""
+ONE_SAID = ("one", "1")
+"""*one* as notes also write it (*1 of the chairs*, *grab 1 bottle*): any one of them."""
 DEFINITE = ("the", "this", "that", "these", "those")
 
 ANNOUNCED = word_set("things thing tasks task errands errand jobs job chores chore items item stops stop "

@@ -315,7 +315,7 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
     mode: Mode | None = None
     count: int | None = None
     chosen_from = False
-    if w in lx.CHOOSING_OF and r.word(i + 1) == "of":
+    if (w in lx.CHOOSING_OF or w in lx.ONE_SAID) and r.word(i + 1) == "of":
         i, mode = i + 2, "any"
         chosen_from = r.word(i) in ("the", "these", "those")  # "one of the two bathrooms"
     elif w in lx.INDEFINITE:
@@ -341,7 +341,7 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
     n = count_word(r, i) if noun_next else None  # "all three (dining) chairs"
     if n is not None and chosen_from:
         return Match(Determiner(mode, n), i + 1)  # one of them, and there must be n
-    if n == 1 and mode is None and r.word(i) == "one":
+    if n == 1 and mode is None and r.word(i) in lx.ONE_SAID:
         return Match(Determiner("any", None), i + 1)  # "sit on one chair": any chair
     if n is not None:
         if mode in (None, "any"):
