@@ -164,6 +164,9 @@ TOYS = frozenset({"teddy bear"})
 IRREGULAR_PLURALS: dict[str, str] = {"shelf": "shelves", "knife": "knives", "person": "people",
                                      "stairs": "stairs"}
 
+INTO_A_ROOM = word_set("to into inside enter entering visit visiting")
+"""Before *the plant bedroom* (an object then a room: the room holding it): words that lead to a room, so
+the phrase is a room (after *grab the bowl kitchen* the bowl may be meant)."""
 ROOM_MODIFIERS = frozenset({"dining", "utility"})
 """First words of room categories used alone before an object: *the dining chairs* = the chairs in the
 dining room (not *living*, *empty*, *home*: those are ordinary adjectives too)."""
