@@ -1819,6 +1819,13 @@ _SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
 }
 PHRASE_ALIASES.update(_SAID_OTHERWISE)
 """More of :data:`PHRASE_ALIASES`: wishes that forbid, emphatic orders, *my little one*."""
+PHRASE_ALIASES.update({  # "set it down by X", "pop it on X", "stick them in X": the thing carried put there
+    (verb, it, *down, where): ("put", it, *down, where)
+    for verb in ("set", "pop", "stick", "lay", "plonk", "rest")
+    for it in ("it", "them")
+    for down in ((), ("down",), ("back",), ("back", "down"))
+    for where in ("on", "onto", "in", "into", "by", "beside", "near", "next", "inside")
+})
 
 # ------------------------------------------------------------------------------------ grammar words
 STRUCTURAL = (

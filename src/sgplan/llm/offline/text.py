@@ -36,6 +36,7 @@ from sgplan.llm.offline.lexicon import (
     NEGATED_STEMS,
     NUMBERED,
     PHRASE_ALIASES,
+    PRONOUNS,
     SENTENCE_END,
     SYMBOLS,
     WOULD_SUBJECTS,
@@ -208,7 +209,8 @@ def sentences(tokens: list[Tok]) -> list[Part]:
 
 def rewrite(tokens: list[Tok], aliases: dict[tuple[str, ...], tuple[str, ...]]) -> list[Tok]:
     """``tokens`` with every phrase of ``aliases`` (longest first, left to right) replaced by its reading;
-    each new token spans the whole phrase it replaces, so messages still quote the user's words."""
+    each new token spans the whole phrase it replaces, so messages still quote the user's words, except a
+    pronoun kept in its place (*set it down* read *put it down*: *it* is still the word *it*)."""
     longest = max((len(k) for k in aliases), default=0)
     out: list[Tok] = []
     i = 0
@@ -217,7 +219,9 @@ def rewrite(tokens: list[Tok], aliases: dict[tuple[str, ...], tuple[str, ...]]) 
             reading = aliases.get(tuple(t.text for t in tokens[i : i + n]))
             if reading is not None:
                 start, end = tokens[i].start, tokens[i + n - 1].end
-                out += [Tok(w, start, end) for w in reading]
+                kept = [k < n and w == tokens[i + k].text and w in PRONOUNS for k, w in enumerate(reading)]
+                out += [tokens[i + k] if keep else Tok(w, start, end)
+                        for k, (w, keep) in enumerate(zip(reading, kept, strict=True))]
                 i += n
                 break
         else:
