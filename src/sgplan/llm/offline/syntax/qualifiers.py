@@ -204,8 +204,19 @@ def says_contents(which: NounPhrase) -> bool:
 
 
 def skip_in_it(r: Reader, i: int) -> int:
-    """After a room's contents: the trailing *in it* (*the bedroom that only has a bed in it*)."""
+    """After a room's contents: the trailing *in it* (*the bedroom that only has a bed in it*), or *inside*
+    ending the phrase (*which has only the bed inside*)."""
+    if r.word(i) == "inside" and not r.np_starts(i + 1):
+        return i + 1
     return i + 2 if r.word(i) in lx.IN_IT and r.word(i + 1) in ("it", "there") else i
+
+
+def contents_end(r: Reader, i: int) -> tuple[int, bool]:
+    """After a room's contents at ``i``: where they end (after a trailing *in it*) and whether *and nothing
+    else* says the room holds nothing else (*where is only one bed and nothing else*)."""
+    i = skip_in_it(r, i)
+    said = r.phrase(i, lx.NOTHING_ELSE)
+    return (i + len(said), True) if said is not None else (i, False)
 
 
 @QUALIFIERS.rule("aside")
@@ -399,8 +410,9 @@ def where_is(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     thing = noun_phrase(r, k, "qualifier")
     if not isinstance(thing, Match):
         return thing
-    only = r.word(i + 2) in lx.ONLY_WORDS and count is None
-    return Match(Contains(thing.node, r.span(noun.first, thing.end), count, only), thing.end)
+    end, nothing_else = contents_end(r, thing.end)
+    only = (r.word(i + 2) in lx.ONLY_WORDS and count is None) or nothing_else
+    return Match(Contains(thing.node, r.span(noun.first, thing.end), count, only), end)
 
 
 @QUALIFIERS.rule("that is X")
@@ -512,10 +524,10 @@ def contains(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     thing = noun_phrase(r, start, "qualifier")
     if not isinstance(thing, Match):
         return thing
-    end = skip_in_it(r, thing.end)
+    end, nothing_else = contents_end(r, thing.end)
     trailing = r.word(end) == "only" and r.word(end + 1) not in lx.ONLY_FOLLOWERS  # "bdrm w/ bed only"
     # "with only / just the bed": nothing else; "with only / just one bed": exactly one
-    only = (bool(set(said) & lx.ONLY_WORDS) or trailing) and count is None
+    only = ((bool(set(said) & lx.ONLY_WORDS) or trailing) and count is None) or nothing_else
     said_as = Contains(thing.node, r.span(noun.first, thing.end), count, only)
     return Match(said_as, end + (1 if trailing else 0))
 
@@ -536,8 +548,8 @@ def relative_have(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipp
         return None  # "the room that is in ..." / "that was cleaned": no contents
     k += 1 if r.word(k) in lx.HAVE_FORMS else 0
     k += 1 if r.word(k) == "got" else 0  # "that has got", "which hasn't got"
-    only = only or r.word(k) in lx.ONLY_WORDS
-    k += 1 if r.word(k) in lx.ONLY_WORDS else 0
+    only = only or r.word(k) in lx.ONLY_WORDS or r.at(k, "nothing", "but")
+    k += 2 if r.at(k, "nothing", "but") else 1 if r.word(k) in lx.ONLY_WORDS else 0  # "has nothing but a bed"
     count, start = exact_count(r, k)
     if not r.np_starts(start):
         return None
@@ -548,8 +560,9 @@ def relative_have(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipp
         return thing
     if negated:
         return Match(Lacks(thing.node, r.span(noun.first, thing.end)), skip_in_it(r, thing.end))
-    said_as = Contains(thing.node, r.span(noun.first, thing.end), count, only and count is None)
-    return Match(said_as, skip_in_it(r, thing.end))
+    end, nothing_else = contents_end(r, thing.end)
+    said_as = Contains(thing.node, r.span(noun.first, thing.end), count, (only and count is None) or nothing_else)
+    return Match(said_as, end)
 
 
 @QUALIFIERS.rule("and more contents")
