@@ -408,9 +408,10 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     vocab = disc.vocab
     if q.it_span is not None and q.relation in lx.OBJECT_PLACING:  # "wipe a table, then the bowl on it"
         return by_an_object(disc.said(q.span.start, q.span.end), noun, placed_on_it(q, disc), where, disc)
-    door = q.relation.endswith("next door")
-    said = q.relation if door else f"{q.relation} it"
-    room = next_to_it(q.it_span, said, disc, door) if q.it_span is not None else inner(q.thing, disc)
+    said = q.relation if q.relation.endswith("next door") else f"{q.relation} it"
+    # a room is next to rooms only: "the bathroom next to it" after an object is next to the object's room
+    by_room = q.relation.endswith("next door") or noun.head.kind == "room"
+    room = next_to_it(q.it_span, said, disc, by_room) if q.it_span is not None else inner(q.thing, disc)
     if noun.head.kind == "object" and room.entities and all(e.kind == "object" for e in room.entities):
         return by_an_object(disc.said(q.span.start, q.span.end), noun, room, where, disc)
     if any(e.kind != "room" for e in room.entities):

@@ -56,19 +56,20 @@ def there_floors(before: int, head: Head, disc: Discourse,
     return frozenset(e.floor for e in last.entities)
 
 
-def next_to_it(span: Span, said: str, disc: Discourse, door: bool = False) -> Grounded:
+def next_to_it(span: Span, said: str, disc: Discourse, by_room: bool = False) -> Grounded:
     """*next to it* / *just off it* (``said``): *it* is the last whole phrase named (not one nested in it:
     in "the bedroom where the teddy bear is" that is the bedroom); it must be a room, since distances
-    between objects are not known. With ``door`` (*next door*) an object stands for its room: a door joins
-    rooms, so *the bed ..., then the bathroom next door* is next to the bed's room."""
+    between objects are not known. With ``by_room`` (*next door*, or a room next to it) an object stands for
+    its room: a room is next to rooms only, so *the bed ..., then the bathroom next door / next to it* is
+    next to the bed's room."""
     refs = [g for g in disc.references if g.phrase.lower() not in lx.PRONOUNS and g.entities]
     outer = [g for g in refs if not any(o is not g and o.start <= g.start and g.end <= o.end
                                         and (o.start, o.end) != (g.start, g.end) for o in refs)]
     if not outer:
-        rf.refuse(rf.next_door_to_nothing(said) if door else rf.no_room_antecedent())
+        rf.refuse(rf.next_door_to_nothing(said) if said.endswith("next door") else rf.no_room_antecedent())
     ref = max(outer, key=lambda g: g.start)
     entities = list(ref.entities)
-    if door:  # the rooms of the objects named: several rooms of a choice are refused just below
+    if by_room:  # the rooms of the objects named: several rooms of a choice are refused just below
         entities = [disc.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in entities)]
     determined(said, ref, len(entities))
     if any(e.kind != "room" for e in entities):
