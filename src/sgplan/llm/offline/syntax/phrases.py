@@ -101,6 +101,15 @@ def pronoun(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhra
     return Match(Pronoun(r.span(i, i + 1), r.word(i)), i + 1) if r.word(i) in lx.PRONOUNS else None
 
 
+@NOUN_PHRASES.rule("that first")
+def that_first(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
+    """*check that first, then ...*: *that* is the thing named last (as *it*), *first* an order word, not an
+    ordinal (*that first bedroom*); read only with *then* after it, so that the order is said in words."""
+    if r.word(i) != "that" or r.word(i + 1) != "first" or "then" not in r.words[i + 2:i + 5]:
+        return None
+    return Match(Pronoun(r.span(i, i + 1), "that"), i + 1)
+
+
 @NOUN_PHRASES.rule("the two in X")
 def counted_ones(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
     """*the two in the lounge* after *the plant in the bedroom*: the ones of the kind named last (as *the
