@@ -1279,6 +1279,9 @@ ONLY_FOLLOWERS = ("after", "if", "once", "when", "before")
 """After *only*: *only after X*, *only if X* ... (not *the bedroom with a bed only*: its contents)."""
 IN_IT = ("in", "inside")
 """``the bedroom that only has a bed in it``: the trailing *in it* repeats the room."""
+CONTENTS_BEFORE_COUNT = ONLY_WORDS | word_set("with has have having containing contains")
+"""Before a count of a room's contents (*with one sink*, *that has only one sink*): the count an elided
+noun refers back to (*then the one with two*)."""
 NOTHING_ELSE = Phrases((("and", "nothing", "else"), ("and", "nothing", "more"),
                        ("and", "no", "other", "things"), ("and", "nothing", "else", "in", "it")))
 """*the bedroom where is only one bed and nothing else*: the room holds nothing of another category."""

@@ -25,6 +25,7 @@ from sgplan.llm.offline.syntax.tree import (
     ByUnlisted,
     Contains,
     Described,
+    Determiner,
     Except,
     Holds,
     InRoom,
@@ -519,6 +520,11 @@ def contains(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if said is None:
         return None
     count, start = exact_count(r, i + len(said))  # "where there is only one sink"
+    if count is not None and start == i + len(said) + 1 and (counted := counted_before(r, i)) is not None:
+        # "the one with one sink first, then the one with two": two of what was counted last
+        thing_said = Described(r.span(start - 1, start), r.word(start - 1), Determiner("all", None), None, None,
+                               None, counted, None, (), None, False)
+        return Match(Contains(thing_said, r.span(noun.first, start), count, False), start)
     if not r.np_starts(start):
         return None
     thing = noun_phrase(r, start, "qualifier")
@@ -530,6 +536,21 @@ def contains(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     only = ((bool(set(said) & lx.ONLY_WORDS) or trailing) and count is None) or nothing_else
     said_as = Contains(thing.node, r.span(noun.first, thing.end), count, only)
     return Match(said_as, end + (1 if trailing else 0))
+
+
+def counted_before(r: Reader, i: int) -> Head | None:
+    """The object counted last in a room's contents before ``i`` (*one sink* in *the one with one sink
+    first, then the one with two*) when the contents at ``i`` end with a count and no noun; ``None`` when a
+    noun follows or no contents were counted (*sit on one chair, then the bedroom with two*: two what?)."""
+    said = r.phrase(i, lx.QUAL_CONTAINS)
+    end = i + len(said or ()) + 1
+    if r.np_starts(end) or r.head(end) is not None:
+        return None
+    for j in range(i - 1, 0, -1):
+        head = r.head(j + 1) if count_word(r, j) is not None else None
+        if head is not None and head.kind == "object" and (r.word(j - 1) in lx.CONTENTS_BEFORE_COUNT):
+            return replace(head, plural=True)
+    return None
 
 
 @QUALIFIERS.rule("relative have")
