@@ -1825,6 +1825,9 @@ _SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
 }
 PHRASE_ALIASES.update(_SAID_OTHERWISE)
 """More of :data:`PHRASE_ALIASES`: wishes that forbid, emphatic orders, *my little one*."""
+PHRASE_ALIASES.update({  # "wipe the toilet, then do the same in the bathroom upstairs": the one of that kind there
+    ("the", "same", where): ("the", "one", where) for where in ("in", "inside", "upstairs", "downstairs", "on")
+})
 PHRASE_ALIASES.update({  # "set it down by X", "pop it on X", "stick them in X": the thing carried put there
     (verb, it, *down, where): ("put", it, *down, where)
     for verb in ("set", "pop", "stick", "lay", "plonk", "rest")
