@@ -520,11 +520,15 @@ def contains(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if said is None:
         return None
     count, start = exact_count(r, i + len(said))  # "where there is only one sink"
-    if count is not None and start == i + len(said) + 1 and (counted := counted_before(r, i)) is not None:
+    of_them = count is not None and r.at(start, "of", "them")
+    # "either sink in the bathroom that has two of them": two of the object named last
+    counted = named_before(r, i) if of_them else counted_before(r, i) if count is not None else None
+    if counted is not None and start == i + len(said) + 1:
         # "the one with one sink first, then the one with two": two of what was counted last
-        thing_said = Described(r.span(start - 1, start), r.word(start - 1), Determiner("all", None), None, None,
+        end = start + (2 if of_them else 0)
+        thing_said = Described(r.span(start - 1, end), r.word(start - 1), Determiner("all", None), None, None,
                                None, counted, None, (), None, False)
-        return Match(Contains(thing_said, r.span(noun.first, start), count, False), start)
+        return Match(Contains(thing_said, r.span(noun.first, end), count, False), end)
     if not r.np_starts(start):
         return None
     thing = noun_phrase(r, start, "qualifier")
@@ -551,6 +555,13 @@ def counted_before(r: Reader, i: int) -> Head | None:
         if head is not None and head.kind == "object" and (r.word(j - 1) in lx.CONTENTS_BEFORE_COUNT):
             return replace(head, plural=True)
     return None
+
+
+def named_before(r: Reader, i: int) -> Head | None:
+    """The object head named last before ``i`` (*them* in *either sink in the bathroom that has two of
+    them*), or ``None``."""
+    heads = (r.head(j) for j in range(i - 1, -1, -1))
+    return next((replace(h, plural=True) for h in heads if h is not None and h.kind == "object"), None)
 
 
 @QUALIFIERS.rule("relative have")
