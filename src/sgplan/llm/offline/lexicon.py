@@ -79,7 +79,6 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     "flowerpot": ("potted plant",),
     "flowers pot": ("potted plant",),
     "plant pot": ("potted plant",),
-    "pot plant": ("potted plant",),
     "table": ("dining table", "coffee table", "table"),
     "basin": ("sink",),
     "washbasin": ("sink",),
@@ -1829,8 +1828,9 @@ _SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
 }
 PHRASE_ALIASES.update(_SAID_OTHERWISE)
 """More of :data:`PHRASE_ALIASES`: wishes that forbid, emphatic orders, *my little one*."""
-PHRASE_ALIASES.update({  # "wipe the toilet, then do the same in the bathroom upstairs": the one of that kind there
-    ("the", "same", where): ("the", "one", where) for where in ("in", "inside", "upstairs", "downstairs", "on")
+PHRASE_ALIASES.update({  # "wipe the toilet, then do the same in the bathroom upstairs": that kind there
+    ("the", "same", where): ("the", "one", where)
+    for where in ("in", "inside", "upstairs", "downstairs", "on")
 })
 PHRASE_ALIASES.update({  # "set it down by X", "pop it on X", "stick them in X": the thing carried put there
     (verb, it, *down, where): ("put", it, *down, where)

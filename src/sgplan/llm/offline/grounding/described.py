@@ -133,7 +133,8 @@ def others(entities: list[Entity], before: int, disc: Discourse, said_which: boo
     fits = {e.key for e in entities}
     read = [g for g in disc.references if g.role != "qualifier" or len(g.entities) == 1]
     told = [g for g in disc.mentions if len(g.entities) == 1]
-    said = [g for g in read + told if g.start < before and g.entities and all(e.key in fits for e in g.entities)]
+    said = [g for g in read + told
+            if g.start < before and g.entities and all(e.key in fits for e in g.entities)]
     # a phrase naming every X names none in particular when another names one (*Bathrooms to clean: the one
     # with the vase, then the other one*); named alone, every X is named and no other is left
     particular = [g for g in said if len(g.entities) == 1 or {e.key for e in g.entities} != fits]

@@ -293,8 +293,8 @@ def noun_with_head(r: Reader, first: int, i: int, role: Role, det: Determiner, r
                           None, False)
         held = Contains(thing, said, None, False)
         i += room.words
-        noun = Described(r.span(first, i), r.word(first), replace(det, descriptive=()), relative, floor_before,
-                         None, room, None, (held,), None, False, det.descriptive)
+        noun = Described(r.span(first, i), r.word(first), replace(det, descriptive=()), relative,
+                         floor_before, None, room, None, (held,), None, False, det.descriptive)
         return qualifiers.finish(r, first, i, noun, role, False)
     noun = Described(r.span(first, i), r.word(first), replace(det, mode=mode, descriptive=()), relative,
                      floor_before, modifier, ref, compound, (), None, False, det.descriptive)

@@ -593,7 +593,8 @@ def relative_have(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipp
     if negated:
         return Match(Lacks(thing.node, r.span(noun.first, thing.end)), skip_in_it(r, thing.end))
     end, nothing_else = contents_end(r, thing.end)
-    said_as = Contains(thing.node, r.span(noun.first, thing.end), count, (only and count is None) or nothing_else)
+    only = (only and count is None) or nothing_else
+    said_as = Contains(thing.node, r.span(noun.first, thing.end), count, only)
     return Match(said_as, end)
 
 
