@@ -28,7 +28,7 @@ from sgplan.llm.offline.grounding.phrases import (
     grounds,
     head_entities,
 )
-from sgplan.llm.offline.grounding.places import next_to_it, there_floors, there_rooms
+from sgplan.llm.offline.grounding.places import next_to_it, there_floors, there_holding, there_rooms
 from sgplan.llm.offline.names import Entity, head_word
 from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
@@ -51,6 +51,7 @@ from sgplan.llm.offline.syntax.tree import (
     ShortStay,
     Span,
     There,
+    ThereNP,
 )
 
 APPLIERS: Registry[Callable[[Any, Noun, Described, Where, Discourse], Noun]] = Registry("qualifier")
@@ -316,7 +317,10 @@ def there(q: There, noun: Noun, np: Described, where: Where, disc: Discourse) ->
     if noun.head.kind == "room":
         floors = there_floors(np.span.start, noun.head, disc, where.action_floor)
         return Noun(noun.head, on_floors(noun.entities, FloorReading(floors), disc), noun.room_scoped)
-    return Noun(noun.head, disc.vocab.inside(noun.entities, there_rooms(np.span.start, disc)), True)
+    inside = disc.vocab.inside(noun.entities, there_rooms(np.span.start, disc))
+    if not inside:  # "don't go in the living room until ... the TV in there": the one place named holding one
+        inside = disc.vocab.inside(noun.entities, there_holding(np.span.start, noun.entities, disc))
+    return Noun(noun.head, inside, True)
 
 
 @applies(InRoom)
@@ -333,6 +337,10 @@ def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse)
     if noun.head.kind != "object" or any(e.kind != "room" for g in rooms for e in g.entities):
         rf.refuse(rf.object_in_room(said))
     entities = disc.vocab.inside(noun.entities, [e for g in rooms for e in g.entities])
+    if not entities and len(q.rooms) == 1 and isinstance(q.rooms[0], ThereNP):
+        # "don't go in the living room until ...; look at the TV in there": the one place named holding one
+        rooms[0].entities = there_holding(q.span.start, noun.entities, disc)
+        entities = disc.vocab.inside(noun.entities, rooms[0].entities)
     for room in rooms:
         room.entities = [r for r in room.entities if any(e.room_key == r.key for e in entities)]
         if len(rooms) > 1 and not room.entities:  # not "... in A, and B": that would be another goal
