@@ -955,6 +955,10 @@ _FINE = ((), ("is", "fine"), ("is", "ok"), ("is", "okay"), ("is", "good"), ("wil
          ("would", "do"), ("would", "be", "fine"), ("will", "be", "fine"), ("you", "like"), ("you", "want"),
          ("you", "prefer"), ("you", "choose"), ("is", "closer"), ("is", "nearer"))
 _FINE += tuple(("'s", *fine[1:]) for fine in _FINE if fine[:1] == ("is",))  # "either one's fine"
+CHOOSERS_OF_KIND = ("either", "any", "whichever")
+REMARK_FINE = Phrases(tuple(fine for fine in _FINE if fine))
+"""*the bathroom upstairs, either sink is fine*: a remark choosing an object of the room just named (a sink of
+that bathroom)."""
 CHOICE_AFFIRMATIONS = Phrases(tuple(
     chooser + fine for chooser in _CHOOSERS for fine in _FINE
     if chooser + fine not in (("either",), ("any",))  # bare "either" / "any" start a noun phrase

@@ -40,10 +40,12 @@ from sgplan.llm.offline.syntax.tree import (
     Mode,
     NounPhrase,
     OneHead,
+    OnFloor,
     PhraseList,
     Pronoun,
     Role,
     SameRoom,
+    Span,
     ThereNP,
 )
 
@@ -298,7 +300,27 @@ def noun_with_head(r: Reader, first: int, i: int, role: Role, det: Determiner, r
         return qualifiers.finish(r, first, i, noun, role, False)
     noun = Described(r.span(first, i), r.word(first), replace(det, mode=mode, descriptive=()), relative,
                      floor_before, modifier, ref, compound, (), None, False, det.descriptive)
-    return qualifiers.finish(r, first, i, noun, role, compound is not None or modifier is not None)
+    found = qualifiers.finish(r, first, i, noun, role, compound is not None or modifier is not None)
+    return chosen_inside(r, found) if isinstance(found, Match) else found
+
+
+def chosen_inside(r: Reader, found: Match[Described]) -> Match[Described]:
+    """*the bathroom on the middle floor, either sink is fine*: a remark choosing an object of the room just
+    named makes the phrase such an object in it, as *the bathroom sink* (any of them when they lie in one
+    room, refused when they lie in several); ``found`` unchanged otherwise (a remark about the room itself
+    is read where choices are)."""
+    noun, i = found.node, found.end
+    k = i + (1 if r.word(i) == "," else 0)
+    head = r.head(k + 1) if r.word(k) in lx.CHOOSERS_OF_KIND else None
+    if (head is None or head.kind != "object" or not isinstance(noun.head, Head) or noun.head.kind != "room"
+            or noun.head.plural or noun.compound is not None or noun.determiner.mode != "the"
+            or not all(isinstance(q, OnFloor) for q in noun.qualifiers)):  # the room's contents: of it
+        return found
+    fine = r.phrase(k + 1 + head.words, lx.REMARK_FINE)
+    end = k + 1 + head.words + len(fine or ())
+    if fine is None or r.word(end) not in lx.CLAUSE_ENDS:
+        return found
+    return Match(replace(noun, span=Span(noun.span.start, r.span(k, end).end), compound=head), end)
 
 
 def room_named_by_object(r: Reader, first: int, i: int, ref: Head, modifier: str | None) -> Head | None:
