@@ -1036,6 +1036,8 @@ ORDER_HEADS = frozenset({"first", "firstly", "then", "next", "finally", "last", 
 """Before a colon (*Then: the kitchen*, *Before that: the office*): words of the order, read as if a comma
 stood there, never dropped as a heading."""
 BEFORE_THAT = ("before", "that")
+BEFORE_PRONOUNS = frozenset({"it", "this"})
+"""After *before*, words learners write for *that* (*visit the lobby, but before it pass the table*)."""
 ON_THE_WAY = Phrases((("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way")))
 WAY_TOWARDS = frozenset({"up", "down", "over", "out"})
 """*on your way up to X*: the way to X all the same."""

@@ -26,6 +26,8 @@ def context_fragment(r: Reader, opener: bool) -> bool:
     ``opener``: no sentence with goals came before it (then *again* and *last* order nothing)."""
     if any(r.head(k) is not None for k in range(len(r))):
         return False
+    if len(r) <= 2 and any(r.nouns.names_word(w) for w in r.words):
+        return False  # "dining:" heading a line is the dining room cut short, never a scene-setting gerund
     k = r.skip(0, lx.INTERJECTIONS)
     end = talk_phrase(r, k, opener) or gerund(r, k)
     if end is None:
