@@ -145,6 +145,11 @@ def before_bare_verb(said: str) -> str:
                     "'before that'")
 
 
+def before_pronoun(said: str) -> str:
+    return rephrase(f"'{said}': before which goal, or before all of them? Say 'before that' (before "
+                    "everything said so far) or name the goal")
+
+
 def times_in_order(times: list[str]) -> str:
     said = " and ".join(f"'{t}'" for t in times)
     return rephrase(f"{said} may put the goals in an order of times, and a plan has no clock; leave the "
@@ -784,6 +789,11 @@ def there_goal_or_kept_out(goal: str, kept_out: str) -> str:
 def there_goal_or_mention(goal: str, mention: str) -> str:
     return rephrase(f"'there' could be '{goal}', the last place to go, or '{mention}', named after it in "
                     "what was set aside; name the place")
+
+
+def there_place_or_thing(place: str, thing: str) -> str:
+    return rephrase(f"'there' is '{place}', named in what was set aside with '{thing}' in it: is the goal to go "
+                    f"into the room, or to reach '{thing}'? Name the goal")
 
 
 def back_there(phrase: str) -> str:
