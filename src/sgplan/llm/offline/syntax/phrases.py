@@ -26,7 +26,6 @@ from sgplan.llm.offline.syntax.noun_slot import (
 )
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.tree import (
-    Contains,
     Described,
     Determiner,
     FloorPlace,
@@ -289,15 +288,6 @@ def noun_with_head(r: Reader, first: int, i: int, role: Role, det: Determiner, r
     if kind == "room" and (after := r.head(i)) is not None and after.kind == "object":
         compound, i = after, i + after.words  # "the kitchen sink": the sink in the kitchen
         mode = "all" if after.plural and mode == "the" else mode
-    if isinstance(ref, Head) and (room := room_named_by_object(r, first, i, ref, modifier)) is not None:
-        said = r.span(i - ref.words, i)
-        thing = Described(said, r.word(said.start), Determiner("the", None), None, None, None, ref, None, (),
-                          None, False)
-        held = Contains(thing, said, None, False)
-        i += room.words
-        noun = Described(r.span(first, i), r.word(first), replace(det, descriptive=()), relative,
-                         floor_before, None, room, None, (held,), None, False, det.descriptive)
-        return qualifiers.finish(r, first, i, noun, role, False)
     noun = Described(r.span(first, i), r.word(first), replace(det, mode=mode, descriptive=()), relative,
                      floor_before, modifier, ref, compound, (), None, False, det.descriptive)
     found = qualifiers.finish(r, first, i, noun, role, compound is not None or modifier is not None)
@@ -321,19 +311,6 @@ def chosen_inside(r: Reader, found: Match[Described]) -> Match[Described]:
     if fine is None or r.word(end) not in lx.CLAUSE_ENDS:
         return found
     return Match(replace(noun, span=Span(noun.span.start, r.span(k, end).end), compound=head), end)
-
-
-def room_named_by_object(r: Reader, first: int, i: int, ref: Head, modifier: str | None) -> Head | None:
-    """The room head after an object head ending at ``i`` in *(back) to the plant bedroom*, *into the teddy
-    bear room* (the room holding that object), or ``None``. Only after *the* and a word that leads to a room
-    (prose, where the two nouns make one name): in notes *bowl kitchen* may be two goals, and after *grab
-    the bowl kitchen* the bowl may be what is meant."""
-    room = r.head(i)
-    if (ref.kind != "object" or ref.plural or modifier is not None or r.word(first) != "the" or room is None
-            or r.word(first - 1) not in lx.INTO_A_ROOM or room.kind != "room" or room.plural
-            or r.head(i + room.words) is not None):
-        return None
-    return room
 
 
 def determiner(r: Reader, i: int, other: bool) -> Parse[Determiner]:

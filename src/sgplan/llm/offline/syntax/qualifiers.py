@@ -246,10 +246,16 @@ def possessive(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]
 
 @QUALIFIERS.rule("object room")
 def object_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
-    """*the teddy bear room*, *the TV room*: the room holding it, as *the teddy bear's room*."""
+    """*the teddy bear room*, *the TV room*: the room holding it, as *the teddy bear's room*; with a kind of
+    room (*back to the plant bedroom*, *into the teddy bear room*) only after *the* and a word that leads to
+    a room (in notes *bowl kitchen* may be two goals, and after *grab the bowl kitchen* the bowl may be
+    meant)."""
     head = r.head(i)
-    if (noun.kind != "object" or noun.room_scoped or r.word(i) not in lx.GENERIC_ROOM_WORDS or head is None
-            or head.kind != "room" or head.categories):
+    if (noun.kind != "object" or noun.room_scoped or head is None or head.kind != "room" or head.plural
+            or r.head(i + head.words) is not None):
+        return None
+    named_room = r.word(noun.first) == "the" and r.word(noun.first - 1) in lx.INTO_A_ROOM
+    if r.word(i) not in lx.GENERIC_ROOM_WORDS and not named_room:
         return None
     return Match(Possessive(head, r.span(noun.first, i + head.words)), i + head.words)
 
