@@ -42,6 +42,7 @@ Order = Literal["ordered", "any"]
 def read_lists(readers: list[Reader]) -> list[Reader]:
     """``readers`` (sentences, some ending with a colon, some list items) with each list's heading read
     and its items ordered (see the module docstring)."""
+    readers = items_with_room_heading(readers)
     out: list[Reader] = []
     k = 0
     while k < len(readers):
@@ -75,6 +76,24 @@ def ordered_before(out: list[Reader]) -> list[Reader] | None:
     if len(goals) < 2 or not plain:
         return None
     return [replace(r, after_item=True) if n in goals[1:] else r for n, r in enumerate(out)]
+
+
+def items_with_room_heading(readers: list[Reader]) -> list[Reader]:
+    """``readers`` with each list item that is a room and a colon joined to the words after the colon on
+    its line (*- kitchen: check the microwave*, *2) bedroom with the clock: the clock*): one item, read in
+    that room, as *Kitchen: check the microwave* is on a line of its own. An item's colon before anything
+    else is left as it is (and refused)."""
+    out: list[Reader] = []
+    for r in readers:
+        last = out[-1] if out else None
+        said = replace(last, toks=last.toks[:-1]) if last is not None and last.word(len(last) - 1) == ":" else None
+        heading = room_heading(labelled(said)) if said is not None and said.marker and said.toks else None
+        if last is not None and heading is not None and r.marker is None and not r.new_line and r.toks:
+            item = heading_kept_out(heading, r) or replace(r, toks=heading.prefix + r.toks)
+            out[-1] = replace(item, marker=last.marker, new_line=last.new_line)
+            continue
+        out.append(r)
+    return out
 
 
 def list_run(readers: list[Reader], k: int) -> list[Reader]:
