@@ -271,6 +271,11 @@ LIST_NOUNS = word_set("list lists checklist todo do round rounds run runs tour r
                       "check stops visits things items duties rota program programme rules rule dos donts "
                       "rundown")
 """Words that name a list in its heading (*Morning round*, *Evening checks*, *To do:*, *Top floor tasks*)."""
+WORK_NOUNS = word_set("duty care patrol sweep sweeps maintenance cleanup inspection inspections walkthrough "
+                      "circuit loop")
+"""Nouns of a round of work that head a list or the steps after a colon as :data:`LIST_NOUNS` do
+(*Bathroom duty:*, *Plant care:*, *Evening patrol:*): they name the work, never a goal."""
+LIST_NOUNS = LIST_NOUNS | WORK_NOUNS
 LABEL_STOPS = word_set("until till before after only except never not no if unless when whenever then first "
                        "last again twice once but or nor without stay remain keep staying avoid leave there")
 """Words a list's label never holds: a heading with one of them is a sentence of its own."""

@@ -281,6 +281,8 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
         return [replace(said, toks=(), announced=order)] if after is not None else [said]
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
         said = replace(said, toks=())  # "Here's the plan:", "Remember:": they ask nothing
+    if after is not None and (label := work_label(said, after)) is not None:
+        return [label]  # "Bathroom duty: go to the bathroom with the vase ...": the steps name their rooms
     # "Kitchen jobs: the oven, then ...": the kitchen's oven
     announced = (announcement(said) or verb_prefix(said) or room_heading(labelled(said))
                  or floor_heading(said) if said.toks else None)
@@ -293,6 +295,25 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
     if announced is not None and after is not None:
         return [replace(said, toks=(), announced=announced)]
     return [said] if said.toks else []
+
+
+def work_label(said: Reader, after: Reader) -> Reader | None:
+    """*Bathroom duty*, *Kitchen jobs* (a kind of room before words naming a list or a round of work, before
+    a colon) over steps that name rooms of that kind themselves (*: go to the bathroom with the vase, then
+    the one upstairs*): the heading names the work, not the room of the steps; it is set aside and said back.
+    ``None`` (the heading is the room of the steps, as *Kitchen jobs: the oven* is) when the steps name no
+    such room, or name a choice or several of a kind before it, which the heading's room could narrow."""
+    head = said.head(0)
+    rest = said.words[head.words:] if head is not None else ()
+    if head is None or head.kind != "room" or not rest or not all(w in lx.LIST_NOUNS for w in rest):
+        return None
+    for k in range(len(after)):
+        h = after.head(k)
+        if h is not None and h.kind == "room" and h.categories == head.categories:
+            return replace(said, aside=True)
+        if h is not None and (h.plural or after.word(k - 1) in lx.CHOICE_WORDS):
+            return None
+    return None
 
 
 def room_heading(r: Reader) -> Announced | None:
