@@ -547,6 +547,11 @@ GIVEN_MANNER = frozenset({"quick", "good", "little", "proper", "gentle", "thorou
 """Between *a* and a chore said as a noun (*give the couch a good fluff*)."""
 GIVEN_AGAIN = frozenset({"another"})
 """*give X another splash / look*: the chore given again (a new visit of X, as *X again*)."""
+LOOKED_AGAIN = Phrases(tuple(("another", *quick, what) for quick in ((), ("quick",), ("good",), ("little",),
+                                                                ("proper",), ("close",), ("closer",))
+                             for what in ("look", "peek", "glance", "visit", "trip", "stop", "check")))
+"""*have / take another look at X*, *pay another visit to X*, *make another trip to X*: a verb idiom of a new
+visit of X (as *X again*)."""
 GIVEN_ENDS = frozenset({"", ",", "and", "then", "but", "please", "too", "as", "before", "after", "first"})
 """After *give X a <chore>*: the clause ends (a word after the chore may make it a thing: *a new flower*)."""
 BODY_PART_OWNERS = ("your", "my", "his", "her", "their")
