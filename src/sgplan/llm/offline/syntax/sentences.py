@@ -234,7 +234,7 @@ def done_with_first(r: Reader, i: int) -> Parse[SentenceBody]:
     done = done_words(r, i)
     if not done or r.word(i + done) not in lx.DONE_WITH or not r.np_starts(i + done + 1):
         return None
-    return prefixed(r, i + done + 1, prefix_last=False)
+    return with_main_clause(r, i, prefixed(r, i + done + 1, prefix_last=False))
 
 
 @OPENINGS.rule("if X, Y")
@@ -274,12 +274,22 @@ def only_after_first(r: Reader, i: int) -> Parse[SentenceBody]:
 
 @OPENINGS.rule("after X, Y")
 def after_first(r: Reader, i: int) -> Parse[SentenceBody]:
-    """*After / once X, Y*: X, then Y."""
+    """*After / once X, Y*: X, then Y (see :func:`with_main_clause`)."""
     if r.word(i) not in ("after", "once") or r.phrase(i, lx.AFTER_THAT):
         return None
     if at_time(r, i + 1):
         return Refusal(rf.order_by_a_time(r.quote(i, at_time(r, i + 1))))
-    return prefixed(r, i + 1, prefix_last=False)
+    return with_main_clause(r, i, prefixed(r, i + 1, prefix_last=False))
+
+
+def with_main_clause(r: Reader, i: int, said: Parse[SentenceBody]) -> Parse[SentenceBody]:
+    """``said``, a sentence opened at ``i`` by *after / once / when done with X*, refused when nothing
+    follows X (no comma, no *then*, no goal): *Go to the kitchen. After the office.* is the next step, as
+    learners write *after*, or the sentence before it, after X?"""
+    if (isinstance(said, Match) and isinstance(said.node, PrefixedSentence) and not said.node.body.items
+            and said.node.postfix is None and not {",", "then"} & set(r.words[i + 1:])):
+        return Refusal(rf.after_before_or_then(r.quote(i, len(r))))
+    return said
 
 
 def at_time(r: Reader, i: int) -> int:
