@@ -132,10 +132,26 @@ def strict_order_first(r: Reader) -> Reader:
         start, end, order = 1, len(r) - 2, (r.toks[0], *r.toks[len(r) - 2:])
     else:
         return r
-    if start == end or set(r.words[start:end]) & (lx.LIST_JOINERS | lx.STRICT_WORDS):
+    if start == end:
         return r
+    if set(r.words[start:end]) & (lx.LIST_JOINERS | lx.STRICT_WORDS):
+        return strict_closing_after_and(r, closing) if closing is not None else r
     comma = Tok(",", order[-1].end, order[-1].end)
     return replace(r, toks=(*order, comma, *r.toks[start:end]))
+
+
+def strict_closing_after_and(r: Reader, closing: int) -> Reader:
+    """*A, and go to B only after that* (B's own clause, a verb after the last *and*, closes with the strict
+    order): *A, and only after that, go to B*, which it says with its words moved; ``r`` itself unless the
+    clause of B holds no other joiner or order word (*A and B only after that*, with no verb of its own, is
+    left to the body's rules, which refuse it: does only B wait, or both?)."""
+    joined = max((k for k in range(1, closing) if r.word(k) == "and"), default=None)
+    if (joined is None or r.word(joined + 1) not in lx.POSITIVE_VERBS
+            or set(r.words[joined + 1:closing]) & (lx.LIST_JOINERS | lx.STRICT_WORDS)):
+        return r
+    order = r.toks[closing:]
+    comma = Tok(",", order[-1].end, order[-1].end)
+    return replace(r, toks=(*r.toks[:joined + 1], *order, comma, *r.toks[joined + 1:closing]))
 
 
 def ordered_opening(r: Reader, i: int) -> bool:
