@@ -362,7 +362,8 @@ def between_clauses(r: Reader, i: int, end: int, before: Said) -> bool:
 @ITEMS.rule("before X")
 def inline_before(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """*A before B*: B a step after A. Not *A, (but) before go to B*, which learners write for *before that,
-    go to B* (B first): refused."""
+    go to B* (B first), nor *A, and / but before B* closing the sentence (all that before B, or before that,
+    B?), nor *A, and before you go to B, C* (is A before B too?): refused."""
     if r.word(i) != "before":
         return None
     nxt = r.word(i + 1)
@@ -372,6 +373,15 @@ def inline_before(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse
     found = after_conjunction(r, i + 1)
     if isinstance(found, Match) and near_said(r, i, found.end):
         return Refusal(rf.before_near(r.quote(i, found.end)))  # "check X before you go anywhere near Y"
+    clause_after = isinstance(found, Match) and r.word(found.end) == "," and found.end + 1 < len(r)
+    if (isinstance(found, Match) and found.node.phrases is not None and found.node.phrases.comma_list
+            and r.word(i - 1) in (",", "and", "but", "then")):  # "A, then before X, Y": a list, or Y first?
+        return Refusal(rf.before_clause_between(r.quote(i, found.end), r.quote(0, i - 1).rstrip(" ,")))
+    if isinstance(found, Match) and (between_clauses(r, i, found.end, before)
+                                     or (r.word(i - 1) == "then" and clause_after)):
+        if found.end == len(r):  # "A, and before the couch.": all that before it, or before that, it?
+            return Refusal(rf.before_bare_verb(r.quote(i, found.end)))
+        return Refusal(rf.before_clause_between(r.quote(i - 1, found.end), r.quote(0, i - 1).rstrip(" ,")))
     return Match(InlineBefore(found.node), found.end) if isinstance(found, Match) else found
 
 

@@ -299,11 +299,18 @@ def after_first(r: Reader, i: int) -> Parse[SentenceBody]:
 
 
 def with_main_clause(r: Reader, i: int, said: Parse[SentenceBody]) -> Parse[SentenceBody]:
-    """``said``, a sentence opened at ``i`` by *after / once / when done with X*, refused when nothing
-    follows X (no comma, no *then*, no goal): *Go to the kitchen. After the office.* is the next step, as
-    learners write *after*, or the sentence before it, after X?"""
-    if (isinstance(said, Match) and isinstance(said.node, PrefixedSentence) and not said.node.body.items
-            and said.node.postfix is None and not {",", "then"} & set(r.words[i + 1:])):
+    """``said``, a sentence opened at ``i`` by *after / once / when done with / before X*, refused when
+    nothing follows X (no comma, no *then*, no goal): *Go to the kitchen. After the office.* is the next
+    step, as learners write *after*, or the sentence before it, after X? So is one whose X took the goal after
+    its comma as a list (*Before the office, the fridge.*: the fridge first, or both after?)."""
+    if not (isinstance(said, Match) and isinstance(said.node, PrefixedSentence) and not said.node.body.items
+            and said.node.postfix is None):
+        return said
+    phrases = said.node.prefix.phrases
+    if phrases is not None and len(phrases.items) > 1 and any(
+            t.text == "," and phrases.span.start <= t.start < phrases.span.end for t in r.toks):
+        return Refusal(rf.prefix_took_the_goals(r.quote(i, len(r))))
+    if not {",", "then"} & set(r.words[i + 1:]):
         return Refusal(rf.after_before_or_then(r.quote(i, len(r))))
     return said
 
@@ -354,7 +361,7 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
     end = next((k for k in range(i, len(r)) if r.word(k) == ","), len(r))
     if near_said(r, i, end):
         return Refusal(rf.before_near(r.quote(i, end)))
-    said = prefixed(r, i + 1, prefix_last=True)
+    said = with_main_clause(r, i, prefixed(r, i + 1, prefix_last=True))
     if not isinstance(said, Match) or not isinstance(said.node, PrefixedSentence):
         return said
     move = said.node.prefix
