@@ -144,11 +144,13 @@ def strict_closing_after_and(r: Reader, closing: int) -> Reader:
     """*A, and go to B only after that* (B's own clause, a verb after the last *and*, closes with the strict
     order): *A, and only after that, go to B*, which it says with its words moved; ``r`` itself unless the
     clause of B holds no other joiner or order word (*A and B only after that*, with no verb of its own, is
-    left to the body's rules, which refuse it: does only B wait, or both?)."""
+    left to the body's rules, which refuse it: does only B wait, or both?) and nothing before it negates
+    (*A without touching X, and B only after that*: does B wait for the not touching too?)."""
     joined = max((k for k in range(1, closing) if r.word(k) == "and"), default=None)
     if (joined is None or r.word(joined + 1) not in lx.POSITIVE_VERBS
-            or set(r.words[joined + 1:closing]) & (lx.LIST_JOINERS | lx.STRICT_WORDS)):
-        return r
+            or set(r.words[joined + 1:closing]) & (lx.LIST_JOINERS | lx.STRICT_WORDS)
+            or any(r.phrase(k, lx.NEG_STARTS) or r.word(k) == "without" for k in range(joined))):
+        return r  # a negation before it ("A without touching X, and B only after that"): after what?
     order = r.toks[closing:]
     comma = Tok(",", order[-1].end, order[-1].end)
     return replace(r, toks=(*r.toks[:joined + 1], *order, comma, *r.toks[joined + 1:closing]))
