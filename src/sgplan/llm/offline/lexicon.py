@@ -940,7 +940,9 @@ CORRECTIONS = Phrases((("i", "mean"), ("i", "meant"), ("no", "wait"), ("wait", "
                        # a bare "sorry" or "no" between commas: "the garage, sorry, the office"
                        ("sorry", ","), ("no", ","), ("oops", ","), ("whoops", ","), ("er", "no"),
                        ("no", "no"), ("hang", "on"), ("wait", "a", "sec"), ("wait", "a", "second"),
-                       ("sorry", "i", "mean")))
+                       ("sorry", "i", "mean"),
+                       # "no" before an article or "actually" names the thing meant, not one to avoid
+                       ("no", "actually"), ("no", "a"), ("no", "an"), ("no", "the")))
 """Words with which a speaker takes back what they said (*go to the kitchen, sorry, I mean the office*):
 which part stands is not read; refused."""
 UNFINISHED = DETERMINERS | frozenset({"to", "into", "in", "on", "at", "of", "through", "from", "by"})
