@@ -132,10 +132,14 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
 
 def obliged_after(r: Reader, i: int) -> int | None:
     """Where the verb is in *after you must / have to / need to X* at ``i`` (as learners write *after that,
-    you must X*: a clause of time never says what must be done); ``None`` otherwise."""
+    you must X*: a clause of time never says what must be done); ``None`` otherwise, and when X keeps out of
+    something (*after you must not go to X*: a prohibition for part of the mission, left to be refused)."""
     k = i + 1 + (1 if r.word(i + 1) in lx.OBLIGED_SUBJECTS else 0)
     said = r.phrase(k, lx.OBLIGED)
-    return k + len(said) if said is not None and k > i + 1 else None
+    verb = k + len(said) if said is not None and k > i + 1 else None
+    if verb is None or r.phrase(verb, lx.NEG_STARTS) or r.word(verb) not in lx.POSITIVE_VERBS:
+        return None
+    return verb
 
 
 def near_said(r: Reader, start: int, end: int) -> bool:
