@@ -1222,6 +1222,9 @@ EVER = Phrases((("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at",
 """In a condition ("if you ever go into X"): once or on each visit? Writers read it both ways: refused."""
 OBLIGED = Phrases((("must",), ("have", "to"), ("has", "to"), ("need", "to"), ("needs", "to")))
 """*Before you enter Y, you must X*: an obligation, so Y is not entered before X (not only X, then Y)."""
+CONDITION_AFTERWARDS = frozenset({"afterwards", "afterward", "after", "later"})
+"""Between the visit and *and* of one errand a condition asks for (*swing by the kitchen afterwards and check
+the microwave*): the condition's *afterwards*, no step of its own."""
 VISIT_NOUNS = frozenset({"visit", "visits", "trip", "trips", "entry", "entries"})
 """After *no X* (*No kitchen visits.*, *no office trips please*): going into X, as *no visits to X*."""
 OBLIGED_SUBJECTS = frozenset({"you", "u", "we", "robot"})

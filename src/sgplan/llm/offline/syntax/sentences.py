@@ -576,11 +576,35 @@ def state_said(r: Reader, said: Action) -> int | None:
 
 
 def consequent(r: Reader, i: int) -> Parse[Body]:
-    """What a condition asks for: one action; with several it is not clear which belong to it (refused)."""
+    """What a condition asks for: one action, or one errand (:func:`one_errand`); with several it is not
+    clear which belong to it (refused)."""
     said = body(r, i)
-    if isinstance(said, Match) and said.node.actions > 1:
+    if isinstance(said, Match) and said.node.actions > 1 and not one_errand(r, said.node):
         return Refusal(rf.several_actions_after_condition())
     return said
+
+
+def one_errand(r: Reader, said: Body) -> bool:
+    """Whether ``said`` is a visit of one room and, after *and*, an action on things named without a room
+    (*swing by the kitchen afterwards and check the microwave*): one errand in that room, the things looked
+    for there, so both belong to the condition (after *then*, or with a room named in the second action,
+    which actions belong to it stays unclear)."""
+    actions = [item.action for item in said.items if isinstance(item, PlainAction)]
+    links = [item for item in said.items if isinstance(item, Link)]
+    if len(actions) != 2 or len(actions) + len(links) != len(said.items) or any(
+            link.strict or link.waypoint for link in links):
+        return False
+    visit, act = actions
+    if visit.phrases is None or act.phrases is None or len(visit.phrases.items) != 1:
+        return False
+    visited = [h for k in range(len(r)) if r.toks[k].start >= visit.phrases.span.start
+               and r.toks[k].end <= visit.phrases.span.end and (h := r.head(k)) is not None]
+    acted = [h for k in range(len(r)) if r.toks[k].start >= act.span.start and r.toks[k].end <= act.span.end
+             and (h := r.head(k)) is not None]
+    joined = r.text[visit.span.end:act.span.start].lower().replace(",", " ").split()
+    return (joined[-1:] == ["and"] and all(w in lx.CONDITION_AFTERWARDS for w in joined[:-1])
+            and len(visited) == 1 and visited[0].kind == "room" and bool(acted)
+            and all(h.kind == "object" for h in acted))
 
 
 def postfix(r: Reader, i: int, body_actions: int) -> Parse[Postfix]:
