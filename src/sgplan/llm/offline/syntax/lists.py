@@ -86,7 +86,8 @@ def items_with_room_heading(readers: list[Reader]) -> list[Reader]:
     out: list[Reader] = []
     for r in readers:
         last = out[-1] if out else None
-        said = replace(last, toks=last.toks[:-1]) if last is not None and last.word(len(last) - 1) == ":" else None
+        colon_end = last is not None and last.word(len(last) - 1) == ":"
+        said = replace(last, toks=last.toks[:-1]) if last is not None and colon_end else None
         heading = room_heading(labelled(said)) if said is not None and said.marker and said.toks else None
         if last is not None and heading is not None and r.marker is None and not r.new_line and r.toks:
             item = heading_kept_out(heading, r) or replace(r, toks=heading.prefix + r.toks)
