@@ -547,6 +547,12 @@ GIVEN_MANNER = frozenset({"quick", "good", "little", "proper", "gentle", "thorou
 """Between *a* and a chore said as a noun (*give the couch a good fluff*)."""
 GIVEN_AGAIN = frozenset({"another"})
 """*give X another splash / look*: the chore given again (a new visit of X, as *X again*)."""
+LOOK_LIGHT_VERBS = frozenset({"take", "taking"})
+"""Before *a (quick) look* (*have a look* is read *take a look*)."""
+LOOK_NOUNS = frozenset({"look", "peek", "glance"})
+"""The last word of a look said as a noun (*a quick look*, *a peek*)."""
+LOOK_AROUND = frozenset({"around", "round", "about", "inside"})
+"""After a look at nothing named (*go to the lobby and have a look around*): the room just named."""
 LOOKED_AGAIN = Phrases(tuple(("another", *quick, what) for quick in ((), ("quick",), ("good",), ("little",),
                                                                 ("proper",), ("close",), ("closer",))
                              for what in ("look", "peek", "glance", "visit", "trip", "stop", "check")))

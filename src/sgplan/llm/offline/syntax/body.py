@@ -305,6 +305,21 @@ def after_one_room(before: Said) -> bool:
     return phrases is not None and len(phrases.items) == 1 and names_rooms(phrases.items[0])
 
 
+@ITEMS.rule("and have a look")
+def and_have_a_look(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*go down to the lobby and have a (quick) look (around)*: a look at nothing named after one room is a
+    look at that room, which its visit already asks (the words say nothing more); after anything but one
+    room it is left to the action, which refuses it (a look at what?)."""
+    if r.word(i - 1) != "and" or r.word(i) not in lx.LOOK_LIGHT_VERBS or not after_one_room(before):
+        return None
+    look = r.phrase(i + 1, lx.VERB_IDIOMS)
+    if look is None or look[-1] not in lx.LOOK_NOUNS:
+        return None
+    k = i + 1 + len(look)
+    k += 1 if r.word(k) in lx.LOOK_AROUND else 0
+    return Match(Skip(), k) if r.word(k) in ("", ",", "then") else None
+
+
 @ITEMS.rule("in between")
 def in_between_link(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """*A, then B, and in between (,) Y*: Y right before B, as *on the way, Y* puts it (B one goal after a
