@@ -949,9 +949,11 @@ CORRECTIONS = Phrases((("i", "mean"), ("i", "meant"), ("no", "wait"), ("wait", "
                        ("sorry", "i", "mean"),
                        # "no" before an article or "actually" names the thing meant, not one to avoid
                        ("no", "actually"), ("no", "a"), ("no", "an"), ("no", "the"),
-                       # a change of mind said in a sentence of its own (*Go to the kitchen. Actually, the office.*)
+                       # a change of mind said in a sentence of its own (*Go to the kitchen. Actually, the
+                       # office.*)
                        ("actually", ","), ("actually", "the"), ("actually", "a"), ("actually", "an"),
-                       ("actually", "make"), ("actually", "go"), ("actually", "just"), ("make", "it"), ("change", "of", "plan"), ("change", "of", "plans"),
+                       ("actually", "make"), ("actually", "go"), ("actually", "just"), ("make", "it"),
+                       ("change", "of", "plan"), ("change", "of", "plans"),
                        ("on", "second", "thought"), ("on", "second", "thoughts"), ("scratch", "the")))
 """Words with which a speaker takes back what they said (*go to the kitchen, sorry, I mean the office*):
 which part stands is not read; refused."""
