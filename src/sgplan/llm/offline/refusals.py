@@ -510,6 +510,16 @@ def on_the_way_to_nothing() -> str:
     return rephrase("'on the way' needs the goal it is on the way to, named before it")
 
 
+def either_of_more(said: str, described: list[str]) -> str:
+    return rephrase(f"'{said}' is one of two, but it matches {len(described)}: {', '.join(described)}; say "
+                    "'any ...' for one of them all, or name the room")
+
+
+def way_back_to(said: str) -> str:
+    return rephrase(f"'{said} ...' puts what follows before that place and after what came before, which is "
+                    "not read; say 'then Y, then go back to X'")
+
+
 def on_your_way_there() -> str:
     return rephrase("'on your way there': say 'before going to X, ...' or put the goals in order")
 

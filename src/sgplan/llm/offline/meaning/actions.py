@@ -133,6 +133,10 @@ def first_of_list(phrases: list[Grounded], first: bool,
     phrases = [g for n, g in enumerate(phrases)
                if not (n and keys[n] == keys[n - 1] and restates_group(g.phrase))
                and not (n and keys[n] >= keys[n - 1] and restates_choice(g, phrases[n - 1]))]
+    for g in phrases:
+        words = g.phrase.lower().split()
+        if g.mode == "any" and words[0] == "either" and "or" not in words and len(g.entities) != 2:
+            rf.refuse(rf.either_of_more(g.phrase, [e.describe() for e in g.entities]))  # one of two
     keys = [frozenset(e.key for e in g.entities) for g in phrases]
     repeated = [n for n, k in enumerate(keys) if any(k & j for j in keys[:n])]
     if not repeated and last_first and len(phrases) > 1:  # "go to the office, the kitchen first"

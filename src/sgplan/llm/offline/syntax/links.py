@@ -86,8 +86,10 @@ def on_the_way(r: Reader, i: int, way: tuple[str, ...],
     back_end = r.skip(i + len(way), lx.WAY_BACK)
     if r.word(back_end) == "from":  # "On your way back from X, Y": X, then Y
         return None if i == 0 else Refusal(rf.way_back_from_mid(r.quote(i, back_end + 1)))
+    if back_end > i + len(way) and r.word(back_end) in ("to", "into") and r.np_starts(back_end + 1):
+        return Refusal(rf.way_back_to(r.quote(i, back_end + 1)))  # "on your way back to X, Y": Y before X
     if sequence_too and r.word(i + len(way)) in lx.WAY_BACK:
-        return "sequence", r.skip(i + len(way), lx.WAY_BACK)
+        return "sequence", back_end
     return None
 
 
