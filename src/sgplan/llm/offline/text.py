@@ -208,18 +208,23 @@ def sentences(tokens: list[Tok]) -> list[Part]:
 
 def rewrite(tokens: list[Tok], aliases: dict[tuple[str, ...], tuple[str, ...]]) -> list[Tok]:
     """``tokens`` with every phrase of ``aliases`` (longest first, left to right) replaced by its reading;
-    each new token spans the whole phrase it replaces, so messages still quote the user's words."""
+    each new token spans the whole phrase it replaces, so messages still quote the user's words (a comma,
+    colon or question mark ending both the phrase and its reading keeps its own span)."""
     longest = max((len(k) for k in aliases), default=0)
     out: list[Tok] = []
     i = 0
     while i < len(tokens):
         for n in range(min(longest, len(tokens) - i), 0, -1):
             reading = aliases.get(tuple(t.text for t in tokens[i : i + n]))
-            if reading is not None:
-                start, end = tokens[i].start, tokens[i + n - 1].end
-                out += [Tok(w, start, end) for w in reading]
-                i += n
-                break
+            if reading is None:
+                continue
+            # a mark read as typed keeps its own place ("Before bed, ...": 'Before bed')
+            mark = n > 1 and reading[-1] in (",", ":", "?") and reading[-1] == tokens[i + n - 1].text
+            start, end = tokens[i].start, tokens[i + n - 1 - mark].end
+            out += [Tok(w, start, end) for w in reading[:len(reading) - mark]]
+            out += [tokens[i + n - 1]] if mark else []
+            i += n
+            break
         else:
             out.append(tokens[i])
             i += 1
