@@ -58,8 +58,9 @@ def kind_remark(r: Reader, before: list[Reader]) -> bool:
     """Whether the sentence ``r`` only remarks on the kind of a thing the orders before it named (*It's a
     fussy plant lol.*, *That's an old vase, mind.*): *it* / *that* / *this* and a verb of being, *a* / *an*,
     one or two words the translator does not know (the remark), the noun of a kind some order before it
-    named, and remarks only. Without such a word (*It's a vase.*: says what to look for), with a kind no
-    order named, or with *the* (*It's the kitchen.*: a correction) it is left to the parser."""
+    named as *the* one (*Check a vase. It's a pretty vase.* may say which to choose), and remarks only.
+    Without such a word (*It's a vase.*: says what to look for), with a kind no order named, or with *the*
+    (*It's the kitchen.*: a correction) it is left to the parser."""
     k = r.skip(0, lx.INTERJECTIONS)
     if (r.word(k) not in lx.DEICTIC_SUBJECTS or r.word(k + 1) not in ("'s", "is", "was")
             or r.word(k + 2) not in ("a", "an")):
@@ -73,7 +74,9 @@ def kind_remark(r: Reader, before: list[Reader]) -> bool:
     if head is None or not (k + head.words == len(r) or closing_only(r, k + head.words, len(r))):
         return False
     named = [h.categories for o in before if not o.aside
-             for j in range(len(o)) if (h := o.head(j)) is not None and not negated(o, j)]
+             for j in range(len(o)) if (h := o.head(j)) is not None and not negated(o, j)
+             and (o.word(j - 1) in lx.DEFINITE or o.word(j - 1) in lx.POSSESSIVES)
+             and not any(w in lx.CHOICE_WORDS or w in lx.UNIVERSAL for w in o.words)]
     return any(head.categories & other for other in named)
 
 
@@ -272,13 +275,14 @@ def aside_between(r: Reader, start: int, end: int) -> bool:
     """Whether the clause ``[start, end)`` between two parts of an order (between dashes, brackets or commas)
     is a statement that names nothing (*Avoid the living room - the carpet's wet - and go ...*, *..., the
     kids are napping, and ...*, *- I'm worried it's dying -*): a subject and a verb (:func:`statement`), with
-    no room, object, floor, negation, misspelt name or word that takes back (*..., I mean, ...*:
-    :mod:`.corrections` reads it or refuses it). The order around it reads as if it were not there;
-    a statement naming a place is left to the parser, which refuses it."""
+    no room, object, floor, negation, word of order or condition (*first*, *then*, *if*), misspelt name or
+    word that takes back (*..., I mean, ...*: :mod:`.corrections` reads it or refuses it). The order around
+    it reads as if it were not there; a statement naming a place is left to the parser, which refuses it."""
     return (statement(r, start, end) == "aside" and not r.says(lx.CORRECTIONS, start, end)
             and not any(r.head(k) is not None or r.word(k) in lx.RELATIVE_FLOORS
                         or r.word(k) in lx.FLOOR_WORDS
                         or r.word(k) in lx.CORRECTING_WORDS or r.phrase(k, lx.NEG_STARTS)
+                        or r.word(k) in lx.WISH_STOPS or r.word(k) in lx.SEQUENCE_TIMES  # "first", "later"
                         or r.word(k).startswith(("room_", "object_")) for k in range(start, end))
             and not misspelt_name(r, start, end))
 
@@ -464,7 +468,8 @@ def before_you_start(r: Reader) -> int | None:
     said = range(2, colon)
     return colon + 1 if (
             all(r.word(k).isalpha() and r.head(k) is None and r.word(k) not in lx.RELATIVE_FLOORS
-                    and (r.word(k) not in lx.STRUCTURAL or r.word(k) in lx.PARTICLES) for k in said)
+                    and (r.word(k) not in lx.STRUCTURAL or r.word(k) in lx.PARTICLES)
+                    and r.word(k) not in ("up", "down") for k in said)  # "Before you come down,": a floor
             and not misspelt_name(r, 2, colon)) else None
 
 
