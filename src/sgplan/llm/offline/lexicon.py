@@ -930,7 +930,13 @@ CORRECTIONS = Phrases((("i", "mean"), ("i", "meant"), ("no", "wait"), ("wait", "
                        # a bare "sorry" or "no" between commas: "the garage, sorry, the office"
                        ("sorry", ","), ("no", ","), ("oops", ","), ("whoops", ","), ("er", "no"),
                        ("no", "no"), ("hang", "on"), ("wait", "a", "sec"), ("wait", "a", "second"),
-                       ("sorry", "i", "mean")))
+                       ("sorry", "i", "mean"),
+                       # "no" before an article or "actually" names the thing meant, not one to avoid
+                       ("no", "actually"), ("no", "a"), ("no", "an"), ("no", "the"),
+                       # a change of mind said in a sentence of its own (*Go to the kitchen. Actually, the office.*)
+                       ("actually", ","), ("actually", "the"), ("actually", "a"), ("actually", "an"),
+                       ("actually", "make"), ("actually", "go"), ("actually", "just"), ("make", "it"), ("change", "of", "plan"), ("change", "of", "plans"),
+                       ("on", "second", "thought"), ("on", "second", "thoughts"), ("scratch", "the")))
 """Words with which a speaker takes back what they said (*go to the kitchen, sorry, I mean the office*):
 which part stands is not read; refused."""
 UNFINISHED = DETERMINERS | frozenset({"to", "into", "in", "on", "at", "of", "through", "from", "by"})
@@ -1034,6 +1040,8 @@ ORDER_HEADS = frozenset({"first", "firstly", "then", "next", "finally", "last", 
 """Before a colon (*Then: the kitchen*, *Before that: the office*): words of the order, read as if a comma
 stood there, never dropped as a heading."""
 BEFORE_THAT = ("before", "that")
+BEFORE_PRONOUNS = frozenset({"it", "this"})
+"""After *before*, words learners write for *that* (*visit the lobby, but before it pass the table*)."""
 ON_THE_WAY = Phrases((("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way")))
 WAY_TOWARDS = frozenset({"up", "down", "over", "out"})
 """*on your way up to X*: the way to X all the same."""

@@ -145,6 +145,11 @@ def before_bare_verb(said: str) -> str:
                     "'before that'")
 
 
+def before_pronoun(said: str) -> str:
+    return rephrase(f"'{said}': before which goal, or before all of them? Say 'before that' (before "
+                    "everything said so far) or name the goal")
+
+
 def times_in_order(times: list[str]) -> str:
     said = " and ".join(f"'{t}'" for t in times)
     return rephrase(f"{said} may put the goals in an order of times, and a plan has no clock; leave the "

@@ -204,6 +204,12 @@ def trailing_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemPars
     return Match(Skip(), i + length)
 
 
+def one_goal_said(before: Said) -> bool:
+    """Whether ``before`` holds one action with one phrase, and nothing else that is a goal."""
+    actions = [item for item in before if isinstance(item, PlainAction)]
+    return len(actions) == 1 and len(actions[0].action.phrases.items) == 1
+
+
 def after_one_goal(before: Said) -> bool:
     """Whether the last step of ``before`` is one action with one phrase, after a sequence word (*A, then
     B, and C afterwards*: after B is after A too, so both readings of *afterwards* agree)."""
@@ -221,8 +227,12 @@ def after_one_goal(before: Said) -> bool:
 
 @ITEMS.rule("but first")
 def goals_first(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
-    """*..., but first (go to) X* / *..., and before that X*: X before the steps said so far."""
-    before_that = r.at(i, *lx.BEFORE_THAT)
+    """*..., but first (go to) X* / *..., and before that X*: X before the steps said so far. *before it* /
+    *before this*, as learners write *before that*, only after one goal (which *it* is then certain)."""
+    before_it = r.word(i) == "before" and r.word(i + 1) in lx.BEFORE_PRONOUNS
+    if before_it and before and (not one_goal_said(before) or i + 2 == len(r)):  # "... before it."
+        return Refusal(rf.before_pronoun(r.quote(i, i + 2)))
+    before_that = r.at(i, *lx.BEFORE_THAT) or before_it
     if not before or not (r.word(i) in lx.FIRST or before_that):
         return None
     j = i + (2 if before_that else 1)
@@ -366,6 +376,8 @@ def inline_before(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse
     if r.word(i) != "before":
         return None
     nxt = r.word(i + 1)
+    if nxt in lx.BEFORE_PRONOUNS:  # "A before it": which goal 'it' is, and whether it means 'before that'
+        return Refusal(rf.before_pronoun(r.quote(i, i + 2)))
     if (r.word(i - 1) in (",", "and", "but") and nxt in lx.POSITIVE_VERBS and not is_gerund(nxt)
             and not r.np_starts(i + 1) and nxt not in lx.VERB_STOPS):
         return Refusal(rf.before_bare_verb(r.quote(i, i + 2)))

@@ -24,8 +24,10 @@ from sgplan.llm.offline.syntax.reader import Reader
 def context_fragment(r: Reader, opener: bool) -> bool:
     """Whether the sentence ``r`` is a fragment that only sets the scene (see the module docstring);
     ``opener``: no sentence with goals came before it (then *again* and *last* order nothing)."""
-    if any(r.head(k) is not None for k in range(len(r))):
-        return False
+    if any(r.head(k) is not None for k in range(len(r))) or r.says(lx.CORRECTIONS, 0, len(r)):
+        return False  # "Change of plan:" takes back what was said before it
+    if len(r) <= 2 and any(r.nouns.names_word(w) for w in r.words):
+        return False  # "dining:" heading a line is the dining room cut short, never a scene-setting gerund
     k = r.skip(0, lx.INTERJECTIONS)
     end = talk_phrase(r, k, opener) or gerund(r, k)
     if end is None:

@@ -207,6 +207,8 @@ def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order |
     said = replace(heading, toks=heading.toks[:-1]) if heading.word(len(heading) - 1) == ":" else heading
     said, remark = without_order_remark(said)  # "Visit these rooms in order:"
     order = order_said(remark, 0, len(remark)) if remark is not None else None
+    if said.says(lx.CORRECTIONS, 0, len(said)):
+        return [said], None, None, ()  # "Change of plan:": takes back what was said before (refused)
     if set(said.words) & lx.ORDER_HEADS and all(w in lx.FILLERS for w in said.words):
         return [said], None, None, ()  # "Then:" before a list: read alone (and refused), never dropped
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
@@ -251,6 +253,8 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
     if r.word(len(r) - 1) != ":":
         return [r]
     said, remark = without_order_remark(replace(r, toks=r.toks[:-1]))
+    if said.says(lx.CORRECTIONS, 0, len(said)):
+        return [said]  # "Change of plan: the office": takes back what was said before (refused)
     if after is not None and (split := room_heading_after_step(said)) is not None:
         return split  # "DR: wipe a table -> kit: bottle": the kitchen heads the words after its colon
     if len(said) > 2 and context_fragment(said, opener=False):

@@ -323,6 +323,8 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
     (stay out of Y until X, or go there after X?)."""
     if r.word(i) != "before":
         return None
+    if r.word(i + 1) in lx.BEFORE_PRONOUNS:  # "Before it, X.": the goal named last, or all said so far?
+        return Refusal(rf.before_pronoun(r.quote(i, i + 2)))
     if at_time(r, i + 1):
         return Refusal(rf.order_by_a_time(r.quote(i, at_time(r, i + 1))))
     end = next((k for k in range(i, len(r)) if r.word(k) == ","), len(r))
