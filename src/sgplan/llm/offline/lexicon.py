@@ -933,9 +933,11 @@ CORRECTIONS = Phrases((("i", "mean"), ("i", "meant"), ("no", "wait"), ("wait", "
                        ("sorry", "i", "mean"),
                        # "no" before an article or "actually" names the thing meant, not one to avoid
                        ("no", "actually"), ("no", "a"), ("no", "an"), ("no", "the"),
-                       # a change of mind said in a sentence of its own (*Go to the kitchen. Actually, the office.*)
+                       # a change of mind said in a sentence of its own (*Go to the kitchen. Actually, the
+                       # office.*)
                        ("actually", ","), ("actually", "the"), ("actually", "a"), ("actually", "an"),
-                       ("actually", "make"), ("actually", "go"), ("actually", "just"), ("make", "it"), ("change", "of", "plan"), ("change", "of", "plans"),
+                       ("actually", "make"), ("actually", "go"), ("actually", "just"), ("make", "it"),
+                       ("change", "of", "plan"), ("change", "of", "plans"),
                        ("on", "second", "thought"), ("on", "second", "thoughts"), ("scratch", "the")))
 """Words with which a speaker takes back what they said (*go to the kitchen, sorry, I mean the office*):
 which part stands is not read; refused."""
@@ -1502,9 +1504,10 @@ CLOSING = CLOSING + Phrases((
 ))
 """More of :data:`CLOSING`: the robot's time asked as a condition (*when you've got a minute*, *if you get
 a chance*, *once you're free*), which asks nothing wherever it closes or opens a clause."""
-CLOSING = CLOSING + Phrases((("obviously",), ("of", "course"), ("roughly",)))
+CLOSING = CLOSING + Phrases((("obviously",), ("of", "course"), ("roughly",), ("not", "urgent"),
+                             ("not", "a", "priority"), ("not", "a", "big", "deal")))
 """More of :data:`CLOSING`: hedges alone in their clause (*Check the oven, obviously.*, *Morning routine,
-roughly: ...*)."""
+roughly: ...*, *Not urgent, but check the oven.*)."""
 IGNORED = Phrases((("ignore",), ("never", "mind"), ("do", "not", "mind"), ("do", "not", "worry", "about")))
 """Words that tell the robot to pay no heed to a thing the scene does not hold (*btw ignore the mess*, *don't
 mind the noise*): set aside (:func:`.syntax.context.ignored_thing`); *ignore the kitchen* may mean skip or
