@@ -1338,6 +1338,12 @@ EVENT_OPENERS = ("before", "after", "by", "while", "once", "when")
 EVENT_TAILS = word_set("up over by in out off round around back home away")
 """The particles after the verb of an event of people said by its shape (*before the cleaners show up*, *once
 my sister drops by*); any other word after the verb leaves the event to the parser."""
+EVENT_AUXILIARIES = word_set("am are is was were have has had will would been just already finally")
+"""Words before the verb of an event of people (*once the dog has been fed*, *after the kids have just
+left*)."""
+EVENT_LINKS = ("from", "on", "at", "after", "for")
+"""Words that join an event word to the verb of an event of people (*gets home from work*, *show up on
+Sunday*, *leave for school*)."""
 MANNER_INTENSIFIERS = word_set("extra very really super so")
 MANNER_WORDS = MANNER_INTENSIFIERS | word_set("careful gentle quiet quick patient nice good polite tidy")
 """*..., so be gentle*, *please be extra careful*: how to behave, set aside when nothing else is said."""

@@ -207,7 +207,8 @@ def trailing_after(r: Reader, i: int, before: Said, only_verb: bool) -> ItemPars
 def one_goal_said(before: Said) -> bool:
     """Whether ``before`` holds one action with one phrase, and nothing else that is a goal."""
     actions = [item for item in before if isinstance(item, PlainAction)]
-    return len(actions) == 1 and len(actions[0].action.phrases.items) == 1
+    phrases = actions[0].action.phrases if len(actions) == 1 else None
+    return phrases is not None and len(phrases.items) == 1
 
 
 def after_one_goal(before: Said) -> bool:

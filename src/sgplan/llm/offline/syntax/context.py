@@ -113,6 +113,9 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         # "Oh, I meant the kitchen": takes back what was said before (corrections.py reads or refuses it);
         # "Sorry, I forgot something.": an apology before a statement that names nothing, said back
         return [aside(r, 0, len(r))] if apology(r) else [r]
+    people_at = event_of_people_at_place(r)
+    if people_at is not None:  # "after the kids are at the couch": never the couch as a goal
+        rf.refuse(rf.event_of_people_at_place(r.quote(*people_at)))
     praise = [w for w in r.words if w.isalpha()]
     if praise and all(w in lx.PRAISE or w in lx.HESITATIONS for w in praise):
         return [aside(r, 0, len(r))]  # "Perfect.", "Cool cool.": a sentence of praise only, said back
@@ -524,25 +527,49 @@ def event_clause(r: Reader, start: int, end: int) -> bool:
     if r.word(start) not in lx.EVENT_OPENERS:
         return False
     verb = person_subject_end(r, start + 1, end)
-    if verb is None or verb >= end:
+    if verb is None:
         return False
+    verb = r.skip(verb, lx.EVENT_AUXILIARIES)  # "once the dog has been fed"
     w = r.word(verb)
-    if (not w.isalpha() or r.head(verb) is not None or w in lx.STRUCTURAL or w in lx.RELATIVE_FLOORS
-            or r.phrase(verb, lx.NEG_STARTS)):
+    if (verb >= end or not w.isalpha() or r.head(verb) is not None or w in lx.STRUCTURAL
+            or w in lx.RELATIVE_FLOORS or r.phrase(verb, lx.NEG_STARTS)):
         return False
-    return all(r.word(k) in lx.EVENT_TAILS or r.word(k) in lx.EVENT_WORDS for k in range(verb + 1, end))
+    return all(r.word(k) in lx.EVENT_TAILS or r.word(k) in lx.EVENT_WORDS
+               or (r.word(k) in lx.EVENT_LINKS and r.word(k + 1) in lx.EVENT_WORDS)  # "from work"
+               for k in range(verb + 1, end))
 
 
-def person_subject_end(r: Reader, start: int, end: int) -> int | None:
+def event_of_people_at_place(r: Reader) -> tuple[int, int] | None:
+    """The ``[start, end)`` of an event of people that names a room or object of the scene (*after the kids
+    are at the couch*, *before the guests sit at the dining table*, *once my mum is in the kitchen*): an
+    opener of :data:`.lexicon.EVENT_OPENERS`, a person (:func:`person_subject_end`), a verb and a room or
+    object before the clause ends; ``None`` when there is none. What people do at a place is no goal of
+    the robot's, and other rules could read the place as one: refused."""
+    for k in range(len(r)):
+        verb = person_subject_end(r, k + 1, len(r), events=False) if r.word(k) in lx.EVENT_OPENERS else None
+        if verb is None or r.head(verb) is not None or not r.word(verb).isalpha():
+            continue
+        end = next((j for j in range(verb + 1, len(r))  # up to the order after it ("... leave check X")
+                    if r.word(j) == "," or r.phrase(j, lx.SEQ_WORDS) or starts_order(r, j)), len(r))
+        if any(r.head(j) is not None for j in range(verb + 1, end)):
+            return k, end
+    return None
+
+
+def person_subject_end(r: Reader, start: int, end: int, events: bool = True) -> int | None:
     """Where the verb after a person as subject starts (*she* | *drops*, *the cleaners* | *show*, *my
     mum* | *gets*), or ``None``: a pronoun of people, or a noun of no role in the grammar with at most a
-    determiner or possessive and one more such noun before it (*the new cleaners*, *my sister*)."""
+    determiner or possessive and one more such noun before it (*the new cleaners*, *my sister*);
+    an event word counts too (*the party* | *kicks off*, *the guests*), but without ``events`` not a bare one
+    (*lunch* in *Before lunch check the oven*)."""
     if r.word(start) in lx.PEOPLE:
         return start + 1
     k = start + (r.word(start) in lx.DETERMINERS)
     nouns = 0
     while k < end and nouns < 2 and (plain_subject(r, k) or r.word(k) in lx.PEOPLE_NOUNS
-                                     or r.word(k) in lx.EVENT_WORDS) and not misspelt_name(r, k, k + 1):
+                                     or r.word(k) in lx.EVENT_WORDS) \
+            and not (r.word(k) in lx.EVENT_WORDS and k == start and not events) \
+            and not misspelt_name(r, k, k + 1):
         k, nouns = k + (r.word(k + 1) == "'s") + 1, nouns + 1  # "my mum's friends"
         if r.word(k) in lx.PEOPLE_NOUNS or r.word(k - 1) in lx.PEOPLE_NOUNS:
             break
@@ -554,11 +581,14 @@ def time_tail(r: Reader, start: int, end: int) -> int | None:
     before dinner*), or ``None``."""
     if is_time(r, start, end):
         return None  # the whole clause is one
+    # an event of people, whole: "... before the cleaners show up", "... before the kids leave for school"
+    event = next((k for k in range(max(start + 1, end - 7), end) if event_clause(r, k, end)), None)
+    if event is not None:
+        return event
     for k in range(max(start + 1, end - 4), end):
         if r.word(k) in lx.TIME_OPENERS and r.word(k - 1) not in lx.UNTIL_WORDS and is_time(r, k, end):
             return k
-    # an event of people is longer: "... before the cleaners show up"
-    return next((k for k in range(max(start + 1, end - 7), end) if event_clause(r, k, end)), None)
+    return None
 
 
 def timed_heading(r: Reader) -> list[Reader]:
