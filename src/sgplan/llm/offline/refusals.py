@@ -792,6 +792,11 @@ def there_goal_or_mention(goal: str, mention: str) -> str:
                     "what was set aside; name the place")
 
 
+def there_place_or_thing(place: str, thing: str) -> str:
+    return rephrase(f"'there' is '{place}', named in what was set aside with '{thing}' in it: is the goal to go "
+                    f"into the room, or to reach '{thing}'? Name the goal")
+
+
 def back_there(phrase: str) -> str:
     return rephrase(f"'back there': 'there' is the place named last ('{phrase}'), where the robot just was; "
                     "name the place to go back to")
