@@ -793,8 +793,8 @@ def there_goal_or_mention(goal: str, mention: str) -> str:
 
 
 def there_place_or_thing(place: str, thing: str) -> str:
-    return rephrase(f"'there' is '{place}', named in what was set aside with '{thing}' in it: is the goal to go "
-                    f"into the room, or to reach '{thing}'? Name the goal")
+    return rephrase(f"'there' is '{place}', named in what was set aside with '{thing}' in it: is the goal to "
+                    f"go into the room, or to reach '{thing}'? Name the goal")
 
 
 def back_there(phrase: str) -> str:

@@ -143,7 +143,8 @@ def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
         goals = mentioned[-1:]  # "Grandpa's napping in the bedroom, so stay out of there"
         rooms = {e.room_key for e in mentioned[-1].entities}
         things = [g for g in disc.mentions if g.start < np.span.start and g.entities
-                  and all(e.kind == "object" for e in g.entities) and any(e.room_key in rooms for e in g.entities)]
+                  and all(e.kind == "object" for e in g.entities)
+                  and any(e.room_key in rooms for e in g.entities)]
         if where.role == "goal" and things:  # "the teddy's probably in the lounge, look there": the room?
             rf.refuse(rf.there_place_or_thing(mentioned[-1].phrase, things[-1].phrase))
     if not goals:
