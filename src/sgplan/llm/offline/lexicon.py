@@ -271,6 +271,11 @@ LIST_NOUNS = word_set("list lists checklist todo do round rounds run runs tour r
                       "check stops visits things items duties rota program programme rules rule dos donts "
                       "rundown")
 """Words that name a list in its heading (*Morning round*, *Evening checks*, *To do:*, *Top floor tasks*)."""
+WORK_NOUNS = word_set("duty care patrol sweep sweeps maintenance cleanup inspection inspections walkthrough "
+                      "circuit loop")
+"""Nouns of a round of work that head a list or the steps after a colon as :data:`LIST_NOUNS` do
+(*Bathroom duty:*, *Plant care:*, *Evening patrol:*): they name the work, never a goal."""
+LIST_NOUNS = LIST_NOUNS | WORK_NOUNS
 LABEL_STOPS = word_set("until till before after only except never not no if unless when whenever then first "
                        "last again twice once but or nor without stay remain keep staying avoid leave there")
 """Words a list's label never holds: a heading with one of them is a sentence of its own."""
@@ -542,6 +547,17 @@ GIVEN_MANNER = frozenset({"quick", "good", "little", "proper", "gentle", "thorou
 """Between *a* and a chore said as a noun (*give the couch a good fluff*)."""
 GIVEN_AGAIN = frozenset({"another"})
 """*give X another splash / look*: the chore given again (a new visit of X, as *X again*)."""
+LOOK_LIGHT_VERBS = frozenset({"take", "taking"})
+"""Before *a (quick) look* (*have a look* is read *take a look*)."""
+LOOK_NOUNS = frozenset({"look", "peek", "glance"})
+"""The last word of a look said as a noun (*a quick look*, *a peek*)."""
+LOOK_AROUND = frozenset({"around", "round", "about", "inside"})
+"""After a look at nothing named (*go to the lobby and have a look around*): the room just named."""
+LOOKED_AGAIN = Phrases(tuple(("another", *quick, what) for quick in ((), ("quick",), ("good",), ("little",),
+                                                                ("proper",), ("close",), ("closer",))
+                             for what in ("look", "peek", "glance", "visit", "trip", "stop", "check")))
+"""*have / take another look at X*, *pay another visit to X*, *make another trip to X*: a verb idiom of a new
+visit of X (as *X again*)."""
 GIVEN_ENDS = frozenset({"", ",", "and", "then", "but", "please", "too", "as", "before", "after", "first"})
 """After *give X a <chore>*: the clause ends (a word after the chore may make it a thing: *a new flower*)."""
 BODY_PART_OWNERS = ("your", "my", "his", "her", "their")
@@ -1220,6 +1236,13 @@ EVER = Phrases((("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at",
 """In a condition ("if you ever go into X"): once or on each visit? Writers read it both ways: refused."""
 OBLIGED = Phrases((("must",), ("have", "to"), ("has", "to"), ("need", "to"), ("needs", "to")))
 """*Before you enter Y, you must X*: an obligation, so Y is not entered before X (not only X, then Y)."""
+CONDITION_AFTERWARDS = frozenset({"afterwards", "afterward", "after", "later"})
+"""Between the visit and *and* of one errand a condition asks for (*swing by the kitchen afterwards and check
+the microwave*): the condition's *afterwards*, no step of its own."""
+VISIT_NOUNS = frozenset({"visit", "visits", "trip", "trips", "entry", "entries"})
+"""After *no X* (*No kitchen visits.*, *no office trips please*): going into X, as *no visits to X*."""
+OBLIGED_SUBJECTS = frozenset({"you", "u", "we", "robot"})
+"""Before an obligation after *after* (*after you must go to X*): *after that, you must ...*."""
 ALSO_AFTER = ("too", "also", "as well")
 """After *that X* in a step at another room (*go to the office and water that plant too*): another X, the
 one of that room."""

@@ -581,6 +581,18 @@ def after_clause_between(said: str, before: str) -> str:
                     "it its own sentence ('After X, B.')")
 
 
+def prefix_took_the_goals(said: str) -> str:
+    return rephrase(f"'{said}': are the goals after the comma part of what comes {said.split()[0].lower()} "
+                    "them, or the steps to do? Give them a verb ('Before X, go to Y.') or say the order with "
+                    "'then'")
+
+
+def before_clause_between(said: str, before: str) -> str:
+    return rephrase(f"'{said}' between two clauses: does '{before}' come before it too, or only what "
+                    "follows it? Say it in order with 'then' ('A, then B, then X'), or give it its own "
+                    "sentence ('Before X, B.')")
+
+
 def after_all_of_sentences(said: str) -> str:
     return rephrase(f"'{said}': after the goals of the sentence before it, or of every sentence before it? "
                     "Say it in one sentence ('A and B, and after both, C') or name what comes after what")

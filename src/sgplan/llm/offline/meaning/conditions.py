@@ -3,8 +3,9 @@
 point ...* is refused by the parser: read both ways); *when X, Y afterwards* is the response; a bare *when
 X, Y* is refused (after X? whenever X? if X?).
 
-A condition is one action that happened at some time during the path; its consequent is one action, and
-goals only (a prohibition scoped to *whenever* is not expressible this way, so it is refused).
+A condition is one action that happened at some time during the path; its consequent is one action (or
+one errand: a room, and things acted on there, :func:`.syntax.sentences.one_errand`), and goals only (a
+prohibition scoped to *whenever* is not expressible this way, so it is refused).
 """
 
 from __future__ import annotations

@@ -112,7 +112,11 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: 
         rf.refuse(rf.order_after_ordered_goals())
     if continues and parts and previous is None:  # after a rule or a constraint: the order would be lost
         rf.refuse(rf.follows_nothing(disc.said(sentence.span.start, sentence.span.end)))
-    if precedes:
+    if (precedes and previous is None and parts and isinstance(result, Clause)
+            and all(isinstance(p, Always) for p in parts) and sentence.precedes is not None
+            and "before" not in sentence.precedes.lower().split()):
+        parts.append(result)  # "Whenever X, Y afterwards. First, Z.": only standing rules before: no goal
+    elif precedes:
         if previous is None or not isinstance(result, Clause):
             rf.refuse(rf.precedes_needs_goals())
         previous.steps[0:0] = moved(result.steps)

@@ -168,6 +168,11 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
         if w == "again" and r.word(i + 1) in lx.PLACE_PREPOSITIONS:  # "(go) again to the kitchen"
             again, i = True, i + 1
             continue
+        looked = r.phrase(i, lx.LOOKED_AGAIN)
+        if looked is not None and r.word(i + len(looked)) in lx.PLACE_PREPOSITIONS:
+            seen.append(looked[-1])  # "have another look in the kitchen": a new visit, as "... again"
+            again, i = True, i + len(looked)
+            continue
         said_times = times_before_place(r, i)
         if said_times is not None:  # "go two times to the kitchen", as learners place it
             times, i = said_times

@@ -306,6 +306,21 @@ def after_one_room(before: Said) -> bool:
     return phrases is not None and len(phrases.items) == 1 and names_rooms(phrases.items[0])
 
 
+@ITEMS.rule("and have a look")
+def and_have_a_look(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
+    """*go down to the lobby and have a (quick) look (around)*: a look at nothing named after one room is a
+    look at that room, which its visit already asks (the words say nothing more); after anything but one
+    room it is left to the action, which refuses it (a look at what?)."""
+    if r.word(i - 1) != "and" or r.word(i) not in lx.LOOK_LIGHT_VERBS or not after_one_room(before):
+        return None
+    look = r.phrase(i + 1, lx.VERB_IDIOMS)
+    if look is None or look[-1] not in lx.LOOK_NOUNS:
+        return None
+    k = i + 1 + len(look)
+    k += 1 if r.word(k) in lx.LOOK_AROUND else 0
+    return Match(Skip(), k) if r.word(k) in ("", ",", "then") else None
+
+
 @ITEMS.rule("in between")
 def in_between_link(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """*A, then B, and in between (,) Y*: Y right before B, as *on the way, Y* puts it (B one goal after a
@@ -373,7 +388,8 @@ def between_clauses(r: Reader, i: int, end: int, before: Said) -> bool:
 @ITEMS.rule("before X")
 def inline_before(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """*A before B*: B a step after A. Not *A, (but) before go to B*, which learners write for *before that,
-    go to B* (B first): refused."""
+    go to B* (B first), nor *A, and / but before B* closing the sentence (all that before B, or before that,
+    B?), nor *A, and before you go to B, C* (is A before B too?): refused."""
     if r.word(i) != "before":
         return None
     nxt = r.word(i + 1)
@@ -385,6 +401,15 @@ def inline_before(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse
     found = after_conjunction(r, i + 1)
     if isinstance(found, Match) and near_said(r, i, found.end):
         return Refusal(rf.before_near(r.quote(i, found.end)))  # "check X before you go anywhere near Y"
+    clause_after = isinstance(found, Match) and r.word(found.end) == "," and found.end + 1 < len(r)
+    if (isinstance(found, Match) and found.node.phrases is not None and found.node.phrases.comma_list
+            and r.word(i - 1) in (",", "and", "but", "then")):  # "A, then before X, Y": a list, or Y first?
+        return Refusal(rf.before_clause_between(r.quote(i, found.end), r.quote(0, i - 1).rstrip(" ,")))
+    if isinstance(found, Match) and (between_clauses(r, i, found.end, before)
+                                     or (r.word(i - 1) == "then" and clause_after)):
+        if found.end == len(r):  # "A, and before the couch.": all that before it, or before that, it?
+            return Refusal(rf.before_bare_verb(r.quote(i, found.end)))
+        return Refusal(rf.before_clause_between(r.quote(i - 1, found.end), r.quote(0, i - 1).rstrip(" ,")))
     return Match(InlineBefore(found.node), found.end) if isinstance(found, Match) else found
 
 

@@ -94,8 +94,19 @@ def on_the_way(r: Reader, i: int, way: tuple[str, ...],
 def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
     """*go first to the kitchen, after to the bedroom*, *and after you touch the toilet*: *after* between
     clauses, with no place after it, is *then* (as learners of English write it); *, after you go to X* at the
-    end of a sentence could also mean before it, which is refused."""
-    if r.word(i) != "after" or r.word(i - 1) not in (",", "and"):
+    end of a sentence could also mean before it, which is refused. Opening a sentence it is *then* before
+    an obligation (*After you must go to X.*) and, in a sentence with no comma after it (no main clause to
+    come), before a plain verb or a preposition of place (*After go to X.*, *After to the office.*)."""
+    if r.word(i) != "after":
+        return None
+    obliged = obliged_after(r, i)
+    if obliged is not None and r.word(i - 1) in ("", ",", "and"):
+        return "sequence", obliged  # "after you have to check X": after that, you have to check X
+    if r.word(i - 1) == "" and "," not in r.words[i + 1:] and (
+            r.word(i + 1) in lx.AFTER_AS_THEN - {","} or (r.word(i + 1) in lx.POSITIVE_VERBS
+                                                        and not is_gerund(r.word(i + 1)))):
+        return "sequence", i + 1  # "Go to X. After go to Y.": no clause of its own, so no "after Y"
+    if r.word(i - 1) not in (",", "and"):
         return None
     nxt = r.word(i + 1)
     if nxt in lx.AFTER_AS_THEN or (nxt in lx.POSITIVE_VERBS and not is_gerund(nxt)
@@ -117,6 +128,18 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
         # "go to the office and after the kitchen": the kitchen after (as learners write) or before?
         return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), i + 5))))
     return None
+
+
+def obliged_after(r: Reader, i: int) -> int | None:
+    """Where the verb is in *after you must / have to / need to X* at ``i`` (as learners write *after that,
+    you must X*: a clause of time never says what must be done); ``None`` otherwise, and when X keeps out of
+    something (*after you must not go to X*: a prohibition for part of the mission, left to be refused)."""
+    k = i + 1 + (1 if r.word(i + 1) in lx.OBLIGED_SUBJECTS else 0)
+    said = r.phrase(k, lx.OBLIGED)
+    verb = k + len(said) if said is not None and k > i + 1 else None
+    if verb is None or r.phrase(verb, lx.NEG_STARTS) or r.word(verb) not in lx.POSITIVE_VERBS:
+        return None
+    return verb
 
 
 def near_said(r: Reader, start: int, end: int) -> bool:

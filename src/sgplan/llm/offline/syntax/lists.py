@@ -42,6 +42,7 @@ Order = Literal["ordered", "any"]
 def read_lists(readers: list[Reader]) -> list[Reader]:
     """``readers`` (sentences, some ending with a colon, some list items) with each list's heading read
     and its items ordered (see the module docstring)."""
+    readers = items_with_room_heading(readers)
     out: list[Reader] = []
     k = 0
     while k < len(readers):
@@ -75,6 +76,25 @@ def ordered_before(out: list[Reader]) -> list[Reader] | None:
     if len(goals) < 2 or not plain:
         return None
     return [replace(r, after_item=True) if n in goals[1:] else r for n, r in enumerate(out)]
+
+
+def items_with_room_heading(readers: list[Reader]) -> list[Reader]:
+    """``readers`` with each list item that is a room and a colon joined to the words after the colon on
+    its line (*- kitchen: check the microwave*, *2) bedroom with the clock: the clock*): one item, read in
+    that room, as *Kitchen: check the microwave* is on a line of its own. An item's colon before anything
+    else is left as it is (and refused)."""
+    out: list[Reader] = []
+    for r in readers:
+        last = out[-1] if out else None
+        colon_end = last is not None and last.word(len(last) - 1) == ":"
+        said = replace(last, toks=last.toks[:-1]) if last is not None and colon_end else None
+        heading = room_heading(labelled(said)) if said is not None and said.marker and said.toks else None
+        if last is not None and heading is not None and r.marker is None and not r.new_line and r.toks:
+            item = heading_kept_out(heading, r) or replace(r, toks=heading.prefix + r.toks)
+            out[-1] = replace(item, marker=last.marker, new_line=last.new_line)
+            continue
+        out.append(r)
+    return out
 
 
 def list_run(readers: list[Reader], k: int) -> list[Reader]:
@@ -266,6 +286,8 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
         return [replace(said, toks=(), announced=order)] if after is not None else [said]
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
         said = replace(said, toks=())  # "Here's the plan:", "Remember:": they ask nothing
+    if after is not None and (label := work_label(said, after)) is not None:
+        return [label]  # "Bathroom duty: go to the bathroom with the vase ...": the steps name their rooms
     # "Kitchen jobs: the oven, then ...": the kitchen's oven
     announced = (announcement(said) or verb_prefix(said) or room_heading(labelled(said))
                  or floor_heading(said) if said.toks else None)
@@ -278,6 +300,25 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
     if announced is not None and after is not None:
         return [replace(said, toks=(), announced=announced)]
     return [said] if said.toks else []
+
+
+def work_label(said: Reader, after: Reader) -> Reader | None:
+    """*Bathroom duty*, *Kitchen jobs* (a kind of room before words naming a list or a round of work, before
+    a colon) over steps that name rooms of that kind themselves (*: go to the bathroom with the vase, then
+    the one upstairs*): the heading names the work, not the room of the steps; it is set aside and said back.
+    ``None`` (the heading is the room of the steps, as *Kitchen jobs: the oven* is) when the steps name no
+    such room, or name a choice or several of a kind before it, which the heading's room could narrow."""
+    head = said.head(0)
+    rest = said.words[head.words:] if head is not None else ()
+    if head is None or head.kind != "room" or not rest or not all(w in lx.LIST_NOUNS for w in rest):
+        return None
+    for k in range(len(after)):
+        h = after.head(k)
+        if h is not None and h.kind == "room" and h.categories == head.categories:
+            return replace(said, aside=True)
+        if h is not None and (h.plural or after.word(k - 1) in lx.CHOICE_WORDS):
+            return None
+    return None
 
 
 def room_heading(r: Reader) -> Announced | None:

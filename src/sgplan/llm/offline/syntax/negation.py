@@ -92,6 +92,7 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
             return found
         phrases, k = found.node, found.end
     k = particles(r, k)
+    k += 1 if marker == ("no",) and phrases is not None and r.word(k) in lx.VISIT_NOUNS else 0  # no X visits
     k += 1 if r.word(k) in lx.NEGATING + lx.NEGATION_EVER and marker[-1] in lx.NEGATING else 0  # "... never"
     whole = whole_mission(r, k)
     k += len(whole) if whole else 0

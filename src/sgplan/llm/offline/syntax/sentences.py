@@ -132,10 +132,28 @@ def strict_order_first(r: Reader) -> Reader:
         start, end, order = 1, len(r) - 2, (r.toks[0], *r.toks[len(r) - 2:])
     else:
         return r
-    if start == end or set(r.words[start:end]) & (lx.LIST_JOINERS | lx.STRICT_WORDS):
+    if start == end:
         return r
+    if set(r.words[start:end]) & (lx.LIST_JOINERS | lx.STRICT_WORDS):
+        return strict_closing_after_and(r, closing) if closing is not None else r
     comma = Tok(",", order[-1].end, order[-1].end)
     return replace(r, toks=(*order, comma, *r.toks[start:end]))
+
+
+def strict_closing_after_and(r: Reader, closing: int) -> Reader:
+    """*A, and go to B only after that* (B's own clause, a verb after the last *and*, closes with the strict
+    order): *A, and only after that, go to B*, which it says with its words moved; ``r`` itself unless the
+    clause of B holds no other joiner or order word (*A and B only after that*, with no verb of its own, is
+    left to the body's rules, which refuse it: does only B wait, or both?) and nothing before it negates
+    (*A without touching X, and B only after that*: does B wait for the not touching too?)."""
+    joined = max((k for k in range(1, closing) if r.word(k) == "and"), default=None)
+    if (joined is None or r.word(joined + 1) not in lx.POSITIVE_VERBS
+            or set(r.words[joined + 1:closing]) & (lx.LIST_JOINERS | lx.STRICT_WORDS)
+            or any(r.phrase(k, lx.NEG_STARTS) or r.word(k) == "without" for k in range(joined))):
+        return r  # a negation before it ("A without touching X, and B only after that"): after what?
+    order = r.toks[closing:]
+    comma = Tok(",", order[-1].end, order[-1].end)
+    return replace(r, toks=(*r.toks[:joined + 1], *order, comma, *r.toks[joined + 1:closing]))
 
 
 def ordered_opening(r: Reader, i: int) -> bool:
@@ -234,7 +252,7 @@ def done_with_first(r: Reader, i: int) -> Parse[SentenceBody]:
     done = done_words(r, i)
     if not done or r.word(i + done) not in lx.DONE_WITH or not r.np_starts(i + done + 1):
         return None
-    return prefixed(r, i + done + 1, prefix_last=False)
+    return with_main_clause(r, i, prefixed(r, i + done + 1, prefix_last=False))
 
 
 @OPENINGS.rule("if X, Y")
@@ -274,12 +292,29 @@ def only_after_first(r: Reader, i: int) -> Parse[SentenceBody]:
 
 @OPENINGS.rule("after X, Y")
 def after_first(r: Reader, i: int) -> Parse[SentenceBody]:
-    """*After / once X, Y*: X, then Y."""
+    """*After / once X, Y*: X, then Y (see :func:`with_main_clause`)."""
     if r.word(i) not in ("after", "once") or r.phrase(i, lx.AFTER_THAT):
         return None
     if at_time(r, i + 1):
         return Refusal(rf.order_by_a_time(r.quote(i, at_time(r, i + 1))))
-    return prefixed(r, i + 1, prefix_last=False)
+    return with_main_clause(r, i, prefixed(r, i + 1, prefix_last=False))
+
+
+def with_main_clause(r: Reader, i: int, said: Parse[SentenceBody]) -> Parse[SentenceBody]:
+    """``said``, a sentence opened at ``i`` by *after / once / when done with / before X*, refused when
+    nothing follows X (no comma, no *then*, no goal): *Go to the kitchen. After the office.* is the next
+    step, as learners write *after*, or the sentence before it, after X? So is one whose X took the goal after
+    its comma as a list (*Before the office, the fridge.*: the fridge first, or both after?)."""
+    if not (isinstance(said, Match) and isinstance(said.node, PrefixedSentence) and not said.node.body.items
+            and said.node.postfix is None):
+        return said
+    phrases = said.node.prefix.phrases
+    if phrases is not None and len(phrases.items) > 1 and any(
+            t.text == "," and phrases.span.start <= t.start < phrases.span.end for t in r.toks):
+        return Refusal(rf.prefix_took_the_goals(r.quote(i, len(r))))
+    if not {",", "then"} & set(r.words[i + 1:]):
+        return Refusal(rf.after_before_or_then(r.quote(i, len(r))))
+    return said
 
 
 def at_time(r: Reader, i: int) -> int:
@@ -330,7 +365,7 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
     end = next((k for k in range(i, len(r)) if r.word(k) == ","), len(r))
     if near_said(r, i, end):
         return Refusal(rf.before_near(r.quote(i, end)))
-    said = prefixed(r, i + 1, prefix_last=True)
+    said = with_main_clause(r, i, prefixed(r, i + 1, prefix_last=True))
     if not isinstance(said, Match) or not isinstance(said.node, PrefixedSentence):
         return said
     move = said.node.prefix
@@ -543,11 +578,35 @@ def state_said(r: Reader, said: Action) -> int | None:
 
 
 def consequent(r: Reader, i: int) -> Parse[Body]:
-    """What a condition asks for: one action; with several it is not clear which belong to it (refused)."""
+    """What a condition asks for: one action, or one errand (:func:`one_errand`); with several it is not
+    clear which belong to it (refused)."""
     said = body(r, i)
-    if isinstance(said, Match) and said.node.actions > 1:
+    if isinstance(said, Match) and said.node.actions > 1 and not one_errand(r, said.node):
         return Refusal(rf.several_actions_after_condition())
     return said
+
+
+def one_errand(r: Reader, said: Body) -> bool:
+    """Whether ``said`` is a visit of one room and, after *and*, an action on things named without a room
+    (*swing by the kitchen afterwards and check the microwave*): one errand in that room, the things looked
+    for there, so both belong to the condition (after *then*, or with a room named in the second action,
+    which actions belong to it stays unclear)."""
+    actions = [item.action for item in said.items if isinstance(item, PlainAction)]
+    links = [item for item in said.items if isinstance(item, Link)]
+    if len(actions) != 2 or len(actions) + len(links) != len(said.items) or any(
+            link.strict or link.waypoint for link in links):
+        return False
+    visit, act = actions
+    if visit.phrases is None or act.phrases is None or len(visit.phrases.items) != 1:
+        return False
+    visited = [h for k in range(len(r)) if r.toks[k].start >= visit.phrases.span.start
+               and r.toks[k].end <= visit.phrases.span.end and (h := r.head(k)) is not None]
+    acted = [h for k in range(len(r)) if r.toks[k].start >= act.span.start and r.toks[k].end <= act.span.end
+             and (h := r.head(k)) is not None]
+    joined = r.text[visit.span.end:act.span.start].lower().replace(",", " ").split()
+    return (joined[-1:] == ["and"] and all(w in lx.CONDITION_AFTERWARDS for w in joined[:-1])
+            and len(visited) == 1 and visited[0].kind == "room" and bool(acted)
+            and all(h.kind == "object" for h in acted))
 
 
 def postfix(r: Reader, i: int, body_actions: int) -> Parse[Postfix]:
