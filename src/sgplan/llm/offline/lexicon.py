@@ -76,6 +76,9 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     "plant": ("potted plant",),
     "houseplant": ("potted plant",),
     "flower pot": ("potted plant",),
+    "flowerpot": ("potted plant",),
+    "flowers pot": ("potted plant",),
+    "plant pot": ("potted plant",),
     "table": ("dining table", "coffee table", "table"),
     "basin": ("sink",),
     "washbasin": ("sink",),
@@ -164,6 +167,9 @@ TOYS = frozenset({"teddy bear"})
 IRREGULAR_PLURALS: dict[str, str] = {"shelf": "shelves", "knife": "knives", "person": "people",
                                      "stairs": "stairs"}
 
+INTO_A_ROOM = word_set("to into inside enter entering visit visiting")
+"""Before *the plant bedroom* (an object then a room: the room holding it): words that lead to a room, so
+the phrase is a room (after *grab the bowl kitchen* the bowl may be meant)."""
 ROOM_MODIFIERS = frozenset({"dining", "utility"})
 """First words of room categories used alone before an object: *the dining chairs* = the chairs in the
 dining room (not *living*, *empty*, *home*: those are ordinary adjectives too)."""
@@ -257,6 +263,8 @@ CHOOSING_OF = ("one", "any", "either")
 CHOICE_WORDS = frozenset({"a", "an", "any", "either", "one", "some", "whichever"})
 """Words before a noun that leave the choice of the entity to the robot (*a plant*, *any TV*)."""
 """``one of / any of / either of the X``: one of them."""
+ONE_SAID = ("one", "1")
+"""*one* as notes also write it (*1 of the chairs*, *grab 1 bottle*): any one of them."""
 DEFINITE = ("the", "this", "that", "these", "those")
 
 ANNOUNCED = word_set("things thing tasks task errands errand jobs job chores chore items item stops stop "
@@ -399,6 +407,10 @@ FETCH_VERBS = (CARRY_VERBS - APPLIANCE_VERBS) | word_set(
     "get getting grab grabbing fetch fetching find finding pick picking collect collecting retrieve "
     "retrieving gather gathering")
 """Before a thing the scene does not hold (*put my keys on the table*): the robot would have to find it."""
+TAKING_OUT_VERBS = word_set("get getting got grab grabbing grabbed fetch fetching fetched take taking took "
+                            "pull pulling pulled")
+"""*grab the bottle out of the bathroom*: before a thing taken, *out of X* says where it is (*from X*); after
+other verbs (*keep the vase out of the kitchen*) it may say where it must not be, and is not read."""
 
 CAUTION_PAIRS = frozenset({("take", "care"), ("watch", "out"), ("look", "out"), ("never", "mind")})
 """Two words that say how to behave near a place, or to disregard it (*take care in the kitchen*, *watch
@@ -967,6 +979,10 @@ _FINE = ((), ("is", "fine"), ("is", "ok"), ("is", "okay"), ("is", "good"), ("wil
          ("would", "do"), ("would", "be", "fine"), ("will", "be", "fine"), ("you", "like"), ("you", "want"),
          ("you", "prefer"), ("you", "choose"), ("is", "closer"), ("is", "nearer"))
 _FINE += tuple(("'s", *fine[1:]) for fine in _FINE if fine[:1] == ("is",))  # "either one's fine"
+CHOOSERS_OF_KIND = ("either", "any", "whichever")
+REMARK_FINE = Phrases(tuple(fine for fine in _FINE if fine))
+"""*the bathroom upstairs, either sink is fine*: a remark choosing an object of the room just named (a sink of
+that bathroom)."""
 CHOICE_AFFIRMATIONS = Phrases(tuple(
     chooser + fine for chooser in _CHOOSERS for fine in _FINE
     if chooser + fine not in (("either",), ("any",))  # bare "either" / "any" start a noun phrase
@@ -1292,6 +1308,9 @@ QUAL_NEXT = Phrases((("next", "to"), ("adjacent", "to"), ("beside",), ("near",),
                      ("next", "of"), ("near", "of"), ("close", "of")))
 """*the hallway outside / just off / next to the kitchen*: a room located by a room connected to it (the
 neighbour only locates it, it is no goal)."""
+NEXT_DOOR = Phrases((("next", "door"), ("right", "next", "door"), ("just", "next", "door")))
+"""*the bathroom next door*: next to the room of the place named last (a door joins rooms, so after an object
+it is the object's room)."""
 QUAL_EXCEPT = Phrases((("except", "for"), ("except",), ("but", "not"), ("other", "than"), ("apart", "from"),
                        ("excluding",), ("besides",)))
 ONLY_WORDS = frozenset({"only", "just", "but"})
@@ -1300,6 +1319,12 @@ ONLY_FOLLOWERS = ("after", "if", "once", "when", "before")
 """After *only*: *only after X*, *only if X* ... (not *the bedroom with a bed only*: its contents)."""
 IN_IT = ("in", "inside")
 """``the bedroom that only has a bed in it``: the trailing *in it* repeats the room."""
+CONTENTS_BEFORE_COUNT = ONLY_WORDS | word_set("with has have having containing contains")
+"""Before a count of a room's contents (*with one sink*, *that has only one sink*): the count an elided
+noun refers back to (*then the one with two*)."""
+NOTHING_ELSE = Phrases((("and", "nothing", "else"), ("and", "nothing", "more"),
+                       ("and", "no", "other", "things"), ("and", "nothing", "else", "in", "it")))
+"""*the bedroom where is only one bed and nothing else*: the room holds nothing of another category."""
 ASIDE = Phrases(tuple((",", rel, be, *also) for rel, be in (("which", "is"), ("which", "are"), ("that", "is"),
                                                              ("that", "are"), ("it", "is"), ("it", "'s"),
                                                              ("that", "'s"), ("they", "are"))
@@ -1892,6 +1917,17 @@ _SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
 }
 PHRASE_ALIASES.update(_SAID_OTHERWISE)
 """More of :data:`PHRASE_ALIASES`: wishes that forbid, emphatic orders, *my little one*."""
+PHRASE_ALIASES.update({  # "wipe the toilet, then do the same in the bathroom upstairs": that kind there
+    ("the", "same", where): ("the", "one", where)
+    for where in ("in", "inside", "upstairs", "downstairs", "on")
+})
+PHRASE_ALIASES.update({  # "set it down by X", "pop it on X", "stick them in X": the thing carried put there
+    (verb, it, *down, where): ("put", it, *down, where)
+    for verb in ("set", "pop", "stick", "lay", "plonk", "rest")
+    for it in ("it", "them")
+    for down in ((), ("down",), ("back",), ("back", "down"))
+    for where in ("on", "onto", "in", "into", "by", "beside", "near", "next", "inside")
+})
 
 # ------------------------------------------------------------------------------------ grammar words
 STRUCTURAL = (

@@ -775,6 +775,16 @@ def no_room_antecedent() -> str:
     return rephrase("'it' does not refer to any room named before it")
 
 
+def that_of_several(phrases: list[str]) -> str:
+    return rephrase("'that' could be any of " + ", ".join(f"'{p}'" for p in phrases)
+                    + " named before it; name the one meant")
+
+
+def next_door_to_nothing(said: str) -> str:
+    return rephrase(f"'{said}' does not say next to which room: no room or object was named before it; name "
+                    "the room ('the bathroom next to the bedroom')")
+
+
 def next_to_an_object(said: str, phrase: str) -> str:
     return rephrase(f"'{said}': 'it' is '{phrase}', an object; 'next to' is understood for rooms only "
                     "(distances between objects are not known)")

@@ -36,6 +36,7 @@ from sgplan.llm.offline.lexicon import (
     NEGATED_STEMS,
     NUMBERED,
     PHRASE_ALIASES,
+    PRONOUNS,
     SENTENCE_END,
     SYMBOLS,
     WOULD_SUBJECTS,
@@ -208,8 +209,9 @@ def sentences(tokens: list[Tok]) -> list[Part]:
 
 def rewrite(tokens: list[Tok], aliases: dict[tuple[str, ...], tuple[str, ...]]) -> list[Tok]:
     """``tokens`` with every phrase of ``aliases`` (longest first, left to right) replaced by its reading;
-    each new token spans the whole phrase it replaces, so messages still quote the user's words (a comma,
-    colon or question mark ending both the phrase and its reading keeps its own span)."""
+    each new token spans the whole phrase it replaces, so messages still quote the user's words, except a
+    pronoun kept in its place (*set it down* read *put it down*: *it* is still the word *it*) and a comma,
+    colon or question mark ending both the phrase and its reading, which keeps its own span."""
     longest = max((len(k) for k in aliases), default=0)
     out: list[Tok] = []
     i = 0
@@ -221,7 +223,9 @@ def rewrite(tokens: list[Tok], aliases: dict[tuple[str, ...], tuple[str, ...]]) 
             # a mark read as typed keeps its own place ("Before bed, ...": 'Before bed')
             mark = n > 1 and reading[-1] in (",", ":", "?") and reading[-1] == tokens[i + n - 1].text
             start, end = tokens[i].start, tokens[i + n - 1 - mark].end
-            out += [Tok(w, start, end) for w in reading[:len(reading) - mark]]
+            kept = [k < n and w == tokens[i + k].text and w in PRONOUNS for k, w in enumerate(reading)]
+            out += [tokens[i + k] if kept[k] else Tok(w, start, end)
+                    for k, w in enumerate(reading[:len(reading) - mark])]
             out += [tokens[i + n - 1]] if mark else []
             i += n
             break

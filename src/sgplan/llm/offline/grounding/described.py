@@ -28,7 +28,7 @@ from sgplan.llm.offline.grounding.phrases import (
     grounds,
     head_entities,
 )
-from sgplan.llm.offline.grounding.places import next_to_it, there_floors, there_rooms
+from sgplan.llm.offline.grounding.places import next_to_it, there_floors, there_holding, there_rooms
 from sgplan.llm.offline.names import Entity, head_word
 from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
@@ -51,6 +51,7 @@ from sgplan.llm.offline.syntax.tree import (
     ShortStay,
     Span,
     There,
+    ThereNP,
 )
 
 APPLIERS: Registry[Callable[[Any, Noun, Described, Where, Discourse], Noun]] = Registry("qualifier")
@@ -133,8 +134,12 @@ def others(entities: list[Entity], before: int, disc: Discourse, said_which: boo
     fits = {e.key for e in entities}
     read = [g for g in disc.references if g.role != "qualifier" or len(g.entities) == 1]
     told = [g for g in disc.mentions if len(g.entities) == 1]
-    named = {e.key for g in read + told if g.start < before and g.entities
-             and all(e.key in fits for e in g.entities) for e in g.entities}
+    said = [g for g in read + told
+            if g.start < before and g.entities and all(e.key in fits for e in g.entities)]
+    # a phrase naming every X names none in particular when another names one (*Bathrooms to clean: the one
+    # with the vase, then the other one*); named alone, every X is named and no other is left
+    particular = [g for g in said if len(g.entities) == 1 or {e.key for e in g.entities} != fits]
+    named = {e.key for g in particular or said for e in g.entities}
     if not any(e.key in named for e in entities):
         if said_which:
             return entities
@@ -312,7 +317,10 @@ def there(q: There, noun: Noun, np: Described, where: Where, disc: Discourse) ->
     if noun.head.kind == "room":
         floors = there_floors(np.span.start, noun.head, disc, where.action_floor)
         return Noun(noun.head, on_floors(noun.entities, FloorReading(floors), disc), noun.room_scoped)
-    return Noun(noun.head, disc.vocab.inside(noun.entities, there_rooms(np.span.start, disc)), True)
+    inside = disc.vocab.inside(noun.entities, there_rooms(np.span.start, disc))
+    if not inside:  # "don't go in the living room until ... the TV in there": the one place named holding one
+        inside = disc.vocab.inside(noun.entities, there_holding(np.span.start, noun.entities, disc))
+    return Noun(noun.head, inside, True)
 
 
 @applies(InRoom)
@@ -329,6 +337,10 @@ def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse)
     if noun.head.kind != "object" or any(e.kind != "room" for g in rooms for e in g.entities):
         rf.refuse(rf.object_in_room(said))
     entities = disc.vocab.inside(noun.entities, [e for g in rooms for e in g.entities])
+    if not entities and len(q.rooms) == 1 and isinstance(q.rooms[0], ThereNP):
+        # "don't go in the living room until ...; look at the TV in there": the one place named holding one
+        rooms[0].entities = there_holding(q.span.start, noun.entities, disc)
+        entities = disc.vocab.inside(noun.entities, rooms[0].entities)
     for room in rooms:
         room.entities = [r for r in room.entities if any(e.room_key == r.key for e in entities)]
         if len(rooms) > 1 and not room.entities:  # not "... in A, and B": that would be another goal
@@ -408,7 +420,10 @@ def next_to(q: NextTo, noun: Noun, np: Described, where: Where, disc: Discourse)
     vocab = disc.vocab
     if q.it_span is not None and q.relation in lx.OBJECT_PLACING:  # "wipe a table, then the bowl on it"
         return by_an_object(disc.said(q.span.start, q.span.end), noun, placed_on_it(q, disc), where, disc)
-    room = next_to_it(q.it_span, f"{q.relation} it", disc) if q.it_span is not None else inner(q.thing, disc)
+    said = q.relation if q.relation.endswith("next door") else f"{q.relation} it"
+    # a room is next to rooms only: "the bathroom next to it" after an object is next to the object's room
+    by_room = q.relation.endswith("next door") or noun.head.kind == "room"
+    room = next_to_it(q.it_span, said, disc, by_room) if q.it_span is not None else inner(q.thing, disc)
     if noun.head.kind == "object" and room.entities and all(e.kind == "object" for e in room.entities):
         return by_an_object(disc.said(q.span.start, q.span.end), noun, room, where, disc)
     if any(e.kind != "room" for e in room.entities):

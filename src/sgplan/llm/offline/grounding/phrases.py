@@ -118,7 +118,13 @@ def ground_phrase(np: NounPhrase, where: Where, disc: Discourse) -> Grounded:
 
 @grounds(Pronoun)
 def pronoun(np: Pronoun, where: Where, disc: Discourse) -> Grounded:
-    """*it* / *them* / *they*: the phrase named last that agrees in number (objects only after *put*)."""
+    """*it* / *them* / *they*: the phrase named last that agrees in number (objects only after *put*);
+    *that* (*check that first, then ...*) only when one thing was named before it."""
+    if np.word == "that":
+        named = [g.phrase for g in (*disc.references, *disc.mentions) if g.start < np.span.start
+                 and g.role != "qualifier" and g.phrase.lower() not in lx.PRONOUNS]
+        if len(named) > 1:
+            rf.refuse(rf.that_of_several(named))
     ref = antecedent(np.word, disc, "object" if where.objects else "room" if where.rooms else None)
     mode: Mode = "all" if np.word in lx.PLURAL_PRONOUNS else ref.mode
     g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, list(ref.entities), mode,

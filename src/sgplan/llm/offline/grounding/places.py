@@ -38,6 +38,18 @@ def there_rooms(before: int, disc: Discourse, said: str = "there") -> list[Entit
     return rooms
 
 
+def there_holding(before: int, objects: list[Entity], disc: Discourse) -> list[Entity]:
+    """*the TV in there* when the place *there* points to (the last goal) holds no TV: the one room named
+    before character ``before`` as a place to keep out of that holds one of ``objects`` (*don't go in the
+    living room until you've checked the microwave; look at the TV in there*); none when no such room or
+    several do. Another goal is never taken instead (*the kitchen, then the bedroom, and the sink in there*:
+    the user may have meant another room)."""
+    holders = {o.room_key for o in objects}
+    named = {e.key for g in disc.references if g.start < before and g.role == "avoid"
+             for e in g.entities if e.kind == "room" and e.key in holders}
+    return [disc.vocab.by_key[k] for k in named] if len(named) == 1 else []
+
+
 def there_floors(before: int, head: Head, disc: Discourse,
                  action_floor: tuple[FloorReading, int] | None) -> frozenset[int]:
     """The floor(s) *there* after a room (*a bathroom there*) means at character offset ``before``: a floor
@@ -56,17 +68,22 @@ def there_floors(before: int, head: Head, disc: Discourse,
     return frozenset(e.floor for e in last.entities)
 
 
-def next_to_it(span: Span, said: str, disc: Discourse) -> Grounded:
+def next_to_it(span: Span, said: str, disc: Discourse, by_room: bool = False) -> Grounded:
     """*next to it* / *just off it* (``said``): *it* is the last whole phrase named (not one nested in it:
     in "the bedroom where the teddy bear is" that is the bedroom); it must be a room, since distances
-    between objects are not known."""
+    between objects are not known. With ``by_room`` (*next door*, or a room next to it) an object stands for
+    its room: a room is next to rooms only, so *the bed ..., then the bathroom next door / next to it* is
+    next to the bed's room."""
     refs = [g for g in disc.references if g.phrase.lower() not in lx.PRONOUNS and g.entities]
     outer = [g for g in refs if not any(o is not g and o.start <= g.start and g.end <= o.end
                                         and (o.start, o.end) != (g.start, g.end) for o in refs)]
     if not outer:
-        rf.refuse(rf.no_room_antecedent())
+        rf.refuse(rf.next_door_to_nothing(said) if said.endswith("next door") else rf.no_room_antecedent())
     ref = max(outer, key=lambda g: g.start)
-    determined(said, ref, len(ref.entities))
-    if any(e.kind != "room" for e in ref.entities):
+    entities = list(ref.entities)
+    if by_room:  # the rooms of the objects named: several rooms of a choice are refused just below
+        entities = [disc.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in entities)]
+    determined(said, ref, len(entities))
+    if any(e.kind != "room" for e in entities):
         rf.refuse(rf.next_to_an_object(said, ref.phrase))
-    return disc.record(Grounded("it", span.start, span.end, list(ref.entities), ref.mode, False, "qualifier"))
+    return disc.record(Grounded("it", span.start, span.end, entities, ref.mode, False, "qualifier"))

@@ -39,10 +39,12 @@ from sgplan.llm.offline.syntax.tree import (
     Mode,
     NounPhrase,
     OneHead,
+    OnFloor,
     PhraseList,
     Pronoun,
     Role,
     SameRoom,
+    Span,
     ThereNP,
 )
 
@@ -98,6 +100,15 @@ def its(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
 def pronoun(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
     """*it*, *them*, *they*: the phrase named last that agrees in number."""
     return Match(Pronoun(r.span(i, i + 1), r.word(i)), i + 1) if r.word(i) in lx.PRONOUNS else None
+
+
+@NOUN_PHRASES.rule("that first")
+def that_first(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
+    """*check that first, then ...*: *that* is the thing named last (as *it*), *first* an order word, not an
+    ordinal (*that first bedroom*); read only with *then* after it, so that the order is said in words."""
+    if r.word(i) != "that" or r.word(i + 1) != "first" or "then" not in r.words[i + 2:i + 5]:
+        return None
+    return Match(Pronoun(r.span(i, i + 1), "that"), i + 1)
 
 
 @NOUN_PHRASES.rule("the two in X")
@@ -279,7 +290,27 @@ def noun_with_head(r: Reader, first: int, i: int, role: Role, det: Determiner, r
         mode = "all" if after.plural and mode == "the" else mode
     noun = Described(r.span(first, i), r.word(first), replace(det, mode=mode, descriptive=()), relative,
                      floor_before, modifier, ref, compound, (), None, False, det.descriptive)
-    return qualifiers.finish(r, first, i, noun, role, compound is not None or modifier is not None)
+    found = qualifiers.finish(r, first, i, noun, role, compound is not None or modifier is not None)
+    return chosen_inside(r, found) if isinstance(found, Match) else found
+
+
+def chosen_inside(r: Reader, found: Match[Described]) -> Match[Described]:
+    """*the bathroom on the middle floor, either sink is fine*: a remark choosing an object of the room just
+    named makes the phrase such an object in it, as *the bathroom sink* (any of them when they lie in one
+    room, refused when they lie in several); ``found`` unchanged otherwise (a remark about the room itself
+    is read where choices are)."""
+    noun, i = found.node, found.end
+    k = i + (1 if r.word(i) == "," else 0)
+    head = r.head(k + 1) if r.word(k) in lx.CHOOSERS_OF_KIND else None
+    if (head is None or head.kind != "object" or not isinstance(noun.head, Head) or noun.head.kind != "room"
+            or noun.head.plural or noun.compound is not None or noun.determiner.mode != "the"
+            or not all(isinstance(q, OnFloor) for q in noun.qualifiers)):  # the room's contents: of it
+        return found
+    fine = r.phrase(k + 1 + head.words, lx.REMARK_FINE)
+    end = k + 1 + head.words + len(fine or ())
+    if fine is None or r.word(end) not in lx.CLAUSE_ENDS:
+        return found
+    return Match(replace(noun, span=Span(noun.span.start, r.span(k, end).end), compound=head), end)
 
 
 def determiner(r: Reader, i: int, other: bool) -> Parse[Determiner]:
@@ -315,7 +346,7 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
     mode: Mode | None = None
     count: int | None = None
     chosen_from = False
-    if w in lx.CHOOSING_OF and r.word(i + 1) == "of":
+    if (w in lx.CHOOSING_OF or w in lx.ONE_SAID) and r.word(i + 1) == "of":
         i, mode = i + 2, "any"
         chosen_from = r.word(i) in ("the", "these", "those")  # "one of the two bathrooms"
     elif w in lx.INDEFINITE:
@@ -341,7 +372,7 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
     n = count_word(r, i) if noun_next else None  # "all three (dining) chairs"
     if n is not None and chosen_from:
         return Match(Determiner(mode, n), i + 1)  # one of them, and there must be n
-    if n == 1 and mode is None and r.word(i) == "one":
+    if n == 1 and mode is None and r.word(i) in lx.ONE_SAID:
         return Match(Determiner("any", None), i + 1)  # "sit on one chair": any chair
     if n is not None:
         if mode in (None, "any"):

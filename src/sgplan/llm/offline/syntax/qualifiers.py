@@ -25,6 +25,7 @@ from sgplan.llm.offline.syntax.tree import (
     ByUnlisted,
     Contains,
     Described,
+    Determiner,
     Except,
     Holds,
     InRoom,
@@ -204,8 +205,19 @@ def says_contents(which: NounPhrase) -> bool:
 
 
 def skip_in_it(r: Reader, i: int) -> int:
-    """After a room's contents: the trailing *in it* (*the bedroom that only has a bed in it*)."""
+    """After a room's contents: the trailing *in it* (*the bedroom that only has a bed in it*), or *inside*
+    ending the phrase (*which has only the bed inside*)."""
+    if r.word(i) == "inside" and not r.np_starts(i + 1):
+        return i + 1
     return i + 2 if r.word(i) in lx.IN_IT and r.word(i + 1) in ("it", "there") else i
+
+
+def contents_end(r: Reader, i: int) -> tuple[int, bool]:
+    """After a room's contents at ``i``: where they end (after a trailing *in it*) and whether *and nothing
+    else* says the room holds nothing else (*where is only one bed and nothing else*)."""
+    i = skip_in_it(r, i)
+    said = r.phrase(i, lx.NOTHING_ELSE)
+    return (i + len(said), True) if said is not None else (i, False)
 
 
 @QUALIFIERS.rule("aside")
@@ -234,10 +246,16 @@ def possessive(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]
 
 @QUALIFIERS.rule("object room")
 def object_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
-    """*the teddy bear room*, *the TV room*: the room holding it, as *the teddy bear's room*."""
+    """*the teddy bear room*, *the TV room*: the room holding it, as *the teddy bear's room*; with a kind of
+    room (*back to the plant bedroom*, *into the teddy bear room*) only after *the* and a word that leads to
+    a room (in notes *bowl kitchen* may be two goals, and after *grab the bowl kitchen* the bowl may be
+    meant)."""
     head = r.head(i)
-    if (noun.kind != "object" or noun.room_scoped or r.word(i) not in lx.GENERIC_ROOM_WORDS or head is None
-            or head.kind != "room" or head.categories):
+    if (noun.kind != "object" or noun.room_scoped or head is None or head.kind != "room" or head.plural
+            or r.head(i + head.words) is not None):
+        return None
+    named_room = r.word(noun.first) == "the" and r.word(noun.first - 1) in lx.INTO_A_ROOM
+    if r.word(i) not in lx.GENERIC_ROOM_WORDS and not named_room:
         return None
     return Match(Possessive(head, r.span(noun.first, i + head.words)), i + head.words)
 
@@ -326,6 +344,8 @@ def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     *a chair in (either) A or (in) B*: those of either room (the choice is of rooms, as people mean it)."""
     if r.word(i) in lx.DIRECTION_BEFORE_IN and r.word(i + 1) in lx.SCOPE_IN and not carried(r, noun):
         i += 1  # "the one up in the bedroom": the room says where, the direction adds nothing
+    if r.at(i, "out", "of") and noun.kind == "object" and r.word(noun.first - 1) in lx.TAKING_OUT_VERBS:
+        i += 1  # "grab the bottle out of the bathroom": where it is taken from
     back = noun.role == "qualifier" and r.word(i + 1) in ("it", "there")
     if (r.word(i) not in lx.QUAL_IN or not r.np_starts(i + 1) or r.phrase(i, lx.ORDER_MODIFIERS)
             or r.phrase(i, lx.TIME_FILLERS) or back):
@@ -397,8 +417,9 @@ def where_is(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     thing = noun_phrase(r, k, "qualifier")
     if not isinstance(thing, Match):
         return thing
-    only = r.word(i + 2) in lx.ONLY_WORDS and count is None
-    return Match(Contains(thing.node, r.span(noun.first, thing.end), count, only), thing.end)
+    end, nothing_else = contents_end(r, thing.end)
+    only = (r.word(i + 2) in lx.ONLY_WORDS and count is None) or nothing_else
+    return Match(Contains(thing.node, r.span(noun.first, thing.end), count, only), end)
 
 
 @QUALIFIERS.rule("that is X")
@@ -505,17 +526,48 @@ def contains(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if said is None:
         return None
     count, start = exact_count(r, i + len(said))  # "where there is only one sink"
+    of_them = count is not None and r.at(start, "of", "them")
+    # "either sink in the bathroom that has two of them": two of the object named last
+    counted = named_before(r, i) if of_them else counted_before(r, i) if count is not None else None
+    if counted is not None and start == i + len(said) + 1:
+        # "the one with one sink first, then the one with two": two of what was counted last
+        end = start + (2 if of_them else 0)
+        thing_said = Described(r.span(start - 1, end), r.word(start - 1), Determiner("all", None), None, None,
+                               None, counted, None, (), None, False)
+        return Match(Contains(thing_said, r.span(noun.first, end), count, False), end)
     if not r.np_starts(start):
         return None
     thing = noun_phrase(r, start, "qualifier")
     if not isinstance(thing, Match):
         return thing
-    end = skip_in_it(r, thing.end)
+    end, nothing_else = contents_end(r, thing.end)
     trailing = r.word(end) == "only" and r.word(end + 1) not in lx.ONLY_FOLLOWERS  # "bdrm w/ bed only"
     # "with only / just the bed": nothing else; "with only / just one bed": exactly one
-    only = (bool(set(said) & lx.ONLY_WORDS) or trailing) and count is None
+    only = ((bool(set(said) & lx.ONLY_WORDS) or trailing) and count is None) or nothing_else
     said_as = Contains(thing.node, r.span(noun.first, thing.end), count, only)
     return Match(said_as, end + (1 if trailing else 0))
+
+
+def counted_before(r: Reader, i: int) -> Head | None:
+    """The object counted last in a room's contents before ``i`` (*one sink* in *the one with one sink
+    first, then the one with two*) when the contents at ``i`` end with a count and no noun; ``None`` when a
+    noun follows or no contents were counted (*sit on one chair, then the bedroom with two*: two what?)."""
+    said = r.phrase(i, lx.QUAL_CONTAINS)
+    end = i + len(said or ()) + 1
+    if r.np_starts(end) or r.head(end) is not None:
+        return None
+    for j in range(i - 1, 0, -1):
+        head = r.head(j + 1) if count_word(r, j) is not None else None
+        if head is not None and head.kind == "object" and (r.word(j - 1) in lx.CONTENTS_BEFORE_COUNT):
+            return replace(head, plural=True)
+    return None
+
+
+def named_before(r: Reader, i: int) -> Head | None:
+    """The object head named last before ``i`` (*them* in *either sink in the bathroom that has two of
+    them*), or ``None``."""
+    heads = (r.head(j) for j in range(i - 1, -1, -1))
+    return next((replace(h, plural=True) for h in heads if h is not None and h.kind == "object"), None)
 
 
 @QUALIFIERS.rule("relative have")
@@ -534,8 +586,8 @@ def relative_have(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipp
         return None  # "the room that is in ..." / "that was cleaned": no contents
     k += 1 if r.word(k) in lx.HAVE_FORMS else 0
     k += 1 if r.word(k) == "got" else 0  # "that has got", "which hasn't got"
-    only = only or r.word(k) in lx.ONLY_WORDS
-    k += 1 if r.word(k) in lx.ONLY_WORDS else 0
+    only = only or r.word(k) in lx.ONLY_WORDS or r.at(k, "nothing", "but")
+    k += 2 if r.at(k, "nothing", "but") else 1 if r.word(k) in lx.ONLY_WORDS else 0  # "has nothing but a bed"
     count, start = exact_count(r, k)
     if not r.np_starts(start):
         return None
@@ -546,8 +598,10 @@ def relative_have(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipp
         return thing
     if negated:
         return Match(Lacks(thing.node, r.span(noun.first, thing.end)), skip_in_it(r, thing.end))
-    said_as = Contains(thing.node, r.span(noun.first, thing.end), count, only and count is None)
-    return Match(said_as, skip_in_it(r, thing.end))
+    end, nothing_else = contents_end(r, thing.end)
+    only = (only and count is None) or nothing_else
+    said_as = Contains(thing.node, r.span(noun.first, thing.end), count, only)
+    return Match(said_as, end)
 
 
 @QUALIFIERS.rule("and more contents")
@@ -579,6 +633,24 @@ def next_to(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
         if goes is not False:
             return goes
     return Match(NextTo(thing.node, r.span(noun.first, thing.end), None, relation), thing.end)
+
+
+@QUALIFIERS.rule("next door")
+def next_door(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
+    """*the bathroom next door*: next to the room of the place named last; *next door to X* is *next to X*."""
+    said = r.phrase(i, lx.NEXT_DOOR)
+    if said is None:
+        return None
+    end = i + len(said)
+    if r.word(end) == "to" and r.word(end + 1) == "it":
+        it = r.span(end + 1, end + 2)
+        return Match(NextTo(None, r.span(noun.first, end + 2), it, "next door to"), end + 2)
+    if r.word(end) == "to" and r.np_starts(end + 1):
+        thing = noun_phrase(r, end + 1, "qualifier")
+        if not isinstance(thing, Match):
+            return thing
+        return Match(NextTo(thing.node, r.span(noun.first, thing.end), None, "next door to"), thing.end)
+    return Match(NextTo(None, r.span(noun.first, end), r.span(i, end), " ".join(said)), end)
 
 
 @QUALIFIERS.rule("between")
