@@ -56,3 +56,16 @@ def test_fragments_wishes_needs_and_durations_set_aside_are_said_back(demo: Buil
     said = explain_mission(mission_of(translation), demo).text.splitlines()
     assert "Not part of the mission: 'Time for the evening round'" in said
     assert "Not part of the mission: 'The plants need watering'" in said
+
+
+def test_asides_events_and_remarks_of_this_round_are_said_back(demo: Building) -> None:
+    text = ("Before you start: pretty sure we're out of milk. Avoid the living room - the carpet's wet - and "
+            "check the vase in the living room, my mum gave it to me, so be gentle. "
+            "Before the plumber turns up, check the potted plant in the office. It's a fussy plant lol.")
+    translation = PatternTranslator().translate(text, demo)
+    assert translation.set_aside == ("Before you start", "pretty sure we're out of milk", "the carpet's wet",
+                                     "my mum gave it to me, so be gentle", "Before the plumber turns up",
+                                     "It's a fussy plant lol")
+    said = explain_mission(mission_of(translation), demo).text.splitlines()
+    assert "Not part of the mission: 'the carpet's wet'" in said
+    assert "Not part of the mission: 'It's a fussy plant lol'" in said

@@ -1378,8 +1378,23 @@ EVENT_VERBS = EVENT_VERBS | word_set("over done finished ready served up awake")
 DAY_OPENERS = ("this", "tonight", "today", "tomorrow", "for")  # "for now" (not "for the kitchen": no time)
 """The words a time of day that opens an order without a comma starts with (*This evening stay ...*,
 *Tonight check ...*; not *the guests arrive*, an event)."""
+SPAN_OPENERS = ("during",)
+"""Like :data:`DAY_OPENERS`, a time over a span, which cannot order the steps (*During the party tonight keep
+out of ...*)."""
 EVENT_OPENERS = ("before", "after", "by", "while", "once", "when")
 """The words a time expression of an event starts with (*before the guests arrive*, *once lunch is over*)."""
+EVENT_TAILS = word_set("up over by in out off round around back home away")
+"""The particles after the verb of an event of people said by its shape (*before the cleaners show up*, *once
+my sister drops by*); any other word after the verb leaves the event to the parser."""
+EVENT_AUXILIARIES = word_set("am are is was were have has had will would been just already finally")
+"""Words before the verb of an event of people (*once the dog has been fed*, *after the kids have just
+left*)."""
+EVENT_LINKS = ("from", "on", "at", "after", "for")
+"""Words that join an event word to the verb of an event of people (*gets home from work*, *show up on
+Sunday*, *leave for school*)."""
+MANNER_INTENSIFIERS = word_set("extra very really super so")
+MANNER_WORDS = MANNER_INTENSIFIERS | word_set("careful gentle quiet quick patient nice good polite tidy")
+"""*..., so be gentle*, *please be extra careful*: how to behave, set aside when nothing else is said."""
 FEW = ("few", "couple", "several")
 TIME_UNITS = word_set("second seconds minute minutes min mins hour hours hr hrs sec secs")
 """*in ten minutes*, *wait 5 min*: a delay, which a mission cannot require (refused)."""
@@ -1443,6 +1458,9 @@ GREETING_TIMES = {(*good, period) for good in ((), ("good",))
                   for period in ("morning", "afternoon", "evening")}
 """*Morning!*, *Good evening*: a greeting, said back, which orders nothing."""
 NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")} | WHOLE_PERIODS | GREETING_TIMES
+OCCASIONS = {("this", "time"), ("this", "time", "round"), ("just", "this", "once")}
+"""*stay downstairs this time*: the occasion of the whole mission, which orders nothing (a time, like
+:data:`NOW_SAID`)."""
 """Times that say when the whole mission is (now, a whole period), so that they put no goals in an order."""
 STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
 REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"), ("since",),
@@ -1528,6 +1546,26 @@ CLOSING = CLOSING + Phrases((
 """More of :data:`CLOSING`: leave asked as a condition (*if it's okay with you*, *whenever it's
 convenient*), *nothing urgent*, *I promise*, which ask nothing wherever they close a clause. A condition on
 the state of a thing (*if it is not locked*) is no remark: refused as a condition the robot cannot sense."""
+CLOSING = CLOSING + Phrases((
+    # the robot's time as a condition on nothing it could sense: "when you've got a minute", "if you get a
+    # chance"
+    *((when, "you", *have, "a", *spare, time) for when in ("when", "whenever", "if", "once")
+      for have in (("have", "got"), ("have",), ("get",), ("got",), ("find",))
+      for spare in ((), ("spare",), ("free",), ("quick",))
+      for time in ("minute", "moment", "second", "chance", "sec", "mo", "min")),
+    *((when, "you", *be, "free") for when in ("when", "whenever", "if", "once")
+      for be in (("are",), ("get",))),
+))
+"""More of :data:`CLOSING`: the robot's time asked as a condition (*when you've got a minute*, *if you get
+a chance*, *once you're free*), which asks nothing wherever it closes or opens a clause."""
+CLOSING = CLOSING + Phrases((("obviously",), ("of", "course"), ("roughly",), ("not", "urgent"),
+                             ("not", "a", "priority"), ("not", "a", "big", "deal")))
+"""More of :data:`CLOSING`: hedges alone in their clause (*Check the oven, obviously.*, *Morning routine,
+roughly: ...*, *Not urgent, but check the oven.*)."""
+IGNORED = Phrases((("ignore",), ("never", "mind"), ("do", "not", "mind"), ("do", "not", "worry", "about")))
+"""Words that tell the robot to pay no heed to a thing the scene does not hold (*btw ignore the mess*, *don't
+mind the noise*): set aside (:func:`.syntax.context.ignored_thing`); *ignore the kitchen* may mean skip or
+avoid, and is refused."""
 WELL_WISHING = word_set("hope hoping trust")
 """A wish said without its subject (*hope you're charged up*, *hope your day's going ok*, *trust all is
 well*): a remark when the words after it name nothing and ask nothing
@@ -1543,6 +1581,13 @@ UNSURE = Phrases((("not", "sure"), ("not", "certain"), ("can", "not", "remember"
                   ("just", "wondering"), ("wondering",), ("not", "sure", "but")))
 """A speaker's doubt said without its subject (*Not sure if I turned it off.*, *Can't remember whether the
 oven's on*): before *if* / *whether* the clause after it is a statement like any other."""
+SURE_WITHOUT_SUBJECT = Phrases((("pretty", "sure"), ("fairly", "sure"), ("quite", "sure"),
+                                ("pretty", "certain"), ("fairly", "certain"), ("almost", "certain"),
+                                ("100", "%", "sure"),
+                                ("bet",), ("i", "bet"), ("i", "reckon"), ("reckon",), ("looks", "like"),
+                                ("seems", "like"), ("apparently",)))
+"""A speaker's belief said without its subject (*Pretty sure we're out of milk.*, *Looks like it rained.*):
+the statement after it (and after *that*) is context like any other."""
 
 CORRECTING_WORDS = word_set("mean meant means wrong mistake instead rather actually not other else said "
                             "say wanted want need needed")
@@ -1840,6 +1885,13 @@ PHRASE_ALIASES.update({
     ("start", "the", "day", "by"): ("start", "by"), ("to", "start", "the", "day"): ("first",),
     # operator shorthand for the order: "order n/a", "any ord."
     ("order", "n", "/", "a"): ("in", "any", "order"), ("any", "ord"): ("in", "any", "order"),
+})
+PHRASE_ALIASES.update({  # chat's "k?" closing a sentence: "..., k?" is "..., okay?"
+    ("k", "?"): ("okay", "?"),
+})
+PHRASE_ALIASES.update({  # bedtime before a comma or a colon, or with "tonight": "Tonight before bed: ..."
+    **{(*tonight, "before", "bed", *mark): (*tonight, "before", "bedtime", *mark)
+       for tonight, mark in ((("tonight",), ()), ((), (",",)), ((), (":",)))},
 })
 PHRASE_ALIASES.update({  # an emphatic "do" before a prohibition: "do stay away from X" is "stay away from X"
     ("do", *keep): keep for keep in (("stay", "away"), ("stay", "out"), ("keep", "away"), ("keep", "out"),

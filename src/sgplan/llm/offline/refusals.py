@@ -95,6 +95,12 @@ def reason_before_pronoun(reason: str, pronoun: str) -> str:
                     "order before it named? Name the place again")
 
 
+def event_of_people_at_place(said: str) -> str:
+    return rephrase(f"'{said}' says when by what people do at a place of the scene, which the robot can "
+                    "neither sense nor wait for (the place is not a goal of the robot's); leave the event "
+                    "out, or say the goals in order with 'then'")
+
+
 # ------------------------------------------------------------------------------------------ noun phrases
 def expected_phrase_at_end() -> str:
     return rephrase("expected a room or object at the end of the sentence")

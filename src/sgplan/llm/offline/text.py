@@ -210,20 +210,25 @@ def sentences(tokens: list[Tok]) -> list[Part]:
 def rewrite(tokens: list[Tok], aliases: dict[tuple[str, ...], tuple[str, ...]]) -> list[Tok]:
     """``tokens`` with every phrase of ``aliases`` (longest first, left to right) replaced by its reading;
     each new token spans the whole phrase it replaces, so messages still quote the user's words, except a
-    pronoun kept in its place (*set it down* read *put it down*: *it* is still the word *it*)."""
+    pronoun kept in its place (*set it down* read *put it down*: *it* is still the word *it*) and a comma,
+    colon or question mark ending both the phrase and its reading, which keeps its own span."""
     longest = max((len(k) for k in aliases), default=0)
     out: list[Tok] = []
     i = 0
     while i < len(tokens):
         for n in range(min(longest, len(tokens) - i), 0, -1):
             reading = aliases.get(tuple(t.text for t in tokens[i : i + n]))
-            if reading is not None:
-                start, end = tokens[i].start, tokens[i + n - 1].end
-                kept = [k < n and w == tokens[i + k].text and w in PRONOUNS for k, w in enumerate(reading)]
-                out += [tokens[i + k] if keep else Tok(w, start, end)
-                        for k, (w, keep) in enumerate(zip(reading, kept, strict=True))]
-                i += n
-                break
+            if reading is None:
+                continue
+            # a mark read as typed keeps its own place ("Before bed, ...": 'Before bed')
+            mark = n > 1 and reading[-1] in (",", ":", "?") and reading[-1] == tokens[i + n - 1].text
+            start, end = tokens[i].start, tokens[i + n - 1 - mark].end
+            kept = [k < n and w == tokens[i + k].text and w in PRONOUNS for k, w in enumerate(reading)]
+            out += [tokens[i + k] if kept[k] else Tok(w, start, end)
+                    for k, w in enumerate(reading[:len(reading) - mark])]
+            out += [tokens[i + n - 1]] if mark else []
+            i += n
+            break
         else:
             out.append(tokens[i])
             i += 1

@@ -47,11 +47,37 @@ def set_aside_context(readers: list[Reader]) -> list[Reader]:
     out: list[Reader] = []
     for k, r in enumerate(readers):
         said_before = any(not o.aside for o in out)
-        if not r.aside and met_need(r, readers[k + 1:]):
+        if not r.aside and (met_need(r, readers[k + 1:]) or kind_remark(r, out)):
             out.append(aside(r, 0, len(r)))  # "The vases need dusting. ... dust the vase in the hall ...
             continue
         out += [r] if r.aside or stated_start(r) is not None else split(r, said_before)
     return out
+
+
+def kind_remark(r: Reader, before: list[Reader]) -> bool:
+    """Whether the sentence ``r`` only remarks on the kind of a thing the orders before it named (*It's a
+    fussy plant lol.*, *That's an old vase, mind.*): *it* / *that* / *this* and a verb of being, *a* / *an*,
+    one or two words the translator does not know (the remark), the noun of a kind some order before it
+    named as *the* one (*Check a vase. It's a pretty vase.* may say which to choose), and remarks only.
+    Without such a word (*It's a vase.*: says what to look for), with a kind no order named, or with *the*
+    (*It's the kitchen.*: a correction) it is left to the parser."""
+    k = r.skip(0, lx.INTERJECTIONS)
+    if (r.word(k) not in lx.DEICTIC_SUBJECTS or r.word(k + 1) not in ("'s", "is", "was")
+            or r.word(k + 2) not in ("a", "an")):
+        return False
+    k += 3
+    said = k
+    while k < len(r) and k - said < 2 and r.word(k).isalpha() and r.word(k) not in lx.LEXICON_WORDS \
+            and r.head(k) is None and not misspelt_name(r, k, k + 1):
+        k += 1
+    head = r.head(k) if k > said else None
+    if head is None or not (k + head.words == len(r) or closing_only(r, k + head.words, len(r))):
+        return False
+    named = [h.categories for o in before if not o.aside
+             for j in range(len(o)) if (h := o.head(j)) is not None and not negated(o, j)
+             and (o.word(j - 1) in lx.DEFINITE or o.word(j - 1) in lx.POSSESSIVES)
+             and not any(w in lx.CHOICE_WORDS or w in lx.UNIVERSAL for w in o.words)]
+    return any(head.categories & other for other in named)
 
 
 def negated(r: Reader, k: int) -> bool:
@@ -87,11 +113,18 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         # "Oh, I meant the kitchen": takes back what was said before (corrections.py reads or refuses it);
         # "Sorry, I forgot something.": an apology before a statement that names nothing, said back
         return [aside(r, 0, len(r))] if apology(r) else [r]
+    people_at = event_of_people_at_place(r)
+    if people_at is not None:  # "after the kids are at the couch": never the couch as a goal
+        rf.refuse(rf.event_of_people_at_place(r.quote(*people_at)))
     praise = [w for w in r.words if w.isalpha()]
     if praise and all(w in lx.PRAISE or w in lx.HESITATIONS for w in praise):
         return [aside(r, 0, len(r))]  # "Perfect.", "Cool cool.": a sentence of praise only, said back
     if event_note(r, 0, len(r)) or is_time(r, 0, len(r)):
         return [aside(r, 0, len(r))]
+    heading = None if said_before else before_you_start(r)  # (after an order: before which step?)
+    if heading is not None:  # "Before you start: the carpet is wet, so ...": the rest read on its own
+        rest = replace(r, toks=r.toks[heading:])
+        return [aside(r, 0, heading - 1), *(split(rest) if rest.words else [])]
     clauses = comma_clauses(r)
     for a, b in clauses:
         if (r.word(a) in lx.APOLOGY_WORDS and r.word(a + 1) in ("for", "about")
@@ -108,14 +141,15 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
                             or (first == 0 and praise_before_order(r, *clauses[0]))):
         first += 1
     while last > first and (is_context(r, *clauses[last - 1], leading=False)
-                            or closing_only(r, *clauses[last - 1])):
+                            or closing_only(r, *clauses[last - 1]) or manner_only(r, *clauses[last - 1])):
         last -= 1  # "..., the cat's asleep in there", "..., okay?", "..., sorry about this": said back
     if first == last or (first > 0 and mere_talk(r, clauses[first][0], clauses[last - 1][1])):
         return [aside(r, 0, len(r))]
     named = mentions(aside(r, 0, clauses[first - 1][1])) if first else ()
     start = skip_joiner(r, clauses[first][0]) if first else 0
     # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
-    middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c) or counted(r, *c)]
+    middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c) or counted(r, *c)
+              or (c != clauses[first] and aside_between(r, *c))]
     words = [k for k in range(start, clauses[last - 1][1])
              if not any(a <= k < b or (k == a - 1 and r.word(k) == ",") for a, b in middle)]
     naming = [(a, b) for a, b in middle if any(r.head(k) is not None for k in range(a, b))]
@@ -240,6 +274,34 @@ def counted(r: Reader, start: int, end: int) -> bool:
             and all(w in lx.HOW_MANY or w in lx.NUMBER_WORDS or w.isdigit() for w in r.words[start + 2:end]))
 
 
+def aside_between(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` between two parts of an order (between dashes, brackets or commas)
+    is a statement that names nothing (*Avoid the living room - the carpet's wet - and go ...*, *..., the
+    kids are napping, and ...*, *- I'm worried it's dying -*): a subject and a verb (:func:`statement`), with
+    no room, object, floor, negation, word of order or condition (*first*, *then*, *if*), misspelt name or
+    word that takes back (*..., I mean, ...*: :mod:`.corrections` reads it or refuses it). The order around
+    it reads as if it were not there; a statement naming a place is left to the parser, which refuses it."""
+    return (statement(r, start, end) == "aside" and not r.says(lx.CORRECTIONS, start, end)
+            and not any(r.head(k) is not None or r.word(k) in lx.RELATIVE_FLOORS
+                        or r.word(k) in lx.FLOOR_WORDS
+                        or r.word(k) in lx.CORRECTING_WORDS or r.phrase(k, lx.NEG_STARTS)
+                        or r.word(k) in lx.WISH_STOPS or r.word(k) in lx.SEQUENCE_TIMES  # "first", "later"
+                        or r.word(k).startswith(("room_", "object_")) for k in range(start, end))
+            and not misspelt_name(r, start, end))
+
+
+def manner_only(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` only says how to behave, with no place or thing (*..., so be
+    gentle*, *..., and please be careful*, *Be extra quiet.*): *be* and one or two words of manner
+    (:data:`.lexicon.MANNER_WORDS`); *be careful in the kitchen* names a place (keep out, or only take care?)
+    and is refused by the parser."""
+    k = skip_joiner(r, r.skip(start, lx.INTERJECTIONS))
+    k += r.word(k) == "please"
+    said = r.words[k + 1:end]
+    return r.word(k) == "be" and 1 <= len(said) <= 2 and all(w in lx.MANNER_WORDS for w in said) \
+        and said[-1] not in lx.MANNER_INTENSIFIERS
+
+
 def is_reason(r: Reader, start: int, end: int) -> bool:
     """Whether the clause ``[start, end)`` is a reason (:func:`reason_span`) from its first word."""
     return reason_span(r, start, end) == (start, end)
@@ -271,10 +333,31 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
     doubt = r.phrase(said, lx.UNSURE)  # "Not sure if I turned it off": the statement after 'if'
     said = said + len(doubt) + 1 if doubt and r.word(said + len(doubt)) in lx.CHECK_THAT[1:] else said
     said += len(r.phrase(said, lx.NOTICE_THAT) or ())  # "Note that the kitchen is wet"
+    belief = r.phrase(said, lx.SURE_WITHOUT_SUBJECT)  # "Pretty sure we're out of milk"
+    said += len(belief) + (r.word(said + len(belief)) == "that") if belief else 0
+    if belief and any(r.head(k) is not None or r.word(k) in lx.RELATIVE_FLOORS for k in range(said, end)):
+        return False  # "Pretty sure it's in the kitchen": a place no order may name, refused by the parser
     if orders_a_named_thing(r, start, end):
         return False  # "visit both bedrooms, we start with the kitchen": an order, never context
-    return (is_time(r, start, end) or statement(r, said, end) == "aside"
+    return (is_time(r, start, end) or is_time(r, skip_joiner(r, start), end) or ignored_thing(r, said, end)
+            or statement(r, said, end) == "aside"
             or event_note(r, start, end) or is_reason(r, start, end))
+
+
+def ignored_thing(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` only tells the robot to pay no heed to a thing the scene does not
+    hold (*btw ignore the mess*, *just don't mind the noise*: :data:`.lexicon.IGNORED`, then a determiner and
+    one to three words that name nothing, up to the clause's end); with a room, object, floor or pronoun
+    (*ignore the kitchen*: skip it, or avoid it? *ignore the mess in the hall*) it is left to the parser,
+    which refuses it."""
+    k = r.skip(start, ("just", "please", "and", "but", "also"))
+    said = r.phrase(k, lx.IGNORED)
+    if said is None or r.word(k + len(said)) not in lx.DETERMINERS:
+        return False
+    words = range(k + len(said) + 1, end)
+    return 1 <= len(words) <= 3 and not misspelt_name(r, words.start, end) and all(
+        r.word(j).isalpha() and r.head(j) is None and r.word(j) not in lx.STRUCTURAL
+        and r.word(j) not in lx.RELATIVE_FLOORS and r.word(j) not in lx.FLOOR_WORDS for j in words)
 
 
 def orders_a_named_thing(r: Reader, start: int, end: int) -> bool:
@@ -377,6 +460,22 @@ def signature(r: Reader, k: int) -> bool:
             and (not rest or closing_only(r, rest[0], len(r))))
 
 
+def before_you_start(r: Reader) -> int | None:
+    """Where what follows a heading of the robot's setting off starts (*Before you start:*, *Before you head
+    off:*, *Once you begin,*), or ``None``: an opener of :data:`.lexicon.EVENT_OPENERS`, *you*, one or two
+    words that name nothing and are no order word, and a colon or comma; said when all that follows is done,
+    it asks nothing (*Before you go into the kitchen:* names a place, and is left to the parser)."""
+    colon = next((k for k in (3, 4) if r.word(k) in (":", ",")), None)  # (a heading's colon joins as a comma)
+    if r.word(0) not in lx.EVENT_OPENERS or r.word(1) != "you" or colon is None:
+        return None
+    said = range(2, colon)
+    return colon + 1 if (
+            all(r.word(k).isalpha() and r.head(k) is None and r.word(k) not in lx.RELATIVE_FLOORS
+                    and (r.word(k) not in lx.STRUCTURAL or r.word(k) in lx.PARTICLES)
+                    and r.word(k) not in ("up", "down") for k in said)  # "Before you come down,": a floor
+            and not misspelt_name(r, 2, colon)) else None
+
+
 def event_note(r: Reader, start: int, end: int) -> bool:
     """*Movie night later!*, *Big day tomorrow*: words about an event, with no room, object, verb or word of
     the grammar; or a day named after a thing (*Plant day!*), which asks nothing."""
@@ -404,6 +503,8 @@ def mere_talk(r: Reader, start: int, end: int, floors: bool = True) -> bool:
 def is_time(r: Reader, start: int, end: int) -> bool:
     """*Before lunch*, *this morning*, *at some point this evening*, *tonight*, *right now*: a time of day,
     meal or event (not *later* or *now* alone, which order the steps)."""
+    if event_clause(r, start, end) or tuple(r.words[start:end]) in lx.OCCASIONS:
+        return True
     words = r.words[start:end]
     event = words[:1] in tuple((w,) for w in lx.EVENT_OPENERS)  # "before the guests arrive"
     said = [w in lx.TIME_WORDS or (event and (w in lx.EVENT_VERBS or w in lx.PEOPLE or w in lx.PEOPLE_NOUNS
@@ -416,11 +517,74 @@ def is_time(r: Reader, start: int, end: int) -> bool:
     return bool(events) or tuple(words) in lx.NOW_SAID
 
 
+def event_clause(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` is an event of people, known by its shape whatever its verb
+    (*before the cleaners show up*, *once my sister drops by*, *after the kids head off*): an opener of
+    :data:`.lexicon.EVENT_OPENERS`, a subject that is a person (*she*, *the guests*, *my mum*, *Grandpa*; not
+    *you*: where the robot goes orders the steps), one verb that is no room, object or floor, and then only
+    particles or times. Any place, thing, pronoun or more words (*before the guests come to the kitchen*,
+    *before the kids go to bed*) leave it to the parser, which refuses it."""
+    if r.word(start) not in lx.EVENT_OPENERS:
+        return False
+    verb = person_subject_end(r, start + 1, end)
+    if verb is None:
+        return False
+    verb = r.skip(verb, lx.EVENT_AUXILIARIES)  # "once the dog has been fed"
+    w = r.word(verb)
+    if (verb >= end or not w.isalpha() or r.head(verb) is not None or w in lx.STRUCTURAL
+            or w in lx.RELATIVE_FLOORS or r.phrase(verb, lx.NEG_STARTS)):
+        return False
+    return all(r.word(k) in lx.EVENT_TAILS or r.word(k) in lx.EVENT_WORDS
+               or (r.word(k) in lx.EVENT_LINKS and r.word(k + 1) in lx.EVENT_WORDS)  # "from work"
+               for k in range(verb + 1, end))
+
+
+def event_of_people_at_place(r: Reader) -> tuple[int, int] | None:
+    """The ``[start, end)`` of an event of people that names a room or object of the scene (*after the kids
+    are at the couch*, *before the guests sit at the dining table*, *once my mum is in the kitchen*): an
+    opener of :data:`.lexicon.EVENT_OPENERS`, a person (:func:`person_subject_end`), a verb and a room or
+    object before the clause ends; ``None`` when there is none. What people do at a place is no goal of
+    the robot's, and other rules could read the place as one: refused."""
+    for k in range(len(r)):
+        verb = person_subject_end(r, k + 1, len(r), events=False) if r.word(k) in lx.EVENT_OPENERS else None
+        if verb is None or r.head(verb) is not None or not r.word(verb).isalpha():
+            continue
+        end = next((j for j in range(verb + 1, len(r))  # up to the order after it ("... leave check X")
+                    if r.word(j) == "," or r.phrase(j, lx.SEQ_WORDS) or starts_order(r, j)), len(r))
+        if any(r.head(j) is not None for j in range(verb + 1, end)):
+            return k, end
+    return None
+
+
+def person_subject_end(r: Reader, start: int, end: int, events: bool = True) -> int | None:
+    """Where the verb after a person as subject starts (*she* | *drops*, *the cleaners* | *show*, *my
+    mum* | *gets*), or ``None``: a pronoun of people, or a noun of no role in the grammar with at most a
+    determiner or possessive and one more such noun before it (*the new cleaners*, *my sister*);
+    an event word counts too (*the party* | *kicks off*, *the guests*), but without ``events`` not a bare one
+    (*lunch* in *Before lunch check the oven*)."""
+    if r.word(start) in lx.PEOPLE:
+        return start + 1
+    k = start + (r.word(start) in lx.DETERMINERS)
+    nouns = 0
+    while k < end and nouns < 2 and (plain_subject(r, k) or r.word(k) in lx.PEOPLE_NOUNS
+                                     or r.word(k) in lx.EVENT_WORDS) \
+            and not (r.word(k) in lx.EVENT_WORDS and k == start and not events) \
+            and not misspelt_name(r, k, k + 1):
+        k, nouns = k + (r.word(k + 1) == "'s") + 1, nouns + 1  # "my mum's friends"
+        if r.word(k) in lx.PEOPLE_NOUNS or r.word(k - 1) in lx.PEOPLE_NOUNS:
+            break
+    return k if nouns else None
+
+
 def time_tail(r: Reader, start: int, end: int) -> int | None:
     """Where a time expression closing the clause ``[start, end)`` starts (*go to the kitchen tonight*, *...
     before dinner*), or ``None``."""
     if is_time(r, start, end):
         return None  # the whole clause is one
+    # an event of people, whole: "... before the cleaners show up", "... before the kids leave for school"
+    event = next((k for k in range(max(start + 1, end - 7), end) if event_clause(r, k, end)), None)
+    if event is not None:
+        return event
     for k in range(max(start + 1, end - 4), end):
         if r.word(k) in lx.TIME_OPENERS and r.word(k - 1) not in lx.UNTIL_WORDS and is_time(r, k, end):
             return k
@@ -444,7 +608,7 @@ def time_head(r: Reader, start: int, end: int) -> int | None:
     evening stay on this floor*, *Tonight check the oven*), or ``None``; only a day's time (opening with
     :data:`.lexicon.DAY_OPENERS`): an event (*before dinner go ...*, *the guests arrive ...*) is left to the
     parser, as are *later* and *now*, which order the steps."""
-    if r.word(start) not in lx.DAY_OPENERS:
+    if r.word(start) not in lx.DAY_OPENERS and r.word(start) not in lx.SPAN_OPENERS:
         return None
     return next((k for k in range(start + 1, min(start + 5, end))
                  if is_time(r, start, k) and (starts_order(r, k) or r.word(k) in lx.STAY)), None)
@@ -512,7 +676,8 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
                 return room.end
         if not plain_word(r, start + 1):
             return None  # "the kitchen and the office": goals
-        return next((j for j in range(start + 2, min(start + 5, end)) if finite_verb(r.word(j))), None)
+        found = next((j for j in range(start + 2, min(start + 5, end)) if finite_verb(r.word(j))), None)
+        return start + 2 if found is None and person_did(r, start, end) else found
     if r.head(start) is not None:  # "office wet - avoid it", "NB: lobby busy rn": a note's statement
         said = noun_phrase(r, start, "qualifier")
         state = said.end if isinstance(said, Match) else end
@@ -524,6 +689,20 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
             and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
         return start + 1  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
     return None
+
+
+def person_did(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` is a person (*my mum*, *the neighbours*) and a verb the translator
+    does not know (*gave*, *bought*, *fixed*), whatever it is, naming no room, object or floor (*my mum gave
+    it to me*): a statement about people; with a place (*my mum expects it upstairs*) it is left to the
+    parser, which refuses it."""
+    person = r.word(start) in lx.POSSESSIVES or r.word(start + 1) in lx.PEOPLE_NOUNS
+    verb = r.word(start + 2)
+    return (person and verb.isalpha() and verb not in lx.LEXICON_WORDS
+            and not misspelt_name(r, start + 1, start + 3)
+            and not any(r.head(k) is not None or r.word(k) in lx.RELATIVE_FLOORS
+                        or r.word(k) in lx.FLOOR_WORDS
+                        or r.word(k).startswith(("room_", "object_")) for k in range(start, end)))
 
 
 def plain_word(r: Reader, i: int) -> bool:
