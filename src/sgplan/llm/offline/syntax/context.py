@@ -185,7 +185,7 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
     clause of its own (*go to the kitchen tonight*, *check the laptop before dinner, then ...*)."""
     cuts = [k for k, w in enumerate(r.words) if w == ","]
     joins = [k for k, w in enumerate(r.words) if w in lx.ORDER_JOINERS and k and r.word(k - 1) != ","
-             and starts_order(r, k + 1)]
+             and (starts_order(r, k + 1) or said_after_joiner(r, k))]
     starts = sorted({0, *(c + 1 for c in cuts), *joins})
     ends = sorted({*cuts, *joins, len(r)})
     out: list[tuple[int, int]] = []
@@ -199,6 +199,15 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
         out += ([(start, tail), (tail, end)] if tail is not None
                 else [(start, reason[0]), reason, (reason[1], end)] if reason is not None else [(start, end)])
     return [(a, b) for a, b in out if b > a]
+
+
+def said_after_joiner(r: Reader, k: int) -> bool:
+    """Whether the words after *so* / *but* at ``k`` (to the next comma) are no statement and no reason, so
+    that they may be an order in any words (*the dog's in the kitchen so leave it alone*, *... so upstairs is
+    off limits*): a clause of their own, read or refused, never set aside with the statement before them."""
+    end = next((j for j in range(k + 1, len(r)) if r.word(j) == ","), len(r))
+    return (end > k + 1 and r.phrase(k, lx.REASONS) is None and statement(r, k + 1, end) is None
+            and not mere_talk(r, k + 1, end))
 
 
 def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
@@ -311,6 +320,7 @@ def starts_order(r: Reader, k: int) -> bool:
     """Whether the words at ``k`` start an order: a prohibition, a polite wrapper, a verb."""
     w = r.word(k)
     return (r.phrase(k, lx.NEG_STARTS) is not None or r.phrase(k, lx.POLITE) is not None or w == "please"
+            or (w in lx.STAY and not w.endswith("ing"))  # "... so stay on this floor": an order to keep
             or (w in lx.POSITIVE_VERBS and w not in lx.PLACE_PREPOSITIONS and w not in lx.PARTICLES
                 and not w.endswith(("ing", "ed"))))
 
