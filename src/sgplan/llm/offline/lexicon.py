@@ -1074,6 +1074,11 @@ ORDER_HEADS = frozenset({"first", "firstly", "then", "next", "finally", "last", 
 """Before a colon (*Then: the kitchen*, *Before that: the office*): words of the order, read as if a comma
 stood there, never dropped as a heading."""
 BEFORE_THAT = ("before", "that")
+BEFORE_ENTERING = Phrases(tuple((*who, *verb) for who in (("you",), ("u",), ()) for verb in (
+    ("enter",), ("go", "into"), ("go", "in"), ("step", "into"), ("walk", "into"), ("head", "into"),
+    ("set", "foot", "in"), ("set", "foot", "into"))))
+"""After *before*: entering a room, which blind writers read as keeping out of it until then (*before you go
+into the kitchen, X*: not the kitchen until X), unlike *before you go to Y* (X, then Y)."""
 BEFORE_PRONOUNS = frozenset({"it", "this"})
 """After *before*, words learners write for *that* (*visit the lobby, but before it pass the table*)."""
 ON_THE_WAY = Phrases((("on", "your", "way"), ("on", "the", "way"), ("on", "my", "way")))

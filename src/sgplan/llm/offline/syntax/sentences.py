@@ -376,8 +376,9 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
     items = said.node.body.items
     if r.word(i + 1) != "to" and any(isinstance(item, Link) and item.sequence for item in items):
         return Refusal(rf.before_then(r.quote(i, said.end)))
-    if r.says(lx.OBLIGED, i + 1, said.end):
-        return Match(replace(said.node, strict=True), said.end)  # "before you enter Y, you must go to X"
+    if r.says(lx.OBLIGED, i + 1, said.end) or r.phrase(i + 1, lx.BEFORE_ENTERING) is not None:
+        # "before you enter Y, you must go to X", "before you go into Y, X": Y, and not before X
+        return Match(replace(said.node, strict=True), said.end)
     return said
 
 
