@@ -11,10 +11,12 @@ import dataclasses
 import pytest
 
 from sgplan.errors import MissionError
+from sgplan.llm.offline import PatternTranslator
 from sgplan.llm.offline.grounding import Discourse
 from sgplan.llm.offline.meaning.mission import mission_formula
 from sgplan.llm.offline.names import SceneVocabulary
 from sgplan.llm.offline.syntax import split_mission
+from sgplan.logic import to_infix
 from sgplan.scene.model import Building
 from tests.llm.offline.corpus import corpus_test
 
@@ -46,3 +48,11 @@ def test_a_kids_room_the_scene_does_not_single_out_is_refused(demo: Building, ro
         mission_formula(split_mission(text, vocabulary.nouns), Discourse(vocabulary, text, None))
     assert "'kids room' is not a room category of this scene" in str(info.value)
     assert fragment in str(info.value)
+
+
+def test_a_persons_possessive_is_said_back_as_set_aside(demo: Building) -> None:
+    """*the baby's teddy bear* is the teddy bear: whose it is, the scene does not say, so the owner is said
+    back as set aside (never dropped silently)."""
+    translation = PatternTranslator().translate("Check the baby's teddy bear, then Grandma's laptop.", demo)
+    assert to_infix(translation.formula) == 'F("reach(object_32)" & F "reach(object_35)")'
+    assert translation.set_aside == ("the baby's", "Grandma's")

@@ -70,6 +70,8 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
     if any(isinstance(q, InRoom) and q.choice for q in np.qualifiers):
         mode = "any"  # "the chair in the living room or the dining room": one of either room
     core = core_text(np, disc)
+    if np.determiner.owner is not None:  # "the baby's teddy bear": whose it is, the scene does not say
+        disc.put_aside(np.determiner.owner)
     if np.determiner.pointer is not None:
         noun, mode = demonstrative(np, noun, mode, core, where, disc)
     noun = scoped(np, noun, mode, core, where, disc)

@@ -324,6 +324,11 @@ def determiner(r: Reader, i: int, other: bool) -> Parse[Determiner]:
         return Match(Determiner("all" if count else "the", count, pointer=r.word(i), other=other), end)
     if r.word(i) in lx.OWNERS and (room := r.head(i + 1)) is not None and room.kind == "room":
         return Match(Determiner("the", None, pointer=r.word(i), other=other), i + 1)  # "her room"
+    owned = persons_possessive(r, i)
+    if owned:  # "the baby's teddy bear": the teddy bear; "my son's room": whose room?
+        if r.head(i + owned).kind == "room":
+            return Refusal(rf.whose_room(r.quote(i, i + owned + r.head(i + owned).words), []))
+        return Match(Determiner("the", None, other=other, owner=r.quote(i, i + owned)), i + owned)
     quant = quantifier(r, i)
     if not isinstance(quant, Match):
         return quant
@@ -379,6 +384,21 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
             return Refusal(rf.choosing_a_number(r.word(i)))
         return Match(Determiner("all", n), i + 1)
     return Match(Determiner(mode, count), i)
+
+
+def persons_possessive(r: Reader, i: int) -> int:
+    """How many words of a person's possessive start the phrase at ``i`` before a room or object noun
+    (*the baby's*, *my son's*, *Lily's*: a word for a person, or a capitalised name that is no word of the
+    grammar or the scene, then *'s*); 0 if none. Names are taken only when typed with a capital, so that a
+    word the translator does not know is never dropped as someone's name."""
+    k = i + (1 if r.word(i) in lx.ARTICLES or r.word(i) in lx.POSSESSIVES else 0)
+    who = r.word(k)
+    if r.word(k + 1) != "'s" or r.head(k) is not None or r.head(k + 2) is None:
+        return 0  # "the children's room" is a room's name
+    named = k == i and who.isalpha() and who not in lx.LEXICON_WORDS and r.quote(k, k + 1)[:1].isupper()
+    if who not in lx.owners("their") and not named:
+        return 0
+    return k + 2 - i
 
 
 def demonstrative(r: Reader, i: int) -> int:

@@ -127,6 +127,8 @@ class Reader:
             return False
         if w.startswith(("room_", "object_")) or w in lx.PRONOUNS:
             return w != "it" or nxt not in ("is", "was")
+        if nxt == "'s" and self.head(i) is None and self.head(i + 2) is not None:
+            return True  # "Lily's teddy bear": someone's thing (read or refused in the phrase)
         if w == "there":  # "get there": the last place named as a goal
             return nxt not in lx.STATEMENT_LINKS
         if w in lx.DETERMINERS:

@@ -190,6 +190,9 @@ class Determiner:
     """Descriptive words read with the determiner (:attr:`Described.descriptive`)."""
     ordinal: int | None = None
     """*the first / second X*, *back to the first one* (1, 2 ...): the X named that many-th before."""
+    owner: str | None = None
+    """*the baby's teddy bear*, *Lily's book*: the person's possessive before an object, as typed; whose it is
+    the scene does not say, so it is set aside and said back (the object must be the one of its kind)."""
 
 
 @dataclass(frozen=True)
