@@ -1294,6 +1294,12 @@ RELATIVE_PRONOUNS = ("that", "which", "where", "who")
 """Open a relative clause about a room's contents in any tense or form of *have* (:data:`HAVE_FORMS`)."""
 HAVE_FORMS = word_set("has have had having holds hold held contains contain contained keeps keep got")
 """*the bathroom which has / is having / has got / had / holds a vase*: the verbs of a room's contents."""
+LEARNERS_RELATIVES = ("what",)
+"""Relative pronouns as learners write them before a form of *have* (*the bathroom what has the vase*): as
+*which*."""
+RELATIVE_ADVERBS = ("also", "too", "still")
+"""Between the relative pronoun and *have*, saying nothing of the contents (*the bathroom that also has a
+vase*: the bathroom with a vase)."""
 HAVE_AUXILIARIES = word_set("is are was were has have had does do did 's")
 """Before a form of *have* (*is having*, *has got*) or *not* (*does not have*, *is not having*)."""
 SINGLE_COUNT = Phrases((("a", "single"), ("one", "single"), ("just", "the", "one"), ("only", "the", "one"),

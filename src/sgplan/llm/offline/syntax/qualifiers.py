@@ -576,9 +576,10 @@ def relative_have(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipp
     list: *which is having a vase*, *that has got two sinks*, *which had just the one sink*, *that is not
     having a vase*, *which hasn't got a plant* (the rooms holding none)."""
     k = i + (1 if r.word(i) == "," else 0)
-    if noun.kind == "object" or r.word(k) not in lx.RELATIVE_PRONOUNS:
+    if noun.kind == "object" or (r.word(k) not in lx.RELATIVE_PRONOUNS and r.word(k) not in lx.LEARNERS_RELATIVES):
         return None
-    k += 1 + (1 if r.word(k + 1) in lx.ONLY_WORDS else 0)
+    k += 1 + (1 if r.word(k + 1) in lx.RELATIVE_ADVERBS else 0)  # "that also has a vase"
+    k += 1 if r.word(k) in lx.ONLY_WORDS else 0
     only = r.word(k - 1) in lx.ONLY_WORDS
     negated = r.word(k) in lx.HAVE_AUXILIARIES and r.word(k + 1) == "not"
     k += 2 if negated else 1 if r.word(k) in lx.HAVE_AUXILIARIES and r.word(k + 1) in lx.HAVE_FORMS else 0
