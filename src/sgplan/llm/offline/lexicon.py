@@ -316,6 +316,8 @@ FLOOR_ORDINALS = {
 """``the first floor`` is the lowest floor (index 0): ordinals count floors from the lowest, US style."""
 FLOOR_NAMED = {"ground": 0, "bottom": 0, "lowest": 0, "basement": 0, "gnd": 0, "grnd": 0}
 FLOOR_TOP = ("top", "highest", "upper", "uppermost")
+FLOOR_ENDS_ALONE = ("top", "highest", "uppermost", "bottom", "lowest")
+"""Before a room's noun without *floor* (*the top bathroom*): the top or lowest floor."""
 FLOOR_MIDDLE = ("middle", "mid")
 """``the middle floor``: understood in a building with an odd number of floors (3: floor 1)."""
 FLOOR_WORDS = ("floor", "level", "storey", "story", "flr", "fl", "lvl")

@@ -29,6 +29,7 @@ from sgplan.llm.offline.syntax.tree import (
     Described,
     Determiner,
     FloorPlace,
+    FloorNumber,
     FloorSpec,
     GroupRepeat,
     HandledAt,
@@ -46,6 +47,7 @@ from sgplan.llm.offline.syntax.tree import (
     SameRoom,
     Span,
     ThereNP,
+    TopFloor,
 )
 
 
@@ -171,7 +173,7 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     if given is None and (one := room_one(r, first, i, role, replace(det.node, descriptive=said))):
         return one
     relative = r.word(i) if r.word(i) in lx.RELATIVE_FLOORS else None
-    floor_before = None if relative else floor_words(r, i)
+    floor_before = None if relative else floor_words(r, i) or floor_without_floor(r, i)
     if relative:
         i += 1
     elif floor_before is not None:
@@ -187,6 +189,17 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     return noun_with_head(r, first, r.descriptive_end(i), role, replace(det.node, descriptive=described_as),
                           relative, None if floor_before is None else floor_before.node,
                           OneHead(False, given, one_from_context or floor_one))
+
+
+def floor_without_floor(r: Reader, i: int) -> Match[FloorSpec] | None:
+    """*the top bathroom*, *the bottom bedroom*: a room on the top / lowest floor, as *the top floor bathroom*
+    (the word *floor* left out); only before a room's noun, and only the words that name one floor in any
+    building (*upper*, *lower* could be any floor above or below another: refused)."""
+    w, room = r.word(i), r.head(i + 1)
+    if room is None or room.kind != "room" or w not in lx.FLOOR_ENDS_ALONE:
+        return None
+    spec: FloorSpec = TopFloor(w) if w in lx.FLOOR_TOP else FloorNumber(lx.FLOOR_NAMED[w], w)
+    return Match(spec, i + 1)
 
 
 def named_ordinal(r: Reader, i: int, given: Head | None) -> tuple[int | None, bool]:
