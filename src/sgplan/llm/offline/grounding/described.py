@@ -71,6 +71,8 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
         mode = "any"  # "the chair in the living room or the dining room": one of either room
     core = core_text(np, disc)
     if np.determiner.owner is not None:  # "the baby's teddy bear": whose it is, the scene does not say
+        if noun.head.kind == "room" and np.apposition is None:  # "the kids' bedroom - the one with ..."
+            rf.refuse(rf.whose_room(core, []))
         disc.put_aside(np.determiner.owner)
     if np.determiner.pointer is not None:
         noun, mode = demonstrative(np, noun, mode, core, where, disc)

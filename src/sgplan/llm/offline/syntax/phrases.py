@@ -338,9 +338,7 @@ def determiner(r: Reader, i: int, other: bool) -> Parse[Determiner]:
     if r.word(i) in lx.OWNERS and (room := r.head(i + 1)) is not None and room.kind == "room":
         return Match(Determiner("the", None, pointer=r.word(i), other=other), i + 1)  # "her room"
     owned = persons_possessive(r, i)
-    if owned:  # "the baby's teddy bear": the teddy bear; "my son's room": whose room?
-        if r.head(i + owned).kind == "room":
-            return Refusal(rf.whose_room(r.quote(i, i + owned + r.head(i + owned).words), []))
+    if owned:  # "the baby's teddy bear": the teddy bear; "my son's room": whose room? (grounding)
         return Match(Determiner("the", None, other=other, owner=r.quote(i, i + owned)), i + owned)
     quant = quantifier(r, i)
     if not isinstance(quant, Match):
@@ -401,17 +399,22 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
 
 def persons_possessive(r: Reader, i: int) -> int:
     """How many words of a person's possessive start the phrase at ``i`` before a room or object noun
-    (*the baby's*, *my son's*, *Lily's*: a word for a person, or a capitalised name that is no word of the
-    grammar or the scene, then *'s*); 0 if none. Names are taken only when typed with a capital, so that a
+    (*the baby's*, *my son's*, *Lily's*, *the kids'*: a word for a person, or a capitalised name that is no
+    word of the grammar or the scene, then *'s* or the plural's apostrophe); 0 if none. Names are taken only when typed with a capital, so that a
     word the translator does not know is never dropped as someone's name."""
     k = i + (1 if r.word(i) in lx.ARTICLES or r.word(i) in lx.POSSESSIVES else 0)
-    who = r.word(k)
-    if r.word(k + 1) != "'s" or r.head(k) is not None or r.head(k + 2) is None:
+    if k >= len(r):
+        return 0
+    who, typed = r.word(k), r.quote(k, k + 1)
+    # "the kids' bedroom": the plural's apostrophe is only in the text, after the word "kids"
+    apostrophe = r.text[r.toks[k].end:r.toks[k].end + 1] in ("'", "\u2019")
+    end = k + 2 if r.word(k + 1) == "'s" else k + 1 if apostrophe else k
+    if end == k or r.head(k) is not None or r.head(end) is None:
         return 0  # "the children's room" is a room's name
-    named = k == i and who.isalpha() and who not in lx.LEXICON_WORDS and r.quote(k, k + 1)[:1].isupper()
+    named = k == i and who.isalpha() and who not in lx.LEXICON_WORDS and typed[:1].isupper()
     if who not in lx.owners("their") and not named:
         return 0
-    return k + 2 - i
+    return end - i
 
 
 def demonstrative(r: Reader, i: int) -> int:
