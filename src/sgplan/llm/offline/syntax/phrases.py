@@ -28,8 +28,8 @@ from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.tree import (
     Described,
     Determiner,
-    FloorPlace,
     FloorNumber,
+    FloorPlace,
     FloorSpec,
     GroupRepeat,
     HandledAt,
@@ -400,8 +400,9 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
 def persons_possessive(r: Reader, i: int) -> int:
     """How many words of a person's possessive start the phrase at ``i`` before a room or object noun
     (*the baby's*, *my son's*, *Lily's*, *the kids'*: a word for a person, or a capitalised name that is no
-    word of the grammar or the scene, then *'s* or the plural's apostrophe); 0 if none. Names are taken only when typed with a capital, so that a
-    word the translator does not know is never dropped as someone's name."""
+    word of the grammar or the scene, then *'s* or the plural's apostrophe); 0 if none. Names are taken
+    only when typed with a capital, so that a word the translator does not know is never dropped as
+    someone's name."""
     k = i + (1 if r.word(i) in lx.ARTICLES or r.word(i) in lx.POSSESSIVES else 0)
     if k >= len(r):
         return 0

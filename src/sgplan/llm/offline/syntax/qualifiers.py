@@ -576,7 +576,8 @@ def relative_have(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipp
     list: *which is having a vase*, *that has got two sinks*, *which had just the one sink*, *that is not
     having a vase*, *which hasn't got a plant* (the rooms holding none)."""
     k = i + (1 if r.word(i) == "," else 0)
-    if noun.kind == "object" or (r.word(k) not in lx.RELATIVE_PRONOUNS and r.word(k) not in lx.LEARNERS_RELATIVES):
+    pronoun = r.word(k) in lx.RELATIVE_PRONOUNS or r.word(k) in lx.LEARNERS_RELATIVES
+    if noun.kind == "object" or not pronoun:
         return None
     k += 1 + (1 if r.word(k + 1) in lx.RELATIVE_ADVERBS else 0)  # "that also has a vase"
     k += 1 if r.word(k) in lx.ONLY_WORDS else 0
