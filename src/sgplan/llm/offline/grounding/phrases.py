@@ -132,7 +132,7 @@ def pronoun(np: Pronoun, where: Where, disc: Discourse) -> Grounded:
     g.choice_of = backref.choice_refusal(np.word, ref, len(ref.entities))
     if g.choice_of is not None and where.role != "goal":  # only a carried goal may leave it open
         rf.refuse(g.choice_of)
-    if where.role == "avoid" and ref.role == "goal":  # "go to the lobby, and the kitchen you mustn't enter it"
+    if where.role == "avoid" and ref.role == "goal":  # "the kitchen you mustn't enter it"
         rf.refuse(rf.avoided_goal(np.word, ref.phrase))
     g.mentioned = ref in disc.mentions
     return disc.record(g)
