@@ -1495,6 +1495,10 @@ which is left to the parser."""
 AFTER_ORDER_REASONS = AFTER_ORDER_REASONS + Phrases((
     ("seeing", "as"), ("seeing", "that"), ("given", "that"), ("now", "that"), ("considering", "that")))
 """(*check the oven, seeing as we're cooking tonight*, *... now that dinner is done*)."""
+STATE_RESULTS = Phrases(tuple(("so", *who) for who in (*_CHECKED_STATE, ("they", "'re"))))
+"""The state an order leaves what it names in, said after it (*check the bedroom so it's tidy*, *... so
+they're ready*, *so nothing's burning*): a reason like *so that ...*, set aside only after an order and when it names no room,
+object or floor."""
 _PAST_TALK = ("discussed", "agreed", "promised", "planned", "requested", "asked", "arranged", "instructed",
               "mentioned", "said")
 CLOSING = CLOSING + Phrases((

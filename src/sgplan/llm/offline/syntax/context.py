@@ -220,7 +220,8 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
     if k is None:
         return None
     stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
-    said = range(k + len(r.phrase(k, lx.REASONS) or r.phrase(k, lx.AFTER_ORDER_REASONS) or ("for",)), stop)
+    said = range(k + len(r.phrase(k, lx.REASONS) or r.phrase(k, lx.AFTER_ORDER_REASONS)
+                        or r.phrase(k, lx.STATE_RESULTS) or ("for",)), stop)
     if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) or is_clock_time(r.word(j))
            or r.word(j) in lx.TIME_UNITS for j in said):
         return None  # what not to do, a question to the robot, a clock time or a delay: left to the parser
@@ -229,9 +230,24 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
 
 def after_order_reason(r: Reader, k: int) -> bool:
     """Whether a reason of :data:`.lexicon.AFTER_ORDER_REASONS` starts at ``k`` after an order of the same
-    sentence (*check the laptop as it needs charging*), not a comparison (*the same floor as the bed*)."""
-    return (r.phrase(k, lx.AFTER_ORDER_REASONS) is not None and any(starts_order(r, j) for j in range(k))
+    sentence (*check the laptop as it needs charging*), not a comparison (*the same floor as the bed*), or a
+    state the order leaves things in (:func:`state_result`)."""
+    return ((r.phrase(k, lx.AFTER_ORDER_REASONS) is not None or state_result(r, k))
+            and any(starts_order(r, j) for j in range(k))
             and not any(w in lx.COMPARED for w in r.words[max(0, k - 4):k]))
+
+
+def state_result(r: Reader, k: int) -> bool:
+    """Whether a state of :data:`.lexicon.STATE_RESULTS` starts at ``k`` (*so it's tidy*, *so nothing's
+    burning*), up to the clause's end or its next *then*, naming no room, object or floor (*so it's the
+    kitchen next* names the next goal: left to the parser)."""
+    said = r.phrase(k, lx.STATE_RESULTS)
+    if said is None:
+        return False
+    stop = next((j for j in range(k + 1, len(r)) if r.word(j) == "," or r.phrase(j, lx.SEQ_WORDS)), len(r))
+    return not any(r.head(j) is not None or r.word(j) in lx.RELATIVE_FLOORS or r.word(j) in lx.FLOOR_WORDS
+                   or r.word(j) in lx.PRONOUNS or r.word(j).startswith(("room_", "object_"))
+                   for j in range(k + len(said), stop))
 
 
 def purpose(r: Reader, k: int, end: int) -> bool:
