@@ -618,15 +618,23 @@ def time_tail(r: Reader, start: int, end: int) -> int | None:
 
 
 def timed_heading(r: Reader) -> list[Reader]:
-    """The words before a colon that announce how many things follow, without the time of day or event they
-    end with (*A couple of things before I get back:*, *Three jobs for tonight:*), after that time set aside
+    """The words before a colon that announce how many things follow, without the time of day, event or
+    aside asking nothing they end with (*A couple of things before I get back:*, *Three jobs for tonight:*,
+    *Two things when you get a chance:*), after that time set aside
     (said back; first, so that the heading stays right before what it announces); ``[r]`` otherwise."""
     if not r.words or r.words[-1] != ":" or r.aside:
         return [r]
     tail = time_tail(r, 0, len(r) - 1)
+    tail = hedge_tail(r, len(r) - 1) if tail is None else tail  # "Three things when you get a chance:"
     if tail is None or not any(w in lx.NUMBER_WORDS or w in lx.FEW or w.isdigit() for w in r.words[:tail]):
         return [r]  # only an announcement of how many (a label with its time is said back whole)
     return [aside(r, tail, len(r) - 1), replace(r, toks=r.toks[:tail] + r.toks[-1:])]
+
+
+def hedge_tail(r: Reader, end: int) -> int | None:
+    """Where an aside that asks nothing (:data:`.lexicon.CLOSING`: *when you get a chance*, *no rush*)
+    ending exactly at ``end`` starts, after at least one word, or ``None``."""
+    return next((k for k in range(1, end) if len(r.phrase(k, lx.CLOSING) or ()) == end - k), None)
 
 
 def time_head(r: Reader, start: int, end: int) -> int | None:
