@@ -182,7 +182,8 @@ def apology(r: Reader) -> bool:
 def comma_clauses(r: Reader) -> list[tuple[int, int]]:
     """The ``[start, end)`` of the clauses between the commas of ``r``, and before *so* / *but* followed by
     an order (*my son is asleep upstairs so don't go up there*); a time expression closing a clause is a
-    clause of its own (*go to the kitchen tonight*, *check the laptop before dinner, then ...*)."""
+    clause of its own (*go to the kitchen tonight*, *check the laptop before dinner, then ...*), also before
+    a reason (*check the fridge before lunch so I know what to cook*)."""
     cuts = [k for k, w in enumerate(r.words) if w == ","]
     joins = [k for k, w in enumerate(r.words) if w in lx.ORDER_JOINERS and k and r.word(k - 1) != ","
              and (starts_order(r, k + 1) or said_after_joiner(r, k))]
@@ -196,6 +197,10 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
             start = head
         tail = time_tail(r, start, end)
         reason = reason_span(r, start, end) if tail is None else None
+        timed = time_tail(r, start, reason[0]) if reason is not None else None
+        if timed is not None:  # "check the fridge before lunch so I know what to cook": the time, then why
+            out.append((start, timed))
+            start = timed
         out += ([(start, tail), (tail, end)] if tail is not None
                 else [(start, reason[0]), reason, (reason[1], end)] if reason is not None else [(start, end)])
     return [(a, b) for a, b in out if b > a]
