@@ -644,13 +644,14 @@ def hedge_tail(r: Reader, end: int) -> int | None:
 
 def time_head(r: Reader, start: int, end: int) -> int | None:
     """Where the order after a time of day opening the clause ``[start, end)`` without a comma starts (*This
-    evening stay on this floor*, *Tonight check the oven*), or ``None``; only a day's time (opening with
+    evening stay on this floor*, *Tonight check the oven*, *for now just head to ...*), or ``None``; only a day's time (opening with
     :data:`.lexicon.DAY_OPENERS`): an event (*before dinner go ...*, *the guests arrive ...*) is left to the
     parser, as are *later* and *now*, which order the steps."""
     if r.word(start) not in lx.DAY_OPENERS and r.word(start) not in lx.SPAN_OPENERS:
         return None
-    return next((k for k in range(start + 1, min(start + 5, end))
-                 if is_time(r, start, k) and (starts_order(r, k) or r.word(k) in lx.STAY)), None)
+    said = lx.HESITATIONS | lx.MANNER_INTENSIFIERS  # "for now just head ...", "Tonight really check ..."
+    return next((k for k in range(start + 1, min(start + 5, end)) if is_time(r, start, k) and (
+        starts_order(r, r.skip(k, said)) or r.word(r.skip(k, said)) in lx.STAY)), None)
 
 
 def statement(r: Reader, start: int, end: int) -> str | None:
