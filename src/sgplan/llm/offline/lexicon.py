@@ -1571,6 +1571,11 @@ CLOSING = CLOSING + Phrases((("obviously",), ("of", "course"), ("roughly",), ("n
                              ("not", "a", "priority"), ("not", "a", "big", "deal")))
 """More of :data:`CLOSING`: hedges alone in their clause (*Check the oven, obviously.*, *Morning routine,
 roughly: ...*, *Not urgent, but check the oven.*)."""
+CLOSING = CLOSING + Phrases((
+    *((indulge, "me") for indulge in ("humor", "humour", "indulge", "trust")),
+    ("bear", "with", "me"), ("just", "saying")))
+"""More of :data:`CLOSING`: asking to be indulged, which asks nothing of the scene (*avoid the lobby (humor
+me)*, *check it twice, just saying*); not *not really*, which may take back what came before it."""
 IGNORED = Phrases((("ignore",), ("never", "mind"), ("do", "not", "mind"), ("do", "not", "worry", "about")))
 """Words that tell the robot to pay no heed to a thing the scene does not hold (*btw ignore the mess*, *don't
 mind the noise*): set aside (:func:`.syntax.context.ignored_thing`); *ignore the kitchen* may mean skip or
