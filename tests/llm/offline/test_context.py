@@ -79,3 +79,8 @@ def test_results_reasons_after_times_and_hedged_headings_are_said_back(demo: Bui
                                      "For now")
     said = explain_mission(mission_of(translation), demo).text.splitlines()
     assert "Not part of the mission: 'so it's tidy'" in said
+
+
+def test_a_remark_between_two_orders_is_said_back(demo: Building) -> None:
+    translation = PatternTranslator().translate("Check the couch, bear with me, then the oven, no rush.", demo)
+    assert translation.set_aside == ("bear with me", "no rush")
