@@ -1444,6 +1444,10 @@ PEOPLE_NOUNS = PEOPLE_NOUNS | word_set("child kid toddler teenager teen hubby mi
 """More people (*my little one* is read *my child*: :data:`PHRASE_ALIASES`)."""
 STATED_VERBS = STATED_VERBS | word_set("want wants wanted wish wishes asked asks swears swore reckons")
 """More verbs of statements about people (*My son wants it.*, *she asked for it*)."""
+STATED_VERBS = STATED_VERBS | word_set("forgot forgets forgotten bought buys brought brings spilled spilt spills "
+                                      "follows followed borrowed borrows")
+"""More verbs of statements about people and pets, past and present (*My son forgot his homework.*, *our cat
+follows everyone around*)."""
 WANTED_WHERE = word_set("here there back down up upstairs downstairs")
 """Where a thing is wanted (*she wants it back*, *he needs it upstairs*): a need that may ask for a goal."""
 HOW_MANY = word_set("a few couple several some lots loads plenty of them one more")
