@@ -82,5 +82,6 @@ def test_results_reasons_after_times_and_hedged_headings_are_said_back(demo: Bui
 
 
 def test_a_remark_between_two_orders_is_said_back(demo: Building) -> None:
-    translation = PatternTranslator().translate("Check the couch, bear with me, then the oven, no rush.", demo)
+    text = "Check the couch, bear with me, then the oven, no rush."
+    translation = PatternTranslator().translate(text, demo)
     assert translation.set_aside == ("bear with me", "no rush")

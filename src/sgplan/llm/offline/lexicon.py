@@ -1444,8 +1444,8 @@ PEOPLE_NOUNS = PEOPLE_NOUNS | word_set("child kid toddler teenager teen hubby mi
 """More people (*my little one* is read *my child*: :data:`PHRASE_ALIASES`)."""
 STATED_VERBS = STATED_VERBS | word_set("want wants wanted wish wishes asked asks swears swore reckons")
 """More verbs of statements about people (*My son wants it.*, *she asked for it*)."""
-STATED_VERBS = STATED_VERBS | word_set("forgot forgets forgotten bought buys brought brings spilled spilt spills "
-                                      "follows followed borrowed borrows")
+STATED_VERBS = STATED_VERBS | word_set("forgot forgets forgotten bought buys brought brings spilled spilt "
+                                      "spills follows followed borrowed borrows")
 """More verbs of statements about people and pets, past and present (*My son forgot his homework.*, *our cat
 follows everyone around*)."""
 WANTED_WHERE = word_set("here there back down up upstairs downstairs")
@@ -1501,7 +1501,7 @@ AFTER_ORDER_REASONS = AFTER_ORDER_REASONS + Phrases((
 """(*check the oven, seeing as we're cooking tonight*, *... now that dinner is done*)."""
 STATE_RESULTS = Phrases(tuple(("so", *who) for who in (*_CHECKED_STATE, ("they", "'re"))))
 """The state an order leaves what it names in, said after it (*check the bedroom so it's tidy*, *... so
-they're ready*, *so nothing's burning*): a reason like *so that ...*, set aside only after an order and when it names no room,
+nothing's burning*): a reason like *so that ...*, set aside only after an order and when it names no room,
 object or floor."""
 _PAST_TALK = ("discussed", "agreed", "promised", "planned", "requested", "asked", "arranged", "instructed",
               "mentioned", "said")
