@@ -645,8 +645,8 @@ def hedge_tail(r: Reader, end: int) -> int | None:
 def time_head(r: Reader, start: int, end: int) -> int | None:
     """Where the order after a time of day opening the clause ``[start, end)`` without a comma starts (*This
     evening stay on this floor*, *Tonight check the oven*, *for now just head to ...*), or ``None``; only a
-    day's time (opening with :data:`.lexicon.DAY_OPENERS`): an event (*before dinner go ...*, *the guests arrive ...*) is left to the
-    parser, as are *later* and *now*, which order the steps."""
+    day's time (opening with :data:`.lexicon.DAY_OPENERS`): an event (*before dinner go ...*, *the guests
+    arrive ...*) is left to the parser, as are *later* and *now*, which order the steps."""
     if r.word(start) not in lx.DAY_OPENERS and r.word(start) not in lx.SPAN_OPENERS:
         return None
     said = lx.HESITATIONS | lx.MANNER_INTENSIFIERS  # "for now just head ...", "Tonight really check ..."
