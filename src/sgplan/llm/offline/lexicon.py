@@ -1322,6 +1322,12 @@ ONLY_WORDS = frozenset({"only", "just", "but"})
 """In a room's contents (*with only / just the bed*, *with nothing but a bed*): nothing else is in it."""
 ONLY_FOLLOWERS = ("after", "if", "once", "when", "before")
 """After *only*: *only after X*, *only if X* ... (not *the bedroom with a bed only*: its contents)."""
+ONLY_AS_BUT_AFTER = frozenset({"please", ","})
+"""Between a sentence's first word *only* and a prohibition (*Only please stay out of X*, *Only, keep out of
+X*): *only* is the joiner *but*, not *only <do X> after Y* (unless the sentence has an order word, see
+:data:`ONLY_ORDER_WORDS`)."""
+ONLY_ORDER_WORDS = frozenset({*ONLY_FOLLOWERS, "until", "till", "til", "unless", "then"})
+"""In a sentence opening with *only*: *only* may be *only <do X> after Y*, so it is not read as *but*."""
 IN_IT = ("in", "inside")
 """``the bedroom that only has a bed in it``: the trailing *in it* repeats the room."""
 CONTENTS_BEFORE_COUNT = ONLY_WORDS | word_set("with has have having containing contains")

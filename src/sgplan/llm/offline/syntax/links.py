@@ -54,6 +54,8 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     if said is not None:
         return "filler", i + len(said)
     w = r.word(i)
+    if w == "only" and i == 0 and only_as_but(r):
+        return "filler", 1
     if w in lx.FIRST and r.word(i + 1) in lx.PLACE_PREPOSITIONS and r.word(i - 1) not in ("", ","):
         return None  # "go first to the kitchen": the action's (it comes first)
     said_before = i - 1 - (r.word(i - 1) in lx.PERSONAL_SUBJECTS)  # "visit X, you begin with Y"
@@ -63,6 +65,15 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     if w == "," or (w in lx.FILLERS and w not in lx.NOT_FILLERS_HERE) or w in lx.HESITATIONS:
         return "filler", i + 1
     return None
+
+
+def only_as_but(r: Reader) -> bool:
+    """Whether the sentence's first word *only* is the joiner *but* (*Only please stay out of the dining
+    room*, *Only, don't go upstairs*): a prohibition follows it (after *please* or a comma), and no order
+    word is in the sentence (*only please go to X after Y* stays *only <do X> after Y*; *only go to X* may
+    mean nowhere else, so it is not read as *but*)."""
+    k = 1 + sum(1 for w in r.words[1:3] if w in lx.ONLY_AS_BUT_AFTER)
+    return r.phrase(k, lx.NEG_STARTS) is not None and not set(r.words) & lx.ONLY_ORDER_WORDS
 
 
 def on_the_way(r: Reader, i: int, way: tuple[str, ...],
