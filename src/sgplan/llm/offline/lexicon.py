@@ -681,7 +681,7 @@ POLITE = Phrases((
     ("can", "i", "ask", "you", "to"), ("would", "you", "be", "able", "to"), ("could", "you", "possibly"),
     ("can", "you", "possibly"), ("would", "you", "be", "willing", "to"), ("i", "would", "like", "you", "to"),
     ("if", "you", "could", "please"), ("please", "could", "you"), ("please", "can", "you"),
-    ("go", "and"), ("please", "make", "sure"), ("would", "you", "be", "so", "kind", "as", "to"),
+    ("go", "and"), ("come", "and"), ("please", "make", "sure"), ("would", "you", "be", "so", "kind", "as", "to"),
     ("would", "you", "kindly"), ("could", "you", "kindly"), ("would", "you", "please"),
     ("could", "you", "please"),
     ("be", "a", "dear", "and"), ("be", "a", "star", "and"), ("do", "us", "a", "favour", "and"),
