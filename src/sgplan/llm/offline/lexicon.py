@@ -387,6 +387,11 @@ CARRY_ON_VERBS = word_set("bring bringing brought carry carrying carried deliver
                           "taking")
 """*take an apple and bring to the kitchen*: said with no object, the thing taken before is carried there, so
 the destination comes after it (not *move to*, *put in*, *drop in*: those also mean going)."""
+PAST_CARRY_VERBS = word_set("brought carried delivered")
+"""Of :data:`CARRY_ON_VERBS`, the past: *after you brought it to Y* says it was carried before."""
+TAKING_VERBS = word_set("take grab get fetch pick collect retrieve")
+"""Opening the clause before *, after you bring it to Y* (*Take the bowl, after you bring it to the table*): it
+must be taken before it is carried, so *after* can only be *then* (as learners of English write it)."""
 ROUTE_VERBS = word_set("from through via past")
 """``go from X to Y``, ``go through X to Y``: X, then Y."""
 DESTINATION_WORDS = ("to", "into", "onto")

@@ -132,7 +132,7 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
     counted = (r.word(0) in lx.FIRST and r.word(i - 1) == ","
                and not any(r.phrase(j, lx.SEQ_WORDS) for j in range(1, i)))
     if k > i + 1 and verb and not has_main_clause(r, k):
-        if r.word(i - 1) == "and" or counted:
+        if r.word(i - 1) == "and" or counted or carried_after_taking(r, i, k):
             return "sequence", k  # "and after you touch the toilet": and then
         return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), k + 4))))
     if r.np_starts(i + 1) and r.word(i + 1) not in lx.DETERMINERS - lx.ARTICLES and not has_main_clause(r, i):
@@ -141,6 +141,18 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
         # "go to the office and after the kitchen": the kitchen after (as learners write) or before?
         return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), i + 5))))
     return None
+
+
+def carried_after_taking(r: Reader, i: int, k: int) -> bool:
+    """Whether *, after you bring it to Y* (the carry verb at ``k``, *after* at ``i``) follows a clause that
+    opens with taking a thing (*Take the bowl from the kitchen, after you bring it in the bedroom*): *it* is
+    the thing taken, carried only once taken, so *after* is *then*; a clause that opens otherwise (*wash the
+    cup, after you bring it to the sink*) may be done after the carrying (refused)."""
+    if (r.word(k) not in lx.CARRY_ON_VERBS - lx.PAST_CARRY_VERBS or r.word(k + 1) not in ("it", "them")
+            or set(r.words[i + 1:k]) - {"you"}):
+        return False  # "after you have brought it": done before (refused)
+    start = max((j for j in range(i - 1) if r.word(j) in (",", "and", "then")), default=-1) + 1
+    return r.word(start) in lx.TAKING_VERBS
 
 
 def obliged_after(r: Reader, i: int) -> int | None:
