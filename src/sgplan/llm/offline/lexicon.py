@@ -1043,6 +1043,7 @@ WHOLE_MISSION = Phrases((
     ("while", "you", "are", "out"), ("while", "you", "are", "out", "and", "about"),
     ("while", "you", "are", "out", "there"), ("while", "you", "are", "going", "round"),
     ("entirely",), ("completely",), ("altogether",), ("at", "all", "costs"),
+    ("not", "even", "once"), ("even", "once"),  # "don't go in X not even once": never
     *(("during", "the", noun) for noun in _SPAN_NOUNS)))
 """Said after what to avoid: the prohibition holds for the whole mission (``G !x``), not only at one step."""
 WAYPOINT_OPENERS = ("on", "along")
