@@ -390,8 +390,8 @@ the destination comes after it (not *move to*, *put in*, *drop in*: those also m
 PAST_CARRY_VERBS = word_set("brought carried delivered")
 """Of :data:`CARRY_ON_VERBS`, the past: *after you brought it to Y* says it was carried before."""
 TAKING_VERBS = word_set("take grab get fetch pick collect retrieve")
-"""Opening the clause before *, after you bring it to Y* (*Take the bowl, after you bring it to the table*): it
-must be taken before it is carried, so *after* can only be *then* (as learners of English write it)."""
+"""Opening the clause before *, after you bring it to Y* (*Take the bowl, after you bring it to the table*):
+it must be taken before it is carried, so *after* can only be *then* (as learners of English write it)."""
 ROUTE_VERBS = word_set("from through via past")
 """``go from X to Y``, ``go through X to Y``: X, then Y."""
 DESTINATION_WORDS = ("to", "into", "onto")
@@ -686,7 +686,8 @@ POLITE = Phrases((
     ("can", "i", "ask", "you", "to"), ("would", "you", "be", "able", "to"), ("could", "you", "possibly"),
     ("can", "you", "possibly"), ("would", "you", "be", "willing", "to"), ("i", "would", "like", "you", "to"),
     ("if", "you", "could", "please"), ("please", "could", "you"), ("please", "can", "you"),
-    ("go", "and"), ("come", "and"), ("please", "make", "sure"), ("would", "you", "be", "so", "kind", "as", "to"),
+    ("go", "and"), ("please", "make", "sure"), ("would", "you", "be", "so", "kind", "as", "to"),
+    ("come", "and"),  # "come and look at X", as "go and look at X"
     ("would", "you", "kindly"), ("could", "you", "kindly"), ("would", "you", "please"),
     ("could", "you", "please"),
     ("be", "a", "dear", "and"), ("be", "a", "star", "and"), ("do", "us", "a", "favour", "and"),

@@ -94,11 +94,12 @@ def items_with_room_heading(readers: list[Reader]) -> list[Reader]:
             item = heading_kept_out(heading, r) or replace(r, toks=heading.prefix + r.toks)
             out[-1] = replace(item, marker=last.marker, new_line=last.new_line)
             continue
-        if said is not None and said.marker and len(said) == 1 and said.word(0) in lx.ORDER_HEADS \
-                and r.marker is None and not r.new_line and r.toks:
+        if last is not None and said is not None and said.marker and len(said) == 1 \
+                and said.word(0) in lx.ORDER_HEADS and r.marker is None and not r.new_line and r.toks:
             # "3. last: the couch": the order word read as if a comma stood for the colon ("3. last, ...")
             comma = Tok(",", said.toks[-1].end, said.toks[-1].end)
-            out[-1] = replace(r, toks=(*said.toks, comma, *r.toks), marker=last.marker, new_line=last.new_line)
+            out[-1] = replace(r, toks=(*said.toks, comma, *r.toks), marker=last.marker,
+                              new_line=last.new_line)
             continue
         out.append(r)
     return out
@@ -210,7 +211,8 @@ def check_order_words(run: list[Reader], order: Order) -> None:
     *- first A, then B*, an order inside the item, nor *- first A - then B*, the next item after it)."""
     for n, item in enumerate(run):
         inner = any(item.phrase(j, lx.SEQ_WORDS) for j in range(1, len(item)))  # "- first A, then B"
-        then_next = n + 1 < len(run) and run[n + 1].phrase(0, lx.SEQ_WORDS) is not None  # "- first A - then B"
+        # "- first A - then B": the next item says it comes after
+        then_next = n + 1 < len(run) and run[n + 1].phrase(0, lx.SEQ_WORDS) is not None
         if item.word(0) in lx.FIRST and (n > 0 or (order == "any" and not then_next)) and not inner:
             rf.refuse(rf.order_word_in_list(item.quote(0, len(item)), item.word(0), "first"))
         if item.word(0) in (*lx.LAST, "finally") and n < len(run) - 1:
