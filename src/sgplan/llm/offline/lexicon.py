@@ -606,6 +606,9 @@ PERSONAL_SUBJECTS = frozenset({"you", "we", "i"})
 SUBJECT_FILLERS = word_set("you we i the robot it ever have has had do does did are is were was already "
                            "been also first")
 """Skipped before the verb of a clause that follows a conjunction (*after you have been to X*)."""
+FUTURE_AUXILIARIES = frozenset({"will", "'ll", "shall", "would"})
+"""After *after you* inside a sentence (*X, after you will go to Y*): no tense of a clause of time, so
+learners' *afterwards you will* as much as *after*: refused."""
 LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through", "on", "onto"})
 """Repeated in a list after *either* / *both*: *either to A or to B*."""
 SHORT_STAYS = Phrases(tuple(("for", "a", *little, spell) for little in ((), ("little",), ("quick",))

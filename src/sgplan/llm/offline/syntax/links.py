@@ -119,6 +119,9 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
             r.word(i + 1) in lx.AFTER_AS_THEN - {","} or (r.word(i + 1) in lx.POSITIVE_VERBS
                                                         and not is_gerund(r.word(i + 1)))):
         return "sequence", i + 1  # "Go to X. After go to Y.": no clause of its own, so no "after Y"
+    if r.word(i - 1) not in ("", "and") and r.word(skip_subject(r, i + 1)) in lx.FUTURE_AUXILIARIES:
+        # "Check the oven, after you will go to the office": learners' "afterwards you will", or "after"?
+        return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), skip_subject(r, i + 1) + 3))))
     if r.word(i - 1) not in (",", "and"):
         return None
     nxt = r.word(i + 1)
