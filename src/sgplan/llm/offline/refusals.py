@@ -527,9 +527,14 @@ def either_of_more(said: str, described: list[str]) -> str:
                     "'any ...' for one of them all, or name the room")
 
 
+def avoided_goal(pronoun: str, goal: str) -> str:
+    return rephrase(f"'{pronoun}' to keep away from would be '{goal}', which is also a goal; say "
+                    "'never enter X' with the place named")
+
+
 def way_back_to(said: str) -> str:
     return rephrase(f"'{said} ...' puts what follows before that place and after what came before, which is "
-                    "not read; say 'then Y, then go back to X'")
+                    "not read; say 'then Y, then go to X'")
 
 
 def on_your_way_there() -> str:

@@ -132,6 +132,8 @@ def pronoun(np: Pronoun, where: Where, disc: Discourse) -> Grounded:
     g.choice_of = backref.choice_refusal(np.word, ref, len(ref.entities))
     if g.choice_of is not None and where.role != "goal":  # only a carried goal may leave it open
         rf.refuse(g.choice_of)
+    if where.role == "avoid" and ref.role == "goal":  # "the kitchen you mustn't enter it"
+        rf.refuse(rf.avoided_goal(np.word, ref.phrase))
     g.mentioned = ref in disc.mentions
     return disc.record(g)
 
@@ -165,10 +167,12 @@ def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
     if where.role != "qualifier" and ref.mode == "all" and len(ref.entities) > 1:
         rf.refuse(rf.there_is_several(ref.phrase))  # "both bedrooms, then back there": which one?
     entities = list(ref.entities)
-    if where.role == "qualifier":  # "the clock in there": the room of the last goal
+    before = disc.text[:np.span.start].split()
+    inside = bool(before) and before[-1].lower() in ("in", "into", "inside")
+    if where.role == "qualifier" or inside:  # "the clock in there", "go in there": the room of the last goal
         entities = list({e.room_key: disc.vocab.by_key[e.room_key] for e in entities}.values())
-    return disc.record(Grounded("there", np.span.start, np.span.end, entities, ref.mode, ref.room_scoped,
-                                where.role))
+    scoped = ref.room_scoped and not (inside and where.role != "qualifier")  # rooms now, not objects
+    return disc.record(Grounded("there", np.span.start, np.span.end, entities, ref.mode, scoped, where.role))
 
 
 @grounds(GroupRepeat)

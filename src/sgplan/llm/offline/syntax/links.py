@@ -92,6 +92,8 @@ def on_the_way(r: Reader, i: int, way: tuple[str, ...],
         return "sequence", to  # "swing by X on your way (up) to the kitchen": X, then the kitchen
     if r.word(i + len(way)) == "there":
         return Refusal(rf.on_your_way_there())
+    if i > 0 and r.word(to) in ("to", "into") and r.np_starts(to + 1):
+        return Refusal(rf.way_back_to(r.quote(i, to + 1)))  # "A, and on your way (up) to X, Y": Y before X
     if to > i + n and r.np_starts(to + 1):
         return None  # "On your way up to X, grab Y": Y, then X (.sentences.on_the_way_first)
     back_end = r.skip(i + len(way), lx.WAY_BACK)
