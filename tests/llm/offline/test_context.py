@@ -69,3 +69,19 @@ def test_asides_events_and_remarks_of_this_round_are_said_back(demo: Building) -
     said = explain_mission(mission_of(translation), demo).text.splitlines()
     assert "Not part of the mission: 'the carpet's wet'" in said
     assert "Not part of the mission: 'It's a fussy plant lol'" in said
+
+
+def test_results_reasons_after_times_and_hedged_headings_are_said_back(demo: Building) -> None:
+    text = ("Two things when you can: check the fridge before lunch so I know what to cook, then look at the "
+            "bedroom with the book so it's tidy. For now just keep out of the kitchen.")
+    translation = PatternTranslator().translate(text, demo)
+    assert translation.set_aside == ("when you can", "before lunch", "so I know what to cook", "so it's tidy",
+                                     "For now")
+    said = explain_mission(mission_of(translation), demo).text.splitlines()
+    assert "Not part of the mission: 'so it's tidy'" in said
+
+
+def test_a_remark_between_two_orders_is_said_back(demo: Building) -> None:
+    text = "Check the couch, bear with me, then the oven, no rush."
+    translation = PatternTranslator().translate(text, demo)
+    assert translation.set_aside == ("bear with me", "no rush")

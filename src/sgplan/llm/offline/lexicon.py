@@ -1460,6 +1460,10 @@ PEOPLE_NOUNS = PEOPLE_NOUNS | word_set("child kid toddler teenager teen hubby mi
 """More people (*my little one* is read *my child*: :data:`PHRASE_ALIASES`)."""
 STATED_VERBS = STATED_VERBS | word_set("want wants wanted wish wishes asked asks swears swore reckons")
 """More verbs of statements about people (*My son wants it.*, *she asked for it*)."""
+STATED_VERBS = STATED_VERBS | word_set("forgot forgets forgotten bought buys brought brings spilled spilt "
+                                      "spills follows followed borrowed borrows")
+"""More verbs of statements about people and pets, past and present (*My son forgot his homework.*, *our cat
+follows everyone around*)."""
 WANTED_WHERE = word_set("here there back down up upstairs downstairs")
 """Where a thing is wanted (*she wants it back*, *he needs it upstairs*): a need that may ask for a goal."""
 HOW_MANY = word_set("a few couple several some lots loads plenty of them one more")
@@ -1511,6 +1515,10 @@ which is left to the parser."""
 AFTER_ORDER_REASONS = AFTER_ORDER_REASONS + Phrases((
     ("seeing", "as"), ("seeing", "that"), ("given", "that"), ("now", "that"), ("considering", "that")))
 """(*check the oven, seeing as we're cooking tonight*, *... now that dinner is done*)."""
+STATE_RESULTS = Phrases(tuple(("so", *who) for who in (*_CHECKED_STATE, ("they", "'re"))))
+"""The state an order leaves what it names in, said after it (*check the bedroom so it's tidy*, *... so
+nothing's burning*): a reason like *so that ...*, set aside only after an order and when it names no room,
+object or floor."""
 _PAST_TALK = ("discussed", "agreed", "promised", "planned", "requested", "asked", "arranged", "instructed",
               "mentioned", "said")
 CLOSING = CLOSING + Phrases((
@@ -1583,6 +1591,11 @@ CLOSING = CLOSING + Phrases((("obviously",), ("of", "course"), ("roughly",), ("n
                              ("not", "a", "priority"), ("not", "a", "big", "deal")))
 """More of :data:`CLOSING`: hedges alone in their clause (*Check the oven, obviously.*, *Morning routine,
 roughly: ...*, *Not urgent, but check the oven.*)."""
+CLOSING = CLOSING + Phrases((
+    *((indulge, "me") for indulge in ("humor", "humour", "indulge", "trust")),
+    ("bear", "with", "me"), ("just", "saying")))
+"""More of :data:`CLOSING`: asking to be indulged, which asks nothing of the scene (*avoid the lobby (humor
+me)*, *check it twice, just saying*); not *not really*, which may take back what came before it."""
 IGNORED = Phrases((("ignore",), ("never", "mind"), ("do", "not", "mind"), ("do", "not", "worry", "about")))
 """Words that tell the robot to pay no heed to a thing the scene does not hold (*btw ignore the mess*, *don't
 mind the noise*): set aside (:func:`.syntax.context.ignored_thing`); *ignore the kitchen* may mean skip or

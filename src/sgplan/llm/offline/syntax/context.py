@@ -149,7 +149,7 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     start = skip_joiner(r, clauses[first][0]) if first else 0
     # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
     middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c) or counted(r, *c)
-              or (c != clauses[first] and aside_between(r, *c))]
+              or (c != clauses[first] and (aside_between(r, *c) or closing_only(r, *c)))]
     words = [k for k in range(start, clauses[last - 1][1])
              if not any(a <= k < b or (k == a - 1 and r.word(k) == ",") for a, b in middle)]
     naming = [(a, b) for a, b in middle if any(r.head(k) is not None for k in range(a, b))]
@@ -182,7 +182,8 @@ def apology(r: Reader) -> bool:
 def comma_clauses(r: Reader) -> list[tuple[int, int]]:
     """The ``[start, end)`` of the clauses between the commas of ``r``, and before *so* / *but* followed by
     an order (*my son is asleep upstairs so don't go up there*); a time expression closing a clause is a
-    clause of its own (*go to the kitchen tonight*, *check the laptop before dinner, then ...*)."""
+    clause of its own (*go to the kitchen tonight*, *check the laptop before dinner, then ...*), also before
+    a reason (*check the fridge before lunch so I know what to cook*)."""
     cuts = [k for k, w in enumerate(r.words) if w == ","]
     joins = [k for k, w in enumerate(r.words) if w in lx.ORDER_JOINERS and k and r.word(k - 1) != ","
              and (starts_order(r, k + 1) or said_after_joiner(r, k))]
@@ -196,6 +197,10 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
             start = head
         tail = time_tail(r, start, end)
         reason = reason_span(r, start, end) if tail is None else None
+        timed = time_tail(r, start, reason[0]) if reason is not None else None
+        if timed is not None:  # "check the fridge before lunch so I know what to cook": the time, then why
+            out.append((start, timed))
+            start = timed
         out += ([(start, tail), (tail, end)] if tail is not None
                 else [(start, reason[0]), reason, (reason[1], end)] if reason is not None else [(start, end)])
     return [(a, b) for a, b in out if b > a]
@@ -220,7 +225,8 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
     if k is None:
         return None
     stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
-    said = range(k + len(r.phrase(k, lx.REASONS) or r.phrase(k, lx.AFTER_ORDER_REASONS) or ("for",)), stop)
+    said = range(k + len(r.phrase(k, lx.REASONS) or r.phrase(k, lx.AFTER_ORDER_REASONS)
+                        or r.phrase(k, lx.STATE_RESULTS) or ("for",)), stop)
     if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) or is_clock_time(r.word(j))
            or r.word(j) in lx.TIME_UNITS for j in said):
         return None  # what not to do, a question to the robot, a clock time or a delay: left to the parser
@@ -229,9 +235,24 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
 
 def after_order_reason(r: Reader, k: int) -> bool:
     """Whether a reason of :data:`.lexicon.AFTER_ORDER_REASONS` starts at ``k`` after an order of the same
-    sentence (*check the laptop as it needs charging*), not a comparison (*the same floor as the bed*)."""
-    return (r.phrase(k, lx.AFTER_ORDER_REASONS) is not None and any(starts_order(r, j) for j in range(k))
+    sentence (*check the laptop as it needs charging*), not a comparison (*the same floor as the bed*), or a
+    state the order leaves things in (:func:`state_result`)."""
+    return ((r.phrase(k, lx.AFTER_ORDER_REASONS) is not None or state_result(r, k))
+            and any(starts_order(r, j) for j in range(k))
             and not any(w in lx.COMPARED for w in r.words[max(0, k - 4):k]))
+
+
+def state_result(r: Reader, k: int) -> bool:
+    """Whether a state of :data:`.lexicon.STATE_RESULTS` starts at ``k`` (*so it's tidy*, *so nothing's
+    burning*), up to the clause's end or its next *then*, naming no room, object or floor (*so it's the
+    kitchen next* names the next goal: left to the parser)."""
+    said = r.phrase(k, lx.STATE_RESULTS)
+    if said is None:
+        return False
+    stop = next((j for j in range(k + 1, len(r)) if r.word(j) == "," or r.phrase(j, lx.SEQ_WORDS)), len(r))
+    return not any(r.head(j) is not None or r.word(j) in lx.RELATIVE_FLOORS or r.word(j) in lx.FLOOR_WORDS
+                   or r.word(j) in lx.PRONOUNS or r.word(j).startswith(("room_", "object_"))
+                   for j in range(k + len(said), stop))
 
 
 def purpose(r: Reader, k: int, end: int) -> bool:
@@ -602,26 +623,35 @@ def time_tail(r: Reader, start: int, end: int) -> int | None:
 
 
 def timed_heading(r: Reader) -> list[Reader]:
-    """The words before a colon that announce how many things follow, without the time of day or event they
-    end with (*A couple of things before I get back:*, *Three jobs for tonight:*), after that time set aside
+    """The words before a colon that announce how many things follow, without the time of day, event or
+    aside asking nothing they end with (*A couple of things before I get back:*, *Three jobs for tonight:*,
+    *Two things when you get a chance:*), after that time set aside
     (said back; first, so that the heading stays right before what it announces); ``[r]`` otherwise."""
     if not r.words or r.words[-1] != ":" or r.aside:
         return [r]
     tail = time_tail(r, 0, len(r) - 1)
+    tail = hedge_tail(r, len(r) - 1) if tail is None else tail  # "Three things when you get a chance:"
     if tail is None or not any(w in lx.NUMBER_WORDS or w in lx.FEW or w.isdigit() for w in r.words[:tail]):
         return [r]  # only an announcement of how many (a label with its time is said back whole)
     return [aside(r, tail, len(r) - 1), replace(r, toks=r.toks[:tail] + r.toks[-1:])]
 
 
+def hedge_tail(r: Reader, end: int) -> int | None:
+    """Where an aside that asks nothing (:data:`.lexicon.CLOSING`: *when you get a chance*, *no rush*)
+    ending exactly at ``end`` starts, after at least one word, or ``None``."""
+    return next((k for k in range(1, end) if len(r.phrase(k, lx.CLOSING) or ()) == end - k), None)
+
+
 def time_head(r: Reader, start: int, end: int) -> int | None:
     """Where the order after a time of day opening the clause ``[start, end)`` without a comma starts (*This
-    evening stay on this floor*, *Tonight check the oven*), or ``None``; only a day's time (opening with
-    :data:`.lexicon.DAY_OPENERS`): an event (*before dinner go ...*, *the guests arrive ...*) is left to the
-    parser, as are *later* and *now*, which order the steps."""
+    evening stay on this floor*, *Tonight check the oven*, *for now just head to ...*), or ``None``; only a
+    day's time (opening with :data:`.lexicon.DAY_OPENERS`): an event (*before dinner go ...*, *the guests
+    arrive ...*) is left to the parser, as are *later* and *now*, which order the steps."""
     if r.word(start) not in lx.DAY_OPENERS and r.word(start) not in lx.SPAN_OPENERS:
         return None
-    return next((k for k in range(start + 1, min(start + 5, end))
-                 if is_time(r, start, k) and (starts_order(r, k) or r.word(k) in lx.STAY)), None)
+    said = lx.HESITATIONS | lx.MANNER_INTENSIFIERS  # "for now just head ...", "Tonight really check ..."
+    return next((k for k in range(start + 1, min(start + 5, end)) if is_time(r, start, k) and (
+        starts_order(r, r.skip(k, said)) or r.word(r.skip(k, said)) in lx.STAY)), None)
 
 
 def statement(r: Reader, start: int, end: int) -> str | None:
