@@ -389,6 +389,11 @@ CARRY_ON_VERBS = word_set("bring bringing brought carry carrying carried deliver
                           "taking")
 """*take an apple and bring to the kitchen*: said with no object, the thing taken before is carried there, so
 the destination comes after it (not *move to*, *put in*, *drop in*: those also mean going)."""
+PAST_CARRY_VERBS = word_set("brought carried delivered")
+"""Of :data:`CARRY_ON_VERBS`, the past: *after you brought it to Y* says it was carried before."""
+TAKING_VERBS = word_set("take grab get fetch pick collect retrieve")
+"""Opening the clause before *, after you bring it to Y* (*Take the bowl, after you bring it to the table*):
+it must be taken before it is carried, so *after* can only be *then* (as learners of English write it)."""
 ROUTE_VERBS = word_set("from through via past")
 """``go from X to Y``, ``go through X to Y``: X, then Y."""
 DESTINATION_WORDS = ("to", "into", "onto")
@@ -603,6 +608,9 @@ PERSONAL_SUBJECTS = frozenset({"you", "we", "i"})
 SUBJECT_FILLERS = word_set("you we i the robot it ever have has had do does did are is were was already "
                            "been also first")
 """Skipped before the verb of a clause that follows a conjunction (*after you have been to X*)."""
+FUTURE_AUXILIARIES = frozenset({"will", "'ll", "shall", "would"})
+"""After *after you* inside a sentence (*X, after you will go to Y*): no tense of a clause of time, so
+learners' *afterwards you will* as much as *after*: refused."""
 LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through", "on", "onto"})
 """Repeated in a list after *either* / *both*: *either to A or to B*."""
 SHORT_STAYS = Phrases(tuple(("for", "a", *little, spell) for little in ((), ("little",), ("quick",))
@@ -684,6 +692,7 @@ POLITE = Phrases((
     ("can", "you", "possibly"), ("would", "you", "be", "willing", "to"), ("i", "would", "like", "you", "to"),
     ("if", "you", "could", "please"), ("please", "could", "you"), ("please", "can", "you"),
     ("go", "and"), ("please", "make", "sure"), ("would", "you", "be", "so", "kind", "as", "to"),
+    ("come", "and"),  # "come and look at X", as "go and look at X"
     ("would", "you", "kindly"), ("could", "you", "kindly"), ("would", "you", "please"),
     ("could", "you", "please"),
     ("be", "a", "dear", "and"), ("be", "a", "star", "and"), ("do", "us", "a", "favour", "and"),
@@ -1040,6 +1049,7 @@ WHOLE_MISSION = Phrases((
     ("while", "you", "are", "out"), ("while", "you", "are", "out", "and", "about"),
     ("while", "you", "are", "out", "there"), ("while", "you", "are", "going", "round"),
     ("entirely",), ("completely",), ("altogether",), ("at", "all", "costs"),
+    ("not", "even", "once"), ("even", "once"),  # "don't go in X not even once": never
     *(("during", "the", noun) for noun in _SPAN_NOUNS)))
 """Said after what to avoid: the prohibition holds for the whole mission (``G !x``), not only at one step."""
 WAYPOINT_OPENERS = ("on", "along")
@@ -1330,6 +1340,12 @@ ONLY_WORDS = frozenset({"only", "just", "but"})
 """In a room's contents (*with only / just the bed*, *with nothing but a bed*): nothing else is in it."""
 ONLY_FOLLOWERS = ("after", "if", "once", "when", "before")
 """After *only*: *only after X*, *only if X* ... (not *the bedroom with a bed only*: its contents)."""
+ONLY_AS_BUT_AFTER = frozenset({"please", ","})
+"""Between a sentence's first word *only* and a prohibition (*Only please stay out of X*, *Only, keep out of
+X*): *only* is the joiner *but*, not *only <do X> after Y* (unless the sentence has an order word, see
+:data:`ONLY_ORDER_WORDS`)."""
+ONLY_ORDER_WORDS = frozenset({*ONLY_FOLLOWERS, "until", "till", "til", "unless", "then"})
+"""In a sentence opening with *only*: *only* may be *only <do X> after Y*, so it is not read as *but*."""
 IN_IT = ("in", "inside")
 """``the bedroom that only has a bed in it``: the trailing *in it* repeats the room."""
 CONTENTS_BEFORE_COUNT = ONLY_WORDS | word_set("with has have having containing contains")

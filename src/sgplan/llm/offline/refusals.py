@@ -446,6 +446,12 @@ def or_between_actions(rest: str) -> str:
 
 
 # ----------------------------------------------------------------------------------------------- order
+def order_word_in_list(item: str, word: str, place: str) -> str:
+    return rephrase(f"'{item}': '{word}' opens an item that is not the {place} of its list, or a list in no "
+                    "order: which items it comes before or after is not clear; number the items in the order "
+                    "meant ('1. ..., 2. ...')")
+
+
 def after_before_or_then(said: str) -> str:
     return rephrase(f"'{said}': after what was said before it, or before it? Say 'then' (what follows comes "
                     "after) or put 'after ...' first ('after you ..., go to ...')")

@@ -54,6 +54,8 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     if said is not None:
         return "filler", i + len(said)
     w = r.word(i)
+    if w == "only" and i == 0 and only_as_but(r):
+        return "filler", 1
     if w in lx.FIRST and r.word(i + 1) in lx.PLACE_PREPOSITIONS and r.word(i - 1) not in ("", ","):
         return None  # "go first to the kitchen": the action's (it comes first)
     said_before = i - 1 - (r.word(i - 1) in lx.PERSONAL_SUBJECTS)  # "visit X, you begin with Y"
@@ -63,6 +65,15 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     if w == "," or (w in lx.FILLERS and w not in lx.NOT_FILLERS_HERE) or w in lx.HESITATIONS:
         return "filler", i + 1
     return None
+
+
+def only_as_but(r: Reader) -> bool:
+    """Whether the sentence's first word *only* is the joiner *but* (*Only please stay out of the dining
+    room*, *Only, don't go upstairs*): a prohibition follows it (after *please* or a comma), and no order
+    word is in the sentence (*only please go to X after Y* stays *only <do X> after Y*; *only go to X* may
+    mean nowhere else, so it is not read as *but*)."""
+    k = 1 + sum(1 for w in r.words[1:3] if w in lx.ONLY_AS_BUT_AFTER)
+    return r.phrase(k, lx.NEG_STARTS) is not None and not set(r.words) & lx.ONLY_ORDER_WORDS
 
 
 def on_the_way(r: Reader, i: int, way: tuple[str, ...],
@@ -110,6 +121,9 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
             r.word(i + 1) in lx.AFTER_AS_THEN - {","} or (r.word(i + 1) in lx.POSITIVE_VERBS
                                                         and not is_gerund(r.word(i + 1)))):
         return "sequence", i + 1  # "Go to X. After go to Y.": no clause of its own, so no "after Y"
+    if r.word(i - 1) not in ("", "and") and r.word(skip_subject(r, i + 1)) in lx.FUTURE_AUXILIARIES:
+        # "Check the oven, after you will go to the office": learners' "afterwards you will", or "after"?
+        return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), skip_subject(r, i + 1) + 3))))
     if r.word(i - 1) not in (",", "and"):
         return None
     nxt = r.word(i + 1)
@@ -123,7 +137,7 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
     counted = (r.word(0) in lx.FIRST and r.word(i - 1) == ","
                and not any(r.phrase(j, lx.SEQ_WORDS) for j in range(1, i)))
     if k > i + 1 and verb and not has_main_clause(r, k):
-        if r.word(i - 1) == "and" or counted:
+        if r.word(i - 1) == "and" or counted or carried_after_taking(r, i, k):
             return "sequence", k  # "and after you touch the toilet": and then
         return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), k + 4))))
     if r.np_starts(i + 1) and r.word(i + 1) not in lx.DETERMINERS - lx.ARTICLES and not has_main_clause(r, i):
@@ -132,6 +146,18 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
         # "go to the office and after the kitchen": the kitchen after (as learners write) or before?
         return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), i + 5))))
     return None
+
+
+def carried_after_taking(r: Reader, i: int, k: int) -> bool:
+    """Whether *, after you bring it to Y* (the carry verb at ``k``, *after* at ``i``) follows a clause that
+    opens with taking a thing (*Take the bowl from the kitchen, after you bring it in the bedroom*): *it* is
+    the thing taken, carried only once taken, so *after* is *then*; a clause that opens otherwise (*wash the
+    cup, after you bring it to the sink*) may be done after the carrying (refused)."""
+    if (r.word(k) not in lx.CARRY_ON_VERBS - lx.PAST_CARRY_VERBS or r.word(k + 1) not in ("it", "them")
+            or set(r.words[i + 1:k]) - {"you"}):
+        return False  # "after you have brought it": done before (refused)
+    start = max((j for j in range(i - 1) if r.word(j) in (",", "and", "then")), default=-1) + 1
+    return r.word(start) in lx.TAKING_VERBS
 
 
 def obliged_after(r: Reader, i: int) -> int | None:

@@ -81,8 +81,9 @@ def ordered_before(out: list[Reader]) -> list[Reader] | None:
 def items_with_room_heading(readers: list[Reader]) -> list[Reader]:
     """``readers`` with each list item that is a room and a colon joined to the words after the colon on
     its line (*- kitchen: check the microwave*, *2) bedroom with the clock: the clock*): one item, read in
-    that room, as *Kitchen: check the microwave* is on a line of its own. An item's colon before anything
-    else is left as it is (and refused)."""
+    that room, as *Kitchen: check the microwave* is on a line of its own; a word of the order and a colon
+    (*3. last: the couch*) is joined to them as if a comma stood there. An item's colon before anything else
+    is left as it is (and refused)."""
     out: list[Reader] = []
     for r in readers:
         last = out[-1] if out else None
@@ -93,8 +94,16 @@ def items_with_room_heading(readers: list[Reader]) -> list[Reader]:
             item = heading_kept_out(heading, r) or replace(r, toks=heading.prefix + r.toks)
             out[-1] = replace(item, marker=last.marker, new_line=last.new_line)
             continue
+        if last is not None and said is not None and said.marker and len(said) == 1 \
+                and said.word(0) in lx.ORDER_HEADS and r.marker is None and not r.new_line and r.toks:
+            # "3. last: the couch": the order word read as if a comma stood for the colon ("3. last, ...")
+            comma = Tok(",", said.toks[-1].end, said.toks[-1].end)
+            out[-1] = replace(r, toks=(*said.toks, comma, *r.toks), marker=last.marker,
+                              new_line=last.new_line)
+            continue
         out.append(r)
     return out
+
 
 
 def list_run(readers: list[Reader], k: int) -> list[Reader]:
@@ -149,6 +158,7 @@ def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) 
     if order == "ordered" and not remark and not said_order:
         check_no_bulleted_goal(run)
     prefix = scope + (announced.prefix if announced is not None else ())
+    check_order_words(run, order)
     for n, item in enumerate(run):
         after = order == "ordered" and n > 0 and not (item.word(0) == "eventually"
                                                       or item.at(0, "at", "some", "point"))
@@ -192,6 +202,21 @@ def widened(item: Reader) -> bool:
     heads = [(k, h) for k in range(len(item)) if (h := item.head(k)) is not None]
     return not any(h.kind == "room" for _, h in heads) and any(
         h.plural or item.word(k - 1) in lx.CHOICE_WORDS for k, h in heads)
+
+
+def check_order_words(run: list[Reader], order: Order) -> None:
+    """An item opening with *first* is the first of a list in order, one opening with *last* / *finally* the
+    last of its list (*- A - B - last, C*: C after all of them); anywhere else (*- first: the oven - the
+    couch*, *1. last: A 2. B*) which items it comes before or after is not read: refused, naming it (not
+    *- first A, then B*, an order inside the item, nor *- first A - then B*, the next item after it)."""
+    for n, item in enumerate(run):
+        inner = any(item.phrase(j, lx.SEQ_WORDS) for j in range(1, len(item)))  # "- first A, then B"
+        # "- first A - then B": the next item says it comes after
+        then_next = n + 1 < len(run) and run[n + 1].phrase(0, lx.SEQ_WORDS) is not None
+        if item.word(0) in lx.FIRST and (n > 0 or (order == "any" and not then_next)) and not inner:
+            rf.refuse(rf.order_word_in_list(item.quote(0, len(item)), item.word(0), "first"))
+        if item.word(0) in (*lx.LAST, "finally") and n < len(run) - 1:
+            rf.refuse(rf.order_word_in_list(item.quote(0, len(item)), item.word(0), "last"))
 
 
 def check_no_bulleted_goal(run: list[Reader]) -> None:
