@@ -522,6 +522,11 @@ def on_the_way_to_nothing() -> str:
     return rephrase("'on the way' needs the goal it is on the way to, named before it")
 
 
+def strict_after_several() -> str:
+    return rephrase("'only after that' after steps that each hold several goals: after which of them? Put "
+                    "the goal that must wait in a sentence of its own ('Do not enter X until ...')")
+
+
 def either_of_more(said: str, described: list[str]) -> str:
     return rephrase(f"'{said}' is one of two, but it matches {len(described)}: {', '.join(described)}; say "
                     "'any ...' for one of them all, or name the room")
@@ -781,6 +786,11 @@ def not_after_comma(said: str) -> str:
 
 
 # ------------------------------------------------------------------------------------- back-references
+def antecedent_qualifier_or_goal(pronoun: str, qualifier: str, goal: str) -> str:
+    return rephrase(f"'{pronoun}' could be '{qualifier}', named to say which place, or '{goal}', a goal "
+                    "named before it; name the thing")
+
+
 def antecedent_of_several(pronoun: str, phrases: list[str]) -> str:
     named = ", ".join(f"'{p}'" for p in dict.fromkeys(phrases))
     return rephrase(f"'{pronoun}' could be any of {named}, named in a sentence that is not part of the "

@@ -267,6 +267,10 @@ def antecedent(pronoun: str, disc: Discourse, kind: str | None = None) -> Ground
               and not any(o is not f and o.start <= f.start and f.end <= o.end for o in fits)]
     if kept_out and others:  # "get the laptop, but don't go into the bedroom with the teddy bear until you've
         rf.refuse(rf.antecedent_or_kept_out(pronoun, others[0].phrase, g.phrase))  # got it": which?
+    goal_before = [f for f in fits[1:] if f.role == "goal" and f.end <= g.start
+                   and all(e.kind == "object" for e in f.entities)]
+    if g.role == "qualifier" and goal_before and not plural:  # "bring the teddy, go to the bedroom with the
+        rf.refuse(rf.antecedent_qualifier_or_goal(pronoun, g.phrase, goal_before[0].phrase))  # TV, tuck it"
     # "the book from the bedroom with the vase ... it": the object the phrase is about (its head), not an
     # object named inside it to locate it
     outer = [o for o in fits[1:] if o.start <= g.start and g.end <= o.end and all(e.kind == "object"

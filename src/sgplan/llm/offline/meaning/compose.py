@@ -78,18 +78,31 @@ def sequence_formula(steps: Sequence[Step]) -> Formula | None:
 
 def strict_formulas(steps: Sequence[Step]) -> list[Formula]:
     """``A, and only after that B``: for each ``strict`` task of a step, its members are not done until the
-    previous step's tasks are (``!B U A``, one per member of an ``all`` task), on top of the sequence."""
+    previous step's tasks are (``!B U A``, one per member of an ``all`` task), on top of the sequence; after a
+    sequence (``A, then C, and only after that B``) not until the whole of it is done in its order
+    (``!B U (A & (!B U C))``), which needs one target per earlier step (else refused: after which?)."""
     out: list[Formula] = []
-    previous: Step = []
+    done: list[Step] = []
     for step in [s for s in steps if s]:
         for task in step:
-            if task.strict and previous:
+            if task.strict and done:
                 forbidden = conj([Not(m) for m in task.members])
-                for before in previous:
-                    targets = [disj(before.members)] if before.mode == "any" else before.members
-                    out.extend(Until(forbidden, t) for t in targets)
-        previous = step
+                out.extend(strict_after(forbidden, done))
+        done.append(step)
     return out
+
+
+def strict_after(forbidden: Formula, done: list[Step]) -> list[Formula]:
+    """``forbidden`` kept until the steps ``done`` are, in their order (see :func:`strict_formulas`)."""
+    targets = [[disj(t.members)] if t.mode == "any" else t.members for step in done for t in step]
+    if len(done) == 1:
+        return [Until(forbidden, t) for ts in targets for t in ts]
+    if any(len(step) != 1 for step in done) or any(len(ts) != 1 for ts in targets):
+        rf.refuse(rf.strict_after_several())
+    nested = Until(forbidden, targets[-1][0])
+    for ts in reversed(targets[:-1]):
+        nested = Until(forbidden, And((ts[0], nested)))
+    return [nested]
 
 
 @dataclass
