@@ -257,12 +257,13 @@ DETERMINERS = word_set("the a an any all every each both either this that these 
 INDEFINITE = ("a", "an", "any", "some", "either")
 CONTACT_SUBJECTS = ("you", "i", "we")
 """Right after a noun (*the chair you want*, *the bowl I left*): the subject of a relative clause without
-*that* (refused: *in X* after it could be where the thing is or another goal)."""
+*that* (refused: *in X* after it could be where the thing is or another goal); before order words, the
+subject of a clause said to the robot (*..., you begin with X*)."""
 UNIVERSAL = ("all", "every", "each", "both")
 CHOOSING_OF = ("one", "any", "either")
+"""``one of / any of / either of the X``: one of them."""
 CHOICE_WORDS = frozenset({"a", "an", "any", "either", "one", "some", "whichever"})
 """Words before a noun that leave the choice of the entity to the robot (*a plant*, *any TV*)."""
-"""``one of / any of / either of the X``: one of them."""
 ONE_SAID = ("one", "1")
 """*one* as notes also write it (*1 of the chairs*, *grab 1 bottle*): any one of them."""
 DEFINITE = ("the", "this", "that", "these", "those")
@@ -355,10 +356,9 @@ STATED_SUBJECTS = Phrases((("i", "am"), ("we", "are"), ("you", "are"), ("the", "
 """*I'm* (the tokenizer drops the part after the apostrophe) / *we are* ... before where the robot is."""
 STATED_NOW = ("currently", "now", "still", "already")
 NOW = Phrases((("right", "now"), ("now",), ("currently",), ("at", "once"), ("at", "present"), ("with", "you"),
-               ("with", "you", "now")))
-"""*right now* ...; *at the moment* reads *at once* here (:data:`PHRASE_ALIASES`: *the moment* = *once*)."""
-NOW = NOW + Phrases((("already",), ("now", "already"), ("by", "now")))
-"""*You're upstairs already, so ...*: where the robot is, said as where it has got to."""
+               ("with", "you", "now"), ("already",), ("now", "already"), ("by", "now")))
+"""*right now* ...; *at the moment* reads *at once* here (:data:`PHRASE_ALIASES`: *the moment* = *once*);
+*You're upstairs already, so ...*: where the robot is, said as where it has got to."""
 
 # ----------------------------------------------------------------------------------------------- verbs
 POSITIVE_VERBS = word_set(
@@ -603,12 +603,10 @@ order)* / *whichever first*."""
 CARRIED_ALL = frozenset({"everything", "all"})
 """What a carry verb takes when it takes what was fetched before (*bring everything down to the lobby*, *take
 it all to X*): its destination comes after every goal of the sentence (as *... last*)."""
-PERSONAL_SUBJECTS = frozenset({"you", "we", "i"})
-"""The subject of a clause said to the robot (*..., you begin with X*), before its order words."""
 SUBJECT_FILLERS = word_set("you we i the robot it ever have has had do does did are is were was already "
                            "been also first")
 """Skipped before the verb of a clause that follows a conjunction (*after you have been to X*)."""
-FUTURE_AUXILIARIES = frozenset({"will", "'ll", "shall", "would"})
+FUTURE_AUXILIARIES = frozenset({"will", "shall", "would"})
 """After *after you* inside a sentence (*X, after you will go to Y*): no tense of a clause of time, so
 learners' *afterwards you will* as much as *after*: refused."""
 LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through", "on", "onto"})
@@ -1491,10 +1489,10 @@ GREETING_TIMES = {(*good, period) for good in ((), ("good",))
                   for period in ("morning", "afternoon", "evening")}
 """*Morning!*, *Good evening*: a greeting, said back, which orders nothing."""
 NOW_SAID = {("right", "now"), ("for", "now"), ("just", "now")} | WHOLE_PERIODS | GREETING_TIMES
+"""Times that say when the whole mission is (now, a whole period), so that they put no goals in an order."""
 OCCASIONS = {("this", "time"), ("this", "time", "round"), ("just", "this", "once")}
 """*stay downstairs this time*: the occasion of the whole mission, which orders nothing (a time, like
 :data:`NOW_SAID`)."""
-"""Times that say when the whole mission is (now, a whole period), so that they put no goals in an order."""
 STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
 REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"), ("since",),
                    *(("so", who, what) for who in ("i", "we") for what in ("know", "can", "see")),
@@ -1934,10 +1932,6 @@ PHRASE_ALIASES.update({  # chat's "k?" closing a sentence: "..., k?" is "..., ok
 PHRASE_ALIASES.update({  # bedtime before a comma or a colon, or with "tonight": "Tonight before bed: ..."
     **{(*tonight, "before", "bed", *mark): (*tonight, "before", "bedtime", *mark)
        for tonight, mark in ((("tonight",), ()), ((), (",",)), ((), (":",)))},
-})
-PHRASE_ALIASES.update({  # an emphatic "do" before a prohibition: "do stay away from X" is "stay away from X"
-    ("do", *keep): keep for keep in (("stay", "away"), ("stay", "out"), ("keep", "away"), ("keep", "out"),
-                                     ("avoid",), ("stay", "clear"), ("keep", "clear"), ("steer", "clear"))
 })
 PHRASE_ALIASES.update({  # "stay up here on this floor": the floor said twice
     (here, "here", "on", "this", "floor"): ("on", "this", "floor") for here in ("up", "down", "right")

@@ -222,7 +222,7 @@ def odd_verb(r: Reader, i: int) -> Refusal | None:
     spelling, w = r.spelling, r.word(i)
     if superlative(w):  # "grab heaviest bottle": a comparison, not a verb
         return Refusal(rf.superlative(w))
-    if w in lx.PERSONAL_SUBJECTS and r.word(i + 1) in lx.FIRST and r.word(i - 1) == ",":
+    if w in lx.CONTACT_SUBJECTS and r.word(i + 1) in lx.FIRST and r.word(i - 1) == ",":
         return Refusal(rf.first_mid_sentence(r.quote(0, i + 2)))  # "X, we start with Y": "we first Y"
     if spelling is None or (spelling.is_known(w) and w not in lx.KISSES) or w.endswith("ly"):
         return None

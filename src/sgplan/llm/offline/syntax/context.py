@@ -250,9 +250,7 @@ def state_result(r: Reader, k: int) -> bool:
     if said is None:
         return False
     stop = next((j for j in range(k + 1, len(r)) if r.word(j) == "," or r.phrase(j, lx.SEQ_WORDS)), len(r))
-    return not any(r.head(j) is not None or r.word(j) in lx.RELATIVE_FLOORS or r.word(j) in lx.FLOOR_WORDS
-                   or r.word(j) in lx.PRONOUNS or r.word(j).startswith(("room_", "object_"))
-                   for j in range(k + len(said), stop))
+    return not any(names_place(r, j) or r.word(j) in lx.PRONOUNS for j in range(k + len(said), stop))
 
 
 def purpose(r: Reader, k: int, end: int) -> bool:
@@ -312,11 +310,9 @@ def aside_between(r: Reader, start: int, end: int) -> bool:
     word that takes back (*..., I mean, ...*: :mod:`.corrections` reads it or refuses it). The order around
     it reads as if it were not there; a statement naming a place is left to the parser, which refuses it."""
     return (statement(r, start, end) == "aside" and not r.says(lx.CORRECTIONS, start, end)
-            and not any(r.head(k) is not None or r.word(k) in lx.RELATIVE_FLOORS
-                        or r.word(k) in lx.FLOOR_WORDS
-                        or r.word(k) in lx.CORRECTING_WORDS or r.phrase(k, lx.NEG_STARTS)
+            and not any(names_place(r, k) or r.word(k) in lx.CORRECTING_WORDS or r.phrase(k, lx.NEG_STARTS)
                         or r.word(k) in lx.WISH_STOPS or r.word(k) in lx.SEQUENCE_TIMES  # "first", "later"
-                        or r.word(k).startswith(("room_", "object_")) for k in range(start, end))
+                        for k in range(start, end))
             and not misspelt_name(r, start, end))
 
 
@@ -519,6 +515,14 @@ def event_note(r: Reader, start: int, end: int) -> bool:
     return not any(r.head(k) is not None or r.word(k) in lx.POSITIVE_VERBS or r.word(k) in lx.REFUSED_WORDS
                    or (r.word(k) in lx.STRUCTURAL and r.word(k) not in lx.TIME_WORDS)
                    or not r.word(k).isalpha() for k in range(start, end))
+
+
+def names_place(r: Reader, k: int) -> bool:
+    """Whether the word at ``k`` names a room, an object or a floor (a head noun, a key, *upstairs*,
+    *floor*)."""
+    w = r.word(k)
+    return (r.head(k) is not None or w in lx.RELATIVE_FLOORS or w in lx.FLOOR_WORDS
+            or w.startswith(("room_", "object_")))
 
 
 def mere_talk(r: Reader, start: int, end: int, floors: bool = True) -> bool:
@@ -740,9 +744,7 @@ def person_did(r: Reader, start: int, end: int) -> bool:
     verb = r.word(start + 2)
     return (person and verb.isalpha() and verb not in lx.LEXICON_WORDS
             and not misspelt_name(r, start + 1, start + 3)
-            and not any(r.head(k) is not None or r.word(k) in lx.RELATIVE_FLOORS
-                        or r.word(k) in lx.FLOOR_WORDS
-                        or r.word(k).startswith(("room_", "object_")) for k in range(start, end)))
+            and not any(names_place(r, k) for k in range(start, end)))
 
 
 def plain_word(r: Reader, i: int) -> bool:

@@ -58,7 +58,7 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
         return "filler", 1
     if w in lx.FIRST and r.word(i + 1) in lx.PLACE_PREPOSITIONS and r.word(i - 1) not in ("", ","):
         return None  # "go first to the kitchen": the action's (it comes first)
-    said_before = i - 1 - (r.word(i - 1) in lx.PERSONAL_SUBJECTS)  # "visit X, you begin with Y"
+    said_before = i - 1 - (r.word(i - 1) in lx.CONTACT_SUBJECTS)  # "visit X, you begin with Y"
     if w in lx.FIRST and i > 1 and r.word(said_before) == "," and (r.np_starts(i + 1)
                                                                    or r.word(i + 1) in lx.POSITIVE_VERBS):
         return Refusal(rf.first_mid_sentence(r.quote(0, i + 1)))  # "check X, first the oven": first of all?
