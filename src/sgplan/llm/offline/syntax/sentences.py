@@ -16,6 +16,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import action, after_conjunction
 from sgplan.llm.offline.syntax.body import after_all, body
+from sgplan.llm.offline.syntax.context import negated
 from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.links import (
     at_end,
@@ -149,7 +150,7 @@ def strict_closing_after_and(r: Reader, closing: int) -> Reader:
     joined = max((k for k in range(1, closing) if r.word(k) == "and"), default=None)
     if (joined is None or r.word(joined + 1) not in lx.POSITIVE_VERBS
             or set(r.words[joined + 1:closing]) & (lx.LIST_JOINERS | lx.STRICT_WORDS)
-            or any(r.phrase(k, lx.NEG_STARTS) or r.word(k) == "without" for k in range(joined))):
+            or negated(r, joined)):
         return r  # a negation before it ("A without touching X, and B only after that"): after what?
     order = r.toks[closing:]
     comma = Tok(",", order[-1].end, order[-1].end)
