@@ -143,12 +143,21 @@ def others(entities: list[Entity], before: int, disc: Discourse, said_which: boo
     # a phrase naming every X names none in particular when another names one (*Bathrooms to clean: the one
     # with the vase, then the other one*); named alone, every X is named and no other is left
     particular = [g for g in said if len(g.entities) == 1 or {e.key for e in g.entities} != fits]
-    named = {e.key for g in particular or said for e in g.entities}
+    named = {e.key for g in particular or said for e in g.entities} or held_in(fits, read + told, before)
     if not any(e.key in named for e in entities):
         if said_which:
             return entities
         rf.refuse(rf.no_other(head_word(entities)))
     return [e for e in entities if e.key not in named]
+
+
+def held_in(rooms: set[str], said: list[Grounded], before: int) -> set[str]:
+    """The rooms among ``rooms`` (keys) that hold an object named before character ``before``, each phrase
+    naming one object: with no such room named itself, *the other bedroom* after *pick up the teddy bear* is
+    the bedroom the teddy bear is not in (the definite check that follows refuses where that leaves
+    several)."""
+    return {g.entities[0].room_key for g in said if g.start < before and len(g.entities) == 1
+            and g.entities[0].kind == "object" and g.entities[0].room_key in rooms}
 
 
 def nth_named(entities: list[Entity], n: int, span: Span, disc: Discourse) -> list[Entity]:
