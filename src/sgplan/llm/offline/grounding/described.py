@@ -30,6 +30,7 @@ from sgplan.llm.offline.grounding.phrases import (
 )
 from sgplan.llm.offline.grounding.places import next_to_it, there_floors, there_holding, there_rooms
 from sgplan.llm.offline.names import Entity, head_word
+from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
     Attachment,
@@ -67,8 +68,8 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
         noun = APPLIERS(qualifier, noun, np, where, disc)
         guessed = noun.guessed or guessed
     mode: Mode = np.determiner.mode or "the"
-    if any(isinstance(q, InRoom) and q.choice for q in np.qualifiers):
-        mode = "any"  # "the chair in the living room or the dining room": one of either room
+    if any(isinstance(q, InRoom) and in_chosen_rooms(q, noun.head) for q in np.qualifiers):
+        mode = "any"  # "the chair in the living room or the dining room", "the toilet in either bathroom"
     core = core_text(np, disc)
     if np.determiner.owner is not None:  # "the baby's teddy bear": whose it is, the scene does not say
         if noun.head.kind == "room" and np.apposition is None:  # "the kids' bedroom - the one with ..."
@@ -95,6 +96,17 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
                  noun.head.kind == "room" and not noun.head.categories)
     check(g, noun.head, np.determiner.count, np.remark_follows, disc)
     return disc.record(g)
+
+
+def in_chosen_rooms(q: InRoom, head: Head) -> bool:
+    """Whether ``q`` places the object in one room of a choice: *in A or B* (*the chair in the living room or
+    the dining room*), or, for one object, *in either / any / one of the <rooms>* (*the toilet in either
+    bathroom*: the one of whichever room is chosen, so one of them all). *the beds in either bedroom* stays
+    each bed (*either* is also *each of two*)."""
+    if len(q.rooms) > 1:
+        return q.choice
+    room = q.rooms[0]
+    return (q.choice or (isinstance(room, Described) and room.determiner.mode == "any")) and not head.plural
 
 
 def core_text(np: Described, disc: Discourse) -> str:
@@ -354,6 +366,8 @@ def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse)
         # "don't go in the living room until ...; look at the TV in there": the one place named holding one
         rooms[0].entities = there_holding(q.span.start, noun.entities, disc)
         entities = disc.vocab.inside(noun.entities, rooms[0].entities)
+    if q.choice and len(rooms) == 1 and len(rooms[0].entities) != 2:  # "in either bathroom": one of two
+        rf.refuse(rf.either_of_more(f"either {rooms[0].phrase}", [e.describe() for e in rooms[0].entities]))
     for room in rooms:
         room.entities = [r for r in room.entities if any(e.room_key == r.key for e in entities)]
         if len(rooms) > 1 and not room.entities:  # not "... in A, and B": that would be another goal

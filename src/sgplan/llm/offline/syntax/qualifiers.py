@@ -351,7 +351,8 @@ def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
             or r.phrase(i, lx.TIME_FILLERS) or back):
         return None
     rooms: list[NounPhrase] = []
-    j = i + (1 if r.at(i + 1, "either") and r.np_starts(i + 2) else 0)
+    either = r.at(i + 1, "either") and r.np_starts(i + 2)
+    j = i + (1 if either else 0)
     while not rooms or (k := more_rooms(r, j, noun)):
         start = j + (k if rooms else 1)
         room = noun_phrase(r, start, "qualifier")
@@ -367,7 +368,8 @@ def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
                 return goes
         rooms.append(room.node)
         j = room.end
-    choice = len(rooms) > 1 and noun.noun.determiner.mode != "all"
+    # "in either A or B", and "the toilet in either bathroom": one room of a choice
+    choice = (len(rooms) > 1 or either) and noun.noun.determiner.mode != "all"
     return Match(InRoom(tuple(rooms), r.span(noun.first, j), choice), j)
 
 
