@@ -342,9 +342,9 @@ OTHER_FLOOR = Phrases((("any", "other", "floor"), ("another", "floor"), ("a", "d
                        ("change", "floor"), ("switch", "floors"), ("any", "other", "level"),
                        ("another", "level"), ("change", "levels"), ("the", "other", "floors"),
                        ("the", "other", "levels")))
-"""``don't go to any other floor`` / ``don't change floors``: stay on the start floor; so is ``keep off the other
-floors``, the floors other than where the robot is (a goal on another floor is then refused, as after *stay on
-this floor*)."""
+"""``don't go to any other floor`` / ``don't change floors``: stay on the start floor; so is ``keep off the
+other floors``, the floors other than where the robot is (a goal on another floor is then refused, as after
+*stay on this floor*)."""
 STAY = frozenset({"stay", "remain", "keep", "staying", "remaining", "keeping"})
 LEAVE = frozenset({"leave", "leaving"})
 STAY_PREPOSITIONS = ("on", "to", "at", "in", "within")
