@@ -164,8 +164,11 @@ def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
     determined("there", ref, len({e.room_key for e in ref.entities}))
     if where.role == "goal" and where.going_back:  # "A, then B, then go back there": B is where it is
         rf.refuse(rf.back_there(ref.phrase))
-    if where.role != "qualifier" and ref.mode == "all" and len(ref.entities) > 1:
-        rf.refuse(rf.there_is_several(ref.phrase))  # "both bedrooms, then back there": which one?
+    # "both bedrooms, then back there": which one? (but "wipe both sinks in the bathroom, and stay out of the
+    # bedroom while you're up there" is where they all are)
+    one_room = where.role == "goal" and len({e.room_key for e in ref.entities}) == 1
+    if where.role != "qualifier" and ref.mode == "all" and len(ref.entities) > 1 and not one_room:
+        rf.refuse(rf.there_is_several(ref.phrase))
     entities = list(ref.entities)
     before = disc.text[:np.span.start].split()
     inside = bool(before) and before[-1].lower() in ("in", "into", "inside")
