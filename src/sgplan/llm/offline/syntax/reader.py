@@ -138,6 +138,9 @@ class Reader:
             return True  # "floor 2" as a place
         if w in lx.FLOOR_NAMES and nxt in lx.FLOOR_WORDS and self.head(i + 2) is not None:
             return True  # "top floor bathroom", "ground-floor bathroom" (notes leave the article out)
+        if w in lx.RELATIVE_FLOORS and (room := self.head(i + 1)) is not None and room.kind == "room" \
+                and not room.plural:  # not "Upstairs bedrooms: - the one with ...": the kind of a list
+            return True  # "upstairs bath: sink + bottle" (the article left out, as notes do)
         if w == "other" and self.head(i + 1) is not None:
             return True  # "-> other bdrm": the other bedroom, the article left out as notes do
         if w in lx.NUMBER_WORDS or w.isdigit():
