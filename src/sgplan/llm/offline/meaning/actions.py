@@ -105,6 +105,7 @@ def tail(action: Action, phrases: list[Grounded], steps: list[Step], carry: bool
     if action.purpose is not None:  # "go to the bathroom downstairs to check the toilet": the toilet there
         own = tuple(ctx.step_rooms(steps[-1]))
         purpose = ground_list(action.purpose, replace(where, scope=own or where.scope), ctx.disc)
+        choice_remark(purpose, action.purpose_remark, ctx.disc.said)
         if not all(g.phrase.lower() in lx.PRONOUNS for g in purpose):
             steps[-1].extend(tasks_of(purpose, False)[0])
 

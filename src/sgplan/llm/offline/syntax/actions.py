@@ -464,6 +464,9 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
             if not isinstance(purpose, Match):
                 return purpose
             node, i = replace(node, purpose=purpose.node), particles(r, purpose.end)
+            remark = remark_ahead(r, i)  # "go to the kitchen to grab an apple, either one, and ..."
+            if remark is not None:
+                node, i = replace(node, purpose_remark=remark), i + len(remark)
         elif not verbs.node.words:
             return Refusal(rf.cannot_understand(r.rest(i)))
     there = r.phrase(i, lx.THERE_SAID)  # "look at the TV there / while you're (in) there": where the step is

@@ -432,6 +432,8 @@ class Action:
     carried_on: bool = False
     destination_remark: tuple[str, ...] | None = None
     """A choice remark after the destination (*put it on the table in the dining room, any one*)."""
+    purpose_remark: tuple[str, ...] | None = None
+    """A choice remark after the purpose (*go to the kitchen to grab an apple, either one*)."""
 
 
 # -------------------------------------------------------------------------------------------- body items
