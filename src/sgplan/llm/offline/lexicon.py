@@ -1015,6 +1015,9 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
         for want in ("want", "like", "prefer", "choose")))
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
+BEFORE_REMARK = Phrases((("for", "me"), ("for", "us"), ("please",), ("for", "me", "please")))
+"""Said between a choice and its remark (*grab an apple for me, either one is fine*): the remark is still
+about that choice."""
 ONE_SUFFICES = Phrases(tuple(
     (*lead, *one, *enough) for lead in ((), ("just",), ("only",), ("getting", "to"), ("reaching",),
                                         ("pick",), ("just", "pick"), ("choose",), ("just", "choose"))

@@ -132,12 +132,13 @@ def current_head(noun: Described) -> Head | None:
 def remark_ahead(r: Reader, i: int) -> tuple[str, ...] | None:
     """The words of ``(,) either one is fine`` / ``, any one will do`` / ``, whichever`` / ``, just one of
     them`` / ``, any of the three`` at ``i`` (remarks that the choice is the robot's, one after another), or
-    ``None``."""
-    said = one_remark(r, i)
-    k = i + len(said) if said is not None else i
+    ``None``; a polite word before it (*an apple for me, either one is fine*) is part of it."""
+    lead = r.phrase(i, lx.BEFORE_REMARK) or ()
+    said = one_remark(r, i + len(lead))
+    k = i + len(lead) + len(said) if said is not None else i
     while said is not None and (more := one_remark(r, k)) is not None:
         said, k = said + more, k + len(more)  # "just one of them, any is fine"
-    return said
+    return None if said is None else lead + said
 
 
 def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
