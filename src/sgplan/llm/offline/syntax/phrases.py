@@ -431,6 +431,14 @@ def demonstrative(r: Reader, i: int) -> int:
     return n
 
 
+def restated_choice(r: Reader, i: int, before: NounPhrase) -> bool:
+    """Whether *either / any <noun>* at ``i`` names again the kind of ``before`` (*a bed in the bedroom -
+    either bed -*): the choice said again, not another goal (:func:`.meaning.actions.first_of_list`)."""
+    head = r.head(i + 1)
+    return (r.word(i) in lx.RESTATED_CHOOSERS and head is not None and isinstance(before, Described)
+            and isinstance(before.head, Head) and head.categories == before.head.categories)
+
+
 def phrase_list(r: Reader, i: int, role: Role) -> Parse[PhraseList]:
     """``A, B and C`` (each), ``A or B`` / ``either A or B`` / ``either to A or to B`` (one of them),
     ``neither A nor B`` (each, to avoid)."""
@@ -451,7 +459,8 @@ def phrase_list(r: Reader, i: int, role: Role) -> Parse[PhraseList]:
     again = preposition or (r.word(first - 1) if r.word(first - 1) in lx.REPEATED_PREPOSITIONS else None)
     while (joined := list_joiner(r, i, again)) is not None:
         restates = ((r.word(joined[1]) in lx.ARTICLES and r.word(joined[1] + 1) in lx.ANAPHORIC_ONE)
-                    or isinstance(group_repeat(r, joined[1], role, None), Match))  # "the vases - all four"
+                    or isinstance(group_repeat(r, joined[1], role, None), Match)  # "the vases - all four"
+                    or restated_choice(r, joined[1], items[-1]))  # "a bed in the bedroom - either bed -"
         if not joined[0] and not restates and r.text[r.toks[i].start:r.toks[i].end].strip() in lx.DASHES:
             # "kitchen - office - couch": a route, or a set? (a dash between asides is read as a comma)
             return Refusal(rf.dash_between_goals(r.quote(first, min(len(r), joined[1] + 2))))
