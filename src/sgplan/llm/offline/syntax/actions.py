@@ -209,6 +209,8 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
         odd = odd_verb(r, i)
         if odd is not None:
             return odd
+        if w not in lx.POSITIVE_VERBS and r.nouns.names_word(w) and r.np_starts(i + 1):  # "living chair"
+            return Refusal(rf.cannot_understand_word(w, f"'{r.quote(i, min(len(r), i + 3))}'"))
         seen.append(w)
         i += 1
     return Match(VerbWords(tuple(seen), floor, floor_span, first, again, times), i)
