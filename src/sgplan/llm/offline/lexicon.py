@@ -425,6 +425,10 @@ out for the vase*, *never mind the office*): no goal and no prohibition, so refu
 
 CAUTION_VERBS = frozenset({"mind", "beware"})
 """Verbs of caution before a place (*mind the stairs*): refused like :data:`CAUTION_PAIRS`."""
+CAUTIONS = frozenset({"careful"})
+"""A caution without its verb: alone in the clause before what it warns of (*Careful, the office is off
+limits*, *Careful now, don't ...*) a remark, said back; before a place (*careful in the office*, *Careful, the
+office.*) refused like :data:`CAUTION_PAIRS` (not *carefully*, which says how to do an order)."""
 
 BE_FINE = frozenset({"sure", "certain"})
 """*be sure to ...*: a wrapper, not a manner of being (:func:`.syntax.actions.refused_verb`)."""
@@ -1389,6 +1393,9 @@ EVENT_WORDS = word_set(
 """Times of day, meals and events: *Before lunch, ...*, *After dinner, ...*, *Tonight, ...* only say when,
 which a mission cannot require; said at the start of a sentence they are set aside (said back), never read
 as the goal of *before / after*. A clock time (*at 6 pm*) or a delay (*in ten minutes*) is refused."""
+PAST_TIMES = word_set("yesterday earlier")
+"""Times gone by, in a time expression (*the office is a mess since yesterday*); *last* counts too before a
+word of :data:`EVENT_WORDS` (*after last night*, *since last week*), never alone (*do the kitchen last*)."""
 NAMED_DAYS = ("day", "night", "week", "weekend")
 """After a thing, a day named for it (*Plant day!*): context, not the thing as a goal."""
 TIME_WORDS = word_set("this next tomorrow today tonight later soon early late right now for the at some "
@@ -1593,6 +1600,14 @@ CLOSING = CLOSING + Phrases((
 ))
 """More of :data:`CLOSING`: the robot's time asked as a condition (*when you've got a minute*, *if you get
 a chance*, *once you're free*), which asks nothing wherever it closes or opens a clause."""
+CLOSING = CLOSING + Phrases(tuple(
+    (when, "you", *be, *fully, *charged) for when in ("when", "once", "after")
+    for be in (("are",), ("have", "been"), ("have",), ("get",))
+    for fully in ((), ("fully",), ("all",))
+    for charged in (("charged",), ("recharged",), ("charged", "up"), ("done", "charging"),
+                    ("finished", "charging"))))
+"""More of :data:`CLOSING`: the robot's own charge as the time of the orders (*Once you're charged, ...*,
+*when you've fully recharged*): nothing of the scene, said back wherever it opens or closes a clause."""
 CLOSING = CLOSING + Phrases((("obviously",), ("of", "course"), ("roughly",), ("not", "urgent"),
                              ("not", "a", "priority"), ("not", "a", "big", "deal")))
 """More of :data:`CLOSING`: hedges alone in their clause (*Check the oven, obviously.*, *Morning routine,

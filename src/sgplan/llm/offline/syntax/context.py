@@ -137,6 +137,7 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         return [opening, *split(replace(r, toks=r.toks[skip_joiner(r, clauses[1][0]):]), said_before)]
     first, last = 0, len(clauses)
     while first < last and (is_context(r, *clauses[first], leading=True) or closing_only(r, *clauses[first])
+                            or caution(r, *clauses[first])
                             or (first > 0 and hedged_addition(r, *clauses[first]))
                             or (first == 0 and praise_before_order(r, *clauses[0]))):
         first += 1
@@ -145,6 +146,8 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         last -= 1  # "..., the cat's asleep in there", "..., okay?", "..., sorry about this": said back
     if first == last or (first > 0 and mere_talk(r, clauses[first][0], clauses[last - 1][1])):
         return [aside(r, 0, len(r))]
+    if first and r.word(clauses[first - 1][0]) in lx.CAUTIONS and caution_on_place(r, *clauses[first]):
+        rf.refuse(rf.caution_not_goal(r.quote(clauses[first - 1][0], clauses[first][1])))
     named = mentions(aside(r, 0, clauses[first - 1][1])) if first else ()
     start = skip_joiner(r, clauses[first][0]) if first else 0
     # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
@@ -165,6 +168,18 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     if last < len(clauses):
         kept.append(aside(r, clauses[last][0], len(r)))
     return kept
+
+
+def caution(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` is only a caution without its verb (*Careful*, *careful now*)."""
+    return end - start in (1, 2) and r.word(start) in lx.CAUTIONS and r.word(end - 1) in ("careful", "now")
+
+
+def caution_on_place(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` after a caution (*Careful, the office.*) is only a place, with no
+    order and no statement of it: the warning may be about that place, or a goal; refused."""
+    return r.np_starts(start) and not starts_order(r, start) and not any(
+        r.word(k) in lx.COPULAS or r.phrase(k, lx.OFF_LIMITS) or finite_verb(r.word(k)) for k in range(start, end))
 
 
 def apology(r: Reader) -> bool:
@@ -391,7 +406,9 @@ def orders_a_named_thing(r: Reader, start: int, end: int) -> bool:
     """Whether the clause ``[start, end)`` says the order of a room or object of the scene (a word of the
     order, :data:`.lexicon.ORDER_HEADS`, and a noun of the scene or *one*: *we start with the kitchen*, read
     *we first the kitchen*; *... the one upstairs*), which a statement set aside would drop."""
-    return (any(r.word(k) in lx.ORDER_HEADS for k in range(start, end))
+    tail = time_tail(r, start, end)  # "the office is a mess after last night": a time, no order
+    said = range(start, end if tail is None else tail)
+    return (any(r.word(k) in lx.ORDER_HEADS for k in said)
             and any(r.head(k) is not None or r.word(k) in lx.ANAPHORIC_ONE for k in range(start, end)))
 
 
@@ -542,14 +559,32 @@ def is_time(r: Reader, start: int, end: int) -> bool:
         return True
     words = r.words[start:end]
     event = words[:1] in tuple((w,) for w in lx.EVENT_OPENERS)  # "before the guests arrive"
-    said = [w in lx.TIME_WORDS or (event and (w in lx.EVENT_VERBS or w in lx.PEOPLE or w in lx.PEOPLE_NOUNS
-                                              or w in lx.POSSESSIVES or w in lx.AUXILIARIES or k == 0))
+    own = named_event(r, start, end)  # "after the game tonight", "during our film tomorrow"
+    said = [w in lx.TIME_WORDS or w in lx.PAST_TIMES or (own is not None and own - 1 <= start + k <= own)
+            or (w == "last" and words[k + 1:k + 2] and words[k + 1] in lx.EVENT_WORDS)  # "after last night"
+            or (event and (w in lx.EVENT_VERBS or w in lx.PEOPLE or w in lx.PEOPLE_NOUNS
+                           or w in lx.POSSESSIVES or w in lx.AUXILIARIES or k == 0))
             for k, w in enumerate(words)]
     if not words or not all(said):
         return False
     events = [w for w in words if (w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES)
               or (event and (w in lx.PEOPLE or w in lx.PEOPLE_NOUNS))]
     return bool(events) or tuple(words) in lx.NOW_SAID
+
+
+def named_event(r: Reader, start: int, end: int) -> int | None:
+    """Where the noun of an event named by its own word is, in a time opening with an event's opener (*after
+    the game tonight*, *before the match on Saturday*, *during my show this evening*): a determiner, one
+    word the translator does not know and that is no misspelt name of the scene, then a day's time
+    (:data:`.lexicon.EVENT_WORDS`) that says it is an event; ``None`` otherwise. Without that time (*after
+    the game, ...*) the word may be a goal the scene lacks, and is left to the parser, which refuses it."""
+    noun = start + 2
+    opened = r.word(start) in lx.EVENT_OPENERS + lx.SPAN_OPENERS and (
+        r.word(start + 1) in lx.DETERMINERS or r.word(start + 1) in lx.POSSESSIVES)
+    if (not opened or not plain_subject(r, noun) or r.word(noun) in lx.LEXICON_WORDS
+            or misspelt_name(r, noun, noun + 1)):
+        return None
+    return noun if any(r.word(k) in lx.EVENT_WORDS for k in range(noun + 1, end)) else None
 
 
 def event_clause(r: Reader, start: int, end: int) -> bool:
