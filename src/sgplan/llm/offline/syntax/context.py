@@ -179,7 +179,8 @@ def caution_on_place(r: Reader, start: int, end: int) -> bool:
     """Whether the clause ``[start, end)`` after a caution (*Careful, the office.*) is only a place, with no
     order and no statement of it: the warning may be about that place, or a goal; refused."""
     return r.np_starts(start) and not starts_order(r, start) and not any(
-        r.word(k) in lx.COPULAS or r.phrase(k, lx.OFF_LIMITS) or finite_verb(r.word(k)) for k in range(start, end))
+        r.word(k) in lx.COPULAS or r.phrase(k, lx.OFF_LIMITS) or finite_verb(r.word(k))
+        for k in range(start, end))
 
 
 def apology(r: Reader) -> bool:
