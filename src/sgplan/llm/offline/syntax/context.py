@@ -119,7 +119,7 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     praise = [w for w in r.words if w.isalpha()]
     if praise and all(w in lx.PRAISE or w in lx.HESITATIONS for w in praise):
         return [aside(r, 0, len(r))]  # "Perfect.", "Cool cool.": a sentence of praise only, said back
-    if event_note(r, 0, len(r)) or is_time(r, 0, len(r)):
+    if event_note(r, 0, len(r)) or is_time(r, 0, len(r)) or chore_note(r):
         return [aside(r, 0, len(r))]
     heading = None if said_before else before_you_start(r)  # (after an order: before which step?)
     if heading is not None:  # "Before you start: the carpet is wet, so ...": the rest read on its own
@@ -435,7 +435,7 @@ def closing_only(r: Reader, start: int, end: int) -> bool:
     cheers*)."""
     k = start if r.phrase(start, lx.CLOSING) else skip_joiner(r, start)  # "as usual", "so no rush"
     while k < end and (said := ((r.word(k),) if praise_before_closing(r, k, end) else None)
-                       or r.phrase(k, lx.CLOSING) or apology_for(r, k, end) or well_wishing(r, k, end)
+                       or apology_for(r, k, end) or r.phrase(k, lx.CLOSING) or well_wishing(r, k, end)
                        or ((r.word(k),) if r.word(k) in lx.HESITATIONS or r.word(k) == "," or signature(r, k)
                            or (r.word(k) in lx.KISSES and k == len(r) - 1) else None)):
         k += len(said)
@@ -444,12 +444,16 @@ def closing_only(r: Reader, start: int, end: int) -> bool:
 
 
 def apology_for(r: Reader, k: int, end: int) -> tuple[str, ...] | None:
-    """The words of an apology for something that names nothing and asks nothing, up to ``end`` (*Sorry for
-    the late notice*, *apologies about the short notice*), else ``None``; *sorry about the kitchen* names a
-    room (what of it?) and is no remark."""
-    if (r.word(k) not in lx.APOLOGY_WORDS or r.word(k + 1) not in ("for", "about") or end - k > 7
-            or not mere_talk(r, k + 2, end) or misspelt_name(r, k + 2, end)
-            or any(r.word(j) in lx.STRUCTURAL and r.word(j) not in lx.ARTICLES for j in range(k + 2, end))):
+    """The words of an apology or thanks for something that names nothing and asks nothing, up to ``end``
+    (*Sorry for the late notice*, *apologies about the short notice*, *Thanks for all your help this week*),
+    else ``None``; *sorry about the kitchen* names a room (what of it?) and is no remark."""
+    thanks = r.phrase(k, lx.THANKS_FOR)  # "Thanks for all your help this week"
+    said = k + len(thanks) if thanks else k + 2
+    tail = time_tail(r, said, end) or end
+    kept = lx.ARTICLES | lx.POSSESSIVES | {"all"} if thanks else lx.ARTICLES
+    if ((not thanks and (r.word(k) not in lx.APOLOGY_WORDS or r.word(k + 1) not in ("for", "about")))
+            or tail - said > 5 or not mere_talk(r, said, end) or misspelt_name(r, said, end)
+            or any(r.word(j) in lx.STRUCTURAL and r.word(j) not in kept for j in range(said, tail))):
         return None
     return tuple(r.words[k:end])
 
@@ -522,17 +526,38 @@ def before_you_start(r: Reader) -> int | None:
 
 
 def event_note(r: Reader, start: int, end: int) -> bool:
-    """*Movie night later!*, *Big day tomorrow*: words about an event, with no room, object, verb or word of
-    the grammar; or a day named after a thing (*Plant day!*), which asks nothing."""
+    """*Movie night later!*, *Big day tomorrow*, *Work-from-home day*: words about an event, with no room,
+    object, verb or word of the grammar (but inside a compound joined by hyphens); or a day named after a
+    thing (*Plant day!*), which asks nothing."""
     words = r.words[start:end]
     if not any(w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES for w in words):
         return False
     head = r.head(start)
     if head is not None and start + head.words == end - 1 and words[-1] in lx.NAMED_DAYS:
         return True  # "Plant day!", "Laundry day" (not "Kitchen tonight": a goal and a time)
-    return not any(r.head(k) is not None or r.word(k) in lx.POSITIVE_VERBS or r.word(k) in lx.REFUSED_WORDS
-                   or (r.word(k) in lx.STRUCTURAL and r.word(k) not in lx.TIME_WORDS)
-                   or not r.word(k).isalpha() for k in range(start, end))
+    return not any(r.head(k) is not None or r.word(k) in lx.REFUSED_WORDS or not r.word(k).isalpha()
+                   or ((r.word(k) in lx.POSITIVE_VERBS or (r.word(k) in lx.STRUCTURAL
+                                                           and r.word(k) not in lx.TIME_WORDS))
+                       and not hyphened(r, k))  # "Work-from-home day": one word
+                   for k in range(start, end))
+
+
+def hyphened(r: Reader, k: int) -> bool:
+    """Whether the word at ``k`` is inside a compound joined by hyphens (*work-from-home*, *back-to-school*):
+    one word of the phrase, whatever role it has alone."""
+    tok, text = r.toks[k], r.text
+    return ((k > 0 and text[tok.start - 1:tok.start] == "-" and r.toks[k - 1].end == tok.start - 1)
+            or (k < len(r) - 1 and text[tok.end:tok.end + 1] == "-" and r.toks[k + 1].start == tok.end + 1))
+
+
+def chore_note(r: Reader) -> bool:
+    """*Quick tidy before bedtime.*, *Proper clean today!*: a manner word and a chore's verb said as a noun
+    (:data:`.lexicon.GIVEN_MANNER`: an adjective, so the verb is no order), alone in the sentence or before a
+    time; it names nothing and asks nothing. With a place (*Quick tidy of the kitchen.*) it is left to the
+    parser."""
+    end = time_tail(r, 0, len(r)) or len(r)
+    return (end == 2 and r.word(0) in lx.GIVEN_MANNER and r.word(1) in lx.POSITIVE_VERBS
+            and r.word(1) not in lx.PLACE_PREPOSITIONS and r.word(1) not in lx.PARTICLES)
 
 
 def names_place(r: Reader, k: int) -> bool:
@@ -663,16 +688,17 @@ def time_tail(r: Reader, start: int, end: int) -> int | None:
 
 
 def timed_heading(r: Reader) -> list[Reader]:
-    """The words before a colon that announce how many things follow, without the time of day, event or
-    aside asking nothing they end with (*A couple of things before I get back:*, *Three jobs for tonight:*,
-    *Two things when you get a chance:*), after that time set aside
-    (said back; first, so that the heading stays right before what it announces); ``[r]`` otherwise."""
+    """The words before a colon that announce how many things follow or name the list, without the time of
+    day, event or aside asking nothing they end with (*A couple of things before I get back:*, *Three jobs for
+    tonight:*, *Two things when you get a chance:*, *Things to grab before dinner:*), after that time set
+    aside (said back; first, so that the heading stays right before what it announces); ``[r]`` otherwise."""
     if not r.words or r.words[-1] != ":" or r.aside:
         return [r]
     tail = time_tail(r, 0, len(r) - 1)
     tail = hedge_tail(r, len(r) - 1) if tail is None else tail  # "Three things when you get a chance:"
-    if tail is None or not any(w in lx.NUMBER_WORDS or w in lx.FEW or w.isdigit() for w in r.words[:tail]):
-        return [r]  # only an announcement of how many (a label with its time is said back whole)
+    if tail is None or not any(w in lx.NUMBER_WORDS or w in lx.FEW or w.isdigit() or w in lx.LIST_NOUNS
+                               for w in r.words[:tail]):
+        return [r]  # an announcement of how many or of a list (*Things to grab before dinner:*)
     return [aside(r, tail, len(r) - 1), replace(r, toks=r.toks[:tail] + r.toks[-1:])]
 
 
