@@ -1569,8 +1569,9 @@ NOTICE_THAT = Phrases((*((*please, "note", *that) for please in ((), ("please",)
 asleep*): the statement after them is context like any other (*remember* without *that* may ask to go:
 left to the parser)."""
 APOLOGY_WORDS = ("sorry", "oops", "whoops", "apologies")
-THANKS_FOR = Phrases((("thanks", "for"), ("thank", "you", "for"), ("many", "thanks", "for"),
-                     ("cheers", "for"), ("thanks", "so", "much", "for"), ("thank", "you", "so", "much", "for")))
+THANKS_FOR = Phrases((
+    ("thanks", "for"), ("thank", "you", "for"), ("many", "thanks", "for"), ("cheers", "for"),
+    ("thanks", "so", "much", "for"), ("thank", "you", "so", "much", "for")))
 """Thanks for something that names nothing (*Thanks for all your help this week*): a remark, like an apology
 for something (:func:`.syntax.context.apology_for`); thanks for something of the scene (*thanks for
 cleaning the kitchen*) is left to the parser."""
