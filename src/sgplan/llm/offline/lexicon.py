@@ -1504,14 +1504,18 @@ STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
 REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"), ("since",),
                    *(("so", who, what) for who in ("i", "we") for what in ("know", "can", "see")),
                    *(("to", *check, whether) for check in (("see",), ("check",), ("find", "out"))
-                     for whether in (("if",), ("whether",))), ("to", "make", "sure"), ("to", "test"),
+                     for whether in ("if", "whether")), ("to", "make", "sure"), ("to", "test"),
                    # "to check it's clean": a check of the state of what was just named, not a goal ("to
                    # check that the oven is off" names the oven: people mean it as a goal, so it is read)
                    *(("to", check, *who) for check in ("check", "see", "confirm", "verify", "ensure")
                      for who in (("it", "is"), ("it", "'s"), ("they", "are"), ("it", "has"), ("they", "have"),
                                  ("nothing", "is"), ("everything", "is"), ("everything", "'s")))))
 """A reason for an order, set aside to its clause's end (*... because the coffee's in there*, *... so I know
-you made it*, *... to see if the paint's dry*): it asks nothing."""
+you made it*, *... to see if anyone needs anything*): it asks nothing. A check of whether that names a room or
+object (*... to see if the oven is off*: the oven a goal too?) is left to the parser."""
+CHECK_WHETHER = Phrases(tuple(("to", *check, whether) for check in (("see",), ("check",), ("find", "out"))
+                              for whether in ("if", "whether")))
+"""The reasons of :data:`REASONS` that check whether something holds (*to see if ...*)."""
 _CHECKED_STATE = (("it", "is"), ("it", "'s"), ("they", "are"), ("it", "has"), ("they", "have"),
                   ("nothing", "is"), ("nothing", "'s"), ("everything", "is"), ("everything", "'s"))
 REASONS = REASONS + Phrases(tuple((*just, *checking, *that, *who) for just in ((), ("just",))
@@ -1529,6 +1533,12 @@ AFTER_ORDER_REASONS = AFTER_ORDER_REASONS + Phrases((
     ("seeing", "as"), ("seeing", "that"), ("given", "that"), ("now", "that"), ("considering", "that")))
 """(*check the oven, seeing as we're cooking tonight*, *... now that dinner is done*)."""
 STATE_RESULTS = Phrases(tuple(("so", *who) for who in (*_CHECKED_STATE, ("they", "'re"))))
+STATE_RESULTS = STATE_RESULTS + Phrases(tuple(
+    ("so", who, verb) for who, verbs in (("it", ("looks", "stays", "feels", "smells")),
+                                         ("they", ("look", "stay", "feel", "smell")),
+                                         ("everything", ("looks", "stays", "feels", "smells")))
+    for verb in verbs))
+"""(*check the living room so it looks tidy*, *... so everything stays dry*)."""
 """The state an order leaves what it names in, said after it (*check the bedroom so it's tidy*, *... so
 nothing's burning*): a reason like *so that ...*, set aside only after an order and when it names no room,
 object or floor."""

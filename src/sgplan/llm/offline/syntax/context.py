@@ -246,6 +246,8 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
     if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) or is_clock_time(r.word(j))
            or r.word(j) in lx.TIME_UNITS for j in said):
         return None  # what not to do, a question to the robot, a clock time or a delay: left to the parser
+    if r.phrase(k, lx.CHECK_WHETHER) and any(names_place(r, j) or misspelt_name(r, j, j + 1) for j in said):
+        return None  # "to see if the oven is off": the oven may be a goal too
     return k, stop
 
 
@@ -687,18 +689,30 @@ def time_tail(r: Reader, start: int, end: int) -> int | None:
     return None
 
 
+def times_of_parts(readers: list[Reader]) -> list[str]:
+    """The times of events said by the words set aside from ``readers``, whole (*Before lunch*) or closing
+    them (*Jobs before lunch*, *Quick tidy after dinner*), as said: two of them may put the parts of the
+    mission in an order of times (*Jobs before lunch: A. Jobs after lunch: B.*), which no formula keeps."""
+    return [r.quote(0, len(r)) for r in readers if r.aside and (
+        (r.word(0) in lx.EVENT_OPENERS and is_time(r, 0, len(r)))
+        or ((tail := time_tail(r, 0, len(r))) is not None and r.word(tail) in lx.EVENT_OPENERS))]
+
+
 def timed_heading(r: Reader) -> list[Reader]:
     """The words before a colon that announce how many things follow or name the list, without the time of
     day, event or aside asking nothing they end with (*A couple of things before I get back:*, *Three jobs for
-    tonight:*, *Two things when you get a chance:*, *Things to grab before dinner:*), after that time set
-    aside (said back; first, so that the heading stays right before what it announces); ``[r]`` otherwise."""
+    tonight:*, *Two things when you get a chance:*, *Things to grab before dinner:*: a list noun and *to*),
+    after that time set aside (said back; first, so that the heading stays right before what it announces);
+    ``[r]`` otherwise."""
     if not r.words or r.words[-1] != ":" or r.aside:
         return [r]
     tail = time_tail(r, 0, len(r) - 1)
     tail = hedge_tail(r, len(r) - 1) if tail is None else tail  # "Three things when you get a chance:"
-    if tail is None or not any(w in lx.NUMBER_WORDS or w in lx.FEW or w.isdigit() or w in lx.LIST_NOUNS
-                               for w in r.words[:tail]):
-        return [r]  # an announcement of how many or of a list (*Things to grab before dinner:*)
+    said = r.words[:tail] if tail is not None else ()
+    counted = any(w in lx.NUMBER_WORDS or w in lx.FEW or w.isdigit() for w in said)
+    if not counted and not (said[:1] and said[0] in lx.LIST_NOUNS and said[1:2] == ("to",)):
+        return [r]  # how many, or a list of things to do (*Things to grab before dinner:*); a label with
+        # its time (*Route for this afternoon:*) is said back whole
     return [aside(r, tail, len(r) - 1), replace(r, toks=r.toks[:tail] + r.toks[-1:])]
 
 
@@ -772,9 +786,10 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         said = noun_phrase(r, start, "qualifier") if r.np_starts(start) else None
         if isinstance(said, Match) and said.end < end and r.word(said.end) in lx.STATEMENT_VERBS:
             return said.end  # "the plants are looking sad"
-        if (isinstance(said, Match) and r.word(said.end) in lx.ROOM_PARTS
+        if (isinstance(said, Match) and (r.word(said.end) in lx.ROOM_PARTS or (
+                plain_subject(r, said.end) and not misspelt_name(r, said.end, said.end + 1)))
                 and r.word(said.end + 1) in lx.STATEMENT_VERBS):
-            return said.end + 1  # "the lobby floor is still wet": about a part of the room
+            return said.end + 1  # "the lobby floor is still wet", "the laptop battery is dead": a part of it
         if (r.word(start + 1) in lx.ROOM_PARTS and r.word(start + 2) in ("in", "of")
                 and r.np_starts(start + 3)):
             room = noun_phrase(r, start + 3, "qualifier")  # "the floor in the lobby is wet": a part of it
