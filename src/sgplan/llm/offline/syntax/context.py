@@ -695,7 +695,8 @@ def times_of_parts(readers: list[Reader]) -> list[str]:
     mission in an order of times (*Jobs before lunch: A. Jobs after lunch: B.*), which no formula keeps."""
     return [r.quote(0, len(r)) for r in readers if r.aside and (
         (r.word(0) in lx.EVENT_OPENERS and is_time(r, 0, len(r)))
-        or ((tail := time_tail(r, 0, len(r))) is not None and r.word(tail) in lx.EVENT_OPENERS))]
+        or ((tail := time_tail(r, 0, len(r))) is not None and r.word(tail) in lx.EVENT_OPENERS
+            and not any(w in lx.PAST_TIMES or w == "last" for w in r.words[tail:])))]  # "after last night"
 
 
 def timed_heading(r: Reader) -> list[Reader]:
