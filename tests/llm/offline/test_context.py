@@ -88,8 +88,8 @@ def test_a_remark_between_two_orders_is_said_back(demo: Building) -> None:
 
 
 def test_headings_times_and_cautions_set_aside_are_said_back(demo: Building) -> None:
-    text = ("Heads up: the office is a mess after last night. Quick tidy. Careful, the kitchen is off limits. "
-            "After the game tonight, sit on the couch to see if anyone left anything.")
+    text = ("Heads up: the office is a mess after last night. Quick tidy. Careful, the kitchen is off "
+            "limits. After the game tonight, sit on the couch to see if anyone left anything.")
     translation = PatternTranslator().translate(text, demo)
     assert translation.set_aside == ("Heads up", "the office is a mess after last night",
                                      "Quick tidy", "Careful", "After the game tonight",
