@@ -1533,11 +1533,12 @@ AFTER_ORDER_REASONS = AFTER_ORDER_REASONS + Phrases((
     ("seeing", "as"), ("seeing", "that"), ("given", "that"), ("now", "that"), ("considering", "that")))
 """(*check the oven, seeing as we're cooking tonight*, *... now that dinner is done*)."""
 STATE_RESULTS = Phrases(tuple(("so", *who) for who in (*_CHECKED_STATE, ("they", "'re"))))
+SENSED_STATES = word_set("looks stays feels smells")
+"""Verbs of how a thing seems (*it looks tidy*, *the bathroom smells*)."""
 STATE_RESULTS = STATE_RESULTS + Phrases(tuple(
-    ("so", who, verb) for who, verbs in (("it", ("looks", "stays", "feels", "smells")),
-                                         ("they", ("look", "stay", "feel", "smell")),
-                                         ("everything", ("looks", "stays", "feels", "smells")))
-    for verb in verbs))
+    ("so", who, verb) for who, verbs in (("it", SENSED_STATES), ("everything", SENSED_STATES),
+                                         ("they", ("look", "stay", "feel", "smell")))
+    for verb in sorted(verbs)))
 """(*check the living room so it looks tidy*, *... so everything stays dry*)."""
 """The state an order leaves what it names in, said after it (*check the bedroom so it's tidy*, *... so
 nothing's burning*): a reason like *so that ...*, set aside only after an order and when it names no room,

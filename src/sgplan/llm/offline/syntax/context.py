@@ -785,8 +785,9 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         return start + 1 if start + 1 < end and verb not in lx.CLAUSE_ENDS else None
     if w in lx.DETERMINERS or w in lx.POSSESSIVES:
         said = noun_phrase(r, start, "qualifier") if r.np_starts(start) else None
-        if isinstance(said, Match) and said.end < end and r.word(said.end) in lx.STATEMENT_VERBS:
-            return said.end  # "the plants are looking sad"
+        if isinstance(said, Match) and said.end < end and (r.word(said.end) in lx.STATEMENT_VERBS
+                                                             or state_verb_last(r, said.end, end)):
+            return said.end  # "the plants are looking sad", "the bathroom with two toilets smells"
         if (isinstance(said, Match) and (r.word(said.end) in lx.ROOM_PARTS or (
                 plain_subject(r, said.end) and not misspelt_name(r, said.end, said.end + 1)))
                 and r.word(said.end + 1) in lx.STATEMENT_VERBS):
@@ -811,6 +812,17 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
             and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
         return start + 1  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
     return None
+
+
+def state_verb_last(r: Reader, k: int, end: int) -> bool:
+    """Whether the word at ``k`` is a verb the translator does not know that ends the clause ``[k, end)``
+    after its subject (*the bathroom smells*, *the fridge hums*, *the oven beeped*): a third-person or past
+    form (*-s*, *-ed*), no word of the lexicon, the scene or a misspelt name (*the office sinks* is refused
+    with its *did you mean*)."""
+    w = r.word(k)
+    return k == end - 1 and (w in lx.SENSED_STATES or (
+        w.isalpha() and w.endswith(("s", "ed")) and w not in lx.LEXICON_WORDS and r.head(k) is None
+        and not misspelt_name(r, k, k + 1)))
 
 
 def person_did(r: Reader, start: int, end: int) -> bool:
