@@ -199,7 +199,8 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
     """The ``[start, end)`` of the clauses between the commas of ``r``, and before *so* / *but* followed by
     an order (*my son is asleep upstairs so don't go up there*); a time expression closing a clause is a
     clause of its own (*go to the kitchen tonight*, *check the laptop before dinner, then ...*), also before
-    a reason (*check the fridge before lunch so I know what to cook*)."""
+    a reason (*check the fridge before lunch so I know what to cook*) or *and* / *then* (*make the beds this
+    morning and don't leave this floor*)."""
     cuts = [k for k, w in enumerate(r.words) if w == ","]
     joins = [k for k, w in enumerate(r.words) if w in lx.ORDER_JOINERS and k and r.word(k - 1) != ","
              and (starts_order(r, k + 1) or said_after_joiner(r, k))]
@@ -211,6 +212,11 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
         if head is not None:  # "This evening stay on this floor", "Tonight check the oven"
             out.append((start, head))
             start = head
+        joined = next(((j, t) for j in range(start + 2, end) if r.word(j) in ("and", "then")
+                       and (t := time_tail(r, start, j)) is not None), None)
+        if joined is not None:  # "make both beds this morning and don't leave this floor": the time, then
+            out += [(start, joined[1]), (joined[1], joined[0])]  # the order goes on after "and"
+            start = joined[0]
         tail = time_tail(r, start, end)
         reason = reason_span(r, start, end) if tail is None else None
         timed = time_tail(r, start, reason[0]) if reason is not None else None
