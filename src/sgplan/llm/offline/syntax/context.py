@@ -213,6 +213,7 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
             out.append((start, head))
             start = head
         joined = next(((j, t) for j in range(start + 2, end) if r.word(j) in ("and", "then")
+                       and starts_order(r, r.skip(j + 1, ("and", "then")))
                        and (t := time_tail(r, start, j)) is not None), None)
         if joined is not None:  # "make both beds this morning and don't leave this floor": the time, then
             out += [(start, joined[1]), (joined[1], joined[0])]  # the order goes on after "and"
