@@ -716,7 +716,9 @@ def timed_heading(r: Reader) -> list[Reader]:
         return [r]
     tail = time_tail(r, 0, len(r) - 1)
     tail = hedge_tail(r, len(r) - 1) if tail is None else tail  # "Three things when you get a chance:"
-    said = r.words[:tail] if tail is not None else ()
+    if tail is None:
+        return [r]
+    said = r.words[:tail]
     counted = any(w in lx.NUMBER_WORDS or w in lx.FEW or w.isdigit() for w in said)
     if not counted and not (said[:1] and said[0] in lx.LIST_NOUNS and said[1:2] == ("to",)):
         return [r]  # how many, or a list of things to do (*Things to grab before dinner:*); a label with
