@@ -469,11 +469,17 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
             node, i = replace(node, purpose=purpose.node), particles(r, purpose.end)
         elif not verbs.node.words:
             return Refusal(rf.cannot_understand(r.rest(i)))
+    elif r.word(i) == "for" and node.purpose is None and not carry and r.np_starts(i + 1):
+        purpose = phrase_list(r, i + 1, "goal")  # "go to the office for the laptop": the laptop there
+        if isinstance(purpose, Match):
+            node, i = replace(node, purpose=purpose.node), particles(r, purpose.end)
     there = r.phrase(i, lx.THERE_SAID)  # "look at the TV there / while you're (in) there": where the step is
     i += len(there) if there and (len(there) == 1 or r.word(i + len(there)) in lx.CLAUSE_ENDS) else 0
     filler = r.phrase(i, lx.TIME_FILLERS)
     if filler and not r.trailing_after(i):
         i += len(filler)  # not "... the office later": that says an order (.body.trailing_after)
+    if r.word(i) == "instead" and r.word(i + 1) in lx.CLAUSE_ENDS and not node.in_condition:
+        node, i = replace(node, instead=True), i + 1
     return Match(replace(node, span=Span(node.span.start, r.toks[i - 1].end)), i)
 
 
