@@ -340,8 +340,11 @@ BACK_THERE = ("up", "down")
 OTHER_FLOOR = Phrases((("any", "other", "floor"), ("another", "floor"), ("a", "different", "floor"),
                        ("other", "floors"), ("any", "other", "floors"), ("change", "floors"),
                        ("change", "floor"), ("switch", "floors"), ("any", "other", "level"),
-                       ("another", "level"), ("change", "levels")))
-"""``don't go to any other floor`` / ``don't change floors``: stay on the start floor."""
+                       ("another", "level"), ("change", "levels"),
+                       ("the", "other", "floors"), ("the", "other", "levels"), ("other", "levels"),
+                       ("any", "of", "the", "other", "floors")))
+"""``don't go to any other floor`` / ``don't change floors`` / ``keep off the other floors``: stay on the start
+floor (*the other floor*, one of them, is a place and not read here)."""
 STAY = frozenset({"stay", "remain", "keep", "staying", "remaining", "keeping"})
 LEAVE = frozenset({"leave", "leaving"})
 STAY_PREPOSITIONS = ("on", "to", "at", "in", "within")
