@@ -1012,7 +1012,9 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
     *((*just, pick, one) for just in ((), ("just",)) for pick in ("pick", "choose")
       for one in ("one", "any", "whichever")),
 ) + tuple(("which", *one, "you", want) for one in ((), ("one",))  # "which one you want", as learners say it
-        for want in ("want", "like", "prefer", "choose")))
+        for want in ("want", "like", "prefer", "choose"))
+    + tuple(("what", *one, "you", want) for one in ((), ("one",))  # "what you prefer": a learner's "whichever"
+            for want in ("want", "like", "prefer", "choose", "wish")))
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
 ONE_SUFFICES = Phrases(tuple(
