@@ -372,7 +372,7 @@ POSITIVE_VERBS = word_set(
     find finding inspect inspecting look looking make making use using flush flushing turn turning switch
     switching fetch fetching collect collecting drive navigate navigating run running travel traveling
     travelling proceed pass passing through arrive arriving stop by at to into in on onto inside
-    dust dusting wipe wiping tidy tidying feed put putting place placing drop dropping bring bringing carry
+    dust dusting wipe wiping tidy tidying clear clearing feed put putting place placing drop dropping bring bringing carry
     carrying deliver delivering return returning explore exploring see seeing pet mop mopping scrub
     scrubbing fill filling close closing empty emptying sweep sweeping play playing cook cooking
     lie lying rest resting sleep sleeping shower showering bathe use off up down out over from for
