@@ -343,8 +343,8 @@ OTHER_FLOOR = Phrases((("any", "other", "floor"), ("another", "floor"), ("a", "d
                        ("another", "level"), ("change", "levels"),
                        ("the", "other", "floors"), ("the", "other", "levels"), ("other", "levels"),
                        ("any", "of", "the", "other", "floors")))
-"""``don't go to any other floor`` / ``don't change floors`` / ``keep off the other floors``: stay on the start
-floor (*the other floor*, one of them, is a place and not read here)."""
+"""``don't go to any other floor`` / ``don't change floors`` / ``keep off the other floors``: stay on the
+start floor (*the other floor*, one of them, is a place and not read here)."""
 STAY = frozenset({"stay", "remain", "keep", "staying", "remaining", "keeping"})
 LEAVE = frozenset({"leave", "leaving"})
 STAY_PREPOSITIONS = ("on", "to", "at", "in", "within")
@@ -372,12 +372,12 @@ POSITIVE_VERBS = word_set(
     find finding inspect inspecting look looking make making use using flush flushing turn turning switch
     switching fetch fetching collect collecting drive navigate navigating run running travel traveling
     travelling proceed pass passing through arrive arriving stop by at to into in on onto inside
-    dust dusting wipe wiping tidy tidying clear clearing feed put putting place placing drop dropping bring bringing carry
+    dust dusting wipe wiping tidy tidying feed put putting place placing drop dropping bring bringing carry
     carrying deliver delivering return returning explore exploring see seeing pet mop mopping scrub
     scrubbing fill filling close closing empty emptying sweep sweeping play playing cook cooking
     lie lying rest resting sleep sleeping shower showering bathe use off up down out over from for
     read reading watch watching examine examining fix fixing straighten straightening hoover hoovering
-    polish polishing arrange arranging organize organizing organise organising give giving"""
+    polish polishing arrange arranging organize organizing organise organising give giving clear clearing"""
 )
 """Verb-slot words known to mean "go to / interact with" the noun phrase that follows."""
 
@@ -1013,7 +1013,7 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
       for one in ("one", "any", "whichever")),
 ) + tuple(("which", *one, "you", want) for one in ((), ("one",))  # "which one you want", as learners say it
         for want in ("want", "like", "prefer", "choose"))
-    + tuple(("what", *one, "you", want) for one in ((), ("one",))  # "what you prefer": a learner's "whichever"
+    + tuple(("what", *one, "you", want) for one in ((), ("one",))  # "what you prefer": learners' "whichever"
             for want in ("want", "like", "prefer", "choose", "wish")))
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""

@@ -165,7 +165,8 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
         if said_first(r, i):  # "go first to the kitchen", "go before to the kitchen, after to ..."
             first, i = True, i + 1
             continue
-        if w == "again" and r.word(i + 1) in lx.PLACE_PREPOSITIONS:  # "(go) again to the kitchen"
+        if w == "again" and (r.word(i + 1) in lx.PLACE_PREPOSITIONS or r.np_starts(i + 1)):
+            # "(go) again to the kitchen"; a learner's "check again the bowl", "and then again the bowl'
             again, i = True, i + 1
             continue
         looked = r.phrase(i, lx.LOOKED_AGAIN)
