@@ -562,8 +562,10 @@ GIVEN_LOOKS = Phrases(tuple((*quick, what) for quick in ((), ("quick",), ("good"
 THERE_POINTING = frozenset({"out", "over"})
 """Before *there* after an object (*both plants out there*, *the vase over there*): *there* as it is."""
 THERE_SAID = Phrases((("there",), ("while", "you", "are", "there"), ("while", "you", "are", "in", "there"),
-                     ("while", "there"), ("while", "you", "are", "at", "it", "there")))
-"""After an action, closing its clause: where the step is (*look at the clock while you're in there*)."""
+                     ("while", "there"), ("while", "you", "are", "at", "it", "there"),
+                     ("while", "you", "are", "at", "it"), ("while", "you", "are", "about", "it")))
+"""After an action, closing its clause: where the step is (*look at the clock while you're in there*; *sit on
+the couch while you're at it*, in the course of what was said before)."""
 CLAUSE_ENDS = frozenset({"", ",", "and", "then", "but"})
 GIVEN_MANNER = frozenset({"quick", "good", "little", "proper", "gentle", "thorough", "light", "fast"})
 """Between *a* and a chore said as a noun (*give the couch a good fluff*)."""
