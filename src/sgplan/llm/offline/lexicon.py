@@ -1824,6 +1824,10 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("try", "to", "stay", "out", "of"): ("stay", "out", "of"),
     ("try", "to", "keep", "out", "of"): ("keep", "out", "of"),
     ("try", "to", "stay", "away", "from"): ("stay", "away", "from"),
+    # learners' prepositions: "stay out from X", "keep away of X"; "stay far from X"
+    **{(keep, "out", "from"): (keep, "out", "of") for keep in ("stay", "keep")},
+    **{(keep, away, "of"): (keep, "away", "from") for keep in ("stay", "keep") for away in ("away", "far")},
+    **{(keep, "far", "from"): (keep, "away", "from") for keep in ("stay", "keep")},
     ("either", "way"): ("also",),
     ("in", "any", "case"): ("also",),
     ("regardless",): ("also",),

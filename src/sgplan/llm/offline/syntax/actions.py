@@ -209,6 +209,8 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
         odd = odd_verb(r, i)
         if odd is not None:
             return odd
+        if w == "out" and r.word(i + 1) == "from" and r.word(i - 1) in lx.FLOOR_MOVE_VERBS:
+            return Refusal(rf.cannot_understand(lx.REFUSED_WORDS["leave"]))  # "go out from X": leaving X
         seen.append(w)
         i += 1
     return Match(VerbWords(tuple(seen), floor, floor_span, first, again, times), i)
