@@ -407,6 +407,7 @@ def in_between(r: Reader, i: int) -> Match[Action] | None:
     k = i + (1 if r.word(i) == "," else 0)
     k += 1 if r.word(k) == "and" else 0
     lead = 2 if r.at(k, "in", "between") else 1 if r.word(k) == "between" else 0
+    lead += len(r.phrase(k + lead, lx.BETWEEN_TAIL) or ()) if lead else 0  # "and between them / the visits"
     if lead:  # "the kitchen twice, and in between go to the office"
         k += lead + (1 if r.word(k + lead) == "," else 0)
         said = action(r, k)
