@@ -546,9 +546,10 @@ VERB_IDIOMS = Phrases((("all", "the", "way"), ("a", "look"), ("a", "quick", "loo
                        ("a", "proper", "look"), ("a", "little", "look"), ("a", "quick", "glance"),
                        ("a", "little", "peek"),
                        *(("a", *quick, walk) for quick in ((), ("quick",))
-                         for walk in ("round", "walk", "lap"))))
+                         for walk in ("round", "walk"))))
 """Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*, *do a
-round through* (a chore at the place: a visit)."""
+round through* (a chore at the place: a visit; not *a lap*: *lap* would become a known word, and *the lap-
+uh, the laptop* a thing named)."""
 BACK_TO_START_ENDS = frozenset({"", ",", "and", "then", "here", "again", "please"})
 """After *come back* / *and back* with no place: the robot would return to where it started."""
 CHORE_PHRASALS = Phrases((("top", "up"), ("topping", "up"), ("top", "off")))
