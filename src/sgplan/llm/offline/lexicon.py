@@ -598,9 +598,19 @@ AWAY_VERBS = word_set("put puts putting tidy tidies tidying pack packs packing s
 """Before *away* (*put away the bowl*, *put the bowl away*): the verb's particle; the object is reached (where
 it is put away is not said)."""
 CHECK_THAT = ("that", "if", "whether")
-CHECK_VERBS = word_set("check checking see seeing ensure ensuring verify verifying confirm confirming make "
-                       "sure look looking")
+CHECK_VERBS = word_set("check checks checking checked see seeing seen ensure ensuring ensured verify verifying "
+                       "verified confirm confirming confirmed make made sure look looking looked")
 """*check that / if X is Y*: X is the goal (the state is what the check sees there)."""
+STATE_VERBS = ("is", "are", "'s", "looks", "look", "seems")
+"""After *check (that) X*: the verb of the state the check sees (*is off*, *looks tidy*)."""
+KEPT_AWAY_STATES = word_set("untouched alone skipped avoided limits bounds undisturbed unvisited entered "
+                            "touched disturbed empty clear")
+"""States that say the robot stays away (*make sure the office is left alone*, *... is untouched*): not a
+state the check sees there, so the check is not read as a visit."""
+CHECK_WRAPPERS = Phrases((("make", "sure"), ("make", "sure", "that"), ("please", "make", "sure"),
+                          ("be", "sure", "that")))
+"""Polite wrappers that are the check's own verb before a thing and its state (*make sure the oven is
+off*: the oven)."""
 UP_DOWN = {"up": "upstairs", "down": "downstairs"}
 FLOOR_CHANGES = frozenset({"up", "down", "upstairs", "downstairs"})
 """In the verb words of an action (*then head down to the kitchen*): it leaves the floor a sentence's
@@ -1123,6 +1133,8 @@ AFTER_ALL = Phrases(tuple(
                  ("all", "are", "done"), ("all", "that", "is", "done"))))
 """*after all three (of them)*, *once you've done those*: after every goal said before."""
 DONE = frozenset({"done", "finished", "through", "finishing"})
+BARE_ING_VERBS = word_set("bring swing ring sing spring string fling sling wring")
+"""Verbs whose bare form ends in *-ing* (*swing by X*): no gerund."""
 DONE_OPENERS = ("once", "when", "after")
 DONE_WITH = ("with", "in", "at")
 """*once you're done with / in / at X*: X is what is done (before what follows)."""

@@ -595,6 +595,16 @@ def aside_after_prefix(prefix: str, aside: str) -> str:
                     "of its own? Say it without the parentheses, in order with 'then'")
 
 
+def work_after_prefix(prefix: str, work: str) -> str:
+    return rephrase(f"'{work}' after '{prefix}' is part of what is done first, and is not read there; say it "
+                    "as one step ('once you have checked the oven in the kitchen, ...')")
+
+
+def after_a_middle_step(said: str) -> str:
+    return rephrase(f"'{said}' goes on after a step in the middle of the sequence before it: before or after "
+                    "the steps that follow that one? Say the whole order with 'then'")
+
+
 def line_of_sentences(heading: str, said: str) -> str:
     return rephrase(f"'{said}' shares a line with a sentence, or stands without a list marker among marked "
                     f"items, under '{heading}': which of them are steps of that order is not known; put each "

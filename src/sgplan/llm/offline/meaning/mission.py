@@ -21,6 +21,7 @@ from sgplan.llm.offline.meaning.compose import Clause, check_text_order, conj, m
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.sentences import Meaning, read_sentence_body
 from sgplan.llm.offline.nouns import Head
+from sgplan.llm.offline.tasks import Step
 from sgplan.llm.offline.syntax import Reader, parse_sentence
 from sgplan.llm.offline.syntax.context import is_time
 from sgplan.llm.offline.syntax.preamble import stated_start as said_start
@@ -29,6 +30,7 @@ from sgplan.llm.offline.syntax.tree import (
     AfterAll,
     MissionSentence,
     PhraseList,
+    PrefixedSentence,
     RelativeFloor,
     SetAside,
     StatedStart,
@@ -124,6 +126,9 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: 
     elif continues and previous is not None and isinstance(result, Clause):
         previous.steps.extend(result.steps)
         previous.constraints.extend(result.constraints)
+    elif previous is not None and isinstance(result, Clause) and resumes(sentence, result, previous, disc):
+        previous.steps.extend(result.filled()[1:])  # "A, then B. After B, C.": that visit of B, then C
+        previous.constraints.extend(result.constraints)
     else:
         parts.append(result)
     if isinstance(result, Clause) and any(result.steps):
@@ -201,6 +206,25 @@ def sentence_precedes(sentence: MissionSentence, parts: list[Meaning]) -> bool:
                                and len(has_goals[0].filled()) > 1):
         rf.refuse(rf.precedes_which(sentence.precedes))
     return True
+
+
+def resumes(sentence: MissionSentence, result: Clause, previous: Clause, disc: Discourse) -> bool:
+    """Whether ``sentence`` is *After X, Y* with X the last step of the sequence before (*Go to A, then B.
+    After B, C.*): Y goes on from that visit of X. Refused when X is an earlier step of that sequence (its
+    place against the steps after X is not said)."""
+    body = sentence.body
+    if not isinstance(body, PrefixedSentence) or body.prefix_last or body.strict or len(result.filled()) < 2:
+        return False
+    after = same_goals(result.filled()[0])
+    done = [same_goals(step) for step in previous.filled()]
+    if len(done) > 1 and after in done[:-1]:
+        rf.refuse(rf.after_a_middle_step(disc.said(sentence.span.start, sentence.span.end)))
+    return bool(done) and after == done[-1]
+
+
+def same_goals(step: Step) -> list[tuple[str, list[Formula], list[Formula]]]:
+    """What a step asks for, to compare it with another (where it was said left out)."""
+    return [(task.mode, task.members, task.avoid) for task in step]
 
 
 def stated_start(start: StatedStart, disc: Discourse) -> None:

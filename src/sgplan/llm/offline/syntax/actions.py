@@ -42,7 +42,7 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
         return verbs
     i = verbs.end
     if (r.word(i) in lx.CHECK_THAT and set(verbs.node.words) & lx.CHECK_VERBS and r.word(i + 1) in lx.ARTICLES
-            and {"is", "are"} & set(r.words[i + 2:])):
+            and set(lx.STATE_VERBS) & set(r.words[i + 2:])):
         i += 1  # "check that the couch is tidy": the couch (its state is seen there); not "check that vase"
     verbs = Match(turned(r, verbs.node, i), i)
     if not r.np_starts(i) and verbs.node.floor is not None and r.word(i) in ("and", ",", "then"):
@@ -123,13 +123,14 @@ def turned(r: Reader, verbs: VerbWords, i: int) -> VerbWords:
 def state_said(r: Reader, i: int) -> int:
     """After *check that the couch*: the state the check is about (*is tidy*, *is switched off*), which
     the translator does not read (being there is what a check needs)."""
-    if r.word(i) not in ("is", "are", "'s"):
+    if r.word(i) not in lx.STATE_VERBS:
         return i
     k = r.skip(i + 1, lx.FILLERS)
     while k < min(i + 4, len(r)) and r.word(k).isalpha() and r.word(k) not in lx.STRUCTURAL \
             and r.head(k) is None and r.word(k) not in ("and", "then"):
         k += 1
-    return k if k > i + 1 and r.word(k) in lx.CLAUSE_ENDS else i
+    kept_away = set(r.words[i + 1:k]) & lx.KEPT_AWAY_STATES  # "is left alone": not a visit (refused)
+    return k if k > i + 1 and r.word(k) in lx.CLAUSE_ENDS and not kept_away else i
 
 
 def moved_action(r: Reader, i: int, in_condition: bool) -> Parse[Action]:

@@ -51,7 +51,7 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     said = r.phrase(i, lx.TIME_FILLERS) or r.phrase(i, lx.POLITE)
     if said in lx.ANY_TIME and r.word(i - 1) in (",", "and") and set(r.words[:i]) & {"then", "after"}:
         return Refusal(rf.any_time_in_sequence(r.quote(0, i + len(said))))  # "A, then B, and at some point C"
-    if said is not None:
+    if said is not None and not checks_a_state(r, i, said):
         return "filler", i + len(said)
     w = r.word(i)
     if w == "only" and i == 0 and only_as_but(r):
@@ -65,6 +65,18 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     if w == "," or (w in lx.FILLERS and w not in lx.NOT_FILLERS_HERE) or w in lx.HESITATIONS:
         return "filler", i + 1
     return None
+
+
+def checks_a_state(r: Reader, i: int, said: tuple[str, ...]) -> bool:
+    """Whether the wrapper ``said`` at ``i`` is the verb of a check of a thing's state (*make sure (that) the
+    oven is off*): a noun phrase and a state verb follow it in its clause (it is then read as *check*)."""
+    k = i + len(said)
+    if r.phrase(i, lx.CHECK_WRAPPERS) != said or not r.np_starts(k):
+        return False
+    end = next((j for j in range(k, len(r)) if r.word(j) in ("", ",", "then")), len(r))
+    if set(r.words[k:end]) & lx.KEPT_AWAY_STATES or any(r.phrase(j, lx.OFF_LIMITS) for j in range(k, end)):
+        return False  # "make sure the kitchen is off limits": a prohibition, read as one
+    return any(r.word(j) in lx.STATE_VERBS for j in range(k, end))
 
 
 def only_as_but(r: Reader) -> bool:
@@ -219,12 +231,17 @@ def done_sequence(r: Reader, i: int) -> int | None:
     there."""
     n = done_words(r, i)
     back = r.word(i + n) in lx.DONE_BACK and r.word(i + n + 1) in lx.DONE_BACK_ENDS
-    if not n or (r.np_starts(i + n) and not back):
-        return None  # "after finishing the kitchen": the kitchen is what is done; not "done that, ..."
+    if not n or (r.np_starts(i + n) and not back) or is_gerund(r.word(i + n)):
+        return None  # "after finishing the kitchen", "once done checking X": what is done is said
     if r.word(i + n) in lx.DONE_WITH and (r.word(i + n + 1) not in lx.DONE_BACK or r.np_starts(i + n + 2)):
         return None
     k = i + n + (1 if r.word(i + n) in lx.DONE_WITH else 0)
     return k + (1 if r.word(k) in lx.DONE_BACK else 0)
+
+
+def is_gerund(word: str) -> bool:
+    """Whether ``word`` is a verb of the grammar in its *-ing* form (*checking*, *looking*)."""
+    return word.endswith("ing") and word in lx.POSITIVE_VERBS and word not in lx.BARE_ING_VERBS
 
 
 def done_closing(r: Reader, i: int) -> int:

@@ -23,6 +23,7 @@ from sgplan.llm.offline.syntax.links import (
     comma_or_then,
     done_closing,
     done_words,
+    is_gerund,
     link,
     near_said,
     skip_subject,
@@ -418,6 +419,11 @@ def prefixed(r: Reader, i: int, prefix_last: bool) -> Parse[SentenceBody]:
         # "When you're done in the kitchen (check the microwave), ...": what is done there, or a step after?
         close = next((k for k in range(prefix.end + 1, len(r)) if r.word(k) == ","), len(r))
         return Refusal(rf.aside_after_prefix(r.quote(i, prefix.end), r.quote(prefix.end + 1, close)))
+    gerund = prefix.end + (1 if r.word(prefix.end) == "," else 0)
+    if is_gerund(r.word(gerund)):
+        # "when you're done in the kitchen (,) checking the oven, Y": part of what is done first, or a step?
+        close = next((k for k in range(gerund, len(r)) if r.word(k) in (",", "then")), len(r))
+        return Refusal(rf.work_after_prefix(r.quote(i, prefix.end), r.quote(gerund, close)))
     rest = body(r, comma_or_then(r, passive if r.word(passive) in (",", "then") else prefix.end))
     if not isinstance(rest, Match):
         return rest
