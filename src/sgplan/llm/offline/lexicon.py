@@ -598,8 +598,8 @@ AWAY_VERBS = word_set("put puts putting tidy tidies tidying pack packs packing s
 """Before *away* (*put away the bowl*, *put the bowl away*): the verb's particle; the object is reached (where
 it is put away is not said)."""
 CHECK_THAT = ("that", "if", "whether")
-CHECK_VERBS = word_set("check checks checking checked see seeing seen ensure ensuring ensured verify verifying "
-                       "verified confirm confirming confirmed make made sure look looking looked")
+CHECK_VERBS = word_set("check checks checking checked see seeing seen ensure ensuring ensured verify "
+                       "verifying verified confirm confirming confirmed make made sure look looking looked")
 """*check that / if X is Y*: X is the goal (the state is what the check sees there)."""
 STATE_VERBS = ("is", "are", "'s", "looks", "look", "seems")
 """After *check (that) X*: the verb of the state the check sees (*is off*, *looks tidy*)."""
@@ -1133,8 +1133,6 @@ AFTER_ALL = Phrases(tuple(
                  ("all", "are", "done"), ("all", "that", "is", "done"))))
 """*after all three (of them)*, *once you've done those*: after every goal said before."""
 DONE = frozenset({"done", "finished", "through", "finishing"})
-BARE_ING_VERBS = word_set("bring swing ring sing spring string fling sling wring")
-"""Verbs whose bare form ends in *-ing* (*swing by X*): no gerund."""
 DONE_OPENERS = ("once", "when", "after")
 DONE_WITH = ("with", "in", "at")
 """*once you're done with / in / at X*: X is what is done (before what follows)."""

@@ -21,7 +21,6 @@ from sgplan.llm.offline.meaning.compose import Clause, check_text_order, conj, m
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.sentences import Meaning, read_sentence_body
 from sgplan.llm.offline.nouns import Head
-from sgplan.llm.offline.tasks import Step
 from sgplan.llm.offline.syntax import Reader, parse_sentence
 from sgplan.llm.offline.syntax.context import is_time
 from sgplan.llm.offline.syntax.preamble import stated_start as said_start
@@ -37,6 +36,7 @@ from sgplan.llm.offline.syntax.tree import (
     StayOnFloor,
     nodes,
 )
+from sgplan.llm.offline.tasks import Step
 from sgplan.logic.formula import Always, Formula, atoms
 
 

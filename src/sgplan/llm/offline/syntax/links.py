@@ -196,6 +196,11 @@ def is_gerund(word: str) -> bool:
     return word.endswith("ing") and word not in lx.BASE_VERBS_IN_ING
 
 
+def working(word: str) -> bool:
+    """Whether ``word`` is a verb of the grammar in its *-ing* form (*once done checking X*)."""
+    return is_gerund(word) and word in lx.POSITIVE_VERBS
+
+
 def has_main_clause(r: Reader, i: int) -> bool:
     """Whether a clause after *after you ...* at ``i`` is followed by its main clause (*after you go to X,
     check Y*: a comma then an order, not a remark such as *, whatever one*)."""
@@ -231,17 +236,12 @@ def done_sequence(r: Reader, i: int) -> int | None:
     there."""
     n = done_words(r, i)
     back = r.word(i + n) in lx.DONE_BACK and r.word(i + n + 1) in lx.DONE_BACK_ENDS
-    if not n or (r.np_starts(i + n) and not back) or is_gerund(r.word(i + n)):
+    if not n or (r.np_starts(i + n) and not back) or working(r.word(i + n)):
         return None  # "after finishing the kitchen", "once done checking X": what is done is said
     if r.word(i + n) in lx.DONE_WITH and (r.word(i + n + 1) not in lx.DONE_BACK or r.np_starts(i + n + 2)):
         return None
     k = i + n + (1 if r.word(i + n) in lx.DONE_WITH else 0)
     return k + (1 if r.word(k) in lx.DONE_BACK else 0)
-
-
-def is_gerund(word: str) -> bool:
-    """Whether ``word`` is a verb of the grammar in its *-ing* form (*checking*, *looking*)."""
-    return word.endswith("ing") and word in lx.POSITIVE_VERBS and word not in lx.BARE_ING_VERBS
 
 
 def done_closing(r: Reader, i: int) -> int:

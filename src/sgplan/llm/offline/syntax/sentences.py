@@ -23,11 +23,11 @@ from sgplan.llm.offline.syntax.links import (
     comma_or_then,
     done_closing,
     done_words,
-    is_gerund,
     link,
     near_said,
     skip_subject,
     skip_until_subject,
+    working,
 )
 from sgplan.llm.offline.syntax.negation import passive_end
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
@@ -420,7 +420,7 @@ def prefixed(r: Reader, i: int, prefix_last: bool) -> Parse[SentenceBody]:
         close = next((k for k in range(prefix.end + 1, len(r)) if r.word(k) == ","), len(r))
         return Refusal(rf.aside_after_prefix(r.quote(i, prefix.end), r.quote(prefix.end + 1, close)))
     gerund = prefix.end + (1 if r.word(prefix.end) == "," else 0)
-    if is_gerund(r.word(gerund)):
+    if working(r.word(gerund)):
         # "when you're done in the kitchen (,) checking the oven, Y": part of what is done first, or a step?
         close = next((k for k in range(gerund, len(r)) if r.word(k) in (",", "then")), len(r))
         return Refusal(rf.work_after_prefix(r.quote(i, prefix.end), r.quote(gerund, close)))
