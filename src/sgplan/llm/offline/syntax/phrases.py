@@ -418,6 +418,22 @@ def persons_possessive(r: Reader, i: int) -> int:
     return end - i
 
 
+def thing_in_room(r: Reader, items: list[NounPhrase], i: int, role: Role) -> Match[Described] | None:
+    """*kitchen - microwave* (a room alone before the dash, a thing after it that ends the list): the
+    thing in that room, as *the microwave in the kitchen* (grounding refuses it when the room holds none);
+    ``None`` otherwise (a dash between two rooms or two things stays unclear: a route, or a set?)."""
+    room = items[0] if len(items) == 1 else None
+    if not isinstance(room, Described) or not isinstance(room.head, Head) or room.head.kind != "room":
+        return None
+    thing = noun_phrase(r, i, role)
+    if (not isinstance(thing, Match) or not isinstance(thing.node, Described)
+            or not isinstance(thing.node.head, Head) or thing.node.head.kind != "object"
+            or r.word(thing.end) not in lx.CLAUSE_ENDS or r.word(thing.end) in ("and", "but")):
+        return None
+    located = InRoom((room,), room.span)
+    return Match(replace(thing.node, qualifiers=(*thing.node.qualifiers, located)), thing.end)
+
+
 def demonstrative(r: Reader, i: int) -> int:
     """How many words of a back-pointing determiner start the phrase at ``i`` (*that*, *those*, *the
     same*, *that same* before a room or object noun, with or without a number); 0 if none."""
@@ -453,6 +469,10 @@ def phrase_list(r: Reader, i: int, role: Role) -> Parse[PhraseList]:
         restates = ((r.word(joined[1]) in lx.ARTICLES and r.word(joined[1] + 1) in lx.ANAPHORIC_ONE)
                     or isinstance(group_repeat(r, joined[1], role, None), Match))  # "the vases - all four"
         if not joined[0] and not restates and r.text[r.toks[i].start:r.toks[i].end].strip() in lx.DASHES:
+            located = thing_in_room(r, items, joined[1], role)
+            if located is not None:  # "kitchen - microwave": the microwave in the kitchen
+                items, i = [located.node], located.end
+                continue
             # "kitchen - office - couch": a route, or a set? (a dash between asides is read as a comma)
             return Refusal(rf.dash_between_goals(r.quote(first, min(len(r), joined[1] + 2))))
         joiner, i = joined
