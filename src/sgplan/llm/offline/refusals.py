@@ -801,6 +801,12 @@ def antecedent_qualifier_or_goal(pronoun: str, qualifier: str, goal: str) -> str
                     "named before it; name the thing")
 
 
+def one_of_several_set_aside(pronoun: str, phrase: str, keys: list[str]) -> str:
+    return rephrase(f"'{pronoun}' refers to '{phrase}', said in a sentence that is not part of the mission, "
+                    f"which matches {len(keys)} things ({', '.join(keys)}); name the one meant, or say 'any "
+                    "one of them'")
+
+
 def antecedent_of_several(pronoun: str, phrases: list[str]) -> str:
     named = ", ".join(f"'{p}'" for p in dict.fromkeys(phrases))
     return rephrase(f"'{pronoun}' could be any of {named}, named in a sentence that is not part of the "

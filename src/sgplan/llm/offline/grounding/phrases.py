@@ -126,6 +126,8 @@ def pronoun(np: Pronoun, where: Where, disc: Discourse) -> Grounded:
         if len(named) > 1:
             rf.refuse(rf.that_of_several(named))
     ref = antecedent(np.word, disc, "object" if where.objects else "room" if where.rooms else None)
+    if ref in disc.mentions and ref.mode == "the" and len(ref.entities) > 1:  # "The sink is dripping. ..."
+        rf.refuse(rf.one_of_several_set_aside(np.word, ref.phrase, [e.key for e in ref.entities]))
     mode: Mode = "all" if np.word in lx.PLURAL_PRONOUNS else ref.mode
     g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, list(ref.entities), mode,
                  ref.room_scoped, where.role)
