@@ -9,7 +9,7 @@ from dataclasses import dataclass, replace
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
-from sgplan.llm.offline.grounding.discourse import FloorReading, Grounded, Where
+from sgplan.llm.offline.grounding.discourse import Discourse, FloorReading, Grounded, Where
 from sgplan.llm.offline.grounding.floors import floors_of
 from sgplan.llm.offline.grounding.phrases import ground_list
 from sgplan.llm.offline.grounding.restated import members_restated
@@ -48,6 +48,8 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
     if action.phrases is None:  # "go upstairs and check the laptop": the laptop upstairs
         assert action.moved is not None and floor is not None
         return steps_of(action.moved, ctx, scope, lenient, (floor, action.moved.span.start), floor)
+    if action.instead:
+        instead_of_prohibitions(action, disc)
     phrases = ground_list(action.phrases, where, disc)
     if action.moved is not None:  # "go up to the top floor and check a bathroom (there)": one goal there
         floors = FloorReading(frozenset(e.floor for e in phrases[0].entities))
@@ -63,6 +65,16 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
             task.revisit = True
     tail(action, phrases, steps, carry, replace(where, floor=None, action_floor=None, objects=False), ctx)
     return ActionSteps(steps or [[]], action.first and not lead)
+
+
+def instead_of_prohibitions(action: Action, disc: Discourse) -> None:
+    """*... instead* closing ``action``: an alternative to the places kept out of before it (*Keep out of
+    the kitchen. Check the couch instead.*), which changes nothing; after a goal it may take that goal back
+    (*Go to the kitchen. Go to the lobby instead.*), and after no prohibition it says nothing clear:
+    refused both ways."""
+    before = [g for g in disc.references if g.end <= action.span.start]
+    if any(g.role == "goal" for g in before) or not any(g.role == "avoid" for g in before):
+        rf.refuse(rf.cannot_understand(lx.REFUSED_WORDS["instead"]))
 
 
 def ordered_steps(action: Action, phrases: list[Grounded], carry: bool, lead: bool,

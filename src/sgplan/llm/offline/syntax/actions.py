@@ -476,6 +476,8 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
     filler = r.phrase(i, lx.TIME_FILLERS)
     if filler and not r.trailing_after(i):
         i += len(filler)  # not "... the office later": that says an order (.body.trailing_after)
+    if r.word(i) == "instead" and r.word(i + 1) in lx.CLAUSE_ENDS and not node.in_condition:
+        node, i = replace(node, instead=True), i + 1
     return Match(replace(node, span=Span(node.span.start, r.toks[i - 1].end)), i)
 
 

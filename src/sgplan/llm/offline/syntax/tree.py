@@ -432,6 +432,9 @@ class Action:
     carried_on: bool = False
     destination_remark: tuple[str, ...] | None = None
     """A choice remark after the destination (*put it on the table in the dining room, any one*)."""
+    instead: bool = False
+    """*instead* closes the action (*keep out of the kitchen; check the couch instead*): read only after
+    prohibitions alone (after a goal it takes that goal back)."""
 
 
 # -------------------------------------------------------------------------------------------- body items
