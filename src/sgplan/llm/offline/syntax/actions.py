@@ -471,6 +471,10 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
             node, i = replace(node, purpose=purpose.node), particles(r, purpose.end)
         elif not verbs.node.words:
             return Refusal(rf.cannot_understand(r.rest(i)))
+    elif r.word(i) == "for" and node.purpose is None and not carry and r.np_starts(i + 1):
+        purpose = phrase_list(r, i + 1, "goal")  # "go to the office for the laptop": the laptop there
+        if isinstance(purpose, Match):
+            node, i = replace(node, purpose=purpose.node), particles(r, purpose.end)
     there = r.phrase(i, lx.THERE_SAID)  # "look at the TV there / while you're (in) there": where the step is
     i += len(there) if there and (len(there) == 1 or r.word(i + len(there)) in lx.CLAUSE_ENDS) else 0
     filler = r.phrase(i, lx.TIME_FILLERS)

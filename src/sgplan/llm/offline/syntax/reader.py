@@ -140,6 +140,8 @@ class Reader:
             return True  # "top floor bathroom", "ground-floor bathroom" (notes leave the article out)
         if w == "other" and self.head(i + 1) is not None:
             return True  # "-> other bdrm": the other bedroom, the article left out as notes do
+        if self.nouns.room_modifier(self.words, i) is not None:
+            return True  # "dining chair, either": the chair in the dining room, the article left out
         if w in lx.NUMBER_WORDS or w.isdigit():
             if nxt in lx.FLOOR_PLURALS and self.word(i + 2) in lx.FLOOR_DIRECTIONS:
                 return False  # "two floors up": where, not what
