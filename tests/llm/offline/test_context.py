@@ -85,3 +85,15 @@ def test_a_remark_between_two_orders_is_said_back(demo: Building) -> None:
     text = "Check the couch, bear with me, then the oven, no rush."
     translation = PatternTranslator().translate(text, demo)
     assert translation.set_aside == ("bear with me", "no rush")
+
+
+def test_headings_times_and_cautions_set_aside_are_said_back(demo: Building) -> None:
+    text = ("Heads up: the office is a mess after last night. Quick tidy. Careful, the kitchen is off "
+            "limits. After the game tonight, sit on the couch to see if anyone left anything.")
+    translation = PatternTranslator().translate(text, demo)
+    assert translation.set_aside == ("Heads up", "the office is a mess after last night",
+                                     "Quick tidy", "Careful", "After the game tonight",
+                                     "to see if anyone left anything")
+    said = explain_mission(mission_of(translation), demo).text.splitlines()
+    assert "Not part of the mission: 'After the game tonight'" in said
+    assert "Not part of the mission: 'Careful'" in said

@@ -428,6 +428,10 @@ out for the vase*, *never mind the office*): no goal and no prohibition, so refu
 
 CAUTION_VERBS = frozenset({"mind", "beware"})
 """Verbs of caution before a place (*mind the stairs*): refused like :data:`CAUTION_PAIRS`."""
+CAUTIONS = frozenset({"careful"})
+"""A caution without its verb: alone in the clause before what it warns of (*Careful, the office is off
+limits*, *Careful now, don't ...*) a remark, said back; before a place (*careful in the office*, *Careful, the
+office.*) refused like :data:`CAUTION_PAIRS` (not *carefully*, which says how to do an order)."""
 
 BE_FINE = frozenset({"sure", "certain"})
 """*be sure to ...*: a wrapper, not a manner of being (:func:`.syntax.actions.refused_verb`)."""
@@ -1410,6 +1414,9 @@ EVENT_WORDS = word_set(
 """Times of day, meals and events: *Before lunch, ...*, *After dinner, ...*, *Tonight, ...* only say when,
 which a mission cannot require; said at the start of a sentence they are set aside (said back), never read
 as the goal of *before / after*. A clock time (*at 6 pm*) or a delay (*in ten minutes*) is refused."""
+PAST_TIMES = word_set("yesterday earlier")
+"""Times gone by, in a time expression (*the office is a mess since yesterday*); *last* counts too before a
+word of :data:`EVENT_WORDS` (*after last night*, *since last week*), never alone (*do the kitchen last*)."""
 NAMED_DAYS = ("day", "night", "week", "weekend")
 """After a thing, a day named for it (*Plant day!*): context, not the thing as a goal."""
 TIME_WORDS = word_set("this next tomorrow today tonight later soon early late right now for the at some "
@@ -1518,14 +1525,18 @@ STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
 REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"), ("since",),
                    *(("so", who, what) for who in ("i", "we") for what in ("know", "can", "see")),
                    *(("to", *check, whether) for check in (("see",), ("check",), ("find", "out"))
-                     for whether in (("if",), ("whether",))), ("to", "make", "sure"), ("to", "test"),
+                     for whether in ("if", "whether")), ("to", "make", "sure"), ("to", "test"),
                    # "to check it's clean": a check of the state of what was just named, not a goal ("to
                    # check that the oven is off" names the oven: people mean it as a goal, so it is read)
                    *(("to", check, *who) for check in ("check", "see", "confirm", "verify", "ensure")
                      for who in (("it", "is"), ("it", "'s"), ("they", "are"), ("it", "has"), ("they", "have"),
                                  ("nothing", "is"), ("everything", "is"), ("everything", "'s")))))
 """A reason for an order, set aside to its clause's end (*... because the coffee's in there*, *... so I know
-you made it*, *... to see if the paint's dry*): it asks nothing."""
+you made it*, *... to see if anyone needs anything*): it asks nothing. A check of whether that names a room or
+object (*... to see if the oven is off*: the oven a goal too?) is left to the parser."""
+CHECK_WHETHER = Phrases(tuple(("to", *check, whether) for check in (("see",), ("check",), ("find", "out"))
+                              for whether in ("if", "whether")))
+"""The reasons of :data:`REASONS` that check whether something holds (*to see if ...*)."""
 _CHECKED_STATE = (("it", "is"), ("it", "'s"), ("they", "are"), ("it", "has"), ("they", "have"),
                   ("nothing", "is"), ("nothing", "'s"), ("everything", "is"), ("everything", "'s"))
 REASONS = REASONS + Phrases(tuple((*just, *checking, *that, *who) for just in ((), ("just",))
@@ -1543,6 +1554,13 @@ AFTER_ORDER_REASONS = AFTER_ORDER_REASONS + Phrases((
     ("seeing", "as"), ("seeing", "that"), ("given", "that"), ("now", "that"), ("considering", "that")))
 """(*check the oven, seeing as we're cooking tonight*, *... now that dinner is done*)."""
 STATE_RESULTS = Phrases(tuple(("so", *who) for who in (*_CHECKED_STATE, ("they", "'re"))))
+SENSED_STATES = word_set("looks stays feels smells")
+"""Verbs of how a thing seems (*it looks tidy*, *the bathroom smells*)."""
+STATE_RESULTS = STATE_RESULTS + Phrases(tuple(
+    ("so", who, verb) for who, verbs in (("it", SENSED_STATES), ("everything", SENSED_STATES),
+                                         ("they", ("look", "stay", "feel", "smell")))
+    for verb in sorted(verbs)))
+"""(*check the living room so it looks tidy*, *... so everything stays dry*)."""
 """The state an order leaves what it names in, said after it (*check the bedroom so it's tidy*, *... so
 nothing's burning*): a reason like *so that ...*, set aside only after an order and when it names no room,
 object or floor."""
@@ -1583,6 +1601,12 @@ NOTICE_THAT = Phrases((*((*please, "note", *that) for please in ((), ("please",)
 asleep*): the statement after them is context like any other (*remember* without *that* may ask to go:
 left to the parser)."""
 APOLOGY_WORDS = ("sorry", "oops", "whoops", "apologies")
+THANKS_FOR = Phrases((
+    ("thanks", "for"), ("thank", "you", "for"), ("many", "thanks", "for"), ("cheers", "for"),
+    ("thanks", "so", "much", "for"), ("thank", "you", "so", "much", "for")))
+"""Thanks for something that names nothing (*Thanks for all your help this week*): a remark, like an apology
+for something (:func:`.syntax.context.apology_for`); thanks for something of the scene (*thanks for
+cleaning the kitchen*) is left to the parser."""
 KISSES = frozenset({"x", "xx", "xxx"})
 """Kisses signing off a message (*Love, Dad x*): a remark only as the last word of a sentence, as *x* is also
 operators' shorthand for *not* (*x kitchen*)."""
@@ -1614,6 +1638,14 @@ CLOSING = CLOSING + Phrases((
 ))
 """More of :data:`CLOSING`: the robot's time asked as a condition (*when you've got a minute*, *if you get
 a chance*, *once you're free*), which asks nothing wherever it closes or opens a clause."""
+CLOSING = CLOSING + Phrases(tuple(
+    (when, "you", *be, *fully, *charged) for when in ("when", "once", "after")
+    for be in (("are",), ("have", "been"), ("have",), ("get",))
+    for fully in ((), ("fully",), ("all",))
+    for charged in (("charged",), ("recharged",), ("charged", "up"), ("done", "charging"),
+                    ("finished", "charging"))))
+"""More of :data:`CLOSING`: the robot's own charge as the time of the orders (*Once you're charged, ...*,
+*when you've fully recharged*): nothing of the scene, said back wherever it opens or closes a clause."""
 CLOSING = CLOSING + Phrases((("obviously",), ("of", "course"), ("roughly",), ("not", "urgent"),
                              ("not", "a", "priority"), ("not", "a", "big", "deal")))
 """More of :data:`CLOSING`: hedges alone in their clause (*Check the oven, obviously.*, *Morning routine,

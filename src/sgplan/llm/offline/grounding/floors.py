@@ -65,7 +65,7 @@ def floors_of(spec: FloorSpec, disc: Discourse, candidates: list[Entity] | None 
     if isinstance(spec, FloorOffset):
         return shifted(spec, disc)
     if isinstance(spec, RelativeFloor):
-        return relative(spec.word, disc, candidates)
+        return relative(spec.word, disc, candidates, spec.robot_there)
     if isinstance(spec, StayExtreme):
         return FloorReading(staying(spec.word, disc))
     if isinstance(spec, UpThere):
@@ -116,13 +116,15 @@ def second_reading(said: str, disc: Discourse,
     return FloorReading(relate(at.pop()), None, said, last.phrase)
 
 
-def relative(word: str, disc: Discourse, candidates: list[Entity] | None) -> FloorReading:
+def relative(word: str, disc: Discourse, candidates: list[Entity] | None,
+             robot_there: bool = False) -> FloorReading:
     """*upstairs* / *downstairs*: the floors above / below the start floor when it is known; in a two-floor
     building, the upper / lower floor (after a goal on another floor, where the start has no floor that
     way, from that goal's floor: *go up to X, then come back down*, and the reverse); for a noun (*the
     downstairs bathroom*) whose candidates lie on
     exactly two floors, the lower / upper of those, as people name such rooms whatever floor they stand
-    on; otherwise refused, naming the floors."""
+    on; ``robot_there`` (*while you're upstairs*, said of where the robot is): the start floor when no floor
+    lies that way from it (it is upstairs, so the words are true); otherwise refused, naming the floors."""
     step, n, start = lx.RELATIVE_FLOORS[word], disc.vocab.num_floors, disc.start_floor
     on = sorted({e.floor for e in candidates or []})
     if start is None and n > 2 and len(on) == 2:
@@ -133,6 +135,8 @@ def relative(word: str, disc: Discourse, candidates: list[Entity] | None) -> Flo
         wanted = frozenset(f for f in range(n) if (f - start) * step > 0)
         if not wanted and second is not None and second.floors:
             return FloorReading(second.floors)  # "go upstairs ..., then come back down": down from there
+        if not wanted and robot_there and second is None:
+            return FloorReading(frozenset({start}))  # "while you're upstairs" said on the top floor: true
         if not wanted:
             rf.refuse(rf.off_the_building(word, start, disc.vocab.building_name, n))
         # "the upstairs bathroom" after a goal on the top floor: from there it names nothing; from the start

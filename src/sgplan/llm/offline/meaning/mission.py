@@ -22,7 +22,7 @@ from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.sentences import Meaning, read_sentence_body
 from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import Reader, parse_sentence
-from sgplan.llm.offline.syntax.context import is_time
+from sgplan.llm.offline.syntax.context import is_time, times_of_parts
 from sgplan.llm.offline.syntax.preamble import stated_start as said_start
 from sgplan.llm.offline.syntax.reader import Match, Refusal
 from sgplan.llm.offline.syntax.tree import (
@@ -53,6 +53,9 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
              and r.words not in lx.NOW_SAID and r.words != ("today",)]  # "Today, ... Right now, ...": none
     if len(times) > 1:  # "Before dinner, A. After dinner, B.": an order of times, which no formula keeps
         rf.refuse(rf.times_in_order(times))
+    headed = times_of_parts(readers)  # "Jobs before lunch: A. Jobs after lunch: B."
+    if len(headed) > 1:
+        rf.refuse(rf.times_in_order(headed))
     disc.confined = confinement(readers, disc)
     parts: list[Meaning] = []
     listed: dict[int, list[MissionSentence]] = {}

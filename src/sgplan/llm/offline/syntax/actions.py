@@ -210,6 +210,8 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
         odd = odd_verb(r, i)
         if odd is not None:
             return odd
+        if w not in lx.POSITIVE_VERBS and r.nouns.names_word(w) and r.np_starts(i + 1):  # "living chair"
+            return Refusal(rf.cannot_understand_word(w, f"'{r.quote(i, min(len(r), i + 3))}'"))
         if w == "out" and r.word(i + 1) == "from" and r.word(i - 1) in lx.FLOOR_MOVE_VERBS:
             return Refusal(rf.cannot_understand(lx.REFUSED_WORDS["leave"]))  # "go out from X": leaving X
         seen.append(w)
@@ -265,6 +267,8 @@ def refused_verb(r: Reader, i: int, in_condition: bool) -> Refusal | None:
     if w in lx.REFUSED_WORDS:
         return Refusal(rf.cannot_understand(lx.REFUSED_WORDS[w]))
     if (w, nxt) in lx.CAUTION_PAIRS or (w in lx.CAUTION_VERBS and r.np_starts(i + 1)):
+        return Refusal(rf.caution_not_goal(r.quote(i, min(len(r), i + 3))))
+    if w in lx.CAUTIONS and (nxt in lx.PLACE_PREPOSITIONS or r.np_starts(i + 1)):  # "careful in X"
         return Refusal(rf.caution_not_goal(r.quote(i, min(len(r), i + 3))))
     if r.word(i - 1) == "be" and _manner(r, i):  # "be careful in X" ("be" is read before the verb slot)
         return Refusal(rf.caution_not_goal(r.quote(i - 1, min(len(r), i + 2))))

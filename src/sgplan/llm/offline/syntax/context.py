@@ -119,7 +119,7 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     praise = [w for w in r.words if w.isalpha()]
     if praise and all(w in lx.PRAISE or w in lx.HESITATIONS for w in praise):
         return [aside(r, 0, len(r))]  # "Perfect.", "Cool cool.": a sentence of praise only, said back
-    if event_note(r, 0, len(r)) or is_time(r, 0, len(r)):
+    if event_note(r, 0, len(r)) or is_time(r, 0, len(r)) or chore_note(r):
         return [aside(r, 0, len(r))]
     heading = None if said_before else before_you_start(r)  # (after an order: before which step?)
     if heading is not None:  # "Before you start: the carpet is wet, so ...": the rest read on its own
@@ -137,6 +137,7 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         return [opening, *split(replace(r, toks=r.toks[skip_joiner(r, clauses[1][0]):]), said_before)]
     first, last = 0, len(clauses)
     while first < last and (is_context(r, *clauses[first], leading=True) or closing_only(r, *clauses[first])
+                            or caution(r, *clauses[first])
                             or (first > 0 and hedged_addition(r, *clauses[first]))
                             or (first == 0 and praise_before_order(r, *clauses[0]))):
         first += 1
@@ -145,6 +146,8 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         last -= 1  # "..., the cat's asleep in there", "..., okay?", "..., sorry about this": said back
     if first == last or (first > 0 and mere_talk(r, clauses[first][0], clauses[last - 1][1])):
         return [aside(r, 0, len(r))]
+    if first and r.word(clauses[first - 1][0]) in lx.CAUTIONS and caution_on_place(r, *clauses[first]):
+        rf.refuse(rf.caution_not_goal(r.quote(clauses[first - 1][0], clauses[first][1])))
     named = mentions(aside(r, 0, clauses[first - 1][1])) if first else ()
     start = skip_joiner(r, clauses[first][0]) if first else 0
     # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
@@ -167,6 +170,19 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     return kept
 
 
+def caution(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` is only a caution without its verb (*Careful*, *careful now*)."""
+    return end - start in (1, 2) and r.word(start) in lx.CAUTIONS and r.word(end - 1) in ("careful", "now")
+
+
+def caution_on_place(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` after a caution (*Careful, the office.*) is only a place, with no
+    order and no statement of it: the warning may be about that place, or a goal; refused."""
+    return r.np_starts(start) and not starts_order(r, start) and not any(
+        r.word(k) in lx.COPULAS or r.phrase(k, lx.OFF_LIMITS) or finite_verb(r.word(k))
+        for k in range(start, end))
+
+
 def apology(r: Reader) -> bool:
     """Whether the sentence is a bare apology word (*sorry*, *oops*) and a comma before a statement that
     names nothing and says nothing of what was meant (*Sorry, I forgot something.*): no room, object, floor,
@@ -183,7 +199,8 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
     """The ``[start, end)`` of the clauses between the commas of ``r``, and before *so* / *but* followed by
     an order (*my son is asleep upstairs so don't go up there*); a time expression closing a clause is a
     clause of its own (*go to the kitchen tonight*, *check the laptop before dinner, then ...*), also before
-    a reason (*check the fridge before lunch so I know what to cook*)."""
+    a reason (*check the fridge before lunch so I know what to cook*) or *and* / *then* (*make the beds this
+    morning and don't leave this floor*)."""
     cuts = [k for k, w in enumerate(r.words) if w == ","]
     joins = [k for k, w in enumerate(r.words) if w in lx.ORDER_JOINERS and k and r.word(k - 1) != ","
              and (starts_order(r, k + 1) or said_after_joiner(r, k))]
@@ -195,6 +212,12 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
         if head is not None:  # "This evening stay on this floor", "Tonight check the oven"
             out.append((start, head))
             start = head
+        joined = next(((j, t) for j in range(start + 2, end) if r.word(j) in ("and", "then")
+                       and starts_order(r, r.skip(j + 1, ("and", "then")))
+                       and (t := time_tail(r, start, j)) is not None), None)
+        if joined is not None:  # "make both beds this morning and don't leave this floor": the time, then
+            out += [(start, joined[1]), (joined[1], joined[0])]  # the order goes on after "and"
+            start = joined[0]
         tail = time_tail(r, start, end)
         reason = reason_span(r, start, end) if tail is None else None
         timed = time_tail(r, start, reason[0]) if reason is not None else None
@@ -230,6 +253,8 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
     if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) or is_clock_time(r.word(j))
            or r.word(j) in lx.TIME_UNITS for j in said):
         return None  # what not to do, a question to the robot, a clock time or a delay: left to the parser
+    if r.phrase(k, lx.CHECK_WHETHER) and any(names_place(r, j) or misspelt_name(r, j, j + 1) for j in said):
+        return None  # "to see if the oven is off": the oven may be a goal too
     return k, stop
 
 
@@ -391,7 +416,9 @@ def orders_a_named_thing(r: Reader, start: int, end: int) -> bool:
     """Whether the clause ``[start, end)`` says the order of a room or object of the scene (a word of the
     order, :data:`.lexicon.ORDER_HEADS`, and a noun of the scene or *one*: *we start with the kitchen*, read
     *we first the kitchen*; *... the one upstairs*), which a statement set aside would drop."""
-    return (any(r.word(k) in lx.ORDER_HEADS for k in range(start, end))
+    tail = time_tail(r, start, end)  # "the office is a mess after last night": a time, no order
+    said = range(start, end if tail is None else tail)
+    return (any(r.word(k) in lx.ORDER_HEADS for k in said)
             and any(r.head(k) is not None or r.word(k) in lx.ANAPHORIC_ONE for k in range(start, end)))
 
 
@@ -417,7 +444,7 @@ def closing_only(r: Reader, start: int, end: int) -> bool:
     cheers*)."""
     k = start if r.phrase(start, lx.CLOSING) else skip_joiner(r, start)  # "as usual", "so no rush"
     while k < end and (said := ((r.word(k),) if praise_before_closing(r, k, end) else None)
-                       or r.phrase(k, lx.CLOSING) or apology_for(r, k, end) or well_wishing(r, k, end)
+                       or apology_for(r, k, end) or r.phrase(k, lx.CLOSING) or well_wishing(r, k, end)
                        or ((r.word(k),) if r.word(k) in lx.HESITATIONS or r.word(k) == "," or signature(r, k)
                            or (r.word(k) in lx.KISSES and k == len(r) - 1) else None)):
         k += len(said)
@@ -426,12 +453,16 @@ def closing_only(r: Reader, start: int, end: int) -> bool:
 
 
 def apology_for(r: Reader, k: int, end: int) -> tuple[str, ...] | None:
-    """The words of an apology for something that names nothing and asks nothing, up to ``end`` (*Sorry for
-    the late notice*, *apologies about the short notice*), else ``None``; *sorry about the kitchen* names a
-    room (what of it?) and is no remark."""
-    if (r.word(k) not in lx.APOLOGY_WORDS or r.word(k + 1) not in ("for", "about") or end - k > 7
-            or not mere_talk(r, k + 2, end) or misspelt_name(r, k + 2, end)
-            or any(r.word(j) in lx.STRUCTURAL and r.word(j) not in lx.ARTICLES for j in range(k + 2, end))):
+    """The words of an apology or thanks for something that names nothing and asks nothing, up to ``end``
+    (*Sorry for the late notice*, *apologies about the short notice*, *Thanks for all your help this week*),
+    else ``None``; *sorry about the kitchen* names a room (what of it?) and is no remark."""
+    thanks = r.phrase(k, lx.THANKS_FOR)  # "Thanks for all your help this week"
+    said = k + len(thanks) if thanks else k + 2
+    tail = time_tail(r, said, end) or end
+    kept = lx.ARTICLES | lx.POSSESSIVES | {"all"} if thanks else lx.ARTICLES
+    if ((not thanks and (r.word(k) not in lx.APOLOGY_WORDS or r.word(k + 1) not in ("for", "about")))
+            or tail - said > 5 or not mere_talk(r, said, end) or misspelt_name(r, said, end)
+            or any(r.word(j) in lx.STRUCTURAL and r.word(j) not in kept for j in range(said, tail))):
         return None
     return tuple(r.words[k:end])
 
@@ -504,17 +535,38 @@ def before_you_start(r: Reader) -> int | None:
 
 
 def event_note(r: Reader, start: int, end: int) -> bool:
-    """*Movie night later!*, *Big day tomorrow*: words about an event, with no room, object, verb or word of
-    the grammar; or a day named after a thing (*Plant day!*), which asks nothing."""
+    """*Movie night later!*, *Big day tomorrow*, *Work-from-home day*: words about an event, with no room,
+    object, verb or word of the grammar (but inside a compound joined by hyphens); or a day named after a
+    thing (*Plant day!*), which asks nothing."""
     words = r.words[start:end]
     if not any(w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES for w in words):
         return False
     head = r.head(start)
     if head is not None and start + head.words == end - 1 and words[-1] in lx.NAMED_DAYS:
         return True  # "Plant day!", "Laundry day" (not "Kitchen tonight": a goal and a time)
-    return not any(r.head(k) is not None or r.word(k) in lx.POSITIVE_VERBS or r.word(k) in lx.REFUSED_WORDS
-                   or (r.word(k) in lx.STRUCTURAL and r.word(k) not in lx.TIME_WORDS)
-                   or not r.word(k).isalpha() for k in range(start, end))
+    return not any(r.head(k) is not None or r.word(k) in lx.REFUSED_WORDS or not r.word(k).isalpha()
+                   or ((r.word(k) in lx.POSITIVE_VERBS or (r.word(k) in lx.STRUCTURAL
+                                                           and r.word(k) not in lx.TIME_WORDS))
+                       and not hyphened(r, k))  # "Work-from-home day": one word
+                   for k in range(start, end))
+
+
+def hyphened(r: Reader, k: int) -> bool:
+    """Whether the word at ``k`` is inside a compound joined by hyphens (*work-from-home*, *back-to-school*):
+    one word of the phrase, whatever role it has alone."""
+    tok, text = r.toks[k], r.text
+    return ((k > 0 and text[tok.start - 1:tok.start] == "-" and r.toks[k - 1].end == tok.start - 1)
+            or (k < len(r) - 1 and text[tok.end:tok.end + 1] == "-" and r.toks[k + 1].start == tok.end + 1))
+
+
+def chore_note(r: Reader) -> bool:
+    """*Quick tidy before bedtime.*, *Proper clean today!*: a manner word and a chore's verb said as a noun
+    (:data:`.lexicon.GIVEN_MANNER`: an adjective, so the verb is no order), alone in the sentence or before a
+    time; it names nothing and asks nothing. With a place (*Quick tidy of the kitchen.*) it is left to the
+    parser."""
+    end = time_tail(r, 0, len(r)) or len(r)
+    return (end == 2 and r.word(0) in lx.GIVEN_MANNER and r.word(1) in lx.POSITIVE_VERBS
+            and r.word(1) not in lx.PLACE_PREPOSITIONS and r.word(1) not in lx.PARTICLES)
 
 
 def names_place(r: Reader, k: int) -> bool:
@@ -542,14 +594,32 @@ def is_time(r: Reader, start: int, end: int) -> bool:
         return True
     words = r.words[start:end]
     event = words[:1] in tuple((w,) for w in lx.EVENT_OPENERS)  # "before the guests arrive"
-    said = [w in lx.TIME_WORDS or (event and (w in lx.EVENT_VERBS or w in lx.PEOPLE or w in lx.PEOPLE_NOUNS
-                                              or w in lx.POSSESSIVES or w in lx.AUXILIARIES or k == 0))
+    own = named_event(r, start, end)  # "after the game tonight", "during our film tomorrow"
+    said = [w in lx.TIME_WORDS or w in lx.PAST_TIMES or (own is not None and own - 1 <= start + k <= own)
+            or (w == "last" and words[k + 1:k + 2] and words[k + 1] in lx.EVENT_WORDS)  # "after last night"
+            or (event and (w in lx.EVENT_VERBS or w in lx.PEOPLE or w in lx.PEOPLE_NOUNS
+                           or w in lx.POSSESSIVES or w in lx.AUXILIARIES or k == 0))
             for k, w in enumerate(words)]
     if not words or not all(said):
         return False
     events = [w for w in words if (w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES)
               or (event and (w in lx.PEOPLE or w in lx.PEOPLE_NOUNS))]
     return bool(events) or tuple(words) in lx.NOW_SAID
+
+
+def named_event(r: Reader, start: int, end: int) -> int | None:
+    """Where the noun of an event named by its own word is, in a time opening with an event's opener (*after
+    the game tonight*, *before the match on Saturday*, *during my show this evening*): a determiner, one
+    word the translator does not know and that is no misspelt name of the scene, then a day's time
+    (:data:`.lexicon.EVENT_WORDS`) that says it is an event; ``None`` otherwise. Without that time (*after
+    the game, ...*) the word may be a goal the scene lacks, and is left to the parser, which refuses it."""
+    noun = start + 2
+    opened = r.word(start) in lx.EVENT_OPENERS + lx.SPAN_OPENERS and (
+        r.word(start + 1) in lx.DETERMINERS or r.word(start + 1) in lx.POSSESSIVES)
+    if (not opened or not plain_subject(r, noun) or r.word(noun) in lx.LEXICON_WORDS
+            or misspelt_name(r, noun, noun + 1)):
+        return None
+    return noun if any(r.word(k) in lx.EVENT_WORDS for k in range(noun + 1, end)) else None
 
 
 def event_clause(r: Reader, start: int, end: int) -> bool:
@@ -626,17 +696,33 @@ def time_tail(r: Reader, start: int, end: int) -> int | None:
     return None
 
 
+def times_of_parts(readers: list[Reader]) -> list[str]:
+    """The times of events said by the words set aside from ``readers``, whole (*Before lunch*) or closing
+    them (*Jobs before lunch*, *Quick tidy after dinner*), as said: two of them may put the parts of the
+    mission in an order of times (*Jobs before lunch: A. Jobs after lunch: B.*), which no formula keeps."""
+    return [r.quote(0, len(r)) for r in readers if r.aside and (
+        (r.word(0) in lx.EVENT_OPENERS and is_time(r, 0, len(r)))
+        or ((tail := time_tail(r, 0, len(r))) is not None and r.word(tail) in lx.EVENT_OPENERS
+            and not any(w in lx.PAST_TIMES or w == "last" for w in r.words[tail:])))]  # "after last night"
+
+
 def timed_heading(r: Reader) -> list[Reader]:
-    """The words before a colon that announce how many things follow, without the time of day, event or
-    aside asking nothing they end with (*A couple of things before I get back:*, *Three jobs for tonight:*,
-    *Two things when you get a chance:*), after that time set aside
-    (said back; first, so that the heading stays right before what it announces); ``[r]`` otherwise."""
+    """The words before a colon that announce how many things follow or name the list, without the time of
+    day, event or aside asking nothing they end with (*A couple of things before I get back:*, *Three jobs for
+    tonight:*, *Two things when you get a chance:*, *Things to grab before dinner:*: a list noun and *to*),
+    after that time set aside (said back; first, so that the heading stays right before what it announces);
+    ``[r]`` otherwise."""
     if not r.words or r.words[-1] != ":" or r.aside:
         return [r]
     tail = time_tail(r, 0, len(r) - 1)
     tail = hedge_tail(r, len(r) - 1) if tail is None else tail  # "Three things when you get a chance:"
-    if tail is None or not any(w in lx.NUMBER_WORDS or w in lx.FEW or w.isdigit() for w in r.words[:tail]):
-        return [r]  # only an announcement of how many (a label with its time is said back whole)
+    if tail is None:
+        return [r]
+    said = r.words[:tail]
+    counted = any(w in lx.NUMBER_WORDS or w in lx.FEW or w.isdigit() for w in said)
+    if not counted and not (said[:1] and said[0] in lx.LIST_NOUNS and said[1:2] == ("to",)):
+        return [r]  # how many, or a list of things to do (*Things to grab before dinner:*); a label with
+        # its time (*Route for this afternoon:*) is said back whole
     return [aside(r, tail, len(r) - 1), replace(r, toks=r.toks[:tail] + r.toks[-1:])]
 
 
@@ -708,11 +794,13 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         return start + 1 if start + 1 < end and verb not in lx.CLAUSE_ENDS else None
     if w in lx.DETERMINERS or w in lx.POSSESSIVES:
         said = noun_phrase(r, start, "qualifier") if r.np_starts(start) else None
-        if isinstance(said, Match) and said.end < end and r.word(said.end) in lx.STATEMENT_VERBS:
-            return said.end  # "the plants are looking sad"
-        if (isinstance(said, Match) and r.word(said.end) in lx.ROOM_PARTS
+        if isinstance(said, Match) and said.end < end and (r.word(said.end) in lx.STATEMENT_VERBS
+                                                             or state_verb_last(r, said.end, end)):
+            return said.end  # "the plants are looking sad", "the bathroom with two toilets smells"
+        if (isinstance(said, Match) and (r.word(said.end) in lx.ROOM_PARTS or (
+                plain_subject(r, said.end) and not misspelt_name(r, said.end, said.end + 1)))
                 and r.word(said.end + 1) in lx.STATEMENT_VERBS):
-            return said.end + 1  # "the lobby floor is still wet": about a part of the room
+            return said.end + 1  # "the lobby floor is still wet", "the laptop battery is dead": a part of it
         if (r.word(start + 1) in lx.ROOM_PARTS and r.word(start + 2) in ("in", "of")
                 and r.np_starts(start + 3)):
             room = noun_phrase(r, start + 3, "qualifier")  # "the floor in the lobby is wet": a part of it
@@ -733,6 +821,17 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
             and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
         return start + 1  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
     return None
+
+
+def state_verb_last(r: Reader, k: int, end: int) -> bool:
+    """Whether the word at ``k`` is a verb the translator does not know that ends the clause ``[k, end)``
+    after its subject (*the bathroom smells*, *the fridge hums*, *the oven beeped*): a third-person or past
+    form (*-s*, *-ed*), no word of the lexicon, the scene or a misspelt name (*the office sinks* is refused
+    with its *did you mean*)."""
+    w = r.word(k)
+    return k == end - 1 and (w in lx.SENSED_STATES or (
+        w.isalpha() and w.endswith(("s", "ed")) and w not in lx.LEXICON_WORDS and r.head(k) is None
+        and not misspelt_name(r, k, k + 1)))
 
 
 def person_did(r: Reader, start: int, end: int) -> bool:

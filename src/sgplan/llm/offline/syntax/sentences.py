@@ -218,7 +218,7 @@ def floor_opening(r: Reader, i: int) -> tuple[FloorSpec | None, int]:
     if k > i and r.word(k) in lx.BACK_THERE and r.word(k + 1) in lx.FLOOR_PREPOSITIONS:
         k += 1  # "while you're up on the top floor"
     if r.word(k) in lx.RELATIVE_FLOORS and r.word(k + 1) == ",":
-        return RelativeFloor(r.word(k)), k + 2
+        return RelativeFloor(r.word(k), robot_there=k > i), k + 2  # "while you're upstairs": where it is
     if k > i and r.word(k) in lx.BACK_THERE and r.at(k + 1, "there", ","):
         return UpThere(r.word(k)), k + 3  # "while you're up there, ...": the floor of the goal named last
     j = k + 1 if r.word(k) in lx.FLOOR_PREPOSITIONS else k

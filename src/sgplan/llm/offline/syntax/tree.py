@@ -70,9 +70,11 @@ class FloorOffset:
 
 @dataclass(frozen=True)
 class RelativeFloor:
-    """*upstairs* / *downstairs*: the floors above / below the start (see the grounding)."""
+    """*upstairs* / *downstairs*: the floors above / below the start (see the grounding); ``robot_there``:
+    said as where the robot is (*while you're upstairs*), which is the start floor when none lies that way."""
 
     word: str
+    robot_there: bool = False
 
 
 @dataclass(frozen=True)
