@@ -50,7 +50,8 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
     if correction is not None:  # "go to the kitchen, sorry, I mean the office": which part stands?
         rf.refuse(rf.self_correction(correction))
     times = [r.quote(0, len(r)) for r in readers if r.aside and is_time(r, 0, len(r))
-             and r.words not in lx.NOW_SAID and r.words != ("today",)]  # "Today, ... Right now, ...": none
+             and r.words != ("today",)  # "Right now, ...": no time; "Morning: ..." heads a part
+             and (r.words not in lx.NOW_SAID or heads_a_colon(r))]
     if len(times) > 1:  # "Before dinner, A. After dinner, B.": an order of times, which no formula keeps
         rf.refuse(rf.times_in_order(times))
     headed = times_of_parts(readers)  # "Jobs before lunch: A. Jobs after lunch: B."
@@ -256,6 +257,11 @@ def taken_back(readers: list[Reader]) -> str | None:
             if said is not None and (n or k):
                 return r.quote(k, k + len(said))
     return None
+
+
+def heads_a_colon(r: Reader) -> bool:
+    """Whether the words of ``r`` were said before a colon (*Morning: ...*: a time heading, no greeting)."""
+    return bool(r.toks) and r.text[r.toks[-1].end:].lstrip().startswith(":")
 
 
 def confinement(readers: list[Reader], disc: Discourse) -> frozenset[int] | None:

@@ -27,7 +27,7 @@ from typing import Literal
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.actions import left_things_put
-from sgplan.llm.offline.syntax.context import closing_only
+from sgplan.llm.offline.syntax.context import closing_only, is_time
 from sgplan.llm.offline.syntax.floors import floor_words
 from sgplan.llm.offline.syntax.fragments import context_fragment
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
@@ -257,8 +257,8 @@ def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order |
         return [said], None, None, ()  # "Change of plan:": takes back what was said before (refused)
     if set(said.words) & lx.ORDER_HEADS and all(w in lx.FILLERS for w in said.words):
         return [said], None, None, ()  # "Then:" before a list: read alone (and refused), never dropped
-    if said.toks and closing_only(said, 0, len(said)):
-        return [replace(said, aside=True)], None, order, ()  # "Heads up:": a remark, said back
+    if said.toks and (closing_only(said, 0, len(said)) or is_time(said, 0, len(said))):
+        return [replace(said, aside=True)], None, order, ()  # "Heads up:", "Evening:": said back
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
         return [], None, order, ()  # "Here's the plan:", "Remember:": they ask nothing
     announced = (announcement(said) or verb_prefix(said) or room_heading(labelled(said))
@@ -312,10 +312,8 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
         order = Announced(said.quote(0, len(said)), (*said.toks, comma), None, None, said.toks[0].start,
                           scope=True)
         return [replace(said, toks=(), announced=order)] if after is not None else [said]
-    if said.toks and closing_only(said, 0, len(said)):
-        return [replace(said, aside=True)]  # "Heads up:", "Just so you know:": a remark, said back
-    if said.toks and closing_only(said, 0, len(said)):
-        return [replace(said, aside=True)]  # "Heads up:", "Just so you know:": a remark, said back
+    if said.toks and (closing_only(said, 0, len(said)) or is_time(said, 0, len(said))):
+        return [replace(said, aside=True)]  # "Heads up:", "Morning:": a remark or a time, said back
     if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
         said = replace(said, toks=())  # "Here's the plan:", "Remember:": they ask nothing
     if after is not None and (label := work_label(said, after)) is not None:
