@@ -340,11 +340,12 @@ BACK_THERE = ("up", "down")
 OTHER_FLOOR = Phrases((("any", "other", "floor"), ("another", "floor"), ("a", "different", "floor"),
                        ("other", "floors"), ("any", "other", "floors"), ("change", "floors"),
                        ("change", "floor"), ("switch", "floors"), ("any", "other", "level"),
-                       ("another", "level"), ("change", "levels"), ("the", "other", "floors"),
-                       ("the", "other", "levels")))
-"""``don't go to any other floor`` / ``don't change floors``: stay on the start floor; so is ``keep off the
-other floors``, the floors other than where the robot is (a goal on another floor is then refused, as after
-*stay on this floor*)."""
+                       ("another", "level"), ("change", "levels"),
+                       ("the", "other", "floors"), ("the", "other", "levels"), ("other", "levels"),
+                       ("any", "of", "the", "other", "floors")))
+"""``don't go to any other floor`` / ``don't change floors`` / ``keep off the other floors``: stay on the
+start floor (a goal on another floor is then refused, as after *stay on this floor*; *the other floor*, one
+of them, is a place and not read here)."""
 STAY = frozenset({"stay", "remain", "keep", "staying", "remaining", "keeping"})
 LEAVE = frozenset({"leave", "leaving"})
 STAY_PREPOSITIONS = ("on", "to", "at", "in", "within")
@@ -377,7 +378,7 @@ POSITIVE_VERBS = word_set(
     scrubbing fill filling close closing empty emptying sweep sweeping play playing cook cooking
     lie lying rest resting sleep sleeping shower showering bathe use off up down out over from for
     read reading watch watching examine examining fix fixing straighten straightening hoover hoovering
-    polish polishing arrange arranging organize organizing organise organising give giving"""
+    polish polishing arrange arranging organize organizing organise organising give giving clear clearing"""
 )
 """Verb-slot words known to mean "go to / interact with" the noun phrase that follows."""
 
@@ -548,8 +549,12 @@ VERB_IDIOMS = Phrases((("all", "the", "way"), ("a", "look"), ("a", "quick", "loo
                        ("a", "quick", "trip"), ("a", "detour"), ("a", "stop"), ("a", "quick", "stop"),
                        ("a", "seat"), ("a", "nap"), ("a", "rest"), ("a", "good", "look"),
                        ("a", "proper", "look"), ("a", "little", "look"), ("a", "quick", "glance"),
-                       ("a", "little", "peek")))
-"""Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*."""
+                       ("a", "little", "peek"),
+                       *(("a", *quick, walk) for quick in ((), ("quick",))
+                         for walk in ("round", "walk"))))
+"""Words of a verb that look like a noun phrase: *take a look at*, *make your way to*, *pay a visit to*, *do a
+round through* (a chore at the place: a visit; not *a lap*: *lap* would become a known word, and *the lap-
+uh, the laptop* a thing named)."""
 BACK_TO_START_ENDS = frozenset({"", ",", "and", "then", "here", "again", "please"})
 """After *come back* / *and back* with no place: the robot would return to where it started."""
 CHORE_PHRASALS = Phrases((("top", "up"), ("topping", "up"), ("top", "off")))
@@ -566,8 +571,10 @@ GIVEN_LOOKS = Phrases(tuple((*quick, what) for quick in ((), ("quick",), ("good"
 THERE_POINTING = frozenset({"out", "over"})
 """Before *there* after an object (*both plants out there*, *the vase over there*): *there* as it is."""
 THERE_SAID = Phrases((("there",), ("while", "you", "are", "there"), ("while", "you", "are", "in", "there"),
-                     ("while", "there"), ("while", "you", "are", "at", "it", "there")))
-"""After an action, closing its clause: where the step is (*look at the clock while you're in there*)."""
+                     ("while", "there"), ("while", "you", "are", "at", "it", "there"),
+                     ("while", "you", "are", "at", "it"), ("while", "you", "are", "about", "it")))
+"""After an action, closing its clause: where the step is (*look at the clock while you're in there*; *sit on
+the couch while you're at it*, in the course of what was said before)."""
 CLAUSE_ENDS = frozenset({"", ",", "and", "then", "but"})
 GIVEN_MANNER = frozenset({"quick", "good", "little", "proper", "gentle", "thorough", "light", "fast"})
 """Between *a* and a chore said as a noun (*give the couch a good fluff*)."""
@@ -1026,7 +1033,9 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
     *((*just, pick, one) for just in ((), ("just",)) for pick in ("pick", "choose")
       for one in ("one", "any", "whichever")),
 ) + tuple(("which", *one, "you", want) for one in ((), ("one",))  # "which one you want", as learners say it
-        for want in ("want", "like", "prefer", "choose")))
+        for want in ("want", "like", "prefer", "choose"))
+    + tuple(("what", *one, "you", want) for one in ((), ("one",))  # "what you prefer": learners' "whichever"
+            for want in ("want", "like", "prefer", "choose", "wish")))
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
 means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
 BEFORE_REMARK = Phrases((("for", "me"), ("for", "us"), ("please",), ("for", "me", "please")))
@@ -1862,6 +1871,10 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("try", "to", "stay", "out", "of"): ("stay", "out", "of"),
     ("try", "to", "keep", "out", "of"): ("keep", "out", "of"),
     ("try", "to", "stay", "away", "from"): ("stay", "away", "from"),
+    # learners' prepositions: "stay out from X", "keep away of X"; "stay far from X"
+    **{(keep, "out", "from"): (keep, "out", "of") for keep in ("stay", "keep")},
+    **{(keep, away, "of"): (keep, "away", "from") for keep in ("stay", "keep") for away in ("away", "far")},
+    **{(keep, "far", "from"): (keep, "away", "from") for keep in ("stay", "keep")},
     ("either", "way"): ("also",),
     ("in", "any", "case"): ("also",),
     ("regardless",): ("also",),

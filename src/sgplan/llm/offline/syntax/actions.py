@@ -167,7 +167,7 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
             first, i = True, i + 1
             continue
         if w == "again" and (r.word(i + 1) in lx.PLACE_PREPOSITIONS or r.np_starts(i + 1)):
-            again, i = True, i + 1  # "(go) again to the kitchen", "then again the plant", as learners say it
+            again, i = True, i + 1  # "(go) again to the kitchen", "check again the bowl", as learners say it
             continue
         looked = r.phrase(i, lx.LOOKED_AGAIN)
         if looked is not None and r.word(i + len(looked)) in lx.PLACE_PREPOSITIONS:
@@ -211,6 +211,8 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
             return odd
         if w not in lx.POSITIVE_VERBS and r.nouns.names_word(w) and r.np_starts(i + 1):  # "living chair"
             return Refusal(rf.cannot_understand_word(w, f"'{r.quote(i, min(len(r), i + 3))}'"))
+        if w == "out" and r.word(i + 1) == "from" and r.word(i - 1) in lx.FLOOR_MOVE_VERBS:
+            return Refusal(rf.cannot_understand(lx.REFUSED_WORDS["leave"]))  # "go out from X": leaving X
         seen.append(w)
         i += 1
     return Match(VerbWords(tuple(seen), floor, floor_span, first, again, times), i)
@@ -409,6 +411,7 @@ def in_between(r: Reader, i: int) -> Match[Action] | None:
     k = i + (1 if r.word(i) == "," else 0)
     k += 1 if r.word(k) == "and" else 0
     lead = 2 if r.at(k, "in", "between") else 1 if r.word(k) == "between" else 0
+    lead += len(r.phrase(k + lead, lx.BETWEEN_TAIL) or ()) if lead else 0  # "and between them / the visits"
     if lead:  # "the kitchen twice, and in between go to the office"
         k += lead + (1 if r.word(k + lead) == "," else 0)
         said = action(r, k)

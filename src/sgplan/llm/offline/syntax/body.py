@@ -433,6 +433,12 @@ def conjunction(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     """*and*, *but*, *while*, *as* between actions say nothing more; *or* between actions is refused."""
     if r.word(i) == "or":
         return Refusal(rf.or_between_actions(r.rest(i)))
+    during = r.phrase(i, lx.WHOLE_MISSION) if r.word(i) == "while" else None
+    if during is not None:  # "X, and while you're at it, (sit on) Y": a joining word (Y too), never at 'it'
+        end = i + len(during)
+        if set(r.words[:i]) & {"then", "after"}:  # "A, then B, and while ..., C": after B, or at any time?
+            return Refusal(rf.any_time_in_sequence(r.quote(0, end)))
+        return Match(Skip(), end + (1 if r.word(end) == "," else 0))
     return Match(Skip(), i + 1) if r.word(i) in ("and", "but", "while", "as") else None
 
 

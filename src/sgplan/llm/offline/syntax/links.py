@@ -126,7 +126,8 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
     come), before a plain verb or a preposition of place (*After go to X.*, *After to the office.*)."""
     if r.word(i) != "after":
         return None
-    obliged = obliged_after(r, i)
+    # ", after it you must X" (not opening a sentence): "it" is the clause before, as "after that" is
+    obliged = obliged_after(r, i + 1 if r.word(i + 1) == "it" and r.word(i - 1) in (",", "and") else i)
     if obliged is not None and r.word(i - 1) in ("", ",", "and"):
         return "sequence", obliged  # "after you have to check X": after that, you have to check X
     if r.word(i - 1) == "" and "," not in r.words[i + 1:] and (

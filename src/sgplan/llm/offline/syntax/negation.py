@@ -78,6 +78,9 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
         return verbs
     if set(verbs.node.words) & lx.REVISIT_VERBS:  # "never go back to X": only after a first visit
         return Refusal(rf.never_go_back())
+    if verbs.node.again:  # "never go again to X", "don't check again the bowl": as "X again", from then on
+        again_at = next(k for k in range(j, verbs.end) if r.word(k) == "again")
+        return Refusal(rf.partial_prohibition(r.rest(again_at)))
     unknown = next((k for k in range(j, verbs.end) if r.word(k) in verbs.node.words
                     and r.word(k) not in lx.AVOID_VERBS and r.word(k) not in lx.NEGATION_NEUTRAL), None)
     if unknown is not None:  # "don't xyzzy the sink": read as "never at the sink", it could reverse the ask
