@@ -807,6 +807,15 @@ def one_of_several_set_aside(pronoun: str, phrase: str, keys: list[str]) -> str:
                     "one of them'")
 
 
+def next_without_to(said: str) -> str:
+    return rephrase(f"'{said}': 'next to' (beside it) or 'next,' (then)? Say 'next to' or 'then'")
+
+
+def word_of_two_kinds(said: str, categories: list[str]) -> str:
+    return rephrase(f"'{said}' can name a {' or a '.join(categories)} here; say which (e.g. "
+                    f"'the {categories[0]}s')")
+
+
 def antecedent_of_several(pronoun: str, phrases: list[str]) -> str:
     named = ", ".join(f"'{p}'" for p in dict.fromkeys(phrases))
     return rephrase(f"'{pronoun}' could be any of {named}, named in a sentence that is not part of the "

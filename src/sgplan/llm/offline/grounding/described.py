@@ -82,6 +82,10 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
         which = ground_phrase(np.apposition, Where("qualifier"), disc)
         noun.entities = [e for e in noun.entities if (e in which.entities) != np.apposition_excludes]
     one_floor(noun.entities, guessed, disc)  # "the TV upstairs in the bedroom": the bedrooms' one TV
+    kinds_of_room = {e.category for e in noun.entities} if noun.head.kind == "room" else set()
+    several = mode in ("all", "any") or where.role == "avoid"  # one of them: refused as ambiguous below
+    if several and len(kinds_of_room) > 1 and len(noun.head.categories) > 1:  # "no BRs": which kind?
+        rf.refuse(rf.word_of_two_kinds(core, sorted(kinds_of_room)))
     # which couch is big is not known; nor which bathroom is the "downstair" one, even where only one of
     # them was visited before: a description must leave one entity before "back to" narrows by the visits
     if np.descriptive and len(noun.entities) > (np.determiner.count or 1):

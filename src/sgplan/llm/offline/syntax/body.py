@@ -401,6 +401,11 @@ def inline_before(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse
     found = after_conjunction(r, i + 1)
     if isinstance(found, Match) and near_said(r, i, found.end):
         return Refusal(rf.before_near(r.quote(i, found.end)))  # "check X before you go anywhere near Y"
+    if isinstance(found, Match) and r.word(found.end) not in lx.CLAUSE_ENDS and (
+            r.word(found.end) in lx.POSITIVE_VERBS or r.word(found.end) in lx.SUBJECT_FILLERS):
+        # "A, but before you go to X you have to visit Y" (no comma): Y before X, or X then Y?
+        said = i - 1 if r.word(i - 1) in ("and", "but") else i
+        return Refusal(rf.before_clause_between(r.quote(i, found.end), r.quote(0, said).rstrip(" ,")))
     clause_after = isinstance(found, Match) and r.word(found.end) == "," and found.end + 1 < len(r)
     if (isinstance(found, Match) and found.node.phrases is not None and found.node.phrases.comma_list
             and r.word(i - 1) in (",", "and", "but", "then")):  # "A, then before X, Y": a list, or Y first?

@@ -45,6 +45,8 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     if sequence_too and (done := done_sequence(r, i)) is not None:
         return "sequence", done
     if sequence_too and (seq := r.phrase(i, lx.SEQ_WORDS)) is not None:
+        if seq == ("next",) and r.word(i - 1) not in ("", ",", "and", "then") and r.np_starts(i + 1):
+            return Refusal(rf.next_without_to(r.quote(i, i + 3)))  # "the corridor next the dining room"
         return "sequence", i + len(seq)
     if sequence_too and (after := after_as_then(r, i)) is not None:
         return after
