@@ -1036,8 +1036,9 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
         for want in ("want", "like", "prefer", "choose"))
     + tuple(("what", *one, "you", want) for one in ((), ("one",))  # "what you prefer": learners' "whichever"
             for want in ("want", "like", "prefer", "choose", "wish")))
-"""Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After a phrase that
-means each of several ("the TVs, any of them") it would change the meaning, so it is refused there."""
+"""Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After several phrases
+("the TVs and the couch, either one is fine") it would turn each of them into one of them, so it is refused
+there (see :func:`.meaning.actions.choice_remark`)."""
 BEFORE_REMARK = Phrases((("for", "me"), ("for", "us"), ("please",), ("for", "me", "please")))
 """Said between a choice and its remark (*grab an apple for me, either one is fine*): the remark is still
 about that choice."""
@@ -1047,8 +1048,8 @@ ONE_SUFFICES = Phrases(tuple(
     for one in (("one", "of", "them"), ("one",), ("any", "one", "of", "them"))
     for enough in ((), ("is", "enough"), ("will", "do"), ("is", "fine"), ("is", "ok"), ("is", "okay"),
                    ("would", "do"), ("suffices",))
-    if lead or enough or len(one) > 1) + tuple(  # "the vases - any of them will do -" (not bare)
-    ("any", "of", "them", *enough) for enough in (("will", "do"), ("is", "enough"), ("is", "fine"),
+    if lead or enough or len(one) > 1) + tuple(  # "the TVs in the office, any of them (will do)"
+    ("any", "of", "them", *enough) for enough in ((), ("will", "do"), ("is", "enough"), ("is", "fine"),
                                                   ("would", "do"), ("suffices",))))
 """After a phrase that means each of several (*the vases in the lobby, just one of them*, *check the apples,
 getting to one of them is enough*): one of them will do, which makes it a choice (said outright, unlike
