@@ -398,6 +398,9 @@ PAST_CARRY_VERBS = word_set("brought carried delivered")
 TAKING_VERBS = word_set("take grab get fetch pick collect retrieve")
 """Opening the clause before *, after you bring it to Y* (*Take the bowl, after you bring it to the table*):
 it must be taken before it is carried, so *after* can only be *then* (as learners of English write it)."""
+PUT_DOWN_VERBS = word_set("put place set drop")
+"""*take an apple and put on the table*: after a verb of :data:`TAKING_VERBS` in the sentence, said with no
+object, the thing taken is put there, after it (as *bring to*); with nothing taken before, unchanged."""
 ROUTE_VERBS = word_set("from through via past")
 """``go from X to Y``, ``go through X to Y``: X, then Y."""
 DESTINATION_WORDS = ("to", "into", "onto")

@@ -66,6 +66,8 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     ends = ends or bool(set(verbs.node.words) & lx.CARRY_VERBS and set(verbs.node.words) & lx.CARRIED_ALL)
     carried_on = (r.word(i - 2) in lx.CARRY_ON_VERBS  # "(take X and) bring to Y", not "take a seat on"
                   and r.word(i - 1) in lx.CARRY_DESTINATION_WORDS and len(verbs.node.words) >= 2)
+    put_down = r.word(i - 2) in lx.PUT_DOWN_VERBS and r.word(i - 1) in lx.CARRY_DESTINATION_WORDS
+    carried_on = carried_on or (put_down and bool(set(r.words[:i - 2]) & lx.TAKING_VERBS))  # "take X, put on"
     node = Action(r.span(start, phrases.end), verbs.node, phrases.node, in_condition=in_condition, last=ends,
                   first=verbs.node.first, repeat=Repeat(True, 1, None) if verbs.node.again else None,
                   carried_on=carried_on)
