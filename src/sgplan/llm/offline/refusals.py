@@ -807,6 +807,11 @@ def one_of_several_set_aside(pronoun: str, phrase: str, keys: list[str]) -> str:
                     "one of them'")
 
 
+def count_or_times(said: str) -> str:
+    return rephrase(f"'{said}': how many there are, or how many times? Say 'both ...' / 'the two ...', or "
+                    "'twice'")
+
+
 def next_without_to(said: str) -> str:
     return rephrase(f"'{said}': 'next to' (beside it) or 'next,' (then)? Say 'next to' or 'then'")
 

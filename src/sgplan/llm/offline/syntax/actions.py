@@ -13,6 +13,7 @@ from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax.floors import floor_count, floor_offset
 from sgplan.llm.offline.syntax.links import skip_subject
 from sgplan.llm.offline.syntax.noun_slot import superlative
@@ -21,6 +22,7 @@ from sgplan.llm.offline.syntax.qualifiers import remark_ahead
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal, unreadable
 from sgplan.llm.offline.syntax.tree import (
     Action,
+    Described,
     FloorOffset,
     FloorPlace,
     FloorSpec,
@@ -340,6 +342,8 @@ def action_tail(r: Reader, i: int, node: Action) -> Parse[Action]:
     repeat = repeats(r, i)
     if not isinstance(repeat, Match):
         return repeat
+    if repeat.node is not None and counted_plural(r, i, node):  # "LR plants x2": two of them, or twice?
+        return Refusal(rf.count_or_times(r.text[node.span.start:r.toks[repeat.end - 1].end]))
     if node.verbs.times > lx.MAX_REPEATS:
         return Refusal(rf.too_many_repeats(str(node.verbs.times)))
     if node.verbs.times > 1:  # "go two times to the kitchen": one place, that many visits
@@ -353,6 +357,16 @@ def action_tail(r: Reader, i: int, node: Action) -> Parse[Action]:
     if repeat.node is not None:
         node, i = replace(node, repeat=repeat.node), repeat.end
     return destination_and_purpose(r, i, node)
+
+
+def counted_plural(r: Reader, i: int, node: Action) -> bool:
+    """Whether a count typed as a notation (*x2*, *2x*) at ``i`` follows a plural noun, where it may say how
+    many there are as well as how many times."""
+    typed = r.quote(i, i + 1).lower()
+    plural = node.phrases is not None and any(
+        isinstance(p, Described) and any(isinstance(h, Head) and h.plural for h in (p.head, p.compound))
+        for p in node.phrases.items)  # "the plants x2", "LR plants x2"
+    return plural and typed.strip("0123456789") in ("x", "")
 
 
 def action_then_ahead(r: Reader, i: int) -> bool:
