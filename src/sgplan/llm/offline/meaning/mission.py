@@ -130,9 +130,10 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: 
     elif continues and previous is not None and isinstance(result, Clause):
         previous.steps.extend(result.steps)
         previous.constraints.extend(result.constraints)
-    elif previous is not None and isinstance(result, Clause) and resumes(sentence, result, previous, disc):
-        previous.steps.extend(result.filled()[1:])  # "A, then B. After B, C.": that visit of B, then C
-        previous.constraints.extend(result.constraints)
+    elif isinstance(result, Clause) and (sequence := last_sequence(parts)) is not None and resumes(
+            sentence, result, sequence, disc):
+        sequence.steps.extend(result.filled()[1:])  # "A, then B. After B, C.": that visit of B, then C
+        sequence.constraints.extend(result.constraints)
     else:
         parts.append(result)
     if isinstance(result, Clause) and any(result.steps):
@@ -212,6 +213,12 @@ def sentence_precedes(sentence: MissionSentence, parts: list[Meaning]) -> bool:
     return True
 
 
+def last_sequence(parts: list[Meaning]) -> Clause | None:
+    """The last sentence with goals among ``parts`` (sentences of prohibitions or rules after it skipped:
+    *A, then B. Stay out of X. After B, C.*)."""
+    return next((p for p in reversed(parts) if isinstance(p, Clause) and p.filled()), None)
+
+
 def resumes(sentence: MissionSentence, result: Clause, previous: Clause, disc: Discourse) -> bool:
     """Whether ``sentence`` is *After X, Y* with X the last step of the sequence before (*Go to A, then B.
     After B, C.*): Y goes on from that visit of X. Refused when X is an earlier step of that sequence (its
@@ -223,7 +230,25 @@ def resumes(sentence: MissionSentence, result: Clause, previous: Clause, disc: D
     done = [same_goals(step) for step in previous.filled()]
     if len(done) > 1 and after in done[:-1]:
         rf.refuse(rf.after_a_middle_step(disc.said(sentence.span.start, sentence.span.end)))
-    return bool(done) and after == done[-1]
+    return bool(done) and (after == done[-1] or names_every_goal(result.filled()[0], previous.filled()))
+
+
+def names_every_goal(step: Step, steps: list[Step]) -> bool:
+    """Whether ``step`` is one task naming each goal of ``steps``, all of them one thing each (*the one in the
+    living room, then the one in the office. When you're done with the plants, ...*: after both)."""
+    if len(steps) < 2 or len(step) != 1 or step[0].mode != "all" or step[0].avoid:
+        return False
+    goals = [task.members[0] for s in steps for task in s if len(task.members) == 1]
+    if len(goals) != sum(len(s) for s in steps):
+        return False
+    return sorted(map(goal_thing, goals)) == sorted(map(goal_thing, step[0].members))
+
+
+def goal_thing(member: Formula) -> str:
+    """The thing a goal is about, whatever room it was said in (``reach(object_24)`` of ``reach(object_24) &
+    enter(room_6)``)."""
+    names = atoms(member)
+    return next((n for n in names if n.startswith("reach(")), names[0] if names else "")
 
 
 def same_goals(step: Step) -> list[tuple[str, list[Formula], list[Formula]]]:
