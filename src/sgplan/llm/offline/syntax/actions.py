@@ -366,7 +366,7 @@ def counted_plural(r: Reader, i: int, node: Action) -> bool:
     plural = node.phrases is not None and any(
         isinstance(p, Described) and any(isinstance(h, Head) and h.plural for h in (p.head, p.compound))
         for p in node.phrases.items)  # "the plants x2", "LR plants x2"
-    return plural and typed.strip("0123456789") in ("x", "")
+    return plural and typed.strip("0123456789") == "x"
 
 
 def action_then_ahead(r: Reader, i: int) -> bool:

@@ -612,9 +612,9 @@ def one_errand(r: Reader, said: Body) -> bool:
     acted = [h for k in range(len(r)) if r.toks[k].start >= act.span.start and r.toks[k].end <= act.span.end
              and (h := r.head(k)) is not None]
     joined = r.text[visit.span.end:act.span.start].lower().replace(",", " ").split()
-    rest = r.text[act.span.start:r.toks[-1].end].lower().replace(",", " ").split()
-    if set(rest) & {"too", "also"} or "as well" in " ".join(rest):  # "..., and the oven too": a goal of
-        return False  # its own, or of that errand?
+    rest = [r.word(k) for k in range(len(r)) if r.toks[k].start >= act.span.start]
+    if {"too", "also"} & set(rest) or any(rest[k:k + 2] == ["as", "well"] for k in range(len(rest))):
+        return False  # "..., and have a look at the oven too": a goal of its own, or of that errand?
     return (joined[-1:] == ["and"] and all(w in lx.CONDITION_AFTERWARDS for w in joined[:-1])
             and len(visited) == 1 and visited[0].kind == "room" and bool(acted)
             and all(h.kind == "object" for h in acted))
