@@ -288,13 +288,16 @@ def of_the_step_room(np: Described, noun: Noun, got: backref.Resolved, said: str
 
 def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc: Discourse) -> Noun:
     """An object phrase located by the context: the one in the rooms of a condition (*whenever you enter
-    the bathroom, use the sink*) or of the step (*go to the kitchen and open the fridge*)."""
+    the bathroom, use the sink*), of the step (*go to the kitchen and open the fridge*), or, for a definite
+    one that fits several, of the step just before (*go to the bedroom, then check the plant*)."""
     vocab, head, entities = disc.vocab, noun.head, noun.entities
     demo = np.determiner.pointer is not None
     there = vocab.inside(entities, where.soft_scope) if where.role == "goal" and head.kind == "object" \
         and not demo else []
     if not noun.room_scoped and mode == "the" and not head.plural and len(entities) > 1 and len(there) == 1:
         return Noun(head, there, True)
+    if len(entities) > 1 and (near := near_step_before(np, noun, mode, where, disc)):
+        return Noun(head, near, True)  # "go to the bedroom with the vase, then check the plant"
     if not noun.room_scoped and 0 < len(there) < len(entities) and np.first_word in ("the", "a", "an"):
         rooms = " or ".join(f"{r.key} ({r.category})" for r in where.soft_scope)
         word = head_word(entities)
@@ -312,6 +315,19 @@ def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc:
         rf.refuse(rf.not_in_this_step(said, rooms, ", ".join(e.describe() for e in entities[:8]),
                                       head_word(entities)))
     return noun
+
+
+def near_step_before(np: Described, noun: Noun, mode: Mode, where: Where, disc: Discourse) -> list[Entity]:
+    """The one object ``noun`` can be in the room of the step just before (:attr:`.Where.previous`), for a
+    definite singular object of a goal that no room, description or pointer places (*the wicker chair* does
+    not say which, nor is it the one just reached: *the swivel chair in the office, then the wicker chair*);
+    else empty."""
+    if (where.role != "goal" or where.scope or noun.head.kind != "object" or noun.room_scoped or mode != "the"
+            or noun.head.plural or np.determiner.pointer is not None or np.descriptive):
+        return []
+    just_reached = {e.key for g in disc.goals_before(np.span.start)[-1:] for e in g.entities}
+    near = disc.vocab.inside(noun.entities, where.previous)
+    return near if len(near) == 1 and near[0].key not in just_reached else []
 
 
 def inner(np: Any, disc: Discourse) -> Grounded:

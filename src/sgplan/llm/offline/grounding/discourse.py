@@ -128,7 +128,8 @@ class Where:
     object of its consequent that fits several is the one there). ``floor``: the floor a verb said (*go
     upstairs to ...*: the first phrase only); ``action_floor``: the floors of a floor move (*go upstairs and
     ...*: every goal) and the character offset where that action starts. ``going_back``: *go back there*.
-    ``objects``: a pronoun must name objects (after *put* / *bring*). ``revisit``: see the field.
+    ``objects``: a pronoun must name objects (after *put* / *bring*). ``revisit``, ``previous``: see the
+    fields.
     """
 
     role: Role
@@ -143,3 +144,6 @@ class Where:
     """*again* / *go back to*: a definite phrase that fits several is the one named before as a goal."""
     rooms: bool = False
     """A pronoun must name a room (*the toilet of it*, *the sink in it*)."""
+    previous: tuple[Entity, ...] = ()
+    """The one room of the step just before this one (*go to the bedroom with the vase, then check the
+    plant*): a definite object that fits several is the one there, when exactly one is."""

@@ -44,7 +44,7 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
         ctx.floor_scope = None
     again = going_back or (action.repeat is not None and action.repeat.again)
     where = Where("goal", tuple(scope or ctx.scope), lenient, tuple(ctx.soft_scope), floor,
-                  action_floor or ctx.floor_scope, going_back, carry, again)
+                  action_floor or ctx.floor_scope, going_back, carry, again, previous=tuple(ctx.previous_room))
     if action.phrases is None:  # "go upstairs and check the laptop": the laptop upstairs
         assert action.moved is not None and floor is not None
         return steps_of(action.moved, ctx, scope, lenient, (floor, action.moved.span.start), floor)

@@ -17,6 +17,7 @@ from sgplan.llm.offline.meaning.compose import Clause, moved
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.negations import negation, off_limits, stay_on_floor
 from sgplan.llm.offline.meaning.order import check_restriction_target
+from sgplan.llm.offline.names import Entity
 from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
     AfterAll,
@@ -158,8 +159,9 @@ def plain_action(item: PlainAction, clause: Clause, ctx: SentenceContext) -> Non
     context = [] if later else ctx.step_rooms(clause.steps[-1])
     # "go to the kitchen, take a bottle, then ...": the kitchen's bottle if it has one
     lenient = not context and bool(ctx.carried_rooms) and not later
+    ctx.previous_room = [] if later or context or lenient else previous_room(clause, ctx)
     done = steps_of(item.action, ctx, context or (ctx.carried_rooms if lenient else []), lenient)
-    steps, ctx.carried_rooms = done.steps, []
+    steps, ctx.carried_rooms, ctx.previous_room = done.steps, [], []
     if ctx.strict_pending:
         check_restriction_target(steps[0], ctx)
         for task in steps[0]:
@@ -184,6 +186,17 @@ def plain_action(item: PlainAction, clause: Clause, ctx: SentenceContext) -> Non
     else:
         clause.steps[-1].extend(steps[0])
         clause.steps.extend(steps[1:])
+
+
+def previous_room(clause: Clause, ctx: SentenceContext) -> list[Entity]:
+    """The one room the step before a new step puts the robot in (the clause's last step, else the last step
+    of the sentence before), where a definite object that fits several is looked for (*go to the bedroom
+    with the vase, then check the plant*; *bdrm w/o vase -> chk bed*); empty when that step is in several
+    rooms or none."""
+    filled = clause.filled()
+    step = filled[-1] if filled else ctx.disc.last_step
+    rooms = ctx.rooms_of([m for task in step for m in task.members])
+    return rooms if len(rooms) == 1 else []
 
 
 def acts_on_it(item: PlainAction) -> bool:

@@ -36,6 +36,9 @@ class SentenceContext:
     """The sentence ended with *last* (*visit the office last*): its last step follows all else."""
     soft_scope: list[Entity] = field(default_factory=list)
     """The rooms of the condition whose consequent is being read."""
+    previous_room: list[Entity] = field(default_factory=list)
+    """The one room of the step before the action being read, when that action starts a step of its own
+    (:attr:`.Where.previous`)."""
     floor_scope: tuple[FloorReading, int] | None = None
     """*While you're upstairs, ...* / *On the top floor, ...* / a list's heading *Top floor tasks*: the floors
     of the sentence's goals (and places to avoid), and where the sentence starts."""
