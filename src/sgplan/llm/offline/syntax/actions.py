@@ -118,8 +118,12 @@ def given(r: Reader, i: int) -> int | None:
 
 def turned(r: Reader, verbs: VerbWords, i: int) -> VerbWords:
     """*go up and X*, *come down and X*: a floor move to the floors above / below, when the verb words end
-    with *up* / *down* before a connective."""
+    with *up* / *down* before a connective; a note's *up bth*, *down LR* (*up* / *down* right before a
+    room's noun, with no article): the room upstairs / downstairs, as *go upstairs to the bathroom*."""
     if verbs.floor is None and verbs.words and verbs.words[-1] in lx.UP_DOWN and r.word(i) in ("and", ","):
+        return replace(verbs, floor=RelativeFloor(lx.UP_DOWN[verbs.words[-1]]), floor_span=r.span(i - 1, i))
+    if verbs.floor is None and verbs.words and verbs.words[-1] in lx.UP_DOWN and (room := r.head(i)) is not None \
+            and room.kind == "room":
         return replace(verbs, floor=RelativeFloor(lx.UP_DOWN[verbs.words[-1]]), floor_span=r.span(i - 1, i))
     return verbs
 
