@@ -2018,6 +2018,10 @@ _SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
 }
 PHRASE_ALIASES.update(_SAID_OTHERWISE)
 """More of :data:`PHRASE_ALIASES`: wishes that forbid, emphatic orders, *my little one*."""
+PHRASE_ALIASES.update({  # "and when you finish, go to the lobby": when you have finished (that)
+    (w, "you", finish): (w, "you", "have", "finished")
+    for w in ("when", "once", "after") for finish in ("finish", "finishes", "complete")
+})
 PHRASE_ALIASES.update({  # "wipe the toilet, then do the same in the bathroom upstairs": that kind there
     ("the", "same", where): ("the", "one", where)
     for where in ("in", "inside", "upstairs", "downstairs", "on")

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.syntax.learner import learner_english
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.tree import Link
 
@@ -122,8 +123,9 @@ def on_the_way(r: Reader, i: int, way: tuple[str, ...],
 
 def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
     """*go first to the kitchen, after to the bedroom*, *and after you touch the toilet*: *after* between
-    clauses, with no place after it, is *then* (as learners of English write it); *, after you go to X* at the
-    end of a sentence could also mean before it, which is refused. Opening a sentence it is *then* before
+    clauses, with no place after it, is *then* (as learners of English write it); *, after you go to X* and
+    *, after the X* could also mean before it, which is refused unless the mission bears a learner's mark
+    (:mod:`.learner`: *go in kitchen, after the living room*). Opening a sentence it is *then* before
     an obligation (*After you must go to X.*) and, in a sentence with no comma after it (no main clause to
     come), before a plain verb or a preposition of place (*After go to X.*, *After to the office.*)."""
     if r.word(i) != "after":
@@ -152,11 +154,11 @@ def after_as_then(r: Reader, i: int) -> tuple[str, int] | Refusal | None:
     counted = (r.word(0) in lx.FIRST and r.word(i - 1) == ","
                and not any(r.phrase(j, lx.SEQ_WORDS) for j in range(1, i)))
     if k > i + 1 and verb and not has_main_clause(r, k):
-        if r.word(i - 1) == "and" or counted or carried_after_taking(r, i, k):
+        if r.word(i - 1) == "and" or counted or carried_after_taking(r, i, k) or learner_english(r.text):
             return "sequence", k  # "and after you touch the toilet": and then
         return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), k + 4))))
     if r.np_starts(i + 1) and r.word(i + 1) not in lx.DETERMINERS - lx.ARTICLES and not has_main_clause(r, i):
-        if counted:
+        if counted or learner_english(r.text):  # "go in kitchen, after the living room": then
             return "sequence", i + 1
         # "go to the office and after the kitchen": the kitchen after (as learners write) or before?
         return Refusal(rf.after_before_or_then(r.quote(i, min(len(r), i + 5))))

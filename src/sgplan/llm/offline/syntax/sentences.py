@@ -645,7 +645,11 @@ def postfix(r: Reader, i: int, body_actions: int) -> Parse[Postfix]:
             return own
         first, end, body_is_consequent = own.node, own.end, False
     else:  # "S whenever X" / "S if X": the body is the consequent
-        rule = make_rule(r, i, said, Body(()), 0, i)
+        # "S afterwards, when X": said right before the condition (not "A, after that B, and when X")
+        k = i
+        while k > 0 and r.word(k - 1) in (",", "and", "but"):
+            k -= 1
+        rule = make_rule(r, i, said, Body(()), max(0, k - 2), k)
         if isinstance(rule, Refusal):
             return rule
         first, end, body_is_consequent = rule, said.end, True
