@@ -452,6 +452,11 @@ def order_word_in_list(item: str, word: str, place: str) -> str:
                     "meant ('1. ..., 2. ...')")
 
 
+def which_visit_of_scope(rooms: str) -> str:
+    return rephrase(f"the sentence's room ({rooms}) is visited more than once in the order said before it: on "
+                    "which visit? Put the sentence's goals in that order ('..., then X in the kitchen, then ...')")
+
+
 def after_before_or_then(said: str) -> str:
     return rephrase(f"'{said}': after what was said before it, or before it? Say 'then' (what follows comes "
                     "after) or put 'after ...' first ('after you ..., go to ...')")

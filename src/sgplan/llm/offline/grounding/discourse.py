@@ -64,6 +64,8 @@ class Discourse:
     """The floors the mission stays on (*stay on this floor*): goals are grounded there."""
     last_step: Step = field(default_factory=list)
     """The last step with goals of the previous sentence (what *done that* refers to)."""
+    last_steps: int = 0
+    """How many steps with goals the previous sentence had."""
     announced: Head | None = None
     """The head noun that announced the list of the sentence being read (*water these plants: the one in
     the office and ...*): what *the one* is when nothing was named before."""
@@ -87,7 +89,8 @@ class Discourse:
     def fork(self) -> Discourse:
         """A copy to try a reading on, which the original does not see."""
         return Discourse(self.vocab, self.text, self.start_floor, copy.copy(self.references), self.confined,
-                         self.last_step, self.announced, list(self.set_aside), list(self.mentions))
+                         self.last_step, self.last_steps, self.announced, list(self.set_aside),
+                         list(self.mentions))
 
     def said(self, start: int, end: int) -> str:
         """The mission text between two character offsets."""

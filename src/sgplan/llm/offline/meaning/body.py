@@ -189,12 +189,14 @@ def plain_action(item: PlainAction, clause: Clause, ctx: SentenceContext) -> Non
 
 
 def previous_room(clause: Clause, ctx: SentenceContext) -> list[Entity]:
-    """The one room the clause's step before a new step puts the robot in, where a definite object that fits
-    several is looked for (*go to the bedroom with the vase, then check the plant*; *bdrm w/o vase -> chk
-    bed*); empty when that step is in several rooms or none, or the clause has no step yet (*lobby -> LR ->
-    kit. sink*: a sentence after a sequence is in no order with it, so its sink is not the kitchen's)."""
+    """The one room the step before a new step puts the robot in, where a definite object that fits several
+    is looked for (*go to the bedroom with the vase, then check the plant*; *bdrm w/o vase -> chk bed*): the
+    clause's last step, else the previous sentence's when it had one step only (*up bth: sink*; after a
+    sequence, *lobby -> LR -> kit. sink*, a sentence is in no order with it, so its sink is not the
+    kitchen's); empty when that step is in several rooms or none."""
     filled = clause.filled()
-    rooms = ctx.rooms_of([m for task in filled[-1] for m in task.members]) if filled else []
+    step = filled[-1] if filled else ctx.disc.last_step if ctx.disc.last_steps == 1 else []
+    rooms = ctx.rooms_of([m for task in step for m in task.members])
     return rooms if len(rooms) == 1 else []
 
 

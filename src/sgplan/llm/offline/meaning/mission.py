@@ -37,7 +37,7 @@ from sgplan.llm.offline.syntax.tree import (
     nodes,
 )
 from sgplan.llm.offline.tasks import Step
-from sgplan.logic.formula import Always, Formula, atoms
+from sgplan.logic.formula import Always, Atom, Formula, atoms
 
 
 def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
@@ -116,6 +116,8 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: 
     if (isinstance(result, Clause) and not any(result.steps) and not result.constraints and previous
             and sentence.says_order and len(previous.filled()) > 1):
         rf.refuse(rf.order_after_ordered_goals())
+    if not continues and not precedes and in_visit_of_its_room(result, parts, ctx):
+        return  # "A, then the kitchen, then B. In the kitchen, check the microwave.": on that visit
     if continues and parts and previous is None:  # after a rule or a constraint: the order would be lost
         rf.refuse(rf.follows_nothing(disc.said(sentence.span.start, sentence.span.end)))
     if (precedes and previous is None and parts and isinstance(result, Clause)
@@ -137,9 +139,31 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: 
     else:
         parts.append(result)
     if isinstance(result, Clause) and any(result.steps):
-        disc.last_step = result.filled()[-1]
+        disc.last_step, disc.last_steps = result.filled()[-1], len(result.filled())
     in_no_order = sentence.marked and not sentence.after_item and bool(parts) and parts[-1] is result
     run[:] = [*run, result] if in_no_order and isinstance(result, Clause) else []
+
+
+def in_visit_of_its_room(result: Meaning, parts: list[Meaning], ctx: SentenceContext) -> bool:
+    """Whether ``result``, a sentence of one step in the room it opens with (*In the kitchen, check the
+    microwave.*, a note's *kit: microwave*), was joined to the one visit of that room in a sequence said
+    before it (*chair before kit*: the microwave after the chair, as the kitchen is; read on its own, the
+    microwave could come first). A visit is the room as a goal of its own (not an object in it: *the fridge,
+    then the couch. Kitchen: the oven* stays in no order). Several visits of the room in sequences before it
+    are refused (which one?); no visit leaves the sentence on its own."""
+    if not ctx.scope or not isinstance(result, Clause) or len(result.filled()) != 1:
+        return False
+    rooms = [Atom(f"enter({e.key})") for e in ctx.scope]
+    visits = [(part, step) for part in parts if isinstance(part, Clause) and len(part.filled()) > 1
+              for step in part.filled() if any(room in t.members for t in step for room in rooms)]
+    if len(visits) > 1:
+        rf.refuse(rf.which_visit_of_scope(", ".join(e.key for e in ctx.scope)))
+    if not visits:
+        return False
+    part, step = visits[0]
+    step.extend(result.filled()[0])
+    part.constraints.extend(result.constraints)
+    return True
 
 
 def after_list_items(run: list[Clause], parts: list[Meaning], said: str) -> None:
