@@ -2018,6 +2018,15 @@ _SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
 }
 PHRASE_ALIASES.update(_SAID_OTHERWISE)
 """More of :data:`PHRASE_ALIASES`: wishes that forbid, emphatic orders, *my little one*."""
+PHRASE_ALIASES.update({  # learners' word orders and words of their languages, each a set phrase
+    ("is", "not", "matter"): ("does", "not", "matter"),  # "the order is not matter"
+    ("every", "time", "that"): ("every", "time"),  # "every time that you enter ..."
+    ("avoid", "absolutely"): ("avoid",),  # "avoid absolutely the bathrooms"
+    ("stay", "please"): ("please", "stay"), ("keep", "please"): ("please", "keep"),  # "stay please on ..."
+    ("of", "down"): ("downstairs",), ("of", "up"): ("upstairs",),  # "the bathroom of down"
+    ("the", "last", "floor"): ("the", "top", "floor"),  # "the bathroom of the last floor" (ultimo piano)
+    ("both", "in"): ("both", "of", "the", "ones", "in"),  # "a hallway plant, then both in the living room"
+})
 PHRASE_ALIASES.update({  # "and when you finish, go to the lobby": when you have finished (that)
     (w, "you", finish): (w, "you", "have", "finished")
     for w in ("when", "once", "after") for finish in ("finish", "finishes", "complete")

@@ -388,8 +388,8 @@ def quantifier(r: Reader, i: int) -> Parse[Determiner]:
     n = count_word(r, i) if noun_next else None  # "all three (dining) chairs"
     if n is not None and chosen_from:
         return Match(Determiner(mode, n), i + 1)  # one of them, and there must be n
-    if n == 1 and mode is None and r.word(i) in lx.ONE_SAID:
-        return Match(Determiner("any", None), i + 1)  # "sit on one chair": any chair
+    if n == 1 and (mode == "any" or (mode is None and r.word(i) in lx.ONE_SAID)):
+        return Match(Determiner("any", None), i + 1)  # "sit on one chair", "see any one vase": any
     if n is not None:
         if mode in (None, "any"):
             return Refusal(rf.choosing_a_number(r.word(i)))
