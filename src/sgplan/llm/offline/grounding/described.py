@@ -296,7 +296,7 @@ def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc:
         and not demo else []
     if not noun.room_scoped and mode == "the" and not head.plural and len(entities) > 1 and len(there) == 1:
         return Noun(head, there, True)
-    if len(entities) > 1 and (near := near_step_before(np, noun, mode, where, disc)):
+    if len(entities) > len(near := near_step_before(np, noun, mode, where, disc)) > 0:
         return Noun(head, near, True)  # "go to the bedroom with the vase, then check the plant"
     if not noun.room_scoped and 0 < len(there) < len(entities) and np.first_word in ("the", "a", "an"):
         rooms = " or ".join(f"{r.key} ({r.category})" for r in where.soft_scope)
@@ -318,16 +318,18 @@ def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc:
 
 
 def near_step_before(np: Described, noun: Noun, mode: Mode, where: Where, disc: Discourse) -> list[Entity]:
-    """The one object ``noun`` can be in the room of the step just before (:attr:`.Where.previous`), for a
-    definite singular object of a goal that no room, description or pointer places (*the wicker chair* does
-    not say which, nor is it the one just reached: *the swivel chair in the office, then the wicker chair*);
-    else empty."""
-    if (where.role != "goal" or where.scope or noun.head.kind != "object" or noun.room_scoped or mode != "the"
+    """The objects ``noun`` can be in the room of the step just before (:attr:`.Where.previous`), for an
+    object of a goal that no room, description or pointer places: the one there for a definite singular
+    (*the wicker chair* does not say which, nor is it the one just reached: *the swivel chair in the office,
+    then the wicker chair*), the two there for *either* (*bath w/ 2 sinks -> either sink*); else empty."""
+    if (where.role != "goal" or where.scope or noun.head.kind != "object" or noun.room_scoped
             or noun.head.plural or np.determiner.pointer is not None or np.descriptive):
         return []
-    just_reached = {e.key for g in disc.goals_before(np.span.start)[-1:] for e in g.entities}
     near = disc.vocab.inside(noun.entities, where.previous)
-    return near if len(near) == 1 and near[0].key not in just_reached else []
+    if mode == "any" and np.first_word == "either":
+        return near if len(near) == 2 else []
+    just_reached = {e.key for g in disc.goals_before(np.span.start)[-1:] for e in g.entities}
+    return near if mode == "the" and len(near) == 1 and near[0].key not in just_reached else []
 
 
 def inner(np: Any, disc: Discourse) -> Grounded:
