@@ -1754,7 +1754,11 @@ FRAGMENT_ARTICLES = word_set("a an the my our another some")
 FRAGMENT_MODIFIERS = word_set("quick little good big small busy usual routine long short lovely")
 """Words of the lexicon that may still stand before the head of such a fragment (*a quick one*, *a little
 favour*); *last* too, in a sentence before any goal (*Last thing before you charge.*)."""
-FRAGMENT_TIMES = word_set("late early lately today tonight tomorrow")
+FRAGMENT_TIMES = word_set("late early lately today tonight tomorrow soon now")
+FRAGMENT_AWAY = Phrases((("out",), ("off",), ("away",), ("home",), ("from", "home"), ("late",)))
+"""After a fragment's verb in *-ing*: the speaker goes out, stays away or is late (*Heading out soon.*,
+*Working from home today.*, *Running late!*): the verb is the speaker's own doing, even one the grammar reads
+as an order (*head*, *run*)."""
 FRAGMENT_PEOPLE = word_set("you me us")
 """Whom such a fragment is for (*A little job for you.*)."""
 AUXILIARIES = frozenset({"am", "are", "is", "was", "were", "have", "has", "will", "would"})

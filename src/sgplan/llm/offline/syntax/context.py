@@ -119,7 +119,7 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     praise = [w for w in r.words if w.isalpha()]
     if praise and all(w in lx.PRAISE or w in lx.HESITATIONS for w in praise):
         return [aside(r, 0, len(r))]  # "Perfect.", "Cool cool.": a sentence of praise only, said back
-    if event_note(r, 0, len(r)) or is_time(r, 0, len(r)) or chore_note(r) or progressive_note(r):
+    if event_note(r, 0, len(r)) or is_time(r, 0, len(r)) or chore_note(r):
         return [aside(r, 0, len(r))]
     heading = None if said_before else before_you_start(r)  # (after an order: before which step?)
     if heading is not None:  # "Before you start: the carpet is wet, so ...": the rest read on its own
@@ -567,31 +567,6 @@ def chore_note(r: Reader) -> bool:
     end = time_tail(r, 0, len(r)) or len(r)
     return (end == 2 and r.word(0) in lx.GIVEN_MANNER and r.word(1) in lx.POSITIVE_VERBS
             and r.word(1) not in lx.PLACE_PREPOSITIONS and r.word(1) not in lx.PARTICLES)
-
-
-def progressive_note(r: Reader) -> bool:
-    """*Heading out soon.*, *Working from home today.*, *Running late!*: the speaker's own doing with its
-    subject left out, as notes say it: a sentence of at most six words opening with an *-ing* word, with no
-    article or other determiner, room, object, floor, pronoun, negation, number, place adverb, *again* or
-    word the translator refuses (*Waiting for the guests.*: refused) after it. It names nothing and asks nothing; *Cleaning the
-    kitchen today.* (a place) and *Checking the fridge first* (a determiner) are left to the parser."""
-    k = r.skip(0, lx.INTERJECTIONS)
-    words = [w for w in r.words[k:] if w.isalnum()]
-    first = r.word(k)
-    if not (first.endswith("ing") and len(first) > 5 and 1 < len(words) <= 6 and words[0] == first):
-        return False
-    stem = first[:-3]
-    return not (stem in lx.REFUSED_WORDS or stem + "e" in lx.REFUSED_WORDS or any(
-        names_place(r, j) or r.word(j) in lx.DETERMINERS or r.word(j) in lx.PRONOUNS
-        or r.word(j) in lx.SUBJECT_PRONOUNS or r.phrase(j, lx.NEG_STARTS) or r.word(j).isdigit()
-        or r.word(j) in lx.NUMBER_WORDS or r.word(j) in lx.REFUSED_WORDS or r.word(j) in _ASKING_ADVERBS
-        for j in range(k, len(r))))
-
-
-_ASKING_ADVERBS = frozenset({"everywhere", "anywhere", "somewhere", "nowhere", "here", "there", "inside",
-                             "again"})
-"""Where or how often a doing is (*Vacuuming everywhere*, *Working from home again*): it may be asked of the
-robot (or of the mission, again), so the note is not set aside."""
 
 
 def names_place(r: Reader, k: int) -> bool:

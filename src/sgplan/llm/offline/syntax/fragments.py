@@ -5,7 +5,8 @@ People open a message with a fragment that names the occasion, not a task. Such 
 shape, not by its words: a noun phrase whose head is a word of talk, of a list or of a time (*thing*,
 *errands*, *round*, *check*, *day*, *party*: :data:`.lexicon.FRAGMENT_HEADS`) with any words before it that
 the grammar has no role for (*quick*, *routine*, *evening*, *cleaning*), or a verb in *-ing* the grammar does
-not know (*working*), then only tails that ask nothing: *for* / *of* and another such phrase or a person (*for
+not know (*working*) or that the speaker goes out or away with (*Heading out soon*, *Working from home*),
+then only tails that ask nothing: *for* / *of* and another such phrase or a person (*for
 you*), a time (*this weekend*, *late*), an event said with its subject (*before I get home*, *while the kids
 are around*) and, after a comma, remarks and statements (*nothing urgent*, *I promise*, *sorry*). Nothing in
 it may name a room or object of the scene (or be a misspelling of one), a floor, *upstairs*, a number, a
@@ -63,12 +64,19 @@ def modifier(r: Reader, j: int, opener: bool) -> bool:
 
 
 def gerund(r: Reader, k: int) -> int | None:
-    """The end of a verb in *-ing* at ``k`` that the grammar neither reads nor refuses (*Working late*), or
-    ``None``."""
+    """The end of a verb in *-ing* at ``k`` that the grammar neither reads nor refuses (*Working late*), or of
+    one it reads as an order but that the speaker goes out or away with (*Heading out*, *Working from home*:
+    :data:`.lexicon.FRAGMENT_AWAY`); else ``None``."""
     w = r.word(k)
-    verbs = lx.POSITIVE_VERBS | frozenset(lx.REFUSED_WORDS) | lx.STRUCTURAL
-    return k + 1 if w.endswith("ing") and len(w) > 5 and not any(
-        said in verbs for said in (w, w[:-3], w[:-3] + "e", w[:-4])) else None
+    if not (w.endswith("ing") and len(w) > 5):
+        return None
+    stems = (w, w[:-3], w[:-3] + "e", w[:-4])
+    if any(said in lx.REFUSED_WORDS or said in lx.STRUCTURAL for said in stems):
+        return None
+    away = r.phrase(k + 1, lx.FRAGMENT_AWAY)
+    if away is not None:
+        return k + 1 + len(away)
+    return None if any(said in lx.POSITIVE_VERBS for said in stems) else k + 1
 
 
 def tail(r: Reader, k: int, opener: bool) -> int | None:
