@@ -2030,6 +2030,11 @@ PHRASE_ALIASES.update({  # learners' word orders and words of their languages, e
     ("of", "down"): ("downstairs",), ("of", "up"): ("upstairs",),  # "the bathroom of down"
     ("the", "last", "floor"): ("the", "top", "floor"),  # "the bathroom of the last floor" (ultimo piano)
     ("both", "in"): ("both", "of", "the", "ones", "in"),  # "a hallway plant, then both in the living room"
+    ("order", "whatever"): ("any", "order"), ("whatever", "order"): ("any", "order"),  # notes: "order whatever"
+})
+PHRASE_ALIASES.update({  # "the baby's napping in the living room, so keep out.": out of the place just said
+    ("so", verb, "out", end): ("so", verb, "out", "of", "there", end)
+    for verb in ("keep", "stay") for end in (".", "!", ",", ";")
 })
 PHRASE_ALIASES.update({  # "and when you finish, go to the lobby": when you have finished (that)
     (w, "you", finish): (w, "you", "have", "finished")
