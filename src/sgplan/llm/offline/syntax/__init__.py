@@ -28,6 +28,7 @@ from sgplan.llm.offline.syntax.context import mentions, set_aside_context, state
 from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
 from sgplan.llm.offline.syntax.floor_only import floor_only
 from sgplan.llm.offline.syntax.fragments import context_fragment
+from sgplan.llm.offline.syntax.fronted import fronted_prohibition
 from sgplan.llm.offline.syntax.lists import read_lists
 from sgplan.llm.offline.syntax.not_needed import split_not_needed
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
@@ -54,6 +55,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     readers = [Reader(p.toks, text, nouns, marker=p.marker, new_line=p.new_line, spelling=spelling)
                for p in parts]
     readers = [floor_only(r) for r in readers]  # "this flr only": "stay on this flr"
+    readers = [fronted_prohibition(r) for r in readers]  # "Kitchen never go.": "never enter kitchen"
     readers = [said for r in readers for said in any_time_goal(r)]  # "whenever X, Y, and at some point Z"
     readers = [said for r in readers for said in timed_heading(r)]  # "A couple of things before dinner:"
     for r in joined_appositions(read_lists(_greeting_before_heading(readers))):
