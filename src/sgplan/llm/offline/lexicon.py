@@ -94,6 +94,11 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     "lounge": ("living room",),
     "sitting room": ("living room",),
     "family room": ("living room",),
+    "salon": ("living room",),  # learners' word (French, Polish, Russian)
+    "dinner room": ("dining room",),
+    "office room": ("home office",),
+    "bath room": ("bathroom",),
+    "bed room": ("bedroom",),
     "restroom": ("bathroom",),
     "washroom": ("bathroom",),
     "stairs": ("staircase",),
@@ -2031,6 +2036,11 @@ PHRASE_ALIASES.update({  # learners' word orders and words of their languages, e
     ("the", "last", "floor"): ("the", "top", "floor"),  # "the bathroom of the last floor" (ultimo piano)
     ("both", "in"): ("both", "of", "the", "ones", "in"),  # "a hallway plant, then both in the living room"
     ("order", "whatever"): ("any", "order"), ("whatever", "order"): ("any", "order"),  # notes: "order whatever"
+    ("order", "not", "important"): ("any", "order"), ("order", "no", "matter"): ("any", "order"),
+    ("where", "is", "also"): ("where", "is"), ("where", "are", "also"): ("where", "are"),
+    ("that", "it", "has"): ("that", "has"), ("which", "it", "has"): ("which", "has"),  # a resumptive "it"
+    **{(prep, floor, "floor"): (prep, "the", floor, "floor")  # "go up on top floor": the article left out
+       for prep in ("on", "to", "at", "in", "of") for floor in ("top", "middle", "bottom", "upper", "lower")},
 })
 PHRASE_ALIASES.update({  # "the baby's napping in the living room, so keep out.": out of the place just said
     ("so", verb, "out", end): ("so", verb, "out", "of", "there", end)
