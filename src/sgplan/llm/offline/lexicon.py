@@ -2034,7 +2034,6 @@ PHRASE_ALIASES.update({  # learners' word orders and words of their languages, e
     ("stay", "please"): ("please", "stay"), ("keep", "please"): ("please", "keep"),  # "stay please on ..."
     ("of", "down"): ("downstairs",), ("of", "up"): ("upstairs",),  # "the bathroom of down"
     ("the", "last", "floor"): ("the", "top", "floor"),  # "the bathroom of the last floor" (ultimo piano)
-    ("both", "in"): ("both", "of", "the", "ones", "in"),  # "a hallway plant, then both in the living room"
     ("order", "whatever"): ("any", "order"), ("whatever", "order"): ("any", "order"),  # notes: "order whatever"
     ("order", "not", "important"): ("any", "order"), ("order", "no", "matter"): ("any", "order"),
     ("where", "is", "also"): ("where", "is"), ("where", "are", "also"): ("where", "are"),
