@@ -2036,6 +2036,10 @@ PHRASE_ALIASES.update({  # learners' word orders and words of their languages, e
     ("the", "last", "floor"): ("the", "top", "floor"),  # "the bathroom of the last floor" (ultimo piano)
     ("order", "whatever"): ("any", "order"), ("whatever", "order"): ("any", "order"),  # notes: "order whatever"
     ("order", "not", "important"): ("any", "order"), ("order", "no", "matter"): ("any", "order"),
+    **{("which", *one, "first", *verb, "matter"): ("any", "order")  # "which one first is not matter"
+       for one in ((), ("one",)) for verb in (("is", "not"), ("does", "not"))},
+    ("is", "next", "the"): ("is", "next", "to", "the"),  # "the bathroom which is next the kitchen": beside it
+    ("are", "next", "the"): ("are", "next", "to", "the"),
     ("where", "is", "also"): ("where", "is"), ("where", "are", "also"): ("where", "are"),
     ("that", "it", "has"): ("that", "has"), ("which", "it", "has"): ("which", "has"),  # a resumptive "it"
     **{(prep, floor, "floor"): (prep, "the", floor, "floor")  # "go up on top floor": the article left out
