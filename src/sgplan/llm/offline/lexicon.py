@@ -2038,6 +2038,12 @@ PHRASE_ALIASES.update({  # learners' word orders and words of their languages, e
     ("order", "not", "important"): ("any", "order"), ("order", "no", "matter"): ("any", "order"),
     **{("which", *one, "first", *verb, "matter"): ("any", "order")  # "which one first is not matter"
        for one in ((), ("one",)) for verb in (("is", "not"), ("does", "not"))},
+    ("when", "ever"): ("whenever",),  # "When ever you go in the kitchen"
+    ("up", "floor"): ("upper", "floor"), ("down", "floor"): ("lower", "floor"),  # "the bathroom of the up floor"
+    ("in", "any", "moment"): ("at", "any", "time"), ("at", "any", "moment"): ("at", "any", "time"),
+    ("do", "not", "going"): ("do", "not", "go"),  # "Don't going in the dining room"
+    ("the", "one", "or", "the", "other"): ("either", "one"),  # "an apple, the one or the other"
+    ("give", "water", "to"): ("water",),  # "give water to the plant"
     ("is", "next", "the"): ("is", "next", "to", "the"),  # "the bathroom which is next the kitchen": beside it
     ("are", "next", "the"): ("are", "next", "to", "the"),
     ("where", "is", "also"): ("where", "is"), ("where", "are", "also"): ("where", "are"),
