@@ -1759,6 +1759,10 @@ FRAGMENT_ARTICLES = word_set("a an the my our another some")
 FRAGMENT_MODIFIERS = word_set("quick little good big small busy usual routine long short lovely")
 """Words of the lexicon that may still stand before the head of such a fragment (*a quick one*, *a little
 favour*); *last* too, in a sentence before any goal (*Last thing before you charge.*)."""
+CONTENT_WORDS = word_set("with has have holding holds containing contains")
+"""Words that say a room by what it holds (*the bedroom with the plant*, *the one that has the vase*)."""
+PLACING_WORDS = word_set("in inside on of from at there here upstairs downstairs")
+"""Words that place an object by its own phrase (*the vase in the lobby*, *the vase there*)."""
 FRAGMENT_TIMES = word_set("late early lately today tonight tomorrow soon now")
 FRAGMENT_AWAY = Phrases((("out",), ("off",), ("away",), ("home",), ("from", "home"), ("late",)))
 """After a fragment's verb in *-ing*: the speaker goes out, stays away or is late (*Heading out soon.*,

@@ -51,6 +51,7 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
     if action.instead:
         instead_of_prohibitions(action, disc)
     phrases = ground_list(action.phrases, where, disc)
+    content_or_goal(phrases, disc)
     if action.moved is not None:  # "go up to the top floor and check a bathroom (there)": one goal there
         floors = FloorReading(frozenset(e.floor for e in phrases[0].entities))
         return steps_of(action.moved, ctx, scope, lenient, (floors, action.moved.span.start))
@@ -65,6 +66,20 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
             task.revisit = True
     tail(action, phrases, steps, carry, replace(where, floor=None, action_floor=None, objects=False), ctx)
     return ActionSteps(steps or [[]], action.first and not lead)
+
+
+def content_or_goal(phrases: list[Grounded], disc: Discourse) -> None:
+    """*go to the bedroom, the one with the plant, and the vase* where that bedroom holds the vase: more of
+    what it holds (as said in one breath), or another goal? Refused, as *the bedroom with the plant and the
+    vase* is (:func:`.attachments.describes`): a room said by its contents, then, in the same list, an object
+    of that room placed by nothing else."""
+    for room, thing in zip(phrases, phrases[1:]):
+        words = room.phrase.lower().replace("w/", " with ").split()
+        rooms = {e.key for e in room.entities}
+        if (rooms and all(e.kind == "room" for e in room.entities) and set(words) & lx.CONTENT_WORDS
+                and thing.entities and not set(thing.phrase.lower().split()) & lx.PLACING_WORDS
+                and all(e.kind == "object" and e.room_key in rooms for e in thing.entities)):
+            rf.refuse(rf.both_contents_or_goal(disc.said(room.start, thing.end), thing.phrase))
 
 
 def instead_of_prohibitions(action: Action, disc: Discourse) -> None:
