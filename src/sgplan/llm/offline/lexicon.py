@@ -160,6 +160,8 @@ EVERYDAY_NAMES: dict[str, tuple[str, ...]] = {
 }
 """Everyday names of a place no category spells: the first of the categories the scene has (*the loo* is
 the bathrooms, or the toilets in a scene without bathrooms)."""
+FIXTURE_VERBS = word_set("check inspect clean wipe scrub flush unblock")
+"""Verbs that act on a thing: after one, *the loo* may be the toilet as well as the room (refused)."""
 
 KIDS_ROOM_NAMES = (("kids", "room"), ("kid", "'s", "room"), ("kids", "'s", "room"),
                    ("children", "'s", "room"), ("childrens", "room"), ("nursery",), ("playroom",),

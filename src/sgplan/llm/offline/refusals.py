@@ -452,6 +452,10 @@ def order_word_in_list(item: str, word: str, place: str) -> str:
                     "meant ('1. ..., 2. ...')")
 
 
+def room_or_fixture(said: str, room: str, fixture: str) -> str:
+    return rephrase(f"'{said}' could be the {room} or the {fixture} in it; say 'the {room}' or 'the {fixture}'")
+
+
 def which_visit_of_scope(rooms: str) -> str:
     return rephrase(f"the sentence's room ({rooms}) is visited more than once in the order said before it: on "
                     "which visit? Put the sentence's goals in that order ('..., then X in the kitchen, then ...')")

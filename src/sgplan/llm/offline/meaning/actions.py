@@ -52,6 +52,7 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
         instead_of_prohibitions(action, disc)
     phrases = ground_list(action.phrases, where, disc)
     content_or_goal(phrases, disc)
+    room_or_its_fixture(action, phrases, disc)
     if action.moved is not None:  # "go up to the top floor and check a bathroom (there)": one goal there
         floors = FloorReading(frozenset(e.floor for e in phrases[0].entities))
         return steps_of(action.moved, ctx, scope, lenient, (floors, action.moved.span.start))
@@ -80,6 +81,22 @@ def content_or_goal(phrases: list[Grounded], disc: Discourse) -> None:
                 and thing.entities and not set(thing.phrase.lower().split()) & lx.PLACING_WORDS
                 and all(e.kind == "object" and e.room_key in rooms for e in thing.entities)):
             rf.refuse(rf.both_contents_or_goal(disc.said(room.start, thing.end), thing.phrase))
+
+
+def room_or_its_fixture(action: Action, phrases: list[Grounded], disc: Discourse) -> None:
+    """*check / clean the loo*: an everyday name of the room (:data:`.lexicon.EVERYDAY_NAMES`) that also names
+    a thing in it, the object of a verb that acts on things: the bathroom, or its toilet? Refused where the
+    scene has both (*go to / look in the loo* is the room)."""
+    verbs = set(action.verbs.words)
+    if not verbs & lx.FIXTURE_VERBS or verbs & (lx.INTO_A_ROOM | {"in"}):
+        return
+    for g in phrases:
+        name = next((w for w in g.phrase.lower().split() if len(lx.EVERYDAY_NAMES.get(w, ())) > 1), None)
+        if name is None or not g.entities or any(e.kind != "room" for e in g.entities):
+            continue
+        fixtures = lx.EVERYDAY_NAMES[name][1:]
+        if any(c in disc.vocab.category_names("object") for c in fixtures):
+            rf.refuse(rf.room_or_fixture(g.phrase, g.entities[0].category, fixtures[0]))
 
 
 def instead_of_prohibitions(action: Action, disc: Discourse) -> None:
