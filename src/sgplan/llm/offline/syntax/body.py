@@ -242,7 +242,8 @@ def goals_first(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     found = after_conjunction(r, j)
     if not isinstance(found, Match):
         return found
-    return Match(GoalsFirst(before_that, found.node, r.rest(i)), found.end)
+    obliged = before_that and r.says(lx.OBLIGED, j, found.end)  # "but before this you must pass by X"
+    return Match(GoalsFirst(before_that, found.node, r.rest(i), obliged), found.end)
 
 
 @ITEMS.rule("A, then B, and C afterwards")

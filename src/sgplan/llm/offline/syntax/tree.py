@@ -502,11 +502,14 @@ class InlineBefore:
 
 @dataclass(frozen=True)
 class GoalsFirst:
-    """*..., but first X* / *..., and before that X*: X comes before the steps said so far."""
+    """*..., but first X* / *..., and before that X*: X comes before the steps said so far. ``obliged``: *...,
+    but before that you must X*: an obligation, so the step said is not done before X (as *before you
+    enter Y, you must X*)."""
 
     before_that: bool
     action: Action
     rest: str
+    obliged: bool = False
 
 
 @dataclass(frozen=True)
