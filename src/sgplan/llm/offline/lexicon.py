@@ -1314,6 +1314,8 @@ VISIT_NOUNS = frozenset({"visit", "visits", "trip", "trips", "entry", "entries"}
 """After *no X* (*No kitchen visits.*, *no office trips please*): going into X, as *no visits to X*."""
 OBLIGED_SUBJECTS = frozenset({"you", "u", "we", "robot"})
 """Before an obligation after *after* (*after you must go to X*): *after that, you must ...*."""
+TOO = Phrases((("too",), ("also",), ("as", "well")))
+"""Closing an addition (*check X afterwards too*): adds nothing to the order said before it."""
 ALSO_AFTER = ("too", "also", "as well")
 """After *that X* in a step at another room (*go to the office and water that plant too*): another X, the
 one of that room."""

@@ -92,9 +92,13 @@ class Reader:
 
     def trailing_after(self, i: int) -> int:
         """The length of *after / afterwards / after that* at ``i`` closing a clause (before a comma or the
-        end), else 0."""
+        end), with a *too* / *also* / *as well* after it (*Check X afterwards too.*), else 0."""
         said = self.phrase(i, lx.TRAILING_AFTER)
-        return len(said) if said and self.word(i + len(said)) in ("", ",") else 0
+        if not said:
+            return 0
+        end = i + len(said)
+        end += len(self.phrase(end, lx.TOO) or ())
+        return end - i if self.word(end) in ("", ",") else 0
 
     def head(self, i: int) -> Head | None:
         """The head noun starting at ``i``."""

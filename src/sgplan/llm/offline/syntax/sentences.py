@@ -106,7 +106,8 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
             said_body.node, PlainSentence) and not said_body.node.body.items:
         return Refusal(rf.order_without_goal(r.quote(0, len(r))))  # "Last: the office" is not set aside
     if (precedes is None and not lead.node.sequence and isinstance(said_body.node, PlainSentence)
-            and (r.trailing_after(len(r) - 1) or r.trailing_after(len(r) - 2) or closes_done(r)
+            and (any(r.trailing_after(k) == len(r) - k for k in range(max(0, len(r) - 4), len(r)))
+                 or closes_done(r)
                  or carries_it(said_body.node.body))):
         lead = Match(Link(True), lead.end)  # "Go to the office. Visit the kitchen afterwards.": as "Then ..."
     rest = link(r, said_body.end, sequence_too=False)
