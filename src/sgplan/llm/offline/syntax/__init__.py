@@ -30,6 +30,7 @@ from sgplan.llm.offline.syntax.floor_only import floor_only
 from sgplan.llm.offline.syntax.fragments import context_fragment
 from sgplan.llm.offline.syntax.fronted import fronted_prohibition
 from sgplan.llm.offline.syntax.lists import read_lists
+from sgplan.llm.offline.syntax.needs import need_as_order
 from sgplan.llm.offline.syntax.not_needed import split_not_needed
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
@@ -75,7 +76,9 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
                 r = replace(r, toks=r.toks[cut:])  # ("I'm hungry, ..." is said back as a statement)
             content = True
         out += corrected(r)  # "go to the kitchen, no wait, the dining room": the dining room
-    return join_remarks(split_not_needed(set_aside_context(out)))
+    # "The bathroom needs a check.": the check, when no order after it names the bathroom (else a reason)
+    said = set_aside_context(out)
+    return join_remarks(split_not_needed([need_as_order(r, said[k + 1:]) for k, r in enumerate(said)]))
 
 
 def _greeting_before_heading(readers: list[Reader]) -> list[Reader]:
