@@ -452,6 +452,11 @@ def order_word_in_list(item: str, word: str, place: str) -> str:
                     "meant ('1. ..., 2. ...')")
 
 
+def obliged_before_that(said: str) -> str:
+    return rephrase(f"{said}: X first and then the goal said before, or that goal not before X? Say 'X, then "
+                    "Y', or 'do not go to Y until X'")
+
+
 def room_or_fixture(said: str, room: str, fixture: str) -> str:
     return rephrase(f"'{said}' could be the {room} or the {fixture} in it; say 'the {room}' or 'the {fixture}'")
 

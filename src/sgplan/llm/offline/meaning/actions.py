@@ -72,12 +72,16 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
 def content_or_goal(phrases: list[Grounded], disc: Discourse) -> None:
     """*go to the bedroom, the one with the plant, and the vase* where that bedroom holds the vase: more of
     what it holds (as said in one breath), or another goal? Refused, as *the bedroom with the plant and the
-    vase* is (:func:`.attachments.describes`): a room said by its contents, then, in the same list, an object
-    of that room placed by nothing else."""
+    vase* is (:func:`.attachments.describes`): a room said by its contents, then, after *and* in the same
+    list, an object of that room placed by nothing else and not of a kind its contents named (*the bathroom
+    with the two toilets, either toilet* is the toilets)."""
     for room, thing in zip(phrases, phrases[1:]):
         words = room.phrase.lower().replace("w/", " with ").split()
         rooms = {e.key for e in room.entities}
+        joined = disc.said(room.end, thing.start).lower().split()
+        said_kinds = {" ".join(words[k:k + n]) for n in (1, 2) for k in range(len(words))}
         if (rooms and all(e.kind == "room" for e in room.entities) and set(words) & lx.CONTENT_WORDS
+                and "and" in joined and not {e.category for e in thing.entities} & said_kinds
                 and thing.entities and not set(thing.phrase.lower().split()) & lx.PLACING_WORDS
                 and all(e.kind == "object" and e.room_key in rooms for e in thing.entities)):
             rf.refuse(rf.both_contents_or_goal(disc.said(room.start, thing.end), thing.phrase))

@@ -16,7 +16,7 @@ from sgplan.llm.offline.meaning.actions import steps_of
 from sgplan.llm.offline.meaning.compose import Clause, moved
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.meaning.negations import negation, off_limits, stay_on_floor
-from sgplan.llm.offline.meaning.order import check_restriction_target, only_after
+from sgplan.llm.offline.meaning.order import check_restriction_target
 from sgplan.llm.offline.names import Entity
 from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
@@ -97,8 +97,8 @@ def inline_before(item: InlineBefore, clause: Clause, ctx: SentenceContext) -> N
 @reads(GoalsFirst)
 def goals_first(item: GoalsFirst, clause: Clause, ctx: SentenceContext) -> None:
     """*..., but first X* / *..., and before that X*: X before the steps said so far (*before that* after
-    several steps is refused: before which?); with an obligation (*..., but before that you must X*) the
-    step is not done before X (``!Y U X``)."""
+    several steps is refused: before which?); with an obligation (*..., but before that you must X*) blind
+    writers read it both as X, then the step, and as the step not done before X: refused."""
     if not any(clause.steps):
         if item.before_that:
             rf.refuse(rf.done_that_of_nothing())
@@ -106,10 +106,8 @@ def goals_first(item: GoalsFirst, clause: Clause, ctx: SentenceContext) -> None:
         return
     if item.before_that and len(clause.filled()) > 1:
         rf.refuse(rf.before_which(item.rest))
-    if item.obliged:  # "go in the dining room, but before this you must pass by the lobby": not before it
-        said = Clause(steps=[list(clause.filled()[0])])
-        clause.constraints.append(only_after(Clause(steps=steps_of(item.action, ctx).steps), said, ctx))
-        return
+    if item.obliged:  # "go in the dining room, but before this you must pass by the lobby"
+        rf.refuse(rf.obliged_before_that(item.rest))
     clause.steps[0:0] = moved(steps_of(item.action, ctx).steps)
 
 

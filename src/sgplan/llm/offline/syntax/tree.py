@@ -503,8 +503,7 @@ class InlineBefore:
 @dataclass(frozen=True)
 class GoalsFirst:
     """*..., but first X* / *..., and before that X*: X comes before the steps said so far. ``obliged``: *...,
-    but before that you must X*: an obligation, so the step said is not done before X (as *before you
-    enter Y, you must X*)."""
+    but before that you must X*: an obligation (read as an order and as a restriction alike: refused)."""
 
     before_that: bool
     action: Action
