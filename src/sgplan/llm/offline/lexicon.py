@@ -1760,7 +1760,7 @@ FRAGMENT_HEADS = (TALK_NOUNS | LIST_NOUNS | EVENT_WORDS | frozenset(NAMED_DAYS)
 before I get home.*, *Busy day.*; :mod:`.syntax.fragments`): a word of talk, of a list or of a time, never
 one that orders (*Reverse order.*, *Later.*)."""
 FRAGMENT_ARTICLES = word_set("a an the my our another some")
-FRAGMENT_MODIFIERS = word_set("quick little good big small busy usual routine long short lovely")
+FRAGMENT_MODIFIERS = word_set("quick little good big small busy usual routine long short lovely more")
 """Words of the lexicon that may still stand before the head of such a fragment (*a quick one*, *a little
 favour*); *last* too, in a sentence before any goal (*Last thing before you charge.*)."""
 CONTENT_WORDS = word_set("with has have holding holds containing contains")
