@@ -1957,6 +1957,9 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("thanks", "a", "mil"): ("thanks", "a", "million"),
     # "the TV in the office, then any in the living room": any one of the kind named last
     ("any", "in"): ("any", "one", "in"), ("any", "on"): ("any", "one", "on"),
+    # "one of the living room chairs, then one in the dining room": any one of that kind there
+    **{(joiner, "one", where): (joiner, "any", "one", where)
+       for joiner in (",", "then", "and") for where in ("in", "on", "from")},
     ("nxt",): ("next",),
     ("u",): ("you",),
     ("ur",): ("your",),
