@@ -2046,6 +2046,9 @@ PHRASE_ALIASES.update({  # learners' word orders and words of their languages, e
     ("of", "down"): ("downstairs",), ("of", "up"): ("upstairs",),  # "the bathroom of down"
     ("the", "last", "floor"): ("the", "top", "floor"),  # "the bathroom of the last floor" (ultimo piano)
     ("order", "whatever"): ("any", "order"), ("whatever", "order"): ("any", "order"),  # notes: "order whatever"
+    ("order", "dc"): ("any", "order"), ("order", "idc"): ("any", "order"),  # "(I) don't care"
+    ("once", "you", "have", ","): ("after", "that", ","), ("when", "you", "have", ","): ("after", "that", ","),
+    ("either", "one", "of", "them"): ("either", "one"),  # "the toilet in the top floor bathroom, either one of them"
     ("order", "not", "important"): ("any", "order"), ("order", "no", "matter"): ("any", "order"),
     **{("which", *one, "first", *verb, "matter"): ("any", "order")  # "which one first is not matter"
        for one in ((), ("one",)) for verb in (("is", "not"), ("does", "not"))},

@@ -21,6 +21,8 @@ def floor_only(r: Reader) -> Reader:
     """``r`` read as *stay on <floor>* when it is only a floor and *only* (see the module docstring), else
     ``r``."""
     end = r.words.index(":") if ":" in r.words else len(r)
+    while end > 0 and r.word(end - 1) == "please":  # "top floor only pls:"
+        end -= 1
     first = 1 if r.word(0) == "only" else 0  # "only the ground floor" / "this flr only"
     at = first + (r.word(first) == "the")
     floor_end = at + 1 if r.word(at) in lx.RELATIVE_FLOORS else getattr(floor_words(r, at), "end", None)
@@ -30,4 +32,5 @@ def floor_only(r: Reader) -> Reader:
     said = r.toks[first]
     verb: tuple[Tok, ...] = (Tok("stay", said.start, said.start),)
     verb += () if r.word(at) in lx.RELATIVE_FLOORS else (Tok("on", said.start, said.start),)
-    return replace(r, toks=verb + r.toks[first:floor_end] + r.toks[end:])
+    rest = r.words.index(":") if ":" in r.words else len(r)
+    return replace(r, toks=verb + r.toks[first:floor_end] + r.toks[rest:])
