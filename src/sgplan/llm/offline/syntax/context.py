@@ -794,6 +794,11 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         return start + 1 if start + 1 < end and verb not in lx.CLAUSE_ENDS else None
     if w in lx.DETERMINERS or w in lx.POSSESSIVES:
         said = noun_phrase(r, start, "qualifier") if r.np_starts(start) else None
+        while isinstance(said, Match) and r.word(said.end) == "and" and r.np_starts(said.end + 1):
+            more = noun_phrase(r, said.end + 1, "qualifier")  # "the garage and the office are a mess"
+            if not isinstance(more, Match):
+                break
+            said = more
         if isinstance(said, Match) and said.end < end and (r.word(said.end) in lx.STATEMENT_VERBS
                                                              or state_verb_last(r, said.end, end)):
             return said.end  # "the plants are looking sad", "the bathroom with two toilets smells"
