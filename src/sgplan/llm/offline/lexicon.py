@@ -1541,6 +1541,7 @@ OCCASIONS = {("this", "time"), ("this", "time", "round"), ("just", "this", "once
 STATEMENT_JOINERS = ("so", "but", "and", "because", "as")
 REASONS = Phrases((("because",), ("cause",), ("'cause",), ("so", "that"), ("since",),
                    *(("so", who, what) for who in ("i", "we") for what in ("know", "can", "see")),
+                   ("so", "you", "can"), ("so", "you", "could"),  # "... so you can compare" (no place after)
                    *(("to", *check, whether) for check in (("see",), ("check",), ("find", "out"))
                      for whether in ("if", "whether")), ("to", "make", "sure"), ("to", "test"),
                    # "to check it's clean": a check of the state of what was just named, not a goal ("to
@@ -2045,15 +2046,17 @@ PHRASE_ALIASES.update({  # learners' word orders and words of their languages, e
     ("stay", "please"): ("please", "stay"), ("keep", "please"): ("please", "keep"),  # "stay please on ..."
     ("of", "down"): ("downstairs",), ("of", "up"): ("upstairs",),  # "the bathroom of down"
     ("the", "last", "floor"): ("the", "top", "floor"),  # "the bathroom of the last floor" (ultimo piano)
-    ("order", "whatever"): ("any", "order"), ("whatever", "order"): ("any", "order"),  # notes: "order whatever"
-    ("order", "dc"): ("any", "order"), ("order", "idc"): ("any", "order"),  # "(I) don't care"
-    ("once", "you", "have", ","): ("after", "that", ","), ("when", "you", "have", ","): ("after", "that", ","),
-    ("either", "one", "of", "them"): ("either", "one"),  # "the toilet in the top floor bathroom, either one of them"
+    # notes: "order whatever", "order dc" ((I) don't care)
+    ("order", "whatever"): ("any", "order"), ("whatever", "order"): ("any", "order"),
+    ("order", "dc"): ("any", "order"), ("order", "idc"): ("any", "order"),
+    ("once", "you", "have", ","): ("after", "that", ","),
+    ("when", "you", "have", ","): ("after", "that", ","),
+    ("either", "one", "of", "them"): ("either", "one"),  # "the toilet in that bathroom, either one of them"
     ("order", "not", "important"): ("any", "order"), ("order", "no", "matter"): ("any", "order"),
     **{("which", *one, "first", *verb, "matter"): ("any", "order")  # "which one first is not matter"
        for one in ((), ("one",)) for verb in (("is", "not"), ("does", "not"))},
     ("when", "ever"): ("whenever",),  # "When ever you go in the kitchen"
-    ("up", "floor"): ("upper", "floor"), ("down", "floor"): ("lower", "floor"),  # "the bathroom of the up floor"
+    ("up", "floor"): ("upper", "floor"), ("down", "floor"): ("lower", "floor"),  # "of the up floor"
     ("in", "any", "moment"): ("at", "any", "time"), ("at", "any", "moment"): ("at", "any", "time"),
     ("do", "not", "going"): ("do", "not", "go"),  # "Don't going in the dining room"
     ("the", "one", "or", "the", "other"): ("either", "one"),  # "an apple, the one or the other"

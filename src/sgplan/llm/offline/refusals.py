@@ -458,12 +458,14 @@ def obliged_before_that(said: str) -> str:
 
 
 def room_or_fixture(said: str, room: str, fixture: str) -> str:
-    return rephrase(f"'{said}' could be the {room} or the {fixture} in it; say 'the {room}' or 'the {fixture}'")
+    return rephrase(f"'{said}' could be the {room} or the {fixture} in it; say 'the {room}' or "
+                    f"'the {fixture}'")
 
 
 def which_visit_of_scope(rooms: str) -> str:
-    return rephrase(f"the sentence's room ({rooms}) is visited more than once in the order said before it: on "
-                    "which visit? Put the sentence's goals in that order ('..., then X in the kitchen, then ...')")
+    return rephrase(f"the sentence's room ({rooms}) is visited more than once in the order said before "
+                    "it: on which visit? Put the sentence's goals in that order ('..., then X in the kitchen, "
+                    "then ...')")
 
 
 def after_before_or_then(said: str) -> str:

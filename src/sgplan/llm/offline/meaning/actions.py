@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from itertools import pairwise
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
@@ -44,7 +45,8 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
         ctx.floor_scope = None
     again = going_back or (action.repeat is not None and action.repeat.again)
     where = Where("goal", tuple(scope or ctx.scope), lenient, tuple(ctx.soft_scope), floor,
-                  action_floor or ctx.floor_scope, going_back, carry, again, previous=tuple(ctx.previous_room))
+                  action_floor or ctx.floor_scope, going_back, carry, again,
+                  previous=tuple(ctx.previous_room))
     if action.phrases is None:  # "go upstairs and check the laptop": the laptop upstairs
         assert action.moved is not None and floor is not None
         return steps_of(action.moved, ctx, scope, lenient, (floor, action.moved.span.start), floor)
@@ -75,7 +77,7 @@ def content_or_goal(phrases: list[Grounded], disc: Discourse) -> None:
     vase* is (:func:`.attachments.describes`): a room said by its contents, then, after *and* in the same
     list, an object of that room placed by nothing else and not of a kind its contents named (*the bathroom
     with the two toilets, either toilet* is the toilets)."""
-    for room, thing in zip(phrases, phrases[1:]):
+    for room, thing in pairwise(phrases):
         words = room.phrase.lower().replace("w/", " with ").split()
         rooms = {e.key for e in room.entities}
         joined = disc.said(room.end, thing.start).lower().split()

@@ -122,7 +122,8 @@ def turned(r: Reader, verbs: VerbWords, i: int) -> VerbWords:
     room's noun, with no article): the room upstairs / downstairs, as *go upstairs to the bathroom*."""
     if verbs.floor is None and verbs.words and verbs.words[-1] in lx.UP_DOWN and r.word(i) in ("and", ","):
         return replace(verbs, floor=RelativeFloor(lx.UP_DOWN[verbs.words[-1]]), floor_span=r.span(i - 1, i))
-    if verbs.floor is None and verbs.words and verbs.words[-1] in lx.UP_DOWN and (room := r.head(i)) is not None \
+    room = r.head(i)
+    if verbs.floor is None and verbs.words and verbs.words[-1] in lx.UP_DOWN and room is not None \
             and room.kind == "room":
         return replace(verbs, floor=RelativeFloor(lx.UP_DOWN[verbs.words[-1]]), floor_span=r.span(i - 1, i))
     return verbs

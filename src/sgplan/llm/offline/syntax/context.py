@@ -253,8 +253,11 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
     if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) or is_clock_time(r.word(j))
            or r.word(j) in lx.TIME_UNITS for j in said):
         return None  # what not to do, a question to the robot, a clock time or a delay: left to the parser
-    if r.phrase(k, lx.CHECK_WHETHER) and any(names_place(r, j) or misspelt_name(r, j, j + 1) for j in said):
-        return None  # "to see if the oven is off": the oven may be a goal too
+    so_you = r.at(k, "so", "you")
+    if (r.phrase(k, lx.CHECK_WHETHER) or so_you) and any(
+            names_place(r, j) or misspelt_name(r, j, j + 1) or (so_you and r.word(j) in lx.PRONOUNS)
+            for j in said):
+        return None  # "to see if the oven is off", "so you can grab the bowl": the place may be a goal too
     return k, stop
 
 
