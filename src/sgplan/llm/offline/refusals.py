@@ -464,8 +464,8 @@ def room_or_fixture(said: str, room: str, fixture: str) -> str:
 
 def which_visit_of_scope(rooms: str) -> str:
     return rephrase(f"the sentence's room ({rooms}) is visited more than once in the order said before "
-                    "it: on which visit? Put the sentence's goals in that order ('..., then X in the kitchen, "
-                    "then ...')")
+                    "it: on which visit? Put the sentence's goals in that order ('..., then X in the "
+                    "kitchen, then ...')")
 
 
 def after_before_or_then(said: str) -> str:
