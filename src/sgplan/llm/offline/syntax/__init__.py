@@ -32,6 +32,7 @@ from sgplan.llm.offline.syntax.fronted import fronted_prohibition
 from sgplan.llm.offline.syntax.lists import read_lists
 from sgplan.llm.offline.syntax.needs import need_as_order
 from sgplan.llm.offline.syntax.not_needed import split_not_needed
+from sgplan.llm.offline.syntax.object_first import object_first
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.remark_sentences import join_remarks
@@ -63,6 +64,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
         if stated_start(r) is not None or r.aside:
             out.append(r)
             continue
+        r = object_first(r)  # "Garage chair first sit": "sit on garage chair first" (not a list's heading)
         if context_fragment(r, opener=not content):
             out.append(replace(r, aside=True))  # "Time for the evening round.": said back
             continue
