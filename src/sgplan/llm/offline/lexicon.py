@@ -2055,6 +2055,8 @@ PHRASE_ALIASES.update({  # learners' word orders and words of their languages, e
     ("order", "not", "important"): ("any", "order"), ("order", "no", "matter"): ("any", "order"),
     **{("which", *one, "first", *verb, "matter"): ("any", "order")  # "which one first is not matter"
        for one in ((), ("one",)) for verb in (("is", "not"), ("does", "not"))},
+    **{("for", verb): ("to", verb)  # learners' purpose "go to the kitchen for check the oven"
+       for verb in ("see", "check", "look", "wash", "watch", "clean", "water", "touch", "wipe")},
     ("when", "ever"): ("whenever",),  # "When ever you go in the kitchen"
     ("up", "floor"): ("upper", "floor"), ("down", "floor"): ("lower", "floor"),  # "of the up floor"
     ("in", "any", "moment"): ("at", "any", "time"), ("at", "any", "moment"): ("at", "any", "time"),

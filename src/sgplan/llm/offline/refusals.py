@@ -452,6 +452,11 @@ def order_word_in_list(item: str, word: str, place: str) -> str:
                     "meant ('1. ..., 2. ...')")
 
 
+def purpose_of_several(said: str, things: str) -> str:
+    return rephrase(f"'{said}': each of {things}, or only the place as the goal? Say 'go to X and check each "
+                    "of ...', or leave the purpose out")
+
+
 def obliged_before_that(said: str) -> str:
     return rephrase(f"{said}: X first and then the goal said before, or that goal not before X? Say 'X, then "
                     "Y', or 'do not go to Y until X'")

@@ -155,6 +155,11 @@ def tail(action: Action, phrases: list[Grounded], steps: list[Step], carry: bool
     if action.purpose is not None:  # "go to the bathroom downstairs to check the toilet": the toilet there
         own = tuple(ctx.step_rooms(steps[-1]))
         purpose = ground_list(action.purpose, replace(where, scope=own or where.scope), ctx.disc)
+        several = next((g for g in purpose if g.mode == "all" and len(g.entities) > 1
+                        and g.phrase.lower() not in lx.PRONOUNS), None)
+        if several is not None and own and action.purpose_remark is None:
+            # "go to the lobby for see the vases": each vase, or the lobby only? ("..., any one": one)
+            rf.refuse(rf.purpose_of_several(ctx.disc.said(action.span.start, several.end), several.phrase))
         choice_remark(purpose, action.purpose_remark, ctx.disc.said)
         if not all(g.phrase.lower() in lx.PRONOUNS for g in purpose):
             steps[-1].extend(tasks_of(purpose, False)[0])

@@ -7,8 +7,10 @@ Each clause of the sentence (between commas, *then*, arrows and semicolons) that
 naming a room or object of the scene, after *then* / *and* / *first* at most), then at most *first* / *too*,
 *you* with *will* / *must* / *should* / *can*, and one verb of :data:`_VERBS` closing the clause (with its
 particle: *go to*, *sit on*) is read with the verb first (*sit on garage chair first*); the words keep their
-places in the text, so that refusals quote them. A clause with anything else after the verb, or a verb that
-is no order (*the kitchen is ...*), is left as it is.
+places in the text, so that refusals quote them. A clause with anything else after the verb, a verb that is
+no order (*the kitchen is ...*), a place opening with *every* / *each* / *no* / *any* (*every kit visit =>
+DR after*: a rule), and a sentence whose clauses are joined by bare commas (*DR tbl wipe, kit, DR tbl wipe
+again*: in which order?) are left as they are.
 """
 
 from __future__ import annotations
@@ -29,11 +31,15 @@ _AFTER_PLACE = frozenset({"first", "too", "also", "again"})
 _AUXILIARIES = frozenset({"will", "must", "should", "can"})
 _PARTICLES = frozenset({"to", "on", "at", "in", "into"})
 _BOUNDARIES = frozenset({",", ";", "then", "and", ".", "!", "\u2192", "->"})
+_RULE_WORDS = frozenset({"every", "each", "no", "any"})
+"""Opening the place, they make it a rule or a choice (*every kit visit => DR after*), not a goal."""
 
 
 def object_first(r: Reader) -> Reader:
     """``r`` with each clause said place-first and verb-last turned verb-first (see the module docstring)."""
     toks = list(r.toks)
+    if any(r.word(k) == "," and r.word(k + 1) not in ("then", "and") for k in range(len(r))):
+        return r  # "DR tbl wipe, kit, DR tbl wipe again": a list of steps in no said order (refused)
     start = 0
     while start < len(r):
         end = next((k for k in range(start, len(r)) if r.word(k) in _BOUNDARIES), len(r))
@@ -63,7 +69,7 @@ def turned_clause(r: Reader, start: int, end: int) -> list[Tok] | None:
         after.insert(0, e)
     place = noun_phrase(replace(r, toks=r.toks[:e]), start, "goal") if r.np_starts(start) else None
     if (not isinstance(place, Match) or place.end != e or r.word(start) in lx.PRONOUNS
-            or not any(r.head(j) is not None for j in range(start, e))):
+            or r.word(start) in _RULE_WORDS or not any(r.head(j) is not None for j in range(start, e))):
         return None
     said = r.toks[verb]
     head = [said, r.toks[particle]] if particle is not None else \
