@@ -2039,7 +2039,7 @@ _SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
 }
 PHRASE_ALIASES.update(_SAID_OTHERWISE)
 """More of :data:`PHRASE_ALIASES`: wishes that forbid, emphatic orders, *my little one*."""
-PHRASE_ALIASES.update({  # learners' word orders and words of their languages, each a set phrase
+_LEARNERS_SAID: dict[tuple[str, ...], tuple[str, ...]] = {  # learners' word orders, notes' set phrases
     ("is", "not", "matter"): ("does", "not", "matter"),  # "the order is not matter"
     ("every", "time", "that"): ("every", "time"),  # "every time that you enter ..."
     ("avoid", "absolutely"): ("avoid",),  # "avoid absolutely the bathrooms"
@@ -2069,7 +2069,8 @@ PHRASE_ALIASES.update({  # learners' word orders and words of their languages, e
     ("that", "it", "has"): ("that", "has"), ("which", "it", "has"): ("which", "has"),  # a resumptive "it"
     **{(prep, floor, "floor"): (prep, "the", floor, "floor")  # "go up on top floor": the article left out
        for prep in ("on", "to", "at", "in", "of") for floor in ("top", "middle", "bottom", "upper", "lower")},
-})
+}
+PHRASE_ALIASES.update(_LEARNERS_SAID)
 PHRASE_ALIASES.update({  # "the baby's napping in the living room, so keep out.": out of the place just said
     ("so", verb, "out", end): ("so", verb, "out", "of", "there", end)
     for verb in ("keep", "stay") for end in (".", "!", ",", ";")
