@@ -2056,7 +2056,7 @@ _LEARNERS_SAID: dict[tuple[str, ...], tuple[str, ...]] = {  # learners' word ord
     **{("which", *one, "first", *verb, "matter"): ("any", "order")  # "which one first is not matter"
        for one in ((), ("one",)) for verb in (("is", "not"), ("does", "not"))},
     **{("for", verb): ("to", verb)  # learners' purpose "go to the kitchen for check the oven"
-       for verb in ("see", "check", "look", "wash", "watch", "clean", "water", "touch", "wipe")},
+       for verb in ("see", "check", "look", "wash", "watch", "clean", "touch", "wipe")},  # not "for water"
     ("when", "ever"): ("whenever",),  # "When ever you go in the kitchen"
     ("up", "floor"): ("upper", "floor"), ("down", "floor"): ("lower", "floor"),  # "of the up floor"
     ("in", "any", "moment"): ("at", "any", "time"), ("at", "any", "moment"): ("at", "any", "time"),
