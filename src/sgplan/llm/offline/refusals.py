@@ -452,6 +452,11 @@ def order_word_in_list(item: str, word: str, place: str) -> str:
                     "meant ('1. ..., 2. ...')")
 
 
+def choice_of_no_goal(remark: str, kind: str) -> str:
+    return rephrase(f"'{remark}' leaves a choice of {kind}, but no {kind} is a goal of the mission; name the "
+                    "one meant as the goal")
+
+
 def purpose_of_several(said: str, things: str) -> str:
     return rephrase(f"'{said}': each of {things}, or only the place as the goal? Say 'go to X and check each "
                     "of ...', or leave the purpose out")

@@ -4,7 +4,6 @@ list's order (*in that order*, *A, B, then C*, *B first*), *last*, *again* / *tw
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass, replace
 from itertools import pairwise
 
@@ -60,7 +59,7 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
         return steps_of(action.moved, ctx, scope, lenient, (floors, action.moved.span.start))
     said_after = action.first and not action.verbs.first and action.phrases.comma_list
     phrases, lead = first_of_list(phrases, action.first, said_after)
-    choice_remark(phrases, action.remark, disc.said)
+    choice_remark(phrases, action.remark, disc)
     steps = ordered_steps(action, phrases, carry, lead, ctx)
     if action.repeat is not None:
         repeats(phrases, steps, action.repeat, going_back, ctx)
@@ -145,12 +144,12 @@ def tail(action: Action, phrases: list[Grounded], steps: list[Step], carry: bool
             e.kind == "object" for g in phrases for e in g.entities)
         if routed:  # "put X in Y", "take X to Y", "go from X to Y": X, then Y
             dest = ground_list(action.destination, replace(where, scope=()), ctx.disc)
-            choice_remark(dest, action.destination_remark, ctx.disc.said)
+            choice_remark(dest, action.destination_remark, ctx.disc)
             steps.extend(tasks_of(dest, False))
         else:  # "go to the kitchen to the office": another goal of the step
             dest = ground_list(action.destination, replace(where, scope=tuple(ctx.step_rooms(steps[-1]))),
                                ctx.disc)
-            choice_remark(dest, action.destination_remark, ctx.disc.said)
+            choice_remark(dest, action.destination_remark, ctx.disc)
             steps[-1].extend(tasks_of(dest, False)[0])
     if action.purpose is not None:  # "go to the bathroom downstairs to check the toilet": the toilet there
         own = tuple(ctx.step_rooms(steps[-1]))
@@ -160,7 +159,7 @@ def tail(action: Action, phrases: list[Grounded], steps: list[Step], carry: bool
         if several is not None and own and action.purpose_remark is None:
             # "go to the lobby for see the vases": each vase, or the lobby only? ("..., any one": one)
             rf.refuse(rf.purpose_of_several(ctx.disc.said(action.span.start, several.end), several.phrase))
-        choice_remark(purpose, action.purpose_remark, ctx.disc.said)
+        choice_remark(purpose, action.purpose_remark, ctx.disc)
         if not all(g.phrase.lower() in lx.PRONOUNS for g in purpose):
             steps[-1].extend(tasks_of(purpose, False)[0])
 
@@ -218,13 +217,13 @@ def restates_group(phrase: str) -> bool:
     return words[-1] == "them" or (counted and words[0] in lx.UNIVERSAL)
 
 
-def choice_remark(phrases: list[Grounded], remark: tuple[str, ...] | None,
-                  said: Callable[[int, int], str]) -> None:
+def choice_remark(phrases: list[Grounded], remark: tuple[str, ...] | None, disc: Discourse) -> None:
     """*, either one is fine* after a choice only confirms it; after a phrase that means each of several
     (or after several phrases) it would turn "all" into "one of", so it is refused. *, just one of them* / *,
     any of the three* say outright that one will do: the phrase is a choice (of that many, when said)."""
     if remark is None:
         return
+    said = disc.said
     words = tuple(w for w in remark if w != ",")
     count = next((lx.NUMBER_WORDS.get(w) or int(w) for w in words
                   if w.isdigit() or (w in lx.NUMBER_WORDS and w != "one")), None)

@@ -83,7 +83,19 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
         rf.refuse(rf.no_goal_at_all(disc.set_aside))
     formula = conj(present)
     check_all_used(formula, disc.references)
+    check_choice_remarks(disc)
     return formula
+
+
+def check_choice_remarks(disc: Discourse) -> None:
+    """Refuse a remark set aside that leaves a choice of a kind no goal names (*have a seat at the dining room
+    table, any chair's fine*: the chairs were meant, the table was read)."""
+    goals = {e.category for g in disc.references if g.role == "goal" for e in g.entities}
+    for said in disc.set_aside:
+        words = said.lower().replace("'", " '").split()
+        head = disc.vocab.nouns.match(words, 1) if words[:1] and words[0] in lx.CHOICE_WORDS else None
+        if head is not None and head.categories and not head.categories & goals:
+            rf.refuse(rf.choice_of_no_goal(said, words[1]))
 
 
 def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: list[Clause]) -> None:
