@@ -402,7 +402,24 @@ def only_verb_after(r: Reader, i: int) -> Parse[SentenceBody]:
     before = after_conjunction(r, said.end + 1)
     if not isinstance(before, Match):
         return before
+    kept = kept_out_after(r, before.end)  # "..., and keep out of the bathroom (the entire time)"
+    if kept is not None:
+        body_kept = Body(said.node.items + kept.node.items)
+        return Match(OnlyAfterSentence(before.node, body_kept, (), False), kept.end)
     return Match(OnlyAfterSentence(before.node, said.node, (), False), before.end)
+
+
+def kept_out_after(r: Reader, i: int) -> Match[Body] | None:
+    """*, and keep out of X (the whole time)* / *, and never enter X* closing the sentence at ``i`` after a
+    condition: prohibitions of the whole mission only, read beside it; ``None`` when the words there are
+    not that."""
+    if not r.at(i, ",", "and"):
+        return None
+    said = body(r, i + 2)
+    if not isinstance(said, Match) or said.end != len(r) or not said.node.items:
+        return None
+    kept = all(isinstance(item, Negation) and item.until is None for item in said.node.items)
+    return said if kept else None
 
 
 def prefixed(r: Reader, i: int, prefix_last: bool) -> Parse[SentenceBody]:
