@@ -1946,6 +1946,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("pls",): ("please",),
     ("plz",): ("please",),
     ("gf",): ("ground", "floor"),
+    ("gnd", ":"): ("ground", "floor", ":"), ("gnd",): ("ground",),  # "gnd flr bath", "gnd: empty rm -> ..."
     ("upstrs",): ("upstairs",),
     ("dwnstrs",): ("downstairs",),
     ("downstrs",): ("downstairs",),

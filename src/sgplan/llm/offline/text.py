@@ -119,6 +119,8 @@ def tokenize(text: str) -> list[Tok]:
             out.append(Tok(_DASH if re.match(r"\s*[a-z]", text[end:]) else ".", start, end))
         elif kind == "punct" and word == "!" and _prefixes_a_word(lowered, start, end):
             out.append(Tok("avoid", start, end))  # an operator's "!kit": not the kitchen
+        elif kind == "symbol" and word == "\u00ac":
+            out.append(Tok("avoid", start, end))  # the logician's "¬LR", "¬ gnd flr bath": not there
         elif kind == "punct":
             out.append(Tok(_BRACKETS.get(word, word), start, end))
         elif kind == "clock":
