@@ -1764,6 +1764,9 @@ FRAGMENT_ARTICLES = word_set("a an the my our another some")
 FRAGMENT_MODIFIERS = word_set("quick little good big small busy usual routine long short lovely more")
 """Words of the lexicon that may still stand before the head of such a fragment (*a quick one*, *a little
 favour*); *last* too, in a sentence before any goal (*Last thing before you charge.*)."""
+REMARK_CHOOSERS = word_set("any either whichever")
+REMARK_ENDS = word_set("fine ok okay good works do")
+"""A remark that leaves the choice to the robot: *any chair's fine*, *either bathroom will do*."""
 CONTENT_WORDS = word_set("with has have holding holds containing contains")
 """Words that say a room by what it holds (*the bedroom with the plant*, *the one that has the vase*)."""
 PLACING_WORDS = word_set("in inside on of from at there here upstairs downstairs")

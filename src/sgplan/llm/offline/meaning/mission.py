@@ -88,12 +88,16 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
 
 
 def check_choice_remarks(disc: Discourse) -> None:
-    """Refuse a remark set aside that leaves a choice of a kind no goal names (*have a seat at the dining room
-    table, any chair's fine*: the chairs were meant, the table was read)."""
-    goals = {e.category for g in disc.references if g.role == "goal" for e in g.entities}
+    """Refuse a remark set aside that leaves a choice of a kind no goal names, nor the room of one (*have a
+    seat at the dining room table, any chair's fine*: the chairs were meant, the table was read; *Either
+    bathroom's fine, just check a toilet* is the toilets' rooms)."""
+    entities = [e for g in disc.references if g.role == "goal" for e in g.entities]
+    goals = {e.category for e in entities} | {disc.vocab.by_key[e.room_key].category for e in entities
+                                              if e.kind == "object" and e.room_key in disc.vocab.by_key}
     for said in disc.set_aside:
-        words = said.lower().replace("'", " '").split()
-        head = disc.vocab.nouns.match(words, 1) if words[:1] and words[0] in lx.CHOICE_WORDS else None
+        words = said.lower().replace("'", " '").rstrip(".!").split()
+        remark = words[:1] and words[0] in lx.REMARK_CHOOSERS and words[-1] in lx.REMARK_ENDS
+        head = disc.vocab.nouns.match(words, 1) if remark else None
         if head is not None and head.categories and not head.categories & goals:
             rf.refuse(rf.choice_of_no_goal(said, words[1]))
 
