@@ -2061,6 +2061,8 @@ _LEARNERS_SAID: dict[tuple[str, ...], tuple[str, ...]] = {  # learners' word ord
        for one in ((), ("one",)) for verb in (("is", "not"), ("does", "not"))},
     **{("for", verb): ("to", verb)  # learners' purpose "go to the kitchen for check the oven"
        for verb in ("see", "check", "look", "wash", "watch", "clean", "touch", "wipe")},  # not "for water"
+    **{("all", digit): ("all", word)  # a note's "lobby vases, all 4"
+       for digit, word in (("2", "two"), ("3", "three"), ("4", "four"), ("5", "five"), ("6", "six"))},
     ("when", "ever"): ("whenever",),  # "When ever you go in the kitchen"
     ("up", "floor"): ("upper", "floor"), ("down", "floor"): ("lower", "floor"),  # "of the up floor"
     ("in", "any", "moment"): ("at", "any", "time"), ("at", "any", "moment"): ("at", "any", "time"),

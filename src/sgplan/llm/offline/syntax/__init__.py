@@ -24,6 +24,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import NounLexicon
 from sgplan.llm.offline.spelling import Spelling
 from sgplan.llm.offline.syntax.any_time import any_time_goal
+from sgplan.llm.offline.syntax.brackets import bracketed_rooms
 from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement, timed_heading
 from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
 from sgplan.llm.offline.syntax.floor_only import floor_only
@@ -58,6 +59,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
                for p in parts]
     readers = [floor_only(r) for r in readers]  # "this flr only": "stay on this flr"
     readers = [fronted_prohibition(r) for r in readers]  # "Kitchen never go.": "never enter kitchen"
+    readers = [bracketed_rooms(r) for r in readers]  # "bowl (LR)": "bowl in LR"
     readers = [said for r in readers for said in any_time_goal(r)]  # "whenever X, Y, and at some point Z"
     readers = [said for r in readers for said in timed_heading(r)]  # "A couple of things before dinner:"
     for r in joined_appositions(read_lists(_greeting_before_heading(readers))):

@@ -1,0 +1,45 @@
+"""A room in brackets right after an object, as operators' notes place it: *apple (kit) or bowl (LR)*,
+*teddy (LR) -> teddy (bdrm)*.
+
+The brackets are read as *in*: *bowl (LR)* is *bowl in LR*, the bowl of the living room. Only a bracket
+holding one phrase that names a room, right after a word naming an object; other brackets (*(any)*, *(either
+one)*, *(fl1)*) are left as they are.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from sgplan.llm.offline.syntax.noun_slot import noun_phrase
+from sgplan.llm.offline.syntax.reader import Match, Reader
+from sgplan.llm.offline.text import Tok
+
+
+def bracketed_rooms(r: Reader) -> Reader:
+    """``r`` with each room in brackets after an object read as *in* that room (see the module docstring)."""
+    toks = list(r.toks)
+    for k in range(len(r) - 1, 0, -1):
+        if not bracket(r, k, "(") or not object_before(r, k):
+            continue
+        room = noun_phrase(r, k + 1, "qualifier") if r.np_starts(k + 1) else None
+        head = r.head(k + 1) or r.head(k + 2)
+        if isinstance(room, Match) and bracket(r, room.end, ")") and head is not None and head.kind == "room":
+            said = r.toks[k]
+            toks[k:room.end + 1] = [Tok("in", said.start, said.end), *r.toks[k + 1:room.end]]
+    return replace(r, toks=tuple(toks)) if toks != list(r.toks) else r
+
+
+def bracket(r: Reader, k: int, said: str) -> bool:
+    """Whether the bracket ``said`` was typed at the token ``k`` (the text reads brackets as commas, one comma
+    for a bracket and a comma after it) or, for a closing one, right before it."""
+    if not 0 <= k <= len(r) or (k == len(r) and said == "("):
+        return False
+    start = r.toks[k - 1].end if said == ")" and k > 0 else r.toks[k].start
+    end = r.toks[k].start + 1 if k < len(r) else len(r.text)
+    return said in r.text[start:end]
+
+
+def object_before(r: Reader, k: int) -> bool:
+    """Whether a word naming an object ends right before the token ``k``."""
+    return any((h := r.head(j)) is not None and h.kind == "object" and j + h.words == k
+               for j in range(max(0, k - 3), k))
