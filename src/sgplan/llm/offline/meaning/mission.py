@@ -87,6 +87,24 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
     return formula
 
 
+def said_one_by_one(group: Clause, order: Clause) -> bool:
+    """Whether the sentence ``order`` (opening with *Start with*, *First*) names one by one every member of
+    the one group the sentence before it asked for, each of them (*Could you water the plants? Start with
+    the one in the bathroom, then the one in the bedroom, and lastly the one in the other bathroom.*): the
+    order of that group, not more visits after it."""
+    steps = group.filled()
+    if len(steps) != 1 or len(steps[0]) != 1 or steps[0][0].mode != "all" or len(steps[0][0].members) < 2:
+        return False
+    named = {primary(m) for step in order.filled() for task in step for m in task.members}
+    return {primary(m) for m in steps[0][0].members} <= named
+
+
+def primary(member: Formula) -> str:
+    """The proposition a goal member is about (its object, not the room that locates it)."""
+    names = list(atoms(member))
+    return next((n for n in names if n.startswith("reach(")), names[0])
+
+
 def check_choice_remarks(disc: Discourse) -> None:
     """Refuse a remark set aside that leaves a choice of a kind no goal names, nor the room of one (*have a
     seat at the dining room table, any chair's fine*: the chairs were meant, the table was read; *Either
@@ -143,7 +161,10 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: 
     elif precedes:
         if previous is None or not isinstance(result, Clause):
             rf.refuse(rf.precedes_needs_goals())
-        previous.steps[0:0] = moved(result.steps)
+        if said_one_by_one(previous, result):  # "Water the plants? Start with the one in A, then ..."
+            previous.steps[:] = moved(result.steps)
+        else:
+            previous.steps[0:0] = moved(result.steps)
         previous.constraints.extend(result.constraints)
     elif continues and previous is not None and isinstance(result, Clause):
         previous.steps.extend(result.steps)
