@@ -1949,7 +1949,9 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("pls",): ("please",),
     ("plz",): ("please",),
     ("gf",): ("ground", "floor"),
-    ("gnd", ":"): ("ground", "floor", ":"), ("gnd",): ("ground",),  # "gnd flr bath", "gnd: empty rm -> ..."
+    # "gnd flr bath", "gnd: empty rm -> ...", "gnd bath toilet": the ground floor
+    ("gnd", "flr"): ("ground", "floor"), ("gnd", "floor"): ("ground", "floor"), ("gnd",): ("ground", "floor"),
+    ("dn",): ("down",),  # "=> dn to DR chair"
     ("upstrs",): ("upstairs",),
     ("dwnstrs",): ("downstairs",),
     ("downstrs",): ("downstairs",),
@@ -2053,6 +2055,8 @@ _LEARNERS_SAID: dict[tuple[str, ...], tuple[str, ...]] = {  # learners' word ord
     # notes: "order whatever", "order dc" ((I) don't care)
     ("order", "whatever"): ("any", "order"), ("whatever", "order"): ("any", "order"),
     ("order", "dc"): ("any", "order"), ("order", "idc"): ("any", "order"),
+    ("no", "order"): ("any", "order"),
+    ("either", "one", ",", "does", "not", "matter"): ("either", "one"),  # "either one, doesn't matter"
     ("once", "you", "have", ","): ("after", "that", ","),
     ("when", "you", "have", ","): ("after", "that", ","),
     ("either", "one", "of", "them"): ("either", "one"),  # "the toilet in that bathroom, either one of them"

@@ -30,7 +30,7 @@ _LEADS = frozenset({"then", "and", "first", "please", "also"})
 _AFTER_PLACE = frozenset({"first", "too", "also", "again"})
 _AUXILIARIES = frozenset({"will", "must", "should", "can"})
 _PARTICLES = frozenset({"to", "on", "at", "in", "into"})
-_BOUNDARIES = frozenset({",", ";", "then", "and", ".", "!", "\u2192", "->"})
+_BOUNDARIES = frozenset({",", ";", ":", "then", "and", ".", "!", "\u2192", "->"})
 _RULE_WORDS = frozenset({"every", "each", "no", "any"})
 """Opening the place, they make it a rule or a choice (*every kit visit => DR after*), not a goal."""
 
@@ -38,7 +38,8 @@ _RULE_WORDS = frozenset({"every", "each", "no", "any"})
 def object_first(r: Reader) -> Reader:
     """``r`` with each clause said place-first and verb-last turned verb-first (see the module docstring)."""
     toks = list(r.toks)
-    if any(r.word(k) == "," and r.word(k + 1) not in ("then", "and") for k in range(len(r))):
+    scope = r.words.index(",") if r.word(0) == "in" and "," in r.words else -1  # "In the kitchen, ..."
+    if any(r.word(k) == "," and k != scope and r.word(k + 1) not in ("then", "and") for k in range(len(r))):
         return r  # "DR tbl wipe, kit, DR tbl wipe again": a list of steps in no said order (refused)
     start = 0
     while start < len(r):
