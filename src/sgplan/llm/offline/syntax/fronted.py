@@ -13,9 +13,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from sgplan.llm.offline import lexicon as lx
-from sgplan.llm.offline.syntax.noun_slot import noun_phrase
-from sgplan.llm.offline.syntax.reader import Match, Reader
+from sgplan.llm.offline.syntax.noun_slot import place_phrase
+from sgplan.llm.offline.syntax.reader import Reader
 from sgplan.llm.offline.text import Tok
 
 _INTO = frozenset({"in", "into", "to"})
@@ -29,8 +28,8 @@ def fronted_prohibition(r: Reader) -> Reader:
     """``r`` read as *never enter <place>* when it is a prohibition with the place first (see the module
     docstring), else ``r``."""
     start = 1 if r.word(0) in _INTO else 0
-    place = noun_phrase(r, start, "avoid") if r.np_starts(start) else None
-    if not isinstance(place, Match) or r.word(start) in lx.PRONOUNS:
+    place = place_phrase(r, start, "avoid")
+    if place is None:
         return r
     k = place.end
     for who in _WHO:

@@ -19,8 +19,8 @@ from __future__ import annotations
 from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
-from sgplan.llm.offline.syntax.noun_slot import noun_phrase
-from sgplan.llm.offline.syntax.reader import Match, Reader
+from sgplan.llm.offline.syntax.noun_slot import names_scene, place_phrase
+from sgplan.llm.offline.syntax.reader import Reader
 from sgplan.llm.offline.text import Tok
 
 _NEED = frozenset({"need", "needs"})
@@ -36,10 +36,8 @@ def need_as_order(r: Reader, later: list[Reader]) -> Reader:
     if r.aside or any(w in _POINTERS for o in later if not o.aside for w in o.words):
         return r
     start = r.skip(0, lx.INTERJECTIONS)
-    place = noun_phrase(r, start, "goal") if r.np_starts(start) else None
-    if (not isinstance(place, Match) or r.word(start) in lx.PRONOUNS
-            or not any(r.head(j) is not None for j in range(start, place.end))
-            or r.word(place.end) not in _NEED):
+    place = place_phrase(r, start, "goal")
+    if place is None or not names_scene(r, start, place.end) or r.word(place.end) not in _NEED:
         return r
     end = chore_end(r, place.end + 1)
     kinds = {c for j in range(start, place.end) if (h := r.head(j)) is not None for c in h.categories}

@@ -30,6 +30,18 @@ def noun_phrase(r: Reader, i: int, role: Role, given: Head | None = None) -> Par
     return NOUN_PHRASES.first(r, i, role, given)
 
 
+def place_phrase(r: Reader, i: int, role: Role) -> Match[NounPhrase] | None:
+    """The noun phrase at ``i`` when one starts there and it is no pronoun (*the kitchen*, *office chair*):
+    a place said first, before its verb (:mod:`.fronted`, :mod:`.object_first`, :mod:`.needs`)."""
+    said = noun_phrase(r, i, role) if r.np_starts(i) and r.word(i) not in lx.PRONOUNS else None
+    return said if isinstance(said, Match) else None
+
+
+def names_scene(r: Reader, start: int, end: int) -> bool:
+    """Whether a head noun of the scene (a room or object) starts within the words ``[start, end)``."""
+    return any(r.head(j) is not None for j in range(start, end))
+
+
 def count_word(r: Reader, i: int) -> int | None:
     """The number said at ``i`` (*two*, *3*; not *one of*), or ``None``."""
     w = r.word(i)

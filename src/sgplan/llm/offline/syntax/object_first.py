@@ -17,9 +17,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from sgplan.llm.offline import lexicon as lx
-from sgplan.llm.offline.syntax.noun_slot import noun_phrase
-from sgplan.llm.offline.syntax.reader import Match, Reader
+from sgplan.llm.offline.syntax.noun_slot import names_scene, place_phrase
+from sgplan.llm.offline.syntax.reader import Reader
 from sgplan.llm.offline.text import Tok
 
 _VERBS = {"check": (), "visit": (), "water": (), "wipe": (), "dust": (), "touch": (), "see": (),
@@ -68,9 +67,8 @@ def turned_clause(r: Reader, start: int, end: int) -> list[Tok] | None:
     while e > start and r.word(e - 1) in _AFTER_PLACE:
         e -= 1
         after.insert(0, e)
-    place = noun_phrase(replace(r, toks=r.toks[:e]), start, "goal") if r.np_starts(start) else None
-    if (not isinstance(place, Match) or place.end != e or r.word(start) in lx.PRONOUNS
-            or r.word(start) in _RULE_WORDS or not any(r.head(j) is not None for j in range(start, e))):
+    place = place_phrase(replace(r, toks=r.toks[:e]), start, "goal")
+    if place is None or place.end != e or r.word(start) in _RULE_WORDS or not names_scene(r, start, e):
         return None
     said = r.toks[verb]
     head = [said, r.toks[particle]] if particle is not None else \
