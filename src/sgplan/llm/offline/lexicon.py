@@ -729,7 +729,8 @@ POLITE = Phrases((
     ("could", "you", "please"),
     ("be", "a", "dear", "and"), ("be", "a", "star", "and"), ("do", "us", "a", "favour", "and"),
     ("do", "us", "a", "favor", "and"),
-    *((word,) for word in ("task", "goal", "mission", "objective", "errand", "todo", "instructions"))))
+    *((word,) for word in ("task", "goal", "mission", "objective", "errand", "todo", "instructions", "target",
+                           "tgt"))))
 """Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
 POLITE = POLITE + Phrases((("whatever", "you", "do"), ("whatever", "happens"), ("above", "all"),
                            ("most", "importantly"), ("more", "importantly"),
@@ -1278,13 +1279,14 @@ UNTIL_DONE_VERBS = ("visited", "checked", "cleaned")
 IRREGULAR_PARTICIPLES = word_set("made set put shut swept fed taken brought seen")
 """Past participles of chores not in *-ed* (*until the bed is made*, *once the table is set, ...*)."""
 OFF_LIMITS = Phrases(
-    tuple((*be, *said) for be in ((), ("is",), ("are",), ("is", "strictly"), ("are", "strictly"))
+    tuple((*be, *said) for be in ((), ("is",), ("are",), ("is", "strictly"), ("are", "strictly"), ("=",))
           for said in (("off", "limits"), ("out", "of", "bounds"), ("forbidden",), ("prohibited",),
                        ("banned",), ("not", "allowed"), ("a", "no", "go"), ("no", "go"),
                        ("not", "to", "be", "entered"), ("to", "be", "avoided"),
                        ("not", "to", "be", "touched"),
                        ("out", "of", "limits")))
-    + tuple((modal, "be", "avoided") for modal in ("should", "must", "has", "have", "will")))
+    + tuple((modal, "be", "avoided") for modal in ("should", "must", "has", "have", "will"))
+    + (("=", "no"),))  # notes: "office = off limits", "other bathrm = NO"
 """``The kitchen is off limits``: never enter / reach what the sentence names (``G !x``)."""
 BARE_PROHIBITIONS = frozenset({("never",), ("keep", "out"), ("stay", "out"), ("avoid",), ("off", "limits"),
                                ("no", "entry"), ("no", "go"), ("out", "of", "bounds"), ("forbidden",),
@@ -1515,6 +1517,8 @@ STATED_VERBS = STATED_VERBS | word_set("forgot forgets forgotten bought buys bro
                                       "spills follows followed borrowed borrows")
 """More verbs of statements about people and pets, past and present (*My son forgot his homework.*, *our cat
 follows everyone around*)."""
+STATED_ADVERBS = word_set("just already finally recently")
+"""Between a bare subject and its verb (*Groceries just got delivered*, *Mum finally called*)."""
 WANTED_WHERE = word_set("here there back down up upstairs downstairs")
 """Where a thing is wanted (*she wants it back*, *he needs it upstairs*): a need that may ask for a goal."""
 HOW_MANY = word_set("a few couple several some lots loads plenty of them one more")
@@ -1959,7 +1963,9 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("upstair",): ("upstairs",),  # learners' singular
     ("downstair",): ("downstairs",),
     ("to", "1st"): ("to", "the", "first"), ("to", "2nd"): ("to", "the", "second"),  # "-> back to 1st"
-    ("1st", ","): ("first", ","), ("1st", "then"): ("first", "then"),  # "empty rm 1st, only then kit"
+    # "empty rm 1st, only then kit", "1st LR couch", "2nd flr": ordinals in digits read as in words
+    ("1st",): ("first",), ("2nd",): ("second",), ("3rd",): ("third",), ("4th",): ("fourth",),
+    ("5th",): ("fifth",),
     ("whilst",): ("while",),  # British: "... whilst you're about it"
     ("thanks", "a", "mil"): ("thanks", "a", "million"),
     # "the TV in the office, then any in the living room": any one of the kind named last

@@ -452,6 +452,11 @@ def order_word_in_list(item: str, word: str, place: str) -> str:
                     "meant ('1. ..., 2. ...')")
 
 
+def choice_narrowed_aside(remark: str) -> str:
+    return rephrase(f"'{remark}' says where the choice is made, in a remark not read; say it with the goal "
+                    "('a vase in the dining room or the living room')")
+
+
 def choice_of_no_goal(remark: str, kind: str) -> str:
     return rephrase(f"'{remark}' leaves a choice of {kind}, but no {kind} is a goal of the mission; name the "
                     "one meant as the goal")
@@ -894,6 +899,10 @@ def counted_floor(said: str) -> str:
 def there_goal_or_kept_out(goal: str, kept_out: str) -> str:
     return rephrase(f"'there' could be '{goal}', the last place to go, or '{kept_out}', a place to keep out "
                     "of named after it; name the place")
+
+
+def there_done_before(goal: str) -> str:
+    return rephrase(f"'there' could be '{goal}', named last, or the place to go after it; name the place")
 
 
 def there_goal_or_mention(goal: str, mention: str) -> str:

@@ -75,6 +75,9 @@ class Discourse:
     mentions: list[Grounded] = field(default_factory=list)
     """The rooms and objects named in words set aside (*Grandpa's napping in the bedroom*): *there* may point
     back to them."""
+    done_before: list[Grounded] = field(default_factory=list)
+    """Goals said after the goal they come before (*go to Y only after X*: X), which *there* does not point
+    back to as the last place (refused: X, named last, or Y, gone to last?)."""
 
     def record(self, phrase: Grounded) -> Grounded:
         """Remember ``phrase`` (a back-reference may point to it) and return it."""
@@ -90,7 +93,7 @@ class Discourse:
         """A copy to try a reading on, which the original does not see."""
         return Discourse(self.vocab, self.text, self.start_floor, copy.copy(self.references), self.confined,
                          self.last_step, self.last_steps, self.announced, list(self.set_aside),
-                         list(self.mentions))
+                         list(self.mentions), list(self.done_before))
 
     def said(self, start: int, end: int) -> str:
         """The mission text between two character offsets."""

@@ -160,6 +160,8 @@ def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
     if not goals:
         rf.refuse(rf.there_refers_to_nothing())
     ref = max(goals, key=lambda g: g.start)
+    if ref in disc.done_before:  # "go to the dining room only after the oven. Once there, ...": which?
+        rf.refuse(rf.there_done_before(ref.phrase))
     kept_out = [g for g in disc.references if g.role == "avoid" and ref.start < g.start < np.span.start]
     if where.role == "avoid" and kept_out:  # "look at the vase. Skip the kitchen, don't go in there": which?
         rf.refuse(rf.there_goal_or_kept_out(ref.phrase, kept_out[-1].phrase))
@@ -182,13 +184,14 @@ def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
 
 @grounds(GroupRepeat)
 def group_repeat(np: GroupRepeat, where: Where, disc: Discourse) -> Grounded:
-    """*all of them* / *both of them* / *all three of them*: the group named before (its size checked)."""
+    """*all of them* / *both of them* / *all three of them*: the group named before (its size checked);
+    *one of them*: any one of it."""
     ref = antecedent("them", disc)
     said = disc.said(np.span.start, np.span.end)
     if np.count is not None and len(ref.entities) != np.count:
         rf.refuse(rf.group_size(said, ref.phrase, len(ref.entities), np.count))
-    return disc.record(Grounded(said, np.span.start, np.span.end, list(ref.entities), "all", ref.room_scoped,
-                                "goal"))
+    return disc.record(Grounded(said, np.span.start, np.span.end, list(ref.entities),
+                                "any" if np.choice else "all", ref.room_scoped, "goal"))
 
 
 @grounds(SameRoom)

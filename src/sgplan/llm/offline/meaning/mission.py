@@ -108,7 +108,8 @@ def primary(member: Formula) -> str:
 def check_choice_remarks(disc: Discourse) -> None:
     """Refuse a remark set aside that leaves a choice of a kind no goal names, nor the room of one (*have a
     seat at the dining room table, any chair's fine*: the chairs were meant, the table was read; *Either
-    bathroom's fine, just check a toilet* is the toilets' rooms)."""
+    bathroom's fine, just check a toilet* is the toilets' rooms), or that names other places, which narrow
+    the choice (*a vase - any vase in the dining room or the living room will do*)."""
     entities = [e for g in disc.references if g.role == "goal" for e in g.entities]
     goals = {e.category for e in entities} | {disc.vocab.by_key[e.room_key].category for e in entities
                                               if e.kind == "object" and e.room_key in disc.vocab.by_key}
@@ -118,6 +119,9 @@ def check_choice_remarks(disc: Discourse) -> None:
         head = disc.vocab.nouns.match(words, 1) if remark else None
         if head is not None and head.categories and not head.categories & goals:
             rf.refuse(rf.choice_of_no_goal(said, words[1]))
+        places = range(1 + head.words, len(words)) if head is not None else range(0)
+        if any(disc.vocab.nouns.match(words, k) for k in places):
+            rf.refuse(rf.choice_narrowed_aside(said))  # "a vase - any vase in the dining room will do"
 
 
 def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: list[Clause]) -> None:
@@ -129,7 +133,7 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: 
     continues = sentence.lead.sequence or sentence.after_item
     if continues and len(run) > 1:
         after_list_items(run, parts, disc.said(sentence.span.start, sentence.span.end))
-    previous = parts[-1] if parts and isinstance(parts[-1], Clause) else None
+    previous = previous_clause(parts)
     ctx = SentenceContext(disc, sentence.span.start, strict_pending=sentence.lead.strict,
                           waypoint_pending=sentence.lead.waypoint,
                           listed=(sentence.announced is not None and not sentence.marked)
@@ -179,6 +183,20 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: 
         disc.last_step, disc.last_steps = result.filled()[-1], len(result.filled())
     in_no_order = sentence.marked and not sentence.after_item and bool(parts) and parts[-1] is result
     run[:] = [*run, result] if in_no_order and isinstance(result, Clause) else []
+
+
+def previous_clause(parts: list[Meaning]) -> Clause | None:
+    """The sentence before, which a sentence of *then*, *last* or *before that* goes on from: the last one
+    when it is a clause, or across sentences of prohibitions only (no goal: *A. Avoid X. Then B.*, B after A)
+    the last one with goals; ``None`` after a rule (refused there: the order would be lost)."""
+    if not parts or not isinstance(parts[-1], Clause):
+        return None
+    for part in reversed(parts):
+        if not isinstance(part, Clause):
+            break
+        if part.filled():
+            return part
+    return parts[-1]
 
 
 def in_visit_of_its_room(result: Meaning, parts: list[Meaning], ctx: SentenceContext) -> bool:

@@ -139,8 +139,11 @@ def postfix(body: Clause, post: Postfix, ctx: SentenceContext) -> Meaning:
     """The body with its closing condition (see the module docstring)."""
     if post is None:
         return body
-    if isinstance(post, OnlyAfterPost):
-        return only_after(Clause(steps=steps_of(post.before, ctx).steps), body, ctx)
+    if isinstance(post, OnlyAfterPost):  # "go to Y only after X": X said last, done first
+        known = len(ctx.disc.references)
+        before = Clause(steps=steps_of(post.before, ctx).steps)
+        ctx.disc.done_before += [g for g in ctx.disc.references[known:] if g.role == "goal"]
+        return Clause(steps=body.steps, constraints=[only_after(before, body, ctx)])  # Y: what "then" follows
     if isinstance(post, OnlyIfPost):
         condition, _ = condition_of(post.condition, ctx)
         return Implies(require(body, "before 'only if'"), condition)

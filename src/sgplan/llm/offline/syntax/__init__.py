@@ -39,6 +39,7 @@ from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.remark_sentences import join_remarks
 from sgplan.llm.offline.syntax.sentences import mission_sentence
 from sgplan.llm.offline.syntax.tree import Attachment, Sentence, SetAside, nodes
+from sgplan.llm.offline.syntax.visit_rule import each_visit_rule
 from sgplan.llm.offline.text import rewrite, sentences, tokenize
 
 __all__ = ["Match", "Reader", "Refusal", "parse_sentence", "split_mission"]
@@ -60,6 +61,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     readers = [floor_only(r) for r in readers]  # "this flr only": "stay on this flr"
     readers = [fronted_prohibition(r) for r in readers]  # "Kitchen never go.": "never enter kitchen"
     readers = [bracketed_rooms(r) for r in readers]  # "bowl (LR)": "bowl in LR"
+    readers = [each_visit_rule(r) for r in readers]  # "each kit visit -> DR after": "whenever you visit kit"
     readers = [said for r in readers for said in any_time_goal(r)]  # "whenever X, Y, and at some point Z"
     readers = [said for r in readers for said in timed_heading(r)]  # "A couple of things before dinner:"
     for r in joined_appositions(read_lists(_greeting_before_heading(readers))):

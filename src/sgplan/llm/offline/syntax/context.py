@@ -36,7 +36,7 @@ from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.preamble import stated_start
 from sgplan.llm.offline.syntax.reader import Match, Reader
-from sgplan.llm.offline.syntax.stated_place import bind_statement_pronoun
+from sgplan.llm.offline.syntax.stated_place import BOUND_PRONOUNS, bind_statement_pronoun
 from sgplan.llm.offline.syntax.tree import Described, NounPhrase
 from sgplan.llm.offline.text import is_clock_time
 
@@ -161,13 +161,35 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         rf.refuse(rf.reason_before_pronoun(r.quote(*naming[0]), r.word(pronoun)))
     subject = skip_joiner(r, r.skip(clauses[first - 1][0], lx.INTERJECTIONS)) if first else 0
     order = bind_statement_pronoun(r, subject, [clauses[first][0], *words], named) if first else None
-    if order is None and said_before and named and any(w in lx.PRONOUNS for w in r.words[clauses[first][0]:]):
-        return [r]  # "the lobby floor is wet, so avoid it": 'it' would be the goal named last: refused
+    floored = first and any(r.word(k) in lx.RELATIVE_FLOORS or r.word(k) in lx.FLOOR_WORDS
+                            for k in range(clauses[0][0], clauses[first - 1][1]))
+    if floored and order is None and not named:
+        order = bind_floor_there(r, range(clauses[0][0], clauses[first - 1][1]), words)
+    pronouns = lx.PRONOUNS if named else BOUND_PRONOUNS if floored else ()
+    if order is None and said_before and any(w in pronouns for w in r.words[clauses[first][0]:]):
+        # "the lobby floor is wet, so avoid it", "the kids are upstairs, so don't go down there": 'it' /
+        # 'there' would be the goal named last: refused
+        return [r]
     kept = [aside(r, clauses[0][0], clauses[first - 1][1])] if first else []
     kept += [order or replace(r, toks=tuple(r.toks[k] for k in words))] + [aside(r, a, b) for a, b in middle]
     if last < len(clauses):
         kept.append(aside(r, clauses[last][0], len(r)))
     return kept
+
+
+def bind_floor_there(r: Reader, statement: range, order: list[int]) -> Reader | None:
+    """The order (the token indexes ``order`` of ``r``) with its *up there* / *down there* replaced by the one
+    floor word the statement before it names (*the kids are upstairs, so don't go up there*: upstairs), when
+    they agree (*up*: *upstairs*) and the order names nothing else; ``None`` otherwise (refused)."""
+    floors = [k for k in statement if r.word(k) in lx.RELATIVE_FLOORS or r.word(k) in lx.FLOOR_WORDS]
+    there = [k for k in order if r.word(k) in BOUND_PRONOUNS or r.word(k) in lx.PRONOUNS]
+    if len(floors) != 1 or len(there) != 1 or r.word(there[0]) != "there" or any(
+            r.head(k) is not None for k in order):
+        return None
+    floor, k = floors[0], there[0]
+    if lx.RELATIVE_FLOORS.get(r.word(floor)) != {"up": 1, "down": -1}.get(r.word(k - 1)):
+        return None
+    return replace(r, toks=tuple(r.toks[floor] if j == k - 1 else r.toks[j] for j in order if j != k))
 
 
 def caution(r: Reader, start: int, end: int) -> bool:
@@ -822,12 +844,13 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         said = noun_phrase(r, start, "qualifier")
         state = said.end if isinstance(said, Match) else end
         return state if r.word(state) in lx.STATES and r.skip(state + 1, lx.NOW_WORDS) == end else None
-    verb = r.word(start + 1)
+    verb_at = start + 1 + (r.word(start + 1) in lx.STATED_ADVERBS)  # "Groceries just got delivered"
+    verb = r.word(verb_at)
     if (w.isalpha() and r.head(start) is None
             and (plain_subject(r, start) or w in lx.RELATIVE_FLOORS or w in lx.EVENT_WORDS
                  or w in lx.PEOPLE_NOUNS)
             and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
-        return start + 1  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
+        return verb_at  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
     return None
 
 
@@ -844,11 +867,13 @@ def state_verb_last(r: Reader, k: int, end: int) -> bool:
 
 def person_did(r: Reader, start: int, end: int) -> bool:
     """Whether the clause ``[start, end)`` is a person (*my mum*, *the neighbours*) and a verb the translator
-    does not know (*gave*, *bought*, *fixed*), whatever it is, naming no room, object or floor (*my mum gave
-    it to me*): a statement about people; with a place (*my mum expects it upstairs*) it is left to the
+    does not know (*gave*, *bought*, *fixed*), whatever it is, or anything else (*the cat*) and such a verb in
+    the past (*knocked*), naming no room, object or floor (*my mum gave it to me*, *the cat knocked something
+    over*): a statement about people or things; with a place (*my mum expects it upstairs*) it is left to the
     parser, which refuses it."""
-    person = r.word(start) in lx.POSSESSIVES or r.word(start + 1) in lx.PEOPLE_NOUNS
     verb = r.word(start + 2)
+    person = (r.word(start) in lx.POSSESSIVES or r.word(start + 1) in lx.PEOPLE_NOUNS
+              or (verb.endswith("ed") and plain_subject(r, start + 1)))
     return (person and verb.isalpha() and verb not in lx.LEXICON_WORDS
             and not misspelt_name(r, start + 1, start + 3)
             and not any(names_place(r, k) for k in range(start, end)))

@@ -17,6 +17,13 @@ the dash (*the plant in the- the plant in the office*), is a restart: the broken
 back, and the sentence is read from the restart. So is a clause broken off inside a word that the words after
 it say whole (*grab the mic- er, check the microwave*), whatever they start with.
 
+A correction followed by a whole order said again (*robot go to the lobby actually scratch that go to the
+dining room*, *go check the fridge and then wait no first check the TV and then the fridge*, *alexa I mean
+robot go to the garage*) takes back what came before it in the sentence: the sentence is read from the new
+order, the words before set aside and said back. Only when the words taken back name at most one room or
+object (with several, which of them is taken back is not known) and, when the new order says an order
+(*first*, *last*, *before*), it names that one again (else it may only move it: refused).
+
 A sentence that is only *the one(s) ...* right after one that ends with a noun phrase says which one that
 is (*water the plant. the one in the living room.*): it is read as an apposition of that phrase (*the plant,
 the one in the living room*).
@@ -59,7 +66,7 @@ def corrected(r: Reader) -> list[Reader]:
     for k in range(1, len(r)):
         said = r.phrase(k, lx.CORRECTIONS)
         if said is not None:
-            fixed = replaced(r, k, k + len(said))
+            fixed = replaced(r, k, k + len(said)) or order_said_again(r, k, k + len(said))
             if fixed is not None and other_than_taken_back(*fixed):
                 return [fixed[1], *corrected(fixed[0])]  # "the bedroom with the plant, no wait, the other"
             return [r] if fixed is None else [*corrected(fixed[0]), fixed[1]]
@@ -191,6 +198,37 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
         return None  # "the toilet in the top-floor bathroom, no wait, the bathroom downstairs": which part?
     kept = replace(r, toks=r.toks[:start] + named + r.toks[rest:])
     return kept, replace(r, toks=r.toks[start:start_new], aside=True)
+
+
+def order_said_again(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
+    """The sentence read from the whole order said again after the correction words ``[k, after)`` (see the
+    module docstring), and the words taken back set aside; ``None`` when the shape is not that."""
+    start = r.skip(r.skip(after, _AROUND), _OPENING)
+    if r.word(start) not in lx.POSITIVE_VERBS and r.word(start) not in lx.FIRST and r.word(start) != "please":
+        return None
+    opening = r.skip(0, _OPENING)
+    if opening >= k:
+        return None  # "Actually no, go to the bed": takes back the sentence before (refused there)
+    taken_back = named_heads(r, opening, k)
+    if len(taken_back) > 1:
+        return None  # "the kitchen then the office scratch that go to ...": which is taken back?
+    said_again = {h.categories for h in named_heads(r, start, len(r))}
+    if any(w in lx.FIRST or w in lx.LAST or w == "before" for w in r.words[start:]) and not (
+            taken_back and taken_back[0].categories in said_again):
+        return None  # "go to the kitchen wait no go to the office first": only moved, or taken back?
+    return replace(r, toks=r.toks[start:]), replace(r, toks=r.toks[:start], aside=True)
+
+
+def named_heads(r: Reader, start: int, end: int) -> list[Head]:
+    """The head nouns of the scene named in the words ``[start, end)``, in order."""
+    heads: list[Head] = []
+    j = start
+    while j < end:
+        head = r.head(j)
+        if head is not None:
+            heads.append(head)
+        j += head.words if head is not None else 1
+    return heads
 
 
 def denied(r: Reader, old: NounPhrase, i: int) -> int:

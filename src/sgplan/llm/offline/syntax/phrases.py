@@ -60,7 +60,9 @@ def there_place(r: Reader, i: int, role: Role, given: Head | None) -> Parse[Noun
 @NOUN_PHRASES.rule("all of them")
 def group_repeat(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
     """*all of them*, *both of them*, *all three of them*, *all three*, *the two of them* (a goal): the group
-    named before."""
+    named before; *one / any / either of them*: one of it."""
+    if role == "goal" and r.word(i) in lx.CHOOSING_OF and r.at(i + 1, "of", "them"):
+        return Match(GroupRepeat(r.span(i, i + 3), None, choice=True), i + 3)
     n = 1 if r.word(i) in ("all", "both", "each", "every") else 0
     n = 1 if r.word(i) == "the" and count_word(r, i + 1) and r.at(i + 2, "of", "them") else n
     said = lx.NUMBER_WORDS.get(r.word(i + n)) if n else None

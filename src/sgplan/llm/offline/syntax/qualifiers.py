@@ -348,7 +348,9 @@ def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     if r.at(i, "out", "of") and noun.kind == "object" and r.word(noun.first - 1) in lx.TAKING_OUT_VERBS:
         i += 1  # "grab the bottle out of the bathroom": where it is taken from
     back = noun.role == "qualifier" and r.word(i + 1) in ("it", "there")
-    if (r.word(i) not in lx.QUAL_IN or not r.np_starts(i + 1) or r.phrase(i, lx.ORDER_MODIFIERS)
+    if r.word(i) == "on" and noun.kind == "object" and room_on(r, i + 1):
+        pass  # "touch the vase on dining room", "the TV on the living room": in it, as learners say it
+    elif (r.word(i) not in lx.QUAL_IN or not r.np_starts(i + 1) or r.phrase(i, lx.ORDER_MODIFIERS)
             or r.phrase(i, lx.TIME_FILLERS) or back):
         return None
     rooms: list[NounPhrase] = []
@@ -372,6 +374,15 @@ def in_room(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     # "in either A or B", and "the toilet in either bathroom": one room of a choice
     choice = (len(rooms) > 1 or either) and noun.noun.determiner.mode != "all"
     return Match(InRoom(tuple(rooms), r.span(noun.first, j), choice), j)
+
+
+def room_on(r: Reader, i: int) -> bool:
+    """Whether a phrase naming rooms only, and no floor, starts at ``i`` after *on* (*on dining room*; not *on
+    the table*, *on the top floor*, *on the way*)."""
+    if not r.np_starts(i) or any(r.word(k) in lx.FLOOR_WORDS for k in range(i, min(len(r), i + 4))):
+        return False
+    said = noun_phrase(r, i, "qualifier")
+    return isinstance(said, Match) and names_rooms(said.node) and not names_objects(said.node)
 
 
 def more_rooms(r: Reader, j: int, noun: NounSoFar) -> int:

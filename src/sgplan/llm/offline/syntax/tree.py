@@ -120,10 +120,12 @@ class ThereNP:
 
 @dataclass(frozen=True)
 class GroupRepeat:
-    """*all of them*, *both of them*, *all three of them*: the group named before (``count`` if said)."""
+    """*all of them*, *both of them*, *all three of them*: the group named before (``count`` if said);
+    ``choice``: *one / any / either of them*, one of that group."""
 
     span: Span
     count: int | None
+    choice: bool = False
 
 
 @dataclass(frozen=True)
