@@ -901,6 +901,11 @@ def there_goal_or_kept_out(goal: str, kept_out: str) -> str:
                     "of named after it; name the place")
 
 
+def one_of_goals(said: str, group: str) -> str:
+    return rephrase(f"'{said}' after '{group}': only one of them, or all of them and then one again? Say "
+                    "'one of ...' with the place instead")
+
+
 def there_done_before(goal: str) -> str:
     return rephrase(f"'there' could be '{goal}', named last, or the place to go after it; name the place")
 

@@ -185,9 +185,12 @@ def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
 @grounds(GroupRepeat)
 def group_repeat(np: GroupRepeat, where: Where, disc: Discourse) -> Grounded:
     """*all of them* / *both of them* / *all three of them*: the group named before (its size checked);
-    *one of them*: any one of it."""
+    *one of them*: any one of a group named in words set aside (*The TVs keep flickering. Check one of
+    them.*); after a group of goals it is refused (one only, or all of them and one again?)."""
     ref = antecedent("them", disc)
     said = disc.said(np.span.start, np.span.end)
+    if np.choice and ref not in disc.mentions:  # "the TVs in the office - just look at one of them"
+        rf.refuse(rf.one_of_goals(said, ref.phrase))
     if np.count is not None and len(ref.entities) != np.count:
         rf.refuse(rf.group_size(said, ref.phrase, len(ref.entities), np.count))
     return disc.record(Grounded(said, np.span.start, np.span.end, list(ref.entities),

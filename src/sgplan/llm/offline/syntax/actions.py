@@ -347,8 +347,11 @@ def action_tail(r: Reader, i: int, node: Action) -> Parse[Action]:
     repeat = repeats(r, i)
     if not isinstance(repeat, Match):
         return repeat
-    if repeat.node is not None and counted_plural(r, i, node):  # "LR plants x2": two of them, or twice?
-        return Refusal(rf.count_or_times(r.text[node.span.start:r.toks[repeat.end - 1].end]))
+    if repeat.node is not None and counted_plural(r, i, node):  # "lobby vases x4": the four of them
+        counted = counted_items(node, repeat.node.times)
+        if counted is None:  # "the plants and the TVs x2": which is counted, or is it twice?
+            return Refusal(rf.count_or_times(r.text[node.span.start:r.toks[repeat.end - 1].end]))
+        node, i, repeat = counted, repeat.end, Match(None, repeat.end)
     if node.verbs.times > lx.MAX_REPEATS:
         return Refusal(rf.too_many_repeats(str(node.verbs.times)))
     if node.verbs.times > 1:  # "go two times to the kitchen": one place, that many visits
@@ -372,6 +375,21 @@ def counted_plural(r: Reader, i: int, node: Action) -> bool:
         isinstance(p, Described) and any(isinstance(h, Head) and h.plural for h in (p.head, p.compound))
         for p in node.phrases.items)  # "the plants x2", "LR plants x2"
     return plural and typed.strip("0123456789") == "x"
+
+
+def counted_items(node: Action, count: int) -> Action | None:
+    """``node``, its one phrase a bare plural counted by a notation after it (*lobby vases x4*, *kitchen
+    bottles x2*) read as *all <count> <plural>* (the number checked against the scene, as *all four vases*
+    is), or ``None`` when it is not that one phrase: notes count the things of a plural so, and say a
+    visit again with the place alone (*LR x2*)."""
+    items = node.phrases.items if node.phrases is not None else ()
+    if node.phrases is None or len(items) != 1 or not isinstance(items[0], Described):
+        return None
+    said = items[0]
+    if said.determiner.count is not None or said.determiner.mode not in (None, "all", "the"):
+        return None
+    counted = replace(said, determiner=replace(said.determiner, mode="all", count=count))
+    return replace(node, phrases=replace(node.phrases, items=(counted,)))
 
 
 def action_then_ahead(r: Reader, i: int) -> bool:
