@@ -60,7 +60,7 @@ def test_fragments_wishes_needs_and_durations_set_aside_are_said_back(demo: Buil
 
 def test_asides_events_and_remarks_of_this_round_are_said_back(demo: Building) -> None:
     text = ("Before you start: pretty sure we're out of milk. Avoid the living room - the carpet's wet - and "
-            "check the vase in the living room, my mum gave it to me, so be gentle. "
+            "check the vase in the dining room, my mum gave it to me, so be gentle. "
             "Before the plumber turns up, check the potted plant in the office. It's a fussy plant lol.")
     translation = PatternTranslator().translate(text, demo)
     assert translation.set_aside == ("Before you start", "pretty sure we're out of milk", "the carpet's wet",

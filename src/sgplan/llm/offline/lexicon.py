@@ -646,10 +646,10 @@ learners' *afterwards you will* as much as *after*: refused."""
 LIST_PREPOSITIONS = frozenset({"to", "into", "by", "past", "through", "on", "onto"})
 """Repeated in a list after *either* / *both*: *either to A or to B*."""
 SHORT_STAYS = Phrases(tuple(("for", "a", *little, spell) for little in ((), ("little",), ("quick",))
-                            for spell in ("bit", "while", "sec", "second", "moment")))
-"""*sit on the couch for a bit / a (little) while / a sec / a moment*: how long to stay at a goal, said
-casually; the plan reaches it and says the words back as not part of the mission (a time said in minutes or
-more, *for a minute*, *for ten minutes*, is not among them: refused as a duration)."""
+                            for spell in ("bit", "while", "sec", "second", "moment", "minute")))
+"""*sit on the couch for a bit / a (little) while / a sec / a moment / a minute*: how long to stay at a goal,
+said casually; the plan reaches it and says the words back as not part of the mission (a time counted, *for
+ten minutes*, *for two minutes*, is not among them: refused as a duration)."""
 STAY_TIMED_CLAUSES = word_set("once until till before after unless while")
 """Words of a clause that make a short stay in it the time of something else (*until you've sat on the couch
 for a bit*): refused."""
@@ -1046,7 +1046,12 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
 ) + tuple(("which", *one, "you", want) for one in ((), ("one",))  # "which one you want", as learners say it
         for want in ("want", "like", "prefer", "choose"))
     + tuple(("what", *one, "you", want) for one in ((), ("one",))  # "what you prefer": learners' "whichever"
-            for want in ("want", "like", "prefer", "choose", "wish")))
+            for want in ("want", "like", "prefer", "choose", "wish"))
+    # "which one doesn't matter", "which one is egal"
+    + tuple(("which", *one, *said) for one in ((), ("one",))
+            for said in (("does", "not", "matter"), ("is", "not", "important"), ("no", "problem"),
+                         ("is", "no", "problem"), ("is", "egal"), ("is", "not", "matter"),
+                         ("not", "matter"))))
 """Said after a choice ("a bedroom, either one is fine"): it only confirms the choice. After several phrases
 ("the TVs and the couch, either one is fine") it would turn each of them into one of them, so it is refused
 there (see :func:`.meaning.actions.choice_remark`)."""
@@ -2079,6 +2084,12 @@ _LEARNERS_SAID: dict[tuple[str, ...], tuple[str, ...]] = {  # learners' word ord
     ("do", "not", "going"): ("do", "not", "go"),  # "Don't going in the dining room"
     ("the", "one", "or", "the", "other"): ("either", "one"),  # "an apple, the one or the other"
     ("give", "water", "to"): ("water",),  # "give water to the plant"
+    ("one", "or", "the", "other"): ("either", "one"),  # "take a bottle, one or the other"
+    ("bear", "teddy"): ("teddy", "bear"),  # "the bedroom with the bear teddy" (ours teddy-bear, theirs bear)
+    ("remain", "on"): ("stay", "on"),  # "remain on this same floor"
+    ("this", "same", "floor"): ("this", "floor"),
+    ("on", "this", "floor", "only"): ("on", "this", "floor"),  # "stay on this floor only": the same
+    ("last", "thing", ","): ("lastly", ","),  # "Last thing, water the plant": the last step
     ("is", "next", "the"): ("is", "next", "to", "the"),  # "the bathroom which is next the kitchen": beside it
     ("are", "next", "the"): ("are", "next", "to", "the"),
     ("where", "is", "also"): ("where", "is"), ("where", "are", "also"): ("where", "are"),

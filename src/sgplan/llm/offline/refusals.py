@@ -901,6 +901,11 @@ def there_goal_or_kept_out(goal: str, kept_out: str) -> str:
                     "of named after it; name the place")
 
 
+def goal_and_forbidden(places: list[str]) -> str:
+    return rephrase(f"the mission both asks for {' and '.join(places)} and forbids it for the whole mission; "
+                    "say which holds")
+
+
 def one_of_goals(said: str, group: str) -> str:
     return rephrase(f"'{said}' after '{group}': only one of them, or all of them and then one again? Say "
                     "'one of ...' with the place instead")

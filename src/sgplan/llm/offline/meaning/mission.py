@@ -19,6 +19,7 @@ from sgplan.llm.offline.grounding.floors import floors_of
 from sgplan.llm.offline.grounding.phrases import ground_phrase
 from sgplan.llm.offline.meaning.compose import Clause, check_text_order, conj, moved
 from sgplan.llm.offline.meaning.context import SentenceContext
+from sgplan.llm.offline.meaning.contradiction import check_goal_not_forbidden
 from sgplan.llm.offline.meaning.sentences import Meaning, read_sentence_body
 from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import Reader, parse_sentence
@@ -82,6 +83,7 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
     if not present:
         rf.refuse(rf.no_goal_at_all(disc.set_aside))
     formula = conj(present)
+    check_goal_not_forbidden(formula, disc.vocab)  # "A, then the kitchen, then, actually skip the kitchen"
     check_all_used(formula, disc.references)
     check_choice_remarks(disc)
     return formula

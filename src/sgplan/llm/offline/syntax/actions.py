@@ -397,7 +397,14 @@ def action_then_ahead(r: Reader, i: int) -> bool:
     *then* later in the sentence makes: comma-joined steps before a *then* are done as written."""
     later = range(i + 1, len(r))
     return (r.word(i) == "," and action_starts(r, i + 1) and any(said_then(r, j) for j in later)
-            and not any(r.word(j) in lx.NOT_A_SEQUENCE for j in later))
+            and not any(r.word(j) in lx.NOT_A_SEQUENCE and not choice_whichever(r, j) for j in later))
+
+
+def choice_whichever(r: Reader, j: int) -> bool:
+    """Whether *whichever* at ``j`` closes a choice (*... one of the chairs, whichever.*, *..., whichever one
+    is fine*), not an order (*whichever first*, *in whichever order*)."""
+    return r.word(j) == "whichever" and r.word(j - 1) == "," and r.word(j + 1) in ("", ",", ".", "one", "is",
+                                                                                   "'s")
 
 
 def action_after_then(r: Reader, i: int) -> bool:

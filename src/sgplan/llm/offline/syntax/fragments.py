@@ -5,14 +5,15 @@ People open a message with a fragment that names the occasion, not a task. Such 
 shape, not by its words: a noun phrase whose head is a word of talk, of a list or of a time (*thing*,
 *errands*, *round*, *check*, *day*, *party*: :data:`.lexicon.FRAGMENT_HEADS`) with any words before it that
 the grammar has no role for (*quick*, *routine*, *evening*, *cleaning*), or a verb in *-ing* the grammar does
-not know (*working*) or that the speaker goes out or away with (*Heading out soon*, *Working from home*),
-then only tails that ask nothing: *for* / *of* and another such phrase or a person (*for
-you*), a time (*this weekend*, *late*), an event said with its subject (*before I get home*, *while the kids
-are around*) and, after a comma, remarks and statements (*nothing urgent*, *I promise*, *sorry*). Nothing in
-it may name a room or object of the scene (or be a misspelling of one), a floor, *upstairs*, a number, a
-pronoun or a word of the grammar's order or negation; *again* and *last* (which could repeat or order a goal)
-only in a sentence before any goal. A bare noun the grammar does not know (*Bins.*) is not a fragment: it may
-be a goal the scene lacks, and is refused by the parser.
+not know (*working*) or that the speaker goes out or away with (*Heading out soon*, *Working from home*), then
+only tails that ask nothing: *for* / *of* and another such phrase or a person (*for you*), a time (*this
+weekend*, *late*), an event said with its subject (*before I get home*, *while the kids are around*) and,
+after a comma, remarks and statements (*nothing urgent*, *I promise*, *sorry*). Nothing in it may name a room
+or object of the scene (or be a misspelling of one), a floor, *upstairs*, a number, a pronoun or a word of the
+grammar's order or negation; *again* and *last* (which could repeat or order a goal) only in a sentence before
+any goal. Opening the message, a verb in *-ing* the grammar reads may be followed by any words that name and
+ask nothing (*Getting ready for dinner.*, *Moving some decorations around.*). A bare noun the grammar does not
+know (*Bins.*) is not a fragment: it may be a goal the scene lacks, and is refused by the parser.
 """
 
 from __future__ import annotations
@@ -30,6 +31,8 @@ def context_fragment(r: Reader, opener: bool) -> bool:
     if len(r) <= 2 and any(r.nouns.names_word(w) for w in r.words):
         return False  # "dining:" heading a line is the dining room cut short, never a scene-setting gerund
     k = r.skip(0, lx.INTERJECTIONS)
+    if opener and busy_gerund(r, k):
+        return True
     end = talk_phrase(r, k, opener) or gerund(r, k)
     if end is None:
         return False
@@ -77,6 +80,31 @@ def gerund(r: Reader, k: int) -> int | None:
     if away is not None:
         return k + 1 + len(away)
     return None if any(said in lx.POSITIVE_VERBS for said in stems) else k + 1
+
+
+def busy_gerund(r: Reader, k: int) -> bool:
+    """Whether the sentence from ``k`` is a verb in *-ing* of any kind and words that name and ask nothing,
+    opening the message (*Getting ready for dinner.*, *Setting up for Sunday lunch.*, *Moving some decorations
+    around.*): what the speaker is busy with. No room, object, floor, number, pronoun, misspelt name, or word
+    of negation, order or condition may follow it (*Checking the kitchen.* names a place: left to the
+    parser)."""
+    w = r.word(k)
+    if not (w.endswith("ing") and len(w) > 5) or k + 1 >= len(r):
+        return False
+    if any(said in lx.REFUSED_WORDS for said in (w, w[:-3], w[:-3] + "e", w[:-4])):
+        return False  # "Leaving soon.": the robot leaving? (refused by the parser)
+    return all(idle(r, j) for j in range(k + 1, len(r)))
+
+
+def idle(r: Reader, j: int) -> bool:
+    """Whether the word at ``j`` names nothing and asks nothing (see :func:`busy_gerund`)."""
+    w = r.word(j)
+    if w in (".", "!"):
+        return True
+    return (w.isalpha() and r.head(j) is None and w not in lx.PRONOUNS and w not in lx.RELATIVE_FLOORS
+            and w not in lx.FLOOR_WORDS and w not in lx.NUMBER_WORDS and w not in lx.ORDER_HEADS
+            and w not in lx.NEGATING and w not in ("never", "no", "not", "if", "when", "until", "there")
+            and not (r.spelling is not None and r.spelling.may_be_a_misspelt_name(w)))
 
 
 def tail(r: Reader, k: int, opener: bool) -> int | None:
