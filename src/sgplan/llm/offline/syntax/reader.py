@@ -98,6 +98,8 @@ class Reader:
             return 0
         end = i + len(said)
         end += len(self.phrase(end, lx.TOO) or ())
+        if self.word(i - 1) == "and" and self.word(end) == "," and end + 1 < len(self.toks):
+            return 0  # "A, and afterwards, (while you're upstairs,) B": it opens B's clause
         return end - i if self.word(end) in ("", ",") else 0
 
     def head(self, i: int) -> Head | None:
