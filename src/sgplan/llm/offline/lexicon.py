@@ -136,6 +136,7 @@ ABBREVIATIONS: dict[str, tuple[str, ...]] = {
     "lr": ("living room",), "liv rm": ("living room",), "lvng rm": ("living room",),
     "lvg rm": ("living room",),
     "dr": ("dining room",), "din rm": ("dining room",), "dng rm": ("dining room",),
+    "dining": ("dining room",),  # "dining: both chairs", "keep out of dining" (never before "table")
     "br": ("bedroom", "bathroom"), "bdr": ("bedroom",), "bd": ("bedroom",), "mbr": ("bedroom",),
     "bth": ("bathroom",), "bthr": ("bathroom",), "bath": ("bathroom",), "baths": ("bathroom",),
     "teddy": ("teddy bear",), "teddies": ("teddy bear",),
@@ -261,7 +262,7 @@ DEMONSTRATIVES = ("that", "this", "these", "those")
 """Determiners that point back (``the same`` and ``that same`` / ``this same`` too)."""
 PLURAL_DEMONSTRATIVES = ("these", "those")
 DETERMINERS = word_set("the a an any all every each both either this that these those some") | POSSESSIVES
-INDEFINITE = ("a", "an", "any", "some", "either")
+INDEFINITE = ("a", "an", "any", "some", "either", "whichever")
 CONTACT_SUBJECTS = ("you", "i", "we")
 """Right after a noun (*the chair you want*, *the bowl I left*): the subject of a relative clause without
 *that* (refused: *in X* after it could be where the thing is or another goal); before order words, the
@@ -1877,6 +1878,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("holding",): ("containing",),
     ("and", "also"): ("and",),
     ("after", ","): ("afterwards", ","),
+    ("after", ":"): ("then", ":"),  # notes: "dining tbl 1st. after: oven"
     ("finish", "with"): ("end", "at"),
     ("end", "with"): ("end", "at"),
     ("finishing", "with"): ("ending", "at"),

@@ -843,6 +843,8 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
     if r.head(start) is not None:  # "office wet - avoid it", "NB: lobby busy rn": a note's statement
         said = noun_phrase(r, start, "qualifier")
         state = said.end if isinstance(said, Match) else end
+        if r.word(state) in lx.ROOM_PARTS and r.word(state + 1) in lx.STATEMENT_VERBS:
+            return state + 1  # "Kitchen floor is wet": a part of it, the article left out
         return state if r.word(state) in lx.STATES and r.skip(state + 1, lx.NOW_WORDS) == end else None
     verb_at = start + 1 + (r.word(start + 1) in lx.STATED_ADVERBS)  # "Groceries just got delivered"
     verb = r.word(verb_at)

@@ -150,6 +150,8 @@ class Reader:
         if w in lx.FLOOR_ENDS_ALONE and (room := self.head(i + 1)) is not None and room.kind == "room" \
                 and not room.plural:
             return True  # "avoid top bath": the bathroom on the top floor, the article left out
+        if w == "whichever" and self.head(i + 1) is not None:
+            return True  # "then whichever bedroom": any of them ("whichever first" is an order remark)
         if w == "other" and self.head(i + 1) is not None:
             return True  # "-> other bdrm": the other bedroom, the article left out as notes do
         if self.nouns.room_modifier(self.words, i) is not None:
