@@ -121,6 +121,7 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     "flower vase": ("vase",),
     "dinner table": ("dining table",),
     "pot plant": ("potted plant",),
+    "flower": ("potted plant",),  # learners: "give water to the flower"
     "tv screen": ("tv",),
     "armchair": ("chair",),
     "bathtub": ("bathtub", "bath"),
@@ -1879,6 +1880,16 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("and", "also"): ("and",),
     ("after", ","): ("afterwards", ","),
     ("after", ":"): ("then", ":"),  # notes: "dining tbl 1st. after: oven"
+    # learners: "make a check of the toilet", "do the checking of the fridge", "clean them all"
+    ("make", "a", "check", "of"): ("check",), ("do", "a", "check", "of"): ("check",),
+    ("do", "the", "checking", "of"): ("check",), ("make", "the", "checking", "of"): ("check",),
+    ("them", "all"): ("all", "of", "them"),
+    ("not", "go", "to", "down"): ("not", "go", "downstairs"),
+    ("not", "go", "to", "up"): ("not", "go", "upstairs"),
+    ("not", "go", "down", "."): ("not", "go", "downstairs", "."),
+    ("not", "go", "up", "."): ("not", "go", "upstairs", "."),
+    ("in", "floor", "down"): ("downstairs",), ("of", "floor", "down"): ("downstairs",),  # "in floor down"
+    ("no", "matter", "the", "order"): ("in", "any", "order"),
     ("finish", "with"): ("end", "at"),
     ("end", "with"): ("end", "at"),
     ("finishing", "with"): ("ending", "at"),
