@@ -361,6 +361,8 @@ def check(g: Grounded, head: Head, count: int | None, remark_follows: bool, disc
         kept = rf.not_on_kept_floors(sorted(disc.confined)) if disc.confined is not None and g.role in (
             "goal", "condition") else ""
         rf.refuse(rf.matches_nothing(g.phrase, head.kind, kept, existing(head, disc)))
+    if g.role == "avoid" and g.phrase.lower().split()[:1] == ["either"]:
+        count = 2  # "don't go into either bathroom": the two of them (3 in the building: which two?)
     if count is not None and len(g.entities) != count:
         rf.refuse(rf.wrong_count(g.phrase, count, head.kind, len(g.entities),
                                  ", ".join(e.describe() for e in g.entities)))

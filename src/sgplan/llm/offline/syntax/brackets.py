@@ -1,15 +1,17 @@
 """A room in brackets right after an object, as operators' notes place it: *apple (kit) or bowl (LR)*,
 *teddy (LR) -> teddy (bdrm)*.
 
-The brackets are read as *in*: *bowl (LR)* is *bowl in LR*, the bowl of the living room. Only a bracket
-holding one phrase that names a room, right after a word naming an object; other brackets (*(any)*, *(either
-one)*, *(fl1)*) are left as they are.
+The brackets are read as *in*: *bowl (LR)* is *bowl in LR*, the bowl of the living room, and *bowl (kitchen
+or living room, either is fine)* is a bowl in either room. Only a bracket holding phrases that name rooms
+(joined by *or*, a choice remark after them), right after a word naming an object; other brackets (*(any)*,
+*(either one)*, *(fl1)*) are left as they are.
 """
 
 from __future__ import annotations
 
 from dataclasses import replace
 
+from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.reader import Match, Reader
 from sgplan.llm.offline.text import Tok
@@ -21,12 +23,31 @@ def bracketed_rooms(r: Reader) -> Reader:
     for k in range(len(r) - 1, 0, -1):
         if not bracket(r, k, "(") or not object_before(r, k):
             continue
-        room = noun_phrase(r, k + 1, "qualifier") if r.np_starts(k + 1) else None
-        head = r.head(k + 1) or r.head(k + 2)
-        if isinstance(room, Match) and bracket(r, room.end, ")") and head is not None and head.kind == "room":
-            said = r.toks[k]
-            toks[k:room.end + 1] = [Tok("in", said.start, said.end), *r.toks[k + 1:room.end]]
+        end = rooms_end(r, k + 1)
+        if end is None:
+            continue
+        remark = r.phrase(end + 1, lx.CHOICE_AFFIRMATIONS) if r.word(end) == "," else None
+        close = end + 1 + len(remark) if remark else end
+        if bracket(r, close, ")"):
+            said = r.toks[k]  # "bowl (kitchen or LR, either is fine)": "bowl in kitchen or LR, either ..."
+            toks[k:close + 1] = [Tok("in", said.start, said.end), *r.toks[k + 1:close]]
     return replace(r, toks=tuple(toks)) if toks != list(r.toks) else r
+
+
+def rooms_end(r: Reader, i: int) -> int | None:
+    """The end of the phrase naming a room at ``i``, or of several joined by *or* (*kitchen or living room*);
+    ``None`` when no room is named there."""
+    end = None
+    while r.np_starts(i):
+        room = noun_phrase(r, i, "qualifier")
+        head = r.head(i) or r.head(i + 1)
+        if not isinstance(room, Match) or head is None or head.kind != "room":
+            return None
+        end = room.end
+        if r.word(end) != "or":
+            break
+        i = end + 1
+    return end
 
 
 def bracket(r: Reader, k: int, said: str) -> bool:
