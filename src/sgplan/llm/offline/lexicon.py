@@ -121,7 +121,6 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     "flower vase": ("vase",),
     "dinner table": ("dining table",),
     "pot plant": ("potted plant",),
-    "flower": ("potted plant",),  # learners: "give water to the flower"
     "tv screen": ("tv",),
     "armchair": ("chair",),
     "bathtub": ("bathtub", "bath"),
@@ -1883,7 +1882,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     # learners: "make a check of the toilet", "do the checking of the fridge", "clean them all"
     ("make", "a", "check", "of"): ("check",), ("do", "a", "check", "of"): ("check",),
     ("do", "the", "checking", "of"): ("check",), ("make", "the", "checking", "of"): ("check",),
-    ("them", "all"): ("all", "of", "them"),
+    ("them", "all", ","): ("all", "of", "them", ","), ("them", "all", "."): ("all", "of", "them", "."),
     ("not", "go", "to", "down"): ("not", "go", "downstairs"),
     ("not", "go", "to", "up"): ("not", "go", "upstairs"),
     ("not", "go", "down", "."): ("not", "go", "downstairs", "."),

@@ -901,6 +901,11 @@ def there_goal_or_kept_out(goal: str, kept_out: str) -> str:
                     "of named after it; name the place")
 
 
+def brought_to_speaker(placed: str) -> str:
+    return rephrase(f"'me' is where you are, said in words not read ('{placed}'); say where to take it "
+                    "('bring it to the couch')")
+
+
 def goal_and_forbidden(places: list[str]) -> str:
     return rephrase(f"the mission both asks for {' and '.join(places)} and forbids it for the whole mission; "
                     "say which holds")

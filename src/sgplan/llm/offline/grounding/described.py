@@ -321,13 +321,16 @@ def near_step_before(np: Described, noun: Noun, mode: Mode, where: Where, disc: 
     """The objects ``noun`` can be in the room of the step just before (:attr:`.Where.previous`), for an
     object of a goal that no room, description or pointer places: the one there for a definite singular
     (*the wicker chair* does not say which, nor is it the one just reached: *the swivel chair in the office,
-    then the wicker chair*), the two there for *either* (*bath w/ 2 sinks -> either sink*); else empty."""
+    then the wicker chair*), the two there for *either* (*bath w/ 2 sinks -> either sink*), those there (two
+    or more) for a choice remark after it (*upstairs bath -> toilet (either)*); else empty."""
     if (where.role != "goal" or where.scope or noun.head.kind != "object" or noun.room_scoped
             or noun.head.plural or np.determiner.pointer is not None or np.descriptive):
         return []
     near = disc.vocab.inside(noun.entities, where.previous)
     if mode == "any" and np.first_word == "either":
         return near if len(near) == 2 else []
+    if np.remark_follows and len(near) >= 2:  # "upstairs bath -> toilet (either)": one of those there
+        return near
     just_reached = {e.key for g in disc.goals_before(np.span.start)[-1:] for e in g.entities}
     return near if mode == "the" and len(near) == 1 and near[0].key not in just_reached else []
 

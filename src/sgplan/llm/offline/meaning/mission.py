@@ -58,6 +58,7 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
     headed = times_of_parts(readers)  # "Jobs before lunch: A. Jobs after lunch: B."
     if len(headed) > 1:
         rf.refuse(rf.times_in_order(headed))
+    check_brought_to_speaker(readers)
     disc.confined = confinement(readers, disc)
     parts: list[Meaning] = []
     listed: dict[int, list[MissionSentence]] = {}
@@ -87,6 +88,19 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
     check_all_used(formula, disc.references)
     check_choice_remarks(disc)
     return formula
+
+
+def check_brought_to_speaker(readers: list[Reader]) -> None:
+    """Refuse *bring me X* when words set aside say where the speaker is (*I'm lying on the couch. Could you
+    bring me the bottle ...*): the thing is wanted there, a goal the set-aside words hold (elsewhere *bring
+    me X* is read as getting X, the speaker's place being unknown)."""
+    placed = next((r for r in readers if r.aside and any(
+        r.at(k, "i", "am") and any(r.head(j) is not None for j in range(k, len(r))) for k in range(len(r)))),
+        None)
+    brought = next((r for r in readers if not r.aside and any(
+        w in lx.FETCH_VERBS and r.word(k + 1) == "me" for k, w in enumerate(r.words))), None)
+    if placed is not None and brought is not None:
+        rf.refuse(rf.brought_to_speaker(placed.quote(0, len(placed))))
 
 
 def said_one_by_one(group: Clause, order: Clause) -> bool:
