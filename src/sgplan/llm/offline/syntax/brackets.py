@@ -27,7 +27,7 @@ def bracketed_rooms(r: Reader) -> Reader:
         if end is None:
             continue
         remark = r.phrase(end + 1, lx.CHOICE_AFFIRMATIONS) if r.word(end) == "," else None
-        close = end + 1 + len(remark) if remark else end
+        close = end + 1 + len(remark) if remark and bracket(r, end + 1 + len(remark), ")") else end
         if bracket(r, close, ")"):
             said = r.toks[k]  # "bowl (kitchen or LR, either is fine)": "bowl in kitchen or LR, either ..."
             toks[k:close + 1] = [Tok("in", said.start, said.end), *r.toks[k + 1:close]]
@@ -42,7 +42,7 @@ def rooms_end(r: Reader, i: int) -> int | None:
         room = noun_phrase(r, i, "qualifier")
         head = r.head(i) or r.head(i + 1)
         if not isinstance(room, Match) or head is None or head.kind != "room":
-            return None
+            break  # "apple (kit) or bowl (LR)": the bracket closed after the kitchen
         end = room.end
         if r.word(end) != "or":
             break
