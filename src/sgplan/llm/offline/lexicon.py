@@ -1889,6 +1889,8 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("not", "go", "up", "."): ("not", "go", "upstairs", "."),
     ("in", "floor", "down"): ("downstairs",), ("of", "floor", "down"): ("downstairs",),  # "in floor down"
     ("no", "matter", "the", "order"): ("in", "any", "order"),
+    ("order", "is", "free"): ("any", "order"), ("no", "need", "order"): ("any", "order"),  # learners
+    ("on", "your", "floor"): ("on", "this", "floor"),  # "please stay on your floor": the robot's
     ("finish", "with"): ("end", "at"),
     ("end", "with"): ("end", "at"),
     ("finishing", "with"): ("ending", "at"),
