@@ -98,7 +98,7 @@ def check_brought_to_speaker(readers: list[Reader]) -> None:
         r.at(k, "i", "am") and any(r.head(j) is not None for j in range(k, len(r))) for k in range(len(r)))),
         None)
     brought = next((r for r in readers if not r.aside and any(
-        w in lx.FETCH_VERBS and r.word(k + 1) == "me" for k, w in enumerate(r.words))), None)
+        w in ("bring", "bringing") and r.word(k + 1) == "me" for k, w in enumerate(r.words))), None)
     if placed is not None and brought is not None:
         rf.refuse(rf.brought_to_speaker(placed.quote(0, len(placed))))
 
