@@ -1461,6 +1461,9 @@ DAY_OPENERS = ("this", "tonight", "today", "tomorrow", "for")  # "for now" (not 
 SPAN_OPENERS = ("during",)
 """Like :data:`DAY_OPENERS`, a time over a span, which cannot order the steps (*During the party tonight keep
 out of ...*)."""
+EVENT_ENDS = (("is", "over"), ("are", "over"), ("has", "finished"), ("have", "finished"), ("finishes",),
+              ("has", "ended"), ("ends",), ("is", "done"), ("are", "done"), ("stops",), ("has", "stopped"))
+"""The end of an event of others closing a clause (*once the match has finished*): something to wait for."""
 EVENT_OPENERS = ("before", "after", "by", "while", "once", "when")
 """The words a time expression of an event starts with (*before the guests arrive*, *once lunch is over*)."""
 EVENT_TAILS = word_set("up over by in out off round around back home away")

@@ -901,6 +901,16 @@ def there_goal_or_kept_out(goal: str, kept_out: str) -> str:
                     "of named after it; name the place")
 
 
+def way_of_no_goal(said: str) -> str:
+    return rephrase(f"'{said}': on the way to which goal? Say 'go up to X, and Y on your way up', or put the "
+                    "goals in order with 'then'")
+
+
+def wait_for_an_end(said: str) -> str:
+    return rephrase(f"'{said}': the robot cannot wait for that to end (a plan has no clock and senses no "
+                    "events); leave it out, or say the goals only")
+
+
 def brought_to_speaker(placed: str) -> str:
     return rephrase(f"'me' is where you are, said in words not read ('{placed}'); say where to take it "
                     "('bring it to the couch')")

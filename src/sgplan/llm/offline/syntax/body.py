@@ -461,8 +461,13 @@ def plain_action(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     j, on_the_way = found.end, False
     way = r.phrase(j, lx.ON_THE_WAY)
     if way is not None:
-        n = j + len(way) + (1 if r.word(j + len(way)) == "there" else 0)
-        if r.word(n) in lx.ON_THE_WAY_ENDS:
+        direction = r.word(j + len(way))
+        n = j + len(way) + (1 if direction in ("there", "up", "down") else 0)
+        if direction in ("up", "down") and r.word(n) in lx.ON_THE_WAY_ENDS and not any(
+                w in (direction, direction + "stairs") for w in r.words[:i]):
+            # "check the kitchen, and the plant on your way up": on the way to what?
+            return Refusal(rf.way_of_no_goal(r.quote(j, n)))
+        if r.word(n) in lx.ON_THE_WAY_ENDS:  # "go up to X, and Y on your way up": Y, then X
             j, on_the_way = n, True
     rest = r.rest(j)
     trailing_word: Literal["first", "before that"] | None = None

@@ -127,6 +127,8 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         return [aside(r, 0, heading - 1), *(split(rest) if rest.words else [])]
     clauses = comma_clauses(r)
     for a, b in clauses:
+        if waits_for_an_end(r, a, b):  # "switch the TV off once the match has finished": when is that?
+            rf.refuse(rf.wait_for_an_end(r.quote(a, b)))
         if (r.word(a) in lx.APOLOGY_WORDS and r.word(a + 1) in ("for", "about")
                 and any(r.head(k) is not None for k in range(a, b))):  # "Sorry about the kitchen."
             rf.refuse(rf.apology_about_place(r.quote(a, b)))
@@ -190,6 +192,23 @@ def bind_floor_there(r: Reader, statement: range, order: list[int]) -> Reader | 
     if lx.RELATIVE_FLOORS.get(r.word(floor)) != {"up": 1, "down": -1}.get(r.word(k - 1)):
         return None
     return replace(r, toks=tuple(r.toks[floor] if j == k - 1 else r.toks[j] for j in order if j != k))
+
+
+_DONE_TASKS = frozenset({"all", "both", "those", "these", "that", "this", "it", "them", "they", "everything",
+                         "three", "two", "four", "jobs", "tasks", "chores"})
+"""Words of what the robot has done (*when all three are done*): its own goals, never an event to wait for."""
+
+
+def waits_for_an_end(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` is the end of an event of others (*once the match has finished*,
+    *when the film is over*, *after the washing machine stops*): what follows it must wait for something the
+    robot can neither sense nor plan for (refused); the robot's own (*once you have finished*) is an order."""
+    words = r.words[start + 1:end]
+    if r.word(start) not in ("once", "when", "after") or r.word(start + 1) in lx.PEOPLE | {"you"} or any(
+            w in lx.EVENT_WORDS or w in _DONE_TASKS for w in words):
+        return False  # "once breakfast is over": a time of day, set aside; "when all three are done": goals
+    return any(r.at(k, *said) and k + len(said) == end and k > start + 1
+               for k in range(start + 2, end) for said in lx.EVENT_ENDS)
 
 
 def caution(r: Reader, start: int, end: int) -> bool:
@@ -416,6 +435,8 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
         return False  # "Pretty sure it's in the kitchen": a place no order may name, refused by the parser
     if orders_a_named_thing(r, start, end):
         return False  # "visit both bedrooms, we start with the kitchen": an order, never context
+    if not leading and r.phrase(said, lx.CORRECTIONS):
+        return False  # "..., sit on it, I mean look at the book instead": takes back, never context
     return (is_time(r, start, end) or is_time(r, skip_joiner(r, start), end) or ignored_thing(r, said, end)
             or statement(r, said, end) == "aside"
             or event_note(r, start, end) or is_reason(r, start, end))
