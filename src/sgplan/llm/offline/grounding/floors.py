@@ -121,12 +121,11 @@ def relative(word: str, disc: Discourse, candidates: list[Entity] | None,
     """*upstairs* / *downstairs*: the floors above / below the start floor when it is known; in a two-floor
     building, the upper / lower floor (after a goal on another floor, where the start has no floor that
     way, from that goal's floor: *go up to X, then come back down*, and the reverse); for a noun (*the
-    downstairs bathroom*) whose candidates lie on
-    exactly two floors, the lower / upper of those, as people name such rooms whatever floor they stand
-    on, also when the robot starts where no floor lies that way (*the downstairs bathroom* said on the ground
-    floor); ``robot_there`` (*while you're upstairs*, said of where the robot is): the start floor when no
-    floor lies that way from it (it is upstairs, so the words are true); otherwise refused, naming the
-    floors."""
+    downstairs bathroom*) whose candidates lie on exactly two floors, the lower / upper of those, as people
+    name such rooms whatever floor they stand on, also when the robot starts where no floor lies that way in
+    a two-floor building (*the downstairs bathroom* said on the ground floor); ``robot_there`` (*while you're
+    upstairs*, said of where the robot is): the start floor when no floor lies that way from it (it is
+    upstairs, so the words are true); otherwise refused, naming the floors."""
     step, n, start = lx.RELATIVE_FLOORS[word], disc.vocab.num_floors, disc.start_floor
     on = sorted({e.floor for e in candidates or []})
     if start is None and n > 2 and len(on) == 2:
@@ -139,10 +138,9 @@ def relative(word: str, disc: Discourse, candidates: list[Entity] | None,
             return FloorReading(second.floors)  # "go upstairs ..., then come back down": down from there
         if not wanted and robot_there and second is None:
             return FloorReading(frozenset({start}))  # "while you're upstairs" said on the top floor: true
-        named = [0, n - 1] if n == 2 else on if len(on) == 2 else None
-        if not wanted and candidates is not None and named is not None:
+        if not wanted and candidates is not None and n == 2:
             # "the downstairs bathroom" said on the ground floor of a two-floor house: named so from anywhere
-            return FloorReading(frozenset({named[1] if step > 0 else named[0]}))
+            return FloorReading(frozenset({1 if step > 0 else 0}))
         if not wanted:
             rf.refuse(rf.off_the_building(word, start, disc.vocab.building_name, n))
         # "the upstairs bathroom" after a goal on the top floor: from there it names nothing; from the start
