@@ -435,7 +435,8 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
         return False  # "Pretty sure it's in the kitchen": a place no order may name, refused by the parser
     if orders_a_named_thing(r, start, end):
         return False  # "visit both bedrooms, we start with the kitchen": an order, never context
-    if not leading and r.phrase(said, lx.CORRECTIONS):
+    taken_back = r.phrase(said, lx.CORRECTIONS)
+    if not leading and taken_back and said + len(taken_back) < end:
         return False  # "..., sit on it, I mean look at the book instead": takes back, never context
     return (is_time(r, start, end) or is_time(r, skip_joiner(r, start), end) or ignored_thing(r, said, end)
             or statement(r, said, end) == "aside"
