@@ -33,8 +33,9 @@ def need_as_order(r: Reader, later: list[Reader]) -> Reader:
     """``r`` read as *check <place> ...* when it states a need of that place as its task (see the module
     docstring), else ``r``; not when a sentence after it (``later``) points back with a pronoun or *one*
     (*The plants need watering. Water the one in the bedroom.*: which of them the need asks for)."""
-    if r.aside or any(w in _POINTERS for o in later if not o.aside for w in o.words):
-        return r
+    if r.aside or any(w in _POINTERS and not (w == "that" and o.word(k - 1) in ("after", "before"))
+                      for o in later if not o.aside for k, w in enumerate(o.words)):
+        return r  # (not "After that, ...": the order after the need)
     start = r.skip(0, lx.INTERJECTIONS)
     place = place_phrase(r, start, "goal")
     if place is None or not names_scene(r, start, place.end) or r.word(place.end) not in _NEED:
