@@ -637,7 +637,8 @@ def mere_talk(r: Reader, start: int, end: int, floors: bool = True) -> bool:
 def is_time(r: Reader, start: int, end: int) -> bool:
     """*Before lunch*, *this morning*, *at some point this evening*, *tonight*, *right now*: a time of day,
     meal or event (not *later* or *now* alone, which order the steps)."""
-    if event_clause(r, start, end) or tuple(r.words[start:end]) in lx.OCCASIONS:
+    if (event_clause(r, start, end) or tuple(r.words[start:end]) in lx.OCCASIONS
+            or robot_routine(r, start, end)):  # "First thing when you wake up, ..."
         return True
     words = r.words[start:end]
     event = words[:1] in tuple((w,) for w in lx.EVENT_OPENERS)  # "before the guests arrive"
@@ -652,6 +653,19 @@ def is_time(r: Reader, start: int, end: int) -> bool:
     events = [w for w in words if (w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES)
               or (event and (w in lx.PEOPLE or w in lx.PEOPLE_NOUNS))]
     return bool(events) or tuple(words) in lx.NOW_SAID
+
+
+def robot_routine(r: Reader, start: int, end: int) -> bool:
+    """Whether ``[start, end)`` is a time of the robot's own day (*when you wake up*, *before you dock
+    tonight*, *once you've had your morning charge*, *before you power down for the night*): an event's
+    opener, *you*, and only words of its routine (:data:`.lexicon.ROBOT_ROUTINE`) and of times."""
+    k = r.skip(start, lx.TIME_WORDS - frozenset(lx.EVENT_OPENERS))  # "first thing when you ..."
+    if r.word(k) not in lx.EVENT_OPENERS or r.word(k + 1) != "you":
+        return False
+    words = r.words[k + 2:end]
+    return any(w in lx.ROBOT_ROUTINE for w in words) and all(
+        w in lx.ROBOT_ROUTINE or w in lx.TIME_WORDS or w in lx.AUXILIARIES or w in ("your", "had", "'ve")
+        for w in words)
 
 
 def named_event(r: Reader, start: int, end: int) -> int | None:
