@@ -22,6 +22,7 @@ from sgplan.llm.offline.meaning.order import only_after
 from sgplan.llm.offline.registry import Registry
 from sgplan.llm.offline.syntax.tree import (
     Body,
+    Negation,
     OnlyAfterPost,
     OnlyAfterSentence,
     OnlyIfPost,
@@ -61,14 +62,17 @@ def until_first(sentence: UntilSentence, ctx: SentenceContext) -> Meaning:
         tasks = [Task("all", [m for t in tasks for m in t.members])]
     if len(tasks) != 1:
         rf.refuse(rf.until_needs_one_goal(prefix=True))
-    body = read_body(sentence.body, ctx)
+    # "..., and avoid the dining room the whole time": that one holds for the whole mission, not until Y
+    whole = [item for item in sentence.body.items if isinstance(item, Negation) and item.whole]
+    body = read_body(Body(tuple(i for i in sentence.body.items if i not in whole)), ctx)
     if any(body.steps) or not body.constraints or not all(isinstance(c, Always) for c in body.constraints):
         rf.refuse(rf.until_prohibitions_only())
     target = tasks[0]
     ends = [disj(target.members)] if target.mode == "any" else target.members
     untils: list[Formula] = [until_formula(c.arg, end) for c in body.constraints if isinstance(c, Always)
                              for end in ends]
-    return Clause(steps=[[target]], constraints=untils)
+    always = read_body(Body(tuple(whole)), ctx).constraints if whole else []
+    return Clause(steps=[[target]], constraints=untils + always)
 
 
 @reads(OnlyAfterSentence)
