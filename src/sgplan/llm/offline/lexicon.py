@@ -1455,9 +1455,6 @@ EVENT_VERBS = word_set("arrive arrives come comes leave leaves get gets back hom
 """In a time expression of an event (*before the guests arrive*, *after I get back*)."""
 EVENT_VERBS = EVENT_VERBS | word_set("over done finished ready served up awake")
 """(*once lunch is over*, *when dinner's ready*)."""
-ROBOT_ROUTINE = word_set("wake up dock docks charge charging recharge power down shut")
-"""The robot's own day (*when you wake up*, *before you dock*, *after your morning charge*): a time, never
-a place."""
 DAY_OPENERS = ("this", "tonight", "today", "tomorrow", "for")  # "for now" (not "for the kitchen": no time)
 """The words a time of day that opens an order without a comma starts with (*This evening stay ...*,
 *Tonight check ...*; not *the guests arrive*, an event)."""

@@ -655,16 +655,23 @@ def is_time(r: Reader, start: int, end: int) -> bool:
     return bool(events) or tuple(words) in lx.NOW_SAID
 
 
+_ROBOT_ROUTINE = frozenset({"wake", "up", "dock", "docks", "charge", "charging", "recharge", "power", "down",
+                            "shut"})
+"""The robot's own day (*when you wake up*, *before you dock*, *after your morning charge*): a time, never a
+place. Kept here, out of the lexicon, so that its words stay unknown to the rest (*Power went out earlier.*
+is a statement)."""
+
+
 def robot_routine(r: Reader, start: int, end: int) -> bool:
     """Whether ``[start, end)`` is a time of the robot's own day (*when you wake up*, *before you dock
     tonight*, *once you've had your morning charge*, *before you power down for the night*): an event's
-    opener, *you*, and only words of its routine (:data:`.lexicon.ROBOT_ROUTINE`) and of times."""
+    opener, *you*, and only words of its routine (:data:`_ROBOT_ROUTINE`) and of times."""
     k = r.skip(start, lx.TIME_WORDS - frozenset(lx.EVENT_OPENERS))  # "first thing when you ..."
     if r.word(k) not in lx.EVENT_OPENERS or r.word(k + 1) != "you":
         return False
     words = r.words[k + 2:end]
-    return any(w in lx.ROBOT_ROUTINE for w in words) and all(
-        w in lx.ROBOT_ROUTINE or w in lx.TIME_WORDS or w in lx.AUXILIARIES or w in ("your", "had", "'ve")
+    return any(w in _ROBOT_ROUTINE for w in words) and all(
+        w in _ROBOT_ROUTINE or w in lx.TIME_WORDS or w in lx.AUXILIARIES or w in ("your", "had", "'ve")
         for w in words)
 
 
