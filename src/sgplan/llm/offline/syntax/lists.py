@@ -268,9 +268,10 @@ def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order |
     label = label_end(said)
     if label is None and 0 < len(said) <= lx.MAX_LABEL_WORDS and label_clause(said, 0, len(said)) is False \
             and not set(said.words) & (lx.POSITIVE_VERBS | lx.AVOID_VERBS):
-        return [replace(said, aside=True)], None, None, ()  # "Kids' stuff:", "Shopping prep:": a list's name
-    if label is None:
-        return [said], None, None, ()  # an ordinary sentence before the list: read (or refused) as one
+        # "Kids' stuff:", "Shopping prep:": a list's name ("Today's list, in this order:": the order kept)
+        return [replace(said, aside=True)], None, order, ()
+    if label is None:  # an ordinary sentence before the list: read (or refused) as one; its order kept
+        return [said], None, order, ()
     out = [replace(said, toks=said.toks[:label], aside=True)] if names_more(said, label) else []
     if label < len(said) - 1:  # "Checklist, stay on this floor": a sentence of its own
         out.append(replace(said, toks=said.toks[label + 1:]))
