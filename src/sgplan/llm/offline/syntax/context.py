@@ -163,11 +163,11 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         rf.refuse(rf.reason_before_pronoun(r.quote(*naming[0]), r.word(pronoun)))
     subject = skip_joiner(r, r.skip(clauses[first - 1][0], lx.INTERJECTIONS)) if first else 0
     order = bind_statement_pronoun(r, subject, [clauses[first][0], *words], named) if first else None
-    floored = first and any(r.word(k) in lx.RELATIVE_FLOORS or r.word(k) in lx.FLOOR_WORDS
-                            for k in range(clauses[0][0], clauses[first - 1][1]))
-    if floored and order is None and not named:
-        order = bind_floor_there(r, range(clauses[0][0], clauses[first - 1][1]), words)
-    pronouns = lx.PRONOUNS if named else BOUND_PRONOUNS if floored else ()
+    floors = [k for k in range(clauses[0][0], clauses[first - 1][1])
+              if r.word(k) in lx.RELATIVE_FLOORS or r.word(k) in lx.FLOOR_WORDS] if first else []
+    if floors and order is None and not named:
+        order = bind_floor_there(r, floors, words)
+    pronouns = lx.PRONOUNS if named else BOUND_PRONOUNS if floors else ()
     if order is None and said_before and any(w in pronouns for w in r.words[clauses[first][0]:]):
         # "the lobby floor is wet, so avoid it", "the kids are upstairs, so don't go down there": 'it' /
         # 'there' would be the goal named last: refused
@@ -179,11 +179,11 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     return kept
 
 
-def bind_floor_there(r: Reader, statement: range, order: list[int]) -> Reader | None:
+def bind_floor_there(r: Reader, floors: list[int], order: list[int]) -> Reader | None:
     """The order (the token indexes ``order`` of ``r``) with its *up there* / *down there* replaced by the one
-    floor word the statement before it names (*the kids are upstairs, so don't go up there*: upstairs), when
-    they agree (*up*: *upstairs*) and the order names nothing else; ``None`` otherwise (refused)."""
-    floors = [k for k in statement if r.word(k) in lx.RELATIVE_FLOORS or r.word(k) in lx.FLOOR_WORDS]
+    floor word the statement before it names (at ``floors``: *the kids are upstairs, so don't go up there*:
+    upstairs), when they agree (*up*: *upstairs*) and the order names nothing else; ``None`` otherwise
+    (refused)."""
     there = [k for k in order if r.word(k) in BOUND_PRONOUNS or r.word(k) in lx.PRONOUNS]
     if len(floors) != 1 or len(there) != 1 or r.word(there[0]) != "there" or any(
             r.head(k) is not None for k in order):
