@@ -361,11 +361,12 @@ def check(g: Grounded, head: Head, count: int | None, remark_follows: bool, disc
         kept = rf.not_on_kept_floors(sorted(disc.confined)) if disc.confined is not None and g.role in (
             "goal", "condition") else ""
         rf.refuse(rf.matches_nothing(g.phrase, head.kind, kept, existing(head, disc)))
-    staying = [e for e in g.entities if disc.confined is None or e.floor in disc.confined]
-    if g.role == "avoid" and g.phrase.lower().split()[:1] == ["either"] and len(staying) != 2:
-        # "don't go into either bathroom": the two of them (3 in the building: which two?)
-        rf.refuse(rf.wrong_count(g.phrase, 2, head.kind, len(staying),
-                                 ", ".join(e.describe() for e in staying)))
+    if g.role == "avoid" and g.phrase.lower().split()[:1] == ["either"]:
+        # "don't go into either bathroom": the two of them (3 in the building: which two?), on kept floors
+        staying = [e for e in g.entities if disc.confined is None or e.floor in disc.confined]
+        if len(staying) != 2:
+            rf.refuse(rf.wrong_count(g.phrase, 2, head.kind, len(staying),
+                                     ", ".join(e.describe() for e in staying)))
     if count is not None and len(g.entities) != count:
         rf.refuse(rf.wrong_count(g.phrase, count, head.kind, len(g.entities),
                                  ", ".join(e.describe() for e in g.entities)))

@@ -52,6 +52,5 @@ def forbidden(f: Formula) -> frozenset[str]:
 
 def spoken(name: str, vocab: SceneVocabulary) -> str:
     """``enter(room_4)`` as *the kitchen (room_4)*."""
-    key = name[name.index("(") + 1:-1] if "(" in name else name
-    entity = vocab.by_key.get(key)
-    return f"the {entity.category} ({key})" if entity is not None else name
+    entity = next((e for e in vocab.entities if e.action == name), None)
+    return f"the {entity.category} ({entity.key})" if entity is not None else name
