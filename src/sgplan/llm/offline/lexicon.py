@@ -1816,6 +1816,9 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("first", "things", "first"): ("first",),
     ("begin", "with"): ("first",),
     ("start", "off", "with"): ("first",),
+    # "start at the fridge, then ...": blind writers read the place as the first goal, never the robot's start
+    **{(verb, *off, where): ("first", "go", "to") for verb in ("start", "begin") for off in ((), ("off",))
+       for where in ("at", "in")},
     ("to", "start", ","): ("first", ","),
     ("to", "begin", ","): ("first", ","),
     ("to", "start", "with", ","): ("first", ","),

@@ -266,8 +266,7 @@ def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order |
     if announced is not None:  # a room heading ("Kitchen stuff:") is the room of each item
         return [], None if announced.scope else announced, order, announced.prefix if announced.scope else ()
     label = label_end(said)
-    if label is None and 0 < len(said) <= lx.MAX_LABEL_WORDS and label_clause(said, 0, len(said)) is False \
-            and not set(said.words) & (lx.POSITIVE_VERBS | lx.AVOID_VERBS):
+    if label is None and list_name(said, lx.MAX_LABEL_WORDS):
         # "Kids' stuff:", "Shopping prep:": a list's name ("Today's list, in this order:": the order kept)
         return [replace(said, aside=True)], None, order, ()
     if label is None:  # an ordinary sentence before the list: read (or refused) as one; its order kept
@@ -276,6 +275,13 @@ def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order |
     if label < len(said) - 1:  # "Checklist, stay on this floor": a sentence of its own
         out.append(replace(said, toks=said.toks[label + 1:]))
     return out, None, order or order_said(said, 0, label), floor_scope(said, 0, label)
+
+
+def list_name(said: Reader, most: int) -> bool:
+    """Whether ``said`` (at most ``most`` words, before a colon) only names a list or a chore in words of its
+    own (*Kids' stuff*, *Dishes*): no room or object, verb, prohibition, condition or order word."""
+    return (0 < len(said) <= most and label_clause(said, 0, len(said)) is False
+            and not set(said.words) & (lx.POSITIVE_VERBS | lx.AVOID_VERBS))
 
 
 def without_order_remark(r: Reader) -> tuple[Reader, Reader | None]:
@@ -325,6 +331,9 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
     if announced is None and said.toks and label_end(said) == len(said):
         # a label of what follows: "Route for today:" is said back, "Rules:" says nothing
         said = replace(said, aside=True) if names_more(said, len(said)) else replace(said, toks=())
+    elif announced is None and after is not None and list_name(said, 2) \
+            and not set(said.words) & lx.STRUCTURAL:
+        said = replace(said, aside=True)  # "Dishes: look at the sink, then ...": the chore's name, said back
     if remark is not None and after is not None:  # "Do these in order: A, B": the remark after the list
         announced = replace(announced or Announced(remark.quote(0, len(remark)), (), None, None,
                                                    remark.toks[0].start, scope=True), suffix=remark.toks)
