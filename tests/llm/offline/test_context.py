@@ -100,7 +100,8 @@ def test_headings_times_and_cautions_set_aside_are_said_back(demo: Building) -> 
 
 
 def test_a_chore_name_before_a_colon_is_said_back(demo: Building) -> None:
-    translation = PatternTranslator().translate("Dishes: look at the sink in the kitchen, then the couch.", demo)
+    text = "Dishes: look at the sink in the kitchen, then the couch."
+    translation = PatternTranslator().translate(text, demo)
     assert translation.set_aside == ("Dishes",)
     said = explain_mission(mission_of(translation), demo).text.splitlines()
     assert "Not part of the mission: 'Dishes'" in said
