@@ -57,6 +57,7 @@ from sgplan.logic.formula import (
     Not,
     Or,
     atoms,
+    conjuncts,
     depth,
     is_temporal,
     to_infix,
@@ -246,7 +247,7 @@ class _Context:
         for node in walk(formula):
             if not isinstance(node, And) or is_temporal(node) or id(node) in inner:
                 continue
-            parts = _flat_and(node)
+            parts = conjuncts(node)
             inner.update(id(n) for n in walk(node) if n is not node)
             findings += self._and_findings(node, parts, present, index)
         return findings
@@ -306,7 +307,7 @@ class _Context:
         aps = self.mission.automaton.aps
         if formula is None or not self._readable():
             return f"{head}: its automaton accepts no path of places this scene has"
-        parts = _flat_and(formula)
+        parts = conjuncts(formula)
         rooms = [p for p in aps if self.describe(p).kind == "room"]
         for size in range(1, min(len(parts), MAX_CONFLICT_PARTS) + 1):
             for subset in itertools.combinations(parts, size):
@@ -433,18 +434,6 @@ def unreachable_finding(mission: Mission, building: Building, grid: OccupancyGri
     return Finding("unreachable-from-start",
                    f"no path from start {start} satisfies the mission: {'; and '.join(causes)}")
 
-
-def _flat_and(formula: Formula) -> list[Formula]:
-    """The conjuncts of ``formula``, nested ``And`` flattened, in order (iterative: any depth)."""
-    parts: list[Formula] = []
-    stack = [formula]
-    while stack:
-        node = stack.pop()
-        if isinstance(node, And):
-            stack.extend(reversed(node.args))
-        else:
-            parts.append(node)
-    return parts
 
 
 def _evaluate(f: Formula, labels: np.ndarray, index: dict[str, int]) -> np.ndarray:

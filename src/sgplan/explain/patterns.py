@@ -49,6 +49,7 @@ from sgplan.logic.formula import (
     Not,
     Or,
     Until,
+    conjuncts,
     is_temporal,
 )
 
@@ -66,7 +67,7 @@ def pattern_clauses(formula: Formula, describe: Describe) -> list[str] | None:
     """
     reader = _Reader(describe)
     try:
-        return [_sentence(clause) for clause in _clauses(reader, _conjuncts(_simplify(formula)))]
+        return [_sentence(clause) for clause in _clauses(reader, conjuncts(_simplify(formula)))]
     except _NoPattern:
         return None
 
@@ -94,8 +95,8 @@ def _goal_then(part: Formula) -> tuple[Formula, Formula] | None:
     """``(s, c)`` for ``F(s & F c)`` with ``s`` a state condition, else ``None``."""
     if not isinstance(part, Eventually) or not isinstance(part.arg, And):
         return None
-    here = [p for p in _conjuncts(part.arg) if not is_temporal(p)]
-    later = [p for p in _conjuncts(part.arg) if is_temporal(p)]
+    here = [p for p in conjuncts(part.arg) if not is_temporal(p)]
+    later = [p for p in conjuncts(part.arg) if is_temporal(p)]
     if not here or len(later) != 1 or not isinstance(later[0], Eventually):
         return None
     return (here[0] if len(here) == 1 else And(tuple(here))), later[0].arg
@@ -109,12 +110,6 @@ def condition_text(formula: Formula, describe: Describe) -> str:
 
 def _sentence(text: str) -> str:
     return text[:1].upper() + text[1:] + "."
-
-
-def _conjuncts(formula: Formula) -> list[Formula]:
-    if isinstance(formula, And):
-        return [c for arg in formula.args for c in _conjuncts(arg)]
-    return [formula]
 
 
 def _disjuncts(formula: Formula) -> list[Formula]:
@@ -155,7 +150,7 @@ def _factored(s: Formula) -> list[Formula] | None:
     ``(a & r) | (b & r)`` -> ``[a | b, r]`` (two chairs of one room).
     """
     if isinstance(s, Or):
-        options = [_conjuncts(d) for d in _disjuncts(s)]
+        options = [conjuncts(d) for d in _disjuncts(s)]
         if not all(all(_is_literal(x) for x in o) for o in options):
             return None
         common = [x for x in options[0] if all(x in o for o in options[1:])]
@@ -165,7 +160,7 @@ def _factored(s: Formula) -> list[Formula] | None:
         ):
             return None
         return [Or(tuple(r[0] for r in rest)), *common]
-    items = _conjuncts(s)
+    items = conjuncts(s)
     ok = all(_is_literal(x) or (isinstance(x, Or) and all(isinstance(d, Atom) for d in _disjuncts(x)))
              for x in items)
     return items if ok and len(items) > 1 else None
@@ -217,7 +212,7 @@ class _Reader:
                 return f"{word} {self.choice(same)}"
             return " or ".join(self.wrapped(d) for d in _disjuncts(f))
         if isinstance(f, And):
-            return " and ".join(self.wrapped(c) for c in _conjuncts(f))
+            return " and ".join(self.wrapped(c) for c in conjuncts(f))
         if isinstance(f, Implies):
             return f"if {self.wrapped(f.left)} then {self.wrapped(f.right)}"
         if isinstance(f, Equiv):
@@ -293,7 +288,7 @@ class _Reader:
             return f"you are at every moment {self.cond(f.arg)}"
         if isinstance(f, (And, Or)):
             word = " and " if isinstance(f, And) else " or "
-            parts = _conjuncts(f) if isinstance(f, And) else _disjuncts(f)
+            parts = conjuncts(f) if isinstance(f, And) else _disjuncts(f)
             return word.join(f"[{self.statement(p)}]" for p in parts)
         raise _NoPattern(f)
 
@@ -318,7 +313,7 @@ class _Reader:
         if isinstance(f, Or):
             return "do one of: " + " or ".join(f"[{self.clause(d)}]" for d in _disjuncts(f))
         if isinstance(f, And):
-            return "do both: " + " and ".join(f"[{self.clause(c)}]" for c in _conjuncts(f))
+            return "do both: " + " and ".join(f"[{self.clause(c)}]" for c in conjuncts(f))
         raise _NoPattern(f)
 
     def forbidden(self, s: Formula) -> str | None:
@@ -328,10 +323,10 @@ class _Reader:
         rooms: list[Referent] = []
         objects: list[Referent] = []
         in_room: dict[str, tuple[Referent, list[Referent]]] = {}
-        for item in _conjuncts(s):
+        for item in conjuncts(s):
             if not isinstance(item, Not):
                 return None
-            atoms = _conjuncts(item.arg)
+            atoms = conjuncts(item.arg)
             if not all(isinstance(a, Atom) for a in atoms):
                 return None
             entities = [self.entity(a) for a in atoms]  # type: ignore[arg-type]
@@ -359,7 +354,7 @@ class _Reader:
             return self.goal(body)
         if isinstance(body, Or):  # F(A | B) = F A | F B: a choice between two ways
             return "do one of: " + " or ".join(f"[{self.eventually(d)}]" for d in _disjuncts(body))
-        parts = _conjuncts(body)
+        parts = conjuncts(body)
         here = [p for p in parts if not is_temporal(p)]
         later = [p for p in parts if is_temporal(p)]
         if not here:
@@ -382,7 +377,7 @@ class _Reader:
                 return f"whenever you are {trigger}, from that moment on {self.clause(body.right)}"
         if is_temporal(body):
             raise _NoPattern(body)
-        items = _conjuncts(body)
+        items = conjuncts(body)
         if all(isinstance(i, Not) and isinstance(i.arg, Atom) for i in items):
             entities = [self.entity(i.arg) for i in items]  # type: ignore[attr-defined]
             rooms = [e for e in entities if e.kind != "object"]

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 from sgplan.logic.formula import (
     Always,
-    And,
     Equiv,
     Formula,
     Implies,
@@ -19,6 +18,7 @@ from sgplan.logic.formula import (
     Or,
     Release,
     WeakNext,
+    conjuncts,
     is_temporal,
     to_infix,
     walk,
@@ -47,12 +47,6 @@ def is_cosafe(formula: Formula) -> bool:
     return not non_cosafe_parts(formula)
 
 
-def _conjuncts(formula: Formula) -> list[Formula]:
-    if isinstance(formula, And):
-        return [c for arg in formula.args for c in _conjuncts(arg)]
-    return [formula]
-
-
 def formula_warnings(formula: Formula) -> list[str]:
     """Plain-language warnings about parts of ``formula`` whose finite-path meaning may surprise.
 
@@ -62,7 +56,7 @@ def formula_warnings(formula: Formula) -> list[str]:
       are a few centimetres apart, so ``X`` rarely expresses "afterwards" (use ``F``).
     """
     warnings: list[str] = []
-    for part in _conjuncts(formula):
+    for part in conjuncts(formula):
         if not is_temporal(part):
             warnings.append(
                 f"'{to_infix(part)}' has no temporal operator, so it only constrains the first cell of "

@@ -193,6 +193,20 @@ def atoms(formula: Formula) -> tuple[str, ...]:
     return tuple(seen)
 
 
+def conjuncts(formula: Formula) -> list[Formula]:
+    """The conjuncts of ``formula``, nested ``And`` flattened, in order (iterative: any depth); ``[formula]``
+    when it is no conjunction."""
+    parts: list[Formula] = []
+    stack = [formula]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, And):
+            stack.extend(reversed(node.args))
+        else:
+            parts.append(node)
+    return parts
+
+
 def is_temporal(formula: Formula) -> bool:
     """Whether ``formula`` contains a temporal operator (X, weak X, F, G, U, R) anywhere."""
     return any(isinstance(node, TEMPORAL) for node in walk(formula))

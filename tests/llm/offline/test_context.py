@@ -73,7 +73,7 @@ def test_asides_events_and_remarks_of_this_round_are_said_back(demo: Building) -
 
 def test_results_reasons_after_times_and_hedged_headings_are_said_back(demo: Building) -> None:
     text = ("Two things when you can: check the fridge before lunch so I know what to cook, then look at the "
-            "bedroom with the book so it's tidy. For now just keep out of the kitchen.")
+            "bedroom with the book so it's tidy. For now just keep out of the living room.")
     translation = PatternTranslator().translate(text, demo)
     assert translation.set_aside == ("when you can", "before lunch", "so I know what to cook", "so it's tidy",
                                      "For now")

@@ -921,6 +921,11 @@ def goal_and_forbidden(places: list[str]) -> str:
                     "say which holds")
 
 
+def cannot_be_done(parts: list[str]) -> str:
+    return rephrase("no way through this scene's rooms and doors from its starts can do all of this "
+                    "together: " + " ".join(parts) + " Say which of them holds")
+
+
 def one_of_goals(said: str, group: str) -> str:
     return rephrase(f"'{said}' after '{group}': only one of them, or all of them and then one again? Say "
                     "'one of ...' with the place instead")

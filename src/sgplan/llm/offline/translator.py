@@ -15,6 +15,7 @@ from sgplan.errors import MissionError
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding.discourse import Discourse, Grounded
 from sgplan.llm.offline.lexicon import PRONOUNS
+from sgplan.llm.offline.meaning.feasible import check_can_be_done
 from sgplan.llm.offline.meaning.mission import mission_formula
 from sgplan.llm.offline.names import SceneVocabulary
 from sgplan.llm.offline.spelling import Spelling
@@ -106,6 +107,7 @@ class PatternTranslator:
         except MissionError as refusal:  # name every unknown word at once, with what it looks like
             raise MissionError(rf.with_suggestions(str(refusal), spelling.did_you_mean(
                 t.text for t in tokenize(text)))) from None
+        check_can_be_done(formula, building, self.start_floor)
         nps = sorted(disc.references, key=lambda np: np.start)
         tokens = to_tokens(formula)
         # The token list must be exactly what the shared parser reads back; a failure here is a bug.

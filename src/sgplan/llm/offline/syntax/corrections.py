@@ -189,6 +189,8 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     head = old.head if isinstance(old, Described) and isinstance(old.head, Head) else None
     start = r.toks.index(next(t for t in r.toks if t.start == old.span.start))
     named, rest = one_named(r, start, end, start_new)
+    if not named and any(r.word(j) in lx.ANAPHORIC_ONE for j in range(start_new, start_new + 3)):
+        return None  # "the big one": one of the taken-back kind, read by no rule here (never another kind)
     said = replace(r, toks=r.toks[:start_new] + named + r.toks[rest:])  # "the other one": "the other X"
     new = noun_phrase(said, start_new, "goal", head)
     if not isinstance(new, Match) or said.word(new.end) not in _CLAUSE_ENDS:
@@ -247,9 +249,10 @@ def one_named(r: Reader, start: int, end: int, start_new: int) -> tuple[tuple[To
     words and ``start_new`` otherwise."""
     one = next((k for k in range(start_new, start_new + 3) if r.word(k) in lx.ANAPHORIC_ONE), None)
     noun = next(((k, h) for k in range(start, end) if (h := r.head(k)) is not None), None)
-    if one is None or noun is None or not all(r.word(k) in lx.DETERMINERS or r.word(k) == "other"
-                                              for k in range(start_new, one)):
-        return (), start_new
+    said = (r.word(k) for k in range(start_new, one or start_new))
+    if one is None or noun is None or not all(w in lx.DETERMINERS or w == "other" or w in lx.RELATIVE_FLOORS
+                                              for w in said):
+        return (), start_new  # "the downstairs one": the downstairs bathroom
     k, head = noun
     at = r.toks[one]  # the head's words where "one" was said, so that the phrase quotes what was said
     head_words = (Tok(t.text, at.start, at.end) for t in r.toks[k : k + head.words])
