@@ -139,6 +139,10 @@ def in_context(np: Described, noun: Noun, where: Where, disc: Discourse) -> Noun
         entities = on_floors(entities, reading, disc)
     if disc.confined is not None and where.role in ("goal", "condition"):
         entities = vocab.on_floor(entities, disc.confined)  # "stay on this floor": goals there
+    elif disc.confined is not None and where.role == "avoid":
+        # "stay on this floor and out of the bathroom": the one here (the others are kept out of already,
+        # so the mission is the same either way; only 'the bathroom' is no longer ambiguous)
+        entities = vocab.on_floor(entities, disc.confined) or entities
     guessed = next((f.said for f in readings if f.unknown), None)
     if np.compound is not None:  # "the kitchen sink": the sink in the kitchen
         return Noun(np.compound, vocab.inside(vocab.of_head(np.compound), entities), True, guessed)
