@@ -1137,5 +1137,11 @@ def stated_floor_contradicts(said: str, floor: int, start: int) -> str:
                     "it really is")
 
 
+def stairs_on_kept_floors(keys: list[str]) -> str:
+    return rephrase(f"'the stairs' on a mission kept to its floor: the staircase ({', '.join(keys)}) is on "
+                    "that floor; say 'never enter the staircase' to keep out of it too, or leave it out "
+                    "(staying on the floor already keeps off the way up and down)")
+
+
 def not_on_kept_floors(floors: Sequence[int]) -> str:
     return f", on the floor(s) the mission stays on ({', '.join(str(f) for f in floors)})"

@@ -141,8 +141,13 @@ def in_context(np: Described, noun: Noun, where: Where, disc: Discourse) -> Noun
         entities = vocab.on_floor(entities, disc.confined)  # "stay on this floor": goals there
     elif disc.confined is not None and where.role == "avoid":
         # "stay on this floor and out of the bathroom": the one here (the others are kept out of already,
-        # so the mission is the same either way; only 'the bathroom' is no longer ambiguous)
-        entities = vocab.on_floor(entities, disc.confined) or entities
+        # so the mission is the same either way; only 'the bathroom' is no longer ambiguous); "... and off
+        # the stairs": the way up and down, the staircases of the other floors (blind writers read it so)
+        stairs = disc.said(np.span.start, np.span.end).lower().split()[-1:] == ["stairs"]
+        kept = vocab.on_floor(entities, disc.confined)
+        if stairs and all(e in kept for e in entities):
+            rf.refuse(rf.stairs_on_kept_floors([e.key for e in entities]))
+        entities = [e for e in entities if e not in kept] if stairs else kept or entities
     guessed = next((f.said for f in readings if f.unknown), None)
     if np.compound is not None:  # "the kitchen sink": the sink in the kitchen
         return Noun(np.compound, vocab.inside(vocab.of_head(np.compound), entities), True, guessed)

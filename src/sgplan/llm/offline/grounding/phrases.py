@@ -378,9 +378,9 @@ def check(g: Grounded, head: Head, count: int | None, remark_follows: bool, disc
         g.mode = "all" if g.role == "avoid" else "any"
     if (g.mode == "the" and g.role == "avoid" and g.phrase.lower().split()[-1] in lx.PLURAL_LOOKING
             and disc.confined is not None):
-        # "stay on the top floor and keep off the stairs": the staircases of the floors the mission stays on,
-        # and those elsewhere are forbidden anyway, so every one of them. Without a confinement, all of them
-        # or those of the floors the mission uses differ: asked below.
+        # "stay on the top floor and keep off the stairs": the staircases of the other floors (grounded so:
+        # described.py), forbidden anyway, every one of them. Without a confinement, all of them or those
+        # of the floors the mission uses differ: asked below.
         g.mode = "all"
     if g.mode == "the" and len(g.entities) > 1:
         listing = ", ".join(f"{e.key} (floor {e.floor})" if e.kind == "room"
