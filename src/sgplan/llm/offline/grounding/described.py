@@ -307,7 +307,7 @@ def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc:
         return Noun(head, there, True)
     if len(entities) > len(near := near_step_before(np, noun, mode, where, disc)) > 0:
         return Noun(head, near, True)  # "go to the bedroom with the vase, then check the plant"
-    if not noun.room_scoped and 0 < len(there) < len(entities) and np.first_word in ("the", "a", "an"):
+    if not noun.room_scoped and 0 < len(there) < len(entities) and np.first_word in ("the", "a", "an", "one"):
         rooms = " or ".join(f"{r.key} ({r.category})" for r in where.soft_scope)
         word = head_word(entities)
         rf.refuse(rf.there_or_anywhere(said, rooms, lx.plural(word) if head.plural else word,

@@ -80,6 +80,9 @@ def next_to_it(span: Span, said: str, disc: Discourse, by_room: bool = False) ->
     if not outer:
         rf.refuse(rf.next_door_to_nothing(said) if said.endswith("next door") else rf.no_room_antecedent())
     ref = max(outer, key=lambda g: g.start)
+    goals = [g for g in outer if g.role == "goal" and g.start < ref.start]
+    if ref.role == "avoid" and goals:  # "go to the bedroom, avoid the other one. ... the bathroom next to it"
+        rf.refuse(rf.antecedent_or_kept_out("it", goals[-1].phrase, ref.phrase))
     entities = list(ref.entities)
     if by_room:  # the rooms of the objects named: several rooms of a choice are refused just below
         entities = [disc.vocab.by_key[k] for k in dict.fromkeys(e.room_key for e in entities)]
