@@ -821,7 +821,8 @@ def statement(r: Reader, start: int, end: int) -> str | None:
     k = subject_end(r, start, end)
     aside_of = r.phrase(start - 1, lx.ASIDE)  # "the couch, it's in the kitchen": a qualifier of the couch
     qualifies = aside_of is not None and r.word(start - 1 + len(aside_of)) in lx.ASIDE_QUALIFIERS
-    if (k is None or r.phrase(k, lx.OFF_LIMITS) or qualifies or locates(r, start, k, end)
+    located = locates(r, start, k, end) and not left_there(r, start, k) if k is not None else False
+    if (k is None or r.phrase(k, lx.OFF_LIMITS) or qualifies or located
             or any(w in lx.LIST_NOUNS for w in r.words[start:k])
             or (r.word(k) in lx.STATEMENT_LINKS and r.word(k + 1) == "to")):
         # "the kitchen is off limits", "the couch, it's in the kitchen", "the bowl is in the sink", "the next
@@ -849,6 +850,20 @@ def locates(r: Reader, start: int, verb: int, end: int) -> bool:
     objects = [j for j in range(start, end) if (h := r.head(j)) is not None and h.kind == "object"]
     return bool(objects) and any(r.word(j) in lx.LOCATIVE and r.np_starts(j + 1)
                                  for j in range(max(objects[0] + 1, verb), end))
+
+
+_LEFT_THERE = frozenset({"left", "forgot", "dropped", "lost"})
+"""Verbs of a person leaving a thing somewhere (*I left my book in the bedroom*)."""
+
+
+def left_there(r: Reader, start: int, verb: int) -> bool:
+    """Whether a clause that locates an object of the scene (its subject ``[start, verb)``) says where a
+    person left it (*I think I left my book in the bedroom with the chair*): set aside, its phrases kept as
+    mentions, which *it* and *there* point back to (*... Fetch it.*: that book); a place the scene does not
+    hold it in is then refused where *it* is grounded."""
+    objects = [j for j in range(verb, len(r)) if (h := r.head(j)) is not None and h.kind == "object"]
+    return (r.word(start) in lx.PEOPLE and bool(objects)
+            and any(w in _LEFT_THERE for w in r.words[verb:objects[0]]))
 
 
 def subject_end(r: Reader, start: int, end: int) -> int | None:
