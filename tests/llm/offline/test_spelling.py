@@ -43,3 +43,10 @@ def test_words_of_english_with_an_ending_are_not_corrected(demo: Building) -> No
     said = spelling.did_you_mean(["go", "to", "the", "kitchn", "kitchn"])
     assert said == "did you mean 'kitchen' for 'kitchn'?"
     assert spelling.did_you_mean(["go", "to", "the", "kitchen"]) == ""
+
+
+@pytest.mark.parametrize(("word", "misspelt"), [("dripping", False), ("leaking", False), ("dinning", True),
+                                                 ("kitchn", True), ("bedrooom", True), ("livng", True)])
+def test_a_shared_ending_is_no_misspelling(demo: Building, word: str, misspelt: bool) -> None:
+    """*dripping* shares *-ing* with *dining*, but *dripp* is far from *din*: an English word to set aside."""
+    assert Spelling(SceneVocabulary(demo).nouns).may_be_a_misspelt_name(word) is misspelt

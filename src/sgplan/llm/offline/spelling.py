@@ -75,7 +75,8 @@ class Spelling:
         the scene does not hold would silently drop it."""
         if self.is_known(word) or self.is_english(word):
             return False  # "watering" is "water" with an ending, not a misspelt name
-        return bool(difflib.get_close_matches(word, self.noun_words, n=1, cutoff=LOOSE_CUTOFF))
+        return any(_same_stem(word, name) for name in
+                   difflib.get_close_matches(word, self.noun_words, n=3, cutoff=LOOSE_CUTOFF))
 
     def did_you_mean(self, words: Iterable[str]) -> str:
         """*did you mean 'kitchen' for 'kitchn', 'living' for 'livng'?* for every unknown word of ``words``
@@ -84,3 +85,13 @@ class Spelling:
         if not pairs:
             return ""
         return "did you mean " + ", ".join(f"'{s}' for '{w}'" for w, s in pairs) + "?"
+
+
+def _same_stem(word: str, name: str) -> bool:
+    """Whether ``word`` is still close to ``name`` without the ending they share, when that is three letters
+    or more (*dripping* is not *dining*: *dripp* and *din* are far apart; *dinning* is: *din* and *di*)."""
+    shared = next((k for k, (a, b) in enumerate(zip(word[::-1], name[::-1], strict=False)) if a != b),
+                  min(len(word), len(name)))
+    if shared < 3:
+        return True
+    return difflib.SequenceMatcher(None, word[:-shared], name[:-shared]).ratio() >= LOOSE_CUTOFF

@@ -381,8 +381,17 @@ def aside_between(r: Reader, start: int, end: int) -> bool:
     return (statement(r, start, end) == "aside" and not r.says(lx.CORRECTIONS, start, end)
             and not any(names_place(r, k) or r.word(k) in lx.CORRECTING_WORDS or r.phrase(k, lx.NEG_STARTS)
                         or r.word(k) in lx.WISH_STOPS or r.word(k) in lx.SEQUENCE_TIMES  # "first", "later"
-                        for k in range(start, end))
+                        for k in range(start, end) if not past_time(r, k))
             and not misspelt_name(r, start, end))
+
+
+_PAST_TIME_NOUNS = frozenset({"night", "week", "weekend", "month", "year", "time", "summer", "winter"})
+
+
+def past_time(r: Reader, k: int) -> bool:
+    """Whether the word at ``k`` is *last* of a time gone by (*it was dripping last night*, *she knocked it
+    over last time*): a time of the statement, not the order's *last*."""
+    return r.word(k) == "last" and r.word(k + 1) in _PAST_TIME_NOUNS
 
 
 def manner_only(r: Reader, start: int, end: int) -> bool:
