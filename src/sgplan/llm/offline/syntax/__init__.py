@@ -27,6 +27,7 @@ from sgplan.llm.offline.syntax.any_time import any_time_goal
 from sgplan.llm.offline.syntax.brackets import bracketed_rooms
 from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement, timed_heading
 from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
+from sgplan.llm.offline.syntax.fine_choice import fine_choice
 from sgplan.llm.offline.syntax.floor_only import floor_only
 from sgplan.llm.offline.syntax.fragments import context_fragment
 from sgplan.llm.offline.syntax.fronted import fronted_prohibition
@@ -62,6 +63,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     readers = [fronted_prohibition(r) for r in readers]  # "Kitchen never go.": "never enter kitchen"
     readers = [bracketed_rooms(r) for r in readers]  # "bowl (LR)": "bowl in LR"
     readers = [each_visit_rule(r) for r in readers]  # "each kit visit -> DR after": "whenever you visit kit"
+    readers = [fine_choice(r) for r in readers]  # "then either bedroom is fine": then either bedroom
     readers = [said for r in readers for said in any_time_goal(r)]  # "whenever X, Y, and at some point Z"
     readers = [said for r in readers for said in timed_heading(r)]  # "A couple of things before dinner:"
     for r in joined_appositions(read_lists(_greeting_before_heading(readers))):

@@ -46,12 +46,20 @@ def set_aside_context(readers: list[Reader]) -> list[Reader]:
     docstring)."""
     out: list[Reader] = []
     for k, r in enumerate(readers):
+        if r.word(0) in _MEANWHILE and r.word(1) == "," and out and out[-1].aside and not r.aside:
+            out.append(aside(r, 0, 1))  # "I'm expecting a call. Meanwhile, check ...": while I'm busy
+            r = replace(r, toks=r.toks[2:])
         said_before = any(not o.aside for o in out)
         if not r.aside and (met_need(r, readers[k + 1:]) or kind_remark(r, out)):
             out.append(aside(r, 0, len(r)))  # "The vases need dusting. ... dust the vase in the hall ...
             continue
         out += [r] if r.aside or stated_start(r) is not None else split(r, said_before)
     return out
+
+
+_MEANWHILE = frozenset({"meanwhile"})
+"""*Meanwhile,* after words set aside (*I'll be busy for a while. Meanwhile, check ...*): while the speaker
+does what they said, which asks nothing of the robot; elsewhere it is refused (while doing what?)."""
 
 
 def kind_remark(r: Reader, before: list[Reader]) -> bool:
