@@ -806,6 +806,11 @@ def several_actions_before_condition(rest: str) -> str:
                     "give the condition its own sentence ('If ..., ...')")
 
 
+def several_actions_before_only_after(rest: str) -> str:
+    return rephrase(f"several actions before {rest}: it is not clear which of them waits for it; say "
+                    "'go to X only after Y' in a sentence of its own")
+
+
 def any_time_in_sequence(said: str) -> str:
     return rephrase(f"'{said}': the last goal anywhere in that order, or after the rest? Say it in a "
                     "sentence of its own ('At any point, sit on X.') or put it in the order with 'then'")
