@@ -1434,7 +1434,7 @@ EVENT_WORDS = word_set(
     """breakfast brunch lunch lunchtime dinner dinnertime supper tea teatime morning afternoon evening night
     tonight today tomorrow weekend noon midday midnight bedtime monday tuesday wednesday thursday friday
     saturday sunday work school class meeting party guests visitors dawn dusk sunset sunrise now later soon
-    daily weekly mornings evenings nights day week call appointment"""
+    daily weekly mornings evenings nights day week call appointment shift"""
 )
 """Times of day, meals and events: *Before lunch, ...*, *After dinner, ...*, *Tonight, ...* only say when,
 which a mission cannot require; said at the start of a sentence they are set aside (said back), never read

@@ -806,9 +806,10 @@ def several_actions_before_condition(rest: str) -> str:
                     "give the condition its own sentence ('If ..., ...')")
 
 
-def several_actions_before_only_after(rest: str) -> str:
-    return rephrase(f"several actions before {rest}: it is not clear which of them waits for it; say "
-                    "'go to X only after Y' in a sentence of its own")
+def only_after_which_wait(waiting: list[str]) -> str:
+    return rephrase(f"'only after' follows several goals, one of them what it waits for: it is not clear "
+                    f"whether {' and '.join(waiting)} all wait or only the last; say 'go to X only after Y' "
+                    "in a sentence of its own")
 
 
 def any_time_in_sequence(said: str) -> str:

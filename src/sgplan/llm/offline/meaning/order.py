@@ -1,5 +1,9 @@
 """Strict order: *Only after X, Y* / *Y only after X* / *A, and only after that B* (Y, and not before X).
 
+When Y holds X itself among several goals (*check the couch and the cup, and go into the bathroom but only
+once you've checked the cup*), which of the others wait is not said: refused (with one other, *go to the
+office and the living room, but the living room only after the office*, it is that one).
+
 When Y is an object named through its room (*go to a TV in the living room, but only after the kitchen*),
 "not before X" can mean not entering that room or not reaching the object, which differ; that is refused,
 offering both phrasings, unless the room itself is a goal of the same step.
@@ -10,8 +14,9 @@ from __future__ import annotations
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.meaning.compose import Clause, conj, disj, goal_eventually
 from sgplan.llm.offline.meaning.context import SentenceContext
+from sgplan.llm.offline.meaning.contradiction import spoken
 from sgplan.llm.offline.tasks import Task
-from sgplan.logic.formula import And, Atom, Formula, Not, Until
+from sgplan.logic.formula import And, Atom, Formula, Not, Until, atoms
 
 
 def only_after(before: Clause, body: Clause, ctx: SentenceContext) -> Formula:
@@ -21,6 +26,13 @@ def only_after(before: Clause, body: Clause, ctx: SentenceContext) -> Formula:
     if not prior or not goals or len(body.filled()) > 1:
         rf.refuse(rf.only_after_needs())
     check_restriction_target(goals, ctx)
+    awaited = {m for t in prior for m in t.members}
+    if any(set(t.members) & awaited for t in goals):  # "check the couch and the cup, and go into the bathroom
+        waiting = list({tuple(t.members): t for t in goals  # but only once you've checked the cup"
+                        if not set(t.members) & awaited}.values())
+        if len(waiting) > 1:
+            rf.refuse(rf.only_after_which_wait([spoken(atoms(w.members[0])[0], ctx.disc.vocab)
+                                                for w in waiting]))
     parts: list[Formula] = [f for t in goals for f in goal_eventually(t)]
     forbidden = conj([Not(m) for t in goals for m in t.members])
     for t in prior:

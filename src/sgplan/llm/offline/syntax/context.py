@@ -865,8 +865,14 @@ def locates(r: Reader, start: int, verb: int, end: int) -> bool:
     bowl is in the kitchen*, *I left my book in the bedroom*; not *the vase in the hall is dusty*): that may
     tell which one is meant, so it is left to the parser (which refuses it)."""
     objects = [j for j in range(start, end) if (h := r.head(j)) is not None and h.kind == "object"]
-    return bool(objects) and any(r.word(j) in lx.LOCATIVE and r.np_starts(j + 1)
+    return bool(objects) and any(r.word(j) in lx.LOCATIVE and r.np_starts(j + 1) and not contained(r, j)
                                  for j in range(max(objects[0] + 1, verb), end))
+
+
+def contained(r: Reader, j: int) -> bool:
+    """Whether *in it* at ``j`` closes a room's contents (*the bedroom with the vase in it*): the room says
+    what it holds, no object is placed."""
+    return r.word(j + 1) == "it" and "with" in r.words[max(0, j - 4):j]
 
 
 _LEFT_THERE = frozenset({"left", "forgot", "dropped", "lost"})
@@ -879,8 +885,9 @@ def left_there(r: Reader, start: int, verb: int) -> bool:
     mentions, which *it* and *there* point back to (*... Fetch it.*: that book); a place the scene does not
     hold it in is then refused where *it* is grounded."""
     objects = [j for j in range(verb, len(r)) if (h := r.head(j)) is not None and h.kind == "object"]
-    return (r.word(start) in lx.PEOPLE and bool(objects)
-            and any(w in _LEFT_THERE for w in r.words[verb:objects[0]]))
+    person = r.word(start) in lx.PEOPLE or (r.word(start) in lx.POSSESSIVES and verb - start <= 3 and not any(
+        r.head(j) is not None for j in range(start, verb)))  # "my nephew left his teddy bear in ..."
+    return person and bool(objects) and any(w in _LEFT_THERE for w in r.words[verb:objects[0]])
 
 
 def subject_end(r: Reader, start: int, end: int) -> int | None:

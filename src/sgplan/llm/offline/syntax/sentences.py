@@ -650,8 +650,6 @@ def postfix(r: Reader, i: int, body_actions: int) -> Parse[Postfix]:
     if body_actions > 1 and not joined and (r.phrase(i, lx.WHENEVER) or r.phrase(i, lx.CONDITION_WORDS)
                                             or r.at(i, *lx.ONLY_IF)):
         return Refusal(rf.several_actions_before_condition(r.rest(i)))
-    if r.phrase(i, lx.ONLY_AFTER) and body_actions > 1:  # "check the couch and go into the office only
-        return Refusal(rf.several_actions_before_only_after(r.rest(i)))  # once ...": the office, or both?
     if r.phrase(i, lx.ONLY_AFTER):
         found = after_conjunction(r, i + 2)  # a passive may close it: "only after the plant is watered"
         return closed(r, Match(found.node, passive_end(r, found.end)) if isinstance(found, Match) else found,
