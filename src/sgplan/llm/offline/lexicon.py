@@ -1599,6 +1599,8 @@ object or floor."""
 _PAST_TALK = ("discussed", "agreed", "promised", "planned", "requested", "asked", "arranged", "instructed",
               "mentioned", "said")
 CLOSING = CLOSING + Phrases((
+    # asides that ask nothing: "honestly", "(don't ask)", "no matter what" (after a prohibition: emphasis)
+    ("honestly",), ("do", "not", "ask"), ("no", "matter", "what"),
     # what was said before: "as discussed", "like I asked", "same as always"
     *((as_, said) for as_ in ("as", "like") for said in _PAST_TALK),
     *((as_, who, said) for as_ in ("as", "like") for who in ("i", "we") for said in _PAST_TALK),
@@ -1816,6 +1818,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("first", "things", "first"): ("first",),
     ("begin", "with"): ("first",),
     ("start", "off", "with"): ("first",),
+    ("keep", "your", "hands", "off"): ("never", "touch"),  # "keep your hands off the TVs"
     # "start at the fridge, then ...": blind writers read the place as the first goal, never the robot's start
     **{(verb, *off, where): ("first", "go", "to") for verb in ("start", "begin") for off in ((), ("off",))
        for where in ("at", "in")},

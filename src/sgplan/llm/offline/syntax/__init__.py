@@ -35,6 +35,7 @@ from sgplan.llm.offline.syntax.lists import read_lists
 from sgplan.llm.offline.syntax.needs import need_as_order
 from sgplan.llm.offline.syntax.not_needed import split_not_needed
 from sgplan.llm.offline.syntax.object_first import object_first
+from sgplan.llm.offline.syntax.only_clause import only_clause
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.remark_sentences import join_remarks
@@ -64,6 +65,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     readers = [bracketed_rooms(r) for r in readers]  # "bowl (LR)": "bowl in LR"
     readers = [each_visit_rule(r) for r in readers]  # "each kit visit -> DR after": "whenever you visit kit"
     readers = [fine_choice(r) for r in readers]  # "then either bedroom is fine": then either bedroom
+    readers = [said for r in readers for said in only_clause(r)]  # ", and only go to X after Y": its own
     readers = [said for r in readers for said in any_time_goal(r)]  # "whenever X, Y, and at some point Z"
     readers = [said for r in readers for said in timed_heading(r)]  # "A couple of things before dinner:"
     for r in joined_appositions(read_lists(_greeting_before_heading(readers))):
