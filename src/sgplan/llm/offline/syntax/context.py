@@ -456,8 +456,25 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
     if not leading and taken_back and said + len(taken_back) < end:
         return False  # "..., sit on it, I mean look at the book instead": takes back, never context
     return (is_time(r, start, end) or is_time(r, skip_joiner(r, start), end) or ignored_thing(r, said, end)
-            or statement(r, said, end) == "aside"
+            or statement(r, said, end) == "aside" or diary_past(r, said, end)
             or event_note(r, start, end) or is_reason(r, start, end))
+
+
+_DIARY_VERBS = frozenset({"lost", "got", "broke", "forgot", "spilt", "spilled", "dropped", "had", "came"})
+"""Past verbs a speaker opens a note about themselves with, the *I* left out (*Lost my glasses again*, *Just
+got back from holiday*)."""
+
+
+def diary_past(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` is a note about the speaker without its *I* (*Lost my reading
+    glasses AGAIN*, *Just got back from holiday and I can't find my passport*): a verb of
+    :data:`_DIARY_VERBS` (after *just*), then no *you*, no room, object or floor: a statement, set aside.
+    An order never opens with a past verb; with a place (*Dropped the bowl in the kitchen*) it is left to
+    the parser, which refuses it."""
+    k = start + (1 if r.word(start) == "just" else 0)
+    return (r.word(k) in _DIARY_VERBS and r.word(k + 1) not in ("to", "it", "them")
+            and "you" not in r.words[start:end]
+            and not any(names_place(r, j) for j in range(start, end)) and not misspelt_name(r, k + 1, end))
 
 
 def ignored_thing(r: Reader, start: int, end: int) -> bool:
