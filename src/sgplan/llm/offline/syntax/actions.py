@@ -64,7 +64,9 @@ def action(r: Reader, i: int, in_condition: bool = False) -> Parse[Action]:
     phrases = phrase_list(r, i, "goal")
     if not isinstance(phrases, Match):
         return phrases
-    ends = bool(set(verbs.node.words) & lx.END_VERBS) and not in_condition  # "end up in X": X after the rest
+    # "end up in X", "finish at X": X after the rest; not "finish the laptop" (done with it: a goal, no order)
+    ends = bool(set(verbs.node.words) & lx.END_VERBS) and not in_condition and not (
+        verbs.node.words[-1] in lx.END_VERBS and r.word(verbs.end - 1) in lx.END_VERBS)
     ends = ends or bool(set(verbs.node.words) & lx.CARRY_VERBS and set(verbs.node.words) & lx.CARRIED_ALL)
     carried_on = (r.word(i - 2) in lx.CARRY_ON_VERBS  # "(take X and) bring to Y", not "take a seat on"
                   and r.word(i - 1) in lx.CARRY_DESTINATION_WORDS and len(verbs.node.words) >= 2)
