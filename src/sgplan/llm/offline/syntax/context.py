@@ -33,6 +33,7 @@ from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
+from sgplan.llm.offline.phrases import Phrases
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.preamble import stated_start
 from sgplan.llm.offline.syntax.reader import Match, Reader
@@ -456,8 +457,23 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
     if not leading and taken_back and said + len(taken_back) < end:
         return False  # "..., sit on it, I mean look at the book instead": takes back, never context
     return (is_time(r, start, end) or is_time(r, skip_joiner(r, start), end) or ignored_thing(r, said, end)
-            or statement(r, said, end) == "aside" or diary_past(r, said, end)
+            or statement(r, said, end) == "aside" or diary_past(r, said, end) or wish_to_know(r, said, end)
             or event_note(r, start, end) or is_reason(r, start, end))
+
+
+_WISH_TO_KNOW = Phrases(tuple((*who, "to", know, whether) for who in (("i", "want"), ("i", "would", "like"),
+                                                                      ("i", "need"), ("we", "want"))
+                               for know in ("know", "see", "check") for whether in ("if", "whether")))
+"""*I want to know if ...*: why the speaker asks for the order it follows (*look at both apples, I want to
+know if they've gone soft*)."""
+
+
+def wish_to_know(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` is the speaker's wish to know something (:data:`_WISH_TO_KNOW`):
+    the reason of an order, set aside and said back; alone it leaves no goal (refused as such). With a room
+    or object after it (*I want to know if the TV is in the kitchen*) it is left to the parser."""
+    said = r.phrase(start, _WISH_TO_KNOW)
+    return said is not None and not any(names_place(r, k) for k in range(start + len(said), end))
 
 
 _DIARY_VERBS = frozenset({"lost", "got", "broke", "forgot", "spilt", "spilled", "dropped", "had", "came"})
