@@ -42,6 +42,7 @@ from sgplan.llm.offline.syntax.remark_sentences import join_remarks
 from sgplan.llm.offline.syntax.sentences import mission_sentence
 from sgplan.llm.offline.syntax.tree import Attachment, Sentence, SetAside, nodes
 from sgplan.llm.offline.syntax.visit_rule import each_visit_rule
+from sgplan.llm.offline.syntax.wanted_done import wanted_done
 from sgplan.llm.offline.text import rewrite, sentences, tokenize
 
 __all__ = ["Match", "Reader", "Refusal", "parse_sentence", "split_mission"]
@@ -66,6 +67,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     readers = [each_visit_rule(r) for r in readers]  # "each kit visit -> DR after": "whenever you visit kit"
     readers = [fine_choice(r) for r in readers]  # "then either bedroom is fine": then either bedroom
     readers = [said for r in readers for said in only_clause(r)]  # ", and only go to X after Y": its own
+    readers = [said for r in readers for said in wanted_done(r)]  # "I need the kitchen sorted": the kitchen
     readers = [said for r in readers for said in any_time_goal(r)]  # "whenever X, Y, and at some point Z"
     readers = [said for r in readers for said in timed_heading(r)]  # "A couple of things before dinner:"
     for r in joined_appositions(read_lists(_greeting_before_heading(readers))):
