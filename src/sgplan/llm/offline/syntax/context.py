@@ -984,16 +984,19 @@ def state_verb_last(r: Reader, k: int, end: int) -> bool:
 
 def person_did(r: Reader, start: int, end: int) -> bool:
     """Whether the clause ``[start, end)`` is a person (*my mum*, *the neighbours*) and a verb the translator
-    does not know (*gave*, *bought*, *fixed*), whatever it is, or anything else (*the cat*) and such a verb in
-    the past (*knocked*), naming no room, object or floor (*my mum gave it to me*, *the cat knocked something
-    over*): a statement about people or things; with a place (*my mum expects it upstairs*) it is left to the
-    parser, which refuses it."""
+    does not know (*gave*, *bought*, *fixed*) or any verb in the past (*flooded*), or anything else (*the
+    cat*) and such a verb in the past (*knocked*), naming no room, object or floor but where it happened (*my
+    mum gave it to me*, *my son flooded it*, *the dog knocked something over in the bedroom*: the bedroom
+    kept as a mention): a statement about people or things; with a place otherwise (*my mum expects it
+    upstairs*) it is left to the parser, which refuses it."""
     verb = r.word(start + 2)
     person = (r.word(start) in lx.POSSESSIVES or r.word(start + 1) in lx.PEOPLE_NOUNS
               or (verb.endswith("ed") and plain_subject(r, start + 1)))
-    return (person and verb.isalpha() and verb not in lx.LEXICON_WORDS
+    places = [k for k in range(start, end) if names_place(r, k)]
+    where = next((j for j in range(start + 3, end) if r.word(j) in lx.LOCATIVE), None)
+    return (person and verb.isalpha() and (verb not in lx.LEXICON_WORDS or verb.endswith("ed"))
             and not misspelt_name(r, start + 1, start + 3)
-            and not any(names_place(r, k) for k in range(start, end)))
+            and (not places or (where is not None and all(k > where for k in places))))
 
 
 def plain_word(r: Reader, i: int) -> bool:
