@@ -47,6 +47,9 @@ from sgplan.llm.offline.text import Tok
 _AROUND = frozenset({",", "sorry"})
 """Words between the old phrase, the correction and the new phrase (*the office, sorry, I mean ...*)."""
 _CLAUSE_ENDS = ("", ",", "and", "then")
+_INSTEAD = frozenset({"no", "sorry", "i", "actually", "wait", "oops", "oh"})
+"""First words of a correction that says a phrase instead (*No wait, ...*, *Sorry, I mean ...*), unlike
+*scratch that*, *forget the ...*."""
 _WITHIN = ("in", "on", "inside", "at", "of")
 """Before a place said again inside the phrase that restates it (*the office on floor one*)."""
 _PAUSED_AFTER = frozenset({"the", "a", "an", "to", "into", "of", "through", "from"})
@@ -65,6 +68,8 @@ def corrected(r: Reader) -> list[Reader]:
     r = unpaused(r)
     for k in range(1, len(r)):
         said = r.phrase(k, lx.CORRECTIONS)
+        if r.word(k) == "sorry" and r.word(k - 1) == "," and k + 1 == len(r):  # "..., the microwave, sorry."
+            return [*corrected(replace(r, toks=r.toks[:k - 1])), replace(r, toks=r.toks[k:], aside=True)]
         if said is not None:
             fixed = replaced(r, k, k + len(said)) or order_said_again(r, k, k + len(said))
             if fixed is not None and other_than_taken_back(*fixed):
@@ -85,19 +90,36 @@ def other_than_taken_back(kept: Reader, taken_back: Reader) -> bool:
 
 
 def joined_appositions(readers: list[Reader]) -> list[Reader]:
-    """``readers`` with each sentence that is only *the one(s) ...* joined to the sentence before it, after
-    a comma (see the module docstring)."""
+    """``readers`` with each sentence that is only *the one(s) ...*, or only a correction and the phrase said
+    instead (:func:`takes_back_last`), joined to the sentence before it, after a comma (see the module
+    docstring)."""
     out: list[Reader] = []
     for r in readers:
         before = out[-1] if out else None
         if (before is not None and not before.aside and not r.aside and r.marker is None
-                and r.word(0) == "the" and r.word(1) in lx.ANAPHORIC_ONE and len(r) > 2
-                and isinstance(noun_phrase(r, 0, "goal"), Match) and ends_with_phrase(before)):
+                and ((r.word(0) == "the" and r.word(1) in lx.ANAPHORIC_ONE and len(r) > 2
+                      and isinstance(noun_phrase(r, 0, "goal"), Match))
+                     or (takes_back_last(r) and len(named_heads(before, 0, len(before))) == 1))
+                and ends_with_phrase(before)):
             comma = Tok(",", before.toks[-1].end, before.toks[-1].end)
             out[-1] = replace(before, toks=(*before.toks, comma, *r.toks))
             continue
         out.append(r)
     return out
+
+
+def takes_back_last(r: Reader) -> bool:
+    """Whether the sentence ``r`` is only a correction and the phrase said instead (*No wait, the microwave,
+    sorry.*): it takes back the phrase the sentence before it ends with, and is read joined to it."""
+    said = r.phrase(0, lx.CORRECTIONS)
+    if said is None or said[0] not in _INSTEAD:
+        return False  # "Scratch the kitchen.": takes it back, says nothing instead
+    start = r.skip(len(said), _AROUND)
+    while (more := r.phrase(start, lx.CORRECTIONS)) is not None:  # "Sorry, I mean the office."
+        start = r.skip(start + len(more), _AROUND)
+    new = noun_phrase(r, start, "goal")
+    end = len(r) - (2 if r.words[-2:] == (",", "sorry") else 0)
+    return isinstance(new, Match) and new.end == end and new.end > start
 
 
 def ends_with_phrase(r: Reader) -> bool:
@@ -249,10 +271,11 @@ def one_named(r: Reader, start: int, end: int, start_new: int) -> tuple[tuple[To
     words and ``start_new`` otherwise."""
     one = next((k for k in range(start_new, start_new + 3) if r.word(k) in lx.ANAPHORIC_ONE), None)
     noun = next(((k, h) for k in range(start, end) if (h := r.head(k)) is not None), None)
-    said = (r.word(k) for k in range(start_new, one or start_new))
-    if one is None or noun is None or not all(w in lx.DETERMINERS or w == "other" or w in lx.RELATIVE_FLOORS
-                                              for w in said):
-        return (), start_new  # "the downstairs one": the downstairs bathroom
+    said = range(start_new, one or start_new)
+    if one is None or noun is None or not all(
+            r.word(k) in lx.DETERMINERS or r.word(k) == "other" or r.word(k) in lx.RELATIVE_FLOORS
+            or (k > start_new and (h := r.head(k)) is not None and h.kind == "room") for k in said):
+        return (), start_new  # "the downstairs one": the downstairs bathroom; "the kitchen one": its chair
     k, head = noun
     at = r.toks[one]  # the head's words where "one" was said, so that the phrase quotes what was said
     head_words = (Tok(t.text, at.start, at.end) for t in r.toks[k : k + head.words])
