@@ -1819,6 +1819,11 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("begin", "with"): ("first",),
     ("start", "off", "with"): ("first",),
     ("keep", "your", "hands", "off"): ("never", "touch"),  # "keep your hands off the TVs"
+    # "the middle floor's kitchen": the middle floor kitchen (not "the floor's wet": the floor is)
+    **{("floor", "'s", room): ("floor", room) for room in (
+        "kitchen", "bathroom", "bedroom", "corridor", "hallway", "hall", "living", "dining", "lobby",
+        "office", "home", "staircase", "utility", "empty", "toilet", "loo", "bath", "bed", "sink", "tv")},
+    **{(kid, "'s", "rm"): (kid, "'s", "room") for kid in ("kid", "kids")},  # "kid's rm w/ teddy"
     # "start at the fridge, then ...": blind writers read the place as the first goal, never the robot's start
     **{(verb, *off, where): ("first", "go", "to") for verb in ("start", "begin") for off in ((), ("off",))
        for where in ("at", "in")},
