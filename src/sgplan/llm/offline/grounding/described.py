@@ -243,11 +243,15 @@ def pointed_in(said: str, noun: Noun, start: int, disc: Discourse) -> list[Groun
 def owners_room(np: Described, noun: Noun, said: str, disc: Discourse) -> list[Entity]:
     """*her room*: the room an earlier *her room* named, else the one room a statement set aside says
     someone stays, sleeps or lives in (*My sister is staying in the bedroom with the two beds.*); refused
-    otherwise (whose room?). A room named as a goal, or as where someone just is (*Grandma is in the
-    kitchen*), is not taken for it."""
+    otherwise (whose room?). *her bed*: the beds of that room (of the scene's, when no room is told). A
+    room named as a goal, or as where someone just is (*Grandma is in the kitchen*), is not taken for it."""
     word, fits = said.split()[0].lower(), {e.key for e in noun.entities}
     same = [g for g in disc.references if g.end <= np.span.start and g.phrase.split()[0].lower() == word]
     told = [g for g in disc.mentions if g.end <= np.span.start and lives_there(disc.text, g.start, word)]
+    if noun.head.kind == "object":  # "my sister stays in the bedroom with the plant ... her bed": its bed
+        rooms = {e.key: e for g in (*same[-1:], *told) for e in g.entities if e.kind == "room"}
+        inside = disc.vocab.inside(noun.entities, rooms.values()) if len(rooms) == 1 else []
+        return inside or noun.entities  # else as "the": one, or refused as several
     for named in (same[-1:], told):
         rooms = {e.key: e for g in named for e in g.entities if e.kind == "room" and e.key in fits}
         if len(rooms) == 1:
@@ -300,7 +304,9 @@ def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc:
     the bathroom, use the sink*), of the step (*go to the kitchen and open the fridge*), or, for a definite
     one that fits several, of the step just before (*go to the bedroom, then check the plant*)."""
     vocab, head, entities = disc.vocab, noun.head, noun.entities
-    demo = np.determiner.pointer is not None
+    # "his chair" is located by the step as "the chair" is (its owner's room, when told, was taken already)
+    demo = np.determiner.pointer is not None and not (np.determiner.pointer in lx.OWNERS
+                                                      and head.kind == "object")
     there = vocab.inside(entities, where.soft_scope) if where.role == "goal" and head.kind == "object" \
         and not demo else []
     if not noun.room_scoped and mode == "the" and not head.plural and len(entities) > 1 and len(there) == 1:

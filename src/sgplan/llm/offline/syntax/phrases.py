@@ -337,8 +337,8 @@ def determiner(r: Reader, i: int, other: bool) -> Parse[Determiner]:
         count = count_word(r, i + demo)
         end = i + demo + (1 if count else 0)
         return Match(Determiner("all" if count else "the", count, pointer=r.word(i), other=other), end)
-    if r.word(i) in lx.OWNERS and (room := r.head(i + 1)) is not None and room.kind == "room":
-        return Match(Determiner("the", None, pointer=r.word(i), other=other), i + 1)  # "her room"
+    if r.word(i) in lx.OWNERS and r.head(i + 1) is not None:
+        return Match(Determiner("the", None, pointer=r.word(i), other=other), i + 1)  # "her room", "his bed"
     owned = persons_possessive(r, i)
     if owned:  # "the baby's teddy bear": the teddy bear; "my son's room": whose room? (grounding)
         return Match(Determiner("the", None, other=other, owner=r.quote(i, i + owned)), i + owned)
