@@ -403,6 +403,11 @@ def not_in_this_step(said: str, where: str, listing: str, noun: str) -> str:
                     f"between the two, or name its room ('the {noun} in the ...')")
 
 
+def step_room_or_anywhere(said: str, where: str, noun: str, room: str, single: str) -> str:
+    return rephrase(f"'{said}' right after a step in {where}: one of the ones there, or any in the building? "
+                    f"Say 'one of the {noun} in the {room}' or 'any {single}'")
+
+
 def there_or_anywhere(said: str, where: str, noun: str, room: str, single: str) -> str:
     return rephrase(f"'{said}' after a condition on {where}: the ones there, or any in the building? Say "
                     f"'the {noun} in the {room}' or 'any {single}'")

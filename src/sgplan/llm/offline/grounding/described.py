@@ -313,6 +313,12 @@ def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc:
         return Noun(head, there, True)
     if len(entities) > len(near := near_step_before(np, noun, mode, where, disc)) > 0:
         return Noun(head, near, True)  # "go to the bedroom with the vase, then check the plant"
+    before = vocab.inside(entities, where.previous) if where.role == "goal" and not demo else []
+    if mode == "any" and head.plural and not noun.room_scoped and 0 < len(before) < len(entities):
+        # "check the vase in the living room, then one of the TVs": one of those there, or any?
+        rooms = " or ".join(f"{r.key} ({r.category})" for r in where.previous)
+        word = head_word(entities)
+        rf.refuse(rf.step_room_or_anywhere(said, rooms, lx.plural(word), where.previous[0].category, word))
     if not noun.room_scoped and 0 < len(there) < len(entities) and np.first_word in ("the", "a", "an", "one"):
         rooms = " or ".join(f"{r.key} ({r.category})" for r in where.soft_scope)
         word = head_word(entities)

@@ -136,8 +136,10 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         return [aside(r, 0, heading - 1), *(split(rest) if rest.words else [])]
     clauses = comma_clauses(r)
     for a, b in clauses:
-        if waits_for_an_end(r, a, b):  # "switch the TV off once the match has finished": when is that?
-            rf.refuse(rf.wait_for_an_end(r.quote(a, b)))
+        tail = time_tail(r, a, b)  # "turn off the oven when the timer goes off": closing the clause
+        for k in (a, *((tail,) if tail is not None else ())):
+            if waits_for_an_end(r, k, b):  # "switch the TV off once the match has finished": when is that?
+                rf.refuse(rf.wait_for_an_end(r.quote(k, b)))
         if (r.word(a) in lx.APOLOGY_WORDS and r.word(a + 1) in ("for", "about")
                 and any(r.head(k) is not None for k in range(a, b))):  # "Sorry about the kitchen."
             rf.refuse(rf.apology_about_place(r.quote(a, b)))
@@ -210,8 +212,9 @@ _DONE_TASKS = frozenset({"all", "both", "those", "these", "that", "this", "it", 
 
 def waits_for_an_end(r: Reader, start: int, end: int) -> bool:
     """Whether the clause ``[start, end)`` is the end of an event of others (*once the match has finished*,
-    *when the film is over*, *after the washing machine stops*): what follows it must wait for something the
-    robot can neither sense nor plan for (refused); the robot's own (*once you have finished*) is an order."""
+    *when the film is over*, *after the washing machine stops*, *when the timer goes off*): what it closes or
+    opens must wait for something the robot can neither sense nor plan for (refused); the robot's own (*once
+    you have finished*) is an order."""
     words = r.words[start + 1:end]
     if r.word(start) not in ("once", "when", "after") or r.word(start + 1) in lx.PEOPLE | {"you"} or any(
             w in lx.EVENT_WORDS or w in _DONE_TASKS for w in words):
