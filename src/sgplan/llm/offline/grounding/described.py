@@ -67,6 +67,8 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
     for qualifier in np.qualifiers:
         noun = APPLIERS(qualifier, noun, np, where, disc)
         guessed = noun.guessed or guessed
+    if disc.confined is not None and where.role == "avoid":
+        noun = kept_floors_to_avoid(np, noun, disc)
     mode: Mode = np.determiner.mode or "the"
     if any(isinstance(q, InRoom) and in_chosen_rooms(q, noun.head) for q in np.qualifiers):
         mode = "any"  # "the chair in the living room or the dining room", "the toilet in either bathroom"
@@ -113,6 +115,20 @@ def in_chosen_rooms(q: InRoom, head: Head) -> bool:
     return (q.choice or (isinstance(room, Described) and room.determiner.mode == "any")) and not head.plural
 
 
+def kept_floors_to_avoid(np: Described, noun: Noun, disc: Discourse) -> Noun:
+    """On a mission kept to some floors, a place to keep out of: *the bathroom* is the one there (the others
+    are kept out of already, so the mission is the same either way; only the ambiguity goes), none there
+    leaves it as it is; *the stairs* are the way up and down, the staircases of the other floors (blind
+    writers read it so), refused when the only ones are on the kept floors."""
+    assert disc.confined is not None
+    kept = disc.vocab.on_floor(noun.entities, disc.confined)
+    if disc.said(np.span.start, np.span.end).lower().split()[-1:] != ["stairs"]:
+        return replace(noun, entities=kept or noun.entities)
+    if all(e in kept for e in noun.entities):
+        rf.refuse(rf.stairs_on_kept_floors([e.key for e in noun.entities]))
+    return replace(noun, entities=[e for e in noun.entities if e not in kept])
+
+
 def core_text(np: Described, disc: Discourse) -> str:
     """The phrase as said, without its apposition (for messages)."""
     end = np.span.end if np.apposition is None else np.apposition.span.start
@@ -139,15 +155,6 @@ def in_context(np: Described, noun: Noun, where: Where, disc: Discourse) -> Noun
         entities = on_floors(entities, reading, disc)
     if disc.confined is not None and where.role in ("goal", "condition"):
         entities = vocab.on_floor(entities, disc.confined)  # "stay on this floor": goals there
-    elif disc.confined is not None and where.role == "avoid":
-        # "stay on this floor and out of the bathroom": the one here (the others are kept out of already,
-        # so the mission is the same either way; only 'the bathroom' is no longer ambiguous); "... and off
-        # the stairs": the way up and down, the staircases of the other floors (blind writers read it so)
-        stairs = disc.said(np.span.start, np.span.end).lower().split()[-1:] == ["stairs"]
-        kept = vocab.on_floor(entities, disc.confined)
-        if stairs and all(e in kept for e in entities):
-            rf.refuse(rf.stairs_on_kept_floors([e.key for e in entities]))
-        entities = [e for e in entities if e not in kept] if stairs else kept or entities
     guessed = next((f.said for f in readings if f.unknown), None)
     if np.compound is not None:  # "the kitchen sink": the sink in the kitchen
         return Noun(np.compound, vocab.inside(vocab.of_head(np.compound), entities), True, guessed)
