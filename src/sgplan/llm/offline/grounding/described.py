@@ -122,7 +122,7 @@ def kept_floors_to_avoid(np: Described, noun: Noun, disc: Discourse) -> Noun:
     writers read it so), refused when the only ones are on the kept floors."""
     assert disc.confined is not None
     kept = disc.vocab.on_floor(noun.entities, disc.confined)
-    if disc.said(np.span.start, np.span.end).lower().split()[-1:] != ["stairs"]:
+    if disc.said(np.span.start, np.span.end).lower().split()[-1] not in lx.PLURAL_LOOKING:
         return replace(noun, entities=kept or noun.entities)
     if all(e in kept for e in noun.entities):
         rf.refuse(rf.stairs_on_kept_floors([e.key for e in noun.entities]))
