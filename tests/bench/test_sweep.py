@@ -18,7 +18,7 @@ from sgplan.assembly import make_problem
 from sgplan.bench.cases import BenchError, Case
 from sgplan.bench.executors import WORKER_ENV, LocalExecutor, worker_command
 from sgplan.bench.results import COLUMNS, RESULTS_JSONL, ResultStore, writing_lock
-from sgplan.bench.sweep import pending_cases, run_sweep
+from sgplan.bench.sweep import SweepInterrupted, pending_cases, run_sweep
 from sgplan.bench.worker import PARENT_ENV
 from sgplan.formats import load_scene
 from sgplan.mission import load_mission_folder
@@ -131,6 +131,33 @@ def test_rerun_runs_nothing_and_a_torn_last_line_is_dropped(
     assert set(executor.ran) == missing and summary.skipped == len(cases) - 3 and summary.ran == 3
     assert len(ResultStore(tmp_path)) == len(cases) and copy.read_text().count("\n") == len(cases)
     assert len(ResultStore(tmp_path)) == len(cases)
+
+
+def test_an_interrupt_swallowed_by_a_finaliser_stops_the_sweep_after_the_row_it_came_with(
+    swept: tuple[list[Case], ResultStore], tmp_path: Path
+) -> None:
+    """Ctrl-C landing while the garbage collector runs a weakref callback is lost to Python ("Exception
+    ignored in ..."); the sweep still stops at its next row, with that row stored."""
+    from sgplan.runtime.process import interrupts_handled
+
+    cases, store = swept
+
+    class InterruptedWhileFreed:
+        def __del__(self) -> None:
+            raise KeyboardInterrupt
+
+    class Replaying:
+        name = "replaying"
+
+        def run(self, todo):
+            for case in todo:
+                InterruptedWhileFreed()
+                yield store.get(case.key)
+
+    fresh = ResultStore(tmp_path)
+    with pytest.raises(SweepInterrupted) as stop, interrupts_handled(termination=False, hold_after=False):
+        run_sweep(cases, fresh, Replaying())
+    assert stop.value.summary.ran == 1 and len(ResultStore(tmp_path)) == 1
 
 
 def test_crash_and_wall_timeout_are_recorded_and_the_sweep_goes_on(data_dir: Path, tmp_path: Path) -> None:

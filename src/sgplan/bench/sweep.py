@@ -9,6 +9,7 @@ from typing import Any, Protocol
 
 from sgplan.bench.cases import Case
 from sgplan.bench.results import RETRYABLE, ResultStore
+from sgplan.runtime.process import raise_swallowed_interrupt
 
 
 class Executor(Protocol):
@@ -74,6 +75,7 @@ def run_sweep(
                     summary.statuses[row["status"]] = summary.statuses.get(row["status"], 0) + 1
                     if on_row is not None:
                         on_row(row)
+                    raise_swallowed_interrupt()
             finally:
                 # A generator executor stops its workers when closed (on an interrupt, or a failed append).
                 close = getattr(rows, "close", None)

@@ -64,10 +64,32 @@ def hold_interrupts() -> None:
         signal.signal(sig, signal.SIG_IGN)
 
 
+_swallowed: list[KeyboardInterrupt] = []
+"""Interrupts raised where Python could not propagate them, kept by :func:`interrupts_handled` for
+:func:`raise_swallowed_interrupt`."""
+
+
+def raise_swallowed_interrupt() -> None:
+    """Raise again an interrupt that Python swallowed, if one was (see :func:`interrupts_handled`).
+
+    For loops that must stop on Ctrl-C (a sweep): call it between two steps.
+    """
+    if _swallowed:
+        stop = _swallowed[-1]
+        _swallowed.clear()
+        raise stop
+
+
 @contextlib.contextmanager
 def interrupts_handled(*, termination: bool, hold_after: bool) -> Iterator[None]:
     """Inside the block, with ``termination``, SIGTERM and SIGHUP raise ``KeyboardInterrupt`` like Ctrl-C
     (with a ``signum`` attribute), so that the caller's cleanup runs and it can exit with 128 + signal.
+
+    A signal that arrives while the garbage collector runs a weakref callback or a ``__del__`` raises its
+    ``KeyboardInterrupt`` inside it, where Python cannot propagate it: Python would print "Exception
+    ignored in ..." with a traceback and go on as if no one had asked to stop. Inside the block such an
+    interrupt is kept silently instead (``sys.unraisablehook``) and raised again at the next
+    :func:`raise_swallowed_interrupt`, or at the block's end if the block ends normally.
 
     With ``hold_after`` (sgplan's own process, which ends right after the block, see :func:`exit_now`)
     the interrupts are ignored from the block's end on (:func:`hold_interrupts`) instead of getting their
@@ -76,9 +98,21 @@ def interrupts_handled(*, termination: bool, hold_after: bool) -> Iterator[None]
     complete. Without it, the earlier handlers come back.
     """
     previous = {sig: signal.signal(sig, _raise_interrupt) for sig in INTERRUPTS[1:]} if termination else {}
+    unraisable_hook = sys.unraisablehook
+
+    def keep_interrupt(unraisable: sys.UnraisableHookArgs) -> None:
+        if isinstance(unraisable.exc_value, KeyboardInterrupt):
+            _swallowed.append(unraisable.exc_value)
+        else:
+            unraisable_hook(unraisable)
+
+    sys.unraisablehook = keep_interrupt
     try:
         yield
+        raise_swallowed_interrupt()  # the block ended, but someone asked it to stop on the way
     finally:
+        sys.unraisablehook = unraisable_hook
+        _swallowed.clear()
         if hold_after:
             hold_interrupts()
         else:
