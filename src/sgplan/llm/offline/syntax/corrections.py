@@ -24,6 +24,18 @@ order, the words before set aside and said back. Only when the words taken back 
 object (with several, which of them is taken back is not known) and, when the new order says an order
 (*first*, *last*, *before*), it names that one again (else it may only move it: refused).
 
+Corrections may follow one another (*the microwave no the oven wait no microwave*): each is read in turn. A
+*yeah* / *yes* followed by the words that end the noun phrase before it (*... microwave yeah microwave*) only
+confirms it: set aside and said back. A denial may run into the new phrase unpunctuated (*no wait not the
+office the bedroom*), and so may an apposition (*the bedroom the one with the teddy bear* is *the bedroom,
+the one with the teddy bear*). A correction followed by the whole order said again may name several places
+when it names the same ones again (*the empty room then the lobby no wait lobby first then the empty
+room*: which is taken back is then no question), and a group of two or more words said twice in a row is
+a stutter, said once (*lobby first lobby first*).
+
+A sentence that is a correction and a whole order said again (*Actually no, go down to the lobby.*) after
+one that names at most one place takes that sentence back: the two are read joined, as one sentence.
+
 A sentence that is only *the one(s) ...* right after one that ends with a noun phrase says which one that
 is (*water the plant. the one in the living room.*): it is read as an apposition of that phrase (*the plant,
 the one in the living room*).
@@ -55,6 +67,12 @@ _WITHIN = ("in", "on", "inside", "at", "of")
 _PAUSED_AFTER = frozenset({"the", "a", "an", "to", "into", "of", "through", "from"})
 """Words after which a comma is a pause, never the end of a clause (*go to the... kitchen*); not *in*, *on*
 (particles end clauses: *go in, then ...*), nor *her*, *that* (*bless her, ...*, *check that, then ...*)."""
+_SEQUENCE_LEAD = frozenset({"then", "and", "next", ","})
+"""Opening a sentence that is a next step, kept when the order in it is said again (*Then go to the corridor,
+no, to the living room.*)."""
+_YES = frozenset({"yeah", "yes", "yep", "yup", "sorry"})
+"""Before the words of a phrase said again to confirm it (*the microwave yeah microwave*, *no the living room
+sorry the living room*)."""
 _OPENING = lx.HESITATIONS | lx.GREETINGS | frozenset({",", "okay", "ok", "robot"})
 """Words before what a sentence restates (*um okay floor one, the office on floor one*)."""
 
@@ -62,10 +80,10 @@ _OPENING = lx.HESITATIONS | lx.GREETINGS | frozenset({",", "okay", "ok", "robot"
 def corrected(r: Reader) -> list[Reader]:
     """``r`` with each self-correction applied (the sentence to read, then the words set aside), or ``[r]``
     when it has none that can be read."""
-    restart = restarted(r) or restated(r)
+    restart = restarted(r) or restated(r) or stuttered(r) or confirmed(r)
     if restart is not None:
         return [*corrected(restart[0]), restart[1]]
-    r = unpaused(r)
+    r = apposition_marked(unpaused(r))
     for k in range(1, len(r)):
         said = r.phrase(k, lx.CORRECTIONS)
         if r.word(k) == "sorry" and r.word(k - 1) == "," and k + 1 == len(r):  # "..., the microwave, sorry."
@@ -97,10 +115,11 @@ def joined_appositions(readers: list[Reader]) -> list[Reader]:
     for r in readers:
         before = out[-1] if out else None
         if (before is not None and not before.aside and not r.aside and r.marker is None
-                and ((r.word(0) == "the" and r.word(1) in lx.ANAPHORIC_ONE and len(r) > 2
-                      and isinstance(noun_phrase(r, 0, "goal"), Match))
-                     or (takes_back_last(r) and len(named_heads(before, 0, len(before))) == 1))
-                and ends_with_phrase(before)):
+                and (((r.word(0) == "the" and r.word(1) in lx.ANAPHORIC_ONE and len(r) > 2
+                       and isinstance(noun_phrase(r, 0, "goal"), Match))
+                      or (takes_back_last(r) and len(named_heads(before, 0, len(before))) == 1))
+                     and ends_with_phrase(before)
+                     or takes_back_order(r) and len(named_heads(before, 0, len(before))) <= 1)):
             comma = Tok(",", before.toks[-1].end, before.toks[-1].end)
             out[-1] = replace(before, toks=(*before.toks, comma, *r.toks))
             continue
@@ -120,6 +139,27 @@ def takes_back_last(r: Reader) -> bool:
     new = noun_phrase(r, start, "goal")
     end = len(r) - (2 if r.words[-2:] == (",", "sorry") else 0)
     return isinstance(new, Match) and new.end == end and new.end > start
+
+
+def takes_back_order(r: Reader) -> bool:
+    """Whether the sentence ``r`` is a correction and a whole order said again (*Actually no, go down to the
+    lobby.*), which takes back the sentence before it."""
+    said = r.phrase(0, lx.CORRECTIONS)
+    if said is None or said[0] not in _INSTEAD:
+        return False
+    start = r.skip(len(said), _AROUND)
+    while (more := r.phrase(start, lx.CORRECTIONS)) is not None:
+        start = r.skip(start + len(more), _AROUND)
+    return (r.word(order_start(r, start)) in lx.POSITIVE_VERBS and not r.says(lx.TOO, start, len(r))
+            and "instead" not in r.words[start:])
+
+
+def order_start(r: Reader, i: int) -> int:
+    """Where the order said from ``i`` starts, after opening words and a polite wrapper (*uh, I want you to
+    go ...*)."""
+    i = r.skip(i, _OPENING)
+    polite = r.phrase(i, lx.POLITE)
+    return i if polite is None else r.skip(i + len(polite), _OPENING)
 
 
 def ends_with_phrase(r: Reader) -> bool:
@@ -158,6 +198,49 @@ def unpaused(r: Reader) -> Reader:
         return after.isalpha() and after not in lx.CLAUSE_ENDS and before in _PAUSED_AFTER
     kept = [t for k, t in enumerate(r.toks) if not (t.text == "," and pause(k))]
     return r if len(kept) == len(r.toks) else replace(r, toks=tuple(kept))
+
+
+def stuttered(r: Reader) -> tuple[Reader, Reader] | None:
+    """The sentence with a group of two or more words said twice in a row said once (*lobby first lobby
+    first*), and the second saying set aside; ``None`` when it has none."""
+    for size in range(2, len(r) // 2 + 1):
+        for k in range(len(r) - 2 * size + 1):
+            group = r.words[k:k + size]
+            if group == r.words[k + size:k + 2 * size] and all(w.isalpha() for w in group):
+                return (replace(r, toks=r.toks[:k + size] + r.toks[k + 2 * size:]),
+                        replace(r, toks=r.toks[k + size:k + 2 * size], aside=True))
+    return None
+
+
+def confirmed(r: Reader) -> tuple[Reader, Reader] | None:
+    """The sentence without a *yeah* / *yes* and the words after it that say again the end of the noun
+    phrase before it (*the microwave yeah microwave*, *the oven, yes, the oven*), those words set aside;
+    ``None`` when it has none."""
+    for k in range(1, len(r) - 1):
+        if r.word(k) not in _YES:
+            continue
+        end = k - (r.word(k - 1) == ",")
+        start = r.skip(k + 1, _AROUND)
+        stop = next((j for j in range(start, len(r)) if r.word(j) in _CLAUSE_ENDS), len(r))
+        again = tuple(w for w in r.words[start:stop] if w not in lx.ARTICLES)
+        if (again and r.words[end - len(again):end] == again
+                and any(phrase_to(r, j, end) for j in range(max(0, end - 10), end))):
+            return (replace(r, toks=r.toks[:end] + r.toks[stop:]),
+                    replace(r, toks=r.toks[end:stop], aside=True))
+    return None
+
+
+def apposition_marked(r: Reader) -> Reader:
+    """``r`` with a comma before each unpunctuated *the one(s)* right after a noun phrase (*the bedroom the
+    one with the teddy bear*): the apposition it is."""
+    cuts = [k for k in range(1, len(r)) if r.word(k) == "the" and r.word(k + 1) in lx.ANAPHORIC_ONE
+            and any(phrase_to(r, j, k) for j in range(max(0, k - 10), k))]
+    if not cuts:
+        return r
+    toks = list(r.toks)
+    for k in reversed(cuts):
+        toks.insert(k, Tok(",", toks[k - 1].end, toks[k - 1].end))
+    return replace(r, toks=tuple(toks))
 
 
 def broken_word(r: Reader, cut: int) -> bool:
@@ -215,8 +298,10 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
         return None  # "the big one": one of the taken-back kind, read by no rule here (never another kind)
     said = replace(r, toks=r.toks[:start_new] + named + r.toks[rest:])  # "the other one": "the other X"
     new = noun_phrase(said, start_new, "goal", head)
-    if not isinstance(new, Match) or said.word(new.end) not in _CLAUSE_ENDS:
-        return None
+    if not isinstance(new, Match) or (said.word(new.end) not in _CLAUSE_ENDS
+                                      and said.phrase(new.end, lx.CORRECTIONS) is None
+                                      and not said_with_verb(said, start_new, new.end)):
+        return None  # (another correction after it: "the microwave no the oven wait no microwave")
     kinds = {head_kind(p) for p in (old, new.node) if isinstance(p, Described)} - {None}
     if len(kinds) > 1:
         return None  # "the toilet in the top-floor bathroom, no wait, the bathroom downstairs": which part?
@@ -224,22 +309,38 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     return kept, replace(r, toks=r.toks[start:start_new], aside=True)
 
 
+def said_with_verb(r: Reader, start: int, end: int) -> bool:
+    """Whether the noun phrase ``[start, end)`` is said again right after it with a verb (*no wait the
+    microwave check the microwave*, *the clock look at the clock*): the stutter that :func:`stuttered` then
+    says once."""
+    size = end - start
+    return r.word(end) in lx.POSITIVE_VERBS and any(  # ("look at the clock": after the verb's particle)
+        r.words[end + gap:end + gap + size] == r.words[start:end] for gap in (1, 2))
+
+
 def order_said_again(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     """The sentence read from the whole order said again after the correction words ``[k, after)`` (see the
     module docstring), and the words taken back set aside; ``None`` when the shape is not that."""
-    start = r.skip(r.skip(after, _AROUND), _OPENING)
-    if r.word(start) not in lx.POSITIVE_VERBS and r.word(start) not in lx.FIRST and r.word(start) != "please":
-        return None
+    start = order_start(r, r.skip(after, _AROUND))
     opening = r.skip(0, _OPENING)
     if opening >= k:
         return None  # "Actually no, go to the bed": takes back the sentence before (refused there)
     taken_back = named_heads(r, opening, k)
-    if len(taken_back) > 1:
-        return None  # "the kitchen then the office scratch that go to ...": which is taken back?
     said_again = {h.categories for h in named_heads(r, start, len(r))}
+    all_again = bool(taken_back) and {h.categories for h in taken_back} == said_again
+    if (r.word(start) not in lx.POSITIVE_VERBS and r.word(start) not in lx.FIRST and r.word(start) != "please"
+            and not (all_again and r.head(start) is not None)):
+        return None
+    if len(taken_back) > 1 and not all_again:
+        return None  # "the kitchen then the office scratch that go to ...": which is taken back?
+    if r.says(lx.TOO, start, len(r)) or "instead" in r.words[start:]:
+        return None  # "actually, check the couch too": added, not in place of it (refused)
     if any(w in lx.FIRST or w in lx.LAST or w == "before" for w in r.words[start:]) and not (
             taken_back and taken_back[0].categories in said_again):
         return None  # "go to the kitchen wait no go to the office first": only moved, or taken back?
+    lead = r.skip(opening, _SEQUENCE_LEAD)
+    if lead > opening:  # "Then come back up to the corridor, no, to the living room": still a next step
+        return replace(r, toks=r.toks[:lead] + r.toks[start:]), replace(r, toks=r.toks[lead:start], aside=True)
     return replace(r, toks=r.toks[start:]), replace(r, toks=r.toks[:start], aside=True)
 
 
@@ -257,10 +358,12 @@ def named_heads(r: Reader, start: int, end: int) -> list[Head]:
 
 def denied(r: Reader, old: NounPhrase, i: int) -> int:
     """Where the new phrase starts after the old one is denied at ``i`` in the same words (*no sorry, not
-    the kitchen, the living room*), or ``i`` when it is not."""
+    the kitchen, the living room*, *not the office the bedroom*), or ``i`` when it is not."""
     said = tuple(t.text for t in r.toks if old.span.start <= t.start and t.end <= old.span.end)
-    if r.word(i) == "not" and r.words[i + 1:i + 1 + len(said)] == said and r.word(i + 1 + len(said)) == ",":
-        return r.skip(i + 1 + len(said), _AROUND)
+    after = r.word(i + 1 + len(said))
+    if r.word(i) == "not" and r.words[i + 1:i + 1 + len(said)] == said and (after == ","
+                                                                              or after in lx.DETERMINERS):
+        return r.skip(i + 1 + len(said), _AROUND)  # (unpunctuated: "no wait not the office the bedroom")
     return i
 
 
