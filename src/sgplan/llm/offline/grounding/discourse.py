@@ -78,6 +78,10 @@ class Discourse:
     done_before: list[Grounded] = field(default_factory=list)
     """Goals said after the goal they come before (*go to Y only after X*: X), which *there* does not point
     back to as the last place (refused: X, named last, or Y, gone to last?)."""
+    first_said: str | None = None
+    """The words of a sentence whose goals come *first* with no goal said before them (*First, go to the
+    garage.*, *Garage first:*): the goals of a later sentence must come after them (refused when it does not
+    go on from them: its place after them would be lost)."""
 
     def record(self, phrase: Grounded) -> Grounded:
         """Remember ``phrase`` (a back-reference may point to it) and return it."""
@@ -93,7 +97,7 @@ class Discourse:
         """A copy to try a reading on, which the original does not see."""
         return Discourse(self.vocab, self.text, self.start_floor, copy.copy(self.references), self.confined,
                          self.last_step, self.last_steps, self.announced, list(self.set_aside),
-                         list(self.mentions), list(self.done_before))
+                         list(self.mentions), list(self.done_before), self.first_said)
 
     def said(self, start: int, end: int) -> str:
         """The mission text between two character offsets."""

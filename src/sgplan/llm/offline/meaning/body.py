@@ -224,6 +224,7 @@ def ordered_first(trailing: str, item: PlainAction, steps: list[Step], clause: C
         return
     if not item.more and ctx.disc.last_step:
         rf.refuse(rf.trailing_first_later())
+    ctx.said_first = True
     clause.steps[-1].extend(steps[0])  # "go to A first and (then) B": A, then the rest
     clause.steps.extend(steps[1:] + [[]])
 

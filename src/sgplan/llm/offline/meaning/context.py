@@ -34,6 +34,9 @@ class SentenceContext:
     ...*): objects of the next action are looked for there first (elsewhere if none is there)."""
     said_last: bool = False
     """The sentence ended with *last* (*visit the office last*): its last step follows all else."""
+    said_first: bool = False
+    """A step of the sentence was said *first* with no goal before it (*go to the garage first*): it comes
+    before all the goals of the sentences after it too."""
     soft_scope: list[Entity] = field(default_factory=list)
     """The rooms of the condition whose consequent is being read."""
     previous_room: list[Entity] = field(default_factory=list)

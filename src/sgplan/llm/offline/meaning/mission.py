@@ -23,6 +23,7 @@ from sgplan.llm.offline.meaning.contradiction import check_goal_not_forbidden
 from sgplan.llm.offline.meaning.sentences import Meaning, read_sentence_body
 from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax import Reader, parse_sentence
+from sgplan.llm.offline.syntax.any_time import LEAD_WORDS, any_time_said
 from sgplan.llm.offline.syntax.context import is_time, times_of_parts
 from sgplan.llm.offline.syntax.preamble import stated_start as said_start
 from sgplan.llm.offline.syntax.reader import Match, Refusal
@@ -73,7 +74,7 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
         if isinstance(parsed.node, MissionSentence):
             if parsed.node.announced is not None:
                 listed.setdefault(parsed.node.announced.at, []).append(parsed.node)
-            join(parsed.node, parts, disc, run)
+            join(parsed.node, parts, disc, run, any_time=any_time_said(r, r.skip(0, LEAD_WORDS), len(r)))
     for said in listed.values():
         check_count(said)
     for part in parts:
@@ -140,9 +141,10 @@ def check_choice_remarks(disc: Discourse) -> None:
             rf.refuse(rf.choice_narrowed_aside(said))  # "a vase - any vase in the dining room will do"
 
 
-def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: list[Clause]) -> None:
+def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: list[Clause], *,
+         any_time: bool = False) -> None:
     """Read ``sentence`` and join it to the sentences before it (``parts``); ``run``: the clauses of the list
-    items in no order read right before it (updated)."""
+    items in no order read right before it (updated); ``any_time``: the sentence says *at some point*."""
     if sentence.after_all is not None:
         check_after_all(sentence.after_all, parts)
     precedes = sentence_precedes(sentence, parts)
@@ -170,6 +172,7 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: 
     if (isinstance(result, Clause) and not any(result.steps) and not result.constraints and previous
             and sentence.says_order and len(previous.filled()) > 1):
         rf.refuse(rf.order_after_ordered_goals())
+    first = isinstance(result, Clause) and any(result.steps) and (ctx.said_first or said_first(sentence, parts))
     if not continues and not precedes and in_visit_of_its_room(result, parts, ctx):
         return  # "A, then the kitchen, then B. In the kitchen, check the microwave.": on that visit
     if continues and parts and previous is None:  # after a rule or a constraint: the order would be lost
@@ -193,8 +196,13 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: 
             sentence, result, sequence, disc):
         sequence.steps.extend(result.filled()[1:])  # "A, then B. After B, C.": that visit of B, then C
         sequence.constraints.extend(result.constraints)
+    elif (isinstance(result, Clause) and disc.first_said is not None and not any_time
+          and new_goals(sentence, disc)):
+        after_first(result, parts, disc.first_said)  # "First, go to A. Check B.": B after A
     else:
         parts.append(result)
+    if first and disc.first_said is None:
+        disc.first_said = disc.said(sentence.span.start, sentence.span.end)
     if isinstance(result, Clause) and any(result.steps):
         disc.last_step, disc.last_steps = result.filled()[-1], len(result.filled())
     in_no_order = sentence.marked and not sentence.after_item and bool(parts) and parts[-1] is result
@@ -306,6 +314,36 @@ def sentence_precedes(sentence: MissionSentence, parts: list[Meaning]) -> bool:
                                and len(has_goals[0].filled()) > 1):
         rf.refuse(rf.precedes_which(sentence.precedes))
     return True
+
+
+def after_first(result: Clause, parts: list[Meaning], first_said: str) -> None:
+    """Join ``result``, a sentence of goals in no order with the ones before it, after the goals said *first*
+    (:attr:`.Discourse.first_said`), as more goals of the step after them: *First, go to the garage. Check
+    the keyboard.* is the garage, then the keyboard; *Go to A first and then B. Check C.* is A, then B and
+    C in any order. Refused when ``result`` is a sequence of its own, or the steps after the first goals are
+    more than one (after which of them?)."""
+    first = next(p for p in parts if isinstance(p, Clause) and p.filled())
+    filled, steps = first.filled(), result.filled()
+    if len(steps) != 1 or len(filled) > 2 or (len(filled) == 2 and first.steps[-1] is not filled[1]):
+        rf.refuse(rf.after_first_sentence(first_said))
+    if first.steps[-1] is filled[0]:
+        first.steps.append([])
+    first.steps[-1].extend(steps[0])
+    first.constraints.extend(result.constraints)
+
+
+def new_goals(sentence: MissionSentence, disc: Discourse) -> bool:
+    """Whether ``sentence`` names a goal not named before it (not only *until then*, *before you finish the
+    laptop* about goals said already)."""
+    before = {e.key for g in disc.goals_before(sentence.span.start) for e in g.entities}
+    return any(not {e.key for e in g.entities} <= before for g in disc.goals_before(sentence.span.end)
+               if g.start >= sentence.span.start)
+
+
+def said_first(sentence: MissionSentence, parts: list[Meaning]) -> bool:
+    """Whether ``sentence`` opens with *first* (*First, go to the garage.*) with no goal said before it."""
+    return (sentence.precedes is not None and sentence.precedes.split()[0].lower().strip(",") in lx.FIRST
+            and not any(not isinstance(p, Clause) or any(p.steps) for p in parts))
 
 
 def last_sequence(parts: list[Meaning]) -> Clause | None:
