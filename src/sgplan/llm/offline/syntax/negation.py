@@ -40,8 +40,10 @@ def negation(r: Reader, i: int) -> Parse[Negation | PlainAction]:
     if marker == ("not",) and r.word(start - 1) == "," and r.np_starts(
             start + 1 + (r.word(start + 1) in lx.PLACE_PREPOSITIONS)):
         return Refusal(rf.not_after_comma(r.quote(start, len(r))))  # "Go to the kitchen, not the office"
-    if marker == ("not",) and start == 0 and any(anaphoric_one(r, k) for k in range(1, min(len(r), 6))):
-        return Refusal(rf.not_the_one(r.quote(0, len(r))))  # "Check the sink. Not the kitchen one."
+    if marker == ("not",) and r.word(start - 1) != "," and any(
+            anaphoric_one(r, k) for k in range(start + 1, min(len(r), start + 6))):
+        # "Check the sink. Not the kitchen one.", "the teddy bear in the living room not the bedroom one"
+        return Refusal(rf.not_the_one(r.quote(start, len(r))))
     forgot = negated_goal(r, start + len(marker), marker)
     return forgot if forgot is not None else negation_after(r, start + len(marker), marker)
 
