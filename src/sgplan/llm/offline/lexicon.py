@@ -911,7 +911,11 @@ CLOSING = Phrases((
     # praise only with thanks after it: "Is the kitchen lovely?" asks something
     *((praise, *comma, thanks) for praise in ("lovely", "brilliant", "perfect", "great", "awesome", "super")
       for comma in ((), (",",)) for thanks in ("thanks", "cheers", "ta")),
-    *(("if", "that", "'s", fine) for fine in ("alright", "ok", "okay", "fine"))))
+    *(("if", "that", "'s", fine) for fine in ("alright", "ok", "okay", "fine")),
+    # thanks made stronger, in any spelling: "thx so much", "ty very much", "cheers a bunch"
+    *((thanks, *much) for thanks in ("thanks", "thx", "ty", "cheers", "ta")
+      for much in (("so", "much"), ("very", "much"), ("a", "lot"), ("a", "bunch"), ("a", "ton"), ("heaps",),
+                   ("loads",), ("a", "million"), ("so", "so", "much")))))
 """Sign-offs (*thanks a lot*, *cheers*, *that's all for now*) and asides that ask nothing (*no rush*, *if
 possible*, *when you get a chance*): skipped where they close a clause, that is before a comma or at the end
 of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."""
@@ -919,11 +923,11 @@ of the sentence (*if you can't find it, ...* is a condition, not *if you can*)."
 EXCLAMATIONS = word_set("gosh golly jeez geez gee blimey crikey wow whoa yikes phew ugh argh oof ooh aw")
 """Exclamations of everyday speech (*Oh gosh, ...*, *Phew!*): they ask nothing, like the sounds of
 :data:`HESITATIONS`, but are said back (set aside) rather than dropped."""
-_NUISANCES = ("bug", "bother", "trouble", "pester", "disturb", "interrupt", "nag", "hassle")
+_NUISANCES = ("bug", "bother", "trouble", "pester", "disturb", "interrupt", "nag", "hassle", "ask")
 CLOSING = CLOSING + Phrases((
     # apologies for asking: "sorry to bug you", "sorry for the hassle", "apologies for the bother"
     *((sorry, "to", nuisance, *you) for sorry in ("sorry", "apologies") for nuisance in _NUISANCES
-      for you in ((), ("you",), ("you", "again"))),
+      for you in ((), ("you",), ("you", "again"), ("again",))),
     *((sorry, "for", *the, trouble) for sorry in ("sorry", "apologies")
       for the in ((), ("the",), ("all", "the"))
       for trouble in ("bother", "trouble", "hassle", "interruption", "fuss", "mess")),

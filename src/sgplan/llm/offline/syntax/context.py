@@ -541,12 +541,13 @@ def misspelt_name(r: Reader, start: int, end: int) -> bool:
 
 def closing_only(r: Reader, start: int, end: int) -> bool:
     """Whether the words ``[start, end)`` are only remarks that ask nothing (*Oh*, *Right*, *Thanks*, *Lovely,
-    cheers*)."""
+    cheers*, *Sorry for the trouble and thank you*)."""
     k = start if r.phrase(start, lx.CLOSING) else skip_joiner(r, start)  # "as usual", "so no rush"
     while k < end and (said := ((r.word(k),) if praise_before_closing(r, k, end) else None)
                        or apology_for(r, k, end) or r.phrase(k, lx.CLOSING) or well_wishing(r, k, end)
                        or ((r.word(k),) if r.word(k) in lx.HESITATIONS or r.word(k) == "," or signature(r, k)
-                           or (r.word(k) in lx.KISSES and k == len(r) - 1) else None)):
+                           or (r.word(k) in lx.KISSES and k == len(r) - 1)
+                           or (r.word(k) == "and" and k > start and r.phrase(k + 1, lx.CLOSING)) else None)):
         k += len(said)
         k += len(r.phrase(k, lx.CLOSING_TAILS) or ()) if said != (",",) else 0  # "no rush at all"
     return start < k == end
