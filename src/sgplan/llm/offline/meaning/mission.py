@@ -443,9 +443,13 @@ def confinement(readers: list[Reader], disc: Discourse) -> frozenset[int] | None
 def check_all_used(formula: Formula, phrases: list[Grounded]) -> None:
     """The second safeguard against a silently dropped clause (the first: every sentence is read to its
     end): every place the text names as a goal, a place to avoid or a condition must show up in the formula
-    (qualifiers such as *the kitchen* in *the sink in the kitchen* only narrow another phrase). A phrase
+    (qualifiers such as *the kitchen* in *the sink in the kitchen* only narrow another phrase; so does a floor
+    gone to before the goals on it, *go down to floor 1 and check the couch*, when a goal is on it). A phrase
     that vanished is refused, named."""
     used = set(atoms(formula))
+    floors_used = {e.floor for g in phrases for e in g.entities if e.action in used}
     for g in phrases:
+        if g.floor and g.role == "goal" and any(e.floor in floors_used for e in g.entities):
+            continue
         if g.role != "qualifier" and g.entities and not any(e.action in used for e in g.entities):
             rf.refuse(rf.dropped(g.phrase))

@@ -151,6 +151,18 @@ def handled_at(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounP
     return Match(HandledAt(r.span(i, at.end), r.span(i, j), at.node), at.end)
 
 
+@NOUN_PHRASES.rule("start floor")
+def start_floor_place(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
+    """*this floor* / *my floor* named as a place (*come back to this floor and check the couch*), as *the top
+    floor* is; not before a room's noun or *one* (*this floor's bathroom*, *the this floor one*)."""
+    if r.word(i) not in lx.START_FLOOR_WORDS:
+        return None
+    floor = floor_words(r, i)
+    if floor is None or r.head(floor.end) is not None or qualifiers.anaphoric_one(r, floor.end):
+        return None
+    return Match(FloorPlace(r.span(i, floor.end), floor.node, "any"), floor.end)
+
+
 @NOUN_PHRASES.rule("described")
 def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
     """A determiner, floor words, a head noun and its qualifiers (*the ground floor bathroom with the
