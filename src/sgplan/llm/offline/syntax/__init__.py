@@ -87,7 +87,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
                 out.append(replace(r, toks=r.toks[:cut - 1], aside=True))  # "Okay, go to ...": "Okay"
                 r = replace(r, toks=r.toks[cut:])  # ("I'm hungry, ..." is said back as a statement)
             content = True
-        out += corrected(r)  # "go to the kitchen, no wait, the dining room": the dining room
+        out += corrected(r, out)  # "go to the kitchen, no wait, the dining room": the dining room
     # "The bathroom needs a check.": the check, when no order after it names the bathroom (else a reason)
     said = set_aside_context(out)
     return join_remarks(split_not_needed([need_as_order(r, said[k + 1:]) for k, r in enumerate(said)]))

@@ -46,6 +46,7 @@ one, check ...*; *kitchen, go to the kitchen*) is a restatement: the first sayin
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
@@ -77,22 +78,23 @@ _OPENING = lx.HESITATIONS | lx.GREETINGS | frozenset({",", "okay", "ok", "robot"
 """Words before what a sentence restates (*um okay floor one, the office on floor one*)."""
 
 
-def corrected(r: Reader) -> list[Reader]:
+def corrected(r: Reader, earlier: Sequence[Reader] = ()) -> list[Reader]:
     """``r`` with each self-correction applied (the sentence to read, then the words set aside), or ``[r]``
-    when it has none that can be read."""
+    when it has none that can be read; ``earlier``: the sentences of the mission read before it."""
     restart = restarted(r) or restated(r) or stuttered(r) or confirmed(r)
     if restart is not None:
-        return [*corrected(restart[0]), restart[1]]
+        return [*corrected(restart[0], earlier), restart[1]]
     r = apposition_marked(unpaused(r))
     for k in range(1, len(r)):
         said = r.phrase(k, lx.CORRECTIONS)
         if r.word(k) == "sorry" and r.word(k - 1) == "," and k + 1 == len(r):  # "..., the microwave, sorry."
-            return [*corrected(replace(r, toks=r.toks[:k - 1])), replace(r, toks=r.toks[k:], aside=True)]
+            return [*corrected(replace(r, toks=r.toks[:k - 1]), earlier),
+                    replace(r, toks=r.toks[k:], aside=True)]
         if said is not None:
-            fixed = replaced(r, k, k + len(said)) or order_said_again(r, k, k + len(said))
-            if fixed is not None and other_than_taken_back(*fixed):
-                return [fixed[1], *corrected(fixed[0])]  # "the bedroom with the plant, no wait, the other"
-            return [r] if fixed is None else [*corrected(fixed[0]), fixed[1]]
+            fixed = replaced(r, k, k + len(said)) or order_said_again(r, k, k + len(said), earlier)
+            if fixed is not None and other_than_taken_back(*fixed):  # "the X with a vase, no wait, the other"
+                return [fixed[1], *corrected(fixed[0], earlier)]
+            return [r] if fixed is None else [*corrected(fixed[0], earlier), fixed[1]]
     return [r]
 
 
@@ -115,16 +117,23 @@ def joined_appositions(readers: list[Reader]) -> list[Reader]:
     for r in readers:
         before = out[-1] if out else None
         if (before is not None and not before.aside and not r.aside and r.marker is None
-                and (((r.word(0) == "the" and r.word(1) in lx.ANAPHORIC_ONE and len(r) > 2
-                       and isinstance(noun_phrase(r, 0, "goal"), Match))
-                      or (takes_back_last(r) and len(named_heads(before, 0, len(before))) == 1))
-                     and ends_with_phrase(before)
-                     or takes_back_order(r) and len(named_heads(before, 0, len(before))) <= 1)):
+                and joins_before(r, before)):
             comma = Tok(",", before.toks[-1].end, before.toks[-1].end)
             out[-1] = replace(before, toks=(*before.toks, comma, *r.toks))
             continue
         out.append(r)
     return out
+
+
+def joins_before(r: Reader, before: Reader) -> bool:
+    """Whether the sentence ``r`` is read joined to the sentence ``before`` it (see
+    :func:`joined_appositions`)."""
+    places = len(named_heads(before, 0, len(before)))
+    if takes_back_order(r):
+        return places <= 1
+    apposition = (r.word(0) == "the" and r.word(1) in lx.ANAPHORIC_ONE and len(r) > 2
+                  and isinstance(noun_phrase(r, 0, "goal"), Match))
+    return (apposition or (takes_back_last(r) and places == 1)) and ends_with_phrase(before)
 
 
 def takes_back_last(r: Reader) -> bool:
@@ -318,9 +327,12 @@ def said_with_verb(r: Reader, start: int, end: int) -> bool:
         r.words[end + gap:end + gap + size] == r.words[start:end] for gap in (1, 2))
 
 
-def order_said_again(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
+def order_said_again(r: Reader, k: int, after: int,
+                     earlier: Sequence[Reader]) -> tuple[Reader, Reader] | None:
     """The sentence read from the whole order said again after the correction words ``[k, after)`` (see the
-    module docstring), and the words taken back set aside; ``None`` when the shape is not that."""
+    module docstring), and the words taken back set aside; ``None`` when the shape is not that, or when the
+    new order names a place of an ``earlier`` sentence that it does not take back (*Go to A. Then go to B, no
+    wait, go to B first, then A.*: A taken back as well, or A twice?)."""
     start = order_start(r, r.skip(after, _AROUND))
     opening = r.skip(0, _OPENING)
     if opening >= k:
@@ -329,10 +341,13 @@ def order_said_again(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | N
     said_again = {h.categories for h in named_heads(r, start, len(r))}
     all_again = bool(taken_back) and {h.categories for h in taken_back} == said_again
     if (r.word(start) not in lx.POSITIVE_VERBS and r.word(start) not in lx.FIRST and r.word(start) != "please"
-            and not (all_again and r.head(start) is not None)):
+            and not (all_again and r.np_starts(start))):  # "... no wait, (the) laptop first, then the oven"
         return None
     if len(taken_back) > 1 and not all_again:
         return None  # "the kitchen then the office scratch that go to ...": which is taken back?
+    before = {h.categories for e in earlier if not e.aside for h in named_heads(e, 0, len(e))}
+    if (said_again - {h.categories for h in taken_back}) & before:
+        return None
     if r.says(lx.TOO, start, len(r)) or "instead" in r.words[start:]:
         return None  # "actually, check the couch too": added, not in place of it (refused)
     if any(w in lx.FIRST or w in lx.LAST or w == "before" for w in r.words[start:]) and not (
@@ -340,7 +355,8 @@ def order_said_again(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | N
         return None  # "go to the kitchen wait no go to the office first": only moved, or taken back?
     lead = r.skip(opening, _SEQUENCE_LEAD)
     if lead > opening:  # "Then come back up to the corridor, no, to the living room": still a next step
-        return replace(r, toks=r.toks[:lead] + r.toks[start:]), replace(r, toks=r.toks[lead:start], aside=True)
+        kept = replace(r, toks=r.toks[:lead] + r.toks[start:])
+        return kept, replace(r, toks=r.toks[lead:start], aside=True)
     return replace(r, toks=r.toks[start:]), replace(r, toks=r.toks[:start], aside=True)
 
 
