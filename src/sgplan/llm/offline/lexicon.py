@@ -2055,6 +2055,7 @@ PHRASE_ALIASES.update({
     ("in", "laws"): ("inlaws",),  # "In-laws coming round!": people, not "in"
     ("cos",): ("because",), ("coz",): ("because",), ("cuz",): ("because",), ("bc",): ("because",),
     ("tho",): ("though",), ("altho",): ("although",), ("em",): ("them",),
+    ("outta",): ("out", "of"), ("outa",): ("out", "of"),  # "stay outta the garage"
     # bedtime and the start of the day said otherwise: "before you turn in", "start the day by ..."
     **{("before", who, *turn_in): ("before", "bedtime") for who in ("you", "i", "we", "everyone")
        for turn_in in (("turn", "in"), ("head", "to", "bed"), ("go", "to", "sleep"), ("hit", "the", "sack"))},
