@@ -526,8 +526,8 @@ def precedes_needs_goals() -> str:
 
 def after_first_sentence(first: str) -> str:
     return rephrase(f"'{first.strip()}' says what comes first, and a later sentence of goals in an order of "
-                    "their own does not say where they go in its sequence: put the goals in the order they must "
-                    "be done (with 'then')")
+                    "their own does not say where they go in its sequence: put the goals in the order they "
+                    "must be done (with 'then')")
 
 
 def trailing_first_later(word: str = "first") -> str:

@@ -172,7 +172,8 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: 
     if (isinstance(result, Clause) and not any(result.steps) and not result.constraints and previous
             and sentence.says_order and len(previous.filled()) > 1):
         rf.refuse(rf.order_after_ordered_goals())
-    first = isinstance(result, Clause) and any(result.steps) and (ctx.said_first or said_first(sentence, parts))
+    first = (isinstance(result, Clause) and any(result.steps)
+             and (ctx.said_first or said_first(sentence, parts)))
     if not continues and not precedes and in_visit_of_its_room(result, parts, ctx):
         return  # "A, then the kitchen, then B. In the kitchen, check the microwave.": on that visit
     if continues and parts and previous is None:  # after a rule or a constraint: the order would be lost

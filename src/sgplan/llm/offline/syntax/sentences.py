@@ -168,9 +168,24 @@ def ordered_opening(r: Reader, i: int) -> bool:
 
 
 def order_free(r: Reader) -> bool:
-    """Whether *in either / any order* closes a clause of the sentence (before a comma or its end)."""
+    """Whether *in either / any order* closes a clause of the sentence (before a comma or its end), other than
+    one about a group said in one phrase (:func:`group_remark`)."""
     return any((said := r.phrase(k, lx.ANY_ORDER)) is not None and r.word(k + len(said)) in ("", ",")
-               for k in range(len(r)))
+               and not group_remark(r, k) for k in range(len(r)))
+
+
+def group_remark(r: Reader, k: int) -> bool:
+    """Whether the order remark at ``k`` closes an action joined by *and* to the one before it that acts on
+    one group (*go to the dining room and check both chairs in any order*): the remark is about the group,
+    and the actions stay one clause (the chairs of the dining room), not independent tasks."""
+    end = k - (1 if r.word(k - 1) == "," else 0)
+    verb = max((j for j in range(1, end) if r.word(j - 1) == "and" and r.word(j) in lx.POSITIVE_VERBS),
+               default=None)
+    if verb is None or set(r.words[verb:end]) & {",", "and", "then", "or"}:
+        return False
+    return any(w in ("both", "all", "each", "every") or w.isdigit() or w in lx.NUMBER_WORDS
+               or ((head := r.head(j)) is not None and head.plural)
+               for j, w in enumerate(r.words[verb:end], verb))
 
 
 def order_remark_after_then(r: Reader) -> Refusal | None:
