@@ -814,7 +814,12 @@ ANY_ORDER = Phrases((
       for does in (("does", "not"), ("doesnt",))),
     ("no", "matter", "which", "order"), ("do", "not", "mind", "which", "order"),
     ("i", "do", "not", "mind", "which", "order"), ("the", "order", "'s", "up", "to", "you"),
-    ("order", "'s", "up", "to", "you")))
+    ("order", "'s", "up", "to", "you"),
+    # learners put the order last: "doesn't matter the order", "is not important which one first"
+    *((*it, *does_not, "the", "order") for it in ((), ("it",))
+      for does_not in (("does", "not", "matter"), ("do", "not", "matter"), ("is", "not", "important"))),
+    *((*it, "is", "not", "important", "which", *one, "first") for it in ((), ("it",))
+      for one in ((), ("one",)))))
 """Remarks that leave the order to the robot (the default of a set of goals; a numbered list is in order
 unless one of these is said with it)."""
 TIME_FILLERS = Phrases((
@@ -2056,6 +2061,8 @@ PHRASE_ALIASES.update({
     ("cos",): ("because",), ("coz",): ("because",), ("cuz",): ("because",), ("bc",): ("because",),
     ("tho",): ("though",), ("altho",): ("although",), ("em",): ("them",),
     ("outta",): ("out", "of"), ("outa",): ("out", "of"),  # "stay outta the garage"
+    # learners leave out "at": "look all three TVs", "look the vase"
+    **{("look", det): ("look", "at", det) for det in ("the", "both", "all", "every", "each", "one")},
     # bedtime and the start of the day said otherwise: "before you turn in", "start the day by ..."
     **{("before", who, *turn_in): ("before", "bedtime") for who in ("you", "i", "we", "everyone")
        for turn_in in (("turn", "in"), ("head", "to", "bed"), ("go", "to", "sleep"), ("hit", "the", "sack"))},
