@@ -26,8 +26,15 @@ def places_before(before: int, disc: Discourse) -> list[Grounded]:
 
 def there_rooms(before: int, disc: Discourse, said: str = "there") -> list[Entity]:
     """The rooms *there* means at character offset ``before``: those of the last place named as a goal or a
-    condition before it (*whenever you enter the kitchen, grab a bottle there*)."""
+    condition before it (*whenever you enter the kitchen, grab a bottle there*), or of one room named in
+    words set aside after the last such place (*The downstairs bathroom is a mess. Check the toilet there.*;
+    refused when a goal was named before that room: which of the two?)."""
     places = places_before(before, disc)
+    mentioned = [g for g in disc.mentions if g.start < before and len({e.room_key for e in g.entities}) == 1]
+    if mentioned and (not places or max(g.start for g in places) < mentioned[-1].start):
+        if places:
+            rf.refuse(rf.there_goal_or_mention(max(places, key=lambda g: g.start).phrase, mentioned[-1].phrase))
+        places = mentioned[-1:]
     if not places:
         rf.refuse(rf.there_refers_to_nothing())
     last = max(places, key=lambda g: g.start)
