@@ -5,6 +5,10 @@ The wrapper *I need* / *I want* / *I'd like* carries no meaning (:data:`.lexicon
 noun phrase and a past participle closing the clause, is read as the phrase alone, a goal, as *check that the
 couch is tidy* is the couch. Only a participle: a word ending in *-ed* (no room or object), or *done*, right
 after the phrase and before the clause ends.
+
+A wish about how things in general should be (*so I want things looking nice*, *I want everything tidy*),
+naming no room or object and asking nothing of *you*, is context: set aside and said back, the sentence
+read without it.
 """
 
 from __future__ import annotations
@@ -16,16 +20,27 @@ from sgplan.llm.offline.syntax.reader import Match, Reader
 
 _WANTS = (("i", "need"), ("i", "want"), ("i", "would", "like"), ("we", "need"), ("we", "want"))
 _ENDS = ("", ",", "and", "then", "so", "before", "by", "please")
+_IN_GENERAL = frozenset({"things", "everything", "stuff"})
+"""What a wish about things in general is about (*I want things looking nice*, *I want everything tidy*)."""
 
 
 def wanted_done(r: Reader) -> list[Reader]:
-    """``r`` without the participle of each *I need X <participle>*, and that word set aside (see the module
-    docstring)."""
+    """``r`` without the participle of each *I need X <participle>*, and that word set aside, and without a
+    wish about things in general, set aside (see the module docstring)."""
     for k in range(len(r)):
         wants = next((w for w in _WANTS if r.words[k:k + len(w)] == w), None)
         if wants is None:
             continue
         start = k + len(wants)
+        if r.word(start) in _IN_GENERAL:
+            end = next((j for j in range(start, len(r)) if r.word(j) in (",", "and", "then")), len(r))
+            said = r.words[start:end]
+            if "you" not in said and "to" not in said and not any(r.head(j) for j in range(start, end)):
+                said_from = k - (1 if r.word(k - 1) in ("so", "and") else 0)  # ", so I want ..."
+                cut = said_from - (1 if r.word(said_from - 1) == "," else 0)
+                kept = replace(r, toks=r.toks[:cut] + r.toks[end:])
+                wish = replace(r, toks=r.toks[said_from:end], aside=True, marker=None)
+                return [*wanted_done(kept), wish] if kept.toks else [wish]
         phrase = noun_phrase(r, start, "goal")
         if not isinstance(phrase, Match):
             continue
