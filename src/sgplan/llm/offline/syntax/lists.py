@@ -184,9 +184,9 @@ def place_label(heading: Reader, run: list[Reader]) -> Reader | None:
     head = said.head(0)
     rest = said.words[head.words:] if head is not None else []
     if (head is None or not 0 < len(rest) <= 2
-            or any(not w.isalpha() or (w in lx.STRUCTURAL and w not in lx.LIST_NOUNS)
+            or any(not w.isalpha() or (w in lx.STRUCTURAL and w not in lx.LIST_NOUNS) or w in lx.LABEL_STOPS
                    or said.head(head.words + n) for n, w in enumerate(rest))):
-        return None
+        return None  # ("Garage first:" says an order: never a label)
     places = [h.categories for item in run for k in range(len(item))
               if (h := item.head(k)) is not None and h.kind == head.kind]
     listed = all(w in lx.LIST_NOUNS for w in rest)
