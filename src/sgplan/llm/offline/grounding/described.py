@@ -53,6 +53,7 @@ from sgplan.llm.offline.syntax.tree import (
     Span,
     There,
     ThereNP,
+    UpThere,
 )
 
 APPLIERS: Registry[Callable[[Any, Noun, Described, Where, Discourse], Noun]] = Registry("qualifier")
@@ -380,8 +381,12 @@ def possessive(q: Possessive, noun: Noun, np: Described, where: Where, disc: Dis
 @applies(OnFloor)
 def on_floor(q: OnFloor, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
     """*on floor 1*, *upstairs*, *up there*, *on the same floor (as X)*."""
+    last = disc.last_goal()
     if isinstance(q.floor, SameFloor) and q.floor.as_phrase is not None:
         reading = FloorReading(same_floor(inner(q.floor.as_phrase, disc), disc))
+    elif (isinstance(q.floor, UpThere) and where.action_floor is not None
+          and (last is None or last.start < where.action_floor[1])):
+        reading = where.action_floor[0]  # "While you're upstairs, check the bathroom up there": that floor
     else:
         reading = floors_of(q.floor, disc, noun.entities)
     return Noun(noun.head, on_floors(noun.entities, reading, disc), noun.room_scoped,
@@ -405,8 +410,10 @@ def there(q: There, noun: Noun, np: Described, where: Where, disc: Discourse) ->
 def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse) -> Noun:
     """*the sink in the kitchen*: the objects in that room (the room phrase keeps only the rooms used); *every
     plant in the office and the kitchen*: those of each room, each of which must hold some."""
+    # (a floor move's floors go on to the room: "While you're upstairs, the bottle in the bathroom up there")
     rooms = [owners_room_holding(room, noun, disc)
-             or ground_phrase(room, Where("qualifier", rooms=True), disc) for room in q.rooms]
+             or ground_phrase(room, Where("qualifier", action_floor=where.action_floor, rooms=True), disc)
+             for room in q.rooms]
     said = disc.said(q.span.start, q.span.end)
     anchor = rooms[0] if len(rooms) == 1 else None
     if noun.head.kind == "object" and anchor and anchor.entities and all(e.kind == "object"

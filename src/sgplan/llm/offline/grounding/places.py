@@ -33,7 +33,8 @@ def there_rooms(before: int, disc: Discourse, said: str = "there") -> list[Entit
     mentioned = [g for g in disc.mentions if g.start < before and len({e.room_key for e in g.entities}) == 1]
     if mentioned and (not places or max(g.start for g in places) < mentioned[-1].start):
         if places:
-            rf.refuse(rf.there_goal_or_mention(max(places, key=lambda g: g.start).phrase, mentioned[-1].phrase))
+            last_goal = max(places, key=lambda g: g.start)
+            rf.refuse(rf.there_goal_or_mention(last_goal.phrase, mentioned[-1].phrase))
         places = mentioned[-1:]
     if not places:
         rf.refuse(rf.there_refers_to_nothing())
