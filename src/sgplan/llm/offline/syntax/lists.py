@@ -54,7 +54,8 @@ def read_lists(readers: list[Reader]) -> list[Reader]:
         first = k + (1 if heading is not None else 0)
         run = lines or (list_run(readers, first) if heading is not None or r.marker is not None else [])
         if not run:
-            ordered = ordered_before(out) if r.marker is None and only_order_remark(r) == "ordered" else None
+            in_order = r.marker is None and only_order_remark(r) == "ordered"
+            ordered = ordered_before(out, r) if in_order else None
             out = ordered if ordered is not None else out + colon(r, readers[k + 1] if k + 1 < len(readers)
                                                                   else None)
             k += 1
@@ -66,12 +67,18 @@ def read_lists(readers: list[Reader]) -> list[Reader]:
     return left_things_put(merged(out))  # an item may leave what the item before it fetched
 
 
-def ordered_before(out: list[Reader]) -> list[Reader] | None:
-    """``out`` (the sentences before *In that order.*) with each sentence of one goal after the one before
-    it (*Fridge. Oven. Microwave. In that order.*); ``None`` (the remark is left to the parser, which refuses
-    it) unless every sentence before it, but prohibitions and words set aside, is one plain goal: with a
+def ordered_before(out: list[Reader], remark: Reader) -> list[Reader] | None:
+    """``out`` (the sentences before the remark *In that order.*) with each sentence of one goal after the one
+    before it (*Fridge. Oven. Microwave. In that order.*), or the one sentence of goals before it, a list
+    with no order words of its own, read with the remark after a comma (*Check the oven, the fridge and the
+    couch. In that order.*); ``None`` (the remark is left to the parser, which refuses it) otherwise: with a
     list or an order of its own, which order is meant is not known."""
     goals = [n for n, r in enumerate(out) if not r.aside and r.phrase(0, lx.NEG_STARTS) is None]
+    if len(goals) == 1 and goals[0] == len(out) - 1 and set(out[-1].words) & {",", "and"} and not (
+            set(out[-1].words) & (lx.LIST_JOINERS - {",", "and"})) and out[-1].marker is None:
+        listed = out[-1]
+        comma = Tok(",", listed.toks[-1].end, listed.toks[-1].end)
+        return [*out[:-1], replace(listed, toks=(*listed.toks, comma, *remark.toks))]
     plain = all(out[n].marker is None and out[n].announced is None and not set(out[n].words) & lx.LIST_JOINERS
                 for n in goals)
     if len(goals) < 2 or not plain:
