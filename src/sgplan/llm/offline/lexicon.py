@@ -1031,7 +1031,8 @@ _CHOOSERS = (("either",), ("any",), ("whichever",), ("either", "one"), ("any", "
              ("whatever", "one"))
 _FINE = ((), ("is", "fine"), ("is", "ok"), ("is", "okay"), ("is", "good"), ("will", "do"), ("works",),
          ("would", "do"), ("would", "be", "fine"), ("will", "be", "fine"), ("you", "like"), ("you", "want"),
-         ("you", "prefer"), ("you", "choose"), ("is", "closer"), ("is", "nearer"))
+         ("you", "prefer"), ("you", "choose"), ("is", "closer"), ("is", "nearer"), ("is", "free"),
+         ("is", "easier"), ("is", "easiest"), ("is", "handiest"), ("is", "closest"), ("is", "nearest"))
 _FINE += tuple(("'s", *fine[1:]) for fine in _FINE if fine[:1] == ("is",))  # "either one's fine"
 CHOOSERS_OF_KIND = ("either", "any", "whichever")
 REMARK_FINE = Phrases(tuple(fine for fine in _FINE if fine))
