@@ -867,6 +867,7 @@ CLOSING = Phrases((
     ("that", "would", "be", "great"), ("that", "would", "be", "lovely"), ("that", "would", "be", "perfect"),
     ("that", "would", "help"), ("if", "that", "makes", "sense"), ("thanks", "heaps"), ("really",), ("oh",),
     ("you", "know"), ("quick", "one"), ("quick", "question"), ("quick", "request"), ("off", "you", "go"),
+    ("quick", "favour"), ("quick", "favor"), ("a", "quick", "favour"), ("a", "quick", "favor"),
     *(("if", "it", be, *no, "too", "much", "trouble") for be in ("is", "'s", "would", "will")
       for no in (("not",), ("no",), ("not", "be"))),
     ("if", "it", "is", "no", "trouble"), ("if", "it", "'s", "no", "trouble"),
@@ -2062,6 +2063,7 @@ PHRASE_ALIASES.update({
     ("cos",): ("because",), ("coz",): ("because",), ("cuz",): ("because",), ("bc",): ("because",),
     ("tho",): ("though",), ("altho",): ("although",), ("em",): ("them",),
     ("outta",): ("out", "of"), ("outa",): ("out", "of"),  # "stay outta the garage"
+    ("do", "try", "not", "to"): ("do", "not"),  # "Do try not to touch the vase": emphatic "try not to"
     # learners leave out "at": "look all three TVs", "look the vase"
     **{("look", det): ("look", "at", det) for det in ("the", "both", "all", "every", "each", "one")},
     # bedtime and the start of the day said otherwise: "before you turn in", "start the day by ..."

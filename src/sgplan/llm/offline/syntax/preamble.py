@@ -44,12 +44,11 @@ def is_chitchat(r: Reader, start: int, end: int) -> bool:
 
 
 def leading_clause(r: Reader) -> int:
-    """How many words of a sentence's leading clauses (each up to and including its comma) are chit-chat to
-    skip (*I'm hungry, go to the fridge*, *Alexa, sorry, robot, go ...*); 0 if none or if nothing would be
-    left."""
+    """How many words of a sentence's leading clauses (each up to and including its comma, or a spaced dash)
+    are chit-chat to skip (*I'm hungry, go to the fridge*, *Alexa, sorry, robot, go ...*, *Quick favour - go
+    to ...*); 0 if none or if nothing would be left."""
     start = 0
-    while "," in r.words[start:]:
-        comma = r.words.index(",", start)
+    while comma := next((k for k in range(start, len(r)) if r.word(k) in (",", "\u2014")), 0):
         if comma == start or comma == len(r) - 1 or not is_chitchat(r, start, comma):
             break
         start = comma + 1
