@@ -166,6 +166,7 @@ def sentences(tokens: list[Tok]) -> list[Part]:
     current: list[Tok] = []
     marker: Literal["number", "bullet"] | None = None
     new_line = True
+    numbered = 0  # the number of the last numbered item, while the items run on one line
 
     def close() -> None:
         nonlocal current, marker, new_line
@@ -190,12 +191,13 @@ def sentences(tokens: list[Tok]) -> list[Part]:
             pass  # "## Office errand": a heading's marks (Markdown), not words
         elif tok.text == BULLET and not current:
             marker = "bullet"
-        elif tok.text.isdigit() and ((nxt == ")" and not (current and current[-1].text in NUMBERED))
-                                     or (nxt == "." and at_item_start)):
+        elif tok.text.isdigit() and (
+                (nxt == ")" and not (current and current[-1].text in NUMBERED))
+                or (nxt == "." and (at_item_start or next_inline_item(tok, current, marker, numbered)))):
             if current and current[-1].text == "(":
                 current.pop()
             close()
-            marker = "number"
+            marker, numbered = "number", int(tok.text)
             i += 1  # the ')' or '.'
         elif tok.text == _DASH or (tok.text in ("(", ")") and not (i + 1 < len(tokens)
                                                                    and tokens[i + 1].text.isdigit())):
@@ -207,6 +209,14 @@ def sentences(tokens: list[Tok]) -> list[Part]:
         i += 1
     close()
     return parts
+
+
+def next_inline_item(tok: Tok, current: list[Tok], marker: str | None, numbered: int) -> bool:
+    """Whether *N.* inside the item being read is the next item's number on the same line (*1. check the
+    oven 2. then the couch*): N follows the item's number, and no word before it takes a number (*floor
+    2.*)."""
+    return (marker == "number" and int(tok.text) == numbered + 1 and bool(current)
+            and current[-1].text not in NUMBERED)
 
 
 def rewrite(tokens: list[Tok], aliases: dict[tuple[str, ...], tuple[str, ...]]) -> list[Tok]:
