@@ -868,6 +868,7 @@ CLOSING = Phrases((
     ("that", "would", "help"), ("if", "that", "makes", "sense"), ("thanks", "heaps"), ("really",), ("oh",),
     ("you", "know"), ("quick", "one"), ("quick", "question"), ("quick", "request"), ("off", "you", "go"),
     ("quick", "favour"), ("quick", "favor"), ("a", "quick", "favour"), ("a", "quick", "favor"),
+    ("merci",),
     *(("if", "it", be, *no, "too", "much", "trouble") for be in ("is", "'s", "would", "will")
       for no in (("not",), ("no",), ("not", "be"))),
     ("if", "it", "is", "no", "trouble"), ("if", "it", "'s", "no", "trouble"),

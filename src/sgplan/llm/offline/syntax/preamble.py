@@ -27,6 +27,8 @@ def is_chitchat(r: Reader, start: int, end: int) -> bool:
     k = start
     while k < end:
         w, closing = r.word(k), r.phrase(k, lx.CLOSING)
+        if r.at(k, "one", "more") and k > start:  # "Sorry, one more: ...": another request follows
+            closing = ("one", "more")
         if closing is not None or w == "," or (w == "there" and k > start and r.word(k - 1) in lx.GREETINGS):
             k += len(closing) if closing is not None else 1  # "Hi there, quick one": nothing said either
             continue
