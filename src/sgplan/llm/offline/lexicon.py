@@ -2000,7 +2000,8 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("plz",): ("please",),
     ("gf",): ("ground", "floor"),
     # "gnd flr bath", "gnd: empty rm -> ...", "gnd bath toilet": the ground floor
-    ("gnd", "flr"): ("ground", "floor"), ("gnd", "floor"): ("ground", "floor"), ("gnd",): ("ground", "floor"),
+    ("gnd", "flr"): ("ground", "floor"), ("gnd", "fl"): ("ground", "floor"),
+    ("gnd", "floor"): ("ground", "floor"), ("gnd",): ("ground", "floor"),
     ("dn",): ("down",),  # "=> dn to DR chair"
     ("upstrs",): ("upstairs",),
     ("dwnstrs",): ("downstairs",),
