@@ -334,7 +334,7 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
         return [label]  # "Bathroom duty: go to the bathroom with the vase ...": the steps name their rooms
     # "Kitchen jobs: the oven, then ...": the kitchen's oven
     announced = (announcement(said) or verb_prefix(said) or room_heading(labelled(said))
-                 or floor_heading(said) if said.toks else None)
+                 or chosen_room_heading(said) or floor_heading(said) if said.toks else None)
     if announced is None and said.toks and label_end(said) == len(said):
         # a label of what follows: "Route for today:" is said back, "Rules:" says nothing
         said = replace(said, aside=True) if names_more(said, len(said)) else replace(said, toks=())
@@ -366,6 +366,17 @@ def work_label(said: Reader, after: Reader) -> Reader | None:
         if h is not None and (h.plural or after.word(k - 1) in lx.CHOICE_WORDS):
             return None
     return None
+
+
+def chosen_room_heading(r: Reader) -> Announced | None:
+    """*Either top-floor bathroom is fine: wash up at a sink, ...*: a choice of room said fine before a colon
+    is the room of the sentence after it, as *In either top-floor bathroom, ...* is (never set aside: the
+    place would be lost)."""
+    end = next((k for k in range(1, len(r)) if r.phrase(k, lx.REMARK_FINE) is not None
+                and k + len(r.phrase(k, lx.REMARK_FINE) or ()) == len(r)), None)
+    if r.word(0) not in lx.CHOOSERS_OF_KIND or end is None:
+        return None
+    return room_heading(replace(r, toks=r.toks[:end]))
 
 
 def room_heading(r: Reader) -> Announced | None:
