@@ -1412,7 +1412,8 @@ CONTENTS_BEFORE_COUNT = ONLY_WORDS | word_set("with has have having containing c
 """Before a count of a room's contents (*with one sink*, *that has only one sink*): the count an elided
 noun refers back to (*then the one with two*)."""
 NOTHING_ELSE = Phrases((("and", "nothing", "else"), ("and", "nothing", "more"),
-                       ("and", "no", "other", "things"), ("and", "nothing", "else", "in", "it")))
+                       ("and", "no", "other", "things"), ("and", "nothing", "else", "in", "it"),
+                       ("and", "nothing", "else", "inside")))
 """*the bedroom where is only one bed and nothing else*: the room holds nothing of another category."""
 ASIDE = Phrases(tuple((",", rel, be, *also) for rel, be in (("which", "is"), ("which", "are"), ("that", "is"),
                                                              ("that", "are"), ("it", "is"), ("it", "'s"),
@@ -2066,6 +2067,8 @@ PHRASE_ALIASES.update({
     ("tho",): ("though",), ("altho",): ("although",), ("em",): ("them",),
     ("outta",): ("out", "of"), ("outa",): ("out", "of"),  # "stay outta the garage"
     ("do", "try", "not", "to"): ("do", "not"),  # "Do try not to touch the vase": emphatic "try not to"
+    ("nothing", "except"): ("nothing", "but"),  # "the bedroom with nothing except a bed"
+    **{("where", "is", "nothing", but): ("with", "nothing", "but") for but in ("but", "except")},  # learners
     # learners leave out "at": "look all three TVs", "look the vase"
     **{("look", det): ("look", "at", det) for det in ("the", "both", "all", "every", "each", "one")},
     # bedtime and the start of the day said otherwise: "before you turn in", "start the day by ..."
