@@ -815,6 +815,7 @@ ANY_ORDER = Phrases((
     ("no", "matter", "which", "order"), ("do", "not", "mind", "which", "order"),
     ("i", "do", "not", "mind", "which", "order"), ("the", "order", "'s", "up", "to", "you"),
     ("order", "'s", "up", "to", "you"),
+    ("before", "or", "after"),  # "and also the bathroom, before or after": either order
     # learners put the order last: "doesn't matter the order", "is not important which one first"
     *((*it, *does_not, "the", "order") for it in ((), ("it",))
       for does_not in (("does", "not", "matter"), ("do", "not", "matter"), ("is", "not", "important"))),
