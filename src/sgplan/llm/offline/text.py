@@ -36,6 +36,7 @@ from sgplan.llm.offline.lexicon import (
     NEGATED_STEMS,
     NUMBERED,
     PHRASE_ALIASES,
+    POSITIVE_VERBS,
     PRONOUNS,
     SENTENCE_END,
     SYMBOLS,
@@ -183,6 +184,8 @@ def sentences(tokens: list[Tok]) -> list[Part]:
             if not current or current[-1].text not in LINE_CONTINUES:
                 close()
                 new_line = True
+        elif tok.text == "!" and not current and negating_mark(tokens, i):
+            current.append(Tok("never", tok.start, tok.end))  # operators' "! lvg rm": "never lvg rm"
         elif tok.text in SENTENCE_END:
             if tok.text == ":":  # kept: what comes before a colon may announce the list after it
                 current.append(tok)
@@ -209,6 +212,15 @@ def sentences(tokens: list[Tok]) -> list[Part]:
         i += 1
     close()
     return parts
+
+
+def negating_mark(tokens: list[Tok], i: int) -> bool:
+    """Whether the ``!`` at ``i``, opening a sentence, is operators' *not* before a place (*sink. ! lvg rm*):
+    a word follows that is no verb, and no ``!`` or ``?`` is right before it (*!! check the fridge*:
+    emphasis)."""
+    nxt = tokens[i + 1].text if i + 1 < len(tokens) else ""
+    before = tokens[i - 1].text if i > 0 else ""
+    return nxt.isalpha() and nxt not in POSITIVE_VERBS and before not in ("!", "?")
 
 
 def next_inline_item(tok: Tok, current: list[Tok], marker: str | None, numbered: int) -> bool:
