@@ -232,8 +232,9 @@ def confirmed(r: Reader) -> tuple[Reader, Reader] | None:
         start = r.skip(k + 1, _AROUND)
         stop = next((j for j in range(start, len(r)) if r.word(j) in _CLAUSE_ENDS), len(r))
         again = tuple(w for w in r.words[start:stop] if w not in lx.ARTICLES)
+        phrase_end = end - (1 if r.word(end - 1) == "again" else 0)  # "the oven again yeah the oven again"
         if (again and r.words[end - len(again):end] == again
-                and any(phrase_to(r, j, end) for j in range(max(0, end - 10), end))):
+                and any(phrase_to(r, j, phrase_end) for j in range(max(0, end - 10), phrase_end))):
             return (replace(r, toks=r.toks[:end] + r.toks[stop:]),
                     replace(r, toks=r.toks[end:stop], aside=True))
     return None
