@@ -405,7 +405,7 @@ def not_in_this_step(said: str, where: str, listing: str, noun: str) -> str:
 
 def step_room_or_anywhere(said: str, where: str, noun: str, room: str, single: str) -> str:
     return rephrase(f"'{said}' right after a step in {where}: one of the ones there, or any in the building? "
-                    f"Say 'one of the {noun} in the {room}' or 'any {single}'")
+                    f"Say 'one of the {noun} in the {room}', or name the room of the {single} meant")
 
 
 def there_or_anywhere(said: str, where: str, noun: str, room: str, single: str) -> str:

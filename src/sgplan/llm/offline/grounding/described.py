@@ -322,8 +322,12 @@ def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc:
     if len(entities) > len(near := near_step_before(np, noun, mode, where, disc)) > 0:
         return Noun(head, near, True)  # "go to the bedroom with the vase, then check the plant"
     before = vocab.inside(entities, where.previous) if where.role == "goal" and not demo else []
-    if mode == "any" and head.plural and not noun.room_scoped and 0 < len(before) < len(entities):
-        # "check the vase in the living room, then one of the TVs": one of those there, or any?
+    remark_after = disc.said(np.span.end, len(disc.text)).lstrip()[:1] in ("-", "\u2014", ",", "(", ":")
+    own_step = vocab.inside(entities, [*where.scope, *where.soft_scope])  # "2. dining room, any chair"
+    if (mode == "any" and (head.plural or (np.first_word in ("a", "an", "any") and not remark_after
+                                           and not own_step))
+            and not noun.room_scoped and 0 < len(before) < len(entities)):
+        # "check the vase in the living room, then one of the TVs / a TV": one of those there, or any?
         rooms = " or ".join(f"{r.key} ({r.category})" for r in where.previous)
         word = head_word(entities)
         rf.refuse(rf.step_room_or_anywhere(said, rooms, lx.plural(word), where.previous[0].category, word))
