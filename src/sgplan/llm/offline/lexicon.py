@@ -2069,9 +2069,6 @@ PHRASE_ALIASES.update({
     ("outta",): ("out", "of"), ("outa",): ("out", "of"),  # "stay outta the garage"
     ("do", "try", "not", "to"): ("do", "not"),  # "Do try not to touch the vase": emphatic "try not to"
     ("nothing", "except"): ("nothing", "but"),  # "the bedroom with nothing except a bed"
-    **{("where", "is", "nothing", but): ("with", "nothing", "but") for but in ("but", "except")},  # learners
-    # learners leave out "at": "look all three TVs", "look the vase"
-    **{("look", det): ("look", "at", det) for det in ("the", "both", "all", "every", "each", "one")},
     # bedtime and the start of the day said otherwise: "before you turn in", "start the day by ..."
     **{("before", who, *turn_in): ("before", "bedtime") for who in ("you", "i", "we", "everyone")
        for turn_in in (("turn", "in"), ("head", "to", "bed"), ("go", "to", "sleep"), ("hit", "the", "sack"))},
@@ -2079,6 +2076,12 @@ PHRASE_ALIASES.update({
     # operator shorthand for the order: "order n/a", "any ord."
     ("order", "n", "/", "a"): ("in", "any", "order"), ("any", "ord"): ("in", "any", "order"),
 })
+_LEARNERS: dict[tuple[str, ...], tuple[str, ...]] = {
+    **{("where", "is", "nothing", but): ("with", "nothing", "but") for but in ("but", "except")},
+    # "at" left out: "look all three TVs", "look the vase"
+    **{("look", det): ("look", "at", det) for det in ("the", "both", "all", "every", "each", "one")},
+}
+PHRASE_ALIASES.update(_LEARNERS)
 PHRASE_ALIASES.update({  # chat's "k?" closing a sentence: "..., k?" is "..., okay?"
     ("k", "?"): ("okay", "?"),
 })
