@@ -139,12 +139,9 @@ def joins_before(r: Reader, before: Reader) -> bool:
 def takes_back_last(r: Reader) -> bool:
     """Whether the sentence ``r`` is only a correction and the phrase said instead (*No wait, the microwave,
     sorry.*): it takes back the phrase the sentence before it ends with, and is read joined to it."""
-    said = r.phrase(0, lx.CORRECTIONS)
-    if said is None or said[0] not in _INSTEAD:
+    start = said_instead(r)
+    if start is None:
         return False  # "Scratch the kitchen.": takes it back, says nothing instead
-    start = r.skip(len(said), _AROUND)
-    while (more := r.phrase(start, lx.CORRECTIONS)) is not None:  # "Sorry, I mean the office."
-        start = r.skip(start + len(more), _AROUND)
     new = noun_phrase(r, start, "goal")
     end = len(r) - (2 if r.words[-2:] == (",", "sorry") else 0)
     return isinstance(new, Match) and new.end == end and new.end > start
@@ -153,14 +150,26 @@ def takes_back_last(r: Reader) -> bool:
 def takes_back_order(r: Reader) -> bool:
     """Whether the sentence ``r`` is a correction and a whole order said again (*Actually no, go down to the
     lobby.*), which takes back the sentence before it."""
+    start = said_instead(r)
+    return start is not None and r.word(order_start(r, start)) in lx.POSITIVE_VERBS and not adds(r, start)
+
+
+def said_instead(r: Reader) -> int | None:
+    """Where what the sentence ``r`` says instead starts, after the correction words it opens with (*No wait,
+    ...*, *Sorry, I mean ...*); ``None`` when it opens with none that says something instead."""
     said = r.phrase(0, lx.CORRECTIONS)
     if said is None or said[0] not in _INSTEAD:
-        return False
+        return None
     start = r.skip(len(said), _AROUND)
-    while (more := r.phrase(start, lx.CORRECTIONS)) is not None:
+    while (more := r.phrase(start, lx.CORRECTIONS)) is not None:  # "Sorry, I mean the office."
         start = r.skip(start + len(more), _AROUND)
-    return (r.word(order_start(r, start)) in lx.POSITIVE_VERBS and not r.says(lx.TOO, start, len(r))
-            and "instead" not in r.words[start:])
+    return start
+
+
+def adds(r: Reader, start: int) -> bool:
+    """Whether the order said from ``start`` adds to what came before rather than replacing it (*actually,
+    check the couch too*, *... instead*: refused)."""
+    return r.says(lx.TOO, start, len(r)) or "instead" in r.words[start:]
 
 
 def order_start(r: Reader, i: int) -> int:
@@ -347,10 +356,8 @@ def order_said_again(r: Reader, k: int, after: int,
     if len(taken_back) > 1 and not all_again:
         return None  # "the kitchen then the office scratch that go to ...": which is taken back?
     before = {h.categories for e in earlier if not e.aside for h in named_heads(e, 0, len(e))}
-    if (said_again - {h.categories for h in taken_back}) & before:
+    if (said_again - {h.categories for h in taken_back}) & before or adds(r, start):
         return None
-    if r.says(lx.TOO, start, len(r)) or "instead" in r.words[start:]:
-        return None  # "actually, check the couch too": added, not in place of it (refused)
     if any(w in lx.FIRST or w in lx.LAST or w == "before" for w in r.words[start:]) and not (
             taken_back and taken_back[0].categories in said_again):
         return None  # "go to the kitchen wait no go to the office first": only moved, or taken back?

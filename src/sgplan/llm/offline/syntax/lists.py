@@ -372,8 +372,8 @@ def chosen_room_heading(r: Reader) -> Announced | None:
     """*Either top-floor bathroom is fine: wash up at a sink, ...*: a choice of room said fine before a colon
     is the room of the sentence after it, as *In either top-floor bathroom, ...* is (never set aside: the
     place would be lost)."""
-    end = next((k for k in range(1, len(r)) if r.phrase(k, lx.REMARK_FINE) is not None
-                and k + len(r.phrase(k, lx.REMARK_FINE) or ()) == len(r)), None)
+    end = next((k for k in range(1, len(r))
+                if (fine := r.phrase(k, lx.REMARK_FINE)) is not None and k + len(fine) == len(r)), None)
     if r.word(0) not in lx.CHOOSERS_OF_KIND or end is None:
         return None
     return room_heading(replace(r, toks=r.toks[:end]))

@@ -32,15 +32,9 @@ def wanted_done(r: Reader) -> list[Reader]:
         if wants is None:
             continue
         start = k + len(wants)
-        if r.word(start) in _IN_GENERAL:
-            end = next((j for j in range(start, len(r)) if r.word(j) in (",", "and", "then")), len(r))
-            said = r.words[start:end]
-            if "you" not in said and "to" not in said and not any(r.head(j) for j in range(start, end)):
-                said_from = k - (1 if r.word(k - 1) in ("so", "and") else 0)  # ", so I want ..."
-                cut = said_from - (1 if r.word(said_from - 1) == "," else 0)
-                kept = replace(r, toks=r.toks[:cut] + r.toks[end:])
-                wish = replace(r, toks=r.toks[said_from:end], aside=True, marker=None)
-                return [*wanted_done(kept), wish] if kept.toks else [wish]
+        wish = general_wish(r, k, start)
+        if wish is not None:
+            return [*wanted_done(wish[0]), wish[1]] if wish[0].toks else [wish[1]]
         phrase = noun_phrase(r, start, "goal")
         if not isinstance(phrase, Match):
             continue
@@ -51,3 +45,18 @@ def wanted_done(r: Reader) -> list[Reader]:
             kept = replace(r, toks=r.toks[:at] + r.toks[at + 1:])
             return [*wanted_done(kept), replace(r, toks=r.toks[at:at + 1], aside=True, marker=None)]
     return [r]
+
+
+def general_wish(r: Reader, k: int, start: int) -> tuple[Reader, Reader] | None:
+    """The sentence without the wish about things in general said from ``k`` (its object at ``start``: *so I
+    want things looking nice*), and the wish set aside; ``None`` when the words there are no such wish."""
+    if r.word(start) not in _IN_GENERAL:
+        return None
+    end = next((j for j in range(start, len(r)) if r.word(j) in (",", "and", "then")), len(r))
+    said = r.words[start:end]
+    if "you" in said or "to" in said or any(r.head(j) for j in range(start, end)):
+        return None
+    said_from = k - (1 if r.word(k - 1) in ("so", "and") else 0)  # ", so I want ..."
+    cut = said_from - (1 if r.word(said_from - 1) == "," else 0)
+    return (replace(r, toks=r.toks[:cut] + r.toks[end:]),
+            replace(r, toks=r.toks[said_from:end], aside=True, marker=None))
