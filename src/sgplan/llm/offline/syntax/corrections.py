@@ -34,7 +34,13 @@ room*: which is taken back is then no question), and a group of two or more word
 a stutter, said once (*lobby first lobby first*).
 
 A sentence that is a correction and a whole order said again (*Actually no, go down to the lobby.*) after
-one that names at most one place takes that sentence back: the two are read joined, as one sentence.
+one that names at most one place takes that sentence back: the two are read joined, as one sentence (an
+object and its room, *the kitchen sink*, *the sink in the kitchen*, are one place). So does a sentence that
+is only a correction and a phrase (*No, just the one with the plant.*) after one whose only phrase it ends
+with (*Check one of the TVs in the living room.*); *the one* after a plural is one of that kind (a TV), and
+*just* / *only* before the new phrase narrow what was taken back. When an object was taken back and the new
+order names a room without going into it (*the kitchen sink first... no, start with the bathroom, then the
+kitchen sink*), the room may stand for its object: refused.
 
 A sentence that is only *the one(s) ...* right after one that ends with a noun phrase says which one that
 is (*water the plant. the one in the living room.*): it is read as an apposition of that phrase (*the plant,
@@ -59,6 +65,8 @@ from sgplan.llm.offline.text import Tok
 
 _AROUND = frozenset({",", "sorry"})
 """Words between the old phrase, the correction and the new phrase (*the office, sorry, I mean ...*)."""
+_JUST = frozenset({"just", "only"})
+"""Before the phrase said instead, narrowing what was taken back (*the bedrooms, no, just the one ...*)."""
 _CLAUSE_ENDS = ("", ",", "and", "then")
 _INSTEAD = frozenset({"no", "sorry", "i", "actually", "wait", "oops", "oh"})
 """First words of a correction that says a phrase instead (*No wait, ...*, *Sorry, I mean ...*), unlike
@@ -128,12 +136,14 @@ def joined_appositions(readers: list[Reader]) -> list[Reader]:
 def joins_before(r: Reader, before: Reader) -> bool:
     """Whether the sentence ``r`` is read joined to the sentence ``before`` it (see
     :func:`joined_appositions`)."""
-    places = len(named_heads(before, 0, len(before)))
+    places = len(goal_heads(before, 0, len(before)))
     if takes_back_order(r):
         return places <= 1
     apposition = (r.word(0) == "the" and r.word(1) in lx.ANAPHORIC_ONE and len(r) > 2
                   and isinstance(noun_phrase(r, 0, "goal"), Match))
-    return (apposition or (takes_back_last(r) and places == 1)) and ends_with_phrase(before)
+    final = final_phrase(before)
+    # "Go to one of the TVs in the living room. No, the one in the bedroom.": the one phrase it names
+    return final is not None and (apposition or (takes_back_last(r) and not named_heads(before, 0, final)))
 
 
 def takes_back_last(r: Reader) -> bool:
@@ -163,7 +173,7 @@ def said_instead(r: Reader) -> int | None:
     start = r.skip(len(said), _AROUND)
     while (more := r.phrase(start, lx.CORRECTIONS)) is not None:  # "Sorry, I mean the office."
         start = r.skip(start + len(more), _AROUND)
-    return start
+    return r.skip(start, _JUST)
 
 
 def adds(r: Reader, start: int) -> bool:
@@ -180,10 +190,12 @@ def order_start(r: Reader, i: int) -> int:
     return i if polite is None else r.skip(i + len(polite), _OPENING)
 
 
-def ends_with_phrase(r: Reader) -> bool:
-    """Whether the sentence ``r`` ends with a noun phrase of a head noun (*water the plant*)."""
-    return any(phrase_to(r, j, len(r)) is not None for j in range(max(0, len(r) - 6), len(r))
-               if r.head(j) is not None or r.word(j) in lx.DETERMINERS)
+def final_phrase(r: Reader) -> int | None:
+    """Where the noun phrase of a head noun that the sentence ``r`` ends with starts (*water the plant*), or
+    ``None`` when it ends with none."""
+    return next((j for j in range(max(0, len(r) - 8), len(r)) if (r.head(j) is not None
+                 or r.word(j) in lx.DETERMINERS or r.word(j) in lx.ANAPHORIC_ONE)
+                 and phrase_to(r, j, len(r)) is not None), None)
 
 
 def restarted(r: Reader) -> tuple[Reader, Reader] | None:
@@ -301,6 +313,7 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     start_new = r.skip(after, _AROUND)  # "the one upstairs": one of the old phrase's kind
     while (more := r.phrase(start_new, lx.CORRECTIONS)) is not None:  # "sorry, I mean"
         start_new = r.skip(start_new + len(more), _AROUND)
+    start_new = r.skip(start_new, _JUST)
     old = next((found for j in range(max(0, end - 10), end) if (found := phrase_to(r, j, end))), None)
     if old is None and r.word(end - 1) in ("and", "then"):  # "the kitchen and... no sorry, not the kitchen,"
         end -= 1
@@ -347,7 +360,7 @@ def order_said_again(r: Reader, k: int, after: int,
     opening = r.skip(0, _OPENING)
     if opening >= k:
         return None  # "Actually no, go to the bed": takes back the sentence before (refused there)
-    taken_back = named_heads(r, opening, k)
+    taken_back = goal_heads(r, opening, k)
     said_again = {h.categories for h in named_heads(r, start, len(r))}
     all_again = bool(taken_back) and {h.categories for h in taken_back} == said_again
     if (r.word(start) not in lx.POSITIVE_VERBS and r.word(start) not in lx.FIRST and r.word(start) != "please"
@@ -355,6 +368,9 @@ def order_said_again(r: Reader, k: int, after: int,
         return None
     if len(taken_back) > 1 and not all_again:
         return None  # "the kitchen then the office scratch that go to ...": which is taken back?
+    if (taken_back and all(h.kind == "object" and h.categories in said_again for h in taken_back)
+            and room_for_its_object(r, start)):
+        return None  # "the kitchen sink first... no, start with the bathroom, then the kitchen sink": a sink?
     before = {h.categories for e in earlier if not e.aside for h in named_heads(e, 0, len(e))}
     if (said_again - {h.categories for h in taken_back}) & before or adds(r, start):
         return None
@@ -370,12 +386,50 @@ def order_said_again(r: Reader, k: int, after: int,
 
 def named_heads(r: Reader, start: int, end: int) -> list[Head]:
     """The head nouns of the scene named in the words ``[start, end)``, in order."""
-    heads: list[Head] = []
+    return [head for _, head in _heads_at(r, start, end)]
+
+
+def goal_heads(r: Reader, start: int, end: int) -> list[Head]:
+    """The head nouns of :func:`named_heads`, without the room of an object said with it (*the kitchen
+    sink*, *the sink in the kitchen*: one place)."""
+    return [head for _, head in _goal_heads_at(r, start, end)]
+
+
+def room_for_its_object(r: Reader, start: int) -> bool:
+    """Whether a room of the goals named from ``start`` is said without a word of going into it (*start with
+    the bathroom*, not *go to the bathroom*): after a correction of an object, it may stand for its object."""
+    return any(head.kind == "room" and r.word(_before_determiners(r, j)) not in lx.INTO_A_ROOM
+               for j, head in _goal_heads_at(r, start, len(r)))
+
+
+def _goal_heads_at(r: Reader, start: int, end: int) -> list[tuple[int, Head]]:
+    found = _heads_at(r, start, end)
+    objects_at = {j for j, head in found if head.kind == "object"}
+
+    def within(j: int) -> bool:  # "the sink in the kitchen"
+        k = _before_determiners(r, j)
+        return any(o < k for o in objects_at) and r.word(k) in _WITHIN
+
+    return [(j, head) for j, head in found
+            if not (head.kind == "room" and (j + head.words in objects_at or within(j)))]
+
+
+def _before_determiners(r: Reader, j: int) -> int:
+    """The index of the word before the determiners that come before ``j``."""
+    k = j - 1
+    while k > 0 and r.word(k) in lx.DETERMINERS:
+        k -= 1
+    return k
+
+
+def _heads_at(r: Reader, start: int, end: int) -> list[tuple[int, Head]]:
+    """Where each head noun of the scene in the words ``[start, end)`` starts, and the head."""
+    heads: list[tuple[int, Head]] = []
     j = start
     while j < end:
         head = r.head(j)
         if head is not None:
-            heads.append(head)
+            heads.append((j, head))
         j += head.words if head is not None else 1
     return heads
 
@@ -405,7 +459,12 @@ def one_named(r: Reader, start: int, end: int, start_new: int) -> tuple[tuple[To
         return (), start_new  # "the downstairs one": the downstairs bathroom; "the kitchen one": its chair
     k, head = noun
     at = r.toks[one]  # the head's words where "one" was said, so that the phrase quotes what was said
-    head_words = (Tok(t.text, at.start, at.end) for t in r.toks[k : k + head.words])
+    if head.plural and r.word(one) == "one":  # "one of the TVs ..., no, the one in the bedroom": a TV
+        if len(head.categories) != 1:
+            return (), start_new
+        head_words = tuple(Tok(w, at.start, at.end) for w in next(iter(head.categories)).split())
+    else:
+        head_words = tuple(Tok(t.text, at.start, at.end) for t in r.toks[k : k + head.words])
     return (*r.toks[start_new:one], *head_words), one + 1
 
 
