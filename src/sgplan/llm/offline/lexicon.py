@@ -783,6 +783,8 @@ _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "c
                  ("you", "see", "fit"),
                  ("you", "feel", "like"), ("you", "reckon", "is", "best"), ("is", "handiest"),
                  ("you", "find", "easiest"))
+_ORDER_LIKING += tuple((*liking, "for", "you") for liking in _ORDER_LIKING  # "... is quickest for you"
+                       if liking[0] in ("is", "'s") and liking[-1] not in ("me", "you"))
 ANY_ORDER = Phrases((
     ("in", "any", "order"), ("in", "whatever", "order"), ("in", "either", "order"), ("any", "order"),
     ("in", "no", "particular", "order"), ("whichever", "first"), ("whichever", "order"),
@@ -2142,7 +2144,8 @@ _LEARNERS_SAID: dict[tuple[str, ...], tuple[str, ...]] = {  # learners' word ord
     ("remain", "on"): ("stay", "on"),  # "remain on this same floor"
     ("this", "same", "floor"): ("this", "floor"),
     ("on", "this", "floor", "only"): ("on", "this", "floor"),  # "stay on this floor only": the same
-    ("last", "thing", ","): ("lastly", ","),  # "Last thing, water the plant": the last step
+    **{(*one, last, "thing", mark): ("lastly", ",")  # "Last thing, water the plant": the last step
+       for one in ((), ("one",)) for last in ("last", "final") for mark in (",", ":")},
     ("is", "next", "the"): ("is", "next", "to", "the"),  # "the bathroom which is next the kitchen": beside it
     ("are", "next", "the"): ("are", "next", "to", "the"),
     ("where", "is", "also"): ("where", "is"), ("where", "are", "also"): ("where", "are"),

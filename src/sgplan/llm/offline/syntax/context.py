@@ -13,9 +13,11 @@ Set aside are: a sentence or a comma clause (first or last of its sentence) that
 to ...*), says what is off limits (*the kitchen is off limits*), or states a need about a room or object of
 the scene (*the plants need watering*: that may ask for a goal, and is refused by the parser); and a time of
 day, meal or event opening or closing a sentence (*Before lunch,*, *... tonight*). A clock time is refused
-(:func:`.reader.unreadable`). A subject is known by its shape: a pronoun, a phrase with a determiner, or a
-bare noun the grammar has no role for (*Laundry's done*, *people are asleep*), or a place and its state in a
-note (*office wet*). Remarks (:data:`.lexicon.CLOSING`) around the context or closing the sentence are set
+(:func:`.reader.unreadable`). A subject is known by its shape: a pronoun, a phrase with a determiner, a
+bare noun the grammar has no role for (*Laundry's done*, *people are asleep*), *things* / *stuff* /
+*everything* naming nothing (*things are piling up*), *one of them* with a verb that neither says one will
+do nor where it is (*..., one of them got knocked*), or a place and its state in a note (*office wet*).
+Remarks (:data:`.lexicon.CLOSING`) around the context or closing the sentence are set
 aside with it, and so is a sentence of praise only (*Perfect.*) or a bare apology before a statement that
 names nothing (*Sorry, I forgot something.*), praise before a sign-off (*Lovely, thank you.*), a guess added
 to a statement (*..., probably somewhere upstairs*) and a time of day opening an order without a comma
@@ -466,9 +468,10 @@ def is_context(r: Reader, start: int, end: int, leading: bool) -> bool:
 
 _WISH_TO_KNOW = Phrases(tuple((*who, "to", know, whether) for who in (("i", "want"), ("i", "would", "like"),
                                                                       ("i", "need"), ("we", "want"))
-                               for know in ("know", "see", "check") for whether in ("if", "whether")))
+                               for know in ("know", "see", "check")
+                               for whether in ("if", "whether", "what", "how", "which")))
 """*I want to know if ...*: why the speaker asks for the order it follows (*look at both apples, I want to
-know if they've gone soft*)."""
+know if they've gone soft*, *check the fridge, I want to know what we need*)."""
 
 
 def wish_to_know(r: Reader, start: int, end: int) -> bool:
@@ -697,15 +700,16 @@ def is_time(r: Reader, start: int, end: int) -> bool:
     words = r.words[start:end]
     event = words[:1] in tuple((w,) for w in lx.EVENT_OPENERS)  # "before the guests arrive"
     own = named_event(r, start, end)  # "after the game tonight", "during our film tomorrow"
+    gone_by = {j for k in range(start, end) if past_time(r, k) for j in (k - start, k + 1 - start)}
     said = [w in lx.TIME_WORDS or w in lx.PAST_TIMES or (own is not None and own - 1 <= start + k <= own)
-            or (w == "last" and words[k + 1:k + 2] and words[k + 1] in lx.EVENT_WORDS)  # "after last night"
+            or k in gone_by  # "after last night", "last time"
             or (event and (w in lx.EVENT_VERBS or w in lx.PEOPLE or w in lx.PEOPLE_NOUNS
                            or w in lx.POSSESSIVES or w in lx.AUXILIARIES or k == 0))
             for k, w in enumerate(words)]
     if not words or not all(said):
         return False
-    events = [w for w in words if (w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES)
-              or (event and (w in lx.PEOPLE or w in lx.PEOPLE_NOUNS))]
+    events = [w for k, w in enumerate(words) if (w in lx.EVENT_WORDS and w not in lx.SEQUENCE_TIMES)
+              or k in gone_by or (event and (w in lx.PEOPLE or w in lx.PEOPLE_NOUNS))]
     return bool(events) or tuple(words) in lx.NOW_SAID
 
 
@@ -877,7 +881,7 @@ def statement(r: Reader, start: int, end: int) -> str | None:
     qualifies = aside_of is not None and r.word(start - 1 + len(aside_of)) in lx.ASIDE_QUALIFIERS
     located = locates(r, start, k, end) and not left_there(r, start, k) if k is not None else False
     if (k is None or r.phrase(k, lx.OFF_LIMITS) or qualifies or located
-            or any(w in lx.LIST_NOUNS for w in r.words[start:k])
+            or (any(w in lx.LIST_NOUNS for w in r.words[start:k]) and not vague_talk(r, start, end))
             or (r.word(k) in lx.STATEMENT_LINKS and r.word(k + 1) == "to")):
         # "the kitchen is off limits", "the couch, it's in the kitchen", "the bowl is in the sink", "the next
         # task is to ...": not mere context
@@ -931,6 +935,10 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
     """Where the verb after the subject of a statement starts (*we* | *'re hosting*, *the cat* | *keeps*, *my
     mum* | *'s staying*), or ``None`` when the clause does not start with a subject and a verb."""
     w = r.word(start)
+    if (r.words[start:start + 3] in _ONE_OF_THEM and finite_verb(r.word(start + 3))
+            and r.phrase(start + 3, lx.REMARK_FINE) is None and r.phrase(start + 3, _ENOUGH) is None
+            and not any(names_place(r, k) for k in range(start, end))):  # (not "one of them is fine")
+        return start + 3  # "..., one of them got knocked": a statement about the things named (not where)
     if w in lx.SUBJECT_PRONOUNS:
         verb = r.word(start + 1)
         if w in lx.DEICTIC_SUBJECTS and verb not in lx.STATEMENT_VERBS:
@@ -969,10 +977,23 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
     verb = r.word(verb_at)
     if (w.isalpha() and r.head(start) is None
             and (plain_subject(r, start) or w in lx.RELATIVE_FLOORS or w in lx.EVENT_WORDS
-                 or w in lx.PEOPLE_NOUNS)
+                 or w in lx.PEOPLE_NOUNS or w in _VAGUE_SUBJECTS)
             and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
         return verb_at  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
     return None
+
+
+def vague_talk(r: Reader, start: int, end: int) -> bool:
+    """Whether the clause ``[start, end)`` is about the day in general (:data:`_VAGUE_SUBJECTS`: *things are
+    piling up*), naming no room, object or floor (*the things to check are ...* lists goals)."""
+    return r.word(start) in _VAGUE_SUBJECTS and not any(names_place(r, k) for k in range(start, end))
+
+
+_VAGUE_SUBJECTS = frozenset({"things", "stuff", "everything"})
+"""Subjects of a statement about the day in general (*things are piling up*, *everything is a mess*), which
+the lexicon knows in lists too (*things to do:*), so no bare noun."""
+_ENOUGH = Phrases((("is", "enough"), ("'s", "enough"), ("suffices",)))
+_ONE_OF_THEM = frozenset(("one", "of", them) for them in ("them", "those", "these"))
 
 
 def state_verb_last(r: Reader, k: int, end: int) -> bool:

@@ -6,7 +6,9 @@ and C*, *visit two rooms: the kitchen and the office*, *never enter these: ...*)
 (each continues the sequence of the one before it, as a sentence starting with *Then* does); a bulleted
 list is a set, done in any order. An order remark in the heading (*in order*, *any order is fine*) or in a
 sentence right after the list (*The order doesn't matter.*) says otherwise. *In that order.* after
-sentences of one goal each (*Fridge. Oven. Microwave. In that order.*) orders them as a numbered list is. An
+sentences of one goal each (*Fridge. Oven. Microwave. In that order.*) orders them as a numbered list is; an
+order remark after one sentence listing goals (*Check the oven and the fridge. Do them in any order.*) is
+read with it. An
 item that says *eventually* / *at some point* first is not ordered after the one before it.
 
 **Headings.** The sentence before a list's first item heads it when it ends with a colon or stands on a
@@ -54,8 +56,9 @@ def read_lists(readers: list[Reader]) -> list[Reader]:
         first = k + (1 if heading is not None else 0)
         run = lines or (list_run(readers, first) if heading is not None or r.marker is not None else [])
         if not run:
-            in_order = r.marker is None and only_order_remark(r) == "ordered"
-            ordered = ordered_before(out, r) if in_order else None
+            said = only_order_remark(r) if r.marker is None else None
+            ordered = (ordered_before(out, r) if said == "ordered"
+                       else remark_joined(out, r, _ANY_ORDER_ALLOWS) if said == "any" else None)
             out = ordered if ordered is not None else out + colon(r, readers[k + 1] if k + 1 < len(readers)
                                                                   else None)
             k += 1
@@ -74,16 +77,36 @@ def ordered_before(out: list[Reader], remark: Reader) -> list[Reader] | None:
     couch. In that order.*); ``None`` (the remark is left to the parser, which refuses it) otherwise: with a
     list or an order of its own, which order is meant is not known."""
     goals = [n for n, r in enumerate(out) if not r.aside and r.phrase(0, lx.NEG_STARTS) is None]
-    if len(goals) == 1 and goals[0] == len(out) - 1 and set(out[-1].words) & {",", "and"} and not (
-            set(out[-1].words) & (lx.LIST_JOINERS - {",", "and"})) and out[-1].marker is None:
-        listed = out[-1]
-        comma = Tok(",", listed.toks[-1].end, listed.toks[-1].end)
-        return [*out[:-1], replace(listed, toks=(*listed.toks, comma, *remark.toks))]
+    if len(goals) == 1 and goals[0] == len(out) - 1:
+        joined = remark_joined(out, remark)
+        if joined is not None:
+            return joined
     plain = all(out[n].marker is None and out[n].announced is None and not set(out[n].words) & lx.LIST_JOINERS
                 for n in goals)
     if len(goals) < 2 or not plain:
         return None
     return [replace(r, after_item=True) if n in goals[1:] else r for n, r in enumerate(out)]
+
+
+_ANY_ORDER_ALLOWS = frozenset({",", "and", "all", "both", "also", "too"})
+"""Words of a list that an *any order* remark after it may follow (*The oven and the fridge both need a look.
+Do them in any order.*); the others order the goals, or say when (which order is meant?)."""
+
+
+def remark_joined(out: list[Reader], remark: Reader,
+                  allows: frozenset[str] = frozenset({",", "and"})) -> list[Reader] | None:
+    """``out`` with its last sentence, a list of goals with no words of :data:`.lexicon.LIST_JOINERS` but
+    ``allows`` (*Check the oven and the fridge.*), read with the order remark after it (*Do them in any
+    order.*) after a comma; ``None`` when the last sentence is no such list (the remark is then read, or
+    refused, on its own)."""
+    listed = out[-1] if out else None
+    if listed is None or listed.aside or listed.marker is not None or not set(listed.words) & {",", "and"} \
+            or set(listed.words) & (lx.LIST_JOINERS - allows):
+        return None
+    said = next(k for k in range(len(remark))  # "Do them in any order.": "in any order"
+                if remark.phrase(k, lx.ANY_ORDER) or remark.phrase(k, lx.ORDER_MODIFIERS))
+    comma = Tok(",", listed.toks[-1].end, listed.toks[-1].end)
+    return [*out[:-1], replace(listed, toks=(*listed.toks, comma, *remark.toks[said:]))]
 
 
 def items_with_room_heading(readers: list[Reader]) -> list[Reader]:
