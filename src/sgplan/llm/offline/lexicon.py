@@ -938,9 +938,12 @@ CLOSING = CLOSING + Phrases((
     # apologies for asking: "sorry to bug you", "sorry for the hassle", "apologies for the bother"
     *((sorry, "to", nuisance, *you) for sorry in ("sorry", "apologies") for nuisance in _NUISANCES
       for you in ((), ("you",), ("you", "again"), ("again",))),
-    *((sorry, "for", *the, trouble) for sorry in ("sorry", "apologies")
+    *((sorry, "for", *the, *trouble) for sorry in ("sorry", "apologies")
       for the in ((), ("the",), ("all", "the"))
-      for trouble in ("bother", "trouble", "hassle", "interruption", "fuss", "mess")),
+      for trouble in (("bother",), ("trouble",), ("hassle",), ("interruption",), ("fuss",), ("mess",),
+                      ("back", "and", "forth"))),
+    *((sorry, "to", "be", "a", pain) for sorry in ("sorry", "apologies")
+      for pain in ("bother", "pain", "nuisance", "pest")),
     ("sorry", "about", "this"), ("sorry", "about", "that"), ("sorry", "in", "advance"),
     # exclamations, alone or after "oh": "oh gosh", "oh my goodness", "oh dear", "oh boy"
     *((*oh, word) for oh in ((), ("oh",)) for word in EXCLAMATIONS),
@@ -2098,11 +2101,19 @@ PHRASE_ALIASES.update({  # "stay up here on this floor": the floor said twice
 _SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
     # a prohibition wrapped as a wish: "I'd rather you didn't go into X", "I'd prefer it if you stayed out"
     **{(*who, *wish, "you", *did): ("do", "not") for who in (("i", "would"), ("we", "would"))
-       for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"))
+       for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"),
+                    ("appreciate", "it", "if"), ("like", "it", "if"), ("love", "it", "if"))
        for did in (("did", "not"), ("not",), ("did", "not", "ever"))},
     **{(*who, *wish, "you", stayed): (stay,) for who in (("i", "would"), ("we", "would"))
        for wish in (("rather",), ("prefer", "it", "if"), ("prefer", "if"))
        for stayed, stay in (("stayed", "stay"), ("kept", "keep"), ("steered", "steer"))},
+    # neither floor direction: "don't go up and don't go down", "don't go upstairs or downstairs"
+    **{("do", "not", "go", a, conj, *again, b): ("stay", "on", "this", "floor")
+       for a, b in (("up", "down"), ("down", "up"), ("upstairs", "downstairs"), ("downstairs", "upstairs"))
+       for conj in ("and", "or", "nor") for again in ((), ("go",), ("do", "not", "go"))},
+    # a prohibition said again for emphasis: "don't go in the living room at all like at all / like never"
+    **{("at", "all", *like, *again): ("at", "all") for like in ((), ("like",), ("i", "mean"))
+       for again in (("at", "all"), ("never",), ("ever",), ("never", "ever"))},
     # an order made emphatic: "do stay away from X", "please do avoid X" (as "do check X" is read)
     **{("do", verb): (verb,) for verb in ("stay", "keep", "avoid", "steer", "remember")},
     # "my little one" is a child (not the smaller of two things, as "the little one" may be)
@@ -2150,8 +2161,9 @@ _LEARNERS_SAID: dict[tuple[str, ...], tuple[str, ...]] = {  # learners' word ord
     ("are", "next", "the"): ("are", "next", "to", "the"),
     ("where", "is", "also"): ("where", "is"), ("where", "are", "also"): ("where", "are"),
     ("that", "it", "has"): ("that", "has"), ("which", "it", "has"): ("which", "has"),  # a resumptive "it"
-    **{(prep, floor, "floor"): (prep, "the", floor, "floor")  # "go up on top floor": the article left out
-       for prep in ("on", "to", "at", "in", "of") for floor in ("top", "middle", "bottom", "upper", "lower")},
+    **{(prep, floor, word): (prep, "the", floor, word)  # "go up on top floor", "no grnd flr": no article
+       for prep in ("on", "to", "at", "in", "of", "avoid", "no", "off", "from", "into")
+       for floor in ("top", "middle", "bottom", "upper", "lower", *FLOOR_NAMED) for word in FLOOR_WORDS},
 }
 PHRASE_ALIASES.update(_LEARNERS_SAID)
 PHRASE_ALIASES.update({  # "the baby's napping in the living room, so keep out.": out of the place just said

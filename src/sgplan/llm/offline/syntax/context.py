@@ -714,7 +714,7 @@ def is_time(r: Reader, start: int, end: int) -> bool:
 
 
 _ROBOT_ROUTINE = frozenset({"wake", "up", "dock", "docks", "charge", "charging", "recharge", "power", "down",
-                            "shut"})
+                            "shut", "do", "doing", "rounds", "round", "patrol"})  # "when you do your rounds"
 """The robot's own day (*when you wake up*, *before you dock*, *after your morning charge*): a time, never a
 place. Kept here, out of the lexicon, so that its words stay unknown to the rest (*Power went out earlier.*
 is a statement)."""

@@ -763,7 +763,8 @@ def contact_clause(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skip
     *that*, about the thing; read as a clause of its own it would make *in the dining room* another goal, so
     it is refused, naming the words."""
     nxt = r.word(i + 1)
-    if r.word(i) not in lx.CONTACT_SUBJECTS or not nxt.isalpha() or nxt in lx.STATEMENT_VERBS:
+    if (r.word(i) not in lx.CONTACT_SUBJECTS or not nxt.isalpha() or nxt in lx.STATEMENT_VERBS
+            or r.phrase(i, lx.POLITE) is not None):  # "... the kitchen I want you to check ...": an order
         return None
     return Refusal(rf.contact_clause(r.quote(noun.first, min(len(r), i + 2))))
 
