@@ -1095,6 +1095,12 @@ def floor_outside(said: str, building: str, floors: int, british: bool = False) 
                     f"lowest; 'the first floor' is {first})")
 
 
+def ordinal_floor_either_way(said: str) -> str:
+    return rephrase(f"'{said}' is the lowest floor counted one way (US: the first floor is floor 0) and the "
+                    "one above it counted the other (British: the ground floor, then the first floor), and "
+                    "both name places here; say 'floor 0' / 'the ground floor' or 'floor 1'")
+
+
 def no_middle_floor(said: str, building: str, floors: int) -> str:
     return rephrase(f"'{said}': the building {building!r} has {floors} floors (0 to {floors - 1}), so no "
                     "middle one; say which floor")

@@ -14,6 +14,7 @@ from typing import Literal
 from sgplan.errors import MissionError
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding.discourse import Discourse, Grounded
+from sgplan.llm.offline.grounding.floors import ordinal_floor_said, ordinals_either_way
 from sgplan.llm.offline.lexicon import PRONOUNS
 from sgplan.llm.offline.meaning.feasible import check_can_be_done
 from sgplan.llm.offline.meaning.mission import mission_formula
@@ -92,6 +93,11 @@ class PatternTranslator:
     def translate(self, text: str, building: Building) -> Translation:
         """Parse, ground and translate ``text``.
 
+        *The first floor* is the lowest floor to some and the one above the ground floor to others: a text
+        that counts floors so without naming the ground floor (:func:`.grounding.floors.ordinals_either_way`)
+        is read both ways; the scene decides when one way names nothing it holds, and it is refused when
+        both ways read, differently.
+
         Raises
         ------
         MissionError
@@ -99,8 +105,28 @@ class PatternTranslator:
             definite reference ("the bathroom") matching several; the message names the phrase, lists
             the candidates as ``room_<uuid> (floor k)`` and says how to disambiguate.
         """
+        if not ordinals_either_way(text):
+            return self._translate(text, building, None)
+        readings: list[Translation | MissionError] = []
+        for counted_from in (0, 1):
+            try:
+                readings.append(self._translate(text, building, counted_from))
+            except MissionError as refusal:
+                readings.append(refusal)
+        us, british = readings
+        if isinstance(us, MissionError):
+            if isinstance(british, MissionError):
+                raise us
+            return british
+        if isinstance(british, Translation) and british.tokens != us.tokens:
+            raise MissionError(rf.ordinal_floor_either_way(ordinal_floor_said(text)))
+        return us
+
+    def _translate(self, text: str, building: Building, ordinals_from: int | None) -> Translation:
+        """:meth:`translate`, with *the first floor* counted from ``ordinals_from`` (0, 1, or ``None``: from
+        the text)."""
         vocabulary = SceneVocabulary(building)
-        disc = Discourse(vocabulary, text, self.start_floor)
+        disc = Discourse(vocabulary, text, self.start_floor, ordinals_from=ordinals_from)
         spelling = Spelling(vocabulary.nouns)
         try:
             formula = mission_formula(split_mission(text, vocabulary.nouns, spelling), disc)

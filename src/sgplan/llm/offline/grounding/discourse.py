@@ -78,6 +78,10 @@ class Discourse:
     done_before: list[Grounded] = field(default_factory=list)
     """Goals said after the goal they come before (*go to Y only after X*: X), which *there* does not point
     back to as the last place (refused: X, named last, or Y, gone to last?)."""
+    ordinals_from: int | None = None
+    """Where *the first floor* counts from when the translator tries both ways (0: the lowest floor, US
+    style; 1: the floor above the ground floor, British style); ``None``: from the text
+    (:func:`.floors.british_ordinal`)."""
     first_said: str | None = None
     """The words of a sentence whose goals come *first* with no goal said before them (*First, go to the
     garage.*, *Garage first:*): the goals of a later sentence must come after them (refused when it does not
@@ -97,7 +101,7 @@ class Discourse:
         """A copy to try a reading on, which the original does not see."""
         return Discourse(self.vocab, self.text, self.start_floor, copy.copy(self.references), self.confined,
                          self.last_step, self.last_steps, self.announced, list(self.set_aside),
-                         list(self.mentions), list(self.done_before), self.first_said)
+                         list(self.mentions), list(self.done_before), self.ordinals_from, self.first_said)
 
     def said(self, start: int, end: int) -> str:
         """The mission text between two character offsets."""

@@ -34,11 +34,31 @@ from sgplan.llm.offline.syntax.tree import (
 _GROUND_FLOOR = re.compile(r"\b(?:ground|gnd|grnd)[\s-]*(?:floor|level|storey|flr|fl)\b", re.IGNORECASE)
 
 
-def british_ordinal(said: str, text: str) -> bool:
+_ORDINALS = "|".join(lx.FLOOR_ORDINALS)
+_ORDINAL_FLOOR = re.compile(rf"\b(?:{_ORDINALS})[\s-]*(?:floor|level|storey|story|flr|fl)\b", re.IGNORECASE)
+
+
+def british_ordinal(said: str, text: str, counted_from: int | None = None) -> bool:
     """Whether the ordinal floor ``said`` (*the first floor*) counts from the ground floor, British style:
     where the mission ``text`` also names the ground floor (*the first-floor corridor, then the ground-floor
-    loo*), whose writer does not name one floor two ways; elsewhere ordinals count US style (first = 0)."""
-    return said.split()[0] in lx.FLOOR_ORDINALS and _GROUND_FLOOR.search(text) is not None
+    loo*), whose writer does not name one floor two ways; ``counted_from`` (0 or 1) when the translator tries
+    both ways (:func:`ordinals_either_way`)."""
+    if said.split()[0] not in lx.FLOOR_ORDINALS:
+        return False
+    return _GROUND_FLOOR.search(text) is not None if counted_from is None else counted_from == 1
+
+
+def ordinal_floor_said(text: str) -> str:
+    """The first ordinal floor of ``text`` (*first floor*), as said."""
+    found = _ORDINAL_FLOOR.search(text)
+    return found.group(0) if found is not None else ""
+
+
+def ordinals_either_way(text: str) -> bool:
+    """Whether ``text`` counts floors by ordinals (*the first floor*, *2nd-floor bathroom*) and does not name
+    the ground floor: its *first floor* is the lowest floor for some (US) and the one above it for others
+    (British), so the scene must tell which (:meth:`.translator.PatternTranslator.translate`)."""
+    return _ORDINAL_FLOOR.search(text) is not None and _GROUND_FLOOR.search(text) is None
 
 
 def floors_of(spec: FloorSpec, disc: Discourse, candidates: list[Entity] | None = None) -> FloorReading:
@@ -46,7 +66,7 @@ def floors_of(spec: FloorSpec, disc: Discourse, candidates: list[Entity] | None 
     bathroom* in a taller building: the lower of the floors holding bathrooms)."""
     vocab = disc.vocab
     if isinstance(spec, FloorNumber):
-        british = british_ordinal(spec.said, disc.text)
+        british = british_ordinal(spec.said, disc.text, disc.ordinals_from)
         number = spec.number + (1 if british else 0)
         if not 0 <= number < vocab.num_floors:
             rf.refuse(rf.floor_outside(spec.said, vocab.building_name, vocab.num_floors, british))
