@@ -777,9 +777,10 @@ def whenever_goals_only() -> str:
                     "open the fridge'), not with prohibitions")
 
 
-def response_needs_one() -> str:
-    return rephrase("'when you go to X, ... afterwards' is understood with one room or object (or a "
-                    "choice of them) as X")
+def when_afterwards() -> str:
+    return rephrase("'when you go to X, ... afterwards' is read by some as on each visit of X and by others "
+                    "as once; say 'every time you go into X, ...' (each visit) or 'if you go into X, ... "
+                    "afterwards' (after that visit)")
 
 
 def once_or_each_visit(said: str) -> str:
@@ -1093,6 +1094,11 @@ def floor_outside(said: str, building: str, floors: int, british: bool = False) 
     first = ("floor 1, counted from the ground floor the mission names" if british else "floor 0")
     return rephrase(f"'{said}': the building {building!r} has floors 0 to {floors - 1} (floor 0 is the "
                     f"lowest; 'the first floor' is {first})")
+
+
+def before_with_prohibition(said: str) -> str:
+    return rephrase(f"'{said}': a prohibition beside other goals or times after 'before': which of them hold "
+                    "only until then? Say 'don't enter X until you have been to Y' in a sentence of its own")
 
 
 def ordinal_floor_either_way(said: str) -> str:

@@ -67,14 +67,10 @@ def whenever(trigger: Task, body: Clause) -> Formula:
 
 def conditional(rule: IfRule, condition: Formula, tasks: list[Task], body: Clause) -> Formula:
     """*if X, Y*: ``F X -> Y``; *if X, Y afterwards*: ``F X -> F(X & F Y)`` (Y after that visit of
-    X). *When X, Y afterwards* is a response to each visit of X, as with *whenever*; that needs one place as
-    X (else it is refused). A bare *when X, Y* may mean either, or a plain sequence, so it is refused."""
-    if rule.word == "when" and rule.afterwards:
-        if len(tasks) != 1:
-            rf.refuse(rf.response_needs_one())
-        return whenever(tasks[0], body)
+    X). *When X, Y* may mean either, or a plain sequence, so it is refused; so is *when X, Y afterwards*,
+    read by some as each visit of X (*whenever*) and by others as once (*if*)."""
     if rule.word == "when":
-        rf.refuse(rf.bare_when())
+        rf.refuse(rf.when_afterwards() if rule.afterwards else rf.bare_when())
     if rule.afterwards:  # "if you go into the living room, check the fridge afterwards": after that visit
         body = Clause(steps=[list(tasks), *body.steps], constraints=body.constraints)
     return Implies(condition, require(body, "for the condition"))

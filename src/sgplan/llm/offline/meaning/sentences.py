@@ -99,7 +99,15 @@ def prefixed(sentence: PrefixedSentence, ctx: SentenceContext) -> Meaning:
     goals = sum(len(task.members) if task.mode == "all" else 1 for step in prefix for task in step)
     if sentence.on_the_way and goals > 1:
         rf.refuse(rf.on_the_way_to_several(goals))  # "on your way up to the bedrooms": both, or a direction?
-    body = read_body(sentence.body, ctx)
+    prior = ctx.prior_steps
+    if sentence.prefix.moved is not None and not sentence.prefix_last:
+        # "once you're downstairs, water X, but keep out of Z until Y": the prefix took the goals (the floor
+        # move and X): what the body says is not the first step of the sentence
+        ctx.prior_steps = [*prior, *prefix]
+    try:
+        body = read_body(sentence.body, ctx)
+    finally:
+        ctx.prior_steps = prior
     if sentence.strict:
         strict = only_after(body, Clause(steps=prefix), ctx)
         return postfix(Clause(steps=prefix, constraints=[strict]), sentence.postfix, ctx)

@@ -394,10 +394,26 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
     items = said.node.body.items
     if r.word(i + 1) != "to" and any(isinstance(item, Link) and item.sequence for item in items):
         return Refusal(rf.before_then(r.quote(i, said.end)))
+    kept_out = kept_out_before(r, i, said.node, said.end)
+    if kept_out is not None:
+        return kept_out
     if r.says(lx.OBLIGED, i + 1, said.end) or r.phrase(i + 1, lx.BEFORE_ENTERING) is not None:
         # "before you enter Y, you must go to X", "before you go into Y, X": Y, and not before X
         return Match(replace(said.node, strict=True), said.end)
     return said
+
+
+def kept_out_before(r: Reader, i: int, said: PrefixedSentence, end: int) -> Parse[SentenceBody]:
+    """*Before you go to Y, avoid X* / *b4 kit, no liv rm* (the sentence read from ``i`` to ``end``): X kept
+    out of until Y, as *don't enter X until Y*; with goals beside the prohibition, or a prohibition of its
+    own time (*the whole time*, *until Z*), refused (before Y too?). ``None`` when it prohibits nothing."""
+    negations = [item for item in said.body.items if isinstance(item, Negation)]
+    if not negations:
+        return None
+    if len(negations) != len(said.body.items) or any(n.until is not None or n.whole for n in negations):
+        return Refusal(rf.before_with_prohibition(r.quote(i, end)))
+    kept = Body(tuple(replace(n, until=said.prefix) for n in negations))
+    return Match(PlainSentence(None, kept, said.postfix), end)
 
 
 @OPENINGS.rule("only <do X> after Y")
