@@ -24,7 +24,7 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import NounLexicon
 from sgplan.llm.offline.spelling import Spelling
 from sgplan.llm.offline.syntax.any_time import any_time_goal
-from sgplan.llm.offline.syntax.brackets import bracketed_rooms
+from sgplan.llm.offline.syntax.brackets import bracketed_remarks, bracketed_rooms
 from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement, timed_heading
 from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
 from sgplan.llm.offline.syntax.fine_choice import fine_choice
@@ -64,6 +64,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     readers = [floor_only(r) for r in readers]  # "this flr only": "stay on this flr"
     readers = [fronted_prohibition(r) for r in readers]  # "Kitchen never go.": "never enter kitchen"
     readers = [bracketed_rooms(r) for r in readers]  # "bowl (LR)": "bowl in LR"
+    readers = [said for r in readers for said in bracketed_remarks(r)]  # "(it's the cough syrup)": said back
     readers = [each_visit_rule(r) for r in readers]  # "each kit visit -> DR after": "whenever you visit kit"
     readers = [fine_choice(r) for r in readers]  # "then either bedroom is fine": then either bedroom
     readers = [said for r in readers for said in only_clause(r)]  # ", and only go to X after Y": its own

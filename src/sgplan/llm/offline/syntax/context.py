@@ -274,7 +274,10 @@ def comma_clauses(r: Reader) -> list[tuple[int, int]]:
             out += [(start, joined[1]), (joined[1], joined[0])]  # the order goes on after "and"
             start = joined[0]
         tail = time_tail(r, start, end)
-        reason = reason_span(r, start, end) if tail is None else None
+        reason = reason_span(r, start, end)
+        if reason is not None and tail is not None and tail > reason[0]:
+            tail = None  # "..., since we need milk for the morning": the reason's own time
+        reason = reason if tail is None else None
         timed = time_tail(r, start, reason[0]) if reason is not None else None
         if timed is not None:  # "check the fridge before lunch so I know what to cook": the time, then why
             out.append((start, timed))
@@ -305,9 +308,10 @@ def reason_span(r: Reader, start: int, end: int) -> tuple[int, int] | None:
     stop = next((j for j in range(k + 1, end) if r.phrase(j, lx.SEQ_WORDS)), end)
     said = range(k + len(r.phrase(k, lx.REASONS) or r.phrase(k, lx.AFTER_ORDER_REASONS)
                         or r.phrase(k, lx.STATE_RESULTS) or ("for",)), stop)
-    if any(r.phrase(j, lx.NEG_STARTS) or r.phrase(j, lx.POLITE) or is_clock_time(r.word(j))
-           or r.word(j) in lx.TIME_UNITS for j in said):
+    if any(r.phrase(j, lx.NEG_STARTS) or (r.phrase(j, lx.POLITE) and not r.phrase(j, _WISH_TO_KNOW))
+           or is_clock_time(r.word(j)) or r.word(j) in lx.TIME_UNITS for j in said):
         return None  # what not to do, a question to the robot, a clock time or a delay: left to the parser
+        # (not "... since I need to know whether ...": why the speaker asks)
     so_you = r.at(k, "so", "you")
     if (r.phrase(k, lx.CHECK_WHETHER) or so_you) and any(
             names_place(r, j) or misspelt_name(r, j, j + 1) or (so_you and r.word(j) in lx.PRONOUNS)
