@@ -972,6 +972,8 @@ CLOSING = CLOSING + Phrases((
     *(("hope", "that", be, fine) for be in ("is", "'s")
       for fine in ("ok", "okay", "alright", "fine", "clear")),
     ("hope", "that", "makes", "sense"), ("hope", "this", "makes", "sense"),
+    *((*would, "that", *be, *ok) for would, be in ((("would",), ("be",)), (("is",), ()), (("if",), ("is",)))
+      for ok in (("okay",), ("ok",), ("alright",), ("all", "right"), ("fine",))),
     *(("any", "questions", *comma, "just", "ask") for comma in ((), (",",))),
     *(("let", "me", "know", "if", "you", have, *any, "questions") for have in ("have", "get")
       for any in ((), ("any",))),
@@ -1474,9 +1476,10 @@ EVENT_VERBS = word_set("arrive arrives come comes leave leaves get gets back hom
 """In a time expression of an event (*before the guests arrive*, *after I get back*)."""
 EVENT_VERBS = EVENT_VERBS | word_set("over done finished ready served up awake")
 """(*once lunch is over*, *when dinner's ready*)."""
-DAY_OPENERS = ("this", "tonight", "today", "tomorrow", "for")  # "for now" (not "for the kitchen": no time)
+DAY_OPENERS = ("this", "tonight", "today", "tomorrow", "for", "in")
 """The words a time of day that opens an order without a comma starts with (*This evening stay ...*,
-*Tonight check ...*; not *the guests arrive*, an event)."""
+*Tonight check ...*, *In the morning check ...*, *for now* (not *for the kitchen*: no time); not *the guests
+arrive*, an event)."""
 SPAN_OPENERS = ("during",)
 """Like :data:`DAY_OPENERS`, a time over a span, which cannot order the steps (*During the party tonight keep
 out of ...*)."""
@@ -2105,8 +2108,18 @@ _SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
                     ("appreciate", "it", "if"), ("like", "it", "if"), ("love", "it", "if"))
        for did in (("did", "not"), ("not",), ("did", "not", "ever"))},
     **{(*who, *wish, "you", stayed): (stay,) for who in (("i", "would"), ("we", "would"))
-       for wish in (("rather",), ("prefer", "it", "if"), ("prefer", "if"))
-       for stayed, stay in (("stayed", "stay"), ("kept", "keep"), ("steered", "steer"))},
+       for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"))
+       for stayed, stay in (("stayed", "stay"), ("kept", "keep"), ("steered", "steer"),
+                            ("avoided", "avoid"))},
+    # the same wish said of the robot's conduct: "It would be lovely if you didn't go into X", "It'd be
+    # great if you avoided X"
+    **{("it", "would", "be", *great, "if", "you", *did): done
+       for great in (("lovely",), ("great",), ("nice",), ("good",), ("best",), ("better",), ("ideal",),
+                     ("wonderful",), ("brilliant",), ("perfect",), ("helpful",), ("so", "helpful"))
+       for did, done in ((("did", "not"), ("do", "not")), (("stayed",), ("stay",)), (("kept",), ("keep",)),
+                         (("avoided",), ("avoid",)), (("steered",), ("steer",)))},
+    # "at any cost", "at all costs": "at all" (emphasis of a prohibition)
+    ("at", "any", "cost"): ("at", "all"), ("at", "all", "costs"): ("at", "all"),
     # neither floor direction: "don't go up and don't go down", "don't go upstairs or downstairs"
     **{("do", "not", "go", a, conj, *again, b): ("stay", "on", "this", "floor")
        for a, b in (("up", "down"), ("down", "up"), ("upstairs", "downstairs"), ("downstairs", "upstairs"))
