@@ -306,6 +306,8 @@ def floor_after(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped
     """*bathrm top flr*, *the bathroom floor 0*, *bathroom (floor 1)*, *bathroom (upstairs)*: the floor said
     right after the noun, as notes are written (not *the bathroom top floor bedroom*: a floor before another
     noun names that one)."""
+    if noun.kind == "room" and r.word(i) in _NOTE_DIRECTIONS and note_ends(r, i + 1):
+        return Match(OnFloor(RelativeFloor(_NOTE_DIRECTIONS[r.word(i)])), i + 1)  # "bthrm dn (toilet)"
     aside = r.word(i) == "," and r.word(i + 1) != ","
     k = i + (1 if aside else 0)
     if aside and r.word(k) in lx.RELATIVE_FLOORS and r.word(k + 1) in lx.CLAUSE_ENDS:
@@ -315,6 +317,19 @@ def floor_after(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped
             or (aside and r.word(said.end) not in lx.CLAUSE_ENDS)):
         return None
     return Match(OnFloor(said.node), said.end)
+
+
+_NOTE_DIRECTIONS = {"up": "upstairs", "down": "downstairs", "dn": "downstairs"}
+"""After a room in a note (*bthrm dn: toilet*, *bthrm up (bottle)*): the floor above / below."""
+
+
+def note_ends(r: Reader, k: int) -> bool:
+    """Whether an item of a note ends at ``k``: its end, a colon, an arrow, or a bracket opening (*bthrm dn
+    (toilet)*); not a comma (*the bottle from the bathroom up, then ...*: carried up?)."""
+    if k >= len(r) or r.word(k) == ":":
+        return True
+    typed = r.text[r.toks[k - 1].end:r.toks[k].end]  # (an arrow is read as "then")
+    return any(mark in typed for mark in ("(", "->", ">", "\u2192"))
 
 
 def same_floor(r: Reader, i: int) -> Parse[Qualifier | Skipped]:
