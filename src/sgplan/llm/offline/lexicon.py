@@ -306,6 +306,13 @@ order.* after it is not read."""
 HEADS_UP = word_set("remember note important reminder ps also careful warning update oh btw nb urgent fyi "
                     "priority quick favour favor question request")
 """Words that only ask for attention before a colon (*Remember: never enter the kitchen.*)."""
+WISH_HEADINGS = Phrases(tuple((*here, "what", *who, *wish) for here in ((), ("here", "is"), ("so",))
+                              for who, wish in ((("i",), ("need",)), (("i",), ("want",)),
+                                                (("i",), ("would", "like")), (("we",), ("need",)),
+                                                ((), ("needs", "doing")), ((), ("needs", "to", "be", "done")),
+                                                (("i",), ("need", "you", "to", "do")))))
+"""Before a colon, what the speaker wants said as a heading (*What I need: ...*, *Here's what I'd like:*): it
+asks nothing itself; the words after the colon say what."""
 ANNOUNCE_TAIL = Phrases((("for", "me"), ("for", "today"), ("today",), ("to", "do"), ("please",),
                          ("for", "you"), ("to", "check"), ("to", "visit")))
 """Words after an announcement's noun group (*three things for me:*)."""
@@ -972,6 +979,7 @@ CLOSING = CLOSING + Phrases((
     *(("hope", "that", be, fine) for be in ("is", "'s")
       for fine in ("ok", "okay", "alright", "fine", "clear")),
     ("hope", "that", "makes", "sense"), ("hope", "this", "makes", "sense"),
+    *(("not", "even", "a", peek) for peek in ("peek", "look", "glance", "second", "minute", "moment")),
     *((*would, "that", *be, *ok) for would, be in ((("would",), ("be",)), (("is",), ()), (("if",), ("is",)))
       for ok in (("okay",), ("ok",), ("alright",), ("all", "right"), ("fine",))),
     *(("any", "questions", *comma, "just", "ask") for comma in ((), (",",))),

@@ -7,7 +7,8 @@ A room: the brackets are read as *in*: *bowl (LR)* is *bowl in LR*, the bowl of 
 rooms (joined by *or*, a choice remark after them), right after a word naming an object; other brackets
 (*(any)*, *(either one)*, *(fl1)*) are left as they are.
 
-A remark: a bracket that opens with a subject (*I*, *we*, *it*, *the cat*, after a hedge such as *I think*)
+A remark: a bracket that opens with a subject (*I*, *we*, *it*, *the cat*, after a hedge such as *I think*
+or a doubt such as *no idea why*)
 and says nothing a mission could read (no floor, no word of order, choice, count, negation or correction,
 and no room or object of the scene but as a pronoun or inside another noun: *toilet paper*) is set aside
 whole and said back (*I think we're low on toilet paper*). Anything else in brackets is read as a clause
@@ -92,6 +93,7 @@ def bracketed_remarks(r: Reader) -> list[Reader]:
 
 _HEDGES = Phrases((("i", "think"), ("i", "guess"), ("i", "suppose"), ("i", "reckon"), ("i", "believe"),
                    ("probably",), ("maybe",), ("apparently",), ("pretty", "sure")))
+_WHY = frozenset({"why", "how", "what", "where", "whether", "if"})
 _READ_WORDS = (lx.FIRST | frozenset(lx.LAST) | lx.ORDER_HEADS | frozenset(lx.UNIVERSAL) | lx.CHOICE_WORDS
                | frozenset(lx.FLOOR_WORDS) | frozenset(lx.RELATIVE_FLOORS) | frozenset(lx.ANAPHORIC_ONE)
                | lx.CORRECTING_WORDS
@@ -105,6 +107,9 @@ def remark(r: Reader, start: int, end: int) -> bool:
     """Whether the words ``[start, end)`` in brackets are a remark of the speaker (see the module
     docstring)."""
     k = start + len(r.phrase(start, _HEDGES) or ())
+    doubt = r.phrase(start, lx.UNSURE)  # "(no idea why it has two)"
+    if doubt is not None and r.word(start + len(doubt)) in _WHY:
+        start = k = start + len(doubt) + 1
     if k >= end or (r.word(k) not in lx.SUBJECT_PRONOUNS and not (
             r.word(k) in lx.DETERMINERS and r.head(k + 1) is None and r.word(k + 1).isalpha())):
         return False

@@ -289,7 +289,8 @@ def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order |
         return [said], None, None, ()  # "Then:" before a list: read alone (and refused), never dropped
     if said.toks and (closing_only(said, 0, len(said)) or is_time(said, 0, len(said))):
         return [replace(said, aside=True)], None, order, ()  # "Heads up:", "Evening:": said back
-    if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
+    if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words) \
+            or len(said.phrase(0, lx.WISH_HEADINGS) or ()) == len(said):
         return [], None, order, ()  # "Here's the plan:", "Remember:": they ask nothing
     announced = (announcement(said) or verb_prefix(said) or room_heading(labelled(said))
                  or floor_heading(said))
@@ -351,7 +352,8 @@ def colon(r: Reader, after: Reader | None) -> list[Reader]:
         return [replace(said, toks=(), announced=order)] if after is not None else [said]
     if said.toks and (closing_only(said, 0, len(said)) or is_time(said, 0, len(said))):
         return [replace(said, aside=True)]  # "Heads up:", "Morning:": a remark or a time, said back
-    if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words):
+    if is_chitchat(said, 0, len(said)) or all(w in lx.HEADS_UP or w in lx.FILLERS for w in said.words) \
+            or len(said.phrase(0, lx.WISH_HEADINGS) or ()) == len(said):
         said = replace(said, toks=())  # "Here's the plan:", "Remember:": they ask nothing
     if after is not None and (label := work_label(said, after)) is not None:
         return [label]  # "Bathroom duty: go to the bathroom with the vase ...": the steps name their rooms
