@@ -2132,6 +2132,9 @@ _SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
     **{("do", "not", "go", a, conj, *again, b): ("stay", "on", "this", "floor")
        for a, b in (("up", "down"), ("down", "up"), ("upstairs", "downstairs"), ("downstairs", "upstairs"))
        for conj in ("and", "or", "nor") for again in ((), ("go",), ("do", "not", "go"))},
+    # "the lobby downstairs all the way down": on the lowest floor (not a floor move of its own)
+    **{(where, "all", "the", "way", way): ("on", "the", end, "floor")
+       for where, way, end in (("downstairs", "down", "bottom"), ("upstairs", "up", "top"))},
     # a prohibition said again for emphasis: "don't go in the living room at all like at all / like never"
     **{("at", "all", *like, *again): ("at", "all") for like in ((), ("like",), ("i", "mean"))
        for again in (("at", "all"), ("never",), ("ever",), ("never", "ever"))},

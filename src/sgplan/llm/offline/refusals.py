@@ -1096,6 +1096,11 @@ def floor_outside(said: str, building: str, floors: int, british: bool = False) 
                     f"lowest; 'the first floor' is {first})")
 
 
+def floor_move_after_goal(said: str) -> str:
+    return rephrase(f"'{said}' right after a goal: where that goal is, or a move of its own? Say 'the X on "
+                    "the bottom floor' or '..., then go down to ...'")
+
+
 def before_with_prohibition(said: str) -> str:
     return rephrase(f"'{said}': a prohibition beside other goals or times after 'before': which of them hold "
                     "only until then? Say 'don't enter X until you have been to Y' in a sentence of its own")

@@ -532,6 +532,8 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
     there = r.phrase(i, lx.THERE_SAID)  # "look at the TV there / while you're (in) there": where the step is
     i += len(there) if there and (len(there) == 1 or r.word(i + len(there)) in lx.CLAUSE_ENDS) else 0
     filler = r.phrase(i, lx.TIME_FILLERS)
+    if filler in lx.ANY_TIME and set(r.words[:i]) & {"then", "after"}:  # "A, then B and C at some point, ..."
+        return Refusal(rf.any_time_in_sequence(r.quote(0, i + len(filler))))  # (C after A, or at any time?)
     if filler and not r.trailing_after(i):
         i += len(filler)  # not "... the office later": that says an order (.body.trailing_after)
     if r.word(i) == "instead" and r.word(i + 1) in lx.CLAUSE_ENDS and not node.in_condition:

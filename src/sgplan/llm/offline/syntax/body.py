@@ -458,6 +458,13 @@ def plain_action(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     found = action(r, i)
     if not isinstance(found, Match):
         return found
+    said_before = i - 1
+    while said_before > 0 and r.word(said_before) in lx.POSITIVE_VERBS:
+        said_before -= 1  # ("and go all the way up": joined)
+    if (before and isinstance(before[-1], PlainAction) and found.node.verbs.floor is not None
+            and r.word(said_before) not in _JOINED):  # "go to the lobby all the way down, ...": its floor?
+        said = next((k for k in range(i, found.end) if r.word(k) in (",", "then")), found.end)
+        return Refusal(rf.floor_move_after_goal(r.quote(i, said)))
     j, on_the_way = found.end, False
     way = r.phrase(j, lx.ON_THE_WAY)
     if way is not None:
@@ -480,6 +487,11 @@ def plain_action(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     more = r.rest(after.end) if isinstance(after, Match) and after.end < len(r) else ""
     return Match(PlainAction(found.node, moved_first(r, i), goes_back(r, i), on_the_way, trailing_word, rest,
                              more), j)
+
+
+_JOINED = frozenset({",", "and", "then", "but", "while", "as", ";", "next", "after", "before", "first"})
+"""Words before an action that join it to the one before it; without one, a floor move said right after a
+goal (*the lobby all the way down*) may say where that goal is rather than make a step of its own."""
 
 
 def moved_first(r: Reader, i: int) -> bool:

@@ -39,6 +39,7 @@ from sgplan.llm.offline.syntax.tree import (
     AfterAll,
     Body,
     Described,
+    FloorPlace,
     FloorSpec,
     IfRule,
     Link,
@@ -387,9 +388,11 @@ def before_first(r: Reader, i: int) -> Parse[SentenceBody]:
     if not isinstance(said, Match) or not isinstance(said.node, PrefixedSentence):
         return said
     move = said.node.prefix
-    if move.verbs.floor is not None and move.phrases is None:
+    if (move.verbs.floor is not None and move.phrases is None) or move.moved is not None or (
+            move.phrases is not None and all(isinstance(p, FloorPlace) for p in move.phrases.items)):
         # "before you go upstairs, check the bathroom": the goals are done before the move, on the floor
-        # left (the move would single them out on the floor reached), and where the move ends is no goal
+        # left (the move would single them out on the floor reached), and where the move ends is no goal;
+        # so for "before you come up from down here, grab X, then ...": the move took X along
         return Refusal(rf.before_floor_move(r.quote(i, end)))
     items = said.node.body.items
     if r.word(i + 1) != "to" and any(isinstance(item, Link) and item.sequence for item in items):
