@@ -1101,6 +1101,11 @@ def floor_move_after_goal(said: str) -> str:
                     "the bottom floor' or '..., then go down to ...'")
 
 
+def floor_move_then_after_goal(said: str) -> str:
+    return rephrase(f"'{said}' after another goal: does what follows the move come after that goal too? Say "
+                    "it in order ('A, then go upstairs to B') or in sentences of their own")
+
+
 def before_with_prohibition(said: str) -> str:
     return rephrase(f"'{said}': a prohibition beside other goals or times after 'before': which of them hold "
                     "only until then? Say 'don't enter X until you have been to Y' in a sentence of its own")

@@ -27,6 +27,7 @@ from sgplan.llm.offline.syntax.qualifiers import names_rooms
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.rules import RuleSet
 from sgplan.llm.offline.syntax.tree import (
+    Action,
     AfterAll,
     Body,
     CommaSequence,
@@ -458,13 +459,8 @@ def plain_action(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     found = action(r, i)
     if not isinstance(found, Match):
         return found
-    said_before = i - 1
-    while said_before > 0 and r.word(said_before) in lx.POSITIVE_VERBS:
-        said_before -= 1  # ("and go all the way up": joined)
-    if (before and isinstance(before[-1], PlainAction) and found.node.verbs.floor is not None
-            and r.word(said_before) not in _JOINED):  # "go to the lobby all the way down, ...": its floor?
-        said = next((k for k in range(i, found.end) if r.word(k) in (",", "then")), found.end)
-        return Refusal(rf.floor_move_after_goal(r.quote(i, said)))
+    if before and isinstance(before[-1], PlainAction) and (refused := move_after_goal(r, i, found)):
+        return refused
     j, on_the_way = found.end, False
     way = r.phrase(j, lx.ON_THE_WAY)
     if way is not None:
@@ -487,6 +483,21 @@ def plain_action(r: Reader, i: int, before: Said, only_verb: bool) -> ItemParse:
     more = r.rest(after.end) if isinstance(after, Match) and after.end < len(r) else ""
     return Match(PlainAction(found.node, moved_first(r, i), goes_back(r, i), on_the_way, trailing_word, rest,
                              more), j)
+
+
+def move_after_goal(r: Reader, i: int, found: Match[Action]) -> Refusal | None:
+    """The refusal of a floor move said at ``i`` right after a goal: with no joining word (*go to the lobby
+    all the way down, ...*: where the lobby is, or a move?), or after *and* with a *then* of its own (*check
+    the oven and go upstairs, then the laptop*: the laptop after the oven too?); ``None`` otherwise."""
+    said_before = i - 1
+    while said_before > 0 and r.word(said_before) in lx.POSITIVE_VERBS:
+        said_before -= 1  # ("and go all the way up": joined)
+    if found.node.verbs.floor is not None and r.word(said_before) not in _JOINED:
+        said = next((k for k in range(i, found.end) if r.word(k) in (",", "then")), found.end)
+        return Refusal(rf.floor_move_after_goal(r.quote(i, said)))
+    if found.node.moved is not None and r.word(said_before) == "and":
+        return Refusal(rf.floor_move_then_after_goal(r.quote(said_before, found.end)))
+    return None
 
 
 _JOINED = frozenset({",", "and", "then", "but", "while", "as", ";", "next", "after", "before", "first"})
