@@ -14,7 +14,7 @@ from typing import Literal
 from sgplan.errors import MissionError
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.grounding.discourse import Discourse, Grounded
-from sgplan.llm.offline.grounding.floors import ordinal_floor_said, ordinals_either_way
+from sgplan.llm.offline.grounding.floors import ordinal_read_either_way
 from sgplan.llm.offline.lexicon import PRONOUNS
 from sgplan.llm.offline.meaning.feasible import check_can_be_done
 from sgplan.llm.offline.meaning.mission import mission_formula
@@ -94,9 +94,9 @@ class PatternTranslator:
         """Parse, ground and translate ``text``.
 
         *The first floor* is the lowest floor to some and the one above the ground floor to others: a text
-        that counts floors so without naming the ground floor (:func:`.grounding.floors.ordinals_either_way`)
-        is read both ways; the scene decides when one way names nothing it holds, and it is refused when
-        both ways read, differently.
+        that counts floors so without naming the ground floor
+        (:func:`.grounding.floors.ordinal_read_either_way`) is read both ways; the scene decides when one
+        way names nothing it holds, and it is refused when both ways read, differently.
 
         Raises
         ------
@@ -105,7 +105,8 @@ class PatternTranslator:
             definite reference ("the bathroom") matching several; the message names the phrase, lists
             the candidates as ``room_<uuid> (floor k)`` and says how to disambiguate.
         """
-        if not ordinals_either_way(text):
+        ordinal = ordinal_read_either_way(text)
+        if ordinal is None:
             return self._translate(text, building, None)
         readings: list[Translation | MissionError] = []
         for counted_from in (0, 1):
@@ -119,7 +120,7 @@ class PatternTranslator:
                 raise us
             return british
         if isinstance(british, Translation) and british.tokens != us.tokens:
-            raise MissionError(rf.ordinal_floor_either_way(ordinal_floor_said(text)))
+            raise MissionError(rf.ordinal_floor_either_way(ordinal))
         return us
 
     def _translate(self, text: str, building: Building, ordinals_from: int | None) -> Translation:

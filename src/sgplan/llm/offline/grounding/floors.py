@@ -42,23 +42,19 @@ def british_ordinal(said: str, text: str, counted_from: int | None = None) -> bo
     """Whether the ordinal floor ``said`` (*the first floor*) counts from the ground floor, British style:
     where the mission ``text`` also names the ground floor (*the first-floor corridor, then the ground-floor
     loo*), whose writer does not name one floor two ways; ``counted_from`` (0 or 1) when the translator tries
-    both ways (:func:`ordinals_either_way`)."""
+    both ways (:func:`ordinal_read_either_way`)."""
     if said.split()[0] not in lx.FLOOR_ORDINALS:
         return False
     return _GROUND_FLOOR.search(text) is not None if counted_from is None else counted_from == 1
 
 
-def ordinal_floor_said(text: str) -> str:
-    """The first ordinal floor of ``text`` (*first floor*), as said."""
-    found = _ORDINAL_FLOOR.search(text)
-    return found.group(0) if found is not None else ""
-
-
-def ordinals_either_way(text: str) -> bool:
-    """Whether ``text`` counts floors by ordinals (*the first floor*, *2nd-floor bathroom*) and does not name
+def ordinal_read_either_way(text: str) -> str | None:
+    """The first ordinal floor of ``text`` as said (*first floor*, *2nd-floor*) when the text does not name
     the ground floor: its *first floor* is the lowest floor for some (US) and the one above it for others
-    (British), so the scene must tell which (:meth:`.translator.PatternTranslator.translate`)."""
-    return _ORDINAL_FLOOR.search(text) is not None and _GROUND_FLOOR.search(text) is None
+    (British), so the scene must tell which (:meth:`.translator.PatternTranslator.translate`); ``None``
+    otherwise."""
+    found = _ORDINAL_FLOOR.search(text)
+    return found.group(0) if found is not None and _GROUND_FLOOR.search(text) is None else None
 
 
 def floors_of(spec: FloorSpec, disc: Discourse, candidates: list[Entity] | None = None) -> FloorReading:
