@@ -1024,7 +1024,8 @@ CONDITION_OPENERS_OF_ASIDES = ("if", "when", "whenever")
 """Asides of :data:`CLOSING` that start like a condition (*if you can*, *when you get a chance*): before a
 noun phrase they are still asides (a condition needs a verb)."""
 CORRECTIONS = Phrases((("i", "mean"), ("i", "meant"), ("no", "wait"), ("wait", "no"), ("scratch", "that"),
-                       ("make", "that"), ("correction",), ("or", "rather"), ("actually", "no"),
+                       ("wait", ",", "no"), ("make", "that"), ("correction",), ("or", "rather"),
+                       ("actually", "no"),
                        ("no", "sorry"), ("sorry", "no"), ("i", "said", "wrong"), ("my", "mistake"),
                        ("my", "bad"), ("let", "me", "rephrase"),
                        # a bare "sorry" or "no" between commas: "the garage, sorry, the office"

@@ -136,9 +136,8 @@ def joined_appositions(readers: list[Reader]) -> list[Reader]:
 def joins_before(r: Reader, before: Reader) -> bool:
     """Whether the sentence ``r`` is read joined to the sentence ``before`` it (see
     :func:`joined_appositions`)."""
-    places = len(goal_heads(before, 0, len(before)))
-    if takes_back_order(r):
-        return places <= 1
+    if takes_back_order(r, before):
+        return len(goal_heads(before, 0, len(before))) <= 1
     apposition = (r.word(0) == "the" and r.word(1) in lx.ANAPHORIC_ONE and len(r) > 2
                   and isinstance(noun_phrase(r, 0, "goal"), Match))
     final = final_phrase(before)
@@ -157,11 +156,20 @@ def takes_back_last(r: Reader) -> bool:
     return isinstance(new, Match) and new.end == end and new.end > start
 
 
-def takes_back_order(r: Reader) -> bool:
+def takes_back_order(r: Reader, before: Reader) -> bool:
     """Whether the sentence ``r`` is a correction and a whole order said again (*Actually no, go down to the
-    lobby.*), which takes back the sentence before it."""
+    lobby.*), which takes back the sentence ``before`` it. Said without a verb (*No wait, the dining room
+    first, then the kitchen.*, *Wait, no, first the plant, then the chair.*), it is one only when it names
+    again the place taken back (else it may add a place, not say the order again)."""
     start = said_instead(r)
-    return start is not None and r.word(order_start(r, start)) in lx.POSITIVE_VERBS and not adds(r, start)
+    if start is None or adds(r, start):
+        return False
+    i = order_start(r, start)
+    if r.word(i) in lx.POSITIVE_VERBS:
+        return True
+    taken_back = {h.categories for h in goal_heads(before, 0, len(before))}
+    return ((r.word(i) in lx.FIRST or r.np_starts(i)) and bool(taken_back)
+            and taken_back <= {h.categories for h in named_heads(r, i, len(r))})
 
 
 def said_instead(r: Reader) -> int | None:
@@ -170,10 +178,16 @@ def said_instead(r: Reader) -> int | None:
     said = r.phrase(0, lx.CORRECTIONS)
     if said is None or said[0] not in _INSTEAD:
         return None
-    start = r.skip(len(said), _AROUND)
-    while (more := r.phrase(start, lx.CORRECTIONS)) is not None:  # "Sorry, I mean the office."
-        start = r.skip(start + len(more), _AROUND)
-    return r.skip(start, _JUST)
+    return r.skip(past_corrections(r, len(said)), _JUST)
+
+
+def past_corrections(r: Reader, i: int) -> int:
+    """Where the words after the correction that ends at ``i`` start, past the correction words that follow
+    it (*Sorry, I mean the office.*, *wait, no, first ...*)."""
+    i = r.skip(i, _AROUND)
+    while (more := r.phrase(i, lx.CORRECTIONS)) is not None:
+        i = r.skip(i + len(more), _AROUND)
+    return i
 
 
 def adds(r: Reader, start: int) -> bool:
@@ -310,10 +324,7 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     end = k
     while end > 0 and r.word(end - 1) in _AROUND:
         end -= 1
-    start_new = r.skip(after, _AROUND)  # "the one upstairs": one of the old phrase's kind
-    while (more := r.phrase(start_new, lx.CORRECTIONS)) is not None:  # "sorry, I mean"
-        start_new = r.skip(start_new + len(more), _AROUND)
-    start_new = r.skip(start_new, _JUST)
+    start_new = r.skip(past_corrections(r, after), _JUST)  # "the one upstairs": one of the old phrase's kind
     old = next((found for j in range(max(0, end - 10), end) if (found := phrase_to(r, j, end))), None)
     if old is None and r.word(end - 1) in ("and", "then"):  # "the kitchen and... no sorry, not the kitchen,"
         end -= 1
@@ -356,15 +367,16 @@ def order_said_again(r: Reader, k: int, after: int,
     module docstring), and the words taken back set aside; ``None`` when the shape is not that, or when the
     new order names a place of an ``earlier`` sentence that it does not take back (*Go to A. Then go to B, no
     wait, go to B first, then A.*: A taken back as well, or A twice?)."""
-    start = order_start(r, r.skip(after, _AROUND))
+    start = order_start(r, past_corrections(r, after))
     opening = r.skip(0, _OPENING)
     if opening >= k:
         return None  # "Actually no, go to the bed": takes back the sentence before (refused there)
     taken_back = goal_heads(r, opening, k)
     said_again = {h.categories for h in named_heads(r, start, len(r))}
-    all_again = bool(taken_back) and {h.categories for h in taken_back} == said_again
+    named_again = bool(taken_back) and {h.categories for h in taken_back} <= said_again
+    all_again = named_again and {h.categories for h in taken_back} == said_again
     if (r.word(start) not in lx.POSITIVE_VERBS and r.word(start) not in lx.FIRST and r.word(start) != "please"
-            and not (all_again and r.np_starts(start))):  # "... no wait, (the) laptop first, then the oven"
+            and not (named_again and r.np_starts(start))):  # "... no wait, (the) laptop first, then the oven"
         return None
     if len(taken_back) > 1 and not all_again:
         return None  # "the kitchen then the office scratch that go to ...": which is taken back?
