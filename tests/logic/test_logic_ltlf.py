@@ -15,7 +15,10 @@ from sgplan.logic import (
     Atom,
     Automaton,
     Next,
+    compact_difference_word,
+    difference_word,
     equivalent,
+    ltlf_to_compact_dfa,
     ltlf_to_dfa,
     minimize,
     parse_infix,
@@ -128,6 +131,49 @@ def test_pruned_dfa_is_exactly_the_dense_one_pruned_by_hand(formula, groups, kee
     expected = _pruned_by_hand(ltlf_to_dfa(formula, aps=APS), possible)
     assert built.num_states == expected.num_states
     assert np.array_equal(built.table, expected.table) and np.array_equal(built.accepting, expected.accepting)
+
+
+@settings(max_examples=60, deadline=None)
+@given(a=formulas(APS, max_leaves=6), b=formulas(APS, max_leaves=6),
+       keep=st.lists(st.booleans(), min_size=32, max_size=32))
+def test_compact_dfas_compare_as_the_dense_ones_restricted_to_the_possible_labels(a, b, keep):
+    """The compact builder's automata differ exactly when the dense ones, with the impossible labels sent to
+    the sink, do; and the word found then is made of possible labels and is a shortest one."""
+    possible = np.array(keep)
+    def compact(f):
+        return ltlf_to_compact_dfa(f, APS, possible)
+
+    def dense(f):
+        return ltlf_to_dfa(f, aps=APS, possible=possible)
+
+    word, dense_word = compact_difference_word(compact(a), compact(b)), difference_word(dense(a), dense(b))
+    assert (word is None) == (dense_word is None)
+    if word is not None and dense_word is not None:
+        assert len(word) == len(dense_word)
+        full_a, full_b = ltlf_to_dfa(a, aps=APS), ltlf_to_dfa(b, aps=APS)
+        labels = [full_a.label_of(letter) for letter in word]
+        assert all(possible[label] for label in labels)
+        assert full_a.accepts(labels) != full_b.accepts(labels)
+
+
+def test_compact_dfas_compare_where_the_dense_table_is_too_large():
+    """21 exclusive rooms: the dense automaton is refused (see the next test), the compact one has 23 columns
+    (22 possible labels and one for the rest) and compares; the word found names possible labels only."""
+    rooms = [f"room_{i}" for i in range(21)]
+    possible = possible_labels(rooms, [rooms])
+    stay = f"G !({' | '.join(rooms[2:])})"
+    ordered = parse_infix(f"F(room_0 & F room_1) & {stay}")
+    also_ordered = parse_infix(f"F(room_0 & X F room_1) & {stay}")
+    either = parse_infix(f"F room_0 & F room_1 & {stay}")
+    assert ltlf_to_compact_dfa(ordered, rooms, possible).table.table.shape[1] == 23
+    assert compact_difference_word(ltlf_to_compact_dfa(ordered, rooms, possible),
+                                   ltlf_to_compact_dfa(also_ordered, rooms, possible)) is None
+    assert compact_difference_word(ltlf_to_compact_dfa(ordered, rooms, possible),
+                                   ltlf_to_compact_dfa(either, rooms, possible)) == (
+        frozenset({"room_1"}), frozenset({"room_0"}))
+    with pytest.raises(ValueError, match="cannot be compared"):
+        compact_difference_word(ltlf_to_compact_dfa(ordered, rooms, possible),
+                                ltlf_to_compact_dfa(ordered, rooms, possible_labels(rooms, [rooms[:20]])))
 
 
 def test_staying_on_one_floor_of_three_builds_fast_with_eighteen_propositions():

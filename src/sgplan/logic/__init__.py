@@ -11,7 +11,13 @@ Semantics and formats: docs/logic.md. Typical use::
 from sgplan.logic.automaton import Automaton
 from sgplan.logic.checks import formula_warnings, is_cosafe, non_cosafe_parts
 from sgplan.logic.dot import to_dot
-from sgplan.logic.equivalence import difference_word, equivalent, included, inclusion_counterexample
+from sgplan.logic.equivalence import (
+    compact_difference_word,
+    difference_word,
+    equivalent,
+    included,
+    inclusion_counterexample,
+)
 from sgplan.logic.formula import (
     FALSE,
     TRUE,
@@ -34,7 +40,13 @@ from sgplan.logic.formula import (
 )
 from sgplan.logic.hoa import parse_hoa, read_hoa, write_hoa
 from sgplan.logic.infix import parse_infix
-from sgplan.logic.ltlf import DEFAULT_MAX_ENTRIES, ltlf_to_dfa, possible_labels
+from sgplan.logic.ltlf import (
+    DEFAULT_MAX_ENTRIES,
+    CompactDfa,
+    ltlf_to_compact_dfa,
+    ltlf_to_dfa,
+    possible_labels,
+)
 from sgplan.logic.minimize import minimize, product
 from sgplan.logic.normal import nnf
 from sgplan.logic.paths import (
@@ -50,13 +62,13 @@ from sgplan.logic.progression import progress
 from sgplan.logic.tokens import number_aps, parse_tokens, to_tokens
 
 __all__ = [
-    "Automaton", "AutomatonPath", "MissionStep", "RemainingMission", "DEFAULT_MAX_ENTRIES",
+    "Automaton", "AutomatonPath", "CompactDfa", "MissionStep", "RemainingMission", "DEFAULT_MAX_ENTRIES",
     "Formula", "Const", "TRUE", "FALSE", "Atom", "Not", "And", "Or", "Implies", "Equiv", "Next",
     "WeakNext", "Eventually", "Always", "Until", "Release", "atoms", "nnf",
     "parse_infix", "to_infix", "parse_prefix", "to_prefix", "parse_tokens", "to_tokens", "number_aps",
     "is_cosafe", "non_cosafe_parts", "formula_warnings",
-    "ltlf_to_dfa", "possible_labels", "minimize", "product", "progress",
+    "ltlf_to_dfa", "ltlf_to_compact_dfa", "possible_labels", "minimize", "product", "progress",
     "parse_hoa", "read_hoa", "write_hoa", "to_dot",
     "distances_to_accept", "shortest_path", "remaining_mission",
-    "equivalent", "included", "difference_word", "inclusion_counterexample",
+    "equivalent", "included", "difference_word", "compact_difference_word", "inclusion_counterexample",
 ]

@@ -14,7 +14,8 @@ import numpy as np
 
 from sgplan.logic.automaton import Automaton
 from sgplan.logic.formula import Formula, atoms
-from sgplan.logic.ltlf import ltlf_to_dfa
+from sgplan.logic.ltlf import CompactDfa, ltlf_to_dfa
+from sgplan.logic.minimize import Table
 
 Word = tuple[frozenset[str], ...]
 Language = Automaton | Formula
@@ -35,9 +36,30 @@ def _aligned(a: Language, b: Language) -> tuple[Automaton, Automaton]:
 
 def _search(a: Automaton, b: Automaton, bad: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> Word | None:
     """Shortest word leading the product to a pair ``(p, q)`` with ``bad(acc_a[p], acc_b[q])``."""
-    nb, num_labels = b.num_states, a.num_labels
-    parent = np.full(a.num_states * nb, -2, np.int64)  # -2 = unseen, -1 = the start pair
-    via = np.zeros(a.num_states * nb, np.int64)
+    def table(x: Automaton) -> Table:
+        return Table(x.table, x.initial, x.accepting)
+
+    columns = _search_tables(table(a), table(b), bad)
+    return None if columns is None else tuple(a.props_of(label) for label in columns)
+
+
+def compact_difference_word(a: CompactDfa, b: CompactDfa) -> Word | None:
+    """:func:`difference_word` of two automata of :func:`~sgplan.logic.ltlf.ltlf_to_compact_dfa` built with
+    the same propositions and possible labels (so with the same columns)."""
+    if a.aps != b.aps or not np.array_equal(a.column_labels, b.column_labels):
+        raise ValueError("compact automata over different propositions or labels cannot be compared")
+    columns = _search_tables(a.table, b.table, np.not_equal)
+    return None if columns is None else tuple(
+        frozenset(name for i, name in enumerate(a.aps) if int(a.column_labels[c]) >> i & 1) for c in columns)
+
+
+def _search_tables(a: Table, b: Table,
+                   bad: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> list[int] | None:
+    """The columns of a shortest word leading the product of ``a`` and ``b`` (over the same columns) to a
+    pair ``(p, q)`` with ``bad(a.accepting[p], b.accepting[q])``; ``None`` when no such pair is reachable."""
+    nb, num_labels = b.table.shape[0], a.table.shape[1]
+    parent = np.full(a.table.shape[0] * nb, -2, np.int64)  # -2 = unseen, -1 = the start pair
+    via = np.zeros(a.table.shape[0] * nb, np.int64)
     start = a.initial * nb + b.initial
     parent[start] = -1
     frontier = np.array([start], np.int64)
@@ -57,11 +79,11 @@ def _search(a: Automaton, b: Automaton, bad: Callable[[np.ndarray, np.ndarray], 
         frontier = targets
     if found is None:
         return None
-    labels = []
+    columns = []
     while parent[found] != -1:
-        labels.append(int(via[found]))
+        columns.append(int(via[found]))
         found = int(parent[found])
-    return tuple(a.props_of(label) for label in reversed(labels))
+    return columns[::-1]
 
 
 def difference_word(a: Language, b: Language) -> Word | None:

@@ -380,15 +380,48 @@ def ltlf_to_dfa(
     """
     used = atoms(formula)
     aps = used if aps is None else tuple(aps)
-    missing = [p for p in used if p not in aps]
+    num_labels = 1 << len(aps)
+    if num_labels > MAX_TABLE_ENTRIES:
+        raise _table_too_big(formula, 1, num_labels)
+    result, alphabet = _compact_table(formula, aps, _allowed_labels(aps, exclusive, possible), max_entries)
+    if result.table.shape[0] * num_labels > MAX_TABLE_ENTRIES:
+        raise _table_too_big(formula, result.table.shape[0], num_labels)
+    return Automaton(tuple(aps), result.table[:, alphabet.expand], result.initial, result.accepting)
+
+
+class CompactDfa(NamedTuple):
+    """A minimal complete DFA over the possible labels only, with no dense ``2**len(aps)`` table: one column
+    per possible label and one for all the impossible ones (which lead to the rejecting sink)."""
+
+    aps: tuple[str, ...]
+    table: Table
+    """``table.table`` is ``(num_states, num_columns)``."""
+    column_labels: np.ndarray
+    """``(num_columns,)`` int64, a label of each column (the column of the impossible labels: one of them)."""
+
+
+def ltlf_to_compact_dfa(formula: Formula, aps: Sequence[str], possible: np.ndarray,
+                        max_entries: int = DEFAULT_MAX_ENTRIES) -> CompactDfa:
+    """The DFA of :func:`ltlf_to_dfa` (``aps`` and ``possible`` as there) over the possible labels' columns
+    only: for comparing automata whose dense table would be too large (many propositions of which few
+    labels can occur). Two results built with the same ``aps`` and ``possible`` share their columns.
+
+    Raises :class:`FormulaError` / :class:`AutomatonError` as :func:`ltlf_to_dfa` (``max_entries`` only)."""
+    allowed = _allowed_labels(tuple(aps), (), possible)
+    result, alphabet = _compact_table(formula, tuple(aps), allowed, max_entries)
+    columns = np.zeros(alphabet.size, np.int64)
+    columns[alphabet.expand] = np.arange(alphabet.expand.size)  # one label per column (any, the last)
+    return CompactDfa(tuple(aps), result, columns)
+
+
+def _compact_table(formula: Formula, aps: tuple[str, ...], allowed: np.ndarray,
+                   max_entries: int) -> tuple[Table, _Alphabet]:
+    """The minimal DFA of ``formula`` over the columns of ``allowed`` (see the module docstring)."""
+    missing = [p for p in atoms(formula) if p not in aps]
     if missing:
         raise FormulaError(
             f"proposition {quote(missing[0])} of the formula is not among the automaton's {quote(list(aps))}"
         )
-    num_labels = 1 << len(aps)
-    if num_labels > MAX_TABLE_ENTRIES:
-        raise _table_too_big(formula, 1, num_labels)
-    allowed = _allowed_labels(aps, exclusive, possible)
     # Progression, minimisation and products run over the possible labels (one column each) and one
     # column for all the others; the dense table is made once, at the end.
     prog = _Progression(aps, np.flatnonzero(allowed))
@@ -405,6 +438,4 @@ def ltlf_to_dfa(
             predicted = result.table.shape[0] * int(np.prod(sizes[k:], dtype=np.float64))
             raise _too_big(formula, predicted, alphabet.size, max_entries, "up to")
         result = product_table(result, part, np.logical_and)
-    if result.table.shape[0] * num_labels > MAX_TABLE_ENTRIES:
-        raise _table_too_big(formula, result.table.shape[0], num_labels)
-    return Automaton(tuple(aps), result.table[:, alphabet.expand], result.initial, result.accepting)
+    return result, alphabet

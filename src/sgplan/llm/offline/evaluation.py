@@ -15,9 +15,19 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Literal
 
+import numpy as np
+
 from sgplan.errors import AutomatonError, MissionError
-from sgplan.logic import Always, Atom, Implies, atoms, difference_word, ltlf_to_dfa
-from sgplan.logic.formula import And, Formula
+from sgplan.logic import (
+    Always,
+    Atom,
+    Formula,
+    Implies,
+    atoms,
+    compact_difference_word,
+    ltlf_to_compact_dfa,
+    possible_labels,
+)
 from sgplan.logic.tokens import action_entity
 from sgplan.scene.model import Building
 
@@ -84,24 +94,48 @@ def scene_facts(propositions: Iterable[str], building: Building) -> list[Formula
     return facts
 
 
+MAX_COMPARED_APS = 24
+"""At most this many propositions in a comparison (its label arrays hold ``2**n`` entries)."""
+
+
 def same_language(a: Formula, b: Formula, building: Building | None = None) -> tuple[bool, str]:
     """Whether ``a`` and ``b`` accept the same finite words with at most one room per letter (and, given
     ``building``, with every object reached only from its room, see :func:`scene_facts`); if not, a
-    shortest such word on which they differ, as text."""
+    shortest such word on which they differ, as text.
+
+    The automata are built over the possible letters only (:func:`~sgplan.logic.ltlf_to_compact_dfa`),
+    so a mission over many rooms compares cheaply. Raises :class:`AutomatonError` when they are too large
+    to build, or name more than :data:`MAX_COMPARED_APS` propositions."""
     union = list(dict.fromkeys(atoms(a) + atoms(b)))
+    room_of: dict[str, str] = {}
     if building is not None:
-        facts = scene_facts(union, building)
-        if facts:
-            a, b = And((a, *facts)), And((b, *facts))
-            union = list(dict.fromkeys(union + list(atoms(a))))
-    rooms = [p for p in union if p.startswith("enter(")]
-    dfa_a = ltlf_to_dfa(a, aps=union, exclusive=[rooms])
-    dfa_b = ltlf_to_dfa(b, aps=union, exclusive=[rooms])
-    word = difference_word(dfa_a, dfa_b)
+        scene_facts(union, building)  # (every name is checked against the scene)
+        rooms_of_objects = {obj.key: room.key for room in building.rooms() for obj in room.objects.values()}
+        room_of = {p: f"enter({rooms_of_objects[key]})" for p in union
+                   if (key := action_entity(p)) in rooms_of_objects}
+        union = list(dict.fromkeys(union + list(room_of.values())))
+    if len(union) > MAX_COMPARED_APS:
+        raise AutomatonError(f"{len(union)} propositions, more than the {MAX_COMPARED_APS} compared")
+    possible = _possible_letters(union, room_of)
+    word = compact_difference_word(ltlf_to_compact_dfa(a, union, possible),
+                                   ltlf_to_compact_dfa(b, union, possible))
     if word is None:
         return True, ""
     shown = " ".join("{" + ", ".join(sorted(letter)) + "}" for letter in word) or "the empty word"
     return False, f"they differ on {shown}"
+
+
+def _possible_letters(aps: list[str], room_of: dict[str, str]) -> np.ndarray:
+    """``(2**len(aps),)`` bool: the labels with at most one room, in which each proposition of ``room_of``
+    holds only with its room's."""
+    possible = possible_labels(aps, [[p for p in aps if p.startswith("enter(")]])
+    labels = np.arange(possible.size, dtype=np.int64)
+    def holds(p: str) -> np.ndarray:
+        return (labels >> aps.index(p) & 1).astype(bool)
+
+    for p, room in room_of.items():
+        possible &= ~(holds(p) & ~holds(room))
+    return possible
 
 
 def evaluate(
