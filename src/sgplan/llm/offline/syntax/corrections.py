@@ -205,11 +205,21 @@ def order_start(r: Reader, i: int) -> int:
 
 
 def final_phrase(r: Reader) -> int | None:
-    """Where the noun phrase of a head noun that the sentence ``r`` ends with starts (*water the plant*), or
-    ``None`` when it ends with none."""
-    return next((j for j in range(max(0, len(r) - 8), len(r)) if (r.head(j) is not None
+    """Where the noun phrase of a head noun that the sentence ``r`` ends with starts (*water the plant*, *sit
+    at the table for me*), or ``None`` when it ends with none."""
+    end = phrase_end(r, len(r))
+    return next((j for j in range(max(0, end - 8), end) if (r.head(j) is not None
                  or r.word(j) in lx.DETERMINERS or r.word(j) in lx.ANAPHORIC_ONE)
-                 and phrase_to(r, j, len(r)) is not None), None)
+                 and phrase_to(r, j, end) is not None), None)
+
+
+def phrase_end(r: Reader, end: int) -> int:
+    """Where a noun phrase said before ``end`` ends: before the commas and *for me* / *please* said after it
+    (*the dining table for me, actually, ...*)."""
+    while end > 0 and r.word(end - 1) in _AROUND:
+        end -= 1
+    return next((j for j in range(max(0, end - 3), end) if r.phrase(j, lx.BEFORE_REMARK) == r.words[j:end]),
+                end)
 
 
 def restarted(r: Reader) -> tuple[Reader, Reader] | None:
@@ -321,9 +331,7 @@ def restated(r: Reader) -> tuple[Reader, Reader] | None:
 def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     """The sentence with the noun phrase ending before the correction words ``[k, after)`` replaced by the
     one after them, and the words taken back set aside; ``None`` when the shape is not that."""
-    end = k
-    while end > 0 and r.word(end - 1) in _AROUND:
-        end -= 1
+    end = phrase_end(r, k)
     start_new = r.skip(past_corrections(r, after), _JUST)  # "the one upstairs": one of the old phrase's kind
     old = next((found for j in range(max(0, end - 10), end) if (found := phrase_to(r, j, end))), None)
     if old is None and r.word(end - 1) in ("and", "then"):  # "the kitchen and... no sorry, not the kitchen,"
