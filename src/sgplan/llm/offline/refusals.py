@@ -725,6 +725,11 @@ def until_needs_one_goal(prefix: bool = False) -> str:
     return rephrase("'until X, ...' needs one goal X" if prefix else "'... until X' needs one goal X")
 
 
+def done_in_a_room_of_goals(said: str) -> str:
+    return rephrase(f"'until' {said!r} is done: until you enter it, or until what you do there is done? Say "
+                    f"'until you have been to {said}', or name the goal ('until you have checked ...')")
+
+
 def until_what_it_forbids() -> str:
     return rephrase("'... until X' where X is the very place forbidden (as when 'it' points back to it): "
                     "name what must come first, e.g. 'don't enter the kitchen until you have picked up the "

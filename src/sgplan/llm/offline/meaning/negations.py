@@ -18,7 +18,7 @@ from sgplan.llm.offline.meaning.actions import steps_of
 from sgplan.llm.offline.meaning.compose import Clause, conj, disj, until_formula
 from sgplan.llm.offline.meaning.context import SentenceContext
 from sgplan.llm.offline.names import Entity
-from sgplan.llm.offline.syntax.tree import Negation, OffLimits, StayOnFloor, UntilDone
+from sgplan.llm.offline.syntax.tree import Action, Negation, OffLimits, StayOnFloor, UntilDone
 from sgplan.llm.offline.tasks import Step, Task
 from sgplan.logic.formula import Always, Atom, Formula, Not, atoms
 from sgplan.logic.tokens import action_entity
@@ -69,12 +69,26 @@ def until(forbidden: Formula, target: object, clause: Clause, ctx: SentenceConte
     if len(tasks) != 1:
         rf.refuse(rf.until_needs_one_goal())
     t = tasks[0]
+    if isinstance(target, Action) and target.done:
+        done_where_goals_are(target, t, ctx)
     ends = [disj(t.members)] if t.mode == "any" else t.members
     clause.constraints.extend(until_formula(forbidden, end) for end in ends)
     if not any(clause.steps) and not ctx.prior_steps:
         # "Keep out of X until you have seen Y, then Z": Y (which the until requires) is the step that *then*
         # follows
         clause.steps[-1].append(Task(t.mode, list(t.members), said_at=t.said_at))
+
+
+def done_where_goals_are(target: Action, task: Task, ctx: SentenceContext) -> None:
+    """Refuses *... until you're done in X* (``target``, read as ``task``) when X is a room that holds a goal
+    named before it: until X is entered, or until that goal is done?"""
+    said = [a for m in task.members for a in atoms(m)]
+    if any(a.startswith("reach(") for a in said):
+        return  # "until both of them are done": the goals themselves
+    rooms = {action_entity(a) for a in said}
+    if any(e.kind == "object" and e.room_key in rooms for g in ctx.disc.goals_before() for e in g.entities):
+        span = target.phrases.span if target.phrases is not None else target.span
+        rf.refuse(rf.done_in_a_room_of_goals(ctx.disc.said(span.start, span.end)))
 
 
 def previous_step(clause: Clause, ctx: SentenceContext) -> Step:

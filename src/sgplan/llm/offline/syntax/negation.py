@@ -145,6 +145,7 @@ def until_target(r: Reader, k: int) -> Parse[Action | UntilDone]:
     if said > k + 1 and r.word(said) in ("", ","):
         return Match(UntilDone(), said)  # "don't set foot in the kitchen until you have"
     k = said
+    done = r.word(k) in lx.DONE
     if r.word(k) in lx.DONE and r.word(k + 1) in lx.DONE_WITH and r.np_starts(k + 2):
         k += 2  # "until you're done in the kitchen": until the kitchen
     elif r.word(k) in lx.DONE and ((r.word(k + 1) in lx.DONE_WHAT and not r.np_starts(k + 2))
@@ -159,11 +160,12 @@ def until_target(r: Reader, k: int) -> Parse[Action | UntilDone]:
     if passive > k:
         k = passive
     elif r.word(k) in lx.DONE:
-        k += 1  # "until DR done"
+        k, done = k + 1, True  # "until DR done"
     elif r.word(k) in lx.UNTIL_DONE_LINKS and r.word(k + 1) in lx.UNTIL_DONE_WORDS:
+        done = done or r.word(k + 1) in lx.DONE
         k += 2  # "until both bathrooms are done"
         k += 1 if r.word(k) in lx.UNTIL_DONE_VERBS else 0
-    return Match(target.node, k)
+    return Match(replace(target.node, done=True) if done else target.node, k)
 
 
 def participle(w: str) -> bool:

@@ -436,6 +436,9 @@ class Action:
     carried_on: bool = False
     destination_remark: tuple[str, ...] | None = None
     """A choice remark after the destination (*put it on the table in the dining room, any one*)."""
+    done: bool = False
+    """The target of *until* said as done (*until you're done in / have finished with / have done X*, *until X
+    is done*): where things are done, more than a place gone to."""
     purpose_remark: tuple[str, ...] | None = None
     """A choice remark after the purpose (*go to the kitchen to grab an apple, either one*)."""
     instead: bool = False
