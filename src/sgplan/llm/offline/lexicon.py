@@ -2106,6 +2106,20 @@ PHRASE_ALIASES.update({  # bedtime before a comma or a colon, or with "tonight":
     **{(*tonight, "before", "bed", *mark): (*tonight, "before", "bedtime", *mark)
        for tonight, mark in ((("tonight",), ()), ((), (",",)), ((), (":",)))},
 })
+_DAY_PERIODS = (("today",), ("tonight",), ("on",), ("on", "today"), ("in", "the", "day"),
+                *((this, period) for this in ("this", "in", "the") for period in ("morning", "afternoon",
+                                                                                   "evening")))
+PHRASE_ALIASES.update({
+    # "Later this morning, check ...": after what was said before, as "Later, check ..." (the time orders
+    # nothing more; set aside whole, the order of "later" was lost); "Sometime this afternoon check ...":
+    # the time alone
+    **{("later", *period, ","): ("later", ",") for period in _DAY_PERIODS},
+    **{(some, "this", period): ("this", period) for some in ("sometime", "anytime")
+       for period in ("morning", "afternoon", "evening")},
+    # "for the rest of the day": the whole mission's time, as "all day"
+    **{(*lead, "the", "rest", "of", "the", period): ("all", period) for lead in ((), ("for",))
+       for period in ("day", "morning", "afternoon", "evening", "night", "week")},
+})
 PHRASE_ALIASES.update({  # "stay up here on this floor": the floor said twice
     (here, "here", "on", "this", "floor"): ("on", "this", "floor") for here in ("up", "down", "right")
 })
