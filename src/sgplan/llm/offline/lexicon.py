@@ -2114,7 +2114,7 @@ PHRASE_ALIASES.update({
     # nothing more; set aside whole, the order of "later" was lost); "Sometime this afternoon check ...":
     # the time alone
     **{("later", *period, ","): ("later", ",") for period in _DAY_PERIODS},
-    **{(some, "this", period): ("this", period) for some in ("sometime", "anytime")
+    **{(*some, "this", period): ("this", period) for some in (("sometime",), ("anytime",), ("some", "time"))
        for period in ("morning", "afternoon", "evening")},
     # "for the rest of the day": the whole mission's time, as "all day"
     **{(*lead, "the", "rest", "of", "the", period): ("all", period) for lead in ((), ("for",))

@@ -52,6 +52,7 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
     if action.instead:
         instead_of_prohibitions(action, disc)
     phrases = ground_list(action.phrases, where, disc)
+    left_the_scope(phrases, ctx)
     content_or_goal(phrases, disc)
     room_or_its_fixture(action, phrases, disc)
     if action.moved is not None:  # "go up to the top floor and check a bathroom (there)": one goal there
@@ -68,6 +69,15 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
             task.revisit = True
     tail(action, phrases, steps, carry, replace(where, floor=None, action_floor=None, objects=False), ctx)
     return ActionSteps(steps or [[]], action.first and not lead)
+
+
+def left_the_scope(phrases: list[Grounded], ctx: SentenceContext) -> None:
+    """A room gone to outside the sentence's room (*In the kitchen, check the fridge, then the bathroom
+    downstairs (toilet)*, a note's *kit: oven -> din rm (any chair)*) leaves it: what is named after it is
+    not looked for in the sentence's room."""
+    if ctx.scope and any(g.role == "goal" and g.entities and all(e.kind == "room" and e not in ctx.scope
+                                                                 for e in g.entities) for g in phrases):
+        ctx.scope = []
 
 
 def content_or_goal(phrases: list[Grounded], disc: Discourse) -> None:
