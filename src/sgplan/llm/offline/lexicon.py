@@ -1187,6 +1187,9 @@ AFTER_ALL = Phrases(tuple(
                  ("you", "done", "both"), ("you", "have", "done", "both"), ("those", "are", "done"),
                  ("all", "are", "done"), ("all", "that", "is", "done"))))
 """*after all three (of them)*, *once you've done those*: after every goal said before."""
+LEFT_THERE = frozenset({"left", "forgot", "dropped", "lost", "put"})
+"""Verbs of a person leaving a thing somewhere (*I left my book in the bedroom*, *I put my keys by the
+TV*)."""
 DONE = frozenset({"done", "finished", "through", "finishing"})
 DONE_OPENERS = ("once", "when", "after")
 DONE_WITH = ("with", "in", "at")

@@ -725,6 +725,11 @@ def until_needs_one_goal(prefix: bool = False) -> str:
     return rephrase("'until X, ...' needs one goal X" if prefix else "'... until X' needs one goal X")
 
 
+def left_by_no_goal(said: str) -> str:
+    return rephrase(f"'{said}' says where something was left, by a place that is no goal: is it a place to "
+                    "look? Name it as a goal ('check the ...') if it is, or leave the remark out")
+
+
 def done_in_a_room_of_goals(said: str) -> str:
     return rephrase(f"'until' {said!r} is done: until you enter it, or until what you do there is done? Say "
                     f"'until you have been to {said}', or name the goal ('until you have checked ...')")

@@ -85,6 +85,7 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
     if not present:
         rf.refuse(rf.no_goal_at_all(disc.set_aside))
     formula = conj(present)
+    check_left_by_no_goal(readers, disc)
     check_goal_not_forbidden(formula, disc.vocab)  # "A, then the kitchen, then, actually skip the kitchen"
     check_all_used(formula, disc.references)
     check_choice_remarks(disc)
@@ -102,6 +103,25 @@ def check_brought_to_speaker(readers: list[Reader]) -> None:
         w in ("bring", "bringing") and r.word(k + 1) == "me" for k, w in enumerate(r.words))), None)
     if placed is not None and brought is not None:
         rf.refuse(rf.brought_to_speaker(placed.quote(0, len(placed))))
+
+
+def check_left_by_no_goal(readers: list[Reader], disc: Discourse) -> None:
+    """Refuse words set aside that say where a person left something, by an object that no goal is, in a room
+    the mission goes to (*Go to the kitchen - I think I left the charger by the microwave*): the object may be
+    where to look there, a goal the set-aside words hold. Said by a goal's kind (*check the couch, I left my
+    wallet by the couch*), by *there*, or by a place the mission does not go to (*My son forgot his book in
+    the bedroom. Check the couch.*), they add nothing."""
+    goals = {e for g in disc.references if g.role == "goal" for e in g.entities}
+    kinds = {e.category for e in goals}
+    rooms = {e.key for e in goals if e.kind == "room"} | {e.room_key for e in goals if e.kind == "object"}
+    for r in readers:
+        left = next((k for k, w in enumerate(r.words) if w in lx.LEFT_THERE), None) if r.aside else None
+        at = next((j for j in range(left + 1, len(r)) if r.word(j) in lx.LOCATIVE
+                   or r.words[j - 1:j + 1] == ("next", "to")), None) if left else None
+        place = r.head(r.skip(at + 1, lx.DETERMINERS)) if at is not None else None  # "by the microwave"
+        if place is not None and place.kind == "object" and not place.categories & kinds and any(
+                e.category in place.categories and e.room_key in rooms for e in disc.vocab.entities):
+            rf.refuse(rf.left_by_no_goal(r.quote(0, len(r))))
 
 
 def said_one_by_one(group: Clause, order: Clause) -> bool:

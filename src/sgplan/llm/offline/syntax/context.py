@@ -920,10 +920,6 @@ def contained(r: Reader, j: int) -> bool:
     return r.word(j + 1) == "it" and "with" in r.words[max(0, j - 4):j]
 
 
-_LEFT_THERE = frozenset({"left", "forgot", "dropped", "lost"})
-"""Verbs of a person leaving a thing somewhere (*I left my book in the bedroom*)."""
-
-
 def left_there(r: Reader, start: int, verb: int) -> bool:
     """Whether a clause that locates an object of the scene (its subject ``[start, verb)``) says where a
     person left it (*I think I left my book in the bedroom with the chair*): set aside, its phrases kept as
@@ -932,7 +928,7 @@ def left_there(r: Reader, start: int, verb: int) -> bool:
     objects = [j for j in range(verb, len(r)) if (h := r.head(j)) is not None and h.kind == "object"]
     person = r.word(start) in lx.PEOPLE or (r.word(start) in lx.POSSESSIVES and verb - start <= 3 and not any(
         r.head(j) is not None for j in range(start, verb)))  # "my nephew left his teddy bear in ..."
-    return person and bool(objects) and any(w in _LEFT_THERE for w in r.words[verb:objects[0]])
+    return person and bool(objects) and any(w in lx.LEFT_THERE for w in r.words[verb:objects[0]])
 
 
 def subject_end(r: Reader, start: int, end: int) -> int | None:
