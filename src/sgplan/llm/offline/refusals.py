@@ -725,6 +725,11 @@ def until_needs_one_goal(prefix: bool = False) -> str:
     return rephrase("'until X, ...' needs one goal X" if prefix else "'... until X' needs one goal X")
 
 
+def off_limits_list_of_one(said: str) -> str:
+    return rephrase(f"'{said}': is each of them off limits, or only the last one? Join them with 'and' "
+                    "('X and Y are off limits'), or say the others in a sentence of their own")
+
+
 def left_by_no_goal(said: str) -> str:
     return rephrase(f"'{said}' says where something was left, by a place that is no goal: is it a place to "
                     "look? Name it as a goal ('check the ...') if it is, or leave the remark out")

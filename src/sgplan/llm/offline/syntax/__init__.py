@@ -25,7 +25,13 @@ from sgplan.llm.offline.nouns import NounLexicon
 from sgplan.llm.offline.spelling import Spelling
 from sgplan.llm.offline.syntax.any_time import any_time_goal
 from sgplan.llm.offline.syntax.brackets import bracketed_remarks, bracketed_rooms
-from sgplan.llm.offline.syntax.context import mentions, set_aside_context, statement, timed_heading
+from sgplan.llm.offline.syntax.context import (
+    mentions,
+    run_on_statements,
+    set_aside_context,
+    statement,
+    timed_heading,
+)
 from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
 from sgplan.llm.offline.syntax.fine_choice import fine_choice
 from sgplan.llm.offline.syntax.floor_only import floor_only
@@ -65,6 +71,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     readers = [fronted_prohibition(r) for r in readers]  # "Kitchen never go.": "never enter kitchen"
     readers = [bracketed_rooms(r) for r in readers]  # "bowl (LR)": "bowl in LR"
     readers = [said for r in readers for said in bracketed_remarks(r)]  # "(it's the cough syrup)": said back
+    readers = [run_on_statements(r) for r in readers]  # "... at all the floor is wet": ", the floor is wet"
     readers = [each_visit_rule(r) for r in readers]  # "each kit visit -> DR after": "whenever you visit kit"
     readers = [fine_choice(r) for r in readers]  # "then either bedroom is fine": then either bedroom
     readers = [said for r in readers for said in only_clause(r)]  # ", and only go to X after Y": its own

@@ -41,7 +41,7 @@ from sgplan.llm.offline.syntax.preamble import stated_start
 from sgplan.llm.offline.syntax.reader import Match, Reader
 from sgplan.llm.offline.syntax.stated_place import BOUND_PRONOUNS, bind_statement_pronoun
 from sgplan.llm.offline.syntax.tree import Described, NounPhrase
-from sgplan.llm.offline.text import is_clock_time
+from sgplan.llm.offline.text import Tok, is_clock_time
 
 
 def set_aside_context(readers: list[Reader]) -> list[Reader]:
@@ -397,10 +397,17 @@ def aside_between(r: Reader, start: int, end: int) -> bool:
     word that takes back (*..., I mean, ...*: :mod:`.corrections` reads it or refuses it). The order around
     it reads as if it were not there; a statement naming a place is left to the parser, which refuses it."""
     return (statement(r, start, end) == "aside" and not r.says(lx.CORRECTIONS, start, end)
-            and not any(names_place(r, k) or r.word(k) in lx.CORRECTING_WORDS or r.phrase(k, lx.NEG_STARTS)
+            and not any((names_place(r, k) and not floor_surface(r, k))
+                        or r.word(k) in lx.CORRECTING_WORDS or r.phrase(k, lx.NEG_STARTS)
                         or r.word(k) in lx.WISH_STOPS or r.word(k) in lx.SEQUENCE_TIMES  # "first", "later"
                         for k in range(start, end) if not past_time(r, k))
             and not misspelt_name(r, start, end))
+
+
+def floor_surface(r: Reader, k: int) -> bool:
+    """Whether the word at ``k`` is the floor one walks on, said as a statement's subject (*the floor is wet*,
+    *the floors are slippery*), not a storey (*the top floor*, *floor 2*)."""
+    return r.word(k) in ("floor", "floors") and r.word(k - 1) == "the" and r.word(k + 1) in lx.STATEMENT_VERBS
 
 
 _PAST_TIME_NOUNS = frozenset({"night", "week", "weekend", "month", "year", "time", "summer", "winter"})
@@ -929,6 +936,54 @@ def left_there(r: Reader, start: int, verb: int) -> bool:
     person = r.word(start) in lx.PEOPLE or (r.word(start) in lx.POSSESSIVES and verb - start <= 3 and not any(
         r.head(j) is not None for j in range(start, verb)))  # "my nephew left his teddy bear in ..."
     return person and bool(objects) and any(w in lx.LEFT_THERE for w in r.words[verb:objects[0]])
+
+
+_RUN_ON_SUBJECTS = frozenset({"the"}) | lx.POSSESSIVES - {"your"}
+"""The first words of a statement run on after an order without a mark (*... at all the floor is wet*)."""
+_RUN_ON_AFTER = frozenset({"all", "please", "pls", "ok", "okay", "there", "here", "too", "though", "upstairs",
+                           "downstairs", "today", "tonight", "now", "anyway", "again", "afterwards"})
+"""Words an order may end with right before a statement run on after it (*don't go in the kitchen at all the
+floor is wet*, *check the toilet please the flush is broken*)."""
+_BE_HAVE = frozenset({"is", "are", "was", "were", "'s", "'re", "has", "have", "had"})
+
+
+def run_on_statements(r: Reader) -> Reader:
+    """``r`` with commas around each statement run on after an order without a mark, as dictation types it
+    (*dont go in the kitchen at all the floor is like wet*, *... at all the floor is wet and check the
+    couch*): a subject (*the* or a possessive and its noun phrase) and a verb of being or having, right after
+    an order's last word (:data:`_RUN_ON_AFTER`) or a room or object, to *and* and an order or the end, naming
+    no room, object or floor after its verb; the clause is then read (set aside, or refused) as any statement
+    between commas is."""
+    cuts: list[int] = []
+    for k in range(2, len(r)):
+        if (r.word(k) not in _RUN_ON_SUBJECTS or r.word(k - 1) == ","
+                or not (r.word(k - 1) in _RUN_ON_AFTER or ends_a_head(r, k))):
+            continue
+        verb = subject_end(r, k, len(r))
+        if verb is None or verb <= k or r.word(verb) not in _BE_HAVE or relative_clause(r, verb):
+            continue
+        end = next((j for j in range(verb, len(r)) if r.word(j) == ","
+                    or (r.word(j) == "and" and starts_order(r, j + 1))), len(r))
+        if not any(names_place(r, j) and not floor_surface(r, j) for j in range(verb, end)):
+            cuts += [k, end] if r.word(end) == "and" else [k]  # "... and check the couch": an order again
+    if not cuts:
+        return r
+    toks = list(r.toks)
+    for k in sorted(cuts, reverse=True):
+        toks.insert(k, Tok(",", toks[k - 1].end, toks[k - 1].end))
+    return replace(r, toks=tuple(toks))
+
+
+def relative_clause(r: Reader, verb: int) -> bool:
+    """Whether the clause of the verb at ``verb`` ends with a preposition (*the room the bottle is in, then
+    ...*): a relative clause of the noun before it, no statement."""
+    end = next((j for j in range(verb, len(r)) if r.word(j) in (",", "and", "then")), len(r))
+    return r.word(end - 1) in lx.LOCATIVE or r.word(end - 1) in lx.PLACE_PREPOSITIONS
+
+
+def ends_a_head(r: Reader, k: int) -> bool:
+    """Whether a room or object's head noun ends right before ``k``."""
+    return any((h := r.head(j)) is not None and j + h.words == k for j in range(max(0, k - 3), k))
 
 
 def subject_end(r: Reader, start: int, end: int) -> int | None:

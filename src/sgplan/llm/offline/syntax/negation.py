@@ -243,8 +243,8 @@ def staying(r: Reader, i: int, negated: bool) -> tuple[FloorSpec, int, int] | No
 def off_limits(r: Reader, i: int) -> Parse[OffLimits | Negation]:
     """*The kitchen is off limits* / *the office and the garage are out of bounds* / *X should be avoided*;
     a sentence that states something else of a place (*the bowl is in the kitchen*) is refused."""
-    if not r.np_starts(i):
-        return None
+    if not r.np_starts(i) or r.word(i - 1) in lx.PLACE_PREPOSITIONS or r.word(i - 1) in lx.POSITIVE_VERBS:
+        return None  # "go to the kitchen, the office is off limits": the kitchen is the place gone to
     phrases = phrase_list(r, i, "avoid")
     if not isinstance(phrases, Match):
         return None
@@ -252,6 +252,9 @@ def off_limits(r: Reader, i: int) -> Parse[OffLimits | Negation]:
     if said is None:
         states = r.word(phrases.end) in lx.COPULAS
         return Refusal(rf.states_something(r.quote(i, phrases.end + 1))) if states else None
+    if phrases.node.comma_list and len(phrases.node.items) > 1 and said[0] in ("is", "'s"):
+        # "the kitchen, the office is off limits": both, or a goal said before the one off limits?
+        return Refusal(rf.off_limits_list_of_one(r.quote(i, phrases.end + len(said))))
     end = phrases.end + len(said)
     until = until_target(r, end)
     if isinstance(until, Refusal):
