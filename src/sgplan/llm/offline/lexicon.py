@@ -807,6 +807,12 @@ ANY_ORDER = Phrases((
     ("in", "whichever", "order"), ("whatever", "order"), ("either", "order"), ("no", "particular", "order"),
     *(("in", "which", "order", *liking) for liking in _ORDER_LIKING),  # learners: "in which order you want"
     ("the", "order", "is", "up", "to", "you"), ("order", "is", "up", "to", "you"),
+    # "in any order doesnt matter", "any order, it doesn't matter": the order said free twice
+    *((*order, *comma, *it, "does", "not", "matter") for order in (("in", "any", "order"), ("any", "order"),
+                                                                   ("in", "whatever", "order"),
+                                                                   ("whatever", "order"), ("either", "order"))
+      for comma in ((), (",",)) for it in ((), ("it",))),
+    *((*who, "do", "not", "care", what, "order") for who in ((), ("i",)) for what in ("what", "which")),
     ("i", "do", "not", "care", "about", "the", "order"), ("i", "do", "not", "mind", "the", "order"),
     ("i", "do", "not", "mind", "about", "the", "order"), ("do", "not", "worry", "about", "the", "order"),
     *((*the, "order", *really) for the in ((), ("the",))

@@ -81,7 +81,7 @@ def floors_of(spec: FloorSpec, disc: Discourse, candidates: list[Entity] | None 
     if isinstance(spec, FloorOffset):
         return shifted(spec, disc)
     if isinstance(spec, RelativeFloor):
-        return relative(spec.word, disc, candidates, spec.robot_there)
+        return back_to_start(spec, disc) or relative(spec.word, disc, candidates, spec.robot_there)
     if isinstance(spec, StayExtreme):
         return FloorReading(staying(spec.word, disc))
     if isinstance(spec, UpThere):
@@ -130,6 +130,18 @@ def second_reading(said: str, disc: Discourse,
         rf.refuse(rf.relative_to_which(said, last.phrase, ", ".join(str(f) for f in sorted(at)),
                                        disc.start_floor or 0))
     return FloorReading(relate(at.pop()), None, said, last.phrase)
+
+
+def back_to_start(spec: RelativeFloor, disc: Discourse) -> FloorReading | None:
+    """*come back up and X* after goals below the start floor (*back down* after goals above it): the start
+    floor, where the robot comes back to; ``None`` otherwise (then read as any *upstairs*)."""
+    last = disc.last_goal()
+    if not spec.back or disc.start_floor is None or last is None:
+        return None
+    step = lx.RELATIVE_FLOORS[spec.word]
+    floors = {e.floor for e in last.entities}
+    return FloorReading(frozenset({disc.start_floor})) if floors and all(
+        (disc.start_floor - f) * step > 0 for f in floors) else None
 
 
 def relative(word: str, disc: Discourse, candidates: list[Entity] | None,

@@ -123,7 +123,8 @@ def turned(r: Reader, verbs: VerbWords, i: int) -> VerbWords:
     with *up* / *down* before a connective; a note's *up bth*, *down LR* (*up* / *down* right before a
     room's noun, with no article): the room upstairs / downstairs, as *go upstairs to the bathroom*."""
     if verbs.floor is None and verbs.words and verbs.words[-1] in lx.UP_DOWN and r.word(i) in ("and", ","):
-        return replace(verbs, floor=RelativeFloor(lx.UP_DOWN[verbs.words[-1]]), floor_span=r.span(i - 1, i))
+        floor = RelativeFloor(lx.UP_DOWN[verbs.words[-1]], back=verbs.words[-2:-1] == ("back",))
+        return replace(verbs, floor=floor, floor_span=r.span(i - 1, i))
     room = r.head(i)
     if verbs.floor is None and verbs.words and verbs.words[-1] in lx.UP_DOWN and room is not None \
             and room.kind == "room":

@@ -71,10 +71,12 @@ class FloorOffset:
 @dataclass(frozen=True)
 class RelativeFloor:
     """*upstairs* / *downstairs*: the floors above / below the start (see the grounding); ``robot_there``:
-    said as where the robot is (*while you're upstairs*), which is the start floor when none lies that way."""
+    said as where the robot is (*while you're upstairs*), which is the start floor when none lies that way;
+    ``back``: said as a return (*come back up and X*)."""
 
     word: str
     robot_there: bool = False
+    back: bool = False
 
 
 @dataclass(frozen=True)
