@@ -221,10 +221,10 @@ def restates_choice(g: Grounded, before: Grounded) -> bool:
 
 def restates_group(phrase: str) -> bool:
     """Whether a phrase only names the group before it again: *both of them*, *all three of them*, *all
-    three* (*office TVs, all three*)."""
+    three* (*office TVs, all three*), *both*."""
     words = phrase.lower().split()
     counted = len(words) == 2 and (words[1] in lx.NUMBER_WORDS or words[1].isdigit())
-    return words[-1] == "them" or (counted and words[0] in lx.UNIVERSAL)
+    return words[-1] == "them" or (counted and words[0] in lx.UNIVERSAL) or words == ["both"]
 
 
 def choice_remark(phrases: list[Grounded], remark: tuple[str, ...] | None, disc: Discourse) -> None:

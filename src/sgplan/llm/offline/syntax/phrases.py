@@ -59,10 +59,13 @@ def there_place(r: Reader, i: int, role: Role, given: Head | None) -> Parse[Noun
 
 @NOUN_PHRASES.rule("all of them")
 def group_repeat(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPhrase]:
-    """*all of them*, *both of them*, *all three of them*, *all three*, *the two of them* (a goal): the group
-    named before; *one / any / either of them*: one of it."""
+    """*all of them*, *both of them*, *all three of them*, *all three*, *the two of them*, *both* closing its
+    clause (a goal): the group named before; *one / any / either of them*: one of it."""
     if role == "goal" and r.word(i) in lx.CHOOSING_OF and r.at(i + 1, "of", "them"):
         return Match(GroupRepeat(r.span(i, i + 3), None, choice=True), i + 3)
+    if (role == "goal" and r.word(i) == "both" and r.word(i + 1) in ("", ",", "and", "then")
+            and (r.word(i - 1) == "," or r.word(i - 1) in lx.POSITIVE_VERBS)):
+        return Match(GroupRepeat(r.span(i, i + 1), 2), i + 1)  # "the plants, both, then ...": both of them
     n = 1 if r.word(i) in ("all", "both", "each", "every") else 0
     n = 1 if r.word(i) == "the" and count_word(r, i + 1) and r.at(i + 2, "of", "them") else n
     said = lx.NUMBER_WORDS.get(r.word(i + n)) if n else None
