@@ -355,11 +355,15 @@ def near_step_before(np: Described, noun: Noun, mode: Mode, where: Where, disc: 
     object of a goal that no room, description or pointer places: the one there for a definite singular
     (*the wicker chair* does not say which, nor is it the one just reached: *the swivel chair in the office,
     then the wicker chair*), the two there for *either* (*bath w/ 2 sinks -> either sink*), those there (two
-    or more) for a choice remark after it (*upstairs bath -> toilet (either)*); else empty."""
+    or more) for a choice remark after it (*upstairs bath -> toilet (either)*), those there for a number
+    that only they fit (*the dining table, then both chairs*); else empty."""
     if (where.role != "goal" or where.scope or noun.head.kind != "object" or noun.room_scoped
-            or noun.head.plural or np.determiner.pointer is not None or np.descriptive):
+            or np.determiner.pointer is not None or np.descriptive):
         return []
     near = disc.vocab.inside(noun.entities, where.previous)
+    count = np.determiner.count
+    if noun.head.plural:
+        return near if count is not None and len(noun.entities) > count == len(near) else []
     if mode == "any" and np.first_word == "either":
         return near if len(near) == 2 else []
     if np.remark_follows and len(near) >= 2:  # "upstairs bath -> toilet (either)": one of those there

@@ -1062,6 +1062,10 @@ def state_verb_last(r: Reader, k: int, end: int) -> bool:
         and not misspelt_name(r, k, k + 1)))
 
 
+_HOW_OFTEN = frozenset({"always", "usually", "often", "sometimes", "constantly", "regularly"})
+"""Between a statement's subject and its verb (*the kids always rock on them*): the verb follows."""
+
+
 def person_did(r: Reader, start: int, end: int) -> bool:
     """Whether the clause ``[start, end)`` is a person (*my mum*, *the neighbours*) and a verb the translator
     does not know (*gave*, *bought*, *fixed*) or any verb in the past (*flooded*), or anything else (*the
@@ -1069,12 +1073,15 @@ def person_did(r: Reader, start: int, end: int) -> bool:
     mum gave it to me*, *my son flooded it*, *the dog knocked something over in the bedroom*: the bedroom
     kept as a mention): a statement about people or things; with a place otherwise (*my mum expects it
     upstairs*) it is left to the parser, which refuses it."""
-    verb = r.word(start + 2)
+    often = r.word(start + 2) in _HOW_OFTEN  # "the kids always rock on them", "the cat often knocks it over"
+    verb = r.word(start + 2 + often)
     person = (r.word(start) in lx.POSSESSIVES or r.word(start + 1) in lx.PEOPLE_NOUNS
-              or (verb.endswith("ed") and plain_subject(r, start + 1)))
+              or ((verb.endswith("ed") or (often and verb.endswith("s"))) and plain_subject(r, start + 1)))
     places = [k for k in range(start, end) if names_place(r, k)]
     where = next((j for j in range(start + 3, end) if r.word(j) in lx.LOCATIVE), None)
-    return (person and verb.isalpha() and (verb not in lx.LEXICON_WORDS or verb.endswith("ed"))
+    known = verb in lx.LEXICON_WORDS and not verb.endswith("ed") and not (
+        often and verb not in lx.STRUCTURAL and verb not in lx.POSITIVE_VERBS)
+    return (person and verb.isalpha() and not known
             and not misspelt_name(r, start + 1, start + 3)
             and (not places or (where is not None and all(k > where for k in places))))
 
