@@ -57,6 +57,7 @@ from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import Head
+from sgplan.llm.offline.phrases import Phrases
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.qualifiers import head_kind
 from sgplan.llm.offline.syntax.reader import Match, Reader
@@ -127,7 +128,7 @@ def joined_appositions(readers: list[Reader]) -> list[Reader]:
         if (before is not None and not before.aside and not r.aside and r.marker is None
                 and joins_before(r, before)):
             comma = Tok(",", before.toks[-1].end, before.toks[-1].end)
-            out[-1] = replace(before, toks=(*before.toks, comma, *r.toks))
+            out[-1] = replace(before, toks=(*before.toks, comma, *r.toks[r.skip(0, (",",)):]))
             continue
         out.append(r)
     return out
@@ -138,8 +139,9 @@ def joins_before(r: Reader, before: Reader) -> bool:
     :func:`joined_appositions`)."""
     if takes_back_order(r, before):
         return len(goal_heads(before, 0, len(before))) <= 1
-    apposition = (r.word(0) == "the" and r.word(1) in lx.ANAPHORIC_ONE and len(r) > 2
-                  and isinstance(noun_phrase(r, 0, "goal"), Match))
+    k = r.skip(0, (",",))  # "Uh, the one with the plant in it." (the sound removed before)
+    apposition = (r.word(k) == "the" and r.word(k + 1) in lx.ANAPHORIC_ONE and len(r) > k + 2
+                  and isinstance(noun_phrase(r, k, "goal"), Match))
     final = final_phrase(before)
     # "Go to one of the TVs in the living room. No, the one in the bedroom.": the one phrase it names
     return final is not None and (apposition or (takes_back_last(r) and not named_heads(before, 0, final)))
@@ -377,9 +379,11 @@ def order_said_again(r: Reader, k: int, after: int,
     wait, go to B first, then A.*: A taken back as well, or A twice?)."""
     start = order_start(r, past_corrections(r, after))
     opening = r.skip(0, _OPENING)
-    if opening >= k:
-        return None  # "Actually no, go to the bed": takes back the sentence before (refused there)
+    if opening >= k or r.phrase(opening, lx.CORRECTIONS) is not None:
+        return None  # "Actually no, go to the bed", "No, actually, ...": takes back the sentence before
     taken_back = goal_heads(r, opening, k)
+    forgot = forgotten(r, start, taken_back)
+    start = order_start(r, r.skip(forgot, _AROUND | _JUST | {"and"})) if forgot is not None else start
     said_again = {h.categories for h in named_heads(r, start, len(r))}
     named_again = bool(taken_back) and {h.categories for h in taken_back} <= said_again
     all_again = named_again and {h.categories for h in taken_back} == said_again
@@ -404,6 +408,22 @@ def order_said_again(r: Reader, k: int, after: int,
     return replace(r, toks=r.toks[start:]), replace(r, toks=r.toks[:start], aside=True)
 
 
+_FORGET = Phrases((("forget",), ("forget", "about"), ("never", "mind"), ("skip",), ("scratch",), ("drop",)))
+"""Before the phrase a correction takes back, said again (*no, actually, forget the apple, just go ...*)."""
+
+
+def forgotten(r: Reader, i: int, taken_back: list[Head]) -> int | None:
+    """Where the words *forget / never mind / skip X* at ``i`` end when X names again every place taken back
+    (*Fetch an apple... no, actually, forget the apple, just go sit on the couch*): they only say what the
+    correction takes back; ``None`` otherwise."""
+    said = r.phrase(i, _FORGET)
+    phrase = noun_phrase(r, i + len(said), "goal") if said is not None and taken_back else None
+    if not isinstance(phrase, Match) or r.word(phrase.end) not in (",", "and", "just"):
+        return None
+    named = {h.categories for h in named_heads(r, i, phrase.end)}
+    return phrase.end if named and {h.categories for h in taken_back} <= named else None
+
+
 def named_heads(r: Reader, start: int, end: int) -> list[Head]:
     """The head nouns of the scene named in the words ``[start, end)``, in order."""
     return [head for _, head in _heads_at(r, start, end)]
@@ -426,9 +446,9 @@ def _goal_heads_at(r: Reader, start: int, end: int) -> list[tuple[int, Head]]:
     found = _heads_at(r, start, end)
     objects_at = {j for j, head in found if head.kind == "object"}
 
-    def within(j: int) -> bool:  # "the sink in the kitchen"
+    def within(j: int) -> bool:  # "the sink in the kitchen", "an apple from the kitchen"
         k = _before_determiners(r, j)
-        return any(o < k for o in objects_at) and r.word(k) in _WITHIN
+        return any(o < k for o in objects_at) and (r.word(k) in _WITHIN or r.word(k) == "from")
 
     return [(j, head) for j, head in found
             if not (head.kind == "room" and (j + head.words in objects_at or within(j)))]

@@ -29,6 +29,8 @@ def is_chitchat(r: Reader, start: int, end: int) -> bool:
         w, closing = r.word(k), r.phrase(k, lx.CLOSING)
         if r.at(k, "one", "more") and k > start:  # "Sorry, one more: ...": another request follows
             closing = ("one", "more")
+        if r.at(k, "wake", "up") and k + 2 == end:  # "Robot, wake up.": the robot is called, nothing asked
+            closing = ("wake", "up")
         if closing is not None or w == "," or (w == "there" and k > start and r.word(k - 1) in lx.GREETINGS):
             k += len(closing) if closing is not None else 1  # "Hi there, quick one": nothing said either
             continue
