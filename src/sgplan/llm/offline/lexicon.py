@@ -2110,6 +2110,8 @@ _LEARNERS: dict[tuple[str, ...], tuple[str, ...]] = {
 PHRASE_ALIASES.update(_LEARNERS)
 PHRASE_ALIASES.update({  # chat's "k?" closing a sentence: "..., k?" is "..., okay?"
     ("k", "?"): ("okay", "?"),
+    ("robo",): ("robot",),  # "OK robo, ...": the wake word
+    ("any", "order", "whatever"): ("any", "order"),
 })
 PHRASE_ALIASES.update({  # bedtime before a comma or a colon, or with "tonight": "Tonight before bed: ..."
     **{(*tonight, "before", "bed", *mark): (*tonight, "before", "bedtime", *mark)

@@ -21,6 +21,7 @@ from sgplan.llm.offline.syntax.tree import (
     Negation,
     OffLimits,
     PlainAction,
+    RelativeFloor,
     StartFloor,
     StayExtreme,
     StayOnFloor,
@@ -89,8 +90,11 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
         said = r.quote(j - len(marker) + (1 if marker[0] in lx.NEGATION_JOINERS else 0), unknown + 1)
         return Refusal(rf.unknown_negated_verb(said, r.word(unknown)))
     k, phrases, floor = verbs.end, None, None
-    if verbs.node.floor is not None and not r.np_starts(k):  # "never go upstairs": any room there
-        floor = FloorPlace(r.span(k - 1, k), verbs.node.floor, "all")
+    spec, words = verbs.node.floor, verbs.node.words
+    if spec is None and words[-2:-1] and words[-2] in lx.UP_DOWN and words[-1] == "at" and r.word(k) == "all":
+        spec, k = RelativeFloor(lx.UP_DOWN[words[-2]]), k - 1  # "don't go down at all": "at all" after it
+    if spec is not None and not r.np_starts(k):  # "never go upstairs": any room there
+        floor = FloorPlace(r.span(k - 1, k), spec, "all")
     else:
         found = phrase_list(r, k, "avoid")
         if not isinstance(found, Match):
