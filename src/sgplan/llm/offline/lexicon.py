@@ -1478,6 +1478,8 @@ EVENT_WORDS = word_set(
 """Times of day, meals and events: *Before lunch, ...*, *After dinner, ...*, *Tonight, ...* only say when,
 which a mission cannot require; said at the start of a sentence they are set aside (said back), never read
 as the goal of *before / after*. A clock time (*at 6 pm*) or a delay (*in ten minutes*) is refused."""
+MEALS = word_set("breakfast brunch lunch lunchtime dinner dinnertime supper tea teatime bedtime")
+"""Meals and bedtime: *After breakfast go ...* says when, as *This morning go ...* does."""
 PAST_TIMES = word_set("yesterday earlier")
 """Times gone by, in a time expression (*the office is a mess since yesterday*); *last* counts too before a
 word of :data:`EVENT_WORDS` (*after last night*, *since last week*), never alone (*do the kitchen last*)."""

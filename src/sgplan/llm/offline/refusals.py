@@ -711,6 +711,11 @@ def partial_prohibition(rest: str) -> str:
                     "(the whole mission) or 'do not enter X until ...'")
 
 
+def time_after_goals(said: str) -> str:
+    return rephrase(f"'{said}' after goals: does what follows come after them, or at any time? Say 'then' "
+                    "or 'later' for after them, or leave the time out")
+
+
 def order_by_a_time(said: str) -> str:
     return rephrase(f"'{said}' orders the steps by a time or an event, not by a place (a plan has no clock); "
                     "leave the time out, or set it apart with a comma ('Before lunch, check ...')")

@@ -77,6 +77,7 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
             join(parsed.node, parts, disc, run, any_time=any_time_said(r, r.skip(0, LEAD_WORDS), len(r)))
     for said in listed.values():
         check_count(said)
+    check_time_after_goals(readers, disc)
     for part in parts:
         if isinstance(part, Clause):
             check_text_order(part, disc.said)
@@ -90,6 +91,18 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
     check_all_used(formula, disc.references)
     check_choice_remarks(disc)
     return formula
+
+
+def check_time_after_goals(readers: list[Reader], disc: Discourse) -> None:
+    """Refuse a time set aside that opens with *after* / *once* between goals (*Check the fridge, and after
+    lunch, go to the office*): what follows it may come after the goals before it (*later*), or at any time.
+    Closing the goals' own clause (*check the oven after the match*), it only says when."""
+    goals = [g for g in disc.references if g.role == "goal" and g.entities]
+    for r in readers:
+        if (r.aside and r.toks and r.word(0) in ("after", "once") and is_time(r, 0, len(r))
+                and any(g.start < r.toks[0].start for g in goals)
+                and any(g.start >= r.toks[-1].end for g in goals)):
+            rf.refuse(rf.time_after_goals(r.quote(0, len(r))))
 
 
 def check_brought_to_speaker(readers: list[Reader]) -> None:

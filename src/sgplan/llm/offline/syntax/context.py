@@ -874,8 +874,9 @@ def time_head(r: Reader, start: int, end: int) -> int | None:
     evening stay on this floor*, *Tonight check the oven*, *for now just head to ...*), or ``None``; only a
     day's time (opening with :data:`.lexicon.DAY_OPENERS`): an event (*before dinner go ...*, *the guests
     arrive ...*) is left to the parser, as are *later* and *now*, which order the steps."""
-    if r.word(start) not in lx.DAY_OPENERS and r.word(start) not in lx.SPAN_OPENERS:
-        return None
+    if (r.word(start) not in lx.DAY_OPENERS and r.word(start) not in lx.SPAN_OPENERS
+            and not (r.word(start) in ("before", "after") and r.word(start + 1) in lx.MEALS)):
+        return None  # ("After breakfast go ...": a meal, a time of day like "this morning")
     said = lx.HESITATIONS | lx.MANNER_INTENSIFIERS  # "for now just head ...", "Tonight really check ..."
     return next((k for k in range(start + 1, min(start + 5, end)) if is_time(r, start, k) and (
         starts_order(r, r.skip(k, said)) or r.word(r.skip(k, said)) in lx.STAY)), None)
