@@ -1504,7 +1504,8 @@ SPAN_OPENERS = ("during",)
 """Like :data:`DAY_OPENERS`, a time over a span, which cannot order the steps (*During the party tonight keep
 out of ...*)."""
 EVENT_ENDS = (("is", "over"), ("are", "over"), ("has", "finished"), ("have", "finished"), ("finishes",),
-              ("ends",), ("is", "done"), ("are", "done"), ("stops",), ("goes", "off"), ("go", "off"))
+              ("ends",), ("is", "done"), ("are", "done"), ("stops",), ("goes", "off"), ("go", "off"),
+              ("is", "ready"), ("are", "ready"), ("'s", "ready"))
 """The end of an event of others closing a clause (*once the match has finished*): something to wait for
 (only words the lexicon knows already: a new word here would stop *the clock stopped* being a statement)."""
 EVENT_OPENERS = ("before", "after", "by", "while", "once", "when")

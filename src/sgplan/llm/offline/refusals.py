@@ -711,6 +711,11 @@ def partial_prohibition(rest: str) -> str:
                     "(the whole mission) or 'do not enter X until ...'")
 
 
+def there_goal_or_kept_out_until(goal_room: str, kept_out: str) -> str:
+    return rephrase(f"'there' could be {goal_room}, where the goal named last is, or {kept_out}, kept out of "
+                    "until then; name the room")
+
+
 def time_after_goals(said: str) -> str:
     return rephrase(f"'{said}' after goals: does what follows come after them, or at any time? Say 'then' "
                     "or 'later' for after them, or leave the time out")

@@ -28,7 +28,7 @@ from sgplan.llm.offline.grounding.phrases import (
     grounds,
     head_entities,
 )
-from sgplan.llm.offline.grounding.places import next_to_it, there_floors, there_holding, there_rooms
+from sgplan.llm.offline.grounding.places import next_to_it, there_floors, there_rooms, there_rooms_holding
 from sgplan.llm.offline.names import Entity, head_word
 from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.registry import Registry
@@ -322,7 +322,10 @@ def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc:
     if len(entities) > len(near := near_step_before(np, noun, mode, where, disc)) > 0:
         return Noun(head, near, True)  # "go to the bedroom with the vase, then check the plant"
     before = vocab.inside(entities, where.previous) if where.role == "goal" and not demo else []
-    remark_after = disc.said(np.span.end, len(disc.text)).lstrip()[:1] in ("-", "\u2014", ",", "(", ":")
+    after = disc.said(np.span.end, len(disc.text)).lstrip()
+    # "any chair, either one": a remark; "any chair, then back to the kitchen": the next step
+    remark_after = after[:1] in ("-", "\u2014", "(", ":") or (
+        after[:1] == "," and after[1:].split()[:1] not in (["then"], ["and"], ["next"]))
     own_step = vocab.inside(entities, [*where.scope, *where.soft_scope])  # "2. dining room, any chair"
     if (mode == "any" and (head.plural or (np.first_word in ("a", "an", "any") and not remark_after
                                            and not own_step))
@@ -408,10 +411,9 @@ def there(q: There, noun: Noun, np: Described, where: Where, disc: Discourse) ->
     if noun.head.kind == "room":
         floors = there_floors(np.span.start, noun.head, disc, where.action_floor)
         return Noun(noun.head, on_floors(noun.entities, FloorReading(floors), disc), noun.room_scoped)
-    inside = disc.vocab.inside(noun.entities, there_rooms(np.span.start, disc))
-    if not inside:  # "don't go in the living room until ... the TV in there": the one place named holding one
-        inside = disc.vocab.inside(noun.entities, there_holding(np.span.start, noun.entities, disc))
-    return Noun(noun.head, inside, True)
+    # "don't go in the living room until ... the TV in there": the one place kept out of holding one
+    rooms = there_rooms_holding(np.span.start, noun.entities, there_rooms(np.span.start, disc), disc)
+    return Noun(noun.head, disc.vocab.inside(noun.entities, rooms), True)
 
 
 @applies(InRoom)
@@ -429,11 +431,10 @@ def in_room(q: InRoom, noun: Noun, np: Described, where: Where, disc: Discourse)
         return by_an_object(said, noun, anchor, where, disc)  # "the bowl in the sink", "the book from it"
     if noun.head.kind != "object" or any(e.kind != "room" for g in rooms for e in g.entities):
         rf.refuse(rf.object_in_room(said))
-    entities = disc.vocab.inside(noun.entities, [e for g in rooms for e in g.entities])
-    if not entities and len(q.rooms) == 1 and isinstance(q.rooms[0], ThereNP):
+    if len(q.rooms) == 1 and isinstance(q.rooms[0], ThereNP):
         # "don't go in the living room until ...; look at the TV in there": the one place named holding one
-        rooms[0].entities = there_holding(q.span.start, noun.entities, disc)
-        entities = disc.vocab.inside(noun.entities, rooms[0].entities)
+        rooms[0].entities = there_rooms_holding(q.span.start, noun.entities, rooms[0].entities, disc)
+    entities = disc.vocab.inside(noun.entities, [e for g in rooms for e in g.entities])
     if q.choice and len(rooms) == 1 and len(rooms[0].entities) != 2:  # "in either bathroom": one of two
         rf.refuse(rf.either_of_more(f"either {rooms[0].phrase}", [e.describe() for e in rooms[0].entities]))
     for room in rooms:

@@ -202,6 +202,9 @@ def join(sentence: MissionSentence, parts: list[Meaning], disc: Discourse, run: 
         rf.refuse(rf.whole_mission_opener(sentence.opener))
     if ctx.said_last and not continues and not precedes and previous is not None:
         continues = True  # "Go to the office last.": after the goals of the sentences before
+        if len(run) > 1:  # "- A - B - C  Do C last.": after every item of the list
+            after_list_items(run, parts, disc.said(sentence.span.start, sentence.span.end))
+            previous = previous_clause(parts)
     if (isinstance(result, Clause) and not any(result.steps) and not result.constraints and previous
             and sentence.says_order and len(previous.filled()) > 1):
         rf.refuse(rf.order_after_ordered_goals())
