@@ -1505,7 +1505,7 @@ SPAN_OPENERS = ("during",)
 out of ...*)."""
 EVENT_ENDS = (("is", "over"), ("are", "over"), ("has", "finished"), ("have", "finished"), ("finishes",),
               ("ends",), ("is", "done"), ("are", "done"), ("stops",), ("goes", "off"), ("go", "off"),
-              ("is", "ready"), ("are", "ready"), ("'s", "ready"))
+              ("is", "ready"), ("are", "ready"), ("'s", "ready"), ("'s", "finished"))
 """The end of an event of others closing a clause (*once the match has finished*): something to wait for
 (only words the lexicon knows already: a new word here would stop *the clock stopped* being a statement)."""
 EVENT_OPENERS = ("before", "after", "by", "while", "once", "when")
