@@ -423,7 +423,7 @@ def _compact_table(formula: Formula, aps: tuple[str, ...], allowed: np.ndarray,
             f"proposition {quote(missing[0])} of the formula is not among the automaton's {quote(list(aps))}"
         )
     # Progression, minimisation and products run over the possible labels (one column each) and one
-    # column for all the others; the dense table is made once, at the end.
+    # column for all the others (the dense table, when wanted, is made from them once, by ltlf_to_dfa).
     prog = _Progression(aps, np.flatnonzero(allowed))
     alphabet = _alphabet(allowed)
     normal = check_nesting(nnf(formula))  # progression recurses over the normal form

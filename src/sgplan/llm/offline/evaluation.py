@@ -82,16 +82,25 @@ def scene_facts(propositions: Iterable[str], building: Building) -> list[Formula
 
     Raises :class:`MissionError` for an ``enter(...)`` / ``reach(...)`` proposition naming no room or object
     of ``building``."""
+    placed = rooms_of_objects(propositions, building)
+    return [Always(Implies(Atom(p), Atom(room))) for p, room in placed.items()]
+
+
+def rooms_of_objects(propositions: Iterable[str], building: Building) -> dict[str, str]:
+    """``reach(object_u)`` -> ``enter(room_r)`` (its room) for the objects among ``propositions``.
+
+    Raises :class:`MissionError` for an ``enter(...)`` / ``reach(...)`` proposition naming no room or object
+    of ``building``."""
     rooms = {room.key for room in building.rooms()}
     room_of = {obj.key: room.key for room in building.rooms() for obj in room.objects.values()}
-    facts: list[Formula] = []
+    found: dict[str, str] = {}
     for p in propositions:
         key = action_entity(p)
         if key in room_of:
-            facts.append(Always(Implies(Atom(p), Atom(f"enter({room_of[key]})"))))
+            found[p] = f"enter({room_of[key]})"
         elif key not in rooms:
             raise MissionError(f"proposition {p!r} names no room or object of the scene {building.name!r}")
-    return facts
+    return found
 
 
 MAX_COMPARED_APS = 24
@@ -107,13 +116,8 @@ def same_language(a: Formula, b: Formula, building: Building | None = None) -> t
     so a mission over many rooms compares cheaply. Raises :class:`AutomatonError` when they are too large
     to build, or name more than :data:`MAX_COMPARED_APS` propositions."""
     union = list(dict.fromkeys(atoms(a) + atoms(b)))
-    room_of: dict[str, str] = {}
-    if building is not None:
-        scene_facts(union, building)  # (every name is checked against the scene)
-        rooms_of_objects = {obj.key: room.key for room in building.rooms() for obj in room.objects.values()}
-        room_of = {p: f"enter({rooms_of_objects[key]})" for p in union
-                   if (key := action_entity(p)) in rooms_of_objects}
-        union = list(dict.fromkeys(union + list(room_of.values())))
+    room_of = rooms_of_objects(union, building) if building is not None else {}
+    union = list(dict.fromkeys(union + list(room_of.values())))
     if len(union) > MAX_COMPARED_APS:
         raise AutomatonError(f"{len(union)} propositions, more than the {MAX_COMPARED_APS} compared")
     possible = _possible_letters(union, room_of)

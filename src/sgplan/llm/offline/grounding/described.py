@@ -323,9 +323,11 @@ def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc:
         return Noun(head, near, True)  # "go to the bedroom with the vase, then check the plant"
     before = vocab.inside(entities, where.previous) if where.role == "goal" and not demo else []
     after = disc.said(np.span.end, len(disc.text)).lstrip()
-    # "any chair, either one": a remark; "any chair, then back to the kitchen": the next step
+    # "any chair, either one": a remark; "any chair, then / and / after that back to ...": the next step
+    words = after[1:].lower().replace(",", " ").split()
     remark_after = after[:1] in ("-", "\u2014", "(", ":") or (
-        after[:1] == "," and after[1:].split()[:1] not in (["then"], ["and"], ["next"]))
+        after[:1] == "," and words[:1] != ["and"]
+        and not any(tuple(words[:len(p)]) == p for p in lx.SEQ_WORDS))
     own_step = vocab.inside(entities, [*where.scope, *where.soft_scope])  # "2. dining room, any chair"
     if (mode == "any" and (head.plural or (np.first_word in ("a", "an", "any") and not remark_after
                                            and not own_step))

@@ -47,11 +47,11 @@ def there_rooms(before: int, disc: Discourse, said: str = "there") -> list[Entit
 
 
 def there_holding(before: int, objects: list[Entity], disc: Discourse) -> list[Entity]:
-    """*the TV in there* when the place *there* points to (the last goal) holds no TV: the one room named
-    before character ``before`` as a place to keep out of that holds one of ``objects`` (*don't go in the
-    living room until you've checked the microwave; look at the TV in there*); none when no such room or
-    several do. Another goal is never taken instead (*the kitchen, then the bedroom, and the sink in there*:
-    the user may have meant another room)."""
+    """*the TV in there*: the one room named before character ``before`` as a place to keep out of that holds
+    one of ``objects`` (:func:`there_rooms_holding` asks it: *don't go in the living room until you've checked
+    the microwave; look at the TV in there*); none when no such room or several do. Another goal is never
+    taken instead (*the kitchen, then the bedroom, and the sink in there*: the user may have meant another
+    room)."""
     holders = {o.room_key for o in objects}
     named = {e.key for g in disc.references if g.start < before and g.role == "avoid"
              for e in g.entities if e.kind == "room" and e.key in holders}

@@ -94,12 +94,13 @@ def mission_formula(readers: list[Reader], disc: Discourse) -> Formula:
 
 
 def check_time_after_goals(readers: list[Reader], disc: Discourse) -> None:
-    """Refuse a time set aside that opens with *after* / *once* between goals (*Check the fridge, and after
-    lunch, go to the office*): what follows it may come after the goals before it (*later*), or at any time.
+    """Refuse a time set aside that opens with *after* / *once* / *when* between goals (*Check the fridge, and
+    after lunch, go to the office*): what follows it may come after the goals before it (*later*), or at any
+    time.
     Closing the goals' own clause (*check the oven after the match*), it only says when."""
     goals = [g for g in disc.references if g.role == "goal" and g.entities]
     for r in readers:
-        if (r.aside and r.toks and r.word(0) in ("after", "once") and is_time(r, 0, len(r))
+        if (r.aside and r.toks and r.word(0) in ("after", "once", "when") and is_time(r, 0, len(r))
                 and any(g.start < r.toks[0].start for g in goals)
                 and any(g.start >= r.toks[-1].end for g in goals)):
             rf.refuse(rf.time_after_goals(r.quote(0, len(r))))
@@ -130,7 +131,7 @@ def check_left_by_no_goal(readers: list[Reader], disc: Discourse) -> None:
     for r in readers:
         left = next((k for k, w in enumerate(r.words) if w in lx.LEFT_THERE), None) if r.aside else None
         at = next((j for j in range(left + 1, len(r)) if r.word(j) in lx.LOCATIVE
-                   or r.words[j - 1:j + 1] == ("next", "to")), None) if left else None
+                   or r.words[j - 1:j + 1] == ("next", "to")), None) if left is not None else None
         place = r.head(r.skip(at + 1, lx.DETERMINERS)) if at is not None else None  # "by the microwave"
         if place is not None and place.kind == "object" and not place.categories & kinds and any(
                 e.category in place.categories and e.room_key in rooms for e in disc.vocab.entities):
@@ -283,10 +284,10 @@ def in_visit_of_its_room(result: Meaning, parts: list[Meaning], ctx: SentenceCon
 
 
 def after_list_items(run: list[Clause], parts: list[Meaning], said: str) -> None:
-    """*- A - B* (a list in no order), then *Then C* (a line or an item of its own): C comes after every item,
-    as after *A and B.*; the items, the last parts, are joined into one clause whose one step holds their
-    goals (an item may only keep out of a place). Refused when an item has steps of its own (after all of
-    them, or after the last?)."""
+    """*- A - B* (a list in no order), then *Then C* or *Do C last.* (a line or an item of its own): C comes
+    after every item, as after *A and B.*; the items, the last parts, are joined into one clause whose one
+    step holds their goals (an item may only keep out of a place). Refused when an item has steps of its own
+    (after all of them, or after the last?)."""
     if any(len(c.filled()) > 1 for c in run) or parts[-len(run):] != run:
         rf.refuse(rf.after_all_of_sentences(said))
     joined = Clause([[task for c in run for step in c.filled() for task in step]],

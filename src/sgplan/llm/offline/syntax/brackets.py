@@ -71,8 +71,8 @@ def bracket(r: Reader, k: int, said: str) -> bool:
 
 def object_before(r: Reader, k: int) -> bool:
     """Whether a word naming an object ends right before the token ``k``."""
-    return any((h := r.head(j)) is not None and h.kind == "object" and j + h.words == k
-               for j in range(max(0, k - 3), k))
+    head = r.head_before(k)
+    return head is not None and head.kind == "object"
 
 
 def bracketed_remarks(r: Reader) -> list[Reader]:

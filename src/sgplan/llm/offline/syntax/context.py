@@ -871,9 +871,10 @@ def hedge_tail(r: Reader, end: int) -> int | None:
 
 def time_head(r: Reader, start: int, end: int) -> int | None:
     """Where the order after a time of day opening the clause ``[start, end)`` without a comma starts (*This
-    evening stay on this floor*, *Tonight check the oven*, *for now just head to ...*), or ``None``; only a
-    day's time (opening with :data:`.lexicon.DAY_OPENERS`): an event (*before dinner go ...*, *the guests
-    arrive ...*) is left to the parser, as are *later* and *now*, which order the steps."""
+    evening stay on this floor*, *Tonight check the oven*, *After breakfast go ...*), or ``None``; only a
+    day's time (opening with :data:`.lexicon.DAY_OPENERS`, or a meal after *before* / *after*): an event
+    (*before the party go ...*, *the guests arrive ...*) is left to the parser, as are *later* and *now*,
+    which order the steps."""
     if (r.word(start) not in lx.DAY_OPENERS and r.word(start) not in lx.SPAN_OPENERS
             and not (r.word(start) in ("before", "after") and r.word(start + 1) in lx.MEALS)):
         return None  # ("After breakfast go ...": a meal, a time of day like "this morning")
@@ -958,7 +959,7 @@ def run_on_statements(r: Reader) -> Reader:
     cuts: list[int] = []
     for k in range(2, len(r)):
         if (r.word(k) not in _RUN_ON_SUBJECTS or r.word(k - 1) == ","
-                or not (r.word(k - 1) in _RUN_ON_AFTER or ends_a_head(r, k))):
+                or not (r.word(k - 1) in _RUN_ON_AFTER or r.head_before(k) is not None)):
             continue
         verb = subject_end(r, k, len(r))
         if verb is None or verb <= k or r.word(verb) not in _BE_HAVE or relative_clause(r, verb):
@@ -980,11 +981,6 @@ def relative_clause(r: Reader, verb: int) -> bool:
     ...*): a relative clause of the noun before it, no statement."""
     end = next((j for j in range(verb, len(r)) if r.word(j) in (",", "and", "then")), len(r))
     return r.word(end - 1) in lx.LOCATIVE or r.word(end - 1) in lx.PLACE_PREPOSITIONS
-
-
-def ends_a_head(r: Reader, k: int) -> bool:
-    """Whether a room or object's head noun ends right before ``k``."""
-    return any((h := r.head(j)) is not None and j + h.words == k for j in range(max(0, k - 3), k))
 
 
 def subject_end(r: Reader, start: int, end: int) -> int | None:

@@ -220,8 +220,11 @@ def phrase_end(r: Reader, end: int) -> int:
     (*the dining table for me, actually, ...*)."""
     while end > 0 and r.word(end - 1) in _AROUND:
         end -= 1
-    return next((j for j in range(max(0, end - 3), end) if r.phrase(j, lx.BEFORE_REMARK) == r.words[j:end]),
-                end)
+    end = next((j for j in range(max(0, end - 3), end) if r.phrase(j, lx.BEFORE_REMARK) == r.words[j:end]),
+               end)
+    while end > 0 and r.word(end - 1) in _AROUND:  # "the dining table, please, actually, ..."
+        end -= 1
+    return end
 
 
 def restarted(r: Reader) -> tuple[Reader, Reader] | None:
@@ -408,8 +411,9 @@ def order_said_again(r: Reader, k: int, after: int,
     return replace(r, toks=r.toks[start:]), replace(r, toks=r.toks[:start], aside=True)
 
 
-_FORGET = Phrases((("forget",), ("forget", "about"), ("never", "mind"), ("skip",), ("scratch",), ("drop",)))
-"""Before the phrase a correction takes back, said again (*no, actually, forget the apple, just go ...*)."""
+_FORGET = Phrases((("forget",), ("forget", "about"), ("never", "mind"), ("skip",), ("scratch",)))
+"""Before the phrase a correction takes back, said again (*no, actually, forget the apple, just go ...*); not
+*drop*, a verb of putting down (*drop the bowl*)."""
 
 
 def forgotten(r: Reader, i: int, taken_back: list[Head]) -> int | None:

@@ -106,6 +106,11 @@ class Reader:
         """The head noun starting at ``i``."""
         return self.nouns.match(self.words, i)
 
+    def head_before(self, k: int) -> Head | None:
+        """The head noun that ends right before the token ``k`` (of up to three words), if any."""
+        return next((h for j in range(max(0, k - 3), k)
+                     if (h := self.head(j)) is not None and j + h.words == k), None)
+
     def span(self, i: int, j: int) -> Span:
         """The characters of the tokens ``[i, j)`` (of all of them, when words were moved: :meth:`quote`)."""
         said = self.toks[i:j]
