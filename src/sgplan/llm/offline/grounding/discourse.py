@@ -82,6 +82,9 @@ class Discourse:
     """Where *the first floor* counts from when the translator tries both ways (0: the lowest floor, US
     style; 1: the floor above the ground floor, British style); ``None``: from the text
     (:func:`.floors.british_ordinal`)."""
+    kept_until: set[str] = field(default_factory=set)
+    """The rooms kept out of until a goal (*don't go into the dining room until you've checked the
+    microwave*): *in there* after that goal may mean them (:func:`.places.there_rooms_holding`)."""
     first_said: str | None = None
     """The words of a sentence whose goals come *first* with no goal said before them (*First, go to the
     garage.*, *Garage first:*): the goals of a later sentence must come after them (refused when it does not
@@ -101,7 +104,8 @@ class Discourse:
         """A copy to try a reading on, which the original does not see."""
         return Discourse(self.vocab, self.text, self.start_floor, copy.copy(self.references), self.confined,
                          self.last_step, self.last_steps, self.announced, list(self.set_aside),
-                         list(self.mentions), list(self.done_before), self.ordinals_from, self.first_said)
+                         list(self.mentions), list(self.done_before), self.ordinals_from,
+                         set(self.kept_until), self.first_said)
 
     def said(self, start: int, end: int) -> str:
         """The mission text between two character offsets."""

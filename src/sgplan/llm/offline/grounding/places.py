@@ -62,11 +62,11 @@ def there_rooms_holding(before: int, objects: list[Entity], rooms: list[Entity],
                         disc: Discourse) -> list[Entity]:
     """The rooms *in there* means for ``objects`` at character offset ``before``: ``rooms`` (of the place
     named last) when one holds one of them, else :func:`there_holding`; refused when a place kept out of
-    before also holds one (*don't go into the dining room until you've checked the microwave; after that,
-    straighten one of the chairs in there*: the kitchen's chairs, or the dining room's?)."""
+    until a goal also holds one (*don't go into the dining room until you've checked the microwave; after
+    that, straighten one of the chairs in there*: the kitchen's chairs, or the dining room's?)."""
     holding = [r for r in rooms if any(o.room_key == r.key for o in objects)]
     kept_out = there_holding(before, objects, disc)
-    if holding and kept_out and {r.key for r in kept_out} != {r.key for r in holding}:
+    if holding and any(r.key in disc.kept_until and r not in holding for r in kept_out):
         rf.refuse(rf.there_goal_or_kept_out_until(" or ".join(r.key for r in holding), kept_out[0].key))
     return holding or kept_out
 

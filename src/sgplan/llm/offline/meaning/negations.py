@@ -48,6 +48,7 @@ def negation(item: Negation, clause: Clause, ctx: SentenceContext, said_whole: b
     is_global = declared or item.whole
     entities = [e for g in phrases for e in g.entities]
     if item.until is not None:
+        ctx.disc.kept_until |= {e.key for e in entities if e.kind == "room"}
         until(never(entities), item.until, clause, ctx)
     elif is_global:
         clause.constraints.append(Always(never(entities)))
