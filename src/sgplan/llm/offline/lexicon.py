@@ -288,8 +288,11 @@ LIST_NOUNS = word_set("list lists checklist todo do round rounds run runs tour r
                       "check stops visits things items duties rota program programme rules rule dos donts "
                       "rundown")
 """Words that name a list in its heading (*Morning round*, *Evening checks*, *To do:*, *Top floor tasks*)."""
+ORDER_NAMES = frozenset({"order", "sequence"})
+"""Words of :data:`LIST_NOUNS` that name an order: a list so named (*Order of jobs:*, *Sequence:*) is done in
+the order written, as a numbered one is (:func:`.syntax.lists.named_order`)."""
 WORK_NOUNS = word_set("duty care patrol sweep sweeps maintenance cleanup inspection inspections walkthrough "
-                      "circuit loop")
+                      "circuit loop reset")
 """Nouns of a round of work that head a list or the steps after a colon as :data:`LIST_NOUNS` do
 (*Bathroom duty:*, *Plant care:*, *Evening patrol:*): they name the work, never a goal."""
 LIST_NOUNS = LIST_NOUNS | WORK_NOUNS
@@ -709,7 +712,9 @@ POLITE = Phrases((
       for to in (("to",), ())),
     ("what", "i", "need", "is", "for", "you", "to"), ("i", "would", "like", "it", "if", "you"),
     ("i", "would", "appreciate", "it", "if", "you"), ("if", "you", "could"), ("if", "you", "would"),
-    ("would", "you", "mind"), ("do", "me", "a", "favor", "and"), ("do", "me", "a", "favour", "and"),
+    ("would", "you", "mind"),
+    *(("do", who, "a", *small, favour, "and") for who in ("me", "us")
+      for small in ((), ("small",), ("little",), ("quick",), ("big",)) for favour in ("favour", "favor")),
     *((*ask, *you) for ask in (("would", "it", "be", "possible"), ("is", "it", "possible"),
                                ("would", "it", "be", "okay"), ("would", "it", "be", "ok"))
       for you in (("for", "you", "to"), ("to",))),
@@ -735,8 +740,7 @@ POLITE = Phrases((
     ("come", "and"),  # "come and look at X", as "go and look at X"
     ("would", "you", "kindly"), ("could", "you", "kindly"), ("would", "you", "please"),
     ("could", "you", "please"),
-    ("be", "a", "dear", "and"), ("be", "a", "star", "and"), ("do", "us", "a", "favour", "and"),
-    ("do", "us", "a", "favor", "and"),
+    ("be", "a", "dear", "and"), ("be", "a", "star", "and"),
     *((word,) for word in ("task", "goal", "mission", "objective", "errand", "todo", "instructions", "target",
                            "tgt"))))
 """Polite or emphatic wrappers at a clause start ("could you ...", "make sure you ..."): no meaning."""
@@ -885,8 +889,8 @@ CLOSING = Phrases((
     ("you", "know"), ("quick", "one"), ("quick", "question"), ("quick", "request"), ("off", "you", "go"),
     ("quick", "favour"), ("quick", "favor"), ("a", "quick", "favour"), ("a", "quick", "favor"),
     ("merci",),
-    *(("if", "it", be, *no, "too", "much", "trouble") for be in ("is", "'s", "would", "will")
-      for no in (("not",), ("no",), ("not", "be"))),
+    *(("if", "it", be, *no, "too", "much", *trouble) for be in ("is", "'s", "would", "will")
+      for no in (("not",), ("no",), ("not", "be")) for trouble in (("trouble",), ("to", "ask"))),
     ("if", "it", "is", "no", "trouble"), ("if", "it", "'s", "no", "trouble"),
     ("when", "you", "get", "a", "moment"), ("when", "you", "get", "a", "minute"),
     *((when, "you", have, "a", moment) for when in ("when", "whenever") for have in ("have", "get")
@@ -920,8 +924,9 @@ CLOSING = Phrases((
     ("you", "rock"),
     ("ta", "in", "advance"),
     *((*and_, "that", be, "about", "it") for and_ in ((), ("and",)) for be in ("is", "'s")),
-    *((*ask, "me", "a", favour)
+    *((*ask, "me", "a", *small, favour)
       for ask in (("could", "you", "do"), ("can", "you", "do"), ("would", "you", "do"), ("do",))
+      for small in ((), ("small",), ("little",), ("quick",), ("big",), ("huge",))
       for favour in ("favour", "favor")),
     *((when, "you", *have, "a", sec) for when in ("when", "whenever")
       for have in (("have", "got"), ("have", "get"), ("have",), ("get",), ("got",))
@@ -1037,6 +1042,7 @@ CORRECTIONS = Phrases((("i", "mean"), ("i", "meant"), ("no", "wait"), ("wait", "
                        # a bare "sorry" or "no" between commas: "the garage, sorry, the office"
                        ("sorry", ","), ("no", ","), ("oops", ","), ("whoops", ","), ("er", "no"),
                        ("no", "no"), ("hang", "on"), ("wait", "a", "sec"), ("wait", "a", "second"),
+                       ("wait", ",", "actually"), ("wait", "actually"), ("oh", "wait"),
                        ("sorry", "i", "mean"),
                        # "no" before an article or "actually" names the thing meant, not one to avoid
                        ("no", "actually"), ("no", "a"), ("no", "an"), ("no", "the"),
@@ -1054,10 +1060,13 @@ UNFINISHED = DETERMINERS | frozenset({"to", "into", "in", "on", "at", "of", "thr
 _CHOOSERS = (("either",), ("any",), ("whichever",), ("either", "one"), ("any", "one"), ("whichever", "one"),
              ("any", "of", "them"), ("either", "of", "them"), ("whichever", "of", "them"), ("whatever",),
              ("whatever", "one"))
-_FINE = ((), ("is", "fine"), ("is", "ok"), ("is", "okay"), ("is", "good"), ("will", "do"), ("works",),
+_FINE: tuple[tuple[str, ...], ...] = (
+         (), ("is", "fine"), ("is", "ok"), ("is", "okay"), ("is", "good"), ("will", "do"), ("works",),
          ("would", "do"), ("would", "be", "fine"), ("will", "be", "fine"), ("you", "like"), ("you", "want"),
          ("you", "prefer"), ("you", "choose"), ("is", "closer"), ("is", "nearer"), ("is", "free"),
          ("is", "easier"), ("is", "easiest"), ("is", "handiest"), ("is", "closest"), ("is", "nearest"))
+_FINE += (("does", "not", "matter"),)  # "any of them doesn't matter"
+_FINE += tuple((*fine, "for", "you") for fine in _FINE if fine[:1] == ("is",))  # "is easier for you"
 _FINE += tuple(("'s", *fine[1:]) for fine in _FINE if fine[:1] == ("is",))  # "either one's fine"
 CHOOSERS_OF_KIND = ("either", "any", "whichever")
 REMARK_FINE = Phrases(tuple(fine for fine in _FINE if fine))
@@ -1116,6 +1125,7 @@ _SPAN_NOUNS = ("mission", "task", "trip", "route", "run", "time", "way", "journe
                "path")
 WHOLE_MISSION = Phrases((
     ("the", "whole", "time"), ("the", "entire", "time"), ("at", "all", "times"), ("at", "any", "time"),
+    ("whole", "time"), ("entire", "time"),  # operators' "!kit whole time"
     ("at", "any", "point"), ("throughout",), ("the", "whole", "way"), ("all", "the", "time"),
     ("on", "the", "way"), ("on", "your", "way"), ("along", "the", "way"), ("at", "all"),
     ("all", "along"), ("for", "the", "duration"), ("the", "entire", "way"),
@@ -2030,6 +2040,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("pls",): ("please",),
     ("plz",): ("please",),
     ("gf",): ("ground", "floor"),
+    ("stay", "on", "flr"): ("stay", "on", "this", "floor"),  # "stay on flr.": the floor it is on
     # "gnd flr bath", "gnd: empty rm -> ...", "gnd bath toilet": the ground floor
     ("gnd", "flr"): ("ground", "floor"), ("gnd", "fl"): ("ground", "floor"),
     ("gnd", "floor"): ("ground", "floor"), ("gnd",): ("ground", "floor"),
@@ -2104,6 +2115,9 @@ PHRASE_ALIASES.update({
     ("start", "the", "day", "by"): ("start", "by"), ("to", "start", "the", "day"): ("first",),
     # operator shorthand for the order: "order n/a", "any ord."
     ("order", "n", "/", "a"): ("in", "any", "order"), ("any", "ord"): ("in", "any", "order"),
+    # "Apart from that, ...": what follows is more to do (only before a comma: "other than that room")
+    **{(*besides, "that", ","): ("also", ",") for besides in (("apart", "from"), ("aside", "from"),
+                                                             ("other", "than"), ("besides",))},
 })
 _LEARNERS: dict[tuple[str, ...], tuple[str, ...]] = {
     **{("where", "is", "nothing", but): ("with", "nothing", "but") for but in ("but", "except")},
@@ -2142,7 +2156,8 @@ _SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
     # a prohibition wrapped as a wish: "I'd rather you didn't go into X", "I'd prefer it if you stayed out"
     **{(*who, *wish, "you", *did): ("do", "not") for who in (("i", "would"), ("we", "would"))
        for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"),
-                    ("appreciate", "it", "if"), ("like", "it", "if"), ("love", "it", "if"))
+                    ("appreciate", "it", "if"), ("like", "it", "if"), ("love", "it", "if"),
+                    ("be", "grateful", "if"), ("be", "thankful", "if"), ("be", "so", "grateful", "if"))
        for did in (("did", "not"), ("not",), ("did", "not", "ever"))},
     **{(*who, *wish, "you", stayed): (stay,) for who in (("i", "would"), ("we", "would"))
        for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"))

@@ -202,9 +202,9 @@ def sentences(tokens: list[Tok]) -> list[Part]:
             close()
             marker, numbered = "number", int(tok.text)
             i += 1  # the ')' or '.'
-        elif tok.text == _DASH or (tok.text in ("(", ")") and not (i + 1 < len(tokens)
-                                                                   and tokens[i + 1].text.isdigit())):
+        elif tok.text in (_DASH, ")") or (tok.text == "(" and not nxt.isdigit()):
             # an aside in parentheses or dashes reads like one between commas: "the fridge (any order), ..."
+            # ("(2) the oven": an item's number; "chair (any) 3) kit": the aside closed before one)
             if current and current[-1].text != "," and nxt not in (",", "", LINE_BREAK):
                 current.append(Tok(",", tok.start, tok.end))
         else:

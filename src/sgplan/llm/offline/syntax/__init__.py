@@ -33,7 +33,7 @@ from sgplan.llm.offline.syntax.context import (
     timed_heading,
 )
 from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
-from sgplan.llm.offline.syntax.fine_choice import fine_choice
+from sgplan.llm.offline.syntax.fine_choice import fine_choice, remark_commas
 from sgplan.llm.offline.syntax.floor_only import floor_only
 from sgplan.llm.offline.syntax.fragments import context_fragment
 from sgplan.llm.offline.syntax.fronted import fronted_prohibition
@@ -73,6 +73,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     readers = [said for r in readers for said in bracketed_remarks(r)]  # "(it's the cough syrup)": said back
     readers = [run_on_statements(r) for r in readers]  # "... at all the floor is wet": ", the floor is wet"
     readers = [each_visit_rule(r) for r in readers]  # "each kit visit -> DR after": "whenever you visit kit"
+    readers = [remark_commas(r) for r in readers]  # "an apple any apple is fine then": ", any apple is fine,"
     readers = [fine_choice(r) for r in readers]  # "then either bedroom is fine": then either bedroom
     readers = [said for r in readers for said in only_clause(r)]  # ", and only go to X after Y": its own
     readers = [said for r in readers for said in wanted_done(r)]  # "I need the kitchen sorted": the kitchen

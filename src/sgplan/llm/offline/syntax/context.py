@@ -41,7 +41,7 @@ from sgplan.llm.offline.syntax.preamble import stated_start
 from sgplan.llm.offline.syntax.reader import Match, Reader
 from sgplan.llm.offline.syntax.stated_place import BOUND_PRONOUNS, bind_statement_pronoun
 from sgplan.llm.offline.syntax.tree import Described, NounPhrase
-from sgplan.llm.offline.text import Tok, is_clock_time
+from sgplan.llm.offline.text import is_clock_time
 
 
 def set_aside_context(readers: list[Reader]) -> list[Reader]:
@@ -244,10 +244,24 @@ def apology(r: Reader) -> bool:
     pronoun, number or word of correcting (:data:`.lexicon.CORRECTING_WORDS`)."""
     if r.word(0) not in lx.APOLOGY_WORDS or r.word(1) != "," or statement(r, 2, len(r)) != "aside":
         return False
-    return not any(r.head(k) is not None or w in lx.PRONOUNS or w in lx.ANAPHORIC_ONE
+    return not any(r.head(k) is not None or w in lx.ANAPHORIC_ONE
+                   or ((w in lx.PRONOUNS or w in lx.DEICTIC_SUBJECTS) and not judged_request(r, k))
                    or w in lx.RELATIVE_FLOORS or w in lx.FLOOR_WORDS or w in lx.NUMBER_WORDS or w.isdigit()
-                   or w in lx.CORRECTING_WORDS or w in lx.DEICTIC_SUBJECTS or r.phrase(k, lx.CORRECTIONS)
+                   or w in lx.CORRECTING_WORDS or r.phrase(k, lx.CORRECTIONS)
                    for k, w in enumerate(r.words[2:], 2))
+
+
+_JUDGEMENTS = frozenset({"a", "an", "bit", "little", "kind", "of", "sort", "odd", "weird", "strange", "silly",
+                         "random", "fussy", "picky", "lot", "much", "request", "ask"})
+"""The words of a speaker's judgement of their own request (*it's a bit odd*, *it's a weird request*); kept
+out of the lexicon (its words are no words of the grammar)."""
+
+
+def judged_request(r: Reader, k: int) -> bool:
+    """Whether the *it* / *that* at ``k`` is the request judged in the words that close the sentence (*Sorry,
+    I know it's a bit odd.*), not a thing: *'s* / *is* and only words of :data:`_JUDGEMENTS` after it."""
+    return (r.word(k) in ("it", "that", "this") and r.word(k + 1) in ("'s", "is") and len(r) > k + 2
+            and all(w in _JUDGEMENTS for w in r.words[k + 2:]))
 
 
 def comma_clauses(r: Reader) -> list[tuple[int, int]]:
@@ -857,9 +871,11 @@ def timed_heading(r: Reader) -> list[Reader]:
         return [r]
     said = r.words[:tail]
     counted = any(w in lx.NUMBER_WORDS or w in lx.FEW or w.isdigit() for w in said)
-    if not counted and not (said[:1] and said[0] in lx.LIST_NOUNS and said[1:2] == ("to",)):
-        return [r]  # how many, or a list of things to do (*Things to grab before dinner:*); a label with
-        # its time (*Route for this afternoon:*) is said back whole
+    # a list of things to do (*Things to grab before dinner:*, *To do before dinner:*), or what points to
+    # the list (*Could you do these when you have a moment:*)
+    listed = (bool(said[:1]) and said[0] in lx.LIST_NOUNS and said[1:2] == ("to",)) or said == ("to", "do")
+    if not counted and not listed and said[-1:] != ("these",):
+        return [r]  # a label with its time (*Route for this afternoon:*) is said back whole
     return [aside(r, tail, len(r) - 1), replace(r, toks=r.toks[:tail] + r.toks[-1:])]
 
 
@@ -968,12 +984,7 @@ def run_on_statements(r: Reader) -> Reader:
                     or (r.word(j) == "and" and starts_order(r, j + 1))), len(r))
         if not any(names_place(r, j) and not floor_surface(r, j) for j in range(verb, end)):
             cuts += [k, end] if r.word(end) == "and" else [k]  # "... and check the couch": an order again
-    if not cuts:
-        return r
-    toks = list(r.toks)
-    for k in sorted(cuts, reverse=True):
-        toks.insert(k, Tok(",", toks[k - 1].end, toks[k - 1].end))
-    return replace(r, toks=tuple(toks))
+    return r.with_commas(cuts)
 
 
 def relative_clause(r: Reader, verb: int) -> bool:

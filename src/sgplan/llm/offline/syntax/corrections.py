@@ -167,11 +167,17 @@ def takes_back_order(r: Reader, before: Reader) -> bool:
     if start is None or adds(r, start):
         return False
     i = order_start(r, start)
-    if r.word(i) in lx.POSITIVE_VERBS:
+    if order_verb(r, i):
         return True
     taken_back = {h.categories for h in goal_heads(before, 0, len(before))}
     return ((r.word(i) in lx.FIRST or r.np_starts(i)) and bool(taken_back)
             and taken_back <= {h.categories for h in named_heads(r, i, len(r))})
+
+
+def order_verb(r: Reader, i: int) -> bool:
+    """Whether an order's verb is at ``i``: a verb of the goals, or *do* before a noun phrase (*do the laptop
+    first*)."""
+    return r.word(i) in lx.POSITIVE_VERBS or (r.word(i) == "do" and r.np_starts(i + 1))
 
 
 def said_instead(r: Reader) -> int | None:
@@ -295,12 +301,7 @@ def apposition_marked(r: Reader) -> Reader:
     one with the teddy bear*): the apposition it is."""
     cuts = [k for k in range(1, len(r)) if r.word(k) == "the" and r.word(k + 1) in lx.ANAPHORIC_ONE
             and any(phrase_to(r, j, k) for j in range(max(0, k - 10), k))]
-    if not cuts:
-        return r
-    toks = list(r.toks)
-    for k in reversed(cuts):
-        toks.insert(k, Tok(",", toks[k - 1].end, toks[k - 1].end))
-    return replace(r, toks=tuple(toks))
+    return r.with_commas(cuts)
 
 
 def broken_word(r: Reader, cut: int) -> bool:
@@ -390,7 +391,7 @@ def order_said_again(r: Reader, k: int, after: int,
     said_again = {h.categories for h in named_heads(r, start, len(r))}
     named_again = bool(taken_back) and {h.categories for h in taken_back} <= said_again
     all_again = named_again and {h.categories for h in taken_back} == said_again
-    if (r.word(start) not in lx.POSITIVE_VERBS and r.word(start) not in lx.FIRST and r.word(start) != "please"
+    if (not order_verb(r, start) and r.word(start) not in lx.FIRST and r.word(start) != "please"
             and not (named_again and r.np_starts(start))):  # "... no wait, (the) laptop first, then the oven"
         return None
     if len(taken_back) > 1 and not all_again:

@@ -1,5 +1,8 @@
 """A step said as a choice that is fine: *go to the couch and then either bedroom on the top floor is fine*.
 
+A choice remark run on after a noun without a mark, as dictation types it (*grab an apple any apple is fine
+then ...*), is read as between commas (:func:`remark_commas`).
+
 After *then*, a phrase of *either* / *any* / *whichever* closing its clause with *is fine* / *will do* (the
 words of :data:`.lexicon.REMARK_FINE`) is the next step, that choice: the remark is dropped and the phrase
 read as the step it stands for. Only after *then*: after a comma the same words may confirm a choice named
@@ -35,3 +38,26 @@ def fine_choice(r: Reader) -> Reader:
             continue  # the words before the remark are not one phrase of a choice
         return fine_choice(replace(r, toks=r.toks[:at] + r.toks[at + len(said):]))
     return r
+
+
+_REMARK_WORDS = frozenset({"of", "them", "the", "one", "ones", "these", "those"}) | frozenset(lx.NUMBER_WORDS)
+"""Words between the chooser and the *is fine* of a run-on remark besides the noun (*any of them*)."""
+
+
+def remark_commas(r: Reader) -> Reader:
+    """``r`` with commas around each choice remark run on after a noun of the scene without a mark (*grab an
+    apple any apple is fine then ...*, *sit at the dining table any of them doesnt matter then ...*): a word
+    of :data:`.lexicon.CHOOSERS_OF_KIND`, a noun or *of them*, and a remark of :data:`.lexicon.REMARK_FINE`
+    closing the clause. Read between commas, the remark is then decided or refused as one typed so."""
+    cuts: list[int] = []
+    for k in range(2, len(r)):
+        if r.word(k) not in lx.CHOOSERS_OF_KIND or r.head_before(k) is None:
+            continue
+        end = next(j for j in range(k + 1, len(r) + 1) if r.word(j) in _ENDS)
+        j = k + 1
+        while j < end and ((head := r.head(j)) is not None or r.word(j) in _REMARK_WORDS):
+            j += head.words if head is not None else 1
+        fine = r.phrase(j, lx.REMARK_FINE)
+        if fine is not None and j + len(fine) == end:
+            cuts += [k] if r.word(end) in ("", ",") else [k, end]
+    return r.with_commas(cuts)

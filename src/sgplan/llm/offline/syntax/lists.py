@@ -283,6 +283,7 @@ def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order |
     said = replace(heading, toks=heading.toks[:-1]) if heading.word(len(heading) - 1) == ":" else heading
     said, remark = without_order_remark(said)  # "Visit these rooms in order:"
     order = order_said(remark, 0, len(remark)) if remark is not None else None
+    order = order or named_order(said)
     if said.says(lx.CORRECTIONS, 0, len(said)):
         return [said], None, None, ()  # "Change of plan:": takes back what was said before (refused)
     if set(said.words) & lx.ORDER_HEADS and all(w in lx.FILLERS for w in said.words):
@@ -306,6 +307,13 @@ def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order |
     if label < len(said) - 1:  # "Checklist, stay on this floor": a sentence of its own
         out.append(replace(said, toks=said.toks[label + 1:]))
     return out, None, order or order_said(said, 0, label), floor_scope(said, 0, label)
+
+
+def named_order(said: Reader) -> Order | None:
+    """``"ordered"`` when the heading ``said`` names the list an order (*Order:*, *Order of stops:*, *Sequence
+    of jobs:*, *Running order:*): its items are done in the order written, as a numbered list's are."""
+    words = said.words[1:] if said.words[:1] == ("running",) else said.words
+    return "ordered" if words[:1] and words[0] in lx.ORDER_NAMES and words[1:2] in ((), ("of",)) else None
 
 
 def list_name(said: Reader, most: int) -> bool:
@@ -530,7 +538,8 @@ def verb_prefix(r: Reader) -> Announced | None:
 def verb_word(r: Reader, k: int) -> bool:
     """Whether the word at ``k`` may be read before each item of a list: a verb, a negation, a filler."""
     w = r.word(k)
-    return w in lx.AVOID_VERBS or w in lx.FILLERS or w in lx.NEG_STARTS.words() or w in lx.POLITE.words()
+    return (w in lx.AVOID_VERBS or w in lx.FILLERS or w in lx.NEG_STARTS.words() or w in lx.POLITE.words()
+            or w == "doing")  # "Would you mind doing these:"
 
 
 def label_end(r: Reader) -> int | None:
@@ -614,10 +623,12 @@ def only_order_remark(r: Reader) -> Order | None:
 
 def floor_scope(r: Reader, start: int, end: int) -> tuple[Tok, ...]:
     """The words of the floor a heading puts its items on (*Top floor tasks*, *Upstairs run*), as an
-    opening of each item (*on the top floor, ...*), or nothing."""
+    opening of each item (*on the top floor, ...*; *while you're upstairs, ...*: the heading names where the
+    items are, so said on the top floor, *upstairs* is that floor), or nothing."""
     for k in range(start, end):
         if r.word(k) in lx.RELATIVE_FLOORS:
-            return r.toks[k], Tok(",", r.toks[k].end, r.toks[k].end)
+            at, end_at = r.toks[k].start, r.toks[k].end
+            return (*(Tok(w, at, at) for w in ("while", "you", "are")), r.toks[k], Tok(",", end_at, end_at))
         found = floor_words(r, k)
         if found is not None:
             on = Tok("on", r.toks[k].start, r.toks[k].start)

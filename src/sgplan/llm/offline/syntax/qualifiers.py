@@ -779,7 +779,8 @@ def contact_clause(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skip
     it is refused, naming the words."""
     nxt = r.word(i + 1)
     if (r.word(i) not in lx.CONTACT_SUBJECTS or not nxt.isalpha() or nxt in lx.STATEMENT_VERBS
-            or r.phrase(i, lx.POLITE) is not None):  # "... the kitchen I want you to check ...": an order
+            or r.phrase(i, lx.POLITE) is not None  # "... the kitchen I want you to check ...": an order
+            or r.phrase(i, lx.CORRECTIONS) is not None):  # "the bowl i mean the oven": a correction
         return None
     return Refusal(rf.contact_clause(r.quote(noun.first, min(len(r), i + 2))))
 

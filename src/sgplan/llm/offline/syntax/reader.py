@@ -10,7 +10,7 @@ that can try something else on ``None`` or a refusal does; one that cannot passe
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Generic, Literal, TypeVar
 
 from sgplan.llm.offline import lexicon as lx
@@ -183,6 +183,14 @@ class Reader:
         while self.word(i) and self.word(i) in words:
             i += 1
         return i
+
+    def with_commas(self, cuts: Sequence[int]) -> Reader:
+        """This sentence with a comma inserted before each token index of ``cuts`` (a pause that typing or
+        dictation left out), at no width in the text."""
+        toks = list(self.toks)
+        for k in sorted(set(cuts), reverse=True):
+            toks.insert(k, Tok(",", toks[k - 1].end, toks[k - 1].end))
+        return replace(self, toks=tuple(toks)) if cuts else self
 
     def decided(self, at: int) -> bool | None:
         """How the attachment at token ``at`` is read (:attr:`choices`), ``None`` if not decided yet."""
