@@ -555,6 +555,16 @@ def on_the_way_to_several(count: int) -> str:
                     "X'), or leave the destination out")
 
 
+def floor_said_twice(said: str) -> str:
+    return rephrase(f"'{said}' names a floor twice in a row: the same floor said again, or a correction? "
+                    "Name the floor once")
+
+
+def starting_place(said: str) -> str:
+    return rephrase(f"'{said}' says where to start from, which is no goal; leave it out, or say where to go "
+                    "(the start is where the robot is)")
+
+
 def way_back_from_mid(said: str) -> str:
     return rephrase(f"'{said} ...' after what it is said with: done after that place, or before it? Open the "
                     "sentence with it ('On your way back from X, check Y': X, then Y) or say 'then'")

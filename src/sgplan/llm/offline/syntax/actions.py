@@ -163,6 +163,10 @@ def floor_move(r: Reader, i: int, phrases: PhraseList, in_condition: bool) -> Pa
     return moved_action(r, k, in_condition)
 
 
+_BEFORE_FROM = frozenset({"", ",", "so", "and", "then", "now", "ok", "okay"})
+"""Words after which *from* opens its clause (*so from the kitchen go ...*): no verb of going before it."""
+
+
 def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
     """The words before the phrase: the verb, whatever it is, unless it is refused or a word of the grammar
     (*always*, *floor*, *next* out of place are refused, not verbs); and a floor said among them (*go
@@ -223,6 +227,10 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
             return odd
         if w not in lx.POSITIVE_VERBS and r.nouns.names_word(w) and r.np_starts(i + 1):  # "living chair"
             return Refusal(rf.cannot_understand_word(w, f"'{r.quote(i, min(len(r), i + 3))}'"))
+        if w == "from" and not seen and (r.word(i + 1) == "here" or r.at(i + 1, "on", "this", "floor")
+                                         or r.word(i - 1) in _BEFORE_FROM):
+            # "from up here go down to ...", "From the kitchen go to ...": where it starts, never a goal
+            return Refusal(rf.starting_place(r.quote(i, min(len(r), i + 4))))
         if w == "out" and r.word(i + 1) == "from" and r.word(i - 1) in lx.FLOOR_MOVE_VERBS:
             return Refusal(rf.cannot_understand(lx.REFUSED_WORDS["leave"]))  # "go out from X": leaving X
         seen.append(w)

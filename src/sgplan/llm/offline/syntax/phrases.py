@@ -196,9 +196,7 @@ def described(r: Reader, i: int, role: Role, given: Head | None) -> Parse[NounPh
     elif floor_before is not None:
         i = floor_before.end
         if r.head(i) is None and not qualifiers.anaphoric_one(r, i):  # "the top floor": a place
-            if det.node.count is not None:  # "(both top floor btw)": a floor counted as things
-                return Refusal(rf.counted_floor(r.quote(first, i)))
-            return Match(FloorPlace(r.span(first, i), floor_before.node, det.node.mode), i)
+            return floor_place(r, first, i, floor_before.node, det.node)
     described_as = (*said, *r.words[i : r.descriptive_end(i)])  # "the big (upstairs) couch"
     # "the downstairs one", "the top floor one": of the kind named last, on that floor
     floor_one = (bool(relative or floor_before) and given is None
@@ -545,3 +543,22 @@ def list_joiner(r: Reader, i: int, preposition: str | None) -> tuple[str, int] |
     if r.at(i, "as", "well", "as") and r.np_starts(i + 3):
         return "and", i + 3
     return None
+
+
+def floor_place(r: Reader, first: int, end: int, floor: FloorSpec, det: Determiner) -> Parse[NounPhrase]:
+    """A floor named as a place, ``[first, end)`` (*the top floor*); refused when counted as things (*(both
+    top floor btw)*) or named right after another floor (:func:`floor_just_said`)."""
+    if det.count is not None:
+        return Refusal(rf.counted_floor(r.quote(first, end)))
+    if floor_just_said(r, first):  # "the corridor on floor 1 er the middle floor": said again
+        return Refusal(rf.floor_said_twice(r.quote(max(0, first - 2), end)))
+    return Match(FloorPlace(r.span(first, end), floor, det.mode), end)
+
+
+def floor_just_said(r: Reader, i: int) -> bool:
+    """Whether a floor is named right before ``i``, with no word between (*on floor 1 the middle floor*,
+    *upstairs the top floor*): a floor named at ``i`` says it again, or corrects it; never a goal of its
+    own."""
+    before = r.word(i - 1)
+    return (before in ("floor", "flr") or before in lx.RELATIVE_FLOORS
+            or (before.isdigit() and r.word(i - 2) in ("floor", "flr")))
