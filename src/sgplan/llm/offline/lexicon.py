@@ -809,7 +809,8 @@ ANY_ORDER = Phrases((
                                       ("whatever", "order"), ("whichever", "order"), ("either", "order"))
       for liking in _ORDER_LIKING),
     ("in", "whichever", "order"), ("whatever", "order"), ("either", "order"), ("no", "particular", "order"),
-    *(("in", "which", "order", *liking) for liking in _ORDER_LIKING),  # learners: "in which order you want"
+    *((*in_, "which", "order", *liking) for in_ in ((), ("in",))
+      for liking in _ORDER_LIKING),  # learners: "(in) which order you want"
     ("the", "order", "is", "up", "to", "you"), ("order", "is", "up", "to", "you"),
     # "in any order doesnt matter", "any order, it doesn't matter": the order said free twice
     *((*order, *comma, *it, "does", "not", "matter") for order in (("in", "any", "order"), ("any", "order"),
@@ -2041,6 +2042,10 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("plz",): ("please",),
     ("gf",): ("ground", "floor"),
     ("stay", "on", "flr"): ("stay", "on", "this", "floor"),  # "stay on flr.": the floor it is on
+    ("wondering", "whether"): ("wondering", "if"), ("wonder", "whether"): ("wonder", "if"),
+    ("you", "mind", "terribly"): ("you", "mind"),  # "Would you mind terribly going ..."
+    # "the vases that are there", as learners say it "what are there": the vases there
+    **{(that, be, "there"): ("there",) for that in ("that", "which", "what") for be in ("is", "are")},
     # "gnd flr bath", "gnd: empty rm -> ...", "gnd bath toilet": the ground floor
     ("gnd", "flr"): ("ground", "floor"), ("gnd", "fl"): ("ground", "floor"),
     ("gnd", "floor"): ("ground", "floor"), ("gnd",): ("ground", "floor"),

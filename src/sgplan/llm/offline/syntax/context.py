@@ -255,13 +255,16 @@ _JUDGEMENTS = frozenset({"a", "an", "bit", "little", "kind", "of", "sort", "odd"
                          "random", "fussy", "picky", "lot", "much", "request", "ask"})
 """The words of a speaker's judgement of their own request (*it's a bit odd*, *it's a weird request*); kept
 out of the lexicon (its words are no words of the grammar)."""
+_JUDGING = frozenset({"'s", "is", "sounds", "seems", "looks"})
 
 
 def judged_request(r: Reader, k: int) -> bool:
     """Whether the *it* / *that* at ``k`` is the request judged in the words that close the sentence (*Sorry,
-    I know it's a bit odd.*), not a thing: *'s* / *is* and only words of :data:`_JUDGEMENTS` after it."""
-    return (r.word(k) in ("it", "that", "this") and r.word(k + 1) in ("'s", "is") and len(r) > k + 2
-            and all(w in _JUDGEMENTS for w in r.words[k + 2:]))
+    I know it's a bit odd.*), not a thing: *'s* / *is* / *sounds* and only words of :data:`_JUDGEMENTS` after
+    it, to the end of its clause."""
+    end = next((j for j in range(k + 2, len(r)) if r.word(j) == ","), len(r))
+    return (r.word(k) in ("it", "that", "this") and r.word(k + 1) in _JUDGING and end > k + 2
+            and all(w in _JUDGEMENTS for w in r.words[k + 2:end]))
 
 
 def comma_clauses(r: Reader) -> list[tuple[int, int]]:

@@ -123,15 +123,49 @@ def joined_appositions(readers: list[Reader]) -> list[Reader]:
     instead (:func:`takes_back_last`), joined to the sentence before it, after a comma (see the module
     docstring)."""
     out: list[Reader] = []
-    for r in readers:
+    for r in continued_corrections([instead_dropped(r) for r in readers]):
         before = out[-1] if out else None
         if (before is not None and not before.aside and not r.aside and r.marker is None
                 and joins_before(r, before)):
-            comma = Tok(",", before.toks[-1].end, before.toks[-1].end)
-            out[-1] = replace(before, toks=(*before.toks, comma, *r.toks[r.skip(0, (",",)):]))
+            out[-1] = joined(before, r)
             continue
         out.append(r)
     return out
+
+
+def joined(before: Reader, r: Reader) -> Reader:
+    """The sentence ``before`` and the sentence ``r`` after it, read as one, after a comma."""
+    comma = Tok(",", before.toks[-1].end, before.toks[-1].end)
+    return replace(before, toks=(*before.toks, comma, *r.toks[r.skip(0, (",",)):]))
+
+
+def continued_corrections(readers: list[Reader]) -> list[Reader]:
+    """``readers`` with each sentence that opens with *then* joined to a sentence before it that opens with a
+    correction saying something instead (*Go to the kitchen. No wait, the dining room first. Then the
+    kitchen.*), when only the two together take back the sentence before them (:func:`joins_before`): the
+    order said again runs on over both (*Sorry, I mean the office. Then the couch.*: the office alone takes
+    back the kitchen, and the couch comes after it)."""
+    out: list[Reader] = []
+    for r in readers:
+        before = out[-1] if out else None
+        first = out[-2] if len(out) > 1 else None
+        if (before is not None and first is not None and not before.aside and not first.aside and not r.aside
+                and r.marker is None and r.word(0) == "then" and said_instead(before) is not None
+                and not joins_before(before, first) and joins_before(joined(before, r), first)):
+            out[-1] = joined(before, r)
+            continue
+        out.append(r)
+    return out
+
+
+def instead_dropped(r: Reader) -> Reader:
+    """``r`` without an *instead* closing a clause after a correction (*get the bowl, no wait, the oven
+    instead*): the correction already says the new phrase stands instead of the old (*instead of X* is
+    kept)."""
+    k = next((k for k in range(len(r)) if r.phrase(k, lx.CORRECTIONS) is not None), None)
+    cut = {j for j in range(k + 1, len(r)) if r.word(j) == "instead" and r.word(j + 1) in _CLAUSE_ENDS
+           } if k is not None else set()
+    return replace(r, toks=tuple(t for j, t in enumerate(r.toks) if j not in cut)) if cut else r
 
 
 def joins_before(r: Reader, before: Reader) -> bool:
