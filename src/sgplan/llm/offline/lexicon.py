@@ -1127,6 +1127,7 @@ _SPAN_NOUNS = ("mission", "task", "trip", "route", "run", "time", "way", "journe
 WHOLE_MISSION = Phrases((
     ("the", "whole", "time"), ("the", "entire", "time"), ("at", "all", "times"), ("at", "any", "time"),
     ("whole", "time"), ("entire", "time"),  # operators' "!kit whole time"
+    ("for", "all", "of", "it"), ("for", "all", "of", "this"), ("for", "all", "of", "that"),
     ("at", "any", "point"), ("throughout",), ("the", "whole", "way"), ("all", "the", "time"),
     ("on", "the", "way"), ("on", "your", "way"), ("along", "the", "way"), ("at", "all"),
     ("all", "along"), ("for", "the", "duration"), ("the", "entire", "way"),
@@ -1940,6 +1941,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("plus",): ("and",),
     ("anywhere", "near"): ("into",),
     ("up", "here"): ("on", "this", "floor"),
+    ("up", "top"): ("on", "the", "top", "floor"),  # "the bathroom up top"
     ("down", "here"): ("on", "this", "floor"),
     ("where", "you", "can", "find"): ("containing",),
     ("where", "you", "will", "find"): ("containing",),

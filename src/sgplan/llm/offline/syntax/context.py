@@ -423,8 +423,9 @@ def aside_between(r: Reader, start: int, end: int) -> bool:
 
 def floor_surface(r: Reader, k: int) -> bool:
     """Whether the word at ``k`` is the floor one walks on, said as a statement's subject (*the floor is wet*,
-    *the floors are slippery*), not a storey (*the top floor*, *floor 2*)."""
-    return r.word(k) in ("floor", "floors") and r.word(k - 1) == "the" and r.word(k + 1) in lx.STATEMENT_VERBS
+    *the floors are slippery*, *..., floor's wet*), not a storey (*the top floor*, *floor 2*)."""
+    return (r.word(k) in ("floor", "floors") and r.word(k - 1) in ("the", ",", "")
+            and r.word(k + 1) in lx.STATEMENT_VERBS)
 
 
 _PAST_TIME_NOUNS = frozenset({"night", "week", "weekend", "month", "year", "time", "summer", "winter"})
@@ -1043,9 +1044,9 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
     verb = r.word(verb_at)
     if (w.isalpha() and r.head(start) is None
             and (plain_subject(r, start) or w in lx.RELATIVE_FLOORS or w in lx.EVENT_WORDS
-                 or w in lx.PEOPLE_NOUNS or w in _VAGUE_SUBJECTS)
+                 or w in lx.PEOPLE_NOUNS or w in _VAGUE_SUBJECTS or floor_surface(r, start))
             and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
-        return verb_at  # "Grandpa's napping", "Mom called", "downstairs needs to look nice"
+        return verb_at  # "Grandpa's napping", "Mom called", "downstairs needs to look nice", "floor's wet"
     return None
 
 

@@ -396,8 +396,16 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     kinds = {head_kind(p) for p in (old, new.node) if isinstance(p, Described)} - {None}
     if len(kinds) > 1:
         return None  # "the toilet in the top-floor bathroom, no wait, the bathroom downstairs": which part?
+    if kinds == {"object"} and rooms_named(r, 0, start) and rooms_named(said, start_new, new.end):
+        return None  # "go to the bedroom and sit on the chair there, no wait, the chair in the office": the
+        # bedroom was where that chair is; is it taken back too?
     kept = replace(r, toks=r.toks[:start] + named + r.toks[rest:])
     return kept, replace(r, toks=r.toks[start:start_new], aside=True)
+
+
+def rooms_named(r: Reader, start: int, end: int) -> bool:
+    """Whether a room's noun is said in ``[start, end)``."""
+    return any(h.kind == "room" for _, h in _heads_at(r, start, end))
 
 
 def said_with_verb(r: Reader, start: int, end: int) -> bool:
