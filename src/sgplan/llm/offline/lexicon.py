@@ -2046,6 +2046,17 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("stay", "on", "flr"): ("stay", "on", "this", "floor"),  # "stay on flr.": the floor it is on
     ("wondering", "whether"): ("wondering", "if"), ("wonder", "whether"): ("wonder", "if"),
     ("you", "mind", "terribly"): ("you", "mind"),  # "Would you mind terribly going ..."
+    # "check the fridge every time after you go into the kitchen": each time you go in, afterwards
+    **{(every, "time", "after", "you"): (every, "time", "you") for every in ("every", "each")},
+    # "Would it be alright if you went to X": a wish said in the past tense, an order
+    **{("would", "it", "be", *fine, "if", "you", past): ("please", present)
+       for fine in (("alright",), ("all", "right"), ("okay",), ("ok",), ("possible",))
+       for past, present in (("went", "go"), ("checked", "check"), ("looked", "look"), ("visited", "visit"),
+                             ("watered", "water"), ("sat", "sit"))},
+    # learners' choice remarks: "the toilet, anyone of two", "either of two": of the two
+    **{(chooser, "of", number): (chosen, "of", "the", number) for chooser, chosen in
+       (("anyone", "any"), ("any", "any"), ("either", "either"), ("whichever", "whichever"))
+       for number in ("two", "three", "four", "2", "3", "4")},
     # "the vases that are there", as learners say it "what are there": the vases there
     **{(that, be, "there"): ("there",) for that in ("that", "which", "what") for be in ("is", "are")},
     # "gnd flr bath", "gnd: empty rm -> ...", "gnd bath toilet": the ground floor

@@ -455,8 +455,11 @@ def is_reason(r: Reader, start: int, end: int) -> bool:
 
 
 def starts_order(r: Reader, k: int) -> bool:
-    """Whether the words at ``k`` start an order: a prohibition, a polite wrapper, a verb."""
+    """Whether the words at ``k`` start an order: a prohibition, a polite wrapper, a verb; after *you* and a
+    modal (*you must not enter ...*)."""
     w = r.word(k)
+    if w == "you" and r.word(k + 1) in lx.MODALS:
+        return starts_order(r, k + 2)
     return (r.phrase(k, lx.NEG_STARTS) is not None or r.phrase(k, lx.POLITE) is not None or w == "please"
             or (w in lx.STAY and not w.endswith("ing"))  # "... so stay on this floor": an order to keep
             or (w in lx.POSITIVE_VERBS and w not in lx.PLACE_PREPOSITIONS and w not in lx.PARTICLES
