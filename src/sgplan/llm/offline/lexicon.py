@@ -562,6 +562,9 @@ REVISIT_VERBS = word_set("return returning back")
 """``return to X`` / ``go back to X`` after X was visited: a new visit, as with ``again``."""
 MODALS = frozenset({"do", "does", "may", "can", "must", "should", "will"})
 """In a verb slot without a negation after it: no meaning (*may you go into ...*, *I do want you to ...*)."""
+ORDER_MODALS = frozenset({"must", "should"})
+"""After *you*, the modals of an order (*Today you must not enter X*); not *you will / can*, which may say
+what is not needed (*you won't need X*)."""
 DONE_WHAT = ("it", "that", "this", "so")
 """``do it`` / ``do that``: what was done, not a place (refused as a goal)."""
 VERB_IDIOMS = Phrases((("all", "the", "way"), ("a", "look"), ("a", "quick", "look"), ("a", "peek"),
@@ -1941,7 +1944,10 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("plus",): ("and",),
     ("anywhere", "near"): ("into",),
     ("up", "here"): ("on", "this", "floor"),
-    ("up", "top"): ("on", "the", "top", "floor"),  # "the bathroom up top"
+    # "the bathroom up top", "go up top": the top floor (after a thing it may be a top shelf: not read)
+    **{(said, "up", "top"): (said, "on", "the", "top", "floor")
+       for said in ("room", "bathroom", "bedroom", "kitchen", "office", "corridor", "hallway")},
+    **{(go, "up", "top"): (go, "up", "to", "the", "top", "floor") for go in ("go", "head", "come", "pop")},
     ("down", "here"): ("on", "this", "floor"),
     ("where", "you", "can", "find"): ("containing",),
     ("where", "you", "will", "find"): ("containing",),
@@ -2043,7 +2049,9 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("pls",): ("please",),
     ("plz",): ("please",),
     ("gf",): ("ground", "floor"),
-    ("stay", "on", "flr"): ("stay", "on", "this", "floor"),  # "stay on flr.": the floor it is on
+    # "stay on flr.": the floor it is on (not "stay on flr 1")
+    **{("stay", "on", "flr", end): ("stay", "on", "this", "floor", end)
+       for end in (".", ",", "!", ";", "and")},
     ("wondering", "whether"): ("wondering", "if"), ("wonder", "whether"): ("wonder", "if"),
     ("you", "mind", "terribly"): ("you", "mind"),  # "Would you mind terribly going ..."
     # "check the fridge every time after you go into the kitchen": each time you go in, afterwards
@@ -2052,10 +2060,10 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     **{("would", "it", "be", *fine, "if", "you", past): ("please", present)
        for fine in (("alright",), ("all", "right"), ("okay",), ("ok",), ("possible",))
        for past, present in (("went", "go"), ("checked", "check"), ("looked", "look"), ("visited", "visit"),
-                             ("watered", "water"), ("sat", "sit"))},
-    # learners' choice remarks: "the toilet, anyone of two", "either of two": of the two
-    **{(chooser, "of", number): (chosen, "of", "the", number) for chooser, chosen in
-       (("anyone", "any"), ("any", "any"), ("either", "either"), ("whichever", "whichever"))
+                             ("watered", "water"))},
+    # learners' choice remarks: "the toilet, any of two", "either of two": of the two ("anyone" is kept out:
+    # a word of an alias is a word of the grammar, and "before anyone is up" is about people)
+    **{(chooser, "of", number): (chooser, "of", "the", number) for chooser in ("any", "either", "whichever")
        for number in ("two", "three", "four", "2", "3", "4")},
     # "the vases that are there", as learners say it "what are there": the vases there
     **{(that, be, "there"): ("there",) for that in ("that", "which", "what") for be in ("is", "are")},
@@ -2177,6 +2185,13 @@ _SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
                     ("appreciate", "it", "if"), ("like", "it", "if"), ("love", "it", "if"),
                     ("be", "grateful", "if"), ("be", "thankful", "if"), ("be", "so", "grateful", "if"))
        for did in (("did", "not"), ("not",), ("did", "not", "ever"))},
+    # "I'd be grateful if you didn't mind checking X": asked politely, as "would you mind checking X"
+    **{(*who, *wish, "you", *did, "mind"): ("would", "you", "mind")
+       for who in (("i", "would"), ("we", "would"))
+       for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"),
+                    ("appreciate", "it", "if"), ("like", "it", "if"), ("love", "it", "if"),
+                    ("be", "grateful", "if"), ("be", "thankful", "if"), ("be", "so", "grateful", "if"))
+       for did in (("did", "not"), ("not",))},
     **{(*who, *wish, "you", stayed): (stay,) for who in (("i", "would"), ("we", "would"))
        for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"))
        for stayed, stay in (("stayed", "stay"), ("kept", "keep"), ("steered", "steer"),

@@ -637,6 +637,11 @@ def back_to_start(said: str) -> str:
                     "plan ends at its last goal); leave it out, or name the place to come back to")
 
 
+def order_remark_in_numbered(said: str) -> str:
+    return rephrase(f"'{said}': the numbers put the items in order and the remark leaves the order free; "
+                    "which holds? Use bullets for any order, or leave the remark out")
+
+
 def order_remark_after_then(said: str) -> str:
     return rephrase(f"'{said}': 'then' puts the goals in order and the remark leaves the order free; which "
                     "holds? Say 'A and B, in any order' or 'A, then B'")

@@ -319,8 +319,11 @@ def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc:
         and not demo else []
     if not noun.room_scoped and mode == "the" and not head.plural and len(entities) > 1 and len(there) == 1:
         return Noun(head, there, True)
-    if len(entities) > len(near := near_step_before(np, noun, mode, where, disc)) > 0:
-        return Noun(head, near, True)  # "go to the bedroom with the vase, then check the plant"
+    near = near_step_before(np, noun, mode, where, disc) if np.apposition is None else []
+    if len(entities) > len(near) > 0:
+        # "go to the bedroom with the vase, then check the plant" (an apposition says which: "then the vase,
+        # the one in the dining room")
+        return Noun(head, near, True)
     before = vocab.inside(entities, where.previous) if where.role == "goal" and not demo else []
     after = disc.said(np.span.end, len(disc.text)).lstrip()
     # "any chair, either one": a remark; "any chair, then / and / after that back to ...": the next step

@@ -167,6 +167,16 @@ _BEFORE_FROM = frozenset({"", ",", "so", "and", "then", "now", "ok", "okay"})
 """Words after which *from* opens its clause (*so from the kitchen go ...*): no verb of going before it."""
 
 
+def starts_from(r: Reader, i: int) -> bool:
+    """Whether the *from* at ``i`` says where the robot starts, which is never a goal: *from here*, *from up
+    here* (*from on this floor*), or opening its clause before a verb of going in that clause (*From the
+    kitchen go to the office*); not *From the kitchen, grab the bowl* (where the bowl is)."""
+    if r.word(i + 1) == "here" or r.at(i + 1, "on", "this", "floor"):
+        return True
+    end = next((j for j in range(i + 1, len(r)) if r.word(j) == ","), len(r))
+    return r.word(i - 1) in _BEFORE_FROM and any(w in lx.GOING_VERBS for w in r.words[i + 1:end])
+
+
 def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
     """The words before the phrase: the verb, whatever it is, unless it is refused or a word of the grammar
     (*always*, *floor*, *next* out of place are refused, not verbs); and a floor said among them (*go
@@ -227,9 +237,7 @@ def verb_words(r: Reader, i: int, in_condition: bool) -> Parse[VerbWords]:
             return odd
         if w not in lx.POSITIVE_VERBS and r.nouns.names_word(w) and r.np_starts(i + 1):  # "living chair"
             return Refusal(rf.cannot_understand_word(w, f"'{r.quote(i, min(len(r), i + 3))}'"))
-        if w == "from" and not seen and (r.word(i + 1) == "here" or r.at(i + 1, "on", "this", "floor")
-                                         or r.word(i - 1) in _BEFORE_FROM):
-            # "from up here go down to ...", "From the kitchen go to ...": where it starts, never a goal
+        if w == "from" and not seen and starts_from(r, i):
             return Refusal(rf.starting_place(r.quote(i, min(len(r), i + 4))))
         if w == "out" and r.word(i + 1) == "from" and r.word(i - 1) in lx.FLOOR_MOVE_VERBS:
             return Refusal(rf.cannot_understand(lx.REFUSED_WORDS["leave"]))  # "go out from X": leaving X

@@ -456,9 +456,9 @@ def is_reason(r: Reader, start: int, end: int) -> bool:
 
 def starts_order(r: Reader, k: int) -> bool:
     """Whether the words at ``k`` start an order: a prohibition, a polite wrapper, a verb; after *you* and a
-    modal (*you must not enter ...*)."""
+    modal of an order (*you must not enter ...*; not *you won't need X*)."""
     w = r.word(k)
-    if w == "you" and r.word(k + 1) in lx.MODALS:
+    if w == "you" and r.word(k + 1) in lx.ORDER_MODALS:
         return starts_order(r, k + 2)
     return (r.phrase(k, lx.NEG_STARTS) is not None or r.phrase(k, lx.POLITE) is not None or w == "please"
             or (w in lx.STAY and not w.endswith("ing"))  # "... so stay on this floor": an order to keep
@@ -867,21 +867,23 @@ def times_of_parts(readers: list[Reader]) -> list[str]:
 def timed_heading(r: Reader) -> list[Reader]:
     """The words before a colon that announce how many things follow or name the list, without the time of
     day, event or aside asking nothing they end with (*A couple of things before I get back:*, *Three jobs for
-    tonight:*, *Two things when you get a chance:*, *Things to grab before dinner:*: a list noun and *to*),
-    after that time set aside (said back; first, so that the heading stays right before what it announces);
-    ``[r]`` otherwise."""
+    tonight:*, *Two things when you get a chance:*; a list of things to do: *Things to grab before dinner:*,
+    *To do before dinner:*), after that time set aside (said back; first, so that the heading stays right
+    before what it announces); words pointing to the list lose an aside asking nothing only (*Could you do
+    these when you get a chance:*; *Avoid these before noon:* keeps its time, and is refused); ``[r]``
+    otherwise."""
     if not r.words or r.words[-1] != ":" or r.aside:
         return [r]
-    tail = time_tail(r, 0, len(r) - 1)
-    tail = hedge_tail(r, len(r) - 1) if tail is None else tail  # "Three things when you get a chance:"
+    timed = time_tail(r, 0, len(r) - 1)
+    hedged = hedge_tail(r, len(r) - 1)  # "Three things when you get a chance:"
+    tail = timed if timed is not None else hedged
     if tail is None:
         return [r]
     said = r.words[:tail]
     counted = any(w in lx.NUMBER_WORDS or w in lx.FEW or w.isdigit() for w in said)
-    # a list of things to do (*Things to grab before dinner:*, *To do before dinner:*), or what points to
-    # the list (*Could you do these when you have a moment:*)
     listed = (bool(said[:1]) and said[0] in lx.LIST_NOUNS and said[1:2] == ("to",)) or said == ("to", "do")
-    if not counted and not listed and said[-1:] != ("these",):
+    pointed = said[-1:] == ("these",) and timed is None
+    if not counted and not listed and not pointed:
         return [r]  # a label with its time (*Route for this afternoon:*) is said back whole
     return [aside(r, tail, len(r) - 1), replace(r, toks=r.toks[:tail] + r.toks[-1:])]
 

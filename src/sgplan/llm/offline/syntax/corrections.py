@@ -149,10 +149,11 @@ def continued_corrections(readers: list[Reader]) -> list[Reader]:
     for r in readers:
         before = out[-1] if out else None
         first = out[-2] if len(out) > 1 else None
+        both = joined(before, r) if before is not None else r
         if (before is not None and first is not None and not before.aside and not first.aside and not r.aside
                 and r.marker is None and r.word(0) == "then" and said_instead(before) is not None
-                and not joins_before(before, first) and joins_before(joined(before, r), first)):
-            out[-1] = joined(before, r)
+                and not joins_before(before, first) and joins_before(both, first)):
+            out[-1] = both
             continue
         out.append(r)
     return out
@@ -184,6 +185,7 @@ def joins_before(r: Reader, before: Reader) -> bool:
 def takes_back_last(r: Reader) -> bool:
     """Whether the sentence ``r`` is only a correction and the phrase said instead (*No wait, the microwave,
     sorry.*): it takes back the phrase the sentence before it ends with, and is read joined to it."""
+    r = unpaused(r)  # "Actually, no, the other one, with the plant."
     start = said_instead(r)
     if start is None:
         return False  # "Scratch the kitchen.": takes it back, says nothing instead
@@ -290,10 +292,13 @@ def restarted(r: Reader) -> tuple[Reader, Reader] | None:
 
 def unpaused(r: Reader) -> Reader:
     """``r`` without the commas of a pause right after a word no clause ends with, when the clause goes on
-    after it (*go to the... kitchen*, *go to the, uh, kitchen*): a pause, not a break."""
+    after it (*go to the... kitchen*, *go to the, uh, kitchen*), or between *the other one* and *with*: a
+    pause, not a break."""
     def pause(k: int) -> bool:
         before = next((r.word(j) for j in range(k, -1, -1) if r.word(j) != ","), "")
         after = r.word(r.skip(k, (",",)))
+        if r.at(k - 2, "other", "one") and after == "with":
+            return True  # "no, the other one, with the plant": what the other one holds
         return after.isalpha() and after not in lx.CLAUSE_ENDS and before in _PAUSED_AFTER
     kept = [t for k, t in enumerate(r.toks) if not (t.text == "," and pause(k))]
     return r if len(kept) == len(r.toks) else replace(r, toks=tuple(kept))

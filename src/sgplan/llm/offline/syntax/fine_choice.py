@@ -47,15 +47,19 @@ _REMARK_WORDS = frozenset({"of", "them", "the", "one", "ones", "these", "those"}
 def remark_commas(r: Reader) -> Reader:
     """``r`` with commas around each choice remark run on after a noun of the scene without a mark (*grab an
     apple any apple is fine then ...*, *sit at the dining table any of them doesnt matter then ...*): a word
-    of :data:`.lexicon.CHOOSERS_OF_KIND`, a noun or *of them*, and a remark of :data:`.lexicon.REMARK_FINE`
-    closing the clause. Read between commas, the remark is then decided or refused as one typed so."""
+    of :data:`.lexicon.CHOOSERS_OF_KIND`, the same noun again or *of them* / *one*, and a remark of
+    :data:`.lexicon.REMARK_FINE` closing the clause. Read between commas, the remark is then decided or
+    refused as one typed so. A remark naming another noun (*go to the kitchen any bathroom is fine then ...*)
+    may be the next step: left as it is."""
     cuts: list[int] = []
     for k in range(2, len(r)):
-        if r.word(k) not in lx.CHOOSERS_OF_KIND or r.head_before(k) is None:
+        named = r.head_before(k)
+        if r.word(k) not in lx.CHOOSERS_OF_KIND or named is None:
             continue
-        end = next(j for j in range(k + 1, len(r) + 1) if r.word(j) in _ENDS)
+        end = next((j for j in range(k + 1, len(r) + 1) if r.word(j) in _ENDS), len(r))
         j = k + 1
-        while j < end and ((head := r.head(j)) is not None or r.word(j) in _REMARK_WORDS):
+        while j < end and ((head := r.head(j)) is None or head.categories == named.categories) and (
+                head is not None or r.word(j) in _REMARK_WORDS):
             j += head.words if head is not None else 1
         fine = r.phrase(j, lx.REMARK_FINE)
         if fine is not None and j + len(fine) == end:

@@ -188,6 +188,7 @@ def list_items(heading: Reader | None, run: list[Reader], remark: Order | None) 
     order = remark or said_order or ("ordered" if any(r.marker == "number" for r in run) else "any")
     if order == "ordered" and not remark and not said_order:
         check_no_bulleted_goal(run)
+        check_no_order_remark(run)
     prefix = scope + (announced.prefix if announced is not None else ())
     check_order_words(run, order)
     for n, item in enumerate(run):
@@ -250,6 +251,16 @@ def check_order_words(run: list[Reader], order: Order) -> None:
             rf.refuse(rf.order_word_in_list(item.quote(0, len(item)), item.word(0), "last"))
 
 
+def check_no_order_remark(run: list[Reader]) -> None:
+    """A list in order by its numbers whose item of one place says the order is free (*1) the oven (any
+    order) 2) the laptop*): which holds is not known: refused, naming the item (an item of several places
+    may order its own: *1. the oven and the fridge, any order 2. the laptop*)."""
+    for item in run:
+        places = sum(1 for k in range(len(item)) if item.head(k) is not None)
+        if places <= 1 and any(item.phrase(j, lx.ANY_ORDER) for j in range(len(item))):
+            rf.refuse(rf.order_remark_in_numbered(item.quote(0, len(item))))
+
+
 def check_no_bulleted_goal(run: list[Reader]) -> None:
     """A list in order by its numbers may hold bulleted prohibitions (*1. A 2. B - never enter C*), but a
     bulleted goal among numbered items (*1. Kitchen - check the oven - open the fridge 2. Office*) is a
@@ -310,10 +321,14 @@ def heading_of(heading: Reader) -> tuple[list[Reader], Announced | None, Order |
 
 
 def named_order(said: Reader) -> Order | None:
-    """``"ordered"`` when the heading ``said`` names the list an order (*Order:*, *Order of stops:*, *Sequence
-    of jobs:*, *Running order:*): its items are done in the order written, as a numbered list's are."""
+    """``"ordered"`` when the heading ``said`` is only the name of an order (*Order:*, *Order of stops:*,
+    *Sequence of jobs:*, *Running order:*): its items are done in the order written, as a numbered list's
+    are. Any other word (*Order of preference:*, *Order of stops is up to you:*) makes it no such name."""
     words = said.words[1:] if said.words[:1] == ("running",) else said.words
-    return "ordered" if words[:1] and words[0] in lx.ORDER_NAMES and words[1:2] in ((), ("of",)) else None
+    named = words[:1] and words[0] in lx.ORDER_NAMES
+    listed = len(words) == 1 or (len(words) == 3 and words[1] == "of"
+                                 and words[2] in lx.LIST_NOUNS | lx.ANNOUNCED)
+    return "ordered" if named and listed else None
 
 
 def list_name(said: Reader, most: int) -> bool:

@@ -560,5 +560,5 @@ def floor_just_said(r: Reader, i: int) -> bool:
     *upstairs the top floor*): a floor named at ``i`` says it again, or corrects it; never a goal of its
     own."""
     before = r.word(i - 1)
-    return (before in ("floor", "flr") or before in lx.RELATIVE_FLOORS
-            or (before.isdigit() and r.word(i - 2) in ("floor", "flr")))
+    return (before in lx.FLOOR_WORDS or before in lx.RELATIVE_FLOORS
+            or (before.isdigit() and r.word(i - 2) in lx.FLOOR_WORDS))

@@ -231,7 +231,7 @@ def floor_opening(r: Reader, i: int) -> tuple[FloorSpec | None, int]:
     """*On the top floor, ...*, *Upstairs, ...*, *While you're upstairs, ...*, *While you're (up) on floor 2,
     ...*: the floor of the sentence's goals, and where its body starts; *While you're in the kitchen, ...* is
     *In the kitchen, ...* (the body starts at *in*)."""
-    k = skip_subject(r, i + 1) if r.word(i) == "while" else i
+    k = r.skip(skip_subject(r, i + 1), ("still",)) if r.word(i) == "while" else i  # "while you're still up"
     if k > i and r.word(k) in lx.BACK_THERE and r.word(k + 1) in lx.FLOOR_PREPOSITIONS:
         k += 1  # "while you're up on the top floor"
     if r.word(k) in lx.RELATIVE_FLOORS and r.word(k + 1) == ",":
