@@ -716,8 +716,7 @@ POLITE = Phrases((
     ("what", "i", "need", "is", "for", "you", "to"), ("i", "would", "like", "it", "if", "you"),
     ("i", "would", "appreciate", "it", "if", "you"), ("if", "you", "could"), ("if", "you", "would"),
     ("would", "you", "mind"),
-    *(("do", who, "a", *small, favour, "and") for who in ("me", "us")
-      for small in ((), ("small",), ("little",), ("quick",), ("big",)) for favour in ("favour", "favor")),
+    *(("do", who, "a", favour, "and") for who in ("me", "us") for favour in ("favour", "favor")),
     *((*ask, *you) for ask in (("would", "it", "be", "possible"), ("is", "it", "possible"),
                                ("would", "it", "be", "okay"), ("would", "it", "be", "ok"))
       for you in (("for", "you", "to"), ("to",))),
@@ -928,9 +927,8 @@ CLOSING = Phrases((
     ("you", "rock"),
     ("ta", "in", "advance"),
     *((*and_, "that", be, "about", "it") for and_ in ((), ("and",)) for be in ("is", "'s")),
-    *((*ask, "me", "a", *small, favour)
+    *((*ask, "me", "a", favour)
       for ask in (("could", "you", "do"), ("can", "you", "do"), ("would", "you", "do"), ("do",))
-      for small in ((), ("small",), ("little",), ("quick",), ("big",), ("huge",))
       for favour in ("favour", "favor")),
     *((when, "you", *have, "a", sec) for when in ("when", "whenever")
       for have in (("have", "got"), ("have", "get"), ("have",), ("get",), ("got",))
@@ -2054,6 +2052,11 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
        for end in (".", ",", "!", ";", "and")},
     ("wondering", "whether"): ("wondering", "if"), ("wonder", "whether"): ("wonder", "if"),
     ("you", "mind", "terribly"): ("you", "mind"),  # "Would you mind terribly going ..."
+    # "do me a small favour": a favour (the size is no word of the wrapper)
+    **{(who, "a", small, favour): (who, "a", favour) for who in ("me", "us")
+       for small in ("small", "little", "quick", "big", "huge") for favour in ("favour", "favor")},
+    # "Main thing today is to ...": the main thing (of today: the whole mission)
+    **{("thing", *today, "is"): ("thing", "is") for today in (("today",), ("for", "today"), ("tonight",))},
     # "check the fridge every time after you go into the kitchen": each time you go in, afterwards
     **{(every, "time", "after", "you"): (every, "time", "you") for every in ("every", "each")},
     # "Would it be alright if you went to X": a wish said in the past tense, an order

@@ -42,23 +42,27 @@ def fine_choice(r: Reader) -> Reader:
 
 _REMARK_WORDS = frozenset({"of", "them", "the", "one", "ones", "these", "those"}) | frozenset(lx.NUMBER_WORDS)
 """Words between the chooser and the *is fine* of a run-on remark besides the noun (*any of them*)."""
+_PHRASE_WORDS = 8
+"""How many words back the noun a run-on remark names again may be (*grab an apple from the kitchen any
+apple ...*)."""
 
 
 def remark_commas(r: Reader) -> Reader:
     """``r`` with commas around each choice remark run on after a noun of the scene without a mark (*grab an
     apple any apple is fine then ...*, *sit at the dining table any of them doesnt matter then ...*): a word
-    of :data:`.lexicon.CHOOSERS_OF_KIND`, the same noun again or *of them* / *one*, and a remark of
-    :data:`.lexicon.REMARK_FINE` closing the clause. Read between commas, the remark is then decided or
-    refused as one typed so. A remark naming another noun (*go to the kitchen any bathroom is fine then ...*)
-    may be the next step: left as it is."""
+    of :data:`.lexicon.CHOOSERS_OF_KIND`, a noun of the phrase before it again or *of them* / *one*, and a
+    remark of :data:`.lexicon.REMARK_FINE` closing the clause. Read between commas, the remark is then
+    decided or refused as one typed so. A remark naming another noun (*go to the kitchen any bathroom is fine
+    then ...*) may be the next step: left as it is."""
     cuts: list[int] = []
     for k in range(2, len(r)):
-        named = r.head_before(k)
-        if r.word(k) not in lx.CHOOSERS_OF_KIND or named is None:
+        if r.word(k) not in lx.CHOOSERS_OF_KIND or r.head_before(k) is None:
             continue
+        # the kinds of the phrase before it (*an apple from the kitchen*)
+        named = {h.categories for j in range(max(0, k - _PHRASE_WORDS), k) if (h := r.head(j)) is not None}
         end = next((j for j in range(k + 1, len(r) + 1) if r.word(j) in _ENDS), len(r))
         j = k + 1
-        while j < end and ((head := r.head(j)) is None or head.categories == named.categories) and (
+        while j < end and ((head := r.head(j)) is None or head.categories in named) and (
                 head is not None or r.word(j) in _REMARK_WORDS):
             j += head.words if head is not None else 1
         fine = r.phrase(j, lx.REMARK_FINE)
