@@ -560,6 +560,11 @@ def floor_said_twice(said: str) -> str:
                     "Name the floor once")
 
 
+def floor_left_at_once(said: str) -> str:
+    return rephrase(f"'{said}' names a floor and the next step leaves it: no place on that floor is a goal; "
+                    "say where to go there ('go upstairs to the office, then ...')")
+
+
 def starting_place(said: str) -> str:
     return rephrase(f"'{said}' says where to start from, which is no goal; leave it out, or say where to go "
                     "(the start is where the robot is)")

@@ -103,6 +103,9 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     said_body = sentence_body(r, start)
     if not isinstance(said_body, Match):
         return said_body
+    if floor is not None and leaves_floor_first(said_body.node):
+        # "Go upstairs, then come back down to the kitchen": the visit upstairs names no place
+        return Refusal(rf.floor_left_at_once(r.quote(0, start)))
     if (precedes is not None or lead.node.sequence or r.word(0) in lx.LAST) and isinstance(
             said_body.node, PlainSentence) and not said_body.node.body.items:
         return Refusal(rf.order_without_goal(r.quote(0, len(r))))  # "Last: the office" is not set aside
@@ -120,6 +123,14 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
                                  r.span(0, len(r)), r.announced, r.after_item, floor,
                                  opened.node if opened is not None else None, order_free(r),
                                  r.marker is not None), len(r))
+
+
+def leaves_floor_first(said: SentenceBody) -> bool:
+    """Whether the first action of a sentence opened by a floor (*Upstairs, ...*, *Go upstairs, then ...*)
+    moves off that floor (*... then come back down to the kitchen*): no goal is said on it."""
+    first = next((item for item in said.body.items if isinstance(item, PlainAction)), None) \
+        if isinstance(said, PlainSentence) else None
+    return first is not None and bool(set(first.action.verbs.words) & lx.FLOOR_CHANGES)
 
 
 def strict_order_first(r: Reader) -> Reader:
