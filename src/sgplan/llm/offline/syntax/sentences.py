@@ -103,7 +103,7 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
     said_body = sentence_body(r, start)
     if not isinstance(said_body, Match):
         return said_body
-    if floor is not None and leaves_floor_first(said_body.node):
+    if isinstance(floor, RelativeFloor) and not floor.robot_there and leaves_floor_first(said_body.node):
         # "Go upstairs, then come back down to the kitchen": the visit upstairs names no place
         return Refusal(rf.floor_left_at_once(r.quote(0, start)))
     if (precedes is not None or lead.node.sequence or r.word(0) in lx.LAST) and isinstance(
@@ -126,11 +126,13 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
 
 
 def leaves_floor_first(said: SentenceBody) -> bool:
-    """Whether the first action of a sentence opened by a floor (*Upstairs, ...*, *Go upstairs, then ...*)
-    moves off that floor (*... then come back down to the kitchen*): no goal is said on it."""
+    """Whether the first action of a sentence opened by a floor move (*Upstairs, ...*, *Go upstairs, then
+    ...*) goes off that floor (*... then come back down to the kitchen*): no goal is said on it (not *heat
+    something up*: no verb of going)."""
     first = next((item for item in said.body.items if isinstance(item, PlainAction)), None) \
         if isinstance(said, PlainSentence) else None
-    return first is not None and bool(set(first.action.verbs.words) & lx.FLOOR_CHANGES)
+    verbs = set(first.action.verbs.words) if first is not None else set()
+    return bool(verbs & lx.FLOOR_CHANGES) and bool(verbs & lx.GOING_VERBS)
 
 
 def strict_order_first(r: Reader) -> Reader:
