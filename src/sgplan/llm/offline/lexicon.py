@@ -2181,19 +2181,17 @@ PHRASE_ALIASES.update({  # "stay up here on this floor": the floor said twice
     (here, "here", "on", "this", "floor"): ("on", "this", "floor") for here in ("up", "down", "right")
 })
 
+_WISHES = (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"), ("appreciate", "it", "if"),
+           ("like", "it", "if"), ("love", "it", "if"), ("be", "grateful", "if"), ("be", "thankful", "if"),
+           ("be", "so", "grateful", "if"))
+"""After *I'd* / *we'd* and before *you*: a wish about what the robot does (*I'd rather you didn't ...*)."""
 _SAID_OTHERWISE: dict[tuple[str, ...], tuple[str, ...]] = {
     # a prohibition wrapped as a wish: "I'd rather you didn't go into X", "I'd prefer it if you stayed out"
     **{(*who, *wish, "you", *did): ("do", "not") for who in (("i", "would"), ("we", "would"))
-       for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"),
-                    ("appreciate", "it", "if"), ("like", "it", "if"), ("love", "it", "if"),
-                    ("be", "grateful", "if"), ("be", "thankful", "if"), ("be", "so", "grateful", "if"))
-       for did in (("did", "not"), ("not",), ("did", "not", "ever"))},
+       for wish in _WISHES for did in (("did", "not"), ("not",), ("did", "not", "ever"))},
     # "I'd be grateful if you didn't mind checking X": asked politely, as "would you mind checking X"
     **{(*who, *wish, "you", *did, "mind"): ("would", "you", "mind")
-       for who in (("i", "would"), ("we", "would"))
-       for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"),
-                    ("appreciate", "it", "if"), ("like", "it", "if"), ("love", "it", "if"),
-                    ("be", "grateful", "if"), ("be", "thankful", "if"), ("be", "so", "grateful", "if"))
+       for who in (("i", "would"), ("we", "would")) for wish in _WISHES
        for did in (("did", "not"), ("not",))},
     **{(*who, *wish, "you", stayed): (stay,) for who in (("i", "would"), ("we", "would"))
        for wish in (("rather",), ("prefer",), ("prefer", "it", "if"), ("prefer", "if"))

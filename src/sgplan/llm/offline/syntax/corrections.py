@@ -147,14 +147,12 @@ def continued_corrections(readers: list[Reader]) -> list[Reader]:
     back the kitchen, and the couch comes after it)."""
     out: list[Reader] = []
     for r in readers:
-        before = out[-1] if out else None
-        first = out[-2] if len(out) > 1 else None
-        both = joined(before, r) if before is not None else r
-        if (before is not None and first is not None and not before.aside and not first.aside and not r.aside
-                and r.marker is None and r.word(0) == "then" and said_instead(before) is not None
-                and not joins_before(before, first) and joins_before(both, first)):
-            out[-1] = both
-            continue
+        if len(out) > 1 and r.word(0) == "then" and r.marker is None and not r.aside:
+            first, before = out[-2], out[-1]
+            if (not before.aside and not first.aside and said_instead(before) is not None
+                    and not joins_before(before, first) and joins_before(both := joined(before, r), first)):
+                out[-1] = both
+                continue
         out.append(r)
     return out
 
