@@ -68,7 +68,8 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
     j += 1 if r.word(j) in lx.NEGATION_EVER else 0  # "never ever", "don't ever"
     # "no need to X": X free, not forbidden; "you need not (needn't) go"
     needed = ((r.word(j) in lx.NEGATED_NEED_WORDS and r.word(j + 1) in ("to", "for"))
-              or r.word(j) in lx.NOT_NEEDED_VERBS)  # "no need for X", "don't bother going to X"
+              or r.word(j) in lx.NOT_NEEDED_VERBS  # "no need for X", "don't bother going to X"
+              or r.word(j) in ("need", "needs"))  # "you won't need the kitchen": not needed, not forbidden
     if needed or (marker == ("not",) and r.word(j - 2) in lx.NEGATED_NEED_WORDS):
         return Refusal(rf.not_needed(r.quote(j - len(marker) - (0 if needed else 1), min(j + 4, len(r)))))
     stay = stay_on_floor(r, j, negated=True)  # "don't leave this floor"
