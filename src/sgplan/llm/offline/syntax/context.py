@@ -553,7 +553,7 @@ def orders_a_named_thing(r: Reader, start: int, end: int) -> bool:
     *we first the kitchen*; *... the one upstairs*), which a statement set aside would drop."""
     tail = time_tail(r, start, end)  # "the office is a mess after last night": a time, no order
     said = range(start, end if tail is None else tail)
-    return (any(r.word(k) in lx.ORDER_HEADS for k in said)
+    return (any(r.word(k) in lx.ORDER_HEADS and not past_time(r, k) for k in said)  # not "last night"
             and any(r.head(k) is not None or r.word(k) in lx.ANAPHORIC_ONE for k in range(start, end)))
 
 
