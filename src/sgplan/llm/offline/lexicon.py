@@ -2074,6 +2074,10 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("gnd", "flr"): ("ground", "floor"), ("gnd", "fl"): ("ground", "floor"),
     ("gnd", "floor"): ("ground", "floor"), ("gnd",): ("ground", "floor"),
     ("dn",): ("down",),  # "=> dn to DR chair"
+    ("dwn",): ("down",),  # "dwn to kit", "dwn 1 flr"
+    # "bthrm f0 sink": floor 0 (the letter before a digit, as in "f1", "f2")
+    **{("f", str(n)): ("floor", str(n)) for n in range(10)},
+    ("order", "nvm"): ("any", "order"),  # "order nvm": never mind the order
     ("upstrs",): ("upstairs",),
     ("dwnstrs",): ("downstairs",),
     ("downstrs",): ("downstairs",),
