@@ -45,6 +45,7 @@ from sgplan.llm.offline.syntax.only_clause import only_clause
 from sgplan.llm.offline.syntax.preamble import is_chitchat, leading_clause, stated_start
 from sgplan.llm.offline.syntax.reader import Match, Parse, Reader, Refusal
 from sgplan.llm.offline.syntax.remark_sentences import join_remarks
+from sgplan.llm.offline.syntax.reordered import reordered
 from sgplan.llm.offline.syntax.sentences import mission_sentence
 from sgplan.llm.offline.syntax.tree import Attachment, Sentence, SetAside, nodes
 from sgplan.llm.offline.syntax.visit_rule import each_visit_rule
@@ -79,7 +80,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     readers = [said for r in readers for said in wanted_done(r)]  # "I need the kitchen sorted": the kitchen
     readers = [said for r in readers for said in any_time_goal(r)]  # "whenever X, Y, and at some point Z"
     readers = [said for r in readers for said in timed_heading(r)]  # "A couple of things before dinner:"
-    for r in joined_appositions(read_lists(_greeting_before_heading(readers))):
+    for r in joined_appositions(reordered(read_lists(_greeting_before_heading(readers)))):
         if stated_start(r) is not None or r.aside:
             out.append(r)
             continue
