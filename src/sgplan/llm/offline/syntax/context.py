@@ -167,6 +167,7 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     start = skip_joiner(r, clauses[first][0]) if first else 0
     # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
     middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c) or counted(r, *c)
+              or (c[0] > 0 and while_later(r, 0, c[1]) == c[0])  # "While you're in X later, ..."
               or (c != clauses[first] and (aside_between(r, *c) or closing_only(r, *c)))]
     words = [k for k in range(start, clauses[last - 1][1])
              if not any(a <= k < b or (k == a - 1 and r.word(k) == ",") for a, b in middle)]
@@ -844,6 +845,9 @@ def time_tail(r: Reader, start: int, end: int) -> int | None:
     before dinner*), or ``None``."""
     if is_time(r, start, end):
         return None  # the whole clause is one
+    later = while_later(r, start, end)
+    if later is not None:
+        return later
     # an event of people, whole: "... before the cleaners show up", "... before the kids leave for school"
     event = next((k for k in range(max(start + 1, end - 7), end) if event_clause(r, k, end)), None)
     if event is not None:
@@ -852,6 +856,14 @@ def time_tail(r: Reader, start: int, end: int) -> int | None:
         if r.word(k) in lx.TIME_OPENERS and r.word(k - 1) not in lx.UNTIL_WORDS and is_time(r, k, end):
             return k
     return None
+
+
+def while_later(r: Reader, start: int, end: int) -> int | None:
+    """Where *later* (*later on*) closing a *while* clause ``[start, end)`` starts (*While you're in the
+    office later, ...*): when the robot is there, not an order of the goals; else ``None``."""
+    later = 2 if r.words[end - 2:end] == ("later", "on") else 1 if r.word(end - 1) == "later" else 0
+    opens = r.word(r.skip(start, (",", "and"))) == "while"
+    return end - later if later and opens and end - later > start + 1 else None
 
 
 def times_of_parts(readers: list[Reader]) -> list[str]:
