@@ -78,7 +78,8 @@ def reordered(readers: list[Reader]) -> list[Reader]:
         if swapped is not None:
             k, sentence, (said, said_end) = swapped
             out[k] = sentence
-            out += [replace(r, toks=r.toks[:said], aside=True), replace(r, toks=r.toks[said_end:], aside=True)]
+            out += [replace(r, toks=r.toks[:said], aside=True),  # "Actually, make that", "instead of Y"
+                    replace(r, toks=r.toks[said_end:], aside=True)]
             continue
         run = restated_run(r, i, out)
         if run:
@@ -174,10 +175,10 @@ def restated_run(r: Reader, i: int, before: list[Reader]) -> int:
 
 
 def substituted(r: Reader, i: int, before: list[Reader]) -> tuple[int, Reader, tuple[int, int]] | None:
-    """The index in ``before`` of the sentence whose noun phrase the correction ``r`` replaces, and that
-    sentence with it replaced, and where X is in ``r``, when the order of ``r`` (from ``i``) is *(make that) X instead of Y*, Y said
-    word for word once before as a whole noun phrase, and X names the same kind (a room for a room, an
-    object for an object); else ``None``."""
+    """The index in ``before`` of the sentence whose noun phrase the correction ``r`` replaces, that sentence
+    with it replaced, and where X is in ``r``, when the order of ``r`` (from ``i``) is *(make that) X instead
+    of Y*, Y said word for word once before as a whole noun phrase, and X names the same kind (a room for a
+    room, an object for an object); else ``None``."""
     k = i + 2 if r.word(i) == "make" and r.word(i + 1) in ("that", "it") else i
     new = noun_phrase(r, k, "goal")
     if not isinstance(new, Match) or r.words[new.end:new.end + 2] != ("instead", "of"):
