@@ -2075,6 +2075,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("gnd", "floor"): ("ground", "floor"), ("gnd",): ("ground", "floor"),
     ("dn",): ("down",),  # "=> dn to DR chair"
     ("dwn",): ("down",),  # "dwn to kit", "dwn 1 flr"
+    ("something", "out", "of"): ("something", "from"),  # "get something out of the fridge": from it
     # "bthrm f0 sink": floor 0 (the letter before a digit, as in "f1", "f2")
     **{("f", str(n)): ("floor", str(n)) for n in range(10)},
     ("order", "nvm"): ("any", "order"),  # "order nvm": never mind the order

@@ -25,6 +25,7 @@ from sgplan.llm.offline.nouns import NounLexicon
 from sgplan.llm.offline.spelling import Spelling
 from sgplan.llm.offline.syntax.any_time import any_time_goal
 from sgplan.llm.offline.syntax.brackets import bracketed_remarks, bracketed_rooms
+from sgplan.llm.offline.syntax.contents import contents_aside
 from sgplan.llm.offline.syntax.context import (
     mentions,
     run_on_statements,
@@ -72,6 +73,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     readers = [fronted_prohibition(r) for r in readers]  # "Kitchen never go.": "never enter kitchen"
     readers = [bracketed_rooms(r) for r in readers]  # "bowl (LR)": "bowl in LR"
     readers = [said for r in readers for said in bracketed_remarks(r)]  # "(it's the cough syrup)": said back
+    readers = [said for r in readers for said in contents_aside(r)]  # "a bottle of water": the bottle
     readers = [run_on_statements(r) for r in readers]  # "... at all the floor is wet": ", the floor is wet"
     readers = [each_visit_rule(r) for r in readers]  # "each kit visit -> DR after": "whenever you visit kit"
     readers = [remark_commas(r) for r in readers]  # "an apple any apple is fine then": ", any apple is fine,"
