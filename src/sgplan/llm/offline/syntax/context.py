@@ -167,7 +167,8 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     start = skip_joiner(r, clauses[first][0]) if first else 0
     # "check the laptop before dinner, then ...", "the kitchen because the coffee's in there, then ..."
     middle = [c for c in clauses[first:last] if is_time(r, *c) or is_reason(r, *c) or counted(r, *c)
-              or (c[0] > 0 and while_later(r, 0, c[1]) == c[0])  # "While you're in X later, ..."
+              # the "later" of "While you're in X later, ..." opening the mission (after a goal: "after" it?)
+              or (not said_before and c[0] > 0 and while_later(r, 0, c[1]) == c[0])
               or (c != clauses[first] and (aside_between(r, *c) or closing_only(r, *c)))]
     words = [k for k in range(start, clauses[last - 1][1])
              if not any(a <= k < b or (k == a - 1 and r.word(k) == ",") for a, b in middle)]

@@ -5,19 +5,20 @@ a bowl from the kitchen.*; *Go to the bed, then the couch. No wait, the couch fi
 Then the office. No wait, office first, then the garage.* Each is read only in the shape in which a careful
 reader takes one meaning; the correction words are set aside and said back:
 
-- **a step added first**: a correction, then an order with *first* (at its start or its end) that names only
-  rooms and objects the mission has not named before, and no other word of order, condition, negation or
-  addition: it is read as *First, <order>.*, which comes before every goal said so far (or is refused as
-  such, :mod:`.sentences`);
-- **the second of two steps moved first**: a correction, then a noun phrase and *first*, right after a
-  sentence of exactly two goal phrases in a row (*A, then B*, one verb for both) when the phrase names
-  what only the second of them names: the sentence is read without it, and the phrase after it as *First,
-  <phrase>* (*go to A. First, B.*);
-- **a phrase said instead**: *(make that) X instead of Y*, where Y is said word for word once before, as a
-  whole noun phrase, and X names the same kind: the sentence of Y is read with X in its place;
+- **a step added first**: *Actually,* (*Oh,*, *Oops,*), then an order with *first* (at its start or its end)
+  that names only rooms and objects the mission has not named before, and no other word of order,
+  condition, negation or addition: it is read as *First, <order>.*, which comes before every goal said so
+  far (or is refused as such, :mod:`.sentences`); after *No wait* or *I mean* a step may be taken back;
+- **the second of two steps moved first**: a correction, then a noun phrase and *first*, right after the
+  mission's first goal sentence when that is exactly two goal phrases in a row (*A, then B*, one verb for
+  both) and the phrase names what only the second of them names (its head, or the room that tells two of
+  one kind apart): the sentence is read without it, and the phrase after it as *First, <phrase>* (*go to A.
+  First, B.*);
+- **a phrase said instead**: *(make that) X instead of Y*, where Y is the noun phrase the sentence before
+  ends with, said word for word, and X names the same kind: that sentence is read with X in its place;
 - **an order said again over several sentences**: a correction and a whole order said again that names
-  again exactly the places of the sentences right before it (two or more, each naming a goal, none a
-  prohibition or condition): those sentences are joined with it, and :mod:`.corrections` reads it as one
+  again exactly the places of the sentences right before it (two or more, each saying nothing but places
+  to go): those sentences are joined with it, and :mod:`.corrections` reads it as one
   sentence that says the order again.
 
 Anything else is left as it was: read by :mod:`.corrections`, or refused there.
@@ -25,7 +26,10 @@ Anything else is left as it was: read by :mod:`.corrections`, or refused there.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import replace
+from itertools import takewhile
+from typing import NamedTuple
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.syntax.corrections import (
@@ -42,17 +46,24 @@ from sgplan.llm.offline.text import Tok
 
 _ENDS = frozenset({"", ".", "!", "please", "thanks"})
 """Words a correction may close with after its *first* (*No wait, the couch first please.*)."""
-_SAYS_MORE = frozenset({"then", "instead", "before", "after", "afterwards", "until", "unless", "if", "when",
-                        "whenever", "again", "last", "lastly", "next", "not", "never", "only", "too", "also",
-                        "either", "or", "each", "every"})
-"""Words that make a correction say more than one step to put first (read, or refused, by
+_BEYOND_ORDER = (lx.NOT_A_SEQUENCE | frozenset(lx.NEGATING)
+                 | frozenset({"instead", "too", "also", "again", "before", "after", "afterwards", "either",
+                              "or", "each", "every", "only"}))
+"""Words that make a correction say more than an order of places (read, or refused, by
 :mod:`.corrections`)."""
+_SAYS_MORE = _BEYOND_ORDER | (lx.ORDER_HEADS - lx.FIRST)
+"""Words that make a correction say more than one step to put first."""
+_ADDING = frozenset({"actually", "oh", "oops", ","})
+"""The only correction words before a step added first: *No wait, check X first*, *I mean, check X first*
+say something before was wrong (X instead of a step?), so they are not read as adding."""
 _TWO_STEPS = ((",", "then"), ("then",), (",", "and", "then"), ("and", "then"), (",", "after", "that", ","),
               ("and", "after", "that"), (",", "then", "after", "that"))
 """The words between the two goal phrases of a sentence whose second one a correction moves first."""
-_GOAL_FREE = frozenset({"if", "when", "whenever", "until", "unless", "before", "after", "every", "each",
-                        "never", "not", "avoid", "only", "except"})
-"""Words that keep a sentence out of an order said again over several sentences (it says more than goals)."""
+_STEP_WORDS = lx.HESITATIONS | lx.GREETINGS | lx.PLACE_PREPOSITIONS | frozenset(
+    {",", ".", "!", "then", "and", "next", "up", "down", "over", "back", "please", "robot", "ok", "okay"})
+"""Words a sentence of an order said again over several sentences may hold besides verbs of going and noun
+phrases: anything else (*wait there for five minutes*, *stay there*, *turn off the lights*) is something asked
+that the correction does not say again, so the sentence is not taken back with the others."""
 
 
 def reordered(readers: list[Reader]) -> list[Reader]:
@@ -66,20 +77,19 @@ def reordered(readers: list[Reader]) -> list[Reader]:
             continue
         i = order_start(r, start)
         taken = r.toks[:i]
-        first = added_first(r, i, out)
+        first = added_first(r, start, i, out)
         if first is not None:
             out += [replace(r, toks=taken, aside=True), first]
             continue
-        moved = moved_first(r, i, out[-1])
+        moved = moved_first(r, i, out)
         if moved is not None:
             out[-1:] = [moved[0], replace(r, toks=taken, aside=True), moved[1]]
             continue
         swapped = substituted(r, i, out)
         if swapped is not None:
-            k, sentence, (said, said_end) = swapped
-            out[k] = sentence
-            out += [replace(r, toks=r.toks[:said], aside=True),  # "Actually, make that", "instead of Y"
-                    replace(r, toks=r.toks[said_end:], aside=True)]
+            out[-1] = swapped.sentence  # and "Actually, make that", "instead of Y" said back
+            out += [replace(r, toks=r.toks[:swapped.said], aside=True),
+                    replace(r, toks=r.toks[swapped.said_end:], aside=True)]
             continue
         run = restated_run(r, i, out)
         if run:
@@ -92,9 +102,19 @@ def reordered(readers: list[Reader]) -> list[Reader]:
     return out
 
 
-def added_first(r: Reader, i: int, before: list[Reader]) -> Reader | None:
-    """The order of the correction ``r`` (from ``i``) said as *First, <order>* when it adds a step before all
-    (see the module docstring), else ``None``."""
+def said_first(first: Tok, toks: Sequence[Tok]) -> tuple[Tok, ...]:
+    """The words ``toks`` said as *First, <toks>*, with the *first* token ``first`` moved before them."""
+    return (first, Tok(",", first.end, first.end), *toks)
+
+
+def goals_before(before: Sequence[Reader]) -> bool:
+    """Whether a sentence of ``before`` not set aside names a goal."""
+    return any(goal_heads(b, 0, len(b)) for b in before if not b.aside)
+
+
+def added_first(r: Reader, start: int, i: int, before: list[Reader]) -> Reader | None:
+    """The order of the correction ``r`` (its correction words before ``start``, its order from ``i``) said as
+    *First, <order>* when it adds a step before all (see the module docstring), else ``None``."""
     lead = r.word(i) in lx.FIRST
     end = len(r)
     while end > i and r.word(end - 1) in _ENDS:
@@ -102,27 +122,28 @@ def added_first(r: Reader, i: int, before: list[Reader]) -> Reader | None:
     trailing = not lead and r.word(end - 1) in lx.FIRST
     order = r.skip(i + 1, (",",)) if lead else i
     words = range(order, end - 1 if trailing else end)
-    if not (lead or trailing) or not order_verb(r, order) or any(
+    if not (lead or trailing) or not set(r.words[:start]) <= _ADDING or not order_verb(r, order) or any(
             r.word(k) in _SAYS_MORE or r.word(k) in lx.FIRST for k in words):
         return None
     new = {h.categories for h in named_heads(r, order, words.stop)}
     said = {h.categories for b in before if not b.aside for h in named_heads(b, 0, len(b))}
-    if not new or new & said or not any(goal_heads(b, 0, len(b)) for b in before if not b.aside):
+    if not new or new & said or not goals_before(before):
         return None
     if lead:
         return replace(r, toks=r.toks[i:])
-    first_tok = r.toks[end - 1]  # moved to the front, so that the sentence opens with "First,"
-    comma = Tok(",", first_tok.end, first_tok.end)
-    return replace(r, toks=(first_tok, comma, *r.toks[order:end - 1], *r.toks[end:]))
+    return replace(r, toks=said_first(r.toks[end - 1], (*r.toks[order:end - 1], *r.toks[end:])))
 
 
-def moved_first(r: Reader, i: int, before: Reader) -> tuple[Reader, Reader] | None:
-    """The sentence ``before`` without its second goal phrase, and that phrase said as *First, <phrase>*, when
-    the correction ``r`` (its order from ``i``) moves it first (see the module docstring), else ``None``."""
+def moved_first(r: Reader, i: int, out: list[Reader]) -> tuple[Reader, Reader] | None:
+    """The last sentence of ``out`` without its second goal phrase, and that phrase said as *First, <phrase>*,
+    when the correction ``r`` (its order from ``i``) moves it first and no sentence before names a goal (see
+    the module docstring), else ``None``."""
     lead = r.word(i) in lx.FIRST
     phrase = noun_phrase(r, r.skip(i + 1, (",",)) if lead else i, "goal")
-    if before.aside or before.marker is not None or not isinstance(phrase, Match):
-        return None
+    before = out[-1]
+    if before.aside or before.marker is not None or not isinstance(phrase, Match) or goals_before(out[:-1]):
+        return None  # "Check the fridge. Then the couch, then the oven. No wait, the oven first.": before
+        # the fridge too?
     after = phrase.end if lead else phrase.end + 1
     if (not lead and r.word(phrase.end) not in lx.FIRST) or any(w not in _ENDS for w in r.words[after:]):
         return None
@@ -131,12 +152,15 @@ def moved_first(r: Reader, i: int, before: Reader) -> tuple[Reader, Reader] | No
         return None
     (a, a_end), (b, b_end) = two
     said = {h.categories for h in named_heads(r, i, phrase.end)}
-    if not said or not said <= {h.categories for h in named_heads(before, b, b_end)} or said <= {
-            h.categories for h in named_heads(before, a, a_end)}:
-        return None
-    t, first_tok = before.toks, r.toks[i if lead else phrase.end]
-    comma = Tok(",", first_tok.end, first_tok.end)
-    return replace(before, toks=(*t[:a_end], *t[b_end:])), replace(r, toks=(first_tok, comma, *t[b:b_end]))
+    kinds_a, kinds_b = ({h.categories for h in goal_heads(before, *at)} for at in ((a, a_end), (b, b_end)))
+    # "garage first" after "the office chair, then the garage chair": the room tells the two chairs apart
+    names_b = said <= kinds_b or (kinds_a == kinds_b and said <= {
+        h.categories for h in named_heads(before, b, b_end)})
+    if not said or not names_b or said <= {h.categories for h in named_heads(before, a, a_end)}:
+        return None  # "the kitchen first" after "the couch, then the bowl in the kitchen": the room itself?
+    t = before.toks
+    return replace(before, toks=(*t[:a_end], *t[b_end:])), replace(
+        r, toks=said_first(r.toks[i if lead else phrase.end], t[b:b_end]))
 
 
 def two_goal_phrases(r: Reader) -> tuple[tuple[int, int], tuple[int, int]] | None:
@@ -160,25 +184,47 @@ def restated_run(r: Reader, i: int, before: list[Reader]) -> int:
     whole order (see the module docstring): two or more, or 0."""
     said = {h.categories for h in named_heads(r, i, len(r))}
     if len(said) < 2 or not (order_verb(r, i) or r.word(i) in lx.FIRST or r.np_starts(i)) or any(
-            r.word(k) in _GOAL_FREE or r.word(k) in ("instead", "too", "also") for k in range(i, len(r))):
+            r.word(k) in _BEYOND_ORDER for k in range(i, len(r))):
         return 0
     run: set[frozenset[str]] = set()
     n = 0
     for b in reversed(before):
         heads = {h.categories for h in goal_heads(b, 0, len(b))}
-        if b.aside or b.marker is not None or not heads or not heads <= said or any(
-                w in _GOAL_FREE for w in b.words):
+        if b.aside or b.marker is not None or not heads or not heads <= said or not only_steps(b):
             break
         run |= heads
         n += 1
     return n if n >= 2 and run == said else 0
 
 
-def substituted(r: Reader, i: int, before: list[Reader]) -> tuple[int, Reader, tuple[int, int]] | None:
-    """The index in ``before`` of the sentence whose noun phrase the correction ``r`` replaces, that sentence
-    with it replaced, and where X is in ``r``, when the order of ``r`` (from ``i``) is *(make that) X instead
-    of Y*, Y said word for word once before as a whole noun phrase, and X names the same kind (a room for a
-    room, an object for an object); else ``None``."""
+def only_steps(r: Reader) -> bool:
+    """Whether the sentence ``r`` says nothing but places to go, in order: after a polite opening, verbs of
+    going, noun phrases and :data:`_STEP_WORDS` only."""
+    k = order_start(r, 0)
+    while k < len(r):
+        phrase = noun_phrase(r, k, "goal") if r.np_starts(k) else None
+        if isinstance(phrase, Match) and phrase.end > k:
+            k = phrase.end
+        elif r.word(k) in _STEP_WORDS or r.word(k) in lx.POSITIVE_VERBS:
+            k += 1
+        else:
+            return False
+    return True
+
+
+class Substitution(NamedTuple):
+    """A phrase said instead of another: the sentence read with it, and where it is in the correction."""
+
+    sentence: Reader
+    said: int
+    said_end: int
+
+
+def substituted(r: Reader, i: int, before: list[Reader]) -> Substitution | None:
+    """The last sentence of ``before`` with its closing noun phrase Y replaced, when the order of the
+    correction ``r`` (from ``i``) is *(make that) X instead of Y*, Y said word for word as that phrase, and
+    X names the same kind (a room for a room, an object for an object); else ``None``. (Y said earlier is
+    not read: X would be said after the goals it was to come before.)"""
     k = i + 2 if r.word(i) == "make" and r.word(i + 1) in ("that", "it") else i
     new = noun_phrase(r, k, "goal")
     if not isinstance(new, Match) or r.words[new.end:new.end + 2] != ("instead", "of"):
@@ -187,14 +233,10 @@ def substituted(r: Reader, i: int, before: list[Reader]) -> tuple[int, Reader, t
     if not isinstance(old, Match) or any(w not in _ENDS for w in r.words[old.end:]):
         return None
     kinds = {h.kind for h in named_heads(r, k, new.end)[:1] + named_heads(r, new.end + 2, old.end)[:1]}
-    words = r.words[new.end + 2:old.end]
-    found = [(n, j) for n, b in enumerate(before) if not b.aside for j in range(len(b))
-             if b.words[j:j + len(words)] == words]
-    if len(kinds) != 1 or len(found) != 1:
-        return None
-    n, j = found[0]
-    b = before[n]
-    said = noun_phrase(b, j, "goal")
-    if not isinstance(said, Match) or said.end != j + len(words):
+    words, b = r.words[new.end + 2:old.end], before[-1]
+    end = len(b) - sum(1 for _ in takewhile(lambda w: w in _ENDS, reversed(b.words)))
+    j = end - len(words)
+    said = noun_phrase(b, j, "goal") if j >= 0 and b.words[j:end] == words else None
+    if len(kinds) != 1 or b.aside or not isinstance(said, Match) or said.end != end:
         return None  # "the vase" of "the vase in the hall": not the whole phrase
-    return n, replace(b, toks=(*b.toks[:j], *r.toks[k:new.end], *b.toks[said.end:])), (k, new.end)
+    return Substitution(replace(b, toks=(*b.toks[:j], *r.toks[k:new.end], *b.toks[end:])), k, new.end)
