@@ -60,10 +60,12 @@ _TWO_STEPS = ((",", "then"), ("then",), (",", "and", "then"), ("and", "then"), (
               ("and", "after", "that"), (",", "then", "after", "that"))
 """The words between the two goal phrases of a sentence whose second one a correction moves first."""
 _STEP_WORDS = lx.HESITATIONS | lx.GREETINGS | lx.PLACE_PREPOSITIONS | frozenset(
-    {",", ".", "!", "then", "and", "next", "up", "down", "over", "back", "please", "robot", "ok", "okay"})
+    {"the", "a", "an", ",", ".", "!", "then", "and", "next", "up", "down", "over", "back", "please", "robot",
+     "ok", "okay"})
 """Words a sentence of an order said again over several sentences may hold besides verbs of going and noun
-phrases: anything else (*wait there for five minutes*, *stay there*, *turn off the lights*) is something asked
-that the correction does not say again, so the sentence is not taken back with the others."""
+phrases (an article too, of a phrase started again: *Go to the, uh, the empty room.*): anything else (*wait
+there for five minutes*, *stay there*, *turn off the lights*) is something asked that the correction does
+not say again, so the sentence is not taken back with the others."""
 
 
 def reordered(readers: list[Reader]) -> list[Reader]:
