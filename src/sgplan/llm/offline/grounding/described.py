@@ -101,7 +101,7 @@ def ground_described(np: Described, where: Where, disc: Discourse) -> Grounded:
     g = Grounded(disc.said(np.span.start, np.span.end), np.span.start, np.span.end, noun.entities, mode,
                  noun.room_scoped, where.role, np.determiner.count,
                  noun.head.kind == "room" and not noun.head.categories)
-    check(g, noun.head, np.determiner.count, np.remark_follows, disc)
+    check(g, noun.head, np.determiner.count, np.remark_follows, disc, either=np.either_remark)
     return disc.record(g)
 
 

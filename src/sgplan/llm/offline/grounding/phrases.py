@@ -349,10 +349,12 @@ def resolved_head(ref: Head | OneHead, disc: Discourse, rooms: bool = False) -> 
     return Head(given.kind, given.categories, ref.plural, 1)
 
 
-def check(g: Grounded, head: Head, count: int | None, remark_follows: bool, disc: Discourse) -> None:
+def check(g: Grounded, head: Head, count: int | None, remark_follows: bool, disc: Discourse,
+          either: bool = False) -> None:
     """Refuse a phrase that matches nothing, not the number it said, or several where it means one (a
     choice remark after it, *any one will do*, makes it a choice; *the stairs* to avoid on a mission that
-    stays on some floors is each of them)."""
+    stays on some floors is each of them); ``either``: the remark after it says one of two (*a TV, either
+    one*), so it may not match more."""
     if g.role == "qualifier":
         if not g.entities:
             rf.refuse(rf.qualifier_matches_nothing(g.phrase, head.kind, existing(head, disc)))
@@ -367,6 +369,9 @@ def check(g: Grounded, head: Head, count: int | None, remark_follows: bool, disc
         if len(staying) != 2:
             rf.refuse(rf.wrong_count(g.phrase, 2, head.kind, len(staying),
                                      ", ".join(e.describe() for e in staying)))
+    if either and g.role == "goal" and len(g.entities) > 2:  # "check a TV, either one" with 3: which two?
+        rf.refuse(rf.wrong_count(f"{g.phrase}, either", 2, head.kind, len(g.entities),
+                                 ", ".join(e.describe() for e in g.entities)))
     if count is not None and len(g.entities) != count:
         rf.refuse(rf.wrong_count(g.phrase, count, head.kind, len(g.entities),
                                  ", ".join(e.describe() for e in g.entities)))

@@ -104,7 +104,9 @@ def finish(r: Reader, first: int, i: int, noun: Described, role: Role, room_scop
                 i, "apposition", noun, appositive.node, r.span(first, appositive.end), False)))
     if appositive is not None:
         noun, i = replace(noun, apposition=appositive.node, apposition_excludes=excludes), appositive.end
-    return Match(replace(noun, span=r.span(first, i), remark_follows=remark_ahead(r, i) is not None), i)
+    remark = remark_ahead(r, i)
+    return Match(replace(noun, span=r.span(first, i), remark_follows=remark is not None,
+                         either_remark="either" in (remark or ())), i)
 
 
 def head_kind(noun: Described) -> Kind | None:

@@ -226,6 +226,8 @@ class Described:
     """Words describing the thing that the scene does not know (*big* in *the big couch*)."""
     apposition_excludes: bool = False
     """The apposition says which it is not (*the bathroom, not the one with the vase*)."""
+    either_remark: bool = False
+    """The choice remark after the phrase says one of two (*, either one*, *(either)*)."""
 
 
 @dataclass(frozen=True)
