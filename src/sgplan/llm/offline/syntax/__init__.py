@@ -34,7 +34,7 @@ from sgplan.llm.offline.syntax.context import (
     timed_heading,
 )
 from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
-from sgplan.llm.offline.syntax.fine_choice import fine_choice, remark_commas
+from sgplan.llm.offline.syntax.fine_choice import fine_choice, remark_after_closing, remark_commas
 from sgplan.llm.offline.syntax.floor_only import floor_only
 from sgplan.llm.offline.syntax.fragments import context_fragment
 from sgplan.llm.offline.syntax.fronted import fronted_prohibition
@@ -78,6 +78,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     readers = [each_visit_rule(r) for r in readers]  # "each kit visit -> DR after": "whenever you visit kit"
     readers = [remark_commas(r) for r in readers]  # "an apple any apple is fine then": ", any apple is fine,"
     readers = [fine_choice(r) for r in readers]  # "then either bedroom is fine": then either bedroom
+    readers = [remark_after_closing(r) for r in readers]  # "chk tv after (either)": "chk tv (either) after"
     readers = [said for r in readers for said in only_clause(r)]  # ", and only go to X after Y": its own
     readers = [said for r in readers for said in wanted_done(r)]  # "I need the kitchen sorted": the kitchen
     readers = [said for r in readers for said in any_time_goal(r)]  # "whenever X, Y, and at some point Z"

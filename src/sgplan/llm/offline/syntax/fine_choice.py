@@ -1,7 +1,9 @@
 """A step said as a choice that is fine: *go to the couch and then either bedroom on the top floor is fine*.
 
 A choice remark run on after a noun without a mark, as dictation types it (*grab an apple any apple is fine
-then ...*), is read as between commas (:func:`remark_commas`).
+then ...*), is read as between commas (:func:`remark_commas`); one said after a word that closes the step
+(*chk tv after (either)*, *look at the TV in the living room as well, either one*) is read right after the
+noun phrase (:func:`remark_after_closing`).
 
 After *then*, a phrase of *either* / *any* / *whichever* closing its clause with *is fine* / *will do* (the
 words of :data:`.lexicon.REMARK_FINE`) is the next step, that choice: the remark is dropped and the phrase
@@ -16,8 +18,11 @@ from __future__ import annotations
 from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline.phrases import Phrases
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
+from sgplan.llm.offline.syntax.qualifiers import remark_ahead
 from sgplan.llm.offline.syntax.reader import Match, Reader
+from sgplan.llm.offline.text import Tok
 
 _ENDS = ("", ",", "and", "then", "but")
 
@@ -69,3 +74,26 @@ def remark_commas(r: Reader) -> Reader:
         if fine is not None and j + len(fine) == end:
             cuts += [k] if r.word(end) in ("", ",") else [k, end]
     return r.with_commas(cuts)
+
+
+_CLOSING_STEP = Phrases((("after",), ("afterwards",), ("done",), ("first",), ("too",), ("as", "well"),
+                         ("also",)))
+"""Words that close a step after its noun phrase, before a choice remark about that phrase (*chk tv after
+(either)*, *until dining chair done (either one)*, *the TV in the living room as well, either one*)."""
+
+
+def remark_after_closing(r: Reader) -> Reader:
+    """``r`` with each choice remark said after a word of :data:`_CLOSING_STEP` that follows a noun of the
+    scene moved right after that noun (*chk tv, either, after*), where it is decided or refused as one typed
+    so; the remark runs to the end of its clause."""
+    for k in range(1, len(r)):
+        closing = r.phrase(k, _CLOSING_STEP)
+        head = r.head_before(k)
+        said = remark_ahead(r, k + len(closing)) if closing and head is not None else None
+        end = k + len(closing or ()) + len(said or ())
+        if said is None or r.word(end) not in _ENDS:
+            continue
+        toks, n = r.toks, len(closing or ())
+        comma = Tok(",", toks[end - 1].end, toks[end - 1].end)  # "chk tv, either, after"
+        return replace(r, toks=(*toks[:k], *toks[k + n:end], comma, *toks[k:k + n], *toks[end:]))
+    return r
