@@ -9,6 +9,8 @@ reader takes one meaning; the correction words are set aside and said back:
   that names only rooms and objects the mission has not named before, and no other word of order,
   condition, negation or addition: it is read as *First, <order>.*, which comes before every goal said so
   far (or is refused as such, :mod:`.sentences`); after *No wait* or *I mean* a step may be taken back;
+- **a prohibition added**: *Actually,* (*Oh,*, *Oops,*), then a prohibition of places the mission has not
+  named (*Actually, don't go through the kitchen.*): read without the correction words;
 - **the second of two steps moved first**: a correction, then a noun phrase and *first*, right after the
   mission's first goal sentence when that is exactly two goal phrases in a row (*A, then B*, one verb for
   both) and the phrase names what only the second of them names (its head, or the room that tells two of
@@ -79,7 +81,7 @@ def reordered(readers: list[Reader]) -> list[Reader]:
             continue
         i = order_start(r, start)
         taken = r.toks[:i]
-        first = added_first(r, start, i, out)
+        first = added_first(r, start, i, out) or added_prohibition(r, start, i, out)
         if first is not None:
             out += [replace(r, toks=taken, aside=True), first]
             continue
@@ -134,6 +136,18 @@ def added_first(r: Reader, start: int, i: int, before: list[Reader]) -> Reader |
     if lead:
         return replace(r, toks=r.toks[i:])
     return replace(r, toks=said_first(r.toks[end - 1], (*r.toks[order:end - 1], *r.toks[end:])))
+
+
+def added_prohibition(r: Reader, start: int, i: int, before: list[Reader]) -> Reader | None:
+    """The prohibition of the correction ``r`` (its correction words before ``start``, its order from ``i``)
+    without its *Actually,* when it forbids only places the mission has not named (*Go to the dining room.
+    Actually, don't go through the kitchen.*): it adds a rule and takes nothing back; else ``None``."""
+    if (not set(r.words[:start]) <= _ADDING or r.phrase(i, lx.NEG_STARTS) is None
+            or r.words[i:i + 2] == ("never", "mind")):  # "Actually, never mind, ...": takes back
+        return None
+    new = {h.categories for h in named_heads(r, i, len(r))}
+    said = {h.categories for b in before if not b.aside for h in named_heads(b, 0, len(b))}
+    return replace(r, toks=r.toks[i:]) if new and not new & said and goals_before(before) else None
 
 
 def moved_first(r: Reader, i: int, out: list[Reader]) -> tuple[Reader, Reader] | None:
