@@ -1037,7 +1037,8 @@ CONDITION_OPENERS_OF_ASIDES = ("if", "when", "whenever")
 """Asides of :data:`CLOSING` that start like a condition (*if you can*, *when you get a chance*): before a
 noun phrase they are still asides (a condition needs a verb)."""
 CORRECTIONS = Phrases((("i", "mean"), ("i", "meant"), ("no", "wait"), ("wait", "no"), ("scratch", "that"),
-                       ("wait", ",", "no"), ("make", "that"), ("correction",), ("or", "rather"),
+                       ("wait", ",", "no"), ("no", ",", "wait"), ("make", "that"), ("correction",),
+                       ("or", "rather"), ("other", "way", "round"), ("other", "way", "around"),
                        ("actually", "no"),
                        ("no", "sorry"), ("sorry", "no"), ("i", "said", "wrong"), ("my", "mistake"),
                        ("my", "bad"), ("let", "me", "rephrase"),

@@ -457,7 +457,7 @@ def order_said_again(r: Reader, k: int, after: int,
     return replace(r, toks=r.toks[start:]), replace(r, toks=r.toks[:start], aside=True)
 
 
-_FORGET = Phrases((("forget",), ("forget", "about"), ("never", "mind"), ("skip",), ("scratch",)))
+FORGET = Phrases((("forget",), ("forget", "about"), ("never", "mind"), ("skip",), ("scratch",)))
 """Before the phrase a correction takes back, said again (*no, actually, forget the apple, just go ...*); not
 *drop*, a verb of putting down (*drop the bowl*)."""
 
@@ -466,7 +466,7 @@ def forgotten(r: Reader, i: int, taken_back: list[Head]) -> int | None:
     """Where the words *forget / never mind / skip X* at ``i`` end when X names again every place taken back
     (*Fetch an apple... no, actually, forget the apple, just go sit on the couch*): they only say what the
     correction takes back; ``None`` otherwise."""
-    said = r.phrase(i, _FORGET)
+    said = r.phrase(i, FORGET)
     phrase = noun_phrase(r, i + len(said), "goal") if said is not None and taken_back else None
     if not isinstance(phrase, Match) or r.word(phrase.end) not in (",", "and", "just"):
         return None

@@ -16,8 +16,11 @@ reader takes one meaning; the correction words are set aside and said back:
   both) and the phrase names what only the second of them names (its head, or the room that tells two of
   one kind apart): the sentence is read without it, and the phrase after it as *First, <phrase>* (*go to A.
   First, B.*);
-- **a phrase said instead**: *(make that) X instead of Y*, where Y is the noun phrase the sentence before
-  ends with, said word for word, and X names the same kind: that sentence is read with X in its place;
+- **a phrase said instead**: *(make that) X instead of Y* or *forget (about) Y, (just) <verb> X*, where Y is
+  the noun phrase the sentence before ends with, said word for word, and X names the same kind: that
+  sentence is read with X in its place;
+- **a correction heading**: correction words alone before a colon (*No, other way round: office first, then
+  garage.*) are read with the sentence after it;
 - **an order said again over several sentences**: a correction and a whole order said again that names
   again exactly the places of the sentences right before it (two or more, each saying nothing but places
   to go): those sentences are joined with it, and :mod:`.corrections` reads it as one
@@ -35,6 +38,7 @@ from typing import NamedTuple
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.syntax.corrections import (
+    FORGET,
     goal_heads,
     joined,
     named_heads,
@@ -74,12 +78,12 @@ def reordered(readers: list[Reader]) -> list[Reader]:
     """``readers`` with each correction sentence that changes the order of the steps before it applied (see
     the module docstring): the sentences it reorders rewritten, its correction words set aside."""
     out: list[Reader] = []
-    for r in readers:
+    for r in correction_headings_joined(readers):
         start = said_instead(r) if out and not r.aside and r.marker is None else None
         if start is None:
             out.append(r)
             continue
-        i = order_start(r, start)
+        i = order_start(r, r.skip(start, (":",)))  # "No, other way round: office first, then ..."
         taken = r.toks[:i]
         first = added_first(r, start, i, out) or added_prohibition(r, start, i, out)
         if first is not None:
@@ -101,6 +105,20 @@ def reordered(readers: list[Reader]) -> list[Reader]:
             for more in [*out[len(out) - run + 1:], r]:
                 both = joined(both, more)
             out[-run:] = [both]
+            continue
+        out.append(r)
+    return out
+
+
+def correction_headings_joined(readers: list[Reader]) -> list[Reader]:
+    """``readers`` with each sentence that is only correction words before a colon (*No, other way round:*)
+    joined to the one after it, which says what it corrects."""
+    out: list[Reader] = []
+    for r in readers:
+        before = out[-1] if out else None
+        start = said_instead(before) if before is not None and not before.aside and not r.aside else None
+        if before is not None and start is not None and before.skip(start, (":",)) >= len(before):
+            out[-1] = joined(before, r)
             continue
         out.append(r)
     return out
@@ -237,22 +255,43 @@ class Substitution(NamedTuple):
 
 
 def substituted(r: Reader, i: int, before: list[Reader]) -> Substitution | None:
-    """The last sentence of ``before`` with its closing noun phrase Y replaced, when the order of the
-    correction ``r`` (from ``i``) is *(make that) X instead of Y*, Y said word for word as that phrase, and
-    X names the same kind (a room for a room, an object for an object); else ``None``. (Y said earlier is
-    not read: X would be said after the goals it was to come before.)"""
-    k = i + 2 if r.word(i) == "make" and r.word(i + 1) in ("that", "it") else i
-    new = noun_phrase(r, k, "goal")
-    if not isinstance(new, Match) or r.words[new.end:new.end + 2] != ("instead", "of"):
+    """The last sentence of ``before`` with its closing noun phrase Y replaced by X, when the order of the
+    correction ``r`` (from ``i``) says X instead of Y (:func:`said_instead_of`), Y said word for word as that
+    phrase, and X names the same kind (a room for a room, an object for an object); else ``None``. (Y said
+    earlier is not read: X would be said after the goals it was to come before.)"""
+    said = said_instead_of(r, i)
+    if said is None:
         return None
-    old = noun_phrase(r, new.end + 2, "goal")
-    if not isinstance(old, Match) or any(w not in _ENDS for w in r.words[old.end:]):
-        return None
-    kinds = {h.kind for h in named_heads(r, k, new.end)[:1] + named_heads(r, new.end + 2, old.end)[:1]}
-    words, b = r.words[new.end + 2:old.end], before[-1]
+    (new, new_end), (old, old_end) = said
+    kinds = {h.kind for h in named_heads(r, new, new_end)[:1] + named_heads(r, old, old_end)[:1]}
+    words, b = r.words[old:old_end], before[-1]
     end = len(b) - sum(1 for _ in takewhile(lambda w: w in _ENDS, reversed(b.words)))
     j = end - len(words)
-    said = noun_phrase(b, j, "goal") if j >= 0 and b.words[j:end] == words else None
-    if len(kinds) != 1 or b.aside or not isinstance(said, Match) or said.end != end:
+    phrase = noun_phrase(b, j, "goal") if j >= 0 and b.words[j:end] == words else None
+    if len(kinds) != 1 or b.aside or not isinstance(phrase, Match) or phrase.end != end:
         return None  # "the vase" of "the vase in the hall": not the whole phrase
-    return Substitution(replace(b, toks=(*b.toks[:j], *r.toks[k:new.end], *b.toks[end:])), k, new.end)
+    return Substitution(replace(b, toks=(*b.toks[:j], *r.toks[new:new_end], *b.toks[end:])), new, new_end)
+
+
+def said_instead_of(r: Reader, i: int) -> tuple[tuple[int, int], tuple[int, int]] | None:
+    """The spans of X and of Y in a correction whose order (from ``i``) is *(make that) X instead of Y* or
+    *forget (about) Y, (just) <verb> X*, closing it; else ``None``."""
+    forget = r.phrase(i, FORGET)
+    if forget is not None:
+        at_old = i + len(forget)
+        old = noun_phrase(r, at_old, "goal")
+        k = r.skip(old.end, (",", "and", "just")) if isinstance(old, Match) else i
+        k = r.skip(k + 1, lx.PLACE_PREPOSITIONS) if k > i and order_verb(r, k) else k  # "do the microwave"
+        new = noun_phrase(r, k, "goal") if k > i else None
+        last = new
+    else:
+        k = i + 2 if r.word(i) == "make" and r.word(i + 1) in ("that", "it") else i
+        new = noun_phrase(r, k, "goal")
+        instead = isinstance(new, Match) and r.words[new.end:new.end + 2] == ("instead", "of")
+        at_old = new.end + 2 if isinstance(new, Match) and instead else i
+        old = noun_phrase(r, at_old, "goal") if at_old > i else None
+        last = old
+    if not isinstance(new, Match) or not isinstance(old, Match) or not isinstance(last, Match) or any(
+            w not in _ENDS for w in r.words[last.end:]):
+        return None
+    return (k, new.end), (at_old, old.end)
