@@ -640,11 +640,15 @@ def relative_have(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipp
 @QUALIFIERS.rule("and more contents")
 def more_contents(r: Reader, i: int, noun: NounSoFar) -> Parse[Qualifier | Skipped]:
     """After *the bedroom with the book*: *and the vase* may say more of its contents, or name another goal
-    (the scene decides, :class:`.tree.Attachment`)."""
+    (the scene decides, :class:`.tree.Attachment`); closed by *in it* (*with the vase and the plant in it*),
+    it says more of the contents."""
     said = noun.noun.qualifiers
     if (not said or not isinstance(said[-1], Contains) or r.word(i) != "and" or not r.np_starts(i + 1)
             or r.word(i + 1) in lx.PRONOUNS):
         return None
+    thing = noun_phrase(r, i + 1, "qualifier")
+    if isinstance(thing, Match) and r.at(thing.end, "in", "it"):
+        return Match(Contains(thing.node, r.span(noun.first, thing.end), None, False), thing.end + 2)
     return attachment(r, i, noun, "and-contents")
 
 
