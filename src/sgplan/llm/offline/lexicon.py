@@ -937,7 +937,8 @@ CLOSING = Phrases((
     ("if", "that", "is", "fine"),
     *(("if", "you", would, "not", "mind") for would in ("would", "could")),
     *((when, "suits", *you) for when in ("whenever", "when", "whatever") for you in ((), ("you",))),
-    *(("when", "it", "suits", *you) for you in ((), ("you",))), ("whenever", "is", "convenient"),
+    *((when, "it", "suits", *you) for when in ("when", "whenever") for you in ((), ("you",))),
+    ("whenever", "is", "convenient"),
     # praise only with thanks after it: "Is the kitchen lovely?" asks something
     *((praise, *comma, thanks) for praise in ("lovely", "brilliant", "perfect", "great", "awesome", "super")
       for comma in ((), (",",)) for thanks in ("thanks", "cheers", "ta")),
