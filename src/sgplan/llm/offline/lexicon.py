@@ -2058,7 +2058,9 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     **{(who, "a", small, favour): (who, "a", favour) for who in ("me", "us")
        for small in ("small", "little", "quick", "big", "huge") for favour in ("favour", "favor")},
     # "Main thing today is to ...": the main thing (of today: the whole mission)
-    **{("thing", *today, "is"): ("thing", "is") for today in (("today",), ("for", "today"), ("tonight",))},
+    **{("thing", *today, "is"): ("thing", "is") for today in (("today",), ("for", "today"), ("tonight",),
+                                                             ("though",))},
+    ("what", "i", "really", "need"): ("what", "i", "need"),  # "What I really need is for you to ..."
     # "check the fridge every time after you go into the kitchen": each time you go in, afterwards
     **{(every, "time", "after", "you"): (every, "time", "you") for every in ("every", "each")},
     # "Would it be alright if you went to X": a wish said in the past tense, an order
