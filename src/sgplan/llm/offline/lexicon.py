@@ -1039,7 +1039,7 @@ CONDITION_OPENERS_OF_ASIDES = ("if", "when", "whenever")
 noun phrase they are still asides (a condition needs a verb)."""
 CORRECTIONS = Phrases((("i", "mean"), ("i", "meant"), ("no", "wait"), ("wait", "no"), ("scratch", "that"),
                        ("wait", ",", "no"), ("no", ",", "wait"), ("make", "that"), ("correction",),
-                       ("or", "rather"), ("other", "way", "round"), ("other", "way", "around"),
+                       ("or", "rather"),
                        ("actually", "no"),
                        ("no", "sorry"), ("sorry", "no"), ("i", "said", "wrong"), ("my", "mistake"),
                        ("my", "bad"), ("let", "me", "rephrase"),

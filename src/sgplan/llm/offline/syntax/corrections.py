@@ -225,11 +225,18 @@ def said_instead(r: Reader) -> int | None:
 
 def past_corrections(r: Reader, i: int) -> int:
     """Where the words after the correction that ends at ``i`` start, past the correction words that follow
-    it (*Sorry, I mean the office.*, *wait, no, first ...*)."""
+    it (*Sorry, I mean the office.*, *wait, no, first ...*) and *(the) other way round* (*No, other way
+    round: ...*)."""
     i = r.skip(i, _AROUND)
-    while (more := r.phrase(i, lx.CORRECTIONS)) is not None:
+    while (more := r.phrase(i, lx.CORRECTIONS) or r.phrase(i, _OTHER_WAY)) is not None:
         i = r.skip(i + len(more), _AROUND)
     return i
+
+
+_OTHER_WAY = Phrases(tuple((*the, "other", "way", way) for the in ((), ("the",))
+                           for way in ("round", "around")))
+"""*(the) other way round* right after correction words (*No, other way round: A first, then B.*): only says
+that the order is corrected (not after *or*: *A then B, or the other way round* is either order)."""
 
 
 def adds(r: Reader, start: int) -> bool:

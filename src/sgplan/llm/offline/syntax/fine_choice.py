@@ -19,6 +19,7 @@ from dataclasses import replace
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.phrases import Phrases
+from sgplan.llm.offline.syntax.brackets import bracket
 from sgplan.llm.offline.syntax.noun_slot import noun_phrase
 from sgplan.llm.offline.syntax.qualifiers import remark_ahead
 from sgplan.llm.offline.syntax.reader import Match, Reader
@@ -85,15 +86,17 @@ _CLOSING_STEP = Phrases((("after",), ("afterwards",), ("done",), ("first",), ("t
 def remark_after_closing(r: Reader) -> Reader:
     """``r`` with each choice remark said after a word of :data:`_CLOSING_STEP` that follows a noun of the
     scene moved right after that noun (*chk tv, either, after*), where it is decided or refused as one typed
-    so; the remark runs to the end of its clause."""
+    so; the remark is in brackets or says *one* (not *..., then the couch after, either is fine*: either
+    order?), and runs to the end of its clause."""
     for k in range(1, len(r)):
         closing = r.phrase(k, _CLOSING_STEP)
-        head = r.head_before(k)
-        said = remark_ahead(r, k + len(closing)) if closing and head is not None else None
-        end = k + len(closing or ()) + len(said or ())
-        if said is None or r.word(end) not in _ENDS:
+        said = remark_ahead(r, k + len(closing)) if closing and r.head_before(k) is not None else None
+        if closing is None or said is None or r.word(end := k + len(closing) + len(said)) not in _ENDS:
             continue
-        toks, n = r.toks, len(closing or ())
+        if "one" not in said and not bracket(r, k + len(closing), "("):
+            continue  # "the couch after, either is fine": either order? Only "(either)", "either one" move
+        toks, n = r.toks, len(closing)
         comma = Tok(",", toks[end - 1].end, toks[end - 1].end)  # "chk tv, either, after"
-        return replace(r, toks=(*toks[:k], *toks[k + n:end], comma, *toks[k:k + n], *toks[end:]))
+        return remark_after_closing(replace(r, toks=(*toks[:k], *toks[k + n:end], comma, *toks[k:k + n],
+                                                      *toks[end:])))
     return r

@@ -106,7 +106,8 @@ def negation_after(r: Reader, j: int, marker: tuple[str, ...]) -> Parse[Negation
     k += 1 if r.word(k) in lx.NEGATING + lx.NEGATION_EVER and marker[-1] in lx.NEGATING else 0  # "... never"
     whole = whole_mission(r, k)
     k += len(whole) if whole else 0
-    k += 1 if r.word(k) == "either" and r.word(k + 1) in ("", ".", "!") else 0  # "... in there either": too
+    comma = 1 if r.at(k, ",", "either") else 0  # "don't go in there either", "..., either": too
+    k += 1 + comma if r.word(k + comma) == "either" and r.word(k + comma + 1) in ("", ".", "!") else 0
     if r.word(k) in lx.PARTIAL_PROHIBITION or any(r.at(k, *p) for p in lx.PARTIAL_FROM):
         return Refusal(rf.partial_prohibition(r.rest(k)))
     until = until_target(r, k)

@@ -5,11 +5,11 @@ a bowl from the kitchen.*; *Go to the bed, then the couch. No wait, the couch fi
 Then the office. No wait, office first, then the garage.* Each is read only in the shape in which a careful
 reader takes one meaning; the correction words are set aside and said back:
 
-- **a step added first**: *Actually,* (*Oh,*, *Oops,*), then an order with *first* (at its start or its end)
+- **a step added first**: *Actually,* (*Oh,*), then an order with *first* (at its start or its end)
   that names only rooms and objects the mission has not named before, and no other word of order,
   condition, negation or addition: it is read as *First, <order>.*, which comes before every goal said so
   far (or is refused as such, :mod:`.sentences`); after *No wait* or *I mean* a step may be taken back;
-- **a prohibition added**: *Actually,* (*Oh,*, *Oops,*), then a prohibition of places the mission has not
+- **a prohibition added**: *Actually,* (*Oh,*), then a prohibition of places the mission has not
   named (*Actually, don't go through the kitchen.*): read without the correction words;
 - **the second of two steps moved first**: a correction, then a noun phrase and *first*, right after the
   mission's first goal sentence when that is exactly two goal phrases in a row (*A, then B*, one verb for
@@ -59,9 +59,12 @@ _BEYOND_ORDER = (lx.NOT_A_SEQUENCE | frozenset(lx.NEGATING)
 :mod:`.corrections`)."""
 _SAYS_MORE = _BEYOND_ORDER | (lx.ORDER_HEADS - lx.FIRST)
 """Words that make a correction say more than one step to put first."""
-_ADDING = frozenset({"actually", "oh", "oops", ","})
+_ADDING = frozenset({"actually", "oh", ","})
 """The only correction words before a step added first: *No wait, check X first*, *I mean, check X first*
 say something before was wrong (X instead of a step?), so they are not read as adding."""
+_MORE_THAN_A_RULE = (_SAYS_MORE - frozenset(lx.NEGATING)) | lx.FIRST | frozenset({",", ";", "and", "just"})
+"""Words after which a prohibition said after *Actually,* may say more than the rule it adds (a goal, *just*
+X, *not first*)."""
 _TWO_STEPS = ((",", "then"), ("then",), (",", "and", "then"), ("and", "then"), (",", "after", "that", ","),
               ("and", "after", "that"), (",", "then", "after", "that"))
 """The words between the two goal phrases of a sentence whose second one a correction moves first."""
@@ -112,16 +115,20 @@ def reordered(readers: list[Reader]) -> list[Reader]:
 
 def correction_headings_joined(readers: list[Reader]) -> list[Reader]:
     """``readers`` with each sentence that is only correction words before a colon (*No, other way round:*)
-    joined to the one after it, which says what it corrects."""
+    joined to the one after it when that says an order again (two places or more, with *first* or *then*):
+    the heading corrects the order (not *No wait: check the couch.*, which may add a step)."""
     out: list[Reader] = []
     for r in readers:
         before = out[-1] if out else None
         start = said_instead(before) if before is not None and not before.aside and not r.aside else None
-        if before is not None and start is not None and before.skip(start, (":",)) >= len(before):
+        order = len(named_heads(r, 0, len(r))) >= 2 and any(w in lx.FIRST or w == "then" for w in r.words)
+        if before is not None and start is not None and order and before.skip(start, (":",)) >= len(before):
             out[-1] = joined(before, r)
             continue
         out.append(r)
     return out
+
+
 
 
 def said_first(first: Tok, toks: Sequence[Tok]) -> tuple[Tok, ...]:
@@ -163,6 +170,8 @@ def added_prohibition(r: Reader, start: int, i: int, before: list[Reader]) -> Re
     if (not set(r.words[:start]) <= _ADDING or r.phrase(i, lx.NEG_STARTS) is None
             or r.words[i:i + 2] == ("never", "mind")):  # "Actually, never mind, ...": takes back
         return None
+    if any(w in _MORE_THAN_A_RULE for w in r.words[i:]):
+        return None  # "Actually, don't go in the kitchen, just go to the office": instead of the couch?
     new = {h.categories for h in named_heads(r, i, len(r))}
     said = {h.categories for b in before if not b.aside for h in named_heads(b, 0, len(b))}
     return replace(r, toks=r.toks[i:]) if new and not new & said and goals_before(before) else None
@@ -273,25 +282,42 @@ def substituted(r: Reader, i: int, before: list[Reader]) -> Substitution | None:
     return Substitution(replace(b, toks=(*b.toks[:j], *r.toks[new:new_end], *b.toks[end:])), new, new_end)
 
 
-def said_instead_of(r: Reader, i: int) -> tuple[tuple[int, int], tuple[int, int]] | None:
+Spans = tuple[tuple[int, int], tuple[int, int]]
+"""The spans of X and of Y in a correction that says X instead of Y."""
+
+
+def said_instead_of(r: Reader, i: int) -> Spans | None:
     """The spans of X and of Y in a correction whose order (from ``i``) is *(make that) X instead of Y* or
-    *forget (about) Y, (just) <verb> X*, closing it; else ``None``."""
-    forget = r.phrase(i, FORGET)
-    if forget is not None:
-        at_old = i + len(forget)
-        old = noun_phrase(r, at_old, "goal")
-        k = r.skip(old.end, (",", "and", "just")) if isinstance(old, Match) else i
-        k = r.skip(k + 1, lx.PLACE_PREPOSITIONS) if k > i and order_verb(r, k) else k  # "do the microwave"
-        new = noun_phrase(r, k, "goal") if k > i else None
-        last = new
-    else:
-        k = i + 2 if r.word(i) == "make" and r.word(i + 1) in ("that", "it") else i
-        new = noun_phrase(r, k, "goal")
-        instead = isinstance(new, Match) and r.words[new.end:new.end + 2] == ("instead", "of")
-        at_old = new.end + 2 if isinstance(new, Match) and instead else i
-        old = noun_phrase(r, at_old, "goal") if at_old > i else None
-        last = old
-    if not isinstance(new, Match) or not isinstance(old, Match) or not isinstance(last, Match) or any(
-            w not in _ENDS for w in r.words[last.end:]):
+    *forget (about) Y, just / <verb> X*, closing it; else ``None``."""
+    return forget_then(r, i) if r.phrase(i, FORGET) is not None else instead_of(r, i)
+
+
+def forget_then(r: Reader, i: int) -> Spans | None:
+    """*forget (about) Y, just (<verb>) X* / *forget Y, <verb> X* at ``i``, X closing the sentence (not
+    *forget Y and Z*: both taken back)."""
+    at_old = i + len(r.phrase(i, FORGET) or ())
+    old = noun_phrase(r, at_old, "goal")
+    if not isinstance(old, Match):
+        return None
+    k = r.skip(old.end, (",",))
+    just = r.word(k) == "just"
+    k += 1 if just else 0
+    if not just and not order_verb(r, k):
+        return None
+    k = r.skip(k + 1, lx.PLACE_PREPOSITIONS) if order_verb(r, k) else k  # "do the microwave", "go to X"
+    new = noun_phrase(r, k, "goal")
+    if not isinstance(new, Match) or any(w not in _ENDS for w in r.words[new.end:]):
         return None
     return (k, new.end), (at_old, old.end)
+
+
+def instead_of(r: Reader, i: int) -> Spans | None:
+    """*(make that / it) X instead of Y* at ``i``, Y closing the sentence."""
+    k = i + 2 if r.word(i) == "make" and r.word(i + 1) in ("that", "it") else i
+    new = noun_phrase(r, k, "goal")
+    if not isinstance(new, Match) or r.words[new.end:new.end + 2] != ("instead", "of"):
+        return None
+    old = noun_phrase(r, new.end + 2, "goal")
+    if not isinstance(old, Match) or any(w not in _ENDS for w in r.words[old.end:]):
+        return None
+    return (k, new.end), (new.end + 2, old.end)
