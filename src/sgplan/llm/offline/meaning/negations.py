@@ -29,6 +29,11 @@ def never(entities: list[Entity]) -> Formula:
     return conj([Not(Atom(e.action)) for e in entities])
 
 
+_ENTERING = frozenset({"enter", "enters", "entering", "into"})
+"""Verbs (and the particle) of a prohibition that only a room can follow: a pronoun after them names a room
+(*Go to the bedroom with the teddy bear, but don't enter it until ...*: the bedroom, not the teddy bear)."""
+
+
 def negation(item: Negation, clause: Clause, ctx: SentenceContext, said_whole: bool = False) -> None:
     """*always avoid X* / *never enter X* (``G !X``), *avoid X* after an action (local, see the module
     docstring), *don't enter X until Y* (``!X U Y``); ``said_whole``: for the whole mission whatever came
@@ -43,7 +48,8 @@ def negation(item: Negation, clause: Clause, ctx: SentenceContext, said_whole: b
     else:
         assert item.phrases is not None and item.verbs is not None
         floor = floors_of(item.verbs.floor, ctx.disc) if item.verbs.floor is not None else None
-        where = Where("avoid", tuple(rooms), floor=floor, action_floor=ctx.floor_scope)
+        entering = bool(set(item.verbs.words) & _ENTERING)  # "don't enter it": a room, never the object
+        where = Where("avoid", tuple(rooms), floor=floor, action_floor=ctx.floor_scope, rooms=entering)
         phrases = ground_list(item.phrases, where, ctx.disc)
     is_global = declared or item.whole
     entities = [e for g in phrases for e in g.entities]
