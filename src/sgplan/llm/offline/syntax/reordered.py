@@ -33,7 +33,6 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import replace
-from itertools import takewhile
 from typing import NamedTuple
 
 from sgplan.llm.offline import lexicon as lx
@@ -136,6 +135,22 @@ def said_first(first: Tok, toks: Sequence[Tok]) -> tuple[Tok, ...]:
     return (first, Tok(",", first.end, first.end), *toks)
 
 
+def closing_start(r: Reader, start: int = 0) -> int:
+    """Where the words of :data:`_ENDS` that close the sentence ``r`` start (not before ``start``)."""
+    end = len(r)
+    while end > start and r.word(end - 1) in _ENDS:
+        end -= 1
+    return end
+
+
+def only_new_places(r: Reader, start: int, end: int, before: list[Reader]) -> bool:
+    """Whether the words ``[start, end)`` of ``r`` name rooms or objects, none of them named in a sentence of
+    ``before`` not set aside, and a sentence of ``before`` names a goal."""
+    new = {h.categories for h in named_heads(r, start, end)}
+    said = {h.categories for b in before if not b.aside for h in named_heads(b, 0, len(b))}
+    return bool(new) and not new & said and goals_before(before)
+
+
 def goals_before(before: Sequence[Reader]) -> bool:
     """Whether a sentence of ``before`` not set aside names a goal."""
     return any(goal_heads(b, 0, len(b)) for b in before if not b.aside)
@@ -145,18 +160,14 @@ def added_first(r: Reader, start: int, i: int, before: list[Reader]) -> Reader |
     """The order of the correction ``r`` (its correction words before ``start``, its order from ``i``) said as
     *First, <order>* when it adds a step before all (see the module docstring), else ``None``."""
     lead = r.word(i) in lx.FIRST
-    end = len(r)
-    while end > i and r.word(end - 1) in _ENDS:
-        end -= 1
+    end = closing_start(r, i)
     trailing = not lead and r.word(end - 1) in lx.FIRST
     order = r.skip(i + 1, (",",)) if lead else i
     words = range(order, end - 1 if trailing else end)
     if not (lead or trailing) or not set(r.words[:start]) <= _ADDING or not order_verb(r, order) or any(
             r.word(k) in _SAYS_MORE or r.word(k) in lx.FIRST for k in words):
         return None
-    new = {h.categories for h in named_heads(r, order, words.stop)}
-    said = {h.categories for b in before if not b.aside for h in named_heads(b, 0, len(b))}
-    if not new or new & said or not goals_before(before):
+    if not only_new_places(r, order, words.stop, before):
         return None
     if lead:
         return replace(r, toks=r.toks[i:])
@@ -172,9 +183,7 @@ def added_prohibition(r: Reader, start: int, i: int, before: list[Reader]) -> Re
         return None
     if any(w in _MORE_THAN_A_RULE for w in r.words[i:]):
         return None  # "Actually, don't go in the kitchen, just go to the office": instead of the couch?
-    new = {h.categories for h in named_heads(r, i, len(r))}
-    said = {h.categories for b in before if not b.aside for h in named_heads(b, 0, len(b))}
-    return replace(r, toks=r.toks[i:]) if new and not new & said and goals_before(before) else None
+    return replace(r, toks=r.toks[i:]) if only_new_places(r, i, len(r), before) else None
 
 
 def moved_first(r: Reader, i: int, out: list[Reader]) -> tuple[Reader, Reader] | None:
@@ -188,7 +197,7 @@ def moved_first(r: Reader, i: int, out: list[Reader]) -> tuple[Reader, Reader] |
         return None  # "Check the fridge. Then the couch, then the oven. No wait, the oven first.": before
         # the fridge too?
     after = phrase.end if lead else phrase.end + 1
-    if (not lead and r.word(phrase.end) not in lx.FIRST) or any(w not in _ENDS for w in r.words[after:]):
+    if (not lead and r.word(phrase.end) not in lx.FIRST) or closing_start(r, after) > after:
         return None
     two = two_goal_phrases(before)
     if two is None:
@@ -217,7 +226,7 @@ def two_goal_phrases(r: Reader) -> tuple[tuple[int, int], tuple[int, int]] | Non
     joiner = next((j for j in _TWO_STEPS if r.words[first.end:first.end + len(j)] == j), None)
     b = first.end + len(joiner) if joiner is not None else None
     second = noun_phrase(r, b, "goal") if b is not None else None
-    if b is None or not isinstance(second, Match) or any(w not in _ENDS for w in r.words[second.end:]):
+    if b is None or not isinstance(second, Match) or closing_start(r, second.end) > second.end:
         return None
     return (a, first.end), (b, second.end)
 
@@ -274,7 +283,7 @@ def substituted(r: Reader, i: int, before: list[Reader]) -> Substitution | None:
     (new, new_end), (old, old_end) = said
     kinds = {h.kind for h in named_heads(r, new, new_end)[:1] + named_heads(r, old, old_end)[:1]}
     words, b = r.words[old:old_end], before[-1]
-    end = len(b) - sum(1 for _ in takewhile(lambda w: w in _ENDS, reversed(b.words)))
+    end = closing_start(b)
     j = end - len(words)
     phrase = noun_phrase(b, j, "goal") if j >= 0 and b.words[j:end] == words else None
     if len(kinds) != 1 or b.aside or not isinstance(phrase, Match) or phrase.end != end:
@@ -306,7 +315,7 @@ def forget_then(r: Reader, i: int) -> Spans | None:
         return None
     k = r.skip(k + 1, lx.PLACE_PREPOSITIONS) if order_verb(r, k) else k  # "do the microwave", "go to X"
     new = noun_phrase(r, k, "goal")
-    if not isinstance(new, Match) or any(w not in _ENDS for w in r.words[new.end:]):
+    if not isinstance(new, Match) or closing_start(r, new.end) > new.end:
         return None
     return (k, new.end), (at_old, old.end)
 
@@ -318,6 +327,6 @@ def instead_of(r: Reader, i: int) -> Spans | None:
     if not isinstance(new, Match) or r.words[new.end:new.end + 2] != ("instead", "of"):
         return None
     old = noun_phrase(r, new.end + 2, "goal")
-    if not isinstance(old, Match) or any(w not in _ENDS for w in r.words[old.end:]):
+    if not isinstance(old, Match) or closing_start(r, old.end) > old.end:
         return None
     return (k, new.end), (new.end + 2, old.end)
