@@ -1363,9 +1363,13 @@ CONDITION_WORDS = Phrases((("if",), ("when",), ("in", "case")))
 ONLY_IF = ("only", "if")
 WHENEVER = Phrases((("whenever",), ("every", "time"), ("each", "time"), ("any", "time"), ("anytime",)))
 ONLY_AFTER = Phrases((("only", "after"), ("only", "once"), ("not", "before"), ("not", "until")))
-EVER = Phrases((("ever",), ("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point"),
-                ("every", "time"), ("each", "time"), ("anytime",)))
+EVER_ONCE = Phrases((("at", "any", "point"), ("at", "any", "time"), ("at", "some", "point")))
+"""In a condition ("if you go into X at any point, Y afterwards"): the condition is met once; every writer
+since the second set read it so (28 missions), as the brief's "if you go into A, B afterwards" (once)."""
+EVER_UNCLEAR = Phrases((("ever",), ("every", "time"), ("each", "time"), ("anytime",)))
 """In a condition ("if you ever go into X"): once or on each visit? Writers read it both ways: refused."""
+EVER = EVER_UNCLEAR + EVER_ONCE
+"""Words of how often a condition may be met, skipped before its subject."""
 OBLIGED = Phrases((("must",), ("have", "to"), ("has", "to"), ("need", "to"), ("needs", "to")))
 """*Before you enter Y, you must X*: an obligation, so Y is not entered before X (not only X, then Y)."""
 CONDITION_AFTERWARDS = frozenset({"afterwards", "afterward", "after", "later"})

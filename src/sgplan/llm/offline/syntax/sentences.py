@@ -603,11 +603,11 @@ def make_rule(r: Reader, i: int, said: Match[Action], consequent: Body, after_st
     """The rule at ``i`` with condition ``said`` and ``consequent``; the consequent follows the condition
     when the words ``[after_start, after_end)`` say *afterwards*, or a *then* opens it (*if you go into X,
     then Y*, *..., would you then Y*). *If you ever / at any point go into X, Y*
-    is refused: people read it as once and as on each visit of X alike."""
+    is refused: people read it as once and as on each visit of X alike (*at any point* is read once)."""
     word = r.phrase(i, lx.CONDITION_WORDS)
     if r.phrase(i, lx.WHENEVER) is not None or word is None:
         return WheneverRule(said.node, consequent)
-    if r.says(lx.EVER, i + len(word), said.end):
+    if r.says(lx.EVER_UNCLEAR, i + len(word), said.end):
         return Refusal(rf.once_or_each_visit(r.quote(i, said.end)))
     # "if you go into X, then Y" / "..., would you then Y": the consequent after that visit, as the words say
     then = word != ("when",) and "then" in r.words[said.end:min(said.end + 4, after_end)]  # (not "when")
