@@ -65,9 +65,21 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     if w in lx.FIRST and i > 1 and r.word(said_before) == "," and (r.np_starts(i + 1)
                                                                    or r.word(i + 1) in lx.POSITIVE_VERBS):
         return Refusal(rf.first_mid_sentence(r.quote(0, i + 1)))  # "check X, first the oven": first of all?
+    if w in lx.SOFTENERS and softened_step(r, i):
+        return "filler", i + 1
     if w == "," or (w in lx.FILLERS and w not in lx.NOT_FILLERS_HERE) or w in lx.HESITATIONS:
         return "filler", i + 1
     return None
+
+
+def softened_step(r: Reader, i: int) -> bool:
+    """Whether *maybe* / *perhaps* at ``i`` softens the step after it: a verb follows it at the start of a
+    clause (*Perhaps look in on the office*, *..., and maybe have a peek at the couch*), or a step follows
+    *then* (*and then maybe the bed*). *A and maybe B* stays an optional B (refused)."""
+    before, after = r.word(i - 1), r.word(i + 1)
+    if before == "then":
+        return after in lx.POSITIVE_VERBS or after in lx.DETERMINERS
+    return before in ("", ",", "and") and after in lx.POSITIVE_VERBS
 
 
 def checks_a_state(r: Reader, i: int, said: tuple[str, ...]) -> bool:
