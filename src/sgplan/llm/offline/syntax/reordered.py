@@ -36,6 +36,7 @@ from dataclasses import replace
 from typing import NamedTuple
 
 from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline.phrases import Phrases
 from sgplan.llm.offline.syntax.corrections import (
     FORGET,
     goal_heads,
@@ -67,6 +68,9 @@ X, *not first*)."""
 _TWO_STEPS = ((",", "then"), ("then",), (",", "and", "then"), ("and", "then"), (",", "after", "that", ","),
               ("and", "after", "that"), (",", "then", "after", "that"))
 """The words between the two goal phrases of a sentence whose second one a correction moves first."""
+_PUT = Phrases((("make", "it"), ("make", "that"), ("do",)))
+"""Words before the phrase a correction moves (*Actually make it the couch first*, *do the living room before
+the dining room*)."""
 _STEP_WORDS = lx.HESITATIONS | lx.GREETINGS | lx.PLACE_PREPOSITIONS | frozenset(
     {"the", "a", "an", ",", ".", "!", "then", "and", "next", "up", "down", "over", "back", "please", "robot",
      "ok", "okay"})
@@ -93,7 +97,11 @@ def reordered(readers: list[Reader]) -> list[Reader]:
             continue
         moved = moved_first(r, i, out)
         if moved is not None:
-            out[-1:] = [moved[0], replace(r, toks=taken, aside=True), moved[1]]
+            out[-1:] = [moved[0], replace(r, toks=r.toks[:put_at(r, i)], aside=True), moved[1]]
+            continue
+        ahead = moved_before(r, i, out)
+        if ahead is not None:
+            out[-1:] = [ahead, replace(r, aside=True)]
             continue
         swapped = substituted(r, i, out)
         if swapped is not None:
@@ -191,7 +199,8 @@ def moved_first(r: Reader, i: int, out: list[Reader]) -> tuple[Reader, Reader] |
     when the correction ``r`` (its order from ``i``) moves it first and no sentence before names a goal (see
     the module docstring), else ``None``."""
     lead = r.word(i) in lx.FIRST
-    phrase = noun_phrase(r, r.skip(i + 1, (",",)) if lead else i, "goal")
+    at = put_at(r, r.skip(i + 1, (",",)) if lead else i)
+    phrase = noun_phrase(r, at, "goal")
     before = out[-1]
     if before.aside or before.marker is not None or not isinstance(phrase, Match) or goals_before(out[:-1]):
         return None  # "Check the fridge. Then the couch, then the oven. No wait, the oven first.": before
@@ -199,36 +208,84 @@ def moved_first(r: Reader, i: int, out: list[Reader]) -> tuple[Reader, Reader] |
     after = phrase.end if lead else phrase.end + 1
     if (not lead and r.word(phrase.end) not in lx.FIRST) or closing_start(r, after) > after:
         return None
-    two = two_goal_phrases(before)
-    if two is None:
+    spans = goal_phrases(before)
+    b = named_phrase(before, spans, r, at, phrase.end)
+    if spans is None or not b:
         return None
-    (a, a_end), (b, b_end) = two
-    said = {h.categories for h in named_heads(r, i, phrase.end)}
-    kinds_a, kinds_b = ({h.categories for h in goal_heads(before, *at)} for at in ((a, a_end), (b, b_end)))
-    # "garage first" after "the office chair, then the garage chair": the room tells the two chairs apart
-    names_b = said <= kinds_b or (kinds_a == kinds_b and said <= {
-        h.categories for h in named_heads(before, b, b_end)})
-    if not said or not names_b or said <= {h.categories for h in named_heads(before, a, a_end)}:
-        return None  # "the kitchen first" after "the couch, then the bowl in the kitchen": the room itself?
     t = before.toks
+    (_, a_end), (b_start, b_end) = spans[b - 1], spans[b]
     return replace(before, toks=(*t[:a_end], *t[b_end:])), replace(
-        r, toks=said_first(r.toks[i if lead else phrase.end], t[b:b_end]))
+        r, toks=said_first(r.toks[i if lead else phrase.end], t[b_start:b_end]))
 
 
-def two_goal_phrases(r: Reader) -> tuple[tuple[int, int], tuple[int, int]] | None:
-    """The spans of the two goal phrases of a sentence that is one verb and two goals in a row (*go to the
-    bed, then the couch*), the second closing it; ``None`` for any other sentence."""
+def moved_before(r: Reader, i: int, out: list[Reader]) -> Reader | None:
+    """The last sentence of ``out`` with its last two goal phrases swapped, when the correction ``r`` (its
+    order from ``i``) is *(do) X before Y*, X naming the last of them and Y the one before it (*Go to the
+    kitchen, then the dining room, then the living room. Actually, do the living room before the dining
+    room.*); else ``None``. The two are read as the correction says them, so the order of the words read
+    stays the order of the text."""
+    at = put_at(r, i)
+    x = noun_phrase(r, at, "goal")
+    if not isinstance(x, Match) or r.word(x.end) != "before":
+        return None
+    y = noun_phrase(r, x.end + 1, "goal")
+    before = out[-1]
+    if (not isinstance(y, Match) or closing_start(r, y.end) > y.end or before.aside
+            or before.marker is not None):
+        return None
+    spans = goal_phrases(before)
+    p, q = named_phrase(before, spans, r, at, x.end), named_phrase(before, spans, r, x.end + 1, y.end)
+    if spans is None or p != len(spans) - 1 or q != p - 1:
+        return None  # "A, then B, then C. Actually, do C before A": B after C as well?
+    t = before.toks
+    return replace(before, toks=(*t[:spans[q][0]], *r.toks[at:x.end], *t[spans[q][1]:spans[p][0]],
+                                 *r.toks[x.end + 1:y.end], *t[spans[p][1]:]))
+
+
+def put_at(r: Reader, i: int) -> int:
+    """Where the phrase a correction moves starts, past :data:`_PUT` at ``i`` (or the *it* of *make it* when
+    *make* closed the correction words: *Actually make it the couch first.*)."""
+    if r.word(i - 1) == "make" and r.word(i) in ("it", "that"):
+        return i + 1
+    return i + len(r.phrase(i, _PUT) or ())
+
+
+def named_phrase(before: Reader, spans: list[tuple[int, int]] | None, r: Reader, start: int,
+                 end: int) -> int | None:
+    """The index in ``spans`` (the goal phrases of ``before``) of the one phrase the words ``[start, end)``
+    of ``r`` name: what it names (its head, or the room that tells it from a phrase of the same kind), and
+    no other phrase names all of it; ``None`` otherwise."""
+    said = {h.categories for h in named_heads(r, start, end)}
+    if spans is None or not said:
+        return None
+    kinds = [{h.categories for h in goal_heads(before, *at)} for at in spans]
+    named = [{h.categories for h in named_heads(before, *at)} for at in spans]
+    # "garage first" after "the office chair, then the garage chair": the room tells the two chairs apart
+    found = [k for k in range(len(spans)) if said <= kinds[k] or (
+        kinds.count(kinds[k]) > 1 and said <= named[k])]
+    if len(found) != 1 or any(said <= named[k] for k in range(len(spans)) if k != found[0]):
+        return None  # "the kitchen first" after "the couch, then the bowl in the kitchen": the room itself?
+    return found[0]
+
+
+def goal_phrases(r: Reader) -> list[tuple[int, int]] | None:
+    """The spans of the goal phrases of a sentence that is one verb and two or more goals in a row (*go to the
+    bed, then the couch, then the oven*), the last closing it; ``None`` for any other sentence."""
     a = next((k for k in range(len(r)) if r.head(k) is not None
               or (r.word(k) in lx.DETERMINERS and r.head(k + 1) is not None)), None)
     first = noun_phrase(r, a, "goal") if a is not None else None
     if a is None or not isinstance(first, Match) or any(r.head(k) is not None for k in range(a)):
         return None
-    joiner = next((j for j in _TWO_STEPS if r.words[first.end:first.end + len(j)] == j), None)
-    b = first.end + len(joiner) if joiner is not None else None
-    second = noun_phrase(r, b, "goal") if b is not None else None
-    if b is None or not isinstance(second, Match) or closing_start(r, second.end) > second.end:
-        return None
-    return (a, first.end), (b, second.end)
+    spans = [(a, first.end)]
+    while (joiner := next((j for j in _TWO_STEPS if r.words[spans[-1][1]:spans[-1][1] + len(j)] == j),
+                          None)) is not None:
+        b = spans[-1][1] + len(joiner)
+        more = noun_phrase(r, b, "goal")
+        if not isinstance(more, Match):
+            return None
+        spans.append((b, more.end))
+    last = spans[-1][1]
+    return spans if len(spans) >= 2 and closing_start(r, last) == last else None
 
 
 def restated_run(r: Reader, i: int, before: list[Reader]) -> int:
