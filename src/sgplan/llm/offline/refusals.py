@@ -408,6 +408,11 @@ def step_room_or_anywhere(said: str, where: str, noun: str, room: str, single: s
                     f"Say 'one of the {noun} in the {room}', or name the room of the {single} meant")
 
 
+def listed_room_or_anywhere(said: str, where: str, room: str) -> str:
+    return rephrase(f"'{said}' after {where} among tasks in any order: the ones there, or any in the "
+                    f"building? Name the room ('{said} in the {room}', or another)")
+
+
 def there_or_anywhere(said: str, where: str, noun: str, room: str, single: str) -> str:
     return rephrase(f"'{said}' after a condition on {where}: the ones there, or any in the building? Say "
                     f"'the {noun} in the {room}' or 'any {single}'")

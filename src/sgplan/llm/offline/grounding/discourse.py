@@ -165,3 +165,7 @@ class Where:
     previous: tuple[Entity, ...] = ()
     """The one room of the step just before this one (*go to the bedroom with the vase, then check the
     plant*): a definite object that fits several is the one there, when exactly one is."""
+    listed_after: tuple[Entity, ...] = ()
+    """In a sentence of tasks in no order, the one room the tasks said before this one go to (*In the lobby
+    check the vases, in any order*): an object phrase that fits some but not all of its kind there is
+    refused (the ones there, or any?); the tasks being independent, none is looked for there."""

@@ -45,7 +45,8 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
     again = going_back or (action.repeat is not None and action.repeat.again)
     where = Where("goal", tuple(scope or ctx.scope), lenient, tuple(ctx.soft_scope), floor,
                   action_floor or ctx.floor_scope, going_back, carry, again,
-                  previous=tuple(ctx.previous_room))
+                  previous=tuple(ctx.previous_room),
+                  listed_after=tuple(ctx.listed_room) if len(ctx.listed_room) == 1 else ())
     if action.phrases is None:  # "go upstairs and check the laptop": the laptop upstairs
         assert action.moved is not None and floor is not None
         return steps_of(action.moved, ctx, scope, lenient, (floor, action.moved.span.start), floor)

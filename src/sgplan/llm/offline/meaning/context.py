@@ -42,6 +42,9 @@ class SentenceContext:
     previous_room: list[Entity] = field(default_factory=list)
     """The one room of the step before the action being read, when that action starts a step of its own
     (:attr:`.Where.previous`)."""
+    listed_room: list[Entity] = field(default_factory=list)
+    """In a sentence of independent tasks (:attr:`listed`), the rooms the tasks said before the action being
+    read in its clause go to (one room: :attr:`.Where.listed_after`)."""
     floor_scope: tuple[FloorReading, int] | None = None
     """*While you're upstairs, ...* / *On the top floor, ...* / a list's heading *Top floor tasks*: the floors
     of the sentence's goals (and places to avoid), and where the sentence starts."""
