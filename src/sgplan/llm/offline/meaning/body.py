@@ -37,7 +37,6 @@ from sgplan.llm.offline.syntax.tree import (
 )
 from sgplan.llm.offline.tasks import Step, Task
 from sgplan.logic import And
-from sgplan.logic.formula import Formula
 
 READERS: Registry[Callable[[Any, Clause, SentenceContext], None]] = Registry("item reader")
 reads = READERS.register
@@ -165,7 +164,8 @@ def plain_action(item: PlainAction, clause: Clause, ctx: SentenceContext) -> Non
     lenient = not context and bool(ctx.carried_rooms) and not later
     ctx.previous_room = [] if later or context or lenient else previous_room(clause, ctx)
     moved = item.moved_first or item.goes_back or item.action.last
-    ctx.listed_room = ctx.rooms_of(clause_members(clause)) if ctx.listed and not moved else []
+    step_so_far = [m for task in clause.steps[-1] for m in task.members]  # not the steps before a "then"
+    ctx.listed_room = ctx.rooms_of(step_so_far) if ctx.listed and not moved else []
     done = steps_of(item.action, ctx, context or (ctx.carried_rooms if lenient else []), lenient)
     steps, ctx.carried_rooms, ctx.previous_room, ctx.listed_room = done.steps, [], [], []
     if ctx.strict_pending:
@@ -204,11 +204,6 @@ def previous_room(clause: Clause, ctx: SentenceContext) -> list[Entity]:
     step = filled[-1] if filled else ctx.disc.last_step if ctx.disc.last_steps == 1 else []
     rooms = ctx.rooms_of([m for task in step for m in task.members])
     return rooms if len(rooms) == 1 else []
-
-
-def clause_members(clause: Clause) -> list[Formula]:
-    """The members of the tasks of ``clause`` read so far."""
-    return [m for step in clause.steps for task in step for m in task.members]
 
 
 def acts_on_it(item: PlainAction) -> bool:
