@@ -2055,6 +2055,8 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     # operator shorthand of words that are no room or object: "chk" is "check", "GF" the ground floor
     ("chk",): ("check",),
     ("chck",): ("check",),
+    ("chkd",): ("checked",),  # "no dining rm til oven chkd"
+    ("'s", "been"): ("has", "been"),  # "until the oven's been checked": never a possessive before "been"
     ("pls",): ("please",),
     ("plz",): ("please",),
     ("gf",): ("ground", "floor"),
@@ -2063,6 +2065,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
        for end in (".", ",", "!", ";", "and")},
     ("wondering", "whether"): ("wondering", "if"), ("wonder", "whether"): ("wonder", "if"),
     ("you", "mind", "terribly"): ("you", "mind"),  # "Would you mind terribly going ..."
+    ("possible", "not", "to"): ("possible", "to", "not"),  # "Would it be possible not to go into X ...?"
     # "do me a small favour": a favour (the size is no word of the wrapper)
     **{(who, "a", small, favour): (who, "a", favour) for who in ("me", "us")
        for small in ("small", "little", "quick", "big", "huge") for favour in ("favour", "favor")},
