@@ -11,11 +11,15 @@ reader takes one meaning; the correction words are set aside and said back:
   far (or is refused as such, :mod:`.sentences`); after *No wait* or *I mean* a step may be taken back;
 - **a prohibition added**: *Actually,* (*Oh,*), then a prohibition of places the mission has not
   named (*Actually, don't go through the kitchen.*): read without the correction words;
-- **the second of two steps moved first**: a correction, then a noun phrase and *first*, right after the
-  mission's first goal sentence when that is exactly two goal phrases in a row (*A, then B*, one verb for
-  both) and the phrase names what only the second of them names (its head, or the room that tells two of
-  one kind apart): the sentence is read without it, and the phrase after it as *First, <phrase>* (*go to A.
-  First, B.*);
+- **a later step moved first**: a correction, then a noun phrase (after *make it* / *do*, or not) and
+  *first*, right after the mission's first goal sentence when that is goal phrases in a row (*A, then B*,
+  one verb for all) and the phrase names what only one of them after the first names (its head, or the room
+  that tells two of one kind apart): the sentence is read without it, and the phrase after it as *First,
+  <phrase>* (*go to A. First, B.*); over three phrases or more, only when each says where it is (a room or
+  a floor), since a bare object may be the one in the room of the phrase before it;
+- **the last two steps swapped**: *(do) X before Y*, X and Y said word for word as the last goal phrase
+  of the sentence before and the one before it, each phrase saying where it is: the sentence is read
+  with the two swapped;
 - **a phrase said instead**: *(make that) X instead of Y* or *forget (about) Y, (just) <verb> X*, where Y is
   the noun phrase the sentence before ends with, said word for word, and X names the same kind: that
   sentence is read with X in its place;
@@ -65,9 +69,9 @@ say something before was wrong (X instead of a step?), so they are not read as a
 _MORE_THAN_A_RULE = (_SAYS_MORE - frozenset(lx.NEGATING)) | lx.FIRST | frozenset({",", ";", "and", "just"})
 """Words after which a prohibition said after *Actually,* may say more than the rule it adds (a goal, *just*
 X, *not first*)."""
-_TWO_STEPS = ((",", "then"), ("then",), (",", "and", "then"), ("and", "then"), (",", "after", "that", ","),
+_STEP_JOINERS = ((",", "then"), ("then",), (",", "and", "then"), ("and", "then"), (",", "after", "that", ","),
               ("and", "after", "that"), (",", "then", "after", "that"))
-"""The words between the two goal phrases of a sentence whose second one a correction moves first."""
+"""The words between the goal phrases of a sentence whose order a correction changes."""
 _PUT = Phrases((("make", "it"), ("make", "that"), ("do",)))
 """Words before the phrase a correction moves (*Actually make it the couch first*, *do the living room before
 the dining room*)."""
@@ -97,7 +101,7 @@ def reordered(readers: list[Reader]) -> list[Reader]:
             continue
         moved = moved_first(r, i, out)
         if moved is not None:
-            out[-1:] = [moved[0], replace(r, toks=r.toks[:put_at(r, i)], aside=True), moved[1]]
+            out[-1:] = [moved.rest, replace(r, toks=r.toks[:moved.aside_end], aside=True), moved.first]
             continue
         ahead = moved_before(r, i, out)
         if ahead is not None:
@@ -194,10 +198,19 @@ def added_prohibition(r: Reader, start: int, i: int, before: list[Reader]) -> Re
     return replace(r, toks=r.toks[i:]) if only_new_places(r, i, len(r), before) else None
 
 
-def moved_first(r: Reader, i: int, out: list[Reader]) -> tuple[Reader, Reader] | None:
-    """The last sentence of ``out`` without its second goal phrase, and that phrase said as *First, <phrase>*,
-    when the correction ``r`` (its order from ``i``) moves it first and no sentence before names a goal (see
-    the module docstring), else ``None``."""
+class Moved(NamedTuple):
+    """A goal phrase a correction moves first: the sentence without it, the phrase said as *First, <phrase>*,
+    and where the correction's own words end (they are set aside)."""
+
+    rest: Reader
+    first: Reader
+    aside_end: int
+
+
+def moved_first(r: Reader, i: int, out: list[Reader]) -> Moved | None:
+    """The goal phrase of the last sentence of ``out`` that the correction ``r`` (its order from ``i``) moves
+    first, when no sentence before names a goal (see the module docstring); else ``None``. Over three
+    phrases or more, every phrase must place itself (:func:`places_itself`)."""
     lead = r.word(i) in lx.FIRST
     at = put_at(r, r.skip(i + 1, (",",)) if lead else i)
     phrase = noun_phrase(r, at, "goal")
@@ -209,21 +222,23 @@ def moved_first(r: Reader, i: int, out: list[Reader]) -> tuple[Reader, Reader] |
     if (not lead and r.word(phrase.end) not in lx.FIRST) or closing_start(r, after) > after:
         return None
     spans = goal_phrases(before)
+    if spans is None or (len(spans) > 2 and not all(places_itself(before, span) for span in spans)):
+        return None
     b = named_phrase(before, spans, r, at, phrase.end)
-    if spans is None or not b:
+    if b is None or b == 0:  # not named, or already first
         return None
     t = before.toks
     (_, a_end), (b_start, b_end) = spans[b - 1], spans[b]
-    return replace(before, toks=(*t[:a_end], *t[b_end:])), replace(
-        r, toks=said_first(r.toks[i if lead else phrase.end], t[b_start:b_end]))
+    return Moved(replace(before, toks=(*t[:a_end], *t[b_end:])),
+                 replace(r, toks=said_first(r.toks[i if lead else phrase.end], t[b_start:b_end])), at)
 
 
 def moved_before(r: Reader, i: int, out: list[Reader]) -> Reader | None:
     """The last sentence of ``out`` with its last two goal phrases swapped, when the correction ``r`` (its
-    order from ``i``) is *(do) X before Y*, X naming the last of them and Y the one before it (*Go to the
-    kitchen, then the dining room, then the living room. Actually, do the living room before the dining
-    room.*); else ``None``. The two are read as the correction says them, so the order of the words read
-    stays the order of the text."""
+    order from ``i``) is *(do) X before Y*, X and Y said word for word as the last of them and the one before
+    it, and every phrase of the sentence places itself (*Go to the kitchen, then the dining room, then the
+    living room. Actually, do the living room before the dining room.*); else ``None``. The two are read in
+    the correction's words (the same words), so the order of the words read stays the order of the text."""
     at = put_at(r, i)
     x = noun_phrase(r, at, "goal")
     if not isinstance(x, Match) or r.word(x.end) != "before":
@@ -234,29 +249,40 @@ def moved_before(r: Reader, i: int, out: list[Reader]) -> Reader | None:
             or before.marker is not None):
         return None
     spans = goal_phrases(before)
-    p, q = named_phrase(before, spans, r, at, x.end), named_phrase(before, spans, r, x.end + 1, y.end)
-    if spans is None or p != len(spans) - 1 or q != p - 1:
-        return None  # "A, then B, then C. Actually, do C before A": B after C as well?
+    if spans is None or not all(places_itself(before, span) for span in spans):
+        return None  # "A-room, then B-room, then the sink. Actually, do the sink before B-room": whose sink?
+    (q_start, q_end), (p_start, p_end) = spans[-2:]
+    if before.words[p_start:p_end] != r.words[at:x.end] or before.words[q_start:q_end] != r.words[
+            x.end + 1:y.end]:
+        return None  # "do C before A" ("B after C as well?"), or said otherwise (a qualifier lost?)
     t = before.toks
-    return replace(before, toks=(*t[:spans[q][0]], *r.toks[at:x.end], *t[spans[q][1]:spans[p][0]],
-                                 *r.toks[x.end + 1:y.end], *t[spans[p][1]:]))
+    return replace(before, toks=(*t[:q_start], *r.toks[at:x.end], *t[q_end:p_start], *r.toks[x.end + 1:y.end],
+                                 *t[p_end:]))
+
+
+def places_itself(r: Reader, span: tuple[int, int]) -> bool:
+    """Whether the goal phrase of ``r`` at ``span`` says where it is: it names a room (*the dining room*,
+    *the clock in the bedroom*) or a floor (*the sink upstairs*). A bare object (*the sink*) may be the one
+    in the room of the phrase before it, which a move would change."""
+    words = r.words[span[0]:span[1]]
+    return (any(head.kind == "room" for head in named_heads(r, *span))
+            or any(w in lx.RELATIVE_FLOORS or w in ("floor", "up", "down") for w in words))
 
 
 def put_at(r: Reader, i: int) -> int:
     """Where the phrase a correction moves starts, past :data:`_PUT` at ``i`` (or the *it* of *make it* when
-    *make* closed the correction words: *Actually make it the couch first.*)."""
+    *make* closed the correction words, :data:`.lexicon.CORRECTIONS`: *Actually make it the couch first.*)."""
     if r.word(i - 1) == "make" and r.word(i) in ("it", "that"):
         return i + 1
     return i + len(r.phrase(i, _PUT) or ())
 
 
-def named_phrase(before: Reader, spans: list[tuple[int, int]] | None, r: Reader, start: int,
-                 end: int) -> int | None:
+def named_phrase(before: Reader, spans: list[tuple[int, int]], r: Reader, start: int, end: int) -> int | None:
     """The index in ``spans`` (the goal phrases of ``before``) of the one phrase the words ``[start, end)``
     of ``r`` name: what it names (its head, or the room that tells it from a phrase of the same kind), and
     no other phrase names all of it; ``None`` otherwise."""
     said = {h.categories for h in named_heads(r, start, end)}
-    if spans is None or not said:
+    if not said:
         return None
     kinds = [{h.categories for h in goal_heads(before, *at)} for at in spans]
     named = [{h.categories for h in named_heads(before, *at)} for at in spans]
@@ -277,7 +303,7 @@ def goal_phrases(r: Reader) -> list[tuple[int, int]] | None:
     if a is None or not isinstance(first, Match) or any(r.head(k) is not None for k in range(a)):
         return None
     spans = [(a, first.end)]
-    while (joiner := next((j for j in _TWO_STEPS if r.words[spans[-1][1]:spans[-1][1] + len(j)] == j),
+    while (joiner := next((j for j in _STEP_JOINERS if r.words[spans[-1][1]:spans[-1][1] + len(j)] == j),
                           None)) is not None:
         b = spans[-1][1] + len(joiner)
         more = noun_phrase(r, b, "goal")
