@@ -833,6 +833,22 @@ def when_afterwards() -> str:
                     "afterwards' (after that visit)")
 
 
+def optional_remark(said: str) -> str:
+    return rephrase(f"'{said}' makes a step optional, which cannot be expressed; leave the step out or make "
+                    "it a goal")
+
+
+def first_in_consequent(said: str) -> str:
+    return rephrase(f"in '{said}', 'first' is not clear: before going there, or the first thing done there? "
+                    "Say the order with 'then' ('if you go into X, check Y, then Z')")
+
+
+def condition_again(said: str) -> str:
+    return rephrase(f"'{said}': a condition on a second visit is not understood; say what to do on every "
+                    "visit ('every time you go into X, ...') or after a visit ('if you go into X, ... "
+                    "afterwards')")
+
+
 def once_or_each_visit(said: str) -> str:
     return rephrase(f"'{said}' is read by some as once and by others as on each visit; say 'every time you "
                     "go into X, ...' (each visit) or 'if you go into X, ... afterwards' (after that visit)")

@@ -602,9 +602,13 @@ def make_rule(r: Reader, i: int, said: Match[Action], consequent: Body, after_st
               after_end: int) -> Rule | Refusal:
     """The rule at ``i`` with condition ``said`` and ``consequent``; the consequent follows the condition
     when the words ``[after_start, after_end)`` say *afterwards*, or a *then* opens it (*if you go into X,
-    then Y*, *..., would you then Y*). *If you ever / at any point go into X, Y*
-    is refused: people read it as once and as on each visit of X alike (*at any point* is read once)."""
+    then Y*, *..., would you then Y*). *If you ever go into X, Y* is refused: people read it as once and as
+    on each visit of X alike (*if you go into X at any point, Y* is read once). A consequent that says
+    *first* (*..., check the fridge first*: before the visit, or first on it?) is refused."""
     word = r.phrase(i, lx.CONDITION_WORDS)
+    if any(isinstance(item, PlainAction) and (item.trailing == "first" or item.action.first)
+           for item in consequent.items):
+        return Refusal(rf.first_in_consequent(r.quote(i, after_end)))
     if r.phrase(i, lx.WHENEVER) is not None or word is None:
         return WheneverRule(said.node, consequent)
     if r.says(lx.EVER_UNCLEAR, i + len(word), said.end):
@@ -630,9 +634,13 @@ def condition(r: Reader, i: int) -> Parse[Action]:
     k = skip_subject(r, i + (len(ever) if ever else 0))
     if r.word(k) in lx.NEGATING:
         return Refusal(rf.negative_condition())
+    if r.word(k) in _PERCEIVING and r.word(k + 1) != "yourself":  # "if you see a bowl": sensed, not visited
+        return Refusal(rf.state_condition(r.quote(i, min(k + 3, len(r)))))
     said = after_conjunction(r, k, in_condition=True)
     if not isinstance(said, Match):
         return said
+    if "again" in r.words[k:said.end]:  # "if you go there again": a second visit, not expressed
+        return Refusal(rf.condition_again(r.quote(i, said.end)))
     visited = said.end + (1 if r.word(said.end) in lx.UNTIL_DONE_LINKS else 0)
     if r.word(visited) in lx.VISIT_PARTICIPLES and r.word(visited + 1) in ("", ",", "then"):
         said = Match(said.node, visited + 1)  # if LR visited -> ...: the robot was there
@@ -641,6 +649,10 @@ def condition(r: Reader, i: int) -> Parse[Action]:
     if r.word(said.end) in lx.CONDITION_END or r.phrase(said.end, lx.NEG_STARTS):
         return Refusal(rf.condition_goes_on(r.rest(said.end)))
     return said
+
+
+_PERCEIVING = frozenset({"see", "notice", "spot", "find", "hear", "smell", "sees", "notices", "finds"})
+"""Verbs of what the robot senses, which a condition cannot be about (*if you see a bowl, bring it ...*)."""
 
 
 def state_said(r: Reader, said: Action) -> int | None:
