@@ -507,6 +507,7 @@ REFUSED_WORDS: dict[str, str] = {
     "probably": "'probably' (optional goals cannot be expressed; leave the goal out or make it a goal)",
     "likely": "'likely' (optional goals cannot be expressed; leave the goal out or make it a goal)",
     "optionally": "'optionally' (optional goals cannot be expressed; leave the goal out or make it a goal)",
+    "optional": "'optional' (optional goals cannot be expressed; leave the goal out or make it a goal)",
     "hopefully": "'hopefully' (optional goals cannot be expressed; leave the goal out or make it a goal)",
     "ideally": "'ideally' (preferences cannot be expressed; say what must happen)",
     "preferably": "'preferably' (preferences cannot be expressed; say what must happen)",
@@ -779,9 +780,10 @@ POLITE = POLITE + Phrases((*phrase, hedge) for phrase in POLITE
 modal is part of the wrapper (elsewhere *possibly X* / *maybe X* asks for an optional goal: refused)."""
 
 SOFTENERS = frozenset({"maybe", "perhaps"})
-"""*Perhaps look in on the office first*, *... and then maybe the bed*: before a step's verb at the start of
-a clause, or after *then*, a softened request, read as the step (every held-out writer read it so, 11
-missions); elsewhere (*A and maybe B*, *or maybe on the couch*, *maybe it's his*) it is not skipped."""
+"""*Perhaps look in on the office first*, *... and maybe have a peek at the TV*, *... and then maybe the
+bed*: before a step's verb at the start of a clause, or after *then*, a softened request, read as the step
+(every held-out writer read it so, 11 missions); elsewhere (*A and maybe B* without a verb, *or maybe on the
+couch*, *maybe it's his*), or when the mission says a step may be left out, it is not skipped."""
 
 _ORDER_LIKING = (("you", "like"), ("you", "want"), ("you", "prefer"), ("you", "choose"), ("you", "please"),
                  ("you", "wish"), ("suits", "you"), ("is", "fine"), ("works",), ("suits",), ("'s", "fine"),

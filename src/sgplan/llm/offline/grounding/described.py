@@ -334,8 +334,8 @@ def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc:
     listed = vocab.inside(entities, where.listed_after) if head.kind == "object" and not demo else []
     if not noun.room_scoped and 0 < len(listed) < len(entities):
         # "In the lobby check the vases, in any order": the lobby's, or every vase?
-        room = where.listed_after[0]
-        rf.refuse(rf.listed_room_or_anywhere(said, f"{room.key} ({room.category})", room.category))
+        rooms = " or ".join(f"{r.key} ({r.category})" for r in where.listed_after)
+        rf.refuse(rf.listed_room_or_anywhere(said, rooms, where.listed_after[0].category))
     own_step = vocab.inside(entities, [*where.scope, *where.soft_scope])  # "2. dining room, any chair"
     if (mode == "any" and (head.plural or (np.first_word in ("a", "an", "any") and not remark_after
                                            and not own_step))

@@ -10,12 +10,17 @@ in, the floor a verb or a floor move put it on.
 from __future__ import annotations
 
 import copy
+import re
 from dataclasses import dataclass, field
 
+from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.names import Entity, SceneVocabulary
 from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax.tree import Mode, Role
 from sgplan.llm.offline.tasks import Step
+
+_OPTIONAL = re.compile(r"\b(?:optional|optionally)\b", re.IGNORECASE)
+"""Words of a remark that make a step optional."""
 
 
 @dataclass
@@ -96,7 +101,10 @@ class Discourse:
         return phrase
 
     def put_aside(self, said: str) -> None:
-        """Say back ``said`` (words of the mission, as typed) as set aside unread, once."""
+        """Say back ``said`` (words of the mission, as typed) as set aside unread, once; words that make a
+        step optional (*..., but that's optional*) are refused instead, as no goal can be optional."""
+        if _OPTIONAL.search(said):
+            rf.refuse(rf.optional_remark(said))
         if said not in self.set_aside:
             self.set_aside.append(said)
 
@@ -166,6 +174,6 @@ class Where:
     """The one room of the step just before this one (*go to the bedroom with the vase, then check the
     plant*): a definite object that fits several is the one there, when exactly one is."""
     listed_after: tuple[Entity, ...] = ()
-    """In a sentence of tasks in no order, the one room the tasks said before this one go to (*In the lobby
+    """In a sentence of tasks in no order, the rooms the tasks said before this one go to (*In the lobby
     check the vases, in any order*): an object phrase that fits some but not all of its kind there is
     refused (the ones there, or any?); the tasks being independent, none is looked for there."""

@@ -46,7 +46,7 @@ def steps_of(action: Action, ctx: SentenceContext, scope: list[Entity] | None = 
     where = Where("goal", tuple(scope or ctx.scope), lenient, tuple(ctx.soft_scope), floor,
                   action_floor or ctx.floor_scope, going_back, carry, again,
                   previous=tuple(ctx.previous_room),
-                  listed_after=tuple(ctx.listed_room) if len(ctx.listed_room) == 1 else ())
+                  listed_after=tuple(ctx.listed_room))
     if action.phrases is None:  # "go upstairs and check the laptop": the laptop upstairs
         assert action.moved is not None and floor is not None
         return steps_of(action.moved, ctx, scope, lenient, (floor, action.moved.span.start), floor)

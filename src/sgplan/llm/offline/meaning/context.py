@@ -44,7 +44,7 @@ class SentenceContext:
     (:attr:`.Where.previous`)."""
     listed_room: list[Entity] = field(default_factory=list)
     """In a sentence of independent tasks (:attr:`listed`), the rooms the tasks said before the action being
-    read in its step go to (one room: :attr:`.Where.listed_after`)."""
+    read in its step go to (:attr:`.Where.listed_after`)."""
     floor_scope: tuple[FloorReading, int] | None = None
     """*While you're upstairs, ...* / *On the top floor, ...* / a list's heading *Top floor tasks*: the floors
     of the sentence's goals (and places to avoid), and where the sentence starts."""

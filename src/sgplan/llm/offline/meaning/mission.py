@@ -312,7 +312,7 @@ def check_after_all(said: AfterAll, parts: list[Meaning]) -> None:
 def set_aside(said: SetAside, disc: Discourse) -> None:
     """Words set aside: said back; the rooms and objects they name are kept as mentions (each grounded on its
     own; one that names nothing here is left out)."""
-    disc.set_aside.append(said.said)
+    disc.put_aside(said.said)
     for phrase in said.mentions:
         try:
             named = ground_phrase(phrase, Where("qualifier"), disc.fork())

@@ -8,6 +8,8 @@ with a meaning is ever dropped here.
 
 from __future__ import annotations
 
+import re
+
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline import refusals as rf
 from sgplan.llm.offline.syntax.learner import learner_english
@@ -72,11 +74,24 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
     return None
 
 
+_SAID_OPTIONAL = re.compile(
+    r"\b(?:optional|optionally|no pressure|definitely|certainly|not sure|if possible|"
+    r"if you (?:want|like|feel|have (?:the )?time|can|get (?:a|the) chance)|if there'?s time|if not|"
+    r"not necessary|not required)\b",
+    re.IGNORECASE)
+"""Words of the mission that say a step may be left out (*..., then maybe the oven, no pressure*), or that
+another step is surer than a softened one (*maybe the oven, then definitely the couch*): *maybe* is then no
+softener (the remark itself may be set aside, so the whole text is searched)."""
+
+
 def softened_step(r: Reader, i: int) -> bool:
     """Whether *maybe* / *perhaps* at ``i`` softens the step after it: a verb follows it at the start of a
     clause (*Perhaps look in on the office*, *..., and maybe have a peek at the couch*), or a step follows
-    *then* (*and then maybe the bed*). *A and maybe B* stays an optional B (refused)."""
+    *then* (*and then maybe the bed*), and nothing in the sentence says a step is optional (*..., then maybe
+    the oven, no pressure*). *A and maybe B*, with no verb, stays an optional B (refused)."""
     before, after = r.word(i - 1), r.word(i + 1)
+    if _SAID_OPTIONAL.search(r.text):
+        return False
     if before == "then":
         return after in lx.POSITIVE_VERBS or after in lx.DETERMINERS
     return before in ("", ",", "and") and after in lx.POSITIVE_VERBS
