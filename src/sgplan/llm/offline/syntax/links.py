@@ -75,9 +75,9 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
 
 
 _SAID_OPTIONAL = re.compile(
-    r"\b(?:optional|optionally|no pressure|definitely|certainly|not sure|if possible|"
-    r"if you (?:want|like|feel|have (?:the )?time|can|get (?:a|the) chance)|if there'?s time|if not|"
-    r"not necessary|not required)\b",
+    r"\b(?:optional|optionally|no pressure|definitely|certainly|not (?:\w+ )?sure|if possible|priority|"
+    r"important|urgent|nice[- ]to[- ]have|needed|necessary|required|essential|spare|"
+    r"(?:if|when) you(?:'re| are)? (?:want|like|feel|have|can|get|free)|if there'?s time|if not)\b",
     re.IGNORECASE)
 """Words of the mission that say a step may be left out (*..., then maybe the oven, no pressure*), or that
 another step is surer than a softened one (*maybe the oven, then definitely the couch*): *maybe* is then no
@@ -85,16 +85,23 @@ softener (the remark itself may be set aside, so the whole text is searched)."""
 
 
 def softened_step(r: Reader, i: int) -> bool:
-    """Whether *maybe* / *perhaps* at ``i`` softens the step after it: a verb follows it at the start of a
-    clause (*Perhaps look in on the office*, *..., and maybe have a peek at the couch*), or a step follows
-    *then* (*and then maybe the bed*), and nothing in the sentence says a step is optional (*..., then maybe
-    the oven, no pressure*). *A and maybe B*, with no verb, stays an optional B (refused)."""
+    """Whether *maybe* / *perhaps* at ``i`` softens the step after it: a verb (not a preposition: *maybe on
+    the couch* guesses where something is) follows it at the start of a sentence or after a comma or *and*
+    (*Perhaps look in on the office*, *..., and maybe have a peek at the couch*), or a step follows *then*
+    (*and then maybe the bed*), and nothing in the mission says a step may be left out (*..., then maybe the
+    oven, no pressure*). *A and maybe B*, with no verb, stays an optional B (refused)."""
     before, after = r.word(i - 1), r.word(i + 1)
-    if _SAID_OPTIONAL.search(r.text):
+    if _SAID_OPTIONAL.search(r.text) or after in _NOT_VERBS:
         return False
     if before == "then":
         return after in lx.POSITIVE_VERBS or after in lx.DETERMINERS
     return before in ("", ",", "and") and after in lx.POSITIVE_VERBS
+
+
+_NOT_VERBS = lx.PLACE_PREPOSITIONS | frozenset({"onto", "off", "up", "down", "out", "over", "from", "for",
+                                                "near", "under", "behind", "somewhere", "upstairs",
+                                                "downstairs"})
+"""Words of :data:`.lexicon.POSITIVE_VERBS` that are no verb: after *maybe* they say where a thing may be."""
 
 
 def checks_a_state(r: Reader, i: int, said: tuple[str, ...]) -> bool:
