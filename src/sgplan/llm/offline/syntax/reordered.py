@@ -88,7 +88,8 @@ def reordered(readers: list[Reader]) -> list[Reader]:
     """``readers`` with each correction sentence that changes the order of the steps before it applied (see
     the module docstring): the sentences it reorders rewritten, its correction words set aside."""
     out: list[Reader] = []
-    for r in correction_headings_joined(readers):
+    joined_readers = correction_headings_joined(readers)
+    for n, r in enumerate(joined_readers):
         start = said_instead(r) if out and not r.aside and r.marker is None else None
         if start is None:
             out.append(r)
@@ -99,11 +100,13 @@ def reordered(readers: list[Reader]) -> list[Reader]:
         if first is not None:
             out += [replace(r, toks=taken, aside=True), first]
             continue
-        moved = moved_first(r, i, out)
+        # "A, then B. No wait, B first. Then the clock.": right after B, or after all? Not read
+        later_goals = goals_before(joined_readers[n + 1:])
+        moved = moved_first(r, i, out) if not later_goals else None
         if moved is not None:
             out[-1:] = [moved.rest, replace(r, toks=r.toks[:moved.aside_end], aside=True), moved.first]
             continue
-        ahead = moved_before(r, i, out)
+        ahead = moved_before(r, i, out) if not later_goals else None
         if ahead is not None:
             out[-1:] = [ahead, replace(r, aside=True)]
             continue
