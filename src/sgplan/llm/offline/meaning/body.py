@@ -158,14 +158,14 @@ def plain_action(item: PlainAction, clause: Clause, ctx: SentenceContext) -> Non
     """An action: its tasks in the current step, its objects looked for in the step's rooms (not when it is
     moved before the step, or after it: *go to the bedroom, but stop by the couch first*, *come back to
     X*); then what the words around it say of its order."""
-    later = item.moved_first or item.goes_back or ctx.listed or item.action.last
+    own_order = item.moved_first or item.goes_back or item.action.last
+    later = own_order or ctx.listed
     context = [] if later else ctx.step_rooms(clause.steps[-1])
     # "go to the kitchen, take a bottle, then ...": the kitchen's bottle if it has one
     lenient = not context and bool(ctx.carried_rooms) and not later
     ctx.previous_room = [] if later or context or lenient else previous_room(clause, ctx)
-    moved = item.moved_first or item.goes_back or item.action.last
     step_so_far = [m for task in clause.steps[-1] for m in task.members]  # not the steps before a "then"
-    ctx.listed_room = ctx.rooms_of(step_so_far) if ctx.listed and not moved else []
+    ctx.listed_room = ctx.rooms_of(step_so_far) if ctx.listed and not own_order else []
     done = steps_of(item.action, ctx, context or (ctx.carried_rooms if lenient else []), lenient)
     steps, ctx.carried_rooms, ctx.previous_room, ctx.listed_room = done.steps, [], [], []
     if ctx.strict_pending:

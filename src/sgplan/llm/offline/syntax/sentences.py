@@ -609,6 +609,9 @@ def make_rule(r: Reader, i: int, said: Match[Action], consequent: Body, after_st
     if any(isinstance(item, PlainAction) and (item.trailing == "first" or item.action.first)
            for item in consequent.items):
         return Refusal(rf.first_in_consequent(r.quote(i, after_end)))
+    if word is not None and any(isinstance(item, Negation) for item in consequent.items):
+        # "if you go into the kitchen, avoid the couch": from then on, or (as F X -> G !Y) from the start?
+        return Refusal(rf.prohibition_in_consequent(r.quote(i, after_end)))
     if r.phrase(i, lx.WHENEVER) is not None or word is None:
         return WheneverRule(said.node, consequent)
     if r.says(lx.EVER_UNCLEAR, i + len(word), said.end):
@@ -634,11 +637,16 @@ def condition(r: Reader, i: int) -> Parse[Action]:
     k = skip_subject(r, i + (len(ever) if ever else 0))
     if r.word(k) in lx.NEGATING:
         return Refusal(rf.negative_condition())
-    if r.word(k) in _PERCEIVING and r.word(k + 1) != "yourself":  # "if you see a bowl": sensed, not visited
-        return Refusal(rf.state_condition(r.quote(i, min(k + 3, len(r)))))
+    if (r.word(k) in _PERCEIVING or r.words[k:k + 2] == ("come", "across")) and r.word(k + 1) != "yourself":
+        return Refusal(rf.state_condition(r.quote(i, min(k + 3, len(r)))))  # "if you see a bowl": sensed
     said = after_conjunction(r, k, in_condition=True)
     if not isinstance(said, Match):
         return said
+    near = next((j for j in range(k, said.end) if r.word(j) in _NOT_INSIDE
+                 and r.word(j - 1) not in _STOPPING), None)
+    if near is not None or " near " in f" {r.quote(k, said.end).lower()} ":  # (an alias reads "go near" as
+        # "go into", for a place to keep away from): "if you go near / past the kitchen" is not inside it
+        return Refusal(rf.condition_not_inside(r.quote(i, said.end)))
     if "again" in r.words[k:said.end]:  # "if you go there again": a second visit, not expressed
         return Refusal(rf.condition_again(r.quote(i, said.end)))
     visited = said.end + (1 if r.word(said.end) in lx.UNTIL_DONE_LINKS else 0)
@@ -651,8 +659,17 @@ def condition(r: Reader, i: int) -> Parse[Action]:
     return said
 
 
-_PERCEIVING = frozenset({"see", "notice", "spot", "find", "hear", "smell", "sees", "notices", "finds"})
-"""Verbs of what the robot senses, which a condition cannot be about (*if you see a bowl, bring it ...*)."""
+_PERCEIVING = frozenset({
+    "see", "sees", "saw", "seen", "seeing", "notice", "notices", "noticed", "noticing", "spot", "spots",
+    "spotted", "spotting", "find", "finds", "found", "finding", "hear", "hears", "heard", "hearing", "smell",
+    "smells", "smelled", "smelt"})
+"""Verbs of what the robot senses, which a condition cannot be about (*if you see a bowl, bring it ...*,
+*if you come across the bowl*; *if you find yourself in X* is a visit). Kept here, not in the lexicon, whose
+words all count as read."""
+_NOT_INSIDE = frozenset({"near", "past", "by", "beside", "outside"})
+"""Words of a condition's place that say the robot is not inside it (*if you go near the kitchen*)."""
+_STOPPING = frozenset({"stop", "stops", "drop", "swing", "pop", "come"})
+"""Verbs after which *by* is a visit (*if you stop by the kitchen*)."""
 
 
 def state_said(r: Reader, said: Action) -> int | None:
