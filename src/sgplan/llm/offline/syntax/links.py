@@ -77,11 +77,12 @@ def link_word(r: Reader, i: int, sequence_too: bool) -> tuple[str, int] | Refusa
 _SAID_OPTIONAL = re.compile(
     r"\b(?:optional|optionally|no pressure|definitely|certainly|not (?:\w+ )?sure|if possible|priority|"
     r"important|urgent|nice[- ]to[- ]have|needed|necessary|required|essential|spare|"
-    r"(?:if|when) you(?:'re| are)? (?:want|like|feel|have|can|get|free)|if there'?s time|if not)\b",
+    r"if you(?:'re| are)? (?:want|like|feel|have|can|get|free)|if there'?s time|if not)\b",
     re.IGNORECASE)
 """Words of the mission that say a step may be left out (*..., then maybe the oven, no pressure*), or that
 another step is surer than a softened one (*maybe the oven, then definitely the couch*): *maybe* is then no
-softener (the remark itself may be set aside, so the whole text is searched)."""
+softener (the remark itself may be set aside, so the whole text is searched). Not *when you get a minute*,
+which wraps the whole mission (*When you get a minute, ... maybe have a look at the vase*)."""
 
 
 def softened_step(r: Reader, i: int) -> bool:
