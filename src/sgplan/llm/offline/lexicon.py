@@ -889,6 +889,7 @@ CLOSING = Phrases((
     ("i", "just", "want", "to", "be", "sure"),
     # asides that ask nothing
     ("no", "rush"), ("no", "hurry"), ("no", "pressure"), ("if", "possible"), ("if", "you", "can"),
+    ("if", "you", "can", "help", "it"),  # "If you can help it, please don't ...": not a visit of "it"
     ("if", "you", "could"), ("when", "you", "can"), ("when", "you", "get", "a", "chance"),
     ("when", "you", "have", "a", "moment"), ("when", "you", "have", "time"), ("whenever", "you", "can"),
     ("at", "your", "convenience"), ("take", "your", "time"), ("in", "your", "own", "time"),

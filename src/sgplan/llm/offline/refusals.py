@@ -838,12 +838,6 @@ def optional_remark(said: str) -> str:
                     "it a goal")
 
 
-def prohibition_in_consequent(said: str) -> str:
-    return rephrase(f"in '{said}', a prohibition that holds once the condition is met is not understood "
-                    "(from then on, or from the start?); say 'never enter X' for the whole mission, or 'do "
-                    "not enter X until ...'")
-
-
 def condition_not_inside(said: str) -> str:
     return rephrase(f"'{said}' is not being in the place (near it, past it); only going into a place can be "
                     "a condition ('if you go into X, ...')")

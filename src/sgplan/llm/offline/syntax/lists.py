@@ -481,6 +481,13 @@ def merged(readers: list[Reader]) -> list[Reader]:
             then = Tok("then", r.toks[0].start, r.toks[0].start)
             out[-1] = replace(out[-1], toks=(*out[-1].toks, Tok(",", then.start, then.start), then, *r.toks))
             continue
+        if out and out[-1].announced is not None and not out[-1].toks and not r.toks and r.announced:
+            # "DR: any chair -> LR again: couch": two announcements in a row head the sentence after them
+            first, second = out[-1].announced, r.announced
+            out[-1] = replace(r, announced=replace(second, prefix=first.prefix + second.prefix,
+                                                   suffix=second.suffix + first.suffix,
+                                                   scope=first.scope and second.scope))
+            continue
         if out and out[-1].announced is not None and not out[-1].toks:
             announced = out[-1].announced
             kept = None if announced.scope else announced

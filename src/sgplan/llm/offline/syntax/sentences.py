@@ -329,6 +329,9 @@ def after_first(r: Reader, i: int) -> Parse[SentenceBody]:
         return None
     if at_time(r, i + 1):
         return Refusal(rf.order_by_a_time(r.quote(i, at_time(r, i + 1))))
+    end = r.words.index(",", i) if "," in r.words[i:] else len(r)
+    if set(r.words[i + 1:end]) & lx.COPULAS and set(r.words[i + 1:end]) & _NOT_INSIDE:
+        return Refusal(rf.condition_not_inside(r.quote(i, end)))  # "Once you're down by the garage, ..."
     return with_main_clause(r, i, prefixed(r, i + 1, prefix_last=False))
 
 
@@ -609,9 +612,6 @@ def make_rule(r: Reader, i: int, said: Match[Action], consequent: Body, after_st
     if any(isinstance(item, PlainAction) and (item.trailing == "first" or item.action.first)
            for item in consequent.items):
         return Refusal(rf.first_in_consequent(r.quote(i, after_end)))
-    if word is not None and any(isinstance(item, Negation) for item in consequent.items):
-        # "if you go into the kitchen, avoid the couch": from then on, or (as F X -> G !Y) from the start?
-        return Refusal(rf.prohibition_in_consequent(r.quote(i, after_end)))
     if r.phrase(i, lx.WHENEVER) is not None or word is None:
         return WheneverRule(said.node, consequent)
     if r.says(lx.EVER_UNCLEAR, i + len(word), said.end):
