@@ -333,8 +333,8 @@ def scoped(np: Described, noun: Noun, mode: Mode, said: str, where: Where, disc:
         and not any(tuple(words[:len(p)]) == p for p in lx.SEQ_WORDS))
     listed = vocab.inside(entities, where.listed_after) if head.kind == "object" and not demo else []
     if not noun.room_scoped and 0 < len(listed) < len(entities) and np.determiner.count is None:
-        # (a number says which: "both vases" where the room has one)
-        # "In the lobby check the vases, in any order": the lobby's, or every vase?
+        # "In the lobby check the vases, in any order": the lobby's, or every vase? (A number says which:
+        # "both vases" where the room has one.)
         rooms = " or ".join(f"{r.key} ({r.category})" for r in where.listed_after)
         rf.refuse(rf.listed_room_or_anywhere(said, rooms, where.listed_after[0].category))
     own_step = vocab.inside(entities, [*where.scope, *where.soft_scope])  # "2. dining room, any chair"

@@ -330,7 +330,7 @@ def after_first(r: Reader, i: int) -> Parse[SentenceBody]:
     if at_time(r, i + 1):
         return Refusal(rf.order_by_a_time(r.quote(i, at_time(r, i + 1))))
     end = r.words.index(",", i) if "," in r.words[i:] else len(r)
-    if set(r.words[i + 1:end]) & lx.COPULAS and set(r.words[i + 1:end]) & _NOT_INSIDE:
+    if set(r.words[i + 1:end]) & lx.COPULAS and not_inside(r, i + 1, end):
         return Refusal(rf.condition_not_inside(r.quote(i, end)))  # "Once you're down by the garage, ..."
     return with_main_clause(r, i, prefixed(r, i + 1, prefix_last=False))
 
@@ -642,10 +642,7 @@ def condition(r: Reader, i: int) -> Parse[Action]:
     said = after_conjunction(r, k, in_condition=True)
     if not isinstance(said, Match):
         return said
-    near = next((j for j in range(k, said.end) if r.word(j) in _NOT_INSIDE
-                 and r.word(j - 1) not in _STOPPING), None)
-    if near is not None or " near " in f" {r.quote(k, said.end).lower()} ":  # (an alias reads "go near" as
-        # "go into", for a place to keep away from): "if you go near / past the kitchen" is not inside it
+    if not_inside(r, k, said.end):  # "if you go near / past the kitchen"
         return Refusal(rf.condition_not_inside(r.quote(i, said.end)))
     if "again" in r.words[k:said.end]:  # "if you go there again": a second visit, not expressed
         return Refusal(rf.condition_again(r.quote(i, said.end)))
@@ -670,6 +667,14 @@ _NOT_INSIDE = frozenset({"near", "past", "by", "beside", "outside"})
 """Words of a condition's place that say the robot is not inside it (*if you go near the kitchen*)."""
 _STOPPING = frozenset({"stop", "stops", "drop", "swing", "pop", "come"})
 """Verbs after which *by* is a visit (*if you stop by the kitchen*)."""
+
+
+def not_inside(r: Reader, start: int, end: int) -> bool:
+    """Whether the words ``[start, end)`` of a condition say the robot is near a place, not in it (*near*,
+    *past*, *by*, not *stop by*), as typed: an alias reads *go near* as *go into*, for a place to keep away
+    from."""
+    typed = r.quote(start, end).lower().split()
+    return any(w in _NOT_INSIDE and (k == 0 or typed[k - 1] not in _STOPPING) for k, w in enumerate(typed))
 
 
 def state_said(r: Reader, said: Action) -> int | None:
