@@ -170,23 +170,38 @@ def instead_dropped(r: Reader) -> Reader:
 def joins_before(r: Reader, before: Reader) -> bool:
     """Whether the sentence ``r`` is read joined to the sentence ``before`` it (see
     :func:`joined_appositions`)."""
+    final = final_phrase(before)
+    said = before.words[final:phrase_end(before, len(before))] if final is not None else ()
+    preposition = before.word(final - 1) if final is not None else ""
+    start = said_instead(r)
+    if said and (denial_of(r, start, said) is not None
+                 or (start is not None and same_preposition(r, start, preposition) > start)) \
+            and takes_back_last(r, said, preposition):
+        # "... look at the TV. Actually no, not the TV, ...", "... take it to the table. No, to the couch."
+        return not _said_in(before.words[:final], said)
     if takes_back_order(r, before):
         return len(goal_heads(before, 0, len(before))) <= 1
+    if final is None:
+        return False
     k = r.skip(0, (",",))  # "Uh, the one with the plant in it." (the sound removed before)
     apposition = (r.word(k) == "the" and r.word(k + 1) in lx.ANAPHORIC_ONE and len(r) > k + 2
                   and isinstance(noun_phrase(r, k, "goal"), Match))
-    final = final_phrase(before)
     # "Go to one of the TVs in the living room. No, the one in the bedroom.": the one phrase it names
-    return final is not None and (apposition or (takes_back_last(r) and not named_heads(before, 0, final)))
+    return apposition or (takes_back_last(r, said, preposition) and not named_heads(before, 0, final))
 
 
-def takes_back_last(r: Reader) -> bool:
+def takes_back_last(r: Reader, said: Sequence[str], preposition: str) -> bool:
     """Whether the sentence ``r`` is only a correction and the phrase said instead (*No wait, the microwave,
-    sorry.*): it takes back the phrase the sentence before it ends with, and is read joined to it."""
+    sorry.*) of the words ``said`` that the sentence before it ends with (after ``preposition``): it takes
+    them back, and is read joined to it. The new phrase may follow a denial of the old one (*Actually no,
+    not the TV, the vase.*) or say again the preposition before it (*... take it to the table. No, to the
+    couch.*)."""
     r = unpaused(r)  # "Actually, no, the other one, with the plant."
     start = said_instead(r)
     if start is None:
         return False  # "Scratch the kitchen.": takes it back, says nothing instead
+    start = denial_of(r, start, said) or start
+    start = same_preposition(r, start, preposition)
     new = noun_phrase(r, start, "goal")
     end = len(r) - (2 if r.words[-2:] == (",", "sorry") else 0)
     return isinstance(new, Match) and new.end == end and new.end > start
@@ -391,9 +406,9 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
             return None  # broken off after 'and': only a denial of the old place says it is taken back
     if old is None:
         return None
-    start_new = denied(r, old, start_new)
-    head = old.head if isinstance(old, Described) and isinstance(old.head, Head) else None
     start = r.toks.index(next(t for t in r.toks if t.start == old.span.start))
+    start_new = same_preposition(r, denied(r, old, start_new), r.word(start - 1))
+    head = old.head if isinstance(old, Described) and isinstance(old.head, Head) else None
     named, rest = one_named(r, start, end, start_new)
     if not named and any(r.word(j) in lx.ANAPHORIC_ONE for j in range(start_new, start_new + 3)):
         return None  # "the big one": one of the taken-back kind, read by no rule here (never another kind)
@@ -405,12 +420,39 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
         return None  # (another correction after it: "the microwave no the oven wait no microwave")
     kinds = {head_kind(p) for p in (old, new.node) if isinstance(p, Described)} - {None}
     if len(kinds) > 1:
-        return None  # "the toilet in the top-floor bathroom, no wait, the bathroom downstairs": which part?
+        room_at = room_taken_back(r, start, end, said, start_new, new.end)
+        if room_at is None:
+            return None  # "the toilet in the bathroom, no wait, the kitchen": which part is taken back?
+        kept = replace(r, toks=r.toks[:room_at] + named + r.toks[rest:])
+        return kept, replace(r, toks=r.toks[room_at:start_new], aside=True)
     if kinds == {"object"} and rooms_named(r, 0, start) and rooms_named(said, start_new, new.end):
         return None  # "go to the bedroom and sit on the chair there, no wait, the chair in the office": the
         # bedroom was where that chair is; is it taken back too?
     kept = replace(r, toks=r.toks[:start] + named + r.toks[rest:])
     return kept, replace(r, toks=r.toks[start:start_new], aside=True)
+
+
+def room_taken_back(r: Reader, start: int, end: int, said: Reader, start_new: int,
+                    end_new: int) -> int | None:
+    """Where the room of the object phrase ``[start, end)`` starts, when the room phrase ``[start_new,
+    end_new)`` of ``said`` corrects only that room (*the toilet in the top-floor bathroom, no wait, the
+    bathroom on the middle floor*: the toilet in that bathroom): the old phrase is the object, *in* and a room
+    of the new room's kind (*the bed in the bedroom with the plant, wait, no, the other bedroom*); ``None``
+    otherwise (*the toilet in the bathroom, no wait, the kitchen*: the kitchen instead of the toilet, or the
+    toilet's room?)."""
+    heads = _heads_at(r, start, end)
+    new_heads = _heads_at(said, start_new, end_new)
+    if len(heads) < 2 or not new_heads or heads[0][1].kind != "object" or new_heads[0][1].kind != "room":
+        return None
+    (j, thing), (k, room) = heads[0], heads[1]
+    at = j + thing.words
+    if r.word(at) not in _ROOM_OF or room.kind != "room" or any(r.head(i) for i in range(at + 1, k)):
+        return None
+    return at + 1 if room.categories & new_heads[0][1].categories else None
+
+
+_ROOM_OF = frozenset({"in", "inside"})
+"""Between an object and its room (*the toilet in the top-floor bathroom*)."""
 
 
 def rooms_named(r: Reader, start: int, end: int) -> bool:
@@ -535,11 +577,31 @@ def denied(r: Reader, old: NounPhrase, i: int) -> int:
     """Where the new phrase starts after the old one is denied at ``i`` in the same words (*no sorry, not
     the kitchen, the living room*, *not the office the bedroom*), or ``i`` when it is not."""
     said = tuple(t.text for t in r.toks if old.span.start <= t.start and t.end <= old.span.end)
-    after = r.word(i + 1 + len(said))
-    if r.word(i) == "not" and r.words[i + 1:i + 1 + len(said)] == said and (after == ","
-                                                                              or after in lx.DETERMINERS):
-        return r.skip(i + 1 + len(said), _AROUND)  # (unpunctuated: "no wait not the office the bedroom")
-    return i
+    return denial_of(r, i, said) or i
+
+
+def denial_of(r: Reader, i: int | None, said: Sequence[str]) -> int | None:
+    """Where the words after *not* and the words ``said`` at ``i`` end, past a comma (*not the kitchen, the
+    living room*; unpunctuated: *not the office the bedroom*); ``None`` when they are not there."""
+    if i is None or r.word(i) != "not" or not said or r.words[i + 1:i + 1 + len(said)] != tuple(said):
+        return None
+    after = i + 1 + len(said)
+    return r.skip(after, _AROUND) if r.word(after) == "," or r.word(after) in lx.DETERMINERS else None
+
+
+def same_preposition(r: Reader, i: int, before: str) -> int:
+    """Past the preposition at ``i`` when it is ``before``, the one said before the phrase taken back (*take
+    it to the dining table, no, to the couch*), else ``i``."""
+    return i + 1 if r.word(i) == before and before in _SAID_AGAIN_BEFORE else i
+
+
+_SAID_AGAIN_BEFORE = frozenset({"to", "into", "on", "at", "in"})
+"""Prepositions a correction says again before the new phrase (*..., no, to the couch*)."""
+
+
+def _said_in(words: Sequence[str], said: Sequence[str]) -> bool:
+    """Whether the words ``said`` are said, in a row, in ``words``."""
+    return any(tuple(words[k:k + len(said)]) == tuple(said) for k in range(len(words) - len(said) + 1))
 
 
 def one_named(r: Reader, start: int, end: int, start_new: int) -> tuple[tuple[Tok, ...], int]:
