@@ -721,9 +721,9 @@ POLITE = Phrases((
     *((*ask, *you) for ask in (("would", "it", "be", "possible"), ("is", "it", "possible"),
                                ("would", "it", "be", "okay"), ("would", "it", "be", "ok"))
       for you in (("for", "you", "to"), ("to",))),
-    *(("i", *wonder, "if", "you", modal)
+    *(("i", *wonder, "if", "you", *modal)
       for wonder in (("was", "wondering"), ("wonder",), ("am", "wondering"))
-      for modal in ("could", "would", "might", "can")),
+      for modal in (("could",), ("would",), ("might",), ("can",), ("would", "mind"))),
     *(("i", "would", *really, *feel, "if", "you", *modal)
       for really in ((), ("really",), ("so",))
       for feel in (("be", "grateful"), ("appreciate", "it"), ("love", "it"), ("like", "it"),
@@ -1097,6 +1097,8 @@ CHOICE_AFFIRMATIONS = Phrases(tuple(
     ("do", "not", "mind", "which"), ("do", "not", "mind", "which", "one"), ("do", "not", "care", "which"),
     ("i", "do", "not", "mind", "which", "one"), ("i", "do", "not", "really", "mind", "which"),
     ("your", "choice"), ("your", "pick"), ("take", "your", "pick"), ("you", "pick"), ("you", "choose"),
+    *(("the", one, "you", like) for one in ("one", "ones")  # "the TV in the living room, the one you want"
+      for like in ("want", "like", "prefer", "choose", "pick")),
     ("it", "is", "up", "to", "you"), ("up", "to", "you"), ("i", "do", "not", "care"),
     *((*just, pick, one) for just in ((), ("just",)) for pick in ("pick", "choose")
       for one in ("one", "any", "whichever")),
@@ -1988,6 +1990,11 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("next", "of"): ("next", "to"),
     ("close", "of"): ("close", "to"),
     ("i", "want", "that", "you"): ("i", "want", "you", "to"),
+    # "I'd just like you to ...": "just" softens the request, it narrows nothing
+    **{("i", *modal, "just", *wish, "you", "to"): ("i", "would", "like", "you", "to")
+       for modal, wish in ((("d",), ("like",)), (("would",), ("like",)), ((), ("need",)), ((), ("want",)))},
+    # "holding off on the dining room until ...": kept out of it until then
+    ("hold", "off", "on"): ("stay", "out", "of"), ("holding", "off", "on"): ("staying", "out", "of"),
     ("i", "would", "like", "that", "you"): ("i", "would", "like", "you", "to"),
     ("without", "to"): ("without",),
     ("for", "to"): ("to",),

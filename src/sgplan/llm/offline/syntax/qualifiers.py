@@ -181,7 +181,8 @@ def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Describe
             or not (head.categories or noun.determiner.pointer in lx.OWNERS)  # "his room, the one with X"
             or not isinstance(noun.head, Head) or r.word(i) not in (",", "not")
             or r.word(i + 1) != "the"
-            or r.word(one) != "one" or r.phrase(one, lx.CHOICE_AFFIRMATIONS)):
+            or r.word(one) != "one" or r.phrase(one, lx.CHOICE_AFFIRMATIONS)
+            or r.phrase(i + 1, lx.CHOICE_AFFIRMATIONS)):  # "the TV, the one you like": a remark
         return None
     if role == "qualifier" and head.kind != "room":
         return None
