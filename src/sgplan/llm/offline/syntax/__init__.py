@@ -35,6 +35,7 @@ from sgplan.llm.offline.syntax.context import (
 )
 from sgplan.llm.offline.syntax.corrections import corrected, joined_appositions
 from sgplan.llm.offline.syntax.fine_choice import fine_choice, remark_after_closing, remark_commas
+from sgplan.llm.offline.syntax.floor_goal import floor_goal_last
 from sgplan.llm.offline.syntax.floor_only import floor_only
 from sgplan.llm.offline.syntax.fragments import context_fragment
 from sgplan.llm.offline.syntax.fronted import fronted_prohibition
@@ -70,6 +71,7 @@ def split_mission(text: str, nouns: NounLexicon, spelling: Spelling | None = Non
     readers = [Reader(p.toks, text, nouns, marker=p.marker, new_line=p.new_line, spelling=spelling)
                for p in parts]
     readers = [floor_only(r) for r in readers]  # "this flr only": "stay on this flr"
+    readers = floor_goal_last(readers)  # "check the fridge, then go upstairs": "... go to the floor above"
     readers = [fronted_prohibition(r) for r in readers]  # "Kitchen never go.": "never enter kitchen"
     readers = [bracketed_rooms(r) for r in readers]  # "bowl (LR)": "bowl in LR"
     readers = [said for r in readers for said in bracketed_remarks(r)]  # "(it's the cough syrup)": said back

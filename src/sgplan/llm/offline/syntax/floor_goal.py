@@ -1,0 +1,52 @@
+"""A move between floors that ends the mission: *Check the fridge, then go upstairs.*, *Hey robot, I want you
+to go downstairs.*
+
+*Go upstairs* before goals only says on which floor they are (*Go upstairs. Check the laptop.*: the laptop
+upstairs). With no goal after it, the floor itself is the goal: the move is read as *go to the floor above*
+(*below* for *downstairs*), which the grounding counts from the start floor, or takes as the other floor
+of a building with two, and refuses when the floor the robot is on by then may differ. Only a move verb
+(:data:`.lexicon.FLOOR_MOVE_VERBS`), *back* between them or not, right before the last word of the last
+sentence with content, is read so (sentences after it may only be remarks: *Thanks!*).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from sgplan.llm.offline import lexicon as lx
+from sgplan.llm.offline.syntax.context import closing_only
+from sgplan.llm.offline.syntax.reader import Reader
+from sgplan.llm.offline.text import Tok
+
+_AFTER_MOVE = frozenset({"please", "now", "pls"})
+"""Words a sentence may end with after the move (*go upstairs please*)."""
+_DIRECTION = {1: "above", -1: "below"}
+_CLAUSE_STARTS = frozenset({",", ";", "and", "then", "but"})
+
+
+def floor_goal_last(readers: list[Reader]) -> list[Reader]:
+    """``readers`` with a move between floors that ends the mission read as going to that floor (see the
+    module docstring)."""
+    last = next((k for k in range(len(readers) - 1, -1, -1)
+                 if not (readers[k].aside or closing_only(readers[k], 0, len(readers[k])))), None)
+    if last is None:
+        return readers
+    return [*readers[:last], _to_floor(readers[last]), *readers[last + 1:]]
+
+
+def _to_floor(r: Reader) -> Reader:
+    end = len(r)
+    while end > 0 and (r.word(end - 1) in _AFTER_MOVE or r.word(end - 1) == ","):
+        end -= 1
+    k = end - 1
+    verb = k - 1 - (r.word(k - 1) == "back")  # "then come back downstairs"
+    if k < 1 or r.word(k) not in lx.RELATIVE_FLOORS or r.word(verb) not in lx.FLOOR_MOVE_VERBS:
+        return r
+    if r.word(verb - 1) == "to" and r.word(verb - 2) != "you":
+        return r  # "go to the kitchen, to go upstairs": why, not a goal (but "I want you to go upstairs")
+    clause = max((j + 1 for j in range(verb) if r.word(j) in _CLAUSE_STARTS), default=0)
+    if any(r.phrase(j, lx.NEG_STARTS) or r.word(j) in ("not", "never", "no") for j in range(clause, verb)):
+        return r  # "and never go upstairs": every floor above is kept out of, not one floor
+    said = r.toks[k]
+    words = ("to", "the", "floor", _DIRECTION[lx.RELATIVE_FLOORS[r.word(k)]])
+    return replace(r, toks=(*r.toks[:k], *(Tok(w, said.start, said.end) for w in words), *r.toks[k + 1:]))
