@@ -1034,6 +1034,11 @@ def there_place_or_thing(place: str, thing: str) -> str:
                     f"go into the room, or to reach '{thing}'? Name the goal")
 
 
+def thing_left_there(said: str, thing: str) -> str:
+    return rephrase(f"'{said}' says the {thing} is where the robot goes: is the goal to reach the {thing}, "
+                    "or only to go there? Name the goal")
+
+
 def back_there(phrase: str) -> str:
     return rephrase(f"'back there': 'there' is the place named last ('{phrase}'), where the robot just was; "
                     "name the place to go back to")

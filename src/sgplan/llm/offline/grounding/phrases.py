@@ -8,6 +8,7 @@ otherwise it is refused, listing the candidates and saying how to single one out
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any
@@ -165,6 +166,11 @@ def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
     kept_out = [g for g in disc.references if g.role == "avoid" and ref.start < g.start < np.span.start]
     if where.role == "avoid" and kept_out:  # "look at the vase. Skip the kitchen, don't go in there": which?
         rf.refuse(rf.there_goal_or_kept_out(ref.phrase, kept_out[-1].phrase))
+    until = [g for g in disc.references if g.role == "avoid" and g.start < ref.start
+             and any(e.key in disc.kept_until for e in g.entities)]  # (not "... until you've been there")
+    later = re.search(r"[.!?;]|\bthen\b", disc.text[ref.end:np.span.start])  # (not "the TV in there")
+    if where.role == "goal" and until and later:  # "keep out of the bedroom until the toilet. Then go there"
+        rf.refuse(rf.there_goal_or_kept_out_until(f"'{ref.phrase}'", f"'{until[-1].phrase}'"))
     determined("there", ref, len({e.room_key for e in ref.entities}))
     if where.role == "goal" and where.going_back:  # "A, then B, then go back there": B is where it is
         rf.refuse(rf.back_there(ref.phrase))

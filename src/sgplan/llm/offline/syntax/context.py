@@ -190,8 +190,25 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     kept = [aside(r, clauses[0][0], clauses[first - 1][1])] if first else []
     kept += [order or replace(r, toks=tuple(r.toks[k] for k in words))] + [aside(r, a, b) for a, b in middle]
     if last < len(clauses):
+        thing = left_there_after(r, clauses[last][0], words)
+        if thing is not None:  # "pop up to the office, I think I left my laptop open there": the laptop?
+            rf.refuse(rf.thing_left_there(r.quote(clauses[last][0], len(r)), r.quote(*thing)))
         kept.append(aside(r, clauses[last][0], len(r)))
     return kept
+
+
+def left_there_after(r: Reader, start: int, order: list[int]) -> tuple[int, int] | None:
+    """The words of the object of the scene said in a statement from ``start`` that a person left it *there*
+    (*..., I think I left my laptop open there*), when the order's words ``order`` do not name its kind;
+    ``None`` otherwise."""
+    things = [k for k in range(start, len(r)) if (h := r.head(k)) is not None and h.kind == "object"]
+    if not things or "there" not in r.words[things[0]:] or not any(w in lx.LEFT_THERE
+                                                                   for w in r.words[start:]):
+        return None
+    head = r.head(things[0])
+    assert head is not None
+    named = any((h := r.head(k)) is not None and h.categories & head.categories for k in order)
+    return None if named else (things[0], things[0] + head.words)
 
 
 def bind_floor_there(r: Reader, floors: list[int], order: list[int]) -> Reader | None:
@@ -948,7 +965,8 @@ def statement(r: Reader, start: int, end: int) -> str | None:
     said = r.words[need + 1:end] if need is not None else ()  # what is needed, and where
     wanted_at = any(w in lx.PRONOUNS for w in said) and any(  # "my son wants it upstairs": a goal, maybe
         w in lx.RELATIVE_FLOORS or w in lx.WANTED_WHERE or w in lx.FLOOR_WORDS for w in said)
-    names = wanted_at or any(r.head(j) is not None for j in range(start, end))
+    names = wanted_at or any(r.head(j) is not None and not (j + 1 == k and r.at(j - 1, "the", "place"))
+                             for j in range(start, end))  # "the place needs a once-over": the home
     return "need" if needs and names else "aside"
 
 

@@ -111,7 +111,7 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
         return Refusal(rf.order_without_goal(r.quote(0, len(r))))  # "Last: the office" is not set aside
     if (precedes is None and not lead.node.sequence and isinstance(said_body.node, PlainSentence)
             and (any(r.trailing_after(k) == len(r) - k for k in range(max(0, len(r) - 4), len(r)))
-                 or closes_done(r)
+                 or closes_done(r) or while_there(r, lead.end)
                  or carries_it(said_body.node.body))):
         lead = Match(Link(True), lead.end)  # "Go to the office. Visit the kitchen afterwards.": as "Then ..."
     rest = link(r, said_body.end, sequence_too=False)
@@ -228,6 +228,15 @@ def closes_done(r: Reader) -> bool:
     """Whether the sentence ends in *when you're done* / *once you've finished* (*Go to the office when
     you're done.*): it follows the sentence before it."""
     return any(done_closing(r, k) for k in range(1, len(r)))
+
+
+def while_there(r: Reader, i: int) -> bool:
+    """Whether the sentence opens at ``i`` with *While you're (in) there,*: at the place named last, so after
+    it (*... then go to the office. While you're there, check the laptop.*), as *Once there, ...* (*up
+    there* is its floor: :func:`floor_opening`)."""
+    k = r.skip(skip_subject(r, i + 1), ("still",)) if r.word(i) == "while" else i
+    k += r.word(k) == "in"
+    return k > i and r.at(k, "there", ",")
 
 
 def carries_it(said: Body) -> bool:
