@@ -693,7 +693,7 @@ carry meaning (*secondly*, *before that*, *but first*, a trailing *first*, *agai
 fillers."""
 NOT_FILLERS_HERE = ("do", "and", "then", "next")
 """Fillers that the filler rule leaves to other rules (*do not*, *and then*, *next to*)."""
-SOUNDS = word_set("um umm uh uhh uhm er erm ehm hmm hm ah ahh mm mmm")
+SOUNDS = word_set("um umm uh uhh uhm er erm ehm hmm hm ah ahh mm mmm ooh oooh")
 """Hesitation sounds of spoken missions (*go to the uh bedroom*): no word at all, removed before parsing."""
 HESITATIONS = SOUNDS | word_set("like yeah yep so well basically actually anyway alright right just "
                                 "literally")
@@ -871,6 +871,7 @@ CLOSING = Phrases((
     ("thanks", "a", "bunch"),
     ("thanks", "a", "million"), ("thanks", "in", "advance"), ("thank", "you", "in", "advance"),
     ("thanks", "for", "your", "help"), ("thank", "you", "for", "your", "help"), ("thanks", "for", "that"),
+    ("before", "you", "move", "on"), ("before", "moving", "on"),  # "..., check the fridge before you move on"
     ("cheers",), ("ta",), ("bye",), ("goodbye",), ("bye", "for", "now"), ("see", "you", "later"),
     ("much", "appreciated"), ("appreciate", "it"), ("i", "appreciate", "it"),
     ("i", "would", "appreciate", "it"),
@@ -1991,10 +1992,8 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("close", "of"): ("close", "to"),
     ("i", "want", "that", "you"): ("i", "want", "you", "to"),
     # "I'd just like you to ...": "just" softens the request, it narrows nothing
-    **{("i", *modal, "just", *wish, "you", "to"): ("i", "would", "like", "you", "to")
-       for modal, wish in ((("d",), ("like",)), (("would",), ("like",)), ((), ("need",)), ((), ("want",)))},
-    # "holding off on the dining room until ...": kept out of it until then
-    ("hold", "off", "on"): ("stay", "out", "of"), ("holding", "off", "on"): ("staying", "out", "of"),
+    **{("i", modal, "just", "like", "you", "to"): ("i", "would", "like", "you", "to")
+       for modal in ("d", "would")},
     ("i", "would", "like", "that", "you"): ("i", "would", "like", "you", "to"),
     ("without", "to"): ("without",),
     ("for", "to"): ("to",),

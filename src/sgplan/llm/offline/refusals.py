@@ -1034,6 +1034,11 @@ def there_place_or_thing(place: str, thing: str) -> str:
                     f"go into the room, or to reach '{thing}'? Name the goal")
 
 
+def stated_there_order(said: str) -> str:
+    return rephrase(f"'{said}' puts it at the place named before: is what follows done on that visit, or at "
+                    "any time? Say 'then ...' for on that visit")
+
+
 def thing_left_there(said: str, thing: str) -> str:
     return rephrase(f"'{said}' says the {thing} is where the robot goes: is the goal to reach the {thing}, "
                     "or only to go there? Name the goal")

@@ -8,7 +8,6 @@ otherwise it is refused, listing the candidates and saying how to single one out
 
 from __future__ import annotations
 
-import re
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any
@@ -166,11 +165,9 @@ def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
     kept_out = [g for g in disc.references if g.role == "avoid" and ref.start < g.start < np.span.start]
     if where.role == "avoid" and kept_out:  # "look at the vase. Skip the kitchen, don't go in there": which?
         rf.refuse(rf.there_goal_or_kept_out(ref.phrase, kept_out[-1].phrase))
-    until = [g for g in disc.references if g.role == "avoid" and g.start < ref.start
-             and any(e.key in disc.kept_until for e in g.entities)]  # (not "... until you've been there")
-    later = re.search(r"[.!?;]|\bthen\b", disc.text[ref.end:np.span.start])  # (not "the TV in there")
-    if where.role == "goal" and until and later:  # "keep out of the bedroom until the toilet. Then go there"
-        rf.refuse(rf.there_goal_or_kept_out_until(f"'{ref.phrase}'", f"'{until[-1].phrase}'"))
+    if where.role == "goal" and (until := kept_out_until(ref, disc)) is not None:
+        # "keep out of the bedroom until you've checked the toilet. Then go there": which?
+        rf.refuse(rf.there_goal_or_kept_out_until(f"'{ref.phrase}'", f"'{until.phrase}'"))
     determined("there", ref, len({e.room_key for e in ref.entities}))
     if where.role == "goal" and where.going_back:  # "A, then B, then go back there": B is where it is
         rf.refuse(rf.back_there(ref.phrase))
@@ -186,6 +183,17 @@ def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
         entities = list({e.room_key: disc.vocab.by_key[e.room_key] for e in entities}.values())
     scoped = ref.room_scoped and not (inside and where.role != "qualifier")  # rooms now, not objects
     return disc.record(Grounded("there", np.span.start, np.span.end, entities, ref.mode, scoped, where.role))
+
+
+def kept_out_until(goal: Grounded, disc: Discourse) -> Grounded | None:
+    """The room kept out of until ``goal`` (*don't go into the bedroom until you've checked the toilet*: the
+    bedroom, kept out of until the first goal named after it), or ``None`` (*... until you've checked the
+    microwave, then turn off the telly in there*: the telly lifts nothing)."""
+    kept = [g for g in disc.references if g.role == "avoid" and g.start < goal.start
+            and any(e.key in disc.kept_until for e in g.entities)]
+    if not kept or any(g.role == "goal" and kept[-1].start < g.start < goal.start for g in disc.references):
+        return None
+    return kept[-1]
 
 
 @grounds(GroupRepeat)

@@ -529,7 +529,8 @@ def destination_and_purpose(r: Reader, i: int, node: Action) -> Parse[Action]:
         verbs = verb_words(r, i + 1, node.in_condition)
         if not isinstance(verbs, Match):
             return verbs
-        if set(verbs.node.words) & lx.CARRY_VERBS:  # "go to the kitchen to put the bowl in the sink"
+        looks = r.phrase(i + 2, lx.VERB_IDIOMS) is not None  # "... to take a look at the laptop": no carrying
+        if set(verbs.node.words[looks:]) & lx.CARRY_VERBS:  # "go to the kitchen to put the bowl in the sink"
             return Refusal(rf.carried_in_purpose(r.rest(i)))
         i = verbs.end
         if r.np_starts(i):

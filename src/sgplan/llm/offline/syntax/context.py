@@ -178,6 +178,9 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         rf.refuse(rf.reason_before_pronoun(r.quote(*naming[0]), r.word(pronoun)))
     subject = skip_joiner(r, r.skip(clauses[first - 1][0], lx.INTERJECTIONS)) if first else 0
     order = bind_statement_pronoun(r, subject, [clauses[first][0], *words], named) if first else None
+    if order is not None and "there" in r.words[subject:clauses[first][0]] and "there" not in order.words:
+        # "... head up to the office. I left my laptop up there, so check on it": on that visit, or any time?
+        rf.refuse(rf.stated_there_order(r.quote(subject, clauses[first - 1][1])))
     floors = [k for k in range(clauses[0][0], clauses[first - 1][1])
               if r.word(k) in lx.RELATIVE_FLOORS or r.word(k) in lx.FLOOR_WORDS] if first else []
     if floors and order is None and not named:
@@ -198,12 +201,12 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
 
 
 def left_there_after(r: Reader, start: int, order: list[int]) -> tuple[int, int] | None:
-    """The words of the object of the scene said in a statement from ``start`` that a person left it *there*
-    (*..., I think I left my laptop open there*), when the order's words ``order`` do not name its kind;
-    ``None`` otherwise."""
+    """The words of the object of the scene said in a statement from ``start`` that a person left it *there*,
+    or that it is there (*..., I think I left my laptop open there*, *..., my laptop is there*), when the
+    order's words ``order`` do not name its kind; ``None`` otherwise."""
     things = [k for k in range(start, len(r)) if (h := r.head(k)) is not None and h.kind == "object"]
-    if not things or "there" not in r.words[things[0]:] or not any(w in lx.LEFT_THERE
-                                                                   for w in r.words[start:]):
+    if not things or "there" not in r.words[things[0]:] or not any(
+            w in lx.LEFT_THERE or w in _BE_HAVE for w in r.words[start:]):  # "..., my laptop is there"
         return None
     head = r.head(things[0])
     assert head is not None
@@ -965,9 +968,13 @@ def statement(r: Reader, start: int, end: int) -> str | None:
     said = r.words[need + 1:end] if need is not None else ()  # what is needed, and where
     wanted_at = any(w in lx.PRONOUNS for w in said) and any(  # "my son wants it upstairs": a goal, maybe
         w in lx.RELATIVE_FLOORS or w in lx.WANTED_WHERE or w in lx.FLOOR_WORDS for w in said)
-    names = wanted_at or any(r.head(j) is not None and not (j + 1 == k and r.at(j - 1, "the", "place"))
+    names = wanted_at or any(r.head(j) is not None and not (j + 1 == k and r.words[j - 1:j + 1] in _HOME)
                              for j in range(start, end))  # "the place needs a once-over": the home
     return "need" if needs and names else "aside"
+
+
+_HOME = frozenset({("the", "place")})
+"""The home as a whole, in a statement about it (*the place needs a once-over*), not one of its rooms."""
 
 
 def locates(r: Reader, start: int, verb: int, end: int) -> bool:

@@ -169,15 +169,13 @@ def instead_dropped(r: Reader) -> Reader:
 
 def joins_before(r: Reader, before: Reader) -> bool:
     """Whether the sentence ``r`` is read joined to the sentence ``before`` it (see
-    :func:`joined_appositions`)."""
+    :func:`joined_appositions`): a correction that says which phrase it takes back, by denying it or saying
+    its preposition again, takes back the phrase ``before`` ends with, unless that phrase was said earlier in
+    it too (which one?)."""
     final = final_phrase(before)
     said = before.words[final:phrase_end(before, len(before))] if final is not None else ()
-    preposition = before.word(final - 1) if final is not None else ""
-    start = said_instead(r)
-    if said and (denial_of(r, start, said) is not None
-                 or (start is not None and same_preposition(r, start, preposition) > start)) \
-            and takes_back_last(r, said, preposition):
-        # "... look at the TV. Actually no, not the TV, ...", "... take it to the table. No, to the couch."
+    last = takes_back_last(r, said, before.word(final - 1)) if final is not None else None
+    if last == "named":  # "... the TV. Actually no, not the TV, ...", "... to the table. No, to the couch."
         return not _said_in(before.words[:final], said)
     if takes_back_order(r, before):
         return len(goal_heads(before, 0, len(before))) <= 1
@@ -187,24 +185,26 @@ def joins_before(r: Reader, before: Reader) -> bool:
     apposition = (r.word(k) == "the" and r.word(k + 1) in lx.ANAPHORIC_ONE and len(r) > k + 2
                   and isinstance(noun_phrase(r, k, "goal"), Match))
     # "Go to one of the TVs in the living room. No, the one in the bedroom.": the one phrase it names
-    return apposition or (takes_back_last(r, said, preposition) and not named_heads(before, 0, final))
+    return apposition or (last == "last" and not named_heads(before, 0, final))
 
 
-def takes_back_last(r: Reader, said: Sequence[str], preposition: str) -> bool:
+def takes_back_last(r: Reader, said: Sequence[str], preposition: str) -> str | None:
     """Whether the sentence ``r`` is only a correction and the phrase said instead (*No wait, the microwave,
-    sorry.*) of the words ``said`` that the sentence before it ends with (after ``preposition``): it takes
-    them back, and is read joined to it. The new phrase may follow a denial of the old one (*Actually no,
-    not the TV, the vase.*) or say again the preposition before it (*... take it to the table. No, to the
-    couch.*)."""
+    sorry.*) of the words ``said`` that the sentence before it ends with (after ``preposition``): ``"named"``
+    when it says which phrase it takes back, by denying it (*Actually no, not the TV, the vase.*) or saying
+    its preposition again (*... take it to the table. No, to the couch.*, *... the vase in the living room.
+    No, in the dining room.*), ``"last"`` when it does not, ``None`` when it is no such sentence."""
     r = unpaused(r)  # "Actually, no, the other one, with the plant."
     start = said_instead(r)
     if start is None:
-        return False  # "Scratch the kitchen.": takes it back, says nothing instead
-    start = denial_of(r, start, said) or start
-    start = same_preposition(r, start, preposition)
-    new = noun_phrase(r, start, "goal")
+        return None  # "Scratch the kitchen.": takes it back, says nothing instead
+    denial = denial_of(r, start, said)
+    new_at = past_preposition(r, denial if denial is not None else start, preposition, said)
+    new = noun_phrase(r, new_at, "goal")
     end = len(r) - (2 if r.words[-2:] == (",", "sorry") else 0)
-    return isinstance(new, Match) and new.end == end and new.end > start
+    if not (isinstance(new, Match) and new.end == end and new.end > new_at):
+        return None
+    return "named" if denial is not None or new_at > start else "last"
 
 
 def takes_back_order(r: Reader, before: Reader) -> bool:
@@ -407,7 +407,9 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
     if old is None:
         return None
     start = r.toks.index(next(t for t in r.toks if t.start == old.span.start))
-    start_new = same_preposition(r, denied(r, old, start_new), r.word(start - 1))
+    after_denial = denied(r, old, start_new)
+    start_new = past_preposition(r, after_denial, r.word(start - 1), r.words[start:end])
+    room_said = start_new > after_denial and r.word(after_denial) in _ROOM_OF  # "..., no, in the dining room"
     head = old.head if isinstance(old, Described) and isinstance(old.head, Head) else None
     named, rest = one_named(r, start, end, start_new)
     if not named and any(r.word(j) in lx.ANAPHORIC_ONE for j in range(start_new, start_new + 3)):
@@ -420,24 +422,26 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
         return None  # (another correction after it: "the microwave no the oven wait no microwave")
     kinds = {head_kind(p) for p in (old, new.node) if isinstance(p, Described)} - {None}
     if len(kinds) > 1:
-        room_at = room_taken_back(r, start, end, said, start_new, new.end)
+        room_at = room_taken_back(r, start, end, said, start_new, new.end, room_said)
         if room_at is None:
             return None  # "the toilet in the bathroom, no wait, the kitchen": which part is taken back?
         kept = replace(r, toks=r.toks[:room_at] + named + r.toks[rest:])
         return kept, replace(r, toks=r.toks[room_at:start_new], aside=True)
-    if kinds == {"object"} and rooms_named(r, 0, start) and rooms_named(said, start_new, new.end):
+    if room_said or (kinds == {"object"} and rooms_named(r, 0, start)
+                     and rooms_named(said, start_new, new.end)):
         return None  # "go to the bedroom and sit on the chair there, no wait, the chair in the office": the
-        # bedroom was where that chair is; is it taken back too?
+        # bedroom was where that chair is; is it taken back too? ("in" said again: only a room follows it)
     kept = replace(r, toks=r.toks[:start] + named + r.toks[rest:])
     return kept, replace(r, toks=r.toks[start:start_new], aside=True)
 
 
-def room_taken_back(r: Reader, start: int, end: int, said: Reader, start_new: int,
-                    end_new: int) -> int | None:
+def room_taken_back(r: Reader, start: int, end: int, said: Reader, start_new: int, end_new: int,
+                    room_said: bool) -> int | None:
     """Where the room of the object phrase ``[start, end)`` starts, when the room phrase ``[start_new,
     end_new)`` of ``said`` corrects only that room (*the toilet in the top-floor bathroom, no wait, the
     bathroom on the middle floor*: the toilet in that bathroom): the old phrase is the object, *in* and a room
-    of the new room's kind (*the bed in the bedroom with the plant, wait, no, the other bedroom*); ``None``
+    of the new room's kind (*the bed in the bedroom with the plant, wait, no, the other bedroom*), or of any
+    kind after *in* said again (``room_said``: *the sink in the kitchen, no, in the bathroom*); ``None``
     otherwise (*the toilet in the bathroom, no wait, the kitchen*: the kitchen instead of the toilet, or the
     toilet's room?)."""
     heads = _heads_at(r, start, end)
@@ -448,7 +452,7 @@ def room_taken_back(r: Reader, start: int, end: int, said: Reader, start_new: in
     at = j + thing.words
     if r.word(at) not in _ROOM_OF or room.kind != "room" or any(r.head(i) for i in range(at + 1, k)):
         return None
-    return at + 1 if room.categories & new_heads[0][1].categories else None
+    return at + 1 if room_said or room.categories & new_heads[0][1].categories else None
 
 
 _ROOM_OF = frozenset({"in", "inside"})
@@ -480,6 +484,8 @@ def order_said_again(r: Reader, k: int, after: int,
     if opening >= k or r.phrase(opening, lx.CORRECTIONS) is not None:
         return None  # "Actually no, go to the bed", "No, actually, ...": takes back the sentence before
     taken_back = goal_heads(r, opening, k)
+    if r.word(start) in _ROOM_OF and any(h.kind == "object" for h in taken_back):
+        return None  # "the sink in the kitchen, no wait, in the bathroom": the sink's room (replaced)
     forgot = forgotten(r, start, taken_back)
     start = order_start(r, r.skip(forgot, _AROUND | _JUST | {"and"})) if forgot is not None else start
     said_again = {h.categories for h in named_heads(r, start, len(r))}
@@ -577,7 +583,8 @@ def denied(r: Reader, old: NounPhrase, i: int) -> int:
     """Where the new phrase starts after the old one is denied at ``i`` in the same words (*no sorry, not
     the kitchen, the living room*, *not the office the bedroom*), or ``i`` when it is not."""
     said = tuple(t.text for t in r.toks if old.span.start <= t.start and t.end <= old.span.end)
-    return denial_of(r, i, said) or i
+    after = denial_of(r, i, said)
+    return i if after is None else after
 
 
 def denial_of(r: Reader, i: int | None, said: Sequence[str]) -> int | None:
@@ -589,10 +596,12 @@ def denial_of(r: Reader, i: int | None, said: Sequence[str]) -> int | None:
     return r.skip(after, _AROUND) if r.word(after) == "," or r.word(after) in lx.DETERMINERS else None
 
 
-def same_preposition(r: Reader, i: int, before: str) -> int:
-    """Past the preposition at ``i`` when it is ``before``, the one said before the phrase taken back (*take
-    it to the dining table, no, to the couch*), else ``i``."""
-    return i + 1 if r.word(i) == before and before in _SAID_AGAIN_BEFORE else i
+def past_preposition(r: Reader, i: int, before: str, said: Sequence[str]) -> int:
+    """Past the preposition at ``i`` when it is ``before``, the one said before the phrase ``said`` taken back
+    (*take it to the dining table, no, to the couch*), or the *in* of its room (*the vase in the living room,
+    no, in the dining room*), else ``i``."""
+    again = r.word(i) == before and before in _SAID_AGAIN_BEFORE
+    return i + 1 if again or (r.word(i) in _ROOM_OF and r.word(i) in said) else i
 
 
 _SAID_AGAIN_BEFORE = frozenset({"to", "into", "on", "at", "in"})

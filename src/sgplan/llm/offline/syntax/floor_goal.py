@@ -22,6 +22,12 @@ _AFTER_MOVE = frozenset({"please", "now", "pls"})
 """Words a sentence may end with after the move (*go upstairs please*)."""
 _DIRECTION = {1: "above", -1: "below"}
 _CLAUSE_STARTS = frozenset({",", ";", "and", "then", "but"})
+"""Words after which the clause of the move starts (*check the fridge, and then go upstairs*)."""
+_LIGHT = frozenset({"please", "just", "also", "now", "so", "finally", "lastly", "next", "robot", "okay",
+                    "ok"})
+"""Words that may come before the move in its clause (*and finally go upstairs*), besides a polite wrapper
+(*I want you to go upstairs*); any other word may make someone else move (*once I go upstairs*) or the
+move a time (*before you go upstairs*), which is no goal."""
 
 
 def floor_goal_last(readers: list[Reader]) -> list[Reader]:
@@ -35,6 +41,9 @@ def floor_goal_last(readers: list[Reader]) -> list[Reader]:
 
 
 def _to_floor(r: Reader) -> Reader:
+    """``r`` with its last word *upstairs* / *downstairs* read as *to the floor above / below* when a move
+    verb (*back* between them or not) comes right before it, and only light words or a polite wrapper
+    before the verb in its clause; else ``r``."""
     end = len(r)
     while end > 0 and (r.word(end - 1) in _AFTER_MOVE or r.word(end - 1) == ","):
         end -= 1
@@ -42,11 +51,12 @@ def _to_floor(r: Reader) -> Reader:
     verb = k - 1 - (r.word(k - 1) == "back")  # "then come back downstairs"
     if k < 1 or r.word(k) not in lx.RELATIVE_FLOORS or r.word(verb) not in lx.FLOOR_MOVE_VERBS:
         return r
-    if r.word(verb - 1) == "to" and r.word(verb - 2) != "you":
-        return r  # "go to the kitchen, to go upstairs": why, not a goal (but "I want you to go upstairs")
-    clause = max((j + 1 for j in range(verb) if r.word(j) in _CLAUSE_STARTS), default=0)
-    if any(r.phrase(j, lx.NEG_STARTS) or r.word(j) in ("not", "never", "no") for j in range(clause, verb)):
-        return r  # "and never go upstairs": every floor above is kept out of, not one floor
+    j = max((j + 1 for j in range(verb) if r.word(j) in _CLAUSE_STARTS), default=0)
+    while j < verb:  # "and never go upstairs", "once I go upstairs", "to go upstairs": no floor goal
+        polite = r.phrase(j, lx.POLITE)
+        if polite is None and r.word(j) not in _LIGHT:
+            return r
+        j += len(polite) if polite is not None else 1
     said = r.toks[k]
     words = ("to", "the", "floor", _DIRECTION[lx.RELATIVE_FLOORS[r.word(k)]])
     return replace(r, toks=(*r.toks[:k], *(Tok(w, said.start, said.end) for w in words), *r.toks[k + 1:]))

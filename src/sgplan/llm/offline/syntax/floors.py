@@ -35,7 +35,7 @@ def floor_offset(r: Reader, i: int) -> Match[FloorOffset] | None:
         delta, n = lx.FLOOR_DIRECTIONS[third] * count, 3
     else:
         return None
-    said = " ".join(r.word(i + j) for j in range(n))
+    said = r.quote(i, i + n)  # the words typed ("upstairs" for a move read as "the floor above")
     if r.word(i + n) in ("us", "you", "me"):
         n += 1  # "the floor above us"
     elif r.at(i + n, "this", "one"):

@@ -155,7 +155,7 @@ def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
     if w in lx.CHOOSING_OF and of == "of" and the in ("the", "all") and (n in lx.NUMBER_WORDS or n.isdigit()):
         return (",",) * comma + (w, of, the, n)  # "a TV in the office, any of the three"
     said = r.phrase(i + comma, lx.CHOICE_AFFIRMATIONS)
-    if said is not None and any_one_located(r, i + comma):
+    if said is not None and (any_one_located(r, i + comma) or the_one_said_more(r, i + comma, said)):
         return None  # "a vase, any one in the living room": which ones, not a remark
     if said is None and comma and r.word(i + 1) in lx.BARE_CHOOSERS and r.word(i + 2) in lx.CLAUSE_ENDS:
         said = (r.word(i + 1),)  # "LR tv (either)", "DR vase, any": no noun follows, so a remark
@@ -163,6 +163,12 @@ def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
     if said is None or (time is not None and len(time) >= len(said)):
         return None
     return (",",) * comma + said
+
+
+def the_one_said_more(r: Reader, i: int, said: tuple[str, ...]) -> bool:
+    """Whether the remark ``said`` at ``i`` is *the one you like* and words other than a clause's end follow
+    it (*the chair, the one you like in the office*: which one, not a free choice)."""
+    return said[0] == "the" and r.word(i + len(said)) not in lx.CLAUSE_ENDS
 
 
 def any_one_located(r: Reader, i: int) -> bool:
@@ -182,7 +188,7 @@ def apposition(r: Reader, i: int, noun: Described, role: Role) -> Parse[Describe
             or not isinstance(noun.head, Head) or r.word(i) not in (",", "not")
             or r.word(i + 1) != "the"
             or r.word(one) != "one" or r.phrase(one, lx.CHOICE_AFFIRMATIONS)
-            or r.phrase(i + 1, lx.CHOICE_AFFIRMATIONS)):  # "the TV, the one you like": a remark
+            or one_remark(r, i) is not None):  # "the TV, the one you like": a remark
         return None
     if role == "qualifier" and head.kind != "room":
         return None

@@ -25,11 +25,19 @@ def join_remarks(readers: list[Reader]) -> list[Reader]:
     for r in readers:
         before = out[-1] if out else None
         if before is not None and not before.aside and not r.aside and only_a_remark(r):
-            end = before.toks[-1].end
-            out[-1] = replace(before, toks=(*before.toks, Tok(",", end, end), *r.toks))
+            # "Sit at the table, would you? Any of them will do.": the remark before the tag
+            tag = 3 if before.word(len(before) - 3) == "," and before.words[-2:] in _TAGS else 0
+            cut = len(before) - tag
+            end = before.toks[cut - 1].end
+            toks = (*before.toks[:cut], Tok(",", end, end), *r.toks, *before.toks[cut:])
+            out[-1] = replace(before, toks=toks)
             continue
         out.append(r)
     return out
+
+
+_TAGS = frozenset((modal, "you") for modal in ("would", "could", "will", "can"))
+"""A question tag closing an order (*..., would you?*)."""
 
 
 def only_a_remark(r: Reader) -> bool:

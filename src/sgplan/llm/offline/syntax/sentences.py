@@ -234,9 +234,11 @@ def while_there(r: Reader, i: int) -> bool:
     """Whether the sentence opens at ``i`` with *While you're (in) there,*: at the place named last, so after
     it (*... then go to the office. While you're there, check the laptop.*), as *Once there, ...* (*up
     there* is its floor: :func:`floor_opening`)."""
-    k = r.skip(skip_subject(r, i + 1), ("still",)) if r.word(i) == "while" else i
+    if r.word(i) != "while":
+        return False
+    k = r.skip(skip_subject(r, i + 1), ("still",))
     k += r.word(k) == "in"
-    return k > i and r.at(k, "there", ",")
+    return r.at(k, "there", ",")
 
 
 def carries_it(said: Body) -> bool:

@@ -11,10 +11,6 @@ statement names exactly one room or object of the scene; the order holds exactly
 several, *there* a room); *it* and *them* only when the place is the statement's subject or the speaker is
 (*I've just mopped the kitchen, so keep out of it*; not *the cat is asleep in the lounge, so leave it
 alone*: the cat?). Anything else is left as it was: read when nothing was named before, else refused.
-
-A statement that puts the thing *there* (*... head up to the office. I left my laptop open up there, so check
-on it*) puts it at the place named last: the order bound to it is done on that visit, so after it (as
-*then*).
 """
 
 from __future__ import annotations
@@ -25,7 +21,6 @@ from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import Head
 from sgplan.llm.offline.syntax.reader import Reader
 from sgplan.llm.offline.syntax.tree import Described, NounPhrase
-from sgplan.llm.offline.text import Tok
 
 BOUND_PRONOUNS = ("it", "them", "there")
 """The pronouns of an order that may point back to what the statement before it names."""
@@ -55,6 +50,4 @@ def bind_statement_pronoun(r: Reader, subject: int, order: list[int],
         return None  # "the cat is asleep in the lounge, so leave it alone": the cat, or the lounge?
     words = tuple(t for t in r.toks if place.span.start <= t.start and t.end <= place.span.end)
     toks = [t for j in body for t in (words if j == k else (r.toks[j],))]
-    if w != "there" and "there" in r.words[subject:order[0]]:  # "I left it up there, so check on it"
-        toks.insert(0, Tok("then", r.toks[order[0]].start, r.toks[order[0]].start))
     return replace(r, toks=tuple(toks))
