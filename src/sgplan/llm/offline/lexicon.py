@@ -466,6 +466,8 @@ NOT_SUPERLATIVE = word_set("interest forest honest modest harvest request guest 
 
 REFUSED_WORDS: dict[str, str] = {
     "leave": "'leave' (the translator cannot express leaving a place; say where to go instead)",
+    "postpone": "'hold off on / postpone' (put off until when? Say 'only after X, ...' for later, or 'don't "
+                "...' to leave it out)",
     "him": "'him' (a person cannot be planned for; for a thing, say 'it')",
     "depending": "'if so / if yes / depending on' (what the robot finds there is not known when the "
                  "plan is made; say what to do in every case)",
@@ -2007,6 +2009,7 @@ PHRASE_ALIASES: dict[tuple[str, ...], tuple[str, ...]] = {
     ("mind", "not", "to"): ("do", "not"),
     ("be", "careful", "to", "avoid"): ("avoid",),
     ("take", "care", "to", "avoid"): ("avoid",),
+    ("hold", "off"): ("postpone",), ("holding", "off"): ("postpone",),  # refused: later, or not at all?
     ("whatever", "you", "do", ","): ("please",),
     ("whatever", "you", "do"): ("please",),
     ("try", "to", "avoid"): ("avoid",),

@@ -1034,6 +1034,11 @@ def there_place_or_thing(place: str, thing: str) -> str:
                     f"go into the room, or to reach '{thing}'? Name the goal")
 
 
+def antecedent_goal_or_mention(pronoun: str, goal: str, mention: str) -> str:
+    return rephrase(f"'{pronoun}' could be '{goal}', named last as a goal, or '{mention}', named after it in "
+                    "what was set aside; name the thing")
+
+
 def stated_there_order(said: str) -> str:
     return rephrase(f"'{said}' puts it at the place named before: is what follows done on that visit, or at "
                     "any time? Say 'then ...' for on that visit")

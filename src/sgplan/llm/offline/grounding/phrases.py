@@ -187,13 +187,16 @@ def there_place(np: ThereNP, where: Where, disc: Discourse) -> Grounded:
 
 def kept_out_until(goal: Grounded, disc: Discourse) -> Grounded | None:
     """The room kept out of until ``goal`` (*don't go into the bedroom until you've checked the toilet*: the
-    bedroom, kept out of until the first goal named after it), or ``None`` (*... until you've checked the
+    bedroom, kept out of until the goals of the clause after it), or ``None`` (*... until you've checked the
     microwave, then turn off the telly in there*: the telly lifts nothing)."""
     kept = [g for g in disc.references if g.role == "avoid" and g.start < goal.start
             and any(e.key in disc.kept_until for e in g.entities)]
-    if not kept or any(g.role == "goal" and kept[-1].start < g.start < goal.start for g in disc.references):
+    if not kept:
         return None
-    return kept[-1]
+    between = disc.text[kept[-1].end:goal.start]  # "... until you've checked the toilet and the laptop, ..."
+    in_clause = not any(mark in between for mark in ".!?;") and " then " not in f" {between.lower()} "
+    others = any(g.role == "goal" and kept[-1].start < g.start < goal.start for g in disc.references)
+    return kept[-1] if in_clause or not others else None
 
 
 @grounds(GroupRepeat)
@@ -278,6 +281,9 @@ def antecedent(pronoun: str, disc: Discourse, kind: str | None = None) -> Ground
                 and (kind is None or all(e.kind == kind for e in g.entities))]
     # what was read first; else what was set aside ("The vase in the hall is dusty. Dust it.")
     read = agreeing(disc.references)
+    later = [m for m in agreeing(disc.mentions) if read and m.start > read[0].end]
+    if later:  # "Head up to the office. I left my laptop there. Check it.": the office, or the laptop?
+        rf.refuse(rf.antecedent_goal_or_mention(pronoun, read[0].phrase, later[0].phrase))
     fits = read or agreeing(disc.mentions)
     if not fits:
         rf.refuse(rf.no_antecedent(pronoun, plural))

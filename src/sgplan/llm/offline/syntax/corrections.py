@@ -54,6 +54,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import replace
+from typing import Literal
 
 from sgplan.llm.offline import lexicon as lx
 from sgplan.llm.offline.nouns import Head
@@ -173,14 +174,16 @@ def joins_before(r: Reader, before: Reader) -> bool:
     its preposition again, takes back the phrase ``before`` ends with, unless that phrase was said earlier in
     it too (which one?)."""
     final = final_phrase(before)
-    said = before.words[final:phrase_end(before, len(before))] if final is not None else ()
-    last = takes_back_last(r, said, before.word(final - 1)) if final is not None else None
-    if last == "named":  # "... the TV. Actually no, not the TV, ...", "... to the table. No, to the couch."
+    if final is None:
+        return takes_back_order(r, before) and len(goal_heads(before, 0, len(before))) <= 1
+    said, preposition = before.words[final:phrase_end(before, len(before))], before.word(final - 1)
+    last = takes_back_last(r, said, preposition)
+    if last == "preposition" and preposition in before.words[:final - 1]:
+        return False  # "go to the kitchen, but don't go to the bathroom. No, to the living room": which?
+    if last in ("denied", "preposition"):  # "... Actually no, not the TV, ...", "... No, to the couch."
         return not _said_in(before.words[:final], said)
     if takes_back_order(r, before):
         return len(goal_heads(before, 0, len(before))) <= 1
-    if final is None:
-        return False
     k = r.skip(0, (",",))  # "Uh, the one with the plant in it." (the sound removed before)
     apposition = (r.word(k) == "the" and r.word(k + 1) in lx.ANAPHORIC_ONE and len(r) > k + 2
                   and isinstance(noun_phrase(r, k, "goal"), Match))
@@ -188,12 +191,12 @@ def joins_before(r: Reader, before: Reader) -> bool:
     return apposition or (last == "last" and not named_heads(before, 0, final))
 
 
-def takes_back_last(r: Reader, said: Sequence[str], preposition: str) -> str | None:
-    """Whether the sentence ``r`` is only a correction and the phrase said instead (*No wait, the microwave,
-    sorry.*) of the words ``said`` that the sentence before it ends with (after ``preposition``): ``"named"``
-    when it says which phrase it takes back, by denying it (*Actually no, not the TV, the vase.*) or saying
-    its preposition again (*... take it to the table. No, to the couch.*, *... the vase in the living room.
-    No, in the dining room.*), ``"last"`` when it does not, ``None`` when it is no such sentence."""
+def takes_back_last(r: Reader, said: Sequence[str], preposition: str) -> TakenBack | None:
+    """How the sentence ``r`` takes back the words ``said`` that the sentence before it ends with (after
+    ``preposition``), when it is only a correction and the phrase said instead (*No wait, the microwave,
+    sorry.*): ``"denied"`` (*Actually no, not the TV, the vase.*), ``"preposition"`` said again (*... take it
+    to the table. No, to the couch.*, *... the vase in the living room. No, in the dining room.*), ``"last"``
+    (neither says which phrase); ``None`` when it is no such sentence."""
     r = unpaused(r)  # "Actually, no, the other one, with the plant."
     start = said_instead(r)
     if start is None:
@@ -204,7 +207,10 @@ def takes_back_last(r: Reader, said: Sequence[str], preposition: str) -> str | N
     end = len(r) - (2 if r.words[-2:] == (",", "sorry") else 0)
     if not (isinstance(new, Match) and new.end == end and new.end > new_at):
         return None
-    return "named" if denial is not None or new_at > start else "last"
+    return "denied" if denial is not None else "preposition" if new_at > start else "last"
+
+
+TakenBack = Literal["denied", "preposition", "last"]
 
 
 def takes_back_order(r: Reader, before: Reader) -> bool:
@@ -420,6 +426,8 @@ def replaced(r: Reader, k: int, after: int) -> tuple[Reader, Reader] | None:
                                       and said.phrase(new.end, lx.CORRECTIONS) is None
                                       and not said_with_verb(said, start_new, new.end)):
         return None  # (another correction after it: "the microwave no the oven wait no microwave")
+    if room_said and said.word(new.end) == "," and said.word(new.end + 1) in lx.POSITIVE_VERBS:
+        return None  # "No, in the dining room, check the chair": a place for a new order, or the vase's room?
     kinds = {head_kind(p) for p in (old, new.node) if isinstance(p, Described)} - {None}
     if len(kinds) > 1:
         room_at = room_taken_back(r, start, end, said, start_new, new.end, room_said)

@@ -3,10 +3,13 @@ to go downstairs.*
 
 *Go upstairs* before goals only says on which floor they are (*Go upstairs. Check the laptop.*: the laptop
 upstairs). With no goal after it, the floor itself is the goal: the move is read as *go to the floor above*
-(*below* for *downstairs*), which the grounding counts from the start floor, or takes as the other floor
-of a building with two, and refuses when the floor the robot is on by then may differ. Only a move verb
+(*below* for *downstairs*), which the grounding counts from the start floor (refused when the floor of the
+goal before it may differ), or takes as the other floor of a building with two. Only a move verb
 (:data:`.lexicon.FLOOR_MOVE_VERBS`), *back* between them or not, right before the last word of the last
-sentence with content, is read so (sentences after it may only be remarks: *Thanks!*).
+sentence with content, is read so (sentences after it may only be remarks: *Thanks!*), and only when the
+mission says no other move between floors (*go upstairs, then come back downstairs* is left to the parser,
+which refuses it). A move to the floor the goal before it is on already (*check the laptop, then go
+upstairs*, in a building of two floors) holds at once.
 """
 
 from __future__ import annotations
@@ -23,8 +26,7 @@ _AFTER_MOVE = frozenset({"please", "now", "pls"})
 _DIRECTION = {1: "above", -1: "below"}
 _CLAUSE_STARTS = frozenset({",", ";", "and", "then", "but"})
 """Words after which the clause of the move starts (*check the fridge, and then go upstairs*)."""
-_LIGHT = frozenset({"please", "just", "also", "now", "so", "finally", "lastly", "next", "robot", "okay",
-                    "ok"})
+_LIGHT = frozenset({"please", "just", "also", "now", "finally", "lastly", "robot", "okay", "ok"})
 """Words that may come before the move in its clause (*and finally go upstairs*), besides a polite wrapper
 (*I want you to go upstairs*); any other word may make someone else move (*once I go upstairs*) or the
 move a time (*before you go upstairs*), which is no goal."""
@@ -36,6 +38,9 @@ def floor_goal_last(readers: list[Reader]) -> list[Reader]:
     last = next((k for k in range(len(readers) - 1, -1, -1)
                  if not (readers[k].aside or closing_only(readers[k], 0, len(readers[k])))), None)
     if last is None:
+        return readers
+    moves = sum(w in lx.RELATIVE_FLOORS for r in readers[:last + 1] for w in r.words)
+    if moves > 1:  # "go upstairs, then come back downstairs": the first move is no goal of its own here
         return readers
     return [*readers[:last], _to_floor(readers[last]), *readers[last + 1:]]
 

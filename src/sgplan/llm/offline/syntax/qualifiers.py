@@ -168,7 +168,10 @@ def one_remark(r: Reader, i: int) -> tuple[str, ...] | None:
 def the_one_said_more(r: Reader, i: int, said: tuple[str, ...]) -> bool:
     """Whether the remark ``said`` at ``i`` is *the one you like* and words other than a clause's end follow
     it (*the chair, the one you like in the office*: which one, not a free choice)."""
-    return said[0] == "the" and r.word(i + len(said)) not in lx.CLAUSE_ENDS
+    after = i + len(said)
+    placed = r.word(after) == "," and (r.word(after + 1) in lx.LOCATIVE
+                                       or r.word(after + 1) in lx.RELATIVE_FLOORS)
+    return said[0] == "the" and (r.word(after) not in lx.CLAUSE_ENDS or placed)  # (", in the office")
 
 
 def any_one_located(r: Reader, i: int) -> bool:

@@ -73,7 +73,7 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
         r.word(k - 1).isdigit() or r.word(k - 1) in lx.NUMBER_WORDS or r.word(k - 1) in lx.FEW)), None)
     if delay is not None:  # "wait 5 min", "in ten minutes", "for a few minutes"
         return Refusal(rf.left_over(r.quote(max(delay - 2, 0), delay + 1)))
-    r = strict_order_first(r)
+    r = strict_order_first(while_there_as_once(r))
     contradicted = order_remark_after_then(r)
     if contradicted is not None:
         return contradicted
@@ -111,7 +111,7 @@ def mission_sentence(r: Reader) -> Parse[MissionSentence]:
         return Refusal(rf.order_without_goal(r.quote(0, len(r))))  # "Last: the office" is not set aside
     if (precedes is None and not lead.node.sequence and isinstance(said_body.node, PlainSentence)
             and (any(r.trailing_after(k) == len(r) - k for k in range(max(0, len(r) - 4), len(r)))
-                 or closes_done(r) or while_there(r, lead.end)
+                 or closes_done(r)
                  or carries_it(said_body.node.body))):
         lead = Match(Link(True), lead.end)  # "Go to the office. Visit the kitchen afterwards.": as "Then ..."
     rest = link(r, said_body.end, sequence_too=False)
@@ -230,15 +230,17 @@ def closes_done(r: Reader) -> bool:
     return any(done_closing(r, k) for k in range(1, len(r)))
 
 
-def while_there(r: Reader, i: int) -> bool:
-    """Whether the sentence opens at ``i`` with *While you're (in) there,*: at the place named last, so after
-    it (*... then go to the office. While you're there, check the laptop.*), as *Once there, ...* (*up
-    there* is its floor: :func:`floor_opening`)."""
-    if r.word(i) != "while":
-        return False
-    k = r.skip(skip_subject(r, i + 1), ("still",))
+def while_there_as_once(r: Reader) -> Reader:
+    """``r`` with *While you're (still) (in) there,* opening it read as *Once there,*: at the place named
+    last, so after it (*... then go to the office. While you're there, check the laptop.*); *up there* is its
+    floor (:func:`floor_opening`)."""
+    if r.word(0) != "while":
+        return r
+    k = r.skip(skip_subject(r, 1), ("still",))
     k += r.word(k) == "in"
-    return r.at(k, "there", ",")
+    if not r.at(k, "there", ","):
+        return r
+    return replace(r, toks=(Tok("once", r.toks[0].start, r.toks[0].end), *r.toks[k:]))
 
 
 def carries_it(said: Body) -> bool:
