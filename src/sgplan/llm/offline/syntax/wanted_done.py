@@ -6,9 +6,9 @@ noun phrase and a past participle closing the clause, is read as the phrase alon
 couch is tidy* is the couch. Only a participle: a word ending in *-ed* (no room or object), or *done*, right
 after the phrase and before the clause ends.
 
-A wish about how things in general should be (*so I want things looking nice*, *I want everything tidy*),
-naming no room or object and asking nothing of *you*, is context: set aside and said back, the sentence
-read without it.
+A wish about how things in general should be (*so I want things looking nice*, *I want everything tidy*,
+*I want the place to look nice*: the home as a whole), naming no room or object and asking nothing of
+*you*, is context: set aside and said back, the sentence read without it.
 """
 
 from __future__ import annotations
@@ -50,11 +50,12 @@ def wanted_done(r: Reader) -> list[Reader]:
 def general_wish(r: Reader, k: int, start: int) -> tuple[Reader, Reader] | None:
     """The sentence without the wish about things in general said from ``k`` (its object at ``start``: *so I
     want things looking nice*), and the wish set aside; ``None`` when the words there are no such wish."""
-    if r.word(start) not in _IN_GENERAL:
+    home = r.at(start, "the", "place")  # "I want the place to look nice": the home as a whole
+    if r.word(start) not in _IN_GENERAL and not home:
         return None
     end = next((j for j in range(start, len(r)) if r.word(j) in (",", "and", "then")), len(r))
     said = r.words[start:end]
-    if "you" in said or "to" in said or any(r.head(j) for j in range(start, end)):
+    if "you" in said or ("to" in said and not home) or any(r.head(j) for j in range(start + 2 * home, end)):
         return None
     said_from = k - (1 if r.word(k - 1) in ("so", "and") else 0)  # ", so I want ..."
     cut = said_from - (1 if r.word(said_from - 1) == "," else 0)
