@@ -751,8 +751,7 @@ def is_time(r: Reader, start: int, end: int) -> bool:
     """*Before lunch*, *this morning*, *at some point this evening*, *tonight*, *right now*: a time of day,
     meal or event (not *later* or *now* alone, which order the steps)."""
     if (event_clause(r, start, end) or tuple(r.words[start:end]) in lx.OCCASIONS
-            or robot_routine(r, start, end)  # "First thing when you wake up, ..."
-            or before_floor_move(r, start, end)):
+            or robot_routine(r, start, end)):  # "First thing when you wake up, ..."
         return True
     words = r.words[start:end]
     event = words[:1] in tuple((w,) for w in lx.EVENT_OPENERS)  # "before the guests arrive"
@@ -788,27 +787,6 @@ def robot_routine(r: Reader, start: int, end: int) -> bool:
     return any(w in _ROBOT_ROUTINE for w in words) and all(
         w in _ROBOT_ROUTINE or w in lx.TIME_WORDS or w in lx.AUXILIARIES or w in ("your", "had", "'ve")
         for w in words)
-
-
-_MOVE_TAIL = frozenset({"for", "the", "night", "dinner", "lunch", "from", "up", "down", "here", "there",
-                        "back", "again"})
-"""Words of a move between floors said as a time (*before you come back down for the night*, *before you
-come up from down here*)."""
-
-
-def before_floor_move(r: Reader, start: int, end: int) -> bool:
-    """Whether ``[start, end)`` is *before you* and a move between floors, with no place (*Before you come
-    down for the night, ...*, *Before you go upstairs, ...*): the goals said after it are done first, where
-    they are, in the order said (so read the nine held-out missions of this shape since set 24; set 9's one
-    kept out of the floor reached until them); a place in it (*before you go up to the office*) is an order,
-    left to the parser."""
-    if not r.at(start, "before", "you") or r.word(start + 2) not in lx.FLOOR_MOVE_VERBS:
-        return False
-    words = r.words[start + 3:end]
-    if "all" in words or "ever" in words:
-        return False  # "before you go upstairs at all, ...": the floor kept out of until then
-    return any(w in lx.RELATIVE_FLOORS or w in ("up", "down") for w in words) and all(
-        w in lx.RELATIVE_FLOORS or w in _MOVE_TAIL or w in lx.TIME_WORDS for w in words)
 
 
 def named_event(r: Reader, start: int, end: int) -> int | None:
@@ -971,6 +949,10 @@ def statement(r: Reader, start: int, end: int) -> str | None:
     if (start >= end or "you" in r.words[start:end] or r.phrase(start, lx.POLITE)
             or r.phrase(start, lx.CLOSING)):
         return None  # a clause about the robot ("I'd be grateful if you ...") may ask something of it
+    if r.word(start) in lx.CHOOSERS_OF_KIND and any(
+            r.word(j) in lx.LOCATIVE and (h := r.head(j + 1) or r.head(j + 2)) is not None
+            and h.kind == "room" for j in range(start, end)):
+        return None  # "..., any of the vases in the dining room is fine": a goal said as a remark
     k = subject_end(r, start, end)
     aside_of = r.phrase(start - 1, lx.ASIDE)  # "the couch, it's in the kitchen": a qualifier of the couch
     qualifies = aside_of is not None and r.word(start - 1 + len(aside_of)) in lx.ASIDE_QUALIFIERS
@@ -1109,7 +1091,7 @@ def subject_end(r: Reader, start: int, end: int) -> int | None:
         return state if r.word(state) in lx.STATES and r.skip(state + 1, lx.NOW_WORDS) == end else None
     verb_at = start + 1 + (r.word(start + 1) in lx.STATED_ADVERBS)  # "Groceries just got delivered"
     verb = r.word(verb_at)
-    if (w.isalpha() and r.head(start) is None
+    if (w.isalpha() and r.head(start) is None and w not in lx.SEQUENCE_TIMES  # not "later come back to X"
             and (plain_subject(r, start) or w in lx.RELATIVE_FLOORS or w in lx.EVENT_WORDS
                  or w in lx.PEOPLE_NOUNS or w in _VAGUE_SUBJECTS or floor_surface(r, start))
             and (finite_verb(verb) or (verb.endswith("ed") and verb not in lx.LEXICON_WORDS))):
