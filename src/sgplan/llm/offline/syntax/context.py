@@ -178,9 +178,8 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
         rf.refuse(rf.reason_before_pronoun(r.quote(*naming[0]), r.word(pronoun)))
     subject = skip_joiner(r, r.skip(clauses[first - 1][0], lx.INTERJECTIONS)) if first else 0
     order = bind_statement_pronoun(r, subject, [clauses[first][0], *words], named) if first else None
-    if order is not None and "there" in r.words[subject:clauses[first][0]] and "there" not in order.words:
-        # "... head up to the office. I left my laptop up there, so check on it": on that visit, or any time?
-        rf.refuse(rf.stated_there_order(r.quote(subject, clauses[first - 1][1])))
+    if order is not None:
+        refuse_stated_there(r, subject, clauses[first - 1][1], order)
     floors = [k for k in range(clauses[0][0], clauses[first - 1][1])
               if r.word(k) in lx.RELATIVE_FLOORS or r.word(k) in lx.FLOOR_WORDS] if first else []
     if floors and order is None and not named:
@@ -193,11 +192,26 @@ def split(r: Reader, said_before: bool = False) -> list[Reader]:
     kept = [aside(r, clauses[0][0], clauses[first - 1][1])] if first else []
     kept += [order or replace(r, toks=tuple(r.toks[k] for k in words))] + [aside(r, a, b) for a, b in middle]
     if last < len(clauses):
-        thing = left_there_after(r, clauses[last][0], words)
-        if thing is not None:  # "pop up to the office, I think I left my laptop open there": the laptop?
-            rf.refuse(rf.thing_left_there(r.quote(clauses[last][0], len(r)), r.quote(*thing)))
+        refuse_left_there(r, clauses[last][0], words)
         kept.append(aside(r, clauses[last][0], len(r)))
     return kept
+
+
+def refuse_stated_there(r: Reader, subject: int, end: int, order: Reader) -> None:
+    """Refuses the order bound to what the statement ``[subject, end)`` names when the statement puts it
+    *there* (*... head up to the office. I left my laptop up there, so check on it*): on that visit, or at any
+    time?"""
+    if "there" in r.words[subject:end] and "there" not in order.words:
+        rf.refuse(rf.stated_there_order(r.quote(subject, end)))
+
+
+def refuse_left_there(r: Reader, start: int, order: list[int]) -> None:
+    """Refuses a statement from ``start`` after the order's words ``order`` that a thing is *there* where the
+    order goes (:func:`left_there_after`: *pop up to the office, I think I left my laptop open there*: the
+    laptop?)."""
+    thing = left_there_after(r, start, order)
+    if thing is not None:
+        rf.refuse(rf.thing_left_there(r.quote(start, len(r)), r.quote(*thing)))
 
 
 def left_there_after(r: Reader, start: int, order: list[int]) -> tuple[int, int] | None:
